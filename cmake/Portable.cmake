@@ -1,0 +1,50 @@
+# Flags and helpers for portable code (firmware/, hal/ outside hal/fake).
+# On the host the portable sources are built as C++17 with no C++ standard library headers
+# (-nostdinc++), no exceptions and no RTTI, warnings as errors; the dialect that XC16++
+# (GCC 4.5) accepts is checked by tools/dialect_check, run from ctest.
+
+if(ENGRAVER_PLATFORM STREQUAL "host")
+  set(ENGRAVER_PORTABLE_FLAGS
+      -nostdinc++ -fno-exceptions -fno-rtti
+      -Wall -Wextra -Wshadow -Wcast-align -Wnon-virtual-dtor -Werror)
+elseif(ENGRAVER_PLATFORM STREQUAL "avr")
+  set(ENGRAVER_PORTABLE_FLAGS -std=gnu++11 -fno-exceptions -fno-rtti -fno-threadsafe-statics
+      -Wall -Wextra -Werror -Wno-error=type-limits)
+else()
+  set(ENGRAVER_PORTABLE_FLAGS -std=gnu++0x -fno-exceptions -fno-rtti -Wall)
+endif()
+
+# engraver_portable_library(name [STATIC|INTERFACE] sources...)
+# A library of portable code: include root is the repository top, so includes name their
+# full path ("firmware/core/isqrt.h", "hal/interfaces/spi_master.h").
+function(engraver_portable_library name)
+  if(ARGV1 STREQUAL "INTERFACE")
+    add_library(${name} INTERFACE)
+    target_include_directories(${name} INTERFACE ${PROJECT_SOURCE_DIR})
+    return()
+  endif()
+  add_library(${name} STATIC ${ARGN})
+  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_compile_options(${name} PRIVATE ${ENGRAVER_PORTABLE_FLAGS})
+  if(ENGRAVER_PLATFORM STREQUAL "host")
+    set_target_properties(${name} PROPERTIES CXX_EXTENSIONS OFF)
+  endif()
+endfunction()
+
+# add_subdirectory for each listed folder that exists yet (parts land independently).
+# ENGRAVER_SKIP_PARTS (paths from the top, e.g. "host/lib;host_tests/host") leaves parts out,
+# for working on one area while another is broken.
+set(ENGRAVER_SKIP_PARTS "" CACHE STRING "parts (paths from the top) to leave out")
+function(engraver_add_parts)
+  file(RELATIVE_PATH here ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})
+  foreach(part ${ARGN})
+    if(here STREQUAL "")
+      set(path ${part})
+    else()
+      set(path ${here}/${part})
+    endif()
+    if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/${part}/CMakeLists.txt AND NOT path IN_LIST ENGRAVER_SKIP_PARTS)
+      add_subdirectory(${part})
+    endif()
+  endforeach()
+endfunction()
