@@ -24,6 +24,8 @@ function(engraver_portable_library name)
     return()
   endif()
   add_library(${name} STATIC ${ARGN})
+  # Listed for the AVR proxy's size report (host_tests/target_proxy).
+  set_property(GLOBAL APPEND PROPERTY ENGRAVER_PORTABLE_LIBRARIES ${name})
   target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
   target_compile_options(${name} PRIVATE ${ENGRAVER_PORTABLE_FLAGS})
   if(ENGRAVER_PLATFORM STREQUAL "host")

@@ -1,0 +1,111 @@
+// The coordinate ring between the point generator (background loop, producer) and the 1 ms
+// path controller (timer ISR, consumer): planned target points with their segment data.
+#ifndef FIRMWARE_APP_COORDINATE_RING_H
+#define FIRMWARE_APP_COORDINATE_RING_H
+
+#include <stdint.h>  // int32_t, uint16_t
+
+#include "firmware/config/machine_config.h"  // kAxisCount
+#include "firmware/core/spsc_ring.h"         // CORE_SPSC_BARRIER
+
+namespace app {
+
+// Flags of a ring entry.
+enum PointFlags {
+  kPointRapid = 0x01,     // part of a rapid (#F) move
+  kPointEndOfItem = 0x02  // last point of a queued command (spline, move): progress count
+};
+
+// One target point and the straight segment that leads to it from the previous point.
+// Written completely by the producer before it is published; afterwards the producer
+// only raises entry_max_um_s and sets capture_um (16-bit stores, atomic on the target),
+// which the consumer may read at any time: a stale value is always the safer one.
+struct PlanEntry {
+  int32_t target_um[config::kAxisCount];
+  int16_t dir_q14[config::kAxisCount];  // unit vector of the segment, Q2.14
+  uint32_t length_um;                   // segment length (saturated at 2^31)
+  uint16_t feed_um_s;                   // commanded feed on this segment
+  uint16_t cruise_max_um_s;             // axis speed limits along this direction
+  uint16_t accel_um_s_per_ms;           // planned path acceleration on this segment
+  uint16_t junction_max_um_s;           // cap at the segment start (corner, feeds)
+  volatile uint16_t entry_max_um_s;     // planned speed limit at the segment start
+  volatile uint16_t capture_um;         // leave for the next target inside this distance
+  uint16_t tag;                         // producer's item counter (progress)
+  uint8_t flags;                        // PointFlags
+};
+
+// SPSC ring of PlanEntry with 16-bit free-running indices (same contract as core::SpscRing)
+// plus producer access to the entries not yet consumed, for the planner's backward pass.
+template <uint16_t kCapacity>
+class PlanRing {
+  static_assert(kCapacity >= 2 && kCapacity <= 1024U, "capacity 2..1024");
+  static_assert((kCapacity & (kCapacity - 1)) == 0, "capacity must be a power of two");
+
+ public:
+  PlanRing() : head_(0), tail_(0) {}
+
+  // Producer: appends e; false when full.
+  bool push(const PlanEntry& e) {
+    const uint16_t head = head_;
+    if ((uint16_t)(head - tail_) >= kCapacity) return false;
+    slot_[head & kMask] = e;
+    CORE_SPSC_BARRIER();  // the entry is complete before it is published
+    head_ = (uint16_t)(head + 1);
+    return true;
+  }
+
+  // Producer: the k-th newest published entry (0 = newest), 0 when k >= size(). The slot
+  // stays the producer's to update until it pushes again (it cannot be reused before).
+  PlanEntry* newest(uint16_t k) {
+    const uint16_t head = head_;
+    const uint16_t tail = tail_;
+    if (k >= (uint16_t)(head - tail)) return 0;
+    return &slot_[(uint16_t)(head - 1U - k) & kMask];
+  }
+
+  // Consumer: takes the oldest entry; false when empty.
+  bool pop(PlanEntry* out) {
+    const uint16_t tail = tail_;
+    if (head_ == tail) return false;
+    CORE_SPSC_BARRIER();
+    *out = slot_[tail & kMask];
+    CORE_SPSC_BARRIER();
+    tail_ = (uint16_t)(tail + 1);
+    return true;
+  }
+
+  // Consumer: the oldest entry without taking it, 0 when empty.
+  const PlanEntry* front() const {
+    const uint16_t tail = tail_;
+    if (head_ == tail) return 0;
+    CORE_SPSC_BARRIER();
+    return &slot_[tail & kMask];
+  }
+
+  // Consumer: drops everything published so far.
+  void clear() {
+    const uint16_t head = head_;
+    CORE_SPSC_BARRIER();
+    tail_ = head;
+  }
+
+  uint16_t size() const { return (uint16_t)(head_ - tail_); }
+  uint16_t free_space() const { return (uint16_t)(kCapacity - size()); }
+  bool empty() const { return head_ == tail_; }
+  static uint16_t capacity() { return kCapacity; }
+
+ private:
+  enum { kMask = kCapacity - 1 };
+  volatile uint16_t head_;  // producer-owned
+  volatile uint16_t tail_;  // consumer-owned
+  PlanEntry slot_[kCapacity];
+};
+
+// The ring the application uses: 32 points; at 10 mm/s even 50 um points buffer 160 ms,
+// well beyond the 0.25 mm it takes to stop.
+enum { kCoordinateRingCapacity = 32 };
+typedef PlanRing<kCoordinateRingCapacity> CoordinateRing;
+
+}  // namespace app
+
+#endif  // FIRMWARE_APP_COORDINATE_RING_H

@@ -1,0 +1,284 @@
+// Frames in, replies out (see dispatcher.h and docs/protocol.md section 4).
+#include "firmware/app/dispatcher.h"
+
+#include <string.h>  // memcpy
+
+#include "firmware/core/spline.h"        // kMaxDegree, kMaxControlPoints
+#include "firmware/protocol/codec.h"     // write_frame, decode_frame
+
+namespace app {
+
+Dispatcher::Dispatcher()
+    : port_(0),
+      sink_(0),
+      parser_(proto::kCommandStart),
+      last_error_(proto::ErrorCode::kOk),
+      last_byte_ms_(0),
+      last_valid_ms_(0),
+      last_error_reply_ms_(0),
+      tx_dropped_(0),
+      tx_len_(0),
+      alarm_seq_(0),
+      session_(false),
+      aborted_(false),
+      held_(false),
+      held_letter_(0),
+      held_seq_(0),
+      held_length_(0) {}
+
+void Dispatcher::init(hal::SerialPort* port, CommandSink* sink) {
+  port_ = port;
+  sink_ = sink;
+}
+
+uint16_t Dispatcher::rejected_frames() const { return parser_.rejected_total(); }
+
+void Dispatcher::poll(uint16_t now_ms) {
+  flush_tx();
+  retry_held();
+  const uint16_t rx_errors = port_->take_rx_errors();
+  for (uint16_t i = 0; i < rx_errors && i < 16; ++i) parser_.note_rx_error();
+  uint8_t byte;
+  uint16_t n = 0;
+  while (n < kMaxRxBytesPerPoll && port_->read_byte(&byte)) {
+    ++n;
+    last_byte_ms_ = now_ms;
+    for (proto::ParseEvent ev = parser_.feed(byte); ev != proto::ParseEvent::kNone;
+         ev = parser_.poll()) {
+      if (ev == proto::ParseEvent::kFrame) {
+        on_frame(parser_.frame(), now_ms);
+      } else {
+        on_rejected(parser_.last_error(), now_ms);
+      }
+    }
+  }
+  // A partial frame that stopped arriving is dropped, its bytes re-scanned.
+  if (n == 0 && parser_.in_frame() &&
+      (uint16_t)(now_ms - last_byte_ms_) >= (uint16_t)proto::kInterByteTimeoutMs) {
+    for (proto::ParseEvent ev = parser_.expire(); ev != proto::ParseEvent::kNone;
+         ev = parser_.poll()) {
+      if (ev == proto::ParseEvent::kFrame) {
+        on_frame(parser_.frame(), now_ms);
+      } else {
+        on_rejected(parser_.last_error(), now_ms);
+      }
+    }
+  }
+  flush_tx();
+}
+
+void Dispatcher::on_rejected(proto::ErrorCode code, uint16_t now_ms) {
+  last_error_ = code;
+  // A corrupted frame: tell the host at once so it resends without waiting for its timer
+  // (rate-limited: a burst of noise must not flood the link).
+  if (code == proto::ErrorCode::kBadCrc && session_ &&
+      (uint16_t)(now_ms - last_error_reply_ms_) >= (uint16_t)kErrorReplyGapMs) {
+    last_error_reply_ms_ = now_ms;
+    const proto::ErrorReply r = {code, 0, window_.next_expected()};
+    reply(r, window_.next_expected());
+  }
+}
+
+void Dispatcher::on_frame(const proto::Frame& f, uint16_t now_ms) {
+  last_valid_ms_ = now_ms;
+  switch (f.kind) {
+    case proto::FrameKind::kQueued:
+      on_queued(f);
+      break;
+    case proto::FrameKind::kRealtime:
+      on_realtime(f);
+      break;
+    case proto::FrameKind::kImmediate:
+      on_immediate(f);
+      break;
+    default:
+      error(f.seq, proto::ErrorCode::kUnknownCommand, 0);
+      break;
+  }
+}
+
+void Dispatcher::on_immediate(const proto::Frame& f) {
+  if (f.letter == proto::kCmdStatus) {
+    proto::StatusReply r;
+    sink_->fill_status(&r);
+    r.flags = (uint8_t)(r.flags | (held_ ? proto::kStatusFramePending : 0) |
+                        (session_ ? proto::kStatusSession : 0) |
+                        (aborted_ ? proto::kStatusAborted : 0));
+    r.next_expected_seq = window_.next_expected();
+    r.last_error = last_error_;
+    r.rejected_frames = parser_.rejected_total();
+    r.queue_free = sink_->queue_free();
+    reply(r, f.seq);
+    return;
+  }
+  proto::SessionCmd cmd;
+  const proto::ErrorCode e = proto::decode_frame(f, &cmd);
+  if (e != proto::ErrorCode::kOk) {
+    error(f.seq, e, 0);
+    return;
+  }
+  if (cmd.protocol_version != proto::kProtocolVersion) {
+    error(f.seq, proto::ErrorCode::kVersionUnsupported, proto::kProtocolVersion);
+    return;
+  }
+  sink_->reset_session();
+  window_.reset((uint8_t)(f.seq + 1U));
+  realtime_.reset();
+  held_ = false;
+  session_ = true;
+  aborted_ = false;
+  proto::SessionReply r;
+  r.protocol_version = proto::kProtocolVersion;
+  r.max_payload = proto::kMaxPayload;
+  r.window_frames = proto::kWindowFrames;
+  r.queue_slots = sink_->queue_slots();
+  r.rx_buffer_bytes = 256;
+  r.max_degree = core::kMaxDegree;
+  r.max_control_points = core::kMaxControlPoints;
+  r.firmware_major = 0;
+  r.firmware_minor = 1;
+  reply(r, f.seq);
+}
+
+void Dispatcher::on_realtime(const proto::Frame& f) {
+  if (!session_) {
+    error(f.seq, proto::ErrorCode::kNoSession, 0);
+    return;
+  }
+  const proto::SeqClass c = realtime_.classify(f.seq);
+  if (c == proto::SeqClass::kDuplicate) {
+    ack(f.seq);  // done already; never acted on twice
+    return;
+  }
+  if (c == proto::SeqClass::kStale) {
+    error(f.seq, proto::ErrorCode::kSeqStale, 0);
+    return;
+  }
+  const proto::ErrorCode e = sink_->realtime(f);
+  if (e != proto::ErrorCode::kOk) {
+    error(f.seq, e, 0);
+    return;
+  }
+  realtime_.accept(f.seq);
+  ack(f.seq);
+}
+
+void Dispatcher::on_queued(const proto::Frame& f) {
+  if (!session_) {
+    error(f.seq, proto::ErrorCode::kNoSession, 0);
+    return;
+  }
+  if (aborted_) {
+    error(f.seq, proto::ErrorCode::kAborted, 0);
+    return;
+  }
+  switch (window_.classify(f.seq)) {
+    case proto::SeqClass::kNew: {
+      uint8_t detail = 0;
+      const proto::ErrorCode e = sink_->store(f, &detail);
+      if (e == proto::ErrorCode::kOk) {
+        window_.accept(f.seq);
+        ack(f.seq);
+      } else if (e == proto::ErrorCode::kBusy) {
+        hold(f);  // ack delayed until there is room
+      } else {
+        error(f.seq, e, detail);
+      }
+      break;
+    }
+    case proto::SeqClass::kDuplicate:
+      ack(f.seq);  // stored before: acknowledged again, not stored twice
+      break;
+    case proto::SeqClass::kPending:
+      break;  // the held copy's ack will come
+    case proto::SeqClass::kAhead:
+      error(f.seq, window_.pending() ? proto::ErrorCode::kBusy : proto::ErrorCode::kSeqGap, 0);
+      break;
+    default:
+      error(f.seq, proto::ErrorCode::kSeqOutOfWindow, 0);
+      break;
+  }
+}
+
+void Dispatcher::hold(const proto::Frame& f) {
+  held_ = true;
+  held_letter_ = f.letter;
+  held_seq_ = f.seq;
+  held_length_ = f.length;
+  memcpy(held_payload_, f.payload, f.length);
+  window_.mark_pending(f.seq);
+}
+
+// Offers the held frame again; stored -> ack now (the delayed acknowledgement).
+void Dispatcher::retry_held() {
+  if (!held_) return;
+  proto::Frame f;
+  f.start = proto::kCommandStart;
+  f.letter = held_letter_;
+  f.seq = held_seq_;
+  f.length = held_length_;
+  f.kind = proto::FrameKind::kQueued;
+  f.payload = held_payload_;
+  uint8_t detail = 0;
+  const proto::ErrorCode e = sink_->store(f, &detail);
+  if (e == proto::ErrorCode::kBusy) return;
+  held_ = false;
+  window_.clear_pending();
+  if (e == proto::ErrorCode::kOk) {
+    window_.accept(f.seq);
+    ack(f.seq);
+  } else {
+    error(f.seq, e, detail);
+  }
+}
+
+void Dispatcher::abort_stream() {
+  aborted_ = true;
+  held_ = false;
+  window_.clear_pending();
+}
+
+void Dispatcher::send_alarm(proto::Alarm alarm, proto::MachineState state) {
+  const proto::AlarmReply r = {alarm, state};
+  alarm_seq_ = (uint8_t)(alarm_seq_ + 1U);
+  reply(r, alarm_seq_);
+}
+
+void Dispatcher::ack(uint8_t seq) {
+  const proto::AckReply r = {sink_->queue_free()};
+  reply(r, seq);
+}
+
+void Dispatcher::error(uint8_t seq, proto::ErrorCode code, uint8_t detail) {
+  last_error_ = code;
+  const proto::ErrorReply r = {code, detail, window_.next_expected()};
+  reply(r, seq);
+}
+
+// Encodes a reply into the transmit buffer; if even that is full the reply is dropped and
+// counted (the host recovers with #? and its retransmit timer).
+template <typename Msg>
+void Dispatcher::reply(const Msg& msg, uint8_t seq) {
+  uint8_t size = 0;
+  if (kTxBytes - tx_len_ < proto::kMaxFrameBytes) flush_tx();
+  if (proto::write_frame(msg, seq, tx_ + tx_len_, (uint16_t)(kTxBytes - tx_len_), &size) !=
+      proto::ErrorCode::kOk) {
+    ++tx_dropped_;
+    return;
+  }
+  tx_len_ = (uint16_t)(tx_len_ + size);
+  flush_tx();
+}
+
+void Dispatcher::flush_tx() {
+  if (tx_len_ == 0) return;
+  const uint16_t sent = port_->write(tx_, tx_len_);
+  if (sent >= tx_len_) {
+    tx_len_ = 0;
+    return;
+  }
+  memmove(tx_, tx_ + sent, tx_len_ - sent);
+  tx_len_ = (uint16_t)(tx_len_ - sent);
+}
+
+}  // namespace app

@@ -1,0 +1,96 @@
+// The dispatcher of the background loop: received bytes -> frame parser -> sequence checks ->
+// the command sink (store queued frames, act on real-time ones) -> replies. Holds one queued
+// frame with its ack delayed while there is no room (the flow control), never drops data.
+#ifndef FIRMWARE_APP_DISPATCHER_H
+#define FIRMWARE_APP_DISPATCHER_H
+
+#include <stdint.h>  // uint8_t, uint16_t
+
+#include "firmware/protocol/frame.h"            // Frame
+#include "firmware/protocol/messages.h"         // StatusReply, Alarm
+#include "firmware/protocol/parser.h"           // Parser
+#include "firmware/protocol/sequence_window.h"  // SequenceWindow, RealtimeSequence
+#include "hal/interfaces/serial_port.h"         // SerialPort
+
+namespace app {
+
+// What the dispatcher needs from the rest of the application.
+class CommandSink {
+ public:
+  // A queued frame, next in order: kOk when stored; kBusy when there is no room yet (the
+  // frame is held and offered again); any other code rejects it (*E, nothing stored).
+  virtual proto::ErrorCode store(const proto::Frame& frame, uint8_t* detail) = 0;
+  // A new real-time frame: kOk (acknowledged) or a code for *E.
+  virtual proto::ErrorCode realtime(const proto::Frame& frame) = 0;
+  // #I: stop motion, clear queues (the dispatcher resets its own stream state).
+  virtual void reset_session() = 0;
+  // #X was acted on: the sink flushed everything.
+  virtual void fill_status(proto::StatusReply* reply) = 0;
+  virtual uint8_t queue_free() = 0;
+  virtual uint8_t queue_slots() = 0;
+
+ protected:
+  ~CommandSink() {}
+};
+
+class Dispatcher {
+ public:
+  enum { kTxBytes = 192, kMaxRxBytesPerPoll = 160, kErrorReplyGapMs = 20 };
+  Dispatcher();
+  void init(hal::SerialPort* port, CommandSink* sink);
+  // Drains received bytes (bounded), offers the held frame again, sends queued replies.
+  void poll(uint16_t now_ms);
+  // Unsolicited alarm notice.
+  void send_alarm(proto::Alarm alarm, proto::MachineState state);
+  // Marks the stream aborted (#X): queued frames get kAborted until #I; drops a held frame.
+  void abort_stream();
+
+  bool session_open() const { return session_; }
+  bool aborted() const { return aborted_; }
+  bool frame_held() const { return held_; }
+  uint8_t next_expected() const { return window_.next_expected(); }
+  proto::ErrorCode last_error() const { return last_error_; }
+  uint16_t rejected_frames() const;
+  // Milliseconds since the last CRC-valid frame (saturates at 65535 via wrap handling).
+  uint16_t ms_since_valid(uint16_t now_ms) const { return (uint16_t)(now_ms - last_valid_ms_); }
+  uint16_t tx_dropped() const { return tx_dropped_; }
+
+ private:
+  void on_frame(const proto::Frame& f, uint16_t now_ms);
+  void on_rejected(proto::ErrorCode code, uint16_t now_ms);
+  void on_queued(const proto::Frame& f);
+  void on_realtime(const proto::Frame& f);
+  void on_immediate(const proto::Frame& f);
+  void retry_held();
+  void hold(const proto::Frame& f);
+  void ack(uint8_t seq);
+  void error(uint8_t seq, proto::ErrorCode code, uint8_t detail);
+  template <typename Msg>
+  void reply(const Msg& msg, uint8_t seq);
+  void flush_tx();
+
+  hal::SerialPort* port_;
+  CommandSink* sink_;
+  proto::Parser parser_;
+  proto::SequenceWindow window_;
+  proto::RealtimeSequence realtime_;
+  proto::ErrorCode last_error_;
+  uint16_t last_byte_ms_;
+  uint16_t last_valid_ms_;
+  uint16_t last_error_reply_ms_;
+  uint16_t tx_dropped_;
+  uint16_t tx_len_;
+  uint8_t alarm_seq_;
+  bool session_;
+  bool aborted_;
+  bool held_;
+  uint8_t held_letter_;
+  uint8_t held_seq_;
+  uint8_t held_length_;
+  uint8_t held_payload_[proto::kMaxPayload];
+  uint8_t tx_[kTxBytes];
+};
+
+}  // namespace app
+
+#endif  // FIRMWARE_APP_DISPATCHER_H

@@ -1,0 +1,67 @@
+// The 1 ms path controller: actual position in, three native velocities out. Points the
+// velocity at the current target, scales it by the planned speed, and takes the next target
+// from the coordinate ring inside the capture radius. Fixed point only, no I/O, never waits.
+#ifndef FIRMWARE_APP_PATH_CONTROLLER_H
+#define FIRMWARE_APP_PATH_CONTROLLER_H
+
+#include <stdint.h>  // int32_t, int16_t
+
+#include "firmware/app/axis_scaling.h"     // AxisScaling
+#include "firmware/app/coordinate_ring.h"  // CoordinateRing, PlanEntry
+
+namespace app {
+
+class PathController {
+ public:
+  PathController();
+  void init(const AxisScaling& scaling);
+
+  // One control step. pos_usteps: x_actual of X, Y, Z. v_units: v_target to write.
+  void tick(const int32_t pos_usteps[config::kAxisCount], CoordinateRing* ring,
+            int16_t v_units[config::kAxisCount]);
+
+  // Feed hold: decelerate along the path to rest (true) or go on (false).
+  void set_hold(bool hold) { hold_ = hold; }
+  // Feed override in percent (10..200 accepted; others clamped).
+  void set_override_percent(uint8_t percent);
+  // Forgets the target and everything buffered (after a stop, zeroing or an alarm).
+  void flush(CoordinateRing* ring);
+  // Stops the commanded speed at once (alarm); velocities of the next tick are zero.
+  void stop_now();
+
+  // Commanded path speed, um/s.
+  uint16_t speed_um_s() const { return speed_um_s_; }
+  // Stopped: speed zero (at the last target, or held).
+  bool at_rest() const { return speed_um_s_ == 0; }
+  // Stopped on the last buffered target with nothing more to do.
+  bool finished() const { return !have_target_ || arrived_; }
+  bool holding() const { return hold_; }
+  // Ring entries flagged kPointEndOfItem that were reached (wraps at 2^16).
+  uint16_t items_done() const { return items_done_; }
+  // Tag of the current target (the item being worked on).
+  uint16_t current_tag() const { return cur_.tag; }
+
+ private:
+  void take(const PlanEntry& e);
+  void leave_target();
+  uint16_t cruise_of(const PlanEntry& e) const;
+  void output(const int16_t dir_um[3], uint16_t len, int16_t v_units[3]);
+
+  AxisScaling scaling_;
+  PlanEntry cur_;
+  int32_t target_usteps_[config::kAxisCount];
+  int32_t residue_q8_[config::kAxisCount];  // velocity quantisation carried to the next tick
+  uint16_t speed_um_s_;
+  uint16_t items_done_;
+  uint8_t override_percent_;
+  bool have_target_;
+  bool arrived_;
+  bool hold_;
+};
+
+// Arrival window at the end of the buffered path (1 um, in 1/16 um).
+static const uint32_t kArriveQ4 = 16;
+
+}  // namespace app
+
+#endif  // FIRMWARE_APP_PATH_CONTROLLER_H

@@ -1,0 +1,191 @@
+// Look-ahead planner: segment geometry, corner speeds, capture radii, backward pass.
+#include "firmware/app/planner.h"
+
+#include "firmware/app/vector3.h"       // normalise3, length3
+#include "firmware/core/fixed_point.h"  // abs_u32
+#include "firmware/core/isqrt.h"        // isqrt32
+
+namespace app {
+
+namespace {
+
+const uint16_t kOneQ14 = 16384U;
+const int16_t kInvolvedQ14 = 256;  // an axis moving more than 1/64 of the path counts
+const uint16_t kMaxSpeed = 32767U;
+
+uint16_t min16(uint16_t a, uint16_t b) { return a < b ? a : b; }
+
+// Q14 dot product of two unit vectors.
+int32_t dot_q14(const int16_t a[3], const int16_t b[3]) {
+  return ((int32_t)a[0] * b[0] + (int32_t)a[1] * b[1] + (int32_t)a[2] * b[2]) >> 14;
+}
+
+}  // namespace
+
+PlannerSettings default_planner_settings(uint16_t capture_radius_um) {
+  PlannerSettings s;
+  s.capture_radius_um = capture_radius_um;
+  s.corner_tolerance_um = 4;
+  s.cut_tolerance_um = 2;
+  s.max_override_percent = 200;
+  return s;
+}
+
+uint16_t reach_speed_um_s(uint16_t exit_um_s, uint16_t accel_um_s_per_ms, uint32_t length_um) {
+  const uint32_t two_a = 2000UL * accel_um_s_per_ms;  // 2a in um/s^2
+  if (two_a == 0) return exit_um_s;
+  const uint32_t exit_sq = (uint32_t)exit_um_s * exit_um_s;
+  const uint32_t room = 0x3FFFFFFFUL - exit_sq;  // keeps the sum below 2^30 (32768^2)
+  if (length_um >= room / two_a) return kMaxSpeed;
+  const uint16_t v = core::isqrt32(exit_sq + two_a * length_um);
+  return v > kMaxSpeed ? kMaxSpeed : v;
+}
+
+Planner::Planner() : last_cruise_um_s_(0), have_dir_(false) {
+  for (uint8_t i = 0; i < config::kAxisCount; ++i) {
+    last_um_[i] = 0;
+    last_dir_q14_[i] = 0;
+  }
+  settings_ = default_planner_settings(10);
+}
+
+void Planner::init(const AxisScaling& scaling, const PlannerSettings& settings) {
+  scaling_ = scaling;
+  settings_ = settings;
+  have_dir_ = false;
+}
+
+void Planner::set_origin(const int32_t at_um[config::kAxisCount]) {
+  for (uint8_t i = 0; i < config::kAxisCount; ++i) last_um_[i] = at_um[i];
+  have_dir_ = false;
+  last_cruise_um_s_ = 0;
+}
+
+// Length, direction, acceleration and cruise limit of the segment last -> target.
+void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount]) {
+  int32_t d[3];
+  for (uint8_t i = 0; i < 3; ++i) {
+    e->target_um[i] = target_um[i];
+    d[i] = target_um[i] - last_um_[i];
+  }
+  int16_t n[3];
+  int8_t shift;
+  normalise3(d, n, &shift);
+  const uint16_t len = length3(n);
+  if (len == 0) {
+    // Zero length: keep the previous direction so the corner logic sees no turn.
+    for (uint8_t i = 0; i < 3; ++i) e->dir_q14[i] = last_dir_q14_[i];
+    e->length_um = 0;
+    e->cruise_max_um_s = last_cruise_um_s_ ? last_cruise_um_s_ : scaling_.max_speed_um_s[0];
+    e->accel_um_s_per_ms = scaling_.plan_accel_um_s_per_ms[0];
+    return;
+  }
+  for (uint8_t i = 0; i < 3; ++i) e->dir_q14[i] = (int16_t)((int32_t)n[i] * kOneQ14 / len);
+  const uint32_t len_q4 = scale_length_q4(len, shift);
+  e->length_um = (len_q4 + 8) >> 4;
+  uint16_t accel = 65535U;
+  uint16_t cruise = kMaxSpeed;
+  for (uint8_t i = 0; i < 3; ++i) {
+    const int16_t c = e->dir_q14[i] < 0 ? (int16_t)-e->dir_q14[i] : e->dir_q14[i];
+    if (c <= kInvolvedQ14) continue;
+    accel = min16(accel, scaling_.plan_accel_um_s_per_ms[i]);
+    // Path speed at which this axis reaches its own limit: vmax / |u_i|.
+    const uint32_t v = (uint32_t)scaling_.max_speed_um_s[i] * kOneQ14 / (uint16_t)c;
+    if (v < cruise) cruise = (uint16_t)v;
+  }
+  e->accel_um_s_per_ms = accel;
+  e->cruise_max_um_s = cruise;
+}
+
+// Corner speed: the chip ramps each axis at a, so a velocity step of |dv| leaves a path
+// error of at most |dv|^2 / 2a; |dv| = 2 v sin(theta/2) gives v^2 <= a e / (1 - cos theta).
+uint16_t Planner::corner_speed(const int16_t in_q14[3], const int16_t out_q14[3]) const {
+  const int32_t omc_q14 = (int32_t)kOneQ14 - dot_q14(in_q14, out_q14);
+  if (omc_q14 <= 0) return kMaxSpeed;
+  uint32_t a_um_s2 = 0xFFFFFFFFUL;
+  for (uint8_t i = 0; i < 3; ++i) {
+    const bool moves = in_q14[i] > kInvolvedQ14 || in_q14[i] < -kInvolvedQ14 ||
+                       out_q14[i] > kInvolvedQ14 || out_q14[i] < -kInvolvedQ14;
+    const uint32_t a = 1000UL * scaling_.chip_accel_um_s_per_ms[i];
+    if (moves && a < a_um_s2) a_um_s2 = a;
+  }
+  if (a_um_s2 == 0xFFFFFFFFUL) return kMaxSpeed;
+  const uint32_t q = a_um_s2 * settings_.corner_tolerance_um / (uint32_t)omc_q14;
+  if (q >= 65535UL) return kMaxSpeed;  // v^2 = q * 2^14 >= 2^30
+  return core::isqrt32(q << 14);
+}
+
+// Switching to the next target at distance r before a corner of turn theta cuts it by
+// about r sin(theta) (r beyond 90 degrees): r = min(capture, cut / sin(theta)).
+uint16_t Planner::capture_for(const int16_t in_q14[3], const int16_t out_q14[3]) const {
+  const int32_t c = dot_q14(in_q14, out_q14);
+  uint32_t sin_q14 = kOneQ14;
+  if (c > 0) {
+    const uint32_t cc = (uint32_t)(c > 16384 ? 16384 : c);
+    sin_q14 = core::isqrt32((uint32_t)kOneQ14 * kOneQ14 - cc * cc);
+  }
+  uint32_t r = settings_.capture_radius_um;
+  if (sin_q14 > 0) {
+    const uint32_t r_cut = (uint32_t)settings_.cut_tolerance_um * kOneQ14 / sin_q14;
+    if (r_cut < r) r = r_cut;
+  }
+  if (r < 1) r = 1;
+  return (uint16_t)r;
+}
+
+bool Planner::push(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
+                   uint16_t feed_um_s, uint8_t flags, uint16_t tag) {
+  if (ring->free_space() == 0) return false;
+  PlanEntry e;
+  fill_segment(&e, target_um);
+  e.feed_um_s = feed_um_s;
+  e.flags = flags;
+  e.tag = tag;
+  // Until the next point is known the turn there may be anything: smallest capture.
+  e.capture_um = settings_.cut_tolerance_um;
+  const uint32_t feed_cap = (uint32_t)feed_um_s * settings_.max_override_percent / 100U;
+  uint16_t cap = min16(e.cruise_max_um_s, feed_cap > kMaxSpeed ? kMaxSpeed : (uint16_t)feed_cap);
+  if (have_dir_) {
+    cap = min16(cap, last_cruise_um_s_);
+    cap = min16(cap, corner_speed(last_dir_q14_, e.dir_q14));
+    // The corner is at the last point with length; zero-length markers after it sit on the
+    // same point and get the same radius.
+    const uint16_t capture = capture_for(last_dir_q14_, e.dir_q14);
+    for (uint16_t k = 0;; ++k) {
+      PlanEntry* prev = ring->newest(k);
+      if (prev == 0) break;
+      prev->capture_um = capture;
+      if (prev->length_um != 0) break;
+    }
+  } else {
+    cap = 0;  // the machine is at rest at the origin
+  }
+  e.junction_max_um_s = cap;
+  e.entry_max_um_s = 0;
+  ring->push(e);  // cannot fail: checked above, only this side adds
+  for (uint8_t i = 0; i < 3; ++i) {
+    last_um_[i] = target_um[i];
+    last_dir_q14_[i] = e.dir_q14[i];
+  }
+  last_cruise_um_s_ = e.cruise_max_um_s;
+  have_dir_ = true;
+  replan(ring);
+  return true;
+}
+
+// Backward pass from the newest entry (which must end at rest) toward the oldest. Limits
+// only ever rise when a segment is appended, so the pass stops at the first unchanged one.
+void Planner::replan(CoordinateRing* ring) {
+  uint16_t exit = 0;
+  for (uint16_t k = 0;; ++k) {
+    PlanEntry* e = ring->newest(k);
+    if (e == 0) break;
+    uint16_t v = reach_speed_um_s(exit, e->accel_um_s_per_ms, e->length_um);
+    if (v > e->junction_max_um_s) v = e->junction_max_um_s;
+    if (k > 0 && v <= e->entry_max_um_s) break;
+    e->entry_max_um_s = v;
+    exit = v;
+  }
+}
+
+}  // namespace app

@@ -1,0 +1,57 @@
+// Look-ahead planner of the background loop: turns target points into planned ring entries
+// (segment length and direction, corner speed, capture radius) and re-plans the buffered
+// path backward so the path controller can always stop at the end of what is buffered.
+#ifndef FIRMWARE_APP_PLANNER_H
+#define FIRMWARE_APP_PLANNER_H
+
+#include <stdint.h>  // int32_t, uint16_t
+
+#include "firmware/app/axis_scaling.h"     // AxisScaling
+#include "firmware/app/coordinate_ring.h"  // CoordinateRing, PlanEntry
+
+namespace app {
+
+struct PlannerSettings {
+  uint16_t capture_radius_um;     // largest target switch distance (config, 10 um)
+  uint16_t corner_tolerance_um;   // path error allowed from the ramp lag at a corner
+  uint16_t cut_tolerance_um;      // path error allowed from switching targets early
+  uint16_t max_override_percent;  // plan for feeds up to this override
+};
+
+// Defaults: capture 10 um, corner 4 um, cut 2 um, override up to 200 %.
+PlannerSettings default_planner_settings(uint16_t capture_radius_um);
+
+// Speed reachable at the start of a segment of length_um that must end at exit_um_s,
+// decelerating at accel (um/s per ms): sqrt(exit^2 + 2 a L), saturated at 32767.
+uint16_t reach_speed_um_s(uint16_t exit_um_s, uint16_t accel_um_s_per_ms, uint32_t length_um);
+
+class Planner {
+ public:
+  Planner();
+  void init(const AxisScaling& scaling, const PlannerSettings& settings);
+  // The path starts here (machine position after boot, zeroing, abort or alarm).
+  void set_origin(const int32_t at_um[config::kAxisCount]);
+  // Plans the segment from the last point to target and publishes it. False when the ring
+  // is full (nothing changed: call again later).
+  bool push(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
+            uint16_t feed_um_s, uint8_t flags, uint16_t tag);
+  // Where the last pushed segment ends.
+  const int32_t* last_um() const { return last_um_; }
+
+ private:
+  void fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount]);
+  uint16_t corner_speed(const int16_t in_q14[3], const int16_t out_q14[3]) const;
+  uint16_t capture_for(const int16_t in_q14[3], const int16_t out_q14[3]) const;
+  void replan(CoordinateRing* ring);
+
+  AxisScaling scaling_;
+  PlannerSettings settings_;
+  int32_t last_um_[config::kAxisCount];
+  int16_t last_dir_q14_[config::kAxisCount];
+  uint16_t last_cruise_um_s_;
+  bool have_dir_;
+};
+
+}  // namespace app
+
+#endif  // FIRMWARE_APP_PLANNER_H

@@ -1,0 +1,54 @@
+// Point generator of the background loop: steps a stored spline through the core (De Boor,
+// adaptive chord tolerance), splits chords longer than the #U maximum step, and hands each
+// point to the planner, which publishes it into the coordinate ring. Bounded work per call.
+#ifndef FIRMWARE_APP_POINT_GENERATOR_H
+#define FIRMWARE_APP_POINT_GENERATOR_H
+
+#include <stdint.h>  // int32_t, uint16_t
+
+#include "firmware/app/coordinate_ring.h"  // CoordinateRing
+#include "firmware/app/planner.h"          // Planner
+#include "firmware/core/spline_stepper.h"  // SplineStepper, StepSettings
+
+namespace app {
+
+enum class GenStatus : uint8_t {
+  kMore = 0,     // call again (ring full or work budget used)
+  kDone = 1,     // every point of the spline is in the ring (last one flagged)
+  kFailed = 2,   // the core stopped (error()); points so far are in the ring
+  kOutside = 3   // a generated point left the travel: nothing more pushed
+};
+
+class PointGenerator {
+ public:
+  PointGenerator();
+  // Default: adaptive, 5 um chord tolerance, no maximum step.
+  void set_resolution(uint16_t max_step_um, uint16_t chord_tolerance_um);
+  // Starts a spline at feed, at height z_um; points carry tag.
+  core::GeometryError begin(const core::Spline* spline, uint16_t feed_um_s, int32_t z_um,
+                            uint16_t tag);
+  // Pushes up to max_points points; travel_um: allowed |x|, |y|.
+  GenStatus run(Planner* planner, CoordinateRing* ring, const int32_t travel_um[2],
+                uint8_t max_points);
+  core::GeometryError error() const { return stepper_.error(); }
+  bool active() const { return active_; }
+  void stop() { active_ = false; }
+
+ private:
+  bool push_point(Planner* planner, CoordinateRing* ring, const core::PointUm& p, uint8_t flags);
+
+  core::SplineStepper stepper_;
+  core::StepSettings settings_;
+  uint16_t max_step_um_;
+  uint16_t feed_um_s_;
+  int32_t z_um_;
+  uint16_t tag_;
+  core::PointUm pending_;  // point produced but not yet pushed (ring was full)
+  bool have_pending_;
+  bool pending_is_last_;
+  bool active_;
+};
+
+}  // namespace app
+
+#endif  // FIRMWARE_APP_POINT_GENERATOR_H

@@ -1,0 +1,97 @@
+// Spline slots for #B/#D (see spline_store.h).
+#include "firmware/app/spline_store.h"
+
+namespace app {
+
+SplineStore::SplineStore() { clear(); }
+
+void SplineStore::clear() {
+  for (uint8_t i = 0; i < kSlots; ++i) {
+    state_[i] = SlotState::kFree;
+    controls_[i] = 0;
+    knots_[i] = 0;
+  }
+  open_ = kSlots;
+}
+
+bool SplineStore::has_free_slot() const {
+  for (uint8_t i = 0; i < kSlots; ++i) {
+    if (state_[i] == SlotState::kFree) return true;
+  }
+  return false;
+}
+
+proto::ErrorCode SplineStore::begin(const proto::SplineHeaderCmd& h, uint8_t* slot) {
+  if (h.degree < 1 || h.degree > core::kMaxDegree) return proto::ErrorCode::kFieldRange;
+  if (h.control_count < (uint16_t)(h.degree + 1U) || h.control_count > core::kMaxControlPoints)
+    return proto::ErrorCode::kFieldRange;
+  if (h.knot_count != (uint16_t)(h.control_count + h.degree + 1U))
+    return proto::ErrorCode::kFieldRange;
+  if (h.feed_um_per_s == 0) return proto::ErrorCode::kFieldRange;
+  uint8_t s = 0;
+  while (s < kSlots && state_[s] != SlotState::kFree) ++s;
+  if (s == kSlots) return proto::ErrorCode::kBusy;
+  // A spline still open (its data never finished) is abandoned: the new #B replaces it.
+  if (open_ < kSlots) state_[open_] = SlotState::kCancelled;
+  core::Spline& sp = spline_[s];
+  sp.degree = h.degree;
+  sp.rational = h.rational;
+  sp.control_count = h.control_count;
+  sp.knot_count = h.knot_count;
+  controls_[s] = 0;
+  knots_[s] = 0;
+  state_[s] = SlotState::kFilling;
+  open_ = s;
+  *slot = s;
+  return proto::ErrorCode::kOk;
+}
+
+proto::ErrorCode SplineStore::add(const proto::SplineDataCmd& d, const int32_t travel_um[2],
+                                  uint8_t* detail, bool* completed) {
+  *detail = 0;
+  *completed = false;
+  if (open_ >= kSlots) return proto::ErrorCode::kSplineSequence;
+  const uint8_t s = open_;
+  core::Spline& sp = spline_[s];
+  // Indices must continue exactly where the previous #D stopped, within the header's counts.
+  if (d.control_index != controls_[s] || d.knot_index != knots_[s])
+    return proto::ErrorCode::kSplineSequence;
+  if ((uint16_t)(controls_[s] + d.control_n) > sp.control_count ||
+      (uint16_t)(knots_[s] + d.knot_n) > sp.knot_count)
+    return proto::ErrorCode::kSplineSequence;
+  for (uint8_t i = 0; i < d.control_n; ++i) {
+    const core::ControlPoint& p = d.control[i];
+    if (p.x_um > travel_um[0] || p.x_um < -travel_um[0] || p.y_um > travel_um[1] ||
+        p.y_um < -travel_um[1])
+      return proto::ErrorCode::kOutOfTravel;
+  }
+  for (uint8_t i = 0; i < d.control_n; ++i) {
+    core::ControlPoint p = d.control[i];
+    if (!sp.rational) p.weight_q14 = core::kWeightOneQ14;
+    sp.control[controls_[s] + i] = p;
+  }
+  for (uint8_t i = 0; i < d.knot_n; ++i) sp.knot[knots_[s] + i] = d.knot[i];
+  controls_[s] = (uint16_t)(controls_[s] + d.control_n);
+  knots_[s] = (uint16_t)(knots_[s] + d.knot_n);
+  if (controls_[s] < sp.control_count || knots_[s] < sp.knot_count) return proto::ErrorCode::kOk;
+  open_ = kSlots;
+  *completed = true;
+  const core::GeometryError g = core::validate_spline(sp);
+  if (g != core::GeometryError::kOk) {
+    state_[s] = SlotState::kCancelled;
+    *detail = (uint8_t)g;
+    return proto::ErrorCode::kGeometry;
+  }
+  state_[s] = SlotState::kReady;
+  return proto::ErrorCode::kOk;
+}
+
+void SplineStore::release(uint8_t slot) {
+  if (slot >= kSlots) return;
+  if (open_ == slot) open_ = kSlots;
+  state_[slot] = SlotState::kFree;
+  controls_[slot] = 0;
+  knots_[slot] = 0;
+}
+
+}  // namespace app

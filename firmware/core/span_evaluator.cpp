@@ -1,0 +1,270 @@
+// Span setup (blossoming the De Boor triangle into Bezier points, then power basis) and
+// per-point Horner evaluation in 32x16 fixed point.
+#include "firmware/core/span_evaluator.h"
+
+namespace core {
+
+namespace {
+
+// Homogeneous point used during setup: x, y in um * weight with 9 fraction bits
+// (|.| < 2^32 for |coord| <= 1e6 relative and weight < 4), w in Q29 (< 2^31).
+struct Homog {
+  int64_t x;
+  int64_t y;
+  int64_t w;
+};
+
+enum { kSetupShift = 9, kAlphaShift = 29 };
+
+// a + alpha * (b - a) with alpha in Q29, rounded. |b - a| < 2^33 keeps the product < 2^62.
+int64_t lerp64(int64_t a, int64_t b, int64_t alpha_q29) {
+  return a + (((b - a) * alpha_q29 + ((int64_t)1 << (kAlphaShift - 1))) >> kAlphaShift);
+}
+
+// v * 2^n without the undefined behaviour of shifting a negative value left.
+int64_t shl64(int64_t v, uint8_t n) { return v * ((int64_t)1 << n); }
+
+// (num / den) in Q29, rounded, for 0 <= num <= den, den > 0 (both < 2^33).
+int64_t ratio_q29(int64_t num, int64_t den) {
+  return (shl64(num, kAlphaShift) + den / 2) / den;
+}
+
+// round(num / den) for den > 0 (rounds half away from zero).
+int64_t div_round(int64_t num, int64_t den) {
+  return num >= 0 ? (num + den / 2) / den : -((-num + den / 2) / den);
+}
+
+// Blossom of span `span` with k arguments equal to knot[span+1] and p-k equal to
+// knot[span]: the k-th Bezier point of the span (De Boor's triangle with varying
+// parameters). Every denominator knot[j+p+1-r] - knot[j] covers the span: never zero.
+Homog blossom(const Spline& s, uint16_t span, const Homog* d0, uint8_t k) {
+  const uint8_t p = s.degree;
+  Homog d[kMaxDegree + 1];
+  for (uint8_t j = 0; j <= p; ++j) d[j] = d0[j];
+  for (uint8_t r = 1; r <= p; ++r) {
+    // Arguments u_{i+1} first, then u_i (the blossom is symmetric).
+    const int64_t u = r <= k ? s.knot[span + 1] : s.knot[span];
+    for (uint8_t jj = p; jj >= r; --jj) {
+      const uint16_t j = (uint16_t)(span - p + jj);  // control index of d[jj]
+      const int64_t lo = s.knot[j];
+      const int64_t hi = s.knot[j + p + 1 - r];
+      const int64_t alpha = ratio_q29(u - lo, hi - lo);
+      d[jj].x = lerp64(d[jj - 1].x, d[jj].x, alpha);
+      d[jj].y = lerp64(d[jj - 1].y, d[jj].y, alpha);
+      d[jj].w = lerp64(d[jj - 1].w, d[jj].w, alpha);
+    }
+  }
+  return d[p];
+}
+
+// Power-basis coefficients of a degree-p Bezier polynomial with values b[0..p].
+void power_basis(uint8_t p, const int64_t* b, int64_t* c) {
+  c[0] = b[0];
+  c[1] = c[2] = c[3] = 0;
+  if (p == 1) {
+    c[1] = b[1] - b[0];
+  } else if (p == 2) {
+    c[1] = 2 * (b[1] - b[0]);
+    c[2] = b[0] - 2 * b[1] + b[2];
+  } else {
+    c[1] = 3 * (b[1] - b[0]);
+    c[2] = 3 * (b[0] - 2 * b[1] + b[2]);
+    c[3] = b[3] - 3 * b[2] + 3 * b[1] - b[0];
+  }
+}
+
+// Horner in t (uq16; t_q16 = 65536 handled as 1.0 by the caller) over coefficients c.
+int32_t horner(const int32_t* c, uint8_t p, uq16_t t) {
+  int32_t acc = c[p];
+  for (uint8_t k = p; k > 0; --k) acc = c[k - 1] + mul_32x16_uq16(acc, t);
+  return acc;
+}
+
+// Scales (x, y) so that the larger magnitude lies in [2^13, 2^14): a direction only.
+Direction scale_direction(int64_t x, int64_t y) {
+  Direction d = {0, 0};
+  int64_t ax = x < 0 ? -x : x;
+  int64_t ay = y < 0 ? -y : y;
+  int64_t m = ax > ay ? ax : ay;
+  if (m == 0) return d;
+  int8_t shift = 0;
+  while (m >= ((int64_t)1 << 14)) {
+    m >>= 1;
+    ++shift;
+  }
+  while (m < ((int64_t)1 << 13)) {
+    m <<= 1;
+    --shift;
+  }
+  if (shift >= 0) {
+    d.dx = (int16_t)(x / ((int64_t)1 << shift));
+    d.dy = (int16_t)(y / ((int64_t)1 << shift));
+  } else {
+    d.dx = (int16_t)shl64(x, (uint8_t)-shift);
+    d.dy = (int16_t)shl64(y, (uint8_t)-shift);
+  }
+  return d;
+}
+
+}  // namespace
+
+// Rounds a q6 point to whole micrometres.
+PointUm round_point(const PointQ6& p) {
+  PointUm r;
+  r.x_um = (p.x_q6 + 32) >> kQ6Shift;
+  r.y_um = (p.y_q6 + 32) >> kQ6Shift;
+  return r;
+}
+
+// First span with positive length at or after index degree.
+uint16_t first_span(const Spline& spline) {
+  return next_span(spline, (uint16_t)(spline.degree - 1));
+}
+
+uint16_t span_end(const Spline& spline) { return spline.control_count; }
+
+// Skips zero-length spans (repeated knots).
+uint16_t next_span(const Spline& spline, uint16_t span) {
+  uint16_t i = (uint16_t)(span + 1);
+  while (i < spline.control_count && spline.knot[i + 1] <= spline.knot[i]) ++i;
+  return i < spline.control_count ? i : spline.control_count;
+}
+
+SpanEvaluator::SpanEvaluator() : degree_(0), rational_(false) {
+  origin_.x_um = origin_.y_um = 0;
+  start_.x_q6 = start_.y_q6 = 0;
+  end_ = start_;
+  end_dir_.dx = end_dir_.dy = 0;
+  for (uint8_t k = 0; k <= kMaxDegree; ++k) cx_[k] = cy_[k] = cw_[k] = 0;
+}
+
+// Blossoms the span into Bezier points relative to its first control point, then stores
+// span-relative power-basis coefficients (see the header for the formats).
+GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
+  degree_ = 0;
+  const uint8_t p = spline.degree;
+  if (p == 0 || p > kMaxDegree || span < p || span >= spline.control_count ||
+      spline.knot_count != spline.control_count + p + 1 ||
+      spline.knot[span + 1] <= spline.knot[span]) {
+    return GeometryError::kKnotRangeEmpty;
+  }
+  const ControlPoint& ref = spline.control[span - p];
+  Homog d0[kMaxDegree + 1];
+  for (uint8_t j = 0; j <= p; ++j) {
+    const ControlPoint& c = spline.control[span - p + j];
+    const int64_t w_q14 = spline.rational ? c.weight_q14 : kWeightOneQ14;
+    d0[j].x = ((int64_t)c.x_um - ref.x_um) * w_q14 / (1 << (14 - kSetupShift));
+    d0[j].y = ((int64_t)c.y_um - ref.y_um) * w_q14 / (1 << (14 - kSetupShift));
+    d0[j].w = w_q14 << (kAlphaShift - 14);
+  }
+  Homog b[kMaxDegree + 1];
+  int64_t w_max = 0;
+  for (uint8_t k = 0; k <= p; ++k) {
+    b[k] = blossom(spline, span, d0, k);
+    if (b[k].w > w_max) w_max = b[k].w;
+  }
+  // Origin: the span start rounded to 1 um (absolute).
+  origin_.x_um = (int32_t)(ref.x_um + div_round(shl64(b[0].x, kAlphaShift - kSetupShift), b[0].w));
+  origin_.y_um = (int32_t)(ref.y_um + div_round(shl64(b[0].y, kAlphaShift - kSetupShift), b[0].w));
+  // Numerators relative to the origin, weights normalised to max 1, in q6 / q26.
+  int64_t nx[kMaxDegree + 1], ny[kMaxDegree + 1], nw[kMaxDegree + 1];
+  const int64_t ox = shl64((int64_t)origin_.x_um - ref.x_um, kSetupShift);
+  const int64_t oy = shl64((int64_t)origin_.y_um - ref.y_um, kSetupShift);
+  for (uint8_t k = 0; k <= p; ++k) {
+    // x - w * o in um*w q9; w in q29.
+    const int64_t rx = b[k].x - ((ox * b[k].w) >> kAlphaShift);
+    const int64_t ry = b[k].y - ((oy * b[k].w) >> kAlphaShift);
+    if (spline.rational) {
+      // rx * 2^29 / w_max is um*w_norm in q9; to q6: * 2^26 / w_max.
+      nx[k] = div_round(shl64(rx, 26), w_max);
+      ny[k] = div_round(shl64(ry, 26), w_max);
+      nw[k] = div_round(shl64(b[k].w, kQ26Shift), w_max);
+    } else {
+      nx[k] = div_round(rx, 1 << (kSetupShift - kQ6Shift));
+      ny[k] = div_round(ry, 1 << (kSetupShift - kQ6Shift));
+      nw[k] = (int64_t)1 << kQ26Shift;
+    }
+  }
+  int64_t c[kMaxDegree + 1];
+  power_basis(p, nx, c);
+  for (uint8_t k = 0; k <= kMaxDegree; ++k) cx_[k] = (int32_t)c[k];
+  power_basis(p, ny, c);
+  for (uint8_t k = 0; k <= kMaxDegree; ++k) cy_[k] = (int32_t)c[k];
+  power_basis(p, nw, c);
+  for (uint8_t k = 0; k <= kMaxDegree; ++k) cw_[k] = (int32_t)c[k];
+  degree_ = p;
+  rational_ = spline.rational;
+  start_ = evaluate_q6(0);
+  // End point straight from the last Bezier point (exact up to setup rounding).
+  end_.x_q6 = (int32_t)(shl64(ref.x_um, kQ6Shift) +
+                        div_round(shl64(b[p].x, kAlphaShift - kSetupShift + kQ6Shift), b[p].w));
+  end_.y_q6 = (int32_t)(shl64(ref.y_um, kQ6Shift) +
+                        div_round(shl64(b[p].y, kAlphaShift - kSetupShift + kQ6Shift), b[p].w));
+  // End tangent: direction of the last non-degenerate Bezier leg into b[p] (projected).
+  end_dir_.dx = end_dir_.dy = 0;
+  for (int8_t k = (int8_t)(p - 1); k >= 0 && end_dir_.dx == 0 && end_dir_.dy == 0; --k) {
+    const int64_t ex = b[p].x * (b[k].w >> 8) - b[k].x * (b[p].w >> 8);
+    const int64_t ey = b[p].y * (b[k].w >> 8) - b[k].y * (b[p].w >> 8);
+    end_dir_ = scale_direction(ex, ey);
+  }
+  return GeometryError::kOk;
+}
+
+// Horner on the span-relative coefficients; rational: one 64/32 division per axis.
+PointQ6 SpanEvaluator::evaluate_q6(uint32_t t_q16) const {
+  PointQ6 r;
+  if (t_q16 >= kUq16One) return end_;
+  const uq16_t t = (uq16_t)t_q16;
+  const int32_t x = horner(cx_, degree_, t);
+  const int32_t y = horner(cy_, degree_, t);
+  if (!rational_) {
+    r.x_q6 = origin_.x_um * (1L << kQ6Shift) + x;
+    r.y_q6 = origin_.y_um * (1L << kQ6Shift) + y;
+    return r;
+  }
+  const int32_t w = horner(cw_, degree_, t);  // > 0: convex combination of weights > 0
+  r.x_q6 = origin_.x_um * (1L << kQ6Shift) + (int32_t)div_round(shl64(x, kQ26Shift), w);
+  r.y_q6 = origin_.y_um * (1L << kQ6Shift) + (int32_t)div_round(shl64(y, kQ26Shift), w);
+  return r;
+}
+
+// dP/dt from the derivative polynomial (coefficients k * c[k]) at 2 fewer fraction bits.
+Direction SpanEvaluator::direction(uq16_t t) const {
+  if (degree_ == 0) {
+    Direction z = {0, 0};
+    return z;
+  }
+  int32_t dx[kMaxDegree], dy[kMaxDegree];
+  for (uint8_t k = 1; k <= degree_; ++k) {
+    dx[k - 1] = (cx_[k] >> 2) * k;  // q4 um: |k * c[k]| < 2^31 for |coord| <= 1e6
+    dy[k - 1] = (cy_[k] >> 2) * k;
+  }
+  const int32_t px = horner(dx, (uint8_t)(degree_ - 1), t);
+  const int32_t py = horner(dy, (uint8_t)(degree_ - 1), t);
+  if (!rational_) return scale_direction(px, py);
+  // P = N / W, P' ~ N' W - N W' (W > 0 leaves the direction unchanged).
+  int32_t dw[kMaxDegree];
+  for (uint8_t k = 1; k <= degree_; ++k) dw[k - 1] = (cw_[k] >> 2) * k;
+  const int32_t w1 = horner(dw, (uint8_t)(degree_ - 1), t);
+  const int32_t w = horner(cw_, degree_, t);
+  const int32_t nx = horner(cx_, degree_, t);
+  const int32_t ny = horner(cy_, degree_, t);
+  // px, py q4; w q26; nx, ny q6; w1 q24: both products in q30 um.
+  const int64_t qx = (int64_t)px * w - (int64_t)nx * w1;
+  const int64_t qy = (int64_t)py * w - (int64_t)ny * w1;
+  return scale_direction(qx, qy);
+}
+
+Direction SpanEvaluator::end_direction() const { return end_dir_; }
+
+// Sets up a throwaway evaluator (tests and tools).
+PointUm evaluate_spline(const Spline& spline, uint16_t span, uq16_t t) {
+  SpanEvaluator e;
+  if (e.setup(spline, span) != GeometryError::kOk) {
+    PointUm z = {0, 0};
+    return z;
+  }
+  return e.evaluate(t);
+}
+
+}  // namespace core

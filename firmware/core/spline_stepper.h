@@ -1,0 +1,115 @@
+// Point generator engine: walks a spline span by span and emits points (optionally offset
+// by the tool radius) with uniform or chord-tolerance-adaptive parameter steps.
+#ifndef FIRMWARE_CORE_SPLINE_STEPPER_H
+#define FIRMWARE_CORE_SPLINE_STEPPER_H
+
+#include <stdint.h>  // uint16_t, int32_t
+
+#include "firmware/core/geometry_error.h"  // GeometryError
+#include "firmware/core/span_evaluator.h"  // SpanEvaluator
+#include "firmware/core/spline.h"          // Spline, PointUm
+
+namespace core {
+
+enum class StepMode : uint8_t { kUniform = 0, kAdaptive = 1 };
+
+// Default chord tolerance of the adaptive mode, micrometres.
+static const uint16_t kDefaultChordToleranceUm = 5;
+// Largest tool offset accepted, micrometres (|tool_offset_um|).
+static const int32_t kMaxToolOffsetUm = 100000L;
+
+struct StepSettings {
+  StepMode mode;
+  uint16_t steps_per_span;      // kUniform: points per knot span (the original #U), >= 1
+  uint16_t chord_tolerance_um;  // kAdaptive: max chord error (default 5), 1..10000
+  int32_t tool_offset_um;       // > 0 left of travel, < 0 right, 0 none
+};
+
+// Settings with the defaults: adaptive, 5 um, no offset (steps_per_span 16 for uniform).
+StepSettings default_step_settings();
+
+// Usage: begin(); then next() until it returns false; then error() says whether the curve
+// finished (kOk) or stopped (e.g. kOffsetTooLarge). Each next() call does bounded work:
+// one span setup or one point (adaptive: a bounded number of trial evaluations; a corner
+// arc: one arc point).
+//
+// Tool offset: each point moves by |R| along the unit normal of dP/du (left of travel for
+// R > 0). Corners (a tangent discontinuity at a knot, e.g. multiplicity = degree):
+//   - turning away from the offset side (convex for the tool): the tool goes round the
+//     corner on an arc of radius |R| about the corner point, points spaced so that the
+//     arc's chord error stays within the chord tolerance (uniform: 4 degrees or finer);
+//   - turning toward the offset side (concave): one point at the intersection of the two
+//     offset tangent lines (the miter point) replaces the two offset ends; if the turn is
+//     sharper than about 150 degrees the miter would run away and the stepper stops with
+//     kOffsetTooLarge.
+// Offset larger than the radius of curvature on the offset side: detected when the
+// offset path runs backward relative to the curve between two consecutive points; the
+// stepper stops with kOffsetTooLarge (points already emitted stay valid).
+class SplineStepper {
+ public:
+  SplineStepper();
+  // Validates spline and settings; keeps the pointer (the spline must outlive stepping).
+  GeometryError begin(const Spline* spline, const StepSettings& settings);
+  // Next point; false when finished or stopped. First point is the curve start (offset),
+  // last is the curve end exactly (offset).
+  bool next(PointUm* out);
+  bool done() const { return phase_ == kDone; }
+  // kOk while running or after a normal finish; the reason when stepping stopped early.
+  GeometryError error() const { return error_; }
+  // Span index and parameter (uq16, 65536 = span end) of the last curve point used
+  // (tests measure the real chord error between consecutive points with it).
+  uint16_t span() const { return span_; }
+  uint32_t t_q16() const { return t_q16_; }
+
+ private:
+  enum Phase { kIdle, kStart, kInSpan, kDone };
+  // A unit vector in Q15 (components widened to 32 bits for the arithmetic).
+  struct Unit {
+    int32_t x_q15;
+    int32_t y_q15;
+  };
+
+  bool step_in_span(PointUm* out);
+  bool joint(PointUm* out);
+  bool corner(const PointQ6& at, const Direction& in_dir, const Direction& out_dir,
+              PointUm* out);
+  bool arc_point(PointUm* out);
+  uint32_t uniform_next() const;
+  uint32_t adaptive_next();
+  PointQ6 path_point(uint32_t t_q16, Direction* dir);
+  PointQ6 offset_point(const PointQ6& base, const Unit& normal) const;
+  Unit left_normal(const Direction& d) const;
+  Direction usable_direction(uint32_t t_q16);
+  bool emit_checked(const PointQ6& base, const PointQ6& p, PointUm* out);
+  bool emit_plain(const PointQ6& p, PointUm* out);
+  bool fail(GeometryError e);
+
+  const Spline* spline_;
+  StepSettings settings_;
+  SpanEvaluator eval_;
+  Phase phase_;
+  GeometryError error_;
+  uint16_t span_;
+  uint16_t step_index_;  // uniform: points emitted in this span
+  uint32_t t_q16_;       // current parameter in the span, 0..65536
+  uint32_t h_q16_;       // adaptive: step that worked last
+  uint16_t tol_um_;      // chord tolerance (adaptive steps and corner arcs)
+  Direction last_dir_;   // last non-zero direction (fallback at cusps)
+  PointQ6 last_out_;     // last emitted point, before rounding
+  PointQ6 last_base_;    // curve point it was offset from
+  // Pending second point of a discontinuous joint.
+  bool pending_;
+  PointQ6 pending_point_;
+  // Corner arc in progress: normals from a to b (then b to c if two halves).
+  uint16_t arc_steps_;   // points per half
+  uint16_t arc_index_;   // next point index within the half, 1..arc_steps_
+  uint8_t arc_halves_left_;
+  Unit arc_a_;
+  Unit arc_b_;
+  Unit arc_c_;
+  PointQ6 arc_center_;
+};
+
+}  // namespace core
+
+#endif  // FIRMWARE_CORE_SPLINE_STEPPER_H

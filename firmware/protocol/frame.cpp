@@ -1,0 +1,57 @@
+// Frame writer and letter classification (see frame.h, wire_codes.h).
+#include "firmware/protocol/frame.h"
+
+#include <string.h>  // memcpy
+
+#include "firmware/protocol/crc16.h"  // crc16
+
+namespace proto {
+
+bool is_frame_letter(uint8_t letter) {
+  return (letter >= 'A' && letter <= 'Z') || letter == '?';
+}
+
+FrameKind command_kind(uint8_t letter) {
+  switch (letter) {
+    case kCmdText:
+    case kCmdSplineHeader:
+    case kCmdSplineData:
+    case kCmdResolution:
+    case kCmdFeedMove:
+    case kCmdRapidMove:
+    case kCmdZMove:
+    case kCmdZeroing:
+      return FrameKind::kQueued;
+    case kCmdSession:
+    case kCmdStatus:
+      return FrameKind::kImmediate;
+    case kCmdHold:
+    case kCmdResume:
+    case kCmdAbort:
+    case kCmdOverride:
+    case kCmdClearAlarm:
+      return FrameKind::kRealtime;
+    default:
+      return FrameKind::kUnknown;
+  }
+}
+
+uint8_t encode_frame(uint8_t start, uint8_t letter, uint8_t seq, const uint8_t* payload,
+                     uint8_t length, uint8_t* out, uint16_t out_capacity) {
+  const uint16_t total = (uint16_t)(kHeaderBytes + length + kCrcBytes);
+  if (length > kMaxPayload || !is_frame_letter(letter) || out == 0 || total > out_capacity) {
+    return 0;
+  }
+  if (length > 0 && payload == 0) return 0;
+  out[0] = start;
+  out[1] = letter;
+  out[2] = seq;
+  out[3] = length;
+  if (length > 0) memcpy(out + kHeaderBytes, payload, length);
+  const uint16_t crc = crc16(out, (size_t)(kHeaderBytes + length));
+  out[kHeaderBytes + length] = (uint8_t)(crc & 0xFFU);
+  out[kHeaderBytes + length + 1] = (uint8_t)(crc >> 8);
+  return (uint8_t)total;
+}
+
+}  // namespace proto

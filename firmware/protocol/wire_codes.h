@@ -1,0 +1,133 @@
+// Wire constants of the host link: frame bytes, command letters, error, state and alarm codes.
+// Numbers here are the protocol (docs/protocol.md): never renumber, only append.
+#ifndef FIRMWARE_PROTOCOL_WIRE_CODES_H
+#define FIRMWARE_PROTOCOL_WIRE_CODES_H
+
+#include <stdint.h>  // uint8_t
+
+namespace proto {
+
+// Protocol version carried in #I / *I. Bumped on any incompatible change.
+static const uint8_t kProtocolVersion = 1;
+
+// First byte of a frame: '#' host -> controller (commands), '*' controller -> host (replies).
+static const uint8_t kCommandStart = '#';
+static const uint8_t kReplyStart = '*';
+
+enum {
+  kHeaderBytes = 4,  // start, letter, seq, length
+  kCrcBytes = 2,     // CRC-16/IBM-3740 (CCITT-FALSE), little-endian
+  kMaxPayload = 64,  // largest payload; a longer length byte is rejected at once
+  kMaxFrameBytes = kHeaderBytes + kMaxPayload + kCrcBytes,
+  kWindowFrames = 8  // ordered frames in flight; also the duplicate window behind next seq
+};
+
+// Command letters (host -> controller). Original letters kept; new ones added.
+static const uint8_t kCmdText = 'S';          // queued: text for the LCD
+static const uint8_t kCmdSplineHeader = 'B';  // queued: starts a spline
+static const uint8_t kCmdSplineData = 'D';    // queued: control points and/or knots
+static const uint8_t kCmdResolution = 'U';    // queued: point spacing / chord tolerance
+static const uint8_t kCmdFeedMove = 'G';      // queued: linear XY move at a feed
+static const uint8_t kCmdRapidMove = 'F';     // queued: linear XY move at rapid speed
+static const uint8_t kCmdZMove = 'Z';         // queued: Z-only move
+static const uint8_t kCmdZeroing = 'M';       // queued: start manual zeroing (joystick)
+static const uint8_t kCmdSession = 'I';       // immediate: open/reset the session
+static const uint8_t kCmdStatus = '?';        // immediate: status query
+static const uint8_t kCmdHold = 'H';          // real-time: feed hold
+static const uint8_t kCmdResume = 'R';        // real-time: resume after hold
+static const uint8_t kCmdAbort = 'X';         // real-time: stop, flush the queue
+static const uint8_t kCmdOverride = 'V';      // real-time: feed override percent
+static const uint8_t kCmdClearAlarm = 'C';    // real-time: acknowledge/clear an alarm
+
+// Reply letters (controller -> host).
+static const uint8_t kReplyAck = 'O';      // *O: frame stored (queued) or done (others)
+static const uint8_t kReplyError = 'E';    // *E: frame rejected, with a code
+static const uint8_t kReplySession = 'I';  // *I: session opened, capabilities
+static const uint8_t kReplyStatus = '?';   // *?: status
+static const uint8_t kReplyAlarm = 'A';    // *A: unsolicited alarm notice
+
+// How the dispatcher treats a frame, by its letter.
+enum class FrameKind : uint8_t {
+  kUnknown = 0,    // letter not defined in this direction
+  kQueued = 1,     // ordered stream: sequence window, acked when stored, run in order
+  kImmediate = 2,  // answered at once, no ordering (#I, #?)
+  kRealtime = 3    // acted on at once, before queued work (#H #R #X #V #C)
+};
+
+// Every coded error of the protocol, one list. Frame-level codes come from the parser;
+// payload codes from the codecs; the rest from the dispatcher.
+enum class ErrorCode : uint8_t {
+  kOk = 0,
+  // Frame level (parser): the frame is dropped, nothing is executed.
+  kBadCrc = 1,          // CRC mismatch
+  kLengthTooLarge = 2,  // length byte > kMaxPayload
+  kBadLetter = 3,       // byte after the start byte is not 'A'..'Z' or '?'
+  kTruncated = 4,       // frame abandoned after the inter-byte timeout
+  kRxOverrun = 5,       // UART overrun/framing error or parser backlog full
+  // Payload level (codecs).
+  kUnknownCommand = 10,  // letter valid in form but not defined
+  kPayloadLength = 11,   // payload length wrong for this command
+  kFieldRange = 12,      // a field outside its documented range
+  // Sequence level (dispatcher + SequenceWindow).
+  kSeqGap = 20,              // ordered frame ahead of the expected seq (one was lost)
+  kSeqOutOfWindow = 21,      // ordered frame neither expected, duplicate nor near ahead
+  kSeqStale = 22,            // real-time frame older than the last one accepted
+  kNoSession = 23,           // ordered/real-time frame before #I
+  kVersionUnsupported = 24,  // #I asked for a protocol version we do not speak
+  // Execution level (dispatcher / machine).
+  kBusy = 30,            // no room and one frame already waiting: resend later
+  kAlarmActive = 31,     // machine in alarm: clear it first (#C, then #M if needed)
+  kAborted = 32,         // stream flushed by #X: send #I to start again
+  kBadState = 33,        // command not allowed in this state (e.g. #R while not held)
+  kSplineSequence = 34,  // #D without #B, index not the next expected, or too much data
+  kGeometry = 35,        // spline rejected by the core; detail = core::GeometryError
+  kNotZeroed = 36,       // motion before the machine was zeroed
+  kOutOfTravel = 37      // target outside the configured travel
+};
+
+// Number of distinct ErrorCode values the parser counts (codes 0..kRxOverrun).
+enum { kParserErrorCount = 6 };
+
+// Machine state in the status reply. The application maps its state machine onto these.
+enum class MachineState : uint8_t {
+  kIdle = 0,     // nothing queued to run, ready
+  kRunning = 1,  // executing queued work
+  kHolding = 2,  // feed hold requested, decelerating
+  kHeld = 3,     // stopped in hold; #R resumes, #X aborts
+  kZeroing = 4,  // manual zeroing with the joystick
+  kAlarm = 5     // stopped by an alarm; queued frames are refused
+};
+
+// Alarm codes (status reply and *A). Stable numbers.
+enum class Alarm : uint8_t {
+  kNone = 0,
+  kLimitSwitch = 1,      // a limit switch tripped during motion: position suspect, re-zero
+  kDriverFault = 2,      // a TMC246 reported overtemperature / short / open load
+  kPowerLost = 3,        // driver undervoltage: e-stop pressed or supply lost, re-zero
+  kFollowingError = 4,   // actual position did not follow the target
+  kMotionChipFault = 5,  // TMC428 read-back or SPI check failed
+  kPathFault = 6,        // the point generator failed at run time (geometry error)
+  kSoftLimit = 7         // a target outside the travel reached the path controller
+};
+
+// Bits of the status reply's flags byte.
+enum {
+  kStatusFramePending = 0x01,  // an ordered frame is held, its ack delayed (no room yet)
+  kStatusZeroed = 0x02,        // machine zeroed, positions valid
+  kStatusSession = 0x04,       // a session is open (#I seen)
+  kStatusAborted = 0x08,       // stream flushed by #X, waiting for #I
+  kStatusLinkHold = 0x10       // hold was caused by the link timeout
+};
+
+// Timing constants of the protocol (docs/protocol.md "Timing").
+enum {
+  kInterByteTimeoutMs = 200,  // a partial frame older than this is dropped (kTruncated)
+  kLinkTimeoutMs = 2000       // running with no valid frame this long -> feed hold
+};
+
+// What a letter means in the command direction.
+FrameKind command_kind(uint8_t letter);
+
+}  // namespace proto
+
+#endif  // FIRMWARE_PROTOCOL_WIRE_CODES_H

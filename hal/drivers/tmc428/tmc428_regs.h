@@ -1,0 +1,171 @@
+// TMC428 register map and 32-bit SPI datagram encode/decode (datasheet names kept).
+// Sources: [428DS] Trinamic TMC428 data sheet v2.x, [429DS] TMC429 datasheet rev 2.06
+// (the 100 % compatible successor, same map); see docs/tmc428.md.
+#ifndef HAL_DRIVERS_TMC428_TMC428_REGS_H
+#define HAL_DRIVERS_TMC428_TMC428_REGS_H
+
+#include <stdint.h>  // uint32_t, int32_t
+
+namespace drivers {
+namespace tmc428 {
+
+// ---- Datagram layout, [428DS] §6.4 -------------------------------------------------------
+// MOSI: bit 31 RRS (0 register, 1 RAM), 30..25 ADDRESS, 24 RW (1 read), 23..0 DATA.
+// For registers ADDRESS = SMDA(2 bits) : IDX(4 bits); the first byte is
+// RRS<<7 | SMDA<<5 | IDX<<1 | RW. The addresses below are that first byte, write form.
+enum : uint8_t { kReadBit = 0x01, kRamBit = 0x80 };
+
+// Per-motor register block: address = motor_base(motor) + register, [428DS] §7, Tab. 7-2.
+enum : uint8_t {
+  kXTarget = 0x00,          // IDX 0: 24-bit signed
+  kXActual = 0x02,          // IDX 1: 24-bit signed
+  kVMin = 0x04,             // IDX 2: 11-bit unsigned
+  kVMax = 0x06,             // IDX 3: 11-bit unsigned
+  kVTarget = 0x08,          // IDX 4: 12-bit signed
+  kVActual = 0x0A,          // IDX 5: 12-bit signed, RO (R/W in HOLD_MODE)
+  kAMax = 0x0C,             // IDX 6: 11-bit unsigned
+  kAActual = 0x0E,          // IDX 7: 12-bit signed, RO
+  kCurrentScale = 0x10,     // IDX 8: is_agtat 22..20, is_aleat 18..16, is_v0 14..12, a_threshold 10..0
+  kPmulPdiv = 0x12,         // IDX 9: pmul 15..8 (bit 15 forced 1), pdiv 3..0
+  kRefConfRampMode = 0x14,  // IDX 10: lp 16 (RO), ref_conf 11..8, ramp_mode 1..0
+  kInterrupt = 0x16,        // IDX 11: interrupt_mask 15..8, interrupt_flags 7..0 (write 1 clears)
+  kDivisors = 0x18,         // IDX 12: pulse_div 15..12, ramp_div 11..8, usrs 2..0
+  kDxRefTolerance = 0x1A,   // IDX 13: 12 bits
+  kXLatched = 0x1C,         // IDX 14: RO; a write arms the latch
+  kUstepCount429 = 0x1E     // IDX 15: TMC429 only; TMC428 reads 0
+};
+
+// Common registers (SMDA = 11), [428DS] §9.
+enum : uint8_t {
+  kDatagramLowWord = 0x60,   // JDX 0: RO; a write re-arms capture (CDGW = 1 until next answer)
+  kDatagramHighWord = 0x62,  // JDX 1: RO; upper 24 of the last 48 bits from SDI_S
+  kCoverPosLen = 0x64,       // JDX 2: cover_position 13..8, cover_len 4..0, cw 23
+  kCoverDatagram = 0x66,     // JDX 3: up to 24 bits
+  kPowerDown = 0x70,         // JDX 8: any write powers down until the next nSCS_C fall
+  kRefSwitches = 0x7C,       // JDX 14: RO r1 0, l1 1, r2 2, l2 3, r3 4, l3 5
+  kSmgp = 0x7E               // JDX 15: stepper motor global parameters
+};
+
+// RAM, [428DS] §10: two 6-bit entries per datagram (DATA 13..8 odd, 5..0 even entry).
+enum : uint8_t {
+  kRamDriverChain = 0x80,  // 0x80..0xBE: 32 datagrams, driver chain configuration
+  kRamSineTable = 0xC0,    // 0xC0..0xFE: 32 datagrams, quarter sine wave
+  kRamPairs = 32           // datagrams per table
+};
+
+// Status byte (MISO bits 31..24), [428DS] §6.4.
+enum : uint8_t {
+  kStatusXEqt1 = 0x01,
+  kStatusRs1 = 0x02,
+  kStatusXEqt2 = 0x04,
+  kStatusRs2 = 0x08,
+  kStatusXEqt3 = 0x10,
+  kStatusRs3 = 0x20,
+  kStatusCdgw = 0x40,
+  kStatusInt = 0x80
+};
+
+// ramp_mode values, [428DS] Tab. 8-3.
+enum : uint8_t { kRampMode = 0, kSoftMode = 1, kVelocityMode = 2, kHoldMode = 3 };
+
+// ref_conf bits as they sit in the IDX 10 register, [428DS] Tab. 8-4 ([429DS] §8.1.11.2).
+enum : uint32_t {
+  kDisableStopL = 0x100,
+  kDisableStopR = 0x200,
+  kSoftStop = 0x400,
+  kRefRnL = 0x800,
+  kLatchPending = 0x10000  // lp, RO
+};
+
+// interrupt_flags / interrupt_mask bits, [428DS] Tab. 8-6.
+enum : uint8_t {
+  kIntPosEnd = 0x01,
+  kIntRefWrong = 0x02,
+  kIntRefMiss = 0x04,
+  kIntStop = 0x08,
+  kIntStopLeftLow = 0x10,
+  kIntStopRightLow = 0x20,
+  kIntStopLeftHigh = 0x40,
+  kIntStopRightHigh = 0x80
+};
+
+// SMGP fields, [429DS] §8.2.5 / [428DS] §9.7.
+enum : uint32_t {
+  kSmgpLsmdMask = 0x3,
+  kSmgpPolarityNscsS = 0x4,
+  kSmgpPolaritySckS = 0x8,
+  kSmgpPolarityPhAb = 0x10,
+  kSmgpPolarityFdAb = 0x20,
+  kSmgpPolarityDacAb = 0x40,
+  kSmgpCsComInd = 0x80,
+  kSmgpClk2DivShift = 8,
+  kSmgpContinuousUpdate = 0x10000,
+  kSmgpRefMux = 0x100000,
+  kSmgpMot1r = 0x200000
+};
+
+// Driver-chain RAM primary signal codes, [428DS] Tab. 11-1.
+enum : uint8_t {
+  kSigDacA0 = 0x00,  // DAC_A bit n = 0x00 + n
+  kSigPhA = 0x06,
+  kSigFdA = 0x07,
+  kSigDacB0 = 0x08,  // DAC_B bit n = 0x08 + n
+  kSigPhB = 0x0E,
+  kSigFdB = 0x0F,
+  kSigZero = 0x10,
+  kSigOne = 0x11,
+  kSigDirection = 0x12,
+  kSigStep = 0x13,
+  kSigNxM = 0x20  // added to the last signal of each motor
+};
+
+// First byte of a per-motor register (motor 0..2 = SMDA 00..10).
+inline uint8_t motor_reg(uint8_t motor, uint8_t reg) { return (uint8_t)((motor << 5) | reg); }
+
+// A write datagram: address byte in bits 31..24, data in 23..0.
+inline uint32_t write_datagram(uint8_t address, uint32_t data) {
+  return ((uint32_t)(address & 0xFE) << 24) | (data & 0xFFFFFFUL);
+}
+
+// A read datagram (RW = 1, DATA 0).
+inline uint32_t read_datagram(uint8_t address) {
+  return ((uint32_t)(address | kReadBit) << 24);
+}
+
+// Fields of a MOSI datagram.
+inline uint8_t datagram_address_byte(uint32_t mosi) { return (uint8_t)(mosi >> 24); }
+inline bool datagram_is_read(uint32_t mosi) { return (mosi & 0x01000000UL) != 0; }
+inline bool datagram_is_ram(uint32_t mosi) { return (mosi & 0x80000000UL) != 0; }
+inline uint32_t datagram_data(uint32_t word) { return word & 0xFFFFFFUL; }
+
+// Status byte of a MISO answer.
+inline uint8_t answer_status(uint32_t miso) { return (uint8_t)(miso >> 24); }
+
+// Sign-extends the low `bits` bits of a register value.
+inline int32_t sign_extend(uint32_t value, uint8_t bits) {
+  const uint32_t sign = (uint32_t)1 << (bits - 1);
+  const uint32_t mask = (sign << 1) - 1;
+  value &= mask;
+  return (value & sign) ? (int32_t)(value | ~mask) : (int32_t)value;
+}
+
+// Register data words built from fields.
+inline uint32_t divisors_data(uint8_t pulse_div, uint8_t ramp_div, uint8_t usrs) {
+  return ((uint32_t)(pulse_div & 0xF) << 12) | ((uint32_t)(ramp_div & 0xF) << 8) | (usrs & 0x7);
+}
+inline uint32_t current_scale_data(uint8_t is_agtat, uint8_t is_aleat, uint8_t is_v0,
+                                   uint16_t a_threshold) {
+  return ((uint32_t)(is_agtat & 7) << 20) | ((uint32_t)(is_aleat & 7) << 16) |
+         ((uint32_t)(is_v0 & 7) << 12) | (a_threshold & 0x7FF);
+}
+inline uint32_t pmul_pdiv_data(uint8_t pmul, uint8_t pdiv) {
+  return ((uint32_t)(pmul | 0x80) << 8) | (pdiv & 0xF);
+}
+inline uint32_t ram_pair_data(uint8_t even_entry, uint8_t odd_entry) {
+  return ((uint32_t)(odd_entry & 0x3F) << 8) | (even_entry & 0x3F);
+}
+
+}  // namespace tmc428
+}  // namespace drivers
+
+#endif  // HAL_DRIVERS_TMC428_TMC428_REGS_H

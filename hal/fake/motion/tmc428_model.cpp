@@ -1,0 +1,504 @@
+// Behavioural TMC428 + TMC246-chain model: register/RAM maps, ramps, pulses, switches,
+// driver-chain read-back, in closed form per clock segment (fast enough for the simulator).
+#include "hal/fake/motion/tmc428_model.h"  // declarations
+
+#include <cstdlib>  // std::abs
+
+namespace fake {
+
+namespace {
+
+const uint64_t kMask48 = (uint64_t{1} << 48) - 1;
+
+// Sign-extends the low bits of a register value.
+int32_t sext(uint32_t value, int bits) {
+  const uint32_t sign = uint32_t{1} << (bits - 1);
+  const uint32_t mask = (sign << 1) - 1;
+  value &= mask;
+  return (value & sign) ? (int32_t)(value | ~mask) : (int32_t)value;
+}
+
+// x_actual wraps at 24 bits like the chip's counter.
+int32_t wrap24(int64_t x) { return sext((uint32_t)(x & 0xFFFFFF), 24); }
+
+enum : uint32_t {
+  kModeMask = 3,
+  kVelocity = 2,
+  kHold = 3,
+  kDisableStopL = 0x100,
+  kDisableStopR = 0x200,
+  kSoftStop = 0x400,
+  kRefRnL = 0x800,
+  kIntStop = 0x08,
+  kIntLeftLow = 0x10,
+  kIntRightLow = 0x20,
+  kIntLeftHigh = 0x40,
+  kIntRightHigh = 0x80,
+  kContinuousUpdate = 0x10000,
+  kRefMux = 0x100000,
+  kMot1r = 0x200000
+};
+
+}  // namespace
+
+Tmc428Model::Tmc428Model(uint32_t f_clk_hz) : f_clk_hz_(f_clk_hz) {
+  // TMC428 RAM is not initialised at power-on ([428DS] §7.3): a fixed pseudo-random fill.
+  uint32_t seed = 0x428u;
+  for (uint8_t& e : ram_) {
+    seed = seed * 1103515245u + 12345u;
+    e = (uint8_t)((seed >> 16) & 0x3F);
+  }
+}
+
+// ---- time ---------------------------------------------------------------------------------
+
+uint64_t Tmc428Model::ticks_for_ns(uint64_t ns) const {
+  return (uint64_t)((unsigned __int128)ns * f_clk_hz_ / 1000000000u);
+}
+
+uint64_t Tmc428Model::now_ns() const { return now_ns_; }
+
+void Tmc428Model::advance_ns(uint64_t ns) { advance_to_ns(now_ns_ + ns); }
+
+void Tmc428Model::advance_to_ns(uint64_t t_ns) {
+  if (t_ns <= now_ns_) return;
+  now_ns_ = t_ns;
+  advance_to_tick(ticks_for_ns(t_ns));
+}
+
+void Tmc428Model::advance_to_tick(uint64_t t) {
+  if (t <= now_) return;
+  for (int m = 0; m < kMotors; ++m) advance_motor(m, now_, t);
+  // A capture armed while nothing was due (no motion, no continuous update) may become due
+  // once a motor moves.
+  if ((cdgw_ || cover_waiting_) && !chain_scheduled_) schedule_chain(now_);
+  if (chain_scheduled_ && chain_done_tick_ <= t) complete_chain_datagram();
+  now_ = t;
+}
+
+// ---- motors -------------------------------------------------------------------------------
+
+bool Tmc428Model::left_exists(int m) const {
+  if (smgp_ & kRefMux) return true;
+  if (smgp_ & kMot1r) return m != 2;  // REF3 becomes motor 1's right switch ([428DS] Tab. 9-3)
+  return true;
+}
+
+bool Tmc428Model::right_exists(int m) const {
+  if (smgp_ & kRefMux) return true;
+  return (smgp_ & kMot1r) && m == 0;
+}
+
+bool Tmc428Model::left_active(int m) const {
+  const Motor& mo = motor_[m];
+  if (!left_exists(m)) return false;
+  if (mo.force_left >= 0) return mo.force_left != 0;
+  return mo.has_left_pos && mo.x <= mo.left_pos;
+}
+
+bool Tmc428Model::right_active(int m) const {
+  const Motor& mo = motor_[m];
+  if (!right_exists(m)) return false;
+  if (mo.force_right >= 0) return mo.force_right != 0;
+  return mo.has_right_pos && mo.x >= mo.right_pos;
+}
+
+// dx_ref_tolerance excludes a window around 0 from the stop checks ([428DS] §8.15).
+bool Tmc428Model::stop_allowed(int m, int32_t switch_pos) const {
+  const uint32_t tol = motor_[m].dx_ref_tol;
+  return tol == 0 || (uint32_t)std::abs((int64_t)switch_pos) >= tol;
+}
+
+// The velocity the ramp heads for, 8 fraction bits.
+int32_t Tmc428Model::effective_target_q8(int m) const {
+  const Motor& mo = motor_[m];
+  const uint32_t mode = mo.ref_ramp & kModeMask;
+  if (mode == kHold) return mo.v_q8;
+  if (mode != kVelocity) return 0;  // RAMP/SOFT positioning not modelled: ramp to rest
+  int32_t tgt = sext(mo.v_target, 12);
+  const int32_t top = (int32_t)mo.v_max;
+  if (tgt > top) tgt = top;
+  if (tgt < -top) tgt = -top;
+  if (tgt < 0 && !(mo.ref_ramp & kDisableStopL) && left_active(m) &&
+      (mo.force_left >= 0 || stop_allowed(m, mo.left_pos))) {
+    return 0;
+  }
+  if (tgt > 0 && !(mo.ref_ramp & kDisableStopR) && right_active(m) &&
+      (mo.force_right >= 0 || stop_allowed(m, mo.right_pos))) {
+    return 0;
+  }
+  return tgt * 256;
+}
+
+// Switch edge flags and the position latch after any change of position or switch input.
+void Tmc428Model::note_switches(int m) {
+  Motor& mo = motor_[m];
+  const bool l = left_active(m);
+  const bool r = right_active(m);
+  uint8_t f = 0;
+  if (l && !mo.left_prev) f |= kIntLeftHigh;
+  if (!l && mo.left_prev) f |= kIntLeftLow;
+  if (r && !mo.right_prev) f |= kIntRightHigh;
+  if (!r && mo.right_prev) f |= kIntRightLow;
+  mo.int_flags = (uint8_t)((mo.int_flags | f) & mo.int_mask);
+  if (mo.latch_pending) {
+    const bool ref_right = (mo.ref_ramp & kRefRnL) != 0;
+    const bool rising = ref_right ? (r && !mo.right_prev) : (l && !mo.left_prev);
+    if (rising) {
+      mo.x_latched = (uint32_t)mo.x & 0xFFFFFF;
+      mo.latch_pending = false;
+    }
+  }
+  mo.left_prev = l;
+  mo.right_prev = r;
+}
+
+// Integrates one motor over (t0, t1]: ramp clock by ramp clock while the velocity changes,
+// one closed-form segment when it does not; a switch hit splits a segment at its pulse.
+void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
+  Motor& mo = motor_[m];
+  const uint32_t pd = (mo.divisors >> 12) & 0xF;
+  const uint32_t rd = (mo.divisors >> 8) & 0xF;
+  const uint64_t pulse_period = uint64_t{32} << pd;
+  const uint64_t ramp_period = uint64_t{32} << rd;
+  const uint32_t mode = mo.ref_ramp & kModeMask;
+  const bool soft = (mo.ref_ramp & kSoftStop) != 0;
+  uint64_t t = t0;
+  while (t < t1) {
+    int32_t vi = mo.v_q8 / 256;  // integer part, toward zero
+    // Moving into an active stop switch: hard stop at once, soft stop ramps via the target.
+    if (mode != kHold && vi != 0) {
+      const bool into_left = vi < 0 && !(mo.ref_ramp & kDisableStopL) && left_active(m) &&
+                             (mo.force_left >= 0 || stop_allowed(m, mo.left_pos));
+      const bool into_right = vi > 0 && !(mo.ref_ramp & kDisableStopR) && right_active(m) &&
+                              (mo.force_right >= 0 || stop_allowed(m, mo.right_pos));
+      if (into_left || into_right) {
+        mo.int_flags = (uint8_t)((mo.int_flags | kIntStop) & mo.int_mask);
+        if (!soft) {
+          mo.v_q8 = 0;
+          vi = 0;
+        }
+      }
+    }
+    const int32_t tgt = effective_target_q8(m);
+    const bool ramping = mode != kHold && mo.v_q8 != tgt && mo.a_max > 0;
+    uint64_t seg_end = t1;
+    uint64_t ramp_edge = 0;
+    if (ramping) {
+      ramp_edge = (t / ramp_period + 1) * ramp_period;
+      if (ramp_edge < seg_end) seg_end = ramp_edge;
+    } else {
+      mo.last_ramp = 0;
+    }
+    if (vi != 0) {
+      const uint64_t n = seg_end / pulse_period - t / pulse_period;  // pulse edges in (t, end]
+      if (n != 0) {
+        const uint64_t av = (uint64_t)std::abs(vi);
+        const int dir = vi > 0 ? 1 : -1;
+        int64_t dist = -1;  // microsteps until a stop switch turns on, -1 = none ahead
+        if (dir < 0 && !(mo.ref_ramp & kDisableStopL) && left_exists(m) && mo.has_left_pos &&
+            mo.force_left < 0 && stop_allowed(m, mo.left_pos) && mo.x > mo.left_pos) {
+          dist = (int64_t)mo.x - mo.left_pos;
+        }
+        if (dir > 0 && !(mo.ref_ramp & kDisableStopR) && right_exists(m) && mo.has_right_pos &&
+            mo.force_right < 0 && stop_allowed(m, mo.right_pos) && mo.x < mo.right_pos) {
+          dist = (int64_t)mo.right_pos - mo.x;
+        }
+        uint64_t total = mo.pulse_acc + n * av;
+        const uint64_t steps = total / 2048;
+        if (dist > 0 && (uint64_t)dist <= steps) {
+          // The pulse edge of the dist-th step: first j with acc + j v >= dist 2048.
+          const uint64_t need = (uint64_t)dist * 2048 - mo.pulse_acc;
+          const uint64_t j = (need + av - 1) / av;
+          const uint64_t edge = (t / pulse_period + j) * pulse_period;
+          total = mo.pulse_acc + j * av;
+          mo.pulse_acc = (uint32_t)(total - (uint64_t)dist * 2048);
+          mo.x = wrap24((int64_t)mo.x + dir * dist);
+          note_switches(m);
+          if (ramping && edge == ramp_edge) {
+            // The ramp clock of this same tick still happens (before the stop check).
+            const int32_t diff = tgt - mo.v_q8;
+            const int32_t a = (int32_t)mo.a_max;
+            mo.last_ramp = diff > a ? a : (diff < -a ? -a : diff);
+            mo.v_q8 += mo.last_ramp;
+          }
+          t = edge;
+          continue;  // the stop check at the top of the loop acts on the switch
+        }
+        mo.pulse_acc = (uint32_t)(total % 2048);
+        if (steps != 0) {
+          mo.x = wrap24((int64_t)mo.x + dir * (int64_t)steps);
+          note_switches(m);
+        }
+      }
+    }
+    if (ramping && seg_end == ramp_edge) {
+      const int32_t diff = tgt - mo.v_q8;
+      const int32_t a = (int32_t)mo.a_max;
+      mo.last_ramp = diff > a ? a : (diff < -a ? -a : diff);
+      mo.v_q8 += mo.last_ramp;
+    }
+    t = seg_end;
+  }
+}
+
+// ---- driver chain -------------------------------------------------------------------------
+
+// Bits per chain datagram from the RAM table: motor n's signals run to its NxM entry; the
+// motor counter stops at LSMD ([428DS] §10). -1 if no NxM ends it (sends endlessly).
+int Tmc428Model::chain_length_bits() const {
+  const uint32_t lsmd = smgp_ & 3;
+  if (lsmd == 3) return -1;  // not allowed ([429DS] §8.2.5)
+  int i = 0;
+  for (uint32_t m = 0; m <= lsmd; ++m) {
+    for (;;) {
+      if (i >= 64) return -1;
+      const bool last = (ram_[i] & 0x20) != 0;
+      ++i;
+      if (last) break;
+    }
+  }
+  return i;
+}
+
+uint64_t Tmc428Model::chain_datagram_ticks() const {
+  const int bits = chain_length_bits();
+  const uint64_t motors = (smgp_ & 3) + 1;
+  const uint64_t clk2_div = (smgp_ >> 8) & 0xFF;
+  return ((uint64_t)bits + motors + 2) * 2 * (clk2_div + 1);
+}
+
+// When the next chain datagram after `after` completes: at once while a motor steps,
+// else at the next continuous-update request (every 32768 2^ramp_div ticks per motor).
+void Tmc428Model::schedule_chain(uint64_t after) {
+  chain_scheduled_ = false;
+  if (chain_length_bits() < 0) return;
+  bool moving = false;
+  for (const Motor& mo : motor_) moving = moving || mo.v_q8 / 256 != 0;
+  uint64_t start = 0;
+  if (moving) {
+    start = after;
+  } else if (smgp_ & kContinuousUpdate) {
+    start = UINT64_MAX;
+    const uint32_t lsmd = smgp_ & 3;
+    for (uint32_t m = 0; m <= lsmd && m < (uint32_t)kMotors; ++m) {
+      // Motor m's requests are spread by m/(LSMD+1) of a period, so the combined rate is
+      // the data sheet's f_clk sum(2^-ramp_div) / 32768 ([428DS] §9.7).
+      const uint64_t period = uint64_t{32768} << ((motor_[m].divisors >> 8) & 0xF);
+      const uint64_t phase = period * m / (lsmd + 1);
+      const uint64_t shifted = after + period - phase;  // >= 0
+      const uint64_t next = (shifted / period + 1) * period - period + phase;
+      if (next < start) start = next;
+    }
+  } else {
+    return;
+  }
+  chain_done_tick_ = start + chain_datagram_ticks();
+  chain_scheduled_ = true;
+}
+
+// The chain (three 12-bit TMC246 shift registers) returns its statuses first - motor 1's
+// driver is the last in the chain, so its bits arrive first - then the bits just sent.
+void Tmc428Model::complete_chain_datagram() {
+  const int n = chain_length_bits();
+  chain_scheduled_ = false;
+  if (n < 0) return;
+  unsigned __int128 received;
+  if (chain_sdi_stuck_ >= 0) {
+    received = chain_sdi_stuck_ ? ((unsigned __int128)1 << n) - 1 : 0;
+  } else {
+    const uint64_t s36 = ((uint64_t)(motor_[0].tmc246_status & 0xFFF) << 24) |
+                         ((uint64_t)(motor_[1].tmc246_status & 0xFFF) << 12) |
+                         (motor_[2].tmc246_status & 0xFFF);
+    received = n <= 36 ? (s36 >> (36 - n)) : ((unsigned __int128)s36 << (n - 36));
+  }
+  chain_words_ = (uint64_t)((((unsigned __int128)chain_words_ << n) | received) & kMask48);
+  cdgw_ = false;
+  cover_waiting_ = false;
+  ++chain_datagrams_;
+}
+
+void Tmc428Model::arm_chain_capture() {
+  cdgw_ = true;
+  schedule_chain(now_);
+}
+
+// ---- registers ----------------------------------------------------------------------------
+
+uint32_t Tmc428Model::read_register(uint8_t addr) const {
+  if (addr & 0x80) {  // RAM: two entries per address ([428DS] §10)
+    const int pair = (addr >> 1) & 0x3F;
+    return ((uint32_t)ram_[2 * pair + 1] << 8) | ram_[2 * pair];
+  }
+  const int smda = (addr >> 5) & 3;
+  const int idx = (addr >> 1) & 0xF;
+  if (smda == 3) return common_reg(idx);
+  return reg(smda, idx);
+}
+
+uint32_t Tmc428Model::reg(int m, int idx) const {
+  const Motor& mo = motor_[m];
+  switch (idx) {
+    case 0: return mo.x_target;
+    case 1: return (uint32_t)mo.x & 0xFFFFFF;
+    case 2: return mo.v_min;
+    case 3: return mo.v_max;
+    case 4: return mo.v_target;
+    case 5: return (uint32_t)(mo.v_q8 / 256) & 0xFFF;
+    case 6: return mo.a_max;
+    case 7: return (uint32_t)mo.last_ramp & 0xFFF;
+    case 8: return mo.current;
+    case 9: return mo.pmul_pdiv | 0x8000;  // pmul bit 7 forced to 1 ([428DS] §8.11)
+    case 10: return mo.ref_ramp | (mo.latch_pending ? 0x10000u : 0u);
+    case 11: return ((uint32_t)mo.int_mask << 8) | mo.int_flags;
+    case 12: return mo.divisors;
+    case 13: return mo.dx_ref_tol;
+    case 14: return mo.x_latched;
+    default: return 0;  // IDX 15 unused on the TMC428: reads 0
+  }
+}
+
+uint32_t Tmc428Model::common_reg(int jdx) const {
+  switch (jdx) {
+    case 0: return (uint32_t)(chain_words_ & 0xFFFFFF);
+    case 1: return (uint32_t)(chain_words_ >> 24);
+    case 2: {  // cover_position reads back + 1, bit 23 = cover waiting ([428DS] §9.2)
+      const uint32_t pos = ((cover_pos_len_ >> 8) + 1) & 0x3F;
+      return (cover_waiting_ ? 0x800000u : 0u) | (pos << 8) | (cover_pos_len_ & 0x1F);
+    }
+    case 3: return cover_datagram_;
+    case 14: return switch_bits();
+    case 15: return smgp_;
+    default: return 0;
+  }
+}
+
+void Tmc428Model::write_register(uint8_t addr, uint32_t data) {
+  data &= 0xFFFFFF;
+  if (addr & 0x80) {
+    const int pair = (addr >> 1) & 0x3F;
+    ram_[2 * pair] = (uint8_t)(data & 0x3F);
+    ram_[2 * pair + 1] = (uint8_t)((data >> 8) & 0x3F);
+    return;
+  }
+  const int smda = (addr >> 5) & 3;
+  const int idx = (addr >> 1) & 0xF;
+  if (smda == 3) {
+    switch (idx) {
+      case 0:
+      case 1: arm_chain_capture(); break;
+      case 2: cover_pos_len_ = data & 0x3F1F; break;
+      case 3:
+        cover_datagram_ = data;
+        cover_waiting_ = true;
+        if (!chain_scheduled_) schedule_chain(now_);
+        break;
+      case 15:
+        smgp_ = data & 0x31FFFF;
+        for (int m = 0; m < kMotors; ++m) note_switches(m);
+        break;
+      default: break;  // power_down (JDX 8), RO and unused addresses: no effect here
+    }
+    return;
+  }
+  Motor& mo = motor_[smda];
+  switch (idx) {
+    case 0: mo.x_target = data; break;
+    case 1:
+      mo.x = sext(data, 24);
+      note_switches(smda);
+      break;
+    case 2: mo.v_min = data & 0x7FF; break;
+    case 3: mo.v_max = data & 0x7FF; break;
+    case 4: mo.v_target = data & 0xFFF; break;
+    case 5:  // writable only in HOLD_MODE ([428DS] §8.6)
+      if ((mo.ref_ramp & kModeMask) == kHold) mo.v_q8 = sext(data, 12) * 256;
+      break;
+    case 6: mo.a_max = data & 0x7FF; break;
+    case 8: mo.current = data & 0x7777FF; break;
+    case 9: mo.pmul_pdiv = data & 0xFF0F; break;
+    case 10: mo.ref_ramp = data & 0xF03; break;
+    case 11:  // mask written, flags cleared by 1s, masked flags forced to 0 (Tab. 8-6)
+      mo.int_mask = (uint8_t)(data >> 8);
+      mo.int_flags = (uint8_t)(mo.int_flags & ~data & mo.int_mask);
+      break;
+    case 12: mo.divisors = data & 0xFF07; break;
+    case 13: mo.dx_ref_tol = data & 0xFFF; break;
+    case 14: mo.latch_pending = true; break;
+    default: break;  // a_actual RO, IDX 15 unused
+  }
+}
+
+// ---- SPI ----------------------------------------------------------------------------------
+
+uint8_t Tmc428Model::switch_bits() const {
+  uint8_t bits = 0;
+  for (int m = 0; m < kMotors; ++m) {
+    if (right_active(m)) bits |= (uint8_t)(1u << (2 * m));
+    if (left_active(m)) bits |= (uint8_t)(2u << (2 * m));
+  }
+  return bits;
+}
+
+uint8_t Tmc428Model::status_byte() const {
+  uint8_t s = 0;
+  bool irq = false;
+  for (int m = 0; m < kMotors; ++m) {
+    const Motor& mo = motor_[m];
+    if (((uint32_t)mo.x & 0xFFFFFF) == mo.x_target) s |= (uint8_t)(0x01 << (2 * m));
+    if (left_active(m)) s |= (uint8_t)(0x02 << (2 * m));
+    irq = irq || (mo.int_flags & mo.int_mask) != 0;
+  }
+  if (cdgw_ || cover_waiting_) s |= 0x40;
+  if (irq) s |= 0x80;
+  return s;
+}
+
+uint32_t Tmc428Model::transfer32(uint32_t mosi) {
+  const uint8_t addr = (uint8_t)(mosi >> 24);
+  const bool read = (addr & 0x01) != 0;
+  // The status shifts out first, before the datagram is complete ([428DS] §6.4); a write
+  // answers data 0 ([429DS] §7.5 example), a read the register in the same transfer.
+  uint32_t miso = (uint32_t)status_byte() << 24;
+  if (read) {
+    miso |= read_register(addr) & 0xFFFFFF;
+  } else {
+    write_register(addr, mosi & 0xFFFFFF);
+  }
+  log_.push_back(Datagram{now_ns_, mosi, miso});
+  return miso;
+}
+
+// ---- setup and inspection -------------------------------------------------------------------
+
+void Tmc428Model::set_switch_positions(int motor, int32_t left_usteps, int32_t right_usteps) {
+  Motor& mo = motor_[motor];
+  mo.left_pos = left_usteps;
+  mo.right_pos = right_usteps;
+  mo.has_left_pos = true;
+  mo.has_right_pos = true;
+  note_switches(motor);
+}
+
+void Tmc428Model::force_switch(int motor, bool right, int level) {
+  if (right) {
+    motor_[motor].force_right = level;
+  } else {
+    motor_[motor].force_left = level;
+  }
+  note_switches(motor);
+}
+
+void Tmc428Model::set_driver_status(int motor, uint16_t status12) {
+  motor_[motor].tmc246_status = status12;
+}
+
+int32_t Tmc428Model::x_actual(int motor) const { return motor_[motor].x; }
+
+int16_t Tmc428Model::v_actual(int motor) const { return (int16_t)(motor_[motor].v_q8 / 256); }
+
+int32_t Tmc428Model::v_actual_q8(int motor) const { return motor_[motor].v_q8; }
+
+uint8_t Tmc428Model::ram_entry(int index) const { return ram_[index & 0x7F]; }
+
+}  // namespace fake

@@ -1,0 +1,139 @@
+// Behavioural model of a TMC428 with three TMC246 on its driver chain, for host tests and
+// the simulator. Answers every 32-bit datagram like the chip ([428DS] §6.4: status byte +
+// register data of the same transfer), keeps the register and RAM maps with the data sheet's
+// power-on values, ramps and integrates the three motors in virtual time, stops them on
+// reference switches at configurable positions, and fills datagram_low/high_word from
+// simulated TMC246 status words.
+//
+// Use:
+//   fake::Tmc428Model chip;                 // 10 MHz clock, power-on state
+//   chip.set_switch_positions(0, 0, 760320); // motor 1: left switch at 0, right at +760320
+//   fake::RecordingSpi spi(chip, 1250000);   // hal::SpiMaster for the driver
+//   ... drivers::Tmc428 init / MotionAxes calls ...
+//   chip.advance_us(1000);                   // 1 ms of machine time (cheap: closed form)
+//
+// Timing model (all in f_clk ticks from power-on, [428DS] §8.14):
+//   - pulse clock every 32 * 2^pulse_div ticks: an accumulator adds |v_actual| (integer
+//     part) and makes a microstep each time it passes 2048 -> R = f_clk v / (2^pd 2048 32);
+//   - ramp clock every 32 * 2^ramp_div ticks: the 8-fraction-bit velocity moves a_max/256
+//     toward the target (VELOCITY_MODE: v_target clipped to +-v_max);
+//   - driver chain: a datagram every 32768 * 2^ramp_div ticks per motor with continuous
+//     update, and at once while a motor moves; each lasts (sum(bits+1)+2) * 2 (clk2_div+1).
+// Simplifications (docs/tmc428.md): RAMP/SOFT mode positioning is not modelled (the motor
+// ramps to rest), a_actual reads the last ramp step (no smoothing), cover datagrams complete
+// with the next chain datagram but change nothing, power_down is ignored, dx_ref_tolerance
+// suppresses switch stops for switches placed inside |x| < tolerance.
+#ifndef HAL_FAKE_MOTION_TMC428_MODEL_H
+#define HAL_FAKE_MOTION_TMC428_MODEL_H
+
+#include <cstdint>  // uint32_t
+#include <vector>   // std::vector
+
+#include "hal/fake/spi/spi_device.h"  // fake::SpiDevice
+
+namespace fake {
+
+class Tmc428Model : public SpiDevice {
+ public:
+  static constexpr int kMotors = 3;
+  static constexpr uint16_t kTmc246StatusDefault = 0xF00;  // LD = 7, always-1 bit 8, no fault
+
+  // One datagram as the model saw it.
+  struct Datagram {
+    uint64_t time_ns;
+    uint32_t mosi;
+    uint32_t miso;
+  };
+
+  explicit Tmc428Model(uint32_t f_clk_hz = 10000000);
+
+  // SpiDevice: one datagram at the current time.
+  uint32_t transfer32(uint32_t mosi) override;
+  uint64_t now_ns() const override;
+  void advance_ns(uint64_t ns) override;
+  // Virtual time: advance by microseconds, or up to an absolute time (no-op if past it).
+  void advance_us(uint32_t us) { advance_ns((uint64_t)us * 1000u); }
+  void advance_to_ns(uint64_t t_ns);
+  uint64_t now_ticks() const { return now_; }
+
+  // Reference switches of a motor (0..2): left active while x_actual <= left_usteps, right
+  // active while x_actual >= right_usteps. Default: none (never active).
+  void set_switch_positions(int motor, int32_t left_usteps, int32_t right_usteps);
+  // Forces a switch input regardless of position (-1 = follow position, 0 = off, 1 = on).
+  void force_switch(int motor, bool right, int level);
+  // 12-bit status word the TMC246 of a motor shifts back (bit 8 must be 1 on a real one).
+  void set_driver_status(int motor, uint16_t status12);
+  // SDI_S (chain return line): -1 normal, 0/1 stuck (chain broken, pulled down/up).
+  void set_chain_sdi_stuck(int level) { chain_sdi_stuck_ = level; }
+
+  // Inspection.
+  int32_t x_actual(int motor) const;             // 24-bit sign-extended
+  int16_t v_actual(int motor) const;             // integer part, -2047..2047
+  int32_t v_actual_q8(int motor) const;          // with 8 fraction bits
+  uint32_t reg(int motor, int idx) const;        // what a read of the register returns
+  uint32_t common_reg(int jdx) const;            // SMDA = 11 register as read
+  uint8_t ram_entry(int index) const;            // 0..127 (0..63 chain, 64..127 sine)
+  uint8_t status_byte() const;                   // what the next answer's bits 31..24 are
+  uint8_t switch_bits() const;                   // the 0x7C register: r1 l1 r2 l2 r3 l3
+  uint32_t chain_datagrams() const { return chain_datagrams_; }  // completed so far
+  const std::vector<Datagram>& log() const { return log_; }
+  void clear_log() { log_.clear(); }
+  uint32_t f_clk_hz() const { return f_clk_hz_; }
+
+ private:
+  struct Motor {
+    uint32_t x_target = 0;
+    int32_t x = 0;  // x_actual (wraps at 24 bits on read)
+    uint32_t v_min = 0, v_max = 0, v_target = 0, a_max = 0;
+    uint32_t current = 0, pmul_pdiv = 0, ref_ramp = 0, divisors = 0, dx_ref_tol = 0;
+    uint8_t int_mask = 0, int_flags = 0;
+    bool latch_pending = false;
+    uint32_t x_latched = 0;
+    int32_t v_q8 = 0;        // internal velocity, 8 fraction bits
+    int32_t last_ramp = 0;   // last ramp step (a_actual)
+    uint32_t pulse_acc = 0;  // 0..2047
+    int32_t left_pos = INT32_MIN, right_pos = INT32_MAX;
+    bool has_left_pos = false, has_right_pos = false;
+    int force_left = -1, force_right = -1;
+    bool left_prev = false, right_prev = false;
+    uint16_t tmc246_status = kTmc246StatusDefault;
+  };
+
+  uint32_t read_register(uint8_t addr) const;
+  void write_register(uint8_t addr, uint32_t data);
+  void advance_to_tick(uint64_t t);
+  void advance_motor(int m, uint64_t t0, uint64_t t1);
+  int32_t effective_target_q8(int m) const;
+  bool left_active(int m) const;
+  bool right_active(int m) const;
+  bool left_exists(int m) const;
+  bool right_exists(int m) const;
+  bool stop_allowed(int m, int32_t switch_pos) const;
+  void note_switches(int m);
+  void arm_chain_capture();
+  void schedule_chain(uint64_t after);
+  void complete_chain_datagram();
+  int chain_length_bits() const;  // total bits per chain datagram, -1 if endless
+  uint64_t chain_datagram_ticks() const;
+  uint64_t ticks_for_ns(uint64_t ns) const;
+
+  uint32_t f_clk_hz_;
+  uint64_t now_ = 0;       // ticks
+  uint64_t now_ns_ = 0;    // exact ns clock the ticks derive from
+  Motor motor_[kMotors];
+  uint8_t ram_[128];
+  uint32_t smgp_ = 0x000F00;  // clk2_div = 15 at power-on ([428DS] §6.1)
+  uint64_t chain_words_ = 0;  // 48-bit shift register from SDI_S
+  bool cdgw_ = false;         // datagram_low/high_word not refreshed yet
+  bool cover_waiting_ = false;
+  uint32_t cover_pos_len_ = 0, cover_datagram_ = 0;
+  bool chain_scheduled_ = false;
+  uint64_t chain_done_tick_ = 0;
+  uint32_t chain_datagrams_ = 0;
+  int chain_sdi_stuck_ = -1;
+  std::vector<Datagram> log_;
+};
+
+}  // namespace fake
+
+#endif  // HAL_FAKE_MOTION_TMC428_MODEL_H

@@ -1,0 +1,186 @@
+// `engraver info` (what a drawing holds) and `engraver points` (the points the firmware
+// core generates for each curve).
+#include <CLI/CLI.hpp>  // CLI::App
+
+#include <cmath>             // std::llround
+#include <iomanip>           // std::setprecision
+#include <iostream>          // std::cout
+#include <nlohmann/json.hpp> // nlohmann::json
+#include <sstream>           // std::ostringstream
+
+#include "host/cli/command_registry.h"
+#include "host/cli/exit_codes.h"
+#include "host/lib/drawing/drawing.h"
+#include "host/lib/plan/firmware_points.h"
+#include "host/lib/plan/firmware_spline.h"
+
+namespace host::cli {
+
+namespace {
+
+struct InfoArgs {
+  std::string file;
+  bool json = false;
+};
+
+struct PointsArgs {
+  std::string file;
+  double tol_mm = 0.005;
+  bool csv = false;
+};
+
+nlohmann::json point_json(const Point2& p) { return {p.x(), p.y()}; }
+
+// The whole drawing as JSON (every knot and control point).
+nlohmann::json info_json(const Drawing& d) {
+  nlohmann::json j;
+  j["file"] = d.path;
+  j["format"] = d.format;
+  j["units"] = d.units;
+  j["unit_to_mm"] = d.unit_to_mm;
+  j["entities"] = d.entity_counts;
+  const Extents e = d.extents();
+  if (!e.empty()) {
+    j["extents_mm"] = {{"min", point_json(e.min)}, {"max", point_json(e.max)},
+                       {"width", e.width()}, {"height", e.height()}};
+  } else {
+    j["extents_mm"] = nullptr;
+  }
+  j["curves"] = nlohmann::json::array();
+  for (const Curve& c : d.curves) {
+    nlohmann::json cj;
+    cj["source"] = c.source;
+    cj["kind"] = c.kind;
+    cj["degree"] = c.spline.degree;
+    cj["rational"] = c.spline.rational();
+    cj["knots"] = c.spline.knots;
+    cj["control_points_mm"] = nlohmann::json::array();
+    for (const Point2& p : c.spline.control) cj["control_points_mm"].push_back(point_json(p));
+    if (c.spline.rational()) cj["weights"] = c.spline.weights;
+    cj["start_mm"] = point_json(start_point(c.spline));
+    cj["end_mm"] = point_json(end_point(c.spline));
+    j["curves"].push_back(cj);
+  }
+  j["problems"] = d.warnings;
+  return j;
+}
+
+// Numbers in a list, space separated, at most `limit` shown.
+template <typename T>
+std::string list(const std::vector<T>& v, size_t limit) {
+  std::ostringstream o;
+  o << std::setprecision(10);
+  for (size_t i = 0; i < v.size() && i < limit; ++i) o << (i ? " " : "") << v[i];
+  if (v.size() > limit) o << " ... (" << v.size() << " in all)";
+  return o.str();
+}
+
+void print_info(const Drawing& d) {
+  std::cout << std::fixed << std::setprecision(3);
+  std::cout << "file:     " << d.path << "\n";
+  std::cout << "format:   " << d.format << "\n";
+  std::cout << "units:    " << d.units << " (1 unit = " << d.unit_to_mm << " mm)\n";
+  std::cout << "entities:";
+  if (d.entity_counts.empty()) std::cout << " none";
+  for (const auto& e : d.entity_counts) std::cout << " " << e.first << " " << e.second << ",";
+  std::cout << "\n";
+  const Extents e = d.extents();
+  if (e.empty()) {
+    std::cout << "extents:  (no curves)\n";
+  } else {
+    std::cout << "extents:  x " << e.min.x() << " .. " << e.max.x() << " mm, y " << e.min.y()
+              << " .. " << e.max.y() << " mm (" << e.width() << " x " << e.height()
+              << " mm)\n";
+  }
+  std::cout << "curves:   " << d.curves.size() << "\n";
+  for (size_t i = 0; i < d.curves.size(); ++i) {
+    const Curve& c = d.curves[i];
+    const BSpline& s = c.spline;
+    const Point2 a = start_point(s), b = end_point(s);
+    std::cout << "  " << i << ": " << c.source << ": degree " << s.degree
+              << (s.rational() ? ", rational" : "") << ", " << s.control.size()
+              << " control points, " << s.knots.size() << " knots, from (" << a.x() << ", "
+              << a.y() << ") to (" << b.x() << ", " << b.y() << ") mm\n";
+    if (c.kind == "SPLINE") {
+      std::cout << "       knots: " << list(s.knots, 24) << "\n";
+      std::ostringstream cp;
+      cp << std::fixed << std::setprecision(4);
+      for (size_t k = 0; k < s.control.size() && k < 16; ++k) {
+        cp << (k ? " " : "") << "(" << s.control[k].x() << ", " << s.control[k].y() << ")";
+      }
+      if (s.control.size() > 16) cp << " ...";
+      std::cout << "       control points (mm): " << cp.str() << "\n";
+      if (s.rational()) std::cout << "       weights: " << list(s.weights, 24) << "\n";
+    }
+  }
+  std::cout << "problems: " << (d.warnings.empty() ? "none" : "") << "\n";
+  for (const std::string& w : d.warnings) std::cout << "  - " << w << "\n";
+}
+
+void run_info(const InfoArgs& a) {
+  const Drawing d = import_drawing(a.file);
+  if (a.json) {
+    std::cout << info_json(d).dump(2) << "\n";
+  } else {
+    print_info(d);
+  }
+}
+
+void run_points(const PointsArgs& a) {
+  const double tol_um = a.tol_mm * 1000.0;
+  if (!(tol_um >= 1.0 - 1e-9 && tol_um <= 10000.0 + 1e-9)) {
+    throw CommandFailure(kExitUsage, "--tol must be between 0.001 and 10 mm (the firmware "
+                                     "steps with a whole-micrometre chord tolerance)");
+  }
+  const int tol = static_cast<int>(std::llround(tol_um));
+  const Drawing d = import_drawing(a.file);
+  for (const std::string& w : d.warnings) std::cerr << "warning: " << w << "\n";
+  std::cout << std::fixed << std::setprecision(3);
+  if (a.csv) std::cout << "curve,x_mm,y_mm\n";
+  for (size_t i = 0; i < d.curves.size(); ++i) {
+    std::vector<Point2> pts;
+    try {
+      pts = firmware_points_mm(d.curves[i].spline, tol);
+    } catch (const ConversionError& e) {
+      throw CommandFailure(kExitJobFailed, d.path + ": curve " + std::to_string(i) + " (" +
+                                               d.curves[i].source + "): " + e.what());
+    }
+    if (!a.csv) {
+      std::cout << "# curve " << i << ": " << d.curves[i].source << ": " << pts.size()
+                << " points (x_mm y_mm)\n";
+    }
+    for (const Point2& p : pts) {
+      if (a.csv) {
+        std::cout << i << "," << p.x() << "," << p.y() << "\n";
+      } else {
+        std::cout << p.x() << " " << p.y() << "\n";
+      }
+    }
+  }
+}
+
+void add_drawing_commands(CLI::App& app) {
+  auto info_args = std::make_shared<InfoArgs>();
+  CLI::App* info = app.add_subcommand(
+      "info", "Show what a drawing holds: entities by type, curves (degree, rational, knots, "
+              "control points), extents, units and the problems found");
+  info->add_option("FILE", info_args->file, "drawing (DXF, G-code)")->required();
+  info->add_flag("--json", info_args->json, "print JSON instead of text");
+  info->callback([info_args]() { run_info(*info_args); });
+
+  auto points_args = std::make_shared<PointsArgs>();
+  CLI::App* points = app.add_subcommand(
+      "points", "Print the points the firmware's point generator produces for each curve "
+                "(drawing frame, mm)");
+  points->add_option("FILE", points_args->file, "drawing (DXF, G-code)")->required();
+  points->add_option("--tol", points_args->tol_mm, "chord tolerance in mm (0.001 .. 10)")
+      ->capture_default_str();
+  points->add_flag("--csv", points_args->csv, "CSV: header, then curve,x_mm,y_mm rows");
+  points->callback([points_args]() { run_points(*points_args); });
+}
+
+const CommandRegistrar registrar("drawing", add_drawing_commands);
+
+}  // namespace
+
+}  // namespace host::cli

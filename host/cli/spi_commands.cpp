@@ -1,0 +1,130 @@
+// The `engraver spi` command group: decode a logic-analyser capture, print what the firmware
+// should send, and diff the two (see docs/bench-testing.md).
+#include <CLI/CLI.hpp>  // CLI::App
+
+#include <iostream>  // std::cout, std::cerr
+
+#include "host/cli/command_registry.h"  // CommandRegistrar
+#include "host/cli/exit_codes.h"        // CommandFailure
+#include "host/spi/commands.h"          // run_decode, run_expect, run_diff
+#include "host/spi/scenario.h"          // available_scenarios
+
+namespace {
+
+// Options shared by decode and diff, bound to a FramerOptions.
+struct CaptureOptions {
+  host::spi::FramerOptions framer;
+  std::string bits = "32";
+  std::string min_pulse = "auto";
+};
+
+void add_capture_options(CLI::App* cmd, CaptureOptions* o) {
+  cmd->add_option("--cs", o->framer.names.cs,
+                  "chip-select channel (name or #index; 'none' = cut the stream every --bits)");
+  cmd->add_option("--sck", o->framer.names.sck, "clock channel (default: SCK, CLK, SCLK...)");
+  cmd->add_option("--mosi", o->framer.names.mosi, "MOSI channel (default: MOSI, SDI_C, SDO1...)");
+  cmd->add_option("--miso", o->framer.names.miso, "MISO channel (default: MISO, SDO_C, SDI1...)");
+  cmd->add_option("--mode", o->framer.mode, "SPI mode 0..3 (TMC428: 3)")
+      ->check(CLI::Range(0, 3))
+      ->capture_default_str();
+  cmd->add_option("--bits", o->bits, "bits per datagram, or 'any' for whatever each CS period holds")
+      ->capture_default_str();
+  cmd->add_option("--min-pulse", o->min_pulse,
+                  "shorter clock/CS pulses are glitches, e.g. 100ns; 'auto' = 40% of the "
+                  "median clock pulse; 0 = off")
+      ->capture_default_str();
+}
+
+// Ends the command with a non-zero code (the message is already on stderr or stdout).
+void finish_with(int rc, const char* what) {
+  if (rc != host::spi::kExitOk) throw host::cli::CommandFailure(rc, what);
+}
+
+// Turns the text options into numbers; exit 2 on nonsense.
+host::spi::FramerOptions finish(const CaptureOptions& o) {
+  host::spi::FramerOptions f = o.framer;
+  if (o.bits == "any") {
+    f.bits = 0;
+  } else {
+    char* end = nullptr;
+    long b = std::strtol(o.bits.c_str(), &end, 10);
+    if (*end != '\0' || b < 1 || b > 64) {
+      finish_with(host::spi::kExitUnusable, "spi: error E_OPTION: --bits must be 1..64 or 'any'");
+    }
+    f.bits = static_cast<int>(b);
+  }
+  if (o.min_pulse == "auto") {
+    f.min_pulse_ps = -1;
+  } else if (!host::spi::parse_duration_ps(o.min_pulse, &f.min_pulse_ps)) {
+    finish_with(host::spi::kExitUnusable,
+                "spi: error E_OPTION: --min-pulse wants a duration like 100ns or 0");
+  }
+  return f;
+}
+
+void add_spi_commands(CLI::App& app) {
+  CLI::App* spi = app.add_subcommand("spi", "SPI bench testing: decode captures, expected "
+                                            "datagrams, diff");
+  spi->require_subcommand(1);
+
+  // Option storage must outlive parsing: function statics (registered once).
+  static CaptureOptions decode_store;
+  static host::spi::DecodeOptions decode_run;
+  CaptureOptions* decode_opts = &decode_store;
+  host::spi::DecodeOptions* decode = &decode_run;
+  CLI::App* dec = spi->add_subcommand(
+      "decode",
+      "Decode a capture (VCD, sigrok .sr, Saleae digital CSV, Saleae SPI-analyser CSV) into "
+      "datagrams. Exit 0 clean, 1 frames flagged, 2 unusable.");
+  dec->add_option("CAPTURE", decode->capture, "capture file")->required();
+  add_capture_options(dec, decode_opts);
+  dec->add_flag("--json", decode->json, "JSON output with stable keys");
+  dec->add_flag("--raw", decode->raw, "hex words only (non-TMC428 captures)");
+  dec->callback([decode, decode_opts]() {
+    decode->framer = finish(*decode_opts);
+    finish_with(host::spi::run_decode(*decode, std::cout, std::cerr),
+                "spi decode: see above (1: datagrams with frame errors, 2: unusable capture)");
+  });
+
+  static host::spi::ExpectOptions expect_run;
+  host::spi::ExpectOptions* expect = &expect_run;
+  std::string have = host::spi::available_scenarios();
+  CLI::App* exp = spi->add_subcommand(
+      "expect",
+      "Print the datagrams the firmware sends in a scenario, as a golden file for `spi diff`. "
+      "Scenarios in this build: " +
+          (have.empty() ? std::string("none (the TMC428 driver/fakes are not built)") : have) +
+          ". 'job FILE' needs the simulator (not available yet).");
+  exp->add_option("--scenario", expect->scenario, "init | jog | job")->capture_default_str();
+  exp->add_option("FILE", expect->job_file, "drawing for --scenario job");
+  exp->callback([expect]() {
+    finish_with(host::spi::run_expect(*expect, std::cout, std::cerr), "spi expect: failed");
+  });
+
+  static CaptureOptions diff_store;
+  static host::spi::DiffOptions diff_run;
+  CaptureOptions* diff_opts = &diff_store;
+  host::spi::DiffOptions* diff = &diff_run;
+  CLI::App* dif = spi->add_subcommand(
+      "diff",
+      "Align a capture's datagrams with an expected (golden) file. Marks: = same, ~ changed "
+      "(same address byte), - expected but missing, + extra. Exit 0 match, 1 differ, "
+      "2 capture unusable.");
+  dif->add_option("CAPTURE", diff->capture, "capture file")->required();
+  dif->add_option("EXPECTED", diff->expected, "golden file (from `spi expect`)")->required();
+  add_capture_options(dif, diff_opts);
+  dif->add_option("--max-frame-errors", diff->max_error_fraction,
+                  "fraction of datagrams with frame errors above which the capture is unusable")
+      ->capture_default_str();
+  dif->add_flag("--json", diff->json, "JSON output with stable keys");
+  dif->add_flag("--raw", diff->raw, "no TMC428 register names");
+  dif->callback([diff, diff_opts]() {
+    diff->framer = finish(*diff_opts);
+    finish_with(host::spi::run_diff(*diff, std::cout, std::cerr),
+                "spi diff: see above (1: the capture differs, 2: capture unusable)");
+  });
+}
+
+const host::cli::CommandRegistrar kRegisterSpi("spi", add_spi_commands);
+
+}  // namespace

@@ -1,0 +1,281 @@
+// B-spline operations in double precision: checks, De Boor, reversal, knot insertion,
+// clamping, Bezier decomposition, affine maps, tolerance-driven sampling, extents.
+#include "host/lib/drawing/bspline.h"
+
+#include <algorithm>  // std::reverse, std::upper_bound
+#include <cmath>      // std::isfinite, std::fabs
+#include <sstream>    // std::ostringstream
+
+namespace host {
+
+std::string check_bspline(const BSpline& s) {
+  std::ostringstream e;
+  const size_t n = s.control.size();
+  if (s.degree < 1) {
+    e << "degree " << s.degree << " (must be at least 1)";
+  } else if (n < static_cast<size_t>(s.degree) + 1) {
+    e << n << " control points for degree " << s.degree << " (need at least " << s.degree + 1 << ")";
+  } else if (s.knots.size() != n + s.degree + 1) {
+    e << s.knots.size() << " knots for " << n << " control points of degree " << s.degree
+      << " (need " << n + s.degree + 1 << ")";
+  } else if (!s.weights.empty() && s.weights.size() != n) {
+    e << s.weights.size() << " weights for " << n << " control points";
+  }
+  if (!e.str().empty()) return e.str();
+  for (size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(s.control[i].x()) || !std::isfinite(s.control[i].y())) {
+      e << "control point " << i << " is not a finite number";
+      return e.str();
+    }
+    if (!s.weights.empty() && !(std::isfinite(s.weights[i]) && s.weights[i] > 0)) {
+      e << "weight " << i << " is " << s.weights[i] << " (weights must be positive)";
+      return e.str();
+    }
+  }
+  for (size_t i = 0; i < s.knots.size(); ++i) {
+    if (!std::isfinite(s.knots[i])) {
+      e << "knot " << i << " is not a finite number";
+      return e.str();
+    }
+    if (i > 0 && s.knots[i] < s.knots[i - 1]) {
+      e << "knots decrease at index " << i << " (" << s.knots[i - 1] << " then " << s.knots[i]
+        << ")";
+      return e.str();
+    }
+  }
+  if (!(s.t_max() > s.t_min())) {
+    e << "empty parameter range (knot " << s.degree << " == knot " << n << " == " << s.t_min()
+      << ")";
+    return e.str();
+  }
+  return std::string();
+}
+
+namespace {
+
+// Index k of the span [knots[k], knots[k+1]) holding t, within degree..n-1.
+size_t find_span(const BSpline& s, double t) {
+  const size_t n = s.control.size();
+  if (t >= s.t_max()) {
+    size_t k = n - 1;
+    while (k > static_cast<size_t>(s.degree) && !(s.knots[k + 1] > s.knots[k])) --k;
+    return k;
+  }
+  auto it = std::upper_bound(s.knots.begin() + s.degree, s.knots.begin() + n, t);
+  return static_cast<size_t>(it - s.knots.begin()) - 1;
+}
+
+}  // namespace
+
+Point2 evaluate(const BSpline& s, double t) {
+  t = std::min(std::max(t, s.t_min()), s.t_max());
+  const int p = s.degree;
+  const size_t k = find_span(s, t);
+  // Homogeneous De Boor: (w x, w y, w).
+  std::vector<Eigen::Vector3d> d(p + 1);
+  for (int j = 0; j <= p; ++j) {
+    const size_t i = k - p + j;
+    const double w = s.weight(i);
+    d[j] = Eigen::Vector3d(s.control[i].x() * w, s.control[i].y() * w, w);
+  }
+  for (int r = 1; r <= p; ++r) {
+    for (int j = p; j >= r; --j) {
+      const size_t i = k - p + j;
+      const double den = s.knots[i + p - r + 1] - s.knots[i];
+      const double a = den > 0 ? (t - s.knots[i]) / den : 0.0;
+      d[j] = (1.0 - a) * d[j - 1] + a * d[j];
+    }
+  }
+  return Point2(d[p].x() / d[p].z(), d[p].y() / d[p].z());
+}
+
+BSpline reversed(const BSpline& s) {
+  BSpline r = s;
+  std::reverse(r.control.begin(), r.control.end());
+  std::reverse(r.weights.begin(), r.weights.end());
+  std::reverse(r.knots.begin(), r.knots.end());
+  for (double& k : r.knots) k = -k;
+  return r;
+}
+
+BSpline insert_knot(const BSpline& s, double u) {
+  const int p = s.degree;
+  const size_t n = s.control.size();
+  const size_t k = find_span(s, u);
+  BSpline r;
+  r.degree = p;
+  r.knots = s.knots;
+  r.knots.insert(r.knots.begin() + k + 1, u);
+  std::vector<Eigen::Vector3d> h(n);
+  for (size_t i = 0; i < n; ++i) {
+    const double w = s.weight(i);
+    h[i] = Eigen::Vector3d(s.control[i].x() * w, s.control[i].y() * w, w);
+  }
+  std::vector<Eigen::Vector3d> q(n + 1);
+  for (size_t i = 0; i <= n; ++i) {
+    if (i + p <= k) {
+      q[i] = h[i];
+    } else if (i > k) {
+      q[i] = h[i - 1];
+    } else {
+      const double den = s.knots[i + p] - s.knots[i];
+      const double a = den > 0 ? (u - s.knots[i]) / den : 0.0;
+      q[i] = (1.0 - a) * h[i - 1] + a * h[i];
+    }
+  }
+  r.control.resize(n + 1);
+  if (s.rational()) r.weights.resize(n + 1);
+  for (size_t i = 0; i <= n; ++i) {
+    r.control[i] = Point2(q[i].x() / q[i].z(), q[i].y() / q[i].z());
+    if (s.rational()) r.weights[i] = q[i].z();
+  }
+  return r;
+}
+
+namespace {
+
+// Multiplicity of value u in the knot vector.
+int multiplicity(const BSpline& s, double u) {
+  int m = 0;
+  for (double k : s.knots) m += (k == u) ? 1 : 0;
+  return m;
+}
+
+// Drops the first `front` and last `back` control points (and knots), used after
+// clamping to remove the part outside the valid range.
+BSpline trim(const BSpline& s, size_t front, size_t back) {
+  BSpline r;
+  r.degree = s.degree;
+  r.control.assign(s.control.begin() + front, s.control.end() - back);
+  if (s.rational()) r.weights.assign(s.weights.begin() + front, s.weights.end() - back);
+  r.knots.assign(s.knots.begin() + front, s.knots.end() - back);
+  return r;
+}
+
+}  // namespace
+
+BSpline clamped(const BSpline& s) {
+  const int p = s.degree;
+  BSpline r = s;
+  const double a = s.t_min();
+  const double b = s.t_max();
+  // Raise the multiplicity of a and b to p (a p+1-th copy would add nothing inside).
+  while (multiplicity(r, a) < p) r = insert_knot(r, a);
+  while (multiplicity(r, b) < p) r = insert_knot(r, b);
+  // Now the knots before the first a and after the last b belong to control points that
+  // no longer influence [a, b]: keep exactly one a and one b outside the p inner copies.
+  size_t first_a = 0;
+  while (r.knots[first_a] < a) ++first_a;
+  size_t last_b = r.knots.size() - 1;
+  while (r.knots[last_b] > b) --last_b;
+  // Index of the first of the p copies of a that are followed by the curve's first point.
+  const size_t count_a = static_cast<size_t>(multiplicity(r, a));
+  const size_t count_b = static_cast<size_t>(multiplicity(r, b));
+  // With the run of a ending at index e, the curve starts at control point e - p; with the
+  // run of b starting at index sb, it ends at control point sb - 1 (knots up to sb + p).
+  const size_t front = first_a + count_a - 1 - p;
+  const size_t last_knot = last_b - count_b + 1 + p;
+  const size_t back = r.knots.size() - 1 - last_knot;
+  BSpline t = trim(r, front, back);
+  t.knots.front() = a;
+  t.knots.back() = b;
+  return t;
+}
+
+std::vector<BSpline> bezier_pieces(const BSpline& s) {
+  BSpline r = clamped(s);
+  const int p = r.degree;
+  // Raise every interior knot to multiplicity p.
+  std::vector<double> interior;
+  for (size_t i = p + 1; i < r.control.size(); ++i) {
+    if (interior.empty() || interior.back() != r.knots[i]) interior.push_back(r.knots[i]);
+  }
+  for (double u : interior) {
+    while (multiplicity(r, u) < p) r = insert_knot(r, u);
+  }
+  std::vector<BSpline> out;
+  for (size_t first = 0; first + p < r.control.size(); first += p) {
+    BSpline b;
+    b.degree = p;
+    b.control.assign(r.control.begin() + first, r.control.begin() + first + p + 1);
+    if (r.rational()) b.weights.assign(r.weights.begin() + first, r.weights.begin() + first + p + 1);
+    const double ka = r.knots[first + p];
+    const double kb = r.knots[first + p + 1];
+    b.knots.assign(p + 1, ka);
+    b.knots.insert(b.knots.end(), p + 1, kb);
+    if (kb > ka) out.push_back(b);
+  }
+  return out;
+}
+
+Point2 start_point(const BSpline& s) { return evaluate(s, s.t_min()); }
+Point2 end_point(const BSpline& s) { return evaluate(s, s.t_max()); }
+
+BSpline transformed(const BSpline& s, const Eigen::Matrix2d& a, const Point2& b) {
+  BSpline r = s;
+  for (Point2& c : r.control) c = a * c + b;
+  return r;
+}
+
+namespace {
+
+// Appends points of (t0, t1] until each chord is within tol of the curve (checked at the
+// parameter midpoint and quarter points; depth-limited).
+void subdivide(const BSpline& s, double t0, const Point2& p0, double t1, const Point2& p1,
+               double tol, int depth, std::vector<Point2>& out) {
+  bool ok = depth >= 24;
+  if (!ok) {
+    ok = true;
+    const double fr[3] = {0.25, 0.5, 0.75};
+    for (double f : fr) {
+      const Point2 q = evaluate(s, t0 + (t1 - t0) * f);
+      const Point2 d = p1 - p0;
+      const double len = d.norm();
+      const double dist = len > 0 ? std::fabs(d.x() * (q - p0).y() - d.y() * (q - p0).x()) / len
+                                  : (q - p0).norm();
+      // Also bound the distance along the chord (a curve that doubles back).
+      const double along = len > 0 ? (q - p0).dot(d) / len : 0.0;
+      if (dist > tol || along < -tol || along > len + tol) {
+        ok = false;
+        break;
+      }
+    }
+  }
+  if (ok) {
+    out.push_back(p1);
+    return;
+  }
+  const double tm = 0.5 * (t0 + t1);
+  const Point2 pm = evaluate(s, tm);
+  subdivide(s, t0, p0, tm, pm, tol, depth + 1, out);
+  subdivide(s, tm, pm, t1, p1, tol, depth + 1, out);
+}
+
+}  // namespace
+
+std::vector<Point2> sample(const BSpline& s, double tol_mm) {
+  std::vector<Point2> out;
+  out.push_back(start_point(s));
+  const size_t n = s.control.size();
+  for (size_t k = s.degree; k < n; ++k) {
+    const double t0 = s.knots[k];
+    const double t1 = s.knots[k + 1];
+    if (!(t1 > t0)) continue;
+    // At least a few pieces per span so that a closed span is not mistaken for a point.
+    const int pieces = 4;
+    for (int i = 0; i < pieces; ++i) {
+      const double a = t0 + (t1 - t0) * i / pieces;
+      const double b = t0 + (t1 - t0) * (i + 1) / pieces;
+      subdivide(s, a, evaluate(s, a), b, evaluate(s, b), tol_mm, 0, out);
+    }
+  }
+  return out;
+}
+
+Extents curve_extents(const BSpline& s) {
+  Extents e;
+  for (const Point2& p : sample(s, 1e-4)) e.add(p);
+  return e;
+}
+
+}  // namespace host

@@ -1,0 +1,576 @@
+// DXF import: dxflib parses and dispatches; this file checks every value it hands over
+// (dxflib reports almost no errors), converts each entity to exact B-splines and expands
+// block references.
+#include "host/lib/drawing/dxf_import.h"
+
+#include <dxflib/dl_creationadapter.h>  // DL_CreationAdapter
+#include <dxflib/dl_dxf.h>              // DL_Dxf
+
+#include <cmath>    // std::isfinite, std::fabs
+#include <map>      // std::map
+#include <memory>   // std::unique_ptr
+#include <sstream>  // std::ostringstream
+
+#include <unsupported/Eigen/Splines>  // Eigen::SplineFitting (fit-point splines)
+
+#include "host/lib/drawing/conics.h"
+#include "host/lib/drawing/dxf_scan.h"
+
+namespace host {
+
+namespace {
+
+const double kPi = 3.14159265358979323846;
+const int kMaxInsertDepth = 16;
+
+// The raw groups of one DXF record (entity, table entry, header variable), as read.
+struct RawRecord {
+  std::string type;
+  long line = 0;
+  std::string handle;
+  int ordinal = 0;  // n-th record of this type in the file, from 1
+  std::vector<std::pair<int, std::string>> groups;
+};
+
+// What a block or model space holds: curves in its own frame, and references to blocks.
+struct InsertRef {
+  DL_InsertData data{"", 0, 0, 0, 1, 1, 1, 0, 1, 1, 0, 0};
+  Point2 extrusion_sign{1, 1};
+  std::string label;
+};
+struct Space {
+  Point2 base{0, 0};
+  std::vector<Curve> curves;
+  std::vector<InsertRef> inserts;
+};
+
+// A polyline being collected from addPolyline/addVertex calls.
+struct OpenPolyline {
+  bool active = false;
+  bool closed = false;
+  bool mirror = false;
+  std::string label;
+  std::string kind;
+  std::vector<BulgeVertex> vertices;
+  bool nonzero_z = false;
+};
+
+class DxfReader : public DL_CreationAdapter {
+ public:
+  explicit DxfReader(const std::string& path) : path_(path) {}
+
+  Drawing finish();
+
+  // Every group passes here before dxflib handles it: keeps the raw record that dxflib is
+  // about to dispatch (the previous one when a new group 0 arrives).
+  void processCodeValuePair(unsigned int code, const std::string& value) override {
+    line_ += 2;
+    if (code == 0 || code == 9) {
+      finished_ = pending_;
+      pending_ = RawRecord();
+      pending_.type = value;
+      pending_.line = line_ - 1;
+      if (code == 0) pending_.ordinal = ++type_ordinal_[value];
+      return;
+    }
+    if (code == 5) pending_.handle = value;
+    pending_.groups.emplace_back(static_cast<int>(code), value);
+  }
+
+  void setVariableInt(const std::string& key, int value, int) override {
+    if (key == "$INSUNITS") {
+      insunits_ = value;
+      have_insunits_ = true;
+    }
+  }
+
+  void addBlock(const DL_BlockData& d) override {
+    flush_polyline();
+    block_name_ = d.name;
+    in_block_ = true;
+    Space& s = blocks_[d.name];
+    s.base = Point2(d.bpx, d.bpy);
+    check_finite(d.bpx, d.bpy, "base point");
+  }
+  void endBlock() override {
+    flush_polyline();
+    in_block_ = false;
+  }
+
+  void addLine(const DL_LineData& d) override {
+    if (!take("LINE")) return;
+    check_finite(d.x1, d.y1, "start point");
+    check_finite(d.x2, d.y2, "end point");
+    const Point2 a(d.x1, d.y1), b(d.x2, d.y2);
+    if ((b - a).norm() < 1e-12) {
+      warn("zero-length LINE skipped");
+      return;
+    }
+    add_curve("LINE", line_spline(a, b));
+  }
+
+  void addArc(const DL_ArcData& d) override {
+    if (!take("ARC")) return;
+    check_finite(d.cx, d.cy, "centre");
+    check_number(d.radius, "radius");
+    check_number(d.angle1, "start angle");
+    check_number(d.angle2, "end angle");
+    if (!(d.radius > 0)) fail("radius is " + num(d.radius) + " (must be positive)");
+    double sweep = std::fmod(d.angle2 - d.angle1, 360.0);
+    if (sweep <= 1e-12) sweep += 360.0;
+    add_curve("ARC", ocs(arc_spline(Point2(d.cx, d.cy), d.radius, d.angle1 * kPi / 180,
+                                    sweep * kPi / 180)));
+  }
+
+  void addCircle(const DL_CircleData& d) override {
+    if (!take("CIRCLE")) return;
+    check_finite(d.cx, d.cy, "centre");
+    check_number(d.radius, "radius");
+    if (!(d.radius > 0)) fail("radius is " + num(d.radius) + " (must be positive)");
+    add_curve("CIRCLE", ocs(arc_spline(Point2(d.cx, d.cy), d.radius, 0.0, 2 * kPi)));
+  }
+
+  void addEllipse(const DL_EllipseData& d) override {
+    if (!take("ELLIPSE")) return;
+    check_finite(d.cx, d.cy, "centre");
+    check_finite(d.mx, d.my, "major axis");
+    check_number(d.ratio, "axis ratio");
+    check_number(d.angle1, "start parameter");
+    check_number(d.angle2, "end parameter");
+    const Point2 major(d.mx, d.my);
+    if (!(major.norm() > 0)) fail("major axis has zero length");
+    if (!(d.ratio > 0 && d.ratio <= 1.0 + 1e-9)) {
+      fail("axis ratio is " + num(d.ratio) + " (must be in (0, 1])");
+    }
+    // Minor axis = extrusion x major, scaled by the ratio (WCS; the sign of the extrusion
+    // decides the side).
+    const double ez = extrusion_z();
+    const Point2 minor = Point2(-major.y(), major.x()) * d.ratio * (ez < 0 ? -1.0 : 1.0);
+    double sweep = std::fmod(d.angle2 - d.angle1, 2 * kPi);
+    if (sweep <= 1e-12) sweep += 2 * kPi;
+    add_curve("ELLIPSE", ellipse_spline(Point2(d.cx, d.cy), major, minor, d.angle1, sweep));
+  }
+
+  void addPolyline(const DL_PolylineData& d) override {
+    flush_polyline();
+    const std::string kind = finished_.type == "POLYLINE" ? "POLYLINE" : "LWPOLYLINE";
+    if (!take(kind)) return;
+    if (d.flags & (16 | 64)) fail("polygon or polyface meshes are not drawings in the plane");
+    if (d.flags & 4) {
+      fail("spline-fit polyline (flag 4): convert it to a SPLINE or explode it in the CAD "
+           "program");
+    }
+    poly_.active = true;
+    poly_.closed = (d.flags & 1) != 0;
+    poly_.mirror = extrusion_z() < 0;
+    poly_.label = label();
+    poly_.kind = kind;
+    poly_.vertices.clear();
+    poly_.nonzero_z = false;
+  }
+
+  void addVertex(const DL_VertexData& d) override {
+    if (!poly_.active) return;
+    if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.bulge)) {
+      throw ImportError(path_ + ": " + poly_.label + ": a vertex is not a finite number");
+    }
+    BulgeVertex v;
+    v.p = Point2(d.x, d.y);
+    v.bulge = d.bulge;
+    if (d.z != 0.0) poly_.nonzero_z = true;
+    poly_.vertices.push_back(v);
+  }
+  void endEntity() override {
+    if (poly_.active && poly_.kind == "LWPOLYLINE") flush_polyline();
+  }
+  void endSequence() override { flush_polyline(); }
+
+  void addSpline(const DL_SplineData& d) override;
+  void addControlPoint(const DL_ControlPointData&) override {}
+  void addKnot(const DL_KnotData&) override {}
+
+  void addInsert(const DL_InsertData& d) override {
+    if (!take("INSERT")) return;
+    check_finite(d.ipx, d.ipy, "insertion point");
+    check_finite(d.sx, d.sy, "scale");
+    check_number(d.angle, "rotation");
+    check_finite(d.colSp, d.rowSp, "array spacing");
+    if (d.sx == 0 || d.sy == 0) fail("scale factor of zero");
+    if (d.cols < 1 || d.rows < 1 || d.cols * d.rows > 10000) {
+      fail("array of " + std::to_string(d.cols) + " x " + std::to_string(d.rows) +
+           " copies (must be 1..10000 in all)");
+    }
+    InsertRef r;
+    r.data = d;
+    r.extrusion_sign = Point2(extrusion_z() < 0 ? -1.0 : 1.0, 1.0);
+    r.label = label();
+    space().inserts.push_back(r);
+  }
+
+  // Annotations and solids: counted and reported, not engraved.
+  void addText(const DL_TextData&) override { skip("TEXT"); }
+  void addMText(const DL_MTextData&) override { skip("MTEXT"); }
+  void addPoint(const DL_PointData&) override { skip("POINT"); }
+  void addHatch(const DL_HatchData&) override { skip("HATCH"); }
+  void addSolid(const DL_SolidData&) override { skip("SOLID"); }
+  void addTrace(const DL_TraceData&) override { skip("TRACE"); }
+  void add3dFace(const DL_3dFaceData&) override { skip("3DFACE"); }
+  void addXLine(const DL_XLineData&) override { skip("XLINE"); }
+  void addRay(const DL_RayData&) override { skip("RAY"); }
+  void addImage(const DL_ImageData&) override { skip("IMAGE"); }
+  void addLeader(const DL_LeaderData&) override { skip("LEADER"); }
+  void addDimLinear(const DL_DimensionData&, const DL_DimLinearData&) override { skip("DIMENSION"); }
+  void addDimAlign(const DL_DimensionData&, const DL_DimAlignedData&) override { skip("DIMENSION"); }
+  void addDimRadial(const DL_DimensionData&, const DL_DimRadialData&) override { skip("DIMENSION"); }
+  void addDimDiametric(const DL_DimensionData&, const DL_DimDiametricData&) override { skip("DIMENSION"); }
+  void addDimAngular(const DL_DimensionData&, const DL_DimAngular2LData&) override { skip("DIMENSION"); }
+  void addDimAngular3P(const DL_DimensionData&, const DL_DimAngular3PData&) override { skip("DIMENSION"); }
+  void addDimOrdinate(const DL_DimensionData&, const DL_DimOrdinateData&) override { skip("DIMENSION"); }
+
+ private:
+  // Counts the entity; false when it is to be ignored (paper space). Flushes a pending
+  // polyline (its SEQEND may be missing).
+  bool take(const std::string& kind) {
+    if (kind != "POLYLINE" && kind != "LWPOLYLINE") flush_polyline();
+    if (!in_block_) ++counts_[kind];
+    if (paper_space()) {
+      if (!in_block_) ++paper_space_skipped_;
+      return false;
+    }
+    check_extrusion();
+    return true;
+  }
+
+  void skip(const std::string& kind) {
+    flush_polyline();
+    if (in_block_) return;
+    ++counts_[kind];
+    ++skipped_[kind];
+  }
+
+  bool paper_space() const {
+    if (in_block_ && (block_name_.rfind("*Paper_Space", 0) == 0 ||
+                      block_name_.rfind("*PAPER_SPACE", 0) == 0)) {
+      return true;
+    }
+    for (const auto& g : finished_.groups) {
+      if (g.first == 67 && std::atoi(g.second.c_str()) == 1) return true;
+    }
+    return false;
+  }
+
+  // Entity extrusion direction z (the OCS normal); tilted planes are refused.
+  double extrusion_z() {
+    double e[3] = {0, 0, 1};
+    getExtrusion()->getDirection(e);
+    return e[2];
+  }
+  void check_extrusion() {
+    double e[3] = {0, 0, 1};
+    getExtrusion()->getDirection(e);
+    if (!std::isfinite(e[0]) || !std::isfinite(e[1]) || !std::isfinite(e[2]) ||
+        std::fabs(e[0]) > 1e-9 || std::fabs(e[1]) > 1e-9 || std::fabs(e[2]) < 1e-9) {
+      std::ostringstream o;
+      o << "lies in a tilted plane (extrusion " << e[0] << ", " << e[1] << ", " << e[2]
+        << "); only drawings in the XY plane can be engraved";
+      fail(o.str());
+    }
+  }
+
+  // Maps a curve built in the entity's OCS to the WCS: the only OCS allowed besides the
+  // WCS is the one seen from below (extrusion 0,0,-1), where x is mirrored.
+  BSpline ocs(const BSpline& s) {
+    if (extrusion_z() > 0) return s;
+    Eigen::Matrix2d m;
+    m << -1, 0, 0, 1;
+    return transformed(s, m, Point2(0, 0));
+  }
+
+  Space& space() { return in_block_ ? blocks_[block_name_] : model_; }
+
+  std::string label() const {
+    std::ostringstream o;
+    o << finished_.type << " #" << finished_.ordinal << " (";
+    if (!finished_.handle.empty()) o << "handle " << finished_.handle << ", ";
+    o << "line " << finished_.line;
+    if (in_block_) o << ", block '" << block_name_ << "'";
+    o << ")";
+    return o.str();
+  }
+
+  void add_curve(const std::string& kind, const BSpline& s) {
+    const std::string problem = check_bspline(s);
+    if (!problem.empty()) fail(problem);
+    Curve c;
+    c.spline = s;
+    c.kind = kind;
+    c.source = label();
+    space().curves.push_back(c);
+  }
+
+  void flush_polyline() {
+    if (!poly_.active) return;
+    poly_.active = false;
+    if (poly_.nonzero_z) {
+      warnings_.push_back(path_ + ": " + poly_.label + ": vertex z ignored (drawn in plan view)");
+    }
+    BSpline s = polyline_spline(poly_.vertices, poly_.closed);
+    if (s.control.empty()) {
+      warnings_.push_back(path_ + ": " + poly_.label + ": " +
+                          std::to_string(poly_.vertices.size()) +
+                          " vertices and no segment of non-zero length: nothing to draw, skipped");
+      return;
+    }
+    if (poly_.mirror) {
+      Eigen::Matrix2d m;
+      m << -1, 0, 0, 1;
+      s = transformed(s, m, Point2(0, 0));
+    }
+    Curve c;
+    c.spline = s;
+    c.kind = poly_.kind;
+    c.source = poly_.label;
+    space().curves.push_back(c);
+  }
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw ImportError(path_ + ": " + label() + ": " + what);
+  }
+  void warn(const std::string& what) { warnings_.push_back(path_ + ": " + label() + ": " + what); }
+
+  void check_number(double v, const char* what) const {
+    if (!std::isfinite(v)) fail(std::string(what) + " is not a finite number");
+  }
+  void check_finite(double x, double y, const char* what) const {
+    check_number(x, what);
+    check_number(y, what);
+  }
+  static std::string num(double v) {
+    std::ostringstream o;
+    o << v;
+    return o.str();
+  }
+
+  void expand(const Space& s, const Eigen::Matrix2d& a, const Point2& b, int depth,
+              const std::string& via, std::vector<Curve>& out) const;
+
+  std::string path_;
+  long line_ = 0;
+  RawRecord pending_, finished_;
+  std::map<std::string, int> type_ordinal_;
+  int insunits_ = 0;
+  bool have_insunits_ = false;
+  bool in_block_ = false;
+  std::string block_name_;
+  std::map<std::string, Space> blocks_;
+  Space model_;
+  OpenPolyline poly_;
+  std::map<std::string, int> counts_;
+  std::map<std::string, int> skipped_;
+  int paper_space_skipped_ = 0;
+  std::vector<std::string> warnings_;
+
+  friend Drawing import_dxf(const std::string& path);
+};
+
+// SPLINE: the counts and values are taken from the raw groups (dxflib silently pads or
+// drops knots and control points that do not match the announced counts).
+void DxfReader::addSpline(const DL_SplineData& d) {
+  if (!take("SPLINE")) return;
+  int flags = 0, degree = -1;
+  long n_knots = -1, n_control = -1, n_fit = -1;
+  std::vector<double> knots, weights;
+  std::vector<Point2> control, fit;
+  std::vector<double> control_z;
+  Point2 tangent_start(0, 0), tangent_end(0, 0);
+  bool have_ts = false, have_te = false;
+  for (const auto& g : finished_.groups) {
+    const double v = std::strtod(g.second.c_str(), 0);  // syntax checked beforehand
+    switch (g.first) {
+      case 70: flags = static_cast<int>(v); break;
+      case 71: degree = static_cast<int>(v); break;
+      case 72: n_knots = static_cast<long>(v); break;
+      case 73: n_control = static_cast<long>(v); break;
+      case 74: n_fit = static_cast<long>(v); break;
+      case 40: knots.push_back(v); break;
+      case 41: weights.push_back(v); break;
+      case 10: control.emplace_back(v, 0.0); control_z.push_back(0.0); break;
+      case 20: if (!control.empty()) control.back().y() = v; break;
+      case 30: if (!control_z.empty()) control_z.back() = v; break;
+      case 11: fit.emplace_back(v, 0.0); break;
+      case 21: if (!fit.empty()) fit.back().y() = v; break;
+      case 12: tangent_start.x() = v; have_ts = true; break;
+      case 22: tangent_start.y() = v; break;
+      case 13: tangent_end.x() = v; have_te = true; break;
+      case 23: tangent_end.y() = v; break;
+      default: break;
+    }
+  }
+  (void)d;
+  if (degree < 1 || degree > 3) {
+    fail("degree " + std::to_string(degree) + " (group 71); the machine takes degree 1 to 3");
+  }
+  if (n_knots >= 0 && n_knots != static_cast<long>(knots.size())) {
+    fail("announces " + std::to_string(n_knots) + " knots (group 72) but lists " +
+         std::to_string(knots.size()));
+  }
+  if (n_control >= 0 && n_control != static_cast<long>(control.size())) {
+    fail("announces " + std::to_string(n_control) + " control points (group 73) but lists " +
+         std::to_string(control.size()));
+  }
+  if (n_fit >= 0 && n_fit != static_cast<long>(fit.size())) {
+    fail("announces " + std::to_string(n_fit) + " fit points (group 74) but lists " +
+         std::to_string(fit.size()));
+  }
+  for (double z : control_z) {
+    if (z != 0.0) {
+      warn("control point z ignored (drawn in plan view)");
+      break;
+    }
+  }
+  BSpline s;
+  s.degree = degree;
+  if (control.empty()) {
+    if (fit.size() < 2) fail("has neither control points nor at least two fit points");
+    // Interpolate the fit points (chord-length parameters, averaged knots). CAD programs
+    // may also honour end tangents and their own knot rule: say so.
+    const int deg = std::min<int>(degree, static_cast<int>(fit.size()) - 1);
+    Eigen::MatrixXd pts(2, fit.size());
+    for (size_t i = 0; i < fit.size(); ++i) pts.col(i) = fit[i];
+    typedef Eigen::Spline<double, 2> EigenSpline;
+    const EigenSpline e = Eigen::SplineFitting<EigenSpline>::Interpolate(pts, deg);
+    s.degree = deg;
+    for (Eigen::Index i = 0; i < e.ctrls().cols(); ++i) s.control.push_back(e.ctrls().col(i));
+    for (Eigen::Index i = 0; i < e.knots().size(); ++i) s.knots.push_back(e.knots()(i));
+    std::string note = "defined by " + std::to_string(fit.size()) +
+                       " fit points only: interpolated with a degree " + std::to_string(deg) +
+                       " B-spline through them (chord-length parameters)";
+    if (have_ts || have_te) note += "; the end tangents in the file are not used";
+    warn(note + "; the CAD program's curve may differ slightly between fit points");
+  } else {
+    s.control = control;
+    s.knots = knots;
+    if (!weights.empty()) {
+      if (weights.size() != control.size()) {
+        fail(std::to_string(weights.size()) + " weights (group 41) for " +
+             std::to_string(control.size()) + " control points");
+      }
+      bool all_one = true;
+      for (double w : weights) all_one = all_one && w == 1.0;
+      if (!all_one || (flags & 4)) s.weights = weights;
+    }
+  }
+  const std::string problem = check_bspline(s);
+  if (!problem.empty()) fail(problem);
+  if ((flags & 1) && (start_point(s) - end_point(s)).norm() > 1e-6 * (1 + s.control[0].norm())) {
+    warn("flagged closed but its ends are " + num((start_point(s) - end_point(s)).norm()) +
+         " apart; drawn as stored");
+  }
+  add_curve("SPLINE", s);
+}
+
+// Appends the curves of a space mapped by x -> a x + b, expanding its block references.
+void DxfReader::expand(const Space& s, const Eigen::Matrix2d& a, const Point2& b, int depth,
+                       const std::string& via, std::vector<Curve>& out) const {
+  for (const Curve& c : s.curves) {
+    Curve t = c;
+    t.spline = transformed(c.spline, a, b);
+    t.source = c.source + via;
+    out.push_back(t);
+  }
+  for (const InsertRef& r : s.inserts) {
+    const DL_InsertData& d = r.data;
+    auto it = blocks_.find(d.name);
+    if (it == blocks_.end()) {
+      throw ImportError(path_ + ": " + r.label + ": refers to block '" + d.name +
+                        "', which the file does not define");
+    }
+    if (depth >= kMaxInsertDepth) {
+      throw ImportError(path_ + ": " + r.label + ": block references nested deeper than " +
+                        std::to_string(kMaxInsertDepth) + " (a block that contains itself?)");
+    }
+    const double ang = d.angle * kPi / 180;
+    Eigen::Matrix2d rot;
+    rot << std::cos(ang), -std::sin(ang), std::sin(ang), std::cos(ang);
+    Eigen::Matrix2d mirror = Eigen::Matrix2d::Identity();
+    mirror(0, 0) = r.extrusion_sign.x();
+    const Eigen::Matrix2d scale = Eigen::Vector2d(d.sx, d.sy).asDiagonal();
+    for (int row = 0; row < d.rows; ++row) {
+      for (int col = 0; col < d.cols; ++col) {
+        // OCS: p' = ip + R (S (p - base) + array offset); then OCS -> WCS (mirror).
+        const Point2 offset(col * d.colSp, row * d.rowSp);
+        const Eigen::Matrix2d local_a = mirror * rot * scale;
+        const Point2 local_b =
+            mirror * (Point2(d.ipx, d.ipy) + rot * (offset - scale * it->second.base));
+        expand(it->second, a * local_a, a * local_b + b, depth + 1,
+               " via " + r.label.substr(0, r.label.find(" (")) + " of '" + d.name + "'", out);
+      }
+    }
+  }
+}
+
+Drawing DxfReader::finish() {
+  flush_polyline();
+  Drawing dr;
+  dr.path = path_;
+  dr.format = "DXF";
+  switch (have_insunits_ ? insunits_ : 0) {
+    case 0:
+      dr.units = "mm (assumed)";
+      dr.unit_to_mm = 1.0;
+      warnings_.push_back(path_ + (have_insunits_ ? ": $INSUNITS is 0 (unitless)"
+                                                  : ": no $INSUNITS in the header") +
+                          ": coordinates taken as millimetres");
+      break;
+    case 1: dr.units = "inch"; dr.unit_to_mm = 25.4; break;
+    case 2: dr.units = "foot"; dr.unit_to_mm = 304.8; break;
+    case 4: dr.units = "mm"; dr.unit_to_mm = 1.0; break;
+    case 5: dr.units = "cm"; dr.unit_to_mm = 10.0; break;
+    case 6: dr.units = "m"; dr.unit_to_mm = 1000.0; break;
+    case 8: dr.units = "microinch"; dr.unit_to_mm = 25.4e-6; break;
+    case 9: dr.units = "mil"; dr.unit_to_mm = 0.0254; break;
+    case 13: dr.units = "micron"; dr.unit_to_mm = 0.001; break;
+    case 14: dr.units = "dm"; dr.unit_to_mm = 100.0; break;
+    default:
+      throw ImportError(path_ + ": $INSUNITS " + std::to_string(insunits_) +
+                        " is a unit this tool does not convert (supported: 0 unitless = mm, "
+                        "1 inch, 2 foot, 4 mm, 5 cm, 6 m, 8 microinch, 9 mil, 13 micron, 14 dm)");
+  }
+  std::vector<Curve> curves;
+  expand(model_, Eigen::Matrix2d::Identity() * dr.unit_to_mm, Point2(0, 0), 0, "", curves);
+  for (const Curve& c : curves) {
+    for (const Point2& p : c.spline.control) {
+      if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || std::fabs(p.x()) > 1e7 ||
+          std::fabs(p.y()) > 1e7) {
+        throw ImportError(path_ + ": " + c.source +
+                          ": a coordinate is beyond 10 km after block and unit scaling");
+      }
+    }
+  }
+  dr.curves = curves;
+  dr.entity_counts = counts_;
+  for (const auto& k : skipped_) {
+    warnings_.push_back(path_ + ": " + std::to_string(k.second) + " " + k.first +
+                        " entit" + (k.second == 1 ? "y" : "ies") +
+                        " not engraved (only lines, arcs, circles, ellipses, polylines, "
+                        "splines and block references are; convert text to outlines)");
+  }
+  if (paper_space_skipped_ > 0) {
+    warnings_.push_back(path_ + ": " + std::to_string(paper_space_skipped_) +
+                        " paper-space entities ignored (only model space is engraved)");
+  }
+  dr.warnings = warnings_;
+  return dr;
+}
+
+}  // namespace
+
+Drawing import_dxf(const std::string& path) {
+  check_dxf_syntax(path);
+  DxfReader reader(path);
+  DL_Dxf dxf;
+  if (!dxf.in(path, &reader)) throw ImportError(path + ": cannot open the file");
+  return reader.finish();
+}
+
+}  // namespace host

@@ -1,0 +1,16 @@
+// DXF import through dxflib: entities to B-splines in mm (see docs/user-guide.md, "Import").
+#ifndef HOST_LIB_DRAWING_DXF_IMPORT_H
+#define HOST_LIB_DRAWING_DXF_IMPORT_H
+
+#include <string>  // std::string
+
+#include "host/lib/drawing/drawing.h"
+
+namespace host {
+
+// Reads an ASCII DXF file. Throws ImportError naming the file, the entity and the problem.
+Drawing import_dxf(const std::string& path);
+
+}  // namespace host
+
+#endif  // HOST_LIB_DRAWING_DXF_IMPORT_H

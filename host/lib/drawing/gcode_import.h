@@ -1,0 +1,20 @@
+// G-code import (RS-274 / LinuxCNC dialect subset): G0/G1/G2/G3 in the XY plane become
+// lines and exact arcs; each run of cutting moves becomes one curve.
+#ifndef HOST_LIB_DRAWING_GCODE_IMPORT_H
+#define HOST_LIB_DRAWING_GCODE_IMPORT_H
+
+#include <string>  // std::string
+
+#include "host/lib/drawing/drawing.h"
+
+namespace host {
+
+// True when the text reads like G-code (G0/G1/G2/G3 words at line starts).
+bool looks_like_gcode(const std::string& text);
+
+// Reads a G-code file. Throws ImportError naming the file, the line and the problem.
+Drawing import_gcode(const std::string& path);
+
+}  // namespace host
+
+#endif  // HOST_LIB_DRAWING_GCODE_IMPORT_H

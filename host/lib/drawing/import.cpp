@@ -1,0 +1,81 @@
+// Chooses the importer from the file's content and extension; refuses formats that are
+// not drawings of curves with a message saying what to do instead.
+#include <algorithm>  // std::transform
+#include <fstream>    // std::ifstream
+#include <sstream>    // std::ostringstream
+
+#include "host/lib/drawing/drawing.h"
+#include "host/lib/drawing/dxf_import.h"
+#include "host/lib/drawing/dxf_scan.h"
+#include "host/lib/drawing/gcode_import.h"
+
+namespace host {
+
+namespace {
+
+// Lower-case extension with the dot, "" when none.
+std::string extension(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  const size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string e = path.substr(dot);
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e;
+}
+
+// The first few KB of the file, for recognising formats by content.
+std::string head(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string s(4096, '\0');
+  in.read(&s[0], static_cast<std::streamsize>(s.size()));
+  s.resize(static_cast<size_t>(in.gcount()));
+  return s;
+}
+
+bool is_gerber(const std::string& ext, const std::string& text) {
+  return ext == ".gbr" || ext == ".ger" || ext == ".gtl" || ext == ".gbl" || ext == ".gto" ||
+         ext == ".gbo" || ext == ".gts" || ext == ".gbs" || ext == ".gko" || ext == ".gm1" ||
+         text.find("%FSLA") != std::string::npos || text.find("%MOMM*%") != std::string::npos ||
+         text.find("%MOIN*%") != std::string::npos;
+}
+
+bool is_excellon(const std::string& ext, const std::string& text) {
+  return ext == ".drl" || ext == ".xln" || ext == ".exc" ||
+         text.rfind("M48", 0) == 0 || text.find("\nM48") != std::string::npos;
+}
+
+}  // namespace
+
+Extents Drawing::extents() const {
+  Extents e;
+  for (const Curve& c : curves) e.add(curve_extents(c.spline));
+  return e;
+}
+
+Drawing import_drawing(const std::string& path) {
+  std::ifstream probe(path, std::ios::binary);
+  if (!probe) throw ImportError(path + ": cannot open the file");
+  const std::string ext = extension(path);
+  const std::string text = head(path);
+  if (text.empty()) throw ImportError(path + ": the file is empty");
+  if (ext == ".dxf" || looks_like_dxf(path)) return import_dxf(path);
+  if (is_gerber(ext, text)) {
+    throw ImportError(path + ": this is a Gerber (RS-274X) photoplotter file, not a drawing of "
+                      "tool paths: its tracks and pads are areas whose outlines have to be "
+                      "computed first. Make isolation-routing G-code with pcb2gcode or FlatCAM "
+                      "and engrave that, or export the outlines from the PCB program as DXF.");
+  }
+  if (is_excellon(ext, text)) {
+    throw ImportError(path + ": this is an Excellon drill file (holes, not curves): this tool "
+                      "engraves outlines and does not drill. Drill the holes separately, or "
+                      "export hole outlines (circles) from the PCB program as DXF.");
+  }
+  if (ext == ".ngc" || ext == ".nc" || ext == ".gcode" || ext == ".g" || ext == ".tap" ||
+      looks_like_gcode(text)) {
+    return import_gcode(path);
+  }
+  throw ImportError(path + ": not a format this tool reads (expected an ASCII DXF drawing, "
+                    "or G-code with G0/G1/G2/G3 moves)");
+}
+
+}  // namespace host

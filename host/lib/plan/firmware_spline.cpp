@@ -1,0 +1,164 @@
+// Host B-spline -> firmware core::Spline conversion (see firmware_spline.h).
+#include "host/lib/plan/firmware_spline.h"
+
+#include <algorithm>  // std::max
+#include <cmath>      // std::llround, std::fabs
+#include <cstring>    // memset
+#include <sstream>    // std::ostringstream
+
+namespace host {
+
+namespace {
+
+// Splits a clamped spline at interior knots until every piece has at most max_control
+// control points. A knot of multiplicity = degree makes the curve pass through one control
+// point, where it is cut into two clamped curves.
+std::vector<BSpline> split_to_fit(const BSpline& clamped_spline, size_t max_control) {
+  std::vector<BSpline> out;
+  BSpline s = clamped_spline;
+  const size_t p = static_cast<size_t>(s.degree);
+  while (s.control.size() > max_control) {
+    // Run starts (first index) of distinct interior knot values.
+    size_t best = 0;
+    for (size_t i = p + 1; i < s.control.size(); ++i) {
+      if (s.knots[i] != s.knots[i - 1] && i <= max_control) best = i;
+    }
+    if (best == 0) throw ConversionError("no interior knot to split the curve at");
+    const double u = s.knots[best];
+    size_t mult = 0;
+    for (double k : s.knots) mult += (k == u) ? 1 : 0;
+    for (; mult < p; ++mult) s = insert_knot(s, u);
+    // Joint control point: index best - 1 (the run of u starts at knot index best).
+    BSpline left, right;
+    left.degree = right.degree = s.degree;
+    left.control.assign(s.control.begin(), s.control.begin() + best);
+    right.control.assign(s.control.begin() + best - 1, s.control.end());
+    if (s.rational()) {
+      left.weights.assign(s.weights.begin(), s.weights.begin() + best);
+      right.weights.assign(s.weights.begin() + best - 1, s.weights.end());
+    }
+    left.knots.assign(s.knots.begin(), s.knots.begin() + best + p);
+    left.knots.push_back(u);
+    right.knots.assign(s.knots.begin() + best - 1, s.knots.end());
+    right.knots.front() = u;
+    out.push_back(left);
+    s = right;
+  }
+  out.push_back(s);
+  return out;
+}
+
+// Integer Q14 weights for a rational spline: the common factor that puts the largest
+// weight at m / 16384 for m in [32768, 65535] with the smallest worst relative error.
+std::vector<uint16_t> quantise_weights(const std::vector<double>& w) {
+  double w_max = 0;
+  for (double x : w) w_max = std::max(w_max, x);
+  double best_err = 1e300;
+  long best_m = 65535;
+  for (long m = 65535; m >= 32768; --m) {
+    const double f = static_cast<double>(m) / w_max;
+    double err = 0;
+    for (double x : w) {
+      const double q = std::floor(x * f + 0.5);
+      err = std::max(err, std::fabs(q - x * f) / std::max(q, 1.0));
+      if (q < 1) err = 1e300;
+    }
+    if (err < best_err) {
+      best_err = err;
+      best_m = m;
+    }
+    if (err < 1e-9) break;
+  }
+  std::vector<uint16_t> q;
+  const double f = static_cast<double>(best_m) / w_max;
+  for (double x : w) {
+    const double v = std::floor(x * f + 0.5);
+    if (v < 1) {
+      std::ostringstream o;
+      o << "weights range from " << x << " to " << w_max
+        << ": too wide for the firmware's Q2.14 weights";
+      throw ConversionError(o.str());
+    }
+    q.push_back(static_cast<uint16_t>(v));
+  }
+  return q;
+}
+
+// One piece (at most kMaxControlPoints control points) in firmware form.
+core::Spline to_firmware(const BSpline& s) {
+  core::Spline f;
+  memset(&f, 0, sizeof f);
+  f.degree = static_cast<uint8_t>(s.degree);
+  f.rational = s.rational();
+  f.control_count = static_cast<uint16_t>(s.control.size());
+  f.knot_count = static_cast<uint16_t>(s.knots.size());
+  std::vector<uint16_t> w;
+  if (s.rational()) w = quantise_weights(s.weights);
+  for (size_t i = 0; i < s.control.size(); ++i) {
+    const double x_um = s.control[i].x() * 1000.0;
+    const double y_um = s.control[i].y() * 1000.0;
+    if (!(std::fabs(x_um) <= core::kMaxCoordinateUm) ||
+        !(std::fabs(y_um) <= core::kMaxCoordinateUm)) {
+      std::ostringstream o;
+      o << "control point " << i << " (" << s.control[i].x() << ", " << s.control[i].y()
+        << ") mm is beyond the firmware's +-" << core::kMaxCoordinateUm / 1000 << " mm";
+      throw ConversionError(o.str());
+    }
+    f.control[i].x_um = static_cast<int32_t>(std::llround(x_um));
+    f.control[i].y_um = static_cast<int32_t>(std::llround(y_um));
+    f.control[i].weight_q14 = s.rational() ? w[i] : core::kWeightOneQ14;
+  }
+  const double k0 = s.knots.front();
+  const double range = s.knots.back() - k0;
+  const double scale = static_cast<double>(kKnotRangeTarget) / range;
+  for (size_t i = 0; i < s.knots.size(); ++i) {
+    f.knot[i] = static_cast<int32_t>(std::llround((s.knots[i] - k0) * scale));
+  }
+  for (size_t i = 0; i + 1 < s.knots.size(); ++i) {
+    if (s.knots[i + 1] > s.knots[i] && f.knot[i + 1] == f.knot[i]) {
+      throw ConversionError("a knot span is shorter than the firmware's knot resolution "
+                            "(1 / 2^28 of the knot vector)");
+    }
+  }
+  const core::GeometryError e = core::validate_spline(f);
+  if (e != core::GeometryError::kOk) {
+    std::ostringstream o;
+    o << "the converted spline fails the firmware's check (geometry error "
+      << static_cast<int>(e) << ")";
+    throw ConversionError(o.str());
+  }
+  return f;
+}
+
+}  // namespace
+
+std::vector<core::Spline> to_firmware_splines(const BSpline& mm_spline) {
+  const std::string problem = check_bspline(mm_spline);
+  if (!problem.empty()) throw ConversionError(problem);
+  if (mm_spline.degree > core::kMaxDegree) {
+    throw ConversionError("degree " + std::to_string(mm_spline.degree) +
+                          " is above the firmware's " + std::to_string(core::kMaxDegree));
+  }
+  std::vector<BSpline> pieces;
+  if (mm_spline.control.size() <= core::kMaxControlPoints) {
+    pieces.push_back(mm_spline);
+  } else {
+    pieces = split_to_fit(clamped(mm_spline), core::kMaxControlPoints);
+  }
+  std::vector<core::Spline> out;
+  for (const BSpline& p : pieces) out.push_back(to_firmware(p));
+  return out;
+}
+
+BSpline from_firmware_spline(const core::Spline& f) {
+  BSpline s;
+  s.degree = f.degree;
+  for (uint16_t i = 0; i < f.control_count; ++i) {
+    s.control.emplace_back(f.control[i].x_um / 1000.0, f.control[i].y_um / 1000.0);
+    if (f.rational) s.weights.push_back(f.control[i].weight_q14 / 16384.0);
+  }
+  for (uint16_t i = 0; i < f.knot_count; ++i) s.knots.push_back(f.knot[i]);
+  return s;
+}
+
+}  // namespace host

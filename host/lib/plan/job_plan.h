@@ -1,0 +1,87 @@
+// The job plan: a drawing turned into the ordered machine actions the encoder sends —
+// pen (Z) up/down, rapids, splines in firmware form, straight feeds — in the machine frame
+// (micrometres from the zero corner), checked against the work area.
+#ifndef HOST_LIB_PLAN_JOB_PLAN_H
+#define HOST_LIB_PLAN_JOB_PLAN_H
+
+#include <stdint.h>  // int32_t
+
+#include <stdexcept>  // std::runtime_error
+#include <string>     // std::string
+#include <vector>     // std::vector
+
+#include "firmware/core/spline.h"
+#include "host/lib/drawing/drawing.h"
+
+namespace host {
+
+// Which side of each curve the tool centre runs on, seen along the curve's direction as
+// drawn in the file (kept when the planner reverses a curve: the offset sign flips).
+enum class ToolSide { kCentre, kLeft, kRight };
+
+struct PlanOptions {
+  double scale = 1.0;                // applied to the drawing (mm) before anything else
+  double margin_mm = 0.0;            // the drawing's lower-left corner goes to (margin, margin)
+  double work_width_mm = 297.0;      // work area: x in [0, width], y in [0, height] (A4)
+  double work_height_mm = 210.0;
+  bool reorder = true;               // greedy nearest-neighbour ordering, with reversal
+  double chain_tolerance_mm = 0.01;  // ends closer than this: no pen lift between curves
+  ToolSide tool_side = ToolSide::kCentre;
+  double tool_radius_mm = 0.0;       // used when tool_side != kCentre
+  double z_up_mm = 2.0;              // pen-up (travel) height above the work zero
+  double z_down_mm = -0.1;           // pen-down (cutting) height
+  double feed_mm_per_s = 10.0;       // cutting feed for splines and straight feeds
+  double plunge_mm_per_s = 2.0;      // Z feed for pen down
+  bool lines_as_feeds = true;        // a single straight segment becomes a kFeed, not a spline
+};
+
+// One machine action. Which fields mean something depends on kind.
+struct PlanStep {
+  enum Kind {
+    kPenUp,    // Z to z_um (travel height), at the rapid rate
+    kPenDown,  // Z to z_um (cutting depth), at feed_um_per_s (plunge feed)
+    kRapid,    // X/Y straight to `to` with the pen up, at the rapid rate
+    kFeed,     // X/Y straight to `to` with the pen down, at feed_um_per_s
+    kSpline    // trace `spline` from its start (== current position) at feed_um_per_s
+  };
+  Kind kind = kRapid;
+  core::PointUm to = {0, 0};  // kRapid, kFeed: target; kSpline: the spline's end point
+  int32_t z_um = 0;           // kPenUp, kPenDown
+  int32_t feed_um_per_s = 0;  // kPenDown, kFeed, kSpline
+  int32_t tool_offset_um = 0; // kSpline, kFeed: signed offset, > 0 left of travel, < 0 right
+  core::Spline spline;        // kSpline only (validated, in machine micrometres)
+  int curve = -1;             // index into JobPlan::curves of the curve this step draws
+};
+
+// A planned curve: the drawing curve in the machine frame (mm), in the direction drawn.
+struct PlannedCurve {
+  BSpline spline;         // machine frame, mm
+  int drawing_index = 0;  // index in Drawing::curves
+  bool reversed = false;  // traced end to start
+  bool chained = false;   // starts where the previous one ended: no pen lift before it
+  std::string source;     // entity it came from (for messages)
+};
+
+struct JobPlan {
+  std::vector<PlanStep> steps;        // starts and ends with the pen up at the zero (0, 0)
+  std::vector<PlannedCurve> curves;   // in the order drawn
+  Point2 offset_mm{0, 0};             // machine = drawing * scale + offset_mm
+  Extents extents_mm;                 // of the curves in the machine frame (tool centre)
+  double cut_length_mm = 0.0;         // pen-down path length (approximate, from sampling)
+  double rapid_length_mm = 0.0;       // pen-up X/Y travel
+  int pen_lifts = 0;                  // kPenUp steps between curves
+};
+
+// A job that must not be sent (out of the work area, a curve the firmware cannot hold,
+// an empty drawing). what() names the curve and the coordinate or problem.
+class PlanError : public std::runtime_error {
+ public:
+  explicit PlanError(const std::string& msg) : std::runtime_error(msg) {}
+};
+
+// Plans the whole job; every check is done before anything is returned.
+JobPlan plan_job(const Drawing& drawing, const PlanOptions& options);
+
+}  // namespace host
+
+#endif  // HOST_LIB_PLAN_JOB_PLAN_H

@@ -1,0 +1,47 @@
+// Builds a PlotInput from a JobPlan (see plan_plot.h).
+#include "host/lib/plot/plan_plot.h"
+
+namespace host {
+
+namespace {
+
+Point2 mm(const core::PointUm& p) { return Point2(p.x_um / 1000.0, p.y_um / 1000.0); }
+
+}  // namespace
+
+PlotInput plot_input_from_plan(const JobPlan& plan, const std::string& title, double tol_mm) {
+  PlotInput in;
+  in.title = title;
+  for (const PlannedCurve& c : plan.curves) in.drawing_curves_mm.push_back(sample(c.spline, tol_mm));
+  Point2 at(0, 0);
+  bool down = false;
+  int last_curve = -1;
+  // Appends a point to the current segment, starting a new one when the pen state changes.
+  auto add = [&](const Point2& p) {
+    if (in.tool_path.empty() || in.tool_path.back().pen_down != down) {
+      ToolPathSegment s;
+      s.pen_down = down;
+      s.points_mm.push_back(at);
+      in.tool_path.push_back(s);
+    }
+    in.tool_path.back().points_mm.push_back(p);
+    at = p;
+  };
+  for (const PlanStep& s : plan.steps) {
+    switch (s.kind) {
+      case PlanStep::kPenUp: down = false; break;
+      case PlanStep::kPenDown: down = true; break;
+      case PlanStep::kRapid:
+      case PlanStep::kFeed: add(mm(s.to)); break;
+      case PlanStep::kSpline:
+        if (s.curve != last_curve && s.curve >= 0) {
+          for (const Point2& p : sample(plan.curves[s.curve].spline, tol_mm)) add(p);
+          last_curve = s.curve;
+        }
+        break;
+    }
+  }
+  return in;
+}
+
+}  // namespace host

@@ -1,0 +1,180 @@
+// Plot rendering with cairo; the same drawing code serves the SVG and the PNG surface.
+#include "host/lib/plot/plot.h"
+
+#include <cairo-svg.h>  // cairo_svg_surface_create
+#include <cairo.h>      // cairo_*
+
+#include <algorithm>  // std::min
+#include <cmath>      // std::pow, std::floor
+#include <sstream>    // std::ostringstream
+
+namespace host {
+
+namespace {
+
+const double kTitleBandPx = 40.0;
+const double kBottomBandPx = 60.0;
+const double kSideMarginPx = 20.0;
+
+struct Rgb {
+  double r, g, b;
+};
+const Rgb kDrawingColour = {0.55, 0.75, 0.95};  // light blue, wide: the drawing
+const Rgb kCutColour = {0.75, 0.05, 0.05};      // dark red, thin: the pen-down path
+const Rgb kRapidColour = {0.45, 0.45, 0.45};    // grey dashed: pen-up moves
+
+void set_colour(cairo_t* cr, const Rgb& c) { cairo_set_source_rgb(cr, c.r, c.g, c.b); }
+
+void polyline(cairo_t* cr, const PlotFrame& f, const std::vector<Point2>& pts) {
+  if (pts.empty()) return;
+  Point2 p = f.to_px(pts[0]);
+  cairo_move_to(cr, p.x(), p.y());
+  for (size_t i = 1; i < pts.size(); ++i) {
+    p = f.to_px(pts[i]);
+    cairo_line_to(cr, p.x(), p.y());
+  }
+  if (pts.size() == 1) cairo_line_to(cr, p.x() + 0.01, p.y());
+  cairo_stroke(cr);
+}
+
+// A round length (1, 2 or 5 times a power of ten) near a fifth of the plot width.
+double nice_length(double target) {
+  const double p = std::pow(10.0, std::floor(std::log10(target)));
+  if (target >= 5 * p) return 5 * p;
+  if (target >= 2 * p) return 2 * p;
+  return p;
+}
+
+void text(cairo_t* cr, double x, double y, const std::string& s) {
+  cairo_move_to(cr, x, y);
+  cairo_show_text(cr, s.c_str());
+}
+
+void legend_entry(cairo_t* cr, double x, double y, const Rgb& c, double width, bool dashed,
+                  const std::string& label) {
+  set_colour(cr, c);
+  cairo_set_line_width(cr, width);
+  const double dash[] = {6.0, 4.0};
+  cairo_set_dash(cr, dash, dashed ? 2 : 0, 0);
+  cairo_move_to(cr, x, y);
+  cairo_line_to(cr, x + 30, y);
+  cairo_stroke(cr);
+  cairo_set_dash(cr, dash, 0, 0);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  text(cr, x + 36, y + 4, label);
+}
+
+void render(cairo_t* cr, const PlotInput& in) {
+  const PlotFrame f = plot_frame(in);
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  // Drawing underneath, wide.
+  set_colour(cr, kDrawingColour);
+  cairo_set_line_width(cr, 5.0);
+  for (const auto& c : in.drawing_curves_mm) polyline(cr, f, c);
+  // Tool path on top.
+  const double dash[] = {6.0, 4.0};
+  for (const ToolPathSegment& s : in.tool_path) {
+    if (s.pen_down) {
+      set_colour(cr, kCutColour);
+      cairo_set_line_width(cr, 1.2);
+      cairo_set_dash(cr, dash, 0, 0);
+    } else {
+      set_colour(cr, kRapidColour);
+      cairo_set_line_width(cr, 0.8);
+      cairo_set_dash(cr, dash, 2, 0);
+    }
+    polyline(cr, f, s.points_mm);
+  }
+  cairo_set_dash(cr, dash, 0, 0);
+  // Title.
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+  cairo_set_font_size(cr, 16);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  text(cr, kSideMarginPx, 26, in.title);
+  // Legend and scale bar in the bottom band.
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, 12);
+  const double y = in.height_px - kBottomBandPx / 2;
+  legend_entry(cr, kSideMarginPx, y, kDrawingColour, 5.0, false, "drawing");
+  legend_entry(cr, kSideMarginPx + 120, y, kCutColour, 1.2, false, "tool path (pen down)");
+  legend_entry(cr, kSideMarginPx + 320, y, kRapidColour, 0.8, true, "rapid (pen up)");
+  const double bar_mm = nice_length(in.width_px / 5.0 / f.scale_px_per_mm);
+  const double bar_px = bar_mm * f.scale_px_per_mm;
+  const double x1 = in.width_px - kSideMarginPx, x0 = x1 - bar_px;
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_set_line_width(cr, 2.0);
+  cairo_move_to(cr, x0, y - 5);
+  cairo_line_to(cr, x0, y);
+  cairo_line_to(cr, x1, y);
+  cairo_line_to(cr, x1, y - 5);
+  cairo_stroke(cr);
+  std::ostringstream label;
+  label << bar_mm << " mm";
+  text(cr, x0, y + 16, label.str());
+}
+
+void check(cairo_surface_t* s, const std::string& path) {
+  const cairo_status_t st = cairo_surface_status(s);
+  if (st != CAIRO_STATUS_SUCCESS) {
+    const std::string msg = cairo_status_to_string(st);
+    cairo_surface_destroy(s);
+    throw std::runtime_error(path + ": cannot write the plot: " + msg);
+  }
+}
+
+}  // namespace
+
+PlotFrame plot_frame(const PlotInput& in) {
+  Extents e;
+  for (const auto& c : in.drawing_curves_mm) {
+    for (const Point2& p : c) e.add(p);
+  }
+  for (const ToolPathSegment& s : in.tool_path) {
+    for (const Point2& p : s.points_mm) e.add(p);
+  }
+  if (e.empty()) e.add(Point2(0, 0));
+  const double w = std::max(e.width(), 1e-3), h = std::max(e.height(), 1e-3);
+  const double area_w = in.width_px - 2 * kSideMarginPx;
+  const double area_h = in.height_px - kTitleBandPx - kBottomBandPx - 2 * kSideMarginPx;
+  PlotFrame f;
+  f.scale_px_per_mm = std::min(area_w / w, area_h / h);
+  // Centre the bounds in the area.
+  const double cx = kSideMarginPx + area_w / 2, cy = kTitleBandPx + kSideMarginPx + area_h / 2;
+  const Point2 mid = 0.5 * (e.min + e.max);
+  f.origin_x_px = cx - mid.x() * f.scale_px_per_mm;
+  f.origin_y_px = cy + mid.y() * f.scale_px_per_mm;
+  return f;
+}
+
+void write_plot(const PlotInput& in, const std::string& svg_path, const std::string& png_path) {
+  if (in.width_px < 200 || in.height_px < 200 || in.width_px > 20000 || in.height_px > 20000) {
+    throw std::runtime_error("plot size must be 200..20000 pixels each way");
+  }
+  if (!svg_path.empty()) {
+    cairo_surface_t* s = cairo_svg_surface_create(svg_path.c_str(), in.width_px, in.height_px);
+    check(s, svg_path);
+    cairo_t* cr = cairo_create(s);
+    render(cr, in);
+    cairo_destroy(cr);
+    cairo_surface_finish(s);
+    check(s, svg_path);
+    cairo_surface_destroy(s);
+  }
+  if (!png_path.empty()) {
+    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, in.width_px, in.height_px);
+    check(s, png_path);
+    cairo_t* cr = cairo_create(s);
+    render(cr, in);
+    cairo_destroy(cr);
+    const cairo_status_t st = cairo_surface_write_to_png(s, png_path.c_str());
+    cairo_surface_destroy(s);
+    if (st != CAIRO_STATUS_SUCCESS) {
+      throw std::runtime_error(png_path + ": cannot write the plot: " + cairo_status_to_string(st));
+    }
+  }
+}
+
+}  // namespace host

@@ -1,0 +1,53 @@
+// A job through the simulated machine in one process: the simulator serves a loopback TCP
+// port from a thread, the sender streams the plan to it, and the tool path is measured.
+#ifndef HOST_LIB_SIM_SIM_JOB_H
+#define HOST_LIB_SIM_SIM_JOB_H
+
+#include <functional>  // std::function
+#include <memory>      // std::unique_ptr
+#include <string>      // std::string
+#include <vector>      // std::vector
+
+#include "host/lib/plan/job_plan.h"
+#include "host/lib/sim/sim_machine.h"
+#include "host/lib/stream/job_encoder.h"
+#include "host/lib/stream/sender.h"
+
+namespace host::sim {
+
+struct SimJobOptions {
+  SimOptions machine;
+  EncodeOptions encode;
+  SenderOptions sender;
+  bool realtime = false;
+  // Wraps the sender's link (tests put a noisy or dropping link here).
+  std::function<std::unique_ptr<Link>(std::unique_ptr<Link>)> wrap_link;
+  // Called at every status (e.g. to hold/resume/abort through the sender).
+  std::function<void(Sender&, const Progress&)> on_progress;
+};
+
+struct SimJobResult {
+  JobOutcome outcome = JobOutcome::kLinkLost;
+  std::string message;
+  SenderStats stats;
+  size_t commands = 0;
+  size_t wire_bytes = 0;           // the job's frames once each (no retransmits, no polls)
+  uint64_t virtual_ms = 0;         // machine time simulated
+  double wall_s = 0;               // real time it took
+  std::vector<ToolSample> trace;   // tool positions (machine frame, mm)
+  double motion_s = 0;             // from the first to the last tool movement
+  double cut_mm = 0, rapid_mm = 0; // tool path lengths from the trace (pen down / up)
+  double max_contour_error_um = 0; // pen-down trace points to the planned curves
+  std::string lcd[2];
+};
+
+// Runs the plan on a fresh simulated machine. Throws PlanError/LinkError for what cannot
+// start at all; every other ending is in the result.
+SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options);
+
+// Pen-down samples: Z below halfway between the plan's travel and cutting heights.
+double pen_threshold_mm(const JobPlan& plan);
+
+}  // namespace host::sim
+
+#endif  // HOST_LIB_SIM_SIM_JOB_H

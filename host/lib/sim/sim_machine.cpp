@@ -1,0 +1,182 @@
+// The simulated machine: firmware application + TMC428 driver + TMC428 model + UART timing.
+#include "host/lib/sim/sim_machine.h"
+
+#include <cmath>  // std::lround
+
+#include "firmware/app/application.h"       // app::Application, app::Board
+#include "hal/drivers/tmc428/tmc428.h"       // drivers::Tmc428
+#include "hal/fake/motion/tmc428_model.h"    // fake::Tmc428Model
+#include "hal/fake/spi/recording_spi.h"      // fake::RecordingSpi
+#include "hal/interfaces/operator_inputs.h"  // hal::OperatorInputs
+#include "hal/interfaces/serial_port.h"      // hal::SerialPort
+#include "hal/interfaces/text_display.h"     // hal::TextDisplay
+
+namespace host::sim {
+
+namespace {
+
+// The firmware's UART as the application sees it: bytes already on the wire.
+class SimSerial : public hal::SerialPort {
+ public:
+  bool read_byte(uint8_t* byte) override {
+    if (rx.empty()) return false;
+    *byte = rx.front();
+    rx.pop_front();
+    return true;
+  }
+  uint16_t write(const uint8_t* data, uint16_t len) override {
+    const uint16_t n = std::min<uint16_t>(len, write_space());
+    tx.insert(tx.end(), data, data + n);
+    return n;
+  }
+  uint16_t write_space() const override {
+    return tx.size() >= kTxRing ? 0 : static_cast<uint16_t>(kTxRing - tx.size());
+  }
+  uint16_t take_rx_errors() override { return 0; }
+
+  static constexpr size_t kTxRing = 128;  // as the dsPIC port's TX ring
+  std::deque<uint8_t> rx;  // received, waiting for the application
+  std::deque<uint8_t> tx;  // queued by the application, not sent yet
+};
+
+// A 2 x 16 display that keeps what was written.
+class SimDisplay : public hal::TextDisplay {
+ public:
+  void write_line(uint8_t row, const char* text) override {
+    if (row >= kRows) return;
+    std::string line;
+    for (int i = 0; i < kColumns && text[i] != '\0'; ++i) line += text[i];
+    line.resize(kColumns, ' ');
+    rows[row] = line;
+  }
+  void clear() override { rows[0] = rows[1] = std::string(kColumns, ' '); }
+  std::string rows[kRows] = {std::string(kColumns, ' '), std::string(kColumns, ' ')};
+};
+
+// The operator panel: the simulated operator sets the bits.
+class SimInputs : public hal::OperatorInputs {
+ public:
+  uint8_t state() override { return bits; }
+  uint8_t bits = 0;
+};
+
+}  // namespace
+
+struct SimMachine::Parts {
+  explicit Parts(const config::MachineConfig& cfg)
+      : chip(cfg.tmc428_clock_hz), spi(chip, cfg.spi_clock_hz, cfg.tmc428_clock_hz),
+        driver(spi, cfg) {}
+  fake::Tmc428Model chip;
+  fake::RecordingSpi spi;
+  drivers::Tmc428 driver;
+  SimSerial serial;
+  SimDisplay display;
+  SimInputs inputs;
+  app::Application app;
+  int32_t usteps_per_mm[config::kAxisCount] = {1, 1, 1};
+};
+
+SimMachine::SimMachine(const SimOptions& options)
+    : options_(options), parts_(std::make_unique<Parts>(options.machine)) {
+  Parts& p = *parts_;
+  p.spi.set_recording(false);  // minutes of traffic; the SPI bench tools record their own
+  for (int a = 0; a < config::kAxisCount; ++a) {
+    const config::AxisConfig& axis = options.machine.axis[a];
+    p.usteps_per_mm[a] = config::usteps_per_mm(axis);
+    const int64_t margin = int64_t(options.switch_margin_um) * p.usteps_per_mm[a] / 1000;
+    const int64_t travel = int64_t(axis.travel_um) * p.usteps_per_mm[a] / 1000;
+    // Z travels downward from the power-on height too: its switches sit symmetric.
+    const int64_t left = a == config::kAxisZ ? -travel / 2 - margin : -margin;
+    const int64_t right = a == config::kAxisZ ? travel / 2 + margin : travel + margin;
+    p.chip.set_switch_positions(a, static_cast<int32_t>(left), static_cast<int32_t>(right));
+  }
+  chip_ok_ = p.driver.init() == drivers::Tmc428InitResult::kOk;
+  app::Board board;
+  board.link = &p.serial;
+  board.motion = &p.driver;
+  board.display = &p.display;
+  board.inputs = &p.inputs;
+  p.app.init(board, options.machine);
+  record_position();
+}
+
+SimMachine::~SimMachine() = default;
+
+void SimMachine::from_host(const uint8_t* data, size_t size) {
+  to_uart_.insert(to_uart_.end(), data, data + size);
+}
+
+std::string SimMachine::take_to_host() {
+  std::string out;
+  out.swap(from_uart_);
+  return out;
+}
+
+bool SimMachine::busy() const {
+  const Parts& p = *parts_;
+  for (int a = 0; a < config::kAxisCount; ++a) {
+    if (p.chip.v_actual_q8(a) != 0) return true;
+  }
+  return !to_uart_.empty() || !p.serial.rx.empty() || !p.serial.tx.empty();
+}
+
+// The simulated operator: confirms zeroing where the tool stands, as a person would after
+// jogging to the corner of the board.
+void SimMachine::operate_panel() {
+  Parts& p = *parts_;
+  if (!options_.auto_zero) return;
+  if (confirm_hold_ms_ > 0) {
+    p.inputs.bits = hal::kButtonConfirm;
+    if (--confirm_hold_ms_ == 0) p.inputs.bits = 0;
+    return;
+  }
+  if (p.app.zeroing()) confirm_hold_ms_ = 50;  // a 50 ms press, well past the debounce
+}
+
+void SimMachine::record_position() {
+  const ToolSample s = position();
+  if (!trace_.empty()) {
+    const ToolSample& last = trace_.back();
+    if (last.x_mm == s.x_mm && last.y_mm == s.y_mm && last.z_mm == s.z_mm) return;
+  }
+  trace_.push_back(s);
+}
+
+ToolSample SimMachine::position() const {
+  const Parts& p = *parts_;
+  ToolSample s;
+  s.t_ms = now_ms_;
+  s.x_mm = double(p.chip.x_actual(0)) / p.usteps_per_mm[0];
+  s.y_mm = double(p.chip.x_actual(1)) / p.usteps_per_mm[1];
+  s.z_mm = double(p.chip.x_actual(2)) / p.usteps_per_mm[2];
+  return s;
+}
+
+void SimMachine::step_ms() {
+  Parts& p = *parts_;
+  const double bytes_per_ms = options_.baud / 10.0 / 1000.0;
+  rx_credit_ = std::min(rx_credit_ + bytes_per_ms, 4.0 + bytes_per_ms);  // 4-byte UART FIFO
+  while (rx_credit_ >= 1.0 && !to_uart_.empty()) {
+    p.serial.rx.push_back(to_uart_.front());
+    to_uart_.pop_front();
+    rx_credit_ -= 1.0;
+  }
+  ++now_ms_;
+  p.chip.advance_to_ns(now_ms_ * 1000000ull);
+  operate_panel();
+  p.app.tick_1ms();
+  p.app.poll();
+  tx_credit_ = std::min(tx_credit_ + bytes_per_ms, 4.0 + bytes_per_ms);
+  while (tx_credit_ >= 1.0 && !p.serial.tx.empty()) {
+    from_uart_ += static_cast<char>(p.serial.tx.front());
+    p.serial.tx.pop_front();
+    tx_credit_ -= 1.0;
+  }
+  record_position();
+}
+
+std::string SimMachine::lcd_line(int row) const {
+  return row >= 0 && row < 2 ? parts_->display.rows[row] : std::string();
+}
+
+}  // namespace host::sim

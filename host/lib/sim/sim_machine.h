@@ -1,0 +1,75 @@
+// The simulated machine: the firmware application built for the host, wired to the TMC428
+// behavioural model through the real TMC428 driver, a UART at 115200 Bd in virtual time,
+// a captured LCD and a simulated operator. Time advances one millisecond per step.
+#ifndef HOST_LIB_SIM_SIM_MACHINE_H
+#define HOST_LIB_SIM_SIM_MACHINE_H
+
+#include <cstdint>  // uint8_t
+#include <deque>    // std::deque
+#include <memory>   // std::unique_ptr
+#include <string>   // std::string
+#include <vector>   // std::vector
+
+#include "firmware/config/machine_config.h"
+
+namespace host::sim {
+
+struct SimOptions {
+  config::MachineConfig machine = config::default_machine_config();
+  uint32_t baud = 115200;  // 10 bits a byte on the wire (8N1)
+  bool auto_zero = true;   // the simulated operator confirms zeroing where the tool stands
+  // Limit switches this far beyond each end of the travel from the power-on position.
+  int32_t switch_margin_um = 5000;
+};
+
+// One sample of the tool position (from the model's x_actual), when it moved.
+struct ToolSample {
+  uint64_t t_ms;
+  double x_mm, y_mm, z_mm;
+};
+
+class SimMachine {
+ public:
+  explicit SimMachine(const SimOptions& options);
+  ~SimMachine();
+  SimMachine(const SimMachine&) = delete;
+  SimMachine& operator=(const SimMachine&) = delete;
+
+  // Bytes from the PC; they reach the firmware's UART at the baud rate.
+  void from_host(const uint8_t* data, size_t size);
+  // Bytes the firmware sent that have left its UART by now.
+  std::string take_to_host();
+
+  // One millisecond: UART bytes, model time, the 1 ms tick, a background-loop pass.
+  void step_ms();
+  uint64_t now_ms() const { return now_ms_; }
+
+  // True while the axes move or bytes wait in either UART direction.
+  bool busy() const;
+  // Whether the TMC428 driver's self-check passed at power-on (else the app is in alarm).
+  bool chip_ok() const { return chip_ok_; }
+  const std::vector<ToolSample>& trace() const { return trace_; }
+  void clear_trace() { trace_.clear(); }
+  std::string lcd_line(int row) const;
+  // The firmware's tool position in mm (model x_actual / microsteps per mm).
+  ToolSample position() const;
+
+ private:
+  struct Parts;
+  void operate_panel();
+  void record_position();
+
+  SimOptions options_;
+  std::unique_ptr<Parts> parts_;
+  uint64_t now_ms_ = 0;
+  double rx_credit_ = 0, tx_credit_ = 0;  // bytes the UART may move this ms
+  std::deque<uint8_t> to_uart_;            // PC -> firmware, not on the wire yet
+  std::string from_uart_;                  // firmware -> PC, delivered
+  std::vector<ToolSample> trace_;
+  bool chip_ok_ = false;
+  int confirm_hold_ms_ = 0;
+};
+
+}  // namespace host::sim
+
+#endif  // HOST_LIB_SIM_SIM_MACHINE_H

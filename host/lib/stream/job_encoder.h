@@ -1,0 +1,39 @@
+// Turns a job plan into the ordered command frames of the protocol (payloads; the sender
+// adds sequence numbers), packing spline data to the controller's payload size.
+#ifndef HOST_LIB_STREAM_JOB_ENCODER_H
+#define HOST_LIB_STREAM_JOB_ENCODER_H
+
+#include <cstdint>  // uint8_t
+#include <string>   // std::string
+#include <vector>   // std::vector
+
+#include "host/lib/plan/job_plan.h"
+
+namespace host {
+
+// One queued command: its letter and payload, and where in the job it came from.
+struct QueuedCommand {
+  uint8_t letter = 0;
+  std::vector<uint8_t> payload;
+  int step = -1;   // index into JobPlan::steps, -1 for set-up frames
+  int curve = -1;  // index into JobPlan::curves, -1 if none
+};
+
+struct EncodeOptions {
+  unsigned max_payload = 64;           // from the controller's *I
+  uint16_t max_step_um = 1000;         // #U: longest distance between generated points
+  uint16_t chord_tolerance_um = 5;     // #U: chord error
+  uint16_t z_rapid_um_per_s = 5000;    // #Z feed for pen-up moves
+  std::string title;                   // #S row 0 at the start (cut to 16 characters)
+};
+
+// The whole job as queued commands, in order. Throws PlanError on a step the protocol
+// cannot carry (a feed above 65535 um/s, a tool offset: v1 has no offset field).
+std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& options);
+
+// Bytes the commands take on the wire as frames (header + payload + CRC each).
+size_t wire_bytes(const std::vector<QueuedCommand>& commands);
+
+}  // namespace host
+
+#endif  // HOST_LIB_STREAM_JOB_ENCODER_H

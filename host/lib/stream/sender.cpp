@@ -1,0 +1,392 @@
+// The streaming sender: window, delayed acks, go-back-N on errors and time-outs, real-time
+// frames, keep-alive status polling, and the job verdict.
+#include "host/lib/stream/sender.h"
+
+#include <fmt/format.h>  // fmt::format
+
+#include <algorithm>  // std::max
+#include <thread>     // std::this_thread
+
+#include "firmware/protocol/codec.h"  // proto::decode_frame, proto::encode
+
+namespace host {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using std::chrono::milliseconds;
+
+const char* error_name(proto::ErrorCode code) {
+  switch (code) {
+    case proto::ErrorCode::kOk: return "ok";
+    case proto::ErrorCode::kBadCrc: return "bad CRC";
+    case proto::ErrorCode::kLengthTooLarge: return "length too large";
+    case proto::ErrorCode::kBadLetter: return "bad letter";
+    case proto::ErrorCode::kTruncated: return "truncated frame";
+    case proto::ErrorCode::kRxOverrun: return "receive overrun";
+    case proto::ErrorCode::kUnknownCommand: return "unknown command";
+    case proto::ErrorCode::kPayloadLength: return "wrong payload length";
+    case proto::ErrorCode::kFieldRange: return "field out of range";
+    case proto::ErrorCode::kSeqGap: return "sequence gap";
+    case proto::ErrorCode::kSeqOutOfWindow: return "sequence out of window";
+    case proto::ErrorCode::kSeqStale: return "stale real-time frame";
+    case proto::ErrorCode::kNoSession: return "no session (controller restarted?)";
+    case proto::ErrorCode::kVersionUnsupported: return "protocol version unsupported";
+    case proto::ErrorCode::kBusy: return "busy";
+    case proto::ErrorCode::kAlarmActive: return "machine in alarm";
+    case proto::ErrorCode::kAborted: return "stream aborted";
+    case proto::ErrorCode::kBadState: return "not allowed in this state";
+    case proto::ErrorCode::kSplineSequence: return "spline data out of sequence";
+    case proto::ErrorCode::kGeometry: return "spline geometry rejected";
+    case proto::ErrorCode::kNotZeroed: return "machine not zeroed";
+    case proto::ErrorCode::kOutOfTravel: return "target outside the machine travel";
+  }
+  return "unknown error";
+}
+
+const char* alarm_name(proto::Alarm alarm) {
+  switch (alarm) {
+    case proto::Alarm::kNone: return "none";
+    case proto::Alarm::kLimitSwitch: return "limit switch tripped";
+    case proto::Alarm::kDriverFault: return "stepper driver fault";
+    case proto::Alarm::kPowerLost: return "driver power lost (e-stop?)";
+    case proto::Alarm::kFollowingError: return "following error";
+    case proto::Alarm::kMotionChipFault: return "motion controller (TMC428) fault";
+    case proto::Alarm::kPathFault: return "path generation fault";
+    case proto::Alarm::kSoftLimit: return "soft limit";
+  }
+  return "unknown alarm";
+}
+
+// Frame-level and gap errors: the frame did not arrive intact; resend from the expected seq.
+bool is_resend_error(proto::ErrorCode code) {
+  const int v = static_cast<int>(code);
+  return (v >= 1 && v <= 5) || code == proto::ErrorCode::kSeqGap;
+}
+
+}  // namespace
+
+const char* outcome_name(JobOutcome outcome) {
+  switch (outcome) {
+    case JobOutcome::kCompleted: return "completed";
+    case JobOutcome::kAborted: return "aborted";
+    case JobOutcome::kAlarm: return "alarm";
+    case JobOutcome::kRejected: return "rejected";
+    case JobOutcome::kLinkLost: return "link lost";
+  }
+  return "?";
+}
+
+Sender::Sender(Link& link, SenderOptions options)
+    : link_(link), options_(options), parser_(proto::kReplyStart), last_reply_(Clock::now()) {}
+
+// Writes one command frame.
+void Sender::send_frame(uint8_t letter, uint8_t seq, const std::vector<uint8_t>& payload) {
+  uint8_t buf[proto::kMaxFrameBytes];
+  const uint8_t n = proto::encode_frame(proto::kCommandStart, letter, seq, payload.data(),
+                                        static_cast<uint8_t>(payload.size()), buf, sizeof buf);
+  if (n == 0) throw LinkError(fmt::format("internal: frame '{}' does not encode", char(letter)));
+  link_.write(buf, n);
+  stats_.frames_sent++;
+  stats_.bytes_sent += n;
+}
+
+// Reads what arrives within `wait` and handles every reply frame. True if any frame came.
+bool Sender::pump(milliseconds wait) {
+  uint8_t buf[512];
+  const size_t n = link_.read(buf, sizeof buf, wait);
+  bool any = false;
+  for (size_t i = 0; i < n; ++i) {
+    for (proto::ParseEvent ev = parser_.feed(buf[i]); ev != proto::ParseEvent::kNone;
+         ev = parser_.poll()) {
+      if (ev == proto::ParseEvent::kFrame) {
+        handle_reply(parser_.frame());
+        any = true;
+      } else {
+        stats_.reply_rejects++;
+      }
+    }
+  }
+  if (n == 0 && parser_.in_frame() &&
+      Clock::now() - last_reply_ > milliseconds(proto::kInterByteTimeoutMs)) {
+    for (proto::ParseEvent ev = parser_.expire(); ev != proto::ParseEvent::kNone;
+         ev = parser_.poll()) {
+      if (ev == proto::ParseEvent::kFrame) handle_reply(parser_.frame());
+    }
+  }
+  return any;
+}
+
+// Index of the in-flight command carrying seq (within 128 of base_), or SIZE_MAX.
+size_t Sender::index_of_seq(uint8_t seq) const {
+  if (commands_ == nullptr) return SIZE_MAX;
+  const uint8_t base_seq = static_cast<uint8_t>(first_seq_ + base_);
+  const int delta = static_cast<int8_t>(static_cast<uint8_t>(seq - base_seq));
+  const long index = static_cast<long>(base_) + delta;
+  if (index < 0 || index > static_cast<long>(commands_->size())) return SIZE_MAX;
+  return static_cast<size_t>(index);
+}
+
+// "command 12 ('B', step 7, curve 3)" for messages.
+std::string Sender::where(size_t index) const {
+  if (commands_ == nullptr || index >= commands_->size()) return "a command";
+  const QueuedCommand& c = (*commands_)[index];
+  std::string s = fmt::format("command {} ('{}'", index, static_cast<char>(c.letter));
+  if (c.step >= 0) s += fmt::format(", plan step {}", c.step);
+  if (c.curve >= 0) s += fmt::format(", curve {}", c.curve);
+  return s + ")";
+}
+
+void Sender::handle_reply(const proto::Frame& frame) {
+  last_reply_ = Clock::now();
+  switch (frame.letter) {
+    case proto::kReplySession: {
+      proto::SessionReply r;
+      if (proto::decode_frame(frame, &r) == proto::ErrorCode::kOk && frame.seq == session_seq_) {
+        session_ = r;
+        session_open_ = true;
+      }
+      break;
+    }
+    case proto::kReplyStatus: {
+      proto::StatusReply r;
+      if (proto::decode_frame(frame, &r) != proto::ErrorCode::kOk) break;
+      last_status_ = r;
+      have_status_ = true;
+      if (commands_ == nullptr) break;
+      // Everything before next_expected is stored.
+      const size_t stored = index_of_seq(r.next_expected_seq);
+      if (stored != SIZE_MAX && stored > base_ && stored <= next_) {
+        base_ = stored;
+        oldest_sent_ = Clock::now();
+      }
+      // Execution progress: last_executed_seq counts forward from executed_.
+      const uint8_t last_seq = static_cast<uint8_t>(first_seq_ + executed_ - 1);
+      const uint8_t ahead = static_cast<uint8_t>(r.last_executed_seq - last_seq);
+      if (ahead < 128) executed_ = std::min(executed_ + ahead, base_);
+      // Unacknowledged frames past the time-out and none held: they were lost, go back.
+      const milliseconds rto = std::max(options_.min_rto, 4 * srtt_);
+      if (base_ < next_ && !(r.flags & proto::kStatusFramePending) &&
+          Clock::now() - oldest_sent_ > rto) {
+        next_ = base_;
+        busy_wait_ = false;
+        oldest_sent_ = Clock::now();
+      }
+      break;
+    }
+    case proto::kReplyAck: {
+      if (frame.seq == realtime_seq_) realtime_acked_ = true;
+      const size_t index = index_of_seq(frame.seq);
+      if (index != SIZE_MAX && index >= base_ && index < next_) {
+        base_ = index + 1;  // acks are cumulative: the controller stores strictly in order
+        oldest_sent_ = Clock::now();
+        busy_wait_ = false;
+      }
+      break;
+    }
+    case proto::kReplyError: {
+      proto::ErrorReply r;
+      if (proto::decode_frame(frame, &r) != proto::ErrorCode::kOk) break;
+      stats_.error_replies++;
+      if (r.code == proto::ErrorCode::kSeqStale) break;  // superseded real-time frame
+      if (commands_ != nullptr && (is_resend_error(r.code) || r.code == proto::ErrorCode::kBusy)) {
+        const size_t expected = index_of_seq(r.next_expected_seq);
+        if (expected != SIZE_MAX && expected >= base_ && expected <= next_) {
+          base_ = expected;
+          next_ = expected;
+        }
+        busy_wait_ = (r.code == proto::ErrorCode::kBusy);
+        break;
+      }
+      if (commands_ == nullptr && is_resend_error(r.code)) break;  // a lost #I/#?: we retry
+      failed_ = true;
+      failure_ = r.code == proto::ErrorCode::kAlarmActive ? JobOutcome::kAlarm
+                 : r.code == proto::ErrorCode::kAborted   ? JobOutcome::kAborted
+                                                          : JobOutcome::kRejected;
+      std::string detail;
+      if (r.code == proto::ErrorCode::kGeometry) detail = fmt::format(" (geometry code {})", r.detail);
+      message_ = fmt::format("controller refused {}: {}{}", where(index_of_seq(frame.seq)),
+                             error_name(r.code), detail);
+      break;
+    }
+    case proto::kReplyAlarm: {
+      proto::AlarmReply r;
+      if (proto::decode_frame(frame, &r) != proto::ErrorCode::kOk) break;
+      failed_ = true;
+      failure_ = JobOutcome::kAlarm;
+      message_ = fmt::format("machine alarm: {}", alarm_name(r.alarm));
+      break;
+    }
+    default:
+      break;
+  }
+}
+
+void Sender::query_status() {
+  send_frame(proto::kCmdStatus, status_seq_++, {});
+  stats_.status_queries++;
+}
+
+proto::SessionReply Sender::open_session() {
+  session_open_ = false;
+  for (int attempt = 0; attempt < 5 && !session_open_; ++attempt) {
+    session_seq_ = static_cast<uint8_t>(session_seq_ + 1);
+    proto::SessionCmd cmd{proto::kProtocolVersion};
+    proto::Payload p;
+    proto::encode(cmd, &p);
+    send_frame(proto::kCmdSession, session_seq_, std::vector<uint8_t>(p.bytes, p.bytes + p.length));
+    const auto deadline = Clock::now() + options_.reply_timeout;
+    while (!session_open_ && !failed_ && Clock::now() < deadline) pump(milliseconds(10));
+    if (failed_) throw LinkError(message_);
+  }
+  if (!session_open_) {
+    throw LinkError(fmt::format("{}: no session reply from the controller", link_.name()));
+  }
+  first_seq_ = static_cast<uint8_t>(session_seq_ + 1);
+  realtime_seq_ = 0;
+  return session_;
+}
+
+// Sends a real-time frame and waits for its ack, retrying with the same seq.
+void Sender::send_realtime(uint8_t letter, const std::vector<uint8_t>& payload) {
+  realtime_seq_ = static_cast<uint8_t>(realtime_seq_ + 1);
+  realtime_acked_ = false;
+  for (int attempt = 0; attempt < 3 && !realtime_acked_; ++attempt) {
+    send_frame(letter, realtime_seq_, payload);
+    const auto deadline = Clock::now() + options_.reply_timeout;
+    while (!realtime_acked_ && Clock::now() < deadline) pump(milliseconds(5));
+  }
+}
+
+// Starts manual zeroing if the machine is not zeroed and waits for the operator's confirm.
+bool Sender::ensure_zeroed(const std::function<void(const Progress&)>& on_progress) {
+  query_status();
+  const auto deadline = Clock::now() + options_.reply_timeout;
+  while (!have_status_ && Clock::now() < deadline) pump(milliseconds(5));
+  if (!have_status_) {
+    failed_ = true;
+    failure_ = JobOutcome::kLinkLost;
+    message_ = "no status reply from the controller";
+    return false;
+  }
+  if ((last_status_.flags & proto::kStatusZeroed) || !options_.zero_first) return true;
+  proto::ZeroingCmd zero{options_.zero_axes};
+  proto::Payload p;
+  proto::encode(zero, &p);
+  QueuedCommand c;
+  c.letter = proto::kCmdZeroing;
+  c.payload.assign(p.bytes, p.bytes + p.length);
+  const std::vector<QueuedCommand> one{c};
+  const std::vector<QueuedCommand>* saved = commands_;
+  commands_ = &one;
+  base_ = next_ = executed_ = 0;
+  auto last_poll = Clock::now();
+  while (!failed_) {
+    if (abort_requested_) return false;
+    if (next_ == 0) {
+      send_frame(c.letter, first_seq_, c.payload);
+      next_ = 1;
+      oldest_sent_ = Clock::now();
+    }
+    if (Clock::now() - last_poll > options_.status_interval) {
+      query_status();
+      last_poll = Clock::now();
+      if (base_ == 1 && (last_status_.flags & proto::kStatusZeroed)) break;
+      Progress progress;
+      progress.status = last_status_;
+      if (on_progress) on_progress(progress);
+    }
+    pump(milliseconds(5));
+    if (Clock::now() - last_reply_ > options_.silence_limit) {
+      failed_ = true;
+      failure_ = JobOutcome::kLinkLost;
+      message_ = fmt::format("{}: no reply for {} ms", link_.name(), options_.silence_limit.count());
+    }
+  }
+  commands_ = saved;
+  if (failed_) return false;
+  first_seq_ = static_cast<uint8_t>(first_seq_ + 1);
+  return true;
+}
+
+JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
+                       const std::function<void(const Progress&)>& on_progress) {
+  if (!session_open_) open_session();
+  failed_ = false;
+  if (!ensure_zeroed(on_progress)) {
+    if (abort_requested_) {
+      send_realtime(proto::kCmdAbort, {});
+      message_ = "aborted by the operator while zeroing";
+      return JobOutcome::kAborted;
+    }
+    return failure_;
+  }
+  commands_ = &commands;
+  base_ = next_ = executed_ = 0;
+  busy_wait_ = false;
+  size_t high_water = 0;
+  const size_t window = std::max<size_t>(1, std::min<size_t>(session_.window_frames,
+                                                             proto::kWindowFrames));
+  const size_t rx_bytes = std::max<size_t>(session_.rx_buffer_bytes, proto::kMaxFrameBytes);
+  auto last_poll = Clock::now() - options_.status_interval;
+  last_reply_ = Clock::now();
+
+  while (true) {
+    if (abort_requested_) {
+      send_realtime(proto::kCmdAbort, {});
+      message_ = fmt::format("aborted by the operator after {} of {} commands", executed_,
+                             commands.size());
+      commands_ = nullptr;
+      return JobOutcome::kAborted;
+    }
+    if (hold_requested_.exchange(false)) send_realtime(proto::kCmdHold, {});
+    if (resume_requested_.exchange(false)) send_realtime(proto::kCmdResume, {});
+    if (const int pct = override_requested_.exchange(0)) {
+      send_realtime(proto::kCmdOverride, {static_cast<uint8_t>(pct)});
+    }
+    if (failed_) {
+      commands_ = nullptr;
+      return failure_;
+    }
+    // Fill the window (frames and bytes) unless the controller said busy.
+    size_t inflight_bytes = 0;
+    for (size_t i = base_; i < next_; ++i) inflight_bytes += commands[i].payload.size() + 6;
+    while (!busy_wait_ && next_ < commands.size() && next_ - base_ < window &&
+           inflight_bytes + commands[next_].payload.size() + 6 <= rx_bytes) {
+      if (next_ == base_) oldest_sent_ = Clock::now();
+      send_frame(commands[next_].letter, static_cast<uint8_t>(first_seq_ + next_),
+                 commands[next_].payload);
+      inflight_bytes += commands[next_].payload.size() + 6;
+      if (next_ < high_water) stats_.retransmits++;
+      ++next_;
+      high_water = std::max(high_water, next_);
+    }
+    if (Clock::now() - last_poll >= options_.status_interval) {
+      query_status();
+      last_poll = Clock::now();
+      Progress progress;
+      progress.acked = base_;
+      progress.executed = executed_;
+      progress.total = commands.size();
+      progress.status = last_status_;
+      if (on_progress && have_status_) on_progress(progress);
+    }
+    pump(milliseconds(2));
+    if (base_ == commands.size() && executed_ == commands.size() && have_status_ &&
+        last_status_.state == proto::MachineState::kIdle) {
+      message_ = fmt::format("all {} commands executed", commands.size());
+      commands_ = nullptr;
+      first_seq_ = static_cast<uint8_t>(first_seq_ + commands.size());
+      return JobOutcome::kCompleted;
+    }
+    if (Clock::now() - last_reply_ > options_.silence_limit) {
+      message_ = fmt::format("{}: no reply for {} ms after {} of {} commands executed",
+                             link_.name(), options_.silence_limit.count(), executed_,
+                             commands.size());
+      commands_ = nullptr;
+      return JobOutcome::kLinkLost;
+    }
+  }
+}
+
+}  // namespace host

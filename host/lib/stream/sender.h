@@ -1,0 +1,123 @@
+// Streams queued commands to the controller with the protocol's flow control: a window of
+// unacknowledged frames, delayed acks, go-back-N retransmission driven by status queries,
+// real-time hold/resume/abort/override, and a clear verdict at the end.
+#ifndef HOST_LIB_STREAM_SENDER_H
+#define HOST_LIB_STREAM_SENDER_H
+
+#include <atomic>      // std::atomic
+#include <chrono>      // std::chrono
+#include <cstdint>     // uint8_t
+#include <functional>  // std::function
+#include <string>      // std::string
+#include <vector>      // std::vector
+
+#include "firmware/protocol/messages.h"  // proto::SessionReply, proto::StatusReply
+#include "firmware/protocol/parser.h"    // proto::Parser
+#include "host/lib/stream/job_encoder.h"
+#include "host/lib/stream/link.h"
+
+namespace host {
+
+struct SenderOptions {
+  std::chrono::milliseconds status_interval{250};   // keep-alive and progress polling
+  std::chrono::milliseconds min_rto{250};           // retransmission timeout floor
+  std::chrono::milliseconds reply_timeout{2000};    // #I / real-time frame answer
+  std::chrono::milliseconds silence_limit{10000};   // no reply at all: the link is dead
+  bool zero_first = true;                           // not zeroed: #M and wait for the operator
+  uint8_t zero_axes = proto::kAxisMaskAll;
+};
+
+// How a job ended; the CLI maps these to exit codes.
+enum class JobOutcome {
+  kCompleted,  // every command executed, machine idle
+  kAborted,    // the operator aborted (#X)
+  kAlarm,      // the machine raised an alarm
+  kRejected,   // the controller refused a command (execution error)
+  kLinkLost    // the link closed or went silent
+};
+const char* outcome_name(JobOutcome outcome);
+
+struct SenderStats {
+  size_t frames_sent = 0;      // every frame written, retransmissions included
+  size_t bytes_sent = 0;
+  size_t retransmits = 0;      // queued frames sent again
+  size_t status_queries = 0;
+  size_t error_replies = 0;    // *E received
+  size_t reply_rejects = 0;    // reply bytes our parser dropped (noise)
+};
+
+struct Progress {
+  size_t acked = 0;     // commands stored by the controller
+  size_t executed = 0;  // commands whose execution finished
+  size_t total = 0;
+  proto::StatusReply status{};
+};
+
+class Sender {
+ public:
+  Sender(Link& link, SenderOptions options);
+
+  // #I until *I answers (or throws LinkError). Returns the controller's capabilities.
+  proto::SessionReply open_session();
+  // Sends every command and waits until they have run. on_progress is called at each status.
+  JobOutcome run(const std::vector<QueuedCommand>& commands,
+                 const std::function<void(const Progress&)>& on_progress);
+
+  // Requests from other threads or signal handlers; sent as real-time frames by run().
+  void request_hold() { hold_requested_ = true; }
+  void request_resume() { resume_requested_ = true; }
+  void request_abort() { abort_requested_ = true; }
+  void request_override(int percent) { override_requested_ = percent; }
+
+  const SenderStats& stats() const { return stats_; }
+  // Why the job ended, for people: names the command, step and curve where relevant.
+  const std::string& message() const { return message_; }
+  const proto::StatusReply& last_status() const { return last_status_; }
+
+ private:
+  struct Inflight;
+  void send_frame(uint8_t letter, uint8_t seq, const std::vector<uint8_t>& payload);
+  bool pump(std::chrono::milliseconds wait);
+  void handle_reply(const proto::Frame& frame);
+  void send_realtime(uint8_t letter, const std::vector<uint8_t>& payload);
+  bool ensure_zeroed(const std::function<void(const Progress&)>& on_progress);
+  void query_status();
+  size_t index_of_seq(uint8_t seq) const;
+  std::string where(size_t index) const;
+
+  Link& link_;
+  SenderOptions options_;
+  proto::Parser parser_;
+  SenderStats stats_;
+  std::string message_;
+  proto::StatusReply last_status_{};
+  bool have_status_ = false;
+  proto::SessionReply session_{};
+  bool session_open_ = false;
+  uint8_t session_seq_ = 0;
+  uint8_t realtime_seq_ = 0;
+  uint8_t status_seq_ = 0;
+  bool realtime_acked_ = false;
+
+  // The ordered stream of the current run().
+  const std::vector<QueuedCommand>* commands_ = nullptr;
+  uint8_t first_seq_ = 0;      // seq of commands[0]
+  size_t base_ = 0;            // oldest command not yet acknowledged
+  size_t next_ = 0;            // next command to (re)send
+  size_t executed_ = 0;        // commands executed (count)
+  bool busy_wait_ = false;     // after *E busy: send nothing new until an *O
+  bool failed_ = false;
+  JobOutcome failure_ = JobOutcome::kRejected;
+  std::chrono::steady_clock::time_point last_reply_;
+  std::chrono::steady_clock::time_point oldest_sent_;
+  std::chrono::milliseconds srtt_{50};
+
+  std::atomic<bool> hold_requested_{false};
+  std::atomic<bool> resume_requested_{false};
+  std::atomic<bool> abort_requested_{false};
+  std::atomic<int> override_requested_{0};
+};
+
+}  // namespace host
+
+#endif  // HOST_LIB_STREAM_SENDER_H

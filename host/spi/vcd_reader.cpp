@@ -1,0 +1,144 @@
+// Value Change Dump reader: 1-bit wires only, times scaled to picoseconds.
+#include <cstdlib>        // std::strtoll
+#include <limits>         // std::numeric_limits
+#include <sstream>        // std::istringstream
+#include <unordered_map>  // std::unordered_map
+
+#include "host/spi/capture.h"
+
+namespace host::spi {
+namespace {
+
+// Picoseconds per unit ("s", "ms", "us", "ns", "ps"); 0 for femtoseconds (handled apart).
+int64_t unit_ps(const std::string& unit, bool* ok) {
+  *ok = true;
+  if (unit == "s") return 1000000000000LL;
+  if (unit == "ms") return 1000000000LL;
+  if (unit == "us") return 1000000LL;
+  if (unit == "ns") return 1000LL;
+  if (unit == "ps") return 1LL;
+  *ok = false;
+  return 0;
+}
+
+// Parses "10ns" or "10" "ns" into picoseconds per VCD tick.
+Error parse_timescale(const std::vector<std::string>& words, int64_t* ps) {
+  std::string all;
+  for (const auto& w : words) all += w;
+  size_t i = 0;
+  while (i < all.size() && isdigit(static_cast<unsigned char>(all[i]))) ++i;
+  if (i == 0) return {"E_FORMAT", "VCD: bad $timescale '" + all + "'"};
+  int64_t n = std::strtoll(all.substr(0, i).c_str(), nullptr, 10);
+  bool ok = false;
+  int64_t u = unit_ps(all.substr(i), &ok);
+  if (!ok || n <= 0 || n > 1000)
+    return {"E_FORMAT", "VCD: unsupported $timescale '" + all + "' (use 1ps..100s)"};
+  *ps = n * u;
+  return {};
+}
+
+}  // namespace
+
+Error parse_vcd(const std::string& text, Trace* out) {
+  *out = Trace();
+  out->format = "vcd";
+  std::istringstream in(text);
+  std::string tok;
+  int64_t scale_ps = 1000;  // VCD default is 1 ns when $timescale is missing
+  std::unordered_map<std::string, int> ids;  // identifier code -> channel (-1: not 1-bit)
+  bool in_defs = true;
+  bool have_time = false;
+  int64_t now_ps = 0;
+  size_t changes = 0;
+  while (in >> tok) {
+    if (in_defs) {
+      if (tok == "$enddefinitions") {
+        in >> tok;  // $end
+        in_defs = false;
+        continue;
+      }
+      if (tok == "$timescale") {
+        std::vector<std::string> words;
+        while (in >> tok && tok != "$end") words.push_back(tok);
+        Error e = parse_timescale(words, &scale_ps);
+        if (!e.ok()) return e;
+        continue;
+      }
+      if (tok == "$var") {
+        std::vector<std::string> words;
+        while (in >> tok && tok != "$end") words.push_back(tok);
+        if (words.size() < 4) return {"E_FORMAT", "VCD: short $var declaration"};
+        const std::string& id = words[2];
+        if (words[1] == "1" && !ids.count(id)) {
+          Channel ch;
+          ch.name = words[3];
+          out->channels.push_back(ch);
+          ids[id] = static_cast<int>(out->channels.size()) - 1;
+        } else if (!ids.count(id)) {
+          ids[id] = -1;
+        }
+        continue;
+      }
+      if (tok[0] == '$' && tok != "$end") {
+        // $date, $version, $comment, $scope, $upscope...: skip to $end.
+        while (in >> tok && tok != "$end") {
+        }
+        continue;
+      }
+      if (tok[0] == '#' || tok[0] == '0' || tok[0] == '1')
+        return {"E_FORMAT", "VCD: value changes before $enddefinitions"};
+      return {"E_FORMAT", "VCD: unexpected '" + tok.substr(0, 20) + "' in the header"};
+    }
+    char c = tok[0];
+    if (tok == "$comment") {
+      while (in >> tok && tok != "$end") {
+      }
+      continue;
+    }
+    if (c == '$') continue;  // $dumpvars, $end, $dumpall...
+    if (c == '#') {
+      char* endp = nullptr;
+      long long t = std::strtoll(tok.c_str() + 1, &endp, 10);
+      if (tok.size() < 2 || *endp != '\0' || t < 0)
+        return {"E_FORMAT", "VCD: bad timestamp '" + tok.substr(0, 20) + "'"};
+      if (t > std::numeric_limits<int64_t>::max() / scale_ps)
+        return {"E_FORMAT", "VCD: timestamp out of range"};
+      int64_t t_ps = static_cast<int64_t>(t) * scale_ps;
+      if (have_time && t_ps < now_ps) return {"E_FORMAT", "VCD: time goes backwards at " + tok};
+      if (!have_time) out->start_ps = t_ps;
+      have_time = true;
+      now_ps = t_ps;
+      continue;
+    }
+    std::string id;
+    char value = 0;
+    if (c == '0' || c == '1' || c == 'x' || c == 'X' || c == 'z' || c == 'Z') {
+      value = c;
+      id = tok.substr(1);
+    } else if (c == 'b' || c == 'B' || c == 'r' || c == 'R') {
+      value = tok.size() > 1 ? tok.back() : '0';  // 1-bit vector "b1 !": its only bit
+      if (!(in >> id)) return {"E_FORMAT", "VCD: vector change without identifier"};
+    } else {
+      return {"E_FORMAT", "VCD: unexpected '" + tok.substr(0, 20) + "'"};
+    }
+    auto it = ids.find(id);
+    if (it == ids.end()) return {"E_FORMAT", "VCD: change for undeclared identifier '" + id + "'"};
+    if (it->second < 0) continue;
+    bool high = (value == '1');
+    Channel& ch = out->channels[it->second];
+    if (!have_time || now_ps == out->start_ps) {
+      ch.initial_high = high;  // $dumpvars/first timestamp: the starting level
+      ch.toggles_ps.clear();
+    } else {
+      ch.set_level(now_ps, high);
+    }
+    ++changes;
+  }
+  if (in_defs) return {"E_FORMAT", "VCD: no $enddefinitions (not a VCD or truncated header)"};
+  if (out->channels.empty()) return {"E_FORMAT", "VCD: no 1-bit wires declared"};
+  if (!have_time && changes == 0) return {"E_FORMAT", "VCD: no value changes"};
+  out->end_ps = now_ps;
+  return {};
+}
+
+}  // namespace host::spi

@@ -1,0 +1,129 @@
+// Path controller + planner on the kinematic plant: accuracy, job time, stops, hold.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "host_tests/app/motion_rig.h"
+
+namespace fake_app {
+namespace {
+
+TEST(PathController, StraightMoveEndsOnTargetWithinOneMicrometre) {
+  MotionRig rig;
+  rig.queue({{20000, 5000, 0}});
+  ASSERT_TRUE(rig.run_to_end(10000));
+  const P3 p = rig.position_um();
+  EXPECT_NEAR(p.x, 20000, 1.0);
+  EXPECT_NEAR(p.y, 5000, 1.0);
+}
+
+TEST(PathController, ShallowLineKeepsItsDirectionDespiteCoarseVelocityUnits) {
+  // dy/dx = 1/100: Y runs at ~100 um/s, about 7 native units of 14.9 um/s each.
+  MotionRig rig;
+  rig.plant.record = true;
+  rig.queue({{50000, 500, 0}});
+  ASSERT_TRUE(rig.run_to_end(20000));
+  const double err = max_contour_error(rig.recorded_um(), {{0, 0, 0}, {50000, 500, 0}});
+  EXPECT_LE(err, 2.0);
+}
+
+TEST(PathController, EmptyBufferGivesAControlledStopAtTheLastPoint) {
+  MotionRig rig;
+  rig.plant.record = true;
+  // Three points, then nothing more: the controller must stop exactly at the third.
+  const std::vector<P3> line{{0, 0, 0}, {4000, 0, 0}, {8000, 0, 0}, {12000, 0, 0}};
+  rig.queue({line[1], line[2], line[3]});
+  ASSERT_TRUE(rig.run_to_end(10000));
+  double max_x = 0;
+  for (const P3& p : rig.recorded_um()) max_x = std::max(max_x, p.x);
+  EXPECT_LE(max_x, 12000 + 1.0);  // no overshoot beyond the end of the buffer
+  EXPECT_NEAR(rig.position_um().x, 12000, 1.0);
+}
+
+TEST(PathController, StarvedRingStopsAndContinuesWhenPointsArrive) {
+  MotionRig rig;
+  rig.plant.record = true;
+  rig.queue({{5000, 0, 0}});
+  ASSERT_TRUE(rig.run_to_end(10000));
+  rig.queue({{5000, 5000, 0}});
+  ASSERT_TRUE(rig.run_to_end(10000));
+  EXPECT_NEAR(rig.position_um().y, 5000, 1.0);
+  const double err =
+      max_contour_error(rig.recorded_um(), {{0, 0, 0}, {5000, 0, 0}, {5000, 5000, 0}});
+  EXPECT_LE(err, 2.0);
+}
+
+TEST(PathController, HoldStopsOnThePathAndResumeFinishesTheJob) {
+  MotionRig rig;
+  rig.plant.record = true;
+  const std::vector<P3> line = circle(20000, 0, 20000, 5);
+  rig.start_at(line[0]);
+  rig.queue(line);
+  for (int i = 0; i < 1500; ++i) {
+    rig.background();
+    rig.tick();
+  }
+  rig.controller.set_hold(true);
+  for (int i = 0; i < 500; ++i) {
+    rig.background();
+    rig.tick();
+  }
+  EXPECT_TRUE(rig.controller.at_rest());
+  EXPECT_FALSE(rig.plant.moving());
+  const P3 held = rig.position_um();
+  for (int i = 0; i < 200; ++i) rig.tick();
+  EXPECT_NEAR(rig.position_um().x, held.x, 0.01);  // nothing moves while held
+  rig.controller.set_hold(false);
+  ASSERT_TRUE(rig.run_to_end(30000));
+  EXPECT_LE(max_contour_error(rig.recorded_um(), line), 10.0);
+  EXPECT_NEAR(rig.position_um().x, line.back().x, 1.0);
+}
+
+TEST(PathController, OverrideOfFiftyPercentDoublesTheCruiseTime) {
+  MotionRig full, half;
+  half.controller.set_override_percent(50);
+  full.queue({{60000, 0, 0}});
+  half.queue({{60000, 0, 0}});
+  ASSERT_TRUE(full.run_to_end(30000));
+  ASSERT_TRUE(half.run_to_end(30000));
+  EXPECT_NEAR(double(half.ms) / full.ms, 2.0, 0.05);
+}
+
+struct CurveCase {
+  const char* name;
+  std::vector<P3> line;
+};
+
+std::vector<CurveCase> curve_set() {
+  return {
+      {"circle_r20mm", circle(100000, 100000, 20000, 5)},
+      {"circle_r2mm", circle(100000, 100000, 2000, 5)},
+      {"square_40mm", square(50000, 50000, 40000)},
+      {"star_5pt_r20mm", star(100000, 100000, 20000, 5)},
+      {"zigzag_60deg", zigzag(20000, 100000, 10000, 60, 10)},
+      {"sine_a5_p20", sine(20000, 100000, 5000, 20000, 100000, 500)},
+  };
+}
+
+// The figures of docs/performance.md "Path controller and protocol": contour error and job
+// time at 10 mm/s on the reference plant (chip ramp ~194 mm/s^2, 14.9 um/s per unit).
+TEST(PathController, CurveSetAtTenMillimetresPerSecondMeetsErrorAndTimeTargets) {
+  for (const CurveCase& c : curve_set()) {
+    MotionRig rig;
+    rig.start_at(c.line[0]);
+    rig.plant.record = true;
+    rig.queue(c.line);
+    ASSERT_TRUE(rig.run_to_end(200000)) << c.name;
+    const double err = max_contour_error(rig.recorded_um(), c.line);
+    const double ideal_ms = polyline_length(c.line) / 10.0;  // um / (um/ms)
+    const double ratio = rig.ms / ideal_ms;
+    std::printf("[ metrics  ] %-16s length %8.1f mm  points %5zu  error %5.2f um  time %7.3f s  x%.3f\n",
+                c.name, polyline_length(c.line) / 1000, c.line.size(), err, rig.ms / 1000.0,
+                ratio);
+    EXPECT_LE(err, 10.0) << c.name;
+    EXPECT_LE(ratio, 1.10) << c.name;
+  }
+}
+
+}  // namespace
+}  // namespace fake_app

@@ -1,0 +1,88 @@
+// Test helpers for SplineStepper: run it to completion, measure chord errors against Eigen.
+#ifndef HOST_TESTS_CORE_STEPPER_HELPERS_H
+#define HOST_TESTS_CORE_STEPPER_HELPERS_H
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "firmware/core/spline_stepper.h"
+#include "host_tests/core/spline_reference.h"
+
+namespace stepping {
+
+struct Emitted {
+  core::PointUm p;
+  int span;
+  double t;  // 0..1 in the span
+};
+
+struct Run {
+  core::GeometryError begin_error;
+  core::GeometryError end_error;
+  std::vector<Emitted> points;
+};
+
+// Runs a stepper over s; stops after max_points (a runaway guard for the test).
+inline Run run(const core::Spline& s, const core::StepSettings& st, size_t max_points = 200000) {
+  core::SplineStepper stepper;
+  Run r;
+  r.begin_error = stepper.begin(&s, st);
+  core::PointUm p;
+  while (r.points.size() < max_points && stepper.next(&p)) {
+    r.points.push_back({p, stepper.span(), stepper.t_q16() / 65536.0});
+  }
+  r.end_error = stepper.error();
+  return r;
+}
+
+inline core::StepSettings uniform(int n) {
+  core::StepSettings st = core::default_step_settings();
+  st.mode = core::StepMode::kUniform;
+  st.steps_per_span = (uint16_t)n;
+  return st;
+}
+
+inline core::StepSettings adaptive(int tol_um, int offset_um = 0) {
+  core::StepSettings st = core::default_step_settings();
+  st.mode = core::StepMode::kAdaptive;
+  st.chord_tolerance_um = (uint16_t)tol_um;
+  st.tool_offset_um = offset_um;
+  return st;
+}
+
+// Distance from q to segment ab.
+inline double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                               const Eigen::Vector2d& q) {
+  const Eigen::Vector2d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  double s = len2 > 0 ? (q - a).dot(ab) / len2 : 0;
+  s = std::min(1.0, std::max(0.0, s));
+  return (a + s * ab - q).norm();
+}
+
+inline Eigen::Vector2d vec(const core::PointUm& p) { return Eigen::Vector2d(p.x_um, p.y_um); }
+
+// Real chord error of a run without offset: the true curve (Eigen) sampled densely between
+// the parameters of consecutive points, distance to the straight segment between them.
+inline double max_chord_error_um(const core::Spline& s, const Run& r, int samples = 64) {
+  double worst = 0;
+  for (size_t i = 1; i < r.points.size(); ++i) {
+    const Emitted& a = r.points[i - 1];
+    const Emitted& b = r.points[i];
+    const double ua = reference::span_u(s, a.span, a.t);
+    const double ub = reference::span_u(s, b.span, b.t);
+    for (int k = 1; k < samples; ++k) {
+      const double u = ua + (ub - ua) * k / samples;
+      const Eigen::Vector2d q = reference::point_at(s, u);
+      worst = std::max(worst, segment_distance(vec(a.p), vec(b.p), q));
+    }
+  }
+  return worst;
+}
+
+}  // namespace stepping
+
+#endif  // HOST_TESTS_CORE_STEPPER_HELPERS_H

@@ -1,0 +1,121 @@
+// B-spline operations: evaluation against Eigen, reversal, knot insertion, clamping and
+// Bezier decomposition keep the shape; sampling honours its tolerance.
+#include "host/lib/drawing/bspline.h"
+
+#include <gtest/gtest.h>
+
+#include "host_tests/host/drawing/eigen_reference.h"
+
+namespace host {
+namespace {
+
+// An unclamped rational cubic with a negative knot range.
+BSpline unclamped_rational_cubic() {
+  BSpline s;
+  s.degree = 3;
+  s.control = {{0, 0}, {10, 20}, {30, 25}, {40, 0}, {55, -10}, {70, 5}};
+  s.weights = {1.0, 0.5, 2.0, 1.0, 0.8, 1.0};
+  s.knots = {-7, -6, -5, -4, -2.5, -1, 0, 1, 2, 3};
+  return s;
+}
+
+// Largest distance between a and b over n parameters spread over each's range.
+double max_gap(const BSpline& a, const BSpline& b, bool b_reversed = false) {
+  double worst = 0;
+  const int n = 200;
+  for (int i = 0; i <= n; ++i) {
+    const double f = static_cast<double>(i) / n;
+    const double ta = a.t_min() + (a.t_max() - a.t_min()) * f;
+    const double tb = b_reversed ? b.t_max() - (b.t_max() - b.t_min()) * f
+                                 : b.t_min() + (b.t_max() - b.t_min()) * f;
+    worst = std::max(worst, (evaluate(a, ta) - evaluate(b, tb)).norm());
+  }
+  return worst;
+}
+
+TEST(BSpline, EvaluateMatchesEigenOnUnclampedRationalCubic) {
+  const BSpline s = unclamped_rational_cubic();
+  for (int i = 0; i <= 100; ++i) {
+    const double t = s.t_min() + (s.t_max() - s.t_min()) * i / 100.0;
+    EXPECT_LT((evaluate(s, t) - test::eigen_point(s, t)).norm(), 1e-9) << "t=" << t;
+  }
+}
+
+TEST(BSpline, CheckAcceptsAWellFormedSpline) {
+  EXPECT_EQ(check_bspline(unclamped_rational_cubic()), "");
+}
+
+TEST(BSpline, CheckNamesDecreasingKnots) {
+  BSpline s = unclamped_rational_cubic();
+  s.knots[5] = -3;
+  EXPECT_NE(check_bspline(s).find("knots decrease at index 5"), std::string::npos);
+}
+
+TEST(BSpline, CheckNamesZeroWeight) {
+  BSpline s = unclamped_rational_cubic();
+  s.weights[2] = 0;
+  EXPECT_NE(check_bspline(s).find("weight 2 is 0"), std::string::npos);
+}
+
+TEST(BSpline, CheckNamesKnotCountMismatch) {
+  BSpline s = unclamped_rational_cubic();
+  s.knots.pop_back();
+  EXPECT_NE(check_bspline(s).find("9 knots for 6 control points of degree 3 (need 10)"),
+            std::string::npos);
+}
+
+TEST(BSpline, ReversedTracesTheSameCurveBackwards) {
+  const BSpline s = unclamped_rational_cubic();
+  const BSpline r = reversed(s);
+  EXPECT_LT((start_point(r) - end_point(s)).norm(), 1e-12);
+  EXPECT_LT(max_gap(s, r, true), 1e-9);
+}
+
+TEST(BSpline, KnotInsertionKeepsTheShape) {
+  const BSpline s = unclamped_rational_cubic();
+  const BSpline r = insert_knot(s, -1.7);
+  EXPECT_EQ(r.control.size(), s.control.size() + 1);
+  EXPECT_LT(max_gap(s, r), 1e-9);
+}
+
+TEST(BSpline, ClampedKeepsTheShapeAndStartsAtTheFirstControlPoint) {
+  const BSpline s = unclamped_rational_cubic();
+  const BSpline c = clamped(s);
+  EXPECT_EQ(check_bspline(c), "");
+  EXPECT_LT(max_gap(s, c), 1e-9);
+  EXPECT_LT((c.control.front() - start_point(s)).norm(), 1e-9);
+  EXPECT_LT((c.control.back() - end_point(s)).norm(), 1e-9);
+}
+
+TEST(BSpline, BezierPiecesOnePerSpanJoinUpToTheCurve) {
+  const BSpline s = unclamped_rational_cubic();
+  const std::vector<BSpline> pieces = bezier_pieces(s);
+  ASSERT_EQ(pieces.size(), 3u);  // spans [-4,-2.5], [-2.5,-1], [-1,0]
+  for (const BSpline& p : pieces) {
+    EXPECT_EQ(p.control.size(), 4u);
+    for (int i = 0; i <= 20; ++i) {
+      const double t = p.t_min() + (p.t_max() - p.t_min()) * i / 20.0;
+      EXPECT_LT((evaluate(p, t) - evaluate(s, t)).norm(), 1e-9);
+    }
+  }
+}
+
+TEST(BSpline, SampleChordsStayWithinTolerance) {
+  const BSpline s = unclamped_rational_cubic();
+  const double tol = 0.01;
+  const std::vector<Point2> pts = sample(s, tol);
+  // Every curve point lies within tol of the polyline (dense check).
+  for (int i = 0; i <= 2000; ++i) {
+    const Point2 q = evaluate(s, s.t_min() + (s.t_max() - s.t_min()) * i / 2000.0);
+    double best = 1e300;
+    for (size_t k = 1; k < pts.size(); ++k) {
+      const Point2 d = pts[k] - pts[k - 1];
+      const double u = std::clamp((q - pts[k - 1]).dot(d) / d.squaredNorm(), 0.0, 1.0);
+      best = std::min(best, (pts[k - 1] + u * d - q).norm());
+    }
+    EXPECT_LE(best, tol * 1.01);
+  }
+}
+
+}  // namespace
+}  // namespace host

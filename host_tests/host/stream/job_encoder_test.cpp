@@ -1,0 +1,157 @@
+// The job encoder: each plan step becomes the right frame; splines are packed into #D
+// frames that the controller's codec decodes back to exactly the same spline.
+#include <gtest/gtest.h>
+
+#include "firmware/protocol/codec.h"
+#include "host/lib/stream/job_encoder.h"
+
+namespace host {
+namespace {
+
+// A clamped cubic with n control points on a wavy line, optionally rational.
+core::Spline wavy_spline(int n, bool rational) {
+  core::Spline s{};
+  s.degree = 3;
+  s.rational = rational;
+  s.control_count = static_cast<uint16_t>(n);
+  s.knot_count = static_cast<uint16_t>(n + 4);
+  for (int i = 0; i < n; ++i) {
+    s.control[i].x_um = 1000 * i;
+    s.control[i].y_um = (i % 2) ? 2500 : -1500;
+    s.control[i].weight_q14 = rational ? static_cast<uint16_t>(8000 + 300 * i) : core::kWeightOneQ14;
+  }
+  for (int k = 0; k < n + 4; ++k) {
+    s.knot[k] = k < 4 ? 0 : (k >= n ? (n - 3) * 100 : (k - 3) * 100);
+  }
+  return s;
+}
+
+JobPlan plan_with_spline(const core::Spline& spline) {
+  JobPlan plan;
+  PlanStep up;
+  up.kind = PlanStep::kPenUp;
+  up.z_um = 2000;
+  PlanStep rapid;
+  rapid.kind = PlanStep::kRapid;
+  rapid.to = {spline.control[0].x_um, spline.control[0].y_um};
+  PlanStep down;
+  down.kind = PlanStep::kPenDown;
+  down.z_um = -100;
+  down.feed_um_per_s = 2000;
+  PlanStep curve;
+  curve.kind = PlanStep::kSpline;
+  curve.spline = spline;
+  curve.feed_um_per_s = 10000;
+  curve.curve = 0;
+  PlanStep line;
+  line.kind = PlanStep::kFeed;
+  line.to = {0, 0};
+  line.feed_um_per_s = 10000;
+  plan.steps = {up, rapid, down, curve, line, up};
+  return plan;
+}
+
+// Rebuilds the spline from the encoded #B/#D commands as the controller's store would.
+core::Spline reassemble(const std::vector<QueuedCommand>& cmds) {
+  core::Spline s{};
+  for (const QueuedCommand& c : cmds) {
+    if (c.letter == proto::kCmdSplineHeader) {
+      proto::SplineHeaderCmd h;
+      EXPECT_EQ(proto::decode(c.payload.data(), static_cast<uint8_t>(c.payload.size()), &h),
+                proto::ErrorCode::kOk);
+      s.degree = h.degree;
+      s.rational = h.rational;
+      s.control_count = h.control_count;
+      s.knot_count = h.knot_count;
+    } else if (c.letter == proto::kCmdSplineData) {
+      proto::SplineDataCmd d;
+      EXPECT_EQ(proto::decode(c.payload.data(), static_cast<uint8_t>(c.payload.size()), &d),
+                proto::ErrorCode::kOk);
+      for (int i = 0; i < d.control_n; ++i) s.control[d.control_index + i] = d.control[i];
+      for (int i = 0; i < d.knot_n; ++i) s.knot[d.knot_index + i] = d.knot[i];
+    }
+  }
+  return s;
+}
+
+void expect_same_spline(const core::Spline& a, const core::Spline& b) {
+  ASSERT_EQ(a.degree, b.degree);
+  ASSERT_EQ(a.rational, b.rational);
+  ASSERT_EQ(a.control_count, b.control_count);
+  ASSERT_EQ(a.knot_count, b.knot_count);
+  for (int i = 0; i < a.control_count; ++i) {
+    EXPECT_EQ(a.control[i].x_um, b.control[i].x_um) << i;
+    EXPECT_EQ(a.control[i].y_um, b.control[i].y_um) << i;
+    EXPECT_EQ(a.control[i].weight_q14, b.control[i].weight_q14) << i;
+  }
+  for (int k = 0; k < a.knot_count; ++k) EXPECT_EQ(a.knot[k], b.knot[k]) << k;
+}
+
+TEST(JobEncoder, StepsMapToTheirCommandLetters) {
+  const auto cmds = encode_job(plan_with_spline(wavy_spline(4, false)), EncodeOptions{});
+  std::string letters;
+  for (const auto& c : cmds) letters += static_cast<char>(c.letter);
+  // #U first, then Z up, F rapid, Z down, B + D..., G, Z up.
+  EXPECT_EQ(letters.substr(0, 4), "UZFZ");
+  EXPECT_EQ(letters.substr(4, 1), "B");
+  EXPECT_EQ(letters.substr(letters.size() - 2), "GZ");
+}
+
+TEST(JobEncoder, TitleBecomesLcdRowZero) {
+  EncodeOptions o;
+  o.title = "a title longer than sixteen";
+  const auto cmds = encode_job(plan_with_spline(wavy_spline(4, false)), o);
+  ASSERT_EQ(cmds[0].letter, proto::kCmdText);
+  proto::TextCmd t;
+  ASSERT_EQ(proto::decode(cmds[0].payload.data(), static_cast<uint8_t>(cmds[0].payload.size()), &t),
+            proto::ErrorCode::kOk);
+  EXPECT_EQ(t.row, 0);
+  EXPECT_EQ(std::string(t.text, t.length), "a title longer t");
+}
+
+TEST(JobEncoder, SplineSurvivesPackingAtFullPayload) {
+  const core::Spline spline = wavy_spline(40, true);
+  const auto cmds = encode_job(plan_with_spline(spline), EncodeOptions{});
+  expect_same_spline(spline, reassemble(cmds));
+}
+
+TEST(JobEncoder, SplineSurvivesPackingAtASmallPayload) {
+  const core::Spline spline = wavy_spline(core::kMaxControlPoints, false);
+  EncodeOptions o;
+  o.max_payload = 20;
+  const auto cmds = encode_job(plan_with_spline(spline), o);
+  for (const auto& c : cmds) EXPECT_LE(c.payload.size(), 20u);
+  expect_same_spline(spline, reassemble(cmds));
+}
+
+TEST(JobEncoder, SplineFramesCarryTheirCurveIndex) {
+  const auto cmds = encode_job(plan_with_spline(wavy_spline(12, false)), EncodeOptions{});
+  for (const auto& c : cmds) {
+    if (c.letter == proto::kCmdSplineHeader || c.letter == proto::kCmdSplineData) {
+      EXPECT_EQ(c.curve, 0);
+      EXPECT_EQ(c.step, 3);
+    }
+  }
+}
+
+TEST(JobEncoder, FeedBeyondTheWireRangeIsRefused) {
+  JobPlan plan = plan_with_spline(wavy_spline(4, false));
+  plan.steps[4].feed_um_per_s = 70000;
+  EXPECT_THROW(encode_job(plan, EncodeOptions{}), PlanError);
+}
+
+TEST(JobEncoder, ToolOffsetIsRefusedRatherThanIgnored) {
+  JobPlan plan = plan_with_spline(wavy_spline(4, false));
+  plan.steps[3].tool_offset_um = 100;
+  EXPECT_THROW(encode_job(plan, EncodeOptions{}), PlanError);
+}
+
+TEST(JobEncoder, WireBytesCountHeaderAndCrc) {
+  std::vector<QueuedCommand> cmds(2);
+  cmds[0].payload.resize(10);
+  cmds[1].payload.resize(0);
+  EXPECT_EQ(wire_bytes(cmds), 16u + 6u);
+}
+
+}  // namespace
+}  // namespace host

@@ -1,0 +1,88 @@
+// Prints the example frames quoted in docs/protocol.md section 6 (run it and paste the
+// output when the protocol changes; the doc-example test checks the pasted bytes).
+#include <cstdio>  // printf
+#include <string>  // std::string
+
+#include "firmware/protocol/codec.h"
+
+namespace {
+
+template <typename Msg>
+void show(const Msg& msg, uint8_t seq, const std::string& what) {
+  uint8_t buf[proto::kMaxFrameBytes];
+  uint8_t n = 0;
+  if (proto::write_frame(msg, seq, buf, sizeof buf, &n) != proto::ErrorCode::kOk) {
+    std::printf("ENCODE FAILED ; %s\n", what.c_str());
+    return;
+  }
+  for (uint8_t i = 0; i < n; ++i) std::printf("%02X ", buf[i]);
+  std::printf("; %s\n", what.c_str());
+}
+
+}  // namespace
+
+int main() {
+  std::printf("```frames\n");
+  show(proto::SessionCmd{1}, 0, "#I seq 0: open session, protocol version 1");
+  show(proto::SessionReply{1, 64, 8, 16, 256, 3, 64, 0, 1}, 0,
+       "*I seq 0: v1, payload 64, window 8, 16 slots, rx 256 B, degree 3, 64 points, fw 0.1");
+  show(proto::TextCmd{0, 9, {'E', 'n', 'g', 'r', 'a', 'v', 'i', 'n', 'g'}}, 1,
+       "#S seq 1: row 0 \"Engraving\"");
+  show(proto::AckReply{15}, 1, "*O seq 1: stored, 15 slots free");
+  show(proto::ResolutionCmd{50, 5}, 2, "#U seq 2: points at most 50 um apart, chord error 5 um");
+  show(proto::RapidMoveCmd{10000, 5000}, 3, "#F seq 3: rapid to X 10 mm, Y 5 mm");
+  show(proto::ZMoveCmd{-200, 500}, 4, "#Z seq 4: Z to -0.2 mm at 0.5 mm/s");
+  show(proto::FeedMoveCmd{12000, -3500, 2000}, 5, "#G seq 5: to X 12 mm, Y -3.5 mm at 2 mm/s");
+  show(proto::SplineHeaderCmd{3, false, 4, 8, 1500}, 6,
+       "#B seq 6: cubic, not rational, 4 control points, 8 knots, 1.5 mm/s");
+  proto::SplineDataCmd d1 = {};
+  d1.control_index = 0;
+  d1.control_n = 4;
+  d1.knot_index = 0;
+  d1.knot_n = 4;
+  const int32_t xs[4] = {12000, 15000, 18000, 21000};
+  const int32_t ys[4] = {-3500, 2000, 2000, -3500};
+  for (int i = 0; i < 4; ++i) {
+    d1.control[i].x_um = xs[i];
+    d1.control[i].y_um = ys[i];
+    d1.control[i].weight_q14 = 16384;
+    d1.knot[i] = 0;
+  }
+  show(d1, 7, "#D seq 7: control points 0..3 (weight 1.0), knots 0..3 = 0 0 0 0");
+  proto::SplineDataCmd d2 = {};
+  d2.knot_index = 4;
+  d2.knot_n = 4;
+  for (int i = 0; i < 4; ++i) d2.knot[i] = 1000;
+  show(d2, 8, "#D seq 8: knots 4..7 = 1000 1000 1000 1000");
+  show(proto::ZeroingCmd{7}, 9, "#M seq 9: zero X, Y and Z with the joystick");
+  show(proto::StatusCmd{}, 10, "#? seq 10: status query");
+  proto::StatusReply s = {proto::MachineState::kRunning,
+                          proto::Alarm::kNone,
+                          proto::kStatusZeroed | proto::kStatusSession,
+                          100,
+                          12,
+                          10,
+                          5,
+                          proto::ErrorCode::kOk,
+                          12000,
+                          -3500,
+                          -200,
+                          0};
+  show(s, 10,
+       "*? seq 10: running, zeroed, session open, 100 %, 12 free, expects 10, "
+       "done 5, at (12, -3.5, -0.2) mm");
+  show(proto::ErrorReply{proto::ErrorCode::kSeqGap, 0, 10}, 12,
+       "*E seq 12: seq_gap (20), controller expects seq 10");
+  show(proto::ErrorReply{proto::ErrorCode::kGeometry, 5, 9}, 8,
+       "*E seq 8: geometry (35), detail 5 = knots decreasing");
+  show(proto::HoldCmd{}, 0, "#H real-time seq 0: feed hold");
+  show(proto::OverrideCmd{120}, 1, "#V real-time seq 1: feed override 120 %");
+  show(proto::ResumeCmd{}, 2, "#R real-time seq 2: resume");
+  show(proto::AbortCmd{}, 3, "#X real-time seq 3: abort");
+  show(proto::ClearAlarmCmd{}, 4, "#C real-time seq 4: clear alarm");
+  show(proto::AckReply{16}, 4, "*O seq 4: real-time frame done (16 slots free)");
+  show(proto::AlarmReply{proto::Alarm::kLimitSwitch, proto::MachineState::kAlarm}, 1,
+       "*A alarm #1: limit switch (1), state alarm (5)");
+  std::printf("```\n");
+  return 0;
+}

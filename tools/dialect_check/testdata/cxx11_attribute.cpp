@@ -1,0 +1,4 @@
+// Planted violation: [[attribute]] syntax.
+[[noreturn]] void stop();  // expect: cxx11-attribute
+
+void halt() { stop(); }

@@ -1,0 +1,2 @@
+// Planted violation: noexcept specifier.
+int quiet(int v) noexcept { return v + 1; }  // expect: noexcept

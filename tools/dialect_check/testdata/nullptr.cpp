@@ -1,0 +1,5 @@
+// Planted violation: nullptr.
+int* pick(int* p) {
+  if (p == nullptr) return 0;  // expect: nullptr
+  return p;
+}
