@@ -8,9 +8,9 @@ packages=(
   clang clang-14 libclang-rt-14-dev clang-format clang-tidy
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   libeigen3-dev libdxflib-dev libcli11-dev libfmt-dev libasio-dev nlohmann-json3-dev
-  libcairo2-dev
-  gcc-avr binutils-avr avr-libc simavr
-  sigrok-cli socat
+  libcairo2-dev libexpat1-dev
+  gcc-avr binutils-avr avr-libc simavr libsimavr-dev python3
+  sigrok-cli socat zlib1g-dev
 )
 
 missing=()

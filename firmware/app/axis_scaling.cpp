@@ -15,7 +15,9 @@ uint8_t fit_shift(const uint64_t* v_q32, uint8_t n) {
 }
 
 // Saturates a 64-bit value into 16 bits unsigned.
-uint16_t sat_u16(uint64_t v) { return v > 65535ULL ? (uint16_t)65535U : (uint16_t)v; }
+uint16_t sat_u16(uint64_t v) {
+  return v > 65535ULL ? (uint16_t)65535U : (uint16_t)v;
+}
 
 }  // namespace
 
@@ -52,8 +54,8 @@ bool build_axis_scaling(const config::MachineConfig& cfg, const hal::MotionAxes&
     if (max_um_s > 32767ULL) max_um_s = 32767ULL;
     if (max_um_s < 1) max_um_s = 1;
     s->max_speed_um_s[a] = (uint16_t)max_um_s;
-    uint64_t acc = (uint64_t)motion.accel_units_per_ms(a) * ustep_s_per_unit_q16 * 1000ULL /
-                   65536ULL / upm;
+    uint64_t acc =
+        (uint64_t)motion.accel_units_per_ms(a) * ustep_s_per_unit_q16 * 1000ULL / 65536ULL / upm;
     if (acc < 4) {
       acc = 4;
       ok = false;

@@ -11,16 +11,16 @@
 namespace app {
 
 struct AxisScaling {
-  int32_t usteps_per_mm[config::kAxisCount];       // um -> usteps when a target is taken
-  uint16_t um_per_ustep_q[config::kAxisCount];     // Q(um_shift): usteps -> um
+  int32_t usteps_per_mm[config::kAxisCount];    // um -> usteps when a target is taken
+  uint16_t um_per_ustep_q[config::kAxisCount];  // Q(um_shift): usteps -> um
   uint8_t um_shift;
-  uint16_t units_per_um_s_q[config::kAxisCount];   // Q(units_shift): um/s -> native units
+  uint16_t units_per_um_s_q[config::kAxisCount];  // Q(units_shift): um/s -> native units
   uint8_t units_shift;
-  int16_t max_units[config::kAxisCount];           // chip v_max
-  uint16_t max_speed_um_s[config::kAxisCount];     // min(config rapid limit, chip v_max)
+  int16_t max_units[config::kAxisCount];                // chip v_max
+  uint16_t max_speed_um_s[config::kAxisCount];          // min(config rapid limit, chip v_max)
   uint16_t chip_accel_um_s_per_ms[config::kAxisCount];  // what the chip's ramp does
   uint16_t plan_accel_um_s_per_ms[config::kAxisCount];  // what the planner assumes (< chip)
-  int32_t travel_um[config::kAxisCount];           // work area: 0..travel
+  int32_t travel_um[config::kAxisCount];                // work area: 0..travel
 };
 
 // The planner uses this fraction (in 1/256) of the chip's ramp so the chip always keeps up.

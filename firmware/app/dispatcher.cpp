@@ -3,8 +3,8 @@
 
 #include <string.h>  // memcpy
 
-#include "firmware/core/spline.h"        // kMaxDegree, kMaxControlPoints
-#include "firmware/protocol/codec.h"     // write_frame, decode_frame
+#include "firmware/core/spline.h"     // kMaxDegree, kMaxControlPoints
+#include "firmware/protocol/codec.h"  // write_frame, decode_frame
 
 namespace app {
 
@@ -31,7 +31,9 @@ void Dispatcher::init(hal::SerialPort* port, CommandSink* sink) {
   sink_ = sink;
 }
 
-uint16_t Dispatcher::rejected_frames() const { return parser_.rejected_total(); }
+uint16_t Dispatcher::rejected_frames() const {
+  return parser_.rejected_total();
+}
 
 void Dispatcher::poll(uint16_t now_ms) {
   flush_tx();
@@ -101,9 +103,9 @@ void Dispatcher::on_immediate(const proto::Frame& f) {
   if (f.letter == proto::kCmdStatus) {
     proto::StatusReply r;
     sink_->fill_status(&r);
-    r.flags = (uint8_t)(r.flags | (held_ ? proto::kStatusFramePending : 0) |
-                        (session_ ? proto::kStatusSession : 0) |
-                        (aborted_ ? proto::kStatusAborted : 0));
+    r.flags =
+        (uint8_t)(r.flags | (held_ ? proto::kStatusFramePending : 0) |
+                  (session_ ? proto::kStatusSession : 0) | (aborted_ ? proto::kStatusAborted : 0));
     r.next_expected_seq = window_.next_expected();
     r.last_error = last_error_;
     r.rejected_frames = parser_.rejected_total();

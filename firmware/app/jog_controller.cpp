@@ -20,7 +20,9 @@ JogController::JogController()
   }
 }
 
-void JogController::init(const AxisScaling& scaling) { scaling_ = scaling; }
+void JogController::init(const AxisScaling& scaling) {
+  scaling_ = scaling;
+}
 
 void JogController::start(uint8_t axes_mask, uint8_t inputs) {
   axes_mask_ = axes_mask;
@@ -38,8 +40,7 @@ void JogController::set_velocity(uint8_t axis, int8_t sign, uint8_t limits,
   if (limits & toward) return;
   uint16_t speed = speed_um_s_;
   if (speed > scaling_.max_speed_um_s[axis]) speed = scaling_.max_speed_um_s[axis];
-  int32_t units =
-      ((int32_t)speed * scaling_.units_per_um_s_q[axis]) >> scaling_.units_shift;
+  int32_t units = ((int32_t)speed * scaling_.units_per_um_s_q[axis]) >> scaling_.units_shift;
   if (units < 1) units = 1;
   if (units > scaling_.max_units[axis]) units = scaling_.max_units[axis];
   v_units[axis] = (int16_t)(sign < 0 ? -units : units);
@@ -74,15 +75,17 @@ JogResult JogController::tick(uint8_t inputs, uint8_t limits,
     return JogResult::kRunning;
   }
   if (pressed & hal::kButtonZ) z_mode_ = !z_mode_;
-  const uint8_t dirs = (uint8_t)(inputs & (hal::kJoyLeft | hal::kJoyRight | hal::kJoyDown |
-                                           hal::kJoyUp));
+  const uint8_t dirs =
+      (uint8_t)(inputs & (hal::kJoyLeft | hal::kJoyRight | hal::kJoyDown | hal::kJoyUp));
   if (dirs == 0) {
     speed_um_s_ = 0;  // released: the chip ramps down at a_max
     return JogResult::kRunning;
   }
   // Held: start slow for fine positioning, then speed up for long moves.
-  if (speed_um_s_ < kJogStartUmS) speed_um_s_ = kJogStartUmS;
-  else if (speed_um_s_ < kJogTopUmS) speed_um_s_ = (uint16_t)(speed_um_s_ + kJogRampUmSPerMs);
+  if (speed_um_s_ < kJogStartUmS)
+    speed_um_s_ = kJogStartUmS;
+  else if (speed_um_s_ < kJogTopUmS)
+    speed_um_s_ = (uint16_t)(speed_um_s_ + kJogRampUmSPerMs);
   if (inputs & hal::kJoyLeft) set_velocity(config::kAxisX, -1, limits, v_units);
   if (inputs & hal::kJoyRight) set_velocity(config::kAxisX, 1, limits, v_units);
   const uint8_t vertical = z_mode_ ? (uint8_t)config::kAxisZ : (uint8_t)config::kAxisY;

@@ -53,6 +53,7 @@ class PathController {
   int32_t residue_q8_[config::kAxisCount];  // velocity quantisation carried to the next tick
   uint16_t speed_um_s_;
   uint16_t items_done_;
+  uint16_t override_q8_;  // override as a factor, 256 = 100 %
   uint8_t override_percent_;
   bool have_target_;
   bool arrived_;

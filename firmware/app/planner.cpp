@@ -13,7 +13,9 @@ const uint16_t kOneQ14 = 16384U;
 const int16_t kInvolvedQ14 = 256;  // an axis moving more than 1/64 of the path counts
 const uint16_t kMaxSpeed = 32767U;
 
-uint16_t min16(uint16_t a, uint16_t b) { return a < b ? a : b; }
+uint16_t min16(uint16_t a, uint16_t b) {
+  return a < b ? a : b;
+}
 
 // Q14 dot product of two unit vectors.
 int32_t dot_q14(const int16_t a[3], const int16_t b[3]) {
@@ -32,13 +34,23 @@ PlannerSettings default_planner_settings(uint16_t capture_radius_um) {
 }
 
 uint16_t reach_speed_um_s(uint16_t exit_um_s, uint16_t accel_um_s_per_ms, uint32_t length_um) {
-  const uint32_t two_a = 2000UL * accel_um_s_per_ms;  // 2a in um/s^2
-  if (two_a == 0) return exit_um_s;
-  const uint32_t exit_sq = (uint32_t)exit_um_s * exit_um_s;
-  const uint32_t room = 0x3FFFFFFFUL - exit_sq;  // keeps the sum below 2^30 (32768^2)
-  if (length_um >= room / two_a) return kMaxSpeed;
-  const uint16_t v = core::isqrt32(exit_sq + two_a * length_um);
-  return v > kMaxSpeed ? kMaxSpeed : v;
+  return reach_speed_capped_um_s(exit_um_s, accel_um_s_per_ms, length_um, kMaxSpeed);
+}
+
+uint16_t reach_speed_capped_um_s(uint16_t exit_um_s, uint16_t accel_um_s_per_ms, uint32_t length_um,
+                                 uint16_t cap_um_s) {
+  // v^2 = exit^2 + 2000 a L (a in um/s per ms). No division: a L >= 536870 means
+  // 2000 a L >= 2^30 > 32767^2, i.e. beyond any speed; below that the sum fits 31 bits.
+  const uint32_t kSaturateAL = 536870UL;
+  if (cap_um_s > kMaxSpeed) cap_um_s = kMaxSpeed;
+  if (length_um >= 65536UL && (accel_um_s_per_ms >= 9U || length_um >= kSaturateAL))
+    return cap_um_s;
+  const uint32_t a_l = (uint32_t)accel_um_s_per_ms * length_um;  // < 2^32 by the test above
+  if (a_l >= kSaturateAL) return cap_um_s;
+  const uint32_t v_sq = (uint32_t)exit_um_s * exit_um_s + a_l * 2000UL;
+  // Most ticks are not limited by the braking curve: compare squares, skip the root.
+  if (v_sq >= (uint32_t)cap_um_s * cap_um_s) return cap_um_s;
+  return core::isqrt32(v_sq);  // < cap <= 32767
 }
 
 Planner::Planner() : last_cruise_um_s_(0), have_dir_(false) {

@@ -24,6 +24,10 @@ PlannerSettings default_planner_settings(uint16_t capture_radius_um);
 // Speed reachable at the start of a segment of length_um that must end at exit_um_s,
 // decelerating at accel (um/s per ms): sqrt(exit^2 + 2 a L), saturated at 32767.
 uint16_t reach_speed_um_s(uint16_t exit_um_s, uint16_t accel_um_s_per_ms, uint32_t length_um);
+// The same, but at most cap_um_s; when the result reaches the cap no square root is taken
+// (the tick's common case: not on a braking curve).
+uint16_t reach_speed_capped_um_s(uint16_t exit_um_s, uint16_t accel_um_s_per_ms, uint32_t length_um,
+                                 uint16_t cap_um_s);
 
 class Planner {
  public:
@@ -33,8 +37,8 @@ class Planner {
   void set_origin(const int32_t at_um[config::kAxisCount]);
   // Plans the segment from the last point to target and publishes it. False when the ring
   // is full (nothing changed: call again later).
-  bool push(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
-            uint16_t feed_um_s, uint8_t flags, uint16_t tag);
+  bool push(CoordinateRing* ring, const int32_t target_um[config::kAxisCount], uint16_t feed_um_s,
+            uint8_t flags, uint16_t tag);
   // Where the last pushed segment ends.
   const int32_t* last_um() const { return last_um_; }
 

@@ -44,8 +44,8 @@ bool PointGenerator::push_point(Planner* planner, CoordinateRing* ring, const co
     const int32_t* last = planner->last_um();
     const int32_t dx = p.x_um - last[0];
     const int32_t dy = p.y_um - last[1];
-    const uint32_t span = core::abs_u32(dx) > core::abs_u32(dy) ? core::abs_u32(dx)
-                                                                : core::abs_u32(dy);
+    const uint32_t span =
+        core::abs_u32(dx) > core::abs_u32(dy) ? core::abs_u32(dx) : core::abs_u32(dy);
     int32_t target[3] = {p.x_um, p.y_um, z_um_};
     uint8_t f = flags;
     // Chebyshev distance is within sqrt(2) of the length: good enough to bound the spacing.

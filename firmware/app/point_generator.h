@@ -13,10 +13,10 @@
 namespace app {
 
 enum class GenStatus : uint8_t {
-  kMore = 0,     // call again (ring full or work budget used)
-  kDone = 1,     // every point of the spline is in the ring (last one flagged)
-  kFailed = 2,   // the core stopped (error()); points so far are in the ring
-  kOutside = 3   // a generated point left the travel: nothing more pushed
+  kMore = 0,    // call again (ring full or work budget used)
+  kDone = 1,    // every point of the spline is in the ring (last one flagged)
+  kFailed = 2,  // the core stopped (error()); points so far are in the ring
+  kOutside = 3  // a generated point left the travel: nothing more pushed
 };
 
 class PointGenerator {

@@ -3,7 +3,9 @@
 
 namespace app {
 
-SplineStore::SplineStore() { clear(); }
+SplineStore::SplineStore() {
+  clear();
+}
 
 void SplineStore::clear() {
   for (uint8_t i = 0; i < kSlots; ++i) {

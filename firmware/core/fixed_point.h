@@ -13,16 +13,16 @@ namespace core {
 //   q16_16_t   signed Q16.16, [-32768, 32768)   general ratios
 //   q6_um_t    signed micrometres with 6 fraction bits, |v| < 33 554 432 um (33.5 m):
 //              span-relative polynomial coefficients (see span_evaluator.h)
-//   q26_t      signed Q5.26, |v| < 32           normalised rational weights
+//   q27_t      signed Q4.27, |v| < 16           normalised rational weights
 //   q14_weight unsigned Q2.14, (0, 4)           weights as stored (spline.h)
 // Coordinates are int32_t micrometres (_um), |v| <= kMaxCoordinateUm (1e6).
 typedef int16_t q15_t;
 typedef uint16_t uq16_t;
 typedef int32_t q16_16_t;
 typedef int32_t q6_um_t;
-typedef int32_t q26_t;
+typedef int32_t q27_t;
 
-enum { kQ6Shift = 6, kQ26Shift = 26 };
+enum { kQ6Shift = 6, kQ27Shift = 27 };
 static const q15_t kQ15Max = 32767;
 static const uint32_t kUq16One = 65536UL;  // 1.0 in UQ0.16 (needs 17 bits)
 
@@ -31,10 +31,19 @@ static const uint32_t kUq16One = 65536UL;  // 1.0 in UQ0.16 (needs 17 bits)
 // products: a = hi * 2^16 + lo, so a * b >> 16 = hi * b + (lo * b >> 16).
 // Never overflows: |result| <= |a|.
 inline int32_t mul_32x16_uq16(int32_t a, uq16_t b) {
-  const int16_t hi = (int16_t)(a >> 16);    // arithmetic shift (GCC on every target)
+  const int16_t hi = (int16_t)(a >> 16);  // arithmetic shift (GCC on every target)
   const uint16_t lo = (uint16_t)(a & 0xFFFF);
-  const int32_t hi_part = (int32_t)hi * (int32_t)b;       // |.| < 2^31
-  const uint32_t lo_part = (uint32_t)lo * (uint32_t)b;    // < 2^32
+  const int32_t hi_part = (int32_t)hi * (int32_t)b;     // |.| < 2^31
+  const uint32_t lo_part = (uint32_t)lo * (uint32_t)b;  // < 2^32
+  return hi_part + (int32_t)(lo_part >> 16);
+}
+
+// round(a * b / 2^16) (ties up): the same two products plus one add. Exact; |result| <= |a|.
+inline int32_t mul_32x16_uq16_round(int32_t a, uq16_t b) {
+  const int16_t hi = (int16_t)(a >> 16);
+  const uint16_t lo = (uint16_t)(a & 0xFFFF);
+  const int32_t hi_part = (int32_t)hi * (int32_t)b;
+  const uint32_t lo_part = (uint32_t)lo * (uint32_t)b + 0x8000UL;  // < 2^32
   return hi_part + (int32_t)(lo_part >> 16);
 }
 
@@ -43,8 +52,8 @@ inline int32_t mul_32x16_uq16(int32_t a, uq16_t b) {
 inline int32_t mul_32x16_q15(int32_t a, q15_t b) {
   const int16_t hi = (int16_t)(a >> 16);
   const uint16_t lo = (uint16_t)(a & 0xFFFF);
-  const int32_t hi_part = (int32_t)hi * (int32_t)b;                   // hi * b
-  const int32_t lo_part = (int32_t)((uint32_t)lo * (uint32_t)(uint16_t)(b < 0 ? -b : b));
+  const int32_t hi_part = (int32_t)hi * (int32_t)b;  // hi * b
+  const int32_t lo_part = (int32_t)((uint32_t)lo * (uint32_t)(b < 0 ? -(int32_t)b : (int32_t)b));
   // lo * b with the sign applied after the unsigned product (lo < 2^16, |b| <= 2^15).
   const int32_t lo_signed = b < 0 ? -lo_part : lo_part;
   // hi*b*2^16/2^15 = hi*b*2 is exact; only the low part needs rounding.
@@ -52,7 +61,9 @@ inline int32_t mul_32x16_q15(int32_t a, q15_t b) {
 }
 
 // a * b for two 16-bit values, widened before the multiply.
-inline int32_t mul_16x16(int16_t a, int16_t b) { return (int32_t)a * (int32_t)b; }
+inline int32_t mul_16x16(int16_t a, int16_t b) {
+  return (int32_t)a * (int32_t)b;
+}
 
 // round(v / 2^shift) for shift in 1..30 (ties up; arithmetic shift on every target).
 inline int32_t round_shift(int32_t v, uint8_t shift) {
@@ -78,7 +89,9 @@ inline int32_t add_saturate_32(int32_t a, int32_t b) {
 }
 
 // |v| as unsigned (defined for INT32_MIN too).
-inline uint32_t abs_u32(int32_t v) { return v < 0 ? (uint32_t)0 - (uint32_t)v : (uint32_t)v; }
+inline uint32_t abs_u32(int32_t v) {
+  return v < 0 ? (uint32_t)0 - (uint32_t)v : (uint32_t)v;
+}
 
 }  // namespace core
 

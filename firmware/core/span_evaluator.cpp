@@ -22,7 +22,9 @@ int64_t lerp64(int64_t a, int64_t b, int64_t alpha_q29) {
 }
 
 // v * 2^n without the undefined behaviour of shifting a negative value left.
-int64_t shl64(int64_t v, uint8_t n) { return v * ((int64_t)1 << n); }
+int64_t shl64(int64_t v, uint8_t n) {
+  return v * ((int64_t)1 << n);
+}
 
 // (num / den) in Q29, rounded, for 0 <= num <= den, den > 0 (both < 2^33).
 int64_t ratio_q29(int64_t num, int64_t den) {
@@ -76,7 +78,7 @@ void power_basis(uint8_t p, const int64_t* b, int64_t* c) {
 // Horner in t (uq16; t_q16 = 65536 handled as 1.0 by the caller) over coefficients c.
 int32_t horner(const int32_t* c, uint8_t p, uq16_t t) {
   int32_t acc = c[p];
-  for (uint8_t k = p; k > 0; --k) acc = c[k - 1] + mul_32x16_uq16(acc, t);
+  for (uint8_t k = p; k > 0; --k) acc = c[k - 1] + mul_32x16_uq16_round(acc, t);
   return acc;
 }
 
@@ -121,7 +123,9 @@ uint16_t first_span(const Spline& spline) {
   return next_span(spline, (uint16_t)(spline.degree - 1));
 }
 
-uint16_t span_end(const Spline& spline) { return spline.control_count; }
+uint16_t span_end(const Spline& spline) {
+  return spline.control_count;
+}
 
 // Skips zero-length spans (repeated knots).
 uint16_t next_span(const Spline& spline, uint16_t span) {
@@ -130,7 +134,7 @@ uint16_t next_span(const Spline& spline, uint16_t span) {
   return i < spline.control_count ? i : spline.control_count;
 }
 
-SpanEvaluator::SpanEvaluator() : degree_(0), rational_(false) {
+SpanEvaluator::SpanEvaluator() : degree_(0), rational_(false), dir_shift_(0) {
   origin_.x_um = origin_.y_um = 0;
   start_.x_q6 = start_.y_q6 = 0;
   end_ = start_;
@@ -144,9 +148,23 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   degree_ = 0;
   const uint8_t p = spline.degree;
   if (p == 0 || p > kMaxDegree || span < p || span >= spline.control_count ||
+      spline.control_count > kMaxControlPoints ||
       spline.knot_count != spline.control_count + p + 1 ||
       spline.knot[span + 1] <= spline.knot[span]) {
     return GeometryError::kKnotRangeEmpty;
+  }
+  // The window this span reads must be sound even if nobody validated the spline: no
+  // zero or negative denominator, no zero weight, no coordinate beyond the headroom.
+  for (uint16_t j = (uint16_t)(span - p); j < span + p + 1; ++j) {
+    if (spline.knot[j + 1] < spline.knot[j]) return GeometryError::kKnotsDecreasing;
+  }
+  for (uint16_t j = (uint16_t)(span - p); j <= span; ++j) {
+    const ControlPoint& c = spline.control[j];
+    if (c.x_um > kMaxCoordinateUm || c.x_um < -kMaxCoordinateUm || c.y_um > kMaxCoordinateUm ||
+        c.y_um < -kMaxCoordinateUm) {
+      return GeometryError::kCoordinateOutOfRange;
+    }
+    if (spline.rational && c.weight_q14 == 0) return GeometryError::kZeroWeight;
   }
   const ControlPoint& ref = spline.control[span - p];
   Homog d0[kMaxDegree + 1];
@@ -166,7 +184,7 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   // Origin: the span start rounded to 1 um (absolute).
   origin_.x_um = (int32_t)(ref.x_um + div_round(shl64(b[0].x, kAlphaShift - kSetupShift), b[0].w));
   origin_.y_um = (int32_t)(ref.y_um + div_round(shl64(b[0].y, kAlphaShift - kSetupShift), b[0].w));
-  // Numerators relative to the origin, weights normalised to max 1, in q6 / q26.
+  // Numerators relative to the origin, weights normalised to max 1, in q6 / q27.
   int64_t nx[kMaxDegree + 1], ny[kMaxDegree + 1], nw[kMaxDegree + 1];
   const int64_t ox = shl64((int64_t)origin_.x_um - ref.x_um, kSetupShift);
   const int64_t oy = shl64((int64_t)origin_.y_um - ref.y_um, kSetupShift);
@@ -178,11 +196,11 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
       // rx * 2^29 / w_max is um*w_norm in q9; to q6: * 2^26 / w_max.
       nx[k] = div_round(shl64(rx, 26), w_max);
       ny[k] = div_round(shl64(ry, 26), w_max);
-      nw[k] = div_round(shl64(b[k].w, kQ26Shift), w_max);
+      nw[k] = div_round(shl64(b[k].w, kQ27Shift), w_max);
     } else {
       nx[k] = div_round(rx, 1 << (kSetupShift - kQ6Shift));
       ny[k] = div_round(ry, 1 << (kSetupShift - kQ6Shift));
-      nw[k] = (int64_t)1 << kQ26Shift;
+      nw[k] = (int64_t)1 << kQ27Shift;
     }
   }
   int64_t c[kMaxDegree + 1];
@@ -193,6 +211,19 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   power_basis(p, nw, c);
   for (uint8_t k = 0; k <= kMaxDegree; ++k) cw_[k] = (int32_t)c[k];
   degree_ = p;
+  // Derivative coefficients k * c[k] keep as many fraction bits as their Horner sums
+  // allow (|sum| <= sum of k |c[k]| < 2^31): full q6 for ordinary spans.
+  int64_t dsum = 0;
+  for (uint8_t k = 1; k <= p; ++k) {
+    const int64_t ax = cx_[k] < 0 ? -(int64_t)cx_[k] : cx_[k];
+    const int64_t ay = cy_[k] < 0 ? -(int64_t)cy_[k] : cy_[k];
+    const int64_t aw = cw_[k] < 0 ? -(int64_t)cw_[k] : cw_[k];
+    int64_t m = ax > ay ? ax : ay;
+    if (spline.rational && aw > m) m = aw;
+    dsum += m * k;
+  }
+  dir_shift_ = 0;
+  while ((dsum >> dir_shift_) >= ((int64_t)1 << 30)) ++dir_shift_;
   rational_ = spline.rational;
   start_ = evaluate_q6(0);
   // End point straight from the last Bezier point (exact up to setup rounding).
@@ -222,9 +253,10 @@ PointQ6 SpanEvaluator::evaluate_q6(uint32_t t_q16) const {
     r.y_q6 = origin_.y_um * (1L << kQ6Shift) + y;
     return r;
   }
-  const int32_t w = horner(cw_, degree_, t);  // > 0: convex combination of weights > 0
-  r.x_q6 = origin_.x_um * (1L << kQ6Shift) + (int32_t)div_round(shl64(x, kQ26Shift), w);
-  r.y_q6 = origin_.y_um * (1L << kQ6Shift) + (int32_t)div_round(shl64(y, kQ26Shift), w);
+  int32_t w = horner(cw_, degree_, t);  // > 0: convex combination of weights > 0
+  if (w < 1) w = 1;                     // rounding can never make it 0; be sure anyway
+  r.x_q6 = origin_.x_um * (1L << kQ6Shift) + (int32_t)div_round(shl64(x, kQ27Shift), w);
+  r.y_q6 = origin_.y_um * (1L << kQ6Shift) + (int32_t)div_round(shl64(y, kQ27Shift), w);
   return r;
 }
 
@@ -236,26 +268,28 @@ Direction SpanEvaluator::direction(uq16_t t) const {
   }
   int32_t dx[kMaxDegree], dy[kMaxDegree];
   for (uint8_t k = 1; k <= degree_; ++k) {
-    dx[k - 1] = (cx_[k] >> 2) * k;  // q4 um: |k * c[k]| < 2^31 for |coord| <= 1e6
-    dy[k - 1] = (cy_[k] >> 2) * k;
+    dx[k - 1] = (cx_[k] >> dir_shift_) * k;  // q(6 - dir_shift_) um
+    dy[k - 1] = (cy_[k] >> dir_shift_) * k;
   }
   const int32_t px = horner(dx, (uint8_t)(degree_ - 1), t);
   const int32_t py = horner(dy, (uint8_t)(degree_ - 1), t);
   if (!rational_) return scale_direction(px, py);
   // P = N / W, P' ~ N' W - N W' (W > 0 leaves the direction unchanged).
   int32_t dw[kMaxDegree];
-  for (uint8_t k = 1; k <= degree_; ++k) dw[k - 1] = (cw_[k] >> 2) * k;
+  for (uint8_t k = 1; k <= degree_; ++k) dw[k - 1] = (cw_[k] >> dir_shift_) * k;
   const int32_t w1 = horner(dw, (uint8_t)(degree_ - 1), t);
   const int32_t w = horner(cw_, degree_, t);
   const int32_t nx = horner(cx_, degree_, t);
   const int32_t ny = horner(cy_, degree_, t);
-  // px, py q4; w q26; nx, ny q6; w1 q24: both products in q30 um.
+  // px, py q(6-s); w q27; nx, ny q6; w1 q(27-s): both products in q(33-s) um.
   const int64_t qx = (int64_t)px * w - (int64_t)nx * w1;
   const int64_t qy = (int64_t)py * w - (int64_t)ny * w1;
   return scale_direction(qx, qy);
 }
 
-Direction SpanEvaluator::end_direction() const { return end_dir_; }
+Direction SpanEvaluator::end_direction() const {
+  return end_dir_;
+}
 
 // Sets up a throwaway evaluator (tests and tools).
 PointUm evaluate_spline(const Spline& spline, uint16_t span, uq16_t t) {

@@ -5,7 +5,7 @@
 
 #include <stdint.h>  // int32_t, uint16_t
 
-#include "firmware/core/fixed_point.h"     // q6_um_t, q26_t, uq16_t
+#include "firmware/core/fixed_point.h"     // q6_um_t, q27_t, uq16_t
 #include "firmware/core/geometry_error.h"  // GeometryError
 #include "firmware/core/spline.h"          // Spline, PointUm
 
@@ -38,7 +38,7 @@ PointUm round_point(const PointQ6& p);
 
 // SpanEvaluator: the span [knot[i], knot[i+1]) as
 //   P(t) = origin + (c[0] + c[1] t + c[2] t^2 + c[3] t^3) / 2^6        (polynomial)
-//   P(t) = origin + N(t) / W(t)  with N in q6_um and W in q26           (rational)
+//   P(t) = origin + N(t) / W(t)  with N in q6_um and W in q27           (rational)
 // t in [0, 1) as uq16 (t = 0 the span start; the span end t = 1 is end_point()).
 // Setup (setup()) does the De Boor/blossom work in 64-bit integer arithmetic with
 // divisions by knot differences (never zero: the span has positive length and every
@@ -49,8 +49,10 @@ class SpanEvaluator {
  public:
   SpanEvaluator();
 
-  // Prepares span index `span` of a validated spline (degree <= span < control_count and
-  // knot[span] < knot[span+1]); otherwise kKnotRangeEmpty and the evaluator is unset.
+  // Prepares span index `span` (degree <= span < control_count, knot[span] < knot[span+1]);
+  // otherwise kKnotRangeEmpty and the evaluator is unset. The span's own window of knots,
+  // control points and weights is checked too (the codes of validate_spline), so an
+  // unvalidated spline cannot make it divide by zero or read out of bounds.
   GeometryError setup(const Spline& spline, uint16_t span);
 
   // Point at parameter t (t = 0 gives start_point()).
@@ -76,9 +78,10 @@ class SpanEvaluator {
   PointQ6 end_;
   q6_um_t cx_[kMaxDegree + 1];  // power-basis coefficients of x (or of w*x) relative
   q6_um_t cy_[kMaxDegree + 1];  // to origin_, in q6 um
-  q26_t cw_[kMaxDegree + 1];    // power-basis coefficients of the weight (rational only)
+  q27_t cw_[kMaxDegree + 1];    // power-basis coefficients of the weight (rational only)
   // Derivative at t = 1, kept at setup so end_direction() costs nothing.
   Direction end_dir_;
+  uint8_t dir_shift_;  // fraction bits dropped from the derivative coefficients (0..3)
 };
 
 // Convenience (tests, tools): the point of span `span` at t, or (0,0) if the span is

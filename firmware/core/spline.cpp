@@ -4,7 +4,9 @@
 namespace core {
 
 // True when |v| is within the accepted coordinate range.
-static bool coordinate_ok(int32_t v) { return v >= -kMaxCoordinateUm && v <= kMaxCoordinateUm; }
+static bool coordinate_ok(int32_t v) {
+  return v >= -kMaxCoordinateUm && v <= kMaxCoordinateUm;
+}
 
 // Checks, in order: degree, counts, knot order, non-empty domain, coordinates, weights.
 // The order is part of the contract (one code per spline, the first problem found).

@@ -21,7 +21,8 @@ static const int32_t kMaxToolOffsetUm = 100000L;
 struct StepSettings {
   StepMode mode;
   uint16_t steps_per_span;      // kUniform: points per knot span (the original #U), >= 1
-  uint16_t chord_tolerance_um;  // kAdaptive: max chord error (default 5), 1..10000
+  uint16_t chord_tolerance_um;  // kAdaptive: max chord error (default 5), 1..10000;
+                                // both modes: chord error of corner arcs
   int32_t tool_offset_um;       // > 0 left of travel, < 0 right, 0 none
 };
 
@@ -30,14 +31,16 @@ StepSettings default_step_settings();
 
 // Usage: begin(); then next() until it returns false; then error() says whether the curve
 // finished (kOk) or stopped (e.g. kOffsetTooLarge). Each next() call does bounded work:
-// one span setup or one point (adaptive: a bounded number of trial evaluations; a corner
-// arc: one arc point).
+// one point (adaptive: at most 24 trials of 4 evaluations, 8 for rational spans or with an
+// offset; a corner arc: one arc point), or at a knot the next span's setup plus the joint
+// point. Adaptive steps keep the real chord error <= tolerance (docs/core-math.md).
 //
 // Tool offset: each point moves by |R| along the unit normal of dP/du (left of travel for
 // R > 0). Corners (a tangent discontinuity at a knot, e.g. multiplicity = degree):
 //   - turning away from the offset side (convex for the tool): the tool goes round the
 //     corner on an arc of radius |R| about the corner point, points spaced so that the
-//     arc's chord error stays within the chord tolerance (uniform: 4 degrees or finer);
+//     arc's chord error stays within chord_tolerance_um (also in uniform mode; 5 um if
+//     it is 0 or over 10 mm there); an exact reversal goes round the end on a half circle;
 //   - turning toward the offset side (concave): one point at the intersection of the two
 //     offset tangent lines (the miter point) replaces the two offset ends; if the turn is
 //     sharper than about 150 degrees the miter would run away and the stepper stops with
@@ -71,8 +74,7 @@ class SplineStepper {
 
   bool step_in_span(PointUm* out);
   bool joint(PointUm* out);
-  bool corner(const PointQ6& at, const Direction& in_dir, const Direction& out_dir,
-              PointUm* out);
+  bool corner(const PointQ6& at, const Direction& in_dir, const Direction& out_dir, PointUm* out);
   bool arc_point(PointUm* out);
   uint32_t uniform_next() const;
   uint32_t adaptive_next();
@@ -101,8 +103,8 @@ class SplineStepper {
   bool pending_;
   PointQ6 pending_point_;
   // Corner arc in progress: normals from a to b (then b to c if two halves).
-  uint16_t arc_steps_;   // points per half
-  uint16_t arc_index_;   // next point index within the half, 1..arc_steps_
+  uint16_t arc_steps_;  // points per half
+  uint16_t arc_index_;  // next point index within the half, 1..arc_steps_
   uint8_t arc_halves_left_;
   Unit arc_a_;
   Unit arc_b_;

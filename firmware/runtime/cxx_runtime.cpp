@@ -14,13 +14,19 @@ extern "C" void runtime_halt(void) {
 
 // Called from a vtable slot of a pure virtual function: only reachable through a bug (a call
 // during construction/destruction of an abstract base).
-extern "C" void __cxa_pure_virtual(void) { runtime_halt(); }
+extern "C" void __cxa_pure_virtual(void) {
+  runtime_halt();
+}
 
 // Guards for function-local statics with a dynamic initialiser. The portable libraries are
 // built with -fno-threadsafe-statics, so these are only a fallback; single core, no threads,
 // so byte 0 of the guard (the Itanium ABI's "initialised" flag) is all the state needed.
-extern "C" int __cxa_guard_acquire(uint8_t* guard) { return guard[0] == 0 ? 1 : 0; }
+extern "C" int __cxa_guard_acquire(uint8_t* guard) {
+  return guard[0] == 0 ? 1 : 0;
+}
 
-extern "C" void __cxa_guard_release(uint8_t* guard) { guard[0] = 1; }
+extern "C" void __cxa_guard_release(uint8_t* guard) {
+  guard[0] = 1;
+}
 
 extern "C" void __cxa_guard_abort(uint8_t*) {}

@@ -14,7 +14,9 @@ struct InPlace {};
 }  // namespace core
 
 // Constructs in caller-provided storage (suitably sized and aligned); never allocates.
-inline void* operator new(size_t, void* where, core::InPlace) { return where; }
+inline void* operator new(size_t, void* where, core::InPlace) {
+  return where;
+}
 
 // Matching placement delete; only called if a constructor throws, which cannot happen here.
 inline void operator delete(void*, void*, core::InPlace) {}

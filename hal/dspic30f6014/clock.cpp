@@ -5,6 +5,8 @@
 
 namespace dspic {
 
-void delay_us(uint16_t us) { delay_cycles((uint32_t)us * kCyclesPerUs); }
+void delay_us(uint16_t us) {
+  delay_cycles((uint32_t)us * kCyclesPerUs);
+}
 
 }  // namespace dspic

@@ -23,11 +23,13 @@ void configure_interrupt_priorities() {
   INTCON1::clear_bit<INTCON1bits::NSTDIS>();  // nesting: RX may interrupt the tick
   IPC0::write((uint16_t)(kTimer1Priority << IPC0bits::T1IP));
   IPC1::write(0);
-  IPC2::write((uint16_t)((kU1RxPriority << IPC2bits::U1RXIP) |
-                         (kU1TxPriority << IPC2bits::U1TXIP)));
+  IPC2::write(
+      (uint16_t)((kU1RxPriority << IPC2bits::U1RXIP) | (kU1TxPriority << IPC2bits::U1TXIP)));
 }
 
-void install_uart1(Uart1* uart) { g_uart1 = uart; }
+void install_uart1(Uart1* uart) {
+  g_uart1 = uart;
+}
 
 void install_tick(void (*tick)(void*), void* context) {
   g_tick_context = context;
@@ -46,9 +48,9 @@ uint8_t take_trap_cause() {
 
 uint16_t take_reset_cause() {
   const uint16_t cause = RCON::read();
-  const uint16_t flags = (uint16_t)(bit(RCONbits::POR) | bit(RCONbits::BOR) |
-                                    bit(RCONbits::WDTO) | bit(RCONbits::SWR) |
-                                    bit(RCONbits::EXTR) | bit(RCONbits::TRAPR));
+  const uint16_t flags =
+      (uint16_t)(bit(RCONbits::POR) | bit(RCONbits::BOR) | bit(RCONbits::WDTO) |
+                 bit(RCONbits::SWR) | bit(RCONbits::EXTR) | bit(RCONbits::TRAPR));
   RCON::modify(flags, 0);
   return (uint16_t)(cause & flags);
 }

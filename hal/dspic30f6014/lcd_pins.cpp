@@ -18,8 +18,12 @@ void LcdPins::set_control(uint8_t control_bits) {
 }
 
 // DB7..DB0 with one byte write to LATD<7:0>.
-void LcdPins::set_data(uint8_t byte) { LATD::write_low_byte(byte); }
+void LcdPins::set_data(uint8_t byte) {
+  LATD::write_low_byte(byte);
+}
 
-void LcdPins::delay_us(uint16_t us) { dspic::delay_us(us); }
+void LcdPins::delay_us(uint16_t us) {
+  dspic::delay_us(us);
+}
 
 }  // namespace dspic

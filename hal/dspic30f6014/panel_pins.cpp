@@ -8,8 +8,8 @@
 namespace dspic {
 
 static_assert(hal::kJoyLeft == 0x01 && hal::kJoyRight == 0x02 && hal::kJoyDown == 0x04 &&
-                  hal::kJoyUp == 0x08 && hal::kButtonZ == 0x10 &&
-                  hal::kButtonConfirm == 0x20 && hal::kButtonClear == 0x40,
+                  hal::kJoyUp == 0x08 && hal::kButtonZ == 0x10 && hal::kButtonConfirm == 0x20 &&
+                  hal::kButtonClear == 0x40,
               "RB8..RB14 are wired in InputBits order");
 
 // Inverts (active low) and shifts the contact bits down to InputBits.

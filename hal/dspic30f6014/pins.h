@@ -15,18 +15,18 @@ namespace dspic {
 namespace pins {
 
 enum {
-  kU1RxBit = 2,        // RF2
-  kU1TxBit = 3,        // RF3
-  kSck1Bit = 6,        // RF6
-  kSdi1Bit = 7,        // RF7
-  kSdo1Bit = 8,        // RF8
-  kTmcCsBit = 2,       // RB2
+  kU1RxBit = 2,           // RF2
+  kU1TxBit = 3,           // RF3
+  kSck1Bit = 6,           // RF6
+  kSdi1Bit = 7,           // RF7
+  kSdo1Bit = 8,           // RF8
+  kTmcCsBit = 2,          // RB2
   kLcdDataMask = 0x00FF,  // RD0..RD7
-  kLcdRsBit = 8,       // RD8
-  kLcdRwBit = 9,       // RD9
-  kLcdEBit = 10,       // RD10
-  kPanelFirstBit = 8,  // RB8 = hal::kJoyLeft ... RB14 = hal::kButtonClear
-  kPanelMask = 0x7F00  // RB8..RB14
+  kLcdRsBit = 8,          // RD8
+  kLcdRwBit = 9,          // RD9
+  kLcdEBit = 10,          // RD10
+  kPanelFirstBit = 8,     // RB8 = hal::kJoyLeft ... RB14 = hal::kButtonClear
+  kPanelMask = 0x7F00     // RB8..RB14
 };
 
 }  // namespace pins

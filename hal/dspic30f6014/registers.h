@@ -66,12 +66,34 @@ typedef Sfr16<0x0210> U1TXREG;
 typedef Sfr16<0x0212> U1RXREG;
 typedef Sfr16<0x0214> U1BRG;
 namespace U1MODEbits {
-enum { STSEL = 0, PDSEL0 = 1, PDSEL1 = 2, ABAUD = 5, LPBACK = 6, WAKE = 7, ALTIO = 10,
-       USIDL = 13, UARTEN = 15 };
+enum {
+  STSEL = 0,
+  PDSEL0 = 1,
+  PDSEL1 = 2,
+  ABAUD = 5,
+  LPBACK = 6,
+  WAKE = 7,
+  ALTIO = 10,
+  USIDL = 13,
+  UARTEN = 15
+};
 }
 namespace U1STAbits {
-enum { URXDA = 0, OERR = 1, FERR = 2, PERR = 3, RIDLE = 4, ADDEN = 5, URXISEL0 = 6,
-       URXISEL1 = 7, TRMT = 8, UTXBF = 9, UTXEN = 10, UTXBRK = 11, UTXISEL = 15 };
+enum {
+  URXDA = 0,
+  OERR = 1,
+  FERR = 2,
+  PERR = 3,
+  RIDLE = 4,
+  ADDEN = 5,
+  URXISEL0 = 6,
+  URXISEL1 = 7,
+  TRMT = 8,
+  UTXBF = 9,
+  UTXEN = 10,
+  UTXBRK = 11,
+  UTXISEL = 15
+};
 }
 
 // ---- SPI1 (sec. 3) ----
@@ -82,8 +104,22 @@ namespace SPI1STATbits {
 enum { SPIRBF = 0, SPITBF = 1, SPIROV = 6, SPISIDL = 13, SPIEN = 15 };
 }
 namespace SPI1CONbits {
-enum { PPRE0 = 0, PPRE1 = 1, SPRE0 = 2, SPRE1 = 3, SPRE2 = 4, MSTEN = 5, CKP = 6, SSEN = 7,
-       CKE = 8, SMP = 9, MODE16 = 10, DISSDO = 11, SPIFSD = 13, FRMEN = 14 };
+enum {
+  PPRE0 = 0,
+  PPRE1 = 1,
+  SPRE0 = 2,
+  SPRE1 = 3,
+  SPRE2 = 4,
+  MSTEN = 5,
+  CKP = 6,
+  SSEN = 7,
+  CKE = 8,
+  SMP = 9,
+  MODE16 = 10,
+  DISSDO = 11,
+  SPIFSD = 13,
+  FRMEN = 14
+};
 }
 
 // ---- A/D port configuration and I/O ports (sec. 6; there is no PORTE on the 6014) ----

@@ -11,9 +11,15 @@
 namespace dspic {
 
 // Mask of one bit.
-inline uint16_t bit(uint8_t n) { return (uint16_t)(1u << n); }
+inline uint16_t bit(uint8_t n) {
+  return (uint16_t)(1u << n);
+}
 
 #if DSPIC_TARGET
+
+// The free XC16 licence stops at -O1; forcing these one-liners inline keeps each access a
+// single instruction there too.
+#define DSPIC_INLINE inline __attribute__((always_inline))
 
 // One bit field per bit, so a constant bit compiles to a single BSET/BCLR (atomic against
 // interrupts, unlike a load-or-store sequence), as with Microchip's own xxxbits structs.
@@ -29,15 +35,15 @@ struct SfrBits {
 
 // Writes one bit; with a constant bit and value the switch folds to one instruction.
 template <uint16_t kAddress>
-inline void sfr_write_bit(uint8_t n, uint16_t value) {
+DSPIC_INLINE void sfr_write_bit(uint8_t n, uint16_t value) {
   volatile SfrBits& r = *reinterpret_cast<volatile SfrBits*>(kAddress);
   switch (n) {
-    DSPIC_BIT_CASE(0) DSPIC_BIT_CASE(1) DSPIC_BIT_CASE(2) DSPIC_BIT_CASE(3)
-    DSPIC_BIT_CASE(4) DSPIC_BIT_CASE(5) DSPIC_BIT_CASE(6) DSPIC_BIT_CASE(7)
-    DSPIC_BIT_CASE(8) DSPIC_BIT_CASE(9) DSPIC_BIT_CASE(10) DSPIC_BIT_CASE(11)
-    DSPIC_BIT_CASE(12) DSPIC_BIT_CASE(13) DSPIC_BIT_CASE(14) DSPIC_BIT_CASE(15)
-    default:
-      break;
+    DSPIC_BIT_CASE(0)
+    DSPIC_BIT_CASE(1)
+    DSPIC_BIT_CASE(2) DSPIC_BIT_CASE(3) DSPIC_BIT_CASE(4) DSPIC_BIT_CASE(5) DSPIC_BIT_CASE(6)
+        DSPIC_BIT_CASE(7) DSPIC_BIT_CASE(8) DSPIC_BIT_CASE(9) DSPIC_BIT_CASE(10) DSPIC_BIT_CASE(11)
+            DSPIC_BIT_CASE(12) DSPIC_BIT_CASE(13) DSPIC_BIT_CASE(14) DSPIC_BIT_CASE(15) default
+        : break;
   }
 }
 #undef DSPIC_BIT_CASE
@@ -45,29 +51,31 @@ inline void sfr_write_bit(uint8_t n, uint16_t value) {
 template <uint16_t kAddress>
 struct Sfr16 {
   static const uint16_t address = kAddress;
-  static volatile uint16_t& ref() { return *reinterpret_cast<volatile uint16_t*>(kAddress); }
-  static uint16_t read() { return ref(); }
-  static void write(uint16_t value) { ref() = value; }
+  static DSPIC_INLINE volatile uint16_t& ref() {
+    return *reinterpret_cast<volatile uint16_t*>(kAddress);
+  }
+  static DSPIC_INLINE uint16_t read() { return ref(); }
+  static DSPIC_INLINE void write(uint16_t value) { ref() = value; }
   // Low byte only (byte write to the even address), e.g. LATD<7:0> for the LCD bus.
-  static void write_low_byte(uint8_t value) {
+  static DSPIC_INLINE void write_low_byte(uint8_t value) {
     *reinterpret_cast<volatile uint8_t*>(kAddress) = value;
   }
   template <uint8_t kBit>
-  static void set_bit() {
+  static DSPIC_INLINE void set_bit() {
     static_assert(kBit < 16, "an SFR has 16 bits");
     sfr_write_bit<kAddress>(kBit, 1);
   }
   template <uint8_t kBit>
-  static void clear_bit() {
+  static DSPIC_INLINE void clear_bit() {
     static_assert(kBit < 16, "an SFR has 16 bits");
     sfr_write_bit<kAddress>(kBit, 0);
   }
   template <uint8_t kBit>
-  static bool test_bit() {
+  static DSPIC_INLINE bool test_bit() {
     return (ref() & (1u << kBit)) != 0;
   }
   // Read-modify-write of several bits: only for registers no interrupt handler writes.
-  static void modify(uint16_t clear_mask, uint16_t set_mask) {
+  static DSPIC_INLINE void modify(uint16_t clear_mask, uint16_t set_mask) {
     ref() = (uint16_t)((ref() & (uint16_t)~clear_mask) | set_mask);
   }
 };
@@ -121,7 +129,9 @@ struct Sfr16 {
   }
 };
 
-inline void delay_cycles(uint32_t cycles) { host::delay_cycles(cycles); }
+inline void delay_cycles(uint32_t cycles) {
+  host::delay_cycles(cycles);
+}
 
 #endif
 

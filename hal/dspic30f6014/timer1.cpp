@@ -7,7 +7,9 @@
 namespace dspic {
 
 // Period = (PR1 + 1) * prescale / Fcy; with 1:1, PR1 + 1 = Fcy / 1000 = 20000 fits 16 bits.
-uint16_t timer1_period_for_tick() { return (uint16_t)(kFcyHz / kTickHz - 1u); }
+uint16_t timer1_period_for_tick() {
+  return (uint16_t)(kFcyHz / kTickHz - 1u);
+}
 
 // TCS = 0 (Fcy), TCKPS = 00 (1:1), TGATE = 0; the interrupt needs T1IE and T1IP != 0.
 void timer1_start_1ms() {
@@ -19,6 +21,8 @@ void timer1_start_1ms() {
   T1CON::write(bit(T1CONbits::TON));
 }
 
-void timer1_acknowledge() { IFS0::clear_bit<IFS0bits::T1IF>(); }
+void timer1_acknowledge() {
+  IFS0::clear_bit<IFS0bits::T1IF>();
+}
 
 }  // namespace dspic

@@ -48,7 +48,9 @@ uint16_t Uart1::write(const uint8_t* data, uint16_t len) {
   return taken;
 }
 
-uint16_t Uart1::write_space() const { return tx_.free_space(); }
+uint16_t Uart1::write_space() const {
+  return tx_.free_space();
+}
 
 // Difference of two free-running single-writer counters, so no count is lost or doubled.
 uint16_t Uart1::take_rx_errors() {

@@ -7,7 +7,7 @@
 
 #include <stdint.h>  // uint8_t, uint16_t, uint32_t
 
-#include "firmware/core/spsc_ring.h"      // core::SpscRing
+#include "firmware/core/spsc_ring.h"     // core::SpscRing
 #include "hal/interfaces/serial_port.h"  // hal::SerialPort
 
 namespace dspic {

@@ -80,9 +80,13 @@ void print_info(const Drawing& d) {
   std::cout << "file:     " << d.path << "\n";
   std::cout << "format:   " << d.format << "\n";
   std::cout << "units:    " << d.units << " (1 unit = " << d.unit_to_mm << " mm)\n";
-  std::cout << "entities:";
-  if (d.entity_counts.empty()) std::cout << " none";
-  for (const auto& e : d.entity_counts) std::cout << " " << e.first << " " << e.second << ",";
+  std::cout << "entities: ";
+  if (d.entity_counts.empty()) std::cout << "none";
+  bool first = true;
+  for (const auto& e : d.entity_counts) {
+    std::cout << (first ? "" : ", ") << e.first << " " << e.second;
+    first = false;
+  }
   std::cout << "\n";
   const Extents e = d.extents();
   if (e.empty()) {

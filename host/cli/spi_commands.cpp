@@ -27,7 +27,8 @@ void add_capture_options(CLI::App* cmd, CaptureOptions* o) {
   cmd->add_option("--mode", o->framer.mode, "SPI mode 0..3 (TMC428: 3)")
       ->check(CLI::Range(0, 3))
       ->capture_default_str();
-  cmd->add_option("--bits", o->bits, "bits per datagram, or 'any' for whatever each CS period holds")
+  cmd->add_option("--bits", o->bits,
+                  "bits per datagram, or 'any' for whatever each CS period holds")
       ->capture_default_str();
   cmd->add_option("--min-pulse", o->min_pulse,
                   "shorter clock/CS pulses are glitches, e.g. 100ns; 'auto' = 40% of the "
@@ -63,8 +64,9 @@ host::spi::FramerOptions finish(const CaptureOptions& o) {
 }
 
 void add_spi_commands(CLI::App& app) {
-  CLI::App* spi = app.add_subcommand("spi", "SPI bench testing: decode captures, expected "
-                                            "datagrams, diff");
+  CLI::App* spi = app.add_subcommand("spi",
+                                     "SPI bench testing: decode captures, expected "
+                                     "datagrams, diff");
   spi->require_subcommand(1);
 
   // Option storage must outlive parsing: function statics (registered once).
@@ -82,8 +84,9 @@ void add_spi_commands(CLI::App& app) {
   dec->add_flag("--raw", decode->raw, "hex words only (non-TMC428 captures)");
   dec->callback([decode, decode_opts]() {
     decode->framer = finish(*decode_opts);
-    finish_with(host::spi::run_decode(*decode, std::cout, std::cerr),
-                "spi decode: see above (1: datagrams with frame errors, 2: unusable capture)");
+    int rc = host::spi::run_decode(*decode, std::cout, std::cerr);
+    finish_with(rc, rc == 1 ? "spi decode: datagrams with frame errors (exit 1)"
+                            : "spi decode: capture unusable (exit 2)");
   });
 
   static host::spi::ExpectOptions expect_run;
@@ -94,9 +97,12 @@ void add_spi_commands(CLI::App& app) {
       "Print the datagrams the firmware sends in a scenario, as a golden file for `spi diff`. "
       "Scenarios in this build: " +
           (have.empty() ? std::string("none (the TMC428 driver/fakes are not built)") : have) +
-          ". 'job FILE' needs the simulator (not available yet).");
+          ". 'job FILE' is not available yet: the simulator does not expose its SPI recording.");
   exp->add_option("--scenario", expect->scenario, "init | jog | job")->capture_default_str();
   exp->add_option("FILE", expect->job_file, "drawing for --scenario job");
+  exp->add_option("--vcd", expect->vcd_path,
+                  "also write the datagrams as the fake SPI recorder's VCD (a capture of a "
+                  "correct board, for trying decode/diff)");
   exp->callback([expect]() {
     finish_with(host::spi::run_expect(*expect, std::cout, std::cerr), "spi expect: failed");
   });
@@ -118,10 +124,14 @@ void add_spi_commands(CLI::App& app) {
       ->capture_default_str();
   dif->add_flag("--json", diff->json, "JSON output with stable keys");
   dif->add_flag("--raw", diff->raw, "no TMC428 register names");
+  dif->add_flag("--within", diff->within,
+                "the expected datagrams may lie anywhere in the capture: datagrams before "
+                "and after them are not compared (e.g. init inside a long capture)");
   dif->callback([diff, diff_opts]() {
     diff->framer = finish(*diff_opts);
-    finish_with(host::spi::run_diff(*diff, std::cout, std::cerr),
-                "spi diff: see above (1: the capture differs, 2: capture unusable)");
+    int rc = host::spi::run_diff(*diff, std::cout, std::cerr);
+    finish_with(rc, rc == 1 ? "spi diff: the capture differs (exit 1)"
+                            : "spi diff: capture unusable (exit 2)");
   });
 }
 

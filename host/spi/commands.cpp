@@ -1,8 +1,9 @@
 // `engraver spi decode | expect | diff` behaviour, independent of the option parser.
 #include "host/spi/commands.h"
 
-#include <fstream>   // std::ifstream
-#include <iterator>  // std::istreambuf_iterator
+#include <filesystem>  // std::filesystem::is_directory
+#include <fstream>     // std::ifstream
+#include <iterator>    // std::istreambuf_iterator
 
 #include "host/spi/capture.h"   // load_capture
 #include "host/spi/diff.h"      // diff_datagrams
@@ -45,8 +46,9 @@ Error capture_frames(const std::string& path, const FramerOptions& options,
     *frames = std::move(r.frames);
   }
   if (frames->empty())
-    return {"E_NO_FRAMES", path + ": no datagrams found (wrong channels, or no chip-select "
-                                  "period with clock edges)"};
+    return {"E_NO_FRAMES", path +
+                               ": no datagrams found (wrong channels, or no chip-select "
+                               "period with clock edges)"};
   return {};
 }
 
@@ -58,16 +60,19 @@ int run_decode(const DecodeOptions& o, std::ostream& out, std::ostream& err) {
     print_error(err, e);
     return kExitUnusable;
   }
-  if (o.json) out << decode_json(info, frames, o.raw).dump(2) << "\n";
-  else out << decode_text(info, frames, o.raw);
+  if (o.json)
+    out << decode_json(info, frames, o.raw).dump(2) << "\n";
+  else
+    out << decode_text(info, frames, o.raw);
   for (const Frame& f : frames)
     if (frame_is_error(f)) return kExitDiffer;
   return kExitOk;
 }
 
 int run_diff(const DiffOptions& o, std::ostream& out, std::ostream& err) {
+  std::error_code ec;
   std::ifstream in(o.expected, std::ios::binary);
-  if (!in) {
+  if (!in || std::filesystem::is_directory(o.expected, ec)) {
     print_error(err, {"E_OPEN", o.expected + ": cannot open"});
     return kExitUnusable;
   }
@@ -101,15 +106,15 @@ int run_diff(const DiffOptions& o, std::ostream& out, std::ostream& err) {
     return kExitUnusable;
   }
   if (errors > o.max_error_fraction * frames.size()) {
-    print_error(err, {"E_FRAME_ERRORS",
-                      o.capture + ": " + std::to_string(errors) + " of " +
-                          std::to_string(frames.size()) +
-                          " datagrams have frame errors (see `engraver spi decode`); check "
-                          "--mode, --bits, channel names and the sample rate"});
+    print_error(
+        err, {"E_FRAME_ERRORS",
+              o.capture + ": " + std::to_string(errors) + " of " + std::to_string(frames.size()) +
+                  " datagrams have frame errors (see `engraver spi decode`); check "
+                  "--mode, --bits, channel names and the sample rate"});
     return kExitUnusable;
   }
   DiffResult d;
-  e = diff_datagrams(frames, expected, &d);
+  e = diff_datagrams(frames, expected, &d, o.within);
   if (!e.ok()) {
     print_error(err, e);
     return kExitUnusable;
@@ -120,16 +125,18 @@ int run_diff(const DiffOptions& o, std::ostream& out, std::ostream& err) {
   for (const Frame& f : frames) any_miso = any_miso || f.has_miso;
   if (!d.same() && any_miso) {
     DiffResult swapped;
-    if (diff_datagrams(swap_mosi_miso(frames), expected, &swapped).ok() &&
+    if (diff_datagrams(swap_mosi_miso(frames), expected, &swapped, o.within).ok() &&
         swapped.equal > d.equal && swapped.equal * 2 >= static_cast<int>(expected.size()))
       hint = "MOSI and MISO look swapped: " + std::to_string(swapped.equal) +
-             " lines match with the two exchanged (swap --mosi/--miso)";
+             " datagrams match with the two exchanged (swap --mosi/--miso)";
   }
   if (o.json) {
     nlohmann::json j = diff_json(frames, expected, d);
     j["partial_frames_left_out"] = partial;
     j["frame_errors"] = errors;
     j["hint"] = hint;
+    j["ignored_before"] = d.ignored_before;
+    j["ignored_after"] = d.ignored_after;
     out << j.dump(2) << "\n";
   } else {
     out << diff_text(frames, expected, d, !o.raw);
@@ -137,6 +144,9 @@ int run_diff(const DiffOptions& o, std::ostream& out, std::ostream& err) {
       out << "# note: " << partial << " datagram(s) cut by the capture window left out\n";
     if (errors) out << "# note: " << errors << " datagram(s) with frame errors (marked !)\n";
     if (!hint.empty()) out << "# hint: " << hint << "\n";
+    if (d.ignored_before || d.ignored_after)
+      out << "# note: --within: " << d.ignored_before << " datagram(s) before and "
+          << d.ignored_after << " after the expected sequence not compared\n";
     out << diff_verdict(d, frames.size(), expected.size()) << "\n";
   }
   return d.same() ? kExitOk : kExitDiffer;
@@ -148,6 +158,13 @@ int run_expect(const ExpectOptions& o, std::ostream& out, std::ostream& err) {
   if (!e.ok()) {
     print_error(err, e);
     return kExitUnusable;
+  }
+  if (!o.vcd_path.empty()) {
+    e = write_scenario_vcd(o.scenario, o.job_file, o.vcd_path);
+    if (!e.ok()) {
+      print_error(err, e);
+      return kExitUnusable;
+    }
   }
   std::string header = "# engraver spi expect --scenario " + o.scenario +
                        (o.job_file.empty() ? "" : " " + o.job_file) +

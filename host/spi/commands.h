@@ -33,6 +33,7 @@ struct DiffOptions {
   FramerOptions framer;
   bool json = false;
   bool raw = false;                  // no TMC428 register names
+  bool within = false;               // expected lines anywhere in the capture
   double max_error_fraction = 0.25;  // more frames with errors than this: unusable (2)
 };
 // 0: match, 1: differ, 2: capture unusable (unreadable, no frames, too many frame errors).
@@ -41,6 +42,7 @@ int run_diff(const DiffOptions& o, std::ostream& out, std::ostream& err);
 struct ExpectOptions {
   std::string scenario = "init";  // init | jog | job
   std::string job_file;           // for job
+  std::string vcd_path;           // also write the recorded datagrams as a VCD here
 };
 // Prints the golden file of a scenario. 0, or 2 when the scenario cannot be produced.
 int run_expect(const ExpectOptions& o, std::ostream& out, std::ostream& err);

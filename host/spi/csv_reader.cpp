@@ -2,9 +2,9 @@
 // (Logic 1.x "Time [s],Packet ID,MOSI,MISO"; Logic 2 "name,type,start_time,duration,mosi,miso").
 #include <algorithm>  // std::max
 #include <cctype>     // std::tolower
-#include <cmath>    // std::llround
-#include <cstdlib>  // std::strtold
-#include <sstream>  // std::istringstream
+#include <cmath>      // std::llround
+#include <cstdlib>    // std::strtold
+#include <sstream>    // std::istringstream
 
 #include "host/spi/capture.h"
 
@@ -28,9 +28,12 @@ std::vector<std::string> split_csv(const std::string& line) {
   std::vector<std::string> out(1);
   bool quoted = false;
   for (char c : line) {
-    if (c == '"') quoted = !quoted;
-    else if (c == ',' && !quoted) out.emplace_back();
-    else out.back() += c;
+    if (c == '"')
+      quoted = !quoted;
+    else if (c == ',' && !quoted)
+      out.emplace_back();
+    else
+      out.back() += c;
   }
   for (auto& f : out) f = trim(f);
   return out;
@@ -52,8 +55,10 @@ bool parse_word(const std::string& s, uint64_t* value, int* bits) {
   std::string t = lower(s);
   int base = 10;
   size_t digits_at = 0;
-  if (t.rfind("0x", 0) == 0) base = 16, digits_at = 2;
-  else if (t.rfind("0b", 0) == 0) base = 2, digits_at = 2;
+  if (t.rfind("0x", 0) == 0)
+    base = 16, digits_at = 2;
+  else if (t.rfind("0b", 0) == 0)
+    base = 2, digits_at = 2;
   std::string digits = t.substr(digits_at);
   if (digits.empty() || digits.size() > 64) return false;
   uint64_t v = 0;
@@ -63,8 +68,10 @@ bool parse_word(const std::string& s, uint64_t* value, int* bits) {
     v = v * base + d;
   }
   int w = 8;
-  if (base == 16) w = static_cast<int>(digits.size()) * 4;
-  else if (base == 2) w = static_cast<int>(digits.size());
+  if (base == 16)
+    w = static_cast<int>(digits.size()) * 4;
+  else if (base == 2)
+    w = static_cast<int>(digits.size());
   while (w < 64 && (v >> w) != 0) w += 8;
   if (w < 8) w = 8;
   *value = v;
@@ -120,8 +127,10 @@ Error parse_saleae_digital_csv(const std::string& text, Trace* out) {
       if (f[i] != "0" && f[i] != "1")
         return {"E_FORMAT", "CSV: row " + std::to_string(r + 1) + ": level must be 0 or 1"};
       bool high = f[i] == "1";
-      if (r == 1) out->channels[i - 1].initial_high = high;
-      else out->channels[i - 1].set_level(t, high);
+      if (r == 1)
+        out->channels[i - 1].initial_high = high;
+      else
+        out->channels[i - 1].set_level(t, high);
     }
     if (r == 1) out->start_ps = t;
     prev_t = t;
@@ -139,11 +148,16 @@ Error parse_saleae_spi_csv(const std::string& text, std::vector<Frame>* out) {
   int c_time = -1, c_packet = -1, c_mosi = -1, c_miso = -1, c_type = -1;
   for (size_t i = 0; i < head.size(); ++i) {
     std::string h = lower(head[i]);
-    if (h.rfind("time", 0) == 0 || h == "start_time") c_time = static_cast<int>(i);
-    else if (h == "packet id") c_packet = static_cast<int>(i);
-    else if (h == "mosi") c_mosi = static_cast<int>(i);
-    else if (h == "miso") c_miso = static_cast<int>(i);
-    else if (h == "type") c_type = static_cast<int>(i);
+    if (h.rfind("time", 0) == 0 || h == "start_time")
+      c_time = static_cast<int>(i);
+    else if (h == "packet id")
+      c_packet = static_cast<int>(i);
+    else if (h == "mosi")
+      c_mosi = static_cast<int>(i);
+    else if (h == "miso")
+      c_miso = static_cast<int>(i);
+    else if (h == "type")
+      c_type = static_cast<int>(i);
   }
   if (c_time < 0 || (c_mosi < 0 && c_miso < 0))
     return {"E_FORMAT", "SPI CSV: need a time column and a MOSI and/or MISO column"};
@@ -179,9 +193,12 @@ Error parse_saleae_spi_csv(const std::string& text, std::vector<Frame>* out) {
     if (bits == 0) continue;
     // A new frame: Logic 2 outside enable/disable, Logic 1 when Packet ID changes or is empty.
     bool new_frame = out->empty();
-    if (c_type >= 0) new_frame = new_frame || !open;
-    else if (c_packet >= 0) new_frame = new_frame || f[c_packet].empty() || f[c_packet] != packet;
-    else new_frame = true;
+    if (c_type >= 0)
+      new_frame = new_frame || !open;
+    else if (c_packet >= 0)
+      new_frame = new_frame || f[c_packet].empty() || f[c_packet] != packet;
+    else
+      new_frame = true;
     if (c_packet >= 0) packet = f[c_packet];
     if (new_frame) {
       out->push_back(Frame());

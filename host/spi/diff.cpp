@@ -15,7 +15,9 @@ const int32_t kNone = -1000000000;
 enum : uint8_t { kDiag = 1, kUp = 2 /* frame extra */, kLeft = 3 /* missing */, kRepeat = 4 };
 
 // Top byte of a word (the TMC428 address byte for 32-bit datagrams).
-uint64_t top_byte(uint64_t word, int bits) { return bits >= 8 ? (word >> (bits - 8)) & 0xFF : word; }
+uint64_t top_byte(uint64_t word, int bits) {
+  return bits >= 8 ? (word >> (bits - 8)) & 0xFF : word;
+}
 
 // A substitution is shown only between words to the same address (fully given top byte).
 bool same_address(const Frame& f, const Expected& e) {
@@ -44,7 +46,7 @@ std::vector<Frame> swap_mosi_miso(const std::vector<Frame>& frames) {
 }
 
 Error diff_datagrams(const std::vector<Frame>& frames, const std::vector<Expected>& expected,
-                     DiffResult* out) {
+                     DiffResult* out, bool within) {
   *out = DiffResult();
   const size_t n = frames.size(), m = expected.size();
   if (static_cast<long long>(n + 1) * static_cast<long long>(m + 1) > kMaxDiffCells)
@@ -55,7 +57,7 @@ Error diff_datagrams(const std::vector<Frame>& frames, const std::vector<Expecte
       for (const Frame& f : frames)
         if (!f.has_miso) out->miso_checked = false;
   std::vector<uint8_t> back((n + 1) * (m + 1), 0);
-  std::vector<int32_t> prev(m + 1), cur(m + 1);
+  std::vector<int32_t> prev(m + 1), cur(m + 1), last_column(n + 1);
   auto at = [m](size_t i, size_t j) { return i * (m + 1) + j; };
   // Row 0: only expected lines skipped.
   prev[0] = 0;
@@ -63,9 +65,10 @@ Error diff_datagrams(const std::vector<Frame>& frames, const std::vector<Expecte
     prev[j] = prev[j - 1] + (expected[j - 1].min_count == 0 ? 0 : kGap);
     back[at(0, j)] = kLeft;
   }
+  last_column[0] = prev[m];
   for (size_t i = 1; i <= n; ++i) {
     const Frame& f = frames[i - 1];
-    cur[0] = prev[0] + kGap;
+    cur[0] = within ? 0 : prev[0] + kGap;
     back[at(i, 0)] = kUp;
     for (size_t j = 1; j <= m; ++j) {
       const Expected& e = expected[j - 1];
@@ -76,20 +79,35 @@ Error diff_datagrams(const std::vector<Frame>& frames, const std::vector<Expecte
         best = prev[j] + kMatch;
         how = kRepeat;
       }
-      int32_t diag = match ? prev[j - 1] + kMatch
-                           : same_address(f, e) ? prev[j - 1] + kSubstitute : kNone;
+      int32_t diag = match                ? prev[j - 1] + kMatch
+                     : same_address(f, e) ? prev[j - 1] + kSubstitute
+                                          : kNone;
       if (diag > best) best = diag, how = kDiag;
       int32_t left = cur[j - 1] + (e.min_count == 0 ? 0 : kGap);
       if (left > best) best = left, how = kLeft;
       cur[j] = best;
       back[at(i, j)] = how;
     }
+    last_column[i] = cur[m];
     std::swap(prev, cur);
   }
   // Trace back from the end.
   std::vector<DiffStep> rev;
   size_t i = n, j = m;
+  if (within) {
+    // End where the whole expected sequence scores best; later datagrams are outside.
+    size_t best = n;
+    for (size_t k = 0; k <= n; ++k)
+      if (last_column[k] > last_column[best] || (last_column[k] == last_column[best] && k < best))
+        best = k;
+    out->ignored_after = static_cast<int>(n - best);
+    i = best;
+  }
   while (i > 0 || j > 0) {
+    if (within && j == 0) {
+      out->ignored_before = static_cast<int>(i);
+      break;
+    }
     uint8_t how = back[at(i, j)];
     if (how == kDiag) {
       bool match = frame_matches(frames[i - 1], expected[j - 1]);

@@ -26,6 +26,7 @@ struct DiffResult {
   int equal = 0, changed = 0, missing = 0, extra = 0;
   std::vector<std::string> notes;  // e.g. repeat counts out of range
   bool miso_checked = true;        // false when the capture has no MISO but lines give one
+  int ignored_before = 0, ignored_after = 0;  // with `within`: datagrams outside the match
   bool same() const { return changed == 0 && missing == 0 && extra == 0 && notes.empty(); }
 };
 
@@ -35,9 +36,11 @@ const long long kMaxDiffCells = 64LL * 1024 * 1024;
 // True when the frame fits the line (both patterns, MISO only where captured).
 bool frame_matches(const Frame& f, const Expected& e);
 
-// Aligns. E_TOO_BIG when frames x expected exceeds kMaxDiffCells.
+// Aligns. within: the expected lines may lie anywhere in the capture; datagrams before the
+// first and after the last aligned line are not marked (counted in ignored_before/after).
+// E_TOO_BIG when frames x expected exceeds kMaxDiffCells.
 Error diff_datagrams(const std::vector<Frame>& frames, const std::vector<Expected>& expected,
-                     DiffResult* out);
+                     DiffResult* out, bool within = false);
 
 // The same frames with MOSI and MISO exchanged (to test the "probes swapped" hypothesis).
 std::vector<Frame> swap_mosi_miso(const std::vector<Frame>& frames);

@@ -9,9 +9,9 @@
 namespace host::spi {
 namespace {
 
-const char* const kCsNames[] = {"CS",   "CS#",  "nCS", "/CS", "CSN",    "NCS", "SS", "SS#",
-                                "nSS",  "NSS",  "SSN", "CSB", "nSCS_C", "SCS", "LE", "EN",
-                                "SYNC", "CS0",  "CE",  nullptr};
+const char* const kCsNames[] = {"CS",  "CS#", "nCS",  "/CS", "CSN", "NCS",    "SS",
+                                "SS#", "nSS", "NSS",  "SSN", "CSB", "nSCS_C", "SCS",
+                                "LE",  "EN",  "SYNC", "CS0", "CE",  nullptr};
 const char* const kSckNames[] = {"SCK", "CLK", "SCLK", "SPC", "SCK_C", "SCK1", "CLOCK", nullptr};
 const char* const kMosiNames[] = {"MOSI", "SDI_C", "SDO1", "COPI", "SIMO", "DIN", "DI", nullptr};
 const char* const kMisoNames[] = {"MISO", "SDO_C", "SDI1", "CIPO", "SOMI", "DOUT", "DO", nullptr};
@@ -94,13 +94,20 @@ bool parse_duration_ps(const std::string& text, int64_t* ps) {
   std::string unit(end);
   while (!unit.empty() && unit[0] == ' ') unit.erase(0, 1);
   double mul = 0;
-  if (unit == "s") mul = 1e12;
-  else if (unit == "ms") mul = 1e9;
-  else if (unit == "us") mul = 1e6;
-  else if (unit == "ns") mul = 1e3;
-  else if (unit == "ps") mul = 1;
-  else if (unit.empty() && v == 0) mul = 1;
-  else return false;
+  if (unit == "s")
+    mul = 1e12;
+  else if (unit == "ms")
+    mul = 1e9;
+  else if (unit == "us")
+    mul = 1e6;
+  else if (unit == "ns")
+    mul = 1e3;
+  else if (unit == "ps")
+    mul = 1;
+  else if (unit.empty() && v == 0)
+    mul = 1;
+  else
+    return false;
   *ps = std::llround(v * mul);
   return true;
 }

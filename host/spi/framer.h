@@ -21,16 +21,16 @@ struct ChannelMap {
 
 struct FramerOptions {
   ChannelMap names;
-  int mode = 3;              // SPI mode 0..3 (CPOL = mode>>1, CPHA = mode&1)
-  int bits = 32;             // expected bits per datagram; 0 = whatever each period holds
+  int mode = 3;               // SPI mode 0..3 (CPOL = mode>>1, CPHA = mode&1)
+  int bits = 32;              // expected bits per datagram; 0 = whatever each period holds
   int64_t min_pulse_ps = -1;  // shorter pulses are glitches; -1 = 40 % of the median pulse
 };
 
 struct FramerResult {
   std::vector<Frame> frames;
   int cs = -1, sck = -1, mosi = -1, miso = -1;  // channel indices used (-1: none)
-  int empty_periods = 0;                         // chip-select periods with no clock edge
-  int64_t min_pulse_ps = 0;                      // glitch threshold actually used
+  int empty_periods = 0;                        // chip-select periods with no clock edge
+  int64_t min_pulse_ps = 0;                     // glitch threshold actually used
 };
 
 // Which channel plays which role: the user's names, else common names (CS, CS#, nSCS_C, SS;

@@ -16,10 +16,14 @@ bool parse_pattern(const std::string& t, Pattern* out) {
   out->bits = static_cast<int>(digits.size()) * 4;
   for (char c : digits) {
     int d = -1;
-    if (c >= '0' && c <= '9') d = c - '0';
-    else if (c >= 'a' && c <= 'f') d = c - 'a' + 10;
-    else if (c >= 'A' && c <= 'F') d = c - 'A' + 10;
-    else if (c != 'x' && c != 'X' && c != '?') return false;
+    if (c >= '0' && c <= '9')
+      d = c - '0';
+    else if (c >= 'a' && c <= 'f')
+      d = c - 'a' + 10;
+    else if (c >= 'A' && c <= 'F')
+      d = c - 'A' + 10;
+    else if (c != 'x' && c != 'X' && c != '?')
+      return false;
     out->value <<= 4;
     out->mask <<= 4;
     if (d >= 0) out->value |= static_cast<uint64_t>(d), out->mask |= 0xF;
@@ -71,8 +75,10 @@ static bool parse_repeat(const std::string& t, int* lo, int* hi) {
   } else {
     if (!num(in.substr(0, comma), lo)) return false;
     std::string h = in.substr(comma + 1);
-    if (h.empty()) *hi = -1;
-    else if (!num(h, hi)) return false;
+    if (h.empty())
+      *hi = -1;
+    else if (!num(h, hi))
+      return false;
   }
   return *hi < 0 || *hi >= *lo;
 }
@@ -131,7 +137,8 @@ std::string format_golden(const std::vector<Expected>& lines, const std::string&
         row += "," + (e.max_count < 0 ? std::string() : std::to_string(e.max_count));
       row += "}";
     }
-    if (!e.comment.empty()) row += std::string(row.size() < 32 ? 32 - row.size() : 1, ' ') + "# " + e.comment;
+    if (!e.comment.empty())
+      row += std::string(row.size() < 32 ? 32 - row.size() : 1, ' ') + "# " + e.comment;
     s += row + "\n";
   }
   return s;

@@ -22,10 +22,10 @@ struct Pattern {
 struct Expected {
   Pattern mosi;
   Pattern miso;
-  int min_count = 1;   // {min,max}: consecutive datagrams this line may match
-  int max_count = 1;   // -1 = unbounded
-  int line = 0;        // 1-based line in the file
-  std::string comment; // text after '#'
+  int min_count = 1;    // {min,max}: consecutive datagrams this line may match
+  int max_count = 1;    // -1 = unbounded
+  int line = 0;         // 1-based line in the file
+  std::string comment;  // text after '#'
 };
 
 // "0x1A000123", "0x03xxxxxx", "0x03??????", "-"; false if malformed.

@@ -8,12 +8,29 @@
 namespace host::spi {
 namespace {
 
-bool is_tmc_word(const Frame& f) { return f.bit_count == 32 && f.has_mosi; }
+bool is_tmc_word(const Frame& f) {
+  return f.bit_count == 32 && f.has_mosi;
+}
 
 std::string flags_text(uint32_t flags) {
   std::string s;
   for (const auto& n : flag_names(flags)) s += (s.empty() ? "" : ",") + n;
   return s;
+}
+
+// For a ~ step: the fields whose captured value differs from the expected one, when the
+// expected word is fully given ("  <> expected clk2_div=6").
+std::string changed_fields(const Frame& f, const Expected& e) {
+  if (!is_tmc_word(f) || e.mosi.bits != 32 || e.mosi.mask != 0xFFFFFFFFu || f.mosi == e.mosi.value)
+    return "";
+  Tmc428Datagram got = decode_tmc428(static_cast<uint32_t>(f.mosi), false, 0);
+  Tmc428Datagram want = decode_tmc428(static_cast<uint32_t>(e.mosi.value), false, 0);
+  std::vector<Field> differ;
+  for (const Field& w : want.fields)
+    for (const Field& g : got.fields)
+      if (g.name == w.name && (g.value != w.value || g.text != w.text)) differ.push_back(w);
+  if (differ.empty()) return "  <> expected " + hex_word(e.mosi.value, 32);
+  return "  <> expected " + fields_text(differ);
 }
 
 }  // namespace
@@ -32,8 +49,8 @@ std::string time_us(int64_t ps) {
 
 std::string describe_tmc428(const Frame& f) {
   if (!is_tmc_word(f)) return "";
-  Tmc428Datagram d = decode_tmc428(static_cast<uint32_t>(f.mosi), f.has_miso,
-                                   static_cast<uint32_t>(f.miso));
+  Tmc428Datagram d =
+      decode_tmc428(static_cast<uint32_t>(f.mosi), f.has_miso, static_cast<uint32_t>(f.miso));
   std::string s = std::string(d.read ? "R " : "W ") + d.reg;
   std::string fields = fields_text(d.fields);
   if (!fields.empty()) s += " " + fields;
@@ -47,13 +64,14 @@ std::string describe_tmc428(const Frame& f) {
 }
 
 std::string decode_text(const DecodeInfo& info, const std::vector<Frame>& frames, bool raw) {
-  std::string out = fmt::format(
-      "# {} ({}): {} datagrams, mode {}, {} bits, CS={} SCK={} MOSI={} MISO={}", info.source,
-      info.format, frames.size(), info.mode, info.bits == 0 ? std::string("any") : std::to_string(info.bits),
-      info.channel_names.size() > 0 ? info.channel_names[0] : "-",
-      info.channel_names.size() > 1 ? info.channel_names[1] : "-",
-      info.channel_names.size() > 2 ? info.channel_names[2] : "-",
-      info.channel_names.size() > 3 ? info.channel_names[3] : "-");
+  std::string out =
+      fmt::format("# {} ({}): {} datagrams, mode {}, {} bits, CS={} SCK={} MOSI={} MISO={}",
+                  info.source, info.format, frames.size(), info.mode,
+                  info.bits == 0 ? std::string("any") : std::to_string(info.bits),
+                  info.channel_names.size() > 0 ? info.channel_names[0] : "-",
+                  info.channel_names.size() > 1 ? info.channel_names[1] : "-",
+                  info.channel_names.size() > 2 ? info.channel_names[2] : "-",
+                  info.channel_names.size() > 3 ? info.channel_names[3] : "-");
   if (info.min_pulse_ps > 0) out += ", glitch < " + time_us(info.min_pulse_ps) + " us";
   out += "\n";
   out += fmt::format("# {:>4} {:>14} {:>4} {:<10} {:<10} {}\n", "n", "time_us", "bits", "mosi",
@@ -106,14 +124,16 @@ nlohmann::json decode_json(const DecodeInfo& info, const std::vector<Frame>& fra
     fr["error"] = frame_is_error(f);
     if (frame_is_error(f)) ++errors;
     if (!raw && is_tmc_word(f)) {
-      Tmc428Datagram d = decode_tmc428(static_cast<uint32_t>(f.mosi), f.has_miso,
-                                       static_cast<uint32_t>(f.miso));
+      Tmc428Datagram d =
+          decode_tmc428(static_cast<uint32_t>(f.mosi), f.has_miso, static_cast<uint32_t>(f.miso));
       fr["register"] = d.reg;
       fr["rw"] = d.read ? "R" : "W";
       nlohmann::json fields = nlohmann::json::object();
       for (const Field& x : d.fields) {
-        if (!x.text.empty()) fields[x.name] = x.text;
-        else fields[x.name] = x.value;
+        if (!x.text.empty())
+          fields[x.name] = x.text;
+        else
+          fields[x.name] = x.value;
       }
       fr["fields"] = fields;
       if (f.has_miso) {
@@ -123,8 +143,8 @@ nlohmann::json decode_json(const DecodeInfo& info, const std::vector<Frame>& fra
     }
     j["frames"].push_back(fr);
   }
-  j["summary"] = {{"frames", frames.size()}, {"errors", errors},
-                  {"empty_periods", info.empty_periods}};
+  j["summary"] = {
+      {"frames", frames.size()}, {"errors", errors}, {"empty_periods", info.empty_periods}};
   return j;
 }
 
@@ -159,6 +179,7 @@ std::string diff_text(const std::vector<Frame>& frames, const std::vector<Expect
     } else if (e && !e->comment.empty()) {
       what += e->comment;
     }
+    if (names && s.mark == Mark::kChanged && f && e) what += changed_fields(*f, *e);
     if (f && f->flags) what += " !" + flags_text(f->flags);
     out += fmt::format("{} {:>14} {:<22} {:<22} {}\n", static_cast<char>(s.mark),
                        f ? time_us(f->start_ps) : "", cap, exp, what);
@@ -170,8 +191,7 @@ std::string diff_text(const std::vector<Frame>& frames, const std::vector<Expect
 
 std::string diff_verdict(const DiffResult& d, size_t frames, size_t expected) {
   if (d.same())
-    return fmt::format("MATCH: {} captured datagrams fit all {} expected lines", frames,
-                       expected);
+    return fmt::format("MATCH: {} captured datagrams fit all {} expected lines", frames, expected);
   return fmt::format(
       "DIFFER: {} equal, {} changed (~), {} missing (-), {} extra (+); {} captured, {} expected"
       "{}",
@@ -201,8 +221,8 @@ nlohmann::json diff_json(const std::vector<Frame>& frames, const std::vector<Exp
     }
     j["steps"].push_back(x);
   }
-  j["counts"] = {{"equal", d.equal}, {"changed", d.changed}, {"missing", d.missing},
-                 {"extra", d.extra}};
+  j["counts"] = {
+      {"equal", d.equal}, {"changed", d.changed}, {"missing", d.missing}, {"extra", d.extra}};
   j["notes"] = d.notes;
   j["match"] = d.same();
   j["verdict"] = diff_verdict(d, frames.size(), expected.size());

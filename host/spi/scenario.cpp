@@ -17,7 +17,9 @@ bool live_register(uint8_t address_byte) {
 }
 
 // Driver-chain answer words are polled until the chip has them: any number of reads.
-bool polled_register(uint8_t address_byte) { return address_byte == 0x61 || address_byte == 0x63; }
+bool polled_register(uint8_t address_byte) {
+  return address_byte == 0x61 || address_byte == 0x63;
+}
 
 }  // namespace
 

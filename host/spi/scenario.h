@@ -3,8 +3,9 @@
 #ifndef HOST_SPI_SCENARIO_H
 #define HOST_SPI_SCENARIO_H
 
-#include <string>  // std::string
-#include <vector>  // std::vector
+#include <cstdint>  // uint32_t
+#include <string>   // std::string
+#include <vector>   // std::vector
 
 #include "host/spi/capture.h"  // Error
 #include "host/spi/golden.h"   // Expected
@@ -21,6 +22,11 @@ struct Exchange {
 // the scenario is unknown or its parts are not in this build.
 Error record_scenario(const std::string& name, const std::string& job_file,
                       std::vector<Exchange>* out);
+
+// Writes the scenario as the fake SPI recorder's VCD (CS, SCK, MOSI, MISO; mode 3): what a
+// logic analyser on a correct board would show, for trying out `spi decode` / `spi diff`.
+Error write_scenario_vcd(const std::string& name, const std::string& job_file,
+                         const std::string& path);
 
 // Which scenarios this build can record ("init jog"), for --help.
 std::string available_scenarios();

@@ -26,10 +26,14 @@ uint64_t parse_rate_hz(const std::string& text) {
   if (end == s || !(v > 0)) return 0;
   std::string unit = trim(end);
   double mul = 1;
-  if (unit == "kHz") mul = 1e3;
-  else if (unit == "MHz") mul = 1e6;
-  else if (unit == "GHz") mul = 1e9;
-  else if (unit != "Hz" && !unit.empty()) return 0;
+  if (unit == "kHz")
+    mul = 1e3;
+  else if (unit == "MHz")
+    mul = 1e6;
+  else if (unit == "GHz")
+    mul = 1e9;
+  else if (unit != "Hz" && !unit.empty())
+    return 0;
   double hz = v * mul;
   if (hz < 1 || hz > 1e12) return 0;
   return static_cast<uint64_t>(hz + 0.5);

@@ -7,9 +7,9 @@ namespace host::spi {
 namespace {
 
 const char* const kMotorRegs[16] = {
-    "x_target", "x_actual",  "v_min",        "v_max",     "v_target",        "v_actual",
-    "a_max",    "a_actual",  "current_scale", "pmul_pdiv", "ref_conf_mode",  "interrupt",
-    "dividers", "dx_ref_tolerance", "x_latched", "unused15"};
+    "x_target", "x_actual",         "v_min",         "v_max",     "v_target",      "v_actual",
+    "a_max",    "a_actual",         "current_scale", "pmul_pdiv", "ref_conf_mode", "interrupt",
+    "dividers", "dx_ref_tolerance", "x_latched",     "unused15"};
 const char* const kCommonRegs[16] = {
     "datagram_low_word", "datagram_high_word", "cover_pos_len", "cover_datagram",
     "unused_c4",         "unused_c5",          "unused_c6",     "unused_c7",
@@ -22,14 +22,16 @@ int64_t sign_extend(uint32_t v, int bits) {
   return static_cast<int64_t>(static_cast<int32_t>((v ^ m) - m));
 }
 
-uint32_t bits_of(uint32_t v, int hi, int lo) { return (v >> lo) & ((1u << (hi - lo + 1)) - 1); }
+uint32_t bits_of(uint32_t v, int hi, int lo) {
+  return (v >> lo) & ((1u << (hi - lo + 1)) - 1);
+}
 
 // Driver-chain RAM entry: primary signal code + NxM flag.
 std::string chain_entry(uint32_t e) {
-  static const char* const kCodes[] = {
-      "DAC_A0", "DAC_A1", "DAC_A2", "DAC_A3", "DAC_A4", "DAC_A5", "PH_A",  "FD_A",
-      "DAC_B0", "DAC_B1", "DAC_B2", "DAC_B3", "DAC_B4", "DAC_B5", "PH_B",  "FD_B",
-      "ZERO",   "ONE",    "DIR",    "STEP"};
+  static const char* const kCodes[] = {"DAC_A0", "DAC_A1", "DAC_A2", "DAC_A3", "DAC_A4",
+                                       "DAC_A5", "PH_A",   "FD_A",   "DAC_B0", "DAC_B1",
+                                       "DAC_B2", "DAC_B3", "DAC_B4", "DAC_B5", "PH_B",
+                                       "FD_B",   "ZERO",   "ONE",    "DIR",    "STEP"};
   uint32_t code = e & 0x1F;
   std::string s = code < 20 ? kCodes[code] : "unused" + std::to_string(code);
   if (e & 0x20) s += "+NxM";
@@ -51,7 +53,7 @@ std::string tmc428_register_name(uint8_t a) {
 }
 
 std::vector<std::string> tmc428_status_bits(uint8_t s) {
-  static const char* const kBits[8] = {"INT", "CDGW", "RS3", "xEQt3",
+  static const char* const kBits[8] = {"INT", "CDGW",  "RS3", "xEQt3",
                                        "RS2", "xEQt2", "RS1", "xEQt1"};
   std::vector<std::string> out;
   for (int i = 0; i < 8; ++i)
@@ -86,17 +88,25 @@ Tmc428Datagram decode_tmc428(uint32_t mosi, bool has_miso, uint32_t miso) {
   int idx = (a >> 1) & 0xF;
   if (smda == 3) {
     switch (idx) {
-      case 0: case 1: add("data", v, true); break;
+      case 0:
+      case 1:
+        add("data", v, true);
+        break;
       case 2:
         add("cover_pos", bits_of(v, 13, 8));
         add("cover_len", bits_of(v, 4, 0));
         add("cover_waiting", bits_of(v, 23, 23));
         break;
-      case 3: add("cover_datagram", v, true); break;
+      case 3:
+        add("cover_datagram", v, true);
+        break;
       case 14:
-        add("r1", bits_of(v, 0, 0)); add("l1", bits_of(v, 1, 1));
-        add("r2", bits_of(v, 2, 2)); add("l2", bits_of(v, 3, 3));
-        add("r3", bits_of(v, 4, 4)); add("l3", bits_of(v, 5, 5));
+        add("r1", bits_of(v, 0, 0));
+        add("l1", bits_of(v, 1, 1));
+        add("r2", bits_of(v, 2, 2));
+        add("l2", bits_of(v, 3, 3));
+        add("r3", bits_of(v, 4, 4));
+        add("l3", bits_of(v, 5, 5));
         break;
       case 15:
         add("lsmd", bits_of(v, 1, 0));
@@ -111,23 +121,42 @@ Tmc428Datagram decode_tmc428(uint32_t mosi, bool has_miso, uint32_t miso) {
         add("refmux", bits_of(v, 20, 20));
         add("mot1r", bits_of(v, 21, 21));
         break;
-      default: if (v) add("data", v, true); break;
+      default:
+        if (v) add("data", v, true);
+        break;
     }
     return d;
   }
   switch (idx) {
-    case 0: case 1: case 14: add("x", sign_extend(v, 24)); break;
-    case 2: case 3: add("v", bits_of(v, 10, 0)); break;
-    case 4: case 5: add("v", sign_extend(v, 12)); break;
-    case 6: add("a", bits_of(v, 10, 0)); break;
-    case 7: add("a", sign_extend(v, 12)); break;
+    case 0:
+    case 1:
+    case 14:
+      add("x", sign_extend(v, 24));
+      break;
+    case 2:
+    case 3:
+      add("v", bits_of(v, 10, 0));
+      break;
+    case 4:
+    case 5:
+      add("v", sign_extend(v, 12));
+      break;
+    case 6:
+      add("a", bits_of(v, 10, 0));
+      break;
+    case 7:
+      add("a", sign_extend(v, 12));
+      break;
     case 8:
       add("is_agtat", bits_of(v, 22, 20));
       add("is_aleat", bits_of(v, 18, 16));
       add("is_v0", bits_of(v, 14, 12));
       add("a_threshold", bits_of(v, 10, 0));
       break;
-    case 9: add("pmul", bits_of(v, 15, 8)); add("pdiv", bits_of(v, 3, 0)); break;
+    case 9:
+      add("pmul", bits_of(v, 15, 8));
+      add("pdiv", bits_of(v, 3, 0));
+      break;
     case 10: {
       static const char* const kModes[] = {"RAMP", "SOFT", "VELOCITY", "HOLD"};
       d.fields.push_back({"ramp_mode", v & 3, false, kModes[v & 3]});
@@ -135,14 +164,21 @@ Tmc428Datagram decode_tmc428(uint32_t mosi, bool has_miso, uint32_t miso) {
       add("lp", bits_of(v, 16, 16));
       break;
     }
-    case 11: add("int_mask", bits_of(v, 15, 8), true); add("int_flags", bits_of(v, 7, 0), true); break;
+    case 11:
+      add("int_mask", bits_of(v, 15, 8), true);
+      add("int_flags", bits_of(v, 7, 0), true);
+      break;
     case 12:
       add("pulse_div", bits_of(v, 15, 12));
       add("ramp_div", bits_of(v, 11, 8));
       add("usrs", bits_of(v, 2, 0));
       break;
-    case 13: add("dx_ref_tolerance", bits_of(v, 11, 0)); break;
-    default: if (v) add("data", v, true); break;
+    case 13:
+      add("dx_ref_tolerance", bits_of(v, 11, 0));
+      break;
+    default:
+      if (v) add("data", v, true);
+      break;
   }
   return d;
 }
@@ -156,8 +192,10 @@ std::string fields_text(const std::vector<Field>& fields) {
       continue;
     }
     char buf[40];
-    if (f.hex) std::snprintf(buf, sizeof buf, "=0x%llX", static_cast<unsigned long long>(f.value));
-    else std::snprintf(buf, sizeof buf, "=%lld", static_cast<long long>(f.value));
+    if (f.hex)
+      std::snprintf(buf, sizeof buf, "=0x%llX", static_cast<unsigned long long>(f.value));
+    else
+      std::snprintf(buf, sizeof buf, "=%lld", static_cast<long long>(f.value));
     s += f.name + buf;
   }
   return s;

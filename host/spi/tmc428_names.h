@@ -14,7 +14,7 @@ namespace host::spi {
 struct Field {
   std::string name;
   int64_t value;
-  bool hex;         // print as hex (masks, raw codes)
+  bool hex;          // print as hex (masks, raw codes)
   std::string text;  // symbolic value when there is one ("VELOCITY", "DAC_A5+NxM")
 };
 

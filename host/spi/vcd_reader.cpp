@@ -44,7 +44,7 @@ Error parse_vcd(const std::string& text, Trace* out) {
   out->format = "vcd";
   std::istringstream in(text);
   std::string tok;
-  int64_t scale_ps = 1000;  // VCD default is 1 ns when $timescale is missing
+  int64_t scale_ps = 1000;                   // VCD default is 1 ns when $timescale is missing
   std::unordered_map<std::string, int> ids;  // identifier code -> channel (-1: not 1-bit)
   bool in_defs = true;
   bool have_time = false;
@@ -89,6 +89,12 @@ Error parse_vcd(const std::string& text, Trace* out) {
         return {"E_FORMAT", "VCD: value changes before $enddefinitions"};
       return {"E_FORMAT", "VCD: unexpected '" + tok.substr(0, 20) + "' in the header"};
     }
+    // A file cut off while being written ends in a partial token: stop there.
+    std::streampos after = in.tellg();
+    std::string probe;
+    bool last_token = !(in >> probe);
+    in.clear();
+    in.seekg(after);
     char c = tok[0];
     if (tok == "$comment") {
       while (in >> tok && tok != "$end") {
@@ -99,8 +105,10 @@ Error parse_vcd(const std::string& text, Trace* out) {
     if (c == '#') {
       char* endp = nullptr;
       long long t = std::strtoll(tok.c_str() + 1, &endp, 10);
-      if (tok.size() < 2 || *endp != '\0' || t < 0)
+      if (tok.size() < 2 || *endp != '\0' || t < 0) {
+        if (last_token) break;
         return {"E_FORMAT", "VCD: bad timestamp '" + tok.substr(0, 20) + "'"};
+      }
       if (t > std::numeric_limits<int64_t>::max() / scale_ps)
         return {"E_FORMAT", "VCD: timestamp out of range"};
       int64_t t_ps = static_cast<int64_t>(t) * scale_ps;
@@ -117,11 +125,13 @@ Error parse_vcd(const std::string& text, Trace* out) {
       id = tok.substr(1);
     } else if (c == 'b' || c == 'B' || c == 'r' || c == 'R') {
       value = tok.size() > 1 ? tok.back() : '0';  // 1-bit vector "b1 !": its only bit
-      if (!(in >> id)) return {"E_FORMAT", "VCD: vector change without identifier"};
+      if (!(in >> id)) break;                     // cut off after the value
     } else {
+      if (last_token) break;
       return {"E_FORMAT", "VCD: unexpected '" + tok.substr(0, 20) + "'"};
     }
     auto it = ids.find(id);
+    if (it == ids.end() && last_token) break;
     if (it == ids.end()) return {"E_FORMAT", "VCD: change for undeclared identifier '" + id + "'"};
     if (it->second < 0) continue;
     bool high = (value == '1');

@@ -68,8 +68,8 @@ Error unzip_all(const std::string& zip, std::map<std::string, std::string>* memb
     p += 46 + name_len + extra_len + comment_len;
     if (static_cast<uint64_t>(local_at) + 30 > n || le32(zip, local_at) != 0x04034b50u)
       return {"E_FORMAT", "zip: bad local header for '" + name + "'"};
-    uint64_t data_at = static_cast<uint64_t>(local_at) + 30 + le16(zip, local_at + 26) +
-                       le16(zip, local_at + 28);
+    uint64_t data_at =
+        static_cast<uint64_t>(local_at) + 30 + le16(zip, local_at + 26) + le16(zip, local_at + 28);
     if (data_at + csize > n) return {"E_FORMAT", "zip: member '" + name + "' truncated"};
     if (usize > max_member_bytes)
       return {"E_TOO_BIG", "zip: member '" + name + "' is " + std::to_string(usize) + " bytes"};
@@ -81,8 +81,8 @@ Error unzip_all(const std::string& zip, std::map<std::string, std::string>* memb
       if (!inflate_raw(zip.data() + data_at, csize, usize, &data))
         return {"E_FORMAT", "zip: member '" + name + "' does not inflate (corrupt)"};
     } else {
-      return {"E_FORMAT", "zip: member '" + name + "' uses unsupported compression " +
-                              std::to_string(method)};
+      return {"E_FORMAT",
+              "zip: member '" + name + "' uses unsupported compression " + std::to_string(method)};
     }
     (*members)[name] = std::move(data);
   }

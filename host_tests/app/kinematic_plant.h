@@ -18,17 +18,17 @@ namespace fake_app {
 struct PlantAxis {
   uint32_t usteps_per_s_per_unit_q16 = 2500000;  // 10 MHz, pulse_div 2: 38.15 usteps/s
   int16_t max_units = 2047;
-  uint16_t accel_units_per_ms = 13;              // ~194 mm/s^2 at 2560 usteps/mm
-  double limit_left_usteps = -1e12;              // switch active at or below
-  double limit_right_usteps = 1e12;              // switch active at or above
+  uint16_t accel_units_per_ms = 13;  // ~194 mm/s^2 at 2560 usteps/mm
+  double limit_left_usteps = -1e12;  // switch active at or below
+  double limit_right_usteps = 1e12;  // switch active at or above
 };
 
 class KinematicPlant : public hal::MotionAxes {
  public:
   static constexpr int kSubSteps = 10;
   std::array<PlantAxis, 3> axis;
-  std::array<double, 3> pos_usteps{};   // exact position
-  std::array<double, 3> v_actual{};     // native units (fractional, like the chip's 8 bits)
+  std::array<double, 3> pos_usteps{};  // exact position
+  std::array<double, 3> v_actual{};    // native units (fractional, like the chip's 8 bits)
   std::array<int16_t, 3> v_target{};
   bool record = false;
   std::vector<std::array<double, 3>> path;  // positions every sub-step while recording
@@ -47,8 +47,10 @@ class KinematicPlant : public hal::MotionAxes {
         const double dv = axis[i].accel_units_per_ms / double(kSubSteps);
         double v = v_actual[i];
         const double goal = v_target[i];
-        if (v < goal) v = std::min(goal, v + dv);
-        else if (v > goal) v = std::max(goal, v - dv);
+        if (v < goal)
+          v = std::min(goal, v + dv);
+        else if (v > goal)
+          v = std::max(goal, v - dv);
         const double mean = 0.5 * (v + v_actual[i]);
         v_actual[i] = v;
         pos_usteps[i] += mean * axis[i].usteps_per_s_per_unit_q16 / 65536.0 / 1000.0 / kSubSteps;
@@ -100,9 +102,7 @@ class KinematicPlant : public hal::MotionAxes {
   int16_t max_velocity_units(uint8_t a) const override { return axis[a].max_units; }
   uint16_t accel_units_per_ms(uint8_t a) const override { return axis[a].accel_units_per_ms; }
 
-  bool moving() const {
-    return v_actual[0] != 0 || v_actual[1] != 0 || v_actual[2] != 0;
-  }
+  bool moving() const { return v_actual[0] != 0 || v_actual[1] != 0 || v_actual[2] != 0; }
 };
 
 }  // namespace fake_app

@@ -53,9 +53,9 @@ inline double max_contour_error(const std::vector<P3>& path, const std::vector<P
 inline double polyline_length(const std::vector<P3>& line) {
   double len = 0;
   for (size_t i = 1; i < line.size(); ++i) {
-    len += std::sqrt(std::pow(line[i].x - line[i - 1].x, 2) +
-                     std::pow(line[i].y - line[i - 1].y, 2) +
-                     std::pow(line[i].z - line[i - 1].z, 2));
+    len +=
+        std::sqrt(std::pow(line[i].x - line[i - 1].x, 2) + std::pow(line[i].y - line[i - 1].y, 2) +
+                  std::pow(line[i].z - line[i - 1].z, 2));
   }
   return len;
 }
@@ -83,8 +83,8 @@ inline std::vector<P3> star(double cx, double cy, double r, int k) {
 }
 
 inline std::vector<P3> square(double x0, double y0, double side) {
-  return {{x0, y0, 0}, {x0 + side, y0, 0}, {x0 + side, y0 + side, 0}, {x0, y0 + side, 0},
-          {x0, y0, 0}};
+  return {
+      {x0, y0, 0}, {x0 + side, y0, 0}, {x0 + side, y0 + side, 0}, {x0, y0 + side, 0}, {x0, y0, 0}};
 }
 
 // Sine wave y = amp sin(2 pi x / period) over length, sampled every step_um.

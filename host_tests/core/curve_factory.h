@@ -14,8 +14,8 @@
 namespace testcurves {
 
 struct RandomOptions {
-  int degree;                // 1..3, or 0 for random
-  int max_controls;          // up to core::kMaxControlPoints
+  int degree;        // 1..3, or 0 for random
+  int max_controls;  // up to core::kMaxControlPoints
   bool rational;
   uint16_t weight_min_q14;   // inclusive
   uint16_t weight_max_q14;   // inclusive

@@ -2,11 +2,28 @@
 #ifndef HOST_TESTS_CORE_SPLINE_REFERENCE_H
 #define HOST_TESTS_CORE_SPLINE_REFERENCE_H
 
-#include <Eigen/Core>  // Eigen::Vector2d
+#include <Eigen/Core>                 // Eigen::Vector2d
+#include <unsupported/Eigen/Splines>  // Eigen::Spline
 
 #include "firmware/core/spline.h"  // core::Spline
 
 namespace reference {
+
+// A spline converted once to an Eigen homogeneous spline (for loops).
+class Curve {
+ public:
+  explicit Curve(const core::Spline& s);
+  Eigen::Vector2d at(double u) const;
+  Eigen::Vector2d at_span(int span, double t) const;
+  // dP/du at u (quotient rule for rational curves).
+  Eigen::Vector2d derivative(double u) const;
+  // Signed curvature at u (> 0 turning left); polynomial curves only.
+  double curvature(double u) const;
+
+ private:
+  core::Spline spline_;
+  Eigen::Spline<double, 3> eigen_;
+};
 
 // The curve at knot-space parameter u (rational: homogeneous Eigen spline, then divide).
 Eigen::Vector2d point_at(const core::Spline& s, double u);

@@ -94,7 +94,7 @@ TEST(SpscRing, TwoThreadsLoseDoubleOrReorderNothing) {
   // 300000 elements through a 16-slot ring: every one must come out once, in order.
   const uint32_t kCount = 300000;
   core::SpscRing<uint32_t, 16> ring;
-  std::thread producer([&ring, kCount]() {
+  std::thread producer([&ring]() {
     for (uint32_t i = 0; i < kCount;) {
       if (ring.push(i)) {
         ++i;

@@ -63,11 +63,14 @@ inline double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& 
   return (a + s * ab - q).norm();
 }
 
-inline Eigen::Vector2d vec(const core::PointUm& p) { return Eigen::Vector2d(p.x_um, p.y_um); }
+inline Eigen::Vector2d vec(const core::PointUm& p) {
+  return Eigen::Vector2d(p.x_um, p.y_um);
+}
 
 // Real chord error of a run without offset: the true curve (Eigen) sampled densely between
 // the parameters of consecutive points, distance to the straight segment between them.
 inline double max_chord_error_um(const core::Spline& s, const Run& r, int samples = 64) {
+  const reference::Curve curve(s);
   double worst = 0;
   for (size_t i = 1; i < r.points.size(); ++i) {
     const Emitted& a = r.points[i - 1];
@@ -76,7 +79,7 @@ inline double max_chord_error_um(const core::Spline& s, const Run& r, int sample
     const double ub = reference::span_u(s, b.span, b.t);
     for (int k = 1; k < samples; ++k) {
       const double u = ua + (ub - ua) * k / samples;
-      const Eigen::Vector2d q = reference::point_at(s, u);
+      const Eigen::Vector2d q = curve.at(u);
       worst = std::max(worst, segment_distance(vec(a.p), vec(b.p), q));
     }
   }

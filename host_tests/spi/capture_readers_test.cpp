@@ -39,7 +39,7 @@ TEST(VcdReader, TimeGoingBackwardsIsAFormatError) {
 }
 
 TEST(VcdReader, UndeclaredIdentifierIsAFormatError) {
-  std::string vcd = "$var wire 1 ! A $end\n$enddefinitions $end\n#0 1?\n";
+  std::string vcd = "$var wire 1 ! A $end\n$enddefinitions $end\n#0 1?\n#5\n";
   Trace t;
   EXPECT_EQ(parse_vcd(vcd, &t).code, "E_FORMAT");
 }
@@ -118,6 +118,20 @@ TEST(SaleaeSpiCsv, Logic2EnableDisableRowsBoundADatagram) {
 TEST(LoadCapture, MissingFileIsEOpen) {
   Capture cap;
   EXPECT_EQ(load_capture("/nonexistent/capture.vcd", &cap).code, "E_OPEN");
+}
+
+TEST(LoadCapture, DirectoryIsEOpen) {
+  Capture cap;
+  EXPECT_EQ(load_capture(::testing::TempDir(), &cap).code, "E_OPEN");
+}
+
+TEST(VcdReader, FileCutInsideItsLastTokenIsReadUpToTheCut) {
+  // "#1" + "5" lost: a capture tool stopped mid-write.
+  std::string vcd = "$var wire 1 ! CS $end\n$enddefinitions $end\n#0 1!\n#10 0!\n#";
+  Trace t;
+  ASSERT_TRUE(parse_vcd(vcd, &t).ok());
+  EXPECT_EQ(t.channels[0].toggles_ps, (std::vector<int64_t>{10000}));
+  EXPECT_EQ(t.end_ps, 10000);
 }
 
 TEST(LoadCapture, EmptyAndUnknownInputAreEFormat) {

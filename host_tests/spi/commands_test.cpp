@@ -14,9 +14,9 @@ using spi_test::Word;
 
 namespace {
 
-const std::vector<Word> kWords = {{0x80000510, 0}, {0x82000304, 0}, {0x7E010702, 0x15000000},
-                                  {0x08000064, 0x15000000}, {0x03000000, 0x15000123},
-                                  {0x28000F9C, 0x15000000}};
+const std::vector<Word> kWords = {{0x80000510, 0},          {0x82000304, 0},
+                                  {0x7E010702, 0x15000000}, {0x08000064, 0x15000000},
+                                  {0x03000000, 0x15000123}, {0x28000F9C, 0x15000000}};
 const char* kGolden =
     "# test golden\n0x80000510\n0x82000304\n0x7E010702   # SMGP\n0x08000064\n"
     "0x03000000 0xxxxxxxxx # x_actual read\n0x28000F9C\n";
@@ -96,8 +96,9 @@ TEST(SpiDiff, UnreadableCaptureIsExitTwo) {
 }
 
 TEST(SpiDiff, CaptureWithoutDatagramsIsExitTwo) {
-  std::string vcd = "$var wire 1 c CS $end\n$var wire 1 k SCK $end\n$var wire 1 o MOSI $end\n"
-                    "$enddefinitions $end\n#0 1c 1k 0o\n#100\n";
+  std::string vcd =
+      "$var wire 1 c CS $end\n$var wire 1 k SCK $end\n$var wire 1 o MOSI $end\n"
+      "$enddefinitions $end\n#0 1c 1k 0o\n#100\n";
   DiffRun r = diff(vcd);
   EXPECT_EQ(r.rc, kExitUnusable);
   EXPECT_NE(r.err.find("E_NO_FRAMES"), std::string::npos);

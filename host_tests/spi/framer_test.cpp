@@ -11,8 +11,10 @@ using spi_test::Word;
 
 namespace {
 
-const std::vector<Word> kWords = {{0x80000510, 0x00000000}, {0x7E010702, 0x15000000},
-                                  {0x08000FFF, 0x14000000}, {0x03000000, 0x15FFFF38}};
+const std::vector<Word> kWords = {{0x80000510, 0x00000000},
+                                  {0x7E010702, 0x15000000},
+                                  {0x08000FFF, 0x14000000},
+                                  {0x03000000, 0x15FFFF38}};
 
 TEST(Framer, Mode3DatagramsDecodeToTheWordsSent) {
   Synth s;
@@ -84,7 +86,7 @@ TEST(Framer, MinPulseZeroTurnsTheGlitchCheckOff) {
 
 TEST(Framer, CaptureEndingInsideADatagramFlagsItCutAtEnd) {
   Synth s;
-  s.vcd(kWords);  // learn the frame times
+  s.vcd(kWords);                                       // learn the frame times
   s.cut_at_ns = s.frame_start_ns[3] + 800 + 800 * 10;  // ten bits into the last datagram
   FramerResult r = spi_test::frame_vcd(s.vcd(kWords));
   ASSERT_EQ(r.frames.size(), 4u);

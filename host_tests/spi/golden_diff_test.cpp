@@ -60,7 +60,7 @@ TEST(Golden, MalformedLineIsEGoldenWithItsNumber) {
   Error e = parse_golden("0x12345678\n0x12G45678\n", &out);
   EXPECT_EQ(e.code, "E_GOLDEN");
   EXPECT_NE(e.message.find("line 2"), std::string::npos);
-  EXPECT_EQ(parse_golden("0x12 0x1234\n", &out).code, "E_GOLDEN");   // widths differ
+  EXPECT_EQ(parse_golden("0x12 0x1234\n", &out).code, "E_GOLDEN");  // widths differ
   EXPECT_EQ(parse_golden("0x12345678 {3,1}\n", &out).code, "E_GOLDEN");
   EXPECT_EQ(parse_golden("0x1 0x1 0x1\n", &out).code, "E_GOLDEN");
 }
@@ -94,8 +94,7 @@ TEST(Diff, SameAddressDifferentDataIsASubstitution) {
 TEST(Diff, MissingAndExtraDatagramsAreMinusAndPlus) {
   auto g = golden("0x80000510\n0x82000304\n0x7E010702\n");
   DiffResult d;
-  ASSERT_TRUE(
-      diff_datagrams({word(0x80000510), word(0x7E010702), word(0x12000000)}, g, &d).ok());
+  ASSERT_TRUE(diff_datagrams({word(0x80000510), word(0x7E010702), word(0x12000000)}, g, &d).ok());
   EXPECT_EQ(marks(d), "=-=+");
   EXPECT_EQ(d.steps[1].expected, 1);
   EXPECT_EQ(d.steps[3].frame, 2);
@@ -112,8 +111,8 @@ TEST(Diff, WildcardDataMatchesAnyReadBack) {
 
 TEST(Diff, RepeatedPollMatchesAnyNumberOfReads) {
   auto g = golden("0x60000000\n0x61000000 {1,}\n0x63000000\n");
-  std::vector<Frame> f = {word(0x60000000), word(0x61000000), word(0x61000000),
-                          word(0x61000000), word(0x63000000)};
+  std::vector<Frame> f = {word(0x60000000), word(0x61000000), word(0x61000000), word(0x61000000),
+                          word(0x63000000)};
   DiffResult d;
   ASSERT_TRUE(diff_datagrams(f, g, &d).ok());
   EXPECT_EQ(marks(d), "=====");
@@ -123,8 +122,7 @@ TEST(Diff, RepeatedPollMatchesAnyNumberOfReads) {
 TEST(Diff, RepeatsBeyondTheMaximumAreExtra) {
   auto g = golden("0x61000000 {1,2}\n");
   DiffResult d;
-  ASSERT_TRUE(
-      diff_datagrams({word(0x61000000), word(0x61000000), word(0x61000000)}, g, &d).ok());
+  ASSERT_TRUE(diff_datagrams({word(0x61000000), word(0x61000000), word(0x61000000)}, g, &d).ok());
   EXPECT_EQ(marks(d), "==+");
 }
 
@@ -136,6 +134,27 @@ TEST(Diff, FrameWithWrongBitCountNeverMatchesButShowsAsChangedAtItsAddress) {
   DiffResult d;
   ASSERT_TRUE(diff_datagrams({f}, g, &d).ok());
   EXPECT_EQ(marks(d), "~");
+}
+
+TEST(Diff, WithinIgnoresDatagramsBeforeAndAfterTheExpectedOnes) {
+  auto g = golden("0x80000510\n0x7E010702\n");
+  std::vector<Frame> f = {word(0x03000000), word(0x80000510), word(0x7E010702), word(0x03000000),
+                          word(0x08000010)};
+  DiffResult d;
+  ASSERT_TRUE(diff_datagrams(f, g, &d, true).ok());
+  EXPECT_EQ(marks(d), "==");
+  EXPECT_EQ(d.ignored_before, 1);
+  EXPECT_EQ(d.ignored_after, 2);
+  ASSERT_TRUE(diff_datagrams(f, g, &d, false).ok());
+  EXPECT_EQ(marks(d), "+==++");
+}
+
+TEST(Diff, WithinStillReportsDifferencesInside) {
+  auto g = golden("0x80000510\n0x82000304\n0x7E010702\n");
+  std::vector<Frame> f = {word(0x03000000), word(0x80000510), word(0x7E010702)};
+  DiffResult d;
+  ASSERT_TRUE(diff_datagrams(f, g, &d, true).ok());
+  EXPECT_EQ(marks(d), "=-=");
 }
 
 TEST(Diff, SwappingMosiAndMisoExchangesThem) {

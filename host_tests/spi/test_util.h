@@ -21,8 +21,7 @@ inline std::string temp_file(const std::string& name, const std::string& text) {
 }
 
 // Frames a VCD text with the given options; fails the test on a reader error.
-inline host::spi::FramerResult frame_vcd(const std::string& vcd,
-                                         host::spi::FramerOptions o = {}) {
+inline host::spi::FramerResult frame_vcd(const std::string& vcd, host::spi::FramerOptions o = {}) {
   host::spi::Trace t;
   host::spi::Error e = host::spi::parse_vcd(vcd, &t);
   EXPECT_TRUE(e.ok()) << e.code << " " << e.message;

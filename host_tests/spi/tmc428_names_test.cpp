@@ -57,8 +57,8 @@ TEST(Tmc428Names, RampModeAndRefConf) {
 TEST(Tmc428Names, DriverChainEntriesAreNamed) {
   Tmc428Datagram d = decode_tmc428(0x8A002E0A, false, 0);
   ASSERT_EQ(d.fields.size(), 2u);
-  EXPECT_EQ(d.fields[0].text, "DAC_B2");      // even entry 0x0A
-  EXPECT_EQ(d.fields[1].text, "PH_B+NxM");    // odd entry 0x2E
+  EXPECT_EQ(d.fields[0].text, "DAC_B2");    // even entry 0x0A
+  EXPECT_EQ(d.fields[1].text, "PH_B+NxM");  // odd entry 0x2E
 }
 
 TEST(Tmc428Names, StatusBitsInDatasheetOrder) {

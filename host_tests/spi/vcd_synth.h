@@ -18,14 +18,14 @@ struct Word {
 struct Synth {
   int mode = 3;
   int bits = 32;
-  int64_t half_ns = 400;      // SCK half period (1.25 MHz)
-  int64_t setup_ns = 800;     // CS fall to first edge, last edge to CS rise
-  int64_t gap_ns = 5000;      // CS high between datagrams
-  int drop_bit_frame = -1;    // leave out the clock pulse of bit drop_bit in this frame
+  int64_t half_ns = 400;    // SCK half period (1.25 MHz)
+  int64_t setup_ns = 800;   // CS fall to first edge, last edge to CS rise
+  int64_t gap_ns = 5000;    // CS high between datagrams
+  int drop_bit_frame = -1;  // leave out the clock pulse of bit drop_bit in this frame
   int drop_bit = 0;
-  int glitch_frame = -1;      // add a 20 ns pulse in the middle of bit glitch_bit
+  int glitch_frame = -1;  // add a 20 ns pulse in the middle of bit glitch_bit
   int glitch_bit = 0;
-  int64_t cut_at_ns = -1;     // end the capture here
+  int64_t cut_at_ns = -1;  // end the capture here
   bool swap_data_names = false;
   const char* cs_name = "CS";
   const char* sck_name = "SCK";

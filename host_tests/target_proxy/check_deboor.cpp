@@ -22,6 +22,11 @@ uint8_t g_curve_index = 0xFF;
 
 }  // namespace
 
+core::Spline* scratch_spline() {
+  g_curve_index = 0xFF;  // no longer holds a reference curve
+  return &g_curve;
+}
+
 #ifdef PROXY_HAVE_REFERENCE
 
 const core::Spline& reference_curve(uint8_t index) {
@@ -32,7 +37,9 @@ const core::Spline& reference_curve(uint8_t index) {
   return g_curve;
 }
 
-uint8_t reference_curve_count() { return kRefCurveCount; }
+uint8_t reference_curve_count() {
+  return kRefCurveCount;
+}
 
 void run_deboor_checks() {
   begin_group(PROXY_STR("deboor_vs_eigen"));
@@ -62,16 +69,20 @@ void run_deboor_checks() {
     if (dx > worst_q6) worst_q6 = dx;
     if (dy > worst_q6) worst_q6 = dy;
   }
-  PROXY_PRINTF("measure De Boor worst |error| vs Eigen: %ld/64 um over %u points\n",
-               (long)worst_q6, (unsigned)kRefPointCount);
+  PROXY_PRINTF("measure De Boor worst |error| vs Eigen: %ld/64 um over %u points\n", (long)worst_q6,
+               (unsigned)kRefPointCount);
   end_group();
 }
 
 #else
 
-const core::Spline& reference_curve(uint8_t) { return g_curve; }
+const core::Spline& reference_curve(uint8_t) {
+  return g_curve;
+}
 
-uint8_t reference_curve_count() { return 0; }
+uint8_t reference_curve_count() {
+  return 0;
+}
 
 void run_deboor_checks() {
   PROXY_PRINTF("group deboor_vs_eigen: skipped (no reference data; build via the host tree)\n");

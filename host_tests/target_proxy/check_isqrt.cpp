@@ -10,7 +10,7 @@ namespace proxy {
 
 namespace {
 
-const uint16_t kStride = 7;            // k = 1, 8, 15, ... plus 65535
+const uint16_t kStride = 7;  // k = 1, 8, 15, ... plus 65535
 const uint16_t kRandomInputs = 4096;
 
 // True when r == floor(sqrt(n)): r^2 <= n < (r + 1)^2, written without overflow.

@@ -29,7 +29,9 @@ struct CurveSpec {
   std::vector<double> weights;  // empty: not rational
 };
 
-uint16_t weight_q14(double w) { return static_cast<uint16_t>(std::lround(w * 16384.0)); }
+uint16_t weight_q14(double w) {
+  return static_cast<uint16_t>(std::lround(w * 16384.0));
+}
 
 std::vector<CurveSpec> curve_specs() {
   const double r2 = std::sqrt(0.5);
@@ -37,14 +39,24 @@ std::vector<CurveSpec> curve_specs() {
   c.push_back({"cubic, uniform clamped knots, +-100 mm",
                3,
                {0, 0, 0, 0, 1000, 2000, 3000, 4000, 4000, 4000, 4000},
-               {{0, 0}, {20000, 50000}, {60000, -30000}, {100000, 80000}, {140000, 10000},
-                {170000, -60000}, {200000, 0}},
+               {{0, 0},
+                {20000, 50000},
+                {60000, -30000},
+                {100000, 80000},
+                {140000, 10000},
+                {170000, -60000},
+                {200000, 0}},
                {}});
   c.push_back({"cubic, non-uniform knots, coordinates at the +-1 m limit",
                3,
                {0, 0, 0, 0, 7, 30, 31, 100, 100, 100, 100},
-               {{-1000000, -1000000}, {-400000, 900000}, {500000, -950000}, {1000000, 1000000},
-                {-1000000, 500000}, {999999, -999999}, {0, 0}},
+               {{-1000000, -1000000},
+                {-400000, 900000},
+                {500000, -950000},
+                {1000000, 1000000},
+                {-1000000, 500000},
+                {999999, -999999},
+                {0, 0}},
                {}});
   c.push_back({"quadratic, 5 control points",
                2,
@@ -59,20 +71,26 @@ std::vector<CurveSpec> curve_specs() {
   c.push_back({"rational quadratic full circle, r = 50 mm",
                2,
                {0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4},
-               {{150000, 100000}, {150000, 150000}, {100000, 150000}, {50000, 150000},
-                {50000, 100000}, {50000, 50000}, {100000, 50000}, {150000, 50000},
+               {{150000, 100000},
+                {150000, 150000},
+                {100000, 150000},
+                {50000, 150000},
+                {50000, 100000},
+                {50000, 50000},
+                {100000, 50000},
+                {150000, 50000},
                 {150000, 100000}},
                {1, r2, 1, r2, 1, r2, 1, r2, 1}});
-  c.push_back({"cubic with a corner (interior knot of multiplicity 3)",
-               3,
-               {0, 0, 0, 0, 500, 500, 500, 1000, 1000, 1000, 1000},
-               {{0, 0}, {10000, 0}, {20000, 0}, {30000, 0}, {30000, 10000}, {30000, 20000},
-                {30000, 30000}},
-               {}});
+  c.push_back(
+      {"cubic with a corner (interior knot of multiplicity 3)",
+       3,
+       {0, 0, 0, 0, 500, 500, 500, 1000, 1000, 1000, 1000},
+       {{0, 0}, {10000, 0}, {20000, 0}, {30000, 0}, {30000, 10000}, {30000, 20000}, {30000, 30000}},
+       {}});
   c.push_back({"cubic, knots near 1e9 with spans of 3 and 300 units",
                3,
-               {1000000000, 1000000000, 1000000000, 1000000000, 1000000003, 1000000303,
-                1000000303, 1000000303, 1000000303},
+               {1000000000, 1000000000, 1000000000, 1000000000, 1000000003, 1000000303, 1000000303,
+                1000000303, 1000000303},
                {{5000, 5000}, {25000, -15000}, {45000, 35000}, {65000, 5000}, {85000, 25000}},
                {}});
   return c;
@@ -114,7 +132,9 @@ Eigen::Vector2d eigen_point(const core::Spline& s, double u) {
   return Eigen::Vector2d(p(0) / p(2), p(1) / p(2));
 }
 
-long to_q6(double um) { return std::lround(um * 64.0); }
+long to_q6(double um) {
+  return std::lround(um * 64.0);
+}
 
 core::PointUm to_um(const Eigen::Vector2d& p) {
   core::PointUm q;
@@ -194,8 +214,7 @@ int main(int argc, char** argv) {
     }
     const Eigen::Vector2d end = eigen_point(s, s.knot[s.control_count]);
     rows.push_back("  {" + std::to_string(c) + ", " + std::to_string(last_span) + ", 65536UL, " +
-                   std::to_string(to_q6(end(0))) + "L, " + std::to_string(to_q6(end(1))) +
-                   "L},");
+                   std::to_string(to_q6(end(0))) + "L, " + std::to_string(to_q6(end(1))) + "L},");
   }
   out << "static const uint16_t kRefPointCount = " << rows.size() << ";\n";
   out << "static const PointRef kRefPoints[" << rows.size() << "] PROXY_ROM = {\n";

@@ -14,7 +14,7 @@ namespace proxy {
 
 namespace {
 
-const uint8_t kSamples = 32;  // parameters per span measured
+const uint8_t kSamples = 32;                   // parameters per span measured
 const uint16_t kMaxStepPointsMeasured = 2000;  // next() calls measured per run
 
 // min / average / max of a series of counts.
@@ -49,28 +49,30 @@ void stats_print(const char* name) {
   PROXY_PRINTF("measure ");
   PROXY_PRINT_STR(name);
   PROXY_PRINTF(": min %lu avg %lu max %lu %s (n = %u)\n", (unsigned long)g_stats.min,
-               (unsigned long)(g_stats.n ? g_stats.sum / g_stats.n : 0),
-               (unsigned long)g_stats.max, counter_unit(), (unsigned)g_stats.n);
+               (unsigned long)(g_stats.n ? g_stats.sum / g_stats.n : 0), (unsigned long)g_stats.max,
+               counter_unit(), (unsigned)g_stats.n);
 }
 
 // The measured curve: cubic, 7 control points, uniform clamped knots, +-100 mm (the same
 // as reference curve 0), built here so measuring needs no reference data.
-core::Spline g_bench_curve;
+core::Spline* g_bench;
 
 void build_bench_curve() {
+  g_bench = scratch_spline();
+  core::Spline& curve = *g_bench;
   static const int32_t kX[7] = {0, 20000, 60000, 100000, 140000, 170000, 200000};
   static const int32_t kY[7] = {0, 50000, -30000, 80000, 10000, -60000, 0};
   static const int32_t kKnots[11] = {0, 0, 0, 0, 1000, 2000, 3000, 4000, 4000, 4000, 4000};
-  g_bench_curve.degree = 3;
-  g_bench_curve.rational = false;
-  g_bench_curve.control_count = 7;
-  g_bench_curve.knot_count = 11;
+  curve.degree = 3;
+  curve.rational = false;
+  curve.control_count = 7;
+  curve.knot_count = 11;
   for (uint8_t i = 0; i < 7; ++i) {
-    g_bench_curve.control[i].x_um = kX[i];
-    g_bench_curve.control[i].y_um = kY[i];
-    g_bench_curve.control[i].weight_q14 = core::kWeightOneQ14;
+    curve.control[i].x_um = kX[i];
+    curve.control[i].y_um = kY[i];
+    curve.control[i].weight_q14 = core::kWeightOneQ14;
   }
-  for (uint8_t i = 0; i < 11; ++i) g_bench_curve.knot[i] = kKnots[i];
+  for (uint8_t i = 0; i < 11; ++i) curve.knot[i] = kKnots[i];
 }
 
 void measure_isqrt() {
@@ -91,7 +93,7 @@ void measure_span_setup(core::SpanEvaluator* evaluator) {
   stats_reset();
   for (uint16_t span = 3; span < 7; ++span) {
     const uint32_t a = cycles_now();
-    const core::GeometryError e = evaluator->setup(g_bench_curve, span);
+    const core::GeometryError e = evaluator->setup(*g_bench, span);
     const uint32_t b = cycles_now();
     g_sink = (int32_t)e;
     stats_add(a, b);
@@ -101,7 +103,7 @@ void measure_span_setup(core::SpanEvaluator* evaluator) {
 
 void measure_fixed_point(core::SpanEvaluator* evaluator, uint16_t span) {
   stats_reset();
-  evaluator->setup(g_bench_curve, span);
+  evaluator->setup(*g_bench, span);
   for (uint8_t i = 0; i < kSamples; ++i) {
     const uint32_t t = (uint32_t)i * (65536UL / kSamples) + 977U;
     const uint32_t a = cycles_now();
@@ -131,8 +133,8 @@ void measure_float_point(const FloatCurve& curve, uint16_t span, core::SpanEvalu
     const core::PointUm q = core::round_point(fixed->evaluate_q6(t));
     const int32_t dx = (int32_t)(x + (x < 0 ? -0.5f : 0.5f)) - q.x_um;
     const int32_t dy = (int32_t)(y + (y < 0 ? -0.5f : 0.5f)) - q.y_um;
-    const int32_t d = (dx < 0 ? -dx : dx) > (dy < 0 ? -dy : dy) ? (dx < 0 ? -dx : dx)
-                                                                 : (dy < 0 ? -dy : dy);
+    const int32_t d =
+        (dx < 0 ? -dx : dx) > (dy < 0 ? -dy : dy) ? (dx < 0 ? -dx : dx) : (dy < 0 ? -dy : dy);
     if (d > worst_um) worst_um = d;
   }
   stats_print(PROXY_STR("float De Boor point, cubic 2-D (textbook recursion)"));
@@ -162,7 +164,7 @@ void measure_stepping(core::StepMode mode, int32_t offset_um, const char* name) 
   core::StepSettings settings = core::default_step_settings();
   settings.mode = mode;
   settings.tool_offset_um = offset_um;
-  stepper.begin(&g_bench_curve, settings);
+  stepper.begin(g_bench, settings);
   stats_reset();
   core::PointUm p = {0, 0};
   for (uint16_t i = 0; i < kMaxStepPointsMeasured; ++i) {
@@ -267,7 +269,7 @@ void run_measurements() {
   build_bench_curve();
   static core::SpanEvaluator evaluator;
   static FloatCurve float_curve;
-  PROXY_CHECK(float_curve_from(g_bench_curve, &float_curve));
+  PROXY_CHECK(float_curve_from(*g_bench, &float_curve));
   const uint16_t span = 4;
   measure_primitives();
   measure_isqrt();

@@ -64,23 +64,25 @@ bool check_eq(int32_t got, int32_t want, const char* expr, uint16_t line) {
   return false;
 }
 
-bool check_near(int32_t got, int32_t want, int32_t tolerance, const char* expr,
-                uint16_t line) {
+bool check_near(int32_t got, int32_t want, int32_t tolerance, const char* expr, uint16_t line) {
   const int32_t diff = got > want ? got - want : want - got;
   if (diff <= tolerance && diff >= 0) {
     pass();
     return true;
   }
   if (fail_header(expr, line)) {
-    PROXY_PRINTF(" (got %ld, want %ld, tolerance %ld)\n", (long)got, (long)want,
-                 (long)tolerance);
+    PROXY_PRINTF(" (got %ld, want %ld, tolerance %ld)\n", (long)got, (long)want, (long)tolerance);
   }
   return false;
 }
 
-uint32_t passed_count() { return g_passed; }
+uint32_t passed_count() {
+  return g_passed;
+}
 
-uint32_t failed_count() { return g_failed; }
+uint32_t failed_count() {
+  return g_failed;
+}
 
 void print_summary() {
   PROXY_PRINTF("%lu passed, %lu failed\n", (unsigned long)g_passed, (unsigned long)g_failed);

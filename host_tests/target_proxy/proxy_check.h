@@ -20,8 +20,7 @@ bool check(bool ok, const char* expr, uint16_t line);
 // Records got == want; on failure prints both.
 bool check_eq(int32_t got, int32_t want, const char* expr, uint16_t line);
 // Records |got - want| <= tolerance; on failure prints both and the tolerance.
-bool check_near(int32_t got, int32_t want, int32_t tolerance, const char* expr,
-                uint16_t line);
+bool check_near(int32_t got, int32_t want, int32_t tolerance, const char* expr, uint16_t line);
 
 uint32_t passed_count();
 uint32_t failed_count();
@@ -33,8 +32,8 @@ void print_summary();
 #define PROXY_CHECK(cond) ::proxy::check((cond), PROXY_STR(#cond), __LINE__)
 #define PROXY_CHECK_EQ(got, want) \
   ::proxy::check_eq((int32_t)(got), (int32_t)(want), PROXY_STR(#got " == " #want), __LINE__)
-#define PROXY_CHECK_NEAR(got, want, tol)                                       \
-  ::proxy::check_near((int32_t)(got), (int32_t)(want), (int32_t)(tol),         \
+#define PROXY_CHECK_NEAR(got, want, tol)                               \
+  ::proxy::check_near((int32_t)(got), (int32_t)(want), (int32_t)(tol), \
                       PROXY_STR("|" #got " - " #want "| <= " #tol), __LINE__)
 
 #endif  // HOST_TESTS_TARGET_PROXY_PROXY_CHECK_H

@@ -18,11 +18,15 @@ void run_deboor_checks();
 void run_stepper_checks();
 // Cycle counts of the per-point and per-tick work, and memory figures.
 void run_measurements();
+// Path-controller tick and planner push on a small plant model (when fw_app is built).
+void run_app_measurements();
 
 // Reference curve `index` (a RAM copy of the generated flash table; one at a time), and
 // how many there are (0 when built without reference data).
 const core::Spline& reference_curve(uint8_t index);
 uint8_t reference_curve_count();
+// The same RAM as a scratch spline (RAM is 8 KB: one Spline copy is 918 bytes).
+core::Spline* scratch_spline();
 
 // xorshift32: the pseudo-random inputs (same sequence on every platform).
 uint32_t next_random(uint32_t* state);

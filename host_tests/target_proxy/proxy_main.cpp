@@ -8,13 +8,15 @@
 int main() {
   proxy::platform_init();
   PROXY_PRINTF("engraver target proxy: sizeof(int) %u, sizeof(double) %u, counter %lu Hz\n",
-               (unsigned)sizeof(int), (unsigned)sizeof(double),
-               (unsigned long)proxy::counter_hz());
+               (unsigned)sizeof(int), (unsigned)sizeof(double), (unsigned long)proxy::counter_hz());
   proxy::run_isqrt_checks();
   proxy::run_ring_checks();
   proxy::run_deboor_checks();
   proxy::run_stepper_checks();
   proxy::run_measurements();
+#ifdef PROXY_HAVE_APP
+  proxy::run_app_measurements();
+#endif
   PROXY_PRINTF("memory static RAM %u bytes, stack peak %u bytes\n",
                (unsigned)proxy::static_ram_bytes(), (unsigned)proxy::stack_peak_bytes());
   proxy::print_summary();

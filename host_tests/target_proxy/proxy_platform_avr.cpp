@@ -38,7 +38,9 @@ void paint_stack() {
 }  // namespace proxy
 
 // Extends Timer1 to 32 bits.
-ISR(TIMER1_OVF_vect) { ++proxy::g_timer1_overflows; }
+ISR(TIMER1_OVF_vect) {
+  ++proxy::g_timer1_overflows;
+}
 
 namespace proxy {
 
@@ -76,11 +78,17 @@ uint32_t cycles_now() {
   return ((uint32_t)high << 16) | low;
 }
 
-uint32_t cycles_overhead() { return g_overhead; }
+uint32_t cycles_overhead() {
+  return g_overhead;
+}
 
-uint32_t counter_hz() { return F_CPU; }
+uint32_t counter_hz() {
+  return F_CPU;
+}
 
-const char* counter_unit() { return "cycles"; }
+const char* counter_unit() {
+  return "cycles";
+}
 
 uint16_t stack_peak_bytes() {
   const uint8_t* p = (const uint8_t*)&__heap_start;
@@ -88,7 +96,9 @@ uint16_t stack_peak_bytes() {
   return (uint16_t)((const uint8_t*)RAMEND + 1 - p);
 }
 
-uint16_t static_ram_bytes() { return (uint16_t)(&__heap_start - &__data_start); }
+uint16_t static_ram_bytes() {
+  return (uint16_t)(&__heap_start - &__data_start);
+}
 
 void platform_finish(bool) {
   // Let the last byte leave the UART, then sleep with interrupts off: simavr stops.

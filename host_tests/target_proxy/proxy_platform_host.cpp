@@ -7,7 +7,9 @@
 
 namespace proxy {
 
-void platform_init() { setvbuf(stdout, 0, _IOLBF, 0); }
+void platform_init() {
+  setvbuf(stdout, 0, _IOLBF, 0);
+}
 
 uint32_t cycles_now() {
   timespec ts;
@@ -15,15 +17,25 @@ uint32_t cycles_now() {
   return (uint32_t)((uint64_t)ts.tv_sec * 1000000000ULL + (uint64_t)ts.tv_nsec);
 }
 
-uint32_t cycles_overhead() { return 0; }
+uint32_t cycles_overhead() {
+  return 0;
+}
 
-uint32_t counter_hz() { return 1000000000UL; }
+uint32_t counter_hz() {
+  return 1000000000UL;
+}
 
-const char* counter_unit() { return "ns"; }
+const char* counter_unit() {
+  return "ns";
+}
 
-uint16_t stack_peak_bytes() { return 0; }
+uint16_t stack_peak_bytes() {
+  return 0;
+}
 
-uint16_t static_ram_bytes() { return 0; }
+uint16_t static_ram_bytes() {
+  return 0;
+}
 
 void platform_finish(bool all_passed) {
   fflush(stdout);

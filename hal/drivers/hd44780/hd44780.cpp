@@ -33,10 +33,14 @@ void Hd44780::write_line(uint8_t row, const char* text) {
 }
 
 // Blank screen, cursor home.
-void Hd44780::clear() { write_instruction(kClearDisplay, kClearHomeWaitUs); }
+void Hd44780::clear() {
+  write_instruction(kClearDisplay, kClearHomeWaitUs);
+}
 
 // Cursor home, display shift undone.
-void Hd44780::home() { write_instruction(kReturnHome, kClearHomeWaitUs); }
+void Hd44780::home() {
+  write_instruction(kReturnHome, kClearHomeWaitUs);
+}
 
 // Set DDRAM address: rows start at 0x00 and 0x40 in 2-line mode.
 void Hd44780::set_cursor(uint8_t row, uint8_t column) {

@@ -5,7 +5,7 @@
 
 #include <stdint.h>  // uint8_t, uint16_t
 
-#include "hal/interfaces/lcd_bus.h"      // hal::LcdBus
+#include "hal/interfaces/lcd_bus.h"       // hal::LcdBus
 #include "hal/interfaces/text_display.h"  // hal::TextDisplay
 
 namespace drivers {
@@ -21,12 +21,12 @@ class Hd44780 : public hal::TextDisplay {
   // Waits, all from the HD44780U data sheet ("Initializing by Instruction", Table 6, at
   // f_OSC 270 kHz) with margin for slower clones (shared/reference/hd44780.md).
   enum {
-    kPowerOnWaitUs = 50000,       // > 15 ms after VCC 4.5 V (> 40 ms at 2.7 V, clones ~50 ms)
+    kPowerOnWaitUs = 50000,          // > 15 ms after VCC 4.5 V (> 40 ms at 2.7 V, clones ~50 ms)
     kFirstFunctionSetWaitUs = 5000,  // > 4.1 ms
     kSecondFunctionSetWaitUs = 200,  // > 100 us
-    kInstructionWaitUs = 50,      // 37 us (40 us at 250 kHz)
-    kClearHomeWaitUs = 2000,      // 1.52 ms (1.64 ms at 250 kHz)
-    kStrobeUs = 1                 // t_AS 40 ns, PW_EH 230 ns, t_DSW 80 ns: 1 us covers 3 V parts
+    kInstructionWaitUs = 50,         // 37 us (40 us at 250 kHz)
+    kClearHomeWaitUs = 2000,         // 1.52 ms (1.64 ms at 250 kHz)
+    kStrobeUs = 1                    // t_AS 40 ns, PW_EH 230 ns, t_DSW 80 ns: 1 us covers 3 V parts
   };
 #if defined(__GNUC__) && __GNUC__ >= 5
 #pragma GCC diagnostic pop
@@ -35,10 +35,10 @@ class Hd44780 : public hal::TextDisplay {
   enum {
     kClearDisplay = 0x01,
     kReturnHome = 0x02,
-    kEntryModeIncrement = 0x06,   // I/D = 1, S = 0
+    kEntryModeIncrement = 0x06,  // I/D = 1, S = 0
     kDisplayOff = 0x08,
-    kDisplayOnCursorOff = 0x0C,   // D = 1, C = 0, B = 0
-    kFunctionSet8Bit = 0x30,      // DL = 1 (N, F not yet taken)
+    kDisplayOnCursorOff = 0x0C,     // D = 1, C = 0, B = 0
+    kFunctionSet8Bit = 0x30,        // DL = 1 (N, F not yet taken)
     kFunctionSet8Bit2Lines = 0x38,  // DL = 1, N = 1, F = 0 (5x8)
     kSetDdramAddress = 0x80
   };

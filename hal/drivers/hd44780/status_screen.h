@@ -6,12 +6,12 @@
 #include <stdint.h>  // int32_t
 
 #include "firmware/config/machine_config.h"  // config::kAxisCount
-#include "hal/interfaces/text_display.h"      // hal::TextDisplay
+#include "hal/interfaces/text_display.h"     // hal::TextDisplay
 
 namespace drivers {
 
 struct StatusView {
-  const char* state;                         // short state name; first 8 characters shown
+  const char* state;                        // short state name; first 8 characters shown
   int32_t position_um[config::kAxisCount];  // X, Y, Z
 };
 

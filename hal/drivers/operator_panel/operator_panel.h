@@ -36,7 +36,9 @@ class OperatorPanel : public hal::OperatorInputs {
   // hal::OperatorInputs: debounced InputBits after joystick sanity and the Z mode.
   virtual uint8_t state();
   // Debounced contacts as wired, before joystick sanity and the Z mode.
-  uint8_t contacts() const { return stable_; }
+  uint8_t contacts() const {
+    return stable_;
+  }
 
  private:
   hal::PanelPins* pins_;

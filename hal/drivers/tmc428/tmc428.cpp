@@ -18,7 +18,9 @@ const uint32_t kSmgpReadMask = 0x31FFFFUL;
 const uint32_t kMinClocksPerDatagram = 256;
 
 // 12-bit two's complement of a velocity.
-uint32_t v12(int16_t v) { return (uint32_t)(uint16_t)v & 0xFFFu; }
+uint32_t v12(int16_t v) {
+  return (uint32_t)(uint16_t)v & 0xFFFu;
+}
 
 }  // namespace
 
@@ -186,7 +188,8 @@ Tmc428InitResult Tmc428::configure_motors() {
   // After ramp_div grows the continuous update is slower: re-derive the poll bound for
   // read_driver_status(): period = 32768 / sum(2^-ramp_div) f_clk.
   uint32_t rate_sum = 0;  // sum of 2^(13 - ramp_div)
-  for (uint8_t m = 0; m < config::kAxisCount; ++m) rate_sum += 1UL << (kMaxDiv - settings_[m].ramp_div);
+  for (uint8_t m = 0; m < config::kAxisCount; ++m)
+    rate_sum += 1UL << (kMaxDiv - settings_[m].ramp_div);
   const uint32_t period = (32768UL << kMaxDiv) / rate_sum;
   const uint32_t polls = 2 * period / kMinClocksPerDatagram + 16;
   for (uint8_t m = 0; m < config::kAxisCount; ++m) {

@@ -11,7 +11,7 @@
 
 #include <stdint.h>  // uint8_t, int32_t
 
-#include "firmware/config/machine_config.h"  // config::MachineConfig
+#include "firmware/config/machine_config.h"   // config::MachineConfig
 #include "hal/drivers/tmc428/tmc428_units.h"  // tmc428::AxisSettings
 #include "hal/interfaces/motion_axes.h"       // hal::MotionAxes
 #include "hal/interfaces/spi_master.h"        // hal::SpiMaster

@@ -17,16 +17,16 @@ enum : uint8_t { kReadBit = 0x01, kRamBit = 0x80 };
 
 // Per-motor register block: address = motor_base(motor) + register, [428DS] §7, Tab. 7-2.
 enum : uint8_t {
-  kXTarget = 0x00,          // IDX 0: 24-bit signed
-  kXActual = 0x02,          // IDX 1: 24-bit signed
-  kVMin = 0x04,             // IDX 2: 11-bit unsigned
-  kVMax = 0x06,             // IDX 3: 11-bit unsigned
-  kVTarget = 0x08,          // IDX 4: 12-bit signed
-  kVActual = 0x0A,          // IDX 5: 12-bit signed, RO (R/W in HOLD_MODE)
-  kAMax = 0x0C,             // IDX 6: 11-bit unsigned
-  kAActual = 0x0E,          // IDX 7: 12-bit signed, RO
-  kCurrentScale = 0x10,     // IDX 8: is_agtat 22..20, is_aleat 18..16, is_v0 14..12, a_threshold 10..0
-  kPmulPdiv = 0x12,         // IDX 9: pmul 15..8 (bit 15 forced 1), pdiv 3..0
+  kXTarget = 0x00,       // IDX 0: 24-bit signed
+  kXActual = 0x02,       // IDX 1: 24-bit signed
+  kVMin = 0x04,          // IDX 2: 11-bit unsigned
+  kVMax = 0x06,          // IDX 3: 11-bit unsigned
+  kVTarget = 0x08,       // IDX 4: 12-bit signed
+  kVActual = 0x0A,       // IDX 5: 12-bit signed, RO (R/W in HOLD_MODE)
+  kAMax = 0x0C,          // IDX 6: 11-bit unsigned
+  kAActual = 0x0E,       // IDX 7: 12-bit signed, RO
+  kCurrentScale = 0x10,  // IDX 8: is_agtat 22..20, is_aleat 18..16, is_v0 14..12, a_threshold 10..0
+  kPmulPdiv = 0x12,      // IDX 9: pmul 15..8 (bit 15 forced 1), pdiv 3..0
   kRefConfRampMode = 0x14,  // IDX 10: lp 16 (RO), ref_conf 11..8, ramp_mode 1..0
   kInterrupt = 0x16,        // IDX 11: interrupt_mask 15..8, interrupt_flags 7..0 (write 1 clears)
   kDivisors = 0x18,         // IDX 12: pulse_div 15..12, ramp_div 11..8, usrs 2..0
@@ -120,7 +120,9 @@ enum : uint8_t {
 };
 
 // First byte of a per-motor register (motor 0..2 = SMDA 00..10).
-inline uint8_t motor_reg(uint8_t motor, uint8_t reg) { return (uint8_t)((motor << 5) | reg); }
+inline uint8_t motor_reg(uint8_t motor, uint8_t reg) {
+  return (uint8_t)((motor << 5) | reg);
+}
 
 // A write datagram: address byte in bits 31..24, data in 23..0.
 inline uint32_t write_datagram(uint8_t address, uint32_t data) {
@@ -133,13 +135,23 @@ inline uint32_t read_datagram(uint8_t address) {
 }
 
 // Fields of a MOSI datagram.
-inline uint8_t datagram_address_byte(uint32_t mosi) { return (uint8_t)(mosi >> 24); }
-inline bool datagram_is_read(uint32_t mosi) { return (mosi & 0x01000000UL) != 0; }
-inline bool datagram_is_ram(uint32_t mosi) { return (mosi & 0x80000000UL) != 0; }
-inline uint32_t datagram_data(uint32_t word) { return word & 0xFFFFFFUL; }
+inline uint8_t datagram_address_byte(uint32_t mosi) {
+  return (uint8_t)(mosi >> 24);
+}
+inline bool datagram_is_read(uint32_t mosi) {
+  return (mosi & 0x01000000UL) != 0;
+}
+inline bool datagram_is_ram(uint32_t mosi) {
+  return (mosi & 0x80000000UL) != 0;
+}
+inline uint32_t datagram_data(uint32_t word) {
+  return word & 0xFFFFFFUL;
+}
 
 // Status byte of a MISO answer.
-inline uint8_t answer_status(uint32_t miso) { return (uint8_t)(miso >> 24); }
+inline uint8_t answer_status(uint32_t miso) {
+  return (uint8_t)(miso >> 24);
+}
 
 // Sign-extends the low `bits` bits of a register value.
 inline int32_t sign_extend(uint32_t value, uint8_t bits) {

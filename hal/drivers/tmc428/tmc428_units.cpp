@@ -5,7 +5,9 @@ namespace drivers {
 namespace tmc428 {
 
 // Rounded a / b for b > 0.
-static uint64_t div_round(uint64_t a, uint64_t b) { return (a + b / 2) / b; }
+static uint64_t div_round(uint64_t a, uint64_t b) {
+  return (a + b / 2) / b;
+}
 
 uint32_t pulse_rate_mhz(uint32_t f_clk_hz, uint16_t v, uint8_t pulse_div) {
   const uint64_t num = (uint64_t)f_clk_hz * v * 1000u;

@@ -16,30 +16,30 @@ enum { kMaxVelocity = 2047, kMaxAMax = 2047, kMaxDiv = 13, kMaxClockHz = 1600000
 // Why an axis configuration has no valid chip setting.
 enum class SettingsError : uint8_t {
   kOk = 0,
-  kBadClock = 1,        // f_clk 0 or above 16 MHz ([428DS] §5)
-  kBadMicrosteps = 2,   // microsteps_per_step not 1, 2, 4 .. 64
-  kBadMechanics = 3,    // zero steps/rev or pitch
-  kSpeedTooHigh = 4,    // max speed above what pulse_div = 0, v = 2047 gives
-  kSpeedZero = 5,       // max speed rounds to zero
-  kAccelTooHigh = 6,    // a_max > 2047 even at ramp_div = 0
-  kAccelTooLow = 7,     // a_max rounds to 0 even at ramp_div = 13
-  kBadCurrent = 8,      // current scale above 7
-  kSpiTooFast = 9       // SPI clock above f_clk / 8 ([428DS] §6.2 hint)
+  kBadClock = 1,       // f_clk 0 or above 16 MHz ([428DS] §5)
+  kBadMicrosteps = 2,  // microsteps_per_step not 1, 2, 4 .. 64
+  kBadMechanics = 3,   // zero steps/rev or pitch
+  kSpeedTooHigh = 4,   // max speed above what pulse_div = 0, v = 2047 gives
+  kSpeedZero = 5,      // max speed rounds to zero
+  kAccelTooHigh = 6,   // a_max > 2047 even at ramp_div = 0
+  kAccelTooLow = 7,    // a_max rounds to 0 even at ramp_div = 13
+  kBadCurrent = 8,     // current scale above 7
+  kSpiTooFast = 9      // SPI clock above f_clk / 8 ([428DS] §6.2 hint)
 };
 
 // Everything the driver writes for one motor, and what it tells the path controller.
 struct AxisSettings {
-  uint8_t pulse_div;   // 0..13
-  uint8_t ramp_div;    // 0..13
-  uint8_t usrs;        // log2(microsteps per full step)
-  uint16_t v_min;      // 1 ([428DS] §8.3)
-  uint16_t v_max;      // 1..2047
-  uint16_t a_max;      // 1..2047
-  uint8_t pmul;        // 128..255 (bit 7 is the forced register bit 15)
-  uint8_t pdiv;        // 0..13
-  uint8_t is_agtat;    // current scale while accelerating
-  uint8_t is_aleat;    // current scale at constant speed
-  uint8_t is_v0;       // current scale at standstill
+  uint8_t pulse_div;  // 0..13
+  uint8_t ramp_div;   // 0..13
+  uint8_t usrs;       // log2(microsteps per full step)
+  uint16_t v_min;     // 1 ([428DS] §8.3)
+  uint16_t v_max;     // 1..2047
+  uint16_t a_max;     // 1..2047
+  uint8_t pmul;       // 128..255 (bit 7 is the forced register bit 15)
+  uint8_t pdiv;       // 0..13
+  uint8_t is_agtat;   // current scale while accelerating
+  uint8_t is_aleat;   // current scale at constant speed
+  uint8_t is_v0;      // current scale at standstill
   uint16_t a_threshold;
   uint32_t usteps_per_s_per_unit_q16;  // one velocity LSB in microsteps/s, Q16.16
   uint16_t accel_units_per_ms;         // velocity units the ramp adds per millisecond

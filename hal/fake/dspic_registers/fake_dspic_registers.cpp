@@ -20,13 +20,11 @@ const uint16_t kIFS0 = dspic::IFS0::address, kLATB = dspic::LATB::address;
 const uint16_t kTris[] = {0x02C0, 0x02C6, 0x02CC, 0x02D2, 0x02DE, 0x02E4};
 const uint16_t kIpcFirst = 0x0094, kIpcLast = 0x00A8;
 // U1STA bits the hardware owns (read-only or set by hardware).
-const uint16_t kU1staHardwareBits = (1u << dspic::U1STAbits::URXDA) |
-                                    (1u << dspic::U1STAbits::OERR) |
-                                    (1u << dspic::U1STAbits::FERR) |
-                                    (1u << dspic::U1STAbits::PERR) |
-                                    (1u << dspic::U1STAbits::RIDLE) |
-                                    (1u << dspic::U1STAbits::TRMT) |
-                                    (1u << dspic::U1STAbits::UTXBF);
+const uint16_t kU1staHardwareBits =
+    (1u << dspic::U1STAbits::URXDA) | (1u << dspic::U1STAbits::OERR) |
+    (1u << dspic::U1STAbits::FERR) | (1u << dspic::U1STAbits::PERR) |
+    (1u << dspic::U1STAbits::RIDLE) | (1u << dspic::U1STAbits::TRMT) |
+    (1u << dspic::U1STAbits::UTXBF);
 }  // namespace
 
 DspicRegisters& DspicRegisters::instance() {
@@ -34,7 +32,9 @@ DspicRegisters& DspicRegisters::instance() {
   return registers;
 }
 
-DspicRegisters::DspicRegisters() { reset(); }
+DspicRegisters::DspicRegisters() {
+  reset();
+}
 
 void DspicRegisters::reset() {
   std::memset(mem_, 0, sizeof mem_);
@@ -90,7 +90,7 @@ uint16_t DspicRegisters::read(uint16_t address) {
     return byte;
   }
   if (address == kSPI1BUF) {
-    mem_[kSPI1STAT / 2] &= (uint16_t)~(1u << dspic::SPI1STATbits::SPIRBF);
+    mem_[kSPI1STAT / 2] &= (uint16_t) ~(1u << dspic::SPI1STATbits::SPIRBF);
     return spi1_rx_word_;
   }
   return peek(address);
@@ -172,7 +172,9 @@ void DspicRegisters::uart1_shift_out(int n) {
 namespace dspic {
 namespace host {
 
-uint16_t sfr_read(uint16_t address) { return fake::DspicRegisters::instance().read(address); }
+uint16_t sfr_read(uint16_t address) {
+  return fake::DspicRegisters::instance().read(address);
+}
 
 void sfr_write(uint16_t address, uint16_t value) {
   fake::DspicRegisters::instance().write(address, value);
@@ -193,7 +195,9 @@ void sfr_clear_bit(uint16_t address, uint8_t n) {
   r.write(address, (uint16_t)(r.peek(address) & ~(1u << n)));
 }
 
-void delay_cycles(uint32_t cycles) { fake::DspicRegisters::instance().add_delay_cycles(cycles); }
+void delay_cycles(uint32_t cycles) {
+  fake::DspicRegisters::instance().add_delay_cycles(cycles);
+}
 
 }  // namespace host
 }  // namespace dspic

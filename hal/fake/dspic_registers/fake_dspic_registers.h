@@ -29,8 +29,8 @@ class DspicRegisters {
   struct SpiWord {
     uint16_t mosi;
     uint16_t miso;
-    uint16_t spi1con;   // SPI1CON at the time
-    bool cs_low;        // TMC428 chip select (LATB bit 2) asserted
+    uint16_t spi1con;  // SPI1CON at the time
+    bool cs_low;       // TMC428 chip select (LATB bit 2) asserted
   };
 
   static DspicRegisters& instance();

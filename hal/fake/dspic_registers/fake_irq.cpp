@@ -9,8 +9,12 @@ int g_saves = 0;
 }  // namespace
 
 namespace fake {
-bool irqs_masked() { return g_masked; }
-int irq_save_count() { return g_saves; }
+bool irqs_masked() {
+  return g_masked;
+}
+int irq_save_count() {
+  return g_saves;
+}
 void reset_irq_counts() {
   g_masked = false;
   g_saves = 0;
@@ -24,5 +28,7 @@ uint16_t irq_save() {
   ++g_saves;
   return was;
 }
-void irq_restore(uint16_t saved) { g_masked = saved != 0; }
+void irq_restore(uint16_t saved) {
+  g_masked = saved != 0;
+}
 }  // namespace hal

@@ -19,7 +19,9 @@ int32_t sext(uint32_t value, int bits) {
 }
 
 // x_actual wraps at 24 bits like the chip's counter.
-int32_t wrap24(int64_t x) { return sext((uint32_t)(x & 0xFFFFFF), 24); }
+int32_t wrap24(int64_t x) {
+  return sext((uint32_t)(x & 0xFFFFFF), 24);
+}
 
 enum : uint32_t {
   kModeMask = 3,
@@ -53,12 +55,18 @@ Tmc428Model::Tmc428Model(uint32_t f_clk_hz) : f_clk_hz_(f_clk_hz) {
 // ---- time ---------------------------------------------------------------------------------
 
 uint64_t Tmc428Model::ticks_for_ns(uint64_t ns) const {
+  // Whole-nanosecond clock periods (10 MHz: 100 ns) avoid the 128-bit division.
+  if (f_clk_hz_ != 0 && 1000000000u % f_clk_hz_ == 0) return ns / (1000000000u / f_clk_hz_);
   return (uint64_t)((unsigned __int128)ns * f_clk_hz_ / 1000000000u);
 }
 
-uint64_t Tmc428Model::now_ns() const { return now_ns_; }
+uint64_t Tmc428Model::now_ns() const {
+  return now_ns_;
+}
 
-void Tmc428Model::advance_ns(uint64_t ns) { advance_to_ns(now_ns_ + ns); }
+void Tmc428Model::advance_ns(uint64_t ns) {
+  advance_to_ns(now_ns_ + ns);
+}
 
 void Tmc428Model::advance_to_ns(uint64_t t_ns) {
   if (t_ns <= now_ns_) return;
@@ -153,6 +161,25 @@ void Tmc428Model::note_switches(int m) {
   mo.right_prev = r;
 }
 
+// True if neither switch of a motor is on now or can turn on within max_steps microsteps.
+bool Tmc428Model::switches_out_of_reach(int m, uint64_t max_steps) const {
+  const Motor& mo = motor_[m];
+  const int64_t reach = (int64_t)(max_steps > (1u << 30) ? (1u << 30) : max_steps);
+  if (left_exists(m)) {
+    if (mo.force_left > 0) return false;
+    if (mo.force_left < 0 && mo.has_left_pos && (int64_t)mo.x - mo.left_pos <= reach) {
+      return false;
+    }
+  }
+  if (right_exists(m)) {
+    if (mo.force_right > 0) return false;
+    if (mo.force_right < 0 && mo.has_right_pos && (int64_t)mo.right_pos - mo.x <= reach) {
+      return false;
+    }
+  }
+  return true;
+}
+
 // Integrates one motor over (t0, t1]: ramp clock by ramp clock while the velocity changes,
 // one closed-form segment when it does not; a switch hit splits a segment at its pulse.
 void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
@@ -164,6 +191,38 @@ void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
   const uint32_t mode = mo.ref_ramp & kModeMask;
   const bool soft = (mo.ref_ramp & kSoftStop) != 0;
   uint64_t t = t0;
+  if (switches_out_of_reach(m, (t1 - t0) / pulse_period + 2)) {
+    // Fast path: no switch can change in this interval (at most one microstep per pulse
+    // clock), so the ramp target is constant and no stop or flag can happen.
+    const int32_t tgt = effective_target_q8(m);
+    while (t < t1) {
+      const bool ramping = mode != kHold && mo.v_q8 != tgt && mo.a_max > 0;
+      uint64_t seg_end = t1;
+      uint64_t ramp_edge = 0;
+      if (ramping) {
+        ramp_edge = (t / ramp_period + 1) * ramp_period;
+        if (ramp_edge < seg_end) seg_end = ramp_edge;
+      } else {
+        mo.last_ramp = 0;
+      }
+      const int32_t vi = mo.v_q8 / 256;
+      if (vi != 0) {
+        const uint64_t n = seg_end / pulse_period - t / pulse_period;
+        const uint64_t total = mo.pulse_acc + n * (uint64_t)std::abs(vi);
+        mo.pulse_acc = (uint32_t)(total % 2048);
+        const int64_t steps = (int64_t)(total / 2048);
+        mo.x = wrap24((int64_t)mo.x + (vi > 0 ? steps : -steps));
+      }
+      if (ramping && seg_end == ramp_edge) {
+        const int32_t diff = tgt - mo.v_q8;
+        const int32_t a = (int32_t)mo.a_max;
+        mo.last_ramp = diff > a ? a : (diff < -a ? -a : diff);
+        mo.v_q8 += mo.last_ramp;
+      }
+      t = seg_end;
+    }
+    return;
+  }
   while (t < t1) {
     int32_t vi = mo.v_q8 / 256;  // integer part, toward zero
     // Moving into an active stop switch: hard stop at once, soft stop ramps via the target.
@@ -339,37 +398,59 @@ uint32_t Tmc428Model::read_register(uint8_t addr) const {
 uint32_t Tmc428Model::reg(int m, int idx) const {
   const Motor& mo = motor_[m];
   switch (idx) {
-    case 0: return mo.x_target;
-    case 1: return (uint32_t)mo.x & 0xFFFFFF;
-    case 2: return mo.v_min;
-    case 3: return mo.v_max;
-    case 4: return mo.v_target;
-    case 5: return (uint32_t)(mo.v_q8 / 256) & 0xFFF;
-    case 6: return mo.a_max;
-    case 7: return (uint32_t)mo.last_ramp & 0xFFF;
-    case 8: return mo.current;
-    case 9: return mo.pmul_pdiv | 0x8000;  // pmul bit 7 forced to 1 ([428DS] §8.11)
-    case 10: return mo.ref_ramp | (mo.latch_pending ? 0x10000u : 0u);
-    case 11: return ((uint32_t)mo.int_mask << 8) | mo.int_flags;
-    case 12: return mo.divisors;
-    case 13: return mo.dx_ref_tol;
-    case 14: return mo.x_latched;
-    default: return 0;  // IDX 15 unused on the TMC428: reads 0
+    case 0:
+      return mo.x_target;
+    case 1:
+      return (uint32_t)mo.x & 0xFFFFFF;
+    case 2:
+      return mo.v_min;
+    case 3:
+      return mo.v_max;
+    case 4:
+      return mo.v_target;
+    case 5:
+      return (uint32_t)(mo.v_q8 / 256) & 0xFFF;
+    case 6:
+      return mo.a_max;
+    case 7:
+      return (uint32_t)mo.last_ramp & 0xFFF;
+    case 8:
+      return mo.current;
+    case 9:
+      return mo.pmul_pdiv | 0x8000;  // pmul bit 7 forced to 1 ([428DS] §8.11)
+    case 10:
+      return mo.ref_ramp | (mo.latch_pending ? 0x10000u : 0u);
+    case 11:
+      return ((uint32_t)mo.int_mask << 8) | mo.int_flags;
+    case 12:
+      return mo.divisors;
+    case 13:
+      return mo.dx_ref_tol;
+    case 14:
+      return mo.x_latched;
+    default:
+      return 0;  // IDX 15 unused on the TMC428: reads 0
   }
 }
 
 uint32_t Tmc428Model::common_reg(int jdx) const {
   switch (jdx) {
-    case 0: return (uint32_t)(chain_words_ & 0xFFFFFF);
-    case 1: return (uint32_t)(chain_words_ >> 24);
+    case 0:
+      return (uint32_t)(chain_words_ & 0xFFFFFF);
+    case 1:
+      return (uint32_t)(chain_words_ >> 24);
     case 2: {  // cover_position reads back + 1, bit 23 = cover waiting ([428DS] §9.2)
       const uint32_t pos = ((cover_pos_len_ >> 8) + 1) & 0x3F;
       return (cover_waiting_ ? 0x800000u : 0u) | (pos << 8) | (cover_pos_len_ & 0x1F);
     }
-    case 3: return cover_datagram_;
-    case 14: return switch_bits();
-    case 15: return smgp_;
-    default: return 0;
+    case 3:
+      return cover_datagram_;
+    case 14:
+      return switch_bits();
+    case 15:
+      return smgp_;
+    default:
+      return 0;
   }
 }
 
@@ -386,8 +467,12 @@ void Tmc428Model::write_register(uint8_t addr, uint32_t data) {
   if (smda == 3) {
     switch (idx) {
       case 0:
-      case 1: arm_chain_capture(); break;
-      case 2: cover_pos_len_ = data & 0x3F1F; break;
+      case 1:
+        arm_chain_capture();
+        break;
+      case 2:
+        cover_pos_len_ = data & 0x3F1F;
+        break;
       case 3:
         cover_datagram_ = data;
         cover_waiting_ = true;
@@ -397,35 +482,59 @@ void Tmc428Model::write_register(uint8_t addr, uint32_t data) {
         smgp_ = data & 0x31FFFF;
         for (int m = 0; m < kMotors; ++m) note_switches(m);
         break;
-      default: break;  // power_down (JDX 8), RO and unused addresses: no effect here
+      default:
+        break;  // power_down (JDX 8), RO and unused addresses: no effect here
     }
     return;
   }
   Motor& mo = motor_[smda];
   switch (idx) {
-    case 0: mo.x_target = data; break;
+    case 0:
+      mo.x_target = data;
+      break;
     case 1:
       mo.x = sext(data, 24);
       note_switches(smda);
       break;
-    case 2: mo.v_min = data & 0x7FF; break;
-    case 3: mo.v_max = data & 0x7FF; break;
-    case 4: mo.v_target = data & 0xFFF; break;
+    case 2:
+      mo.v_min = data & 0x7FF;
+      break;
+    case 3:
+      mo.v_max = data & 0x7FF;
+      break;
+    case 4:
+      mo.v_target = data & 0xFFF;
+      break;
     case 5:  // writable only in HOLD_MODE ([428DS] §8.6)
       if ((mo.ref_ramp & kModeMask) == kHold) mo.v_q8 = sext(data, 12) * 256;
       break;
-    case 6: mo.a_max = data & 0x7FF; break;
-    case 8: mo.current = data & 0x7777FF; break;
-    case 9: mo.pmul_pdiv = data & 0xFF0F; break;
-    case 10: mo.ref_ramp = data & 0xF03; break;
+    case 6:
+      mo.a_max = data & 0x7FF;
+      break;
+    case 8:
+      mo.current = data & 0x7777FF;
+      break;
+    case 9:
+      mo.pmul_pdiv = data & 0xFF0F;
+      break;
+    case 10:
+      mo.ref_ramp = data & 0xF03;
+      break;
     case 11:  // mask written, flags cleared by 1s, masked flags forced to 0 (Tab. 8-6)
       mo.int_mask = (uint8_t)(data >> 8);
       mo.int_flags = (uint8_t)(mo.int_flags & ~data & mo.int_mask);
       break;
-    case 12: mo.divisors = data & 0xFF07; break;
-    case 13: mo.dx_ref_tol = data & 0xFFF; break;
-    case 14: mo.latch_pending = true; break;
-    default: break;  // a_actual RO, IDX 15 unused
+    case 12:
+      mo.divisors = data & 0xFF07;
+      break;
+    case 13:
+      mo.dx_ref_tol = data & 0xFFF;
+      break;
+    case 14:
+      mo.latch_pending = true;
+      break;
+    default:
+      break;  // a_actual RO, IDX 15 unused
   }
 }
 
@@ -465,7 +574,13 @@ uint32_t Tmc428Model::transfer32(uint32_t mosi) {
   } else {
     write_register(addr, mosi & 0xFFFFFF);
   }
-  log_.push_back(Datagram{now_ns_, mosi, miso});
+  if (logging_) {
+    if (log_.size() < log_limit_) {
+      log_.push_back(Datagram{now_ns_, mosi, miso});
+    } else {
+      ++log_dropped_;
+    }
+  }
   return miso;
 }
 
@@ -493,12 +608,20 @@ void Tmc428Model::set_driver_status(int motor, uint16_t status12) {
   motor_[motor].tmc246_status = status12;
 }
 
-int32_t Tmc428Model::x_actual(int motor) const { return motor_[motor].x; }
+int32_t Tmc428Model::x_actual(int motor) const {
+  return motor_[motor].x;
+}
 
-int16_t Tmc428Model::v_actual(int motor) const { return (int16_t)(motor_[motor].v_q8 / 256); }
+int16_t Tmc428Model::v_actual(int motor) const {
+  return (int16_t)(motor_[motor].v_q8 / 256);
+}
 
-int32_t Tmc428Model::v_actual_q8(int motor) const { return motor_[motor].v_q8; }
+int32_t Tmc428Model::v_actual_q8(int motor) const {
+  return motor_[motor].v_q8;
+}
 
-uint8_t Tmc428Model::ram_entry(int index) const { return ram_[index & 0x7F]; }
+uint8_t Tmc428Model::ram_entry(int index) const {
+  return ram_[index & 0x7F];
+}
 
 }  // namespace fake

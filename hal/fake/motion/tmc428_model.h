@@ -26,6 +26,7 @@
 #ifndef HAL_FAKE_MOTION_TMC428_MODEL_H
 #define HAL_FAKE_MOTION_TMC428_MODEL_H
 
+#include <cstddef>  // size_t
 #include <cstdint>  // uint32_t
 #include <vector>   // std::vector
 
@@ -67,17 +68,23 @@ class Tmc428Model : public SpiDevice {
   void set_chain_sdi_stuck(int level) { chain_sdi_stuck_ = level; }
 
   // Inspection.
-  int32_t x_actual(int motor) const;             // 24-bit sign-extended
-  int16_t v_actual(int motor) const;             // integer part, -2047..2047
-  int32_t v_actual_q8(int motor) const;          // with 8 fraction bits
-  uint32_t reg(int motor, int idx) const;        // what a read of the register returns
-  uint32_t common_reg(int jdx) const;            // SMDA = 11 register as read
-  uint8_t ram_entry(int index) const;            // 0..127 (0..63 chain, 64..127 sine)
-  uint8_t status_byte() const;                   // what the next answer's bits 31..24 are
-  uint8_t switch_bits() const;                   // the 0x7C register: r1 l1 r2 l2 r3 l3
-  uint32_t chain_datagrams() const { return chain_datagrams_; }  // completed so far
+  int32_t x_actual(int motor) const;       // 24-bit sign-extended
+  int16_t v_actual(int motor) const;       // integer part, -2047..2047
+  int32_t v_actual_q8(int motor) const;    // with 8 fraction bits
+  uint32_t reg(int motor, int idx) const;  // what a read of the register returns
+  uint32_t common_reg(int jdx) const;      // SMDA = 11 register as read
+  uint8_t ram_entry(int index) const;      // 0..127 (0..63 chain, 64..127 sine)
+  uint8_t status_byte() const;             // what the next answer's bits 31..24 are
+  uint8_t switch_bits() const;             // the 0x7C register: r1 l1 r2 l2 r3 l3
+  uint32_t chain_datagrams() const { return chain_datagrams_; }  // captured answers
   const std::vector<Datagram>& log() const { return log_; }
   void clear_log() { log_.clear(); }
+  // Off: datagrams are not logged (long simulations; RecordingSpi can record instead).
+  void set_logging(bool on) { logging_ = on; }
+  // The log stops growing at this many entries (default 200000, ~5 MB); later datagrams
+  // are only counted, so a simulation left logging cannot eat the memory.
+  void set_log_limit(size_t entries) { log_limit_ = entries; }
+  uint64_t log_dropped() const { return log_dropped_; }
   uint32_t f_clk_hz() const { return f_clk_hz_; }
 
  private:
@@ -103,6 +110,7 @@ class Tmc428Model : public SpiDevice {
   void write_register(uint8_t addr, uint32_t data);
   void advance_to_tick(uint64_t t);
   void advance_motor(int m, uint64_t t0, uint64_t t1);
+  bool switches_out_of_reach(int m, uint64_t max_steps) const;
   int32_t effective_target_q8(int m) const;
   bool left_active(int m) const;
   bool right_active(int m) const;
@@ -118,8 +126,8 @@ class Tmc428Model : public SpiDevice {
   uint64_t ticks_for_ns(uint64_t ns) const;
 
   uint32_t f_clk_hz_;
-  uint64_t now_ = 0;       // ticks
-  uint64_t now_ns_ = 0;    // exact ns clock the ticks derive from
+  uint64_t now_ = 0;     // ticks
+  uint64_t now_ns_ = 0;  // exact ns clock the ticks derive from
   Motor motor_[kMotors];
   uint8_t ram_[128];
   uint32_t smgp_ = 0x000F00;  // clk2_div = 15 at power-on ([428DS] §6.1)
@@ -132,6 +140,9 @@ class Tmc428Model : public SpiDevice {
   uint32_t chain_datagrams_ = 0;
   int chain_sdi_stuck_ = -1;
   std::vector<Datagram> log_;
+  bool logging_ = true;
+  size_t log_limit_ = 200000;
+  uint64_t log_dropped_ = 0;
 };
 
 }  // namespace fake

@@ -80,7 +80,9 @@ void Hd44780Model::set_data(uint8_t byte) {
   data_ = byte;
 }
 
-void Hd44780Model::delay_us(uint16_t us) { now_ns_ += (uint64_t)us * 1000u; }
+void Hd44780Model::delay_us(uint16_t us) {
+  now_ns_ += (uint64_t)us * 1000u;
+}
 
 // One write cycle: checks the init sequence and the busy time, then executes it.
 void Hd44780Model::latch(bool rs, uint8_t byte) {

@@ -19,15 +19,15 @@ class Hd44780Model : public hal::LcdBus {
  public:
   // Minimum times in ns (HD44780U data sheet: init by instruction, Table 6 at 270 kHz,
   // bus timing at 4.5-5.5 V).
-  static const uint64_t kPowerOnNs = 15000000;     // before the first instruction
-  static const uint64_t kInitGap1Ns = 4100000;     // first to second 0x3x
-  static const uint64_t kInitGap2Ns = 100000;      // second to third 0x3x
-  static const uint64_t kExecNs = 37000;           // most instructions and data writes
+  static const uint64_t kPowerOnNs = 15000000;       // before the first instruction
+  static const uint64_t kInitGap1Ns = 4100000;       // first to second 0x3x
+  static const uint64_t kInitGap2Ns = 100000;        // second to third 0x3x
+  static const uint64_t kExecNs = 37000;             // most instructions and data writes
   static const uint64_t kClearHomeExecNs = 1520000;  // clear display, return home
-  static const uint64_t kEnableHighNs = 230;       // PW_EH
-  static const uint64_t kEnableCycleNs = 500;      // t_cycE
-  static const uint64_t kAddressSetupNs = 40;      // t_AS: RS, R/W before E rises
-  static const uint64_t kDataSetupNs = 80;         // t_DSW: data before E falls
+  static const uint64_t kEnableHighNs = 230;         // PW_EH
+  static const uint64_t kEnableCycleNs = 500;        // t_cycE
+  static const uint64_t kAddressSetupNs = 40;        // t_AS: RS, R/W before E rises
+  static const uint64_t kDataSetupNs = 80;           // t_DSW: data before E falls
 
   // One write cycle as the controller latched it.
   struct Latch {

@@ -25,11 +25,11 @@ struct SpiRecord {
 
 // Bus timing of one datagram (SPI mode 3, 32 bits), nanoseconds.
 struct SpiTiming {
-  uint32_t sck_period_ns;   // 1 / SPI clock
-  uint32_t cs_setup_ns;     // CS low -> first SCK falling edge (>= 3 CLK, Tab. 6-1)
-  uint32_t cs_hold_ns;      // last SCK rising edge -> CS high (>= 3 CLK)
-  uint32_t cs_high_ns;      // CS high between datagrams (>= 3 CLK)
-  uint32_t miso_delay_ns;   // SDO_C change after SCK falls (2.5-3.5 CLK)
+  uint32_t sck_period_ns;  // 1 / SPI clock
+  uint32_t cs_setup_ns;    // CS low -> first SCK falling edge (>= 3 CLK, Tab. 6-1)
+  uint32_t cs_hold_ns;     // last SCK rising edge -> CS high (>= 3 CLK)
+  uint32_t cs_high_ns;     // CS high between datagrams (>= 3 CLK)
+  uint32_t miso_delay_ns;  // SDO_C change after SCK falls (2.5-3.5 CLK)
   // CS low time plus the minimum high time: the datagram period.
   uint64_t datagram_ns() const {
     return (uint64_t)cs_setup_ns + 32ull * sck_period_ns - sck_period_ns / 2 + cs_hold_ns +

@@ -50,6 +50,16 @@ struct Where {
   }
 };
 
+// LWPOLYLINE structure as dxflib needs it: the vertex count (group 90) first, then each
+// vertex starting with its x (group 10). dxflib writes a bulge (group 42) that comes before
+// the first vertex to index -1 of its vertex array, and silently drops vertices beyond the
+// count, so both are refused here.
+struct PolylineShape {
+  bool active = false;
+  long declared = -1;  // group 90
+  long vertices = 0;   // groups 10
+};
+
 // Largest count a group may announce (control points, knots, vertices): far beyond any
 // sane drawing, small enough that dxflib's allocation of it cannot exhaust memory.
 const long kMaxDeclaredCount = 1000000;
@@ -74,6 +84,7 @@ void check_dxf_syntax(const std::string& path) {
   std::string code_line, value_line;
   bool saw_eof = false;
   long pairs = 0;
+  PolylineShape poly;
   while (std::getline(in, code_line)) {
     ++w.line;
     if (pairs == 0 && code_line.rfind("AutoCAD Binary DXF", 0) == 0) {
@@ -96,6 +107,14 @@ void check_dxf_syntax(const std::string& path) {
     ++pairs;
     const std::string value = strip(value_line);
     if (code == 0) {
+      if (poly.active && poly.declared != poly.vertices) {
+        std::ostringstream o;
+        o << w.describe() << ": announces " << poly.declared << " vertices (group 90) but lists "
+          << poly.vertices;
+        throw ImportError(o.str());
+      }
+      poly = PolylineShape();
+      poly.active = value == "LWPOLYLINE";
       w.entity = value;
       w.entity_line = w.line - 1;
       w.handle.clear();
@@ -106,6 +125,15 @@ void check_dxf_syntax(const std::string& path) {
       continue;
     }
     if (code == 5) w.handle = value;
+    if (poly.active && (code == 10 || code == 42)) {
+      if (poly.declared < 0) {
+        throw ImportError(w.describe() + ": vertex data before the vertex count (group 90)");
+      }
+      if (code == 10) ++poly.vertices;
+      if (code == 42 && poly.vertices == 0) {
+        throw ImportError(w.describe() + ": a bulge (group 42) before the first vertex");
+      }
+    }
     if (is_real_code(code)) {
       errno = 0;
       const double v = std::strtod(value.c_str(), &end);
@@ -127,7 +155,9 @@ void check_dxf_syntax(const std::string& path) {
       // Counts of knots, control points, fit points, vertices: dxflib allocates them.
       const bool spline_count = w.entity == "SPLINE" && code >= 72 && code <= 74;
       const bool vertex_count = w.entity == "LWPOLYLINE" && code == 90;
-      if ((spline_count || vertex_count) && (v < 0 || v > kMaxDeclaredCount)) {
+      const bool leader_count = w.entity == "LEADER" && code == 76;
+      if (vertex_count && poly.active) poly.declared = v;
+      if ((spline_count || vertex_count || leader_count) && (v < 0 || v > kMaxDeclaredCount)) {
         std::ostringstream o;
         o << w.describe() << ": group " << code << " announces " << v
           << " items (must be 0.." << kMaxDeclaredCount << ")";

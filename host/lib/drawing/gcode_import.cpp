@@ -52,6 +52,9 @@ std::vector<Word> parse_line(const std::string& raw, const std::string& where) {
       throw ImportError(where + ": word " + std::string(1, letter) + " has no valid number");
     }
     i += static_cast<size_t>(end - start);
+    if (std::fabs(v) > 1e7) {
+      throw ImportError(where + ": word " + std::string(1, letter) + " value is beyond 10^7");
+    }
     words.push_back(Word{letter, v});
   }
   return words;
@@ -147,7 +150,8 @@ Drawing import_gcode(const std::string& path) {
             throw ImportError(where + ": G" + std::to_string(g10 / 10) +
                               " selects an arc plane other than XY; only G17 (XY) is supported");
           } else if (g10 == 410 || g10 == 420) {
-            throw ImportError(where + ": cutter compensation (G41/G42) is not supported; use "
+            throw ImportError(where +
+                              ": cutter compensation (G41/G42) is not supported; use "
                               "the tool-radius option of this tool instead");
           } else if (g10 == 170 || g10 == 400 || g10 == 940 || g10 == 640 || g10 == 610 ||
                      g10 == 800 || g10 == 540 || g10 == 490) {
@@ -168,19 +172,44 @@ Drawing import_gcode(const std::string& path) {
           if (m == 5 || m == 2 || m == 30) flush();
           break;
         }
-        case 'X': x = v; have_x = true; break;
-        case 'Y': y = v; have_y = true; break;
-        case 'Z': zv = v; have_z = true; break;
-        case 'I': iv = v; have_i = true; break;
-        case 'J': jv = v; have_j = true; break;
-        case 'R': rv = v; have_r = true; break;
-        case 'K': case 'A': case 'B': case 'C': case 'U': case 'V': case 'W':
+        case 'X':
+          x = v;
+          have_x = true;
+          break;
+        case 'Y':
+          y = v;
+          have_y = true;
+          break;
+        case 'Z':
+          zv = v;
+          have_z = true;
+          break;
+        case 'I':
+          iv = v;
+          have_i = true;
+          break;
+        case 'J':
+          jv = v;
+          have_j = true;
+          break;
+        case 'R':
+          rv = v;
+          have_r = true;
+          break;
+        case 'K':
+        case 'A':
+        case 'B':
+        case 'C':
+        case 'U':
+        case 'V':
+        case 'W':
           if (v != 0.0) {
             throw ImportError(where + ": word " + std::string(1, w.letter) +
                               " (an axis or arc offset outside the XY plane) is not supported");
           }
           break;
-        default: break;  // F S T N P: feed, speed, tool, line number, dwell
+        default:
+          break;  // F S T N P: feed, speed, tool, line number, dwell
       }
     }
     (void)motion_word;
@@ -212,7 +241,8 @@ Drawing import_gcode(const std::string& path) {
         const double c = chord.norm();
         const double r = std::fabs(rv) * st.to_mm;
         if (c < 1e-9) throw ImportError(where + ": R-form arc with coinciding ends");
-        if (c > 2 * r + 1e-6) throw ImportError(where + ": arc radius R is shorter than half the chord");
+        if (c > 2 * r + 1e-6)
+          throw ImportError(where + ": arc radius R is shorter than half the chord");
         const double h = std::sqrt(std::max(0.0, r * r - c * c / 4));
         const Point2 left(-chord.y() / c, chord.x() / c);
         // G2 with R > 0: centre right of the chord; G3 with R > 0: left.
@@ -227,8 +257,8 @@ Drawing import_gcode(const std::string& path) {
       const double r1 = (target - centre).norm();
       if (std::fabs(r0 - r1) > 0.002 + 0.001 * r0) {
         std::ostringstream o;
-        o << where << ": arc end is not on the circle (radius " << r0 << " mm at the start, "
-          << r1 << " mm at the end)";
+        o << where << ": arc end is not on the circle (radius " << r0 << " mm at the start, " << r1
+          << " mm at the end)";
         throw ImportError(o.str());
       }
       const double a0 = std::atan2(st.pos.y() - centre.y(), st.pos.x() - centre.x());

@@ -2,7 +2,7 @@
 // reversal, chaining of touching curves, work-area check, conversion to firmware splines.
 #include "host/lib/plan/job_plan.h"
 
-#include <cmath>    // std::llround
+#include <cmath>    // std::llround, std::isfinite
 #include <sstream>  // std::ostringstream
 
 #include "host/lib/plan/firmware_spline.h"
@@ -34,26 +34,26 @@ bool is_polyline(const BSpline& s) {
   return s.knots[0] == s.knots[1] && s.knots[s.knots.size() - 1] == s.knots[s.knots.size() - 2];
 }
 
-std::string describe(const PlannedCurve& c, size_t index) {
+// "curve N (entity)" with N the drawing's curve number (as `engraver info` shows it).
+std::string describe(const PlannedCurve& c) {
   std::ostringstream o;
   o << "curve " << c.drawing_index << " (" << c.source << ")";
-  (void)index;
   return o.str();
 }
 
 // Refuses a curve that leaves the work area (tool centre, including the tool radius).
-void check_work_area(const PlannedCurve& c, size_t index, double radius, const PlanOptions& o) {
+void check_work_area(const PlannedCurve& c, double radius, const PlanOptions& o) {
   for (const Point2& p : sample(c.spline, 0.001)) {
     const double lo_x = p.x() - radius, hi_x = p.x() + radius;
     const double lo_y = p.y() - radius, hi_y = p.y() + radius;
     std::ostringstream e;
     if (lo_x < -1e-6 || hi_x > o.work_width_mm + 1e-6 || lo_y < -1e-6 ||
         hi_y > o.work_height_mm + 1e-6) {
-      e << describe(c, index) << " leaves the work area (0..";
+      e << describe(c) << " leaves the work area (0..";
       e << o.work_width_mm << " x 0.." << o.work_height_mm << " mm): it reaches (" << p.x()
         << ", " << p.y() << ") mm in the machine frame";
       if (radius > 0) e << " with the tool radius " << radius << " mm";
-      e << ". Scale the drawing down (--scale) or use a larger work area (--area).";
+      e << ". Scale the drawing down (--scale) or use a larger work area (--work W H).";
       throw PlanError(e.str());
     }
   }
@@ -117,7 +117,7 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
 
   // Work area, before anything else is produced.
   for (size_t i = 0; i < plan.curves.size(); ++i) {
-    check_work_area(plan.curves[i], i, radius, o);
+    check_work_area(plan.curves[i], radius, o);
     plan.extents_mm.add(curve_extents(plan.curves[i].spline));
   }
 
@@ -180,7 +180,7 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
       try {
         pieces = to_firmware_splines(c.spline);
       } catch (const ConversionError& e) {
-        throw PlanError(describe(c, i) + ": " + e.what());
+        throw PlanError(describe(c) + ": " + e.what());
       }
       for (size_t k = 0; k < pieces.size(); ++k) {
         PlanStep s;

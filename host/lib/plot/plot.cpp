@@ -6,6 +6,7 @@
 
 #include <algorithm>  // std::min
 #include <cmath>      // std::pow, std::floor
+#include <fstream>    // std::ifstream, std::ofstream
 #include <sstream>    // std::ostringstream
 
 namespace host {
@@ -116,6 +117,44 @@ void render(cairo_t* cr, const PlotInput& in) {
   text(cr, x0, y + 16, label.str());
 }
 
+// Text with &, <, > and " escaped for XML.
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// cairo writes text as glyph outlines; this adds the title and the legend as searchable,
+// accessible SVG <title> and <desc> elements right after the <svg> start tag.
+void add_svg_text(const std::string& path, const PlotInput& in) {
+  std::string svg;
+  {
+    std::ifstream f(path, std::ios::binary);
+    std::ostringstream s;
+    s << f.rdbuf();
+    svg = s.str();
+  }
+  const size_t tag = svg.find("<svg");
+  const size_t end = tag == std::string::npos ? tag : svg.find('>', tag);
+  if (end == std::string::npos) throw std::runtime_error(path + ": cairo wrote no <svg> element");
+  std::ostringstream add;
+  add << "\n<title>" << xml_escape(in.title) << "</title>\n<desc>Legend: drawing (light blue, "
+      << "wide); tool path (pen down) (red); rapid (pen up) (grey, dashed). Scale bar: "
+      << nice_length(in.width_px / 5.0 / plot_frame(in).scale_px_per_mm) << " mm.</desc>";
+  svg.insert(end + 1, add.str());
+  std::ofstream o(path, std::ios::binary | std::ios::trunc);
+  o << svg;
+  if (!o) throw std::runtime_error(path + ": cannot write the plot");
+}
+
 void check(cairo_surface_t* s, const std::string& path) {
   const cairo_status_t st = cairo_surface_status(s);
   if (st != CAIRO_STATUS_SUCCESS) {
@@ -162,6 +201,7 @@ void write_plot(const PlotInput& in, const std::string& svg_path, const std::str
     cairo_surface_finish(s);
     check(s, svg_path);
     cairo_surface_destroy(s);
+    add_svg_text(svg_path, in);
   }
   if (!png_path.empty()) {
     cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, in.width_px, in.height_px);

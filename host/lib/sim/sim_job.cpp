@@ -19,11 +19,22 @@ double pen_threshold_mm(const JobPlan& plan) {
   return (up + down) / 2000.0;
 }
 
+std::vector<bool> pen_down_samples(const std::vector<ToolSample>& trace, const JobPlan& plan) {
+  const double pen = pen_threshold_mm(plan);
+  std::vector<bool> down(trace.size(), false);
+  bool lifted = false;
+  for (size_t i = 0; i < trace.size(); ++i) {
+    if (trace[i].z_mm >= pen) lifted = true;
+    down[i] = lifted && trace[i].z_mm < pen;
+  }
+  return down;
+}
+
 namespace {
 
 // Path lengths, motion time and contour error of the trace against the planned curves.
 void measure(const JobPlan& plan, SimJobResult* r) {
-  const double pen = pen_threshold_mm(plan);
+  const std::vector<bool> down = pen_down_samples(r->trace, plan);
   std::vector<std::vector<Point2>> reference;
   for (const PlannedCurve& c : plan.curves) reference.push_back(sample(c.spline, 0.0002));
   const NearestSegment nearest(reference);
@@ -34,8 +45,8 @@ void measure(const JobPlan& plan, SimJobResult* r) {
     if (first_move == 0) first_move = a.t_ms;
     last_move = b.t_ms;
     const double d = std::hypot(b.x_mm - a.x_mm, b.y_mm - a.y_mm);
-    (b.z_mm < pen ? r->cut_mm : r->rapid_mm) += d;
-    if (b.z_mm < pen && !reference.empty()) {
+    (down[i] ? r->cut_mm : r->rapid_mm) += d;
+    if (down[i] && !reference.empty()) {
       const double e = nearest.distance(Point2(b.x_mm, b.y_mm)) * 1000.0;
       if (e > r->max_contour_error_um) r->max_contour_error_um = e;
     }

@@ -80,6 +80,7 @@ SimMachine::SimMachine(const SimOptions& options)
     : options_(options), parts_(std::make_unique<Parts>(options.machine)) {
   Parts& p = *parts_;
   p.spi.set_recording(false);  // minutes of traffic; the SPI bench tools record their own
+  p.chip.set_logging(false);
   for (int a = 0; a < config::kAxisCount; ++a) {
     const config::AxisConfig& axis = options.machine.axis[a];
     p.usteps_per_mm[a] = config::usteps_per_mm(axis);
@@ -130,7 +131,7 @@ void SimMachine::operate_panel() {
     if (--confirm_hold_ms_ == 0) p.inputs.bits = 0;
     return;
   }
-  if (p.app.zeroing()) confirm_hold_ms_ = 50;  // a 50 ms press, well past the debounce
+  if (p.app.state() == proto::MachineState::kZeroing) confirm_hold_ms_ = 50;  // a 50 ms press, well past the debounce
 }
 
 void SimMachine::record_position() {

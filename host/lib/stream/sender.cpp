@@ -153,6 +153,7 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (proto::decode_frame(frame, &r) != proto::ErrorCode::kOk) break;
       last_status_ = r;
       have_status_ = true;
+      queue_free_ = r.queue_free;
       if (commands_ == nullptr) break;
       // Everything before next_expected is stored.
       const size_t stored = index_of_seq(r.next_expected_seq);
@@ -164,6 +165,8 @@ void Sender::handle_reply(const proto::Frame& frame) {
       const uint8_t last_seq = static_cast<uint8_t>(first_seq_ + executed_ - 1);
       const uint8_t ahead = static_cast<uint8_t>(r.last_executed_seq - last_seq);
       if (ahead < 128) executed_ = std::min(executed_ + ahead, base_);
+      // No frame held: a busy refusal is over (its held frame's *O may have overtaken it).
+      if (!(r.flags & proto::kStatusFramePending)) busy_wait_ = false;
       // Unacknowledged frames past the time-out and none held: they were lost, go back.
       const milliseconds rto = std::max(options_.min_rto, 4 * srtt_);
       if (base_ < next_ && !(r.flags & proto::kStatusFramePending) &&
@@ -176,6 +179,8 @@ void Sender::handle_reply(const proto::Frame& frame) {
     }
     case proto::kReplyAck: {
       if (frame.seq == realtime_seq_) realtime_acked_ = true;
+      proto::AckReply ack;
+      if (proto::decode_frame(frame, &ack) == proto::ErrorCode::kOk) queue_free_ = ack.queue_free;
       const size_t index = index_of_seq(frame.seq);
       if (index != SIZE_MAX && index >= base_ && index < next_) {
         base_ = index + 1;  // acks are cumulative: the controller stores strictly in order
@@ -324,6 +329,7 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
   commands_ = &commands;
   base_ = next_ = executed_ = 0;
   busy_wait_ = false;
+  queue_free_ = session_.queue_slots;
   size_t high_water = 0;
   const size_t window = std::max<size_t>(1, std::min<size_t>(session_.window_frames,
                                                              proto::kWindowFrames));
@@ -351,7 +357,9 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
     // Fill the window (frames and bytes) unless the controller said busy.
     size_t inflight_bytes = 0;
     for (size_t i = base_; i < next_; ++i) inflight_bytes += commands[i].payload.size() + 6;
+    // In flight may be what the queue has room for plus the one frame it can hold.
     while (!busy_wait_ && next_ < commands.size() && next_ - base_ < window &&
+           next_ - base_ <= queue_free_ &&
            inflight_bytes + commands[next_].payload.size() + 6 <= rx_bytes) {
       if (next_ == base_) oldest_sent_ = Clock::now();
       send_frame(commands[next_].letter, static_cast<uint8_t>(first_seq_ + next_),

@@ -106,6 +106,7 @@ class Sender {
   size_t next_ = 0;            // next command to (re)send
   size_t executed_ = 0;        // commands executed (count)
   bool busy_wait_ = false;     // after *E busy: send nothing new until an *O
+  size_t queue_free_ = 1;      // controller queue room, from the newest *O or *?
   bool failed_ = false;
   JobOutcome failure_ = JobOutcome::kRejected;
   std::chrono::steady_clock::time_point last_reply_;

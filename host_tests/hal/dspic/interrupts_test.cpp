@@ -16,9 +16,15 @@ class InterruptsTest : public FakeSfrTest {
   }
 };
 
-unsigned t1ip(const fake::DspicRegisters& r) { return (r.peek(kIPC0) >> 12) & 7; }
-unsigned u1rxip(const fake::DspicRegisters& r) { return (r.peek(kIPC2) >> 4) & 7; }
-unsigned u1txip(const fake::DspicRegisters& r) { return (r.peek(kIPC2) >> 8) & 7; }
+unsigned t1ip(const fake::DspicRegisters& r) {
+  return (r.peek(kIPC0) >> 12) & 7;
+}
+unsigned u1rxip(const fake::DspicRegisters& r) {
+  return (r.peek(kIPC2) >> 4) & 7;
+}
+unsigned u1txip(const fake::DspicRegisters& r) {
+  return (r.peek(kIPC2) >> 8) & 7;
+}
 
 TEST_F(InterruptsTest, UartReceiveOutranksTheTick) {
   EXPECT_EQ(u1rxip(sfr), 6u);
@@ -44,7 +50,9 @@ TEST_F(InterruptsTest, NestingIsEnabled) {
 }
 
 int g_ticks = 0;
-void count_tick(void* context) { ++*static_cast<int*>(context); }
+void count_tick(void* context) {
+  ++*static_cast<int*>(context);
+}
 
 TEST_F(InterruptsTest, Timer1VectorClearsItsFlagAndRunsTheTick) {
   g_ticks = 0;

@@ -76,7 +76,7 @@ TEST_F(PanelPinsTest, ContactPullingRb8LowIsJoystickLeft) {
 }
 
 TEST_F(PanelPinsTest, Rb14IsClearAndRb12IsZ) {
-  sfr.poke(kPORTB, (uint16_t)~(0x4000 | 0x1000));
+  sfr.poke(kPORTB, (uint16_t) ~(0x4000 | 0x1000));
   dspic::PanelPins pins;
   EXPECT_EQ(pins.read_raw(), hal::kButtonClear | hal::kButtonZ);
 }

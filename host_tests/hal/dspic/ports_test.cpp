@@ -10,7 +10,9 @@ class PortsTest : public FakeSfrTest {
   PortsTest() { dspic::init_ports(); }
 };
 
-TEST_F(PortsTest, AllAnalogPinsAreDigital) { EXPECT_EQ(sfr.peek(kADPCFG), 0xFFFF); }
+TEST_F(PortsTest, AllAnalogPinsAreDigital) {
+  EXPECT_EQ(sfr.peek(kADPCFG), 0xFFFF);
+}
 
 TEST_F(PortsTest, TmcChipSelectRb2IsAnOutputIdlingHigh) {
   EXPECT_EQ(field(kTRISB, 2, 1), 0u);

@@ -24,13 +24,13 @@ class Spi1Test : public FakeSfrTest {
 
 TEST_F(Spi1Test, InitSelectsMode3Master16Bit) {
   ASSERT_TRUE(ok);
-  EXPECT_EQ(field(kSPI1CON, 6, 1), 1u);   // CKP = 1: clock idles high
-  EXPECT_EQ(field(kSPI1CON, 8, 1), 0u);   // CKE = 0: output changes idle -> active
-  EXPECT_EQ(field(kSPI1CON, 9, 1), 0u);   // SMP = 0: sample mid-bit
-  EXPECT_EQ(field(kSPI1CON, 5, 1), 1u);   // MSTEN
-  EXPECT_EQ(field(kSPI1CON, 10, 1), 1u);  // MODE16
-  EXPECT_EQ(field(kSPI1CON, 7, 1), 0u);   // SSEN = 0: chip select by GPIO
-  EXPECT_EQ(field(kSPI1CON, 14, 1), 0u);  // no framed mode
+  EXPECT_EQ(field(kSPI1CON, 6, 1), 1u);    // CKP = 1: clock idles high
+  EXPECT_EQ(field(kSPI1CON, 8, 1), 0u);    // CKE = 0: output changes idle -> active
+  EXPECT_EQ(field(kSPI1CON, 9, 1), 0u);    // SMP = 0: sample mid-bit
+  EXPECT_EQ(field(kSPI1CON, 5, 1), 1u);    // MSTEN
+  EXPECT_EQ(field(kSPI1CON, 10, 1), 1u);   // MODE16
+  EXPECT_EQ(field(kSPI1CON, 7, 1), 0u);    // SSEN = 0: chip select by GPIO
+  EXPECT_EQ(field(kSPI1CON, 14, 1), 0u);   // no framed mode
   EXPECT_EQ(field(kSPI1STAT, 15, 1), 1u);  // SPIEN
 }
 

@@ -10,7 +10,9 @@ class Timer1Test : public FakeSfrTest {
   Timer1Test() { dspic::timer1_start_1ms(); }
 };
 
-TEST_F(Timer1Test, PeriodRegisterIs19999) { EXPECT_EQ(sfr.peek(kPR1), 19999); }
+TEST_F(Timer1Test, PeriodRegisterIs19999) {
+  EXPECT_EQ(sfr.peek(kPR1), 19999);
+}
 
 TEST_F(Timer1Test, PeriodAndPrescaleGiveOneMillisecond) {
   const int prescale[4] = {1, 8, 64, 256};

@@ -20,7 +20,9 @@ class Uart1Test : public FakeSfrTest {
   dspic::Uart1 uart;
 };
 
-TEST_F(Uart1Test, InitSetsBrg10For115200At20Mips) { EXPECT_EQ(sfr.peek(kU1BRG), 10); }
+TEST_F(Uart1Test, InitSetsBrg10For115200At20Mips) {
+  EXPECT_EQ(sfr.peek(kU1BRG), 10);
+}
 
 TEST_F(Uart1Test, Brg10GivesWithin1_5PercentOf115200) {
   const double actual = 20e6 / (16.0 * (sfr.peek(kU1BRG) + 1));  // 113 636 Bd
@@ -95,7 +97,7 @@ TEST_F(Uart1Test, FramingErrorDropsTheByteAndCountsOnce) {
 
 TEST_F(Uart1Test, OverrunKeepsTheFourFifoBytesClearsOerrAndCounts) {
   for (uint8_t b = '1'; b <= '6'; ++b) sfr.uart1_receive(b);  // 5th and 6th lost
-  ASSERT_EQ(field(kU1STA, 1, 1), 1u);                          // OERR
+  ASSERT_EQ(field(kU1STA, 1, 1), 1u);                         // OERR
   uart.on_rx_interrupt();
   EXPECT_EQ(read_all(), (std::vector<uint8_t>{'1', '2', '3', '4'}));
   EXPECT_EQ(field(kU1STA, 1, 1), 0u);

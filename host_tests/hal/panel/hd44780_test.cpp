@@ -115,7 +115,9 @@ TEST_F(Hd44780Test, WriteLineTreatsNullTextAsEmpty) {
 
 TEST_F(Hd44780Test, ControlCharactersShowAsSpaces) {
   lcd.init();
-  lcd.write_line(0, "A\tB\x01" "C");
+  lcd.write_line(0,
+                 "A\tB\x01"
+                 "C");
   EXPECT_EQ(model.visible_line(0), "A B C           ");
 }
 

@@ -13,14 +13,22 @@ std::string mm(int32_t um) {
   return std::string(out, sizeof out);
 }
 
-TEST(FormatMm, PrintsTwoDecimalsRightAligned) { EXPECT_EQ(mm(12500), " 12.50"); }
-TEST(FormatMm, PrintsZero) { EXPECT_EQ(mm(0), "  0.00"); }
-TEST(FormatMm, PrintsSubMillimetreWithLeadingZero) { EXPECT_EQ(mm(70), "  0.07"); }
+TEST(FormatMm, PrintsTwoDecimalsRightAligned) {
+  EXPECT_EQ(mm(12500), " 12.50");
+}
+TEST(FormatMm, PrintsZero) {
+  EXPECT_EQ(mm(0), "  0.00");
+}
+TEST(FormatMm, PrintsSubMillimetreWithLeadingZero) {
+  EXPECT_EQ(mm(70), "  0.07");
+}
 TEST(FormatMm, RoundsHalfAwayFromZero) {
   EXPECT_EQ(mm(1005), "  1.01");
   EXPECT_EQ(mm(-1005), " -1.01");
 }
-TEST(FormatMm, PrintsNegativeWithSignBeforeDigits) { EXPECT_EQ(mm(-1250), " -1.25"); }
+TEST(FormatMm, PrintsNegativeWithSignBeforeDigits) {
+  EXPECT_EQ(mm(-1250), " -1.25");
+}
 TEST(FormatMm, PrintsTheWidestValues) {
   EXPECT_EQ(mm(999994), "999.99");
   EXPECT_EQ(mm(-99994), "-99.99");

@@ -24,7 +24,7 @@ class FaultyWire : public fake::SpiDevice {
   void advance_ns(uint64_t ns) override { chip_.advance_ns(ns); }
   bool corrupt_ = false;
   uint8_t corrupt_read_of_ = 0;  // flips data bit 0 in reads of this address byte
-  uint32_t force_status_ = 0;       // OR'd into every answer
+  uint32_t force_status_ = 0;    // OR'd into every answer
 
  private:
   fake::Tmc428Model& chip_;
@@ -51,10 +51,10 @@ TEST(Tmc428Init, LeavesTheChipInVelocityModeWithSwitchStopsAndMultiplexedSwitche
   EXPECT_EQ(b.chip.common_reg(15), 0x110702u);
   for (int m = 0; m < 3; ++m) {
     SCOPED_TRACE(m);
-    EXPECT_EQ(b.chip.reg(m, 10), 0x000002u);  // ramp_mode VELOCITY, ref_conf 0 (stops on)
-    EXPECT_EQ(b.chip.reg(m, 2), 1u);          // v_min
-    EXPECT_EQ(b.chip.reg(m, 4), 0u);          // v_target
-    EXPECT_EQ(b.chip.reg(m, 11) >> 8, 0x08u); // INT_STOP unmasked
+    EXPECT_EQ(b.chip.reg(m, 10), 0x000002u);   // ramp_mode VELOCITY, ref_conf 0 (stops on)
+    EXPECT_EQ(b.chip.reg(m, 2), 1u);           // v_min
+    EXPECT_EQ(b.chip.reg(m, 4), 0u);           // v_target
+    EXPECT_EQ(b.chip.reg(m, 11) >> 8, 0x08u);  // INT_STOP unmasked
   }
 }
 
@@ -83,8 +83,8 @@ TEST(Tmc428Init, LoadsBothRamTables) {
   const uint8_t tmc246[12] = {0x07, 0x05, 0x04, 0x03, 0x02, 0x06,
                               0x0F, 0x0D, 0x0C, 0x0B, 0x0A, 0x2E};
   for (int i = 0; i < 36; ++i) EXPECT_EQ(b.chip.ram_entry(i), tmc246[i % 12]) << i;
-  EXPECT_EQ(b.chip.ram_entry(64 + 0), 0);   // sine(0)
-  EXPECT_EQ(b.chip.ram_entry(64 + 32), 45); // int(0.5 + 64 sin(pi/4)) = 45
+  EXPECT_EQ(b.chip.ram_entry(64 + 0), 0);    // sine(0)
+  EXPECT_EQ(b.chip.ram_entry(64 + 32), 45);  // int(0.5 + 64 sin(pi/4)) = 45
   EXPECT_EQ(b.chip.ram_entry(64 + 63), 63);
 }
 
@@ -186,6 +186,22 @@ TEST(Tmc428Init, RefusesMotionCommandsAfterAFailedInit) {
   ASSERT_NE(b.driver.init(), Tmc428InitResult::kOk);
   const int16_t v[3] = {100, 0, 0};
   EXPECT_FALSE(b.driver.write_velocity_units(v));
+}
+
+TEST(Tmc428Init, AWarmRestartStopsAMotorLeftRunning) {
+  Bench b;
+  // The chip kept running from before a firmware reset: motor 1 at v = 1000.
+  b.chip.transfer32(0x18002500u);  // pulse_div 2, ramp_div 5
+  b.chip.transfer32(0x060007FFu);  // v_max 2047
+  b.chip.transfer32(0x0C000160u);  // a_max 352
+  b.chip.transfer32(0x080003E8u);  // v_target 1000
+  b.chip.transfer32(0x14000002u);  // VELOCITY_MODE
+  b.chip.advance_us(200000);
+  ASSERT_EQ(b.chip.v_actual(0), 1000);
+  ASSERT_EQ(b.driver.init(), Tmc428InitResult::kOk);
+  b.chip.advance_us(200000);
+  EXPECT_EQ(b.chip.v_actual(0), 0);
+  EXPECT_EQ(b.chip.reg(0, 4), 0u);  // v_target cleared, so nothing restarts
 }
 
 // ---- MotionAxes on the model ----------------------------------------------------------

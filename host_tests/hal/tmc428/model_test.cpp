@@ -1,1 +1,305 @@
+// fake::Tmc428Model: register semantics, velocity-mode ramps and motion, switch stops,
+// driver-chain read-back. Raw datagrams, no driver, so the model is pinned on its own.
 #include <gtest/gtest.h>
+
+#include "hal/drivers/tmc428/tmc428_regs.h"
+#include "hal/fake/motion/tmc428_model.h"
+
+namespace {
+
+using namespace drivers::tmc428;
+using fake::Tmc428Model;
+
+uint32_t write(Tmc428Model& c, uint8_t addr, uint32_t data) {
+  return c.transfer32(write_datagram(addr, data));
+}
+uint32_t read(Tmc428Model& c, uint8_t addr) {
+  return c.transfer32(read_datagram(addr));
+}
+
+// Motor 1 in velocity mode: pulse_div 2, ramp_div 5, a_max 352, v_max 2047.
+void velocity_setup(Tmc428Model& c, uint32_t ref_conf = 0) {
+  write(c, motor_reg(0, kDivisors), divisors_data(2, 5, 4));
+  write(c, motor_reg(0, kVMax), 2047);
+  write(c, motor_reg(0, kAMax), 352);
+  write(c, motor_reg(0, kInterrupt), (uint32_t)kIntStop << 8);
+  write(c, motor_reg(0, kRefConfRampMode), ref_conf | kVelocityMode);
+}
+
+// ---- registers ------------------------------------------------------------------------
+
+TEST(Tmc428Model, PowerOnRegistersAreZeroExceptClk2Div15) {
+  Tmc428Model c;
+  for (int idx = 0; idx < 16; ++idx) {
+    if (idx == 9) continue;  // pmul bit 15 reads as the forced 1
+    EXPECT_EQ(c.reg(0, idx), 0u) << idx;
+  }
+  EXPECT_EQ(c.reg(0, 9), 0x8000u);
+  EXPECT_EQ(c.common_reg(15), 0x000F00u);  // SMGP clk2_div = 15 ([428DS] §6.1)
+}
+
+TEST(Tmc428Model, ReadReturnsTheRegisterInTheSameTransfer) {
+  Tmc428Model c;
+  write(c, motor_reg(1, kAMax), 1000);
+  EXPECT_EQ(datagram_data(read(c, motor_reg(1, kAMax))), 1000u);
+}
+
+TEST(Tmc428Model, WriteAnswersTheStatusWithZeroData) {
+  Tmc428Model c;
+  write(c, motor_reg(0, kXTarget), 0x123);
+  // x_target 0x123 != x_actual 0 on motor 1 only: xEQt2, xEQt3 = 0x14.
+  EXPECT_EQ(write(c, motor_reg(0, kVMin), 5), 0x14000000u);
+}
+
+TEST(Tmc428Model, PowerOnStatusShowsAllMotorsAtTarget) {
+  Tmc428Model c;
+  // [428DS] §6.5 example state: INT 0, CDGW 0, switches off, xEQt 1,1,1 -> 0x15.
+  EXPECT_EQ(read(c, motor_reg(0, kXActual)) >> 24, 0x15u);
+}
+
+TEST(Tmc428Model, WritesToReadOnlyRegistersAreIgnored) {
+  Tmc428Model c;
+  write(c, motor_reg(0, kVActual), 100);  // RO outside HOLD_MODE
+  write(c, motor_reg(0, kAActual), 100);
+  write(c, kRefSwitches, 0x3F);
+  EXPECT_EQ(c.reg(0, 5), 0u);
+  EXPECT_EQ(c.reg(0, 7), 0u);
+  EXPECT_EQ(c.common_reg(14), 0u);
+}
+
+TEST(Tmc428Model, VActualIsWritableInHoldMode) {
+  Tmc428Model c;
+  write(c, motor_reg(0, kRefConfRampMode), kHoldMode);
+  write(c, motor_reg(0, kVActual), 0xF9C);  // -100
+  EXPECT_EQ(c.v_actual(0), -100);
+}
+
+TEST(Tmc428Model, RegistersKeepOnlyTheirDataSheetWidth) {
+  Tmc428Model c;
+  write(c, motor_reg(0, kVMax), 0xFFFFFF);
+  write(c, motor_reg(0, kVTarget), 0xFFFFFF);
+  write(c, motor_reg(0, kDivisors), 0xFFFFFF);
+  EXPECT_EQ(c.reg(0, 3), 0x7FFu);    // 11 bits
+  EXPECT_EQ(c.reg(0, 4), 0xFFFu);    // 12 bits
+  EXPECT_EQ(c.reg(0, 12), 0xFF07u);  // pulse_div, ramp_div, usrs
+}
+
+TEST(Tmc428Model, InterruptFlagsClearByWritingOnes) {
+  Tmc428Model c;
+  write(c, kSmgp, kSmgpRefMux | kSmgpContinuousUpdate);
+  velocity_setup(c);
+  c.set_switch_positions(0, -1000000, 10);
+  write(c, motor_reg(0, kVTarget), 500);
+  c.advance_us(100000);
+  ASSERT_EQ(c.reg(0, 11) & kIntStop, kIntStop);
+  write(c, motor_reg(0, kInterrupt), ((uint32_t)kIntStop << 8) | kIntStop);
+  EXPECT_EQ(c.reg(0, 11) & 0xFF, 0u);
+}
+
+TEST(Tmc428Model, RamHoldsTwoEntriesPerDatagram) {
+  Tmc428Model c;
+  write(c, 0xC2, 0x0503);
+  EXPECT_EQ(c.ram_entry(64 + 2), 0x03);
+  EXPECT_EQ(c.ram_entry(64 + 3), 0x05);
+  EXPECT_EQ(datagram_data(read(c, 0xC2)), 0x0503u);
+}
+
+// ---- motion ---------------------------------------------------------------------------
+
+TEST(Tmc428Model, RampReachesTargetAfterTheDataSheetNumberOfRampClocks) {
+  Tmc428Model c;
+  velocity_setup(c);
+  write(c, motor_reg(0, kVTarget), 1000);
+  // a_max/256 per ramp clock: ceil(1000 * 256 / 352) = 728 ramp clocks of 32 * 2^5 = 1024
+  // ticks (102.4 us at 10 MHz) -> 74547.2 us.
+  c.advance_us(74547);
+  EXPECT_EQ(c.v_actual(0), 999);
+  c.advance_us(1);
+  EXPECT_EQ(c.v_actual(0), 1000);
+}
+
+TEST(Tmc428Model, RampDistanceMatchesTheDataSheetFormula) {
+  Tmc428Model c;
+  velocity_setup(c);
+  write(c, motor_reg(0, kVTarget), 1000);
+  c.advance_us(74548);
+  // S = 1/2 v^2 / a_max 2^ramp_div / 2^pulse_div / 8 = 0.5e6 / 352 * 32 / 4 / 8 = 1420.5.
+  EXPECT_NEAR(c.x_actual(0), 1420.5, 1420.5 * 0.01);
+}
+
+TEST(Tmc428Model, ConstantVelocityIntegratesExactly) {
+  Tmc428Model c;
+  velocity_setup(c);
+  write(c, motor_reg(0, kVTarget), 1000);
+  c.advance_us(100000);  // ramp done
+  const int32_t x0 = c.x_actual(0);
+  for (int ms = 0; ms < 1000; ++ms) c.advance_us(1000);
+  // R = 10^7 * 1000 / 2^18 = 38146.97 usteps/s; the accumulator keeps the remainder.
+  EXPECT_NEAR(c.x_actual(0) - x0, 38147, 1);
+}
+
+TEST(Tmc428Model, NegativeVelocityMovesBackwards) {
+  Tmc428Model c;
+  velocity_setup(c);
+  write(c, motor_reg(0, kVTarget), 0xFFF & (uint32_t)-300);
+  c.advance_us(200000);
+  EXPECT_EQ(c.v_actual(0), -300);
+  EXPECT_LT(c.x_actual(0), 0);
+}
+
+TEST(Tmc428Model, VelocityIsLimitedToVMax) {
+  Tmc428Model c;
+  velocity_setup(c);
+  write(c, motor_reg(0, kVMax), 200);
+  write(c, motor_reg(0, kVTarget), 1500);
+  c.advance_us(200000);
+  EXPECT_EQ(c.v_actual(0), 200);
+}
+
+TEST(Tmc428Model, RampModeWithVMaxZeroDoesNotMove) {
+  Tmc428Model c;
+  write(c, motor_reg(0, kXTarget), 100000);
+  write(c, motor_reg(0, kAMax), 100);
+  c.advance_us(100000);
+  EXPECT_EQ(c.x_actual(0), 0);
+}
+
+// ---- switches -------------------------------------------------------------------------
+
+TEST(Tmc428Model, HardStopsExactlyOnTheRightSwitch) {
+  Tmc428Model c;
+  write(c, kSmgp, kSmgpRefMux | kSmgpContinuousUpdate);
+  velocity_setup(c);
+  c.set_switch_positions(0, -100000, 5000);
+  write(c, motor_reg(0, kVTarget), 1000);
+  c.advance_us(500000);
+  EXPECT_EQ(c.x_actual(0), 5000);
+  EXPECT_EQ(c.v_actual(0), 0);
+  EXPECT_EQ(c.reg(0, 11) & kIntStop, kIntStop);
+  EXPECT_EQ(c.switch_bits(), 0x01);  // r1
+  EXPECT_EQ(c.status_byte() & kStatusInt, kStatusInt);
+}
+
+TEST(Tmc428Model, HardStopsOnTheLeftSwitchAndShowsRs1) {
+  Tmc428Model c;
+  write(c, kSmgp, kSmgpRefMux | kSmgpContinuousUpdate);
+  velocity_setup(c);
+  c.set_switch_positions(0, -3000, 100000);
+  write(c, motor_reg(0, kVTarget), 0xFFF & (uint32_t)-1000);
+  c.advance_us(500000);
+  EXPECT_EQ(c.x_actual(0), -3000);
+  EXPECT_EQ(c.status_byte() & kStatusRs1, kStatusRs1);
+  EXPECT_EQ(c.switch_bits(), 0x02);  // l1
+}
+
+TEST(Tmc428Model, MovesAwayFromAnActiveSwitch) {
+  Tmc428Model c;
+  write(c, kSmgp, kSmgpRefMux | kSmgpContinuousUpdate);
+  velocity_setup(c);
+  c.set_switch_positions(0, -100000, 5000);
+  write(c, motor_reg(0, kVTarget), 1000);
+  c.advance_us(500000);
+  write(c, motor_reg(0, kVTarget), 0xFFF & (uint32_t)-1000);
+  c.advance_us(200000);
+  EXPECT_LT(c.x_actual(0), 5000);
+  EXPECT_EQ(c.switch_bits(), 0);
+}
+
+TEST(Tmc428Model, SoftStopRampsDownPastTheSwitch) {
+  Tmc428Model c;
+  write(c, kSmgp, kSmgpRefMux | kSmgpContinuousUpdate);
+  velocity_setup(c, kSoftStop);
+  c.set_switch_positions(0, -100000, 5000);
+  write(c, motor_reg(0, kVTarget), 1000);
+  c.advance_us(800000);
+  EXPECT_EQ(c.v_actual(0), 0);
+  // Braking from 1000 takes the ramp distance, 1420.5 usteps, beyond the switch.
+  EXPECT_NEAR(c.x_actual(0), 5000 + 1420.5, 1420.5 * 0.01);
+}
+
+TEST(Tmc428Model, DisabledStopLetsTheMotorRunOverTheSwitch) {
+  Tmc428Model c;
+  write(c, kSmgp, kSmgpRefMux | kSmgpContinuousUpdate);
+  velocity_setup(c, kDisableStopR);
+  c.set_switch_positions(0, -100000, 5000);
+  write(c, motor_reg(0, kVTarget), 1000);
+  c.advance_us(500000);
+  EXPECT_GT(c.x_actual(0), 5000);
+  EXPECT_EQ(c.switch_bits(), 0x01);
+}
+
+TEST(Tmc428Model, RightSwitchesExistOnlyWithRefmux) {
+  Tmc428Model c;  // SMGP at power-on: refmux 0 -> REFn are left switches only
+  velocity_setup(c);
+  c.set_switch_positions(0, -100000, 5000);
+  write(c, motor_reg(0, kVTarget), 1000);
+  c.advance_us(500000);
+  EXPECT_GT(c.x_actual(0), 5000);
+}
+
+// ---- driver chain ---------------------------------------------------------------------
+
+// RAM chain table for three TMC246 and SMGP with LSMD 2, continuous update.
+void chain_setup(Tmc428Model& c) {
+  const uint32_t pairs[6] = {0x0507, 0x0304, 0x0602, 0x0D0F, 0x0B0C, 0x2E0A};
+  for (int k = 0; k < 18; ++k) write(c, (uint8_t)(0x80 + 2 * k), pairs[k % 6]);
+  write(c, kSmgp, 2 | (7 << 8) | kSmgpContinuousUpdate | kSmgpRefMux);
+}
+
+TEST(Tmc428Model, ChainReadbackPlacesMotor1InTheHighWord) {
+  Tmc428Model c;
+  chain_setup(c);
+  c.set_driver_status(0, 0x111);
+  c.set_driver_status(1, 0x322);
+  c.set_driver_status(2, 0x533);
+  write(c, kDatagramLowWord, 0);
+  EXPECT_EQ(c.status_byte() & kStatusCdgw, kStatusCdgw);
+  c.advance_us(5000);  // continuous update every 32768 / 3 ticks at ramp_div 0 (1.1 ms)
+  EXPECT_EQ(c.status_byte() & kStatusCdgw, 0);
+  EXPECT_EQ(datagram_data(read(c, kDatagramLowWord)), 0x322533u);
+  EXPECT_EQ(datagram_data(read(c, kDatagramHighWord)) & 0xFFF, 0x111u);
+}
+
+TEST(Tmc428Model, ChainNeverAnswersWithoutContinuousUpdateAtRest) {
+  Tmc428Model c;
+  chain_setup(c);
+  write(c, kSmgp, 2 | (7 << 8));
+  write(c, kDatagramLowWord, 0);
+  c.advance_us(100000);
+  EXPECT_EQ(c.status_byte() & kStatusCdgw, kStatusCdgw);
+}
+
+TEST(Tmc428Model, ChainWithoutNxMNeverCompletes) {
+  Tmc428Model c;
+  for (int k = 0; k < 32; ++k) write(c, (uint8_t)(0x80 + 2 * k), 0x1111);
+  write(c, kSmgp, 2 | (7 << 8) | kSmgpContinuousUpdate);
+  write(c, kDatagramLowWord, 0);
+  c.advance_us(100000);
+  EXPECT_EQ(c.status_byte() & kStatusCdgw, kStatusCdgw);
+}
+
+TEST(Tmc428Model, LogsEveryDatagramWithItsTime) {
+  Tmc428Model c;
+  write(c, motor_reg(0, kVMin), 1);
+  c.advance_us(250);
+  read(c, motor_reg(0, kVMin));
+  ASSERT_EQ(c.log().size(), 2u);
+  EXPECT_EQ(c.log()[0].time_ns, 0u);
+  EXPECT_EQ(c.log()[1].time_ns, 250000u);
+  EXPECT_EQ(c.log()[1].mosi, 0x05000000u);
+  EXPECT_EQ(c.log()[1].miso, 0x15000001u);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Tmc428ModelLog, StopsGrowingAtItsLimitAndCountsTheRest) {
+  fake::Tmc428Model c;
+  c.set_log_limit(2);
+  for (int i = 0; i < 5; ++i) c.transfer32(0x05000000u);
+  EXPECT_EQ(c.log().size(), 2u);
+  EXPECT_EQ(c.log_dropped(), 3u);
+}
+
+}  // namespace

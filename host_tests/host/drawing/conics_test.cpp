@@ -39,7 +39,9 @@ TEST(Conics, ClockwiseArcCrossingZeroDegreesStaysOnTheCircle) {
   const BSpline s = arc_spline({0, 0}, 3.0, 30 * kPi / 180, -100 * kPi / 180);
   EXPECT_EQ(s.control.size(), 5u);  // 100 degrees: 2 pieces
   EXPECT_LT(radius_error(s, {0, 0}, 3.0), 1e-12);
-  EXPECT_LT((end_point(s) - 3.0 * Point2(std::cos(-70 * kPi / 180), std::sin(-70 * kPi / 180))).norm(), 1e-12);
+  EXPECT_LT(
+      (end_point(s) - 3.0 * Point2(std::cos(-70 * kPi / 180), std::sin(-70 * kPi / 180))).norm(),
+      1e-12);
 }
 
 TEST(Conics, EllipseArcSatisfiesTheEllipseEquation) {
@@ -53,7 +55,9 @@ TEST(Conics, EllipseArcSatisfiesTheEllipseEquation) {
     const double v = p.dot(minor) / minor.squaredNorm();
     EXPECT_NEAR(u * u + v * v, 1.0, 1e-12);
   }
-  EXPECT_LT((start_point(s) - (Point2(1, 1) + std::cos(0.3) * major + std::sin(0.3) * minor)).norm(), 1e-12);
+  EXPECT_LT(
+      (start_point(s) - (Point2(1, 1) + std::cos(0.3) * major + std::sin(0.3) * minor)).norm(),
+      1e-12);
 }
 
 TEST(Conics, BulgeOneIsACounterClockwiseHalfCircle) {

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>  // testing::TempDir
 
+#include <unistd.h>  // getpid
+
 #include <fstream>  // std::ofstream
 #include <sstream>  // std::ostringstream
 #include <string>   // std::string
@@ -50,9 +52,10 @@ inline std::string dxf_text(const std::string& entities, int insunits = 4,
   return out + t.str();
 }
 
-// Writes text to a fresh file in the test temp dir; returns its path.
+// Writes text to a fresh file in the test temp dir; returns its path. The process id in
+// the name keeps tests that ctest runs in parallel apart.
 inline std::string write_temp(const std::string& name, const std::string& text) {
-  const std::string path = testing::TempDir() + "/" + name;
+  const std::string path = testing::TempDir() + "/" + std::to_string(getpid()) + "-" + name;
   std::ofstream(path, std::ios::binary) << text;
   return path;
 }

@@ -1,0 +1,674 @@
+// The firmware application (see application.h and docs/firmware.md).
+#include "firmware/app/application.h"
+
+#include "firmware/protocol/codec.h"  // decode_frame
+
+namespace app {
+
+namespace {
+
+const uint8_t kItemsPerPoll = 4;   // command items started per background pass
+const uint8_t kPointsPerPoll = 8;  // spline points generated per background pass
+
+}  // namespace
+
+Application::Application()
+    : ms_(0),
+      tick_mode_((uint8_t)TickMode::kFollow),
+      tick_alarm_(kTickAlarmNone),
+      stops_done_(0),
+      jogs_done_(0),
+      jog_confirmed_(0),
+      requests_done_(0),
+      stop_pending_(false),
+      seen_items_(0),
+      item_tag_(0),
+      items_stored_(0),
+      items_done_(0),
+      last_feed_um_s_(1000),
+      seen_stops_(0),
+      seen_jogs_(0),
+      last_executed_seq_(0),
+      override_percent_(100),
+      app_alarm_(proto::Alarm::kNone),
+      reported_alarm_(proto::Alarm::kNone),
+      have_snapshot_(false),
+      stopping_(false),
+      stop_request_owed_(false),
+      jog_active_(false),
+      zeroed_(false),
+      hold_requested_(false),
+      link_hold_(false),
+      spline_started_(false),
+      alarm_clearing_(false),
+      alarm_clear_mark_(0),
+      requests_pushed_(0),
+      shown_error_(proto::ErrorCode::kOk) {
+  board_.link = 0;
+  board_.motion = 0;
+  board_.display = 0;
+  board_.inputs = 0;
+  for (uint8_t i = 0; i < config::kAxisCount; ++i) {
+    tick_pos_[i] = 0;
+    latest_.pos_usteps[i] = 0;
+  }
+}
+
+Application::~Application() {}
+
+void Application::init(const Board& board, const config::MachineConfig& cfg) {
+  board_ = board;
+  cfg_ = cfg;
+  if (!build_axis_scaling(cfg, *board.motion, &scaling_))
+    app_alarm_ = proto::Alarm::kMotionChipFault;
+  planner_.init(scaling_, default_planner_settings(cfg.capture_radius_um));
+  path_.init(scaling_);
+  jog_.init(scaling_);
+  sink_.app_ = this;
+  dispatcher_.init(board.link, &sink_);
+  screen_.init(board.display);
+  if (cfg.default_feed_um_per_s > 0 && cfg.default_feed_um_per_s < 65536UL)
+    last_feed_um_s_ = (uint16_t)cfg.default_feed_um_per_s;
+}
+
+// ---------------------------------------------------------------- the 1 ms tick
+
+void Application::tick_1ms() {
+  ms_ = (uint16_t)(ms_ + 1U);
+  tick_take_requests();
+  int32_t pos[config::kAxisCount];
+  uint8_t limits = 0;
+  int16_t v[config::kAxisCount] = {0, 0, 0};
+  if (!board_.motion->read_actual_usteps(pos) || !board_.motion->read_limits(&limits)) {
+    for (uint8_t i = 0; i < config::kAxisCount; ++i) pos[i] = tick_pos_[i];
+    tick_latch_alarm(kTickAlarmChip);
+  }
+  if (tick_mode_ == (uint8_t)TickMode::kFollow) {
+    const bool moving = !path_.finished() || !path_.at_rest() || !ring_.empty();
+    if (limits != 0 && moving) {
+      // A limit switch mid-job: zero velocities in this very tick, latch the alarm.
+      tick_latch_alarm(kTickAlarmLimit);
+    } else {
+      path_.tick(pos, &ring_, v);
+      if (stop_pending_ && path_.at_rest()) {
+        path_.flush(&ring_);
+        path_.set_hold(false);
+        stop_pending_ = false;
+        ++stops_done_;
+      }
+    }
+  } else if (tick_mode_ == (uint8_t)TickMode::kJog) {
+    const JogResult r = jog_.tick(board_.inputs->state(), limits, pos, v);
+    if (r != JogResult::kRunning) {
+      if (r == JogResult::kConfirmed) {
+        board_.motion->set_actual_usteps(jog_.zero_usteps());
+        for (uint8_t i = 0; i < config::kAxisCount; ++i) pos[i] = jog_.zero_usteps()[i];
+      }
+      jog_confirmed_ = r == JogResult::kConfirmed ? 1 : 0;
+      ++jogs_done_;
+      path_.flush(&ring_);  // the old target is meaningless in the new coordinates
+      tick_mode_ = (uint8_t)TickMode::kFollow;
+    }
+  }
+  if (tick_mode_ == (uint8_t)TickMode::kAlarm) {
+    for (uint8_t i = 0; i < config::kAxisCount; ++i) v[i] = 0;
+  }
+  board_.motion->write_velocity_units(v);
+  for (uint8_t i = 0; i < config::kAxisCount; ++i) tick_pos_[i] = pos[i];
+  tick_publish(pos, limits);
+}
+
+void Application::tick_latch_alarm(uint8_t alarm) {
+  if (tick_mode_ != (uint8_t)TickMode::kAlarm) tick_alarm_ = alarm;
+  tick_mode_ = (uint8_t)TickMode::kAlarm;
+  path_.stop_now();
+}
+
+void Application::tick_take_requests() {
+  TickRequest r;
+  while (requests_.pop(&r)) {
+    ++requests_done_;
+    switch (r.kind) {
+      case RequestKind::kHold:
+      case RequestKind::kLinkHold:
+        path_.set_hold(true);
+        break;
+      case RequestKind::kResume:
+        path_.set_hold(false);
+        break;
+      case RequestKind::kOverride:
+        path_.set_override_percent(r.value);
+        break;
+      case RequestKind::kStop:
+        if (tick_mode_ == (uint8_t)TickMode::kJog) {
+          jog_confirmed_ = 0;  // zeroing cancelled; the chip ramps the jog down
+          ++jogs_done_;
+          tick_mode_ = (uint8_t)TickMode::kFollow;
+        }
+        if (tick_mode_ == (uint8_t)TickMode::kAlarm) {
+          path_.flush(&ring_);  // already standing: drop at once, stay in alarm
+          ++stops_done_;
+        } else {
+          path_.set_hold(true);
+          stop_pending_ = true;
+        }
+        break;
+      case RequestKind::kStartJog:
+        if (tick_mode_ == (uint8_t)TickMode::kFollow) {
+          path_.flush(&ring_);
+          jog_.start(r.value, board_.inputs->state());
+          tick_mode_ = (uint8_t)TickMode::kJog;
+        }
+        break;
+      case RequestKind::kClearAlarm:
+        // Tick alarm or one raised by the background loop: either way start clean (the
+        // chip ramps down whatever was still moving) and report it as a completed stop.
+        if (tick_mode_ == (uint8_t)TickMode::kAlarm) {
+          tick_mode_ = (uint8_t)TickMode::kFollow;
+          tick_alarm_ = kTickAlarmNone;
+        }
+        path_.flush(&ring_);
+        path_.set_hold(false);
+        stop_pending_ = false;
+        ++stops_done_;
+        break;
+    }
+  }
+}
+
+void Application::tick_publish(const int32_t pos[config::kAxisCount], uint8_t limits) {
+  TickStatus s;
+  for (uint8_t i = 0; i < config::kAxisCount; ++i) s.pos_usteps[i] = pos[i];
+  s.ms = ms_;
+  s.items_done = path_.items_done();
+  s.speed_um_s = path_.speed_um_s();
+  s.mode = tick_mode_;
+  s.alarm = tick_alarm_;
+  s.stops_done = stops_done_;
+  s.jogs_done = jogs_done_;
+  s.jog_confirmed = jog_confirmed_;
+  s.requests_done = requests_done_;
+  s.limits = limits;
+  s.holding = path_.holding() ? 1 : 0;
+  s.at_rest = path_.at_rest() ? 1 : 0;
+  s.finished = path_.finished() && ring_.empty() ? 1 : 0;
+  status_.push(s);  // full: the background loop is behind; the next one carries the counts
+}
+
+// ---------------------------------------------------------------- the background loop
+
+void Application::poll() {
+  take_snapshots();
+  if (!have_snapshot_) return;  // the tick has not run yet: positions unknown
+  follow_tick_events();
+  if (stop_request_owed_ && request(RequestKind::kStop, 0)) stop_request_owed_ = false;
+  dispatcher_.poll(ms_);
+  if (dispatcher_.last_error() != shown_error_) {
+    shown_error_ = dispatcher_.last_error();
+    if (shown_error_ != proto::ErrorCode::kOk)
+      screen_.show_error(shown_error_, dispatcher_.next_expected(), ms_);
+  }
+  execute();
+  watchdog();
+  update_screen();
+}
+
+bool Application::request(RequestKind kind, uint8_t value) {
+  TickRequest r;
+  r.kind = kind;
+  r.value = value;
+  if (!requests_.push(r)) return false;
+  requests_pushed_ = (uint8_t)(requests_pushed_ + 1U);
+  return true;
+}
+
+void Application::take_snapshots() {
+  TickStatus s;
+  while (status_.pop(&s)) {
+    latest_ = s;
+    // Every request up to the #C one taken: the tick's alarm state is current again.
+    if (alarm_clearing_ && (uint8_t)(s.requests_done - alarm_clear_mark_) < 128U)
+      alarm_clearing_ = false;
+    if (!have_snapshot_) {
+      have_snapshot_ = true;
+      seen_items_ = s.items_done;
+      seen_stops_ = s.stops_done;
+      seen_jogs_ = s.jogs_done;
+      int32_t at[config::kAxisCount];
+      position_um(at);
+      planner_.set_origin(at);
+    }
+  }
+}
+
+void Application::follow_tick_events() {
+  // A completed stop (abort, session reset, alarm cleared): everything the ring held is gone.
+  if (latest_.stops_done != seen_stops_) {
+    seen_stops_ = latest_.stops_done;
+    if (!stop_request_owed_) stopping_ = false;
+    seen_items_ = latest_.items_done;
+    int32_t at[config::kAxisCount];
+    position_um(at);
+    planner_.set_origin(at);
+  }
+  if (!stopping_) {
+    while (seen_items_ != latest_.items_done) {
+      ++seen_items_;
+      finish_oldest();
+    }
+  }
+  if (latest_.jogs_done != seen_jogs_) {
+    seen_jogs_ = latest_.jogs_done;
+    if (jog_active_) {
+      jog_active_ = false;
+      QueueItem* item = queue_.to_execute();
+      if (item != 0 && item->kind == ItemKind::kZeroing) {
+        queue_.executed();
+        finish_oldest();
+      }
+      if (latest_.jog_confirmed) zeroed_ = true;
+      int32_t at[config::kAxisCount];
+      position_um(at);
+      planner_.set_origin(at);
+    }
+  }
+  // A new alarm from the tick: the job is gone; tell the host once.
+  const proto::Alarm a = alarm();
+  if (a != reported_alarm_) {
+    reported_alarm_ = a;
+    if (a != proto::Alarm::kNone) {
+      if (a == proto::Alarm::kLimitSwitch) zeroed_ = false;  // position suspect
+      drop_job();
+      dispatcher_.send_alarm(a, proto::MachineState::kAlarm);
+    }
+  }
+}
+
+// The oldest item finished executing (its last point was reached).
+void Application::finish_oldest() {
+  const QueueItem* item = queue_.oldest();
+  if (item == 0 || queue_.in_flight() == 0) return;
+  if (item->kind == ItemKind::kText)
+    screen_.show_text(item->small, item->text, item->text_length, ms_);
+  last_executed_seq_ = item->seq;
+  ++items_done_;
+  queue_.finished();
+}
+
+// Forgets the queued work (the ring is dropped by the tick's stop).
+void Application::drop_job() {
+  queue_.clear();
+  store_.clear();
+  generator_.stop();
+  spline_started_ = false;
+  jog_active_ = false;
+}
+
+// Asks the tick to decelerate and drop the ring; the background waits for it to finish.
+void Application::begin_stop() {
+  drop_job();
+  stopping_ = true;
+  hold_requested_ = false;
+  link_hold_ = false;
+  if (!request(RequestKind::kStop, 0)) stop_request_owed_ = true;
+}
+
+void Application::raise_alarm(proto::Alarm a) {
+  if (app_alarm_ == proto::Alarm::kNone) app_alarm_ = a;
+  begin_stop();
+}
+
+bool Application::alarm_active() const {
+  return alarm() != proto::Alarm::kNone;
+}
+
+proto::Alarm Application::alarm() const {
+  if (!alarm_clearing_ && latest_.mode == (uint8_t)TickMode::kAlarm &&
+      latest_.alarm != kTickAlarmNone)
+    return (proto::Alarm)latest_.alarm;
+  return app_alarm_;
+}
+
+proto::MachineState Application::state() const {
+  if (alarm_active()) return proto::MachineState::kAlarm;
+  if (jog_active_ || latest_.mode == (uint8_t)TickMode::kJog) return proto::MachineState::kZeroing;
+  if (hold_requested_)
+    return latest_.at_rest ? proto::MachineState::kHeld : proto::MachineState::kHolding;
+  if (stopping_ || !queue_.empty() || !latest_.finished || !latest_.at_rest)
+    return proto::MachineState::kRunning;
+  return proto::MachineState::kIdle;
+}
+
+void Application::position_um(int32_t out[config::kAxisCount]) const {
+  for (uint8_t i = 0; i < config::kAxisCount; ++i)
+    out[i] = usteps_to_um(scaling_, i, latest_.pos_usteps[i]);
+}
+
+bool Application::inside_travel(uint8_t axis, int32_t um) const {
+  const int32_t t = scaling_.travel_um[axis];
+  return um <= t && um >= -t;
+}
+
+// Motion frames need a zeroed machine, or a zeroing queued ahead of them.
+bool Application::motion_allowed() const {
+  if (zeroed_) return true;
+  for (uint8_t i = 0; i < queue_.size(); ++i) {
+    const QueueItem* it = queue_.at(i);
+    if (it != 0 && it->kind == ItemKind::kZeroing) return true;
+  }
+  return false;
+}
+
+// ---------------------------------------------------------------- CommandSink
+
+proto::ErrorCode ApplicationSink::store(const proto::Frame& frame, uint8_t* detail) {
+  return app_->store(frame, detail);
+}
+proto::ErrorCode ApplicationSink::realtime(const proto::Frame& frame) {
+  return app_->realtime(frame);
+}
+void ApplicationSink::reset_session() {
+  app_->reset_session();
+}
+void ApplicationSink::fill_status(proto::StatusReply* reply) {
+  app_->fill_status(reply);
+}
+uint8_t ApplicationSink::queue_free() {
+  return app_->queue_free();
+}
+uint8_t ApplicationSink::queue_slots() {
+  return app_->queue_slots();
+}
+
+proto::ErrorCode Application::store(const proto::Frame& f, uint8_t* detail) {
+  *detail = 0;
+  if (alarm_active()) return proto::ErrorCode::kAlarmActive;
+  QueueItem item;
+  item.seq = f.seq;
+  item.small = 0;
+  item.text_length = 0;
+  item.a = 0;
+  item.b = 0;
+  item.feed_um_s = 0;
+  item.extra = 0;
+  proto::ErrorCode e = proto::ErrorCode::kOk;
+  switch (f.letter) {
+    case proto::kCmdText: {
+      proto::TextCmd c;
+      e = proto::decode_frame(f, &c);
+      if (e != proto::ErrorCode::kOk) return e;
+      item.kind = ItemKind::kText;
+      item.small = c.row;
+      item.text_length = c.length;
+      for (uint8_t i = 0; i < c.length && i < 16; ++i) item.text[i] = c.text[i];
+      break;
+    }
+    case proto::kCmdResolution: {
+      proto::ResolutionCmd c;
+      e = proto::decode_frame(f, &c);
+      if (e != proto::ErrorCode::kOk) return e;
+      item.kind = ItemKind::kResolution;
+      item.feed_um_s = c.max_step_um;
+      item.extra = c.chord_tolerance_um;
+      break;
+    }
+    case proto::kCmdFeedMove:
+    case proto::kCmdRapidMove: {
+      int32_t x, y;
+      uint16_t feed;
+      if (f.letter == proto::kCmdFeedMove) {
+        proto::FeedMoveCmd c;
+        e = proto::decode_frame(f, &c);
+        x = c.x_um;
+        y = c.y_um;
+        feed = c.feed_um_per_s;
+        item.kind = ItemKind::kFeedMove;
+      } else {
+        proto::RapidMoveCmd c;
+        e = proto::decode_frame(f, &c);
+        x = c.x_um;
+        y = c.y_um;
+        feed = cfg_.rapid_feed_um_per_s > 65535UL ? 65535U : (uint16_t)cfg_.rapid_feed_um_per_s;
+        item.kind = ItemKind::kRapidMove;
+      }
+      if (e != proto::ErrorCode::kOk) return e;
+      if (!motion_allowed()) return proto::ErrorCode::kNotZeroed;
+      if (!inside_travel(config::kAxisX, x) || !inside_travel(config::kAxisY, y))
+        return proto::ErrorCode::kOutOfTravel;
+      item.a = x;
+      item.b = y;
+      item.feed_um_s = feed;
+      break;
+    }
+    case proto::kCmdZMove: {
+      proto::ZMoveCmd c;
+      e = proto::decode_frame(f, &c);
+      if (e != proto::ErrorCode::kOk) return e;
+      if (!motion_allowed()) return proto::ErrorCode::kNotZeroed;
+      if (!inside_travel(config::kAxisZ, c.z_um)) return proto::ErrorCode::kOutOfTravel;
+      item.kind = ItemKind::kZMove;
+      item.a = c.z_um;
+      item.feed_um_s = c.feed_um_per_s;
+      break;
+    }
+    case proto::kCmdZeroing: {
+      proto::ZeroingCmd c;
+      e = proto::decode_frame(f, &c);
+      if (e != proto::ErrorCode::kOk) return e;
+      if (!queue_.empty() || stopping_) return proto::ErrorCode::kBadState;
+      item.kind = ItemKind::kZeroing;
+      item.small = c.axes;
+      break;
+    }
+    case proto::kCmdSplineHeader: {
+      proto::SplineHeaderCmd c;
+      e = proto::decode_frame(f, &c);
+      if (e != proto::ErrorCode::kOk) return e;
+      if (!motion_allowed()) return proto::ErrorCode::kNotZeroed;
+      if (c.control_count > core::kMaxControlPoints || c.degree > core::kMaxDegree)
+        return proto::ErrorCode::kFieldRange;
+      if (queue_.free_slots() == 0 || !store_.has_free_slot()) return proto::ErrorCode::kBusy;
+      uint8_t slot = 0;
+      e = store_.begin(c, &slot);
+      if (e != proto::ErrorCode::kOk) return e;
+      item.kind = ItemKind::kSpline;
+      item.small = slot;
+      item.feed_um_s = c.feed_um_per_s;
+      break;
+    }
+    case proto::kCmdSplineData: {
+      proto::SplineDataCmd c;
+      e = proto::decode_frame(f, &c);
+      if (e != proto::ErrorCode::kOk) return e;
+      const int32_t travel[2] = {scaling_.travel_um[0], scaling_.travel_um[1]};
+      bool completed = false;
+      return store_.add(c, travel, detail, &completed);  // stored in the slot, no queue item
+    }
+    default:
+      return proto::ErrorCode::kUnknownCommand;
+  }
+  if (!queue_.push(item)) return proto::ErrorCode::kBusy;
+  ++items_stored_;
+  return proto::ErrorCode::kOk;
+}
+
+proto::ErrorCode Application::realtime(const proto::Frame& f) {
+  switch (f.letter) {
+    case proto::kCmdHold:
+      if (f.length != 0) return proto::ErrorCode::kPayloadLength;
+      if (!request(RequestKind::kHold, 0)) return proto::ErrorCode::kBusy;
+      hold_requested_ = true;
+      return proto::ErrorCode::kOk;
+    case proto::kCmdResume:
+      if (f.length != 0) return proto::ErrorCode::kPayloadLength;
+      if (!hold_requested_) return proto::ErrorCode::kBadState;
+      if (!request(RequestKind::kResume, 0)) return proto::ErrorCode::kBusy;
+      hold_requested_ = false;
+      link_hold_ = false;
+      return proto::ErrorCode::kOk;
+    case proto::kCmdAbort:
+      if (f.length != 0) return proto::ErrorCode::kPayloadLength;
+      begin_stop();
+      dispatcher_.abort_stream();
+      return proto::ErrorCode::kOk;
+    case proto::kCmdOverride: {
+      proto::OverrideCmd c;
+      const proto::ErrorCode e = proto::decode_frame(f, &c);
+      if (e != proto::ErrorCode::kOk) return e;
+      if (!request(RequestKind::kOverride, c.percent)) return proto::ErrorCode::kBusy;
+      override_percent_ = c.percent;
+      return proto::ErrorCode::kOk;
+    }
+    case proto::kCmdClearAlarm:
+      if (f.length != 0) return proto::ErrorCode::kPayloadLength;
+      if (!alarm_active()) return proto::ErrorCode::kBadState;
+      if (!request(RequestKind::kClearAlarm, 0)) return proto::ErrorCode::kBusy;
+      app_alarm_ = proto::Alarm::kNone;
+      drop_job();
+      stopping_ = true;  // until the tick confirms the ring is dropped
+      hold_requested_ = false;
+      link_hold_ = false;
+      // Snapshots taken before the tick saw the request still show the latched alarm.
+      alarm_clearing_ = true;
+      alarm_clear_mark_ = requests_pushed_;
+      reported_alarm_ = proto::Alarm::kNone;
+      return proto::ErrorCode::kOk;
+    default:
+      return proto::ErrorCode::kUnknownCommand;
+  }
+}
+
+void Application::reset_session() {
+  begin_stop();
+  items_stored_ = 0;
+  items_done_ = 0;
+}
+
+void Application::fill_status(proto::StatusReply* r) {
+  r->state = state();
+  r->alarm = alarm();
+  r->flags =
+      (uint8_t)((zeroed_ ? proto::kStatusZeroed : 0) | (link_hold_ ? proto::kStatusLinkHold : 0));
+  r->override_percent = override_percent_;
+  r->queue_free = queue_free();
+  r->next_expected_seq = 0;  // filled by the dispatcher
+  r->last_executed_seq = last_executed_seq_;
+  r->last_error = proto::ErrorCode::kOk;
+  int32_t at[config::kAxisCount];
+  position_um(at);
+  r->x_um = at[0];
+  r->y_um = at[1];
+  r->z_um = at[2];
+  r->rejected_frames = 0;
+}
+
+uint8_t Application::queue_free() {
+  return queue_.free_slots();
+}
+
+uint8_t Application::queue_slots() {
+  return CommandQueue::kCapacity;
+}
+
+// ---------------------------------------------------------------- execution
+
+// Starts queued items in order: moves and splines become ring points, the rest markers.
+void Application::execute() {
+  if (stopping_ || alarm_active()) return;
+  for (uint8_t n = 0; n < kItemsPerPoll; ++n) {
+    QueueItem* item = queue_.to_execute();
+    if (item == 0) return;
+    if (!execute_item(item)) return;  // waiting (ring full, data missing, zeroing)
+    queue_.executed();
+    item_tag_ = (uint16_t)(item_tag_ + 1U);
+  }
+}
+
+bool Application::push_point(const int32_t target[config::kAxisCount], uint16_t feed,
+                             uint8_t flags) {
+  return planner_.push(&ring_, target, feed, flags, item_tag_);
+}
+
+// True when the item is fully handed over (its last ring entry flagged end-of-item).
+bool Application::execute_item(QueueItem* item) {
+  const int32_t* last = planner_.last_um();
+  int32_t target[config::kAxisCount] = {last[0], last[1], last[2]};
+  switch (item->kind) {
+    case ItemKind::kText:
+      return push_point(target, last_feed_um_s_, kPointEndOfItem);
+    case ItemKind::kResolution:
+      generator_.set_resolution(item->feed_um_s, item->extra);
+      return push_point(target, last_feed_um_s_, kPointEndOfItem);
+    case ItemKind::kFeedMove:
+    case ItemKind::kRapidMove:
+      target[0] = item->a;
+      target[1] = item->b;
+      last_feed_um_s_ = item->feed_um_s;
+      return push_point(
+          target, item->feed_um_s,
+          (uint8_t)(kPointEndOfItem | (item->kind == ItemKind::kRapidMove ? kPointRapid : 0)));
+    case ItemKind::kZMove:
+      target[2] = item->a;
+      last_feed_um_s_ = item->feed_um_s;
+      return push_point(target, item->feed_um_s, kPointEndOfItem);
+    case ItemKind::kZeroing:
+      // Only from a standstill with everything before it finished.
+      if (jog_active_ || queue_.in_flight() != 0 || !latest_.finished || !latest_.at_rest)
+        return false;
+      if (request(RequestKind::kStartJog, item->small)) jog_active_ = true;
+      return false;  // completed when the tick reports the end of zeroing
+    case ItemKind::kSpline: {
+      const SlotState s = store_.state(item->small);
+      if (s == SlotState::kFilling) return false;  // data still arriving
+      if (s != SlotState::kReady) {
+        // Rejected at its last #D (already reported): nothing to run, keep the order.
+        store_.release(item->small);
+        return push_point(target, last_feed_um_s_, kPointEndOfItem);
+      }
+      if (!spline_started_) {
+        if (generator_.begin(store_.spline(item->small), item->feed_um_s, last[2], item_tag_) !=
+            core::GeometryError::kOk) {
+          store_.release(item->small);
+          raise_alarm(proto::Alarm::kPathFault);
+          return false;
+        }
+        spline_started_ = true;
+        last_feed_um_s_ = item->feed_um_s;
+      }
+      const int32_t travel[2] = {scaling_.travel_um[0], scaling_.travel_um[1]};
+      const GenStatus g = generator_.run(&planner_, &ring_, travel, kPointsPerPoll);
+      if (g == GenStatus::kMore) return false;
+      spline_started_ = false;
+      store_.release(item->small);
+      if (g == GenStatus::kDone) return true;
+      raise_alarm(g == GenStatus::kOutside ? proto::Alarm::kSoftLimit : proto::Alarm::kPathFault);
+      return false;
+    }
+  }
+  return false;
+}
+
+// Link watchdog: running with no valid frame for kLinkTimeoutMs -> feed hold.
+void Application::watchdog() {
+  if (!dispatcher_.session_open() || hold_requested_) return;
+  if (state() != proto::MachineState::kRunning) return;
+  if (dispatcher_.ms_since_valid(ms_) < (uint16_t)proto::kLinkTimeoutMs) return;
+  if (request(RequestKind::kLinkHold, 0)) {
+    hold_requested_ = true;
+    link_hold_ = true;
+  }
+}
+
+void Application::update_screen() {
+  ScreenInfo info;
+  info.state = state();
+  info.alarm = alarm();
+  info.zeroed = zeroed_;
+  info.z_mode = jog_.z_mode();
+  info.items_done = items_done_;
+  info.items_stored = items_stored_;
+  position_um(info.pos_um);
+  screen_.update(info, ms_);
+}
+
+}  // namespace app

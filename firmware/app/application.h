@@ -1,0 +1,181 @@
+// The firmware application: wires the HAL (link, motion chip, display, panel) to the
+// dispatcher, command queue, spline store, point generator, planner and the 1 ms path
+// controller. tick_1ms() runs in the timer ISR and is the only user of board.motion;
+// poll() is one pass of the background loop. They share only SPSC rings (tick_link.h and
+// the coordinate ring). No heap, no floats.
+#ifndef FIRMWARE_APP_APPLICATION_H
+#define FIRMWARE_APP_APPLICATION_H
+
+#include <stdint.h>  // int32_t, uint16_t
+
+#include "firmware/app/axis_scaling.h"     // AxisScaling
+#include "firmware/app/command_queue.h"    // CommandQueue
+#include "firmware/app/coordinate_ring.h"  // CoordinateRing
+#include "firmware/app/dispatcher.h"       // Dispatcher, CommandSink
+#include "firmware/app/jog_controller.h"   // JogController
+#include "firmware/app/path_controller.h"  // PathController
+#include "firmware/app/planner.h"          // Planner
+#include "firmware/app/point_generator.h"  // PointGenerator
+#include "firmware/app/spline_store.h"     // SplineStore
+#include "firmware/app/status_screen.h"    // StatusScreen
+#include "firmware/app/tick_link.h"        // RequestRing, StatusRing
+#include "firmware/config/machine_config.h"
+#include "hal/interfaces/motion_axes.h"
+#include "hal/interfaces/operator_inputs.h"
+#include "hal/interfaces/serial_port.h"
+#include "hal/interfaces/text_display.h"
+
+namespace app {
+
+struct Board {
+  hal::SerialPort* link;
+  hal::MotionAxes* motion;
+  hal::TextDisplay* display;
+  hal::OperatorInputs* inputs;
+};
+
+class Application;
+
+// The dispatcher's view of the application (forwards to it). A member, never deleted through
+// a base pointer, so its non-virtual destructor is fine (the warning is silenced for it).
+#if defined(__GNUC__) && __GNUC__ >= 5
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wnon-virtual-dtor"
+#endif
+class ApplicationSink : public CommandSink {
+ public:
+  proto::ErrorCode store(const proto::Frame& frame, uint8_t* detail);
+  proto::ErrorCode realtime(const proto::Frame& frame);
+  void reset_session();
+  void fill_status(proto::StatusReply* reply);
+  uint8_t queue_free();
+  uint8_t queue_slots();
+
+ private:
+  friend class Application;
+  ApplicationSink() : app_(0) {}
+  ~ApplicationSink() {}
+  Application* app_;
+};
+#if defined(__GNUC__) && __GNUC__ >= 5
+#pragma GCC diagnostic pop
+#endif
+
+class Application {
+ public:
+  Application();
+  // Out of line so that code using an Application never compiles the sink's destructor
+  // (keeps -fsanitize=vptr builds of host code linking against the no-RTTI firmware).
+  ~Application();
+  void init(const Board& board, const config::MachineConfig& cfg);
+  // Timer ISR context on the target: the only caller of board.motion. Never waits.
+  void tick_1ms();
+  // One pass of the background loop: RX bytes -> parser -> dispatcher -> store; point
+  // generation into the ring; replies; LCD.
+  void poll();
+
+  // Read-only views for tests and the simulator (background-loop side).
+  proto::MachineState state() const;
+  proto::Alarm alarm() const;
+  bool zeroed() const { return zeroed_; }
+  // Actual position as last published by the tick, micrometres.
+  void position_um(int32_t out[config::kAxisCount]) const;
+  uint8_t last_executed_seq() const { return last_executed_seq_; }
+  uint16_t items_stored() const { return items_stored_; }
+  uint16_t items_done() const { return items_done_; }
+  uint8_t queue_size() const { return queue_.size(); }
+  uint16_t ms() const { return ms_; }
+  const Dispatcher& dispatcher() const { return dispatcher_; }
+  const StatusScreen& screen() const { return screen_; }
+  const AxisScaling& scaling() const { return scaling_; }
+  const PathController& path() const { return path_; }
+
+  // What the dispatcher calls (through ApplicationSink) from poll().
+  proto::ErrorCode store(const proto::Frame& frame, uint8_t* detail);
+  proto::ErrorCode realtime(const proto::Frame& frame);
+  void reset_session();
+  void fill_status(proto::StatusReply* reply);
+  uint8_t queue_free();
+  uint8_t queue_slots();
+
+ private:
+  // Tick side.
+  void tick_take_requests();
+  void tick_latch_alarm(uint8_t alarm);
+  void tick_publish(const int32_t pos[config::kAxisCount], uint8_t limits);
+  // Background side.
+  bool request(RequestKind kind, uint8_t value);
+  void take_snapshots();
+  void follow_tick_events();
+  void execute();
+  bool execute_item(QueueItem* item);
+  bool push_point(const int32_t target[config::kAxisCount], uint16_t feed, uint8_t flags);
+  void finish_oldest();
+  void drop_job();
+  void begin_stop();
+  void raise_alarm(proto::Alarm alarm);
+  bool alarm_active() const;
+  bool motion_allowed() const;
+  bool inside_travel(uint8_t axis, int32_t um) const;
+  void watchdog();
+  void update_screen();
+
+  Board board_;
+  ApplicationSink sink_;
+  config::MachineConfig cfg_;
+  AxisScaling scaling_;
+
+  // Shared between the tick and the background loop (SPSC only).
+  CoordinateRing ring_;
+  RequestRing requests_;
+  StatusRing status_;
+  volatile uint16_t ms_;  // written by the tick only
+
+  // Tick-owned.
+  PathController path_;
+  JogController jog_;
+  int32_t tick_pos_[config::kAxisCount];
+  uint8_t tick_mode_;  // TickMode
+  uint8_t tick_alarm_;
+  uint8_t stops_done_;
+  uint8_t jogs_done_;
+  uint8_t jog_confirmed_;
+  uint8_t requests_done_;
+  bool stop_pending_;
+
+  // Background-owned.
+  Dispatcher dispatcher_;
+  CommandQueue queue_;
+  SplineStore store_;
+  Planner planner_;
+  PointGenerator generator_;
+  StatusScreen screen_;
+  TickStatus latest_;
+  uint16_t seen_items_;
+  uint16_t item_tag_;
+  uint16_t items_stored_;
+  uint16_t items_done_;
+  uint16_t last_feed_um_s_;
+  uint8_t seen_stops_;
+  uint8_t seen_jogs_;
+  uint8_t last_executed_seq_;
+  uint8_t override_percent_;
+  proto::Alarm app_alarm_;
+  proto::Alarm reported_alarm_;
+  bool have_snapshot_;
+  bool stopping_;
+  bool stop_request_owed_;
+  bool jog_active_;
+  bool zeroed_;
+  bool hold_requested_;
+  bool link_hold_;
+  bool spline_started_;
+  bool alarm_clearing_;       // #C sent, the tick has not taken it yet
+  uint8_t alarm_clear_mark_;  // requests_pushed_ when #C was sent
+  uint8_t requests_pushed_;
+  proto::ErrorCode shown_error_;
+};
+
+}  // namespace app
+
+#endif  // FIRMWARE_APP_APPLICATION_H

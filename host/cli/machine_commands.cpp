@@ -1,0 +1,462 @@
+// `engraver sim` (the simulated machine on TCP), `engraver send` (stream a drawing to a
+// machine) and `engraver run` (both in one process: the main job, with plot and report).
+#include <CLI/CLI.hpp>  // CLI::App
+
+#include <fmt/format.h>       // fmt::format
+#include <nlohmann/json.hpp>  // nlohmann::json
+#include <signal.h>           // sigaction
+#include <termios.h>          // raw keyboard
+#include <unistd.h>           // isatty, read
+
+#include <atomic>      // std::atomic
+#include <chrono>      // steady_clock
+#include <filesystem>  // create_directories
+#include <fstream>     // std::ofstream
+#include <iostream>    // std::cerr
+#include <thread>      // keyboard thread
+
+#include "host/cli/command_registry.h"
+#include "host/cli/exit_codes.h"
+#include "host/lib/drawing/drawing.h"
+#include "host/lib/plan/firmware_points.h"
+#include "host/lib/plan/job_plan.h"
+#include "host/lib/plot/plan_plot.h"
+#include "host/lib/plot/plot.h"
+#include "host/lib/sim/sim_job.h"
+#include "host/lib/sim/sim_server.h"
+#include "host/lib/stream/sender.h"
+
+namespace host::cli {
+
+namespace {
+
+// Exit codes of send/run beyond the common ones (docs/user-guide.md).
+enum MachineExit { kExitAborted = 3, kExitAlarm = 4, kExitRefused = 5, kExitLinkLost = 6 };
+
+int exit_code(JobOutcome outcome) {
+  switch (outcome) {
+    case JobOutcome::kCompleted: return kExitOk;
+    case JobOutcome::kAborted: return kExitAborted;
+    case JobOutcome::kAlarm: return kExitAlarm;
+    case JobOutcome::kRejected: return kExitRefused;
+    case JobOutcome::kLinkLost: return kExitLinkLost;
+  }
+  return kExitJobFailed;
+}
+
+struct PlanArgs {
+  std::string file;
+  double feed_mm_s = 10.0;
+  double tol_mm = 0.005;
+  double scale = 1.0;
+  double margin_mm = 0.0;
+  std::vector<double> work_mm{297.0, 210.0};
+  double chain_tol_mm = 0.01;
+  bool no_reorder = false;
+  double z_up_mm = 2.0;
+  double z_down_mm = -0.1;
+};
+
+void add_plan_options(CLI::App* cmd, PlanArgs* a) {
+  cmd->add_option("FILE", a->file, "drawing (DXF, G-code)")->required();
+  cmd->add_option("--feed", a->feed_mm_s, "cutting feed in mm/s")->check(CLI::Range(0.1, 60.0))
+      ->capture_default_str();
+  cmd->add_option("--tol", a->tol_mm, "chord tolerance of the generated points in mm")
+      ->check(CLI::Range(0.001, 1.0))->capture_default_str();
+  cmd->add_option("--scale", a->scale, "scale factor applied to the drawing")
+      ->check(CLI::Range(1e-3, 1e3))->capture_default_str();
+  cmd->add_option("--margin", a->margin_mm, "offset of the drawing from the zero corner, mm")
+      ->check(CLI::Range(0.0, 100.0))->capture_default_str();
+  cmd->add_option("--work", a->work_mm, "work area W H in mm (default A4)")->expected(2);
+  cmd->add_option("--chain-tol", a->chain_tol_mm, "join curves whose ends are closer, mm")
+      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  cmd->add_flag("--no-reorder", a->no_reorder, "trace curves in drawing order");
+  cmd->add_option("--z-up", a->z_up_mm, "travel height in mm")->capture_default_str();
+  cmd->add_option("--z-down", a->z_down_mm, "cutting depth in mm")->capture_default_str();
+}
+
+JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
+  *drawing = import_drawing(a.file);
+  for (const std::string& w : drawing->warnings) std::cerr << "engraver: warning: " << w << "\n";
+  PlanOptions o;
+  o.scale = a.scale;
+  o.margin_mm = a.margin_mm;
+  o.work_width_mm = a.work_mm[0];
+  o.work_height_mm = a.work_mm[1];
+  o.reorder = !a.no_reorder;
+  o.chain_tolerance_mm = a.chain_tol_mm;
+  o.feed_mm_per_s = a.feed_mm_s;
+  o.z_up_mm = a.z_up_mm;
+  o.z_down_mm = a.z_down_mm;
+  try {
+    return plan_job(*drawing, o);
+  } catch (const PlanError& e) {
+    throw PlanError(fmt::format("{}: {}", a.file, e.what()));
+  }
+}
+
+EncodeOptions encode_options(const PlanArgs& a) {
+  EncodeOptions e;
+  e.chord_tolerance_um = static_cast<uint16_t>(std::lround(a.tol_mm * 1000.0));
+  e.title = std::filesystem::path(a.file).stem().string();
+  return e;
+}
+
+const char* state_name(proto::MachineState s) {
+  switch (s) {
+    case proto::MachineState::kIdle: return "idle";
+    case proto::MachineState::kRunning: return "running";
+    case proto::MachineState::kHolding: return "holding";
+    case proto::MachineState::kHeld: return "held";
+    case proto::MachineState::kZeroing: return "zeroing";
+    case proto::MachineState::kAlarm: return "ALARM";
+  }
+  return "?";
+}
+
+// ---- Operator controls: signals and keys ----
+
+Sender* g_sender = nullptr;  // for the signal handlers (request_* only set atomics)
+
+extern "C" void on_signal(int sig) {
+  if (g_sender == nullptr) return;
+  if (sig == SIGUSR1) g_sender->request_hold();
+  else if (sig == SIGUSR2) g_sender->request_resume();
+  else g_sender->request_abort();
+}
+
+void install_signals(Sender* sender) {
+  g_sender = sender;
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  for (int sig : {SIGINT, SIGTERM, SIGUSR1, SIGUSR2}) sigaction(sig, &sa, nullptr);
+}
+
+// Keys while a job runs (stdin a terminal): h hold, r resume, x abort, + / - override.
+class Keyboard {
+ public:
+  explicit Keyboard(Sender& sender) : sender_(sender) {
+    if (!isatty(STDIN_FILENO)) return;
+    tcgetattr(STDIN_FILENO, &saved_);
+    termios raw = saved_;
+    raw.c_lflag &= ~static_cast<tcflag_t>(ICANON | ECHO);
+    raw.c_cc[VMIN] = 0;
+    raw.c_cc[VTIME] = 1;  // read() returns every 100 ms so the thread can stop
+    tcsetattr(STDIN_FILENO, TCSANOW, &raw);
+    active_ = true;
+    thread_ = std::thread([this] { loop(); });
+  }
+  ~Keyboard() {
+    if (!active_) return;
+    stop_ = true;
+    thread_.join();
+    tcsetattr(STDIN_FILENO, TCSANOW, &saved_);
+  }
+
+ private:
+  void loop() {
+    int override_pct = 100;
+    while (!stop_) {
+      char c;
+      if (read(STDIN_FILENO, &c, 1) != 1) continue;
+      if (c == 'h' || c == ' ') sender_.request_hold();
+      if (c == 'r') sender_.request_resume();
+      if (c == 'x' || c == 'q') sender_.request_abort();
+      if (c == '+' || c == '-') {
+        override_pct = std::max(10, std::min(200, override_pct + (c == '+' ? 10 : -10)));
+        sender_.request_override(override_pct);
+      }
+    }
+  }
+  Sender& sender_;
+  termios saved_{};
+  bool active_ = false;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+// A one-line progress bar with ETA on stderr (only when stderr is a terminal).
+class ProgressBar {
+ public:
+  ProgressBar() : tty_(isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
+  void update(const Progress& p) {
+    if (!tty_ || p.total == 0) return;
+    const double f = double(p.executed) / double(p.total);
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    std::string eta = "--";
+    if (f > 0.02) {
+      const int s = static_cast<int>(elapsed / f - elapsed);
+      eta = fmt::format("{}:{:02}", s / 60, s % 60);
+    }
+    const int filled = static_cast<int>(f * 30);
+    std::cerr << fmt::format("\r[{}{}] {:3.0f}% {}/{} ETA {} {:8} x{:.1f} y{:.1f} ",
+                             std::string(filled, '#'), std::string(30 - filled, '.'), f * 100,
+                             p.executed, p.total, eta, state_name(p.status.state),
+                             p.status.x_um / 1000.0, p.status.y_um / 1000.0)
+              << std::flush;
+  }
+  ~ProgressBar() {
+    if (tty_) std::cerr << "\n";
+  }
+
+ private:
+  bool tty_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// ---- engraver send ----
+
+struct SendArgs {
+  PlanArgs plan;
+  std::string to;
+  bool no_zero = false;
+  int poll_ms = 250;
+};
+
+void run_send(const SendArgs& a) {
+  Drawing drawing;
+  const JobPlan plan = load_plan(a.plan, &drawing);
+  const LinkSpec spec = parse_link_spec(a.to);  // LinkError -> usage error below
+  std::unique_ptr<Link> link = open_link(spec, std::chrono::milliseconds(5000));
+  SenderOptions so;
+  so.zero_first = !a.no_zero;
+  so.status_interval = std::chrono::milliseconds(a.poll_ms);
+  Sender sender(*link, so);
+  install_signals(&sender);
+  const proto::SessionReply caps = sender.open_session();
+  EncodeOptions enc = encode_options(a.plan);
+  enc.max_payload = caps.max_payload;
+  const std::vector<QueuedCommand> commands = encode_job(plan, enc);
+  std::cerr << fmt::format("engraver: {} -> {}: {} curves, {} commands, {} bytes; keys: h hold, "
+                           "r resume, x abort, +/- feed override\n",
+                           a.plan.file, link->name(), plan.curves.size(), commands.size(),
+                           wire_bytes(commands));
+  JobOutcome outcome;
+  {
+    Keyboard keys(sender);
+    ProgressBar bar;
+    bool told_zero = false;
+    outcome = sender.run(commands, [&](const Progress& p) {
+      if (p.status.state == proto::MachineState::kZeroing && !told_zero) {
+        std::cerr << "engraver: zero the machine: jog to the corner with the joystick, then "
+                     "press confirm\n";
+        told_zero = true;
+      }
+      bar.update(p);
+    });
+  }
+  g_sender = nullptr;
+  const SenderStats& st = sender.stats();
+  std::cerr << fmt::format("engraver: job {}: {} ({} frames, {} bytes, {} retransmits)\n",
+                           outcome_name(outcome), sender.message(), st.frames_sent,
+                           st.bytes_sent, st.retransmits);
+  if (outcome != JobOutcome::kCompleted) {
+    throw CommandFailure(exit_code(outcome), fmt::format("job {}", outcome_name(outcome)));
+  }
+}
+
+// ---- engraver sim ----
+
+struct SimArgs {
+  std::string listen = "127.0.0.1:10001";
+  bool realtime = false;
+};
+
+std::atomic<bool> g_stop_sim{false};
+extern "C" void on_stop_sim(int) { g_stop_sim = true; }
+
+void run_sim(const SimArgs& a) {
+  const size_t colon = a.listen.rfind(':');
+  if (colon == std::string::npos) {
+    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': expected ADDR:PORT", a.listen));
+  }
+  sim::ServerOptions so;
+  so.address = a.listen.substr(0, colon);
+  try {
+    so.port = static_cast<uint16_t>(std::stoul(a.listen.substr(colon + 1)));
+  } catch (const std::exception&) {
+    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': bad port", a.listen));
+  }
+  so.realtime = a.realtime;
+  sim::SimMachine machine{sim::SimOptions{}};
+  if (!machine.chip_ok()) std::cerr << "engraver: simulated TMC428 failed its self-check\n";
+  sim::SimServer server(machine, so);
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_sim;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  std::cerr << fmt::format("engraver: simulated machine listening on {}:{} ({}); Ctrl-C stops\n",
+                           so.address, server.port(),
+                           a.realtime ? "real time" : "virtual time, as fast as the host allows");
+  const uint64_t ms = server.run(g_stop_sim);
+  std::cerr << fmt::format("engraver: simulated {:.1f} s of machine time\n", ms / 1000.0);
+}
+
+// ---- engraver run ----
+
+struct RunArgs {
+  PlanArgs plan;
+  std::string outdir = "out";
+  bool realtime = false;
+};
+
+// The points the firmware core generates for the job's curves (the same core, on the host).
+std::vector<Point2> job_points(const JobPlan& plan, double tol_mm) {
+  std::vector<Point2> all;
+  for (const PlannedCurve& c : plan.curves) {
+    const auto pts = firmware_points_mm(c.spline, static_cast<int>(std::lround(tol_mm * 1000)));
+    all.insert(all.end(), pts.begin(), pts.end());
+  }
+  return all;
+}
+
+size_t points_generated(const JobPlan& plan, double tol_mm) {
+  return job_points(plan, tol_mm).size();
+}
+
+// Bytes the same path would take as G-code G1 lines at the same tolerance (for comparison).
+size_t gcode_bytes(const JobPlan& plan, double tol_mm) {
+  size_t total = 0;
+  for (const Point2& p : job_points(plan, tol_mm)) {
+    total += fmt::format("G1 X{:.3f} Y{:.3f}\n", p.x(), p.y()).size();
+  }
+  return total;
+}
+
+void run_run(const RunArgs& a) {
+  Drawing drawing;
+  const JobPlan plan = load_plan(a.plan, &drawing);
+  sim::SimJobOptions o;
+  o.encode = encode_options(a.plan);
+  o.realtime = a.realtime;
+  o.sender.status_interval = std::chrono::milliseconds(a.realtime ? 250 : 2);
+  const sim::SimJobResult r = sim::run_sim_job(plan, o);
+
+  const std::string name = std::filesystem::path(a.plan.file).stem().string();
+  std::filesystem::create_directories(a.outdir);
+  const std::string base = (std::filesystem::path(a.outdir) / name).string();
+
+  // Plot: the drawing's curves against the simulated tool path.
+  PlotInput plot = plot_input_from_plan(plan, name);
+  plot.tool_path.clear();
+  const std::vector<bool> pen_down = sim::pen_down_samples(r.trace, plan);
+  for (size_t i = 0; i < r.trace.size(); ++i) {
+    const sim::ToolSample& s = r.trace[i];
+    const bool down = pen_down[i];
+    if (plot.tool_path.empty() || plot.tool_path.back().pen_down != down) {
+      ToolPathSegment seg;
+      seg.pen_down = down;
+      if (!plot.tool_path.empty()) seg.points_mm.push_back(plot.tool_path.back().points_mm.back());
+      plot.tool_path.push_back(seg);
+    }
+    plot.tool_path.back().points_mm.push_back(Point2(s.x_mm, s.y_mm));
+  }
+  write_plot(plot, base + ".svg", base + ".png");
+
+  const double feed = a.plan.feed_mm_s;
+  const double ideal_s = plan.cut_length_mm / feed;
+  nlohmann::json j;
+  j["drawing"] = a.plan.file;
+  j["outcome"] = outcome_name(r.outcome);
+  j["message"] = r.message;
+  j["curves"] = plan.curves.size();
+  j["pen_lifts"] = plan.pen_lifts;
+  j["commands"] = r.commands;
+  j["frames_sent"] = r.stats.frames_sent;
+  j["bytes_sent"] = r.stats.bytes_sent;
+  j["job_wire_bytes"] = r.wire_bytes;
+  j["gcode_g1_bytes_same_tolerance"] = gcode_bytes(plan, a.plan.tol_mm);
+  j["retransmits"] = r.stats.retransmits;
+  j["status_queries"] = r.stats.status_queries;
+  j["points_generated"] = points_generated(plan, a.plan.tol_mm);
+  j["planned_cut_mm"] = plan.cut_length_mm;
+  j["planned_rapid_mm"] = plan.rapid_length_mm;
+  j["traced_cut_mm"] = r.cut_mm;
+  j["traced_rapid_mm"] = r.rapid_mm;
+  j["feed_mm_per_s"] = feed;
+  j["simulated_job_s"] = r.motion_s;
+  j["cut_length_over_feed_s"] = ideal_s;
+  j["max_contour_error_um"] = r.max_contour_error_um;
+  j["simulated_machine_ms"] = r.virtual_ms;
+  j["wall_s"] = r.wall_s;
+  j["speedup_vs_real_time"] = r.wall_s > 0 ? r.virtual_ms / 1000.0 / r.wall_s : 0.0;
+  j["lcd"] = {r.lcd[0], r.lcd[1]};
+  {
+    std::ofstream out(base + ".json");
+    out << j.dump(2) << "\n";
+  }
+  std::cout << fmt::format(
+      "{}: {} curves, {} pen lifts; job {}\n"
+      "  sent {} commands in {} frames, {} bytes ({} retransmits); G-code G1 at the same "
+      "tolerance: {} bytes\n"
+      "  tool path {:.1f} mm cut + {:.1f} mm rapid; simulated job time {:.1f} s "
+      "(cut length / feed {:.1f} s)\n"
+      "  max contour error {:.1f} um; simulated {:.1f} s of machine time in {:.2f} s\n"
+      "  plot: {}.svg, {}.png; report: {}.json\n",
+      a.plan.file, plan.curves.size(), plan.pen_lifts, outcome_name(r.outcome), r.commands,
+      r.stats.frames_sent, r.stats.bytes_sent, r.stats.retransmits,
+      j["gcode_g1_bytes_same_tolerance"].get<size_t>(), r.cut_mm, r.rapid_mm, r.motion_s,
+      ideal_s, r.max_contour_error_um, r.virtual_ms / 1000.0, r.wall_s, base, base, base);
+  if (r.outcome != JobOutcome::kCompleted) {
+    throw CommandFailure(exit_code(r.outcome), fmt::format("job {}: {}", outcome_name(r.outcome),
+                                                           r.message));
+  }
+}
+
+void add_machine_commands(CLI::App& app) {
+  auto send_args = std::make_shared<SendArgs>();
+  CLI::App* send = app.add_subcommand("send", "plan a drawing and stream it to the machine");
+  add_plan_options(send, &send_args->plan);
+  send->add_option("--to", send_args->to,
+                   "tcp://HOST:PORT (XPort, default port 10001) or serial:DEVICE[,BAUD]")
+      ->required();
+  send->add_flag("--no-zero", send_args->no_zero, "do not start manual zeroing if not zeroed");
+  send->add_option("--poll-ms", send_args->poll_ms, "status poll interval (keep-alive)")
+      ->check(CLI::Range(1, 1000))->capture_default_str();
+  send->footer(
+      "Example: engraver send board.dxf --to tcp://192.168.1.50:10001 --feed 8\n"
+      "Keys: h hold, r resume, x abort, +/- feed override. Signals: INT/TERM abort, USR1 hold, "
+      "USR2 resume.\nExit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, "
+      "5 command refused by the controller, 6 link lost.");
+  send->callback([send_args] {
+    try {
+      run_send(*send_args);
+    } catch (const LinkError& e) {
+      throw CommandFailure(kExitLinkLost, e.what());
+    }
+  });
+
+  auto sim_args = std::make_shared<SimArgs>();
+  CLI::App* sim = app.add_subcommand("sim", "run the simulated machine on a TCP port");
+  sim->add_option("--listen", sim_args->listen, "ADDR:PORT (loopback by default)")
+      ->capture_default_str();
+  sim->add_flag("--realtime", sim_args->realtime, "run in step with the wall clock");
+  sim->footer("Example: engraver sim & engraver send samples/engraver-word.dxf --to "
+              "tcp://127.0.0.1:10001 --poll-ms 1");
+  sim->callback([sim_args] { run_sim(*sim_args); });
+
+  auto run_args = std::make_shared<RunArgs>();
+  CLI::App* run = app.add_subcommand(
+      "run", "the main job: simulate the machine and send the drawing to it over loopback TCP");
+  add_plan_options(run, &run_args->plan);
+  run->add_option("-o,--outdir", run_args->outdir, "where NAME.svg/.png/.json go")
+      ->capture_default_str();
+  run->add_flag("--realtime", run_args->realtime, "simulate in real time");
+  run->footer("Example: engraver run samples/engraver-word.dxf -o out");
+  run->callback([run_args] {
+    try {
+      run_run(*run_args);
+    } catch (const LinkError& e) {
+      throw CommandFailure(kExitLinkLost, e.what());
+    }
+  });
+}
+
+const CommandRegistrar registrar("machine", add_machine_commands);
+
+}  // namespace
+
+}  // namespace host::cli

@@ -1,0 +1,152 @@
+// The path controller and the whole Application against the behavioural TMC428 model (D1's
+// fake::Tmc428Model) through the real TMC428 driver: the same targets as on the plant.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "firmware/app/application.h"
+#include "hal/drivers/tmc428/tmc428.h"
+#include "hal/fake/motion/tmc428_model.h"
+#include "hal/fake/spi/recording_spi.h"
+#include "host_tests/app/fake_board.h"
+#include "host_tests/app/path_metrics.h"
+#include "host_tests/app/test_host.h"
+
+namespace fake_app {
+namespace {
+
+struct ModelRig {
+  config::MachineConfig cfg = config::default_machine_config();
+  fake::Tmc428Model chip;
+  fake::RecordingSpi spi{chip, 1250000};
+  drivers::Tmc428 driver{spi, cfg};
+  app::AxisScaling scaling{};
+  app::Planner planner;
+  app::CoordinateRing ring;
+  app::PathController controller;
+  std::vector<P3> samples;
+  long ms = 0;
+
+  bool setup() {
+    chip.set_logging(false);
+    spi.set_recording(false);
+    if (driver.init() != drivers::Tmc428InitResult::kOk) return false;
+    spi.set_advance_device(false);
+    app::build_axis_scaling(cfg, driver, &scaling);
+    planner.init(scaling, app::default_planner_settings(cfg.capture_radius_um));
+    controller.init(scaling);
+    return true;
+  }
+  void start_at(const P3& p) {
+    // Drive there first (rapid), then plan from there.
+    const int32_t origin[3] = {0, 0, 0};
+    planner.set_origin(origin);
+    const int32_t um[3] = {int32_t(p.x), int32_t(p.y), 0};
+    planner.push(&ring, um, 25000, app::kPointEndOfItem, 0);
+    run_until_finished(100000);
+    samples.clear();
+  }
+  void tick() {
+    int32_t pos[3];
+    driver.read_actual_usteps(pos);
+    int16_t v[3];
+    controller.tick(pos, &ring, v);
+    driver.write_velocity_units(v);
+    chip.advance_us(1000);
+    ++ms;
+    const double k = 1000.0 / config::usteps_per_mm(cfg.axis[0]);
+    samples.push_back({chip.x_actual(0) * k, chip.x_actual(1) * k, chip.x_actual(2) * k});
+  }
+  bool run_until_finished(long max_ms, const std::vector<P3>* pts = nullptr) {
+    size_t next = 0;
+    for (long i = 0; i < max_ms; ++i) {
+      if (pts) {
+        for (int k = 0; k < 2 && next < pts->size(); ++k) {
+          const P3& p = (*pts)[next];
+          const int32_t um[3] = {int32_t(p.x), int32_t(p.y), int32_t(p.z)};
+          if (!planner.push(&ring, um, 10000, next + 1 == pts->size() ? app::kPointEndOfItem : 0,
+                            1))
+            break;
+          ++next;
+        }
+      }
+      tick();
+      const bool stopped =
+          chip.v_actual_q8(0) == 0 && chip.v_actual_q8(1) == 0 && chip.v_actual_q8(2) == 0;
+      if ((!pts || next == pts->size()) && controller.finished() && stopped) return true;
+    }
+    return false;
+  }
+};
+
+TEST(Tmc428Model, CurveSetAtTenMillimetresPerSecondMeetsErrorAndTimeTargets) {
+  const std::vector<std::pair<const char*, std::vector<P3>>> curves = {
+      {"circle_r20mm", circle(100000, 100000, 20000, 5)},
+      {"square_40mm", square(50000, 50000, 40000)},
+      {"star_5pt_r20mm", star(100000, 100000, 20000, 5)},
+      {"sine_a5_p20", sine(20000, 100000, 5000, 20000, 100000, 500)},
+  };
+  for (const auto& c : curves) {
+    ModelRig rig;
+    ASSERT_TRUE(rig.setup());
+    rig.start_at(c.second[0]);
+    const long t0 = rig.ms;
+    ASSERT_TRUE(rig.run_until_finished(200000, &c.second)) << c.first;
+    const double err = max_contour_error(rig.samples, c.second);
+    const double ratio = (rig.ms - t0) / (polyline_length(c.second) / 10.0);
+    std::printf("[ metrics  ] TMC428 model %-16s error %5.2f um  time x%.3f\n", c.first, err,
+                ratio);
+    EXPECT_LE(err, 10.0) << c.first;
+    EXPECT_LE(ratio, 1.10) << c.first;
+    const P3 end = rig.samples.back();
+    EXPECT_NEAR(end.x, c.second.back().x, 1.0) << c.first;
+    EXPECT_NEAR(end.y, c.second.back().y, 1.0) << c.first;
+  }
+}
+
+TEST(Tmc428Model, ApplicationStopsOnALimitSwitchAndLatchesTheAlarm) {
+  config::MachineConfig cfg = config::default_machine_config();
+  fake::Tmc428Model chip;
+  chip.set_logging(false);
+  fake::RecordingSpi spi(chip, 1250000);
+  spi.set_recording(false);
+  drivers::Tmc428 driver(spi, cfg);
+  ASSERT_EQ(driver.init(), drivers::Tmc428InitResult::kOk);
+  spi.set_advance_device(false);
+  chip.set_switch_positions(0, -1000000, 20000 * 256 / 100);  // X right switch at 20 mm
+  FakeLink link;
+  FakeDisplay display;
+  FakeInputs inputs;
+  app::Application application;
+  application.init(app::Board{&link, &driver, &display, &inputs}, cfg);
+  TestHost host(&link);
+  long now = 0;
+  auto step = [&] {
+    application.tick_1ms();
+    chip.advance_us(1000);
+    application.poll();
+    host.step(++now);
+  };
+  host.open_session();
+  for (int i = 0; i < 50; ++i) step();
+  host.queue(proto::ZeroingCmd{7});
+  for (int i = 0; i < 100; ++i) step();
+  inputs.bits = hal::kButtonConfirm;
+  for (int i = 0; i < 30; ++i) step();
+  inputs.bits = 0;
+  for (int i = 0; i < 100; ++i) step();
+  ASSERT_TRUE(application.zeroed());
+  host.queue(proto::FeedMoveCmd{60000, 0, 10000});
+  for (int i = 0; i < 5000 && application.state() != proto::MachineState::kAlarm; ++i) step();
+  EXPECT_EQ(application.state(), proto::MachineState::kAlarm);
+  for (int i = 0; i < 500; ++i) step();
+  const int32_t stopped = chip.x_actual(0);
+  EXPECT_LT(stopped, 60000 * 256 / 100);
+  for (int i = 0; i < 1000; ++i) step();
+  EXPECT_EQ(chip.x_actual(0), stopped);  // nothing moves until the alarm is cleared
+  ASSERT_FALSE(host.alarms.empty());
+  EXPECT_EQ(host.alarms[0].alarm, proto::Alarm::kLimitSwitch);
+}
+
+}  // namespace
+}  // namespace fake_app

@@ -1,0 +1,105 @@
+// G-code import: feed moves become curves (lines and exact arcs), rapids separate them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "host/lib/drawing/drawing.h"
+#include "host_tests/host/drawing/dxf_builder.h"
+
+namespace host {
+namespace {
+
+Drawing import_gcode_text(const std::string& name, const std::string& text) {
+  return import_drawing(test::write_temp(name, text));
+}
+
+TEST(GcodeImport, FeedRunsBetweenRapidsBecomeOneCurveEach) {
+  const Drawing d = import_gcode_text("two.ngc",
+                                      "G21 G90\nG0 X0 Y0\nG1 X10 Y0 F100\nG1 X10 Y5\n"
+                                      "G0 X20 Y0\nG1 X30 Y0\nM2\n");
+  ASSERT_EQ(d.curves.size(), 2u);
+  EXPECT_EQ(d.curves[0].spline.degree, 1);
+  EXPECT_LT((end_point(d.curves[0].spline) - Point2(10, 5)).norm(), 1e-12);
+  EXPECT_LT((start_point(d.curves[1].spline) - Point2(20, 0)).norm(), 1e-12);
+}
+
+TEST(GcodeImport, ClockwiseArcWithIjIsExact) {
+  // G2 from (10,0) around (0,0) to (0,-10): a clockwise quarter.
+  const Drawing d = import_gcode_text("arc.ngc", "G21\nG0 X10 Y0\nG2 X0 Y-10 I-10 J0\n");
+  ASSERT_EQ(d.curves.size(), 1u);
+  const BSpline& s = d.curves[0].spline;
+  for (int i = 0; i <= 100; ++i) {
+    const Point2 p = evaluate(s, s.t_min() + (s.t_max() - s.t_min()) * i / 100.0);
+    EXPECT_NEAR(p.norm(), 10.0, 1e-9);
+    EXPECT_GE(p.x(), -1e-9);  // the short way, through the fourth quadrant
+    EXPECT_LE(p.y(), 1e-9);
+  }
+}
+
+TEST(GcodeImport, FullCircleArc) {
+  const Drawing d = import_gcode_text("circle.ngc", "G21\nG0 X5 Y0\nG3 X5 Y0 I-5 J0\n");
+  ASSERT_EQ(d.curves.size(), 1u);
+  const Extents e = d.extents();
+  EXPECT_NEAR(e.min.x(), -5.0, 1e-6);
+  EXPECT_NEAR(e.max.y(), 5.0, 1e-6);
+}
+
+TEST(GcodeImport, InchesAreConverted) {
+  const Drawing d = import_gcode_text("inch.ngc", "G20\nG0 X0 Y0\nG1 X1 Y0\n");
+  ASSERT_EQ(d.curves.size(), 1u);
+  EXPECT_NEAR(end_point(d.curves[0].spline).x(), 25.4, 1e-12);
+}
+
+TEST(GcodeImport, ToolAboveTheWorkDoesNotCut) {
+  const Drawing d = import_gcode_text("z.ngc", "G21\nG0 Z1\nG1 X10\nG1 Z-0.1\nG1 X20\n");
+  ASSERT_EQ(d.curves.size(), 1u);
+  EXPECT_LT((start_point(d.curves[0].spline) - Point2(10, 0)).norm(), 1e-12);
+}
+
+TEST(GcodeImport, LaserOffDoesNotCutWhenTheProgramSwitchesIt) {
+  const Drawing d =
+      import_gcode_text("laser.ngc", "G21\nM5\nG1 X10\nM3 S100\nG1 X20\nM5\nG1 X30\n");
+  ASSERT_EQ(d.curves.size(), 1u);
+  EXPECT_LT((start_point(d.curves[0].spline) - Point2(10, 0)).norm(), 1e-12);
+  EXPECT_LT((end_point(d.curves[0].spline) - Point2(20, 0)).norm(), 1e-12);
+}
+
+TEST(GcodeImport, ArcEndOffTheCircleIsRefusedWithTheLine) {
+  try {
+    import_gcode_text("badarc.ngc", "G21\nG0 X10 Y0\nG2 X0 Y-12 I-10 J0\n");
+    FAIL();
+  } catch (const ImportError& e) {
+    EXPECT_NE(std::string(e.what()).find("badarc.ngc: line 3: arc end is not on the circle"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(GcodeImport, OtherPlaneIsRefused) {
+  try {
+    import_gcode_text("g18.ngc", "G18\nG1 X1\n");
+    FAIL();
+  } catch (const ImportError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 1: G18"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace host
+
+namespace host {
+namespace {
+
+TEST(GcodeImport, HugeOrNonNumericWordsAreRefusedWithTheLine) {
+  for (const char* bad : {"G1 X1e300\n", "G1 Xnan\n", "G1 X\n", "G1e400 X1\n"}) {
+    try {
+      import_gcode_text("huge.ngc", std::string("G21\n") + bad);
+      FAIL() << bad;
+    } catch (const ImportError& e) {
+      EXPECT_NE(std::string(e.what()).find("huge.ngc: line 2"), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace host

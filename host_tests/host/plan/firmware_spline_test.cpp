@@ -1,0 +1,110 @@
+// Host B-spline -> firmware core::Spline: same shape (to the micrometre rounding), valid,
+// long curves split without changing the shape.
+#include "host/lib/plan/firmware_spline.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "host/lib/drawing/conics.h"
+#include "host_tests/host/drawing/eigen_reference.h"
+
+namespace host {
+namespace {
+
+const double kPi = 3.14159265358979323846;
+
+// Largest distance (mm) from points of the firmware pieces (evaluated by Eigen in double)
+// to the original curve: each piece point is compared with the nearest point of a dense
+// sampling of the original.
+double max_deviation_mm(const BSpline& original, const std::vector<core::Spline>& pieces) {
+  const std::vector<Point2> dense = sample(original, 1e-4);
+  double worst = 0;
+  for (const core::Spline& f : pieces) {
+    const BSpline b = from_firmware_spline(f);
+    for (int i = 0; i <= 50; ++i) {
+      const Point2 p = test::eigen_point(b, b.t_min() + (b.t_max() - b.t_min()) * i / 50.0);
+      double best = 1e300;
+      for (size_t k = 1; k < dense.size(); ++k) {
+        const Point2 d = dense[k] - dense[k - 1];
+        const double u = std::clamp((p - dense[k - 1]).dot(d) / d.squaredNorm(), 0.0, 1.0);
+        best = std::min(best, (dense[k - 1] + u * d - p).norm());
+      }
+      worst = std::max(worst, best);
+    }
+  }
+  return worst;
+}
+
+TEST(FirmwareSpline, PolynomialCubicConvertsToMicrometresAndStaysNonRational) {
+  BSpline s;
+  s.degree = 3;
+  s.control = {{0, 0}, {10.0004, 20}, {30, 25.0006}, {40, 0}};
+  s.knots = {-3, -3, -3, -3, 5, 5, 5, 5};
+  const std::vector<core::Spline> f = to_firmware_splines(s);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_FALSE(f[0].rational);
+  EXPECT_EQ(f[0].control[1].x_um, 10000);
+  EXPECT_EQ(f[0].control[2].y_um, 25001);
+  EXPECT_EQ(f[0].knot[0], 0);
+  EXPECT_EQ(f[0].knot[7], kKnotRangeTarget);
+  EXPECT_EQ(core::validate_spline(f[0]), core::GeometryError::kOk);
+}
+
+TEST(FirmwareSpline, CircleWeightsAreScaledToQ14WithinRoundingOfTheirRatio) {
+  const BSpline circle = arc_spline({50, 50}, 40.0, 0, 2 * kPi);
+  const std::vector<core::Spline> f = to_firmware_splines(circle);
+  ASSERT_EQ(f.size(), 1u);
+  ASSERT_TRUE(f[0].rational);
+  const double ratio = static_cast<double>(f[0].control[1].weight_q14) / f[0].control[0].weight_q14;
+  EXPECT_NEAR(ratio, std::cos(kPi / 4), 2e-5);
+  EXPECT_GE(f[0].control[0].weight_q14, 32768);  // the largest weight uses the top of Q2.14
+  // A 40 mm circle stays within a micrometre of the exact one.
+  EXPECT_LT(max_deviation_mm(circle, f), 0.001);
+}
+
+TEST(FirmwareSpline, CurveWithMoreThan64ControlPointsIsSplitWithoutChangingShape) {
+  BSpline s;
+  s.degree = 3;
+  for (int i = 0; i < 150; ++i) s.control.emplace_back(i * 1.0, 10.0 * std::sin(i * 0.3));
+  s.knots = {0, 0, 0, 0};
+  for (int i = 1; i <= 146; ++i) s.knots.push_back(i);
+  s.knots.insert(s.knots.end(), 4, 147);
+  const std::vector<core::Spline> f = to_firmware_splines(s);
+  ASSERT_GE(f.size(), 3u);
+  for (size_t k = 0; k < f.size(); ++k) {
+    EXPECT_LE(f[k].control_count, core::kMaxControlPoints);
+    EXPECT_EQ(core::validate_spline(f[k]), core::GeometryError::kOk);
+    if (k > 0) {  // pieces join end to start
+      EXPECT_EQ(f[k].control[0].x_um, f[k - 1].control[f[k - 1].control_count - 1].x_um);
+      EXPECT_EQ(f[k].control[0].y_um, f[k - 1].control[f[k - 1].control_count - 1].y_um);
+    }
+  }
+  EXPECT_LT(max_deviation_mm(s, f), 0.001);
+  EXPECT_LT((start_point(from_firmware_spline(f.front())) - start_point(s)).norm(), 0.001);
+  EXPECT_LT((end_point(from_firmware_spline(f.back())) - end_point(s)).norm(), 0.001);
+}
+
+TEST(FirmwareSpline, CoordinateBeyondOneMetreIsRefused) {
+  const BSpline s = line_spline({0, 0}, {1500, 0});
+  try {
+    to_firmware_splines(s);
+    FAIL();
+  } catch (const ConversionError& e) {
+    EXPECT_NE(std::string(e.what()).find("control point 1 (1500, 0) mm"), std::string::npos) << e.what();
+  }
+}
+
+TEST(FirmwareSpline, ReversedCurveConvertsToTheSameShape) {
+  BSpline s;
+  s.degree = 2;
+  s.control = {{0, 0}, {5, 10}, {10, 0}, {20, 5}};
+  s.weights = {1, 2, 0.5, 1};
+  s.knots = {0, 0, 0, 0.3, 1, 1, 1};
+  const BSpline r = reversed(s);
+  EXPECT_LT(max_deviation_mm(r, to_firmware_splines(r)), 0.001);  // r == s: bspline_test
+  EXPECT_LT((start_point(from_firmware_spline(to_firmware_splines(r)[0])) - end_point(s)).norm(), 0.001);
+}
+
+}  // namespace
+}  // namespace host

@@ -1,0 +1,71 @@
+// Small drawings and helpers for the simulated-machine tests.
+#ifndef HOST_TESTS_HOST_SIM_SIM_TEST_JOBS_H
+#define HOST_TESTS_HOST_SIM_SIM_TEST_JOBS_H
+
+#include <cmath>  // std::sqrt
+
+#include "host/lib/drawing/drawing.h"
+#include "host/lib/plan/job_plan.h"
+
+namespace host::test {
+
+// A full circle of radius r_mm around (cx, cy) as one rational quadratic B-spline
+// (four 90-degree arcs, weights 1, sqrt(2)/2).
+inline Curve circle_curve(double cx, double cy, double r_mm) {
+  const double w = std::sqrt(0.5);
+  Curve c;
+  c.kind = "CIRCLE";
+  c.source = "test circle";
+  c.spline.degree = 2;
+  const double px[] = {1, 1, 0, -1, -1, -1, 0, 1, 1};
+  const double py[] = {0, 1, 1, 1, 0, -1, -1, -1, 0};
+  for (int i = 0; i < 9; ++i) {
+    c.spline.control.push_back(Point2(cx + r_mm * px[i], cy + r_mm * py[i]));
+    c.spline.weights.push_back(i % 2 ? w : 1.0);
+  }
+  c.spline.knots = {0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
+  return c;
+}
+
+// A straight line as a degree-1 B-spline.
+inline Curve line_curve(double x0, double y0, double x1, double y1) {
+  Curve c;
+  c.kind = "LINE";
+  c.source = "test line";
+  c.spline.degree = 1;
+  c.spline.control = {Point2(x0, y0), Point2(x1, y1)};
+  c.spline.knots = {0, 0, 1, 1};
+  return c;
+}
+
+// A cubic S-curve with an interior knot.
+inline Curve s_curve(double x0, double y0) {
+  Curve c;
+  c.kind = "SPLINE";
+  c.source = "test S-curve";
+  c.spline.degree = 3;
+  c.spline.control = {Point2(x0, y0), Point2(x0 + 5, y0 + 10), Point2(x0 + 10, y0 - 10),
+                      Point2(x0 + 15, y0 + 10), Point2(x0 + 20, y0)};
+  c.spline.knots = {0, 0, 0, 0, 0.5, 1, 1, 1, 1};
+  return c;
+}
+
+inline Drawing drawing_of(std::vector<Curve> curves) {
+  Drawing d;
+  d.path = "test.dxf";
+  d.format = "DXF";
+  d.units = "mm";
+  d.curves = std::move(curves);
+  return d;
+}
+
+inline JobPlan plan_of(const Drawing& d, double feed_mm_s = 10.0) {
+  PlanOptions o;
+  o.feed_mm_per_s = feed_mm_s;
+  o.margin_mm = 5.0;
+  return plan_job(d, o);
+}
+
+}  // namespace host::test
+
+#endif  // HOST_TESTS_HOST_SIM_SIM_TEST_JOBS_H

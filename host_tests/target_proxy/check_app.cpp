@@ -1,0 +1,245 @@
+// On-target measurement of the application's 1 ms work: one path-controller tick (read
+// position, vector to the target, isqrt, velocity out) and one planner push (background),
+// driving a small integer model of the TMC428's velocity ramp; plus the RAM of the objects.
+#include "firmware/app/application.h"      // Application (sizeof only)
+#include "firmware/app/axis_scaling.h"     // AxisScaling, build_axis_scaling, um_to_usteps
+#include "firmware/app/coordinate_ring.h"  // CoordinateRing
+#include "firmware/app/dispatcher.h"       // Dispatcher (sizeof only)
+#include "firmware/app/path_controller.h"  // PathController
+#include "firmware/app/planner.h"          // Planner
+#include "firmware/app/point_generator.h"  // PointGenerator (sizeof only)
+#include "firmware/app/spline_store.h"     // SplineStore
+#include "firmware/config/machine_config.h"
+#include "firmware/protocol/codec.h"     // write_frame, decode_frame
+#include "firmware/protocol/parser.h"    // Parser
+#include "hal/interfaces/motion_axes.h"  // MotionAxes
+
+#include "host_tests/target_proxy/proxy_check.h"
+#include "host_tests/target_proxy/proxy_checks.h"
+
+namespace proxy {
+
+namespace {
+
+// Velocity-mode axes in integer arithmetic: each ms the actual velocity ramps toward the
+// commanded one by a fixed step and the position advances by the mean velocity.
+class ProxyPlant : public hal::MotionAxes {
+ public:
+  enum { kUstepsPerSPerUnitQ16 = 2500000L, kMaxUnits = 2047, kAccelUnitsPerMs = 13 };
+
+  ProxyPlant() {
+    for (uint8_t i = 0; i < config::kAxisCount; ++i) {
+      pos_q8_[i] = 0;
+      v_actual_[i] = 0;
+      v_target_[i] = 0;
+    }
+  }
+
+  // Advances the model by one millisecond.
+  void step_1ms() {
+    for (uint8_t i = 0; i < config::kAxisCount; ++i) {
+      int16_t v = v_actual_[i];
+      const int16_t goal = v_target_[i];
+      if (v < goal) v = (int16_t)(goal - v > kAccelUnitsPerMs ? v + kAccelUnitsPerMs : goal);
+      if (v > goal) v = (int16_t)(v - goal > kAccelUnitsPerMs ? v - kAccelUnitsPerMs : goal);
+      const int32_t mean = (int32_t)v + v_actual_[i];  // 2x mean velocity, units
+      v_actual_[i] = v;
+      // usteps per ms in Q8: mean/2 * (q16 / 1000) / 2^16 * 2^8.
+      pos_q8_[i] += (mean * (kUstepsPerSPerUnitQ16 / 1000L)) >> 9;
+    }
+  }
+
+  bool read_actual_usteps(int32_t out[config::kAxisCount]) {
+    for (uint8_t i = 0; i < config::kAxisCount; ++i) out[i] = pos_q8_[i] >> 8;
+    return true;
+  }
+  bool write_velocity_units(const int16_t v[config::kAxisCount]) {
+    for (uint8_t i = 0; i < config::kAxisCount; ++i) {
+      int16_t c = v[i];
+      if (c > kMaxUnits) c = kMaxUnits;
+      if (c < -kMaxUnits) c = -kMaxUnits;
+      v_target_[i] = c;
+    }
+    return true;
+  }
+  bool read_velocity_units(int16_t out[config::kAxisCount]) {
+    for (uint8_t i = 0; i < config::kAxisCount; ++i) out[i] = v_actual_[i];
+    return true;
+  }
+  bool set_actual_usteps(const int32_t usteps[config::kAxisCount]) {
+    for (uint8_t i = 0; i < config::kAxisCount; ++i) pos_q8_[i] = usteps[i] * 256L;
+    return true;
+  }
+  bool read_limits(uint8_t* bits) {
+    *bits = 0;
+    return true;
+  }
+  uint32_t usteps_per_s_per_unit_q16(uint8_t) const { return kUstepsPerSPerUnitQ16; }
+  int16_t max_velocity_units(uint8_t) const { return kMaxUnits; }
+  uint16_t accel_units_per_ms(uint8_t) const { return kAccelUnitsPerMs; }
+
+ private:
+  int32_t pos_q8_[config::kAxisCount];
+  int16_t v_actual_[config::kAxisCount];
+  int16_t v_target_[config::kAxisCount];
+};
+
+// The path: a 10 mm square, then a 36-gon of radius 5 mm approximated by integer steps.
+const uint8_t kPathPoints = 24;
+const int32_t kPathUm[kPathPoints][2] = {
+    {10000, 0},   {10000, 10000}, {0, 10000},   {0, 0},       {5000, 1000},  {8000, 2000},
+    {9500, 4000}, {10000, 6000},  {9500, 8000}, {8000, 9500}, {6000, 10000}, {4000, 9500},
+    {2000, 8000}, {1000, 6000},   {1500, 4000}, {3000, 2500}, {5000, 2000},  {7000, 2500},
+    {8000, 4000}, {8000, 6000},   {7000, 7500}, {5000, 8000}, {3000, 7000},  {2500, 5000}};
+
+ProxyPlant g_plant;
+app::AxisScaling g_scaling;
+app::Planner g_planner;
+app::CoordinateRing g_ring;
+app::PathController g_controller;
+
+struct Series {
+  uint32_t min;
+  uint32_t max;
+  uint32_t sum;
+  uint16_t n;
+};
+
+void series_add(Series* s, uint32_t a, uint32_t b) {
+  uint32_t c = b - a;
+  c = c > cycles_overhead() ? c - cycles_overhead() : 0;
+  if (c < s->min) s->min = c;
+  if (c > s->max) s->max = c;
+  s->sum += c;
+  ++s->n;
+}
+
+void series_print(const char* name, const Series& s) {
+  PROXY_PRINTF("measure ");
+  PROXY_PRINT_STR(name);
+  PROXY_PRINTF(": min %lu avg %lu max %lu %s (n = %u)\n", (unsigned long)s.min,
+               (unsigned long)(s.n ? s.sum / s.n : 0), (unsigned long)s.max, counter_unit(),
+               (unsigned)s.n);
+}
+
+app::SplineStore g_store;
+proto::Parser g_parser(proto::kCommandStart);
+
+// One full #D frame (6 control points) after its #B: parse byte by byte, decode, store.
+void measure_spline_data_frame() {
+  proto::SplineHeaderCmd header;
+  header.degree = 3;
+  header.rational = false;
+  header.control_count = 6;
+  header.knot_count = 10;
+  header.feed_um_per_s = 10000;
+  uint8_t slot = 0;
+  PROXY_CHECK_EQ((int)g_store.begin(header, &slot), (int)proto::ErrorCode::kOk);
+
+  proto::SplineDataCmd data;
+  data.control_index = 0;
+  data.control_n = proto::kMaxDataControls;
+  data.knot_index = 0;
+  data.knot_n = 0;
+  for (uint8_t i = 0; i < data.control_n; ++i) {
+    data.control[i].x_um = 10000L * i;
+    data.control[i].y_um = (i & 1) ? 5000L : -5000L;
+    data.control[i].weight_q14 = core::kWeightOneQ14;
+  }
+  static uint8_t bytes[80];
+  uint8_t size = 0;
+  PROXY_CHECK_EQ((int)proto::write_frame(data, 7, bytes, sizeof(bytes), &size),
+                 (int)proto::ErrorCode::kOk);
+
+  const int32_t travel_um[2] = {300000L, 210000L};
+  const uint32_t a = cycles_now();
+  bool framed = false;
+  for (uint8_t i = 0; i < size; ++i) {
+    if (g_parser.feed(bytes[i]) == proto::ParseEvent::kFrame) framed = true;
+  }
+  const uint32_t b = cycles_now();
+  static proto::SplineDataCmd decoded;
+  const proto::ErrorCode decode_error = proto::decode_frame(g_parser.frame(), &decoded);
+  const uint32_t c = cycles_now();
+  uint8_t detail = 0;
+  bool completed = false;
+  const proto::ErrorCode store_error = g_store.add(decoded, travel_um, &detail, &completed);
+  const uint32_t d = cycles_now();
+  PROXY_CHECK(framed);
+  PROXY_CHECK_EQ((int)decode_error, (int)proto::ErrorCode::kOk);
+  PROXY_CHECK_EQ((int)store_error, (int)proto::ErrorCode::kOk);
+  const uint32_t overhead = cycles_overhead();
+  PROXY_PRINTF(
+      "measure #D frame (%u bytes, 6 control points): parse+CRC %lu, decode %lu, "
+      "store %lu %s\n",
+      (unsigned)size, (unsigned long)(b - a - overhead), (unsigned long)(c - b - overhead),
+      (unsigned long)(d - c - overhead), counter_unit());
+}
+
+}  // namespace
+
+void run_app_measurements() {
+  begin_group(PROXY_STR("app_path_tick"));
+  const config::MachineConfig cfg = config::default_machine_config();
+  PROXY_CHECK(app::build_axis_scaling(cfg, g_plant, &g_scaling));
+  g_planner.init(g_scaling, app::default_planner_settings(cfg.capture_radius_um));
+  g_controller.init(g_scaling);
+  const int32_t origin[3] = {0, 0, 0};
+  g_planner.set_origin(origin);
+
+  Series tick = {0xFFFFFFFFUL, 0, 0, 0};
+  Series push = {0xFFFFFFFFUL, 0, 0, 0};
+  uint8_t next = 0;
+  uint16_t ms = 0;
+  const uint16_t kMaxMs = 20000;
+  for (; ms < kMaxMs; ++ms) {
+    // Background loop: up to 2 points per ms, like the point generator.
+    for (uint8_t k = 0; k < 2 && next < kPathPoints; ++k) {
+      const int32_t um[3] = {kPathUm[next][0], kPathUm[next][1], 0};
+      const uint8_t flags = next + 1 == kPathPoints ? (uint8_t)app::kPointEndOfItem : 0;
+      const uint32_t a = cycles_now();
+      const bool ok = g_planner.push(&g_ring, um, 10000, flags, 1);
+      const uint32_t b = cycles_now();
+      if (!ok) break;
+      series_add(&push, a, b);
+      ++next;
+    }
+    // The 1 ms interrupt.
+    int32_t pos[3];
+    g_plant.read_actual_usteps(pos);
+    int16_t v[3];
+    const uint32_t a = cycles_now();
+    g_controller.tick(pos, &g_ring, v);
+    const uint32_t b = cycles_now();
+    series_add(&tick, a, b);
+    g_plant.write_velocity_units(v);
+    g_plant.step_1ms();
+    if (next == kPathPoints && g_controller.finished() && g_controller.at_rest()) break;
+  }
+  PROXY_CHECK(ms < kMaxMs);  // the path was completed
+  int32_t pos[3];
+  g_plant.read_actual_usteps(pos);
+  const int32_t want_x = app::um_to_usteps(g_scaling, 0, kPathUm[kPathPoints - 1][0]);
+  const int32_t want_y = app::um_to_usteps(g_scaling, 1, kPathUm[kPathPoints - 1][1]);
+  // Ends within 0.1 mm of the last point (the host tests check the real tolerances).
+  PROXY_CHECK_NEAR(pos[0], want_x, app::um_to_usteps(g_scaling, 0, 100));
+  PROXY_CHECK_NEAR(pos[1], want_y, app::um_to_usteps(g_scaling, 1, 100));
+  PROXY_PRINTF("measure path run: %u ms for %u points at 10 mm/s\n", (unsigned)ms,
+               (unsigned)kPathPoints);
+  series_print(PROXY_STR("path controller tick (PathController::tick)"), tick);
+  series_print(PROXY_STR("planner push of one point (background)"), push);
+  measure_spline_data_frame();
+  PROXY_PRINTF(
+      "memory sizeof CoordinateRing %u, PathController %u, Planner %u, AxisScaling %u bytes\n",
+      (unsigned)sizeof(app::CoordinateRing), (unsigned)sizeof(app::PathController),
+      (unsigned)sizeof(app::Planner), (unsigned)sizeof(app::AxisScaling));
+  PROXY_PRINTF(
+      "memory sizeof SplineStore %u, PointGenerator %u, Dispatcher %u, "
+      "Parser %u, Application (all of it) %u bytes\n",
+      (unsigned)sizeof(app::SplineStore), (unsigned)sizeof(app::PointGenerator),
+      (unsigned)sizeof(app::Dispatcher), (unsigned)sizeof(proto::Parser),
+      (unsigned)sizeof(app::Application));
+  end_group();
+}
+
+}  // namespace proxy
