@@ -16,6 +16,7 @@ Application::Application()
     : ms_(0),
       tick_mode_((uint8_t)TickMode::kFollow),
       tick_alarm_(kTickAlarmNone),
+      driver_check_ms_(0),
       stops_done_(0),
       jogs_done_(0),
       jog_confirmed_(0),
@@ -54,8 +55,6 @@ Application::Application()
   }
 }
 
-Application::~Application() {}
-
 void Application::init(const Board& board, const config::MachineConfig& cfg) {
   board_ = board;
   cfg_ = cfg;
@@ -83,6 +82,7 @@ void Application::tick_1ms() {
     for (uint8_t i = 0; i < config::kAxisCount; ++i) pos[i] = tick_pos_[i];
     tick_latch_alarm(kTickAlarmChip);
   }
+  tick_check_drivers();
   if (tick_mode_ == (uint8_t)TickMode::kFollow) {
     const bool moving = !path_.finished() || !path_.at_rest() || !ring_.empty();
     if (limits != 0 && moving) {
@@ -116,6 +116,19 @@ void Application::tick_1ms() {
   board_.motion->write_velocity_units(v);
   for (uint8_t i = 0; i < config::kAxisCount; ++i) tick_pos_[i] = pos[i];
   tick_publish(pos, limits);
+}
+
+// One step of the power drivers' status check every kDriverCheckEveryMs (at most one SPI
+// datagram; the blocking Tmc428::read_driver_status() can take ~70 ms and never runs here).
+void Application::tick_check_drivers() {
+  if (++driver_check_ms_ < kDriverCheckEveryMs) return;
+  driver_check_ms_ = 0;
+  const uint8_t c = board_.motion->poll_driver_check();
+  if (c == hal::kDriverCheckFault) {
+    tick_latch_alarm(kTickAlarmDriver);
+  } else if (c == hal::kDriverCheckUndervoltage) {
+    tick_latch_alarm(kTickAlarmPower);
+  }
 }
 
 void Application::tick_latch_alarm(uint8_t alarm) {
@@ -277,7 +290,10 @@ void Application::follow_tick_events() {
   if (a != reported_alarm_) {
     reported_alarm_ = a;
     if (a != proto::Alarm::kNone) {
-      if (a == proto::Alarm::kLimitSwitch) zeroed_ = false;  // position suspect
+      // Position suspect: a switch stop, or a driver that switched off or lost its supply.
+      if (a == proto::Alarm::kLimitSwitch || a == proto::Alarm::kDriverFault ||
+          a == proto::Alarm::kPowerLost)
+        zeroed_ = false;
       drop_job();
       dispatcher_.send_alarm(a, proto::MachineState::kAlarm);
     }

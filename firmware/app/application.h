@@ -64,9 +64,6 @@ class ApplicationSink : public CommandSink {
 class Application {
  public:
   Application();
-  // Out of line so that code using an Application never compiles the sink's destructor
-  // (keeps -fsanitize=vptr builds of host code linking against the no-RTTI firmware).
-  ~Application();
   void init(const Board& board, const config::MachineConfig& cfg);
   // Timer ISR context on the target: the only caller of board.motion. Never waits.
   void tick_1ms();
@@ -101,6 +98,7 @@ class Application {
  private:
   // Tick side.
   void tick_take_requests();
+  void tick_check_drivers();
   void tick_latch_alarm(uint8_t alarm);
   void tick_publish(const int32_t pos[config::kAxisCount], uint8_t limits);
   // Background side.
@@ -137,6 +135,7 @@ class Application {
   int32_t tick_pos_[config::kAxisCount];
   uint8_t tick_mode_;  // TickMode
   uint8_t tick_alarm_;
+  uint8_t driver_check_ms_;  // ms since the last poll_driver_check() step
   uint8_t stops_done_;
   uint8_t jogs_done_;
   uint8_t jog_confirmed_;

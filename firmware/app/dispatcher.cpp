@@ -142,9 +142,25 @@ void Dispatcher::on_immediate(const proto::Frame& f) {
   reply(r, f.seq);
 }
 
+// Whether a real-time command only stops the machine: such a command is always allowed.
+static bool stops_motion(uint8_t letter) {
+  return letter == proto::kCmdHold || letter == proto::kCmdAbort;
+}
+
 void Dispatcher::on_realtime(const proto::Frame& f) {
   if (!session_) {
-    error(f.seq, proto::ErrorCode::kNoSession, 0);
+    if (!stops_motion(f.letter)) {
+      error(f.seq, proto::ErrorCode::kNoSession, 0);
+      return;
+    }
+    // #H and #X act even before #I. With no session there is no real-time seq to compare
+    // with (#I forgets it anyway), so a repeated stop acts again, which is harmless.
+    const proto::ErrorCode e = sink_->realtime(f);
+    if (e != proto::ErrorCode::kOk) {
+      error(f.seq, e, 0);
+      return;
+    }
+    ack(f.seq);
     return;
   }
   const proto::SeqClass c = realtime_.classify(f.seq);
@@ -152,7 +168,10 @@ void Dispatcher::on_realtime(const proto::Frame& f) {
     ack(f.seq);  // done already; never acted on twice
     return;
   }
-  if (c == proto::SeqClass::kStale) {
+  // An older #R/#V/#C was superseded and must not undo a later command; an older #H or #X
+  // may be the retransmission of a lost stop, and stopping is always allowed.
+  const bool stale = c == proto::SeqClass::kStale;
+  if (stale && !stops_motion(f.letter)) {
     error(f.seq, proto::ErrorCode::kSeqStale, 0);
     return;
   }
@@ -161,7 +180,7 @@ void Dispatcher::on_realtime(const proto::Frame& f) {
     error(f.seq, e, 0);
     return;
   }
-  realtime_.accept(f.seq);
+  if (!stale) realtime_.accept(f.seq);  // the newest seq stays the reference
   ack(f.seq);
 }
 

@@ -30,7 +30,17 @@ struct TickRequest {
 enum class TickMode : uint8_t { kFollow = 0, kJog = 1, kAlarm = 2 };
 
 // Why the tick latched an alarm (values match proto::Alarm).
-enum TickAlarm { kTickAlarmNone = 0, kTickAlarmLimit = 1, kTickAlarmChip = 5, kTickAlarmPath = 6 };
+enum TickAlarm {
+  kTickAlarmNone = 0,
+  kTickAlarmLimit = 1,
+  kTickAlarmDriver = 2,
+  kTickAlarmPower = 3,
+  kTickAlarmChip = 5,
+  kTickAlarmPath = 6
+};
+
+// The tick advances the power drivers' status check (one short step) this often.
+static const uint8_t kDriverCheckEveryMs = 10;
 
 struct TickStatus {
   int32_t pos_usteps[config::kAxisCount];

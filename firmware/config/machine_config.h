@@ -10,21 +10,21 @@ namespace config {
 enum { kAxisX = 0, kAxisY = 1, kAxisZ = 2, kAxisCount = 3 };
 
 struct AxisConfig {
-  uint16_t full_steps_per_rev;       // motor, 200
-  uint8_t microsteps_per_step;       // TMC428 usrs as a count: 16
-  uint16_t pitch_um;                 // lead screw travel per revolution
-  int32_t travel_um;                 // usable travel from the zero point
-  uint32_t max_speed_um_per_s;       // fastest rapid
-  uint32_t accel_um_per_s2;          // what the axis does without losing steps
-  uint8_t run_current_eighths;       // 0 = 100 %, 1..7 = n/8 (TMC428 is_agtat/is_aleat)
-  uint8_t hold_current_eighths;      // TMC428 is_v0
+  uint16_t full_steps_per_rev;   // motor, 200
+  uint8_t microsteps_per_step;   // TMC428 usrs as a count: 16
+  uint16_t pitch_um;             // lead screw travel per revolution
+  int32_t travel_um;             // usable travel from the zero point
+  uint32_t max_speed_um_per_s;   // fastest rapid
+  uint32_t accel_um_per_s2;      // what the axis does without losing steps
+  uint8_t run_current_eighths;   // 0 = 100 %, 1..7 = n/8 (TMC428 is_agtat/is_aleat)
+  uint8_t hold_current_eighths;  // TMC428 is_v0
 };
 
 struct MachineConfig {
   AxisConfig axis[kAxisCount];
-  uint32_t tmc428_clock_hz;          // shares the 10 MHz oscillator with the dsPIC crystal
-  uint32_t spi_clock_hz;             // <= tmc428_clock_hz / 8
-  uint16_t capture_radius_um;        // path controller switches target inside this
+  uint32_t tmc428_clock_hz;    // shares the 10 MHz oscillator with the dsPIC crystal
+  uint32_t spi_clock_hz;       // <= tmc428_clock_hz / 8
+  uint16_t capture_radius_um;  // path controller switches target inside this
   uint32_t default_feed_um_per_s;
   uint32_t rapid_feed_um_per_s;
 };

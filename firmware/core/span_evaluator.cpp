@@ -155,7 +155,7 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   }
   // The window this span reads must be sound even if nobody validated the spline: no
   // zero or negative denominator, no zero weight, no coordinate beyond the headroom.
-  for (uint16_t j = (uint16_t)(span - p); j < span + p + 1; ++j) {
+  for (uint16_t j = (uint16_t)(span - p); j < (uint16_t)(span + p + 1); ++j) {
     if (spline.knot[j + 1] < spline.knot[j]) return GeometryError::kKnotsDecreasing;
   }
   for (uint16_t j = (uint16_t)(span - p); j <= span; ++j) {
@@ -176,7 +176,7 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
     d0[j].w = w_q14 << (kAlphaShift - 14);
   }
   Homog b[kMaxDegree + 1];
-  int64_t w_max = 0;
+  int64_t w_max = 1;  // each b[k].w mixes weight_q14 << 15 >= 2^15; 1 keeps w_max a divisor
   for (uint8_t k = 0; k <= p; ++k) {
     b[k] = blossom(spline, span, d0, k);
     if (b[k].w > w_max) w_max = b[k].w;

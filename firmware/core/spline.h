@@ -9,11 +9,7 @@
 
 namespace core {
 
-enum {
-  kMaxDegree = 3,
-  kMaxControlPoints = 64,
-  kMaxKnots = kMaxControlPoints + kMaxDegree + 1
-};
+enum { kMaxDegree = 3, kMaxControlPoints = 64, kMaxKnots = kMaxControlPoints + kMaxDegree + 1 };
 
 // Largest |coordinate| accepted, in micrometres (+-1 m: far beyond the table, well inside
 // the fixed-point headroom of the evaluator).

@@ -192,6 +192,8 @@ bool is_known_error(uint8_t code) {
 
 // ---- empty payloads: #? #H #R #X #C ----
 
+// Type is a type name: it cannot be parenthesised in `Type*`.
+// NOLINTBEGIN(bugprone-macro-parentheses)
 #define PROTO_EMPTY_CODEC(Type)                                   \
   ErrorCode encode(const Type&, Payload* out) {                   \
     return encode_empty(out);                                     \
@@ -199,6 +201,7 @@ bool is_known_error(uint8_t code) {
   ErrorCode decode(const uint8_t* bytes, uint8_t length, Type*) { \
     return expect_length(bytes, length, 0);                       \
   }
+// NOLINTEND(bugprone-macro-parentheses)
 
 PROTO_EMPTY_CODEC(StatusCmd)
 PROTO_EMPTY_CODEC(HoldCmd)

@@ -18,9 +18,12 @@ struct Payload {
 
 // encode(msg, &payload): kOk, or kFieldRange (payload untouched in content, length 0).
 // decode(bytes, length, &msg): kOk, kPayloadLength or kFieldRange (msg unspecified).
+// Type is a type name: it cannot be parenthesised in `Type*`.
+// NOLINTBEGIN(bugprone-macro-parentheses)
 #define PROTO_DECLARE_CODEC(Type)                  \
   ErrorCode encode(const Type& msg, Payload* out); \
   ErrorCode decode(const uint8_t* bytes, uint8_t length, Type* msg);
+// NOLINTEND(bugprone-macro-parentheses)
 
 PROTO_DECLARE_CODEC(SessionCmd)
 PROTO_DECLARE_CODEC(StatusCmd)

@@ -48,7 +48,7 @@ uint8_t encode_frame(uint8_t start, uint8_t letter, uint8_t seq, const uint8_t* 
   out[2] = seq;
   out[3] = length;
   if (length > 0) memcpy(out + kHeaderBytes, payload, length);
-  const uint16_t crc = crc16(out, (size_t)(kHeaderBytes + length));
+  const uint16_t crc = crc16(out, (size_t)kHeaderBytes + length);
   out[kHeaderBytes + length] = (uint8_t)(crc & 0xFFU);
   out[kHeaderBytes + length + 1] = (uint8_t)(crc >> 8);
   return (uint8_t)total;

@@ -120,7 +120,7 @@ ParseEvent Parser::run() {
     const uint8_t length = buf_[3];
     const uint8_t total = (uint8_t)(kHeaderBytes + length + kCrcBytes);
     if (parsed_ < total) continue;
-    const uint16_t expected = crc16(buf_, (size_t)(kHeaderBytes + length));
+    const uint16_t expected = crc16(buf_, (size_t)kHeaderBytes + length);
     const uint16_t got =
         (uint16_t)(buf_[kHeaderBytes + length] | ((uint16_t)buf_[kHeaderBytes + length + 1] << 8));
     if (expected != got) return reject(ErrorCode::kBadCrc);

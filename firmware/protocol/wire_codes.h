@@ -102,7 +102,7 @@ enum class MachineState : uint8_t {
 enum class Alarm : uint8_t {
   kNone = 0,
   kLimitSwitch = 1,      // a limit switch tripped during motion: position suspect, re-zero
-  kDriverFault = 2,      // a TMC246 reported overtemperature / short / open load
+  kDriverFault = 2,      // a TMC246 reported overtemperature / short, or its chain broke
   kPowerLost = 3,        // driver undervoltage: e-stop pressed or supply lost, re-zero
   kFollowingError = 4,   // actual position did not follow the target
   kMotionChipFault = 5,  // TMC428 read-back or SPI check failed

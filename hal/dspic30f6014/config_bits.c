@@ -4,7 +4,10 @@
    C (not C++): the device header's config macros need the C compiler. */
 #include <p30fxxxx.h>
 
+// The formatter reads `A & B` in a macro argument as a reference type.
+// clang-format off
 _FOSC(CSW_FSCM_OFF & XT_PLL8);
 _FWDT(WDT_OFF);
 _FBORPOR(PWRT_64 & PBOR_OFF & MCLR_EN);
 _FGS(CODE_PROT_OFF);
+// clang-format on

@@ -89,6 +89,7 @@ int main() {
   drivers::Hd44780* lcd = new (g_lcd_slot.place(), core::InPlace()) drivers::Hd44780(lcd_pins);
   dspic::PanelPins* panel_pins =
       new (g_panel_pins_slot.place(), core::InPlace()) dspic::PanelPins();
+  // kZHeld: the Z button is passed on as pressed/released; the application toggles Z mode.
   g_panel = new (g_panel_slot.place(), core::InPlace()) drivers::OperatorPanel(
       panel_pins, drivers::OperatorPanel::kZHeld, drivers::OperatorPanel::kDefaultDebounceMs);
   dspic::Uart1* uart = new (g_uart_slot.place(), core::InPlace()) dspic::Uart1();

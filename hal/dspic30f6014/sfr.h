@@ -37,14 +37,16 @@ struct SfrBits {
 template <uint16_t kAddress>
 DSPIC_INLINE void sfr_write_bit(uint8_t n, uint16_t value) {
   volatile SfrBits& r = *reinterpret_cast<volatile SfrBits*>(kAddress);
+  // The case-generating macro confuses the formatter's statement layout.
+  // clang-format off
   switch (n) {
-    DSPIC_BIT_CASE(0)
-    DSPIC_BIT_CASE(1)
-    DSPIC_BIT_CASE(2) DSPIC_BIT_CASE(3) DSPIC_BIT_CASE(4) DSPIC_BIT_CASE(5) DSPIC_BIT_CASE(6)
-        DSPIC_BIT_CASE(7) DSPIC_BIT_CASE(8) DSPIC_BIT_CASE(9) DSPIC_BIT_CASE(10) DSPIC_BIT_CASE(11)
-            DSPIC_BIT_CASE(12) DSPIC_BIT_CASE(13) DSPIC_BIT_CASE(14) DSPIC_BIT_CASE(15) default
-        : break;
+    DSPIC_BIT_CASE(0) DSPIC_BIT_CASE(1) DSPIC_BIT_CASE(2) DSPIC_BIT_CASE(3)
+    DSPIC_BIT_CASE(4) DSPIC_BIT_CASE(5) DSPIC_BIT_CASE(6) DSPIC_BIT_CASE(7)
+    DSPIC_BIT_CASE(8) DSPIC_BIT_CASE(9) DSPIC_BIT_CASE(10) DSPIC_BIT_CASE(11)
+    DSPIC_BIT_CASE(12) DSPIC_BIT_CASE(13) DSPIC_BIT_CASE(14) DSPIC_BIT_CASE(15)
+    default: break;
   }
+  // clang-format on
 }
 #undef DSPIC_BIT_CASE
 

@@ -19,6 +19,14 @@ enum LimitBits {
   kLimitZRight = 0x20
 };
 
+// Outcome of one step of the power drivers' status check (MotionAxes::poll_driver_check).
+enum DriverCheck {
+  kDriverCheckPending = 0,      // no fresh status yet (or the chip has no status read-back)
+  kDriverCheckOk = 1,           // a fresh status of every driver, no fault
+  kDriverCheckFault = 2,        // overtemperature, overcurrent/short, or the chain is broken
+  kDriverCheckUndervoltage = 3  // motor supply too low on a driver (e-stop or supply lost)
+};
+
 class MotionAxes {
  public:
   // x_actual of X, Y, Z in microsteps. False if the chip did not answer sanely.
@@ -37,6 +45,10 @@ class MotionAxes {
   virtual int16_t max_velocity_units(uint8_t axis) const = 0;
   // Native velocity units the chip's ramp adds per millisecond (a_max translated).
   virtual uint16_t accel_units_per_ms(uint8_t axis) const = 0;
+  // One step of a non-blocking check of the power drivers' status (DriverCheck), short
+  // enough for the 1 ms tick (at most one bus transaction); call it every few ms. Chips
+  // without a driver status read-back keep this default.
+  virtual uint8_t poll_driver_check() { return kDriverCheckPending; }
 
  protected:
   ~MotionAxes() {}

@@ -9,9 +9,11 @@ namespace hal {
 enum InputBits {
   kJoyLeft = 0x01,
   kJoyRight = 0x02,
-  kJoyDown = 0x04,   // towards the operator (-Y), or -Z while the Z toggle is on
+  kJoyDown = 0x04,  // towards the operator (-Y), or -Z while Z mode is on (see kButtonZ)
   kJoyUp = 0x08,
-  kButtonZ = 0x10,   // held: the joystick drives Z
+  // The Z toggle button, set while it is pressed (momentary); the application switches Z
+  // mode (joystick down/up drive Z instead of Y) on each press, so a panel must not latch it.
+  kButtonZ = 0x10,
   kButtonConfirm = 0x20,
   kButtonClear = 0x40
 };

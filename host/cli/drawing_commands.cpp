@@ -2,11 +2,11 @@
 // core generates for each curve).
 #include <CLI/CLI.hpp>  // CLI::App
 
-#include <cmath>             // std::llround
-#include <iomanip>           // std::setprecision
-#include <iostream>          // std::cout
-#include <nlohmann/json.hpp> // nlohmann::json
-#include <sstream>           // std::ostringstream
+#include <cmath>              // std::llround
+#include <iomanip>            // std::setprecision
+#include <iostream>           // std::cout
+#include <nlohmann/json.hpp>  // nlohmann::json
+#include <sstream>            // std::ostringstream
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
@@ -29,7 +29,9 @@ struct PointsArgs {
   bool csv = false;
 };
 
-nlohmann::json point_json(const Point2& p) { return {p.x(), p.y()}; }
+nlohmann::json point_json(const Point2& p) {
+  return {p.x(), p.y()};
+}
 
 // The whole drawing as JSON (every knot and control point).
 nlohmann::json info_json(const Drawing& d) {
@@ -41,8 +43,10 @@ nlohmann::json info_json(const Drawing& d) {
   j["entities"] = d.entity_counts;
   const Extents e = d.extents();
   if (!e.empty()) {
-    j["extents_mm"] = {{"min", point_json(e.min)}, {"max", point_json(e.max)},
-                       {"width", e.width()}, {"height", e.height()}};
+    j["extents_mm"] = {{"min", point_json(e.min)},
+                       {"max", point_json(e.max)},
+                       {"width", e.width()},
+                       {"height", e.height()}};
   } else {
     j["extents_mm"] = nullptr;
   }
@@ -93,8 +97,7 @@ void print_info(const Drawing& d) {
     std::cout << "extents:  (no curves)\n";
   } else {
     std::cout << "extents:  x " << e.min.x() << " .. " << e.max.x() << " mm, y " << e.min.y()
-              << " .. " << e.max.y() << " mm (" << e.width() << " x " << e.height()
-              << " mm)\n";
+              << " .. " << e.max.y() << " mm (" << e.width() << " x " << e.height() << " mm)\n";
   }
   std::cout << "curves:   " << d.curves.size() << "\n";
   for (size_t i = 0; i < d.curves.size(); ++i) {
@@ -103,8 +106,8 @@ void print_info(const Drawing& d) {
     const Point2 a = start_point(s), b = end_point(s);
     std::cout << "  " << i << ": " << c.source << ": degree " << s.degree
               << (s.rational() ? ", rational" : "") << ", " << s.control.size()
-              << " control points, " << s.knots.size() << " knots, from (" << a.x() << ", "
-              << a.y() << ") to (" << b.x() << ", " << b.y() << ") mm\n";
+              << " control points, " << s.knots.size() << " knots, from (" << a.x() << ", " << a.y()
+              << ") to (" << b.x() << ", " << b.y() << ") mm\n";
     if (c.kind == "SPLINE") {
       std::cout << "       knots: " << list(s.knots, 24) << "\n";
       std::ostringstream cp;
@@ -133,8 +136,9 @@ void run_info(const InfoArgs& a) {
 void run_points(const PointsArgs& a) {
   const double tol_um = a.tol_mm * 1000.0;
   if (!(tol_um >= 1.0 - 1e-9 && tol_um <= 10000.0 + 1e-9)) {
-    throw CommandFailure(kExitUsage, "--tol must be between 0.001 and 10 mm (the firmware "
-                                     "steps with a whole-micrometre chord tolerance)");
+    throw CommandFailure(kExitUsage,
+                         "--tol must be between 0.001 and 10 mm (the firmware "
+                         "steps with a whole-micrometre chord tolerance)");
   }
   const int tol = static_cast<int>(std::llround(tol_um));
   const Drawing d = import_drawing(a.file);
@@ -166,16 +170,18 @@ void run_points(const PointsArgs& a) {
 void add_drawing_commands(CLI::App& app) {
   auto info_args = std::make_shared<InfoArgs>();
   CLI::App* info = app.add_subcommand(
-      "info", "Show what a drawing holds: entities by type, curves (degree, rational, knots, "
-              "control points), extents, units and the problems found");
+      "info",
+      "Show what a drawing holds: entities by type, curves (degree, rational, knots, "
+      "control points), extents, units and the problems found");
   info->add_option("FILE", info_args->file, "drawing (DXF, G-code)")->required();
   info->add_flag("--json", info_args->json, "print JSON instead of text");
   info->callback([info_args]() { run_info(*info_args); });
 
   auto points_args = std::make_shared<PointsArgs>();
-  CLI::App* points = app.add_subcommand(
-      "points", "Print the points the firmware's point generator produces for each curve "
-                "(drawing frame, mm)");
+  CLI::App* points =
+      app.add_subcommand("points",
+                         "Print the points the firmware's point generator produces for each curve "
+                         "(drawing frame, mm)");
   points->add_option("FILE", points_args->file, "drawing (DXF, G-code)")->required();
   points->add_option("--tol", points_args->tol_mm, "chord tolerance in mm (0.001 .. 10)")
       ->capture_default_str();

@@ -3,10 +3,10 @@
 #include <CLI/CLI.hpp>  // CLI::App
 
 #include <fmt/format.h>       // fmt::format
-#include <nlohmann/json.hpp>  // nlohmann::json
 #include <signal.h>           // sigaction
 #include <termios.h>          // raw keyboard
 #include <unistd.h>           // isatty, read
+#include <nlohmann/json.hpp>  // nlohmann::json
 
 #include <atomic>      // std::atomic
 #include <chrono>      // steady_clock
@@ -35,11 +35,16 @@ enum MachineExit { kExitAborted = 3, kExitAlarm = 4, kExitRefused = 5, kExitLink
 
 int exit_code(JobOutcome outcome) {
   switch (outcome) {
-    case JobOutcome::kCompleted: return kExitOk;
-    case JobOutcome::kAborted: return kExitAborted;
-    case JobOutcome::kAlarm: return kExitAlarm;
-    case JobOutcome::kRejected: return kExitRefused;
-    case JobOutcome::kLinkLost: return kExitLinkLost;
+    case JobOutcome::kCompleted:
+      return kExitOk;
+    case JobOutcome::kAborted:
+      return kExitAborted;
+    case JobOutcome::kAlarm:
+      return kExitAlarm;
+    case JobOutcome::kRejected:
+      return kExitRefused;
+    case JobOutcome::kLinkLost:
+      return kExitLinkLost;
   }
   return kExitJobFailed;
 }
@@ -59,17 +64,22 @@ struct PlanArgs {
 
 void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   cmd->add_option("FILE", a->file, "drawing (DXF, G-code)")->required();
-  cmd->add_option("--feed", a->feed_mm_s, "cutting feed in mm/s")->check(CLI::Range(0.1, 60.0))
+  cmd->add_option("--feed", a->feed_mm_s, "cutting feed in mm/s")
+      ->check(CLI::Range(0.1, 60.0))
       ->capture_default_str();
   cmd->add_option("--tol", a->tol_mm, "chord tolerance of the generated points in mm")
-      ->check(CLI::Range(0.001, 1.0))->capture_default_str();
+      ->check(CLI::Range(0.001, 1.0))
+      ->capture_default_str();
   cmd->add_option("--scale", a->scale, "scale factor applied to the drawing")
-      ->check(CLI::Range(1e-3, 1e3))->capture_default_str();
+      ->check(CLI::Range(1e-3, 1e3))
+      ->capture_default_str();
   cmd->add_option("--margin", a->margin_mm, "offset of the drawing from the zero corner, mm")
-      ->check(CLI::Range(0.0, 100.0))->capture_default_str();
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
   cmd->add_option("--work", a->work_mm, "work area W H in mm (default A4)")->expected(2);
   cmd->add_option("--chain-tol", a->chain_tol_mm, "join curves whose ends are closer, mm")
-      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_flag("--no-reorder", a->no_reorder, "trace curves in drawing order");
   cmd->add_option("--z-up", a->z_up_mm, "travel height in mm")->capture_default_str();
   cmd->add_option("--z-down", a->z_down_mm, "cutting depth in mm")->capture_default_str();
@@ -104,12 +114,18 @@ EncodeOptions encode_options(const PlanArgs& a) {
 
 const char* state_name(proto::MachineState s) {
   switch (s) {
-    case proto::MachineState::kIdle: return "idle";
-    case proto::MachineState::kRunning: return "running";
-    case proto::MachineState::kHolding: return "holding";
-    case proto::MachineState::kHeld: return "held";
-    case proto::MachineState::kZeroing: return "zeroing";
-    case proto::MachineState::kAlarm: return "ALARM";
+    case proto::MachineState::kIdle:
+      return "idle";
+    case proto::MachineState::kRunning:
+      return "running";
+    case proto::MachineState::kHolding:
+      return "holding";
+    case proto::MachineState::kHeld:
+      return "held";
+    case proto::MachineState::kZeroing:
+      return "zeroing";
+    case proto::MachineState::kAlarm:
+      return "ALARM";
   }
   return "?";
 }
@@ -120,9 +136,12 @@ Sender* g_sender = nullptr;  // for the signal handlers (request_* only set atom
 
 extern "C" void on_signal(int sig) {
   if (g_sender == nullptr) return;
-  if (sig == SIGUSR1) g_sender->request_hold();
-  else if (sig == SIGUSR2) g_sender->request_resume();
-  else g_sender->request_abort();
+  if (sig == SIGUSR1)
+    g_sender->request_hold();
+  else if (sig == SIGUSR2)
+    g_sender->request_resume();
+  else
+    g_sender->request_abort();
 }
 
 void install_signals(Sender* sender) {
@@ -229,10 +248,10 @@ void run_send(const SendArgs& a) {
   EncodeOptions enc = encode_options(a.plan);
   enc.max_payload = caps.max_payload;
   const std::vector<QueuedCommand> commands = encode_job(plan, enc);
-  std::cerr << fmt::format("engraver: {} -> {}: {} curves, {} commands, {} bytes; keys: h hold, "
-                           "r resume, x abort, +/- feed override\n",
-                           a.plan.file, link->name(), plan.curves.size(), commands.size(),
-                           wire_bytes(commands));
+  std::cerr << fmt::format(
+      "engraver: {} -> {}: {} curves, {} commands, {} bytes; keys: h hold, "
+      "r resume, x abort, +/- feed override\n",
+      a.plan.file, link->name(), plan.curves.size(), commands.size(), wire_bytes(commands));
   JobOutcome outcome;
   {
     Keyboard keys(sender);
@@ -250,8 +269,8 @@ void run_send(const SendArgs& a) {
   g_sender = nullptr;
   const SenderStats& st = sender.stats();
   std::cerr << fmt::format("engraver: job {}: {} ({} frames, {} bytes, {} retransmits)\n",
-                           outcome_name(outcome), sender.message(), st.frames_sent,
-                           st.bytes_sent, st.retransmits);
+                           outcome_name(outcome), sender.message(), st.frames_sent, st.bytes_sent,
+                           st.retransmits);
   if (outcome != JobOutcome::kCompleted) {
     throw CommandFailure(exit_code(outcome), fmt::format("job {}", outcome_name(outcome)));
   }
@@ -265,7 +284,9 @@ struct SimArgs {
 };
 
 std::atomic<bool> g_stop_sim{false};
-extern "C" void on_stop_sim(int) { g_stop_sim = true; }
+extern "C" void on_stop_sim(int) {
+  g_stop_sim = true;
+}
 
 void run_sim(const SimArgs& a) {
   const size_t colon = a.listen.rfind(':');
@@ -332,7 +353,7 @@ void run_run(const RunArgs& a) {
   sim::SimJobOptions o;
   o.encode = encode_options(a.plan);
   o.realtime = a.realtime;
-  o.sender.status_interval = std::chrono::milliseconds(a.realtime ? 250 : 2);
+  o.sender.status_interval = std::chrono::milliseconds(a.realtime ? 250 : 0);
   const sim::SimJobResult r = sim::run_sim_job(plan, o);
 
   const std::string name = std::filesystem::path(a.plan.file).stem().string();
@@ -378,6 +399,7 @@ void run_run(const RunArgs& a) {
   j["traced_rapid_mm"] = r.rapid_mm;
   j["feed_mm_per_s"] = feed;
   j["simulated_job_s"] = r.motion_s;
+  j["simulated_cut_s"] = r.cut_s;
   j["cut_length_over_feed_s"] = ideal_s;
   j["max_contour_error_um"] = r.max_contour_error_um;
   j["simulated_machine_ms"] = r.virtual_ms;
@@ -390,19 +412,19 @@ void run_run(const RunArgs& a) {
   }
   std::cout << fmt::format(
       "{}: {} curves, {} pen lifts; job {}\n"
-      "  sent {} commands in {} frames, {} bytes ({} retransmits); G-code G1 at the same "
-      "tolerance: {} bytes\n"
-      "  tool path {:.1f} mm cut + {:.1f} mm rapid; simulated job time {:.1f} s "
-      "(cut length / feed {:.1f} s)\n"
+      "  sent {} commands in {} frames, {} bytes ({} retransmits); the job as frames: {} bytes, "
+      "as G-code G1 at the same tolerance: {} bytes\n"
+      "  tool path {:.1f} mm cut + {:.1f} mm rapid; simulated job time {:.1f} s, of which "
+      "cutting {:.1f} s (cut length / feed {:.1f} s)\n"
       "  max contour error {:.1f} um; simulated {:.1f} s of machine time in {:.2f} s\n"
       "  plot: {}.svg, {}.png; report: {}.json\n",
       a.plan.file, plan.curves.size(), plan.pen_lifts, outcome_name(r.outcome), r.commands,
-      r.stats.frames_sent, r.stats.bytes_sent, r.stats.retransmits,
-      j["gcode_g1_bytes_same_tolerance"].get<size_t>(), r.cut_mm, r.rapid_mm, r.motion_s,
+      r.stats.frames_sent, r.stats.bytes_sent, r.stats.retransmits, r.wire_bytes,
+      j["gcode_g1_bytes_same_tolerance"].get<size_t>(), r.cut_mm, r.rapid_mm, r.motion_s, r.cut_s,
       ideal_s, r.max_contour_error_um, r.virtual_ms / 1000.0, r.wall_s, base, base, base);
   if (r.outcome != JobOutcome::kCompleted) {
-    throw CommandFailure(exit_code(r.outcome), fmt::format("job {}: {}", outcome_name(r.outcome),
-                                                           r.message));
+    throw CommandFailure(exit_code(r.outcome),
+                         fmt::format("job {}: {}", outcome_name(r.outcome), r.message));
   }
 }
 
@@ -414,8 +436,10 @@ void add_machine_commands(CLI::App& app) {
                    "tcp://HOST:PORT (XPort, default port 10001) or serial:DEVICE[,BAUD]")
       ->required();
   send->add_flag("--no-zero", send_args->no_zero, "do not start manual zeroing if not zeroed");
-  send->add_option("--poll-ms", send_args->poll_ms, "status poll interval (keep-alive)")
-      ->check(CLI::Range(1, 1000))->capture_default_str();
+  send->add_option("--poll-ms", send_args->poll_ms,
+                   "status poll interval (keep-alive); 0 = one query always in flight")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
   send->footer(
       "Example: engraver send board.dxf --to tcp://192.168.1.50:10001 --feed 8\n"
       "Keys: h hold, r resume, x abort, +/- feed override. Signals: INT/TERM abort, USR1 hold, "
@@ -434,8 +458,9 @@ void add_machine_commands(CLI::App& app) {
   sim->add_option("--listen", sim_args->listen, "ADDR:PORT (loopback by default)")
       ->capture_default_str();
   sim->add_flag("--realtime", sim_args->realtime, "run in step with the wall clock");
-  sim->footer("Example: engraver sim & engraver send samples/engraver-word.dxf --to "
-              "tcp://127.0.0.1:10001 --poll-ms 1");
+  sim->footer(
+      "Example: engraver sim & engraver send samples/engraver-word.dxf --to "
+      "tcp://127.0.0.1:10001 --poll-ms 0");
   sim->callback([sim_args] { run_sim(*sim_args); });
 
   auto run_args = std::make_shared<RunArgs>();

@@ -97,9 +97,14 @@ void add_spi_commands(CLI::App& app) {
       "Print the datagrams the firmware sends in a scenario, as a golden file for `spi diff`. "
       "Scenarios in this build: " +
           (have.empty() ? std::string("none (the TMC428 driver/fakes are not built)") : have) +
-          ". 'job FILE' is not available yet: the simulator does not expose its SPI recording.");
+          ". 'job FILE' streams the drawing to the simulated machine and keeps the init plus "
+          "the first --max-datagrams datagrams after it (a whole job is ~7 per ms).");
   exp->add_option("--scenario", expect->scenario, "init | jog | job")->capture_default_str();
   exp->add_option("FILE", expect->job_file, "drawing for --scenario job");
+  exp->add_option("--max-datagrams", expect->max_datagrams,
+                  "job: datagrams kept after the init (0 = the whole job, hundreds of "
+                  "thousands)")
+      ->capture_default_str();
   exp->add_option("--vcd", expect->vcd_path,
                   "also write the datagrams as the fake SPI recorder's VCD (a capture of a "
                   "correct board, for trying decode/diff)");

@@ -32,8 +32,8 @@ bool sigrok_to_vcd(const std::string& path, std::string* vcd) {
   int fd = mkstemp(tmp);
   if (fd < 0) return false;
   close(fd);
-  std::string in = path, out = tmp;
-  const char* argv[] = {"sigrok-cli", "-i", in.c_str(), "-O", "vcd", "-o", out.c_str(), nullptr};
+  const std::string out = tmp;
+  const char* argv[] = {"sigrok-cli", "-i", path.c_str(), "-O", "vcd", "-o", out.c_str(), nullptr};
   posix_spawn_file_actions_t quiet;  // its messages would confuse ours
   posix_spawn_file_actions_init(&quiet);
   posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);

@@ -153,25 +153,32 @@ int run_diff(const DiffOptions& o, std::ostream& out, std::ostream& err) {
 }
 
 int run_expect(const ExpectOptions& o, std::ostream& out, std::ostream& err) {
-  std::vector<Exchange> ex;
-  Error e = record_scenario(o.scenario, o.job_file, &ex);
+  ScenarioRequest request;
+  request.name = o.scenario;
+  request.job_file = o.job_file;
+  request.max_job_datagrams = o.max_datagrams;
+  ScenarioRecording rec;
+  Error e = record_scenario(request, !o.vcd_path.empty(), &rec);
   if (!e.ok()) {
     print_error(err, e);
     return kExitUnusable;
   }
   if (!o.vcd_path.empty()) {
-    e = write_scenario_vcd(o.scenario, o.job_file, o.vcd_path);
-    if (!e.ok()) {
-      print_error(err, e);
+    std::ofstream vcd(o.vcd_path, std::ios::binary);
+    if (!(vcd << rec.vcd)) {
+      print_error(err, {"E_OPEN", o.vcd_path + ": cannot write"});
       return kExitUnusable;
     }
   }
   std::string header = "# engraver spi expect --scenario " + o.scenario +
                        (o.job_file.empty() ? "" : " " + o.job_file) +
                        "\n# Recorded from the host build: drivers::Tmc428 against "
-                       "fake::Tmc428Model through fake::RecordingSpi.\n"
-                       "# MOSI        MISO (status byte never checked)  # datagram\n";
-  out << format_golden(golden_from_exchanges(ex), header);
+                       "fake::Tmc428Model through fake::RecordingSpi.\n";
+  if (!rec.note.empty())
+    header += "# Job through the simulated machine (host::sim::SimMachine): " + rec.note +
+              "; --max-datagrams " + std::to_string(o.max_datagrams) + ".\n";
+  header += "# MOSI        MISO (status byte never checked)  # datagram\n";
+  out << format_golden(golden_from_exchanges(rec.exchanges), header);
   return kExitOk;
 }
 

@@ -7,8 +7,9 @@
 #include <string>   // std::string
 #include <vector>   // std::vector
 
-#include "host/spi/framer.h"  // FramerOptions
-#include "host/spi/report.h"  // DecodeInfo
+#include "host/spi/framer.h"    // FramerOptions
+#include "host/spi/report.h"    // DecodeInfo
+#include "host/spi/scenario.h"  // kDefaultJobDatagrams
 
 namespace host::spi {
 
@@ -40,9 +41,10 @@ struct DiffOptions {
 int run_diff(const DiffOptions& o, std::ostream& out, std::ostream& err);
 
 struct ExpectOptions {
-  std::string scenario = "init";  // init | jog | job
-  std::string job_file;           // for job
-  std::string vcd_path;           // also write the recorded datagrams as a VCD here
+  std::string scenario = "init";                // init | jog | job
+  std::string job_file;                         // for job
+  std::string vcd_path;                         // also write the recorded datagrams as a VCD here
+  size_t max_datagrams = kDefaultJobDatagrams;  // job: datagrams after the init; 0 = all
 };
 // Prints the golden file of a scenario. 0, or 2 when the scenario cannot be produced.
 int run_expect(const ExpectOptions& o, std::ostream& out, std::ostream& err);

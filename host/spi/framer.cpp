@@ -102,9 +102,7 @@ bool parse_duration_ps(const std::string& text, int64_t* ps) {
     mul = 1e6;
   else if (unit == "ns")
     mul = 1e3;
-  else if (unit == "ps")
-    mul = 1;
-  else if (unit.empty() && v == 0)
+  else if (unit == "ps" || (unit.empty() && v == 0))
     mul = 1;
   else
     return false;

@@ -155,7 +155,7 @@ std::string diff_text(const std::vector<Frame>& frames, const std::vector<Expect
   for (const DiffStep& s : d.steps) {
     const Frame* f = s.frame >= 0 ? &frames[s.frame] : nullptr;
     const Expected* e = s.expected >= 0 ? &expected[s.expected] : nullptr;
-    std::string cap = "", exp = "";
+    std::string cap, exp;
     if (f) {
       cap = f->has_mosi ? hex_word(f->mosi, f->bit_count) : "-";
       if (f->has_miso) cap += " " + hex_word(f->miso, f->bit_count);

@@ -1,6 +1,8 @@
 // Turning recorded exchanges into golden lines (independent of how they were recorded).
 #include "host/spi/scenario.h"
 
+#include <fstream>  // std::ofstream
+
 #include "host/spi/report.h"  // describe_tmc428
 
 namespace host::spi {
@@ -22,6 +24,30 @@ bool polled_register(uint8_t address_byte) {
 }
 
 }  // namespace
+
+Error record_scenario(const std::string& name, const std::string& job_file,
+                      std::vector<Exchange>* out) {
+  ScenarioRequest request;
+  request.name = name;
+  request.job_file = job_file;
+  ScenarioRecording rec;
+  Error e = record_scenario(request, false, &rec);
+  *out = std::move(rec.exchanges);
+  return e;
+}
+
+Error write_scenario_vcd(const std::string& name, const std::string& job_file,
+                         const std::string& path) {
+  ScenarioRequest request;
+  request.name = name;
+  request.job_file = job_file;
+  ScenarioRecording rec;
+  Error e = record_scenario(request, true, &rec);
+  if (!e.ok()) return e;
+  std::ofstream out(path, std::ios::binary);
+  if (!(out << rec.vcd)) return {"E_OPEN", path + ": cannot write"};
+  return {};
+}
 
 std::vector<Expected> golden_from_exchanges(const std::vector<Exchange>& ex) {
   std::vector<Expected> out;

@@ -3,6 +3,7 @@
 #ifndef HOST_SPI_SCENARIO_H
 #define HOST_SPI_SCENARIO_H
 
+#include <cstddef>  // size_t
 #include <cstdint>  // uint32_t
 #include <string>   // std::string
 #include <vector>   // std::vector
@@ -18,17 +19,34 @@ struct Exchange {
   uint32_t miso;
 };
 
-// Records "init", "jog" or "job" (job_file: a drawing for the simulator). E_SCENARIO when
-// the scenario is unknown or its parts are not in this build.
+// Datagrams of a job kept after the init by default: ~0.3 s of the 1 ms loop (7 a tick).
+const size_t kDefaultJobDatagrams = 2000;
+
+// What to record: "init", "jog" or "job" (job_file: a drawing for the simulator).
+struct ScenarioRequest {
+  std::string name = "init";
+  std::string job_file;
+  size_t max_job_datagrams = kDefaultJobDatagrams;  // after the init; 0 = the whole job
+};
+
+struct ScenarioRecording {
+  std::vector<Exchange> exchanges;
+  std::string note;  // how a job recording ended ("" for init and jog)
+  std::string vcd;   // the fake SPI recorder's VCD of the same datagrams, when asked for
+};
+
+// Records a scenario once; with_vcd also renders it as a VCD (CS, SCK, MOSI, MISO; mode 3):
+// what a logic analyser on a correct board would show. E_SCENARIO when the scenario is
+// unknown or its parts are not in this build, E_OPEN when the drawing cannot be read.
+Error record_scenario(const ScenarioRequest& request, bool with_vcd, ScenarioRecording* out);
+
+// Shorthands: the datagrams only (default bound), and the VCD written to a file.
 Error record_scenario(const std::string& name, const std::string& job_file,
                       std::vector<Exchange>* out);
-
-// Writes the scenario as the fake SPI recorder's VCD (CS, SCK, MOSI, MISO; mode 3): what a
-// logic analyser on a correct board would show, for trying out `spi decode` / `spi diff`.
 Error write_scenario_vcd(const std::string& name, const std::string& job_file,
                          const std::string& path);
 
-// Which scenarios this build can record ("init jog"), for --help.
+// Which scenarios this build can record ("init jog job FILE"), for --help.
 std::string available_scenarios();
 
 // Golden lines for recorded exchanges: MOSI exact, MISO status byte as don't-care, read data

@@ -1,6 +1,7 @@
 // Scenario recording in the host build: drivers::Tmc428 against fake::Tmc428Model through
-// fake::RecordingSpi (the same parts the firmware's host tests use).
-#include <fstream>  // std::ofstream
+// fake::RecordingSpi (the same parts the firmware's host tests use); the job scenario through
+// the simulated machine (scenario_job.cpp) when host/lib/sim is in the build.
+#include <sstream>  // std::ostringstream
 
 #include "firmware/config/machine_config.h"  // config::default_machine_config
 #include "hal/drivers/tmc428/tmc428.h"       // drivers::Tmc428
@@ -8,6 +9,9 @@
 #include "hal/fake/spi/recording_spi.h"      // fake::RecordingSpi
 #include "hal/fake/spi/vcd_writer.h"         // fake::write_spi_vcd
 #include "host/spi/scenario.h"
+#ifdef HOST_SPI_HAVE_JOB
+#include "host/spi/scenario_job.h"  // record_job
+#endif
 
 namespace host::spi {
 namespace {
@@ -19,14 +23,22 @@ const int16_t kJogVelocity[][3] = {{0, 0, 0},     {40, 0, 0},    {80, -20, 0},  
                                    {40, -20, 0},  {0, 0, 0}};
 
 // Runs a scenario; the recorder's datagrams with their times land in *out.
-Error run_scenario(const std::string& name, const std::string& job_file,
-                   std::vector<fake::SpiRecord>* out, fake::SpiTiming* timing) {
+Error run_scenario(const ScenarioRequest& request, std::vector<fake::SpiRecord>* out,
+                   fake::SpiTiming* timing, std::string* note) {
   out->clear();
-  if (name == "job")
+  (void)note;  // only a job recording has one
+  const std::string& name = request.name;
+  if (name == "job") {
+    if (request.job_file.empty())
+      return {"E_SCENARIO", "scenario 'job' needs a drawing: --scenario job FILE"};
+#ifdef HOST_SPI_HAVE_JOB
+    return record_job(request.job_file, request.max_job_datagrams, out, timing, note);
+#else
     return {"E_SCENARIO",
-            "scenario 'job" + (job_file.empty() ? "" : " " + job_file) +
-                "' needs SPI recording from the simulator (host/lib/sim does not expose "
-                "its fake SPI bus yet)"};
+            "scenario 'job' needs the simulator (host/lib/sim), which is not in "
+            "this build"};
+#endif
+  }
   if (name != "init" && name != "jog")
     return {"E_SCENARIO", "unknown scenario '" + name + "' (init, jog, job FILE)"};
   const config::MachineConfig machine = config::default_machine_config();
@@ -56,28 +68,26 @@ Error run_scenario(const std::string& name, const std::string& job_file,
 }  // namespace
 
 std::string available_scenarios() {
+#ifdef HOST_SPI_HAVE_JOB
+  return "init jog job FILE";
+#else
   return "init jog";
+#endif
 }
 
-Error record_scenario(const std::string& name, const std::string& job_file,
-                      std::vector<Exchange>* out) {
+Error record_scenario(const ScenarioRequest& request, bool with_vcd, ScenarioRecording* out) {
+  *out = ScenarioRecording();
   std::vector<fake::SpiRecord> records;
   fake::SpiTiming timing;
-  Error e = run_scenario(name, job_file, &records, &timing);
-  out->clear();
-  for (const fake::SpiRecord& r : records) out->push_back({r.mosi, r.miso});
-  return e;
-}
-
-Error write_scenario_vcd(const std::string& name, const std::string& job_file,
-                         const std::string& path) {
-  std::vector<fake::SpiRecord> records;
-  fake::SpiTiming timing;
-  Error e = run_scenario(name, job_file, &records, &timing);
+  Error e = run_scenario(request, &records, &timing, &out->note);
   if (!e.ok()) return e;
-  std::ofstream out(path, std::ios::binary);
-  if (!out || !fake::write_spi_vcd(out, records, timing))
-    return {"E_OPEN", path + ": cannot write"};
+  for (const fake::SpiRecord& r : records) out->exchanges.push_back({r.mosi, r.miso});
+  if (with_vcd) {
+    std::ostringstream vcd;
+    if (!fake::write_spi_vcd(vcd, records, timing))
+      return {"E_SCENARIO", "the recording cannot be written as a VCD"};
+    out->vcd = vcd.str();
+  }
   return {};
 }
 

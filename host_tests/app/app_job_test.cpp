@@ -42,9 +42,57 @@ TEST(AppSession, StatusWorksBeforeASessionButQueuedFramesAreRefused) {
   rig.run(5);
   EXPECT_TRUE(rig.host.have_status);
   EXPECT_EQ(rig.host.status.state, MachineState::kIdle);
-  rig.host.send_realtime(proto::HoldCmd{});
+  rig.host.send_raw(proto::kCmdZeroing, 1, {7});
   rig.run(5);
   EXPECT_TRUE(has_error(rig.host, ErrorCode::kNoSession));
+  EXPECT_EQ(rig.app.state(), MachineState::kIdle);
+}
+
+// docs/protocol.md section 4: before the first #I, #R #V #C get kNoSession.
+TEST(AppSession, ResumeOverrideAndClearBeforeASessionGetNoSession) {
+  AppRig rig;
+  rig.host.send_raw(proto::kCmdResume, 1, {});
+  rig.host.send_raw(proto::kCmdOverride, 2, {50});
+  rig.host.send_raw(proto::kCmdClearAlarm, 3, {});
+  rig.run(5);
+  ASSERT_EQ(rig.host.errors.size(), 3u);
+  for (const auto& e : rig.host.errors) EXPECT_EQ(e.code, ErrorCode::kNoSession);
+  EXPECT_EQ(rig.host.acks, 0);
+}
+
+// ... while #H and #X always act: stopping is always allowed.
+TEST(AppSession, HoldBeforeASessionIsAcknowledgedAndHolds) {
+  AppRig rig;
+  rig.host.send_raw(proto::kCmdHold, 1, {});
+  rig.run(5);
+  EXPECT_TRUE(rig.host.errors.empty());
+  EXPECT_EQ(rig.host.acks, 1);
+  EXPECT_EQ(rig.app.state(), MachineState::kHeld);
+}
+
+TEST(AppSession, AbortBeforeASessionIsAcknowledgedAndFlagsTheStreamUntilSessionStart) {
+  AppRig rig;
+  rig.host.send_raw(proto::kCmdAbort, 1, {});
+  rig.run(5);
+  EXPECT_TRUE(rig.host.errors.empty());
+  EXPECT_EQ(rig.host.acks, 1);
+  EXPECT_TRUE(rig.app.dispatcher().aborted());
+  ASSERT_TRUE(rig.open_session());
+  EXPECT_FALSE(rig.app.dispatcher().aborted());
+  ASSERT_TRUE(rig.zero_here());  // the fresh stream runs queued work
+}
+
+// #I stops and clears everything, a hold included: the new session starts idle.
+TEST(AppSession, SessionStartAfterAnEarlyHoldStartsIdleAndRunsQueuedWork) {
+  AppRig rig;
+  rig.host.send_raw(proto::kCmdHold, 200, {});
+  rig.run(5);
+  ASSERT_EQ(rig.app.state(), MachineState::kHeld);
+  ASSERT_TRUE(rig.open_session());
+  rig.run(5);
+  EXPECT_EQ(rig.app.state(), MachineState::kIdle);
+  ASSERT_TRUE(rig.zero_here());
+  EXPECT_TRUE(rig.host.errors.empty());
 }
 
 TEST(AppZeroing, JoystickJogsWithARampedSpeedAndConfirmSetsTheZero) {
@@ -73,6 +121,49 @@ TEST(AppZeroing, JoystickJogsWithARampedSpeedAndConfirmSetsTheZero) {
   EXPECT_NEAR(rig.position_um().x, 0, 1.0);  // the chip's x_actual was set to zero
   EXPECT_NEAR(rig.position_um().z, 0, 1.0);
   EXPECT_TRUE(rig.host.status.flags & proto::kStatusZeroed);
+}
+
+// The Z button is a toggle: each press (the panel reports it while pressed) switches the
+// joystick's down/up between Y and Z (docs/firmware.md, Zeroing).
+TEST(AppZeroing, EachZButtonPressSwitchesDownUpBetweenYAndZ) {
+  AppRig rig;
+  ASSERT_TRUE(rig.open_session());
+  rig.host.queue(proto::ZeroingCmd{7});
+  ASSERT_TRUE(rig.run_until([&] { return rig.app.state() == MachineState::kZeroing; }, 2000));
+  rig.run(50);  // the tick has started the jog (buttons down at its start are ignored)
+  rig.inputs.bits = hal::kButtonZ;  // first press: Z mode on
+  rig.run(20);
+  rig.inputs.bits = hal::kJoyDown;  // released; down now drives Z
+  rig.run(300);
+  rig.inputs.bits = 0;
+  rig.run(300);
+  const P3 after_z = rig.position_um();
+  EXPECT_LT(after_z.z, -20.0);
+  EXPECT_NEAR(after_z.y, 0, 1.0);
+  rig.inputs.bits = hal::kButtonZ;  // second press: back to Y
+  rig.run(20);
+  rig.inputs.bits = hal::kJoyDown;
+  rig.run(300);
+  rig.inputs.bits = 0;
+  rig.run(300);
+  EXPECT_LT(rig.position_um().y, -20.0);
+  EXPECT_NEAR(rig.position_um().z, after_z.z, 1.0);
+}
+
+TEST(AppZeroing, HoldingTheZButtonSwitchesOnlyOnce) {
+  AppRig rig;
+  ASSERT_TRUE(rig.open_session());
+  rig.host.queue(proto::ZeroingCmd{7});
+  ASSERT_TRUE(rig.run_until([&] { return rig.app.state() == MachineState::kZeroing; }, 2000));
+  rig.run(50);  // the tick has started the jog (buttons down at its start are ignored)
+  rig.inputs.bits = hal::kButtonZ;
+  rig.run(1000);  // held for a second: still one press
+  rig.inputs.bits = hal::kJoyDown;
+  rig.run(300);
+  rig.inputs.bits = 0;
+  rig.run(300);
+  EXPECT_LT(rig.position_um().z, -20.0);
+  EXPECT_NEAR(rig.position_um().y, 0, 1.0);
 }
 
 TEST(AppZeroing, ClearButtonCancelsWithoutChangingTheZero) {
@@ -422,6 +513,32 @@ TEST(AppSequence, StaleRealTimeFrameIsRefusedAndANewerOneActs) {
   rig.host.send_raw(proto::kCmdResume, 51, {});
   rig.run(5);
   EXPECT_EQ(rig.app.state(), MachineState::kIdle);
+}
+
+// A retransmitted stop whose first copy was lost arrives after a newer real-time frame.
+TEST(AppSequence, OlderHoldStillActsButDoesNotMoveTheSeqBack) {
+  AppRig rig;
+  ASSERT_TRUE(rig.open_session());
+  rig.host.send_raw(proto::kCmdOverride, 50, {80});
+  rig.run(5);
+  rig.host.send_raw(proto::kCmdHold, 40, {});  // older than the override
+  rig.run(5);
+  EXPECT_TRUE(rig.host.errors.empty());
+  EXPECT_EQ(rig.app.state(), MachineState::kHeld);
+  rig.host.send_raw(proto::kCmdResume, 45, {});  // still older than 50: refused
+  rig.run(5);
+  EXPECT_TRUE(has_error(rig.host, ErrorCode::kSeqStale));
+  EXPECT_EQ(rig.app.state(), MachineState::kHeld);
+}
+
+TEST(AppSequence, OlderAbortStillActs) {
+  AppRig rig;
+  ASSERT_TRUE(rig.open_session());
+  rig.host.send_raw(proto::kCmdOverride, 50, {80});
+  rig.host.send_raw(proto::kCmdAbort, 49, {});
+  rig.run(5);
+  EXPECT_TRUE(rig.host.errors.empty());
+  EXPECT_TRUE(rig.app.dispatcher().aborted());
 }
 
 TEST(AppSequence, FrameAheadOfTheExpectedSeqIsAGap) {

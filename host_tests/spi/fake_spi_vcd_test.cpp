@@ -151,8 +151,11 @@ TEST(FakeSpiVcd, JogScenarioIsRecorded) {
   std::vector<Exchange> ex;
   ASSERT_TRUE(record_scenario("jog", "", &ex).ok());
   EXPECT_GT(ex.size(), 30u);
+}
+
+TEST(FakeSpiVcd, UnknownScenarioIsAScenarioError) {
   std::vector<Exchange> none;
-  EXPECT_EQ(record_scenario("job", "x.dxf", &none).code, "E_SCENARIO");
+  EXPECT_EQ(record_scenario("walk", "", &none).code, "E_SCENARIO");
 }
 
 }  // namespace

@@ -221,15 +221,19 @@ class AstChecker:
         self.texts = {}
 
     def source(self, path):
-        """The file's bytes (clang's offsets count bytes, not characters)."""
+        """The file with comments and literals blanked, one character per byte: clang's
+        offsets count bytes, and Latin-1 maps every byte to one character, so a UTF-8 "µ"
+        or "§" before a construct cannot shift the positions."""
         if path not in self.texts:
             with open(path, "rb") as f:
-                self.texts[path] = f.read()
+                raw = f.read()
+            self.texts[path] = blank_comments_and_literals(raw.decode("latin-1"))
         return self.texts[path]
 
-    def read_loc(self, loc):
+    def read_loc(self, loc, spelled=None):
         """Updates the tracker with a location object; returns (file, line, offset) of the
-        place the construct is written (the expansion site for macros)."""
+        place the construct is written (the expansion site for macros). If a list is given
+        as spelled, appends where the tokens are spelled (inside the macro body for macros)."""
         if not isinstance(loc, dict):
             return None
         if "spellingLoc" in loc or "expansionLoc" in loc:
@@ -237,6 +241,8 @@ class AstChecker:
             for key in ("spellingLoc", "expansionLoc"):
                 if key in loc:
                     result = self.read_loc(loc[key])
+                    if key == "spellingLoc" and spelled is not None:
+                        spelled.append(result)
             return result
         if "offset" not in loc:
             return None
@@ -249,10 +255,12 @@ class AstChecker:
         if "loc" in node:
             here = self.read_loc(node["loc"])
         begin = end = None
+        spelled = []
         if "range" in node:
-            begin = self.read_loc(node["range"].get("begin"))
+            begin = self.read_loc(node["range"].get("begin"), spelled)
             end = self.read_loc(node["range"].get("end"))
         node["_begin"], node["_end"] = begin, end
+        node["_begin_spelled"] = spelled[0] if spelled and spelled[0] else begin
         return here or begin
 
     def report(self, where, rule, message=None):
@@ -330,13 +338,14 @@ class AstChecker:
                 self.report(where, "ref-qualifier")
         elif kind == "EnumDecl" and not implicit:
             # Opaque when the declaration reaches ';' before any '{' (read from the source,
-            # since instantiated copies of an enum carry a collapsed range).
-            begin = node.get("_begin")
+            # since instantiated copies of an enum carry a collapsed range; from where the
+            # tokens are spelled, so an enum written inside a macro body is read there).
+            begin = node.get("_begin_spelled")
             if begin and begin[0]:
                 text = self.source_or_none(begin[0])
                 if text is not None:
-                    brace = text.find(b"{", begin[2])
-                    semicolon = text.find(b";", begin[2])
+                    brace = text.find("{", begin[2])
+                    semicolon = text.find(";", begin[2])
                     if semicolon >= 0 and (brace < 0 or semicolon < brace):
                         self.report(where, "opaque-enum")
         elif kind == "CXXNewExpr" and not node.get("isPlacement"):
@@ -420,8 +429,10 @@ def check_tu(index, source, clang, repo, target, wanted, display_of, tmpdir):
             f.write('#include "%s"\n' % source)
     else:
         tu = source
+    # Decoded explicitly: clang echoes source bytes (any encoding) in its output, and the
+    # locale's codec (ASCII under a bare ctest environment) must not decide whether we crash.
     proc = subprocess.run(clang_command(clang, repo, target, tu), stdout=subprocess.PIPE,
-                          stderr=subprocess.PIPE, universal_newlines=True)
+                          stderr=subprocess.PIPE, encoding="utf-8", errors="replace")
     found = diagnostic_findings(proc.stderr, wanted, display_of)
     if proc.stdout.strip():
         try:

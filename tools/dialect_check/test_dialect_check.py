@@ -3,7 +3,7 @@
 
 Each testdata file marks its violating lines with a trailing "// expect: <rule>[, <rule>]".
 The check must report exactly those (file, line, rule) triples, exit 1 on the planted files,
-and exit 0 with no report on the clean ones (clean.h, clean.cpp).
+and exit 0 with no report on the clean ones (clean.h, clean.cpp, clean_non_ascii.h).
 
 Usage: test_dialect_check.py [--clang CLANG]
 """
@@ -17,7 +17,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 CHECK = os.path.join(HERE, "dialect_check.py")
 DATA = os.path.join(HERE, "testdata")
-CLEAN = ("clean.h", "clean.cpp")
+CLEAN = ("clean.h", "clean.cpp", "clean_non_ascii.h")
 
 
 def expected_findings():

@@ -24,8 +24,13 @@ class OperatorPanel : public hal::OperatorInputs {
 #pragma GCC diagnostic pop
 #endif
   enum ZMode {
-    kZHeld = 0,   // kButtonZ reported while the button is held (the interface's default)
-    kZToggle = 1  // each press switches Z mode on or off; kButtonZ reported while on
+    // kButtonZ reported while the button is pressed, as hal::InputBits defines it: what the
+    // firmware uses (app::JogController toggles Z mode on each press).
+    kZHeld = 0,
+    // The panel latches: each press switches kButtonZ on or off. Only for a consumer that
+    // reads kButtonZ as a level; with the firmware's JogController, which toggles on each
+    // rising edge, only every second press would change Z mode.
+    kZToggle = 1
   };
 
   // debounce_ms: consecutive 1 ms samples a contact must differ from its debounced state

@@ -28,6 +28,8 @@ Tmc428::Tmc428(hal::SpiMaster& spi, const config::MachineConfig& machine)
     : spi_(spi),
       machine_(machine),
       chain_poll_limit_(0),
+      check_low_word_(0),
+      check_step_(0),
       last_status_(0),
       answer_stuck_(true),
       ready_(false),
@@ -226,6 +228,59 @@ bool Tmc428::read_driver_status() {
     if ((driver_status_[a] & 0x100) == 0) return false;
   }
   return true;
+}
+
+// TMC246 status bits (tmc246.md, status word).
+enum {
+  kTmc246AlwaysOne = 0x100,
+  kTmc246Overtemperature = 0x80,  // switched off
+  kTmc246Undervoltage = 0x20,     // VS too low
+  kTmc246OvercurrentHigh = 0x10,
+  kTmc246OvercurrentB = 0x02,
+  kTmc246OvercurrentA = 0x01,
+  kTmc246FaultBits =
+      kTmc246Overtemperature | kTmc246OvercurrentHigh | kTmc246OvercurrentB | kTmc246OvercurrentA
+};
+
+// The steps of poll_driver_check().
+enum CheckStep { kCheckArm = 0, kCheckLowWord = 1, kCheckHighWord = 2 };
+
+uint8_t Tmc428::classify_driver_status(uint16_t status12) {
+  // A missing always-1 bit: the chain is broken or that driver has no logic supply.
+  if ((status12 & kTmc246AlwaysOne) == 0) return hal::kDriverCheckFault;
+  if (status12 & kTmc246FaultBits) return hal::kDriverCheckFault;
+  if (status12 & kTmc246Undervoltage) return hal::kDriverCheckUndervoltage;
+  return hal::kDriverCheckOk;
+}
+
+uint8_t Tmc428::poll_driver_check() {
+  if (!ready_) return hal::kDriverCheckPending;
+  if (check_step_ == kCheckArm) {
+    write_reg(kDatagramLowWord, 0);  // CDGW = 1 until the next chain datagram is captured
+    check_step_ = kCheckLowWord;
+    return hal::kDriverCheckPending;
+  }
+  if (check_step_ == kCheckLowWord) {
+    const uint32_t miso = transfer(read_datagram(kDatagramLowWord));
+    if (miso != 0xFFFFFFFFUL && (answer_status(miso) & kStatusCdgw) == 0) {
+      check_low_word_ = datagram_data(miso);
+      check_step_ = kCheckHighWord;
+    }
+    return hal::kDriverCheckPending;
+  }
+  check_step_ = kCheckArm;
+  uint32_t high = 0;
+  if (!read_reg(kDatagramHighWord, &high)) return hal::kDriverCheckPending;
+  // Same layout as check_chain(): motor 1 = high[11:0], motor 2 = low[23:12], 3 = low[11:0].
+  driver_status_[0] = (uint16_t)(high & 0xFFF);
+  driver_status_[1] = (uint16_t)((check_low_word_ >> 12) & 0xFFF);
+  driver_status_[2] = (uint16_t)(check_low_word_ & 0xFFF);
+  uint8_t worst = hal::kDriverCheckOk;
+  for (uint8_t a = 0; a < config::kAxisCount; ++a) {
+    const uint8_t c = classify_driver_status(driver_status_[a]);
+    if (c == hal::kDriverCheckFault || worst == hal::kDriverCheckOk) worst = c;
+  }
+  return worst;
 }
 
 bool Tmc428::take_interrupt_flags(uint8_t axis, uint8_t* flags) {

@@ -58,6 +58,8 @@ class Tmc428 : public hal::MotionAxes {
   // Re-reads the three TMC246 status words through datagram_low/high_word ([428DS] §9.1).
   // False on timeout or a missing always-1 bit.
   bool read_driver_status();
+  // Classifies one 12-bit TMC246 status word as a hal::DriverCheck (Ok/Fault/Undervoltage).
+  static uint8_t classify_driver_status(uint16_t status12);
   // Reads and clears the interrupt flags of an axis (INT_STOP = stopped on a switch).
   bool take_interrupt_flags(uint8_t axis, uint8_t* flags);
 
@@ -70,6 +72,11 @@ class Tmc428 : public hal::MotionAxes {
   virtual uint32_t usteps_per_s_per_unit_q16(uint8_t axis) const;
   virtual int16_t max_velocity_units(uint8_t axis) const;
   virtual uint16_t accel_units_per_ms(uint8_t axis) const;
+  // The chain read-back of read_driver_status() split into steps of one datagram each:
+  // re-arm the capture; read datagram_low_word until its answer shows CDGW clear (the chain
+  // datagram can take tens of ms: no waiting here); read datagram_high_word and classify.
+  // Open-load flags are ignored (they also show at speed, tmc246.md).
+  virtual uint8_t poll_driver_check();
 
  private:
   uint32_t transfer(uint32_t mosi);
@@ -88,6 +95,8 @@ class Tmc428 : public hal::MotionAxes {
   tmc428::AxisSettings settings_[config::kAxisCount];
   uint16_t driver_status_[config::kAxisCount];
   uint16_t chain_poll_limit_;
+  uint32_t check_low_word_;  // poll_driver_check(): datagram_low_word, awaiting the high word
+  uint8_t check_step_;       // poll_driver_check(): CheckStep
   uint8_t last_status_;
   bool answer_stuck_;  // MISO word all 0s or all 1s seen (chip absent)
   bool ready_;

@@ -55,6 +55,7 @@ bool a_max_allowed(uint16_t a_max, uint8_t pulse_div, uint8_t ramp_div) {
   if (d >= -1 && d <= 1) return true;
   // [428DS] §8.7.1: 2^(d-1) <= a_max <= 2^(d+12) - 1
   if (d > 1 && a_max < ((uint32_t)1 << (d - 1))) return false;
+  if (d + 12 < 0) return false;  // 2^(d+12) - 1 < 1 holds no a_max (and the shift is UB)
   if (d + 12 < 11 && a_max > ((uint32_t)1 << (d + 12)) - 1) return false;
   return true;
 }

@@ -14,7 +14,8 @@ std::string check_bspline(const BSpline& s) {
   if (s.degree < 1) {
     e << "degree " << s.degree << " (must be at least 1)";
   } else if (n < static_cast<size_t>(s.degree) + 1) {
-    e << n << " control points for degree " << s.degree << " (need at least " << s.degree + 1 << ")";
+    e << n << " control points for degree " << s.degree << " (need at least " << s.degree + 1
+      << ")";
   } else if (s.knots.size() != n + s.degree + 1) {
     e << s.knots.size() << " knots for " << n << " control points of degree " << s.degree
       << " (need " << n + s.degree + 1 << ")";
@@ -198,7 +199,8 @@ std::vector<BSpline> bezier_pieces(const BSpline& s) {
     BSpline b;
     b.degree = p;
     b.control.assign(r.control.begin() + first, r.control.begin() + first + p + 1);
-    if (r.rational()) b.weights.assign(r.weights.begin() + first, r.weights.begin() + first + p + 1);
+    if (r.rational())
+      b.weights.assign(r.weights.begin() + first, r.weights.begin() + first + p + 1);
     const double ka = r.knots[first + p];
     const double kb = r.knots[first + p + 1];
     b.knots.assign(p + 1, ka);
@@ -208,8 +210,12 @@ std::vector<BSpline> bezier_pieces(const BSpline& s) {
   return out;
 }
 
-Point2 start_point(const BSpline& s) { return evaluate(s, s.t_min()); }
-Point2 end_point(const BSpline& s) { return evaluate(s, s.t_max()); }
+Point2 start_point(const BSpline& s) {
+  return evaluate(s, s.t_min());
+}
+Point2 end_point(const BSpline& s) {
+  return evaluate(s, s.t_max());
+}
 
 BSpline transformed(const BSpline& s, const Eigen::Matrix2d& a, const Point2& b) {
   BSpline r = s;
@@ -231,8 +237,8 @@ void subdivide(const BSpline& s, double t0, const Point2& p0, double t1, const P
       const Point2 q = evaluate(s, t0 + (t1 - t0) * f);
       const Point2 d = p1 - p0;
       const double len = d.norm();
-      const double dist = len > 0 ? std::fabs(d.x() * (q - p0).y() - d.y() * (q - p0).x()) / len
-                                  : (q - p0).norm();
+      const double dist =
+          len > 0 ? std::fabs(d.x() * (q - p0).y() - d.y() * (q - p0).x()) / len : (q - p0).norm();
       // Also bound the distance along the chord (a curve that doubles back).
       const double along = len > 0 ? (q - p0).dot(d) / len : 0.0;
       if (dist > tol || along < -tol || along > len + tol) {

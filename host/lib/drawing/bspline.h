@@ -65,8 +65,16 @@ struct Extents {
   Point2 min{1e300, 1e300};
   Point2 max{-1e300, -1e300};
   bool empty() const { return min.x() > max.x(); }
-  void add(const Point2& p) { min = min.cwiseMin(p); max = max.cwiseMax(p); }
-  void add(const Extents& e) { if (!e.empty()) { add(e.min); add(e.max); } }
+  void add(const Point2& p) {
+    min = min.cwiseMin(p);
+    max = max.cwiseMax(p);
+  }
+  void add(const Extents& e) {
+    if (!e.empty()) {
+      add(e.min);
+      add(e.max);
+    }
+  }
   double width() const { return empty() ? 0 : max.x() - min.x(); }
   double height() const { return empty() ? 0 : max.y() - min.y(); }
 };

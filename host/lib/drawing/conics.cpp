@@ -75,8 +75,8 @@ BSpline arc_spline(const Point2& centre, double radius, double start_rad, double
   return join_pieces(pieces);
 }
 
-BSpline ellipse_spline(const Point2& centre, const Point2& major, const Point2& minor,
-                       double t0, double sweep) {
+BSpline ellipse_spline(const Point2& centre, const Point2& major, const Point2& minor, double t0,
+                       double sweep) {
   Eigen::Matrix2d a;
   a.col(0) = major;
   a.col(1) = minor;

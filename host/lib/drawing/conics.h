@@ -19,8 +19,8 @@ BSpline arc_spline(const Point2& centre, double radius, double start_rad, double
 
 // Ellipse arc centre + cos(t) major + sin(t) minor, t from t0 sweeping sweep (> 0): the
 // affine image of the unit-circle arc (exact).
-BSpline ellipse_spline(const Point2& centre, const Point2& major, const Point2& minor,
-                       double t0, double sweep);
+BSpline ellipse_spline(const Point2& centre, const Point2& major, const Point2& minor, double t0,
+                       double sweep);
 
 // A polyline vertex with the bulge of the segment that leaves it (tan(sweep / 4), > 0 CCW).
 struct BulgeVertex {

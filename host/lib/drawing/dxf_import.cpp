@@ -157,8 +157,9 @@ class DxfReader : public DL_CreationAdapter {
     if (!take(kind)) return;
     if (d.flags & (16 | 64)) fail("polygon or polyface meshes are not drawings in the plane");
     if (d.flags & 4) {
-      fail("spline-fit polyline (flag 4): convert it to a SPLINE or explode it in the CAD "
-           "program");
+      fail(
+          "spline-fit polyline (flag 4): convert it to a SPLINE or explode it in the CAD "
+          "program");
     }
     poly_.active = true;
     poly_.closed = (d.flags & 1) != 0;
@@ -219,13 +220,27 @@ class DxfReader : public DL_CreationAdapter {
   void addRay(const DL_RayData&) override { skip("RAY"); }
   void addImage(const DL_ImageData&) override { skip("IMAGE"); }
   void addLeader(const DL_LeaderData&) override { skip("LEADER"); }
-  void addDimLinear(const DL_DimensionData&, const DL_DimLinearData&) override { skip("DIMENSION"); }
-  void addDimAlign(const DL_DimensionData&, const DL_DimAlignedData&) override { skip("DIMENSION"); }
-  void addDimRadial(const DL_DimensionData&, const DL_DimRadialData&) override { skip("DIMENSION"); }
-  void addDimDiametric(const DL_DimensionData&, const DL_DimDiametricData&) override { skip("DIMENSION"); }
-  void addDimAngular(const DL_DimensionData&, const DL_DimAngular2LData&) override { skip("DIMENSION"); }
-  void addDimAngular3P(const DL_DimensionData&, const DL_DimAngular3PData&) override { skip("DIMENSION"); }
-  void addDimOrdinate(const DL_DimensionData&, const DL_DimOrdinateData&) override { skip("DIMENSION"); }
+  void addDimLinear(const DL_DimensionData&, const DL_DimLinearData&) override {
+    skip("DIMENSION");
+  }
+  void addDimAlign(const DL_DimensionData&, const DL_DimAlignedData&) override {
+    skip("DIMENSION");
+  }
+  void addDimRadial(const DL_DimensionData&, const DL_DimRadialData&) override {
+    skip("DIMENSION");
+  }
+  void addDimDiametric(const DL_DimensionData&, const DL_DimDiametricData&) override {
+    skip("DIMENSION");
+  }
+  void addDimAngular(const DL_DimensionData&, const DL_DimAngular2LData&) override {
+    skip("DIMENSION");
+  }
+  void addDimAngular3P(const DL_DimensionData&, const DL_DimAngular3PData&) override {
+    skip("DIMENSION");
+  }
+  void addDimOrdinate(const DL_DimensionData&, const DL_DimOrdinateData&) override {
+    skip("DIMENSION");
+  }
 
  private:
   // Counts the entity; false when it is to be ignored (paper space). Flushes a pending
@@ -249,8 +264,8 @@ class DxfReader : public DL_CreationAdapter {
   }
 
   bool paper_space() const {
-    if (in_block_ && (block_name_.rfind("*Paper_Space", 0) == 0 ||
-                      block_name_.rfind("*PAPER_SPACE", 0) == 0)) {
+    if (in_block_ &&
+        (block_name_.rfind("*Paper_Space", 0) == 0 || block_name_.rfind("*PAPER_SPACE", 0) == 0)) {
       return true;
     }
     for (const auto& g : finished_.groups) {
@@ -387,23 +402,59 @@ void DxfReader::addSpline(const DL_SplineData& d) {
   for (const auto& g : finished_.groups) {
     const double v = std::strtod(g.second.c_str(), 0);  // syntax checked beforehand
     switch (g.first) {
-      case 70: flags = static_cast<int>(v); break;
-      case 71: degree = static_cast<int>(v); break;
-      case 72: n_knots = static_cast<long>(v); break;
-      case 73: n_control = static_cast<long>(v); break;
-      case 74: n_fit = static_cast<long>(v); break;
-      case 40: knots.push_back(v); break;
-      case 41: weights.push_back(v); break;
-      case 10: control.emplace_back(v, 0.0); control_z.push_back(0.0); break;
-      case 20: if (!control.empty()) control.back().y() = v; break;
-      case 30: if (!control_z.empty()) control_z.back() = v; break;
-      case 11: fit.emplace_back(v, 0.0); break;
-      case 21: if (!fit.empty()) fit.back().y() = v; break;
-      case 12: tangent_start.x() = v; have_ts = true; break;
-      case 22: tangent_start.y() = v; break;
-      case 13: tangent_end.x() = v; have_te = true; break;
-      case 23: tangent_end.y() = v; break;
-      default: break;
+      case 70:
+        flags = static_cast<int>(v);
+        break;
+      case 71:
+        degree = static_cast<int>(v);
+        break;
+      case 72:
+        n_knots = static_cast<long>(v);
+        break;
+      case 73:
+        n_control = static_cast<long>(v);
+        break;
+      case 74:
+        n_fit = static_cast<long>(v);
+        break;
+      case 40:
+        knots.push_back(v);
+        break;
+      case 41:
+        weights.push_back(v);
+        break;
+      case 10:
+        control.emplace_back(v, 0.0);
+        control_z.push_back(0.0);
+        break;
+      case 20:
+        if (!control.empty()) control.back().y() = v;
+        break;
+      case 30:
+        if (!control_z.empty()) control_z.back() = v;
+        break;
+      case 11:
+        fit.emplace_back(v, 0.0);
+        break;
+      case 21:
+        if (!fit.empty()) fit.back().y() = v;
+        break;
+      case 12:
+        tangent_start.x() = v;
+        have_ts = true;
+        break;
+      case 22:
+        tangent_start.y() = v;
+        break;
+      case 13:
+        tangent_end.x() = v;
+        have_te = true;
+        break;
+      case 23:
+        tangent_end.y() = v;
+        break;
+      default:
+        break;
     }
   }
   (void)d;
@@ -518,19 +569,47 @@ Drawing DxfReader::finish() {
     case 0:
       dr.units = "mm (assumed)";
       dr.unit_to_mm = 1.0;
-      warnings_.push_back(path_ + (have_insunits_ ? ": $INSUNITS is 0 (unitless)"
-                                                  : ": no $INSUNITS in the header") +
-                          ": coordinates taken as millimetres");
+      warnings_.push_back(
+          path_ +
+          (have_insunits_ ? ": $INSUNITS is 0 (unitless)" : ": no $INSUNITS in the header") +
+          ": coordinates taken as millimetres");
       break;
-    case 1: dr.units = "inch"; dr.unit_to_mm = 25.4; break;
-    case 2: dr.units = "foot"; dr.unit_to_mm = 304.8; break;
-    case 4: dr.units = "mm"; dr.unit_to_mm = 1.0; break;
-    case 5: dr.units = "cm"; dr.unit_to_mm = 10.0; break;
-    case 6: dr.units = "m"; dr.unit_to_mm = 1000.0; break;
-    case 8: dr.units = "microinch"; dr.unit_to_mm = 25.4e-6; break;
-    case 9: dr.units = "mil"; dr.unit_to_mm = 0.0254; break;
-    case 13: dr.units = "micron"; dr.unit_to_mm = 0.001; break;
-    case 14: dr.units = "dm"; dr.unit_to_mm = 100.0; break;
+    case 1:
+      dr.units = "inch";
+      dr.unit_to_mm = 25.4;
+      break;
+    case 2:
+      dr.units = "foot";
+      dr.unit_to_mm = 304.8;
+      break;
+    case 4:
+      dr.units = "mm";
+      dr.unit_to_mm = 1.0;
+      break;
+    case 5:
+      dr.units = "cm";
+      dr.unit_to_mm = 10.0;
+      break;
+    case 6:
+      dr.units = "m";
+      dr.unit_to_mm = 1000.0;
+      break;
+    case 8:
+      dr.units = "microinch";
+      dr.unit_to_mm = 25.4e-6;
+      break;
+    case 9:
+      dr.units = "mil";
+      dr.unit_to_mm = 0.0254;
+      break;
+    case 13:
+      dr.units = "micron";
+      dr.unit_to_mm = 0.001;
+      break;
+    case 14:
+      dr.units = "dm";
+      dr.unit_to_mm = 100.0;
+      break;
     default:
       throw ImportError(path_ + ": $INSUNITS " + std::to_string(insunits_) +
                         " is a unit this tool does not convert (supported: 0 unitless = mm, "
@@ -550,8 +629,8 @@ Drawing DxfReader::finish() {
   dr.curves = curves;
   dr.entity_counts = counts_;
   for (const auto& k : skipped_) {
-    warnings_.push_back(path_ + ": " + std::to_string(k.second) + " " + k.first +
-                        " entit" + (k.second == 1 ? "y" : "ies") +
+    warnings_.push_back(path_ + ": " + std::to_string(k.second) + " " + k.first + " entit" +
+                        (k.second == 1 ? "y" : "ies") +
                         " not engraved (only lines, arcs, circles, ellipses, polylines, "
                         "splines and block references are; convert text to outlines)");
   }

@@ -159,8 +159,8 @@ void check_dxf_syntax(const std::string& path) {
       if (vertex_count && poly.active) poly.declared = v;
       if ((spline_count || vertex_count || leader_count) && (v < 0 || v > kMaxDeclaredCount)) {
         std::ostringstream o;
-        o << w.describe() << ": group " << code << " announces " << v
-          << " items (must be 0.." << kMaxDeclaredCount << ")";
+        o << w.describe() << ": group " << code << " announces " << v << " items (must be 0.."
+          << kMaxDeclaredCount << ")";
         throw ImportError(o.str());
       }
     }

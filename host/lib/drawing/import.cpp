@@ -40,8 +40,8 @@ bool is_gerber(const std::string& ext, const std::string& text) {
 }
 
 bool is_excellon(const std::string& ext, const std::string& text) {
-  return ext == ".drl" || ext == ".xln" || ext == ".exc" ||
-         text.rfind("M48", 0) == 0 || text.find("\nM48") != std::string::npos;
+  return ext == ".drl" || ext == ".xln" || ext == ".exc" || text.rfind("M48", 0) == 0 ||
+         text.find("\nM48") != std::string::npos;
 }
 
 }  // namespace
@@ -60,13 +60,15 @@ Drawing import_drawing(const std::string& path) {
   if (text.empty()) throw ImportError(path + ": the file is empty");
   if (ext == ".dxf" || looks_like_dxf(path)) return import_dxf(path);
   if (is_gerber(ext, text)) {
-    throw ImportError(path + ": this is a Gerber (RS-274X) photoplotter file, not a drawing of "
+    throw ImportError(path +
+                      ": this is a Gerber (RS-274X) photoplotter file, not a drawing of "
                       "tool paths: its tracks and pads are areas whose outlines have to be "
                       "computed first. Make isolation-routing G-code with pcb2gcode or FlatCAM "
                       "and engrave that, or export the outlines from the PCB program as DXF.");
   }
   if (is_excellon(ext, text)) {
-    throw ImportError(path + ": this is an Excellon drill file (holes, not curves): this tool "
+    throw ImportError(path +
+                      ": this is an Excellon drill file (holes, not curves): this tool "
                       "engraves outlines and does not drill. Drill the holes separately, or "
                       "export hole outlines (circles) from the PCB program as DXF.");
   }
@@ -74,7 +76,8 @@ Drawing import_drawing(const std::string& path) {
       looks_like_gcode(text)) {
     return import_gcode(path);
   }
-  throw ImportError(path + ": not a format this tool reads (expected an ASCII DXF drawing, "
+  throw ImportError(path +
+                    ": not a format this tool reads (expected an ASCII DXF drawing, "
                     "or G-code with G0/G1/G2/G3 moves)");
 }
 

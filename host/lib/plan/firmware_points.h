@@ -16,8 +16,7 @@ namespace host {
 // (> 0 left of travel). Throws ConversionError when the curve cannot be converted or the
 // stepper stops early (the message carries the core::GeometryError code).
 std::vector<core::PointUm> firmware_points_um(const std::vector<core::Spline>& pieces,
-                                              int chord_tolerance_um,
-                                              int32_t tool_offset_um = 0);
+                                              int chord_tolerance_um, int32_t tool_offset_um = 0);
 
 // Same for a host curve (converted with to_firmware_splines), in mm; pieces after the first
 // drop their first point (it repeats the previous piece's last).

@@ -116,15 +116,16 @@ core::Spline to_firmware(const BSpline& s) {
   }
   for (size_t i = 0; i + 1 < s.knots.size(); ++i) {
     if (s.knots[i + 1] > s.knots[i] && f.knot[i + 1] == f.knot[i]) {
-      throw ConversionError("a knot span is shorter than the firmware's knot resolution "
-                            "(1 / 2^28 of the knot vector)");
+      throw ConversionError(
+          "a knot span is shorter than the firmware's knot resolution "
+          "(1 / 2^28 of the knot vector)");
     }
   }
   const core::GeometryError e = core::validate_spline(f);
   if (e != core::GeometryError::kOk) {
     std::ostringstream o;
-    o << "the converted spline fails the firmware's check (geometry error "
-      << static_cast<int>(e) << ")";
+    o << "the converted spline fails the firmware's check (geometry error " << static_cast<int>(e)
+      << ")";
     throw ConversionError(o.str());
   }
   return f;

@@ -11,7 +11,9 @@ namespace host {
 
 namespace {
 
-int32_t to_um(double mm) { return static_cast<int32_t>(std::llround(mm * 1000.0)); }
+int32_t to_um(double mm) {
+  return static_cast<int32_t>(std::llround(mm * 1000.0));
+}
 
 core::PointUm to_um(const Point2& p) {
   core::PointUm q;
@@ -50,8 +52,8 @@ void check_work_area(const PlannedCurve& c, double radius, const PlanOptions& o)
     if (lo_x < -1e-6 || hi_x > o.work_width_mm + 1e-6 || lo_y < -1e-6 ||
         hi_y > o.work_height_mm + 1e-6) {
       e << describe(c) << " leaves the work area (0..";
-      e << o.work_width_mm << " x 0.." << o.work_height_mm << " mm): it reaches (" << p.x()
-        << ", " << p.y() << ") mm in the machine frame";
+      e << o.work_width_mm << " x 0.." << o.work_height_mm << " mm): it reaches (" << p.x() << ", "
+        << p.y() << ") mm in the machine frame";
       if (radius > 0) e << " with the tool radius " << radius << " mm";
       e << ". Scale the drawing down (--scale) or use a larger work area (--work W H).";
       throw PlanError(e.str());
@@ -62,7 +64,8 @@ void check_work_area(const PlannedCurve& c, double radius, const PlanOptions& o)
 }  // namespace
 
 JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
-  if (drawing.curves.empty()) throw PlanError(drawing.path + ": the drawing has nothing to engrave");
+  if (drawing.curves.empty())
+    throw PlanError(drawing.path + ": the drawing has nothing to engrave");
   if (!(o.scale > 0) || !std::isfinite(o.scale)) throw PlanError("scale must be positive");
   if (!(o.feed_mm_per_s > 0) || !(o.plunge_mm_per_s > 0)) throw PlanError("feeds must be positive");
   if (!(o.tool_radius_mm >= 0)) throw PlanError("tool radius must not be negative");

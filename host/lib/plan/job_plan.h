@@ -20,19 +20,19 @@ namespace host {
 enum class ToolSide { kCentre, kLeft, kRight };
 
 struct PlanOptions {
-  double scale = 1.0;                // applied to the drawing (mm) before anything else
-  double margin_mm = 0.0;            // the drawing's lower-left corner goes to (margin, margin)
-  double work_width_mm = 297.0;      // work area: x in [0, width], y in [0, height] (A4)
+  double scale = 1.0;            // applied to the drawing (mm) before anything else
+  double margin_mm = 0.0;        // the drawing's lower-left corner goes to (margin, margin)
+  double work_width_mm = 297.0;  // work area: x in [0, width], y in [0, height] (A4)
   double work_height_mm = 210.0;
   bool reorder = true;               // greedy nearest-neighbour ordering, with reversal
   double chain_tolerance_mm = 0.01;  // ends closer than this: no pen lift between curves
   ToolSide tool_side = ToolSide::kCentre;
-  double tool_radius_mm = 0.0;       // used when tool_side != kCentre
-  double z_up_mm = 2.0;              // pen-up (travel) height above the work zero
-  double z_down_mm = -0.1;           // pen-down (cutting) height
-  double feed_mm_per_s = 10.0;       // cutting feed for splines and straight feeds
-  double plunge_mm_per_s = 2.0;      // Z feed for pen down
-  bool lines_as_feeds = true;        // a single straight segment becomes a kFeed, not a spline
+  double tool_radius_mm = 0.0;   // used when tool_side != kCentre
+  double z_up_mm = 2.0;          // pen-up (travel) height above the work zero
+  double z_down_mm = -0.1;       // pen-down (cutting) height
+  double feed_mm_per_s = 10.0;   // cutting feed for splines and straight feeds
+  double plunge_mm_per_s = 2.0;  // Z feed for pen down
+  bool lines_as_feeds = true;    // a single straight segment becomes a kFeed, not a spline
 };
 
 // One machine action. Which fields mean something depends on kind.
@@ -45,12 +45,12 @@ struct PlanStep {
     kSpline    // trace `spline` from its start (== current position) at feed_um_per_s
   };
   Kind kind = kRapid;
-  core::PointUm to = {0, 0};  // kRapid, kFeed: target; kSpline: the spline's end point
-  int32_t z_um = 0;           // kPenUp, kPenDown
-  int32_t feed_um_per_s = 0;  // kPenDown, kFeed, kSpline
-  int32_t tool_offset_um = 0; // kSpline, kFeed: signed offset, > 0 left of travel, < 0 right
-  core::Spline spline;        // kSpline only (validated, in machine micrometres)
-  int curve = -1;             // index into JobPlan::curves of the curve this step draws
+  core::PointUm to = {0, 0};   // kRapid, kFeed: target; kSpline: the spline's end point
+  int32_t z_um = 0;            // kPenUp, kPenDown
+  int32_t feed_um_per_s = 0;   // kPenDown, kFeed, kSpline
+  int32_t tool_offset_um = 0;  // kSpline, kFeed: signed offset, > 0 left of travel, < 0 right
+  core::Spline spline;         // kSpline only (validated, in machine micrometres)
+  int curve = -1;              // index into JobPlan::curves of the curve this step draws
 };
 
 // A planned curve: the drawing curve in the machine frame (mm), in the direction drawn.
@@ -63,13 +63,13 @@ struct PlannedCurve {
 };
 
 struct JobPlan {
-  std::vector<PlanStep> steps;        // starts and ends with the pen up at the zero (0, 0)
-  std::vector<PlannedCurve> curves;   // in the order drawn
-  Point2 offset_mm{0, 0};             // machine = drawing * scale + offset_mm
-  Extents extents_mm;                 // of the curves in the machine frame (tool centre)
-  double cut_length_mm = 0.0;         // pen-down path length (approximate, from sampling)
-  double rapid_length_mm = 0.0;       // pen-up X/Y travel
-  int pen_lifts = 0;                  // kPenUp steps between curves
+  std::vector<PlanStep> steps;       // starts and ends with the pen up at the zero (0, 0)
+  std::vector<PlannedCurve> curves;  // in the order drawn
+  Point2 offset_mm{0, 0};            // machine = drawing * scale + offset_mm
+  Extents extents_mm;                // of the curves in the machine frame (tool centre)
+  double cut_length_mm = 0.0;        // pen-down path length (approximate, from sampling)
+  double rapid_length_mm = 0.0;      // pen-up X/Y travel
+  int pen_lifts = 0;                 // kPenUp steps between curves
 };
 
 // A job that must not be sent (out of the work area, a curve the firmware cannot hold,

@@ -5,14 +5,17 @@ namespace host {
 
 namespace {
 
-Point2 mm(const core::PointUm& p) { return Point2(p.x_um / 1000.0, p.y_um / 1000.0); }
+Point2 mm(const core::PointUm& p) {
+  return Point2(p.x_um / 1000.0, p.y_um / 1000.0);
+}
 
 }  // namespace
 
 PlotInput plot_input_from_plan(const JobPlan& plan, const std::string& title, double tol_mm) {
   PlotInput in;
   in.title = title;
-  for (const PlannedCurve& c : plan.curves) in.drawing_curves_mm.push_back(sample(c.spline, tol_mm));
+  for (const PlannedCurve& c : plan.curves)
+    in.drawing_curves_mm.push_back(sample(c.spline, tol_mm));
   Point2 at(0, 0);
   bool down = false;
   int last_curve = -1;
@@ -29,10 +32,16 @@ PlotInput plot_input_from_plan(const JobPlan& plan, const std::string& title, do
   };
   for (const PlanStep& s : plan.steps) {
     switch (s.kind) {
-      case PlanStep::kPenUp: down = false; break;
-      case PlanStep::kPenDown: down = true; break;
+      case PlanStep::kPenUp:
+        down = false;
+        break;
+      case PlanStep::kPenDown:
+        down = true;
+        break;
       case PlanStep::kRapid:
-      case PlanStep::kFeed: add(mm(s.to)); break;
+      case PlanStep::kFeed:
+        add(mm(s.to));
+        break;
       case PlanStep::kSpline:
         if (s.curve != last_curve && s.curve >= 0) {
           for (const Point2& p : sample(plan.curves[s.curve].spline, tol_mm)) add(p);

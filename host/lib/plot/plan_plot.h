@@ -9,8 +9,7 @@
 namespace host {
 
 // Curves sampled at tol_mm; the tool path follows the plan's steps.
-PlotInput plot_input_from_plan(const JobPlan& plan, const std::string& title,
-                               double tol_mm = 0.01);
+PlotInput plot_input_from_plan(const JobPlan& plan, const std::string& title, double tol_mm = 0.01);
 
 }  // namespace host
 

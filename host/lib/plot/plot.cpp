@@ -24,7 +24,9 @@ const Rgb kDrawingColour = {0.55, 0.75, 0.95};  // light blue, wide: the drawing
 const Rgb kCutColour = {0.75, 0.05, 0.05};      // dark red, thin: the pen-down path
 const Rgb kRapidColour = {0.45, 0.45, 0.45};    // grey dashed: pen-up moves
 
-void set_colour(cairo_t* cr, const Rgb& c) { cairo_set_source_rgb(cr, c.r, c.g, c.b); }
+void set_colour(cairo_t* cr, const Rgb& c) {
+  cairo_set_source_rgb(cr, c.r, c.g, c.b);
+}
 
 void polyline(cairo_t* cr, const PlotFrame& f, const std::vector<Point2>& pts) {
   if (pts.empty()) return;
@@ -122,11 +124,20 @@ std::string xml_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;

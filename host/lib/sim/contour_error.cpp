@@ -43,7 +43,8 @@ NearestSegment::NearestSegment(const std::vector<std::vector<Point2>>& polylines
     const long y0 = static_cast<long>((std::min(g.a.y(), g.b.y()) - min_.y()) / cell_);
     const long y1 = static_cast<long>((std::max(g.a.y(), g.b.y()) - min_.y()) / cell_);
     for (long ix = x0; ix <= x1; ++ix) {
-      for (long iy = y0; iy <= y1; ++iy) cells_[static_cast<size_t>(ix * ny_ + iy)].push_back(int(s));
+      for (long iy = y0; iy <= y1; ++iy)
+        cells_[static_cast<size_t>(ix * ny_ + iy)].push_back(int(s));
     }
   }
 }

@@ -46,6 +46,7 @@ void measure(const JobPlan& plan, SimJobResult* r) {
     last_move = b.t_ms;
     const double d = std::hypot(b.x_mm - a.x_mm, b.y_mm - a.y_mm);
     (down[i] ? r->cut_mm : r->rapid_mm) += d;
+    if (down[i] && down[i - 1] && d > 0) r->cut_s += (b.t_ms - a.t_ms) / 1000.0;
     if (down[i] && !reference.empty()) {
       const double e = nearest.distance(Point2(b.x_mm, b.y_mm)) * 1000.0;
       if (e > r->max_contour_error_um) r->max_contour_error_um = e;

@@ -31,13 +31,14 @@ struct SimJobResult {
   std::string message;
   SenderStats stats;
   size_t commands = 0;
-  size_t wire_bytes = 0;           // the job's frames once each (no retransmits, no polls)
-  uint64_t virtual_ms = 0;         // machine time simulated
-  double wall_s = 0;               // real time it took
-  std::vector<ToolSample> trace;   // tool positions (machine frame, mm)
-  double motion_s = 0;             // from the first to the last tool movement
-  double cut_mm = 0, rapid_mm = 0; // tool path lengths from the trace (pen down / up)
-  double max_contour_error_um = 0; // pen-down trace points to the planned curves
+  size_t wire_bytes = 0;            // the job's frames once each (no retransmits, no polls)
+  uint64_t virtual_ms = 0;          // machine time simulated
+  double wall_s = 0;                // real time it took
+  std::vector<ToolSample> trace;    // tool positions (machine frame, mm)
+  double motion_s = 0;              // from the first to the last tool movement
+  double cut_s = 0;                 // pen down and moving in X/Y
+  double cut_mm = 0, rapid_mm = 0;  // tool path lengths from the trace (pen down / up)
+  double max_contour_error_um = 0;  // pen-down trace points to the planned curves
   std::string lcd[2];
 };
 

@@ -3,7 +3,7 @@
 
 #include <cmath>  // std::lround
 
-#include "firmware/app/application.h"       // app::Application, app::Board
+#include "firmware/app/application.h"        // app::Application, app::Board
 #include "hal/drivers/tmc428/tmc428.h"       // drivers::Tmc428
 #include "hal/fake/motion/tmc428_model.h"    // fake::Tmc428Model
 #include "hal/fake/spi/recording_spi.h"      // fake::RecordingSpi
@@ -35,8 +35,8 @@ class SimSerial : public hal::SerialPort {
   uint16_t take_rx_errors() override { return 0; }
 
   static constexpr size_t kTxRing = 128;  // as the dsPIC port's TX ring
-  std::deque<uint8_t> rx;  // received, waiting for the application
-  std::deque<uint8_t> tx;  // queued by the application, not sent yet
+  std::deque<uint8_t> rx;                 // received, waiting for the application
+  std::deque<uint8_t> tx;                 // queued by the application, not sent yet
 };
 
 // A 2 x 16 display that keeps what was written.
@@ -64,7 +64,8 @@ class SimInputs : public hal::OperatorInputs {
 
 struct SimMachine::Parts {
   explicit Parts(const config::MachineConfig& cfg)
-      : chip(cfg.tmc428_clock_hz), spi(chip, cfg.spi_clock_hz, cfg.tmc428_clock_hz),
+      : chip(cfg.tmc428_clock_hz),
+        spi(chip, cfg.spi_clock_hz, cfg.tmc428_clock_hz),
         driver(spi, cfg) {}
   fake::Tmc428Model chip;
   fake::RecordingSpi spi;
@@ -79,7 +80,7 @@ struct SimMachine::Parts {
 SimMachine::SimMachine(const SimOptions& options)
     : options_(options), parts_(std::make_unique<Parts>(options.machine)) {
   Parts& p = *parts_;
-  p.spi.set_recording(false);  // minutes of traffic; the SPI bench tools record their own
+  p.spi.set_recording(options.record_spi);  // minutes of traffic: off unless asked for
   p.chip.set_logging(false);
   for (int a = 0; a < config::kAxisCount; ++a) {
     const config::AxisConfig& axis = options.machine.axis[a];
@@ -131,7 +132,8 @@ void SimMachine::operate_panel() {
     if (--confirm_hold_ms_ == 0) p.inputs.bits = 0;
     return;
   }
-  if (p.app.state() == proto::MachineState::kZeroing) confirm_hold_ms_ = 50;  // a 50 ms press, well past the debounce
+  if (p.app.state() == proto::MachineState::kZeroing)
+    confirm_hold_ms_ = 50;  // a 50 ms press, well past the debounce
 }
 
 void SimMachine::record_position() {
@@ -174,6 +176,22 @@ void SimMachine::step_ms() {
     tx_credit_ -= 1.0;
   }
   record_position();
+}
+
+void SimMachine::set_spi_recording(bool on) {
+  parts_->spi.set_recording(on);
+}
+
+const std::vector<fake::SpiRecord>& SimMachine::spi_records() const {
+  return parts_->spi.records();
+}
+
+void SimMachine::clear_spi_records() {
+  parts_->spi.clear();
+}
+
+const fake::SpiTiming& SimMachine::spi_timing() const {
+  return parts_->spi.timing();
 }
 
 std::string SimMachine::lcd_line(int row) const {

@@ -12,6 +12,11 @@
 
 #include "firmware/config/machine_config.h"
 
+namespace fake {
+struct SpiRecord;  // hal/fake/spi/spi_record.h
+struct SpiTiming;
+}  // namespace fake
+
 namespace host::sim {
 
 struct SimOptions {
@@ -20,6 +25,9 @@ struct SimOptions {
   bool auto_zero = true;   // the simulated operator confirms zeroing where the tool stands
   // Limit switches this far beyond each end of the travel from the power-on position.
   int32_t switch_margin_um = 5000;
+  // Record every SPI datagram from power-on (the TMC428 init included); off by default:
+  // a minute of motion is ~420 000 datagrams. set_spi_recording() switches it later.
+  bool record_spi = false;
 };
 
 // One sample of the tool position (from the model's x_actual), when it moved.
@@ -54,6 +62,14 @@ class SimMachine {
   // The firmware's tool position in mm (model x_actual / microsteps per mm).
   ToolSample position() const;
 
+  // SPI datagrams between the TMC428 driver and the model (time, MOSI, MISO), recorded
+  // while recording is on (SimOptions::record_spi, set_spi_recording).
+  void set_spi_recording(bool on);
+  const std::vector<fake::SpiRecord>& spi_records() const;
+  void clear_spi_records();
+  // The bus timing of the records (for fake::write_spi_vcd).
+  const fake::SpiTiming& spi_timing() const;
+
  private:
   struct Parts;
   void operate_panel();
@@ -63,8 +79,8 @@ class SimMachine {
   std::unique_ptr<Parts> parts_;
   uint64_t now_ms_ = 0;
   double rx_credit_ = 0, tx_credit_ = 0;  // bytes the UART may move this ms
-  std::deque<uint8_t> to_uart_;            // PC -> firmware, not on the wire yet
-  std::string from_uart_;                  // firmware -> PC, delivered
+  std::deque<uint8_t> to_uart_;           // PC -> firmware, not on the wire yet
+  std::string from_uart_;                 // firmware -> PC, delivered
   std::vector<ToolSample> trace_;
   bool chip_ok_ = false;
   int confirm_hold_ms_ = 0;

@@ -9,9 +9,13 @@
 #include <stdexcept>  // std::runtime_error
 #include <thread>     // sleep_for
 
+#include <poll.h>  // poll
+
 namespace host::sim {
 
 using Clock = std::chrono::steady_clock;
+
+constexpr uint64_t kSocketEveryMs = 4;
 
 struct SimServer::Impl {
   Impl(SimMachine& m, const ServerOptions& o) : machine(m), options(o), acceptor(io) {}
@@ -56,6 +60,12 @@ struct SimServer::Impl {
     return !ec;
   }
 
+  // Blocks until the client has bytes (or closed) or timeout_ms passes.
+  void wait_readable(int timeout_ms) {
+    pollfd p{client->native_handle(), POLLIN, 0};
+    ::poll(&p, 1, timeout_ms);
+  }
+
   void drop_client() {
     asio::error_code ignored;
     client->close(ignored);
@@ -79,7 +89,8 @@ SimServer::SimServer(SimMachine& machine, const ServerOptions& options)
     : impl_(std::make_unique<Impl>(machine, options)) {
   asio::error_code ec;
   const asio::ip::address addr = asio::ip::make_address(options.address, ec);
-  if (ec) throw std::runtime_error(fmt::format("listen address '{}': {}", options.address, ec.message()));
+  if (ec)
+    throw std::runtime_error(fmt::format("listen address '{}': {}", options.address, ec.message()));
   const asio::ip::tcp::endpoint ep(addr, options.port);
   impl_->acceptor.open(ep.protocol(), ec);
   if (!ec) impl_->acceptor.set_option(asio::ip::tcp::acceptor::reuse_address(true), ec);
@@ -94,18 +105,23 @@ SimServer::SimServer(SimMachine& machine, const ServerOptions& options)
 
 SimServer::~SimServer() = default;
 
-uint16_t SimServer::port() const { return impl_->acceptor.local_endpoint().port(); }
+uint16_t SimServer::port() const {
+  return impl_->acceptor.local_endpoint().port();
+}
 
 uint64_t SimServer::run(const std::atomic<bool>& stop) {
   Impl& s = *impl_;
   const uint64_t start_ms = s.machine.now_ms();
   const auto wall_start = Clock::now();
   while (!stop) {
-    if (!s.client) s.try_accept();
-    if (s.client && !s.receive()) s.drop_client();
+    // The socket is looked at every few machine milliseconds: the UART takes 11.5 bytes a
+    // millisecond, so a 4 ms batch delays nothing a real link would not.
+    const bool look = s.machine.now_ms() % kSocketEveryMs == 0;
+    if (!s.client && look) s.try_accept();
+    if (s.client && look && !s.receive()) s.drop_client();
 
-    const bool silent = s.client &&
-                        s.machine.now_ms() - s.last_host_byte_ms >= s.options.max_silent_ms;
+    const bool silent =
+        s.client && s.machine.now_ms() - s.last_host_byte_ms >= s.options.max_silent_ms;
     if (!s.client && !s.machine.busy() && !s.options.realtime) {
       // Nobody connected and nothing moving: nothing would change; wait for a host.
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
@@ -113,8 +129,8 @@ uint64_t SimServer::run(const std::atomic<bool>& stop) {
     }
     if (silent && !s.options.realtime) {
       // A connected host that has said nothing for a while: give it real time to speak
-      // before machine time moves on (one virtual ms per 5 real ms while it stays silent).
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      // before machine time moves on (at most one virtual ms per 5 real ms while silent).
+      s.wait_readable(5);
       if (s.client && !s.receive()) s.drop_client();
     }
     s.machine.step_ms();

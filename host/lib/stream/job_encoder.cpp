@@ -47,8 +47,8 @@ void append_spline(const PlanStep& s, int index, unsigned max_payload,
   header.feed_um_per_s = feed16(s.feed_um_per_s, index);
   out->push_back(make(header, index, s.curve));
 
-  const unsigned room = std::min<unsigned>(max_payload, proto::kMaxPayload) -
-                        proto::kSplineDataHeaderBytes;
+  const unsigned room =
+      std::min<unsigned>(max_payload, proto::kMaxPayload) - proto::kSplineDataHeaderBytes;
   unsigned next_control = 0;
   unsigned next_knot = 0;
   while (next_control < s.spline.control_count || next_knot < s.spline.knot_count) {
@@ -96,9 +96,10 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
     const PlanStep& s = plan.steps[i];
     const int index = static_cast<int>(i);
     if (s.tool_offset_um != 0) {
-      throw PlanError(fmt::format("step {}: tool-radius offset is not in protocol v1; plan with "
-                                  "the tool centre on the line",
-                                  index));
+      throw PlanError(
+          fmt::format("step {}: tool-radius offset is not in protocol v1; plan with "
+                      "the tool centre on the line",
+                      index));
     }
     switch (s.kind) {
       case PlanStep::kPenUp: {

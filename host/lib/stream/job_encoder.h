@@ -20,11 +20,11 @@ struct QueuedCommand {
 };
 
 struct EncodeOptions {
-  unsigned max_payload = 64;           // from the controller's *I
-  uint16_t max_step_um = 1000;         // #U: longest distance between generated points
-  uint16_t chord_tolerance_um = 5;     // #U: chord error
-  uint16_t z_rapid_um_per_s = 5000;    // #Z feed for pen-up moves
-  std::string title;                   // #S row 0 at the start (cut to 16 characters)
+  unsigned max_payload = 64;         // from the controller's *I
+  uint16_t max_step_um = 1000;       // #U: longest distance between generated points
+  uint16_t chord_tolerance_um = 5;   // #U: chord error
+  uint16_t z_rapid_um_per_s = 5000;  // #Z feed for pen-up moves
+  std::string title;                 // #S row 0 at the start (cut to 16 characters)
 };
 
 // The whole job as queued commands, in order. Throws PlanError on a step the protocol

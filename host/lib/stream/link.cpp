@@ -18,8 +18,8 @@ unsigned parse_number(const std::string& text, unsigned lo, unsigned hi, const c
                       const std::string& spec) {
   if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos ||
       text.size() > 9) {
-    throw LinkError(fmt::format("link '{}': {} '{}' is not a number ({})", spec, what, text,
-                                kSpecForms));
+    throw LinkError(
+        fmt::format("link '{}': {} '{}' is not a number ({})", spec, what, text, kSpecForms));
   }
   const unsigned long v = std::stoul(text);
   if (v < lo || v > hi) {
@@ -83,10 +83,9 @@ std::unique_ptr<Link> open_tcp(const LinkSpec& spec, std::chrono::milliseconds t
   if (ec) throw LinkError(fmt::format("{}: cannot resolve host: {}", name, ec.message()));
   asio::ip::tcp::socket socket(*io);
   asio::error_code result = asio::error::would_block;
-  asio::async_connect(socket, endpoints,
-                      [&](const asio::error_code& e, const asio::ip::tcp::endpoint&) {
-                        result = e;
-                      });
+  asio::async_connect(
+      socket, endpoints,
+      [&](const asio::error_code& e, const asio::ip::tcp::endpoint&) { result = e; });
   io->run_for(timeout);
   if (result == asio::error::would_block) {
     socket.close();
@@ -96,8 +95,7 @@ std::unique_ptr<Link> open_tcp(const LinkSpec& spec, std::chrono::milliseconds t
   }
   if (result) throw LinkError(fmt::format("{}: cannot connect: {}", name, result.message()));
   socket.set_option(asio::ip::tcp::no_delay(true));
-  return std::make_unique<AsioLink<asio::ip::tcp::socket>>(std::move(io), std::move(socket),
-                                                           name);
+  return std::make_unique<AsioLink<asio::ip::tcp::socket>>(std::move(io), std::move(socket), name);
 }
 
 // Opens and configures a serial port (8N1, no flow control) or throws.
@@ -110,7 +108,8 @@ std::unique_ptr<Link> open_serial(const LinkSpec& spec) {
   if (ec) throw LinkError(fmt::format("{}: cannot open: {}", name, ec.message()));
   port.set_option(asio::serial_port_base::baud_rate(spec.baud), ec);
   if (!ec) port.set_option(asio::serial_port_base::character_size(8), ec);
-  if (!ec) port.set_option(asio::serial_port_base::parity(asio::serial_port_base::parity::none), ec);
+  if (!ec)
+    port.set_option(asio::serial_port_base::parity(asio::serial_port_base::parity::none), ec);
   if (!ec) {
     port.set_option(asio::serial_port_base::stop_bits(asio::serial_port_base::stop_bits::one), ec);
   }
@@ -147,7 +146,8 @@ LinkSpec parse_link_spec(const std::string& spec) {
     const size_t comma = rest.find(',');
     out.kind = LinkSpec::kSerial;
     out.device = rest.substr(0, comma);
-    if (out.device.empty()) throw LinkError(fmt::format("link '{}': no device ({})", spec, kSpecForms));
+    if (out.device.empty())
+      throw LinkError(fmt::format("link '{}': no device ({})", spec, kSpecForms));
     if (comma != std::string::npos) {
       out.baud = parse_number(rest.substr(comma + 1), 1200, 4000000, "baud rate", spec);
     }

@@ -40,8 +40,7 @@ struct LinkSpec {
 LinkSpec parse_link_spec(const std::string& spec);
 
 // Opens the link (TCP connect within connect_timeout). Throws LinkError.
-std::unique_ptr<Link> open_link(const LinkSpec& spec,
-                                std::chrono::milliseconds connect_timeout);
+std::unique_ptr<Link> open_link(const LinkSpec& spec, std::chrono::milliseconds connect_timeout);
 
 }  // namespace host
 

@@ -18,42 +18,72 @@ using std::chrono::milliseconds;
 
 const char* error_name(proto::ErrorCode code) {
   switch (code) {
-    case proto::ErrorCode::kOk: return "ok";
-    case proto::ErrorCode::kBadCrc: return "bad CRC";
-    case proto::ErrorCode::kLengthTooLarge: return "length too large";
-    case proto::ErrorCode::kBadLetter: return "bad letter";
-    case proto::ErrorCode::kTruncated: return "truncated frame";
-    case proto::ErrorCode::kRxOverrun: return "receive overrun";
-    case proto::ErrorCode::kUnknownCommand: return "unknown command";
-    case proto::ErrorCode::kPayloadLength: return "wrong payload length";
-    case proto::ErrorCode::kFieldRange: return "field out of range";
-    case proto::ErrorCode::kSeqGap: return "sequence gap";
-    case proto::ErrorCode::kSeqOutOfWindow: return "sequence out of window";
-    case proto::ErrorCode::kSeqStale: return "stale real-time frame";
-    case proto::ErrorCode::kNoSession: return "no session (controller restarted?)";
-    case proto::ErrorCode::kVersionUnsupported: return "protocol version unsupported";
-    case proto::ErrorCode::kBusy: return "busy";
-    case proto::ErrorCode::kAlarmActive: return "machine in alarm";
-    case proto::ErrorCode::kAborted: return "stream aborted";
-    case proto::ErrorCode::kBadState: return "not allowed in this state";
-    case proto::ErrorCode::kSplineSequence: return "spline data out of sequence";
-    case proto::ErrorCode::kGeometry: return "spline geometry rejected";
-    case proto::ErrorCode::kNotZeroed: return "machine not zeroed";
-    case proto::ErrorCode::kOutOfTravel: return "target outside the machine travel";
+    case proto::ErrorCode::kOk:
+      return "ok";
+    case proto::ErrorCode::kBadCrc:
+      return "bad CRC";
+    case proto::ErrorCode::kLengthTooLarge:
+      return "length too large";
+    case proto::ErrorCode::kBadLetter:
+      return "bad letter";
+    case proto::ErrorCode::kTruncated:
+      return "truncated frame";
+    case proto::ErrorCode::kRxOverrun:
+      return "receive overrun";
+    case proto::ErrorCode::kUnknownCommand:
+      return "unknown command";
+    case proto::ErrorCode::kPayloadLength:
+      return "wrong payload length";
+    case proto::ErrorCode::kFieldRange:
+      return "field out of range";
+    case proto::ErrorCode::kSeqGap:
+      return "sequence gap";
+    case proto::ErrorCode::kSeqOutOfWindow:
+      return "sequence out of window";
+    case proto::ErrorCode::kSeqStale:
+      return "stale real-time frame";
+    case proto::ErrorCode::kNoSession:
+      return "no session (controller restarted?)";
+    case proto::ErrorCode::kVersionUnsupported:
+      return "protocol version unsupported";
+    case proto::ErrorCode::kBusy:
+      return "busy";
+    case proto::ErrorCode::kAlarmActive:
+      return "machine in alarm";
+    case proto::ErrorCode::kAborted:
+      return "stream aborted";
+    case proto::ErrorCode::kBadState:
+      return "not allowed in this state";
+    case proto::ErrorCode::kSplineSequence:
+      return "spline data out of sequence";
+    case proto::ErrorCode::kGeometry:
+      return "spline geometry rejected";
+    case proto::ErrorCode::kNotZeroed:
+      return "machine not zeroed";
+    case proto::ErrorCode::kOutOfTravel:
+      return "target outside the machine travel";
   }
   return "unknown error";
 }
 
 const char* alarm_name(proto::Alarm alarm) {
   switch (alarm) {
-    case proto::Alarm::kNone: return "none";
-    case proto::Alarm::kLimitSwitch: return "limit switch tripped";
-    case proto::Alarm::kDriverFault: return "stepper driver fault";
-    case proto::Alarm::kPowerLost: return "driver power lost (e-stop?)";
-    case proto::Alarm::kFollowingError: return "following error";
-    case proto::Alarm::kMotionChipFault: return "motion controller (TMC428) fault";
-    case proto::Alarm::kPathFault: return "path generation fault";
-    case proto::Alarm::kSoftLimit: return "soft limit";
+    case proto::Alarm::kNone:
+      return "none";
+    case proto::Alarm::kLimitSwitch:
+      return "limit switch tripped";
+    case proto::Alarm::kDriverFault:
+      return "stepper driver fault";
+    case proto::Alarm::kPowerLost:
+      return "driver power lost (e-stop?)";
+    case proto::Alarm::kFollowingError:
+      return "following error";
+    case proto::Alarm::kMotionChipFault:
+      return "motion controller (TMC428) fault";
+    case proto::Alarm::kPathFault:
+      return "path generation fault";
+    case proto::Alarm::kSoftLimit:
+      return "soft limit";
   }
   return "unknown alarm";
 }
@@ -68,11 +98,16 @@ bool is_resend_error(proto::ErrorCode code) {
 
 const char* outcome_name(JobOutcome outcome) {
   switch (outcome) {
-    case JobOutcome::kCompleted: return "completed";
-    case JobOutcome::kAborted: return "aborted";
-    case JobOutcome::kAlarm: return "alarm";
-    case JobOutcome::kRejected: return "rejected";
-    case JobOutcome::kLinkLost: return "link lost";
+    case JobOutcome::kCompleted:
+      return "completed";
+    case JobOutcome::kAborted:
+      return "aborted";
+    case JobOutcome::kAlarm:
+      return "alarm";
+    case JobOutcome::kRejected:
+      return "rejected";
+    case JobOutcome::kLinkLost:
+      return "link lost";
   }
   return "?";
 }
@@ -153,6 +188,7 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (proto::decode_frame(frame, &r) != proto::ErrorCode::kOk) break;
       last_status_ = r;
       have_status_ = true;
+      status_outstanding_ = false;
       queue_free_ = r.queue_free;
       if (commands_ == nullptr) break;
       // Everything before next_expected is stored.
@@ -183,6 +219,7 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (proto::decode_frame(frame, &ack) == proto::ErrorCode::kOk) queue_free_ = ack.queue_free;
       const size_t index = index_of_seq(frame.seq);
       if (index != SIZE_MAX && index >= base_ && index < next_) {
+        if (queue_free_ >= 2 && window_limit_ < proto::kWindowFrames) ++window_limit_;
         base_ = index + 1;  // acks are cumulative: the controller stores strictly in order
         oldest_sent_ = Clock::now();
         busy_wait_ = false;
@@ -196,11 +233,15 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (r.code == proto::ErrorCode::kSeqStale) break;  // superseded real-time frame
       if (commands_ != nullptr && (is_resend_error(r.code) || r.code == proto::ErrorCode::kBusy)) {
         const size_t expected = index_of_seq(r.next_expected_seq);
+        busy_wait_ = (r.code == proto::ErrorCode::kBusy);
         if (expected != SIZE_MAX && expected >= base_ && expected <= next_) {
           base_ = expected;
-          next_ = expected;
+          // Busy: the expected frame is the one the controller holds; resend after it.
+          next_ = busy_wait_ ? std::min(next_, expected + 1) : expected;
         }
-        busy_wait_ = (r.code == proto::ErrorCode::kBusy);
+        // The store is full (spline data can fill it before the queue's slot count says so):
+        // send one frame at a time until acks show room again.
+        if (busy_wait_) window_limit_ = 1;
         break;
       }
       if (commands_ == nullptr && is_resend_error(r.code)) break;  // a lost #I/#?: we retry
@@ -209,7 +250,8 @@ void Sender::handle_reply(const proto::Frame& frame) {
                  : r.code == proto::ErrorCode::kAborted   ? JobOutcome::kAborted
                                                           : JobOutcome::kRejected;
       std::string detail;
-      if (r.code == proto::ErrorCode::kGeometry) detail = fmt::format(" (geometry code {})", r.detail);
+      if (r.code == proto::ErrorCode::kGeometry)
+        detail = fmt::format(" (geometry code {})", r.detail);
       message_ = fmt::format("controller refused {}: {}{}", where(index_of_seq(frame.seq)),
                              error_name(r.code), detail);
       break;
@@ -230,6 +272,17 @@ void Sender::handle_reply(const proto::Frame& frame) {
 void Sender::query_status() {
   send_frame(proto::kCmdStatus, status_seq_++, {});
   stats_.status_queries++;
+  status_outstanding_ = true;
+  status_sent_ = Clock::now();
+}
+
+// Time for the next status query: each interval, or with a zero interval as soon as the
+// previous one was answered (a lost query or reply is given up after 50 ms).
+bool Sender::status_due(Clock::time_point last_poll) const {
+  if (options_.status_interval.count() > 0) {
+    return Clock::now() - last_poll >= options_.status_interval;
+  }
+  return !status_outstanding_ || Clock::now() - status_sent_ > milliseconds(50);
 }
 
 proto::SessionReply Sender::open_session() {
@@ -293,7 +346,7 @@ bool Sender::ensure_zeroed(const std::function<void(const Progress&)>& on_progre
       next_ = 1;
       oldest_sent_ = Clock::now();
     }
-    if (Clock::now() - last_poll > options_.status_interval) {
+    if (status_due(last_poll)) {
       query_status();
       last_poll = Clock::now();
       if (base_ == 1 && (last_status_.flags & proto::kStatusZeroed)) break;
@@ -305,7 +358,8 @@ bool Sender::ensure_zeroed(const std::function<void(const Progress&)>& on_progre
     if (Clock::now() - last_reply_ > options_.silence_limit) {
       failed_ = true;
       failure_ = JobOutcome::kLinkLost;
-      message_ = fmt::format("{}: no reply for {} ms", link_.name(), options_.silence_limit.count());
+      message_ =
+          fmt::format("{}: no reply for {} ms", link_.name(), options_.silence_limit.count());
     }
   }
   commands_ = saved;
@@ -330,9 +384,10 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
   base_ = next_ = executed_ = 0;
   busy_wait_ = false;
   queue_free_ = session_.queue_slots;
+  window_limit_ = proto::kWindowFrames;
   size_t high_water = 0;
-  const size_t window = std::max<size_t>(1, std::min<size_t>(session_.window_frames,
-                                                             proto::kWindowFrames));
+  const size_t window =
+      std::max<size_t>(1, std::min<size_t>(session_.window_frames, proto::kWindowFrames));
   const size_t rx_bytes = std::max<size_t>(session_.rx_buffer_bytes, proto::kMaxFrameBytes);
   auto last_poll = Clock::now() - options_.status_interval;
   last_reply_ = Clock::now();
@@ -359,7 +414,7 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
     for (size_t i = base_; i < next_; ++i) inflight_bytes += commands[i].payload.size() + 6;
     // In flight may be what the queue has room for plus the one frame it can hold.
     while (!busy_wait_ && next_ < commands.size() && next_ - base_ < window &&
-           next_ - base_ <= queue_free_ &&
+           next_ - base_ <= queue_free_ && next_ - base_ < window_limit_ &&
            inflight_bytes + commands[next_].payload.size() + 6 <= rx_bytes) {
       if (next_ == base_) oldest_sent_ = Clock::now();
       send_frame(commands[next_].letter, static_cast<uint8_t>(first_seq_ + next_),
@@ -369,7 +424,7 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
       ++next_;
       high_water = std::max(high_water, next_);
     }
-    if (Clock::now() - last_poll >= options_.status_interval) {
+    if (status_due(last_poll)) {
       query_status();
       last_poll = Clock::now();
       Progress progress;
@@ -379,7 +434,7 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
       progress.status = last_status_;
       if (on_progress && have_status_) on_progress(progress);
     }
-    pump(milliseconds(2));
+    pump(milliseconds(1));
     if (base_ == commands.size() && executed_ == commands.size() && have_status_ &&
         last_status_.state == proto::MachineState::kIdle) {
       message_ = fmt::format("all {} commands executed", commands.size());
@@ -388,9 +443,9 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
       return JobOutcome::kCompleted;
     }
     if (Clock::now() - last_reply_ > options_.silence_limit) {
-      message_ = fmt::format("{}: no reply for {} ms after {} of {} commands executed",
-                             link_.name(), options_.silence_limit.count(), executed_,
-                             commands.size());
+      message_ =
+          fmt::format("{}: no reply for {} ms after {} of {} commands executed", link_.name(),
+                      options_.silence_limit.count(), executed_, commands.size());
       commands_ = nullptr;
       return JobOutcome::kLinkLost;
     }

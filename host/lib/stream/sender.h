@@ -19,11 +19,11 @@
 namespace host {
 
 struct SenderOptions {
-  std::chrono::milliseconds status_interval{250};   // keep-alive and progress polling
-  std::chrono::milliseconds min_rto{250};           // retransmission timeout floor
-  std::chrono::milliseconds reply_timeout{2000};    // #I / real-time frame answer
-  std::chrono::milliseconds silence_limit{10000};   // no reply at all: the link is dead
-  bool zero_first = true;                           // not zeroed: #M and wait for the operator
+  std::chrono::milliseconds status_interval{250};  // keep-alive and progress polling
+  std::chrono::milliseconds min_rto{250};          // retransmission timeout floor
+  std::chrono::milliseconds reply_timeout{2000};   // #I / real-time frame answer
+  std::chrono::milliseconds silence_limit{10000};  // no reply at all: the link is dead
+  bool zero_first = true;                          // not zeroed: #M and wait for the operator
   uint8_t zero_axes = proto::kAxisMaskAll;
 };
 
@@ -38,12 +38,12 @@ enum class JobOutcome {
 const char* outcome_name(JobOutcome outcome);
 
 struct SenderStats {
-  size_t frames_sent = 0;      // every frame written, retransmissions included
+  size_t frames_sent = 0;  // every frame written, retransmissions included
   size_t bytes_sent = 0;
-  size_t retransmits = 0;      // queued frames sent again
+  size_t retransmits = 0;  // queued frames sent again
   size_t status_queries = 0;
-  size_t error_replies = 0;    // *E received
-  size_t reply_rejects = 0;    // reply bytes our parser dropped (noise)
+  size_t error_replies = 0;  // *E received
+  size_t reply_rejects = 0;  // reply bytes our parser dropped (noise)
 };
 
 struct Progress {
@@ -82,6 +82,7 @@ class Sender {
   void send_realtime(uint8_t letter, const std::vector<uint8_t>& payload);
   bool ensure_zeroed(const std::function<void(const Progress&)>& on_progress);
   void query_status();
+  bool status_due(std::chrono::steady_clock::time_point last_poll) const;
   size_t index_of_seq(uint8_t seq) const;
   std::string where(size_t index) const;
 
@@ -98,15 +99,18 @@ class Sender {
   uint8_t realtime_seq_ = 0;
   uint8_t status_seq_ = 0;
   bool realtime_acked_ = false;
+  bool status_outstanding_ = false;
+  std::chrono::steady_clock::time_point status_sent_;
 
   // The ordered stream of the current run().
   const std::vector<QueuedCommand>* commands_ = nullptr;
-  uint8_t first_seq_ = 0;      // seq of commands[0]
-  size_t base_ = 0;            // oldest command not yet acknowledged
-  size_t next_ = 0;            // next command to (re)send
-  size_t executed_ = 0;        // commands executed (count)
-  bool busy_wait_ = false;     // after *E busy: send nothing new until an *O
-  size_t queue_free_ = 1;      // controller queue room, from the newest *O or *?
+  uint8_t first_seq_ = 0;   // seq of commands[0]
+  size_t base_ = 0;         // oldest command not yet acknowledged
+  size_t next_ = 0;         // next command to (re)send
+  size_t executed_ = 0;     // commands executed (count)
+  bool busy_wait_ = false;  // after *E busy: send nothing new until an *O
+  size_t window_limit_ = 1;    // frames in flight allowed now: 1 after *E busy, grows per *O
+  size_t queue_free_ = 1;   // controller queue room, from the newest *O or *?
   bool failed_ = false;
   JobOutcome failure_ = JobOutcome::kRejected;
   std::chrono::steady_clock::time_point last_reply_;

@@ -101,6 +101,11 @@ TEST(Tmc428Units, AMaxBoundsOfSection871) {
   EXPECT_FALSE(a_max_allowed(0, 2, 2));
 }
 
+TEST(Tmc428Units, NoAMaxFitsWhenPulseDivExceedsRampDivByMoreThan12) {
+  // rd - pd + 12 = -1: the upper bound 2^(rd-pd+12) - 1 is below 1.
+  EXPECT_FALSE(a_max_allowed(1, 13, 0));
+}
+
 TEST(Tmc428Units, AccelUnitsPerMillisecond) {
   // a_max / 256 per ramp clock, 10 MHz / 32 / 2^5 = 9765.6 ramp clocks/s:
   // 352 / 256 * 9.7656 = 13.43 -> 13.

@@ -68,9 +68,9 @@ TEST(Cli, UnknownOptionIsAUsageError) {
 TEST(Cli, InfoListsEntitiesUnitsAndExtents) {
   const ToolRun r = run("info " + kSample);
   EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("SPLINE 14"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("SPLINE 12"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("units:    mm"), std::string::npos);
-  EXPECT_NE(r.out.find("87.000 x 22.000 mm"), std::string::npos);
+  EXPECT_NE(r.out.find("124.000 x 30.000 mm"), std::string::npos);
   EXPECT_NE(r.out.find("problems: none"), std::string::npos);
 }
 
@@ -79,12 +79,13 @@ TEST(Cli, InfoJsonHasEveryCurveWithKnotsAndControlPoints) {
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["units"], "mm");
-  EXPECT_EQ(j["entities"]["SPLINE"], 14);
-  ASSERT_EQ(j["curves"].size(), 16u);
+  EXPECT_EQ(j["entities"]["SPLINE"], 12);
+  ASSERT_EQ(j["curves"].size(), 17u);
   EXPECT_EQ(j["curves"][0]["degree"], 3);
   EXPECT_EQ(j["curves"][0]["knots"].size(), j["curves"][0]["control_points_mm"].size() + 4);
-  EXPECT_TRUE(j["curves"][14]["rational"]);  // the circle
-  EXPECT_DOUBLE_EQ(j["extents_mm"]["width"].get<double>(), 87.0);
+  EXPECT_FALSE(j["curves"][11]["rational"]);  // the last letter outline
+  EXPECT_TRUE(j["curves"][12]["rational"]);   // the first mounting hole (a circle)
+  EXPECT_DOUBLE_EQ(j["extents_mm"]["width"].get<double>(), 124.0);
 }
 
 TEST(Cli, PointsCsvHasHeaderAndRowsPerCurveFromZero) {
@@ -95,13 +96,13 @@ TEST(Cli, PointsCsvHasHeaderAndRowsPerCurveFromZero) {
   std::getline(in, line);
   EXPECT_EQ(line, "curve,x_mm,y_mm");
   std::getline(in, line);
-  EXPECT_EQ(line, "0,15.000,16.000");  // the first E starts at its top right corner
+  EXPECT_EQ(line, "0,14.774,12.407");  // the seam of the first e: its first control point
   int last_curve = 0, rows = 1;
   while (std::getline(in, line)) {
     last_curve = std::stoi(line.substr(0, line.find(',')));
     ++rows;
   }
-  EXPECT_EQ(last_curve, 15);
+  EXPECT_EQ(last_curve, 16);
   EXPECT_GT(rows, 100);
 }
 

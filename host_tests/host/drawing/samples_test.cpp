@@ -33,13 +33,13 @@ TEST(BundledSample, EngraverWordImportsInMm) {
   const Drawing d = import_drawing(std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf");
   EXPECT_EQ(d.units, "mm");
   EXPECT_TRUE(d.warnings.empty());
-  EXPECT_EQ(d.entity_counts.at("SPLINE"), 14);
-  EXPECT_EQ(d.entity_counts.at("CIRCLE"), 1);
+  EXPECT_EQ(d.entity_counts.at("SPLINE"), 12);  // letter outlines and counters
+  EXPECT_EQ(d.entity_counts.at("CIRCLE"), 4);   // mounting holes
   EXPECT_EQ(d.entity_counts.at("LWPOLYLINE"), 1);
-  ASSERT_EQ(d.curves.size(), 16u);
+  ASSERT_EQ(d.curves.size(), 17u);
   const Extents e = d.extents();
-  EXPECT_NEAR(e.width(), 87.0, 1e-6);  // frame: 81 mm of text + margins
-  EXPECT_NEAR(e.height(), 22.0, 1e-6);
+  EXPECT_NEAR(e.width(), 124.0, 1e-6);  // the plate
+  EXPECT_NEAR(e.height(), 30.0, 1e-6);
 }
 
 TEST(SharedSamples, InkscapeBezierSplines) {

@@ -91,7 +91,8 @@ TEST(FirmwareSpline, CoordinateBeyondOneMetreIsRefused) {
     to_firmware_splines(s);
     FAIL();
   } catch (const ConversionError& e) {
-    EXPECT_NE(std::string(e.what()).find("control point 1 (1500, 0) mm"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("control point 1 (1500, 0) mm"), std::string::npos)
+        << e.what();
   }
 }
 
@@ -103,7 +104,8 @@ TEST(FirmwareSpline, ReversedCurveConvertsToTheSameShape) {
   s.knots = {0, 0, 0, 0.3, 1, 1, 1};
   const BSpline r = reversed(s);
   EXPECT_LT(max_deviation_mm(r, to_firmware_splines(r)), 0.001);  // r == s: bspline_test
-  EXPECT_LT((start_point(from_firmware_spline(to_firmware_splines(r)[0])) - end_point(s)).norm(), 0.001);
+  EXPECT_LT((start_point(from_firmware_spline(to_firmware_splines(r)[0])) - end_point(s)).norm(),
+            0.001);
 }
 
 }  // namespace

@@ -30,7 +30,8 @@ int count(const JobPlan& p, PlanStep::Kind k) {
 }
 
 TEST(JobPlan, LowerLeftCornerOfTheExtentsBecomesTheZero) {
-  const JobPlan p = plan_job(drawing_of({arc_spline({-20, 30}, 5, 0, 6.283185307179586)}), PlanOptions());
+  const JobPlan p =
+      plan_job(drawing_of({arc_spline({-20, 30}, 5, 0, 6.283185307179586)}), PlanOptions());
   EXPECT_NEAR(p.offset_mm.x(), 25.0, 1e-6);
   EXPECT_NEAR(p.offset_mm.y(), -25.0, 1e-6);
   EXPECT_NEAR(p.extents_mm.min.x(), 0.0, 1e-6);
@@ -39,8 +40,8 @@ TEST(JobPlan, LowerLeftCornerOfTheExtentsBecomesTheZero) {
 
 TEST(JobPlan, NearestNeighbourOrderReversesCurvesToShortenRapids) {
   // Three separate segments; from the zero the nearest end is the far end of curve 1.
-  const Drawing d = drawing_of({line_spline({50, 0}, {60, 0}), line_spline({10, 0}, {0, 0}),
-                                line_spline({30, 0}, {20, 0})});
+  const Drawing d = drawing_of(
+      {line_spline({50, 0}, {60, 0}), line_spline({10, 0}, {0, 0}), line_spline({30, 0}, {20, 0})});
   const JobPlan p = plan_job(d, PlanOptions());
   ASSERT_EQ(p.curves.size(), 3u);
   EXPECT_EQ(p.curves[0].drawing_index, 1);

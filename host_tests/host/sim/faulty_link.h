@@ -11,11 +11,11 @@
 namespace host::test {
 
 struct Faults {
-  double flip_bit = 0.0;     // per byte written: flip one bit
-  double drop_byte = 0.0;    // per byte written: leave it out
-  double garbage = 0.0;      // per write: add 1..8 random bytes first
-  double drop_frame = 0.0;   // per write: send nothing
-  size_t cut_after = 0;      // bytes written before the link "breaks" (0 = never)
+  double flip_bit = 0.0;    // per byte written: flip one bit
+  double drop_byte = 0.0;   // per byte written: leave it out
+  double garbage = 0.0;     // per write: add 1..8 random bytes first
+  double drop_frame = 0.0;  // per write: send nothing
+  size_t cut_after = 0;     // bytes written before the link "breaks" (0 = never)
   uint32_t seed = 1;
 };
 
@@ -47,9 +47,7 @@ class FaultyLink : public Link {
   std::string name() const override { return "faulty " + inner_->name(); }
 
  private:
-  bool chance(double p) {
-    return p > 0 && std::uniform_real_distribution<double>(0, 1)(rng_) < p;
-  }
+  bool chance(double p) { return p > 0 && std::uniform_real_distribution<double>(0, 1)(rng_) < p; }
   std::unique_ptr<Link> inner_;
   Faults f_;
   std::mt19937 rng_;

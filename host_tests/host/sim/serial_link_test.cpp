@@ -18,7 +18,9 @@
 namespace host {
 namespace {
 
-bool have_socat() { return std::system("command -v socat >/dev/null 2>&1") == 0; }
+bool have_socat() {
+  return std::system("command -v socat >/dev/null 2>&1") == 0;
+}
 
 TEST(SerialLink, JobCompletesThroughAPtyAt115200) {
   if (!have_socat()) GTEST_SKIP() << "socat not installed (scripts/bootstrap.sh installs it)";
@@ -47,8 +49,8 @@ TEST(SerialLink, JobCompletesThroughAPtyAt115200) {
   JobOutcome outcome = JobOutcome::kLinkLost;
   std::string message = "socat did not create " + tty;
   if (std::filesystem::exists(tty)) {
-    auto link = open_link(parse_link_spec("serial:" + tty + ",115200"),
-                          std::chrono::milliseconds(2000));
+    auto link =
+        open_link(parse_link_spec("serial:" + tty + ",115200"), std::chrono::milliseconds(2000));
     SenderOptions o;
     o.status_interval = std::chrono::milliseconds(5);
     Sender sender(*link, o);

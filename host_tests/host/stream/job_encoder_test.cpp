@@ -18,7 +18,8 @@ core::Spline wavy_spline(int n, bool rational) {
   for (int i = 0; i < n; ++i) {
     s.control[i].x_um = 1000 * i;
     s.control[i].y_um = (i % 2) ? 2500 : -1500;
-    s.control[i].weight_q14 = rational ? static_cast<uint16_t>(8000 + 300 * i) : core::kWeightOneQ14;
+    s.control[i].weight_q14 =
+        rational ? static_cast<uint16_t>(8000 + 300 * i) : core::kWeightOneQ14;
   }
   for (int k = 0; k < n + 4; ++k) {
     s.knot[k] = k < 4 ? 0 : (k >= n ? (n - 3) * 100 : (k - 3) * 100);

@@ -1,0 +1,9 @@
+// Already clang-formatted: format_check must accept this file (test_format_check.py).
+#include <stdint.h>  // uint16_t
+
+namespace demo {
+// Doubles x.
+uint16_t twice(uint16_t x) {
+  return x * 2;
+}
+}  // namespace demo
