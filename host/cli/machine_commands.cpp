@@ -353,7 +353,7 @@ void run_run(const RunArgs& a) {
   sim::SimJobOptions o;
   o.encode = encode_options(a.plan);
   o.realtime = a.realtime;
-  o.sender.status_interval = std::chrono::milliseconds(a.realtime ? 250 : 0);
+  o.sender.status_interval = std::chrono::milliseconds(a.realtime ? 250 : 1);
   const sim::SimJobResult r = sim::run_sim_job(plan, o);
 
   const std::string name = std::filesystem::path(a.plan.file).stem().string();
@@ -460,7 +460,7 @@ void add_machine_commands(CLI::App& app) {
   sim->add_flag("--realtime", sim_args->realtime, "run in step with the wall clock");
   sim->footer(
       "Example: engraver sim & engraver send samples/engraver-word.dxf --to "
-      "tcp://127.0.0.1:10001 --poll-ms 0");
+      "tcp://127.0.0.1:10001 --poll-ms 1");
   sim->callback([sim_args] { run_sim(*sim_args); });
 
   auto run_args = std::make_shared<RunArgs>();

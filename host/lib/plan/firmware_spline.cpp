@@ -147,6 +147,7 @@ std::vector<core::Spline> to_firmware_splines(const BSpline& mm_spline) {
     pieces = split_to_fit(clamped(mm_spline), core::kMaxControlPoints);
   }
   std::vector<core::Spline> out;
+  out.reserve(pieces.size());
   for (const BSpline& p : pieces) out.push_back(to_firmware(p));
   return out;
 }

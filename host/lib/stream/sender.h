@@ -104,13 +104,13 @@ class Sender {
 
   // The ordered stream of the current run().
   const std::vector<QueuedCommand>* commands_ = nullptr;
-  uint8_t first_seq_ = 0;   // seq of commands[0]
-  size_t base_ = 0;         // oldest command not yet acknowledged
-  size_t next_ = 0;         // next command to (re)send
-  size_t executed_ = 0;     // commands executed (count)
-  bool busy_wait_ = false;  // after *E busy: send nothing new until an *O
-  size_t window_limit_ = 1;    // frames in flight allowed now: 1 after *E busy, grows per *O
-  size_t queue_free_ = 1;   // controller queue room, from the newest *O or *?
+  uint8_t first_seq_ = 0;    // seq of commands[0]
+  size_t base_ = 0;          // oldest command not yet acknowledged
+  size_t next_ = 0;          // next command to (re)send
+  size_t executed_ = 0;      // commands executed (count)
+  bool busy_wait_ = false;   // after *E busy: send nothing new until an *O
+  size_t window_limit_ = 1;  // frames in flight allowed now: 1 after *E busy, grows per *O
+  size_t queue_free_ = 1;    // controller queue room, from the newest *O or *?
   bool failed_ = false;
   JobOutcome failure_ = JobOutcome::kRejected;
   std::chrono::steady_clock::time_point last_reply_;

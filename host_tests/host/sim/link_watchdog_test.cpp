@@ -21,8 +21,7 @@ TEST(LinkWatchdog, MachineStopsWhenTheHostDisappearsAndANewSessionFindsItStopped
   sim::ServerOptions so;
   so.port = 0;
   sim::SimServer server(machine, so);
-  std::atomic<bool> stop{false};
-  std::thread serving([&] { server.run(stop); });
+  test::Serving serving(server);
 
   LinkSpec spec;
   spec.host = "127.0.0.1";
@@ -52,8 +51,7 @@ TEST(LinkWatchdog, MachineStopsWhenTheHostDisappearsAndANewSessionFindsItStopped
   o.status_interval = std::chrono::milliseconds(2);
   Sender second(*link, o);
   second.open_session();
-  stop = true;
-  serving.join();
+  serving.stop();
 
   // Stopped: two more seconds of machine time move nothing.
   const size_t samples = machine.trace().size();

@@ -29,8 +29,7 @@ TEST(SerialLink, JobCompletesThroughAPtyAt115200) {
   sim::ServerOptions so;
   so.port = 0;
   sim::SimServer server(machine, so);
-  std::atomic<bool> stop{false};
-  std::thread serving([&] { server.run(stop); });
+  test::Serving serving(server);
 
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("engraver-pty-" + std::to_string(getpid()));
@@ -60,8 +59,7 @@ TEST(SerialLink, JobCompletesThroughAPtyAt115200) {
   }
   kill(pid, SIGTERM);
   waitpid(pid, nullptr, 0);
-  stop = true;
-  serving.join();
+  serving.stop();
   std::filesystem::remove_all(dir);
   EXPECT_EQ(outcome, JobOutcome::kCompleted) << message;
 }

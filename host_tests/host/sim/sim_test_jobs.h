@@ -2,7 +2,11 @@
 #ifndef HOST_TESTS_HOST_SIM_SIM_TEST_JOBS_H
 #define HOST_TESTS_HOST_SIM_SIM_TEST_JOBS_H
 
-#include <cmath>  // std::sqrt
+#include <atomic>  // std::atomic
+#include <cmath>   // std::sqrt
+#include <thread>  // std::thread
+
+#include "host/lib/sim/sim_server.h"
 
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/plan/job_plan.h"
@@ -65,6 +69,22 @@ inline JobPlan plan_of(const Drawing& d, double feed_mm_s = 10.0) {
   o.margin_mm = 5.0;
   return plan_job(d, o);
 }
+
+// Serves a simulator from a thread for the lifetime of the object; stop() or the
+// destructor ends and joins it, so a failing assertion cannot leave the thread running.
+class Serving {
+ public:
+  explicit Serving(sim::SimServer& server) : thread_([this, &server] { server.run(stop_); }) {}
+  ~Serving() { stop(); }
+  void stop() {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+  }
+
+ private:
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
 
 }  // namespace host::test
 
