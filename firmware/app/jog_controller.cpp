@@ -82,10 +82,11 @@ JogResult JogController::tick(uint8_t inputs, uint8_t limits,
     return JogResult::kRunning;
   }
   // Held: start slow for fine positioning, then speed up for long moves.
-  if (speed_um_s_ < kJogStartUmS)
+  if (speed_um_s_ < kJogStartUmS) {
     speed_um_s_ = kJogStartUmS;
-  else if (speed_um_s_ < kJogTopUmS)
+  } else if (speed_um_s_ < kJogTopUmS) {
     speed_um_s_ = (uint16_t)(speed_um_s_ + kJogRampUmSPerMs);
+  }
   if (inputs & hal::kJoyLeft) set_velocity(config::kAxisX, -1, limits, v_units);
   if (inputs & hal::kJoyRight) set_velocity(config::kAxisX, 1, limits, v_units);
   const uint8_t vertical = z_mode_ ? (uint8_t)config::kAxisZ : (uint8_t)config::kAxisY;

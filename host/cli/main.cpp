@@ -13,6 +13,9 @@
 #define ENGRAVER_VERSION "unknown"
 #endif
 
+// Only setup before the try can throw outside it (CLI11 rejecting a duplicate option: a bug
+// in this program); std::terminate's report is the right outcome for that.
+// NOLINTNEXTLINE(bugprone-exception-escape)
 int main(int argc, char** argv) {
   CLI::App app{
       "engraver: engrave DXF drawings on the PCB engraving machine (plan, simulate, send).",

@@ -156,6 +156,8 @@ bool Sender::pump(milliseconds wait) {
 size_t Sender::index_of_seq(uint8_t seq) const {
   if (commands_ == nullptr) return SIZE_MAX;
   const uint8_t base_seq = static_cast<uint8_t>(first_seq_ + base_);
+  // The 8-bit wrap to a signed distance is the point (sequence numbers are modulo 256).
+  // NOLINTNEXTLINE(bugprone-signed-char-misuse)
   const int delta = static_cast<int8_t>(static_cast<uint8_t>(seq - base_seq));
   const long index = static_cast<long>(base_) + delta;
   if (index < 0 || index > static_cast<long>(commands_->size())) return SIZE_MAX;
