@@ -42,7 +42,7 @@ const JobGolden& arch_job() {
     ExpectOptions o;
     o.scenario = "job";
     o.job_file = spi_test::temp_file("arch.dxf", kArchDxf);
-    o.vcd_path = ::testing::TempDir() + "/arch_job.vcd";
+    o.vcd_path = ::testing::TempDir() + "/arch_job_" + std::to_string(::getpid()) + ".vcd";
     o.max_datagrams = 1500;
     std::ostringstream out, err;
     j.rc = run_expect(o, out, err);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>  // ::testing::TempDir
 
+#include <unistd.h>  // getpid
+
 #include <fstream>  // std::ofstream
 #include <string>   // std::string
 #include <vector>   // std::vector
@@ -13,9 +15,10 @@
 
 namespace spi_test {
 
-// Writes text to a fresh file in the test temp dir and returns its path.
+// Writes text to a fresh file in the test temp dir and returns its path. The name carries
+// the process id: ctest runs the tests of this binary in parallel processes.
 inline std::string temp_file(const std::string& name, const std::string& text) {
-  std::string path = ::testing::TempDir() + "/" + name;
+  std::string path = ::testing::TempDir() + "/spi_test_" + std::to_string(::getpid()) + "_" + name;
   std::ofstream(path, std::ios::binary) << text;
   return path;
 }
