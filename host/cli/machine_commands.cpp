@@ -268,9 +268,9 @@ void run_send(const SendArgs& a) {
   }
   g_sender = nullptr;
   const SenderStats& st = sender.stats();
-  std::cerr << fmt::format("engraver: job {}: {} ({} frames, {} bytes, {} resent after busy or loss)\n",
-                           outcome_name(outcome), sender.message(), st.frames_sent, st.bytes_sent,
-                           st.retransmits);
+  std::cerr << fmt::format(
+      "engraver: job {}: {} ({} frames, {} bytes, {} resent after busy or loss)\n",
+      outcome_name(outcome), sender.message(), st.frames_sent, st.bytes_sent, st.retransmits);
   if (outcome != JobOutcome::kCompleted) {
     throw CommandFailure(exit_code(outcome), fmt::format("job {}", outcome_name(outcome)));
   }
@@ -412,7 +412,8 @@ void run_run(const RunArgs& a) {
   }
   std::cout << fmt::format(
       "{}: {} curves, {} pen lifts; job {}\n"
-      "  sent {} commands in {} frames, {} bytes ({} resent after busy or loss); the job as frames: {} bytes, "
+      "  sent {} commands in {} frames, {} bytes ({} resent after busy or loss); the job as "
+      "frames: {} bytes, "
       "as G-code G1 at the same tolerance: {} bytes\n"
       "  tool path {:.1f} mm cut + {:.1f} mm rapid; simulated job time {:.1f} s, of which "
       "cutting {:.1f} s (cut length / feed {:.1f} s)\n"
