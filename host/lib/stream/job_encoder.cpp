@@ -130,11 +130,13 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
   return out;
 }
 
+size_t frame_bytes(const QueuedCommand& command) {
+  return proto::kHeaderBytes + command.payload.size() + proto::kCrcBytes;
+}
+
 size_t wire_bytes(const std::vector<QueuedCommand>& commands) {
   size_t total = 0;
-  for (const QueuedCommand& c : commands) {
-    total += proto::kHeaderBytes + c.payload.size() + proto::kCrcBytes;
-  }
+  for (const QueuedCommand& c : commands) total += frame_bytes(c);
   return total;
 }
 

@@ -31,7 +31,9 @@ struct EncodeOptions {
 // cannot carry (a feed above 65535 um/s, a tool offset: v1 has no offset field).
 std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& options);
 
-// Bytes the commands take on the wire as frames (header + payload + CRC each).
+// Bytes one command takes on the wire as a frame (header + payload + CRC).
+size_t frame_bytes(const QueuedCommand& command);
+// Bytes the commands take on the wire as frames.
 size_t wire_bytes(const std::vector<QueuedCommand>& commands);
 
 }  // namespace host

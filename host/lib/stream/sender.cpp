@@ -221,7 +221,7 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (proto::decode_frame(frame, &ack) == proto::ErrorCode::kOk) queue_free_ = ack.queue_free;
       const size_t index = index_of_seq(frame.seq);
       if (index != SIZE_MAX && index >= base_ && index < next_) {
-        if (queue_free_ >= 2 && window_limit_ < proto::kWindowFrames) ++window_limit_;
+        if (queue_free_ >= 2 && window_limit_ < window_) ++window_limit_;
         base_ = index + 1;  // acks are cumulative: the controller stores strictly in order
         oldest_sent_ = Clock::now();
         busy_wait_ = false;
@@ -386,10 +386,9 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
   base_ = next_ = executed_ = 0;
   busy_wait_ = false;
   queue_free_ = session_.queue_slots;
-  window_limit_ = proto::kWindowFrames;
+  window_ = std::max<size_t>(1, std::min<size_t>(session_.window_frames, proto::kWindowFrames));
+  window_limit_ = window_;
   size_t high_water = 0;
-  const size_t window =
-      std::max<size_t>(1, std::min<size_t>(session_.window_frames, proto::kWindowFrames));
   const size_t rx_bytes = std::max<size_t>(session_.rx_buffer_bytes, proto::kMaxFrameBytes);
   auto last_poll = Clock::now() - options_.status_interval;
   last_reply_ = Clock::now();
@@ -413,15 +412,15 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
     }
     // Fill the window (frames and bytes) unless the controller said busy.
     size_t inflight_bytes = 0;
-    for (size_t i = base_; i < next_; ++i) inflight_bytes += commands[i].payload.size() + 6;
+    for (size_t i = base_; i < next_; ++i) inflight_bytes += frame_bytes(commands[i]);
     // In flight may be what the queue has room for plus the one frame it can hold.
-    while (!busy_wait_ && next_ < commands.size() && next_ - base_ < window &&
-           next_ - base_ <= queue_free_ && next_ - base_ < window_limit_ &&
-           inflight_bytes + commands[next_].payload.size() + 6 <= rx_bytes) {
+    while (!busy_wait_ && next_ < commands.size() && next_ - base_ < window_limit_ &&
+           next_ - base_ <= queue_free_ &&
+           inflight_bytes + frame_bytes(commands[next_]) <= rx_bytes) {
       if (next_ == base_) oldest_sent_ = Clock::now();
       send_frame(commands[next_].letter, static_cast<uint8_t>(first_seq_ + next_),
                  commands[next_].payload);
-      inflight_bytes += commands[next_].payload.size() + 6;
+      inflight_bytes += frame_bytes(commands[next_]);
       if (next_ < high_water) stats_.retransmits++;
       ++next_;
       high_water = std::max(high_water, next_);

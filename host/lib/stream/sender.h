@@ -109,6 +109,7 @@ class Sender {
   size_t next_ = 0;          // next command to (re)send
   size_t executed_ = 0;      // commands executed (count)
   bool busy_wait_ = false;   // after *E busy: send nothing new until an *O
+  size_t window_ = 1;        // frames in flight the controller allows (*I)
   size_t window_limit_ = 1;  // frames in flight allowed now: 1 after *E busy, grows per *O
   size_t queue_free_ = 1;    // controller queue room, from the newest *O or *?
   bool failed_ = false;
