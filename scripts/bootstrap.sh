@@ -11,6 +11,7 @@ packages=(
   libcairo2-dev libexpat1-dev
   gcc-avr binutils-avr avr-libc simavr libsimavr-dev python3
   sigrok-cli socat zlib1g-dev
+  libpolyclipping-dev gerbv
 )
 
 missing=()

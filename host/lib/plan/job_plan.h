@@ -42,7 +42,13 @@ struct PlanStep {
     kPenDown,  // Z to z_um (cutting depth), at feed_um_per_s (plunge feed)
     kRapid,    // X/Y straight to `to` with the pen up, at the rapid rate
     kFeed,     // X/Y straight to `to` with the pen down, at feed_um_per_s
-    kSpline    // trace `spline` from its start (== current position) at feed_um_per_s
+    kSpline,   // trace `spline` from its start (== current position) at feed_um_per_s
+    // Machine actions that CAM programs and PCB jobs need (G-code M0/M6/G4/M3/G81, drilling):
+    kPause,    // stop until the operator confirms on the panel; `text` shown on the LCD
+    kDwell,    // wait dwell_ms with every axis still
+    kSpindle,  // spindle on (spindle_on) or off
+    kDrill     // one hole at `to`: travel height, Z to z_start_um, plunge to z_um at
+               // feed_um_per_s, back to z_start_um
   };
   Kind kind = kRapid;
   core::PointUm to = {0, 0};   // kRapid, kFeed: target; kSpline: the spline's end point
@@ -50,6 +56,10 @@ struct PlanStep {
   int32_t feed_um_per_s = 0;   // kPenDown, kFeed, kSpline
   int32_t tool_offset_um = 0;  // kSpline, kFeed: signed offset, > 0 left of travel, < 0 right
   core::Spline spline;         // kSpline only (validated, in machine micrometres)
+  std::string text;            // kPause: operator message (LCD, at most 16 characters used)
+  uint32_t dwell_ms = 0;       // kDwell
+  bool spindle_on = false;     // kSpindle
+  int32_t z_start_um = 0;      // kDrill: height above the board where the plunge starts
   int curve = -1;              // index into JobPlan::curves of the curve this step draws
 };
 

@@ -48,6 +48,13 @@ PlotInput plot_input_from_plan(const JobPlan& plan, const std::string& title, do
           last_curve = s.curve;
         }
         break;
+      case PlanStep::kDrill:  // the hole is at `to`; the tool goes there at travel height
+        add(mm(s.to));
+        break;
+      case PlanStep::kPause:
+      case PlanStep::kDwell:
+      case PlanStep::kSpindle:
+        break;
     }
   }
   return in;

@@ -125,6 +125,12 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
       case PlanStep::kSpline:
         append_spline(s, index, options.max_payload, &out);
         break;
+      case PlanStep::kPause:
+      case PlanStep::kDwell:
+      case PlanStep::kSpindle:
+      case PlanStep::kDrill:
+        throw PlanError(fmt::format(
+            "step {}: pause, dwell, spindle and drill steps are not in protocol v1", index));
     }
   }
   return out;
