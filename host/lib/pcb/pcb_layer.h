@@ -1,0 +1,62 @@
+// What a PCB fabrication file holds once read: copper as polygons, holes and slots, or a board
+// outline, in integer nanometres in the file's own frame (Y up, as Gerber and Excellon draw).
+// The Gerber and Excellon readers produce it; isolation, drilling and cut-out planning use it.
+#ifndef HOST_LIB_PCB_PCB_LAYER_H
+#define HOST_LIB_PCB_PCB_LAYER_H
+
+#include <clipper.hpp>  // ClipperLib::Paths, cInt
+
+#include <stdexcept>  // std::runtime_error
+#include <string>     // std::string
+#include <vector>     // std::vector
+
+namespace host::pcb {
+
+// Where a layer sits in the board stack-up; from X2 TF.FileFunction, else the file's
+// extension, else the command line.
+enum class LayerKind { kUnknown, kCopperTop, kCopperBottom, kOutline, kDrill };
+const char* layer_kind_name(LayerKind kind);
+
+struct PointNm {
+  ClipperLib::cInt x = 0;
+  ClipperLib::cInt y = 0;
+};
+
+// One drilled hole.
+struct Hole {
+  PointNm at;
+  ClipperLib::cInt diameter_nm = 0;
+  int tool = 0;  // the file's tool number (T1 -> 1)
+};
+
+// A routed slot (Excellon G85, or G00/M15/G01/M16): a straight cut of the tool's diameter.
+struct Slot {
+  PointNm from;
+  PointNm to;
+  ClipperLib::cInt diameter_nm = 0;
+  int tool = 0;
+};
+
+struct PcbLayer {
+  std::string path;  // the file it came from
+  LayerKind kind = LayerKind::kUnknown;
+  // Copper (dark minus clear, step-and-repeat applied), as non-overlapping polygons with
+  // holes (Clipper orientation: outers positive, holes negative). For an outline layer: the
+  // drawn profile strokes as closed or open paths along their centre lines.
+  ClipperLib::Paths polygons_nm;
+  bool outline_paths_are_open = false;  // outline layer: polygons_nm holds centre lines
+  std::vector<Hole> holes;              // drill layers
+  std::vector<Slot> slots;              // drill layers
+  std::vector<std::string> notes;       // deprecated forms accepted, attributes read
+  double arc_tolerance_nm = 0;          // chord error used where arcs were flattened
+};
+
+// A file that cannot be read faithfully. what() names the file, the line and the problem.
+class PcbReadError : public std::runtime_error {
+ public:
+  explicit PcbReadError(const std::string& msg) : std::runtime_error(msg) {}
+};
+
+}  // namespace host::pcb
+
+#endif  // HOST_LIB_PCB_PCB_LAYER_H
