@@ -6,10 +6,15 @@
 #include <dxflib/dl_creationadapter.h>  // DL_CreationAdapter
 #include <dxflib/dl_dxf.h>              // DL_Dxf
 
-#include <cmath>    // std::isfinite, std::fabs
-#include <map>      // std::map
-#include <memory>   // std::unique_ptr
-#include <sstream>  // std::ostringstream
+#include <cerrno>     // errno
+#include <climits>    // INT_MAX
+#include <cmath>      // std::isfinite, std::fabs
+#include <fstream>    // std::ifstream
+#include <map>        // std::map
+#include <memory>     // std::unique_ptr
+#include <new>        // std::bad_alloc
+#include <sstream>    // std::ostringstream
+#include <streambuf>  // std::streambuf
 
 #include <unsupported/Eigen/Splines>  // Eigen::SplineFitting (fit-point splines)
 
@@ -22,6 +27,10 @@ namespace {
 
 const double kPi = 3.14159265358979323846;
 const int kMaxInsertDepth = 16;
+// Fit-point splines are interpolated with a dense solve (time ~ n^3, memory ~ n^2).
+const size_t kMaxFitPoints = 1000;
+// What block references may expand to: copies made plus control points copied.
+const long kMaxExpansionWork = 10000000;
 
 // The raw groups of one DXF record (entity, table entry, header variable), as read.
 struct RawRecord {
@@ -62,19 +71,18 @@ class DxfReader : public DL_CreationAdapter {
   Drawing finish();
 
   // Every group passes here before dxflib handles it: keeps the raw record that dxflib is
-  // about to dispatch (the previous one when a new group 0 arrives).
-  void processCodeValuePair(unsigned int code, const std::string& value) override {
-    line_ += 2;
-    if (code == 0 || code == 9) {
+  // about to dispatch (the previous one when a new group 0 or 9 arrives).
+  void raw_group(const DxfGroup& g) {
+    if (g.code == 0 || g.code == 9) {
       finished_ = pending_;
       pending_ = RawRecord();
-      pending_.type = value;
-      pending_.line = line_ - 1;
-      if (code == 0) pending_.ordinal = ++type_ordinal_[value];
+      pending_.type = g.value;
+      pending_.line = g.line;
+      if (g.code == 0) pending_.ordinal = ++type_ordinal_[g.value];
       return;
     }
-    if (code == 5) pending_.handle = value;
-    pending_.groups.emplace_back(static_cast<int>(code), value);
+    if (g.code == 5) pending_.handle = g.value;
+    pending_.groups.emplace_back(g.code, g.value);
   }
 
   void setVariableInt(const std::string& key, int value, int) override {
@@ -353,6 +361,19 @@ class DxfReader : public DL_CreationAdapter {
   }
   void warn(const std::string& what) { warnings_.push_back(path_ + ": " + label() + ": " + what); }
 
+  // An integer group's value. The scan checked syntax and range; checked again here
+  // because a cast of an out-of-range value would be undefined.
+  int group_int(int code, const std::string& v) const {
+    errno = 0;
+    char* end = nullptr;
+    const long long n = std::strtoll(v.c_str(), &end, 10);
+    if (end == v.c_str() || *end != '\0' || errno == ERANGE || n < -INT_MAX || n > INT_MAX) {
+      fail("group " + std::to_string(code) + " value '" + v.substr(0, 40) +
+           "' is not an integer in range");
+    }
+    return static_cast<int>(n);
+  }
+
   void check_number(double v, const char* what) const {
     if (!std::isfinite(v)) fail(std::string(what) + " is not a finite number");
   }
@@ -367,10 +388,9 @@ class DxfReader : public DL_CreationAdapter {
   }
 
   void expand(const Space& s, const Eigen::Matrix2d& a, const Point2& b, int depth,
-              const std::string& via, std::vector<Curve>& out) const;
+              const std::string& via, long& work, std::vector<Curve>& out) const;
 
   std::string path_;
-  long line_ = 0;
   RawRecord pending_, finished_;
   std::map<std::string, int> type_ordinal_;
   int insunits_ = 0;
@@ -384,8 +404,6 @@ class DxfReader : public DL_CreationAdapter {
   std::map<std::string, int> skipped_;
   int paper_space_skipped_ = 0;
   std::vector<std::string> warnings_;
-
-  friend Drawing import_dxf(const std::string& path);
 };
 
 // SPLINE: the counts and values are taken from the raw groups (dxflib silently pads or
@@ -400,22 +418,23 @@ void DxfReader::addSpline(const DL_SplineData& d) {
   Point2 tangent_start(0, 0), tangent_end(0, 0);
   bool have_ts = false, have_te = false;
   for (const auto& g : finished_.groups) {
-    const double v = std::strtod(g.second.c_str(), 0);  // syntax checked beforehand
+    const bool is_int = g.first >= 70 && g.first <= 74;
+    const double v = is_int ? 0.0 : std::strtod(g.second.c_str(), 0);  // syntax checked
     switch (g.first) {
       case 70:
-        flags = static_cast<int>(v);
+        flags = group_int(g.first, g.second);
         break;
       case 71:
-        degree = static_cast<int>(v);
+        degree = group_int(g.first, g.second);
         break;
       case 72:
-        n_knots = static_cast<long>(v);
+        n_knots = group_int(g.first, g.second);
         break;
       case 73:
-        n_control = static_cast<long>(v);
+        n_control = group_int(g.first, g.second);
         break;
       case 74:
-        n_fit = static_cast<long>(v);
+        n_fit = group_int(g.first, g.second);
         break;
       case 40:
         knots.push_back(v);
@@ -483,6 +502,11 @@ void DxfReader::addSpline(const DL_SplineData& d) {
   s.degree = degree;
   if (control.empty()) {
     if (fit.size() < 2) fail("has neither control points nor at least two fit points");
+    if (fit.size() > kMaxFitPoints) {
+      fail(std::to_string(fit.size()) + " fit points and no control points (at most " +
+           std::to_string(kMaxFitPoints) +
+           " are interpolated; save the spline with its control points)");
+    }
     // Interpolate the fit points (chord-length parameters, averaged knots). CAD programs
     // may also honour end tangents and their own knot rule: say so.
     const int deg = std::min<int>(degree, static_cast<int>(fit.size()) - 1);
@@ -522,7 +546,15 @@ void DxfReader::addSpline(const DL_SplineData& d) {
 
 // Appends the curves of a space mapped by x -> a x + b, expanding its block references.
 void DxfReader::expand(const Space& s, const Eigen::Matrix2d& a, const Point2& b, int depth,
-                       const std::string& via, std::vector<Curve>& out) const {
+                       const std::string& via, long& work, std::vector<Curve>& out) const {
+  work += 1;
+  for (const Curve& c : s.curves) work += 1 + static_cast<long>(c.spline.control.size());
+  if (work > kMaxExpansionWork) {
+    throw ImportError(path_ + ": block references expand to more than " +
+                      std::to_string(kMaxExpansionWork) +
+                      " copies and control points (arrays of arrays of blocks?)" +
+                      (via.empty() ? std::string() : ", last" + via));
+  }
   for (const Curve& c : s.curves) {
     Curve t = c;
     t.spline = transformed(c.spline, a, b);
@@ -554,7 +586,7 @@ void DxfReader::expand(const Space& s, const Eigen::Matrix2d& a, const Point2& b
         const Point2 local_b =
             mirror * (Point2(d.ipx, d.ipy) + rot * (offset - scale * it->second.base));
         expand(it->second, a * local_a, a * local_b + b, depth + 1,
-               " via " + r.label.substr(0, r.label.find(" (")) + " of '" + d.name + "'", out);
+               " via " + r.label.substr(0, r.label.find(" (")) + " of '" + d.name + "'", work, out);
       }
     }
   }
@@ -616,7 +648,8 @@ Drawing DxfReader::finish() {
                         "1 inch, 2 foot, 4 mm, 5 cm, 6 m, 8 microinch, 9 mil, 13 micron, 14 dm)");
   }
   std::vector<Curve> curves;
-  expand(model_, Eigen::Matrix2d::Identity() * dr.unit_to_mm, Point2(0, 0), 0, "", curves);
+  long work = 0;
+  expand(model_, Eigen::Matrix2d::Identity() * dr.unit_to_mm, Point2(0, 0), 0, "", work, curves);
   for (const Curve& c : curves) {
     for (const Point2& p : c.spline.control) {
       if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || std::fabs(p.x()) > 1e7 ||
@@ -642,14 +675,61 @@ Drawing DxfReader::finish() {
   return dr;
 }
 
+// Serves the checked groups to dxflib as text, one group per underflow(), and hands each
+// group to the reader's raw_group() just before dxflib reads it: dxflib processes a group
+// only after reading both its lines, so the reader's raw record is always the one dxflib is
+// about to dispatch. dxflib stops at the end of the stream, which is the closing 0/EOF.
+class GroupFeed : public std::streambuf {
+ public:
+  GroupFeed(const std::vector<DxfGroup>& groups, DxfReader& reader)
+      : groups_(groups), reader_(reader) {}
+
+ protected:
+  int_type underflow() override {
+    if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+    if (next_ >= groups_.size()) return traits_type::eof();
+    const DxfGroup& g = groups_[next_++];
+    reader_.raw_group(g);
+    text_ = std::to_string(g.code) + "\n" + g.value + "\n";
+    setg(&text_[0], &text_[0], &text_[0] + text_.size());
+    return traits_type::to_int_type(*gptr());
+  }
+
+ private:
+  const std::vector<DxfGroup>& groups_;
+  DxfReader& reader_;
+  size_t next_ = 0;
+  std::string text_;
+};
+
 }  // namespace
 
+Drawing import_dxf_text(const std::string& text, const std::string& path) {
+  try {
+    const std::vector<DxfGroup> groups = scan_dxf(text, path);
+    DxfReader reader(path);
+    GroupFeed feed(groups, reader);
+    std::istream stream(&feed);
+    DL_Dxf dxf;
+    dxf.in(stream, &reader);
+    return reader.finish();
+  } catch (const ImportError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw ImportError(path + ": not enough memory to import the drawing");
+  } catch (const std::exception& e) {
+    throw ImportError(
+        path + ": internal error while importing the DXF drawing (please report): " + e.what());
+  }
+}
+
 Drawing import_dxf(const std::string& path) {
-  check_dxf_syntax(path);
-  DxfReader reader(path);
-  DL_Dxf dxf;
-  if (!dxf.in(path, &reader)) throw ImportError(path + ": cannot open the file");
-  return reader.finish();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ImportError(path + ": cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw ImportError(path + ": cannot read the file");
+  return import_dxf_text(text.str(), path);
 }
 
 }  // namespace host

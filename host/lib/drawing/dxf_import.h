@@ -11,6 +11,9 @@ namespace host {
 // Reads an ASCII DXF file. Throws ImportError naming the file, the entity and the problem.
 Drawing import_dxf(const std::string& path);
 
+// The same for the file's bytes already in memory; `path` names it in messages.
+Drawing import_dxf_text(const std::string& text, const std::string& path);
+
 }  // namespace host
 
 #endif  // HOST_LIB_DRAWING_DXF_IMPORT_H

@@ -1,11 +1,13 @@
-// Pre-flight check of the DXF group structure (see dxf_scan.h).
+// Tokenizer and syntax check of ASCII DXF (see dxf_scan.h).
 #include "host/lib/drawing/dxf_scan.h"
 
-#include <cerrno>   // errno
-#include <cmath>    // std::isfinite
-#include <cstdlib>  // std::strtod, std::strtol
-#include <fstream>  // std::ifstream
-#include <sstream>  // std::ostringstream
+#include <algorithm>  // std::min
+#include <cerrno>     // errno
+#include <climits>    // INT_MAX
+#include <cmath>      // std::isfinite
+#include <cstdlib>    // std::strtod, std::strtoll
+#include <fstream>    // std::ifstream
+#include <sstream>    // std::ostringstream
 
 #include "host/lib/drawing/drawing.h"
 
@@ -20,21 +22,60 @@ bool is_real_code(long c) {
          (c >= 460 && c <= 469) || (c >= 1010 && c <= 1059);
 }
 
-// Group codes whose values are integers.
-bool is_int_code(long c) {
-  return (c >= 60 && c <= 99) || (c >= 170 && c <= 179) || (c >= 270 && c <= 289) ||
-         (c >= 370 && c <= 389) || (c >= 400 && c <= 409) || (c >= 420 && c <= 429) ||
-         (c >= 440 && c <= 459) || (c >= 1060 && c <= 1071);
+// Largest magnitude of an integer group's value by its type (16, 32 or 64 bit); 0 when the
+// code's value is not an integer.
+long long int_code_limit(long c) {
+  // The reference gives 16 bits to 60..79 and others, but writers put larger counts in
+  // 72..74; dxflib holds all of them in an int, so an int's range is what must hold.
+  if ((c >= 60 && c <= 99) || (c >= 170 && c <= 179) || (c >= 270 && c <= 289) ||
+      (c >= 370 && c <= 389) || (c >= 400 && c <= 409) || (c >= 420 && c <= 429) ||
+      (c >= 440 && c <= 459) || (c >= 1060 && c <= 1071)) {
+    return INT_MAX;
+  }
+  if (c >= 160 && c <= 169) return LLONG_MAX;
+  return 0;
 }
 
-// Trims spaces, tabs and CR (dxflib does the same).
+// Trims spaces, tabs and CR.
 std::string strip(const std::string& s) {
   size_t b = s.find_first_not_of(" \t\r\n");
   size_t e = s.find_last_not_of(" \t\r\n");
   return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
 }
 
-// Where a problem is: "file: line N, ENTITY (handle H)".
+// A decimal number as dxflib's reader understands it: [sign] digits [. digits] [e [sign]
+// digits]. Refuses hexadecimal, "inf", "nan" and trailing garbage (strtod alone would take
+// some of them).
+bool is_decimal_real(const std::string& s) {
+  size_t i = 0, digits = 0;
+  if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+  while (i < s.size() && s[i] >= '0' && s[i] <= '9') ++i, ++digits;
+  if (i < s.size() && s[i] == '.') {
+    ++i;
+    while (i < s.size() && s[i] >= '0' && s[i] <= '9') ++i, ++digits;
+  }
+  if (digits == 0) return false;
+  if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+    ++i;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+    size_t exp_digits = 0;
+    while (i < s.size() && s[i] >= '0' && s[i] <= '9') ++i, ++exp_digits;
+    if (exp_digits == 0) return false;
+  }
+  return i == s.size();
+}
+
+// [sign] digits.
+bool is_decimal_int(const std::string& s) {
+  size_t i = (!s.empty() && (s[0] == '+' || s[0] == '-')) ? 1 : 0;
+  if (i == s.size()) return false;
+  for (; i < s.size(); ++i) {
+    if (s[i] < '0' || s[i] > '9') return false;
+  }
+  return true;
+}
+
+// Where a problem is: "file: line N, in ENTITY starting at line M (handle H)".
 struct Where {
   std::string path;
   long line = 0;
@@ -60,9 +101,77 @@ struct PolylineShape {
   long vertices = 0;   // groups 10
 };
 
-// Largest count a group may announce (control points, knots, vertices): far beyond any
-// sane drawing, small enough that dxflib's allocation of it cannot exhaust memory.
-const long kMaxDeclaredCount = 1000000;
+// Reads the text line by line ('\n', a trailing '\r' dropped).
+class Lines {
+ public:
+  explicit Lines(const std::string& text) : text_(text) {}
+  bool next(std::string& line) {
+    if (pos_ >= text_.size()) return false;
+    size_t end = text_.find('\n', pos_);
+    if (end == std::string::npos) end = text_.size();
+    line.assign(text_, pos_, end - pos_);
+    pos_ = end + 1;
+    ++number_;
+    return true;
+  }
+  long number() const { return number_; }
+  size_t pos() const { return pos_; }
+
+ private:
+  const std::string& text_;
+  size_t pos_ = 0;
+  long number_ = 0;
+};
+
+// Throws unless `v` is a valid value of group `code`; checks announced counts.
+void check_value(long code, const std::string& v, const Where& w, size_t file_bytes, long max_count,
+                 PolylineShape& poly) {
+  if (is_real_code(code)) {
+    errno = 0;
+    const double d = is_decimal_real(v) ? std::strtod(v.c_str(), nullptr) : 0.0;
+    if (!is_decimal_real(v) || errno == ERANGE || !std::isfinite(d)) {
+      std::ostringstream o;
+      o << w.describe() << ": group " << code << " value '" << v.substr(0, 40)
+        << "' is not a finite number";
+      throw ImportError(o.str());
+    }
+    return;
+  }
+  const long long limit = int_code_limit(code);
+  if (limit == 0) return;
+  errno = 0;
+  const long long n = is_decimal_int(v) ? std::strtoll(v.c_str(), nullptr, 10) : 0;
+  if (!is_decimal_int(v)) {
+    std::ostringstream o;
+    o << w.describe() << ": group " << code << " value '" << v.substr(0, 40)
+      << "' is not an integer";
+    throw ImportError(o.str());
+  }
+  if (errno == ERANGE || n > limit || n < -limit - 1) {
+    std::ostringstream o;
+    o << w.describe() << ": group " << code << " value " << v.substr(0, 40)
+      << " is out of range (a " << (limit == INT_MAX ? 32 : 64) << "-bit integer: " << -limit - 1
+      << ".." << limit << ")";
+    throw ImportError(o.str());
+  }
+  // Counts of knots, control points, fit points, vertices: dxflib allocates them.
+  const bool spline_count = w.entity == "SPLINE" && code >= 72 && code <= 74;
+  const bool vertex_count = w.entity == "LWPOLYLINE" && code == 90;
+  const bool leader_count = w.entity == "LEADER" && code == 76;
+  if (vertex_count && poly.active) poly.declared = static_cast<long>(n);
+  if ((spline_count || vertex_count || leader_count) && (n < 0 || n > max_count)) {
+    std::ostringstream o;
+    o << w.describe() << ": group " << code << " announces " << n << " items (must be 0.."
+      << max_count << ": ";
+    if (max_count < kMaxDxfDeclaredCount) {
+      o << "a " << file_bytes << "-byte file holds at most one item per " << kMinDxfItemBytes
+        << " bytes)";
+    } else {
+      o << "no drawing needs more)";
+    }
+    throw ImportError(o.str());
+  }
+}
 
 }  // namespace
 
@@ -76,37 +185,58 @@ bool looks_like_dxf(const std::string& path) {
   return strip(a) == "0" && strip(b) == "SECTION";
 }
 
-void check_dxf_syntax(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ImportError(path + ": cannot open the file");
+std::vector<DxfGroup> scan_dxf(const std::string& text, const std::string& path) {
+  if (text.rfind("AutoCAD Binary DXF", 0) == 0) {
+    throw ImportError(path + ": binary DXF is not supported; save the drawing as ASCII DXF");
+  }
+  const long max_count =
+      std::min<long>(kMaxDxfDeclaredCount, static_cast<long>(text.size()) / kMinDxfItemBytes);
+  std::vector<DxfGroup> groups;
   Where w;
   w.path = path;
+  Lines lines(text);
   std::string code_line, value_line;
-  bool saw_eof = false;
-  long pairs = 0;
   PolylineShape poly;
-  while (std::getline(in, code_line)) {
-    ++w.line;
-    if (pairs == 0 && code_line.rfind("AutoCAD Binary DXF", 0) == 0) {
-      throw ImportError(path + ": binary DXF is not supported; save the drawing as ASCII DXF");
-    }
+  while (lines.next(code_line)) {
+    w.line = lines.number();
     const std::string code_text = strip(code_line);
-    if (code_text.empty() && in.peek() == EOF) break;  // trailing blank line
-    char* end = 0;
-    errno = 0;
-    const long code = std::strtol(code_text.c_str(), &end, 10);
-    if (code_text.empty() || *end != '\0' || errno != 0 || code < 0 || code > 1071) {
-      throw ImportError(w.describe() + ": '" + code_text.substr(0, 40) +
+    if (code_text.empty() && lines.pos() >= text.size()) break;  // trailing blank line
+    long code = -1;
+    if (is_decimal_int(code_text) && code_text.size() <= 6)
+      code = std::strtol(code_text.c_str(), nullptr, 10);
+    if (code < 0 || code > 1071) {
+      std::string shown = code_text.substr(0, 40);
+      for (char& c : shown) {
+        if (c == '\0') c = '?';
+      }
+      throw ImportError(w.describe() + ": '" + shown +
                         "' is not a DXF group code (expected an integer 0..1071)");
     }
-    if (!std::getline(in, value_line)) {
+    if (!lines.next(value_line)) {
       throw ImportError(w.describe() + ": the file ends after group code " + code_text +
                         " without its value (truncated file?)");
     }
-    ++w.line;
-    ++pairs;
-    const std::string value = strip(value_line);
-    if (code == 0) {
+    std::string value = strip(value_line);
+    if (value.size() > kMaxDxfValueChars) {
+      // dxflib reads lines of at most 1023 characters (a longer one stops its reader).
+      if (is_real_code(code) || int_code_limit(code) != 0) {
+        std::ostringstream o;
+        o << path << ": line " << lines.number() << ", in " << w.entity << ": the value of group "
+          << code << " is " << value.size() << " characters long (a number has at most "
+          << kMaxDxfValueChars << ")";
+        throw ImportError(o.str());
+      }
+      value.resize(kMaxDxfValueChars);  // text, names: not engraved
+    }
+    if (value.find('\0') != std::string::npos) {
+      std::ostringstream o;
+      o << path << ": line " << lines.number() << ", in " << w.entity
+        << ": a NUL byte in the value of group " << code << " (binary data in a text file?)";
+      throw ImportError(o.str());
+    }
+    if (code == 999) continue;  // comment: not given to dxflib
+    if (code == 0 || code == 9) {
+      // dxflib ends the previous record on group 9 (header variable) as on group 0.
       if (poly.active && poly.declared != poly.vertices) {
         std::ostringstream o;
         o << w.describe() << ": announces " << poly.declared << " vertices (group 90) but lists "
@@ -115,16 +245,27 @@ void check_dxf_syntax(const std::string& path) {
       }
       poly = PolylineShape();
       poly.active = value == "LWPOLYLINE";
-      w.entity = value;
-      w.entity_line = w.line - 1;
+      w.entity = value.empty() ? std::string("an unnamed record") : value;
+      w.entity_line = w.line;
       w.handle.clear();
-      if (value == "EOF") {
-        saw_eof = true;
-        break;
+      groups.push_back(DxfGroup{static_cast<int>(code), value, w.line});
+      if (code == 0 && value == "EOF") {
+        const size_t rest = text.find_first_not_of(std::string(" \t\r\n\0\x1a", 6), lines.pos());
+        if (rest != std::string::npos) {
+          const long after =
+              w.line + 2 +
+              static_cast<long>(std::count(text.begin() + static_cast<long>(lines.pos()),
+                                           text.begin() + static_cast<long>(rest), '\n'));
+          std::ostringstream o;
+          o << path << ": line " << after << ": data after the end-of-file marker '0 EOF' of line "
+            << w.line << " (a damaged or concatenated file?)";
+          throw ImportError(o.str());
+        }
+        return groups;
       }
       continue;
     }
-    if (code == 5) w.handle = value;
+    if (code == 5) w.handle = value.substr(0, 40);
     if (poly.active && (code == 10 || code == 42)) {
       if (poly.declared < 0) {
         throw ImportError(w.describe() + ": vertex data before the vertex count (group 90)");
@@ -134,43 +275,13 @@ void check_dxf_syntax(const std::string& path) {
         throw ImportError(w.describe() + ": a bulge (group 42) before the first vertex");
       }
     }
-    if (is_real_code(code)) {
-      errno = 0;
-      const double v = std::strtod(value.c_str(), &end);
-      if (value.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v)) {
-        std::ostringstream o;
-        o << w.describe() << ": group " << code << " value '" << value.substr(0, 40)
-          << "' is not a finite number";
-        throw ImportError(o.str());
-      }
-    } else if (is_int_code(code)) {
-      errno = 0;
-      const long v = std::strtol(value.c_str(), &end, 10);
-      if (value.empty() || *end != '\0' || errno == ERANGE) {
-        std::ostringstream o;
-        o << w.describe() << ": group " << code << " value '" << value.substr(0, 40)
-          << "' is not an integer";
-        throw ImportError(o.str());
-      }
-      // Counts of knots, control points, fit points, vertices: dxflib allocates them.
-      const bool spline_count = w.entity == "SPLINE" && code >= 72 && code <= 74;
-      const bool vertex_count = w.entity == "LWPOLYLINE" && code == 90;
-      const bool leader_count = w.entity == "LEADER" && code == 76;
-      if (vertex_count && poly.active) poly.declared = v;
-      if ((spline_count || vertex_count || leader_count) && (v < 0 || v > kMaxDeclaredCount)) {
-        std::ostringstream o;
-        o << w.describe() << ": group " << code << " announces " << v << " items (must be 0.."
-          << kMaxDeclaredCount << ")";
-        throw ImportError(o.str());
-      }
-    }
+    check_value(code, value, w, text.size(), max_count, poly);
+    groups.push_back(DxfGroup{static_cast<int>(code), value, w.line});
   }
-  if (!saw_eof) {
-    std::ostringstream o;
-    o << path << ": the file ends at line " << w.line << " inside " << w.entity
-      << " without the closing '0 EOF' (truncated file?)";
-    throw ImportError(o.str());
-  }
+  std::ostringstream o;
+  o << path << ": the file ends at line " << lines.number() << " inside " << w.entity
+    << " without the closing '0 EOF' (truncated file?)";
+  throw ImportError(o.str());
 }
 
 }  // namespace host

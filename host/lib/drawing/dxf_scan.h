@@ -1,15 +1,40 @@
-// A syntax check of an ASCII DXF file before dxflib reads it: group codes are integers,
-// numbers are finite, counts are sane, the file is complete. dxflib reports none of this.
+// The syntax check and tokenizer of an ASCII DXF file: it splits the text into group
+// code/value pairs and checks every one (group codes are integers, numbers are finite and in
+// the range of their type, counts fit the file, the file is complete). dxflib is then driven
+// with exactly these pairs, so it never reads a byte that was not checked.
 #ifndef HOST_LIB_DRAWING_DXF_SCAN_H
 #define HOST_LIB_DRAWING_DXF_SCAN_H
 
-#include <string>  // std::string
+#include <cstddef>  // size_t
+#include <string>   // std::string
+#include <vector>   // std::vector
 
 namespace host {
 
-// Throws ImportError naming the file, the line, the entity and the problem; returns
-// normally when dxflib can safely be given the file.
-void check_dxf_syntax(const std::string& path);
+// One group code/value pair, value stripped of surrounding blanks.
+struct DxfGroup {
+  int code = 0;
+  std::string value;
+  long line = 0;  // line of the group code, from 1
+};
+
+// Splits `text` (the file's bytes) into groups up to and including the closing 0/EOF.
+// Comments (group 999) are dropped. Throws ImportError naming `path`, the line, the entity
+// and the problem; content after 0/EOF other than blanks, NUL and Ctrl-Z is refused.
+std::vector<DxfGroup> scan_dxf(const std::string& text, const std::string& path);
+
+// Largest count a group may announce (control points, knots, vertices) whatever the file's
+// size: far beyond any sane drawing, small enough that dxflib's allocation of it is modest.
+const long kMaxDxfDeclaredCount = 1000000;
+
+// Smallest number of bytes one announced item takes in the file ("10\n0\n"): an announced
+// count above (file size / this) cannot be honoured, so it is refused before dxflib
+// allocates for it.
+const long kMinDxfItemBytes = 4;
+
+// Longest value handed to dxflib (its line buffer holds 1023 characters): longer numbers
+// are refused, longer text (names, annotations: never engraved) is cut.
+const size_t kMaxDxfValueChars = 1000;
 
 // True when the file starts like a DXF (ASCII or binary).
 bool looks_like_dxf(const std::string& path);

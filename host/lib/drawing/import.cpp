@@ -2,6 +2,7 @@
 // not drawings of curves with a message saying what to do instead.
 #include <algorithm>  // std::transform
 #include <fstream>    // std::ifstream
+#include <new>        // std::bad_alloc
 #include <sstream>    // std::ostringstream
 
 #include "host/lib/drawing/drawing.h"
@@ -52,7 +53,9 @@ Extents Drawing::extents() const {
   return e;
 }
 
-Drawing import_drawing(const std::string& path) {
+namespace {
+
+Drawing import_by_format(const std::string& path) {
   std::ifstream probe(path, std::ios::binary);
   if (!probe) throw ImportError(path + ": cannot open the file");
   const std::string ext = extension(path);
@@ -79,6 +82,23 @@ Drawing import_drawing(const std::string& path) {
   throw ImportError(path +
                     ": not a format this tool reads (expected an ASCII DXF drawing, "
                     "or G-code with G0/G1/G2/G3 moves)");
+}
+
+}  // namespace
+
+// Only ImportError leaves: anything else an importer lets out is reported as what it is,
+// with the file's name (callers map ImportError to "input error").
+Drawing import_drawing(const std::string& path) {
+  try {
+    return import_by_format(path);
+  } catch (const ImportError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw ImportError(path + ": not enough memory to import the drawing");
+  } catch (const std::exception& e) {
+    throw ImportError(path +
+                      ": internal error while importing the drawing (please report): " + e.what());
+  }
 }
 
 }  // namespace host
