@@ -7,11 +7,13 @@
 
 namespace host::cli {
 
-// Documented in docs/user-guide.md ("Exit codes"); groups may add codes from 3 upwards.
+// Documented in docs/user-guide.md ("Exit codes"); groups may add codes from 3 upwards
+// (below 70).
 enum ExitCode {
   kExitOk = 0,         // done
   kExitJobFailed = 1,  // the job was refused or failed (plan, work area, validation, link)
-  kExitUsage = 2       // bad command line or unreadable / invalid input file
+  kExitUsage = 2,      // bad command line or unreadable / invalid input file
+  kExitInternal = 70   // an unexpected failure inside the tool (a bug); sysexits' EX_SOFTWARE
 };
 
 // Thrown by a command to print what() on stderr and exit with code.

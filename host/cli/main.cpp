@@ -1,20 +1,18 @@
-// Entry point of the `engraver` tool: the command line, the registered command groups and
-// the mapping of failures to documented exit codes.
+// Entry point of the `engraver` tool: the command line, the registered command groups, and
+// the guard that maps every failure to a message and a documented exit code.
 #include <CLI/CLI.hpp>  // CLI::App
 
 #include <iostream>  // std::cerr
 
+#include "host/cli/command_guard.h"
 #include "host/cli/command_registry.h"
-#include "host/cli/exit_codes.h"
-#include "host/lib/drawing/drawing.h"
-#include "host/lib/plan/job_plan.h"
 
 #ifndef ENGRAVER_VERSION
 #define ENGRAVER_VERSION "unknown"
 #endif
 
-// Only setup before the try can throw outside it (CLI11 rejecting a duplicate option: a bug
-// in this program); std::terminate's report is the right outcome for that.
+// Setup before the guard can only throw for a bug in this program (CLI11 rejecting a
+// duplicate option); std::terminate's report is the right outcome for that.
 // NOLINTNEXTLINE(bugprone-exception-escape)
 int main(int argc, char** argv) {
   CLI::App app{
@@ -24,30 +22,11 @@ int main(int argc, char** argv) {
       "Examples:\n"
       "  engraver info samples/engraver-word.dxf\n"
       "  engraver points samples/engraver-word.dxf --tol 0.005 --csv > points.csv\n"
-      "\nExit codes: 0 ok, 1 job refused or failed, 2 usage or input error "
+      "\nExit codes: 0 ok, 1 job refused or failed, 2 usage or input error, 70 internal error "
       "(docs/user-guide.md lists all).");
   app.set_version_flag("--version", std::string("engraver ") + ENGRAVER_VERSION);
   app.require_subcommand(1);
   host::cli::add_registered_commands(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::Success& e) {
-    return app.exit(e);  // --help, --version
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);  // prints the message and the usage hint
-    return host::cli::kExitUsage;
-  } catch (const host::cli::CommandFailure& e) {
-    std::cerr << "engraver: " << e.what() << "\n";
-    return e.code;
-  } catch (const host::ImportError& e) {
-    std::cerr << "engraver: " << e.what() << "\n";
-    return host::cli::kExitUsage;
-  } catch (const host::PlanError& e) {
-    std::cerr << "engraver: job refused: " << e.what() << "\n";
-    return host::cli::kExitJobFailed;
-  } catch (const std::exception& e) {
-    std::cerr << "engraver: " << e.what() << "\n";
-    return host::cli::kExitJobFailed;
-  }
-  return host::cli::kExitOk;
+  host::cli::install_terminate_guard(app);
+  return host::cli::run_guarded(app, argc, argv, std::cerr);
 }

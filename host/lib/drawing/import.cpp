@@ -93,8 +93,12 @@ Drawing import_drawing(const std::string& path) {
     return import_by_format(path);
   } catch (const ImportError&) {
     throw;
-  } catch (const std::bad_alloc&) {
-    throw ImportError(path + ": not enough memory to import the drawing");
+  } catch (const std::bad_alloc& e) {
+    if (dynamic_cast<const std::bad_array_new_length*>(&e) == nullptr) {
+      throw ImportError(path + ": not enough memory to import the drawing");
+    }
+    throw ImportError(path +
+                      ": internal error while importing the drawing (please report): " + e.what());
   } catch (const std::exception& e) {
     throw ImportError(path +
                       ": internal error while importing the drawing (please report): " + e.what());

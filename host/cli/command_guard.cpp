@@ -1,0 +1,134 @@
+// The whole-process guard (see command_guard.h).
+#include "host/cli/command_guard.h"
+
+#include <cxxabi.h>  // abi::__cxa_demangle, abi::__cxa_current_exception_type
+#include <unistd.h>  // _exit
+
+#include <cstdlib>    // std::free
+#include <exception>  // std::set_terminate, std::current_exception
+#include <iostream>   // std::cerr
+#include <new>        // std::bad_alloc
+#include <typeinfo>   // std::type_info
+
+#include "host/cli/exit_codes.h"
+#include "host/lib/drawing/drawing.h"
+#include "host/lib/plan/job_plan.h"
+#if __has_include(<clipper.hpp>)  // the PCB readers are linked (host_pcb brings Clipper)
+#include "host/lib/pcb/pcb_layer.h"
+#define ENGRAVER_CLI_HAS_PCB 1
+#endif
+
+namespace host::cli {
+
+namespace {
+
+// The readable name of a type ("std::bad_array_new_length").
+std::string type_name(const std::type_info* t) {
+  if (t == nullptr) return "an exception of unknown type";
+  int status = 0;
+  char* d = abi::__cxa_demangle(t->name(), nullptr, nullptr, &status);
+  const std::string name = status == 0 && d != nullptr ? d : t->name();
+  std::free(d);
+  return name;
+}
+
+void describe_into(const CLI::App& app, std::string& out) {
+  for (const CLI::App* sub : app.get_subcommands()) {
+    out += (out.empty() ? "" : " ") + sub->get_name();
+    for (const CLI::Option* opt : sub->get_options()) {
+      if (!opt->get_positional()) continue;
+      for (const std::string& v : opt->results()) out += " " + v;
+    }
+    describe_into(*sub, out);
+  }
+}
+
+// "'engraver info FILE'", or "engraver" when nothing was parsed yet.
+std::string quoted(const std::string& command) {
+  return command.empty() ? std::string("engraver") : "'engraver " + command + "'";
+}
+
+// "engraver: internal error in 'engraver info FILE': unexpected TYPE (WHAT); please ..."
+std::string internal_error(const std::string& command, const std::type_info* type,
+                           const char* what) {
+  std::string m =
+      "engraver: internal error in " + quoted(command) + ": unexpected " + type_name(type);
+  if (what != nullptr) m += std::string(" (") + what + ")";
+  return m + "; please report it with the input file\n";
+}
+
+std::string g_running;  // for the terminate handler: the command being run
+
+[[noreturn]] void on_terminate() {
+  std::string what;
+  const std::string type = type_name(abi::__cxa_current_exception_type());
+  try {
+    if (std::current_exception()) std::rethrow_exception(std::current_exception());
+    what = "std::terminate without an exception";
+  } catch (const std::exception& e) {
+    what = "unexpected " + type + ": " + e.what();
+  } catch (...) {
+    what = "unexpected " + type;
+  }
+  std::cerr << "engraver: internal error in " << quoted(g_running) << ": " << what
+            << " (escaped a thread; please report it with the input file)" << std::endl;
+  _exit(kExitInternal);
+}
+
+}  // namespace
+
+std::string describe_command(const CLI::App& app) {
+  std::string out;
+  describe_into(app, out);
+  return out;
+}
+
+void install_terminate_guard(CLI::App& app) {
+  app.parse_complete_callback([&app]() { g_running = describe_command(app); });
+  std::set_terminate(on_terminate);
+}
+
+int run_guarded(CLI::App& app, int argc, const char* const* argv, std::ostream& err) {
+  try {
+    app.parse(argc, argv);
+    return kExitOk;
+  } catch (const CLI::Success& e) {
+    return app.exit(e);  // --help, --version
+  } catch (const CLI::ParseError& e) {
+    app.exit(e, std::cout, err);  // the message and the usage hint
+    return kExitUsage;
+  } catch (const CommandFailure& e) {
+    err << "engraver: " << e.what() << "\n";
+    return e.code;
+  } catch (const ImportError& e) {
+    err << "engraver: " << e.what() << "\n";  // names the file, the place and the problem
+    return kExitUsage;
+#ifdef ENGRAVER_CLI_HAS_PCB
+  } catch (const host::pcb::PcbReadError& e) {
+    err << "engraver: " << e.what() << "\n";  // names the file, the line and the problem
+    return kExitUsage;
+#endif
+  } catch (const PlanError& e) {
+    err << "engraver: job refused: " << e.what() << "\n";
+    return kExitJobFailed;
+  } catch (const std::bad_array_new_length& e) {
+    err << internal_error(describe_command(app), &typeid(e), e.what());  // a size computed wrong
+    return kExitInternal;
+  } catch (const std::bad_alloc&) {
+    err << "engraver: " << quoted(describe_command(app))
+        << " ran out of memory (the input is too large, or a bug: please report it)\n";
+    return kExitInternal;
+  } catch (const std::runtime_error& e) {
+    // A failure the libraries report in words (a file that cannot be written, a port).
+    err << "engraver: " << quoted(describe_command(app)) << " failed: " << e.what() << "\n";
+    return kExitJobFailed;
+  } catch (const std::exception& e) {
+    err << internal_error(describe_command(app), &typeid(e), e.what());
+    return kExitInternal;
+  } catch (...) {
+    err << internal_error(describe_command(app), abi::__cxa_current_exception_type(), nullptr);
+    return kExitInternal;
+  }
+}
+
+}  // namespace host::cli
