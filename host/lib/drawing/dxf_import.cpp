@@ -29,8 +29,15 @@ const double kPi = 3.14159265358979323846;
 const int kMaxInsertDepth = 16;
 // Fit-point splines are interpolated with a dense solve (time ~ n^3, memory ~ n^2).
 const size_t kMaxFitPoints = 1000;
-// What block references may expand to: copies made plus control points copied.
-const long kMaxExpansionWork = 10000000;
+// What block references may expand to: block copies made, control points copied (an array
+// of arrays multiplies them; the bounds keep time and memory to seconds and megabytes).
+const long kMaxBlockCopies = 20000;
+const long kMaxExpandedControlPoints = 2000000;
+
+struct ExpansionBudget {
+  long copies = 0;
+  long control_points = 0;
+};
 
 // The raw groups of one DXF record (entity, table entry, header variable), as read.
 struct RawRecord {
@@ -388,7 +395,7 @@ class DxfReader : public DL_CreationAdapter {
   }
 
   void expand(const Space& s, const Eigen::Matrix2d& a, const Point2& b, int depth,
-              const std::string& via, long& work, std::vector<Curve>& out) const;
+              const std::string& via, ExpansionBudget& budget, std::vector<Curve>& out) const;
 
   std::string path_;
   RawRecord pending_, finished_;
@@ -546,13 +553,17 @@ void DxfReader::addSpline(const DL_SplineData& d) {
 
 // Appends the curves of a space mapped by x -> a x + b, expanding its block references.
 void DxfReader::expand(const Space& s, const Eigen::Matrix2d& a, const Point2& b, int depth,
-                       const std::string& via, long& work, std::vector<Curve>& out) const {
-  work += 1;
-  for (const Curve& c : s.curves) work += 1 + static_cast<long>(c.spline.control.size());
-  if (work > kMaxExpansionWork) {
+                       const std::string& via, ExpansionBudget& budget,
+                       std::vector<Curve>& out) const {
+  budget.copies += 1;
+  for (const Curve& c : s.curves) {
+    budget.control_points += static_cast<long>(c.spline.control.size());
+  }
+  if (budget.copies > kMaxBlockCopies || budget.control_points > kMaxExpandedControlPoints) {
     throw ImportError(path_ + ": block references expand to more than " +
-                      std::to_string(kMaxExpansionWork) +
-                      " copies and control points (arrays of arrays of blocks?)" +
+                      std::to_string(kMaxBlockCopies) + " block copies or " +
+                      std::to_string(kMaxExpandedControlPoints) +
+                      " control points (arrays of arrays of blocks?)" +
                       (via.empty() ? std::string() : ", last" + via));
   }
   for (const Curve& c : s.curves) {
@@ -586,7 +597,8 @@ void DxfReader::expand(const Space& s, const Eigen::Matrix2d& a, const Point2& b
         const Point2 local_b =
             mirror * (Point2(d.ipx, d.ipy) + rot * (offset - scale * it->second.base));
         expand(it->second, a * local_a, a * local_b + b, depth + 1,
-               " via " + r.label.substr(0, r.label.find(" (")) + " of '" + d.name + "'", work, out);
+               " via " + r.label.substr(0, r.label.find(" (")) + " of '" + d.name + "'", budget,
+               out);
       }
     }
   }
@@ -648,8 +660,8 @@ Drawing DxfReader::finish() {
                         "1 inch, 2 foot, 4 mm, 5 cm, 6 m, 8 microinch, 9 mil, 13 micron, 14 dm)");
   }
   std::vector<Curve> curves;
-  long work = 0;
-  expand(model_, Eigen::Matrix2d::Identity() * dr.unit_to_mm, Point2(0, 0), 0, "", work, curves);
+  ExpansionBudget budget;
+  expand(model_, Eigen::Matrix2d::Identity() * dr.unit_to_mm, Point2(0, 0), 0, "", budget, curves);
   for (const Curve& c : curves) {
     for (const Point2& p : c.spline.control) {
       if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || std::fabs(p.x()) > 1e7 ||
