@@ -1,0 +1,81 @@
+// Hostile drawings through the tool as a user runs it: a clean, specific message on stderr
+// and exit code 2 (input error), never a crash or a bare exception type (issue 13).
+#include <dirent.h>  // opendir
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+struct ToolRun {
+  int code;  // exit code; -1 when killed by a signal
+  std::string err;
+};
+
+ToolRun run_info(const std::string& file) {
+  const std::string err_path =
+      testing::TempDir() + "/cli_hostile_stderr_" + std::to_string(getpid()) + ".txt";
+  const std::string cmd =
+      std::string(ENGRAVER_EXE) + " info '" + file + "' >/dev/null 2>" + err_path;
+  const int status = std::system(cmd.c_str());
+  ToolRun r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_path);
+  std::stringstream s;
+  s << e.rdbuf();
+  r.err = s.str();
+  return r;
+}
+
+std::string write_temp(const std::string& name, const std::string& bytes) {
+  const std::string path = testing::TempDir() + "/" + std::to_string(getpid()) + "-" + name;
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+TEST(CliHostile, SplineAfterEofIsAnInputError) {
+  const std::string f = write_temp("after-eof.dxf", "0\nEOF\n0\nSPLINE\n73\n8\n73\n715827883\n");
+  const ToolRun r = run_info(f);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "engraver: " + f +
+                       ": line 3: data after the end-of-file marker '0 EOF' of line 1 (a "
+                       "damaged or concatenated file?)\n");
+}
+
+TEST(CliHostile, SplineDegreeOverflowIsAnInputError) {
+  const std::string f = write_temp(
+      "degree.dxf", "0\nSECTION\n2\nENTITIES\n0\nSPLINE\n71\n5981035710\n0\nENDSEC\n0\nEOF\n");
+  const ToolRun r = run_info(f);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "engraver: " + f +
+                       ": line 7, in SPLINE starting at line 5: group 71 value 5981035710 is "
+                       "out of range (a 32-bit integer: -2147483648..2147483647)\n");
+}
+
+// The reproducers in ../shared/samples/hostile (skipped when ../shared is absent).
+TEST(CliHostile, SharedReproducersExitTwoWithTheFileNamed) {
+  const std::string dir = std::string(ENGRAVER_SOURCE_DIR) + "/../shared/samples/hostile/";
+  DIR* d = opendir(dir.c_str());
+  if (d == nullptr) GTEST_SKIP() << dir << " not present";
+  std::vector<std::string> files;
+  while (dirent* e = readdir(d)) {
+    const std::string n = e->d_name;
+    if (n.size() > 4 && n.compare(n.size() - 4, 4, ".dxf") == 0) files.push_back(dir + n);
+  }
+  closedir(d);
+  ASSERT_FALSE(files.empty());
+  for (const std::string& f : files) {
+    const ToolRun r = run_info(f);
+    EXPECT_EQ(r.code, 2) << f << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("engraver: " + f + ": line ", 0), 0u) << r.err;
+    EXPECT_EQ(r.err.find("std::"), std::string::npos) << r.err;
+  }
+}
+
+}  // namespace
