@@ -279,8 +279,13 @@ std::vector<Point2> sample(const BSpline& s, double tol_mm) {
 }
 
 Extents curve_extents(const BSpline& s) {
+  // 0.1 um, or 1e-8 of the control polygon's size for curves beyond 10 m: the number of
+  // chords then stays bounded whatever the size (a 3 km arc took seconds at 0.1 um).
+  Extents hull;
+  for (const Point2& c : s.control) hull.add(c);
+  const double size = hull.empty() ? 0.0 : std::max(hull.width(), hull.height());
   Extents e;
-  for (const Point2& p : sample(s, 1e-4)) e.add(p);
+  for (const Point2& p : sample(s, std::max(1e-4, 1e-8 * size))) e.add(p);
   return e;
 }
 

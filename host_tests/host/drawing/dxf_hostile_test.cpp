@@ -206,3 +206,34 @@ TEST(DxfHostile, SharedReproducersAreRefused) {
 
 }  // namespace
 }  // namespace host
+
+namespace host {
+namespace {
+
+// Found by fuzz_dxf: a polyline arc 3 km across made extents() (sampling at 0.1 um) take
+// seconds; the sampling tolerance now grows with the curve beyond 10 m. The extents must
+// still be right.
+TEST(DxfHostile, KilometreArcHasExactExtents) {
+  const std::string p = Groups()
+                            .g(0, "LWPOLYLINE")
+                            .g(5, "B0")
+                            .g(8, "0")
+                            .g(90, 2)
+                            .g(70, 0)
+                            .g(10, 0.0)
+                            .g(20, 0.0)
+                            .g(42, 1.0)
+                            .g(10, 0.0)
+                            .g(20, 3010000.0)
+                            .str();
+  const Drawing d = import_dxf_text(dxf_text(p), "km.dxf");
+  ASSERT_EQ(d.curves.size(), 1u);
+  const Extents e = d.extents();  // a half circle of radius 1 505 000 mm, bulging to +x
+  EXPECT_NEAR(e.min.x(), 0.0, 1e-6);
+  EXPECT_NEAR(e.max.x(), 1505000.0, 0.1);
+  EXPECT_NEAR(e.min.y(), 0.0, 1e-6);
+  EXPECT_NEAR(e.max.y(), 3010000.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace host
