@@ -722,6 +722,10 @@ Drawing import_dxf_text(const std::string& text, const std::string& path) {
     DxfReader reader(path);
     GroupFeed feed(groups, reader);
     std::istream stream(&feed);
+    // dxflib loops until end-of-file: an exception in underflow() must not leave the stream
+    // merely bad (no eof, an endless loop) but reach the handlers below. No line it reads is
+    // longer than its 1023-character buffer (kMaxDxfValueChars), which would do the same.
+    stream.exceptions(std::ios::badbit);
     DL_Dxf dxf;
     dxf.in(stream, &reader);
     return reader.finish();
