@@ -115,6 +115,26 @@ void measure_fixed_point(core::SpanEvaluator* evaluator, uint16_t span) {
   stats_print(PROXY_STR("fixed De Boor point, cubic 2-D (evaluate_q6)"));
 }
 
+// The same curve made rational (weights 0.55..1.46, ratio < 3), span `span`.
+void measure_fixed_rational(core::SpanEvaluator* evaluator, uint16_t span) {
+  static const uint16_t kWeightQ14[7] = {16384, 12000, 20000, 16384, 9000, 24000, 16384};
+  core::Spline& curve = *g_bench;
+  curve.rational = true;
+  for (uint8_t i = 0; i < 7; ++i) curve.control[i].weight_q14 = kWeightQ14[i];
+  stats_reset();
+  PROXY_CHECK(evaluator->setup(curve, span) == core::GeometryError::kOk);
+  for (uint8_t i = 0; i < kSamples; ++i) {
+    const uint32_t t = (uint32_t)i * (65536UL / kSamples) + 977U;
+    const uint32_t a = cycles_now();
+    const core::PointQ6 p = evaluator->evaluate_q6(t);
+    const uint32_t b = cycles_now();
+    g_sink = p.x_q6 + p.y_q6;
+    stats_add(a, b);
+  }
+  stats_print(PROXY_STR("fixed De Boor point, rational cubic 2-D (evaluate_q6)"));
+  build_bench_curve();  // back to the polynomial curve for the other measurements
+}
+
 void measure_float_point(const FloatCurve& curve, uint16_t span, core::SpanEvaluator* fixed) {
   stats_reset();
   const float left = curve.knot[span];
@@ -277,6 +297,7 @@ void run_measurements() {
   measure_fixed_point(&evaluator, span);
   measure_float_point(float_curve, span, &evaluator);
   measure_float_horner(float_curve, span);
+  measure_fixed_rational(&evaluator, span);
   measure_stepping(core::StepMode::kAdaptive, 0, PROXY_STR("stepper next(), adaptive 5 um"));
   measure_stepping(core::StepMode::kAdaptive, 500,
                    PROXY_STR("stepper next(), adaptive 5 um, tool offset 0.5 mm"));
