@@ -2,6 +2,8 @@
 // per-point Horner evaluation in 32x16 fixed point.
 #include "firmware/core/span_evaluator.h"
 
+#include "firmware/core/divide.h"  // reciprocal_of, mul_reciprocal_q27
+
 namespace core {
 
 namespace {
@@ -75,11 +77,21 @@ void power_basis(uint8_t p, const int64_t* b, int64_t* c) {
   }
 }
 
-// Horner in t (uq16; t_q16 = 65536 handled as 1.0 by the caller) over coefficients c.
+// Horner in t (uq16; t_q16 = 65536 handled as 1.0 by the caller) over coefficients c,
+// unrolled per degree (kMaxDegree 3): no loop counter or indexing on the per-point path.
+// Inlined into evaluate_q6 (the per-point path); direction() calls the copy below.
+inline __attribute__((always_inline)) int32_t horner_inline(const int32_t* c, uint8_t p, uq16_t t) {
+  if (p == 3) {
+    return c[0] + mul_32x16_uq16_round(
+                      c[1] + mul_32x16_uq16_round(c[2] + mul_32x16_uq16_round(c[3], t), t), t);
+  }
+  if (p == 2) return c[0] + mul_32x16_uq16_round(c[1] + mul_32x16_uq16_round(c[2], t), t);
+  if (p == 1) return c[0] + mul_32x16_uq16_round(c[1], t);
+  return c[0];
+}
+
 int32_t horner(const int32_t* c, uint8_t p, uq16_t t) {
-  int32_t acc = c[p];
-  for (uint8_t k = p; k > 0; --k) acc = c[k - 1] + mul_32x16_uq16_round(acc, t);
-  return acc;
+  return horner_inline(c, p, t);
 }
 
 // Scales (x, y) so that the larger magnitude lies in [2^13, 2^14): a direction only.
@@ -136,6 +148,7 @@ uint16_t next_span(const Spline& spline, uint16_t span) {
 
 SpanEvaluator::SpanEvaluator() : degree_(0), rational_(false), dir_shift_(0) {
   origin_.x_um = origin_.y_um = 0;
+  origin_q6_.x_q6 = origin_q6_.y_q6 = 0;
   start_.x_q6 = start_.y_q6 = 0;
   end_ = start_;
   end_dir_.dx = end_dir_.dy = 0;
@@ -184,6 +197,8 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   // Origin: the span start rounded to 1 um (absolute).
   origin_.x_um = (int32_t)(ref.x_um + div_round(shl64(b[0].x, kAlphaShift - kSetupShift), b[0].w));
   origin_.y_um = (int32_t)(ref.y_um + div_round(shl64(b[0].y, kAlphaShift - kSetupShift), b[0].w));
+  origin_q6_.x_q6 = origin_.x_um * (1L << kQ6Shift);  // |.| < 2^26: once, not per point
+  origin_q6_.y_q6 = origin_.y_um * (1L << kQ6Shift);
   // Numerators relative to the origin, weights normalised to max 1, in q6 / q27.
   int64_t nx[kMaxDegree + 1], ny[kMaxDegree + 1], nw[kMaxDegree + 1];
   const int64_t ox = shl64((int64_t)origin_.x_um - ref.x_um, kSetupShift);
@@ -241,22 +256,26 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   return GeometryError::kOk;
 }
 
-// Horner on the span-relative coefficients; rational: one 64/32 division per axis.
+// Horner on the span-relative coefficients: per coordinate `degree` 32x16 products.
 PointQ6 SpanEvaluator::evaluate_q6(uint32_t t_q16) const {
-  PointQ6 r;
   if (t_q16 >= kUq16One) return end_;
+  if (rational_) return rational_q6((uq16_t)t_q16);
   const uq16_t t = (uq16_t)t_q16;
-  const int32_t x = horner(cx_, degree_, t);
-  const int32_t y = horner(cy_, degree_, t);
-  if (!rational_) {
-    r.x_q6 = origin_.x_um * (1L << kQ6Shift) + x;
-    r.y_q6 = origin_.y_um * (1L << kQ6Shift) + y;
-    return r;
-  }
-  int32_t w = horner(cw_, degree_, t);  // > 0: convex combination of weights > 0
-  if (w < 1) w = 1;                     // rounding can never make it 0; be sure anyway
-  r.x_q6 = origin_.x_um * (1L << kQ6Shift) + (int32_t)div_round(shl64(x, kQ27Shift), w);
-  r.y_q6 = origin_.y_um * (1L << kQ6Shift) + (int32_t)div_round(shl64(y, kQ27Shift), w);
+  PointQ6 r;
+  r.x_q6 = origin_q6_.x_q6 + horner_inline(cx_, degree_, t);
+  r.y_q6 = origin_q6_.y_q6 + horner_inline(cy_, degree_, t);
+  return r;
+}
+
+// N(t) / W(t): W by Horner too, then one reciprocal of W (one 32/16 division and a Newton
+// step) and four 16x16 products per coordinate instead of a 64/32 division each.
+PointQ6 SpanEvaluator::rational_q6(uq16_t t) const {
+  // W > 0: a convex combination of weights > 0 (<= 2^27, normalised at setup); rounding
+  // can never make it 0, and reciprocal_of treats w <= 0 as 1 anyway.
+  const Reciprocal inv_w = reciprocal_of(horner_inline(cw_, degree_, t));
+  PointQ6 r;
+  r.x_q6 = origin_q6_.x_q6 + mul_reciprocal_q27(horner_inline(cx_, degree_, t), inv_w);
+  r.y_q6 = origin_q6_.y_q6 + mul_reciprocal_q27(horner_inline(cy_, degree_, t), inv_w);
   return r;
 }
 

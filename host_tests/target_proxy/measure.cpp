@@ -1,6 +1,7 @@
 // Cycle counts on the proxy of the work the firmware repeats: one integer sqrt, one cubic
 // 2-D De Boor point in fixed point and in float, one span setup, one stepping decision;
 // and the RAM the core's objects take.
+#include "firmware/core/divide.h"          // div_u32_u16, reciprocal_of, mul_reciprocal_q27
 #include "firmware/core/fixed_point.h"     // mul_32x16_uq16
 #include "firmware/core/isqrt.h"           // isqrt32
 #include "firmware/core/span_evaluator.h"  // SpanEvaluator
@@ -243,6 +244,39 @@ void measure_primitives() {
     stats_add(t0, t1);
   }
   stats_print(PROXY_STR("primitive core::mul_32x16_uq16"));
+
+  stats_reset();
+  for (uint8_t i = 0; i < kRuns; ++i) {
+    const uint32_t n = (uint32_t)g_a32;
+    const uint16_t d = g_b16;
+    const uint32_t t0 = cycles_now();
+    const uint16_t q = core::div_u32_u16(n, d, 0);  // n >> 16 < d
+    const uint32_t t1 = cycles_now();
+    g_sink = q;
+    stats_add(t0, t1);
+  }
+  stats_print(PROXY_STR("primitive core::div_u32_u16 (32/16, DIV.UD on the dsPIC)"));
+  stats_reset();
+  for (uint8_t i = 0; i < kRuns; ++i) {
+    const int32_t w = g_a32 >> 3;
+    const uint32_t t0 = cycles_now();
+    const core::Reciprocal r = core::reciprocal_of(w);
+    const uint32_t t1 = cycles_now();
+    g_sink = (int32_t)r.r_q62;
+    stats_add(t0, t1);
+  }
+  stats_print(PROXY_STR("primitive core::reciprocal_of"));
+  stats_reset();
+  const core::Reciprocal inv = core::reciprocal_of(g_a32 >> 3);
+  for (uint8_t i = 0; i < kRuns; ++i) {
+    const int32_t x = g_b32;
+    const uint32_t t0 = cycles_now();
+    const int32_t q = core::mul_reciprocal_q27(x, inv);
+    const uint32_t t1 = cycles_now();
+    g_sink = q;
+    stats_add(t0, t1);
+  }
+  stats_print(PROXY_STR("primitive core::mul_reciprocal_q27"));
 
   stats_reset();
   for (uint8_t i = 0; i < kRuns; ++i) {

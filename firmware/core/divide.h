@@ -1,0 +1,38 @@
+// Divisions the hot paths can afford: 32/16 with a 16-bit quotient (the dsPIC's DIV.UD,
+// 18 cycles) and a reciprocal, found once with one such division and a Newton step, that
+// turns every further division by the same value into four 16x16 products. No 64-bit
+// arithmetic and no 32/32 division anywhere here.
+#ifndef FIRMWARE_CORE_DIVIDE_H
+#define FIRMWARE_CORE_DIVIDE_H
+
+#include <stdint.h>  // uint32_t, uint16_t, int32_t
+
+namespace core {
+
+// floor(n / d) and n mod d for (n >> 16) < d (so the quotient fits 16 bits): one DIV.UD on
+// the dsPIC, a 16-step shift-and-subtract on 16-bit halves elsewhere. rem may be null.
+uint16_t div_u32_u16(uint32_t n, uint16_t d, uint16_t* rem);
+
+// floor(n / d) for any n and d > 0 (d = 0 gives 0xFFFFFFFF): long division in two 16-bit
+// digits, the first skipped when n < d * 2^16. rem may be null.
+uint32_t div_u32_by_u16(uint32_t n, uint16_t d, uint16_t* rem);
+
+// 1/w for w > 0 as  r_q62 / 2^(62 - shift):  r_q62 = 2^62 / (w * 2^shift), the normalised
+// w * 2^shift in [2^30, 2^31), so r_q62 in (2^31, 2^32) (saturated at 2^32 - 1).
+// Relative error below 2^-27 (docs/core-math.md, *Rational points*).
+struct Reciprocal {
+  uint32_t r_q62;
+  uint8_t shift;  // 0..30
+};
+
+// Reciprocal of w (w <= 0 is treated as 1): one div_u32_u16 and four 16x16 products.
+Reciprocal reciprocal_of(int32_t w);
+
+// round(x * 2^27 / w) for the w of r (the rational point's N / W, with W in Q27), within
+// 1 + |result| * 2^-27 of the exact quotient. Bounds: w <= 2^28 and |x * 2^27 / w| < 2^29
+// (|x| is clamped so that nothing overflows beyond them). Four 16x16 products.
+int32_t mul_reciprocal_q27(int32_t x, const Reciprocal& r);
+
+}  // namespace core
+
+#endif  // FIRMWARE_CORE_DIVIDE_H
