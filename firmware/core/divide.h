@@ -13,6 +13,10 @@ namespace core {
 // the dsPIC, a 16-step shift-and-subtract on 16-bit halves elsewhere. rem may be null.
 uint16_t div_u32_u16(uint32_t n, uint16_t d, uint16_t* rem);
 
+// floor(n / d) for n < d * 2^bits, bits in 1..16: the quotient has at most `bits` bits, so
+// the shift-and-subtract loop runs `bits` times only (DIV.UD on the dsPIC all the same).
+uint16_t div_u32_u16_small(uint32_t n, uint16_t d, uint8_t bits);
+
 // floor(n / d) for any n and d > 0 (d = 0 gives 0xFFFFFFFF): long division in two 16-bit
 // digits, the first skipped when n < d * 2^16. rem may be null.
 uint32_t div_u32_by_u16(uint32_t n, uint16_t d, uint16_t* rem);

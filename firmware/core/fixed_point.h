@@ -87,6 +87,21 @@ inline int32_t mul_16x16(int16_t a, int16_t b) {
   return (int32_t)a * (int32_t)b;
 }
 
+// v >> n (arithmetic, n in 0..31) with a whole-byte step first: a variable shift is a loop
+// of single-bit steps on the AVR (and on the dsPIC for 32-bit values), a shift by 8 is a
+// byte move.
+inline int32_t asr32(int32_t v, uint8_t n) {
+  if (n >= 8) {
+    v >>= 8;
+    n = (uint8_t)(n - 8);
+    if (n >= 8) {
+      v >>= 8;
+      n = (uint8_t)(n - 8);
+    }
+  }
+  return v >> n;
+}
+
 // round(v / 2^shift) for shift in 1..30 (ties up; arithmetic shift on every target).
 inline int32_t round_shift(int32_t v, uint8_t shift) {
   return (int32_t)((v + ((int32_t)1 << (shift - 1))) >> shift);
