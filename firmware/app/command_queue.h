@@ -57,7 +57,8 @@ class CommandQueue {
   void finished() {
     if (done_ != exec_) ++done_;
   }
-  // The newest stored item (for checks such as "zeroing queued"), 0 if none.
+  // The stored item offset_from_oldest places after the oldest unfinished one (0: the
+  // oldest; size() - 1: the newest), for checks such as "zeroing queued"; 0 if none.
   const QueueItem* at(uint8_t offset_from_oldest) const {
     if (offset_from_oldest >= (uint8_t)(head_ - done_)) return 0;
     return &items_[(uint8_t)(done_ + offset_from_oldest) % kCapacity];
