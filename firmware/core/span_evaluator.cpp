@@ -120,6 +120,37 @@ Direction scale_direction(int64_t x, int64_t y) {
   return d;
 }
 
+// The same for 32-bit components (the polynomial derivative): identical results, without
+// 64-bit shifts and divisions (helper calls on 16-bit targets). Division by 2^shift
+// truncates toward zero as above: the shift works on the magnitude.
+Direction scale_direction32(int32_t x, int32_t y) {
+  Direction d = {0, 0};
+  const uint32_t ax = abs_u32(x);
+  const uint32_t ay = abs_u32(y);
+  uint32_t m = ax > ay ? ax : ay;
+  if (m == 0) return d;
+  uint8_t down = 0;
+  uint8_t up = 0;
+  while (m >= (1UL << 22)) {  // whole bytes first, then bits
+    m >>= 8;
+    down = (uint8_t)(down + 8);
+  }
+  while (m >= (1UL << 14)) {
+    m >>= 1;
+    ++down;
+  }
+  while (m < (1UL << 13)) {
+    m <<= 1;
+    ++up;
+  }
+  // |result| < 2^14 either way; up only when m < 2^13, so nothing overflows.
+  const uint16_t rx = (uint16_t)(down ? ax >> down : ax << up);
+  const uint16_t ry = (uint16_t)(down ? ay >> down : ay << up);
+  d.dx = x < 0 ? (int16_t) - (int16_t)rx : (int16_t)rx;
+  d.dy = y < 0 ? (int16_t) - (int16_t)ry : (int16_t)ry;
+  return d;
+}
+
 }  // namespace
 
 // Rounds a q6 point to whole micrometres.
@@ -292,7 +323,7 @@ Direction SpanEvaluator::direction(uq16_t t) const {
   }
   const int32_t px = horner(dx, (uint8_t)(degree_ - 1), t);
   const int32_t py = horner(dy, (uint8_t)(degree_ - 1), t);
-  if (!rational_) return scale_direction(px, py);
+  if (!rational_) return scale_direction32(px, py);
   // P = N / W, P' ~ N' W - N W' (W > 0 leaves the direction unchanged).
   int32_t dw[kMaxDegree];
   for (uint8_t k = 1; k <= degree_; ++k) dw[k - 1] = (cw_[k] >> dir_shift_) * k;

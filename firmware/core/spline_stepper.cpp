@@ -2,7 +2,8 @@
 // spline, tool-radius offset along the normal, corner arcs and miters, stop on overcut.
 #include "firmware/core/spline_stepper.h"
 
-#include "firmware/core/fixed_point.h"  // mul_32x16_q15, kUq16One
+#include "firmware/core/divide.h"       // div_u32_u16
+#include "firmware/core/fixed_point.h"  // mul_32x16_q15, mul_u16_u16, abs_u32, kUq16One
 #include "firmware/core/isqrt.h"        // isqrt32
 
 namespace core {
@@ -368,29 +369,60 @@ Direction SplineStepper::usable_direction(uint32_t t_q16) {
   return d;
 }
 
-// Unit left normal (-dy, dx) / |d| in Q15.
+// Unit left normal (-dy, dx) / |d| in Q15: one root and two 32/16 divisions (no 64-bit
+// arithmetic: DIV.UD on the dsPIC).
 SplineStepper::Unit SplineStepper::left_normal(const Direction& d) const {
   Unit u;
-  const uint32_t s = (uint32_t)((int32_t)d.dx * d.dx + (int32_t)d.dy * d.dy);  // < 2^29
+  const uint32_t s = mul_u16_u16((uint16_t)abs_u32(d.dx), (uint16_t)abs_u32(d.dx)) +
+                     mul_u16_u16((uint16_t)abs_u32(d.dy), (uint16_t)abs_u32(d.dy));  // < 2^31
   if (s == 0) {
     u.x_q15 = 0;
     u.y_q15 = 32767;
     return u;
   }
-  // |d| in q8: integer root refined by one Newton step (error < 2^-13 relative).
-  const uint32_t root = isqrt32(s);
-  const uint32_t len_q8 = root * 256 + ((s - root * root) * 128) / (root ? root : 1);
-  u.x_q15 = (int32_t)(-(int64_t)d.dy * (32768 * 256) / len_q8);
-  u.y_q15 = (int32_t)((int64_t)d.dx * (32768 * 256) / len_q8);
+  // |d| in q8: integer root refined by one Newton step (error < 2^-13 relative); the
+  // correction (s - root^2) * 128 / root <= 256, so its quotient fits 16 bits.
+  const uint16_t root = isqrt32(s);
+  const uint32_t len_q8 =
+      ((uint32_t)root << 8) + div_u32_u16((s - mul_u16_u16(root, root)) * 128U, root, 0);
+  // |d| / 2^k in [2^15, 2^16): component * 2^(23 - k) / that is the Q15 value, a 32/16
+  // division with a quotient <= 2^15 (component <= |d|) and a dividend below 2^31.
+  uint32_t len_n = len_q8;
+  int8_t k = 0;
+  while (len_n >= 65536UL) {
+    len_n >>= 1;
+    ++k;
+  }
+  while (len_n < 32768UL) {
+    len_n <<= 1;
+    --k;
+  }
+  const uint8_t up = (uint8_t)(23 - k);
+  const uint16_t ux = div_u32_u16(abs_u32(d.dy) << up, (uint16_t)len_n, 0);
+  const uint16_t uy = div_u32_u16(abs_u32(d.dx) << up, (uint16_t)len_n, 0);
+  u.x_q15 = d.dy > 0 ? -(int32_t)ux : (int32_t)ux;  // -dy / |d|, truncated toward zero
+  u.y_q15 = d.dx < 0 ? -(int32_t)uy : (int32_t)uy;
   return u;
 }
 
-// base + R * normal, in q6.
+// base + R * normal, in q6: R * 64 < 2^23 times |normal| <= 2^15 as 16x16 products on the
+// magnitudes (truncated toward zero, the sign applied after).
 PointQ6 SplineStepper::offset_point(const PointQ6& base, const Unit& n) const {
-  const int64_t r_q6 = (int64_t)settings_.tool_offset_um * 64;
+  const int32_t r_q6 = settings_.tool_offset_um * 64;
+  const uint32_t ar = abs_u32(r_q6);
+  const uint16_t ar_hi = (uint16_t)(ar >> 16);  // < 2^7
+  const uint16_t ar_lo = (uint16_t)ar;
+  int32_t off[2];
+  const int32_t comp[2] = {n.x_q15, n.y_q15};
+  for (uint8_t i = 0; i < 2; ++i) {
+    const uint16_t an = (uint16_t)abs_u32(comp[i]);  // <= 2^15
+    // (hi 2^16 + lo) an / 2^15 = 2 hi an + lo an / 2^15; hi an < 2^22, lo an < 2^31.
+    const uint32_t mag = (mul_u16_u16(ar_hi, an) << 1) + (mul_u16_u16(ar_lo, an) >> 15);
+    off[i] = ((r_q6 < 0) != (comp[i] < 0)) ? -(int32_t)mag : (int32_t)mag;
+  }
   PointQ6 p;
-  p.x_q6 = base.x_q6 + (int32_t)((r_q6 * n.x_q15) / 32768);
-  p.y_q6 = base.y_q6 + (int32_t)((r_q6 * n.y_q15) / 32768);
+  p.x_q6 = base.x_q6 + off[0];
+  p.y_q6 = base.y_q6 + off[1];
   return p;
 }
 
