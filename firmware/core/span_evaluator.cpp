@@ -317,16 +317,14 @@ Direction SpanEvaluator::direction(uq16_t t) const {
     return z;
   }
   int32_t dx[kMaxDegree], dy[kMaxDegree];
-  for (uint8_t k = 1; k <= degree_; ++k) {
-    dx[k - 1] = (cx_[k] >> dir_shift_) * k;  // q(6 - dir_shift_) um
-    dy[k - 1] = (cy_[k] >> dir_shift_) * k;
-  }
+  derivative(cx_, dx);  // q(6 - dir_shift_) um
+  derivative(cy_, dy);
   const int32_t px = horner(dx, (uint8_t)(degree_ - 1), t);
   const int32_t py = horner(dy, (uint8_t)(degree_ - 1), t);
   if (!rational_) return scale_direction32(px, py);
   // P = N / W, P' ~ N' W - N W' (W > 0 leaves the direction unchanged).
   int32_t dw[kMaxDegree];
-  for (uint8_t k = 1; k <= degree_; ++k) dw[k - 1] = (cw_[k] >> dir_shift_) * k;
+  derivative(cw_, dw);
   const int32_t w1 = horner(dw, (uint8_t)(degree_ - 1), t);
   const int32_t w = horner(cw_, degree_, t);
   const int32_t nx = horner(cx_, degree_, t);
@@ -335,6 +333,15 @@ Direction SpanEvaluator::direction(uq16_t t) const {
   const int64_t qx = (int64_t)px * w - (int64_t)nx * w1;
   const int64_t qy = (int64_t)py * w - (int64_t)ny * w1;
   return scale_direction(qx, qy);
+}
+
+// Coefficients k c[k] >> dir_shift_ of the derivative: times 1, 2, 3 as adds (a multiply
+// by a variable k is a 32x32 library call on 16-bit targets), the shift usually 0.
+void SpanEvaluator::derivative(const int32_t* c, int32_t* d) const {
+  for (uint8_t k = 1; k <= degree_; ++k) {
+    const int32_t v = dir_shift_ ? asr32(c[k], dir_shift_) : c[k];
+    d[k - 1] = k == 1 ? v : (k == 2 ? v + v : v + v + v);
+  }
 }
 
 Direction SpanEvaluator::end_direction() const {

@@ -74,6 +74,7 @@ class SpanEvaluator {
 
  private:
   PointQ6 rational_q6(uq16_t t) const;
+  void derivative(const int32_t* c, int32_t* d) const;
 
   uint8_t degree_;
   bool rational_;

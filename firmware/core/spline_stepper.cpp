@@ -380,26 +380,20 @@ SplineStepper::Unit SplineStepper::left_normal(const Direction& d) const {
     u.y_q15 = 32767;
     return u;
   }
-  // |d| in q8: integer root refined by one Newton step (error < 2^-13 relative); the
-  // correction (s - root^2) * 128 / root <= 256, so its quotient fits 16 bits.
-  const uint16_t root = isqrt32(s);
-  const uint32_t len_q8 =
-      ((uint32_t)root << 8) + div_u32_u16((s - mul_u16_u16(root, root)) * 128U, root, 0);
-  // |d| / 2^k in [2^15, 2^16): component * 2^(23 - k) / that is the Q15 value, a 32/16
-  // division with a quotient <= 2^15 (component <= |d|) and a dividend below 2^31.
-  uint32_t len_n = len_q8;
-  int8_t k = 0;
-  while (len_n >= 65536UL) {
-    len_n >>= 1;
-    ++k;
+  // |d| * 2^pre with 15 to 16 significant bits: the root of s * 4^pre in [2^30, 2^32)
+  // (relative error below 2^-15; the former Newton-refined q8 length had 2^-13).
+  uint32_t s4 = s;
+  uint8_t pre = 0;
+  while (s4 < (1UL << 30)) {
+    s4 <<= 2;
+    ++pre;
   }
-  while (len_n < 32768UL) {
-    len_n <<= 1;
-    --k;
-  }
-  const uint8_t up = (uint8_t)(23 - k);
-  const uint16_t ux = div_u32_u16(abs_u32(d.dy) << up, (uint16_t)len_n, 0);
-  const uint16_t uy = div_u32_u16(abs_u32(d.dx) << up, (uint16_t)len_n, 0);
+  const uint16_t len = isqrt32(s4);  // in [2^15, 2^16)
+  // component * 2^(15 + pre) / len: the Q15 value, a 32/16 division with a quotient
+  // <= 2^15 (component <= |d|) and a dividend <= len * 2^15 < 2^31.
+  const uint8_t up = (uint8_t)(15 + pre);
+  const uint16_t ux = div_u32_u16(abs_u32(d.dy) << up, len, 0);
+  const uint16_t uy = div_u32_u16(abs_u32(d.dx) << up, len, 0);
   u.x_q15 = d.dy > 0 ? -(int32_t)ux : (int32_t)ux;  // -dy / |d|, truncated toward zero
   u.y_q15 = d.dx < 0 ? -(int32_t)uy : (int32_t)uy;
   return u;

@@ -114,6 +114,16 @@ void measure_fixed_point(core::SpanEvaluator* evaluator, uint16_t span) {
     stats_add(a, b);
   }
   stats_print(PROXY_STR("fixed De Boor point, cubic 2-D (evaluate_q6)"));
+  stats_reset();
+  for (uint8_t i = 0; i < kSamples; ++i) {
+    const uint16_t t = (uint16_t)(i * (65536UL / kSamples) + 977U);
+    const uint32_t a = cycles_now();
+    const core::Direction d = evaluator->direction(t);
+    const uint32_t b = cycles_now();
+    g_sink = d.dx + d.dy;
+    stats_add(a, b);
+  }
+  stats_print(PROXY_STR("derivative direction, cubic 2-D (direction, for tool offsets)"));
 }
 
 // The same curve made rational (weights 0.55..1.46, ratio < 3), span `span`.
