@@ -17,6 +17,26 @@ uint16_t div_u32_u16(uint32_t n, uint16_t d, uint16_t* rem);
 // the shift-and-subtract loop runs `bits` times only (DIV.UD on the dsPIC all the same).
 uint16_t div_u32_u16_small(uint32_t n, uint16_t d, uint8_t bits);
 
+// The restoring division that stands in for DIV.UD where there is no divider (the AVR
+// proxy): `steps` shift-and-subtract steps on acc = (remainder << 16) | dividend bits,
+// the remainder's high half below d on entry; returns (remainder << 16) | quotient bits.
+// Exposed so that the host tests check it although hosts divide in hardware.
+// The remainder stays < d, so it fits 16 bits plus the bit shifted out at the top (carry).
+// Inline: the loop is the whole of div_u32_u16 on the AVR.
+inline __attribute__((always_inline)) uint32_t shift_subtract_divide(uint32_t acc, uint16_t d,
+                                                                     uint8_t steps) {
+  const uint32_t d_high = (uint32_t)d << 16;
+  for (uint8_t i = 0; i < steps; ++i) {
+    const bool carry = (acc & 0x80000000UL) != 0;
+    acc <<= 1;
+    if (carry || (uint16_t)(acc >> 16) >= d) {
+      acc -= d_high;
+      acc |= 1U;
+    }
+  }
+  return acc;
+}
+
 // floor(n / d) for any n and d > 0 (d = 0 gives 0xFFFFFFFF): long division in two 16-bit
 // digits, the first skipped when n < d * 2^16. rem may be null.
 uint32_t div_u32_by_u16(uint32_t n, uint16_t d, uint16_t* rem);

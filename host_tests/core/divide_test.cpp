@@ -30,6 +30,25 @@ TEST(Divide, Div32By16EqualsTheExactQuotientAndRemainder) {
   EXPECT_EQ(core::div_u32_u16(65535, 1, 0), 65535U);
 }
 
+// The shift-and-subtract loop the AVR proxy divides with (hosts use the hardware divider in
+// div_u32_u16): full 16-step quotients and pre-aligned short ones.
+TEST(Divide, ShiftSubtractLoopGivesQuotientAndRemainder) {
+  std::mt19937 rng(16);
+  for (int i = 0; i < 300000; ++i) {
+    uint16_t d = (uint16_t)rng();
+    if (d == 0) d = 1;
+    const uint32_t top = ((uint32_t)d << 16) - 1;
+    const uint32_t n = (i % 4 == 0) ? top : (uint32_t)(rng() % ((uint64_t)top + 1));
+    const uint32_t acc = core::shift_subtract_divide(n, d, 16);
+    ASSERT_EQ((uint16_t)acc, n / d) << n << " / " << d;
+    ASSERT_EQ(acc >> 16, n % d) << n << " % " << d;
+    const uint8_t bits = (uint8_t)(1 + rng() % 16);
+    const uint32_t m = (uint32_t)(rng() % (((uint64_t)d << bits)));  // quotient < 2^bits
+    ASSERT_EQ((uint16_t)core::shift_subtract_divide(m << (16 - bits), d, bits), m / d)
+        << m << " / " << d << ", " << +bits;
+  }
+}
+
 TEST(Divide, ShortQuotientDivisionEqualsTheExactQuotient) {
   std::mt19937 rng(15);
   for (int i = 0; i < 300000; ++i) {
