@@ -192,10 +192,13 @@ void PathController::output(const int16_t dir_um[3], uint16_t len, int16_t v_uni
   uint16_t scale = 0;
   uint8_t k = 13;
   if (dir_um != 0 && len != 0) {
-    while (k > 0 && ((uint32_t)speed_um_s_ << k) >= ((uint32_t)len << 16)) --k;
-    if (((uint32_t)speed_um_s_ << k) < ((uint32_t)len << 16)) {
-      scale = core::div_u32_u16((uint32_t)speed_um_s_ << k, len, 0);
+    uint32_t num = ((uint32_t)speed_um_s_ << 16) >> 3;  // speed * 2^13: byte move, 3 steps
+    const uint32_t limit = (uint32_t)len << 16;
+    while (k > 0 && num >= limit) {
+      num >>= 1;
+      --k;
     }
+    if (num < limit) scale = core::div_u32_u16(num, len, 0);
   }
   for (uint8_t i = 0; i < config::kAxisCount; ++i) {
     if (scale == 0) {
