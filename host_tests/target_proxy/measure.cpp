@@ -1,11 +1,11 @@
 // Cycle counts on the proxy of the work the firmware repeats: one integer sqrt, one cubic
 // 2-D De Boor point in fixed point and in float, one span setup, one stepping decision;
 // and the RAM the core's objects take.
+#include "firmware/core/curve_walker.h"    // CurveWalker
 #include "firmware/core/divide.h"          // div_u32_u16, reciprocal_of, mul_reciprocal_q27
 #include "firmware/core/fixed_point.h"     // mul_32x16_uq16
 #include "firmware/core/isqrt.h"           // isqrt32
 #include "firmware/core/span_evaluator.h"  // SpanEvaluator
-#include "firmware/core/spline_stepper.h"  // SplineStepper
 
 #include "host_tests/target_proxy/float_deboor.h"
 #include "host_tests/target_proxy/proxy_check.h"
@@ -191,16 +191,16 @@ void measure_float_horner(const FloatCurve& curve, uint16_t span) {
 
 // Cycles per next() call of a whole run (one step decision and its point each).
 void measure_stepping(core::StepMode mode, int32_t offset_um, const char* name) {
-  static core::SplineStepper stepper;
+  static core::CurveWalker walker;
   core::StepSettings settings = core::default_step_settings();
   settings.mode = mode;
   settings.tool_offset_um = offset_um;
-  stepper.begin(g_bench, settings);
+  walker.begin(g_bench, settings);
   stats_reset();
   core::PointUm p = {0, 0};
   for (uint16_t i = 0; i < kMaxStepPointsMeasured; ++i) {
     const uint32_t a = cycles_now();
-    const bool more = stepper.next(&p);
+    const bool more = walker.next(&p);
     const uint32_t b = cycles_now();
     if (!more) break;
     stats_add(a, b);
@@ -342,13 +342,13 @@ void run_measurements() {
   measure_float_point(float_curve, span, &evaluator);
   measure_float_horner(float_curve, span);
   measure_fixed_rational(&evaluator, span);
-  measure_stepping(core::StepMode::kAdaptive, 0, PROXY_STR("stepper next(), adaptive 5 um"));
+  measure_stepping(core::StepMode::kAdaptive, 0, PROXY_STR("walker next(), adaptive 5 um"));
   measure_stepping(core::StepMode::kAdaptive, 500,
-                   PROXY_STR("stepper next(), adaptive 5 um, tool offset 0.5 mm"));
-  measure_stepping(core::StepMode::kUniform, 0, PROXY_STR("stepper next(), uniform 16/span"));
-  PROXY_PRINTF("memory sizeof Spline %u, SpanEvaluator %u, SplineStepper %u bytes\n",
+                   PROXY_STR("walker next(), adaptive 5 um, tool offset 0.5 mm"));
+  measure_stepping(core::StepMode::kUniform, 0, PROXY_STR("walker next(), uniform 16/span"));
+  PROXY_PRINTF("memory sizeof Spline %u, SpanEvaluator %u, CurveWalker %u bytes\n",
                (unsigned)sizeof(core::Spline), (unsigned)sizeof(core::SpanEvaluator),
-               (unsigned)sizeof(core::SplineStepper));
+               (unsigned)sizeof(core::CurveWalker));
   end_group();
 }
 

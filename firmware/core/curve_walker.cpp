@@ -1,6 +1,6 @@
 // Point generator engine: uniform or chord-adaptive parameter steps along a validated
 // spline, tool-radius offset along the normal, corner arcs and miters, stop on overcut.
-#include "firmware/core/spline_stepper.h"
+#include "firmware/core/curve_walker.h"
 
 #include "firmware/core/divide.h"       // div_u32_u16
 #include "firmware/core/fixed_point.h"  // mul_32x16_q15, mul_u16_u16, abs_u32, kUq16One
@@ -70,7 +70,7 @@ StepSettings default_step_settings() {
   return s;
 }
 
-SplineStepper::SplineStepper()
+CurveWalker::CurveWalker()
     : spline_(0),
       phase_(kIdle),
       error_(GeometryError::kOk),
@@ -93,7 +93,7 @@ SplineStepper::SplineStepper()
 }
 
 // Checks spline and settings; the first point comes from the next next() call.
-GeometryError SplineStepper::begin(const Spline* spline, const StepSettings& settings) {
+GeometryError CurveWalker::begin(const Spline* spline, const StepSettings& settings) {
   spline_ = spline;
   settings_ = settings;
   phase_ = kDone;
@@ -123,7 +123,7 @@ GeometryError SplineStepper::begin(const Spline* spline, const StepSettings& set
 }
 
 // One span setup or one point per call (see the header).
-bool SplineStepper::next(PointUm* out) {
+bool CurveWalker::next(PointUm* out) {
   if (phase_ == kDone || phase_ == kIdle) return false;
   if (pending_) {
     pending_ = false;
@@ -147,7 +147,7 @@ bool SplineStepper::next(PointUm* out) {
 }
 
 // Stops stepping with a coded reason.
-bool SplineStepper::fail(GeometryError e) {
+bool CurveWalker::fail(GeometryError e) {
   error_ = e;
   phase_ = kDone;
   arc_halves_left_ = 0;
@@ -156,12 +156,12 @@ bool SplineStepper::fail(GeometryError e) {
 }
 
 // Next parameter of the uniform mode: k * 65536 / steps_per_span.
-uint32_t SplineStepper::uniform_next() const {
+uint32_t CurveWalker::uniform_next() const {
   return (uint32_t)(((uint32_t)step_index_ + 1) * kUq16One / settings_.steps_per_span);
 }
 
 // Emits the next point inside the span, or handles the span's end.
-bool SplineStepper::step_in_span(PointUm* out) {
+bool CurveWalker::step_in_span(PointUm* out) {
   const uint32_t t_next = settings_.mode == StepMode::kUniform ? uniform_next() : adaptive_next();
   if (t_next >= kUq16One) return joint(out);
   t_q16_ = t_next;
@@ -178,7 +178,7 @@ bool SplineStepper::step_in_span(PointUm* out) {
 // Rational spans and offset paths are not polynomial: they get 7 samples (eighths), which
 // the tests show to be enough on random curves; it is not a proof.
 // Bounded: a rejected step shrinks to at most half and a step of 1/65536 is accepted.
-uint32_t SplineStepper::adaptive_next() {
+uint32_t CurveWalker::adaptive_next() {
   const int64_t accept_q6 = (int64_t)tol_um_ * 64 * 9 / 10;
   const int64_t target_q6 = (int64_t)tol_um_ * 64 * 7 / 10;
   uint32_t h = h_q16_ < 1 ? 1 : h_q16_;
@@ -212,7 +212,7 @@ uint32_t SplineStepper::adaptive_next() {
 
 // The end of the current span: the last point of the curve, or the joint to the next span
 // (plain, discontinuous, smooth, or a corner).
-bool SplineStepper::joint(PointUm* out) {
+bool CurveWalker::joint(PointUm* out) {
   Direction in_dir = eval_.end_direction();
   if (is_zero(in_dir)) in_dir = last_dir_;
   const PointQ6 end = eval_.evaluate_q6(kUq16One);
@@ -258,8 +258,8 @@ bool SplineStepper::joint(PointUm* out) {
 // Offset at a joint. Smooth (offset points within tol/4): one point. Convex (turning away
 // from the offset side): the first offset end, then an arc of radius |R| about the
 // corner to the second. Concave: the miter point, or kOffsetTooLarge past ~150 degrees.
-bool SplineStepper::corner(const PointQ6& at, const Direction& in_dir, const Direction& out_dir,
-                           PointUm* out) {
+bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direction& out_dir,
+                         PointUm* out) {
   const int32_t r = settings_.tool_offset_um;
   const Unit n1 = left_normal(in_dir);
   const Unit n2 = left_normal(out_dir);
@@ -324,7 +324,7 @@ bool SplineStepper::corner(const PointQ6& at, const Direction& in_dir, const Dir
 }
 
 // One point of the corner arc: the normalised blend of the half's two normals.
-bool SplineStepper::arc_point(PointUm* out) {
+bool CurveWalker::arc_point(PointUm* out) {
   const int32_t k = arc_index_;
   const int32_t m = arc_steps_;
   Direction blend;
@@ -348,7 +348,7 @@ bool SplineStepper::arc_point(PointUm* out) {
 }
 
 // Path point at t: the curve point, moved by the tool offset along the left normal.
-PointQ6 SplineStepper::path_point(uint32_t t_q16, Direction* dir) {
+PointQ6 CurveWalker::path_point(uint32_t t_q16, Direction* dir) {
   const PointQ6 base = eval_.evaluate_q6(t_q16);
   if (settings_.tool_offset_um == 0) return base;
   *dir = usable_direction(t_q16);
@@ -358,7 +358,7 @@ PointQ6 SplineStepper::path_point(uint32_t t_q16, Direction* dir) {
 
 // Derivative direction at t; at a zero derivative (a cusp or repeated control points)
 // looks slightly further along, then falls back to the last direction.
-Direction SplineStepper::usable_direction(uint32_t t_q16) {
+Direction CurveWalker::usable_direction(uint32_t t_q16) {
   if (t_q16 >= kUq16One) return eval_.end_direction();
   Direction d = eval_.direction((uq16_t)t_q16);
   for (uint32_t probe = 16; is_zero(d) && probe <= 4096; probe *= 16) {
@@ -371,7 +371,7 @@ Direction SplineStepper::usable_direction(uint32_t t_q16) {
 
 // Unit left normal (-dy, dx) / |d| in Q15: one root and two 32/16 divisions (no 64-bit
 // arithmetic: DIV.UD on the dsPIC).
-SplineStepper::Unit SplineStepper::left_normal(const Direction& d) const {
+CurveWalker::Unit CurveWalker::left_normal(const Direction& d) const {
   Unit u;
   const uint32_t s = mul_u16_u16((uint16_t)abs_u32(d.dx), (uint16_t)abs_u32(d.dx)) +
                      mul_u16_u16((uint16_t)abs_u32(d.dy), (uint16_t)abs_u32(d.dy));  // < 2^31
@@ -401,7 +401,7 @@ SplineStepper::Unit SplineStepper::left_normal(const Direction& d) const {
 
 // base + R * normal, in q6: R * 64 < 2^23 times |normal| <= 2^15 as 16x16 products on the
 // magnitudes (truncated toward zero, the sign applied after).
-PointQ6 SplineStepper::offset_point(const PointQ6& base, const Unit& n) const {
+PointQ6 CurveWalker::offset_point(const PointQ6& base, const Unit& n) const {
   const int32_t r_q6 = settings_.tool_offset_um * 64;
   const uint32_t ar = abs_u32(r_q6);
   const uint16_t ar_hi = (uint16_t)(ar >> 16);  // < 2^7
@@ -422,7 +422,7 @@ PointQ6 SplineStepper::offset_point(const PointQ6& base, const Unit& n) const {
 
 // Emits p after checking that the offset path does not run backward against the curve
 // (which means |R| exceeds the radius of curvature on the offset side).
-bool SplineStepper::emit_checked(const PointQ6& base, const PointQ6& p, PointUm* out) {
+bool CurveWalker::emit_checked(const PointQ6& base, const PointQ6& p, PointUm* out) {
   if (settings_.tool_offset_um != 0) {
     const int64_t bx = (int64_t)base.x_q6 - last_base_.x_q6;
     const int64_t by = (int64_t)base.y_q6 - last_base_.y_q6;
@@ -437,7 +437,7 @@ bool SplineStepper::emit_checked(const PointQ6& base, const PointQ6& p, PointUm*
 }
 
 // Emits p (rounded to um) and remembers it.
-bool SplineStepper::emit_plain(const PointQ6& p, PointUm* out) {
+bool CurveWalker::emit_plain(const PointQ6& p, PointUm* out) {
   last_out_ = p;
   *out = round_point(p);
   return true;
