@@ -18,6 +18,9 @@
 #include "host/lib/server/machine_spec.h"
 #include "host/lib/server/sqlite_job_store.h"
 #include "host/lib/server/workshop.h"
+#ifdef ENGRAVER_HAVE_POSTGRES
+#include "host/lib/server/postgres_job_store.h"
+#endif
 
 namespace host::cli {
 
@@ -33,7 +36,21 @@ struct ServeArgs {
   int poll_ms = 100;
   std::string name;
   bool no_zero = false;
+  std::string db;
 };
+
+// The job store: the data folder's SQLite file, or a PostgreSQL database shared by servers.
+std::unique_ptr<server::JobStore> open_store(const std::string& db,
+                                             const server::DataFolder& data) {
+  if (db.empty() || db == "sqlite") {
+    return std::make_unique<server::SqliteJobStore>(data.database().string());
+  }
+#ifdef ENGRAVER_HAVE_POSTGRES
+  return std::make_unique<server::PostgresJobStore>(db);
+#else
+  throw CommandFailure(kExitUsage, "--db: this engraver was built without PostgreSQL (libpqxx)");
+#endif
+}
 
 std::atomic<bool> g_stop_serve{false};
 extern "C" void on_stop_serve(int) {
@@ -70,7 +87,8 @@ void run_serve(const ServeArgs& a) {
   server::DataFolder data(a.data);
   bool created = false;
   const std::string token = data.token(&created);
-  server::SqliteJobStore store(data.database().string());
+  const std::unique_ptr<server::JobStore> store_owner = open_store(a.db, data);
+  server::JobStore& store = *store_owner;
 
   server::WorkshopOptions wo;
   wo.owner = a.name.empty() ? host_name() : a.name;
@@ -144,6 +162,10 @@ void add_serve_commands(CLI::App& app) {
       ->capture_default_str();
   serve->add_option("--name", args->name, "this server's name in the queue (default host name)");
   serve->add_flag("--no-zero", args->no_zero, "do not start manual zeroing if not zeroed");
+  serve->add_option("--db", args->db,
+                    "job store: 'sqlite' (DATA/jobs.sqlite, default) or a PostgreSQL "
+                    "connection ('postgresql://host/db' or 'host=... dbname=...') shared by "
+                    "several servers; give each server its own --name");
   serve->footer(
       "Example: engraver serve --data /srv/engraver --machine 'tcp://192.168.1.50:10001 "
       "name=left' --machine 'serial:/dev/ttyUSB0 name=right work=200x150 tags=brass'\n"

@@ -119,7 +119,7 @@ IntakeResult JobIntake::submit(const Submission& sub) {
     const fs::path dir = data_.job_dir(job.key);
     fs::rename(staging, dir);
     try {
-      r.id = store_.add(job);
+      r.id = store_.add(job, sub.content);
     } catch (...) {
       std::error_code ec;
       fs::remove_all(dir, ec);

@@ -23,8 +23,12 @@ class StoreError : public std::runtime_error {
 class JobStore {
  public:
   virtual ~JobStore() = default;
-  // Stores a new job (id, created_ms assigned here) and returns its id.
-  virtual int64_t add(const JobRecord& job) = 0;
+  // Stores a new job (id, created_ms assigned here) and returns its id. `input` is the
+  // uploaded file: a store shared by several servers keeps it so that any of them can run
+  // the job; a local store may ignore it (the archive folder has it).
+  virtual int64_t add(const JobRecord& job, const std::string& input) = 0;
+  // The uploaded file, when this store keeps it (see add).
+  virtual std::optional<std::string> input(int64_t id) = 0;
   virtual std::optional<JobRecord> get(int64_t id) = 0;
   // Newest first; state_filter "" = every state.
   virtual std::vector<JobRecord> list(const std::string& state_filter, size_t limit) = 0;

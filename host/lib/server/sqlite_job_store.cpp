@@ -146,7 +146,7 @@ void SqliteJobStore::exec(const std::string& sql) {
   }
 }
 
-int64_t SqliteJobStore::add(const JobRecord& job) {
+int64_t SqliteJobStore::add(const JobRecord& job, const std::string& /*input: in the archive*/) {
   std::lock_guard<std::mutex> lock(mutex_);
   Statement s(db_, path_,
               "INSERT INTO jobs (key, name, input_file, state, priority, tag, feed_mm_s, tol_mm,"

@@ -20,7 +20,8 @@ class SqliteJobStore : public JobStore {
   SqliteJobStore(const SqliteJobStore&) = delete;
   SqliteJobStore& operator=(const SqliteJobStore&) = delete;
 
-  int64_t add(const JobRecord& job) override;
+  int64_t add(const JobRecord& job, const std::string& input) override;
+  std::optional<std::string> input(int64_t) override { return std::nullopt; }
   std::optional<JobRecord> get(int64_t id) override;
   std::vector<JobRecord> list(const std::string& state_filter, size_t limit) override;
   bool has_claimable(const MachineFit& fit) override;

@@ -7,6 +7,8 @@
 #include <filesystem>  // std::filesystem::path
 
 #include "host/lib/drawing/drawing.h"
+#include "host/lib/plot/plan_plot.h"
+#include "host/lib/plot/plot.h"
 #include "host/lib/server/job_planning.h"
 #include "host/lib/stream/link.h"
 
@@ -288,8 +290,21 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   size_t executed = 0;
   const char* outcome = "not started";
   try {
+    // Uploaded to another server sharing the queue: the input comes from the store.
+    const bool fetched = !fs::exists(dir / job.input_file);
+    if (fetched) {
+      const std::optional<std::string> bytes = store_.input(job.id);
+      if (!bytes) throw std::runtime_error((dir / job.input_file).string() + ": missing");
+      fs::create_directories(dir);
+      write_file(dir / job.input_file, *bytes);
+    }
     const JobPlan plan = plan_file((dir / job.input_file).string(), job.name, job.settings,
                                    slot.spec.fit.work_width_mm, slot.spec.fit.work_height_mm);
+    if (fetched) {
+      write_file(dir / "plan.json", plan_json(plan).dump(1) + "\n");
+      write_plot(plot_input_from_plan(plan, job.name), (dir / "plot.svg").string(),
+                 (dir / "plot.png").string());
+    }
     EncodeOptions enc = encode_options(job.settings, fs::path(job.name).stem().string());
     enc.max_payload = caps.max_payload;
     if (job.start_curve >= 0) {
@@ -374,7 +389,10 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     std::lock_guard<std::mutex> lock(slot.mutex);
     slot.sender = nullptr;
     slot.job_id = 0;
-    if (state == JobState::kInterrupted) slot.have_last_status = false;
+    // The machine as the sender last heard it (idle after a completed job); unknown when
+    // the link went away.
+    slot.have_last_status = state != JobState::kInterrupted;
+    if (slot.have_last_status) slot.last_status = sender.last_status();
   }
   const int resume_curve =
       state == JobState::kInterrupted ? first_uncut_curve(commands, executed) : -1;

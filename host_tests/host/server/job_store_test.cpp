@@ -28,9 +28,9 @@ JobRecord job(const std::string& key, int priority = 0, double w = 50, double h 
 TEST(SqliteJobStore, ClaimsByPriorityThenAge) {
   test::TempDir dir;
   SqliteJobStore store((dir.path() / "jobs.sqlite").string());
-  const int64_t low = store.add(job("a", 0));
-  const int64_t high = store.add(job("b", 5));
-  const int64_t low2 = store.add(job("c", 0));
+  const int64_t low = store.add(job("a", 0), "");
+  const int64_t high = store.add(job("b", 5), "");
+  const int64_t low2 = store.add(job("c", 0), "");
   MachineFit fit;
   EXPECT_EQ(store.claim(fit, "m1", "s")->id, high);
   EXPECT_EQ(store.claim(fit, "m1", "s")->id, low);
@@ -45,9 +45,9 @@ TEST(SqliteJobStore, ClaimsByPriorityThenAge) {
 TEST(SqliteJobStore, ClaimsOnlyJobsThatFitTheMachine) {
   test::TempDir dir;
   SqliteJobStore store((dir.path() / "jobs.sqlite").string());
-  const int64_t big = store.add(job("big", 9, 250, 150));
-  const int64_t brass = store.add(job("brass", 8, 20, 20, "brass"));
-  const int64_t any = store.add(job("any", 0));
+  const int64_t big = store.add(job("big", 9, 250, 150), "");
+  const int64_t brass = store.add(job("brass", 8, 20, 20, "brass"), "");
+  const int64_t any = store.add(job("any", 0), "");
   MachineFit small;
   small.work_width_mm = 200;
   small.work_height_mm = 200;
@@ -66,7 +66,7 @@ TEST(SqliteJobStore, ConcurrentClaimsTakeEachJobOnce) {
   const std::string path = (dir.path() / "jobs.sqlite").string();
   {
     SqliteJobStore store(path);
-    for (int i = 0; i < 200; ++i) store.add(job("j" + std::to_string(i)));
+    for (int i = 0; i < 200; ++i) store.add(job("j" + std::to_string(i)), "");
   }
   // Two connections (as two processes would have), two threads each.
   SqliteJobStore a(path), b(path);
@@ -92,7 +92,7 @@ TEST(SqliteJobStore, ConcurrentClaimsTakeEachJobOnce) {
 TEST(SqliteJobStore, StateRulesForCancelRequeueAndPriority) {
   test::TempDir dir;
   SqliteJobStore store((dir.path() / "jobs.sqlite").string());
-  const int64_t id = store.add(job("a"));
+  const int64_t id = store.add(job("a"), "");
   EXPECT_TRUE(store.set_priority(id, 7));
   EXPECT_EQ(store.get(id)->priority, 7);
   EXPECT_FALSE(store.requeue(id, false));  // queued already
@@ -119,9 +119,9 @@ TEST(SqliteJobStore, RestartKeepsQueuedJobsAndMarksOwnRunningJobsInterrupted) {
   int64_t mine = 0, theirs = 0, queued = 0;
   {
     SqliteJobStore store(path);
-    mine = store.add(job("mine", 3));
-    theirs = store.add(job("theirs", 2));
-    queued = store.add(job("queued", 1));
+    mine = store.add(job("mine", 3), "");
+    theirs = store.add(job("theirs", 2), "");
+    queued = store.add(job("queued", 1), "");
     store.claim(MachineFit{}, "m1", "this-server");
     store.claim(MachineFit{}, "m9", "other-server");
   }  // the process dies here without finishing anything
