@@ -37,6 +37,7 @@ struct ServeArgs {
   std::string name;
   bool no_zero = false;
   std::string db;
+  double stale_s = 30.0;
 };
 
 // The job store: the data folder's SQLite file, or a PostgreSQL database shared by servers.
@@ -94,6 +95,7 @@ void run_serve(const ServeArgs& a) {
   wo.owner = a.name.empty() ? host_name() : a.name;
   wo.sender.status_interval = std::chrono::milliseconds(a.poll_ms);
   wo.sender.zero_first = !a.no_zero;
+  wo.stale_after = std::chrono::milliseconds(static_cast<int64_t>(a.stale_s * 1000));
   server::Workshop workshop(store, data, machines, wo);
   server::JobIntake intake(store, data, workshop.fits(),
                            static_cast<size_t>(a.max_upload_mb * 1024 * 1024));
@@ -166,6 +168,12 @@ void add_serve_commands(CLI::App& app) {
                     "job store: 'sqlite' (DATA/jobs.sqlite, default) or a PostgreSQL "
                     "connection ('postgresql://host/db' or 'host=... dbname=...') shared by "
                     "several servers; give each server its own --name");
+  serve
+      ->add_option("--stale-s", args->stale_s,
+                   "a server sharing the store and silent this long is taken for dead: its "
+                   "running jobs become interrupted")
+      ->check(CLI::Range(2.0, 3600.0))
+      ->capture_default_str();
   serve->footer(
       "Example: engraver serve --data /srv/engraver --machine 'tcp://192.168.1.50:10001 "
       "name=left' --machine 'serial:/dev/ttyUSB0 name=right work=200x150 tags=brass'\n"

@@ -51,6 +51,11 @@ class JobStore {
   // At start-up: jobs this owner left running (the server died) become interrupted.
   // Returns how many.
   virtual int interrupt_running(const std::string& owner, const std::string& message) = 0;
+  // This server is alive (called every second or so by each server sharing the store).
+  virtual void heartbeat(const std::string& owner) = 0;
+  // Running jobs of servers not heard from since `cutoff_ms` (Unix ms) become interrupted:
+  // a server that died mid-job loses no job. Returns how many.
+  virtual int interrupt_stale(int64_t cutoff_ms, const std::string& message) = 0;
 };
 
 }  // namespace host::server

@@ -95,6 +95,7 @@ PostgresJobStore::PostgresJobStore(const std::string& conninfo){PG_TRY({
       " finished_ms BIGINT NOT NULL DEFAULT 0, start_curve INTEGER NOT NULL DEFAULT -1,"
       " input BYTEA NOT NULL)");
   w.exec("CREATE INDEX IF NOT EXISTS jobs_queue ON jobs (state, priority DESC, id)");
+  w.exec("CREATE TABLE IF NOT EXISTS servers (name TEXT PRIMARY KEY, seen_ms BIGINT NOT NULL)");
   w.commit();
 })}
 
@@ -246,6 +247,32 @@ int PostgresJobStore::interrupt_running(const std::string& owner, const std::str
         "UPDATE jobs SET state = 'interrupted', message = $2, finished_ms = $3"
         " WHERE state = 'running' AND owner = $1",
         owner, message, now_ms());
+    w.commit();
+    return static_cast<int>(r.affected_rows());
+  })
+}
+
+void PostgresJobStore::heartbeat(const std::string& owner) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  PG_TRY({
+    pqxx::work w(conn_->db);
+    w.exec_params(
+        "INSERT INTO servers (name, seen_ms) VALUES ($1, $2)"
+        " ON CONFLICT (name) DO UPDATE SET seen_ms = excluded.seen_ms",
+        owner, now_ms());
+    w.commit();
+  })
+}
+
+int PostgresJobStore::interrupt_stale(int64_t cutoff_ms, const std::string& message) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  PG_TRY({
+    pqxx::work w(conn_->db);
+    const pqxx::result r = w.exec_params(
+        "UPDATE jobs SET state = 'interrupted', message = $2, finished_ms = $3"
+        " WHERE state = 'running' AND owner NOT IN"
+        " (SELECT name FROM servers WHERE seen_ms >= $1)",
+        cutoff_ms, message, now_ms());
     w.commit();
     return static_cast<int>(r.affected_rows());
   })

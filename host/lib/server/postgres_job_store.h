@@ -32,6 +32,8 @@ class PostgresJobStore : public JobStore {
   bool requeue(int64_t id, bool continue_job) override;
   bool set_priority(int64_t id, int priority) override;
   int interrupt_running(const std::string& owner, const std::string& message) override;
+  void heartbeat(const std::string& owner) override;
+  int interrupt_stale(int64_t cutoff_ms, const std::string& message) override;
 
  private:
   struct Connection;  // pqxx::connection (a typedef in libpqxx 6: not forward-declarable)

@@ -131,6 +131,7 @@ SqliteJobStore::SqliteJobStore(const std::string& path) : path_(path) {
       " started_ms INTEGER NOT NULL DEFAULT 0, finished_ms INTEGER NOT NULL DEFAULT 0,"
       " start_curve INTEGER NOT NULL DEFAULT -1)");
   exec("CREATE INDEX IF NOT EXISTS jobs_queue ON jobs (state, priority DESC, id)");
+  exec("CREATE TABLE IF NOT EXISTS servers (name TEXT PRIMARY KEY, seen_ms INTEGER NOT NULL)");
 }
 
 SqliteJobStore::~SqliteJobStore() {
@@ -274,6 +275,26 @@ int SqliteJobStore::interrupt_running(const std::string& owner, const std::strin
               "UPDATE jobs SET state = 'interrupted', message = ?2, finished_ms = ?3"
               " WHERE state = 'running' AND owner = ?1");
   s.bind(1, owner).bind(2, message).bind(3, now_ms());
+  s.step();
+  return sqlite3_changes(db_);
+}
+
+void SqliteJobStore::heartbeat(const std::string& owner) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_,
+              "INSERT INTO servers (name, seen_ms) VALUES (?1, ?2)"
+              " ON CONFLICT (name) DO UPDATE SET seen_ms = excluded.seen_ms");
+  s.bind(1, owner).bind(2, now_ms());
+  s.step();
+}
+
+int SqliteJobStore::interrupt_stale(int64_t cutoff_ms, const std::string& message) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_,
+              "UPDATE jobs SET state = 'interrupted', message = ?2, finished_ms = ?3"
+              " WHERE state = 'running' AND owner NOT IN"
+              " (SELECT name FROM servers WHERE seen_ms >= ?1)");
+  s.bind(1, cutoff_ms).bind(2, message).bind(3, now_ms());
   s.step();
   return sqlite3_changes(db_);
 }

@@ -89,8 +89,10 @@ std::vector<MachineFit> Workshop::fits() const {
 }
 
 void Workshop::start() {
+  store_.heartbeat(options_.owner);
   store_.interrupt_running(options_.owner, "the server stopped while the job was running");
   stopping_ = false;
+  heartbeat_thread_ = std::thread([this] { heartbeat_loop(); });
   for (auto& slot : slots_) {
     Slot* s = slot.get();
     threads_.emplace_back([this, s] { machine_loop(*s); });
@@ -98,7 +100,7 @@ void Workshop::start() {
 }
 
 void Workshop::stop() {
-  if (threads_.empty()) return;
+  if (threads_.empty() && !heartbeat_thread_.joinable()) return;
   stopping_ = true;
   for (auto& slot : slots_) {
     std::lock_guard<std::mutex> lock(slot->mutex);
@@ -107,6 +109,26 @@ void Workshop::stop() {
   change_cv_.notify_all();
   for (std::thread& t : threads_) t.join();
   threads_.clear();
+  if (heartbeat_thread_.joinable()) heartbeat_thread_.join();
+}
+
+void Workshop::heartbeat_loop() {
+  while (!stopping_) {
+    try {
+      store_.heartbeat(options_.owner);
+      const int64_t now = std::chrono::duration_cast<std::chrono::milliseconds>(
+                              std::chrono::system_clock::now().time_since_epoch())
+                              .count();
+      if (store_.interrupt_stale(now - options_.stale_after.count(),
+                                 "the server running the job stopped answering") > 0) {
+        notify(true);
+      }
+    } catch (const StoreError&) {
+      // The database is away; the next beat tries again.
+    }
+    std::unique_lock<std::mutex> lock(change_mutex_);
+    change_cv_.wait_for(lock, options_.heartbeat, [&] { return stopping_.load(); });
+  }
 }
 
 void Workshop::sleep_for(std::chrono::milliseconds ms) {

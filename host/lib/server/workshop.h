@@ -37,6 +37,10 @@ struct WorkshopOptions {
   std::chrono::milliseconds poll{200};              // idle machine: look at the queue
   std::chrono::milliseconds probe{2000};            // idle machine: check its link
   std::chrono::milliseconds connect_timeout{2000};  // TCP connect
+  // Servers sharing a store: this one says it is alive every `heartbeat`; a server silent
+  // for `stale_after` is taken for dead and its running jobs become interrupted.
+  std::chrono::milliseconds heartbeat{1000};
+  std::chrono::milliseconds stale_after{30000};
   SenderOptions sender;
   ResumeEncoder resume_encoder;  // the protocol v2 hook (see above)
 };
@@ -78,12 +82,14 @@ class Workshop {
   void machine_loop(Slot& slot);
   void run_job(Slot& slot, const JobRecord& job, Sender& sender, const proto::SessionReply& caps);
   void sleep_for(std::chrono::milliseconds ms);
+  void heartbeat_loop();
 
   JobStore& store_;
   const DataFolder& data_;
   WorkshopOptions options_;
   std::vector<std::unique_ptr<Slot>> slots_;
   std::vector<std::thread> threads_;
+  std::thread heartbeat_thread_;
   std::atomic<bool> stopping_{false};
 
   std::mutex change_mutex_;

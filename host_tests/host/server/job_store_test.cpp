@@ -135,6 +135,29 @@ TEST(SqliteJobStore, RestartKeepsQueuedJobsAndMarksOwnRunningJobsInterrupted) {
   EXPECT_EQ(store.list("queued", 10).size(), 1u);
 }
 
+TEST(SqliteJobStore, RunningJobsOfASilentServerBecomeInterrupted) {
+  test::TempDir dir;
+  SqliteJobStore store((dir.path() / "jobs.sqlite").string());
+  const int64_t alive_job = store.add(job("a"), "");
+  const int64_t dead_job = store.add(job("b"), "");
+  const int64_t queued = store.add(job("c"), "");
+  store.heartbeat("dead");
+  ASSERT_EQ(store.claim(MachineFit{}, "m1", "alive")->id, alive_job);
+  ASSERT_EQ(store.claim(MachineFit{}, "m2", "dead")->id, dead_job);
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  store.heartbeat("alive");  // "dead" said nothing since
+  const int64_t cutoff = std::chrono::duration_cast<std::chrono::milliseconds>(
+                             std::chrono::system_clock::now().time_since_epoch())
+                             .count() -
+                         20;
+  EXPECT_EQ(store.interrupt_stale(cutoff, "server gone"), 1);
+  EXPECT_EQ(store.get(dead_job)->state, JobState::kInterrupted);
+  EXPECT_EQ(store.get(dead_job)->message, "server gone");
+  EXPECT_EQ(store.get(alive_job)->state, JobState::kRunning);
+  EXPECT_EQ(store.get(queued)->state, JobState::kQueued);
+  EXPECT_EQ(store.interrupt_stale(cutoff, "again"), 0);
+}
+
 TEST(SqliteJobStore, UnopenableFileIsAnErrorNamingIt) {
   try {
     SqliteJobStore store("/nonexistent-folder/x/jobs.sqlite");

@@ -105,10 +105,12 @@ def main():
                 specs += ["--machine", f"tcp://127.0.0.1:{sim_port} name=s{s + 1}m{m + 1}"]
             http_port = free_port()
             data = os.path.join(tmp, f"data{s + 1}")
+            log = open(os.path.join(tmp, f"serve{s + 1}.log"), "w")
             procs.append(subprocess.Popen(
                 [engraver, "serve", "--data", data, "--listen", f"127.0.0.1:{http_port}",
-                 "--db", conninfo, "--name", f"server{s + 1}", "--poll-ms", "5"] + specs,
-                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+                 "--db", conninfo, "--name", f"server{s + 1}", "--poll-ms", "5",
+                 "--stale-s", "3"] + specs,
+                stdout=log, stderr=subprocess.STDOUT))
             servers.append((f"http://127.0.0.1:{http_port}", data))
         tokens = []
         for base, data in servers:
@@ -148,8 +150,43 @@ def main():
                         reports.append(report)
             assert len(reports) == 1, (j, reports)
             assert reports[0]["server"] == j["server"] and reports[0]["state"] == "completed"
+
+        # A server dies mid-job (kill -9): the other one marks its running jobs interrupted
+        # (--stale-s 3); re-queued, they run there.
+        slow = ("G21\nG90\nG0 Z2\nG0 X5 Y5\nG1 Z-0.1 F100\nG1 X95 Y5 F600\nG1 X95 Y95\n"
+                "G1 X5 Y95\nG1 X5 Y5\nG0 Z2\n")
+        serves = {"server1": (procs[2], servers[0][0]), "server2": (procs[5], servers[1][0])}
+        req = urllib.request.Request(
+            f"{servers[0][0]}/api/jobs?name=slow.ngc&feed_mm_s=0.5", data=slow.encode(),
+            method="POST", headers={"Authorization": "Bearer " + tokens[0]})
+        with urllib.request.urlopen(req, timeout=60) as r:
+            slow_id = json.load(r)["id"]
+        wait(lambda: get(servers[0][0], f"/api/jobs/{slow_id}")["state"] == "running", 30,
+             "the slow job to start")
+        runner = get(servers[0][0], f"/api/jobs/{slow_id}")["server"]
+        other = "server2" if runner == "server1" else "server1"
+        victim, _ = serves[runner]
+        base, token = serves[other][1], tokens[0 if other == "server1" else 1]
+        victim.kill()
+        victim.wait()
+        wait(lambda: get(base, f"/api/jobs/{slow_id}")["state"] == "interrupted", 30,
+             "the dead server's job to be marked interrupted")
+        req = urllib.request.Request(
+            f"{base}/api/jobs/{slow_id}/control", data=b'{"action": "requeue"}', method="POST",
+            headers={"Authorization": "Bearer " + token})
+        urllib.request.urlopen(req, timeout=30).close()
+        wait(lambda: get(base, f"/api/jobs/{slow_id}")["server"] == other and
+             get(base, f"/api/jobs/{slow_id}")["state"] == "running", 30,
+             "the re-queued job to run on the other server")
+        print(f"{runner} killed mid-job: {other} marked its job interrupted and ran it again")
         print(f"{JOBS} jobs, each run once; per server: {by_server}")
         return 0
+    except Exception:
+        for name in ("serve1.log", "serve2.log"):
+            path = os.path.join(tmp, name)
+            if os.path.exists(path):
+                print(f"--- {name}:\n" + open(path).read())
+        raise
     finally:
         for p in reversed(procs):
             p.terminate()
