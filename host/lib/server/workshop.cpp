@@ -33,6 +33,8 @@ const char* machine_state_name(proto::MachineState s) {
       return "zeroing";
     case proto::MachineState::kAlarm:
       return "alarm";
+    case proto::MachineState::kPaused:
+      return "paused";  // an operator pause in the job (M0): confirm on the panel
   }
   return "?";
 }
