@@ -244,5 +244,32 @@ TEST(ServerApi, MultipartUploadLikeThePageAndThePageFiles) {
   }
 }
 
+TEST(ServerApi, EventStreamSendsTheStateAtOnceAndAgainWhenAJobIsQueued) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {test::machine("m1", "tcp://127.0.0.1:1")});
+  std::vector<nlohmann::json> events;
+  std::string buffer;
+  std::atomic<bool> uploaded{false};
+  std::thread uploader;
+  auto client = server.client();
+  // The receiver returns false to close the stream once the second event arrived.
+  client.Get("/api/events", [&](const char* data, size_t size) {
+    buffer.append(data, size);
+    for (size_t end = buffer.find("\n\n"); end != std::string::npos; end = buffer.find("\n\n")) {
+      const std::string event = buffer.substr(0, end);
+      buffer.erase(0, end + 2);
+      if (event.rfind("data: ", 0) == 0) events.push_back(nlohmann::json::parse(event.substr(6)));
+    }
+    if (events.size() == 1 && !uploaded.exchange(true)) {
+      uploader = std::thread([&] { server.upload_ok("a.ngc", test::square_gcode(5, 5, 5)); });
+    }
+    return events.size() < 2 || events.back()["jobs_version"] == events.front()["jobs_version"];
+  });
+  if (uploader.joinable()) uploader.join();
+  ASSERT_GE(events.size(), 2u);
+  EXPECT_EQ(events.front()["machines"][0]["name"], "m1");
+  EXPECT_NE(events.back()["jobs_version"], events.front()["jobs_version"]);
+}
+
 }  // namespace
 }  // namespace host::server
