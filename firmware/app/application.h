@@ -122,6 +122,34 @@ class Application {
   bool motion_allowed() const;
   bool inside_travel(uint8_t axis, int32_t um) const;
   uint16_t rapid_feed() const;
+
+  // Command handlers (command_handlers.cpp), one per row of the message table.
+  proto::ErrorCode handle(const proto::Frame& frame, uint8_t* detail);
+  QueueItem new_item(ItemKind kind, uint8_t seq);
+  proto::ErrorCode enqueue(const QueueItem& item);
+  proto::ErrorCode motion_check(const int32_t* x_um, const int32_t* y_um,
+                                const int32_t* z_um) const;
+  template <typename Msg>
+  proto::ErrorCode dispatcher_handles(const Msg&, uint8_t, uint8_t*) {
+    return proto::ErrorCode::kUnknownCommand;  // #I and #? never reach the application
+  }
+  proto::ErrorCode on_text(const proto::TextCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_pause(const proto::PauseCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_dwell(const proto::DwellCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_spindle(const proto::SpindleCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_resolution(const proto::ResolutionCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_feed_move(const proto::FeedMoveCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_rapid_move(const proto::RapidMoveCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_z_move(const proto::ZMoveCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_drill(const proto::DrillCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_zeroing(const proto::ZeroingCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_spline_header(const proto::SplineHeaderCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_spline_data(const proto::SplineDataCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_hold(const proto::HoldCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_resume(const proto::ResumeCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_abort(const proto::AbortCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_override(const proto::OverrideCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_clear_alarm(const proto::ClearAlarmCmd& c, uint8_t seq, uint8_t* detail);
   void watchdog();
   void update_screen();
 
