@@ -164,11 +164,14 @@ size_t Sender::index_of_seq(uint8_t seq) const {
   return static_cast<size_t>(index);
 }
 
-// "command 12 ('B', step 7, curve 3)" for messages.
+// "command 12 ('B' spline header, plan step 7, curve 3)" for messages (names from the
+// message table).
 std::string Sender::where(size_t index) const {
   if (commands_ == nullptr || index >= commands_->size()) return "a command";
   const QueuedCommand& c = (*commands_)[index];
-  std::string s = fmt::format("command {} ('{}'", index, static_cast<char>(c.letter));
+  const char* name = proto::message_name(proto::kCommandStart, c.letter);
+  std::string s = fmt::format("command {} ('{}' {}", index, static_cast<char>(c.letter),
+                              name != nullptr ? name : "unknown");
   if (c.step >= 0) s += fmt::format(", plan step {}", c.step);
   if (c.curve >= 0) s += fmt::format(", curve {}", c.curve);
   return s + ")";
