@@ -419,8 +419,8 @@ void ApplicationSink::fill_status(proto::StatusReply* reply) {
 uint8_t ApplicationSink::queue_free() {
   return app_->queue_free();
 }
-uint8_t ApplicationSink::queue_slots() {
-  return app_->queue_slots();
+void ApplicationSink::fill_session(proto::SessionReply* reply) {
+  app_->fill_session(reply);
 }
 
 void Application::reset_session() {
@@ -451,8 +451,21 @@ uint8_t Application::queue_free() {
   return queue_.free_slots();
 }
 
-uint8_t Application::queue_slots() {
-  return CommandQueue::kCapacity;
+void Application::fill_session(proto::SessionReply* r) {
+  r->queue_slots = CommandQueue::kCapacity;
+  r->firmware_major = config::kFirmwareMajor;
+  r->firmware_minor = config::kFirmwareMinor;
+  // The travel the controller checks targets against, and the fastest feed of each axis.
+  r->travel_x_um = scaling_.travel_um[config::kAxisX];
+  r->travel_y_um = scaling_.travel_um[config::kAxisY];
+  r->travel_z_um = scaling_.travel_um[config::kAxisZ];
+  const uint32_t xy =
+      cfg_.axis[config::kAxisX].max_speed_um_per_s < cfg_.axis[config::kAxisY].max_speed_um_per_s
+          ? cfg_.axis[config::kAxisX].max_speed_um_per_s
+          : cfg_.axis[config::kAxisY].max_speed_um_per_s;
+  const uint32_t z = cfg_.axis[config::kAxisZ].max_speed_um_per_s;
+  r->max_feed_xy_um_per_s = xy > 65535UL ? 65535U : (uint16_t)xy;
+  r->max_feed_z_um_per_s = z > 65535UL ? 65535U : (uint16_t)z;
 }
 
 // ---------------------------------------------------------------- execution

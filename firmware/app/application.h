@@ -51,7 +51,7 @@ class ApplicationSink : public CommandSink {
   void reset_session();
   void fill_status(proto::StatusReply* reply);
   uint8_t queue_free();
-  uint8_t queue_slots();
+  void fill_session(proto::SessionReply* reply);
 
  private:
   friend class Application;
@@ -96,7 +96,7 @@ class Application {
   void reset_session();
   void fill_status(proto::StatusReply* reply);
   uint8_t queue_free();
-  uint8_t queue_slots();
+  void fill_session(proto::SessionReply* reply);
 
  private:
   // Tick side.

@@ -3,8 +3,9 @@
 
 #include <string.h>  // memcpy
 
-#include "firmware/core/spline.h"     // kMaxDegree, kMaxControlPoints
-#include "firmware/protocol/codec.h"  // write_frame, decode_frame
+#include "firmware/config/machine_config.h"  // kLinkRxBufferBytes
+#include "firmware/core/spline.h"            // kMaxDegree, kMaxControlPoints
+#include "firmware/protocol/codec.h"         // write_frame, decode_frame
 
 namespace app {
 
@@ -133,12 +134,10 @@ void Dispatcher::on_immediate(const proto::Frame& f) {
   r.protocol_version = proto::kProtocolVersion;
   r.max_payload = proto::kMaxPayload;
   r.window_frames = proto::kWindowFrames;
-  r.queue_slots = sink_->queue_slots();
-  r.rx_buffer_bytes = 256;
+  r.rx_buffer_bytes = config::kLinkRxBufferBytes;
   r.max_degree = core::kMaxDegree;
   r.max_control_points = core::kMaxControlPoints;
-  r.firmware_major = 0;
-  r.firmware_minor = 1;
+  sink_->fill_session(&r);
   reply(r, f.seq);
 }
 

@@ -27,7 +27,8 @@ class CommandSink {
   // #X was acted on: the sink flushed everything.
   virtual void fill_status(proto::StatusReply* reply) = 0;
   virtual uint8_t queue_free() = 0;
-  virtual uint8_t queue_slots() = 0;
+  // *I: what the application reports (queue slots, travel, feeds, firmware version).
+  virtual void fill_session(proto::SessionReply* reply) = 0;
 
  protected:
   ~CommandSink() {}

@@ -130,6 +130,11 @@
     FIELD(SessionReply, u8, max_control_points, 2, 64)                                       \
     FIELD(SessionReply, u8, firmware_major, 0, 255)                                          \
     FIELD(SessionReply, u8, firmware_minor, 0, 255)                                          \
+    FIELD(SessionReply, i32, travel_x_um, 1, PROTO_COORD_MAX)                                \
+    FIELD(SessionReply, i32, travel_y_um, 1, PROTO_COORD_MAX)                                \
+    FIELD(SessionReply, i32, travel_z_um, 1, PROTO_COORD_MAX)                                \
+    FIELD(SessionReply, u16, max_feed_xy_um_per_s, 1, 65535)                                 \
+    FIELD(SessionReply, u16, max_feed_z_um_per_s, 1, 65535)                                  \
   END(SessionReply)                                                                          \
   REPLY(StatusReply, kReplyStatus, '?', "status", no_check)                                  \
     FIELD(StatusReply, state, state, 0, 6)                                                   \

@@ -9,8 +9,9 @@
 
 namespace proto {
 
-// Protocol version carried in #I / *I. Bumped on any incompatible change.
-static const uint8_t kProtocolVersion = 1;
+// Protocol version carried in #I / *I. Bumped on any incompatible change. 2: #P #W #N #L,
+// the paused state, travel and feed limits in *I.
+static const uint8_t kProtocolVersion = 2;
 
 // First byte of a frame: '#' host -> controller (commands), '*' controller -> host (replies).
 static const uint8_t kCommandStart = '#';

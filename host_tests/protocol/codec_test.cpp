@@ -144,7 +144,8 @@ TEST(CodecRoundTrip, EveryReply) {
   expect_round_trip(proto::AckReply{0});
   expect_round_trip(proto::AckReply{255});
   expect_round_trip(proto::ErrorReply{ErrorCode::kGeometry, 5, 17});
-  expect_round_trip(proto::SessionReply{1, 64, 8, 16, 256, 3, 64, 0, 1});
+  expect_round_trip(
+      proto::SessionReply{2, 64, 8, 16, 256, 3, 64, 0, 2, 297000, 210000, 40000, 25000, 5000});
   proto::StatusReply s = {proto::MachineState::kHeld,
                           proto::Alarm::kNone,
                           0x06,
@@ -196,7 +197,7 @@ TEST(CodecMalformed, EveryFixedSizeMessageRejectsOneByteMoreAndOneLess) {
   check(proto::DrillCmd{}, 18);
   check(proto::AckReply{}, 1);
   check(proto::ErrorReply{}, 3);
-  check(proto::SessionReply{}, 10);
+  check(proto::SessionReply{}, 26);
   check(proto::StatusReply{}, 22);
   check(proto::AlarmReply{}, 2);
 }
@@ -340,9 +341,26 @@ TEST(CodecMalformed, ReplyEnumsOutsideTheirListsAreOutOfRange) {
 }
 
 TEST(CodecMalformed, SessionReplyCapabilitiesOutOfRange) {
-  expect_range_error<proto::SessionReply>({1, 64, 9, 16, 0, 1, 3, 64, 0, 1});   // window 9
-  expect_range_error<proto::SessionReply>({1, 65, 8, 16, 0, 1, 3, 64, 0, 1});   // payload 65
-  expect_range_error<proto::SessionReply>({1, 64, 8, 16, 69, 0, 3, 64, 0, 1});  // rx 69 bytes
+  // v2, payload 64, window 8, 16 slots, rx 256, degree 3, 64 points, fw 0.2, travel 1 mm
+  // on each axis, feeds 1 um/s: valid; then one field at a time out of range.
+  const Bytes ok = {2, 64,   8, 16, 0, 1,    3, 64, 0, 2, 0xE8, 3, 0,
+                    0, 0xE8, 3, 0,  0, 0xE8, 3, 0,  0, 1, 0,    1, 0};
+  proto::SessionReply r;
+  EXPECT_EQ(ErrorCode::kOk, decode_bytes(ok, &r));
+  const auto with = [&](size_t at, uint8_t v) {
+    Bytes b = ok;
+    b[at] = v;
+    return b;
+  };
+  expect_range_error<proto::SessionReply>(with(2, 9));   // window 9
+  expect_range_error<proto::SessionReply>(with(1, 65));  // payload 65
+  Bytes small_rx = with(4, 69);
+  small_rx[5] = 0;  // rx 69 bytes: not even one frame
+  expect_range_error<proto::SessionReply>(small_rx);
+  expect_range_error<proto::SessionReply>(with(22, 0));  // X/Y feed 0
+  Bytes no_travel = ok;
+  no_travel[10] = no_travel[11] = 0;  // X travel 0
+  expect_range_error<proto::SessionReply>(no_travel);
 }
 
 TEST(CodecEncode, EncodeRefusesWhatDecodeRefuses) {

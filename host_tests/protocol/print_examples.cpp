@@ -23,9 +23,10 @@ void show(const Msg& msg, uint8_t seq, const std::string& what) {
 
 int main() {
   std::printf("```frames\n");
-  show(proto::SessionCmd{1}, 0, "#I seq 0: open session, protocol version 1");
-  show(proto::SessionReply{1, 64, 8, 16, 256, 3, 64, 0, 1}, 0,
-       "*I seq 0: v1, payload 64, window 8, 16 slots, rx 256 B, degree 3, 64 points, fw 0.1");
+  show(proto::SessionCmd{2}, 0, "#I seq 0: open session, protocol version 2");
+  show(proto::SessionReply{2, 64, 8, 16, 256, 3, 64, 0, 2, 297000, 210000, 40000, 25000, 5000}, 0,
+       "*I seq 0: v2, payload 64, window 8, 16 slots, rx 256 B, degree 3, 64 points, fw 0.2, "
+       "travel 297 x 210 x 40 mm, feeds up to 25 mm/s (X/Y) and 5 mm/s (Z)");
   show(proto::TextCmd{0, 9, {'E', 'n', 'g', 'r', 'a', 'v', 'i', 'n', 'g'}}, 1,
        "#S seq 1: row 0 \"Engraving\"");
   show(proto::AckReply{15}, 1, "*O seq 1: stored, 15 slots free");

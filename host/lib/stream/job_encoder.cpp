@@ -83,6 +83,43 @@ proto::PauseCmd pause_command(const std::string& text) {
   return pause;
 }
 
+// A coordinate the controller would refuse with kOutOfTravel, as a PlanError naming the step.
+void check_travel(int32_t um, int32_t travel_um, char axis, int step) {
+  if (um < -travel_um || um > travel_um) {
+    throw PlanError(
+        fmt::format("step {}: {} {:.3f} mm is outside the controller's {} travel of +-{:.3f} mm",
+                    step, axis, um / 1000.0, axis, travel_um / 1000.0));
+  }
+}
+
+void check_step_fits(const PlanStep& s, const proto::SessionReply& c, int step) {
+  switch (s.kind) {
+    case PlanStep::kPenUp:
+    case PlanStep::kPenDown:
+      check_travel(s.z_um, c.travel_z_um, 'Z', step);
+      break;
+    case PlanStep::kRapid:
+    case PlanStep::kFeed:
+      check_travel(s.to.x_um, c.travel_x_um, 'X', step);
+      check_travel(s.to.y_um, c.travel_y_um, 'Y', step);
+      break;
+    case PlanStep::kSpline:
+      for (unsigned i = 0; i < s.spline.control_count; ++i) {
+        check_travel(s.spline.control[i].x_um, c.travel_x_um, 'X', step);
+        check_travel(s.spline.control[i].y_um, c.travel_y_um, 'Y', step);
+      }
+      break;
+    case PlanStep::kDrill:
+      check_travel(s.to.x_um, c.travel_x_um, 'X', step);
+      check_travel(s.to.y_um, c.travel_y_um, 'Y', step);
+      check_travel(s.z_start_um, c.travel_z_um, 'Z', step);
+      check_travel(s.z_um, c.travel_z_um, 'Z', step);
+      break;
+    default:
+      break;
+  }
+}
+
 }  // namespace
 
 std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& options) {
@@ -108,6 +145,7 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
   for (size_t i = 0; i < plan.steps.size(); ++i) {
     const PlanStep& s = plan.steps[i];
     const int index = static_cast<int>(i);
+    if (options.controller != nullptr) check_step_fits(s, *options.controller, index);
     if (s.tool_offset_um != 0) {
       throw PlanError(
           fmt::format("step {}: tool-radius offset is not in protocol v1; plan with "

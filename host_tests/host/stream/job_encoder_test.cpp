@@ -228,6 +228,31 @@ TEST(JobEncoder, DrillWhoseBottomIsNotBelowItsStartIsRefused) {
   EXPECT_THROW(encode_machine_steps({drill}), PlanError);
 }
 
+TEST(JobEncoder, JobLeavingTheControllersTravelIsRefusedNamingTheStep) {
+  proto::SessionReply small{};
+  small.travel_x_um = 30000;
+  small.travel_y_um = 30000;
+  small.travel_z_um = 5000;
+  EncodeOptions o;
+  o.controller = &small;
+  JobPlan plan = plan_with_spline(wavy_spline(4, false));  // x up to 3 mm: fits
+  EXPECT_NO_THROW(encode_job(plan, o));
+  plan.steps[1].to.x_um = 30001;  // the rapid
+  try {
+    encode_job(plan, o);
+    FAIL() << "no PlanError";
+  } catch (const PlanError& e) {
+    EXPECT_NE(std::string(e.what()).find("step 1: X 30.001 mm"), std::string::npos) << e.what();
+  }
+  plan = plan_with_spline(wavy_spline(40, false));  // control points up to X 39 mm
+  EXPECT_THROW(encode_job(plan, o), PlanError);
+  plan = plan_with_spline(wavy_spline(4, false));
+  plan.steps[2].z_um = -5001;  // pen down too deep
+  EXPECT_THROW(encode_job(plan, o), PlanError);
+  o.controller = nullptr;
+  EXPECT_NO_THROW(encode_job(plan, o));
+}
+
 TEST(JobEncoder, WireBytesCountHeaderAndCrc) {
   std::vector<QueuedCommand> cmds(2);
   cmds[0].payload.resize(10);
