@@ -88,7 +88,7 @@ class Application {
   const Dispatcher& dispatcher() const { return dispatcher_; }
   const StatusScreen& screen() const { return screen_; }
   const AxisScaling& scaling() const { return scaling_; }
-  const PathController& path() const { return path_; }
+  const PathController& path() const { return tick_.path; }
 
   // What the dispatcher calls (through ApplicationSink) from poll().
   proto::ErrorCode store(const proto::Frame& frame, uint8_t* detail);
@@ -164,22 +164,27 @@ class Application {
   StatusRing status_;
   volatile uint16_t ms_;  // written by the tick only
 
-  // Tick-owned.
-  PathController path_;
-  JogController jog_;
-  int32_t tick_pos_[config::kAxisCount];
-  uint8_t tick_mode_;  // TickMode
-  uint8_t tick_alarm_;
-  uint8_t driver_check_ms_;  // ms since the last poll_driver_check() step
-  uint8_t stops_done_;
-  uint8_t jogs_done_;
-  uint8_t jog_confirmed_;
-  uint8_t requests_done_;
-  uint8_t tick_buttons_;     // panel state seen by the previous tick
-  uint8_t confirm_presses_;  // confirm button presses (wraps), for #P
-  bool stop_pending_;
+  // Owned by the 1 ms tick (the timer ISR on the target): only tick_1ms() and the tick_*
+  // helpers touch these; the background loop sees them through the StatusRing snapshots.
+  struct TickOwned {
+    PathController path;
+    JogController jog;
+    int32_t pos[config::kAxisCount];
+    uint8_t mode;  // TickMode
+    uint8_t alarm;
+    uint8_t driver_check_ms;  // ms since the last poll_driver_check() step
+    uint8_t stops_done;
+    uint8_t jogs_done;
+    uint8_t jog_confirmed;
+    uint8_t requests_done;
+    uint8_t buttons;          // panel state seen by the previous tick
+    uint8_t confirm_presses;  // confirm button presses (wraps), for #P
+    bool stop_pending;
+  };
+  TickOwned tick_;
 
-  // Background-owned.
+  // Owned by the background loop (poll() and everything it calls, the command handlers
+  // included); the tick never reads these.
   Dispatcher dispatcher_;
   CommandQueue queue_;
   SplineStore store_;
