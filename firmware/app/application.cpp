@@ -420,6 +420,9 @@ void ApplicationSink::fill_status(proto::StatusReply* reply) {
 uint8_t ApplicationSink::queue_free() {
   return app_->queue_free();
 }
+uint8_t ApplicationSink::spline_slots_free() {
+  return app_->spline_slots_free();
+}
 void ApplicationSink::fill_session(proto::SessionReply* reply) {
   app_->fill_session(reply);
 }
@@ -446,6 +449,11 @@ void Application::fill_status(proto::StatusReply* r) {
   r->y_um = at[1];
   r->z_um = at[2];
   r->rejected_frames = 0;
+  r->spline_slots_free = spline_slots_free();
+}
+
+uint8_t Application::spline_slots_free() {
+  return store_.free_slots();
 }
 
 uint8_t Application::queue_free() {

@@ -51,6 +51,7 @@ class ApplicationSink : public CommandSink {
   void reset_session();
   void fill_status(proto::StatusReply* reply);
   uint8_t queue_free();
+  uint8_t spline_slots_free();
   void fill_session(proto::SessionReply* reply);
 
  private:
@@ -96,6 +97,7 @@ class Application {
   void reset_session();
   void fill_status(proto::StatusReply* reply);
   uint8_t queue_free();
+  uint8_t spline_slots_free();
   void fill_session(proto::SessionReply* reply);
 
  private:

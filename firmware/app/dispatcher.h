@@ -24,9 +24,12 @@ class CommandSink {
   virtual proto::ErrorCode realtime(const proto::Frame& frame) = 0;
   // #I: stop motion, clear queues (the dispatcher resets its own stream state).
   virtual void reset_session() = 0;
-  // #X was acted on: the sink flushed everything.
+  // *?: the machine's part of the status (the dispatcher adds the stream's fields).
   virtual void fill_status(proto::StatusReply* reply) = 0;
+  // Ordered frames the sink can store right now (in *O and *?).
   virtual uint8_t queue_free() = 0;
+  // Splines (#B) the sink can open right now (in *O and *?).
+  virtual uint8_t spline_slots_free() = 0;
   // *I: what the application reports (queue slots, travel, feeds, firmware version).
   virtual void fill_session(proto::SessionReply* reply) = 0;
 
@@ -64,7 +67,7 @@ class Dispatcher {
   void on_immediate(const proto::Frame& f);
   void retry_held();
   void hold(const proto::Frame& f);
-  void ack(uint8_t seq);
+  void ack(uint8_t seq, bool realtime);
   void error(uint8_t seq, proto::ErrorCode code, uint8_t detail);
   template <typename Msg>
   void reply(const Msg& msg, uint8_t seq);

@@ -114,6 +114,8 @@
   END(DrillCmd)                                                                              \
   REPLY(AckReply, kReplyAck, 'O', "acknowledge", no_check)                                   \
     FIELD(AckReply, u8, queue_free, 0, 255)                                                  \
+    FIELD(AckReply, u8, spline_slots_free, 0, 255)                                           \
+    FIELD(AckReply, flag, realtime, 0, 1)                                                    \
   END(AckReply)                                                                              \
   REPLY(ErrorReply, kReplyError, 'E', "error", no_check)                                     \
     FIELD(ErrorReply, error, code, 1, 255)                                                   \
@@ -149,6 +151,7 @@
     FIELD(StatusReply, i32, y_um, PROTO_I32_MIN, PROTO_I32_MAX)                              \
     FIELD(StatusReply, i32, z_um, PROTO_I32_MIN, PROTO_I32_MAX)                              \
     FIELD(StatusReply, u16, rejected_frames, 0, 65535)                                       \
+    FIELD(StatusReply, u8, spline_slots_free, 0, 255)                                        \
   END(StatusReply)                                                                           \
   REPLY(AlarmReply, kReplyAlarm, 'A', "alarm notice (unsolicited)", no_check)                \
     FIELD(AlarmReply, alarm, alarm, 0, 7)                                                    \

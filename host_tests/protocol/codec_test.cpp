@@ -66,10 +66,10 @@ TEST(CodecLayout, SplineDataIsIndicesThenPointsThenKnots) {
             encoded(m));
 }
 
-TEST(CodecLayout, StatusReplyIs22Bytes) {
+TEST(CodecLayout, StatusReplyIs23Bytes) {
   proto::StatusReply s = {};
   s.override_percent = 100;
-  EXPECT_EQ(22u, encoded(s).size());
+  EXPECT_EQ(23u, encoded(s).size());
 }
 
 TEST(CodecLayout, TextIsRowThenCharacters) {
@@ -141,8 +141,8 @@ TEST(CodecRoundTrip, SplineDataAtEveryPackingThatFits64Bytes) {
 }
 
 TEST(CodecRoundTrip, EveryReply) {
-  expect_round_trip(proto::AckReply{0});
-  expect_round_trip(proto::AckReply{255});
+  expect_round_trip(proto::AckReply{0, 0, false});
+  expect_round_trip(proto::AckReply{255, 2, true});
   expect_round_trip(proto::ErrorReply{ErrorCode::kGeometry, 5, 17});
   expect_round_trip(
       proto::SessionReply{2, 64, 8, 16, 256, 3, 64, 0, 2, 297000, 210000, 40000, 25000, 5000});
@@ -157,7 +157,8 @@ TEST(CodecRoundTrip, EveryReply) {
                           297000,
                           -1,
                           -40000,
-                          65535};
+                          65535,
+                          1};
   expect_round_trip(s);
   expect_round_trip(proto::AlarmReply{proto::Alarm::kLimitSwitch, proto::MachineState::kAlarm});
 }
@@ -195,10 +196,10 @@ TEST(CodecMalformed, EveryFixedSizeMessageRejectsOneByteMoreAndOneLess) {
   check(proto::DwellCmd{}, 2);
   check(proto::SpindleCmd{}, 1);
   check(proto::DrillCmd{}, 18);
-  check(proto::AckReply{}, 1);
+  check(proto::AckReply{}, 3);
   check(proto::ErrorReply{}, 3);
   check(proto::SessionReply{}, 26);
-  check(proto::StatusReply{}, 22);
+  check(proto::StatusReply{}, 23);
   check(proto::AlarmReply{}, 2);
 }
 
@@ -319,6 +320,12 @@ TEST(CodecMalformed, DrillBottomMustBeBelowItsStartAndItsFeedNonZero) {
             decode_bytes(Bytes({0, 0, 0, 0, 0, 0, 0, 0, 100, 0, 0, 0, 99, 0, 0, 0, 1, 0}), &ok));
 }
 
+TEST(CodecLayout, AckSaysWhetherItAcknowledgesARealTimeFrame) {
+  EXPECT_EQ(Bytes({15, 2, 0}), encoded(proto::AckReply{15, 2, false}));
+  EXPECT_EQ(Bytes({15, 1, 1}), encoded(proto::AckReply{15, 1, true}));
+  expect_range_error<proto::AckReply>({15, 2, 2});
+}
+
 TEST(CodecMalformed, ZeroingAxesMustBe1To7) {
   expect_range_error<proto::ZeroingCmd>({0});
   expect_range_error<proto::ZeroingCmd>({8});
@@ -330,7 +337,7 @@ TEST(CodecMalformed, ReplyEnumsOutsideTheirListsAreOutOfRange) {
   expect_range_error<proto::ErrorReply>({38, 0, 0});
   expect_range_error<proto::AlarmReply>({8, 5});
   expect_range_error<proto::AlarmReply>({1, 7});
-  Bytes status(22, 0);
+  Bytes status(23, 0);
   status[3] = 100;
   proto::StatusReply s;
   EXPECT_EQ(ErrorCode::kOk, decode_bytes(status, &s));
@@ -377,15 +384,15 @@ TEST(CodecEncode, EncodeRefusesWhatDecodeRefuses) {
 }
 
 TEST(CodecFrame, WriteFrameUsesTheMessagesLetterAndStartByte) {
-  proto::AckReply ack = {4};
+  proto::AckReply ack = {4, 2, false};
   uint8_t buf[proto::kMaxFrameBytes];
   uint8_t n = 0;
   ASSERT_EQ(ErrorCode::kOk, proto::write_frame(ack, 200, buf, sizeof buf, &n));
-  ASSERT_EQ(7, n);
+  ASSERT_EQ(9, n);
   EXPECT_EQ('*', buf[0]);
   EXPECT_EQ('O', buf[1]);
   EXPECT_EQ(200, buf[2]);
-  EXPECT_EQ(1, buf[3]);
+  EXPECT_EQ(3, buf[3]);
   EXPECT_EQ(4, buf[4]);
 }
 

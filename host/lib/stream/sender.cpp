@@ -198,6 +198,10 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (commands_ == nullptr) break;
       // Everything before next_expected is stored.
       const size_t stored = index_of_seq(r.next_expected_seq);
+      if (stored != SIZE_MAX && stored >= base_ && stored <= next_) {
+        splines_free_ = r.spline_slots_free;
+        splines_known_at_ = stored;
+      }
       if (stored != SIZE_MAX && stored > base_ && stored <= next_) {
         base_ = stored;
         oldest_sent_ = Clock::now();
@@ -219,11 +223,19 @@ void Sender::handle_reply(const proto::Frame& frame) {
       break;
     }
     case proto::kReplyAck: {
-      if (frame.seq == realtime_seq_) realtime_acked_ = true;
       proto::AckReply ack;
-      if (proto::decode_frame(frame, &ack) == proto::ErrorCode::kOk) queue_free_ = ack.queue_free;
+      if (proto::decode_frame(frame, &ack) != proto::ErrorCode::kOk) break;
+      // v2: a real-time frame's *O says so; its seq is the real-time counter's, not the
+      // ordered stream's.
+      if (ack.realtime) {
+        if (frame.seq == realtime_seq_) realtime_acked_ = true;
+        break;
+      }
+      queue_free_ = ack.queue_free;
       const size_t index = index_of_seq(frame.seq);
       if (index != SIZE_MAX && index >= base_ && index < next_) {
+        splines_free_ = ack.spline_slots_free;
+        splines_known_at_ = index + 1;
         if (queue_free_ >= 2 && window_limit_ < window_) ++window_limit_;
         base_ = index + 1;  // acks are cumulative: the controller stores strictly in order
         oldest_sent_ = Clock::now();
@@ -272,6 +284,18 @@ void Sender::handle_reply(const proto::Frame& frame) {
     default:
       break;
   }
+}
+
+// Whether the controller has a spline slot for the #B at next_: the newest *O or *? said
+// how many were free after the frames before splines_known_at_; every #B sent since took
+// one. (A slot frees when its spline has run; the status polls see that.)
+bool Sender::spline_room(const std::vector<QueuedCommand>& commands) const {
+  if (splines_free_ == kSplineSlotsUnknown) return true;
+  size_t taken = 0;
+  for (size_t i = splines_known_at_; i < next_ && i < commands.size(); ++i) {
+    if (commands[i].letter == proto::kCmdSplineHeader) ++taken;
+  }
+  return splines_free_ > taken;
 }
 
 void Sender::query_status() {
@@ -389,6 +413,8 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
   base_ = next_ = executed_ = 0;
   busy_wait_ = false;
   queue_free_ = session_.queue_slots;
+  splines_free_ = kSplineSlotsUnknown;
+  splines_known_at_ = 0;
   window_ = std::max<size_t>(1, std::min<size_t>(session_.window_frames, proto::kWindowFrames));
   window_limit_ = window_;
   size_t high_water = 0;
@@ -419,7 +445,8 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
     // In flight may be what the queue has room for plus the one frame it can hold.
     while (!busy_wait_ && next_ < commands.size() && next_ - base_ < window_limit_ &&
            next_ - base_ <= queue_free_ &&
-           inflight_bytes + frame_bytes(commands[next_]) <= rx_bytes) {
+           inflight_bytes + frame_bytes(commands[next_]) <= rx_bytes &&
+           (commands[next_].letter != proto::kCmdSplineHeader || spline_room(commands))) {
       if (next_ == base_) oldest_sent_ = Clock::now();
       send_frame(commands[next_].letter, static_cast<uint8_t>(first_seq_ + next_),
                  commands[next_].payload);

@@ -82,6 +82,7 @@ class Sender {
   void send_realtime(uint8_t letter, const std::vector<uint8_t>& payload);
   bool ensure_zeroed(const std::function<void(const Progress&)>& on_progress);
   void query_status();
+  bool spline_room(const std::vector<QueuedCommand>& commands) const;
   bool status_due(std::chrono::steady_clock::time_point last_poll) const;
   size_t index_of_seq(uint8_t seq) const;
   std::string where(size_t index) const;
@@ -112,6 +113,10 @@ class Sender {
   size_t window_ = 1;        // frames in flight the controller allows (*I)
   size_t window_limit_ = 1;  // frames in flight allowed now: 1 after *E busy, grows per *O
   size_t queue_free_ = 1;    // controller queue room, from the newest *O or *?
+  // Spline slots free after the ordered frames before splines_known_at_ (newest *O or *?).
+  static constexpr size_t kSplineSlotsUnknown = SIZE_MAX;
+  size_t splines_free_ = kSplineSlotsUnknown;
+  size_t splines_known_at_ = 0;
   bool failed_ = false;
   JobOutcome failure_ = JobOutcome::kRejected;
   std::chrono::steady_clock::time_point last_reply_;

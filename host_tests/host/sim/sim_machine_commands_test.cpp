@@ -5,6 +5,7 @@
 #include <algorithm>  // std::min
 
 #include "host/lib/sim/sim_job.h"
+#include "host_tests/host/sim/sim_test_jobs.h"
 
 namespace host {
 namespace {
@@ -66,6 +67,21 @@ TEST(SimMachineCommands, DrillJobWithAToolChangeRunsToTheEnd) {
   EXPECT_NEAR(deepest_second, -1.0, 0.005);
   EXPECT_GE(longest_still_ms, 400u);  // the simulated operator's delay
   EXPECT_NEAR(r.trace.back().x_mm, 0.0, 0.005);
+}
+
+// Many small curves: more splines than the controller's 2 spline slots at any time. The *O
+// and *? spline room (v2) keeps the sender from ever being told busy.
+TEST(SimMachineCommands, ManySplinesAreSentWithoutBusyOrResends) {
+  std::vector<Curve> curves;
+  for (int i = 0; i < 12; ++i)
+    curves.push_back(test::circle_curve(15 + 12 * (i % 6), 15 + 12 * (i / 6), 4));
+  const JobPlan plan = test::plan_of(test::drawing_of(curves));
+  sim::SimJobOptions o;
+  o.sender.status_interval = std::chrono::milliseconds(2);
+  const sim::SimJobResult r = sim::run_sim_job(plan, o);
+  ASSERT_EQ(r.outcome, JobOutcome::kCompleted) << r.message;
+  EXPECT_EQ(r.stats.retransmits, 0u);
+  EXPECT_EQ(r.stats.error_replies, 0u);
 }
 
 }  // namespace
