@@ -437,7 +437,8 @@ void Application::fill_status(proto::StatusReply* r) {
   r->state = state();
   r->alarm = alarm();
   r->flags =
-      (uint8_t)((zeroed_ ? proto::kStatusZeroed : 0) | (link_hold_ ? proto::kStatusLinkHold : 0));
+      (uint8_t)((zeroed_ ? proto::kStatusZeroed : 0) | (link_hold_ ? proto::kStatusLinkHold : 0) |
+                (items_done_ != 0 ? proto::kStatusExecuted : 0));
   r->override_percent = override_percent_;
   r->queue_free = queue_free();
   r->next_expected_seq = 0;  // filled by the dispatcher

@@ -108,7 +108,8 @@ enum {
   kStatusZeroed = 0x02,        // machine zeroed, positions valid
   kStatusSession = 0x04,       // a session is open (#I seen)
   kStatusAborted = 0x08,       // stream flushed by #X, waiting for #I
-  kStatusLinkHold = 0x10       // hold was caused by the link timeout
+  kStatusLinkHold = 0x10,      // hold was caused by the link timeout
+  kStatusExecuted = 0x20       // last_executed_seq is valid: something ran since #I
 };
 
 // Timing constants of the protocol (docs/protocol.md "Timing").

@@ -225,5 +225,19 @@ TEST(AppDrill, HolesOutsideTheTravelOrBeforeZeroingAreRefused) {
   EXPECT_FALSE(rig.plant.moving());
 }
 
+TEST(AppStatus, ExecutedFlagTellsARealSeqZeroFromNothingRunYet) {
+  AppRig rig;
+  ASSERT_TRUE(rig.open_session());
+  rig.host.query_status();
+  rig.run(20);
+  ASSERT_TRUE(rig.host.have_status);
+  EXPECT_EQ(rig.host.status.flags & proto::kStatusExecuted, 0);
+  ASSERT_TRUE(rig.zero_here());  // #M ran
+  rig.host.query_status();
+  rig.run(20);
+  EXPECT_NE(rig.host.status.flags & proto::kStatusExecuted, 0);
+  EXPECT_EQ(rig.host.status.last_executed_seq, rig.host.first_seq());
+}
+
 }  // namespace
 }  // namespace fake_app

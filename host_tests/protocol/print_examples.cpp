@@ -52,10 +52,11 @@ int main() {
   }
   show(d1, 7, "#D seq 7: control points 0..3 (weight 1.0), knots 0..3 = 0 0 0 0");
   proto::SplineDataCmd d2 = {};
+  d2.control_index = 4;  // all 4 control points are stored: the next index, even with nc 0
   d2.knot_index = 4;
   d2.knot_n = 4;
   for (int i = 0; i < 4; ++i) d2.knot[i] = 1000;
-  show(d2, 8, "#D seq 8: knots 4..7 = 1000 1000 1000 1000");
+  show(d2, 8, "#D seq 8: no control points (control_index 4: all stored), knots 4..7 = 1000");
   show(proto::ZeroingCmd{7}, 9, "#M seq 9: zero X, Y and Z with the joystick");
   show(proto::StatusCmd{}, 10, "#? seq 10: status query");
   proto::StatusReply s = {proto::MachineState::kRunning,

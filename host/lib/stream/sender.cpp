@@ -250,6 +250,16 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (r.code == proto::ErrorCode::kSeqStale) break;  // superseded real-time frame
       if (commands_ != nullptr && (is_resend_error(r.code) || r.code == proto::ErrorCode::kBusy)) {
         const size_t expected = index_of_seq(r.next_expected_seq);
+        // One lost frame makes every later frame of the window answer seq_gap with the same
+        // expected seq: go back once, not once per reply (the resent frames are on their way).
+        if (r.code == proto::ErrorCode::kSeqGap && expected == last_gap_expected_ &&
+            Clock::now() - last_gap_at_ < std::max(options_.min_rto, 4 * srtt_)) {
+          break;
+        }
+        if (r.code == proto::ErrorCode::kSeqGap) {
+          last_gap_expected_ = expected;
+          last_gap_at_ = Clock::now();
+        }
         busy_wait_ = (r.code == proto::ErrorCode::kBusy);
         if (expected != SIZE_MAX && expected >= base_ && expected <= next_) {
           base_ = expected;

@@ -122,6 +122,8 @@ class Sender {
   std::chrono::steady_clock::time_point last_reply_;
   std::chrono::steady_clock::time_point oldest_sent_;
   std::chrono::milliseconds srtt_{50};
+  size_t last_gap_expected_ = SIZE_MAX;  // the seq_gap we went back for, and when
+  std::chrono::steady_clock::time_point last_gap_at_{};
 
   std::atomic<bool> hold_requested_{false};
   std::atomic<bool> resume_requested_{false};

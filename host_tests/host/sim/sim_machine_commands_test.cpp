@@ -10,6 +10,27 @@
 namespace host {
 namespace {
 
+// Drops exactly one ordered frame: the n-th write that is not #? / #I / real-time.
+class DropOneFrame : public Link {
+ public:
+  DropOneFrame(std::unique_ptr<Link> inner, int n) : inner_(std::move(inner)), n_(n) {}
+  void write(const uint8_t* data, size_t size) override {
+    const bool ordered = size > 1 && data[0] == '#' && data[1] != '?' && data[1] != 'I' &&
+                         proto::command_kind(data[1]) == proto::FrameKind::kQueued;
+    if (ordered && ++seen_ == n_) return;
+    inner_->write(data, size);
+  }
+  size_t read(uint8_t* buffer, size_t capacity, std::chrono::milliseconds timeout) override {
+    return inner_->read(buffer, capacity, timeout);
+  }
+  std::string name() const override { return inner_->name(); }
+
+ private:
+  std::unique_ptr<Link> inner_;
+  int n_;
+  int seen_ = 0;
+};
+
 PlanStep step(PlanStep::Kind kind) {
   PlanStep s;
   s.kind = kind;
@@ -82,6 +103,23 @@ TEST(SimMachineCommands, ManySplinesAreSentWithoutBusyOrResends) {
   ASSERT_EQ(r.outcome, JobOutcome::kCompleted) << r.message;
   EXPECT_EQ(r.stats.retransmits, 0u);
   EXPECT_EQ(r.stats.error_replies, 0u);
+}
+
+// One lost frame: the frames behind it each answer seq_gap naming the same expected seq; the
+// sender goes back once, so at most one window is resent.
+TEST(SimMachineCommands, OneLostFrameCostsAtMostOneWindowOfResends) {
+  std::vector<Curve> curves;
+  for (int i = 0; i < 6; ++i) curves.push_back(test::circle_curve(20 + 15 * i, 30, 5));
+  const JobPlan plan = test::plan_of(test::drawing_of(curves));
+  sim::SimJobOptions o;
+  o.sender.status_interval = std::chrono::milliseconds(20);
+  o.wrap_link = [](std::unique_ptr<Link> inner) -> std::unique_ptr<Link> {
+    return std::make_unique<DropOneFrame>(std::move(inner), 12);
+  };
+  const sim::SimJobResult r = sim::run_sim_job(plan, o);
+  ASSERT_EQ(r.outcome, JobOutcome::kCompleted) << r.message;
+  EXPECT_GE(r.stats.retransmits, 1u);
+  EXPECT_LE(r.stats.retransmits, static_cast<size_t>(proto::kWindowFrames));
 }
 
 }  // namespace
