@@ -236,6 +236,7 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (index != SIZE_MAX && index >= base_ && index < next_) {
         splines_free_ = ack.spline_slots_free;
         splines_known_at_ = index + 1;
+        sample_round_trip(index);
         if (queue_free_ >= 2 && window_limit_ < window_) ++window_limit_;
         base_ = index + 1;  // acks are cumulative: the controller stores strictly in order
         oldest_sent_ = Clock::now();
@@ -306,6 +307,16 @@ bool Sender::spline_room(const std::vector<QueuedCommand>& commands) const {
     if (commands[i].letter == proto::kCmdSplineHeader) ++taken;
   }
   return splines_free_ > taken;
+}
+
+// The retransmission timer's round trip: smoothed (1/8 gain) over frames acknowledged at
+// their first sending; a frame held by the controller (ack delayed for room) or sent again
+// says nothing about the link and is left out.
+void Sender::sample_round_trip(size_t index) {
+  if (index >= first_sent_.size() || resent_[index]) return;
+  if (have_status_ && (last_status_.flags & proto::kStatusFramePending)) return;
+  const auto sample = std::chrono::duration_cast<milliseconds>(Clock::now() - first_sent_[index]);
+  srtt_ = (7 * srtt_ + sample) / 8;
 }
 
 void Sender::query_status() {
@@ -411,6 +422,8 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
                        const std::function<void(const Progress&)>& on_progress) {
   if (!session_open_) open_session();
   failed_ = false;
+  first_sent_.clear();  // no round-trip samples from the zeroing frame
+  resent_.clear();
   if (!ensure_zeroed(on_progress)) {
     if (abort_requested_) {
       send_realtime(proto::kCmdAbort, {});
@@ -420,6 +433,8 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
     return failure_;
   }
   commands_ = &commands;
+  first_sent_.assign(commands.size(), Clock::time_point{});
+  resent_.assign(commands.size(), false);
   base_ = next_ = executed_ = 0;
   busy_wait_ = false;
   queue_free_ = session_.queue_slots;
@@ -462,6 +477,13 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
                  commands[next_].payload);
       inflight_bytes += frame_bytes(commands[next_]);
       if (next_ < high_water) stats_.retransmits++;
+      if (next_ < first_sent_.size()) {
+        // Karn: a frame sent more than once gives no round-trip sample.
+        if (next_ < high_water)
+          resent_[next_] = true;
+        else
+          first_sent_[next_] = Clock::now();
+      }
       ++next_;
       high_water = std::max(high_water, next_);
     }

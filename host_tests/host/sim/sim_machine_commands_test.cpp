@@ -99,10 +99,15 @@ TEST(SimMachineCommands, ManySplinesAreSentWithoutBusyOrResends) {
   const JobPlan plan = test::plan_of(test::drawing_of(curves));
   sim::SimJobOptions o;
   o.sender.status_interval = std::chrono::milliseconds(2);
+  std::chrono::milliseconds rtt{-1};
+  o.on_progress = [&](Sender& sender, const Progress&) { rtt = sender.smoothed_rtt(); };
   const sim::SimJobResult r = sim::run_sim_job(plan, o);
   ASSERT_EQ(r.outcome, JobOutcome::kCompleted) << r.message;
   EXPECT_EQ(r.stats.retransmits, 0u);
   EXPECT_EQ(r.stats.error_replies, 0u);
+  // Acks of frames sent once fed the retransmission timer (it starts at a 50 ms guess).
+  EXPECT_GE(rtt.count(), 0);
+  EXPECT_NE(rtt.count(), 50);
 }
 
 // One lost frame: the frames behind it each answer seq_gap naming the same expected seq; the
