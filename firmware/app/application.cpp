@@ -570,8 +570,8 @@ bool Application::execute_item(QueueItem* item) {
         return push_point(target, last_feed_um_s_, kPointEndOfItem);
       }
       if (!spline_started_) {
-        if (generator_.begin(store_.spline(slot), item->spline.feed_um_s, last[2], item_tag_) !=
-            core::GeometryError::kOk) {
+        if (generator_.begin(store_.spline(slot), item->spline.feed_um_s, last[2], item_tag_,
+                             item->spline.tool_offset_um) != core::GeometryError::kOk) {
           store_.release(slot);
           raise_alarm(proto::Alarm::kPathFault);
           return false;

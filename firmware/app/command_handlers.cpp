@@ -170,6 +170,7 @@ ErrorCode Application::on_spline_header(const proto::SplineHeaderCmd& c, uint8_t
   QueueItem item = new_item(ItemKind::kSpline, seq);
   item.spline.slot = slot;
   item.spline.feed_um_s = c.feed_um_per_s;
+  item.spline.tool_offset_um = c.tool_offset_um;
   return enqueue(item);
 }
 

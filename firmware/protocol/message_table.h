@@ -59,6 +59,7 @@
     FIELD(SplineHeaderCmd, u16, control_count, 2, 64)                                        \
     FIELD(SplineHeaderCmd, u16, knot_count, 4, 68)                                           \
     FIELD(SplineHeaderCmd, u16, feed_um_per_s, 1, 65535)                                     \
+    FIELD(SplineHeaderCmd, i32, tool_offset_um, -100000, 100000)                             \
   END(SplineHeaderCmd)                                                                       \
   CMD(SplineDataCmd, kCmdSplineData, 'D', kQueued, "spline data", "`*O` / `*E`",             \
       on_spline_data, check_spline_data)                                                     \

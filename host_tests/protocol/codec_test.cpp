@@ -47,9 +47,9 @@ TEST(CodecLayout, FeedMoveIsXYLittleEndianThenFeed) {
   EXPECT_EQ(Bytes({0xE0, 0x2E, 0x00, 0x00, 0x54, 0xF2, 0xFF, 0xFF, 0xD0, 0x07}), encoded(m));
 }
 
-TEST(CodecLayout, SplineHeaderIsDegreeFlagsCountsFeed) {
-  proto::SplineHeaderCmd m = {3, true, 5, 9, 1500};
-  EXPECT_EQ(Bytes({3, 0x01, 5, 0, 9, 0, 0xDC, 0x05}), encoded(m));
+TEST(CodecLayout, SplineHeaderIsDegreeRationalCountsFeedOffset) {
+  proto::SplineHeaderCmd m = {3, true, 5, 9, 1500, -2};
+  EXPECT_EQ(Bytes({3, 0x01, 5, 0, 9, 0, 0xDC, 0x05, 0xFE, 0xFF, 0xFF, 0xFF}), encoded(m));
 }
 
 TEST(CodecLayout, SplineDataIsIndicesThenPointsThenKnots) {
@@ -92,6 +92,8 @@ TEST(CodecRoundTrip, EveryCommand) {
   expect_round_trip(proto::TextCmd{1, 0, {}});
   expect_round_trip(proto::SplineHeaderCmd{1, false, 2, 4, 1});
   expect_round_trip(proto::SplineHeaderCmd{3, true, 64, 68, 65535});
+  expect_round_trip(proto::SplineHeaderCmd{3, false, 4, 8, 1000, -100000});
+  expect_round_trip(proto::SplineHeaderCmd{3, false, 4, 8, 1000, 100000});
   expect_round_trip(proto::ResolutionCmd{50, 5});
   expect_round_trip(proto::FeedMoveCmd{-1000000, 1000000, 65535});
   expect_round_trip(proto::RapidMoveCmd{0, -1});
@@ -187,7 +189,7 @@ TEST(CodecMalformed, EveryFixedSizeMessageRejectsOneByteMoreAndOneLess) {
   check(proto::AbortCmd{}, 0);
   check(proto::ClearAlarmCmd{}, 0);
   check(proto::OverrideCmd{}, 1);
-  check(proto::SplineHeaderCmd{}, 8);
+  check(proto::SplineHeaderCmd{}, 12);
   check(proto::ResolutionCmd{}, 4);
   check(proto::FeedMoveCmd{}, 10);
   check(proto::RapidMoveCmd{}, 8);
@@ -249,13 +251,18 @@ TEST(CodecMalformed, TextRowAbove1OrNonPrintableCharacterIsOutOfRange) {
 }
 
 TEST(CodecMalformed, SplineHeaderFieldsOutOfRange) {
-  expect_range_error<proto::SplineHeaderCmd>({0, 0, 2, 0, 3, 0, 1, 0});    // degree 0
-  expect_range_error<proto::SplineHeaderCmd>({4, 0, 5, 0, 10, 0, 1, 0});   // degree 4
-  expect_range_error<proto::SplineHeaderCmd>({3, 2, 4, 0, 8, 0, 1, 0});    // unknown flag bit
-  expect_range_error<proto::SplineHeaderCmd>({3, 0, 3, 0, 7, 0, 1, 0});    // too few points
-  expect_range_error<proto::SplineHeaderCmd>({1, 0, 65, 0, 67, 0, 1, 0});  // 65 points
-  expect_range_error<proto::SplineHeaderCmd>({2, 0, 4, 0, 8, 0, 1, 0});    // knots != 4+2+1
-  expect_range_error<proto::SplineHeaderCmd>({2, 0, 4, 0, 7, 0, 0, 0});    // feed 0
+  expect_range_error<proto::SplineHeaderCmd>({0, 0, 2, 0, 3, 0, 1, 0, 0, 0, 0, 0});   // degree 0
+  expect_range_error<proto::SplineHeaderCmd>({4, 0, 5, 0, 10, 0, 1, 0, 0, 0, 0, 0});  // degree 4
+  expect_range_error<proto::SplineHeaderCmd>(
+      {3, 2, 4, 0, 8, 0, 1, 0, 0, 0, 0, 0});  // unknown flag bit
+  expect_range_error<proto::SplineHeaderCmd>(
+      {3, 0, 3, 0, 7, 0, 1, 0, 0, 0, 0, 0});  // too few points
+  expect_range_error<proto::SplineHeaderCmd>({1, 0, 65, 0, 67, 0, 1, 0, 0, 0, 0, 0});  // 65 points
+  expect_range_error<proto::SplineHeaderCmd>(
+      {2, 0, 4, 0, 8, 0, 1, 0, 0, 0, 0, 0});  // knots != 4+2+1
+  expect_range_error<proto::SplineHeaderCmd>({2, 0, 4, 0, 7, 0, 0, 0, 0, 0, 0, 0});  // feed 0
+  // tool offset 100001 um
+  expect_range_error<proto::SplineHeaderCmd>({2, 0, 4, 0, 7, 0, 1, 0, 0xA1, 0x86, 0x01, 0});
 }
 
 TEST(CodecMalformed, SplineDataFieldsOutOfRange) {
