@@ -30,14 +30,15 @@ struct ProgramOp {
     kDrill     // one hole of a G81/G82/G83 cycle
   };
   Kind kind = kCut;
-  int curve = -1;            // kCut: index into Drawing::curves
-  double depth_mm = 0.0;     // kCut: Z of the cut (<= 0); NaN: none given (the planner's)
-  std::string text;          // kPause
-  double z_mm = 0.0;         // kPause: the tool height the program chose before it (M6 height)
-  double dwell_s = 0.0;      // kDwell; kDrill: dwell at the bottom (G82 P)
-  bool spindle_on = false;   // kSpindle
-  Point2 at{0, 0};           // kDrill: hole centre
-  double z_start_mm = 0.0;   // kDrill: R plane, where the feed starts
+  int curve = -1;           // kCut: index into Drawing::curves
+  double depth_mm = 0.0;    // kCut: Z of the cut (<= 0); NaN: none given (the planner's)
+  std::string text;         // kPause
+  double z_mm = 0.0;        // kPause, kDwell, kSpindle: the program's Z here (> 0: out of the work;
+                            // for a pause, the tool-change height)
+  double dwell_s = 0.0;     // kDwell; kDrill: dwell at the bottom (G82 P)
+  bool spindle_on = false;  // kSpindle
+  Point2 at{0, 0};          // kDrill: hole centre
+  double z_start_mm = 0.0;  // kDrill: R plane, where the feed starts
   double z_bottom_mm = 0.0;  // kDrill: bottom of the hole
   double retract_mm = 0.0;   // kDrill: Z after the hole (R for G99, the start height for G98)
   double peck_mm = 0.0;      // kDrill: G83 peck depth Q (0: one plunge)

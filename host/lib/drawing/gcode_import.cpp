@@ -403,16 +403,23 @@ class Interpreter {
 
   void pause(const std::string& text) {
     flush();
+    const bool told = !message_.empty();  // text is the program's own message
     message_.clear();
-    // M6 then M0 with nothing in between (pcb2gcode, FlatCAM): one stop for the operator.
+    // M6 then M0 with nothing in between (pcb2gcode, FlatCAM): one stop for the operator,
+    // with the program's message if either had one.
     if (!dr_.program.empty() && dr_.program.back().kind == ProgramOp::kPause &&
         !moved_since_pause_) {
+      if (told) {
+        ProgramOp& last = dr_.program.back();
+        last.text = last_pause_told_ ? last.text + "; " + text : text;
+        last_pause_told_ = true;
+      }
       return;
     }
+    last_pause_told_ = told;
     ProgramOp op;
     op.kind = ProgramOp::kPause;
     op.text = text;
-    op.z_mm = z_;
     add(op);
     moved_since_pause_ = false;
   }
@@ -430,6 +437,7 @@ class Interpreter {
 
   void add(ProgramOp op) {
     op.source = "line " + std::to_string(n_);
+    if (op.kind != ProgramOp::kDrill) op.z_mm = z_;
     dr_.program.push_back(op);
   }
 
@@ -479,6 +487,7 @@ class Interpreter {
   double cycle_r_ = 0, cycle_z_ = 0, cycle_p_ = 0, cycle_q_ = 0;  // sticky cycle words
   bool have_r_ = false, have_z_ = false;
   bool moved_since_pause_ = true;
+  bool last_pause_told_ = false;  // the last pause shows the program's message
   std::vector<BulgeVertex> run_;  // the cutting moves since the last pen-up
   std::string run_label_;
   double run_depth_ = 0.0;

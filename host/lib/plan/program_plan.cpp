@@ -29,6 +29,9 @@ class ProgramPlanner {
     push(up);
     z_um_ = up.z_um;
     for (const ProgramOp& op : d_.program) {
+      // The program lifted the tool out of the work after the last cut: so does the plan,
+      // before the spindle stops or the machine waits.
+      if (op.kind != ProgramOp::kCut && cutting_ && op.z_mm > 0) lift_to(to_um(o_.z_up_mm));
       switch (op.kind) {
         case ProgramOp::kCut:
           cut(op);
