@@ -128,7 +128,6 @@ class ProgramPlanner {
     up.kind = PlanStep::kPenUp;
     up.z_um = z_um;
     push(up);
-    if (cutting_) ++plan_.pen_lifts;
     cutting_ = false;
     z_um_ = z_um;
   }
@@ -173,6 +172,7 @@ class ProgramPlanner {
       }
       if (depth != z_um_) z_move(depth, depth < z_um_ ? plunge : 0, index);
     } else {
+      if (cutting_) ++plan_.pen_lifts;  // between two cuts
       lift_to(to_um(o_.z_up_mm));
       rapid_to(start);
       if (z_um_ > to_um(o_.z_up_mm)) z_move(to_um(o_.z_up_mm), 0, index);  // after a tool change
@@ -228,7 +228,7 @@ class ProgramPlanner {
       push(s);
       z_um_ = start;
     } else {
-      z_move(start, 0, -1);
+      if (z_um_ != start) z_move(start, 0, -1);
       int32_t depth = start;
       const int32_t peck =
           op.peck_mm > 0 ? std::max<int32_t>(1, to_um(op.peck_mm)) : start - bottom;
