@@ -28,7 +28,8 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
     scaled.push_back(transformed(c.spline, scale, Point2(0, 0)));
     ext.add(curve_extents(scaled.back()));
   }
-  plan.offset_mm = Point2(o.margin_mm, o.margin_mm) - ext.min;
+  plan.offset_mm =
+      o.fixed_offset ? o.offset_mm : Point2(Point2(o.margin_mm, o.margin_mm) - ext.min);
   for (BSpline& s : scaled) s = transformed(s, Eigen::Matrix2d::Identity(), plan.offset_mm);
   const double radius = o.tool_side == ToolSide::kCentre ? 0.0 : o.tool_radius_mm;
 

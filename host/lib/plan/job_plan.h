@@ -29,8 +29,12 @@ enum class DrillMode { kDrillCommand, kZMoves };
 double machine_travel_mm(int axis);
 
 struct PlanOptions {
-  double scale = 1.0;            // applied to the drawing (mm) before anything else
-  double margin_mm = 0.0;        // the drawing's lower-left corner goes to (margin, margin)
+  double scale = 1.0;      // applied to the drawing (mm) before anything else
+  double margin_mm = 0.0;  // the drawing's lower-left corner goes to (margin, margin)
+  // Instead: machine = drawing * scale + offset_mm, the same for every file of one board
+  // (the back, drill and outline programs of a PCB then line up).
+  bool fixed_offset = false;
+  Point2 offset_mm{0, 0};
   double work_width_mm = 297.0;  // work area: x in [0, width], y in [0, height] (A4)
   double work_height_mm = 210.0;
   bool reorder = true;               // greedy nearest-neighbour ordering, with reversal

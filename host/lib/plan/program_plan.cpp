@@ -75,7 +75,8 @@ class ProgramPlanner {
     for (const ProgramOp& op : d_.program)
       if (op.kind == ProgramOp::kDrill) ext.add(Point2(op.at * o_.scale));
     if (ext.empty()) throw PlanError(d_.path + ": the program has nothing to engrave or drill");
-    plan_.offset_mm = Point2(o_.margin_mm, o_.margin_mm) - ext.min;
+    plan_.offset_mm =
+        o_.fixed_offset ? o_.offset_mm : Point2(Point2(o_.margin_mm, o_.margin_mm) - ext.min);
     const double radius = o_.tool_side == ToolSide::kCentre ? 0.0 : o_.tool_radius_mm;
     std::string culprit;
     planned_index_.assign(d_.curves.size(), -1);

@@ -182,6 +182,23 @@ TEST(ProgramPlan, ZBeyondTheTravelIsRefusedWithTheLine) {
   }
 }
 
+TEST(ProgramPlan, AFixedOffsetLinesUpFilesWithDifferentExtents) {
+  // A board's drill file and outline: the hole at (10, 10) of the same board frame.
+  PlanOptions o;
+  o.fixed_offset = true;
+  o.offset_mm = Point2(20, 30);
+  const JobPlan drill = plan_text("G21\nG81 X10 Y10 R1 Z-1\nG80\n", o);
+  const JobPlan outline = plan_text("G21\nG0 X0 Y0\nG1 X50\nG1 Y40\n", o);
+  int32_t hole_x = -1;
+  for (const PlanStep& s : drill.steps)
+    if (s.kind == PlanStep::kDrill) hole_x = s.to.x_um;
+  EXPECT_EQ(hole_x, 30000);
+  EXPECT_NEAR(outline.extents_mm.min.x(), 20.0, 1e-9);  // board x 0 -> machine 20
+  EXPECT_NEAR(outline.extents_mm.min.y(), 30.0, 1e-9);
+  o.offset_mm = Point2(-5, 0);  // the outline would start left of the zero
+  EXPECT_THROW(plan_text("G21\nG0 X0 Y0\nG1 X50\n", o), PlanError);
+}
+
 // ---- work area: what is too big, by how much, and what would fit ----
 
 Drawing rectangle(double w, double h) {
