@@ -53,7 +53,7 @@ void check_readable(const std::string& path) {
   std::error_code ec;
   const std::filesystem::file_status st = std::filesystem::status(path, ec);
   if (st.type() == std::filesystem::file_type::not_found) {
-    throw ImportError(path + ": no such file");
+    throw ImportError(path + ": cannot open the file: no such file");
   }
   if (st.type() == std::filesystem::file_type::directory) {
     throw ImportError(path + ": is a directory, not a drawing file");

@@ -17,12 +17,6 @@ namespace plan_detail {
 
 namespace {
 
-// True when the curve is exactly a chain of straight segments through its control points.
-bool is_polyline(const BSpline& s) {
-  if (s.degree != 1) return false;
-  return s.knots[0] == s.knots[1] && s.knots[s.knots.size() - 1] == s.knots[s.knots.size() - 2];
-}
-
 // A size for a message: at most 3 decimals, no trailing zeros.
 std::string mm(double v) {
   std::ostringstream o;
@@ -31,6 +25,11 @@ std::string mm(double v) {
 }
 
 }  // namespace
+
+bool is_polyline(const BSpline& s) {
+  if (s.degree != 1) return false;
+  return s.knots[0] == s.knots[1] && s.knots[s.knots.size() - 1] == s.knots[s.knots.size() - 2];
+}
 
 int32_t to_um(double mm) {
   return static_cast<int32_t>(std::llround(mm * 1000.0));

@@ -15,6 +15,9 @@ namespace host::plan_detail {
 int32_t to_um(double mm);
 core::PointUm to_um(const Point2& p);
 
+// True when the curve is exactly a chain of straight segments through its control points.
+bool is_polyline(const BSpline& s);
+
 // Length of a polyline approximation of the curve.
 double curve_length(const BSpline& s);
 

@@ -7,6 +7,7 @@
 
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/plan/plan_steps.h"
+#include "host/lib/plan/polyline_fit.h"
 
 namespace host {
 
@@ -184,7 +185,18 @@ class ProgramPlanner {
     if (o_.tool_side != ToolSide::kCentre) {
       offset = to_um(o_.tool_radius_mm) * (o_.tool_side == ToolSide::kLeft ? 1 : -1);
     }
-    append_curve_steps(c, index, offset, o_, &plan_);
+    if (o_.fit_tolerance_mm > 0 && offset == 0 && is_polyline(c.spline)) {
+      // G1 runs as cubic B-splines; the plan's curve stays the program's own path.
+      FitOptions fo;
+      fo.tolerance_mm = o_.fit_tolerance_mm;
+      PlannedCurve piece = c;
+      for (const BSpline& s : fit_polyline(c.spline.control, fo)) {
+        piece.spline = s;
+        append_curve_steps(piece, index, offset, o_, &plan_);
+      }
+    } else {
+      append_curve_steps(c, index, offset, o_, &plan_);
+    }
     plan_.cut_length_mm += curve_length(c.spline);
     at_ = end_point(c.spline);
   }

@@ -170,7 +170,8 @@ TEST(Cli, DirectoryGivenAsAFileSaysSo) {
 TEST(Cli, MissingFileSaysThereIsNoSuchFile) {
   const ToolRun r = run("info /nonexistent/x.dxf");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("/nonexistent/x.dxf: no such file"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/nonexistent/x.dxf: cannot open the file: no such file"), std::string::npos)
+      << r.err;
 }
 
 TEST(Cli, UnreadableFileSaysPermissionDenied) {
