@@ -32,7 +32,8 @@ struct ProgramOp {
   Kind kind = kCut;
   int curve = -1;           // kCut: index into Drawing::curves
   double depth_mm = 0.0;    // kCut: Z of the cut (<= 0); NaN: none given (the planner's)
-  std::string text;         // kPause
+  std::string text;         // kPause: the whole message
+  int tool = 0;             // kPause: the tool of an M6 tool change (0: not a tool change)
   double z_mm = 0.0;        // kPause, kDwell, kSpindle: the program's Z here (> 0: out of the work;
                             // for a pause, the tool-change height)
   double dwell_s = 0.0;     // kDwell; kDrill: dwell at the bottom (G82 P)

@@ -147,7 +147,7 @@ class Interpreter {
       }
     }
     if (tool_change) {
-      pause(message_.empty() ? "Change to tool T" + std::to_string(tool_) : message_);
+      pause(message_.empty() ? "Change tool T" + std::to_string(tool_) : message_, tool_);
     }
     for (int m : w.m) {
       if (m == 3 || m == 4) spindle(true);
@@ -401,7 +401,7 @@ class Interpreter {
     }
   }
 
-  void pause(const std::string& text) {
+  void pause(const std::string& text, int tool = 0) {
     flush();
     const bool told = !message_.empty();  // text is the program's own message
     message_.clear();
@@ -409,8 +409,9 @@ class Interpreter {
     // with the program's message if either had one.
     if (!dr_.program.empty() && dr_.program.back().kind == ProgramOp::kPause &&
         !moved_since_pause_) {
+      ProgramOp& last = dr_.program.back();
+      if (tool != 0) last.tool = tool;
       if (told) {
-        ProgramOp& last = dr_.program.back();
         last.text = last_pause_told_ ? last.text + "; " + text : text;
         last_pause_told_ = true;
       }
@@ -420,6 +421,7 @@ class Interpreter {
     ProgramOp op;
     op.kind = ProgramOp::kPause;
     op.text = text;
+    op.tool = tool;
     add(op);
     moved_since_pause_ = false;
   }

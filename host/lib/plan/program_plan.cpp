@@ -18,6 +18,21 @@ namespace {
 // LinuxCNC's G83 clearance above the previous peck's depth before feeding on (0.010 in).
 const double kPeckClearanceMm = 0.254;
 
+// What the LCD's 16 columns show of a pause: the message if it fits; for a tool change
+// "T1 " and the message's last word (pcb2gcode and FlatCAM end it with the tool size).
+std::string lcd_text(const ProgramOp& op) {
+  const size_t columns = 16;
+  if (op.text.size() <= columns) return op.text;
+  if (op.tool != 0) {
+    const std::string t = "T" + std::to_string(op.tool);
+    const size_t space = op.text.find_last_of(' ');
+    const std::string last = space == std::string::npos ? "" : op.text.substr(space + 1);
+    if (!last.empty() && t.size() + 1 + last.size() <= columns) return t + " " + last;
+    return t + " tool change";
+  }
+  return op.text.substr(0, columns);
+}
+
 class ProgramPlanner {
  public:
   ProgramPlanner(const Drawing& d, const PlanOptions& o) : d_(d), o_(o) {}
@@ -208,7 +223,7 @@ class ProgramPlanner {
     lift_to(to_um(z));
     PlanStep p;
     p.kind = PlanStep::kPause;
-    p.text = op.text;
+    p.text = lcd_text(op);
     push(p);
   }
 
@@ -228,10 +243,11 @@ class ProgramPlanner {
         to_um(op.feed_mm_per_s > 0 ? std::min(op.feed_mm_per_s, o_.drill_feed_max_mm_per_s)
                                    : o_.plunge_mm_per_s);
     lift_to(std::max(to_um(o_.z_up_mm), start));
-    rapid_to(p);
     ++plan_.holes;
     const bool z_moves = o_.drill_mode == DrillMode::kZMoves || op.dwell_s > 0 || op.peck_mm > 0;
     if (!z_moves) {
+      // The drill command travels there itself, at the height the tool is at (>= R).
+      plan_.rapid_length_mm += (p - at_).norm();
       PlanStep s;
       s.kind = PlanStep::kDrill;
       s.to = to_um(p);
@@ -241,6 +257,7 @@ class ProgramPlanner {
       push(s);
       z_um_ = start;
     } else {
+      rapid_to(p);
       if (z_um_ != start) z_move(start, 0, -1);
       int32_t depth = start;
       const int32_t peck =

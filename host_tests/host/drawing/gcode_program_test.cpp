@@ -107,7 +107,8 @@ TEST(GcodeProgram, M0WithoutAMessageSaysWhatStoppedAndM1Too) {
   ASSERT_EQ(d.program.size(), 3u);
   EXPECT_EQ(d.program[0].text, "Program stop (M0)");
   EXPECT_EQ(d.program[1].text, "Optional stop (M1)");
-  EXPECT_EQ(d.program[2].text, "Change to tool T4");
+  EXPECT_EQ(d.program[2].text, "Change tool T4");
+  EXPECT_EQ(d.program[2].tool, 4);
 }
 
 TEST(GcodeProgram, MessageGoesWithTheNextPauseOnly) {
