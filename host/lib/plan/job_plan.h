@@ -54,6 +54,9 @@ struct PlanOptions {
   bool file_depths = true;  // cut at the program's own Z where it gives one (else z_down_mm)
   DrillMode drill_mode = DrillMode::kDrillCommand;
   double drill_feed_max_mm_per_s = 5.0;  // the file's plunge feed is capped here (Z axis)
+  // Highest the tool goes for a pause (the program's tool-change height is capped here):
+  // Z is zeroed at the work, about mid-travel, so half the Z travel is above it.
+  double pause_z_max_mm = machine_travel_mm(config::kAxisZ) / 2;
   // Runs of short G1 moves are sent as cubic B-splines within this distance of the
   // program's path (0: every move as a straight feed).
   double fit_tolerance_mm = 0.005;

@@ -216,10 +216,10 @@ class ProgramPlanner {
     at_ = end_point(c.spline);
   }
 
-  // The tool goes up (to the program's tool-change height when that is higher, within the
-  // Z travel) so the operator can change the bit, then the controller waits.
+  // The tool goes up (to the program's tool-change height when that is higher, at most
+  // pause_z_max_mm) so the operator can change the bit, then the controller waits.
   void pause(const ProgramOp& op) {
-    const double z = std::max(o_.z_up_mm, std::min(op.z_mm, o_.travel_z_mm));
+    const double z = std::max(o_.z_up_mm, std::min(op.z_mm, o_.pause_z_max_mm));
     lift_to(to_um(z));
     PlanStep p;
     p.kind = PlanStep::kPause;

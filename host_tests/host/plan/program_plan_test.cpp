@@ -82,6 +82,14 @@ TEST(ProgramPlan, AToolChangeShowsTheToolAndTheMessagesLastWordOnTheLcd) {
   EXPECT_EQ(q.steps[2].text, "Please check the");  // not a tool change: the first 16
 }
 
+TEST(ProgramPlan, TheToolChangeHeightIsCappedAtHalfTheZTravel) {
+  // pcb2gcode's "G00 Z1.0" in inches is 25.4 mm: above what the Z axis has over the work.
+  const JobPlan p = plan_text("G20\nG0 Z1.0\nT1 M6\nG0 Z0.1\nG1 Z-0.01\nG1 X1\n");
+  ASSERT_EQ(p.steps[1].kind, PlanStep::kPenUp);
+  EXPECT_EQ(p.steps[1].z_um, 20000);
+  EXPECT_EQ(p.steps[2].kind, PlanStep::kPause);
+}
+
 TEST(ProgramPlan, DepthFromThePlannerWhenTheFileHasNone) {
   PlanOptions o;
   o.z_down_mm = -0.15;
