@@ -222,3 +222,32 @@ TEST(Cli, RunOnATooLargeDrawingSaysWhatWouldFit) {
 }
 
 }  // namespace
+
+namespace {
+
+// A program the way pcb2gcode writes one, milling then drilling: dwells, a tool change
+// with its message, spindle, G81 holes; through the simulated machine to the end.
+const char* kPcbJob =
+    "( pcb2gcode style )\nG94\nG20\nG90\nG00 S10000\nG64 P0.0004\nG01 F20\n"
+    "G00 Z1.0 (Retract to tool change height)\nT1\nM5\nG04 P1.0\n"
+    "(MSG, Change tool bit to mill diameter 0.00800in)\nM6\nM0\nM3\nG04 P1.0\nG04 P0\n"
+    "G00 Z0.08\nG00 X0.1 Y0.1\nG01 Z-0.004 F10\nG04 P0\nG01 F20\nG01 X0.5 Y0.1\n"
+    "G01 X0.5 Y0.3\nG01 X0.1 Y0.3\nG01 X0.1 Y0.1\nG00 Z1.0\n"
+    "T2\nM5\nG04 P1.0\n(MSG, Change tool bit to drill size 0.0315inch)\nM6\nM0\nM3\nG0 Z0.08\n"
+    "G04 P1.0\nG81 R0.08 Z-0.07 F10 X0.2 Y0.2\nX0.4 Y0.2\nG80\nG00 Z1.0\nM5\nG04 P1.0\nM9\nM2\n";
+
+TEST(Cli, RunCarriesAPcbProgramWithToolChangesDwellsAndHolesToTheEnd) {
+  const std::string out = testing::TempDir() + "/cli_pcbjob_" + std::to_string(getpid());
+  const ToolRun r = run("run " + write_temp("cli_pcbjob.ngc", kPcbJob) + " -o " + out);
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  std::ifstream in(out + "/" + std::to_string(getpid()) + "-cli_pcbjob.json");
+  ASSERT_TRUE(in) << "no report";
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["outcome"], "completed");
+  EXPECT_EQ(j["pauses_confirmed_by_simulated_operator"], 2);  // one stop per tool change
+  EXPECT_EQ(j["spindle_on_at_end"], false);
+  // The square (4 x 0.4 in) was cut, and both holes drilled to 0.07 in.
+  EXPECT_GT(j["traced_cut_mm"].get<double>(), 4 * 0.4 * 25.4 - 0.1);
+}
+
+}  // namespace
