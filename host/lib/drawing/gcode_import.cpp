@@ -68,6 +68,10 @@ class Interpreter {
 
   Drawing finish() {
     flush();
+    if (!message_.empty()) {
+      dr_.warnings.push_back(dr_.path + ": (MSG, " + message_ +
+                             ") is not followed by a stop (M0/M1/M6): not shown");
+    }
     if (spindle_on_) spindle(false);
     if (inch_seen_ && mm_seen_) {
       dr_.units = std::string("inch and mm (G20 and G21 both used; the first is ") +

@@ -121,6 +121,12 @@ TEST(GcodeProgram, MessageGoesWithTheNextPauseOnly) {
 }
 
 // Drilling the way pcb2gcode writes it: G81 with R, Z, F, then bare X Y lines, G80.
+TEST(GcodeProgram, AMessageWithoutAStopIsNoted) {
+  const Drawing d = import_text("lonely.ngc", "G21\nG1 X1\n(MSG, never shown)\nG1 X2\n");
+  ASSERT_EQ(d.warnings.size(), 1u);
+  EXPECT_NE(d.warnings[0].find("(MSG, never shown) is not followed by a stop"), std::string::npos);
+}
+
 TEST(GcodeProgram, G81HolesTakeStickyRAndZInInches) {
   const Drawing d = import_text("drill.ngc",
                                 "G94\nG20\nG91.1\nG90\nG00 Z1.0\nG0 Z0.08\n"
