@@ -12,7 +12,7 @@ int main() {
   proxy::run_isqrt_checks();
   proxy::run_ring_checks();
   proxy::run_deboor_checks();
-  proxy::run_stepper_checks();
+  proxy::run_curve_walker_checks();
   proxy::run_measurements();
   proxy::run_app_measurements();
   PROXY_PRINTF("memory static RAM %u bytes, stack peak %u bytes\n",
