@@ -55,7 +55,8 @@ class Dispatcher {
   uint8_t next_expected() const { return window_.next_expected(); }
   proto::ErrorCode last_error() const { return last_error_; }
   uint16_t rejected_frames() const;
-  // Milliseconds since the last CRC-valid frame (saturates at 65535 via wrap handling).
+  // Milliseconds since the last CRC-valid frame, modulo 65536 (it wraps after 65.5 s; the
+  // link watchdog acts at 2 s, long before).
   uint16_t ms_since_valid(uint16_t now_ms) const { return (uint16_t)(now_ms - last_valid_ms_); }
   uint16_t tx_dropped() const { return tx_dropped_; }
 
