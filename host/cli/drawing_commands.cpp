@@ -13,6 +13,9 @@
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
+#ifdef ENGRAVER_HAVE_PCB
+#include "host/cli/pcb_info.h"
+#endif
 
 namespace host::cli {
 
@@ -125,6 +128,9 @@ void print_info(const Drawing& d) {
 }
 
 void run_info(const InfoArgs& a) {
+#ifdef ENGRAVER_HAVE_PCB
+  if (print_pcb_info_if_pcb(a.file, a.json)) return;  // Gerber, Excellon
+#endif
   const Drawing d = import_drawing(a.file);
   if (a.json) {
     std::cout << info_json(d).dump(2) << "\n";
