@@ -73,7 +73,8 @@ Raster rasterise(const ClipperLib::Paths& paths, const Window& win) {
       edges.push_back(e);
     }
   }
-  std::sort(edges.begin(), edges.end(), [](const Edge& l, const Edge& r) { return l.y_lo < r.y_lo; });
+  std::sort(edges.begin(), edges.end(),
+            [](const Edge& l, const Edge& r) { return l.y_lo < r.y_lo; });
   Raster r;
   r.w = win.w;
   r.h = win.h;
@@ -149,9 +150,9 @@ Raster gerbv_render(const std::string& file, const Window& win) {
   r.h = cairo_image_surface_get_height(s);
   if (r.w != win.w || r.h != win.h) {
     cairo_surface_destroy(s);
-    throw std::runtime_error("gerbv image is " + std::to_string(r.w) + " x " +
-                             std::to_string(r.h) + ", expected " + std::to_string(win.w) +
-                             " x " + std::to_string(win.h) + ": " + cmd);
+    throw std::runtime_error("gerbv image is " + std::to_string(r.w) + " x " + std::to_string(r.h) +
+                             ", expected " + std::to_string(win.w) + " x " + std::to_string(win.h) +
+                             ": " + cmd);
   }
   const int stride = cairo_image_surface_get_stride(s);
   const unsigned char* data = cairo_image_surface_get_data(s);
@@ -198,9 +199,15 @@ void write_difference(const Raster& ours, const Raster& gerbv, const std::string
   out << "P6\n" << ours.w << " " << ours.h << "\n255\n";
   for (size_t k = 0; k < ours.dark.size(); ++k) {
     const bool o = ours.dark[k], g = gerbv.dark[k];
-    const unsigned char rgb[3] = {static_cast<unsigned char>(o && g ? 0 : o ? 255 : g ? 0 : 255),
+    const unsigned char rgb[3] = {static_cast<unsigned char>(o && g ? 0
+                                                             : o    ? 255
+                                                             : g    ? 0
+                                                                    : 255),
                                   static_cast<unsigned char>(o || g ? 0 : 255),
-                                  static_cast<unsigned char>(o && g ? 0 : g ? 255 : o ? 0 : 255)};
+                                  static_cast<unsigned char>(o && g ? 0
+                                                             : g    ? 255
+                                                             : o    ? 0
+                                                                    : 255)};
     out.write(reinterpret_cast<const char*>(rgb), 3);
   }
 }

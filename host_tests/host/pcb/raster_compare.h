@@ -45,9 +45,9 @@ bool gerbv_available();
 Raster gerbv_render(const std::string& file, const Window& win);
 
 struct Agreement {
-  size_t pixels = 0;         // all pixels in the window
-  size_t dark_either = 0;    // copper in either image
-  size_t mismatched = 0;     // copper in one image only
+  size_t pixels = 0;       // all pixels in the window
+  size_t dark_either = 0;  // copper in either image
+  size_t mismatched = 0;   // copper in one image only
   // Mismatches with no pixel of the same value within one pixel in the other image: real
   // differences, not gerbv snapping its strokes to the pixel grid.
   size_t beyond_edge = 0;

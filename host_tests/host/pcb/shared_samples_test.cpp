@@ -35,11 +35,11 @@ std::vector<fs::path> shared_pcb_files() {
 
 PcbLayer read_any(const fs::path& p) {
   return pcb_file_format(p.string()) == PcbFileFormat::kExcellon ? read_excellon_file(p.string())
-                                                                  : read_gerber_file(p.string());
+                                                                 : read_gerber_file(p.string());
 }
 
-#define REQUIRE_SHARED()                                                     \
-  if (shared_pcb_files().empty()) {                                         \
+#define REQUIRE_SHARED()                                                       \
+  if (shared_pcb_files().empty()) {                                            \
     GTEST_SKIP() << kShared.string() << " (the team's shared samples) absent"; \
   }
 
@@ -100,8 +100,9 @@ TEST(SharedPcbSamples, InchDrillFileLinesUpWithMillimetreGerbers) {
 
 TEST(SharedPcbSamples, OutlinesAreClosedLoops) {
   REQUIRE_SHARED();
-  for (const char* f : {"easy-sdr/Gerber_BoardOutline.GKO", "example_board/example_board-Edge.Cuts.gbr",
-                        "multivibrator/multivibrator-Edge.Cuts.gbr"}) {
+  for (const char* f :
+       {"easy-sdr/Gerber_BoardOutline.GKO", "example_board/example_board-Edge.Cuts.gbr",
+        "multivibrator/multivibrator-Edge.Cuts.gbr"}) {
     SCOPED_TRACE(f);
     const PcbLayer l = read_gerber_file((kShared / "pcb" / f).string());
     ASSERT_TRUE(l.outline_paths_are_open);
@@ -118,7 +119,8 @@ TEST(SharedPcbSamples, CopperAndHolesAgreeWithGerbv) {
     SCOPED_TRACE(p.string());
     const PcbLayer l = read_any(p);
     if (l.kind == LayerKind::kOutline) continue;  // centre lines, not areas
-    const ClipperLib::Paths shapes = l.kind == LayerKind::kDrill ? test::drill_shapes(l) : l.polygons_nm;
+    const ClipperLib::Paths shapes =
+        l.kind == LayerKind::kDrill ? test::drill_shapes(l) : l.polygons_nm;
     const test::Window win = test::window_around(l, 0.5, 1000);
     const test::Raster ours = test::rasterise(shapes, win);
     const test::Raster ref = test::gerbv_render(p.string(), win);
@@ -131,8 +133,9 @@ TEST(SharedPcbSamples, CopperAndHolesAgreeWithGerbv) {
     EXPECT_LE(a.beyond_edge, a.dark_either / 2000)
         << a.beyond_edge << " pixels differ away from any edge (" << a.mismatched << " of "
         << a.dark_either << " copper pixels differ in all)";
-    std::printf("%s: %.4f %% of %zu pixels agree, %.3f %% of copper pixels; %zu differ away from edges\n",
-                p.filename().c_str(), 100 * a.of_all(), a.pixels, 100 * a.of_copper(), a.beyond_edge);
+    std::printf(
+        "%s: %.4f %% of %zu pixels agree, %.3f %% of copper pixels; %zu differ away from edges\n",
+        p.filename().c_str(), 100 * a.of_all(), a.pixels, 100 * a.of_copper(), a.beyond_edge);
     if (a.beyond_edge > a.dark_either / 2000) {
       test::write_difference(ours, ref, "/tmp/engraver_pcb_diff_" + p.filename().string() + ".ppm");
     }
