@@ -2,6 +2,7 @@
 
 #include <cctype>         // std::isdigit, std::isspace
 #include <cmath>          // std::atan2, std::hypot, std::fabs
+#include <cstdio>         // std::snprintf
 #include <cstdlib>        // std::strtod
 #include <fstream>        // std::ifstream
 #include <map>            // std::map
@@ -134,6 +135,7 @@ class GerberReader {
   std::string path_;
   GerberOptions opt_;
   int line_ = 1;
+  int last_block_line_ = 1;
 
   // Format and units.
   bool have_format_ = false;
@@ -202,6 +204,7 @@ PcbLayer GerberReader::read() {
       if (end == std::string::npos) fail("'%' block never closed with '%'");
       const std::string body = text_.substr(pos + 1, end - pos - 1);
       const int first = line_;
+      last_block_line_ = first;
       extended_block(body, first);
       line_ = first;
       for (char b : body) {
@@ -215,6 +218,7 @@ PcbLayer GerberReader::read() {
       }
       const std::string word = text_.substr(pos, end - pos);
       const int first = line_;
+      last_block_line_ = first;
       word_block(word);
       line_ = first;
       for (char b : word) {
@@ -224,6 +228,7 @@ PcbLayer GerberReader::read() {
     }
   }
   if (!done_) {
+    line_ = last_block_line_;
     fail("the file ends without M02 (end of file): it may be cut short, so it is not used");
   }
   for (size_t k = pos; k < n; ++k) {
@@ -983,6 +988,14 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
     if (best < 0) fail("single-quadrant arc (G74) with no centre giving 90 degrees or less");
   }
   const double r0 = std::hypot(a.x - c.x, a.y - c.y), r1 = std::hypot(b.x - c.x, b.y - c.y);
+  if (std::fabs(r0 - r1) > std::max(10000.0, 0.5 * std::max(r0, r1))) {
+    char msg[160];
+    std::snprintf(msg, sizeof msg,
+                  "arc end point is not on its circle (radius %.3f mm at the start, %.3f mm at "
+                  "the end)",
+                  r0 * 1e-6, r1 * 1e-6);
+    fail(msg);
+  }
   if (std::fabs(r0 - r1) > std::max(10000.0, 0.01 * r0)) {
     note("an arc whose end is not on its circle (radii differ by more than 10 um)");
   }
