@@ -127,6 +127,7 @@ class GerberReader {
   void flash(IntPoint at);
   const Aperture& current_aperture() const;
   void add_object(Paths paths);
+  void count_vertices(size_t n);
   void add_centre_line(IntPoint from, const Path& points);
   void finish_contour();
   void set_units(double unit_nm, const char* how);
@@ -162,6 +163,7 @@ class GerberReader {
 
   // What has been drawn.
   std::vector<Batch> batches_;
+  size_t vertices_ = 0;        // in batches_ and strokes_
   std::vector<Path> strokes_;  // centre lines (outline layers)
   bool stroke_open_ = false;   // the last stroke continues at at_
 
@@ -323,6 +325,7 @@ void GerberReader::extended_block(const std::string& body, int first_line) {
 }
 
 void GerberReader::extended_command(const std::string& cmd) {
+  if (cmd.size() < 2) fail("unknown extended command '%" + cmd + "'");
   const std::string code = cmd.substr(0, 2);
   const std::string arg = cmd.substr(2);
   if (code == "FS") {
@@ -618,6 +621,9 @@ void GerberReader::close_step_repeat() {
   for (long iy = 0; iy < sr_y_; ++iy) {
     for (long ix = 0; ix < sr_x_; ++ix) {
       for (const Batch& b : block) {
+        if (ix != 0 || iy != 0) {
+          for (const Path& p : b.paths) count_vertices(p.size());
+        }
         Paths copy = b.paths;
         translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
         if (batches_.empty() || batches_.back().dark != b.dark) batches_.push_back({b.dark, {}});
@@ -625,6 +631,9 @@ void GerberReader::close_step_repeat() {
         dst.insert(dst.end(), copy.begin(), copy.end());
       }
       Paths copy(block_strokes.begin(), block_strokes.end());
+      if (ix != 0 || iy != 0) {
+        for (const Path& p : copy) count_vertices(p.size());
+      }
       translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
       strokes_.insert(strokes_.end(), copy.begin(), copy.end());
     }
@@ -833,8 +842,19 @@ const Aperture& GerberReader::current_aperture() const {
   return apertures_.at(aperture_);
 }
 
+void GerberReader::count_vertices(size_t n) {
+  vertices_ += n;
+  if (vertices_ > opt_.max_vertices) {
+    fail("the copper needs more than " + std::to_string(opt_.max_vertices) +
+         " polygon vertices: too complex to read");
+  }
+}
+
 void GerberReader::add_object(Paths paths) {
   if (paths.empty()) return;
+  size_t n = 0;
+  for (const Path& p : paths) n += p.size();
+  count_vertices(n);
   if (batches_.empty() || batches_.back().dark != dark_) batches_.push_back({dark_, {}});
   Paths& dst = batches_.back().paths;
   if (dst.empty()) {
@@ -851,6 +871,7 @@ void GerberReader::add_centre_line(IntPoint from, const Path& points) {
   }
   Path& s = strokes_.back();
   s.insert(s.end(), points.begin(), points.end());
+  count_vertices(points.size() + 1);
   stroke_open_ = true;
 }
 
@@ -1036,6 +1057,7 @@ void GerberReader::finish_contour() {
   }
   Path stroke = c;
   if (stroke.front() != stroke.back()) stroke.push_back(stroke.front());
+  count_vertices(stroke.size());
   strokes_.push_back(stroke);
   stroke_open_ = false;
   if (c.front() == c.back()) c.pop_back();

@@ -18,6 +18,9 @@ struct GerberOptions {
   // Largest distance between a flattened arc or circle and the true curve (inscribed
   // polygons, so copper is at most this much smaller than drawn).
   double arc_tolerance_nm = 500;
+  // Refuse files whose copper needs more polygon vertices than this before the union (a
+  // step-and-repeat of a large block can ask for any amount of memory).
+  size_t max_vertices = 20000000;
 };
 
 // Reads a whole file. Throws PcbReadError naming the file, the line and the problem; never
