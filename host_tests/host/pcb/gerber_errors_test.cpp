@@ -128,3 +128,29 @@ TEST(ExcellonErrors, NameFileLineAndProblem) {
 
 }  // namespace
 }  // namespace host::pcb
+
+namespace host::pcb {
+namespace {
+
+TEST(GerberErrors, StepAndRepeatBeyondTheVertexLimitIsRefused) {
+  // 100 x 100 copies of a circle pad (about 3000 vertices at 0.5 um for d 5 mm).
+  const std::string text =
+      "%FSLAX33Y33*%\n%MOMM*%\n%ADD10C,5*%\n%SRX100Y100I6J6*%\nD10*\nX0Y0D03*\n%SR*%\nM02*\n";
+  GerberOptions o;
+  o.max_vertices = 1000000;
+  try {
+    read_gerber_text(text, "panel.gbr", o);
+    FAIL() << "read without error";
+  } catch (const PcbReadError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("panel.gbr:7: the copper needs more than 1000000 "
+                                          "polygon vertices: too complex to read",
+                                          0),
+              0u)
+        << e.what();
+  }
+  o.arc_tolerance_nm = 50000;  // coarse circles: the same panel fits
+  EXPECT_EQ(read_gerber_text(text, "panel.gbr", o).polygons_nm.size(), 10000u);
+}
+
+}  // namespace
+}  // namespace host::pcb
