@@ -39,6 +39,7 @@ struct Aperture {
 struct Batch {
   bool dark = true;
   Paths paths;
+  std::vector<size_t> starts;  // where each object (an outer and its holes) begins in paths
 };
 
 struct Note {
@@ -259,14 +260,9 @@ PcbLayer GerberReader::read() {
     Paths result;
     for (Batch& b : batches_) {
       if (b.dark) {
-        if (result.empty()) {
-          result = union_paths(b.paths);
-        } else {
-          result.insert(result.end(), b.paths.begin(), b.paths.end());
-          result = union_paths(result);
-        }
+        result = union_objects(b.paths, b.starts, result);
       } else if (!result.empty()) {
-        result = difference_paths(result, b.paths);
+        result = difference_paths(result, union_objects(b.paths, b.starts, {}));
       }
       Paths().swap(b.paths);
     }
@@ -605,7 +601,7 @@ void GerberReader::step_repeat(const std::string& s) {
   sr_y_ = static_cast<long>(y);
   sr_i_ = static_cast<cInt>(std::llround(i * unit_nm_));
   sr_j_ = static_cast<cInt>(std::llround(j * unit_nm_));
-  batches_.push_back({dark_, {}});
+  batches_.push_back({dark_, {}, {}});
   sr_batch_start_ = batches_.size() - 1;
   sr_stroke_start_ = strokes_.size();
   stroke_open_ = false;
@@ -626,9 +622,12 @@ void GerberReader::close_step_repeat() {
         }
         Paths copy = b.paths;
         translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
-        if (batches_.empty() || batches_.back().dark != b.dark) batches_.push_back({b.dark, {}});
-        Paths& dst = batches_.back().paths;
-        dst.insert(dst.end(), copy.begin(), copy.end());
+        if (batches_.empty() || batches_.back().dark != b.dark) {
+          batches_.push_back({b.dark, {}, {}});
+        }
+        Batch& dst = batches_.back();
+        for (size_t start : b.starts) dst.starts.push_back(dst.paths.size() + start);
+        dst.paths.insert(dst.paths.end(), copy.begin(), copy.end());
       }
       Paths copy(block_strokes.begin(), block_strokes.end());
       if (ix != 0 || iy != 0) {
@@ -855,7 +854,8 @@ void GerberReader::add_object(Paths paths) {
   size_t n = 0;
   for (const Path& p : paths) n += p.size();
   count_vertices(n);
-  if (batches_.empty() || batches_.back().dark != dark_) batches_.push_back({dark_, {}});
+  if (batches_.empty() || batches_.back().dark != dark_) batches_.push_back({dark_, {}, {}});
+  batches_.back().starts.push_back(batches_.back().paths.size());
   Paths& dst = batches_.back().paths;
   if (dst.empty()) {
     dst = std::move(paths);

@@ -162,4 +162,56 @@ Paths difference_paths(const Paths& subject, const Paths& clip) {
   return out;
 }
 
+Paths union_objects(const Paths& paths, const std::vector<size_t>& starts, const Paths& base) {
+  const size_t kPerStrip = 128;
+  if (starts.size() <= kPerStrip) {
+    Paths all = base;
+    all.insert(all.end(), paths.begin(), paths.end());
+    return union_paths(all);
+  }
+  struct Object {
+    cInt x;
+    size_t begin, end;
+  };
+  std::vector<Object> objects;
+  objects.reserve(starts.size());
+  for (size_t k = 0; k < starts.size(); ++k) {
+    const size_t end = k + 1 < starts.size() ? starts[k + 1] : paths.size();
+    if (starts[k] >= end || paths[starts[k]].empty()) continue;
+    cInt lo = paths[starts[k]][0].X, hi = lo;
+    for (const IntPoint& p : paths[starts[k]]) {
+      lo = std::min(lo, p.X);
+      hi = std::max(hi, p.X);
+    }
+    objects.push_back({lo / 2 + hi / 2, starts[k], end});
+  }
+  std::sort(objects.begin(), objects.end(),
+            [](const Object& a, const Object& b) { return a.x < b.x; });
+  std::vector<Paths> strips;
+  for (size_t k = 0; k < objects.size(); k += kPerStrip) {
+    Paths strip;
+    for (size_t j = k; j < objects.size() && j < k + kPerStrip; ++j) {
+      strip.insert(strip.end(), paths.begin() + static_cast<long>(objects[j].begin),
+                   paths.begin() + static_cast<long>(objects[j].end));
+    }
+    strips.push_back(union_paths(strip));
+  }
+  // Neighbours in x merged pairwise, so each union stays narrow until the last.
+  while (strips.size() > 1) {
+    std::vector<Paths> next;
+    for (size_t k = 0; k < strips.size(); k += 2) {
+      if (k + 1 == strips.size()) {
+        next.push_back(std::move(strips[k]));
+        break;
+      }
+      strips[k].insert(strips[k].end(), strips[k + 1].begin(), strips[k + 1].end());
+      next.push_back(union_paths(strips[k]));
+    }
+    strips.swap(next);
+  }
+  Paths all = base;
+  all.insert(all.end(), strips[0].begin(), strips[0].end());
+  return base.empty() ? strips[0] : union_paths(all);
+}
+
 }  // namespace host::pcb

@@ -5,6 +5,8 @@
 
 #include <clipper.hpp>  // ClipperLib::Path, Paths
 
+#include <vector>  // std::vector
+
 namespace host::pcb {
 
 struct VecNm {
@@ -46,6 +48,13 @@ void make_positive(ClipperLib::Path& path);
 // Boolean operations with non-zero filling.
 ClipperLib::Paths union_paths(const ClipperLib::Paths& paths);
 ClipperLib::Paths difference_paths(const ClipperLib::Paths& subject, const ClipperLib::Paths& clip);
+
+// Union of `base` and many small objects (object k is paths[starts[k]] up to the next start:
+// an outer and its holes). Done in strips of objects sorted by x, then once over the strips,
+// so that Clipper's active edge list stays short: one union over a whole board costs time
+// in proportion to vertices times the edges across the board.
+ClipperLib::Paths union_objects(const ClipperLib::Paths& paths, const std::vector<size_t>& starts,
+                                const ClipperLib::Paths& base);
 
 }  // namespace host::pcb
 
