@@ -396,6 +396,7 @@ bool ExcellonReader::position(const std::string& s, PointNm& p) const {
     const cInt v = coordinate(value);
     cInt& dst = axis == 'X' ? p.x : p.y;
     dst = incremental_ ? dst + v : v;
+    if (dst > kMaxCoordNm || dst < -kMaxCoordNm) fail("position beyond 10 m");
     any = true;
     k = end;
   }

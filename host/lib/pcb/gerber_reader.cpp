@@ -1,5 +1,6 @@
 #include "host/lib/pcb/gerber_reader.h"
 
+#include <algorithm>      // std::min, std::max
 #include <cctype>         // std::isdigit, std::isspace
 #include <cmath>          // std::atan2, std::hypot, std::fabs
 #include <cstdio>         // std::snprintf
@@ -117,6 +118,8 @@ class GerberReader {
   void aperture_macro(const std::vector<std::string>& parts, const std::vector<int>& lines);
   void step_repeat(const std::string& s);
   void close_step_repeat();
+  bool copies_stand_alone(const std::vector<Batch>& block) const;
+  static Paths evaluate(std::vector<Batch>& batches);
 
   // Operations.
   double number(const std::string& s, const char* what) const;
@@ -171,6 +174,7 @@ class GerberReader {
   // Step and repeat.
   bool in_sr_ = false;
   long sr_x_ = 1, sr_y_ = 1;
+  long sr_x_saved_ = 1, sr_y_saved_ = 1;
   cInt sr_i_ = 0, sr_j_ = 0;
   size_t sr_batch_start_ = 0, sr_stroke_start_ = 0;
 
@@ -257,16 +261,7 @@ PcbLayer GerberReader::read() {
     layer.polygons_nm = join_strokes(strokes_, opt_.arc_tolerance_nm * 4 + 2000);
     layer.outline_paths_are_open = true;
   } else {
-    Paths result;
-    for (Batch& b : batches_) {
-      if (b.dark) {
-        result = union_objects(b.paths, b.starts, result);
-      } else if (!result.empty()) {
-        result = difference_paths(result, union_objects(b.paths, b.starts, {}));
-      }
-      Paths().swap(b.paths);
-    }
-    layer.polygons_nm = std::move(result);
+    layer.polygons_nm = evaluate(batches_);
   }
   if (offset_x_ != 0 || offset_y_ != 0) translate_paths(layer.polygons_nm, offset_x_, offset_y_);
   for (const Note& nt : notes_) {
@@ -275,6 +270,30 @@ PcbLayer GerberReader::read() {
     layer.notes.push_back(s);
   }
   return layer;
+}
+
+Paths GerberReader::evaluate(std::vector<Batch>& batches) {
+  Paths result;
+  for (Batch& b : batches) {
+    if (result.empty()) {
+      if (b.dark) result = union_objects(b.paths, b.starts, {});
+    } else {
+      // Only the polygons whose boxes meet the batch's box can change (a hole's box lies in
+      // its outer's, so a hole left out stays inside its outer and still cuts it).
+      Paths touched, kept;
+      split_by_box(result, box_of(b.paths), touched, kept);
+      if (b.dark) {
+        touched = union_objects(b.paths, b.starts, touched);
+      } else if (!touched.empty()) {
+        touched = difference_paths(touched, union_objects(b.paths, b.starts, {}));
+      }
+      result.swap(kept);
+      result.insert(result.end(), std::make_move_iterator(touched.begin()),
+                    std::make_move_iterator(touched.end()));
+    }
+    Paths().swap(b.paths);
+  }
+  return result;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -599,6 +618,8 @@ void GerberReader::step_repeat(const std::string& s) {
   in_sr_ = true;
   sr_x_ = static_cast<long>(x);
   sr_y_ = static_cast<long>(y);
+  sr_x_saved_ = sr_x_;
+  sr_y_saved_ = sr_y_;
   sr_i_ = static_cast<cInt>(std::llround(i * unit_nm_));
   sr_j_ = static_cast<cInt>(std::llround(j * unit_nm_));
   batches_.push_back({dark_, {}, {}});
@@ -614,6 +635,37 @@ void GerberReader::close_step_repeat() {
   std::vector<Path> block_strokes(strokes_.begin() + static_cast<long>(sr_stroke_start_),
                                   strokes_.end());
   strokes_.resize(sr_stroke_start_);
+  if (copies_stand_alone(block)) {
+    // Each copy's clear objects can only clear its own dark ones: evaluate the block once
+    // and add the copies as dark objects (the polarity changes are not repeated per copy).
+    Batch copies{true, {}, {}};
+    const Paths shape = evaluate(block);
+    for (long iy = 0; iy < sr_y_; ++iy) {
+      for (long ix = 0; ix < sr_x_; ++ix) {
+        if (ix != 0 || iy != 0) {
+          for (const Path& p : shape) count_vertices(p.size());
+        }
+        Paths copy = shape;
+        translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
+        copies.starts.push_back(copies.paths.size());
+        copies.paths.insert(copies.paths.end(), copy.begin(), copy.end());
+      }
+    }
+    block.clear();
+    if (!copies.paths.empty()) block.push_back(std::move(copies));
+    sr_x_ = sr_y_ = 1;  // the loop below now adds the one batch and the strokes' copies
+    for (long iy = 0; iy < sr_y_saved_; ++iy) {
+      for (long ix = 0; ix < sr_x_saved_; ++ix) {
+        if (ix != 0 || iy != 0) {
+          for (const Path& p : block_strokes) count_vertices(p.size());
+        }
+        Paths copy(block_strokes.begin(), block_strokes.end());
+        translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
+        strokes_.insert(strokes_.end(), copy.begin(), copy.end());
+      }
+    }
+    block_strokes.clear();
+  }
   for (long iy = 0; iy < sr_y_; ++iy) {
     for (long ix = 0; ix < sr_x_; ++ix) {
       for (const Batch& b : block) {
@@ -638,6 +690,48 @@ void GerberReader::close_step_repeat() {
     }
   }
   stroke_open_ = false;
+}
+
+// True when the copies cannot touch each other or what was drawn before the block (their
+// boxes are apart), so that polarity inside the block only acts within each copy.
+bool GerberReader::copies_stand_alone(const std::vector<Batch>& block) const {
+  bool has_clear = false;
+  for (const Batch& b : block) has_clear |= !b.dark;
+  if (!has_clear) return false;  // all dark: the ordinary path is already linear
+  struct Box {
+    bool empty = true;
+    cInt x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    void add(const IntPoint& p) {
+      if (empty) {
+        x0 = x1 = p.X, y0 = y1 = p.Y, empty = false;
+        return;
+      }
+      x0 = std::min(x0, p.X), x1 = std::max(x1, p.X), y0 = std::min(y0, p.Y),
+      y1 = std::max(y1, p.Y);
+    }
+  };
+  Box blk;
+  for (const Batch& b : block) {
+    for (const Path& p : b.paths) {
+      for (const IntPoint& q : p) blk.add(q);
+    }
+  }
+  if (blk.empty) return false;
+  const cInt w = blk.x1 - blk.x0, h = blk.y1 - blk.y0;
+  if (sr_x_ > 1 && std::llabs(sr_i_) <= w) return false;
+  if (sr_y_ > 1 && std::llabs(sr_j_) <= h) return false;
+  // The whole array against everything drawn before it.
+  const cInt ax0 = blk.x0 + std::min<cInt>(0, sr_i_ * (sr_x_ - 1));
+  const cInt ax1 = blk.x1 + std::max<cInt>(0, sr_i_ * (sr_x_ - 1));
+  const cInt ay0 = blk.y0 + std::min<cInt>(0, sr_j_ * (sr_y_ - 1));
+  const cInt ay1 = blk.y1 + std::max<cInt>(0, sr_j_ * (sr_y_ - 1));
+  Box before;
+  for (size_t k = 0; k < sr_batch_start_; ++k) {
+    for (const Path& p : batches_[k].paths) {
+      for (const IntPoint& q : p) before.add(q);
+    }
+  }
+  return before.empty || before.x1 < ax0 || before.x0 > ax1 || before.y1 < ay0 || before.y0 > ay1;
 }
 
 void GerberReader::attribute(const std::string& body) {

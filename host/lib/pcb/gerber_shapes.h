@@ -49,6 +49,20 @@ void make_positive(ClipperLib::Path& path);
 ClipperLib::Paths union_paths(const ClipperLib::Paths& paths);
 ClipperLib::Paths difference_paths(const ClipperLib::Paths& subject, const ClipperLib::Paths& clip);
 
+struct BoxNm {
+  bool empty = true;
+  ClipperLib::cInt x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool meets(const BoxNm& o) const {
+    return !empty && !o.empty && x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1;
+  }
+};
+BoxNm box_of(const ClipperLib::Paths& paths);
+BoxNm box_of(const ClipperLib::Path& path);
+
+// Paths whose boxes meet `box` go to `touched`, the others to `kept`.
+void split_by_box(const ClipperLib::Paths& all, const BoxNm& box, ClipperLib::Paths& touched,
+                  ClipperLib::Paths& kept);
+
 // Union of `base` and many small objects (object k is paths[starts[k]] up to the next start:
 // an outer and its holes). Done in strips of objects sorted by x, then once over the strips,
 // so that Clipper's active edge list stays short: one union over a whole board costs time

@@ -241,3 +241,23 @@ TEST(GerberReader, ArcToleranceIsTheChordError) {
 
 }  // namespace
 }  // namespace host::pcb
+
+namespace host::pcb {
+namespace {
+
+// Copies that overlap: a clear object of a later copy also clears the earlier copies.
+TEST(GerberReader, OverlappingStepAndRepeatCopiesClearEachOther) {
+  const std::string text =
+      "%FSLAX33Y33*%\n%MOMM*%\n%ADD10R,2X2*%\n%ADD11C,0.6*%\n%SRX2Y1I1J0*%\nD10*\n"
+      "X0Y0D03*\n%LPC*%\nD11*\nX0Y0D03*\n%LPD*%\n%SR*%\nM02*\n";
+  const PcbLayer l = read_gerber_text(text, "sr.gbr");
+  // Squares over x -1..2; copy 2's clear circle at x 1 also cuts copy 1, and copy 2's
+  // square covers the right half of copy 1's circle at x 0.
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 6 - 0.09 * kPi - 0.045 * kPi, kAreaTol);
+  EXPECT_FALSE(covered(l, 0.85, 0));
+  EXPECT_FALSE(covered(l, -0.15, 0));
+  EXPECT_TRUE(covered(l, 0.15, 0));
+}
+
+}  // namespace
+}  // namespace host::pcb
