@@ -167,6 +167,15 @@ Raster gerbv_render(const std::string& file, const Window& win) {
   return r;
 }
 
+std::string gerbv_drill_export(const std::string& file) {
+  static int serial = 0;
+  const std::string out = "/tmp/engraver_pcb_gerbv_" + std::to_string(getpid()) + "_" +
+                          std::to_string(serial++) + ".drl";
+  const std::string cmd = "gerbv -x drill -o '" + out + "' '" + file + "' > /dev/null 2>&1";
+  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("gerbv failed: " + cmd);
+  return out;
+}
+
 Agreement compare(const Raster& a, const Raster& b) {
   Agreement g;
   g.pixels = a.dark.size();

@@ -44,6 +44,10 @@ bool gerbv_available();
 // std::runtime_error if gerbv fails or the image size differs from the window.
 Raster gerbv_render(const std::string& file, const Window& win);
 
+// gerbv -x drill of `file` (gerbv's reading written back as INCH,TZ with 4 decimals) to a
+// temporary file, whose path is returned; throws std::runtime_error if gerbv fails.
+std::string gerbv_drill_export(const std::string& file);
+
 struct Agreement {
   size_t pixels = 0;       // all pixels in the window
   size_t dark_either = 0;  // copper in either image
