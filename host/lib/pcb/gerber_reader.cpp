@@ -843,9 +843,9 @@ void GerberReader::word_block(const std::string& raw) {
         if (dn >= 1 && dn <= 3) {
           if (d != -1) fail("two operations (D01/D02/D03) in one block");
           d = dn;
-        } else if (dn >= 10 || dn == 0 || (dn > 3 && dn < 10)) {
+        } else {  // select an aperture (D10 and up; lower numbers in old files)
           if (!apertures_.count(dn)) fail("D" + value + " selects an aperture that is not defined");
-          if (region_) fail("aperture D" + value + " selected inside a region (G36/G37)");
+          if (region_) note("an aperture selected inside a region (not allowed by the spec)");
           aperture_ = dn;
         }
         break;
@@ -890,7 +890,6 @@ void GerberReader::word_block(const std::string& raw) {
     d = last_d_;
   }
   if (d != -1) operate(d, x, y, i, j);
-  if (done_) return;
 }
 
 double GerberReader::number(const std::string& s, const char* what) const {
