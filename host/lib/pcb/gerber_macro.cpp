@@ -177,23 +177,28 @@ Paths evaluate_macro(const ApertureMacro& macro, const std::vector<double>& para
         if (!(std::fabs(nm) <= 1e10)) bad("a size or position beyond 10 m");
         return nm;
       };
+      // 0 off, 1 on, 2 toggle (old spec); anything else is refused before any cast.
+      auto exposure_of = [&](double v) {
+        if (v != 0 && v != 1 && v != 2) bad("exposure must be 0 or 1, not " + fields[1]);
+        return static_cast<int>(v);
+      };
       Paths prim;
       int exposure = 1;
       double rot = 0;
       if (code == "1") {
         need(4, "circle (1)");
-        exposure = static_cast<int>(m[0]);
+        exposure = exposure_of(m[0]);
         if (m[1] > 0) prim.push_back(circle_path({len(m[2]), len(m[3])}, len(m[1]), tol_nm));
         rot = m.size() > 4 ? m[4] : 0;
       } else if (code == "2" || code == "20") {
         need(7, "vector line (20)");
-        exposure = static_cast<int>(m[0]);
+        exposure = exposure_of(m[0]);
         Path p = line_rect({len(m[2]), len(m[3])}, {len(m[4]), len(m[5])}, len(m[1]));
         if (!p.empty()) prim.push_back(p);
         rot = m[6];
       } else if (code == "21" || code == "22") {
         need(6, code == "21" ? "center line (21)" : "lower-left line (22)");
-        exposure = static_cast<int>(m[0]);
+        exposure = exposure_of(m[0]);
         const double w = len(m[1]), h = len(m[2]);
         VecNm c{len(m[3]), len(m[4])};
         if (code == "22") c = {c.x + w / 2, c.y + h / 2};
@@ -201,7 +206,7 @@ Paths evaluate_macro(const ApertureMacro& macro, const std::vector<double>& para
         rot = m[5];
       } else if (code == "4") {
         need(2, "outline (4)");
-        exposure = static_cast<int>(m[0]);
+        exposure = exposure_of(m[0]);
         const double n = m[1];
         if (!(n >= 1 && n <= 100000) || n != std::floor(n)) bad("outline with a bad vertex count");
         const size_t count = static_cast<size_t>(n);
@@ -216,7 +221,7 @@ Paths evaluate_macro(const ApertureMacro& macro, const std::vector<double>& para
         rot = m[2 + 2 * (count + 1)];
       } else if (code == "5") {
         need(5, "polygon (5)");
-        exposure = static_cast<int>(m[0]);
+        exposure = exposure_of(m[0]);
         if (!(m[1] >= 3 && m[1] <= 12)) bad("polygon needs 3 to 12 vertices");
         if (m[4] > 0) {
           prim.push_back(
@@ -229,7 +234,8 @@ Paths evaluate_macro(const ApertureMacro& macro, const std::vector<double>& para
         const double thick = len(m[3]), gap = len(m[4]);
         double d = len(m[2]);
         Paths rings;
-        for (int i = 0; i < static_cast<int>(std::fmin(m[5], 1000)) && d > 0; ++i) {
+        for (int i = 0; i < static_cast<int>(std::fmax(0.0, std::fmin(m[5], 1000.0))) && d > 0;
+             ++i) {
           Paths ring{circle_path(c, d, tol_nm)};
           if (d - 2 * thick > 0)
             ring = difference_paths(ring, {circle_path(c, d - 2 * thick, tol_nm)});

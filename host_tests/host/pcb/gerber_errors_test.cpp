@@ -64,6 +64,8 @@ TEST(GerberErrors, NameFileLineAndProblem) {
        "bad.gbr:6: macro M1: circle (1) needs 4 modifiers, got 2"},
       {"%AMM1*\n4,1,3,0,0,1,0*%\n%ADD11M1*%\nM02*\n",
        "bad.gbr:6: macro M1: outline (4) needs 11 modifiers, got 6"},
+      {"%AMM1*\n1,7777777777777777777,1,0,0*%\n%ADD11M1*%\nM02*\n",
+       "bad.gbr:6: macro M1: exposure must be 0 or 1, not 7777777777777777777"},
       {"%SRX1000Y1000I1J1*%\nM02*\n", "bad.gbr:4: step-and-repeat '%SRX1000Y1000I1J1' makes more"},
       {"%SRX0Y1I1J1*%\nM02*\n", "bad.gbr:4: step-and-repeat '%SRX0Y1I1J1' needs whole"},
       {"%IPNEG*%\nM02*\n", "bad.gbr:4: negative image polarity"},
