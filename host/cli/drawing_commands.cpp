@@ -10,6 +10,7 @@
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
+#include "host/cli/pcb_info.h"
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
@@ -169,6 +170,7 @@ void print_info(const Drawing& d) {
 }
 
 void run_info(const InfoArgs& a) {
+  if (print_pcb_info_if_pcb(a.file, a.json)) return;  // Gerber, Excellon
   const Drawing d = import_drawing(a.file);
   if (a.json) {
     std::cout << info_json(d).dump(2) << "\n";
