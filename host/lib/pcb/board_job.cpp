@@ -469,6 +469,7 @@ BoardJob plan_board(const BoardLayers& layers, const BoardOptions& o) {
       job.slots_machine.push_back(m);
     }
   }
+  if (layers.outline) job.board_machine_nm = union_of(job.frame.to_machine_nm(cp.board_nm));
   for (size_t i = job.isolation_curves; i < plan.curves.size(); ++i) {
     const std::vector<Point2> pts = sample(plan.curves[i].spline, 0.002);
     if (plan.curves[i].chained && !job.cutout_paths_mm.empty() && i > job.isolation_curves) {

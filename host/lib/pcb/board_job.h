@@ -85,6 +85,7 @@ struct BoardJob {
   size_t isolation_curves = 0;          // plan.curves[0 .. isolation_curves) isolate copper
   double tool_radius_mm = 0;            // isolation tool
   ClipperLib::Paths copper_machine_nm;  // the isolated copper in the machine frame
+  ClipperLib::Paths board_machine_nm;   // the board inside its outline, machine frame
   std::vector<std::vector<Point2>> isolation_paths_mm;  // planned tool centres, machine frame
   std::vector<Hole> holes_machine;                      // nm, machine frame
   std::vector<Slot> slots_machine;
