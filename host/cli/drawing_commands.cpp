@@ -13,6 +13,9 @@
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
+#ifdef ENGRAVER_HAVE_BOARD
+#include "host/cli/board_cli.h"
+#endif
 
 namespace host::cli {
 
@@ -141,6 +144,9 @@ void run_points(const PointsArgs& a) {
                          "steps with a whole-micrometre chord tolerance)");
   }
   const int tol = static_cast<int>(std::llround(tol_um));
+#ifdef ENGRAVER_HAVE_BOARD
+  if (print_board_points_if_pcb(a.file, a.tol_mm, a.csv)) return;  // isolation tool centres
+#endif
   const Drawing d = import_drawing(a.file);
   for (const std::string& w : d.warnings) std::cerr << "warning: " << w << "\n";
   std::cout << std::fixed << std::setprecision(3);

@@ -25,6 +25,9 @@
 #include "host/lib/sim/sim_job.h"
 #include "host/lib/sim/sim_server.h"
 #include "host/lib/stream/sender.h"
+#ifdef ENGRAVER_HAVE_BOARD
+#include "host/cli/board_cli.h"  // PCB input (Gerber, Excellon, a board's directory)
+#endif
 
 namespace host::cli {
 
@@ -60,6 +63,9 @@ struct PlanArgs {
   bool no_reorder = false;
   double z_up_mm = 2.0;
   double z_down_mm = -0.1;
+#ifdef ENGRAVER_HAVE_BOARD
+  BoardArgs board;
+#endif
 };
 
 void add_plan_options(CLI::App* cmd, PlanArgs* a) {
@@ -83,9 +89,17 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   cmd->add_flag("--no-reorder", a->no_reorder, "trace curves in drawing order");
   cmd->add_option("--z-up", a->z_up_mm, "travel height in mm")->capture_default_str();
   cmd->add_option("--z-down", a->z_down_mm, "cutting depth in mm")->capture_default_str();
+#ifdef ENGRAVER_HAVE_BOARD
+  add_board_options(cmd, &a->board);
+#endif
 }
 
 JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
+#ifdef ENGRAVER_HAVE_BOARD
+  if (is_pcb_input(a.file))
+    return plan_pcb_input(a.file, a.board,
+                          {a.feed_mm_s, a.z_up_mm, a.margin_mm, a.work_mm[0], a.work_mm[1]});
+#endif
   *drawing = import_drawing(a.file);
   for (const std::string& w : drawing->warnings) std::cerr << "engraver: warning: " << w << "\n";
   PlanOptions o;
@@ -376,6 +390,9 @@ void run_run(const RunArgs& a) {
     plot.tool_path.back().points_mm.push_back(Point2(s.x_mm, s.y_mm));
   }
   write_plot(plot, base + ".svg", base + ".png");
+#ifdef ENGRAVER_HAVE_BOARD
+  write_board_plot_if_planned(base, plot.tool_path);  // copper, isolation width, holes
+#endif
 
   const double feed = a.plan.feed_mm_s;
   const double ideal_s = plan.cut_length_mm / feed;
