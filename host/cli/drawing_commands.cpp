@@ -10,12 +10,12 @@
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
+#ifdef ENGRAVER_HAVE_BOARD
+#include "host/cli/board_cli.h"  // PCB input: isolation tool centres
+#endif
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
-#ifdef ENGRAVER_HAVE_BOARD
-#include "host/cli/board_cli.h"
-#endif
 
 namespace host::cli {
 
