@@ -67,12 +67,18 @@ class StepWriter {
       : plan_(plan), o_(o), offset_(offset) {}
 
   void pen_up(double z_mm) {
+    if (!plan_->steps.empty() && plan_->steps.back().kind == PlanStep::kPenUp &&
+        plan_->steps.back().z_um == um(z_mm))
+      return;
+    if (cutting_) ++plan_->pen_lifts;
+    cutting_ = false;
     PlanStep s;
     s.kind = PlanStep::kPenUp;
     s.z_um = um(z_mm);
     plan_->steps.push_back(s);
   }
   void pen_down(double z_mm, double feed) {
+    cutting_ = true;
     PlanStep s;
     s.kind = PlanStep::kPenDown;
     s.z_um = um(z_mm);
@@ -147,7 +153,6 @@ class StepWriter {
     pc.source = source;
     const int index = static_cast<int>(plan_->curves.size());
     plan_->curves.push_back(pc);
-    plan_->extents_mm.add(curve_extents(pc.spline));
     std::vector<core::Spline> pieces;
     try {
       pieces = to_firmware_splines(pc.spline);
@@ -164,8 +169,12 @@ class StepWriter {
       s.curve = index;
       plan_->steps.push_back(s);
     }
+    // Length and extents from one sampling (within 1 um).
     const std::vector<Point2> pts = sample(pc.spline, 0.001);
-    for (size_t i = 1; i < pts.size(); ++i) plan_->cut_length_mm += (pts[i] - pts[i - 1]).norm();
+    for (size_t i = 0; i < pts.size(); ++i) {
+      plan_->extents_mm.add(pts[i]);
+      if (i > 0) plan_->cut_length_mm += (pts[i] - pts[i - 1]).norm();
+    }
     at_ = end_point(pc.spline);
     return index;
   }
@@ -177,6 +186,7 @@ class StepWriter {
   Point2 offset_;
   Point2 at_{0, 0};
   bool spindle_on_ = false;
+  bool cutting_ = false;
   int tools_ = 0;
 };
 
@@ -351,10 +361,15 @@ BoardJob plan_board(const BoardLayers& layers, const BoardOptions& o) {
     ext.add(Point2(e.min.x() - r, e.min.y() - r));
     ext.add(Point2(e.max.x() + r, e.max.y() + r));
   };
+  auto extents_of = [](const BSpline& b) {
+    Extents e;
+    for (const Point2& p : sample(b, 0.001)) e.add(p);
+    return e;
+  };
   for (const Trace& t : iso)
-    for (const BSpline& b : t.curves) grow(curve_extents(b), job.tool_radius_mm);
+    for (const BSpline& b : t.curves) grow(extents_of(b), job.tool_radius_mm);
   for (const Trace& t : cut)
-    for (const BSpline& b : t.curves) grow(curve_extents(b), job.cutter_radius_mm);
+    for (const BSpline& b : t.curves) grow(extents_of(b), job.cutter_radius_mm);
   for (const DrillTool& d : drills) {
     Extents e;
     for (const Point2& p : d.holes) e.add(p);

@@ -1,7 +1,7 @@
 // Polyline -> lines, exact arcs and fitted cubics (see contour_fit.h).
 #include "host/lib/pcb/contour_fit.h"
 
-#include <Eigen/Dense>  // least squares for the cubic fit
+#include <Eigen/Dense>  // normal equations of the cubic fit (LDLT)
 
 #include <algorithm>  // std::max, std::rotate
 #include <cmath>      // std::atan2, std::cos, std::ceil
@@ -92,52 +92,75 @@ void cubic_basis(const std::vector<double>& knots, size_t n_control, double t,
   for (int j = 0; j <= p; ++j) (*n)[span - p + j] = b[j];
 }
 
+// Least-squares clamped cubic with n_cp control points (uniform knots on the chord-length
+// parameters t, ends fixed); true when within tol of q and of the chord midpoints.
+bool try_cubic(const std::vector<Point2>& q, const std::vector<double>& t, size_t n_cp, double tol,
+               BSpline* out) {
+  const size_t m = q.size();
+  BSpline s;
+  s.degree = 3;
+  s.knots.assign(4, 0.0);
+  for (size_t k = 1; k + 3 < n_cp; ++k) s.knots.push_back(static_cast<double>(k) / (n_cp - 3));
+  s.knots.insert(s.knots.end(), 4, 1.0);
+  Eigen::MatrixXd ata = Eigen::MatrixXd::Zero(n_cp - 2, n_cp - 2);
+  Eigen::MatrixXd atb = Eigen::MatrixXd::Zero(n_cp - 2, 2);
+  std::vector<double> basis;
+  for (size_t k = 0; k < m; ++k) {
+    cubic_basis(s.knots, n_cp, std::min(t[k], 1.0 - 1e-12), &basis);
+    if (k + 1 == m) basis.assign(n_cp, 0.0), basis[n_cp - 1] = 1.0;
+    const Point2 r = q[k] - basis[0] * q.front() - basis[n_cp - 1] * q.back();
+    size_t nz[4], n_nz = 0;  // at most degree + 1 basis functions are non-zero
+    for (size_t a = 1; a + 1 < n_cp && n_nz < 4; ++a)
+      if (basis[a] != 0) nz[n_nz++] = a;
+    for (size_t i = 0; i < n_nz; ++i) {
+      const size_t a = nz[i];
+      atb(a - 1, 0) += basis[a] * r.x();
+      atb(a - 1, 1) += basis[a] * r.y();
+      for (size_t j = 0; j < n_nz; ++j) ata(a - 1, nz[j] - 1) += basis[a] * basis[nz[j]];
+    }
+  }
+  const Eigen::MatrixXd x = ata.ldlt().solve(atb);
+  s.control.push_back(q.front());
+  for (size_t c = 0; c + 2 < n_cp; ++c) s.control.emplace_back(x(c, 0), x(c, 1));
+  s.control.push_back(q.back());
+  for (size_t k = 0; k < m; ++k) {
+    if (!((evaluate(s, t[k]) - q[k]).norm() <= tol)) return false;
+    if (k + 1 < m &&
+        !((evaluate(s, 0.5 * (t[k] + t[k + 1])) - 0.5 * (q[k] + q[k + 1])).norm() <= tol))
+      return false;
+  }
+  *out = s;
+  return true;
+}
+
 // A clamped cubic through q.front() and q.back() approximating q within tol (vertices and
-// chord midpoints, at their chord-length parameters); false when it needs more than
-// max_control control points.
+// chord midpoints, at their chord-length parameters) with as few control points as a
+// bisection finds; false when it needs more than max_control.
 bool fit_cubic(const std::vector<Point2>& q, double tol, int max_control, BSpline* out) {
   const size_t m = q.size();
   std::vector<double> t(m, 0.0);
   for (size_t k = 1; k < m; ++k) t[k] = t[k - 1] + (q[k] - q[k - 1]).norm();
   const double len = t.back();
-  if (!(len > 0)) return false;
+  if (!(len > 0) || m < 6) return false;
   for (double& x : t) x /= len;
-  std::vector<double> basis;
-  for (size_t n_cp = 4; n_cp + 2 < m && n_cp <= static_cast<size_t>(max_control); ++n_cp) {
+  size_t hi = std::min(static_cast<size_t>(max_control), m - 3);
+  if (hi < 4) return false;
+  BSpline best;
+  if (!try_cubic(q, t, hi, tol, &best)) return false;
+  size_t lo = 3;  // fails by convention (a cubic needs 4)
+  while (hi - lo > 1) {
+    const size_t mid = (lo + hi) / 2;
     BSpline s;
-    s.degree = 3;
-    s.knots.assign(4, 0.0);
-    for (size_t k = 1; k + 3 < n_cp; ++k) s.knots.push_back(static_cast<double>(k) / (n_cp - 3));
-    s.knots.insert(s.knots.end(), 4, 1.0);
-    // Least squares for the interior control points, the ends fixed.
-    Eigen::MatrixXd a(m, n_cp - 2);
-    Eigen::MatrixXd rhs(m, 2);
-    for (size_t k = 0; k < m; ++k) {
-      cubic_basis(s.knots, n_cp, std::min(t[k], 1.0 - 1e-12), &basis);
-      if (k + 1 == m) basis.assign(n_cp, 0.0), basis[n_cp - 1] = 1.0;
-      for (size_t c = 1; c + 1 < n_cp; ++c) a(k, c - 1) = basis[c];
-      const Point2 r = q[k] - basis[0] * q.front() - basis[n_cp - 1] * q.back();
-      rhs(k, 0) = r.x();
-      rhs(k, 1) = r.y();
-    }
-    const Eigen::MatrixXd x = a.colPivHouseholderQr().solve(rhs);
-    s.control.push_back(q.front());
-    for (size_t c = 0; c + 2 < n_cp; ++c) s.control.emplace_back(x(c, 0), x(c, 1));
-    s.control.push_back(q.back());
-    bool ok = true;
-    for (size_t k = 0; k < m && ok; ++k) {
-      ok = (evaluate(s, t[k]) - q[k]).norm() <= tol;
-      if (ok && k + 1 < m) {
-        ok = (evaluate(s, 0.5 * (t[k] + t[k + 1])) - 0.5 * (q[k] + q[k + 1])).norm() <= tol;
-      }
-    }
-    if (ok) {
-      for (double& k : s.knots) k *= len;
-      *out = s;
-      return true;
+    if (try_cubic(q, t, mid, tol, &s)) {
+      hi = mid;
+      best = s;
+    } else {
+      lo = mid;
     }
   }
-  return false;
+  for (double& k : best.knots) k *= len;
+  *out = best;
+  return true;
 }
 
 // Lines and arcs (vertices p) as one spline: degree 1 with no arc, else a rational
