@@ -215,7 +215,10 @@ BSpline join_lines_and_arcs(const std::vector<Point2>& p, const std::vector<Prim
       const Point2 end = k + 1 == pieces
                              ? p[pr.to]
                              : Point2(pr.centre + pr.radius * Point2(std::cos(ae), std::sin(ae)));
-      add_piece(mid, std::cos(half), end, pr.radius * std::fabs(step));
+      // The weight on the firmware's grid (k / 65535, max 1) so its conversion finds the
+      // scale at once; the shape changes by under 1e-5 of the radius.
+      add_piece(mid, std::round(std::cos(half) * 65535.0) / 65535.0, end,
+                pr.radius * std::fabs(step));
     }
   }
   s.knots.push_back(at);  // the last joint's pair + this = the clamped end (3 knots)

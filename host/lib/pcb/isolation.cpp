@@ -93,6 +93,17 @@ std::vector<NarrowGap> find_narrow_gaps(const Paths& copper, double radius_nm,
   }
   std::sort(grown.begin(), grown.end(),
             [](const Grown& a, const Grown& b) { return a.box.min_x < b.box.min_x; });
+  std::vector<Paths> full(islands.size());
+  std::vector<bool> have_full(islands.size(), false);
+  auto grown_full = [&](size_t i) -> const Paths& {
+    if (!have_full[i]) {
+      full[i] = islands[i].paths.size() == 1
+                    ? offset_closed(Paths{islands[i].paths[0]}, radius_nm, arc_tolerance_nm)
+                    : offset_closed(islands[i].paths, radius_nm, arc_tolerance_nm);
+      have_full[i] = true;
+    }
+    return full[i];
+  };
   std::vector<NarrowGap> gaps;
   for (size_t i = 0; i < grown.size(); ++i) {
     for (size_t j = i + 1; j < grown.size() && grown[j].box.min_x <= grown[i].box.max_x; ++j) {
@@ -100,9 +111,12 @@ std::vector<NarrowGap> find_narrow_gaps(const Paths& copper, double radius_nm,
       // Outer boundaries grown: an island inside another's hole is checked against the hole.
       const Island& a = islands[grown[i].index];
       const Island& b = islands[grown[j].index];
-      Paths ga = offset_closed(a.paths, radius_nm, arc_tolerance_nm);
-      Paths gb = offset_closed(b.paths, radius_nm, arc_tolerance_nm);
-      const Paths both = intersection_of(ga, gb);
+      // Outer boundaries first (cheap, already grown); then with the holes, grown once per
+      // island, so an island inside another's hole is checked against that hole.
+      if (std::fabs(signed_area(intersection_of(grown[i].paths, grown[j].paths))) <
+          kMinOverlapAreaNm2)
+        continue;
+      const Paths both = intersection_of(grown_full(grown[i].index), grown_full(grown[j].index));
       if (std::fabs(signed_area(both)) < kMinOverlapAreaNm2) continue;
       NarrowGap g;
       const IntPoint c = centroid(both);
