@@ -163,9 +163,79 @@ bool fit_cubic(const std::vector<Point2>& q, double tol, int max_control, BSplin
   return true;
 }
 
+// Rational quadratic Bezier pieces (end weights 1, middle weight c) joined into one
+// B-spline. Where two pieces meet tangentially the joint is a single knot: the joint point
+// is then no control point of its own but the knot-span-weighted mean of the two middle
+// points (homogeneous), which saves a control point and a knot per joint. Each piece keeps
+// its exact shape: a rational quadratic can be reparametrised (weights w0, r w1, r^2 w2),
+// and r and the next knot span are chosen so the joint lands where it is; a corner, or
+// weights leaving [1/4, 4], takes a double knot instead.
+template <typename Piece>
+BSpline join_pieces_c1(const std::vector<Piece>& pieces) {
+  BSpline s;
+  s.degree = 2;
+  s.control.push_back(pieces.front().p0);
+  s.weights.push_back(1.0);
+  s.knots = {0.0, 0.0, 0.0};
+  double w0 = 1.0, r = 1.0, span = std::max(pieces.front().len, 1e-6), t = 0;
+  auto in_range = [](double w) { return w >= 0.25 && w <= 4.0; };
+  for (size_t k = 0; k < pieces.size(); ++k) {
+    const Piece& a = pieces[k];
+    const double w1 = w0 * r * a.c, w2 = w0 * r * r;
+    s.control.push_back(a.p1);
+    s.weights.push_back(w1);
+    t += span;
+    if (k + 1 == pieces.size()) {
+      s.control.push_back(a.p2);
+      s.weights.push_back(w2);
+      s.knots.insert(s.knots.end(), 3, t);
+      break;
+    }
+    const Piece& b = pieces[k + 1];
+    const Point2 d1 = a.p2 - a.p1, d2 = b.p1 - a.p2;
+    const double la = d1.norm(), lb = d2.norm();
+    bool smooth = false;
+    double next_span = 0, next_r = 1;
+    if (la > 1e-9 && lb > 1e-9 && d1.dot(d2) > 0.999 * la * lb) {
+      // The joint's distance from the line through both middle points: 0.05 um at most.
+      const Point2 m = b.p1 - a.p1;
+      const double dev = std::fabs(cross(m, a.p2 - a.p1)) / std::max(m.norm(), 1e-12);
+      const double denom = w1 * (la + lb) / lb - w2;
+      if (dev <= 5e-5 && denom > 0) {
+        next_span = w2 * span / denom;
+        const double wb1 = la * next_span * w1 / (lb * span);
+        next_r = wb1 / (w2 * b.c);
+        const double wb2 = w2 * next_r * next_r;
+        smooth = next_span > 1e-3 * span && next_span < 1e3 * span && in_range(wb1) &&
+                 in_range(wb2) && in_range(w2);
+      }
+    }
+    if (smooth) {
+      s.knots.push_back(t);
+      w0 = w2;
+      r = next_r;
+      span = next_span;
+    } else {
+      s.control.push_back(a.p2);
+      s.weights.push_back(w2);
+      s.knots.push_back(t);
+      s.knots.push_back(t);
+      w0 = w2;
+      r = 1.0 / std::sqrt(w2);  // the next piece ends at weight 1 again
+      span = std::max(b.len, 1e-6);
+    }
+  }
+  // Weights scaled to a largest of 1 and put on the firmware's grid (k / 65535) so its
+  // conversion finds the scale at once; the shape moves by under 1e-4 of a control leg.
+  double w_max = 0;
+  for (double w : s.weights) w_max = std::max(w_max, w);
+  for (double& w : s.weights) w = std::max(1.0, std::round(w / w_max * 65535.0)) / 65535.0;
+  return s;
+}
+
 // Lines and arcs (vertices p) as one spline: degree 1 with no arc, else a rational
-// quadratic with a double knot at every joint (each line a straight Bezier, each arc in
-// pieces of at most 90 degrees).
+// quadratic (each line a straight Bezier, each arc in pieces of at most 90 degrees) with
+// single knots at tangent joints (join_pieces_c1).
 BSpline join_lines_and_arcs(const std::vector<Point2>& p, const std::vector<Primitive>& prims) {
   bool any_arc = false;
   for (const Primitive& pr : prims) any_arc = any_arc || pr.kind == Primitive::kArc;
@@ -183,46 +253,39 @@ BSpline join_lines_and_arcs(const std::vector<Point2>& p, const std::vector<Prim
     s.knots.push_back(at);
     return s;
   }
-  s.degree = 2;
-  s.control.push_back(p[prims.front().from]);
-  s.weights.push_back(1.0);
-  s.knots = {0.0, 0.0, 0.0};
-  auto add_piece = [&](const Point2& mid, double w, const Point2& end, double len) {
-    s.control.push_back(mid);
-    s.weights.push_back(w);
-    s.control.push_back(end);
-    s.weights.push_back(1.0);
-    at += len;
-    s.knots.push_back(at);
-    s.knots.push_back(at);
+  // Bezier pieces: each line straight (middle point), each arc in pieces of at most 90
+  // degrees with the middle weight cos(half angle).
+  struct Piece {
+    Point2 p0, p1, p2;
+    double c;    // middle weight relative to the ends
+    double len;  // for the first knot span
   };
+  std::vector<Piece> pieces;
   for (const Primitive& pr : prims) {
     if (pr.kind == Primitive::kLine) {
-      add_piece(0.5 * (p[pr.from] + p[pr.to]), 1.0, p[pr.to], (p[pr.to] - p[pr.from]).norm());
+      pieces.push_back(Piece{p[pr.from], 0.5 * (p[pr.from] + p[pr.to]), p[pr.to], 1.0,
+                             (p[pr.to] - p[pr.from]).norm()});
       continue;
     }
-    const int pieces =
-        std::max(1, static_cast<int>(std::ceil(std::fabs(pr.sweep) / (kPi / 2) - 1e-9)));
-    const double step = pr.sweep / pieces;
+    const int n = std::max(1, static_cast<int>(std::ceil(std::fabs(pr.sweep) / (kPi / 2) - 1e-9)));
+    const double step = pr.sweep / n;
     const Point2 d0 = p[pr.from] - pr.centre;
     const double a0 = std::atan2(d0.y(), d0.x());
-    for (int k = 0; k < pieces; ++k) {
+    Point2 start = p[pr.from];
+    for (int k = 0; k < n; ++k) {
       const double am = a0 + step * (k + 0.5);
       const double half = std::fabs(step) / 2;
       const Point2 mid =
           pr.centre + pr.radius / std::cos(half) * Point2(std::cos(am), std::sin(am));
       const double ae = a0 + step * (k + 1);
-      const Point2 end = k + 1 == pieces
+      const Point2 end = k + 1 == n
                              ? p[pr.to]
                              : Point2(pr.centre + pr.radius * Point2(std::cos(ae), std::sin(ae)));
-      // The weight on the firmware's grid (k / 65535, max 1) so its conversion finds the
-      // scale at once; the shape changes by under 1e-5 of the radius.
-      add_piece(mid, std::round(std::cos(half) * 65535.0) / 65535.0, end,
-                pr.radius * std::fabs(step));
+      pieces.push_back(Piece{start, mid, end, std::cos(half), pr.radius * std::fabs(step)});
+      start = end;
     }
   }
-  s.knots.push_back(at);  // the last joint's pair + this = the clamped end (3 knots)
-  return s;
+  return join_pieces_c1(pieces);
 }
 
 }  // namespace
