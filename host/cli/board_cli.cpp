@@ -283,7 +283,11 @@ nlohmann::json report_json(const pcb::BoardJob& job, const pcb::BoardOptions& o)
   j["isolation_contours"] = r.isolation_contours;
   j["isolation_length_mm"] = r.isolation_length_mm;
   j["isolation_vertices"] = r.isolation_vertices;
-  j["fit"] = {{"lines", r.fit.lines}, {"arcs", r.fit.arcs}, {"cubics", r.fit.cubics}};
+  j["fit"] = {{"lines", r.fit.lines},
+              {"arcs", r.fit.arcs},
+              {"cubics", r.fit.cubics},
+              {"smooth_joints", r.fit.smooth_joints},
+              {"corner_joints", r.fit.corner_joints}};
   j["holes"] = r.holes;
   j["slots"] = r.slots;
   j["drill_tools"] = r.drill_tools;

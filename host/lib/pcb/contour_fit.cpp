@@ -171,7 +171,7 @@ bool fit_cubic(const std::vector<Point2>& q, double tol, int max_control, BSplin
 // and r and the next knot span are chosen so the joint lands where it is; a corner, or
 // weights leaving [1/4, 4], takes a double knot instead.
 template <typename Piece>
-BSpline join_pieces_c1(const std::vector<Piece>& pieces) {
+BSpline join_pieces_c1(const std::vector<Piece>& pieces, FitStats* st) {
   BSpline s;
   s.degree = 2;
   s.control.push_back(pieces.front().p0);
@@ -211,11 +211,13 @@ BSpline join_pieces_c1(const std::vector<Piece>& pieces) {
       }
     }
     if (smooth) {
+      ++st->smooth_joints;
       s.knots.push_back(t);
       w0 = w2;
       r = next_r;
       span = next_span;
     } else {
+      ++st->corner_joints;
       s.control.push_back(a.p2);
       s.weights.push_back(w2);
       s.knots.push_back(t);
@@ -236,7 +238,8 @@ BSpline join_pieces_c1(const std::vector<Piece>& pieces) {
 // Lines and arcs (vertices p) as one spline: degree 1 with no arc, else a rational
 // quadratic (each line a straight Bezier, each arc in pieces of at most 90 degrees) with
 // single knots at tangent joints (join_pieces_c1).
-BSpline join_lines_and_arcs(const std::vector<Point2>& p, const std::vector<Primitive>& prims) {
+BSpline join_lines_and_arcs(const std::vector<Point2>& p, const std::vector<Primitive>& prims,
+                            FitStats* st) {
   bool any_arc = false;
   for (const Primitive& pr : prims) any_arc = any_arc || pr.kind == Primitive::kArc;
   BSpline s;
@@ -285,7 +288,7 @@ BSpline join_lines_and_arcs(const std::vector<Point2>& p, const std::vector<Prim
       start = end;
     }
   }
-  return join_pieces_c1(pieces);
+  return join_pieces_c1(pieces, st);
 }
 
 }  // namespace
@@ -384,14 +387,14 @@ std::vector<BSpline> fit_polyline(const std::vector<Point2>& in, bool closed, co
   std::vector<Primitive> run;
   for (const Primitive& pr : merged) {
     if (pr.kind == Primitive::kCubic) {
-      if (!run.empty()) out.push_back(join_lines_and_arcs(p, run));
+      if (!run.empty()) out.push_back(join_lines_and_arcs(p, run, &st));
       run.clear();
       out.push_back(pr.cubic);
     } else {
       run.push_back(pr);
     }
   }
-  if (!run.empty()) out.push_back(join_lines_and_arcs(p, run));
+  if (!run.empty()) out.push_back(join_lines_and_arcs(p, run, &st));
   return out;
 }
 
