@@ -171,7 +171,7 @@ bool fit_cubic(const std::vector<Point2>& q, double tol, int max_control, BSplin
 // and r and the next knot span are chosen so the joint lands where it is; a corner, or
 // weights leaving [1/4, 4], takes a double knot instead.
 template <typename Piece>
-BSpline join_pieces_c1(const std::vector<Piece>& pieces, FitStats* st) {
+BSpline join_pieces_c1(std::vector<Piece> pieces, FitStats* st) {
   BSpline s;
   s.degree = 2;
   s.control.push_back(pieces.front().p0);
@@ -191,9 +191,18 @@ BSpline join_pieces_c1(const std::vector<Piece>& pieces, FitStats* st) {
       s.knots.insert(s.knots.end(), 3, t);
       break;
     }
-    const Piece& b = pieces[k + 1];
-    const Point2 d1 = a.p2 - a.p1, d2 = b.p1 - a.p2;
-    const double la = d1.norm(), lb = d2.norm();
+    Piece& b = pieces[k + 1];
+    const Point2 d1 = a.p2 - a.p1;
+    const double la = d1.norm();
+    if (b.straight && la > 1e-9 && w2 > w1) {
+      // A line's middle point may sit anywhere on it: near enough to the joint that the
+      // joint can be a single knot (w1 (la + lb) / lb > w2), at most half way.
+      const double lb_max = la * w1 / (w2 - w1);
+      const double len = (b.p2 - b.p0).norm();
+      if (len > 1e-9) b.p1 = b.p0 + (b.p2 - b.p0) * (std::min(0.5 * len, 0.5 * lb_max) / len);
+    }
+    const Point2 d2 = b.p1 - a.p2;
+    const double lb = d2.norm();
     bool smooth = false;
     double next_span = 0, next_r = 1;
     if (la > 1e-9 && lb > 1e-9 && d1.dot(d2) > 0.999 * la * lb) {
@@ -204,6 +213,8 @@ BSpline join_pieces_c1(const std::vector<Piece>& pieces, FitStats* st) {
       if (dev <= 5e-5 && denom > 0) {
         next_span = w2 * span / denom;
         const double wb1 = la * next_span * w1 / (lb * span);
+        // A line's middle weight is free: it takes the piece back to end weight 1.
+        if (b.straight) b.c = wb1 * std::sqrt(w2) / w2;
         next_r = wb1 / (w2 * b.c);
         const double wb2 = w2 * next_r * next_r;
         smooth = next_span > 1e-3 * span && next_span < 1e3 * span && in_range(wb1) &&
@@ -260,14 +271,15 @@ BSpline join_lines_and_arcs(const std::vector<Point2>& p, const std::vector<Prim
   // degrees with the middle weight cos(half angle).
   struct Piece {
     Point2 p0, p1, p2;
-    double c;    // middle weight relative to the ends
-    double len;  // for the first knot span
+    double c;       // middle weight relative to the ends
+    double len;     // for the first knot span
+    bool straight;  // a line: p1 anywhere on it, any c
   };
   std::vector<Piece> pieces;
   for (const Primitive& pr : prims) {
     if (pr.kind == Primitive::kLine) {
       pieces.push_back(Piece{p[pr.from], 0.5 * (p[pr.from] + p[pr.to]), p[pr.to], 1.0,
-                             (p[pr.to] - p[pr.from]).norm()});
+                             (p[pr.to] - p[pr.from]).norm(), true});
       continue;
     }
     const int n = std::max(1, static_cast<int>(std::ceil(std::fabs(pr.sweep) / (kPi / 2) - 1e-9)));
@@ -284,7 +296,7 @@ BSpline join_lines_and_arcs(const std::vector<Point2>& p, const std::vector<Prim
       const Point2 end = k + 1 == n
                              ? p[pr.to]
                              : Point2(pr.centre + pr.radius * Point2(std::cos(ae), std::sin(ae)));
-      pieces.push_back(Piece{start, mid, end, std::cos(half), pr.radius * std::fabs(step)});
+      pieces.push_back(Piece{start, mid, end, std::cos(half), pr.radius * std::fabs(step), false});
       start = end;
     }
   }
