@@ -206,18 +206,19 @@ BSpline join_pieces_c1(std::vector<Piece> pieces, FitStats* st) {
     bool smooth = false;
     double next_span = 0, next_r = 1;
     if (la > 1e-9 && lb > 1e-9 && d1.dot(d2) > 0.999 * la * lb) {
-      // The joint's distance from the line through both middle points: 0.05 um at most.
+      // The joint's distance from the line through both middle points: 1 um at most (the
+      // joint moves onto that line; 3-point arcs meet lines within about that).
       const Point2 m = b.p1 - a.p1;
       const double dev = std::fabs(cross(m, a.p2 - a.p1)) / std::max(m.norm(), 1e-12);
       const double denom = w1 * (la + lb) / lb - w2;
-      if (dev <= 5e-5 && denom > 0) {
+      if (dev <= 1e-3 && denom > 0) {
         next_span = w2 * span / denom;
         const double wb1 = la * next_span * w1 / (lb * span);
         // A line's middle weight is free: it takes the piece back to end weight 1.
         if (b.straight) b.c = wb1 * std::sqrt(w2) / w2;
         next_r = wb1 / (w2 * b.c);
         const double wb2 = w2 * next_r * next_r;
-        smooth = next_span > 1e-3 * span && next_span < 1e3 * span && in_range(wb1) &&
+        smooth = next_span > 0.05 * b.len && next_span < 20 * b.len && in_range(wb1) &&
                  in_range(wb2) && in_range(w2);
       }
     }
