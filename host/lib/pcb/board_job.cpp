@@ -430,6 +430,14 @@ BoardJob plan_board(const BoardLayers& layers, const BoardOptions& o) {
     const int passes = static_cast<int>(std::ceil(o.cutout_depth_mm / o.cutout_step_mm - 1e-9));
     const double tab_top = -(o.cutout_depth_mm - o.tab_height_mm);
     for (const Trace& t : cut) {
+      for (size_t k = 0; k < t.curves.size(); ++k) {
+        if (!t.lifted[k]) continue;
+        std::vector<Point2> tab;
+        for (const Point2& q : sample(t.curves[k], 0.002)) tab.push_back(q + offset);
+        job.tab_paths_mm.push_back(tab);
+      }
+    }
+    for (const Trace& t : cut) {
       for (int p = 1; p <= passes; ++p) {
         const double z = -std::min(o.cutout_depth_mm, p * o.cutout_step_mm);
         w.pen_up(o.z_travel_mm);

@@ -90,6 +90,7 @@ struct BoardJob {
   std::vector<Hole> holes_machine;                      // nm, machine frame
   std::vector<Slot> slots_machine;
   std::vector<std::vector<Point2>> cutout_paths_mm;  // machine frame
+  std::vector<std::vector<Point2>> tab_paths_mm;     // stretches lifted over tabs
   double cutter_radius_mm = 0;
 };
 

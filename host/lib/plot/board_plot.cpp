@@ -28,6 +28,7 @@ const Rgba kIsolation = {0.15, 0.35, 0.90, 0.45};  // swept V-bit
 const Rgba kIsolationCentre = {0.05, 0.15, 0.55, 1.0};
 const Rgba kCutout = {0.10, 0.60, 0.20, 0.40};  // swept cutter
 const Rgba kCutoutCentre = {0.05, 0.35, 0.10, 1.0};
+const Rgba kTab = {0.55, 0.25, 0.65, 0.9};  // cutter lifted over a holding tab
 const Rgba kHole = {0.12, 0.12, 0.12, 1.0};
 const Rgba kGap = {0.90, 0.00, 0.00, 1.0};
 const Rgba kSimulated = {0.75, 0.05, 0.05, 0.9};
@@ -136,6 +137,7 @@ void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int heigh
   stroke_group(cr, f, job.isolation_paths_mm, 0.6, kIsolationCentre);
   stroke_group(cr, f, job.cutout_paths_mm, 2 * job.cutter_radius_mm * s, kCutout);
   stroke_group(cr, f, job.cutout_paths_mm, 0.6, kCutoutCentre);
+  stroke_group(cr, f, job.tab_paths_mm, 2 * job.cutter_radius_mm * s, kTab);
   set(cr, kHole);
   for (const pcb::Hole& h : job.holes_machine) {
     const Point2 c = f.to_px(pcb::to_mm(ClipperLib::IntPoint(h.at.x, h.at.y)));
@@ -177,7 +179,8 @@ void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int heigh
   legend_box(cr, x, y, kCopper, "copper");
   legend_box(cr, x += 100, y, kIsolation, "isolation (tool width)");
   legend_box(cr, x += 180, y, kCutout, "cut-out (cutter width)");
-  legend_box(cr, x += 180, y, kHole, "holes");
+  legend_box(cr, x += 180, y, kTab, "tabs");
+  legend_box(cr, x += 80, y, kHole, "holes");
   legend_box(cr, x += 90, y, kGap, "narrow gap");
   if (!in.simulated.empty()) legend_box(cr, x += 120, y, kSimulated, "simulated tool");
   const double bar_mm = nice_length(in.width_px / 6.0 / s);

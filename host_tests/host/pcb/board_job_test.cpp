@@ -125,6 +125,7 @@ TEST(BoardJob, CutOutGoesDownInPassesAndLiftsOverTabsOnlyBelowTheirTop) {
   EXPECT_EQ(depths.front(), -600);
   EXPECT_EQ(depths.back(), -1800);
   EXPECT_EQ(job.report.tabs, 4);
+  EXPECT_EQ(job.tab_paths_mm.size(), 4u);  // for the plot: each tab once, whatever the passes
 }
 
 TEST(BoardJob, LayersLineUpAndTheBottomSideIsMirrored) {
