@@ -140,6 +140,8 @@ const char* state_name(proto::MachineState s) {
       return "zeroing";
     case proto::MachineState::kAlarm:
       return "ALARM";
+    case proto::MachineState::kPaused:
+      return "paused: press confirm on the panel";
   }
   return "?";
 }
@@ -295,6 +297,7 @@ void run_send(const SendArgs& a) {
 struct SimArgs {
   std::string listen = "127.0.0.1:10001";
   bool realtime = false;
+  int pause_confirm_ms = sim::SimOptions{}.pause_confirm_ms;
 };
 
 std::atomic<bool> g_stop_sim{false};
@@ -315,7 +318,9 @@ void run_sim(const SimArgs& a) {
     throw CommandFailure(kExitUsage, fmt::format("--listen '{}': bad port", a.listen));
   }
   so.realtime = a.realtime;
-  sim::SimMachine machine{sim::SimOptions{}};
+  sim::SimOptions mo;
+  mo.pause_confirm_ms = a.pause_confirm_ms;
+  sim::SimMachine machine{mo};
   if (!machine.chip_ok()) std::cerr << "engraver: simulated TMC428 failed its self-check\n";
   sim::SimServer server(machine, so);
   struct sigaction sa {};
@@ -326,8 +331,17 @@ void run_sim(const SimArgs& a) {
   std::cerr << fmt::format("engraver: simulated machine listening on {}:{} ({}); Ctrl-C stops\n",
                            so.address, server.port(),
                            a.realtime ? "real time" : "virtual time, as fast as the host allows");
+  std::cerr << (a.pause_confirm_ms < 0
+                    ? std::string("engraver: the simulated operator never confirms a pause\n")
+                    : fmt::format("engraver: the simulated operator confirms each pause (#P) "
+                                  "after {} ms\n",
+                                  a.pause_confirm_ms));
   const uint64_t ms = server.run(g_stop_sim);
-  std::cerr << fmt::format("engraver: simulated {:.1f} s of machine time\n", ms / 1000.0);
+  std::cerr << fmt::format(
+      "engraver: simulated {:.1f} s of machine time; {} pauses confirmed by the simulated "
+      "operator; spindle {} ({} switchings)\n",
+      ms / 1000.0, machine.pauses_confirmed(), machine.spindle_on() ? "on" : "off",
+      machine.spindle_switches());
 }
 
 // ---- engraver run ----
@@ -423,6 +437,9 @@ void run_run(const RunArgs& a) {
   j["wall_s"] = r.wall_s;
   j["speedup_vs_real_time"] = r.wall_s > 0 ? r.virtual_ms / 1000.0 / r.wall_s : 0.0;
   j["lcd"] = {r.lcd[0], r.lcd[1]};
+  j["pauses_confirmed_by_simulated_operator"] = r.pauses_confirmed;
+  j["pause_confirm_ms"] = o.machine.pause_confirm_ms;
+  j["spindle_on_at_end"] = r.spindle_on;
   {
     std::ofstream out(base + ".json");
     out << j.dump(2) << "\n";
@@ -435,11 +452,14 @@ void run_run(const RunArgs& a) {
       "  tool path {:.1f} mm cut + {:.1f} mm rapid; simulated job time {:.1f} s, of which "
       "cutting {:.1f} s (cut length / feed {:.1f} s)\n"
       "  max contour error {:.1f} um; simulated {:.1f} s of machine time in {:.2f} s\n"
+      "  {} pauses confirmed by the simulated operator ({} ms after each); spindle {} at the "
+      "end\n"
       "  plot: {}.svg, {}.png; report: {}.json\n",
       a.plan.file, plan.curves.size(), plan.pen_lifts, outcome_name(r.outcome), r.commands,
       r.stats.frames_sent, r.stats.bytes_sent, r.stats.retransmits, r.wire_bytes,
       j["gcode_g1_bytes_same_tolerance"].get<size_t>(), r.cut_mm, r.rapid_mm, r.motion_s, r.cut_s,
-      ideal_s, r.max_contour_error_um, r.virtual_ms / 1000.0, r.wall_s, base, base, base);
+      ideal_s, r.max_contour_error_um, r.virtual_ms / 1000.0, r.wall_s, r.pauses_confirmed,
+      o.machine.pause_confirm_ms, r.spindle_on ? "on" : "off", base, base, base);
   if (r.outcome != JobOutcome::kCompleted) {
     throw CommandFailure(exit_code(r.outcome),
                          fmt::format("job {}: {}", outcome_name(r.outcome), r.message));
@@ -476,6 +496,9 @@ void add_machine_commands(CLI::App& app) {
   sim->add_option("--listen", sim_args->listen, "ADDR:PORT (loopback by default)")
       ->capture_default_str();
   sim->add_flag("--realtime", sim_args->realtime, "run in step with the wall clock");
+  sim->add_option("--pause-confirm-ms", sim_args->pause_confirm_ms,
+                  "the simulated operator confirms a pause (#P) after this long; -1 never")
+      ->capture_default_str();
   sim->footer(
       "Example: engraver sim & engraver send samples/engraver-word.dxf --to "
       "tcp://127.0.0.1:10001 --poll-ms 1");

@@ -101,6 +101,8 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
   r.trace = machine.trace();
   r.lcd[0] = machine.lcd_line(0);
   r.lcd[1] = machine.lcd_line(1);
+  r.pauses_confirmed = machine.pauses_confirmed();
+  r.spindle_on = machine.spindle_on();
   measure(plan, &r);
   return r;
 }
