@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <map>  // std::map
+
 #include "host/lib/pcb/isolation_check.h"
 #include "host/lib/plan/firmware_spline.h"
+#include "host/lib/stream/job_encoder.h"
 #include "host_tests/host/pcb/synthetic_board.h"
 
 namespace host::pcb {
@@ -201,6 +204,18 @@ TEST(BoardJob, DrillOnlyJobNeedsNoPauseForItsFirstTool) {
   EXPECT_EQ(job.report.first_tool, "Drill 0.80mm");
   EXPECT_EQ(count(job.plan, PlanStep::kPause), 1);
   EXPECT_EQ(count(job.plan, PlanStep::kDrill), 4);
+}
+
+TEST(BoardJob, EveryStepGoesOnTheWireOneDrillFramePerHole) {
+  Board b;
+  const BoardJob job = plan_board(b.layers(), BoardOptions());
+  const std::vector<QueuedCommand> frames = encode_job(job.plan, EncodeOptions());
+  std::map<char, int> letters;
+  for (const QueuedCommand& c : frames) ++letters[static_cast<char>(c.letter)];
+  EXPECT_EQ(letters['L'], 4);          // drill
+  EXPECT_EQ(letters['P'], 3);          // tool changes
+  EXPECT_EQ(letters['N'], 2 * 3 + 2);  // on at the start, off/on around each pause, off at the end
+  EXPECT_GT(letters['B'], 0);          // spline headers
 }
 
 }  // namespace
