@@ -124,8 +124,21 @@ class StepWriter {
     ++tools_;
     spindle(true);
   }
+  // A planned point or straight line (machine frame) for the simulator's contour error:
+  // holes and slots are where the tool is down too.
+  int reference(const Point2& a, const Point2& b, const std::string& source) {
+    PlannedCurve pc;
+    pc.spline.degree = 1;
+    pc.spline.control = {a, b};
+    pc.spline.knots = {0.0, 0.0, 1.0, 1.0};
+    pc.drawing_index = static_cast<int>(plan_->curves.size());
+    pc.source = source;
+    plan_->curves.push_back(pc);
+    return pc.drawing_index;
+  }
   void drill(const Point2& machine) {
     PlanStep s;
+    s.curve = reference(machine, machine, "hole");
     s.kind = PlanStep::kDrill;
     s.to = um(machine);
     s.z_start_um = um(o_.drill_start_mm);
@@ -137,6 +150,7 @@ class StepWriter {
   }
   void feed_to(const Point2& machine, double feed) {
     PlanStep s;
+    s.curve = reference(at_, machine, "slot");
     s.kind = PlanStep::kFeed;
     s.to = um(machine);
     s.feed_um_per_s = um(feed);
@@ -494,6 +508,7 @@ BoardJob plan_board(const BoardLayers& layers, const BoardOptions& o) {
   }
   if (layers.outline) job.board_machine_nm = union_of(job.frame.to_machine_nm(cp.board_nm));
   for (size_t i = job.isolation_curves; i < plan.curves.size(); ++i) {
+    if (plan.curves[i].source == "hole" || plan.curves[i].source == "slot") continue;
     const std::vector<Point2> pts = sample(plan.curves[i].spline, 0.002);
     if (plan.curves[i].chained && !job.cutout_paths_mm.empty() && i > job.isolation_curves) {
       std::vector<Point2>& last = job.cutout_paths_mm.back();
