@@ -289,6 +289,7 @@ nlohmann::json report_json(const pcb::BoardJob& job, const pcb::BoardOptions& o)
               {"smooth_joints", r.fit.smooth_joints},
               {"corner_joints", r.fit.corner_joints}};
   j["holes"] = r.holes;
+  j["holes_on_copper"] = r.holes_on_copper;
   j["slots"] = r.slots;
   j["drill_tools"] = r.drill_tools;
   j["drill_travel_file_order_mm"] = r.drill_travel_file_order_mm;
@@ -403,7 +404,8 @@ void run_board(const BoardCommand& a) {
         "{} narrow gaps\n"
         "  as splines {} bytes in {} frames; as G1 at {} mm: {} bytes ({:.1f}x); G1 through "
         "every vertex: {} bytes\n"
-        "  drilling: {} holes, {} slots, {} sizes; travel {:.1f} mm (file order {:.1f} mm)\n"
+        "  drilling: {} holes ({} on copper), {} slots, {} sizes; travel {:.1f} mm (file order "
+        "{:.1f} mm)\n"
         "  cut-out: {:.1f} mm per pass, {} tabs; {} tool changes\n"
         "  files -> plan: {:.3f} s CPU, peak {:.1f} MB\n",
         b.name, j["side"].get<std::string>(), r.first_tool, r.islands, r.isolation_contours,
@@ -411,9 +413,9 @@ void run_board(const BoardCommand& a) {
         w.spline_bytes, w.spline_frames, a.tol_mm, w.g1_bytes,
         w.spline_bytes ? static_cast<double>(w.g1_bytes) / static_cast<double>(w.spline_bytes)
                        : 0.0,
-        w.g1_vertex_bytes, r.holes, r.slots, r.drill_tools, r.drill_travel_ordered_mm,
-        r.drill_travel_file_order_mm, r.cutout_length_mm, r.tabs, r.tool_changes, plan_cpu_s,
-        plan_peak_mb);
+        w.g1_vertex_bytes, r.holes, r.holes_on_copper, r.slots, r.drill_tools,
+        r.drill_travel_ordered_mm, r.drill_travel_file_order_mm, r.cutout_length_mm, r.tabs,
+        r.tool_changes, plan_cpu_s, plan_peak_mb);
     for (const pcb::NarrowGap& g : r.narrow_gaps)
       std::cout << "  " << pcb::describe_gap(g, o.isolation.tool_width_mm) << "\n";
     if (!a.no_plot) std::cout << "  plot: " << base << ".board.svg, .png; ";

@@ -313,6 +313,24 @@ BoardJob plan_board(const BoardLayers& layers, const BoardOptions& o) {
       tool.push_back(h.tool);
     }
     rep.holes = at.size();
+    if (copper) {
+      // Alignment check: plated holes sit in pads.
+      const std::vector<Island> islands = copper_islands(copper->polygons_nm);
+      for (const Hole& h : d.holes) {
+        const IntPoint c(h.at.x, h.at.y);
+        for (const Island& is : islands) {
+          if (c.X < is.box.min_x || c.X > is.box.max_x || c.Y < is.box.min_y || c.Y > is.box.max_y)
+            continue;
+          int inside = ClipperLib::PointInPolygon(c, is.paths[0]) != 0;
+          for (size_t k = 1; k < is.paths.size() && inside; ++k)
+            inside = ClipperLib::PointInPolygon(c, is.paths[k]) != 1;
+          if (inside) {
+            ++rep.holes_on_copper;
+            break;
+          }
+        }
+      }
+    }
     rep.slots = d.slots.size();
     Extents ext;
     for (const Point2& p : at) ext.add(p);

@@ -67,6 +67,7 @@ struct BoardReport {
   size_t isolation_vertices = 0;  // of the flattened contours (the G1 lines they would be)
   FitStats fit;
   size_t holes = 0;
+  size_t holes_on_copper = 0;  // centre inside the isolated copper: the layers line up
   size_t slots = 0;
   size_t drill_tools = 0;
   double drill_travel_file_order_mm = 0;

@@ -72,6 +72,7 @@ TEST(BoardCli, WholeBoardIsPlannedCheckedPlottedAndReported) {
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["islands"], 2);
   EXPECT_EQ(j["holes"], 3);
+  EXPECT_EQ(j["holes_on_copper"], 3);  // the inch drill file lines up with the mm copper
   EXPECT_EQ(j["drill_tools"], 2);
   EXPECT_EQ(j["tool_changes"], 3);  // drill 0.8, drill 1.0, cutter (the V-bit is mounted first)
   EXPECT_EQ(j["check"]["copper_hits"], 0);

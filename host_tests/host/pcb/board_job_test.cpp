@@ -82,6 +82,7 @@ TEST(BoardJob, DrillsEveryHoleWithAPauseNamingEachNewTool) {
   Board b;
   const BoardJob job = plan_board(b.layers(), BoardOptions());
   EXPECT_EQ(count(job.plan, PlanStep::kDrill), 4);
+  EXPECT_EQ(job.report.holes_on_copper, 4u);  // every hole in its pad: the layers line up
   EXPECT_EQ(job.report.first_tool, "V-bit 0.20mm");
   std::vector<std::string> pauses;
   for (const PlanStep& s : job.plan.steps) {
