@@ -185,6 +185,7 @@ pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, co
   o.cutout.cutter_diameter_mm = a.cutter_mm;
   o.cutout.tab_width_mm = a.tab_width_mm;
   o.cutout.tab_count = a.tabs;
+  o.cutout.tab_spacing_mm = a.tab_spacing_mm;
   o.cutout_depth_mm = a.cut_depth_mm;
   o.cutout_step_mm = a.cut_step_mm;
   o.cutout_feed_mm_per_s = a.cut_feed_mm_s;
@@ -504,6 +505,10 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
       ->group(g)
       ->capture_default_str();
   cmd->add_option("--tabs", a->tabs, "holding tabs per board")->group(g)->capture_default_str();
+  cmd->add_option("--tab-spacing", a->tab_spacing_mm,
+                  "one tab per this much outline length, mm (instead of --tabs)")
+      ->group(g)
+      ->check(CLI::Range(0.0, 10000.0));
   cmd->add_option("--tab-height", a->tab_height_mm, "board thickness the tabs keep, mm")
       ->group(g)
       ->capture_default_str();

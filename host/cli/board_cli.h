@@ -34,6 +34,7 @@ struct BoardArgs {
   double cut_feed_mm_s = 3.0;
   double tab_width_mm = 2.0;
   int tabs = 4;
+  double tab_spacing_mm = 0;  // > 0: one tab per this much outline instead of --tabs
   double tab_height_mm = 0.5;
   bool no_spindle = false;
   bool allow_narrow_gaps = false;

@@ -56,6 +56,15 @@ TEST(Cutout, TabsLiftTheCutterForTheTabWidthPlusTheCutterDiameter) {
   EXPECT_NEAR(total, 2 * (30 + 20) + 3.14159265 * 1.0, 0.01);  // perimeter + corner arcs
 }
 
+TEST(Cutout, TabSpacingGivesOneTabPerLengthOfOutline) {
+  CutoutOptions o;
+  o.cutter_diameter_mm = 1.0;
+  o.tab_spacing_mm = 10.0;  // the cutter loop is 2 (30 + 20) + pi = 103.1 mm long
+  EXPECT_EQ(plan_cutout(test::rect_outline(0, 0, 30, 20), o).tabs, 10);
+  o.tab_spacing_mm = 40.0;
+  EXPECT_EQ(plan_cutout(test::rect_outline(0, 0, 30, 20), o).tabs, 2);
+}
+
 TEST(Cutout, AnOutlineThatDoesNotCloseIsRefusedWithThePlace) {
   PcbLayer l = test::rect_outline(0, 0, 30, 20);
   l.polygons_nm.pop_back();  // the left edge is missing
