@@ -7,6 +7,7 @@
 #include <map>  // std::map
 
 #include "host/lib/pcb/isolation_check.h"
+#include "host/lib/pcb/pcb_geometry.h"
 #include "host/lib/plan/firmware_spline.h"
 #include "host/lib/stream/job_encoder.h"
 #include "host_tests/host/pcb/synthetic_board.h"
@@ -154,6 +155,9 @@ TEST(BoardJob, LayersLineUpAndTheBottomSideIsMirrored) {
       found = true;
   }
   EXPECT_TRUE(found);
+  // Mirroring keeps the copper's area (orientation restored: outers positive).
+  EXPECT_NEAR(signed_area(bottom.copper_machine_nm), signed_area(b.top.polygons_nm),
+              1e-9 * std::fabs(signed_area(b.top.polygons_nm)));
   const IsolationCheck c = check_isolation(bottom.copper_machine_nm, bottom.isolation_paths_mm,
                                            bottom.tool_radius_mm, 0.003);
   EXPECT_TRUE(c.ok()) << describe(c);
