@@ -78,6 +78,7 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
     const proto::SessionReply caps = sender.open_session();
     EncodeOptions enc = options.encode;
     enc.max_payload = std::min<unsigned>(enc.max_payload, caps.max_payload);
+    enc.controller = &caps;
     const std::vector<QueuedCommand> commands = encode_job(plan, enc);
     r.commands = commands.size();
     r.wire_bytes = wire_bytes(commands);
