@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>  // nlohmann::json
 #include <sstream>            // std::ostringstream
 
+#include "host/cli/board_cli.h"  // PCB input: isolation tool centres
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
 #include "host/cli/pcb_info.h"
@@ -187,6 +188,7 @@ void run_points(const PointsArgs& a) {
                          "steps with a whole-micrometre chord tolerance)");
   }
   const int tol = static_cast<int>(std::llround(tol_um));
+  if (print_board_points_if_pcb(a.file, a.tol_mm, a.csv)) return;  // isolation tool centres
   const Drawing d = import_drawing(a.file);
   for (const std::string& w : d.warnings) std::cerr << "warning: " << w << "\n";
   std::cout << std::fixed << std::setprecision(3);
