@@ -162,43 +162,11 @@ Paths difference_paths(const Paths& subject, const Paths& clip) {
   return out;
 }
 
-BoxNm box_of(const Path& path) {
-  BoxNm b;
-  for (const IntPoint& p : path) {
-    if (b.empty) {
-      b.x0 = b.x1 = p.X;
-      b.y0 = b.y1 = p.Y;
-      b.empty = false;
-      continue;
-    }
-    b.x0 = std::min(b.x0, p.X);
-    b.x1 = std::max(b.x1, p.X);
-    b.y0 = std::min(b.y0, p.Y);
-    b.y1 = std::max(b.y1, p.Y);
-  }
-  return b;
-}
-
-BoxNm box_of(const Paths& paths) {
-  BoxNm b;
-  for (const Path& p : paths) {
-    const BoxNm q = box_of(p);
-    if (q.empty) continue;
-    if (b.empty) {
-      b = q;
-      continue;
-    }
-    b.x0 = std::min(b.x0, q.x0);
-    b.x1 = std::max(b.x1, q.x1);
-    b.y0 = std::min(b.y0, q.y0);
-    b.y1 = std::max(b.y1, q.y1);
-  }
-  return b;
-}
-
 void split_by_box(const Paths& all, const BoxNm& box, Paths& touched, Paths& kept) {
   for (const Path& p : all) {
-    (box_of(p).meets(box) ? touched : kept).push_back(p);
+    BoxNm b;
+    b.add(p);
+    (b.overlaps(box) ? touched : kept).push_back(p);
   }
 }
 

@@ -7,6 +7,8 @@
 
 #include <vector>  // std::vector
 
+#include "host/lib/pcb/pcb_geometry.h"  // BoxNm
+
 namespace host::pcb {
 
 struct VecNm {
@@ -48,16 +50,6 @@ void make_positive(ClipperLib::Path& path);
 // Boolean operations with non-zero filling.
 ClipperLib::Paths union_paths(const ClipperLib::Paths& paths);
 ClipperLib::Paths difference_paths(const ClipperLib::Paths& subject, const ClipperLib::Paths& clip);
-
-struct BoxNm {
-  bool empty = true;
-  ClipperLib::cInt x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  bool meets(const BoxNm& o) const {
-    return !empty && !o.empty && x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1;
-  }
-};
-BoxNm box_of(const ClipperLib::Paths& paths);
-BoxNm box_of(const ClipperLib::Path& path);
 
 // Paths whose boxes meet `box` go to `touched`, the others to `kept`.
 void split_by_box(const ClipperLib::Paths& all, const BoxNm& box, ClipperLib::Paths& touched,
