@@ -31,7 +31,13 @@ namespace host::cli {
 namespace {
 
 // Exit codes of send/run beyond the common ones (docs/user-guide.md).
-enum MachineExit { kExitAborted = 3, kExitAlarm = 4, kExitRefused = 5, kExitLinkLost = 6 };
+enum MachineExit {
+  kExitAborted = 3,
+  kExitAlarm = 4,
+  kExitRefused = 5,
+  kExitLinkLost = 6,
+  kExitStalled = 7
+};
 
 int exit_code(JobOutcome outcome) {
   switch (outcome) {
@@ -45,6 +51,8 @@ int exit_code(JobOutcome outcome) {
       return kExitRefused;
     case JobOutcome::kLinkLost:
       return kExitLinkLost;
+    case JobOutcome::kStalled:
+      return kExitStalled;
   }
   return kExitJobFailed;
 }
@@ -353,7 +361,9 @@ void run_run(const RunArgs& a) {
   sim::SimJobOptions o;
   o.encode = encode_options(a.plan);
   o.realtime = a.realtime;
-  o.sender.status_interval = std::chrono::milliseconds(a.realtime ? 250 : 1);
+  // Machine time in lockstep: a poll every 50 ms keeps the progress current and costs the
+  // link little (the real machine is polled every 250 ms).
+  o.sender.status_interval = std::chrono::milliseconds(50);
   const sim::SimJobResult r = sim::run_sim_job(plan, o);
 
   const std::string name = std::filesystem::path(a.plan.file).stem().string();

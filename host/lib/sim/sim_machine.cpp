@@ -138,11 +138,15 @@ void SimMachine::operate_panel() {
 
 void SimMachine::record_position() {
   const ToolSample s = position();
-  if (!trace_.empty()) {
-    const ToolSample& last = trace_.back();
-    if (last.x_mm == s.x_mm && last.y_mm == s.y_mm && last.z_mm == s.z_mm) return;
-  }
-  trace_.push_back(s);
+  if (have_sample_ && last_sample_.x_mm == s.x_mm && last_sample_.y_mm == s.y_mm &&
+      last_sample_.z_mm == s.z_mm)
+    return;
+  last_sample_ = s;
+  have_sample_ = true;
+  if (sink_)
+    sink_(s);
+  else
+    trace_.push_back(s);
 }
 
 ToolSample SimMachine::position() const {

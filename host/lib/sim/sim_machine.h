@@ -4,11 +4,12 @@
 #ifndef HOST_LIB_SIM_SIM_MACHINE_H
 #define HOST_LIB_SIM_SIM_MACHINE_H
 
-#include <cstdint>  // uint8_t
-#include <deque>    // std::deque
-#include <memory>   // std::unique_ptr
-#include <string>   // std::string
-#include <vector>   // std::vector
+#include <cstdint>     // uint8_t
+#include <deque>       // std::deque
+#include <functional>  // std::function
+#include <memory>      // std::unique_ptr
+#include <string>      // std::string
+#include <vector>      // std::vector
 
 #include "firmware/config/machine_config.h"
 
@@ -56,8 +57,11 @@ class SimMachine {
   bool busy() const;
   // Whether the TMC428 driver's self-check passed at power-on (else the app is in alarm).
   bool chip_ok() const { return chip_ok_; }
+  // Every tool position change, one sample per millisecond at most: kept in trace() unless a
+  // sink takes them (then nothing is stored: long jobs record in bounded memory).
   const std::vector<ToolSample>& trace() const { return trace_; }
   void clear_trace() { trace_.clear(); }
+  void set_sample_sink(std::function<void(const ToolSample&)> sink) { sink_ = std::move(sink); }
   std::string lcd_line(int row) const;
   // The firmware's tool position in mm (model x_actual / microsteps per mm).
   ToolSample position() const;
@@ -82,6 +86,9 @@ class SimMachine {
   std::deque<uint8_t> to_uart_;           // PC -> firmware, not on the wire yet
   std::string from_uart_;                 // firmware -> PC, delivered
   std::vector<ToolSample> trace_;
+  std::function<void(const ToolSample&)> sink_;
+  ToolSample last_sample_{};
+  bool have_sample_ = false;
   bool chip_ok_ = false;
   int confirm_hold_ms_ = 0;
 };
