@@ -22,6 +22,7 @@
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/plot/plan_plot.h"
 #include "host/lib/plot/plot.h"
+#include "host/lib/progress/progress_meter.h"
 #include "host/lib/sim/sim_job.h"
 #include "host/lib/sim/sim_server.h"
 #include "host/lib/stream/sender.h"
@@ -203,35 +204,11 @@ class Keyboard {
   std::thread thread_;
 };
 
-// A one-line progress bar with ETA on stderr (only when stderr is a terminal).
-class ProgressBar {
- public:
-  ProgressBar() : tty_(isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
-  void update(const Progress& p) {
-    if (!tty_ || p.total == 0) return;
-    const double f = double(p.executed) / double(p.total);
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    std::string eta = "--";
-    if (f > 0.02) {
-      const int s = static_cast<int>(elapsed / f - elapsed);
-      eta = fmt::format("{}:{:02}", s / 60, s % 60);
-    }
-    const int filled = static_cast<int>(f * 30);
-    std::cerr << fmt::format("\r[{}{}] {:3.0f}% {}/{} ETA {} {:8} x{:.1f} y{:.1f} ",
-                             std::string(filled, '#'), std::string(30 - filled, '.'), f * 100,
-                             p.executed, p.total, eta, state_name(p.status.state),
-                             p.status.x_um / 1000.0, p.status.y_um / 1000.0)
-              << std::flush;
-  }
-  ~ProgressBar() {
-    if (tty_) std::cerr << "\n";
-  }
-
- private:
-  bool tty_;
-  std::chrono::steady_clock::time_point start_;
-};
+// What a progress line says about the machine: state, position and (simulated) time.
+std::string machine_detail(const Progress& p) {
+  return fmt::format("{} at ({:.1f}, {:.1f}) mm", state_name(p.status.state),
+                     p.status.x_um / 1000.0, p.status.y_um / 1000.0);
+}
 
 // ---- engraver send ----
 
@@ -263,7 +240,7 @@ void run_send(const SendArgs& a) {
   JobOutcome outcome;
   {
     Keyboard keys(sender);
-    ProgressBar bar;
+    ProgressMeter bar("send", "commands", std::cerr, ProgressMeter::for_stderr());
     bool told_zero = false;
     outcome = sender.run(commands, [&](const Progress& p) {
       if (p.status.state == proto::MachineState::kZeroing && !told_zero) {
@@ -271,7 +248,7 @@ void run_send(const SendArgs& a) {
                      "press confirm\n";
         told_zero = true;
       }
-      bar.update(p);
+      bar.update(p.executed, p.total, machine_detail(p));
     });
   }
   g_sender = nullptr;
@@ -332,47 +309,63 @@ struct RunArgs {
   bool realtime = false;
 };
 
-// The points the firmware core generates for the job's curves (the same core, on the host).
-std::vector<Point2> job_points(const JobPlan& plan, double tol_mm) {
-  std::vector<Point2> all;
+// The points the firmware core generates for the job's curves (the same core, on the host),
+// and the bytes the same path would take as G-code G1 lines at the same tolerance (for
+// comparison); curve by curve, so nothing of the job's size is kept.
+struct PointCount {
+  size_t points = 0;
+  size_t gcode_bytes = 0;
+};
+
+PointCount count_points(const JobPlan& plan, double tol_mm) {
+  PointCount n;
   for (const PlannedCurve& c : plan.curves) {
-    const auto pts = firmware_points_mm(c.spline, static_cast<int>(std::lround(tol_mm * 1000)));
-    all.insert(all.end(), pts.begin(), pts.end());
+    for (const Point2& p :
+         firmware_points_mm(c.spline, static_cast<int>(std::lround(tol_mm * 1000)))) {
+      ++n.points;
+      n.gcode_bytes += fmt::formatted_size("G1 X{:.3f} Y{:.3f}\n", p.x(), p.y());
+    }
   }
-  return all;
+  return n;
 }
 
-size_t points_generated(const JobPlan& plan, double tol_mm) {
-  return job_points(plan, tol_mm).size();
-}
-
-// Bytes the same path would take as G-code G1 lines at the same tolerance (for comparison).
-size_t gcode_bytes(const JobPlan& plan, double tol_mm) {
-  size_t total = 0;
-  for (const Point2& p : job_points(plan, tol_mm)) {
-    total += fmt::format("G1 X{:.3f} Y{:.3f}\n", p.x(), p.y()).size();
-  }
-  return total;
+// Half a pixel of the 1000-pixel plot of the job (zero corner to the far end of the curves).
+double plot_step_mm(const JobPlan& plan) {
+  const Extents& e = plan.extents_mm;
+  if (e.empty()) return 0.05;
+  const double span =
+      std::max(e.max.x() - std::min(0.0, e.min.x()), e.max.y() - std::min(0.0, e.min.y()));
+  return std::max(0.005, span / 2000.0);
 }
 
 void run_run(const RunArgs& a) {
-  Drawing drawing;
-  const JobPlan plan = load_plan(a.plan, &drawing);
+  JobPlan plan;
+  {
+    Drawing drawing;  // only the plan is needed from here on
+    plan = load_plan(a.plan, &drawing);
+  }
   sim::SimJobOptions o;
   o.encode = encode_options(a.plan);
   o.realtime = a.realtime;
   // Machine time in lockstep: a poll every 50 ms keeps the progress current and costs the
   // link little (the real machine is polled every 250 ms).
   o.sender.status_interval = std::chrono::milliseconds(50);
-  const sim::SimJobResult r = sim::run_sim_job(plan, o);
+  // The plot shows what its pixels can: keep a tool position every half pixel or so.
+  o.trace_step_mm = plot_step_mm(plan);
+  const sim::SimJobResult r = [&] {
+    ProgressMeter bar("run", "commands", std::cerr, ProgressMeter::for_stderr());
+    o.on_progress = [&bar](Sender&, const Progress& p) {
+      bar.update(p.executed, p.total, machine_detail(p));
+    };
+    return sim::run_sim_job(plan, o);
+  }();
 
   const std::string name = std::filesystem::path(a.plan.file).stem().string();
   std::filesystem::create_directories(a.outdir);
   const std::string base = (std::filesystem::path(a.outdir) / name).string();
 
   // Plot: the drawing's curves against the simulated tool path.
-  PlotInput plot = plot_input_from_plan(plan, name);
-  plot.tool_path.clear();
+  PlotInput plot = plot_input_from_plan(plan, name, 0.01, false);
   const std::vector<bool> pen_down = sim::pen_down_samples(r.trace, plan);
   for (size_t i = 0; i < r.trace.size(); ++i) {
     const sim::ToolSample& s = r.trace[i];
@@ -399,10 +392,11 @@ void run_run(const RunArgs& a) {
   j["frames_sent"] = r.stats.frames_sent;
   j["bytes_sent"] = r.stats.bytes_sent;
   j["job_wire_bytes"] = r.wire_bytes;
-  j["gcode_g1_bytes_same_tolerance"] = gcode_bytes(plan, a.plan.tol_mm);
+  const PointCount points = count_points(plan, a.plan.tol_mm);
+  j["gcode_g1_bytes_same_tolerance"] = points.gcode_bytes;
   j["retransmits"] = r.stats.retransmits;
   j["status_queries"] = r.stats.status_queries;
-  j["points_generated"] = points_generated(plan, a.plan.tol_mm);
+  j["points_generated"] = points.points;
   j["planned_cut_mm"] = plan.cut_length_mm;
   j["planned_rapid_mm"] = plan.rapid_length_mm;
   j["traced_cut_mm"] = r.cut_mm;

@@ -4,10 +4,11 @@
 #include <cairo-svg.h>  // cairo_svg_surface_create
 #include <cairo.h>      // cairo_*
 
-#include <algorithm>  // std::min
-#include <cmath>      // std::pow, std::floor
-#include <fstream>    // std::ifstream, std::ofstream
-#include <sstream>    // std::ostringstream
+#include <algorithm>   // std::min
+#include <cmath>       // std::pow, std::floor
+#include <fstream>     // std::ifstream, std::ofstream
+#include <functional>  // std::function
+#include <sstream>     // std::ostringstream
 
 namespace host {
 
@@ -24,20 +25,91 @@ const Rgb kDrawingColour = {0.55, 0.75, 0.95};  // light blue, wide: the drawing
 const Rgb kCutColour = {0.75, 0.05, 0.05};      // dark red, thin: the pen-down path
 const Rgb kRapidColour = {0.45, 0.45, 0.45};    // grey dashed: pen-up moves
 
+const double kMinStepPx = 0.5;          // thinner detail than this is not visible
+const size_t kMaxSvgVertices = 150000;  // a layer with more is an image in the SVG (~2.5 MB)
+
 void set_colour(cairo_t* cr, const Rgb& c) {
   cairo_set_source_rgb(cr, c.r, c.g, c.b);
 }
 
-void polyline(cairo_t* cr, const PlotFrame& f, const std::vector<Point2>& pts) {
-  if (pts.empty()) return;
-  Point2 p = f.to_px(pts[0]);
-  cairo_move_to(cr, p.x(), p.y());
+// Adds a polyline to the current path, thinned to the plot's resolution: a vertex closer
+// than half a pixel to the previous one adds nothing a person could see. Returns the
+// vertices added.
+size_t add_polyline(cairo_t* cr, const PlotFrame& f, const std::vector<Point2>& pts) {
+  if (pts.empty()) return 0;
+  Point2 last = f.to_px(pts[0]);
+  cairo_move_to(cr, last.x(), last.y());
+  size_t n = 1;
   for (size_t i = 1; i < pts.size(); ++i) {
-    p = f.to_px(pts[i]);
+    const Point2 p = f.to_px(pts[i]);
+    const bool end = i + 1 == pts.size();
+    if (!end && std::abs(p.x() - last.x()) < kMinStepPx && std::abs(p.y() - last.y()) < kMinStepPx)
+      continue;
     cairo_line_to(cr, p.x(), p.y());
+    last = p;
+    ++n;
   }
-  if (pts.size() == 1) cairo_line_to(cr, p.x() + 0.01, p.y());
+  if (n == 1) cairo_line_to(cr, last.x() + 0.01, last.y());
+  return n;
+}
+
+// One layer (a style and its polylines) as one path, stroked once.
+struct Layer {
+  Rgb colour;
+  double width;
+  bool dashed;
+  std::function<void(const std::function<void(const std::vector<Point2>&)>&)> each;
+};
+
+// Vertices the layer takes after thinning (what its SVG path would hold).
+size_t layer_vertices(const Layer& layer, const PlotFrame& f) {
+  cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_A8, 1, 1);
+  cairo_t* cr = cairo_create(s);
+  size_t n = 0;
+  layer.each([&](const std::vector<Point2>& pts) {
+    n += add_polyline(cr, f, pts);
+    cairo_new_path(cr);
+  });
+  cairo_destroy(cr);
+  cairo_surface_destroy(s);
+  return n;
+}
+
+void stroke_layer(cairo_t* cr, const Layer& layer, const PlotFrame& f) {
+  set_colour(cr, layer.colour);
+  cairo_set_line_width(cr, layer.width);
+  const double dash[] = {6.0, 4.0};
+  cairo_set_dash(cr, dash, layer.dashed ? 2 : 0, 0);
+  size_t in_path = 0;
+  layer.each([&](const std::vector<Point2>& pts) {
+    in_path += add_polyline(cr, f, pts);
+    if (in_path > 100000) {  // keeps cairo's path buffer bounded
+      cairo_stroke(cr);
+      in_path = 0;
+    }
+  });
   cairo_stroke(cr);
+  cairo_set_dash(cr, dash, 0, 0);
+}
+
+// Draws a layer: as vectors, or for a vector surface (SVG) whose layer would exceed
+// kMaxSvgVertices, as an image of the plot's size painted in (the file stays a few MB
+// whatever the job's size).
+void draw_layer(cairo_t* cr, const Layer& layer, const PlotFrame& f, const PlotInput& in,
+                bool vector_surface) {
+  if (!vector_surface || layer_vertices(layer, f) <= kMaxSvgVertices) {
+    stroke_layer(cr, layer, f);
+    return;
+  }
+  cairo_surface_t* img = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, in.width_px, in.height_px);
+  cairo_t* icr = cairo_create(img);
+  cairo_set_line_cap(icr, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_join(icr, CAIRO_LINE_JOIN_ROUND);
+  stroke_layer(icr, layer, f);
+  cairo_destroy(icr);
+  cairo_set_source_surface(cr, img, 0, 0);
+  cairo_paint(cr);
+  cairo_surface_destroy(img);
 }
 
 // A round length (1, 2 or 5 times a power of ten) near a fifth of the plot width.
@@ -67,31 +139,26 @@ void legend_entry(cairo_t* cr, double x, double y, const Rgb& c, double width, b
   text(cr, x + 36, y + 4, label);
 }
 
-void render(cairo_t* cr, const PlotInput& in) {
+void render(cairo_t* cr, const PlotInput& in, bool vector_surface) {
   const PlotFrame f = plot_frame(in);
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  // Drawing underneath, wide.
-  set_colour(cr, kDrawingColour);
-  cairo_set_line_width(cr, 5.0);
-  for (const auto& c : in.drawing_curves_mm) polyline(cr, f, c);
-  // Tool path on top.
-  const double dash[] = {6.0, 4.0};
-  for (const ToolPathSegment& s : in.tool_path) {
-    if (s.pen_down) {
-      set_colour(cr, kCutColour);
-      cairo_set_line_width(cr, 1.2);
-      cairo_set_dash(cr, dash, 0, 0);
-    } else {
-      set_colour(cr, kRapidColour);
-      cairo_set_line_width(cr, 0.8);
-      cairo_set_dash(cr, dash, 2, 0);
-    }
-    polyline(cr, f, s.points_mm);
-  }
-  cairo_set_dash(cr, dash, 0, 0);
+  // Drawing underneath, wide; the tool path on top: pen down solid, pen up dashed.
+  const Layer drawing{kDrawingColour, 5.0, false, [&](const auto& fn) {
+                        for (const auto& c : in.drawing_curves_mm) fn(c);
+                      }};
+  auto tool = [&](bool down) {
+    return [&in, down](const std::function<void(const std::vector<Point2>&)>& fn) {
+      for (const ToolPathSegment& s : in.tool_path) {
+        if (s.pen_down == down) fn(s.points_mm);
+      }
+    };
+  };
+  draw_layer(cr, drawing, f, in, vector_surface);
+  draw_layer(cr, Layer{kRapidColour, 0.8, true, tool(false)}, f, in, vector_surface);
+  draw_layer(cr, Layer{kCutColour, 1.2, false, tool(true)}, f, in, vector_surface);
   // Title.
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
   cairo_set_font_size(cr, 16);
@@ -207,7 +274,7 @@ void write_plot(const PlotInput& in, const std::string& svg_path, const std::str
     cairo_surface_t* s = cairo_svg_surface_create(svg_path.c_str(), in.width_px, in.height_px);
     check(s, svg_path);
     cairo_t* cr = cairo_create(s);
-    render(cr, in);
+    render(cr, in, true);
     cairo_destroy(cr);
     cairo_surface_finish(s);
     check(s, svg_path);
@@ -218,7 +285,7 @@ void write_plot(const PlotInput& in, const std::string& svg_path, const std::str
     cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, in.width_px, in.height_px);
     check(s, png_path);
     cairo_t* cr = cairo_create(s);
-    render(cr, in);
+    render(cr, in, false);
     cairo_destroy(cr);
     const cairo_status_t st = cairo_surface_write_to_png(s, png_path.c_str());
     cairo_surface_destroy(s);

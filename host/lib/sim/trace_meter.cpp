@@ -62,8 +62,7 @@ void TraceMeter::add(const ToolSample& b) {
   }
   if (!keep_it) {
     const ToolSample& k = kept_.back();
-    keep_it = std::abs(b.x_mm - k.x_mm) >= step_mm_ || std::abs(b.y_mm - k.y_mm) >= step_mm_ ||
-              std::abs(b.z_mm - k.z_mm) >= step_mm_;
+    keep_it = std::abs(b.x_mm - k.x_mm) >= step_mm_ || std::abs(b.y_mm - k.y_mm) >= step_mm_;
   }
   if (keep_it) keep(b, down);
   prev_kept_ = keep_it;

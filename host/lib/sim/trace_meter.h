@@ -18,7 +18,7 @@ namespace host::sim {
 class TraceMeter {
  public:
   // keep_step_mm 0 keeps every sample; otherwise a sample is kept when it lies this far
-  // (in X, Y or Z) from the previous kept one, or the pen went up or down.
+  // (in X or Y: the plot's plane) from the previous kept one, or the pen went up or down.
   TraceMeter(const JobPlan& plan, double keep_step_mm);
   ~TraceMeter();
   void add(const ToolSample& sample);
