@@ -266,6 +266,7 @@ void run_send(const SendArgs& a) {
 struct SimArgs {
   std::string listen = "127.0.0.1:10001";
   bool realtime = false;
+  std::string trace;
 };
 
 std::atomic<bool> g_stop_sim{false};
@@ -273,31 +274,82 @@ extern "C" void on_stop_sim(int) {
   g_stop_sim = true;
 }
 
-void run_sim(const SimArgs& a) {
-  const size_t colon = a.listen.rfind(':');
-  if (colon == std::string::npos) {
-    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': expected ADDR:PORT", a.listen));
-  }
+// --listen: ADDR:PORT, or serial:DEVICE (a tty or a pty's slave end), or a /dev path.
+sim::ServerOptions listen_options(const std::string& listen) {
   sim::ServerOptions so;
-  so.address = a.listen.substr(0, colon);
-  try {
-    so.port = static_cast<uint16_t>(std::stoul(a.listen.substr(colon + 1)));
-  } catch (const std::exception&) {
-    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': bad port", a.listen));
+  const std::string serial = "serial:";
+  if (listen.compare(0, serial.size(), serial) == 0 || (!listen.empty() && listen[0] == '/')) {
+    so.device = listen[0] == '/' ? listen : listen.substr(serial.size());
+    so.device = so.device.substr(0, so.device.find(','));  // a baud rate means nothing here
+    if (so.device.empty())
+      throw CommandFailure(kExitUsage, fmt::format("--listen '{}': no device", listen));
+    return so;
   }
+  const size_t colon = listen.rfind(':');
+  if (colon == std::string::npos) {
+    throw CommandFailure(kExitUsage,
+                         fmt::format("--listen '{}': expected ADDR:PORT or serial:DEVICE", listen));
+  }
+  so.address = listen.substr(0, colon);
+  try {
+    so.port = static_cast<uint16_t>(std::stoul(listen.substr(colon + 1)));
+  } catch (const std::exception&) {
+    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': bad port", listen));
+  }
+  return so;
+}
+
+// --trace: one CSV line per executed tool position (machine time, machine frame).
+class TraceWriter {
+ public:
+  explicit TraceWriter(const std::string& path) : out_(path, std::ios::trunc) {
+    if (!out_) throw CommandFailure(kExitUsage, fmt::format("--trace '{}': cannot write", path));
+    out_ << "t_ms,x_mm,y_mm,z_mm,pen\n";
+  }
+  void add(const sim::ToolSample& s) {
+    out_ << fmt::format("{},{:.4f},{:.4f},{:.4f},{}\n", s.t_ms, s.x_mm, s.y_mm, s.z_mm,
+                        s.z_mm < 0 ? 1 : 0);
+  }
+  bool ok() {
+    out_.flush();
+    return static_cast<bool>(out_);
+  }
+
+ private:
+  std::ofstream out_;
+};
+
+void run_sim(const SimArgs& a) {
+  sim::ServerOptions so = listen_options(a.listen);
   so.realtime = a.realtime;
   sim::SimMachine machine{sim::SimOptions{}};
   if (!machine.chip_ok()) std::cerr << "engraver: simulated TMC428 failed its self-check\n";
-  sim::SimServer server(machine, so);
+  std::unique_ptr<TraceWriter> trace;
+  if (!a.trace.empty()) {
+    trace = std::make_unique<TraceWriter>(a.trace);
+    trace->add(machine.position());
+    machine.set_sample_sink([&trace](const sim::ToolSample& s) { trace->add(s); });
+  }
+  std::unique_ptr<sim::SimServer> server;
+  try {
+    server = std::make_unique<sim::SimServer>(machine, so);
+  } catch (const std::runtime_error& e) {
+    throw CommandFailure(kExitUsage, e.what());
+  }
   struct sigaction sa {};
   sa.sa_handler = on_stop_sim;
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
-  std::cerr << fmt::format("engraver: simulated machine listening on {}:{} ({}); Ctrl-C stops\n",
-                           so.address, server.port(),
-                           a.realtime ? "real time" : "virtual time, as fast as the host allows");
-  const uint64_t ms = server.run(g_stop_sim);
+  const std::string where = so.device.empty() ? fmt::format("{}:{}", so.address, server->port())
+                                              : fmt::format("device {}", so.device);
+  std::cerr << fmt::format(
+      "engraver: simulated machine on {} ({}); Ctrl-C stops\n", where,
+      a.realtime ? "real time" : "fast while the host talks, real time while it is silent");
+  const uint64_t ms = server->run(g_stop_sim);
+  machine.set_sample_sink(nullptr);
+  if (trace && !trace->ok())
+    std::cerr << fmt::format("engraver: --trace '{}': write failed\n", a.trace);
   std::cerr << fmt::format("engraver: simulated {:.1f} s of machine time\n", ms / 1000.0);
 }
 
@@ -460,12 +512,22 @@ void add_machine_commands(CLI::App& app) {
 
   auto sim_args = std::make_shared<SimArgs>();
   CLI::App* sim = app.add_subcommand("sim", "run the simulated machine on a TCP port");
-  sim->add_option("--listen", sim_args->listen, "ADDR:PORT (loopback by default)")
+  sim->add_option("--listen", sim_args->listen,
+                  "ADDR:PORT (loopback by default), or serial:DEVICE (a tty or a pty)")
       ->capture_default_str();
-  sim->add_flag("--realtime", sim_args->realtime, "run in step with the wall clock");
+  sim->add_flag("--realtime", sim_args->realtime, "machine time always follows the wall clock");
+  sim->add_option("--trace", sim_args->trace,
+                  "write the executed tool positions as CSV: t_ms,x_mm,y_mm,z_mm,pen");
   sim->footer(
-      "Example: engraver sim & engraver send samples/engraver-word.dxf --to "
-      "tcp://127.0.0.1:10001 --poll-ms 1");
+      "Examples:\n"
+      "  engraver sim --trace path.csv & engraver send samples/engraver-word.dxf --to "
+      "tcp://127.0.0.1:10001\n"
+      "  socat pty,raw,echo=0,link=/tmp/sim-tty pty,raw,echo=0,link=/tmp/host-tty &\n"
+      "  engraver sim --listen serial:/tmp/sim-tty & engraver send board.dxf --to "
+      "serial:/tmp/host-tty\n"
+      "Clock: fast while the host talks, the wall clock's pace after 100 ms of machine time "
+      "without a byte from it (docs/user-guide.md).\nExit: 0 stopped, 2 bad option or "
+      "address.");
   sim->callback([sim_args] { run_sim(*sim_args); });
 
   auto run_args = std::make_shared<RunArgs>();

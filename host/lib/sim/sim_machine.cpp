@@ -167,6 +167,7 @@ void SimMachine::step_ms() {
     p.serial.rx.push_back(to_uart_.front());
     to_uart_.pop_front();
     rx_credit_ -= 1.0;
+    last_host_byte_ms_ = now_ms_ + 1;
   }
   ++now_ms_;
   p.chip.advance_to_ns(now_ms_ * 1000000ull);

@@ -55,6 +55,10 @@ class SimMachine {
 
   // True while the axes move or bytes wait in either UART direction.
   bool busy() const;
+  // Bytes from the PC that have not reached the firmware's UART yet.
+  bool host_bytes_waiting() const { return !to_uart_.empty(); }
+  // Machine time the newest byte from the PC reached the firmware's UART (0: none yet).
+  uint64_t last_host_byte_ms() const { return last_host_byte_ms_; }
   // Whether the TMC428 driver's self-check passed at power-on (else the app is in alarm).
   bool chip_ok() const { return chip_ok_; }
   // Every tool position change, one sample per millisecond at most: kept in trace() unless a
@@ -84,7 +88,8 @@ class SimMachine {
   uint64_t now_ms_ = 0;
   double rx_credit_ = 0, tx_credit_ = 0;  // bytes the UART may move this ms
   std::deque<uint8_t> to_uart_;           // PC -> firmware, not on the wire yet
-  std::string from_uart_;                 // firmware -> PC, delivered
+  uint64_t last_host_byte_ms_ = 0;
+  std::string from_uart_;  // firmware -> PC, delivered
   std::vector<ToolSample> trace_;
   std::function<void(const ToolSample&)> sink_;
   ToolSample last_sample_{};
