@@ -461,6 +461,8 @@ void run_run(const RunArgs& a) {
   j["simulated_machine_ms"] = r.virtual_ms;
   j["wall_s"] = r.wall_s;
   j["speedup_vs_real_time"] = r.wall_s > 0 ? r.virtual_ms / 1000.0 / r.wall_s : 0.0;
+  j["simulator_cpu_s"] = r.cpu_s;
+  j["speedup_per_cpu_second"] = r.cpu_s > 0 ? r.virtual_ms / 1000.0 / r.cpu_s : 0.0;
   j["lcd"] = {r.lcd[0], r.lcd[1]};
   {
     std::ofstream out(base + ".json");
@@ -473,12 +475,14 @@ void run_run(const RunArgs& a) {
       "as G-code G1 at the same tolerance: {} bytes\n"
       "  tool path {:.1f} mm cut + {:.1f} mm rapid; simulated job time {:.1f} s, of which "
       "cutting {:.1f} s (cut length / feed {:.1f} s)\n"
-      "  max contour error {:.1f} um; simulated {:.1f} s of machine time in {:.2f} s\n"
+      "  max contour error {:.1f} um; simulated {:.1f} s of machine time in {:.2f} s "
+      "({:.2f} s of processor time: {:.0f}x real time)\n"
       "  plot: {}.svg, {}.png; report: {}.json\n",
       a.plan.file, plan.curves.size(), plan.pen_lifts, outcome_name(r.outcome), r.commands,
       r.stats.frames_sent, r.stats.bytes_sent, r.stats.retransmits, r.wire_bytes,
       j["gcode_g1_bytes_same_tolerance"].get<size_t>(), r.cut_mm, r.rapid_mm, r.motion_s, r.cut_s,
-      ideal_s, r.max_contour_error_um, r.virtual_ms / 1000.0, r.wall_s, base, base, base);
+      ideal_s, r.max_contour_error_um, r.virtual_ms / 1000.0, r.wall_s, r.cpu_s,
+      j["speedup_per_cpu_second"].get<double>(), base, base, base);
   if (r.outcome != JobOutcome::kCompleted) {
     throw CommandFailure(exit_code(r.outcome),
                          fmt::format("job {}: {}", outcome_name(r.outcome), r.message));

@@ -64,9 +64,13 @@ double NearestSegment::distance(const Point2& p) const {
   const long cx = static_cast<long>(std::floor((px - min_.x()) / cell_));
   const long cy = static_cast<long>(std::floor((py - min_.y()) / cell_));
   const long max_ring = std::max(nx_, ny_) + std::labs(cx) + std::labs(cy) + 1;
+  // From p to the nearest side of its own cell: what ring 1 is at least away.
+  const double fx = px - min_.x() - cx * cell_, fy = py - min_.y() - cy * cell_;
+  const double edge = std::max(0.0, std::min(std::min(fx, cell_ - fx), std::min(fy, cell_ - fy)));
   for (long ring = 0; ring <= max_ring; ++ring) {
-    // Every segment within ring-1 cells has been seen: stop when that bound beats them.
-    if (ring > 0 && best2 <= ((ring - 1) * cell_) * ((ring - 1) * cell_)) break;
+    // Every segment nearer than the ring's inner bound has been seen: stop when one beats it.
+    const double bound = (ring - 1) * cell_ + edge;
+    if (ring > 0 && best2 <= bound * bound) break;
     for (long ix = std::max(0L, cx - ring); ix <= std::min(nx_ - 1, cx + ring); ++ix) {
       const bool edge_x = std::labs(ix - cx) == ring;
       for (long iy = std::max(0L, cy - ring); iy <= std::min(ny_ - 1, cy + ring); ++iy) {

@@ -5,6 +5,8 @@
 #include <chrono>  // steady_clock
 #include <thread>  // std::thread
 
+#include <time.h>  // clock_gettime
+
 #include "host/lib/sim/sim_link.h"
 #include "host/lib/sim/sim_server.h"
 #include "host/lib/sim/trace_meter.h"
@@ -52,6 +54,16 @@ void stream_job(Link& link, const JobPlan& plan, const SimJobOptions& options,
 
 }  // namespace
 
+namespace {
+
+double thread_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + t.tv_nsec * 1e-9;
+}
+
+}  // namespace
+
 SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
   SimJobResult r;
   SimMachine machine(options.machine);
@@ -60,6 +72,7 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
   machine.set_sample_sink([&meter](const ToolSample& s) { meter.add(s); });
   const uint64_t start_ms = machine.now_ms();
   const auto wall0 = std::chrono::steady_clock::now();
+  const double cpu0 = thread_cpu_s();
   if (!options.over_tcp) {
     SenderOptions so = options.sender;
     so.clock = [&machine] { return machine_clock(machine); };
@@ -98,6 +111,7 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
     serving.join();
   }
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  r.cpu_s = thread_cpu_s() - cpu0;
   r.virtual_ms = machine.now_ms() - start_ms;
   meter.finish();
   machine.set_sample_sink(nullptr);

@@ -42,6 +42,7 @@ struct SimJobResult {
   size_t wire_bytes = 0;            // the job's frames once each (no retransmits, no polls)
   uint64_t virtual_ms = 0;          // machine time simulated
   double wall_s = 0;                // real time it took
+  double cpu_s = 0;                 // processor time this thread used for it (load-independent)
   std::vector<ToolSample> trace;    // tool positions (machine frame, mm), see trace_step_mm
   size_t trace_samples = 0;         // samples measured (before thinning)
   double motion_s = 0;              // from the first to the last tool movement
