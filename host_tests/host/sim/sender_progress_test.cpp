@@ -35,6 +35,20 @@ TEST(SenderProgress, CompletesWhenMoreThan127FramesRanBetweenTwoStatuses) {
   EXPECT_GT(r.commands, 200u);
 }
 
+TEST(SenderProgress, TheSameJobOverTcpAndInLockstepCutsTheSamePath) {
+  const JobPlan plan = ring_of_lines(300);
+  sim::SimJobOptions o;
+  o.sender.status_interval = std::chrono::milliseconds(2);
+  const sim::SimJobResult lockstep = sim::run_sim_job(plan, o);
+  o.over_tcp = true;
+  const sim::SimJobResult tcp = sim::run_sim_job(plan, o);
+  ASSERT_EQ(lockstep.outcome, JobOutcome::kCompleted) << lockstep.message;
+  ASSERT_EQ(tcp.outcome, JobOutcome::kCompleted) << tcp.message;
+  EXPECT_NEAR(tcp.cut_mm, lockstep.cut_mm, 0.002 * lockstep.cut_mm);
+  EXPECT_LT(lockstep.max_contour_error_um, 10.0);
+  EXPECT_LT(tcp.max_contour_error_um, 10.0);
+}
+
 // Lets only status queries through once `after` bytes were written: the controller answers
 // but gets nothing more to do.
 class StatusOnlyLink : public Link {
