@@ -314,8 +314,16 @@ bool Sender::stalled() {
   s.z_um = last_status_.z_um;
   s.state = last_status_.state;
   const auto t = now();
+  // Waiting for a person is not a stall: a hold asked for here or at the machine's panel,
+  // or zeroing. A hold the controller made because it heard nothing is.
+  const bool held = s.state == proto::MachineState::kHeld ||
+                    s.state == proto::MachineState::kHolding ||
+                    s.state == proto::MachineState::kZeroing;
+  const bool waits_for_operator =
+      operator_hold_ || (held && !(last_status_.flags & proto::kStatusLinkHold));
   if (s.acked != seen_.acked || s.executed != seen_.executed || s.x_um != seen_.x_um ||
-      s.y_um != seen_.y_um || s.z_um != seen_.z_um || s.state != seen_.state || operator_hold_) {
+      s.y_um != seen_.y_um || s.z_um != seen_.z_um || s.state != seen_.state ||
+      waits_for_operator) {
     seen_ = s;
     last_progress_ = t;
     return false;

@@ -27,7 +27,7 @@ struct SenderOptions {
   uint8_t zero_axes = proto::kAxisMaskAll;
   // Watchdog: nothing acknowledged, nothing executed, the tool not moved and no state change
   // for this long while the job is not finished -> the job ends as kStalled (0 = off).
-  // A hold the operator asked for does not count.
+  // Waiting for the operator (a hold from here or the panel, zeroing) does not count.
   std::chrono::milliseconds stall_limit{30000};
   // Where time comes from (empty: the wall clock). The one-process simulator gives its
   // machine time here, so every interval and time-out above runs in machine time.
