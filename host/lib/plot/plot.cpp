@@ -92,24 +92,57 @@ void stroke_layer(cairo_t* cr, const Layer& layer, const PlotFrame& f) {
   cairo_set_dash(cr, dash, 0, 0);
 }
 
-// Draws a layer: as vectors, or for a vector surface (SVG) whose layer would exceed
-// kMaxSvgVertices, as an image of the plot's size painted in (the file stays a few MB
-// whatever the job's size).
-void draw_layer(cairo_t* cr, const Layer& layer, const PlotFrame& f, const PlotInput& in,
-                bool vector_surface) {
-  if (!vector_surface || layer_vertices(layer, f) <= kMaxSvgVertices) {
+// A layer too big for vectors, as pixels: round pen stamps every half pixel along each
+// polyline into a coverage mask, painted in the layer's colour (dashes are not drawn: at
+// this density they would not show). cairo's stroker takes minutes for a million wide strokes;
+// this takes well under a second.
+void raster_layer(cairo_t* cr, const Layer& layer, const PlotFrame& f, const PlotInput& in) {
+  const int w = in.width_px, h = in.height_px;
+  cairo_surface_t* mask = cairo_image_surface_create(CAIRO_FORMAT_A8, w, h);
+  cairo_surface_flush(mask);
+  unsigned char* data = cairo_image_surface_get_data(mask);
+  const int stride = cairo_image_surface_get_stride(mask);
+  const double r = std::max(0.5, layer.width / 2);
+  const int ri = static_cast<int>(std::ceil(r));
+  auto stamp = [&](double x, double y) {
+    const long cx = std::lround(x), cy = std::lround(y);
+    for (int dy = -ri; dy <= ri; ++dy) {
+      const long yy = cy + dy;
+      if (yy < 0 || yy >= h) continue;
+      for (int dx = -ri; dx <= ri; ++dx) {
+        const long xx = cx + dx;
+        if (xx >= 0 && xx < w && dx * dx + dy * dy <= r * r + 0.25) data[yy * stride + xx] = 255;
+      }
+    }
+  };
+  layer.each([&](const std::vector<Point2>& pts) {
+    for (size_t i = 0; i < pts.size(); ++i) {
+      const Point2 b = f.to_px(pts[i]);
+      if (i == 0) {
+        stamp(b.x(), b.y());
+        continue;
+      }
+      const Point2 a = f.to_px(pts[i - 1]);
+      const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / 0.5)));
+      for (int k = 1; k <= n; ++k) {
+        const double t = static_cast<double>(k) / n;
+        stamp(a.x() + (b.x() - a.x()) * t, a.y() + (b.y() - a.y()) * t);
+      }
+    }
+  });
+  cairo_surface_mark_dirty(mask);
+  set_colour(cr, layer.colour);
+  cairo_mask_surface(cr, mask, 0, 0);
+  cairo_surface_destroy(mask);
+}
+
+// Draws a layer: as vectors, or, past kMaxSvgVertices, as an image of the plot's size (the
+// SVG stays a few MB and the drawing fast whatever the job's size).
+void draw_layer(cairo_t* cr, const Layer& layer, const PlotFrame& f, const PlotInput& in) {
+  if (layer_vertices(layer, f) <= kMaxSvgVertices)
     stroke_layer(cr, layer, f);
-    return;
-  }
-  cairo_surface_t* img = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, in.width_px, in.height_px);
-  cairo_t* icr = cairo_create(img);
-  cairo_set_line_cap(icr, CAIRO_LINE_CAP_ROUND);
-  cairo_set_line_join(icr, CAIRO_LINE_JOIN_ROUND);
-  stroke_layer(icr, layer, f);
-  cairo_destroy(icr);
-  cairo_set_source_surface(cr, img, 0, 0);
-  cairo_paint(cr);
-  cairo_surface_destroy(img);
+  else
+    raster_layer(cr, layer, f, in);
 }
 
 // A round length (1, 2 or 5 times a power of ten) near a fifth of the plot width.
@@ -139,7 +172,7 @@ void legend_entry(cairo_t* cr, double x, double y, const Rgb& c, double width, b
   text(cr, x + 36, y + 4, label);
 }
 
-void render(cairo_t* cr, const PlotInput& in, bool vector_surface) {
+void render(cairo_t* cr, const PlotInput& in) {
   const PlotFrame f = plot_frame(in);
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
@@ -156,9 +189,9 @@ void render(cairo_t* cr, const PlotInput& in, bool vector_surface) {
       }
     };
   };
-  draw_layer(cr, drawing, f, in, vector_surface);
-  draw_layer(cr, Layer{kRapidColour, 0.8, true, tool(false)}, f, in, vector_surface);
-  draw_layer(cr, Layer{kCutColour, 1.2, false, tool(true)}, f, in, vector_surface);
+  draw_layer(cr, drawing, f, in);
+  draw_layer(cr, Layer{kRapidColour, 0.8, true, tool(false)}, f, in);
+  draw_layer(cr, Layer{kCutColour, 1.2, false, tool(true)}, f, in);
   // Title.
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
   cairo_set_font_size(cr, 16);
@@ -274,7 +307,7 @@ void write_plot(const PlotInput& in, const std::string& svg_path, const std::str
     cairo_surface_t* s = cairo_svg_surface_create(svg_path.c_str(), in.width_px, in.height_px);
     check(s, svg_path);
     cairo_t* cr = cairo_create(s);
-    render(cr, in, true);
+    render(cr, in);
     cairo_destroy(cr);
     cairo_surface_finish(s);
     check(s, svg_path);
@@ -285,7 +318,7 @@ void write_plot(const PlotInput& in, const std::string& svg_path, const std::str
     cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, in.width_px, in.height_px);
     check(s, png_path);
     cairo_t* cr = cairo_create(s);
-    render(cr, in, false);
+    render(cr, in);
     cairo_destroy(cr);
     const cairo_status_t st = cairo_surface_write_to_png(s, png_path.c_str());
     cairo_surface_destroy(s);
