@@ -13,6 +13,7 @@ trap 'rm -rf "$dir"' EXIT
 echo "| $kind segments | wall s | peak RSS MB | SVG KB | PNG KB | machine s | sim processor s | x real time per processor s | outcome |"
 echo "|---|---|---|---|---|---|---|---|---|"
 for n in "$@"; do
+  rm -rf "$dir/out"
   python3 "$here/make_job.py" "$kind" "$n" -o "$dir/job.dxf"
   if /usr/bin/time -v "$engraver" run "$dir/job.dxf" -o "$dir/out" >"$dir/stdout" 2>"$dir/time"; then :; fi
   wall=$(sed -n 's/.*Elapsed (wall clock) time (h:mm:ss or m:ss): //p' "$dir/time")

@@ -87,8 +87,8 @@ TEST(SimServer, MachineTimeFollowsTheWallClockWhileTheHostIsSilent) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - w0).count();
   serving.stop();
   const double machine_ms = static_cast<double>(t1 - t0);
-  EXPECT_GT(machine_ms, wall_ms - 150) << "machine time fell behind the wall clock";
-  EXPECT_LT(machine_ms, wall_ms + 100 + 150) << "machine time ran ahead of the wall clock";
+  EXPECT_GT(machine_ms, wall_ms - 250) << "machine time fell behind the wall clock";
+  EXPECT_LT(machine_ms, wall_ms + 100 + 250) << "machine time ran ahead of the wall clock";
 }
 
 }  // namespace
