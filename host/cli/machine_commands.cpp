@@ -505,7 +505,7 @@ void add_machine_commands(CLI::App& app) {
       "Example: engraver send board.dxf --to tcp://192.168.1.50:10001 --feed 8\n"
       "Keys: h hold, r resume, x abort, +/- feed override. Signals: INT/TERM abort, USR1 hold, "
       "USR2 resume.\nExit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, "
-      "5 command refused by the controller, 6 link lost.");
+      "5 command refused by the controller, 6 link lost, 7 stalled (no progress for 30 s).");
   send->callback([send_args] {
     try {
       run_send(*send_args);
@@ -536,12 +536,18 @@ void add_machine_commands(CLI::App& app) {
 
   auto run_args = std::make_shared<RunArgs>();
   CLI::App* run = app.add_subcommand(
-      "run", "the main job: simulate the machine and send the drawing to it over loopback TCP");
+      "run",
+      "the main job: simulate the machine and send the drawing to it (in lockstep, one "
+      "process)");
   add_plan_options(run, &run_args->plan);
   run->add_option("-o,--outdir", run_args->outdir, "where NAME.svg/.png/.json go")
       ->capture_default_str();
   run->add_flag("--realtime", run_args->realtime, "simulate in real time");
-  run->footer("Example: engraver run samples/engraver-word.dxf -o out");
+  run->footer(
+      "Example: engraver run samples/engraver-word.dxf -o out\n"
+      "Progress on stderr (a bar on a terminal, a line every 5 s otherwise).\n"
+      "Exit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, 5 command refused by "
+      "the controller, 6 link lost, 7 stalled (no progress for 30 s of machine time).");
   run->callback([run_args] {
     try {
       run_run(*run_args);
