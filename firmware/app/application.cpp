@@ -21,6 +21,8 @@ Application::Application()
       jogs_done_(0),
       jog_confirmed_(0),
       requests_done_(0),
+      tick_buttons_(0),
+      confirm_presses_(0),
       stop_pending_(false),
       seen_items_(0),
       item_tag_(0),
@@ -44,11 +46,16 @@ Application::Application()
       alarm_clearing_(false),
       alarm_clear_mark_(0),
       requests_pushed_(0),
+      pause_presses_(0),
+      wait_start_ms_(0),
+      paused_(false),
+      spindle_on_(false),
       shown_error_(proto::ErrorCode::kOk) {
   board_.link = 0;
   board_.motion = 0;
   board_.display = 0;
   board_.inputs = 0;
+  board_.spindle = 0;
   for (uint8_t i = 0; i < config::kAxisCount; ++i) {
     tick_pos_[i] = 0;
     latest_.pos_usteps[i] = 0;
@@ -83,7 +90,13 @@ void Application::tick_1ms() {
     tick_latch_alarm(kTickAlarmChip);
   }
   tick_check_drivers();
+  // Confirm presses for #P count in follow mode only (while zeroing, confirm sets the zero).
+  const uint8_t buttons = board_.inputs->state();
+  const bool confirm_pressed =
+      (buttons & hal::kButtonConfirm) != 0 && (tick_buttons_ & hal::kButtonConfirm) == 0;
+  tick_buttons_ = buttons;
   if (tick_mode_ == (uint8_t)TickMode::kFollow) {
+    if (confirm_pressed) confirm_presses_ = (uint8_t)(confirm_presses_ + 1U);
     const bool moving = !path_.finished() || !path_.at_rest() || !ring_.empty();
     if (limits != 0 && moving) {
       // A limit switch mid-job: zero velocities in this very tick, latch the alarm.
@@ -98,7 +111,7 @@ void Application::tick_1ms() {
       }
     }
   } else if (tick_mode_ == (uint8_t)TickMode::kJog) {
-    const JogResult r = jog_.tick(board_.inputs->state(), limits, pos, v);
+    const JogResult r = jog_.tick(buttons, limits, pos, v);
     if (r != JogResult::kRunning) {
       if (r == JogResult::kConfirmed) {
         board_.motion->set_actual_usteps(jog_.zero_usteps());
@@ -201,6 +214,7 @@ void Application::tick_publish(const int32_t pos[config::kAxisCount], uint8_t li
   s.jogs_done = jogs_done_;
   s.jog_confirmed = jog_confirmed_;
   s.requests_done = requests_done_;
+  s.confirm_presses = confirm_presses_;
   s.limits = limits;
   s.holding = path_.holding() ? 1 : 0;
   s.at_rest = path_.at_rest() ? 1 : 0;
@@ -305,7 +319,7 @@ void Application::finish_oldest() {
   const QueueItem* item = queue_.oldest();
   if (item == 0 || queue_.in_flight() == 0) return;
   if (item->kind == ItemKind::kText)
-    screen_.show_text(item->small, item->text, item->text_length, ms_);
+    screen_.show_text(item->text.row, item->text.chars, item->text.length, ms_);
   last_executed_seq_ = item->seq;
   ++items_done_;
   queue_.finished();
@@ -318,6 +332,18 @@ void Application::drop_job() {
   generator_.stop();
   spline_started_ = false;
   jog_active_ = false;
+  paused_ = false;
+  set_spindle(false);  // abort, session reset and alarms stop the tool too
+}
+
+void Application::set_spindle(bool on) {
+  spindle_on_ = on;
+  if (board_.spindle != 0) board_.spindle->set_on(on);
+}
+
+// Everything handed to the tick is done and the axes stand still.
+bool Application::standing_still() const {
+  return queue_.in_flight() == 0 && latest_.finished && latest_.at_rest;
 }
 
 // Asks the tick to decelerate and drop the ring; the background waits for it to finish.
@@ -348,6 +374,7 @@ proto::Alarm Application::alarm() const {
 proto::MachineState Application::state() const {
   if (alarm_active()) return proto::MachineState::kAlarm;
   if (jog_active_ || latest_.mode == (uint8_t)TickMode::kJog) return proto::MachineState::kZeroing;
+  if (paused_) return proto::MachineState::kPaused;
   if (hold_requested_)
     return latest_.at_rest ? proto::MachineState::kHeld : proto::MachineState::kHolding;
   if (stopping_ || !queue_.empty() || !latest_.finished || !latest_.at_rest)
@@ -401,12 +428,7 @@ proto::ErrorCode Application::store(const proto::Frame& f, uint8_t* detail) {
   if (alarm_active()) return proto::ErrorCode::kAlarmActive;
   QueueItem item;
   item.seq = f.seq;
-  item.small = 0;
-  item.text_length = 0;
-  item.a = 0;
-  item.b = 0;
-  item.feed_um_s = 0;
-  item.extra = 0;
+  item.stage = 0;
   proto::ErrorCode e = proto::ErrorCode::kOk;
   switch (f.letter) {
     case proto::kCmdText: {
@@ -414,9 +436,35 @@ proto::ErrorCode Application::store(const proto::Frame& f, uint8_t* detail) {
       e = proto::decode_frame(f, &c);
       if (e != proto::ErrorCode::kOk) return e;
       item.kind = ItemKind::kText;
-      item.small = c.row;
-      item.text_length = c.length;
-      for (uint8_t i = 0; i < c.length && i < 16; ++i) item.text[i] = c.text[i];
+      item.text.row = c.row;
+      item.text.length = c.length;
+      for (uint8_t i = 0; i < c.length && i < 16; ++i) item.text.chars[i] = c.text[i];
+      break;
+    }
+    case proto::kCmdPause: {
+      proto::PauseCmd c;
+      e = proto::decode_frame(f, &c);
+      if (e != proto::ErrorCode::kOk) return e;
+      item.kind = ItemKind::kPause;
+      item.text.row = 0;
+      item.text.length = c.length;
+      for (uint8_t i = 0; i < c.length && i < 16; ++i) item.text.chars[i] = c.text[i];
+      break;
+    }
+    case proto::kCmdDwell: {
+      proto::DwellCmd c;
+      e = proto::decode_frame(f, &c);
+      if (e != proto::ErrorCode::kOk) return e;
+      item.kind = ItemKind::kDwell;
+      item.dwell.dwell_ms = c.dwell_ms;
+      break;
+    }
+    case proto::kCmdSpindle: {
+      proto::SpindleCmd c;
+      e = proto::decode_frame(f, &c);
+      if (e != proto::ErrorCode::kOk) return e;
+      item.kind = ItemKind::kSpindle;
+      item.spindle.on = c.on;
       break;
     }
     case proto::kCmdResolution: {
@@ -424,8 +472,8 @@ proto::ErrorCode Application::store(const proto::Frame& f, uint8_t* detail) {
       e = proto::decode_frame(f, &c);
       if (e != proto::ErrorCode::kOk) return e;
       item.kind = ItemKind::kResolution;
-      item.feed_um_s = c.max_step_um;
-      item.extra = c.chord_tolerance_um;
+      item.resolution.max_step_um = c.max_step_um;
+      item.resolution.chord_tolerance_um = c.chord_tolerance_um;
       break;
     }
     case proto::kCmdFeedMove:
@@ -444,16 +492,16 @@ proto::ErrorCode Application::store(const proto::Frame& f, uint8_t* detail) {
         e = proto::decode_frame(f, &c);
         x = c.x_um;
         y = c.y_um;
-        feed = cfg_.rapid_feed_um_per_s > 65535UL ? 65535U : (uint16_t)cfg_.rapid_feed_um_per_s;
+        feed = rapid_feed();
         item.kind = ItemKind::kRapidMove;
       }
       if (e != proto::ErrorCode::kOk) return e;
       if (!motion_allowed()) return proto::ErrorCode::kNotZeroed;
       if (!inside_travel(config::kAxisX, x) || !inside_travel(config::kAxisY, y))
         return proto::ErrorCode::kOutOfTravel;
-      item.a = x;
-      item.b = y;
-      item.feed_um_s = feed;
+      item.move.x_um = x;
+      item.move.y_um = y;
+      item.move.feed_um_s = feed;
       break;
     }
     case proto::kCmdZMove: {
@@ -463,8 +511,25 @@ proto::ErrorCode Application::store(const proto::Frame& f, uint8_t* detail) {
       if (!motion_allowed()) return proto::ErrorCode::kNotZeroed;
       if (!inside_travel(config::kAxisZ, c.z_um)) return proto::ErrorCode::kOutOfTravel;
       item.kind = ItemKind::kZMove;
-      item.a = c.z_um;
-      item.feed_um_s = c.feed_um_per_s;
+      item.z_move.z_um = c.z_um;
+      item.z_move.feed_um_s = c.feed_um_per_s;
+      break;
+    }
+    case proto::kCmdDrill: {
+      proto::DrillCmd c;
+      e = proto::decode_frame(f, &c);
+      if (e != proto::ErrorCode::kOk) return e;
+      if (!motion_allowed()) return proto::ErrorCode::kNotZeroed;
+      if (!inside_travel(config::kAxisX, c.x_um) || !inside_travel(config::kAxisY, c.y_um) ||
+          !inside_travel(config::kAxisZ, c.z_start_um) ||
+          !inside_travel(config::kAxisZ, c.z_bottom_um))
+        return proto::ErrorCode::kOutOfTravel;
+      item.kind = ItemKind::kDrill;
+      item.drill.x_um = c.x_um;
+      item.drill.y_um = c.y_um;
+      item.drill.z_start_um = c.z_start_um;
+      item.drill.z_bottom_um = c.z_bottom_um;
+      item.drill.feed_um_s = c.feed_um_per_s;
       break;
     }
     case proto::kCmdZeroing: {
@@ -473,7 +538,7 @@ proto::ErrorCode Application::store(const proto::Frame& f, uint8_t* detail) {
       if (e != proto::ErrorCode::kOk) return e;
       if (!queue_.empty() || stopping_) return proto::ErrorCode::kBadState;
       item.kind = ItemKind::kZeroing;
-      item.small = c.axes;
+      item.zeroing.axes = c.axes;
       break;
     }
     case proto::kCmdSplineHeader: {
@@ -488,8 +553,8 @@ proto::ErrorCode Application::store(const proto::Frame& f, uint8_t* detail) {
       e = store_.begin(c, &slot);
       if (e != proto::ErrorCode::kOk) return e;
       item.kind = ItemKind::kSpline;
-      item.small = slot;
-      item.feed_um_s = c.feed_um_per_s;
+      item.spline.slot = slot;
+      item.spline.feed_um_s = c.feed_um_per_s;
       break;
     }
     case proto::kCmdSplineData: {
@@ -506,6 +571,10 @@ proto::ErrorCode Application::store(const proto::Frame& f, uint8_t* detail) {
   if (!queue_.push(item)) return proto::ErrorCode::kBusy;
   ++items_stored_;
   return proto::ErrorCode::kOk;
+}
+
+uint16_t Application::rapid_feed() const {
+  return cfg_.rapid_feed_um_per_s > 65535UL ? 65535U : (uint16_t)cfg_.rapid_feed_um_per_s;
 }
 
 proto::ErrorCode Application::realtime(const proto::Frame& f) {
@@ -613,55 +682,134 @@ bool Application::execute_item(QueueItem* item) {
     case ItemKind::kText:
       return push_point(target, last_feed_um_s_, kPointEndOfItem);
     case ItemKind::kResolution:
-      generator_.set_resolution(item->feed_um_s, item->extra);
+      generator_.set_resolution(item->resolution.max_step_um, item->resolution.chord_tolerance_um);
       return push_point(target, last_feed_um_s_, kPointEndOfItem);
     case ItemKind::kFeedMove:
     case ItemKind::kRapidMove:
-      target[0] = item->a;
-      target[1] = item->b;
-      last_feed_um_s_ = item->feed_um_s;
+      target[0] = item->move.x_um;
+      target[1] = item->move.y_um;
+      last_feed_um_s_ = item->move.feed_um_s;
       return push_point(
-          target, item->feed_um_s,
+          target, item->move.feed_um_s,
           (uint8_t)(kPointEndOfItem | (item->kind == ItemKind::kRapidMove ? kPointRapid : 0)));
     case ItemKind::kZMove:
-      target[2] = item->a;
-      last_feed_um_s_ = item->feed_um_s;
-      return push_point(target, item->feed_um_s, kPointEndOfItem);
+      target[2] = item->z_move.z_um;
+      last_feed_um_s_ = item->z_move.feed_um_s;
+      return push_point(target, item->z_move.feed_um_s, kPointEndOfItem);
     case ItemKind::kZeroing:
       // Only from a standstill with everything before it finished.
-      if (jog_active_ || queue_.in_flight() != 0 || !latest_.finished || !latest_.at_rest)
-        return false;
-      if (request(RequestKind::kStartJog, item->small)) jog_active_ = true;
+      if (jog_active_ || !standing_still()) return false;
+      if (request(RequestKind::kStartJog, item->zeroing.axes)) jog_active_ = true;
       return false;  // completed when the tick reports the end of zeroing
+    case ItemKind::kPause:
+      // Stage 0: wait for a standstill, show the text; 1: wait for the confirm button.
+      if (item->stage == 0) {
+        if (!standing_still()) return false;
+        screen_.show_pause(item->text.chars, item->text.length);
+        pause_presses_ = latest_.confirm_presses;
+        paused_ = true;
+        item->stage = 1;
+      }
+      if (item->stage == 1) {
+        if (latest_.confirm_presses == pause_presses_) return false;
+        paused_ = false;
+        item->stage = 2;
+      }
+      return push_point(target, last_feed_um_s_, kPointEndOfItem);
+    case ItemKind::kDwell:
+      if (item->stage == 0) {
+        if (!standing_still()) return false;
+        wait_start_ms_ = latest_.ms;
+        item->stage = 1;
+      }
+      if (item->stage == 1) {
+        if ((uint16_t)(latest_.ms - wait_start_ms_) < item->dwell.dwell_ms) return false;
+        item->stage = 2;
+      }
+      return push_point(target, last_feed_um_s_, kPointEndOfItem);
+    case ItemKind::kSpindle:
+      // Switched at a standstill: never while the tool is still cutting or about to.
+      if (item->stage == 0) {
+        if (!standing_still()) return false;
+        set_spindle(item->spindle.on != 0);
+        item->stage = 1;
+      }
+      return push_point(target, last_feed_um_s_, kPointEndOfItem);
+    case ItemKind::kDrill:
+      return execute_drill(item);
     case ItemKind::kSpline: {
-      const SlotState s = store_.state(item->small);
+      const uint8_t slot = item->spline.slot;
+      const SlotState s = store_.state(slot);
       if (s == SlotState::kFilling) return false;  // data still arriving
       if (s != SlotState::kReady) {
         // Rejected at its last #D (already reported): nothing to run, keep the order.
-        store_.release(item->small);
+        store_.release(slot);
         return push_point(target, last_feed_um_s_, kPointEndOfItem);
       }
       if (!spline_started_) {
-        if (generator_.begin(store_.spline(item->small), item->feed_um_s, last[2], item_tag_) !=
+        if (generator_.begin(store_.spline(slot), item->spline.feed_um_s, last[2], item_tag_) !=
             core::GeometryError::kOk) {
-          store_.release(item->small);
+          store_.release(slot);
           raise_alarm(proto::Alarm::kPathFault);
           return false;
         }
         spline_started_ = true;
-        last_feed_um_s_ = item->feed_um_s;
+        last_feed_um_s_ = item->spline.feed_um_s;
       }
       const int32_t travel[2] = {scaling_.travel_um[0], scaling_.travel_um[1]};
       const GenStatus g = generator_.run(&planner_, &ring_, travel, kPointsPerPoll);
       if (g == GenStatus::kMore) return false;
       spline_started_ = false;
-      store_.release(item->small);
+      store_.release(slot);
       if (g == GenStatus::kDone) return true;
       raise_alarm(g == GenStatus::kOutside ? proto::Alarm::kSoftLimit : proto::Alarm::kPathFault);
       return false;
     }
   }
   return false;
+}
+
+// #L as ring points, one stage per point (a full ring retries the same stage later):
+// 0 up to the start height if below it, 1 X/Y at that travel height, 2 down to the start
+// height, 3 plunge at the feed, 4 back up to the start height (end of the item).
+bool Application::execute_drill(QueueItem* item) {
+  const DrillArgs& d = item->drill;
+  const uint8_t rapid = kPointRapid;
+  while (item->stage < 5) {
+    const int32_t* last = planner_.last_um();
+    int32_t target[config::kAxisCount] = {last[0], last[1], last[2]};
+    uint16_t feed = rapid_feed();
+    uint8_t flags = rapid;
+    bool skip = false;
+    switch (item->stage) {
+      case 0:
+        skip = last[2] >= d.z_start_um;
+        target[2] = d.z_start_um;
+        break;
+      case 1:
+        skip = last[0] == d.x_um && last[1] == d.y_um;
+        target[0] = d.x_um;
+        target[1] = d.y_um;
+        break;
+      case 2:
+        skip = last[2] == d.z_start_um;
+        target[2] = d.z_start_um;
+        break;
+      case 3:
+        target[2] = d.z_bottom_um;
+        feed = d.feed_um_s;
+        flags = 0;
+        break;
+      default:
+        target[2] = d.z_start_um;
+        flags = (uint8_t)(rapid | kPointEndOfItem);
+        break;
+    }
+    if (!skip && !push_point(target, feed, flags)) return false;
+    item->stage = (uint8_t)(item->stage + 1U);
+  }
+  last_feed_um_s_ = d.feed_um_s;
+  return true;
 }
 
 // Link watchdog: running with no valid frame for kLinkTimeoutMs -> feed hold.
@@ -681,6 +829,7 @@ void Application::update_screen() {
   info.alarm = alarm();
   info.zeroed = zeroed_;
   info.z_mode = jog_.z_mode();
+  info.paused = paused_;
   info.items_done = items_done_;
   info.items_stored = items_stored_;
   position_um(info.pos_um);

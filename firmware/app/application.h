@@ -23,6 +23,7 @@
 #include "hal/interfaces/motion_axes.h"
 #include "hal/interfaces/operator_inputs.h"
 #include "hal/interfaces/serial_port.h"
+#include "hal/interfaces/spindle.h"
 #include "hal/interfaces/text_display.h"
 
 namespace app {
@@ -32,6 +33,7 @@ struct Board {
   hal::MotionAxes* motion;
   hal::TextDisplay* display;
   hal::OperatorInputs* inputs;
+  hal::Spindle* spindle;  // 0 on a machine without a switched spindle
 };
 
 class Application;
@@ -75,6 +77,7 @@ class Application {
   proto::MachineState state() const;
   proto::Alarm alarm() const;
   bool zeroed() const { return zeroed_; }
+  bool spindle_on() const { return spindle_on_; }
   // Actual position as last published by the tick, micrometres.
   void position_um(int32_t out[config::kAxisCount]) const;
   uint8_t last_executed_seq() const { return last_executed_seq_; }
@@ -107,6 +110,9 @@ class Application {
   void follow_tick_events();
   void execute();
   bool execute_item(QueueItem* item);
+  bool execute_drill(QueueItem* item);
+  bool standing_still() const;
+  void set_spindle(bool on);
   bool push_point(const int32_t target[config::kAxisCount], uint16_t feed, uint8_t flags);
   void finish_oldest();
   void drop_job();
@@ -115,6 +121,7 @@ class Application {
   bool alarm_active() const;
   bool motion_allowed() const;
   bool inside_travel(uint8_t axis, int32_t um) const;
+  uint16_t rapid_feed() const;
   void watchdog();
   void update_screen();
 
@@ -140,6 +147,8 @@ class Application {
   uint8_t jogs_done_;
   uint8_t jog_confirmed_;
   uint8_t requests_done_;
+  uint8_t tick_buttons_;     // panel state seen by the previous tick
+  uint8_t confirm_presses_;  // confirm button presses (wraps), for #P
   bool stop_pending_;
 
   // Background-owned.
@@ -172,6 +181,10 @@ class Application {
   bool alarm_clearing_;       // #C sent, the tick has not taken it yet
   uint8_t alarm_clear_mark_;  // requests_pushed_ when #C was sent
   uint8_t requests_pushed_;
+  uint8_t pause_presses_;   // confirm_presses when the pause started
+  uint16_t wait_start_ms_;  // tick ms when the dwell started
+  bool paused_;             // a #P waits for the operator
+  bool spindle_on_;
   proto::ErrorCode shown_error_;
 };
 

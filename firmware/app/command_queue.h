@@ -1,4 +1,4 @@
-// The queue of stored ordered commands (moves, splines, text, resolution, zeroing), kept from
+// The queue of stored ordered commands (moves, splines, text, pauses, drills ...), kept from
 // the moment a frame is acknowledged until its execution finished. Background loop only.
 #ifndef FIRMWARE_APP_COMMAND_QUEUE_H
 #define FIRMWARE_APP_COMMAND_QUEUE_H
@@ -8,25 +8,74 @@
 namespace app {
 
 enum class ItemKind : uint8_t {
-  kText = 0,        // row in `small`, text in text[0..text_length)
-  kResolution = 1,  // max step in feed_um_s, chord tolerance in extra
-  kFeedMove = 2,    // XY to (a, b) at feed_um_s
-  kRapidMove = 3,   // XY to (a, b) at the rapid speed
-  kZMove = 4,       // Z to a at feed_um_s
-  kZeroing = 5,     // axes mask in `small`
-  kSpline = 6       // spline store slot in `small`, feed in feed_um_s
+  kText = 0,        // text: LCD row and characters
+  kResolution = 1,  // resolution
+  kFeedMove = 2,    // move: XY at its feed
+  kRapidMove = 3,   // move: XY at the rapid speed (feed_um_s holds it)
+  kZMove = 4,       // z_move
+  kZeroing = 5,     // zeroing
+  kSpline = 6,      // spline: store slot and feed
+  kPause = 7,       // text (row unused): shown until the operator confirms
+  kDwell = 8,       // dwell
+  kSpindle = 9,     // spindle
+  kDrill = 10       // drill
+};
+
+// What each kind carries (one of these is in use per item, chosen by its kind).
+struct TextArgs {
+  uint8_t row;
+  uint8_t length;
+  char chars[16];
+};
+struct ResolutionArgs {
+  uint16_t max_step_um;
+  uint16_t chord_tolerance_um;
+};
+struct MoveArgs {
+  int32_t x_um;
+  int32_t y_um;
+  uint16_t feed_um_s;
+};
+struct ZMoveArgs {
+  int32_t z_um;
+  uint16_t feed_um_s;
+};
+struct ZeroingArgs {
+  uint8_t axes;  // bit0 X, bit1 Y, bit2 Z
+};
+struct SplineArgs {
+  uint8_t slot;  // in the SplineStore
+  uint16_t feed_um_s;
+};
+struct DwellArgs {
+  uint16_t dwell_ms;
+};
+struct SpindleArgs {
+  uint8_t on;
+};
+struct DrillArgs {
+  int32_t x_um;
+  int32_t y_um;
+  int32_t z_start_um;
+  int32_t z_bottom_um;
+  uint16_t feed_um_s;  // plunge
 };
 
 struct QueueItem {
   ItemKind kind;
-  uint8_t seq;          // frame sequence number (last_executed_seq)
-  uint8_t small;        // row / axes / slot
-  uint8_t text_length;  // kText
-  int32_t a;
-  int32_t b;
-  uint16_t feed_um_s;
-  uint16_t extra;
-  char text[16];
+  uint8_t seq;    // frame sequence number (last_executed_seq)
+  uint8_t stage;  // steps already handed over, for items of several steps (pause, drill)
+  union {
+    TextArgs text;
+    ResolutionArgs resolution;
+    MoveArgs move;
+    ZMoveArgs z_move;
+    ZeroingArgs zeroing;
+    SplineArgs spline;
+    DwellArgs dwell;
+    SpindleArgs spindle;
+    DrillArgs drill;
+  };
 };
 
 // Fixed ring of items with three cursors: done <= exec <= head. [done, exec) are executing
@@ -57,7 +106,7 @@ class CommandQueue {
   void finished() {
     if (done_ != exec_) ++done_;
   }
-  // The newest stored item (for checks such as "zeroing queued"), 0 if none.
+  // The stored item offset_from_oldest places after the oldest unfinished one, 0 if none.
   const QueueItem* at(uint8_t offset_from_oldest) const {
     if (offset_from_oldest >= (uint8_t)(head_ - done_)) return 0;
     return &items_[(uint8_t)(done_ + offset_from_oldest) % kCapacity];

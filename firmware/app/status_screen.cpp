@@ -26,6 +26,8 @@ const char* state_name(proto::MachineState s, bool zeroed) {
       return "ZEROING";
     case proto::MachineState::kAlarm:
       return "ALARM";
+    case proto::MachineState::kPaused:
+      return "PAUSED";
   }
   return "?";
 }
@@ -88,6 +90,7 @@ StatusScreen::StatusScreen()
     shown_[r][0] = 0;
   }
   error_[0] = 0;
+  pause_[0] = 0;
 }
 
 void StatusScreen::init(hal::TextDisplay* display) {
@@ -102,6 +105,12 @@ void StatusScreen::show_text(uint8_t row, const char* text, uint8_t length, uint
   text_[row][length] = 0;
   text_on_[row] = true;
   text_ms_[row] = now_ms;
+}
+
+void StatusScreen::show_pause(const char* text, uint8_t length) {
+  if (length > kCols) length = kCols;
+  memcpy(pause_, text, length);
+  pause_[length] = 0;
 }
 
 void StatusScreen::show_error(proto::ErrorCode code, uint8_t seq, uint16_t now_ms) {
@@ -122,7 +131,9 @@ void StatusScreen::compose(const ScreenInfo& info, uint16_t now_ms, char out[2][
   }
   if (error_on_ && (uint16_t)(now_ms - error_ms_) >= (uint16_t)kMessageMs) error_on_ = false;
   uint8_t n = 0;
-  if (text_on_[0]) {
+  if (info.paused) {
+    put(out[0], &n, pause_[0] != 0 ? pause_ : "PAUSED");
+  } else if (text_on_[0]) {
     put(out[0], &n, text_[0]);
   } else {
     put(out[0], &n, state_name(info.state, info.zeroed));
@@ -141,6 +152,8 @@ void StatusScreen::compose(const ScreenInfo& info, uint16_t now_ms, char out[2][
     put(out[1], &n, alarm_name(info.alarm));
   } else if (error_on_) {
     put(out[1], &n, error_);
+  } else if (info.paused) {
+    put(out[1], &n, "CONFIRM TO GO ON");
   } else if (text_on_[1]) {
     put(out[1], &n, text_[1]);
   } else {

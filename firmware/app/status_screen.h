@@ -1,6 +1,6 @@
-// The two LCD lines: state and job progress on top, then (by priority) the alarm, the last
-// error, text sent with #S, or the position. Redrawn only when a line changes, at most every
-// kRefreshMs, from the background loop.
+// The two LCD lines: state and job progress (or a pause's text) on top, then (by priority)
+// the alarm, the last error, the pause prompt, text sent with #S, or the position. Redrawn only
+// when a line changes, at most every kRefreshMs, from the background loop.
 #ifndef FIRMWARE_APP_STATUS_SCREEN_H
 #define FIRMWARE_APP_STATUS_SCREEN_H
 
@@ -16,6 +16,7 @@ struct ScreenInfo {
   proto::Alarm alarm;
   bool zeroed;
   bool z_mode;          // zeroing: joystick drives Z
+  bool paused;          // a #P waits: its text on top, the confirm prompt below
   uint16_t items_done;  // job progress since the session started
   uint16_t items_stored;
   int32_t pos_um[3];
@@ -28,6 +29,8 @@ class StatusScreen {
   void init(hal::TextDisplay* display);
   // #S text for a row (shown for kMessageMs, row 0 then replaces the state line).
   void show_text(uint8_t row, const char* text, uint8_t length, uint16_t now_ms);
+  // #P text, shown on row 0 while ScreenInfo::paused (an empty text shows "PAUSED").
+  void show_pause(const char* text, uint8_t length);
   // A rejected frame: "ERR <code> #<seq>" for kMessageMs.
   void show_error(proto::ErrorCode code, uint8_t seq, uint16_t now_ms);
   void update(const ScreenInfo& info, uint16_t now_ms);
@@ -46,6 +49,7 @@ class StatusScreen {
   bool drawn_once_;
   char text_[2][kCols + 1];
   char error_[kCols + 1];
+  char pause_[kCols + 1];
   char shown_[2][kCols + 1];
 };
 

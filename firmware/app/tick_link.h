@@ -44,19 +44,20 @@ static const uint8_t kDriverCheckEveryMs = 10;
 
 struct TickStatus {
   int32_t pos_usteps[config::kAxisCount];
-  uint16_t ms;            // tick counter (wraps)
-  uint16_t items_done;    // ring items whose last point was reached
-  uint16_t speed_um_s;    // commanded path speed
-  uint8_t mode;           // TickMode
-  uint8_t alarm;          // TickAlarm while mode is kAlarm
-  uint8_t stops_done;     // kStop requests completed (at rest, ring dropped)
-  uint8_t jogs_done;      // zeroing sessions ended
-  uint8_t jog_confirmed;  // the last one set the zero (else it was cancelled)
-  uint8_t requests_done;  // requests taken (all kinds)
-  uint8_t limits;         // hal::LimitBits
-  uint8_t holding;        // hold requested
-  uint8_t at_rest;        // commanded speed zero
-  uint8_t finished;       // nothing more to follow
+  uint16_t ms;              // tick counter (wraps)
+  uint16_t items_done;      // ring items whose last point was reached
+  uint16_t speed_um_s;      // commanded path speed
+  uint8_t mode;             // TickMode
+  uint8_t alarm;            // TickAlarm while mode is kAlarm
+  uint8_t stops_done;       // kStop requests completed (at rest, ring dropped)
+  uint8_t jogs_done;        // zeroing sessions ended
+  uint8_t jog_confirmed;    // the last one set the zero (else it was cancelled)
+  uint8_t requests_done;    // requests taken (all kinds)
+  uint8_t confirm_presses;  // confirm button presses in follow mode (wraps)
+  uint8_t limits;           // hal::LimitBits
+  uint8_t holding;          // hold requested
+  uint8_t at_rest;          // commanded speed zero
+  uint8_t finished;         // nothing more to follow
 };
 
 typedef core::SpscRing<TickRequest, 8> RequestRing;

@@ -64,7 +64,7 @@ bool coordinate_ok(int32_t v_um) {
 }
 
 bool state_ok(uint8_t v) {
-  return v <= (uint8_t)MachineState::kAlarm;
+  return v <= (uint8_t)MachineState::kPaused;
 }
 bool alarm_ok(uint8_t v) {
   return v <= (uint8_t)Alarm::kSoftLimit;
@@ -141,6 +141,30 @@ ErrorCode check(const ZMoveCmd& m) {
 
 ErrorCode check(const ZeroingCmd& m) {
   return (m.axes >= 1 && m.axes <= kAxisMaskAll) ? ErrorCode::kOk : ErrorCode::kFieldRange;
+}
+
+ErrorCode check(const PauseCmd& m) {
+  if (m.length > kLcdColumns) return ErrorCode::kFieldRange;
+  for (uint8_t i = 0; i < m.length; ++i) {
+    const uint8_t c = (uint8_t)m.text[i];
+    if (c < 0x20 || c > 0x7E) return ErrorCode::kFieldRange;
+  }
+  return ErrorCode::kOk;
+}
+
+ErrorCode check(const DwellCmd& m) {
+  return m.dwell_ms != 0 ? ErrorCode::kOk : ErrorCode::kFieldRange;
+}
+
+ErrorCode check(const SpindleCmd& m) {
+  return m.on <= 1 ? ErrorCode::kOk : ErrorCode::kFieldRange;
+}
+
+ErrorCode check(const DrillCmd& m) {
+  if (!coordinate_ok(m.x_um) || !coordinate_ok(m.y_um)) return ErrorCode::kFieldRange;
+  if (!coordinate_ok(m.z_start_um) || !coordinate_ok(m.z_bottom_um)) return ErrorCode::kFieldRange;
+  if (m.z_bottom_um >= m.z_start_um || m.feed_um_per_s == 0) return ErrorCode::kFieldRange;
+  return ErrorCode::kOk;
 }
 
 ErrorCode check(const ErrorReply& m) {
@@ -434,6 +458,86 @@ ErrorCode decode(const uint8_t* bytes, uint8_t length, ZeroingCmd* m) {
   if (e != ErrorCode::kOk) return e;
   Reader r = reader(bytes);
   m->axes = r.u8();
+  return check(*m);
+}
+
+// ---- #P: 0..16 characters ----
+
+ErrorCode encode(const PauseCmd& m, Payload* out) {
+  Writer w = begin(out);
+  const ErrorCode e = check(m);
+  if (e != ErrorCode::kOk) return e;
+  for (uint8_t i = 0; i < m.length; ++i) w.u8((uint8_t)m.text[i]);
+  return ErrorCode::kOk;
+}
+
+ErrorCode decode(const uint8_t* bytes, uint8_t length, PauseCmd* m) {
+  if (length > kLcdColumns || (length > 0 && bytes == 0)) return ErrorCode::kPayloadLength;
+  Reader r = reader(bytes);
+  m->length = length;
+  for (uint8_t i = 0; i < m->length; ++i) m->text[i] = (char)r.u8();
+  return check(*m);
+}
+
+// ---- #W: dwell_ms u16 ----
+
+ErrorCode encode(const DwellCmd& m, Payload* out) {
+  Writer w = begin(out);
+  const ErrorCode e = check(m);
+  if (e != ErrorCode::kOk) return e;
+  w.u16(m.dwell_ms);
+  return ErrorCode::kOk;
+}
+
+ErrorCode decode(const uint8_t* bytes, uint8_t length, DwellCmd* m) {
+  const ErrorCode e = expect_length(bytes, length, 2);
+  if (e != ErrorCode::kOk) return e;
+  Reader r = reader(bytes);
+  m->dwell_ms = r.u16();
+  return check(*m);
+}
+
+// ---- #N: on u8 ----
+
+ErrorCode encode(const SpindleCmd& m, Payload* out) {
+  Writer w = begin(out);
+  const ErrorCode e = check(m);
+  if (e != ErrorCode::kOk) return e;
+  w.u8(m.on);
+  return ErrorCode::kOk;
+}
+
+ErrorCode decode(const uint8_t* bytes, uint8_t length, SpindleCmd* m) {
+  const ErrorCode e = expect_length(bytes, length, 1);
+  if (e != ErrorCode::kOk) return e;
+  Reader r = reader(bytes);
+  m->on = r.u8();
+  return check(*m);
+}
+
+// ---- #L: x i32, y i32, z_start i32, z_bottom i32, feed u16 ----
+
+ErrorCode encode(const DrillCmd& m, Payload* out) {
+  Writer w = begin(out);
+  const ErrorCode e = check(m);
+  if (e != ErrorCode::kOk) return e;
+  w.i32(m.x_um);
+  w.i32(m.y_um);
+  w.i32(m.z_start_um);
+  w.i32(m.z_bottom_um);
+  w.u16(m.feed_um_per_s);
+  return ErrorCode::kOk;
+}
+
+ErrorCode decode(const uint8_t* bytes, uint8_t length, DrillCmd* m) {
+  const ErrorCode e = expect_length(bytes, length, 18);
+  if (e != ErrorCode::kOk) return e;
+  Reader r = reader(bytes);
+  m->x_um = r.i32();
+  m->y_um = r.i32();
+  m->z_start_um = r.i32();
+  m->z_bottom_um = r.i32();
+  m->feed_um_per_s = r.u16();
   return check(*m);
 }
 

@@ -21,6 +21,10 @@ FrameKind command_kind(uint8_t letter) {
     case kCmdRapidMove:
     case kCmdZMove:
     case kCmdZeroing:
+    case kCmdPause:
+    case kCmdDwell:
+    case kCmdSpindle:
+    case kCmdDrill:
       return FrameKind::kQueued;
     case kCmdSession:
     case kCmdStatus:

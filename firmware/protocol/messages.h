@@ -123,6 +123,39 @@ struct ZeroingCmd {
   uint8_t axes;  // 1..kAxisMaskAll
 };
 
+// #P: operator pause (M0/M1, tool change). Once everything before it has finished and the
+// machine stands still, row 0 of the LCD shows the text and row 1 asks for the confirm
+// button; the queue goes on when the operator presses it.
+struct PauseCmd {
+  enum { kStart = kCommandStart, kLetter = kCmdPause };
+  uint8_t length;          // 0..kLcdColumns characters
+  char text[kLcdColumns];  // printable ASCII 0x20..0x7E
+};
+
+// #W: dwell. Waits with every axis still once everything before it has finished.
+struct DwellCmd {
+  enum { kStart = kCommandStart, kLetter = kCmdDwell };
+  uint16_t dwell_ms;  // 1..65535
+};
+
+// #N: spindle on or off, switched once everything before it has finished.
+struct SpindleCmd {
+  enum { kStart = kCommandStart, kLetter = kCmdSpindle };
+  uint8_t on;  // 0 off, 1 on
+};
+
+// #L: drill one hole: rapid in X/Y at the travel height (the current Z, raised to
+// z_start_um if lower) to (x, y), rapid down to z_start_um, plunge to z_bottom_um at
+// feed_um_per_s, rapid back up to z_start_um.
+struct DrillCmd {
+  enum { kStart = kCommandStart, kLetter = kCmdDrill };
+  int32_t x_um;  // absolute, |v| <= core::kMaxCoordinateUm
+  int32_t y_um;
+  int32_t z_start_um;      // above the board; greater than z_bottom_um
+  int32_t z_bottom_um;     // depth of the hole (Z grows upward)
+  uint16_t feed_um_per_s;  // plunge feed 1..65535, before override
+};
+
 // ---- Replies (controller -> host) ----
 
 // *O: the frame with this seq is stored (queued) or done (real-time).

@@ -31,6 +31,10 @@ static const uint8_t kCmdFeedMove = 'G';      // queued: linear XY move at a fee
 static const uint8_t kCmdRapidMove = 'F';     // queued: linear XY move at rapid speed
 static const uint8_t kCmdZMove = 'Z';         // queued: Z-only move
 static const uint8_t kCmdZeroing = 'M';       // queued: start manual zeroing (joystick)
+static const uint8_t kCmdPause = 'P';         // queued: LCD text, wait for the confirm button
+static const uint8_t kCmdDwell = 'W';         // queued: wait with every axis still
+static const uint8_t kCmdSpindle = 'N';       // queued: spindle on/off
+static const uint8_t kCmdDrill = 'L';         // queued: drill one hole
 static const uint8_t kCmdSession = 'I';       // immediate: open/reset the session
 static const uint8_t kCmdStatus = '?';        // immediate: status query
 static const uint8_t kCmdHold = 'H';          // real-time: feed hold
@@ -95,7 +99,8 @@ enum class MachineState : uint8_t {
   kHolding = 2,  // feed hold requested, decelerating
   kHeld = 3,     // stopped in hold; #R resumes, #X aborts
   kZeroing = 4,  // manual zeroing with the joystick
-  kAlarm = 5     // stopped by an alarm; queued frames are refused
+  kAlarm = 5,    // stopped by an alarm; queued frames are refused
+  kPaused = 6    // #P reached: standing still until the operator presses confirm
 };
 
 // Alarm codes (status reply and *A). Stable numbers.

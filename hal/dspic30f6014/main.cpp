@@ -23,6 +23,7 @@
 #include "hal/dspic30f6014/panel_pins.h"                // dspic::PanelPins
 #include "hal/dspic30f6014/ports.h"                     // dspic::init_ports
 #include "hal/dspic30f6014/spi1.h"                      // dspic::Spi1
+#include "hal/dspic30f6014/spindle_pin.h"               // dspic::SpindlePin
 #include "hal/dspic30f6014/startup_messages.h"          // dspic::startup_line, tmc428_line
 #include "hal/dspic30f6014/timer1.h"                    // dspic::timer1_start_1ms
 #include "hal/dspic30f6014/uart1.h"                     // dspic::Uart1
@@ -57,6 +58,7 @@ Slot<dspic::PanelPins> g_panel_pins_slot;
 Slot<drivers::OperatorPanel> g_panel_slot;
 Slot<dspic::Uart1> g_uart_slot;
 Slot<dspic::Spi1> g_spi_slot;
+Slot<dspic::SpindlePin> g_spindle_slot;
 Slot<drivers::Tmc428> g_tmc_slot;
 Slot<app::Application> g_app_slot;
 
@@ -94,6 +96,7 @@ int main() {
       panel_pins, drivers::OperatorPanel::kZHeld, drivers::OperatorPanel::kDefaultDebounceMs);
   dspic::Uart1* uart = new (g_uart_slot.place(), core::InPlace()) dspic::Uart1();
   dspic::Spi1* spi = new (g_spi_slot.place(), core::InPlace()) dspic::Spi1();
+  dspic::SpindlePin* spindle = new (g_spindle_slot.place(), core::InPlace()) dspic::SpindlePin();
   drivers::Tmc428* tmc = new (g_tmc_slot.place(), core::InPlace()) drivers::Tmc428(*spi, *machine);
   g_app = new (g_app_slot.place(), core::InPlace()) app::Application();
 
@@ -115,6 +118,7 @@ int main() {
   board.motion = tmc;
   board.display = lcd;
   board.inputs = g_panel;
+  board.spindle = spindle;
   g_app->init(board, *machine);
 
   dspic::install_tick(on_tick, 0);

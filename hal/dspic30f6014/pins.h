@@ -3,6 +3,7 @@
 //   RF6 SCK1 -> TMC428 SCK_C   RF7 SDI1 <- SDO_C   RF8 SDO1 -> SDI_C
 //   RB2      -> TMC428 nSCS_C (GPIO chip select, idles high)
 //   RD0..RD7 <-> LCD DB0..DB7  RD8 -> LCD RS   RD9 -> LCD R/W   RD10 -> LCD E
+//   RD11     -> spindle switch (active high, off at reset)
 //   RB8..RB14 <- panel contacts to GND (active low, external pull-ups): joystick left,
 //   right, down, up, Z button, confirm, clear -- the order of hal::InputBits.
 //   RB6/RB7 stay free for in-circuit programming (PGC/PGD).
@@ -25,6 +26,7 @@ enum {
   kLcdRsBit = 8,          // RD8
   kLcdRwBit = 9,          // RD9
   kLcdEBit = 10,          // RD10
+  kSpindleBit = 11,       // RD11
   kPanelFirstBit = 8,     // RB8 = hal::kJoyLeft ... RB14 = hal::kButtonClear
   kPanelMask = 0x7F00     // RB8..RB14
 };

@@ -14,9 +14,11 @@ void init_ports() {
   LATB::set_bit<pins::kTmcCsBit>();
   TRISB::clear_bit<pins::kTmcCsBit>();
 
-  // LCD: RD0..RD10 low (E low, write mode), then outputs; RD11..RD15 stay inputs.
-  const uint16_t lcd_lines = (uint16_t)(pins::kLcdDataMask | bit(pins::kLcdRsBit) |
-                                        bit(pins::kLcdRwBit) | bit(pins::kLcdEBit));
+  // LCD: RD0..RD10 low (E low, write mode); spindle RD11 low (off); then outputs.
+  // RD12..RD15 stay inputs.
+  const uint16_t lcd_lines =
+      (uint16_t)(pins::kLcdDataMask | bit(pins::kLcdRsBit) | bit(pins::kLcdRwBit) |
+                 bit(pins::kLcdEBit) | bit(pins::kSpindleBit));
   LATD::modify(lcd_lines, 0);
   TRISD::modify(lcd_lines, 0);
 

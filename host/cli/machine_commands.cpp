@@ -135,6 +135,8 @@ const char* state_name(proto::MachineState s) {
       return "zeroing";
     case proto::MachineState::kAlarm:
       return "ALARM";
+    case proto::MachineState::kPaused:
+      return "paused: press confirm on the panel";
   }
   return "?";
 }
@@ -267,6 +269,7 @@ struct SimArgs {
   std::string listen = "127.0.0.1:10001";
   bool realtime = false;
   std::string trace;
+  int pause_confirm_ms = sim::SimOptions{}.pause_confirm_ms;
 };
 
 std::atomic<bool> g_stop_sim{false};
@@ -322,7 +325,9 @@ class TraceWriter {
 void run_sim(const SimArgs& a) {
   sim::ServerOptions so = listen_options(a.listen);
   so.realtime = a.realtime;
-  sim::SimMachine machine{sim::SimOptions{}};
+  sim::SimOptions mo;
+  mo.pause_confirm_ms = a.pause_confirm_ms;
+  sim::SimMachine machine{mo};
   if (!machine.chip_ok()) std::cerr << "engraver: simulated TMC428 failed its self-check\n";
   std::unique_ptr<TraceWriter> trace;
   if (!a.trace.empty()) {
@@ -346,11 +351,20 @@ void run_sim(const SimArgs& a) {
   std::cerr << fmt::format(
       "engraver: simulated machine on {} ({}); Ctrl-C stops\n", where,
       a.realtime ? "real time" : "fast while the host talks, real time while it is silent");
+  std::cerr << (a.pause_confirm_ms < 0
+                    ? std::string("engraver: the simulated operator never confirms a pause\n")
+                    : fmt::format("engraver: the simulated operator confirms each pause (#P) "
+                                  "after {} ms\n",
+                                  a.pause_confirm_ms));
   const uint64_t ms = server->run(g_stop_sim);
   machine.set_sample_sink(nullptr);
   if (trace && !trace->ok())
     std::cerr << fmt::format("engraver: --trace '{}': write failed\n", a.trace);
-  std::cerr << fmt::format("engraver: simulated {:.1f} s of machine time\n", ms / 1000.0);
+  std::cerr << fmt::format(
+      "engraver: simulated {:.1f} s of machine time; {} pauses confirmed by the simulated "
+      "operator; spindle {} ({} switchings)\n",
+      ms / 1000.0, machine.pauses_confirmed(), machine.spindle_on() ? "on" : "off",
+      machine.spindle_switches());
 }
 
 // ---- engraver run ----
@@ -464,6 +478,9 @@ void run_run(const RunArgs& a) {
   j["simulator_cpu_s"] = r.cpu_s;
   j["speedup_per_cpu_second"] = r.cpu_s > 0 ? r.virtual_ms / 1000.0 / r.cpu_s : 0.0;
   j["lcd"] = {r.lcd[0], r.lcd[1]};
+  j["pauses_confirmed_by_simulated_operator"] = r.pauses_confirmed;
+  j["pause_confirm_ms"] = o.machine.pause_confirm_ms;
+  j["spindle_on_at_end"] = r.spindle_on;
   {
     std::ofstream out(base + ".json");
     out << j.dump(2) << "\n";
@@ -477,12 +494,15 @@ void run_run(const RunArgs& a) {
       "cutting {:.1f} s (cut length / feed {:.1f} s)\n"
       "  max contour error {:.1f} um; simulated {:.1f} s of machine time in {:.2f} s "
       "({:.2f} s of processor time: {:.0f}x real time)\n"
+      "  {} pauses confirmed by the simulated operator ({} ms after each); spindle {} at the "
+      "end\n"
       "  plot: {}.svg, {}.png; report: {}.json\n",
       a.plan.file, plan.curves.size(), plan.pen_lifts, outcome_name(r.outcome), r.commands,
       r.stats.frames_sent, r.stats.bytes_sent, r.stats.retransmits, r.wire_bytes,
       j["gcode_g1_bytes_same_tolerance"].get<size_t>(), r.cut_mm, r.rapid_mm, r.motion_s, r.cut_s,
       ideal_s, r.max_contour_error_um, r.virtual_ms / 1000.0, r.wall_s, r.cpu_s,
-      j["speedup_per_cpu_second"].get<double>(), base, base, base);
+      j["speedup_per_cpu_second"].get<double>(), r.pauses_confirmed, o.machine.pause_confirm_ms,
+      r.spindle_on ? "on" : "off", base, base, base);
   if (r.outcome != JobOutcome::kCompleted) {
     throw CommandFailure(exit_code(r.outcome),
                          fmt::format("job {}: {}", outcome_name(r.outcome), r.message));
@@ -522,6 +542,9 @@ void add_machine_commands(CLI::App& app) {
   sim->add_flag("--realtime", sim_args->realtime, "machine time always follows the wall clock");
   sim->add_option("--trace", sim_args->trace,
                   "write the executed tool positions as CSV: t_ms,x_mm,y_mm,z_mm,pen");
+  sim->add_option("--pause-confirm-ms", sim_args->pause_confirm_ms,
+                  "the simulated operator confirms a pause (#P) after this long; -1 never")
+      ->capture_default_str();
   sim->footer(
       "Examples:\n"
       "  engraver sim --trace path.csv & engraver send samples/engraver-word.dxf --to "
@@ -529,7 +552,7 @@ void add_machine_commands(CLI::App& app) {
       "  socat pty,raw,echo=0,link=/tmp/sim-tty pty,raw,echo=0,link=/tmp/host-tty &\n"
       "  engraver sim --listen serial:/tmp/sim-tty & engraver send board.dxf --to "
       "serial:/tmp/host-tty\n"
-      "Clock: fast while the host talks, the wall clock's pace after 100 ms of machine time "
+      "Clock: fast while the host talks, the wall clock's pace after 500 ms of machine time "
       "without a byte from it (docs/user-guide.md).\nExit: 0 stopped, 2 bad option or "
       "address.");
   sim->callback([sim_args] { run_sim(*sim_args); });

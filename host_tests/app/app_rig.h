@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "firmware/app/application.h"
+#include "hal/fake/spindle/fake_spindle.h"
 #include "host_tests/app/fake_board.h"
 #include "host_tests/app/kinematic_plant.h"
 #include "host_tests/app/path_metrics.h"
@@ -20,13 +21,14 @@ struct AppRig {
   FakeLink link;
   FakeDisplay display;
   FakeInputs inputs;
+  fake::FakeSpindle spindle;
   app::Application app;
   TestHost host;
   long now = 0;
   int polls_per_ms = 1;
 
   explicit AppRig(uint32_t seed = 1) : host(&link, seed) {
-    app::Board b{&link, &plant, &display, &inputs};
+    app::Board b{&link, &plant, &display, &inputs, &spindle};
     app.init(b, cfg);
   }
 

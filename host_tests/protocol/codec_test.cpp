@@ -97,6 +97,23 @@ TEST(CodecRoundTrip, EveryCommand) {
   expect_round_trip(proto::RapidMoveCmd{0, -1});
   expect_round_trip(proto::ZMoveCmd{-2000, 300});
   expect_round_trip(proto::ZeroingCmd{7});
+  expect_round_trip(proto::PauseCmd{
+      16, {'C', 'h', 'a', 'n', 'g', 'e', ' ', 't', 'o', 'o', 'l', ' ', 'T', '2', ' ', '~'}});
+  expect_round_trip(proto::PauseCmd{0, {}});
+  expect_round_trip(proto::DwellCmd{1});
+  expect_round_trip(proto::DwellCmd{65535});
+  expect_round_trip(proto::SpindleCmd{0});
+  expect_round_trip(proto::SpindleCmd{1});
+  expect_round_trip(proto::DrillCmd{-1000000, 1000000, 1000000, -1000000, 1});
+  expect_round_trip(proto::DrillCmd{12000, 34000, 500, 499, 65535});
+}
+
+TEST(CodecLayout, NewMachineCommandsAreLittleEndianInFieldOrder) {
+  EXPECT_EQ(encoded(proto::PauseCmd{2, {'O', 'K'}}), Bytes({'O', 'K'}));
+  EXPECT_EQ(encoded(proto::DwellCmd{0x1234}), Bytes({0x34, 0x12}));
+  EXPECT_EQ(encoded(proto::SpindleCmd{1}), Bytes({1}));
+  EXPECT_EQ(encoded(proto::DrillCmd{1, -1, 0x0100, -2, 0x0203}),
+            Bytes({1, 0, 0, 0, 0xFF, 0xFF, 0xFF, 0xFF, 0, 1, 0, 0, 0xFE, 0xFF, 0xFF, 0xFF, 3, 2}));
 }
 
 TEST(CodecRoundTrip, SplineDataAtEveryPackingThatFits64Bytes) {
@@ -174,6 +191,9 @@ TEST(CodecMalformed, EveryFixedSizeMessageRejectsOneByteMoreAndOneLess) {
   check(proto::RapidMoveCmd{}, 8);
   check(proto::ZMoveCmd{}, 6);
   check(proto::ZeroingCmd{}, 1);
+  check(proto::DwellCmd{}, 2);
+  check(proto::SpindleCmd{}, 1);
+  check(proto::DrillCmd{}, 18);
   check(proto::AckReply{}, 1);
   check(proto::ErrorReply{}, 3);
   check(proto::SessionReply{}, 10);
@@ -272,6 +292,32 @@ TEST(CodecMalformed, ZeroFeedsAndTolerancesAreOutOfRange) {
   expect_range_error<proto::ResolutionCmd>({1, 0, 0, 0});
 }
 
+TEST(CodecMalformed, PauseTextIsAtMost16PrintableCharacters) {
+  proto::PauseCmd p;
+  EXPECT_EQ(ErrorCode::kPayloadLength, decode_bytes(Bytes(17, 'a'), &p));
+  EXPECT_EQ(ErrorCode::kOk, decode_bytes(Bytes(16, 'a'), &p));
+  expect_range_error<proto::PauseCmd>({'a', 0x7F});
+  expect_range_error<proto::PauseCmd>({0x1F});
+}
+
+TEST(CodecMalformed, DwellOfZeroAndSpindleOtherThanZeroOrOneAreOutOfRange) {
+  expect_range_error<proto::DwellCmd>({0, 0});
+  expect_range_error<proto::SpindleCmd>({2});
+}
+
+TEST(CodecMalformed, DrillBottomMustBeBelowItsStartAndItsFeedNonZero) {
+  // x 0, y 0, start 100, bottom 100 (not below), feed 1.
+  expect_range_error<proto::DrillCmd>({0, 0, 0, 0, 0, 0, 0, 0, 100, 0, 0, 0, 100, 0, 0, 0, 1, 0});
+  // start 100, bottom 99, feed 0.
+  expect_range_error<proto::DrillCmd>({0, 0, 0, 0, 0, 0, 0, 0, 100, 0, 0, 0, 99, 0, 0, 0, 0, 0});
+  // x 1000001.
+  expect_range_error<proto::DrillCmd>(
+      {0x41, 0x42, 0x0F, 0, 0, 0, 0, 0, 100, 0, 0, 0, 99, 0, 0, 0, 1, 0});
+  proto::DrillCmd ok;
+  EXPECT_EQ(ErrorCode::kOk,
+            decode_bytes(Bytes({0, 0, 0, 0, 0, 0, 0, 0, 100, 0, 0, 0, 99, 0, 0, 0, 1, 0}), &ok));
+}
+
 TEST(CodecMalformed, ZeroingAxesMustBe1To7) {
   expect_range_error<proto::ZeroingCmd>({0});
   expect_range_error<proto::ZeroingCmd>({8});
@@ -282,12 +328,14 @@ TEST(CodecMalformed, ReplyEnumsOutsideTheirListsAreOutOfRange) {
   expect_range_error<proto::ErrorReply>({6, 0, 0});  // unassigned code
   expect_range_error<proto::ErrorReply>({38, 0, 0});
   expect_range_error<proto::AlarmReply>({8, 5});
-  expect_range_error<proto::AlarmReply>({1, 6});
+  expect_range_error<proto::AlarmReply>({1, 7});
   Bytes status(22, 0);
   status[3] = 100;
   proto::StatusReply s;
   EXPECT_EQ(ErrorCode::kOk, decode_bytes(status, &s));
-  status[0] = 6;  // state
+  status[0] = 6;  // paused: the newest state
+  EXPECT_EQ(ErrorCode::kOk, decode_bytes(status, &s));
+  status[0] = 7;  // state
   expect_range_error<proto::StatusReply>(status);
 }
 

@@ -66,6 +66,14 @@ inline RoundTrip round_trip_any(uint8_t start, uint8_t letter, const uint8_t* pa
         return round_trip_as<proto::ZMoveCmd>(payload, length);
       case proto::kCmdZeroing:
         return round_trip_as<proto::ZeroingCmd>(payload, length);
+      case proto::kCmdPause:
+        return round_trip_as<proto::PauseCmd>(payload, length);
+      case proto::kCmdDwell:
+        return round_trip_as<proto::DwellCmd>(payload, length);
+      case proto::kCmdSpindle:
+        return round_trip_as<proto::SpindleCmd>(payload, length);
+      case proto::kCmdDrill:
+        return round_trip_as<proto::DrillCmd>(payload, length);
       default:
         break;
     }

@@ -83,6 +83,13 @@ int main() {
   show(proto::AckReply{16}, 4, "*O seq 4: real-time frame done (16 slots free)");
   show(proto::AlarmReply{proto::Alarm::kLimitSwitch, proto::MachineState::kAlarm}, 1,
        "*A alarm #1: limit switch (1), state alarm (5)");
+  show(proto::PauseCmd{13, {'T', 'o', 'o', 'l', ' ', '2', ':', ' ', '0', '.', '8', 'm', 'm'}}, 11,
+       "#P seq 11: pause, LCD \"Tool 2: 0.8mm\", wait for the confirm button");
+  show(proto::SpindleCmd{1}, 12, "#N seq 12: spindle on");
+  show(proto::DwellCmd{1500}, 13, "#W seq 13: dwell 1.5 s (spindle run-up)");
+  show(proto::DrillCmd{25400, 12700, 500, -1800, 800}, 14,
+       "#L seq 14: drill at X 25.4 mm, Y 12.7 mm from Z 0.5 mm down to Z -1.8 mm at 0.8 mm/s");
+  show(proto::SpindleCmd{0}, 15, "#N seq 15: spindle off");
   std::printf("```\n");
   return 0;
 }

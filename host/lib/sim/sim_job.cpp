@@ -124,6 +124,8 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
   r.max_contour_error_um = meter.max_contour_error_um();
   r.lcd[0] = machine.lcd_line(0);
   r.lcd[1] = machine.lcd_line(1);
+  r.pauses_confirmed = machine.pauses_confirmed();
+  r.spindle_on = machine.spindle_on();
   return r;
 }
 

@@ -50,6 +50,8 @@ struct SimJobResult {
   double cut_mm = 0, rapid_mm = 0;  // tool path lengths from the trace (pen down / up)
   double max_contour_error_um = 0;  // pen-down trace points to the planned curves
   std::string lcd[2];
+  int pauses_confirmed = 0;  // #P pauses the simulated operator confirmed
+  bool spindle_on = false;   // at the end of the run
 };
 
 // Runs the plan on a fresh simulated machine. Throws PlanError/LinkError for what cannot

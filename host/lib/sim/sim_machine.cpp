@@ -7,6 +7,7 @@
 #include "hal/drivers/tmc428/tmc428.h"       // drivers::Tmc428
 #include "hal/fake/motion/tmc428_model.h"    // fake::Tmc428Model
 #include "hal/fake/spi/recording_spi.h"      // fake::RecordingSpi
+#include "hal/fake/spindle/fake_spindle.h"   // fake::FakeSpindle
 #include "hal/interfaces/operator_inputs.h"  // hal::OperatorInputs
 #include "hal/interfaces/serial_port.h"      // hal::SerialPort
 #include "hal/interfaces/text_display.h"     // hal::TextDisplay
@@ -73,6 +74,7 @@ struct SimMachine::Parts {
   SimSerial serial;
   SimDisplay display;
   SimInputs inputs;
+  fake::FakeSpindle spindle;
   app::Application app;
   int32_t usteps_per_mm[config::kAxisCount] = {1, 1, 1};
 };
@@ -98,6 +100,7 @@ SimMachine::SimMachine(const SimOptions& options)
   board.motion = &p.driver;
   board.display = &p.display;
   board.inputs = &p.inputs;
+  board.spindle = &p.spindle;
   p.app.init(board, options.machine);
   record_position();
 }
@@ -123,17 +126,34 @@ bool SimMachine::busy() const {
 }
 
 // The simulated operator: confirms zeroing where the tool stands, as a person would after
-// jogging to the corner of the board.
+// jogging to the corner of the board, and confirms each pause after pause_confirm_ms.
 void SimMachine::operate_panel() {
   Parts& p = *parts_;
-  if (!options_.auto_zero) return;
   if (confirm_hold_ms_ > 0) {
     p.inputs.bits = hal::kButtonConfirm;
     if (--confirm_hold_ms_ == 0) p.inputs.bits = 0;
     return;
   }
-  if (p.app.state() == proto::MachineState::kZeroing)
-    confirm_hold_ms_ = 50;  // a 50 ms press, well past the debounce
+  const int kPressMs = 50;  // well past the debounce
+  const proto::MachineState state = p.app.state();
+  if (state == proto::MachineState::kZeroing && options_.auto_zero) confirm_hold_ms_ = kPressMs;
+  if (state != proto::MachineState::kPaused || options_.pause_confirm_ms < 0) {
+    paused_ms_ = 0;
+    return;
+  }
+  if (++paused_ms_ >= options_.pause_confirm_ms) {
+    confirm_hold_ms_ = kPressMs;
+    paused_ms_ = 0;
+    ++pauses_confirmed_;
+  }
+}
+
+bool SimMachine::spindle_on() const {
+  return parts_->spindle.on();
+}
+
+int SimMachine::spindle_switches() const {
+  return parts_->spindle.switches();
 }
 
 void SimMachine::record_position() {

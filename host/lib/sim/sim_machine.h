@@ -24,6 +24,8 @@ struct SimOptions {
   config::MachineConfig machine = config::default_machine_config();
   uint32_t baud = 115200;  // 10 bits a byte on the wire (8N1)
   bool auto_zero = true;   // the simulated operator confirms zeroing where the tool stands
+  // The simulated operator presses confirm this long after a #P pause began (< 0: never).
+  int pause_confirm_ms = 1000;
   // Limit switches this far beyond each end of the travel from the power-on position.
   int32_t switch_margin_um = 5000;
   // Record every SPI datagram from power-on (the TMC428 init included); off by default:
@@ -67,6 +69,10 @@ class SimMachine {
   void clear_trace() { trace_.clear(); }
   void set_sample_sink(std::function<void(const ToolSample&)> sink) { sink_ = std::move(sink); }
   std::string lcd_line(int row) const;
+  // #P pauses the simulated operator confirmed; the spindle output and its switchings.
+  int pauses_confirmed() const { return pauses_confirmed_; }
+  bool spindle_on() const;
+  int spindle_switches() const;
   // The firmware's tool position in mm (model x_actual / microsteps per mm).
   ToolSample position() const;
 
@@ -96,6 +102,8 @@ class SimMachine {
   bool have_sample_ = false;
   bool chip_ok_ = false;
   int confirm_hold_ms_ = 0;
+  int paused_ms_ = 0;  // how long the current pause has waited for the operator
+  int pauses_confirmed_ = 0;
 };
 
 }  // namespace host::sim

@@ -1,4 +1,5 @@
-// Job plan -> queued protocol commands (#S #U #Z #F #G #B #D), using the shared codecs.
+// Job plan -> queued protocol commands (#S #U #Z #F #G #B #D #P #W #N #L), using the shared
+// codecs.
 #include "host/lib/stream/job_encoder.h"
 
 #include <fmt/format.h>  // fmt::format
@@ -70,6 +71,18 @@ void append_spline(const PlanStep& s, int index, unsigned max_payload,
   }
 }
 
+// #P with the operator message: the LCD row holds 16 characters, the rest is cut; characters
+// the LCD cannot show become '?'.
+proto::PauseCmd pause_command(const std::string& text) {
+  proto::PauseCmd pause{};
+  pause.length = static_cast<uint8_t>(std::min<size_t>(text.size(), proto::kLcdColumns));
+  for (uint8_t i = 0; i < pause.length; ++i) {
+    const char ch = text[i];
+    pause.text[i] = (ch >= 0x20 && ch <= 0x7E) ? ch : '?';
+  }
+  return pause;
+}
+
 }  // namespace
 
 std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& options) {
@@ -126,11 +139,30 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
         append_spline(s, index, options.max_payload, &out);
         break;
       case PlanStep::kPause:
+        out.push_back(make(pause_command(s.text), index, s.curve));
+        break;
       case PlanStep::kDwell:
+        // Longer than one #W can carry: several in a row (nothing happens between them).
+        for (uint32_t left = s.dwell_ms; left > 0;) {
+          const uint16_t ms = static_cast<uint16_t>(std::min<uint32_t>(left, 65535));
+          out.push_back(make(proto::DwellCmd{ms}, index, s.curve));
+          left -= ms;
+        }
+        break;
       case PlanStep::kSpindle:
-      case PlanStep::kDrill:
-        throw PlanError(fmt::format(
-            "step {}: pause, dwell, spindle and drill steps are not in protocol v1", index));
+        out.push_back(
+            make(proto::SpindleCmd{static_cast<uint8_t>(s.spindle_on ? 1 : 0)}, index, s.curve));
+        break;
+      case PlanStep::kDrill: {
+        if (s.z_um >= s.z_start_um) {
+          throw PlanError(fmt::format("step {}: drill bottom Z {} um is not below its start {} um",
+                                      index, s.z_um, s.z_start_um));
+        }
+        const proto::DrillCmd d{s.to.x_um, s.to.y_um, s.z_start_um, s.z_um,
+                                feed16(s.feed_um_per_s, index)};
+        out.push_back(make(d, index, s.curve));
+        break;
+      }
     }
   }
   return out;

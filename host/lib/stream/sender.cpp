@@ -102,6 +102,8 @@ const char* machine_state_name(proto::MachineState state) {
       return "zeroing";
     case proto::MachineState::kAlarm:
       return "in alarm";
+    case proto::MachineState::kPaused:
+      return "paused for the operator";
   }
   return "in an unknown state";
 }
@@ -315,10 +317,11 @@ bool Sender::stalled() {
   s.state = last_status_.state;
   const auto t = now();
   // Waiting for a person is not a stall: a hold asked for here or at the machine's panel,
-  // or zeroing. A hold the controller made because it heard nothing is.
-  const bool held = s.state == proto::MachineState::kHeld ||
-                    s.state == proto::MachineState::kHolding ||
-                    s.state == proto::MachineState::kZeroing;
+  // zeroing, or a pause (#P) until the operator confirms. A hold the controller made because it
+  // heard nothing is.
+  const bool held =
+      s.state == proto::MachineState::kHeld || s.state == proto::MachineState::kHolding ||
+      s.state == proto::MachineState::kZeroing || s.state == proto::MachineState::kPaused;
   const bool waits_for_operator =
       operator_hold_ || (held && !(last_status_.flags & proto::kStatusLinkHold));
   if (s.acked != seen_.acked || s.executed != seen_.executed || s.x_um != seen_.x_um ||

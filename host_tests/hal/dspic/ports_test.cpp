@@ -35,10 +35,10 @@ TEST_F(PortsTest, PanelPinsRb8ToRb14StayInputs) {
   EXPECT_EQ(field(kTRISB, 8, 0x7F), 0x7Fu);
 }
 
-TEST_F(PortsTest, LcdBusRd0ToRd10AreOutputsDrivenLow) {
-  EXPECT_EQ(sfr.peek(kTRISD) & 0x07FF, 0);
-  EXPECT_EQ(sfr.peek(kLATD) & 0x07FF, 0);
-  EXPECT_EQ(sfr.peek(kTRISD) & 0xF800, 0xF800);
+TEST_F(PortsTest, LcdBusRd0ToRd10AndSpindleRd11AreOutputsDrivenLow) {
+  EXPECT_EQ(sfr.peek(kTRISD) & 0x0FFF, 0);
+  EXPECT_EQ(sfr.peek(kLATD) & 0x0FFF, 0);
+  EXPECT_EQ(sfr.peek(kTRISD) & 0xF000, 0xF000);
 }
 
 TEST_F(PortsTest, UartAndSpiPinDirections) {

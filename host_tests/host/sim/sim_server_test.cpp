@@ -68,7 +68,7 @@ TEST(SimServer, ServesAJobOnAPseudoTerminal) {
 
 TEST(SimServer, MachineTimeFollowsTheWallClockWhileTheHostIsSilent) {
   // Connected, then silent for 1 s of wall time: the machine may run ahead only by the fast
-  // window, so about 1.1 s of machine time passes (the old rule gave 0.68 s), and the link
+  // window, so 1.0-1.5 s of machine time pass (the old rule gave 0.68 s), and the link
   // watchdog (2 s) has not tripped.
   sim::SimMachine machine{sim::SimOptions{}};
   sim::ServerOptions so;
@@ -88,7 +88,7 @@ TEST(SimServer, MachineTimeFollowsTheWallClockWhileTheHostIsSilent) {
   serving.stop();
   const double machine_ms = static_cast<double>(t1 - t0);
   EXPECT_GT(machine_ms, wall_ms - 250) << "machine time fell behind the wall clock";
-  EXPECT_LT(machine_ms, wall_ms + 100 + 250) << "machine time ran ahead of the wall clock";
+  EXPECT_LT(machine_ms, wall_ms + 500 + 250) << "machine time ran ahead of the wall clock";
 }
 
 }  // namespace

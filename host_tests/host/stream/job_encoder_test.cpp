@@ -147,6 +147,87 @@ TEST(JobEncoder, ToolOffsetIsRefusedRatherThanIgnored) {
   EXPECT_THROW(encode_job(plan, EncodeOptions{}), PlanError);
 }
 
+// Decodes one encoded command as Msg (its letter must match).
+template <typename Msg>
+Msg decoded(const QueuedCommand& c) {
+  EXPECT_EQ(c.letter, static_cast<uint8_t>(Msg::kLetter));
+  Msg m{};
+  EXPECT_EQ(proto::decode(c.payload.data(), static_cast<uint8_t>(c.payload.size()), &m),
+            proto::ErrorCode::kOk);
+  return m;
+}
+
+// Pause, dwell, spindle and drill steps after the #U set-up frame.
+std::vector<QueuedCommand> encode_machine_steps(const std::vector<PlanStep>& steps) {
+  JobPlan plan;
+  plan.steps = steps;
+  auto cmds = encode_job(plan, EncodeOptions{});
+  EXPECT_EQ(cmds.front().letter, proto::kCmdResolution);
+  cmds.erase(cmds.begin());
+  return cmds;
+}
+
+TEST(JobEncoder, PauseCarriesItsTextCutToTheLcdRow) {
+  PlanStep pause;
+  pause.kind = PlanStep::kPause;
+  pause.text = "Tool change: 0.8 mm drill";
+  pause.text[4] = '\t';  // not printable on the LCD
+  const auto cmds = encode_machine_steps({pause});
+  ASSERT_EQ(cmds.size(), 1u);
+  const auto p = decoded<proto::PauseCmd>(cmds[0]);
+  EXPECT_EQ(std::string(p.text, p.length), "Tool?change: 0.8");
+  EXPECT_EQ(cmds[0].step, 0);
+}
+
+TEST(JobEncoder, DwellLongerThanOneFrameIsSplitAndAddsUp) {
+  PlanStep dwell;
+  dwell.kind = PlanStep::kDwell;
+  dwell.dwell_ms = 150000;
+  const auto cmds = encode_machine_steps({dwell});
+  ASSERT_EQ(cmds.size(), 3u);
+  uint32_t total = 0;
+  for (const auto& c : cmds) total += decoded<proto::DwellCmd>(c).dwell_ms;
+  EXPECT_EQ(total, 150000u);
+}
+
+TEST(JobEncoder, SpindleOnAndOff) {
+  PlanStep on;
+  on.kind = PlanStep::kSpindle;
+  on.spindle_on = true;
+  PlanStep off = on;
+  off.spindle_on = false;
+  const auto cmds = encode_machine_steps({on, off});
+  ASSERT_EQ(cmds.size(), 2u);
+  EXPECT_EQ(decoded<proto::SpindleCmd>(cmds[0]).on, 1);
+  EXPECT_EQ(decoded<proto::SpindleCmd>(cmds[1]).on, 0);
+}
+
+TEST(JobEncoder, DrillIsOneFrameWithEveryField) {
+  PlanStep drill;
+  drill.kind = PlanStep::kDrill;
+  drill.to = {12000, 34000};
+  drill.z_start_um = 1000;
+  drill.z_um = -1800;
+  drill.feed_um_per_s = 700;
+  const auto cmds = encode_machine_steps({drill});
+  ASSERT_EQ(cmds.size(), 1u);
+  const auto d = decoded<proto::DrillCmd>(cmds[0]);
+  EXPECT_EQ(d.x_um, 12000);
+  EXPECT_EQ(d.y_um, 34000);
+  EXPECT_EQ(d.z_start_um, 1000);
+  EXPECT_EQ(d.z_bottom_um, -1800);
+  EXPECT_EQ(d.feed_um_per_s, 700);
+}
+
+TEST(JobEncoder, DrillWhoseBottomIsNotBelowItsStartIsRefused) {
+  PlanStep drill;
+  drill.kind = PlanStep::kDrill;
+  drill.z_start_um = 1000;
+  drill.z_um = 1000;
+  drill.feed_um_per_s = 700;
+  EXPECT_THROW(encode_machine_steps({drill}), PlanError);
+}
+
 TEST(JobEncoder, WireBytesCountHeaderAndCrc) {
   std::vector<QueuedCommand> cmds(2);
   cmds[0].payload.resize(10);

@@ -1,0 +1,188 @@
+// `engraver serve`: the workshop server (job queue, archive, machines, web page and API).
+#include <CLI/CLI.hpp>  // CLI::App
+
+#include <fmt/format.h>  // fmt::format
+#include <signal.h>      // sigaction
+#include <unistd.h>      // gethostname
+
+#include <atomic>    // std::atomic
+#include <iostream>  // std::cerr
+#include <thread>    // std::thread
+
+#include "host/cli/command_registry.h"
+#include "host/cli/exit_codes.h"
+#include "host/lib/server/data_folder.h"
+#include "host/lib/server/http_api.h"
+#include "host/lib/server/inbox_watcher.h"
+#include "host/lib/server/job_intake.h"
+#include "host/lib/server/machine_spec.h"
+#include "host/lib/server/sqlite_job_store.h"
+#include "host/lib/server/workshop.h"
+#ifdef ENGRAVER_HAVE_POSTGRES
+#include "host/lib/server/postgres_job_store.h"
+#endif
+
+namespace host::cli {
+
+namespace {
+
+struct ServeArgs {
+  std::string data = "engraver-data";
+  std::string listen = "127.0.0.1:8080";
+  std::vector<std::string> machines;
+  std::string inbox;
+  double max_upload_mb = 20.0;
+  std::string web = ENGRAVER_WEB_DIR;
+  int poll_ms = 100;
+  std::string name;
+  bool no_zero = false;
+  std::string db;
+  double stale_s = 30.0;
+};
+
+// The job store: the data folder's SQLite file, or a PostgreSQL database shared by servers.
+std::unique_ptr<server::JobStore> open_store(const std::string& db,
+                                             const server::DataFolder& data) {
+  if (db.empty() || db == "sqlite") {
+    return std::make_unique<server::SqliteJobStore>(data.database().string());
+  }
+#ifdef ENGRAVER_HAVE_POSTGRES
+  return std::make_unique<server::PostgresJobStore>(db);
+#else
+  throw CommandFailure(kExitUsage, "--db: this engraver was built without PostgreSQL (libpqxx)");
+#endif
+}
+
+std::atomic<bool> g_stop_serve{false};
+extern "C" void on_stop_serve(int) {
+  g_stop_serve = true;
+}
+
+std::string host_name() {
+  char buf[256] = {};
+  if (gethostname(buf, sizeof buf - 1) != 0 || buf[0] == '\0') return "local";
+  return buf;
+}
+
+void run_serve(const ServeArgs& a) {
+  const size_t colon = a.listen.rfind(':');
+  int port = -1;
+  if (colon != std::string::npos) {
+    try {
+      port = std::stoi(a.listen.substr(colon + 1));
+    } catch (const std::exception&) {
+      port = -1;
+    }
+  }
+  if (port < 0 || port > 65535) {
+    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': expected ADDR:PORT", a.listen));
+  }
+  std::vector<server::MachineSpec> machines;
+  for (size_t i = 0; i < a.machines.size(); ++i) {
+    try {
+      machines.push_back(server::parse_machine_spec(a.machines[i], fmt::format("m{}", i + 1)));
+    } catch (const std::invalid_argument& e) {
+      throw CommandFailure(kExitUsage, e.what());
+    }
+  }
+  server::DataFolder data(a.data);
+  bool created = false;
+  const std::string token = data.token(&created);
+  const std::unique_ptr<server::JobStore> store_owner = open_store(a.db, data);
+  server::JobStore& store = *store_owner;
+
+  server::WorkshopOptions wo;
+  wo.owner = a.name.empty() ? host_name() : a.name;
+  wo.sender.status_interval = std::chrono::milliseconds(a.poll_ms);
+  wo.sender.zero_first = !a.no_zero;
+  wo.stale_after = std::chrono::milliseconds(static_cast<int64_t>(a.stale_s * 1000));
+  server::Workshop workshop(store, data, machines, wo);
+  server::JobIntake intake(store, data, workshop.fits(),
+                           static_cast<size_t>(a.max_upload_mb * 1024 * 1024));
+  server::HttpOptions ho;
+  ho.address = a.listen.substr(0, colon);
+  ho.port = port;
+  ho.web_dir = a.web;
+  ho.token = token;
+  server::HttpApi http(store, intake, workshop, data, ho);
+  const int bound = http.bind();
+
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_serve;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+
+  workshop.start();
+  std::unique_ptr<server::InboxWatcher> inbox;
+  if (!a.inbox.empty()) {
+    server::JobPlanSettings settings;
+    inbox = std::make_unique<server::InboxWatcher>(a.inbox, intake, settings,
+                                                   std::chrono::milliseconds(1000),
+                                                   [&workshop] { workshop.notify(true); });
+    inbox->start();
+  }
+  std::thread serving([&http] { http.run(); });
+  std::cerr << fmt::format("engraver: serving http://{}:{}/ as '{}', data in {}, {} machine(s)\n",
+                           ho.address, bound, wo.owner, a.data, machines.size());
+  if (created) {
+    std::cerr << fmt::format(
+        "engraver: access token (shown once; kept in {}/token): {}\n"
+        "engraver: every request that changes anything needs it (the page asks for it)\n",
+        a.data, token);
+  }
+  // The machine list as the machines' names on the page.
+  for (const server::MachineSpec& m : machines) {
+    std::cerr << fmt::format("engraver: machine {} at {}, work area {} x {} mm\n", m.name,
+                             m.address, m.fit.work_width_mm, m.fit.work_height_mm);
+  }
+  while (!g_stop_serve) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  std::cerr << "engraver: stopping (running jobs are aborted and marked interrupted)\n";
+  if (inbox) inbox->stop();
+  http.stop();
+  serving.join();
+  workshop.stop();
+}
+
+void add_serve_commands(CLI::App& app) {
+  auto args = std::make_shared<ServeArgs>();
+  CLI::App* serve = app.add_subcommand(
+      "serve", "the workshop server: job queue, archive, machines, web page and JSON API");
+  serve->add_option("--data", args->data, "data folder: job database, token, archive")
+      ->capture_default_str();
+  serve->add_option("--listen", args->listen, "ADDR:PORT of the page and API (loopback default)")
+      ->capture_default_str();
+  serve->add_option("--machine", args->machines,
+                    "a machine: 'ADDRESS [name=NAME] [work=WxH] [tags=a,b]' (repeat the option)");
+  serve->add_option("--inbox", args->inbox, "watched folder: drawings dropped here become jobs");
+  serve->add_option("--max-upload-mb", args->max_upload_mb, "largest upload accepted, MB")
+      ->check(CLI::Range(0.001, 1024.0))
+      ->capture_default_str();
+  serve->add_option("--web", args->web, "folder of the page's files")->capture_default_str();
+  serve->add_option("--poll-ms", args->poll_ms, "status poll interval while a job runs")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  serve->add_option("--name", args->name, "this server's name in the queue (default host name)");
+  serve->add_flag("--no-zero", args->no_zero, "do not start manual zeroing if not zeroed");
+  serve->add_option("--db", args->db,
+                    "job store: 'sqlite' (DATA/jobs.sqlite, default) or a PostgreSQL "
+                    "connection ('postgresql://host/db' or 'host=... dbname=...') shared by "
+                    "several servers; give each server its own --name");
+  serve
+      ->add_option("--stale-s", args->stale_s,
+                   "a server sharing the store and silent this long is taken for dead: its "
+                   "running jobs become interrupted")
+      ->check(CLI::Range(2.0, 3600.0))
+      ->capture_default_str();
+  serve->footer(
+      "Example: engraver serve --data /srv/engraver --machine 'tcp://192.168.1.50:10001 "
+      "name=left' --machine 'serial:/dev/ttyUSB0 name=right work=200x150 tags=brass'\n"
+      "The token is printed once, on the first start; it is kept in DATA/token.");
+  serve->callback([args] { run_serve(*args); });
+}
+
+const CommandRegistrar registrar("serve", add_serve_commands);
+
+}  // namespace
+
+}  // namespace host::cli

@@ -1,0 +1,90 @@
+// Data folder layout, the access token and small file helpers.
+#include "host/lib/server/data_folder.h"
+
+#include <fcntl.h>     // open
+#include <sys/stat.h>  // S_IRUSR
+#include <unistd.h>    // write, close
+
+#include <cstring>    // std::strcmp
+#include <fstream>    // std::ifstream
+#include <random>     // std::random_device
+#include <sstream>    // std::ostringstream
+#include <stdexcept>  // std::runtime_error
+
+namespace host::server {
+
+namespace fs = std::filesystem;
+
+const char* const kArchiveFiles[] = {"plan.json",   "plot.svg",  "plot.png",  "report.json",
+                                     "machine.log", "input.dxf", "input.ngc", "input.nc",
+                                     "input.gcode", "input.tap", "input.g",   "input.gbr",
+                                     "input.drl",   "input",     nullptr};
+
+bool is_archive_file(const std::string& name) {
+  for (const char* const* f = kArchiveFiles; *f != nullptr; ++f) {
+    if (name == *f) return true;
+  }
+  return false;
+}
+
+std::string random_hex(size_t bytes) {
+  std::random_device rd;  // /dev/urandom on Linux
+  static const char kHex[] = "0123456789abcdef";
+  std::string s;
+  for (size_t i = 0; i < bytes; ++i) {
+    const unsigned v = rd() & 0xFFu;
+    s += kHex[v >> 4];
+    s += kHex[v & 0xF];
+  }
+  return s;
+}
+
+DataFolder::DataFolder(const fs::path& root) : root_(root) {
+  std::error_code ec;
+  fs::create_directories(root_ / "jobs", ec);
+  if (!ec) fs::remove_all(root_ / "tmp", ec);
+  if (!ec) fs::create_directories(root_ / "tmp", ec);
+  if (ec) throw std::runtime_error(root_.string() + ": cannot use as data folder: " + ec.message());
+}
+
+fs::path DataFolder::new_staging_dir() const {
+  const fs::path dir = root_ / "tmp" / random_hex(12);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string DataFolder::token(bool* created) const {
+  const fs::path path = root_ / "token";
+  *created = false;
+  std::ifstream in(path);
+  std::string token;
+  if (in >> token && token.size() >= 32) return token;
+  token = random_hex(24);
+  // O_EXCL on a fresh name, then rename: never a half-written or world-readable token.
+  const fs::path fresh = root_ / ("token." + random_hex(4));
+  const int fd = ::open(fresh.c_str(), O_WRONLY | O_CREAT | O_EXCL, S_IRUSR | S_IWUSR);
+  if (fd < 0) throw std::runtime_error(fresh.string() + ": cannot create the token file");
+  const std::string line = token + "\n";
+  const bool ok = ::write(fd, line.data(), line.size()) == static_cast<ssize_t>(line.size());
+  ::close(fd);
+  if (!ok) throw std::runtime_error(fresh.string() + ": cannot write the token file");
+  fs::rename(fresh, path);
+  *created = true;
+  return token;
+}
+
+void write_file(const fs::path& path, const std::string& content) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(content.data(), static_cast<std::streamsize>(content.size()));
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path.string() + ": cannot read");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace host::server

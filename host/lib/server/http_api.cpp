@@ -1,0 +1,387 @@
+// HTTP routes of the workshop server (cpp-httplib).
+#include "host/lib/server/http_api.h"
+
+#include <fmt/format.h>  // fmt::format
+#include <httplib.h>     // httplib::Server
+
+#include <nlohmann/json.hpp>  // nlohmann::json
+
+#include <charconv>  // std::from_chars
+#include <cstdlib>   // std::strtod
+
+namespace host::server {
+
+namespace {
+
+void send_json(httplib::Response& res, int status, const nlohmann::json& body) {
+  res.status = status;
+  // Messages may quote bytes of a broken upload: invalid UTF-8 is replaced, never thrown.
+  res.set_content(body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
+                  "application/json");
+}
+
+void send_error(httplib::Response& res, int status, const std::string& why) {
+  send_json(res, status, {{"error", why}});
+}
+
+// Equal strings in time independent of where they differ (token comparison).
+bool same_secret(const std::string& a, const std::string& b) {
+  if (a.size() != b.size()) return false;
+  unsigned char diff = 0;
+  for (size_t i = 0; i < a.size(); ++i) diff |= static_cast<unsigned char>(a[i] ^ b[i]);
+  return diff == 0;
+}
+
+// "Bearer TOKEN" in Authorization, or X-Token.
+std::string token_of(const httplib::Request& req) {
+  const std::string auth = req.get_header_value("Authorization");
+  if (auth.rfind("Bearer ", 0) == 0) return auth.substr(7);
+  return req.get_header_value("X-Token");
+}
+
+bool parse_int(const std::string& s, int64_t* out) {
+  const char* end = s.data() + s.size();
+  const auto r = std::from_chars(s.data(), end, *out);
+  return !s.empty() && r.ec == std::errc() && r.ptr == end;
+}
+
+bool parse_double(const std::string& s, double* out) {
+  if (s.empty() || s.size() > 32) return false;
+  char* end = nullptr;
+  *out = std::strtod(s.c_str(), &end);
+  return end == s.c_str() + s.size();
+}
+
+nlohmann::json job_json(const JobRecord& j) {
+  return {{"id", j.id},
+          {"name", j.name},
+          {"state", state_name(j.state)},
+          {"priority", j.priority},
+          {"tag", j.tag},
+          {"feed_mm_s", j.settings.feed_mm_s},
+          {"tol_mm", j.settings.tol_mm},
+          {"scale", j.settings.scale},
+          {"margin_mm", j.settings.margin_mm},
+          {"size_mm", {j.width_mm, j.height_mm}},
+          {"planned_s", j.planned_s},
+          {"machine", j.machine},
+          {"server", j.owner},
+          {"message", j.message},
+          {"executed", j.executed},
+          {"total", j.total},
+          {"resume_curve", j.resume_curve},
+          {"start_curve", j.start_curve},
+          {"created_ms", j.created_ms},
+          {"started_ms", j.started_ms},
+          {"finished_ms", j.finished_ms},
+          {"input_file", j.input_file}};
+}
+
+// The upload's fields: multipart form (file + fields) or a raw body with query parameters.
+struct UploadFields {
+  Submission sub;
+  std::string error;
+};
+
+UploadFields upload_fields(const httplib::Request& req) {
+  UploadFields u;
+  auto field = [&](const std::string& key, std::string* out) {
+    if (req.is_multipart_form_data()) {
+      if (req.has_file(key)) *out = req.get_file_value(key).content;
+    } else if (req.has_param(key)) {
+      *out = req.get_param_value(key);
+    }
+  };
+  if (req.is_multipart_form_data()) {
+    if (!req.has_file("file")) {
+      u.error = "multipart upload without a 'file' part";
+      return u;
+    }
+    const httplib::MultipartFormData f = req.get_file_value("file");
+    u.sub.name = f.filename;
+    u.sub.content = f.content;
+  } else {
+    if (!req.has_param("name")) {
+      u.error = "raw upload without ?name=FILE_NAME";
+      return u;
+    }
+    u.sub.name = req.get_param_value("name");
+    u.sub.content = req.body;
+  }
+  std::string text;
+  field("priority", &text);
+  if (!text.empty()) {
+    int64_t p = 0;
+    if (!parse_int(text, &p) || p < -1000 || p > 1000) {
+      u.error = "priority must be an integer -1000 .. 1000";
+      return u;
+    }
+    u.sub.priority = static_cast<int>(p);
+  }
+  field("tag", &u.sub.tag);
+  struct NumberField {
+    const char* key;
+    double* value;
+  };
+  const NumberField numbers[] = {{"feed_mm_s", &u.sub.settings.feed_mm_s},
+                                 {"tol_mm", &u.sub.settings.tol_mm},
+                                 {"scale", &u.sub.settings.scale},
+                                 {"margin_mm", &u.sub.settings.margin_mm}};
+  for (const NumberField& n : numbers) {
+    text.clear();
+    field(n.key, &text);
+    if (!text.empty() && !parse_double(text, n.value)) {
+      u.error = fmt::format("{} '{}' is not a number", n.key, text);
+      return u;
+    }
+  }
+  return u;
+}
+
+// The JSON object of a request body, or an error.
+bool body_object(const httplib::Request& req, httplib::Response& res, nlohmann::json* out) {
+  try {
+    *out = nlohmann::json::parse(req.body);
+  } catch (const nlohmann::json::exception& e) {
+    send_error(res, 400, std::string("malformed JSON: ") + e.what());
+    return false;
+  }
+  if (!out->is_object()) {
+    send_error(res, 400, "expected a JSON object");
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+HttpApi::HttpApi(JobStore& store, JobIntake& intake, Workshop& workshop, const DataFolder& data,
+                 HttpOptions options)
+    : store_(store),
+      intake_(intake),
+      workshop_(workshop),
+      data_(data),
+      options_(std::move(options)),
+      http_(std::make_unique<httplib::Server>()) {
+  // Enough threads for several pages with an event stream each, plus API calls.
+  http_->new_task_queue = [] { return new httplib::ThreadPool(32); };
+  // Multipart framing on top of the file; httplib answers 413 beyond this.
+  http_->set_payload_max_length(intake_.max_bytes() + 64 * 1024);
+  routes();
+}
+
+HttpApi::~HttpApi() {
+  stop();
+}
+
+int HttpApi::bind() {
+  int port = options_.port;
+  if (port == 0) {
+    port = http_->bind_to_any_port(options_.address);
+  } else if (!http_->bind_to_port(options_.address, port)) {
+    port = -1;
+  }
+  if (port <= 0) {
+    throw std::runtime_error(
+        fmt::format("cannot listen on {}:{} (in use or not an address of this PC)",
+                    options_.address, options_.port));
+  }
+  return port;
+}
+
+void HttpApi::run() {
+  http_->listen_after_bind();
+}
+
+void HttpApi::stop() {
+  stopping_ = true;
+  http_->stop();
+}
+
+void HttpApi::routes() {
+  httplib::Server& s = *http_;
+
+  // The token guards every method but GET/HEAD, before any handler runs.
+  s.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    if (req.method == "GET" || req.method == "HEAD")
+      return httplib::Server::HandlerResponse::Unhandled;
+    if (!same_secret(token_of(req), options_.token)) {
+      send_error(res, 401, "missing or wrong token (Authorization: Bearer TOKEN)");
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
+  });
+  s.set_error_handler([](const httplib::Request&, httplib::Response& res) {
+    if (!res.body.empty()) return;
+    const char* why = res.status == 413   ? "upload larger than the limit"
+                      : res.status == 404 ? "no such resource"
+                                          : "bad request";
+    send_error(res, res.status, why);
+  });
+
+  // ---- The page ----
+  struct WebFile {
+    const char* route;
+    const char* file;
+    const char* type;
+  };
+  static const WebFile kWeb[] = {{"/", "index.html", "text/html; charset=utf-8"},
+                                 {"/app.js", "app.js", "text/javascript; charset=utf-8"},
+                                 {"/style.css", "style.css", "text/css; charset=utf-8"}};
+  for (const WebFile& w : kWeb) {
+    s.Get(w.route, [this, w](const httplib::Request&, httplib::Response& res) {
+      try {
+        res.set_content(read_file(options_.web_dir / w.file), w.type);
+      } catch (const std::exception& e) {
+        send_error(res, 500, e.what());
+      }
+    });
+  }
+
+  // ---- Read-only API ----
+  s.Get("/api/status", [this](const httplib::Request&, httplib::Response& res) {
+    send_json(res, 200, workshop_.snapshot());
+  });
+  s.Get("/api/events", [this](const httplib::Request&, httplib::Response& res) {
+    res.set_header("Cache-Control", "no-cache");
+    auto seen = std::make_shared<uint64_t>(~uint64_t{0});
+    res.set_chunked_content_provider(
+        "text/event-stream", [this, seen](size_t, httplib::DataSink& sink) {
+          if (stopping_) return false;
+          *seen = workshop_.wait_change(*seen, std::chrono::milliseconds(1000));
+          if (stopping_) return false;
+          const std::string event =
+              "data: " +
+              workshop_.snapshot().dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) +
+              "\n\n";
+          return sink.write(event.data(), event.size());
+        });
+  });
+  s.Get("/api/jobs", [this](const httplib::Request& req, httplib::Response& res) {
+    std::string state;
+    if (req.has_param("state")) {
+      state = req.get_param_value("state");
+      try {
+        state_from_name(state);
+      } catch (const std::exception& e) {
+        return send_error(res, 400, e.what());
+      }
+    }
+    int64_t limit = 200;
+    if (req.has_param("limit") &&
+        (!parse_int(req.get_param_value("limit"), &limit) || limit < 1 || limit > 10000)) {
+      return send_error(res, 400, "limit must be 1 .. 10000");
+    }
+    nlohmann::json jobs = nlohmann::json::array();
+    for (const JobRecord& j : store_.list(state, static_cast<size_t>(limit))) {
+      jobs.push_back(job_json(j));
+    }
+    send_json(res, 200, {{"jobs", jobs}});
+  });
+  s.Get(R"(/api/jobs/(\d{1,18}))", [this](const httplib::Request& req, httplib::Response& res) {
+    const auto job = store_.get(std::stoll(req.matches[1]));
+    if (!job) return send_error(res, 404, "no such job");
+    send_json(res, 200, job_json(*job));
+  });
+  s.Get(R"(/api/jobs/(\d{1,18})/files/([a-z.]{1,16}))",
+        [this](const httplib::Request& req, httplib::Response& res) {
+          const std::string file = req.matches[2];
+          if (!is_archive_file(file)) return send_error(res, 404, "no such archive file");
+          const auto job = store_.get(std::stoll(req.matches[1]));
+          if (!job) return send_error(res, 404, "no such job");
+          const std::string type = file == "plot.svg"                        ? "image/svg+xml"
+                                   : file == "plot.png"                      ? "image/png"
+                                   : file.find(".json") != std::string::npos ? "application/json"
+                                                                             : "text/plain";
+          try {
+            res.set_content(read_file(data_.job_dir(job->key) / file), type);
+          } catch (const std::exception&) {
+            send_error(res, 404, "the job has no " + file + " (yet)");
+          }
+        });
+
+  // ---- Changes (token checked above) ----
+  s.Post("/api/jobs", [this](const httplib::Request& req, httplib::Response& res) {
+    const UploadFields u = upload_fields(req);
+    if (!u.error.empty()) return send_error(res, 400, u.error);
+    const IntakeResult r = intake_.submit(u.sub);
+    if (r.status != 201) return send_error(res, r.status, r.error);
+    workshop_.notify(true);
+    const auto job = store_.get(r.id);
+    send_json(res, 201, job ? job_json(*job) : nlohmann::json{{"id", r.id}});
+  });
+  s.Post(R"(/api/jobs/(\d{1,18})/control)",
+         [this](const httplib::Request& req, httplib::Response& res) {
+           const int64_t id = std::stoll(req.matches[1]);
+           nlohmann::json body;
+           if (!body_object(req, res, &body)) return;
+           if (!body.contains("action") || !body["action"].is_string()) {
+             return send_error(res, 400,
+                               "expected {\"action\": \"hold|resume|abort|override|"
+                               "cancel|requeue|continue\"}");
+           }
+           const std::string action = body["action"];
+           if (!store_.get(id)) return send_error(res, 404, "no such job");
+           auto done = [&](bool ok, const std::string& why) {
+             if (!ok) return send_error(res, 409, why);
+             workshop_.notify(true);
+             send_json(res, 200, job_json(*store_.get(id)));
+           };
+           if (action == "cancel") {
+             return done(store_.cancel(id), "only a queued job can be cancelled");
+           }
+           if (action == "requeue") {
+             return done(store_.requeue(id, false),
+                         "only an interrupted, aborted or failed job can be re-queued");
+           }
+           if (action == "continue") {
+             if (!workshop_.can_continue()) {
+               return send_error(res, 501,
+                                 "continuing from the first uncut curve needs send --resume "
+                                 "(protocol v2); re-queue the job to run it from the start");
+             }
+             return done(store_.requeue(id, true),
+                         "only an interrupted job with a known curve can be continued");
+           }
+           JobControl c;
+           int percent = 0;
+           if (action == "hold") {
+             c = JobControl::kHold;
+           } else if (action == "resume") {
+             c = JobControl::kResume;
+           } else if (action == "abort") {
+             c = JobControl::kAbort;
+           } else if (action == "override") {
+             c = JobControl::kOverride;
+             if (!body.contains("percent") || !body["percent"].is_number_integer()) {
+               return send_error(res, 400, "override needs \"percent\": 10 .. 200");
+             }
+             const int64_t p = body["percent"];
+             if (p < 10 || p > 200) return send_error(res, 400, "percent must be 10 .. 200");
+             percent = static_cast<int>(p);
+           } else {
+             return send_error(res, 400, "unknown action '" + action + "'");
+           }
+           const ControlResult r = workshop_.control(id, c, percent);
+           if (r.status != 200) return send_error(res, r.status, r.error);
+           send_json(res, 200, {{"id", id}, {"requested", action}});
+         });
+  s.Post(R"(/api/jobs/(\d{1,18})/priority)",
+         [this](const httplib::Request& req, httplib::Response& res) {
+           const int64_t id = std::stoll(req.matches[1]);
+           nlohmann::json body;
+           if (!body_object(req, res, &body)) return;
+           if (!body.contains("priority") || !body["priority"].is_number_integer() ||
+               body["priority"].get<int64_t>() < -1000 || body["priority"].get<int64_t>() > 1000) {
+             return send_error(res, 400, "expected {\"priority\": -1000 .. 1000}");
+           }
+           if (!store_.get(id)) return send_error(res, 404, "no such job");
+           if (!store_.set_priority(id, body["priority"].get<int>())) {
+             return send_error(res, 409, "only a queued job's priority can change");
+           }
+           workshop_.notify(true);
+           send_json(res, 200, job_json(*store_.get(id)));
+         });
+}
+
+}  // namespace host::server

@@ -1,0 +1,56 @@
+// The server's HTTP side: the JSON API, server-sent events with live progress, and the web
+// page (plain files from the repository's host/web). Every request that changes anything
+// needs the token; uploads are size-limited; a malformed request gets a 4xx with a reason.
+#ifndef HOST_LIB_SERVER_HTTP_API_H
+#define HOST_LIB_SERVER_HTTP_API_H
+
+#include <atomic>      // std::atomic
+#include <filesystem>  // std::filesystem::path
+#include <memory>      // std::unique_ptr
+#include <string>      // std::string
+
+#include "host/lib/server/data_folder.h"
+#include "host/lib/server/job_intake.h"
+#include "host/lib/server/job_store.h"
+#include "host/lib/server/workshop.h"
+
+namespace httplib {
+class Server;
+}
+
+namespace host::server {
+
+struct HttpOptions {
+  std::string address = "127.0.0.1";  // loopback unless told otherwise
+  int port = 8080;                    // 0 = any free port
+  std::filesystem::path web_dir;      // index.html, app.js, style.css
+  std::string token;
+};
+
+class HttpApi {
+ public:
+  HttpApi(JobStore& store, JobIntake& intake, Workshop& workshop, const DataFolder& data,
+          HttpOptions options);
+  ~HttpApi();
+  HttpApi(const HttpApi&) = delete;
+  HttpApi& operator=(const HttpApi&) = delete;
+  // Binds the address; returns the port. Throws std::runtime_error naming the address.
+  int bind();
+  // Serves until stop() (call bind() first).
+  void run();
+  void stop();
+
+ private:
+  void routes();
+  JobStore& store_;
+  JobIntake& intake_;
+  Workshop& workshop_;
+  const DataFolder& data_;
+  HttpOptions options_;
+  std::unique_ptr<httplib::Server> http_;
+  std::atomic<bool> stopping_{false};
+};
+
+}  // namespace host::server
+
+#endif  // HOST_LIB_SERVER_HTTP_API_H

@@ -1,0 +1,43 @@
+// The watched inbox folder (the old FTP folder): a drawing dropped there becomes a job.
+// A file is taken once its size has stayed the same for one scan (still being written
+// otherwise); queued files are removed, refused ones go to refused/ with a NAME.why.txt.
+#ifndef HOST_LIB_SERVER_INBOX_WATCHER_H
+#define HOST_LIB_SERVER_INBOX_WATCHER_H
+
+#include <atomic>      // std::atomic
+#include <chrono>      // std::chrono::milliseconds
+#include <filesystem>  // std::filesystem::path
+#include <functional>  // std::function
+#include <map>         // std::map
+#include <string>      // std::string
+#include <thread>      // std::thread
+
+#include "host/lib/server/job_intake.h"
+
+namespace host::server {
+
+class InboxWatcher {
+ public:
+  // on_queued is called after each job the inbox queued (the page refreshes).
+  InboxWatcher(std::filesystem::path folder, JobIntake& intake, JobPlanSettings settings,
+               std::chrono::milliseconds interval, std::function<void()> on_queued);
+  ~InboxWatcher();
+  void start();
+  void stop();
+  // One pass over the folder (the thread calls this; tests may too).
+  void scan();
+
+ private:
+  std::filesystem::path folder_;
+  JobIntake& intake_;
+  JobPlanSettings settings_;
+  std::chrono::milliseconds interval_;
+  std::function<void()> on_queued_;
+  std::map<std::string, uintmax_t> sizes_;  // size seen at the previous scan
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+}  // namespace host::server
+
+#endif  // HOST_LIB_SERVER_INBOX_WATCHER_H

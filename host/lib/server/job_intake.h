@@ -1,0 +1,58 @@
+// Turns an upload (web page, API, inbox) into a queued job: checks the name and settings,
+// plans it at once (a job that cannot run is refused with the planner's message), writes
+// its archive folder and queues it. A refused upload leaves nothing behind.
+#ifndef HOST_LIB_SERVER_JOB_INTAKE_H
+#define HOST_LIB_SERVER_JOB_INTAKE_H
+
+#include <cstdint>  // int64_t
+#include <string>   // std::string
+#include <vector>   // std::vector
+
+#include "host/lib/server/data_folder.h"
+#include "host/lib/server/job_record.h"
+#include "host/lib/server/job_store.h"
+
+namespace host::server {
+
+struct Submission {
+  std::string name;     // the file name the sender gave (display only)
+  std::string content;  // the file's bytes
+  int priority = 0;
+  std::string tag;
+  JobPlanSettings settings;
+};
+
+struct IntakeResult {
+  int status = 0;     // HTTP-style: 201 queued, 400 bad request, 413 too large, 422 refused
+  std::string error;  // why it was refused
+  int64_t id = 0;     // the new job
+};
+
+class JobIntake {
+ public:
+  // machines: what the workshop's machines offer (a job must fit at least one).
+  JobIntake(JobStore& store, const DataFolder& data, std::vector<MachineFit> machines,
+            size_t max_bytes);
+  IntakeResult submit(const Submission& submission);
+  size_t max_bytes() const { return max_bytes_; }
+
+ private:
+  JobStore& store_;
+  const DataFolder& data_;
+  std::vector<MachineFit> machines_;
+  size_t max_bytes_;
+};
+
+// Why a file name from outside is refused ("" when it is acceptable): no folders, no "..",
+// no control characters, no leading dot, 1..200 bytes.
+std::string check_upload_name(const std::string& name);
+// Why a tag is refused ("" when fine): [A-Za-z0-9_-], at most 32.
+std::string check_tag(const std::string& tag);
+// Why settings are refused ("" when fine): the same ranges as `engraver send`.
+std::string check_settings(const JobPlanSettings& s);
+// "input.dxf" for "Board.DXF"; "input" when the extension is not a known drawing format.
+std::string archive_input_name(const std::string& upload_name);
+
+}  // namespace host::server
+
+#endif  // HOST_LIB_SERVER_JOB_INTAKE_H

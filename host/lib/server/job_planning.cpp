@@ -1,0 +1,106 @@
+// Job planning for the server: import, plan, estimate, describe.
+#include "host/lib/server/job_planning.h"
+
+#include <cmath>  // std::lround
+
+#include "firmware/config/machine_config.h"
+#include "host/lib/drawing/drawing.h"
+
+namespace host::server {
+
+namespace {
+
+// The message with every occurrence of `from` replaced by `to`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  if (from.empty()) return text;
+  for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+    text.replace(at, from.size(), to);
+  }
+  return text;
+}
+
+const char* step_name(PlanStep::Kind kind) {
+  switch (kind) {
+    case PlanStep::kPenUp:
+      return "pen_up";
+    case PlanStep::kPenDown:
+      return "pen_down";
+    case PlanStep::kRapid:
+      return "rapid";
+    case PlanStep::kFeed:
+      return "feed";
+    case PlanStep::kSpline:
+      return "spline";
+    case PlanStep::kPause:
+      return "pause";
+    case PlanStep::kDwell:
+      return "dwell";
+    case PlanStep::kSpindle:
+      return "spindle";
+    case PlanStep::kDrill:
+      return "drill";
+  }
+  return "?";
+}
+
+}  // namespace
+
+JobPlan plan_file(const std::string& path, const std::string& display_name,
+                  const JobPlanSettings& settings, double work_w_mm, double work_h_mm) {
+  try {
+    const Drawing drawing = import_drawing(path);
+    PlanOptions o;
+    o.scale = settings.scale;
+    o.margin_mm = settings.margin_mm;
+    o.work_width_mm = work_w_mm;
+    o.work_height_mm = work_h_mm;
+    o.feed_mm_per_s = settings.feed_mm_s;
+    return plan_job(drawing, o);
+  } catch (const ImportError& e) {
+    throw ImportError(replaced(e.what(), path, display_name));
+  } catch (const PlanError& e) {
+    throw PlanError(display_name + ": " + replaced(e.what(), path, display_name));
+  }
+}
+
+EncodeOptions encode_options(const JobPlanSettings& settings, const std::string& title) {
+  EncodeOptions e;
+  e.chord_tolerance_um = static_cast<uint16_t>(std::lround(settings.tol_mm * 1000.0));
+  e.title = title;
+  return e;
+}
+
+double planned_seconds(const JobPlan& plan, const JobPlanSettings& settings) {
+  const config::MachineConfig m = config::default_machine_config();
+  const double rapid_mm_s = m.rapid_feed_um_per_s / 1000.0;
+  const double z_mm_s = m.axis[config::kAxisZ].max_speed_um_per_s / 1000.0;
+  const double z_travel_mm = 2.1;  // default pen up to pen down
+  return plan.cut_length_mm / settings.feed_mm_s + plan.rapid_length_mm / rapid_mm_s +
+         (plan.pen_lifts + 1) * 2.0 * z_travel_mm / z_mm_s;
+}
+
+nlohmann::json plan_json(const JobPlan& plan) {
+  nlohmann::json j;
+  j["curves"] = plan.curves.size();
+  j["pen_lifts"] = plan.pen_lifts;
+  j["cut_length_mm"] = plan.cut_length_mm;
+  j["rapid_length_mm"] = plan.rapid_length_mm;
+  j["offset_mm"] = {plan.offset_mm.x(), plan.offset_mm.y()};
+  j["extents_mm"] = {{"min", {plan.extents_mm.min.x(), plan.extents_mm.min.y()}},
+                     {"max", {plan.extents_mm.max.x(), plan.extents_mm.max.y()}}};
+  nlohmann::json steps = nlohmann::json::array();
+  for (const PlanStep& s : plan.steps) {
+    nlohmann::json step = {{"kind", step_name(s.kind)}, {"curve", s.curve}};
+    if (s.kind == PlanStep::kPenUp || s.kind == PlanStep::kPenDown) step["z_um"] = s.z_um;
+    if (s.kind == PlanStep::kRapid || s.kind == PlanStep::kFeed || s.kind == PlanStep::kSpline ||
+        s.kind == PlanStep::kDrill) {
+      step["to_um"] = {s.to.x_um, s.to.y_um};
+    }
+    if (s.feed_um_per_s != 0) step["feed_um_per_s"] = s.feed_um_per_s;
+    steps.push_back(step);
+  }
+  j["steps"] = steps;
+  return j;
+}
+
+}  // namespace host::server

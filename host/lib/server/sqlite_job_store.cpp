@@ -1,0 +1,302 @@
+// SQLite job store: one table, WAL journal, every change in one transaction.
+#include "host/lib/server/sqlite_job_store.h"
+
+#include <fmt/format.h>  // fmt::format
+#include <sqlite3.h>     // sqlite3_*
+
+#include <chrono>  // system_clock
+
+namespace host::server {
+
+namespace {
+
+int64_t now_ms() {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+// ",pen,brass," so that instr() finds ",pen," (tags hold no commas: the parser checks).
+std::string tag_list(const MachineFit& fit) {
+  std::string s = ",";
+  for (const std::string& t : fit.tags) s += t + ",";
+  return s;
+}
+
+const char* kColumns =
+    "id, key, name, input_file, state, priority, tag, feed_mm_s, tol_mm, scale, margin_mm, "
+    "width_mm, height_mm, planned_s, machine, owner, message, executed, total, resume_curve, "
+    "created_ms, started_ms, finished_ms, start_curve";
+
+const char* kFitWhere =
+    "state = 'queued' AND width_mm <= ?1 AND height_mm <= ?2 AND "
+    "(tag = '' OR instr(?3, ',' || tag || ',') > 0)";
+
+// A prepared statement that finalizes itself; errors name the database file.
+class Statement {
+ public:
+  Statement(sqlite3* db, const std::string& path, const std::string& sql) : db_(db), path_(path) {
+    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK) fail("prepare");
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+
+  Statement& bind(int i, int64_t v) {
+    sqlite3_bind_int64(stmt_, i, v);
+    return *this;
+  }
+  Statement& bind(int i, double v) {
+    sqlite3_bind_double(stmt_, i, v);
+    return *this;
+  }
+  Statement& bind(int i, const std::string& v) {
+    sqlite3_bind_text(stmt_, i, v.c_str(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+    return *this;
+  }
+  // True while a row is available.
+  bool step() {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc != SQLITE_DONE) fail("step");
+    return false;
+  }
+  int64_t i64(int c) const { return sqlite3_column_int64(stmt_, c); }
+  double f64(int c) const { return sqlite3_column_double(stmt_, c); }
+  std::string text(int c) const {
+    const unsigned char* t = sqlite3_column_text(stmt_, c);
+    return t ? reinterpret_cast<const char*>(t) : "";
+  }
+  JobRecord record() const {
+    JobRecord r;
+    r.id = i64(0);
+    r.key = text(1);
+    r.name = text(2);
+    r.input_file = text(3);
+    r.state = state_from_name(text(4));
+    r.priority = static_cast<int>(i64(5));
+    r.tag = text(6);
+    r.settings.feed_mm_s = f64(7);
+    r.settings.tol_mm = f64(8);
+    r.settings.scale = f64(9);
+    r.settings.margin_mm = f64(10);
+    r.width_mm = f64(11);
+    r.height_mm = f64(12);
+    r.planned_s = f64(13);
+    r.machine = text(14);
+    r.owner = text(15);
+    r.message = text(16);
+    r.executed = i64(17);
+    r.total = i64(18);
+    r.resume_curve = static_cast<int>(i64(19));
+    r.created_ms = i64(20);
+    r.started_ms = i64(21);
+    r.finished_ms = i64(22);
+    r.start_curve = static_cast<int>(i64(23));
+    return r;
+  }
+
+ private:
+  [[noreturn]] void fail(const char* what) const {
+    throw StoreError(fmt::format("{}: {} failed: {}", path_, what, sqlite3_errmsg(db_)));
+  }
+  sqlite3* db_;
+  const std::string& path_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+}  // namespace
+
+SqliteJobStore::SqliteJobStore(const std::string& path) : path_(path) {
+  const int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX;
+  if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
+    const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw StoreError(fmt::format("{}: cannot open the job database: {}", path, why));
+  }
+  sqlite3_busy_timeout(db_, 5000);
+  exec("PRAGMA journal_mode = WAL");
+  exec("PRAGMA synchronous = NORMAL");
+  exec(
+      "CREATE TABLE IF NOT EXISTS jobs ("
+      " id INTEGER PRIMARY KEY AUTOINCREMENT, key TEXT NOT NULL UNIQUE, name TEXT NOT NULL,"
+      " input_file TEXT NOT NULL, state TEXT NOT NULL, priority INTEGER NOT NULL,"
+      " tag TEXT NOT NULL, feed_mm_s REAL NOT NULL, tol_mm REAL NOT NULL, scale REAL NOT NULL,"
+      " margin_mm REAL NOT NULL, width_mm REAL NOT NULL, height_mm REAL NOT NULL,"
+      " planned_s REAL NOT NULL, machine TEXT NOT NULL DEFAULT '',"
+      " owner TEXT NOT NULL DEFAULT '', message TEXT NOT NULL DEFAULT '',"
+      " executed INTEGER NOT NULL DEFAULT 0, total INTEGER NOT NULL DEFAULT 0,"
+      " resume_curve INTEGER NOT NULL DEFAULT -1, created_ms INTEGER NOT NULL,"
+      " started_ms INTEGER NOT NULL DEFAULT 0, finished_ms INTEGER NOT NULL DEFAULT 0,"
+      " start_curve INTEGER NOT NULL DEFAULT -1)");
+  exec("CREATE INDEX IF NOT EXISTS jobs_queue ON jobs (state, priority DESC, id)");
+  exec("CREATE TABLE IF NOT EXISTS servers (name TEXT PRIMARY KEY, seen_ms INTEGER NOT NULL)");
+}
+
+SqliteJobStore::~SqliteJobStore() {
+  sqlite3_close(db_);
+}
+
+void SqliteJobStore::exec(const std::string& sql) {
+  char* err = nullptr;
+  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &err) != SQLITE_OK) {
+    const std::string why = err ? err : "unknown error";
+    sqlite3_free(err);
+    throw StoreError(fmt::format("{}: {}", path_, why));
+  }
+}
+
+int64_t SqliteJobStore::add(const JobRecord& job, const std::string& /*input: in the archive*/) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_,
+              "INSERT INTO jobs (key, name, input_file, state, priority, tag, feed_mm_s, tol_mm,"
+              " scale, margin_mm, width_mm, height_mm, planned_s, created_ms)"
+              " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14)");
+  s.bind(1, job.key).bind(2, job.name).bind(3, job.input_file);
+  s.bind(4, std::string(state_name(job.state))).bind(5, int64_t{job.priority}).bind(6, job.tag);
+  s.bind(7, job.settings.feed_mm_s).bind(8, job.settings.tol_mm).bind(9, job.settings.scale);
+  s.bind(10, job.settings.margin_mm).bind(11, job.width_mm).bind(12, job.height_mm);
+  s.bind(13, job.planned_s).bind(14, now_ms());
+  s.step();
+  return sqlite3_last_insert_rowid(db_);
+}
+
+std::optional<JobRecord> SqliteJobStore::get(int64_t id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_, fmt::format("SELECT {} FROM jobs WHERE id = ?1", kColumns));
+  s.bind(1, id);
+  if (!s.step()) return std::nullopt;
+  return s.record();
+}
+
+std::vector<JobRecord> SqliteJobStore::list(const std::string& state_filter, size_t limit) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_,
+              fmt::format("SELECT {} FROM jobs WHERE (?1 = '' OR state = ?1) ORDER BY id DESC "
+                          "LIMIT ?2",
+                          kColumns));
+  s.bind(1, state_filter).bind(2, static_cast<int64_t>(limit));
+  std::vector<JobRecord> out;
+  while (s.step()) out.push_back(s.record());
+  return out;
+}
+
+bool SqliteJobStore::has_claimable(const MachineFit& fit) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_, fmt::format("SELECT id FROM jobs WHERE {} LIMIT 1", kFitWhere));
+  s.bind(1, fit.work_width_mm).bind(2, fit.work_height_mm).bind(3, tag_list(fit));
+  return s.step();
+}
+
+std::optional<JobRecord> SqliteJobStore::claim(const MachineFit& fit, const std::string& machine,
+                                               const std::string& owner) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  // IMMEDIATE: the write lock is taken before the SELECT, so another process using the same
+  // file cannot claim the job between our SELECT and UPDATE.
+  exec("BEGIN IMMEDIATE");
+  try {
+    int64_t id = 0;
+    {
+      Statement s(db_, path_,
+                  fmt::format("SELECT id FROM jobs WHERE {} ORDER BY priority DESC, id LIMIT 1",
+                              kFitWhere));
+      s.bind(1, fit.work_width_mm).bind(2, fit.work_height_mm).bind(3, tag_list(fit));
+      if (!s.step()) {
+        exec("COMMIT");
+        return std::nullopt;
+      }
+      id = s.i64(0);
+    }
+    Statement u(db_, path_,
+                "UPDATE jobs SET state = 'running', machine = ?2, owner = ?3, started_ms = ?4,"
+                " message = '', executed = 0 WHERE id = ?1");
+    u.bind(1, id).bind(2, machine).bind(3, owner).bind(4, now_ms());
+    u.step();
+    Statement r(db_, path_, fmt::format("SELECT {} FROM jobs WHERE id = ?1", kColumns));
+    r.bind(1, id);
+    r.step();
+    JobRecord job = r.record();
+    exec("COMMIT");
+    return job;
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+}
+
+bool SqliteJobStore::finish(int64_t id, JobState state, const std::string& message,
+                            int64_t executed, int64_t total, int resume_curve) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_,
+              "UPDATE jobs SET state = ?2, message = ?3, executed = ?4, total = ?5,"
+              " resume_curve = ?6, finished_ms = ?7 WHERE id = ?1 AND state = 'running'");
+  s.bind(1, id).bind(2, std::string(state_name(state))).bind(3, message).bind(4, executed);
+  s.bind(5, total).bind(6, int64_t{resume_curve}).bind(7, now_ms());
+  s.step();
+  return sqlite3_changes(db_) == 1;
+}
+
+bool SqliteJobStore::cancel(int64_t id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_,
+              "UPDATE jobs SET state = 'cancelled', finished_ms = ?2 WHERE id = ?1 AND state = "
+              "'queued'");
+  s.bind(1, id).bind(2, now_ms());
+  s.step();
+  return sqlite3_changes(db_) == 1;
+}
+
+bool SqliteJobStore::requeue(int64_t id, bool continue_job) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_,
+              continue_job
+                  ? "UPDATE jobs SET state = 'queued', machine = '', owner = '',"
+                    " start_curve = resume_curve WHERE id = ?1 AND state = 'interrupted'"
+                    " AND resume_curve >= 0"
+                  : "UPDATE jobs SET state = 'queued', machine = '', owner = '', start_curve = -1"
+                    " WHERE id = ?1 AND state IN ('interrupted', 'aborted', 'failed')");
+  s.bind(1, id);
+  s.step();
+  return sqlite3_changes(db_) == 1;
+}
+
+bool SqliteJobStore::set_priority(int64_t id, int priority) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_, "UPDATE jobs SET priority = ?2 WHERE id = ?1 AND state = 'queued'");
+  s.bind(1, id).bind(2, int64_t{priority});
+  s.step();
+  return sqlite3_changes(db_) == 1;
+}
+
+int SqliteJobStore::interrupt_running(const std::string& owner, const std::string& message) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_,
+              "UPDATE jobs SET state = 'interrupted', message = ?2, finished_ms = ?3"
+              " WHERE state = 'running' AND owner = ?1");
+  s.bind(1, owner).bind(2, message).bind(3, now_ms());
+  s.step();
+  return sqlite3_changes(db_);
+}
+
+void SqliteJobStore::heartbeat(const std::string& owner) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_,
+              "INSERT INTO servers (name, seen_ms) VALUES (?1, ?2)"
+              " ON CONFLICT (name) DO UPDATE SET seen_ms = excluded.seen_ms");
+  s.bind(1, owner).bind(2, now_ms());
+  s.step();
+}
+
+int SqliteJobStore::interrupt_stale(int64_t cutoff_ms, const std::string& message) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_,
+              "UPDATE jobs SET state = 'interrupted', message = ?2, finished_ms = ?3"
+              " WHERE state = 'running' AND owner NOT IN"
+              " (SELECT name FROM servers WHERE seen_ms >= ?1)");
+  s.bind(1, cutoff_ms).bind(2, message).bind(3, now_ms());
+  s.step();
+  return sqlite3_changes(db_);
+}
+
+}  // namespace host::server

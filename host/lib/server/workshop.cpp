@@ -1,0 +1,464 @@
+// Machine workers: claim, send, report, archive.
+#include "host/lib/server/workshop.h"
+
+#include <fmt/format.h>  // fmt::format
+
+#include <algorithm>   // std::clamp
+#include <filesystem>  // std::filesystem::path
+
+#include "host/lib/drawing/drawing.h"
+#include "host/lib/plot/plan_plot.h"
+#include "host/lib/plot/plot.h"
+#include "host/lib/server/job_planning.h"
+#include "host/lib/stream/link.h"
+
+namespace host::server {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+const char* machine_state_name(proto::MachineState s) {
+  switch (s) {
+    case proto::MachineState::kIdle:
+      return "idle";
+    case proto::MachineState::kRunning:
+      return "running";
+    case proto::MachineState::kHolding:
+      return "holding";
+    case proto::MachineState::kHeld:
+      return "held";
+    case proto::MachineState::kZeroing:
+      return "zeroing";
+    case proto::MachineState::kAlarm:
+      return "alarm";
+    case proto::MachineState::kPaused:
+      return "paused";  // an operator pause in the job (M0): confirm on the panel
+  }
+  return "?";
+}
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// The curve of the first command not executed: where a resumed job starts again.
+int first_uncut_curve(const std::vector<QueuedCommand>& commands, size_t executed) {
+  for (size_t i = executed; i < commands.size(); ++i) {
+    if (commands[i].curve >= 0) return commands[i].curve;
+  }
+  return -1;
+}
+
+}  // namespace
+
+// One machine: its spec, what it is doing now, and the sender of the running job.
+struct Workshop::Slot {
+  MachineSpec spec;
+  std::mutex mutex;                    // guards everything below
+  std::string link_state = "unknown";  // unknown, online, offline
+  std::string link_message;
+  Sender* sender = nullptr;  // while a job runs
+  int64_t job_id = 0;
+  std::string job_name;
+  Progress progress;
+  bool have_status = false;
+  double planned_s = 0;
+  Clock::time_point started;
+  proto::StatusReply last_status{};
+  bool have_last_status = false;
+};
+
+Workshop::Workshop(JobStore& store, const DataFolder& data, std::vector<MachineSpec> machines,
+                   WorkshopOptions options)
+    : store_(store), data_(data), options_(std::move(options)) {
+  for (MachineSpec& m : machines) {
+    auto slot = std::make_unique<Slot>();
+    slot->spec = std::move(m);
+    slots_.push_back(std::move(slot));
+  }
+}
+
+Workshop::~Workshop() {
+  stop();
+}
+
+std::vector<MachineFit> Workshop::fits() const {
+  std::vector<MachineFit> out;
+  for (const auto& s : slots_) out.push_back(s->spec.fit);
+  return out;
+}
+
+void Workshop::start() {
+  store_.heartbeat(options_.owner);
+  store_.interrupt_running(options_.owner, "the server stopped while the job was running");
+  stopping_ = false;
+  heartbeat_thread_ = std::thread([this] { heartbeat_loop(); });
+  for (auto& slot : slots_) {
+    Slot* s = slot.get();
+    threads_.emplace_back([this, s] { machine_loop(*s); });
+  }
+}
+
+void Workshop::stop() {
+  if (threads_.empty() && !heartbeat_thread_.joinable()) return;
+  stopping_ = true;
+  for (auto& slot : slots_) {
+    std::lock_guard<std::mutex> lock(slot->mutex);
+    if (slot->sender != nullptr) slot->sender->request_abort();
+  }
+  change_cv_.notify_all();
+  for (std::thread& t : threads_) t.join();
+  threads_.clear();
+  if (heartbeat_thread_.joinable()) heartbeat_thread_.join();
+}
+
+void Workshop::heartbeat_loop() {
+  while (!stopping_) {
+    try {
+      store_.heartbeat(options_.owner);
+      const int64_t now = std::chrono::duration_cast<std::chrono::milliseconds>(
+                              std::chrono::system_clock::now().time_since_epoch())
+                              .count();
+      if (store_.interrupt_stale(now - options_.stale_after.count(),
+                                 "the server running the job stopped answering") > 0) {
+        notify(true);
+      }
+    } catch (const StoreError&) {
+      // The database is away; the next beat tries again.
+    }
+    std::unique_lock<std::mutex> lock(change_mutex_);
+    change_cv_.wait_for(lock, options_.heartbeat, [&] { return stopping_.load(); });
+  }
+}
+
+void Workshop::sleep_for(std::chrono::milliseconds ms) {
+  std::unique_lock<std::mutex> lock(change_mutex_);
+  const uint64_t jobs_seen = jobs_version_;
+  // A new job wakes idle machines at once.
+  change_cv_.wait_for(lock, ms, [&] { return stopping_ || jobs_version_ != jobs_seen; });
+}
+
+void Workshop::notify(bool jobs_changed) {
+  {
+    std::lock_guard<std::mutex> lock(change_mutex_);
+    ++version_;
+    if (jobs_changed) ++jobs_version_;
+  }
+  change_cv_.notify_all();
+}
+
+uint64_t Workshop::wait_change(uint64_t seen, std::chrono::milliseconds timeout) {
+  std::unique_lock<std::mutex> lock(change_mutex_);
+  change_cv_.wait_for(lock, timeout, [&] { return stopping_ || version_ != seen; });
+  return version_;
+}
+
+ControlResult Workshop::control(int64_t job_id, JobControl control, int percent) {
+  for (auto& slot : slots_) {
+    std::lock_guard<std::mutex> lock(slot->mutex);
+    if (slot->job_id != job_id || slot->sender == nullptr) continue;
+    switch (control) {
+      case JobControl::kHold:
+        slot->sender->request_hold();
+        break;
+      case JobControl::kResume:
+        slot->sender->request_resume();
+        break;
+      case JobControl::kAbort:
+        slot->sender->request_abort();
+        break;
+      case JobControl::kOverride:
+        if (percent < 10 || percent > 200) return {400, "override must be 10 .. 200 percent"};
+        slot->sender->request_override(percent);
+        break;
+    }
+    return {};
+  }
+  if (!store_.get(job_id)) return {404, fmt::format("no job {}", job_id)};
+  return {409, fmt::format("job {} is not running on a machine of this server", job_id)};
+}
+
+nlohmann::json Workshop::snapshot() {
+  nlohmann::json machines = nlohmann::json::array();
+  nlohmann::json running = nlohmann::json::array();
+  for (auto& slot : slots_) {
+    std::lock_guard<std::mutex> lock(slot->mutex);
+    nlohmann::json m;
+    m["name"] = slot->spec.name;
+    m["address"] = slot->spec.address;
+    m["work_mm"] = {slot->spec.fit.work_width_mm, slot->spec.fit.work_height_mm};
+    m["tags"] = slot->spec.fit.tags;
+    m["link"] = slot->link_state;
+    m["message"] = slot->link_message;
+    m["job"] = slot->sender != nullptr ? slot->job_id : 0;
+    if (slot->have_last_status) {
+      const proto::StatusReply& st = slot->last_status;
+      m["state"] = machine_state_name(st.state);
+      m["position_mm"] = {st.x_um / 1000.0, st.y_um / 1000.0, st.z_um / 1000.0};
+    } else {
+      m["state"] = slot->link_state == "online" ? "idle" : "unknown";
+    }
+    machines.push_back(m);
+    if (slot->sender == nullptr) continue;
+    const Progress& p = slot->progress;
+    const double elapsed = seconds_since(slot->started);
+    const double f = p.total > 0 ? double(p.executed) / double(p.total) : 0.0;
+    // The planned time until the machine has done a little; then what it has actually taken.
+    const double remaining =
+        f > 0.05 ? elapsed * (1.0 - f) / f : std::max(0.0, slot->planned_s - elapsed);
+    nlohmann::json j;
+    j["id"] = slot->job_id;
+    j["name"] = slot->job_name;
+    j["machine"] = slot->spec.name;
+    j["executed"] = p.executed;
+    j["total"] = p.total;
+    j["fraction"] = f;
+    j["elapsed_s"] = elapsed;
+    j["remaining_s"] = remaining;
+    j["machine_state"] = slot->have_status ? machine_state_name(p.status.state) : "starting";
+    j["override_percent"] = slot->have_status ? p.status.override_percent : 100;
+    running.push_back(j);
+  }
+  uint64_t version = 0, jobs_version = 0;
+  {
+    std::lock_guard<std::mutex> lock(change_mutex_);
+    version = version_;
+    jobs_version = jobs_version_;
+  }
+  return {{"machines", machines},
+          {"running", running},
+          {"version", version},
+          {"jobs_version", jobs_version},
+          {"can_continue", can_continue()}};
+}
+
+void Workshop::machine_loop(Slot& slot) {
+  Clock::time_point next_probe = Clock::now();
+  while (!stopping_) {
+    bool work = false;
+    try {
+      work = store_.has_claimable(slot.spec.fit);
+    } catch (const StoreError& e) {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      slot.link_message = e.what();
+    }
+    if (!work && Clock::now() < next_probe) {
+      sleep_for(options_.poll);
+      continue;
+    }
+    next_probe = Clock::now() + options_.probe;
+    // Connect and open a session before claiming: a job only leaves the queue for a machine
+    // that answers.
+    std::unique_ptr<Link> link;
+    std::unique_ptr<Sender> sender;
+    proto::SessionReply caps{};
+    try {
+      link = open_link(parse_link_spec(slot.spec.address), options_.connect_timeout);
+      sender = std::make_unique<Sender>(*link, options_.sender);
+      caps = sender->open_session();
+    } catch (const std::exception& e) {
+      bool changed = false;
+      {
+        std::lock_guard<std::mutex> lock(slot.mutex);
+        changed = slot.link_state != "offline";
+        slot.link_state = "offline";
+        slot.link_message = e.what();
+        slot.have_last_status = false;
+      }
+      if (changed) notify(false);
+      sleep_for(std::min(options_.probe, std::chrono::milliseconds(1000)));
+      continue;
+    }
+    bool changed = false;
+    {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      changed = slot.link_state != "online";
+      slot.link_state = "online";
+      slot.link_message.clear();
+    }
+    if (changed) notify(false);
+    if (!work || stopping_) continue;
+    std::optional<JobRecord> job;
+    try {
+      job = store_.claim(slot.spec.fit, slot.spec.name, options_.owner);
+    } catch (const StoreError& e) {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      slot.link_message = e.what();
+      continue;
+    }
+    if (!job) continue;
+    notify(true);
+    run_job(slot, *job, *sender, caps);
+    notify(true);
+  }
+}
+
+void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
+                       const proto::SessionReply& caps) {
+  const fs::path dir = data_.job_dir(job.key);
+  const Clock::time_point started = Clock::now();
+  std::vector<std::string> log;
+  auto note = [&](const std::string& line) {
+    log.push_back(fmt::format("{:9.3f} {}", seconds_since(started), line));
+  };
+  note(fmt::format("job {} '{}' on {} ({}), server {}", job.id, job.name, slot.spec.name,
+                   slot.spec.address, options_.owner));
+  note(fmt::format("session: protocol v{}, max payload {}, window {}", int(caps.protocol_version),
+                   int(caps.max_payload), int(caps.window_frames)));
+
+  JobState state = JobState::kFailed;
+  std::string message;
+  std::vector<QueuedCommand> commands;
+  size_t executed = 0;
+  const char* outcome = "not started";
+  try {
+    // Uploaded to another server sharing the queue: the input comes from the store.
+    const bool fetched = !fs::exists(dir / job.input_file);
+    if (fetched) {
+      const std::optional<std::string> bytes = store_.input(job.id);
+      if (!bytes) throw std::runtime_error((dir / job.input_file).string() + ": missing");
+      fs::create_directories(dir);
+      write_file(dir / job.input_file, *bytes);
+    }
+    const JobPlan plan = plan_file((dir / job.input_file).string(), job.name, job.settings,
+                                   slot.spec.fit.work_width_mm, slot.spec.fit.work_height_mm);
+    if (fetched) {
+      write_file(dir / "plan.json", plan_json(plan).dump(1) + "\n");
+      write_plot(plot_input_from_plan(plan, job.name), (dir / "plot.svg").string(),
+                 (dir / "plot.png").string());
+    }
+    EncodeOptions enc = encode_options(job.settings, fs::path(job.name).stem().string());
+    enc.max_payload = caps.max_payload;
+    if (job.start_curve >= 0) {
+      // Continue an interrupted job from its first uncut curve (needs the protocol v2 hook).
+      if (!options_.resume_encoder)
+        throw PlanError("continuing mid-job needs send --resume (protocol v2)");
+      commands = options_.resume_encoder(plan, enc, job.start_curve);
+      note(fmt::format("continuing from curve {}", job.start_curve));
+    } else {
+      commands = encode_job(plan, enc);
+    }
+    note(fmt::format("planned: {} curves, {} commands, {} bytes, about {:.1f} s",
+                     plan.curves.size(), commands.size(), wire_bytes(commands), job.planned_s));
+    {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      slot.sender = &sender;
+      slot.job_id = job.id;
+      slot.job_name = job.name;
+      slot.progress = Progress{};
+      slot.progress.total = commands.size();
+      slot.have_status = false;
+      slot.planned_s = job.planned_s;
+      slot.started = started;
+      if (stopping_) sender.request_abort();  // claimed just as stop() looked at the slots
+    }
+    proto::MachineState last_state = proto::MachineState::kIdle;
+    int last_override = 100;
+    Clock::time_point last_notify = started;
+    const JobOutcome result = sender.run(commands, [&](const Progress& p) {
+      {
+        std::lock_guard<std::mutex> lock(slot.mutex);
+        slot.progress = p;
+        slot.have_status = true;
+        slot.last_status = p.status;
+        slot.have_last_status = true;
+      }
+      executed = p.executed;
+      const bool state_changed = p.status.state != last_state;
+      if (state_changed || p.status.override_percent != last_override) {
+        note(fmt::format("machine {} override {}% at {}/{} x {:.3f} y {:.3f} z {:.3f}",
+                         machine_state_name(p.status.state), int(p.status.override_percent),
+                         p.executed, p.total, p.status.x_um / 1000.0, p.status.y_um / 1000.0,
+                         p.status.z_um / 1000.0));
+        last_state = p.status.state;
+        last_override = p.status.override_percent;
+      }
+      // The page needs a few updates a second, not one per status reply.
+      if (state_changed || Clock::now() - last_notify > std::chrono::milliseconds(100)) {
+        last_notify = Clock::now();
+        notify(false);
+      }
+    });
+    outcome = outcome_name(result);
+    message = sender.message();
+    switch (result) {
+      case JobOutcome::kCompleted:
+        state = JobState::kCompleted;
+        executed = commands.size();
+        break;
+      case JobOutcome::kAborted:
+        state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
+        if (stopping_) message = "the server stopped while the job was running; " + message;
+        break;
+      case JobOutcome::kAlarm:
+      case JobOutcome::kRejected:
+        state = JobState::kFailed;
+        break;
+      case JobOutcome::kLinkLost:
+      case JobOutcome::kStalled:  // the sender's watchdog: answered, but no progress
+        state = JobState::kInterrupted;
+        break;
+    }
+  } catch (const LinkError& e) {
+    state = JobState::kInterrupted;
+    outcome = "link lost";
+    message = e.what();
+  } catch (const std::exception& e) {
+    state = JobState::kFailed;
+    outcome = "not sent";
+    message = e.what();
+  }
+  {
+    std::lock_guard<std::mutex> lock(slot.mutex);
+    slot.sender = nullptr;
+    slot.job_id = 0;
+    // The machine as the sender last heard it (idle after a completed job); unknown when
+    // the link went away.
+    slot.have_last_status = state != JobState::kInterrupted;
+    if (slot.have_last_status) slot.last_status = sender.last_status();
+  }
+  const int resume_curve =
+      state == JobState::kInterrupted ? first_uncut_curve(commands, executed) : -1;
+  note(fmt::format("ended: {} ({}): {}", state_name(state), outcome, message));
+  const SenderStats& st = sender.stats();
+  nlohmann::json report;
+  report["id"] = job.id;
+  report["name"] = job.name;
+  report["machine"] = slot.spec.name;
+  report["server"] = options_.owner;
+  report["state"] = state_name(state);
+  report["outcome"] = outcome;
+  report["message"] = message;
+  report["commands"] = commands.size();
+  report["executed"] = executed;
+  report["resume_curve"] = resume_curve;
+  report["planned_s"] = job.planned_s;
+  report["elapsed_s"] = seconds_since(started);
+  report["frames_sent"] = st.frames_sent;
+  report["bytes_sent"] = st.bytes_sent;
+  report["retransmits"] = st.retransmits;
+  report["status_queries"] = st.status_queries;
+  report["error_replies"] = st.error_replies;
+  report["settings"] = {{"feed_mm_s", job.settings.feed_mm_s},
+                        {"tol_mm", job.settings.tol_mm},
+                        {"scale", job.settings.scale},
+                        {"margin_mm", job.settings.margin_mm}};
+  try {
+    write_file(dir / "report.json", report.dump(2) + "\n");
+    std::string text;
+    for (const std::string& line : log) text += line + "\n";
+    write_file(dir / "machine.log", text);
+  } catch (const std::exception& e) {
+    message += fmt::format(" (archive: {})", e.what());
+  }
+  try {
+    store_.finish(job.id, state, message, static_cast<int64_t>(executed),
+                  static_cast<int64_t>(commands.size()), resume_curve);
+  } catch (const StoreError&) {
+    // The record stays 'running'; the next start of this server marks it interrupted.
+  }
+}
+
+}  // namespace host::server

@@ -1,0 +1,103 @@
+// The machines of the workshop: one worker per machine takes the best queued job that fits
+// from the store, sends it with host::Sender over its link (tcp:// or serial:), reports live
+// progress, takes hold/resume/abort/override for it, and archives how it ended.
+#ifndef HOST_LIB_SERVER_WORKSHOP_H
+#define HOST_LIB_SERVER_WORKSHOP_H
+
+#include <nlohmann/json.hpp>  // nlohmann::json
+
+#include <atomic>              // std::atomic
+#include <chrono>              // std::chrono
+#include <condition_variable>  // std::condition_variable
+#include <cstdint>             // int64_t
+#include <functional>          // std::function
+#include <memory>              // std::unique_ptr
+#include <mutex>               // std::mutex
+#include <string>              // std::string
+#include <thread>              // std::thread
+#include <vector>              // std::vector
+
+#include "host/lib/plan/job_plan.h"
+#include "host/lib/server/data_folder.h"
+#include "host/lib/server/job_store.h"
+#include "host/lib/server/machine_spec.h"
+#include "host/lib/stream/job_encoder.h"
+#include "host/lib/stream/sender.h"
+
+namespace host::server {
+
+// Commands that restart a job at `first_curve` (pen up, travel, pen down, then the rest).
+// Empty until `send --resume` (protocol v2) provides it; without it an interrupted job can
+// only be re-queued from the start.
+using ResumeEncoder = std::function<std::vector<QueuedCommand>(
+    const JobPlan& plan, const EncodeOptions& options, int first_curve)>;
+
+struct WorkshopOptions {
+  std::string owner = "local";                      // this server's name in the store
+  std::chrono::milliseconds poll{200};              // idle machine: look at the queue
+  std::chrono::milliseconds probe{2000};            // idle machine: check its link
+  std::chrono::milliseconds connect_timeout{2000};  // TCP connect
+  // Servers sharing a store: this one says it is alive every `heartbeat`; a server silent
+  // for `stale_after` is taken for dead and its running jobs become interrupted.
+  std::chrono::milliseconds heartbeat{1000};
+  std::chrono::milliseconds stale_after{30000};
+  SenderOptions sender;
+  ResumeEncoder resume_encoder;  // the protocol v2 hook (see above)
+};
+
+enum class JobControl { kHold, kResume, kAbort, kOverride };
+
+struct ControlResult {
+  int status = 200;  // 200 done, 404 no such job, 409 not possible in its state
+  std::string error;
+};
+
+class Workshop {
+ public:
+  Workshop(JobStore& store, const DataFolder& data, std::vector<MachineSpec> machines,
+           WorkshopOptions options);
+  ~Workshop();
+  Workshop(const Workshop&) = delete;
+  Workshop& operator=(const Workshop&) = delete;
+
+  // Marks jobs this owner left running as interrupted, then starts one worker per machine.
+  void start();
+  // Aborts running jobs (they become interrupted: the server stopped), joins the workers.
+  void stop();
+
+  // Hold, resume, abort or feed override (percent 10..200) of a running job.
+  ControlResult control(int64_t job_id, JobControl control, int percent);
+  bool can_continue() const { return static_cast<bool>(options_.resume_encoder); }
+
+  // Machines (state, position, job) and the progress of running jobs.
+  nlohmann::json snapshot();
+  // Something changed that the page shows (a job queued, a state, progress).
+  void notify(bool jobs_changed);
+  // Waits until the change counter differs from `seen` (or the timeout); returns it.
+  uint64_t wait_change(uint64_t seen, std::chrono::milliseconds timeout);
+  std::vector<MachineFit> fits() const;
+
+ private:
+  struct Slot;
+  void machine_loop(Slot& slot);
+  void run_job(Slot& slot, const JobRecord& job, Sender& sender, const proto::SessionReply& caps);
+  void sleep_for(std::chrono::milliseconds ms);
+  void heartbeat_loop();
+
+  JobStore& store_;
+  const DataFolder& data_;
+  WorkshopOptions options_;
+  std::vector<std::unique_ptr<Slot>> slots_;
+  std::vector<std::thread> threads_;
+  std::thread heartbeat_thread_;
+  std::atomic<bool> stopping_{false};
+
+  std::mutex change_mutex_;
+  std::condition_variable change_cv_;
+  uint64_t version_ = 0;
+  uint64_t jobs_version_ = 0;
+};
+
+}  // namespace host::server
+
+#endif  // HOST_LIB_SERVER_WORKSHOP_H

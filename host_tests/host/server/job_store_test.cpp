@@ -1,0 +1,198 @@
+// The SQLite job store: queue order, machine fit, one claim per job, state rules and what a
+// restart finds.
+#include <gtest/gtest.h>
+
+#include <set>     // std::set
+#include <thread>  // std::thread
+
+#include "host/lib/server/machine_spec.h"
+#include "host/lib/server/sqlite_job_store.h"
+#include "host_tests/host/server/server_test_rig.h"
+
+namespace host::server {
+namespace {
+
+JobRecord job(const std::string& key, int priority = 0, double w = 50, double h = 50,
+              const std::string& tag = "") {
+  JobRecord j;
+  j.key = key;
+  j.name = key + ".dxf";
+  j.input_file = "input.dxf";
+  j.priority = priority;
+  j.width_mm = w;
+  j.height_mm = h;
+  j.tag = tag;
+  return j;
+}
+
+TEST(SqliteJobStore, ClaimsByPriorityThenAge) {
+  test::TempDir dir;
+  SqliteJobStore store((dir.path() / "jobs.sqlite").string());
+  const int64_t low = store.add(job("a", 0), "");
+  const int64_t high = store.add(job("b", 5), "");
+  const int64_t low2 = store.add(job("c", 0), "");
+  MachineFit fit;
+  EXPECT_EQ(store.claim(fit, "m1", "s")->id, high);
+  EXPECT_EQ(store.claim(fit, "m1", "s")->id, low);
+  const auto third = store.claim(fit, "m2", "s");
+  ASSERT_TRUE(third);
+  EXPECT_EQ(third->id, low2);
+  EXPECT_EQ(third->state, JobState::kRunning);
+  EXPECT_EQ(third->machine, "m2");
+  EXPECT_FALSE(store.claim(fit, "m1", "s"));
+}
+
+TEST(SqliteJobStore, ClaimsOnlyJobsThatFitTheMachine) {
+  test::TempDir dir;
+  SqliteJobStore store((dir.path() / "jobs.sqlite").string());
+  const int64_t big = store.add(job("big", 9, 250, 150), "");
+  const int64_t brass = store.add(job("brass", 8, 20, 20, "brass"), "");
+  const int64_t any = store.add(job("any", 0), "");
+  MachineFit small;
+  small.work_width_mm = 200;
+  small.work_height_mm = 200;
+  small.tags = {"pen"};
+  EXPECT_TRUE(store.has_claimable(small));
+  EXPECT_EQ(store.claim(small, "small", "s")->id, any);  // too big, wrong tag: skipped
+  EXPECT_FALSE(store.has_claimable(small));
+  MachineFit brass_machine;
+  brass_machine.tags = {"pen", "brass"};
+  EXPECT_EQ(store.claim(brass_machine, "b", "s")->id, big);
+  EXPECT_EQ(store.claim(brass_machine, "b", "s")->id, brass);
+}
+
+TEST(SqliteJobStore, ConcurrentClaimsTakeEachJobOnce) {
+  test::TempDir dir;
+  const std::string path = (dir.path() / "jobs.sqlite").string();
+  {
+    SqliteJobStore store(path);
+    for (int i = 0; i < 200; ++i) store.add(job("j" + std::to_string(i)), "");
+  }
+  // Two connections (as two processes would have), two threads each.
+  SqliteJobStore a(path), b(path);
+  std::vector<std::vector<int64_t>> got(4);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      SqliteJobStore& s = t % 2 ? a : b;
+      while (auto j = s.claim(MachineFit{}, "m" + std::to_string(t), "s")) got[t].push_back(j->id);
+    });
+  }
+  for (auto& t : threads) t.join();
+  std::set<int64_t> all;
+  size_t count = 0;
+  for (const auto& g : got) {
+    all.insert(g.begin(), g.end());
+    count += g.size();
+  }
+  EXPECT_EQ(count, 200u);
+  EXPECT_EQ(all.size(), 200u);
+}
+
+TEST(SqliteJobStore, StateRulesForCancelRequeueAndPriority) {
+  test::TempDir dir;
+  SqliteJobStore store((dir.path() / "jobs.sqlite").string());
+  const int64_t id = store.add(job("a"), "");
+  EXPECT_TRUE(store.set_priority(id, 7));
+  EXPECT_EQ(store.get(id)->priority, 7);
+  EXPECT_FALSE(store.requeue(id, false));  // queued already
+  ASSERT_TRUE(store.claim(MachineFit{}, "m", "s"));
+  EXPECT_FALSE(store.cancel(id));  // running: abort it on the machine instead
+  EXPECT_FALSE(store.set_priority(id, 1));
+  EXPECT_TRUE(store.finish(id, JobState::kInterrupted, "link lost", 5, 20, 2));
+  EXPECT_FALSE(store.finish(id, JobState::kCompleted, "twice", 20, 20, -1));
+  const JobRecord r = *store.get(id);
+  EXPECT_EQ(r.state, JobState::kInterrupted);
+  EXPECT_EQ(r.executed, 5);
+  EXPECT_EQ(r.resume_curve, 2);
+  EXPECT_TRUE(store.requeue(id, true));  // continue from curve 2
+  EXPECT_EQ(store.get(id)->start_curve, 2);
+  EXPECT_EQ(store.get(id)->state, JobState::kQueued);
+  EXPECT_TRUE(store.cancel(id));
+  EXPECT_EQ(store.get(id)->state, JobState::kCancelled);
+  EXPECT_FALSE(store.requeue(id, false));
+}
+
+TEST(SqliteJobStore, RestartKeepsQueuedJobsAndMarksOwnRunningJobsInterrupted) {
+  test::TempDir dir;
+  const std::string path = (dir.path() / "jobs.sqlite").string();
+  int64_t mine = 0, theirs = 0, queued = 0;
+  {
+    SqliteJobStore store(path);
+    mine = store.add(job("mine", 3), "");
+    theirs = store.add(job("theirs", 2), "");
+    queued = store.add(job("queued", 1), "");
+    store.claim(MachineFit{}, "m1", "this-server");
+    store.claim(MachineFit{}, "m9", "other-server");
+  }  // the process dies here without finishing anything
+  SqliteJobStore store(path);
+  EXPECT_EQ(store.interrupt_running("this-server", "server restarted"), 1);
+  EXPECT_EQ(store.get(mine)->state, JobState::kInterrupted);
+  EXPECT_EQ(store.get(mine)->message, "server restarted");
+  EXPECT_EQ(store.get(theirs)->state, JobState::kRunning);  // another server's job
+  EXPECT_EQ(store.get(queued)->state, JobState::kQueued);
+  EXPECT_EQ(store.list("", 10).size(), 3u);
+  EXPECT_EQ(store.list("queued", 10).size(), 1u);
+}
+
+TEST(SqliteJobStore, RunningJobsOfASilentServerBecomeInterrupted) {
+  test::TempDir dir;
+  SqliteJobStore store((dir.path() / "jobs.sqlite").string());
+  const int64_t alive_job = store.add(job("a"), "");
+  const int64_t dead_job = store.add(job("b"), "");
+  const int64_t queued = store.add(job("c"), "");
+  store.heartbeat("dead");
+  ASSERT_EQ(store.claim(MachineFit{}, "m1", "alive")->id, alive_job);
+  ASSERT_EQ(store.claim(MachineFit{}, "m2", "dead")->id, dead_job);
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  store.heartbeat("alive");  // "dead" said nothing since
+  const int64_t cutoff = std::chrono::duration_cast<std::chrono::milliseconds>(
+                             std::chrono::system_clock::now().time_since_epoch())
+                             .count() -
+                         20;
+  EXPECT_EQ(store.interrupt_stale(cutoff, "server gone"), 1);
+  EXPECT_EQ(store.get(dead_job)->state, JobState::kInterrupted);
+  EXPECT_EQ(store.get(dead_job)->message, "server gone");
+  EXPECT_EQ(store.get(alive_job)->state, JobState::kRunning);
+  EXPECT_EQ(store.get(queued)->state, JobState::kQueued);
+  EXPECT_EQ(store.interrupt_stale(cutoff, "again"), 0);
+}
+
+TEST(SqliteJobStore, UnopenableFileIsAnErrorNamingIt) {
+  try {
+    SqliteJobStore store("/nonexistent-folder/x/jobs.sqlite");
+    FAIL() << "opened";
+  } catch (const StoreError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent-folder/x/jobs.sqlite"), std::string::npos);
+  }
+}
+
+TEST(MachineSpec, ParsesAddressNameWorkAreaAndTags) {
+  const MachineSpec m =
+      parse_machine_spec("tcp://10.0.0.5:10001 name=left work=200x150.5 tags=pen,brass", "m1");
+  EXPECT_EQ(m.address, "tcp://10.0.0.5:10001");
+  EXPECT_EQ(m.name, "left");
+  EXPECT_DOUBLE_EQ(m.fit.work_width_mm, 200);
+  EXPECT_DOUBLE_EQ(m.fit.work_height_mm, 150.5);
+  EXPECT_EQ(m.fit.tags, (std::vector<std::string>{"pen", "brass"}));
+  EXPECT_EQ(parse_machine_spec("serial:/dev/ttyUSB0,57600", "m2").name, "m2");
+  for (const char* bad : {"", "ftp://x", "tcp://h:1 work=0x5", "tcp://h:1 tags=a/b",
+                          "tcp://h:1 colour=red", "tcp://h:1 name=../x"}) {
+    EXPECT_THROW(parse_machine_spec(bad, "m"), std::invalid_argument) << bad;
+  }
+}
+
+TEST(UploadName, RefusesPathsAndOddNames) {
+  EXPECT_EQ(check_upload_name("Board v2 (final).dxf"), "");
+  for (const char* bad : {"../x.dxf", "a/b.dxf", "..\\x.dxf", "C:x.dxf", ".hidden.dxf", "a..b",
+                          "tab\there.dxf", ""}) {
+    EXPECT_NE(check_upload_name(bad), "") << bad;
+  }
+  EXPECT_EQ(archive_input_name("Board.DXF"), "input.dxf");
+  EXPECT_EQ(archive_input_name("x.ngc"), "input.ngc");
+  EXPECT_EQ(archive_input_name("x.exe"), "input");
+  EXPECT_EQ(archive_input_name("noext"), "input");
+}
+
+}  // namespace
+}  // namespace host::server

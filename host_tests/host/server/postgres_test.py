@@ -1,0 +1,205 @@
+#!/usr/bin/env python3
+"""Two `engraver serve` processes on one PostgreSQL queue: every job runs exactly once.
+
+Starts a real PostgreSQL server under a temporary folder (initdb + pg_ctl, as the
+`postgres` user when run as root: the server refuses to run as root), four `engraver sim`
+machines, and two servers with two machines each and their own data folders. Jobs are
+uploaded to both servers alternately; each must complete once, on one server, and both
+servers must have taken some. Exit 77 (ctest: skipped) when PostgreSQL is not installed.
+Usage: postgres_test.py ENGRAVER
+"""
+import glob
+import json
+import os
+import pwd
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+
+SKIP = 77
+JOBS = 40
+SQUARE = ("G21\nG90\nG0 Z2\nG0 X5 Y5\nG1 Z-0.1 F100\nG1 X15 Y5 F600\nG1 X15 Y15\n"
+          "G1 X5 Y15\nG1 X5 Y5\nG0 Z2\n")
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def get(base, path):
+    with urllib.request.urlopen(base + path, timeout=30) as r:
+        return json.load(r)
+
+
+def upload(base, token, name):
+    req = urllib.request.Request(
+        f"{base}/api/jobs?name={name}&feed_mm_s=30", data=SQUARE.encode(), method="POST",
+        headers={"Authorization": "Bearer " + token,
+                 "Content-Type": "application/octet-stream"})
+    with urllib.request.urlopen(req, timeout=60) as r:
+        return json.load(r)["id"]
+
+
+def wait(predicate, timeout_s, what):
+    end = time.monotonic() + timeout_s
+    while time.monotonic() < end:
+        if predicate():
+            return
+        time.sleep(0.1)
+    raise AssertionError("timed out waiting for " + what)
+
+
+def main():
+    engraver = sys.argv[1]
+    bins = sorted(glob.glob("/usr/lib/postgresql/*/bin"))
+    if not bins or not os.access(os.path.join(bins[-1], "initdb"), os.X_OK):
+        print("PostgreSQL not installed: skipped")
+        return SKIP
+    pg = bins[-1]
+    tmp = tempfile.mkdtemp(prefix="engraver-pg-")
+    os.chmod(tmp, 0o755)
+    run_as = []
+    if os.geteuid() == 0:
+        try:
+            user = pwd.getpwnam("postgres")
+        except KeyError:
+            print("running as root and no 'postgres' user: skipped")
+            return SKIP
+        run_as = ["runuser", "-u", "postgres", "--"]
+    cluster, sockets = os.path.join(tmp, "cluster"), os.path.join(tmp, "sockets")
+    os.makedirs(sockets)
+    if run_as:
+        os.chown(sockets, user.pw_uid, user.pw_gid)
+        os.makedirs(cluster)
+        os.chown(cluster, user.pw_uid, user.pw_gid)
+    port = free_port()
+    procs = []
+    pg_started = False
+    try:
+        subprocess.run(run_as + [os.path.join(pg, "initdb"), "-D", cluster, "-A", "trust",
+                                 "-U", "engraver"], check=True, stdout=subprocess.DEVNULL)
+        subprocess.run(run_as + [os.path.join(pg, "pg_ctl"), "-D", cluster, "-w", "-l",
+                                 os.path.join(sockets, "log"), "-o",
+                                 f"-k {sockets} -p {port} -c listen_addresses=''", "start"],
+                       check=True, stdout=subprocess.DEVNULL)
+        pg_started = True
+        subprocess.run([os.path.join(pg, "createdb"), "-h", sockets, "-p", str(port), "-U",
+                        "engraver", "queue"], check=True)
+        conninfo = f"host={sockets} port={port} user=engraver dbname=queue"
+
+        servers = []
+        for s in range(2):
+            specs = []
+            for m in range(2):
+                sim_port = free_port()
+                procs.append(subprocess.Popen([engraver, "sim", "--listen",
+                                               f"127.0.0.1:{sim_port}"],
+                                              stdout=subprocess.DEVNULL,
+                                              stderr=subprocess.DEVNULL))
+                specs += ["--machine", f"tcp://127.0.0.1:{sim_port} name=s{s + 1}m{m + 1}"]
+            http_port = free_port()
+            data = os.path.join(tmp, f"data{s + 1}")
+            log = open(os.path.join(tmp, f"serve{s + 1}.log"), "w")
+            procs.append(subprocess.Popen(
+                [engraver, "serve", "--data", data, "--listen", f"127.0.0.1:{http_port}",
+                 "--db", conninfo, "--name", f"server{s + 1}", "--poll-ms", "5",
+                 "--stale-s", "3"] + specs,
+                stdout=log, stderr=subprocess.STDOUT))
+            servers.append((f"http://127.0.0.1:{http_port}", data))
+        tokens = []
+        for base, data in servers:
+            wait(lambda: os.path.exists(os.path.join(data, "token")), 20, "a server's token")
+            time.sleep(0.3)
+            tokens.append(open(os.path.join(data, "token")).read().strip())
+
+            def up():
+                try:
+                    get(base, "/api/status")
+                    return True
+                except OSError:
+                    return False
+            wait(up, 20, "a server to answer")
+
+        ids = [upload(servers[i % 2][0], tokens[i % 2], f"job{i}.ngc") for i in range(JOBS)]
+        assert len(set(ids)) == JOBS, ids  # one id sequence for both servers
+
+        def all_done():
+            jobs = get(servers[0][0], "/api/jobs?limit=1000")["jobs"]
+            return len(jobs) == JOBS and all(j["state"] == "completed" for j in jobs)
+        wait(all_done, 300, "every job to complete")
+
+        jobs = get(servers[1][0], "/api/jobs?limit=1000")["jobs"]  # the other server agrees
+        assert len(jobs) == JOBS and all(j["state"] == "completed" for j in jobs), jobs
+        by_server = {}
+        for j in jobs:
+            by_server[j["server"]] = by_server.get(j["server"], 0) + 1
+        assert set(by_server) == {"server1", "server2"}, by_server
+        # Exactly once: one report per job over both archives, from the server that ran it.
+        for j in jobs:
+            reports = []
+            for _, data in servers:
+                for path in glob.glob(os.path.join(data, "jobs", "*", "report.json")):
+                    report = json.load(open(path))
+                    if report["id"] == j["id"]:
+                        reports.append(report)
+            assert len(reports) == 1, (j, reports)
+            assert reports[0]["server"] == j["server"] and reports[0]["state"] == "completed"
+
+        # A server dies mid-job (kill -9): the other one marks its running jobs interrupted
+        # (--stale-s 3); re-queued, they run there.
+        slow = ("G21\nG90\nG0 Z2\nG0 X5 Y5\nG1 Z-0.1 F100\nG1 X95 Y5 F600\nG1 X95 Y95\n"
+                "G1 X5 Y95\nG1 X5 Y5\nG0 Z2\n")
+        serves = {"server1": (procs[2], servers[0][0]), "server2": (procs[5], servers[1][0])}
+        req = urllib.request.Request(
+            f"{servers[0][0]}/api/jobs?name=slow.ngc&feed_mm_s=0.5", data=slow.encode(),
+            method="POST", headers={"Authorization": "Bearer " + tokens[0]})
+        with urllib.request.urlopen(req, timeout=60) as r:
+            slow_id = json.load(r)["id"]
+        wait(lambda: get(servers[0][0], f"/api/jobs/{slow_id}")["state"] == "running", 30,
+             "the slow job to start")
+        runner = get(servers[0][0], f"/api/jobs/{slow_id}")["server"]
+        other = "server2" if runner == "server1" else "server1"
+        victim, _ = serves[runner]
+        base, token = serves[other][1], tokens[0 if other == "server1" else 1]
+        victim.kill()
+        victim.wait()
+        wait(lambda: get(base, f"/api/jobs/{slow_id}")["state"] == "interrupted", 30,
+             "the dead server's job to be marked interrupted")
+        req = urllib.request.Request(
+            f"{base}/api/jobs/{slow_id}/control", data=b'{"action": "requeue"}', method="POST",
+            headers={"Authorization": "Bearer " + token})
+        urllib.request.urlopen(req, timeout=30).close()
+        wait(lambda: get(base, f"/api/jobs/{slow_id}")["server"] == other and
+             get(base, f"/api/jobs/{slow_id}")["state"] == "running", 30,
+             "the re-queued job to run on the other server")
+        print(f"{runner} killed mid-job: {other} marked its job interrupted and ran it again")
+        print(f"{JOBS} jobs, each run once; per server: {by_server}")
+        return 0
+    except Exception:
+        for name in ("serve1.log", "serve2.log"):
+            path = os.path.join(tmp, name)
+            if os.path.exists(path):
+                print(f"--- {name}:\n" + open(path).read())
+        raise
+    finally:
+        for p in reversed(procs):
+            p.terminate()
+        for p in procs:
+            try:
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                p.kill()
+        if pg_started:
+            subprocess.run(run_as + [os.path.join(pg, "pg_ctl"), "-D", cluster, "-m", "fast",
+                                     "-w", "stop"], stdout=subprocess.DEVNULL)
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,121 @@
+// `engraver serve` as a process: starts with its defaults on a fresh data folder, shows the
+// token once, serves the page, stops on SIGTERM; refuses bad options with exit code 2.
+#include <gtest/gtest.h>
+
+#include <signal.h>    // kill
+#include <sys/wait.h>  // waitpid
+#include <unistd.h>    // fork, execv
+
+#include <fstream>  // std::ifstream
+#include <sstream>  // std::ostringstream
+
+#include "host_tests/host/server/server_test_rig.h"
+
+namespace host::server {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Runs the tool in the background with stderr to a file; stop() sends SIGTERM and waits.
+class ServeProcess {
+ public:
+  ServeProcess(const std::vector<std::string>& args, const fs::path& log) {
+    pid_ = fork();
+    if (pid_ == 0) {
+      FILE* f = std::freopen(log.c_str(), "w", stderr);
+      (void)f;
+      std::vector<char*> argv;
+      std::string exe = ENGRAVER_EXE;
+      argv.push_back(&exe[0]);
+      std::vector<std::string> copy = args;
+      for (std::string& a : copy) argv.push_back(&a[0]);
+      argv.push_back(nullptr);
+      execv(exe.c_str(), argv.data());
+      _exit(127);
+    }
+  }
+  ~ServeProcess() { stop(); }
+  // The exit status (-1 when it had to be killed).
+  int stop() {
+    if (pid_ <= 0) return status_;
+    kill(pid_, SIGTERM);
+    for (int i = 0; i < 200; ++i) {
+      int st = 0;
+      if (waitpid(pid_, &st, WNOHANG) == pid_) {
+        pid_ = 0;
+        status_ = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+        return status_;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    kill(pid_, SIGKILL);
+    waitpid(pid_, nullptr, 0);
+    pid_ = 0;
+    return status_ = -1;
+  }
+  // Waits for the process to end by itself; its exit status.
+  int wait_exit() {
+    int st = 0;
+    waitpid(pid_, &st, 0);
+    pid_ = 0;
+    return status_ = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  int status_ = -1;
+};
+
+std::string text_of(const fs::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(ServeCommand, StartsOnAFreshFolderShowsTheTokenOnceAndStopsCleanly) {
+  test::TempDir dir;
+  const fs::path data = dir.path() / "data";
+  const std::string port = std::to_string(test::free_port());
+  for (int run = 0; run < 2; ++run) {
+    const fs::path log = dir.path() / ("serve" + std::to_string(run) + ".log");
+    ServeProcess serve({"serve", "--data", data.string(), "--listen", "127.0.0.1:" + port}, log);
+    httplib::Client client("127.0.0.1", std::stoi(port));
+    ASSERT_TRUE(test::wait_until(
+        [&] {
+          auto r = client.Get("/");
+          return r && r->status == 200;
+        },
+        20))
+        << text_of(log);
+    auto page = client.Get("/");
+    EXPECT_NE(page->body.find("Engraver workshop"), std::string::npos);
+    EXPECT_EQ(serve.stop(), 0) << text_of(log);
+    const std::string token = text_of(data / "token");
+    ASSERT_GE(token.size(), 32u);
+    const std::string out = text_of(log);
+    // The token is printed on the first start only.
+    if (run == 0) {
+      EXPECT_NE(out.find(token.substr(0, 32)), std::string::npos) << out;
+    } else {
+      EXPECT_EQ(out.find(token.substr(0, 32)), std::string::npos) << out;
+    }
+    EXPECT_EQ(fs::status(data / "token").permissions() & fs::perms::others_read, fs::perms::none);
+  }
+}
+
+TEST(ServeCommand, BadOptionsAreUsageErrors) {
+  test::TempDir dir;
+  const std::vector<std::vector<std::string>> bad = {
+      {"serve", "--data", (dir.path() / "d").string(), "--machine", "ftp://x"},
+      {"serve", "--data", (dir.path() / "d").string(), "--machine", "tcp://h:1 colour=red"},
+      {"serve", "--data", (dir.path() / "d").string(), "--listen", "nowhere"},
+      {"serve", "--data", (dir.path() / "d").string(), "--max-upload-mb", "0"}};
+  for (const auto& args : bad) {
+    ServeProcess p(args, dir.path() / "bad.log");
+    EXPECT_EQ(p.wait_exit(), 2) << args.back() << ": " << text_of(dir.path() / "bad.log");
+  }
+}
+
+}  // namespace
+}  // namespace host::server

@@ -1,0 +1,275 @@
+// The HTTP API on loopback: jobs spread over free simulated machines, a restart keeps the
+// queue, and bad requests are refused with a reason and store nothing.
+#include <gtest/gtest.h>
+
+#include <map>  // std::map
+#include <set>  // std::set
+
+#include "host_tests/host/server/server_test_rig.h"
+
+namespace host::server {
+namespace {
+
+using test::ServerRig;
+using test::SimRig;
+namespace fs = std::filesystem;
+
+size_t files_under(const fs::path& dir) {
+  size_t n = 0;
+  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator();
+       ++it) {
+    if (it->is_regular_file()) ++n;
+  }
+  return n;
+}
+
+TEST(ServerApi, JobsSpreadOverFreeMachinesAndLandInTheArchive) {
+  test::TempDir dir;
+  std::vector<std::unique_ptr<SimRig>> sims;
+  std::vector<MachineSpec> machines;
+  for (int i = 0; i < 3; ++i) {
+    sims.push_back(std::make_unique<SimRig>(false));
+    machines.push_back(test::machine(fmt::format("m{}", i + 1), sims.back()->address()));
+  }
+  ServerRig server(dir.path(), machines);
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const nlohmann::json status_now = server.status();  // kept alive for the loop
+        for (const auto& m : status_now["machines"]) {
+          if (m["link"] != "online") return false;
+        }
+        return true;
+      },
+      10));
+  std::vector<int64_t> ids;
+  for (int i = 0; i < 9; ++i) {
+    // Slow enough (2 mm/s) that one machine cannot take them all before the others start.
+    ids.push_back(server.upload_ok(fmt::format("square{}.ngc", i), test::square_gcode(10, 10, 20),
+                                   "&feed_mm_s=2"));
+  }
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        for (int64_t id : ids) {
+          if (server.job(id)["state"] != "completed") return false;
+        }
+        return true;
+      },
+      90));
+  std::map<std::string, int> per_machine;
+  for (int64_t id : ids) {
+    const nlohmann::json j = server.job(id);
+    ++per_machine[j["machine"].get<std::string>()];
+    EXPECT_EQ(j["executed"], j["total"]);
+    // The archive: input, plan, plot, report and machine log, served by the API.
+    for (const char* f : {"input.ngc", "plan.json", "plot.svg", "plot.png", "machine.log"}) {
+      auto r = server.client().Get(fmt::format("/api/jobs/{}/files/{}", id, f).c_str());
+      ASSERT_TRUE(r);
+      EXPECT_EQ(r->status, 200) << f;
+      EXPECT_FALSE(r->body.empty()) << f;
+    }
+    auto report = server.client().Get(fmt::format("/api/jobs/{}/files/report.json", id).c_str());
+    ASSERT_TRUE(report && report->status == 200);
+    const nlohmann::json rep = nlohmann::json::parse(report->body);
+    EXPECT_EQ(rep["state"], "completed");
+    EXPECT_EQ(rep["machine"], j["machine"]);
+  }
+  EXPECT_EQ(per_machine.size(), 3u) << "every free machine should have taken jobs";
+  // The simulated machines really cut: each one's trace left its zero corner.
+  for (const auto& sim : sims) EXPECT_GT(sim->machine().trace().size(), 100u);
+}
+
+TEST(ServerApi, PriorityDecidesWhichQueuedJobRunsFirst) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {});  // no machine yet: everything stays queued
+  const int64_t low = server.upload_ok("low.ngc", test::square_gcode(10, 10, 10));
+  const int64_t high = server.upload_ok("high.ngc", test::square_gcode(10, 10, 10), "&priority=5");
+  auto r = server.client().Post(fmt::format("/api/jobs/{}/priority", low).c_str(), server.auth(),
+                                R"({"priority": 9})", "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body;
+  const auto first = server.store().claim(MachineFit{}, "m", "x");
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->id, low);
+  EXPECT_EQ(server.job(high)["state"], "queued");
+  // Cancel the queued one; cancelled jobs do not run.
+  r = server.control(high, R"({"action": "cancel"})");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  EXPECT_EQ(server.job(high)["state"], "cancelled");
+  EXPECT_FALSE(server.store().claim(MachineFit{}, "m", "x"));
+}
+
+TEST(ServerApi, RestartKeepsQueuedJobsAndRunningOnesBecomeInterrupted) {
+  test::TempDir dir;
+  int64_t running = 0;
+  std::vector<int64_t> queued;
+  {
+    SimRig slow(true);  // real time: the first job is still running when the server stops
+    ServerRig server(dir.path(), {test::machine("m1", slow.address())});
+    running = server.upload_ok("long.ngc", test::square_gcode(10, 10, 60), "&feed_mm_s=5");
+    ASSERT_TRUE(test::wait_until([&] { return server.job(running)["state"] == "running"; }, 10));
+    for (int i = 0; i < 3; ++i) {
+      // The only machine is busy: they stay queued.
+      queued.push_back(server.upload_ok(fmt::format("q{}.ngc", i), test::square_gcode(10, 10, 10)));
+    }
+  }  // server stops (aborting the running job), then the machine
+  SimRig fast(false);
+  ServerRig server(dir.path(), {test::machine("m2", fast.address())});
+  const nlohmann::json r = server.job(running);
+  EXPECT_EQ(r["state"], "interrupted");
+  EXPECT_LT(r["executed"].get<int>(), r["total"].get<int>());
+  EXPECT_GE(r["resume_curve"].get<int>(), 0);
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        for (int64_t id : queued) {
+          if (server.job(id)["state"] != "completed") return false;
+        }
+        return true;
+      },
+      60));
+  // Re-queued, the interrupted job runs from the start on the machine there is now.
+  auto c = server.control(running, R"({"action": "requeue"})");
+  ASSERT_TRUE(c);
+  EXPECT_EQ(c->status, 200) << c->body;
+  EXPECT_TRUE(test::wait_until([&] { return server.job(running)["state"] == "completed"; }, 60));
+}
+
+TEST(ServerApi, BadRequestsAreRefusedWithAReasonAndStoreNothing) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {}, 4096);
+  const std::string good = test::square_gcode(10, 10, 10);
+  auto client = server.client();
+  const fs::path jobs = dir.path() / "jobs";
+  auto refused = [&](const httplib::Result& r, int status, const std::string& needle) {
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, status) << r->body;
+    const nlohmann::json body = nlohmann::json::parse(r->body, nullptr, false);
+    ASSERT_TRUE(body.is_object()) << r->body;
+    EXPECT_NE(body.value("error", "").find(needle), std::string::npos) << r->body;
+  };
+
+  // No token, a wrong token, a token of the right length but wrong.
+  refused(client.Post("/api/jobs?name=a.ngc", good, "application/octet-stream"), 401, "token");
+  refused(client.Post("/api/jobs?name=a.ngc", {{"Authorization", "Bearer nope"}}, good,
+                      "application/octet-stream"),
+          401, "token");
+  std::string wrong = server.token();
+  wrong[0] = wrong[0] == 'a' ? 'b' : 'a';
+  refused(
+      client.Post("/api/jobs?name=a.ngc", {{"X-Token", wrong}}, good, "application/octet-stream"),
+      401, "token");
+  // Larger than the limit (4 KB here).
+  std::string big = good;
+  while (big.size() < 80 * 1024) big += "G1 X11 Y11\n";
+  auto r = server.upload("big.ngc", big);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 413);
+  std::string medium = good;
+  while (medium.size() < 5000) medium += "(comment)\n";
+  refused(server.upload("medium.ngc", medium), 413, "limit");
+  // Names that try to leave the archive folder.
+  for (const char* name : {"../../token", "../evil.ngc", "sub/dir.ngc", "..\\evil.ngc",
+                           ".hidden.ngc", "/etc/passwd"}) {
+    refused(server.upload(name, good), 400, "file name");
+  }
+  // Not a drawing; a drawing outside the work area (the planner's message).
+  refused(server.upload("notes.txt", "Remember to buy milk.\n"), 422, "notes.txt");
+  refused(server.upload("image.dxf", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16)), 422,
+          "image.dxf");
+  refused(server.upload("empty.ngc", ""), 422, "empty.ngc");
+  refused(server.upload("huge.ngc", test::square_gcode(0, 0, 400)), 422, "huge.ngc");
+  // Bad settings and fields.
+  refused(server.upload("a.ngc", good, "&feed_mm_s=abc"), 400, "feed_mm_s");
+  refused(server.upload("a.ngc", good, "&feed_mm_s=1000"), 400, "feed_mm_s");
+  refused(server.upload("a.ngc", good, "&priority=1e9"), 400, "priority");
+  refused(server.upload("a.ngc", good, "&tag=../x"), 400, "tag");
+  refused(client.Post("/api/jobs", server.auth(), good, "application/octet-stream"), 400, "name");
+
+  EXPECT_TRUE(server.jobs().empty());
+  EXPECT_EQ(files_under(jobs), 0u);
+  EXPECT_EQ(files_under(dir.path() / "tmp"), 0u);
+
+  // Controls: malformed JSON, wrong shapes, unknown actions, unknown jobs.
+  const int64_t id = server.upload_ok("ok.ngc", good);
+  const size_t files = files_under(jobs);
+  refused(server.control(id, "{\"action\": "), 400, "malformed JSON");
+  refused(server.control(id, "[1, 2]"), 400, "object");
+  refused(server.control(id, R"({"action": 3})"), 400, "action");
+  refused(server.control(id, R"({"action": "explode"})"), 400, "explode");
+  refused(server.control(id, R"({"action": "override", "percent": 500})"), 400, "percent");
+  refused(server.control(id, R"({"action": "override", "percent": "fast"})"), 400, "percent");
+  refused(server.control(999, R"({"action": "hold"})"), 404, "no such job");
+  refused(server.control(id, R"({"action": "hold"})"), 409, "not running");
+  refused(server.control(id, R"({"action": "requeue"})"), 409, "re-queued");
+  refused(client.Post(fmt::format("/api/jobs/{}/priority", id).c_str(), server.auth(),
+                      R"({"priority": "high"})", "application/json"),
+          400, "priority");
+  refused(client.Post(fmt::format("/api/jobs/{}/control", id).c_str(), R"({"action": "cancel"})",
+                      "application/json"),
+          401, "token");
+  EXPECT_EQ(server.job(id)["state"], "queued");
+  EXPECT_EQ(server.job(id)["priority"], 0);
+  EXPECT_EQ(server.jobs().size(), 1u);
+  EXPECT_EQ(files_under(jobs), files);
+  // Archive files: only the fixed names; nothing outside the job's folder.
+  for (const char* path : {"/api/jobs/1/files/..%2F..%2Ftoken", "/api/jobs/1/files/token",
+                           "/api/jobs/1/files/../../token", "/api/jobs/1/files/jobs.sqlite"}) {
+    auto g = client.Get(path);
+    ASSERT_TRUE(g);
+    EXPECT_EQ(g->status, 404) << path;
+    EXPECT_EQ(g->body.find(server.token()), std::string::npos) << path;
+  }
+}
+
+TEST(ServerApi, MultipartUploadLikeThePageAndThePageFiles) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {});
+  httplib::MultipartFormDataItems form = {
+      {"file", test::square_gcode(10, 10, 10), "Board (v2).ngc", "application/octet-stream"},
+      {"priority", "4", "", ""},
+      {"feed_mm_s", "7.5", "", ""}};
+  auto r = server.client().Post("/api/jobs", server.auth(), form);
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 201) << r->body;
+  const nlohmann::json j = nlohmann::json::parse(r->body);
+  EXPECT_EQ(j["name"], "Board (v2).ngc");
+  EXPECT_EQ(j["priority"], 4);
+  EXPECT_DOUBLE_EQ(j["feed_mm_s"].get<double>(), 7.5);
+  EXPECT_EQ(j["input_file"], "input.ngc");
+  for (const char* page : {"/", "/app.js", "/style.css"}) {
+    auto g = server.client().Get(page);
+    ASSERT_TRUE(g);
+    EXPECT_EQ(g->status, 200) << page;
+    EXPECT_GT(g->body.size(), 100u) << page;
+  }
+}
+
+TEST(ServerApi, EventStreamSendsTheStateAtOnceAndAgainWhenAJobIsQueued) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {test::machine("m1", "tcp://127.0.0.1:1")});
+  std::vector<nlohmann::json> events;
+  std::string buffer;
+  std::atomic<bool> uploaded{false};
+  std::thread uploader;
+  auto client = server.client();
+  // The receiver returns false to close the stream once the second event arrived.
+  client.Get("/api/events", [&](const char* data, size_t size) {
+    buffer.append(data, size);
+    for (size_t end = buffer.find("\n\n"); end != std::string::npos; end = buffer.find("\n\n")) {
+      const std::string event = buffer.substr(0, end);
+      buffer.erase(0, end + 2);
+      if (event.rfind("data: ", 0) == 0) events.push_back(nlohmann::json::parse(event.substr(6)));
+    }
+    if (events.size() == 1 && !uploaded.exchange(true)) {
+      uploader = std::thread([&] { server.upload_ok("a.ngc", test::square_gcode(5, 5, 5)); });
+    }
+    return events.size() < 2 || events.back()["jobs_version"] == events.front()["jobs_version"];
+  });
+  if (uploader.joinable()) uploader.join();
+  ASSERT_GE(events.size(), 2u);
+  EXPECT_EQ(events.front()["machines"][0]["name"], "m1");
+  EXPECT_NE(events.back()["jobs_version"], events.front()["jobs_version"]);
+}
+
+}  // namespace
+}  // namespace host::server
