@@ -1,7 +1,7 @@
 // Soak: many jobs of random shape and size through the one-process run path (planner,
 // encoder, sender, simulated machine in lockstep). Every job must complete: a hang shows as
 // the sender's stall watchdog (kStalled), a lost link or a wrong count, never as a test that
-// does not end. Soak.Quick runs in the default ctest set (12 jobs, up to 20 000
+// does not end. Soak.Quick runs in the default ctest set (8 jobs, up to 20 000
 // segments); Soak.Long is `ctest -C soak -L soak_long` (hundreds of jobs, up to 60 000).
 #include <gtest/gtest.h>
 
@@ -87,12 +87,12 @@ int env_or(const char* name, int fallback) {
 }
 
 TEST(Soak, QuickRandomJobsAllComplete) {
-  soak(env_or("SOAK_JOBS", 12), env_or("SOAK_MAX_SEGMENTS", 20000),
+  soak(env_or("SOAK_JOBS", 8), env_or("SOAK_MAX_SEGMENTS", 20000),
        static_cast<uint32_t>(env_or("SOAK_SEED", 1)));
 }
 
 TEST(Soak, LongRandomJobsAllComplete) {
-  soak(env_or("SOAK_JOBS", 300), env_or("SOAK_MAX_SEGMENTS", 60000),
+  soak(env_or("SOAK_JOBS", 200), env_or("SOAK_MAX_SEGMENTS", 60000),
        static_cast<uint32_t>(env_or("SOAK_SEED", 7)));
 }
 
