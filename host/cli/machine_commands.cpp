@@ -107,8 +107,12 @@ JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
   o.feed_mm_per_s = a.feed_mm_s;
   o.z_up_mm = a.z_up_mm;
   o.z_down_mm = a.z_down_mm;
+  ProgressMeter bar("plan", "curves ordered", std::cerr, ProgressMeter::for_stderr());
+  o.progress = [&bar](size_t done, size_t total) { bar.update(done, total); };
   try {
-    return plan_job(*drawing, o);
+    JobPlan plan = plan_job(*drawing, o);
+    bar.update(plan.curves.size(), plan.curves.size());
+    return plan;
   } catch (const PlanError& e) {
     throw PlanError(fmt::format("{}: {}", a.file, e.what()));
   }

@@ -92,6 +92,7 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
   NearestEnd index(starts, ends);
   Point2 at(0, 0);
   for (size_t n = 0; n < scaled.size(); ++n) {
+    if (o.progress && n % 4096 == 0) o.progress(n, scaled.size());
     size_t best = n;
     bool best_rev = false;
     double best_d = (starts[n] - at).norm();

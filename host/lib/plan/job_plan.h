@@ -6,9 +6,10 @@
 
 #include <stdint.h>  // int32_t
 
-#include <stdexcept>  // std::runtime_error
-#include <string>     // std::string
-#include <vector>     // std::vector
+#include <functional>  // std::function
+#include <stdexcept>   // std::runtime_error
+#include <string>      // std::string
+#include <vector>      // std::vector
 
 #include "firmware/core/spline.h"
 #include "host/lib/drawing/drawing.h"
@@ -33,6 +34,8 @@ struct PlanOptions {
   double feed_mm_per_s = 10.0;   // cutting feed for splines and straight feeds
   double plunge_mm_per_s = 2.0;  // Z feed for pen down
   bool lines_as_feeds = true;    // a single straight segment becomes a kFeed, not a spline
+  // Called now and then while the curves are ordered (done, total), for a progress bar.
+  std::function<void(size_t, size_t)> progress;
 };
 
 // One machine action. Which fields mean something depends on kind.
