@@ -66,6 +66,8 @@ void ProgressMeter::draw(size_t done, size_t total, const std::string& detail, d
     out_ << fmt::format("engraver: {}: {}\n", what_, text) << std::flush;
   }
   drawn_ = true;
+  drawn_done_ = done;
+  drawn_total_ = total;
 }
 
 void ProgressMeter::update(size_t done, size_t total, const std::string& detail) {
@@ -84,8 +86,11 @@ void ProgressMeter::finish() {
   if (finished_) return;
   finished_ = true;
   if (!drawn_) return;
-  draw(last_done_, last_total_, last_detail_,
-       std::chrono::duration<double>(now() - start_).count());
+  // Off a terminal the last line may already say it all.
+  const bool said = !style_.terminal && drawn_done_ == last_done_ && drawn_total_ == last_total_;
+  if (!said)
+    draw(last_done_, last_total_, last_detail_,
+         std::chrono::duration<double>(now() - start_).count());
   if (style_.terminal) out_ << "\n" << std::flush;
 }
 

@@ -50,6 +50,7 @@ class ProgressMeter {
   Clock::time_point start_, last_draw_;
   bool drawn_ = false, finished_ = false;
   size_t last_done_ = 0, last_total_ = 0;
+  size_t drawn_done_ = 0, drawn_total_ = 0;  // what the last drawn report said
   std::string last_detail_;
   size_t width_ = 0;  // characters of the last terminal line (to blank leftovers)
 };
