@@ -73,7 +73,10 @@ void soak(int jobs, int max_segments, uint32_t seed) {
         << "job " << j << " (" << d.curves.size() << (lines ? " lines" : "-segment contour")
         << ", seed " << seed << "): " << r.message;
     if (r.outcome == JobOutcome::kCompleted) ++completed;
-    EXPECT_LT(r.max_contour_error_um, 15.0) << "job " << j;
+    // The path controller's error grows with the feed (the 10 um target is at 10 mm/s).
+    const double limit_um = 15.0 * std::max(1.0, po.feed_mm_per_s / 10.0);
+    EXPECT_LT(r.max_contour_error_um, limit_um)
+        << "job " << j << " at " << po.feed_mm_per_s << " mm/s, seed " << seed;
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("soak: %d of %d jobs completed, %ld segments, %.1f s\n", completed, jobs, segments,
