@@ -1,6 +1,9 @@
 // Start-up unit conversions for the path controller (64-bit math only here, never per tick).
 #include "firmware/app/axis_scaling.h"
 
+#include "firmware/core/divide.h"       // div_u32_by_u16, div_u32_u16
+#include "firmware/core/fixed_point.h"  // abs_u32, mul_u16_u16
+
 namespace app {
 
 namespace {
@@ -30,6 +33,10 @@ bool build_axis_scaling(const config::MachineConfig& cfg, const hal::MotionAxes&
     int32_t upm = config::usteps_per_mm(cfg.axis[a]);
     if (upm < 1) {
       upm = 1;
+      ok = false;
+    }
+    if (upm > 65535L) {  // um_to_usteps divides 32/16 (a microstep of 15 nm: not an engraver)
+      upm = 65535L;
       ok = false;
     }
     s->usteps_per_mm[a] = upm;
@@ -82,10 +89,18 @@ bool build_axis_scaling(const config::MachineConfig& cfg, const hal::MotionAxes&
 }
 
 int32_t um_to_usteps(const AxisScaling& s, uint8_t axis, int32_t um) {
-  const int32_t upm = s.usteps_per_mm[axis];
-  const int32_t mm = um / 1000;
-  const int32_t rest_um = um % 1000;  // same sign as um
-  return mm * upm + rest_um * upm / 1000;
+  // trunc(um * upm / 1000) = mm * upm + trunc(rest * upm / 1000), on |um| (the result is
+  // odd in um). With upm < 2^16 (build_axis_scaling) both divisions are 32/16 with a
+  // 16-bit quotient for |um| < 65 536 000: one DIV each on the dsPIC, no 32/32 division.
+  const uint32_t upm = (uint32_t)s.usteps_per_mm[axis];
+  const uint16_t upm16 = upm > 65535UL ? (uint16_t)65535U : (uint16_t)upm;
+  const uint32_t a = core::abs_u32(um);
+  uint16_t rest = 0;
+  const uint32_t mm = core::div_u32_by_u16(a, 1000U, &rest);
+  const uint32_t frac = core::div_u32_u16(core::mul_u16_u16(rest, upm16), 1000U, 0);
+  const uint32_t whole = mm < 65536UL ? core::mul_u16_u16((uint16_t)mm, upm16) : mm * upm16;
+  const uint32_t r = whole + frac;
+  return um < 0 ? -(int32_t)r : (int32_t)r;
 }
 
 int32_t usteps_to_um(const AxisScaling& s, uint8_t axis, int32_t usteps) {

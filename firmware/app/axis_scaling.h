@@ -31,7 +31,8 @@ static const uint16_t kPlanAccelFraction256 = 192;
 bool build_axis_scaling(const config::MachineConfig& cfg, const hal::MotionAxes& motion,
                         AxisScaling* s);
 
-// Micrometres to microsteps on one axis, exact for |um| < 2^31 / usteps_per_mm * 1000.
+// Micrometres to microsteps on one axis: trunc(um * usteps_per_mm / 1000), exact while the
+// result fits 31 bits. 32/16 divisions only (usteps_per_mm < 2^16, see build_axis_scaling).
 int32_t um_to_usteps(const AxisScaling& s, uint8_t axis, int32_t um);
 
 // Microsteps to micrometres (rounded toward minus infinity).

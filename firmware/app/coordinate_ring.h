@@ -21,17 +21,17 @@ enum PointFlags {
 // only raises entry_max_um_s and sets capture_um (16-bit stores, atomic on the target),
 // which the consumer may read at any time: a stale value is always the safer one.
 struct PlanEntry {
-  int32_t target_um[config::kAxisCount];
-  int16_t dir_q14[config::kAxisCount];  // unit vector of the segment, Q2.14
-  uint32_t length_um;                   // segment length (saturated at 2^31)
-  uint16_t feed_um_s;                   // commanded feed on this segment
-  uint16_t cruise_max_um_s;             // axis speed limits along this direction
-  uint16_t accel_um_s_per_ms;           // planned path acceleration on this segment
-  uint16_t junction_max_um_s;           // cap at the segment start (corner, feeds)
-  volatile uint16_t entry_max_um_s;     // planned speed limit at the segment start
-  volatile uint16_t capture_um;         // leave for the next target inside this distance
-  uint16_t tag;                         // producer's item counter (progress)
-  uint8_t flags;                        // PointFlags
+  int32_t target_usteps[config::kAxisCount];  // converted by the planner, not in the tick
+  int16_t dir_q14[config::kAxisCount];        // unit vector of the segment, Q2.14
+  uint32_t length_um;                         // segment length (saturated at 2^31)
+  uint16_t feed_um_s;                         // commanded feed on this segment
+  uint16_t cruise_max_um_s;                   // axis speed limits along this direction
+  uint16_t accel_um_s_per_ms;                 // planned path acceleration on this segment
+  uint16_t junction_max_um_s;                 // cap at the segment start (corner, feeds)
+  volatile uint16_t entry_max_um_s;           // planned speed limit at the segment start
+  volatile uint16_t capture_um;               // leave for the next target inside this distance
+  uint16_t tag;                               // producer's item counter (progress)
+  uint8_t flags;                              // PointFlags
 };
 
 // SPSC ring of PlanEntry with 16-bit free-running indices (same contract as core::SpscRing)

@@ -1,8 +1,11 @@
 // The 1 ms path controller (see path_controller.h and docs/firmware.md "The tick").
 #include "firmware/app/path_controller.h"
 
-#include "firmware/app/planner.h"  // reach_speed_um_s
-#include "firmware/app/vector3.h"  // normalise3, length3, scale_length_q4
+#include "firmware/app/planner.h"       // reach_speed_um_s
+#include "firmware/app/vector3.h"       // normalise3, length3, scale_length_q4
+#include "firmware/core/divide.h"       // div_u32_u16
+#include "firmware/core/fixed_point.h"  // mul_s16_u16, high_half, asr32
+#include "firmware/core/isqrt.h"        // isqrt32_from
 
 namespace app {
 
@@ -32,7 +35,7 @@ PathController::PathController()
       arrived_(false),
       hold_(false) {
   for (uint8_t i = 0; i < config::kAxisCount; ++i) {
-    target_usteps_[i] = 0;
+    cur_.target_usteps[i] = 0;
     residue_q8_[i] = 0;
   }
   cur_.tag = 0;
@@ -64,12 +67,9 @@ void PathController::stop_now() {
   for (uint8_t i = 0; i < config::kAxisCount; ++i) residue_q8_[i] = 0;
 }
 
-// Makes e the current target (microsteps computed once here, not every tick).
-void PathController::take(const PlanEntry& e) {
-  cur_ = e;
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) {
-    target_usteps_[i] = um_to_usteps(scaling_, i, e.target_um[i]);
-  }
+// cur_ was just popped from the ring: it is the target now (in microsteps already: the
+// planner converted it in the background).
+void PathController::take_popped() {
   have_target_ = true;
   arrived_ = false;
 }
@@ -91,42 +91,50 @@ uint16_t PathController::cruise_of(const PlanEntry& e) const {
 
 void PathController::tick(const int32_t pos_usteps[config::kAxisCount], CoordinateRing* ring,
                           int16_t v_units[config::kAxisCount]) {
-  PlanEntry next_copy;
   if (!have_target_) {
-    if (!ring->pop(&next_copy)) {
+    if (!ring->pop(&cur_)) {
       speed_um_s_ = 0;
       output(0, 0, v_units);
       return;
     }
-    take(next_copy);
+    take_popped();
   }
   int16_t dir_um[3];
-  uint16_t len = 0;
-  uint32_t len_q4 = 0;
+  uint32_t sum_sq = 0;
+  int8_t len_shift = 0;
+  int32_t along = 0;  // dir_um projected on the segment direction, * 2^14
   const PlanEntry* next = 0;
+  const uint32_t per_tick_um = um_per_tick(speed_um_s_) + 1U;  // once: speed is fixed here
   for (uint8_t captures = 0;; ++captures) {
     int32_t d[3];
-    for (uint8_t i = 0; i < 3; ++i) d[i] = target_usteps_[i] - pos_usteps[i];
+    for (uint8_t i = 0; i < 3; ++i) d[i] = cur_.target_usteps[i] - pos_usteps[i];
     int16_t n[3];
     int8_t shift;
     normalise3(d, n, &shift);
+    // n * um_per_ustep: a 16x16 product and a shift by whole bytes first (um_shift >= 16).
     for (uint8_t i = 0; i < 3; ++i) {
-      dir_um[i] = (int16_t)(((int32_t)n[i] * scaling_.um_per_ustep_q[i]) >> scaling_.um_shift);
+      dir_um[i] = (int16_t)core::asr32(core::mul_s16_u16(n[i], scaling_.um_per_ustep_q[i]),
+                                       scaling_.um_shift);
     }
-    len = length3(dir_um);
-    len_q4 = scale_length_q4(len, shift);
+    sum_sq = sum_squares3(dir_um);
+    len_shift = shift;
+    along = dot(dir_um, cur_.dir_q14);
     next = ring->front();
     if (next == 0 || captures >= kMaxCapturesPerTick) break;
     // Switch early by the distance of one tick as well, so no target is jumped over.
     uint32_t capture_um = cur_.capture_um;
-    const uint32_t per_tick_um = um_per_tick(speed_um_s_) + 1U;
     if (per_tick_um > capture_um) capture_um = per_tick_um;
-    const bool passed = cur_.length_um > 0 && dot(dir_um, cur_.dir_q14) < 0;
-    if (len_q4 > (capture_um << 4) && !passed) break;
+    const bool passed = cur_.length_um > 0 && along < 0;
+    // The capture test compares squares: only the target finally kept needs a root.
+    if (!passed && length_q4_exceeds(sum_sq, len_shift, capture_um << 4)) break;
     leave_target();
-    ring->pop(&next_copy);
-    take(next_copy);
+    ring->pop(&cur_);  // front() was not null: this pops it, straight into the target
+    take_popped();
   }
+  // Moving along the segment, the vector's length is close to its projection on the
+  // segment direction: a Newton step from there is exact and cheaper than the full root.
+  const uint16_t len = core::isqrt32_from(sum_sq, along > 0 ? (uint16_t)(along >> 14) : 0);
+  const uint32_t len_q4 = scale_length_q4(len, len_shift);
 
   // Speed: accelerate toward the cruise speed, never above what still lets the machine
   // reach the next corner (or a stop at the end of the buffer) at the planned speed.
@@ -177,19 +185,35 @@ void PathController::tick(const int32_t pos_usteps[config::kAxisCount], Coordina
 // Velocity vector of length speed along dir_um, in native units, with the quantisation
 // residue of each axis carried to the next tick (keeps the mean direction exact).
 void PathController::output(const int16_t dir_um[3], uint16_t len, int16_t v_units[3]) {
-  // One division per tick: speed / length in Q13; each component is then a product.
-  // |dir_i| <= len, so dir_i * scale <= speed * 2^13 < 2^28.
-  const int32_t scale_q13 =
-      (dir_um == 0 || len == 0) ? 0 : (int32_t)(((uint32_t)speed_um_s_ << 13) / len);
+  // One 32/16 division per tick (DIV.UD on the dsPIC): scale = speed * 2^k / len < 2^16,
+  // k = 13 unless len is short against the speed (then as many bits as fit; >= 2^15 of
+  // them, so the scale keeps 15 significant bits). |dir_i| <= len, so each component
+  // dir_i * scale >> k is at most the speed: a 16x16 product.
+  uint16_t scale = 0;
+  uint8_t k = 13;
+  if (dir_um != 0 && len != 0) {
+    uint32_t num = ((uint32_t)speed_um_s_ << 16) >> 3;  // speed * 2^13: byte move, 3 steps
+    const uint32_t limit = (uint32_t)len << 16;
+    while (k > 0 && num >= limit) {
+      num >>= 1;
+      --k;
+    }
+    if (num < limit) scale = core::div_u32_u16(num, len, 0);
+  }
   for (uint8_t i = 0; i < config::kAxisCount; ++i) {
-    if (scale_q13 == 0) {
+    if (scale == 0) {
       v_units[i] = 0;
       residue_q8_[i] = 0;
       continue;
     }
-    const int32_t c_um_s = ((int32_t)dir_um[i] * scale_q13) >> 13;
-    const int32_t units_q8 =
-        (c_um_s * (int32_t)scaling_.units_per_um_s_q[i]) >> (scaling_.units_shift - 8);
+    // |c| <= speed < 2^15; c * units_per_um_s_q < 2^31. An axis that does not move (Z
+    // while cutting) skips both products: only its residue is carried.
+    int32_t units_q8 = 0;
+    if (dir_um[i] != 0) {
+      const int16_t c_um_s = (int16_t)core::asr32(core::mul_s16_u16(dir_um[i], scale), k);
+      units_q8 = core::asr32(core::mul_s16_u16(c_um_s, scaling_.units_per_um_s_q[i]),
+                             (uint8_t)(scaling_.units_shift - 8));
+    }
     int32_t acc = residue_q8_[i] + units_q8;
     int32_t out = (acc + 128) >> 8;
     if (out > scaling_.max_units[i]) out = scaling_.max_units[i];

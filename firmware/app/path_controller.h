@@ -42,14 +42,13 @@ class PathController {
   uint16_t current_tag() const { return cur_.tag; }
 
  private:
-  void take(const PlanEntry& e);
+  void take_popped();
   void leave_target();
   uint16_t cruise_of(const PlanEntry& e) const;
   void output(const int16_t dir_um[3], uint16_t len, int16_t v_units[3]);
 
   AxisScaling scaling_;
   PlanEntry cur_;
-  int32_t target_usteps_[config::kAxisCount];
   int32_t residue_q8_[config::kAxisCount];  // velocity quantisation carried to the next tick
   uint16_t speed_um_s_;
   uint16_t items_done_;

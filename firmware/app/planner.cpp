@@ -77,7 +77,7 @@ void Planner::set_origin(const int32_t at_um[config::kAxisCount]) {
 void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount]) {
   int32_t d[3];
   for (uint8_t i = 0; i < 3; ++i) {
-    e->target_um[i] = target_um[i];
+    e->target_usteps[i] = um_to_usteps(scaling_, i, target_um[i]);
     d[i] = target_um[i] - last_um_[i];
   }
   int16_t n[3];

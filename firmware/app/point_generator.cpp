@@ -31,7 +31,7 @@ core::GeometryError PointGenerator::begin(const core::Spline* spline, uint16_t f
   tag_ = tag;
   have_pending_ = false;
   pending_is_last_ = false;
-  const core::GeometryError e = stepper_.begin(spline, settings_);
+  const core::GeometryError e = walker_.begin(spline, settings_);
   active_ = e == core::GeometryError::kOk;
   return e;
 }
@@ -65,9 +65,9 @@ GenStatus PointGenerator::run(Planner* planner, CoordinateRing* ring, const int3
   if (!active_) return GenStatus::kDone;
   for (uint8_t n = 0; n < max_points; ++n) {
     if (!have_pending_) {
-      if (!stepper_.next(&pending_)) {
+      if (!walker_.next(&pending_)) {
         active_ = false;
-        if (stepper_.error() != core::GeometryError::kOk) return GenStatus::kFailed;
+        if (walker_.error() != core::GeometryError::kOk) return GenStatus::kFailed;
         // The curve ended: the item's end marker sits on the last point.
         const int32_t* last = planner->last_um();
         const int32_t at[3] = {last[0], last[1], last[2]};

@@ -8,7 +8,7 @@
 
 #include "firmware/app/coordinate_ring.h"  // CoordinateRing
 #include "firmware/app/planner.h"          // Planner
-#include "firmware/core/spline_stepper.h"  // SplineStepper, StepSettings
+#include "firmware/core/curve_walker.h"    // CurveWalker, StepSettings
 
 namespace app {
 
@@ -30,14 +30,14 @@ class PointGenerator {
   // Pushes up to max_points points; travel_um: allowed |x|, |y|.
   GenStatus run(Planner* planner, CoordinateRing* ring, const int32_t travel_um[2],
                 uint8_t max_points);
-  core::GeometryError error() const { return stepper_.error(); }
+  core::GeometryError error() const { return walker_.error(); }
   bool active() const { return active_; }
   void stop() { active_ = false; }
 
  private:
   bool push_point(Planner* planner, CoordinateRing* ring, const core::PointUm& p, uint8_t flags);
 
-  core::SplineStepper stepper_;
+  core::CurveWalker walker_;
   core::StepSettings settings_;
   uint16_t max_step_um_;
   uint16_t feed_um_s_;

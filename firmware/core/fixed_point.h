@@ -26,25 +26,47 @@ enum { kQ6Shift = 6, kQ27Shift = 27 };
 static const q15_t kQ15Max = 32767;
 static const uint32_t kUq16One = 65536UL;  // 1.0 in UQ0.16 (needs 17 bits)
 
+// v unchanged, through an empty asm (no instruction on any target): keeps the optimiser
+// from folding a 16-bit operand back into the 32-bit value it was cut from, which makes
+// avr-gcc multiply 32x32 (__mulsi3, ~70 cycles) instead of 16x16 (__umulhisi3, ~25).
+inline uint16_t opaque_u16(uint16_t v) {
+  __asm__("" : "+r"(v));
+  return v;
+}
+inline int16_t opaque_s16(int16_t v) {
+  __asm__("" : "+r"(v));
+  return v;
+}
+
+// The two 16x16 -> 32 products every 32x16 product is built from (one MUL each on the
+// dsPIC; __umulhisi3 / __usmulhisi3 on the AVR, kept so by the barriers above).
+inline uint32_t mul_u16_u16(uint16_t a, uint16_t b) {
+  return (uint32_t)opaque_u16(a) * opaque_u16(b);
+}
+inline int32_t mul_s16_u16(int16_t a, uint16_t b) {
+  return (int32_t)opaque_s16(a) * opaque_u16(b);  // |.| < 2^31
+}
+
+// The signed high and unsigned low halves of a 32-bit value: a = hi * 2^16 + lo.
+inline int16_t high_half(int32_t a) {
+  return (int16_t)((uint32_t)a >> 16);  // modulo conversion (GCC on every target)
+}
+inline uint16_t low_half(int32_t a) {
+  return (uint16_t)a;
+}
+
 // (a * b) >> 16 for a signed 32-bit value and an unsigned Q0.16 fraction, rounded toward
 // minus infinity. Exact (same result as a 64-bit product) but built from two 16x16
 // products: a = hi * 2^16 + lo, so a * b >> 16 = hi * b + (lo * b >> 16).
 // Never overflows: |result| <= |a|.
 inline int32_t mul_32x16_uq16(int32_t a, uq16_t b) {
-  const int16_t hi = (int16_t)(a >> 16);  // arithmetic shift (GCC on every target)
-  const uint16_t lo = (uint16_t)(a & 0xFFFF);
-  const int32_t hi_part = (int32_t)hi * (int32_t)b;     // |.| < 2^31
-  const uint32_t lo_part = (uint32_t)lo * (uint32_t)b;  // < 2^32
-  return hi_part + (int32_t)(lo_part >> 16);
+  return mul_s16_u16(high_half(a), b) + (int32_t)(mul_u16_u16(low_half(a), b) >> 16);
 }
 
 // round(a * b / 2^16) (ties up): the same two products plus one add. Exact; |result| <= |a|.
 inline int32_t mul_32x16_uq16_round(int32_t a, uq16_t b) {
-  const int16_t hi = (int16_t)(a >> 16);
-  const uint16_t lo = (uint16_t)(a & 0xFFFF);
-  const int32_t hi_part = (int32_t)hi * (int32_t)b;
-  const uint32_t lo_part = (uint32_t)lo * (uint32_t)b + 0x8000UL;  // < 2^32
-  return hi_part + (int32_t)(lo_part >> 16);
+  // lo * b + 2^15 <= (2^16 - 1)^2 + 2^15 < 2^32: no carry lost.
+  return mul_s16_u16(high_half(a), b) + (int32_t)((mul_u16_u16(low_half(a), b) + 0x8000UL) >> 16);
 }
 
 // round(a * b / 2^15) for a signed 32-bit value and a Q15 fraction (ties up).
@@ -63,6 +85,21 @@ inline int32_t mul_32x16_q15(int32_t a, q15_t b) {
 // a * b for two 16-bit values, widened before the multiply.
 inline int32_t mul_16x16(int16_t a, int16_t b) {
   return (int32_t)a * (int32_t)b;
+}
+
+// v >> n (arithmetic, n in 0..31) with a whole-byte step first: a variable shift is a loop
+// of single-bit steps on the AVR (and on the dsPIC for 32-bit values), a shift by 8 is a
+// byte move.
+inline int32_t asr32(int32_t v, uint8_t n) {
+  if (n >= 8) {
+    v >>= 8;
+    n = (uint8_t)(n - 8);
+    if (n >= 8) {
+      v >>= 8;
+      n = (uint8_t)(n - 8);
+    }
+  }
+  return v >> n;
 }
 
 // round(v / 2^shift) for shift in 1..30 (ties up; arithmetic shift on every target).

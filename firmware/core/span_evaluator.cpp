@@ -2,6 +2,8 @@
 // per-point Horner evaluation in 32x16 fixed point.
 #include "firmware/core/span_evaluator.h"
 
+#include "firmware/core/divide.h"  // reciprocal_of, mul_reciprocal_q27
+
 namespace core {
 
 namespace {
@@ -75,11 +77,21 @@ void power_basis(uint8_t p, const int64_t* b, int64_t* c) {
   }
 }
 
-// Horner in t (uq16; t_q16 = 65536 handled as 1.0 by the caller) over coefficients c.
+// Horner in t (uq16; t_q16 = 65536 handled as 1.0 by the caller) over coefficients c,
+// unrolled per degree (kMaxDegree 3): no loop counter or indexing on the per-point path.
+// Inlined into evaluate_q6 (the per-point path); direction() calls the copy below.
+inline __attribute__((always_inline)) int32_t horner_inline(const int32_t* c, uint8_t p, uq16_t t) {
+  if (p == 3) {
+    return c[0] + mul_32x16_uq16_round(
+                      c[1] + mul_32x16_uq16_round(c[2] + mul_32x16_uq16_round(c[3], t), t), t);
+  }
+  if (p == 2) return c[0] + mul_32x16_uq16_round(c[1] + mul_32x16_uq16_round(c[2], t), t);
+  if (p == 1) return c[0] + mul_32x16_uq16_round(c[1], t);
+  return c[0];
+}
+
 int32_t horner(const int32_t* c, uint8_t p, uq16_t t) {
-  int32_t acc = c[p];
-  for (uint8_t k = p; k > 0; --k) acc = c[k - 1] + mul_32x16_uq16_round(acc, t);
-  return acc;
+  return horner_inline(c, p, t);
 }
 
 // Scales (x, y) so that the larger magnitude lies in [2^13, 2^14): a direction only.
@@ -105,6 +117,37 @@ Direction scale_direction(int64_t x, int64_t y) {
     d.dx = (int16_t)shl64(x, (uint8_t)-shift);
     d.dy = (int16_t)shl64(y, (uint8_t)-shift);
   }
+  return d;
+}
+
+// The same for 32-bit components (the polynomial derivative): identical results, without
+// 64-bit shifts and divisions (helper calls on 16-bit targets). Division by 2^shift
+// truncates toward zero as above: the shift works on the magnitude.
+Direction scale_direction32(int32_t x, int32_t y) {
+  Direction d = {0, 0};
+  const uint32_t ax = abs_u32(x);
+  const uint32_t ay = abs_u32(y);
+  uint32_t m = ax > ay ? ax : ay;
+  if (m == 0) return d;
+  uint8_t down = 0;
+  uint8_t up = 0;
+  while (m >= (1UL << 22)) {  // whole bytes first, then bits
+    m >>= 8;
+    down = (uint8_t)(down + 8);
+  }
+  while (m >= (1UL << 14)) {
+    m >>= 1;
+    ++down;
+  }
+  while (m < (1UL << 13)) {
+    m <<= 1;
+    ++up;
+  }
+  // |result| < 2^14 either way; up only when m < 2^13, so nothing overflows.
+  const uint16_t rx = (uint16_t)(down ? ax >> down : ax << up);
+  const uint16_t ry = (uint16_t)(down ? ay >> down : ay << up);
+  d.dx = x < 0 ? (int16_t) - (int16_t)rx : (int16_t)rx;
+  d.dy = y < 0 ? (int16_t) - (int16_t)ry : (int16_t)ry;
   return d;
 }
 
@@ -136,6 +179,7 @@ uint16_t next_span(const Spline& spline, uint16_t span) {
 
 SpanEvaluator::SpanEvaluator() : degree_(0), rational_(false), dir_shift_(0) {
   origin_.x_um = origin_.y_um = 0;
+  origin_q6_.x_q6 = origin_q6_.y_q6 = 0;
   start_.x_q6 = start_.y_q6 = 0;
   end_ = start_;
   end_dir_.dx = end_dir_.dy = 0;
@@ -184,6 +228,8 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   // Origin: the span start rounded to 1 um (absolute).
   origin_.x_um = (int32_t)(ref.x_um + div_round(shl64(b[0].x, kAlphaShift - kSetupShift), b[0].w));
   origin_.y_um = (int32_t)(ref.y_um + div_round(shl64(b[0].y, kAlphaShift - kSetupShift), b[0].w));
+  origin_q6_.x_q6 = origin_.x_um * (1L << kQ6Shift);  // |.| < 2^26: once, not per point
+  origin_q6_.y_q6 = origin_.y_um * (1L << kQ6Shift);
   // Numerators relative to the origin, weights normalised to max 1, in q6 / q27.
   int64_t nx[kMaxDegree + 1], ny[kMaxDegree + 1], nw[kMaxDegree + 1];
   const int64_t ox = shl64((int64_t)origin_.x_um - ref.x_um, kSetupShift);
@@ -241,22 +287,26 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   return GeometryError::kOk;
 }
 
-// Horner on the span-relative coefficients; rational: one 64/32 division per axis.
+// Horner on the span-relative coefficients: per coordinate `degree` 32x16 products.
 PointQ6 SpanEvaluator::evaluate_q6(uint32_t t_q16) const {
-  PointQ6 r;
   if (t_q16 >= kUq16One) return end_;
+  if (rational_) return rational_q6((uq16_t)t_q16);
   const uq16_t t = (uq16_t)t_q16;
-  const int32_t x = horner(cx_, degree_, t);
-  const int32_t y = horner(cy_, degree_, t);
-  if (!rational_) {
-    r.x_q6 = origin_.x_um * (1L << kQ6Shift) + x;
-    r.y_q6 = origin_.y_um * (1L << kQ6Shift) + y;
-    return r;
-  }
-  int32_t w = horner(cw_, degree_, t);  // > 0: convex combination of weights > 0
-  if (w < 1) w = 1;                     // rounding can never make it 0; be sure anyway
-  r.x_q6 = origin_.x_um * (1L << kQ6Shift) + (int32_t)div_round(shl64(x, kQ27Shift), w);
-  r.y_q6 = origin_.y_um * (1L << kQ6Shift) + (int32_t)div_round(shl64(y, kQ27Shift), w);
+  PointQ6 r;
+  r.x_q6 = origin_q6_.x_q6 + horner_inline(cx_, degree_, t);
+  r.y_q6 = origin_q6_.y_q6 + horner_inline(cy_, degree_, t);
+  return r;
+}
+
+// N(t) / W(t): W by Horner too, then one reciprocal of W (one 32/16 division and a Newton
+// step) and four 16x16 products per coordinate instead of a 64/32 division each.
+PointQ6 SpanEvaluator::rational_q6(uq16_t t) const {
+  // W > 0: a convex combination of weights > 0 (<= 2^27, normalised at setup); rounding
+  // can never make it 0, and reciprocal_of treats w <= 0 as 1 anyway.
+  const Reciprocal inv_w = reciprocal_of(horner_inline(cw_, degree_, t));
+  PointQ6 r;
+  r.x_q6 = origin_q6_.x_q6 + mul_reciprocal_q27(horner_inline(cx_, degree_, t), inv_w);
+  r.y_q6 = origin_q6_.y_q6 + mul_reciprocal_q27(horner_inline(cy_, degree_, t), inv_w);
   return r;
 }
 
@@ -267,16 +317,14 @@ Direction SpanEvaluator::direction(uq16_t t) const {
     return z;
   }
   int32_t dx[kMaxDegree], dy[kMaxDegree];
-  for (uint8_t k = 1; k <= degree_; ++k) {
-    dx[k - 1] = (cx_[k] >> dir_shift_) * k;  // q(6 - dir_shift_) um
-    dy[k - 1] = (cy_[k] >> dir_shift_) * k;
-  }
+  derivative(cx_, dx);  // q(6 - dir_shift_) um
+  derivative(cy_, dy);
   const int32_t px = horner(dx, (uint8_t)(degree_ - 1), t);
   const int32_t py = horner(dy, (uint8_t)(degree_ - 1), t);
-  if (!rational_) return scale_direction(px, py);
+  if (!rational_) return scale_direction32(px, py);
   // P = N / W, P' ~ N' W - N W' (W > 0 leaves the direction unchanged).
   int32_t dw[kMaxDegree];
-  for (uint8_t k = 1; k <= degree_; ++k) dw[k - 1] = (cw_[k] >> dir_shift_) * k;
+  derivative(cw_, dw);
   const int32_t w1 = horner(dw, (uint8_t)(degree_ - 1), t);
   const int32_t w = horner(cw_, degree_, t);
   const int32_t nx = horner(cx_, degree_, t);
@@ -285,6 +333,15 @@ Direction SpanEvaluator::direction(uq16_t t) const {
   const int64_t qx = (int64_t)px * w - (int64_t)nx * w1;
   const int64_t qy = (int64_t)py * w - (int64_t)ny * w1;
   return scale_direction(qx, qy);
+}
+
+// Coefficients k c[k] >> dir_shift_ of the derivative: times 1, 2, 3 as adds (a multiply
+// by a variable k is a 32x32 library call on 16-bit targets), the shift usually 0.
+void SpanEvaluator::derivative(const int32_t* c, int32_t* d) const {
+  for (uint8_t k = 1; k <= degree_; ++k) {
+    const int32_t v = dir_shift_ ? asr32(c[k], dir_shift_) : c[k];
+    d[k - 1] = k == 1 ? v : (k == 2 ? v + v : v + v + v);
+  }
 }
 
 Direction SpanEvaluator::end_direction() const {

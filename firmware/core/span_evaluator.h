@@ -42,8 +42,10 @@ PointUm round_point(const PointQ6& p);
 // t in [0, 1) as uq16 (t = 0 the span start; the span end t = 1 is end_point()).
 // Setup (setup()) does the De Boor/blossom work in 64-bit integer arithmetic with
 // divisions by knot differences (never zero: the span has positive length and every
-// denominator spans it). Per point: 3 (degree 3) 32x16 products per coordinate, Horner.
-// A rational point adds W (3 products) and one 64/32 division per coordinate.
+// denominator spans it). Per point: 3 (degree 3) 32x16 products per coordinate, Horner;
+// no 64-bit arithmetic and no 32/32 division (a ctest checks the generated code).
+// A rational point adds W (3 products), one reciprocal of W (one 32/16 division, four
+// 16x16 products) and four 16x16 products per coordinate (core/divide.h).
 // Error budget: docs/core-math.md (<= 0.1 um for polynomial spans over |coord| <= 1e6).
 class SpanEvaluator {
  public:
@@ -71,9 +73,13 @@ class SpanEvaluator {
   bool rational() const { return rational_; }
 
  private:
+  PointQ6 rational_q6(uq16_t t) const;
+  void derivative(const int32_t* c, int32_t* d) const;
+
   uint8_t degree_;
   bool rational_;
-  PointUm origin_;  // first Bezier point of the span, rounded to 1 um
+  PointUm origin_;     // first Bezier point of the span, rounded to 1 um
+  PointQ6 origin_q6_;  // the same in q6 (added to every point)
   PointQ6 start_;
   PointQ6 end_;
   q6_um_t cx_[kMaxDegree + 1];  // power-basis coefficients of x (or of w*x) relative

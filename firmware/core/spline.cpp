@@ -1,4 +1,4 @@
-// Validation of a stored B-spline: every condition the evaluator and stepper rely on.
+// Validation of a stored B-spline: every condition the evaluator and walker rely on.
 #include "firmware/core/spline.h"
 
 namespace core {

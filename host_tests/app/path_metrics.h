@@ -60,7 +60,7 @@ inline double polyline_length(const std::vector<P3>& line) {
   return len;
 }
 
-// Circle of radius r about c as chords whose sagitta is chord_um (like the adaptive stepper).
+// Circle of radius r about c as chords whose sagitta is chord_um (like the adaptive walker).
 inline std::vector<P3> circle(double cx, double cy, double r, double chord_um) {
   const double step = 2 * std::acos(1 - chord_um / r);
   const int n = int(std::ceil(2 * M_PI / step));

@@ -1,12 +1,12 @@
-// Tool-radius offset in SplineStepper: exact circles offset to r -/+ R, corner arcs and
+// Tool-radius offset in CurveWalker: exact circles offset to r -/+ R, corner arcs and
 // miters on polygons, and kOffsetTooLarge when R exceeds the radius of curvature.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "firmware/core/spline_stepper.h"
+#include "firmware/core/curve_walker.h"
 #include "host_tests/core/curve_factory.h"
-#include "host_tests/core/stepper_helpers.h"
+#include "host_tests/core/curve_walker_helpers.h"
 
 namespace {
 

@@ -9,7 +9,9 @@
 #include "firmware/app/planner.h"          // Planner
 #include "firmware/app/point_generator.h"  // PointGenerator (sizeof only)
 #include "firmware/app/spline_store.h"     // SplineStore
+#include "firmware/app/vector3.h"          // normalise3, length3 (tick parts)
 #include "firmware/config/machine_config.h"
+#include "firmware/core/isqrt.h"         // isqrt32, isqrt32_from (tick parts)
 #include "firmware/protocol/codec.h"     // write_frame, decode_frame
 #include "firmware/protocol/parser.h"    // Parser
 #include "hal/interfaces/motion_axes.h"  // MotionAxes
@@ -176,6 +178,68 @@ void measure_spline_data_frame() {
       (unsigned long)(d - c - overhead), counter_unit());
 }
 
+// The tick's parts, each on inputs of the measured path (1 mm segments, 2560 usteps/mm):
+// where its cycles go, for the dsPIC translation in docs/performance.md.
+volatile int32_t g_part_sink;
+volatile int32_t g_part_in[4];  // inputs pass through here so no % lands in a timed span
+
+void measure_tick_parts() {
+  Series norm = {0xFFFFFFFFUL, 0, 0, 0};
+  Series len = {0xFFFFFFFFUL, 0, 0, 0};
+  Series conv = {0xFFFFFFFFUL, 0, 0, 0};
+  Series reach = {0xFFFFFFFFUL, 0, 0, 0};
+  Series root = {0xFFFFFFFFUL, 0, 0, 0};
+  Series root_from = {0xFFFFFFFFUL, 0, 0, 0};
+  uint32_t state = 0x2545F491UL;
+  for (uint8_t k = 0; k < 32; ++k) {
+    const uint32_t r = next_random(&state);
+    g_part_in[0] = (int32_t)(r % 5121U) - 2560;
+    g_part_in[1] = (int32_t)((r >> 13) % 5121U) - 2560;
+    g_part_in[2] = (int32_t)(r % 600001UL) - 300000L;
+    g_part_in[3] = (int32_t)(r % 2000U);
+    const int32_t d[3] = {g_part_in[0], g_part_in[1], 0};
+    const int32_t um = g_part_in[2];
+    const uint32_t length_um = (uint32_t)g_part_in[3];
+    const uint16_t exit_um_s = (uint16_t)(length_um * 5U);
+    int16_t n[3];
+    int8_t shift = 0;
+    uint32_t a = cycles_now();
+    app::normalise3(d, n, &shift);
+    uint32_t b = cycles_now();
+    series_add(&norm, a, b);
+    a = cycles_now();
+    const uint16_t l = app::length3(n);
+    b = cycles_now();
+    series_add(&len, a, b);
+    const uint32_t sum_sq = app::sum_squares3(n);
+    a = cycles_now();
+    const uint16_t l1 = core::isqrt32(sum_sq);
+    b = cycles_now();
+    series_add(&root, a, b);
+    const uint16_t guess = (uint16_t)(l1 - l1 / 1024U);  // 0.1 % low: a tick's typical seed
+    a = cycles_now();
+    const uint16_t l2 = core::isqrt32_from(sum_sq, guess);
+    b = cycles_now();
+    series_add(&root_from, a, b);
+    PROXY_CHECK_EQ(l1, l2);
+    a = cycles_now();
+    const int32_t us = app::um_to_usteps(g_scaling, 0, um);
+    b = cycles_now();
+    series_add(&conv, a, b);
+    a = cycles_now();
+    const uint16_t v = app::reach_speed_capped_um_s(exit_um_s, 300, length_um, 10000);
+    b = cycles_now();
+    series_add(&reach, a, b);
+    g_part_sink = l + us + v + shift;
+  }
+  series_print(PROXY_STR("tick part normalise3"), norm);
+  series_print(PROXY_STR("tick part length3 (isqrt32)"), len);
+  series_print(PROXY_STR("tick part isqrt32 alone"), root);
+  series_print(PROXY_STR("tick part isqrt32_from (guess 0.1 % low: one Newton step)"), root_from);
+  series_print(PROXY_STR("tick part um_to_usteps (per axis, on taking a target)"), conv);
+  series_print(PROXY_STR("tick part reach_speed_capped_um_s"), reach);
+}
+
 }  // namespace
 
 void run_app_measurements() {
@@ -228,6 +292,7 @@ void run_app_measurements() {
                (unsigned)kPathPoints);
   series_print(PROXY_STR("path controller tick (PathController::tick)"), tick);
   series_print(PROXY_STR("planner push of one point (background)"), push);
+  measure_tick_parts();
   measure_spline_data_frame();
   PROXY_PRINTF(
       "memory sizeof CoordinateRing %u, PathController %u, Planner %u, AxisScaling %u bytes\n",

@@ -1,7 +1,7 @@
 // Host generator of the proxy runner's reference tables: a few B-splines (cubic, quadratic,
 // linear, rational, non-uniform, huge knots, a corner), their points computed in double
 // precision by Eigen's unsupported/Eigen/Splines, and the point counts/hashes of the host
-// build of core::SplineStepper. Writes a header the AVR build includes.
+// build of core::CurveWalker. Writes a header the AVR build includes.
 // Usage: make_reference OUTPUT.h
 #include <array>
 #include <cmath>
@@ -14,9 +14,9 @@
 #include <Eigen/Core>
 #include <unsupported/Eigen/Splines>
 
+#include "firmware/core/curve_walker.h"
 #include "firmware/core/span_evaluator.h"
 #include "firmware/core/spline.h"
-#include "firmware/core/spline_stepper.h"
 #include "host_tests/target_proxy/reference_types.h"
 
 namespace {
@@ -248,12 +248,12 @@ int main(int argc, char** argv) {
     settings.steps_per_span = run.steps;
     settings.chord_tolerance_um = run.tolerance;
     settings.tool_offset_um = run.offset;
-    core::SplineStepper stepper;
-    stepper.begin(&s, settings);
+    core::CurveWalker walker;
+    walker.begin(&s, settings);
     core::PointUm p = {0, 0}, first = {0, 0}, last = {0, 0};
     uint32_t hash = proxy::kHashSeed;
     unsigned count = 0;
-    while (count < proxy::kMaxStepPoints && stepper.next(&p)) {
+    while (count < proxy::kMaxStepPoints && walker.next(&p)) {
       if (count == 0) first = p;
       last = p;
       hash = proxy::hash_point(hash, p);
@@ -263,7 +263,7 @@ int main(int argc, char** argv) {
       first = to_um(eigen_point(s, s.knot[s.degree]));
       last = to_um(eigen_point(s, s.knot[s.control_count]));
     }
-    out << "  {" << run.curve << ", " << int(run.mode) << ", " << int(stepper.error()) << ", "
+    out << "  {" << run.curve << ", " << int(run.mode) << ", " << int(walker.error()) << ", "
         << run.steps << ", " << run.tolerance << ", " << run.offset << "L, " << count << ", "
         << hash << "UL, " << point_text(first) << ", " << point_text(last) << "},\n";
   }

@@ -1,10 +1,11 @@
 // Cycle counts on the proxy of the work the firmware repeats: one integer sqrt, one cubic
 // 2-D De Boor point in fixed point and in float, one span setup, one stepping decision;
 // and the RAM the core's objects take.
+#include "firmware/core/curve_walker.h"    // CurveWalker
+#include "firmware/core/divide.h"          // div_u32_u16, reciprocal_of, mul_reciprocal_q27
 #include "firmware/core/fixed_point.h"     // mul_32x16_uq16
 #include "firmware/core/isqrt.h"           // isqrt32
 #include "firmware/core/span_evaluator.h"  // SpanEvaluator
-#include "firmware/core/spline_stepper.h"  // SplineStepper
 
 #include "host_tests/target_proxy/float_deboor.h"
 #include "host_tests/target_proxy/proxy_check.h"
@@ -113,6 +114,36 @@ void measure_fixed_point(core::SpanEvaluator* evaluator, uint16_t span) {
     stats_add(a, b);
   }
   stats_print(PROXY_STR("fixed De Boor point, cubic 2-D (evaluate_q6)"));
+  stats_reset();
+  for (uint8_t i = 0; i < kSamples; ++i) {
+    const uint16_t t = (uint16_t)(i * (65536UL / kSamples) + 977U);
+    const uint32_t a = cycles_now();
+    const core::Direction d = evaluator->direction(t);
+    const uint32_t b = cycles_now();
+    g_sink = d.dx + d.dy;
+    stats_add(a, b);
+  }
+  stats_print(PROXY_STR("derivative direction, cubic 2-D (direction, for tool offsets)"));
+}
+
+// The same curve made rational (weights 0.55..1.46, ratio < 3), span `span`.
+void measure_fixed_rational(core::SpanEvaluator* evaluator, uint16_t span) {
+  static const uint16_t kWeightQ14[7] = {16384, 12000, 20000, 16384, 9000, 24000, 16384};
+  core::Spline& curve = *g_bench;
+  curve.rational = true;
+  for (uint8_t i = 0; i < 7; ++i) curve.control[i].weight_q14 = kWeightQ14[i];
+  stats_reset();
+  PROXY_CHECK(evaluator->setup(curve, span) == core::GeometryError::kOk);
+  for (uint8_t i = 0; i < kSamples; ++i) {
+    const uint32_t t = (uint32_t)i * (65536UL / kSamples) + 977U;
+    const uint32_t a = cycles_now();
+    const core::PointQ6 p = evaluator->evaluate_q6(t);
+    const uint32_t b = cycles_now();
+    g_sink = p.x_q6 + p.y_q6;
+    stats_add(a, b);
+  }
+  stats_print(PROXY_STR("fixed De Boor point, rational cubic 2-D (evaluate_q6)"));
+  build_bench_curve();  // back to the polynomial curve for the other measurements
 }
 
 void measure_float_point(const FloatCurve& curve, uint16_t span, core::SpanEvaluator* fixed) {
@@ -160,16 +191,16 @@ void measure_float_horner(const FloatCurve& curve, uint16_t span) {
 
 // Cycles per next() call of a whole run (one step decision and its point each).
 void measure_stepping(core::StepMode mode, int32_t offset_um, const char* name) {
-  static core::SplineStepper stepper;
+  static core::CurveWalker walker;
   core::StepSettings settings = core::default_step_settings();
   settings.mode = mode;
   settings.tool_offset_um = offset_um;
-  stepper.begin(g_bench, settings);
+  walker.begin(g_bench, settings);
   stats_reset();
   core::PointUm p = {0, 0};
   for (uint16_t i = 0; i < kMaxStepPointsMeasured; ++i) {
     const uint32_t a = cycles_now();
-    const bool more = stepper.next(&p);
+    const bool more = walker.next(&p);
     const uint32_t b = cycles_now();
     if (!more) break;
     stats_add(a, b);
@@ -226,6 +257,39 @@ void measure_primitives() {
 
   stats_reset();
   for (uint8_t i = 0; i < kRuns; ++i) {
+    const uint32_t n = (uint32_t)g_a32;
+    const uint16_t d = g_b16;
+    const uint32_t t0 = cycles_now();
+    const uint16_t q = core::div_u32_u16(n, d, 0);  // n >> 16 < d
+    const uint32_t t1 = cycles_now();
+    g_sink = q;
+    stats_add(t0, t1);
+  }
+  stats_print(PROXY_STR("primitive core::div_u32_u16 (32/16, DIV.UD on the dsPIC)"));
+  stats_reset();
+  for (uint8_t i = 0; i < kRuns; ++i) {
+    const int32_t w = g_a32 >> 3;
+    const uint32_t t0 = cycles_now();
+    const core::Reciprocal r = core::reciprocal_of(w);
+    const uint32_t t1 = cycles_now();
+    g_sink = (int32_t)r.r_q62;
+    stats_add(t0, t1);
+  }
+  stats_print(PROXY_STR("primitive core::reciprocal_of"));
+  stats_reset();
+  const core::Reciprocal inv = core::reciprocal_of(g_a32 >> 3);
+  for (uint8_t i = 0; i < kRuns; ++i) {
+    const int32_t x = g_b32;
+    const uint32_t t0 = cycles_now();
+    const int32_t q = core::mul_reciprocal_q27(x, inv);
+    const uint32_t t1 = cycles_now();
+    g_sink = q;
+    stats_add(t0, t1);
+  }
+  stats_print(PROXY_STR("primitive core::mul_reciprocal_q27"));
+
+  stats_reset();
+  for (uint8_t i = 0; i < kRuns; ++i) {
     const float a = g_af;
     const float b = g_bf;
     const uint32_t t0 = cycles_now();
@@ -277,13 +341,14 @@ void run_measurements() {
   measure_fixed_point(&evaluator, span);
   measure_float_point(float_curve, span, &evaluator);
   measure_float_horner(float_curve, span);
-  measure_stepping(core::StepMode::kAdaptive, 0, PROXY_STR("stepper next(), adaptive 5 um"));
+  measure_fixed_rational(&evaluator, span);
+  measure_stepping(core::StepMode::kAdaptive, 0, PROXY_STR("walker next(), adaptive 5 um"));
   measure_stepping(core::StepMode::kAdaptive, 500,
-                   PROXY_STR("stepper next(), adaptive 5 um, tool offset 0.5 mm"));
-  measure_stepping(core::StepMode::kUniform, 0, PROXY_STR("stepper next(), uniform 16/span"));
-  PROXY_PRINTF("memory sizeof Spline %u, SpanEvaluator %u, SplineStepper %u bytes\n",
+                   PROXY_STR("walker next(), adaptive 5 um, tool offset 0.5 mm"));
+  measure_stepping(core::StepMode::kUniform, 0, PROXY_STR("walker next(), uniform 16/span"));
+  PROXY_PRINTF("memory sizeof Spline %u, SpanEvaluator %u, CurveWalker %u bytes\n",
                (unsigned)sizeof(core::Spline), (unsigned)sizeof(core::SpanEvaluator),
-               (unsigned)sizeof(core::SplineStepper));
+               (unsigned)sizeof(core::CurveWalker));
   end_group();
 }
 

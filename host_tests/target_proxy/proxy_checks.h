@@ -15,7 +15,7 @@ void run_ring_checks();
 // Fixed-point De Boor points against double-precision (Eigen) reference points.
 void run_deboor_checks();
 // Parameter stepping: curve ends against Eigen, point sequences against the host build.
-void run_stepper_checks();
+void run_curve_walker_checks();
 // Cycle counts of the per-point and per-tick work, and memory figures.
 void run_measurements();
 // Path-controller tick and planner push on a small plant model (when fw_app is built).

@@ -12,7 +12,7 @@ int main() {
   proxy::run_isqrt_checks();
   proxy::run_ring_checks();
   proxy::run_deboor_checks();
-  proxy::run_stepper_checks();
+  proxy::run_curve_walker_checks();
   proxy::run_measurements();
 #ifdef PROXY_HAVE_APP
   proxy::run_app_measurements();

@@ -20,7 +20,7 @@ struct PointRef {
 };
 
 // A stepping run: settings, the curve ends from the double reference (offset 0 runs), and
-// the count/hash of the points the host build of the same stepper emitted.
+// the count/hash of the points the host build of the same walker emitted.
 struct StepRef {
   uint8_t curve;
   uint8_t mode;   // core::StepMode
@@ -47,7 +47,7 @@ inline uint32_t hash_point(uint32_t hash, const core::PointUm& p) {
 }
 
 static const uint32_t kHashSeed = 2166136261UL;
-// Upper bound on points of one stepping run (a runaway stepper fails instead of hanging).
+// Upper bound on points of one stepping run (a runaway walker fails instead of hanging).
 static const uint16_t kMaxStepPoints = 20000;
 
 }  // namespace proxy

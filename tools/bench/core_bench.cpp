@@ -1,12 +1,12 @@
-// Points per second of the fixed-point span evaluator and stepper against Eigen's double
+// Points per second of the fixed-point span evaluator and walker against Eigen's double
 // B-spline evaluation (the reference the tests use). Figures go to docs/performance.md.
 #include <benchmark/benchmark.h>
 
 #include <cstring>
 #include <unsupported/Eigen/Splines>  // Eigen::Spline
 
+#include "firmware/core/curve_walker.h"
 #include "firmware/core/span_evaluator.h"
-#include "firmware/core/spline_stepper.h"
 
 namespace {
 
@@ -32,7 +32,7 @@ core::Spline bench_spline(bool rational) {
   return s;
 }
 
-// One fixed-point point: Horner on a prepared span (the per-point path of the stepper).
+// One fixed-point point: Horner on a prepared span (the per-point path of the curve walker).
 void BM_FixedPointPoint(benchmark::State& state) {
   const core::Spline s = bench_spline(state.range(0) != 0);
   core::SpanEvaluator e;
@@ -85,9 +85,9 @@ void BM_EigenDoublePoint(benchmark::State& state) {
 }
 BENCHMARK(BM_EigenDoublePoint)->Arg(0)->Arg(1)->ArgName("rational");
 
-// Whole stepper, points per second (uniform 64 per span, or adaptive 5 um; offset 0 or
+// Whole walker, points per second (uniform 64 per span, or adaptive 5 um; offset 0 or
 // 500 um): includes span setups, trial evaluations and offset normals.
-void BM_Stepper(benchmark::State& state) {
+void BM_CurveWalker(benchmark::State& state) {
   const core::Spline s = bench_spline(false);
   core::StepSettings st = core::default_step_settings();
   st.mode = state.range(0) ? core::StepMode::kAdaptive : core::StepMode::kUniform;
@@ -95,17 +95,17 @@ void BM_Stepper(benchmark::State& state) {
   st.tool_offset_um = (int32_t)state.range(1);
   int64_t points = 0;
   for (auto _ : state) {
-    core::SplineStepper stepper;
-    stepper.begin(&s, st);
+    core::CurveWalker walker;
+    walker.begin(&s, st);
     core::PointUm p;
-    while (stepper.next(&p)) {
+    while (walker.next(&p)) {
       benchmark::DoNotOptimize(p);
       ++points;
     }
   }
   state.SetItemsProcessed(points);
 }
-BENCHMARK(BM_Stepper)
+BENCHMARK(BM_CurveWalker)
     ->Args({0, 0})
     ->Args({1, 0})
     ->Args({0, 500})

@@ -1,9 +1,9 @@
-// Runs the firmware's spline stepper on the host (see firmware_points.h).
+// Runs the firmware's curve walker on the host (see firmware_points.h).
 #include "host/lib/plan/firmware_points.h"
 
 #include <sstream>  // std::ostringstream
 
-#include "firmware/core/spline_stepper.h"
+#include "firmware/core/curve_walker.h"
 #include "host/lib/plan/firmware_spline.h"
 
 namespace host {
@@ -19,20 +19,20 @@ std::vector<core::PointUm> firmware_points_um(const std::vector<core::Spline>& p
     st.mode = core::StepMode::kAdaptive;
     st.chord_tolerance_um = static_cast<uint16_t>(chord_tolerance_um);
     st.tool_offset_um = tool_offset_um;
-    core::SplineStepper stepper;
-    core::GeometryError e = stepper.begin(&pieces[k], st);
+    core::CurveWalker walker;
+    core::GeometryError e = walker.begin(&pieces[k], st);
     core::PointUm p;
     bool first = true;
     // Bounded: a spline of at most 64 control points over a +-1 m range at >= 1 um
     // tolerance cannot need more points than this.
     const size_t limit = 10000000;
     size_t count = 0;
-    while (e == core::GeometryError::kOk && stepper.next(&p)) {
+    while (e == core::GeometryError::kOk && walker.next(&p)) {
       if (!(first && k > 0)) out.push_back(p);
       first = false;
-      if (++count > limit) throw ConversionError("the stepper did not finish the curve");
+      if (++count > limit) throw ConversionError("the curve walker did not finish the curve");
     }
-    if (e == core::GeometryError::kOk) e = stepper.error();
+    if (e == core::GeometryError::kOk) e = walker.error();
     if (e != core::GeometryError::kOk) {
       std::ostringstream o;
       o << "the firmware's point generator stopped on piece " << k << " with geometry error "

@@ -1,5 +1,5 @@
 // The points the firmware's point generator produces for a curve: the portable core
-// (core::SplineStepper) run on the host over the curve's firmware splines.
+// (core::CurveWalker) run on the host over the curve's firmware splines.
 #ifndef HOST_LIB_PLAN_FIRMWARE_POINTS_H
 #define HOST_LIB_PLAN_FIRMWARE_POINTS_H
 
@@ -14,7 +14,7 @@ namespace host {
 
 // Adaptive stepping with the given chord tolerance (micrometres, 1..10000) and tool offset
 // (> 0 left of travel). Throws ConversionError when the curve cannot be converted or the
-// stepper stops early (the message carries the core::GeometryError code).
+// walker stops early (the message carries the core::GeometryError code).
 std::vector<core::PointUm> firmware_points_um(const std::vector<core::Spline>& pieces,
                                               int chord_tolerance_um, int32_t tool_offset_um = 0);
 

@@ -48,7 +48,7 @@ struct Stats {
   size_t points = 0;
 };
 
-// Runs the stepper on every piece of the curve and measures it against Eigen.
+// Runs the curve walker on every piece of the curve and measures it against Eigen.
 Stats measure(const BSpline& curve, int tol_um) {
   Stats st;
   for (const core::Spline& f : to_firmware_splines(curve)) {

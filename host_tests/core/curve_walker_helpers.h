@@ -1,6 +1,6 @@
-// Test helpers for SplineStepper: run it to completion, measure chord errors against Eigen.
-#ifndef HOST_TESTS_CORE_STEPPER_HELPERS_H
-#define HOST_TESTS_CORE_STEPPER_HELPERS_H
+// Test helpers for CurveWalker: run it to completion, measure chord errors against Eigen.
+#ifndef HOST_TESTS_CORE_CURVE_WALKER_HELPERS_H
+#define HOST_TESTS_CORE_CURVE_WALKER_HELPERS_H
 
 #include <Eigen/Core>
 
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "firmware/core/spline_stepper.h"
+#include "firmware/core/curve_walker.h"
 #include "host_tests/core/spline_reference.h"
 
 namespace stepping {
@@ -25,16 +25,16 @@ struct Run {
   std::vector<Emitted> points;
 };
 
-// Runs a stepper over s; stops after max_points (a runaway guard for the test).
+// Runs a walker over s; stops after max_points (a runaway guard for the test).
 inline Run run(const core::Spline& s, const core::StepSettings& st, size_t max_points = 200000) {
-  core::SplineStepper stepper;
+  core::CurveWalker walker;
   Run r;
-  r.begin_error = stepper.begin(&s, st);
+  r.begin_error = walker.begin(&s, st);
   core::PointUm p;
-  while (r.points.size() < max_points && stepper.next(&p)) {
-    r.points.push_back({p, stepper.span(), stepper.t_q16() / 65536.0});
+  while (r.points.size() < max_points && walker.next(&p)) {
+    r.points.push_back({p, walker.span(), walker.t_q16() / 65536.0});
   }
-  r.end_error = stepper.error();
+  r.end_error = walker.error();
   return r;
 }
 
@@ -88,4 +88,4 @@ inline double max_chord_error_um(const core::Spline& s, const Run& r, int sample
 
 }  // namespace stepping
 
-#endif  // HOST_TESTS_CORE_STEPPER_HELPERS_H
+#endif  // HOST_TESTS_CORE_CURVE_WALKER_HELPERS_H

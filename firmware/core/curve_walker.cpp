@@ -1,8 +1,9 @@
 // Point generator engine: uniform or chord-adaptive parameter steps along a validated
 // spline, tool-radius offset along the normal, corner arcs and miters, stop on overcut.
-#include "firmware/core/spline_stepper.h"
+#include "firmware/core/curve_walker.h"
 
-#include "firmware/core/fixed_point.h"  // mul_32x16_q15, kUq16One
+#include "firmware/core/divide.h"       // div_u32_u16
+#include "firmware/core/fixed_point.h"  // mul_32x16_q15, mul_u16_u16, abs_u32, kUq16One
 #include "firmware/core/isqrt.h"        // isqrt32
 
 namespace core {
@@ -69,7 +70,7 @@ StepSettings default_step_settings() {
   return s;
 }
 
-SplineStepper::SplineStepper()
+CurveWalker::CurveWalker()
     : spline_(0),
       phase_(kIdle),
       error_(GeometryError::kOk),
@@ -92,7 +93,7 @@ SplineStepper::SplineStepper()
 }
 
 // Checks spline and settings; the first point comes from the next next() call.
-GeometryError SplineStepper::begin(const Spline* spline, const StepSettings& settings) {
+GeometryError CurveWalker::begin(const Spline* spline, const StepSettings& settings) {
   spline_ = spline;
   settings_ = settings;
   phase_ = kDone;
@@ -122,7 +123,7 @@ GeometryError SplineStepper::begin(const Spline* spline, const StepSettings& set
 }
 
 // One span setup or one point per call (see the header).
-bool SplineStepper::next(PointUm* out) {
+bool CurveWalker::next(PointUm* out) {
   if (phase_ == kDone || phase_ == kIdle) return false;
   if (pending_) {
     pending_ = false;
@@ -146,7 +147,7 @@ bool SplineStepper::next(PointUm* out) {
 }
 
 // Stops stepping with a coded reason.
-bool SplineStepper::fail(GeometryError e) {
+bool CurveWalker::fail(GeometryError e) {
   error_ = e;
   phase_ = kDone;
   arc_halves_left_ = 0;
@@ -155,12 +156,12 @@ bool SplineStepper::fail(GeometryError e) {
 }
 
 // Next parameter of the uniform mode: k * 65536 / steps_per_span.
-uint32_t SplineStepper::uniform_next() const {
+uint32_t CurveWalker::uniform_next() const {
   return (uint32_t)(((uint32_t)step_index_ + 1) * kUq16One / settings_.steps_per_span);
 }
 
 // Emits the next point inside the span, or handles the span's end.
-bool SplineStepper::step_in_span(PointUm* out) {
+bool CurveWalker::step_in_span(PointUm* out) {
   const uint32_t t_next = settings_.mode == StepMode::kUniform ? uniform_next() : adaptive_next();
   if (t_next >= kUq16One) return joint(out);
   t_q16_ = t_next;
@@ -177,7 +178,7 @@ bool SplineStepper::step_in_span(PointUm* out) {
 // Rational spans and offset paths are not polynomial: they get 7 samples (eighths), which
 // the tests show to be enough on random curves; it is not a proof.
 // Bounded: a rejected step shrinks to at most half and a step of 1/65536 is accepted.
-uint32_t SplineStepper::adaptive_next() {
+uint32_t CurveWalker::adaptive_next() {
   const int64_t accept_q6 = (int64_t)tol_um_ * 64 * 9 / 10;
   const int64_t target_q6 = (int64_t)tol_um_ * 64 * 7 / 10;
   uint32_t h = h_q16_ < 1 ? 1 : h_q16_;
@@ -211,7 +212,7 @@ uint32_t SplineStepper::adaptive_next() {
 
 // The end of the current span: the last point of the curve, or the joint to the next span
 // (plain, discontinuous, smooth, or a corner).
-bool SplineStepper::joint(PointUm* out) {
+bool CurveWalker::joint(PointUm* out) {
   Direction in_dir = eval_.end_direction();
   if (is_zero(in_dir)) in_dir = last_dir_;
   const PointQ6 end = eval_.evaluate_q6(kUq16One);
@@ -257,8 +258,8 @@ bool SplineStepper::joint(PointUm* out) {
 // Offset at a joint. Smooth (offset points within tol/4): one point. Convex (turning away
 // from the offset side): the first offset end, then an arc of radius |R| about the
 // corner to the second. Concave: the miter point, or kOffsetTooLarge past ~150 degrees.
-bool SplineStepper::corner(const PointQ6& at, const Direction& in_dir, const Direction& out_dir,
-                           PointUm* out) {
+bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direction& out_dir,
+                         PointUm* out) {
   const int32_t r = settings_.tool_offset_um;
   const Unit n1 = left_normal(in_dir);
   const Unit n2 = left_normal(out_dir);
@@ -323,7 +324,7 @@ bool SplineStepper::corner(const PointQ6& at, const Direction& in_dir, const Dir
 }
 
 // One point of the corner arc: the normalised blend of the half's two normals.
-bool SplineStepper::arc_point(PointUm* out) {
+bool CurveWalker::arc_point(PointUm* out) {
   const int32_t k = arc_index_;
   const int32_t m = arc_steps_;
   Direction blend;
@@ -347,7 +348,7 @@ bool SplineStepper::arc_point(PointUm* out) {
 }
 
 // Path point at t: the curve point, moved by the tool offset along the left normal.
-PointQ6 SplineStepper::path_point(uint32_t t_q16, Direction* dir) {
+PointQ6 CurveWalker::path_point(uint32_t t_q16, Direction* dir) {
   const PointQ6 base = eval_.evaluate_q6(t_q16);
   if (settings_.tool_offset_um == 0) return base;
   *dir = usable_direction(t_q16);
@@ -357,7 +358,7 @@ PointQ6 SplineStepper::path_point(uint32_t t_q16, Direction* dir) {
 
 // Derivative direction at t; at a zero derivative (a cusp or repeated control points)
 // looks slightly further along, then falls back to the last direction.
-Direction SplineStepper::usable_direction(uint32_t t_q16) {
+Direction CurveWalker::usable_direction(uint32_t t_q16) {
   if (t_q16 >= kUq16One) return eval_.end_direction();
   Direction d = eval_.direction((uq16_t)t_q16);
   for (uint32_t probe = 16; is_zero(d) && probe <= 4096; probe *= 16) {
@@ -368,35 +369,60 @@ Direction SplineStepper::usable_direction(uint32_t t_q16) {
   return d;
 }
 
-// Unit left normal (-dy, dx) / |d| in Q15.
-SplineStepper::Unit SplineStepper::left_normal(const Direction& d) const {
+// Unit left normal (-dy, dx) / |d| in Q15: one root and two 32/16 divisions (no 64-bit
+// arithmetic: DIV.UD on the dsPIC).
+CurveWalker::Unit CurveWalker::left_normal(const Direction& d) const {
   Unit u;
-  const uint32_t s = (uint32_t)((int32_t)d.dx * d.dx + (int32_t)d.dy * d.dy);  // < 2^29
+  const uint32_t s = mul_u16_u16((uint16_t)abs_u32(d.dx), (uint16_t)abs_u32(d.dx)) +
+                     mul_u16_u16((uint16_t)abs_u32(d.dy), (uint16_t)abs_u32(d.dy));  // < 2^31
   if (s == 0) {
     u.x_q15 = 0;
     u.y_q15 = 32767;
     return u;
   }
-  // |d| in q8: integer root refined by one Newton step (error < 2^-13 relative).
-  const uint32_t root = isqrt32(s);
-  const uint32_t len_q8 = root * 256 + ((s - root * root) * 128) / (root ? root : 1);
-  u.x_q15 = (int32_t)(-(int64_t)d.dy * (32768 * 256) / len_q8);
-  u.y_q15 = (int32_t)((int64_t)d.dx * (32768 * 256) / len_q8);
+  // |d| * 2^pre with 15 to 16 significant bits: the root of s * 4^pre in [2^30, 2^32)
+  // (relative error below 2^-15; the former Newton-refined q8 length had 2^-13).
+  uint32_t s4 = s;
+  uint8_t pre = 0;
+  while (s4 < (1UL << 30)) {
+    s4 <<= 2;
+    ++pre;
+  }
+  const uint16_t len = isqrt32(s4);  // in [2^15, 2^16)
+  // component * 2^(15 + pre) / len: the Q15 value, a 32/16 division with a quotient
+  // <= 2^15 (component <= |d|) and a dividend <= len * 2^15 < 2^31.
+  const uint8_t up = (uint8_t)(15 + pre);
+  const uint16_t ux = div_u32_u16(abs_u32(d.dy) << up, len, 0);
+  const uint16_t uy = div_u32_u16(abs_u32(d.dx) << up, len, 0);
+  u.x_q15 = d.dy > 0 ? -(int32_t)ux : (int32_t)ux;  // -dy / |d|, truncated toward zero
+  u.y_q15 = d.dx < 0 ? -(int32_t)uy : (int32_t)uy;
   return u;
 }
 
-// base + R * normal, in q6.
-PointQ6 SplineStepper::offset_point(const PointQ6& base, const Unit& n) const {
-  const int64_t r_q6 = (int64_t)settings_.tool_offset_um * 64;
+// base + R * normal, in q6: R * 64 < 2^23 times |normal| <= 2^15 as 16x16 products on the
+// magnitudes (truncated toward zero, the sign applied after).
+PointQ6 CurveWalker::offset_point(const PointQ6& base, const Unit& n) const {
+  const int32_t r_q6 = settings_.tool_offset_um * 64;
+  const uint32_t ar = abs_u32(r_q6);
+  const uint16_t ar_hi = (uint16_t)(ar >> 16);  // < 2^7
+  const uint16_t ar_lo = (uint16_t)ar;
+  int32_t off[2];
+  const int32_t comp[2] = {n.x_q15, n.y_q15};
+  for (uint8_t i = 0; i < 2; ++i) {
+    const uint16_t an = (uint16_t)abs_u32(comp[i]);  // <= 2^15
+    // (hi 2^16 + lo) an / 2^15 = 2 hi an + lo an / 2^15; hi an < 2^22, lo an < 2^31.
+    const uint32_t mag = (mul_u16_u16(ar_hi, an) << 1) + (mul_u16_u16(ar_lo, an) >> 15);
+    off[i] = ((r_q6 < 0) != (comp[i] < 0)) ? -(int32_t)mag : (int32_t)mag;
+  }
   PointQ6 p;
-  p.x_q6 = base.x_q6 + (int32_t)((r_q6 * n.x_q15) / 32768);
-  p.y_q6 = base.y_q6 + (int32_t)((r_q6 * n.y_q15) / 32768);
+  p.x_q6 = base.x_q6 + off[0];
+  p.y_q6 = base.y_q6 + off[1];
   return p;
 }
 
 // Emits p after checking that the offset path does not run backward against the curve
 // (which means |R| exceeds the radius of curvature on the offset side).
-bool SplineStepper::emit_checked(const PointQ6& base, const PointQ6& p, PointUm* out) {
+bool CurveWalker::emit_checked(const PointQ6& base, const PointQ6& p, PointUm* out) {
   if (settings_.tool_offset_um != 0) {
     const int64_t bx = (int64_t)base.x_q6 - last_base_.x_q6;
     const int64_t by = (int64_t)base.y_q6 - last_base_.y_q6;
@@ -411,7 +437,7 @@ bool SplineStepper::emit_checked(const PointQ6& base, const PointQ6& p, PointUm*
 }
 
 // Emits p (rounded to um) and remembers it.
-bool SplineStepper::emit_plain(const PointQ6& p, PointUm* out) {
+bool CurveWalker::emit_plain(const PointQ6& p, PointUm* out) {
   last_out_ = p;
   *out = round_point(p);
   return true;

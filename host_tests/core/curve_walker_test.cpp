@@ -1,13 +1,13 @@
-// SplineStepper without offset: point counts, exact ends, the real chord error of the
+// CurveWalker without offset: point counts, exact ends, the real chord error of the
 // adaptive mode against Eigen, and fewer points than uniform stepping on varying curvature.
-#include "firmware/core/spline_stepper.h"
+#include "firmware/core/curve_walker.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "host_tests/core/curve_factory.h"
-#include "host_tests/core/stepper_helpers.h"
+#include "host_tests/core/curve_walker_helpers.h"
 
 namespace {
 
@@ -26,7 +26,7 @@ core::Spline varying_curvature() {
                                          {0, 60000}});
 }
 
-TEST(SplineStepper, UniformEmitsStepsPerSpanPointsPerSpanPlusTheStart) {
+TEST(CurveWalker, UniformEmitsStepsPerSpanPointsPerSpanPlusTheStart) {
   const core::Spline s = varying_curvature();  // 6 spans
   const stepping::Run r = stepping::run(s, stepping::uniform(10));
   EXPECT_EQ(r.begin_error, GeometryError::kOk);
@@ -34,7 +34,7 @@ TEST(SplineStepper, UniformEmitsStepsPerSpanPointsPerSpanPlusTheStart) {
   EXPECT_EQ(r.points.size(), 6u * 10u + 1u);
 }
 
-TEST(SplineStepper, FirstPointIsTheCurveStartAndLastIsTheCurveEndExactly) {
+TEST(CurveWalker, FirstPointIsTheCurveStartAndLastIsTheCurveEndExactly) {
   const core::Spline s = varying_curvature();
   for (const core::StepSettings& st : {stepping::uniform(3), stepping::adaptive(5)}) {
     const stepping::Run r = stepping::run(s, st);
@@ -46,7 +46,7 @@ TEST(SplineStepper, FirstPointIsTheCurveStartAndLastIsTheCurveEndExactly) {
   }
 }
 
-TEST(SplineStepper, UniformPointsLieOnTheReferenceCurve) {
+TEST(CurveWalker, UniformPointsLieOnTheReferenceCurve) {
   const core::Spline s = varying_curvature();
   const stepping::Run r = stepping::run(s, stepping::uniform(7));
   double worst = 0;
@@ -57,7 +57,7 @@ TEST(SplineStepper, UniformPointsLieOnTheReferenceCurve) {
   EXPECT_LE(worst, 0.75);  // rounding to whole micrometres on both axes
 }
 
-TEST(SplineStepper, AdaptiveChordErrorStaysWithinFiveMicrometresOnRandomCurves) {
+TEST(CurveWalker, AdaptiveChordErrorStaysWithinFiveMicrometresOnRandomCurves) {
   std::mt19937 rng(21);
   testcurves::RandomOptions o = testcurves::default_options();
   o.coord_limit_um = 150000;
@@ -71,7 +71,7 @@ TEST(SplineStepper, AdaptiveChordErrorStaysWithinFiveMicrometresOnRandomCurves) 
   EXPECT_LE(worst, 5.0 + 0.75);  // + rounding of the emitted points to 1 um
 }
 
-TEST(SplineStepper, AdaptiveChordErrorStaysWithinToleranceOnRationalCurves) {
+TEST(CurveWalker, AdaptiveChordErrorStaysWithinToleranceOnRationalCurves) {
   std::mt19937 rng(22);
   testcurves::RandomOptions o = testcurves::default_options();
   o.coord_limit_um = 150000;
@@ -86,7 +86,7 @@ TEST(SplineStepper, AdaptiveChordErrorStaysWithinToleranceOnRationalCurves) {
   EXPECT_LE(worst, 20.0 + 0.75);
 }
 
-TEST(SplineStepper, AdaptiveNeedsFewerPointsThanTheCoarsestSufficientUniformStep) {
+TEST(CurveWalker, AdaptiveNeedsFewerPointsThanTheCoarsestSufficientUniformStep) {
   const core::Spline s = varying_curvature();
   const double tol_um = 5.0;
   const stepping::Run adaptive = stepping::run(s, stepping::adaptive(5));
@@ -105,13 +105,13 @@ TEST(SplineStepper, AdaptiveNeedsFewerPointsThanTheCoarsestSufficientUniformStep
       << "adaptive " << adaptive.points.size() << " vs uniform " << uniform_points;
 }
 
-TEST(SplineStepper, StraightLineNeedsOnlyItsEnds) {
+TEST(CurveWalker, StraightLineNeedsOnlyItsEnds) {
   const core::Spline s = testcurves::clamped_uniform(1, {{0, 0}, {100000, 50000}});
   const stepping::Run r = stepping::run(s, stepping::adaptive(5));
   EXPECT_EQ(r.points.size(), 2u);
 }
 
-TEST(SplineStepper, RepeatedInteriorKnotsAndZeroLengthSpansAreSkipped) {
+TEST(CurveWalker, RepeatedInteriorKnotsAndZeroLengthSpansAreSkipped) {
   core::Spline s =
       testcurves::clamped_uniform(2, {{0, 0}, {10000, 0}, {10000, 10000}, {0, 10000}, {0, 20000}});
   // knots 0 0 0 1000 2000 3000 3000 3000 -> make 1000 a double knot (a corner).
@@ -122,7 +122,7 @@ TEST(SplineStepper, RepeatedInteriorKnotsAndZeroLengthSpansAreSkipped) {
   EXPECT_EQ(r.points.back().p.y_um, 20000);
 }
 
-TEST(SplineStepper, KnotOfMultiplicityDegreePlusOneEmitsBothSidesOfTheGap) {
+TEST(CurveWalker, KnotOfMultiplicityDegreePlusOneEmitsBothSidesOfTheGap) {
   // Quadratic, interior knot 1000 three times: the curve jumps from (20000, 0) to (30000, 0).
   core::Spline s = testcurves::empty_spline();
   s.degree = 2;
@@ -144,9 +144,9 @@ TEST(SplineStepper, KnotOfMultiplicityDegreePlusOneEmitsBothSidesOfTheGap) {
   EXPECT_EQ(r.points.back().p.x_um, 50000);
 }
 
-TEST(SplineStepper, BadSettingsAndBadSplinesAreRefusedWithACode) {
+TEST(CurveWalker, BadSettingsAndBadSplinesAreRefusedWithACode) {
   const core::Spline good = varying_curvature();
-  core::SplineStepper st;
+  core::CurveWalker st;
   core::PointUm p;
   EXPECT_EQ(st.begin(&good, stepping::uniform(0)), GeometryError::kToleranceInvalid);
   EXPECT_FALSE(st.next(&p));
@@ -161,7 +161,7 @@ TEST(SplineStepper, BadSettingsAndBadSplinesAreRefusedWithACode) {
   EXPECT_TRUE(st.done());
 }
 
-TEST(SplineStepper, TerminatesOnPathologicalKnotsWithBoundedPointCounts) {
+TEST(CurveWalker, TerminatesOnPathologicalKnotsWithBoundedPointCounts) {
   std::mt19937 rng(23);
   testcurves::RandomOptions o = testcurves::default_options();
   o.knot_lo = INT32_MIN;

@@ -1,7 +1,7 @@
-// On-target checks of parameter stepping (core::SplineStepper): the first and last points
+// On-target checks of parameter stepping (core::CurveWalker): the first and last points
 // are the curve ends computed by Eigen, and every run emits the same points (count and
 // hash) as the host build of the same code, so 16-bit int changes nothing.
-#include "firmware/core/spline_stepper.h"  // SplineStepper, StepSettings
+#include "firmware/core/curve_walker.h"  // CurveWalker, StepSettings
 
 #include "host_tests/target_proxy/proxy_check.h"
 #include "host_tests/target_proxy/proxy_checks.h"
@@ -23,15 +23,15 @@ void check_run(const StepRef& ref) {
   settings.steps_per_span = ref.steps_per_span;
   settings.chord_tolerance_um = ref.chord_tolerance_um;
   settings.tool_offset_um = ref.tool_offset_um;
-  static core::SplineStepper stepper;  // static: keeps the stack small
+  static core::CurveWalker walker;  // static: keeps the stack small
   const core::Spline& curve = reference_curve(ref.curve);
-  PROXY_CHECK_EQ((int)stepper.begin(&curve, settings), (int)core::GeometryError::kOk);
+  PROXY_CHECK_EQ((int)walker.begin(&curve, settings), (int)core::GeometryError::kOk);
   core::PointUm p = {0, 0};
   core::PointUm first = {0, 0};
   core::PointUm last = {0, 0};
   uint32_t hash = kHashSeed;
   uint16_t count = 0;
-  while (count < kMaxStepPoints && stepper.next(&p)) {
+  while (count < kMaxStepPoints && walker.next(&p)) {
     if (count == 0) first = p;
     last = p;
     hash = hash_point(hash, p);
@@ -39,7 +39,7 @@ void check_run(const StepRef& ref) {
   }
   PROXY_CHECK_EQ(count, ref.count);
   PROXY_CHECK(hash == ref.hash);
-  PROXY_CHECK_EQ((int)stepper.error(), ref.error);
+  PROXY_CHECK_EQ((int)walker.error(), ref.error);
   // Curve ends (Eigen) within 1 um for plain runs; the host's ends for offset runs.
   const int32_t tolerance_um = ref.tool_offset_um == 0 ? 1 : 0;
   PROXY_CHECK_NEAR(first.x_um, ref.first.x_um, tolerance_um);
@@ -50,8 +50,8 @@ void check_run(const StepRef& ref) {
 
 }  // namespace
 
-void run_stepper_checks() {
-  begin_group(PROXY_STR("stepper"));
+void run_curve_walker_checks() {
+  begin_group(PROXY_STR("walker"));
   for (uint8_t i = 0; i < kRefStepCount; ++i) {
     StepRef ref;
     PROXY_ROM_COPY(&ref, &kRefSteps[i], sizeof(ref));
@@ -62,8 +62,8 @@ void run_stepper_checks() {
 
 #else
 
-void run_stepper_checks() {
-  PROXY_PRINTF("group stepper: skipped (no reference data; build via the host tree)\n");
+void run_curve_walker_checks() {
+  PROXY_PRINTF("group walker: skipped (no reference data; build via the host tree)\n");
 }
 
 #endif

@@ -1,7 +1,7 @@
 // Point generator engine: walks a spline span by span and emits points (optionally offset
 // by the tool radius) with uniform or chord-tolerance-adaptive parameter steps.
-#ifndef FIRMWARE_CORE_SPLINE_STEPPER_H
-#define FIRMWARE_CORE_SPLINE_STEPPER_H
+#ifndef FIRMWARE_CORE_CURVE_WALKER_H
+#define FIRMWARE_CORE_CURVE_WALKER_H
 
 #include <stdint.h>  // uint16_t, int32_t
 
@@ -43,14 +43,14 @@ StepSettings default_step_settings();
 //     it is 0 or over 10 mm there); an exact reversal goes round the end on a half circle;
 //   - turning toward the offset side (concave): one point at the intersection of the two
 //     offset tangent lines (the miter point) replaces the two offset ends; if the turn is
-//     sharper than about 150 degrees the miter would run away and the stepper stops with
+//     sharper than about 150 degrees the miter would run away and the curve walker stops with
 //     kOffsetTooLarge.
 // Offset larger than the radius of curvature on the offset side: detected when the
 // offset path runs backward relative to the curve between two consecutive points; the
-// stepper stops with kOffsetTooLarge (points already emitted stay valid).
-class SplineStepper {
+// walker stops with kOffsetTooLarge (points already emitted stay valid).
+class CurveWalker {
  public:
-  SplineStepper();
+  CurveWalker();
   // Validates spline and settings; keeps the pointer (the spline must outlive stepping).
   GeometryError begin(const Spline* spline, const StepSettings& settings);
   // Next point; false when finished or stopped. First point is the curve start (offset),
@@ -114,4 +114,4 @@ class SplineStepper {
 
 }  // namespace core
 
-#endif  // FIRMWARE_CORE_SPLINE_STEPPER_H
+#endif  // FIRMWARE_CORE_CURVE_WALKER_H
