@@ -15,6 +15,7 @@
 #include <iostream>    // std::cerr
 #include <thread>      // keyboard thread
 
+#include "firmware/config/machine_config.h"
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
 #include "host/lib/drawing/drawing.h"
@@ -64,7 +65,10 @@ struct PlanArgs {
   double tol_mm = 0.005;
   double scale = 1.0;
   double margin_mm = 0.0;
-  std::vector<double> work_mm{297.0, 210.0};
+  // The reference machine's travel (firmware/config/machine_config.h).
+  std::vector<double> work_mm{
+      config::default_machine_config().axis[config::kAxisX].travel_um / 1000.0,
+      config::default_machine_config().axis[config::kAxisY].travel_um / 1000.0};
   double chain_tol_mm = 0.01;
   bool no_reorder = false;
   double z_up_mm = 2.0;
@@ -238,6 +242,7 @@ void run_send(const SendArgs& a) {
   const proto::SessionReply caps = sender.open_session();
   EncodeOptions enc = encode_options(a.plan);
   enc.max_payload = caps.max_payload;
+  enc.controller = &caps;
   const std::vector<QueuedCommand> commands = encode_job(plan, enc);
   std::cerr << fmt::format(
       "engraver: {} -> {}: {} curves, {} commands, {} bytes; keys: h hold, "

@@ -42,6 +42,7 @@ void stream_job(Link& link, const JobPlan& plan, const SimJobOptions& options,
   const proto::SessionReply caps = sender.open_session();
   EncodeOptions enc = options.encode;
   enc.max_payload = std::min<unsigned>(enc.max_payload, caps.max_payload);
+  enc.controller = &caps;
   const std::vector<QueuedCommand> commands = encode_job(plan, enc);
   r->commands = commands.size();
   r->wire_bytes = wire_bytes(commands);

@@ -190,11 +190,14 @@ size_t Sender::index_of_seq(uint8_t seq) const {
   return static_cast<size_t>(index);
 }
 
-// "command 12 ('B', step 7, curve 3)" for messages.
+// "command 12 ('B' spline header, plan step 7, curve 3)" for messages (names from the
+// message table).
 std::string Sender::where(size_t index) const {
   if (commands_ == nullptr || index >= commands_->size()) return "a command";
   const QueuedCommand& c = (*commands_)[index];
-  std::string s = fmt::format("command {} ('{}'", index, static_cast<char>(c.letter));
+  const char* name = proto::message_name(proto::kCommandStart, c.letter);
+  std::string s = fmt::format("command {} ('{}' {}", index, static_cast<char>(c.letter),
+                              name != nullptr ? name : "unknown");
   if (c.step >= 0) s += fmt::format(", plan step {}", c.step);
   if (c.curve >= 0) s += fmt::format(", curve {}", c.curve);
   return s + ")";
@@ -221,6 +224,10 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (commands_ == nullptr) break;
       // Everything before next_expected is stored.
       const size_t stored = index_of_seq(r.next_expected_seq);
+      if (stored != SIZE_MAX && stored >= base_ && stored <= next_) {
+        splines_free_ = r.spline_slots_free;
+        splines_known_at_ = stored;
+      }
       if (stored != SIZE_MAX && stored > base_ && stored <= next_) {
         base_ = stored;
         oldest_sent_ = now();
@@ -238,11 +245,20 @@ void Sender::handle_reply(const proto::Frame& frame) {
       break;
     }
     case proto::kReplyAck: {
-      if (frame.seq == realtime_seq_) realtime_acked_ = true;
       proto::AckReply ack;
-      if (proto::decode_frame(frame, &ack) == proto::ErrorCode::kOk) queue_free_ = ack.queue_free;
+      if (proto::decode_frame(frame, &ack) != proto::ErrorCode::kOk) break;
+      // v2: a real-time frame's *O says so; its seq is the real-time counter's, not the
+      // ordered stream's.
+      if (ack.realtime) {
+        if (frame.seq == realtime_seq_) realtime_acked_ = true;
+        break;
+      }
+      queue_free_ = ack.queue_free;
       const size_t index = index_of_seq(frame.seq);
       if (index != SIZE_MAX && index >= base_ && index < next_) {
+        splines_free_ = ack.spline_slots_free;
+        splines_known_at_ = index + 1;
+        sample_round_trip(index);
         if (queue_free_ >= 2 && window_limit_ < window_) ++window_limit_;
         base_ = index + 1;  // acks are cumulative: the controller stores strictly in order
         oldest_sent_ = now();
@@ -257,6 +273,16 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (r.code == proto::ErrorCode::kSeqStale) break;  // superseded real-time frame
       if (commands_ != nullptr && (is_resend_error(r.code) || r.code == proto::ErrorCode::kBusy)) {
         const size_t expected = index_of_seq(r.next_expected_seq);
+        // One lost frame makes every later frame of the window answer seq_gap with the same
+        // expected seq: go back once, not once per reply (the resent frames are on their way).
+        if (r.code == proto::ErrorCode::kSeqGap && expected == last_gap_expected_ &&
+            now() - last_gap_at_ < std::max(options_.min_rto, 4 * srtt_)) {
+          break;
+        }
+        if (r.code == proto::ErrorCode::kSeqGap) {
+          last_gap_expected_ = expected;
+          last_gap_at_ = now();
+        }
         busy_wait_ = (r.code == proto::ErrorCode::kBusy);
         if (expected != SIZE_MAX && expected >= base_ && expected <= next_) {
           base_ = expected;
@@ -332,6 +358,28 @@ bool Sender::stalled() {
     return false;
   }
   return options_.stall_limit.count() > 0 && t - last_progress_ > options_.stall_limit;
+}
+
+// Whether the controller has a spline slot for the #B at next_: the newest *O or *? said
+// how many were free after the frames before splines_known_at_; every #B sent since took
+// one. (A slot frees when its spline has run; the status polls see that.)
+bool Sender::spline_room(const std::vector<QueuedCommand>& commands) const {
+  if (splines_free_ == kSplineSlotsUnknown) return true;
+  size_t taken = 0;
+  for (size_t i = splines_known_at_; i < next_ && i < commands.size(); ++i) {
+    if (commands[i].letter == proto::kCmdSplineHeader) ++taken;
+  }
+  return splines_free_ > taken;
+}
+
+// The retransmission timer's round trip: smoothed (1/8 gain) over frames acknowledged at
+// their first sending; a frame held by the controller (ack delayed for room) or sent again
+// says nothing about the link and is left out.
+void Sender::sample_round_trip(size_t index) {
+  if (index >= first_sent_.size() || resent_[index]) return;
+  if (have_status_ && (last_status_.flags & proto::kStatusFramePending)) return;
+  const auto sample = std::chrono::duration_cast<milliseconds>(now() - first_sent_[index]);
+  srtt_ = (7 * srtt_ + sample) / 8;
 }
 
 void Sender::query_status() {
@@ -437,6 +485,8 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
                        const std::function<void(const Progress&)>& on_progress) {
   if (!session_open_) open_session();
   failed_ = false;
+  first_sent_.clear();  // no round-trip samples from the zeroing frame
+  resent_.clear();
   if (!ensure_zeroed(on_progress)) {
     if (abort_requested_) {
       send_realtime(proto::kCmdAbort, {});
@@ -446,9 +496,13 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
     return failure_;
   }
   commands_ = &commands;
+  first_sent_.assign(commands.size(), Clock::time_point{});
+  resent_.assign(commands.size(), false);
   base_ = next_ = executed_ = 0;
   busy_wait_ = false;
   queue_free_ = session_.queue_slots;
+  splines_free_ = kSplineSlotsUnknown;
+  splines_known_at_ = 0;
   window_ = std::max<size_t>(1, std::min<size_t>(session_.window_frames, proto::kWindowFrames));
   window_limit_ = window_;
   size_t high_water = 0;
@@ -488,12 +542,20 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
     // In flight may be what the queue has room for plus the one frame it can hold.
     while (!busy_wait_ && next_ < commands.size() && next_ - base_ < window_limit_ &&
            next_ - base_ <= queue_free_ &&
-           inflight_bytes + frame_bytes(commands[next_]) <= rx_bytes) {
+           inflight_bytes + frame_bytes(commands[next_]) <= rx_bytes &&
+           (commands[next_].letter != proto::kCmdSplineHeader || spline_room(commands))) {
       if (next_ == base_) oldest_sent_ = now();
       send_frame(commands[next_].letter, static_cast<uint8_t>(first_seq_ + next_),
                  commands[next_].payload);
       inflight_bytes += frame_bytes(commands[next_]);
       if (next_ < high_water) stats_.retransmits++;
+      if (next_ < first_sent_.size()) {
+        // Karn: a frame sent more than once gives no round-trip sample.
+        if (next_ < high_water)
+          resent_[next_] = true;
+        else
+          first_sent_[next_] = now();
+      }
       ++next_;
       high_water = std::max(high_water, next_);
     }

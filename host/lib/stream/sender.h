@@ -78,6 +78,8 @@ class Sender {
   void request_override(int percent) { override_requested_ = percent; }
 
   const SenderStats& stats() const { return stats_; }
+  // The smoothed round trip the retransmission timer uses (starts at 50 ms).
+  std::chrono::milliseconds smoothed_rtt() const { return srtt_; }
   // Why the job ended, for people: names the command, step and curve where relevant.
   const std::string& message() const { return message_; }
   const proto::StatusReply& last_status() const { return last_status_; }
@@ -90,6 +92,8 @@ class Sender {
   void send_realtime(uint8_t letter, const std::vector<uint8_t>& payload);
   bool ensure_zeroed(const std::function<void(const Progress&)>& on_progress);
   void query_status();
+  bool spline_room(const std::vector<QueuedCommand>& commands) const;
+  void sample_round_trip(size_t index);
   bool status_due(std::chrono::steady_clock::time_point last_poll) const;
   std::chrono::steady_clock::time_point now() const;
   void track_executed(uint8_t last_executed_seq);
@@ -123,6 +127,10 @@ class Sender {
   size_t window_ = 1;        // frames in flight the controller allows (*I)
   size_t window_limit_ = 1;  // frames in flight allowed now: 1 after *E busy, grows per *O
   size_t queue_free_ = 1;    // controller queue room, from the newest *O or *?
+  // Spline slots free after the ordered frames before splines_known_at_ (newest *O or *?).
+  static constexpr size_t kSplineSlotsUnknown = SIZE_MAX;
+  size_t splines_free_ = kSplineSlotsUnknown;
+  size_t splines_known_at_ = 0;
   bool failed_ = false;
   JobOutcome failure_ = JobOutcome::kRejected;
   std::chrono::steady_clock::time_point last_reply_;
@@ -136,6 +144,10 @@ class Sender {
   } seen_;
   std::chrono::steady_clock::time_point last_progress_;
   bool operator_hold_ = false;  // the operator asked for a hold (not a stall)
+  std::vector<std::chrono::steady_clock::time_point> first_sent_;  // per command (Karn)
+  std::vector<bool> resent_;
+  size_t last_gap_expected_ = SIZE_MAX;  // the seq_gap we went back for, and when
+  std::chrono::steady_clock::time_point last_gap_at_{};
 
   std::atomic<bool> hold_requested_{false};
   std::atomic<bool> resume_requested_{false};
