@@ -8,8 +8,10 @@
 #include <nlohmann/json.hpp>  // nlohmann::json
 #include <sstream>            // std::ostringstream
 
+#include "host/cli/board_cli.h"  // PCB input: isolation tool centres
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
+#include "host/cli/pcb_info.h"
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
@@ -170,6 +172,7 @@ void print_info(const Drawing& d) {
 }
 
 void run_info(const InfoArgs& a) {
+  if (print_pcb_info_if_pcb(a.file, a.json)) return;  // Gerber, Excellon
   const Drawing d = import_drawing(a.file);
   if (a.json) {
     std::cout << info_json(d).dump(2) << "\n";
@@ -186,6 +189,7 @@ void run_points(const PointsArgs& a) {
                          "steps with a whole-micrometre chord tolerance)");
   }
   const int tol = static_cast<int>(std::llround(tol_um));
+  if (print_board_points_if_pcb(a.file, a.tol_mm, a.csv)) return;  // isolation tool centres
   const Drawing d = import_drawing(a.file);
   for (const std::string& w : d.warnings) std::cerr << "warning: " << w << "\n";
   std::cout << std::fixed << std::setprecision(3);

@@ -16,6 +16,7 @@
 #include <thread>      // keyboard thread
 
 #include "firmware/config/machine_config.h"
+#include "host/cli/board_cli.h"  // PCB input (Gerber, Excellon, a board's directory)
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
 #include "host/lib/drawing/drawing.h"
@@ -73,6 +74,7 @@ struct PlanArgs {
   bool no_reorder = false;
   double z_up_mm = 2.0;
   double z_down_mm = -0.1;
+  BoardArgs board;
 };
 
 void add_plan_options(CLI::App* cmd, PlanArgs* a) {
@@ -96,9 +98,13 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   cmd->add_flag("--no-reorder", a->no_reorder, "trace curves in drawing order");
   cmd->add_option("--z-up", a->z_up_mm, "travel height in mm")->capture_default_str();
   cmd->add_option("--z-down", a->z_down_mm, "cutting depth in mm")->capture_default_str();
+  add_board_options(cmd, &a->board);
 }
 
 JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
+  if (is_pcb_input(a.file))
+    return plan_pcb_input(a.file, a.board,
+                          {a.feed_mm_s, a.z_up_mm, a.margin_mm, a.work_mm[0], a.work_mm[1]});
   *drawing = import_drawing(a.file);
   for (const std::string& w : drawing->warnings) std::cerr << "engraver: warning: " << w << "\n";
   PlanOptions o;
@@ -454,6 +460,7 @@ void run_run(const RunArgs& a) {
     plot.tool_path.back().points_mm.push_back(Point2(s.x_mm, s.y_mm));
   }
   write_plot(plot, base + ".svg", base + ".png");
+  write_board_plot_if_planned(base, plot.tool_path);  // copper, isolation width, holes
 
   const double feed = a.plan.feed_mm_s;
   const double ideal_s = plan.cut_length_mm / feed;
