@@ -15,6 +15,7 @@
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
+#include "host/lib/progress/progress_meter.h"
 
 namespace host::cli {
 
@@ -193,7 +194,9 @@ void run_points(const PointsArgs& a) {
   for (const std::string& w : d.warnings) std::cerr << "warning: " << w << "\n";
   std::cout << std::fixed << std::setprecision(3);
   if (a.csv) std::cout << "curve,x_mm,y_mm\n";
+  ProgressMeter progress("points", "curves", std::cerr, ProgressMeter::for_stderr());
   for (size_t i = 0; i < d.curves.size(); ++i) {
+    progress.update(i, d.curves.size());
     std::vector<Point2> pts;
     try {
       pts = firmware_points_mm(d.curves[i].spline, tol);
@@ -213,6 +216,7 @@ void run_points(const PointsArgs& a) {
       }
     }
   }
+  progress.update(d.curves.size(), d.curves.size());
 }
 
 void add_drawing_commands(CLI::App& app) {

@@ -5,6 +5,7 @@
 #include <cmath>    // std::llround, std::isfinite
 #include <sstream>  // std::ostringstream
 
+#include "host/lib/plan/nearest_end.h"
 #include "host/lib/plan/plan_steps.h"
 
 namespace host {
@@ -34,31 +35,25 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
   const double radius = o.tool_side == ToolSide::kCentre ? 0.0 : o.tool_radius_mm;
 
   // Greedy nearest neighbour from the zero, each curve either way round.
-  std::vector<bool> used(scaled.size(), false);
   std::vector<Point2> starts, ends;
   for (const BSpline& s : scaled) {
     starts.push_back(start_point(s));
     ends.push_back(end_point(s));
   }
+  NearestEnd index(starts, ends);
   Point2 at(0, 0);
   for (size_t n = 0; n < scaled.size(); ++n) {
-    size_t best = 0;
+    if (o.progress && n % 4096 == 0) o.progress(n, scaled.size());
+    size_t best = n;
     bool best_rev = false;
-    double best_d = 1e300;
-    for (size_t i = 0; i < scaled.size(); ++i) {
-      if (used[i]) continue;
-      if (!o.reorder) {
-        best = i;
-        best_rev = false;
-        best_d = (starts[i] - at).norm();
-        break;
-      }
-      const double ds = (starts[i] - at).norm();
-      const double de = (ends[i] - at).norm();
-      if (ds < best_d) best_d = ds, best = i, best_rev = false;
-      if (de < best_d) best_d = de, best = i, best_rev = true;
+    double best_d = (starts[n] - at).norm();
+    if (o.reorder) {
+      const NearestEnd::Hit hit = index.nearest(at);
+      best = hit.index;
+      best_rev = hit.reversed;
+      best_d = hit.distance;
     }
-    used[best] = true;
+    index.use(best);
     PlannedCurve pc;
     pc.spline = best_rev ? reversed(scaled[best]) : scaled[best];
     pc.drawing_index = static_cast<int>(best);

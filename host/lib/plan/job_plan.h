@@ -6,9 +6,10 @@
 
 #include <stdint.h>  // int32_t
 
-#include <stdexcept>  // std::runtime_error
-#include <string>     // std::string
-#include <vector>     // std::vector
+#include <functional>  // std::function
+#include <stdexcept>   // std::runtime_error
+#include <string>      // std::string
+#include <vector>      // std::vector
 
 #include "firmware/config/machine_config.h"
 #include "firmware/core/spline.h"
@@ -60,6 +61,8 @@ struct PlanOptions {
   // Runs of short G1 moves are sent as cubic B-splines within this distance of the
   // program's path (0: every move as a straight feed).
   double fit_tolerance_mm = 0.005;
+  // Called now and then while the curves are ordered (done, total), for a progress bar.
+  std::function<void(size_t, size_t)> progress;
 };
 
 // One machine action. Which fields mean something depends on kind.

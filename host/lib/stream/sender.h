@@ -25,6 +25,13 @@ struct SenderOptions {
   std::chrono::milliseconds silence_limit{10000};  // no reply at all: the link is dead
   bool zero_first = true;                          // not zeroed: #M and wait for the operator
   uint8_t zero_axes = proto::kAxisMaskAll;
+  // Watchdog: nothing acknowledged, nothing executed, the tool not moved and no state change
+  // for this long while the job is not finished -> the job ends as kStalled (0 = off).
+  // Waiting for the operator (a hold from here or the panel, zeroing) does not count.
+  std::chrono::milliseconds stall_limit{30000};
+  // Where time comes from (empty: the wall clock). The one-process simulator gives its
+  // machine time here, so every interval and time-out above runs in machine time.
+  std::function<std::chrono::steady_clock::time_point()> clock;
 };
 
 // How a job ended; the CLI maps these to exit codes.
@@ -33,7 +40,8 @@ enum class JobOutcome {
   kAborted,    // the operator aborted (#X)
   kAlarm,      // the machine raised an alarm
   kRejected,   // the controller refused a command (execution error)
-  kLinkLost    // the link closed or went silent
+  kLinkLost,   // the link closed or went silent
+  kStalled     // the link answered but the job made no progress (SenderOptions::stall_limit)
 };
 const char* outcome_name(JobOutcome outcome);
 
@@ -87,6 +95,9 @@ class Sender {
   bool spline_room(const std::vector<QueuedCommand>& commands) const;
   void sample_round_trip(size_t index);
   bool status_due(std::chrono::steady_clock::time_point last_poll) const;
+  std::chrono::steady_clock::time_point now() const;
+  void track_executed(uint8_t last_executed_seq);
+  bool stalled();
   size_t index_of_seq(uint8_t seq) const;
   std::string where(size_t index) const;
 
@@ -125,6 +136,14 @@ class Sender {
   std::chrono::steady_clock::time_point last_reply_;
   std::chrono::steady_clock::time_point oldest_sent_;
   std::chrono::milliseconds srtt_{50};
+  // Stall watchdog: what was seen last and when it last changed.
+  struct Seen {
+    size_t acked = 0, executed = 0;
+    int32_t x_um = 0, y_um = 0, z_um = 0;
+    proto::MachineState state = proto::MachineState::kIdle;
+  } seen_;
+  std::chrono::steady_clock::time_point last_progress_;
+  bool operator_hold_ = false;  // the operator asked for a hold (not a stall)
   std::vector<std::chrono::steady_clock::time_point> first_sent_;  // per command (Karn)
   std::vector<bool> resent_;
   size_t last_gap_expected_ = SIZE_MAX;  // the seq_gap we went back for, and when
