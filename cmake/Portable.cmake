@@ -33,20 +33,9 @@ function(engraver_portable_library name)
   endif()
 endfunction()
 
-# add_subdirectory for each listed folder that exists yet (parts land independently).
-# ENGRAVER_SKIP_PARTS (paths from the top, e.g. "host/lib;host_tests/host") leaves parts out,
-# for working on one area while another is broken.
-set(ENGRAVER_SKIP_PARTS "" CACHE STRING "parts (paths from the top) to leave out")
+# add_subdirectory for each listed folder.
 function(engraver_add_parts)
-  file(RELATIVE_PATH here ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})
   foreach(part ${ARGN})
-    if(here STREQUAL "")
-      set(path ${part})
-    else()
-      set(path ${here}/${part})
-    endif()
-    if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/${part}/CMakeLists.txt AND NOT path IN_LIST ENGRAVER_SKIP_PARTS)
-      add_subdirectory(${part})
-    endif()
+    add_subdirectory(${part})
   endforeach()
 endfunction()

@@ -14,16 +14,6 @@ const uint8_t kPointsPerPoll = 8;  // spline points generated per background pas
 
 Application::Application()
     : ms_(0),
-      tick_mode_((uint8_t)TickMode::kFollow),
-      tick_alarm_(kTickAlarmNone),
-      driver_check_ms_(0),
-      stops_done_(0),
-      jogs_done_(0),
-      jog_confirmed_(0),
-      requests_done_(0),
-      tick_buttons_(0),
-      confirm_presses_(0),
-      stop_pending_(false),
       seen_items_(0),
       item_tag_(0),
       items_stored_(0),
@@ -56,8 +46,18 @@ Application::Application()
   board_.display = 0;
   board_.inputs = 0;
   board_.spindle = 0;
+  tick_.mode = (uint8_t)TickMode::kFollow;
+  tick_.alarm = kTickAlarmNone;
+  tick_.driver_check_ms = 0;
+  tick_.stops_done = 0;
+  tick_.jogs_done = 0;
+  tick_.jog_confirmed = 0;
+  tick_.requests_done = 0;
+  tick_.buttons = 0;
+  tick_.confirm_presses = 0;
+  tick_.stop_pending = false;
   for (uint8_t i = 0; i < config::kAxisCount; ++i) {
-    tick_pos_[i] = 0;
+    tick_.pos[i] = 0;
     latest_.pos_usteps[i] = 0;
   }
 }
@@ -68,8 +68,8 @@ void Application::init(const Board& board, const config::MachineConfig& cfg) {
   if (!build_axis_scaling(cfg, *board.motion, &scaling_))
     app_alarm_ = proto::Alarm::kMotionChipFault;
   planner_.init(scaling_, default_planner_settings(cfg.capture_radius_um));
-  path_.init(scaling_);
-  jog_.init(scaling_);
+  tick_.path.init(scaling_);
+  tick_.jog.init(scaling_);
   sink_.app_ = this;
   dispatcher_.init(board.link, &sink_);
   screen_.init(board.display);
@@ -86,56 +86,56 @@ void Application::tick_1ms() {
   uint8_t limits = 0;
   int16_t v[config::kAxisCount] = {0, 0, 0};
   if (!board_.motion->read_actual_usteps(pos) || !board_.motion->read_limits(&limits)) {
-    for (uint8_t i = 0; i < config::kAxisCount; ++i) pos[i] = tick_pos_[i];
+    for (uint8_t i = 0; i < config::kAxisCount; ++i) pos[i] = tick_.pos[i];
     tick_latch_alarm(kTickAlarmChip);
   }
   tick_check_drivers();
   // Confirm presses for #P count in follow mode only (while zeroing, confirm sets the zero).
   const uint8_t buttons = board_.inputs->state();
   const bool confirm_pressed =
-      (buttons & hal::kButtonConfirm) != 0 && (tick_buttons_ & hal::kButtonConfirm) == 0;
-  tick_buttons_ = buttons;
-  if (tick_mode_ == (uint8_t)TickMode::kFollow) {
-    if (confirm_pressed) confirm_presses_ = (uint8_t)(confirm_presses_ + 1U);
-    const bool moving = !path_.finished() || !path_.at_rest() || !ring_.empty();
+      (buttons & hal::kButtonConfirm) != 0 && (tick_.buttons & hal::kButtonConfirm) == 0;
+  tick_.buttons = buttons;
+  if (tick_.mode == (uint8_t)TickMode::kFollow) {
+    if (confirm_pressed) tick_.confirm_presses = (uint8_t)(tick_.confirm_presses + 1U);
+    const bool moving = !tick_.path.finished() || !tick_.path.at_rest() || !ring_.empty();
     if (limits != 0 && moving) {
       // A limit switch mid-job: zero velocities in this very tick, latch the alarm.
       tick_latch_alarm(kTickAlarmLimit);
     } else {
-      path_.tick(pos, &ring_, v);
-      if (stop_pending_ && path_.at_rest()) {
-        path_.flush(&ring_);
-        path_.set_hold(false);
-        stop_pending_ = false;
-        ++stops_done_;
+      tick_.path.tick(pos, &ring_, v);
+      if (tick_.stop_pending && tick_.path.at_rest()) {
+        tick_.path.flush(&ring_);
+        tick_.path.set_hold(false);
+        tick_.stop_pending = false;
+        ++tick_.stops_done;
       }
     }
-  } else if (tick_mode_ == (uint8_t)TickMode::kJog) {
-    const JogResult r = jog_.tick(buttons, limits, pos, v);
+  } else if (tick_.mode == (uint8_t)TickMode::kJog) {
+    const JogResult r = tick_.jog.tick(buttons, limits, pos, v);
     if (r != JogResult::kRunning) {
       if (r == JogResult::kConfirmed) {
-        board_.motion->set_actual_usteps(jog_.zero_usteps());
-        for (uint8_t i = 0; i < config::kAxisCount; ++i) pos[i] = jog_.zero_usteps()[i];
+        board_.motion->set_actual_usteps(tick_.jog.zero_usteps());
+        for (uint8_t i = 0; i < config::kAxisCount; ++i) pos[i] = tick_.jog.zero_usteps()[i];
       }
-      jog_confirmed_ = r == JogResult::kConfirmed ? 1 : 0;
-      ++jogs_done_;
-      path_.flush(&ring_);  // the old target is meaningless in the new coordinates
-      tick_mode_ = (uint8_t)TickMode::kFollow;
+      tick_.jog_confirmed = r == JogResult::kConfirmed ? 1 : 0;
+      ++tick_.jogs_done;
+      tick_.path.flush(&ring_);  // the old target is meaningless in the new coordinates
+      tick_.mode = (uint8_t)TickMode::kFollow;
     }
   }
-  if (tick_mode_ == (uint8_t)TickMode::kAlarm) {
+  if (tick_.mode == (uint8_t)TickMode::kAlarm) {
     for (uint8_t i = 0; i < config::kAxisCount; ++i) v[i] = 0;
   }
   board_.motion->write_velocity_units(v);
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) tick_pos_[i] = pos[i];
+  for (uint8_t i = 0; i < config::kAxisCount; ++i) tick_.pos[i] = pos[i];
   tick_publish(pos, limits);
 }
 
 // One step of the power drivers' status check every kDriverCheckEveryMs (at most one SPI
 // datagram; the blocking Tmc428::read_driver_status() can take ~70 ms and never runs here).
 void Application::tick_check_drivers() {
-  if (++driver_check_ms_ < kDriverCheckEveryMs) return;
-  driver_check_ms_ = 0;
+  if (++tick_.driver_check_ms < kDriverCheckEveryMs) return;
+  tick_.driver_check_ms = 0;
   const uint8_t c = board_.motion->poll_driver_check();
   if (c == hal::kDriverCheckFault) {
     tick_latch_alarm(kTickAlarmDriver);
@@ -145,58 +145,58 @@ void Application::tick_check_drivers() {
 }
 
 void Application::tick_latch_alarm(uint8_t alarm) {
-  if (tick_mode_ != (uint8_t)TickMode::kAlarm) tick_alarm_ = alarm;
-  tick_mode_ = (uint8_t)TickMode::kAlarm;
-  path_.stop_now();
+  if (tick_.mode != (uint8_t)TickMode::kAlarm) tick_.alarm = alarm;
+  tick_.mode = (uint8_t)TickMode::kAlarm;
+  tick_.path.stop_now();
 }
 
 void Application::tick_take_requests() {
   TickRequest r;
   while (requests_.pop(&r)) {
-    ++requests_done_;
+    ++tick_.requests_done;
     switch (r.kind) {
       case RequestKind::kHold:
       case RequestKind::kLinkHold:
-        path_.set_hold(true);
+        tick_.path.set_hold(true);
         break;
       case RequestKind::kResume:
-        path_.set_hold(false);
+        tick_.path.set_hold(false);
         break;
       case RequestKind::kOverride:
-        path_.set_override_percent(r.value);
+        tick_.path.set_override_percent(r.value);
         break;
       case RequestKind::kStop:
-        if (tick_mode_ == (uint8_t)TickMode::kJog) {
-          jog_confirmed_ = 0;  // zeroing cancelled; the chip ramps the jog down
-          ++jogs_done_;
-          tick_mode_ = (uint8_t)TickMode::kFollow;
+        if (tick_.mode == (uint8_t)TickMode::kJog) {
+          tick_.jog_confirmed = 0;  // zeroing cancelled; the chip ramps the jog down
+          ++tick_.jogs_done;
+          tick_.mode = (uint8_t)TickMode::kFollow;
         }
-        if (tick_mode_ == (uint8_t)TickMode::kAlarm) {
-          path_.flush(&ring_);  // already standing: drop at once, stay in alarm
-          ++stops_done_;
+        if (tick_.mode == (uint8_t)TickMode::kAlarm) {
+          tick_.path.flush(&ring_);  // already standing: drop at once, stay in alarm
+          ++tick_.stops_done;
         } else {
-          path_.set_hold(true);
-          stop_pending_ = true;
+          tick_.path.set_hold(true);
+          tick_.stop_pending = true;
         }
         break;
       case RequestKind::kStartJog:
-        if (tick_mode_ == (uint8_t)TickMode::kFollow) {
-          path_.flush(&ring_);
-          jog_.start(r.value, board_.inputs->state());
-          tick_mode_ = (uint8_t)TickMode::kJog;
+        if (tick_.mode == (uint8_t)TickMode::kFollow) {
+          tick_.path.flush(&ring_);
+          tick_.jog.start(r.value, board_.inputs->state());
+          tick_.mode = (uint8_t)TickMode::kJog;
         }
         break;
       case RequestKind::kClearAlarm:
         // Tick alarm or one raised by the background loop: either way start clean (the
         // chip ramps down whatever was still moving) and report it as a completed stop.
-        if (tick_mode_ == (uint8_t)TickMode::kAlarm) {
-          tick_mode_ = (uint8_t)TickMode::kFollow;
-          tick_alarm_ = kTickAlarmNone;
+        if (tick_.mode == (uint8_t)TickMode::kAlarm) {
+          tick_.mode = (uint8_t)TickMode::kFollow;
+          tick_.alarm = kTickAlarmNone;
         }
-        path_.flush(&ring_);
-        path_.set_hold(false);
-        stop_pending_ = false;
-        ++stops_done_;
+        tick_.path.flush(&ring_);
+        tick_.path.set_hold(false);
+        tick_.stop_pending = false;
+        ++tick_.stops_done;
         break;
     }
   }
@@ -206,19 +206,20 @@ void Application::tick_publish(const int32_t pos[config::kAxisCount], uint8_t li
   TickStatus s;
   for (uint8_t i = 0; i < config::kAxisCount; ++i) s.pos_usteps[i] = pos[i];
   s.ms = ms_;
-  s.items_done = path_.items_done();
-  s.speed_um_s = path_.speed_um_s();
-  s.mode = tick_mode_;
-  s.alarm = tick_alarm_;
-  s.stops_done = stops_done_;
-  s.jogs_done = jogs_done_;
-  s.jog_confirmed = jog_confirmed_;
-  s.requests_done = requests_done_;
-  s.confirm_presses = confirm_presses_;
+  s.items_done = tick_.path.items_done();
+  s.speed_um_s = tick_.path.speed_um_s();
+  s.mode = tick_.mode;
+  s.alarm = tick_.alarm;
+  s.stops_done = tick_.stops_done;
+  s.jogs_done = tick_.jogs_done;
+  s.jog_confirmed = tick_.jog_confirmed;
+  s.requests_done = tick_.requests_done;
+  s.confirm_presses = tick_.confirm_presses;
+  s.z_mode = tick_.jog.z_mode() ? 1 : 0;
   s.limits = limits;
-  s.holding = path_.holding() ? 1 : 0;
-  s.at_rest = path_.at_rest() ? 1 : 0;
-  s.finished = path_.finished() && ring_.empty() ? 1 : 0;
+  s.holding = tick_.path.holding() ? 1 : 0;
+  s.at_rest = tick_.path.at_rest() ? 1 : 0;
+  s.finished = tick_.path.finished() && ring_.empty() ? 1 : 0;
   status_.push(s);  // full: the background loop is behind; the next one carries the counts
 }
 
@@ -419,208 +420,11 @@ void ApplicationSink::fill_status(proto::StatusReply* reply) {
 uint8_t ApplicationSink::queue_free() {
   return app_->queue_free();
 }
-uint8_t ApplicationSink::queue_slots() {
-  return app_->queue_slots();
+uint8_t ApplicationSink::spline_slots_free() {
+  return app_->spline_slots_free();
 }
-
-proto::ErrorCode Application::store(const proto::Frame& f, uint8_t* detail) {
-  *detail = 0;
-  if (alarm_active()) return proto::ErrorCode::kAlarmActive;
-  QueueItem item;
-  item.seq = f.seq;
-  item.stage = 0;
-  proto::ErrorCode e = proto::ErrorCode::kOk;
-  switch (f.letter) {
-    case proto::kCmdText: {
-      proto::TextCmd c;
-      e = proto::decode_frame(f, &c);
-      if (e != proto::ErrorCode::kOk) return e;
-      item.kind = ItemKind::kText;
-      item.text.row = c.row;
-      item.text.length = c.length;
-      for (uint8_t i = 0; i < c.length && i < 16; ++i) item.text.chars[i] = c.text[i];
-      break;
-    }
-    case proto::kCmdPause: {
-      proto::PauseCmd c;
-      e = proto::decode_frame(f, &c);
-      if (e != proto::ErrorCode::kOk) return e;
-      item.kind = ItemKind::kPause;
-      item.text.row = 0;
-      item.text.length = c.length;
-      for (uint8_t i = 0; i < c.length && i < 16; ++i) item.text.chars[i] = c.text[i];
-      break;
-    }
-    case proto::kCmdDwell: {
-      proto::DwellCmd c;
-      e = proto::decode_frame(f, &c);
-      if (e != proto::ErrorCode::kOk) return e;
-      item.kind = ItemKind::kDwell;
-      item.dwell.dwell_ms = c.dwell_ms;
-      break;
-    }
-    case proto::kCmdSpindle: {
-      proto::SpindleCmd c;
-      e = proto::decode_frame(f, &c);
-      if (e != proto::ErrorCode::kOk) return e;
-      item.kind = ItemKind::kSpindle;
-      item.spindle.on = c.on;
-      break;
-    }
-    case proto::kCmdResolution: {
-      proto::ResolutionCmd c;
-      e = proto::decode_frame(f, &c);
-      if (e != proto::ErrorCode::kOk) return e;
-      item.kind = ItemKind::kResolution;
-      item.resolution.max_step_um = c.max_step_um;
-      item.resolution.chord_tolerance_um = c.chord_tolerance_um;
-      break;
-    }
-    case proto::kCmdFeedMove:
-    case proto::kCmdRapidMove: {
-      int32_t x, y;
-      uint16_t feed;
-      if (f.letter == proto::kCmdFeedMove) {
-        proto::FeedMoveCmd c;
-        e = proto::decode_frame(f, &c);
-        x = c.x_um;
-        y = c.y_um;
-        feed = c.feed_um_per_s;
-        item.kind = ItemKind::kFeedMove;
-      } else {
-        proto::RapidMoveCmd c;
-        e = proto::decode_frame(f, &c);
-        x = c.x_um;
-        y = c.y_um;
-        feed = rapid_feed();
-        item.kind = ItemKind::kRapidMove;
-      }
-      if (e != proto::ErrorCode::kOk) return e;
-      if (!motion_allowed()) return proto::ErrorCode::kNotZeroed;
-      if (!inside_travel(config::kAxisX, x) || !inside_travel(config::kAxisY, y))
-        return proto::ErrorCode::kOutOfTravel;
-      item.move.x_um = x;
-      item.move.y_um = y;
-      item.move.feed_um_s = feed;
-      break;
-    }
-    case proto::kCmdZMove: {
-      proto::ZMoveCmd c;
-      e = proto::decode_frame(f, &c);
-      if (e != proto::ErrorCode::kOk) return e;
-      if (!motion_allowed()) return proto::ErrorCode::kNotZeroed;
-      if (!inside_travel(config::kAxisZ, c.z_um)) return proto::ErrorCode::kOutOfTravel;
-      item.kind = ItemKind::kZMove;
-      item.z_move.z_um = c.z_um;
-      item.z_move.feed_um_s = c.feed_um_per_s;
-      break;
-    }
-    case proto::kCmdDrill: {
-      proto::DrillCmd c;
-      e = proto::decode_frame(f, &c);
-      if (e != proto::ErrorCode::kOk) return e;
-      if (!motion_allowed()) return proto::ErrorCode::kNotZeroed;
-      if (!inside_travel(config::kAxisX, c.x_um) || !inside_travel(config::kAxisY, c.y_um) ||
-          !inside_travel(config::kAxisZ, c.z_start_um) ||
-          !inside_travel(config::kAxisZ, c.z_bottom_um))
-        return proto::ErrorCode::kOutOfTravel;
-      item.kind = ItemKind::kDrill;
-      item.drill.x_um = c.x_um;
-      item.drill.y_um = c.y_um;
-      item.drill.z_start_um = c.z_start_um;
-      item.drill.z_bottom_um = c.z_bottom_um;
-      item.drill.feed_um_s = c.feed_um_per_s;
-      break;
-    }
-    case proto::kCmdZeroing: {
-      proto::ZeroingCmd c;
-      e = proto::decode_frame(f, &c);
-      if (e != proto::ErrorCode::kOk) return e;
-      if (!queue_.empty() || stopping_) return proto::ErrorCode::kBadState;
-      item.kind = ItemKind::kZeroing;
-      item.zeroing.axes = c.axes;
-      break;
-    }
-    case proto::kCmdSplineHeader: {
-      proto::SplineHeaderCmd c;
-      e = proto::decode_frame(f, &c);
-      if (e != proto::ErrorCode::kOk) return e;
-      if (!motion_allowed()) return proto::ErrorCode::kNotZeroed;
-      if (c.control_count > core::kMaxControlPoints || c.degree > core::kMaxDegree)
-        return proto::ErrorCode::kFieldRange;
-      if (queue_.free_slots() == 0 || !store_.has_free_slot()) return proto::ErrorCode::kBusy;
-      uint8_t slot = 0;
-      e = store_.begin(c, &slot);
-      if (e != proto::ErrorCode::kOk) return e;
-      item.kind = ItemKind::kSpline;
-      item.spline.slot = slot;
-      item.spline.feed_um_s = c.feed_um_per_s;
-      break;
-    }
-    case proto::kCmdSplineData: {
-      proto::SplineDataCmd c;
-      e = proto::decode_frame(f, &c);
-      if (e != proto::ErrorCode::kOk) return e;
-      const int32_t travel[2] = {scaling_.travel_um[0], scaling_.travel_um[1]};
-      bool completed = false;
-      return store_.add(c, travel, detail, &completed);  // stored in the slot, no queue item
-    }
-    default:
-      return proto::ErrorCode::kUnknownCommand;
-  }
-  if (!queue_.push(item)) return proto::ErrorCode::kBusy;
-  ++items_stored_;
-  return proto::ErrorCode::kOk;
-}
-
-uint16_t Application::rapid_feed() const {
-  return cfg_.rapid_feed_um_per_s > 65535UL ? 65535U : (uint16_t)cfg_.rapid_feed_um_per_s;
-}
-
-proto::ErrorCode Application::realtime(const proto::Frame& f) {
-  switch (f.letter) {
-    case proto::kCmdHold:
-      if (f.length != 0) return proto::ErrorCode::kPayloadLength;
-      if (!request(RequestKind::kHold, 0)) return proto::ErrorCode::kBusy;
-      hold_requested_ = true;
-      return proto::ErrorCode::kOk;
-    case proto::kCmdResume:
-      if (f.length != 0) return proto::ErrorCode::kPayloadLength;
-      if (!hold_requested_) return proto::ErrorCode::kBadState;
-      if (!request(RequestKind::kResume, 0)) return proto::ErrorCode::kBusy;
-      hold_requested_ = false;
-      link_hold_ = false;
-      return proto::ErrorCode::kOk;
-    case proto::kCmdAbort:
-      if (f.length != 0) return proto::ErrorCode::kPayloadLength;
-      begin_stop();
-      dispatcher_.abort_stream();
-      return proto::ErrorCode::kOk;
-    case proto::kCmdOverride: {
-      proto::OverrideCmd c;
-      const proto::ErrorCode e = proto::decode_frame(f, &c);
-      if (e != proto::ErrorCode::kOk) return e;
-      if (!request(RequestKind::kOverride, c.percent)) return proto::ErrorCode::kBusy;
-      override_percent_ = c.percent;
-      return proto::ErrorCode::kOk;
-    }
-    case proto::kCmdClearAlarm:
-      if (f.length != 0) return proto::ErrorCode::kPayloadLength;
-      if (!alarm_active()) return proto::ErrorCode::kBadState;
-      if (!request(RequestKind::kClearAlarm, 0)) return proto::ErrorCode::kBusy;
-      app_alarm_ = proto::Alarm::kNone;
-      drop_job();
-      stopping_ = true;  // until the tick confirms the ring is dropped
-      hold_requested_ = false;
-      link_hold_ = false;
-      // Snapshots taken before the tick saw the request still show the latched alarm.
-      alarm_clearing_ = true;
-      alarm_clear_mark_ = requests_pushed_;
-      reported_alarm_ = proto::Alarm::kNone;
-      return proto::ErrorCode::kOk;
-    default:
-      return proto::ErrorCode::kUnknownCommand;
-  }
+void ApplicationSink::fill_session(proto::SessionReply* reply) {
+  app_->fill_session(reply);
 }
 
 void Application::reset_session() {
@@ -633,7 +437,8 @@ void Application::fill_status(proto::StatusReply* r) {
   r->state = state();
   r->alarm = alarm();
   r->flags =
-      (uint8_t)((zeroed_ ? proto::kStatusZeroed : 0) | (link_hold_ ? proto::kStatusLinkHold : 0));
+      (uint8_t)((zeroed_ ? proto::kStatusZeroed : 0) | (link_hold_ ? proto::kStatusLinkHold : 0) |
+                (items_done_ != 0 ? proto::kStatusExecuted : 0));
   r->override_percent = override_percent_;
   r->queue_free = queue_free();
   r->next_expected_seq = 0;  // filled by the dispatcher
@@ -645,14 +450,32 @@ void Application::fill_status(proto::StatusReply* r) {
   r->y_um = at[1];
   r->z_um = at[2];
   r->rejected_frames = 0;
+  r->spline_slots_free = spline_slots_free();
+}
+
+uint8_t Application::spline_slots_free() {
+  return store_.free_slots();
 }
 
 uint8_t Application::queue_free() {
   return queue_.free_slots();
 }
 
-uint8_t Application::queue_slots() {
-  return CommandQueue::kCapacity;
+void Application::fill_session(proto::SessionReply* r) {
+  r->queue_slots = CommandQueue::kCapacity;
+  r->firmware_major = config::kFirmwareMajor;
+  r->firmware_minor = config::kFirmwareMinor;
+  // The travel the controller checks targets against, and the fastest feed of each axis.
+  r->travel_x_um = scaling_.travel_um[config::kAxisX];
+  r->travel_y_um = scaling_.travel_um[config::kAxisY];
+  r->travel_z_um = scaling_.travel_um[config::kAxisZ];
+  const uint32_t xy =
+      cfg_.axis[config::kAxisX].max_speed_um_per_s < cfg_.axis[config::kAxisY].max_speed_um_per_s
+          ? cfg_.axis[config::kAxisX].max_speed_um_per_s
+          : cfg_.axis[config::kAxisY].max_speed_um_per_s;
+  const uint32_t z = cfg_.axis[config::kAxisZ].max_speed_um_per_s;
+  r->max_feed_xy_um_per_s = xy > 65535UL ? 65535U : (uint16_t)xy;
+  r->max_feed_z_um_per_s = z > 65535UL ? 65535U : (uint16_t)z;
 }
 
 // ---------------------------------------------------------------- execution
@@ -747,8 +570,8 @@ bool Application::execute_item(QueueItem* item) {
         return push_point(target, last_feed_um_s_, kPointEndOfItem);
       }
       if (!spline_started_) {
-        if (generator_.begin(store_.spline(slot), item->spline.feed_um_s, last[2], item_tag_) !=
-            core::GeometryError::kOk) {
+        if (generator_.begin(store_.spline(slot), item->spline.feed_um_s, last[2], item_tag_,
+                             item->spline.tool_offset_um) != core::GeometryError::kOk) {
           store_.release(slot);
           raise_alarm(proto::Alarm::kPathFault);
           return false;
@@ -828,7 +651,7 @@ void Application::update_screen() {
   info.state = state();
   info.alarm = alarm();
   info.zeroed = zeroed_;
-  info.z_mode = jog_.z_mode();
+  info.z_mode = latest_.z_mode != 0;  // the tick's jog state, through its snapshot
   info.paused = paused_;
   info.items_done = items_done_;
   info.items_stored = items_stored_;

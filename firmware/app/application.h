@@ -51,7 +51,8 @@ class ApplicationSink : public CommandSink {
   void reset_session();
   void fill_status(proto::StatusReply* reply);
   uint8_t queue_free();
-  uint8_t queue_slots();
+  uint8_t spline_slots_free();
+  void fill_session(proto::SessionReply* reply);
 
  private:
   friend class Application;
@@ -88,7 +89,7 @@ class Application {
   const Dispatcher& dispatcher() const { return dispatcher_; }
   const StatusScreen& screen() const { return screen_; }
   const AxisScaling& scaling() const { return scaling_; }
-  const PathController& path() const { return path_; }
+  const PathController& path() const { return tick_.path; }
 
   // What the dispatcher calls (through ApplicationSink) from poll().
   proto::ErrorCode store(const proto::Frame& frame, uint8_t* detail);
@@ -96,7 +97,8 @@ class Application {
   void reset_session();
   void fill_status(proto::StatusReply* reply);
   uint8_t queue_free();
-  uint8_t queue_slots();
+  uint8_t spline_slots_free();
+  void fill_session(proto::SessionReply* reply);
 
  private:
   // Tick side.
@@ -122,6 +124,34 @@ class Application {
   bool motion_allowed() const;
   bool inside_travel(uint8_t axis, int32_t um) const;
   uint16_t rapid_feed() const;
+
+  // Command handlers (command_handlers.cpp), one per row of the message table.
+  proto::ErrorCode handle(const proto::Frame& frame, uint8_t* detail);
+  QueueItem new_item(ItemKind kind, uint8_t seq);
+  proto::ErrorCode enqueue(const QueueItem& item);
+  proto::ErrorCode motion_check(const int32_t* x_um, const int32_t* y_um,
+                                const int32_t* z_um) const;
+  template <typename Msg>
+  proto::ErrorCode dispatcher_handles(const Msg&, uint8_t, uint8_t*) {
+    return proto::ErrorCode::kUnknownCommand;  // #I and #? never reach the application
+  }
+  proto::ErrorCode on_text(const proto::TextCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_pause(const proto::PauseCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_dwell(const proto::DwellCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_spindle(const proto::SpindleCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_resolution(const proto::ResolutionCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_feed_move(const proto::FeedMoveCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_rapid_move(const proto::RapidMoveCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_z_move(const proto::ZMoveCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_drill(const proto::DrillCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_zeroing(const proto::ZeroingCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_spline_header(const proto::SplineHeaderCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_spline_data(const proto::SplineDataCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_hold(const proto::HoldCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_resume(const proto::ResumeCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_abort(const proto::AbortCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_override(const proto::OverrideCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_clear_alarm(const proto::ClearAlarmCmd& c, uint8_t seq, uint8_t* detail);
   void watchdog();
   void update_screen();
 
@@ -136,22 +166,27 @@ class Application {
   StatusRing status_;
   volatile uint16_t ms_;  // written by the tick only
 
-  // Tick-owned.
-  PathController path_;
-  JogController jog_;
-  int32_t tick_pos_[config::kAxisCount];
-  uint8_t tick_mode_;  // TickMode
-  uint8_t tick_alarm_;
-  uint8_t driver_check_ms_;  // ms since the last poll_driver_check() step
-  uint8_t stops_done_;
-  uint8_t jogs_done_;
-  uint8_t jog_confirmed_;
-  uint8_t requests_done_;
-  uint8_t tick_buttons_;     // panel state seen by the previous tick
-  uint8_t confirm_presses_;  // confirm button presses (wraps), for #P
-  bool stop_pending_;
+  // Owned by the 1 ms tick (the timer ISR on the target): only tick_1ms() and the tick_*
+  // helpers touch these; the background loop sees them through the StatusRing snapshots.
+  struct TickOwned {
+    PathController path;
+    JogController jog;
+    int32_t pos[config::kAxisCount];
+    uint8_t mode;  // TickMode
+    uint8_t alarm;
+    uint8_t driver_check_ms;  // ms since the last poll_driver_check() step
+    uint8_t stops_done;
+    uint8_t jogs_done;
+    uint8_t jog_confirmed;
+    uint8_t requests_done;
+    uint8_t buttons;          // panel state seen by the previous tick
+    uint8_t confirm_presses;  // confirm button presses (wraps), for #P
+    bool stop_pending;
+  };
+  TickOwned tick_;
 
-  // Background-owned.
+  // Owned by the background loop (poll() and everything it calls, the command handlers
+  // included); the tick never reads these.
   Dispatcher dispatcher_;
   CommandQueue queue_;
   SplineStore store_;

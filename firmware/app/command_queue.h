@@ -46,6 +46,7 @@ struct ZeroingArgs {
 struct SplineArgs {
   uint8_t slot;  // in the SplineStore
   uint16_t feed_um_s;
+  int32_t tool_offset_um;  // > 0 left of travel, < 0 right
 };
 struct DwellArgs {
   uint16_t dwell_ms;

@@ -3,8 +3,9 @@
 
 #include <string.h>  // memcpy
 
-#include "firmware/core/spline.h"     // kMaxDegree, kMaxControlPoints
-#include "firmware/protocol/codec.h"  // write_frame, decode_frame
+#include "firmware/config/machine_config.h"  // kLinkRxBufferBytes
+#include "firmware/core/spline.h"            // kMaxDegree, kMaxControlPoints
+#include "firmware/protocol/codec.h"         // write_frame, decode_frame
 
 namespace app {
 
@@ -133,12 +134,10 @@ void Dispatcher::on_immediate(const proto::Frame& f) {
   r.protocol_version = proto::kProtocolVersion;
   r.max_payload = proto::kMaxPayload;
   r.window_frames = proto::kWindowFrames;
-  r.queue_slots = sink_->queue_slots();
-  r.rx_buffer_bytes = 256;
+  r.rx_buffer_bytes = config::kLinkRxBufferBytes;
   r.max_degree = core::kMaxDegree;
   r.max_control_points = core::kMaxControlPoints;
-  r.firmware_major = 0;
-  r.firmware_minor = 1;
+  sink_->fill_session(&r);
   reply(r, f.seq);
 }
 
@@ -160,12 +159,12 @@ void Dispatcher::on_realtime(const proto::Frame& f) {
       error(f.seq, e, 0);
       return;
     }
-    ack(f.seq);
+    ack(f.seq, true);
     return;
   }
   const proto::SeqClass c = realtime_.classify(f.seq);
   if (c == proto::SeqClass::kDuplicate) {
-    ack(f.seq);  // done already; never acted on twice
+    ack(f.seq, true);  // done already; never acted on twice
     return;
   }
   // An older #R/#V/#C was superseded and must not undo a later command; an older #H or #X
@@ -181,7 +180,7 @@ void Dispatcher::on_realtime(const proto::Frame& f) {
     return;
   }
   if (!stale) realtime_.accept(f.seq);  // the newest seq stays the reference
-  ack(f.seq);
+  ack(f.seq, true);
 }
 
 void Dispatcher::on_queued(const proto::Frame& f) {
@@ -199,7 +198,7 @@ void Dispatcher::on_queued(const proto::Frame& f) {
       const proto::ErrorCode e = sink_->store(f, &detail);
       if (e == proto::ErrorCode::kOk) {
         window_.accept(f.seq);
-        ack(f.seq);
+        ack(f.seq, false);
       } else if (e == proto::ErrorCode::kBusy) {
         hold(f);  // ack delayed until there is room
       } else {
@@ -208,7 +207,7 @@ void Dispatcher::on_queued(const proto::Frame& f) {
       break;
     }
     case proto::SeqClass::kDuplicate:
-      ack(f.seq);  // stored before: acknowledged again, not stored twice
+      ack(f.seq, false);  // stored before: acknowledged again, not stored twice
       break;
     case proto::SeqClass::kPending:
       break;  // the held copy's ack will come
@@ -247,7 +246,7 @@ void Dispatcher::retry_held() {
   window_.clear_pending();
   if (e == proto::ErrorCode::kOk) {
     window_.accept(f.seq);
-    ack(f.seq);
+    ack(f.seq, false);
   } else {
     error(f.seq, e, detail);
   }
@@ -265,8 +264,8 @@ void Dispatcher::send_alarm(proto::Alarm alarm, proto::MachineState state) {
   reply(r, alarm_seq_);
 }
 
-void Dispatcher::ack(uint8_t seq) {
-  const proto::AckReply r = {sink_->queue_free()};
+void Dispatcher::ack(uint8_t seq, bool realtime) {
+  const proto::AckReply r = {sink_->queue_free(), sink_->spline_slots_free(), realtime};
   reply(r, seq);
 }
 

@@ -24,10 +24,14 @@ class CommandSink {
   virtual proto::ErrorCode realtime(const proto::Frame& frame) = 0;
   // #I: stop motion, clear queues (the dispatcher resets its own stream state).
   virtual void reset_session() = 0;
-  // #X was acted on: the sink flushed everything.
+  // *?: the machine's part of the status (the dispatcher adds the stream's fields).
   virtual void fill_status(proto::StatusReply* reply) = 0;
+  // Ordered frames the sink can store right now (in *O and *?).
   virtual uint8_t queue_free() = 0;
-  virtual uint8_t queue_slots() = 0;
+  // Splines (#B) the sink can open right now (in *O and *?).
+  virtual uint8_t spline_slots_free() = 0;
+  // *I: what the application reports (queue slots, travel, feeds, firmware version).
+  virtual void fill_session(proto::SessionReply* reply) = 0;
 
  protected:
   ~CommandSink() {}
@@ -51,7 +55,8 @@ class Dispatcher {
   uint8_t next_expected() const { return window_.next_expected(); }
   proto::ErrorCode last_error() const { return last_error_; }
   uint16_t rejected_frames() const;
-  // Milliseconds since the last CRC-valid frame (saturates at 65535 via wrap handling).
+  // Milliseconds since the last CRC-valid frame, modulo 65536 (it wraps after 65.5 s; the
+  // link watchdog acts at 2 s, long before).
   uint16_t ms_since_valid(uint16_t now_ms) const { return (uint16_t)(now_ms - last_valid_ms_); }
   uint16_t tx_dropped() const { return tx_dropped_; }
 
@@ -63,7 +68,7 @@ class Dispatcher {
   void on_immediate(const proto::Frame& f);
   void retry_held();
   void hold(const proto::Frame& f);
-  void ack(uint8_t seq);
+  void ack(uint8_t seq, bool realtime);
   void error(uint8_t seq, proto::ErrorCode code, uint8_t detail);
   template <typename Msg>
   void reply(const Msg& msg, uint8_t seq);

@@ -25,7 +25,8 @@ void PointGenerator::set_resolution(uint16_t max_step_um, uint16_t chord_toleran
 }
 
 core::GeometryError PointGenerator::begin(const core::Spline* spline, uint16_t feed_um_s,
-                                          int32_t z_um, uint16_t tag) {
+                                          int32_t z_um, uint16_t tag, int32_t tool_offset_um) {
+  settings_.tool_offset_um = tool_offset_um;  // this spline's (its #B); 0 = tool centre on it
   feed_um_s_ = feed_um_s;
   z_um_ = z_um;
   tag_ = tag;

@@ -24,9 +24,10 @@ class PointGenerator {
   PointGenerator();
   // Default: adaptive, 5 um chord tolerance, no maximum step.
   void set_resolution(uint16_t max_step_um, uint16_t chord_tolerance_um);
-  // Starts a spline at feed, at height z_um; points carry tag.
+  // Starts a spline at feed, at height z_um; points carry tag. tool_offset_um: the tool
+  // centre runs this far from the curve (> 0 left of travel, < 0 right, 0 on it).
   core::GeometryError begin(const core::Spline* spline, uint16_t feed_um_s, int32_t z_um,
-                            uint16_t tag);
+                            uint16_t tag, int32_t tool_offset_um);
   // Pushes up to max_points points; travel_um: allowed |x|, |y|.
   GenStatus run(Planner* planner, CoordinateRing* ring, const int32_t travel_um[2],
                 uint8_t max_points);

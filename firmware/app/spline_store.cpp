@@ -23,6 +23,14 @@ bool SplineStore::has_free_slot() const {
   return false;
 }
 
+uint8_t SplineStore::free_slots() const {
+  uint8_t n = 0;
+  for (uint8_t i = 0; i < kSlots; ++i) {
+    if (state_[i] == SlotState::kFree) ++n;
+  }
+  return n;
+}
+
 proto::ErrorCode SplineStore::begin(const proto::SplineHeaderCmd& h, uint8_t* slot) {
   if (h.degree < 1 || h.degree > core::kMaxDegree) return proto::ErrorCode::kFieldRange;
   if (h.control_count < (uint16_t)(h.degree + 1U) || h.control_count > core::kMaxControlPoints)

@@ -58,6 +58,7 @@ struct TickStatus {
   uint8_t holding;          // hold requested
   uint8_t at_rest;          // commanded speed zero
   uint8_t finished;         // nothing more to follow
+  uint8_t z_mode;           // zeroing: the joystick drives Z
 };
 
 typedef core::SpscRing<TickRequest, 8> RequestRing;

@@ -9,6 +9,14 @@ namespace config {
 
 enum { kAxisX = 0, kAxisY = 1, kAxisZ = 2, kAxisCount = 3 };
 
+// Facts about the controller that the host learns from the session reply (*I); the host's
+// defaults (work area, feeds) come from default_machine_config() below, never a copy.
+enum {
+  kFirmwareMajor = 0,
+  kFirmwareMinor = 2,
+  kLinkRxBufferBytes = 256  // the UART receive ring: 22 ms of input at 115200 Bd
+};
+
 struct AxisConfig {
   uint16_t full_steps_per_rev;   // motor, 200
   uint8_t microsteps_per_step;   // TMC428 usrs as a count: 16

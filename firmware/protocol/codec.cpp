@@ -1,208 +1,293 @@
-// Byte layouts of every payload (little-endian fixed-width fields), with range checks shared
-// by encode and decode so both sides agree on what is valid.
+// One field walker for every message: the message table (message_table.h) becomes a field
+// list per message (wire type, offset in the struct, range); encode, decode and the range
+// check walk that list, so the byte layout and the ranges are written down once.
 #include "firmware/protocol/codec.h"
+
+#include <stddef.h>  // offsetof
+#include <string.h>  // memcpy
 
 namespace proto {
 
 namespace {
 
-// Little-endian field writer over a Payload; capacity is kMaxPayload.
-struct Writer {
-  Payload* out;
-  void u8(uint8_t v) {
-    if (out->length < kMaxPayload) out->bytes[out->length++] = v;
-  }
-  void u16(uint16_t v) {
-    u8((uint8_t)(v & 0xFFU));
-    u8((uint8_t)(v >> 8));
-  }
-  void u32(uint32_t v) {
-    u16((uint16_t)(v & 0xFFFFU));
-    u16((uint16_t)(v >> 16));
-  }
-  void i32(int32_t v) { u32((uint32_t)v); }
+enum WireType {
+  kWireU8,
+  kWireU16,
+  kWireI32,
+  kWireFlag,    // u8 0/1 into a bool
+  kWireState,   // u8 MachineState
+  kWireAlarm,   // u8 Alarm
+  kWireError,   // u8 ErrorCode (only the defined values)
+  kWireText,    // the rest of the payload, characters min..max
+  kWirePoints,  // count x (x i32, y i32, weight u16): coordinates min..max, weight >= 1
+  kWireKnots,   // count x i32
+  kWireEnd
 };
 
-// Little-endian field reader; callers check the total length first.
-struct Reader {
-  const uint8_t* at;
-  uint8_t u8() { return *at++; }
-  uint16_t u16() {
-    const uint16_t lo = u8();
-    return (uint16_t)(lo | ((uint16_t)u8() << 8));
-  }
-  uint32_t u32() {
-    const uint32_t lo = u16();
-    return lo | ((uint32_t)u16() << 16);
-  }
-  int32_t i32() { return (int32_t)u32(); }
+struct FieldSpec {
+  uint8_t type;          // WireType
+  uint8_t offset;        // of the field in the message struct
+  uint8_t count_offset;  // text, arrays: of the uint8_t count in the struct
+  uint8_t max_count;     // text, arrays
+  int32_t min;
+  int32_t max;
 };
 
-// Starts an empty payload.
-Writer begin(Payload* out) {
-  out->length = 0;
-  Writer w;
-  w.out = out;
-  return w;
+#define PROTO_WIRE_u8 kWireU8
+#define PROTO_WIRE_u16 kWireU16
+#define PROTO_WIRE_i32 kWireI32
+#define PROTO_WIRE_flag kWireFlag
+#define PROTO_WIRE_state kWireState
+#define PROTO_WIRE_alarm kWireAlarm
+#define PROTO_WIRE_error kWireError
+#define PROTO_ARRAY_WIRE_point kWirePoints
+#define PROTO_ARRAY_WIRE_i32 kWireKnots
+#define PROTO_ARRAY_MIN_point PROTO_COORD_MIN
+#define PROTO_ARRAY_MAX_point PROTO_COORD_MAX
+#define PROTO_ARRAY_MIN_i32 PROTO_I32_MIN
+#define PROTO_ARRAY_MAX_i32 PROTO_I32_MAX
+
+// NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and member names.
+#define PROTO_SPEC_CMD(Type, name, letter, kind, display, reply, handler, check) \
+  const FieldSpec k##Type##Fields[] = {
+#define PROTO_SPEC_REPLY(Type, name, letter, display, check) const FieldSpec k##Type##Fields[] = {
+#define PROTO_SPEC_FIELD(Type, wire, field, min, max) \
+  {PROTO_WIRE_##wire, (uint8_t)offsetof(Type, field), 0, 0, min, max},
+#define PROTO_SPEC_TEXT(Type, count, field, max) \
+  {kWireText, (uint8_t)offsetof(Type, field), (uint8_t)offsetof(Type, count), max, 0x20, 0x7E},
+#define PROTO_SPEC_ARRAY(Type, count, field, element, max)            \
+  {                                                                   \
+      PROTO_ARRAY_WIRE_##element,     (uint8_t)offsetof(Type, field), \
+      (uint8_t)offsetof(Type, count), max,                            \
+      PROTO_ARRAY_MIN_##element,      PROTO_ARRAY_MAX_##element},
+#define PROTO_SPEC_END(Type)  \
+  { kWireEnd, 0, 0, 0, 0, 0 } \
+  }                           \
+  ;
+// NOLINTEND(bugprone-macro-parentheses)
+PROTO_MESSAGE_TABLE(PROTO_SPEC_CMD, PROTO_SPEC_REPLY, PROTO_SPEC_FIELD, PROTO_SPEC_TEXT,
+                    PROTO_SPEC_ARRAY, PROTO_SPEC_END)
+#undef PROTO_SPEC_CMD
+#undef PROTO_SPEC_REPLY
+#undef PROTO_SPEC_FIELD
+#undef PROTO_SPEC_TEXT
+#undef PROTO_SPEC_ARRAY
+#undef PROTO_SPEC_END
+
+// ---- little-endian bytes ----
+
+uint16_t get_u16(const uint8_t* p) {
+  return (uint16_t)(p[0] | ((uint16_t)p[1] << 8));
+}
+int32_t get_i32(const uint8_t* p) {
+  const uint32_t v = (uint32_t)get_u16(p) | ((uint32_t)get_u16(p + 2) << 16);
+  return (int32_t)v;
+}
+void put_u16(uint8_t* p, uint16_t v) {
+  p[0] = (uint8_t)(v & 0xFFU);
+  p[1] = (uint8_t)(v >> 8);
+}
+void put_i32(uint8_t* p, int32_t v) {
+  const uint32_t u = (uint32_t)v;
+  put_u16(p, (uint16_t)(u & 0xFFFFU));
+  put_u16(p + 2, (uint16_t)(u >> 16));
 }
 
-// Starts reading bytes; kPayloadLength unless exactly `expected` bytes are present.
-ErrorCode expect_length(const uint8_t* bytes, uint8_t length, uint8_t expected) {
-  if (length != expected) return ErrorCode::kPayloadLength;
+// Wire bytes of a one-element field type.
+uint8_t scalar_bytes(uint8_t type) {
+  if (type == kWireU16) return 2;
+  if (type == kWireI32) return 4;
+  return 1;
+}
+
+bool in_range(int32_t v, const FieldSpec& f) {
+  return v >= f.min && v <= f.max;
+}
+
+// A scalar field's value from the struct, widened.
+int32_t load(const uint8_t* msg, const FieldSpec& f) {
+  const uint8_t* at = msg + f.offset;
+  if (f.type == kWireU16) {
+    uint16_t v;
+    memcpy(&v, at, sizeof v);
+    return v;
+  }
+  if (f.type == kWireI32) {
+    int32_t v;
+    memcpy(&v, at, sizeof v);
+    return v;
+  }
+  if (f.type == kWireFlag) {
+    bool b;
+    memcpy(&b, at, sizeof b);
+    return b ? 1 : 0;
+  }
+  return *at;  // u8 and the u8 enums
+}
+
+void store(uint8_t* msg, const FieldSpec& f, int32_t v) {
+  uint8_t* at = msg + f.offset;
+  if (f.type == kWireU16) {
+    const uint16_t u = (uint16_t)v;
+    memcpy(at, &u, sizeof u);
+  } else if (f.type == kWireI32) {
+    memcpy(at, &v, sizeof v);
+  } else if (f.type == kWireFlag) {
+    const bool b = v != 0;
+    memcpy(at, &b, sizeof b);
+  } else {
+    *at = (uint8_t)v;
+  }
+}
+
+// Every field inside its range (and the enums inside their lists).
+ErrorCode check_fields(const uint8_t* msg, const FieldSpec* f) {
+  for (; f->type != kWireEnd; ++f) {
+    if (f->type == kWireText || f->type == kWirePoints || f->type == kWireKnots) {
+      const uint8_t n = msg[f->count_offset];
+      if (n > f->max_count) return ErrorCode::kFieldRange;
+      for (uint8_t i = 0; i < n; ++i) {
+        if (f->type == kWireText) {
+          if (!in_range((uint8_t)msg[f->offset + i], *f)) return ErrorCode::kFieldRange;
+        } else if (f->type == kWirePoints) {
+          core::ControlPoint p;
+          memcpy(&p, msg + f->offset + i * sizeof p, sizeof p);
+          if (!in_range(p.x_um, *f) || !in_range(p.y_um, *f) || p.weight_q14 == 0)
+            return ErrorCode::kFieldRange;
+        }
+      }
+      continue;
+    }
+    const int32_t v = load(msg, *f);
+    if (!in_range(v, *f)) return ErrorCode::kFieldRange;
+    if (f->type == kWireState && v > (int32_t)MachineState::kPaused) return ErrorCode::kFieldRange;
+    if (f->type == kWireAlarm && v > (int32_t)Alarm::kSoftLimit) return ErrorCode::kFieldRange;
+    if (f->type == kWireError && !is_known_error((uint8_t)v)) return ErrorCode::kFieldRange;
+  }
+  return ErrorCode::kOk;
+}
+
+// Writes the fields (already checked) in wire order.
+void write_fields(const uint8_t* msg, const FieldSpec* f, Payload* out) {
+  uint8_t* p = out->bytes;
+  uint16_t n_out = 0;
+  for (; f->type != kWireEnd; ++f) {
+    if (f->type == kWireText || f->type == kWirePoints || f->type == kWireKnots) {
+      const uint8_t n = msg[f->count_offset];
+      for (uint8_t i = 0; i < n; ++i) {
+        if (f->type == kWireText) {
+          p[n_out++] = msg[f->offset + i];
+        } else if (f->type == kWirePoints) {
+          core::ControlPoint c;
+          memcpy(&c, msg + f->offset + i * sizeof c, sizeof c);
+          put_i32(p + n_out, c.x_um);
+          put_i32(p + n_out + 4, c.y_um);
+          put_u16(p + n_out + 8, c.weight_q14);
+          n_out = (uint16_t)(n_out + kControlPointBytes);
+        } else {
+          int32_t k;
+          memcpy(&k, msg + f->offset + i * sizeof k, sizeof k);
+          put_i32(p + n_out, k);
+          n_out = (uint16_t)(n_out + kKnotBytes);
+        }
+      }
+      continue;
+    }
+    const int32_t v = load(msg, *f);
+    const uint8_t size = scalar_bytes(f->type);
+    if (size == 1) p[n_out] = (uint8_t)v;
+    if (size == 2) put_u16(p + n_out, (uint16_t)v);
+    if (size == 4) put_i32(p + n_out, v);
+    n_out = (uint16_t)(n_out + size);
+  }
+  out->length = (uint8_t)n_out;
+}
+
+// Fills the struct from the payload: kPayloadLength unless the bytes are exactly what the
+// fields (and the counts received) call for; kFieldRange for a count or flag the struct
+// cannot hold. Ranges are checked afterwards, by check_fields.
+ErrorCode read_fields(const uint8_t* bytes, uint8_t length, uint8_t* msg, const FieldSpec* f) {
   if (length > 0 && bytes == 0) return ErrorCode::kPayloadLength;
-  return ErrorCode::kOk;
-}
-
-Reader reader(const uint8_t* bytes) {
-  Reader r;
-  r.at = bytes;
-  return r;
-}
-
-bool coordinate_ok(int32_t v_um) {
-  return v_um >= -core::kMaxCoordinateUm && v_um <= core::kMaxCoordinateUm;
-}
-
-bool state_ok(uint8_t v) {
-  return v <= (uint8_t)MachineState::kPaused;
-}
-bool alarm_ok(uint8_t v) {
-  return v <= (uint8_t)Alarm::kSoftLimit;
-}
-
-// ---- range checks, one per message ----
-
-ErrorCode check(const SessionCmd& m) {
-  return m.protocol_version >= 1 ? ErrorCode::kOk : ErrorCode::kFieldRange;
-}
-
-ErrorCode check(const OverrideCmd& m) {
-  return (m.percent >= kMinOverridePercent && m.percent <= kMaxOverridePercent)
-             ? ErrorCode::kOk
-             : ErrorCode::kFieldRange;
-}
-
-ErrorCode check(const TextCmd& m) {
-  if (m.row >= kLcdRows || m.length > kLcdColumns) return ErrorCode::kFieldRange;
-  for (uint8_t i = 0; i < m.length; ++i) {
-    const uint8_t c = (uint8_t)m.text[i];
-    if (c < 0x20 || c > 0x7E) return ErrorCode::kFieldRange;
+  uint8_t pos = 0;
+  bool bad_flag = false;
+  for (; f->type != kWireEnd; ++f) {
+    const uint8_t left = (uint8_t)(length - pos);
+    if (f->type == kWireText) {
+      if (left > f->max_count) return ErrorCode::kPayloadLength;
+      msg[f->count_offset] = left;
+      memcpy(msg + f->offset, bytes + pos, left);
+      pos = length;
+      continue;
+    }
+    if (f->type == kWirePoints || f->type == kWireKnots) {
+      const uint8_t n = msg[f->count_offset];
+      if (n > f->max_count) return ErrorCode::kFieldRange;
+      const uint8_t each =
+          f->type == kWirePoints ? (uint8_t)kControlPointBytes : (uint8_t)kKnotBytes;
+      if ((uint16_t)n * each > left) return ErrorCode::kPayloadLength;
+      for (uint8_t i = 0; i < n; ++i) {
+        const uint8_t* at = bytes + pos + i * each;
+        if (f->type == kWirePoints) {
+          core::ControlPoint c;
+          c.x_um = get_i32(at);
+          c.y_um = get_i32(at + 4);
+          c.weight_q14 = get_u16(at + 8);
+          memcpy(msg + f->offset + i * sizeof c, &c, sizeof c);
+        } else {
+          const int32_t k = get_i32(at);
+          memcpy(msg + f->offset + i * sizeof k, &k, sizeof k);
+        }
+      }
+      pos = (uint8_t)(pos + n * each);
+      continue;
+    }
+    const uint8_t size = scalar_bytes(f->type);
+    if (size > left) return ErrorCode::kPayloadLength;
+    const uint8_t* at = bytes + pos;
+    int32_t v = at[0];
+    if (size == 2) v = get_u16(at);
+    if (size == 4) v = get_i32(at);
+    if (f->type == kWireFlag && v > 1) bad_flag = true;
+    store(msg, *f, v);
+    pos = (uint8_t)(pos + size);
   }
+  if (pos != length) return ErrorCode::kPayloadLength;
+  return bad_flag ? ErrorCode::kFieldRange : ErrorCode::kOk;
+}
+
+// ---- what one field cannot say ----
+
+template <typename Msg>
+ErrorCode no_check(const Msg&) {
   return ErrorCode::kOk;
 }
 
-ErrorCode check(const SplineHeaderCmd& m) {
-  if (m.degree < 1 || m.degree > core::kMaxDegree) return ErrorCode::kFieldRange;
-  if (m.control_count < (uint16_t)(m.degree + 1U) || m.control_count > core::kMaxControlPoints) {
+ErrorCode check_spline_header(const SplineHeaderCmd& m) {
+  if (m.degree > core::kMaxDegree || m.control_count > core::kMaxControlPoints)
     return ErrorCode::kFieldRange;
-  }
+  if (m.control_count < (uint16_t)(m.degree + 1U)) return ErrorCode::kFieldRange;
   if (m.knot_count != (uint16_t)(m.control_count + m.degree + 1U)) return ErrorCode::kFieldRange;
-  if (m.feed_um_per_s == 0) return ErrorCode::kFieldRange;
   return ErrorCode::kOk;
 }
 
-ErrorCode check(const SplineDataCmd& m) {
-  if (m.control_n > kMaxDataControls || m.knot_n > kMaxDataKnots) return ErrorCode::kFieldRange;
+ErrorCode check_spline_data(const SplineDataCmd& m) {
   if (m.control_n == 0 && m.knot_n == 0) return ErrorCode::kFieldRange;
   const uint16_t bytes =
       (uint16_t)(kSplineDataHeaderBytes + m.control_n * kControlPointBytes + m.knot_n * kKnotBytes);
   if (bytes > kMaxPayload) return ErrorCode::kFieldRange;
-  if ((uint16_t)(m.control_index + m.control_n) > core::kMaxControlPoints) {
+  if ((uint16_t)(m.control_index + m.control_n) > core::kMaxControlPoints)
     return ErrorCode::kFieldRange;
-  }
   if ((uint16_t)(m.knot_index + m.knot_n) > core::kMaxKnots) return ErrorCode::kFieldRange;
-  for (uint8_t i = 0; i < m.control_n; ++i) {
-    const core::ControlPoint& p = m.control[i];
-    if (!coordinate_ok(p.x_um) || !coordinate_ok(p.y_um) || p.weight_q14 == 0) {
-      return ErrorCode::kFieldRange;
-    }
-  }
   return ErrorCode::kOk;
 }
 
-ErrorCode check(const ResolutionCmd& m) {
-  return (m.max_step_um != 0 && m.chord_tolerance_um != 0) ? ErrorCode::kOk
-                                                           : ErrorCode::kFieldRange;
+ErrorCode check_drill(const DrillCmd& m) {
+  return m.z_bottom_um < m.z_start_um ? ErrorCode::kOk : ErrorCode::kFieldRange;
 }
 
-ErrorCode check(const FeedMoveCmd& m) {
-  return (coordinate_ok(m.x_um) && coordinate_ok(m.y_um) && m.feed_um_per_s != 0)
-             ? ErrorCode::kOk
-             : ErrorCode::kFieldRange;
-}
-
-ErrorCode check(const RapidMoveCmd& m) {
-  return (coordinate_ok(m.x_um) && coordinate_ok(m.y_um)) ? ErrorCode::kOk : ErrorCode::kFieldRange;
-}
-
-ErrorCode check(const ZMoveCmd& m) {
-  return (coordinate_ok(m.z_um) && m.feed_um_per_s != 0) ? ErrorCode::kOk : ErrorCode::kFieldRange;
-}
-
-ErrorCode check(const ZeroingCmd& m) {
-  return (m.axes >= 1 && m.axes <= kAxisMaskAll) ? ErrorCode::kOk : ErrorCode::kFieldRange;
-}
-
-ErrorCode check(const PauseCmd& m) {
-  if (m.length > kLcdColumns) return ErrorCode::kFieldRange;
-  for (uint8_t i = 0; i < m.length; ++i) {
-    const uint8_t c = (uint8_t)m.text[i];
-    if (c < 0x20 || c > 0x7E) return ErrorCode::kFieldRange;
-  }
-  return ErrorCode::kOk;
-}
-
-ErrorCode check(const DwellCmd& m) {
-  return m.dwell_ms != 0 ? ErrorCode::kOk : ErrorCode::kFieldRange;
-}
-
-ErrorCode check(const SpindleCmd& m) {
-  return m.on <= 1 ? ErrorCode::kOk : ErrorCode::kFieldRange;
-}
-
-ErrorCode check(const DrillCmd& m) {
-  if (!coordinate_ok(m.x_um) || !coordinate_ok(m.y_um)) return ErrorCode::kFieldRange;
-  if (!coordinate_ok(m.z_start_um) || !coordinate_ok(m.z_bottom_um)) return ErrorCode::kFieldRange;
-  if (m.z_bottom_um >= m.z_start_um || m.feed_um_per_s == 0) return ErrorCode::kFieldRange;
-  return ErrorCode::kOk;
-}
-
-ErrorCode check(const ErrorReply& m) {
-  return (m.code != ErrorCode::kOk && is_known_error((uint8_t)m.code)) ? ErrorCode::kOk
-                                                                       : ErrorCode::kFieldRange;
-}
-
-ErrorCode check(const SessionReply& m) {
-  if (m.protocol_version < 1) return ErrorCode::kFieldRange;
-  if (m.max_payload < 16 || m.max_payload > kMaxPayload) return ErrorCode::kFieldRange;
-  if (m.window_frames < 1 || m.window_frames > kWindowFrames) return ErrorCode::kFieldRange;
-  if (m.queue_slots < 1) return ErrorCode::kFieldRange;
-  if (m.rx_buffer_bytes < kMaxFrameBytes) return ErrorCode::kFieldRange;
-  if (m.max_degree < 1 || m.max_degree > core::kMaxDegree) return ErrorCode::kFieldRange;
-  if (m.max_control_points < 2 || m.max_control_points > core::kMaxControlPoints) {
-    return ErrorCode::kFieldRange;
-  }
-  return ErrorCode::kOk;
-}
-
-ErrorCode check(const StatusReply& m) {
-  if (!state_ok((uint8_t)m.state) || !alarm_ok((uint8_t)m.alarm)) return ErrorCode::kFieldRange;
-  if (m.override_percent < kMinOverridePercent || m.override_percent > kMaxOverridePercent) {
-    return ErrorCode::kFieldRange;
-  }
-  if (!is_known_error((uint8_t)m.last_error)) return ErrorCode::kFieldRange;
-  return ErrorCode::kOk;
-}
-
-ErrorCode check(const AlarmReply& m) {
-  return (alarm_ok((uint8_t)m.alarm) && state_ok((uint8_t)m.state)) ? ErrorCode::kOk
-                                                                    : ErrorCode::kFieldRange;
-}
-
-// Encodes an empty payload.
-ErrorCode encode_empty(Payload* out) {
-  begin(out);
-  return ErrorCode::kOk;
+template <typename Msg>
+const uint8_t* bytes_of(const Msg& m) {
+  return reinterpret_cast<const uint8_t*>(&m);
 }
 
 }  // namespace
@@ -214,465 +299,34 @@ bool is_known_error(uint8_t code) {
          (code >= (uint8_t)ErrorCode::kBusy && code <= (uint8_t)ErrorCode::kOutOfTravel);
 }
 
-// ---- empty payloads: #? #H #R #X #C ----
-
-// Type is a type name: it cannot be parenthesised in `Type*`.
-// NOLINTBEGIN(bugprone-macro-parentheses)
-#define PROTO_EMPTY_CODEC(Type)                                   \
-  ErrorCode encode(const Type&, Payload* out) {                   \
-    return encode_empty(out);                                     \
-  }                                                               \
-  ErrorCode decode(const uint8_t* bytes, uint8_t length, Type*) { \
-    return expect_length(bytes, length, 0);                       \
+// encode / decode / check of every message, each one the walker over its field list.
+// NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and function names.
+#define PROTO_CODEC(Type, check)                                                    \
+  ErrorCode check_message(const Type& m) {                                          \
+    const ErrorCode e = check_fields(bytes_of(m), k##Type##Fields);                 \
+    return e != ErrorCode::kOk ? e : check(m);                                      \
+  }                                                                                 \
+  ErrorCode encode(const Type& m, Payload* out) {                                   \
+    out->length = 0;                                                                \
+    const ErrorCode e = check_message(m);                                           \
+    if (e == ErrorCode::kOk) write_fields(bytes_of(m), k##Type##Fields, out);       \
+    return e;                                                                       \
+  }                                                                                 \
+  ErrorCode decode(const uint8_t* bytes, uint8_t length, Type* m) {                 \
+    const ErrorCode e =                                                             \
+        read_fields(bytes, length, reinterpret_cast<uint8_t*>(m), k##Type##Fields); \
+    return e != ErrorCode::kOk ? e : check_message(*m);                             \
   }
+#define PROTO_CODEC_CMD(Type, name, letter, kind, display, reply, handler, check) \
+  PROTO_CODEC(Type, check)
+#define PROTO_CODEC_REPLY(Type, name, letter, display, check) PROTO_CODEC(Type, check)
+#define PROTO_CODEC_SKIP(...)
 // NOLINTEND(bugprone-macro-parentheses)
-
-PROTO_EMPTY_CODEC(StatusCmd)
-PROTO_EMPTY_CODEC(HoldCmd)
-PROTO_EMPTY_CODEC(ResumeCmd)
-PROTO_EMPTY_CODEC(AbortCmd)
-PROTO_EMPTY_CODEC(ClearAlarmCmd)
-
-#undef PROTO_EMPTY_CODEC
-
-// ---- #I: version u8 ----
-
-ErrorCode encode(const SessionCmd& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.u8(m.protocol_version);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, SessionCmd* m) {
-  const ErrorCode e = expect_length(bytes, length, 1);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->protocol_version = r.u8();
-  return check(*m);
-}
-
-// ---- #V: percent u8 ----
-
-ErrorCode encode(const OverrideCmd& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.u8(m.percent);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, OverrideCmd* m) {
-  const ErrorCode e = expect_length(bytes, length, 1);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->percent = r.u8();
-  return check(*m);
-}
-
-// ---- #S: row u8, then 0..16 characters ----
-
-ErrorCode encode(const TextCmd& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.u8(m.row);
-  for (uint8_t i = 0; i < m.length; ++i) w.u8((uint8_t)m.text[i]);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, TextCmd* m) {
-  if (length < 1 || length > 1 + kLcdColumns || bytes == 0) return ErrorCode::kPayloadLength;
-  Reader r = reader(bytes);
-  m->row = r.u8();
-  m->length = (uint8_t)(length - 1);
-  for (uint8_t i = 0; i < m->length; ++i) m->text[i] = (char)r.u8();
-  return check(*m);
-}
-
-// ---- #B: degree u8, flags u8, control_count u16, knot_count u16, feed u16 ----
-
-ErrorCode encode(const SplineHeaderCmd& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.u8(m.degree);
-  w.u8(m.rational ? kSplineFlagRational : 0);
-  w.u16(m.control_count);
-  w.u16(m.knot_count);
-  w.u16(m.feed_um_per_s);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, SplineHeaderCmd* m) {
-  const ErrorCode e = expect_length(bytes, length, 8);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->degree = r.u8();
-  const uint8_t flags = r.u8();
-  m->rational = (flags & kSplineFlagRational) != 0;
-  m->control_count = r.u16();
-  m->knot_count = r.u16();
-  m->feed_um_per_s = r.u16();
-  if ((flags & (uint8_t)~kSplineFlagRational) != 0) return ErrorCode::kFieldRange;
-  return check(*m);
-}
-
-// ---- #D: control_index, control_n, knot_index, knot_n (u8 each), control_n x (x i32,
-// y i32, weight u16), knot_n x i32 ----
-
-ErrorCode encode(const SplineDataCmd& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.u8(m.control_index);
-  w.u8(m.control_n);
-  w.u8(m.knot_index);
-  w.u8(m.knot_n);
-  for (uint8_t i = 0; i < m.control_n; ++i) {
-    w.i32(m.control[i].x_um);
-    w.i32(m.control[i].y_um);
-    w.u16(m.control[i].weight_q14);
-  }
-  for (uint8_t i = 0; i < m.knot_n; ++i) w.i32(m.knot[i]);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, SplineDataCmd* m) {
-  if (length < kSplineDataHeaderBytes || bytes == 0) return ErrorCode::kPayloadLength;
-  Reader r = reader(bytes);
-  m->control_index = r.u8();
-  m->control_n = r.u8();
-  m->knot_index = r.u8();
-  m->knot_n = r.u8();
-  if (m->control_n > kMaxDataControls || m->knot_n > kMaxDataKnots) {
-    return ErrorCode::kFieldRange;
-  }
-  const uint16_t expected = (uint16_t)(kSplineDataHeaderBytes + m->control_n * kControlPointBytes +
-                                       m->knot_n * kKnotBytes);
-  if (expected != length) return ErrorCode::kPayloadLength;
-  for (uint8_t i = 0; i < m->control_n; ++i) {
-    m->control[i].x_um = r.i32();
-    m->control[i].y_um = r.i32();
-    m->control[i].weight_q14 = r.u16();
-  }
-  for (uint8_t i = 0; i < m->knot_n; ++i) m->knot[i] = r.i32();
-  return check(*m);
-}
-
-// ---- #U: max_step u16, chord_tolerance u16 ----
-
-ErrorCode encode(const ResolutionCmd& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.u16(m.max_step_um);
-  w.u16(m.chord_tolerance_um);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, ResolutionCmd* m) {
-  const ErrorCode e = expect_length(bytes, length, 4);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->max_step_um = r.u16();
-  m->chord_tolerance_um = r.u16();
-  return check(*m);
-}
-
-// ---- #G: x i32, y i32, feed u16 ----
-
-ErrorCode encode(const FeedMoveCmd& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.i32(m.x_um);
-  w.i32(m.y_um);
-  w.u16(m.feed_um_per_s);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, FeedMoveCmd* m) {
-  const ErrorCode e = expect_length(bytes, length, 10);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->x_um = r.i32();
-  m->y_um = r.i32();
-  m->feed_um_per_s = r.u16();
-  return check(*m);
-}
-
-// ---- #F: x i32, y i32 ----
-
-ErrorCode encode(const RapidMoveCmd& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.i32(m.x_um);
-  w.i32(m.y_um);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, RapidMoveCmd* m) {
-  const ErrorCode e = expect_length(bytes, length, 8);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->x_um = r.i32();
-  m->y_um = r.i32();
-  return check(*m);
-}
-
-// ---- #Z: z i32, feed u16 ----
-
-ErrorCode encode(const ZMoveCmd& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.i32(m.z_um);
-  w.u16(m.feed_um_per_s);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, ZMoveCmd* m) {
-  const ErrorCode e = expect_length(bytes, length, 6);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->z_um = r.i32();
-  m->feed_um_per_s = r.u16();
-  return check(*m);
-}
-
-// ---- #M: axes u8 ----
-
-ErrorCode encode(const ZeroingCmd& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.u8(m.axes);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, ZeroingCmd* m) {
-  const ErrorCode e = expect_length(bytes, length, 1);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->axes = r.u8();
-  return check(*m);
-}
-
-// ---- #P: 0..16 characters ----
-
-ErrorCode encode(const PauseCmd& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  for (uint8_t i = 0; i < m.length; ++i) w.u8((uint8_t)m.text[i]);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, PauseCmd* m) {
-  if (length > kLcdColumns || (length > 0 && bytes == 0)) return ErrorCode::kPayloadLength;
-  Reader r = reader(bytes);
-  m->length = length;
-  for (uint8_t i = 0; i < m->length; ++i) m->text[i] = (char)r.u8();
-  return check(*m);
-}
-
-// ---- #W: dwell_ms u16 ----
-
-ErrorCode encode(const DwellCmd& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.u16(m.dwell_ms);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, DwellCmd* m) {
-  const ErrorCode e = expect_length(bytes, length, 2);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->dwell_ms = r.u16();
-  return check(*m);
-}
-
-// ---- #N: on u8 ----
-
-ErrorCode encode(const SpindleCmd& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.u8(m.on);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, SpindleCmd* m) {
-  const ErrorCode e = expect_length(bytes, length, 1);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->on = r.u8();
-  return check(*m);
-}
-
-// ---- #L: x i32, y i32, z_start i32, z_bottom i32, feed u16 ----
-
-ErrorCode encode(const DrillCmd& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.i32(m.x_um);
-  w.i32(m.y_um);
-  w.i32(m.z_start_um);
-  w.i32(m.z_bottom_um);
-  w.u16(m.feed_um_per_s);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, DrillCmd* m) {
-  const ErrorCode e = expect_length(bytes, length, 18);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->x_um = r.i32();
-  m->y_um = r.i32();
-  m->z_start_um = r.i32();
-  m->z_bottom_um = r.i32();
-  m->feed_um_per_s = r.u16();
-  return check(*m);
-}
-
-// ---- *O: queue_free u8 ----
-
-ErrorCode encode(const AckReply& m, Payload* out) {
-  Writer w = begin(out);
-  w.u8(m.queue_free);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, AckReply* m) {
-  const ErrorCode e = expect_length(bytes, length, 1);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->queue_free = r.u8();
-  return ErrorCode::kOk;
-}
-
-// ---- *E: code u8, detail u8, next_expected u8 ----
-
-ErrorCode encode(const ErrorReply& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.u8((uint8_t)m.code);
-  w.u8(m.detail);
-  w.u8(m.next_expected_seq);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, ErrorReply* m) {
-  const ErrorCode e = expect_length(bytes, length, 3);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->code = (ErrorCode)r.u8();
-  m->detail = r.u8();
-  m->next_expected_seq = r.u8();
-  return check(*m);
-}
-
-// ---- *I: version, max_payload, window, queue_slots (u8), rx_buffer u16, max_degree,
-// max_control_points, fw major, fw minor (u8) ----
-
-ErrorCode encode(const SessionReply& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.u8(m.protocol_version);
-  w.u8(m.max_payload);
-  w.u8(m.window_frames);
-  w.u8(m.queue_slots);
-  w.u16(m.rx_buffer_bytes);
-  w.u8(m.max_degree);
-  w.u8(m.max_control_points);
-  w.u8(m.firmware_major);
-  w.u8(m.firmware_minor);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, SessionReply* m) {
-  const ErrorCode e = expect_length(bytes, length, 10);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->protocol_version = r.u8();
-  m->max_payload = r.u8();
-  m->window_frames = r.u8();
-  m->queue_slots = r.u8();
-  m->rx_buffer_bytes = r.u16();
-  m->max_degree = r.u8();
-  m->max_control_points = r.u8();
-  m->firmware_major = r.u8();
-  m->firmware_minor = r.u8();
-  return check(*m);
-}
-
-// ---- *?: state, alarm, flags, override, queue_free, next_expected, last_executed,
-// last_error (u8 each), x, y, z (i32), rejected_frames u16 ----
-
-ErrorCode encode(const StatusReply& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.u8((uint8_t)m.state);
-  w.u8((uint8_t)m.alarm);
-  w.u8(m.flags);
-  w.u8(m.override_percent);
-  w.u8(m.queue_free);
-  w.u8(m.next_expected_seq);
-  w.u8(m.last_executed_seq);
-  w.u8((uint8_t)m.last_error);
-  w.i32(m.x_um);
-  w.i32(m.y_um);
-  w.i32(m.z_um);
-  w.u16(m.rejected_frames);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, StatusReply* m) {
-  const ErrorCode e = expect_length(bytes, length, 22);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->state = (MachineState)r.u8();
-  m->alarm = (Alarm)r.u8();
-  m->flags = r.u8();
-  m->override_percent = r.u8();
-  m->queue_free = r.u8();
-  m->next_expected_seq = r.u8();
-  m->last_executed_seq = r.u8();
-  m->last_error = (ErrorCode)r.u8();
-  m->x_um = r.i32();
-  m->y_um = r.i32();
-  m->z_um = r.i32();
-  m->rejected_frames = r.u16();
-  return check(*m);
-}
-
-// ---- *A: alarm u8, state u8 ----
-
-ErrorCode encode(const AlarmReply& m, Payload* out) {
-  Writer w = begin(out);
-  const ErrorCode e = check(m);
-  if (e != ErrorCode::kOk) return e;
-  w.u8((uint8_t)m.alarm);
-  w.u8((uint8_t)m.state);
-  return ErrorCode::kOk;
-}
-
-ErrorCode decode(const uint8_t* bytes, uint8_t length, AlarmReply* m) {
-  const ErrorCode e = expect_length(bytes, length, 2);
-  if (e != ErrorCode::kOk) return e;
-  Reader r = reader(bytes);
-  m->alarm = (Alarm)r.u8();
-  m->state = (MachineState)r.u8();
-  return check(*m);
-}
+PROTO_MESSAGE_TABLE(PROTO_CODEC_CMD, PROTO_CODEC_REPLY, PROTO_CODEC_SKIP, PROTO_CODEC_SKIP,
+                    PROTO_CODEC_SKIP, PROTO_CODEC_SKIP)
+#undef PROTO_CODEC
+#undef PROTO_CODEC_CMD
+#undef PROTO_CODEC_REPLY
+#undef PROTO_CODEC_SKIP
 
 }  // namespace proto

@@ -1,5 +1,5 @@
-// Payload codecs for every message in messages.h: encode checks ranges before writing, decode
-// checks length and ranges before filling the struct. Both return a coded error, never trap.
+// Payload codecs for every message of the table (message_table.h): encode checks ranges
+// before writing, decode checks length and ranges. Both return a coded error, never trap.
 #ifndef FIRMWARE_PROTOCOL_CODEC_H
 #define FIRMWARE_PROTOCOL_CODEC_H
 
@@ -16,41 +16,26 @@ struct Payload {
   uint8_t bytes[kMaxPayload];
 };
 
-// encode(msg, &payload): kOk, or kFieldRange (payload untouched in content, length 0).
+// For every message of the table:
+// encode(msg, &payload): kOk, or kFieldRange (payload length 0).
 // decode(bytes, length, &msg): kOk, kPayloadLength or kFieldRange (msg unspecified).
-// Type is a type name: it cannot be parenthesised in `Type*`.
-// NOLINTBEGIN(bugprone-macro-parentheses)
-#define PROTO_DECLARE_CODEC(Type)                  \
-  ErrorCode encode(const Type& msg, Payload* out); \
-  ErrorCode decode(const uint8_t* bytes, uint8_t length, Type* msg);
+// check_message(msg): kOk or kFieldRange, what both of them check.
+// NOLINTBEGIN(bugprone-macro-parentheses): Type is a type name (`Type*` cannot be bracketed).
+#define PROTO_DECLARE_CODEC(Type)                                    \
+  ErrorCode encode(const Type& msg, Payload* out);                   \
+  ErrorCode decode(const uint8_t* bytes, uint8_t length, Type* msg); \
+  ErrorCode check_message(const Type& msg);
+#define PROTO_DECLARE_CMD(Type, name, letter, kind, display, reply, handler, check) \
+  PROTO_DECLARE_CODEC(Type)
+#define PROTO_DECLARE_REPLY(Type, name, letter, display, check) PROTO_DECLARE_CODEC(Type)
+#define PROTO_DECLARE_SKIP(...)
 // NOLINTEND(bugprone-macro-parentheses)
-
-PROTO_DECLARE_CODEC(SessionCmd)
-PROTO_DECLARE_CODEC(StatusCmd)
-PROTO_DECLARE_CODEC(HoldCmd)
-PROTO_DECLARE_CODEC(ResumeCmd)
-PROTO_DECLARE_CODEC(AbortCmd)
-PROTO_DECLARE_CODEC(ClearAlarmCmd)
-PROTO_DECLARE_CODEC(OverrideCmd)
-PROTO_DECLARE_CODEC(TextCmd)
-PROTO_DECLARE_CODEC(SplineHeaderCmd)
-PROTO_DECLARE_CODEC(SplineDataCmd)
-PROTO_DECLARE_CODEC(ResolutionCmd)
-PROTO_DECLARE_CODEC(FeedMoveCmd)
-PROTO_DECLARE_CODEC(RapidMoveCmd)
-PROTO_DECLARE_CODEC(ZMoveCmd)
-PROTO_DECLARE_CODEC(ZeroingCmd)
-PROTO_DECLARE_CODEC(PauseCmd)
-PROTO_DECLARE_CODEC(DwellCmd)
-PROTO_DECLARE_CODEC(SpindleCmd)
-PROTO_DECLARE_CODEC(DrillCmd)
-PROTO_DECLARE_CODEC(AckReply)
-PROTO_DECLARE_CODEC(ErrorReply)
-PROTO_DECLARE_CODEC(SessionReply)
-PROTO_DECLARE_CODEC(StatusReply)
-PROTO_DECLARE_CODEC(AlarmReply)
-
+PROTO_MESSAGE_TABLE(PROTO_DECLARE_CMD, PROTO_DECLARE_REPLY, PROTO_DECLARE_SKIP, PROTO_DECLARE_SKIP,
+                    PROTO_DECLARE_SKIP, PROTO_DECLARE_SKIP)
 #undef PROTO_DECLARE_CODEC
+#undef PROTO_DECLARE_CMD
+#undef PROTO_DECLARE_REPLY
+#undef PROTO_DECLARE_SKIP
 
 // Decodes a received frame's payload into msg after checking the letter matches.
 template <typename Msg>

@@ -12,32 +12,28 @@ bool is_frame_letter(uint8_t letter) {
 }
 
 FrameKind command_kind(uint8_t letter) {
-  switch (letter) {
-    case kCmdText:
-    case kCmdSplineHeader:
-    case kCmdSplineData:
-    case kCmdResolution:
-    case kCmdFeedMove:
-    case kCmdRapidMove:
-    case kCmdZMove:
-    case kCmdZeroing:
-    case kCmdPause:
-    case kCmdDwell:
-    case kCmdSpindle:
-    case kCmdDrill:
-      return FrameKind::kQueued;
-    case kCmdSession:
-    case kCmdStatus:
-      return FrameKind::kImmediate;
-    case kCmdHold:
-    case kCmdResume:
-    case kCmdAbort:
-    case kCmdOverride:
-    case kCmdClearAlarm:
-      return FrameKind::kRealtime;
-    default:
-      return FrameKind::kUnknown;
-  }
+#define PROTO_KIND_CMD(Type, name, letter_value, kind, display, reply, handler, check) \
+  if (letter == (letter_value)) return FrameKind::kind;
+#define PROTO_KIND_SKIP(...)
+  PROTO_MESSAGE_TABLE(PROTO_KIND_CMD, PROTO_KIND_SKIP, PROTO_KIND_SKIP, PROTO_KIND_SKIP,
+                      PROTO_KIND_SKIP, PROTO_KIND_SKIP)
+#undef PROTO_KIND_CMD
+#undef PROTO_KIND_SKIP
+  return FrameKind::kUnknown;
+}
+
+const char* message_name(uint8_t start, uint8_t letter) {
+#define PROTO_NAME_CMD(Type, name, letter_value, kind, display, reply, handler, check) \
+  if (start == kCommandStart && letter == (letter_value)) return display;
+#define PROTO_NAME_REPLY(Type, name, letter_value, display, check) \
+  if (start == kReplyStart && letter == (letter_value)) return display;
+#define PROTO_NAME_SKIP(...)
+  PROTO_MESSAGE_TABLE(PROTO_NAME_CMD, PROTO_NAME_REPLY, PROTO_NAME_SKIP, PROTO_NAME_SKIP,
+                      PROTO_NAME_SKIP, PROTO_NAME_SKIP)
+#undef PROTO_NAME_CMD
+#undef PROTO_NAME_REPLY
+#undef PROTO_NAME_SKIP
+  return 0;
 }
 
 uint8_t encode_frame(uint8_t start, uint8_t letter, uint8_t seq, const uint8_t* payload,

@@ -5,10 +5,13 @@
 
 #include <stdint.h>  // uint8_t
 
+#include "firmware/protocol/message_table.h"  // PROTO_MESSAGE_TABLE
+
 namespace proto {
 
-// Protocol version carried in #I / *I. Bumped on any incompatible change.
-static const uint8_t kProtocolVersion = 1;
+// Protocol version carried in #I / *I. Bumped on any incompatible change. 2: #P #W #N #L,
+// the paused state, travel and feed limits in *I.
+static const uint8_t kProtocolVersion = 2;
 
 // First byte of a frame: '#' host -> controller (commands), '*' controller -> host (replies).
 static const uint8_t kCommandStart = '#';
@@ -22,33 +25,17 @@ enum {
   kWindowFrames = 8  // ordered frames in flight; also the duplicate window behind next seq
 };
 
-// Command letters (host -> controller). Original letters kept; new ones added.
-static const uint8_t kCmdText = 'S';          // queued: text for the LCD
-static const uint8_t kCmdSplineHeader = 'B';  // queued: starts a spline
-static const uint8_t kCmdSplineData = 'D';    // queued: control points and/or knots
-static const uint8_t kCmdResolution = 'U';    // queued: point spacing / chord tolerance
-static const uint8_t kCmdFeedMove = 'G';      // queued: linear XY move at a feed
-static const uint8_t kCmdRapidMove = 'F';     // queued: linear XY move at rapid speed
-static const uint8_t kCmdZMove = 'Z';         // queued: Z-only move
-static const uint8_t kCmdZeroing = 'M';       // queued: start manual zeroing (joystick)
-static const uint8_t kCmdPause = 'P';         // queued: LCD text, wait for the confirm button
-static const uint8_t kCmdDwell = 'W';         // queued: wait with every axis still
-static const uint8_t kCmdSpindle = 'N';       // queued: spindle on/off
-static const uint8_t kCmdDrill = 'L';         // queued: drill one hole
-static const uint8_t kCmdSession = 'I';       // immediate: open/reset the session
-static const uint8_t kCmdStatus = '?';        // immediate: status query
-static const uint8_t kCmdHold = 'H';          // real-time: feed hold
-static const uint8_t kCmdResume = 'R';        // real-time: resume after hold
-static const uint8_t kCmdAbort = 'X';         // real-time: stop, flush the queue
-static const uint8_t kCmdOverride = 'V';      // real-time: feed override percent
-static const uint8_t kCmdClearAlarm = 'C';    // real-time: acknowledge/clear an alarm
-
-// Reply letters (controller -> host).
-static const uint8_t kReplyAck = 'O';      // *O: frame stored (queued) or done (others)
-static const uint8_t kReplyError = 'E';    // *E: frame rejected, with a code
-static const uint8_t kReplySession = 'I';  // *I: session opened, capabilities
-static const uint8_t kReplyStatus = '?';   // *?: status
-static const uint8_t kReplyAlarm = 'A';    // *A: unsolicited alarm notice
+// Command and reply letters, from the message table (kCmdText = 'S', kReplyAck = 'O', ...).
+// Original command letters kept; new ones added.
+#define PROTO_LETTER_CMD(Type, name, letter, kind, display, reply, handler, check) \
+  static const uint8_t name = letter;
+#define PROTO_LETTER_REPLY(Type, name, letter, display, check) static const uint8_t name = letter;
+#define PROTO_LETTER_SKIP(...)
+PROTO_MESSAGE_TABLE(PROTO_LETTER_CMD, PROTO_LETTER_REPLY, PROTO_LETTER_SKIP, PROTO_LETTER_SKIP,
+                    PROTO_LETTER_SKIP, PROTO_LETTER_SKIP)
+#undef PROTO_LETTER_CMD
+#undef PROTO_LETTER_REPLY
+#undef PROTO_LETTER_SKIP
 
 // How the dispatcher treats a frame, by its letter.
 enum class FrameKind : uint8_t {
@@ -121,7 +108,8 @@ enum {
   kStatusZeroed = 0x02,        // machine zeroed, positions valid
   kStatusSession = 0x04,       // a session is open (#I seen)
   kStatusAborted = 0x08,       // stream flushed by #X, waiting for #I
-  kStatusLinkHold = 0x10       // hold was caused by the link timeout
+  kStatusLinkHold = 0x10,      // hold was caused by the link timeout
+  kStatusExecuted = 0x20       // last_executed_seq is valid: something ran since #I
 };
 
 // Timing constants of the protocol (docs/protocol.md "Timing").
@@ -130,8 +118,12 @@ enum {
   kLinkTimeoutMs = 2000       // running with no valid frame this long -> feed hold
 };
 
-// What a letter means in the command direction.
+// What a letter means in the command direction (from the message table).
 FrameKind command_kind(uint8_t letter);
+
+// The message's name in the table ("feed move (linear XY)"), for messages and logs; 0 for a
+// letter not defined in that direction. start is kCommandStart or kReplyStart.
+const char* message_name(uint8_t start, uint8_t letter);
 
 }  // namespace proto
 

@@ -1,4 +1,5 @@
-// Port setup (reference/dspic30f6014.md sec. 6: TRIS bit 1 = input, write outputs via LATx).
+// Port setup. TRIS bit 1 = input (the reset state), outputs written through LATx: dsPIC30F
+// Family Reference Manual, section "I/O Ports"; addresses from Microchip's p30F6014A.gld.
 #include "hal/dspic30f6014/ports.h"
 
 #include "hal/dspic30f6014/pins.h"       // pin numbers

@@ -7,8 +7,9 @@
 
 #include <stdint.h>  // uint8_t, uint16_t, uint32_t
 
-#include "firmware/core/spsc_ring.h"     // core::SpscRing
-#include "hal/interfaces/serial_port.h"  // hal::SerialPort
+#include "firmware/config/machine_config.h"  // kLinkRxBufferBytes
+#include "firmware/core/spsc_ring.h"         // core::SpscRing
+#include "hal/interfaces/serial_port.h"      // hal::SerialPort
 
 namespace dspic {
 
@@ -20,7 +21,7 @@ namespace dspic {
 class Uart1 : public hal::SerialPort {
  public:
   // 256 bytes = 22 ms of input at full line rate; 128 bytes of replies in flight.
-  enum { kRxCapacity = 256, kTxCapacity = 128, kHardwareFifoDepth = 4 };
+  enum { kRxCapacity = config::kLinkRxBufferBytes, kTxCapacity = 128, kHardwareFifoDepth = 4 };
 
   Uart1();
   // UxBRG for a baud rate at an instruction clock: Fcy / (16 * baud) - 1, rounded to the

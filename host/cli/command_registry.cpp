@@ -25,4 +25,17 @@ void add_registered_commands(CLI::App& app) {
   for (const auto& g : registry()) g.second(app);
 }
 
+std::string unknown_command_message(const CLI::App& app, int argc, const char* const* argv) {
+  if (argc < 2) return "";
+  const std::string word = argv[1];
+  if (word.empty() || word[0] == '-') return "";
+  std::string names;
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    if (sub->check_name(word)) return "";
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+  }
+  return "'" + word + "' is not an engraver command; the commands are " + names +
+         " (engraver --help; engraver COMMAND --help for each)";
+}
+
 }  // namespace host::cli

@@ -4,6 +4,8 @@
 
 #include <CLI/CLI.hpp>  // CLI::App
 
+#include <string>  // std::string
+
 namespace host::cli {
 
 // Adds a group's subcommands to the top-level app. Called once at start-up.
@@ -16,6 +18,11 @@ struct CommandRegistrar {
 
 // Calls every registered group, in group-name order (stable --help).
 void add_registered_commands(CLI::App& app);
+
+// When the first argument is neither an option nor one of app's commands: a message that
+// names it and lists the commands; "" otherwise (CLI11 alone says "A subcommand is
+// required", which reads as if the word had been ignored).
+std::string unknown_command_message(const CLI::App& app, int argc, const char* const* argv);
 
 }  // namespace host::cli
 

@@ -8,11 +8,14 @@
 #include <nlohmann/json.hpp>  // nlohmann::json
 #include <sstream>            // std::ostringstream
 
+#include "host/cli/board_cli.h"  // PCB input: isolation tool centres
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
+#include "host/cli/pcb_info.h"
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
+#include "host/lib/progress/progress_meter.h"
 
 namespace host::cli {
 
@@ -31,6 +34,40 @@ struct PointsArgs {
 
 nlohmann::json point_json(const Point2& p) {
   return {p.x(), p.y()};
+}
+
+// One program operation as a line of text (drawing frame, mm).
+std::string describe_op(const Drawing& d, const ProgramOp& op) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(3) << op.source << ": ";
+  switch (op.kind) {
+    case ProgramOp::kCut:
+      o << "cut " << d.curves[op.curve].source << " (curve " << op.curve << ")";
+      if (std::isnan(op.depth_mm)) {
+        o << " at the planner's depth";
+      } else {
+        o << " at Z " << op.depth_mm << " mm";
+      }
+      break;
+    case ProgramOp::kPause:
+      o << "pause for the operator: \"" << op.text << "\"";
+      break;
+    case ProgramOp::kDwell:
+      o << "dwell " << op.dwell_s << " s";
+      break;
+    case ProgramOp::kSpindle:
+      o << "spindle " << (op.spindle_on ? "on" : "off");
+      break;
+    case ProgramOp::kDrill:
+      o << "drill at (" << op.at.x() << ", " << op.at.y() << ") mm from Z " << op.z_start_mm
+        << " to " << op.z_bottom_mm << " mm";
+      if (op.feed_mm_per_s > 0) o << " at " << op.feed_mm_per_s << " mm/s";
+      if (op.peck_mm > 0) o << ", pecks of " << op.peck_mm << " mm";
+      if (op.dwell_s > 0) o << ", dwell " << op.dwell_s << " s at the bottom";
+      o << ", then Z " << op.retract_mm << " mm";
+      break;
+  }
+  return o.str();
 }
 
 // The whole drawing as JSON (every knot and control point).
@@ -65,6 +102,8 @@ nlohmann::json info_json(const Drawing& d) {
     cj["end_mm"] = point_json(end_point(c.spline));
     j["curves"].push_back(cj);
   }
+  j["program"] = nlohmann::json::array();
+  for (const ProgramOp& op : d.program) j["program"].push_back(describe_op(d, op));
   j["problems"] = d.warnings;
   return j;
 }
@@ -120,11 +159,20 @@ void print_info(const Drawing& d) {
       if (s.rational()) std::cout << "       weights: " << list(s.weights, 24) << "\n";
     }
   }
+  if (!d.program.empty()) {
+    std::cout << "program:  " << d.program.size()
+              << " operations, planned in this order (nothing reordered):\n";
+    const size_t limit = 200;
+    for (size_t i = 0; i < d.program.size() && i < limit; ++i)
+      std::cout << "  " << describe_op(d, d.program[i]) << "\n";
+    if (d.program.size() > limit) std::cout << "  ... (" << d.program.size() - limit << " more)\n";
+  }
   std::cout << "problems: " << (d.warnings.empty() ? "none" : "") << "\n";
   for (const std::string& w : d.warnings) std::cout << "  - " << w << "\n";
 }
 
 void run_info(const InfoArgs& a) {
+  if (print_pcb_info_if_pcb(a.file, a.json)) return;  // Gerber, Excellon
   const Drawing d = import_drawing(a.file);
   if (a.json) {
     std::cout << info_json(d).dump(2) << "\n";
@@ -141,11 +189,14 @@ void run_points(const PointsArgs& a) {
                          "steps with a whole-micrometre chord tolerance)");
   }
   const int tol = static_cast<int>(std::llround(tol_um));
+  if (print_board_points_if_pcb(a.file, a.tol_mm, a.csv)) return;  // isolation tool centres
   const Drawing d = import_drawing(a.file);
   for (const std::string& w : d.warnings) std::cerr << "warning: " << w << "\n";
   std::cout << std::fixed << std::setprecision(3);
   if (a.csv) std::cout << "curve,x_mm,y_mm\n";
+  ProgressMeter progress("points", "curves", std::cerr, ProgressMeter::for_stderr());
   for (size_t i = 0; i < d.curves.size(); ++i) {
+    progress.update(i, d.curves.size());
     std::vector<Point2> pts;
     try {
       pts = firmware_points_mm(d.curves[i].spline, tol);
@@ -165,6 +216,7 @@ void run_points(const PointsArgs& a) {
       }
     }
   }
+  progress.update(d.curves.size(), d.curves.size());
 }
 
 void add_drawing_commands(CLI::App& app) {
@@ -175,6 +227,12 @@ void add_drawing_commands(CLI::App& app) {
       "control points), extents, units and the problems found");
   info->add_option("FILE", info_args->file, "drawing (DXF, G-code)")->required();
   info->add_flag("--json", info_args->json, "print JSON instead of text");
+  info->footer(
+      "Examples:\n"
+      "  engraver info samples/engraver-word.dxf\n"
+      "  engraver info --json board_back.ngc > board_back.json\n"
+      "Exit codes: 0 shown; 2 bad option, or the file cannot be read or imported (the message "
+      "names the file and the place in it).");
   info->callback([info_args]() { run_info(*info_args); });
 
   auto points_args = std::make_shared<PointsArgs>();
@@ -186,6 +244,12 @@ void add_drawing_commands(CLI::App& app) {
   points->add_option("--tol", points_args->tol_mm, "chord tolerance in mm (0.001 .. 10)")
       ->capture_default_str();
   points->add_flag("--csv", points_args->csv, "CSV: header, then curve,x_mm,y_mm rows");
+  points->footer(
+      "Examples:\n"
+      "  engraver points samples/engraver-word.dxf --tol 0.005 --csv > points.csv\n"
+      "  engraver points board_outline.ngc --tol 0.01\n"
+      "Exit codes: 0 printed; 1 a curve the firmware cannot hold; 2 bad option, or the file "
+      "cannot be read or imported.");
   points->callback([points_args]() { run_points(*points_args); });
 }
 

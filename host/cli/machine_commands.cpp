@@ -15,6 +15,8 @@
 #include <iostream>    // std::cerr
 #include <thread>      // keyboard thread
 
+#include "firmware/config/machine_config.h"
+#include "host/cli/board_cli.h"  // PCB input (Gerber, Excellon, a board's directory)
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
 #include "host/lib/drawing/drawing.h"
@@ -22,6 +24,7 @@
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/plot/plan_plot.h"
 #include "host/lib/plot/plot.h"
+#include "host/lib/progress/progress_meter.h"
 #include "host/lib/sim/sim_job.h"
 #include "host/lib/sim/sim_server.h"
 #include "host/lib/stream/sender.h"
@@ -31,7 +34,13 @@ namespace host::cli {
 namespace {
 
 // Exit codes of send/run beyond the common ones (docs/user-guide.md).
-enum MachineExit { kExitAborted = 3, kExitAlarm = 4, kExitRefused = 5, kExitLinkLost = 6 };
+enum MachineExit {
+  kExitAborted = 3,
+  kExitAlarm = 4,
+  kExitRefused = 5,
+  kExitLinkLost = 6,
+  kExitStalled = 7
+};
 
 int exit_code(JobOutcome outcome) {
   switch (outcome) {
@@ -45,6 +54,8 @@ int exit_code(JobOutcome outcome) {
       return kExitRefused;
     case JobOutcome::kLinkLost:
       return kExitLinkLost;
+    case JobOutcome::kStalled:
+      return kExitStalled;
   }
   return kExitJobFailed;
 }
@@ -55,11 +66,15 @@ struct PlanArgs {
   double tol_mm = 0.005;
   double scale = 1.0;
   double margin_mm = 0.0;
-  std::vector<double> work_mm{297.0, 210.0};
+  // The reference machine's travel (firmware/config/machine_config.h).
+  std::vector<double> work_mm{
+      config::default_machine_config().axis[config::kAxisX].travel_um / 1000.0,
+      config::default_machine_config().axis[config::kAxisY].travel_um / 1000.0};
   double chain_tol_mm = 0.01;
   bool no_reorder = false;
   double z_up_mm = 2.0;
   double z_down_mm = -0.1;
+  BoardArgs board;
 };
 
 void add_plan_options(CLI::App* cmd, PlanArgs* a) {
@@ -83,9 +98,13 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   cmd->add_flag("--no-reorder", a->no_reorder, "trace curves in drawing order");
   cmd->add_option("--z-up", a->z_up_mm, "travel height in mm")->capture_default_str();
   cmd->add_option("--z-down", a->z_down_mm, "cutting depth in mm")->capture_default_str();
+  add_board_options(cmd, &a->board);
 }
 
 JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
+  if (is_pcb_input(a.file))
+    return plan_pcb_input(a.file, a.board,
+                          {a.feed_mm_s, a.z_up_mm, a.margin_mm, a.work_mm[0], a.work_mm[1]});
   *drawing = import_drawing(a.file);
   for (const std::string& w : drawing->warnings) std::cerr << "engraver: warning: " << w << "\n";
   PlanOptions o;
@@ -98,8 +117,12 @@ JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
   o.feed_mm_per_s = a.feed_mm_s;
   o.z_up_mm = a.z_up_mm;
   o.z_down_mm = a.z_down_mm;
+  ProgressMeter bar("plan", "curves ordered", std::cerr, ProgressMeter::for_stderr());
+  o.progress = [&bar](size_t done, size_t total) { bar.update(done, total); };
   try {
-    return plan_job(*drawing, o);
+    JobPlan plan = plan_job(*drawing, o);
+    bar.update(plan.curves.size(), plan.curves.size());
+    return plan;
   } catch (const PlanError& e) {
     throw PlanError(fmt::format("{}: {}", a.file, e.what()));
   }
@@ -197,35 +220,11 @@ class Keyboard {
   std::thread thread_;
 };
 
-// A one-line progress bar with ETA on stderr (only when stderr is a terminal).
-class ProgressBar {
- public:
-  ProgressBar() : tty_(isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
-  void update(const Progress& p) {
-    if (!tty_ || p.total == 0) return;
-    const double f = double(p.executed) / double(p.total);
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    std::string eta = "--";
-    if (f > 0.02) {
-      const int s = static_cast<int>(elapsed / f - elapsed);
-      eta = fmt::format("{}:{:02}", s / 60, s % 60);
-    }
-    const int filled = static_cast<int>(f * 30);
-    std::cerr << fmt::format("\r[{}{}] {:3.0f}% {}/{} ETA {} {:8} x{:.1f} y{:.1f} ",
-                             std::string(filled, '#'), std::string(30 - filled, '.'), f * 100,
-                             p.executed, p.total, eta, state_name(p.status.state),
-                             p.status.x_um / 1000.0, p.status.y_um / 1000.0)
-              << std::flush;
-  }
-  ~ProgressBar() {
-    if (tty_) std::cerr << "\n";
-  }
-
- private:
-  bool tty_;
-  std::chrono::steady_clock::time_point start_;
-};
+// What a progress line says about the machine: state, position and (simulated) time.
+std::string machine_detail(const Progress& p) {
+  return fmt::format("{} at ({:.1f}, {:.1f}) mm", state_name(p.status.state),
+                     p.status.x_um / 1000.0, p.status.y_um / 1000.0);
+}
 
 // ---- engraver send ----
 
@@ -249,6 +248,7 @@ void run_send(const SendArgs& a) {
   const proto::SessionReply caps = sender.open_session();
   EncodeOptions enc = encode_options(a.plan);
   enc.max_payload = caps.max_payload;
+  enc.controller = &caps;
   const std::vector<QueuedCommand> commands = encode_job(plan, enc);
   std::cerr << fmt::format(
       "engraver: {} -> {}: {} curves, {} commands, {} bytes; keys: h hold, "
@@ -257,7 +257,7 @@ void run_send(const SendArgs& a) {
   JobOutcome outcome;
   {
     Keyboard keys(sender);
-    ProgressBar bar;
+    ProgressMeter bar("send", "commands", std::cerr, ProgressMeter::for_stderr());
     bool told_zero = false;
     outcome = sender.run(commands, [&](const Progress& p) {
       if (p.status.state == proto::MachineState::kZeroing && !told_zero) {
@@ -265,7 +265,7 @@ void run_send(const SendArgs& a) {
                      "press confirm\n";
         told_zero = true;
       }
-      bar.update(p);
+      bar.update(p.executed, p.total, machine_detail(p));
     });
   }
   g_sender = nullptr;
@@ -283,6 +283,7 @@ void run_send(const SendArgs& a) {
 struct SimArgs {
   std::string listen = "127.0.0.1:10001";
   bool realtime = false;
+  std::string trace;
   int pause_confirm_ms = sim::SimOptions{}.pause_confirm_ms;
 };
 
@@ -291,38 +292,89 @@ extern "C" void on_stop_sim(int) {
   g_stop_sim = true;
 }
 
-void run_sim(const SimArgs& a) {
-  const size_t colon = a.listen.rfind(':');
-  if (colon == std::string::npos) {
-    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': expected ADDR:PORT", a.listen));
-  }
+// --listen: ADDR:PORT, or serial:DEVICE (a tty or a pty's slave end), or a /dev path.
+sim::ServerOptions listen_options(const std::string& listen) {
   sim::ServerOptions so;
-  so.address = a.listen.substr(0, colon);
-  try {
-    so.port = static_cast<uint16_t>(std::stoul(a.listen.substr(colon + 1)));
-  } catch (const std::exception&) {
-    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': bad port", a.listen));
+  const std::string serial = "serial:";
+  if (listen.compare(0, serial.size(), serial) == 0 || (!listen.empty() && listen[0] == '/')) {
+    so.device = listen[0] == '/' ? listen : listen.substr(serial.size());
+    so.device = so.device.substr(0, so.device.find(','));  // a baud rate means nothing here
+    if (so.device.empty())
+      throw CommandFailure(kExitUsage, fmt::format("--listen '{}': no device", listen));
+    return so;
   }
+  const size_t colon = listen.rfind(':');
+  if (colon == std::string::npos) {
+    throw CommandFailure(kExitUsage,
+                         fmt::format("--listen '{}': expected ADDR:PORT or serial:DEVICE", listen));
+  }
+  so.address = listen.substr(0, colon);
+  try {
+    so.port = static_cast<uint16_t>(std::stoul(listen.substr(colon + 1)));
+  } catch (const std::exception&) {
+    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': bad port", listen));
+  }
+  return so;
+}
+
+// --trace: one CSV line per executed tool position (machine time, machine frame).
+class TraceWriter {
+ public:
+  explicit TraceWriter(const std::string& path) : out_(path, std::ios::trunc) {
+    if (!out_) throw CommandFailure(kExitUsage, fmt::format("--trace '{}': cannot write", path));
+    out_ << "t_ms,x_mm,y_mm,z_mm,pen\n";
+  }
+  void add(const sim::ToolSample& s) {
+    out_ << fmt::format("{},{:.4f},{:.4f},{:.4f},{}\n", s.t_ms, s.x_mm, s.y_mm, s.z_mm,
+                        s.z_mm < 0 ? 1 : 0);
+  }
+  bool ok() {
+    out_.flush();
+    return static_cast<bool>(out_);
+  }
+
+ private:
+  std::ofstream out_;
+};
+
+void run_sim(const SimArgs& a) {
+  sim::ServerOptions so = listen_options(a.listen);
   so.realtime = a.realtime;
   sim::SimOptions mo;
   mo.pause_confirm_ms = a.pause_confirm_ms;
   sim::SimMachine machine{mo};
   if (!machine.chip_ok()) std::cerr << "engraver: simulated TMC428 failed its self-check\n";
-  sim::SimServer server(machine, so);
+  std::unique_ptr<TraceWriter> trace;
+  if (!a.trace.empty()) {
+    trace = std::make_unique<TraceWriter>(a.trace);
+    trace->add(machine.position());
+    machine.set_sample_sink([&trace](const sim::ToolSample& s) { trace->add(s); });
+  }
+  std::unique_ptr<sim::SimServer> server;
+  try {
+    server = std::make_unique<sim::SimServer>(machine, so);
+  } catch (const std::runtime_error& e) {
+    throw CommandFailure(kExitUsage, e.what());
+  }
   struct sigaction sa {};
   sa.sa_handler = on_stop_sim;
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
-  std::cerr << fmt::format("engraver: simulated machine listening on {}:{} ({}); Ctrl-C stops\n",
-                           so.address, server.port(),
-                           a.realtime ? "real time" : "virtual time, as fast as the host allows");
+  const std::string where = so.device.empty() ? fmt::format("{}:{}", so.address, server->port())
+                                              : fmt::format("device {}", so.device);
+  std::cerr << fmt::format(
+      "engraver: simulated machine on {} ({}); Ctrl-C stops\n", where,
+      a.realtime ? "real time" : "fast while the host talks, real time while it is silent");
   std::cerr << (a.pause_confirm_ms < 0
                     ? std::string("engraver: the simulated operator never confirms a pause\n")
                     : fmt::format("engraver: the simulated operator confirms each pause (#P) "
                                   "after {} ms\n",
                                   a.pause_confirm_ms));
-  const uint64_t ms = server.run(g_stop_sim);
+  const uint64_t ms = server->run(g_stop_sim);
+  machine.set_sample_sink(nullptr);
+  if (trace && !trace->ok())
+    std::cerr << fmt::format("engraver: --trace '{}': write failed\n", a.trace);
   std::cerr << fmt::format(
       "engraver: simulated {:.1f} s of machine time; {} pauses confirmed by the simulated "
       "operator; spindle {} ({} switchings)\n",
@@ -338,45 +390,63 @@ struct RunArgs {
   bool realtime = false;
 };
 
-// The points the firmware core generates for the job's curves (the same core, on the host).
-std::vector<Point2> job_points(const JobPlan& plan, double tol_mm) {
-  std::vector<Point2> all;
+// The points the firmware core generates for the job's curves (the same core, on the host),
+// and the bytes the same path would take as G-code G1 lines at the same tolerance (for
+// comparison); curve by curve, so nothing of the job's size is kept.
+struct PointCount {
+  size_t points = 0;
+  size_t gcode_bytes = 0;
+};
+
+PointCount count_points(const JobPlan& plan, double tol_mm) {
+  PointCount n;
   for (const PlannedCurve& c : plan.curves) {
-    const auto pts = firmware_points_mm(c.spline, static_cast<int>(std::lround(tol_mm * 1000)));
-    all.insert(all.end(), pts.begin(), pts.end());
+    for (const Point2& p :
+         firmware_points_mm(c.spline, static_cast<int>(std::lround(tol_mm * 1000)))) {
+      ++n.points;
+      n.gcode_bytes += fmt::formatted_size("G1 X{:.3f} Y{:.3f}\n", p.x(), p.y());
+    }
   }
-  return all;
+  return n;
 }
 
-size_t points_generated(const JobPlan& plan, double tol_mm) {
-  return job_points(plan, tol_mm).size();
-}
-
-// Bytes the same path would take as G-code G1 lines at the same tolerance (for comparison).
-size_t gcode_bytes(const JobPlan& plan, double tol_mm) {
-  size_t total = 0;
-  for (const Point2& p : job_points(plan, tol_mm)) {
-    total += fmt::format("G1 X{:.3f} Y{:.3f}\n", p.x(), p.y()).size();
-  }
-  return total;
+// Half a pixel of the 1000-pixel plot of the job (zero corner to the far end of the curves).
+double plot_step_mm(const JobPlan& plan) {
+  const Extents& e = plan.extents_mm;
+  if (e.empty()) return 0.05;
+  const double span =
+      std::max(e.max.x() - std::min(0.0, e.min.x()), e.max.y() - std::min(0.0, e.min.y()));
+  return std::max(0.005, span / 2000.0);
 }
 
 void run_run(const RunArgs& a) {
-  Drawing drawing;
-  const JobPlan plan = load_plan(a.plan, &drawing);
+  JobPlan plan;
+  {
+    Drawing drawing;  // only the plan is needed from here on
+    plan = load_plan(a.plan, &drawing);
+  }
   sim::SimJobOptions o;
   o.encode = encode_options(a.plan);
   o.realtime = a.realtime;
-  o.sender.status_interval = std::chrono::milliseconds(a.realtime ? 250 : 1);
-  const sim::SimJobResult r = sim::run_sim_job(plan, o);
+  // Machine time in lockstep: a poll every 50 ms keeps the progress current and costs the
+  // link little (the real machine is polled every 250 ms).
+  o.sender.status_interval = std::chrono::milliseconds(50);
+  // The plot shows what its pixels can: keep a tool position every half pixel or so.
+  o.trace_step_mm = plot_step_mm(plan);
+  const sim::SimJobResult r = [&] {
+    ProgressMeter bar("run", "commands", std::cerr, ProgressMeter::for_stderr());
+    o.on_progress = [&bar](Sender&, const Progress& p) {
+      bar.update(p.executed, p.total, machine_detail(p));
+    };
+    return sim::run_sim_job(plan, o);
+  }();
 
   const std::string name = std::filesystem::path(a.plan.file).stem().string();
   std::filesystem::create_directories(a.outdir);
   const std::string base = (std::filesystem::path(a.outdir) / name).string();
 
   // Plot: the drawing's curves against the simulated tool path.
-  PlotInput plot = plot_input_from_plan(plan, name);
-  plot.tool_path.clear();
+  PlotInput plot = plot_input_from_plan(plan, name, 0.01, false);
   const std::vector<bool> pen_down = sim::pen_down_samples(r.trace, plan);
   for (size_t i = 0; i < r.trace.size(); ++i) {
     const sim::ToolSample& s = r.trace[i];
@@ -390,6 +460,7 @@ void run_run(const RunArgs& a) {
     plot.tool_path.back().points_mm.push_back(Point2(s.x_mm, s.y_mm));
   }
   write_plot(plot, base + ".svg", base + ".png");
+  write_board_plot_if_planned(base, plot.tool_path);  // copper, isolation width, holes
 
   const double feed = a.plan.feed_mm_s;
   const double ideal_s = plan.cut_length_mm / feed;
@@ -403,10 +474,11 @@ void run_run(const RunArgs& a) {
   j["frames_sent"] = r.stats.frames_sent;
   j["bytes_sent"] = r.stats.bytes_sent;
   j["job_wire_bytes"] = r.wire_bytes;
-  j["gcode_g1_bytes_same_tolerance"] = gcode_bytes(plan, a.plan.tol_mm);
+  const PointCount points = count_points(plan, a.plan.tol_mm);
+  j["gcode_g1_bytes_same_tolerance"] = points.gcode_bytes;
   j["retransmits"] = r.stats.retransmits;
   j["status_queries"] = r.stats.status_queries;
-  j["points_generated"] = points_generated(plan, a.plan.tol_mm);
+  j["points_generated"] = points.points;
   j["planned_cut_mm"] = plan.cut_length_mm;
   j["planned_rapid_mm"] = plan.rapid_length_mm;
   j["traced_cut_mm"] = r.cut_mm;
@@ -419,6 +491,8 @@ void run_run(const RunArgs& a) {
   j["simulated_machine_ms"] = r.virtual_ms;
   j["wall_s"] = r.wall_s;
   j["speedup_vs_real_time"] = r.wall_s > 0 ? r.virtual_ms / 1000.0 / r.wall_s : 0.0;
+  j["simulator_cpu_s"] = r.cpu_s;
+  j["speedup_per_cpu_second"] = r.cpu_s > 0 ? r.virtual_ms / 1000.0 / r.cpu_s : 0.0;
   j["lcd"] = {r.lcd[0], r.lcd[1]};
   j["pauses_confirmed_by_simulated_operator"] = r.pauses_confirmed;
   j["pause_confirm_ms"] = o.machine.pause_confirm_ms;
@@ -434,15 +508,17 @@ void run_run(const RunArgs& a) {
       "as G-code G1 at the same tolerance: {} bytes\n"
       "  tool path {:.1f} mm cut + {:.1f} mm rapid; simulated job time {:.1f} s, of which "
       "cutting {:.1f} s (cut length / feed {:.1f} s)\n"
-      "  max contour error {:.1f} um; simulated {:.1f} s of machine time in {:.2f} s\n"
+      "  max contour error {:.1f} um; simulated {:.1f} s of machine time in {:.2f} s "
+      "({:.2f} s of processor time: {:.0f}x real time)\n"
       "  {} pauses confirmed by the simulated operator ({} ms after each); spindle {} at the "
       "end\n"
       "  plot: {}.svg, {}.png; report: {}.json\n",
       a.plan.file, plan.curves.size(), plan.pen_lifts, outcome_name(r.outcome), r.commands,
       r.stats.frames_sent, r.stats.bytes_sent, r.stats.retransmits, r.wire_bytes,
       j["gcode_g1_bytes_same_tolerance"].get<size_t>(), r.cut_mm, r.rapid_mm, r.motion_s, r.cut_s,
-      ideal_s, r.max_contour_error_um, r.virtual_ms / 1000.0, r.wall_s, r.pauses_confirmed,
-      o.machine.pause_confirm_ms, r.spindle_on ? "on" : "off", base, base, base);
+      ideal_s, r.max_contour_error_um, r.virtual_ms / 1000.0, r.wall_s, r.cpu_s,
+      j["speedup_per_cpu_second"].get<double>(), r.pauses_confirmed, o.machine.pause_confirm_ms,
+      r.spindle_on ? "on" : "off", base, base, base);
   if (r.outcome != JobOutcome::kCompleted) {
     throw CommandFailure(exit_code(r.outcome),
                          fmt::format("job {}: {}", outcome_name(r.outcome), r.message));
@@ -465,7 +541,7 @@ void add_machine_commands(CLI::App& app) {
       "Example: engraver send board.dxf --to tcp://192.168.1.50:10001 --feed 8\n"
       "Keys: h hold, r resume, x abort, +/- feed override. Signals: INT/TERM abort, USR1 hold, "
       "USR2 resume.\nExit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, "
-      "5 command refused by the controller, 6 link lost.");
+      "5 command refused by the controller, 6 link lost, 7 stalled (no progress for 30 s).");
   send->callback([send_args] {
     try {
       run_send(*send_args);
@@ -476,25 +552,41 @@ void add_machine_commands(CLI::App& app) {
 
   auto sim_args = std::make_shared<SimArgs>();
   CLI::App* sim = app.add_subcommand("sim", "run the simulated machine on a TCP port");
-  sim->add_option("--listen", sim_args->listen, "ADDR:PORT (loopback by default)")
+  sim->add_option("--listen", sim_args->listen,
+                  "ADDR:PORT (loopback by default), or serial:DEVICE (a tty or a pty)")
       ->capture_default_str();
-  sim->add_flag("--realtime", sim_args->realtime, "run in step with the wall clock");
+  sim->add_flag("--realtime", sim_args->realtime, "machine time always follows the wall clock");
+  sim->add_option("--trace", sim_args->trace,
+                  "write the executed tool positions as CSV: t_ms,x_mm,y_mm,z_mm,pen");
   sim->add_option("--pause-confirm-ms", sim_args->pause_confirm_ms,
                   "the simulated operator confirms a pause (#P) after this long; -1 never")
       ->capture_default_str();
   sim->footer(
-      "Example: engraver sim & engraver send samples/engraver-word.dxf --to "
-      "tcp://127.0.0.1:10001 --poll-ms 1");
+      "Examples:\n"
+      "  engraver sim --trace path.csv & engraver send samples/engraver-word.dxf --to "
+      "tcp://127.0.0.1:10001\n"
+      "  socat pty,raw,echo=0,link=/tmp/sim-tty pty,raw,echo=0,link=/tmp/host-tty &\n"
+      "  engraver sim --listen serial:/tmp/sim-tty & engraver send board.dxf --to "
+      "serial:/tmp/host-tty\n"
+      "Clock: fast while the host talks, the wall clock's pace after 500 ms of machine time "
+      "without a byte from it (docs/user-guide.md).\nExit: 0 stopped, 2 bad option or "
+      "address.");
   sim->callback([sim_args] { run_sim(*sim_args); });
 
   auto run_args = std::make_shared<RunArgs>();
   CLI::App* run = app.add_subcommand(
-      "run", "the main job: simulate the machine and send the drawing to it over loopback TCP");
+      "run",
+      "the main job: simulate the machine and send the drawing to it (in lockstep, one "
+      "process)");
   add_plan_options(run, &run_args->plan);
   run->add_option("-o,--outdir", run_args->outdir, "where NAME.svg/.png/.json go")
       ->capture_default_str();
   run->add_flag("--realtime", run_args->realtime, "simulate in real time");
-  run->footer("Example: engraver run samples/engraver-word.dxf -o out");
+  run->footer(
+      "Example: engraver run samples/engraver-word.dxf -o out\n"
+      "Progress on stderr (a bar on a terminal, a line every 5 s otherwise).\n"
+      "Exit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, 5 command refused by "
+      "the controller, 6 link lost, 7 stalled (no progress for 30 s of machine time).");
   run->callback([run_args] {
     try {
       run_run(*run_args);

@@ -6,6 +6,7 @@
 
 #include "host/cli/command_guard.h"
 #include "host/cli/command_registry.h"
+#include "host/cli/exit_codes.h"
 
 #ifndef ENGRAVER_VERSION
 #define ENGRAVER_VERSION "unknown"
@@ -22,11 +23,17 @@ int main(int argc, char** argv) {
       "Examples:\n"
       "  engraver info samples/engraver-word.dxf\n"
       "  engraver points samples/engraver-word.dxf --tol 0.005 --csv > points.csv\n"
-      "\nExit codes: 0 ok, 1 job refused or failed, 2 usage or input error, 70 internal error "
-      "(docs/user-guide.md lists all).");
+      "\nExit codes: 0 done; 1 job refused or failed; 2 usage or input error; send and run "
+      "also 3 aborted, 4 machine alarm, 5 command refused by the controller, 6 link lost; 70 "
+      "internal error (docs/user-guide.md, \"Exit codes\"). Each command's --help lists its own.");
   app.set_version_flag("--version", std::string("engraver ") + ENGRAVER_VERSION);
   app.require_subcommand(1);
   host::cli::add_registered_commands(app);
+  const std::string unknown = host::cli::unknown_command_message(app, argc, argv);
+  if (!unknown.empty()) {
+    std::cerr << "engraver: " << unknown << "\n";
+    return host::cli::kExitUsage;
+  }
   host::cli::install_terminate_guard(app);
   return host::cli::run_guarded(app, argc, argv, std::cerr);
 }

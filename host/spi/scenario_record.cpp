@@ -9,9 +9,7 @@
 #include "hal/fake/spi/recording_spi.h"      // fake::RecordingSpi
 #include "hal/fake/spi/vcd_writer.h"         // fake::write_spi_vcd
 #include "host/spi/scenario.h"
-#ifdef HOST_SPI_HAVE_JOB
 #include "host/spi/scenario_job.h"  // record_job
-#endif
 
 namespace host::spi {
 namespace {
@@ -31,13 +29,7 @@ Error run_scenario(const ScenarioRequest& request, std::vector<fake::SpiRecord>*
   if (name == "job") {
     if (request.job_file.empty())
       return {"E_SCENARIO", "scenario 'job' needs a drawing: --scenario job FILE"};
-#ifdef HOST_SPI_HAVE_JOB
     return record_job(request.job_file, request.max_job_datagrams, out, timing, note);
-#else
-    return {"E_SCENARIO",
-            "scenario 'job' needs the simulator (host/lib/sim), which is not in "
-            "this build"};
-#endif
   }
   if (name != "init" && name != "jog")
     return {"E_SCENARIO", "unknown scenario '" + name + "' (init, jog, job FILE)"};
@@ -68,11 +60,7 @@ Error run_scenario(const ScenarioRequest& request, std::vector<fake::SpiRecord>*
 }  // namespace
 
 std::string available_scenarios() {
-#ifdef HOST_SPI_HAVE_JOB
   return "init jog job FILE";
-#else
-  return "init jog";
-#endif
 }
 
 Error record_scenario(const ScenarioRequest& request, bool with_vcd, ScenarioRecording* out) {

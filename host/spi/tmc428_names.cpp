@@ -1,20 +1,12 @@
-// TMC428 register map and field layout, as in shared/reference/tmc428.md.
+// TMC428 datagrams decoded with the register map the driver uses (tmc428_map.h).
 #include "host/spi/tmc428_names.h"
 
 #include <cstdio>  // std::snprintf
 
+#include "hal/drivers/tmc428/tmc428_map.h"  // find_register, register_name
+
 namespace host::spi {
 namespace {
-
-const char* const kMotorRegs[16] = {
-    "x_target", "x_actual",         "v_min",         "v_max",     "v_target",      "v_actual",
-    "a_max",    "a_actual",         "current_scale", "pmul_pdiv", "ref_conf_mode", "interrupt",
-    "dividers", "dx_ref_tolerance", "x_latched",     "unused15"};
-const char* const kCommonRegs[16] = {
-    "datagram_low_word", "datagram_high_word", "cover_pos_len", "cover_datagram",
-    "unused_c4",         "unused_c5",          "unused_c6",     "unused_c7",
-    "power_down",        "unused_c9",          "unused_c10",    "unused_c11",
-    "unused_c12",        "unused_c13",         "ref_switches",  "SMGP"};
 
 int64_t sign_extend(uint32_t v, int bits) {
   uint32_t m = 1u << (bits - 1);
@@ -41,15 +33,9 @@ std::string chain_entry(uint32_t e) {
 }  // namespace
 
 std::string tmc428_register_name(uint8_t a) {
-  if (a & 0x80) {
-    int pair = (a >> 1) & 0x1F;
-    return (a & 0x40) ? "ustep_table[" + std::to_string(pair) + "]"
-                      : "drv_chain[" + std::to_string(pair) + "]";
-  }
-  int smda = (a >> 5) & 3;
-  int idx = (a >> 1) & 0xF;
-  if (smda == 3) return kCommonRegs[idx];
-  return "M" + std::to_string(smda + 1) + "." + kMotorRegs[idx];
+  char name[drivers::tmc428::kRegisterNameBytes];
+  drivers::tmc428::register_name(a, name);
+  return name;
 }
 
 std::vector<std::string> tmc428_status_bits(uint8_t s) {
@@ -84,101 +70,28 @@ Tmc428Datagram decode_tmc428(uint32_t mosi, bool has_miso, uint32_t miso) {
     }
     return d;
   }
-  int smda = (a >> 5) & 3;
-  int idx = (a >> 1) & 0xF;
-  if (smda == 3) {
-    switch (idx) {
-      case 0:
-      case 1:
-        add("data", v, true);
-        break;
-      case 2:
-        add("cover_pos", bits_of(v, 13, 8));
-        add("cover_len", bits_of(v, 4, 0));
-        add("cover_waiting", bits_of(v, 23, 23));
-        break;
-      case 3:
-        add("cover_datagram", v, true);
-        break;
-      case 14:
-        add("r1", bits_of(v, 0, 0));
-        add("l1", bits_of(v, 1, 1));
-        add("r2", bits_of(v, 2, 2));
-        add("l2", bits_of(v, 3, 3));
-        add("r3", bits_of(v, 4, 4));
-        add("l3", bits_of(v, 5, 5));
-        break;
-      case 15:
-        add("lsmd", bits_of(v, 1, 0));
-        add("pol_nscs_s", bits_of(v, 2, 2));
-        add("pol_sck_s", bits_of(v, 3, 3));
-        add("pol_ph_ab", bits_of(v, 4, 4));
-        add("pol_fd_ab", bits_of(v, 5, 5));
-        add("pol_dac_ab", bits_of(v, 6, 6));
-        add("cs_comind", bits_of(v, 7, 7));
-        add("clk2_div", bits_of(v, 15, 8));
-        add("cont_update", bits_of(v, 16, 16));
-        add("refmux", bits_of(v, 20, 20));
-        add("mot1r", bits_of(v, 21, 21));
-        break;
-      default:
-        if (v) add("data", v, true);
-        break;
-    }
+  const drivers::tmc428::RegisterInfo* info = drivers::tmc428::find_register(a);
+  if (info == nullptr || info->fields[0].kind == drivers::tmc428::kFieldEnd) {
+    if (v) add("data", v, true);
     return d;
   }
-  switch (idx) {
-    case 0:
-    case 1:
-    case 14:
-      add("x", sign_extend(v, 24));
-      break;
-    case 2:
-    case 3:
-      add("v", bits_of(v, 10, 0));
-      break;
-    case 4:
-    case 5:
-      add("v", sign_extend(v, 12));
-      break;
-    case 6:
-      add("a", bits_of(v, 10, 0));
-      break;
-    case 7:
-      add("a", sign_extend(v, 12));
-      break;
-    case 8:
-      add("is_agtat", bits_of(v, 22, 20));
-      add("is_aleat", bits_of(v, 18, 16));
-      add("is_v0", bits_of(v, 14, 12));
-      add("a_threshold", bits_of(v, 10, 0));
-      break;
-    case 9:
-      add("pmul", bits_of(v, 15, 8));
-      add("pdiv", bits_of(v, 3, 0));
-      break;
-    case 10: {
-      static const char* const kModes[] = {"RAMP", "SOFT", "VELOCITY", "HOLD"};
-      d.fields.push_back({"ramp_mode", v & 3, false, kModes[v & 3]});
-      add("ref_conf", bits_of(v, 11, 8), true);
-      add("lp", bits_of(v, 16, 16));
-      break;
+  static const char* const kModes[] = {"RAMP", "SOFT", "VELOCITY", "HOLD"};
+  for (const auto* f = info->fields; f->kind != drivers::tmc428::kFieldEnd; ++f) {
+    const uint32_t raw = bits_of(v, f->hi, f->lo);
+    switch (f->kind) {
+      case drivers::tmc428::kFieldSigned:
+        add(f->name, sign_extend(raw, f->hi - f->lo + 1));
+        break;
+      case drivers::tmc428::kFieldHex:
+        add(f->name, raw, true);
+        break;
+      case drivers::tmc428::kFieldRampMode:
+        d.fields.push_back({f->name, raw, false, kModes[raw & 3]});
+        break;
+      default:
+        add(f->name, raw);
+        break;
     }
-    case 11:
-      add("int_mask", bits_of(v, 15, 8), true);
-      add("int_flags", bits_of(v, 7, 0), true);
-      break;
-    case 12:
-      add("pulse_div", bits_of(v, 15, 12));
-      add("ramp_div", bits_of(v, 11, 8));
-      add("usrs", bits_of(v, 2, 0));
-      break;
-    case 13:
-      add("dx_ref_tolerance", bits_of(v, 11, 0));
-      break;
-    default:
-      if (v) add("data", v, true);
-      break;
   }
   return d;
 }

@@ -1,5 +1,5 @@
-// TMC428 datagram meaning: register names from the address byte, decoded fields, status.
-// Layout per shared/reference/tmc428.md sections 1, 2, 5, 6, 7.
+// TMC428 datagram meaning: register names from the address byte, decoded fields, status,
+// from the register map shared with the driver (hal/drivers/tmc428/tmc428_map.h).
 #ifndef HOST_SPI_TMC428_NAMES_H
 #define HOST_SPI_TMC428_NAMES_H
 

@@ -270,8 +270,8 @@ TEST(AppJob, SplineHeaderClaimingMoreThanFitsIsRefused) {
   ASSERT_TRUE(rig.open_session());
   ASSERT_TRUE(rig.zero_here());
   // 65 control points: one more than a slot holds. Built by hand: the encoder refuses it.
-  const uint8_t payload[8] = {3, 0, 65, 0, 69, 0, 0x10, 0x27};
-  rig.host.queue(TestHost::Frame{proto::kCmdSplineHeader, {payload, payload + 8}});
+  const uint8_t payload[12] = {3, 0, 65, 0, 69, 0, 0x10, 0x27, 0, 0, 0, 0};
+  rig.host.queue(TestHost::Frame{proto::kCmdSplineHeader, {payload, payload + 12}});
   rig.run(50);
   EXPECT_TRUE(has_error(rig.host, ErrorCode::kFieldRange));
 }

@@ -225,5 +225,36 @@ TEST(AppDrill, HolesOutsideTheTravelOrBeforeZeroingAreRefused) {
   EXPECT_FALSE(rig.plant.moving());
 }
 
+TEST(AppToolOffset, SplineWithAnOffsetRunsBesideItsCurve) {
+  Ready rig;
+  core::Spline line{};
+  line.degree = 1;
+  line.control_count = 2;
+  line.knot_count = 4;
+  line.control[0] = {10000, 10000, core::kWeightOneQ14};
+  line.control[1] = {40000, 10000, core::kWeightOneQ14};
+  line.knot[2] = line.knot[3] = 1000;
+  // +X travel, 500 um to the left: the tool centre runs along y = 10.5 mm.
+  for (const auto& f : spline_frames(line, 5000, 500)) rig.host.queue(f);
+  ASSERT_TRUE(rig.run_job(20000));
+  EXPECT_TRUE(rig.host.errors.empty());
+  EXPECT_NEAR(rig.position_um().x, 40000, 2.0);
+  EXPECT_NEAR(rig.position_um().y, 10500, 2.0);
+}
+
+TEST(AppStatus, ExecutedFlagTellsARealSeqZeroFromNothingRunYet) {
+  AppRig rig;
+  ASSERT_TRUE(rig.open_session());
+  rig.host.query_status();
+  rig.run(20);
+  ASSERT_TRUE(rig.host.have_status);
+  EXPECT_EQ(rig.host.status.flags & proto::kStatusExecuted, 0);
+  ASSERT_TRUE(rig.zero_here());  // #M ran
+  rig.host.query_status();
+  rig.run(20);
+  EXPECT_NE(rig.host.status.flags & proto::kStatusExecuted, 0);
+  EXPECT_EQ(rig.host.status.last_executed_seq, rig.host.first_seq());
+}
+
 }  // namespace
 }  // namespace fake_app

@@ -202,9 +202,11 @@ class TestHost {
 };
 
 // #B + #D frames for a spline (controls in frames of up to 6, then knots in frames of 15).
-inline std::vector<TestHost::Frame> spline_frames(const core::Spline& s, uint16_t feed_um_s) {
+inline std::vector<TestHost::Frame> spline_frames(const core::Spline& s, uint16_t feed_um_s,
+                                                  int32_t tool_offset_um = 0) {
   std::vector<TestHost::Frame> out;
-  proto::SplineHeaderCmd h{s.degree, s.rational, s.control_count, s.knot_count, feed_um_s};
+  proto::SplineHeaderCmd h{s.degree,     s.rational, s.control_count,
+                           s.knot_count, feed_um_s,  tool_offset_um};
   out.push_back(TestHost::make(h));
   for (uint16_t i = 0; i < s.control_count; i += proto::kMaxDataControls) {
     proto::SplineDataCmd d{};

@@ -47,9 +47,9 @@ TEST(CodecLayout, FeedMoveIsXYLittleEndianThenFeed) {
   EXPECT_EQ(Bytes({0xE0, 0x2E, 0x00, 0x00, 0x54, 0xF2, 0xFF, 0xFF, 0xD0, 0x07}), encoded(m));
 }
 
-TEST(CodecLayout, SplineHeaderIsDegreeFlagsCountsFeed) {
-  proto::SplineHeaderCmd m = {3, true, 5, 9, 1500};
-  EXPECT_EQ(Bytes({3, 0x01, 5, 0, 9, 0, 0xDC, 0x05}), encoded(m));
+TEST(CodecLayout, SplineHeaderIsDegreeRationalCountsFeedOffset) {
+  proto::SplineHeaderCmd m = {3, true, 5, 9, 1500, -2};
+  EXPECT_EQ(Bytes({3, 0x01, 5, 0, 9, 0, 0xDC, 0x05, 0xFE, 0xFF, 0xFF, 0xFF}), encoded(m));
 }
 
 TEST(CodecLayout, SplineDataIsIndicesThenPointsThenKnots) {
@@ -66,10 +66,10 @@ TEST(CodecLayout, SplineDataIsIndicesThenPointsThenKnots) {
             encoded(m));
 }
 
-TEST(CodecLayout, StatusReplyIs22Bytes) {
+TEST(CodecLayout, StatusReplyIs23Bytes) {
   proto::StatusReply s = {};
   s.override_percent = 100;
-  EXPECT_EQ(22u, encoded(s).size());
+  EXPECT_EQ(23u, encoded(s).size());
 }
 
 TEST(CodecLayout, TextIsRowThenCharacters) {
@@ -92,6 +92,8 @@ TEST(CodecRoundTrip, EveryCommand) {
   expect_round_trip(proto::TextCmd{1, 0, {}});
   expect_round_trip(proto::SplineHeaderCmd{1, false, 2, 4, 1});
   expect_round_trip(proto::SplineHeaderCmd{3, true, 64, 68, 65535});
+  expect_round_trip(proto::SplineHeaderCmd{3, false, 4, 8, 1000, -100000});
+  expect_round_trip(proto::SplineHeaderCmd{3, false, 4, 8, 1000, 100000});
   expect_round_trip(proto::ResolutionCmd{50, 5});
   expect_round_trip(proto::FeedMoveCmd{-1000000, 1000000, 65535});
   expect_round_trip(proto::RapidMoveCmd{0, -1});
@@ -141,10 +143,11 @@ TEST(CodecRoundTrip, SplineDataAtEveryPackingThatFits64Bytes) {
 }
 
 TEST(CodecRoundTrip, EveryReply) {
-  expect_round_trip(proto::AckReply{0});
-  expect_round_trip(proto::AckReply{255});
+  expect_round_trip(proto::AckReply{0, 0, false});
+  expect_round_trip(proto::AckReply{255, 2, true});
   expect_round_trip(proto::ErrorReply{ErrorCode::kGeometry, 5, 17});
-  expect_round_trip(proto::SessionReply{1, 64, 8, 16, 256, 3, 64, 0, 1});
+  expect_round_trip(
+      proto::SessionReply{2, 64, 8, 16, 256, 3, 64, 0, 2, 297000, 210000, 40000, 25000, 5000});
   proto::StatusReply s = {proto::MachineState::kHeld,
                           proto::Alarm::kNone,
                           0x06,
@@ -156,7 +159,8 @@ TEST(CodecRoundTrip, EveryReply) {
                           297000,
                           -1,
                           -40000,
-                          65535};
+                          65535,
+                          1};
   expect_round_trip(s);
   expect_round_trip(proto::AlarmReply{proto::Alarm::kLimitSwitch, proto::MachineState::kAlarm});
 }
@@ -185,7 +189,7 @@ TEST(CodecMalformed, EveryFixedSizeMessageRejectsOneByteMoreAndOneLess) {
   check(proto::AbortCmd{}, 0);
   check(proto::ClearAlarmCmd{}, 0);
   check(proto::OverrideCmd{}, 1);
-  check(proto::SplineHeaderCmd{}, 8);
+  check(proto::SplineHeaderCmd{}, 12);
   check(proto::ResolutionCmd{}, 4);
   check(proto::FeedMoveCmd{}, 10);
   check(proto::RapidMoveCmd{}, 8);
@@ -194,10 +198,10 @@ TEST(CodecMalformed, EveryFixedSizeMessageRejectsOneByteMoreAndOneLess) {
   check(proto::DwellCmd{}, 2);
   check(proto::SpindleCmd{}, 1);
   check(proto::DrillCmd{}, 18);
-  check(proto::AckReply{}, 1);
+  check(proto::AckReply{}, 3);
   check(proto::ErrorReply{}, 3);
-  check(proto::SessionReply{}, 10);
-  check(proto::StatusReply{}, 22);
+  check(proto::SessionReply{}, 26);
+  check(proto::StatusReply{}, 23);
   check(proto::AlarmReply{}, 2);
 }
 
@@ -247,13 +251,18 @@ TEST(CodecMalformed, TextRowAbove1OrNonPrintableCharacterIsOutOfRange) {
 }
 
 TEST(CodecMalformed, SplineHeaderFieldsOutOfRange) {
-  expect_range_error<proto::SplineHeaderCmd>({0, 0, 2, 0, 3, 0, 1, 0});    // degree 0
-  expect_range_error<proto::SplineHeaderCmd>({4, 0, 5, 0, 10, 0, 1, 0});   // degree 4
-  expect_range_error<proto::SplineHeaderCmd>({3, 2, 4, 0, 8, 0, 1, 0});    // unknown flag bit
-  expect_range_error<proto::SplineHeaderCmd>({3, 0, 3, 0, 7, 0, 1, 0});    // too few points
-  expect_range_error<proto::SplineHeaderCmd>({1, 0, 65, 0, 67, 0, 1, 0});  // 65 points
-  expect_range_error<proto::SplineHeaderCmd>({2, 0, 4, 0, 8, 0, 1, 0});    // knots != 4+2+1
-  expect_range_error<proto::SplineHeaderCmd>({2, 0, 4, 0, 7, 0, 0, 0});    // feed 0
+  expect_range_error<proto::SplineHeaderCmd>({0, 0, 2, 0, 3, 0, 1, 0, 0, 0, 0, 0});   // degree 0
+  expect_range_error<proto::SplineHeaderCmd>({4, 0, 5, 0, 10, 0, 1, 0, 0, 0, 0, 0});  // degree 4
+  expect_range_error<proto::SplineHeaderCmd>(
+      {3, 2, 4, 0, 8, 0, 1, 0, 0, 0, 0, 0});  // unknown flag bit
+  expect_range_error<proto::SplineHeaderCmd>(
+      {3, 0, 3, 0, 7, 0, 1, 0, 0, 0, 0, 0});  // too few points
+  expect_range_error<proto::SplineHeaderCmd>({1, 0, 65, 0, 67, 0, 1, 0, 0, 0, 0, 0});  // 65 points
+  expect_range_error<proto::SplineHeaderCmd>(
+      {2, 0, 4, 0, 8, 0, 1, 0, 0, 0, 0, 0});  // knots != 4+2+1
+  expect_range_error<proto::SplineHeaderCmd>({2, 0, 4, 0, 7, 0, 0, 0, 0, 0, 0, 0});  // feed 0
+  // tool offset 100001 um
+  expect_range_error<proto::SplineHeaderCmd>({2, 0, 4, 0, 7, 0, 1, 0, 0xA1, 0x86, 0x01, 0});
 }
 
 TEST(CodecMalformed, SplineDataFieldsOutOfRange) {
@@ -318,6 +327,12 @@ TEST(CodecMalformed, DrillBottomMustBeBelowItsStartAndItsFeedNonZero) {
             decode_bytes(Bytes({0, 0, 0, 0, 0, 0, 0, 0, 100, 0, 0, 0, 99, 0, 0, 0, 1, 0}), &ok));
 }
 
+TEST(CodecLayout, AckSaysWhetherItAcknowledgesARealTimeFrame) {
+  EXPECT_EQ(Bytes({15, 2, 0}), encoded(proto::AckReply{15, 2, false}));
+  EXPECT_EQ(Bytes({15, 1, 1}), encoded(proto::AckReply{15, 1, true}));
+  expect_range_error<proto::AckReply>({15, 2, 2});
+}
+
 TEST(CodecMalformed, ZeroingAxesMustBe1To7) {
   expect_range_error<proto::ZeroingCmd>({0});
   expect_range_error<proto::ZeroingCmd>({8});
@@ -329,7 +344,7 @@ TEST(CodecMalformed, ReplyEnumsOutsideTheirListsAreOutOfRange) {
   expect_range_error<proto::ErrorReply>({38, 0, 0});
   expect_range_error<proto::AlarmReply>({8, 5});
   expect_range_error<proto::AlarmReply>({1, 7});
-  Bytes status(22, 0);
+  Bytes status(23, 0);
   status[3] = 100;
   proto::StatusReply s;
   EXPECT_EQ(ErrorCode::kOk, decode_bytes(status, &s));
@@ -340,9 +355,26 @@ TEST(CodecMalformed, ReplyEnumsOutsideTheirListsAreOutOfRange) {
 }
 
 TEST(CodecMalformed, SessionReplyCapabilitiesOutOfRange) {
-  expect_range_error<proto::SessionReply>({1, 64, 9, 16, 0, 1, 3, 64, 0, 1});   // window 9
-  expect_range_error<proto::SessionReply>({1, 65, 8, 16, 0, 1, 3, 64, 0, 1});   // payload 65
-  expect_range_error<proto::SessionReply>({1, 64, 8, 16, 69, 0, 3, 64, 0, 1});  // rx 69 bytes
+  // v2, payload 64, window 8, 16 slots, rx 256, degree 3, 64 points, fw 0.2, travel 1 mm
+  // on each axis, feeds 1 um/s: valid; then one field at a time out of range.
+  const Bytes ok = {2, 64,   8, 16, 0, 1,    3, 64, 0, 2, 0xE8, 3, 0,
+                    0, 0xE8, 3, 0,  0, 0xE8, 3, 0,  0, 1, 0,    1, 0};
+  proto::SessionReply r;
+  EXPECT_EQ(ErrorCode::kOk, decode_bytes(ok, &r));
+  const auto with = [&](size_t at, uint8_t v) {
+    Bytes b = ok;
+    b[at] = v;
+    return b;
+  };
+  expect_range_error<proto::SessionReply>(with(2, 9));   // window 9
+  expect_range_error<proto::SessionReply>(with(1, 65));  // payload 65
+  Bytes small_rx = with(4, 69);
+  small_rx[5] = 0;  // rx 69 bytes: not even one frame
+  expect_range_error<proto::SessionReply>(small_rx);
+  expect_range_error<proto::SessionReply>(with(22, 0));  // X/Y feed 0
+  Bytes no_travel = ok;
+  no_travel[10] = no_travel[11] = 0;  // X travel 0
+  expect_range_error<proto::SessionReply>(no_travel);
 }
 
 TEST(CodecEncode, EncodeRefusesWhatDecodeRefuses) {
@@ -359,15 +391,15 @@ TEST(CodecEncode, EncodeRefusesWhatDecodeRefuses) {
 }
 
 TEST(CodecFrame, WriteFrameUsesTheMessagesLetterAndStartByte) {
-  proto::AckReply ack = {4};
+  proto::AckReply ack = {4, 2, false};
   uint8_t buf[proto::kMaxFrameBytes];
   uint8_t n = 0;
   ASSERT_EQ(ErrorCode::kOk, proto::write_frame(ack, 200, buf, sizeof buf, &n));
-  ASSERT_EQ(7, n);
+  ASSERT_EQ(9, n);
   EXPECT_EQ('*', buf[0]);
   EXPECT_EQ('O', buf[1]);
   EXPECT_EQ(200, buf[2]);
-  EXPECT_EQ(1, buf[3]);
+  EXPECT_EQ(3, buf[3]);
   EXPECT_EQ(4, buf[4]);
 }
 

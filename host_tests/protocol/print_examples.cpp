@@ -23,12 +23,14 @@ void show(const Msg& msg, uint8_t seq, const std::string& what) {
 
 int main() {
   std::printf("```frames\n");
-  show(proto::SessionCmd{1}, 0, "#I seq 0: open session, protocol version 1");
-  show(proto::SessionReply{1, 64, 8, 16, 256, 3, 64, 0, 1}, 0,
-       "*I seq 0: v1, payload 64, window 8, 16 slots, rx 256 B, degree 3, 64 points, fw 0.1");
+  show(proto::SessionCmd{2}, 0, "#I seq 0: open session, protocol version 2");
+  show(proto::SessionReply{2, 64, 8, 16, 256, 3, 64, 0, 2, 297000, 210000, 40000, 25000, 5000}, 0,
+       "*I seq 0: v2, payload 64, window 8, 16 slots, rx 256 B, degree 3, 64 points, fw 0.2, "
+       "travel 297 x 210 x 40 mm, feeds up to 25 mm/s (X/Y) and 5 mm/s (Z)");
   show(proto::TextCmd{0, 9, {'E', 'n', 'g', 'r', 'a', 'v', 'i', 'n', 'g'}}, 1,
        "#S seq 1: row 0 \"Engraving\"");
-  show(proto::AckReply{15}, 1, "*O seq 1: stored, 15 slots free");
+  show(proto::AckReply{15, 2, false}, 1,
+       "*O seq 1: stored, 15 queue slots and 2 spline slots free");
   show(proto::ResolutionCmd{50, 5}, 2, "#U seq 2: points at most 50 um apart, chord error 5 um");
   show(proto::RapidMoveCmd{10000, 5000}, 3, "#F seq 3: rapid to X 10 mm, Y 5 mm");
   show(proto::ZMoveCmd{-200, 500}, 4, "#Z seq 4: Z to -0.2 mm at 0.5 mm/s");
@@ -50,10 +52,11 @@ int main() {
   }
   show(d1, 7, "#D seq 7: control points 0..3 (weight 1.0), knots 0..3 = 0 0 0 0");
   proto::SplineDataCmd d2 = {};
+  d2.control_index = 4;  // all 4 control points are stored: the next index, even with nc 0
   d2.knot_index = 4;
   d2.knot_n = 4;
   for (int i = 0; i < 4; ++i) d2.knot[i] = 1000;
-  show(d2, 8, "#D seq 8: knots 4..7 = 1000 1000 1000 1000");
+  show(d2, 8, "#D seq 8: no control points (control_index 4: all stored), knots 4..7 = 1000");
   show(proto::ZeroingCmd{7}, 9, "#M seq 9: zero X, Y and Z with the joystick");
   show(proto::StatusCmd{}, 10, "#? seq 10: status query");
   proto::StatusReply s = {proto::MachineState::kRunning,
@@ -67,10 +70,11 @@ int main() {
                           12000,
                           -3500,
                           -200,
-                          0};
+                          0,
+                          1};
   show(s, 10,
        "*? seq 10: running, zeroed, session open, 100 %, 12 free, expects 10, "
-       "done 5, at (12, -3.5, -0.2) mm");
+       "done 5, at (12, -3.5, -0.2) mm, 1 spline slot free");
   show(proto::ErrorReply{proto::ErrorCode::kSeqGap, 0, 10}, 12,
        "*E seq 12: seq_gap (20), controller expects seq 10");
   show(proto::ErrorReply{proto::ErrorCode::kGeometry, 5, 9}, 8,
@@ -80,7 +84,8 @@ int main() {
   show(proto::ResumeCmd{}, 2, "#R real-time seq 2: resume");
   show(proto::AbortCmd{}, 3, "#X real-time seq 3: abort");
   show(proto::ClearAlarmCmd{}, 4, "#C real-time seq 4: clear alarm");
-  show(proto::AckReply{16}, 4, "*O seq 4: real-time frame done (16 slots free)");
+  show(proto::AckReply{16, 2, true}, 4,
+       "*O seq 4: real-time frame done (real-time flag set; 16 queue slots, 2 spline slots free)");
   show(proto::AlarmReply{proto::Alarm::kLimitSwitch, proto::MachineState::kAlarm}, 1,
        "*A alarm #1: limit switch (1), state alarm (5)");
   show(proto::PauseCmd{13, {'T', 'o', 'o', 'l', ' ', '2', ':', ' ', '0', '.', '8', 'm', 'm'}}, 11,

@@ -14,9 +14,7 @@ int main() {
   proxy::run_deboor_checks();
   proxy::run_curve_walker_checks();
   proxy::run_measurements();
-#ifdef PROXY_HAVE_APP
   proxy::run_app_measurements();
-#endif
   PROXY_PRINTF("memory static RAM %u bytes, stack peak %u bytes\n",
                (unsigned)proxy::static_ram_bytes(), (unsigned)proxy::stack_peak_bytes());
   proxy::print_summary();

@@ -6,6 +6,8 @@
 
 #include <stdint.h>  // uint32_t, int32_t
 
+#include "hal/drivers/tmc428/tmc428_map.h"  // TMC428_REGISTER_MAP
+
 namespace drivers {
 namespace tmc428 {
 
@@ -15,36 +17,19 @@ namespace tmc428 {
 // RRS<<7 | SMDA<<5 | IDX<<1 | RW. The addresses below are that first byte, write form.
 enum : uint8_t { kReadBit = 0x01, kRamBit = 0x80 };
 
-// Per-motor register block: address = motor_base(motor) + register, [428DS] §7, Tab. 7-2.
+// Register addresses (first datagram byte, write form) from the register map
+// (tmc428_map.h): per-motor registers for motor 0 (motor_reg() adds the motor), then the
+// common ones (SMDA = 11): kXTarget 0x00 ... kXLatched 0x1C, kDatagramLowWord 0x60 ...
+// kSmgp 0x7E.
+#define TMC428_ADDRESS_REG(block, idx, constant, text) \
+  constant = (uint8_t)(TMC428_BLOCK_BASE_##block | ((idx) << 1)),
+#define TMC428_ADDRESS_SKIP(...)
 enum : uint8_t {
-  kXTarget = 0x00,       // IDX 0: 24-bit signed
-  kXActual = 0x02,       // IDX 1: 24-bit signed
-  kVMin = 0x04,          // IDX 2: 11-bit unsigned
-  kVMax = 0x06,          // IDX 3: 11-bit unsigned
-  kVTarget = 0x08,       // IDX 4: 12-bit signed
-  kVActual = 0x0A,       // IDX 5: 12-bit signed, RO (R/W in HOLD_MODE)
-  kAMax = 0x0C,          // IDX 6: 11-bit unsigned
-  kAActual = 0x0E,       // IDX 7: 12-bit signed, RO
-  kCurrentScale = 0x10,  // IDX 8: is_agtat 22..20, is_aleat 18..16, is_v0 14..12, a_threshold 10..0
-  kPmulPdiv = 0x12,      // IDX 9: pmul 15..8 (bit 15 forced 1), pdiv 3..0
-  kRefConfRampMode = 0x14,  // IDX 10: lp 16 (RO), ref_conf 11..8, ramp_mode 1..0
-  kInterrupt = 0x16,        // IDX 11: interrupt_mask 15..8, interrupt_flags 7..0 (write 1 clears)
-  kDivisors = 0x18,         // IDX 12: pulse_div 15..12, ramp_div 11..8, usrs 2..0
-  kDxRefTolerance = 0x1A,   // IDX 13: 12 bits
-  kXLatched = 0x1C,         // IDX 14: RO; a write arms the latch
-  kUstepCount429 = 0x1E     // IDX 15: TMC429 only; TMC428 reads 0
+  TMC428_REGISTER_MAP(TMC428_ADDRESS_REG, TMC428_ADDRESS_SKIP, TMC428_ADDRESS_SKIP) kUstepCount429 =
+      0x1E  // IDX 15: TMC429 only; a TMC428 reads 0 (not in the map)
 };
-
-// Common registers (SMDA = 11), [428DS] §9.
-enum : uint8_t {
-  kDatagramLowWord = 0x60,   // JDX 0: RO; a write re-arms capture (CDGW = 1 until next answer)
-  kDatagramHighWord = 0x62,  // JDX 1: RO; upper 24 of the last 48 bits from SDI_S
-  kCoverPosLen = 0x64,       // JDX 2: cover_position 13..8, cover_len 4..0, cw 23
-  kCoverDatagram = 0x66,     // JDX 3: up to 24 bits
-  kPowerDown = 0x70,         // JDX 8: any write powers down until the next nSCS_C fall
-  kRefSwitches = 0x7C,       // JDX 14: RO r1 0, l1 1, r2 2, l2 3, r3 4, l3 5
-  kSmgp = 0x7E               // JDX 15: stepper motor global parameters
-};
+#undef TMC428_ADDRESS_REG
+#undef TMC428_ADDRESS_SKIP
 
 // RAM, [428DS] §10: two 6-bit entries per datagram (DATA 13..8 odd, 5..0 even entry).
 enum : uint8_t {

@@ -1,48 +1,16 @@
-// Names for TMC428 datagrams ([428DS] Tab. 7-2 register names).
+// Names for TMC428 datagrams, from the register map the driver uses (tmc428_map.h).
 #include "hal/fake/motion/tmc428_describe.h"  // declarations
+
+#include "hal/drivers/tmc428/tmc428_map.h"  // register_name
 
 #include <cstdio>  // std::snprintf
 
 namespace fake {
 
 std::string tmc428_register_name(uint8_t a) {
-  char buf[48];
-  if (a & 0x80) {
-    const int pair = (a >> 1) & 0x3F;
-    const bool sine = pair >= 32;
-    const int first = 2 * (pair & 31);
-    std::snprintf(buf, sizeof buf, "RAM %s[%d,%d]", sine ? "sine" : "chain", first, first + 1);
-    return buf;
-  }
-  static const char* const kMotorRegs[16] = {"x_target",
-                                             "x_actual",
-                                             "v_min",
-                                             "v_max",
-                                             "v_target",
-                                             "v_actual",
-                                             "a_max",
-                                             "a_actual",
-                                             "is_*/a_threshold",
-                                             "pmul/pdiv",
-                                             "ref_conf/ramp_mode",
-                                             "interrupt_mask/flags",
-                                             "pulse_div/ramp_div/usrs",
-                                             "dx_ref_tolerance",
-                                             "x_latched",
-                                             "unused15"};
-  static const char* const kCommonRegs[16] = {"datagram_low_word", "datagram_high_word",
-                                              "cover_pos/len",     "cover_datagram",
-                                              "unused4",           "unused5",
-                                              "unused6",           "unused7",
-                                              "power_down",        "unused9",
-                                              "unused10",          "unused11",
-                                              "unused12",          "unused13",
-                                              "ref_switches",      "SMGP"};
-  const int smda = (a >> 5) & 3;
-  const int idx = (a >> 1) & 0xF;
-  if (smda == 3) return kCommonRegs[idx];
-  std::snprintf(buf, sizeof buf, "M%d %s", smda + 1, kMotorRegs[idx]);
-  return buf;
+  char name[drivers::tmc428::kRegisterNameBytes];
+  drivers::tmc428::register_name(a, name);
+  return name;
 }
 
 std::string describe_tmc428_datagram(const SpiRecord& r) {

@@ -186,12 +186,18 @@ void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
   Motor& mo = motor_[m];
   const uint32_t pd = (mo.divisors >> 12) & 0xF;
   const uint32_t rd = (mo.divisors >> 8) & 0xF;
-  const uint64_t pulse_period = uint64_t{32} << pd;
-  const uint64_t ramp_period = uint64_t{32} << rd;
+  // Both clocks are powers of two: shifts, not 64-bit divisions, in this hot loop.
+  const unsigned pulse_shift = 5 + pd, ramp_shift = 5 + rd;
   const uint32_t mode = mo.ref_ramp & kModeMask;
   const bool soft = (mo.ref_ramp & kSoftStop) != 0;
   uint64_t t = t0;
-  if (switches_out_of_reach(m, (t1 - t0) / pulse_period + 2)) {
+  // Idle: at rest with no velocity to ramp to. Nothing can change (no pulse, so no switch
+  // edge either); most datagrams find most motors so (Z while cutting, all three at rest).
+  if (mo.v_q8 == 0 && (mode != kVelocity || sext(mo.v_target, 12) == 0)) {
+    mo.last_ramp = 0;
+    return;
+  }
+  if (switches_out_of_reach(m, ((t1 - t0) >> pulse_shift) + 2)) {
     // Fast path: no switch can change in this interval (at most one microstep per pulse
     // clock), so the ramp target is constant and no stop or flag can happen.
     const int32_t tgt = effective_target_q8(m);
@@ -200,14 +206,14 @@ void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
       uint64_t seg_end = t1;
       uint64_t ramp_edge = 0;
       if (ramping) {
-        ramp_edge = (t / ramp_period + 1) * ramp_period;
+        ramp_edge = ((t >> ramp_shift) + 1) << ramp_shift;
         if (ramp_edge < seg_end) seg_end = ramp_edge;
       } else {
         mo.last_ramp = 0;
       }
       const int32_t vi = mo.v_q8 / 256;
       if (vi != 0) {
-        const uint64_t n = seg_end / pulse_period - t / pulse_period;
+        const uint64_t n = (seg_end >> pulse_shift) - (t >> pulse_shift);
         const uint64_t total = mo.pulse_acc + n * (uint64_t)std::abs(vi);
         mo.pulse_acc = (uint32_t)(total % 2048);
         const int64_t steps = (int64_t)(total / 2048);
@@ -244,13 +250,13 @@ void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
     uint64_t seg_end = t1;
     uint64_t ramp_edge = 0;
     if (ramping) {
-      ramp_edge = (t / ramp_period + 1) * ramp_period;
+      ramp_edge = ((t >> ramp_shift) + 1) << ramp_shift;
       if (ramp_edge < seg_end) seg_end = ramp_edge;
     } else {
       mo.last_ramp = 0;
     }
     if (vi != 0) {
-      const uint64_t n = seg_end / pulse_period - t / pulse_period;  // pulse edges in (t, end]
+      const uint64_t n = (seg_end >> pulse_shift) - (t >> pulse_shift);  // pulse edges in (t, end]
       if (n != 0) {
         const uint64_t av = (uint64_t)std::abs(vi);
         const int dir = vi > 0 ? 1 : -1;
@@ -269,7 +275,7 @@ void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
           // The pulse edge of the dist-th step: first j with acc + j v >= dist 2048.
           const uint64_t need = (uint64_t)dist * 2048 - mo.pulse_acc;
           const uint64_t j = (need + av - 1) / av;
-          const uint64_t edge = (t / pulse_period + j) * pulse_period;
+          const uint64_t edge = ((t >> pulse_shift) + j) << pulse_shift;
           total = mo.pulse_acc + j * av;
           mo.pulse_acc = (uint32_t)(total - (uint64_t)dist * 2048);
           mo.x = wrap24((int64_t)mo.x + dir * dist);

@@ -19,6 +19,34 @@ struct Curve {
   std::string kind;    // entity type: "SPLINE", "LINE", "ARC", ...
 };
 
+// One step of a program whose order matters (G-code from a CAM program): a cut along a
+// curve, or a machine action that is not a curve. Units: mm and seconds, drawing frame.
+struct ProgramOp {
+  enum Kind {
+    kCut,      // trace curves[curve] at depth_mm
+    kPause,    // M0/M1/M6: wait for the operator; text says why (from "(MSG, ...)" if any)
+    kDwell,    // G4: wait dwell_s with every axis still
+    kSpindle,  // M3/M4 (spindle_on) or M5
+    kDrill     // one hole of a G81/G82/G83 cycle
+  };
+  Kind kind = kCut;
+  int curve = -1;           // kCut: index into Drawing::curves
+  double depth_mm = 0.0;    // kCut: Z of the cut (<= 0); NaN: none given (the planner's)
+  std::string text;         // kPause: the whole message
+  int tool = 0;             // kPause: the tool of an M6 tool change (0: not a tool change)
+  double z_mm = 0.0;        // kPause, kDwell, kSpindle: the program's Z here (> 0: out of the work;
+                            // for a pause, the tool-change height)
+  double dwell_s = 0.0;     // kDwell; kDrill: dwell at the bottom (G82 P)
+  bool spindle_on = false;  // kSpindle
+  Point2 at{0, 0};          // kDrill: hole centre
+  double z_start_mm = 0.0;  // kDrill: R plane, where the feed starts
+  double z_bottom_mm = 0.0;  // kDrill: bottom of the hole
+  double retract_mm = 0.0;   // kDrill: Z after the hole (R for G99, the start height for G98)
+  double peck_mm = 0.0;      // kDrill: G83 peck depth Q (0: one plunge)
+  double feed_mm_per_s = 0;  // kDrill: plunge feed from the file (0: none given)
+  std::string source;        // where it came from, e.g. "line 23"
+};
+
 struct Drawing {
   std::string path;
   std::string format;       // "DXF", "G-code"
@@ -27,7 +55,10 @@ struct Drawing {
   std::vector<Curve> curves;
   std::map<std::string, int> entity_counts;  // entities read, by DXF type (incl. skipped)
   std::vector<std::string> warnings;         // problems that did not stop the import
-  Extents extents() const;
+  // Empty for drawings without an order (DXF): the planner may reorder and reverse curves.
+  // Otherwise every curve appears once, as a kCut, and the planner keeps this order.
+  std::vector<ProgramOp> program;
+  Extents extents() const;  // of the curves and the drilled holes
 };
 
 // Why a file could not be imported. what() names the file, the entity and the problem.
@@ -35,6 +66,10 @@ class ImportError : public std::runtime_error {
  public:
   explicit ImportError(const std::string& msg) : std::runtime_error(msg) {}
 };
+
+// Throws ImportError saying why the file cannot be read: no such file, a directory,
+// permission denied (the system's reason), not a regular file.
+void check_readable(const std::string& path);
 
 // Reads a drawing; the format is chosen from the content and the extension (DXF; G-code
 // .ngc/.nc/.gcode). Throws ImportError for anything it cannot import faithfully.

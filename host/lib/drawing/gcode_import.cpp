@@ -1,15 +1,18 @@
-// G-code import: a small interpreter for the motion words; see gcode_import.h and
-// docs/user-guide.md ("G-code") for what is engraved and what is refused.
+// G-code import: a small interpreter of what CAM programs write; see gcode_import.h and
+// docs/user-guide.md ("G-code") for what is engraved, what is kept as a program operation
+// and what is refused. Within a line, actions follow LinuxCNC's order of execution:
+// tool change, spindle, dwell, modes, motion, then stops.
 #include "host/lib/drawing/gcode_import.h"
 
-#include <cctype>   // std::isalpha, std::toupper
-#include <cmath>    // std::atan2, std::fabs
-#include <cstdlib>  // std::strtod
-#include <fstream>  // std::ifstream
-#include <regex>    // std::regex_search
-#include <sstream>  // std::ostringstream
+#include <algorithm>  // std::max
+#include <cmath>      // std::atan2, std::fabs, std::lround
+#include <fstream>    // std::ifstream
+#include <regex>      // std::regex_search
+#include <set>        // std::set
+#include <sstream>    // std::ostringstream
 
 #include "host/lib/drawing/conics.h"
+#include "host/lib/drawing/gcode_words.h"
 
 namespace host {
 
@@ -17,58 +20,484 @@ namespace {
 
 const double kPi = 3.14159265358979323846;
 
-struct Word {
-  char letter;
-  double value;
+// The words of one line, by letter (the last one wins for axis words; G and M are lists).
+struct LineWords {
+  std::vector<int> g10;  // G numbers times ten (G91.1 -> 911)
+  std::vector<int> m;
+  bool has[26] = {};
+  double val[26] = {};
+  bool have(char l) const { return has[l - 'A']; }
+  double get(char l) const { return val[l - 'A']; }
 };
 
-// Words of one line, comments "( )" and ";" removed. Throws on a malformed word.
-std::vector<Word> parse_line(const std::string& raw, const std::string& where) {
-  std::vector<Word> words;
-  size_t i = 0;
-  while (i < raw.size()) {
-    const char c = raw[i];
-    if (c == ';') break;
-    if (c == '(') {
-      const size_t close = raw.find(')', i);
-      if (close == std::string::npos) throw ImportError(where + ": comment '(' is not closed");
-      i = close + 1;
-      continue;
-    }
-    if (std::isspace(static_cast<unsigned char>(c)) || c == '%') {
-      ++i;
-      continue;
-    }
-    if (!std::isalpha(static_cast<unsigned char>(c))) {
-      throw ImportError(where + ": unexpected '" + std::string(1, c) + "'");
-    }
-    const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    ++i;
-    while (i < raw.size() && raw[i] == ' ') ++i;
-    const char* start = raw.c_str() + i;
-    char* end = 0;
-    const double v = std::strtod(start, &end);
-    if (end == start || !std::isfinite(v)) {
-      throw ImportError(where + ": word " + std::string(1, letter) + " has no valid number");
-    }
-    i += static_cast<size_t>(end - start);
-    if (std::fabs(v) > 1e7) {
-      throw ImportError(where + ": word " + std::string(1, letter) + " value is beyond 10^7");
-    }
-    words.push_back(Word{letter, v});
-  }
-  return words;
+std::string g_name(int g10) {
+  std::ostringstream o;
+  o << "G" << g10 / 10;
+  if (g10 % 10) o << "." << g10 % 10;
+  return o.str();
 }
 
-// Interpreter state.
-struct State {
-  double to_mm = 1.0;
-  bool absolute = true;
-  bool arc_absolute = false;  // G90.1
-  int motion = 0;             // 0 1 2 3
-  bool spindle_on = false;
-  Point2 pos{0, 0};
-  double z = 0.0;
+class Interpreter {
+ public:
+  Interpreter(const std::string& path, bool uses_spindle) : uses_spindle_(uses_spindle) {
+    dr_.path = path;
+    dr_.format = "G-code";
+  }
+
+  // Runs one line; false once the program has ended (M2/M30).
+  bool line(const std::string& text, long n) {
+    n_ = n;
+    where_ = dr_.path + ": line " + std::to_string(n);
+    const GcodeBlock block = parse_gcode_line(text, where_);
+    if (!block.message.empty()) message_ = block.message;
+    LineWords w;
+    for (const GcodeWord& word : block.words) {
+      if (word.letter == 'G') {
+        w.g10.push_back(static_cast<int>(std::lround(word.value * 10)));
+      } else if (word.letter == 'M') {
+        if (word.value != std::floor(word.value)) throw ImportError(where_ + ": M words are whole");
+        w.m.push_back(static_cast<int>(word.value));
+      } else {
+        w.has[word.letter - 'A'] = true;
+        w.val[word.letter - 'A'] = word.value;
+      }
+    }
+    check_words(w);
+    return execute(w);
+  }
+
+  Drawing finish() {
+    flush();
+    if (!message_.empty()) {
+      dr_.warnings.push_back(dr_.path + ": (MSG, " + message_ +
+                             ") is not followed by a stop (M0/M1/M6): not shown");
+    }
+    if (spindle_on_) spindle(false);
+    if (inch_seen_ && mm_seen_) {
+      dr_.units = std::string("inch and mm (G20 and G21 both used; the first is ") +
+                  (first_unit_inch_ ? "inch)" : "mm)");
+      dr_.unit_to_mm = first_unit_inch_ ? 25.4 : 1.0;
+    } else if (inch_seen_) {
+      dr_.units = "inch";
+      dr_.unit_to_mm = 25.4;
+    } else if (mm_seen_) {
+      dr_.units = "mm";
+    } else {
+      dr_.units = "mm (assumed)";
+      dr_.warnings.push_back(dr_.path + ": no G20/G21: coordinates taken as millimetres");
+    }
+    dr_.entity_counts["G-code path"] = static_cast<int>(dr_.curves.size());
+    for (const ProgramOp& op : dr_.program) {
+      if (op.kind == ProgramOp::kDrill) ++dr_.entity_counts["hole (G81/G82/G83)"];
+      if (op.kind == ProgramOp::kPause) ++dr_.entity_counts["pause (M0/M1/M6)"];
+      if (op.kind == ProgramOp::kDwell) ++dr_.entity_counts["dwell (G4)"];
+      if (op.kind == ProgramOp::kSpindle) ++dr_.entity_counts["spindle on/off (M3/M4/M5)"];
+    }
+    return dr_;
+  }
+
+ private:
+  void check_words(const LineWords& w) {
+    for (char l : {'A', 'B', 'C', 'U', 'V', 'W', 'K'}) {
+      if (w.have(l) && w.get(l) != 0.0) {
+        throw ImportError(where_ + ": word " + std::string(1, l) +
+                          " (an axis or arc offset outside the XY plane) is not supported");
+      }
+    }
+    for (char l : {'D', 'E', 'H'}) {
+      if (w.have(l)) {
+        throw ImportError(where_ + ": word " + std::string(1, l) +
+                          " (tool offsets, extruder) is not supported");
+      }
+    }
+    if (w.have('L') && w.get('L') != std::floor(w.get('L'))) {
+      throw ImportError(where_ + ": L (repeat count) must be whole");
+    }
+  }
+
+  bool execute(const LineWords& w) {
+    if (w.have('F')) feed_ = w.get('F');  // converted when used (units may change later)
+    if (w.have('T')) tool_ = static_cast<int>(w.get('T'));
+    bool tool_change = false, stop = false, end = false;
+    int stop_code = 0;
+    for (int m : w.m) {
+      switch (m) {
+        case 0:
+        case 1:
+          stop = true;
+          stop_code = m;
+          break;
+        case 2:
+        case 30:
+          end = true;
+          break;
+        case 3:
+        case 4:
+        case 5:
+          break;  // below, after a tool change
+        case 6:
+          tool_change = true;
+          break;
+        case 7:
+        case 8:
+          warn_once("coolant", where_ + ": M" + std::to_string(m) +
+                                   " (coolant) ignored: the machine has no coolant");
+          break;
+        case 9:
+          break;  // coolant off: nothing to switch
+        default:
+          throw ImportError(where_ + ": M" + std::to_string(m) +
+                            " is not supported (M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 are)");
+      }
+    }
+    if (tool_change) {
+      pause(message_.empty() ? "Change tool T" + std::to_string(tool_) : message_, tool_);
+    }
+    for (int m : w.m) {
+      if (m == 3 || m == 4) spindle(true);
+      if (m == 5) spindle(false);
+    }
+    int motion_set = -2;  // a motion word on this line (-2: none)
+    bool dwell = false;
+    for (int g : w.g10) {
+      switch (g) {
+        case 0:
+        case 10:
+        case 20:
+        case 30:
+        case 810:
+        case 820:
+        case 830:
+          motion_set = g / 10;
+          break;
+        case 800:
+          motion_set = -1;
+          break;
+        case 40:
+          dwell = true;
+          break;
+        case 200:
+          to_mm_ = 25.4;
+          if (!inch_seen_ && !mm_seen_) first_unit_inch_ = true;
+          inch_seen_ = true;
+          break;
+        case 210:
+          to_mm_ = 1.0;
+          mm_seen_ = true;
+          break;
+        case 900:
+          absolute_ = true;
+          break;
+        case 910:
+          absolute_ = false;
+          break;
+        case 901:
+          arc_absolute_ = true;
+          break;
+        case 911:
+          arc_absolute_ = false;
+          break;
+        case 980:
+          retract_to_r_ = false;
+          break;
+        case 990:
+          retract_to_r_ = true;
+          break;
+        case 180:
+        case 190:
+          throw ImportError(where_ + ": " + g_name(g) +
+                            " selects an arc plane other than XY; only G17 (XY) is supported");
+        case 410:
+        case 420:
+          throw ImportError(where_ +
+                            ": cutter compensation (G41/G42) is not supported; use "
+                            "the tool-radius option of this tool instead");
+        case 170:  // XY plane
+        case 400:  // compensation off
+        case 490:  // tool length offset off
+        case 540:  // work offset 1
+        case 610:  // exact path
+        case 611:  // exact stop
+        case 640:  // path blending: the controller keeps its own chord tolerance
+        case 940:  // units per minute feed
+          break;
+        default:
+          throw ImportError(where_ + ": " + g_name(g) +
+                            " is not supported (G0 G1 G2 G3 G4 G17 G20 G21 G40 G49 G54 G61 "
+                            "G61.1 G64 G80 G81 G82 G83 G90 G91 G90.1 G91.1 G94 G98 G99 are)");
+      }
+    }
+    if (dwell) {
+      if (!w.have('P')) throw ImportError(where_ + ": G4 without P (seconds)");
+      if (w.get('P') < 0) throw ImportError(where_ + ": G4 P is negative");
+      if (w.get('P') > 0) {
+        flush();
+        ProgramOp op;
+        op.kind = ProgramOp::kDwell;
+        op.dwell_s = w.get('P');  // LinuxCNC: P in seconds
+        add(op);
+      }
+    }
+    if (motion_set != -2) motion_ = motion_set;
+    const bool axes = w.have('X') || w.have('Y') || w.have('Z');
+    if (axes && dwell) throw ImportError(where_ + ": G4 with X/Y/Z words on the same line");
+    if (axes) {
+      if (motion_ == -1) {
+        throw ImportError(where_ +
+                          ": X/Y/Z with no motion mode (after G80): add G0 or G1 to the line");
+      }
+      if (motion_ >= 81) {
+        drill(w);
+      } else {
+        move(w);
+      }
+    }
+    if (stop) {
+      pause(message_.empty() ? (stop_code == 0 ? "Program stop (M0)" : "Optional stop (M1)")
+                             : message_);
+    }
+    if (end) {
+      flush();
+      if (spindle_on_) spindle(false);
+      return false;
+    }
+    return true;
+  }
+
+  // G0/G1/G2/G3 with the axis words of the line.
+  void move(const LineWords& w) {
+    if (w.have('Z')) {
+      const double z = absolute_ ? w.get('Z') * to_mm_ : z_ + w.get('Z') * to_mm_;
+      if (z > 0 || z != z_) flush();  // lifted off the work, or a new depth: a new run
+      z_ = z;
+      z_given_ = true;
+      moved_since_pause_ = true;
+    }
+    if (!w.have('X') && !w.have('Y')) return;
+    moved_since_pause_ = true;
+    Point2 target = pos_;
+    if (w.have('X')) target.x() = absolute_ ? w.get('X') * to_mm_ : pos_.x() + w.get('X') * to_mm_;
+    if (w.have('Y')) target.y() = absolute_ ? w.get('Y') * to_mm_ : pos_.y() + w.get('Y') * to_mm_;
+    const bool cutting = motion_ != 0 && (!uses_spindle_ || spindle_on_) && z_ <= 0;
+    if (!cutting) {
+      flush();
+      pos_ = target;
+      return;
+    }
+    if (run_.empty()) {
+      BulgeVertex v;
+      v.p = pos_;
+      run_.push_back(v);
+      run_label_ = "from line " + std::to_string(n_);
+      run_depth_ = z_given_ ? z_ : std::nan("");
+    }
+    if (motion_ == 2 || motion_ == 3) {
+      arc(w, target);
+    } else {
+      BulgeVertex v;
+      v.p = target;
+      run_.push_back(v);
+    }
+    pos_ = target;
+  }
+
+  void arc(const LineWords& w, const Point2& target) {
+    Point2 centre;
+    if (w.have('R')) {
+      // Radius form: centre on the chord's bisector; R < 0 means the long way round.
+      const double rv = w.get('R');
+      const Point2 chord = target - pos_;
+      const double c = chord.norm();
+      const double r = std::fabs(rv) * to_mm_;
+      if (c < 1e-9) throw ImportError(where_ + ": R-form arc with coinciding ends");
+      if (c > 2 * r + 1e-6)
+        throw ImportError(where_ + ": arc radius R is shorter than half the chord");
+      const double h = std::sqrt(std::max(0.0, r * r - c * c / 4));
+      const Point2 left(-chord.y() / c, chord.x() / c);
+      // G2 with R > 0: centre right of the chord; G3 with R > 0: left.
+      const double side = (motion_ == 3 ? 1.0 : -1.0) * (rv < 0 ? -1.0 : 1.0);
+      centre = 0.5 * (pos_ + target) + left * (h * side);
+    } else {
+      if (!w.have('I') && !w.have('J')) throw ImportError(where_ + ": arc without I/J or R");
+      const Point2 ij(w.get('I') * to_mm_, w.get('J') * to_mm_);
+      centre = arc_absolute_ ? ij : Point2(pos_ + ij);
+    }
+    const double r0 = (pos_ - centre).norm();
+    const double r1 = (target - centre).norm();
+    if (std::fabs(r0 - r1) > 0.002 + 0.001 * r0) {
+      std::ostringstream o;
+      o << where_ << ": arc end is not on the circle (radius " << r0 << " mm at the start, " << r1
+        << " mm at the end)";
+      throw ImportError(o.str());
+    }
+    const double a0 = std::atan2(pos_.y() - centre.y(), pos_.x() - centre.x());
+    const double a1 = std::atan2(target.y() - centre.y(), target.x() - centre.x());
+    double sweep = a1 - a0;
+    if (motion_ == 3) {
+      while (sweep <= 1e-12) sweep += 2 * kPi;
+    } else {
+      while (sweep >= -1e-12) sweep -= 2 * kPi;
+    }
+    // At most half a turn per polyline segment (a bulge cannot describe more).
+    const int parts = std::fabs(sweep) > kPi - 1e-9 ? 2 : 1;
+    for (int k = 1; k <= parts; ++k) {
+      run_.back().bulge = std::tan(sweep / parts / 4);
+      BulgeVertex v;
+      const double a = a0 + sweep * k / parts;
+      v.p = k == parts ? target : Point2(centre + r0 * Point2(std::cos(a), std::sin(a)));
+      run_.push_back(v);
+    }
+  }
+
+  // One line of a G81/G82/G83 cycle: L holes (L > 1 only makes sense in G91).
+  void drill(const LineWords& w) {
+    flush();
+    moved_since_pause_ = true;
+    const int cycle = motion_;
+    if (w.have('R')) cycle_r_ = w.get('R'), have_r_ = true;
+    if (w.have('Z')) cycle_z_ = w.get('Z'), have_z_ = true;
+    if (w.have('P')) cycle_p_ = w.get('P');
+    if (w.have('Q')) cycle_q_ = w.get('Q');
+    if (!have_r_ || !have_z_) {
+      throw ImportError(where_ + ": G" + std::to_string(cycle) + " needs R and Z (given on this " +
+                        "line or earlier in the cycle)");
+    }
+    if (cycle == 82 && cycle_p_ < 0) throw ImportError(where_ + ": G82 P (dwell) is negative");
+    if (cycle == 83 && !(cycle_q_ > 0)) throw ImportError(where_ + ": G83 needs Q > 0 (peck)");
+    const int repeats = w.have('L') ? static_cast<int>(w.get('L')) : 1;
+    if (repeats < 1 || repeats > 10000) throw ImportError(where_ + ": L must be 1..10000");
+    for (int k = 0; k < repeats; ++k) {
+      const double start_z = z_;
+      Point2 at = pos_;
+      double r_mm, bottom_mm;
+      if (absolute_) {
+        if (w.have('X')) at.x() = w.get('X') * to_mm_;
+        if (w.have('Y')) at.y() = w.get('Y') * to_mm_;
+        r_mm = cycle_r_ * to_mm_;
+        bottom_mm = cycle_z_ * to_mm_;
+      } else {
+        // G91: X/Y from the current point, R from the start height, Z from R.
+        at += Point2((w.have('X') ? w.get('X') : 0) * to_mm_,
+                     (w.have('Y') ? w.get('Y') : 0) * to_mm_);
+        r_mm = start_z + cycle_r_ * to_mm_;
+        bottom_mm = r_mm + cycle_z_ * to_mm_;
+      }
+      if (bottom_mm > r_mm) {
+        std::ostringstream o;
+        o << where_ << ": G" << cycle << " bottom Z " << bottom_mm << " mm is above R " << r_mm
+          << " mm";
+        throw ImportError(o.str());
+      }
+      ProgramOp op;
+      op.kind = ProgramOp::kDrill;
+      op.at = at;
+      op.z_start_mm = r_mm;
+      op.z_bottom_mm = bottom_mm;
+      // G98 goes back to the height before the cycle unless that is below R.
+      op.retract_mm = retract_to_r_ ? r_mm : std::max(r_mm, start_z);
+      op.dwell_s = cycle == 82 ? cycle_p_ : 0.0;
+      op.peck_mm = cycle == 83 ? cycle_q_ * to_mm_ : 0.0;
+      op.feed_mm_per_s = feed_ * to_mm_ / 60.0;
+      add(op);
+      pos_ = at;
+      z_ = op.retract_mm;
+      z_given_ = true;
+    }
+  }
+
+  void pause(const std::string& text, int tool = 0) {
+    flush();
+    const bool told = !message_.empty();  // text is the program's own message
+    message_.clear();
+    // M6 then M0 with nothing in between (pcb2gcode, FlatCAM): one stop for the operator,
+    // with the program's message if either had one.
+    if (!dr_.program.empty() && dr_.program.back().kind == ProgramOp::kPause &&
+        !moved_since_pause_) {
+      ProgramOp& last = dr_.program.back();
+      if (tool != 0) last.tool = tool;
+      if (told) {
+        last.text = last_pause_told_ ? last.text + "; " + text : text;
+        last_pause_told_ = true;
+      }
+      return;
+    }
+    last_pause_told_ = told;
+    ProgramOp op;
+    op.kind = ProgramOp::kPause;
+    op.text = text;
+    op.tool = tool;
+    add(op);
+    moved_since_pause_ = false;
+  }
+
+  void spindle(bool on) {
+    if (on == spindle_on_ && spindle_known_) return;
+    flush();
+    spindle_on_ = on;
+    spindle_known_ = true;
+    ProgramOp op;
+    op.kind = ProgramOp::kSpindle;
+    op.spindle_on = on;
+    add(op);
+  }
+
+  void add(ProgramOp op) {
+    op.source = "line " + std::to_string(n_);
+    if (op.kind != ProgramOp::kDrill) op.z_mm = z_;
+    dr_.program.push_back(op);
+  }
+
+  void warn_once(const std::string& key, const std::string& text) {
+    if (warned_.insert(key).second) dr_.warnings.push_back(text);
+  }
+
+  // Ends the current run of cutting moves: it becomes a curve and a kCut operation.
+  void flush() {
+    if (run_.size() >= 2) {
+      BSpline s = polyline_spline(run_, false);
+      if (!s.control.empty()) {
+        Curve c;
+        c.spline = s;
+        c.kind = "G-code path";
+        c.source = "path #" + std::to_string(dr_.curves.size() + 1) + " (" + run_label_ + ")";
+        dr_.curves.push_back(c);
+        ProgramOp op;
+        op.kind = ProgramOp::kCut;
+        op.curve = static_cast<int>(dr_.curves.size()) - 1;
+        op.depth_mm = run_depth_;
+        op.source = run_label_.substr(5);  // "line N"
+        dr_.program.push_back(op);
+        moved_since_pause_ = true;
+      }
+    }
+    run_.clear();
+  }
+
+  Drawing dr_;
+  const bool uses_spindle_;
+  long n_ = 0;
+  std::string where_;
+  std::string message_;  // "(MSG, ...)" waiting for the next pause
+  double to_mm_ = 1.0;
+  bool inch_seen_ = false, mm_seen_ = false, first_unit_inch_ = false;
+  bool absolute_ = true;
+  bool arc_absolute_ = false;  // G90.1
+  bool retract_to_r_ = false;  // G99 (G98 is the default)
+  int motion_ = 0;             // 0 1 2 3, 81 82 83, -1 after G80
+  bool spindle_on_ = false, spindle_known_ = false;
+  int tool_ = 0;
+  double feed_ = 0.0;  // F in file units per minute
+  Point2 pos_{0, 0};
+  double z_ = 0.0;
+  bool z_given_ = false;  // no Z word yet: cuts take the planner's depth
+  double cycle_r_ = 0, cycle_z_ = 0, cycle_p_ = 0, cycle_q_ = 0;  // sticky cycle words
+  bool have_r_ = false, have_z_ = false;
+  bool moved_since_pause_ = true;
+  bool last_pause_told_ = false;  // the last pause shows the program's message
+  std::vector<BulgeVertex> run_;  // the cutting moves since the last pen-up
+  std::string run_label_;
+  double run_depth_ = 0.0;
+  std::set<std::string> warned_;
 };
 
 }  // namespace
@@ -81,217 +510,25 @@ bool looks_like_gcode(const std::string& text) {
 Drawing import_gcode(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw ImportError(path + ": cannot open the file");
-  Drawing dr;
-  dr.path = path;
-  dr.format = "G-code";
-  dr.units = "mm";
-  State st;
   bool uses_spindle = false;
-  bool units_seen = false;
   {
-    // First pass: does the program switch a spindle or laser at all (M3/M4)?
+    // First pass: does the program switch a spindle or laser at all (M3/M4)? Then only the
+    // moves while it is on cut.
     std::string l;
     std::ifstream scan(path);
-    static const std::regex m34("(^|[^0-9.])M0?[34](\\D|$)", std::regex::icase);
+    static const std::regex m34("(^|[^0-9.])M0*[34](\\D|$)", std::regex::icase);
     while (std::getline(scan, l)) {
       const std::string code = l.substr(0, l.find_first_of("(;"));
       if (std::regex_search(code, m34)) uses_spindle = true;
     }
   }
-  std::vector<BulgeVertex> run;  // the cutting moves since the last pen-up
-  std::string run_label;
-  int run_count = 0;
-  auto flush = [&]() {
-    if (run.size() >= 2) {
-      BSpline s = polyline_spline(run, false);
-      if (!s.control.empty()) {
-        Curve c;
-        c.spline = s;
-        c.kind = "G-code path";
-        c.source = "path #" + std::to_string(++run_count) + " (" + run_label + ")";
-        dr.curves.push_back(c);
-      }
-    }
-    run.clear();
-  };
+  Interpreter interp(path, uses_spindle);
   std::string line;
   long n = 0;
   while (std::getline(in, line)) {
-    ++n;
-    const std::string where = path + ": line " + std::to_string(n);
-    const std::vector<Word> words = parse_line(line, where);
-    bool have_x = false, have_y = false, have_z = false, have_i = false, have_j = false,
-         have_r = false;
-    double x = 0, y = 0, zv = 0, iv = 0, jv = 0, rv = 0;
-    bool motion_word = false;
-    for (const Word& w : words) {
-      const double v = w.value;
-      switch (w.letter) {
-        case 'G': {
-          const int g10 = static_cast<int>(std::lround(v * 10));
-          if (g10 == 0 || g10 == 10 || g10 == 20 || g10 == 30) {
-            st.motion = g10 / 10;
-            motion_word = true;
-          } else if (g10 == 200) {
-            st.to_mm = 25.4;
-            units_seen = true;
-          } else if (g10 == 210) {
-            st.to_mm = 1.0;
-            units_seen = true;
-          } else if (g10 == 900) {
-            st.absolute = true;
-          } else if (g10 == 910) {
-            st.absolute = false;
-          } else if (g10 == 901) {
-            st.arc_absolute = true;
-          } else if (g10 == 911) {
-            st.arc_absolute = false;
-          } else if (g10 == 180 || g10 == 190) {
-            throw ImportError(where + ": G" + std::to_string(g10 / 10) +
-                              " selects an arc plane other than XY; only G17 (XY) is supported");
-          } else if (g10 == 410 || g10 == 420) {
-            throw ImportError(where +
-                              ": cutter compensation (G41/G42) is not supported; use "
-                              "the tool-radius option of this tool instead");
-          } else if (g10 == 170 || g10 == 400 || g10 == 940 || g10 == 640 || g10 == 610 ||
-                     g10 == 800 || g10 == 540 || g10 == 490) {
-            // plane XY, compensation off, feed mode, path mode, cycle off, work offset 1:
-            // nothing to do.
-          } else {
-            std::ostringstream o;
-            o << where << ": G" << v << " is not supported (G0 G1 G2 G3 G17 G20 G21 G40 G90 "
-              << "G91 G90.1 G91.1 are)";
-            throw ImportError(o.str());
-          }
-          break;
-        }
-        case 'M': {
-          const int m = static_cast<int>(std::lround(v));
-          if (m == 3 || m == 4) st.spindle_on = true;
-          if (m == 5 || m == 2 || m == 30) st.spindle_on = false;
-          if (m == 5 || m == 2 || m == 30) flush();
-          break;
-        }
-        case 'X':
-          x = v;
-          have_x = true;
-          break;
-        case 'Y':
-          y = v;
-          have_y = true;
-          break;
-        case 'Z':
-          zv = v;
-          have_z = true;
-          break;
-        case 'I':
-          iv = v;
-          have_i = true;
-          break;
-        case 'J':
-          jv = v;
-          have_j = true;
-          break;
-        case 'R':
-          rv = v;
-          have_r = true;
-          break;
-        case 'K':
-        case 'A':
-        case 'B':
-        case 'C':
-        case 'U':
-        case 'V':
-        case 'W':
-          if (v != 0.0) {
-            throw ImportError(where + ": word " + std::string(1, w.letter) +
-                              " (an axis or arc offset outside the XY plane) is not supported");
-          }
-          break;
-        default:
-          break;  // F S T N P: feed, speed, tool, line number, dwell
-      }
-    }
-    (void)motion_word;
-    if (have_z) {
-      st.z = st.absolute ? zv * st.to_mm : st.z + zv * st.to_mm;
-      if (st.z > 0) flush();  // tool lifted off the work
-    }
-    if (!have_x && !have_y) continue;
-    Point2 target = st.pos;
-    if (have_x) target.x() = st.absolute ? x * st.to_mm : st.pos.x() + x * st.to_mm;
-    if (have_y) target.y() = st.absolute ? y * st.to_mm : st.pos.y() + y * st.to_mm;
-    const bool cutting = st.motion != 0 && (!uses_spindle || st.spindle_on) && st.z <= 0;
-    if (!cutting) {
-      flush();
-      st.pos = target;
-      continue;
-    }
-    if (run.empty()) {
-      BulgeVertex v;
-      v.p = st.pos;
-      run.push_back(v);
-      run_label = "from line " + std::to_string(n);
-    }
-    if (st.motion == 2 || st.motion == 3) {
-      Point2 centre;
-      if (have_r) {
-        // Radius form: centre on the chord's bisector; R < 0 means the long way round.
-        const Point2 chord = target - st.pos;
-        const double c = chord.norm();
-        const double r = std::fabs(rv) * st.to_mm;
-        if (c < 1e-9) throw ImportError(where + ": R-form arc with coinciding ends");
-        if (c > 2 * r + 1e-6)
-          throw ImportError(where + ": arc radius R is shorter than half the chord");
-        const double h = std::sqrt(std::max(0.0, r * r - c * c / 4));
-        const Point2 left(-chord.y() / c, chord.x() / c);
-        // G2 with R > 0: centre right of the chord; G3 with R > 0: left.
-        double side = (st.motion == 3 ? 1.0 : -1.0) * (rv < 0 ? -1.0 : 1.0);
-        centre = 0.5 * (st.pos + target) + left * (h * side);
-      } else {
-        if (!have_i && !have_j) throw ImportError(where + ": arc without I/J or R");
-        const Point2 ij(iv * st.to_mm, jv * st.to_mm);
-        centre = st.arc_absolute ? ij : Point2(st.pos + ij);
-      }
-      const double r0 = (st.pos - centre).norm();
-      const double r1 = (target - centre).norm();
-      if (std::fabs(r0 - r1) > 0.002 + 0.001 * r0) {
-        std::ostringstream o;
-        o << where << ": arc end is not on the circle (radius " << r0 << " mm at the start, " << r1
-          << " mm at the end)";
-        throw ImportError(o.str());
-      }
-      const double a0 = std::atan2(st.pos.y() - centre.y(), st.pos.x() - centre.x());
-      const double a1 = std::atan2(target.y() - centre.y(), target.x() - centre.x());
-      double sweep = a1 - a0;
-      if (st.motion == 3) {
-        while (sweep <= 1e-12) sweep += 2 * kPi;
-      } else {
-        while (sweep >= -1e-12) sweep -= 2 * kPi;
-      }
-      // At most half a turn per polyline segment (a bulge cannot describe more).
-      const int parts = std::fabs(sweep) > kPi - 1e-9 ? 2 : 1;
-      for (int k = 1; k <= parts; ++k) {
-        run.back().bulge = std::tan(sweep / parts / 4);
-        BulgeVertex v;
-        const double a = a0 + sweep * k / parts;
-        v.p = k == parts ? target : Point2(centre + r0 * Point2(std::cos(a), std::sin(a)));
-        run.push_back(v);
-      }
-    } else {
-      BulgeVertex v;
-      v.p = target;
-      run.push_back(v);
-    }
-    st.pos = target;
+    if (!interp.line(line, ++n)) break;
   }
-  flush();
-  if (!units_seen) {
-    dr.units = "mm (assumed)";
-    dr.warnings.push_back(path + ": no G20/G21: coordinates taken as millimetres");
-  }
-  dr.entity_counts["G-code path"] = static_cast<int>(dr.curves.size());
-  return dr;
+  return interp.finish();
 }
 
 }  // namespace host

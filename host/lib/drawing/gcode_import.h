@@ -1,5 +1,7 @@
-// G-code import (RS-274 / LinuxCNC dialect subset): G0/G1/G2/G3 in the XY plane become
-// lines and exact arcs; each run of cutting moves becomes one curve.
+// G-code import (RS-274 / LinuxCNC dialect, as CAM programs such as pcb2gcode and FlatCAM
+// write it): G0/G1/G2/G3 in the XY plane become lines and exact arcs, each run of cutting
+// moves one curve; dwells, pauses (M0/M1/M6), spindle switching and drilling cycles
+// (G81/G82/G83) become program operations, kept in file order (Drawing::program).
 #ifndef HOST_LIB_DRAWING_GCODE_IMPORT_H
 #define HOST_LIB_DRAWING_GCODE_IMPORT_H
 

@@ -1,9 +1,12 @@
 // Chooses the importer from the file's content and extension; refuses formats that are
 // not drawings of curves with a message saying what to do instead.
-#include <algorithm>  // std::transform
-#include <fstream>    // std::ifstream
-#include <new>        // std::bad_alloc
-#include <sstream>    // std::ostringstream
+#include <algorithm>   // std::transform
+#include <cerrno>      // errno
+#include <cstring>     // std::strerror
+#include <filesystem>  // std::filesystem::status
+#include <fstream>     // std::ifstream
+#include <new>         // std::bad_alloc
+#include <sstream>     // std::ostringstream
 
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/drawing/dxf_import.h"
@@ -47,17 +50,39 @@ bool is_excellon(const std::string& ext, const std::string& text) {
 
 }  // namespace
 
+void check_readable(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (st.type() == std::filesystem::file_type::not_found) {
+    throw ImportError(path + ": cannot open the file: no such file");
+  }
+  if (st.type() == std::filesystem::file_type::directory) {
+    throw ImportError(path + ": is a directory, not a drawing file");
+  }
+  errno = 0;
+  std::ifstream probe(path, std::ios::binary);
+  if (!probe) {
+    const int why = errno;
+    throw ImportError(path + ": cannot open the file: " +
+                      (why != 0 ? std::strerror(why) : std::string("unknown reason")));
+  }
+  if (st.type() != std::filesystem::file_type::regular) {
+    throw ImportError(path + ": not a regular file (a device, pipe or socket)");
+  }
+}
+
 Extents Drawing::extents() const {
   Extents e;
   for (const Curve& c : curves) e.add(curve_extents(c.spline));
+  for (const ProgramOp& op : program)
+    if (op.kind == ProgramOp::kDrill) e.add(op.at);
   return e;
 }
 
 namespace {
 
 Drawing import_by_format(const std::string& path) {
-  std::ifstream probe(path, std::ios::binary);
-  if (!probe) throw ImportError(path + ": cannot open the file");
+  check_readable(path);
   const std::string ext = extension(path);
   const std::string text = head(path);
   if (text.empty()) throw ImportError(path + ": the file is empty");

@@ -42,13 +42,17 @@ struct PcbLayer {
   LayerKind kind = LayerKind::kUnknown;
   // Copper (dark minus clear, step-and-repeat applied), as non-overlapping polygons with
   // holes (Clipper orientation: outers positive, holes negative). For an outline layer: the
-  // drawn profile strokes as closed or open paths along their centre lines.
+  // drawn profile strokes as closed or open paths along their centre lines (strokes that meet
+  // end to end are joined; a closed one repeats its first point at the end).
   ClipperLib::Paths polygons_nm;
   bool outline_paths_are_open = false;  // outline layer: polygons_nm holds centre lines
   std::vector<Hole> holes;              // drill layers
   std::vector<Slot> slots;              // drill layers
   std::vector<std::string> notes;       // deprecated forms accepted, attributes read
   double arc_tolerance_nm = 0;          // chord error used where arcs were flattened
+  // What the file declared, for `engraver info`.
+  std::string units;           // "mm" or "inch"
+  int apertures_or_tools = 0;  // apertures (Gerber) or tools (Excellon) defined
 };
 
 // A file that cannot be read faithfully. what() names the file, the line and the problem.

@@ -5,70 +5,21 @@
 #include <cmath>    // std::llround, std::isfinite
 #include <sstream>  // std::ostringstream
 
-#include "host/lib/plan/firmware_spline.h"
+#include "host/lib/plan/nearest_end.h"
+#include "host/lib/plan/plan_steps.h"
 
 namespace host {
 
-namespace {
+using namespace plan_detail;
 
-int32_t to_um(double mm) {
-  return static_cast<int32_t>(std::llround(mm * 1000.0));
-}
-
-core::PointUm to_um(const Point2& p) {
-  core::PointUm q;
-  q.x_um = to_um(p.x());
-  q.y_um = to_um(p.y());
-  return q;
-}
-
-// Length of a polyline approximation of the curve.
-double curve_length(const BSpline& s) {
-  const std::vector<Point2> pts = sample(s, 0.001);
-  double len = 0;
-  for (size_t i = 1; i < pts.size(); ++i) len += (pts[i] - pts[i - 1]).norm();
-  return len;
-}
-
-// True when the curve is exactly a chain of straight segments through its control points.
-bool is_polyline(const BSpline& s) {
-  if (s.degree != 1) return false;
-  return s.knots[0] == s.knots[1] && s.knots[s.knots.size() - 1] == s.knots[s.knots.size() - 2];
-}
-
-// "curve N (entity)" with N the drawing's curve number (as `engraver info` shows it).
-std::string describe(const PlannedCurve& c) {
-  std::ostringstream o;
-  o << "curve " << c.drawing_index << " (" << c.source << ")";
-  return o.str();
-}
-
-// Refuses a curve that leaves the work area (tool centre, including the tool radius).
-void check_work_area(const PlannedCurve& c, double radius, const PlanOptions& o) {
-  for (const Point2& p : sample(c.spline, 0.001)) {
-    const double lo_x = p.x() - radius, hi_x = p.x() + radius;
-    const double lo_y = p.y() - radius, hi_y = p.y() + radius;
-    std::ostringstream e;
-    if (lo_x < -1e-6 || hi_x > o.work_width_mm + 1e-6 || lo_y < -1e-6 ||
-        hi_y > o.work_height_mm + 1e-6) {
-      e << describe(c) << " leaves the work area (0..";
-      e << o.work_width_mm << " x 0.." << o.work_height_mm << " mm): it reaches (" << p.x() << ", "
-        << p.y() << ") mm in the machine frame";
-      if (radius > 0) e << " with the tool radius " << radius << " mm";
-      e << ". Scale the drawing down (--scale) or use a larger work area (--work W H).";
-      throw PlanError(e.str());
-    }
-  }
-}
-
-}  // namespace
+// Defined in program_plan.cpp: the planner for programs (G-code), which keeps their order.
+JobPlan plan_program(const Drawing& drawing, const PlanOptions& options);
 
 JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
-  if (drawing.curves.empty())
+  if (drawing.curves.empty() && drawing.program.empty())
     throw PlanError(drawing.path + ": the drawing has nothing to engrave");
-  if (!(o.scale > 0) || !std::isfinite(o.scale)) throw PlanError("scale must be positive");
-  if (!(o.feed_mm_per_s > 0) || !(o.plunge_mm_per_s > 0)) throw PlanError("feeds must be positive");
-  if (!(o.tool_radius_mm >= 0)) throw PlanError("tool radius must not be negative");
+  check_options(o);
+  if (!drawing.program.empty()) return plan_program(drawing, o);
   JobPlan plan;
   // Scale, then put the lower-left corner of the extents at (margin, margin).
   Eigen::Matrix2d scale = Eigen::Matrix2d::Identity() * o.scale;
@@ -78,36 +29,31 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
     scaled.push_back(transformed(c.spline, scale, Point2(0, 0)));
     ext.add(curve_extents(scaled.back()));
   }
-  plan.offset_mm = Point2(o.margin_mm, o.margin_mm) - ext.min;
+  plan.offset_mm =
+      o.fixed_offset ? o.offset_mm : Point2(Point2(o.margin_mm, o.margin_mm) - ext.min);
   for (BSpline& s : scaled) s = transformed(s, Eigen::Matrix2d::Identity(), plan.offset_mm);
   const double radius = o.tool_side == ToolSide::kCentre ? 0.0 : o.tool_radius_mm;
 
   // Greedy nearest neighbour from the zero, each curve either way round.
-  std::vector<bool> used(scaled.size(), false);
   std::vector<Point2> starts, ends;
   for (const BSpline& s : scaled) {
     starts.push_back(start_point(s));
     ends.push_back(end_point(s));
   }
+  NearestEnd index(starts, ends);
   Point2 at(0, 0);
   for (size_t n = 0; n < scaled.size(); ++n) {
-    size_t best = 0;
+    if (o.progress && n % 4096 == 0) o.progress(n, scaled.size());
+    size_t best = n;
     bool best_rev = false;
-    double best_d = 1e300;
-    for (size_t i = 0; i < scaled.size(); ++i) {
-      if (used[i]) continue;
-      if (!o.reorder) {
-        best = i;
-        best_rev = false;
-        best_d = (starts[i] - at).norm();
-        break;
-      }
-      const double ds = (starts[i] - at).norm();
-      const double de = (ends[i] - at).norm();
-      if (ds < best_d) best_d = ds, best = i, best_rev = false;
-      if (de < best_d) best_d = de, best = i, best_rev = true;
+    double best_d = (starts[n] - at).norm();
+    if (o.reorder) {
+      const NearestEnd::Hit hit = index.nearest(at);
+      best = hit.index;
+      best_rev = hit.reversed;
+      best_d = hit.distance;
     }
-    used[best] = true;
+    index.use(best);
     PlannedCurve pc;
     pc.spline = best_rev ? reversed(scaled[best]) : scaled[best];
     pc.drawing_index = static_cast<int>(best);
@@ -119,10 +65,12 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
   }
 
   // Work area, before anything else is produced.
+  std::string culprit;
   for (size_t i = 0; i < plan.curves.size(); ++i) {
-    check_work_area(plan.curves[i], radius, o);
+    if (culprit.empty()) culprit = first_exit(plan.curves[i], radius, o);
     plan.extents_mm.add(curve_extents(plan.curves[i].spline));
   }
+  check_job_fits(plan.extents_mm, radius, o, culprit);
 
   const int32_t feed = to_um(o.feed_mm_per_s);
   const int32_t plunge = to_um(o.plunge_mm_per_s);
@@ -169,34 +117,7 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
       offset = to_um(o.tool_radius_mm) * (o.tool_side == ToolSide::kLeft ? 1 : -1);
       if (c.reversed) offset = -offset;
     }
-    if (o.lines_as_feeds && offset == 0 && is_polyline(c.spline)) {
-      for (size_t k = 1; k < c.spline.control.size(); ++k) {
-        PlanStep f;
-        f.kind = PlanStep::kFeed;
-        f.to = to_um(c.spline.control[k]);
-        f.feed_um_per_s = feed;
-        f.curve = static_cast<int>(i);
-        plan.steps.push_back(f);
-      }
-    } else {
-      std::vector<core::Spline> pieces;
-      try {
-        pieces = to_firmware_splines(c.spline);
-      } catch (const ConversionError& e) {
-        throw PlanError(describe(c) + ": " + e.what());
-      }
-      for (size_t k = 0; k < pieces.size(); ++k) {
-        PlanStep s;
-        s.kind = PlanStep::kSpline;
-        s.spline = pieces[k];
-        s.to = to_um(k + 1 == pieces.size() ? end_point(c.spline)
-                                            : end_point(from_firmware_spline(pieces[k])));
-        s.feed_um_per_s = feed;
-        s.tool_offset_um = offset;
-        s.curve = static_cast<int>(i);
-        plan.steps.push_back(s);
-      }
-    }
+    append_curve_steps(c, static_cast<int>(i), offset, o, &plan);
     plan.cut_length_mm += curve_length(c.spline);
     at = end_point(c.spline);
   }

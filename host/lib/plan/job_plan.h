@@ -6,10 +6,12 @@
 
 #include <stdint.h>  // int32_t
 
-#include <stdexcept>  // std::runtime_error
-#include <string>     // std::string
-#include <vector>     // std::vector
+#include <functional>  // std::function
+#include <stdexcept>   // std::runtime_error
+#include <string>      // std::string
+#include <vector>      // std::vector
 
+#include "firmware/config/machine_config.h"
 #include "firmware/core/spline.h"
 #include "host/lib/drawing/drawing.h"
 
@@ -19,9 +21,21 @@ namespace host {
 // drawn in the file (kept when the planner reverses a curve: the offset sign flips).
 enum class ToolSide { kCentre, kLeft, kRight };
 
+// How holes of a drilling cycle (G81/G82/G83) are sent: as one drill step each (the
+// controller's drill command), or as Z moves (plunge, dwell, retract) that any controller
+// version runs. Holes with a dwell at the bottom (G82) or pecks (G83) always use Z moves.
+enum class DrillMode { kDrillCommand, kZMoves };
+
+// The controller's travel from the zero (firmware/config/machine_config.h), in mm.
+double machine_travel_mm(int axis);
+
 struct PlanOptions {
-  double scale = 1.0;            // applied to the drawing (mm) before anything else
-  double margin_mm = 0.0;        // the drawing's lower-left corner goes to (margin, margin)
+  double scale = 1.0;      // applied to the drawing (mm) before anything else
+  double margin_mm = 0.0;  // the drawing's lower-left corner goes to (margin, margin)
+  // Instead: machine = drawing * scale + offset_mm, the same for every file of one board
+  // (the back, drill and outline programs of a PCB then line up).
+  bool fixed_offset = false;
+  Point2 offset_mm{0, 0};
   double work_width_mm = 297.0;  // work area: x in [0, width], y in [0, height] (A4)
   double work_height_mm = 210.0;
   bool reorder = true;               // greedy nearest-neighbour ordering, with reversal
@@ -33,6 +47,22 @@ struct PlanOptions {
   double feed_mm_per_s = 10.0;   // cutting feed for splines and straight feeds
   double plunge_mm_per_s = 2.0;  // Z feed for pen down
   bool lines_as_feeds = true;    // a single straight segment becomes a kFeed, not a spline
+  // The controller's travel: the work area may not be larger, Z moves stay within +-Z.
+  double travel_width_mm = machine_travel_mm(config::kAxisX);
+  double travel_height_mm = machine_travel_mm(config::kAxisY);
+  double travel_z_mm = machine_travel_mm(config::kAxisZ);
+  // Programs with an order (G-code, Drawing::program non-empty):
+  bool file_depths = true;  // cut at the program's own Z where it gives one (else z_down_mm)
+  DrillMode drill_mode = DrillMode::kDrillCommand;
+  double drill_feed_max_mm_per_s = 5.0;  // the file's plunge feed is capped here (Z axis)
+  // Highest the tool goes for a pause (the program's tool-change height is capped here):
+  // Z is zeroed at the work, about mid-travel, so half the Z travel is above it.
+  double pause_z_max_mm = machine_travel_mm(config::kAxisZ) / 2;
+  // Runs of short G1 moves are sent as cubic B-splines within this distance of the
+  // program's path (0: every move as a straight feed).
+  double fit_tolerance_mm = 0.005;
+  // Called now and then while the curves are ordered (done, total), for a progress bar.
+  std::function<void(size_t, size_t)> progress;
 };
 
 // One machine action. Which fields mean something depends on kind.
@@ -80,6 +110,7 @@ struct JobPlan {
   double cut_length_mm = 0.0;        // pen-down path length (approximate, from sampling)
   double rapid_length_mm = 0.0;      // pen-up X/Y travel
   int pen_lifts = 0;                 // kPenUp steps between curves
+  int holes = 0;                     // drilled holes (kDrill steps or their Z moves)
 };
 
 // A job that must not be sent (out of the work area, a curve the firmware cannot hold,
@@ -89,7 +120,9 @@ class PlanError : public std::runtime_error {
   explicit PlanError(const std::string& msg) : std::runtime_error(msg) {}
 };
 
-// Plans the whole job; every check is done before anything is returned.
+// Plans the whole job; every check is done before anything is returned. A drawing without
+// a program (DXF) is reordered for short rapids; a program (G-code) keeps the file's order
+// and its pauses, dwells, spindle switching and drilling (see program_plan.cpp).
 JobPlan plan_job(const Drawing& drawing, const PlanOptions& options);
 
 }  // namespace host

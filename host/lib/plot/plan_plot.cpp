@@ -11,11 +11,16 @@ Point2 mm(const core::PointUm& p) {
 
 }  // namespace
 
-PlotInput plot_input_from_plan(const JobPlan& plan, const std::string& title, double tol_mm) {
+PlotInput plot_input_from_plan(const JobPlan& plan, const std::string& title, double tol_mm,
+                               bool with_planned_path) {
   PlotInput in;
   in.title = title;
-  for (const PlannedCurve& c : plan.curves)
-    in.drawing_curves_mm.push_back(sample(c.spline, tol_mm));
+  in.drawing_curves_mm.reserve(plan.curves.size());
+  for (const PlannedCurve& c : plan.curves) {
+    const bool straight = c.spline.degree == 1 && c.spline.weights.empty();
+    in.drawing_curves_mm.push_back(straight ? c.spline.control : sample(c.spline, tol_mm));
+  }
+  if (!with_planned_path) return in;
   Point2 at(0, 0);
   bool down = false;
   int last_curve = -1;

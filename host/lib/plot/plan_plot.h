@@ -8,8 +8,10 @@
 
 namespace host {
 
-// Curves sampled at tol_mm; the tool path follows the plan's steps.
-PlotInput plot_input_from_plan(const JobPlan& plan, const std::string& title, double tol_mm = 0.01);
+// Curves sampled at tol_mm (straight lines as their ends); the tool path follows the plan's
+// steps unless with_planned_path is false (a simulated path goes there instead).
+PlotInput plot_input_from_plan(const JobPlan& plan, const std::string& title, double tol_mm = 0.01,
+                               bool with_planned_path = true);
 
 }  // namespace host
 

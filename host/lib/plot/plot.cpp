@@ -4,10 +4,11 @@
 #include <cairo-svg.h>  // cairo_svg_surface_create
 #include <cairo.h>      // cairo_*
 
-#include <algorithm>  // std::min
-#include <cmath>      // std::pow, std::floor
-#include <fstream>    // std::ifstream, std::ofstream
-#include <sstream>    // std::ostringstream
+#include <algorithm>   // std::min
+#include <cmath>       // std::pow, std::floor
+#include <fstream>     // std::ifstream, std::ofstream
+#include <functional>  // std::function
+#include <sstream>     // std::ostringstream
 
 namespace host {
 
@@ -24,20 +25,124 @@ const Rgb kDrawingColour = {0.55, 0.75, 0.95};  // light blue, wide: the drawing
 const Rgb kCutColour = {0.75, 0.05, 0.05};      // dark red, thin: the pen-down path
 const Rgb kRapidColour = {0.45, 0.45, 0.45};    // grey dashed: pen-up moves
 
+const double kMinStepPx = 0.5;          // thinner detail than this is not visible
+const size_t kMaxSvgVertices = 150000;  // a layer with more is an image in the SVG (~2.5 MB)
+
 void set_colour(cairo_t* cr, const Rgb& c) {
   cairo_set_source_rgb(cr, c.r, c.g, c.b);
 }
 
-void polyline(cairo_t* cr, const PlotFrame& f, const std::vector<Point2>& pts) {
-  if (pts.empty()) return;
-  Point2 p = f.to_px(pts[0]);
-  cairo_move_to(cr, p.x(), p.y());
+// Adds a polyline to the current path, thinned to the plot's resolution: a vertex closer
+// than half a pixel to the previous one adds nothing a person could see. Returns the
+// vertices added.
+size_t add_polyline(cairo_t* cr, const PlotFrame& f, const std::vector<Point2>& pts) {
+  if (pts.empty()) return 0;
+  Point2 last = f.to_px(pts[0]);
+  cairo_move_to(cr, last.x(), last.y());
+  size_t n = 1;
   for (size_t i = 1; i < pts.size(); ++i) {
-    p = f.to_px(pts[i]);
+    const Point2 p = f.to_px(pts[i]);
+    const bool end = i + 1 == pts.size();
+    if (!end && std::abs(p.x() - last.x()) < kMinStepPx && std::abs(p.y() - last.y()) < kMinStepPx)
+      continue;
     cairo_line_to(cr, p.x(), p.y());
+    last = p;
+    ++n;
   }
-  if (pts.size() == 1) cairo_line_to(cr, p.x() + 0.01, p.y());
+  if (n == 1) cairo_line_to(cr, last.x() + 0.01, last.y());
+  return n;
+}
+
+// One layer (a style and its polylines) as one path, stroked once.
+struct Layer {
+  Rgb colour;
+  double width;
+  bool dashed;
+  std::function<void(const std::function<void(const std::vector<Point2>&)>&)> each;
+};
+
+// Vertices the layer takes after thinning (what its SVG path would hold).
+size_t layer_vertices(const Layer& layer, const PlotFrame& f) {
+  cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_A8, 1, 1);
+  cairo_t* cr = cairo_create(s);
+  size_t n = 0;
+  layer.each([&](const std::vector<Point2>& pts) {
+    n += add_polyline(cr, f, pts);
+    cairo_new_path(cr);
+  });
+  cairo_destroy(cr);
+  cairo_surface_destroy(s);
+  return n;
+}
+
+void stroke_layer(cairo_t* cr, const Layer& layer, const PlotFrame& f) {
+  set_colour(cr, layer.colour);
+  cairo_set_line_width(cr, layer.width);
+  const double dash[] = {6.0, 4.0};
+  cairo_set_dash(cr, dash, layer.dashed ? 2 : 0, 0);
+  size_t in_path = 0;
+  layer.each([&](const std::vector<Point2>& pts) {
+    in_path += add_polyline(cr, f, pts);
+    if (in_path > 100000) {  // keeps cairo's path buffer bounded
+      cairo_stroke(cr);
+      in_path = 0;
+    }
+  });
   cairo_stroke(cr);
+  cairo_set_dash(cr, dash, 0, 0);
+}
+
+// A layer too big for vectors, as pixels: round pen stamps every half pixel along each
+// polyline into a coverage mask, painted in the layer's colour (dashes are not drawn: at
+// this density they would not show). cairo's stroker takes minutes for a million wide strokes;
+// this takes well under a second.
+void raster_layer(cairo_t* cr, const Layer& layer, const PlotFrame& f, const PlotInput& in) {
+  const int w = in.width_px, h = in.height_px;
+  cairo_surface_t* mask = cairo_image_surface_create(CAIRO_FORMAT_A8, w, h);
+  cairo_surface_flush(mask);
+  unsigned char* data = cairo_image_surface_get_data(mask);
+  const int stride = cairo_image_surface_get_stride(mask);
+  const double r = std::max(0.5, layer.width / 2);
+  const int ri = static_cast<int>(std::ceil(r));
+  auto stamp = [&](double x, double y) {
+    const long cx = std::lround(x), cy = std::lround(y);
+    for (int dy = -ri; dy <= ri; ++dy) {
+      const long yy = cy + dy;
+      if (yy < 0 || yy >= h) continue;
+      for (int dx = -ri; dx <= ri; ++dx) {
+        const long xx = cx + dx;
+        if (xx >= 0 && xx < w && dx * dx + dy * dy <= r * r + 0.25) data[yy * stride + xx] = 255;
+      }
+    }
+  };
+  layer.each([&](const std::vector<Point2>& pts) {
+    for (size_t i = 0; i < pts.size(); ++i) {
+      const Point2 b = f.to_px(pts[i]);
+      if (i == 0) {
+        stamp(b.x(), b.y());
+        continue;
+      }
+      const Point2 a = f.to_px(pts[i - 1]);
+      const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / 0.5)));
+      for (int k = 1; k <= n; ++k) {
+        const double t = static_cast<double>(k) / n;
+        stamp(a.x() + (b.x() - a.x()) * t, a.y() + (b.y() - a.y()) * t);
+      }
+    }
+  });
+  cairo_surface_mark_dirty(mask);
+  set_colour(cr, layer.colour);
+  cairo_mask_surface(cr, mask, 0, 0);
+  cairo_surface_destroy(mask);
+}
+
+// Draws a layer: as vectors, or, past kMaxSvgVertices, as an image of the plot's size (the
+// SVG stays a few MB and the drawing fast whatever the job's size).
+void draw_layer(cairo_t* cr, const Layer& layer, const PlotFrame& f, const PlotInput& in) {
+  if (layer_vertices(layer, f) <= kMaxSvgVertices)
+    stroke_layer(cr, layer, f);
+  else
+    raster_layer(cr, layer, f, in);
 }
 
 // A round length (1, 2 or 5 times a power of ten) near a fifth of the plot width.
@@ -73,25 +178,20 @@ void render(cairo_t* cr, const PlotInput& in) {
   cairo_paint(cr);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  // Drawing underneath, wide.
-  set_colour(cr, kDrawingColour);
-  cairo_set_line_width(cr, 5.0);
-  for (const auto& c : in.drawing_curves_mm) polyline(cr, f, c);
-  // Tool path on top.
-  const double dash[] = {6.0, 4.0};
-  for (const ToolPathSegment& s : in.tool_path) {
-    if (s.pen_down) {
-      set_colour(cr, kCutColour);
-      cairo_set_line_width(cr, 1.2);
-      cairo_set_dash(cr, dash, 0, 0);
-    } else {
-      set_colour(cr, kRapidColour);
-      cairo_set_line_width(cr, 0.8);
-      cairo_set_dash(cr, dash, 2, 0);
-    }
-    polyline(cr, f, s.points_mm);
-  }
-  cairo_set_dash(cr, dash, 0, 0);
+  // Drawing underneath, wide; the tool path on top: pen down solid, pen up dashed.
+  const Layer drawing{kDrawingColour, 5.0, false, [&](const auto& fn) {
+                        for (const auto& c : in.drawing_curves_mm) fn(c);
+                      }};
+  auto tool = [&](bool down) {
+    return [&in, down](const std::function<void(const std::vector<Point2>&)>& fn) {
+      for (const ToolPathSegment& s : in.tool_path) {
+        if (s.pen_down == down) fn(s.points_mm);
+      }
+    };
+  };
+  draw_layer(cr, drawing, f, in);
+  draw_layer(cr, Layer{kRapidColour, 0.8, true, tool(false)}, f, in);
+  draw_layer(cr, Layer{kCutColour, 1.2, false, tool(true)}, f, in);
   // Title.
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
   cairo_set_font_size(cr, 16);

@@ -397,6 +397,7 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
         state = JobState::kFailed;
         break;
       case JobOutcome::kLinkLost:
+      case JobOutcome::kStalled:  // the sender's watchdog: answered, but no progress
         state = JobState::kInterrupted;
         break;
     }

@@ -10,12 +10,14 @@ namespace host::sim {
 
 namespace {
 
-double point_segment_distance(const Point2& p, const Point2& a, const Point2& b) {
-  const Point2 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  double t = len2 > 0 ? (p - a).dot(ab) / len2 : 0.0;
-  t = std::max(0.0, std::min(1.0, t));
-  return (a + t * ab - p).norm();
+// Plain doubles: this runs for every pen-down sample of a job (millions), also in Debug.
+double point_segment_distance2(double px, double py, double ax, double ay, double bx, double by) {
+  const double abx = bx - ax, aby = by - ay;
+  const double len2 = abx * abx + aby * aby;
+  double t = len2 > 0 ? ((px - ax) * abx + (py - ay) * aby) / len2 : 0.0;
+  t = t < 0 ? 0 : (t > 1 ? 1 : t);
+  const double dx = ax + t * abx - px, dy = ay + t * aby - py;
+  return dx * dx + dy * dy;
 }
 
 }  // namespace
@@ -50,24 +52,44 @@ NearestSegment::NearestSegment(const std::vector<std::vector<Point2>>& polylines
 }
 
 double NearestSegment::distance(const Point2& p) const {
-  double best = std::numeric_limits<double>::infinity();
-  if (segments_.empty()) return best;
-  const long cx = static_cast<long>(std::floor((p.x() - min_.x()) / cell_));
-  const long cy = static_cast<long>(std::floor((p.y() - min_.y()) / cell_));
+  if (segments_.empty()) return std::numeric_limits<double>::infinity();
+  const double px = p.x(), py = p.y();
+  auto dist2 = [&](int s) {
+    const Segment& g = segments_[static_cast<size_t>(s)];
+    return point_segment_distance2(px, py, g.a.x(), g.a.y(), g.b.x(), g.b.y());
+  };
+  // Consecutive queries follow the tool: the previous answer bounds the search at once.
+  double best2 = dist2(hint_);
+  int best_s = hint_;
+  const long cx = static_cast<long>(std::floor((px - min_.x()) / cell_));
+  const long cy = static_cast<long>(std::floor((py - min_.y()) / cell_));
   const long max_ring = std::max(nx_, ny_) + std::labs(cx) + std::labs(cy) + 1;
+  // From p to the nearest side of its own cell: what ring 1 is at least away.
+  const double fx = px - min_.x() - cx * cell_, fy = py - min_.y() - cy * cell_;
+  const double edge = std::max(0.0, std::min(std::min(fx, cell_ - fx), std::min(fy, cell_ - fy)));
   for (long ring = 0; ring <= max_ring; ++ring) {
-    // Every segment within ring-1 cells has been seen: stop when that bound beats them.
-    if (ring > 0 && best <= (ring - 1) * cell_) break;
+    // Every segment nearer than the ring's inner bound has been seen: stop when one beats it.
+    const double bound = (ring - 1) * cell_ + edge;
+    if (ring > 0 && best2 <= bound * bound) break;
     for (long ix = std::max(0L, cx - ring); ix <= std::min(nx_ - 1, cx + ring); ++ix) {
+      const bool edge_x = std::labs(ix - cx) == ring;
       for (long iy = std::max(0L, cy - ring); iy <= std::min(ny_ - 1, cy + ring); ++iy) {
-        if (std::max(std::labs(ix - cx), std::labs(iy - cy)) != ring) continue;
+        if (!edge_x && std::labs(iy - cy) != ring) {
+          iy = cy + ring - 1;  // inside the ring: jump to its far edge
+          continue;
+        }
         for (int s : cells_[static_cast<size_t>(ix * ny_ + iy)]) {
-          best = std::min(best, point_segment_distance(p, segments_[s].a, segments_[s].b));
+          const double d2 = dist2(s);
+          if (d2 < best2) {
+            best2 = d2;
+            best_s = s;
+          }
         }
       }
     }
   }
-  return best;
+  hint_ = best_s;
+  return std::sqrt(best2);
 }
 
 }  // namespace host::sim

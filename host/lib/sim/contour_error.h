@@ -25,6 +25,7 @@ class NearestSegment {
   long nx_ = 0, ny_ = 0;
   std::vector<Segment> segments_;
   std::vector<std::vector<int>> cells_;  // nx_ * ny_ lists of segment indices
+  mutable int hint_ = 0;                 // the previous query's nearest segment
 };
 
 }  // namespace host::sim

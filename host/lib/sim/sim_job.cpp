@@ -5,8 +5,11 @@
 #include <chrono>  // steady_clock
 #include <thread>  // std::thread
 
-#include "host/lib/sim/contour_error.h"
+#include <time.h>  // clock_gettime
+
+#include "host/lib/sim/sim_link.h"
 #include "host/lib/sim/sim_server.h"
+#include "host/lib/sim/trace_meter.h"
 
 namespace host::sim {
 
@@ -32,27 +35,32 @@ std::vector<bool> pen_down_samples(const std::vector<ToolSample>& trace, const J
 
 namespace {
 
-// Path lengths, motion time and contour error of the trace against the planned curves.
-void measure(const JobPlan& plan, SimJobResult* r) {
-  const std::vector<bool> down = pen_down_samples(r->trace, plan);
-  std::vector<std::vector<Point2>> reference;
-  for (const PlannedCurve& c : plan.curves) reference.push_back(sample(c.spline, 0.0002));
-  const NearestSegment nearest(reference);
-  uint64_t first_move = 0, last_move = 0;
-  for (size_t i = 1; i < r->trace.size(); ++i) {
-    const ToolSample& a = r->trace[i - 1];
-    const ToolSample& b = r->trace[i];
-    if (first_move == 0) first_move = a.t_ms;
-    last_move = b.t_ms;
-    const double d = std::hypot(b.x_mm - a.x_mm, b.y_mm - a.y_mm);
-    (down[i] ? r->cut_mm : r->rapid_mm) += d;
-    if (down[i] && down[i - 1] && d > 0) r->cut_s += (b.t_ms - a.t_ms) / 1000.0;
-    if (down[i] && !reference.empty()) {
-      const double e = nearest.distance(Point2(b.x_mm, b.y_mm)) * 1000.0;
-      if (e > r->max_contour_error_um) r->max_contour_error_um = e;
-    }
-  }
-  r->motion_s = (last_move - first_move) / 1000.0;
+// Opens a session, encodes the plan for the controller's payload size and runs it.
+void stream_job(Link& link, const JobPlan& plan, const SimJobOptions& options,
+                const SenderOptions& sender_options, SimJobResult* r) {
+  Sender sender(link, sender_options);
+  const proto::SessionReply caps = sender.open_session();
+  EncodeOptions enc = options.encode;
+  enc.max_payload = std::min<unsigned>(enc.max_payload, caps.max_payload);
+  enc.controller = &caps;
+  const std::vector<QueuedCommand> commands = encode_job(plan, enc);
+  r->commands = commands.size();
+  r->wire_bytes = wire_bytes(commands);
+  r->outcome = sender.run(commands, [&](const Progress& p) {
+    if (options.on_progress) options.on_progress(sender, p);
+  });
+  r->message = sender.message();
+  r->stats = sender.stats();
+}
+
+}  // namespace
+
+namespace {
+
+double thread_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + t.tv_nsec * 1e-9;
 }
 
 }  // namespace
@@ -60,50 +68,65 @@ void measure(const JobPlan& plan, SimJobResult* r) {
 SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
   SimJobResult r;
   SimMachine machine(options.machine);
-  ServerOptions so;
-  so.port = 0;
-  so.realtime = options.realtime;
-  SimServer server(machine, so);
-  std::atomic<bool> stop{false};
-  uint64_t simulated = 0;
+  TraceMeter meter(plan, options.trace_step_mm);
+  meter.add(machine.position());
+  machine.set_sample_sink([&meter](const ToolSample& s) { meter.add(s); });
+  const uint64_t start_ms = machine.now_ms();
   const auto wall0 = std::chrono::steady_clock::now();
-  std::thread serving([&] { simulated = server.run(stop); });
-  try {
-    LinkSpec spec;
-    spec.host = "127.0.0.1";
-    spec.port = server.port();
-    std::unique_ptr<Link> link = open_link(spec, std::chrono::milliseconds(2000));
+  const double cpu0 = thread_cpu_s();
+  if (!options.over_tcp) {
+    SenderOptions so = options.sender;
+    so.clock = [&machine] { return machine_clock(machine); };
+    std::unique_ptr<Link> link = std::make_unique<SimLink>(machine, options.realtime);
+    // The wrapper (tests) sees the link; the sender's clock is the machine's either way.
     if (options.wrap_link) link = options.wrap_link(std::move(link));
-    Sender sender(*link, options.sender);
-    const proto::SessionReply caps = sender.open_session();
-    EncodeOptions enc = options.encode;
-    enc.max_payload = std::min<unsigned>(enc.max_payload, caps.max_payload);
-    const std::vector<QueuedCommand> commands = encode_job(plan, enc);
-    r.commands = commands.size();
-    r.wire_bytes = wire_bytes(commands);
-    r.outcome = sender.run(commands, [&](const Progress& p) {
-      if (options.on_progress) options.on_progress(sender, p);
-    });
-    r.message = sender.message();
-    r.stats = sender.stats();
-  } catch (const LinkError& e) {
-    r.outcome = JobOutcome::kLinkLost;
-    r.message = e.what();
-  } catch (...) {
+    try {
+      stream_job(*link, plan, options, so, &r);
+    } catch (const LinkError& e) {
+      r.outcome = JobOutcome::kLinkLost;
+      r.message = e.what();
+    }
+  } else {
+    ServerOptions so;
+    so.port = 0;
+    so.realtime = options.realtime;
+    SimServer server(machine, so);
+    std::atomic<bool> stop{false};
+    std::thread serving([&] { server.run(stop); });
+    try {
+      LinkSpec spec;
+      spec.host = "127.0.0.1";
+      spec.port = server.port();
+      std::unique_ptr<Link> link = open_link(spec, std::chrono::milliseconds(2000));
+      if (options.wrap_link) link = options.wrap_link(std::move(link));
+      stream_job(*link, plan, options, options.sender, &r);
+    } catch (const LinkError& e) {
+      r.outcome = JobOutcome::kLinkLost;
+      r.message = e.what();
+    } catch (...) {
+      stop = true;
+      serving.join();
+      throw;
+    }
     stop = true;
     serving.join();
-    throw;
   }
-  stop = true;
-  serving.join();
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  r.virtual_ms = simulated;
-  r.trace = machine.trace();
+  r.cpu_s = thread_cpu_s() - cpu0;
+  r.virtual_ms = machine.now_ms() - start_ms;
+  meter.finish();
+  machine.set_sample_sink(nullptr);
+  r.trace = std::move(meter.kept());
+  r.trace_samples = meter.samples();
+  r.cut_mm = meter.cut_mm();
+  r.rapid_mm = meter.rapid_mm();
+  r.cut_s = meter.cut_s();
+  r.motion_s = meter.motion_s();
+  r.max_contour_error_um = meter.max_contour_error_um();
   r.lcd[0] = machine.lcd_line(0);
   r.lcd[1] = machine.lcd_line(1);
   r.pauses_confirmed = machine.pauses_confirmed();
   r.spindle_on = machine.spindle_on();
-  measure(plan, &r);
   return r;
 }
 

@@ -1,5 +1,6 @@
-// A job through the simulated machine in one process: the simulator serves a loopback TCP
-// port from a thread, the sender streams the plan to it, and the tool path is measured.
+// A job through the simulated machine in one process: the sender streams the plan to the
+// simulated machine (in lockstep, or over loopback TCP), and the tool path is measured as it
+// is made.
 #ifndef HOST_LIB_SIM_SIM_JOB_H
 #define HOST_LIB_SIM_SIM_JOB_H
 
@@ -18,8 +19,15 @@ namespace host::sim {
 struct SimJobOptions {
   SimOptions machine;
   EncodeOptions encode;
-  SenderOptions sender;
+  SenderOptions sender;  // its clock is set here: machine time in lockstep, else the wall
   bool realtime = false;
+  // false: sender and machine in one thread, in lockstep (SimLink); machine time runs as fast
+  // as the CPU allows and the run is the same every time. true: the machine serves a
+  // loopback TCP port from a thread (SimServer), as `engraver sim` does.
+  bool over_tcp = false;
+  // The trace kept in the result: every sample (0) or thinned to this step in mm (plots).
+  // The measurements always use every sample.
+  double trace_step_mm = 0.0;
   // Wraps the sender's link (tests put a noisy or dropping link here).
   std::function<std::unique_ptr<Link>(std::unique_ptr<Link>)> wrap_link;
   // Called at every status (e.g. to hold/resume/abort through the sender).
@@ -34,7 +42,9 @@ struct SimJobResult {
   size_t wire_bytes = 0;            // the job's frames once each (no retransmits, no polls)
   uint64_t virtual_ms = 0;          // machine time simulated
   double wall_s = 0;                // real time it took
-  std::vector<ToolSample> trace;    // tool positions (machine frame, mm)
+  double cpu_s = 0;                 // processor time this thread used for it (load-independent)
+  std::vector<ToolSample> trace;    // tool positions (machine frame, mm), see trace_step_mm
+  size_t trace_samples = 0;         // samples measured (before thinning)
   double motion_s = 0;              // from the first to the last tool movement
   double cut_s = 0;                 // pen down and moving in X/Y
   double cut_mm = 0, rapid_mm = 0;  // tool path lengths from the trace (pen down / up)

@@ -158,11 +158,15 @@ int SimMachine::spindle_switches() const {
 
 void SimMachine::record_position() {
   const ToolSample s = position();
-  if (!trace_.empty()) {
-    const ToolSample& last = trace_.back();
-    if (last.x_mm == s.x_mm && last.y_mm == s.y_mm && last.z_mm == s.z_mm) return;
-  }
-  trace_.push_back(s);
+  if (have_sample_ && last_sample_.x_mm == s.x_mm && last_sample_.y_mm == s.y_mm &&
+      last_sample_.z_mm == s.z_mm)
+    return;
+  last_sample_ = s;
+  have_sample_ = true;
+  if (sink_)
+    sink_(s);
+  else
+    trace_.push_back(s);
 }
 
 ToolSample SimMachine::position() const {
@@ -183,6 +187,7 @@ void SimMachine::step_ms() {
     p.serial.rx.push_back(to_uart_.front());
     to_uart_.pop_front();
     rx_credit_ -= 1.0;
+    last_host_byte_ms_ = now_ms_ + 1;
   }
   ++now_ms_;
   p.chip.advance_to_ns(now_ms_ * 1000000ull);

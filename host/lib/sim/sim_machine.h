@@ -4,11 +4,12 @@
 #ifndef HOST_LIB_SIM_SIM_MACHINE_H
 #define HOST_LIB_SIM_SIM_MACHINE_H
 
-#include <cstdint>  // uint8_t
-#include <deque>    // std::deque
-#include <memory>   // std::unique_ptr
-#include <string>   // std::string
-#include <vector>   // std::vector
+#include <cstdint>     // uint8_t
+#include <deque>       // std::deque
+#include <functional>  // std::function
+#include <memory>      // std::unique_ptr
+#include <string>      // std::string
+#include <vector>      // std::vector
 
 #include "firmware/config/machine_config.h"
 
@@ -56,10 +57,17 @@ class SimMachine {
 
   // True while the axes move or bytes wait in either UART direction.
   bool busy() const;
+  // Bytes from the PC that have not reached the firmware's UART yet.
+  bool host_bytes_waiting() const { return !to_uart_.empty(); }
+  // Machine time the newest byte from the PC reached the firmware's UART (0: none yet).
+  uint64_t last_host_byte_ms() const { return last_host_byte_ms_; }
   // Whether the TMC428 driver's self-check passed at power-on (else the app is in alarm).
   bool chip_ok() const { return chip_ok_; }
+  // Every tool position change, one sample per millisecond at most: kept in trace() unless a
+  // sink takes them (then nothing is stored: long jobs record in bounded memory).
   const std::vector<ToolSample>& trace() const { return trace_; }
   void clear_trace() { trace_.clear(); }
+  void set_sample_sink(std::function<void(const ToolSample&)> sink) { sink_ = std::move(sink); }
   std::string lcd_line(int row) const;
   // #P pauses the simulated operator confirmed; the spindle output and its switchings.
   int pauses_confirmed() const { return pauses_confirmed_; }
@@ -86,8 +94,12 @@ class SimMachine {
   uint64_t now_ms_ = 0;
   double rx_credit_ = 0, tx_credit_ = 0;  // bytes the UART may move this ms
   std::deque<uint8_t> to_uart_;           // PC -> firmware, not on the wire yet
-  std::string from_uart_;                 // firmware -> PC, delivered
+  uint64_t last_host_byte_ms_ = 0;
+  std::string from_uart_;  // firmware -> PC, delivered
   std::vector<ToolSample> trace_;
+  std::function<void(const ToolSample&)> sink_;
+  ToolSample last_sample_{};
+  bool have_sample_ = false;
   bool chip_ok_ = false;
   int confirm_hold_ms_ = 0;
   int paused_ms_ = 0;  // how long the current pause has waited for the operator

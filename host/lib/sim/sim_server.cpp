@@ -1,69 +1,84 @@
-// TCP front of the simulated machine: accept, tunnel bytes, pace virtual time.
+// TCP or serial-device front of the simulated machine: accept, tunnel bytes, pace machine
+// time (the rules are in sim_server.h).
 #include "host/lib/sim/sim_server.h"
 
 #include <asio.hpp>  // tcp acceptor and socket
 
+#include <fcntl.h>    // open
+#include <poll.h>     // poll
+#include <termios.h>  // raw mode for a device
+#include <unistd.h>   // read, write, close
+
 #include <fmt/format.h>  // fmt::format
 
+#include <algorithm>  // std::max
+#include <cerrno>     // errno
 #include <chrono>     // steady_clock
+#include <cstring>    // std::strerror
 #include <stdexcept>  // std::runtime_error
 #include <thread>     // sleep_for
-
-#include <poll.h>  // poll
 
 namespace host::sim {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr uint64_t kSocketEveryMs = 4;
+constexpr uint64_t kSocketEveryMs = 4;  // fast mode looks at the host every 4 machine ms
 
 struct SimServer::Impl {
   Impl(SimMachine& m, const ServerOptions& o) : machine(m), options(o), acceptor(io) {}
+  ~Impl() {
+    if (device_fd >= 0) ::close(device_fd);
+  }
   SimMachine& machine;
   ServerOptions options;
   asio::io_context io;
   asio::ip::tcp::acceptor acceptor;
   std::unique_ptr<asio::ip::tcp::socket> client;
-  uint64_t last_host_byte_ms = 0;
+  int device_fd = -1;
+  uint64_t last_host_ms = 0;  // machine time of the connection (counts as the host speaking)
 
-  // Moves what the host sent into the machine. False when the connection closed.
+  bool connected() const { return client != nullptr || device_fd >= 0; }
+  int fd() const { return client ? client->native_handle() : device_fd; }
+
+  // Moves what the host sent into the machine. False when a TCP connection closed.
   bool receive() {
     uint8_t buf[1024];
-    asio::error_code ec;
     while (true) {
-      const size_t avail = client->available(ec);
-      if (ec) return false;
-      if (avail == 0) {
-        // available() says 0 both for "nothing yet" and "closed": a non-blocking read tells.
-        const size_t n = client->read_some(asio::buffer(buf, 1), ec);
-        if (ec == asio::error::would_block) return true;
-        if (ec) return false;
-        machine.from_host(buf, n);
-        last_host_byte_ms = machine.now_ms();
+      const ssize_t n = ::read(fd(), buf, sizeof buf);
+      if (n > 0) {
+        machine.from_host(buf, static_cast<size_t>(n));
         continue;
       }
-      const size_t n = client->read_some(asio::buffer(buf, std::min(avail, sizeof buf)), ec);
-      if (ec) return ec == asio::error::would_block;
-      machine.from_host(buf, n);
-      last_host_byte_ms = machine.now_ms();
+      if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) return true;
+      // A device whose other end is closed reads as EOF or EIO: wait for it to be opened.
+      return device_fd >= 0;
     }
   }
 
   // Sends what the firmware transmitted. False when the connection broke.
   bool transmit() {
     const std::string out = machine.take_to_host();
-    if (out.empty()) return true;
-    asio::error_code ec;
-    client->non_blocking(false);
-    asio::write(*client, asio::buffer(out), ec);
-    client->non_blocking(true);
-    return !ec;
+    size_t at = 0;
+    while (at < out.size()) {
+      const ssize_t n = ::write(fd(), out.data() + at, out.size() - at);
+      if (n > 0) {
+        at += static_cast<size_t>(n);
+        continue;
+      }
+      if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) {
+        pollfd p{fd(), POLLOUT, 0};
+        ::poll(&p, 1, 100);
+        continue;
+      }
+      return device_fd >= 0;  // a device with nobody on the other end: the bytes are lost
+    }
+    return true;
   }
 
-  // Blocks until the client has bytes (or closed) or timeout_ms passes.
-  void wait_readable(int timeout_ms) {
-    pollfd p{client->native_handle(), POLLIN, 0};
-    ::poll(&p, 1, timeout_ms);
+  // Blocks until the host has bytes (or closed) or timeout_ms passes; returns poll's revents.
+  int wait_readable(int timeout_ms) {
+    pollfd p{fd(), POLLIN, 0};
+    return ::poll(&p, 1, timeout_ms) > 0 ? p.revents : 0;
   }
 
   void drop_client() {
@@ -74,6 +89,7 @@ struct SimServer::Impl {
 
   // Accepts a pending connection, if any, without blocking.
   void try_accept() {
+    if (device_fd >= 0) return;
     asio::error_code ec;
     asio::ip::tcp::socket s(io);
     acceptor.accept(s, ec);
@@ -81,12 +97,36 @@ struct SimServer::Impl {
     s.non_blocking(true, ec);
     s.set_option(asio::ip::tcp::no_delay(true), ec);
     client = std::make_unique<asio::ip::tcp::socket>(std::move(s));
-    last_host_byte_ms = machine.now_ms();
+    last_host_ms = machine.now_ms();
   }
 };
 
+namespace {
+
+// Opens a serial device raw (8N1, no echo, no line discipline), non-blocking.
+int open_device(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
+  if (fd < 0)
+    throw std::runtime_error(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
+  termios t{};
+  if (tcgetattr(fd, &t) == 0) {
+    cfmakeraw(&t);
+    cfsetispeed(&t, B115200);
+    cfsetospeed(&t, B115200);
+    t.c_cflag |= CLOCAL | CREAD;
+    tcsetattr(fd, TCSANOW, &t);
+  }
+  return fd;
+}
+
+}  // namespace
+
 SimServer::SimServer(SimMachine& machine, const ServerOptions& options)
     : impl_(std::make_unique<Impl>(machine, options)) {
+  if (!options.device.empty()) {
+    impl_->device_fd = open_device(options.device);
+    return;
+  }
   asio::error_code ec;
   const asio::ip::address addr = asio::ip::make_address(options.address, ec);
   if (ec)
@@ -106,39 +146,59 @@ SimServer::SimServer(SimMachine& machine, const ServerOptions& options)
 SimServer::~SimServer() = default;
 
 uint16_t SimServer::port() const {
-  return impl_->acceptor.local_endpoint().port();
+  return impl_->device_fd >= 0 ? 0 : impl_->acceptor.local_endpoint().port();
 }
 
 uint64_t SimServer::run(const std::atomic<bool>& stop) {
   Impl& s = *impl_;
   const uint64_t start_ms = s.machine.now_ms();
-  const auto wall_start = Clock::now();
+  // Following the wall clock: machine time pace_ms was due at wall time pace_wall.
+  bool paced = false;
+  uint64_t pace_ms = 0;
+  Clock::time_point pace_wall;
   while (!stop) {
-    // The socket is looked at every few machine milliseconds: the UART takes 11.5 bytes a
-    // millisecond, so a 4 ms batch delays nothing a real link would not.
-    const bool look = s.machine.now_ms() % kSocketEveryMs == 0;
-    if (!s.client) s.try_accept();
-    if (s.client && look && !s.receive()) s.drop_client();
-
-    const bool silent =
-        s.client && s.machine.now_ms() - s.last_host_byte_ms >= s.options.max_silent_ms;
-    if (!s.client && !s.machine.busy() && !s.options.realtime) {
+    if (!s.connected()) s.try_accept();
+    if (!s.connected() && !s.machine.busy()) {
       // Nobody connected and nothing moving: nothing would change; wait for a host.
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      paced = false;
       continue;
     }
-    if (silent && !s.options.realtime) {
-      // A connected host that has said nothing for a while: give it real time to speak
-      // before machine time moves on (at most one virtual ms per 5 real ms while silent).
-      s.wait_readable(5);
-      if (s.client && !s.receive()) s.drop_client();
+    const uint64_t now = s.machine.now_ms();
+    const uint64_t last = std::max(s.last_host_ms, s.machine.last_host_byte_ms());
+    const bool fast = !s.options.realtime && s.connected() &&
+                      (s.machine.host_bytes_waiting() || now - last < s.options.fast_window_ms);
+    if (fast) {
+      paced = false;
+      if (now % kSocketEveryMs == 0 && !s.receive()) s.drop_client();
+    } else {
+      if (!paced) {
+        paced = true;
+        pace_ms = now;
+        pace_wall = Clock::now();
+      }
+      const auto due = pace_wall + std::chrono::milliseconds(now - pace_ms);
+      // Wait for the wall clock, taking the host's bytes as they come; in fast mode they end
+      // the wait (the host speaks again).
+      while (s.connected()) {
+        const auto left = due - Clock::now();
+        if (left <= Clock::duration::zero()) break;
+        const int wait_ms =
+            static_cast<int>(std::chrono::ceil<std::chrono::milliseconds>(left).count());
+        if (s.wait_readable(wait_ms) & POLLHUP && s.device_fd >= 0) {
+          std::this_thread::sleep_until(due);  // nobody on the device's other end yet
+          break;
+        }
+        if (!s.receive()) {
+          s.drop_client();
+          break;
+        }
+        if (!s.options.realtime && s.machine.host_bytes_waiting()) break;
+      }
+      if (!s.connected()) std::this_thread::sleep_until(due);
     }
     s.machine.step_ms();
-    if (s.client && !s.transmit()) s.drop_client();
-    if (s.options.realtime) {
-      const auto due = wall_start + std::chrono::milliseconds(s.machine.now_ms() - start_ms);
-      std::this_thread::sleep_until(due);
-    }
+    if (s.connected() && !s.transmit()) s.drop_client();
   }
   if (s.client) s.drop_client();
   return s.machine.now_ms() - start_ms;

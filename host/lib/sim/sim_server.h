@@ -1,6 +1,16 @@
-// The simulated machine on a TCP port, as the XPort presents the real one: one connection at
-// a time, bytes tunnelled to the firmware's UART. Virtual time runs as fast as it can, or in
-// step with the wall clock (--realtime).
+// The simulated machine for other programs: on a TCP port, as the XPort presents the real
+// one (one connection at a time, bytes tunnelled to the firmware's UART), or on a serial
+// device such as one end of a pseudo-terminal pair.
+//
+// The clock (docs/user-guide.md, "The simulator's clock"):
+// - realtime: machine time follows the wall clock, 1 ms per ms, always.
+// - fast (default): machine time runs as fast as the computer allows while the host is
+//   talking: while bytes from it wait for the UART, and for fast_window_ms of machine time
+//   after the last one reached the UART. After that, machine time follows the wall clock
+//   until the host sends again, as a real machine's does. A silent host meets at most
+//   fast_window_ms more machine time than wall time: the 2 s link watchdog trips after
+//   1.5 s to 2 s of wall-clock silence, and a few lost polls do not trip it.
+// - nobody connected and nothing moving: machine time stands still (nothing would change).
 #ifndef HOST_LIB_SIM_SIM_SERVER_H
 #define HOST_LIB_SIM_SIM_SERVER_H
 
@@ -16,19 +26,20 @@ namespace host::sim {
 struct ServerOptions {
   std::string address = "127.0.0.1";  // loopback unless told otherwise
   uint16_t port = 10001;              // the XPort's default tunnel port; 0 = any free port
+  // Serve on this serial device (a tty, or the slave end of a pty pair) instead of TCP.
+  std::string device;
   bool realtime = false;
-  // Fast mode never lets more machine time than this pass without a byte from a connected
-  // host, so the firmware's 2 s link watchdog sees what it would on a real machine.
-  uint32_t max_silent_ms = 500;
+  uint32_t fast_window_ms = 500;  // see the clock rules above
 };
 
 class SimServer {
  public:
-  // Binds and listens at once (throws std::runtime_error naming the address on failure).
+  // Binds and listens (or opens the device) at once; throws std::runtime_error naming the
+  // address or device on failure.
   SimServer(SimMachine& machine, const ServerOptions& options);
   ~SimServer();
-  uint16_t port() const;
-  // Serves connections until stop is set. Returns the virtual milliseconds simulated.
+  uint16_t port() const;  // 0 when serving a device
+  // Serves until stop is set. Returns the machine milliseconds simulated.
   uint64_t run(const std::atomic<bool>& stop);
 
  private:

@@ -46,6 +46,7 @@ void append_spline(const PlanStep& s, int index, unsigned max_payload,
   header.control_count = s.spline.control_count;
   header.knot_count = s.spline.knot_count;
   header.feed_um_per_s = feed16(s.feed_um_per_s, index);
+  header.tool_offset_um = s.tool_offset_um;
   out->push_back(make(header, index, s.curve));
 
   const unsigned room =
@@ -83,6 +84,57 @@ proto::PauseCmd pause_command(const std::string& text) {
   return pause;
 }
 
+// A coordinate the controller would refuse with kOutOfTravel, as a PlanError naming the step.
+void check_travel(int32_t um, int32_t travel_um, char axis, int step) {
+  if (um < -travel_um || um > travel_um) {
+    throw PlanError(
+        fmt::format("step {}: {} {:.3f} mm is outside the controller's {} travel of +-{:.3f} mm",
+                    step, axis, um / 1000.0, axis, travel_um / 1000.0));
+  }
+}
+
+void check_step_fits(const PlanStep& s, const proto::SessionReply& c, int step) {
+  switch (s.kind) {
+    case PlanStep::kPenUp:
+    case PlanStep::kPenDown:
+      check_travel(s.z_um, c.travel_z_um, 'Z', step);
+      break;
+    case PlanStep::kRapid:
+    case PlanStep::kFeed:
+      check_travel(s.to.x_um, c.travel_x_um, 'X', step);
+      check_travel(s.to.y_um, c.travel_y_um, 'Y', step);
+      break;
+    case PlanStep::kSpline:
+      for (unsigned i = 0; i < s.spline.control_count; ++i) {
+        check_travel(s.spline.control[i].x_um, c.travel_x_um, 'X', step);
+        check_travel(s.spline.control[i].y_um, c.travel_y_um, 'Y', step);
+      }
+      break;
+    case PlanStep::kDrill:
+      check_travel(s.to.x_um, c.travel_x_um, 'X', step);
+      check_travel(s.to.y_um, c.travel_y_um, 'Y', step);
+      check_travel(s.z_start_um, c.travel_z_um, 'Z', step);
+      check_travel(s.z_um, c.travel_z_um, 'Z', step);
+      break;
+    default:
+      break;
+  }
+}
+
+// A degree-1 spline from a to b (two control points, clamped knots).
+core::Spline straight_spline(const core::PointUm& a, const core::PointUm& b) {
+  core::Spline s{};
+  s.degree = 1;
+  s.rational = false;
+  s.control_count = 2;
+  s.knot_count = 4;
+  s.control[0] = {a.x_um, a.y_um, core::kWeightOneQ14};
+  s.control[1] = {b.x_um, b.y_um, core::kWeightOneQ14};
+  s.knot[0] = s.knot[1] = 0;
+  s.knot[2] = s.knot[3] = 1000;
+  return s;
+}
+
 }  // namespace
 
 std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& options) {
@@ -105,15 +157,15 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
   resolution.chord_tolerance_um = options.chord_tolerance_um;
   out.push_back(make(resolution, -1, -1));
 
+  core::PointUm at = {0, 0};  // where the tool is in X/Y (plans start at the zero point)
   for (size_t i = 0; i < plan.steps.size(); ++i) {
     const PlanStep& s = plan.steps[i];
     const int index = static_cast<int>(i);
-    if (s.tool_offset_um != 0) {
-      throw PlanError(
-          fmt::format("step {}: tool-radius offset is not in protocol v1; plan with "
-                      "the tool centre on the line",
-                      index));
-    }
+    if (options.controller != nullptr) check_step_fits(s, *options.controller, index);
+    const core::PointUm from = at;
+    if (s.kind == PlanStep::kRapid || s.kind == PlanStep::kFeed || s.kind == PlanStep::kSpline ||
+        s.kind == PlanStep::kDrill)
+      at = s.to;
     switch (s.kind) {
       case PlanStep::kPenUp: {
         proto::ZMoveCmd z{s.z_um, options.z_rapid_um_per_s};
@@ -131,6 +183,14 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
         break;
       }
       case PlanStep::kFeed: {
+        if (s.tool_offset_um != 0) {
+          // The controller offsets curves only: a straight line with an offset goes as a
+          // degree-1 spline from where the tool is.
+          PlanStep line = s;
+          line.spline = straight_spline(from, s.to);
+          append_spline(line, index, options.max_payload, &out);
+          break;
+        }
         proto::FeedMoveCmd g{s.to.x_um, s.to.y_um, feed16(s.feed_um_per_s, index)};
         out.push_back(make(g, index, s.curve));
         break;

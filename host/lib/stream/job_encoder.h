@@ -7,6 +7,7 @@
 #include <string>   // std::string
 #include <vector>   // std::vector
 
+#include "firmware/protocol/messages.h"  // proto::SessionReply
 #include "host/lib/plan/job_plan.h"
 
 namespace host {
@@ -25,10 +26,14 @@ struct EncodeOptions {
   uint16_t chord_tolerance_um = 5;   // #U: chord error
   uint16_t z_rapid_um_per_s = 5000;  // #Z feed for pen-up moves
   std::string title;                 // #S row 0 at the start (cut to 16 characters)
+  // The controller's *I: when set, every target is checked against its travel first.
+  const proto::SessionReply* controller = nullptr;
 };
 
-// The whole job as queued commands, in order. Throws PlanError on a step the protocol
-// cannot carry (a feed above 65535 um/s, a tool offset: v1 has no offset field).
+// The whole job as queued commands, in order. Tool offsets go in the spline header (the
+// controller offsets; a straight feed with an offset becomes a degree-1 spline). Throws
+// PlanError on a step the protocol cannot carry (a feed above 65535 um/s, an offset beyond
+// 100 mm) or, with options.controller, a target outside that controller's travel.
 std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& options);
 
 // Bytes one command takes on the wire as a frame (header + payload + CRC).

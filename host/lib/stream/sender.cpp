@@ -88,6 +88,26 @@ const char* alarm_name(proto::Alarm alarm) {
   return "unknown alarm";
 }
 
+const char* machine_state_name(proto::MachineState state) {
+  switch (state) {
+    case proto::MachineState::kIdle:
+      return "idle";
+    case proto::MachineState::kRunning:
+      return "running";
+    case proto::MachineState::kHolding:
+      return "holding";
+    case proto::MachineState::kHeld:
+      return "held";
+    case proto::MachineState::kZeroing:
+      return "zeroing";
+    case proto::MachineState::kAlarm:
+      return "in alarm";
+    case proto::MachineState::kPaused:
+      return "paused for the operator";
+  }
+  return "in an unknown state";
+}
+
 // Frame-level and gap errors: the frame did not arrive intact; resend from the expected seq.
 bool is_resend_error(proto::ErrorCode code) {
   const int v = static_cast<int>(code);
@@ -108,12 +128,18 @@ const char* outcome_name(JobOutcome outcome) {
       return "rejected";
     case JobOutcome::kLinkLost:
       return "link lost";
+    case JobOutcome::kStalled:
+      return "stalled";
   }
   return "?";
 }
 
 Sender::Sender(Link& link, SenderOptions options)
-    : link_(link), options_(options), parser_(proto::kReplyStart), last_reply_(Clock::now()) {}
+    : link_(link), options_(options), parser_(proto::kReplyStart), last_reply_(now()) {}
+
+Clock::time_point Sender::now() const {
+  return options_.clock ? options_.clock() : Clock::now();
+}
 
 // Writes one command frame.
 void Sender::send_frame(uint8_t letter, uint8_t seq, const std::vector<uint8_t>& payload) {
@@ -143,7 +169,7 @@ bool Sender::pump(milliseconds wait) {
     }
   }
   if (n == 0 && parser_.in_frame() &&
-      Clock::now() - last_reply_ > milliseconds(proto::kInterByteTimeoutMs)) {
+      now() - last_reply_ > milliseconds(proto::kInterByteTimeoutMs)) {
     for (proto::ParseEvent ev = parser_.expire(); ev != proto::ParseEvent::kNone;
          ev = parser_.poll()) {
       if (ev == proto::ParseEvent::kFrame) handle_reply(parser_.frame());
@@ -164,18 +190,21 @@ size_t Sender::index_of_seq(uint8_t seq) const {
   return static_cast<size_t>(index);
 }
 
-// "command 12 ('B', step 7, curve 3)" for messages.
+// "command 12 ('B' spline header, plan step 7, curve 3)" for messages (names from the
+// message table).
 std::string Sender::where(size_t index) const {
   if (commands_ == nullptr || index >= commands_->size()) return "a command";
   const QueuedCommand& c = (*commands_)[index];
-  std::string s = fmt::format("command {} ('{}'", index, static_cast<char>(c.letter));
+  const char* name = proto::message_name(proto::kCommandStart, c.letter);
+  std::string s = fmt::format("command {} ('{}' {}", index, static_cast<char>(c.letter),
+                              name != nullptr ? name : "unknown");
   if (c.step >= 0) s += fmt::format(", plan step {}", c.step);
   if (c.curve >= 0) s += fmt::format(", curve {}", c.curve);
   return s + ")";
 }
 
 void Sender::handle_reply(const proto::Frame& frame) {
-  last_reply_ = Clock::now();
+  last_reply_ = now();
   switch (frame.letter) {
     case proto::kReplySession: {
       proto::SessionReply r;
@@ -195,35 +224,44 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (commands_ == nullptr) break;
       // Everything before next_expected is stored.
       const size_t stored = index_of_seq(r.next_expected_seq);
+      if (stored != SIZE_MAX && stored >= base_ && stored <= next_) {
+        splines_free_ = r.spline_slots_free;
+        splines_known_at_ = stored;
+      }
       if (stored != SIZE_MAX && stored > base_ && stored <= next_) {
         base_ = stored;
-        oldest_sent_ = Clock::now();
+        oldest_sent_ = now();
       }
-      // Execution progress: last_executed_seq counts forward from executed_.
-      const uint8_t last_seq = static_cast<uint8_t>(first_seq_ + executed_ - 1);
-      const uint8_t ahead = static_cast<uint8_t>(r.last_executed_seq - last_seq);
-      if (ahead < 128) executed_ = std::min(executed_ + ahead, base_);
+      track_executed(r.last_executed_seq);
       // No frame held: a busy refusal is over (its held frame's *O may have overtaken it).
       if (!(r.flags & proto::kStatusFramePending)) busy_wait_ = false;
       // Unacknowledged frames past the time-out and none held: they were lost, go back.
       const milliseconds rto = std::max(options_.min_rto, 4 * srtt_);
-      if (base_ < next_ && !(r.flags & proto::kStatusFramePending) &&
-          Clock::now() - oldest_sent_ > rto) {
+      if (base_ < next_ && !(r.flags & proto::kStatusFramePending) && now() - oldest_sent_ > rto) {
         next_ = base_;
         busy_wait_ = false;
-        oldest_sent_ = Clock::now();
+        oldest_sent_ = now();
       }
       break;
     }
     case proto::kReplyAck: {
-      if (frame.seq == realtime_seq_) realtime_acked_ = true;
       proto::AckReply ack;
-      if (proto::decode_frame(frame, &ack) == proto::ErrorCode::kOk) queue_free_ = ack.queue_free;
+      if (proto::decode_frame(frame, &ack) != proto::ErrorCode::kOk) break;
+      // v2: a real-time frame's *O says so; its seq is the real-time counter's, not the
+      // ordered stream's.
+      if (ack.realtime) {
+        if (frame.seq == realtime_seq_) realtime_acked_ = true;
+        break;
+      }
+      queue_free_ = ack.queue_free;
       const size_t index = index_of_seq(frame.seq);
       if (index != SIZE_MAX && index >= base_ && index < next_) {
+        splines_free_ = ack.spline_slots_free;
+        splines_known_at_ = index + 1;
+        sample_round_trip(index);
         if (queue_free_ >= 2 && window_limit_ < window_) ++window_limit_;
         base_ = index + 1;  // acks are cumulative: the controller stores strictly in order
-        oldest_sent_ = Clock::now();
+        oldest_sent_ = now();
         busy_wait_ = false;
       }
       break;
@@ -235,6 +273,16 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (r.code == proto::ErrorCode::kSeqStale) break;  // superseded real-time frame
       if (commands_ != nullptr && (is_resend_error(r.code) || r.code == proto::ErrorCode::kBusy)) {
         const size_t expected = index_of_seq(r.next_expected_seq);
+        // One lost frame makes every later frame of the window answer seq_gap with the same
+        // expected seq: go back once, not once per reply (the resent frames are on their way).
+        if (r.code == proto::ErrorCode::kSeqGap && expected == last_gap_expected_ &&
+            now() - last_gap_at_ < std::max(options_.min_rto, 4 * srtt_)) {
+          break;
+        }
+        if (r.code == proto::ErrorCode::kSeqGap) {
+          last_gap_expected_ = expected;
+          last_gap_at_ = now();
+        }
         busy_wait_ = (r.code == proto::ErrorCode::kBusy);
         if (expected != SIZE_MAX && expected >= base_ && expected <= next_) {
           base_ = expected;
@@ -271,20 +319,83 @@ void Sender::handle_reply(const proto::Frame& frame) {
   }
 }
 
+// Execution progress. The executed frame is one the controller stored, so it lies between
+// executed_ and the stored frontier base_; its seq is read backwards from base_, which is
+// unambiguous however many frames ran since the previous status (counting forward from
+// executed_ is not: more than 127 frames between two statuses read as "behind" and the job
+// never completed).
+void Sender::track_executed(uint8_t last_executed_seq) {
+  if (base_ == 0) return;
+  const uint8_t newest_stored = static_cast<uint8_t>(first_seq_ + base_ - 1);
+  const size_t behind = static_cast<uint8_t>(newest_stored - last_executed_seq);
+  if (behind >= base_ || behind >= 128) return;  // before this run's first command
+  executed_ = std::max(executed_, base_ - behind);
+}
+
+// The watchdog: true once nothing changed for stall_limit (acks, executions, position, state).
+bool Sender::stalled() {
+  Seen s;
+  s.acked = base_;
+  s.executed = executed_;
+  s.x_um = last_status_.x_um;
+  s.y_um = last_status_.y_um;
+  s.z_um = last_status_.z_um;
+  s.state = last_status_.state;
+  const auto t = now();
+  // Waiting for a person is not a stall: a hold asked for here or at the machine's panel,
+  // zeroing, or a pause (#P) until the operator confirms. A hold the controller made because it
+  // heard nothing is.
+  const bool held =
+      s.state == proto::MachineState::kHeld || s.state == proto::MachineState::kHolding ||
+      s.state == proto::MachineState::kZeroing || s.state == proto::MachineState::kPaused;
+  const bool waits_for_operator =
+      operator_hold_ || (held && !(last_status_.flags & proto::kStatusLinkHold));
+  if (s.acked != seen_.acked || s.executed != seen_.executed || s.x_um != seen_.x_um ||
+      s.y_um != seen_.y_um || s.z_um != seen_.z_um || s.state != seen_.state ||
+      waits_for_operator) {
+    seen_ = s;
+    last_progress_ = t;
+    return false;
+  }
+  return options_.stall_limit.count() > 0 && t - last_progress_ > options_.stall_limit;
+}
+
+// Whether the controller has a spline slot for the #B at next_: the newest *O or *? said
+// how many were free after the frames before splines_known_at_; every #B sent since took
+// one. (A slot frees when its spline has run; the status polls see that.)
+bool Sender::spline_room(const std::vector<QueuedCommand>& commands) const {
+  if (splines_free_ == kSplineSlotsUnknown) return true;
+  size_t taken = 0;
+  for (size_t i = splines_known_at_; i < next_ && i < commands.size(); ++i) {
+    if (commands[i].letter == proto::kCmdSplineHeader) ++taken;
+  }
+  return splines_free_ > taken;
+}
+
+// The retransmission timer's round trip: smoothed (1/8 gain) over frames acknowledged at
+// their first sending; a frame held by the controller (ack delayed for room) or sent again
+// says nothing about the link and is left out.
+void Sender::sample_round_trip(size_t index) {
+  if (index >= first_sent_.size() || resent_[index]) return;
+  if (have_status_ && (last_status_.flags & proto::kStatusFramePending)) return;
+  const auto sample = std::chrono::duration_cast<milliseconds>(now() - first_sent_[index]);
+  srtt_ = (7 * srtt_ + sample) / 8;
+}
+
 void Sender::query_status() {
   send_frame(proto::kCmdStatus, status_seq_++, {});
   stats_.status_queries++;
   status_outstanding_ = true;
-  status_sent_ = Clock::now();
+  status_sent_ = now();
 }
 
 // Time for the next status query: each interval, or with a zero interval as soon as the
 // previous one was answered (a lost query or reply is given up after 50 ms).
 bool Sender::status_due(Clock::time_point last_poll) const {
   if (options_.status_interval.count() > 0) {
-    return Clock::now() - last_poll >= options_.status_interval;
+    return now() - last_poll >= options_.status_interval;
   }
-  return !status_outstanding_ || Clock::now() - status_sent_ > milliseconds(50);
+  return !status_outstanding_ || now() - status_sent_ > milliseconds(50);
 }
 
 proto::SessionReply Sender::open_session() {
@@ -295,8 +406,8 @@ proto::SessionReply Sender::open_session() {
     proto::Payload p;
     proto::encode(cmd, &p);
     send_frame(proto::kCmdSession, session_seq_, std::vector<uint8_t>(p.bytes, p.bytes + p.length));
-    const auto deadline = Clock::now() + options_.reply_timeout;
-    while (!session_open_ && !failed_ && Clock::now() < deadline) pump(milliseconds(10));
+    const auto deadline = now() + options_.reply_timeout;
+    while (!session_open_ && !failed_ && now() < deadline) pump(milliseconds(10));
     if (failed_) throw LinkError(message_);
   }
   if (!session_open_) {
@@ -313,16 +424,16 @@ void Sender::send_realtime(uint8_t letter, const std::vector<uint8_t>& payload) 
   realtime_acked_ = false;
   for (int attempt = 0; attempt < 3 && !realtime_acked_; ++attempt) {
     send_frame(letter, realtime_seq_, payload);
-    const auto deadline = Clock::now() + options_.reply_timeout;
-    while (!realtime_acked_ && Clock::now() < deadline) pump(milliseconds(5));
+    const auto deadline = now() + options_.reply_timeout;
+    while (!realtime_acked_ && now() < deadline) pump(milliseconds(5));
   }
 }
 
 // Starts manual zeroing if the machine is not zeroed and waits for the operator's confirm.
 bool Sender::ensure_zeroed(const std::function<void(const Progress&)>& on_progress) {
   query_status();
-  const auto deadline = Clock::now() + options_.reply_timeout;
-  while (!have_status_ && Clock::now() < deadline) pump(milliseconds(5));
+  const auto deadline = now() + options_.reply_timeout;
+  while (!have_status_ && now() < deadline) pump(milliseconds(5));
   if (!have_status_) {
     failed_ = true;
     failure_ = JobOutcome::kLinkLost;
@@ -340,24 +451,24 @@ bool Sender::ensure_zeroed(const std::function<void(const Progress&)>& on_progre
   const std::vector<QueuedCommand>* saved = commands_;
   commands_ = &one;
   base_ = next_ = executed_ = 0;
-  auto last_poll = Clock::now();
+  auto last_poll = now();
   while (!failed_) {
     if (abort_requested_) return false;
     if (next_ == 0) {
       send_frame(c.letter, first_seq_, c.payload);
       next_ = 1;
-      oldest_sent_ = Clock::now();
+      oldest_sent_ = now();
     }
     if (status_due(last_poll)) {
       query_status();
-      last_poll = Clock::now();
+      last_poll = now();
       if (base_ == 1 && (last_status_.flags & proto::kStatusZeroed)) break;
       Progress progress;
       progress.status = last_status_;
       if (on_progress) on_progress(progress);
     }
     pump(milliseconds(5));
-    if (Clock::now() - last_reply_ > options_.silence_limit) {
+    if (now() - last_reply_ > options_.silence_limit) {
       failed_ = true;
       failure_ = JobOutcome::kLinkLost;
       message_ =
@@ -374,6 +485,8 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
                        const std::function<void(const Progress&)>& on_progress) {
   if (!session_open_) open_session();
   failed_ = false;
+  first_sent_.clear();  // no round-trip samples from the zeroing frame
+  resent_.clear();
   if (!ensure_zeroed(on_progress)) {
     if (abort_requested_) {
       send_realtime(proto::kCmdAbort, {});
@@ -383,15 +496,22 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
     return failure_;
   }
   commands_ = &commands;
+  first_sent_.assign(commands.size(), Clock::time_point{});
+  resent_.assign(commands.size(), false);
   base_ = next_ = executed_ = 0;
   busy_wait_ = false;
   queue_free_ = session_.queue_slots;
+  splines_free_ = kSplineSlotsUnknown;
+  splines_known_at_ = 0;
   window_ = std::max<size_t>(1, std::min<size_t>(session_.window_frames, proto::kWindowFrames));
   window_limit_ = window_;
   size_t high_water = 0;
   const size_t rx_bytes = std::max<size_t>(session_.rx_buffer_bytes, proto::kMaxFrameBytes);
-  auto last_poll = Clock::now() - options_.status_interval;
-  last_reply_ = Clock::now();
+  auto last_poll = now() - options_.status_interval;
+  last_reply_ = now();
+  seen_ = Seen();
+  last_progress_ = now();
+  operator_hold_ = false;
 
   while (true) {
     if (abort_requested_) {
@@ -401,8 +521,14 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
       commands_ = nullptr;
       return JobOutcome::kAborted;
     }
-    if (hold_requested_.exchange(false)) send_realtime(proto::kCmdHold, {});
-    if (resume_requested_.exchange(false)) send_realtime(proto::kCmdResume, {});
+    if (hold_requested_.exchange(false)) {
+      send_realtime(proto::kCmdHold, {});
+      operator_hold_ = true;
+    }
+    if (resume_requested_.exchange(false)) {
+      send_realtime(proto::kCmdResume, {});
+      operator_hold_ = false;
+    }
     if (const int pct = override_requested_.exchange(0)) {
       send_realtime(proto::kCmdOverride, {static_cast<uint8_t>(pct)});
     }
@@ -416,18 +542,26 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
     // In flight may be what the queue has room for plus the one frame it can hold.
     while (!busy_wait_ && next_ < commands.size() && next_ - base_ < window_limit_ &&
            next_ - base_ <= queue_free_ &&
-           inflight_bytes + frame_bytes(commands[next_]) <= rx_bytes) {
-      if (next_ == base_) oldest_sent_ = Clock::now();
+           inflight_bytes + frame_bytes(commands[next_]) <= rx_bytes &&
+           (commands[next_].letter != proto::kCmdSplineHeader || spline_room(commands))) {
+      if (next_ == base_) oldest_sent_ = now();
       send_frame(commands[next_].letter, static_cast<uint8_t>(first_seq_ + next_),
                  commands[next_].payload);
       inflight_bytes += frame_bytes(commands[next_]);
       if (next_ < high_water) stats_.retransmits++;
+      if (next_ < first_sent_.size()) {
+        // Karn: a frame sent more than once gives no round-trip sample.
+        if (next_ < high_water)
+          resent_[next_] = true;
+        else
+          first_sent_[next_] = now();
+      }
       ++next_;
       high_water = std::max(high_water, next_);
     }
     if (status_due(last_poll)) {
       query_status();
-      last_poll = Clock::now();
+      last_poll = now();
       Progress progress;
       progress.acked = base_;
       progress.executed = executed_;
@@ -443,7 +577,22 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
       first_seq_ = static_cast<uint8_t>(first_seq_ + commands.size());
       return JobOutcome::kCompleted;
     }
-    if (Clock::now() - last_reply_ > options_.silence_limit) {
+    if (stalled()) {
+      std::string why;
+      if (last_status_.flags & proto::kStatusLinkHold)
+        why = "; the controller holds the job: it heard nothing from the host for 2 s";
+      else if (last_status_.flags & proto::kStatusFramePending)
+        why = "; the controller holds a frame it has no room for";
+      message_ = fmt::format(
+          "no progress for {} s: {} of {} commands executed, {} stored; machine {} at "
+          "({:.3f}, {:.3f}, {:.3f}) mm{}",
+          options_.stall_limit.count() / 1000.0, executed_, commands.size(), base_,
+          machine_state_name(last_status_.state), last_status_.x_um / 1000.0,
+          last_status_.y_um / 1000.0, last_status_.z_um / 1000.0, why);
+      commands_ = nullptr;
+      return JobOutcome::kStalled;
+    }
+    if (now() - last_reply_ > options_.silence_limit) {
       message_ =
           fmt::format("{}: no reply for {} ms after {} of {} commands executed", link_.name(),
                       options_.silence_limit.count(), executed_, commands.size());

@@ -25,6 +25,13 @@ struct SenderOptions {
   std::chrono::milliseconds silence_limit{10000};  // no reply at all: the link is dead
   bool zero_first = true;                          // not zeroed: #M and wait for the operator
   uint8_t zero_axes = proto::kAxisMaskAll;
+  // Watchdog: nothing acknowledged, nothing executed, the tool not moved and no state change
+  // for this long while the job is not finished -> the job ends as kStalled (0 = off).
+  // Waiting for the operator (a hold from here or the panel, zeroing) does not count.
+  std::chrono::milliseconds stall_limit{30000};
+  // Where time comes from (empty: the wall clock). The one-process simulator gives its
+  // machine time here, so every interval and time-out above runs in machine time.
+  std::function<std::chrono::steady_clock::time_point()> clock;
 };
 
 // How a job ended; the CLI maps these to exit codes.
@@ -33,7 +40,8 @@ enum class JobOutcome {
   kAborted,    // the operator aborted (#X)
   kAlarm,      // the machine raised an alarm
   kRejected,   // the controller refused a command (execution error)
-  kLinkLost    // the link closed or went silent
+  kLinkLost,   // the link closed or went silent
+  kStalled     // the link answered but the job made no progress (SenderOptions::stall_limit)
 };
 const char* outcome_name(JobOutcome outcome);
 
@@ -70,6 +78,8 @@ class Sender {
   void request_override(int percent) { override_requested_ = percent; }
 
   const SenderStats& stats() const { return stats_; }
+  // The smoothed round trip the retransmission timer uses (starts at 50 ms).
+  std::chrono::milliseconds smoothed_rtt() const { return srtt_; }
   // Why the job ended, for people: names the command, step and curve where relevant.
   const std::string& message() const { return message_; }
   const proto::StatusReply& last_status() const { return last_status_; }
@@ -82,7 +92,12 @@ class Sender {
   void send_realtime(uint8_t letter, const std::vector<uint8_t>& payload);
   bool ensure_zeroed(const std::function<void(const Progress&)>& on_progress);
   void query_status();
+  bool spline_room(const std::vector<QueuedCommand>& commands) const;
+  void sample_round_trip(size_t index);
   bool status_due(std::chrono::steady_clock::time_point last_poll) const;
+  std::chrono::steady_clock::time_point now() const;
+  void track_executed(uint8_t last_executed_seq);
+  bool stalled();
   size_t index_of_seq(uint8_t seq) const;
   std::string where(size_t index) const;
 
@@ -112,11 +127,27 @@ class Sender {
   size_t window_ = 1;        // frames in flight the controller allows (*I)
   size_t window_limit_ = 1;  // frames in flight allowed now: 1 after *E busy, grows per *O
   size_t queue_free_ = 1;    // controller queue room, from the newest *O or *?
+  // Spline slots free after the ordered frames before splines_known_at_ (newest *O or *?).
+  static constexpr size_t kSplineSlotsUnknown = SIZE_MAX;
+  size_t splines_free_ = kSplineSlotsUnknown;
+  size_t splines_known_at_ = 0;
   bool failed_ = false;
   JobOutcome failure_ = JobOutcome::kRejected;
   std::chrono::steady_clock::time_point last_reply_;
   std::chrono::steady_clock::time_point oldest_sent_;
   std::chrono::milliseconds srtt_{50};
+  // Stall watchdog: what was seen last and when it last changed.
+  struct Seen {
+    size_t acked = 0, executed = 0;
+    int32_t x_um = 0, y_um = 0, z_um = 0;
+    proto::MachineState state = proto::MachineState::kIdle;
+  } seen_;
+  std::chrono::steady_clock::time_point last_progress_;
+  bool operator_hold_ = false;  // the operator asked for a hold (not a stall)
+  std::vector<std::chrono::steady_clock::time_point> first_sent_;  // per command (Karn)
+  std::vector<bool> resent_;
+  size_t last_gap_expected_ = SIZE_MAX;  // the seq_gap we went back for, and when
+  std::chrono::steady_clock::time_point last_gap_at_{};
 
   std::atomic<bool> hold_requested_{false};
   std::atomic<bool> resume_requested_{false};

@@ -1,5 +1,6 @@
 // The `engraver` tool as a user runs it: help, info, points, exit codes.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -136,6 +137,117 @@ TEST(Cli, MissingFileIsAnInputError) {
   const ToolRun r = run("points /nonexistent/x.dxf");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("/nonexistent/x.dxf"), std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Cli, UnknownCommandIsNamedWithTheCommandsThereAre) {
+  const ToolRun r = run("bogus");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("'bogus' is not an engraver command"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("info, points"), std::string::npos) << r.err;
+}
+
+TEST(Cli, EachCommandsHelpHasItsExamplesAndExitCodes) {
+  for (const char* cmd : {"info", "points"}) {
+    const ToolRun r = run(std::string(cmd) + " --help");
+    EXPECT_EQ(r.code, 0);
+    EXPECT_NE(r.out.find(std::string("engraver ") + cmd + " "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("Exit codes: 0"), std::string::npos) << r.out;
+  }
+  const ToolRun top = run("--help");
+  EXPECT_NE(top.out.find("6 link lost"), std::string::npos) << top.out;
+}
+
+TEST(Cli, DirectoryGivenAsAFileSaysSo) {
+  const ToolRun r = run("info " + testing::TempDir());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("is a directory, not a drawing file"), std::string::npos) << r.err;
+}
+
+TEST(Cli, MissingFileSaysThereIsNoSuchFile) {
+  const ToolRun r = run("info /nonexistent/x.dxf");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("/nonexistent/x.dxf: cannot open the file: no such file"), std::string::npos)
+      << r.err;
+}
+
+TEST(Cli, UnreadableFileSaysPermissionDenied) {
+  if (geteuid() == 0) GTEST_SKIP() << "root reads every file";
+  const std::string path = write_temp("cli_noperm.dxf", "0\nEOF\n");
+  chmod(path.c_str(), 0);
+  const ToolRun r = run("info " + path);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("Permission denied"), std::string::npos) << r.err;
+}
+
+const char* kInchProgram =
+    "G20 (inch)\nG90\nG0 Z0.5\nT1 M6\n(MSG, Change tool bit)\nM0\nM3\nG4 P1\nG0 X0 Y0\n"
+    "G1 Z-0.01 F10\nG1 X1\nG0 Z0.1\nG81 R0.1 Z-0.06 X0.5 Y0.5\nG80\nM5\nM2\n";
+
+TEST(Cli, InfoShowsTheFilesUnitAndItsProgramInOrder) {
+  const ToolRun r = run("info " + write_temp("cli_inch.ngc", kInchProgram));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("units:    inch (1 unit = 25.400 mm)"), std::string::npos) << r.out;
+  const size_t pause = r.out.find("line 4: pause for the operator: \"Change tool bit\"");
+  const size_t cut = r.out.find("line 11: cut path #1");
+  const size_t drill = r.out.find("line 13: drill at (12.700, 12.700) mm");
+  EXPECT_NE(pause, std::string::npos) << r.out;
+  EXPECT_NE(cut, std::string::npos) << r.out;
+  EXPECT_NE(drill, std::string::npos) << r.out;
+  EXPECT_LT(pause, cut);
+  EXPECT_LT(cut, drill);
+  const ToolRun j = run("info --json " + write_temp("cli_inch.ngc", kInchProgram));
+  ASSERT_EQ(j.code, 0);
+  const nlohmann::json doc = nlohmann::json::parse(j.out);
+  EXPECT_EQ(doc["units"], "inch");
+  EXPECT_EQ(doc["program"].size(), 6u);  // pause, on, dwell, cut, hole, off
+}
+
+TEST(Cli, RunRefusesAWorkAreaBeyondTheTravel) {
+  const ToolRun r = run("run " + kSample + " --work 600 400 -o " + testing::TempDir());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--work 600 400 mm is beyond the controller's travel of 297 x 210 mm"),
+            std::string::npos)
+      << r.err;
+}
+
+TEST(Cli, RunOnATooLargeDrawingSaysWhatWouldFit) {
+  const ToolRun r = run("run " + kSample + " --scale 3 -o " + testing::TempDir());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("the drawing is 372 x 90 mm at --scale 3"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("It fits at --scale 2.395 or smaller"), std::string::npos) << r.err;
+}
+
+}  // namespace
+
+namespace {
+
+// A program the way pcb2gcode writes one, milling then drilling: dwells, a tool change
+// with its message, spindle, G81 holes; through the simulated machine to the end.
+const char* kPcbJob =
+    "( pcb2gcode style )\nG94\nG20\nG90\nG00 S10000\nG64 P0.0004\nG01 F20\n"
+    "G00 Z1.0 (Retract to tool change height)\nT1\nM5\nG04 P1.0\n"
+    "(MSG, Change tool bit to mill diameter 0.00800in)\nM6\nM0\nM3\nG04 P1.0\nG04 P0\n"
+    "G00 Z0.08\nG00 X0.1 Y0.1\nG01 Z-0.004 F10\nG04 P0\nG01 F20\nG01 X0.5 Y0.1\n"
+    "G01 X0.5 Y0.3\nG01 X0.1 Y0.3\nG01 X0.1 Y0.1\nG00 Z1.0\n"
+    "T2\nM5\nG04 P1.0\n(MSG, Change tool bit to drill size 0.0315inch)\nM6\nM0\nM3\nG0 Z0.08\n"
+    "G04 P1.0\nG81 R0.08 Z-0.07 F10 X0.2 Y0.2\nX0.4 Y0.2\nG80\nG00 Z1.0\nM5\nG04 P1.0\nM9\nM2\n";
+
+TEST(Cli, RunCarriesAPcbProgramWithToolChangesDwellsAndHolesToTheEnd) {
+  const std::string out = testing::TempDir() + "/cli_pcbjob_" + std::to_string(getpid());
+  const ToolRun r = run("run " + write_temp("cli_pcbjob.ngc", kPcbJob) + " -o " + out);
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  std::ifstream in(out + "/" + std::to_string(getpid()) + "-cli_pcbjob.json");
+  ASSERT_TRUE(in) << "no report";
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["outcome"], "completed");
+  EXPECT_EQ(j["pauses_confirmed_by_simulated_operator"], 2);  // one stop per tool change
+  EXPECT_EQ(j["spindle_on_at_end"], false);
+  // The square (4 x 0.4 in) was cut, and both holes drilled to 0.07 in.
+  EXPECT_GT(j["traced_cut_mm"].get<double>(), 4 * 0.4 * 25.4 - 0.1);
 }
 
 }  // namespace

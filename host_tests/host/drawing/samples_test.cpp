@@ -1,5 +1,5 @@
-// The bundled sample imports as documented; the third-party drawings in /work/shared/samples
-// (when present) import or are refused with a precise message.
+// The bundled sample imports as documented; the third-party drawings in ../shared/samples
+// (next to the repository, when present) import or are refused with a precise message.
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
@@ -9,7 +9,8 @@
 namespace host {
 namespace {
 
-const std::string kShared = "/work/shared/samples/";
+// ../shared seen from the repository top (a sibling of the checkout).
+const std::string kShared = std::string(ENGRAVER_SOURCE_DIR) + "/../shared/samples/";
 
 bool exists(const std::string& p) {
   struct stat st;
@@ -90,6 +91,32 @@ TEST(SharedSamples, ViaconstructorGcodeImportsItsArcs) {
   const Drawing d = import_drawing(kShared + "viaconstructor_check_laser_g2g3.ngc");
   EXPECT_EQ(d.format, "G-code");
   EXPECT_EQ(d.curves.size(), 4u);  // four laser-on runs (M03 ... M05)
+}
+
+TEST(SharedSamples, Pcb2gcodeMillingIsInchWithAToolChangeStopAndDwells) {
+  REQUIRE_SHARED("pcb2gcode_example_board_back.ngc");
+  const Drawing d = import_drawing(kShared + "pcb2gcode_example_board_back.ngc");
+  EXPECT_EQ(d.units, "inch");
+  EXPECT_EQ(d.entity_counts.at("pause (M0/M1/M6)"), 1);  // M6 + M0: one stop
+  EXPECT_EQ(d.entity_counts.at("dwell (G4)"), 3);        // the G04 P0 ones are no dwell
+  ASSERT_FALSE(d.program.empty());
+  bool message = false;
+  for (const ProgramOp& op : d.program)
+    message = message || (op.kind == ProgramOp::kPause &&
+                          op.text.find("Change tool bit to mill") != std::string::npos);
+  EXPECT_TRUE(message);
+  EXPECT_GT(d.curves.size(), 5u);
+}
+
+TEST(SharedSamples, Pcb2gcodeDrillingHasItsHolesInOrder) {
+  REQUIRE_SHARED("pcb2gcode_example_board_drill.ngc");
+  const Drawing d = import_drawing(kShared + "pcb2gcode_example_board_drill.ngc");
+  std::vector<Point2> holes;
+  for (const ProgramOp& op : d.program)
+    if (op.kind == ProgramOp::kDrill) holes.push_back(op.at);
+  ASSERT_EQ(holes.size(), 3u);
+  EXPECT_LT((holes[0] - Point2(0.9 * 25.4, -0.45 * 25.4)).norm(), 1e-9);
+  EXPECT_LT((holes[2] - Point2(1.65 * 25.4, -0.8 * 25.4)).norm(), 1e-9);
 }
 
 TEST(SharedSamples, GerberIsRefusedWithWhatToDoInstead) {

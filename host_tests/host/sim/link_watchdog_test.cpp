@@ -51,6 +51,9 @@ TEST(LinkWatchdog, MachineStopsWhenTheHostDisappearsAndANewSessionFindsItStopped
   o.status_interval = std::chrono::milliseconds(2);
   Sender second(*link, o);
   second.open_session();
+  // The new session stops what was left; give the deceleration time to end (the machine
+  // follows the wall clock once the host is silent) before checking that nothing moves.
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
   serving.stop();
 
   // Stopped: two more seconds of machine time move nothing.

@@ -42,6 +42,8 @@ JobPlan plan_with_spline(const core::Spline& spline) {
   PlanStep curve;
   curve.kind = PlanStep::kSpline;
   curve.spline = spline;
+  curve.to = {spline.control[spline.control_count - 1].x_um,
+              spline.control[spline.control_count - 1].y_um};
   curve.feed_um_per_s = 10000;
   curve.curve = 0;
   PlanStep line;
@@ -141,10 +143,40 @@ TEST(JobEncoder, FeedBeyondTheWireRangeIsRefused) {
   EXPECT_THROW(encode_job(plan, EncodeOptions{}), PlanError);
 }
 
-TEST(JobEncoder, ToolOffsetIsRefusedRatherThanIgnored) {
+TEST(JobEncoder, ToolOffsetTravelsInTheSplineHeader) {
   JobPlan plan = plan_with_spline(wavy_spline(4, false));
-  plan.steps[3].tool_offset_um = 100;
+  plan.steps[3].tool_offset_um = -250;
+  const auto cmds = encode_job(plan, EncodeOptions{});
+  int headers = 0;
+  for (const auto& c : cmds) {
+    if (c.letter != proto::kCmdSplineHeader) continue;
+    proto::SplineHeaderCmd h;
+    ASSERT_EQ(proto::decode(c.payload.data(), static_cast<uint8_t>(c.payload.size()), &h),
+              proto::ErrorCode::kOk);
+    EXPECT_EQ(h.tool_offset_um, -250);
+    ++headers;
+  }
+  EXPECT_EQ(headers, 1);
+  plan.steps[3].tool_offset_um = 100001;  // beyond what the controller offsets
   EXPECT_THROW(encode_job(plan, EncodeOptions{}), PlanError);
+}
+
+TEST(JobEncoder, StraightFeedWithAnOffsetBecomesADegreeOneSplineFromTheToolPosition) {
+  JobPlan plan = plan_with_spline(wavy_spline(4, false));
+  plan.steps[4].tool_offset_um = 300;  // the line back to (0, 0) from the spline's end
+  const auto cmds = encode_job(plan, EncodeOptions{});
+  std::vector<QueuedCommand> line;
+  for (const auto& c : cmds) {
+    if (c.step == 4) line.push_back(c);
+  }
+  const core::Spline s = reassemble(line);
+  ASSERT_EQ(line.front().letter, proto::kCmdSplineHeader);
+  EXPECT_EQ(s.degree, 1);
+  ASSERT_EQ(s.control_count, 2);
+  EXPECT_EQ(s.control[0].x_um, 3000);  // where the curve before it ended
+  EXPECT_EQ(s.control[0].y_um, 2500);
+  EXPECT_EQ(s.control[1].x_um, 0);
+  EXPECT_EQ(s.control[1].y_um, 0);
 }
 
 // Decodes one encoded command as Msg (its letter must match).
@@ -226,6 +258,31 @@ TEST(JobEncoder, DrillWhoseBottomIsNotBelowItsStartIsRefused) {
   drill.z_um = 1000;
   drill.feed_um_per_s = 700;
   EXPECT_THROW(encode_machine_steps({drill}), PlanError);
+}
+
+TEST(JobEncoder, JobLeavingTheControllersTravelIsRefusedNamingTheStep) {
+  proto::SessionReply small{};
+  small.travel_x_um = 30000;
+  small.travel_y_um = 30000;
+  small.travel_z_um = 5000;
+  EncodeOptions o;
+  o.controller = &small;
+  JobPlan plan = plan_with_spline(wavy_spline(4, false));  // x up to 3 mm: fits
+  EXPECT_NO_THROW(encode_job(plan, o));
+  plan.steps[1].to.x_um = 30001;  // the rapid
+  try {
+    encode_job(plan, o);
+    FAIL() << "no PlanError";
+  } catch (const PlanError& e) {
+    EXPECT_NE(std::string(e.what()).find("step 1: X 30.001 mm"), std::string::npos) << e.what();
+  }
+  plan = plan_with_spline(wavy_spline(40, false));  // control points up to X 39 mm
+  EXPECT_THROW(encode_job(plan, o), PlanError);
+  plan = plan_with_spline(wavy_spline(4, false));
+  plan.steps[2].z_um = -5001;  // pen down too deep
+  EXPECT_THROW(encode_job(plan, o), PlanError);
+  o.controller = nullptr;
+  EXPECT_NO_THROW(encode_job(plan, o));
 }
 
 TEST(JobEncoder, WireBytesCountHeaderAndCrc) {

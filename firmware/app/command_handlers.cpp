@@ -1,0 +1,227 @@
+// The application's command handlers: one per command of the message table, named in its
+// handler column. Queued commands become queue items (after the checks that need the
+// machine: zeroed, inside the travel); real-time ones act at once. Background loop only.
+#include "firmware/app/application.h"
+
+#include "firmware/protocol/codec.h"  // decode_frame
+
+namespace app {
+
+using proto::ErrorCode;
+
+// Decodes the frame as its table row's message and calls that row's handler.
+ErrorCode Application::handle(const proto::Frame& f, uint8_t* detail) {
+  *detail = 0;
+  switch (f.letter) {
+// NOLINTBEGIN(bugprone-macro-parentheses): Type is a type name, handler a member name.
+#define APP_HANDLE_CMD(Type, name, letter, kind, display, reply, handler, check) \
+  case proto::name: {                                                            \
+    proto::Type m;                                                               \
+    const ErrorCode e = proto::decode_frame(f, &m);                              \
+    if (e != ErrorCode::kOk) return e;                                           \
+    return handler(m, f.seq, detail);                                            \
+  }
+#define APP_HANDLE_SKIP(...)
+    // NOLINTEND(bugprone-macro-parentheses)
+    PROTO_MESSAGE_TABLE(APP_HANDLE_CMD, APP_HANDLE_SKIP, APP_HANDLE_SKIP, APP_HANDLE_SKIP,
+                        APP_HANDLE_SKIP, APP_HANDLE_SKIP)
+#undef APP_HANDLE_CMD
+#undef APP_HANDLE_SKIP
+    default:
+      return ErrorCode::kUnknownCommand;
+  }
+}
+
+ErrorCode Application::store(const proto::Frame& f, uint8_t* detail) {
+  if (alarm_active()) {
+    *detail = 0;
+    return ErrorCode::kAlarmActive;
+  }
+  return handle(f, detail);
+}
+
+ErrorCode Application::realtime(const proto::Frame& f) {
+  uint8_t detail = 0;
+  return handle(f, &detail);
+}
+
+QueueItem Application::new_item(ItemKind kind, uint8_t seq) {
+  QueueItem item;
+  item.kind = kind;
+  item.seq = seq;
+  item.stage = 0;
+  return item;
+}
+
+ErrorCode Application::enqueue(const QueueItem& item) {
+  if (!queue_.push(item)) return ErrorCode::kBusy;
+  ++items_stored_;
+  return ErrorCode::kOk;
+}
+
+// Motion frames need a zeroed machine (or a zeroing queued ahead) and a target inside the
+// travel of every axis named.
+ErrorCode Application::motion_check(const int32_t* x_um, const int32_t* y_um,
+                                    const int32_t* z_um) const {
+  if (!motion_allowed()) return ErrorCode::kNotZeroed;
+  if ((x_um != 0 && !inside_travel(config::kAxisX, *x_um)) ||
+      (y_um != 0 && !inside_travel(config::kAxisY, *y_um)) ||
+      (z_um != 0 && !inside_travel(config::kAxisZ, *z_um)))
+    return ErrorCode::kOutOfTravel;
+  return ErrorCode::kOk;
+}
+
+uint16_t Application::rapid_feed() const {
+  return cfg_.rapid_feed_um_per_s > 65535UL ? 65535U : (uint16_t)cfg_.rapid_feed_um_per_s;
+}
+
+// ---- queued ----
+
+ErrorCode Application::on_text(const proto::TextCmd& c, uint8_t seq, uint8_t*) {
+  QueueItem item = new_item(ItemKind::kText, seq);
+  item.text.row = c.row;
+  item.text.length = c.length;
+  for (uint8_t i = 0; i < c.length; ++i) item.text.chars[i] = c.text[i];
+  return enqueue(item);
+}
+
+ErrorCode Application::on_pause(const proto::PauseCmd& c, uint8_t seq, uint8_t*) {
+  QueueItem item = new_item(ItemKind::kPause, seq);
+  item.text.row = 0;
+  item.text.length = c.length;
+  for (uint8_t i = 0; i < c.length; ++i) item.text.chars[i] = c.text[i];
+  return enqueue(item);
+}
+
+ErrorCode Application::on_dwell(const proto::DwellCmd& c, uint8_t seq, uint8_t*) {
+  QueueItem item = new_item(ItemKind::kDwell, seq);
+  item.dwell.dwell_ms = c.dwell_ms;
+  return enqueue(item);
+}
+
+ErrorCode Application::on_spindle(const proto::SpindleCmd& c, uint8_t seq, uint8_t*) {
+  QueueItem item = new_item(ItemKind::kSpindle, seq);
+  item.spindle.on = c.on;
+  return enqueue(item);
+}
+
+ErrorCode Application::on_resolution(const proto::ResolutionCmd& c, uint8_t seq, uint8_t*) {
+  QueueItem item = new_item(ItemKind::kResolution, seq);
+  item.resolution.max_step_um = c.max_step_um;
+  item.resolution.chord_tolerance_um = c.chord_tolerance_um;
+  return enqueue(item);
+}
+
+ErrorCode Application::on_feed_move(const proto::FeedMoveCmd& c, uint8_t seq, uint8_t*) {
+  const ErrorCode e = motion_check(&c.x_um, &c.y_um, 0);
+  if (e != ErrorCode::kOk) return e;
+  QueueItem item = new_item(ItemKind::kFeedMove, seq);
+  item.move.x_um = c.x_um;
+  item.move.y_um = c.y_um;
+  item.move.feed_um_s = c.feed_um_per_s;
+  return enqueue(item);
+}
+
+ErrorCode Application::on_rapid_move(const proto::RapidMoveCmd& c, uint8_t seq, uint8_t*) {
+  const ErrorCode e = motion_check(&c.x_um, &c.y_um, 0);
+  if (e != ErrorCode::kOk) return e;
+  QueueItem item = new_item(ItemKind::kRapidMove, seq);
+  item.move.x_um = c.x_um;
+  item.move.y_um = c.y_um;
+  item.move.feed_um_s = rapid_feed();
+  return enqueue(item);
+}
+
+ErrorCode Application::on_z_move(const proto::ZMoveCmd& c, uint8_t seq, uint8_t*) {
+  const ErrorCode e = motion_check(0, 0, &c.z_um);
+  if (e != ErrorCode::kOk) return e;
+  QueueItem item = new_item(ItemKind::kZMove, seq);
+  item.z_move.z_um = c.z_um;
+  item.z_move.feed_um_s = c.feed_um_per_s;
+  return enqueue(item);
+}
+
+ErrorCode Application::on_drill(const proto::DrillCmd& c, uint8_t seq, uint8_t*) {
+  ErrorCode e = motion_check(&c.x_um, &c.y_um, &c.z_start_um);
+  if (e == ErrorCode::kOk) e = motion_check(0, 0, &c.z_bottom_um);
+  if (e != ErrorCode::kOk) return e;
+  QueueItem item = new_item(ItemKind::kDrill, seq);
+  item.drill.x_um = c.x_um;
+  item.drill.y_um = c.y_um;
+  item.drill.z_start_um = c.z_start_um;
+  item.drill.z_bottom_um = c.z_bottom_um;
+  item.drill.feed_um_s = c.feed_um_per_s;
+  return enqueue(item);
+}
+
+ErrorCode Application::on_zeroing(const proto::ZeroingCmd& c, uint8_t seq, uint8_t*) {
+  if (!queue_.empty() || stopping_) return ErrorCode::kBadState;
+  QueueItem item = new_item(ItemKind::kZeroing, seq);
+  item.zeroing.axes = c.axes;
+  return enqueue(item);
+}
+
+ErrorCode Application::on_spline_header(const proto::SplineHeaderCmd& c, uint8_t seq, uint8_t*) {
+  if (!motion_allowed()) return ErrorCode::kNotZeroed;
+  if (queue_.free_slots() == 0 || !store_.has_free_slot()) return ErrorCode::kBusy;
+  uint8_t slot = 0;
+  const ErrorCode e = store_.begin(c, &slot);
+  if (e != ErrorCode::kOk) return e;
+  QueueItem item = new_item(ItemKind::kSpline, seq);
+  item.spline.slot = slot;
+  item.spline.feed_um_s = c.feed_um_per_s;
+  item.spline.tool_offset_um = c.tool_offset_um;
+  return enqueue(item);
+}
+
+// Stored in the spline's slot, no queue item of its own.
+ErrorCode Application::on_spline_data(const proto::SplineDataCmd& c, uint8_t, uint8_t* detail) {
+  const int32_t travel[2] = {scaling_.travel_um[0], scaling_.travel_um[1]};
+  bool completed = false;
+  return store_.add(c, travel, detail, &completed);
+}
+
+// ---- real-time ----
+
+ErrorCode Application::on_hold(const proto::HoldCmd&, uint8_t, uint8_t*) {
+  if (!request(RequestKind::kHold, 0)) return ErrorCode::kBusy;
+  hold_requested_ = true;
+  return ErrorCode::kOk;
+}
+
+ErrorCode Application::on_resume(const proto::ResumeCmd&, uint8_t, uint8_t*) {
+  if (!hold_requested_) return ErrorCode::kBadState;
+  if (!request(RequestKind::kResume, 0)) return ErrorCode::kBusy;
+  hold_requested_ = false;
+  link_hold_ = false;
+  return ErrorCode::kOk;
+}
+
+ErrorCode Application::on_abort(const proto::AbortCmd&, uint8_t, uint8_t*) {
+  begin_stop();
+  dispatcher_.abort_stream();
+  return ErrorCode::kOk;
+}
+
+ErrorCode Application::on_override(const proto::OverrideCmd& c, uint8_t, uint8_t*) {
+  if (!request(RequestKind::kOverride, c.percent)) return ErrorCode::kBusy;
+  override_percent_ = c.percent;
+  return ErrorCode::kOk;
+}
+
+ErrorCode Application::on_clear_alarm(const proto::ClearAlarmCmd&, uint8_t, uint8_t*) {
+  if (!alarm_active()) return ErrorCode::kBadState;
+  if (!request(RequestKind::kClearAlarm, 0)) return ErrorCode::kBusy;
+  app_alarm_ = proto::Alarm::kNone;
+  drop_job();
+  stopping_ = true;  // until the tick confirms the ring is dropped
+  hold_requested_ = false;
+  link_hold_ = false;
+  // Snapshots taken before the tick saw the request still show the latched alarm.
+  alarm_clearing_ = true;
+  alarm_clear_mark_ = requests_pushed_;
+  reported_alarm_ = proto::Alarm::kNone;
+  return ErrorCode::kOk;
+}
+
+}  // namespace app

@@ -1,0 +1,596 @@
+// `engraver board` and the PCB hooks of `points`, `run` and `send` (see board_cli.h).
+#include "host/cli/board_cli.h"
+
+#include <fmt/format.h>       // fmt::format
+#include <sys/resource.h>     // getrusage: peak memory
+#include <nlohmann/json.hpp>  // nlohmann::json
+
+#include <algorithm>   // std::sort
+#include <chrono>      // steady_clock
+#include <cmath>       // std::lround
+#include <ctime>       // std::clock
+#include <filesystem>  // directories
+#include <fstream>     // std::ofstream
+#include <iomanip>     // std::setprecision
+#include <iostream>    // std::cout, std::cerr
+
+#include "host/cli/command_registry.h"
+#include "host/cli/exit_codes.h"
+#include "host/lib/pcb/excellon_reader.h"
+#include "host/lib/pcb/gerber_reader.h"
+#include "host/lib/pcb/isolation_check.h"
+#include "host/lib/pcb/pcb_file_names.h"
+#include "host/lib/pcb/pcb_geometry.h"
+#include "host/lib/plan/firmware_points.h"
+#include "host/lib/plan/firmware_spline.h"
+#include "host/lib/plot/board_plot.h"
+#include "host/lib/stream/job_encoder.h"
+
+namespace host::cli {
+
+namespace {
+
+using pcb::LayerKind;
+using pcb::PcbLayer;
+
+// ---- Reading a board's files ----
+
+struct BoardFiles {
+  std::vector<PcbLayer> copper_top, copper_bottom, drill, outline;
+  std::string name;  // for output files and the job title
+  std::string side;  // from a "top:" / "bottom:" prefix
+  std::vector<std::string> notes;
+};
+
+PcbLayer read_layer(const std::string& path, LayerKind forced) {
+  try {
+    const pcb::PcbFileFormat f = pcb::pcb_file_format(path);
+    if (f == pcb::PcbFileFormat::kExcellon) {
+      PcbLayer l = pcb::read_excellon_file(path);
+      l.kind = LayerKind::kDrill;
+      return l;
+    }
+    if (f == pcb::PcbFileFormat::kGerber || forced != LayerKind::kUnknown) {
+      pcb::GerberOptions o;
+      o.kind_if_unknown = forced;
+      PcbLayer l = pcb::read_gerber_file(path, o);
+      if (forced != LayerKind::kUnknown) l.kind = forced;
+      return l;
+    }
+  } catch (const pcb::PcbReadError& e) {
+    throw CommandFailure(kExitUsage, e.what());
+  }
+  throw CommandFailure(kExitUsage, path + ": not a Gerber or Excellon file");
+}
+
+void add_layer(BoardFiles* b, PcbLayer l, bool from_directory) {
+  switch (l.kind) {
+    case LayerKind::kCopperTop:
+      b->copper_top.push_back(std::move(l));
+      return;
+    case LayerKind::kCopperBottom:
+      b->copper_bottom.push_back(std::move(l));
+      return;
+    case LayerKind::kDrill:
+      b->drill.push_back(std::move(l));
+      return;
+    case LayerKind::kOutline:
+      b->outline.push_back(std::move(l));
+      return;
+    case LayerKind::kUnknown:
+      break;
+  }
+  if (from_directory) {
+    b->notes.push_back(l.path + ": not a copper, drill or outline layer: left out");
+    return;
+  }
+  throw CommandFailure(kExitUsage,
+                       l.path +
+                           ": cannot tell which layer this is (no X2 TF.FileFunction, no "
+                           "usual name); give it with --top, --bottom or --outline");
+}
+
+bool has_prefix(const std::string& s, const std::string& p) {
+  return s.compare(0, p.size(), p) == 0;
+}
+
+// "bottom:a,b" -> side "bottom", files {a, b}; a directory -> its PCB files.
+std::vector<std::string> expand_input(const std::string& input, std::string* side, bool* directory,
+                                      std::string* stripped = nullptr) {
+  std::string rest = input;
+  for (const char* s : {"top:", "bottom:"}) {
+    if (has_prefix(rest, s)) {
+      *side = std::string(s, std::string(s).size() - 1);
+      rest = rest.substr(std::string(s).size());
+    }
+  }
+  std::vector<std::string> files;
+  if (stripped) *stripped = rest;
+  *directory = std::filesystem::is_directory(rest);
+  if (*directory) {
+    for (const auto& e : std::filesystem::directory_iterator(rest)) {
+      if (!e.is_regular_file()) continue;
+      const std::string p = e.path().string();
+      if (pcb::pcb_file_format(p) == pcb::PcbFileFormat::kNone) continue;
+      files.push_back(p);
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+  }
+  size_t start = 0;
+  while (start <= rest.size()) {
+    const size_t comma = rest.find(',', start);
+    const std::string f = rest.substr(start, comma == std::string::npos ? comma : comma - start);
+    if (!f.empty()) files.push_back(f);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return files;
+}
+
+std::string board_name(const std::string& input_or_file) {
+  std::filesystem::path p(input_or_file);
+  if (p.filename().empty()) p = p.parent_path();
+  return std::filesystem::is_directory(p) ? p.filename().string() : p.stem().string();
+}
+
+BoardFiles read_input(const std::string& input) {
+  BoardFiles b;
+  bool directory = false;
+  std::string stripped;
+  const std::vector<std::string> files = expand_input(input, &b.side, &directory, &stripped);
+  if (files.empty()) throw CommandFailure(kExitUsage, input + ": no PCB files there");
+  for (const std::string& f : files) {
+    // In a directory, only files whose names say copper, drill or outline are read (no
+    // silkscreen, mask or paste).
+    if (directory && pcb::pcb_file_format(f) == pcb::PcbFileFormat::kGerber &&
+        pcb::layer_kind_from_file_name(f) == LayerKind::kUnknown) {
+      b.notes.push_back(f + ": not a copper, drill or outline file name: left out");
+      continue;
+    }
+    add_layer(&b, read_layer(f, LayerKind::kUnknown), directory);
+  }
+  b.name = board_name(directory ? stripped : files.front());
+  return b;
+}
+
+// Several drill files (plated and not) make one drill layer.
+PcbLayer merged_drill(const std::vector<PcbLayer>& drills) {
+  PcbLayer d = drills.front();
+  for (size_t i = 1; i < drills.size(); ++i) {
+    d.holes.insert(d.holes.end(), drills[i].holes.begin(), drills[i].holes.end());
+    d.slots.insert(d.slots.end(), drills[i].slots.begin(), drills[i].slots.end());
+    d.path += " + " + drills[i].path;
+  }
+  return d;
+}
+
+// ---- Planning ----
+
+pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, const BoardFiles& b) {
+  pcb::BoardOptions o;
+  std::string side = a.side.empty() ? b.side : a.side;
+  if (side.empty()) side = b.copper_top.empty() && !b.copper_bottom.empty() ? "bottom" : "top";
+  if (side != "top" && side != "bottom")
+    throw CommandFailure(kExitUsage, "--side must be top or bottom, not '" + side + "'");
+  o.side = side == "bottom" ? pcb::BoardSide::kBottom : pcb::BoardSide::kTop;
+  o.isolation.tool_width_mm = a.tool_width_mm;
+  o.isolation.passes = a.passes;
+  o.isolation.overlap = a.overlap;
+  o.isolation.mill_all = a.mill_all;
+  o.isolation_depth_mm = a.depth_mm;
+  o.drill_depth_mm = a.drill_depth_mm;
+  o.drill_start_mm = a.drill_start_mm;
+  o.drill_feed_mm_per_s = a.drill_feed_mm_s;
+  o.cutout.cutter_diameter_mm = a.cutter_mm;
+  o.cutout.tab_width_mm = a.tab_width_mm;
+  o.cutout.tab_count = a.tabs;
+  o.cutout.tab_spacing_mm = a.tab_spacing_mm;
+  o.cutout_depth_mm = a.cut_depth_mm;
+  o.cutout_step_mm = a.cut_step_mm;
+  o.cutout_feed_mm_per_s = a.cut_feed_mm_s;
+  o.tab_height_mm = a.tab_height_mm;
+  o.spindle = !a.no_spindle;
+  o.allow_narrow_gaps = a.allow_narrow_gaps;
+  o.feed_mm_per_s = d.feed_mm_s;
+  o.z_travel_mm = d.z_up_mm;
+  o.margin_mm = d.margin_mm;
+  o.work_width_mm = d.work_w_mm;
+  o.work_height_mm = d.work_h_mm;
+  return o;
+}
+
+pcb::BoardJob plan(const BoardFiles& b, const pcb::BoardOptions& o) {
+  if (b.copper_top.size() > 1 || b.copper_bottom.size() > 1 || b.outline.size() > 1)
+    throw CommandFailure(kExitUsage, "more than one file for the same copper or outline layer");
+  PcbLayer drill;
+  pcb::BoardLayers l;
+  if (!b.copper_top.empty()) l.copper_top = &b.copper_top.front();
+  if (!b.copper_bottom.empty()) l.copper_bottom = &b.copper_bottom.front();
+  if (!b.outline.empty()) l.outline = &b.outline.front();
+  if (!b.drill.empty()) {
+    drill = merged_drill(b.drill);
+    l.drill = &drill;
+  }
+  try {
+    return pcb::plan_board(l, o);
+  } catch (const PlanError& e) {
+    throw CommandFailure(kExitJobFailed, e.what());
+  } catch (const pcb::CutoutError& e) {
+    throw CommandFailure(kExitUsage, e.what());
+  }
+}
+
+// ---- Measures ----
+
+struct WireMeasure {
+  size_t spline_frames = 0;
+  size_t spline_bytes = 0;  // #B and #D frames of the isolation curves
+  size_t g1_lines = 0;      // the same curves as G1 lines at the chord tolerance
+  size_t g1_bytes = 0;
+  size_t g1_vertex_bytes = 0;  // G1 through every vertex of Clipper's flattened contours
+};
+
+std::string g1(const Point2& p) {
+  return fmt::format("G1 X{:.3f} Y{:.3f}\n", p.x(), p.y());
+}
+
+WireMeasure measure_wire(const pcb::BoardJob& job, double tol_mm) {
+  WireMeasure m;
+  JobPlan iso;
+  for (const PlanStep& s : job.plan.steps) {
+    if (s.kind == PlanStep::kSpline && s.curve >= 0 &&
+        static_cast<size_t>(s.curve) < job.isolation_curves)
+      iso.steps.push_back(s);
+  }
+  EncodeOptions eo;
+  eo.title.clear();
+  for (const QueuedCommand& c : encode_job(iso, eo)) {
+    if (c.step < 0) continue;  // set-up frames
+    ++m.spline_frames;
+    m.spline_bytes += frame_bytes(c);
+  }
+  for (size_t i = 0; i < job.isolation_curves; ++i) {
+    const std::vector<Point2> pts = sample(job.plan.curves[i].spline, tol_mm);
+    for (size_t k = 1; k < pts.size(); ++k) {
+      ++m.g1_lines;
+      m.g1_bytes += g1(pts[k]).size();
+    }
+  }
+  // Clipper's vertices (what a G-code CAM writes from the same polygons).
+  m.g1_vertex_bytes = job.report.isolation_vertices * g1(Point2(123.456, 78.901)).size();
+  return m;
+}
+
+double peak_memory_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;
+}
+
+nlohmann::json report_json(const pcb::BoardJob& job, const pcb::BoardOptions& o) {
+  const pcb::BoardReport& r = job.report;
+  nlohmann::json j;
+  j["side"] = o.side == pcb::BoardSide::kBottom ? "bottom" : "top";
+  j["first_tool"] = r.first_tool;
+  j["islands"] = r.islands;
+  j["narrow_gaps"] = nlohmann::json::array();
+  for (const pcb::NarrowGap& g : r.narrow_gaps) {
+    j["narrow_gaps"].push_back({{"x_mm", g.at.x / pcb::kNmPerMm},
+                                {"y_mm", g.at.y / pcb::kNmPerMm},
+                                {"gap_mm", g.gap_mm},
+                                {"islands", {g.island_a, g.island_b}}});
+  }
+  j["isolation_contours"] = r.isolation_contours;
+  j["isolation_length_mm"] = r.isolation_length_mm;
+  j["isolation_vertices"] = r.isolation_vertices;
+  j["fit"] = {{"lines", r.fit.lines},
+              {"arcs", r.fit.arcs},
+              {"cubics", r.fit.cubics},
+              {"smooth_joints", r.fit.smooth_joints},
+              {"corner_joints", r.fit.corner_joints}};
+  j["holes"] = r.holes;
+  j["holes_on_copper"] = r.holes_on_copper;
+  j["slots"] = r.slots;
+  j["drill_tools"] = r.drill_tools;
+  j["drill_travel_file_order_mm"] = r.drill_travel_file_order_mm;
+  j["drill_travel_ordered_mm"] = r.drill_travel_ordered_mm;
+  j["tabs"] = r.tabs;
+  j["cutout_length_mm"] = r.cutout_length_mm;
+  j["tool_changes"] = r.tool_changes;
+  j["steps"] = job.plan.steps.size();
+  j["cut_length_mm"] = job.plan.cut_length_mm;
+  j["rapid_length_mm"] = job.plan.rapid_length_mm;
+  j["extents_mm"] = {{"min", {job.plan.extents_mm.min.x(), job.plan.extents_mm.min.y()}},
+                     {"max", {job.plan.extents_mm.max.x(), job.plan.extents_mm.max.y()}}};
+  return j;
+}
+
+std::optional<pcb::BoardJob> g_last_job;
+std::string g_last_title;
+
+// ---- engraver board ----
+
+struct BoardCommand {
+  std::vector<std::string> files;
+  std::string top, bottom, outline;
+  std::vector<std::string> drills;
+  BoardArgs board;
+  MachineDefaults machine;
+  std::vector<double> work_mm{297.0, 210.0};
+  std::string outdir = "out";
+  double tol_mm = 0.005;
+  bool json = false;
+  bool no_check = false;
+  bool no_plot = false;
+};
+
+void run_board(const BoardCommand& a) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const std::clock_t cpu0 = std::clock();
+  BoardFiles b;
+  for (const std::string& f : a.files) {
+    BoardFiles one = read_input(f);
+    for (auto& l : one.copper_top) b.copper_top.push_back(std::move(l));
+    for (auto& l : one.copper_bottom) b.copper_bottom.push_back(std::move(l));
+    for (auto& l : one.drill) b.drill.push_back(std::move(l));
+    for (auto& l : one.outline) b.outline.push_back(std::move(l));
+    b.notes.insert(b.notes.end(), one.notes.begin(), one.notes.end());
+    if (b.name.empty()) b.name = one.name;
+    if (b.side.empty()) b.side = one.side;
+  }
+  if (!a.top.empty()) b.copper_top.push_back(read_layer(a.top, LayerKind::kCopperTop));
+  if (!a.bottom.empty()) b.copper_bottom.push_back(read_layer(a.bottom, LayerKind::kCopperBottom));
+  if (!a.outline.empty()) b.outline.push_back(read_layer(a.outline, LayerKind::kOutline));
+  for (const std::string& d : a.drills) b.drill.push_back(read_layer(d, LayerKind::kDrill));
+  if (b.name.empty()) {
+    for (const std::string& f : {a.top, a.bottom, a.outline})
+      if (!f.empty() && b.name.empty()) b.name = board_name(f);
+    if (b.name.empty() && !a.drills.empty()) b.name = board_name(a.drills.front());
+  }
+  for (const std::string& n : b.notes) std::cerr << "engraver: note: " << n << "\n";
+  MachineDefaults md = a.machine;
+  md.work_w_mm = a.work_mm[0];
+  md.work_h_mm = a.work_mm[1];
+  const pcb::BoardOptions o = board_options(a.board, md, b);
+  const pcb::BoardJob job = plan(b, o);
+  const double plan_cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  const double plan_wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double plan_peak_mb = peak_memory_mb();
+
+  nlohmann::json j = report_json(job, o);
+  j["board"] = b.name;
+  j["files_to_plan_cpu_s"] = plan_cpu_s;
+  j["files_to_plan_wall_s"] = plan_wall_s;
+  j["files_to_plan_peak_mb"] = plan_peak_mb;
+  const WireMeasure w = measure_wire(job, a.tol_mm);
+  j["isolation_spline_frames"] = w.spline_frames;
+  j["isolation_spline_bytes"] = w.spline_bytes;
+  j["isolation_g1_lines_same_tolerance"] = w.g1_lines;
+  j["isolation_g1_bytes_same_tolerance"] = w.g1_bytes;
+  j["isolation_g1_bytes_every_vertex"] = w.g1_vertex_bytes;
+  j["chord_tolerance_mm"] = a.tol_mm;
+  bool check_ok = true;
+  if (!a.no_check && !job.copper_machine_nm.empty()) {
+    const double tol = o.fit_tolerance_mm * 3 + 0.001;  // fit (arc sagitta), 1 um rounding
+    const pcb::IsolationCheck c = pcb::check_isolation(
+        job.copper_machine_nm, job.isolation_paths_mm, job.tool_radius_mm, tol);
+    j["check"] = {{"tolerance_mm", tol},
+                  {"islands", c.islands},
+                  {"copper_hits", c.hits.size()},
+                  {"unseparated_pairs", c.unseparated.size()}};
+    check_ok = c.hits.empty() && c.unseparated.size() <= job.report.narrow_gaps.size();
+    if (!c.ok()) std::cerr << "engraver: isolation check: " << pcb::describe(c) << "\n";
+  }
+  std::filesystem::create_directories(a.outdir);
+  const std::string base = (std::filesystem::path(a.outdir) / b.name).string();
+  if (!a.no_plot) {
+    BoardPlotInput in;
+    in.title = fmt::format("{} ({} side)", b.name, j["side"].get<std::string>());
+    in.job = &job;
+    write_board_plot(in, base + ".board.svg", base + ".board.png");
+  }
+  {
+    std::ofstream out(base + ".board.json");
+    out << j.dump(2) << "\n";
+  }
+  if (a.json) {
+    std::cout << j.dump(2) << "\n";
+  } else {
+    const pcb::BoardReport& r = job.report;
+    std::cout << fmt::format(
+        "{}: {} side, first tool {}\n"
+        "  isolation: {} islands, {} contours, {:.1f} mm ({} lines, {} arcs, {} cubics); "
+        "{} narrow gaps\n"
+        "  as splines {} bytes in {} frames; as G1 at {} mm: {} bytes ({:.1f}x); G1 through "
+        "every vertex: {} bytes\n"
+        "  drilling: {} holes ({} on copper), {} slots, {} sizes; travel {:.1f} mm (file order "
+        "{:.1f} mm)\n"
+        "  cut-out: {:.1f} mm per pass, {} tabs; {} tool changes\n"
+        "  files -> plan: {:.3f} s CPU, peak {:.1f} MB\n",
+        b.name, j["side"].get<std::string>(), r.first_tool, r.islands, r.isolation_contours,
+        r.isolation_length_mm, r.fit.lines, r.fit.arcs, r.fit.cubics, r.narrow_gaps.size(),
+        w.spline_bytes, w.spline_frames, a.tol_mm, w.g1_bytes,
+        w.spline_bytes ? static_cast<double>(w.g1_bytes) / static_cast<double>(w.spline_bytes)
+                       : 0.0,
+        w.g1_vertex_bytes, r.holes, r.holes_on_copper, r.slots, r.drill_tools,
+        r.drill_travel_ordered_mm, r.drill_travel_file_order_mm, r.cutout_length_mm, r.tabs,
+        r.tool_changes, plan_cpu_s, plan_peak_mb);
+    for (const pcb::NarrowGap& g : r.narrow_gaps)
+      std::cout << "  " << pcb::describe_gap(g, o.isolation.tool_width_mm) << "\n";
+    if (!a.no_plot) std::cout << "  plot: " << base << ".board.svg, .png; ";
+    std::cout << "report: " << base << ".board.json\n";
+  }
+  if (!check_ok) throw CommandFailure(kExitJobFailed, "the isolation check failed (see above)");
+}
+
+void add_board_command(CLI::App& app) {
+  auto a = std::make_shared<BoardCommand>();
+  CLI::App* cmd = app.add_subcommand(
+      "board",
+      "Plan a whole PCB (copper, drill and outline files, each optional): isolation, drilling "
+      "with tool changes, cut-out with tabs; check it, plot it, report it");
+  cmd->add_option("FILES", a->files,
+                  "Gerber/Excellon files or a directory of them; kinds from X2 attributes or "
+                  "names");
+  cmd->add_option("--top", a->top, "top copper Gerber");
+  cmd->add_option("--bottom", a->bottom, "bottom copper Gerber");
+  cmd->add_option("--drill", a->drills, "Excellon drill file (may be given twice: PTH, NPTH)");
+  cmd->add_option("--outline", a->outline, "board outline (Edge.Cuts, profile) Gerber");
+  add_board_options(cmd, &a->board);
+  cmd->add_option("--feed", a->machine.feed_mm_s, "isolation feed, mm/s")->capture_default_str();
+  cmd->add_option("--z-up", a->machine.z_up_mm, "travel height, mm")->capture_default_str();
+  cmd->add_option("--margin", a->machine.margin_mm, "job corner from the zero, mm")
+      ->capture_default_str();
+  cmd->add_option("--work", a->work_mm, "work area W H in mm (default A4)")->expected(2);
+  cmd->add_option("--tol", a->tol_mm, "chord tolerance for the G1 comparison, mm")
+      ->capture_default_str();
+  cmd->add_option("-o,--outdir", a->outdir, "where NAME.board.svg/.png/.json go")
+      ->capture_default_str();
+  cmd->add_flag("--json", a->json, "print the report as JSON");
+  cmd->add_flag("--no-check", a->no_check, "skip the geometric isolation check");
+  cmd->add_flag("--no-plot", a->no_plot, "write no plot");
+  cmd->footer(
+      "Example: engraver board board-F.Cu.gbr board-PTH.drl board-Edge.Cuts.gbr -o out\n"
+      "         engraver board --side bottom samples/pcb/multivibrator/\n"
+      "Then: engraver run board/ (simulate) or engraver send board/ --to tcp://HOST:PORT.\n"
+      "Exit: 0 planned and checked, 1 refused (narrow gaps, work area, check failed), 2 bad "
+      "input.");
+  cmd->callback([a] { run_board(*a); });
+}
+
+const CommandRegistrar registrar("board", add_board_command);
+
+}  // namespace
+
+void add_board_options(CLI::App* cmd, BoardArgs* a) {
+  const std::string g = "PCB boards";
+  cmd->add_option("--tool-width", a->tool_width_mm, "isolation: V-bit width at the depth, mm")
+      ->group(g)
+      ->check(CLI::Range(0.01, 5.0))
+      ->capture_default_str();
+  cmd->add_option("--passes", a->passes, "isolation passes")
+      ->group(g)
+      ->check(CLI::Range(1, 50))
+      ->capture_default_str();
+  cmd->add_option("--overlap", a->overlap, "overlap of passes (fraction of the tool width)")
+      ->group(g)
+      ->check(CLI::Range(0.0, 0.9))
+      ->capture_default_str();
+  cmd->add_flag("--mill-all", a->mill_all, "clear all copper-free area")->group(g);
+  cmd->add_option("--depth", a->depth_mm, "isolation depth, mm")->group(g)->capture_default_str();
+  cmd->add_option("--drill-depth", a->drill_depth_mm, "drill plunge depth, mm")
+      ->group(g)
+      ->capture_default_str();
+  cmd->add_option("--drill-start", a->drill_start_mm, "height where each plunge starts, mm")
+      ->group(g)
+      ->capture_default_str();
+  cmd->add_option("--drill-feed", a->drill_feed_mm_s, "drill plunge feed, mm/s")
+      ->group(g)
+      ->capture_default_str();
+  cmd->add_option("--cutter", a->cutter_mm, "cut-out cutter diameter, mm")
+      ->group(g)
+      ->capture_default_str();
+  cmd->add_option("--cut-depth", a->cut_depth_mm, "cut-out depth, mm")
+      ->group(g)
+      ->capture_default_str();
+  cmd->add_option("--cut-step", a->cut_step_mm, "cut-out depth per pass, mm")
+      ->group(g)
+      ->capture_default_str();
+  cmd->add_option("--cut-feed", a->cut_feed_mm_s, "cut-out feed, mm/s")
+      ->group(g)
+      ->capture_default_str();
+  cmd->add_option("--tab-width", a->tab_width_mm, "holding tab width, mm (0: none)")
+      ->group(g)
+      ->capture_default_str();
+  cmd->add_option("--tabs", a->tabs, "holding tabs per board")->group(g)->capture_default_str();
+  cmd->add_option("--tab-spacing", a->tab_spacing_mm,
+                  "one tab per this much outline length, mm (instead of --tabs)")
+      ->group(g)
+      ->check(CLI::Range(0.0, 10000.0));
+  cmd->add_option("--tab-height", a->tab_height_mm, "board thickness the tabs keep, mm")
+      ->group(g)
+      ->capture_default_str();
+  cmd->add_option("--side", a->side, "top or bottom (mirrored); default: the copper given")
+      ->group(g);
+  cmd->add_flag("--no-spindle", a->no_spindle, "no spindle on/off commands")->group(g);
+  cmd->add_flag("--allow-narrow-gaps", a->allow_narrow_gaps,
+                "plan even where copper is closer than the tool width (reported)")
+      ->group(g);
+}
+
+bool is_pcb_input(const std::string& input) {
+  std::string side;
+  bool directory = false;
+  std::string rest = input;
+  if (has_prefix(rest, "top:") || has_prefix(rest, "bottom:")) return true;
+  if (std::filesystem::is_directory(rest)) return !expand_input(rest, &side, &directory).empty();
+  for (const std::string& f : expand_input(rest, &side, &directory))
+    if (pcb::pcb_file_format(f) != pcb::PcbFileFormat::kNone) return true;
+  return false;
+}
+
+JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d) {
+  const BoardFiles b = read_input(input);
+  for (const std::string& n : b.notes) std::cerr << "engraver: note: " << n << "\n";
+  const pcb::BoardOptions o = board_options(args, d, b);
+  g_last_job = plan(b, o);
+  g_last_title = b.name;
+  const pcb::BoardReport& r = g_last_job->report;
+  std::cerr << fmt::format(
+      "engraver: board {}: mount {} first; {} contours, {} holes, {} tool changes\n", b.name,
+      r.first_tool, r.isolation_contours, r.holes, r.tool_changes);
+  for (const pcb::NarrowGap& g : r.narrow_gaps)
+    std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation.tool_width_mm) << "\n";
+  return g_last_job->plan;
+}
+
+bool write_board_plot_if_planned(const std::string& base,
+                                 const std::vector<ToolPathSegment>& simulated) {
+  if (!g_last_job) return false;
+  BoardPlotInput in;
+  in.title = g_last_title + " (simulated)";
+  in.job = &*g_last_job;
+  in.simulated = simulated;
+  write_board_plot(in, base + ".board.svg", base + ".board.png");
+  return true;
+}
+
+bool print_board_points_if_pcb(const std::string& input, double tol_mm, bool csv) {
+  if (!is_pcb_input(input)) return false;
+  BoardArgs a;
+  a.allow_narrow_gaps = true;
+  MachineDefaults d;
+  d.work_w_mm = d.work_h_mm = 1e6;  // points in the file frame: no work area applies
+  const BoardFiles b = read_input(input);
+  const pcb::BoardOptions o = board_options(a, d, b);
+  const pcb::BoardJob job = plan(b, o);
+  for (const pcb::NarrowGap& g : job.report.narrow_gaps)
+    std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation.tool_width_mm) << "\n";
+  const int tol_um = static_cast<int>(std::lround(tol_mm * 1000));
+  // Machine frame back to the files' frame.
+  auto to_file = [&](const Point2& m) {
+    return Point2((m.x() - job.frame.offset_mm.x()) / job.frame.sx,
+                  m.y() - job.frame.offset_mm.y());
+  };
+  if (csv) std::cout << "curve,x_mm,y_mm\n";
+  std::cout << std::fixed << std::setprecision(4);
+  for (size_t i = 0; i < job.isolation_curves; ++i) {
+    const PlannedCurve& c = job.plan.curves[i];
+    const std::vector<Point2> pts = firmware_points_mm(c.spline, tol_um);
+    if (!csv)
+      std::cout << "# curve " << i << ": " << c.source << ": " << pts.size()
+                << " points (x_mm y_mm)\n";
+    for (const Point2& p : pts) {
+      const Point2 f = to_file(p);
+      if (csv)
+        std::cout << i << "," << f.x() << "," << f.y() << "\n";
+      else
+        std::cout << f.x() << " " << f.y() << "\n";
+    }
+  }
+  return true;
+}
+
+}  // namespace host::cli

@@ -1,0 +1,74 @@
+// PCB boards on the command line: `engraver board` (plan, check, plot and report a whole
+// board) and the hooks through which `points`, `run` and `send` take PCB files: a single
+// Gerber/Excellon file, a directory holding a board's files, or several files joined by
+// commas ("bottom:" in front plans the bottom side).
+#ifndef HOST_CLI_BOARD_CLI_H
+#define HOST_CLI_BOARD_CLI_H
+
+#include <CLI/CLI.hpp>  // CLI::App
+
+#include <memory>    // std::shared_ptr
+#include <optional>  // std::optional
+#include <string>    // std::string
+#include <vector>    // std::vector
+
+#include "host/lib/pcb/board_job.h"
+#include "host/lib/plan/job_plan.h"
+#include "host/lib/plot/plot.h"  // ToolPathSegment
+
+namespace host::cli {
+
+// Board options shared by `board`, `run` and `send` (tools, passes, depths, tabs, side).
+struct BoardArgs {
+  double tool_width_mm = 0.2;
+  int passes = 1;
+  double overlap = 0.25;
+  bool mill_all = false;
+  double depth_mm = 0.05;
+  double drill_depth_mm = 1.8;
+  double drill_start_mm = 0.5;
+  double drill_feed_mm_s = 1.0;
+  double cutter_mm = 1.0;
+  double cut_depth_mm = 1.8;
+  double cut_step_mm = 0.6;
+  double cut_feed_mm_s = 3.0;
+  double tab_width_mm = 2.0;
+  int tabs = 4;
+  double tab_spacing_mm = 0;  // > 0: one tab per this much outline instead of --tabs
+  double tab_height_mm = 0.5;
+  bool no_spindle = false;
+  bool allow_narrow_gaps = false;
+  std::string side;  // "top", "bottom" or empty (the side whose copper is given)
+};
+
+// Adds the board options to a command, in their own group.
+void add_board_options(CLI::App* cmd, BoardArgs* args);
+
+// What `run` and `send` already carry for drawings.
+struct MachineDefaults {
+  double feed_mm_s = 5.0;
+  double z_up_mm = 2.0;
+  double margin_mm = 5.0;
+  double work_w_mm = 297.0, work_h_mm = 210.0;
+};
+
+// True when `input` names PCB files (a Gerber/Excellon file, a directory with some, a
+// comma-separated list, optionally "bottom:"/"top:" in front).
+bool is_pcb_input(const std::string& input);
+
+// Reads and plans the board; errors end the command (CommandFailure) naming the file. The
+// job is kept for write_board_plot_if_planned().
+JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d);
+
+// After `run`: the board plot (copper, isolation, holes, cut-out, the simulated path) at
+// base + ".board.svg/.png", when the last plan was a board. Returns whether it wrote one.
+bool write_board_plot_if_planned(const std::string& base,
+                                 const std::vector<ToolPathSegment>& simulated);
+
+// `engraver points` on PCB input: the tool-centre points of the isolation paths, in the
+// files' frame. False when the input is not PCB files.
+bool print_board_points_if_pcb(const std::string& input, double tol_mm, bool csv);
+
+}  // namespace host::cli
+
+#endif  // HOST_CLI_BOARD_CLI_H

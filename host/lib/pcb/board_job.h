@@ -1,0 +1,110 @@
+// A whole board as one job: isolation of the copper on the chosen side, drilling with tool
+// changes, and the cut-out with tabs, all layers aligned by their common file coordinates
+// (mirrored for the bottom side), planned into a JobPlan checked against the work area.
+#ifndef HOST_LIB_PCB_BOARD_JOB_H
+#define HOST_LIB_PCB_BOARD_JOB_H
+
+#include <string>  // std::string
+#include <vector>  // std::vector
+
+#include "host/lib/pcb/contour_fit.h"
+#include "host/lib/pcb/cutout.h"
+#include "host/lib/pcb/isolation.h"
+#include "host/lib/pcb/pcb_layer.h"
+#include "host/lib/plan/job_plan.h"
+
+namespace host::pcb {
+
+enum class BoardSide { kTop, kBottom };
+
+// The layers of one board; each optional (null: not in the job).
+struct BoardLayers {
+  const PcbLayer* copper_top = nullptr;
+  const PcbLayer* copper_bottom = nullptr;
+  const PcbLayer* drill = nullptr;
+  const PcbLayer* outline = nullptr;
+};
+
+struct BoardOptions {
+  BoardSide side = BoardSide::kTop;  // kBottom: the bottom copper, everything mirrored in x
+  IsolationOptions isolation;        // tool width, passes, overlap, mill_all
+  double isolation_depth_mm = 0.05;  // cutting depth of the V-bit below the copper surface
+  double fit_tolerance_mm = 0.002;   // polyline -> lines/arcs/cubics
+  double z_travel_mm = 2.0;
+  double feed_mm_per_s = 5.0;  // isolation
+  double plunge_mm_per_s = 1.0;
+  double drill_start_mm = 0.5;  // height above the board where each plunge starts
+  double drill_depth_mm = 1.8;  // plunge depth (board thickness + breakthrough)
+  double drill_feed_mm_per_s = 1.0;
+  CutoutOptions cutout;
+  double cutout_depth_mm = 1.8;
+  double cutout_step_mm = 0.6;  // depth per cut-out pass
+  double tab_height_mm = 0.5;   // tabs keep this much of the board's thickness
+  double cutout_feed_mm_per_s = 3.0;
+  bool spindle = true;  // spindle on/off steps and spin-up dwells
+  uint32_t spindle_spinup_ms = 2000;
+  double margin_mm = 5.0;  // the job's lower-left corner (tool extent) in the machine
+  double work_width_mm = 297.0;
+  double work_height_mm = 210.0;
+  bool allow_narrow_gaps = false;  // plan anyway (the gaps stay in the report)
+};
+
+// How file coordinates (mm) map into the machine frame: x' = sx * x + offset.x, y' = y + offset.y.
+struct BoardFrame {
+  double sx = 1.0;  // -1 for the bottom side
+  Point2 offset_mm{0, 0};
+  Point2 to_machine(const Point2& file_mm) const {
+    return Point2(sx * file_mm.x() + offset_mm.x(), file_mm.y() + offset_mm.y());
+  }
+  ClipperLib::Paths to_machine_nm(const ClipperLib::Paths& file_nm) const;
+};
+
+struct BoardReport {
+  size_t islands = 0;
+  std::vector<NarrowGap> narrow_gaps;  // places in the file frame
+  size_t isolation_contours = 0;
+  double isolation_length_mm = 0;
+  size_t isolation_vertices = 0;  // of the flattened contours (the G1 lines they would be)
+  FitStats fit;
+  size_t holes = 0;
+  size_t holes_on_copper = 0;  // centre inside the isolated copper: the layers line up
+  size_t slots = 0;
+  size_t drill_tools = 0;
+  double drill_travel_file_order_mm = 0;
+  double drill_travel_ordered_mm = 0;
+  int tabs = 0;
+  double cutout_length_mm = 0;
+  size_t tool_changes = 0;  // kPause steps
+  std::string first_tool;   // mounted before the job starts
+  std::vector<std::string> notes;
+};
+
+struct BoardJob {
+  JobPlan plan;
+  BoardReport report;
+  BoardFrame frame;
+  size_t isolation_curves = 0;          // plan.curves[0 .. isolation_curves) isolate copper
+  double tool_radius_mm = 0;            // isolation tool
+  ClipperLib::Paths copper_machine_nm;  // the isolated copper in the machine frame
+  ClipperLib::Paths board_machine_nm;   // the board inside its outline, machine frame
+  std::vector<std::vector<Point2>> isolation_paths_mm;  // planned tool centres, machine frame
+  std::vector<Hole> holes_machine;                      // nm, machine frame
+  std::vector<Slot> slots_machine;
+  std::vector<std::vector<Point2>> cutout_paths_mm;  // machine frame
+  std::vector<std::vector<Point2>> tab_paths_mm;     // stretches lifted over tabs
+  double cutter_radius_mm = 0;
+};
+
+// Text of a narrow gap for messages: "gap 0.12 mm < tool 0.20 mm at (x, y) mm".
+std::string describe_gap(const NarrowGap& g, double tool_width_mm);
+
+// Plans the board. Throws PlanError (narrow gaps unless allowed, nothing to do, the work
+// area, a curve the firmware cannot hold) and CutoutError (an outline that does not close).
+BoardJob plan_board(const BoardLayers& layers, const BoardOptions& options);
+
+// Name of a drill or cutter size for the LCD (at most 16 characters): "Drill 0.80mm".
+std::string tool_label(const char* what, double diameter_mm);
+
+}  // namespace host::pcb
+
+#endif  // HOST_LIB_PCB_BOARD_JOB_H

@@ -1,0 +1,422 @@
+#include "host/lib/pcb/excellon_reader.h"
+
+#include <cctype>   // std::isdigit, std::isspace, std::isalpha
+#include <cmath>    // std::fabs, std::llround
+#include <cstdlib>  // std::strtod
+#include <fstream>  // std::ifstream
+#include <map>      // std::map
+#include <sstream>  // std::ostringstream, std::istringstream
+#include <vector>   // std::vector
+
+namespace host::pcb {
+
+using ClipperLib::cInt;
+
+namespace {
+
+const double kMaxCoordNm = 1e10;  // 10 m
+const double kMaxToolNm = 1e8;    // a 100 mm drill is not a drill
+
+enum class Zeros { kUnknown, kLeadingKept, kTrailingKept };
+
+std::string trim(const std::string& s) {
+  size_t a = 0, b = s.size();
+  while (a < b && std::isspace(static_cast<unsigned char>(s[a]))) ++a;
+  while (b > a && std::isspace(static_cast<unsigned char>(s[b - 1]))) --b;
+  return s.substr(a, b - a);
+}
+
+bool starts_with(const std::string& s, const char* p) {
+  return s.rfind(p, 0) == 0;
+}
+
+bool contains(const std::string& s, const char* p) {
+  return s.find(p) != std::string::npos;
+}
+
+class ExcellonReader {
+ public:
+  ExcellonReader(const std::string& text, const std::string& path) : text_(text), path_(path) {}
+  PcbLayer read();
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw PcbReadError(path_ + ":" + std::to_string(line_) + ": " + what);
+  }
+  void note(const std::string& text) const;
+  void header_line(const std::string& s);
+  void body_line(const std::string& s);
+  void comment(const std::string& s);
+  void units_line(const std::string& s);
+  void set_units(bool metric);
+  void tool(const std::string& s, bool in_header);
+  double number(const std::string& s, const char* what) const;
+  cInt coordinate(const std::string& s) const;
+  // Reads X/Y pairs from s (modal: a missing axis keeps its value); true if any was given.
+  bool position(const std::string& s, PointNm& p) const;
+  void need_tool() const;
+
+  const std::string& text_;
+  std::string path_;
+  int line_ = 0;
+  bool in_header_ = false;
+  bool done_ = false;
+  double unit_nm_ = 0;
+  std::string units_;
+  Zeros zeros_ = Zeros::kUnknown;
+  int int_digits_ = 0, dec_digits_ = 0;  // 0: the unit's default
+  bool incremental_ = false;
+  bool routing_ = false;  // G00/G01 route mode
+  bool plunged_ = false;  // M15 .. M16
+  std::map<int, cInt> tools_;
+  int tool_ = 0;
+  PointNm at_;
+  PcbLayer layer_;
+  mutable std::vector<std::pair<std::string, std::pair<int, int>>>
+      notes_;  // text, first line, count
+};
+
+void ExcellonReader::note(const std::string& text) const {
+  for (auto& n : notes_) {
+    if (n.first == text) {
+      ++n.second.second;
+      return;
+    }
+  }
+  notes_.push_back({text, {line_, 1}});
+}
+
+PcbLayer ExcellonReader::read() {
+  std::istringstream in(text_);
+  std::string raw;
+  bool seen_header = false;
+  while (!done_ && std::getline(in, raw)) {
+    ++line_;
+    const std::string s = trim(raw);
+    if (s.empty()) continue;
+    if (s[0] == ';') {
+      comment(s);
+      continue;
+    }
+    if (s == "M48") {
+      in_header_ = true;
+      seen_header = true;
+      continue;
+    }
+    if (in_header_) {
+      if (s == "%" || s == "M95") {
+        in_header_ = false;
+        continue;
+      }
+      header_line(s);
+    } else {
+      if (s == "%") continue;  // rewind stop (old)
+      body_line(s);
+    }
+  }
+  if (!done_) fail("the file ends without M30 (end of program): it may be cut short");
+  if (!seen_header) note("no M48 header");
+  layer_.path = path_;
+  layer_.kind = LayerKind::kDrill;
+  layer_.units = units_;
+  layer_.apertures_or_tools = static_cast<int>(tools_.size());
+  for (const auto& n : notes_) {
+    std::string s = "line " + std::to_string(n.second.first) + ": " + n.first;
+    if (n.second.second > 1) s += " (" + std::to_string(n.second.second) + " times)";
+    layer_.notes.push_back(s);
+  }
+  return layer_;
+}
+
+void ExcellonReader::comment(const std::string& s) {
+  // KiCad: ";FORMAT={-:-/ absolute / inch / decimal}" or "{3:3/ absolute / metric /
+  // suppress trailing zeros}"; Eagle/Altium: ";FILE_FORMAT=2:4".
+  const size_t f = s.find("FORMAT");
+  if (f == std::string::npos) return;
+  const std::string rest = s.substr(f);
+  const size_t colon = rest.find(':');
+  if (colon != std::string::npos && colon > 0 &&
+      std::isdigit(static_cast<unsigned char>(rest[colon - 1])) && colon + 1 < rest.size() &&
+      std::isdigit(static_cast<unsigned char>(rest[colon + 1]))) {
+    int_digits_ = rest[colon - 1] - '0';
+    dec_digits_ = rest[colon + 1] - '0';
+  }
+  if (contains(rest, "suppress trailing")) zeros_ = Zeros::kLeadingKept;
+  if (contains(rest, "suppress leading")) zeros_ = Zeros::kTrailingKept;
+  if (contains(rest, "absolute")) incremental_ = false;
+  if (contains(rest, "metric") && unit_nm_ == 0) set_units(true);
+  if (contains(rest, "inch") && unit_nm_ == 0) set_units(false);
+}
+
+void ExcellonReader::set_units(bool metric) {
+  unit_nm_ = metric ? 1e6 : 25.4e6;
+  units_ = metric ? "mm" : "inch";
+}
+
+void ExcellonReader::units_line(const std::string& s) {
+  // METRIC[,LZ|TZ][,000.000]  INCH[,LZ|TZ][,00.0000]
+  set_units(starts_with(s, "METRIC"));
+  size_t start = 0;
+  int field = 0;
+  for (;;) {
+    const size_t comma = s.find(',', start);
+    const std::string f = trim(s.substr(start, comma - start));
+    if (field > 0) {
+      if (f == "LZ") {
+        zeros_ = Zeros::kLeadingKept;
+      } else if (f == "TZ") {
+        zeros_ = Zeros::kTrailingKept;
+      } else if (!f.empty() && f.find_first_not_of("0.") == std::string::npos) {
+        const size_t dot = f.find('.');
+        if (dot == std::string::npos) fail("digit format '" + f + "' without '.'");
+        int_digits_ = static_cast<int>(dot);
+        dec_digits_ = static_cast<int>(f.size() - dot - 1);
+      } else {
+        fail("unknown field '" + f + "' in '" + s + "'");
+      }
+    }
+    ++field;
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+}
+
+void ExcellonReader::tool(const std::string& s, bool in_header) {
+  // T<n>[C<diameter>][F..][S..][B..][H..][Z..] in any order after the number.
+  size_t k = 1;
+  while (k < s.size() && std::isdigit(static_cast<unsigned char>(s[k]))) ++k;
+  if (k == 1 || k > 7) fail("bad tool '" + s + "'");
+  const int n = std::stoi(s.substr(1, k - 1));
+  bool has_diameter = false;
+  double diameter = 0;
+  while (k < s.size()) {
+    const char letter = s[k];
+    size_t end = k + 1;
+    while (end < s.size() && !std::isalpha(static_cast<unsigned char>(s[end]))) ++end;
+    const std::string value = s.substr(k + 1, end - k - 1);
+    if (!std::isalpha(static_cast<unsigned char>(letter))) fail("bad tool '" + s + "'");
+    if (letter == 'C') {
+      diameter = number(value, "tool diameter");
+      has_diameter = true;
+    } else if (std::string("FSBHZNDIT").find(letter) == std::string::npos) {
+      fail("unknown tool parameter '" + std::string(1, letter) + "' in '" + s + "'");
+    }
+    k = end;
+  }
+  if (has_diameter) {
+    if (unit_nm_ == 0)
+      fail("tool T" + std::to_string(n) + " defined before the units (METRIC/INCH)");
+    const double nm = diameter * unit_nm_;
+    if (!(nm > 0 && nm <= kMaxToolNm)) {
+      fail("tool T" + std::to_string(n) + " diameter " + s.substr(s.find('C') + 1) +
+           " is not between 0 and 100 mm");
+    }
+    tools_[n] = static_cast<cInt>(std::llround(nm));
+    if (in_header) return;
+    note("tool defined in the body");
+  }
+  if (in_header) return;
+  if (n != 0 && !tools_.count(n))
+    fail("tool T" + std::to_string(n) + " has no diameter (no T" + std::to_string(n) +
+         "C... in the header)");
+  tool_ = n;
+}
+
+void ExcellonReader::header_line(const std::string& s) {
+  if (starts_with(s, "METRIC") || starts_with(s, "INCH")) {
+    units_line(s);
+  } else if (s[0] == 'T' && s.size() > 1 && std::isdigit(static_cast<unsigned char>(s[1]))) {
+    tool(s, true);
+  } else if (starts_with(s, "FMAT")) {
+    if (s != "FMAT,2") note("'" + s + "': format 1 commands are read like format 2");
+  } else if (s == "M71") {
+    set_units(true);
+  } else if (s == "M72") {
+    set_units(false);
+  } else if (s == "G90") {
+    incremental_ = false;
+  } else if (s == "G91" || s == "ICI" || s == "ICI,ON") {
+    incremental_ = true;
+    note("incremental coordinates");
+  } else {
+    note("header line '" + s.substr(0, 30) + "' ignored");
+  }
+}
+
+void ExcellonReader::need_tool() const {
+  if (tool_ == 0) fail("a hole or slot before any tool is selected (Tn)");
+}
+
+void ExcellonReader::body_line(const std::string& s) {
+  if (s[0] == 'T' && s.size() > 1 && std::isdigit(static_cast<unsigned char>(s[1]))) {
+    tool(s, false);
+    return;
+  }
+  if (s == "M30" || s == "M00" || s == "M02") {
+    done_ = true;
+    return;
+  }
+  if (s == "G90") {
+    incremental_ = false;
+    return;
+  }
+  if (s == "G91") {
+    incremental_ = true;
+    note("G91 incremental coordinates");
+    return;
+  }
+  if (s == "G05" || s == "G5" || s == "G81") {
+    routing_ = false;
+    plunged_ = false;
+    return;
+  }
+  if (s == "M71" || s == "M72") {
+    const std::string before = units_;
+    set_units(s == "M71");
+    if (!before.empty() && before != units_) note(s + " switches units in the body");
+    return;
+  }
+  if (s == "M15") {
+    if (!routing_) fail("M15 (tool down) outside route mode (G00)");
+    plunged_ = true;
+    return;
+  }
+  if (s == "M16" || s == "M17") {
+    plunged_ = false;
+    return;
+  }
+  if (starts_with(s, "G00") || starts_with(s, "G01")) {
+    PointNm p = at_;
+    const bool has = position(s.substr(3), p);
+    if (starts_with(s, "G00")) {
+      routing_ = true;
+      plunged_ = false;
+    } else {
+      if (!routing_) fail("G01 outside route mode (no G00 before it)");
+      if (has && plunged_) {
+        need_tool();
+        layer_.slots.push_back({at_, p, tools_[tool_], tool_});
+      }
+    }
+    at_ = p;
+    return;
+  }
+  if (starts_with(s, "G02") || starts_with(s, "G03")) {
+    fail("routed arcs (" + s.substr(0, 3) + ") are not supported");
+  }
+  if (s[0] == 'X' || s[0] == 'Y') {
+    const size_t g85 = s.find("G85");
+    if (g85 != std::string::npos) {
+      PointNm from = at_;
+      position(s.substr(0, g85), from);
+      PointNm to = from;  // incremental ends are relative to the start
+      if (!position(s.substr(g85 + 3), to)) fail("G85 slot without an end point");
+      need_tool();
+      layer_.slots.push_back({from, to, tools_[tool_], tool_});
+      at_ = to;
+      return;
+    }
+    PointNm p = at_;
+    position(s, p);
+    if (routing_) {
+      if (plunged_) {
+        need_tool();
+        layer_.slots.push_back({at_, p, tools_[tool_], tool_});
+      }
+      at_ = p;
+      return;
+    }
+    need_tool();
+    layer_.holes.push_back({p, tools_[tool_], tool_});
+    at_ = p;
+    return;
+  }
+  if (starts_with(s, "M47") || starts_with(s, "M45")) {
+    note("operator message '" + s.substr(0, 30) + "' ignored");
+    return;
+  }
+  if (s == "M48") return;
+  fail("unknown or unsupported command '" + s.substr(0, 30) + "'");
+}
+
+double ExcellonReader::number(const std::string& s, const char* what) const {
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end != '\0' || !std::isfinite(v))
+    fail(std::string("bad ") + what + " '" + s + "'");
+  return v;
+}
+
+cInt ExcellonReader::coordinate(const std::string& s) const {
+  if (unit_nm_ == 0) fail("coordinates before the units (METRIC/INCH in the header, or M71/M72)");
+  double nm = 0;
+  if (s.find('.') != std::string::npos) {
+    nm = number(s, "coordinate") * unit_nm_;
+  } else {
+    size_t k = 0;
+    bool negative = false;
+    if (k < s.size() && (s[k] == '+' || s[k] == '-')) negative = s[k++] == '-';
+    const std::string digits = s.substr(k);
+    if (digits.empty() || digits.size() > 12 ||
+        digits.find_first_not_of("0123456789") != std::string::npos) {
+      fail("bad coordinate '" + s + "'");
+    }
+    const bool metric = unit_nm_ == 1e6;
+    const int integer = int_digits_ > 0 ? int_digits_ : (metric ? 3 : 2);
+    const int decimals = dec_digits_ > 0 ? dec_digits_ : (metric ? 3 : 4);
+    int scale = decimals;  // digits after the point
+    if (zeros_ == Zeros::kLeadingKept) {
+      scale = static_cast<int>(digits.size()) - integer;
+    } else if (zeros_ == Zeros::kUnknown && static_cast<int>(digits.size()) != integer + decimals) {
+      note("integer coordinates without LZ/TZ: leading zeros taken as omitted (the default)");
+    }
+    double v = static_cast<double>(std::stoll(digits));
+    for (int q = 0; q < scale; ++q) v /= 10;
+    for (int q = 0; q > scale; --q) v *= 10;
+    nm = (negative ? -v : v) * unit_nm_;
+  }
+  if (!(std::fabs(nm) <= kMaxCoordNm)) fail("coordinate '" + s + "' is beyond 10 m");
+  return static_cast<cInt>(std::llround(nm));
+}
+
+bool ExcellonReader::position(const std::string& s, PointNm& p) const {
+  bool any = false;
+  size_t k = 0;
+  while (k < s.size()) {
+    const char axis = s[k];
+    size_t end = k + 1;
+    while (end < s.size() && (std::isdigit(static_cast<unsigned char>(s[end])) || s[end] == '.' ||
+                              s[end] == '+' || s[end] == '-')) {
+      ++end;
+    }
+    const std::string value = s.substr(k + 1, end - k - 1);
+    if (axis != 'X' && axis != 'Y')
+      fail("unexpected '" + std::string(1, axis) + "' in '" + s + "'");
+    if (value.empty()) fail("'" + std::string(1, axis) + "' without a value in '" + s + "'");
+    const cInt v = coordinate(value);
+    cInt& dst = axis == 'X' ? p.x : p.y;
+    dst = incremental_ ? dst + v : v;
+    if (dst > kMaxCoordNm || dst < -kMaxCoordNm) fail("position beyond 10 m");
+    any = true;
+    k = end;
+  }
+  return any;
+}
+
+}  // namespace
+
+PcbLayer read_excellon_text(const std::string& text, const std::string& path) {
+  return ExcellonReader(text, path).read();
+}
+
+PcbLayer read_excellon_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw PcbReadError(path + ": cannot open the file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  const std::string text = s.str();
+  if (text.empty()) throw PcbReadError(path + ": the file is empty");
+  return read_excellon_text(text, path);
+}
+
+}  // namespace host::pcb

@@ -1,0 +1,1180 @@
+#include "host/lib/pcb/gerber_reader.h"
+
+#include <algorithm>      // std::min, std::max
+#include <cctype>         // std::isdigit, std::isspace
+#include <cmath>          // std::atan2, std::hypot, std::fabs
+#include <cstdio>         // std::snprintf
+#include <cstdlib>        // std::strtod
+#include <fstream>        // std::ifstream
+#include <map>            // std::map
+#include <sstream>        // std::ostringstream
+#include <unordered_map>  // std::unordered_map
+#include <vector>         // std::vector
+
+#include "host/lib/pcb/gerber_macro.h"
+#include "host/lib/pcb/gerber_outline.h"
+#include "host/lib/pcb/gerber_shapes.h"
+#include "host/lib/pcb/pcb_file_names.h"
+
+namespace host::pcb {
+
+using ClipperLib::cInt;
+using ClipperLib::IntPoint;
+using ClipperLib::Path;
+using ClipperLib::Paths;
+
+namespace {
+
+const double kPi = 3.14159265358979323846;
+const double kMaxCoordNm = 1e10;    // 10 m: anything beyond is a broken file
+const double kMaxApertureNm = 1e9;  // 1 m
+const long kMaxStepRepeatCopies = 10000;
+
+struct Aperture {
+  char type = 'C';         // C R O P, or M for a macro
+  double circle_d_nm = 0;  // type C
+  Paths shape;             // around the origin; positive outers, negative holes
+  bool has_hole = false;
+};
+
+struct Batch {
+  bool dark = true;
+  Paths paths;
+  std::vector<size_t> starts;  // where each object (an outer and its holes) begins in paths
+};
+
+struct Note {
+  std::string text;
+  int first_line = 0;
+  int count = 0;
+};
+
+bool is_space(char c) {
+  return std::isspace(static_cast<unsigned char>(c)) != 0;
+}
+
+std::string strip_all_space(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (char c : s) {
+    if (!is_space(c)) out += c;
+  }
+  return out;
+}
+
+std::string trim(const std::string& s) {
+  size_t a = 0, b = s.size();
+  while (a < b && is_space(s[a])) ++a;
+  while (b > a && is_space(s[b - 1])) --b;
+  return s.substr(a, b - a);
+}
+
+std::string without_line_breaks(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c != '\r' && c != '\n') out += c;
+  }
+  return out;
+}
+
+bool starts_with(const std::string& s, const char* p) {
+  return s.rfind(p, 0) == 0;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  for (;;) {
+    const size_t at = s.find(sep, start);
+    out.push_back(s.substr(start, at - start));
+    if (at == std::string::npos) return out;
+    start = at + 1;
+  }
+}
+
+class GerberReader {
+ public:
+  GerberReader(const std::string& text, const std::string& path, const GerberOptions& options)
+      : text_(text), path_(path), opt_(options) {}
+
+  PcbLayer read();
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw PcbReadError(path_ + ":" + std::to_string(line_) + ": " + what);
+  }
+  void note(const std::string& text);
+
+  // Blocks.
+  void extended_block(const std::string& body, int first_line);
+  void extended_command(const std::string& cmd);
+  void word_block(const std::string& word);
+  void comment(const std::string& text);
+  void attribute(const std::string& body);
+
+  // Extended commands.
+  void format_spec(const std::string& s);
+  void aperture_definition(const std::string& s);
+  void aperture_macro(const std::vector<std::string>& parts, const std::vector<int>& lines);
+  void step_repeat(const std::string& s);
+  void close_step_repeat();
+  bool copies_stand_alone(const std::vector<Batch>& block) const;
+  static Paths evaluate(std::vector<Batch>& batches);
+
+  // Operations.
+  double number(const std::string& s, const char* what) const;
+  cInt coordinate(const std::string& s, bool is_x) const;
+  void operate(int d, const std::string* x, const std::string* y, const std::string* i,
+               const std::string* j);
+  void draw_line(IntPoint from, IntPoint to);
+  void draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool region);
+  void flash(IntPoint at);
+  const Aperture& current_aperture() const;
+  void add_object(Paths paths);
+  void count_vertices(size_t n);
+  void add_centre_line(IntPoint from, const Path& points);
+  void finish_contour();
+  void set_units(double unit_nm, const char* how);
+
+  const std::string& text_;
+  std::string path_;
+  GerberOptions opt_;
+  int line_ = 1;
+  int last_block_line_ = 1;
+
+  // Format and units.
+  bool have_format_ = false;
+  int x_int_ = 2, x_dec_ = 4, y_int_ = 2, y_dec_ = 4;
+  bool omit_trailing_ = false;
+  bool incremental_ = false;
+  double unit_nm_ = 0;  // 0 = not yet set
+  std::string units_;
+
+  // Apertures.
+  std::map<int, Aperture> apertures_;
+  std::unordered_map<std::string, ApertureMacro> macros_;
+  int aperture_ = -1;
+
+  // Graphics state.
+  IntPoint at_{0, 0};
+  int interpolation_ = 1;  // 1 linear, 2 clockwise, 3 counter-clockwise
+  int quadrant_ = 0;       // 74 single, 75 multi, 0 not given
+  int last_d_ = 0;
+  bool dark_ = true;
+  bool region_ = false;
+  Path contour_;
+  bool done_ = false;
+
+  // What has been drawn.
+  std::vector<Batch> batches_;
+  size_t vertices_ = 0;        // in batches_ and strokes_
+  std::vector<Path> strokes_;  // centre lines (outline layers)
+  bool stroke_open_ = false;   // the last stroke continues at at_
+
+  // Step and repeat.
+  bool in_sr_ = false;
+  long sr_x_ = 1, sr_y_ = 1;
+  long sr_x_saved_ = 1, sr_y_saved_ = 1;
+  cInt sr_i_ = 0, sr_j_ = 0;
+  size_t sr_batch_start_ = 0, sr_stroke_start_ = 0;
+
+  // Image offset (%OF, deprecated).
+  cInt offset_x_ = 0, offset_y_ = 0;
+
+  LayerKind x2_kind_ = LayerKind::kUnknown;
+  bool x2_kind_given_ = false;
+  std::vector<Note> notes_;
+};
+
+void GerberReader::note(const std::string& text) {
+  for (Note& n : notes_) {
+    if (n.text == text) {
+      ++n.count;
+      return;
+    }
+  }
+  notes_.push_back({text, line_, 1});
+}
+
+PcbLayer GerberReader::read() {
+  const size_t n = text_.size();
+  size_t pos = 0;
+  while (pos < n && !done_) {
+    const char c = text_[pos];
+    if (c == '\n') {
+      ++line_;
+      ++pos;
+    } else if (is_space(c)) {
+      ++pos;
+    } else if (c == '%') {
+      const size_t end = text_.find('%', pos + 1);
+      if (end == std::string::npos) fail("'%' block never closed with '%'");
+      const std::string body = text_.substr(pos + 1, end - pos - 1);
+      const int first = line_;
+      last_block_line_ = first;
+      extended_block(body, first);
+      line_ = first;
+      for (char b : body) {
+        if (b == '\n') ++line_;
+      }
+      pos = end + 1;
+    } else {
+      const size_t end = text_.find('*', pos);
+      if (end == std::string::npos) {
+        fail("data block '" + trim(text_.substr(pos, 40)) + "' never ends with '*'");
+      }
+      const std::string word = text_.substr(pos, end - pos);
+      const int first = line_;
+      last_block_line_ = first;
+      word_block(word);
+      line_ = first;
+      for (char b : word) {
+        if (b == '\n') ++line_;
+      }
+      pos = end + 1;
+    }
+  }
+  if (!done_) {
+    line_ = last_block_line_;
+    fail("the file ends without M02 (end of file): it may be cut short, so it is not used");
+  }
+  for (size_t k = pos; k < n; ++k) {
+    if (!is_space(text_[k])) {
+      note("text after M02 ignored");
+      break;
+    }
+  }
+  if (region_) fail("G36 region still open at M02");
+
+  PcbLayer layer;
+  layer.path = path_;
+  layer.units = units_;
+  layer.apertures_or_tools = static_cast<int>(apertures_.size());
+  layer.arc_tolerance_nm = opt_.arc_tolerance_nm;
+  if (x2_kind_given_) {
+    layer.kind = x2_kind_;
+  } else {
+    layer.kind = layer_kind_from_file_name(path_);
+    if (layer.kind == LayerKind::kUnknown) layer.kind = opt_.kind_if_unknown;
+  }
+  if (layer.kind == LayerKind::kOutline) {
+    layer.polygons_nm = join_strokes(strokes_, opt_.arc_tolerance_nm * 4 + 2000);
+    layer.outline_paths_are_open = true;
+  } else {
+    layer.polygons_nm = evaluate(batches_);
+  }
+  if (offset_x_ != 0 || offset_y_ != 0) translate_paths(layer.polygons_nm, offset_x_, offset_y_);
+  for (const Note& nt : notes_) {
+    std::string s = "line " + std::to_string(nt.first_line) + ": " + nt.text;
+    if (nt.count > 1) s += " (" + std::to_string(nt.count) + " times)";
+    layer.notes.push_back(s);
+  }
+  return layer;
+}
+
+Paths GerberReader::evaluate(std::vector<Batch>& batches) {
+  Paths result;
+  for (Batch& b : batches) {
+    if (result.empty()) {
+      if (b.dark) result = union_objects(b.paths, b.starts, {});
+    } else {
+      // Only the polygons whose boxes meet the batch's box can change (a hole's box lies in
+      // its outer's, so a hole left out stays inside its outer and still cuts it).
+      Paths touched, kept;
+      split_by_box(result, box_of(b.paths), touched, kept);
+      if (b.dark) {
+        touched = union_objects(b.paths, b.starts, touched);
+      } else if (!touched.empty()) {
+        touched = difference_paths(touched, union_objects(b.paths, b.starts, {}));
+      }
+      result.swap(kept);
+      result.insert(result.end(), std::make_move_iterator(touched.begin()),
+                    std::make_move_iterator(touched.end()));
+    }
+    Paths().swap(b.paths);
+  }
+  return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Extended (%...%) commands
+
+void GerberReader::extended_block(const std::string& body, int first_line) {
+  // Split into '*'-terminated commands, each with its line.
+  std::vector<std::string> parts;
+  std::vector<int> lines;
+  int line = first_line;
+  std::string cur;
+  int cur_line = line;
+  bool started = false;
+  for (char c : body) {
+    if (c == '*') {
+      parts.push_back(cur);
+      lines.push_back(cur_line);
+      cur.clear();
+      started = false;
+      continue;
+    }
+    if (!started && !is_space(c)) {
+      started = true;
+      cur_line = line;
+    }
+    if (c == '\n') ++line;
+    cur += c;
+  }
+  if (!trim(cur).empty()) {
+    line_ = cur_line;
+    fail("'" + trim(cur).substr(0, 40) + "' in a '%' block does not end with '*'");
+  }
+  if (parts.empty()) return;
+  line_ = lines[0];
+  if (starts_with(trim(parts[0]), "AM")) {
+    aperture_macro(parts, lines);
+    return;
+  }
+  for (size_t k = 0; k < parts.size(); ++k) {
+    line_ = lines[k];
+    const std::string cmd = trim(without_line_breaks(parts[k]));
+    if (!cmd.empty()) extended_command(cmd);
+  }
+}
+
+void GerberReader::extended_command(const std::string& cmd) {
+  if (cmd.size() < 2) fail("unknown extended command '%" + cmd + "'");
+  const std::string code = cmd.substr(0, 2);
+  const std::string arg = cmd.substr(2);
+  if (code == "FS") {
+    format_spec(arg);
+  } else if (code == "MO") {
+    if (arg == "MM") {
+      set_units(1e6, "MOMM");
+    } else if (arg == "IN") {
+      set_units(25.4e6, "MOIN");
+    } else {
+      fail("unit '" + arg + "' is neither MM nor IN");
+    }
+  } else if (code == "AD") {
+    aperture_definition(arg);
+  } else if (code == "LP") {
+    if (arg == "D") {
+      dark_ = true;
+    } else if (arg == "C") {
+      dark_ = false;
+    } else {
+      fail("polarity '" + arg + "' is neither D nor C");
+    }
+  } else if (code == "SR") {
+    step_repeat(arg);
+  } else if (code == "TF" || code == "TA" || code == "TO" || code == "TD") {
+    attribute(cmd);
+  } else if (code == "IP") {
+    if (arg == "NEG") fail("negative image polarity (%IPNEG) is not supported");
+    if (arg != "POS") fail("image polarity '" + arg + "' is neither POS nor NEG");
+    note("%IPPOS (deprecated image polarity) ignored");
+  } else if (code == "IN" || code == "LN") {
+    note("%" + code + " (deprecated name) ignored");
+  } else if (code == "MI") {
+    const std::string a = strip_all_space(arg);
+    if (a != "A0B0" && a != "A0" && a != "B0" && !a.empty()) {
+      fail("mirror image (%MI" + a + ") is not supported");
+    }
+    note("%MI without mirroring (deprecated) ignored");
+  } else if (code == "SF") {
+    double a = 1, b = 1;
+    for (const char axis : {'A', 'B'}) {
+      const size_t at = arg.find(axis);
+      if (at == std::string::npos) continue;
+      size_t end = at + 1;
+      while (end < arg.size() && arg[end] != 'A' && arg[end] != 'B') ++end;
+      (axis == 'A' ? a : b) = number(arg.substr(at + 1, end - at - 1), "scale factor");
+    }
+    if (a != 1 || b != 1) fail("scale factor (%SF" + arg + ") other than 1 is not supported");
+    note("%SF with scale 1 (deprecated) ignored");
+  } else if (code == "OF") {
+    double a = 0, b = 0;
+    for (const char axis : {'A', 'B'}) {
+      const size_t at = arg.find(axis);
+      if (at == std::string::npos) continue;
+      size_t end = at + 1;
+      while (end < arg.size() && arg[end] != 'A' && arg[end] != 'B') ++end;
+      (axis == 'A' ? a : b) = number(arg.substr(at + 1, end - at - 1), "offset");
+    }
+    if (unit_nm_ == 0 && (a != 0 || b != 0)) fail("%OF before the units are set");
+    offset_x_ = static_cast<cInt>(std::llround(a * unit_nm_));
+    offset_y_ = static_cast<cInt>(std::llround(b * unit_nm_));
+    note("%OF image offset (deprecated) applied");
+  } else if (code == "IR") {
+    if (number(arg, "image rotation") != 0)
+      fail("image rotation (%IR" + arg + ") is not supported");
+    note("%IR0 (deprecated) ignored");
+  } else if (code == "AS") {
+    if (arg != "AXBY") fail("axis select (%AS" + arg + ") other than AXBY is not supported");
+    note("%ASAXBY (deprecated) ignored");
+  } else if (code == "LM" || code == "LR" || code == "LS") {
+    const bool identity = (code == "LM" && arg == "N") ||
+                          (code == "LR" && number(arg, "rotation") == 0) ||
+                          (code == "LS" && number(arg, "scale") == 1);
+    if (!identity) {
+      fail("aperture transformation %" + cmd + " is not supported (only LMN, LR0, LS1)");
+    }
+  } else if (code == "IJ" || code == "KO") {
+    fail("%" + code + " (deprecated image justify / knockout) is not supported");
+  } else {
+    fail("unknown extended command '%" + cmd.substr(0, 20) + "'");
+  }
+}
+
+void GerberReader::set_units(double unit_nm, const char* how) {
+  if (unit_nm_ != 0 && unit_nm_ != unit_nm) {
+    note(std::string("units changed by ") + how + " after coordinates were read");
+  }
+  unit_nm_ = unit_nm;
+  units_ = unit_nm == 1e6 ? "mm" : "inch";
+}
+
+void GerberReader::format_spec(const std::string& s) {
+  // [L|T|D][A|I][Nn][Gn]XabYab[Dn][Mn]
+  size_t k = 0;
+  omit_trailing_ = false;
+  incremental_ = false;
+  if (k < s.size() && (s[k] == 'L' || s[k] == 'T' || s[k] == 'D')) {
+    omit_trailing_ = s[k] == 'T';
+    if (omit_trailing_) note("trailing-zero omission in %FS (deprecated)");
+    ++k;
+  }
+  if (k < s.size() && (s[k] == 'A' || s[k] == 'I')) {
+    incremental_ = s[k] == 'I';
+    if (incremental_) note("incremental coordinates in %FS (deprecated)");
+    ++k;
+  }
+  while (k < s.size() && (s[k] == 'N' || s[k] == 'G')) {  // sequence and G-code digits (old)
+    k += 2;
+  }
+  auto digits = [&](char axis, int& integer, int& decimals) {
+    if (k + 2 >= s.size() + 0 || s[k] != axis ||
+        !std::isdigit(static_cast<unsigned char>(s[k + 1])) ||
+        !std::isdigit(static_cast<unsigned char>(s[k + 2]))) {
+      fail("format '%FS" + s + "' needs " + axis + " with two digits (like X46)");
+    }
+    integer = s[k + 1] - '0';
+    decimals = s[k + 2] - '0';
+    if (decimals > 7 || integer + decimals > 14) fail("format '%FS" + s + "' out of range");
+    k += 3;
+  };
+  digits('X', x_int_, x_dec_);
+  digits('Y', y_int_, y_dec_);
+  have_format_ = true;
+}
+
+void GerberReader::aperture_definition(const std::string& s) {
+  // D<n><template>[,<p1>X<p2>...]
+  if (s.empty() || s[0] != 'D') fail("aperture definition '%AD" + s + "' without D number");
+  size_t k = 1;
+  while (k < s.size() && std::isdigit(static_cast<unsigned char>(s[k]))) ++k;
+  if (k == 1 || k > 8) fail("aperture definition '%AD" + s + "' has a bad D number");
+  const int number_d = std::stoi(s.substr(1, k - 1));
+  const size_t comma = s.find(',', k);
+  const std::string name =
+      trim(s.substr(k, comma == std::string::npos ? std::string::npos : comma - k));
+  std::vector<double> params;
+  if (comma != std::string::npos) {
+    for (const std::string& p : split(s.substr(comma + 1), 'X')) {
+      params.push_back(number(trim(p), "aperture parameter"));
+    }
+  }
+  if (name.empty()) fail("aperture D" + std::to_string(number_d) + " has no template name");
+  if (unit_nm_ == 0)
+    fail("aperture D" + std::to_string(number_d) + " defined before the units (%MO)");
+  const double u = unit_nm_, tol = opt_.arc_tolerance_nm;
+  for (double p : params) {
+    if (!(std::fabs(p * u) <= kMaxApertureNm)) {
+      fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
+    }
+  }
+  Aperture ap;
+  auto need = [&](size_t lo, size_t hi) {
+    if (params.size() < lo || params.size() > hi) {
+      fail("aperture D" + std::to_string(number_d) + " " + name + " takes " + std::to_string(lo) +
+           (lo == hi ? "" : " to " + std::to_string(hi)) + " parameters, got " +
+           std::to_string(params.size()));
+    }
+    for (double p : params) {
+      if (p < 0) fail("aperture D" + std::to_string(number_d) + " has a negative size");
+    }
+  };
+  size_t hole_at = 0;
+  if (name == "C") {
+    need(1, 3);
+    ap.type = 'C';
+    ap.circle_d_nm = params[0] * u;
+    if (ap.circle_d_nm > 0) ap.shape.push_back(circle_path({0, 0}, ap.circle_d_nm, tol));
+    hole_at = 1;
+  } else if (name == "R" || name == "O") {
+    need(2, 4);
+    ap.type = name[0];
+    const double w = params[0] * u, h = params[1] * u;
+    if (w > 0 && h > 0) {
+      ap.shape.push_back(name == "R" ? rect_path({0, 0}, w, h) : obround_path({0, 0}, w, h, tol));
+    }
+    hole_at = 2;
+  } else if (name == "P") {
+    need(2, 5);
+    ap.type = 'P';
+    const double vertices = params[1];
+    if (!(vertices >= 3 && vertices <= 12) || vertices != std::floor(vertices)) {
+      fail("polygon aperture D" + std::to_string(number_d) + " needs 3 to 12 vertices");
+    }
+    const double rot = params.size() > 2 ? params[2] : 0;
+    if (params[0] > 0) {
+      ap.shape.push_back(
+          regular_polygon_path({0, 0}, params[0] * u, static_cast<int>(vertices), rot));
+    }
+    hole_at = 3;
+  } else {
+    auto m = macros_.find(name);
+    if (m == macros_.end()) {
+      fail("aperture D" + std::to_string(number_d) + " uses '" + name +
+           "', which is neither C, R, O, P nor a macro defined before it");
+    }
+    ap.type = 'M';
+    try {
+      ap.shape = evaluate_macro(m->second, params, u, tol);
+    } catch (const MacroError& e) {
+      fail(std::string(e.what()) + " (macro statement at line " + std::to_string(e.line) + ")");
+    }
+  }
+  if (ap.type != 'M' && params.size() > hole_at) {
+    Path hole;
+    if (params.size() == hole_at + 1) {
+      hole = circle_path({0, 0}, params[hole_at] * u, tol);
+    } else {
+      hole = rect_path({0, 0}, params[hole_at] * u, params[hole_at + 1] * u);
+      note("rectangular aperture hole (deprecated)");
+    }
+    if (params[hole_at] > 0) {
+      ap.shape = difference_paths(ap.shape, {hole});
+      ap.has_hole = true;
+    }
+  }
+  if (apertures_.count(number_d)) note("aperture D" + std::to_string(number_d) + " redefined");
+  apertures_[number_d] = std::move(ap);
+}
+
+void GerberReader::aperture_macro(const std::vector<std::string>& parts,
+                                  const std::vector<int>& lines) {
+  ApertureMacro m;
+  m.name = trim(without_line_breaks(parts[0])).substr(2);
+  m.line = lines[0];
+  if (m.name.empty()) fail("aperture macro without a name");
+  for (size_t k = 1; k < parts.size(); ++k) {
+    const std::string st = strip_all_space(parts[k]);
+    if (st.empty()) continue;
+    if (st[0] == '0' &&
+        (st.size() == 1 || st[1] == ' ' || !std::isdigit(static_cast<unsigned char>(st[1])))) {
+      continue;  // comment primitive
+    }
+    const std::string raw = trim(parts[k]);
+    if (raw.size() > 1 && raw[0] == '0' && is_space(raw[1])) continue;
+    m.statements.push_back({lines[k], st});
+  }
+  macros_[m.name] = std::move(m);
+}
+
+void GerberReader::step_repeat(const std::string& s) {
+  if (in_sr_) close_step_repeat();
+  if (s.empty()) return;
+  double x = 1, y = 1, i = 0, j = 0;
+  size_t k = 0;
+  while (k < s.size()) {
+    const char axis = s[k];
+    size_t end = k + 1;
+    while (end < s.size() && !std::isalpha(static_cast<unsigned char>(s[end]))) ++end;
+    const double v = number(s.substr(k + 1, end - k - 1), "step-and-repeat value");
+    if (axis == 'X') {
+      x = v;
+    } else if (axis == 'Y') {
+      y = v;
+    } else if (axis == 'I') {
+      i = v;
+    } else if (axis == 'J') {
+      j = v;
+    } else {
+      fail("step-and-repeat '%SR" + s + "': unexpected '" + std::string(1, axis) + "'");
+    }
+    k = end;
+  }
+  if (!(x >= 1 && y >= 1) || x != std::floor(x) || y != std::floor(y)) {
+    fail("step-and-repeat '%SR" + s + "' needs whole repeat counts of at least 1");
+  }
+  if (x * y > kMaxStepRepeatCopies) {
+    fail("step-and-repeat '%SR" + s + "' makes more than " + std::to_string(kMaxStepRepeatCopies) +
+         " copies");
+  }
+  if (x == 1 && y == 1) return;
+  if (unit_nm_ == 0) fail("step-and-repeat before the units (%MO)");
+  if (!(std::fabs(i * unit_nm_ * x) <= kMaxCoordNm && std::fabs(j * unit_nm_ * y) <= kMaxCoordNm)) {
+    fail("step-and-repeat '%SR" + s + "' reaches beyond 10 m");
+  }
+  in_sr_ = true;
+  sr_x_ = static_cast<long>(x);
+  sr_y_ = static_cast<long>(y);
+  sr_x_saved_ = sr_x_;
+  sr_y_saved_ = sr_y_;
+  sr_i_ = static_cast<cInt>(std::llround(i * unit_nm_));
+  sr_j_ = static_cast<cInt>(std::llround(j * unit_nm_));
+  batches_.push_back({dark_, {}, {}});
+  sr_batch_start_ = batches_.size() - 1;
+  sr_stroke_start_ = strokes_.size();
+  stroke_open_ = false;
+}
+
+void GerberReader::close_step_repeat() {
+  in_sr_ = false;
+  std::vector<Batch> block(batches_.begin() + static_cast<long>(sr_batch_start_), batches_.end());
+  batches_.resize(sr_batch_start_);
+  std::vector<Path> block_strokes(strokes_.begin() + static_cast<long>(sr_stroke_start_),
+                                  strokes_.end());
+  strokes_.resize(sr_stroke_start_);
+  if (copies_stand_alone(block)) {
+    // Each copy's clear objects can only clear its own dark ones: evaluate the block once
+    // and add the copies as dark objects (the polarity changes are not repeated per copy).
+    Batch copies{true, {}, {}};
+    const Paths shape = evaluate(block);
+    for (long iy = 0; iy < sr_y_; ++iy) {
+      for (long ix = 0; ix < sr_x_; ++ix) {
+        if (ix != 0 || iy != 0) {
+          for (const Path& p : shape) count_vertices(p.size());
+        }
+        Paths copy = shape;
+        translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
+        copies.starts.push_back(copies.paths.size());
+        copies.paths.insert(copies.paths.end(), copy.begin(), copy.end());
+      }
+    }
+    block.clear();
+    if (!copies.paths.empty()) block.push_back(std::move(copies));
+    sr_x_ = sr_y_ = 1;  // the loop below now adds the one batch and the strokes' copies
+    for (long iy = 0; iy < sr_y_saved_; ++iy) {
+      for (long ix = 0; ix < sr_x_saved_; ++ix) {
+        if (ix != 0 || iy != 0) {
+          for (const Path& p : block_strokes) count_vertices(p.size());
+        }
+        Paths copy(block_strokes.begin(), block_strokes.end());
+        translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
+        strokes_.insert(strokes_.end(), copy.begin(), copy.end());
+      }
+    }
+    block_strokes.clear();
+  }
+  for (long iy = 0; iy < sr_y_; ++iy) {
+    for (long ix = 0; ix < sr_x_; ++ix) {
+      for (const Batch& b : block) {
+        if (ix != 0 || iy != 0) {
+          for (const Path& p : b.paths) count_vertices(p.size());
+        }
+        Paths copy = b.paths;
+        translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
+        if (batches_.empty() || batches_.back().dark != b.dark) {
+          batches_.push_back({b.dark, {}, {}});
+        }
+        Batch& dst = batches_.back();
+        for (size_t start : b.starts) dst.starts.push_back(dst.paths.size() + start);
+        dst.paths.insert(dst.paths.end(), copy.begin(), copy.end());
+      }
+      Paths copy(block_strokes.begin(), block_strokes.end());
+      if (ix != 0 || iy != 0) {
+        for (const Path& p : copy) count_vertices(p.size());
+      }
+      translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
+      strokes_.insert(strokes_.end(), copy.begin(), copy.end());
+    }
+  }
+  stroke_open_ = false;
+}
+
+// True when the copies cannot touch each other or what was drawn before the block (their
+// boxes are apart), so that polarity inside the block only acts within each copy.
+bool GerberReader::copies_stand_alone(const std::vector<Batch>& block) const {
+  bool has_clear = false;
+  for (const Batch& b : block) has_clear |= !b.dark;
+  if (!has_clear) return false;  // all dark: the ordinary path is already linear
+  struct Box {
+    bool empty = true;
+    cInt x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    void add(const IntPoint& p) {
+      if (empty) {
+        x0 = x1 = p.X, y0 = y1 = p.Y, empty = false;
+        return;
+      }
+      x0 = std::min(x0, p.X), x1 = std::max(x1, p.X), y0 = std::min(y0, p.Y),
+      y1 = std::max(y1, p.Y);
+    }
+  };
+  Box blk;
+  for (const Batch& b : block) {
+    for (const Path& p : b.paths) {
+      for (const IntPoint& q : p) blk.add(q);
+    }
+  }
+  if (blk.empty) return false;
+  const cInt w = blk.x1 - blk.x0, h = blk.y1 - blk.y0;
+  if (sr_x_ > 1 && std::llabs(sr_i_) <= w) return false;
+  if (sr_y_ > 1 && std::llabs(sr_j_) <= h) return false;
+  // The whole array against everything drawn before it.
+  const cInt ax0 = blk.x0 + std::min<cInt>(0, sr_i_ * (sr_x_ - 1));
+  const cInt ax1 = blk.x1 + std::max<cInt>(0, sr_i_ * (sr_x_ - 1));
+  const cInt ay0 = blk.y0 + std::min<cInt>(0, sr_j_ * (sr_y_ - 1));
+  const cInt ay1 = blk.y1 + std::max<cInt>(0, sr_j_ * (sr_y_ - 1));
+  Box before;
+  for (size_t k = 0; k < sr_batch_start_; ++k) {
+    for (const Path& p : batches_[k].paths) {
+      for (const IntPoint& q : p) before.add(q);
+    }
+  }
+  return before.empty || before.x1 < ax0 || before.x0 > ax1 || before.y1 < ay0 || before.y0 > ay1;
+}
+
+void GerberReader::attribute(const std::string& body) {
+  // TF.FileFunction,Copper,L1,Top  (also from "G04 #@! TF...")
+  if (!starts_with(body, "TF.FileFunction") && !starts_with(body, "TF,.FileFunction")) return;
+  std::vector<std::string> f = split(body, ',');
+  if (f.size() < 2) return;
+  const std::string function = trim(f[1]);
+  const std::string side = f.size() > 3 ? trim(f[3]) : "";  // Copper,L<n>,Top|Inr|Bot[,...]
+  std::string value = function;
+  for (size_t k = 2; k < f.size(); ++k) value += "," + trim(f[k]);
+  note("X2 TF.FileFunction " + value);
+  x2_kind_given_ = true;
+  if (function == "Copper") {
+    if (side == "Top") {
+      x2_kind_ = LayerKind::kCopperTop;
+    } else if (side == "Bot") {
+      x2_kind_ = LayerKind::kCopperBottom;
+    } else {
+      x2_kind_ = LayerKind::kUnknown;
+      note("an inner copper layer: this machine engraves the outer ones");
+    }
+  } else if (function == "Profile") {
+    x2_kind_ = LayerKind::kOutline;
+  } else if (function == "Plated" || function == "NonPlated") {
+    x2_kind_ = LayerKind::kDrill;
+  } else {
+    x2_kind_ = LayerKind::kUnknown;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Data blocks
+
+void GerberReader::comment(const std::string& text) {
+  // KiCad 5 writes X2 attributes as comments: "G04 #@! TF.FileFunction,Copper,L1,Top".
+  const std::string t = trim(text);
+  if (starts_with(t, "#@!")) attribute(trim(t.substr(3)));
+}
+
+void GerberReader::word_block(const std::string& raw) {
+  const std::string lead = trim(raw);
+  if (starts_with(lead, "G04") ||
+      (starts_with(lead, "G4") &&
+       (lead.size() == 2 || !std::isdigit(static_cast<unsigned char>(lead[2]))))) {
+    comment(lead.substr(lead[2] == '4' ? 3 : 2));
+    return;
+  }
+  const std::string w = strip_all_space(raw);
+  if (w.empty()) return;
+  const std::string *x = nullptr, *y = nullptr, *i = nullptr, *j = nullptr;
+  std::string xs, ys, is, js;
+  int d = -1;
+  size_t k = 0;
+  while (k < w.size()) {
+    const char letter = w[k];
+    size_t end = k + 1;
+    while (end < w.size() && (std::isdigit(static_cast<unsigned char>(w[end])) || w[end] == '+' ||
+                              w[end] == '-' || w[end] == '.')) {
+      ++end;
+    }
+    const std::string value = w.substr(k + 1, end - k - 1);
+    if (value.empty()) {
+      fail("unexpected '" + std::string(1, letter) + "' in '" + w.substr(0, 40) + "'");
+    }
+    auto code = [&]() {
+      if (value.size() > 6 || value.find_first_not_of("0123456789") != std::string::npos) {
+        fail("bad code '" + std::string(1, letter) + value + "'");
+      }
+      return std::stoi(value);
+    };
+    switch (letter) {
+      case 'G': {
+        const int g = code();
+        if (g == 1 || g == 2 || g == 3) {
+          interpolation_ = g;
+        } else if (g == 36) {
+          if (region_) fail("G36 inside a region (missing G37)");
+          region_ = true;
+          contour_.clear();
+        } else if (g == 37) {
+          if (!region_) fail("G37 without G36");
+          finish_contour();
+          region_ = false;
+        } else if (g == 74 || g == 75) {
+          quadrant_ = g;
+          if (g == 74) note("G74 single-quadrant arcs (deprecated)");
+        } else if (g == 54 || g == 55) {
+          note("G" + value + " before an aperture number (deprecated) ignored");
+        } else if (g == 70) {
+          note("G70 inch units (deprecated)");
+          set_units(25.4e6, "G70");
+        } else if (g == 71) {
+          note("G71 millimetre units (deprecated)");
+          set_units(1e6, "G71");
+        } else if (g == 90) {
+          incremental_ = false;
+          note("G90 absolute coordinates (deprecated)");
+        } else if (g == 91) {
+          incremental_ = true;
+          note("G91 incremental coordinates (deprecated)");
+        } else {
+          fail("unknown or unsupported G code G" + value);
+        }
+        break;
+      }
+      case 'D': {
+        const int dn = code();
+        if (dn >= 1 && dn <= 3) {
+          if (d != -1) fail("two operations (D01/D02/D03) in one block");
+          d = dn;
+        } else {  // select an aperture (D10 and up; lower numbers in old files)
+          if (!apertures_.count(dn)) fail("D" + value + " selects an aperture that is not defined");
+          if (region_) note("an aperture selected inside a region (not allowed by the spec)");
+          aperture_ = dn;
+        }
+        break;
+      }
+      case 'M': {
+        const int m = code();
+        if (m == 2) {
+          if (in_sr_) close_step_repeat();
+          done_ = true;
+        } else if (m == 0 || m == 1) {
+          note("M0" + value.substr(value.size() - 1) + " (deprecated stop) ignored");
+        } else {
+          fail("unknown M code M" + value);
+        }
+        break;
+      }
+      case 'X':
+        xs = value;
+        x = &xs;
+        break;
+      case 'Y':
+        ys = value;
+        y = &ys;
+        break;
+      case 'I':
+        is = value;
+        i = &is;
+        break;
+      case 'J':
+        js = value;
+        j = &js;
+        break;
+      default:
+        fail("unexpected '" + std::string(1, letter) + "' in '" + w.substr(0, 40) + "'");
+    }
+    k = end;
+  }
+  if (d == -1 && (x || y || i || j)) {
+    if (last_d_ == 0) fail("coordinates without D01/D02/D03 and no earlier operation");
+    note("coordinates without an operation code: the previous D0" + std::to_string(last_d_) +
+         " repeats (deprecated)");
+    d = last_d_;
+  }
+  if (d != -1) operate(d, x, y, i, j);
+}
+
+double GerberReader::number(const std::string& s, const char* what) const {
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end != '\0' || !std::isfinite(v)) {
+    fail(std::string("bad ") + what + " '" + s + "'");
+  }
+  return v;
+}
+
+cInt GerberReader::coordinate(const std::string& s, bool is_x) const {
+  if (!have_format_) fail("coordinates before the format (%FS)");
+  if (unit_nm_ == 0) fail("coordinates before the units (%MO or G70/G71)");
+  const int integer = is_x ? x_int_ : y_int_, decimals = is_x ? x_dec_ : y_dec_;
+  double nm = 0;
+  if (s.find('.') != std::string::npos) {
+    nm = number(s, "coordinate") * unit_nm_;
+  } else {
+    size_t k = 0;
+    bool negative = false;
+    if (k < s.size() && (s[k] == '+' || s[k] == '-')) negative = s[k++] == '-';
+    std::string digits = s.substr(k);
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos ||
+        digits.size() > 15) {
+      fail(std::string("bad ") + (is_x ? "X" : "Y") + " coordinate '" + s + "'");
+    }
+    if (omit_trailing_) {
+      while (static_cast<int>(digits.size()) < integer + decimals) digits += '0';
+    }
+    const long long v = std::stoll(digits);
+    nm = static_cast<double>(v) * unit_nm_;
+    for (int q = 0; q < decimals; ++q) nm /= 10;
+    if (negative) nm = -nm;
+  }
+  if (!(std::fabs(nm) <= kMaxCoordNm)) fail("coordinate '" + s + "' is beyond 10 m");
+  return static_cast<cInt>(std::llround(nm));
+}
+
+const Aperture& GerberReader::current_aperture() const {
+  if (aperture_ < 0) fail("drawing or flashing before any aperture is selected (Dnn)");
+  return apertures_.at(aperture_);
+}
+
+void GerberReader::count_vertices(size_t n) {
+  vertices_ += n;
+  if (vertices_ > opt_.max_vertices) {
+    fail("the copper needs more than " + std::to_string(opt_.max_vertices) +
+         " polygon vertices: too complex to read");
+  }
+}
+
+void GerberReader::add_object(Paths paths) {
+  if (paths.empty()) return;
+  size_t n = 0;
+  for (const Path& p : paths) n += p.size();
+  count_vertices(n);
+  if (batches_.empty() || batches_.back().dark != dark_) batches_.push_back({dark_, {}, {}});
+  batches_.back().starts.push_back(batches_.back().paths.size());
+  Paths& dst = batches_.back().paths;
+  if (dst.empty()) {
+    dst = std::move(paths);
+  } else {
+    dst.insert(dst.end(), std::make_move_iterator(paths.begin()),
+               std::make_move_iterator(paths.end()));
+  }
+}
+
+void GerberReader::add_centre_line(IntPoint from, const Path& points) {
+  if (!stroke_open_ || strokes_.empty() || strokes_.back().back() != from) {
+    strokes_.push_back({from});
+  }
+  Path& s = strokes_.back();
+  s.insert(s.end(), points.begin(), points.end());
+  count_vertices(points.size() + 1);
+  stroke_open_ = true;
+}
+
+void GerberReader::operate(int d, const std::string* xs, const std::string* ys,
+                           const std::string* is, const std::string* js) {
+  IntPoint to = at_;
+  if (incremental_) {
+    if (xs) to.X += coordinate(*xs, true);
+    if (ys) to.Y += coordinate(*ys, false);
+  } else {
+    if (xs) to.X = coordinate(*xs, true);
+    if (ys) to.Y = coordinate(*ys, false);
+  }
+  if (std::fabs(static_cast<double>(to.X)) > kMaxCoordNm ||
+      std::fabs(static_cast<double>(to.Y)) > kMaxCoordNm) {
+    fail("position beyond 10 m");
+  }
+  const cInt i = is ? coordinate(*is, true) : 0;
+  const cInt j = js ? coordinate(*js, false) : 0;
+  last_d_ = d;
+  const IntPoint from = at_;
+  at_ = to;
+  if (d == 1) {
+    if (interpolation_ == 1) {
+      if (region_) {
+        if (contour_.empty()) contour_.push_back(from);
+        contour_.push_back(to);
+      } else {
+        draw_line(from, to);
+      }
+    } else {
+      draw_arc(from, to, i, j, region_);
+    }
+  } else if (d == 2) {
+    if (region_) finish_contour();
+    stroke_open_ = false;
+  } else {
+    if (region_) fail("flash (D03) inside a region (G36/G37)");
+    flash(to);
+  }
+}
+
+void GerberReader::flash(IntPoint at) {
+  const Aperture& ap = current_aperture();
+  Paths copy = ap.shape;
+  translate_paths(copy, at.X, at.Y);
+  add_object(std::move(copy));
+}
+
+void GerberReader::draw_line(IntPoint from, IntPoint to) {
+  const Aperture& ap = current_aperture();
+  add_centre_line(from, {to});
+  if (ap.shape.empty()) return;  // zero-size aperture: a line of no width
+  const VecNm a{static_cast<double>(from.X), static_cast<double>(from.Y)};
+  const VecNm b{static_cast<double>(to.X), static_cast<double>(to.Y)};
+  if (ap.has_hole) note("a draw with an aperture that has a hole: the hole is ignored");
+  if (ap.type == 'C') {
+    if (from == to) {
+      add_object({circle_path(a, ap.circle_d_nm, opt_.arc_tolerance_nm)});
+    } else {
+      add_object({capsule_path(a, b, ap.circle_d_nm, opt_.arc_tolerance_nm)});
+    }
+    return;
+  }
+  if (ap.type != 'M') {  // convex: the hull of the shape at both ends
+    if (ap.type == 'R')
+      note("a draw with a rectangular aperture (deprecated)");
+    else
+      note("a draw with a non-circular aperture (not allowed by the current spec)");
+    Path pts;
+    for (const IntPoint& p : ap.shape[0]) {
+      pts.push_back({p.X + from.X, p.Y + from.Y});
+      pts.push_back({p.X + to.X, p.Y + to.Y});
+    }
+    add_object({convex_hull(pts)});
+    return;
+  }
+  note("a draw with a macro aperture (not allowed by the current spec): swept shape used");
+  Paths swept;
+  for (const Path& outer : ap.shape) {
+    if (!ClipperLib::Orientation(outer)) continue;
+    Paths part;
+    ClipperLib::MinkowskiSum(outer, Path{from, to}, part, false);
+    swept.insert(swept.end(), part.begin(), part.end());
+    Path end_copy = outer;
+    for (IntPoint& p : end_copy) p = {p.X + to.X, p.Y + to.Y};
+    swept.push_back(end_copy);
+  }
+  add_object(union_paths(swept));
+}
+
+void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool region) {
+  const bool clockwise = interpolation_ == 2;
+  const VecNm a{static_cast<double>(from.X), static_cast<double>(from.Y)};
+  const VecNm b{static_cast<double>(to.X), static_cast<double>(to.Y)};
+  auto sweep_of = [&](VecNm c, bool full_if_same) {
+    const double a0 = std::atan2(a.y - c.y, a.x - c.x);
+    const double a1 = std::atan2(b.y - c.y, b.x - c.x);
+    double s = a1 - a0;
+    if (clockwise) {
+      if (s > 0 || (s == 0 && full_if_same)) s -= 2 * kPi;
+    } else {
+      if (s < 0 || (s == 0 && full_if_same)) s += 2 * kPi;
+    }
+    return s;
+  };
+  VecNm c;
+  double sweep = 0;
+  if (quadrant_ == 0) {
+    note("an arc before G74/G75: single-quadrant mode assumed (the old default)");
+    quadrant_ = 74;
+  }
+  if (quadrant_ == 75) {
+    c = {a.x + static_cast<double>(i), a.y + static_cast<double>(j)};
+    sweep = sweep_of(c, from == to);
+  } else {
+    // Single quadrant: I and J are unsigned; the centre is the one giving an arc of at most
+    // 90 degrees with the closest radii.
+    double best = -1;
+    for (int sx = -1; sx <= 1; sx += 2) {
+      for (int sy = -1; sy <= 1; sy += 2) {
+        const VecNm cc{a.x + sx * std::fabs(static_cast<double>(i)),
+                       a.y + sy * std::fabs(static_cast<double>(j))};
+        const double s = sweep_of(cc, false);
+        if (std::fabs(s) > kPi / 2 + 1e-6) continue;
+        const double err =
+            std::fabs(std::hypot(a.x - cc.x, a.y - cc.y) - std::hypot(b.x - cc.x, b.y - cc.y));
+        if (best < 0 || err < best) {
+          best = err;
+          c = cc;
+          sweep = s;
+        }
+      }
+    }
+    if (best < 0) fail("single-quadrant arc (G74) with no centre giving 90 degrees or less");
+  }
+  const double r0 = std::hypot(a.x - c.x, a.y - c.y), r1 = std::hypot(b.x - c.x, b.y - c.y);
+  if (std::fabs(r0 - r1) > std::max(10000.0, 0.5 * std::max(r0, r1))) {
+    char msg[160];
+    std::snprintf(msg, sizeof msg,
+                  "arc end point is not on its circle (radius %.3f mm at the start, %.3f mm at "
+                  "the end)",
+                  r0 * 1e-6, r1 * 1e-6);
+    fail(msg);
+  }
+  if (std::fabs(r0 - r1) > std::max(10000.0, 0.01 * r0)) {
+    note("an arc whose end is not on its circle (radii differ by more than 10 um)");
+  }
+  Path pts;
+  if (from != to || sweep != 0) {
+    append_arc(pts, c, r0, r1, std::atan2(a.y - c.y, a.x - c.x), sweep, opt_.arc_tolerance_nm);
+    if (!pts.empty()) pts.back() = to;
+  }
+  if (region) {
+    if (contour_.empty()) contour_.push_back(from);
+    contour_.insert(contour_.end(), pts.begin(), pts.end());
+    return;
+  }
+  const Aperture& ap = current_aperture();
+  if (ap.type != 'C') {
+    fail("an arc drawn with a non-circular aperture D" + std::to_string(aperture_));
+  }
+  add_centre_line(from, pts);
+  if (ap.circle_d_nm <= 0) return;
+  Path line{from};
+  line.insert(line.end(), pts.begin(), pts.end());
+  ClipperLib::ClipperOffset off;
+  off.ArcTolerance = opt_.arc_tolerance_nm;
+  off.AddPath(line, ClipperLib::jtRound, ClipperLib::etOpenRound);
+  Paths out;
+  off.Execute(out, ap.circle_d_nm / 2);
+  add_object(std::move(out));
+}
+
+void GerberReader::finish_contour() {
+  Path c;
+  c.swap(contour_);
+  if (c.size() < 2) return;
+  if (c.front() != c.back()) {
+    const double gap = std::hypot(static_cast<double>(c.front().X - c.back().X),
+                                  static_cast<double>(c.front().Y - c.back().Y));
+    if (gap > 1000) note("a region contour that does not end at its start: closed");
+  }
+  Path stroke = c;
+  if (stroke.front() != stroke.back()) stroke.push_back(stroke.front());
+  count_vertices(stroke.size());
+  strokes_.push_back(stroke);
+  stroke_open_ = false;
+  if (c.front() == c.back()) c.pop_back();
+  if (c.size() < 3) return;
+  make_positive(c);
+  add_object({c});
+}
+
+}  // namespace
+
+PcbLayer read_gerber_text(const std::string& text, const std::string& path,
+                          const GerberOptions& options) {
+  return GerberReader(text, path, options).read();
+}
+
+PcbLayer read_gerber_file(const std::string& path, const GerberOptions& options) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw PcbReadError(path + ": cannot open the file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  if (!in && !in.eof()) throw PcbReadError(path + ": read error");
+  const std::string text = s.str();
+  if (text.empty()) throw PcbReadError(path + ": the file is empty");
+  return read_gerber_text(text, path, options);
+}
+
+}  // namespace host::pcb

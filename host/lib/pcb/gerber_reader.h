@@ -1,0 +1,36 @@
+// Gerber RS-274X reader: the current spec with X2 attributes, aperture macros, regions,
+// polarity and step-and-repeat, plus the deprecated forms real files carry (accepted with a
+// note). Copper becomes non-overlapping Clipper polygons in nanometres; an outline layer
+// keeps its strokes' centre lines.
+#ifndef HOST_LIB_PCB_GERBER_READER_H
+#define HOST_LIB_PCB_GERBER_READER_H
+
+#include <string>  // std::string
+
+#include "host/lib/pcb/pcb_layer.h"
+
+namespace host::pcb {
+
+struct GerberOptions {
+  // Used when neither X2 TF.FileFunction nor the file name says what the layer is (the
+  // command line's --layer).
+  LayerKind kind_if_unknown = LayerKind::kUnknown;
+  // Largest distance between a flattened arc or circle and the true curve (inscribed
+  // polygons, so copper is at most this much smaller than drawn).
+  double arc_tolerance_nm = 500;
+  // Refuse files whose copper needs more polygon vertices than this before the union (a
+  // step-and-repeat of a large block can ask for any amount of memory).
+  size_t max_vertices = 20000000;
+};
+
+// Reads a whole file. Throws PcbReadError naming the file, the line and the problem; never
+// returns a partly read layer.
+PcbLayer read_gerber_file(const std::string& path, const GerberOptions& options = {});
+
+// The same for text already in memory; `path` is used in messages and for the layer kind.
+PcbLayer read_gerber_text(const std::string& text, const std::string& path,
+                          const GerberOptions& options = {});
+
+}  // namespace host::pcb
+
+#endif  // HOST_LIB_PCB_GERBER_READER_H

@@ -1,0 +1,257 @@
+// Isolation contours and narrow-gap detection (see isolation.h).
+#include "host/lib/pcb/isolation.h"
+
+#include <algorithm>  // std::sort
+#include <cmath>      // std::fabs, std::sqrt
+#include <stdexcept>  // std::invalid_argument
+
+#include "host/lib/pcb/pcb_geometry.h"
+
+namespace host::pcb {
+
+using ClipperLib::cInt;
+using ClipperLib::IntPoint;
+using ClipperLib::Path;
+using ClipperLib::Paths;
+
+namespace {
+
+// Intersections smaller than this (nm^2, a 0.1 um square) are numerical touching.
+const double kMinOverlapAreaNm2 = 1e4;
+
+double seg_dist(const IntPoint& x, const IntPoint& a, const IntPoint& b) {
+  const double ax = static_cast<double>(a.X), ay = static_cast<double>(a.Y);
+  const double dx = static_cast<double>(b.X) - ax, dy = static_cast<double>(b.Y) - ay;
+  const double px = static_cast<double>(x.X) - ax, py = static_cast<double>(x.Y) - ay;
+  const double l2 = dx * dx + dy * dy;
+  double t = l2 > 0 ? (px * dx + py * dy) / l2 : 0;
+  t = std::max(0.0, std::min(1.0, t));
+  const double ex = px - t * dx, ey = py - t * dy;
+  return std::sqrt(ex * ex + ey * ey);
+}
+
+// Smallest vertex-to-edge distance between two islands near a box (nm).
+double island_distance_nm(const Paths& a, const Paths& b, const BoxNm& near) {
+  double best = 1e300;
+  auto close = [&](const IntPoint& p) {
+    return p.X >= near.min_x && p.X <= near.max_x && p.Y >= near.min_y && p.Y <= near.max_y;
+  };
+  for (int pass = 0; pass < 2; ++pass) {
+    const Paths& u = pass ? b : a;
+    const Paths& v = pass ? a : b;
+    for (const Path& pu : u) {
+      for (const IntPoint& x : pu) {
+        if (!close(x)) continue;
+        for (const Path& pv : v) {
+          for (size_t k = 0; k < pv.size(); ++k) {
+            best = std::min(best, seg_dist(x, pv[k], pv[(k + 1) % pv.size()]));
+          }
+        }
+      }
+    }
+  }
+  return best;
+}
+
+// Open path (closed contour with its first vertex repeated) for clipping.
+Path as_open(const Path& p) {
+  Path q = p;
+  if (!q.empty()) q.push_back(q.front());
+  return q;
+}
+
+// Open paths of `paths` (closed contours) that lie inside `area`.
+Paths clip_to(const Paths& contours, const Paths& area) {
+  ClipperLib::Clipper c;
+  for (const Path& p : contours) c.AddPath(as_open(p), ClipperLib::ptSubject, false);
+  c.AddPaths(area, ClipperLib::ptClip, true);
+  ClipperLib::PolyTree tree;
+  c.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  Paths out;
+  ClipperLib::OpenPathsFromPolyTree(tree, out);
+  return out;
+}
+
+}  // namespace
+
+std::vector<NarrowGap> find_narrow_gaps(const Paths& copper, double radius_nm,
+                                        double arc_tolerance_nm, size_t* island_count) {
+  const std::vector<Island> islands = copper_islands(copper);
+  if (island_count) *island_count = islands.size();
+  struct Grown {
+    Paths paths;
+    BoxNm box;
+    size_t index;
+  };
+  std::vector<Grown> grown;
+  for (size_t i = 0; i < islands.size(); ++i) {
+    Grown g;
+    g.paths = offset_closed(Paths{islands[i].paths[0]}, radius_nm, arc_tolerance_nm);
+    g.box = box_of(g.paths);
+    g.index = i;
+    grown.push_back(g);
+  }
+  std::sort(grown.begin(), grown.end(),
+            [](const Grown& a, const Grown& b) { return a.box.min_x < b.box.min_x; });
+  std::vector<Paths> full(islands.size());
+  std::vector<bool> have_full(islands.size(), false);
+  auto grown_full = [&](size_t i) -> const Paths& {
+    if (!have_full[i]) {
+      full[i] = islands[i].paths.size() == 1
+                    ? offset_closed(Paths{islands[i].paths[0]}, radius_nm, arc_tolerance_nm)
+                    : offset_closed(islands[i].paths, radius_nm, arc_tolerance_nm);
+      have_full[i] = true;
+    }
+    return full[i];
+  };
+  std::vector<NarrowGap> gaps;
+  for (size_t i = 0; i < grown.size(); ++i) {
+    for (size_t j = i + 1; j < grown.size() && grown[j].box.min_x <= grown[i].box.max_x; ++j) {
+      if (!grown[i].box.overlaps(grown[j].box)) continue;
+      // Outer boundaries grown: an island inside another's hole is checked against the hole.
+      const Island& a = islands[grown[i].index];
+      const Island& b = islands[grown[j].index];
+      // Outer boundaries first (cheap, already grown); then with the holes, grown once per
+      // island, so an island inside another's hole is checked against that hole.
+      if (std::fabs(signed_area(intersection_of(grown[i].paths, grown[j].paths))) <
+          kMinOverlapAreaNm2)
+        continue;
+      const Paths both = intersection_of(grown_full(grown[i].index), grown_full(grown[j].index));
+      if (std::fabs(signed_area(both)) < kMinOverlapAreaNm2) continue;
+      NarrowGap g;
+      const IntPoint c = centroid(both);
+      g.at.x = c.X;
+      g.at.y = c.Y;
+      BoxNm near = box_of(both);
+      const cInt grow = static_cast<cInt>(2 * radius_nm);
+      near.min_x -= grow, near.min_y -= grow, near.max_x += grow, near.max_y += grow;
+      g.gap_mm = island_distance_nm(a.paths, b.paths, near) / kNmPerMm;
+      g.island_a = std::min(grown[i].index, grown[j].index);
+      g.island_b = std::max(grown[i].index, grown[j].index);
+      gaps.push_back(g);
+    }
+  }
+  std::sort(gaps.begin(), gaps.end(), [](const NarrowGap& a, const NarrowGap& b) {
+    return a.island_a != b.island_a ? a.island_a < b.island_a : a.island_b < b.island_b;
+  });
+  return gaps;
+}
+
+IsolationResult plan_isolation(const Paths& copper_in, const IsolationOptions& o) {
+  if (!(o.tool_width_mm > 0)) throw std::invalid_argument("the tool width must be positive");
+  if (o.passes < 1) throw std::invalid_argument("at least one isolation pass is needed");
+  if (!(o.overlap >= 0 && o.overlap <= 0.9))
+    throw std::invalid_argument("the pass overlap must be between 0 and 0.9");
+  IsolationResult r;
+  const Paths copper = union_of(copper_in);
+  const double radius_nm = o.tool_width_mm * kNmPerMm / 2;
+  const double step_nm = o.tool_width_mm * kNmPerMm * (1.0 - o.overlap);
+  const double arc_tol_nm = o.arc_tolerance_mm * kNmPerMm;
+  r.tool_radius_mm = o.tool_width_mm / 2;
+  r.narrow_gaps = find_narrow_gaps(copper, radius_nm, arc_tol_nm, &r.islands);
+  if (copper.empty()) return r;
+
+  if (!o.mill_all) {
+    for (int k = 0; k < o.passes; ++k) {
+      for (const Path& p : offset_closed(copper, radius_nm + k * step_nm, arc_tol_nm)) {
+        ToolPathNm t;
+        t.path = p;
+        t.pass = k;
+        r.paths.push_back(t);
+      }
+    }
+    return r;
+  }
+
+  // Clearing: contours grow until the area (shrunk by the tool radius, where the tool centre
+  // may go) is covered; the area's own inset boundary is the last contour.
+  Paths area = o.area_nm;
+  if (area.empty()) {
+    BoxNm b = box_of(copper);
+    const cInt m = static_cast<cInt>(4 * radius_nm);
+    area.push_back(Path{IntPoint(b.min_x - m, b.min_y - m), IntPoint(b.max_x + m, b.min_y - m),
+                        IntPoint(b.max_x + m, b.max_y + m), IntPoint(b.min_x - m, b.max_y + m)});
+  }
+  const Paths centre_area = offset_closed(union_of(area), -radius_nm, arc_tol_nm);
+  for (int k = 0; k < 100000; ++k) {
+    const double d = radius_nm + k * step_nm;
+    const Paths contours = offset_closed(copper, d, arc_tol_nm);
+    if (k == 0) {
+      for (const Path& p : contours) {
+        ToolPathNm t;
+        t.path = p;
+        r.paths.push_back(t);
+      }
+    } else {
+      for (const Path& p : clip_to(contours, centre_area)) {
+        ToolPathNm t;
+        t.path = p;
+        t.closed = false;
+        t.pass = k;
+        r.paths.push_back(t);
+      }
+    }
+    const Paths left = difference_of(centre_area, offset_closed(copper, d + step_nm, arc_tol_nm));
+    if (std::fabs(signed_area(left)) < kMinOverlapAreaNm2) break;
+  }
+  const int last_pass = r.paths.empty() ? 1 : r.paths.back().pass + 1;
+  for (const Path& p : centre_area) {
+    ToolPathNm t;
+    t.path = p;
+    t.pass = last_pass;
+    r.paths.push_back(t);
+  }
+  // Where the fronts of two islands meet, cusps wider than the step stay uncut: one short
+  // stroke along each leftover sliver's long axis, kept where the tool centre may go.
+  const Paths allowed = difference_of(centre_area, offset_closed(copper, radius_nm, arc_tol_nm));
+  const Paths reachable = offset_closed(allowed, radius_nm, arc_tol_nm);
+  for (int round = 0; round < 3; ++round) {
+    Paths centres;
+    for (const ToolPathNm& t : r.paths) centres.push_back(t.closed ? as_open(t.path) : t.path);
+    const Paths left = difference_of(reachable, sweep_open(centres, radius_nm, arc_tol_nm));
+    Paths strokes;
+    for (const Path& piece : left) {
+      if (ClipperLib::Area(piece) < kMinOverlapAreaNm2 * 100) continue;  // slivers < 1 um^2
+      // Principal axis of the piece's vertices.
+      double mx = 0, my = 0;
+      for (const IntPoint& q : piece)
+        mx += static_cast<double>(q.X), my += static_cast<double>(q.Y);
+      mx /= static_cast<double>(piece.size()), my /= static_cast<double>(piece.size());
+      double sxx = 0, syy = 0, sxy = 0;
+      for (const IntPoint& q : piece) {
+        const double dx = static_cast<double>(q.X) - mx, dy = static_cast<double>(q.Y) - my;
+        sxx += dx * dx, syy += dy * dy, sxy += dx * dy;
+      }
+      const double angle = 0.5 * std::atan2(2 * sxy, sxx - syy);
+      const double ux = std::cos(angle), uy = std::sin(angle);
+      double lo = 0, hi = 0;
+      for (const IntPoint& q : piece) {
+        const double t =
+            (static_cast<double>(q.X) - mx) * ux + (static_cast<double>(q.Y) - my) * uy;
+        lo = std::min(lo, t), hi = std::max(hi, t);
+      }
+      strokes.push_back(
+          Path{IntPoint(static_cast<cInt>(mx + lo * ux), static_cast<cInt>(my + lo * uy)),
+               IntPoint(static_cast<cInt>(mx + hi * ux), static_cast<cInt>(my + hi * uy))});
+    }
+    if (strokes.empty()) break;
+    ClipperLib::Clipper c;
+    c.AddPaths(strokes, ClipperLib::ptSubject, false);
+    c.AddPaths(allowed, ClipperLib::ptClip, true);
+    ClipperLib::PolyTree tree;
+    c.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    Paths kept;
+    ClipperLib::OpenPathsFromPolyTree(tree, kept);
+    if (kept.empty()) break;
+    for (const Path& p : kept) {
+      ToolPathNm t;
+      t.path = p;
+      t.closed = false;
+      t.pass = last_pass + 1 + round;
+      r.paths.push_back(t);
+    }
+  }
+  return r;
+}
+
+}  // namespace host::pcb

@@ -1,0 +1,193 @@
+// The isolation checks (see isolation_check.h).
+#include "host/lib/pcb/isolation_check.h"
+
+#include <fmt/format.h>  // fmt::format
+
+#include <algorithm>  // std::sort
+#include <cmath>      // std::fabs
+#include <map>        // std::map
+
+#include "host/lib/pcb/pcb_geometry.h"
+
+namespace host::pcb {
+
+using ClipperLib::cInt;
+using ClipperLib::IntPoint;
+using ClipperLib::Path;
+using ClipperLib::Paths;
+
+namespace {
+
+const double kArcToleranceNm = 200;  // flattening of the swept discs
+const double kMinHitAreaNm2 = 1e4;   // 0.1 um x 0.1 um: numerical touching
+
+// A point strictly inside the region (even-odd over all paths): the middle of the widest
+// interval a horizontal line through the region's vertical middle cuts out of it.
+bool interior_point(const Paths& region, IntPoint* out) {
+  const BoxNm b = box_of(region);
+  if (b.empty()) return false;
+  // Try a few scan lines: a line through a vertex is nudged by half a nanometre.
+  for (int attempt = 1; attempt < 8; ++attempt) {
+    const double y =
+        static_cast<double>(b.min_y) + static_cast<double>(b.max_y - b.min_y) * attempt / 8.0 + 0.5;
+    std::vector<double> xs;
+    for (const Path& p : region) {
+      for (size_t i = 0; i < p.size(); ++i) {
+        const IntPoint& u = p[i];
+        const IntPoint& v = p[(i + 1) % p.size()];
+        const double uy = static_cast<double>(u.Y), vy = static_cast<double>(v.Y);
+        if ((uy <= y) == (vy <= y)) continue;
+        const double t = (y - uy) / (vy - uy);
+        xs.push_back(static_cast<double>(u.X) + t * static_cast<double>(v.X - u.X));
+      }
+    }
+    std::sort(xs.begin(), xs.end());
+    double best = 0;
+    for (size_t i = 0; i + 1 < xs.size(); i += 2) {
+      if (xs[i + 1] - xs[i] > best) {
+        best = xs[i + 1] - xs[i];
+        out->X = static_cast<cInt>((xs[i] + xs[i + 1]) / 2);
+        out->Y = static_cast<cInt>(y);
+      }
+    }
+    if (best > 2) return true;
+  }
+  return false;
+}
+
+// A connected piece of material: outer boundary and holes.
+struct Piece {
+  Path outer;
+  Paths holes;
+  BoxNm box;
+  std::vector<BoxNm> hole_boxes;
+};
+
+bool inside_box(const BoxNm& b, const IntPoint& p) {
+  return p.X >= b.min_x && p.X <= b.max_x && p.Y >= b.min_y && p.Y <= b.max_y;
+}
+
+void collect_pieces(const ClipperLib::PolyNode& node, std::vector<Piece>* out) {
+  for (const ClipperLib::PolyNode* o : node.Childs) {
+    Piece p;
+    p.outer = o->Contour;
+    p.box.add(o->Contour);
+    for (const ClipperLib::PolyNode* h : o->Childs) {
+      p.holes.push_back(h->Contour);
+      BoxNm hb;
+      hb.add(h->Contour);
+      p.hole_boxes.push_back(hb);
+      collect_pieces(*h, out);
+    }
+    out->push_back(p);
+  }
+}
+
+}  // namespace
+
+IsolationCheck check_isolation(const Paths& copper_nm,
+                               const std::vector<std::vector<Point2>>& tool_paths_mm,
+                               double tool_radius_mm, double tolerance_mm) {
+  IsolationCheck r;
+  const std::vector<Island> islands = copper_islands(copper_nm);
+  r.islands = islands.size();
+  Paths centres;
+  for (const std::vector<Point2>& path : tool_paths_mm) {
+    Path p;
+    for (const Point2& q : path) p.emplace_back(nm_from_mm(q.x()), nm_from_mm(q.y()));
+    if (p.size() == 1) p.push_back(p.front());
+    if (!p.empty()) centres.push_back(p);
+  }
+  const Paths copper = union_of(copper_nm);
+
+  // 1. The tool, shrunk by the tolerance, must not reach copper.
+  const double shrunk = (tool_radius_mm - tolerance_mm) * kNmPerMm;
+  if (shrunk > 0 && !centres.empty()) {
+    const Paths swept_in = union_of(sweep_open(centres, shrunk, kArcToleranceNm));
+    ClipperLib::Clipper c;
+    c.AddPaths(copper, ClipperLib::ptSubject, true);
+    c.AddPaths(swept_in, ClipperLib::ptClip, true);
+    ClipperLib::PolyTree tree;
+    c.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    std::vector<Piece> overlaps;
+    collect_pieces(tree, &overlaps);
+    for (const Piece& p : overlaps) {
+      Paths region{p.outer};
+      region.insert(region.end(), p.holes.begin(), p.holes.end());
+      const double a = std::fabs(signed_area(region));
+      if (a < kMinHitAreaNm2) continue;
+      CopperHit h;
+      h.at_mm = to_mm(centroid(region));
+      h.area_mm2 = a / (kNmPerMm * kNmPerMm);
+      r.hits.push_back(h);
+    }
+  }
+
+  // 2. Material left standing (everything minus the full swept tool) in connected pieces;
+  // each island must sit in a piece of its own.
+  const double radius_nm = tool_radius_mm * kNmPerMm;
+  BoxNm b = box_of(copper);
+  if (b.empty()) return r;
+  const cInt m = static_cast<cInt>(4 * radius_nm + 1e6);
+  const Path frame{IntPoint(b.min_x - m, b.min_y - m), IntPoint(b.max_x + m, b.min_y - m),
+                   IntPoint(b.max_x + m, b.max_y + m), IntPoint(b.min_x - m, b.max_y + m)};
+  const Paths swept =
+      centres.empty() ? Paths{} : union_of(sweep_open(centres, radius_nm, kArcToleranceNm));
+  ClipperLib::Clipper c;
+  c.AddPath(frame, ClipperLib::ptSubject, true);
+  c.AddPaths(swept, ClipperLib::ptClip, true);
+  ClipperLib::PolyTree tree;
+  c.Execute(ClipperLib::ctDifference, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  std::vector<Piece> pieces;
+  collect_pieces(tree, &pieces);
+
+  std::map<size_t, std::vector<size_t>> by_piece;
+  std::vector<IntPoint> inner(islands.size());
+  for (size_t i = 0; i < islands.size(); ++i) {
+    // A point of the island the tool leaves standing (the island is otherwise all cut away,
+    // which the first check reports).
+    const Paths left = difference_of(islands[i].paths, swept);
+    if (!interior_point(left, &inner[i])) continue;
+    for (size_t k = 0; k < pieces.size(); ++k) {
+      const Piece& p = pieces[k];
+      if (!inside_box(p.box, inner[i]) || ClipperLib::PointInPolygon(inner[i], p.outer) == 0)
+        continue;
+      bool in_hole = false;
+      for (size_t h = 0; h < p.holes.size() && !in_hole; ++h) {
+        in_hole = inside_box(p.hole_boxes[h], inner[i]) &&
+                  ClipperLib::PointInPolygon(inner[i], p.holes[h]) != 0;
+      }
+      if (in_hole) continue;
+      by_piece[k].push_back(i);
+      break;
+    }
+  }
+  for (const auto& entry : by_piece) {
+    const std::vector<size_t>& v = entry.second;
+    for (size_t k = 1; k < v.size(); ++k) {
+      UnseparatedPair u;
+      u.island_a = v[0];
+      u.island_b = v[k];
+      u.a_mm = to_mm(inner[v[0]]);
+      u.b_mm = to_mm(inner[v[k]]);
+      r.unseparated.push_back(u);
+    }
+  }
+  return r;
+}
+
+std::string describe(const IsolationCheck& c) {
+  std::string s = fmt::format("{} islands, {} copper hit(s), {} unseparated pair(s)", c.islands,
+                              c.hits.size(), c.unseparated.size());
+  for (const CopperHit& h : c.hits)
+    s += fmt::format("\n  tool cuts {:.6f} mm2 of copper at ({:.3f}, {:.3f}) mm", h.area_mm2,
+                     h.at_mm.x(), h.at_mm.y());
+  for (const UnseparatedPair& u : c.unseparated)
+    s += fmt::format(
+        "\n  islands {} at ({:.3f}, {:.3f}) and {} at ({:.3f}, {:.3f}) mm are not "
+        "separated by a cut",
+        u.island_a, u.a_mm.x(), u.a_mm.y(), u.island_b, u.b_mm.x(), u.b_mm.y());
+  return s;
+}
+
+}  // namespace host::pcb

@@ -1,0 +1,88 @@
+#include "host/lib/pcb/pcb_file_names.h"
+
+#include <algorithm>  // std::transform
+#include <cctype>     // std::tolower
+#include <fstream>    // std::ifstream
+
+namespace host::pcb {
+
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+// The file name without folders, lower case.
+std::string base_name(const std::string& path) {
+  const size_t slash = path.find_last_of("/\\");
+  return lower(slash == std::string::npos ? path : path.substr(slash + 1));
+}
+
+std::string extension(const std::string& name) {
+  const size_t dot = name.rfind('.');
+  return dot == std::string::npos ? std::string() : name.substr(dot);
+}
+
+bool contains(const std::string& s, const char* part) {
+  return s.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+LayerKind layer_kind_from_file_name(const std::string& path) {
+  const std::string name = base_name(path);
+  const std::string ext = extension(name);
+  if (ext == ".gtl" || ext == ".cmp" || ext == ".top") return LayerKind::kCopperTop;
+  if (ext == ".gbl" || ext == ".sol" || ext == ".bot") return LayerKind::kCopperBottom;
+  if (ext == ".gko" || ext == ".gm1" || ext == ".gml" || ext == ".gbr_outline") {
+    return LayerKind::kOutline;
+  }
+  if (ext == ".drl" || ext == ".xln" || ext == ".exc" || ext == ".drd" || ext == ".txt") {
+    return ext == ".txt" ? LayerKind::kUnknown : LayerKind::kDrill;
+  }
+  if (contains(name, "-f.cu.") || contains(name, "-f_cu.") || contains(name, "_f.cu.") ||
+      contains(name, "copper_top") || contains(name, "toplayer")) {
+    return LayerKind::kCopperTop;
+  }
+  if (contains(name, "-b.cu.") || contains(name, "-b_cu.") || contains(name, "_b.cu.") ||
+      contains(name, "copper_bottom") || contains(name, "bottomlayer")) {
+    return LayerKind::kCopperBottom;
+  }
+  if (contains(name, "edge.cuts") || contains(name, "edge_cuts") || contains(name, "outline") ||
+      contains(name, "profile")) {
+    return LayerKind::kOutline;
+  }
+  return LayerKind::kUnknown;
+}
+
+PcbFileFormat pcb_file_format(const std::string& path, const std::string& head_text) {
+  const std::string ext = extension(base_name(path));
+  if (ext == ".gbr" || ext == ".ger" || ext == ".gtl" || ext == ".gbl" || ext == ".gto" ||
+      ext == ".gbo" || ext == ".gts" || ext == ".gbs" || ext == ".gko" || ext == ".gm1" ||
+      ext == ".gml" || ext == ".gbx" || ext == ".pho" || ext == ".art" || ext == ".cmp" ||
+      ext == ".sol") {
+    return PcbFileFormat::kGerber;
+  }
+  if (ext == ".drl" || ext == ".xln" || ext == ".exc" || ext == ".drd") {
+    return PcbFileFormat::kExcellon;
+  }
+  if (contains(head_text, "%FS") || contains(head_text, "%MOMM") || contains(head_text, "%MOIN")) {
+    return PcbFileFormat::kGerber;
+  }
+  if (head_text.rfind("M48", 0) == 0 || contains(head_text, "\nM48")) {
+    return PcbFileFormat::kExcellon;
+  }
+  return PcbFileFormat::kNone;
+}
+
+PcbFileFormat pcb_file_format(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  return pcb_file_format(path, head);
+}
+
+}  // namespace host::pcb

@@ -1,0 +1,26 @@
+// Which PCB file a path is, from its name and first bytes: the readers use it for the layer
+// kind when the file does not say (no X2 TF.FileFunction), the CLI to pick a reader.
+#ifndef HOST_LIB_PCB_PCB_FILE_NAMES_H
+#define HOST_LIB_PCB_PCB_FILE_NAMES_H
+
+#include <string>  // std::string
+
+#include "host/lib/pcb/pcb_layer.h"
+
+namespace host::pcb {
+
+enum class PcbFileFormat { kNone, kGerber, kExcellon };
+
+// Layer kind from the usual names: .GTL/.GBL/.GKO/.GM1/.GML/.CMP/.SOL, KiCad's -F.Cu/-B.Cu/
+// -Edge.Cuts (also with '_'), .DRL/.XLN. kUnknown when the name says nothing.
+LayerKind layer_kind_from_file_name(const std::string& path);
+
+// Gerber or Excellon by extension, else by content (%FS / %MO, M48); kNone otherwise.
+PcbFileFormat pcb_file_format(const std::string& path, const std::string& head_text);
+
+// Reads the first few kB of `path` (empty if it cannot be opened) and calls the above.
+PcbFileFormat pcb_file_format(const std::string& path);
+
+}  // namespace host::pcb
+
+#endif  // HOST_LIB_PCB_PCB_FILE_NAMES_H

@@ -1,0 +1,138 @@
+// Geometry helpers for the PCB planners (see pcb_geometry.h).
+#include "host/lib/pcb/pcb_geometry.h"
+
+#include <algorithm>  // std::min, std::max
+
+namespace host::pcb {
+
+using ClipperLib::Clipper;
+using ClipperLib::ClipperOffset;
+using ClipperLib::IntPoint;
+using ClipperLib::Path;
+using ClipperLib::Paths;
+using ClipperLib::PolyNode;
+using ClipperLib::PolyTree;
+
+void BoxNm::add(const IntPoint& p) {
+  if (empty()) {
+    min_x = max_x = p.X;
+    min_y = max_y = p.Y;
+    return;
+  }
+  min_x = std::min(min_x, p.X);
+  max_x = std::max(max_x, p.X);
+  min_y = std::min(min_y, p.Y);
+  max_y = std::max(max_y, p.Y);
+}
+
+void BoxNm::add(const Path& path) {
+  for (const IntPoint& p : path) add(p);
+}
+
+BoxNm box_of(const Paths& paths) {
+  BoxNm b;
+  for (const Path& p : paths) b.add(p);
+  return b;
+}
+
+Paths union_of(const Paths& paths) {
+  Clipper c;
+  c.AddPaths(paths, ClipperLib::ptSubject, true);
+  Paths out;
+  c.Execute(ClipperLib::ctUnion, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  return out;
+}
+
+namespace {
+
+// Outer nodes of the tree (depth 0, 2, 4, ...) become islands with their direct holes.
+void collect_islands(const PolyNode& node, std::vector<Island>* out) {
+  for (const PolyNode* outer : node.Childs) {
+    Island island;
+    island.paths.push_back(outer->Contour);
+    for (const PolyNode* hole : outer->Childs) {
+      island.paths.push_back(hole->Contour);
+      collect_islands(*hole, out);
+    }
+    island.box.add(outer->Contour);
+    out->push_back(island);
+  }
+}
+
+}  // namespace
+
+std::vector<Island> copper_islands(const Paths& copper) {
+  Clipper c;
+  c.AddPaths(copper, ClipperLib::ptSubject, true);
+  PolyTree tree;
+  c.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  std::vector<Island> out;
+  collect_islands(tree, &out);
+  return out;
+}
+
+double signed_area(const Paths& paths) {
+  double a = 0;
+  for (const Path& p : paths) a += ClipperLib::Area(p);
+  return a;
+}
+
+IntPoint centroid(const Paths& paths) {
+  double a_sum = 0, x_sum = 0, y_sum = 0;
+  for (const Path& p : paths) {
+    for (size_t i = 0; i < p.size(); ++i) {
+      const IntPoint& u = p[i];
+      const IntPoint& v = p[(i + 1) % p.size()];
+      const double cross = static_cast<double>(u.X) * static_cast<double>(v.Y) -
+                           static_cast<double>(v.X) * static_cast<double>(u.Y);
+      a_sum += cross;
+      x_sum += (static_cast<double>(u.X) + static_cast<double>(v.X)) * cross;
+      y_sum += (static_cast<double>(u.Y) + static_cast<double>(v.Y)) * cross;
+    }
+  }
+  if (a_sum == 0) {
+    for (const Path& p : paths)
+      if (!p.empty()) return p[0];
+    return IntPoint(0, 0);
+  }
+  return IntPoint(static_cast<ClipperLib::cInt>(x_sum / (3 * a_sum)),
+                  static_cast<ClipperLib::cInt>(y_sum / (3 * a_sum)));
+}
+
+Paths offset_closed(const Paths& paths, double delta_nm, double arc_tolerance_nm) {
+  ClipperOffset o;
+  o.ArcTolerance = arc_tolerance_nm;
+  o.AddPaths(paths, ClipperLib::jtRound, ClipperLib::etClosedPolygon);
+  Paths out;
+  o.Execute(out, delta_nm);
+  return out;
+}
+
+Paths sweep_open(const Paths& paths, double radius_nm, double arc_tolerance_nm) {
+  ClipperOffset o;
+  o.ArcTolerance = arc_tolerance_nm;
+  o.AddPaths(paths, ClipperLib::jtRound, ClipperLib::etOpenRound);
+  Paths out;
+  o.Execute(out, radius_nm);
+  return out;
+}
+
+Paths intersection_of(const Paths& a, const Paths& b) {
+  Clipper c;
+  c.AddPaths(a, ClipperLib::ptSubject, true);
+  c.AddPaths(b, ClipperLib::ptClip, true);
+  Paths out;
+  c.Execute(ClipperLib::ctIntersection, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  return out;
+}
+
+Paths difference_of(const Paths& a, const Paths& b) {
+  Clipper c;
+  c.AddPaths(a, ClipperLib::ptSubject, true);
+  c.AddPaths(b, ClipperLib::ptClip, true);
+  Paths out;
+  c.Execute(ClipperLib::ctDifference, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  return out;
+}
+
+}  // namespace host::pcb

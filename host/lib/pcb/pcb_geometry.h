@@ -1,0 +1,71 @@
+// Small geometry helpers shared by the PCB planners: copper islands, bounding boxes, unit
+// conversion between Clipper's integer nanometres and the planner's millimetres.
+#ifndef HOST_LIB_PCB_PCB_GEOMETRY_H
+#define HOST_LIB_PCB_PCB_GEOMETRY_H
+
+#include <clipper.hpp>  // ClipperLib::Paths
+
+#include <cmath>   // std::llround
+#include <vector>  // std::vector
+
+#include "host/lib/drawing/bspline.h"  // Point2
+
+namespace host::pcb {
+
+const double kNmPerMm = 1e6;
+
+inline Point2 to_mm(const ClipperLib::IntPoint& p) {
+  return Point2(static_cast<double>(p.X) / kNmPerMm, static_cast<double>(p.Y) / kNmPerMm);
+}
+inline ClipperLib::cInt nm_from_mm(double mm) {
+  return static_cast<ClipperLib::cInt>(std::llround(mm * kNmPerMm));
+}
+
+// Axis-aligned bounds in nm; empty when min > max.
+struct BoxNm {
+  ClipperLib::cInt min_x = 1, min_y = 1, max_x = 0, max_y = 0;
+  bool empty() const { return min_x > max_x; }
+  void add(const ClipperLib::IntPoint& p);
+  void add(const ClipperLib::Path& path);
+  bool overlaps(const BoxNm& o) const {
+    return !empty() && !o.empty() && min_x <= o.max_x && o.min_x <= max_x && min_y <= o.max_y &&
+           o.min_y <= max_y;
+  }
+};
+BoxNm box_of(const ClipperLib::Paths& paths);
+
+// One connected piece of copper: an outer boundary (positive) and its holes (negative).
+struct Island {
+  ClipperLib::Paths paths;  // paths[0] is the outer boundary
+  BoxNm box;
+};
+
+// Copper split into islands (the union is taken first, so overlapping input is fine).
+// An island inside another's hole is an island of its own.
+std::vector<Island> copper_islands(const ClipperLib::Paths& copper);
+
+// Union of the input under the non-zero rule, orientation normalised (outers positive).
+ClipperLib::Paths union_of(const ClipperLib::Paths& paths);
+
+// Area-weighted centre of a set of polygons (holes negative), in nm; the first vertex
+// when the area vanishes.
+ClipperLib::IntPoint centroid(const ClipperLib::Paths& paths);
+
+// Sum of signed areas (nm^2).
+double signed_area(const ClipperLib::Paths& paths);
+
+// Closed polygons offset by delta_nm (round joins, the given arc tolerance).
+ClipperLib::Paths offset_closed(const ClipperLib::Paths& paths, double delta_nm,
+                                double arc_tolerance_nm);
+
+// Open paths swept by a disc of radius radius_nm (round ends and joins).
+ClipperLib::Paths sweep_open(const ClipperLib::Paths& paths, double radius_nm,
+                             double arc_tolerance_nm);
+
+// a AND b, a MINUS b (non-zero fill).
+ClipperLib::Paths intersection_of(const ClipperLib::Paths& a, const ClipperLib::Paths& b);
+ClipperLib::Paths difference_of(const ClipperLib::Paths& a, const ClipperLib::Paths& b);
+
+}  // namespace host::pcb
+
+#endif  // HOST_LIB_PCB_PCB_GEOMETRY_H

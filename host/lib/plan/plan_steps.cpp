@@ -1,0 +1,176 @@
+// Shared planner pieces; see plan_steps.h.
+#include "host/lib/plan/plan_steps.h"
+
+#include <algorithm>  // std::min
+#include <cmath>      // std::llround, std::floor
+#include <sstream>    // std::ostringstream
+
+#include "host/lib/plan/firmware_spline.h"
+
+namespace host {
+
+double machine_travel_mm(int axis) {
+  return config::default_machine_config().axis[axis].travel_um / 1000.0;
+}
+
+namespace plan_detail {
+
+namespace {
+
+// A size for a message: at most 3 decimals, no trailing zeros.
+std::string mm(double v) {
+  std::ostringstream o;
+  o << std::llround(v * 1000) / 1000.0;
+  return o.str();
+}
+
+}  // namespace
+
+bool is_polyline(const BSpline& s) {
+  if (s.degree != 1) return false;
+  return s.knots[0] == s.knots[1] && s.knots[s.knots.size() - 1] == s.knots[s.knots.size() - 2];
+}
+
+int32_t to_um(double mm) {
+  return static_cast<int32_t>(std::llround(mm * 1000.0));
+}
+
+core::PointUm to_um(const Point2& p) {
+  core::PointUm q;
+  q.x_um = to_um(p.x());
+  q.y_um = to_um(p.y());
+  return q;
+}
+
+double curve_length(const BSpline& s) {
+  const std::vector<Point2> pts = sample(s, 0.001);
+  double len = 0;
+  for (size_t i = 1; i < pts.size(); ++i) len += (pts[i] - pts[i - 1]).norm();
+  return len;
+}
+
+std::string describe(const PlannedCurve& c) {
+  std::ostringstream o;
+  o << "curve " << c.drawing_index << " (" << c.source << ")";
+  return o.str();
+}
+
+std::string first_exit(const PlannedCurve& c, double radius, const PlanOptions& o) {
+  for (const Point2& p : sample(c.spline, 0.001)) {
+    if (p.x() - radius < -1e-6 || p.x() + radius > o.work_width_mm + 1e-6 ||
+        p.y() - radius < -1e-6 || p.y() + radius > o.work_height_mm + 1e-6) {
+      std::ostringstream e;
+      e << describe(c) << " reaches (" << p.x() << ", " << p.y() << ") mm in the machine frame";
+      return e.str();
+    }
+  }
+  return "";
+}
+
+void check_job_fits(const Extents& ext, double radius, const PlanOptions& o,
+                    const std::string& culprit) {
+  if (ext.empty()) return;
+  const double lo_x = ext.min.x() - radius, hi_x = ext.max.x() + radius;
+  const double lo_y = ext.min.y() - radius, hi_y = ext.max.y() + radius;
+  if (lo_x >= -1e-6 && lo_y >= -1e-6 && hi_x <= o.work_width_mm + 1e-6 &&
+      hi_y <= o.work_height_mm + 1e-6) {
+    return;
+  }
+  const double w = ext.width(), h = ext.height();
+  std::ostringstream e;
+  e << "the job does not fit the work area: the drawing is " << mm(w) << " x " << mm(h)
+    << " mm at --scale " << o.scale;
+  if (radius > 0) e << ", plus the tool radius " << mm(radius) << " mm on every side";
+  e << "; placed with its lower-left corner at --margin " << mm(o.margin_mm)
+    << " mm from the zero it spans x " << mm(lo_x) << " .. " << mm(hi_x) << ", y " << mm(lo_y)
+    << " .. " << mm(hi_y) << " mm; the work area is " << mm(o.work_width_mm) << " x "
+    << mm(o.work_height_mm) << " mm (--work).";
+  // What would fit: a smaller scale, a smaller margin, a larger work area.
+  const double room_x = o.work_width_mm - o.margin_mm - radius;
+  const double room_y = o.work_height_mm - o.margin_mm - radius;
+  double fit = 1e300;
+  if (w > 0) fit = std::min(fit, room_x / w);
+  if (h > 0) fit = std::min(fit, room_y / h);
+  if (o.margin_mm + 1e-9 < radius) {
+    e << " --margin must be at least the tool radius.";
+  } else if (fit > 0 && fit < 1e299) {
+    e << " It fits at --scale " << std::floor(o.scale * fit * 1000) / 1000 << " or smaller";
+    if (w + 2 * radius <= o.work_width_mm && h + 2 * radius <= o.work_height_mm) {
+      e << ", or at this scale with --margin "
+        << mm(std::min(o.work_width_mm - w - radius, o.work_height_mm - h - radius)) << " or less";
+    }
+    e << ".";
+  }
+  const double need_w = hi_x - std::min(0.0, lo_x), need_h = hi_y - std::min(0.0, lo_y);
+  if (need_w <= o.travel_width_mm + 1e-6 && need_h <= o.travel_height_mm + 1e-6) {
+    e << " A larger work area also fits: --work " << mm(std::max(need_w, o.work_width_mm)) << " "
+      << mm(std::max(need_h, o.work_height_mm)) << " (the controller's travel is "
+      << mm(o.travel_width_mm) << " x " << mm(o.travel_height_mm) << " mm).";
+  } else {
+    e << " The controller's travel is " << mm(o.travel_width_mm) << " x " << mm(o.travel_height_mm)
+      << " mm, so the drawing has to be scaled down.";
+  }
+  if (!culprit.empty()) e << " First outside: " << culprit << ".";
+  throw PlanError(e.str());
+}
+
+void check_options(const PlanOptions& o) {
+  if (!(o.scale > 0) || !std::isfinite(o.scale)) throw PlanError("scale must be positive");
+  if (!(o.feed_mm_per_s > 0) || !(o.plunge_mm_per_s > 0)) throw PlanError("feeds must be positive");
+  if (!(o.tool_radius_mm >= 0)) throw PlanError("tool radius must not be negative");
+  if (!(o.work_width_mm > 0) || !(o.work_height_mm > 0)) {
+    throw PlanError("--work " + mm(o.work_width_mm) + " " + mm(o.work_height_mm) +
+                    ": the work area must have a positive width and height");
+  }
+  if (o.work_width_mm > o.travel_width_mm + 1e-9 || o.work_height_mm > o.travel_height_mm + 1e-9) {
+    throw PlanError(
+        "--work " + mm(o.work_width_mm) + " " + mm(o.work_height_mm) +
+        " mm is beyond the controller's travel of " + mm(o.travel_width_mm) + " x " +
+        mm(o.travel_height_mm) +
+        " mm: the controller would stop the job once the tool got there. Use a work "
+        "area within the travel and scale the drawing down (--scale) if it does not fit");
+  }
+  for (double z : {o.z_up_mm, o.z_down_mm}) {
+    if (!(std::fabs(z) <= o.travel_z_mm)) {
+      throw PlanError("Z " + mm(z) + " mm is beyond the controller's Z travel of +-" +
+                      mm(o.travel_z_mm) + " mm");
+    }
+  }
+}
+
+void append_curve_steps(const PlannedCurve& c, int index, int32_t offset, const PlanOptions& o,
+                        JobPlan* plan) {
+  const int32_t feed = to_um(o.feed_mm_per_s);
+  if (o.lines_as_feeds && offset == 0 && is_polyline(c.spline)) {
+    for (size_t k = 1; k < c.spline.control.size(); ++k) {
+      PlanStep f;
+      f.kind = PlanStep::kFeed;
+      f.to = to_um(c.spline.control[k]);
+      f.feed_um_per_s = feed;
+      f.curve = index;
+      plan->steps.push_back(f);
+    }
+    return;
+  }
+  std::vector<core::Spline> pieces;
+  try {
+    pieces = to_firmware_splines(c.spline);
+  } catch (const ConversionError& e) {
+    throw PlanError(describe(c) + ": " + e.what());
+  }
+  for (size_t k = 0; k < pieces.size(); ++k) {
+    PlanStep s;
+    s.kind = PlanStep::kSpline;
+    s.spline = pieces[k];
+    s.to = to_um(k + 1 == pieces.size() ? end_point(c.spline)
+                                        : end_point(from_firmware_spline(pieces[k])));
+    s.feed_um_per_s = feed;
+    s.tool_offset_um = offset;
+    s.curve = index;
+    plan->steps.push_back(s);
+  }
+}
+
+}  // namespace plan_detail
+
+}  // namespace host

@@ -1,0 +1,243 @@
+// Board plot rendering with cairo (see board_plot.h).
+#include "host/lib/plot/board_plot.h"
+
+#include <cairo-svg.h>  // cairo_svg_surface_create
+#include <cairo.h>      // cairo_*
+
+#include <algorithm>  // std::max
+#include <cmath>      // std::pow, std::floor
+#include <sstream>    // std::ostringstream
+#include <stdexcept>  // std::runtime_error
+
+#include "host/lib/pcb/pcb_geometry.h"
+
+namespace host {
+
+namespace {
+
+const double kTitleBandPx = 40.0;
+const double kBottomBandPx = 60.0;
+const double kSideMarginPx = 20.0;
+
+struct Rgba {
+  double r, g, b, a;
+};
+const Rgba kBoard = {0.86, 0.90, 0.80, 1.0};       // substrate inside the outline
+const Rgba kCopper = {0.85, 0.55, 0.20, 1.0};      // copper
+const Rgba kIsolation = {0.15, 0.35, 0.90, 0.45};  // swept V-bit
+const Rgba kIsolationCentre = {0.05, 0.15, 0.55, 1.0};
+const Rgba kCutout = {0.10, 0.60, 0.20, 0.40};  // swept cutter
+const Rgba kCutoutCentre = {0.05, 0.35, 0.10, 1.0};
+const Rgba kTab = {0.55, 0.25, 0.65, 0.9};  // cutter lifted over a holding tab
+const Rgba kHole = {0.12, 0.12, 0.12, 1.0};
+const Rgba kGap = {0.90, 0.00, 0.00, 1.0};
+const Rgba kSimulated = {0.75, 0.05, 0.05, 0.9};
+
+void set(cairo_t* cr, const Rgba& c) {
+  cairo_set_source_rgba(cr, c.r, c.g, c.b, c.a);
+}
+
+}  // namespace
+
+PlotFrame board_plot_frame(const pcb::BoardJob& job, int width_px, int* height_px) {
+  Extents e = job.plan.extents_mm;
+  for (const pcb::Hole& h : job.holes_machine)
+    e.add(pcb::to_mm(ClipperLib::IntPoint(h.at.x, h.at.y)));
+  for (const auto& p : job.copper_machine_nm)
+    for (const auto& q : p) e.add(pcb::to_mm(q));
+  if (e.empty()) e.add(Point2(0, 0));
+  const double pad_mm = std::max(job.tool_radius_mm, job.cutter_radius_mm) + 0.5;
+  e.add(Point2(e.min.x() - pad_mm, e.min.y() - pad_mm));
+  e.add(Point2(e.max.x() + pad_mm, e.max.y() + pad_mm));
+  const double area_w = width_px - 2 * kSideMarginPx;
+  PlotFrame f;
+  f.scale_px_per_mm = area_w / std::max(e.width(), 1e-3);
+  const double area_h = e.height() * f.scale_px_per_mm;
+  *height_px =
+      static_cast<int>(std::ceil(area_h + kTitleBandPx + kBottomBandPx + 2 * kSideMarginPx));
+  f.origin_x_px = kSideMarginPx - e.min.x() * f.scale_px_per_mm;
+  f.origin_y_px = kTitleBandPx + kSideMarginPx + e.max.y() * f.scale_px_per_mm;
+  return f;
+}
+
+namespace {
+
+void polygon_paths(cairo_t* cr, const PlotFrame& f, const ClipperLib::Paths& paths) {
+  for (const auto& p : paths) {
+    for (size_t i = 0; i < p.size(); ++i) {
+      const Point2 q = f.to_px(pcb::to_mm(p[i]));
+      if (i == 0)
+        cairo_move_to(cr, q.x(), q.y());
+      else
+        cairo_line_to(cr, q.x(), q.y());
+    }
+    cairo_close_path(cr);
+  }
+}
+
+void polyline(cairo_t* cr, const PlotFrame& f, const std::vector<Point2>& pts) {
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const Point2 q = f.to_px(pts[i]);
+    if (i == 0)
+      cairo_move_to(cr, q.x(), q.y());
+    else
+      cairo_line_to(cr, q.x(), q.y());
+  }
+  if (pts.size() == 1) cairo_rel_line_to(cr, 0.01, 0);
+}
+
+// A set of paths stroked in one go: where strokes of one colour overlap, the colour stays
+// even (the group is painted once with its alpha).
+void stroke_group(cairo_t* cr, const PlotFrame& f, const std::vector<std::vector<Point2>>& paths,
+                  double width_px, const Rgba& c) {
+  cairo_push_group(cr);
+  cairo_set_source_rgb(cr, c.r, c.g, c.b);
+  cairo_set_line_width(cr, std::max(width_px, 0.5));
+  for (const auto& p : paths) {
+    polyline(cr, f, p);
+    cairo_stroke(cr);
+  }
+  cairo_pop_group_to_source(cr);
+  cairo_paint_with_alpha(cr, c.a);
+}
+
+double nice_length(double target) {
+  const double p = std::pow(10.0, std::floor(std::log10(target)));
+  if (target >= 5 * p) return 5 * p;
+  if (target >= 2 * p) return 2 * p;
+  return p;
+}
+
+void legend_box(cairo_t* cr, double x, double y, const Rgba& c, const std::string& label) {
+  set(cr, c);
+  cairo_rectangle(cr, x, y - 8, 24, 12);
+  cairo_fill(cr);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_move_to(cr, x + 30, y + 3);
+  cairo_show_text(cr, label.c_str());
+}
+
+void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int height_px) {
+  const pcb::BoardJob& job = *in.job;
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
+  if (!job.board_machine_nm.empty()) {
+    set(cr, kBoard);
+    polygon_paths(cr, f, job.board_machine_nm);
+    cairo_fill(cr);
+  }
+  set(cr, kCopper);
+  polygon_paths(cr, f, job.copper_machine_nm);
+  cairo_fill(cr);
+  const double s = f.scale_px_per_mm;
+  stroke_group(cr, f, job.isolation_paths_mm, 2 * job.tool_radius_mm * s, kIsolation);
+  stroke_group(cr, f, job.isolation_paths_mm, 0.6, kIsolationCentre);
+  stroke_group(cr, f, job.cutout_paths_mm, 2 * job.cutter_radius_mm * s, kCutout);
+  stroke_group(cr, f, job.cutout_paths_mm, 0.6, kCutoutCentre);
+  stroke_group(cr, f, job.tab_paths_mm, 2 * job.cutter_radius_mm * s, kTab);
+  set(cr, kHole);
+  for (const pcb::Hole& h : job.holes_machine) {
+    const Point2 c = f.to_px(pcb::to_mm(ClipperLib::IntPoint(h.at.x, h.at.y)));
+    cairo_arc(cr, c.x(), c.y(), std::max(0.5, h.diameter_nm / 2e6 * s), 0, 2 * 3.14159265358979);
+    cairo_fill(cr);
+  }
+  for (const pcb::Slot& sl : job.slots_machine) {
+    cairo_set_line_width(cr, std::max(1.0, sl.diameter_nm / 1e6 * s));
+    polyline(cr, f,
+             {pcb::to_mm(ClipperLib::IntPoint(sl.from.x, sl.from.y)),
+              pcb::to_mm(ClipperLib::IntPoint(sl.to.x, sl.to.y))});
+    cairo_stroke(cr);
+  }
+  if (!in.simulated.empty()) {
+    std::vector<std::vector<Point2>> down;
+    for (const ToolPathSegment& seg : in.simulated)
+      if (seg.pen_down) down.push_back(seg.points_mm);
+    stroke_group(cr, f, down, 0.5, kSimulated);
+  }
+  set(cr, kGap);
+  cairo_set_line_width(cr, 2.0);
+  for (const pcb::NarrowGap& g : job.report.narrow_gaps) {
+    const Point2 c =
+        f.to_px(job.frame.to_machine(Point2(g.at.x / pcb::kNmPerMm, g.at.y / pcb::kNmPerMm)));
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, c.x(), c.y(), std::max(8.0, 0.5 * s), 0, 2 * 3.14159265358979);
+    cairo_stroke(cr);
+  }
+  // Title, legend, scale bar.
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+  cairo_set_font_size(cr, 16);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_move_to(cr, kSideMarginPx, 26);
+  cairo_show_text(cr, in.title.c_str());
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, 12);
+  const double y = height_px - kBottomBandPx / 2;
+  double x = kSideMarginPx;
+  legend_box(cr, x, y, kCopper, "copper");
+  legend_box(cr, x += 100, y, kIsolation, "isolation (tool width)");
+  legend_box(cr, x += 180, y, kCutout, "cut-out (cutter width)");
+  legend_box(cr, x += 180, y, kTab, "tabs");
+  legend_box(cr, x += 80, y, kHole, "holes");
+  legend_box(cr, x += 90, y, kGap, "narrow gap");
+  if (!in.simulated.empty()) legend_box(cr, x += 120, y, kSimulated, "simulated tool");
+  const double bar_mm = nice_length(in.width_px / 6.0 / s);
+  const double x1 = in.width_px - kSideMarginPx, x0 = x1 - bar_mm * s;
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_set_line_width(cr, 2.0);
+  cairo_move_to(cr, x0, y - 5);
+  cairo_line_to(cr, x0, y);
+  cairo_line_to(cr, x1, y);
+  cairo_line_to(cr, x1, y - 5);
+  cairo_stroke(cr);
+  std::ostringstream label;
+  label << bar_mm << " mm";
+  cairo_move_to(cr, x0, y + 16);
+  cairo_show_text(cr, label.str().c_str());
+}
+
+void check(cairo_surface_t* s, const std::string& path) {
+  const cairo_status_t st = cairo_surface_status(s);
+  if (st != CAIRO_STATUS_SUCCESS) {
+    const std::string msg = cairo_status_to_string(st);
+    cairo_surface_destroy(s);
+    throw std::runtime_error(path + ": cannot write the plot: " + msg);
+  }
+}
+
+}  // namespace
+
+void write_board_plot(const BoardPlotInput& in, const std::string& svg_path,
+                      const std::string& png_path) {
+  if (!in.job) throw std::runtime_error("board plot: no job");
+  if (in.width_px < 200 || in.width_px > 20000)
+    throw std::runtime_error("plot width must be 200..20000 pixels");
+  int height_px = 0;
+  const PlotFrame f = board_plot_frame(*in.job, in.width_px, &height_px);
+  if (height_px > 20000) throw std::runtime_error("the board plot would be over 20000 pixels high");
+  if (!svg_path.empty()) {
+    cairo_surface_t* s = cairo_svg_surface_create(svg_path.c_str(), in.width_px, height_px);
+    check(s, svg_path);
+    cairo_t* cr = cairo_create(s);
+    render(cr, in, f, height_px);
+    cairo_destroy(cr);
+    cairo_surface_finish(s);
+    check(s, svg_path);
+    cairo_surface_destroy(s);
+  }
+  if (!png_path.empty()) {
+    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, in.width_px, height_px);
+    check(s, png_path);
+    cairo_t* cr = cairo_create(s);
+    render(cr, in, f, height_px);
+    cairo_destroy(cr);
+    const cairo_status_t st = cairo_surface_write_to_png(s, png_path.c_str());
+    cairo_surface_destroy(s);
+    if (st != CAIRO_STATUS_SUCCESS)
+      throw std::runtime_error(png_path + ": cannot write the plot: " + cairo_status_to_string(st));
+  }
+}
+
+}  // namespace host

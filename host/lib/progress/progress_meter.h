@@ -1,0 +1,63 @@
+// Progress of long work for people: a bar redrawn in place when the output is a terminal,
+// a plain line every few seconds when it is not (logs, pipes). Counts, rate and time left.
+// Nothing is printed for work that ends within the first moments.
+#ifndef HOST_LIB_PROGRESS_PROGRESS_METER_H
+#define HOST_LIB_PROGRESS_PROGRESS_METER_H
+
+#include <chrono>      // steady_clock
+#include <cstddef>     // size_t
+#include <functional>  // std::function
+#include <ostream>     // std::ostream
+#include <string>      // std::string
+
+namespace host {
+
+struct ProgressStyle {
+  bool terminal = false;                       // redraw one line (else: periodic lines)
+  std::chrono::milliseconds first{500};        // quiet for this long after the start
+  std::chrono::milliseconds redraw{100};       // terminal: at most this often
+  std::chrono::milliseconds line_every{5000};  // not a terminal: one line this often
+  int bar_width = 24;
+};
+
+class ProgressMeter {
+ public:
+  using Clock = std::chrono::steady_clock;
+  // what: "run", "plan"...; unit: "commands", "curves"... Prints to out (std::cerr).
+  ProgressMeter(std::string what, std::string unit, std::ostream& out, ProgressStyle style,
+                std::function<Clock::time_point()> clock = nullptr);
+  // The style for stderr: terminal or not, decided by isatty.
+  static ProgressStyle for_stderr();
+  ~ProgressMeter();
+
+  // done of total (total 0: unknown); detail is appended (state, position, machine time).
+  void update(size_t done, size_t total, const std::string& detail = std::string());
+  // Ends the bar's line (terminal) or prints a last line if any were printed.
+  void finish();
+
+  // The text of one report (no bar), for tests and logs: "1200/5000 commands (24%),
+  // 400/s, 0:09 left".
+  std::string summary(size_t done, size_t total, double elapsed_s) const;
+
+ private:
+  Clock::time_point now() const { return clock_ ? clock_() : Clock::now(); }
+  void draw(size_t done, size_t total, const std::string& detail, double elapsed_s);
+
+  std::string what_, unit_;
+  std::ostream& out_;
+  ProgressStyle style_;
+  std::function<Clock::time_point()> clock_;
+  Clock::time_point start_, last_draw_;
+  bool drawn_ = false, finished_ = false;
+  size_t last_done_ = 0, last_total_ = 0;
+  size_t drawn_done_ = 0, drawn_total_ = 0;  // what the last drawn report said
+  std::string last_detail_;
+  size_t width_ = 0;  // characters of the last terminal line (to blank leftovers)
+};
+
+// "1:05", "12:00:07": seconds as minutes:seconds (hours when needed).
+std::string format_duration(double seconds);
+
+}  // namespace host
+
+#endif  // HOST_LIB_PROGRESS_PROGRESS_METER_H

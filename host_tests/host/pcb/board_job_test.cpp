@@ -1,0 +1,227 @@
+// The whole-board job on a board built in code: isolation that the geometric checks
+// accept, drilling with tool changes, cut-out passes with tabs, mirroring, refusals.
+#include "host/lib/pcb/board_job.h"
+
+#include <gtest/gtest.h>
+
+#include <map>  // std::map
+
+#include "host/lib/pcb/isolation_check.h"
+#include "host/lib/pcb/pcb_geometry.h"
+#include "host/lib/plan/firmware_spline.h"
+#include "host/lib/stream/job_encoder.h"
+#include "host_tests/host/pcb/synthetic_board.h"
+
+namespace host::pcb {
+namespace {
+
+using test::hole;
+using test::pad;
+using test::rect;
+using test::track;
+
+// Two pads joined by a track, a pad with a track running off to the right, a square pad.
+ClipperLib::Paths copper_paths() {
+  ClipperLib::Paths c = {pad(10, 10, 0.8), pad(20, 10, 0.8), pad(10, 15, 0.8), rect(24, 9, 26, 11)};
+  for (const auto& t : {track(10, 10, 20, 10, 0.3), track(10, 15, 28, 15, 0.4)})
+    c.insert(c.end(), t.begin(), t.end());
+  return c;
+}
+
+struct Board {
+  PcbLayer top = test::copper_layer(copper_paths(), LayerKind::kCopperTop);
+  PcbLayer drill;
+  PcbLayer outline = test::rect_outline(0, 0, 35, 25);
+  Board() {
+    drill.path = "test.drl";
+    drill.kind = LayerKind::kDrill;
+    drill.holes = {hole(25, 10, 1.0, 2), hole(10, 10, 0.8, 1), hole(20, 10, 0.8, 1),
+                   hole(10, 15, 0.8, 1)};
+  }
+  BoardLayers layers(bool bottom = false) {
+    BoardLayers l;
+    (bottom ? l.copper_bottom : l.copper_top) = &top;
+    l.drill = &drill;
+    l.outline = &outline;
+    return l;
+  }
+};
+
+int count(const JobPlan& p, PlanStep::Kind k) {
+  int n = 0;
+  for (const PlanStep& s : p.steps) n += s.kind == k ? 1 : 0;
+  return n;
+}
+
+TEST(BoardJob, IsolationPassesTheGeometricChecks) {
+  Board b;
+  const BoardJob job = plan_board(b.layers(), BoardOptions());
+  EXPECT_EQ(job.report.islands, 3u);
+  EXPECT_TRUE(job.report.narrow_gaps.empty());
+  EXPECT_EQ(job.report.isolation_contours, 3u);
+  const IsolationCheck c =
+      check_isolation(job.copper_machine_nm, job.isolation_paths_mm, job.tool_radius_mm, 0.003);
+  EXPECT_EQ(c.islands, 3u);
+  EXPECT_TRUE(c.ok()) << describe(c);
+}
+
+TEST(BoardJob, ContoursGoOutAsArcsAndLinesFarSmallerThanTheirVertices) {
+  Board b;
+  const BoardJob job = plan_board(b.layers(), BoardOptions());
+  size_t controls = 0;
+  for (size_t i = 0; i < job.isolation_curves; ++i)
+    controls += job.plan.curves[i].spline.control.size();
+  EXPECT_GT(job.report.fit.arcs, 0);
+  EXPECT_LT(controls * 4, job.report.isolation_vertices);
+  for (const PlanStep& s : job.plan.steps) {
+    if (s.kind == PlanStep::kSpline)
+      EXPECT_EQ(core::validate_spline(s.spline), core::GeometryError::kOk);
+  }
+}
+
+TEST(BoardJob, DrillsEveryHoleWithAPauseNamingEachNewTool) {
+  Board b;
+  const BoardJob job = plan_board(b.layers(), BoardOptions());
+  EXPECT_EQ(count(job.plan, PlanStep::kDrill), 4);
+  EXPECT_EQ(job.report.holes_on_copper, 4u);  // every hole in its pad: the layers line up
+  EXPECT_EQ(job.report.first_tool, "V-bit 0.20mm");
+  std::vector<std::string> pauses;
+  for (const PlanStep& s : job.plan.steps) {
+    if (s.kind == PlanStep::kPause) {
+      pauses.push_back(s.text);
+      EXPECT_LE(s.text.size(), 16u);
+    }
+  }
+  EXPECT_EQ(pauses, (std::vector<std::string>{"Drill 0.80mm", "Drill 1.00mm", "Cutter 1.00mm"}));
+  // The spindle is off across every pause and off at the end.
+  bool on = false;
+  for (const PlanStep& s : job.plan.steps) {
+    if (s.kind == PlanStep::kSpindle) on = s.spindle_on;
+    if (s.kind == PlanStep::kPause) EXPECT_FALSE(on);
+    if (s.kind == PlanStep::kDrill || s.kind == PlanStep::kSpline) EXPECT_TRUE(on);
+  }
+  EXPECT_FALSE(on);
+  EXPECT_LE(job.report.drill_travel_ordered_mm, job.report.drill_travel_file_order_mm);
+  for (const PlanStep& s : job.plan.steps) {
+    if (s.kind != PlanStep::kDrill) continue;
+    EXPECT_EQ(s.z_um, -1800);
+    EXPECT_EQ(s.z_start_um, 500);
+    EXPECT_EQ(s.feed_um_per_s, 1000);
+  }
+}
+
+TEST(BoardJob, CutOutGoesDownInPassesAndLiftsOverTabsOnlyBelowTheirTop) {
+  Board b;
+  BoardOptions o;
+  o.cutout_depth_mm = 1.8;
+  o.cutout_step_mm = 0.6;
+  o.tab_height_mm = 0.5;
+  o.cutout.tab_count = 4;
+  const BoardJob job = plan_board(b.layers(), o);
+  int tab_lifts = 0;
+  std::vector<int32_t> depths;
+  for (const PlanStep& s : job.plan.steps) {
+    if (s.kind == PlanStep::kPenUp && s.z_um == -1300) ++tab_lifts;
+    if (s.kind == PlanStep::kPenDown && s.feed_um_per_s == 1000 && s.z_um < -100 &&
+        (depths.empty() || depths.back() != s.z_um))
+      depths.push_back(s.z_um);
+  }
+  EXPECT_EQ(tab_lifts, 4);  // the last pass only
+  EXPECT_EQ(depths.front(), -600);
+  EXPECT_EQ(depths.back(), -1800);
+  EXPECT_EQ(job.report.tabs, 4);
+  EXPECT_EQ(job.tab_paths_mm.size(), 4u);  // for the plot: each tab once, whatever the passes
+}
+
+TEST(BoardJob, LayersLineUpAndTheBottomSideIsMirrored) {
+  Board b;
+  const BoardJob top = plan_board(b.layers(false), BoardOptions());
+  BoardOptions o;
+  o.side = BoardSide::kBottom;
+  const BoardJob bottom = plan_board(b.layers(true), o);
+  // Holes at file x 10 and 25 (same y): 15 mm apart, the other way round when mirrored.
+  auto machine_x = [](const BoardJob& j, double file_x) {
+    return j.frame.to_machine(Point2(file_x, 10)).x();
+  };
+  EXPECT_NEAR(machine_x(top, 25) - machine_x(top, 10), 15.0, 1e-9);
+  EXPECT_NEAR(machine_x(bottom, 25) - machine_x(bottom, 10), -15.0, 1e-9);
+  // A hole lands on its pad: the drill step at the pad's centre in the machine frame.
+  bool found = false;
+  const Point2 pad_centre = bottom.frame.to_machine(Point2(20, 10));
+  for (const PlanStep& s : bottom.plan.steps) {
+    if (s.kind == PlanStep::kDrill &&
+        std::abs(s.to.x_um - std::lround(pad_centre.x() * 1000)) <= 1 &&
+        std::abs(s.to.y_um - std::lround(pad_centre.y() * 1000)) <= 1)
+      found = true;
+  }
+  EXPECT_TRUE(found);
+  // Mirroring keeps the copper's area (orientation restored: outers positive).
+  EXPECT_NEAR(signed_area(bottom.copper_machine_nm), signed_area(b.top.polygons_nm),
+              1e-9 * std::fabs(signed_area(b.top.polygons_nm)));
+  const IsolationCheck c = check_isolation(bottom.copper_machine_nm, bottom.isolation_paths_mm,
+                                           bottom.tool_radius_mm, 0.003);
+  EXPECT_TRUE(c.ok()) << describe(c);
+  // Everything inside the work area, the job's corner at the margin.
+  EXPECT_GE(bottom.plan.extents_mm.min.x(), 0.0);
+  EXPECT_GE(bottom.plan.extents_mm.min.y(), 0.0);
+}
+
+TEST(BoardJob, NarrowGapIsAnErrorNamingThePlace) {
+  Board b;
+  ClipperLib::Paths c = copper_paths();
+  c.push_back(rect(26.15, 9, 27, 11));  // 0.15 mm right of the square pad
+  b.top = test::copper_layer(c, LayerKind::kCopperTop);
+  try {
+    plan_board(b.layers(), BoardOptions());
+    FAIL() << "a gap narrower than the tool was accepted";
+  } catch (const PlanError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("test-F.Cu.gbr"), std::string::npos) << m;
+    EXPECT_NE(m.find("gap 0.150 mm < tool 0.200 mm"), std::string::npos) << m;
+    EXPECT_NE(m.find("(26.075"), std::string::npos) << m;
+  }
+  BoardOptions o;
+  o.allow_narrow_gaps = true;
+  const BoardJob job = plan_board(b.layers(), o);
+  ASSERT_EQ(job.report.narrow_gaps.size(), 1u);
+  const IsolationCheck check =
+      check_isolation(job.copper_machine_nm, job.isolation_paths_mm, job.tool_radius_mm, 0.003);
+  EXPECT_TRUE(check.hits.empty()) << describe(check);
+  EXPECT_EQ(check.unseparated.size(), 1u);
+}
+
+TEST(BoardJob, ABoardLargerThanTheWorkAreaIsRefused) {
+  Board b;
+  BoardOptions o;
+  o.work_width_mm = 30;
+  EXPECT_THROW(plan_board(b.layers(), o), PlanError);
+}
+
+TEST(BoardJob, NothingToDoIsRefused) {
+  EXPECT_THROW(plan_board(BoardLayers(), BoardOptions()), PlanError);
+}
+
+TEST(BoardJob, DrillOnlyJobNeedsNoPauseForItsFirstTool) {
+  Board b;
+  BoardLayers l;
+  l.drill = &b.drill;
+  const BoardJob job = plan_board(l, BoardOptions());
+  EXPECT_EQ(job.report.first_tool, "Drill 0.80mm");
+  EXPECT_EQ(count(job.plan, PlanStep::kPause), 1);
+  EXPECT_EQ(count(job.plan, PlanStep::kDrill), 4);
+}
+
+TEST(BoardJob, EveryStepGoesOnTheWireOneDrillFramePerHole) {
+  Board b;
+  const BoardJob job = plan_board(b.layers(), BoardOptions());
+  const std::vector<QueuedCommand> frames = encode_job(job.plan, EncodeOptions());
+  std::map<char, int> letters;
+  for (const QueuedCommand& c : frames) ++letters[static_cast<char>(c.letter)];
+  EXPECT_EQ(letters['L'], 4);          // drill
+  EXPECT_EQ(letters['P'], 3);          // tool changes
+  EXPECT_EQ(letters['N'], 2 * 3 + 2);  // on at the start, off/on around each pause, off at the end
+  EXPECT_GT(letters['B'], 0);          // spline headers
+}
+
+}  // namespace
+}  // namespace host::pcb

@@ -1,0 +1,67 @@
+// The board plot shows what matters where it is: copper, the tool's swept width, holes.
+#include "host/lib/plot/board_plot.h"
+
+#include <cairo.h>  // read the PNG back
+#include <gtest/gtest.h>
+
+#include <filesystem>  // temp_directory_path
+
+#include "host_tests/host/pcb/synthetic_board.h"
+
+namespace host {
+namespace {
+
+struct Pixel {
+  int r, g, b;
+};
+
+Pixel pixel_at(cairo_surface_t* s, const Point2& px) {
+  const unsigned char* d = cairo_image_surface_get_data(s);
+  const int stride = cairo_image_surface_get_stride(s);
+  const int x = static_cast<int>(px.x()), y = static_cast<int>(px.y());
+  const uint32_t v = *reinterpret_cast<const uint32_t*>(d + y * stride + 4 * x);
+  return Pixel{static_cast<int>((v >> 16) & 255), static_cast<int>((v >> 8) & 255),
+               static_cast<int>(v & 255)};
+}
+
+TEST(BoardPlot, CopperIsolationAndHolesAppearWhereTheyAre) {
+  pcb::PcbLayer top =
+      pcb::test::copper_layer({pcb::test::rect(0, 0, 4, 4)}, pcb::LayerKind::kCopperTop);
+  pcb::PcbLayer drill;
+  drill.path = "t.drl";
+  drill.holes = {pcb::test::hole(2, 2, 1.0, 1)};
+  pcb::BoardLayers l;
+  l.copper_top = &top;
+  l.drill = &drill;
+  pcb::BoardOptions o;
+  o.isolation.tool_width_mm = 0.4;
+  const pcb::BoardJob job = pcb::plan_board(l, o);
+  BoardPlotInput in;
+  in.title = "test";
+  in.job = &job;
+  in.width_px = 800;
+  const std::string png =
+      (std::filesystem::temp_directory_path() / "pcb_board_plot_test.png").string();
+  write_board_plot(in, "", png);
+  cairo_surface_t* s = cairo_image_surface_create_from_png(png.c_str());
+  ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
+  int h = 0;
+  const PlotFrame f = board_plot_frame(job, 800, &h);
+  EXPECT_EQ(cairo_image_surface_get_height(s), h);
+  // Hole centre: dark. Copper between hole and edge: copper orange. Just outside the copper,
+  // inside the tool's width: blue dominates.
+  const Pixel hole = pixel_at(s, f.to_px(job.frame.to_machine(Point2(2, 2))));
+  EXPECT_LT(hole.r + hole.g + hole.b, 120);
+  const Pixel copper = pixel_at(s, f.to_px(job.frame.to_machine(Point2(3.2, 3.2))));
+  EXPECT_GT(copper.r, 180);
+  EXPECT_LT(copper.b, 100);
+  const Pixel cut = pixel_at(s, f.to_px(job.frame.to_machine(Point2(4.1, 2.7))));
+  EXPECT_GT(cut.b, cut.r + 40);
+  const Pixel outside = pixel_at(s, f.to_px(job.frame.to_machine(Point2(4.8, 2.7))));
+  EXPECT_EQ(outside.r + outside.g + outside.b, 3 * 255);
+  cairo_surface_destroy(s);
+  std::filesystem::remove(png);
+}
+
+}  // namespace
+}  // namespace host

@@ -1,0 +1,158 @@
+// Bad Gerber and Excellon input is refused with the file, the line and what is wrong, and
+// nothing is returned.
+#include <gtest/gtest.h>
+
+#include "host/lib/pcb/excellon_reader.h"
+#include "host/lib/pcb/gerber_reader.h"
+
+namespace host::pcb {
+namespace {
+
+std::string gerber_refusal(const std::string& text) {
+  try {
+    read_gerber_text(text, "bad.gbr");
+  } catch (const PcbReadError& e) {
+    return e.what();
+  }
+  return "(read without error)";
+}
+
+std::string excellon_refusal(const std::string& text) {
+  try {
+    read_excellon_text(text, "bad.drl");
+  } catch (const PcbReadError& e) {
+    return e.what();
+  }
+  return "(read without error)";
+}
+
+const char* kHead = "%FSLAX33Y33*%\n%MOMM*%\n%ADD10C,1*%\n";  // lines 1-3
+
+struct Case {
+  const char* body;      // after kHead (line 4 on)
+  const char* expected;  // the whole message starts with this
+};
+
+TEST(GerberErrors, NameFileLineAndProblem) {
+  const Case cases[] = {
+      {"D10*\nX0Y0D03*\n", "bad.gbr:5: the file ends without M02"},
+      {"D99*\nM02*\n", "bad.gbr:4: D99 selects an aperture that is not defined"},
+      {"X0Y0D03*\nM02*\n", "bad.gbr:4: drawing or flashing before any aperture is selected"},
+      {"D10*\nG36*\nX0Y0D02*\nX1000Y0D03*\nG37*\nM02*\n", "bad.gbr:7: flash (D03) inside a region"},
+      {"G37*\nM02*\n", "bad.gbr:4: G37 without G36"},
+      {"D10*\nG36*\nX0Y0D02*\nM02*\n", "bad.gbr:7: G36 region still open at M02"},
+      {"G99*\nM02*\n", "bad.gbr:4: unknown or unsupported G code G99"},
+      {"M05*\nM02*\n", "bad.gbr:4: unknown M code M05"},
+      {"D10*\nX0Y0Q5D03*\nM02*\n", "bad.gbr:5: unexpected 'Q'"},
+      {"D10*\nX0Y0D01D03*\nM02*\n", "bad.gbr:5: two operations"},
+      {"D10*\nX12a4Y0D03*\nM02*\n", "bad.gbr:5: unexpected 'a'"},
+      {"D10*\nX99999999999Y0D03*\nM02*\n", "bad.gbr:5: coordinate '99999999999' is beyond 10 m"},
+      {"%ADD11R,1X2*%\nD11*\nG75*\nG02X1000Y0I500J0D01*\nM02*\n",
+       "bad.gbr:7: an arc drawn with a non-circular aperture D11"},
+      {"D10*\nG74*\nG02X10000Y0I1000J0D01*\nM02*\n",
+       "bad.gbr:6: arc end point is not on its circle (radius 1.000 mm at the start, 11.000"},
+      {"D10*\nG75*\nG02X10000Y0I1000J0D01*\nM02*\n",
+       "bad.gbr:6: arc end point is not on its circle (radius 1.000 mm at the start, 9.000 mm"},
+      {"%ADD11FOO,1*%\nM02*\n", "bad.gbr:4: aperture D11 uses 'FOO', which is neither"},
+      {"%ADD11C*%\nM02*\n", "bad.gbr:4: aperture D11 C takes 1 to 3 parameters, got 0"},
+      {"%ADD11C,-1*%\nM02*\n", "bad.gbr:4: aperture D11 has a negative size"},
+      {"%ADD11P,1X2*%\nM02*\n", "bad.gbr:4: polygon aperture D11 needs 3 to 12 vertices"},
+      {"%ADD11C,2000*%\nM02*\n", "bad.gbr:4: aperture D11 is larger than 1 m"},
+      {"%AMM1*\n1,1,$1x,0,0*%\n%ADD11M1,1*%\nM02*\n", "bad.gbr:6: macro M1: missing number"},
+      {"%AMM1*\n9,1,1,0,0*%\n%ADD11M1*%\nM02*\n", "bad.gbr:6: macro M1: unknown primitive '9'"},
+      {"%AMM1*\n1,1,1*%\n%ADD11M1*%\nM02*\n",
+       "bad.gbr:6: macro M1: circle (1) needs 4 modifiers, got 2"},
+      {"%AMM1*\n4,1,3,0,0,1,0*%\n%ADD11M1*%\nM02*\n",
+       "bad.gbr:6: macro M1: outline (4) needs 11 modifiers, got 6"},
+      {"%AMM1*\n1,7777777777777777777,1,0,0*%\n%ADD11M1*%\nM02*\n",
+       "bad.gbr:6: macro M1: exposure must be 0 or 1, not 7777777777777777777"},
+      {"%SRX1000Y1000I1J1*%\nM02*\n", "bad.gbr:4: step-and-repeat '%SRX1000Y1000I1J1' makes more"},
+      {"%SRX0Y1I1J1*%\nM02*\n", "bad.gbr:4: step-and-repeat '%SRX0Y1I1J1' needs whole"},
+      {"%IPNEG*%\nM02*\n", "bad.gbr:4: negative image polarity"},
+      {"%MIA1B0*%\nM02*\n", "bad.gbr:4: mirror image"},
+      {"%SFA2B1*%\nM02*\n", "bad.gbr:4: scale factor"},
+      {"%LR45*%\nM02*\n", "bad.gbr:4: aperture transformation %LR45 is not supported"},
+      {"%XY12*%\nM02*\n", "bad.gbr:4: unknown extended command '%XY12'"},
+      {"%LPX*%\nM02*\n", "bad.gbr:4: polarity 'X' is neither D nor C"},
+      {"%MOFT*%\nM02*\n", "bad.gbr:4: unit 'FT' is neither MM nor IN"},
+      {"%FSLAX3Y3*%\nM02*\n", "bad.gbr:4: format '%FSLAX3Y3' needs X with two digits"},
+      {"D10*\n%LPD*\nM02*\n", "bad.gbr:5: '%' block never closed"},
+      {"D10*\nX0Y0D03\n", "bad.gbr:5: data block 'X0Y0D03' never ends with '*'"},
+  };
+  for (const Case& c : cases) {
+    const std::string msg = gerber_refusal(std::string(kHead) + c.body);
+    EXPECT_EQ(msg.rfind(c.expected, 0), 0u) << "input:\n" << c.body << "message: " << msg;
+  }
+}
+
+TEST(GerberErrors, CoordinatesNeedFormatAndUnits) {
+  EXPECT_EQ(gerber_refusal("%MOMM*%\n%ADD10C,1*%\nD10*\nX0Y0D03*\nM02*\n")
+                .rfind("bad.gbr:4: coordinates before the format (%FS)", 0),
+            0u);
+  EXPECT_EQ(gerber_refusal("%FSLAX33Y33*%\n%ADD10C,1*%\nM02*\n")
+                .rfind("bad.gbr:2: aperture D10 defined before the units (%MO)", 0),
+            0u);
+}
+
+TEST(GerberErrors, FilesThatCannotBeOpened) {
+  EXPECT_THROW(read_gerber_file("/nonexistent/board.gbr"), PcbReadError);
+  try {
+    read_gerber_file("/nonexistent/board.gbr");
+  } catch (const PcbReadError& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/board.gbr: cannot open the file");
+  }
+  EXPECT_THROW(read_excellon_file("/nonexistent/board.drl"), PcbReadError);
+}
+
+TEST(ExcellonErrors, NameFileLineAndProblem) {
+  const Case cases[] = {
+      {"M48\nMETRIC\nT1C0.8\n%\nX1.0Y1.0\nM30\n", "bad.drl:5: a hole or slot before any tool"},
+      {"M48\nMETRIC\nT1C0.8\n%\nT2\nM30\n", "bad.drl:5: tool T2 has no diameter"},
+      {"M48\nT1C0.8\n%\n", "bad.drl:2: tool T1 defined before the units"},
+      {"M48\nMETRIC\nT1C0.8\n%\nT1\nX1.0Y1.0\n", "bad.drl:6: the file ends without M30"},
+      {"M48\nMETRIC\nT1C0.8\n%\nT1\nQ7\nM30\n", "bad.drl:6: unknown or unsupported command 'Q7'"},
+      {"M48\nMETRIC\nT1C0.8\n%\nT1\nG00X1.0Y1.0\nM15\nG02X2.0Y2.0\nM30\n",
+       "bad.drl:8: routed arcs (G02) are not supported"},
+      {"M48\nMETRIC\nT1C0.8\n%\nT1\nX1.0Y1.0Z3\nM30\n", "bad.drl:6: unexpected 'Z'"},
+      {"M48\nMETRIC\nT1C0.8\n%\nT1\nX1.0.0Y1\nM30\n", "bad.drl:6: bad coordinate '1.0.0'"},
+      {"M48\nMETRIC\nT1C0\n%\n", "bad.drl:3: tool T1 diameter 0 is not between 0 and 100 mm"},
+      {"M48\nMETRIC,QZ\n%\n", "bad.drl:2: unknown field 'QZ'"},
+      {"M48\nMETRIC\nT1C0.8\n%\nT1\nM15\nM30\n", "bad.drl:6: M15 (tool down) outside route mode"},
+      {"T1C0.8\nX1Y1\nM30\n", "bad.drl:1: tool T1 defined before the units"},
+      {"M48\nMETRIC\nT1C0.8\n%\nT1\nX1.0Y1.0G85\nM30\n",
+       "bad.drl:6: G85 slot without an end point"},
+  };
+  for (const Case& c : cases) {
+    const std::string msg = excellon_refusal(c.body);
+    EXPECT_EQ(msg.rfind(c.expected, 0), 0u) << "input:\n" << c.body << "message: " << msg;
+  }
+}
+
+}  // namespace
+}  // namespace host::pcb
+
+namespace host::pcb {
+namespace {
+
+TEST(GerberErrors, StepAndRepeatBeyondTheVertexLimitIsRefused) {
+  // 100 x 100 copies of a circle pad (about 3000 vertices at 0.5 um for d 5 mm).
+  const std::string text =
+      "%FSLAX33Y33*%\n%MOMM*%\n%ADD10C,5*%\n%SRX100Y100I6J6*%\nD10*\nX0Y0D03*\n%SR*%\nM02*\n";
+  GerberOptions o;
+  o.max_vertices = 1000000;
+  try {
+    read_gerber_text(text, "panel.gbr", o);
+    FAIL() << "read without error";
+  } catch (const PcbReadError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("panel.gbr:7: the copper needs more than 1000000 "
+                                          "polygon vertices: too complex to read",
+                                          0),
+              0u)
+        << e.what();
+  }
+  o.arc_tolerance_nm = 50000;  // coarse circles: the same panel fits
+  EXPECT_EQ(read_gerber_text(text, "panel.gbr", o).polygons_nm.size(), 10000u);
+}
+
+}  // namespace
+}  // namespace host::pcb

@@ -1,0 +1,263 @@
+// The Gerber reader on the project's own files, one per feature: areas and covered points
+// computed by hand from the files (comments give the arithmetic).
+#include <gtest/gtest.h>
+
+#include <cmath>  // M_PI, std::hypot
+
+#include "host/lib/pcb/gerber_macro.h"
+#include "host/lib/pcb/gerber_reader.h"
+#include "host_tests/host/pcb/test_data.h"
+
+namespace host::pcb {
+namespace {
+
+using test::area_mm2;
+using test::data_file;
+
+const double kPi = 3.14159265358979323846;
+
+ClipperLib::cInt nm(double mm) {
+  return static_cast<ClipperLib::cInt>(std::llround(mm * 1e6));
+}
+
+// Copper at a point (non-zero winding of the result's outers and holes).
+bool covered(const PcbLayer& l, double x_mm, double y_mm) {
+  int w = 0;
+  for (const auto& p : l.polygons_nm) {
+    if (ClipperLib::PointInPolygon({nm(x_mm), nm(y_mm)}, p) != 0) {
+      w += ClipperLib::Orientation(p) ? 1 : -1;
+    }
+  }
+  return w > 0;
+}
+
+// Copper area inside a box, mm².
+double area_in(const PcbLayer& l, double x0, double y0, double x1, double y1) {
+  ClipperLib::Clipper c;
+  c.AddPaths(l.polygons_nm, ClipperLib::ptSubject, true);
+  c.AddPath({{nm(x0), nm(y0)}, {nm(x1), nm(y0)}, {nm(x1), nm(y1)}, {nm(x0), nm(y1)}},
+            ClipperLib::ptClip, true);
+  ClipperLib::Paths out;
+  c.Execute(ClipperLib::ctIntersection, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  return area_mm2(out);
+}
+
+bool has_note(const PcbLayer& l, const std::string& part) {
+  for (const std::string& n : l.notes) {
+    if (n.find(part) != std::string::npos) return true;
+  }
+  return false;
+}
+
+// Inscribed polygons with 0.5 um chords: areas a little under the true ones.
+const double kAreaTol = 0.005;  // mm²
+
+TEST(GerberReader, MultiQuadrantArcsG75) {
+  const PcbLayer l = read_gerber_file(data_file("arcs_multi_quadrant.gbr"));
+  EXPECT_EQ(l.units, "mm");
+  // Full circle r 3 stroked 0.5 wide: pi (3.25² - 2.75²) = 3 pi.
+  EXPECT_NEAR(area_in(l, 0, 0, 10, 10), 3 * kPi, kAreaTol);
+  EXPECT_FALSE(covered(l, 5, 5));
+  EXPECT_TRUE(covered(l, 5, 2));
+  EXPECT_TRUE(covered(l, 8, 5));
+  // G03 from (12,5) to (18,5) around (15,5) goes under the centre; G02 from (12,8) to (18,8)
+  // around (15,8) goes over it. Each: half of 3 pi plus two half caps (pi 0.25²).
+  EXPECT_TRUE(covered(l, 15, 2));
+  EXPECT_FALSE(covered(l, 15, 8 - 3));
+  EXPECT_TRUE(covered(l, 15, 11));
+  EXPECT_NEAR(area_in(l, 11, 0, 19, 6), 1.5 * kPi + kPi * 0.0625, kAreaTol);
+  EXPECT_NEAR(area_in(l, 11, 6, 19, 12), 1.5 * kPi + kPi * 0.0625, kAreaTol);
+  // Region: 6 x 6 square and a half disc of r 3 bulging right.
+  EXPECT_NEAR(area_in(l, 19.5, 0, 30, 12), 36 + kPi * 9 / 2, kAreaTol);
+  EXPECT_TRUE(covered(l, 28.9, 5));
+}
+
+TEST(GerberReader, SingleQuadrantArcsG74) {
+  const PcbLayer l = read_gerber_file(data_file("arcs_single_quadrant.gbr"));
+  // CW (2,5) -> (5,8) around (5,5): its middle at 135 degrees.
+  EXPECT_TRUE(covered(l, 5 - 3 * std::cos(kPi / 4), 5 + 3 * std::sin(kPi / 4)));
+  EXPECT_FALSE(covered(l, 5, 5));
+  // CCW (2,2) -> (4,4) around (2,4): its middle at -45 degrees.
+  EXPECT_TRUE(covered(l, 2 + 2 * std::cos(kPi / 4), 4 - 2 * std::sin(kPi / 4)));
+  // Region: 6 x 6 square with one corner rounded at r 2: 36 - 4 + pi.
+  EXPECT_NEAR(area_in(l, 9, 1, 17, 9), 32 + kPi, kAreaTol);
+  EXPECT_TRUE(has_note(l, "G74"));
+}
+
+TEST(GerberReader, MacroPrimitivesVariablesAndExposure) {
+  const PcbLayer l = read_gerber_file(data_file("macros.gbr"));
+  // CIRC,2.0: circle d 2 minus circle d 1.
+  EXPECT_NEAR(area_in(l, 3, 3, 7, 7), kPi * (1 - 0.25), kAreaTol);
+  EXPECT_FALSE(covered(l, 5, 5));
+  // OUTL: a 2 x 2 square turned 45 degrees.
+  EXPECT_NEAR(area_in(l, 8, 3, 12, 7), 4.0, 1e-5);  // vertices rounded to 1 nm
+  EXPECT_TRUE(covered(l, 10, 6.35));                // corner now on the y axis at sqrt(2)
+  // POLY: hexagon in a circle of d 2: 3 sqrt(3) / 2.
+  EXPECT_NEAR(area_in(l, 13, 3, 17, 7), 3 * std::sqrt(3.0) / 2, 1e-5);
+  // THERM: ring d 3 / d 2 less four 0.5 gaps (integrated: 0.25177 mm² each).
+  EXPECT_NEAR(area_in(l, 18, 3, 22, 7), kPi * (2.25 - 1) - 4 * 0.2517715, kAreaTol);
+  EXPECT_FALSE(covered(l, 20 + 1.25 * std::cos(kPi / 4), 5 + 1.25 * std::sin(kPi / 4)));
+  EXPECT_TRUE(covered(l, 21.25, 5));
+  // LINES,1.0X0.3: $3 = 1x2+0.5 = 2.5; a 4 x 0.3 vector line, and a 2.5 x 0.4 centre line
+  // at (0,1) turned 90 degrees about the origin (so at (-1,0), upright); overlap 0.4 x 0.3.
+  EXPECT_NEAR(area_in(l, 22.5, 3, 28, 7), 1.2 + 1.0 - 0.12, 1e-5);
+  EXPECT_TRUE(covered(l, 24, 6.2));
+  // MIXED,0.5: 3 x 3 square less a circle of d $1x1.5x2 = 1.5 and a diamond of d 1.
+  EXPECT_NEAR(area_in(l, 29, 3, 33, 7), 9 - kPi * 0.75 * 0.75 - 0.5, kAreaTol);
+}
+
+TEST(GerberMacroExpression, PrecedenceParenthesesVariables) {
+  const std::vector<double> v{0, 0.5, 3};
+  EXPECT_DOUBLE_EQ(evaluate_macro_expression("(1+$1)/2-0.25", v), 0.5);
+  EXPECT_DOUBLE_EQ(evaluate_macro_expression("1+2x3", v), 7);
+  EXPECT_DOUBLE_EQ(evaluate_macro_expression("2X(3+4)", v), 14);
+  EXPECT_DOUBLE_EQ(evaluate_macro_expression("10/4/2", v), 1.25);
+  EXPECT_DOUBLE_EQ(evaluate_macro_expression("-$2x-2", v), 6);
+  EXPECT_DOUBLE_EQ(evaluate_macro_expression("$9", v), 0);  // unset
+  EXPECT_DOUBLE_EQ(evaluate_macro_expression(".5+1.", v), 1.5);
+  EXPECT_THROW(evaluate_macro_expression("1+", v), std::invalid_argument);
+  EXPECT_THROW(evaluate_macro_expression("(1", v), std::invalid_argument);
+  EXPECT_THROW(evaluate_macro_expression("1/0", v), std::invalid_argument);
+  EXPECT_THROW(evaluate_macro_expression("1;2", v), std::invalid_argument);
+}
+
+TEST(GerberReader, ClearPolarity) {
+  const PcbLayer l = read_gerber_file(data_file("polarity_clear.gbr"));
+  // 10 x 10 less a 2 x 2 pad and a 6 mm track of d 1 (6 + pi/4), plus a dark pad of d 1
+  // back inside the track.
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 100 - 4 - (6 + kPi / 4) + kPi / 4, kAreaTol);
+  EXPECT_FALSE(covered(l, 5, 5));
+  EXPECT_FALSE(covered(l, 3, 2));
+  EXPECT_TRUE(covered(l, 5, 2));
+  EXPECT_TRUE(covered(l, 1, 1));
+}
+
+TEST(GerberReader, StepAndRepeat) {
+  const PcbLayer l = read_gerber_file(data_file("step_repeat.gbr"));
+  // Each copy: a 1 x 2 pad less a cleared circle of d 0.6, and a 0.8 mm track of d 1.
+  const double copy = 2 - kPi * 0.09 + 0.8 + kPi * 0.25;
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 6 * copy, kAreaTol);
+  for (int ix = 0; ix < 3; ++ix) {
+    for (int iy = 0; iy < 2; ++iy) {
+      EXPECT_FALSE(covered(l, 1 + 5 * ix, 1 + 4 * iy)) << ix << "," << iy;  // cleared
+      EXPECT_TRUE(covered(l, 1 + 5 * ix, 1.8 + 4 * iy)) << ix << "," << iy;
+      EXPECT_TRUE(covered(l, 3 + 5 * ix, 1 + 4 * iy)) << ix << "," << iy;
+    }
+  }
+  EXPECT_FALSE(covered(l, 16, 1));  // no fourth column
+}
+
+TEST(GerberReader, StandardAperturesWithHoles) {
+  const PcbLayer l = read_gerber_file(data_file("apertures.gbr"));
+  EXPECT_EQ(l.apertures_or_tools, 7);
+  EXPECT_NEAR(area_in(l, 1, 1, 5, 5), kPi * (1 - 0.25), kAreaTol);            // C 2 hole 1
+  EXPECT_NEAR(area_in(l, 6, 1, 10, 5), 6 - kPi * 0.25, kAreaTol);             // R 3x2 hole 1
+  EXPECT_NEAR(area_in(l, 11, 1, 15, 5), 1.5 * 1.5 + kPi * 0.5625, kAreaTol);  // O 3x1.5
+  EXPECT_NEAR(area_in(l, 16.5, 1, 19.5, 5), 1 + kPi * 0.25 - kPi * 0.0625, kAreaTol);
+  EXPECT_NEAR(area_in(l, 1, 6, 5, 10), 2.5 * std::sin(2 * kPi / 5), 1e-5);  // pentagon
+  EXPECT_NEAR(area_in(l, 6, 6, 10, 10), 2 * std::sqrt(2.0) - kPi * 0.09, kAreaTol);
+  // A 0.5 square drawn along (4,2): 0.25 + 0.5 (4 + 2).
+  EXPECT_NEAR(area_in(l, 11, 7, 17, 11), 3.25, 1e-5);
+  EXPECT_TRUE(has_note(l, "rectangular aperture"));
+  EXPECT_FALSE(covered(l, 18, 3));  // the obround's hole
+}
+
+TEST(GerberReader, DeprecatedFormsAreReadWithNotes) {
+  const PcbLayer l = read_gerber_file(data_file("deprecated_inch.gbr"));
+  EXPECT_EQ(l.units, "inch");
+  for (const char* n : {"trailing-zero", "%IPPOS", "%IN", "%LN", "%MI", "%SF", "%OF", "%AS", "G54",
+                        "G70", "G90", "without an operation code", "single-quadrant", "M00"}) {
+    EXPECT_TRUE(has_note(l, n)) << n;
+  }
+  const double in = 25.4;
+  // Track (0.25,0.25)-(0.75,0.25) then, with no D code, up to (0.75,0.5).
+  EXPECT_TRUE(covered(l, 0.5 * in, 0.25 * in));
+  EXPECT_TRUE(covered(l, 0.75 * in, 0.4 * in));
+  // "X01" with trailing zeros omitted is 01.0000 in: the 0.1 x 0.08 in pad at (1, 0.5).
+  EXPECT_TRUE(covered(l, 1.049 * in, 0.539 * in));
+  EXPECT_FALSE(covered(l, 1.051 * in, 0.5 * in));
+  // Arc (0.25,0.75) -> (0.5,1.0) around (0.5,0.75), clockwise through 135 degrees.
+  EXPECT_TRUE(
+      covered(l, (0.5 - 0.25 * std::cos(kPi / 4)) * in, (0.75 + 0.25 * std::sin(kPi / 4)) * in));
+}
+
+TEST(GerberReader, RegionsWithCutInAndClockwiseContours) {
+  const PcbLayer l = read_gerber_file(data_file("regions.gbr"));
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 100 - 16 + 9, 1e-9);
+  EXPECT_FALSE(covered(l, 5, 5));
+  EXPECT_TRUE(covered(l, 13, 1));
+  int holes = 0;
+  for (const auto& p : l.polygons_nm) holes += !ClipperLib::Orientation(p);
+  EXPECT_EQ(holes, 1);
+}
+
+TEST(GerberReader, LayerKindFromX2ElseNameElseCaller) {
+  GerberOptions top;
+  top.kind_if_unknown = LayerKind::kCopperTop;
+  EXPECT_EQ(read_gerber_file(data_file("x2_attributes.gbr"), top).kind, LayerKind::kCopperBottom);
+  EXPECT_EQ(read_gerber_file(data_file("regions.gbr")).kind, LayerKind::kUnknown);
+  EXPECT_EQ(read_gerber_file(data_file("regions.gbr"), top).kind, LayerKind::kCopperTop);
+  EXPECT_EQ(read_gerber_file(data_file("outline-Edge.Cuts.gbr")).kind, LayerKind::kOutline);
+  const std::string text = "%FSLAX33Y33*%%MOMM*%%ADD10C,1*%D10*X0Y0D03*M02*";
+  EXPECT_EQ(read_gerber_text(text, "board.GBL").kind, LayerKind::kCopperBottom);
+  EXPECT_EQ(read_gerber_text(text, "board-F_Cu.gbr").kind, LayerKind::kCopperTop);
+  EXPECT_EQ(read_gerber_text(text, "board.gm1").kind, LayerKind::kOutline);
+}
+
+TEST(GerberReader, OutlineStrokesJoinIntoOneClosedPath) {
+  const PcbLayer l = read_gerber_file(data_file("outline-Edge.Cuts.gbr"));
+  ASSERT_TRUE(l.outline_paths_are_open);
+  ASSERT_EQ(l.polygons_nm.size(), 1u);
+  const auto& p = l.polygons_nm[0];
+  EXPECT_TRUE(p.front() == p.back());
+  double length = 0;
+  for (size_t k = 1; k < p.size(); ++k) {
+    length += std::hypot(static_cast<double>(p[k].X - p[k - 1].X),
+                         static_cast<double>(p[k].Y - p[k - 1].Y));
+  }
+  // 18 + 8 + 22 + 8 straight and two quarter circles of r 2 (pi each).
+  EXPECT_NEAR(length * 1e-6, 56 + 2 * kPi, 0.001);
+}
+
+TEST(GerberReader, ArcToleranceIsTheChordError) {
+  const std::string text = "%FSLAX33Y33*%%MOMM*%%ADD10C,10*%D10*X0Y0D03*M02*";
+  for (double tol_nm : {100.0, 500.0, 10000.0}) {
+    GerberOptions o;
+    o.arc_tolerance_nm = tol_nm;
+    const PcbLayer l = read_gerber_text(text, "t.gbr", o);
+    ASSERT_EQ(l.polygons_nm.size(), 1u);
+    const auto& p = l.polygons_nm[0];
+    EXPECT_EQ(l.arc_tolerance_nm, tol_nm);
+    for (size_t k = 0; k < p.size(); ++k) {
+      const auto& a = p[k];
+      const auto& b = p[(k + 1) % p.size()];
+      EXPECT_NEAR(std::hypot(static_cast<double>(a.X), static_cast<double>(a.Y)), 5e6, 1);
+      // Distance from the centre to the chord's middle: r - sagitta.
+      const double mid = std::hypot((a.X + b.X) / 2.0, (a.Y + b.Y) / 2.0);
+      EXPECT_LE(5e6 - mid, tol_nm + 1);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace host::pcb
+
+namespace host::pcb {
+namespace {
+
+// Copies that overlap: a clear object of a later copy also clears the earlier copies.
+TEST(GerberReader, OverlappingStepAndRepeatCopiesClearEachOther) {
+  const std::string text =
+      "%FSLAX33Y33*%\n%MOMM*%\n%ADD10R,2X2*%\n%ADD11C,0.6*%\n%SRX2Y1I1J0*%\nD10*\n"
+      "X0Y0D03*\n%LPC*%\nD11*\nX0Y0D03*\n%LPD*%\n%SR*%\nM02*\n";
+  const PcbLayer l = read_gerber_text(text, "sr.gbr");
+  // Squares over x -1..2; copy 2's clear circle at x 1 also cuts copy 1, and copy 2's
+  // square covers the right half of copy 1's circle at x 0.
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 6 - 0.09 * kPi - 0.045 * kPi, kAreaTol);
+  EXPECT_FALSE(covered(l, 0.85, 0));
+  EXPECT_FALSE(covered(l, -0.15, 0));
+  EXPECT_TRUE(covered(l, 0.15, 0));
+}
+
+}  // namespace
+}  // namespace host::pcb

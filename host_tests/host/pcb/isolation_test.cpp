@@ -1,0 +1,158 @@
+// Isolation contours, passes, clearing and narrow-gap detection on copper built in code.
+#include "host/lib/pcb/isolation.h"
+
+#include <gtest/gtest.h>
+
+#include "host/lib/pcb/isolation_check.h"
+#include "host/lib/pcb/pcb_geometry.h"
+#include "host_tests/host/pcb/synthetic_board.h"
+
+namespace host::pcb {
+namespace {
+
+using test::pad;
+using test::rect;
+
+std::vector<std::vector<Point2>> centre_lines(const IsolationResult& r) {
+  std::vector<std::vector<Point2>> out;
+  for (const ToolPathNm& t : r.paths) {
+    std::vector<Point2> pts;
+    for (const auto& q : t.path) pts.push_back(to_mm(q));
+    if (t.closed && !pts.empty()) pts.push_back(pts.front());
+    out.push_back(pts);
+  }
+  return out;
+}
+
+// Smallest distance from p to the copper's edges (mm).
+double distance_to_copper(const Point2& p, const ClipperLib::Paths& copper) {
+  double best = 1e300;
+  for (const auto& path : copper) {
+    for (size_t i = 0; i < path.size(); ++i) {
+      const Point2 a = to_mm(path[i]), b = to_mm(path[(i + 1) % path.size()]);
+      const Point2 ab = b - a;
+      double t = ab.squaredNorm() > 0 ? (p - a).dot(ab) / ab.squaredNorm() : 0;
+      t = std::max(0.0, std::min(1.0, t));
+      best = std::min(best, (a + t * ab - p).norm());
+    }
+  }
+  return best;
+}
+
+TEST(Isolation, OneContourPerIslandAtTheToolRadius) {
+  const ClipperLib::Paths copper = {rect(0, 0, 2, 1), pad(5, 0.5, 0.8)};
+  IsolationOptions o;
+  o.tool_width_mm = 0.2;
+  const IsolationResult r = plan_isolation(copper, o);
+  EXPECT_EQ(r.islands, 2u);
+  EXPECT_TRUE(r.narrow_gaps.empty());
+  ASSERT_EQ(r.paths.size(), 2u);
+  for (const ToolPathNm& t : r.paths) {
+    for (const auto& q : t.path) EXPECT_NEAR(distance_to_copper(to_mm(q), copper), 0.1, 0.0011);
+  }
+  const IsolationCheck c = check_isolation(copper, centre_lines(r), 0.1, 0.002);
+  EXPECT_TRUE(c.ok()) << describe(c);
+}
+
+TEST(Isolation, GapNarrowerThanTheToolIsReportedWithItsPlace) {
+  // Two pads 0.15 mm apart at x = 10.0 .. 10.15; the tool is 0.2 mm wide.
+  const ClipperLib::Paths copper = {rect(8, 0, 10, 2), rect(10.15, 0, 12, 2), rect(20, 0, 21, 1)};
+  IsolationOptions o;
+  o.tool_width_mm = 0.2;
+  const IsolationResult r = plan_isolation(copper, o);
+  EXPECT_EQ(r.islands, 3u);
+  ASSERT_EQ(r.narrow_gaps.size(), 1u);
+  const NarrowGap& g = r.narrow_gaps[0];
+  EXPECT_NEAR(g.gap_mm, 0.15, 1e-6);
+  EXPECT_NEAR(g.at.x / kNmPerMm, 10.075, 0.01);
+  EXPECT_NEAR(g.at.y / kNmPerMm, 1.0, 0.1);
+  // The merged contour does not cut copper, but the checker sees the islands joined.
+  const IsolationCheck c = check_isolation(copper, centre_lines(r), 0.1, 0.002);
+  EXPECT_TRUE(c.hits.empty()) << describe(c);
+  ASSERT_EQ(c.unseparated.size(), 1u);
+}
+
+TEST(Isolation, GapJustWiderThanTheToolPasses) {
+  const ClipperLib::Paths copper = {rect(8, 0, 10, 2), rect(10.21, 0, 12, 2)};
+  IsolationOptions o;
+  o.tool_width_mm = 0.2;
+  const IsolationResult r = plan_isolation(copper, o);
+  EXPECT_TRUE(r.narrow_gaps.empty());
+  const IsolationCheck c = check_isolation(copper, centre_lines(r), 0.1, 0.002);
+  EXPECT_TRUE(c.ok()) << describe(c);
+}
+
+TEST(Isolation, FurtherPassesStepOutByTheToolWidthLessTheOverlap) {
+  const ClipperLib::Paths copper = {rect(0, 0, 1, 1)};
+  IsolationOptions o;
+  o.tool_width_mm = 0.2;
+  o.passes = 3;
+  o.overlap = 0.25;
+  const IsolationResult r = plan_isolation(copper, o);
+  ASSERT_EQ(r.paths.size(), 3u);
+  for (const ToolPathNm& t : r.paths) {
+    const double expect = 0.1 + t.pass * 0.15;
+    for (const auto& q : t.path) EXPECT_NEAR(distance_to_copper(to_mm(q), copper), expect, 0.0011);
+  }
+}
+
+TEST(Isolation, ClearingLeavesNoCopperFreeAreaUncut) {
+  const ClipperLib::Paths copper = {rect(1, 1, 3, 2), pad(6, 3, 0.7)};
+  IsolationOptions o;
+  o.tool_width_mm = 0.4;
+  o.mill_all = true;
+  o.area_nm = {rect(0, 0, 8, 5)};
+  const IsolationResult r = plan_isolation(copper, o);
+  ClipperLib::Paths centres;
+  for (const auto& line : centre_lines(r)) {
+    ClipperLib::Path p;
+    for (const Point2& q : line) p.push_back(test::nm(q.x(), q.y()));
+    centres.push_back(p);
+  }
+  const ClipperLib::Paths swept = union_of(sweep_open(centres, 0.2e6, 500));
+  // What a round tool can reach of the copper-free area: its opening by the tool radius
+  // (the area's square corners keep r^2 (1 - pi/4) each).
+  const ClipperLib::Paths free_area = difference_of({rect(0, 0, 8, 5)}, copper);
+  const ClipperLib::Paths reachable =
+      offset_closed(offset_closed(free_area, -0.2e6, 500), 0.2e6, 500);
+  const ClipperLib::Paths uncut = difference_of(reachable, swept);
+  EXPECT_LT(std::fabs(signed_area(uncut)) / 1e12, 0.001);  // under 0.001 mm2 left
+  EXPECT_GT(std::fabs(signed_area(free_area)) - std::fabs(signed_area(reachable)), 0.03e12);
+  const IsolationCheck c = check_isolation(copper, centre_lines(r), 0.2, 0.002);
+  EXPECT_TRUE(c.ok()) << describe(c);
+}
+
+TEST(Isolation, CheckerFindsAToolPathThroughCopper) {
+  const ClipperLib::Paths copper = {rect(0, 0, 2, 2), rect(3, 0, 5, 2)};
+  IsolationOptions o;
+  const IsolationResult r = plan_isolation(copper, o);
+  std::vector<std::vector<Point2>> paths = centre_lines(r);
+  paths.push_back({Point2(-1, 1), Point2(1, 1)});  // straight into the first pad
+  const IsolationCheck c = check_isolation(copper, paths, 0.1, 0.002);
+  ASSERT_EQ(c.hits.size(), 1u);
+  EXPECT_NEAR(c.hits[0].at_mm.x(), 0.55, 0.05);  // 0 .. 1.1 cut into the pad
+  EXPECT_NEAR(c.hits[0].at_mm.y(), 1.0, 0.01);
+}
+
+TEST(Isolation, CheckerFindsIslandsWithNoCutBetweenThem) {
+  const ClipperLib::Paths copper = {rect(0, 0, 2, 2), rect(3, 0, 5, 2), rect(8, 0, 9, 1)};
+  // Only the third island is isolated: the first two share the uncut field.
+  IsolationOptions o;
+  const IsolationResult r = plan_isolation({rect(8, 0, 9, 1)}, o);
+  const IsolationCheck c = check_isolation(copper, centre_lines(r), 0.1, 0.002);
+  EXPECT_TRUE(c.hits.empty());
+  ASSERT_EQ(c.unseparated.size(), 1u);
+  EXPECT_EQ(c.islands, 3u);
+}
+
+TEST(Isolation, BadOptionsAreRefused) {
+  IsolationOptions o;
+  o.tool_width_mm = 0;
+  EXPECT_THROW(plan_isolation({rect(0, 0, 1, 1)}, o), std::invalid_argument);
+  o.tool_width_mm = 0.2;
+  o.passes = 0;
+  EXPECT_THROW(plan_isolation({rect(0, 0, 1, 1)}, o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace host::pcb

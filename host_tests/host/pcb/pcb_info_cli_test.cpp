@@ -1,0 +1,90 @@
+// `engraver info` on Gerber and Excellon files, as a user runs it: the layer summary, JSON,
+// and a precise refusal with the input exit code.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "host_tests/host/pcb/test_data.h"
+
+namespace {
+
+struct ToolRun {
+  int code;
+  std::string out;
+  std::string err;
+};
+
+ToolRun run(const std::string& args) {
+  const std::string err_path =
+      testing::TempDir() + "/pcb_cli_stderr_" + std::to_string(getpid()) + ".txt";
+  const std::string cmd = std::string(ENGRAVER_EXE) + " " + args + " 2>" + err_path;
+  ToolRun r;
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_path);
+  std::stringstream s;
+  s << e.rdbuf();
+  r.err = s.str();
+  return r;
+}
+
+bool has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST(PcbInfoCli, GerberSummary) {
+  const ToolRun r = run("info " + host::pcb::test::data_file("step_repeat.gbr"));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "format:    Gerber RS-274X")) << r.out;
+  EXPECT_TRUE(has(r.out, "layer:     unknown")) << r.out;
+  EXPECT_TRUE(has(r.out, "units:     mm")) << r.out;
+  EXPECT_TRUE(has(r.out, "apertures: 3")) << r.out;
+  // Copies 3 x 2 at 5 / 4 mm: x from the pad's 0.5 to the last track's end 3.5 + 10.
+  EXPECT_TRUE(has(r.out, "extents:   x 0.500 .. 13.500 mm, y 0.000 .. 6.000 mm")) << r.out;
+  EXPECT_TRUE(has(r.out, "polygons:  12 copper areas, 6 holes in them")) << r.out;
+}
+
+TEST(PcbInfoCli, ExcellonSummaryAsJson) {
+  const ToolRun r = run("info --json " + host::pcb::test::data_file("slots_decimal.drl"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["format"], "Excellon");
+  EXPECT_EQ(j["layer"], "drill");
+  EXPECT_EQ(j["units"], "mm");
+  EXPECT_EQ(j["holes"], 2);
+  EXPECT_EQ(j["slots"], 1);
+  EXPECT_EQ(j["apertures_or_tools"], 2);
+  EXPECT_DOUBLE_EQ(j["tools"]["T2"]["diameter_mm"].get<double>(), 1.2);
+  EXPECT_DOUBLE_EQ(j["extents_mm"]["max"][0].get<double>(), 24.6);
+}
+
+TEST(PcbInfoCli, OutlineSummaryAndNotes) {
+  const ToolRun r = run("info " + host::pcb::test::data_file("deprecated_inch.gbr"));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "units:     inch")) << r.out;
+  EXPECT_TRUE(has(r.out, "G54 before an aperture number (deprecated) ignored (3 times)")) << r.out;
+  const ToolRun o = run("info " + host::pcb::test::data_file("outline-Edge.Cuts.gbr"));
+  EXPECT_TRUE(has(o.out, "layer:     outline")) << o.out;
+  EXPECT_TRUE(has(o.out, "paths:     1 centre lines (1 closed)")) << o.out;
+}
+
+TEST(PcbInfoCli, BadGerberIsAnInputErrorNamingTheLine) {
+  const std::string path = testing::TempDir() + "/" + std::to_string(getpid()) + "-bad.gbr";
+  std::ofstream(path) << "%FSLAX33Y33*%\n%MOMM*%\nD10*\nM02*\n";
+  const ToolRun r = run("info " + path);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "engraver: " + path + ":3: D10 selects an aperture that is not defined\n");
+  EXPECT_TRUE(r.out.empty());
+}
+
+}  // namespace

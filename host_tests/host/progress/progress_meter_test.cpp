@@ -1,0 +1,97 @@
+// The progress meter: quiet at first, periodic lines off a terminal, a redrawn bar on one,
+// counts, rate and time left that follow the numbers given.
+#include <gtest/gtest.h>
+
+#include <sstream>  // std::ostringstream
+
+#include "host/lib/progress/progress_meter.h"
+
+namespace host {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using std::chrono::milliseconds;
+
+struct FakeClock {
+  Clock::time_point t{};
+  std::function<Clock::time_point()> fn() {
+    return [this] { return t; };
+  }
+};
+
+size_t count(const std::string& s, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(ProgressMeter, SummaryHasCountsRateAndTimeLeft) {
+  std::ostringstream out;
+  ProgressMeter m("run", "commands", out, ProgressStyle{});
+  EXPECT_EQ(m.summary(250, 1000, 5.0), "250/1000 commands (25%), 50/s, 0:15 left");
+  EXPECT_EQ(m.summary(3, 0, 2.0), "3 commands, 1.5/s");
+  EXPECT_EQ(format_duration(3725), "1:02:05");
+}
+
+TEST(ProgressMeter, OffATerminalPrintsAPlainLineEveryFewSeconds) {
+  std::ostringstream out;
+  FakeClock c;
+  ProgressStyle st;
+  st.terminal = false;
+  st.first = milliseconds(1000);
+  st.line_every = milliseconds(5000);
+  {
+    ProgressMeter m("run", "commands", out, st, c.fn());
+    for (int s = 0; s <= 20; ++s) {  // 20 s of work, an update every second
+      c.t = Clock::time_point(std::chrono::seconds(s));
+      m.update(static_cast<size_t>(s) * 10, 200, "running");
+    }
+  }
+  const std::string text = out.str();
+  EXPECT_EQ(text.find('\r'), std::string::npos);
+  // Lines at 1, 6, 11, 16 s, and the last one at the end.
+  EXPECT_EQ(count(text, "\n"), 5u) << text;
+  EXPECT_NE(text.find("engraver: run: 10/200 commands (5%), 10/s, 0:19 left; running\n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("200/200 commands (100%), 10/s; running\n"), std::string::npos) << text;
+}
+
+TEST(ProgressMeter, OnATerminalRedrawsOneLineWithABar) {
+  std::ostringstream out;
+  FakeClock c;
+  ProgressStyle st;
+  st.terminal = true;
+  st.first = milliseconds(0);
+  st.redraw = milliseconds(100);
+  st.bar_width = 10;
+  {
+    ProgressMeter m("send", "commands", out, st, c.fn());
+    for (int i = 1; i <= 10; ++i) {
+      c.t = Clock::time_point(milliseconds(i * 100));
+      m.update(static_cast<size_t>(i) * 10, 100);
+    }
+  }
+  const std::string text = out.str();
+  EXPECT_EQ(count(text, "\n"), 1u);  // only the final newline
+  EXPECT_GE(count(text, "\r"), 10u);
+  EXPECT_NE(text.find("send: [#####.....] 50/100 commands (50%)"), std::string::npos) << text;
+  EXPECT_NE(text.find("[##########] 100/100"), std::string::npos) << text;
+}
+
+TEST(ProgressMeter, ShortWorkPrintsNothing) {
+  std::ostringstream out;
+  FakeClock c;
+  ProgressStyle st;
+  st.first = milliseconds(500);
+  {
+    ProgressMeter m("plan", "curves", out, st, c.fn());
+    c.t = Clock::time_point(milliseconds(200));
+    m.update(5, 10);
+    m.update(10, 10);
+  }
+  EXPECT_EQ(out.str(), "");
+}
+
+}  // namespace
+}  // namespace host
