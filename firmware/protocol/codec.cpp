@@ -215,7 +215,7 @@ ErrorCode read_fields(const uint8_t* bytes, uint8_t length, uint8_t* msg, const 
     if (f->type == kWireText) {
       if (left > f->max_count) return ErrorCode::kPayloadLength;
       msg[f->count_offset] = left;
-      memcpy(msg + f->offset, bytes + pos, left);
+      if (left > 0) memcpy(msg + f->offset, bytes + pos, left);  // bytes may be 0 when empty
       pos = length;
       continue;
     }
