@@ -74,6 +74,12 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
 
   const int32_t feed = to_um(o.feed_mm_per_s);
   const int32_t plunge = to_um(o.plunge_mm_per_s);
+  // A PlanStep is over 1 kB (an inline firmware spline): reserve an upper bound (a curve
+  // takes at most lift, rapid, plunge, gap feed and one step per control point) so the
+  // vector never reallocates, which doubled the peak memory of large jobs.
+  size_t step_bound = 3;
+  for (const PlannedCurve& c : plan.curves) step_bound += 4 + c.spline.control.size();
+  plan.steps.reserve(step_bound);
   PlanStep up;
   up.kind = PlanStep::kPenUp;
   up.z_um = to_um(o.z_up_mm);
