@@ -11,26 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "host_tests/host/cli/tool_run.h"
+
 namespace {
 
-struct ToolRun {
-  int code;  // exit code; -1 when killed by a signal
-  std::string err;
-};
+using host_tests::ToolRun;
 
 ToolRun run_info(const std::string& file) {
-  const std::string err_path =
-      testing::TempDir() + "/cli_hostile_stderr_" + std::to_string(getpid()) + ".txt";
-  const std::string cmd =
-      std::string(ENGRAVER_EXE) + " info '" + file + "' >/dev/null 2>" + err_path;
-  const int status = std::system(cmd.c_str());
-  ToolRun r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_path);
-  std::stringstream s;
-  s << e.rdbuf();
-  r.err = s.str();
-  return r;
+  return host_tests::run_tool(ENGRAVER_EXE, "info '" + file + "'");
 }
 
 std::string write_temp(const std::string& name, const std::string& bytes) {

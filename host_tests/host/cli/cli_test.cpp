@@ -10,33 +10,16 @@
 #include <sstream>
 #include <string>
 
+#include "host_tests/host/cli/tool_run.h"
+
 namespace {
 
 const std::string kSample = std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf";
 
-struct ToolRun {
-  int code;
-  std::string out;  // stdout
-  std::string err;  // stderr
-};
+using host_tests::ToolRun;
 
-// Runs the tool with args (shell words), capturing stdout and stderr separately.
 ToolRun run(const std::string& args) {
-  const std::string err_path =
-      testing::TempDir() + "/cli_stderr_" + std::to_string(getpid()) + ".txt";
-  const std::string cmd = std::string(ENGRAVER_EXE) + " " + args + " 2>" + err_path;
-  ToolRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_path);
-  std::stringstream s;
-  s << e.rdbuf();
-  r.err = s.str();
-  return r;
+  return host_tests::run_tool(ENGRAVER_EXE, args);
 }
 
 std::string write_temp(const std::string& name, const std::string& text) {

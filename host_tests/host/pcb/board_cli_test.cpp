@@ -12,30 +12,14 @@
 #include <sstream>
 #include <string>
 
+#include "host_tests/host/cli/tool_run.h"
+
 namespace {
 
-struct ToolRun {
-  int code;
-  std::string out;
-  std::string err;
-};
+using host_tests::ToolRun;
 
 ToolRun run(const std::string& args) {
-  const std::string err_path =
-      testing::TempDir() + "/board_cli_stderr_" + std::to_string(getpid()) + ".txt";
-  const std::string cmd = std::string(ENGRAVER_EXE) + " " + args + " 2>" + err_path;
-  ToolRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_path);
-  std::stringstream s;
-  s << e.rdbuf();
-  r.err = s.str();
-  return r;
+  return host_tests::run_tool(ENGRAVER_EXE, args);
 }
 
 const char* kTopCopper =
