@@ -4,29 +4,15 @@
 #include <fmt/format.h>  // fmt::format
 #include <sqlite3.h>     // sqlite3_*
 
-#include <chrono>  // system_clock
+#include "host/lib/server/job_store_sql.h"
 
 namespace host::server {
 
 namespace {
 
-int64_t now_ms() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-// ",pen,brass," so that instr() finds ",pen," (tags hold no commas: the parser checks).
-std::string tag_list(const MachineFit& fit) {
-  std::string s = ",";
-  for (const std::string& t : fit.tags) s += t + ",";
-  return s;
-}
-
-const char* kColumns =
-    "id, key, name, input_file, state, priority, tag, feed_mm_s, tol_mm, scale, margin_mm, "
-    "width_mm, height_mm, planned_s, machine, owner, message, executed, total, resume_curve, "
-    "created_ms, started_ms, finished_ms, start_curve";
+using sql::kColumns;
+using sql::now_ms;
+using sql::tag_list;
 
 const char* kFitWhere =
     "state = 'queued' AND width_mm <= ?1 AND height_mm <= ?2 AND "
