@@ -135,26 +135,6 @@ EncodeOptions encode_options(const PlanArgs& a) {
   return e;
 }
 
-const char* state_name(proto::MachineState s) {
-  switch (s) {
-    case proto::MachineState::kIdle:
-      return "idle";
-    case proto::MachineState::kRunning:
-      return "running";
-    case proto::MachineState::kHolding:
-      return "holding";
-    case proto::MachineState::kHeld:
-      return "held";
-    case proto::MachineState::kZeroing:
-      return "zeroing";
-    case proto::MachineState::kAlarm:
-      return "ALARM";
-    case proto::MachineState::kPaused:
-      return "paused: press confirm on the panel";
-  }
-  return "?";
-}
-
 // ---- Operator controls: signals and keys ----
 
 Sender* g_sender = nullptr;  // for the signal handlers (request_* only set atomics)
@@ -222,7 +202,7 @@ class Keyboard {
 
 // What a progress line says about the machine: state, position and (simulated) time.
 std::string machine_detail(const Progress& p) {
-  return fmt::format("{} at ({:.1f}, {:.1f}) mm", state_name(p.status.state),
+  return fmt::format("{} at ({:.1f}, {:.1f}) mm", machine_state_name(p.status.state),
                      p.status.x_um / 1000.0, p.status.y_um / 1000.0);
 }
 

@@ -19,26 +19,6 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-const char* machine_state_name(proto::MachineState s) {
-  switch (s) {
-    case proto::MachineState::kIdle:
-      return "idle";
-    case proto::MachineState::kRunning:
-      return "running";
-    case proto::MachineState::kHolding:
-      return "holding";
-    case proto::MachineState::kHeld:
-      return "held";
-    case proto::MachineState::kZeroing:
-      return "zeroing";
-    case proto::MachineState::kAlarm:
-      return "alarm";
-    case proto::MachineState::kPaused:
-      return "paused";  // an operator pause in the job (M0): confirm on the panel
-  }
-  return "?";
-}
-
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }

@@ -88,6 +88,14 @@ const char* alarm_name(proto::Alarm alarm) {
   return "unknown alarm";
 }
 
+// Frame-level and gap errors: the frame did not arrive intact; resend from the expected seq.
+bool is_resend_error(proto::ErrorCode code) {
+  const int v = static_cast<int>(code);
+  return (v >= 1 && v <= 5) || code == proto::ErrorCode::kSeqGap;
+}
+
+}  // namespace
+
 const char* machine_state_name(proto::MachineState state) {
   switch (state) {
     case proto::MachineState::kIdle:
@@ -101,20 +109,12 @@ const char* machine_state_name(proto::MachineState state) {
     case proto::MachineState::kZeroing:
       return "zeroing";
     case proto::MachineState::kAlarm:
-      return "in alarm";
+      return "alarm";
     case proto::MachineState::kPaused:
-      return "paused for the operator";
+      return "paused";
   }
-  return "in an unknown state";
+  return "unknown";
 }
-
-// Frame-level and gap errors: the frame did not arrive intact; resend from the expected seq.
-bool is_resend_error(proto::ErrorCode code) {
-  const int v = static_cast<int>(code);
-  return (v >= 1 && v <= 5) || code == proto::ErrorCode::kSeqGap;
-}
-
-}  // namespace
 
 const char* outcome_name(JobOutcome outcome) {
   switch (outcome) {

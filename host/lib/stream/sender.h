@@ -44,6 +44,9 @@ enum class JobOutcome {
   kStalled     // the link answered but the job made no progress (SenderOptions::stall_limit)
 };
 const char* outcome_name(JobOutcome outcome);
+// A machine state as one word (idle, running, holding, held, zeroing, alarm, paused): the
+// same token in messages, progress lines and the workshop server's JSON.
+const char* machine_state_name(proto::MachineState state);
 
 struct SenderStats {
   size_t frames_sent = 0;  // every frame written, retransmissions included
