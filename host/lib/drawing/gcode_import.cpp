@@ -4,12 +4,13 @@
 // tool change, spindle, dwell, modes, motion, then stops.
 #include "host/lib/drawing/gcode_import.h"
 
-#include <algorithm>  // std::max
+#include <algorithm>  // std::max, std::min
+#include <cctype>     // std::isdigit, std::toupper
 #include <cmath>      // std::atan2, std::fabs, std::lround
 #include <fstream>    // std::ifstream
 #include <regex>      // std::regex_search
 #include <set>        // std::set
-#include <sstream>    // std::ostringstream
+#include <sstream>    // std::istringstream, std::ostringstream
 
 #include "host/lib/drawing/conics.h"
 #include "host/lib/drawing/gcode_words.h"
@@ -507,28 +508,54 @@ bool looks_like_gcode(const std::string& text) {
   return std::regex_search(text, re);
 }
 
-Drawing import_gcode(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ImportError(path + ": cannot open the file");
-  bool uses_spindle = false;
-  {
-    // First pass: does the program switch a spindle or laser at all (M3/M4)? Then only the
-    // moves while it is on cut.
-    std::string l;
-    std::ifstream scan(path);
-    static const std::regex m34("(^|[^0-9.])M0*[34](\\D|$)", std::regex::icase);
-    while (std::getline(scan, l)) {
-      const std::string code = l.substr(0, l.find_first_of("(;"));
-      if (std::regex_search(code, m34)) uses_spindle = true;
+namespace {
+
+// True when the line's code (before any comment) switches a spindle or laser on: an M3 or M4
+// word, leading zeros allowed, not part of a longer number.
+bool switches_spindle_on(const std::string& line) {
+  const size_t end = std::min(line.find_first_of("(;"), line.size());
+  for (size_t i = 0; i < end; ++i) {
+    if (std::toupper(static_cast<unsigned char>(line[i])) != 'M') continue;
+    if (i > 0 && (std::isdigit(static_cast<unsigned char>(line[i - 1])) || line[i - 1] == '.')) {
+      continue;
+    }
+    size_t k = i + 1;
+    while (k < end && line[k] == '0') ++k;
+    if (k < end && (line[k] == '3' || line[k] == '4') &&
+        (k + 1 == end || !std::isdigit(static_cast<unsigned char>(line[k + 1])))) {
+      return true;
     }
   }
-  Interpreter interp(path, uses_spindle);
+  return false;
+}
+
+}  // namespace
+
+Drawing read_gcode(const std::string& text, const std::string& name) {
+  // First pass: does the program switch a spindle or laser at all (M3/M4)? Then only the
+  // moves while it is on cut.
+  bool uses_spindle = false;
+  {
+    std::istringstream scan(text);
+    std::string l;
+    while (!uses_spindle && std::getline(scan, l)) uses_spindle = switches_spindle_on(l);
+  }
+  Interpreter interp(name, uses_spindle);
+  std::istringstream in(text);
   std::string line;
   long n = 0;
   while (std::getline(in, line)) {
     if (!interp.line(line, ++n)) break;
   }
   return interp.finish();
+}
+
+Drawing import_gcode(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ImportError(path + ": cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return read_gcode(text.str(), path);
 }
 
 }  // namespace host

@@ -17,6 +17,9 @@ bool looks_like_gcode(const std::string& text);
 // Reads a G-code file. Throws ImportError naming the file, the line and the problem.
 Drawing import_gcode(const std::string& path);
 
+// The same on a program already in memory; `name` stands for the file in messages.
+Drawing read_gcode(const std::string& text, const std::string& name);
+
 }  // namespace host
 
 #endif  // HOST_LIB_DRAWING_GCODE_IMPORT_H

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "host/lib/drawing/drawing.h"
+#include "host/lib/drawing/gcode_import.h"
 #include "host_tests/host/drawing/dxf_builder.h"
 
 namespace host {
@@ -62,6 +63,27 @@ TEST(GcodeImport, LaserOffDoesNotCutWhenTheProgramSwitchesIt) {
   ASSERT_EQ(d.curves.size(), 1u);
   EXPECT_LT((start_point(d.curves[0].spline) - Point2(10, 0)).norm(), 1e-12);
   EXPECT_LT((end_point(d.curves[0].spline) - Point2(20, 0)).norm(), 1e-12);
+}
+
+// The spindle scan: M3/M4 with leading zeros switch it; a comment or another word's digits
+// do not (then every feed move cuts, as in a program without spindle words).
+TEST(GcodeImport, OnlyARealM3OrM4MeansTheProgramSwitchesTheSpindle) {
+  const std::string moves = "G1 X10\nM5\nG1 X20\n";
+  EXPECT_EQ(read_gcode("G21\nM003 S1\n" + moves, "a.ngc").curves.size(), 1u);
+  EXPECT_EQ(read_gcode("G21\nm4\n" + moves, "b.ngc").curves.size(), 1u);
+  for (const char* not_on : {"(M3)", ";M4", "G4 P3", "(MSG, M4 next)"}) {
+    SCOPED_TRACE(not_on);
+    EXPECT_EQ(read_gcode(std::string("G21\n") + not_on + "\n" + moves, "c.ngc").curves.size(), 2u);
+  }
+}
+
+TEST(GcodeImport, InMemoryAndFileReadsAgree) {
+  const std::string program = "G21\nG0 X5 Y0\nG3 X5 Y0 I-5 J0\nG1 X9 Y9\n";
+  const Drawing a = read_gcode(program, "mem.ngc");
+  const Drawing b = import_gcode_text("mem.ngc", program);
+  ASSERT_EQ(a.curves.size(), b.curves.size());
+  EXPECT_EQ(a.curves[0].spline.control.size(), b.curves[0].spline.control.size());
+  EXPECT_EQ(a.curves[0].spline.knots, b.curves[0].spline.knots);
 }
 
 TEST(GcodeImport, ArcEndOffTheCircleIsRefusedWithTheLine) {
