@@ -119,7 +119,7 @@ class GerberReader {
   void step_repeat(const std::string& s);
   void close_step_repeat();
   bool copies_stand_alone(const std::vector<Batch>& block) const;
-  static Paths evaluate(std::vector<Batch>& batches);
+  Paths evaluate(std::vector<Batch>& batches);  // counts reclipped_
 
   // Operations.
   double number(const std::string& s, const char* what) const;
@@ -168,6 +168,7 @@ class GerberReader {
   // What has been drawn.
   std::vector<Batch> batches_;
   size_t vertices_ = 0;        // in batches_ and strokes_
+  size_t reclipped_ = 0;       // copper vertices clipped again by later batches
   std::vector<Path> strokes_;  // centre lines (outline layers)
   bool stroke_open_ = false;   // the last stroke continues at at_
 
@@ -282,6 +283,13 @@ Paths GerberReader::evaluate(std::vector<Batch>& batches) {
       // its outer's, so a hole left out stays inside its outer and still cuts it).
       Paths touched, kept;
       split_by_box(result, box_of(b.paths), touched, kept);
+      for (const Path& p : touched) reclipped_ += p.size();
+      if (reclipped_ > opt_.max_reclipped_vertices) {
+        fail("the polarity changes re-clip more than " +
+             std::to_string(opt_.max_reclipped_vertices) +
+             " copper vertices (overlapping step-and-repeat copies with clear objects?): too "
+             "complex to read");
+      }
       if (b.dark) {
         touched = union_objects(b.paths, b.starts, touched);
       } else if (!touched.empty()) {

@@ -21,6 +21,12 @@ struct GerberOptions {
   // Refuse files whose copper needs more polygon vertices than this before the union (a
   // step-and-repeat of a large block can ask for any amount of memory).
   size_t max_vertices = 20000000;
+  // Refuse files whose polarity changes make the reader re-clip more copper vertices than
+  // this in all. Each change re-clips the copper it touches, so a step-and-repeat of
+  // overlapping copies with clear objects costs the square of the copies (the default is
+  // minutes of work; a real board with hundreds of clear objects on a pour needs a few
+  // hundred million at most).
+  size_t max_reclipped_vertices = 500000000;
 };
 
 // Reads a whole file. Throws PcbReadError naming the file, the line and the problem; never
