@@ -1,5 +1,5 @@
 // The board's clock: 10 MHz crystal, XT with PLL x8 (set by the configuration bits in
-// config_bits.c), Fosc 80 MHz, Fcy = Fosc / 4 = 20 MHz (reference/dspic30f6014.md sec. 1).
+// config_bits.c), Fosc 80 MHz, Fcy = Fosc / 4 = 20 MHz (data sheet DS70117, oscillator).
 #ifndef HAL_DSPIC30F6014_CLOCK_H
 #define HAL_DSPIC30F6014_CLOCK_H
 

@@ -1,4 +1,4 @@
-/* Configuration words for the dsPIC30F6014 on this board (reference/dspic30f6014.md sec. 1):
+/* Configuration words for the dsPIC30F6014 on this board (data sheet DS70117, config bits):
    10 MHz crystal, XT with PLL x8 (Fcy 20 MHz), no fail-safe clock switch, watchdog off,
    64 ms power-up timer, brown-out reset off, MCLR enabled, no code protection.
    C (not C++): the device header's config macros need the C compiler. */

@@ -47,7 +47,7 @@ uint16_t take_reset_cause();
 
 }  // namespace dspic
 
-// The vectors (names from the XC16 vector table; reference/dspic30f6014.md sec. 5).
+// The vectors (names from the XC16 vector table in p30F6014A.gld).
 DSPIC_ISR(_T1Interrupt);
 DSPIC_ISR(_U1RXInterrupt);
 DSPIC_ISR(_U1TXInterrupt);

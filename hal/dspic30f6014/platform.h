@@ -11,7 +11,7 @@
 
 #if DSPIC_TARGET
 // An interrupt vector: XC16 saves the context, returns with RETFIE and places the function
-// in the IVT slot its name selects (reference/dspic30f6014.md sec. 5). no_auto_psv: the ISRs
+// in the IVT slot its name selects (XC16 p30F6014A.gld vector table). no_auto_psv: the ISRs
 // read no const data through the PSV window, so PSVPAG need not be saved.
 #define DSPIC_ISR(name) extern "C" void __attribute__((interrupt, no_auto_psv)) name(void)
 // Not cleared by the C start-up code, so a trap handler can leave a note across a reset.

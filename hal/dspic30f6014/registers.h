@@ -1,6 +1,6 @@
 // dsPIC30F6014 special function registers used by the port: addresses and bit positions
-// with the data sheet's names, from shared/reference/dspic30f6014.md (Microchip p30F6014A.gld
-// and p30F6014A.h [GLD]/[HDR]; dsPIC30F Family Reference Manual [FRM]). Only this folder
+// with the data sheet's names, from Microchip's p30F6014A.gld and p30F6014A.h (XC16) and the
+// dsPIC30F Family Reference Manual (UART sec. 19, SPI sec. 20, Timers sec. 12). Only this folder
 // names registers; drivers see hal/interfaces.
 #ifndef HAL_DSPIC30F6014_REGISTERS_H
 #define HAL_DSPIC30F6014_REGISTERS_H

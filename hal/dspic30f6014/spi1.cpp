@@ -1,4 +1,4 @@
-// SPI1 master for the TMC428 (reference/dspic30f6014.md sec. 3, reference/tmc428.md timing).
+// SPI1 master for the TMC428 (Family Reference Manual SPI sec. 20.4; TMC428 data sheet timing).
 #include "hal/dspic30f6014/spi1.h"
 
 #include "hal/dspic30f6014/clock.h"      // kFcyHz

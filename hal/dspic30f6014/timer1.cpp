@@ -1,4 +1,4 @@
-// Timer1 1 ms tick (reference/dspic30f6014.md sec. 4, [FRM] sec. 12.5-12.6).
+// Timer1 1 ms tick (dsPIC30F Family Reference Manual, Timers sec. 12.5-12.6).
 #include "hal/dspic30f6014/timer1.h"
 
 #include "hal/dspic30f6014/clock.h"      // kFcyHz

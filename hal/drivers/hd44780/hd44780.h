@@ -19,7 +19,7 @@ namespace drivers {
 class Hd44780 : public hal::TextDisplay {
  public:
   // Waits, all from the HD44780U data sheet ("Initializing by Instruction", Table 6, at
-  // f_OSC 270 kHz) with margin for slower clones (shared/reference/hd44780.md).
+  // f_OSC 270 kHz) with margin for slower clones (1.64 ms / 40 us at 250 kHz).
   enum {
     kPowerOnWaitUs = 50000,          // > 15 ms after VCC 4.5 V (> 40 ms at 2.7 V, clones ~50 ms)
     kFirstFunctionSetWaitUs = 5000,  // > 4.1 ms

@@ -230,7 +230,7 @@ bool Tmc428::read_driver_status() {
   return true;
 }
 
-// TMC246 status bits (tmc246.md, status word).
+// TMC246 status bits (TMC246B data sheet sec. 4, status word).
 enum {
   kTmc246AlwaysOne = 0x100,
   kTmc246Overtemperature = 0x80,  // switched off

@@ -50,7 +50,7 @@ class Tmc428 : public hal::MotionAxes {
   uint8_t settings_error_axis() const { return settings_error_axis_; }
   // Chip settings of an axis (valid after init() passed the configuration stage).
   const tmc428::AxisSettings& settings(uint8_t axis) const { return settings_[axis]; }
-  // 12-bit TMC246 status word of an axis from the last chain read-back (tmc246.md §1).
+  // 12-bit TMC246 status word of an axis from the last chain read-back (TMC246B data sheet sec. 4).
   uint16_t driver_status(uint8_t axis) const { return driver_status_[axis]; }
   // Status byte of the last datagram answer ([428DS] §6.4).
   uint8_t last_status() const { return last_status_; }
@@ -75,7 +75,7 @@ class Tmc428 : public hal::MotionAxes {
   // The chain read-back of read_driver_status() split into steps of one datagram each:
   // re-arm the capture; read datagram_low_word until its answer shows CDGW clear (the chain
   // datagram can take tens of ms: no waiting here); read datagram_high_word and classify.
-  // Open-load flags are ignored (they also show at speed, tmc246.md).
+  // Open-load flags are ignored (they also show at speed: TMC246B data sheet sec. 4).
   virtual uint8_t poll_driver_check();
 
  private:

@@ -6,8 +6,8 @@
 namespace drivers {
 namespace tmc428 {
 
-// One TMC246 datagram, bit 11 first ([428DS] Tab. 11-2 layout, tmc246.md §3). Mixed decay
-// follows FD_x on all three drivers: on exactly while |sin| resp. |cos| falls ([428DS]
+// One TMC246 datagram, bit 11 first (TMC428 data sheet Tab. 11-2 layout). Mixed decay
+// follows FD_x on all three drivers: on exactly while |sin| resp. |cos| falls (TMC428 data sheet
 // Tab. 12-3), which is what the TMC246 wants ([246DS] §3.1). The last signal carries NxM.
 #define TMC246_SIGNALS                                                                   \
   kSigFdA, kSigDacA0 + 5, kSigDacA0 + 4, kSigDacA0 + 3, kSigDacA0 + 2, kSigPhA, kSigFdB, \

@@ -1,5 +1,5 @@
 // Fake dsPIC30F6014 SFR file: memory plus the UART1/SPI1 behaviour the port relies on
-// (reference/dspic30f6014.md sec. 2, sec. 3).
+// (dsPIC30F Family Reference Manual, UART sec. 19.3 and SPI sec. 20.4).
 #include "hal/fake/dspic_registers/fake_dspic_registers.h"
 
 #include <cstring>
