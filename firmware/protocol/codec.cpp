@@ -3,6 +3,8 @@
 // check walk that list, so the byte layout and the ranges are written down once.
 #include "firmware/protocol/codec.h"
 
+#include "firmware/protocol/compact_spline.h"  // scan_compact
+
 #include <stddef.h>  // offsetof
 #include <string.h>  // memcpy
 
@@ -21,6 +23,7 @@ enum WireType {
   kWireText,    // the rest of the payload, characters min..max
   kWirePoints,  // count x (x i32, y i32, weight u16): coordinates min..max, weight >= 1
   kWireKnots,   // count x i32
+  kWireBytes,   // count x u8, any value
   kWireEnd
 };
 
@@ -42,10 +45,13 @@ struct FieldSpec {
 #define PROTO_WIRE_error kWireError
 #define PROTO_ARRAY_WIRE_point kWirePoints
 #define PROTO_ARRAY_WIRE_i32 kWireKnots
+#define PROTO_ARRAY_WIRE_byte kWireBytes
 #define PROTO_ARRAY_MIN_point PROTO_COORD_MIN
 #define PROTO_ARRAY_MAX_point PROTO_COORD_MAX
 #define PROTO_ARRAY_MIN_i32 PROTO_I32_MIN
 #define PROTO_ARRAY_MAX_i32 PROTO_I32_MAX
+#define PROTO_ARRAY_MIN_byte 0
+#define PROTO_ARRAY_MAX_byte 255
 
 // NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and member names.
 #define PROTO_SPEC_CMD(Type, name, letter, kind, display, reply, handler, check) \
@@ -143,7 +149,8 @@ void store(uint8_t* msg, const FieldSpec& f, int32_t v) {
 // Every field inside its range (and the enums inside their lists).
 ErrorCode check_fields(const uint8_t* msg, const FieldSpec* f) {
   for (; f->type != kWireEnd; ++f) {
-    if (f->type == kWireText || f->type == kWirePoints || f->type == kWireKnots) {
+    if (f->type == kWireText || f->type == kWirePoints || f->type == kWireKnots ||
+        f->type == kWireBytes) {
       const uint8_t n = msg[f->count_offset];
       if (n > f->max_count) return ErrorCode::kFieldRange;
       for (uint8_t i = 0; i < n; ++i) {
@@ -172,10 +179,11 @@ void write_fields(const uint8_t* msg, const FieldSpec* f, Payload* out) {
   uint8_t* p = out->bytes;
   uint16_t n_out = 0;
   for (; f->type != kWireEnd; ++f) {
-    if (f->type == kWireText || f->type == kWirePoints || f->type == kWireKnots) {
+    if (f->type == kWireText || f->type == kWirePoints || f->type == kWireKnots ||
+        f->type == kWireBytes) {
       const uint8_t n = msg[f->count_offset];
       for (uint8_t i = 0; i < n; ++i) {
-        if (f->type == kWireText) {
+        if (f->type == kWireText || f->type == kWireBytes) {
           p[n_out++] = msg[f->offset + i];
         } else if (f->type == kWirePoints) {
           core::ControlPoint c;
@@ -217,6 +225,14 @@ ErrorCode read_fields(const uint8_t* bytes, uint8_t length, uint8_t* msg, const 
       msg[f->count_offset] = left;
       if (left > 0) memcpy(msg + f->offset, bytes + pos, left);  // bytes may be 0 when empty
       pos = length;
+      continue;
+    }
+    if (f->type == kWireBytes) {
+      const uint8_t n = msg[f->count_offset];
+      if (n > f->max_count) return ErrorCode::kFieldRange;
+      if (n > left) return ErrorCode::kPayloadLength;
+      if (n > 0) memcpy(msg + f->offset, bytes + pos, n);
+      pos = (uint8_t)(pos + n);
       continue;
     }
     if (f->type == kWirePoints || f->type == kWireKnots) {
@@ -279,6 +295,15 @@ ErrorCode check_spline_data(const SplineDataCmd& m) {
     return ErrorCode::kFieldRange;
   if ((uint16_t)(m.knot_index + m.knot_n) > core::kMaxKnots) return ErrorCode::kFieldRange;
   return ErrorCode::kOk;
+}
+
+// The data holds exactly control_n points then knot_n knots (compact_spline.h).
+ErrorCode check_spline_compact(const SplineCompactCmd& m) {
+  if (m.control_n == 0 && m.knot_n == 0) return ErrorCode::kFieldRange;
+  if ((uint16_t)(m.control_index + m.control_n) > core::kMaxControlPoints)
+    return ErrorCode::kFieldRange;
+  if ((uint16_t)(m.knot_index + m.knot_n) > core::kMaxKnots) return ErrorCode::kFieldRange;
+  return scan_compact(m);
 }
 
 ErrorCode check_drill(const DrillCmd& m) {

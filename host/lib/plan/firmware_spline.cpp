@@ -3,6 +3,7 @@
 
 #include <algorithm>  // std::max
 #include <cmath>      // std::llround, std::fabs
+#include <cstdint>    // int64_t
 #include <cstring>    // memset
 #include <sstream>    // std::ostringstream
 
@@ -84,6 +85,57 @@ std::vector<uint16_t> quantise_weights(const std::vector<double>& w) {
   return q;
 }
 
+// Integer knots, chain by chain. A knot of multiplicity >= degree cuts the spline into two
+// curves that do not depend on each other's knots, and a curve keeps its shape under an
+// affine map of its own knots: so each such chain gets its own scale. A chain of one span
+// (a Bezier piece between corners, every span of a degree-1 spline) is 1 unit long; a longer
+// chain gets units so that each span is at least 4x the longest control leg (um) around it
+// (moving a knot by half a unit then moves the curve by about 1/8 um), 16 units at least,
+// but never a finer scale than the whole vector over kKnotRangeTarget units. Small spans
+// are what the compact #K frames carry in few bytes.
+std::vector<int32_t> chain_knots(const BSpline& s) {
+  const size_t p = static_cast<size_t>(s.degree);
+  const size_t nk = s.knots.size();
+  const double whole = static_cast<double>(kKnotRangeTarget) / (s.knots.back() - s.knots.front());
+  std::vector<int32_t> out(nk, 0);
+  // Multiplicity of the value at each knot index.
+  auto multiplicity = [&](size_t i) {
+    size_t m = 0;
+    for (double k : s.knots) m += (k == s.knots[i]) ? 1 : 0;
+    return m;
+  };
+  auto leg_um = [&](size_t span) {  // span i uses control points i-p .. i
+    double leg = 0;
+    for (size_t c = span >= p ? span - p + 1 : 1; c <= span && c < s.control.size(); ++c)
+      leg = std::max(leg, (s.control[c] - s.control[c - 1]).norm() * 1000.0);
+    return leg;
+  };
+  int64_t at = 0;  // integer value of the chain's first knot
+  size_t first = 0;
+  while (first + 1 < nk) {
+    // The chain: knots first..last, cut at an interior knot of multiplicity >= degree.
+    size_t last = first + 1;
+    while (last + 1 < nk && !(s.knots[last] > s.knots[first] && s.knots[last + 1] > s.knots[last] &&
+                              multiplicity(last) >= p))
+      ++last;
+    int spans = 0;
+    double scale = 16.0 / (s.knots[last] - s.knots[first]);
+    for (size_t i = first; i < last; ++i) {
+      const double span = s.knots[i + 1] - s.knots[i];
+      if (span <= 0) continue;
+      ++spans;
+      scale = std::max(scale, std::max(16.0, 4.0 * leg_um(i)) / span);
+    }
+    if (spans == 1) scale = 1.0 / (s.knots[last] - s.knots[first]);
+    scale = std::min(scale, whole);
+    for (size_t i = first; i <= last; ++i)
+      out[i] = static_cast<int32_t>(at + std::llround((s.knots[i] - s.knots[first]) * scale));
+    at = out[last];
+    first = last;
+  }
+  return out;
+}
+
 // One piece (at most kMaxControlPoints control points) in firmware form.
 core::Spline to_firmware(const BSpline& s) {
   core::Spline f;
@@ -108,12 +160,8 @@ core::Spline to_firmware(const BSpline& s) {
     f.control[i].y_um = static_cast<int32_t>(std::llround(y_um));
     f.control[i].weight_q14 = s.rational() ? w[i] : core::kWeightOneQ14;
   }
-  const double k0 = s.knots.front();
-  const double range = s.knots.back() - k0;
-  const double scale = static_cast<double>(kKnotRangeTarget) / range;
-  for (size_t i = 0; i < s.knots.size(); ++i) {
-    f.knot[i] = static_cast<int32_t>(std::llround((s.knots[i] - k0) * scale));
-  }
+  const std::vector<int32_t> knots = chain_knots(s);
+  for (size_t i = 0; i < s.knots.size(); ++i) f.knot[i] = knots[i];
   for (size_t i = 0; i + 1 < s.knots.size(); ++i) {
     if (s.knots[i + 1] > s.knots[i] && f.knot[i + 1] == f.knot[i]) {
       throw ConversionError(

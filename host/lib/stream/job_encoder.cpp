@@ -1,4 +1,4 @@
-// Job plan -> queued protocol commands (#S #U #Z #F #G #B #D #P #W #N #L), using the shared
+// Job plan -> queued protocol commands (#S #U #Z #F #G #B #K/#D #P #W #N #L), using the shared
 // codecs.
 #include "host/lib/stream/job_encoder.h"
 
@@ -6,7 +6,8 @@
 
 #include <algorithm>  // std::min
 
-#include "firmware/protocol/codec.h"  // proto::encode, message structs
+#include "firmware/protocol/codec.h"           // proto::encode, message structs
+#include "firmware/protocol/compact_spline.h"  // put_compact_point, put_compact_knot
 
 namespace host {
 
@@ -37,8 +38,77 @@ uint16_t feed16(int32_t feed_um_per_s, int step) {
   return static_cast<uint16_t>(feed_um_per_s);
 }
 
-// #B then #D frames carrying the spline's control points, then its knots.
-void append_spline(const PlanStep& s, int index, unsigned max_payload,
+// One #D frame: control points from *next_control, then knots from *next_knot once every
+// control point is in, as many as room bytes hold.
+proto::SplineDataCmd full_data(const core::Spline& sp, unsigned room, unsigned* next_control,
+                               unsigned* next_knot) {
+  proto::SplineDataCmd data{};
+  data.control_index = static_cast<uint8_t>(*next_control);
+  data.knot_index = static_cast<uint8_t>(*next_knot);
+  unsigned left = room;
+  while (*next_control < sp.control_count && data.control_n < proto::kMaxDataControls &&
+         left >= proto::kControlPointBytes) {
+    data.control[data.control_n++] = sp.control[(*next_control)++];
+    left -= proto::kControlPointBytes;
+  }
+  while (*next_control == sp.control_count && *next_knot < sp.knot_count &&
+         data.knot_n < proto::kMaxDataKnots && left >= proto::kKnotBytes) {
+    data.knot[data.knot_n++] = sp.knot[(*next_knot)++];
+    left -= proto::kKnotBytes;
+  }
+  return data;
+}
+
+// #K frames: points as differences, knots as spans (firmware/protocol/compact_spline.h),
+// each frame as full as the payload allows. A value too big for an empty frame (only with
+// a payload under 16 + 5 bytes) goes in a #D frame instead.
+void append_compact_data(const core::Spline& sp, int index, int curve, unsigned max_payload,
+                         std::vector<QueuedCommand>* out) {
+  const unsigned room =
+      std::min<unsigned>(max_payload, proto::kMaxPayload) - proto::kCompactHeaderBytes;
+  unsigned next_control = 0;
+  unsigned next_knot = 0;
+  uint8_t value[proto::kMaxCompactPointBytes];
+  while (next_control < sp.control_count || next_knot < sp.knot_count) {
+    proto::SplineCompactCmd d{};
+    d.control_index = static_cast<uint8_t>(next_control);
+    d.knot_index = static_cast<uint8_t>(next_knot);
+    auto fits = [&](uint8_t n) { return d.data_n + n <= room; };
+    while (next_control < sp.control_count && d.control_n < proto::kMaxCompactControls) {
+      core::ControlPoint prev = {0, 0, core::kWeightOneQ14};
+      if (next_control > 0) prev = sp.control[next_control - 1];
+      const uint8_t n =
+          proto::put_compact_point(prev, sp.control[next_control], sp.rational, value);
+      if (!fits(n)) break;
+      std::copy(value, value + n, d.data + d.data_n);
+      d.data_n = static_cast<uint8_t>(d.data_n + n);
+      ++d.control_n;
+      ++next_control;
+    }
+    while (next_control == sp.control_count && next_knot < sp.knot_count &&
+           d.knot_n < proto::kMaxCompactKnots) {
+      const int32_t prev = next_knot > 0 ? sp.knot[next_knot - 1] : 0;
+      const uint8_t n = proto::put_compact_knot(prev, sp.knot[next_knot], next_knot == 0, value);
+      if (n == 0) throw PlanError(fmt::format("step {}: spline knots decrease", index));
+      if (!fits(n)) break;
+      std::copy(value, value + n, d.data + d.data_n);
+      d.data_n = static_cast<uint8_t>(d.data_n + n);
+      ++d.knot_n;
+      ++next_knot;
+    }
+    if (d.data_n == 0) {
+      const unsigned full_room =
+          std::min<unsigned>(max_payload, proto::kMaxPayload) - proto::kSplineDataHeaderBytes;
+      out->push_back(make(full_data(sp, full_room, &next_control, &next_knot), index, curve));
+      continue;
+    }
+    out->push_back(make(d, index, curve));
+  }
+}
+
+// #B then the data frames (#K compact, or #D) carrying the spline's control points, then
+// its knots.
+void append_spline(const PlanStep& s, int index, unsigned max_payload, bool compact,
                    std::vector<QueuedCommand>* out) {
   proto::SplineHeaderCmd header{};
   header.degree = s.spline.degree;
@@ -49,26 +119,16 @@ void append_spline(const PlanStep& s, int index, unsigned max_payload,
   header.tool_offset_um = s.tool_offset_um;
   out->push_back(make(header, index, s.curve));
 
+  if (compact) {
+    append_compact_data(s.spline, index, s.curve, max_payload, out);
+    return;
+  }
   const unsigned room =
       std::min<unsigned>(max_payload, proto::kMaxPayload) - proto::kSplineDataHeaderBytes;
   unsigned next_control = 0;
   unsigned next_knot = 0;
   while (next_control < s.spline.control_count || next_knot < s.spline.knot_count) {
-    proto::SplineDataCmd data{};
-    data.control_index = static_cast<uint8_t>(next_control);
-    data.knot_index = static_cast<uint8_t>(next_knot);
-    unsigned left = room;
-    while (next_control < s.spline.control_count && data.control_n < proto::kMaxDataControls &&
-           left >= proto::kControlPointBytes) {
-      data.control[data.control_n++] = s.spline.control[next_control++];
-      left -= proto::kControlPointBytes;
-    }
-    while (next_control == s.spline.control_count && next_knot < s.spline.knot_count &&
-           data.knot_n < proto::kMaxDataKnots && left >= proto::kKnotBytes) {
-      data.knot[data.knot_n++] = s.spline.knot[next_knot++];
-      left -= proto::kKnotBytes;
-    }
-    out->push_back(make(data, index, s.curve));
+    out->push_back(make(full_data(s.spline, room, &next_control, &next_knot), index, s.curve));
   }
 }
 
@@ -188,7 +248,7 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
           // degree-1 spline from where the tool is.
           PlanStep line = s;
           line.spline = straight_spline(from, s.to);
-          append_spline(line, index, options.max_payload, &out);
+          append_spline(line, index, options.max_payload, options.compact_splines, &out);
           break;
         }
         proto::FeedMoveCmd g{s.to.x_um, s.to.y_um, feed16(s.feed_um_per_s, index)};
@@ -196,7 +256,7 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
         break;
       }
       case PlanStep::kSpline:
-        append_spline(s, index, options.max_payload, &out);
+        append_spline(s, index, options.max_payload, options.compact_splines, &out);
         break;
       case PlanStep::kPause:
         out.push_back(make(pause_command(s.text), index, s.curve));
