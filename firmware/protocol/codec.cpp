@@ -23,7 +23,8 @@ enum WireType {
   kWireText,    // the rest of the payload, characters min..max
   kWirePoints,  // count x (x i32, y i32, weight u16): coordinates min..max, weight >= 1
   kWireKnots,   // count x i32
-  kWireBytes,   // count x u8, any value
+  kWireBytes,   // u8 of any value to the end of the payload, count in a kWireNone field
+  kWireNone,    // a u8 count in the struct, not on the wire
   kWireEnd
 };
 
@@ -43,15 +44,16 @@ struct FieldSpec {
 #define PROTO_WIRE_state kWireState
 #define PROTO_WIRE_alarm kWireAlarm
 #define PROTO_WIRE_error kWireError
+#define PROTO_WIRE_none kWireNone
 #define PROTO_ARRAY_WIRE_point kWirePoints
 #define PROTO_ARRAY_WIRE_i32 kWireKnots
-#define PROTO_ARRAY_WIRE_byte kWireBytes
+#define PROTO_ARRAY_WIRE_rest kWireBytes
 #define PROTO_ARRAY_MIN_point PROTO_COORD_MIN
 #define PROTO_ARRAY_MAX_point PROTO_COORD_MAX
 #define PROTO_ARRAY_MIN_i32 PROTO_I32_MIN
 #define PROTO_ARRAY_MAX_i32 PROTO_I32_MAX
-#define PROTO_ARRAY_MIN_byte 0
-#define PROTO_ARRAY_MAX_byte 255
+#define PROTO_ARRAY_MIN_rest 0
+#define PROTO_ARRAY_MAX_rest 255
 
 // NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and member names.
 #define PROTO_SPEC_CMD(Type, name, letter, kind, display, reply, handler, check) \
@@ -201,6 +203,7 @@ void write_fields(const uint8_t* msg, const FieldSpec* f, Payload* out) {
       }
       continue;
     }
+    if (f->type == kWireNone) continue;
     const int32_t v = load(msg, *f);
     const uint8_t size = scalar_bytes(f->type);
     if (size == 1) p[n_out] = (uint8_t)v;
@@ -227,12 +230,12 @@ ErrorCode read_fields(const uint8_t* bytes, uint8_t length, uint8_t* msg, const 
       pos = length;
       continue;
     }
+    if (f->type == kWireNone) continue;  // set by its kWireBytes array
     if (f->type == kWireBytes) {
-      const uint8_t n = msg[f->count_offset];
-      if (n > f->max_count) return ErrorCode::kFieldRange;
-      if (n > left) return ErrorCode::kPayloadLength;
-      if (n > 0) memcpy(msg + f->offset, bytes + pos, n);
-      pos = (uint8_t)(pos + n);
+      if (left > f->max_count) return ErrorCode::kPayloadLength;
+      msg[f->count_offset] = left;
+      if (left > 0) memcpy(msg + f->offset, bytes + pos, left);
+      pos = length;
       continue;
     }
     if (f->type == kWirePoints || f->type == kWireKnots) {

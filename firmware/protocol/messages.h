@@ -21,10 +21,10 @@ enum {
   kKnotBytes = 4,              // int32
   kMaxDataControls = (kMaxPayload - kSplineDataHeaderBytes) / kControlPointBytes,  // 6
   kMaxDataKnots = (kMaxPayload - kSplineDataHeaderBytes) / kKnotBytes,             // 15
-  kCompactHeaderBytes = 5,                              // #K: indices, counts, data_n
-  kMaxCompactData = kMaxPayload - kCompactHeaderBytes,  // 59
-  kMaxCompactControls = kMaxCompactData / 2,            // 29: x and y take a byte at least
-  kMaxCompactKnots = kMaxCompactData                    // 59: a knot takes a byte at least
+  kCompactHeaderBytes = 4,                              // #K: indices and counts
+  kMaxCompactData = kMaxPayload - kCompactHeaderBytes,  // 60
+  kMaxCompactControls = kMaxCompactData / 2,            // 30: x and y take a byte at least
+  kMaxCompactKnots = kMaxCompactData                    // 60: a knot takes a byte at least
 };
 
 // The C type of each wire type of the message table.
@@ -36,7 +36,8 @@ enum {
 #define PROTO_CTYPE_alarm Alarm
 #define PROTO_CTYPE_error ErrorCode
 #define PROTO_CTYPE_point core::ControlPoint
-#define PROTO_CTYPE_byte uint8_t
+#define PROTO_CTYPE_none uint8_t
+#define PROTO_CTYPE_rest uint8_t
 
 // One struct per message, fields in wire order, with its start byte and letter
 // (docs/protocol.md gives the meaning of every field).

@@ -49,27 +49,39 @@ std::vector<BSpline> split_to_fit(const BSpline& clamped_spline, size_t max_cont
   return out;
 }
 
+// Worst relative rounding error of the weights w scaled so the largest is m.
+double weight_error(const std::vector<double>& w, double w_max, long m) {
+  const double f = static_cast<double>(m) / w_max;
+  double err = 0;
+  for (double x : w) {
+    const double q = std::floor(x * f + 0.5);
+    if (q < 1) return 1e300;
+    err = std::max(err, std::fabs(q - x * f) / q);
+  }
+  return err;
+}
+
 // Integer Q14 weights for a rational spline: the common factor that puts the largest
-// weight at m / 16384 for m in [32768, 65535] with the smallest worst relative error.
-std::vector<uint16_t> quantise_weights(const std::vector<double>& w) {
+// weight at m / 16384. The smallest m from 1024 up whose rounding moves the curve by under
+// about 0.1 um (relative error below 0.25 um over the longest control leg, 1e-4 at most;
+// the points are whole micrometres anyway):
+// small weights differ by little, which the compact #K frames send in few bytes. Failing
+// that, m in [32768, 65535] with the smallest worst relative error.
+std::vector<uint16_t> quantise_weights(const std::vector<double>& w, double max_leg_um) {
   double w_max = 0;
   for (double x : w) w_max = std::max(w_max, x);
+  const double tolerance = std::min(1e-4, 0.25 / std::max(max_leg_um, 1.0));
+  long best_m = 0, best_fallback = 65535;
+  for (long m = 1024; m < 32768 && best_m == 0; ++m) {
+    if (weight_error(w, w_max, m) <= tolerance) best_m = m;
+  }
   double best_err = 1e300;
-  long best_m = 65535;
-  for (long m = 65535; m >= 32768; --m) {
-    const double f = static_cast<double>(m) / w_max;
-    double err = 0;
-    for (double x : w) {
-      const double q = std::floor(x * f + 0.5);
-      err = std::max(err, std::fabs(q - x * f) / std::max(q, 1.0));
-      if (q < 1) err = 1e300;
-    }
-    if (err < best_err) {
-      best_err = err;
-      best_m = m;
-    }
+  for (long m = 65535; best_m == 0 && m >= 32768; --m) {
+    const double err = weight_error(w, w_max, m);
+    if (err < best_err) best_err = err, best_fallback = m;
     if (err < 1e-9) break;
   }
+  if (best_m == 0) best_m = best_fallback;
   std::vector<uint16_t> q;
   const double f = static_cast<double>(best_m) / w_max;
   for (double x : w) {
@@ -145,7 +157,12 @@ core::Spline to_firmware(const BSpline& s) {
   f.control_count = static_cast<uint16_t>(s.control.size());
   f.knot_count = static_cast<uint16_t>(s.knots.size());
   std::vector<uint16_t> w;
-  if (s.rational()) w = quantise_weights(s.weights);
+  if (s.rational()) {
+    double leg_um = 0;
+    for (size_t i = 1; i < s.control.size(); ++i)
+      leg_um = std::max(leg_um, (s.control[i] - s.control[i - 1]).norm() * 1000.0);
+    w = quantise_weights(s.weights, leg_um);
+  }
   for (size_t i = 0; i < s.control.size(); ++i) {
     const double x_um = s.control[i].x() * 1000.0;
     const double y_um = s.control[i].y() * 1000.0;
