@@ -56,6 +56,8 @@ inline RoundTrip round_trip_any(uint8_t start, uint8_t letter, const uint8_t* pa
         return round_trip_as<proto::SplineHeaderCmd>(payload, length);
       case proto::kCmdSplineData:
         return round_trip_as<proto::SplineDataCmd>(payload, length);
+      case proto::kCmdSplineCompact:
+        return round_trip_as<proto::SplineCompactCmd>(payload, length);
       case proto::kCmdResolution:
         return round_trip_as<proto::ResolutionCmd>(payload, length);
       case proto::kCmdFeedMove:

@@ -60,8 +60,8 @@ proto::SplineDataCmd full_data(const core::Spline& sp, unsigned room, unsigned* 
 }
 
 // #K frames: points as differences, knots as spans (firmware/protocol/compact_spline.h),
-// each frame as full as the payload allows. A value too big for an empty frame (only with
-// a payload under 16 + 5 bytes) goes in a #D frame instead.
+// each frame as full as the payload allows. Every difference fits (variable length), so
+// there is no fallback to #D.
 void append_compact_data(const core::Spline& sp, int index, int curve, unsigned max_payload,
                          std::vector<QueuedCommand>* out) {
   const unsigned room =
@@ -97,10 +97,8 @@ void append_compact_data(const core::Spline& sp, int index, int curve, unsigned 
       ++next_knot;
     }
     if (d.data_n == 0) {
-      const unsigned full_room =
-          std::min<unsigned>(max_payload, proto::kMaxPayload) - proto::kSplineDataHeaderBytes;
-      out->push_back(make(full_data(sp, full_room, &next_control, &next_knot), index, curve));
-      continue;
+      // Not reached: a point takes at most 11 bytes, a knot 5, and a payload 12 at least.
+      throw PlanError(fmt::format("step {}: a spline value does not fit a #K frame", index));
     }
     out->push_back(make(d, index, curve));
   }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "firmware/protocol/codec.h"
+#include "firmware/protocol/compact_spline.h"
 #include "host/lib/stream/job_encoder.h"
 
 namespace host {
@@ -54,7 +55,7 @@ JobPlan plan_with_spline(const core::Spline& spline) {
   return plan;
 }
 
-// Rebuilds the spline from the encoded #B/#D commands as the controller's store would.
+// Rebuilds the spline from the encoded #B/#D/#K commands as the controller's store would.
 core::Spline reassemble(const std::vector<QueuedCommand>& cmds) {
   core::Spline s{};
   for (const QueuedCommand& c : cmds) {
@@ -72,6 +73,11 @@ core::Spline reassemble(const std::vector<QueuedCommand>& cmds) {
                 proto::ErrorCode::kOk);
       for (int i = 0; i < d.control_n; ++i) s.control[d.control_index + i] = d.control[i];
       for (int i = 0; i < d.knot_n; ++i) s.knot[d.knot_index + i] = d.knot[i];
+    } else if (c.letter == proto::kCmdSplineCompact) {
+      proto::SplineCompactCmd d;
+      EXPECT_EQ(proto::decode(c.payload.data(), static_cast<uint8_t>(c.payload.size()), &d),
+                proto::ErrorCode::kOk);
+      EXPECT_EQ(proto::unpack_compact(d, &s), proto::ErrorCode::kOk);
     }
   }
   return s;
@@ -94,7 +100,7 @@ TEST(JobEncoder, StepsMapToTheirCommandLetters) {
   const auto cmds = encode_job(plan_with_spline(wavy_spline(4, false)), EncodeOptions{});
   std::string letters;
   for (const auto& c : cmds) letters += static_cast<char>(c.letter);
-  // #U first, then Z up, F rapid, Z down, B + D..., G, Z up.
+  // #U first, then Z up, F rapid, Z down, B + K..., G, Z up.
   EXPECT_EQ(letters.substr(0, 4), "UZFZ");
   EXPECT_EQ(letters.substr(4, 1), "B");
   EXPECT_EQ(letters.substr(letters.size() - 2), "GZ");
@@ -119,18 +125,49 @@ TEST(JobEncoder, SplineSurvivesPackingAtFullPayload) {
 }
 
 TEST(JobEncoder, SplineSurvivesPackingAtASmallPayload) {
-  const core::Spline spline = wavy_spline(core::kMaxControlPoints, false);
-  EncodeOptions o;
-  o.max_payload = 20;
-  const auto cmds = encode_job(plan_with_spline(spline), o);
-  for (const auto& c : cmds) EXPECT_LE(c.payload.size(), 20u);
-  expect_same_spline(spline, reassemble(cmds));
+  for (bool compact : {true, false}) {
+    for (bool rational : {true, false}) {
+      const core::Spline spline = wavy_spline(core::kMaxControlPoints, rational);
+      EncodeOptions o;
+      o.max_payload = 16;
+      o.compact_splines = compact;
+      const auto cmds = encode_job(plan_with_spline(spline), o);
+      for (const auto& c : cmds) EXPECT_LE(c.payload.size(), 16u);
+      expect_same_spline(spline, reassemble(cmds));
+    }
+  }
+}
+
+TEST(JobEncoder, CompactSplineDataIsTheSameSplineInFewerBytes) {
+  for (bool rational : {true, false}) {
+    const core::Spline spline = wavy_spline(core::kMaxControlPoints, rational);
+    EncodeOptions full;
+    full.compact_splines = false;
+    const auto k = encode_job(plan_with_spline(spline), EncodeOptions{});
+    const auto d = encode_job(plan_with_spline(spline), full);
+    int k_frames = 0, d_frames = 0;
+    size_t k_bytes = 0, d_bytes = 0;
+    for (const auto& c : k) {
+      if (c.letter == proto::kCmdSplineCompact) ++k_frames, k_bytes += frame_bytes(c);
+    }
+    for (const auto& c : d) {
+      if (c.letter == proto::kCmdSplineData) ++d_frames, d_bytes += frame_bytes(c);
+    }
+    EXPECT_GT(k_frames, 0);
+    EXPECT_GT(d_frames, 0);
+    for (const auto& c : k) EXPECT_NE(c.letter, proto::kCmdSplineData);
+    expect_same_spline(reassemble(d), reassemble(k));
+    // Points 1 and 4 mm apart: x, y and a weight change two bytes each instead of 4, 4 and 2;
+    // knot spans of 100 one byte instead of 4.
+    EXPECT_LT(k_bytes * 10, d_bytes * (rational ? 6 : 5)) << rational;
+  }
 }
 
 TEST(JobEncoder, SplineFramesCarryTheirCurveIndex) {
   const auto cmds = encode_job(plan_with_spline(wavy_spline(12, false)), EncodeOptions{});
   for (const auto& c : cmds) {
-    if (c.letter == proto::kCmdSplineHeader || c.letter == proto::kCmdSplineData) {
+    if (c.letter == proto::kCmdSplineHeader || c.letter == proto::kCmdSplineData ||
+        c.letter == proto::kCmdSplineCompact) {
       EXPECT_EQ(c.curve, 0);
       EXPECT_EQ(c.step, 3);
     }
