@@ -99,10 +99,12 @@ uint8_t put_compact_point(const core::ControlPoint& prev, const core::ControlPoi
   return n;
 }
 
-uint8_t put_compact_knot(int32_t prev, int32_t k, bool first, uint8_t* out) {
+uint8_t put_compact_knot(int32_t prev, int32_t k, bool first, bool repeat, uint8_t* out) {
   if (first) return put_varint(zigzag(k), out);
   if (k < prev) return 0;
-  return put_varint((uint32_t)k - (uint32_t)prev, out);
+  const uint32_t span = (uint32_t)k - (uint32_t)prev;
+  if (span > kMaxCompactSpan) return 0;
+  return put_varint((span << 1) | (repeat ? 1U : 0U), out);
 }
 
 ErrorCode scan_compact(const SplineCompactCmd& m) {
@@ -116,6 +118,11 @@ ErrorCode scan_compact(const SplineCompactCmd& m) {
     uint32_t k = 0;
     const ErrorCode e = r.next(&k);
     if (e != ErrorCode::kOk) return e;
+    const bool first = m.knot_index == 0 && i == 0;
+    if (!first && (k & 1U)) {
+      if (i + 1 >= m.knot_n) return ErrorCode::kPayloadLength;  // the repeat is one too many
+      ++i;
+    }
   }
   return r.at_end() ? ErrorCode::kOk : ErrorCode::kPayloadLength;
 }
@@ -152,9 +159,15 @@ ErrorCode unpack_compact(const SplineCompactCmd& m, core::Spline* s) {
       knot = unzigzag(v);
     } else {
       // Room above the previous knot in int32, in unsigned arithmetic (no overflow).
+      const uint32_t span = v >> 1;
       const uint32_t room = (uint32_t)0x7FFFFFFFUL - (uint32_t)knot;
-      if (v > room) return ErrorCode::kFieldRange;
-      knot = (int32_t)((uint32_t)knot + v);
+      if (span > room) return ErrorCode::kFieldRange;
+      knot = (int32_t)((uint32_t)knot + span);
+      if (v & 1U) {  // the same knot once more
+        if (i + 1 >= m.knot_n) return ErrorCode::kPayloadLength;
+        s->knot[m.knot_index + i] = knot;
+        ++i;
+      }
     }
     s->knot[m.knot_index + i] = knot;
   }

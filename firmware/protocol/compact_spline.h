@@ -4,7 +4,10 @@
 //   point: varint(zigzag(dx) * 2 + has_weight), varint(zigzag(dy)),
 //          then varint(zigzag(dw)) when has_weight (only in a rational spline; a point
 //          without it keeps the previous point's weight)
-//   knot:  the spline's first knot varint(zigzag(k)), every later one varint(k - previous)
+//   knot:  the spline's first knot varint(zigzag(k)); every later one
+//          varint((k - previous) * 2 + repeat), repeat = 1 when the knot after it is the
+//          same value (that knot then has no bytes of its own); a span over
+//          kMaxCompactSpan does not fit (the sender uses #D for it)
 // The first point is taken from (0, 0) with weight 16384 (1.0). Both ends use this file: the
 // host to write, the controller to check (codec) and to unpack (spline store).
 #ifndef FIRMWARE_PROTOCOL_COMPACT_SPLINE_H
@@ -22,16 +25,21 @@ enum {
   kMaxCompactPointBytes = 3 * kMaxVarintBytes  // x, y, weight
 };
 
+// Longest knot span a #K frame carries (its varint holds the span times 2).
+static const uint32_t kMaxCompactSpan = 0x7FFFFFFFUL;
+
 // Bytes written to out (at most kMaxCompactPointBytes): point p after prev in a spline that
 // is rational or not (a polynomial spline's weights are not sent).
 uint8_t put_compact_point(const core::ControlPoint& prev, const core::ControlPoint& p,
                           bool rational, uint8_t* out);
 // Bytes written to out (at most kMaxVarintBytes): knot k, the spline's first knot when first,
-// else after prev (k >= prev; 0 bytes when it is not).
-uint8_t put_compact_knot(int32_t prev, int32_t k, bool first, uint8_t* out);
+// else after prev with the repeat flag (the next knot equals k and is not written). 0 bytes
+// when k < prev or the span is over kMaxCompactSpan: the knot needs a #D frame.
+uint8_t put_compact_knot(int32_t prev, int32_t k, bool first, bool repeat, uint8_t* out);
 
 // kOk when m.data holds exactly m.control_n points then m.knot_n knots; kPayloadLength when
-// it ends early or has bytes left; kFieldRange for a number over 32 bits.
+// it ends early, has bytes left, or repeats a knot past the last; kFieldRange for a number
+// over 32 bits.
 ErrorCode scan_compact(const SplineCompactCmd& m);
 
 // Writes the frame's points and knots into s at m.control_index and m.knot_index, taking the

@@ -47,13 +47,14 @@ std::vector<proto::SplineCompactCmd> compact_frames(const core::Spline& s, unsig
       ++c;
     }
     while (c == s.control_count && k < s.knot_count) {
+      const bool repeat = k > 0 && k + 1 < s.knot_count && s.knot[k + 1] == s.knot[k];
       const uint8_t n =
-          proto::put_compact_knot(k > 0 ? s.knot[k - 1] : 0, s.knot[k], k == 0, value);
+          proto::put_compact_knot(k > 0 ? s.knot[k - 1] : 0, s.knot[k], k == 0, repeat, value);
       EXPECT_GT(n, 0) << "knots must not decrease";
       if (d.data_n + n > room) break;
       for (uint8_t i = 0; i < n; ++i) d.data[d.data_n++] = value[i];
-      ++d.knot_n;
-      ++k;
+      d.knot_n = uint8_t(d.knot_n + (repeat ? 2 : 1));
+      k += repeat ? 2 : 1;
     }
     out.push_back(d);
   }
@@ -186,11 +187,16 @@ TEST(SplineCompact, LargestSplineAndLargestDifferencesFitTheFrames) {
     const int32_t v = i % 2 ? 1000000 : -1000000;
     s.control[i] = {v, -v, uint16_t(i % 2 ? 65535 : 1)};
   }
-  for (uint16_t i = 0; i < s.knot_count; ++i)
-    s.knot[i] = i < 4 ? INT32_MIN : i >= s.knot_count - 4 ? INT32_MAX : INT32_MIN + i * 60000000;
+  for (uint16_t i = 0; i < s.knot_count; ++i) {
+    const int64_t k = i < 4 ? INT32_MIN : int64_t(INT32_MIN) + int64_t(i - 3) * 65000000;
+    s.knot[i] = i >= s.knot_count - 4 ? INT32_MAX : int32_t(k);
+  }
   uint8_t value[proto::kMaxCompactPointBytes];
   EXPECT_EQ(proto::put_compact_point(s.control[0], s.control[1], true, value), 11);
-  EXPECT_EQ(proto::put_compact_knot(0, INT32_MIN, true, value), 5);
+  EXPECT_EQ(proto::put_compact_knot(0, INT32_MIN, true, false, value), 5);
+  // A span of 2^31 or more does not fit a #K frame (the encoder sends #D for it).
+  EXPECT_EQ(proto::put_compact_knot(-1, INT32_MAX, false, false, value), 0);
+  EXPECT_EQ(proto::put_compact_knot(0, INT32_MAX, false, true, value), 5);
   expect_same(s, store_compact(s));
   // The smallest payload a controller may announce (16 bytes: 12 of data) still carries it.
   expect_same(s, store_compact(s, 12));
@@ -238,6 +244,14 @@ TEST(SplineCompact, CodecRefusesMalformedFrames) {
             proto::ErrorCode::kOk);
   EXPECT_EQ(decode_bytes({0, 0, 0, 1, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x01}),  // six bytes
             proto::ErrorCode::kFieldRange);
+  // Knots 5 and 6: span 3 with the repeat flag stands for both; as the frame's last knot the
+  // repeat is one too many.
+  EXPECT_EQ(decode_bytes({0, 0, 5, 2, 0x07}), proto::ErrorCode::kOk);
+  EXPECT_EQ(decode_bytes({0, 0, 5, 1, 0x07}), proto::ErrorCode::kPayloadLength);
+  EXPECT_EQ(decode_bytes({0, 0, 5, 2, 0x06}), proto::ErrorCode::kPayloadLength);  // one knot
+  // The spline's first knot has no repeat flag: 0x07 is knot -4, and 2 knots need 2 codes.
+  EXPECT_EQ(decode_bytes({0, 0, 0, 2, 0x07}), proto::ErrorCode::kPayloadLength);
+  EXPECT_EQ(decode_bytes({0, 0, 0, 2, 0x07, 0x00}), proto::ErrorCode::kOk);
   EXPECT_EQ(decode_bytes({64, 1, 0, 0, 0x02, 0x04}), proto::ErrorCode::kFieldRange);  // 65th
   EXPECT_EQ(decode_bytes({0, 0, 68, 1, 0x00}), proto::ErrorCode::kFieldRange);        // 69th
   EXPECT_EQ(decode_bytes({0, 31, 0, 0, 0x00}), proto::ErrorCode::kFieldRange);        // > 30 points
@@ -290,7 +304,8 @@ struct OpenStore {
     proto::SplineCompactCmd k{};
     k.control_index = uint8_t(s.control_count);
     for (uint16_t i = 0; i < s.knot_count; ++i) {
-      const uint8_t n = proto::put_compact_knot(i ? s.knot[i - 1] : 0, s.knot[i], i == 0, value);
+      const uint8_t n =
+          proto::put_compact_knot(i ? s.knot[i - 1] : 0, s.knot[i], i == 0, false, value);
       for (uint8_t b = 0; b < n; ++b) k.data[k.data_n++] = value[b];
       ++k.knot_n;
     }
@@ -390,13 +405,13 @@ TEST(SplineCompact, KnotBeyondInt32IsRefused) {
   proto::SplineCompactCmd k{};
   k.control_index = 2;
   k.knot_n = 2;
-  // First knot 2^31 - 1 (zigzag 2^32 - 2), then a span of 1: over int32.
-  const uint8_t knots[] = {0xFE, 0xFF, 0xFF, 0xFF, 0x0F, 0x01};
+  // First knot 2^31 - 1 (zigzag 2^32 - 2), then a span of 1 (code 2): over int32.
+  const uint8_t knots[] = {0xFE, 0xFF, 0xFF, 0xFF, 0x0F, 0x02};
   for (uint8_t b : knots) k.data[k.data_n++] = b;
   EXPECT_EQ(store.add_compact(k, kTravel, &detail, &done), proto::ErrorCode::kFieldRange);
   // The same with a span of 0 and a proper end is accepted (the first two knots were not kept).
   k.knot_n = 4;
-  const uint8_t good[] = {0x00, 0x00, 0xE8, 0x07, 0x00};  // 0, 0, +1000, 0
+  const uint8_t good[] = {0x00, 0x00, 0xD1, 0x0F};  // 0, +0, +1000 and repeated
   k.data_n = 0;
   for (uint8_t b : good) k.data[k.data_n++] = b;
   EXPECT_EQ(store.add_compact(k, kTravel, &detail, &done), proto::ErrorCode::kOk);

@@ -108,13 +108,15 @@ int main() {
     prev = p;
   }
   const int32_t knots[8] = {0, 0, 0, 0, 1000, 1000, 1000, 1000};
-  for (int i = 0; i < 8; ++i) {
+  for (int i = 0; i < 8;) {
+    const bool repeat = i > 0 && i + 1 < 8 && knots[i + 1] == knots[i];
     k.data_n = uint8_t(k.data_n + proto::put_compact_knot(i ? knots[i - 1] : 0, knots[i], i == 0,
-                                                          k.data + k.data_n));
+                                                          repeat, k.data + k.data_n));
+    i += repeat ? 2 : 1;
   }
   show(k, 17,
        "#K seq 17: its 4 control points as differences (+12 mm, -3.5 mm; +3 mm, +5.5 mm; "
-       "+3 mm, 0; +3 mm, -5.5 mm) and its 8 knots as 0 then spans 0 0 0 1000 0 0 0: 29 "
-       "bytes of payload instead of the 80 of seq 7 and 8");
+       "+3 mm, 0; +3 mm, -5.5 mm) and its 8 knots as 0, then spans 0 (repeated), 0, "
+       "1000 (repeated), 0 (repeated): 26 bytes of payload instead of the 80 of seq 7 and 8");
   return 0;
 }

@@ -60,8 +60,8 @@ proto::SplineDataCmd full_data(const core::Spline& sp, unsigned room, unsigned* 
 }
 
 // #K frames: points as differences, knots as spans (firmware/protocol/compact_spline.h),
-// each frame as full as the payload allows. Every difference fits (variable length), so
-// there is no fallback to #D.
+// each frame as full as the payload allows. Knots that repeat share one code. Every point
+// fits (variable length); a knot span of 2^31 or more does not, and goes in a #D frame.
 void append_compact_data(const core::Spline& sp, int index, int curve, unsigned max_payload,
                          std::vector<QueuedCommand>* out) {
   const unsigned room =
@@ -85,22 +85,35 @@ void append_compact_data(const core::Spline& sp, int index, int curve, unsigned 
       ++d.control_n;
       ++next_control;
     }
+    bool wide = false;  // a knot span over kMaxCompactSpan: the knots go in a #D frame
     while (next_control == sp.control_count && next_knot < sp.knot_count &&
            d.knot_n < proto::kMaxCompactKnots) {
-      const int32_t prev = next_knot > 0 ? sp.knot[next_knot - 1] : 0;
-      const uint8_t n = proto::put_compact_knot(prev, sp.knot[next_knot], next_knot == 0, value);
-      if (n == 0) throw PlanError(fmt::format("step {}: spline knots decrease", index));
+      const bool first = next_knot == 0;
+      const int32_t prev = first ? 0 : sp.knot[next_knot - 1];
+      const int32_t k = sp.knot[next_knot];
+      if (!first && k < prev) throw PlanError(fmt::format("step {}: spline knots decrease", index));
+      const bool repeat = !first && next_knot + 1 < sp.knot_count && sp.knot[next_knot + 1] == k &&
+                          d.knot_n + 2 <= proto::kMaxCompactKnots;
+      const uint8_t n = proto::put_compact_knot(prev, k, first, repeat, value);
+      if (n == 0) {
+        wide = true;
+        break;
+      }
       if (!fits(n)) break;
       std::copy(value, value + n, d.data + d.data_n);
       d.data_n = static_cast<uint8_t>(d.data_n + n);
-      ++d.knot_n;
-      ++next_knot;
+      d.knot_n = static_cast<uint8_t>(d.knot_n + (repeat ? 2 : 1));
+      next_knot += repeat ? 2 : 1;
     }
-    if (d.data_n == 0) {
+    if (d.data_n > 0) out->push_back(make(d, index, curve));
+    if (wide) {
+      const unsigned full_room =
+          std::min<unsigned>(max_payload, proto::kMaxPayload) - proto::kSplineDataHeaderBytes;
+      out->push_back(make(full_data(sp, full_room, &next_control, &next_knot), index, curve));
+    } else if (d.data_n == 0) {
       // Not reached: a point takes at most 11 bytes, a knot 5, and a payload 12 at least.
       throw PlanError(fmt::format("step {}: a spline value does not fit a #K frame", index));
     }
-    out->push_back(make(d, index, curve));
   }
 }
 

@@ -138,6 +138,21 @@ TEST(JobEncoder, SplineSurvivesPackingAtASmallPayload) {
   }
 }
 
+TEST(JobEncoder, KnotSpanTooWideForACompactFrameGoesInAFullFrame) {
+  core::Spline spline = wavy_spline(6, true);
+  for (int k = 0; k < spline.knot_count; ++k) spline.knot[k] = k < 5 ? INT32_MIN : INT32_MAX;
+  spline.knot[4] = -5;  // spans: 0 0 0 2^31-5 (fits), 2^31+4 (does not), 0 0 0 0
+  const auto cmds = encode_job(plan_with_spline(spline), EncodeOptions{});
+  int k_frames = 0, d_frames = 0;
+  for (const auto& c : cmds) {
+    k_frames += c.letter == proto::kCmdSplineCompact;
+    d_frames += c.letter == proto::kCmdSplineData;
+  }
+  EXPECT_GE(k_frames, 1);
+  EXPECT_EQ(d_frames, 1);
+  expect_same_spline(spline, reassemble(cmds));
+}
+
 TEST(JobEncoder, CompactSplineDataIsTheSameSplineInFewerBytes) {
   for (bool rational : {true, false}) {
     const core::Spline spline = wavy_spline(core::kMaxControlPoints, rational);
