@@ -62,19 +62,23 @@ double weight_error(const std::vector<double>& w, double w_max, long m) {
 }
 
 // Integer Q14 weights for a rational spline: the common factor that puts the largest
-// weight at m / 16384. The smallest m from 1024 up whose rounding moves the curve by under
-// about 0.1 um (relative error below 0.25 um over the longest control leg, 1e-4 at most;
-// the points are whole micrometres anyway):
-// small weights differ by little, which the compact #K frames send in few bytes. Failing
-// that, m in [32768, 65535] with the smallest worst relative error.
+// weight at m / 16384. The smallest m under 32768 that the rounding bound guarantees keeps
+// every weight's relative error below 0.25 um over the longest control leg (1e-4 at most;
+// the curve moves by about a tenth of a micrometre, and its points are whole micrometres
+// anyway): small weights differ by little, which the compact #K frames send in few bytes.
+// Failing that, m in [32768, 65535] with the smallest worst relative error.
 std::vector<uint16_t> quantise_weights(const std::vector<double>& w, double max_leg_um) {
   double w_max = 0;
   for (double x : w) w_max = std::max(w_max, x);
   const double tolerance = std::min(1e-4, 0.25 / std::max(max_leg_um, 1.0));
+  // Rounding moves a weight x scaled by m / w_max by half a unit at most: a relative error
+  // within tolerance for every weight once the smallest is 0.5 / tolerance + 0.5 units.
+  double w_min = w_max;
+  for (double x : w) w_min = std::min(w_min, x);
+  const double m_sure = std::ceil((0.5 / tolerance + 0.5) * w_max / w_min);
   long best_m = 0, best_fallback = 65535;
-  for (long m = 1024; m < 32768 && best_m == 0; ++m) {
-    if (weight_error(w, w_max, m) <= tolerance) best_m = m;
-  }
+  if (m_sure < 32768 && weight_error(w, w_max, static_cast<long>(m_sure)) <= tolerance)
+    best_m = static_cast<long>(m_sure);
   double best_err = 1e300;
   for (long m = 65535; best_m == 0 && m >= 32768; --m) {
     const double err = weight_error(w, w_max, m);
