@@ -74,6 +74,11 @@ struct PlanArgs {
   bool no_reorder = false;
   double z_up_mm = 2.0;
   double z_down_mm = -0.1;
+  std::vector<double> offset_mm;  // X Y: drawing coordinates + offset instead of --margin
+  std::string tool_side = "centre";
+  double tool_radius_mm = 0.0;
+  double fit_tol_mm = 0.005;
+  bool drill_as_z_moves = false;
   BoardArgs board;
 };
 
@@ -98,6 +103,23 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   cmd->add_flag("--no-reorder", a->no_reorder, "trace curves in drawing order");
   cmd->add_option("--z-up", a->z_up_mm, "travel height in mm")->capture_default_str();
   cmd->add_option("--z-down", a->z_down_mm, "cutting depth in mm")->capture_default_str();
+  cmd->add_option("--offset", a->offset_mm,
+                  "X Y in mm: machine = drawing + offset (keeps the file's zero; no --margin)")
+      ->expected(2)
+      ->excludes("--margin");
+  cmd->add_option("--tool-side", a->tool_side,
+                  "cut left or right of the drawn path (tool-radius offset on the controller)")
+      ->check(CLI::IsMember({"centre", "left", "right"}))
+      ->capture_default_str();
+  cmd->add_option("--tool-radius", a->tool_radius_mm, "tool radius in mm for --tool-side")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
+  cmd->add_option("--fit-tol", a->fit_tol_mm,
+                  "G-code: fit runs of short G1 moves within this many mm (0: send each move)")
+      ->check(CLI::Range(0.0, 0.1))
+      ->capture_default_str();
+  cmd->add_flag("--drill-as-z-moves", a->drill_as_z_moves,
+                "G-code drilling cycles as plain Z moves instead of the drill command");
   add_board_options(cmd, &a->board);
 }
 
@@ -117,6 +139,19 @@ JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
   o.feed_mm_per_s = a.feed_mm_s;
   o.z_up_mm = a.z_up_mm;
   o.z_down_mm = a.z_down_mm;
+  if (a.offset_mm.size() == 2) {
+    o.fixed_offset = true;
+    o.offset_mm = Point2(a.offset_mm[0], a.offset_mm[1]);
+  }
+  o.tool_side = a.tool_side == "left"    ? ToolSide::kLeft
+                : a.tool_side == "right" ? ToolSide::kRight
+                                         : ToolSide::kCentre;
+  if (o.tool_side != ToolSide::kCentre && !(a.tool_radius_mm > 0)) {
+    throw CLI::ValidationError("--tool-side " + a.tool_side + " needs --tool-radius MM above 0");
+  }
+  o.tool_radius_mm = a.tool_radius_mm;
+  o.fit_tolerance_mm = a.fit_tol_mm;
+  o.drill_mode = a.drill_as_z_moves ? DrillMode::kZMoves : DrillMode::kDrillCommand;
   ProgressMeter bar("plan", "curves ordered", std::cerr, ProgressMeter::for_stderr());
   o.progress = [&bar](size_t done, size_t total) { bar.update(done, total); };
   try {
@@ -131,7 +166,7 @@ JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
 EncodeOptions encode_options(const PlanArgs& a) {
   EncodeOptions e;
   e.chord_tolerance_um = static_cast<uint16_t>(std::lround(a.tol_mm * 1000.0));
-  e.title = std::filesystem::path(a.file).stem().string();
+  e.title = input_name(a.file);
   return e;
 }
 
@@ -421,7 +456,7 @@ void run_run(const RunArgs& a) {
     return sim::run_sim_job(plan, o);
   }();
 
-  const std::string name = std::filesystem::path(a.plan.file).stem().string();
+  const std::string name = input_name(a.plan.file);
   std::filesystem::create_directories(a.outdir);
   const std::string base = (std::filesystem::path(a.outdir) / name).string();
 

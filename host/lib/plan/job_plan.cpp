@@ -88,7 +88,13 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
   at = Point2(0, 0);
   for (size_t i = 0; i < plan.curves.size(); ++i) {
     const PlannedCurve& c = plan.curves[i];
-    const Point2 start = start_point(c.spline);
+    // Offset sign: left of the curve as drawn; reversed curves swap sides.
+    int32_t offset = 0;
+    if (o.tool_side != ToolSide::kCentre) {
+      offset = to_um(o.tool_radius_mm) * (o.tool_side == ToolSide::kLeft ? 1 : -1);
+      if (c.reversed) offset = -offset;
+    }
+    const Point2 start = offset_point(c.spline, true, offset);
     if (!c.chained) {
       if (pen_down) {
         up.curve = static_cast<int>(i);
@@ -117,15 +123,9 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
       f.curve = static_cast<int>(i);
       plan.steps.push_back(f);
     }
-    // Offset sign: left of the curve as drawn; reversed curves swap sides.
-    int32_t offset = 0;
-    if (o.tool_side != ToolSide::kCentre) {
-      offset = to_um(o.tool_radius_mm) * (o.tool_side == ToolSide::kLeft ? 1 : -1);
-      if (c.reversed) offset = -offset;
-    }
     append_curve_steps(c, static_cast<int>(i), offset, o, &plan);
     plan.cut_length_mm += curve_length(c.spline);
-    at = end_point(c.spline);
+    at = offset_point(c.spline, false, offset);
   }
   up.curve = -1;
   plan.steps.push_back(up);

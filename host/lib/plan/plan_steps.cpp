@@ -81,19 +81,34 @@ void check_job_fits(const Extents& ext, double radius, const PlanOptions& o,
   e << "the job does not fit the work area: the drawing is " << mm(w) << " x " << mm(h)
     << " mm at --scale " << o.scale;
   if (radius > 0) e << ", plus the tool radius " << mm(radius) << " mm on every side";
-  e << "; placed with its lower-left corner at --margin " << mm(o.margin_mm)
-    << " mm from the zero it spans x " << mm(lo_x) << " .. " << mm(hi_x) << ", y " << mm(lo_y)
-    << " .. " << mm(hi_y) << " mm; the work area is " << mm(o.work_width_mm) << " x "
-    << mm(o.work_height_mm) << " mm (--work).";
+  if (o.fixed_offset) {
+    e << "; placed at --offset " << mm(o.offset_mm.x()) << " " << mm(o.offset_mm.y())
+      << " mm it spans x ";
+  } else {
+    e << "; placed with its lower-left corner at --margin " << mm(o.margin_mm)
+      << " mm from the zero it spans x ";
+  }
+  e << mm(lo_x) << " .. " << mm(hi_x) << ", y " << mm(lo_y) << " .. " << mm(hi_y)
+    << " mm; the work area is " << mm(o.work_width_mm) << " x " << mm(o.work_height_mm)
+    << " mm (--work).";
   // What would fit: a smaller scale, a smaller margin, a larger work area.
   const double room_x = o.work_width_mm - o.margin_mm - radius;
   const double room_y = o.work_height_mm - o.margin_mm - radius;
   double fit = 1e300;
   if (w > 0) fit = std::min(fit, room_x / w);
   if (h > 0) fit = std::min(fit, room_y / h);
-  if (o.margin_mm + 1e-9 < radius) {
+  const bool below_zero = lo_x < -1e-6 || lo_y < -1e-6;
+  if (o.fixed_offset && below_zero) {
+    e << " It starts below the zero: add at least " << mm(std::max(0.0, -lo_x)) << " "
+      << mm(std::max(0.0, -lo_y)) << " mm to --offset.";
+  } else if (o.fixed_offset && w + 2 * radius <= o.work_width_mm &&
+             h + 2 * radius <= o.work_height_mm) {
+    e << " It fits with --offset at most "
+      << mm(o.offset_mm.x() - std::max(0.0, hi_x - o.work_width_mm)) << " "
+      << mm(o.offset_mm.y() - std::max(0.0, hi_y - o.work_height_mm)) << " mm.";
+  } else if (o.margin_mm + 1e-9 < radius) {
     e << " --margin must be at least the tool radius.";
-  } else if (fit > 0 && fit < 1e299) {
+  } else if (fit > 0 && fit < 1e299 && !o.fixed_offset) {
     e << " It fits at --scale " << std::floor(o.scale * fit * 1000) / 1000 << " or smaller";
     if (w + 2 * radius <= o.work_width_mm && h + 2 * radius <= o.work_height_mm) {
       e << ", or at this scale with --margin "
@@ -102,7 +117,9 @@ void check_job_fits(const Extents& ext, double radius, const PlanOptions& o,
     e << ".";
   }
   const double need_w = hi_x - std::min(0.0, lo_x), need_h = hi_y - std::min(0.0, lo_y);
-  if (need_w <= o.travel_width_mm + 1e-6 && need_h <= o.travel_height_mm + 1e-6) {
+  if (below_zero || o.fixed_offset) {
+    // A larger work area cannot help what lies below the zero; an offset was said above.
+  } else if (need_w <= o.travel_width_mm + 1e-6 && need_h <= o.travel_height_mm + 1e-6) {
     e << " A larger work area also fits: --work " << mm(std::max(need_w, o.work_width_mm)) << " "
       << mm(std::max(need_h, o.work_height_mm)) << " (the controller's travel is "
       << mm(o.travel_width_mm) << " x " << mm(o.travel_height_mm) << " mm).";
@@ -112,6 +129,18 @@ void check_job_fits(const Extents& ext, double radius, const PlanOptions& o,
   }
   if (!culprit.empty()) e << " First outside: " << culprit << ".";
   throw PlanError(e.str());
+}
+
+Point2 offset_point(const BSpline& s, bool at_start, int32_t offset_um) {
+  const Point2 p = at_start ? start_point(s) : end_point(s);
+  if (offset_um == 0) return p;
+  // The tangent from a short chord at the end (the firmware uses the derivative there).
+  const double span = s.t_max() - s.t_min();
+  Point2 d = at_start ? Point2(evaluate(s, s.t_min() + span * 1e-6) - p)
+                      : Point2(p - evaluate(s, s.t_max() - span * 1e-6));
+  if (!(d.norm() > 0)) return p;
+  d /= d.norm();
+  return p + Point2(-d.y(), d.x()) * (offset_um / 1000.0);
 }
 
 void check_options(const PlanOptions& o) {

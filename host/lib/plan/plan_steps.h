@@ -38,6 +38,11 @@ std::string first_exit(const PlannedCurve& c, double radius_mm, const PlanOption
 // Refuses options the controller cannot run: a work area beyond its travel, bad feeds.
 void check_options(const PlanOptions& o);
 
+// Where the tool centre is at the start (or end) of curve s when the controller offsets it
+// by offset_um (> 0 left of travel) along the normal: the pen goes down there, not on the
+// drawn line.
+Point2 offset_point(const BSpline& s, bool at_start, int32_t offset_um);
+
 // Appends the steps that trace c (already at its start with the pen down): straight feeds
 // for a polyline without offset, firmware splines otherwise.
 void append_curve_steps(const PlannedCurve& c, int index, int32_t offset_um, const PlanOptions& o,

@@ -172,7 +172,11 @@ class ProgramPlanner {
   void cut(const ProgramOp& op) {
     const int index = planned_index_[op.curve];
     PlannedCurve& c = plan_.curves[index];
-    const Point2 start = start_point(c.spline);
+    int32_t offset = 0;
+    if (o_.tool_side != ToolSide::kCentre) {
+      offset = to_um(o_.tool_radius_mm) * (o_.tool_side == ToolSide::kLeft ? 1 : -1);
+    }
+    const Point2 start = offset_point(c.spline, true, offset);
     const int32_t depth =
         to_um(o_.file_depths && !std::isnan(op.depth_mm) ? op.depth_mm : o_.z_down_mm);
     const int32_t plunge = to_um(o_.plunge_mm_per_s);
@@ -196,10 +200,6 @@ class ProgramPlanner {
       z_move(depth, plunge, index);
     }
     cutting_ = true;
-    int32_t offset = 0;
-    if (o_.tool_side != ToolSide::kCentre) {
-      offset = to_um(o_.tool_radius_mm) * (o_.tool_side == ToolSide::kLeft ? 1 : -1);
-    }
     if (o_.fit_tolerance_mm > 0 && offset == 0 && is_polyline(c.spline)) {
       // G1 runs as cubic B-splines; the plan's curve stays the program's own path.
       FitOptions fo;
@@ -213,7 +213,7 @@ class ProgramPlanner {
       append_curve_steps(c, index, offset, o_, &plan_);
     }
     plan_.cut_length_mm += curve_length(c.spline);
-    at_ = end_point(c.spline);
+    at_ = offset_point(c.spline, false, offset);
   }
 
   // The tool goes up (to the program's tool-change height when that is higher, at most

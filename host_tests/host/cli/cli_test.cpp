@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -231,6 +232,76 @@ TEST(Cli, RunCarriesAPcbProgramWithToolChangesDwellsAndHolesToTheEnd) {
   EXPECT_EQ(j["spindle_on_at_end"], false);
   // The square (4 x 0.4 in) was cut, and both holes drilled to 0.07 in.
   EXPECT_GT(j["traced_cut_mm"].get<double>(), 4 * 0.4 * 25.4 - 0.1);
+}
+
+}  // namespace
+
+namespace {
+
+// The report of `run` on a file, for the plan option tests.
+nlohmann::json run_report(const std::string& file, const std::string& options) {
+  const std::string out = testing::TempDir() + "/cli_opts_" + std::to_string(getpid());
+  const ToolRun r = run("run " + file + " " + options + " -o " + out);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  const std::string stem = file.substr(file.rfind('/') + 1, file.rfind('.') - file.rfind('/') - 1);
+  std::ifstream in(out + "/" + stem + ".json");
+  if (!in) return nlohmann::json::object();
+  return nlohmann::json::parse(in);
+}
+
+const char* kCircle =
+    "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n"
+    "0\nCIRCLE\n8\n0\n10\n50\n20\n50\n40\n5\n0\nENDSEC\n0\nEOF\n";
+
+TEST(Cli, OffsetKeepsTheFilesZeroAndSaysWhatFits) {
+  const std::string file = write_temp("cli_offset.ngc", "G21\nG0 X0 Y0\nG1 X10 Y0 F100\n");
+  // Rapids: from the machine zero to the start, and back from the end (10, 0) + offset.
+  EXPECT_NEAR(run_report(file, "")["planned_rapid_mm"].get<double>(), 10.0, 1e-3);
+  EXPECT_NEAR(run_report(file, "--offset 20 30")["planned_rapid_mm"].get<double>(),
+              std::hypot(20.0, 30.0) + std::hypot(30.0, 30.0), 1e-3);
+  const ToolRun far = run("run " + file + " --offset 290 0 -o " + testing::TempDir());
+  EXPECT_EQ(far.code, 1);
+  EXPECT_NE(far.err.find("It fits with --offset at most 287 0 mm."), std::string::npos) << far.err;
+  const ToolRun below = run("run " + file + " --offset -3 0 -o " + testing::TempDir());
+  EXPECT_NE(below.err.find("add at least 3 0 mm to --offset"), std::string::npos) << below.err;
+  EXPECT_EQ(run("run " + file + " --offset 1 1 --margin 2").code, 2);
+}
+
+TEST(Cli, ToolSideOffsetsTheCutOnTheController) {
+  const std::string file = write_temp("cli_side.dxf", kCircle);
+  const double pi = 3.14159265358979;
+  // A counter-clockwise circle of radius 5: left of travel is inside.
+  EXPECT_NEAR(run_report(file, "--margin 1")["traced_cut_mm"].get<double>(), 2 * pi * 5, 0.05);
+  EXPECT_NEAR(run_report(file, "--margin 1 --tool-side left --tool-radius 0.5")["traced_cut_mm"]
+                  .get<double>(),
+              2 * pi * 4.5, 0.05);
+  EXPECT_NEAR(run_report(file, "--margin 1 --tool-side right --tool-radius 0.5")["traced_cut_mm"]
+                  .get<double>(),
+              2 * pi * 5.5, 0.05);
+  const ToolRun r = run("run " + file + " --tool-side left -o " + testing::TempDir());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--tool-side left needs --tool-radius MM above 0"), std::string::npos);
+}
+
+TEST(Cli, FitToleranceAndDrillModeChangeWhatIsSent) {
+  std::string program = "G21\nG0 X20 Y10\nG1 Z-0.1 F100\n";
+  for (int i = 1; i <= 120; ++i) {
+    const double a = 2 * 3.14159265358979 * i / 120;
+    program += "G1 X" + std::to_string(10 + 10 * std::cos(a)) + " Y" +
+               std::to_string(10 + 10 * std::sin(a)) + "\n";
+  }
+  program += "G0 Z1\nG81 R1 Z-1 F60 X5 Y5\nX8 Y5\nG80\nM2\n";
+  const std::string file = write_temp("cli_fit.ngc", program);
+  const nlohmann::json fitted = run_report(file, "");
+  const nlohmann::json moves = run_report(file, "--fit-tol 0");
+  const nlohmann::json z_moves = run_report(file, "--drill-as-z-moves");
+  // 120 G1 moves: a few fitted splines by default, one command each with --fit-tol 0.
+  EXPECT_GE(moves["commands"].get<int>(), 120);
+  EXPECT_LT(fitted["commands"].get<int>(), 30);
+  EXPECT_NEAR(moves["traced_cut_mm"].get<double>(), fitted["traced_cut_mm"].get<double>(), 0.05);
+  // Each of the two holes: one drill command, or Z moves (down, up) in its place.
+  EXPECT_GT(z_moves["commands"].get<int>(), fitted["commands"].get<int>());
+  EXPECT_EQ(z_moves["outcome"], "completed");
 }
 
 }  // namespace
