@@ -100,7 +100,7 @@ TEST(JobEncoder, StepsMapToTheirCommandLetters) {
   const auto cmds = encode_job(plan_with_spline(wavy_spline(4, false)), EncodeOptions{});
   std::string letters;
   for (const auto& c : cmds) letters += static_cast<char>(c.letter);
-  // #U first, then Z up, F rapid, Z down, B + K..., G, Z up.
+  // #U first, then Z up, F rapid, Z down, B + D..., G, Z up.
   EXPECT_EQ(letters.substr(0, 4), "UZFZ");
   EXPECT_EQ(letters.substr(4, 1), "B");
   EXPECT_EQ(letters.substr(letters.size() - 2), "GZ");
