@@ -1,5 +1,5 @@
 // Job plan -> queued protocol commands (#S #U #Z #F #G #B #D #P #W #N #L), using the shared
-// codecs. Spline data goes as compact #K frames unless EncodeOptions says #D.
+// codecs.
 #include "host/lib/stream/job_encoder.h"
 
 #include <fmt/format.h>  // fmt::format
