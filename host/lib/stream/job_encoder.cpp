@@ -299,6 +299,28 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
   return out;
 }
 
+bool is_spline_data(uint8_t letter) {
+  return letter == proto::kCmdSplineData || letter == proto::kCmdSplineCompact;
+}
+
+bool add_spline_data(const QueuedCommand& c, core::Spline* s) {
+  const uint8_t length = static_cast<uint8_t>(c.payload.size());
+  if (c.payload.size() > proto::kMaxPayload) return false;
+  if (c.letter == proto::kCmdSplineData) {
+    proto::SplineDataCmd d;
+    if (proto::decode(c.payload.data(), length, &d) != proto::ErrorCode::kOk) return false;
+    for (unsigned k = 0; k < d.control_n; ++k) s->control[d.control_index + k] = d.control[k];
+    for (unsigned k = 0; k < d.knot_n; ++k) s->knot[d.knot_index + k] = d.knot[k];
+    return true;
+  }
+  if (c.letter == proto::kCmdSplineCompact) {
+    proto::SplineCompactCmd d;
+    if (proto::decode(c.payload.data(), length, &d) != proto::ErrorCode::kOk) return false;
+    return proto::unpack_compact(d, s) == proto::ErrorCode::kOk;
+  }
+  return false;
+}
+
 size_t frame_bytes(const QueuedCommand& command) {
   return proto::kHeaderBytes + command.payload.size() + proto::kCrcBytes;
 }

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include "firmware/protocol/codec.h"
-#include "firmware/protocol/compact_spline.h"
 #include "host/lib/stream/job_encoder.h"
 
 namespace host {
@@ -67,17 +66,8 @@ core::Spline reassemble(const std::vector<QueuedCommand>& cmds) {
       s.rational = h.rational;
       s.control_count = h.control_count;
       s.knot_count = h.knot_count;
-    } else if (c.letter == proto::kCmdSplineData) {
-      proto::SplineDataCmd d;
-      EXPECT_EQ(proto::decode(c.payload.data(), static_cast<uint8_t>(c.payload.size()), &d),
-                proto::ErrorCode::kOk);
-      for (int i = 0; i < d.control_n; ++i) s.control[d.control_index + i] = d.control[i];
-      for (int i = 0; i < d.knot_n; ++i) s.knot[d.knot_index + i] = d.knot[i];
-    } else if (c.letter == proto::kCmdSplineCompact) {
-      proto::SplineCompactCmd d;
-      EXPECT_EQ(proto::decode(c.payload.data(), static_cast<uint8_t>(c.payload.size()), &d),
-                proto::ErrorCode::kOk);
-      EXPECT_EQ(proto::unpack_compact(d, &s), proto::ErrorCode::kOk);
+    } else if (is_spline_data(c.letter)) {
+      EXPECT_TRUE(add_spline_data(c, &s));
     }
   }
   return s;
@@ -136,6 +126,27 @@ TEST(JobEncoder, SplineSurvivesPackingAtASmallPayload) {
       expect_same_spline(spline, reassemble(cmds));
     }
   }
+}
+
+TEST(JobEncoder, SplineDataFramesAreKnownAndAMalformedOneIsNotAdded) {
+  EXPECT_TRUE(is_spline_data(proto::kCmdSplineData));
+  EXPECT_TRUE(is_spline_data(proto::kCmdSplineCompact));
+  EXPECT_FALSE(is_spline_data(proto::kCmdSplineHeader));
+  EXPECT_FALSE(is_spline_data(proto::kCmdFeedMove));
+  core::Spline s{};
+  s.degree = 1;
+  s.control_count = 2;
+  s.knot_count = 4;
+  QueuedCommand c;
+  c.letter = proto::kCmdSplineCompact;
+  c.payload = {0, 1, 0, 0, 0x02};  // y of the point missing
+  EXPECT_FALSE(add_spline_data(c, &s));
+  c.payload = {0, 1, 0, 0, 0x02, 0x04};
+  EXPECT_TRUE(add_spline_data(c, &s));
+  EXPECT_EQ(s.control[0].x_um, -1);
+  EXPECT_EQ(s.control[0].y_um, 2);
+  c.letter = proto::kCmdFeedMove;
+  EXPECT_FALSE(add_spline_data(c, &s));
 }
 
 TEST(JobEncoder, KnotSpanTooWideForACompactFrameGoesInAFullFrame) {
