@@ -37,14 +37,6 @@ struct EncodeOptions {
 // 100 mm) or, with options.controller, a target outside that controller's travel.
 std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& options);
 
-// True for the frames that fill the open spline (#D, #K): no queue slot and no job command
-// of their own on the controller.
-bool is_spline_data(uint8_t letter);
-// Adds the values of a #D or #K frame to s, as the controller's store does (s holds the
-// #B's degree, rationality and counts, and the values before this frame); false for any
-// other frame or one that does not decode.
-bool add_spline_data(const QueuedCommand& command, core::Spline* s);
-
 // Bytes one command takes on the wire as a frame (header + payload + CRC).
 size_t frame_bytes(const QueuedCommand& command);
 // Bytes the commands take on the wire as frames.

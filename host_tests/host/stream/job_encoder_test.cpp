@@ -4,6 +4,7 @@
 
 #include "firmware/protocol/codec.h"
 #include "host/lib/stream/job_encoder.h"
+#include "host/lib/stream/spline_frames.h"
 
 namespace host {
 namespace {
