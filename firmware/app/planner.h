@@ -45,6 +45,8 @@ class Planner {
  private:
   void fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount]);
   uint16_t corner_speed(const int16_t in_q14[3], const int16_t out_q14[3]) const;
+  uint16_t curve_speed(const int16_t in_q14[3], const int16_t out_q14[3], uint32_t in_um,
+                       uint32_t out_um) const;
   uint16_t capture_for(const int16_t in_q14[3], const int16_t out_q14[3]) const;
   void replan(CoordinateRing* ring);
 
@@ -53,6 +55,7 @@ class Planner {
   int32_t last_um_[config::kAxisCount];
   int16_t last_dir_q14_[config::kAxisCount];
   uint16_t last_cruise_um_s_;
+  uint32_t last_length_um_;  // of the last segment with a length (curve speed)
   bool have_dir_;
 };
 
