@@ -111,17 +111,26 @@ void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCo
   e->cruise_max_um_s = cruise;
 }
 
-// Corner speed: the chip ramps each axis at a, so a velocity step of |dv| leaves a path
-// error of at most |dv|^2 / 2a; |dv| = 2 v sin(theta/2) gives v^2 <= a e / (1 - cos theta).
+// Corner speed: the chip ramps each axis toward the new velocity, so a velocity step of |dv|
+// leaves a path error of at most |dv|^2 / 2a; |dv| = 2 v sin(theta/2) gives
+// v^2 <= a e / (1 - cos theta). Meanwhile the tick already speeds up along the new direction
+// at the planned a_p, whose part along the step (u2 - u1) / |u2 - u1| is a_p sin(theta/2):
+// the ramp absorbs the step at a = a_chip - a_p sin(theta/2) (a_chip on gentle turns, about
+// a_chip - a_p at a reversal, where the tool nearly stops and then speeds up).
 uint16_t Planner::corner_speed(const int16_t in_q14[3], const int16_t out_q14[3]) const {
   const int32_t omc_q14 = (int32_t)kOneQ14 - dot_q14(in_q14, out_q14);
   if (omc_q14 <= 0) return kMaxSpeed;
+  // sin(theta/2) = sqrt((1 - cos theta) / 2), Q14.
+  const uint32_t sin_half_q14 = core::isqrt32((uint32_t)omc_q14 << 13);
   uint32_t a_um_s2 = 0xFFFFFFFFUL;
   for (uint8_t i = 0; i < 3; ++i) {
     const bool moves = in_q14[i] > kInvolvedQ14 || in_q14[i] < -kInvolvedQ14 ||
                        out_q14[i] > kInvolvedQ14 || out_q14[i] < -kInvolvedQ14;
-    const uint32_t a = 1000UL * scaling_.chip_accel_um_s_per_ms[i];
-    if (moves && a < a_um_s2) a_um_s2 = a;
+    if (!moves) continue;
+    const uint32_t chip = scaling_.chip_accel_um_s_per_ms[i];
+    const uint32_t taken = (scaling_.plan_accel_um_s_per_ms[i] * sin_half_q14) >> 14;
+    const uint32_t a = 1000UL * (chip > taken ? chip - taken : 1);
+    if (a < a_um_s2) a_um_s2 = a;
   }
   if (a_um_s2 == 0xFFFFFFFFUL) return kMaxSpeed;
   const uint32_t q = a_um_s2 * settings_.corner_tolerance_um / (uint32_t)omc_q14;

@@ -54,9 +54,12 @@ TEST(Planner, RightAngleCornerSpeedKeepsTheRampErrorWithinFourMicrometres) {
   rig.planner.push(&rig.ring, a, 10000, 0, 0);
   rig.planner.push(&rig.ring, b, 10000, 0, 0);
   rig.planner.push(&rig.ring, c, 10000, 0, 0);
-  // v^2 <= a_chip * e / (1 - cos 90) with e = 4 um.
-  const double a_chip = rig.scaling.chip_accel_um_s_per_ms[0] * 1000.0;
-  EXPECT_NEAR(rig.ring.newest(1)->junction_max_um_s, std::sqrt(a_chip * 4.0), 15.0);
+  // v^2 <= a e / (1 - cos 90) with e = 4 um and a what the chip's ramp has left along the
+  // velocity step while the tick speeds up along the new direction: a_chip - a_plan sin 45.
+  const double a_spare = (rig.scaling.chip_accel_um_s_per_ms[0] -
+                          rig.scaling.plan_accel_um_s_per_ms[0] * std::sqrt(0.5)) *
+                         1000.0;
+  EXPECT_NEAR(rig.ring.newest(1)->junction_max_um_s, std::sqrt(a_spare * 4.0), 15.0);
 }
 
 // Points every L on a circle of radius R: each corner alone is gentle, but together they are
@@ -77,8 +80,9 @@ TEST(Planner, PointsOnATightCircleAreLimitedToTheCentripetalSpeed) {
     const double plan = rig.scaling.plan_accel_um_s_per_ms[0] * 1000.0;
     const double a_n = std::sqrt(chip * chip - plan * plan);
     // The chord's circle: L = 2 R sin(step / 2), R' = L / (2 sin(step / 2)) = R.
-    // Each corner alone: v^2 <= a_chip e / (1 - cos step), e = 4 um (the larger here).
-    const double v_corner = std::sqrt(chip * 4.0 / (1 - std::cos(step_rad)));
+    // Each corner alone: v^2 <= (a_chip - a_plan sin(step / 2)) e / (1 - cos step), e = 4 um.
+    const double a_corner = chip - plan * std::sin(step_rad / 2);
+    const double v_corner = std::sqrt(a_corner * 4.0 / (1 - std::cos(step_rad)));
     const double v_max = std::min(std::sqrt(a_n * radius_um), v_corner);
     ASSERT_LT(v_max, 0.95 * v_corner);  // the curve speed is what is tested
     // Points rounded to whole micrometres turn each chord by up to 1 um / L: at R = 100 um
