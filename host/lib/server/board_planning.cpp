@@ -47,25 +47,49 @@ LayerKind kind_from_key(const std::string& key) {
   throw std::runtime_error("board.json: unknown layer kind '" + key + "'");
 }
 
-pcb::BoardOptions board_options(const std::string& side, double tool_width_mm,
+pcb::BoardOptions board_options(const std::string& side, const BoardSettings& b,
                                 const JobPlanSettings& s, double work_w_mm, double work_h_mm) {
   pcb::BoardOptions o;
   o.side = side == "bottom" ? pcb::BoardSide::kBottom : pcb::BoardSide::kTop;
-  o.isolation.tool_width_mm = tool_width_mm;
+  o.isolation.tool_width_mm = b.tool_width_mm;
+  o.allow_narrow_gaps = b.allow_narrow_gaps;
   o.margin_mm = s.margin_mm;
   o.work_width_mm = work_w_mm;
   o.work_height_mm = work_h_mm;
   return o;
 }
 
+// The command line's words in the planner's advice, as the server's fields.
+std::string server_words(std::string text) {
+  const std::pair<const char*, const char*> words[] = {
+      {"--tool-width", "tool_width_mm"}, {"--allow-narrow-gaps", "allow_narrow_gaps=1"}};
+  for (const auto& [from, to] : words) {
+    const size_t at = text.find(from);
+    if (at != std::string::npos) text.replace(at, std::string(from).size(), to);
+  }
+  return text;
+}
+
 // The board planner's errors as the intake's: what cannot run is refused with the message.
+// A workshop job goes to whichever machine is free, so unlike `engraver send` it starts
+// with a pause (#P) naming the first tool: the operator mounts it and confirms.
 pcb::BoardJob plan(const pcb::BoardFileSet& set, const pcb::BoardOptions& o) {
   pcb::PcbLayer drill;
+  pcb::BoardJob job;
   try {
-    return pcb::plan_board(set.layers(&drill), o);
+    job = pcb::plan_board(set.layers(&drill), o);
   } catch (const pcb::CutoutError& e) {
     throw PlanError(e.what());
+  } catch (const PlanError& e) {
+    throw PlanError(server_words(e.what()));
   }
+  if (!job.report.first_tool.empty()) {
+    PlanStep mount;
+    mount.kind = PlanStep::kPause;
+    mount.text = job.report.first_tool;
+    job.plan.steps.insert(job.plan.steps.begin(), mount);
+  }
+  return job;
 }
 
 }  // namespace
@@ -152,11 +176,15 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
   if (side.empty()) side = set.copper_top.empty() && !set.copper_bottom.empty() ? "bottom" : "top";
 
   PlannedBoard out;
-  out.job = plan(set, board_options(side, board.tool_width_mm, settings, work_w_mm, work_h_mm));
+  out.job = plan(set, board_options(side, board, settings, work_w_mm, work_h_mm));
   const pcb::BoardReport& r = out.job.report;
+  nlohmann::json gaps = nlohmann::json::array();
+  for (const pcb::NarrowGap& g : r.narrow_gaps)
+    gaps.push_back(pcb::describe_gap(g, board.tool_width_mm));
   out.manifest = {{"board", board_name},
                   {"side", side},
                   {"tool_width_mm", board.tool_width_mm},
+                  {"allow_narrow_gaps", board.allow_narrow_gaps},
                   {"files", listed},
                   {"notes", notes},
                   {"report",
@@ -170,7 +198,8 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
                     {"drill_tools", r.drill_tools},
                     {"tabs", r.tabs},
                     {"cutout_length_mm", r.cutout_length_mm},
-                    {"tool_changes", r.tool_changes}}}};
+                    {"tool_changes", r.tool_changes},
+                    {"narrow_gaps", gaps}}}};
   out.files.emplace_back(kBoardManifest, out.manifest.dump(1) + "\n");
   out.files.insert(out.files.end(), layer_files.begin(), layer_files.end());
   return out;
@@ -193,9 +222,11 @@ pcb::BoardJob plan_board_folder(const fs::path& dir, const JobPlanSettings& sett
         throw ImportError(e.what());
       }
     }
+    BoardSettings b;
+    b.tool_width_mm = m.at("tool_width_mm").get<double>();
+    b.allow_narrow_gaps = m.value("allow_narrow_gaps", false);
     return plan(set,
-                board_options(m.at("side").get<std::string>(), m.at("tool_width_mm").get<double>(),
-                              settings, work_w_mm, work_h_mm));
+                board_options(m.at("side").get<std::string>(), b, settings, work_w_mm, work_h_mm));
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error((dir / kBoardManifest).string() + ": damaged: " + e.what());
   }

@@ -27,10 +27,12 @@ struct UploadFile {
 };
 
 // What a board job asks beyond JobPlanSettings (tol_mm and margin_mm apply to boards;
-// feeds are the board planner's: isolation 5, drilling 1, cut-out 3 mm/s).
+// feeds are the board planner's: isolation 5, drilling 1, cut-out 3 mm/s). Every board job
+// starts with a pause naming the first tool (the operator mounts it and confirms).
 struct BoardSettings {
   std::string side;  // "top", "bottom" or "" (the side whose copper is given)
   double tool_width_mm = 0.2;
+  bool allow_narrow_gaps = false;  // plan where copper is closer than the tool (reported)
 };
 // Why board settings are refused ("" when fine).
 std::string check_board_settings(const BoardSettings& s);

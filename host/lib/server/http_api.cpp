@@ -129,6 +129,14 @@ UploadFields upload_fields(const httplib::Request& req) {
   }
   field("tag", &u.sub.tag);
   field("side", &u.sub.board.side);
+  text.clear();
+  field("allow_narrow_gaps", &text);
+  if (text == "1" || text == "true" || text == "on") {
+    u.sub.board.allow_narrow_gaps = true;
+  } else if (!text.empty() && text != "0" && text != "false") {
+    u.error = "allow_narrow_gaps must be 1 or 0";
+    return u;
+  }
   struct NumberField {
     const char* key;
     double* value;

@@ -97,15 +97,18 @@ TEST(ServerBoards, BoardUploadedAsSeveralFilesRunsOnASimulatedMachineAndIsArchiv
   size_t drills = 0;
   for (const auto& s : plan["steps"]) drills += s["kind"] == "drill";
   EXPECT_EQ(drills, 3u);
+  // It starts with a pause naming the first tool: the operator mounts it and confirms.
+  EXPECT_EQ(plan["steps"][0]["kind"], "pause");
   EXPECT_NE(get("plot.svg").find("<svg"), std::string::npos);
   EXPECT_EQ(get("plot.png").substr(1, 3), "PNG");
   EXPECT_NE(get("machine.log").find("ended: completed"), std::string::npos);
   const nlohmann::json report = nlohmann::json::parse(get("report.json"));
   EXPECT_EQ(report["state"], "completed");
 
-  // The machine really made the board: two tool changes confirmed at the panel, the spindle
+  // The machine really made the board: the first tool and two tool changes confirmed at the
+  // panel, the spindle
   // switched, and the tool went down to the drill and cut-out depth (1.8 mm).
-  EXPECT_EQ(sim.machine().pauses_confirmed(), 2);
+  EXPECT_EQ(sim.machine().pauses_confirmed(), 3);
   EXPECT_GE(sim.machine().spindle_switches(), 2);
   double lowest_mm = 0;
   for (const auto& s : sim.machine().trace()) lowest_mm = std::min(lowest_mm, s.z_mm);
@@ -145,6 +148,32 @@ TEST(ServerBoards, BrokenBoardIsRefusedWithTheReadersMessageAndNothingIsStored) 
   EXPECT_TRUE(server.jobs().empty());
   EXPECT_EQ(files_under(dir.path() / "jobs"), 0u);
   EXPECT_EQ(files_under(dir.path() / "tmp"), 0u);
+}
+
+TEST(ServerBoards, NarrowGapsAreRefusedWithTheServersAdviceUnlessAllowed) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {});
+  // A 4.5 mm tool cannot pass between the track and the lone pad (4 mm apart).
+  httplib::MultipartFormDataItems form = blinky_form();
+  form.push_back({"tool_width_mm", "4.5", "", ""});
+  expect_refused(server.client().Post("/api/jobs", server.auth(), form), 422,
+                 "Use a narrower tool (tool_width_mm) or plan anyway (allow_narrow_gaps=1)");
+  EXPECT_TRUE(server.jobs().empty());
+  form.push_back({"allow_narrow_gaps", "maybe", "", ""});
+  expect_refused(server.client().Post("/api/jobs", server.auth(), form), 400, "allow_narrow_gaps");
+  form.back().content = "1";
+  auto r = server.client().Post("/api/jobs", server.auth(), form);
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 201) << r->body;
+  const int64_t id = nlohmann::json::parse(r->body)["id"];
+  auto g = server.client().Get(fmt::format("/api/jobs/{}/files/board.json", id).c_str());
+  ASSERT_TRUE(g && g->status == 200);
+  const nlohmann::json manifest = nlohmann::json::parse(g->body);
+  EXPECT_EQ(manifest["allow_narrow_gaps"], true);
+  EXPECT_DOUBLE_EQ(manifest["tool_width_mm"].get<double>(), 4.5);
+  ASSERT_FALSE(manifest["report"]["narrow_gaps"].empty());
+  EXPECT_NE(manifest["report"]["narrow_gaps"][0].get<std::string>().find("< tool 4.500 mm"),
+            std::string::npos);
 }
 
 TEST(ServerBoards, HostileFileNameInAMultiFileUploadIsRefusedAndNothingIsStored) {
