@@ -15,6 +15,7 @@
 #include "host/lib/plot/plot.h"
 #include "host/lib/server/board_bundle.h"
 #include "host/lib/server/job_planning.h"
+#include "host/lib/server/zip_upload.h"
 
 namespace host::server {
 
@@ -96,13 +97,15 @@ void JobIntake::stage_drawing(const Submission& sub, const fs::path& staging, Jo
 }
 
 void JobIntake::stage_board(const Submission& sub, const std::vector<UploadFile>& files,
-                            const fs::path& staging, JobRecord* job, std::string* stored) const {
+                            bool skip_other, const std::string* zip, const fs::path& staging,
+                            JobRecord* job, std::string* stored) const {
   double work_w = 0, work_h = 0;
   work_area(&work_w, &work_h);
-  const PlannedBoard b = plan_board_upload(files, sub.skip_other_files, job->name, sub.board,
-                                           sub.settings, work_w, work_h);
+  const PlannedBoard b =
+      plan_board_upload(files, skip_other, job->name, sub.board, sub.settings, work_w, work_h);
   job->input_file = kBoardManifest;
   for (const auto& [file, bytes] : b.files) write_file(staging / file, bytes);
+  if (zip != nullptr) write_file(staging / "input.zip", *zip);  // as it came, all files in it
   const JobPlan& plan = b.job.plan;
   // Holes and their travel reach as far as the cut paths: the extents of every step.
   double w = std::max(0.0, plan.extents_mm.max.x()), h = std::max(0.0, plan.extents_mm.max.y());
@@ -125,13 +128,41 @@ void JobIntake::stage_board(const Submission& sub, const std::vector<UploadFile>
 
 IntakeResult JobIntake::submit(const Submission& sub) {
   IntakeResult r;
-  // One file in name/content, or a board's files.
+  // One file in name/content, or a board's files, or a board as one zip file.
   std::vector<UploadFile> files = sub.files;
-  const bool several = !files.empty();
+  bool several = !files.empty();
   if (!several) files.push_back(UploadFile{sub.name, sub.content});
   bool board = several;
   for (const UploadFile& f : files) board = board || is_pcb_upload(f);
+  bool skip_other = sub.skip_other_files;
+  const std::string* zip = nullptr;
   std::string why;
+  for (const UploadFile& f : files) {
+    if (several && looks_like_zip(f.content)) {
+      why =
+          fmt::format("file '{}': a zip file is uploaded alone (it holds the whole board)", f.name);
+    }
+  }
+  if (!several && looks_like_zip(sub.content)) {
+    why = check_upload_name(sub.name);
+    if (why.empty() && sub.content.size() > max_bytes_) {
+      r.status = 413;
+      r.error = fmt::format("{}: {} bytes, more than the limit of {} bytes", sub.name,
+                            sub.content.size(), max_bytes_);
+      return r;
+    }
+    if (why.empty()) {
+      try {
+        files = unzip_upload(sub.content, sub.name, max_bytes_, 4 * kMaxFiles);
+      } catch (const ZipError& e) {
+        r.status = e.too_large() ? 413 : 422;
+        r.error = e.what();
+        return r;
+      }
+      zip = &sub.content;
+      several = board = skip_other = true;
+    }
+  }
   if (files.size() > kMaxFiles) {
     why = fmt::format("{} files in one upload; a board takes at most {}", files.size(), kMaxFiles);
   }
@@ -142,8 +173,9 @@ IntakeResult JobIntake::submit(const Submission& sub) {
   }
   std::vector<std::string> names;
   for (const UploadFile& f : files) names.push_back(f.name);
-  const std::string job_name =
+  std::string job_name =
       !several || !sub.name.empty() ? sub.name : pcb::board_name_from_files(names);
+  if (zip != nullptr) job_name = fs::path(sub.name).stem().string();  // "blinky" of blinky.zip
   if (why.empty() && several) why = check_upload_name(job_name);
   if (why.empty()) why = check_tag(sub.tag);
   if (why.empty()) why = check_settings(sub.settings);
@@ -178,7 +210,7 @@ IntakeResult JobIntake::submit(const Submission& sub) {
     job.settings = sub.settings;
     std::string stored;
     if (board) {
-      stage_board(sub, files, staging, &job, &stored);
+      stage_board(sub, files, skip_other, zip, staging, &job, &stored);
     } else {
       stage_drawing(sub, staging, &job, &stored);
     }

@@ -17,8 +17,9 @@
 namespace host::server {
 
 // One upload. A drawing is one file (name, content). A board is its Gerber/Excellon files
-// (copper, drill, outline): one such file in name/content, or several in `files` (then
-// `name` is the board's name, "" to take it from the files' names, and content is unused).
+// (copper, drill, outline): one such file in name/content, or one zip file holding them in
+// name/content, or several in `files` (then `name` is the board's name, "" to take it from
+// the files' names, and content is unused).
 struct Submission {
   std::string name;     // the file name the sender gave (display only)
   std::string content;  // the file's bytes
@@ -50,8 +51,10 @@ class JobIntake {
   // bytes the store keeps. Throws ImportError / PlanError with the message for the sender.
   void stage_drawing(const Submission& sub, const std::filesystem::path& staging, JobRecord* job,
                      std::string* stored) const;
-  void stage_board(const Submission& sub, const std::vector<UploadFile>& files,
-                   const std::filesystem::path& staging, JobRecord* job, std::string* stored) const;
+  // zip: the upload as it came when it was one zip file (kept as input.zip), else null.
+  void stage_board(const Submission& sub, const std::vector<UploadFile>& files, bool skip_other,
+                   const std::string* zip, const std::filesystem::path& staging, JobRecord* job,
+                   std::string* stored) const;
   void work_area(double* w_mm, double* h_mm) const;
 
   JobStore& store_;

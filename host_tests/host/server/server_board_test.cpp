@@ -12,6 +12,7 @@
 #include "host/lib/server/board_planning.h"
 #include "host/lib/server/inbox_watcher.h"
 #include "host/lib/server/job_planning.h"
+#include "host/lib/server/zip_upload.h"
 #include "host_tests/host/server/server_test_rig.h"
 
 namespace host::server {
@@ -205,6 +206,50 @@ TEST(ServerBoards, HostileFileNameInAMultiFileUploadIsRefusedAndNothingIsStored)
   EXPECT_FALSE(fs::exists(dir.path().parent_path() / "blinky-F.Cu.gbr"));
 }
 
+TEST(ServerBoards, BoardAsOneZipFileBecomesAJobAndZipTricksAreRefused) {
+  if (!zip_supported()) GTEST_SKIP() << "built without libzip";
+  test::TempDir dir;
+  ServerRig server(dir.path(), {}, 256 * 1024);
+  const std::string zip = board_file("blinky.zip");
+  auto r = server.upload("blinky.zip", zip);
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 201) << r->body;
+  const nlohmann::json job = nlohmann::json::parse(r->body);
+  EXPECT_EQ(job["name"], "blinky");
+  EXPECT_EQ(job["input_file"], "board.json");
+  auto get = [&](const std::string& file) {
+    auto g = server.client().Get(
+        fmt::format("/api/jobs/{}/files/{}", job["id"].get<int64_t>(), file).c_str());
+    EXPECT_TRUE(g && g->status == 200) << file;
+    return g && g->status == 200 ? g->body : std::string();
+  };
+  EXPECT_EQ(get("input.zip"), zip);  // the upload as it came
+  EXPECT_EQ(get("copper.top.gbr"), board_file("blinky-F.Cu.gbr"));
+  EXPECT_EQ(get("outline.gbr"), board_file("blinky-Edge.Cuts.gbr"));
+  const nlohmann::json manifest = nlohmann::json::parse(get("board.json"));
+  EXPECT_EQ(manifest["files"].size(), 3u);
+  EXPECT_EQ(manifest["files"][1]["name"], "blinky.drl");  // the entry's name, not its folder
+  ASSERT_EQ(manifest["notes"].size(), 1u);  // the .gbrjob; the __MACOSX entry is dropped
+  EXPECT_NE(manifest["notes"][0].get<std::string>().find("blinky-job.gbrjob"), std::string::npos);
+  const size_t stored = files_under(dir.path() / "jobs");
+
+  // Entries named to land elsewhere, a bomb, a damaged zip, a zip among other files.
+  expect_refused(server.upload("traversal.zip", board_file("traversal.zip")), 422,
+                 "entry '../../evil-F.Cu.gbr' points outside the zip");
+  expect_refused(server.upload("bomb.zip", board_file("bomb.zip")), 413,
+                 "bomb.zip: more than the limit of 262144 bytes once unpacked");
+  expect_refused(server.upload("cut.zip", zip.substr(0, zip.size() / 2)), 422,
+                 "cut.zip: not a readable zip file");
+  httplib::MultipartFormDataItems form = blinky_form();
+  form.push_back({"file", zip, "blinky.zip", "application/zip"});
+  expect_refused(server.client().Post("/api/jobs", server.auth(), form), 400, "uploaded alone");
+  EXPECT_EQ(server.jobs().size(), 1u);
+  EXPECT_EQ(files_under(dir.path() / "jobs"), stored);
+  EXPECT_EQ(files_under(dir.path() / "tmp"), 0u);
+  EXPECT_FALSE(fs::exists(dir.path().parent_path() / "evil-F.Cu.gbr"));
+  EXPECT_FALSE(fs::exists("/etc/evil.drl"));
+}
+
 TEST(ServerBoards, BoardFolderInTheInboxBecomesAJobOnceItStopsChanging) {
   test::TempDir dir;
   SimRig sim(false);
@@ -250,6 +295,16 @@ TEST(ServerBoards, BoardFolderInTheInboxBecomesAJobOnceItStopsChanging) {
   EXPECT_TRUE(fs::exists(inbox / "refused" / "broken" / "broken-F.Cu.gbr"));
   EXPECT_NE(read_file(inbox / "refused" / "broken.why.txt").find("broken-F.Cu.gbr:7: D42"),
             std::string::npos);
+
+  // A board as one zip file in the inbox.
+  if (!zip_supported()) return;
+  write_file(inbox / "zipped.zip", board_file("blinky.zip"));
+  watcher.scan();
+  watcher.scan();
+  ASSERT_EQ(server.jobs().size(), 2u);
+  EXPECT_EQ(server.jobs()[0]["name"], "zipped");
+  EXPECT_EQ(server.jobs()[0]["input_file"], "board.json");
+  EXPECT_FALSE(fs::exists(inbox / "zipped.zip"));
 }
 
 // What a shared store (PostgreSQL) keeps of each job: the bytes given to add().
