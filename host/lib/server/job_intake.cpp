@@ -163,7 +163,7 @@ IntakeResult JobIntake::submit(const Submission& sub) {
       several = board = skip_other = true;
     }
   }
-  if (files.size() > kMaxFiles) {
+  if (why.empty() && files.size() > kMaxFiles) {
     why = fmt::format("{} files in one upload; a board takes at most {}", files.size(), kMaxFiles);
   }
   for (const UploadFile& f : files) {
