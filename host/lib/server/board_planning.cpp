@@ -168,9 +168,12 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
         {{"file", file}, {"kind", kind_key(kind)}, {"name", f.name}, {"bytes", f.content.size()}});
   }
   if (set.empty()) {
-    throw ImportError(board_name +
-                      ": no copper, drill or outline layer among the files (Gerber RS-274X "
-                      "and Excellon, named as KiCad or the usual extensions name them)");
+    std::string msg = board_name +
+                      ": no copper, drill or outline layer among the files; a Gerber says "
+                      "which it is by its X2 attributes or its name (KiCad's -F.Cu, -B.Cu, "
+                      "-Edge.Cuts; .GTL, .GBL, .GKO; .DRL for Excellon)";
+    for (const auto& n : notes) msg += "\n  " + n.get<std::string>();
+    throw ImportError(msg);
   }
   std::string side = board.side;
   if (side.empty()) side = set.copper_top.empty() && !set.copper_bottom.empty() ? "bottom" : "top";

@@ -135,6 +135,12 @@ TEST(ServerBoards, BrokenBoardIsRefusedWithTheReadersMessageAndNothingIsStored) 
   form = blinky_form();
   form.push_back({"file", board_file("blinky-F.Cu.gbr"), "copy-F.Cu.gbr", ""});
   expect_refused(server.client().Post("/api/jobs", server.auth(), form), 422, "copy-F.Cu.gbr");
+  // A Gerber whose name and attributes do not say which layer it is.
+  expect_refused(server.upload("board.gbr", board_file("blinky-F.Cu.gbr")), 422,
+                 "board.gbr: no copper, drill or outline layer among the files; a Gerber says "
+                 "which it is by its X2 attributes or its name (KiCad's -F.Cu");
+  expect_refused(server.upload("board.gbr", board_file("blinky-F.Cu.gbr")), 422,
+                 "\n  board.gbr: not a copper, drill or outline layer");
   // Settings a board cannot take.
   form = blinky_form();
   form.push_back({"side", "left", "", ""});
