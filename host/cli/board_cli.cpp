@@ -464,6 +464,14 @@ const CommandRegistrar registrar("board", add_board_command);
 
 }  // namespace
 
+std::string input_name(const std::string& input) {
+  std::string s = input;
+  for (const char* side : {"top:", "bottom:"}) {
+    if (s.rfind(side, 0) == 0) s = s.substr(std::string(side).size());
+  }
+  return board_name(s.substr(0, s.find(',')));
+}
+
 void add_board_options(CLI::App* cmd, BoardArgs* a) {
   const std::string g = "PCB boards";
   cmd->add_option("--tool-width", a->tool_width_mm, "isolation: V-bit width at the depth, mm")
