@@ -1,4 +1,4 @@
-// Job plan -> queued protocol commands (#S #U #Z #F #G #B #D #P #W #N #L), using the shared
+// Job plan -> queued protocol commands (#J #S #U #Z #F #G #B #D #P #W #N #L), using the shared
 // codecs.
 #include "host/lib/stream/job_encoder.h"
 
@@ -142,6 +142,8 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
     throw PlanError(fmt::format("controller payload {} bytes is too small", options.max_payload));
   }
   std::vector<QueuedCommand> out;
+  // Job numbering from here (the controller reports progress by it; send --resume).
+  out.push_back(make(proto::JobMarkCmd{0, 0}, -1, -1));
   if (!options.title.empty()) {
     proto::TextCmd text{};
     text.row = 0;

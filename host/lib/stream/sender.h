@@ -70,6 +70,8 @@ class Sender {
 
   // #I until *I answers (or throws LinkError). Returns the controller's capabilities.
   proto::SessionReply open_session();
+  // One status query and its reply (throws LinkError if none comes).
+  proto::StatusReply read_status();
   // Sends every command and waits until they have run. on_progress is called at each status.
   JobOutcome run(const std::vector<QueuedCommand>& commands,
                  const std::function<void(const Progress&)>& on_progress);
