@@ -220,6 +220,8 @@ void Application::tick_publish(const int32_t pos[config::kAxisCount], uint8_t li
   s.items_done = tick_.path.items_done();
   s.item_points = tick_.path.item_points();
   s.item_started = tick_.path.item_started() ? 1 : 0;
+  s.stopped_points = tick_.path.stopped_points();
+  s.stopped_started = tick_.path.stopped_started() ? 1 : 0;
   s.speed_um_s = tick_.path.speed_um_s();
   s.mode = tick_.mode;
   s.alarm = tick_.alarm;
@@ -285,7 +287,7 @@ void Application::take_snapshots() {
 void Application::follow_tick_events() {
   // A completed stop (abort, session reset, alarm cleared): everything the ring held is gone.
   if (latest_.stops_done != seen_stops_) {
-    track_dropped_job();  // the deceleration is over: where the dropped job really ended
+    track_dropped_job(true);  // the stop is complete: where the dropped job really ended
     job_.dropped = false;
     seen_stops_ = latest_.stops_done;
     if (!stop_request_owed_) stopping_ = false;
@@ -301,7 +303,7 @@ void Application::follow_tick_events() {
     }
     track_job();
   } else {
-    track_dropped_job();
+    track_dropped_job(false);
   }
   if (latest_.jogs_done != seen_jogs_) {
     seen_jogs_ = latest_.jogs_done;
@@ -354,7 +356,7 @@ void Application::finish_oldest() {
 // on (the commands before it finished); the tick says how many of its curve points it reached.
 void Application::track_job() {
   const QueueItem* item = queue_.oldest();
-  if (item == 0 || queue_.in_flight() == 0 || item->job_index == kNotInJob) return;
+  if (item == 0 || item->job_index == kNotInJob) return;
   job_.index = item->job_index;
   job_.item_first = item->kind == ItemKind::kSpline ? item->spline.first_point : 0;
   job_.point = (uint16_t)(job_.item_first + latest_.item_points);
@@ -364,22 +366,23 @@ void Application::track_job() {
 // After a drop the queue is gone but the tick decelerates along the path and may still reach
 // points, even finish commands: follow it until the stop is complete. Commands after a
 // numbered one are numbered consecutively, and none but a resumed spline starts past point 0.
-void Application::track_dropped_job() {
+// stopped: the tick has dropped its ring (its stopped_ values are the final ones).
+void Application::track_dropped_job(bool stopped) {
   if (!job_.dropped) return;
   const uint16_t finished = (uint16_t)(latest_.items_done - job_.items_at_drop);
   if (finished != 0) {
     job_.index = job_.index_at_drop + finished;
     job_.item_first = 0;
   }
-  job_.point = (uint16_t)(job_.item_first + latest_.item_points);
-  job_.started = latest_.item_started != 0;
+  job_.point =
+      (uint16_t)(job_.item_first + (stopped ? latest_.stopped_points : latest_.item_points));
+  job_.started = (stopped ? latest_.stopped_started : latest_.item_started) != 0;
 }
 
 // Forgets the queued work (the ring is dropped by the tick's stop).
 void Application::drop_job() {
   const QueueItem* oldest = queue_.oldest();
-  if (!stopping_ && !job_.dropped && oldest != 0 && queue_.in_flight() != 0 &&
-      oldest->job_index != kNotInJob) {
+  if (!stopping_ && !job_.dropped && oldest != 0 && oldest->job_index != kNotInJob) {
     track_job();
     job_.dropped = true;
     job_.items_at_drop = seen_items_;

@@ -156,7 +156,7 @@ class Application {
   void watchdog();
   void update_screen();
   void track_job();
-  void track_dropped_job();
+  void track_dropped_job(bool stopped);
 
   Board board_;
   ApplicationSink sink_;

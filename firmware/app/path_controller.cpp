@@ -31,7 +31,8 @@ PathController::PathController()
       items_done_(0),
       item_points_(0),
       item_started_(false),
-      new_item_(true),
+      stopped_points_(0),
+      stopped_started_(false),
       override_q8_(256),
       override_percent_(100),
       have_target_(false),
@@ -60,7 +61,10 @@ void PathController::set_override_percent(uint8_t percent) {
 
 void PathController::flush(CoordinateRing* ring) {
   ring->clear();
-  new_item_ = true;
+  stopped_points_ = item_points_;  // where the dropped item got to, for the status
+  stopped_started_ = item_started_;
+  item_points_ = 0;
+  item_started_ = false;
   have_target_ = false;
   arrived_ = false;
   speed_um_s_ = 0;
@@ -74,8 +78,6 @@ void PathController::stop_now() {
 // cur_ was just popped from the ring: it is the target now (in microsteps already: the
 // planner converted it in the background).
 void PathController::take_popped() {
-  if (new_item_) item_points_ = 0;
-  new_item_ = false;
   item_started_ = true;
   have_target_ = true;
   arrived_ = false;

@@ -59,22 +59,22 @@ int main() {
   show(d2, 8, "#D seq 8: no control points (control_index 4: all stored), knots 4..7 = 1000");
   show(proto::ZeroingCmd{7}, 9, "#M seq 9: zero X, Y and Z with the joystick");
   show(proto::StatusCmd{}, 10, "#? seq 10: status query");
-  proto::StatusReply s = {proto::MachineState::kRunning,
-                          proto::Alarm::kNone,
-                          proto::kStatusZeroed | proto::kStatusSession | proto::kStatusJob |
-                              proto::kStatusJobStarted,
-                          100,
-                          12,
-                          10,
-                          5,
-                          proto::ErrorCode::kOk,
-                          12000,
-                          -3500,
-                          -200,
-                          0,
-                          1,
-                          7,
-                          18};
+  proto::StatusReply s = {
+      proto::MachineState::kRunning,
+      proto::Alarm::kNone,
+      proto::kStatusZeroed | proto::kStatusSession | proto::kStatusJob | proto::kStatusJobStarted,
+      100,
+      12,
+      10,
+      5,
+      proto::ErrorCode::kOk,
+      12000,
+      -3500,
+      -200,
+      0,
+      1,
+      7,
+      18};
   show(s, 10,
        "*? seq 10: running, zeroed, session open, 100 %, 12 free, expects 10, "
        "done 5, at (12, -3.5, -0.2) mm, 1 spline slot free, job command 7 under way "

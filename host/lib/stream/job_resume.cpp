@@ -65,7 +65,7 @@ std::vector<QueuedCommand> resume_commands(const std::vector<QueuedCommand>& job
 
   // What the job had set up before `from`: resolution, spindle, the tool's height.
   const QueuedCommand* resolution = nullptr;
-  size_t spindle_at = job.size();  // the #N that switched the spindle on, if it is still on
+  size_t spindle_at = job.size();         // the #N that switched the spindle on, if it is still on
   const QueuedCommand* height = nullptr;  // the newest #Z or #L before `from`
   int32_t travel_z_um = INT32_MIN;        // the job's pen-up height: its highest #Z
   for (size_t i = 0; i < job.size(); ++i) {
@@ -74,7 +74,8 @@ std::vector<QueuedCommand> resume_commands(const std::vector<QueuedCommand>& job
       travel_z_um = std::max(travel_z_um, decoded<proto::ZMoveCmd>(c).z_um);
     if (i >= from) continue;
     if (c.letter == proto::kCmdResolution) resolution = &c;
-    if (c.letter == proto::kCmdSpindle) spindle_at = decoded<proto::SpindleCmd>(c).on ? i : job.size();
+    if (c.letter == proto::kCmdSpindle)
+      spindle_at = decoded<proto::SpindleCmd>(c).on ? i : job.size();
     if (c.letter == proto::kCmdZMove || c.letter == proto::kCmdDrill) height = &c;
   }
   if (resolution != nullptr) out.push_back(*resolution);
@@ -106,9 +107,9 @@ std::string describe_resume_point(const std::vector<QueuedCommand>& job, const R
   if (from >= job.size())
     return fmt::format("job command {} of {}: the job has finished", at.job_index, total);
   const QueuedCommand& c = job[from];
-  std::string s = fmt::format("job command {} of {} ('{}' {}", at.job_index, total,
-                              static_cast<char>(c.letter),
-                              proto::message_name(proto::kCommandStart, c.letter));
+  std::string s =
+      fmt::format("job command {} of {} ('{}' {}", at.job_index, total, static_cast<char>(c.letter),
+                  proto::message_name(proto::kCommandStart, c.letter));
   if (c.step >= 0) s += fmt::format(", plan step {}", c.step);
   if (c.curve >= 0) s += fmt::format(", curve {}", c.curve);
   s += ")";

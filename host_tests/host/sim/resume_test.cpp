@@ -1,0 +1,269 @@
+// send --resume on the simulated machine: a job whose link is cut (or that is aborted) in the
+// middle of a curve, continued from the controller's status, cuts the same path as a run that
+// was never interrupted, and cuts no part of it twice. In lockstep (SimLink): deterministic.
+#include <gtest/gtest.h>
+
+#include <algorithm>  // std::min, std::max
+#include <cmath>      // std::hypot, std::floor
+#include <cstdio>     // std::printf
+#include <map>        // std::map
+#include <optional>   // std::optional
+#include <utility>    // std::pair
+
+#include "firmware/protocol/codec.h"  // proto::decode
+#include "host/lib/sim/sim_job.h"
+#include "host/lib/sim/sim_link.h"
+#include "host/lib/stream/job_encoder.h"
+#include "host/lib/stream/job_resume.h"
+#include "host/lib/stream/sender.h"
+#include "host_tests/host/sim/sim_test_jobs.h"
+
+namespace host {
+namespace {
+
+using sim::SimLink;
+using sim::SimMachine;
+using sim::ToolSample;
+
+// The cut path: pen-down trace segments (X/Y in mm) and their total length.
+struct CutPath {
+  struct Seg {
+    double x0, y0, x1, y1;
+  };
+  std::vector<Seg> segs;
+  double length_mm = 0;
+};
+
+CutPath cut_path(const std::vector<ToolSample>& trace, const JobPlan& plan) {
+  const std::vector<bool> down = sim::pen_down_samples(trace, plan);
+  CutPath p;
+  for (size_t i = 1; i < trace.size(); ++i) {
+    if (!down[i] || !down[i - 1]) continue;
+    const CutPath::Seg s{trace[i - 1].x_mm, trace[i - 1].y_mm, trace[i].x_mm, trace[i].y_mm};
+    const double len = std::hypot(s.x1 - s.x0, s.y1 - s.y0);
+    if (len == 0) continue;
+    p.segs.push_back(s);
+    p.length_mm += len;
+  }
+  return p;
+}
+
+double point_segment_mm(double x, double y, const CutPath::Seg& s) {
+  const double dx = s.x1 - s.x0, dy = s.y1 - s.y0;
+  const double l2 = dx * dx + dy * dy;
+  double t = l2 > 0 ? ((x - s.x0) * dx + (y - s.y0) * dy) / l2 : 0;
+  t = std::min(1.0, std::max(0.0, t));
+  return std::hypot(x - (s.x0 + t * dx), y - (s.y0 + t * dy));
+}
+
+// Largest distance from a point of `a` (segment ends) to the path `b` (a 1 mm grid of b's
+// segments keeps this linear).
+double max_distance_mm(const CutPath& a, const CutPath& b) {
+  std::map<std::pair<int, int>, std::vector<size_t>> grid;
+  for (size_t i = 0; i < b.segs.size(); ++i) {
+    const CutPath::Seg& s = b.segs[i];
+    for (int gx = int(std::floor(std::min(s.x0, s.x1)));
+         gx <= int(std::floor(std::max(s.x0, s.x1))); ++gx)
+      for (int gy = int(std::floor(std::min(s.y0, s.y1)));
+           gy <= int(std::floor(std::max(s.y0, s.y1))); ++gy)
+        grid[{gx, gy}].push_back(i);
+  }
+  double worst = 0;
+  for (const CutPath::Seg& s : a.segs) {
+    for (const auto& [x, y] : {std::pair{s.x0, s.y0}, std::pair{s.x1, s.y1}}) {
+      double best = 1e9;
+      const int gx = int(std::floor(x)), gy = int(std::floor(y));
+      for (int ix = gx - 1; ix <= gx + 1; ++ix)
+        for (int iy = gy - 1; iy <= gy + 1; ++iy) {
+          auto it = grid.find({ix, iy});
+          if (it == grid.end()) continue;
+          for (size_t k : it->second) best = std::min(best, point_segment_mm(x, y, b.segs[k]));
+        }
+      worst = std::max(worst, best);
+    }
+  }
+  return worst;
+}
+
+SenderOptions lockstep(SimMachine& m) {
+  SenderOptions o;
+  o.clock = [&m] { return sim::machine_clock(m); };
+  o.status_interval = std::chrono::milliseconds(50);
+  return o;
+}
+
+std::vector<QueuedCommand> encode_for(const JobPlan& plan, const proto::SessionReply& caps) {
+  EncodeOptions enc;
+  enc.max_payload = caps.max_payload;
+  enc.controller = &caps;
+  return encode_job(plan, enc);
+}
+
+JobPlan test_plan() {
+  return test::plan_of(test::drawing_of(
+      {test::circle_curve(20, 20, 10), test::s_curve(40, 20), test::circle_curve(75, 20, 8)}));
+}
+
+std::vector<ToolSample> uninterrupted(const JobPlan& plan) {
+  SimMachine m{sim::SimOptions{}};
+  SimLink link(m);
+  Sender s(link, lockstep(m));
+  const auto cmds = encode_for(plan, s.open_session());
+  EXPECT_EQ(s.run(cmds, nullptr), JobOutcome::kCompleted) << s.message();
+  return m.trace();
+}
+
+enum class Cut { kLinkLost, kAbort };
+
+struct Interrupted {
+  std::vector<ToolSample> trace;
+  ResumePoint at;
+  size_t resume_commands = 0;
+};
+
+// Runs the job until the tool is on the given curve (job command), cuts it off, then resumes
+// with a new sender as `send --resume` does.
+Interrupted interrupted(const JobPlan& plan, int nth_spline, Cut how, int min_point) {
+  Interrupted r;
+  SimMachine m{sim::SimOptions{}};
+  std::vector<QueuedCommand> cmds;
+  {
+    SimLink link(m);
+    Sender s(link, lockstep(m));
+    cmds = encode_for(plan, s.open_session());
+    // Job index of the nth #B.
+    int32_t index = -1, n = 0, job = 0;
+    for (const QueuedCommand& c : cmds) {
+      if (c.letter == proto::kCmdSplineHeader && n++ == nth_spline) index = job;
+      if (c.letter != proto::kCmdSplineData && c.letter != proto::kCmdJobMark) ++job;
+    }
+    try {
+      const JobOutcome o = s.run(cmds, [&](const Progress& p) {
+        if ((p.status.flags & proto::kStatusJob) && p.status.job_index == index &&
+            p.status.curve_point >= min_point) {
+          if (how == Cut::kLinkLost) throw LinkError("test: link cut");
+          s.request_abort();
+        }
+      });
+      if (how == Cut::kLinkLost) ADD_FAILURE() << "the job ended before the cut: " << s.message();
+      EXPECT_EQ(o, JobOutcome::kAborted);
+    } catch (const LinkError&) {
+    }
+  }
+  // Nobody talks to the machine: it cuts on until its link watchdog holds it (2 s).
+  for (int ms = 0; ms < 4000; ++ms) m.step_ms();
+
+  SimLink link(m);
+  Sender s(link, lockstep(m));
+  s.open_session();
+  const std::optional<ResumePoint> at = resume_point_of(s.read_status());
+  EXPECT_TRUE(at.has_value());
+  if (!at) return r;
+  r.at = *at;
+  std::printf("resume at %s; tool at (%.3f, %.3f, %.3f) mm\n",
+              describe_resume_point(cmds, *at).c_str(), at->x_um / 1000.0, at->y_um / 1000.0,
+              at->z_um / 1000.0);
+  const auto rest = resume_commands(cmds, *at, EncodeOptions{});
+  r.resume_commands = rest.size();
+  EXPECT_EQ(s.run(rest, nullptr), JobOutcome::kCompleted) << s.message();
+  r.trace = m.trace();
+  return r;
+}
+
+void expect_same_cut(const JobPlan& plan, const std::vector<ToolSample>& reference,
+                     const Interrupted& run) {
+  const CutPath ref = cut_path(reference, plan);
+  const CutPath got = cut_path(run.trace, plan);
+  ASSERT_GT(ref.length_mm, 100.0);
+  const double off_mm = max_distance_mm(got, ref);
+  const double missed_mm = max_distance_mm(ref, got);
+  std::printf(
+      "cut %.4f mm (uninterrupted %.4f mm); farthest from the uninterrupted path %.4f mm, "
+      "uncut %.4f mm\n",
+      got.length_mm, ref.length_mm, off_mm, missed_mm);
+  // Every point cut lies on the uninterrupted path, and the whole path was cut.
+  EXPECT_LT(off_mm, 0.010);
+  EXPECT_LT(missed_mm, 0.010);
+  // Nothing twice: a stretch cut again would add its length.
+  EXPECT_NEAR(got.length_mm, ref.length_mm, 0.02);
+}
+
+TEST(SendResume, LinkCutMidCurveResumesAtTheCurvePointAndCutsTheSamePath) {
+  const JobPlan plan = test_plan();
+  const auto reference = uninterrupted(plan);
+  const Interrupted run = interrupted(plan, 0, Cut::kLinkLost, 3);
+  // The watchdog held the job part way round the first circle: cut short, mid-curve.
+  EXPECT_TRUE(run.at.started);
+  EXPECT_GT(run.at.curve_point, 3);
+  expect_same_cut(plan, reference, run);
+}
+
+TEST(SendResume, AbortMidCurveResumesAndCutsTheSamePath) {
+  const JobPlan plan = test_plan();
+  const auto reference = uninterrupted(plan);
+  const Interrupted run = interrupted(plan, 1, Cut::kAbort, 10);
+  EXPECT_TRUE(run.at.started);
+  EXPECT_GE(run.at.curve_point, 10);
+  expect_same_cut(plan, reference, run);
+}
+
+// A restarted controller remembers nothing: no job progress in its status, so send --resume
+// has nothing to go on (the user resumes with --resume-at from the last status line).
+TEST(SendResume, ARestartedControllerReportsNoJobProgress) {
+  const JobPlan plan = test_plan();
+  SimMachine first{sim::SimOptions{}};
+  {
+    SimLink link(first);
+    Sender s(link, lockstep(first));
+    const auto cmds = encode_for(plan, s.open_session());
+    try {
+      s.run(cmds, [&](const Progress& p) {
+        if ((p.status.flags & proto::kStatusJobStarted) && p.status.job_index >= 4)
+          throw LinkError("test: power cut");
+      });
+    } catch (const LinkError&) {
+    }
+    EXPECT_TRUE(resume_point_of(s.read_status()).has_value());
+  }
+  SimMachine restarted{sim::SimOptions{}};  // the same machine after a power cycle
+  SimLink link(restarted);
+  Sender s(link, lockstep(restarted));
+  s.open_session();
+  const proto::StatusReply st = s.read_status();
+  EXPECT_FALSE(resume_point_of(st).has_value());
+  EXPECT_EQ(st.flags & proto::kStatusZeroed, 0);
+}
+
+TEST(SendResume, ResumeStreamLiftsTravelsPlungesThenMarksAndSendsTheRest) {
+  const JobPlan plan = test_plan();
+  const auto cmds = encode_job(plan, EncodeOptions{});
+  const size_t b = command_of_job_index(cmds, 4);
+  ASSERT_EQ(cmds[b].letter, proto::kCmdSplineHeader);
+  ResumePoint at;
+  at.job_index = 4;
+  at.curve_point = 17;
+  at.started = true;
+  at.x_um = 12345;
+  at.y_um = 23456;
+  at.z_um = -100;
+  const auto rest = resume_commands(cmds, at, EncodeOptions{});
+  std::string letters;
+  for (const auto& c : rest) letters += static_cast<char>(c.letter);
+  ASSERT_GE(letters.size(), 6u);
+  EXPECT_EQ(letters.substr(0, 6), "UZFZJB");
+  proto::RapidMoveCmd f{};
+  proto::decode(rest[2].payload.data(), static_cast<uint8_t>(rest[2].payload.size()), &f);
+  EXPECT_EQ(f.x_um, 12345);
+  EXPECT_EQ(f.y_um, 23456);
+  proto::JobMarkCmd j{};
+  proto::decode(rest[4].payload.data(), static_cast<uint8_t>(rest[4].payload.size()), &j);
+  EXPECT_EQ(j.job_index, 4);
+  EXPECT_EQ(j.first_point, 17);
+  EXPECT_EQ(rest.size() - 5, cmds.size() - b);  // the rest of the job, unchanged
+  // Past the end: nothing to do.
+  at.job_index = 1000;
+  EXPECT_TRUE(resume_commands(cmds, at, EncodeOptions{}).empty());
+}
+
+}  // namespace
+}  // namespace host
