@@ -3,7 +3,9 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include "firmware/protocol/codec.h"  // proto::encode, proto::decode
+#include "firmware/core/curve_walker.h"     // kDefaultChordToleranceUm
+#include "firmware/protocol/codec.h"        // proto::encode, proto::decode
+#include "host/lib/plan/firmware_points.h"  // firmware_points_um
 
 namespace host {
 
@@ -33,7 +35,94 @@ Msg decoded(const QueuedCommand& c) {
   return m;
 }
 
+// The spline a #B at job[b] and its #D frames carry, and the #B's tool offset.
+core::Spline spline_at(const std::vector<QueuedCommand>& job, size_t b, int32_t* offset_um) {
+  const proto::SplineHeaderCmd h = decoded<proto::SplineHeaderCmd>(job[b]);
+  core::Spline sp{};
+  sp.degree = h.degree;
+  sp.rational = h.rational;
+  sp.control_count = h.control_count;
+  sp.knot_count = h.knot_count;
+  *offset_um = h.tool_offset_um;
+  for (size_t i = b + 1; i < job.size() && job[i].letter == proto::kCmdSplineData; ++i) {
+    const proto::SplineDataCmd d = decoded<proto::SplineDataCmd>(job[i]);
+    for (unsigned k = 0; k < d.control_n && d.control_index + k < core::kMaxControlPoints; ++k)
+      sp.control[d.control_index + k] = d.control[k];
+    for (unsigned k = 0; k < d.knot_n && d.knot_index + k < core::kMaxKnots; ++k)
+      sp.knot[d.knot_index + k] = d.knot[k];
+  }
+  return sp;
+}
+
+// The curve points the controller walks for the #B at job[b] (its #U chord tolerance).
+std::vector<core::PointUm> curve_points(const std::vector<QueuedCommand>& job, size_t b) {
+  int tolerance_um = core::kDefaultChordToleranceUm;
+  for (size_t i = 0; i < b; ++i) {
+    if (job[i].letter == proto::kCmdResolution)
+      tolerance_um = decoded<proto::ResolutionCmd>(job[i]).chord_tolerance_um;
+  }
+  int32_t offset_um = 0;
+  const core::Spline sp = spline_at(job, b, &offset_um);
+  return firmware_points_um({sp}, tolerance_um, offset_um);
+}
+
 }  // namespace
+
+ResumePoint resume_point_at(const std::vector<QueuedCommand>& job, int32_t job_index,
+                            uint16_t curve_point, int32_t tool_z_um) {
+  const size_t from = command_of_job_index(job, job_index);
+  if (from >= job.size())
+    throw PlanError(
+        fmt::format("resume at job command {}: the job has no such command", job_index));
+  ResumePoint at;
+  at.job_index = job_index;
+  at.curve_point = curve_point;
+  at.started = curve_point > 0;
+  at.z_um = tool_z_um;
+  if (job[from].letter == proto::kCmdSplineHeader && curve_point > 0) {
+    const std::vector<core::PointUm> points = curve_points(job, from);
+    if (curve_point >= points.size()) {
+      throw PlanError(fmt::format("resume at job command {}: its curve has {} points, not {}",
+                                  job_index, points.size(), curve_point + 1));
+    }
+    // From the last point reached: the chord to curve_point is cut whole.
+    at.curve_point = static_cast<uint16_t>(curve_point - 1);
+    at.x_um = points[curve_point - 1].x_um;
+    at.y_um = points[curve_point - 1].y_um;
+    return at;
+  }
+  at.curve_point = 0;
+  // Where the previous move of the job ended (plans start at the zero point).
+  size_t last_move = job.size();
+  for (size_t i = 0; i < from; ++i) {
+    const uint8_t l = job[i].letter;
+    if (l == proto::kCmdRapidMove || l == proto::kCmdFeedMove || l == proto::kCmdDrill ||
+        l == proto::kCmdSplineHeader)
+      last_move = i;
+  }
+  if (last_move == job.size()) return at;
+  const QueuedCommand& c = job[last_move];
+  if (c.letter == proto::kCmdRapidMove) {
+    const auto m = decoded<proto::RapidMoveCmd>(c);
+    at.x_um = m.x_um;
+    at.y_um = m.y_um;
+  } else if (c.letter == proto::kCmdFeedMove) {
+    const auto m = decoded<proto::FeedMoveCmd>(c);
+    at.x_um = m.x_um;
+    at.y_um = m.y_um;
+  } else if (c.letter == proto::kCmdDrill) {
+    const auto m = decoded<proto::DrillCmd>(c);
+    at.x_um = m.x_um;
+    at.y_um = m.y_um;
+  } else {
+    const std::vector<core::PointUm> points = curve_points(job, last_move);
+    if (!points.empty()) {
+      at.x_um = points.back().x_um;
+      at.y_um = points.back().y_um;
+    }
+  }
+  return at;
+}
 
 std::optional<ResumePoint> resume_point_of(const proto::StatusReply& status) {
   if (!(status.flags & proto::kStatusJob)) return std::nullopt;
@@ -79,7 +168,9 @@ std::vector<QueuedCommand> resume_commands(const std::vector<QueuedCommand>& job
     if (c.letter == proto::kCmdZMove || c.letter == proto::kCmdDrill) height = &c;
   }
   if (resolution != nullptr) out.push_back(*resolution);
-  if (travel_z_um != INT32_MIN && at.z_um < travel_z_um) {
+  // Always to the travel height, also from above it (after a restart Z is unknown until the
+  // zeroing, which runs before this stream: never travel in X/Y at an unknown height).
+  if (travel_z_um != INT32_MIN) {
     out.push_back(command_of(proto::ZMoveCmd{travel_z_um, options.z_rapid_um_per_s}));
   }
   out.push_back(command_of(proto::RapidMoveCmd{at.x_um, at.y_um}));

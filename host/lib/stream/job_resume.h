@@ -33,7 +33,7 @@ std::optional<ResumePoint> resume_point_of(const proto::StatusReply& status);
 size_t command_of_job_index(const std::vector<QueuedCommand>& job, int32_t job_index);
 
 // The stream that continues `job` (encode_job's output, which starts with #J 0) from `at`:
-//   #U as the job set it; #Z up to the job's travel height (unless the tool is above it);
+//   #U as the job set it; #Z to the job's travel height (its highest #Z);
 //   #F to where the tool stands; the spindle on again (#N 1 and the dwells after it) if the
 //   job had it on there; #Z down to the job's depth there at its plunge feed (if the pen was
 //   down); #J job_index first_point; then the job's commands from job_index on.
@@ -45,6 +45,15 @@ size_t command_of_job_index(const std::vector<QueuedCommand>& job, int32_t job_i
 // Empty when nothing is left to do.
 std::vector<QueuedCommand> resume_commands(const std::vector<QueuedCommand>& job,
                                            const ResumePoint& at, const EncodeOptions& options);
+
+// A resume point the user gives (after a controller restart, from the last progress line):
+// job command job_index, from curve point curve_point if it is a spline. The tool is taken to
+// where the job stood there: for a spline from a curve point > 0, that curve point - 1 (the
+// last one reached; computed with the controller's own curve walker), else the end of the
+// job's previous move. tool_z_um: where the tool stands now (the prefix lifts it first).
+// Throws PlanError when job_index is not a job command or the point is past the curve's end.
+ResumePoint resume_point_at(const std::vector<QueuedCommand>& job, int32_t job_index,
+                            uint16_t curve_point, int32_t tool_z_um);
 
 // "job command 12 of 40 (plan step 7, curve 3), curve point 18" for messages.
 std::string describe_resume_point(const std::vector<QueuedCommand>& job, const ResumePoint& at);

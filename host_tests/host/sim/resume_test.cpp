@@ -118,6 +118,7 @@ enum class Cut { kLinkLost, kAbort };
 struct Interrupted {
   std::vector<ToolSample> trace;
   ResumePoint at;
+  std::vector<QueuedCommand> job;
   size_t resume_commands = 0;
 };
 
@@ -160,6 +161,7 @@ Interrupted interrupted(const JobPlan& plan, int nth_spline, Cut how, int min_po
   EXPECT_TRUE(at.has_value());
   if (!at) return r;
   r.at = *at;
+  r.job = cmds;
   std::printf("resume at %s; tool at (%.3f, %.3f, %.3f) mm\n",
               describe_resume_point(cmds, *at).c_str(), at->x_um / 1000.0, at->y_um / 1000.0,
               at->z_um / 1000.0);
@@ -198,6 +200,22 @@ TEST(SendResume, LinkCutMidCurveResumesAtTheCurvePointAndCutsTheSamePath) {
   expect_same_cut(plan, reference, run);
 }
 
+// The tool stopped on the chord from the last curve point reached to the one it was heading
+// for; the host computes both with the controller's curve walker (resume_point_at).
+TEST(SendResume, TheToolStopsOnTheChordToTheReportedCurvePoint) {
+  const JobPlan plan = test_plan();
+  const Interrupted run = interrupted(plan, 0, Cut::kLinkLost, 3);
+  ASSERT_GT(run.at.curve_point, 0);
+  const ResumePoint from = resume_point_at(run.job, run.at.job_index, run.at.curve_point, 0);
+  const ResumePoint to = resume_point_at(run.job, run.at.job_index, run.at.curve_point + 1, 0);
+  EXPECT_EQ(from.curve_point, run.at.curve_point - 1);
+  const CutPath::Seg chord{from.x_um / 1000.0, from.y_um / 1000.0, to.x_um / 1000.0,
+                           to.y_um / 1000.0};
+  const double chord_mm = std::hypot(chord.x1 - chord.x0, chord.y1 - chord.y0);
+  EXPECT_GT(chord_mm, 0.0);
+  EXPECT_LT(point_segment_mm(run.at.x_um / 1000.0, run.at.y_um / 1000.0, chord), 0.005);
+}
+
 TEST(SendResume, AbortMidCurveResumesAndCutsTheSamePath) {
   const JobPlan plan = test_plan();
   const auto reference = uninterrupted(plan);
@@ -232,6 +250,55 @@ TEST(SendResume, ARestartedControllerReportsNoJobProgress) {
   const proto::StatusReply st = s.read_status();
   EXPECT_FALSE(resume_point_of(st).has_value());
   EXPECT_EQ(st.flags & proto::kStatusZeroed, 0);
+}
+
+// Power cut mid-curve: the restarted machine is zeroed where the first one was (the simulated
+// operator confirms at the power-on position, the same work zero) and the job resumes from the
+// last status the host saw (--resume-at). The path is the same; what ran between that status
+// and the power cut, up to one chord, is cut again.
+TEST(SendResume, AfterARestartResumeAtTheLastStatusCutsTheSamePathRecuttingAtMostAChord) {
+  const JobPlan plan = test_plan();
+  const auto reference = uninterrupted(plan);
+  SimMachine first{sim::SimOptions{}};
+  std::vector<QueuedCommand> cmds;
+  proto::StatusReply last{};
+  {
+    SimLink link(first);
+    Sender s(link, lockstep(first));
+    cmds = encode_for(plan, s.open_session());
+    try {
+      s.run(cmds, [&](const Progress& p) {
+        last = p.status;
+        if ((p.status.flags & proto::kStatusJobStarted) && p.status.job_index == 8 &&
+            p.status.curve_point >= 20)
+          throw LinkError("test: power cut");
+      });
+    } catch (const LinkError&) {
+    }
+  }
+  ASSERT_EQ(command_of_job_index(cmds, last.job_index), command_of_job_index(cmds, 8));
+  ASSERT_EQ(cmds[command_of_job_index(cmds, 8)].letter, proto::kCmdSplineHeader);
+  SimMachine second{sim::SimOptions{}};
+  SimLink link(second);
+  Sender s(link, lockstep(second));
+  s.open_session();
+  const ResumePoint at = resume_point_at(cmds, last.job_index, last.curve_point, 0);
+  EXPECT_EQ(s.run(resume_commands(cmds, at, EncodeOptions{}), nullptr), JobOutcome::kCompleted)
+      << s.message();
+  CutPath got = cut_path(first.trace(), plan);
+  const CutPath after = cut_path(second.trace(), plan);
+  got.segs.insert(got.segs.end(), after.segs.begin(), after.segs.end());
+  got.length_mm += after.length_mm;
+  const CutPath ref = cut_path(reference, plan);
+  const double off_mm = max_distance_mm(got, ref);
+  const double missed_mm = max_distance_mm(ref, got);
+  std::printf("restart: cut %.4f mm (uninterrupted %.4f mm); farthest off %.4f mm, uncut %.4f mm\n",
+              got.length_mm, ref.length_mm, off_mm, missed_mm);
+  EXPECT_LT(off_mm, 0.010);
+  EXPECT_LT(missed_mm, 0.010);
+  // Recut: from the last curve point reached at that status to where the power went.
+  EXPECT_GE(got.length_mm, ref.length_mm - 0.02);
+  EXPECT_LT(got.length_mm, ref.length_mm + 1.0);
 }
 
 TEST(SendResume, ResumeStreamLiftsTravelsPlungesThenMarksAndSendsTheRest) {
