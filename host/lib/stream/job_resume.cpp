@@ -179,7 +179,10 @@ std::vector<QueuedCommand> resume_commands(const std::vector<QueuedCommand>& job
     for (size_t i = spindle_at + 1; i < from && job[i].letter == proto::kCmdDwell; ++i)
       out.push_back(job[i]);
   }
-  if (height != nullptr && height->letter == proto::kCmdZMove) {
+  // Pen down where it was, unless the command resumed sets the height itself.
+  const bool sets_height =
+      job[from].letter == proto::kCmdZMove || job[from].letter == proto::kCmdDrill;
+  if (!sets_height && height != nullptr && height->letter == proto::kCmdZMove) {
     const proto::ZMoveCmd z = decoded<proto::ZMoveCmd>(*height);
     if (z.z_um < travel_z_um) out.push_back(*height);  // pen down where it was
   }
@@ -189,6 +192,19 @@ std::vector<QueuedCommand> resume_commands(const std::vector<QueuedCommand>& job
   out.push_back(command_of(mark));
   out.insert(out.end(), job.begin() + static_cast<long>(from), job.end());
   return out;
+}
+
+std::vector<QueuedCommand> resume_from_curve(const std::vector<QueuedCommand>& job,
+                                             int first_curve, const EncodeOptions& options) {
+  int32_t index = 0;
+  for (const QueuedCommand& c : job) {
+    if (!is_job_command(c)) continue;
+    if (c.curve == first_curve) {
+      return resume_commands(job, resume_point_at(job, index, 0, 0), options);
+    }
+    ++index;
+  }
+  throw PlanError(fmt::format("continue from curve {}: the job has no such curve", first_curve));
 }
 
 std::string describe_resume_point(const std::vector<QueuedCommand>& job, const ResumePoint& at) {

@@ -55,6 +55,14 @@ std::vector<QueuedCommand> resume_commands(const std::vector<QueuedCommand>& job
 ResumePoint resume_point_at(const std::vector<QueuedCommand>& job, int32_t job_index,
                             uint16_t curve_point, int32_t tool_z_um);
 
+// Continues `job` from the first command of plan curve first_curve (the pen-up and travel
+// that lead to it), the tool taken to where the previous move ended: what the workshop
+// server's "continue" does with an interrupted job's first uncut curve. A curve that was
+// partly cut is cut again from its start (the server knows curves, not curve points).
+// Throws PlanError when no command belongs to that curve.
+std::vector<QueuedCommand> resume_from_curve(const std::vector<QueuedCommand>& job,
+                                             int first_curve, const EncodeOptions& options);
+
 // "job command 12 of 40 (plan step 7, curve 3), curve point 18" for messages.
 std::string describe_resume_point(const std::vector<QueuedCommand>& job, const ResumePoint& at);
 
