@@ -10,6 +10,7 @@
 #include "host/lib/plot/plan_plot.h"
 #include "host/lib/plot/plot.h"
 #include "host/lib/server/job_planning.h"
+#include "host/lib/stream/job_resume.h"  // resume_from_curve
 #include "host/lib/stream/link.h"
 
 namespace host::server {
@@ -32,6 +33,12 @@ int first_uncut_curve(const std::vector<QueuedCommand>& commands, size_t execute
 }
 
 }  // namespace
+
+ResumeEncoder continue_from_curve() {
+  return [](const JobPlan& plan, const EncodeOptions& options, int first_curve) {
+    return resume_from_curve(encode_job(plan, options), first_curve, options);
+  };
+}
 
 // One machine: its spec, what it is doing now, and the sender of the running job.
 struct Workshop::Slot {

@@ -194,8 +194,8 @@ std::vector<QueuedCommand> resume_commands(const std::vector<QueuedCommand>& job
   return out;
 }
 
-std::vector<QueuedCommand> resume_from_curve(const std::vector<QueuedCommand>& job,
-                                             int first_curve, const EncodeOptions& options) {
+std::vector<QueuedCommand> resume_from_curve(const std::vector<QueuedCommand>& job, int first_curve,
+                                             const EncodeOptions& options) {
   int32_t index = 0;
   for (const QueuedCommand& c : job) {
     if (!is_job_command(c)) continue;

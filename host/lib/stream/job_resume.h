@@ -60,8 +60,8 @@ ResumePoint resume_point_at(const std::vector<QueuedCommand>& job, int32_t job_i
 // server's "continue" does with an interrupted job's first uncut curve. A curve that was
 // partly cut is cut again from its start (the server knows curves, not curve points).
 // Throws PlanError when no command belongs to that curve.
-std::vector<QueuedCommand> resume_from_curve(const std::vector<QueuedCommand>& job,
-                                             int first_curve, const EncodeOptions& options);
+std::vector<QueuedCommand> resume_from_curve(const std::vector<QueuedCommand>& job, int first_curve,
+                                             const EncodeOptions& options);
 
 // "job command 12 of 40 (plan step 7, curve 3), curve point 18" for messages.
 std::string describe_resume_point(const std::vector<QueuedCommand>& job, const ResumePoint& at);

@@ -16,6 +16,7 @@
 #include "host/lib/stream/job_encoder.h"
 #include "host/lib/stream/job_resume.h"
 #include "host/lib/stream/sender.h"
+#include "host_tests/host/sim/cut_path.h"
 #include "host_tests/host/sim/sim_test_jobs.h"
 
 namespace host {
@@ -24,66 +25,10 @@ namespace {
 using sim::SimLink;
 using sim::SimMachine;
 using sim::ToolSample;
-
-// The cut path: pen-down trace segments (X/Y in mm) and their total length.
-struct CutPath {
-  struct Seg {
-    double x0, y0, x1, y1;
-  };
-  std::vector<Seg> segs;
-  double length_mm = 0;
-};
-
-CutPath cut_path(const std::vector<ToolSample>& trace, const JobPlan& plan) {
-  const std::vector<bool> down = sim::pen_down_samples(trace, plan);
-  CutPath p;
-  for (size_t i = 1; i < trace.size(); ++i) {
-    if (!down[i] || !down[i - 1]) continue;
-    const CutPath::Seg s{trace[i - 1].x_mm, trace[i - 1].y_mm, trace[i].x_mm, trace[i].y_mm};
-    const double len = std::hypot(s.x1 - s.x0, s.y1 - s.y0);
-    if (len == 0) continue;
-    p.segs.push_back(s);
-    p.length_mm += len;
-  }
-  return p;
-}
-
-double point_segment_mm(double x, double y, const CutPath::Seg& s) {
-  const double dx = s.x1 - s.x0, dy = s.y1 - s.y0;
-  const double l2 = dx * dx + dy * dy;
-  double t = l2 > 0 ? ((x - s.x0) * dx + (y - s.y0) * dy) / l2 : 0;
-  t = std::min(1.0, std::max(0.0, t));
-  return std::hypot(x - (s.x0 + t * dx), y - (s.y0 + t * dy));
-}
-
-// Largest distance from a point of `a` (segment ends) to the path `b` (a 1 mm grid of b's
-// segments keeps this linear).
-double max_distance_mm(const CutPath& a, const CutPath& b) {
-  std::map<std::pair<int, int>, std::vector<size_t>> grid;
-  for (size_t i = 0; i < b.segs.size(); ++i) {
-    const CutPath::Seg& s = b.segs[i];
-    for (int gx = int(std::floor(std::min(s.x0, s.x1)));
-         gx <= int(std::floor(std::max(s.x0, s.x1))); ++gx)
-      for (int gy = int(std::floor(std::min(s.y0, s.y1)));
-           gy <= int(std::floor(std::max(s.y0, s.y1))); ++gy)
-        grid[{gx, gy}].push_back(i);
-  }
-  double worst = 0;
-  for (const CutPath::Seg& s : a.segs) {
-    for (const auto& [x, y] : {std::pair{s.x0, s.y0}, std::pair{s.x1, s.y1}}) {
-      double best = 1e9;
-      const int gx = int(std::floor(x)), gy = int(std::floor(y));
-      for (int ix = gx - 1; ix <= gx + 1; ++ix)
-        for (int iy = gy - 1; iy <= gy + 1; ++iy) {
-          auto it = grid.find({ix, iy});
-          if (it == grid.end()) continue;
-          for (size_t k : it->second) best = std::min(best, point_segment_mm(x, y, b.segs[k]));
-        }
-      worst = std::max(worst, best);
-    }
-  }
-  return worst;
-}
+using test::cut_path;
+using test::CutPath;
+using test::max_distance_mm;
+using test::point_segment_mm;
 
 SenderOptions lockstep(SimMachine& m) {
   SenderOptions o;
