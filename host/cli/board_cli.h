@@ -56,6 +56,11 @@ struct MachineDefaults {
 // comma-separated list, optionally "bottom:"/"top:" in front).
 bool is_pcb_input(const std::string& input);
 
+// The name outputs are called by: a directory's own name (also with a trailing '/'), else
+// the first file's stem; a "top:"/"bottom:" prefix and further comma-separated files are
+// left out. For drawings too.
+std::string input_name(const std::string& input);
+
 // Reads and plans the board; errors end the command (CommandFailure) naming the file. The
 // job is kept for write_board_plot_if_planned().
 JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d);

@@ -169,7 +169,7 @@ JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
 EncodeOptions encode_options(const PlanArgs& a) {
   EncodeOptions e;
   e.chord_tolerance_um = static_cast<uint16_t>(std::lround(a.tol_mm * 1000.0));
-  e.title = std::filesystem::path(a.file).stem().string();
+  e.title = input_name(a.file);
   return e;
 }
 
@@ -518,7 +518,7 @@ void run_run(const RunArgs& a) {
     return sim::run_sim_job(plan, o);
   }();
 
-  const std::string name = std::filesystem::path(a.plan.file).stem().string();
+  const std::string name = input_name(a.plan.file);
   std::filesystem::create_directories(a.outdir);
   const std::string base = (std::filesystem::path(a.outdir) / name).string();
 

@@ -531,7 +531,7 @@ bool switches_spindle_on(const std::string& line) {
 
 }  // namespace
 
-Drawing read_gcode(const std::string& text, const std::string& name) {
+Drawing import_gcode_text(const std::string& text, const std::string& name) {
   // First pass: does the program switch a spindle or laser at all (M3/M4)? Then only the
   // moves while it is on cut.
   bool uses_spindle = false;
@@ -555,7 +555,7 @@ Drawing import_gcode(const std::string& path) {
   if (!in) throw ImportError(path + ": cannot open the file");
   std::ostringstream text;
   text << in.rdbuf();
-  return read_gcode(text.str(), path);
+  return import_gcode_text(text.str(), path);
 }
 
 }  // namespace host

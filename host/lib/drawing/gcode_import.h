@@ -18,7 +18,7 @@ bool looks_like_gcode(const std::string& text);
 Drawing import_gcode(const std::string& path);
 
 // The same on a program already in memory; `name` stands for the file in messages.
-Drawing read_gcode(const std::string& text, const std::string& name);
+Drawing import_gcode_text(const std::string& text, const std::string& name);
 
 }  // namespace host
 

@@ -10,14 +10,15 @@
 namespace host {
 namespace {
 
-Drawing import_gcode_text(const std::string& name, const std::string& text) {
+// Through a file and import_drawing(), as the tool reads it.
+Drawing import_via_file(const std::string& name, const std::string& text) {
   return import_drawing(test::write_temp(name, text));
 }
 
 TEST(GcodeImport, FeedRunsBetweenRapidsBecomeOneCurveEach) {
-  const Drawing d = import_gcode_text("two.ngc",
-                                      "G21 G90\nG0 X0 Y0\nG1 X10 Y0 F100\nG1 X10 Y5\n"
-                                      "G0 X20 Y0\nG1 X30 Y0\nM2\n");
+  const Drawing d = import_via_file("two.ngc",
+                                    "G21 G90\nG0 X0 Y0\nG1 X10 Y0 F100\nG1 X10 Y5\n"
+                                    "G0 X20 Y0\nG1 X30 Y0\nM2\n");
   ASSERT_EQ(d.curves.size(), 2u);
   EXPECT_EQ(d.curves[0].spline.degree, 1);
   EXPECT_LT((end_point(d.curves[0].spline) - Point2(10, 5)).norm(), 1e-12);
@@ -26,7 +27,7 @@ TEST(GcodeImport, FeedRunsBetweenRapidsBecomeOneCurveEach) {
 
 TEST(GcodeImport, ClockwiseArcWithIjIsExact) {
   // G2 from (10,0) around (0,0) to (0,-10): a clockwise quarter.
-  const Drawing d = import_gcode_text("arc.ngc", "G21\nG0 X10 Y0\nG2 X0 Y-10 I-10 J0\n");
+  const Drawing d = import_via_file("arc.ngc", "G21\nG0 X10 Y0\nG2 X0 Y-10 I-10 J0\n");
   ASSERT_EQ(d.curves.size(), 1u);
   const BSpline& s = d.curves[0].spline;
   for (int i = 0; i <= 100; ++i) {
@@ -38,7 +39,7 @@ TEST(GcodeImport, ClockwiseArcWithIjIsExact) {
 }
 
 TEST(GcodeImport, FullCircleArc) {
-  const Drawing d = import_gcode_text("circle.ngc", "G21\nG0 X5 Y0\nG3 X5 Y0 I-5 J0\n");
+  const Drawing d = import_via_file("circle.ngc", "G21\nG0 X5 Y0\nG3 X5 Y0 I-5 J0\n");
   ASSERT_EQ(d.curves.size(), 1u);
   const Extents e = d.extents();
   EXPECT_NEAR(e.min.x(), -5.0, 1e-6);
@@ -46,20 +47,19 @@ TEST(GcodeImport, FullCircleArc) {
 }
 
 TEST(GcodeImport, InchesAreConverted) {
-  const Drawing d = import_gcode_text("inch.ngc", "G20\nG0 X0 Y0\nG1 X1 Y0\n");
+  const Drawing d = import_via_file("inch.ngc", "G20\nG0 X0 Y0\nG1 X1 Y0\n");
   ASSERT_EQ(d.curves.size(), 1u);
   EXPECT_NEAR(end_point(d.curves[0].spline).x(), 25.4, 1e-12);
 }
 
 TEST(GcodeImport, ToolAboveTheWorkDoesNotCut) {
-  const Drawing d = import_gcode_text("z.ngc", "G21\nG0 Z1\nG1 X10\nG1 Z-0.1\nG1 X20\n");
+  const Drawing d = import_via_file("z.ngc", "G21\nG0 Z1\nG1 X10\nG1 Z-0.1\nG1 X20\n");
   ASSERT_EQ(d.curves.size(), 1u);
   EXPECT_LT((start_point(d.curves[0].spline) - Point2(10, 0)).norm(), 1e-12);
 }
 
 TEST(GcodeImport, LaserOffDoesNotCutWhenTheProgramSwitchesIt) {
-  const Drawing d =
-      import_gcode_text("laser.ngc", "G21\nM5\nG1 X10\nM3 S100\nG1 X20\nM5\nG1 X30\n");
+  const Drawing d = import_via_file("laser.ngc", "G21\nM5\nG1 X10\nM3 S100\nG1 X20\nM5\nG1 X30\n");
   ASSERT_EQ(d.curves.size(), 1u);
   EXPECT_LT((start_point(d.curves[0].spline) - Point2(10, 0)).norm(), 1e-12);
   EXPECT_LT((end_point(d.curves[0].spline) - Point2(20, 0)).norm(), 1e-12);
@@ -69,18 +69,19 @@ TEST(GcodeImport, LaserOffDoesNotCutWhenTheProgramSwitchesIt) {
 // do not (then every feed move cuts, as in a program without spindle words).
 TEST(GcodeImport, OnlyARealM3OrM4MeansTheProgramSwitchesTheSpindle) {
   const std::string moves = "G1 X10\nM5\nG1 X20\n";
-  EXPECT_EQ(read_gcode("G21\nM003 S1\n" + moves, "a.ngc").curves.size(), 1u);
-  EXPECT_EQ(read_gcode("G21\nm4\n" + moves, "b.ngc").curves.size(), 1u);
+  EXPECT_EQ(import_gcode_text("G21\nM003 S1\n" + moves, "a.ngc").curves.size(), 1u);
+  EXPECT_EQ(import_gcode_text("G21\nm4\n" + moves, "b.ngc").curves.size(), 1u);
   for (const char* not_on : {"(M3)", ";M4", "G4 P3", "(MSG, M4 next)"}) {
     SCOPED_TRACE(not_on);
-    EXPECT_EQ(read_gcode(std::string("G21\n") + not_on + "\n" + moves, "c.ngc").curves.size(), 2u);
+    EXPECT_EQ(
+        import_gcode_text(std::string("G21\n") + not_on + "\n" + moves, "c.ngc").curves.size(), 2u);
   }
 }
 
 TEST(GcodeImport, InMemoryAndFileReadsAgree) {
   const std::string program = "G21\nG0 X5 Y0\nG3 X5 Y0 I-5 J0\nG1 X9 Y9\n";
-  const Drawing a = read_gcode(program, "mem.ngc");
-  const Drawing b = import_gcode_text("mem.ngc", program);
+  const Drawing a = import_gcode_text(program, "mem.ngc");
+  const Drawing b = import_via_file("mem.ngc", program);
   ASSERT_EQ(a.curves.size(), b.curves.size());
   EXPECT_EQ(a.curves[0].spline.control.size(), b.curves[0].spline.control.size());
   EXPECT_EQ(a.curves[0].spline.knots, b.curves[0].spline.knots);
@@ -88,7 +89,7 @@ TEST(GcodeImport, InMemoryAndFileReadsAgree) {
 
 TEST(GcodeImport, ArcEndOffTheCircleIsRefusedWithTheLine) {
   try {
-    import_gcode_text("badarc.ngc", "G21\nG0 X10 Y0\nG2 X0 Y-12 I-10 J0\n");
+    import_via_file("badarc.ngc", "G21\nG0 X10 Y0\nG2 X0 Y-12 I-10 J0\n");
     FAIL();
   } catch (const ImportError& e) {
     EXPECT_NE(std::string(e.what()).find("badarc.ngc: line 3: arc end is not on the circle"),
@@ -99,7 +100,7 @@ TEST(GcodeImport, ArcEndOffTheCircleIsRefusedWithTheLine) {
 
 TEST(GcodeImport, OtherPlaneIsRefused) {
   try {
-    import_gcode_text("g18.ngc", "G18\nG1 X1\n");
+    import_via_file("g18.ngc", "G18\nG1 X1\n");
     FAIL();
   } catch (const ImportError& e) {
     EXPECT_NE(std::string(e.what()).find("line 1: G18"), std::string::npos) << e.what();
@@ -115,7 +116,7 @@ namespace {
 TEST(GcodeImport, HugeOrNonNumericWordsAreRefusedWithTheLine) {
   for (const char* bad : {"G1 X1e300\n", "G1 Xnan\n", "G1 X\n", "G1e400 X1\n"}) {
     try {
-      import_gcode_text("huge.ngc", std::string("G21\n") + bad);
+      import_via_file("huge.ngc", std::string("G21\n") + bad);
       FAIL() << bad;
     } catch (const ImportError& e) {
       EXPECT_NE(std::string(e.what()).find("huge.ngc: line 2"), std::string::npos) << e.what();
