@@ -60,6 +60,7 @@ Application::Application()
   job_.first_point = 0;
   job_.numbering = false;
   job_.valid = false;
+  job_.id = 0;
   job_.index = 0;
   job_.point = 0;
   job_.item_first = 0;
@@ -516,6 +517,7 @@ void Application::fill_status(proto::StatusReply* r) {
   r->spline_slots_free = spline_slots_free();
   r->job_index = job_.valid ? job_.index : 0;
   r->curve_point = job_.valid ? job_.point : 0;
+  r->job_id = job_.valid ? job_.id : 0;
 }
 
 uint8_t Application::spline_slots_free() {

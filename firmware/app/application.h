@@ -232,6 +232,7 @@ class Application {
     uint16_t first_point;  // for the spline stored right after the #J
     bool numbering;        // a #J was stored in this session
     bool valid;            // a #J was stored since power-up: index/point mean something
+    uint16_t id;           // the host's identity of the job (the #J's job_id)
     int32_t index;         // first job command not finished
     uint16_t point;        // curve point the tool heads for in it (points before reached)
     uint16_t item_first;   // that command's first point (a resumed spline's)

@@ -76,6 +76,7 @@ ErrorCode Application::on_job_mark(const proto::JobMarkCmd& c, uint8_t, uint8_t*
   job_.numbering = true;
   job_.next_index = c.job_index;
   job_.first_point = c.first_point;
+  job_.id = c.job_id;
   job_.valid = true;
   job_.index = c.job_index;
   job_.point = c.first_point;

@@ -117,6 +117,7 @@
       no_check)                                                                              \
     FIELD(JobMarkCmd, i32, job_index, 0, PROTO_I32_MAX)                                      \
     FIELD(JobMarkCmd, u16, first_point, 0, 65535)                                            \
+    FIELD(JobMarkCmd, u16, job_id, 0, 65535)                                                 \
   END(JobMarkCmd)                                                                            \
   REPLY(AckReply, kReplyAck, 'O', "acknowledge", no_check)                                   \
     FIELD(AckReply, u8, queue_free, 0, 255)                                                  \
@@ -160,6 +161,7 @@
     FIELD(StatusReply, u8, spline_slots_free, 0, 255)                                        \
     FIELD(StatusReply, i32, job_index, 0, PROTO_I32_MAX)                                     \
     FIELD(StatusReply, u16, curve_point, 0, 65535)                                           \
+    FIELD(StatusReply, u16, job_id, 0, 65535)                                                \
   END(StatusReply)                                                                           \
   REPLY(AlarmReply, kReplyAlarm, 'A', "alarm notice (unsolicited)", no_check)                \
     FIELD(AlarmReply, alarm, alarm, 0, 7)                                                    \

@@ -292,6 +292,8 @@ std::vector<QueuedCommand> resume_stream(const SendArgs& a, Sender& sender,
     at = resume_point_at(job, index, point, status.z_um);
   } else {
     at = resume_point_of(status);
+    if (at && !resume_mismatch(job, *at).empty())
+      throw CommandFailure(kExitJobFailed, resume_mismatch(job, *at));
     if (!at) {
       throw CommandFailure(
           kExitJobFailed,

@@ -36,6 +36,10 @@ struct EncodeOptions {
 // beyond 100 mm) or, with options.controller, a target outside that controller's travel.
 std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& options);
 
+// The job's identity for #J and the status (send --resume checks it): CRC-16 over the
+// letters and payloads of every command but #J.
+uint16_t job_id_of(const std::vector<QueuedCommand>& commands);
+
 // Bytes one command takes on the wire as a frame (header + payload + CRC).
 size_t frame_bytes(const QueuedCommand& command);
 // Bytes the commands take on the wire as frames.

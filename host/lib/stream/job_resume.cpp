@@ -79,6 +79,7 @@ ResumePoint resume_point_at(const std::vector<QueuedCommand>& job, int32_t job_i
   at.curve_point = curve_point;
   at.started = curve_point > 0;
   at.z_um = tool_z_um;
+  at.job_id = job_id_of(job);
   if (job[from].letter == proto::kCmdSplineHeader && curve_point > 0) {
     const std::vector<core::PointUm> points = curve_points(job, from);
     if (curve_point >= points.size()) {
@@ -130,10 +131,20 @@ std::optional<ResumePoint> resume_point_of(const proto::StatusReply& status) {
   p.job_index = status.job_index;
   p.curve_point = status.curve_point;
   p.started = (status.flags & proto::kStatusJobStarted) != 0;
+  p.job_id = status.job_id;
   p.x_um = status.x_um;
   p.y_um = status.y_um;
   p.z_um = status.z_um;
   return p;
+}
+
+std::string resume_mismatch(const std::vector<QueuedCommand>& job, const ResumePoint& at) {
+  const uint16_t id = job_id_of(job);
+  if (id == at.job_id) return "";
+  return fmt::format(
+      "the controller's job (id {:04X}) is not this one (id {:04X}): resume with the same file "
+      "and the same plan options as the interrupted send",
+      at.job_id, id);
 }
 
 size_t command_of_job_index(const std::vector<QueuedCommand>& job, int32_t job_index) {
@@ -189,6 +200,7 @@ std::vector<QueuedCommand> resume_commands(const std::vector<QueuedCommand>& job
   proto::JobMarkCmd mark{};
   mark.job_index = at.job_index;
   mark.first_point = job[from].letter == proto::kCmdSplineHeader ? at.curve_point : 0;
+  mark.job_id = job_id_of(job);
   out.push_back(command_of(mark));
   out.insert(out.end(), job.begin() + static_cast<long>(from), job.end());
   return out;

@@ -20,12 +20,17 @@ struct ResumePoint {
   int32_t job_index = 0;     // first job command not finished (the controller's numbering)
   uint16_t curve_point = 0;  // in that command, if a spline: the curve point the tool heads for
   bool started = false;      // that command began to move (it was cut short)
+  uint16_t job_id = 0;       // the controller's job (the #J's job_id; job_id_of())
   int32_t x_um = 0, y_um = 0, z_um = 0;  // where the tool stands
 };
 
 // The resume point a status reports; empty when the controller has no job progress (no #J
 // since it powered up: a restarted controller).
 std::optional<ResumePoint> resume_point_of(const proto::StatusReply& status);
+
+// Empty when `job` is the job the controller ran (same job_id); otherwise why not: a resume
+// with another file or other plan options would cut something else.
+std::string resume_mismatch(const std::vector<QueuedCommand>& job, const ResumePoint& at);
 
 // Job commands are the queued commands the controller numbers after a #J: every command of
 // the stream except #D (part of its #B) and #J. Index into `job` of job command job_index;

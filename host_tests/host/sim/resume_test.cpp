@@ -101,12 +101,19 @@ Interrupted interrupted(const JobPlan& plan, int nth_spline, Cut how, int min_po
 
   SimLink link(m);
   Sender s(link, lockstep(m));
-  s.open_session();
+  const proto::SessionReply caps = s.open_session();
   const std::optional<ResumePoint> at = resume_point_of(s.read_status());
   EXPECT_TRUE(at.has_value());
   if (!at) return r;
   r.at = *at;
   r.job = cmds;
+  EXPECT_EQ(resume_mismatch(cmds, *at), "");  // the job the controller ran
+  // The same drawing planned with another feed is another job: refused.
+  const JobPlan slower =
+      test::plan_of(test::drawing_of({test::circle_curve(20, 20, 10), test::s_curve(40, 20),
+                                      test::circle_curve(75, 20, 8)}),
+                    8.0);
+  EXPECT_NE(resume_mismatch(encode_for(slower, caps), *at), "");
   std::printf("resume at %s; tool at (%.3f, %.3f, %.3f) mm\n",
               describe_resume_point(cmds, *at).c_str(), at->x_um / 1000.0, at->y_um / 1000.0,
               at->z_um / 1000.0);
