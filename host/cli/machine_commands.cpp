@@ -285,7 +285,8 @@ std::pair<int32_t, uint16_t> parse_resume_at(const std::string& text) {
 std::vector<QueuedCommand> resume_stream(const SendArgs& a, Sender& sender,
                                          const std::vector<QueuedCommand>& job,
                                          const EncodeOptions& enc) {
-  const proto::StatusReply status = sender.read_status();
+  // The new session stopped what was left: where it came to rest is where to go on.
+  const proto::StatusReply status = sender.read_status_at_rest(std::chrono::seconds(30));
   std::optional<ResumePoint> at;
   if (!a.resume_at.empty()) {
     const auto [index, point] = parse_resume_at(a.resume_at);

@@ -49,6 +49,19 @@ JobPlan test_plan() {
       {test::circle_curve(20, 20, 10), test::s_curve(40, 20), test::circle_curve(75, 20, 8)}));
 }
 
+// The same drawing with a 0.5 mm tool-radius offset on the left: the controller offsets, with
+// arcs round convex corners and a lead-in to each offset start.
+JobPlan offset_plan() {
+  PlanOptions o;
+  o.feed_mm_per_s = 10.0;
+  o.margin_mm = 5.0;
+  o.tool_side = ToolSide::kLeft;
+  o.tool_radius_mm = 0.5;
+  return plan_job(test::drawing_of({test::circle_curve(20, 20, 10), test::s_curve(40, 20),
+                                    test::circle_curve(75, 20, 8)}),
+                  o);
+}
+
 std::vector<ToolSample> uninterrupted(const JobPlan& plan) {
   SimMachine m{sim::SimOptions{}};
   SimLink link(m);
@@ -69,7 +82,10 @@ struct Interrupted {
 
 // Runs the job until the tool is on the given curve (job command), cuts it off, then resumes
 // with a new sender as `send --resume` does.
-Interrupted interrupted(const JobPlan& plan, int nth_spline, Cut how, int min_point) {
+// silent_ms: how long nobody talks to the machine before the resume (over 2 s: its link
+// watchdog holds the job; shorter: the resume's #I finds it still cutting and stops it).
+Interrupted interrupted(const JobPlan& plan, int nth_spline, Cut how, int min_point,
+                        int silent_ms = 4000) {
   Interrupted r;
   SimMachine m{sim::SimOptions{}};
   std::vector<QueuedCommand> cmds;
@@ -97,12 +113,13 @@ Interrupted interrupted(const JobPlan& plan, int nth_spline, Cut how, int min_po
     }
   }
   // Nobody talks to the machine: it cuts on until its link watchdog holds it (2 s).
-  for (int ms = 0; ms < 4000; ++ms) m.step_ms();
+  for (int ms = 0; ms < silent_ms; ++ms) m.step_ms();
 
   SimLink link(m);
   Sender s(link, lockstep(m));
   const proto::SessionReply caps = s.open_session();
-  const std::optional<ResumePoint> at = resume_point_of(s.read_status());
+  const std::optional<ResumePoint> at =
+      resume_point_of(s.read_status_at_rest(std::chrono::seconds(10)));
   EXPECT_TRUE(at.has_value());
   if (!at) return r;
   r.at = *at;
@@ -149,6 +166,26 @@ TEST(SendResume, LinkCutMidCurveResumesAtTheCurvePointAndCutsTheSamePath) {
   // The watchdog held the job part way round the first circle: cut short, mid-curve.
   EXPECT_TRUE(run.at.started);
   EXPECT_GT(run.at.curve_point, 3);
+  expect_same_cut(plan, reference, run);
+}
+
+// The host comes back at once: the resume's #I stops the job mid-curve (decelerating along the
+// path); the resume point is read once the machine is at rest.
+TEST(SendResume, ResumedAtOnceWhileStillCuttingCutsTheSamePath) {
+  const JobPlan plan = test_plan();
+  const auto reference = uninterrupted(plan);
+  const Interrupted run = interrupted(plan, 2, Cut::kLinkLost, 5, 0);
+  EXPECT_TRUE(run.at.started);
+  EXPECT_GT(run.at.curve_point, 5);
+  expect_same_cut(plan, reference, run);
+}
+
+TEST(SendResume, ToolOffsetJobCutMidCurveResumesOnTheOffsetPath) {
+  const JobPlan plan = offset_plan();
+  const auto reference = uninterrupted(plan);
+  const Interrupted run = interrupted(plan, 1, Cut::kLinkLost, 4);
+  EXPECT_TRUE(run.at.started);
+  EXPECT_GT(run.at.curve_point, 4);
   expect_same_cut(plan, reference, run);
 }
 
