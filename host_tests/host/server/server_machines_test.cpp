@@ -85,6 +85,52 @@ TEST(ServerMachines, HoldResumeOverrideAndAbortOfARunningJob) {
   EXPECT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "running"; }, 20));
 }
 
+// A simulated machine whose link goes away and comes back on the same port; the machine
+// keeps its state (its time stands still while nobody serves it).
+class FlakyLinkMachine {
+ public:
+  FlakyLinkMachine() : machine_(sim::SimOptions{}) { connect(0); }
+  ~FlakyLinkMachine() { disconnect(); }
+  void connect(uint16_t port) {
+    sim::ServerOptions so;
+    so.port = port;
+    so.realtime = true;
+    server_ = std::make_unique<sim::SimServer>(machine_, so);
+    port_ = server_->port();
+    stop_ = false;
+    thread_ = std::thread([this] { server_->run(stop_); });
+  }
+  void disconnect() {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+    server_.reset();
+  }
+  std::string address() const { return fmt::format("tcp://127.0.0.1:{}", port_); }
+  uint16_t port() const { return port_; }
+  const sim::SimMachine& machine() const { return machine_; }
+
+ private:
+  sim::SimMachine machine_;
+  std::unique_ptr<sim::SimServer> server_;
+  uint16_t port_ = 0;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+// The plan the server made for a job, run uninterrupted on a fresh simulated machine.
+host::test::CutPath uninterrupted_cut(ServerRig& server, int64_t id, JobPlan* plan_out) {
+  const std::optional<JobRecord> rec = server.store().get(id);
+  EXPECT_TRUE(rec);
+  const MachineSpec spec = test::machine("m", "");
+  *plan_out = plan_file((server.data().job_dir(rec->key) / rec->input_file).string(), rec->name,
+                        rec->settings, spec.fit.work_width_mm, spec.fit.work_height_mm);
+  sim::SimJobOptions so;
+  so.encode = encode_options(rec->settings, fs::path(rec->name).stem().string());
+  const sim::SimJobResult ref = sim::run_sim_job(*plan_out, so);
+  EXPECT_EQ(ref.outcome, JobOutcome::kCompleted) << ref.message;
+  return host::test::cut_path(ref.trace, *plan_out);
+}
+
 TEST(ServerMachines, MachineLostMidJobLeavesItInterruptedAndContinuesElsewhereCuttingTheSamePath) {
   test::TempDir dir;
   auto first = std::make_unique<SimRig>(true);
@@ -139,17 +185,9 @@ TEST(ServerMachines, MachineLostMidJobLeavesItInterruptedAndContinuesElsewhereCu
 
   // The cut path of both machines together is that of an uninterrupted run of the same plan;
   // the curve that was cut short is cut again from its start (at most one curve: one square).
-  const std::optional<JobRecord> rec = server.store().get(id);
-  ASSERT_TRUE(rec);
-  const MachineSpec spec = test::machine("m1", "");
-  const JobPlan plan =
-      plan_file((server.data().job_dir(rec->key) / rec->input_file).string(), rec->name,
-                rec->settings, spec.fit.work_width_mm, spec.fit.work_height_mm);
-  sim::SimJobOptions so;
-  so.encode = encode_options(rec->settings, fs::path(rec->name).stem().string());
-  const sim::SimJobResult ref = sim::run_sim_job(plan, so);
-  ASSERT_EQ(ref.outcome, JobOutcome::kCompleted) << ref.message;
-  const host::test::CutPath reference = host::test::cut_path(ref.trace, plan);
+  second.kill();  // its thread steps the machine: stop it before reading the trace
+  JobPlan plan;
+  const host::test::CutPath reference = uninterrupted_cut(server, id, &plan);
   const host::test::CutPath got =
       host::test::joined(host::test::cut_path(first->machine().trace(), plan),
                          host::test::cut_path(second.machine().trace(), plan));
@@ -159,52 +197,6 @@ TEST(ServerMachines, MachineLostMidJobLeavesItInterruptedAndContinuesElsewhereCu
   EXPECT_LE(got.length_mm, reference.length_mm + 4 * 8.0 + 0.02);  // one square again at most
   std::printf("continue: cut %.3f mm (uninterrupted %.3f mm), farthest off %.4f mm\n",
               got.length_mm, reference.length_mm, host::test::max_distance_mm(got, reference));
-}
-
-// A simulated machine whose link goes away and comes back on the same port; the machine
-// keeps its state (its time stands still while nobody serves it).
-class FlakyLinkMachine {
- public:
-  FlakyLinkMachine() : machine_(sim::SimOptions{}) { connect(0); }
-  ~FlakyLinkMachine() { disconnect(); }
-  void connect(uint16_t port) {
-    sim::ServerOptions so;
-    so.port = port;
-    so.realtime = true;
-    server_ = std::make_unique<sim::SimServer>(machine_, so);
-    port_ = server_->port();
-    stop_ = false;
-    thread_ = std::thread([this] { server_->run(stop_); });
-  }
-  void disconnect() {
-    stop_ = true;
-    if (thread_.joinable()) thread_.join();
-    server_.reset();
-  }
-  std::string address() const { return fmt::format("tcp://127.0.0.1:{}", port_); }
-  uint16_t port() const { return port_; }
-  const sim::SimMachine& machine() const { return machine_; }
-
- private:
-  sim::SimMachine machine_;
-  std::unique_ptr<sim::SimServer> server_;
-  uint16_t port_ = 0;
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
-};
-
-// The plan the server made for a job, run uninterrupted on a fresh simulated machine.
-host::test::CutPath uninterrupted_cut(ServerRig& server, int64_t id, JobPlan* plan_out) {
-  const std::optional<JobRecord> rec = server.store().get(id);
-  EXPECT_TRUE(rec);
-  const MachineSpec spec = test::machine("m", "");
-  *plan_out = plan_file((server.data().job_dir(rec->key) / rec->input_file).string(), rec->name,
-                        rec->settings, spec.fit.work_width_mm, spec.fit.work_height_mm);
-  sim::SimJobOptions so;
-  so.encode = encode_options(rec->settings, fs::path(rec->name).stem().string());
-  const sim::SimJobResult ref = sim::run_sim_job(*plan_out, so);
-  EXPECT_EQ(ref.outcome, JobOutcome::kCompleted) << ref.message;
-  return host::test::cut_path(ref.trace, *plan_out);
 }
 
 // The link to the machine drops mid-curve and comes back: "continue" goes on exactly where the
