@@ -289,7 +289,7 @@ std::vector<QueuedCommand> resume_stream(const SendArgs& a, Sender& sender,
   const proto::StatusReply status = sender.read_status_at_rest(std::chrono::seconds(30));
   std::optional<ResumePoint> at;
   if (!a.resume_at.empty()) {
-    const auto [index, point] = parse_resume_at(a.resume_at);
+    const auto [index, point] = parse_resume_at(a.resume_at);  // checked before connecting
     at = resume_point_at(job, index, point, status.z_um);
   } else {
     at = resume_point_of(status);
@@ -309,6 +309,7 @@ std::vector<QueuedCommand> resume_stream(const SendArgs& a, Sender& sender,
 }
 
 void run_send(const SendArgs& a) {
+  if (!a.resume_at.empty()) parse_resume_at(a.resume_at);  // a bad one before anything else
   Drawing drawing;
   const JobPlan plan = load_plan(a.plan, &drawing);
   const LinkSpec spec = parse_link_spec(a.to);  // LinkError -> usage error below
