@@ -589,6 +589,7 @@ void run_run(const RunArgs& a) {
         {"copper_hits", iso->check.hits.size()},
         {"unseparated_pairs", iso->check.unseparated.size()},
         {"min_clearance_um", iso->min_clearance_um},
+        {"planned_min_clearance_um", iso->planned_min_clearance_um},
         {"min_clearance_at_mm", {iso->min_clearance_at_mm.x(), iso->min_clearance_at_mm.y()}}};
   }
   j["simulated_machine_ms"] = r.virtual_ms;
