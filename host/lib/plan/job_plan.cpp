@@ -4,6 +4,7 @@
 
 #include <cmath>    // std::llround, std::isfinite
 #include <sstream>  // std::ostringstream
+#include <utility>  // std::move
 
 #include "host/lib/plan/nearest_end.h"
 #include "host/lib/plan/plan_steps.h"
@@ -55,14 +56,17 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
     }
     index.use(best);
     PlannedCurve pc;
-    pc.spline = best_rev ? reversed(scaled[best]) : scaled[best];
+    // Each scaled curve is used once: move it (a copy held the drawing twice more).
+    pc.spline = best_rev ? reversed(scaled[best]) : std::move(scaled[best]);
+    scaled[best] = BSpline();
     pc.drawing_index = static_cast<int>(best);
     pc.reversed = best_rev;
     pc.chained = n > 0 && best_d <= o.chain_tolerance_mm;
     pc.source = drawing.curves[best].source;
     at = best_rev ? starts[best] : ends[best];
-    plan.curves.push_back(pc);
+    plan.curves.push_back(std::move(pc));
   }
+  std::vector<BSpline>().swap(scaled);
 
   // Work area, before anything else is produced.
   std::string culprit;
@@ -74,12 +78,8 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
 
   const int32_t feed = to_um(o.feed_mm_per_s);
   const int32_t plunge = to_um(o.plunge_mm_per_s);
-  // A PlanStep is over 1 kB (an inline firmware spline): reserve an upper bound (a curve
-  // takes at most lift, rapid, plunge, gap feed and one step per control point) so the
-  // vector never reallocates, which doubled the peak memory of large jobs.
-  size_t step_bound = 3;
-  for (const PlannedCurve& c : plan.curves) step_bound += 4 + c.spline.control.size();
-  plan.steps.reserve(step_bound);
+  // No reserve for the steps: an upper bound (4 + control points per curve) was six times
+  // the real count for separate lines; a PlanStep is small now (splines out of line).
   PlanStep up;
   up.kind = PlanStep::kPenUp;
   up.z_um = to_um(o.z_up_mm);
