@@ -16,20 +16,16 @@ using namespace plan_detail;
 // Defined in program_plan.cpp: the planner for programs (G-code), which keeps their order.
 JobPlan plan_program(const Drawing& drawing, const PlanOptions& options);
 
-JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
-  if (drawing.curves.empty() && drawing.program.empty())
-    throw PlanError(drawing.path + ": the drawing has nothing to engrave");
-  check_options(o);
-  if (!drawing.program.empty()) return plan_program(drawing, o);
+namespace {
+
+// Plans the curves of a drawing without a program, already scaled (drawing frame, mm);
+// sources[i] names curve i in messages.
+JobPlan plan_scaled(std::vector<BSpline> scaled, std::vector<std::string> sources,
+                    const PlanOptions& o) {
   JobPlan plan;
-  // Scale, then put the lower-left corner of the extents at (margin, margin).
-  Eigen::Matrix2d scale = Eigen::Matrix2d::Identity() * o.scale;
-  std::vector<BSpline> scaled;
+  // Put the lower-left corner of the extents at (margin, margin).
   Extents ext;
-  for (const Curve& c : drawing.curves) {
-    scaled.push_back(transformed(c.spline, scale, Point2(0, 0)));
-    ext.add(curve_extents(scaled.back()));
-  }
+  for (const BSpline& s : scaled) ext.add(curve_extents(s));
   plan.offset_mm =
       o.fixed_offset ? o.offset_mm : Point2(Point2(o.margin_mm, o.margin_mm) - ext.min);
   for (BSpline& s : scaled) s = transformed(s, Eigen::Matrix2d::Identity(), plan.offset_mm);
@@ -62,7 +58,7 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
     pc.drawing_index = static_cast<int>(best);
     pc.reversed = best_rev;
     pc.chained = n > 0 && best_d <= o.chain_tolerance_mm;
-    pc.source = drawing.curves[best].source;
+    pc.source = std::move(sources[best]);
     at = best_rev ? starts[best] : ends[best];
     plan.curves.push_back(std::move(pc));
   }
@@ -134,6 +130,47 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
   plan.steps.push_back(home);
   plan.rapid_length_mm += at.norm();
   return plan;
+}
+
+void check_not_empty(const Drawing& drawing) {
+  if (drawing.curves.empty() && drawing.program.empty())
+    throw PlanError(drawing.path + ": the drawing has nothing to engrave");
+}
+
+}  // namespace
+
+JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
+  check_not_empty(drawing);
+  check_options(o);
+  if (!drawing.program.empty()) return plan_program(drawing, o);
+  const Eigen::Matrix2d scale = Eigen::Matrix2d::Identity() * o.scale;
+  std::vector<BSpline> scaled;
+  std::vector<std::string> sources;
+  scaled.reserve(drawing.curves.size());
+  sources.reserve(drawing.curves.size());
+  for (const Curve& c : drawing.curves) {
+    scaled.push_back(transformed(c.spline, scale, Point2(0, 0)));
+    sources.push_back(c.source);
+  }
+  return plan_scaled(std::move(scaled), std::move(sources), o);
+}
+
+JobPlan plan_job(Drawing&& drawing, const PlanOptions& o) {
+  check_not_empty(drawing);
+  check_options(o);
+  if (!drawing.program.empty()) return plan_program(drawing, o);
+  const Eigen::Matrix2d scale = Eigen::Matrix2d::Identity() * o.scale;
+  std::vector<BSpline> scaled;
+  std::vector<std::string> sources;
+  scaled.reserve(drawing.curves.size());
+  sources.reserve(drawing.curves.size());
+  for (Curve& c : drawing.curves) {
+    scaled.push_back(transformed(c.spline, scale, Point2(0, 0)));
+    c.spline = BSpline();  // each curve is held once, not twice, while planning
+    sources.push_back(std::move(c.source));
+  }
+  std::vector<Curve>().swap(drawing.curves);
+  return plan_scaled(std::move(scaled), std::move(sources), o);
 }
 
 }  // namespace host

@@ -125,6 +125,9 @@ class PlanError : public std::runtime_error {
 // a program (DXF) is reordered for short rapids; a program (G-code) keeps the file's order
 // and its pauses, dwells, spindle switching and drilling (see program_plan.cpp).
 JobPlan plan_job(const Drawing& drawing, const PlanOptions& options);
+// The same, taking the drawing's curves (left empty) so that a large drawing is not held
+// twice while it is planned. A program (G-code) is planned as above and kept.
+JobPlan plan_job(Drawing&& drawing, const PlanOptions& options);
 
 }  // namespace host
 
