@@ -84,10 +84,11 @@ void add_layer(BoardFiles* b, PcbLayer l, bool from_directory) {
     b->notes.push_back(l.path + ": not a copper, drill or outline layer: left out");
     return;
   }
-  throw CommandFailure(kExitUsage,
-                       l.path +
-                           ": cannot tell which layer this is (no X2 TF.FileFunction, no "
-                           "usual name); give it with --top, --bottom or --outline");
+  throw CommandFailure(
+      kExitUsage, l.path +
+                      ": cannot tell which layer this is (no X2 TF.FileFunction, no "
+                      "usual name); name it with --top, --bottom or --outline (engraver board), "
+                      "or give copper as top:FILE or bottom:FILE");
 }
 
 bool has_prefix(const std::string& s, const std::string& p) {
@@ -148,7 +149,14 @@ BoardFiles read_input(const std::string& input) {
       b.notes.push_back(f + ": not a copper, drill or outline file name: left out");
       continue;
     }
-    add_layer(&b, read_layer(f, LayerKind::kUnknown), directory);
+    PcbLayer l = read_layer(f, LayerKind::kUnknown);
+    if (l.kind == LayerKind::kUnknown && !directory && files.size() == 1 && !b.side.empty() &&
+        pcb::pcb_file_format(f) == pcb::PcbFileFormat::kGerber) {
+      // "top:FILE" names the copper side of a file nothing else names (Eagle's .gbx).
+      l.kind = b.side == "bottom" ? LayerKind::kCopperBottom : LayerKind::kCopperTop;
+      b.notes.push_back(f + ": taken as " + b.side + " copper (from the '" + b.side + ":' prefix)");
+    }
+    add_layer(&b, std::move(l), directory);
   }
   b.name = board_name(directory ? stripped : files.front());
   return b;

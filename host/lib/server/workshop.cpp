@@ -7,8 +7,6 @@
 #include <filesystem>  // std::filesystem::path
 
 #include "host/lib/drawing/drawing.h"
-#include "host/lib/plot/plan_plot.h"
-#include "host/lib/plot/plot.h"
 #include "host/lib/server/job_planning.h"
 #include "host/lib/stream/link.h"
 
@@ -299,16 +297,10 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     if (fetched) {
       const std::optional<std::string> bytes = store_.input(job.id);
       if (!bytes) throw std::runtime_error((dir / job.input_file).string() + ": missing");
-      fs::create_directories(dir);
-      write_file(dir / job.input_file, *bytes);
+      restore_job_input(dir, job, *bytes);
     }
-    const JobPlan plan = plan_file((dir / job.input_file).string(), job.name, job.settings,
-                                   slot.spec.fit.work_width_mm, slot.spec.fit.work_height_mm);
-    if (fetched) {
-      write_file(dir / "plan.json", plan_json(plan).dump(1) + "\n");
-      write_plot(plot_input_from_plan(plan, job.name), (dir / "plot.svg").string(),
-                 (dir / "plot.png").string());
-    }
+    const JobPlan plan = plan_archived_job(dir, job, slot.spec.fit.work_width_mm,
+                                           slot.spec.fit.work_height_mm, fetched);
     EncodeOptions enc = encode_options(job.settings, fs::path(job.name).stem().string());
     enc.max_payload = caps.max_payload;
     if (job.start_curve >= 0) {

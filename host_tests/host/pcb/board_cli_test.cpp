@@ -115,6 +115,29 @@ TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {
   EXPECT_TRUE(std::filesystem::exists(base + ".board.png"));
 }
 
+// A copper file that neither X2 nor its name identifies (Eagle writes .gbx): refused with
+// the ways to name it, and run as copper with a "top:" prefix.
+TEST(BoardCli, ACopperFileWithoutAKnownNameIsNamedByItsSidePrefix) {
+  const std::string dir = write_board("anon");
+  std::string top = kTopCopper;
+  top.replace(top.find("%TF.FileFunction,Copper,L1,Top*%\n"), 33, "");
+  top.replace(top.find("%EXTRA%"), 7, "");
+  const std::string file = dir + "/copper.gbx";
+  std::ofstream(file) << top;
+  const ToolRun refused = run("run " + file + " -o " + dir + "/out");
+  EXPECT_EQ(refused.code, 2);
+  EXPECT_NE(refused.err.find("copper.gbx: cannot tell which layer this is"), std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("or give copper as top:FILE or bottom:FILE"), std::string::npos);
+  const ToolRun r = run("run top:" + file + " -o " + dir + "/out");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("copper.gbx: taken as top copper (from the 'top:' prefix)"),
+            std::string::npos)
+      << r.err;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir + "/out/copper.json"));
+  EXPECT_EQ(j["outcome"], "completed");
+}
+
 TEST(BoardCli, AnUnreadableGerberIsAnInputError) {
   const std::string dir = write_board("bad", "D99*\nX1000000Y1000000D03*\n");  // no D99
   const ToolRun r = run("board " + dir + " -o " + dir + "/out");
