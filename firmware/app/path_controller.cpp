@@ -29,6 +29,10 @@ uint32_t um_per_tick(uint16_t v_um_s) {
 PathController::PathController()
     : speed_um_s_(0),
       items_done_(0),
+      item_points_(0),
+      item_started_(false),
+      stopped_points_(0),
+      stopped_started_(false),
       override_q8_(256),
       override_percent_(100),
       have_target_(false),
@@ -57,6 +61,10 @@ void PathController::set_override_percent(uint8_t percent) {
 
 void PathController::flush(CoordinateRing* ring) {
   ring->clear();
+  stopped_points_ = item_points_;  // where the dropped item got to, for the status
+  stopped_started_ = item_started_;
+  item_points_ = 0;
+  item_started_ = false;
   have_target_ = false;
   arrived_ = false;
   speed_um_s_ = 0;
@@ -70,14 +78,20 @@ void PathController::stop_now() {
 // cur_ was just popped from the ring: it is the target now (in microsteps already: the
 // planner converted it in the background).
 void PathController::take_popped() {
+  item_started_ = true;
   have_target_ = true;
   arrived_ = false;
 }
 
-// The current target is done (passed or reached): count finished items.
+// The current target is done (passed or reached): count finished items and curve points.
 void PathController::leave_target() {
-  if (cur_.flags & kPointEndOfItem) ++items_done_;
-  cur_.flags = (uint8_t)(cur_.flags & ~kPointEndOfItem);
+  if (cur_.flags & kPointCurvePoint) ++item_points_;
+  if (cur_.flags & kPointEndOfItem) {
+    ++items_done_;
+    item_points_ = 0;
+    item_started_ = false;
+  }
+  cur_.flags = (uint8_t)(cur_.flags & ~(kPointEndOfItem | kPointCurvePoint));
 }
 
 // Feed times override, within the axis limits of the segment.

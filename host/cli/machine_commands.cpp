@@ -13,7 +13,9 @@
 #include <filesystem>  // create_directories
 #include <fstream>     // std::ofstream
 #include <iostream>    // std::cerr
+#include <optional>    // std::optional
 #include <thread>      // keyboard thread
+#include <utility>     // std::pair
 
 #include "firmware/config/machine_config.h"
 #include "host/cli/board_cli.h"  // PCB input (Gerber, Excellon, a board's directory)
@@ -27,6 +29,7 @@
 #include "host/lib/progress/progress_meter.h"
 #include "host/lib/sim/sim_job.h"
 #include "host/lib/sim/sim_server.h"
+#include "host/lib/stream/job_resume.h"
 #include "host/lib/stream/sender.h"
 
 namespace host::cli {
@@ -237,9 +240,13 @@ class Keyboard {
 };
 
 // What a progress line says about the machine: state, position and (simulated) time.
+// With the job progress (the INDEX:POINT that --resume-at takes after a controller restart).
 std::string machine_detail(const Progress& p) {
-  return fmt::format("{} at ({:.1f}, {:.1f}) mm", machine_state_name(p.status.state),
-                     p.status.x_um / 1000.0, p.status.y_um / 1000.0);
+  std::string s = fmt::format("{} at ({:.1f}, {:.1f}) mm", machine_state_name(p.status.state),
+                              p.status.x_um / 1000.0, p.status.y_um / 1000.0);
+  if (p.status.flags & proto::kStatusJob)
+    s += fmt::format(", job {}:{}", p.status.job_index, p.status.curve_point);
+  return s;
 }
 
 // ---- engraver send ----
@@ -249,9 +256,61 @@ struct SendArgs {
   std::string to;
   bool no_zero = false;
   int poll_ms = 250;
+  bool resume = false;    // continue from where the controller says the job stopped
+  std::string resume_at;  // INDEX[:POINT]: continue from there (after a controller restart)
 };
 
+// "12" or "12:40" -> job index and curve point; throws CommandFailure on anything else.
+std::pair<int32_t, uint16_t> parse_resume_at(const std::string& text) {
+  const size_t colon = text.find(':');
+  try {
+    size_t used = 0;
+    const long index = std::stol(text.substr(0, colon), &used);
+    if (used != text.substr(0, colon).size() || index < 0) throw std::invalid_argument(text);
+    long point = 0;
+    if (colon != std::string::npos) {
+      point = std::stol(text.substr(colon + 1), &used);
+      if (used != text.size() - colon - 1 || point < 0 || point > 65535)
+        throw std::invalid_argument(text);
+    }
+    return {static_cast<int32_t>(index), static_cast<uint16_t>(point)};
+  } catch (const std::exception&) {
+    throw CommandFailure(kExitUsage,
+                         fmt::format("--resume-at '{}': expected INDEX or INDEX:POINT (job "
+                                     "command and curve point, as the progress line shows them)",
+                                     text));
+  }
+}
+
+// send --resume / --resume-at: the stream that continues the job instead of the whole job.
+std::vector<QueuedCommand> resume_stream(const SendArgs& a, Sender& sender,
+                                         const std::vector<QueuedCommand>& job,
+                                         const EncodeOptions& enc) {
+  // The new session stopped what was left: where it came to rest is where to go on.
+  const proto::StatusReply status = sender.read_status_at_rest(std::chrono::seconds(30));
+  std::optional<ResumePoint> at;
+  if (!a.resume_at.empty()) {
+    const auto [index, point] = parse_resume_at(a.resume_at);  // checked before connecting
+    at = resume_point_at(job, index, point, status.z_um);
+  } else {
+    at = resume_point_of(status);
+    if (at && !resume_mismatch(job, *at).empty())
+      throw CommandFailure(kExitJobFailed, resume_mismatch(job, *at));
+    if (!at) {
+      throw CommandFailure(
+          kExitJobFailed,
+          "the controller reports no job progress (it was restarted or never ran a job): zero it "
+          "at the job's zero point again and use --resume-at INDEX:POINT with the 'job' figures "
+          "of the last progress line");
+    }
+  }
+  std::cerr << fmt::format("engraver: resuming at {}; the tool goes to ({:.3f}, {:.3f}) mm\n",
+                           describe_resume_point(job, *at), at->x_um / 1000.0, at->y_um / 1000.0);
+  return resume_commands(job, *at, enc);
+}
+
 void run_send(const SendArgs& a) {
+  if (!a.resume_at.empty()) parse_resume_at(a.resume_at);  // a bad one before anything else
   Drawing drawing;
   const JobPlan plan = load_plan(a.plan, &drawing);
   const LinkSpec spec = parse_link_spec(a.to);  // LinkError -> usage error below
@@ -265,7 +324,14 @@ void run_send(const SendArgs& a) {
   EncodeOptions enc = encode_options(a.plan);
   enc.max_payload = caps.max_payload;
   enc.controller = &caps;
-  const std::vector<QueuedCommand> commands = encode_job(plan, enc);
+  std::vector<QueuedCommand> commands = encode_job(plan, enc);
+  if (a.resume || !a.resume_at.empty()) {
+    commands = resume_stream(a, sender, commands, enc);
+    if (commands.empty()) {
+      std::cerr << "engraver: nothing to resume: the controller says the job has finished\n";
+      return;
+    }
+  }
   std::cerr << fmt::format(
       "engraver: {} -> {}: {} curves, {} commands, {} bytes; keys: h hold, "
       "r resume, x abort, +/- feed override\n",
@@ -553,8 +619,16 @@ void add_machine_commands(CLI::App& app) {
                    "status poll interval (keep-alive); 0 = one query always in flight")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
+  send->add_flag("--resume", send_args->resume,
+                 "continue the job from where the controller says it stopped (lost link, abort, "
+                 "alarm); give the same file and plan options as the first send");
+  send->add_option("--resume-at", send_args->resume_at,
+                   "INDEX[:POINT]: continue from job command INDEX (curve point POINT), e.g. "
+                   "after a controller restart, from the last progress line's 'job' figures")
+      ->excludes("--resume");
   send->footer(
       "Example: engraver send board.dxf --to tcp://192.168.1.50:10001 --feed 8\n"
+      "After a lost link: engraver send board.dxf --to ... --feed 8 --resume\n"
       "Keys: h hold, r resume, x abort, +/- feed override. Signals: INT/TERM abort, USR1 hold, "
       "USR2 resume.\nExit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, "
       "5 command refused by the controller, 6 link lost, 7 stalled (no progress for 30 s).");

@@ -74,6 +74,8 @@ inline RoundTrip round_trip_any(uint8_t start, uint8_t letter, const uint8_t* pa
         return round_trip_as<proto::SpindleCmd>(payload, length);
       case proto::kCmdDrill:
         return round_trip_as<proto::DrillCmd>(payload, length);
+      case proto::kCmdJobMark:
+        return round_trip_as<proto::JobMarkCmd>(payload, length);
       default:
         break;
     }

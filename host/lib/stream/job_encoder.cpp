@@ -1,4 +1,4 @@
-// Job plan -> queued protocol commands (#S #U #Z #F #G #B #D #P #W #N #L), using the shared
+// Job plan -> queued protocol commands (#J #S #U #Z #F #G #B #D #P #W #N #L), using the shared
 // codecs.
 #include "host/lib/stream/job_encoder.h"
 
@@ -7,6 +7,7 @@
 #include <algorithm>  // std::min
 
 #include "firmware/protocol/codec.h"  // proto::encode, message structs
+#include "firmware/protocol/crc16.h"  // proto::crc16_update
 
 namespace host {
 
@@ -144,6 +145,8 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
     throw PlanError(fmt::format("controller payload {} bytes is too small", options.max_payload));
   }
   std::vector<QueuedCommand> out;
+  // Job numbering from here (the controller reports progress by it; send --resume).
+  out.push_back(make(proto::JobMarkCmd{0, 0, 0}, -1, -1));  // its job_id is set at the end
   if (!options.title.empty()) {
     proto::TextCmd text{};
     text.row = 0;
@@ -227,7 +230,18 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
       }
     }
   }
+  out.front() = make(proto::JobMarkCmd{0, 0, job_id_of(out)}, -1, -1);
   return out;
+}
+
+uint16_t job_id_of(const std::vector<QueuedCommand>& commands) {
+  uint16_t crc = 0xFFFF;
+  for (const QueuedCommand& c : commands) {
+    if (c.letter == proto::kCmdJobMark) continue;
+    crc = proto::crc16_update(crc, c.letter);
+    for (uint8_t b : c.payload) crc = proto::crc16_update(crc, b);
+  }
+  return crc;
 }
 
 size_t frame_bytes(const QueuedCommand& command) {

@@ -25,6 +25,10 @@ TEST(BoardFiles, FormatAndKindComeFromTheNameOrTheContent) {
   EXPECT_EQ(board_file_format("no-extension", outline), PcbFileFormat::kGerber);  // %FS
   EXPECT_EQ(board_file_format("holes.txt", drill), PcbFileFormat::kExcellon);     // M48
   EXPECT_EQ(board_file_format("notes.txt", "Remember to buy milk.\n"), PcbFileFormat::kNone);
+  // M48 heads an Excellon file (after comments); in G-code it is "enable overrides".
+  EXPECT_EQ(board_file_format("holes.txt", "; made by hand\n\nM48\nMETRIC\n%\nM30\n"),
+            PcbFileFormat::kExcellon);
+  EXPECT_EQ(board_file_format("prog.txt", "G21\nM48\nG0 X1 Y1\nG1 X2\nM2\n"), PcbFileFormat::kNone);
 
   EXPECT_EQ(read_board_text(outline, "my-Edge.Cuts.gbr", LayerKind::kUnknown).kind,
             LayerKind::kOutline);
