@@ -159,7 +159,8 @@ JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
   ProgressMeter bar("plan", "curves ordered", std::cerr, ProgressMeter::for_stderr());
   o.progress = [&bar](size_t done, size_t total) { bar.update(done, total); };
   try {
-    JobPlan plan = plan_job(*drawing, o);
+    // The drawing's curves are handed over (callers need only the plan and the program).
+    JobPlan plan = plan_job(std::move(*drawing), o);
     bar.update(plan.curves.size(), plan.curves.size());
     return plan;
   } catch (const PlanError& e) {

@@ -44,8 +44,10 @@ void append_spline(const PlanStep& s, int index, unsigned max_payload,
   proto::SplineHeaderCmd header{};
   header.degree = s.spline.degree;
   header.rational = s.spline.rational;
-  header.control_count = s.spline.control_count;
-  header.knot_count = s.spline.knot_count;
+  const size_t control_count = s.spline.control.size();
+  const size_t knot_count = s.spline.knot.size();
+  header.control_count = static_cast<uint16_t>(control_count);
+  header.knot_count = static_cast<uint16_t>(knot_count);
   header.feed_um_per_s = feed16(s.feed_um_per_s, index);
   header.tool_offset_um = s.tool_offset_um;
   out->push_back(make(header, index, s.curve));
@@ -54,17 +56,17 @@ void append_spline(const PlanStep& s, int index, unsigned max_payload,
       std::min<unsigned>(max_payload, proto::kMaxPayload) - proto::kSplineDataHeaderBytes;
   unsigned next_control = 0;
   unsigned next_knot = 0;
-  while (next_control < s.spline.control_count || next_knot < s.spline.knot_count) {
+  while (next_control < control_count || next_knot < knot_count) {
     proto::SplineDataCmd data{};
     data.control_index = static_cast<uint8_t>(next_control);
     data.knot_index = static_cast<uint8_t>(next_knot);
     unsigned left = room;
-    while (next_control < s.spline.control_count && data.control_n < proto::kMaxDataControls &&
+    while (next_control < control_count && data.control_n < proto::kMaxDataControls &&
            left >= proto::kControlPointBytes) {
       data.control[data.control_n++] = s.spline.control[next_control++];
       left -= proto::kControlPointBytes;
     }
-    while (next_control == s.spline.control_count && next_knot < s.spline.knot_count &&
+    while (next_control == control_count && next_knot < knot_count &&
            data.knot_n < proto::kMaxDataKnots && left >= proto::kKnotBytes) {
       data.knot[data.knot_n++] = s.spline.knot[next_knot++];
       left -= proto::kKnotBytes;
@@ -106,9 +108,9 @@ void check_step_fits(const PlanStep& s, const proto::SessionReply& c, int step) 
       check_travel(s.to.y_um, c.travel_y_um, 'Y', step);
       break;
     case PlanStep::kSpline:
-      for (unsigned i = 0; i < s.spline.control_count; ++i) {
-        check_travel(s.spline.control[i].x_um, c.travel_x_um, 'X', step);
-        check_travel(s.spline.control[i].y_um, c.travel_y_um, 'Y', step);
+      for (const core::ControlPoint& p : s.spline.control) {
+        check_travel(p.x_um, c.travel_x_um, 'X', step);
+        check_travel(p.y_um, c.travel_y_um, 'Y', step);
       }
       break;
     case PlanStep::kDrill:
@@ -190,7 +192,7 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
           // The controller offsets curves only: a straight line with an offset goes as a
           // degree-1 spline from where the tool is.
           PlanStep line = s;
-          line.spline = straight_spline(from, s.to);
+          line.spline = CompactSpline(straight_spline(from, s.to));
           append_spline(line, index, options.max_payload, &out);
           break;
         }

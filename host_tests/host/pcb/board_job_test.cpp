@@ -75,7 +75,7 @@ TEST(BoardJob, ContoursGoOutAsArcsAndLinesFarSmallerThanTheirVertices) {
   EXPECT_LT(controls * 4, job.report.isolation_vertices);
   for (const PlanStep& s : job.plan.steps) {
     if (s.kind == PlanStep::kSpline)
-      EXPECT_EQ(core::validate_spline(s.spline), core::GeometryError::kOk);
+      EXPECT_EQ(core::validate_spline(s.spline.firmware()), core::GeometryError::kOk);
   }
 }
 

@@ -41,7 +41,7 @@ JobPlan plan_with_spline(const core::Spline& spline) {
   down.feed_um_per_s = 2000;
   PlanStep curve;
   curve.kind = PlanStep::kSpline;
-  curve.spline = spline;
+  curve.spline = CompactSpline(spline);
   curve.to = {spline.control[spline.control_count - 1].x_um,
               spline.control[spline.control_count - 1].y_um};
   curve.feed_um_per_s = 10000;
