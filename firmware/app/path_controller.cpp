@@ -152,9 +152,12 @@ void PathController::tick(const int32_t pos_usteps[config::kAxisCount], Coordina
 
   // Speed: accelerate toward the cruise speed, never above what still lets the machine
   // reach the next corner (or a stop at the end of the buffer) at the planned speed.
+  // A hold only lowers the cruise speed: the corner and end-of-buffer limits stay, so the
+  // tool slows at the planned rate along the buffered points (braking to the current target
+  // instead would drop the speed faster than the chip's ramps follow and leave the path).
   const uint16_t cruise = hold_ ? 0 : cruise_of(cur_);
   uint16_t exit = 0;
-  if (next != 0 && !hold_) {
+  if (next != 0) {
     exit = next->entry_max_um_s;
     const uint16_t next_cruise = cruise_of(*next);
     if (next_cruise < exit) exit = next_cruise;

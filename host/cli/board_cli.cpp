@@ -13,6 +13,7 @@
 #include <fstream>     // std::ofstream
 #include <iomanip>     // std::setprecision
 #include <iostream>    // std::cout, std::cerr
+#include <limits>      // std::numeric_limits
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
@@ -24,6 +25,7 @@
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
 #include "host/lib/plot/board_plot.h"
+#include "host/lib/sim/contour_error.h"  // NearestSegment
 #include "host/lib/stream/job_encoder.h"
 
 namespace host::cli {
@@ -316,6 +318,13 @@ nlohmann::json report_json(const pcb::BoardJob& job, const pcb::BoardOptions& o)
 
 std::optional<pcb::BoardJob> g_last_job;
 std::string g_last_title;
+double g_last_check_tol_mm = 0;
+double g_last_isolation_z_mm = 0;
+
+// The check of the planned paths allows the fit (arc sagitta) and 1 um of rounding.
+double isolation_check_tolerance_mm(const pcb::BoardOptions& o) {
+  return o.fit_tolerance_mm * 3 + 0.001;
+}
 
 // ---- engraver board ----
 
@@ -381,7 +390,7 @@ void run_board(const BoardCommand& a) {
   j["chord_tolerance_mm"] = a.tol_mm;
   bool check_ok = true;
   if (!a.no_check && !job.copper_machine_nm.empty()) {
-    const double tol = o.fit_tolerance_mm * 3 + 0.001;  // fit (arc sagitta), 1 um rounding
+    const double tol = isolation_check_tolerance_mm(o);
     const pcb::IsolationCheck c = pcb::check_isolation(
         job.copper_machine_nm, job.isolation_paths_mm, job.tool_radius_mm, tol);
     j["check"] = {{"tolerance_mm", tol},
@@ -553,6 +562,8 @@ JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const Ma
   const pcb::BoardOptions o = board_options(args, d, b);
   g_last_job = plan(b, o);
   g_last_title = b.name;
+  g_last_check_tol_mm = isolation_check_tolerance_mm(o);
+  g_last_isolation_z_mm = -o.isolation_depth_mm;
   const pcb::BoardReport& r = g_last_job->report;
   std::cerr << fmt::format(
       "engraver: board {}: mount {} first; {} contours, {} holes, {} tool changes\n", b.name,
@@ -571,6 +582,58 @@ bool write_board_plot_if_planned(const std::string& base,
   in.simulated = simulated;
   write_board_plot(in, base + ".board.svg", base + ".board.png");
   return true;
+}
+
+std::optional<double> board_isolation_z_mm() {
+  if (!g_last_job || g_last_job->copper_machine_nm.empty() || g_last_job->isolation_curves == 0)
+    return std::nullopt;
+  return g_last_isolation_z_mm;
+}
+
+std::optional<SimulatedIsolation> check_simulated_isolation(
+    const std::vector<std::vector<Point2>>& cut_paths_mm, size_t samples) {
+  if (!board_isolation_z_mm()) return std::nullopt;
+  const pcb::BoardJob& job = *g_last_job;
+  SimulatedIsolation s;
+  s.tolerance_mm = g_last_check_tol_mm;
+  s.paths = cut_paths_mm.size();
+  s.samples = samples;
+  s.check =
+      pcb::check_isolation(job.copper_machine_nm, cut_paths_mm, job.tool_radius_mm, s.tolerance_mm);
+  // Clearance: each sample's distance to the copper's edges less the tool radius (a sample
+  // inside copper is a hit of the check above).
+  std::vector<std::vector<Point2>> edges;
+  for (const ClipperLib::Path& p : job.copper_machine_nm) {
+    std::vector<Point2> line;
+    for (const ClipperLib::IntPoint& q : p) line.push_back(Point2(q.X * 1e-6, q.Y * 1e-6));
+    if (!line.empty()) line.push_back(line.front());
+    edges.push_back(std::move(line));
+  }
+  const sim::NearestSegment copper(edges, 0.25);
+  auto clearance_um = [&](const Point2& p) {
+    return (copper.distance(p) - job.tool_radius_mm) * 1000.0;
+  };
+  s.min_clearance_um = std::numeric_limits<double>::infinity();
+  for (const std::vector<Point2>& path : cut_paths_mm) {
+    for (const Point2& p : path) {
+      const double c = clearance_um(p);
+      if (c < s.min_clearance_um) {
+        s.min_clearance_um = c;
+        s.min_clearance_at_mm = p;
+      }
+    }
+  }
+  s.planned_min_clearance_um = std::numeric_limits<double>::infinity();
+  for (const std::vector<Point2>& path : job.isolation_paths_mm) {
+    for (size_t i = 0; i < path.size(); ++i) {
+      const Point2 a = path[i], b = i + 1 < path.size() ? path[i + 1] : a;
+      const int n = 1 + static_cast<int>((b - a).norm() / 0.005);
+      for (int k = 0; k < n; ++k)
+        s.planned_min_clearance_um =
+            std::min(s.planned_min_clearance_um, clearance_um(a + (b - a) * (double(k) / n)));
+    }
+  }
+  return s;
 }
 
 bool print_board_points_if_pcb(const std::string& input, double tol_mm, bool csv) {

@@ -27,6 +27,7 @@
 #include "host/lib/plot/plan_plot.h"
 #include "host/lib/plot/plot.h"
 #include "host/lib/progress/progress_meter.h"
+#include "host/lib/sim/cut_paths.h"
 #include "host/lib/sim/sim_job.h"
 #include "host/lib/sim/sim_server.h"
 #include "host/lib/stream/job_resume.h"
@@ -515,6 +516,12 @@ void run_run(const RunArgs& a) {
   o.sender.status_interval = std::chrono::milliseconds(50);
   // The plot shows what its pixels can: keep a tool position every half pixel or so.
   o.trace_step_mm = plot_step_mm(plan);
+  // A board: the isolation cuts at full resolution, to check them against the copper.
+  std::optional<sim::CutPathCollector> isolation_cuts;
+  if (const std::optional<double> z = board_isolation_z_mm()) {
+    isolation_cuts.emplace(*z, 0.002);
+    o.on_sample = [&isolation_cuts](const sim::ToolSample& s) { isolation_cuts->add(s); };
+  }
   const sim::SimJobResult r = [&] {
     ProgressMeter bar("run", "commands", std::cerr, ProgressMeter::for_stderr());
     o.on_progress = [&bar](Sender&, const Progress& p) {
@@ -546,6 +553,9 @@ void run_run(const RunArgs& a) {
 
   const double feed = a.plan.feed_mm_s;
   const double ideal_s = plan.cut_length_mm / feed;
+  std::optional<SimulatedIsolation> iso;
+  if (isolation_cuts)
+    iso = check_simulated_isolation(isolation_cuts->paths(), isolation_cuts->samples());
   nlohmann::json j;
   j["drawing"] = a.plan.file;
   j["outcome"] = outcome_name(r.outcome);
@@ -570,6 +580,19 @@ void run_run(const RunArgs& a) {
   j["simulated_cut_s"] = r.cut_s;
   j["cut_length_over_feed_s"] = ideal_s;
   j["max_contour_error_um"] = r.max_contour_error_um;
+  j["max_contour_error_at_mm"] = {r.worst_contour_sample.x_mm, r.worst_contour_sample.y_mm};
+  if (iso) {
+    j["simulated_isolation_check"] = {
+        {"tolerance_mm", iso->tolerance_mm},
+        {"paths", iso->paths},
+        {"samples", iso->samples},
+        {"islands", iso->check.islands},
+        {"copper_hits", iso->check.hits.size()},
+        {"unseparated_pairs", iso->check.unseparated.size()},
+        {"min_clearance_um", iso->min_clearance_um},
+        {"planned_min_clearance_um", iso->planned_min_clearance_um},
+        {"min_clearance_at_mm", {iso->min_clearance_at_mm.x(), iso->min_clearance_at_mm.y()}}};
+  }
   j["simulated_machine_ms"] = r.virtual_ms;
   j["wall_s"] = r.wall_s;
   j["speedup_vs_real_time"] = r.wall_s > 0 ? r.virtual_ms / 1000.0 / r.wall_s : 0.0;
@@ -590,7 +613,8 @@ void run_run(const RunArgs& a) {
       "as G-code G1 at the same tolerance: {} bytes\n"
       "  tool path {:.1f} mm cut + {:.1f} mm rapid; simulated job time {:.1f} s, of which "
       "cutting {:.1f} s (cut length / feed {:.1f} s)\n"
-      "  max contour error {:.1f} um; simulated {:.1f} s of machine time in {:.2f} s "
+      "  max contour error {:.1f} um at ({:.3f}, {:.3f}) mm; simulated {:.1f} s of machine "
+      "time in {:.2f} s "
       "({:.2f} s of processor time: {:.0f}x real time)\n"
       "  {} pauses confirmed by the simulated operator ({} ms after each); spindle {} at the "
       "end\n"
@@ -598,9 +622,21 @@ void run_run(const RunArgs& a) {
       a.plan.file, plan.curves.size(), plan.pen_lifts, outcome_name(r.outcome), r.commands,
       r.stats.frames_sent, r.stats.bytes_sent, r.stats.retransmits, r.wire_bytes,
       j["gcode_g1_bytes_same_tolerance"].get<size_t>(), r.cut_mm, r.rapid_mm, r.motion_s, r.cut_s,
-      ideal_s, r.max_contour_error_um, r.virtual_ms / 1000.0, r.wall_s, r.cpu_s,
-      j["speedup_per_cpu_second"].get<double>(), r.pauses_confirmed, o.machine.pause_confirm_ms,
-      r.spindle_on ? "on" : "off", base, base, base);
+      ideal_s, r.max_contour_error_um, r.worst_contour_sample.x_mm, r.worst_contour_sample.y_mm,
+      r.virtual_ms / 1000.0, r.wall_s, r.cpu_s, j["speedup_per_cpu_second"].get<double>(),
+      r.pauses_confirmed, o.machine.pause_confirm_ms, r.spindle_on ? "on" : "off", base, base,
+      base);
+  if (iso) {
+    std::cout << fmt::format(
+        "  simulated isolation cuts ({} paths, {} samples) against the copper: {} copper hits "
+        "beyond {:.3f} mm, {} unseparated pairs; least clearance of the tool's edge {:.1f} um "
+        "at ({:.3f}, {:.3f}) mm (planned paths: {:.1f} um)\n",
+        iso->paths, iso->samples, iso->check.hits.size(), iso->tolerance_mm,
+        iso->check.unseparated.size(), iso->min_clearance_um, iso->min_clearance_at_mm.x(),
+        iso->min_clearance_at_mm.y(), iso->planned_min_clearance_um);
+    if (!iso->check.hits.empty())
+      std::cerr << "engraver: simulated isolation check: " << pcb::describe(iso->check) << "\n";
+  }
   if (r.outcome != JobOutcome::kCompleted) {
     throw CommandFailure(exit_code(r.outcome),
                          fmt::format("job {}: {}", outcome_name(r.outcome), r.message));

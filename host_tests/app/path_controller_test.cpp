@@ -1,6 +1,7 @@
 // Path controller + planner on the kinematic plant: accuracy, job time, stops, hold.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "host_tests/app/motion_rig.h"
@@ -99,6 +100,36 @@ TEST(PathController, HoldStopsOnThePathAndResumeFinishesTheJob) {
   ASSERT_TRUE(rig.run_to_end(30000));
   EXPECT_LE(max_contour_error(rig.recorded_um(), line), 10.0);
   EXPECT_NEAR(rig.position_um().x, line.back().x, 1.0);
+}
+
+// A hold on a curve of short chords (the resume tests' abort): the tool slows at the planned
+// rate along the buffered points. Braking to the current target instead dropped the speed by
+// several ramp steps in one tick and the chip's per-axis ramps slid the tool 33 um off.
+TEST(PathController, HoldOnAFinelySampledCurveSlowsAtThePlannedRateAndStaysOnThePath) {
+  MotionRig rig;
+  rig.plant.record = true;
+  const std::vector<P3> line = circle(20000, 20000, 2000, 1);  // 1 um chord error: short chords
+  rig.start_at(line[0]);
+  rig.queue(line);
+  for (int i = 0; i < 600; ++i) {  // up to speed, part way round
+    rig.background();
+    rig.tick();
+  }
+  ASSERT_GT(rig.controller.speed_um_s(), 5000);
+  ASSERT_FALSE(rig.controller.finished());
+  rig.controller.set_hold(true);
+  int max_drop = 0;
+  for (int i = 0; i < 2000 && !(rig.controller.at_rest() && !rig.plant.moving()); ++i) {
+    rig.background();
+    const int before = rig.controller.speed_um_s();
+    rig.tick();
+    max_drop = std::max(max_drop, before - int(rig.controller.speed_um_s()));
+  }
+  ASSERT_TRUE(rig.controller.at_rest());
+  EXPECT_FALSE(rig.plant.moving());
+  EXPECT_FALSE(rig.controller.finished());  // stopped part way, not at the end of the circle
+  EXPECT_LE(max_drop, int(rig.scaling.plan_accel_um_s_per_ms[0]));
+  EXPECT_LE(max_contour_error(rig.recorded_um(), line), 5.0);
 }
 
 TEST(PathController, OverrideOfFiftyPercentDoublesTheCruiseTime) {

@@ -113,6 +113,19 @@ TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(base + ".json"));
   EXPECT_EQ(j["outcome"], "completed");
   EXPECT_TRUE(std::filesystem::exists(base + ".board.png"));
+  // The simulated tool centres at the isolation depth (not only the planned paths) keep the
+  // tool off the copper: the board's check on the trace, every isolation contour cut, and
+  // the tool's edge no closer to copper than the planned paths' fit tolerance plus the
+  // planner's corner budget (4 um ramp + 2 um early switch).
+  const nlohmann::json& c = j["simulated_isolation_check"];
+  ASSERT_TRUE(c.is_object()) << j.dump(2);
+  EXPECT_EQ(c["copper_hits"], 0) << c.dump();
+  EXPECT_EQ(c["unseparated_pairs"], 0) << c.dump();
+  EXPECT_GT(c["samples"].get<int>(), 1000);
+  EXPECT_GE(c["min_clearance_um"].get<double>(),
+            c["planned_min_clearance_um"].get<double>() - 4.0 - 2.0)
+      << c.dump();
+  EXPECT_NE(r.out.find("simulated isolation cuts"), std::string::npos) << r.out;
 }
 
 // A copper file that neither X2 nor its name identifies (Eagle writes .gbx): refused with
