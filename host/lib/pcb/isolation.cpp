@@ -93,30 +93,33 @@ std::vector<NarrowGap> find_narrow_gaps(const Paths& copper, double radius_nm,
   }
   std::sort(grown.begin(), grown.end(),
             [](const Grown& a, const Grown& b) { return a.box.min_x < b.box.min_x; });
-  std::vector<Paths> full(islands.size());
-  std::vector<bool> have_full(islands.size(), false);
-  auto grown_full = [&](size_t i) -> const Paths& {
-    if (!have_full[i]) {
-      full[i] = islands[i].paths.size() == 1
-                    ? offset_closed(Paths{islands[i].paths[0]}, radius_nm, arc_tolerance_nm)
-                    : offset_closed(islands[i].paths, radius_nm, arc_tolerance_nm);
-      have_full[i] = true;
-    }
-    return full[i];
+  // An island with its holes grown, seen through a box: only copper within 2r of the box can
+  // grow into it, so the island is cut to the widened box first (a board-wide net with
+  // thousands of holes would otherwise be offset whole), then the result to the box.
+  auto grown_full_in = [&](size_t i, const BoxNm& box) {
+    BoxNm wide = box;
+    const cInt margin = static_cast<cInt>(2 * radius_nm + 2 * arc_tolerance_nm) + 1;
+    wide.min_x -= margin, wide.min_y -= margin, wide.max_x += margin, wide.max_y += margin;
+    return clip_to_box(
+        offset_closed(clip_to_box(islands[i].paths, wide), radius_nm, arc_tolerance_nm), box);
   };
   std::vector<NarrowGap> gaps;
   for (size_t i = 0; i < grown.size(); ++i) {
     for (size_t j = i + 1; j < grown.size() && grown[j].box.min_x <= grown[i].box.max_x; ++j) {
       if (!grown[i].box.overlaps(grown[j].box)) continue;
-      // Outer boundaries grown: an island inside another's hole is checked against the hole.
       const Island& a = islands[grown[i].index];
       const Island& b = islands[grown[j].index];
-      // Outer boundaries first (cheap, already grown); then with the holes, grown once per
-      // island, so an island inside another's hole is checked against that hole.
-      if (std::fabs(signed_area(intersection_of(grown[i].paths, grown[j].paths))) <
+      // Outer boundaries first (cheap, already grown); then with the holes, so an island
+      // inside another's hole is checked against that hole. Both only within the boxes'
+      // common part: a board-wide net would otherwise make every pair a sweep over all of
+      // its edges (two thirds of a dense board's isolation time).
+      const BoxNm common = common_box(grown[i].box, grown[j].box);
+      if (std::fabs(signed_area(intersection_of(clip_to_box(grown[i].paths, common),
+                                                clip_to_box(grown[j].paths, common)))) <
           kMinOverlapAreaNm2)
         continue;
-      const Paths both = intersection_of(grown_full(grown[i].index), grown_full(grown[j].index));
+      const Paths both = intersection_of(grown_full_in(grown[i].index, common),
+                                         grown_full_in(grown[j].index, common));
       if (std::fabs(signed_area(both)) < kMinOverlapAreaNm2) continue;
       NarrowGap g;
       const IntPoint c = centroid(both);
