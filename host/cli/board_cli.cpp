@@ -17,6 +17,7 @@
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
+#include "host/lib/pcb/board_files.h"  // BoardFileSet
 #include "host/lib/pcb/excellon_reader.h"
 #include "host/lib/pcb/gerber_reader.h"
 #include "host/lib/pcb/isolation_check.h"
@@ -38,9 +39,9 @@ using pcb::PcbLayer;
 // ---- Reading a board's files ----
 
 struct BoardFiles {
-  std::vector<PcbLayer> copper_top, copper_bottom, drill, outline;
-  std::string name;  // for output files and the job title
-  std::string side;  // from a "top:" / "bottom:" prefix
+  pcb::BoardFileSet layers;  // by kind, as the server's board jobs hold them
+  std::string name;          // for output files and the job title
+  std::string side;          // from a "top:" / "bottom:" prefix
   std::vector<std::string> notes;
 };
 
@@ -66,28 +67,14 @@ PcbLayer read_layer(const std::string& path, LayerKind forced) {
 }
 
 void add_layer(BoardFiles* b, PcbLayer l, bool from_directory) {
-  switch (l.kind) {
-    case LayerKind::kCopperTop:
-      b->copper_top.push_back(std::move(l));
-      return;
-    case LayerKind::kCopperBottom:
-      b->copper_bottom.push_back(std::move(l));
-      return;
-    case LayerKind::kDrill:
-      b->drill.push_back(std::move(l));
-      return;
-    case LayerKind::kOutline:
-      b->outline.push_back(std::move(l));
-      return;
-    case LayerKind::kUnknown:
-      break;
-  }
+  const std::string path = l.path;
+  if (b->layers.add(std::move(l))) return;
   if (from_directory) {
-    b->notes.push_back(l.path + ": not a copper, drill or outline layer: left out");
+    b->notes.push_back(path + ": not a copper, drill or outline layer: left out");
     return;
   }
   throw CommandFailure(
-      kExitUsage, l.path +
+      kExitUsage, path +
                       ": cannot tell which layer this is (no X2 TF.FileFunction, no "
                       "usual name); name it with --top, --bottom or --outline (engraver board), "
                       "or give copper as top:FILE or bottom:FILE");
@@ -164,23 +151,13 @@ BoardFiles read_input(const std::string& input) {
   return b;
 }
 
-// Several drill files (plated and not) make one drill layer.
-PcbLayer merged_drill(const std::vector<PcbLayer>& drills) {
-  PcbLayer d = drills.front();
-  for (size_t i = 1; i < drills.size(); ++i) {
-    d.holes.insert(d.holes.end(), drills[i].holes.begin(), drills[i].holes.end());
-    d.slots.insert(d.slots.end(), drills[i].slots.begin(), drills[i].slots.end());
-    d.path += " + " + drills[i].path;
-  }
-  return d;
-}
-
 // ---- Planning ----
 
 pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, const BoardFiles& b) {
   pcb::BoardOptions o;
   std::string side = a.side.empty() ? b.side : a.side;
-  if (side.empty()) side = b.copper_top.empty() && !b.copper_bottom.empty() ? "bottom" : "top";
+  if (side.empty())
+    side = b.layers.copper_top.empty() && !b.layers.copper_bottom.empty() ? "bottom" : "top";
   if (side != "top" && side != "bottom")
     throw CommandFailure(kExitUsage, "--side must be top or bottom, not '" + side + "'");
   o.side = side == "bottom" ? pcb::BoardSide::kBottom : pcb::BoardSide::kTop;
@@ -211,16 +188,12 @@ pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, co
 }
 
 pcb::BoardJob plan(const BoardFiles& b, const pcb::BoardOptions& o) {
-  if (b.copper_top.size() > 1 || b.copper_bottom.size() > 1 || b.outline.size() > 1)
-    throw CommandFailure(kExitUsage, "more than one file for the same copper or outline layer");
-  PcbLayer drill;
+  PcbLayer drill;  // several drill files (plated and not) make one drill layer
   pcb::BoardLayers l;
-  if (!b.copper_top.empty()) l.copper_top = &b.copper_top.front();
-  if (!b.copper_bottom.empty()) l.copper_bottom = &b.copper_bottom.front();
-  if (!b.outline.empty()) l.outline = &b.outline.front();
-  if (!b.drill.empty()) {
-    drill = merged_drill(b.drill);
-    l.drill = &drill;
+  try {
+    l = b.layers.layers(&drill);
+  } catch (const PlanError& e) {
+    throw CommandFailure(kExitUsage, e.what());
   }
   try {
     return pcb::plan_board(l, o);
@@ -348,18 +321,19 @@ void run_board(const BoardCommand& a) {
   BoardFiles b;
   for (const std::string& f : a.files) {
     BoardFiles one = read_input(f);
-    for (auto& l : one.copper_top) b.copper_top.push_back(std::move(l));
-    for (auto& l : one.copper_bottom) b.copper_bottom.push_back(std::move(l));
-    for (auto& l : one.drill) b.drill.push_back(std::move(l));
-    for (auto& l : one.outline) b.outline.push_back(std::move(l));
+    for (auto* kind : {&one.layers.copper_top, &one.layers.copper_bottom, &one.layers.drill,
+                       &one.layers.outline})
+      for (PcbLayer& l : *kind) b.layers.add(std::move(l));
     b.notes.insert(b.notes.end(), one.notes.begin(), one.notes.end());
     if (b.name.empty()) b.name = one.name;
     if (b.side.empty()) b.side = one.side;
   }
-  if (!a.top.empty()) b.copper_top.push_back(read_layer(a.top, LayerKind::kCopperTop));
-  if (!a.bottom.empty()) b.copper_bottom.push_back(read_layer(a.bottom, LayerKind::kCopperBottom));
-  if (!a.outline.empty()) b.outline.push_back(read_layer(a.outline, LayerKind::kOutline));
-  for (const std::string& d : a.drills) b.drill.push_back(read_layer(d, LayerKind::kDrill));
+  // A layer named by its option is that kind, whatever its name or attributes say.
+  if (!a.top.empty()) b.layers.copper_top.push_back(read_layer(a.top, LayerKind::kCopperTop));
+  if (!a.bottom.empty())
+    b.layers.copper_bottom.push_back(read_layer(a.bottom, LayerKind::kCopperBottom));
+  if (!a.outline.empty()) b.layers.outline.push_back(read_layer(a.outline, LayerKind::kOutline));
+  for (const std::string& d : a.drills) b.layers.drill.push_back(read_layer(d, LayerKind::kDrill));
   if (b.name.empty()) {
     for (const std::string& f : {a.top, a.bottom, a.outline})
       if (!f.empty() && b.name.empty()) b.name = board_name(f);

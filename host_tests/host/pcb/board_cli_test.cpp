@@ -158,4 +158,15 @@ TEST(BoardCli, AnUnreadableGerberIsAnInputError) {
   EXPECT_NE(r.err.find("t-F.Cu.gbr"), std::string::npos) << r.err;
 }
 
+TEST(BoardCli, TwoFilesForOneCopperLayerAreAnInputErrorNamingBoth) {
+  const std::string dir = write_board("twice");
+  std::ofstream(dir + "/u-F.Cu.gbr")
+      << std::string(kTopCopper).replace(std::string(kTopCopper).find("%EXTRA%"), 7, "");
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.err.find("two files for the top copper"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("t-F.Cu.gbr"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("u-F.Cu.gbr"), std::string::npos) << r.err;
+}
+
 }  // namespace
