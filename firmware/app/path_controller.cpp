@@ -85,7 +85,9 @@ void PathController::take_popped() {
 
 // The current target is done (passed or reached): count finished items and curve points.
 void PathController::leave_target() {
-  if (cur_.flags & kPointCurvePoint) ++item_points_;
+  // Saturates: a curve of more points reports 65 535 from there on (the host then knows
+  // only that the tool passed that point), never a count that wrapped to a small one.
+  if ((cur_.flags & kPointCurvePoint) && item_points_ != 0xFFFFU) ++item_points_;
   if (cur_.flags & kPointEndOfItem) {
     ++items_done_;
     item_points_ = 0;

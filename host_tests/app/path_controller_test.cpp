@@ -132,6 +132,31 @@ TEST(PathController, HoldOnAFinelySampledCurveSlowsAtThePlannedRateAndStaysOnThe
   EXPECT_LE(max_contour_error(rig.recorded_um(), line), 5.0);
 }
 
+// The status's curve_point comes from this count: on a curve of more than 65 535 points it
+// stays at 65 535 (the host then refuses to guess where the tool is), never wraps to a small
+// number that would resume the job at the wrong place.
+TEST(PathController, CurvePointCountSaturatesInsteadOfWrapping) {
+  MotionRig rig;
+  rig.pushes_per_tick = 16;
+  rig.point_flags = app::kPointCurvePoint;
+  std::vector<P3> line;
+  for (int i = 1; i <= 66000; ++i) line.push_back({double(i) * 2, 0, 0});  // 2 um apart
+  rig.queue(line);
+  uint16_t highest = 0;
+  bool went_down = false;
+  for (long ms = 0; ms < 200000 && rig.controller.items_done() == 0; ++ms) {
+    rig.background();
+    rig.tick();
+    if (rig.controller.items_done() != 0) break;
+    const uint16_t n = rig.controller.item_points();
+    if (n < highest) went_down = true;
+    highest = std::max(highest, n);
+  }
+  EXPECT_EQ(rig.controller.items_done(), 1u);
+  EXPECT_EQ(highest, 65535);
+  EXPECT_FALSE(went_down);
+}
+
 TEST(PathController, OverrideOfFiftyPercentDoublesTheCruiseTime) {
   MotionRig full, half;
   half.controller.set_override_percent(50);

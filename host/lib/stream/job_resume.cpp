@@ -68,6 +68,21 @@ std::vector<core::PointUm> curve_points(const std::vector<QueuedCommand>& job, s
 
 }  // namespace
 
+std::string curve_point_problem(int32_t job_index, size_t point_count, uint16_t curve_point) {
+  if (curve_point == 0xFFFF && point_count > 0x10000) {
+    return fmt::format(
+        "resume at job command {}: its curve has {} points and the controller counts only "
+        "65 535, so where the tool stopped on it is not known; resume from the curve's start "
+        "with --resume-at {}:0 (that curve is cut again up to where it stopped)",
+        job_index, point_count, job_index);
+  }
+  if (curve_point >= point_count) {
+    return fmt::format("resume at job command {}: its curve has {} points, not {}", job_index,
+                       point_count, curve_point + 1);
+  }
+  return "";
+}
+
 ResumePoint resume_point_at(const std::vector<QueuedCommand>& job, int32_t job_index,
                             uint16_t curve_point, int32_t tool_z_um) {
   const size_t from = command_of_job_index(job, job_index);
@@ -82,10 +97,8 @@ ResumePoint resume_point_at(const std::vector<QueuedCommand>& job, int32_t job_i
   at.job_id = job_id_of(job);
   if (job[from].letter == proto::kCmdSplineHeader && curve_point > 0) {
     const std::vector<core::PointUm> points = curve_points(job, from);
-    if (curve_point >= points.size()) {
-      throw PlanError(fmt::format("resume at job command {}: its curve has {} points, not {}",
-                                  job_index, points.size(), curve_point + 1));
-    }
+    const std::string problem = curve_point_problem(job_index, points.size(), curve_point);
+    if (!problem.empty()) throw PlanError(problem);
     // From the last point reached: the chord to curve_point is cut whole.
     at.curve_point = static_cast<uint16_t>(curve_point - 1);
     at.x_um = points[curve_point - 1].x_um;

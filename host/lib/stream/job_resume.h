@@ -51,6 +51,12 @@ size_t command_of_job_index(const std::vector<QueuedCommand>& job, int32_t job_i
 std::vector<QueuedCommand> resume_commands(const std::vector<QueuedCommand>& job,
                                            const ResumePoint& at, const EncodeOptions& options);
 
+// The controller counts curve points in 16 bits and stops at 65 535 (the tool is at or past
+// that point). Empty when curve point `curve_point` of job command job_index can be resumed
+// on a curve of point_count points; otherwise why not (past the end, or a saturated count on
+// a longer curve, with what to do instead).
+std::string curve_point_problem(int32_t job_index, size_t point_count, uint16_t curve_point);
+
 // A resume point the user gives (after a controller restart, from the last progress line):
 // job command job_index, from curve point curve_point if it is a spline. The tool is taken to
 // where the job stood there: for a spline from a curve point > 0, that curve point - 1 (the

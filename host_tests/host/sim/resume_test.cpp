@@ -323,3 +323,25 @@ TEST(SendResume, ResumeStreamLiftsTravelsPlungesThenMarksAndSendsTheRest) {
 
 }  // namespace
 }  // namespace host
+
+namespace host {
+namespace {
+
+// The controller's curve point count stops at 65 535: on a longer curve that says only that
+// the tool got that far, so resuming mid-curve is refused with what to do instead, never done
+// at a wrapped, wrong point (a curve that long needs a pathological shape; the rule is tested
+// on counts).
+TEST(SendResume, ASaturatedCurvePointOnALongerCurveIsNotResumedMidCurve) {
+  const std::string why = curve_point_problem(7, 70000, 0xFFFF);
+  EXPECT_NE(why.find("counts only 65 535"), std::string::npos) << why;
+  EXPECT_NE(why.find("--resume-at 7:0"), std::string::npos) << why;
+  EXPECT_EQ(curve_point_problem(7, 70000, 65534), "");
+  // 65 536 points: heading for 65 535 is heading for the last one, whatever comes after.
+  EXPECT_EQ(curve_point_problem(7, 0x10000, 0xFFFF), "");
+  EXPECT_NE(curve_point_problem(7, 0x10001, 0xFFFF), "");
+  EXPECT_NE(curve_point_problem(7, 100, 100).find("has 100 points, not 101"), std::string::npos);
+  EXPECT_EQ(curve_point_problem(7, 100, 99), "");
+}
+
+}  // namespace
+}  // namespace host
