@@ -164,6 +164,7 @@ pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, co
   o.isolation.tool_width_mm = a.tool_width_mm;
   o.isolation.passes = a.passes;
   o.isolation.overlap = a.overlap;
+  o.isolation.clearance_mm = a.clearance_mm;
   o.isolation.mill_all = a.mill_all;
   o.isolation_depth_mm = a.depth_mm;
   o.drill_depth_mm = a.drill_depth_mm;
@@ -294,9 +295,11 @@ std::string g_last_title;
 double g_last_check_tol_mm = 0;
 double g_last_isolation_z_mm = 0;
 
-// The check of the planned paths allows the fit (arc sagitta) and 1 um of rounding.
+// The swept tool may reach into the copper by the fit tolerance and 1 um of rounding (the
+// planned paths keep the clearance on top, the simulated ones use it for the machine's
+// contour error).
 double isolation_check_tolerance_mm(const pcb::BoardOptions& o) {
-  return o.fit_tolerance_mm * 3 + 0.001;
+  return o.fit_tolerance_mm + 0.001;
 }
 
 // ---- engraver board ----
@@ -409,7 +412,7 @@ void run_board(const BoardCommand& a) {
         r.drill_travel_ordered_mm, r.drill_travel_file_order_mm, r.cutout_length_mm, r.tabs,
         r.tool_changes, plan_cpu_s, plan_peak_mb);
     for (const pcb::NarrowGap& g : r.narrow_gaps)
-      std::cout << "  " << pcb::describe_gap(g, o.isolation.tool_width_mm) << "\n";
+      std::cout << "  " << pcb::describe_gap(g, o.isolation) << "\n";
     if (!a.no_plot) std::cout << "  plot: " << base << ".board.svg, .png; ";
     std::cout << "report: " << base << ".board.json\n";
   }
@@ -477,6 +480,12 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
       ->group(g)
       ->check(CLI::Range(0.0, 0.9))
       ->capture_default_str();
+  cmd->add_option("--clearance", a->clearance_mm,
+                  "isolation: kept between the tool's edge and the copper for the fit and the "
+                  "machine's contour error, mm")
+      ->group(g)
+      ->check(CLI::Range(0.0, 0.1))
+      ->capture_default_str();
   cmd->add_flag("--mill-all", a->mill_all, "clear all copper-free area")->group(g);
   cmd->add_option("--depth", a->depth_mm, "isolation depth, mm")->group(g)->capture_default_str();
   cmd->add_option("--drill-depth", a->drill_depth_mm, "drill plunge depth, mm")
@@ -543,7 +552,7 @@ JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const Ma
       "engraver: board {}: mount {} first; {} contours, {} holes, {} tool changes\n", b.name,
       r.first_tool, r.isolation_contours, r.holes, r.tool_changes);
   for (const pcb::NarrowGap& g : r.narrow_gaps)
-    std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation.tool_width_mm) << "\n";
+    std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation) << "\n";
   return g_last_job->plan;
 }
 
@@ -620,7 +629,7 @@ bool print_board_points_if_pcb(const std::string& input, double tol_mm, bool csv
   const pcb::BoardOptions o = board_options(a, d, b);
   const pcb::BoardJob job = plan(b, o);
   for (const pcb::NarrowGap& g : job.report.narrow_gaps)
-    std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation.tool_width_mm) << "\n";
+    std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation) << "\n";
   const int tol_um = static_cast<int>(std::lround(tol_mm * 1000));
   // Machine frame back to the files' frame.
   auto to_file = [&](const Point2& m) {

@@ -24,6 +24,7 @@ struct BoardArgs {
   double tool_width_mm = 0.2;
   int passes = 1;
   double overlap = 0.25;
+  double clearance_mm = pcb::IsolationOptions().clearance_mm;
   bool mill_all = false;
   double depth_mm = 0.05;
   double drill_depth_mm = 1.8;

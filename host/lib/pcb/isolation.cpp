@@ -143,11 +143,14 @@ std::vector<NarrowGap> find_narrow_gaps(const Paths& copper, double radius_nm,
 IsolationResult plan_isolation(const Paths& copper_in, const IsolationOptions& o) {
   if (!(o.tool_width_mm > 0)) throw std::invalid_argument("the tool width must be positive");
   if (o.passes < 1) throw std::invalid_argument("at least one isolation pass is needed");
+  if (!(o.clearance_mm >= 0 && o.clearance_mm <= 1))
+    throw std::invalid_argument("the isolation clearance must be between 0 and 1 mm");
   if (!(o.overlap >= 0 && o.overlap <= 0.9))
     throw std::invalid_argument("the pass overlap must be between 0 and 0.9");
   IsolationResult r;
   const Paths copper = union_of(copper_in);
-  const double radius_nm = o.tool_width_mm * kNmPerMm / 2;
+  // The tool centre's distance from the copper (r.tool_radius_mm stays the tool's own).
+  const double radius_nm = (o.tool_width_mm / 2 + o.clearance_mm) * kNmPerMm;
   const double step_nm = o.tool_width_mm * kNmPerMm * (1.0 - o.overlap);
   const double arc_tol_nm = o.arc_tolerance_mm * kNmPerMm;
   r.tool_radius_mm = o.tool_width_mm / 2;

@@ -179,11 +179,12 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
   if (side.empty()) side = set.copper_top.empty() && !set.copper_bottom.empty() ? "bottom" : "top";
 
   PlannedBoard out;
-  out.job = plan(set, board_options(side, board, settings, work_w_mm, work_h_mm));
+  const pcb::BoardOptions options = board_options(side, board, settings, work_w_mm, work_h_mm);
+  out.job = plan(set, options);
   const pcb::BoardReport& r = out.job.report;
   nlohmann::json gaps = nlohmann::json::array();
   for (const pcb::NarrowGap& g : r.narrow_gaps)
-    gaps.push_back(pcb::describe_gap(g, board.tool_width_mm));
+    gaps.push_back(pcb::describe_gap(g, options.isolation));
   out.manifest = {{"board", board_name},
                   {"side", side},
                   {"tool_width_mm", board.tool_width_mm},

@@ -76,7 +76,9 @@ TEST(BoardCli, NarrowGapRefusesTheJobAndNamesThePlace) {
   const ToolRun r = run("board " + dir + " -o " + dir + "/out");
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.err.find("t-F.Cu.gbr"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("gap 0.100 mm < tool 0.200 mm"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("gap 0.100 mm < 0.216 mm (tool 0.200 mm + 2 x 0.008 mm clearance)"),
+            std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find("at (26.0"), std::string::npos) << r.err;  // between x 26.0 and 26.1
   const ToolRun narrow = run("board " + dir + " -o " + dir + "/out --tool-width 0.08");
   EXPECT_EQ(narrow.code, 0) << narrow.err;
@@ -99,8 +101,9 @@ TEST(BoardCli, PointsOnACopperLayerAreToolCentresAroundTheCopper) {
     ++rows;
   }
   EXPECT_GT(rows, 20);
-  EXPECT_NEAR(min_x, 10 - 0.8 - 0.1, 0.006);  // left pad edge less the tool radius, file frame
-  EXPECT_NEAR(max_x, 26 + 0.1, 0.006);        // square pad's right edge plus the radius
+  // Pad edges less / plus the tool radius and the 8 um clearance, file frame.
+  EXPECT_NEAR(min_x, 10 - 0.8 - 0.108, 0.006);
+  EXPECT_NEAR(max_x, 26 + 0.108, 0.006);
 }
 
 TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {

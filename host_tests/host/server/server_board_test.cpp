@@ -179,7 +179,8 @@ TEST(ServerBoards, NarrowGapsAreRefusedWithTheServersAdviceUnlessAllowed) {
   EXPECT_EQ(manifest["allow_narrow_gaps"], true);
   EXPECT_DOUBLE_EQ(manifest["tool_width_mm"].get<double>(), 4.5);
   ASSERT_FALSE(manifest["report"]["narrow_gaps"].empty());
-  EXPECT_NE(manifest["report"]["narrow_gaps"][0].get<std::string>().find("< tool 4.500 mm"),
+  EXPECT_NE(manifest["report"]["narrow_gaps"][0].get<std::string>().find(
+                "(tool 4.500 mm + 2 x 0.008 mm clearance)"),
             std::string::npos);
 }
 
