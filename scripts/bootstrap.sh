@@ -12,7 +12,7 @@ packages=(
   gcc-avr binutils-avr avr-libc simavr libsimavr-dev python3
   sigrok-cli socat zlib1g-dev
   libpolyclipping-dev gerbv
-  libsqlite3-dev libcpp-httplib-dev chromium libpqxx-dev postgresql
+  libsqlite3-dev libcpp-httplib-dev chromium libpqxx-dev postgresql libzip-dev
 )
 
 missing=()

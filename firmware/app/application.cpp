@@ -56,6 +56,18 @@ Application::Application()
   tick_.buttons = 0;
   tick_.confirm_presses = 0;
   tick_.stop_pending = false;
+  job_.next_index = 0;
+  job_.first_point = 0;
+  job_.numbering = false;
+  job_.valid = false;
+  job_.id = 0;
+  job_.index = 0;
+  job_.point = 0;
+  job_.item_first = 0;
+  job_.started = false;
+  job_.dropped = false;
+  job_.items_at_drop = 0;
+  job_.index_at_drop = 0;
   for (uint8_t i = 0; i < config::kAxisCount; ++i) {
     tick_.pos[i] = 0;
     latest_.pos_usteps[i] = 0;
@@ -207,6 +219,10 @@ void Application::tick_publish(const int32_t pos[config::kAxisCount], uint8_t li
   for (uint8_t i = 0; i < config::kAxisCount; ++i) s.pos_usteps[i] = pos[i];
   s.ms = ms_;
   s.items_done = tick_.path.items_done();
+  s.item_points = tick_.path.item_points();
+  s.item_started = tick_.path.item_started() ? 1 : 0;
+  s.stopped_points = tick_.path.stopped_points();
+  s.stopped_started = tick_.path.stopped_started() ? 1 : 0;
   s.speed_um_s = tick_.path.speed_um_s();
   s.mode = tick_.mode;
   s.alarm = tick_.alarm;
@@ -272,6 +288,8 @@ void Application::take_snapshots() {
 void Application::follow_tick_events() {
   // A completed stop (abort, session reset, alarm cleared): everything the ring held is gone.
   if (latest_.stops_done != seen_stops_) {
+    track_dropped_job(true);  // the stop is complete: where the dropped job really ended
+    job_.dropped = false;
     seen_stops_ = latest_.stops_done;
     if (!stop_request_owed_) stopping_ = false;
     seen_items_ = latest_.items_done;
@@ -284,6 +302,9 @@ void Application::follow_tick_events() {
       ++seen_items_;
       finish_oldest();
     }
+    track_job();
+  } else {
+    track_dropped_job(false);
   }
   if (latest_.jogs_done != seen_jogs_) {
     seen_jogs_ = latest_.jogs_done;
@@ -322,12 +343,53 @@ void Application::finish_oldest() {
   if (item->kind == ItemKind::kText)
     screen_.show_text(item->text.row, item->text.chars, item->text.length, ms_);
   last_executed_seq_ = item->seq;
+  if (item->job_index != kNotInJob) {
+    job_.index = item->job_index < PROTO_I32_MAX ? item->job_index + 1 : item->job_index;
+    job_.point = 0;
+    job_.item_first = 0;
+    job_.started = false;
+  }
   ++items_done_;
   queue_.finished();
 }
 
+// Job progress while the job runs: the oldest unfinished command is the one the tick works
+// on (the commands before it finished); the tick says how many of its curve points it reached.
+void Application::track_job() {
+  const QueueItem* item = queue_.oldest();
+  if (item == 0 || item->job_index == kNotInJob) return;
+  job_.index = item->job_index;
+  job_.item_first = item->kind == ItemKind::kSpline ? item->spline.first_point : 0;
+  job_.point = (uint16_t)(job_.item_first + latest_.item_points);
+  job_.started = latest_.item_started != 0;
+}
+
+// After a drop the queue is gone but the tick decelerates along the path and may still reach
+// points, even finish commands: follow it until the stop is complete. Commands after a
+// numbered one are numbered consecutively, and none but a resumed spline starts past point 0.
+// stopped: the tick has dropped its ring (its stopped_ values are the final ones).
+void Application::track_dropped_job(bool stopped) {
+  if (!job_.dropped) return;
+  const uint16_t finished = (uint16_t)(latest_.items_done - job_.items_at_drop);
+  if (finished != 0) {
+    job_.index = job_.index_at_drop + finished;
+    job_.item_first = 0;
+  }
+  job_.point =
+      (uint16_t)(job_.item_first + (stopped ? latest_.stopped_points : latest_.item_points));
+  job_.started = (stopped ? latest_.stopped_started : latest_.item_started) != 0;
+}
+
 // Forgets the queued work (the ring is dropped by the tick's stop).
 void Application::drop_job() {
+  const QueueItem* oldest = queue_.oldest();
+  if (!stopping_ && !job_.dropped && oldest != 0 && oldest->job_index != kNotInJob) {
+    track_job();
+    job_.dropped = true;
+    job_.items_at_drop = seen_items_;
+    job_.index_at_drop = job_.index;
+  }
+  job_.numbering = false;  // until the next #J
   queue_.clear();
   store_.clear();
   generator_.stop();
@@ -438,7 +500,9 @@ void Application::fill_status(proto::StatusReply* r) {
   r->alarm = alarm();
   r->flags =
       (uint8_t)((zeroed_ ? proto::kStatusZeroed : 0) | (link_hold_ ? proto::kStatusLinkHold : 0) |
-                (items_done_ != 0 ? proto::kStatusExecuted : 0));
+                (items_done_ != 0 ? proto::kStatusExecuted : 0) |
+                (job_.valid ? proto::kStatusJob : 0) |
+                (job_.valid && job_.started ? proto::kStatusJobStarted : 0));
   r->override_percent = override_percent_;
   r->queue_free = queue_free();
   r->next_expected_seq = 0;  // filled by the dispatcher
@@ -451,6 +515,9 @@ void Application::fill_status(proto::StatusReply* r) {
   r->z_um = at[2];
   r->rejected_frames = 0;
   r->spline_slots_free = spline_slots_free();
+  r->job_index = job_.valid ? job_.index : 0;
+  r->curve_point = job_.valid ? job_.point : 0;
+  r->job_id = job_.valid ? job_.id : 0;
 }
 
 uint8_t Application::spline_slots_free() {
@@ -571,7 +638,8 @@ bool Application::execute_item(QueueItem* item) {
       }
       if (!spline_started_) {
         if (generator_.begin(store_.spline(slot), item->spline.feed_um_s, last[2], item_tag_,
-                             item->spline.tool_offset_um) != core::GeometryError::kOk) {
+                             item->spline.tool_offset_um,
+                             item->spline.first_point) != core::GeometryError::kOk) {
           store_.release(slot);
           raise_alarm(proto::Alarm::kPathFault);
           return false;

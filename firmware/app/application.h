@@ -144,6 +144,7 @@ class Application {
   proto::ErrorCode on_rapid_move(const proto::RapidMoveCmd& c, uint8_t seq, uint8_t* detail);
   proto::ErrorCode on_z_move(const proto::ZMoveCmd& c, uint8_t seq, uint8_t* detail);
   proto::ErrorCode on_drill(const proto::DrillCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_job_mark(const proto::JobMarkCmd& c, uint8_t seq, uint8_t* detail);
   proto::ErrorCode on_zeroing(const proto::ZeroingCmd& c, uint8_t seq, uint8_t* detail);
   proto::ErrorCode on_spline_header(const proto::SplineHeaderCmd& c, uint8_t seq, uint8_t* detail);
   proto::ErrorCode on_spline_data(const proto::SplineDataCmd& c, uint8_t seq, uint8_t* detail);
@@ -156,6 +157,8 @@ class Application {
   proto::ErrorCode on_clear_alarm(const proto::ClearAlarmCmd& c, uint8_t seq, uint8_t* detail);
   void watchdog();
   void update_screen();
+  void track_job();
+  void track_dropped_job(bool stopped);
 
   Board board_;
   ApplicationSink sink_;
@@ -223,6 +226,26 @@ class Application {
   bool paused_;             // a #P waits for the operator
   bool spindle_on_;
   proto::ErrorCode shown_error_;
+
+  // Job progress for the status (resume after a lost link or an abort): set by #J, kept
+  // through #I, #X and alarms. Background loop only; the tick's part comes by snapshot.
+  struct JobProgress {
+    int32_t next_index;    // index the next stored job command gets
+    uint16_t first_point;  // for the spline stored right after the #J
+    bool numbering;        // a #J was stored in this session
+    bool valid;            // a #J was stored since power-up: index/point mean something
+    uint16_t id;           // the host's identity of the job (the #J's job_id)
+    int32_t index;         // first job command not finished
+    uint16_t point;        // curve point the tool heads for in it (points before reached)
+    uint16_t item_first;   // that command's first point (a resumed spline's)
+    bool started;          // that command began to move
+    // The job was dropped (abort, #I, alarm) while that command ran: the tick may still
+    // finish commands while it decelerates; counted from items_done at the drop.
+    bool dropped;
+    uint16_t items_at_drop;
+    int32_t index_at_drop;
+  };
+  JobProgress job_;
 };
 
 }  // namespace app

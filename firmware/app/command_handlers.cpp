@@ -50,12 +50,38 @@ QueueItem Application::new_item(ItemKind kind, uint8_t seq) {
   item.kind = kind;
   item.seq = seq;
   item.stage = 0;
+  item.job_index = kNotInJob;
   return item;
 }
 
+// Stores the item; after a #J it gets the next job index (and a spline the mark's first point).
 ErrorCode Application::enqueue(const QueueItem& item) {
-  if (!queue_.push(item)) return ErrorCode::kBusy;
+  QueueItem numbered = item;
+  if (job_.numbering) {
+    numbered.job_index = job_.next_index;
+    if (numbered.kind == ItemKind::kSpline) numbered.spline.first_point = job_.first_point;
+  }
+  if (!queue_.push(numbered)) return ErrorCode::kBusy;
   ++items_stored_;
+  if (job_.numbering) {
+    job_.next_index = job_.next_index < PROTO_I32_MAX ? job_.next_index + 1 : job_.next_index;
+    job_.first_point = 0;  // the mark's first point applies to the command right after it
+  }
+  return ErrorCode::kOk;
+}
+
+// Numbers the commands that follow (not #D, not #J): job_index, job_index + 1, ... The
+// progress in the status starts there (a new job, or the resumed part of an old one).
+ErrorCode Application::on_job_mark(const proto::JobMarkCmd& c, uint8_t, uint8_t*) {
+  job_.numbering = true;
+  job_.next_index = c.job_index;
+  job_.first_point = c.first_point;
+  job_.id = c.job_id;
+  job_.valid = true;
+  job_.index = c.job_index;
+  job_.point = c.first_point;
+  job_.started = false;
+  job_.dropped = false;
   return ErrorCode::kOk;
 }
 
@@ -171,6 +197,7 @@ ErrorCode Application::on_spline_header(const proto::SplineHeaderCmd& c, uint8_t
   item.spline.slot = slot;
   item.spline.feed_um_s = c.feed_um_per_s;
   item.spline.tool_offset_um = c.tool_offset_um;
+  item.spline.first_point = 0;
   return enqueue(item);
 }
 

@@ -47,6 +47,7 @@ struct SplineArgs {
   uint8_t slot;  // in the SplineStore
   uint16_t feed_um_s;
   int32_t tool_offset_um;  // > 0 left of travel, < 0 right
+  uint16_t first_point;    // resume: curve points before this one are walked, not moved to
 };
 struct DwellArgs {
   uint16_t dwell_ms;
@@ -62,10 +63,14 @@ struct DrillArgs {
   uint16_t feed_um_s;  // plunge
 };
 
+// QueueItem::job_index of a command stored while no #J numbering was active.
+static const int32_t kNotInJob = -1;
+
 struct QueueItem {
   ItemKind kind;
-  uint8_t seq;    // frame sequence number (last_executed_seq)
-  uint8_t stage;  // steps already handed over, for items of several steps (pause, drill)
+  uint8_t seq;        // frame sequence number (last_executed_seq)
+  uint8_t stage;      // steps already handed over, for items of several steps (pause, drill)
+  int32_t job_index;  // position in the job (#J numbering), kNotInJob before any #J
   union {
     TextArgs text;
     ResolutionArgs resolution;

@@ -29,6 +29,10 @@ uint32_t um_per_tick(uint16_t v_um_s) {
 PathController::PathController()
     : speed_um_s_(0),
       items_done_(0),
+      item_points_(0),
+      item_started_(false),
+      stopped_points_(0),
+      stopped_started_(false),
       override_q8_(256),
       override_percent_(100),
       have_target_(false),
@@ -57,6 +61,10 @@ void PathController::set_override_percent(uint8_t percent) {
 
 void PathController::flush(CoordinateRing* ring) {
   ring->clear();
+  stopped_points_ = item_points_;  // where the dropped item got to, for the status
+  stopped_started_ = item_started_;
+  item_points_ = 0;
+  item_started_ = false;
   have_target_ = false;
   arrived_ = false;
   speed_um_s_ = 0;
@@ -70,14 +78,22 @@ void PathController::stop_now() {
 // cur_ was just popped from the ring: it is the target now (in microsteps already: the
 // planner converted it in the background).
 void PathController::take_popped() {
+  item_started_ = true;
   have_target_ = true;
   arrived_ = false;
 }
 
-// The current target is done (passed or reached): count finished items.
+// The current target is done (passed or reached): count finished items and curve points.
 void PathController::leave_target() {
-  if (cur_.flags & kPointEndOfItem) ++items_done_;
-  cur_.flags = (uint8_t)(cur_.flags & ~kPointEndOfItem);
+  // Saturates: a curve of more points reports 65 535 from there on (the host then knows
+  // only that the tool passed that point), never a count that wrapped to a small one.
+  if ((cur_.flags & kPointCurvePoint) && item_points_ != 0xFFFFU) ++item_points_;
+  if (cur_.flags & kPointEndOfItem) {
+    ++items_done_;
+    item_points_ = 0;
+    item_started_ = false;
+  }
+  cur_.flags = (uint8_t)(cur_.flags & ~(kPointEndOfItem | kPointCurvePoint));
 }
 
 // Feed times override, within the axis limits of the segment.
@@ -138,9 +154,12 @@ void PathController::tick(const int32_t pos_usteps[config::kAxisCount], Coordina
 
   // Speed: accelerate toward the cruise speed, never above what still lets the machine
   // reach the next corner (or a stop at the end of the buffer) at the planned speed.
+  // A hold only lowers the cruise speed: the corner and end-of-buffer limits stay, so the
+  // tool slows at the planned rate along the buffered points (braking to the current target
+  // instead would drop the speed faster than the chip's ramps follow and leave the path).
   const uint16_t cruise = hold_ ? 0 : cruise_of(cur_);
   uint16_t exit = 0;
-  if (next != 0 && !hold_) {
+  if (next != 0) {
     exit = next->entry_max_um_s;
     const uint16_t next_cruise = cruise_of(*next);
     if (next_cruise < exit) exit = next_cruise;

@@ -38,6 +38,12 @@ class PathController {
   bool holding() const { return hold_; }
   // Ring entries flagged kPointEndOfItem that were reached (wraps at 2^16).
   uint16_t items_done() const { return items_done_; }
+  // Curve points (kPointCurvePoint) reached in the item being worked on, and whether that
+  // item has a target yet; the stopped_ pair: their values when flush() dropped the ring.
+  uint16_t item_points() const { return item_points_; }
+  bool item_started() const { return item_started_; }
+  uint16_t stopped_points() const { return stopped_points_; }
+  bool stopped_started() const { return stopped_started_; }
   // Tag of the current target (the item being worked on).
   uint16_t current_tag() const { return cur_.tag; }
 
@@ -52,6 +58,11 @@ class PathController {
   int32_t residue_q8_[config::kAxisCount];  // velocity quantisation carried to the next tick
   uint16_t speed_um_s_;
   uint16_t items_done_;
+  uint16_t item_points_;
+  bool item_started_;
+  uint16_t stopped_points_;
+  bool stopped_started_;
+  bool new_item_;         // the next target taken begins an item (after a flush)
   uint16_t override_q8_;  // override as a factor, 256 = 100 %
   uint8_t override_percent_;
   bool have_target_;

@@ -53,10 +53,11 @@ uint16_t reach_speed_capped_um_s(uint16_t exit_um_s, uint16_t accel_um_s_per_ms,
   return core::isqrt32(v_sq);  // < cap <= 32767
 }
 
-Planner::Planner() : last_cruise_um_s_(0), have_dir_(false) {
+Planner::Planner() : last_cruise_um_s_(0), last_length_um_(0), have_dir_(false) {
   for (uint8_t i = 0; i < config::kAxisCount; ++i) {
     last_um_[i] = 0;
     last_dir_q14_[i] = 0;
+    normal_accel_um_s_per_ms_[i] = 0;
   }
   settings_ = default_planner_settings(10);
 }
@@ -65,12 +66,21 @@ void Planner::init(const AxisScaling& scaling, const PlannerSettings& settings) 
   scaling_ = scaling;
   settings_ = settings;
   have_dir_ = false;
+  last_length_um_ = 0;
+  // What each axis's ramp has beside the planned tangential acceleration (curve speed).
+  for (uint8_t i = 0; i < config::kAxisCount; ++i) {
+    const uint32_t chip = scaling.chip_accel_um_s_per_ms[i];
+    const uint32_t plan = scaling.plan_accel_um_s_per_ms[i];
+    normal_accel_um_s_per_ms_[i] =
+        (uint16_t)(chip > plan ? core::isqrt32(chip * chip - plan * plan) : 0);
+  }
 }
 
 void Planner::set_origin(const int32_t at_um[config::kAxisCount]) {
   for (uint8_t i = 0; i < config::kAxisCount; ++i) last_um_[i] = at_um[i];
   have_dir_ = false;
   last_cruise_um_s_ = 0;
+  last_length_um_ = 0;
 }
 
 // Length, direction, acceleration and cruise limit of the segment last -> target.
@@ -109,21 +119,53 @@ void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCo
   e->cruise_max_um_s = cruise;
 }
 
-// Corner speed: the chip ramps each axis at a, so a velocity step of |dv| leaves a path
-// error of at most |dv|^2 / 2a; |dv| = 2 v sin(theta/2) gives v^2 <= a e / (1 - cos theta).
-uint16_t Planner::corner_speed(const int16_t in_q14[3], const int16_t out_q14[3]) const {
-  const int32_t omc_q14 = (int32_t)kOneQ14 - dot_q14(in_q14, out_q14);
+// Corner speed: the chip ramps each axis toward the new velocity, so a velocity step of |dv|
+// leaves a path error of at most |dv|^2 / 2a; |dv| = 2 v sin(theta/2) gives
+// v^2 <= a e / (1 - cos theta). Meanwhile the tick already speeds up along the new direction
+// at the planned a_p, whose part along the step (u2 - u1) / |u2 - u1| is a_p sin(theta/2):
+// the ramp absorbs the step at a = a_chip - a_p sin(theta/2) (a_chip on gentle turns, about
+// a_chip - a_p at a reversal, where the tool nearly stops and then speeds up).
+uint16_t Planner::corner_speed(const int16_t in_q14[3], const int16_t out_q14[3], int32_t omc_q14,
+                               uint32_t sin_half_q14) const {
   if (omc_q14 <= 0) return kMaxSpeed;
   uint32_t a_um_s2 = 0xFFFFFFFFUL;
   for (uint8_t i = 0; i < 3; ++i) {
     const bool moves = in_q14[i] > kInvolvedQ14 || in_q14[i] < -kInvolvedQ14 ||
                        out_q14[i] > kInvolvedQ14 || out_q14[i] < -kInvolvedQ14;
-    const uint32_t a = 1000UL * scaling_.chip_accel_um_s_per_ms[i];
-    if (moves && a < a_um_s2) a_um_s2 = a;
+    if (!moves) continue;
+    const uint32_t chip = scaling_.chip_accel_um_s_per_ms[i];
+    const uint32_t taken = (scaling_.plan_accel_um_s_per_ms[i] * sin_half_q14) >> 14;
+    const uint32_t a = 1000UL * (chip > taken ? chip - taken : 1);
+    if (a < a_um_s2) a_um_s2 = a;
   }
   if (a_um_s2 == 0xFFFFFFFFUL) return kMaxSpeed;
   const uint32_t q = a_um_s2 * settings_.corner_tolerance_um / (uint32_t)omc_q14;
   if (q >= 65535UL) return kMaxSpeed;  // v^2 = q * 2^14 >= 2^30
+  return core::isqrt32(q << 14);
+}
+
+// Curve speed: a chain of short segments turning by theta at each point is a curve of radius
+// R = L / (2 sin(theta/2)) (L the shorter neighbour); going round it at v needs v^2 / R of
+// acceleration for as long as the curve lasts, which each small corner alone does not see.
+// The tick may speed up or slow down at the planned a_t meanwhile; the chip ramps each axis
+// at a_chip, and a_t u + a_n n stays within it on every axis when a_n^2 + a_t^2 <= a_chip^2:
+// v^2 <= R sqrt(a_chip^2 - a_t^2) (a_t = 3/4 a_chip by default: a_n = 0.66 a_chip).
+uint16_t Planner::curve_speed(const int16_t in_q14[3], const int16_t out_q14[3],
+                              uint32_t sin_half_q14, uint32_t in_um, uint32_t out_um) const {
+  if (sin_half_q14 == 0) return kMaxSpeed;
+  uint16_t a = 65535U;
+  for (uint8_t i = 0; i < 3; ++i) {
+    const bool moves = in_q14[i] > kInvolvedQ14 || in_q14[i] < -kInvolvedQ14 ||
+                       out_q14[i] > kInvolvedQ14 || out_q14[i] < -kInvolvedQ14;
+    if (moves) a = min16(a, normal_accel_um_s_per_ms_[i]);
+  }
+  uint32_t len = in_um < out_um ? in_um : out_um;
+  if (len > 65535UL) len = 65535UL;
+  const uint32_t t = (uint32_t)a * len;           // um/s per ms * um, < 2^32
+  if (t >= 4194304UL) return kMaxSpeed;           // t * 1000 * 2^14 / 2^15 > 2^30: no limit
+  const uint32_t two_sin_q14 = sin_half_q14 * 2;  // 2 sin(theta/2), Q14, at most 2^15
+  const uint32_t q = t * 1000UL / two_sin_q14;    // v^2 / 2^14 in um^2/s^2
+  if (q >= 65536UL) return kMaxSpeed;
   return core::isqrt32(q << 14);
 }
 
@@ -159,7 +201,16 @@ bool Planner::push(CoordinateRing* ring, const int32_t target_um[config::kAxisCo
   uint16_t cap = min16(e.cruise_max_um_s, feed_cap > kMaxSpeed ? kMaxSpeed : (uint16_t)feed_cap);
   if (have_dir_) {
     cap = min16(cap, last_cruise_um_s_);
-    cap = min16(cap, corner_speed(last_dir_q14_, e.dir_q14));
+    const int32_t omc_q14 = (int32_t)kOneQ14 - dot_q14(last_dir_q14_, e.dir_q14);
+    if (omc_q14 > 0) {
+      // sin(theta/2) = sqrt((1 - cos theta) / 2), Q14: one root for both limits.
+      const uint32_t sin_half_q14 = core::isqrt32((uint32_t)omc_q14 << 13);
+      cap = min16(cap, corner_speed(last_dir_q14_, e.dir_q14, omc_q14, sin_half_q14));
+      if (e.length_um != 0 && last_length_um_ != 0) {
+        cap = min16(
+            cap, curve_speed(last_dir_q14_, e.dir_q14, sin_half_q14, last_length_um_, e.length_um));
+      }
+    }
     // The corner is at the last point with length; zero-length markers after it sit on the
     // same point and get the same radius.
     const uint16_t capture = capture_for(last_dir_q14_, e.dir_q14);
@@ -180,6 +231,7 @@ bool Planner::push(CoordinateRing* ring, const int32_t target_um[config::kAxisCo
     last_dir_q14_[i] = e.dir_q14[i];
   }
   last_cruise_um_s_ = e.cruise_max_um_s;
+  if (e.length_um != 0) last_length_um_ = e.length_um;
   have_dir_ = true;
   replan(ring);
   return true;

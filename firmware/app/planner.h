@@ -44,7 +44,10 @@ class Planner {
 
  private:
   void fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount]);
-  uint16_t corner_speed(const int16_t in_q14[3], const int16_t out_q14[3]) const;
+  uint16_t corner_speed(const int16_t in_q14[3], const int16_t out_q14[3], int32_t omc_q14,
+                        uint32_t sin_half_q14) const;
+  uint16_t curve_speed(const int16_t in_q14[3], const int16_t out_q14[3], uint32_t sin_half_q14,
+                       uint32_t in_um, uint32_t out_um) const;
   uint16_t capture_for(const int16_t in_q14[3], const int16_t out_q14[3]) const;
   void replan(CoordinateRing* ring);
 
@@ -53,6 +56,8 @@ class Planner {
   int32_t last_um_[config::kAxisCount];
   int16_t last_dir_q14_[config::kAxisCount];
   uint16_t last_cruise_um_s_;
+  uint32_t last_length_um_;  // of the last segment with a length (curve speed)
+  uint16_t normal_accel_um_s_per_ms_[config::kAxisCount];  // sqrt(chip^2 - plan^2), init()
   bool have_dir_;
 };
 

@@ -10,6 +10,8 @@ PointGenerator::PointGenerator()
       feed_um_s_(0),
       z_um_(0),
       tag_(0),
+      point_index_(0),
+      first_point_(0),
       have_pending_(false),
       pending_is_last_(false),
       active_(false) {
@@ -25,11 +27,14 @@ void PointGenerator::set_resolution(uint16_t max_step_um, uint16_t chord_toleran
 }
 
 core::GeometryError PointGenerator::begin(const core::Spline* spline, uint16_t feed_um_s,
-                                          int32_t z_um, uint16_t tag, int32_t tool_offset_um) {
+                                          int32_t z_um, uint16_t tag, int32_t tool_offset_um,
+                                          uint16_t first_point) {
   settings_.tool_offset_um = tool_offset_um;  // this spline's (its #B); 0 = tool centre on it
   feed_um_s_ = feed_um_s;
   z_um_ = z_um;
   tag_ = tag;
+  point_index_ = 0;
+  first_point_ = first_point;
   have_pending_ = false;
   pending_is_last_ = false;
   const core::GeometryError e = walker_.begin(spline, settings_);
@@ -85,10 +90,17 @@ GenStatus PointGenerator::run(Planner* planner, CoordinateRing* ring, const int3
         active_ = false;
         return GenStatus::kOutside;
       }
+      if (point_index_ < first_point_) {
+        ++point_index_;  // resume: walked, not moved to
+        continue;
+      }
       have_pending_ = true;
     }
-    if (!push_point(planner, ring, pending_, 0)) return GenStatus::kMore;
+    // The walker's point itself (not a piece of its split chord) is a curve point: the tick
+    // counts those, which is how the status says how far along a curve the tool got.
+    if (!push_point(planner, ring, pending_, kPointCurvePoint)) return GenStatus::kMore;
     have_pending_ = false;
+    if (point_index_ < 0xFFFFU) ++point_index_;
   }
   return GenStatus::kMore;
 }

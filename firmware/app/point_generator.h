@@ -26,8 +26,11 @@ class PointGenerator {
   void set_resolution(uint16_t max_step_um, uint16_t chord_tolerance_um);
   // Starts a spline at feed, at height z_um; points carry tag. tool_offset_um: the tool
   // centre runs this far from the curve (> 0 left of travel, < 0 right, 0 on it).
+  // first_point (resume): the curve points before it are walked as usual but not pushed,
+  // so the points from it on are exactly those of a run from the start; the tool goes
+  // straight from where it stands to point first_point.
   core::GeometryError begin(const core::Spline* spline, uint16_t feed_um_s, int32_t z_um,
-                            uint16_t tag, int32_t tool_offset_um);
+                            uint16_t tag, int32_t tool_offset_um, uint16_t first_point);
   // Pushes up to max_points points; travel_um: allowed |x|, |y|.
   GenStatus run(Planner* planner, CoordinateRing* ring, const int32_t travel_um[2],
                 uint8_t max_points);
@@ -44,6 +47,8 @@ class PointGenerator {
   uint16_t feed_um_s_;
   int32_t z_um_;
   uint16_t tag_;
+  uint16_t point_index_;   // curve points produced so far
+  uint16_t first_point_;   // points before this one are skipped
   core::PointUm pending_;  // point produced but not yet pushed (ring was full)
   bool have_pending_;
   bool pending_is_last_;

@@ -46,6 +46,8 @@ struct TickStatus {
   int32_t pos_usteps[config::kAxisCount];
   uint16_t ms;              // tick counter (wraps)
   uint16_t items_done;      // ring items whose last point was reached
+  uint16_t item_points;     // curve points reached in the item being worked on
+  uint16_t stopped_points;  // item_points when the ring was last dropped (a stop)
   uint16_t speed_um_s;      // commanded path speed
   uint8_t mode;             // TickMode
   uint8_t alarm;            // TickAlarm while mode is kAlarm
@@ -59,6 +61,8 @@ struct TickStatus {
   uint8_t at_rest;          // commanded speed zero
   uint8_t finished;         // nothing more to follow
   uint8_t z_mode;           // zeroing: the joystick drives Z
+  uint8_t item_started;     // the item being worked on has a target (it began to move)
+  uint8_t stopped_started;  // item_started when the ring was last dropped
 };
 
 typedef core::SpscRing<TickRequest, 8> RequestRing;

@@ -124,6 +124,12 @@
     FIELD(DrillCmd, i32, z_bottom_um, PROTO_COORD_MIN, PROTO_COORD_MAX)                      \
     FIELD(DrillCmd, u16, feed_um_per_s, 1, 65535)                                            \
   END(DrillCmd)                                                                              \
+  CMD(JobMarkCmd, kCmdJobMark, 'J', kQueued, "job mark", "`*O` / `*E`", on_job_mark,        \
+      no_check)                                                                              \
+    FIELD(JobMarkCmd, i32, job_index, 0, PROTO_I32_MAX)                                      \
+    FIELD(JobMarkCmd, u16, first_point, 0, 65535)                                            \
+    FIELD(JobMarkCmd, u16, job_id, 0, 65535)                                                 \
+  END(JobMarkCmd)                                                                            \
   REPLY(AckReply, kReplyAck, 'O', "acknowledge", no_check)                                   \
     FIELD(AckReply, u8, queue_free, 0, 255)                                                  \
     FIELD(AckReply, u8, spline_slots_free, 0, 255)                                           \
@@ -164,6 +170,9 @@
     FIELD(StatusReply, i32, z_um, PROTO_I32_MIN, PROTO_I32_MAX)                              \
     FIELD(StatusReply, u16, rejected_frames, 0, 65535)                                       \
     FIELD(StatusReply, u8, spline_slots_free, 0, 255)                                        \
+    FIELD(StatusReply, i32, job_index, 0, PROTO_I32_MAX)                                     \
+    FIELD(StatusReply, u16, curve_point, 0, 65535)                                           \
+    FIELD(StatusReply, u16, job_id, 0, 65535)                                                \
   END(StatusReply)                                                                           \
   REPLY(AlarmReply, kReplyAlarm, 'A', "alarm notice (unsolicited)", no_check)                \
     FIELD(AlarmReply, alarm, alarm, 0, 7)                                                    \

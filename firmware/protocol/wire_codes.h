@@ -109,7 +109,9 @@ enum {
   kStatusSession = 0x04,       // a session is open (#I seen)
   kStatusAborted = 0x08,       // stream flushed by #X, waiting for #I
   kStatusLinkHold = 0x10,      // hold was caused by the link timeout
-  kStatusExecuted = 0x20       // last_executed_seq is valid: something ran since #I
+  kStatusExecuted = 0x20,      // last_executed_seq is valid: something ran since #I
+  kStatusJob = 0x40,           // job_index / curve_point are valid: a #J was stored
+  kStatusJobStarted = 0x80     // the command at job_index began to move (cut short if dropped)
 };
 
 // Timing constants of the protocol (docs/protocol.md "Timing").

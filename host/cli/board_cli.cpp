@@ -13,9 +13,11 @@
 #include <fstream>     // std::ofstream
 #include <iomanip>     // std::setprecision
 #include <iostream>    // std::cout, std::cerr
+#include <limits>      // std::numeric_limits
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
+#include "host/lib/pcb/board_files.h"  // BoardFileSet
 #include "host/lib/pcb/excellon_reader.h"
 #include "host/lib/pcb/gerber_reader.h"
 #include "host/lib/pcb/isolation_check.h"
@@ -24,6 +26,7 @@
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
 #include "host/lib/plot/board_plot.h"
+#include "host/lib/sim/contour_error.h"  // NearestSegment
 #include "host/lib/stream/job_encoder.h"
 
 namespace host::cli {
@@ -36,9 +39,9 @@ using pcb::PcbLayer;
 // ---- Reading a board's files ----
 
 struct BoardFiles {
-  std::vector<PcbLayer> copper_top, copper_bottom, drill, outline;
-  std::string name;  // for output files and the job title
-  std::string side;  // from a "top:" / "bottom:" prefix
+  pcb::BoardFileSet layers;  // by kind, as the server's board jobs hold them
+  std::string name;          // for output files and the job title
+  std::string side;          // from a "top:" / "bottom:" prefix
   std::vector<std::string> notes;
 };
 
@@ -64,30 +67,17 @@ PcbLayer read_layer(const std::string& path, LayerKind forced) {
 }
 
 void add_layer(BoardFiles* b, PcbLayer l, bool from_directory) {
-  switch (l.kind) {
-    case LayerKind::kCopperTop:
-      b->copper_top.push_back(std::move(l));
-      return;
-    case LayerKind::kCopperBottom:
-      b->copper_bottom.push_back(std::move(l));
-      return;
-    case LayerKind::kDrill:
-      b->drill.push_back(std::move(l));
-      return;
-    case LayerKind::kOutline:
-      b->outline.push_back(std::move(l));
-      return;
-    case LayerKind::kUnknown:
-      break;
-  }
+  const std::string path = l.path;
+  if (b->layers.add(std::move(l))) return;
   if (from_directory) {
-    b->notes.push_back(l.path + ": not a copper, drill or outline layer: left out");
+    b->notes.push_back(path + ": not a copper, drill or outline layer: left out");
     return;
   }
-  throw CommandFailure(kExitUsage,
-                       l.path +
-                           ": cannot tell which layer this is (no X2 TF.FileFunction, no "
-                           "usual name); give it with --top, --bottom or --outline");
+  throw CommandFailure(
+      kExitUsage, path +
+                      ": cannot tell which layer this is (no X2 TF.FileFunction, no "
+                      "usual name); name it with --top, --bottom or --outline (engraver board), "
+                      "or give copper as top:FILE or bottom:FILE");
 }
 
 bool has_prefix(const std::string& s, const std::string& p) {
@@ -148,21 +138,17 @@ BoardFiles read_input(const std::string& input) {
       b.notes.push_back(f + ": not a copper, drill or outline file name: left out");
       continue;
     }
-    add_layer(&b, read_layer(f, LayerKind::kUnknown), directory);
+    PcbLayer l = read_layer(f, LayerKind::kUnknown);
+    if (l.kind == LayerKind::kUnknown && !directory && files.size() == 1 && !b.side.empty() &&
+        pcb::pcb_file_format(f) == pcb::PcbFileFormat::kGerber) {
+      // "top:FILE" names the copper side of a file nothing else names (Eagle's .gbx).
+      l.kind = b.side == "bottom" ? LayerKind::kCopperBottom : LayerKind::kCopperTop;
+      b.notes.push_back(f + ": taken as " + b.side + " copper (from the '" + b.side + ":' prefix)");
+    }
+    add_layer(&b, std::move(l), directory);
   }
   b.name = board_name(directory ? stripped : files.front());
   return b;
-}
-
-// Several drill files (plated and not) make one drill layer.
-PcbLayer merged_drill(const std::vector<PcbLayer>& drills) {
-  PcbLayer d = drills.front();
-  for (size_t i = 1; i < drills.size(); ++i) {
-    d.holes.insert(d.holes.end(), drills[i].holes.begin(), drills[i].holes.end());
-    d.slots.insert(d.slots.end(), drills[i].slots.begin(), drills[i].slots.end());
-    d.path += " + " + drills[i].path;
-  }
-  return d;
 }
 
 // ---- Planning ----
@@ -170,13 +156,15 @@ PcbLayer merged_drill(const std::vector<PcbLayer>& drills) {
 pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, const BoardFiles& b) {
   pcb::BoardOptions o;
   std::string side = a.side.empty() ? b.side : a.side;
-  if (side.empty()) side = b.copper_top.empty() && !b.copper_bottom.empty() ? "bottom" : "top";
+  if (side.empty())
+    side = b.layers.copper_top.empty() && !b.layers.copper_bottom.empty() ? "bottom" : "top";
   if (side != "top" && side != "bottom")
     throw CommandFailure(kExitUsage, "--side must be top or bottom, not '" + side + "'");
   o.side = side == "bottom" ? pcb::BoardSide::kBottom : pcb::BoardSide::kTop;
   o.isolation.tool_width_mm = a.tool_width_mm;
   o.isolation.passes = a.passes;
   o.isolation.overlap = a.overlap;
+  o.isolation.clearance_mm = a.clearance_mm;
   o.isolation.mill_all = a.mill_all;
   o.isolation_depth_mm = a.depth_mm;
   o.drill_depth_mm = a.drill_depth_mm;
@@ -201,16 +189,12 @@ pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, co
 }
 
 pcb::BoardJob plan(const BoardFiles& b, const pcb::BoardOptions& o) {
-  if (b.copper_top.size() > 1 || b.copper_bottom.size() > 1 || b.outline.size() > 1)
-    throw CommandFailure(kExitUsage, "more than one file for the same copper or outline layer");
-  PcbLayer drill;
+  PcbLayer drill;  // several drill files (plated and not) make one drill layer
   pcb::BoardLayers l;
-  if (!b.copper_top.empty()) l.copper_top = &b.copper_top.front();
-  if (!b.copper_bottom.empty()) l.copper_bottom = &b.copper_bottom.front();
-  if (!b.outline.empty()) l.outline = &b.outline.front();
-  if (!b.drill.empty()) {
-    drill = merged_drill(b.drill);
-    l.drill = &drill;
+  try {
+    l = b.layers.layers(&drill);
+  } catch (const PlanError& e) {
+    throw CommandFailure(kExitUsage, e.what());
   }
   try {
     return pcb::plan_board(l, o);
@@ -313,6 +297,15 @@ nlohmann::json report_json(const pcb::BoardJob& job, const pcb::BoardOptions& o)
 
 std::optional<pcb::BoardJob> g_last_job;
 std::string g_last_title;
+double g_last_check_tol_mm = 0;
+double g_last_isolation_z_mm = 0;
+
+// The swept tool may reach into the copper by the fit tolerance and 1 um of rounding (the
+// planned paths keep the clearance on top, the simulated ones use it for the machine's
+// contour error).
+double isolation_check_tolerance_mm(const pcb::BoardOptions& o) {
+  return o.fit_tolerance_mm + 0.001;
+}
 
 // ---- engraver board ----
 
@@ -336,18 +329,19 @@ void run_board(const BoardCommand& a) {
   BoardFiles b;
   for (const std::string& f : a.files) {
     BoardFiles one = read_input(f);
-    for (auto& l : one.copper_top) b.copper_top.push_back(std::move(l));
-    for (auto& l : one.copper_bottom) b.copper_bottom.push_back(std::move(l));
-    for (auto& l : one.drill) b.drill.push_back(std::move(l));
-    for (auto& l : one.outline) b.outline.push_back(std::move(l));
+    for (auto* kind : {&one.layers.copper_top, &one.layers.copper_bottom, &one.layers.drill,
+                       &one.layers.outline})
+      for (PcbLayer& l : *kind) b.layers.add(std::move(l));
     b.notes.insert(b.notes.end(), one.notes.begin(), one.notes.end());
     if (b.name.empty()) b.name = one.name;
     if (b.side.empty()) b.side = one.side;
   }
-  if (!a.top.empty()) b.copper_top.push_back(read_layer(a.top, LayerKind::kCopperTop));
-  if (!a.bottom.empty()) b.copper_bottom.push_back(read_layer(a.bottom, LayerKind::kCopperBottom));
-  if (!a.outline.empty()) b.outline.push_back(read_layer(a.outline, LayerKind::kOutline));
-  for (const std::string& d : a.drills) b.drill.push_back(read_layer(d, LayerKind::kDrill));
+  // A layer named by its option is that kind, whatever its name or attributes say.
+  if (!a.top.empty()) b.layers.copper_top.push_back(read_layer(a.top, LayerKind::kCopperTop));
+  if (!a.bottom.empty())
+    b.layers.copper_bottom.push_back(read_layer(a.bottom, LayerKind::kCopperBottom));
+  if (!a.outline.empty()) b.layers.outline.push_back(read_layer(a.outline, LayerKind::kOutline));
+  for (const std::string& d : a.drills) b.layers.drill.push_back(read_layer(d, LayerKind::kDrill));
   if (b.name.empty()) {
     for (const std::string& f : {a.top, a.bottom, a.outline})
       if (!f.empty() && b.name.empty()) b.name = board_name(f);
@@ -379,7 +373,7 @@ void run_board(const BoardCommand& a) {
   j["chord_tolerance_mm"] = a.tol_mm;
   bool check_ok = true;
   if (!a.no_check && !job.copper_machine_nm.empty()) {
-    const double tol = o.fit_tolerance_mm * 3 + 0.001;  // fit (arc sagitta), 1 um rounding
+    const double tol = isolation_check_tolerance_mm(o);
     const pcb::IsolationCheck c = pcb::check_isolation(
         job.copper_machine_nm, job.isolation_paths_mm, job.tool_radius_mm, tol);
     j["check"] = {{"tolerance_mm", tol},
@@ -424,7 +418,7 @@ void run_board(const BoardCommand& a) {
         r.drill_travel_ordered_mm, r.drill_travel_file_order_mm, r.cutout_length_mm, r.tabs,
         r.tool_changes, plan_cpu_s, plan_peak_mb);
     for (const pcb::NarrowGap& g : r.narrow_gaps)
-      std::cout << "  " << pcb::describe_gap(g, o.isolation.tool_width_mm) << "\n";
+      std::cout << "  " << pcb::describe_gap(g, o.isolation) << "\n";
     if (!a.no_plot) std::cout << "  plot: " << base << ".board.svg, .png; ";
     std::cout << "report: " << base << ".board.json\n";
   }
@@ -492,6 +486,12 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
       ->group(g)
       ->check(CLI::Range(0.0, 0.9))
       ->capture_default_str();
+  cmd->add_option("--clearance", a->clearance_mm,
+                  "isolation: kept between the tool's edge and the copper for the fit and the "
+                  "machine's contour error, mm")
+      ->group(g)
+      ->check(CLI::Range(0.0, 0.1))
+      ->capture_default_str();
   cmd->add_flag("--mill-all", a->mill_all, "clear all copper-free area")->group(g);
   cmd->add_option("--depth", a->depth_mm, "isolation depth, mm")->group(g)->capture_default_str();
   cmd->add_option("--drill-depth", a->drill_depth_mm, "drill plunge depth, mm")
@@ -551,12 +551,14 @@ JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const Ma
   const pcb::BoardOptions o = board_options(args, d, b);
   g_last_job = plan(b, o);
   g_last_title = b.name;
+  g_last_check_tol_mm = isolation_check_tolerance_mm(o);
+  g_last_isolation_z_mm = -o.isolation_depth_mm;
   const pcb::BoardReport& r = g_last_job->report;
   std::cerr << fmt::format(
       "engraver: board {}: mount {} first; {} contours, {} holes, {} tool changes\n", b.name,
       r.first_tool, r.isolation_contours, r.holes, r.tool_changes);
   for (const pcb::NarrowGap& g : r.narrow_gaps)
-    std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation.tool_width_mm) << "\n";
+    std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation) << "\n";
   return g_last_job->plan;
 }
 
@@ -571,6 +573,58 @@ bool write_board_plot_if_planned(const std::string& base,
   return true;
 }
 
+std::optional<double> board_isolation_z_mm() {
+  if (!g_last_job || g_last_job->copper_machine_nm.empty() || g_last_job->isolation_curves == 0)
+    return std::nullopt;
+  return g_last_isolation_z_mm;
+}
+
+std::optional<SimulatedIsolation> check_simulated_isolation(
+    const std::vector<std::vector<Point2>>& cut_paths_mm, size_t samples) {
+  if (!board_isolation_z_mm()) return std::nullopt;
+  const pcb::BoardJob& job = *g_last_job;
+  SimulatedIsolation s;
+  s.tolerance_mm = g_last_check_tol_mm;
+  s.paths = cut_paths_mm.size();
+  s.samples = samples;
+  s.check =
+      pcb::check_isolation(job.copper_machine_nm, cut_paths_mm, job.tool_radius_mm, s.tolerance_mm);
+  // Clearance: each sample's distance to the copper's edges less the tool radius (a sample
+  // inside copper is a hit of the check above).
+  std::vector<std::vector<Point2>> edges;
+  for (const ClipperLib::Path& p : job.copper_machine_nm) {
+    std::vector<Point2> line;
+    for (const ClipperLib::IntPoint& q : p) line.push_back(Point2(q.X * 1e-6, q.Y * 1e-6));
+    if (!line.empty()) line.push_back(line.front());
+    edges.push_back(std::move(line));
+  }
+  const sim::NearestSegment copper(edges, 0.25);
+  auto clearance_um = [&](const Point2& p) {
+    return (copper.distance(p) - job.tool_radius_mm) * 1000.0;
+  };
+  s.min_clearance_um = std::numeric_limits<double>::infinity();
+  for (const std::vector<Point2>& path : cut_paths_mm) {
+    for (const Point2& p : path) {
+      const double c = clearance_um(p);
+      if (c < s.min_clearance_um) {
+        s.min_clearance_um = c;
+        s.min_clearance_at_mm = p;
+      }
+    }
+  }
+  s.planned_min_clearance_um = std::numeric_limits<double>::infinity();
+  for (const std::vector<Point2>& path : job.isolation_paths_mm) {
+    for (size_t i = 0; i < path.size(); ++i) {
+      const Point2 a = path[i], b = i + 1 < path.size() ? path[i + 1] : a;
+      const int n = 1 + static_cast<int>((b - a).norm() / 0.005);
+      for (int k = 0; k < n; ++k)
+        s.planned_min_clearance_um =
+            std::min(s.planned_min_clearance_um, clearance_um(a + (b - a) * (double(k) / n)));
+    }
+  }
+  return s;
+}
+
 bool print_board_points_if_pcb(const std::string& input, double tol_mm, bool csv) {
   if (!is_pcb_input(input)) return false;
   BoardArgs a;
@@ -581,7 +635,7 @@ bool print_board_points_if_pcb(const std::string& input, double tol_mm, bool csv
   const pcb::BoardOptions o = board_options(a, d, b);
   const pcb::BoardJob job = plan(b, o);
   for (const pcb::NarrowGap& g : job.report.narrow_gaps)
-    std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation.tool_width_mm) << "\n";
+    std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation) << "\n";
   const int tol_um = static_cast<int>(std::lround(tol_mm * 1000));
   // Machine frame back to the files' frame.
   auto to_file = [&](const Point2& m) {

@@ -13,6 +13,7 @@
 #include <vector>    // std::vector
 
 #include "host/lib/pcb/board_job.h"
+#include "host/lib/pcb/isolation_check.h"  // IsolationCheck
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/plot/plot.h"  // ToolPathSegment
 
@@ -23,6 +24,7 @@ struct BoardArgs {
   double tool_width_mm = 0.2;
   int passes = 1;
   double overlap = 0.25;
+  double clearance_mm = pcb::IsolationOptions().clearance_mm;
   bool mill_all = false;
   double depth_mm = 0.05;
   double drill_depth_mm = 1.8;
@@ -69,6 +71,22 @@ JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const Ma
 // base + ".board.svg/.png", when the last plan was a board. Returns whether it wrote one.
 bool write_board_plot_if_planned(const std::string& base,
                                  const std::vector<ToolPathSegment>& simulated);
+
+// After `run` of a board: the isolation check of the planned paths applied to the simulated
+// tool centres at the isolation depth, and their least clearance to copper.
+struct SimulatedIsolation {
+  pcb::IsolationCheck check;
+  double tolerance_mm = 0;      // the same as the planned paths' check
+  double min_clearance_um = 0;  // tool edge to copper, least over every cut sample
+  Point2 min_clearance_at_mm{0, 0};
+  double planned_min_clearance_um = 0;  // the same for the planned paths (every 5 um)
+  size_t paths = 0, samples = 0;
+};
+// The isolation depth (machine Z, mm) when the last plan was a board with isolation.
+std::optional<double> board_isolation_z_mm();
+// nullopt when the last plan was not a board (or has no copper).
+std::optional<SimulatedIsolation> check_simulated_isolation(
+    const std::vector<std::vector<Point2>>& cut_paths_mm, size_t samples);
 
 // `engraver points` on PCB input: the tool-centre points of the isolation paths, in the
 // files' frame. False when the input is not PCB files.

@@ -13,7 +13,9 @@
 #include <filesystem>  // create_directories
 #include <fstream>     // std::ofstream
 #include <iostream>    // std::cerr
+#include <optional>    // std::optional
 #include <thread>      // keyboard thread
+#include <utility>     // std::pair
 
 #include "firmware/config/machine_config.h"
 #include "host/cli/board_cli.h"  // PCB input (Gerber, Excellon, a board's directory)
@@ -25,8 +27,10 @@
 #include "host/lib/plot/plan_plot.h"
 #include "host/lib/plot/plot.h"
 #include "host/lib/progress/progress_meter.h"
+#include "host/lib/sim/cut_paths.h"
 #include "host/lib/sim/sim_job.h"
 #include "host/lib/sim/sim_server.h"
+#include "host/lib/stream/job_resume.h"
 #include "host/lib/stream/sender.h"
 
 namespace host::cli {
@@ -155,7 +159,8 @@ JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
   ProgressMeter bar("plan", "curves ordered", std::cerr, ProgressMeter::for_stderr());
   o.progress = [&bar](size_t done, size_t total) { bar.update(done, total); };
   try {
-    JobPlan plan = plan_job(*drawing, o);
+    // The drawing's curves are handed over (callers need only the plan and the program).
+    JobPlan plan = plan_job(std::move(*drawing), o);
     bar.update(plan.curves.size(), plan.curves.size());
     return plan;
   } catch (const PlanError& e) {
@@ -236,9 +241,13 @@ class Keyboard {
 };
 
 // What a progress line says about the machine: state, position and (simulated) time.
+// With the job progress (the INDEX:POINT that --resume-at takes after a controller restart).
 std::string machine_detail(const Progress& p) {
-  return fmt::format("{} at ({:.1f}, {:.1f}) mm", machine_state_name(p.status.state),
-                     p.status.x_um / 1000.0, p.status.y_um / 1000.0);
+  std::string s = fmt::format("{} at ({:.1f}, {:.1f}) mm", machine_state_name(p.status.state),
+                              p.status.x_um / 1000.0, p.status.y_um / 1000.0);
+  if (p.status.flags & proto::kStatusJob)
+    s += fmt::format(", job {}:{}", p.status.job_index, p.status.curve_point);
+  return s;
 }
 
 // ---- engraver send ----
@@ -248,9 +257,61 @@ struct SendArgs {
   std::string to;
   bool no_zero = false;
   int poll_ms = 250;
+  bool resume = false;    // continue from where the controller says the job stopped
+  std::string resume_at;  // INDEX[:POINT]: continue from there (after a controller restart)
 };
 
+// "12" or "12:40" -> job index and curve point; throws CommandFailure on anything else.
+std::pair<int32_t, uint16_t> parse_resume_at(const std::string& text) {
+  const size_t colon = text.find(':');
+  try {
+    size_t used = 0;
+    const long index = std::stol(text.substr(0, colon), &used);
+    if (used != text.substr(0, colon).size() || index < 0) throw std::invalid_argument(text);
+    long point = 0;
+    if (colon != std::string::npos) {
+      point = std::stol(text.substr(colon + 1), &used);
+      if (used != text.size() - colon - 1 || point < 0 || point > 65535)
+        throw std::invalid_argument(text);
+    }
+    return {static_cast<int32_t>(index), static_cast<uint16_t>(point)};
+  } catch (const std::exception&) {
+    throw CommandFailure(kExitUsage,
+                         fmt::format("--resume-at '{}': expected INDEX or INDEX:POINT (job "
+                                     "command and curve point, as the progress line shows them)",
+                                     text));
+  }
+}
+
+// send --resume / --resume-at: the stream that continues the job instead of the whole job.
+std::vector<QueuedCommand> resume_stream(const SendArgs& a, Sender& sender,
+                                         const std::vector<QueuedCommand>& job,
+                                         const EncodeOptions& enc) {
+  // The new session stopped what was left: where it came to rest is where to go on.
+  const proto::StatusReply status = sender.read_status_at_rest(std::chrono::seconds(30));
+  std::optional<ResumePoint> at;
+  if (!a.resume_at.empty()) {
+    const auto [index, point] = parse_resume_at(a.resume_at);  // checked before connecting
+    at = resume_point_at(job, index, point, status.z_um);
+  } else {
+    at = resume_point_of(status);
+    if (at && !resume_mismatch(job, *at).empty())
+      throw CommandFailure(kExitJobFailed, resume_mismatch(job, *at));
+    if (!at) {
+      throw CommandFailure(
+          kExitJobFailed,
+          "the controller reports no job progress (it was restarted or never ran a job): zero it "
+          "at the job's zero point again and use --resume-at INDEX:POINT with the 'job' figures "
+          "of the last progress line");
+    }
+  }
+  std::cerr << fmt::format("engraver: resuming at {}; the tool goes to ({:.3f}, {:.3f}) mm\n",
+                           describe_resume_point(job, *at), at->x_um / 1000.0, at->y_um / 1000.0);
+  return resume_commands(job, *at, enc);
+}
+
 void run_send(const SendArgs& a) {
+  if (!a.resume_at.empty()) parse_resume_at(a.resume_at);  // a bad one before anything else
   Drawing drawing;
   const JobPlan plan = load_plan(a.plan, &drawing);
   const LinkSpec spec = parse_link_spec(a.to);  // LinkError -> usage error below
@@ -264,7 +325,14 @@ void run_send(const SendArgs& a) {
   EncodeOptions enc = encode_options(a.plan);
   enc.max_payload = caps.max_payload;
   enc.controller = &caps;
-  const std::vector<QueuedCommand> commands = encode_job(plan, enc);
+  std::vector<QueuedCommand> commands = encode_job(plan, enc);
+  if (a.resume || !a.resume_at.empty()) {
+    commands = resume_stream(a, sender, commands, enc);
+    if (commands.empty()) {
+      std::cerr << "engraver: nothing to resume: the controller says the job has finished\n";
+      return;
+    }
+  }
   std::cerr << fmt::format(
       "engraver: {} -> {}: {} curves, {} commands, {} bytes; keys: h hold, "
       "r resume, x abort, +/- feed override\n",
@@ -448,6 +516,12 @@ void run_run(const RunArgs& a) {
   o.sender.status_interval = std::chrono::milliseconds(50);
   // The plot shows what its pixels can: keep a tool position every half pixel or so.
   o.trace_step_mm = plot_step_mm(plan);
+  // A board: the isolation cuts at full resolution, to check them against the copper.
+  std::optional<sim::CutPathCollector> isolation_cuts;
+  if (const std::optional<double> z = board_isolation_z_mm()) {
+    isolation_cuts.emplace(*z, 0.002);
+    o.on_sample = [&isolation_cuts](const sim::ToolSample& s) { isolation_cuts->add(s); };
+  }
   const sim::SimJobResult r = [&] {
     ProgressMeter bar("run", "commands", std::cerr, ProgressMeter::for_stderr());
     o.on_progress = [&bar](Sender&, const Progress& p) {
@@ -479,6 +553,9 @@ void run_run(const RunArgs& a) {
 
   const double feed = a.plan.feed_mm_s;
   const double ideal_s = plan.cut_length_mm / feed;
+  std::optional<SimulatedIsolation> iso;
+  if (isolation_cuts)
+    iso = check_simulated_isolation(isolation_cuts->paths(), isolation_cuts->samples());
   nlohmann::json j;
   j["drawing"] = a.plan.file;
   j["outcome"] = outcome_name(r.outcome);
@@ -503,6 +580,19 @@ void run_run(const RunArgs& a) {
   j["simulated_cut_s"] = r.cut_s;
   j["cut_length_over_feed_s"] = ideal_s;
   j["max_contour_error_um"] = r.max_contour_error_um;
+  j["max_contour_error_at_mm"] = {r.worst_contour_sample.x_mm, r.worst_contour_sample.y_mm};
+  if (iso) {
+    j["simulated_isolation_check"] = {
+        {"tolerance_mm", iso->tolerance_mm},
+        {"paths", iso->paths},
+        {"samples", iso->samples},
+        {"islands", iso->check.islands},
+        {"copper_hits", iso->check.hits.size()},
+        {"unseparated_pairs", iso->check.unseparated.size()},
+        {"min_clearance_um", iso->min_clearance_um},
+        {"planned_min_clearance_um", iso->planned_min_clearance_um},
+        {"min_clearance_at_mm", {iso->min_clearance_at_mm.x(), iso->min_clearance_at_mm.y()}}};
+  }
   j["simulated_machine_ms"] = r.virtual_ms;
   j["wall_s"] = r.wall_s;
   j["speedup_vs_real_time"] = r.wall_s > 0 ? r.virtual_ms / 1000.0 / r.wall_s : 0.0;
@@ -523,7 +613,8 @@ void run_run(const RunArgs& a) {
       "as G-code G1 at the same tolerance: {} bytes\n"
       "  tool path {:.1f} mm cut + {:.1f} mm rapid; simulated job time {:.1f} s, of which "
       "cutting {:.1f} s (cut length / feed {:.1f} s)\n"
-      "  max contour error {:.1f} um; simulated {:.1f} s of machine time in {:.2f} s "
+      "  max contour error {:.1f} um at ({:.3f}, {:.3f}) mm; simulated {:.1f} s of machine "
+      "time in {:.2f} s "
       "({:.2f} s of processor time: {:.0f}x real time)\n"
       "  {} pauses confirmed by the simulated operator ({} ms after each); spindle {} at the "
       "end\n"
@@ -531,9 +622,21 @@ void run_run(const RunArgs& a) {
       a.plan.file, plan.curves.size(), plan.pen_lifts, outcome_name(r.outcome), r.commands,
       r.stats.frames_sent, r.stats.bytes_sent, r.stats.retransmits, r.wire_bytes,
       j["gcode_g1_bytes_same_tolerance"].get<size_t>(), r.cut_mm, r.rapid_mm, r.motion_s, r.cut_s,
-      ideal_s, r.max_contour_error_um, r.virtual_ms / 1000.0, r.wall_s, r.cpu_s,
-      j["speedup_per_cpu_second"].get<double>(), r.pauses_confirmed, o.machine.pause_confirm_ms,
-      r.spindle_on ? "on" : "off", base, base, base);
+      ideal_s, r.max_contour_error_um, r.worst_contour_sample.x_mm, r.worst_contour_sample.y_mm,
+      r.virtual_ms / 1000.0, r.wall_s, r.cpu_s, j["speedup_per_cpu_second"].get<double>(),
+      r.pauses_confirmed, o.machine.pause_confirm_ms, r.spindle_on ? "on" : "off", base, base,
+      base);
+  if (iso) {
+    std::cout << fmt::format(
+        "  simulated isolation cuts ({} paths, {} samples) against the copper: {} copper hits "
+        "beyond {:.3f} mm, {} unseparated pairs; least clearance of the tool's edge {:.1f} um "
+        "at ({:.3f}, {:.3f}) mm (planned paths: {:.1f} um)\n",
+        iso->paths, iso->samples, iso->check.hits.size(), iso->tolerance_mm,
+        iso->check.unseparated.size(), iso->min_clearance_um, iso->min_clearance_at_mm.x(),
+        iso->min_clearance_at_mm.y(), iso->planned_min_clearance_um);
+    if (!iso->check.hits.empty())
+      std::cerr << "engraver: simulated isolation check: " << pcb::describe(iso->check) << "\n";
+  }
   if (r.outcome != JobOutcome::kCompleted) {
     throw CommandFailure(exit_code(r.outcome),
                          fmt::format("job {}: {}", outcome_name(r.outcome), r.message));
@@ -552,8 +655,16 @@ void add_machine_commands(CLI::App& app) {
                    "status poll interval (keep-alive); 0 = one query always in flight")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
+  send->add_flag("--resume", send_args->resume,
+                 "continue the job from where the controller says it stopped (lost link, abort, "
+                 "alarm); give the same file and plan options as the first send");
+  send->add_option("--resume-at", send_args->resume_at,
+                   "INDEX[:POINT]: continue from job command INDEX (curve point POINT), e.g. "
+                   "after a controller restart, from the last progress line's 'job' figures")
+      ->excludes("--resume");
   send->footer(
       "Example: engraver send board.dxf --to tcp://192.168.1.50:10001 --feed 8\n"
+      "After a lost link: engraver send board.dxf --to ... --feed 8 --resume\n"
       "Keys: h hold, r resume, x abort, +/- feed override. Signals: INT/TERM abort, USR1 hold, "
       "USR2 resume.\nExit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, "
       "5 command refused by the controller, 6 link lost, 7 stalled (no progress for 30 s).");

@@ -154,8 +154,12 @@ void add_serve_commands(CLI::App& app) {
       ->capture_default_str();
   serve->add_option("--machine", args->machines,
                     "a machine: 'ADDRESS [name=NAME] [work=WxH] [tags=a,b]' (repeat the option)");
-  serve->add_option("--inbox", args->inbox, "watched folder: drawings dropped here become jobs");
-  serve->add_option("--max-upload-mb", args->max_upload_mb, "largest upload accepted, MB")
+  serve->add_option("--inbox", args->inbox,
+                    "watched folder: drawings, board zips and board sub-folders (Gerber/Excellon "
+                    "files) dropped here become jobs");
+  serve
+      ->add_option("--max-upload-mb", args->max_upload_mb,
+                   "largest upload accepted, MB (a board: all its files, unpacked)")
       ->check(CLI::Range(0.001, 1024.0))
       ->capture_default_str();
   serve->add_option("--web", args->web, "folder of the page's files")->capture_default_str();

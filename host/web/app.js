@@ -115,6 +115,7 @@ $('#upload').addEventListener('submit', async (ev) => {
   ev.preventDefault();
   const out = $('#upload-result');
   out.textContent = 'uploading…'; out.className = '';
+  // Several files chosen together are one board (copper, drill, outline): one request.
   const r = await fetch('/api/jobs', { method: 'POST', headers: authHeaders(), body: new FormData(ev.target) });
   const body = await r.json().catch(() => ({ error: r.statusText }));
   if (r.ok) {

@@ -26,6 +26,7 @@ struct MotionRig {
   size_t next_pending = 0;
   uint16_t feed_um_s = 10000;
   int pushes_per_tick = 2;  // background throughput in points per ms
+  uint8_t point_flags = 0;  // added to every point (kPointCurvePoint: walker points)
   long ms = 0;
 
   MotionRig() { setup(); }
@@ -51,7 +52,8 @@ struct MotionRig {
     for (int k = 0; k < pushes_per_tick && next_pending < pending.size(); ++k) {
       const P3& p = pending[next_pending];
       const int32_t um[3] = {int32_t(p.x), int32_t(p.y), int32_t(p.z)};
-      const uint8_t flags = next_pending + 1 == pending.size() ? app::kPointEndOfItem : 0;
+      const uint8_t flags =
+          (uint8_t)(point_flags | (next_pending + 1 == pending.size() ? app::kPointEndOfItem : 0));
       if (!planner.push(&ring, um, feed_um_s, flags, 1)) break;
       ++next_pending;
     }

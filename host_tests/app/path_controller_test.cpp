@@ -1,6 +1,7 @@
 // Path controller + planner on the kinematic plant: accuracy, job time, stops, hold.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "host_tests/app/motion_rig.h"
@@ -99,6 +100,61 @@ TEST(PathController, HoldStopsOnThePathAndResumeFinishesTheJob) {
   ASSERT_TRUE(rig.run_to_end(30000));
   EXPECT_LE(max_contour_error(rig.recorded_um(), line), 10.0);
   EXPECT_NEAR(rig.position_um().x, line.back().x, 1.0);
+}
+
+// A hold on a curve of short chords (the resume tests' abort): the tool slows at the planned
+// rate along the buffered points. Braking to the current target instead dropped the speed by
+// several ramp steps in one tick and the chip's per-axis ramps slid the tool 33 um off.
+TEST(PathController, HoldOnAFinelySampledCurveSlowsAtThePlannedRateAndStaysOnThePath) {
+  MotionRig rig;
+  rig.plant.record = true;
+  const std::vector<P3> line = circle(20000, 20000, 2000, 1);  // 1 um chord error: short chords
+  rig.start_at(line[0]);
+  rig.queue(line);
+  for (int i = 0; i < 600; ++i) {  // up to speed, part way round
+    rig.background();
+    rig.tick();
+  }
+  ASSERT_GT(rig.controller.speed_um_s(), 5000);
+  ASSERT_FALSE(rig.controller.finished());
+  rig.controller.set_hold(true);
+  int max_drop = 0;
+  for (int i = 0; i < 2000 && !(rig.controller.at_rest() && !rig.plant.moving()); ++i) {
+    rig.background();
+    const int before = rig.controller.speed_um_s();
+    rig.tick();
+    max_drop = std::max(max_drop, before - int(rig.controller.speed_um_s()));
+  }
+  ASSERT_TRUE(rig.controller.at_rest());
+  EXPECT_FALSE(rig.plant.moving());
+  EXPECT_FALSE(rig.controller.finished());  // stopped part way, not at the end of the circle
+  EXPECT_LE(max_drop, int(rig.scaling.plan_accel_um_s_per_ms[0]));
+  EXPECT_LE(max_contour_error(rig.recorded_um(), line), 5.0);
+}
+
+// The status's curve_point comes from this count: on a curve of more than 65 535 points it
+// stays at 65 535 (the host then refuses to guess where the tool is), never wraps to a small
+// number that would resume the job at the wrong place.
+TEST(PathController, CurvePointCountSaturatesInsteadOfWrapping) {
+  MotionRig rig;
+  rig.pushes_per_tick = 16;
+  rig.point_flags = app::kPointCurvePoint;
+  std::vector<P3> line;
+  for (int i = 1; i <= 66000; ++i) line.push_back({double(i) * 2, 0, 0});  // 2 um apart
+  rig.queue(line);
+  uint16_t highest = 0;
+  bool went_down = false;
+  for (long ms = 0; ms < 200000 && rig.controller.items_done() == 0; ++ms) {
+    rig.background();
+    rig.tick();
+    if (rig.controller.items_done() != 0) break;
+    const uint16_t n = rig.controller.item_points();
+    if (n < highest) went_down = true;
+    highest = std::max(highest, n);
+  }
+  EXPECT_EQ(rig.controller.items_done(), 1u);
+  EXPECT_EQ(highest, 65535);
+  EXPECT_FALSE(went_down);
 }
 
 TEST(PathController, OverrideOfFiftyPercentDoublesTheCruiseTime) {

@@ -66,10 +66,22 @@ TEST(CodecLayout, SplineDataIsIndicesThenPointsThenKnots) {
             encoded(m));
 }
 
-TEST(CodecLayout, StatusReplyIs23Bytes) {
+TEST(CodecLayout, StatusReplyIs31BytesWithTheJobProgressLast) {
   proto::StatusReply s = {};
   s.override_percent = 100;
-  EXPECT_EQ(23u, encoded(s).size());
+  s.job_index = 0x01020304;
+  s.curve_point = 0x0506;
+  s.job_id = 0x0708;
+  const Bytes b = encoded(s);
+  ASSERT_EQ(31u, b.size());
+  EXPECT_EQ(Bytes({4, 3, 2, 1, 6, 5, 8, 7}), Bytes(b.begin() + 23, b.end()));
+}
+
+TEST(CodecLayout, JobMarkIsIndexThenFirstPoint) {
+  EXPECT_EQ(Bytes({4, 3, 2, 1, 6, 5, 8, 7}),
+            encoded(proto::JobMarkCmd{0x01020304, 0x0506, 0x0708}));
+  proto::JobMarkCmd m;
+  EXPECT_EQ(ErrorCode::kFieldRange, decode_bytes(Bytes({0, 0, 0, 0x80, 0, 0, 0, 0}), &m));
 }
 
 TEST(CodecLayout, TextIsRowThenCharacters) {
@@ -108,6 +120,8 @@ TEST(CodecRoundTrip, EveryCommand) {
   expect_round_trip(proto::SpindleCmd{1});
   expect_round_trip(proto::DrillCmd{-1000000, 1000000, 1000000, -1000000, 1});
   expect_round_trip(proto::DrillCmd{12000, 34000, 500, 499, 65535});
+  expect_round_trip(proto::JobMarkCmd{0, 0, 0});
+  expect_round_trip(proto::JobMarkCmd{2147483647, 65535, 65535});
 }
 
 TEST(CodecLayout, NewMachineCommandsAreLittleEndianInFieldOrder) {
@@ -198,10 +212,11 @@ TEST(CodecMalformed, EveryFixedSizeMessageRejectsOneByteMoreAndOneLess) {
   check(proto::DwellCmd{}, 2);
   check(proto::SpindleCmd{}, 1);
   check(proto::DrillCmd{}, 18);
+  check(proto::JobMarkCmd{}, 8);
   check(proto::AckReply{}, 3);
   check(proto::ErrorReply{}, 3);
   check(proto::SessionReply{}, 26);
-  check(proto::StatusReply{}, 23);
+  check(proto::StatusReply{}, 31);
   check(proto::AlarmReply{}, 2);
 }
 
@@ -344,7 +359,7 @@ TEST(CodecMalformed, ReplyEnumsOutsideTheirListsAreOutOfRange) {
   expect_range_error<proto::ErrorReply>({38, 0, 0});
   expect_range_error<proto::AlarmReply>({8, 5});
   expect_range_error<proto::AlarmReply>({1, 7});
-  Bytes status(23, 0);
+  Bytes status(31, 0);
   status[3] = 100;
   proto::StatusReply s;
   EXPECT_EQ(ErrorCode::kOk, decode_bytes(status, &s));

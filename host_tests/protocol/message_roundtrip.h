@@ -7,7 +7,8 @@
 #include <stdint.h>  // uint8_t
 #include <string.h>  // memcmp
 
-#include "firmware/protocol/codec.h"  // decode, encode
+#include "firmware/protocol/codec.h"          // decode, encode
+#include "firmware/protocol/message_table.h"  // PROTO_MESSAGE_TABLE
 
 namespace test_proto {
 
@@ -31,70 +32,21 @@ RoundTrip round_trip_as(const uint8_t* payload, uint8_t length) {
   return r;
 }
 
-// Picks the message type from start byte and letter; kUnknownCommand if none.
+// Picks the message type from start byte and letter (every row of the message table);
+// kUnknownCommand if none.
 inline RoundTrip round_trip_any(uint8_t start, uint8_t letter, const uint8_t* payload,
                                 uint8_t length) {
-  if (start == proto::kCommandStart) {
-    switch (letter) {
-      case proto::kCmdSession:
-        return round_trip_as<proto::SessionCmd>(payload, length);
-      case proto::kCmdStatus:
-        return round_trip_as<proto::StatusCmd>(payload, length);
-      case proto::kCmdHold:
-        return round_trip_as<proto::HoldCmd>(payload, length);
-      case proto::kCmdResume:
-        return round_trip_as<proto::ResumeCmd>(payload, length);
-      case proto::kCmdAbort:
-        return round_trip_as<proto::AbortCmd>(payload, length);
-      case proto::kCmdOverride:
-        return round_trip_as<proto::OverrideCmd>(payload, length);
-      case proto::kCmdClearAlarm:
-        return round_trip_as<proto::ClearAlarmCmd>(payload, length);
-      case proto::kCmdText:
-        return round_trip_as<proto::TextCmd>(payload, length);
-      case proto::kCmdSplineHeader:
-        return round_trip_as<proto::SplineHeaderCmd>(payload, length);
-      case proto::kCmdSplineData:
-        return round_trip_as<proto::SplineDataCmd>(payload, length);
-      case proto::kCmdSplineCompact:
-        return round_trip_as<proto::SplineCompactCmd>(payload, length);
-      case proto::kCmdResolution:
-        return round_trip_as<proto::ResolutionCmd>(payload, length);
-      case proto::kCmdFeedMove:
-        return round_trip_as<proto::FeedMoveCmd>(payload, length);
-      case proto::kCmdRapidMove:
-        return round_trip_as<proto::RapidMoveCmd>(payload, length);
-      case proto::kCmdZMove:
-        return round_trip_as<proto::ZMoveCmd>(payload, length);
-      case proto::kCmdZeroing:
-        return round_trip_as<proto::ZeroingCmd>(payload, length);
-      case proto::kCmdPause:
-        return round_trip_as<proto::PauseCmd>(payload, length);
-      case proto::kCmdDwell:
-        return round_trip_as<proto::DwellCmd>(payload, length);
-      case proto::kCmdSpindle:
-        return round_trip_as<proto::SpindleCmd>(payload, length);
-      case proto::kCmdDrill:
-        return round_trip_as<proto::DrillCmd>(payload, length);
-      default:
-        break;
-    }
-  } else if (start == proto::kReplyStart) {
-    switch (letter) {
-      case proto::kReplyAck:
-        return round_trip_as<proto::AckReply>(payload, length);
-      case proto::kReplyError:
-        return round_trip_as<proto::ErrorReply>(payload, length);
-      case proto::kReplySession:
-        return round_trip_as<proto::SessionReply>(payload, length);
-      case proto::kReplyStatus:
-        return round_trip_as<proto::StatusReply>(payload, length);
-      case proto::kReplyAlarm:
-        return round_trip_as<proto::AlarmReply>(payload, length);
-      default:
-        break;
-    }
-  }
+#define RT_CMD(Type, name, letter_value, kind, display, reply, handler, check) \
+  if (start == proto::kCommandStart && letter == (letter_value))               \
+    return round_trip_as<proto::Type>(payload, length);
+#define RT_REPLY(Type, name, letter_value, display, check)     \
+  if (start == proto::kReplyStart && letter == (letter_value)) \
+    return round_trip_as<proto::Type>(payload, length);
+#define RT_SKIP(...)
+  PROTO_MESSAGE_TABLE(RT_CMD, RT_REPLY, RT_SKIP, RT_SKIP, RT_SKIP, RT_SKIP)
+#undef RT_CMD
+#undef RT_REPLY
+#undef RT_SKIP
   RoundTrip none = {proto::ErrorCode::kUnknownCommand, false};
   return none;
 }

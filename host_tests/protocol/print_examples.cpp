@@ -81,22 +81,27 @@ int main() {
        "0 (repeated), 0, 1000 (repeated), 0 (repeated): 26 bytes of payload instead of 80");
   show(proto::ZeroingCmd{7}, 9, "#M seq 9: zero X, Y and Z with the joystick");
   show(proto::StatusCmd{}, 10, "#? seq 10: status query");
-  proto::StatusReply s = {proto::MachineState::kRunning,
-                          proto::Alarm::kNone,
-                          proto::kStatusZeroed | proto::kStatusSession,
-                          100,
-                          12,
-                          10,
-                          5,
-                          proto::ErrorCode::kOk,
-                          12000,
-                          -3500,
-                          -200,
-                          0,
-                          1};
+  proto::StatusReply s = {
+      proto::MachineState::kRunning,
+      proto::Alarm::kNone,
+      proto::kStatusZeroed | proto::kStatusSession | proto::kStatusJob | proto::kStatusJobStarted,
+      100,
+      12,
+      10,
+      5,
+      proto::ErrorCode::kOk,
+      12000,
+      -3500,
+      -200,
+      0,
+      1,
+      7,
+      18,
+      0x5A17};
   show(s, 10,
        "*? seq 10: running, zeroed, session open, 100 %, 12 free, expects 10, "
-       "done 5, at (12, -3.5, -0.2) mm, 1 spline slot free");
+       "done 5, at (12, -3.5, -0.2) mm, 1 spline slot free, job command 7 under way "
+       "(heading for curve point 18) of job 5A17");
   show(proto::ErrorReply{proto::ErrorCode::kSeqGap, 0, 10}, 12,
        "*E seq 12: seq_gap (20), controller expects seq 10");
   show(proto::ErrorReply{proto::ErrorCode::kGeometry, 5, 9}, 8,
@@ -117,6 +122,9 @@ int main() {
   show(proto::DrillCmd{25400, 12700, 500, -1800, 800}, 14,
        "#L seq 14: drill at X 25.4 mm, Y 12.7 mm from Z 0.5 mm down to Z -1.8 mm at 0.8 mm/s");
   show(proto::SpindleCmd{0}, 15, "#N seq 15: spindle off");
+  show(proto::JobMarkCmd{7, 18, 0x5A17}, 16,
+       "#J seq 16: job 5A17, the next job command is number 7; resume its spline at curve "
+       "point 18");
   std::printf("```\n");
   return 0;
 }

@@ -71,6 +71,10 @@ class ImportError : public std::runtime_error {
 // permission denied (the system's reason), not a regular file.
 void check_readable(const std::string& path);
 
+// True when the text starts like an Excellon drill file: M48 on the first line that is not
+// blank or a ';' comment (G-code may carry an M48, enable overrides, further down).
+bool starts_like_excellon(const std::string& text);
+
 // Reads a drawing; the format is chosen from the content and the extension (DXF; G-code
 // .ngc/.nc/.gcode). Throws ImportError for anything it cannot import faithfully.
 Drawing import_drawing(const std::string& path);

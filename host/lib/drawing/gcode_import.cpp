@@ -146,9 +146,16 @@ class Interpreter {
           break;
         case 9:
           break;  // coolant off: nothing to switch
+        case 48:
+          break;  // overrides enabled: the controller's feed override always is
+        case 49:
+          warn_once("overrides", where_ +
+                                     ": M49 (overrides off) ignored: the operator's feed "
+                                     "override stays available");
+          break;
         default:
           throw ImportError(where_ + ": M" + std::to_string(m) +
-                            " is not supported (M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 are)");
+                            " is not supported (M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M48 M49 are)");
       }
     }
     if (tool_change) {

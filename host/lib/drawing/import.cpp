@@ -44,11 +44,21 @@ bool is_gerber(const std::string& ext, const std::string& text) {
 }
 
 bool is_excellon(const std::string& ext, const std::string& text) {
-  return ext == ".drl" || ext == ".xln" || ext == ".exc" || text.rfind("M48", 0) == 0 ||
-         text.find("\nM48") != std::string::npos;
+  return ext == ".drl" || ext == ".xln" || ext == ".exc" || starts_like_excellon(text);
 }
 
 }  // namespace
+
+bool starts_like_excellon(const std::string& text) {
+  size_t i = 0;
+  while (i < text.size()) {
+    const size_t end = std::min(text.find('\n', i), text.size());
+    const size_t a = text.find_first_not_of(" \t\r", i);
+    if (a < end && text[a] != ';') return text.compare(a, 3, "M48") == 0;
+    i = end + 1;
+  }
+  return false;
+}
 
 void check_readable(const std::string& path) {
   std::error_code ec;
@@ -89,16 +99,15 @@ Drawing import_by_format(const std::string& path) {
   if (ext == ".dxf" || looks_like_dxf(path)) return import_dxf(path);
   if (is_gerber(ext, text)) {
     throw ImportError(path +
-                      ": this is a Gerber (RS-274X) photoplotter file, not a drawing of "
-                      "tool paths: its tracks and pads are areas whose outlines have to be "
-                      "computed first. Make isolation-routing G-code with pcb2gcode or FlatCAM "
-                      "and engrave that, or export the outlines from the PCB program as DXF.");
+                      ": this is a Gerber (RS-274X) PCB layer, not a drawing of tool paths: "
+                      "`engraver board`, `run`, `send` and `points` plan its isolation "
+                      "routing (give the board's folder or files).");
   }
   if (is_excellon(ext, text)) {
     throw ImportError(path +
-                      ": this is an Excellon drill file (holes, not curves): this tool "
-                      "engraves outlines and does not drill. Drill the holes separately, or "
-                      "export hole outlines (circles) from the PCB program as DXF.");
+                      ": this is an Excellon drill file (holes, not curves): `engraver board`, "
+                      "`run`, `send` and `points` plan its drilling (give the board's folder or "
+                      "files).");
   }
   if (ext == ".ngc" || ext == ".nc" || ext == ".gcode" || ext == ".g" || ext == ".tap" ||
       looks_like_gcode(text)) {

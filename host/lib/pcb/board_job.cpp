@@ -176,7 +176,7 @@ class StepWriter {
     for (size_t k = 0; k < pieces.size(); ++k) {
       PlanStep s;
       s.kind = PlanStep::kSpline;
-      s.spline = pieces[k];
+      s.spline = CompactSpline(pieces[k]);
       s.to = um(k + 1 == pieces.size() ? end_point(pc.spline)
                                        : end_point(from_firmware_spline(pieces[k])));
       s.feed_um_per_s = um(feed);
@@ -231,10 +231,14 @@ Paths BoardFrame::to_machine_nm(const Paths& file_nm) const {
   return out;
 }
 
-std::string describe_gap(const NarrowGap& g, double tool_width_mm) {
-  return fmt::format(
-      "gap {:.3f} mm < tool {:.3f} mm between islands {} and {} at ({:.3f}, {:.3f}) mm", g.gap_mm,
-      tool_width_mm, g.island_a, g.island_b, g.at.x / kNmPerMm, g.at.y / kNmPerMm);
+std::string describe_gap(const NarrowGap& g, const IsolationOptions& o) {
+  const std::string need =
+      o.clearance_mm > 0
+          ? fmt::format("{:.3f} mm (tool {:.3f} mm + 2 x {:.3f} mm clearance)",
+                        o.tool_width_mm + 2 * o.clearance_mm, o.tool_width_mm, o.clearance_mm)
+          : fmt::format("tool {:.3f} mm", o.tool_width_mm);
+  return fmt::format("gap {:.3f} mm < {} between islands {} and {} at ({:.3f}, {:.3f}) mm",
+                     g.gap_mm, need, g.island_a, g.island_b, g.at.x / kNmPerMm, g.at.y / kNmPerMm);
 }
 
 std::string tool_label(const char* what, double diameter_mm) {
@@ -272,11 +276,11 @@ BoardJob plan_board(const BoardLayers& layers, const BoardOptions& o) {
     rep.narrow_gaps = iso_result.narrow_gaps;
     if (!rep.narrow_gaps.empty() && !o.allow_narrow_gaps) {
       std::string msg = fmt::format(
-          "{}: {} place(s) where the copper is closer than the tool width {:.3f} mm, so the "
-          "tool cannot separate the islands:",
+          "{}: {} place(s) where the copper is closer than the tool width {:.3f} mm plus its "
+          "clearance, so the tool cannot separate the islands:",
           copper->path, rep.narrow_gaps.size(), io.tool_width_mm);
       for (size_t i = 0; i < rep.narrow_gaps.size() && i < 20; ++i)
-        msg += "\n  " + describe_gap(rep.narrow_gaps[i], io.tool_width_mm);
+        msg += "\n  " + describe_gap(rep.narrow_gaps[i], io);
       if (rep.narrow_gaps.size() > 20) msg += "\n  ...";
       msg += "\nUse a narrower tool (--tool-width) or plan anyway (--allow-narrow-gaps).";
       throw PlanError(msg);
@@ -496,7 +500,7 @@ BoardJob plan_board(const BoardLayers& layers, const BoardOptions& o) {
       std::vector<Point2> pts;
       for (const PlanStep& s : plan.steps) {
         if (s.kind != PlanStep::kSpline || s.curve != static_cast<int>(i)) continue;
-        const std::vector<Point2> piece = sample(from_firmware_spline(s.spline), 0.0005);
+        const std::vector<Point2> piece = sample(from_firmware_spline(s.spline.firmware()), 0.0005);
         pts.insert(pts.end(), piece.begin() + (pts.empty() ? 0 : 1), piece.end());
       }
       if (plan.curves[i].chained && !job.isolation_paths_mm.empty()) {

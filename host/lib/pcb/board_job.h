@@ -96,7 +96,7 @@ struct BoardJob {
 };
 
 // Text of a narrow gap for messages: "gap 0.12 mm < tool 0.20 mm at (x, y) mm".
-std::string describe_gap(const NarrowGap& g, double tool_width_mm);
+std::string describe_gap(const NarrowGap& g, const IsolationOptions& o);
 
 // Plans the board. Throws PlanError (narrow gaps unless allowed, nothing to do, the work
 // area, a curve the firmware cannot hold) and CutoutError (an outline that does not close).

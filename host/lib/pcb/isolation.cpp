@@ -93,30 +93,33 @@ std::vector<NarrowGap> find_narrow_gaps(const Paths& copper, double radius_nm,
   }
   std::sort(grown.begin(), grown.end(),
             [](const Grown& a, const Grown& b) { return a.box.min_x < b.box.min_x; });
-  std::vector<Paths> full(islands.size());
-  std::vector<bool> have_full(islands.size(), false);
-  auto grown_full = [&](size_t i) -> const Paths& {
-    if (!have_full[i]) {
-      full[i] = islands[i].paths.size() == 1
-                    ? offset_closed(Paths{islands[i].paths[0]}, radius_nm, arc_tolerance_nm)
-                    : offset_closed(islands[i].paths, radius_nm, arc_tolerance_nm);
-      have_full[i] = true;
-    }
-    return full[i];
+  // An island with its holes grown, seen through a box: only copper within 2r of the box can
+  // grow into it, so the island is cut to the widened box first (a board-wide net with
+  // thousands of holes would otherwise be offset whole), then the result to the box.
+  auto grown_full_in = [&](size_t i, const BoxNm& box) {
+    BoxNm wide = box;
+    const cInt margin = static_cast<cInt>(2 * radius_nm + 2 * arc_tolerance_nm) + 1;
+    wide.min_x -= margin, wide.min_y -= margin, wide.max_x += margin, wide.max_y += margin;
+    return clip_to_box(
+        offset_closed(clip_to_box(islands[i].paths, wide), radius_nm, arc_tolerance_nm), box);
   };
   std::vector<NarrowGap> gaps;
   for (size_t i = 0; i < grown.size(); ++i) {
     for (size_t j = i + 1; j < grown.size() && grown[j].box.min_x <= grown[i].box.max_x; ++j) {
       if (!grown[i].box.overlaps(grown[j].box)) continue;
-      // Outer boundaries grown: an island inside another's hole is checked against the hole.
       const Island& a = islands[grown[i].index];
       const Island& b = islands[grown[j].index];
-      // Outer boundaries first (cheap, already grown); then with the holes, grown once per
-      // island, so an island inside another's hole is checked against that hole.
-      if (std::fabs(signed_area(intersection_of(grown[i].paths, grown[j].paths))) <
+      // Outer boundaries first (cheap, already grown); then with the holes, so an island
+      // inside another's hole is checked against that hole. Both only within the boxes'
+      // common part: a board-wide net would otherwise make every pair a sweep over all of
+      // its edges (two thirds of a dense board's isolation time).
+      const BoxNm common = common_box(grown[i].box, grown[j].box);
+      if (std::fabs(signed_area(intersection_of(clip_to_box(grown[i].paths, common),
+                                                clip_to_box(grown[j].paths, common)))) <
           kMinOverlapAreaNm2)
         continue;
-      const Paths both = intersection_of(grown_full(grown[i].index), grown_full(grown[j].index));
+      const Paths both = intersection_of(grown_full_in(grown[i].index, common),
+                                         grown_full_in(grown[j].index, common));
       if (std::fabs(signed_area(both)) < kMinOverlapAreaNm2) continue;
       NarrowGap g;
       const IntPoint c = centroid(both);
@@ -140,11 +143,14 @@ std::vector<NarrowGap> find_narrow_gaps(const Paths& copper, double radius_nm,
 IsolationResult plan_isolation(const Paths& copper_in, const IsolationOptions& o) {
   if (!(o.tool_width_mm > 0)) throw std::invalid_argument("the tool width must be positive");
   if (o.passes < 1) throw std::invalid_argument("at least one isolation pass is needed");
+  if (!(o.clearance_mm >= 0 && o.clearance_mm <= 1))
+    throw std::invalid_argument("the isolation clearance must be between 0 and 1 mm");
   if (!(o.overlap >= 0 && o.overlap <= 0.9))
     throw std::invalid_argument("the pass overlap must be between 0 and 0.9");
   IsolationResult r;
   const Paths copper = union_of(copper_in);
-  const double radius_nm = o.tool_width_mm * kNmPerMm / 2;
+  // The tool centre's distance from the copper (r.tool_radius_mm stays the tool's own).
+  const double radius_nm = (o.tool_width_mm / 2 + o.clearance_mm) * kNmPerMm;
   const double step_nm = o.tool_width_mm * kNmPerMm * (1.0 - o.overlap);
   const double arc_tol_nm = o.arc_tolerance_mm * kNmPerMm;
   r.tool_radius_mm = o.tool_width_mm / 2;

@@ -20,9 +20,14 @@ struct IsolationOptions {
   ClipperLib::Paths area_nm;        // mill_all: the area to clear (the board); empty: the copper's
                                     // bounds grown by two tool widths
   double arc_tolerance_mm = 0.001;  // chord error of Clipper's round joins
+  // Kept between the tool's edge and the copper on top of the tool radius: room for the curve
+  // fit (2 um) and the machine's contour error at corners (8 um on the simulated machine), so
+  // the tool that really cuts does not touch copper. Narrow gaps are judged with it too.
+  double clearance_mm = 0.008;
 };
 
-// Two islands closer than the tool width: the tool cannot pass between them.
+// Two islands closer than the tool width plus twice the clearance: the tool cannot pass
+// between them with its clearance to both.
 struct NarrowGap {
   PointNm at;           // middle of the region both islands' tool clearances cover
   double gap_mm = 0;    // smallest distance between the two islands (from their vertices)

@@ -4,6 +4,8 @@
 #include <cctype>     // std::tolower
 #include <fstream>    // std::ifstream
 
+#include "host/lib/drawing/drawing.h"  // starts_like_excellon
+
 namespace host::pcb {
 
 namespace {
@@ -71,7 +73,7 @@ PcbFileFormat pcb_file_format(const std::string& path, const std::string& head_t
   if (contains(head_text, "%FS") || contains(head_text, "%MOMM") || contains(head_text, "%MOIN")) {
     return PcbFileFormat::kGerber;
   }
-  if (head_text.rfind("M48", 0) == 0 || contains(head_text, "\nM48")) {
+  if (starts_like_excellon(head_text)) {
     return PcbFileFormat::kExcellon;
   }
   return PcbFileFormat::kNone;

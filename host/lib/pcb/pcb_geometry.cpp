@@ -2,6 +2,8 @@
 #include "host/lib/pcb/pcb_geometry.h"
 
 #include <algorithm>  // std::min, std::max
+#include <cmath>      // std::llround
+#include <utility>    // std::move
 
 namespace host::pcb {
 
@@ -33,6 +35,67 @@ BoxNm box_of(const Paths& paths) {
   BoxNm b;
   for (const Path& p : paths) b.add(p);
   return b;
+}
+
+BoxNm common_box(const BoxNm& a, const BoxNm& b) {
+  BoxNm r;
+  if (!a.overlaps(b)) return r;
+  r.min_x = std::max(a.min_x, b.min_x);
+  r.min_y = std::max(a.min_y, b.min_y);
+  r.max_x = std::min(a.max_x, b.max_x);
+  r.max_y = std::min(a.max_y, b.max_y);
+  return r;
+}
+
+namespace {
+
+// One Sutherland-Hodgman stage: keep the side of the line `axis = limit` where
+// inside(p) holds; crossing points are rounded to the nanometre.
+template <typename Inside>
+Path clip_stage(const Path& in, bool x_axis, ClipperLib::cInt limit, Inside inside) {
+  Path out;
+  if (in.empty()) return out;
+  out.reserve(in.size() + 4);
+  IntPoint prev = in.back();
+  bool prev_in = inside(prev);
+  for (const IntPoint& cur : in) {
+    const bool cur_in = inside(cur);
+    if (cur_in != prev_in) {
+      const double a = x_axis ? static_cast<double>(prev.X) : static_cast<double>(prev.Y);
+      const double b = x_axis ? static_cast<double>(cur.X) : static_cast<double>(cur.Y);
+      const double t = (static_cast<double>(limit) - a) / (b - a);
+      const double ox = static_cast<double>(prev.X), oy = static_cast<double>(prev.Y);
+      const double u = ox + t * (static_cast<double>(cur.X) - ox);
+      const double v = oy + t * (static_cast<double>(cur.Y) - oy);
+      out.push_back(x_axis ? IntPoint(limit, std::llround(v)) : IntPoint(std::llround(u), limit));
+    }
+    if (cur_in) out.push_back(cur);
+    prev = cur;
+    prev_in = cur_in;
+  }
+  return out;
+}
+
+}  // namespace
+
+Paths clip_to_box(const Paths& paths, const BoxNm& box) {
+  Paths out;
+  if (box.empty()) return out;
+  for (const Path& p : paths) {
+    const BoxNm pb = box_of(Paths{p});
+    if (!pb.overlaps(box)) continue;
+    if (pb.min_x >= box.min_x && pb.max_x <= box.max_x && pb.min_y >= box.min_y &&
+        pb.max_y <= box.max_y) {
+      out.push_back(p);  // wholly inside
+      continue;
+    }
+    Path q = clip_stage(p, true, box.min_x, [&](const IntPoint& v) { return v.X >= box.min_x; });
+    q = clip_stage(q, true, box.max_x, [&](const IntPoint& v) { return v.X <= box.max_x; });
+    q = clip_stage(q, false, box.min_y, [&](const IntPoint& v) { return v.Y >= box.min_y; });
+    q = clip_stage(q, false, box.max_y, [&](const IntPoint& v) { return v.Y <= box.max_y; });
+    if (q.size() >= 3) out.push_back(std::move(q));
+  }
+  return out;
 }
 
 Paths union_of(const Paths& paths) {

@@ -33,6 +33,14 @@ struct BoxNm {
   }
 };
 BoxNm box_of(const ClipperLib::Paths& paths);
+// The box both boxes share (empty if they do not overlap).
+BoxNm common_box(const BoxNm& a, const BoxNm& b);
+
+// The part of closed polygons inside a box, per path (Sutherland-Hodgman: linear in the
+// vertices, where a Clipper operation sweeps every edge of a large polygon). A concave path
+// may come back as one path with edges along the box's sides that double back; they enclose
+// no area, so a later non-zero Clipper operation gives the same result as with the whole path.
+ClipperLib::Paths clip_to_box(const ClipperLib::Paths& paths, const BoxNm& box);
 
 // One connected piece of copper: an outer boundary (positive) and its holes (negative).
 struct Island {

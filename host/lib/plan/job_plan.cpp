@@ -4,6 +4,7 @@
 
 #include <cmath>    // std::llround, std::isfinite
 #include <sstream>  // std::ostringstream
+#include <utility>  // std::move
 
 #include "host/lib/plan/nearest_end.h"
 #include "host/lib/plan/plan_steps.h"
@@ -15,20 +16,16 @@ using namespace plan_detail;
 // Defined in program_plan.cpp: the planner for programs (G-code), which keeps their order.
 JobPlan plan_program(const Drawing& drawing, const PlanOptions& options);
 
-JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
-  if (drawing.curves.empty() && drawing.program.empty())
-    throw PlanError(drawing.path + ": the drawing has nothing to engrave");
-  check_options(o);
-  if (!drawing.program.empty()) return plan_program(drawing, o);
+namespace {
+
+// Plans the curves of a drawing without a program, already scaled (drawing frame, mm);
+// sources[i] names curve i in messages.
+JobPlan plan_scaled(std::vector<BSpline> scaled, std::vector<std::string> sources,
+                    const PlanOptions& o) {
   JobPlan plan;
-  // Scale, then put the lower-left corner of the extents at (margin, margin).
-  Eigen::Matrix2d scale = Eigen::Matrix2d::Identity() * o.scale;
-  std::vector<BSpline> scaled;
+  // Put the lower-left corner of the extents at (margin, margin).
   Extents ext;
-  for (const Curve& c : drawing.curves) {
-    scaled.push_back(transformed(c.spline, scale, Point2(0, 0)));
-    ext.add(curve_extents(scaled.back()));
-  }
+  for (const BSpline& s : scaled) ext.add(curve_extents(s));
   plan.offset_mm =
       o.fixed_offset ? o.offset_mm : Point2(Point2(o.margin_mm, o.margin_mm) - ext.min);
   for (BSpline& s : scaled) s = transformed(s, Eigen::Matrix2d::Identity(), plan.offset_mm);
@@ -55,14 +52,17 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
     }
     index.use(best);
     PlannedCurve pc;
-    pc.spline = best_rev ? reversed(scaled[best]) : scaled[best];
+    // Each scaled curve is used once: move it (a copy held the drawing twice more).
+    pc.spline = best_rev ? reversed(scaled[best]) : std::move(scaled[best]);
+    scaled[best] = BSpline();
     pc.drawing_index = static_cast<int>(best);
     pc.reversed = best_rev;
     pc.chained = n > 0 && best_d <= o.chain_tolerance_mm;
-    pc.source = drawing.curves[best].source;
+    pc.source = std::move(sources[best]);
     at = best_rev ? starts[best] : ends[best];
-    plan.curves.push_back(pc);
+    plan.curves.push_back(std::move(pc));
   }
+  std::vector<BSpline>().swap(scaled);
 
   // Work area, before anything else is produced.
   std::string culprit;
@@ -74,12 +74,8 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
 
   const int32_t feed = to_um(o.feed_mm_per_s);
   const int32_t plunge = to_um(o.plunge_mm_per_s);
-  // A PlanStep is over 1 kB (an inline firmware spline): reserve an upper bound (a curve
-  // takes at most lift, rapid, plunge, gap feed and one step per control point) so the
-  // vector never reallocates, which doubled the peak memory of large jobs.
-  size_t step_bound = 3;
-  for (const PlannedCurve& c : plan.curves) step_bound += 4 + c.spline.control.size();
-  plan.steps.reserve(step_bound);
+  // No reserve for the steps: an upper bound (4 + control points per curve) was six times
+  // the real count for separate lines; a PlanStep is small now (splines out of line).
   PlanStep up;
   up.kind = PlanStep::kPenUp;
   up.z_um = to_um(o.z_up_mm);
@@ -134,6 +130,47 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
   plan.steps.push_back(home);
   plan.rapid_length_mm += at.norm();
   return plan;
+}
+
+void check_not_empty(const Drawing& drawing) {
+  if (drawing.curves.empty() && drawing.program.empty())
+    throw PlanError(drawing.path + ": the drawing has nothing to engrave");
+}
+
+}  // namespace
+
+JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
+  check_not_empty(drawing);
+  check_options(o);
+  if (!drawing.program.empty()) return plan_program(drawing, o);
+  const Eigen::Matrix2d scale = Eigen::Matrix2d::Identity() * o.scale;
+  std::vector<BSpline> scaled;
+  std::vector<std::string> sources;
+  scaled.reserve(drawing.curves.size());
+  sources.reserve(drawing.curves.size());
+  for (const Curve& c : drawing.curves) {
+    scaled.push_back(transformed(c.spline, scale, Point2(0, 0)));
+    sources.push_back(c.source);
+  }
+  return plan_scaled(std::move(scaled), std::move(sources), o);
+}
+
+JobPlan plan_job(Drawing&& drawing, const PlanOptions& o) {
+  check_not_empty(drawing);
+  check_options(o);
+  if (!drawing.program.empty()) return plan_program(drawing, o);
+  const Eigen::Matrix2d scale = Eigen::Matrix2d::Identity() * o.scale;
+  std::vector<BSpline> scaled;
+  std::vector<std::string> sources;
+  scaled.reserve(drawing.curves.size());
+  sources.reserve(drawing.curves.size());
+  for (Curve& c : drawing.curves) {
+    scaled.push_back(transformed(c.spline, scale, Point2(0, 0)));
+    c.spline = BSpline();  // each curve is held once, not twice, while planning
+    sources.push_back(std::move(c.source));
+  }
+  std::vector<Curve>().swap(drawing.curves);
+  return plan_scaled(std::move(scaled), std::move(sources), o);
 }
 
 }  // namespace host

@@ -14,6 +14,7 @@
 #include "firmware/config/machine_config.h"
 #include "firmware/core/spline.h"
 #include "host/lib/drawing/drawing.h"
+#include "host/lib/plan/compact_spline.h"
 
 namespace host {
 
@@ -85,7 +86,7 @@ struct PlanStep {
   int32_t z_um = 0;            // kPenUp, kPenDown
   int32_t feed_um_per_s = 0;   // kPenDown, kFeed, kSpline
   int32_t tool_offset_um = 0;  // kSpline, kFeed: signed offset, > 0 left of travel, < 0 right
-  core::Spline spline;         // kSpline only (validated, in machine micrometres)
+  CompactSpline spline;        // kSpline only (validated, in machine micrometres); empty else
   std::string text;            // kPause: operator message (LCD, at most 16 characters used)
   uint32_t dwell_ms = 0;       // kDwell
   bool spindle_on = false;     // kSpindle
@@ -124,6 +125,9 @@ class PlanError : public std::runtime_error {
 // a program (DXF) is reordered for short rapids; a program (G-code) keeps the file's order
 // and its pauses, dwells, spindle switching and drilling (see program_plan.cpp).
 JobPlan plan_job(const Drawing& drawing, const PlanOptions& options);
+// The same, taking the drawing's curves (left empty) so that a large drawing is not held
+// twice while it is planned. A program (G-code) is planned as above and kept.
+JobPlan plan_job(Drawing&& drawing, const PlanOptions& options);
 
 }  // namespace host
 

@@ -15,10 +15,12 @@ namespace host::server {
 
 namespace fs = std::filesystem;
 
-const char* const kArchiveFiles[] = {"plan.json",   "plot.svg",  "plot.png",  "report.json",
-                                     "machine.log", "input.dxf", "input.ngc", "input.nc",
-                                     "input.gcode", "input.tap", "input.g",   "input.gbr",
-                                     "input.drl",   "input",     nullptr};
+const char* const kArchiveFiles[] = {
+    "plan.json", "plot.svg", "plot.png", "report.json", "machine.log", "input.dxf", "input.ngc",
+    "input.nc", "input.gcode", "input.tap", "input.g", "input.gbr", "input.drl", "input",
+    // A board job: its manifest and layers (board_planning.h).
+    "board.json", "copper.top.gbr", "copper.bot.gbr", "outline.gbr", "drill.drl", "drill.b.drl",
+    "drill.c.drl", "drill.d.drl", "input.zip", nullptr};
 
 bool is_archive_file(const std::string& name) {
   for (const char* const* f = kArchiveFiles; *f != nullptr; ++f) {

@@ -8,6 +8,7 @@
 
 #include <charconv>  // std::from_chars
 #include <cstdlib>   // std::strtod
+#include <iterator>  // std::distance
 
 namespace host::server {
 
@@ -97,9 +98,17 @@ UploadFields upload_fields(const httplib::Request& req) {
       u.error = "multipart upload without a 'file' part";
       return u;
     }
-    const httplib::MultipartFormData f = req.get_file_value("file");
-    u.sub.name = f.filename;
-    u.sub.content = f.content;
+    // Several "file" parts: the files of one board (copper, drill, outline).
+    const auto parts = req.files.equal_range("file");
+    if (std::distance(parts.first, parts.second) == 1) {
+      u.sub.name = parts.first->second.filename;
+      u.sub.content = parts.first->second.content;
+    } else {
+      for (auto it = parts.first; it != parts.second; ++it) {
+        u.sub.files.push_back(UploadFile{it->second.filename, it->second.content});
+      }
+      field("name", &u.sub.name);  // the board's name; "" takes it from the files
+    }
   } else {
     if (!req.has_param("name")) {
       u.error = "raw upload without ?name=FILE_NAME";
@@ -119,6 +128,15 @@ UploadFields upload_fields(const httplib::Request& req) {
     u.sub.priority = static_cast<int>(p);
   }
   field("tag", &u.sub.tag);
+  field("side", &u.sub.board.side);
+  text.clear();
+  field("allow_narrow_gaps", &text);
+  if (text == "1" || text == "true" || text == "on") {
+    u.sub.board.allow_narrow_gaps = true;
+  } else if (!text.empty() && text != "0" && text != "false") {
+    u.error = "allow_narrow_gaps must be 1 or 0";
+    return u;
+  }
   struct NumberField {
     const char* key;
     double* value;
@@ -126,7 +144,8 @@ UploadFields upload_fields(const httplib::Request& req) {
   const NumberField numbers[] = {{"feed_mm_s", &u.sub.settings.feed_mm_s},
                                  {"tol_mm", &u.sub.settings.tol_mm},
                                  {"scale", &u.sub.settings.scale},
-                                 {"margin_mm", &u.sub.settings.margin_mm}};
+                                 {"margin_mm", &u.sub.settings.margin_mm},
+                                 {"tool_width_mm", &u.sub.board.tool_width_mm}};
   for (const NumberField& n : numbers) {
     text.clear();
     field(n.key, &text);

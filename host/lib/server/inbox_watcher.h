@@ -1,6 +1,8 @@
-// The watched inbox folder (the old FTP folder): a drawing dropped there becomes a job.
-// A file is taken once its size has stayed the same for one scan (still being written
-// otherwise); queued files are removed, refused ones go to refused/ with a NAME.why.txt.
+// The watched inbox folder (the old FTP folder): a drawing dropped there becomes a job, and
+// so does a sub-folder holding one board's Gerber/Excellon files (copper, drill, outline;
+// other files in it are left out). A file is taken once its size has stayed the same for
+// one scan, a sub-folder once its list of files and their sizes has (still being written
+// otherwise); queued ones are removed, refused ones go to refused/ with a NAME.why.txt.
 #ifndef HOST_LIB_SERVER_INBOX_WATCHER_H
 #define HOST_LIB_SERVER_INBOX_WATCHER_H
 
@@ -33,7 +35,11 @@ class InboxWatcher {
   JobPlanSettings settings_;
   std::chrono::milliseconds interval_;
   std::function<void()> on_queued_;
-  std::map<std::string, uintmax_t> sizes_;  // size seen at the previous scan
+  // A board's sub-folder: its files for the intake, or the reason it is refused.
+  Submission board_folder(const std::filesystem::path& dir, IntakeResult* refused) const;
+
+  std::map<std::string, uintmax_t> sizes_;      // size seen at the previous scan
+  std::map<std::string, std::string> folders_;  // sub-folder: its files and sizes then
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };

@@ -4,22 +4,31 @@
 #ifndef HOST_LIB_SERVER_JOB_INTAKE_H
 #define HOST_LIB_SERVER_JOB_INTAKE_H
 
-#include <cstdint>  // int64_t
-#include <string>   // std::string
-#include <vector>   // std::vector
+#include <cstdint>     // int64_t
+#include <filesystem>  // std::filesystem::path
+#include <string>      // std::string
+#include <vector>      // std::vector
 
+#include "host/lib/server/board_planning.h"
 #include "host/lib/server/data_folder.h"
 #include "host/lib/server/job_record.h"
 #include "host/lib/server/job_store.h"
 
 namespace host::server {
 
+// One upload. A drawing is one file (name, content). A board is its Gerber/Excellon files
+// (copper, drill, outline): one such file in name/content, or one zip file holding them in
+// name/content, or several in `files` (then `name` is the board's name, "" to take it from
+// the files' names, and content is unused).
 struct Submission {
   std::string name;     // the file name the sender gave (display only)
   std::string content;  // the file's bytes
+  std::vector<UploadFile> files;
+  bool skip_other_files = false;  // board from a folder: leave out its read-me and such
   int priority = 0;
   std::string tag;
   JobPlanSettings settings;
+  BoardSettings board;
 };
 
 struct IntakeResult {
@@ -35,8 +44,19 @@ class JobIntake {
             size_t max_bytes);
   IntakeResult submit(const Submission& submission);
   size_t max_bytes() const { return max_bytes_; }
+  static constexpr size_t kMaxFiles = 32;  // files of one board (a CAM folder with masks, silk)
 
  private:
+  // Plans the upload into the staging folder; fills the job's plan-derived fields and the
+  // bytes the store keeps. Throws ImportError / PlanError with the message for the sender.
+  void stage_drawing(const Submission& sub, const std::filesystem::path& staging, JobRecord* job,
+                     std::string* stored) const;
+  // zip: the upload as it came when it was one zip file (kept as input.zip), else null.
+  void stage_board(const Submission& sub, const std::vector<UploadFile>& files, bool skip_other,
+                   const std::string* zip, const std::filesystem::path& staging, JobRecord* job,
+                   std::string* stored) const;
+  void work_area(double* w_mm, double* h_mm) const;
+
   JobStore& store_;
   const DataFolder& data_;
   std::vector<MachineFit> machines_;

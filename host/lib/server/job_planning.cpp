@@ -5,6 +5,12 @@
 
 #include "firmware/config/machine_config.h"
 #include "host/lib/drawing/drawing.h"
+#include "host/lib/plot/board_plot.h"
+#include "host/lib/plot/plan_plot.h"
+#include "host/lib/plot/plot.h"
+#include "host/lib/server/board_bundle.h"
+#include "host/lib/server/board_planning.h"
+#include "host/lib/server/data_folder.h"
 
 namespace host::server {
 
@@ -101,6 +107,39 @@ nlohmann::json plan_json(const JobPlan& plan) {
   }
   j["steps"] = steps;
   return j;
+}
+
+void restore_job_input(const std::filesystem::path& dir, const JobRecord& job,
+                       const std::string& stored) {
+  std::filesystem::create_directories(dir);
+  if (!is_board_job(job)) {
+    write_file(dir / job.input_file, stored);
+    return;
+  }
+  for (const auto& [file, bytes] : unpack_board_bundle(stored)) write_file(dir / file, bytes);
+}
+
+JobPlan plan_archived_job(const std::filesystem::path& dir, const JobRecord& job, double work_w_mm,
+                          double work_h_mm, bool write_archive) {
+  if (is_board_job(job)) {
+    const pcb::BoardJob board = plan_board_folder(dir, job.settings, work_w_mm, work_h_mm);
+    if (write_archive) {
+      write_file(dir / "plan.json", plan_json(board.plan).dump(1) + "\n");
+      BoardPlotInput in;
+      in.title = job.name;
+      in.job = &board;
+      write_board_plot(in, (dir / "plot.svg").string(), (dir / "plot.png").string());
+    }
+    return board.plan;
+  }
+  const JobPlan plan =
+      plan_file((dir / job.input_file).string(), job.name, job.settings, work_w_mm, work_h_mm);
+  if (write_archive) {
+    write_file(dir / "plan.json", plan_json(plan).dump(1) + "\n");
+    write_plot(plot_input_from_plan(plan, job.name), (dir / "plot.svg").string(),
+               (dir / "plot.png").string());
+  }
+  return plan;
 }
 
 }  // namespace host::server

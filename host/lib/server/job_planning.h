@@ -5,7 +5,8 @@
 
 #include <nlohmann/json.hpp>  // nlohmann::json
 
-#include <string>  // std::string
+#include <filesystem>  // std::filesystem::path
+#include <string>      // std::string
 
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/server/job_record.h"
@@ -23,6 +24,15 @@ EncodeOptions encode_options(const JobPlanSettings& settings, const std::string&
 double planned_seconds(const JobPlan& plan, const JobPlanSettings& settings);
 // The plan for the archive: summary and every step.
 nlohmann::json plan_json(const JobPlan& plan);
+
+// Writes a job's input into its archive folder from the bytes the store keeps (a server
+// sharing the queue runs a job uploaded to another): the file, or a board's files.
+void restore_job_input(const std::filesystem::path& dir, const JobRecord& job,
+                       const std::string& stored);
+// Plans a job (drawing or board) from its archive folder for a machine's work area; with
+// write_archive also writes plan.json and the plot there.
+JobPlan plan_archived_job(const std::filesystem::path& dir, const JobRecord& job, double work_w_mm,
+                          double work_h_mm, bool write_archive);
 
 }  // namespace host::server
 

@@ -5,11 +5,11 @@
 
 #include <algorithm>   // std::clamp
 #include <filesystem>  // std::filesystem::path
+#include <optional>    // std::optional
 
 #include "host/lib/drawing/drawing.h"
-#include "host/lib/plot/plan_plot.h"
-#include "host/lib/plot/plot.h"
 #include "host/lib/server/job_planning.h"
+#include "host/lib/stream/job_resume.h"  // resume_from_curve
 #include "host/lib/stream/link.h"
 
 namespace host::server {
@@ -32,6 +32,12 @@ int first_uncut_curve(const std::vector<QueuedCommand>& commands, size_t execute
 }
 
 }  // namespace
+
+ResumeEncoder continue_from_curve() {
+  return [](const JobPlan& plan, const EncodeOptions& options, int first_curve) {
+    return resume_from_curve(encode_job(plan, options), first_curve, options);
+  };
+}
 
 // One machine: its spec, what it is doing now, and the sender of the running job.
 struct Workshop::Slot {
@@ -299,24 +305,34 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     if (fetched) {
       const std::optional<std::string> bytes = store_.input(job.id);
       if (!bytes) throw std::runtime_error((dir / job.input_file).string() + ": missing");
-      fs::create_directories(dir);
-      write_file(dir / job.input_file, *bytes);
+      restore_job_input(dir, job, *bytes);
     }
-    const JobPlan plan = plan_file((dir / job.input_file).string(), job.name, job.settings,
-                                   slot.spec.fit.work_width_mm, slot.spec.fit.work_height_mm);
-    if (fetched) {
-      write_file(dir / "plan.json", plan_json(plan).dump(1) + "\n");
-      write_plot(plot_input_from_plan(plan, job.name), (dir / "plot.svg").string(),
-                 (dir / "plot.png").string());
-    }
+    const JobPlan plan = plan_archived_job(dir, job, slot.spec.fit.work_width_mm,
+                                           slot.spec.fit.work_height_mm, fetched);
     EncodeOptions enc = encode_options(job.settings, fs::path(job.name).stem().string());
     enc.max_payload = caps.max_payload;
     if (job.start_curve >= 0) {
-      // Continue an interrupted job from its first uncut curve (needs the protocol v2 hook).
-      if (!options_.resume_encoder)
-        throw PlanError("continuing mid-job needs send --resume (protocol v2)");
-      commands = options_.resume_encoder(plan, enc, job.start_curve);
-      note(fmt::format("continuing from curve {}", job.start_curve));
+      // Continue an interrupted job. On the machine it stopped on, still holding this job's
+      // progress (same job_id, at or past the first uncut curve): exactly where it stopped,
+      // as send --resume does. Elsewhere: from the first uncut curve (the hook).
+      const std::vector<QueuedCommand> full = encode_job(plan, enc);
+      const std::optional<ResumePoint> at =
+          resume_point_of(sender.read_status_at_rest(std::chrono::seconds(30)));
+      size_t curve_start = full.size();
+      for (size_t i = 0; i < full.size() && curve_start == full.size(); ++i) {
+        if (full[i].curve == job.start_curve) curve_start = i;
+      }
+      if (at && resume_mismatch(full, *at).empty() &&
+          command_of_job_index(full, at->job_index) >= curve_start &&
+          command_of_job_index(full, at->job_index) < full.size()) {
+        commands = resume_commands(full, *at, enc);
+        note("continuing at " + describe_resume_point(full, *at) + ", where the machine stopped");
+      } else {
+        if (!options_.resume_encoder)
+          throw PlanError("continuing mid-job needs a resume encoder (WorkshopOptions)");
+        commands = options_.resume_encoder(plan, enc, job.start_curve);
+        note(fmt::format("continuing from curve {}", job.start_curve));
+      }
     } else {
       commands = encode_job(plan, enc);
     }

@@ -27,10 +27,13 @@
 namespace host::server {
 
 // Commands that restart a job at `first_curve` (pen up, travel, pen down, then the rest).
-// Empty until `send --resume` (protocol v2) provides it; without it an interrupted job can
-// only be re-queued from the start.
+// Without one an interrupted job can only be re-queued from the start (the API answers 501).
 using ResumeEncoder = std::function<std::vector<QueuedCommand>(
     const JobPlan& plan, const EncodeOptions& options, int first_curve)>;
+// The default: the job as encode_job() makes it, continued from the curve's first command
+// with send --resume's machinery (host::resume_from_curve: pen up, travel to where the job
+// stood before that curve, #J, the rest).
+ResumeEncoder continue_from_curve();
 
 struct WorkshopOptions {
   std::string owner = "local";                      // this server's name in the store
@@ -42,7 +45,7 @@ struct WorkshopOptions {
   std::chrono::milliseconds heartbeat{1000};
   std::chrono::milliseconds stale_after{30000};
   SenderOptions sender;
-  ResumeEncoder resume_encoder;  // the protocol v2 hook (see above)
+  ResumeEncoder resume_encoder = continue_from_curve();  // "continue" (see above)
 };
 
 enum class JobControl { kHold, kResume, kAbort, kOverride };

@@ -70,7 +70,10 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
   SimMachine machine(options.machine);
   TraceMeter meter(plan, options.trace_step_mm);
   meter.add(machine.position());
-  machine.set_sample_sink([&meter](const ToolSample& s) { meter.add(s); });
+  machine.set_sample_sink([&meter, &options](const ToolSample& s) {
+    meter.add(s);
+    if (options.on_sample) options.on_sample(s);
+  });
   const uint64_t start_ms = machine.now_ms();
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = thread_cpu_s();
@@ -123,6 +126,7 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
   r.cut_s = meter.cut_s();
   r.motion_s = meter.motion_s();
   r.max_contour_error_um = meter.max_contour_error_um();
+  r.worst_contour_sample = meter.worst_sample();
   r.lcd[0] = machine.lcd_line(0);
   r.lcd[1] = machine.lcd_line(1);
   r.pauses_confirmed = machine.pauses_confirmed();

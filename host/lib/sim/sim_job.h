@@ -30,6 +30,8 @@ struct SimJobOptions {
   double trace_step_mm = 0.0;
   // Wraps the sender's link (tests put a noisy or dropping link here).
   std::function<std::unique_ptr<Link>(std::unique_ptr<Link>)> wrap_link;
+  // Sees every tool sample as it is made (e.g. to check the cut path at full resolution).
+  std::function<void(const ToolSample&)> on_sample;
   // Called at every status (e.g. to hold/resume/abort through the sender).
   std::function<void(Sender&, const Progress&)> on_progress;
 };
@@ -39,16 +41,17 @@ struct SimJobResult {
   std::string message;
   SenderStats stats;
   size_t commands = 0;
-  size_t wire_bytes = 0;            // the job's frames once each (no retransmits, no polls)
-  uint64_t virtual_ms = 0;          // machine time simulated
-  double wall_s = 0;                // real time it took
-  double cpu_s = 0;                 // processor time this thread used for it (load-independent)
-  std::vector<ToolSample> trace;    // tool positions (machine frame, mm), see trace_step_mm
-  size_t trace_samples = 0;         // samples measured (before thinning)
-  double motion_s = 0;              // from the first to the last tool movement
-  double cut_s = 0;                 // pen down and moving in X/Y
-  double cut_mm = 0, rapid_mm = 0;  // tool path lengths from the trace (pen down / up)
-  double max_contour_error_um = 0;  // pen-down trace points to the planned curves
+  size_t wire_bytes = 0;              // the job's frames once each (no retransmits, no polls)
+  uint64_t virtual_ms = 0;            // machine time simulated
+  double wall_s = 0;                  // real time it took
+  double cpu_s = 0;                   // processor time this thread used for it (load-independent)
+  std::vector<ToolSample> trace;      // tool positions (machine frame, mm), see trace_step_mm
+  size_t trace_samples = 0;           // samples measured (before thinning)
+  double motion_s = 0;                // from the first to the last tool movement
+  double cut_s = 0;                   // pen down and moving in X/Y
+  double cut_mm = 0, rapid_mm = 0;    // tool path lengths from the trace (pen down / up)
+  double max_contour_error_um = 0;    // pen-down trace points to the planned curves
+  ToolSample worst_contour_sample{};  // where that error is largest
   std::string lcd[2];
   int pauses_confirmed = 0;  // #P pauses the simulated operator confirmed
   bool spindle_on = false;   // at the end of the run

@@ -50,7 +50,10 @@ void TraceMeter::add(const ToolSample& b) {
     if (down && prev_down_ && d > 0) cut_s_ += (b.t_ms - a.t_ms) / 1000.0;
     if (down && reference_) {
       const double e = reference_->distance(Point2(b.x_mm, b.y_mm)) * 1000.0;
-      if (e > max_error_um_) max_error_um_ = e;
+      if (e > max_error_um_) {
+        max_error_um_ = e;
+        worst_ = b;
+      }
     }
   }
   // Thinning: keep the first sample, both sides of every pen change, and every sample a step

@@ -30,6 +30,8 @@ class TraceMeter {
   double cut_s() const { return cut_s_; }
   double motion_s() const { return (last_move_ms_ - first_move_ms_) / 1000.0; }
   double max_contour_error_um() const { return max_error_um_; }
+  // The pen-down sample with the largest contour error (where to look first).
+  const ToolSample& worst_sample() const { return worst_; }
   size_t samples() const { return samples_; }
   // The thinned path; take it when done.
   std::vector<ToolSample>& kept() { return kept_; }
@@ -46,6 +48,7 @@ class TraceMeter {
   bool kept_down_ = false;
   uint64_t first_move_ms_ = 0, last_move_ms_ = 0;
   double cut_mm_ = 0, rapid_mm_ = 0, cut_s_ = 0, max_error_um_ = 0;
+  ToolSample worst_{};
   size_t samples_ = 0;
   std::vector<ToolSample> kept_;
 };

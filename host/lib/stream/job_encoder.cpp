@@ -1,4 +1,4 @@
-// Job plan -> queued protocol commands (#S #U #Z #F #G #B #D #P #W #N #L), using the shared
+// Job plan -> queued protocol commands (#J #S #U #Z #F #G #B #D #P #W #N #L), using the shared
 // codecs.
 #include "host/lib/stream/job_encoder.h"
 #include "host/lib/stream/spline_frames.h"  // append_spline_data
@@ -8,6 +8,7 @@
 #include <algorithm>  // std::min
 
 #include "firmware/protocol/codec.h"  // proto::encode, message structs
+#include "firmware/protocol/crc16.h"  // proto::crc16_update
 
 namespace host {
 
@@ -45,12 +46,14 @@ void append_spline(const PlanStep& s, int index, unsigned max_payload, bool comp
   proto::SplineHeaderCmd header{};
   header.degree = s.spline.degree;
   header.rational = s.spline.rational;
-  header.control_count = s.spline.control_count;
-  header.knot_count = s.spline.knot_count;
+  const size_t control_count = s.spline.control.size();
+  const size_t knot_count = s.spline.knot.size();
+  header.control_count = static_cast<uint16_t>(control_count);
+  header.knot_count = static_cast<uint16_t>(knot_count);
   header.feed_um_per_s = feed16(s.feed_um_per_s, index);
   header.tool_offset_um = s.tool_offset_um;
   out->push_back(make(header, index, s.curve));
-  append_spline_data(s.spline, index, s.curve, max_payload, compact, out);
+  append_spline_data(s.spline.firmware(), index, s.curve, max_payload, compact, out);
 }
 
 // #P with the operator message: the LCD row holds 16 characters, the rest is cut; characters
@@ -86,9 +89,9 @@ void check_step_fits(const PlanStep& s, const proto::SessionReply& c, int step) 
       check_travel(s.to.y_um, c.travel_y_um, 'Y', step);
       break;
     case PlanStep::kSpline:
-      for (unsigned i = 0; i < s.spline.control_count; ++i) {
-        check_travel(s.spline.control[i].x_um, c.travel_x_um, 'X', step);
-        check_travel(s.spline.control[i].y_um, c.travel_y_um, 'Y', step);
+      for (const core::ControlPoint& p : s.spline.control) {
+        check_travel(p.x_um, c.travel_x_um, 'X', step);
+        check_travel(p.y_um, c.travel_y_um, 'Y', step);
       }
       break;
     case PlanStep::kDrill:
@@ -123,6 +126,8 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
     throw PlanError(fmt::format("controller payload {} bytes is too small", options.max_payload));
   }
   std::vector<QueuedCommand> out;
+  // Job numbering from here (the controller reports progress by it; send --resume).
+  out.push_back(make(proto::JobMarkCmd{0, 0, 0}, -1, -1));  // its job_id is set at the end
   if (!options.title.empty()) {
     proto::TextCmd text{};
     text.row = 0;
@@ -168,7 +173,7 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
           // The controller offsets curves only: a straight line with an offset goes as a
           // degree-1 spline from where the tool is.
           PlanStep line = s;
-          line.spline = straight_spline(from, s.to);
+          line.spline = CompactSpline(straight_spline(from, s.to));
           append_spline(line, index, options.max_payload, options.compact_splines, &out);
           break;
         }
@@ -206,7 +211,18 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
       }
     }
   }
+  out.front() = make(proto::JobMarkCmd{0, 0, job_id_of(out)}, -1, -1);
   return out;
+}
+
+uint16_t job_id_of(const std::vector<QueuedCommand>& commands) {
+  uint16_t crc = 0xFFFF;
+  for (const QueuedCommand& c : commands) {
+    if (c.letter == proto::kCmdJobMark) continue;
+    crc = proto::crc16_update(crc, c.letter);
+    for (uint8_t b : c.payload) crc = proto::crc16_update(crc, b);
+  }
+  return crc;
 }
 
 size_t frame_bytes(const QueuedCommand& command) {

@@ -31,11 +31,15 @@ struct EncodeOptions {
   const proto::SessionReply* controller = nullptr;
 };
 
-// The whole job as queued commands, in order. Tool offsets go in the spline header (the
-// controller offsets; a straight feed with an offset becomes a degree-1 spline). Throws
-// PlanError on a step the protocol cannot carry (a feed above 65535 um/s, an offset beyond
-// 100 mm) or, with options.controller, a target outside that controller's travel.
+// The whole job as queued commands, in order, starting with #J 0 (job numbering). Tool offsets go
+// in the spline header (the controller offsets; a straight feed with an offset becomes a degree-1
+// spline). Throws PlanError on a step the protocol cannot carry (a feed above 65535 um/s, an offset
+// beyond 100 mm) or, with options.controller, a target outside that controller's travel.
 std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& options);
+
+// The job's identity for #J and the status (send --resume checks it): CRC-16 over the
+// letters and payloads of every command but #J.
+uint16_t job_id_of(const std::vector<QueuedCommand>& commands);
 
 // Bytes one command takes on the wire as a frame (header + payload + CRC).
 size_t frame_bytes(const QueuedCommand& command);

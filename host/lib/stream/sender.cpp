@@ -418,6 +418,31 @@ proto::SessionReply Sender::open_session() {
   return session_;
 }
 
+proto::StatusReply Sender::read_status() {
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    have_status_ = false;
+    query_status();
+    const auto deadline = now() + options_.reply_timeout;
+    while (!have_status_ && now() < deadline) pump(milliseconds(5));
+    if (have_status_) return last_status_;
+  }
+  throw LinkError(fmt::format("{}: no status reply from the controller", link_.name()));
+}
+
+proto::StatusReply Sender::read_status_at_rest(milliseconds limit) {
+  const auto deadline = now() + limit;
+  for (;;) {
+    const proto::StatusReply s = read_status();
+    if (s.state != proto::MachineState::kRunning && s.state != proto::MachineState::kHolding)
+      return s;
+    if (now() > deadline) {
+      throw LinkError(fmt::format("{}: the machine did not come to rest within {} ms", link_.name(),
+                                  limit.count()));
+    }
+    pump(milliseconds(20));
+  }
+}
+
 // Sends a real-time frame and waits for its ack, retrying with the same seq.
 void Sender::send_realtime(uint8_t letter, const std::vector<uint8_t>& payload) {
   realtime_seq_ = static_cast<uint8_t>(realtime_seq_ + 1);

@@ -70,6 +70,11 @@ class Sender {
 
   // #I until *I answers (or throws LinkError). Returns the controller's capabilities.
   proto::SessionReply open_session();
+  // One status query and its reply (throws LinkError if none comes).
+  proto::StatusReply read_status();
+  // Status queries until the machine has come to rest (not running or holding: a #I or #X
+  // decelerates along the path first); throws LinkError if that takes longer than `limit`.
+  proto::StatusReply read_status_at_rest(std::chrono::milliseconds limit);
   // Sends every command and waits until they have run. on_progress is called at each status.
   JobOutcome run(const std::vector<QueuedCommand>& commands,
                  const std::function<void(const Progress&)>& on_progress);

@@ -304,4 +304,27 @@ TEST(Cli, FitToleranceAndDrillModeChangeWhatIsSent) {
   EXPECT_EQ(z_moves["outcome"], "completed");
 }
 
+// send --resume-at takes INDEX or INDEX:POINT; anything else is a usage error before any
+// connection is tried.
+TEST(Cli, SendResumeAtRejectsABadPositionAsAUsageError) {
+  const auto r = run("send " + kSample + " --to tcp://127.0.0.1:9 --resume-at 12:x");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("--resume-at '12:x'"), std::string::npos) << r.err;
+}
+
+// send --resume on a controller that never ran a job (as after a restart): refused with what to
+// do instead, nothing sent.
+TEST(Cli, SendResumeOnAControllerWithoutJobProgressSaysWhatToDo) {
+  const int port = 20000 + static_cast<int>(getpid() % 20000);
+  const std::string exe = ENGRAVER_EXE;
+  const std::string script = "'" + exe + " sim --listen 127.0.0.1:" + std::to_string(port) +
+                             " >/dev/null 2>&1 & S=$!; sleep 0.5; " + exe + " send " + kSample +
+                             " --to tcp://127.0.0.1:" + std::to_string(port) +
+                             " --resume; r=$?; kill $S; exit $r'";
+  const auto r = host_tests::run_tool("sh -c", script);
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("no job progress"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--resume-at"), std::string::npos) << r.err;
+}
+
 }  // namespace

@@ -87,6 +87,29 @@ TEST(GcodeImport, InMemoryAndFileReadsAgree) {
   EXPECT_EQ(a.curves[0].spline.knots, b.curves[0].spline.knots);
 }
 
+// M48 (enable feed and speed overrides) in a program: G-code, not an Excellon drill file.
+TEST(GcodeImport, AnM48LineDoesNotMakeTheProgramADrillFile) {
+  const Drawing d = import_via_file("m48.txt", "G21\nM48\nG0 X0 Y0\nG1 X10 Y0 F100\nM2\n");
+  EXPECT_EQ(d.format, "G-code");
+  EXPECT_EQ(d.curves.size(), 1u);
+}
+
+// PCB files are not drawings: the message says which commands plan them.
+TEST(GcodeImport, PcbFilesAreSentToTheBoardCommands) {
+  for (const auto& [name, text] :
+       {std::pair<const char*, const char*>{"copper.gbr", "%FSLAX46Y46*%\n%MOMM*%\nM02*\n"},
+        {"holes.txt", "M48\nMETRIC\n%\nM30\n"}}) {
+    try {
+      import_via_file(name, text);
+      ADD_FAILURE() << name << " read as a drawing";
+    } catch (const ImportError& e) {
+      EXPECT_NE(std::string(e.what()).find("`engraver board`, `run`, `send` and `points` plan"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(GcodeImport, ArcEndOffTheCircleIsRefusedWithTheLine) {
   try {
     import_via_file("badarc.ngc", "G21\nG0 X10 Y0\nG2 X0 Y-12 I-10 J0\n");

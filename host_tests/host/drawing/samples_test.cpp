@@ -119,15 +119,17 @@ TEST(SharedSamples, Pcb2gcodeDrillingHasItsHolesInOrder) {
   EXPECT_LT((holes[2] - Point2(1.65 * 25.4, -0.8 * 25.4)).norm(), 1e-9);
 }
 
-TEST(SharedSamples, GerberIsRefusedWithWhatToDoInstead) {
+TEST(SharedSamples, GerberAsADrawingIsSentToTheBoardCommands) {
   REQUIRE_SHARED("kicad519_D1MiniGSR-F_Cu.gbr");
   const std::string m = refusal(kShared + "kicad519_D1MiniGSR-F_Cu.gbr");
   EXPECT_NE(m.find("kicad519_D1MiniGSR-F_Cu.gbr: this is a Gerber (RS-274X)"), std::string::npos)
       << m;
-  EXPECT_NE(m.find("pcb2gcode"), std::string::npos) << m;
+  EXPECT_NE(m.find("`engraver board`, `run`, `send` and `points` plan its isolation"),
+            std::string::npos)
+      << m;
 }
 
-TEST(SharedSamples, ExcellonIsRefusedWithWhatToDoInstead) {
+TEST(SharedSamples, ExcellonAsADrawingIsSentToTheBoardCommands) {
   REQUIRE_SHARED("kicad519_D1MiniGSR-PTH.drl");
   const std::string m = refusal(kShared + "kicad519_D1MiniGSR-PTH.drl");
   EXPECT_NE(m.find("kicad519_D1MiniGSR-PTH.drl: this is an Excellon drill file"), std::string::npos)

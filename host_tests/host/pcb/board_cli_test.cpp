@@ -79,7 +79,9 @@ TEST(BoardCli, NarrowGapRefusesTheJobAndNamesThePlace) {
   const ToolRun r = run("board " + dir + " -o " + dir + "/out");
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.err.find("t-F.Cu.gbr"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("gap 0.100 mm < tool 0.200 mm"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("gap 0.100 mm < 0.216 mm (tool 0.200 mm + 2 x 0.008 mm clearance)"),
+            std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find("at (26.0"), std::string::npos) << r.err;  // between x 26.0 and 26.1
   const ToolRun narrow = run("board " + dir + " -o " + dir + "/out --tool-width 0.08");
   EXPECT_EQ(narrow.code, 0) << narrow.err;
@@ -102,8 +104,9 @@ TEST(BoardCli, PointsOnACopperLayerAreToolCentresAroundTheCopper) {
     ++rows;
   }
   EXPECT_GT(rows, 20);
-  EXPECT_NEAR(min_x, 10 - 0.8 - 0.1, 0.006);  // left pad edge less the tool radius, file frame
-  EXPECT_NEAR(max_x, 26 + 0.1, 0.006);        // square pad's right edge plus the radius
+  // Pad edges less / plus the tool radius and the 8 um clearance, file frame.
+  EXPECT_NEAR(min_x, 10 - 0.8 - 0.108, 0.006);
+  EXPECT_NEAR(max_x, 26 + 0.108, 0.006);
 }
 
 TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {
@@ -116,6 +119,42 @@ TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(base + ".json"));
   EXPECT_EQ(j["outcome"], "completed");
   EXPECT_TRUE(std::filesystem::exists(base + ".board.png"));
+  // The simulated tool centres at the isolation depth (not only the planned paths) keep the
+  // tool off the copper: the board's check on the trace, every isolation contour cut, and
+  // the tool's edge no closer to copper than the planned paths' fit tolerance plus the
+  // planner's corner budget (4 um ramp + 2 um early switch).
+  const nlohmann::json& c = j["simulated_isolation_check"];
+  ASSERT_TRUE(c.is_object()) << j.dump(2);
+  EXPECT_EQ(c["copper_hits"], 0) << c.dump();
+  EXPECT_EQ(c["unseparated_pairs"], 0) << c.dump();
+  EXPECT_GT(c["samples"].get<int>(), 1000);
+  EXPECT_GE(c["min_clearance_um"].get<double>(),
+            c["planned_min_clearance_um"].get<double>() - 4.0 - 2.0)
+      << c.dump();
+  EXPECT_NE(r.out.find("simulated isolation cuts"), std::string::npos) << r.out;
+}
+
+// A copper file that neither X2 nor its name identifies (Eagle writes .gbx): refused with
+// the ways to name it, and run as copper with a "top:" prefix.
+TEST(BoardCli, ACopperFileWithoutAKnownNameIsNamedByItsSidePrefix) {
+  const std::string dir = write_board("anon");
+  std::string top = kTopCopper;
+  top.replace(top.find("%TF.FileFunction,Copper,L1,Top*%\n"), 33, "");
+  top.replace(top.find("%EXTRA%"), 7, "");
+  const std::string file = dir + "/copper.gbx";
+  std::ofstream(file) << top;
+  const ToolRun refused = run("run " + file + " -o " + dir + "/out");
+  EXPECT_EQ(refused.code, 2);
+  EXPECT_NE(refused.err.find("copper.gbx: cannot tell which layer this is"), std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("or give copper as top:FILE or bottom:FILE"), std::string::npos);
+  const ToolRun r = run("run top:" + file + " -o " + dir + "/out");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("copper.gbx: taken as top copper (from the 'top:' prefix)"),
+            std::string::npos)
+      << r.err;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir + "/out/copper.json"));
+  EXPECT_EQ(j["outcome"], "completed");
 }
 
 TEST(BoardCli, AnUnreadableGerberIsAnInputError) {
@@ -123,6 +162,17 @@ TEST(BoardCli, AnUnreadableGerberIsAnInputError) {
   const ToolRun r = run("board " + dir + " -o " + dir + "/out");
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.err.find("t-F.Cu.gbr"), std::string::npos) << r.err;
+}
+
+TEST(BoardCli, TwoFilesForOneCopperLayerAreAnInputErrorNamingBoth) {
+  const std::string dir = write_board("twice");
+  std::ofstream(dir + "/u-F.Cu.gbr")
+      << std::string(kTopCopper).replace(std::string(kTopCopper).find("%EXTRA%"), 7, "");
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.err.find("two files for the top copper"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("t-F.Cu.gbr"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("u-F.Cu.gbr"), std::string::npos) << r.err;
 }
 
 }  // namespace

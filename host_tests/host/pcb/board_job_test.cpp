@@ -76,7 +76,7 @@ TEST(BoardJob, ContoursGoOutAsArcsAndLinesFarSmallerThanTheirVertices) {
   EXPECT_LT(controls * 4, job.report.isolation_vertices);
   for (const PlanStep& s : job.plan.steps) {
     if (s.kind == PlanStep::kSpline)
-      EXPECT_EQ(core::validate_spline(s.spline), core::GeometryError::kOk);
+      EXPECT_EQ(core::validate_spline(s.spline.firmware()), core::GeometryError::kOk);
   }
 }
 
@@ -206,7 +206,9 @@ TEST(BoardJob, NarrowGapIsAnErrorNamingThePlace) {
   } catch (const PlanError& e) {
     const std::string m = e.what();
     EXPECT_NE(m.find("test-F.Cu.gbr"), std::string::npos) << m;
-    EXPECT_NE(m.find("gap 0.150 mm < tool 0.200 mm"), std::string::npos) << m;
+    EXPECT_NE(m.find("gap 0.150 mm < 0.216 mm (tool 0.200 mm + 2 x 0.008 mm clearance)"),
+              std::string::npos)
+        << m;
     EXPECT_NE(m.find("(26.075"), std::string::npos) << m;
   }
   BoardOptions o;

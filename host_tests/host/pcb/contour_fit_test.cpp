@@ -98,5 +98,35 @@ TEST(ContourFit, ASquaresCornersAreNotMistakenForACircle) {
   EXPECT_EQ(st.arcs, 0);
 }
 
+// The other direction of the tolerance: the fitted curve stays within it of the polyline, also
+// between the vertices. Chords whose sagitta against their circle is 4 um (tolerance 2 um)
+// must not become that circle: it would bow 4 um off every chord (on easy-sdr such arcs took
+// the planned isolation paths 6.7 um toward the copper).
+TEST(ContourFit, ChordsCoarserThanTheToleranceAreNotReplacedByTheirCircle) {
+  const double r = 1.0, sagitta = 0.004;
+  const double step = 2 * std::acos(1 - sagitta / r);  // chord angle with that sagitta
+  std::vector<Point2> arc;
+  for (int k = 0; k <= 9; ++k)
+    arc.push_back(Point2(r * std::cos(k * step), r * std::sin(k * step)));
+  FitOptions fo;
+  fo.tolerance_mm = kTol;
+  FitStats st;
+  const std::vector<BSpline> c = fit_polyline(arc, false, fo, &st);
+  EXPECT_EQ(st.arcs, 0);
+  double worst = 0;
+  for (const BSpline& b : c) {
+    for (const Point2& x : sample(b, 0.0001)) {
+      double best = 1e9;
+      for (size_t k = 0; k + 1 < arc.size(); ++k) {
+        const Point2 d = arc[k + 1] - arc[k];
+        const double f = std::max(0.0, std::min(1.0, (x - arc[k]).dot(d) / d.squaredNorm()));
+        best = std::min(best, (arc[k] + d * f - x).norm());
+      }
+      worst = std::max(worst, best);
+    }
+  }
+  EXPECT_LE(worst, kTol + 1e-6);
+}
+
 }  // namespace
 }  // namespace host::pcb

@@ -39,16 +39,18 @@ double distance_to_copper(const Point2& p, const ClipperLib::Paths& copper) {
   return best;
 }
 
-TEST(Isolation, OneContourPerIslandAtTheToolRadius) {
+TEST(Isolation, OneContourPerIslandAtTheToolRadiusPlusTheClearance) {
   const ClipperLib::Paths copper = {rect(0, 0, 2, 1), pad(5, 0.5, 0.8)};
   IsolationOptions o;
   o.tool_width_mm = 0.2;
+  ASSERT_DOUBLE_EQ(o.clearance_mm, 0.008);
   const IsolationResult r = plan_isolation(copper, o);
   EXPECT_EQ(r.islands, 2u);
   EXPECT_TRUE(r.narrow_gaps.empty());
+  EXPECT_DOUBLE_EQ(r.tool_radius_mm, 0.1);  // the tool's own: what the checks sweep
   ASSERT_EQ(r.paths.size(), 2u);
   for (const ToolPathNm& t : r.paths) {
-    for (const auto& q : t.path) EXPECT_NEAR(distance_to_copper(to_mm(q), copper), 0.1, 0.0011);
+    for (const auto& q : t.path) EXPECT_NEAR(distance_to_copper(to_mm(q), copper), 0.108, 0.0011);
   }
   const IsolationCheck c = check_isolation(copper, centre_lines(r), 0.1, 0.002);
   EXPECT_TRUE(c.ok()) << describe(c);
@@ -72,14 +74,29 @@ TEST(Isolation, GapNarrowerThanTheToolIsReportedWithItsPlace) {
   ASSERT_EQ(c.unseparated.size(), 1u);
 }
 
-TEST(Isolation, GapJustWiderThanTheToolPasses) {
-  const ClipperLib::Paths copper = {rect(8, 0, 10, 2), rect(10.21, 0, 12, 2)};
+TEST(Isolation, GapJustWiderThanTheToolAndItsClearancePasses) {
+  const ClipperLib::Paths copper = {rect(8, 0, 10, 2), rect(10.22, 0, 12, 2)};
   IsolationOptions o;
   o.tool_width_mm = 0.2;
   const IsolationResult r = plan_isolation(copper, o);
   EXPECT_TRUE(r.narrow_gaps.empty());
   const IsolationCheck c = check_isolation(copper, centre_lines(r), 0.1, 0.002);
   EXPECT_TRUE(c.ok()) << describe(c);
+}
+
+// 0.21 mm: the tool (0.2) fits, but not with 8 um to spare on both sides. Reported, since the
+// contours of both pads would merge; without a clearance the tool passes.
+TEST(Isolation, GapNarrowerThanTheToolAndItsClearanceIsReported) {
+  const ClipperLib::Paths copper = {rect(8, 0, 10, 2), rect(10.21, 0, 12, 2)};
+  IsolationOptions o;
+  o.tool_width_mm = 0.2;
+  ASSERT_EQ(plan_isolation(copper, o).narrow_gaps.size(), 1u);
+  o.clearance_mm = 0;
+  const IsolationResult r = plan_isolation(copper, o);
+  EXPECT_TRUE(r.narrow_gaps.empty());
+  EXPECT_TRUE(check_isolation(copper, centre_lines(r), 0.1, 0.002).ok());
+  o.clearance_mm = -0.001;
+  EXPECT_THROW(plan_isolation(copper, o), std::invalid_argument);
 }
 
 TEST(Isolation, FurtherPassesStepOutByTheToolWidthLessTheOverlap) {
@@ -91,7 +108,7 @@ TEST(Isolation, FurtherPassesStepOutByTheToolWidthLessTheOverlap) {
   const IsolationResult r = plan_isolation(copper, o);
   ASSERT_EQ(r.paths.size(), 3u);
   for (const ToolPathNm& t : r.paths) {
-    const double expect = 0.1 + t.pass * 0.15;
+    const double expect = 0.108 + t.pass * 0.15;  // radius + clearance, then steps
     for (const auto& q : t.path) EXPECT_NEAR(distance_to_copper(to_mm(q), copper), expect, 0.0011);
   }
 }
@@ -100,6 +117,7 @@ TEST(Isolation, ClearingLeavesNoCopperFreeAreaUncut) {
   const ClipperLib::Paths copper = {rect(1, 1, 3, 2), pad(6, 3, 0.7)};
   IsolationOptions o;
   o.tool_width_mm = 0.4;
+  o.clearance_mm = 0;  // the reach below is the tool's alone (a clearance leaves its band)
   o.mill_all = true;
   o.area_nm = {rect(0, 0, 8, 5)};
   const IsolationResult r = plan_isolation(copper, o);

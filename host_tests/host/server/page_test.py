@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """The workshop page in a real browser: headless Chromium loads the page served by
 `engraver serve` (with one `engraver sim` machine), enters the token, uploads a drawing
-through the page's form, watches the job finish on the page and keeps a screenshot.
+through the page's form, watches the job finish on the page, then uploads a board's three
+files (copper, drill, outline) together as one job and watches it finish, and keeps a
+screenshot.
 
 Drives Chromium over the DevTools protocol with a minimal WebSocket client (standard
 library only). Exit 77 (ctest: skipped) when Chromium is not installed.
@@ -20,6 +22,8 @@ import urllib.request
 
 CHROMIUM = "/usr/bin/chromium"
 SKIP = 77
+BOARD_FILES = [os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", f)
+               for f in ("blinky-F.Cu.gbr", "blinky.drl", "blinky-Edge.Cuts.gbr")]
 DRAWING = ("G21\nG90\nG0 Z2\nG0 X5 Y5\nG1 Z-0.1 F100\nG1 X25 Y5 F600\nG1 X25 Y25\n"
            "G2 X5 Y25 I-10 J0\nG1 X5 Y5\nG0 Z2\n")
 
@@ -176,6 +180,23 @@ def main():
         wait(lambda: dt.js("(() => { const i = document.querySelector('#preview');"
                            " return i.complete && i.naturalWidth > 0; })()"), 30,
              "the preview plot")
+        # A board: its three files chosen together in the same form make one job.
+        dt.call("DOM.setFileInputFiles", files=BOARD_FILES, nodeId=node["nodeId"])
+        assert dt.js("document.querySelector('#file').files.length") == 3
+        dt.js("document.querySelector('#upload').requestSubmit()")
+        wait(lambda: "queued as #2" in (dt.js("document.querySelector('#upload-result')"
+                                              ".textContent") or ""), 30,
+             "the board upload to be accepted")
+        board_row = ("[...document.querySelectorAll('#jobs tbody tr')]"
+                     ".map(r => r.innerText).find(t => t.includes('blinky')) || ''")
+        wait(lambda: "completed" in (dt.js(board_row) or ""), 120, "the board to finish on the page")
+        wait(lambda: dt.js("(() => { const i = document.querySelector('#preview');"
+                           " return i.complete && i.naturalWidth > 0; })()"), 30,
+             "the board's preview plot")
+        with urllib.request.urlopen(base + "/api/jobs/2/files/board.json", timeout=10) as r:
+            manifest = json.load(r)
+        assert [f["name"] for f in manifest["files"]] == [
+            "blinky-F.Cu.gbr", "blinky.drl", "blinky-Edge.Cuts.gbr"], manifest
         # Without the token the page's request is refused and nothing is queued.
         dt.js("(() => { const t = document.querySelector('#token'); t.value = 'wrong';"
               " t.dispatchEvent(new Event('change')); })()")
@@ -184,7 +205,7 @@ def main():
                                  or ""), 30, "the refusal of a wrong token")
         with urllib.request.urlopen(base + "/api/jobs", timeout=10) as r:
             jobs = json.load(r)["jobs"]
-        assert len(jobs) == 1 and jobs[0]["state"] == "completed", jobs
+        assert len(jobs) == 2 and all(j["state"] == "completed" for j in jobs), jobs
 
         shot = dt.call("Page.captureScreenshot", format="png")
         with open(screenshot, "wb") as f:

@@ -5,7 +5,9 @@ Starts a real PostgreSQL server under a temporary folder (initdb + pg_ctl, as th
 `postgres` user when run as root: the server refuses to run as root), four `engraver sim`
 machines, and two servers with two machines each and their own data folders. Jobs are
 uploaded to both servers alternately; each must complete once, on one server, and both
-servers must have taken some. Exit 77 (ctest: skipped) when PostgreSQL is not installed.
+servers must have taken some. A board (three Gerber/Excellon files) uploaded to one server
+and tagged for machines only the other one has online runs there from the files the
+database keeps. Exit 77 (ctest: skipped) when PostgreSQL is not installed.
 Usage: postgres_test.py ENGRAVER
 """
 import glob
@@ -22,6 +24,8 @@ import urllib.request
 
 SKIP = 77
 JOBS = 40
+BOARD_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+BOARD_FILES = ("blinky-F.Cu.gbr", "blinky.drl", "blinky-Edge.Cuts.gbr")
 SQUARE = ("G21\nG90\nG0 Z2\nG0 X5 Y5\nG1 Z-0.1 F100\nG1 X15 Y5 F600\nG1 X15 Y15\n"
           "G1 X5 Y15\nG1 X5 Y5\nG0 Z2\n")
 
@@ -42,6 +46,24 @@ def upload(base, token, name):
         f"{base}/api/jobs?name={name}&feed_mm_s=30", data=SQUARE.encode(), method="POST",
         headers={"Authorization": "Bearer " + token,
                  "Content-Type": "application/octet-stream"})
+    with urllib.request.urlopen(req, timeout=60) as r:
+        return json.load(r)["id"]
+
+
+def upload_board(base, token, tag):
+    """One multipart POST with the board's files as several `file` parts."""
+    boundary = "engraver-" + os.urandom(8).hex()
+    body = b""
+    for name in BOARD_FILES:
+        body += (f"--{boundary}\r\nContent-Disposition: form-data; name=\"file\"; "
+                 f"filename=\"{name}\"\r\nContent-Type: application/octet-stream\r\n\r\n").encode()
+        body += open(os.path.join(BOARD_DIR, name), "rb").read() + b"\r\n"
+    body += (f"--{boundary}\r\nContent-Disposition: form-data; name=\"tag\"\r\n\r\n{tag}\r\n"
+             f"--{boundary}--\r\n").encode()
+    req = urllib.request.Request(
+        f"{base}/api/jobs", data=body, method="POST",
+        headers={"Authorization": "Bearer " + token,
+                 "Content-Type": "multipart/form-data; boundary=" + boundary})
     with urllib.request.urlopen(req, timeout=60) as r:
         return json.load(r)["id"]
 
@@ -102,7 +124,14 @@ def main():
                                                f"127.0.0.1:{sim_port}"],
                                               stdout=subprocess.DEVNULL,
                                               stderr=subprocess.DEVNULL))
-                specs += ["--machine", f"tcp://127.0.0.1:{sim_port} name=s{s + 1}m{m + 1}"]
+                # Only server 2's machines take boards (tag pcb); untagged jobs go anywhere.
+                tags = " tags=pcb" if s == 1 else ""
+                specs += ["--machine",
+                          f"tcp://127.0.0.1:{sim_port} name=s{s + 1}m{m + 1}{tags}"]
+            if s == 0:
+                # Server 1 lists a pcb machine that is never on (its intake then takes
+                # boards), so a board uploaded there can only run on server 2.
+                specs += ["--machine", f"tcp://127.0.0.1:{free_port()} name=s1off tags=pcb"]
             http_port = free_port()
             data = os.path.join(tmp, f"data{s + 1}")
             log = open(os.path.join(tmp, f"serve{s + 1}.log"), "w")
@@ -150,6 +179,23 @@ def main():
                         reports.append(report)
             assert len(reports) == 1, (j, reports)
             assert reports[0]["server"] == j["server"] and reports[0]["state"] == "completed"
+
+        # A board uploaded to server 1 runs on server 2: its files come from the database.
+        board_id = upload_board(servers[0][0], tokens[0], "pcb")
+        wait(lambda: get(servers[0][0], f"/api/jobs/{board_id}")["state"] in
+             ("completed", "failed"), 120, "the board job to finish")
+        board = get(servers[0][0], f"/api/jobs/{board_id}")
+        assert board["state"] == "completed" and board["server"] == "server2", board
+        key = [p for p in glob.glob(os.path.join(servers[1][1], "jobs", "*", "report.json"))
+               if json.load(open(p))["id"] == board_id]
+        assert len(key) == 1, key
+        archive = os.path.dirname(key[0])
+        for name, kept in zip(BOARD_FILES, ("copper.top.gbr", "drill.drl", "outline.gbr")):
+            assert (open(os.path.join(archive, kept), "rb").read() ==
+                    open(os.path.join(BOARD_DIR, name), "rb").read()), kept
+        for kept in ("board.json", "plan.json", "plot.svg", "plot.png", "machine.log"):
+            assert os.path.getsize(os.path.join(archive, kept)) > 0, kept
+        print(f"board job {board_id} uploaded to server1 ran on server2 from the database")
 
         # A server dies mid-job (kill -9): the other one marks its running jobs interrupted
         # (--stale-s 3); re-queued, they run there.

@@ -3,7 +3,13 @@
 // runs to the end on another machine).
 #include <gtest/gtest.h>
 
+#include <cstdio>    // std::printf
+#include <optional>  // std::optional
+
+#include "host/lib/server/job_planning.h"
+#include "host/lib/sim/sim_job.h"
 #include "host_tests/host/server/server_test_rig.h"
+#include "host_tests/host/sim/cut_path.h"
 
 namespace host::server {
 namespace {
@@ -79,7 +85,53 @@ TEST(ServerMachines, HoldResumeOverrideAndAbortOfARunningJob) {
   EXPECT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "running"; }, 20));
 }
 
-TEST(ServerMachines, MachineLostMidJobLeavesItInterruptedAndItRunsElsewhereWhenRequeued) {
+// A simulated machine whose link goes away and comes back on the same port; the machine
+// keeps its state (its time stands still while nobody serves it).
+class FlakyLinkMachine {
+ public:
+  FlakyLinkMachine() : machine_(sim::SimOptions{}) { connect(0); }
+  ~FlakyLinkMachine() { disconnect(); }
+  void connect(uint16_t port) {
+    sim::ServerOptions so;
+    so.port = port;
+    so.realtime = true;
+    server_ = std::make_unique<sim::SimServer>(machine_, so);
+    port_ = server_->port();
+    stop_ = false;
+    thread_ = std::thread([this] { server_->run(stop_); });
+  }
+  void disconnect() {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+    server_.reset();
+  }
+  std::string address() const { return fmt::format("tcp://127.0.0.1:{}", port_); }
+  uint16_t port() const { return port_; }
+  const sim::SimMachine& machine() const { return machine_; }
+
+ private:
+  sim::SimMachine machine_;
+  std::unique_ptr<sim::SimServer> server_;
+  uint16_t port_ = 0;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+// The plan the server made for a job, run uninterrupted on a fresh simulated machine.
+host::test::CutPath uninterrupted_cut(ServerRig& server, int64_t id, JobPlan* plan_out) {
+  const std::optional<JobRecord> rec = server.store().get(id);
+  EXPECT_TRUE(rec);
+  const MachineSpec spec = test::machine("m", "");
+  *plan_out = plan_file((server.data().job_dir(rec->key) / rec->input_file).string(), rec->name,
+                        rec->settings, spec.fit.work_width_mm, spec.fit.work_height_mm);
+  sim::SimJobOptions so;
+  so.encode = encode_options(rec->settings, fs::path(rec->name).stem().string());
+  const sim::SimJobResult ref = sim::run_sim_job(*plan_out, so);
+  EXPECT_EQ(ref.outcome, JobOutcome::kCompleted) << ref.message;
+  return host::test::cut_path(ref.trace, *plan_out);
+}
+
+TEST(ServerMachines, MachineLostMidJobLeavesItInterruptedAndContinuesElsewhereCuttingTheSamePath) {
   test::TempDir dir;
   auto first = std::make_unique<SimRig>(true);
   const uint16_t second_port = test::free_port();  // nobody there yet: offline
@@ -118,20 +170,74 @@ TEST(ServerMachines, MachineLostMidJobLeavesItInterruptedAndItRunsElsewhereWhenR
       },
       10));
 
-  // Continuing from the first uncut curve needs `send --resume` (protocol v2): refused
-  // clearly until that hook is set; re-queueing runs it from the start.
-  auto r = server.control(id, R"({"action": "continue"})");
-  ASSERT_TRUE(r);
-  EXPECT_EQ(r->status, 501) << r->body;
-  EXPECT_EQ(server.job(id)["state"], "interrupted");
-
+  // Continue from the first uncut curve, on the other machine (zeroed where the first one
+  // was: the simulated operator confirms at the power-on position, the same work zero).
   SimRig second(false, second_port);  // the other machine comes up
-  r = server.control(id, R"({"action": "requeue"})");
+  auto r = server.control(id, R"({"action": "continue"})");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 200) << r->body;
   ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "completed"; }, 60));
   EXPECT_EQ(server.job(id)["machine"], "m2");
   EXPECT_EQ(server.job(id)["executed"], server.job(id)["total"]);
+  auto log = server.client().Get(fmt::format("/api/jobs/{}/files/machine.log", id).c_str());
+  ASSERT_TRUE(log && log->status == 200);
+  EXPECT_NE(log->body.find("continuing from curve"), std::string::npos) << log->body;
+
+  // The cut path of both machines together is that of an uninterrupted run of the same plan;
+  // the curve that was cut short is cut again from its start (at most one curve: one square).
+  second.kill();  // its thread steps the machine: stop it before reading the trace
+  JobPlan plan;
+  const host::test::CutPath reference = uninterrupted_cut(server, id, &plan);
+  const host::test::CutPath got =
+      host::test::joined(host::test::cut_path(first->machine().trace(), plan),
+                         host::test::cut_path(second.machine().trace(), plan));
+  EXPECT_LT(host::test::max_distance_mm(got, reference), 0.010);
+  EXPECT_LT(host::test::max_distance_mm(reference, got), 0.010);
+  EXPECT_GE(got.length_mm, reference.length_mm - 0.02);
+  EXPECT_LE(got.length_mm, reference.length_mm + 4 * 8.0 + 0.02);  // one square again at most
+  std::printf("continue: cut %.3f mm (uninterrupted %.3f mm), farthest off %.4f mm\n",
+              got.length_mm, reference.length_mm, host::test::max_distance_mm(got, reference));
+}
+
+// The link to the machine drops mid-curve and comes back: "continue" goes on exactly where the
+// machine stopped (it still holds the job's progress), so nothing is cut twice.
+TEST(ServerMachines, ContinueOnTheSameMachineGoesOnWhereItStoppedCuttingNothingTwice) {
+  test::TempDir dir;
+  FlakyLinkMachine m1;
+  ServerRig server(dir.path(), {test::machine("m1", m1.address())});
+  const int64_t id = server.upload_ok("multi.ngc", test::squares_gcode(3, 8), "&feed_mm_s=10");
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const auto p = server.running(id);
+        return !p.is_null() && p["executed"].get<int>() > 0 &&
+               p["executed"].get<int>() * 2 >= p["total"].get<int>();
+      },
+      30));
+  m1.disconnect();  // the link goes: the machine stands still meanwhile (its clock stops)
+  // Cut off while cutting (the second of three squares; pen down).
+  EXPECT_LT(m1.machine().position().z_mm, 0.0);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "interrupted"; }, 20));
+  m1.connect(m1.port());  // back: the server's probe opens a session, which stops the job
+  auto r = server.control(id, R"({"action": "continue"})");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body;
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "completed"; }, 60));
+  auto log = server.client().Get(fmt::format("/api/jobs/{}/files/machine.log", id).c_str());
+  ASSERT_TRUE(log && log->status == 200);
+  EXPECT_NE(log->body.find("where the machine stopped"), std::string::npos) << log->body;
+  m1.disconnect();
+
+  JobPlan plan;
+  const host::test::CutPath reference = uninterrupted_cut(server, id, &plan);
+  const host::test::CutPath got = host::test::cut_path(m1.machine().trace(), plan);
+  const double off_mm = host::test::max_distance_mm(got, reference);
+  std::printf(
+      "continue on the same machine: cut %.4f mm (uninterrupted %.4f mm), farthest off "
+      "%.4f mm\n",
+      got.length_mm, reference.length_mm, off_mm);
+  EXPECT_LT(off_mm, 0.010);
+  EXPECT_LT(host::test::max_distance_mm(reference, got), 0.010);
+  EXPECT_NEAR(got.length_mm, reference.length_mm, 0.02);
 }
 
 TEST(ServerMachines, ContinueHandsTheFirstUncutCurveToTheResumeHook) {

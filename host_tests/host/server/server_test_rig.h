@@ -113,7 +113,7 @@ class ServerRig {
     wo.sender.status_interval = std::chrono::milliseconds(5);
     wo.sender.reply_timeout = std::chrono::milliseconds(500);
     wo.sender.silence_limit = std::chrono::milliseconds(1500);
-    wo.resume_encoder = std::move(resume);
+    if (resume) wo.resume_encoder = std::move(resume);  // else the default: continue_from_curve()
     workshop_ = std::make_unique<Workshop>(*store_, *data_, machines, wo);
     intake_ = std::make_unique<JobIntake>(*store_, *data_, workshop_->fits(), max_bytes);
     HttpOptions ho;

@@ -42,7 +42,7 @@ JobPlan plan_with_spline(const core::Spline& spline) {
   down.feed_um_per_s = 2000;
   PlanStep curve;
   curve.kind = PlanStep::kSpline;
-  curve.spline = spline;
+  curve.spline = CompactSpline(spline);
   curve.to = {spline.control[spline.control_count - 1].x_um,
               spline.control[spline.control_count - 1].y_um};
   curve.feed_um_per_s = 10000;
@@ -91,9 +91,9 @@ TEST(JobEncoder, StepsMapToTheirCommandLetters) {
   const auto cmds = encode_job(plan_with_spline(wavy_spline(4, false)), EncodeOptions{});
   std::string letters;
   for (const auto& c : cmds) letters += static_cast<char>(c.letter);
-  // #U first, then Z up, F rapid, Z down, B + D..., G, Z up.
-  EXPECT_EQ(letters.substr(0, 4), "UZFZ");
-  EXPECT_EQ(letters.substr(4, 1), "B");
+  // #J (job numbering) and #U first, then Z up, F rapid, Z down, B + D..., G, Z up.
+  EXPECT_EQ(letters.substr(0, 5), "JUZFZ");
+  EXPECT_EQ(letters.substr(5, 1), "B");
   EXPECT_EQ(letters.substr(letters.size() - 2), "GZ");
 }
 
@@ -101,9 +101,10 @@ TEST(JobEncoder, TitleBecomesLcdRowZero) {
   EncodeOptions o;
   o.title = "a title longer than sixteen";
   const auto cmds = encode_job(plan_with_spline(wavy_spline(4, false)), o);
-  ASSERT_EQ(cmds[0].letter, proto::kCmdText);
+  ASSERT_EQ(cmds[0].letter, proto::kCmdJobMark);
+  ASSERT_EQ(cmds[1].letter, proto::kCmdText);
   proto::TextCmd t;
-  ASSERT_EQ(proto::decode(cmds[0].payload.data(), static_cast<uint8_t>(cmds[0].payload.size()), &t),
+  ASSERT_EQ(proto::decode(cmds[1].payload.data(), static_cast<uint8_t>(cmds[1].payload.size()), &t),
             proto::ErrorCode::kOk);
   EXPECT_EQ(t.row, 0);
   EXPECT_EQ(std::string(t.text, t.length), "a title longer t");
@@ -253,11 +254,13 @@ Msg decoded(const QueuedCommand& c) {
   return m;
 }
 
-// Pause, dwell, spindle and drill steps after the #U set-up frame.
+// Pause, dwell, spindle and drill steps after the #J and #U set-up frames.
 std::vector<QueuedCommand> encode_machine_steps(const std::vector<PlanStep>& steps) {
   JobPlan plan;
   plan.steps = steps;
   auto cmds = encode_job(plan, EncodeOptions{});
+  EXPECT_EQ(cmds.front().letter, proto::kCmdJobMark);
+  cmds.erase(cmds.begin());
   EXPECT_EQ(cmds.front().letter, proto::kCmdResolution);
   cmds.erase(cmds.begin());
   return cmds;

@@ -1,0 +1,280 @@
+// Board jobs for the server (see board_planning.h).
+#include "host/lib/server/board_planning.h"
+
+#include <fmt/format.h>  // fmt::format
+
+#include <cmath>  // std::hypot
+
+#include "firmware/config/machine_config.h"
+#include "host/lib/drawing/drawing.h"
+#include "host/lib/pcb/board_files.h"
+#include "host/lib/pcb/cutout.h"
+#include "host/lib/server/data_folder.h"
+
+namespace host::server {
+
+namespace fs = std::filesystem;
+using pcb::LayerKind;
+
+const char kBoardManifest[] = "board.json";
+
+namespace {
+
+const char* const kDrillNames[] = {"drill.drl", "drill.b.drl", "drill.c.drl", "drill.d.drl"};
+const size_t kMaxDrillFiles = sizeof(kDrillNames) / sizeof(kDrillNames[0]);
+
+const char* kind_key(LayerKind k) {
+  switch (k) {
+    case LayerKind::kCopperTop:
+      return "copper_top";
+    case LayerKind::kCopperBottom:
+      return "copper_bottom";
+    case LayerKind::kOutline:
+      return "outline";
+    case LayerKind::kDrill:
+      return "drill";
+    case LayerKind::kUnknown:
+      break;
+  }
+  return "unknown";
+}
+
+LayerKind kind_from_key(const std::string& key) {
+  for (LayerKind k :
+       {LayerKind::kCopperTop, LayerKind::kCopperBottom, LayerKind::kOutline, LayerKind::kDrill}) {
+    if (key == kind_key(k)) return k;
+  }
+  throw std::runtime_error("board.json: unknown layer kind '" + key + "'");
+}
+
+pcb::BoardOptions board_options(const std::string& side, const BoardSettings& b,
+                                const JobPlanSettings& s, double work_w_mm, double work_h_mm) {
+  pcb::BoardOptions o;
+  o.side = side == "bottom" ? pcb::BoardSide::kBottom : pcb::BoardSide::kTop;
+  o.isolation.tool_width_mm = b.tool_width_mm;
+  o.allow_narrow_gaps = b.allow_narrow_gaps;
+  o.margin_mm = s.margin_mm;
+  o.work_width_mm = work_w_mm;
+  o.work_height_mm = work_h_mm;
+  return o;
+}
+
+// The command line's words in the planner's advice, as the server's fields.
+std::string server_words(std::string text) {
+  const std::pair<const char*, const char*> words[] = {
+      {"--tool-width", "tool_width_mm"}, {"--allow-narrow-gaps", "allow_narrow_gaps=1"}};
+  for (const auto& [from, to] : words) {
+    const size_t at = text.find(from);
+    if (at != std::string::npos) text.replace(at, std::string(from).size(), to);
+  }
+  return text;
+}
+
+// The board planner's errors as the intake's: what cannot run is refused with the message.
+// A workshop job goes to whichever machine is free, so unlike `engraver send` it starts
+// with a pause (#P) naming the first tool: the operator mounts it and confirms.
+pcb::BoardJob plan(const pcb::BoardFileSet& set, const pcb::BoardOptions& o) {
+  pcb::PcbLayer drill;
+  pcb::BoardJob job;
+  try {
+    job = pcb::plan_board(set.layers(&drill), o);
+  } catch (const pcb::CutoutError& e) {
+    throw PlanError(e.what());
+  } catch (const PlanError& e) {
+    throw PlanError(server_words(e.what()));
+  }
+  if (!job.report.first_tool.empty()) {
+    PlanStep mount;
+    mount.kind = PlanStep::kPause;
+    mount.text = job.report.first_tool;
+    job.plan.steps.insert(job.plan.steps.begin(), mount);
+  }
+  return job;
+}
+
+}  // namespace
+
+bool is_board_job(const JobRecord& job) {
+  return job.input_file == kBoardManifest;
+}
+
+std::string check_board_settings(const BoardSettings& s) {
+  if (!s.side.empty() && s.side != "top" && s.side != "bottom") return "side must be top or bottom";
+  if (!(s.tool_width_mm >= 0.01 && s.tool_width_mm <= 5.0))
+    return "tool_width_mm must be 0.01 .. 5";
+  return "";
+}
+
+bool is_pcb_upload(const UploadFile& file) {
+  return pcb::board_file_format(file.name, file.content) != pcb::PcbFileFormat::kNone;
+}
+
+PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_other,
+                               const std::string& board_name, const BoardSettings& board,
+                               const JobPlanSettings& settings, double work_w_mm,
+                               double work_h_mm) {
+  pcb::BoardFileSet set;
+  nlohmann::json listed = nlohmann::json::array();
+  nlohmann::json notes = nlohmann::json::array();
+  NamedFiles layer_files;
+  for (const UploadFile& f : files) {
+    if (!is_pcb_upload(f)) {
+      if (skip_other) {
+        notes.push_back(f.name + ": not a Gerber or Excellon file: left out");
+        continue;
+      }
+      throw ImportError(f.name +
+                        ": not a Gerber or Excellon file (a board takes copper, drill and "
+                        "outline files only)");
+    }
+    pcb::PcbLayer layer;
+    try {
+      layer = pcb::read_board_text(f.content, f.name, LayerKind::kUnknown);
+    } catch (const pcb::PcbReadError& e) {
+      throw ImportError(e.what());
+    }
+    const LayerKind kind = layer.kind;
+    std::string file;
+    switch (kind) {
+      case LayerKind::kCopperTop:
+        file = "copper.top.gbr";
+        break;
+      case LayerKind::kCopperBottom:
+        file = "copper.bot.gbr";
+        break;
+      case LayerKind::kOutline:
+        file = "outline.gbr";
+        break;
+      case LayerKind::kDrill:
+        if (set.drill.size() >= kMaxDrillFiles)
+          throw PlanError(fmt::format("{}: more than {} drill files", f.name, kMaxDrillFiles));
+        file = kDrillNames[set.drill.size()];
+        break;
+      case LayerKind::kUnknown:
+        notes.push_back(f.name +
+                        ": not a copper, drill or outline layer (by its X2 attributes or its "
+                        "name): left out");
+        continue;
+    }
+    set.add(std::move(layer));
+    for (const auto& [taken, bytes] : layer_files) {
+      if (taken == file) {
+        throw PlanError(fmt::format("{}: a second {} layer (one board takes one of each)", f.name,
+                                    pcb::layer_kind_name(kind)));
+      }
+    }
+    layer_files.emplace_back(file, f.content);
+    listed.push_back(
+        {{"file", file}, {"kind", kind_key(kind)}, {"name", f.name}, {"bytes", f.content.size()}});
+  }
+  if (set.empty()) {
+    std::string msg = board_name +
+                      ": no copper, drill or outline layer among the files; a Gerber says "
+                      "which it is by its X2 attributes or its name (KiCad's -F.Cu, -B.Cu, "
+                      "-Edge.Cuts; .GTL, .GBL, .GKO; .DRL for Excellon)";
+    for (const auto& n : notes) msg += "\n  " + n.get<std::string>();
+    throw ImportError(msg);
+  }
+  std::string side = board.side;
+  if (side.empty()) side = set.copper_top.empty() && !set.copper_bottom.empty() ? "bottom" : "top";
+
+  PlannedBoard out;
+  const pcb::BoardOptions options = board_options(side, board, settings, work_w_mm, work_h_mm);
+  out.job = plan(set, options);
+  const pcb::BoardReport& r = out.job.report;
+  nlohmann::json gaps = nlohmann::json::array();
+  for (const pcb::NarrowGap& g : r.narrow_gaps)
+    gaps.push_back(pcb::describe_gap(g, options.isolation));
+  out.manifest = {{"board", board_name},
+                  {"side", side},
+                  {"tool_width_mm", board.tool_width_mm},
+                  {"allow_narrow_gaps", board.allow_narrow_gaps},
+                  {"files", listed},
+                  {"notes", notes},
+                  {"report",
+                   {{"first_tool", r.first_tool},
+                    {"islands", r.islands},
+                    {"isolation_contours", r.isolation_contours},
+                    {"isolation_length_mm", r.isolation_length_mm},
+                    {"holes", r.holes},
+                    {"holes_on_copper", r.holes_on_copper},
+                    {"slots", r.slots},
+                    {"drill_tools", r.drill_tools},
+                    {"tabs", r.tabs},
+                    {"cutout_length_mm", r.cutout_length_mm},
+                    {"tool_changes", r.tool_changes},
+                    {"narrow_gaps", gaps}}}};
+  out.files.emplace_back(kBoardManifest, out.manifest.dump(1) + "\n");
+  out.files.insert(out.files.end(), layer_files.begin(), layer_files.end());
+  return out;
+}
+
+pcb::BoardJob plan_board_folder(const fs::path& dir, const JobPlanSettings& settings,
+                                double work_w_mm, double work_h_mm) {
+  nlohmann::json m;
+  try {
+    m = nlohmann::json::parse(read_file(dir / kBoardManifest));
+    pcb::BoardFileSet set;
+    for (const nlohmann::json& f : m.at("files")) {
+      const std::string file = f.at("file").get<std::string>();
+      if (!is_archive_file(file) || file == kBoardManifest)
+        throw std::runtime_error("board.json: unexpected file " + file);
+      const LayerKind kind = kind_from_key(f.at("kind").get<std::string>());
+      try {
+        set.add(pcb::read_board_text(read_file(dir / file), f.at("name").get<std::string>(), kind));
+      } catch (const pcb::PcbReadError& e) {
+        throw ImportError(e.what());
+      }
+    }
+    BoardSettings b;
+    b.tool_width_mm = m.at("tool_width_mm").get<double>();
+    b.allow_narrow_gaps = m.value("allow_narrow_gaps", false);
+    return plan(set,
+                board_options(m.at("side").get<std::string>(), b, settings, work_w_mm, work_h_mm));
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error((dir / kBoardManifest).string() + ": damaged: " + e.what());
+  }
+}
+
+double planned_seconds_by_steps(const JobPlan& plan) {
+  const config::MachineConfig m = config::default_machine_config();
+  const double rapid_mm_s = m.rapid_feed_um_per_s / 1000.0;
+  const double z_mm_s = m.axis[config::kAxisZ].max_speed_um_per_s / 1000.0;
+  double x = 0, y = 0, z = 0, seconds = 0;
+  for (const PlanStep& s : plan.steps) {
+    const double tx = s.to.x_um / 1000.0, ty = s.to.y_um / 1000.0;
+    const double d = std::hypot(tx - x, ty - y);
+    const double feed = s.feed_um_per_s > 0 ? s.feed_um_per_s / 1000.0 : rapid_mm_s;
+    switch (s.kind) {
+      case PlanStep::kRapid:
+        seconds += d / rapid_mm_s;
+        x = tx, y = ty;
+        break;
+      case PlanStep::kFeed:
+      case PlanStep::kSpline:  // the chord: a little short on arcs
+        seconds += d / feed;
+        x = tx, y = ty;
+        break;
+      case PlanStep::kDrill: {
+        const double start = s.z_start_um / 1000.0, bottom = s.z_um / 1000.0;
+        seconds += d / rapid_mm_s + std::abs(z - start) / z_mm_s + 2 * (start - bottom) / feed;
+        x = tx, y = ty, z = start;
+        break;
+      }
+      case PlanStep::kPenUp:
+      case PlanStep::kPenDown:
+        seconds += std::abs(s.z_um / 1000.0 - z) / std::min(z_mm_s, feed);
+        z = s.z_um / 1000.0;
+        break;
+      case PlanStep::kDwell:
+        seconds += s.dwell_ms / 1000.0;
+        break;
+      case PlanStep::kPause:
+      case PlanStep::kSpindle:
+        break;
+    }
+  }
+  return seconds;
+}
+
+}  // namespace host::server

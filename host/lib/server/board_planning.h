@@ -1,0 +1,67 @@
+// Boards as server jobs: the uploaded Gerber/Excellon files of one board are read from
+// memory (their names only name them in messages), planned with the board planner, and
+// kept in the archive under the server's own names with a manifest (board.json) that
+// lets the machine's worker (or another server sharing the queue) plan them again.
+#ifndef HOST_LIB_SERVER_BOARD_PLANNING_H
+#define HOST_LIB_SERVER_BOARD_PLANNING_H
+
+#include <nlohmann/json.hpp>  // nlohmann::json
+
+#include <filesystem>  // std::filesystem::path
+#include <string>      // std::string
+#include <vector>      // std::vector
+
+#include "host/lib/pcb/board_job.h"
+#include "host/lib/server/board_bundle.h"
+#include "host/lib/server/job_record.h"
+
+namespace host::server {
+
+// The archive's manifest of a board job; JobRecord::input_file of every board job.
+extern const char kBoardManifest[];  // "board.json"
+bool is_board_job(const JobRecord& job);
+
+struct UploadFile {
+  std::string name;     // the sender's file name (messages only, never a path)
+  std::string content;  // its bytes
+};
+
+// What a board job asks beyond JobPlanSettings (tol_mm and margin_mm apply to boards;
+// feeds are the board planner's: isolation 5, drilling 1, cut-out 3 mm/s). Every board job
+// starts with a pause naming the first tool (the operator mounts it and confirms).
+struct BoardSettings {
+  std::string side;  // "top", "bottom" or "" (the side whose copper is given)
+  double tool_width_mm = 0.2;
+  bool allow_narrow_gaps = false;  // plan where copper is closer than the tool (reported)
+};
+// Why board settings are refused ("" when fine).
+std::string check_board_settings(const BoardSettings& s);
+
+// Gerber or Excellon by name and content.
+bool is_pcb_upload(const UploadFile& file);
+
+struct PlannedBoard {
+  NamedFiles files;  // the archive's files: board.json, then the layers (server names)
+  pcb::BoardJob job;
+  nlohmann::json manifest;
+};
+
+// Reads and plans one board. skip_other: leave out files that are neither Gerber nor
+// Excellon (a folder's read-me) instead of refusing them. Throws ImportError (a file that
+// cannot be read: the reader's message with the file's name and line) or PlanError (the
+// planner's message: narrow gaps, the work area, an outline that does not close).
+PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_other,
+                               const std::string& board_name, const BoardSettings& board,
+                               const JobPlanSettings& settings, double work_w_mm, double work_h_mm);
+
+// Plans a board job again from its archive folder (board.json and the layer files).
+pcb::BoardJob plan_board_folder(const std::filesystem::path& dir, const JobPlanSettings& settings,
+                                double work_w_mm, double work_h_mm);
+
+// Estimated run time of any plan from its steps and their own feeds (rapids, plunges,
+// dwells, pen moves).
+double planned_seconds_by_steps(const JobPlan& plan);
+
+}  // namespace host::server
+
+#endif  // HOST_LIB_SERVER_BOARD_PLANNING_H

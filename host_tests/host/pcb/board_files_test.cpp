@@ -1,0 +1,91 @@
+// A board's files read from memory (what the server does with uploads): format and kind from
+// the name or the content, the reader's message naming the upload, the layers for the
+// planner (drill files merged, a layer given twice refused) and the board's name.
+#include "host/lib/pcb/board_files.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>   // std::ifstream
+#include <iterator>  // std::istreambuf_iterator
+
+#include "host_tests/host/pcb/test_data.h"
+
+namespace host::pcb {
+namespace {
+
+std::string text_of(const std::string& name) {
+  std::ifstream in(test::data_file(name), std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+TEST(BoardFiles, FormatAndKindComeFromTheNameOrTheContent) {
+  const std::string outline = text_of("outline-Edge.Cuts.gbr");
+  const std::string drill = text_of("metric_lz.drl");
+  EXPECT_EQ(board_file_format("a.gbr", outline), PcbFileFormat::kGerber);
+  EXPECT_EQ(board_file_format("no-extension", outline), PcbFileFormat::kGerber);  // %FS
+  EXPECT_EQ(board_file_format("holes.txt", drill), PcbFileFormat::kExcellon);     // M48
+  EXPECT_EQ(board_file_format("notes.txt", "Remember to buy milk.\n"), PcbFileFormat::kNone);
+  // M48 heads an Excellon file (after comments); in G-code it is "enable overrides".
+  EXPECT_EQ(board_file_format("holes.txt", "; made by hand\n\nM48\nMETRIC\n%\nM30\n"),
+            PcbFileFormat::kExcellon);
+  EXPECT_EQ(board_file_format("prog.txt", "G21\nM48\nG0 X1 Y1\nG1 X2\nM2\n"), PcbFileFormat::kNone);
+
+  EXPECT_EQ(read_board_text(outline, "my-Edge.Cuts.gbr", LayerKind::kUnknown).kind,
+            LayerKind::kOutline);
+  // The name is only a name: no file of that name exists, the text is what is read.
+  const PcbLayer d = read_board_text(drill, "holes.txt", LayerKind::kUnknown);
+  EXPECT_EQ(d.kind, LayerKind::kDrill);
+  EXPECT_EQ(d.holes.size(), 3u);
+  EXPECT_EQ(d.path, "holes.txt");
+  // A forced kind wins over the name (how the server re-reads its archive).
+  EXPECT_EQ(read_board_text(outline, "x.gbr", LayerKind::kCopperBottom).kind,
+            LayerKind::kCopperBottom);
+}
+
+TEST(BoardFiles, ErrorsNameTheUploadAndTheLine) {
+  try {
+    read_board_text("%FSLAX33Y33*%\n%MOMM*%\nD42*\nM02*\n", "up-F.Cu.gbr", LayerKind::kUnknown);
+    FAIL() << "an undefined aperture was accepted";
+  } catch (const PcbReadError& e) {
+    EXPECT_NE(std::string(e.what()).find("up-F.Cu.gbr:3"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(read_board_text("hello\n", "notes.txt", LayerKind::kUnknown), PcbReadError);
+}
+
+TEST(BoardFiles, LayersMergeDrillFilesAndRefuseALayerGivenTwice) {
+  BoardFileSet set;
+  EXPECT_TRUE(set.empty());
+  EXPECT_TRUE(set.add(read_board_text(text_of("metric_lz.drl"), "a-PTH.drl", LayerKind::kUnknown)));
+  EXPECT_TRUE(set.add(read_board_text(text_of("inch_tz.drl"), "a-NPTH.drl", LayerKind::kUnknown)));
+  PcbLayer other;  // kind unknown: not a layer of the board
+  EXPECT_FALSE(set.add(other));
+  PcbLayer drill;
+  const BoardLayers l = set.layers(&drill);
+  ASSERT_EQ(l.drill, &drill);
+  EXPECT_EQ(drill.holes.size(), set.drill[0].holes.size() + set.drill[1].holes.size());
+  EXPECT_EQ(drill.path, "a-PTH.drl + a-NPTH.drl");
+  EXPECT_EQ(l.copper_top, nullptr);
+
+  const std::string outline = text_of("outline-Edge.Cuts.gbr");
+  set.add(read_board_text(outline, "one-Edge.Cuts.gbr", LayerKind::kUnknown));
+  EXPECT_NE(set.layers(&drill).outline, nullptr);
+  set.add(read_board_text(outline, "two-Edge.Cuts.gbr", LayerKind::kUnknown));
+  try {
+    set.layers(&drill);
+    FAIL() << "two outlines were accepted";
+  } catch (const PlanError& e) {
+    EXPECT_NE(std::string(e.what()).find("two-Edge.Cuts.gbr"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BoardFiles, BoardNameIsTheFilesCommonStart) {
+  EXPECT_EQ(board_name_from_files({"blinky-F.Cu.gbr", "blinky.drl", "blinky-Edge.Cuts.gbr"}),
+            "blinky");
+  EXPECT_EQ(board_name_from_files({"Gerber_TopLayer.GTL", "Gerber_Drill_PTH.DRL"}), "Gerber");
+  EXPECT_EQ(board_name_from_files({"top.gbr", "holes.drl"}), "top");  // nothing in common
+  EXPECT_EQ(board_name_from_files({"amp-F.Cu.gbr"}), "amp-F.Cu");
+  EXPECT_EQ(board_name_from_files({}), "board");
+}
+
+}  // namespace
+}  // namespace host::pcb

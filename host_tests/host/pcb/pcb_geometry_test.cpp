@@ -1,0 +1,88 @@
+// clip_to_box: the part of polygons inside a box, used to keep Clipper's sweep small when a
+// board-wide net meets a small island; Clipper's own intersection is the reference.
+#include <gtest/gtest.h>
+
+#include <cmath>   // std::fabs
+#include <random>  // std::mt19937
+
+#include "host/lib/pcb/pcb_geometry.h"
+
+namespace host::pcb {
+namespace {
+
+using ClipperLib::IntPoint;
+using ClipperLib::Path;
+using ClipperLib::Paths;
+
+BoxNm box(ClipperLib::cInt x0, ClipperLib::cInt y0, ClipperLib::cInt x1, ClipperLib::cInt y1) {
+  BoxNm b;
+  b.add(IntPoint(x0, y0));
+  b.add(IntPoint(x1, y1));
+  return b;
+}
+
+Paths rect(const BoxNm& b) {
+  return {{{b.min_x, b.min_y}, {b.max_x, b.min_y}, {b.max_x, b.max_y}, {b.min_x, b.max_y}}};
+}
+
+TEST(ClipToBox, ConcaveShapeClippedAcrossItsNotchHasTheSameAreaAsClippersIntersection) {
+  // A U open at the top: the box cuts both arms, so the clip doubles back along its top side.
+  const Paths u = {{{0, 0},
+                    {3000, 0},
+                    {3000, 3000},
+                    {2000, 3000},
+                    {2000, 1000},
+                    {1000, 1000},
+                    {1000, 3000},
+                    {0, 3000}}};
+  const BoxNm b = box(500, 500, 2500, 2000);
+  const double clipped = signed_area(union_of(clip_to_box(u, b)));
+  const double reference = signed_area(intersection_of(u, rect(b)));
+  EXPECT_NEAR(clipped, reference, 1.0);
+  EXPECT_NEAR(reference, 2000.0 * 1500 - 1000.0 * 1000, 1.0);
+}
+
+TEST(ClipToBox, HoleAndOuterKeepTheirSignsAndDisjointPathsAreDropped) {
+  const Paths ring = {{{0, 0}, {4000, 0}, {4000, 4000}, {0, 4000}},
+                      {{1000, 1000}, {1000, 3000}, {3000, 3000}, {3000, 1000}}};  // hole: CW
+  const BoxNm b = box(-500, -500, 2000, 2000);
+  EXPECT_NEAR(signed_area(clip_to_box(ring, b)), 2000.0 * 2000 - 1000.0 * 1000, 1.0);
+  EXPECT_TRUE(clip_to_box(ring, box(5000, 5000, 6000, 6000)).empty());
+  EXPECT_TRUE(clip_to_box(ring, BoxNm{}).empty());
+}
+
+// Random star-shaped (so concave) polygons: intersecting the clipped parts gives the same area
+// as intersecting the whole polygons, which is what find_narrow_gaps relies on.
+TEST(ClipToBox, IntersectionOfClippedPartsEqualsIntersectionOfWholePolygons) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> radius(2e5, 1e6);
+  auto star = [&](double cx, double cy) {
+    Path p;
+    for (int k = 0; k < 40; ++k) {
+      const double a = 2 * M_PI * k / 40, r = radius(rng);
+      p.emplace_back(std::llround(cx + r * std::cos(a)), std::llround(cy + r * std::sin(a)));
+    }
+    return Paths{p};
+  };
+  for (int trial = 0; trial < 50; ++trial) {
+    const Paths a = star(0, 0), b = star(9e5, 3e5);
+    const BoxNm common = common_box(box_of(a), box_of(b));
+    ASSERT_FALSE(common.empty());
+    const double whole = signed_area(intersection_of(a, b));
+    const double parts =
+        signed_area(intersection_of(clip_to_box(a, common), clip_to_box(b, common)));
+    EXPECT_NEAR(parts, whole, 1e-6 * whole + 2e3) << trial;  // rounding of crossings to 1 nm
+  }
+}
+
+TEST(CommonBox, IsTheOverlapOrEmpty) {
+  const BoxNm c = common_box(box(0, 0, 10, 10), box(5, -5, 20, 7));
+  EXPECT_EQ(c.min_x, 5);
+  EXPECT_EQ(c.min_y, 0);
+  EXPECT_EQ(c.max_x, 10);
+  EXPECT_EQ(c.max_y, 7);
+  EXPECT_TRUE(common_box(box(0, 0, 1, 1), box(2, 2, 3, 3)).empty());
+}
+
+}  // namespace
+}  // namespace host::pcb

@@ -1,0 +1,86 @@
+// The memory a plan takes per step: a step keeps its spline out of line (only the control
+// points and knots used), so steps without a curve carry no firmware spline. An inline
+// core::Spline (about 1.1 kB) in every step made a million-segment job take gigabytes.
+#include <gtest/gtest.h>
+
+#include "host/lib/drawing/conics.h"
+#include "host/lib/plan/firmware_spline.h"
+#include "host/lib/plan/job_plan.h"
+
+namespace host {
+namespace {
+
+Drawing separate_lines(int n) {
+  Drawing d;
+  d.path = "lines.dxf";
+  for (int i = 0; i < n; ++i) {
+    Curve c;
+    const double x = (i % 50) * 4.0, y = (i / 50) * 4.0;
+    c.spline = line_spline({x, y}, {x + 1.5, y + 0.5});
+    c.kind = "LINE";
+    c.source = "LINE #" + std::to_string(i + 1);
+    d.curves.push_back(c);
+  }
+  return d;
+}
+
+TEST(PlanStepMemory, AStepIsFarSmallerThanAFirmwareSpline) {
+  // Fails if a core::Spline (or anything of its size) goes back into PlanStep.
+  EXPECT_LT(sizeof(PlanStep), sizeof(core::Spline) / 4);
+  EXPECT_LE(sizeof(PlanStep), 192u);
+}
+
+TEST(PlanStepMemory, StepsWithoutACurveHoldNoSplineStorage) {
+  PlanOptions o;
+  o.lines_as_feeds = true;
+  const JobPlan p = plan_job(separate_lines(500), o);
+  ASSERT_GT(p.steps.size(), 2000u);  // per line: rapid, plunge, feed, lift
+  for (const PlanStep& s : p.steps) {
+    ASSERT_NE(s.kind, PlanStep::kSpline);
+    EXPECT_TRUE(s.spline.empty());
+    EXPECT_EQ(s.spline.control.capacity(), 0u);
+    EXPECT_EQ(s.spline.knot.capacity(), 0u);
+  }
+  // No over-reserve: an upper bound of 4 + control points per curve once made the step
+  // vector several times larger than the job.
+  EXPECT_LE(p.steps.capacity(), 2 * p.steps.size());
+}
+
+TEST(PlanStepMemory, SplineStepsHoldOnlyTheControlPointsAndKnotsTheyUse) {
+  PlanOptions o;
+  o.lines_as_feeds = false;
+  const JobPlan p = plan_job(separate_lines(3), o);
+  int splines = 0;
+  for (const PlanStep& s : p.steps) {
+    if (s.kind != PlanStep::kSpline) continue;
+    ++splines;
+    EXPECT_EQ(s.spline.control.size(), 2u);
+    EXPECT_EQ(s.spline.knot.size(), 4u);
+    EXPECT_EQ(core::validate_spline(s.spline.firmware()), core::GeometryError::kOk);
+  }
+  EXPECT_EQ(splines, 3);
+}
+
+TEST(CompactSpline, RoundTripsTheFirmwareForm) {
+  const std::vector<core::Spline> pieces = to_firmware_splines(arc_spline({20, 20}, 10, 0.3, 5.0));
+  ASSERT_FALSE(pieces.empty());
+  for (const core::Spline& f : pieces) {
+    const CompactSpline c(f);
+    EXPECT_EQ(c.control.size(), f.control_count);
+    EXPECT_EQ(c.knot.size(), f.knot_count);
+    const core::Spline back = c.firmware();
+    EXPECT_EQ(back.degree, f.degree);
+    EXPECT_EQ(back.rational, f.rational);
+    ASSERT_EQ(back.control_count, f.control_count);
+    ASSERT_EQ(back.knot_count, f.knot_count);
+    for (unsigned i = 0; i < f.control_count; ++i) {
+      EXPECT_EQ(back.control[i].x_um, f.control[i].x_um);
+      EXPECT_EQ(back.control[i].y_um, f.control[i].y_um);
+      EXPECT_EQ(back.control[i].weight_q14, f.control[i].weight_q14);
+    }
+    for (unsigned i = 0; i < f.knot_count; ++i) EXPECT_EQ(back.knot[i], f.knot[i]);
+  }
+}
+
+}  // namespace
+}  // namespace host
