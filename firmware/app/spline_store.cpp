@@ -1,6 +1,8 @@
 // Spline slots for #B/#D (see spline_store.h).
 #include "firmware/app/spline_store.h"
 
+#include "firmware/protocol/compact_spline.h"  // unpack_compact
+
 namespace app {
 
 SplineStore::SplineStore() {
@@ -56,33 +58,40 @@ proto::ErrorCode SplineStore::begin(const proto::SplineHeaderCmd& h, uint8_t* sl
   return proto::ErrorCode::kOk;
 }
 
-proto::ErrorCode SplineStore::add(const proto::SplineDataCmd& d, const int32_t travel_um[2],
-                                  uint8_t* detail, bool* completed) {
-  *detail = 0;
-  *completed = false;
+// Indices must continue exactly where the previous data frame stopped, within the header's
+// counts.
+proto::ErrorCode SplineStore::check_next(uint8_t control_index, uint8_t control_n,
+                                         uint8_t knot_index, uint8_t knot_n) const {
   if (open_ >= kSlots) return proto::ErrorCode::kSplineSequence;
   const uint8_t s = open_;
-  core::Spline& sp = spline_[s];
-  // Indices must continue exactly where the previous #D stopped, within the header's counts.
-  if (d.control_index != controls_[s] || d.knot_index != knots_[s])
+  const core::Spline& sp = spline_[s];
+  if (control_index != controls_[s] || knot_index != knots_[s])
     return proto::ErrorCode::kSplineSequence;
-  if ((uint16_t)(controls_[s] + d.control_n) > sp.control_count ||
-      (uint16_t)(knots_[s] + d.knot_n) > sp.knot_count)
+  if ((uint16_t)(controls_[s] + control_n) > sp.control_count ||
+      (uint16_t)(knots_[s] + knot_n) > sp.knot_count)
     return proto::ErrorCode::kSplineSequence;
-  for (uint8_t i = 0; i < d.control_n; ++i) {
-    const core::ControlPoint& p = d.control[i];
+  return proto::ErrorCode::kOk;
+}
+
+// Points control_from.. (already written) inside the travel.
+static bool inside_travel(const core::Spline& sp, uint16_t from, uint8_t n,
+                          const int32_t travel_um[2]) {
+  for (uint8_t i = 0; i < n; ++i) {
+    const core::ControlPoint& p = sp.control[from + i];
     if (p.x_um > travel_um[0] || p.x_um < -travel_um[0] || p.y_um > travel_um[1] ||
         p.y_um < -travel_um[1])
-      return proto::ErrorCode::kOutOfTravel;
+      return false;
   }
-  for (uint8_t i = 0; i < d.control_n; ++i) {
-    core::ControlPoint p = d.control[i];
-    if (!sp.rational) p.weight_q14 = core::kWeightOneQ14;
-    sp.control[controls_[s] + i] = p;
-  }
-  for (uint8_t i = 0; i < d.knot_n; ++i) sp.knot[knots_[s] + i] = d.knot[i];
-  controls_[s] = (uint16_t)(controls_[s] + d.control_n);
-  knots_[s] = (uint16_t)(knots_[s] + d.knot_n);
+  return true;
+}
+
+// Counts the frame's values as stored; when the spline is complete, validates it.
+proto::ErrorCode SplineStore::commit(uint8_t control_n, uint8_t knot_n, uint8_t* detail,
+                                     bool* completed) {
+  const uint8_t s = open_;
+  core::Spline& sp = spline_[s];
+  controls_[s] = (uint16_t)(controls_[s] + control_n);
+  knots_[s] = (uint16_t)(knots_[s] + knot_n);
   if (controls_[s] < sp.control_count || knots_[s] < sp.knot_count) return proto::ErrorCode::kOk;
   open_ = kSlots;
   *completed = true;
@@ -94,6 +103,45 @@ proto::ErrorCode SplineStore::add(const proto::SplineDataCmd& d, const int32_t t
   }
   state_[s] = SlotState::kReady;
   return proto::ErrorCode::kOk;
+}
+
+proto::ErrorCode SplineStore::add(const proto::SplineDataCmd& d, const int32_t travel_um[2],
+                                  uint8_t* detail, bool* completed) {
+  *detail = 0;
+  *completed = false;
+  const proto::ErrorCode e = check_next(d.control_index, d.control_n, d.knot_index, d.knot_n);
+  if (e != proto::ErrorCode::kOk) return e;
+  core::Spline& sp = spline_[open_];
+  for (uint8_t i = 0; i < d.control_n; ++i) {
+    const core::ControlPoint& p = d.control[i];
+    if (p.x_um > travel_um[0] || p.x_um < -travel_um[0] || p.y_um > travel_um[1] ||
+        p.y_um < -travel_um[1])
+      return proto::ErrorCode::kOutOfTravel;
+  }
+  for (uint8_t i = 0; i < d.control_n; ++i) {
+    core::ControlPoint p = d.control[i];
+    if (!sp.rational) p.weight_q14 = core::kWeightOneQ14;
+    sp.control[d.control_index + i] = p;
+  }
+  for (uint8_t i = 0; i < d.knot_n; ++i) sp.knot[d.knot_index + i] = d.knot[i];
+  return commit(d.control_n, d.knot_n, detail, completed);
+}
+
+// The values are unpacked behind the stored ones; only commit() makes them part of the
+// spline, so a refused frame changes nothing.
+proto::ErrorCode SplineStore::add_compact(const proto::SplineCompactCmd& d,
+                                          const int32_t travel_um[2], uint8_t* detail,
+                                          bool* completed) {
+  *detail = 0;
+  *completed = false;
+  proto::ErrorCode e = check_next(d.control_index, d.control_n, d.knot_index, d.knot_n);
+  if (e != proto::ErrorCode::kOk) return e;
+  core::Spline& sp = spline_[open_];
+  e = proto::unpack_compact(d, &sp);
+  if (e != proto::ErrorCode::kOk) return e;
+  if (!inside_travel(sp, d.control_index, d.control_n, travel_um))
+    return proto::ErrorCode::kOutOfTravel;
+  return commit(d.control_n, d.knot_n, detail, completed);
 }
 
 void SplineStore::release(uint8_t slot) {

@@ -7,7 +7,7 @@
 #include <stdint.h>  // uint8_t
 
 #include "firmware/core/spline.h"          // Spline
-#include "firmware/protocol/messages.h"    // SplineHeaderCmd, SplineDataCmd
+#include "firmware/protocol/messages.h"    // SplineHeaderCmd, SplineDataCmd, SplineCompactCmd
 #include "firmware/protocol/wire_codes.h"  // ErrorCode
 
 namespace app {
@@ -30,11 +30,19 @@ class SplineStore {
   // (the slot is then cancelled). *completed tells whether this frame finished the spline.
   proto::ErrorCode add(const proto::SplineDataCmd& data, const int32_t travel_um[2],
                        uint8_t* detail, bool* completed);
+  // #K: as add(), the values unpacked from the compact data (kFieldRange, kPayloadLength
+  // for data the codec's check lets through but the stored values refuse).
+  proto::ErrorCode add_compact(const proto::SplineCompactCmd& data, const int32_t travel_um[2],
+                               uint8_t* detail, bool* completed);
   SlotState state(uint8_t slot) const { return slot < kSlots ? state_[slot] : SlotState::kFree; }
   const core::Spline* spline(uint8_t slot) const { return &spline_[slot]; }
   void release(uint8_t slot);
 
  private:
+  proto::ErrorCode check_next(uint8_t control_index, uint8_t control_n, uint8_t knot_index,
+                              uint8_t knot_n) const;
+  proto::ErrorCode commit(uint8_t control_n, uint8_t knot_n, uint8_t* detail, bool* completed);
+
   core::Spline spline_[kSlots];
   SlotState state_[kSlots];
   uint16_t controls_[kSlots];  // control points received

@@ -3,6 +3,8 @@
 // check walk that list, so the byte layout and the ranges are written down once.
 #include "firmware/protocol/codec.h"
 
+#include "firmware/protocol/compact_spline.h"  // scan_compact
+
 #include <stddef.h>  // offsetof
 #include <string.h>  // memcpy
 
@@ -21,6 +23,8 @@ enum WireType {
   kWireText,    // the rest of the payload, characters min..max
   kWirePoints,  // count x (x i32, y i32, weight u16): coordinates min..max, weight >= 1
   kWireKnots,   // count x i32
+  kWireBytes,   // u8 of any value to the end of the payload, count in a kWireNone field
+  kWireNone,    // a u8 count in the struct, not on the wire
   kWireEnd
 };
 
@@ -40,12 +44,16 @@ struct FieldSpec {
 #define PROTO_WIRE_state kWireState
 #define PROTO_WIRE_alarm kWireAlarm
 #define PROTO_WIRE_error kWireError
+#define PROTO_WIRE_none kWireNone
 #define PROTO_ARRAY_WIRE_point kWirePoints
 #define PROTO_ARRAY_WIRE_i32 kWireKnots
+#define PROTO_ARRAY_WIRE_rest kWireBytes
 #define PROTO_ARRAY_MIN_point PROTO_COORD_MIN
 #define PROTO_ARRAY_MAX_point PROTO_COORD_MAX
 #define PROTO_ARRAY_MIN_i32 PROTO_I32_MIN
 #define PROTO_ARRAY_MAX_i32 PROTO_I32_MAX
+#define PROTO_ARRAY_MIN_rest 0
+#define PROTO_ARRAY_MAX_rest 255
 
 // NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and member names.
 #define PROTO_SPEC_CMD(Type, name, letter, kind, display, reply, handler, check) \
@@ -143,7 +151,8 @@ void store(uint8_t* msg, const FieldSpec& f, int32_t v) {
 // Every field inside its range (and the enums inside their lists).
 ErrorCode check_fields(const uint8_t* msg, const FieldSpec* f) {
   for (; f->type != kWireEnd; ++f) {
-    if (f->type == kWireText || f->type == kWirePoints || f->type == kWireKnots) {
+    if (f->type == kWireText || f->type == kWirePoints || f->type == kWireKnots ||
+        f->type == kWireBytes) {
       const uint8_t n = msg[f->count_offset];
       if (n > f->max_count) return ErrorCode::kFieldRange;
       for (uint8_t i = 0; i < n; ++i) {
@@ -172,10 +181,11 @@ void write_fields(const uint8_t* msg, const FieldSpec* f, Payload* out) {
   uint8_t* p = out->bytes;
   uint16_t n_out = 0;
   for (; f->type != kWireEnd; ++f) {
-    if (f->type == kWireText || f->type == kWirePoints || f->type == kWireKnots) {
+    if (f->type == kWireText || f->type == kWirePoints || f->type == kWireKnots ||
+        f->type == kWireBytes) {
       const uint8_t n = msg[f->count_offset];
       for (uint8_t i = 0; i < n; ++i) {
-        if (f->type == kWireText) {
+        if (f->type == kWireText || f->type == kWireBytes) {
           p[n_out++] = msg[f->offset + i];
         } else if (f->type == kWirePoints) {
           core::ControlPoint c;
@@ -193,6 +203,7 @@ void write_fields(const uint8_t* msg, const FieldSpec* f, Payload* out) {
       }
       continue;
     }
+    if (f->type == kWireNone) continue;
     const int32_t v = load(msg, *f);
     const uint8_t size = scalar_bytes(f->type);
     if (size == 1) p[n_out] = (uint8_t)v;
@@ -216,6 +227,14 @@ ErrorCode read_fields(const uint8_t* bytes, uint8_t length, uint8_t* msg, const 
       if (left > f->max_count) return ErrorCode::kPayloadLength;
       msg[f->count_offset] = left;
       if (left > 0) memcpy(msg + f->offset, bytes + pos, left);  // bytes may be 0 when empty
+      pos = length;
+      continue;
+    }
+    if (f->type == kWireNone) continue;  // set by its kWireBytes array
+    if (f->type == kWireBytes) {
+      if (left > f->max_count) return ErrorCode::kPayloadLength;
+      msg[f->count_offset] = left;
+      if (left > 0) memcpy(msg + f->offset, bytes + pos, left);
       pos = length;
       continue;
     }
@@ -279,6 +298,15 @@ ErrorCode check_spline_data(const SplineDataCmd& m) {
     return ErrorCode::kFieldRange;
   if ((uint16_t)(m.knot_index + m.knot_n) > core::kMaxKnots) return ErrorCode::kFieldRange;
   return ErrorCode::kOk;
+}
+
+// The data holds exactly control_n points then knot_n knots (compact_spline.h).
+ErrorCode check_spline_compact(const SplineCompactCmd& m) {
+  if (m.control_n == 0 && m.knot_n == 0) return ErrorCode::kFieldRange;
+  if ((uint16_t)(m.control_index + m.control_n) > core::kMaxControlPoints)
+    return ErrorCode::kFieldRange;
+  if ((uint16_t)(m.knot_index + m.knot_n) > core::kMaxKnots) return ErrorCode::kFieldRange;
+  return scan_compact(m);
 }
 
 ErrorCode check_drill(const DrillCmd& m) {

@@ -13,7 +13,9 @@
 //                                              0x20..0x7E; `count` holds how many
 //   ARRAY(Type, count, field, element, max)    `count` (an earlier FIELD) elements
 //   END(Type)
-// in wire order. wire_type: u8 u16 i32; flag (u8 0/1 as bool); state alarm error (u8 enums).
+// in wire order. wire_type: u8 u16 i32; flag (u8 0/1 as bool); state alarm error (u8 enums);
+// none (a u8 in the struct, not on the wire: the count of a `rest` array). ARRAY element:
+// point (x i32, y i32, weight u16), i32, rest (bytes of any value to the end of the payload).
 // kind: kQueued, kImmediate, kRealtime. extra_check: a function of the message for what one
 // field cannot say (no_check when none). handler: the application's member for the command
 // (dispatcher_handles for #I and #?, which the dispatcher answers itself).
@@ -70,6 +72,15 @@
     ARRAY(SplineDataCmd, control_n, control, point, 6)                                       \
     ARRAY(SplineDataCmd, knot_n, knot, i32, 15)                                              \
   END(SplineDataCmd)                                                                         \
+  CMD(SplineCompactCmd, kCmdSplineCompact, 'K', kQueued, "spline data, compact",             \
+      "`*O` / `*E`", on_spline_compact, check_spline_compact)                                \
+    FIELD(SplineCompactCmd, u8, control_index, 0, 64)                                        \
+    FIELD(SplineCompactCmd, u8, control_n, 0, 30)                                            \
+    FIELD(SplineCompactCmd, u8, knot_index, 0, 68)                                           \
+    FIELD(SplineCompactCmd, u8, knot_n, 0, 60)                                               \
+    FIELD(SplineCompactCmd, none, data_n, 1, 60)                                             \
+    ARRAY(SplineCompactCmd, data_n, data, rest, 60)                                          \
+  END(SplineCompactCmd)                                                                      \
   CMD(ResolutionCmd, kCmdResolution, 'U', kQueued, "resolution", "`*O` / `*E`",              \
       on_resolution, no_check)                                                               \
     FIELD(ResolutionCmd, u16, max_step_um, 1, 65535)                                         \

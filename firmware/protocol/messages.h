@@ -20,7 +20,11 @@ enum {
   kControlPointBytes = 10,     // x, y int32 + weight uint16
   kKnotBytes = 4,              // int32
   kMaxDataControls = (kMaxPayload - kSplineDataHeaderBytes) / kControlPointBytes,  // 6
-  kMaxDataKnots = (kMaxPayload - kSplineDataHeaderBytes) / kKnotBytes              // 15
+  kMaxDataKnots = (kMaxPayload - kSplineDataHeaderBytes) / kKnotBytes,             // 15
+  kCompactHeaderBytes = 4,                              // #K: indices and counts
+  kMaxCompactData = kMaxPayload - kCompactHeaderBytes,  // 60
+  kMaxCompactControls = kMaxCompactData / 2,            // 30: x and y take a byte at least
+  kMaxCompactKnots = kMaxCompactData                    // 60: a knot takes a byte at least
 };
 
 // The C type of each wire type of the message table.
@@ -32,6 +36,8 @@ enum {
 #define PROTO_CTYPE_alarm Alarm
 #define PROTO_CTYPE_error ErrorCode
 #define PROTO_CTYPE_point core::ControlPoint
+#define PROTO_CTYPE_none uint8_t
+#define PROTO_CTYPE_rest uint8_t
 
 // One struct per message, fields in wire order, with its start byte and letter
 // (docs/protocol.md gives the meaning of every field).
@@ -66,6 +72,8 @@ static_assert(sizeof(((SplineDataCmd*)0)->control) == kMaxDataControls * sizeof(
               "#D control points: as many as fit a payload");
 static_assert(sizeof(((SplineDataCmd*)0)->knot) == kMaxDataKnots * sizeof(int32_t),
               "#D knots: as many as fit a payload");
+static_assert(sizeof(((SplineCompactCmd*)0)->data) == kMaxCompactData,
+              "#K data: the rest of a payload");
 
 }  // namespace proto
 

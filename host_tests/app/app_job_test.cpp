@@ -577,8 +577,8 @@ TEST(AppRobustness, RandomCrcValidFramesNeverTrapAndNeverLeaveTheTravel) {
   ASSERT_TRUE(rig.open_session());
   ASSERT_TRUE(rig.zero_here());
   std::mt19937 rng(11);
-  const uint8_t letters[] = {'S', 'B', 'D', 'U', 'G', 'F', 'Z', 'M',
-                             'H', 'R', 'V', 'C', 'X', 'I', '?', 'Q'};
+  const uint8_t letters[] = {'S', 'B', 'D', 'U', 'G', 'F', 'Z', 'M', 'H',
+                             'R', 'V', 'C', 'X', 'I', '?', 'Q', 'K'};
   uint8_t seq = uint8_t(rig.host.first_seq() + rig.host.acked());
   for (int i = 0; i < 3000; ++i) {
     std::vector<uint8_t> payload(rng() % 20);

@@ -49,7 +49,14 @@ std::string doc_wire(const std::string& wire) {
   return wire == "u16" || wire == "i32" ? wire : "u8";
 }
 int wire_bytes(const std::string& wire) {
+  if (wire == "none") return 0;  // a count kept in the struct, not on the wire
   return wire == "u16" ? 2 : wire == "i32" ? 4 : 1;
+}
+
+int element_bytes(const std::string& element) {
+  if (element == "point") return proto::kControlPointBytes;
+  if (element == "rest") return 1;
+  return proto::kKnotBytes;
 }
 
 std::vector<MessageDecl> declared() {
@@ -64,11 +71,8 @@ std::vector<MessageDecl> declared() {
 #define T_FIELD(Type, wire, field, lo, hi) \
   all.back().fields.push_back({#field, doc_wire(#wire), lo, hi, wire_bytes(#wire), 0});
 #define T_TEXT(Type, count, field, most) all.back().fields.push_back({#field, "", 0, 0, 0, most});
-#define T_ARRAY(Type, count, field, element, most)                                            \
-  all.back().fields.push_back(                                                                \
-      {#field, "", 0, 0, 0,                                                                   \
-       most * (std::string(#element) == "point" ? static_cast<int>(proto::kControlPointBytes) \
-                                                : static_cast<int>(proto::kKnotBytes))});
+#define T_ARRAY(Type, count, field, element, most) \
+  all.back().fields.push_back({#field, "", 0, 0, 0, most * element_bytes(#element)});
 #define T_END(Type)
   PROTO_MESSAGE_TABLE(T_CMD, T_REPLY, T_FIELD, T_TEXT, T_ARRAY, T_END)
   return all;
@@ -260,11 +264,9 @@ TEST(DocTable, ReplyTableSaysWhatTheMessageTableDeclares) {
 TEST(DocTable, FieldTablesGiveEachFieldItsOffset) {
   const auto doc = read_doc();
   const auto all = declared();
-  const std::map<std::string, std::pair<char, bool>> sections = {{"### `#B`", {'B', false}},
-                                                                 {"### `#D`", {'D', false}},
-                                                                 {"### `#L`", {'L', false}},
-                                                                 {"### `*I`", {'I', true}},
-                                                                 {"### `*?`", {'?', true}}};
+  const std::map<std::string, std::pair<char, bool>> sections = {
+      {"### `#B`", {'B', false}}, {"### `#D`", {'D', false}}, {"### `#K`", {'K', false}},
+      {"### `#L`", {'L', false}}, {"### `*I`", {'I', true}},  {"### `*?`", {'?', true}}};
   for (const auto& s : sections) {
     const MessageDecl* m = find(all, s.second.first, s.second.second);
     ASSERT_NE(m, nullptr) << s.first;

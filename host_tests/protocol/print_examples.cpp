@@ -4,6 +4,7 @@
 #include <string>  // std::string
 
 #include "firmware/protocol/codec.h"
+#include "firmware/protocol/compact_spline.h"
 
 namespace {
 
@@ -57,6 +58,27 @@ int main() {
   d2.knot_n = 4;
   for (int i = 0; i < 4; ++i) d2.knot[i] = 1000;
   show(d2, 8, "#D seq 8: no control points (control_index 4: all stored), knots 4..7 = 1000");
+  // The same data as seq 7 and 8 in one compact frame instead.
+  proto::SplineCompactCmd k = {};
+  k.control_n = 4;
+  k.knot_n = 8;
+  core::ControlPoint prev = {0, 0, core::kWeightOneQ14};
+  for (int i = 0; i < 4; ++i) {
+    const core::ControlPoint p = {xs[i], ys[i], core::kWeightOneQ14};
+    k.data_n = uint8_t(k.data_n + proto::put_compact_point(prev, p, false, k.data + k.data_n));
+    prev = p;
+  }
+  const int32_t knots[8] = {0, 0, 0, 0, 1000, 1000, 1000, 1000};
+  for (int i = 0; i < 8;) {
+    const bool repeat = i > 0 && i + 1 < 8 && knots[i + 1] == knots[i];
+    k.data_n = uint8_t(k.data_n + proto::put_compact_knot(i ? knots[i - 1] : 0, knots[i], i == 0,
+                                                          repeat, k.data + k.data_n));
+    i += repeat ? 2 : 1;
+  }
+  show(k, 7,
+       "#K seq 7, instead of seq 7 and 8: the 4 control points as differences (+12 mm, "
+       "-3.5 mm; +3 mm, +5.5 mm; +3 mm, 0; +3 mm, -5.5 mm) and the 8 knots as 0, then spans "
+       "0 (repeated), 0, 1000 (repeated), 0 (repeated): 26 bytes of payload instead of 80");
   show(proto::ZeroingCmd{7}, 9, "#M seq 9: zero X, Y and Z with the joystick");
   show(proto::StatusCmd{}, 10, "#? seq 10: status query");
   proto::StatusReply s = {

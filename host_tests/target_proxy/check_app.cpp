@@ -11,10 +11,11 @@
 #include "firmware/app/spline_store.h"     // SplineStore
 #include "firmware/app/vector3.h"          // normalise3, length3 (tick parts)
 #include "firmware/config/machine_config.h"
-#include "firmware/core/isqrt.h"         // isqrt32, isqrt32_from (tick parts)
-#include "firmware/protocol/codec.h"     // write_frame, decode_frame
-#include "firmware/protocol/parser.h"    // Parser
-#include "hal/interfaces/motion_axes.h"  // MotionAxes
+#include "firmware/core/isqrt.h"               // isqrt32, isqrt32_from (tick parts)
+#include "firmware/protocol/codec.h"           // write_frame, decode_frame
+#include "firmware/protocol/compact_spline.h"  // put_compact_point, put_compact_knot
+#include "firmware/protocol/parser.h"          // Parser
+#include "hal/interfaces/motion_axes.h"        // MotionAxes
 
 #include "host_tests/target_proxy/proxy_check.h"
 #include "host_tests/target_proxy/proxy_checks.h"
@@ -178,6 +179,84 @@ void measure_spline_data_frame() {
       (unsigned long)(d - c - overhead), counter_unit());
 }
 
+// A rational quadratic with far-apart points, weight jumps and wide knot spans as #K frames
+// written, parsed, decoded and stored here (16-bit int: the varint and zigzag arithmetic
+// on the target); the store must hold exactly the values sent.
+void check_compact_spline_frames() {
+  static const core::ControlPoint kPoints[7] = {
+      {-1000000L, 1000000L, 1},  {1000000L, -1000000L, 65535U},
+      {12345L, -678L, 65535U},   {12346L, -679L, 40000U},
+      {-5L, 7L, 40000U},         {300000L, 200000L, 16384U},
+      {300001L, 200000L, 16383U}};
+  static const int32_t kKnots[10] = {-5L,    -5L,         -5L,         0L,          0L,
+                                     70000L, 2000000000L, 2000000000L, 2000000000L, 2000000000L};
+  proto::SplineHeaderCmd header;
+  header.degree = 2;
+  header.rational = true;
+  header.control_count = 7;
+  header.knot_count = 10;
+  header.feed_um_per_s = 10000;
+  header.tool_offset_um = 0;
+  uint8_t slot = 0;
+  PROXY_CHECK_EQ((int)g_store.begin(header, &slot), (int)proto::ErrorCode::kOk);
+  const int32_t travel_um[2] = {1000000L, 1000000L};
+  // Two frames: the points, then the knots (repeats folded into the code before them).
+  static proto::SplineCompactCmd frame;
+  static proto::SplineCompactCmd decoded;
+  static uint8_t bytes[80];
+  bool completed = false;
+  for (uint8_t part = 0; part < 2; ++part) {
+    frame.control_index = part == 0 ? 0 : 7;
+    frame.control_n = 0;
+    frame.knot_index = 0;
+    frame.knot_n = 0;
+    frame.data_n = 0;
+    if (part == 0) {
+      core::ControlPoint prev = {0, 0, core::kWeightOneQ14};
+      for (uint8_t i = 0; i < 7; ++i) {
+        frame.data_n =
+            (uint8_t)(frame.data_n +
+                      proto::put_compact_point(prev, kPoints[i], true, frame.data + frame.data_n));
+        prev = kPoints[i];
+        ++frame.control_n;
+      }
+    } else {
+      for (uint8_t i = 0; i < 10;) {
+        const bool repeat = i > 0 && i + 1 < 10 && kKnots[i + 1] == kKnots[i];
+        frame.data_n = (uint8_t)(frame.data_n + proto::put_compact_knot(i ? kKnots[i - 1] : 0,
+                                                                        kKnots[i], i == 0, repeat,
+                                                                        frame.data + frame.data_n));
+        const uint8_t n = repeat ? 2 : 1;
+        frame.knot_n = (uint8_t)(frame.knot_n + n);
+        i = (uint8_t)(i + n);
+      }
+    }
+    uint8_t size = 0;
+    PROXY_CHECK_EQ((int)proto::write_frame(frame, (uint8_t)(8 + part), bytes, sizeof(bytes), &size),
+                   (int)proto::ErrorCode::kOk);
+    bool framed = false;
+    for (uint8_t i = 0; i < size; ++i) {
+      if (g_parser.feed(bytes[i]) == proto::ParseEvent::kFrame) framed = true;
+    }
+    PROXY_CHECK(framed);
+    PROXY_CHECK_EQ((int)proto::decode_frame(g_parser.frame(), &decoded),
+                   (int)proto::ErrorCode::kOk);
+    uint8_t detail = 0;
+    PROXY_CHECK_EQ((int)g_store.add_compact(decoded, travel_um, &detail, &completed),
+                   (int)proto::ErrorCode::kOk);
+  }
+  PROXY_CHECK(completed);
+  PROXY_CHECK_EQ((int)g_store.state(slot), (int)app::SlotState::kReady);
+  const core::Spline* s = g_store.spline(slot);
+  for (uint8_t i = 0; i < 7; ++i) {
+    PROXY_CHECK_EQ(s->control[i].x_um, kPoints[i].x_um);
+    PROXY_CHECK_EQ(s->control[i].y_um, kPoints[i].y_um);
+    PROXY_CHECK_EQ(s->control[i].weight_q14, kPoints[i].weight_q14);
+  }
+  for (uint8_t i = 0; i < 10; ++i) PROXY_CHECK_EQ(s->knot[i], kKnots[i]);
+  g_store.release(slot);
+}
+
 // The tick's parts, each on inputs of the measured path (1 mm segments, 2560 usteps/mm):
 // where its cycles go, for the dsPIC translation in docs/performance.md.
 volatile int32_t g_part_sink;
@@ -294,6 +373,7 @@ void run_app_measurements() {
   series_print(PROXY_STR("planner push of one point (background)"), push);
   measure_tick_parts();
   measure_spline_data_frame();
+  check_compact_spline_frames();
   PROXY_PRINTF(
       "memory sizeof CoordinateRing %u, PathController %u, Planner %u, AxisScaling %u bytes\n",
       (unsigned)sizeof(app::CoordinateRing), (unsigned)sizeof(app::PathController),

@@ -3,6 +3,7 @@
 
 #include <algorithm>  // std::max
 #include <cmath>      // std::llround, std::fabs
+#include <cstdint>    // int64_t
 #include <cstring>    // memset
 #include <sstream>    // std::ostringstream
 
@@ -48,27 +49,43 @@ std::vector<BSpline> split_to_fit(const BSpline& clamped_spline, size_t max_cont
   return out;
 }
 
+// Worst relative rounding error of the weights w scaled so the largest is m.
+double weight_error(const std::vector<double>& w, double w_max, long m) {
+  const double f = static_cast<double>(m) / w_max;
+  double err = 0;
+  for (double x : w) {
+    const double q = std::floor(x * f + 0.5);
+    if (q < 1) return 1e300;
+    err = std::max(err, std::fabs(q - x * f) / q);
+  }
+  return err;
+}
+
 // Integer Q14 weights for a rational spline: the common factor that puts the largest
-// weight at m / 16384 for m in [32768, 65535] with the smallest worst relative error.
-std::vector<uint16_t> quantise_weights(const std::vector<double>& w) {
+// weight at m / 16384. The smallest m under 32768 that the rounding bound guarantees keeps
+// every weight's relative error below 0.25 um over the longest control leg (1e-4 at most;
+// the curve moves by about a tenth of a micrometre, and its points are whole micrometres
+// anyway): small weights differ by little, which the compact #K frames send in few bytes.
+// Failing that, m in [32768, 65535] with the smallest worst relative error.
+std::vector<uint16_t> quantise_weights(const std::vector<double>& w, double max_leg_um) {
   double w_max = 0;
   for (double x : w) w_max = std::max(w_max, x);
+  const double tolerance = std::min(1e-4, 0.25 / std::max(max_leg_um, 1.0));
+  // Rounding moves a weight x scaled by m / w_max by half a unit at most: a relative error
+  // within tolerance for every weight once the smallest is 0.5 / tolerance + 0.5 units.
+  double w_min = w_max;
+  for (double x : w) w_min = std::min(w_min, x);
+  const double m_sure = std::ceil((0.5 / tolerance + 0.5) * w_max / w_min);
+  long best_m = 0, best_fallback = 65535;
+  if (m_sure < 32768 && weight_error(w, w_max, static_cast<long>(m_sure)) <= tolerance)
+    best_m = static_cast<long>(m_sure);
   double best_err = 1e300;
-  long best_m = 65535;
-  for (long m = 65535; m >= 32768; --m) {
-    const double f = static_cast<double>(m) / w_max;
-    double err = 0;
-    for (double x : w) {
-      const double q = std::floor(x * f + 0.5);
-      err = std::max(err, std::fabs(q - x * f) / std::max(q, 1.0));
-      if (q < 1) err = 1e300;
-    }
-    if (err < best_err) {
-      best_err = err;
-      best_m = m;
-    }
+  for (long m = 65535; best_m == 0 && m >= 32768; --m) {
+    const double err = weight_error(w, w_max, m);
+    if (err < best_err) best_err = err, best_fallback = m;
     if (err < 1e-9) break;
   }
+  if (best_m == 0) best_m = best_fallback;
   std::vector<uint16_t> q;
   const double f = static_cast<double>(best_m) / w_max;
   for (double x : w) {
@@ -84,6 +101,57 @@ std::vector<uint16_t> quantise_weights(const std::vector<double>& w) {
   return q;
 }
 
+// Integer knots, chain by chain. A knot of multiplicity >= degree cuts the spline into two
+// curves that do not depend on each other's knots, and a curve keeps its shape under an
+// affine map of its own knots: so each such chain gets its own scale. A chain of one span
+// (a Bezier piece between corners, every span of a degree-1 spline) is 1 unit long; a longer
+// chain gets units so that each span is at least 4x the longest control leg (um) around it
+// (moving a knot by half a unit then moves the curve by about 1/8 um), 16 units at least,
+// but never a finer scale than the whole vector over kKnotRangeTarget units. Small spans
+// are what the compact #K frames carry in few bytes.
+std::vector<int32_t> chain_knots(const BSpline& s) {
+  const size_t p = static_cast<size_t>(s.degree);
+  const size_t nk = s.knots.size();
+  const double whole = static_cast<double>(kKnotRangeTarget) / (s.knots.back() - s.knots.front());
+  std::vector<int32_t> out(nk, 0);
+  // Multiplicity of the value at each knot index.
+  auto multiplicity = [&](size_t i) {
+    size_t m = 0;
+    for (double k : s.knots) m += (k == s.knots[i]) ? 1 : 0;
+    return m;
+  };
+  auto leg_um = [&](size_t span) {  // span i uses control points i-p .. i
+    double leg = 0;
+    for (size_t c = span >= p ? span - p + 1 : 1; c <= span && c < s.control.size(); ++c)
+      leg = std::max(leg, (s.control[c] - s.control[c - 1]).norm() * 1000.0);
+    return leg;
+  };
+  int64_t at = 0;  // integer value of the chain's first knot
+  size_t first = 0;
+  while (first + 1 < nk) {
+    // The chain: knots first..last, cut at an interior knot of multiplicity >= degree.
+    size_t last = first + 1;
+    while (last + 1 < nk && !(s.knots[last] > s.knots[first] && s.knots[last + 1] > s.knots[last] &&
+                              multiplicity(last) >= p))
+      ++last;
+    int spans = 0;
+    double scale = 16.0 / (s.knots[last] - s.knots[first]);
+    for (size_t i = first; i < last; ++i) {
+      const double span = s.knots[i + 1] - s.knots[i];
+      if (span <= 0) continue;
+      ++spans;
+      scale = std::max(scale, std::max(16.0, 4.0 * leg_um(i)) / span);
+    }
+    if (spans == 1) scale = 1.0 / (s.knots[last] - s.knots[first]);
+    scale = std::min(scale, whole);
+    for (size_t i = first; i <= last; ++i)
+      out[i] = static_cast<int32_t>(at + std::llround((s.knots[i] - s.knots[first]) * scale));
+    at = out[last];
+    first = last;
+  }
+  return out;
+}
+
 // One piece (at most kMaxControlPoints control points) in firmware form.
 core::Spline to_firmware(const BSpline& s) {
   core::Spline f;
@@ -93,7 +161,12 @@ core::Spline to_firmware(const BSpline& s) {
   f.control_count = static_cast<uint16_t>(s.control.size());
   f.knot_count = static_cast<uint16_t>(s.knots.size());
   std::vector<uint16_t> w;
-  if (s.rational()) w = quantise_weights(s.weights);
+  if (s.rational()) {
+    double leg_um = 0;
+    for (size_t i = 1; i < s.control.size(); ++i)
+      leg_um = std::max(leg_um, (s.control[i] - s.control[i - 1]).norm() * 1000.0);
+    w = quantise_weights(s.weights, leg_um);
+  }
   for (size_t i = 0; i < s.control.size(); ++i) {
     const double x_um = s.control[i].x() * 1000.0;
     const double y_um = s.control[i].y() * 1000.0;
@@ -108,12 +181,8 @@ core::Spline to_firmware(const BSpline& s) {
     f.control[i].y_um = static_cast<int32_t>(std::llround(y_um));
     f.control[i].weight_q14 = s.rational() ? w[i] : core::kWeightOneQ14;
   }
-  const double k0 = s.knots.front();
-  const double range = s.knots.back() - k0;
-  const double scale = static_cast<double>(kKnotRangeTarget) / range;
-  for (size_t i = 0; i < s.knots.size(); ++i) {
-    f.knot[i] = static_cast<int32_t>(std::llround((s.knots[i] - k0) * scale));
-  }
+  const std::vector<int32_t> knots = chain_knots(s);
+  for (size_t i = 0; i < s.knots.size(); ++i) f.knot[i] = knots[i];
   for (size_t i = 0; i + 1 < s.knots.size(); ++i) {
     if (s.knots[i + 1] > s.knots[i] && f.knot[i + 1] == f.knot[i]) {
       throw ConversionError(

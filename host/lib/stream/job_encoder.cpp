@@ -1,6 +1,7 @@
 // Job plan -> queued protocol commands (#J #S #U #Z #F #G #B #D #P #W #N #L), using the shared
 // codecs.
 #include "host/lib/stream/job_encoder.h"
+#include "host/lib/stream/spline_frames.h"  // append_spline_data
 
 #include <fmt/format.h>  // fmt::format
 
@@ -38,8 +39,9 @@ uint16_t feed16(int32_t feed_um_per_s, int step) {
   return static_cast<uint16_t>(feed_um_per_s);
 }
 
-// #B then #D frames carrying the spline's control points, then its knots.
-void append_spline(const PlanStep& s, int index, unsigned max_payload,
+// #B then the data frames (#K compact, or #D) carrying the spline's control points, then
+// its knots.
+void append_spline(const PlanStep& s, int index, unsigned max_payload, bool compact,
                    std::vector<QueuedCommand>* out) {
   proto::SplineHeaderCmd header{};
   header.degree = s.spline.degree;
@@ -51,28 +53,7 @@ void append_spline(const PlanStep& s, int index, unsigned max_payload,
   header.feed_um_per_s = feed16(s.feed_um_per_s, index);
   header.tool_offset_um = s.tool_offset_um;
   out->push_back(make(header, index, s.curve));
-
-  const unsigned room =
-      std::min<unsigned>(max_payload, proto::kMaxPayload) - proto::kSplineDataHeaderBytes;
-  unsigned next_control = 0;
-  unsigned next_knot = 0;
-  while (next_control < control_count || next_knot < knot_count) {
-    proto::SplineDataCmd data{};
-    data.control_index = static_cast<uint8_t>(next_control);
-    data.knot_index = static_cast<uint8_t>(next_knot);
-    unsigned left = room;
-    while (next_control < control_count && data.control_n < proto::kMaxDataControls &&
-           left >= proto::kControlPointBytes) {
-      data.control[data.control_n++] = s.spline.control[next_control++];
-      left -= proto::kControlPointBytes;
-    }
-    while (next_control == control_count && next_knot < knot_count &&
-           data.knot_n < proto::kMaxDataKnots && left >= proto::kKnotBytes) {
-      data.knot[data.knot_n++] = s.spline.knot[next_knot++];
-      left -= proto::kKnotBytes;
-    }
-    out->push_back(make(data, index, s.curve));
-  }
+  append_spline_data(s.spline.firmware(), index, s.curve, max_payload, compact, out);
 }
 
 // #P with the operator message: the LCD row holds 16 characters, the rest is cut; characters
@@ -193,7 +174,7 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
           // degree-1 spline from where the tool is.
           PlanStep line = s;
           line.spline = CompactSpline(straight_spline(from, s.to));
-          append_spline(line, index, options.max_payload, &out);
+          append_spline(line, index, options.max_payload, options.compact_splines, &out);
           break;
         }
         proto::FeedMoveCmd g{s.to.x_um, s.to.y_um, feed16(s.feed_um_per_s, index)};
@@ -201,7 +182,7 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
         break;
       }
       case PlanStep::kSpline:
-        append_spline(s, index, options.max_payload, &out);
+        append_spline(s, index, options.max_payload, options.compact_splines, &out);
         break;
       case PlanStep::kPause:
         out.push_back(make(pause_command(s.text), index, s.curve));

@@ -26,6 +26,7 @@ struct EncodeOptions {
   uint16_t chord_tolerance_um = 5;   // #U: chord error
   uint16_t z_rapid_um_per_s = 5000;  // #Z feed for pen-up moves
   std::string title;                 // #S row 0 at the start (cut to 16 characters)
+  bool compact_splines = true;       // spline data as #K (differences), else #D
   // The controller's *I: when set, every target is checked against its travel first.
   const proto::SessionReply* controller = nullptr;
 };

@@ -6,13 +6,14 @@
 #include "firmware/core/curve_walker.h"     // kDefaultChordToleranceUm
 #include "firmware/protocol/codec.h"        // proto::encode, proto::decode
 #include "host/lib/plan/firmware_points.h"  // firmware_points_um
+#include "host/lib/stream/spline_frames.h"  // is_spline_data, add_spline_data
 
 namespace host {
 
 namespace {
 
 bool is_job_command(const QueuedCommand& c) {
-  return c.letter != proto::kCmdSplineData && c.letter != proto::kCmdJobMark;
+  return !is_spline_data(c.letter) && c.letter != proto::kCmdJobMark;
 }
 
 template <typename Msg>
@@ -35,7 +36,7 @@ Msg decoded(const QueuedCommand& c) {
   return m;
 }
 
-// The spline a #B at job[b] and its #D frames carry, and the #B's tool offset.
+// The spline a #B at job[b] and its data frames (#D or #K) carry, and the #B's tool offset.
 core::Spline spline_at(const std::vector<QueuedCommand>& job, size_t b, int32_t* offset_um) {
   const proto::SplineHeaderCmd h = decoded<proto::SplineHeaderCmd>(job[b]);
   core::Spline sp{};
@@ -44,12 +45,10 @@ core::Spline spline_at(const std::vector<QueuedCommand>& job, size_t b, int32_t*
   sp.control_count = h.control_count;
   sp.knot_count = h.knot_count;
   *offset_um = h.tool_offset_um;
-  for (size_t i = b + 1; i < job.size() && job[i].letter == proto::kCmdSplineData; ++i) {
-    const proto::SplineDataCmd d = decoded<proto::SplineDataCmd>(job[i]);
-    for (unsigned k = 0; k < d.control_n && d.control_index + k < core::kMaxControlPoints; ++k)
-      sp.control[d.control_index + k] = d.control[k];
-    for (unsigned k = 0; k < d.knot_n && d.knot_index + k < core::kMaxKnots; ++k)
-      sp.knot[d.knot_index + k] = d.knot[k];
+  for (size_t i = b + 1; i < job.size() && is_spline_data(job[i].letter); ++i) {
+    if (!add_spline_data(job[i], &sp))
+      throw PlanError(
+          fmt::format("resume: the spline data after job command {} does not decode", b));
   }
   return sp;
 }

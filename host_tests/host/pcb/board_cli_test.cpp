@@ -64,6 +64,9 @@ TEST(BoardCli, WholeBoardIsPlannedCheckedPlottedAndReported) {
   EXPECT_EQ(j["narrow_gaps"].size(), 0u);
   EXPECT_LT(j["isolation_spline_bytes"].get<double>(),
             j["isolation_g1_bytes_same_tolerance"].get<double>());
+  // Compact #K data: well under the fixed-width #D frames of the same splines.
+  EXPECT_LT(j["isolation_spline_bytes"].get<double>(),
+            0.6 * j["isolation_spline_bytes_fixed_width"].get<double>());
   const std::string base = dir + "/out/" + std::to_string(getpid()) + "-ok";
   EXPECT_TRUE(std::filesystem::exists(base + ".board.png"));
   EXPECT_TRUE(std::filesystem::exists(base + ".board.svg"));

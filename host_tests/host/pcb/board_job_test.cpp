@@ -9,6 +9,7 @@
 #include "host/lib/pcb/isolation_check.h"
 #include "host/lib/pcb/pcb_geometry.h"
 #include "host/lib/plan/firmware_spline.h"
+#include "host/lib/sim/sim_job.h"
 #include "host/lib/stream/job_encoder.h"
 #include "host_tests/host/pcb/synthetic_board.h"
 
@@ -164,6 +165,34 @@ TEST(BoardJob, LayersLineUpAndTheBottomSideIsMirrored) {
   // Everything inside the work area, the job's corner at the margin.
   EXPECT_GE(bottom.plan.extents_mm.min.x(), 0.0);
   EXPECT_GE(bottom.plan.extents_mm.min.y(), 0.0);
+}
+
+// The whole board (isolation, drilling with tool changes, cut-out) on the simulated machine,
+// its splines once as compact #K frames and once as #D: the job completes both times and the
+// machine cuts the same path (the firmware stores the same splines), from far fewer bytes.
+TEST(BoardJob, WholeBoardRunsTheSameFromCompactAndFullSplineFrames) {
+  Board b;
+  const BoardJob job = plan_board(b.layers(), BoardOptions());
+  sim::SimJobResult run[2];
+  size_t spline_bytes[2] = {0, 0};
+  for (int compact = 0; compact < 2; ++compact) {
+    sim::SimJobOptions o;
+    o.encode.compact_splines = compact == 1;
+    for (const QueuedCommand& c : encode_job(job.plan, o.encode)) {
+      if (c.letter == proto::kCmdSplineData || c.letter == proto::kCmdSplineCompact)
+        spline_bytes[compact] += frame_bytes(c);
+      if (compact == 1) EXPECT_NE(c.letter, proto::kCmdSplineData);
+    }
+    run[compact] = sim::run_sim_job(job.plan, o);
+    ASSERT_EQ(run[compact].outcome, JobOutcome::kCompleted) << run[compact].message;
+    EXPECT_EQ(run[compact].pauses_confirmed, 3);  // the V-bit, two drill sizes, the cutter
+  }
+  EXPECT_LT(spline_bytes[1] * 2, spline_bytes[0]);
+  EXPECT_LT(run[1].wire_bytes, run[0].wire_bytes);
+  EXPECT_NEAR(run[1].cut_mm, run[0].cut_mm, 1e-6);
+  EXPECT_NEAR(run[1].rapid_mm, run[0].rapid_mm, 1e-6);
+  EXPECT_NEAR(run[1].max_contour_error_um, run[0].max_contour_error_um, 1e-6);
+  EXPECT_EQ(run[1].trace_samples, run[0].trace_samples);
 }
 
 TEST(BoardJob, NarrowGapIsAnErrorNamingThePlace) {

@@ -47,8 +47,53 @@ TEST(FirmwareSpline, PolynomialCubicConvertsToMicrometresAndStaysNonRational) {
   EXPECT_EQ(f[0].control[1].x_um, 10000);
   EXPECT_EQ(f[0].control[2].y_um, 25001);
   EXPECT_EQ(f[0].knot[0], 0);
-  EXPECT_EQ(f[0].knot[7], kKnotRangeTarget);
+  EXPECT_EQ(f[0].knot[7], 1);  // one span between full-multiplicity knots: any length will do
   EXPECT_EQ(core::validate_spline(f[0]), core::GeometryError::kOk);
+}
+
+TEST(FirmwareSpline, KnotsAreScaledChainByChainWithoutChangingTheShape) {
+  // A rational quadratic: a quarter arc (r 0.25 mm), a corner (double knot), then two
+  // pieces joined by a single knot whose span ratio (1 : 3) shapes the curve.
+  BSpline s;
+  s.degree = 2;
+  const double c = std::cos(kPi / 4);
+  s.control = {{0.25, 0}, {0.25, 0.25}, {0, 0.25}, {-1, 0.5}, {-2, 0.25}, {-3, 1}};
+  s.weights = {1, c, 1, 0.8, 1.3, 1};
+  s.knots = {0, 0, 0, 0.4, 0.4, 1.1, 3.2, 3.2, 3.2};
+  const std::vector<core::Spline> f = to_firmware_splines(s);
+  ASSERT_EQ(f.size(), 1u);
+  const int32_t* k = f[0].knot;
+  EXPECT_EQ(k[3] - k[2], 1);  // the arc: a chain of one span
+  EXPECT_EQ(k[4], k[3]);
+  const double ratio = static_cast<double>(k[6] - k[5]) / (k[5] - k[4]);
+  EXPECT_NEAR(ratio, 3.0, 3e-4);
+  // Small units: each span of the chain a few times its control legs in um, far below 2^28.
+  EXPECT_LT(k[6] - k[4], 100000);
+  EXPECT_GT(k[5] - k[4], 4 * 1000);
+  EXPECT_LT(max_deviation_mm(s, f), 0.0003);
+}
+
+TEST(FirmwareSpline, DegreeOneKnotsBecomeUniform) {
+  BSpline s;
+  s.degree = 1;
+  s.control = {{0, 0}, {1, 0}, {1, 7}, {3, 7}};
+  s.knots = {0, 0, 1, 8, 10, 10};
+  const std::vector<core::Spline> f = to_firmware_splines(s);
+  ASSERT_EQ(f.size(), 1u);
+  const int32_t want[6] = {0, 0, 1, 2, 3, 3};
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(f[0].knot[i], want[i]) << i;
+}
+
+TEST(FirmwareSpline, SmallArcWeightsUseACoarseGridWithinATenthOfAMicrometre) {
+  // A PCB-sized round join: r 0.3 mm; its weights need no more than 1e-4 of precision.
+  const BSpline arc = arc_spline({10, 10}, 0.3, 0, kPi);
+  const std::vector<core::Spline> f = to_firmware_splines(arc);
+  ASSERT_EQ(f.size(), 1u);
+  uint16_t largest = 0;
+  for (int i = 0; i < f[0].control_count; ++i)
+    largest = std::max(largest, f[0].control[i].weight_q14);
+  EXPECT_LT(largest, 32768);
+  EXPECT_LT(max_deviation_mm(arc, f), 0.0008);  // control points are whole um
 }
 
 TEST(FirmwareSpline, CircleWeightsAreScaledToQ14WithinRoundingOfTheirRatio) {
@@ -57,8 +102,8 @@ TEST(FirmwareSpline, CircleWeightsAreScaledToQ14WithinRoundingOfTheirRatio) {
   ASSERT_EQ(f.size(), 1u);
   ASSERT_TRUE(f[0].rational);
   const double ratio = static_cast<double>(f[0].control[1].weight_q14) / f[0].control[0].weight_q14;
-  EXPECT_NEAR(ratio, std::cos(kPi / 4), 2e-5);
-  EXPECT_GE(f[0].control[0].weight_q14, 32768);  // the largest weight uses the top of Q2.14
+  // The coarsest grid that keeps the 40 mm legs within 0.25 um: relative error <= 6.25e-6.
+  EXPECT_NEAR(ratio, std::cos(kPi / 4), 6.25e-6 * 2);
   // A 40 mm circle stays within a micrometre of the exact one.
   EXPECT_LT(max_deviation_mm(circle, f), 0.001);
 }

@@ -4,6 +4,7 @@
 
 #include "firmware/protocol/codec.h"
 #include "host/lib/stream/job_encoder.h"
+#include "host/lib/stream/spline_frames.h"
 
 namespace host {
 namespace {
@@ -54,7 +55,7 @@ JobPlan plan_with_spline(const core::Spline& spline) {
   return plan;
 }
 
-// Rebuilds the spline from the encoded #B/#D commands as the controller's store would.
+// Rebuilds the spline from the encoded #B/#D/#K commands as the controller's store would.
 core::Spline reassemble(const std::vector<QueuedCommand>& cmds) {
   core::Spline s{};
   for (const QueuedCommand& c : cmds) {
@@ -66,12 +67,8 @@ core::Spline reassemble(const std::vector<QueuedCommand>& cmds) {
       s.rational = h.rational;
       s.control_count = h.control_count;
       s.knot_count = h.knot_count;
-    } else if (c.letter == proto::kCmdSplineData) {
-      proto::SplineDataCmd d;
-      EXPECT_EQ(proto::decode(c.payload.data(), static_cast<uint8_t>(c.payload.size()), &d),
-                proto::ErrorCode::kOk);
-      for (int i = 0; i < d.control_n; ++i) s.control[d.control_index + i] = d.control[i];
-      for (int i = 0; i < d.knot_n; ++i) s.knot[d.knot_index + i] = d.knot[i];
+    } else if (is_spline_data(c.letter)) {
+      EXPECT_TRUE(add_spline_data(c, &s));
     }
   }
   return s;
@@ -120,18 +117,85 @@ TEST(JobEncoder, SplineSurvivesPackingAtFullPayload) {
 }
 
 TEST(JobEncoder, SplineSurvivesPackingAtASmallPayload) {
-  const core::Spline spline = wavy_spline(core::kMaxControlPoints, false);
-  EncodeOptions o;
-  o.max_payload = 20;
-  const auto cmds = encode_job(plan_with_spline(spline), o);
-  for (const auto& c : cmds) EXPECT_LE(c.payload.size(), 20u);
+  for (bool compact : {true, false}) {
+    for (bool rational : {true, false}) {
+      const core::Spline spline = wavy_spline(core::kMaxControlPoints, rational);
+      EncodeOptions o;
+      o.max_payload = 16;
+      o.compact_splines = compact;
+      const auto cmds = encode_job(plan_with_spline(spline), o);
+      for (const auto& c : cmds) EXPECT_LE(c.payload.size(), 16u);
+      expect_same_spline(spline, reassemble(cmds));
+    }
+  }
+}
+
+TEST(JobEncoder, SplineDataFramesAreKnownAndAMalformedOneIsNotAdded) {
+  EXPECT_TRUE(is_spline_data(proto::kCmdSplineData));
+  EXPECT_TRUE(is_spline_data(proto::kCmdSplineCompact));
+  EXPECT_FALSE(is_spline_data(proto::kCmdSplineHeader));
+  EXPECT_FALSE(is_spline_data(proto::kCmdFeedMove));
+  core::Spline s{};
+  s.degree = 1;
+  s.control_count = 2;
+  s.knot_count = 4;
+  QueuedCommand c;
+  c.letter = proto::kCmdSplineCompact;
+  c.payload = {0, 1, 0, 0, 0x02};  // y of the point missing
+  EXPECT_FALSE(add_spline_data(c, &s));
+  c.payload = {0, 1, 0, 0, 0x02, 0x04};
+  EXPECT_TRUE(add_spline_data(c, &s));
+  EXPECT_EQ(s.control[0].x_um, -1);
+  EXPECT_EQ(s.control[0].y_um, 2);
+  c.letter = proto::kCmdFeedMove;
+  EXPECT_FALSE(add_spline_data(c, &s));
+}
+
+TEST(JobEncoder, KnotSpanTooWideForACompactFrameGoesInAFullFrame) {
+  core::Spline spline = wavy_spline(6, true);
+  for (int k = 0; k < spline.knot_count; ++k) spline.knot[k] = k < 5 ? INT32_MIN : INT32_MAX;
+  spline.knot[4] = -5;  // spans: 0 0 0 2^31-5 (fits), 2^31+4 (does not), 0 0 0 0
+  const auto cmds = encode_job(plan_with_spline(spline), EncodeOptions{});
+  int k_frames = 0, d_frames = 0;
+  for (const auto& c : cmds) {
+    k_frames += c.letter == proto::kCmdSplineCompact;
+    d_frames += c.letter == proto::kCmdSplineData;
+  }
+  EXPECT_GE(k_frames, 1);
+  EXPECT_EQ(d_frames, 1);
   expect_same_spline(spline, reassemble(cmds));
+}
+
+TEST(JobEncoder, CompactSplineDataIsTheSameSplineInFewerBytes) {
+  for (bool rational : {true, false}) {
+    const core::Spline spline = wavy_spline(core::kMaxControlPoints, rational);
+    EncodeOptions full;
+    full.compact_splines = false;
+    const auto k = encode_job(plan_with_spline(spline), EncodeOptions{});
+    const auto d = encode_job(plan_with_spline(spline), full);
+    int k_frames = 0, d_frames = 0;
+    size_t k_bytes = 0, d_bytes = 0;
+    for (const auto& c : k) {
+      if (c.letter == proto::kCmdSplineCompact) ++k_frames, k_bytes += frame_bytes(c);
+    }
+    for (const auto& c : d) {
+      if (c.letter == proto::kCmdSplineData) ++d_frames, d_bytes += frame_bytes(c);
+    }
+    EXPECT_GT(k_frames, 0);
+    EXPECT_GT(d_frames, 0);
+    for (const auto& c : k) EXPECT_NE(c.letter, proto::kCmdSplineData);
+    expect_same_spline(reassemble(d), reassemble(k));
+    // Points 1 and 4 mm apart: x, y and a weight change two bytes each instead of 4, 4 and 2;
+    // knot spans of 100 one byte instead of 4.
+    EXPECT_LT(k_bytes * 10, d_bytes * (rational ? 6 : 5)) << rational;
+  }
 }
 
 TEST(JobEncoder, SplineFramesCarryTheirCurveIndex) {
   const auto cmds = encode_job(plan_with_spline(wavy_spline(12, false)), EncodeOptions{});
   for (const auto& c : cmds) {
-    if (c.letter == proto::kCmdSplineHeader || c.letter == proto::kCmdSplineData) {
+    if (c.letter == proto::kCmdSplineHeader || c.letter == proto::kCmdSplineData ||
+        c.letter == proto::kCmdSplineCompact) {
       EXPECT_EQ(c.curve, 0);
       EXPECT_EQ(c.step, 3);
     }

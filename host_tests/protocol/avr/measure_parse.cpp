@@ -1,14 +1,16 @@
 // AVR (ATmega2560 in simavr) measurement: cycles to parse and decode one full #D frame
-// (64-byte payload), one byte at a time, and the CRC share. Prints over UART0.
+// (64-byte payload), one byte at a time, and the CRC share; then a full #K frame: parse,
+// decode (with its structure check) and unpacking into a spline. Prints over UART0.
 // Build and run: see docs/performance.md "Path controller and protocol".
 #include <avr/interrupt.h>  // cli
 #include <avr/io.h>         // TCCR1B, TCNT1, UCSR0A, UDR0
 #include <avr/sleep.h>      // sleep_cpu
 #include <stdio.h>          // printf
 
-#include "firmware/protocol/codec.h"   // write_frame, decode_frame
-#include "firmware/protocol/crc16.h"   // crc16
-#include "firmware/protocol/parser.h"  // Parser
+#include "firmware/protocol/codec.h"           // write_frame, decode_frame
+#include "firmware/protocol/compact_spline.h"  // put_compact_point, unpack_compact
+#include "firmware/protocol/crc16.h"           // crc16
+#include "firmware/protocol/parser.h"          // Parser
 
 static int uart_putchar(char c, FILE*) {
   while (!(UCSR0A & _BV(UDRE0))) {
@@ -35,6 +37,43 @@ static void build_frame() {
   }
   for (uint8_t i = 0; i < 5; ++i) d.knot[i] = 1000L * i;
   proto::write_frame(d, 7, g_frame, sizeof g_frame, &g_size);
+}
+
+// A #K as full as a PCB contour makes it: rational points 0.1-2 mm apart with weight changes,
+// then knots (spans 1 and repeats), up to 64 payload bytes.
+static uint8_t g_k_frame[proto::kMaxFrameBytes];
+static uint8_t g_k_size;
+static core::Spline g_spline;
+
+static void build_compact_frame() {
+  static const int16_t kStep[4][2] = {{1500, 0}, {120, 180}, {0, 900}, {-40, 300}};
+  proto::SplineCompactCmd k;
+  k.control_index = 0;
+  k.control_n = 0;
+  k.knot_index = 0;
+  k.knot_n = 0;
+  k.data_n = 0;
+  core::ControlPoint prev = {0, 0, core::kWeightOneQ14};
+  core::ControlPoint p = {123456L, -98765L, 16000U};
+  uint8_t value[proto::kMaxCompactPointBytes];
+  for (uint8_t i = 0; i < 9; ++i) {
+    const uint8_t n = proto::put_compact_point(prev, p, true, value);
+    for (uint8_t b = 0; b < n; ++b) k.data[k.data_n++] = value[b];
+    ++k.control_n;
+    prev = p;
+    p.x_um += kStep[i % 4][0];
+    p.y_um += kStep[i % 4][1];
+    p.weight_q14 = (uint16_t)(i % 2 ? 16000U : 11314U);
+  }
+  while (k.data_n < 60 - 1) {  // knots 0, then spans of 1 with repeats (double knots)
+    const bool first = k.knot_n == 0;
+    const uint8_t n =
+        proto::put_compact_knot(k.knot_n, k.knot_n + 1, first, !first, k.data + k.data_n);
+    k.data_n = (uint8_t)(k.data_n + n);
+    k.knot_n = (uint8_t)(k.knot_n + (first ? 1 : 2));
+  }
+  g_spline.rational = true;
+  proto::write_frame(k, 8, g_k_frame, sizeof g_k_frame, &g_k_size);
 }
 
 int main() {
@@ -74,6 +113,23 @@ int main() {
   printf("parse_cycles=%u decode_cycles=%u crc_cycles=%u timer_overhead=%u\n", parse_cycles,
          decode_cycles, crc_cycles, empty);
   printf("parser_ram_bytes=%u\n", (unsigned)sizeof(proto::Parser));
+
+  build_compact_frame();
+  static proto::Parser k_parser(proto::kCommandStart);
+  proto::SplineCompactCmd compact;
+  t0 = TCNT1;
+  for (uint8_t i = 0; i < g_k_size; ++i) k_parser.feed(g_k_frame[i]);
+  parse_cycles = (uint16_t)(TCNT1 - t0);
+  t0 = TCNT1;
+  const proto::ErrorCode ke = proto::decode_frame(k_parser.frame(), &compact);
+  decode_cycles = (uint16_t)(TCNT1 - t0);
+  t0 = TCNT1;
+  const proto::ErrorCode ku = proto::unpack_compact(compact, &g_spline);
+  const uint16_t unpack_cycles = (uint16_t)(TCNT1 - t0);
+  printf("k_frame_bytes=%u k_points=%u k_knots=%u decode=%u unpack=%u\n", g_k_size,
+         compact.control_n, compact.knot_n, (unsigned)ke, (unsigned)ku);
+  printf("k_parse_cycles=%u k_decode_cycles=%u k_unpack_cycles=%u\n", parse_cycles, decode_cycles,
+         unpack_cycles);
   while (!(UCSR0A & _BV(TXC0))) {
   }
   cli();
