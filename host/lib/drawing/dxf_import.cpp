@@ -661,7 +661,19 @@ Drawing DxfReader::finish() {
   }
   std::vector<Curve> curves;
   ExpansionBudget budget;
-  expand(model_, Eigen::Matrix2d::Identity() * dr.unit_to_mm, Point2(0, 0), 0, "", budget, curves);
+  const Eigen::Matrix2d to_mm = Eigen::Matrix2d::Identity() * dr.unit_to_mm;
+  // The model space's own curves are moved, not copied (a million-line drawing held them
+  // three times over); blocks may be inserted many times, so expand() copies those. It
+  // counts the model space's copy and checks the budget with these control points in it.
+  curves.reserve(model_.curves.size());
+  for (Curve& c : model_.curves) {
+    budget.control_points += static_cast<long>(c.spline.control.size());
+    c.spline = transformed(c.spline, to_mm, Point2(0, 0));
+    curves.push_back(std::move(c));
+  }
+  model_.curves.clear();
+  model_.curves.shrink_to_fit();
+  expand(model_, to_mm, Point2(0, 0), 0, "", budget, curves);
   for (const Curve& c : curves) {
     for (const Point2& p : c.spline.control) {
       if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || std::fabs(p.x()) > 1e7 ||
@@ -671,7 +683,7 @@ Drawing DxfReader::finish() {
       }
     }
   }
-  dr.curves = curves;
+  dr.curves = std::move(curves);
   dr.entity_counts = counts_;
   for (const auto& k : skipped_) {
     warnings_.push_back(path_ + ": " + std::to_string(k.second) + " " + k.first + " entit" +
