@@ -30,23 +30,39 @@ double seg_dist(const IntPoint& x, const IntPoint& a, const IntPoint& b) {
   return std::sqrt(ex * ex + ey * ey);
 }
 
-// Smallest vertex-to-edge distance between two islands near a box (nm).
+// Smallest vertex-to-edge distance between two islands near a box (nm). The closest points
+// of two islands whose clearances overlap lie within the box, so only vertices inside it and
+// edges that reach into it are compared (a board-wide net has thousands of edges).
 double island_distance_nm(const Paths& a, const Paths& b, const BoxNm& near) {
-  double best = 1e300;
   auto close = [&](const IntPoint& p) {
     return p.X >= near.min_x && p.X <= near.max_x && p.Y >= near.min_y && p.Y <= near.max_y;
   };
+  struct Edge {
+    IntPoint p, q;
+  };
+  auto edges_near = [&](const Paths& paths) {
+    std::vector<Edge> out;
+    for (const Path& path : paths) {
+      for (size_t k = 0; k < path.size(); ++k) {
+        const IntPoint& p = path[k];
+        const IntPoint& q = path[(k + 1) % path.size()];
+        if (std::max(p.X, q.X) < near.min_x || std::min(p.X, q.X) > near.max_x ||
+            std::max(p.Y, q.Y) < near.min_y || std::min(p.Y, q.Y) > near.max_y)
+          continue;
+        out.push_back(Edge{p, q});
+      }
+    }
+    return out;
+  };
+  const std::vector<Edge> edges_a = edges_near(a), edges_b = edges_near(b);
+  double best = 1e300;
   for (int pass = 0; pass < 2; ++pass) {
     const Paths& u = pass ? b : a;
-    const Paths& v = pass ? a : b;
+    const std::vector<Edge>& v = pass ? edges_a : edges_b;
     for (const Path& pu : u) {
       for (const IntPoint& x : pu) {
         if (!close(x)) continue;
-        for (const Path& pv : v) {
-          for (size_t k = 0; k < pv.size(); ++k) {
-            best = std::min(best, seg_dist(x, pv[k], pv[(k + 1) % pv.size()]));
-          }
-        }
+        for (const Edge& e : v) best = std::min(best, seg_dist(x, e.p, e.q));
       }
     }
   }
