@@ -74,8 +74,31 @@ JobPlan plan_scaled(std::vector<BSpline> scaled, std::vector<std::string> source
 
   const int32_t feed = to_um(o.feed_mm_per_s);
   const int32_t plunge = to_um(o.plunge_mm_per_s);
-  // No reserve for the steps: an upper bound (4 + control points per curve) was six times
-  // the real count for separate lines; a PlanStep is small now (splines out of line).
+  // Steps reserved from a close upper bound: growing by doubling held up to 1.5x the steps
+  // at the last reallocation (201 instead of 128 MB for a million-line contour). A polyline
+  // drawn as feeds is one step per line; a spline a step per firmware piece (64 control
+  // points, overlapping by the degree: at most n / 32 + 1); a chained curve a feed across a
+  // gap, if any; a separate one its lift, travel and plunge. The loop below makes them.
+  auto offset_of = [&](const PlannedCurve& c) -> int32_t {
+    if (o.tool_side == ToolSide::kCentre) return 0;
+    const int32_t r = to_um(o.tool_radius_mm) * (o.tool_side == ToolSide::kLeft ? 1 : -1);
+    return c.reversed ? -r : r;
+  };
+  {
+    size_t bound = 3;
+    Point2 end(0, 0);
+    for (const PlannedCurve& c : plan.curves) {
+      const int32_t offset = offset_of(c);
+      const size_t n = c.spline.control.size();
+      const bool feeds = o.lines_as_feeds && offset == 0 && is_polyline(c.spline);
+      bound += feeds ? n - 1 : n / 32 + 1;
+      const core::PointUm start = to_um(offset_point(c.spline, true, offset));
+      const core::PointUm last = to_um(end);
+      bound += !c.chained ? 3 : (start.x_um != last.x_um || start.y_um != last.y_um) ? 1 : 0;
+      end = offset_point(c.spline, false, offset);
+    }
+    plan.steps.reserve(bound);
+  }
   PlanStep up;
   up.kind = PlanStep::kPenUp;
   up.z_um = to_um(o.z_up_mm);
@@ -85,11 +108,7 @@ JobPlan plan_scaled(std::vector<BSpline> scaled, std::vector<std::string> source
   for (size_t i = 0; i < plan.curves.size(); ++i) {
     const PlannedCurve& c = plan.curves[i];
     // Offset sign: left of the curve as drawn; reversed curves swap sides.
-    int32_t offset = 0;
-    if (o.tool_side != ToolSide::kCentre) {
-      offset = to_um(o.tool_radius_mm) * (o.tool_side == ToolSide::kLeft ? 1 : -1);
-      if (c.reversed) offset = -offset;
-    }
+    const int32_t offset = offset_of(c);
     const Point2 start = offset_point(c.spline, true, offset);
     if (!c.chained) {
       if (pen_down) {

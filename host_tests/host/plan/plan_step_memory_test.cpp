@@ -41,9 +41,26 @@ TEST(PlanStepMemory, StepsWithoutACurveHoldNoSplineStorage) {
     EXPECT_EQ(s.spline.control.capacity(), 0u);
     EXPECT_EQ(s.spline.knot.capacity(), 0u);
   }
-  // No over-reserve: an upper bound of 4 + control points per curve once made the step
-  // vector several times larger than the job.
-  EXPECT_LE(p.steps.capacity(), 2 * p.steps.size());
+  // Reserved once from a close bound: no over-reserve (4 + control points per curve once
+  // made the vector several times larger than the job), no doubling (1.5x at the peak).
+  EXPECT_LE(p.steps.capacity(), p.steps.size() + p.steps.size() / 10);
+}
+
+TEST(PlanStepMemory, AChainedPolylineIsReservedForExactlyItsSteps) {
+  Drawing d;
+  d.path = "chain.dxf";
+  for (int i = 0; i < 3000; ++i) {
+    Curve c;
+    c.spline = line_spline({i * 0.05, 0.0}, {(i + 1) * 0.05, 0.0});
+    c.kind = "LINE";
+    c.source = "LINE #" + std::to_string(i + 1);
+    d.curves.push_back(c);
+  }
+  PlanOptions o;
+  o.lines_as_feeds = true;
+  const JobPlan p = plan_job(std::move(d), o);
+  ASSERT_GT(p.steps.size(), 3000u);
+  EXPECT_LE(p.steps.capacity(), p.steps.size() + p.steps.size() / 10);
 }
 
 TEST(PlanStepMemory, SplineStepsHoldOnlyTheControlPointsAndKnotsTheyUse) {
