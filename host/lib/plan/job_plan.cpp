@@ -33,12 +33,15 @@ JobPlan plan_scaled(std::vector<BSpline> scaled, std::vector<std::string> source
 
   // Greedy nearest neighbour from the zero, each curve either way round.
   std::vector<Point2> starts, ends;
+  starts.reserve(scaled.size());
+  ends.reserve(scaled.size());
   for (const BSpline& s : scaled) {
     starts.push_back(start_point(s));
     ends.push_back(end_point(s));
   }
   NearestEnd index(starts, ends);
   Point2 at(0, 0);
+  plan.curves.reserve(scaled.size());  // one each; growing by doubling held 1.5x of them
   for (size_t n = 0; n < scaled.size(); ++n) {
     if (o.progress && n % 4096 == 0) o.progress(n, scaled.size());
     size_t best = n;
