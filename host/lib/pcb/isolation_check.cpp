@@ -4,7 +4,7 @@
 #include <fmt/format.h>  // fmt::format
 
 #include <algorithm>  // std::sort
-#include <cmath>      // std::fabs
+#include <cmath>      // std::fabs, std::sqrt
 #include <map>        // std::map
 
 #include "host/lib/pcb/pcb_geometry.h"
@@ -83,6 +83,37 @@ void collect_pieces(const ClipperLib::PolyNode& node, std::vector<Piece>* out) {
   }
 }
 
+// The path with the vertices left out that lie within kCollinearNm of the line between the
+// kept ones around them (checked for every vertex left out since the last kept, at most
+// kRun of them). A simulated run samples every millisecond: straight runs are thousands of
+// collinear points that made the sweep and the unions take minutes on a large board.
+Path without_collinear(const Path& p) {
+  const double kCollinearNm = 50;
+  const size_t kRun = 64;
+  if (p.size() < 3) return p;
+  Path out{p.front()};
+  size_t first_skipped = 1;
+  for (size_t i = 1; i + 1 < p.size(); ++i) {
+    // Would dropping p[first_skipped .. i] keep them all near out.back() -> p[i + 1]?
+    const IntPoint& a = out.back();
+    const IntPoint& b = p[i + 1];
+    const double dx = static_cast<double>(b.X - a.X), dy = static_cast<double>(b.Y - a.Y);
+    const double len = std::sqrt(dx * dx + dy * dy);
+    bool ok = len > 0 && i + 1 - first_skipped <= kRun;
+    for (size_t k = first_skipped; ok && k <= i; ++k) {
+      const double ex = static_cast<double>(p[k].X - a.X), ey = static_cast<double>(p[k].Y - a.Y);
+      const double t = (ex * dx + ey * dy) / (len * len);
+      ok = t >= 0 && t <= 1 && std::fabs(ex * dy - ey * dx) / len <= kCollinearNm;
+    }
+    if (!ok) {
+      out.push_back(p[i]);
+      first_skipped = i + 1;
+    }
+  }
+  out.push_back(p.back());
+  return out;
+}
+
 }  // namespace
 
 IsolationCheck check_isolation(const Paths& copper_nm,
@@ -96,7 +127,7 @@ IsolationCheck check_isolation(const Paths& copper_nm,
     Path p;
     for (const Point2& q : path) p.emplace_back(nm_from_mm(q.x()), nm_from_mm(q.y()));
     if (p.size() == 1) p.push_back(p.front());
-    if (!p.empty()) centres.push_back(p);
+    if (!p.empty()) centres.push_back(without_collinear(p));
   }
   const Paths copper = union_of(copper_nm);
 
@@ -181,14 +212,25 @@ IsolationCheck check_isolation(const Paths& copper_nm,
 std::string describe(const IsolationCheck& c) {
   std::string s = fmt::format("{} islands, {} copper hit(s), {} unseparated pair(s)", c.islands,
                               c.hits.size(), c.unseparated.size());
-  for (const CopperHit& h : c.hits)
-    s += fmt::format("\n  tool cuts {:.6f} mm2 of copper at ({:.3f}, {:.3f}) mm", h.area_mm2,
-                     h.at_mm.x(), h.at_mm.y());
-  for (const UnseparatedPair& u : c.unseparated)
+  // The largest hits first, at most kListed of each kind: a job with thousands (a board run
+  // without clearance) gave as many lines.
+  const size_t kListed = 20;
+  std::vector<CopperHit> hits = c.hits;
+  std::sort(hits.begin(), hits.end(),
+            [](const CopperHit& a, const CopperHit& b) { return a.area_mm2 > b.area_mm2; });
+  for (size_t i = 0; i < hits.size() && i < kListed; ++i)
+    s += fmt::format("\n  tool cuts {:.6f} mm2 of copper at ({:.3f}, {:.3f}) mm", hits[i].area_mm2,
+                     hits[i].at_mm.x(), hits[i].at_mm.y());
+  if (hits.size() > kListed) s += fmt::format("\n  ... and {} smaller", hits.size() - kListed);
+  for (size_t i = 0; i < c.unseparated.size() && i < kListed; ++i) {
+    const UnseparatedPair& u = c.unseparated[i];
     s += fmt::format(
         "\n  islands {} at ({:.3f}, {:.3f}) and {} at ({:.3f}, {:.3f}) mm are not "
         "separated by a cut",
         u.island_a, u.a_mm.x(), u.a_mm.y(), u.island_b, u.b_mm.x(), u.b_mm.y());
+  }
+  if (c.unseparated.size() > kListed)
+    s += fmt::format("\n  ... and {} more pairs", c.unseparated.size() - kListed);
   return s;
 }
 

@@ -140,6 +140,39 @@ TEST(Isolation, ClearingLeavesNoCopperFreeAreaUncut) {
   EXPECT_TRUE(c.ok()) << describe(c);
 }
 
+// A simulated tool path is a sample every millisecond: a straight run is thousands of
+// collinear points, which the checker thins before sweeping. A short excursion toward the
+// copper in such a run must survive the thinning and be reported; the straight run alone
+// passes (tool 0.2 mm at 0.105 mm from the pad: 5 um to spare).
+TEST(Isolation, CheckerKeepsAShortExcursionInALongStraightRunOfSamples) {
+  const ClipperLib::Paths copper = {rect(0, 0, 10, 1)};
+  std::vector<Point2> straight, bumped;
+  for (int i = 0; i <= 1000; ++i) {
+    const double x = i * 0.01;  // 10 um apart, as at 10 mm/s
+    straight.push_back(Point2(x, 1.105));
+    bumped.push_back(Point2(x, i == 500 ? 1.095 : 1.105));  // 5 um into the copper there
+  }
+  const IsolationCheck clean = check_isolation(copper, {straight}, 0.1, 0.002);
+  EXPECT_TRUE(clean.ok()) << describe(clean);
+  const IsolationCheck hit = check_isolation(copper, {bumped}, 0.1, 0.002);
+  ASSERT_EQ(hit.hits.size(), 1u) << describe(hit);
+  EXPECT_NEAR(hit.hits[0].at_mm.x(), 5.0, 0.05);
+}
+
+TEST(Isolation, DescribeListsTheLargestHitsAndCountsTheRest) {
+  IsolationCheck c;
+  for (int i = 0; i < 25; ++i) {
+    CopperHit h;
+    h.area_mm2 = 0.001 * (i + 1);
+    h.at_mm = Point2(i, 0);
+    c.hits.push_back(h);
+  }
+  const std::string d = describe(c);
+  EXPECT_NE(d.find("0.025000 mm2 of copper at (24.000"), std::string::npos) << d;
+  EXPECT_EQ(d.find("0.001000 mm2"), std::string::npos) << d;  // the smallest is not listed
+  EXPECT_NE(d.find("... and 5 smaller"), std::string::npos) << d;
+}
+
 TEST(Isolation, CheckerFindsAToolPathThroughCopper) {
   const ClipperLib::Paths copper = {rect(0, 0, 2, 2), rect(3, 0, 5, 2)};
   IsolationOptions o;
