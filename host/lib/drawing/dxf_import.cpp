@@ -15,6 +15,7 @@
 #include <new>        // std::bad_alloc
 #include <sstream>    // std::ostringstream
 #include <streambuf>  // std::streambuf
+#include <utility>    // std::move
 
 #include <unsupported/Eigen/Splines>  // Eigen::SplineFitting (fit-point splines)
 
@@ -570,7 +571,7 @@ void DxfReader::expand(const Space& s, const Eigen::Matrix2d& a, const Point2& b
     Curve t = c;
     t.spline = transformed(c.spline, a, b);
     t.source = c.source + via;
-    out.push_back(t);
+    out.push_back(std::move(t));
   }
   for (const InsertRef& r : s.inserts) {
     const DL_InsertData& d = r.data;
@@ -703,26 +704,26 @@ Drawing DxfReader::finish() {
 // group to the reader's raw_group() just before dxflib reads it: dxflib processes a group
 // only after reading both its lines, so the reader's raw record is always the one dxflib is
 // about to dispatch. dxflib stops at the end of the stream, which is the closing 0/EOF.
+// The groups are scanned again as they are served (the whole file was checked before),
+// so they are never all held at once.
 class GroupFeed : public std::streambuf {
  public:
-  GroupFeed(const std::vector<DxfGroup>& groups, DxfReader& reader)
-      : groups_(groups), reader_(reader) {}
+  GroupFeed(DxfScanner& groups, DxfReader& reader) : groups_(groups), reader_(reader) {}
 
  protected:
   int_type underflow() override {
     if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
-    if (next_ >= groups_.size()) return traits_type::eof();
-    const DxfGroup& g = groups_[next_++];
-    reader_.raw_group(g);
-    text_ = std::to_string(g.code) + "\n" + g.value + "\n";
+    if (!groups_.next(&group_)) return traits_type::eof();
+    reader_.raw_group(group_);
+    text_ = std::to_string(group_.code) + "\n" + group_.value + "\n";
     setg(&text_[0], &text_[0], &text_[0] + text_.size());
     return traits_type::to_int_type(*gptr());
   }
 
  private:
-  const std::vector<DxfGroup>& groups_;
+  DxfScanner& groups_;
   DxfReader& reader_;
-  size_t next_ = 0;
+  DxfGroup group_;
   std::string text_;
 };
 
@@ -730,7 +731,14 @@ class GroupFeed : public std::streambuf {
 
 Drawing import_dxf_text(const std::string& text, const std::string& path) {
   try {
-    const std::vector<DxfGroup> groups = scan_dxf(text, path);
+    {
+      // The whole file is checked before dxflib reads any of it.
+      DxfScanner check(text, path);
+      DxfGroup g;
+      while (check.next(&g)) {
+      }
+    }
+    DxfScanner groups(text, path);
     DxfReader reader(path);
     GroupFeed feed(groups, reader);
     std::istream stream(&feed);
@@ -758,10 +766,19 @@ Drawing import_dxf_text(const std::string& text, const std::string& path) {
 Drawing import_dxf(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ImportError(path + ": cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  // Read straight into one string (a stringstream and its str() held the file twice).
+  std::string text;
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (size > 0) text.reserve(static_cast<size_t>(size));
+  in.clear();
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<size_t>(in.gcount()));
+  }
   if (in.bad()) throw ImportError(path + ": cannot read the file");
-  return import_dxf_text(text.str(), path);
+  return import_dxf_text(text, path);
 }
 
 }  // namespace host

@@ -185,18 +185,38 @@ bool looks_like_dxf(const std::string& path) {
   return strip(a) == "0" && strip(b) == "SECTION";
 }
 
-std::vector<DxfGroup> scan_dxf(const std::string& text, const std::string& path) {
+struct DxfScanner::State {
+  State(const std::string& t, const std::string& p) : text(t), lines(t) { w.path = p; }
+  const std::string& text;
+  long max_count = 0;
+  Where w;
+  Lines lines;
+  PolylineShape poly;
+  bool done = false;  // the closing 0/EOF was returned
+  std::string code_line, value_line;
+};
+
+DxfScanner::DxfScanner(const std::string& text, const std::string& path)
+    : s_(new State(text, path)) {
   if (text.rfind("AutoCAD Binary DXF", 0) == 0) {
     throw ImportError(path + ": binary DXF is not supported; save the drawing as ASCII DXF");
   }
-  const long max_count =
+  s_->max_count =
       std::min<long>(kMaxDxfDeclaredCount, static_cast<long>(text.size()) / kMinDxfItemBytes);
-  std::vector<DxfGroup> groups;
-  Where w;
-  w.path = path;
-  Lines lines(text);
-  std::string code_line, value_line;
-  PolylineShape poly;
+}
+
+DxfScanner::~DxfScanner() = default;
+
+bool DxfScanner::next(DxfGroup* group) {
+  if (s_->done) return false;
+  const std::string& text = s_->text;
+  const std::string& path = s_->w.path;
+  const long max_count = s_->max_count;
+  Where& w = s_->w;
+  Lines& lines = s_->lines;
+  PolylineShape& poly = s_->poly;
+  std::string& code_line = s_->code_line;
+  std::string& value_line = s_->value_line;
   while (lines.next(code_line)) {
     w.line = lines.number();
     const std::string code_text = strip(code_line);
@@ -248,7 +268,7 @@ std::vector<DxfGroup> scan_dxf(const std::string& text, const std::string& path)
       w.entity = value.empty() ? std::string("an unnamed record") : value;
       w.entity_line = w.line;
       w.handle.clear();
-      groups.push_back(DxfGroup{static_cast<int>(code), value, w.line});
+      *group = DxfGroup{static_cast<int>(code), value, w.line};
       if (code == 0 && value == "EOF") {
         const size_t rest = text.find_first_not_of(std::string(" \t\r\n\0\x1a", 6), lines.pos());
         if (rest != std::string::npos) {
@@ -261,9 +281,9 @@ std::vector<DxfGroup> scan_dxf(const std::string& text, const std::string& path)
             << w.line << " (a damaged or concatenated file?)";
           throw ImportError(o.str());
         }
-        return groups;
+        s_->done = true;
       }
-      continue;
+      return true;
     }
     if (code == 5) w.handle = value.substr(0, 40);
     if (poly.active && (code == 10 || code == 42)) {
@@ -276,12 +296,21 @@ std::vector<DxfGroup> scan_dxf(const std::string& text, const std::string& path)
       }
     }
     check_value(code, value, w, text.size(), max_count, poly);
-    groups.push_back(DxfGroup{static_cast<int>(code), value, w.line});
+    *group = DxfGroup{static_cast<int>(code), value, w.line};
+    return true;
   }
   std::ostringstream o;
   o << path << ": the file ends at line " << lines.number() << " inside " << w.entity
     << " without the closing '0 EOF' (truncated file?)";
   throw ImportError(o.str());
+}
+
+std::vector<DxfGroup> scan_dxf(const std::string& text, const std::string& path) {
+  DxfScanner scanner(text, path);
+  std::vector<DxfGroup> groups;
+  DxfGroup g;
+  while (scanner.next(&g)) groups.push_back(g);
+  return groups;
 }
 
 }  // namespace host

@@ -6,6 +6,7 @@
 #define HOST_LIB_DRAWING_DXF_SCAN_H
 
 #include <cstddef>  // size_t
+#include <memory>   // std::unique_ptr
 #include <string>   // std::string
 #include <vector>   // std::vector
 
@@ -22,6 +23,23 @@ struct DxfGroup {
 // Comments (group 999) are dropped. Throws ImportError naming `path`, the line, the entity
 // and the problem; content after 0/EOF other than blanks, NUL and Ctrl-Z is refused.
 std::vector<DxfGroup> scan_dxf(const std::string& text, const std::string& path);
+
+// The same check one group at a time, without holding the groups (a million-entity file
+// has over ten million; held, they took several times the file's size). `text` must
+// outlive the scanner. next() returns false after the closing 0/EOF has been returned and
+// throws ImportError exactly where scan_dxf would.
+class DxfScanner {
+ public:
+  DxfScanner(const std::string& text, const std::string& path);
+  ~DxfScanner();
+  DxfScanner(const DxfScanner&) = delete;
+  DxfScanner& operator=(const DxfScanner&) = delete;
+  bool next(DxfGroup* group);
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
 
 // Largest count a group may announce (control points, knots, vertices) whatever the file's
 // size: far beyond any sane drawing, small enough that dxflib's allocation of it is modest.
