@@ -593,6 +593,9 @@ void run_run(const RunArgs& a) {
         {"planned_min_clearance_um", iso->planned_min_clearance_um},
         {"min_clearance_at_mm", {iso->min_clearance_at_mm.x(), iso->min_clearance_at_mm.y()}}};
   }
+  j["plot_tool_path"] = {{"samples_kept", r.trace.size()},
+                         {"samples_simulated", r.trace_samples},
+                         {"step_mm", r.trace_step_mm}};
   j["simulated_machine_ms"] = r.virtual_ms;
   j["wall_s"] = r.wall_s;
   j["speedup_vs_real_time"] = r.wall_s > 0 ? r.virtual_ms / 1000.0 / r.wall_s : 0.0;
@@ -626,6 +629,11 @@ void run_run(const RunArgs& a) {
       r.virtual_ms / 1000.0, r.wall_s, r.cpu_s, j["speedup_per_cpu_second"].get<double>(),
       r.pauses_confirmed, o.machine.pause_confirm_ms, r.spindle_on ? "on" : "off", base, base,
       base);
+  if (r.trace_step_mm > o.trace_step_mm)
+    std::cout << fmt::format(
+        "  the plot's tool path is thinned to {:.3f} mm steps ({} of {} samples kept, a long "
+        "job)\n",
+        r.trace_step_mm, r.trace.size(), r.trace_samples);
   if (iso) {
     std::cout << fmt::format(
         "  simulated isolation cuts ({} paths, {} samples) against the copper: {} copper hits "

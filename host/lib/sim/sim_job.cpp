@@ -68,7 +68,7 @@ double thread_cpu_s() {
 SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
   SimJobResult r;
   SimMachine machine(options.machine);
-  TraceMeter meter(plan, options.trace_step_mm);
+  TraceMeter meter(plan, options.trace_step_mm, options.trace_max_samples);
   meter.add(machine.position());
   machine.set_sample_sink([&meter, &options](const ToolSample& s) {
     meter.add(s);
@@ -121,6 +121,7 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
   machine.set_sample_sink(nullptr);
   r.trace = std::move(meter.kept());
   r.trace_samples = meter.samples();
+  r.trace_step_mm = meter.keep_step_mm();
   r.cut_mm = meter.cut_mm();
   r.rapid_mm = meter.rapid_mm();
   r.cut_s = meter.cut_s();

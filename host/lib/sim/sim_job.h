@@ -28,6 +28,9 @@ struct SimJobOptions {
   // The trace kept in the result: every sample (0) or thinned to this step in mm (plots).
   // The measurements always use every sample.
   double trace_step_mm = 0.0;
+  // With a step: at most about this many samples are kept (32 bytes each); a longer job's
+  // trace gets a coarser step (SimJobResult::trace_step_mm) instead of more memory.
+  size_t trace_max_samples = size_t{1} << 20;
   // Wraps the sender's link (tests put a noisy or dropping link here).
   std::function<std::unique_ptr<Link>(std::unique_ptr<Link>)> wrap_link;
   // Sees every tool sample as it is made (e.g. to check the cut path at full resolution).
@@ -47,6 +50,7 @@ struct SimJobResult {
   double cpu_s = 0;                   // processor time this thread used for it (load-independent)
   std::vector<ToolSample> trace;      // tool positions (machine frame, mm), see trace_step_mm
   size_t trace_samples = 0;           // samples measured (before thinning)
+  double trace_step_mm = 0;           // step the trace was thinned to at the end
   double motion_s = 0;                // from the first to the last tool movement
   double cut_s = 0;                   // pen down and moving in X/Y
   double cut_mm = 0, rapid_mm = 0;    // tool path lengths from the trace (pen down / up)

@@ -1,7 +1,8 @@
 // Streaming measurement and thinning of the simulated tool path (see trace_meter.h).
 #include "host/lib/sim/trace_meter.h"
 
-#include <cmath>  // std::hypot, std::abs
+#include <algorithm>  // std::max
+#include <cmath>      // std::hypot, std::abs
 
 #include "host/lib/sim/sim_job.h"  // pen_threshold_mm
 
@@ -24,8 +25,8 @@ std::vector<std::vector<Point2>> reference_polylines(const JobPlan& plan) {
 
 }  // namespace
 
-TraceMeter::TraceMeter(const JobPlan& plan, double keep_step_mm)
-    : pen_mm_(pen_threshold_mm(plan)), step_mm_(keep_step_mm) {
+TraceMeter::TraceMeter(const JobPlan& plan, double keep_step_mm, size_t max_kept)
+    : pen_mm_(pen_threshold_mm(plan)), step_mm_(keep_step_mm), max_kept_(max_kept) {
   if (!plan.curves.empty())
     reference_ = std::make_unique<NearestSegment>(reference_polylines(plan));
 }
@@ -35,6 +36,42 @@ TraceMeter::~TraceMeter() = default;
 void TraceMeter::keep(const ToolSample& s, bool down) {
   kept_.push_back(s);
   kept_down_ = down;
+  if (max_kept_ > 0 && step_mm_ > 0 && kept_.size() >= max_kept_) coarsen();
+}
+
+void TraceMeter::coarsen() {
+  // Pen state of each kept sample, found as add() found it (pen changes are all kept).
+  std::vector<bool> down(kept_.size());
+  bool lifted = false;
+  for (size_t i = 0; i < kept_.size(); ++i) {
+    if (kept_[i].z_mm >= pen_mm_) lifted = true;
+    down[i] = lifted && kept_[i].z_mm < pen_mm_;
+  }
+  // Beyond a metre every sample but the ends and the pen changes is gone: stop there.
+  while (kept_.size() > max_kept_ / 2 && step_mm_ < 1000.0) {
+    step_mm_ *= 2;
+    size_t out = 0;
+    const size_t n = kept_.size();
+    for (size_t i = 0; i < n; ++i) {
+      // Keep the ends (the last is prev_ when prev_kept_), both sides of every pen change,
+      // and a sample a step away from the last kept one.
+      bool keep_it = i == 0 || i + 1 == n || down[i] != down[i - 1] || down[i] != down[i + 1];
+      if (!keep_it) {
+        const ToolSample& k = kept_[out - 1];
+        keep_it = std::abs(kept_[i].x_mm - k.x_mm) >= step_mm_ ||
+                  std::abs(kept_[i].y_mm - k.y_mm) >= step_mm_;
+      }
+      if (keep_it) {
+        kept_[out] = kept_[i];
+        down[out] = down[i];
+        ++out;
+      }
+    }
+    kept_.resize(out);
+    down.resize(out);
+  }
+  // Pen changes alone may fill the budget: let it grow with them, not re-thin every sample.
+  max_kept_ = std::max(max_kept_, 2 * kept_.size());
 }
 
 void TraceMeter::add(const ToolSample& b) {

@@ -1,7 +1,8 @@
 // Measures a simulated tool path as it is produced, sample by sample, so a job of any
 // length needs no stored trace: path lengths (pen down / up), cutting and motion time, and
 // the contour error of every pen-down sample against the planned curves. Keeps a copy of the
-// path thinned to a given step (what a plot can show), always keeping pen changes.
+// path thinned to a given step (what a plot can show), always keeping pen changes, within a
+// budget of samples: a job of any length keeps a bounded plot path.
 #ifndef HOST_LIB_SIM_TRACE_METER_H
 #define HOST_LIB_SIM_TRACE_METER_H
 
@@ -19,7 +20,10 @@ class TraceMeter {
  public:
   // keep_step_mm 0 keeps every sample; otherwise a sample is kept when it lies this far
   // (in X or Y: the plot's plane) from the previous kept one, or the pen went up or down.
-  TraceMeter(const JobPlan& plan, double keep_step_mm);
+  // With a step, max_kept (0: no limit) bounds the kept samples: when they reach it, the
+  // step is doubled and the kept path thinned again, until it holds at most half of that.
+  // Pen changes are never dropped, so their count is the floor.
+  TraceMeter(const JobPlan& plan, double keep_step_mm, size_t max_kept = 0);
   ~TraceMeter();
   void add(const ToolSample& sample);
   // Keeps the last sample (call once, after the job).
@@ -33,14 +37,18 @@ class TraceMeter {
   // The pen-down sample with the largest contour error (where to look first).
   const ToolSample& worst_sample() const { return worst_; }
   size_t samples() const { return samples_; }
+  // The step the kept path has now (keep_step_mm, doubled each time it hit max_kept).
+  double keep_step_mm() const { return step_mm_; }
   // The thinned path; take it when done.
   std::vector<ToolSample>& kept() { return kept_; }
 
  private:
   void keep(const ToolSample& s, bool down);
+  void coarsen();
 
   double pen_mm_;
   double step_mm_;
+  size_t max_kept_;
   std::unique_ptr<NearestSegment> reference_;
   bool have_prev_ = false, prev_down_ = false, lifted_ = false;
   ToolSample prev_{};

@@ -232,6 +232,12 @@ TEST(Cli, RunCarriesAPcbProgramWithToolChangesDwellsAndHolesToTheEnd) {
   EXPECT_EQ(j["spindle_on_at_end"], false);
   // The square (4 x 0.4 in) was cut, and both holes drilled to 0.07 in.
   EXPECT_GT(j["traced_cut_mm"].get<double>(), 4 * 0.4 * 25.4 - 0.1);
+  // A short job's plot path keeps its step: a fraction of the samples, within the budget.
+  const nlohmann::json& kept = j["plot_tool_path"];
+  EXPECT_GT(kept["samples_kept"].get<size_t>(), 10u);
+  EXPECT_LT(kept["samples_kept"].get<size_t>(), kept["samples_simulated"].get<size_t>());
+  EXPECT_GT(kept["step_mm"].get<double>(), 0.0);
+  EXPECT_EQ(r.out.find("thinned to"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -1,0 +1,109 @@
+// The trace meter's kept path: thinned to its step, bounded by its sample budget (the step
+// doubles instead), with every pen change kept and the measurements taken on every sample.
+#include "host/lib/sim/trace_meter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>   // std::abs
+#include <vector>  // std::vector
+
+namespace host::sim {
+namespace {
+
+// A plan that only sets the pen heights: up at 2 mm, down at -0.1 mm (threshold 0.95 mm).
+JobPlan pen_heights_plan() {
+  JobPlan plan;
+  PlanStep up;
+  up.kind = PlanStep::kPenUp;
+  up.z_um = 2000;
+  PlanStep down;
+  down.kind = PlanStep::kPenDown;
+  down.z_um = -100;
+  plan.steps = {up, down, up};
+  return plan;
+}
+
+ToolSample at(uint64_t t_ms, double x_mm, double y_mm, double z_mm) {
+  return ToolSample{t_ms, x_mm, y_mm, z_mm};
+}
+
+bool is_down(const ToolSample& s) {
+  return s.z_mm < 0.95;
+}
+
+// Pen changes in a path that starts lifted.
+int pen_changes(const std::vector<ToolSample>& path) {
+  int n = 0;
+  for (size_t i = 1; i < path.size(); ++i) n += is_down(path[i]) != is_down(path[i - 1]);
+  return n;
+}
+
+TEST(TraceMeter, ALongCutKeepsAtMostItsBudgetWithACoarserStep) {
+  TraceMeter m(pen_heights_plan(), 0.01, 1000);
+  m.add(at(0, 0, 0, 2.0));
+  const int n = 200000;  // 200 mm of cut at 1 um per sample
+  for (int i = 0; i <= n; ++i) m.add(at(1 + i, i * 0.001, 0, -0.1));
+  m.finish();
+  const std::vector<ToolSample>& kept = m.kept();
+  EXPECT_LE(kept.size(), 1000u);
+  EXPECT_GE(kept.size(), 250u);  // coarsened only as far as needed
+  // The step doubled from 0.01 mm, and the kept samples are that far apart but for the
+  // sample that was last at each coarsening (kept, as the path's end then was).
+  const double step = m.keep_step_mm();
+  const double doublings = std::round(std::log2(step / 0.01));
+  EXPECT_GE(doublings, 1.0);
+  EXPECT_DOUBLE_EQ(std::exp2(doublings), step / 0.01);
+  int short_gaps = 0;
+  for (size_t i = 2; i + 1 < kept.size(); ++i)
+    short_gaps += kept[i].x_mm - kept[i - 1].x_mm < step - 1e-9;
+  EXPECT_LE(short_gaps, doublings);
+  // Ends kept; the length is measured on every sample, not on the kept ones.
+  EXPECT_EQ(kept.front().x_mm, 0.0);
+  EXPECT_DOUBLE_EQ(kept.back().x_mm, n * 0.001);
+  EXPECT_NEAR(m.cut_mm(), n * 0.001, 1e-6);
+  EXPECT_EQ(m.samples(), static_cast<size_t>(n + 2));
+}
+
+TEST(TraceMeter, WithoutABudgetEverySampleAStepApartIsKept) {
+  TraceMeter m(pen_heights_plan(), 0.01);
+  m.add(at(0, 0, 0, 2.0));
+  for (int i = 0; i <= 20000; ++i) m.add(at(1 + i, i * 0.001, 0, -0.1));
+  m.finish();
+  EXPECT_DOUBLE_EQ(m.keep_step_mm(), 0.01);
+  // 20 mm at 0.01 mm (0.011 where rounding makes the tenth sample fall just short).
+  EXPECT_GE(m.kept().size(), 1800u);
+  EXPECT_LE(m.kept().size(), 2002u);
+}
+
+TEST(TraceMeter, CoarseningNeverDropsAPenChange) {
+  // 400 short strokes: lift, move, plunge, cut 1 mm in 100 samples. More pen changes than
+  // the budget: the budget grows with them instead of dropping any.
+  TraceMeter m(pen_heights_plan(), 0.001, 500);
+  std::vector<ToolSample> all;
+  uint64_t t = 0;
+  auto add = [&](const ToolSample& s) {
+    all.push_back(s);
+    m.add(s);
+  };
+  add(at(t++, 0, 0, 2.0));
+  for (int k = 0; k < 400; ++k) {
+    const double y = 0.5 * k;
+    add(at(t++, 0, y, 2.0));
+    add(at(t++, 0, y, -0.1));
+    for (int i = 1; i <= 100; ++i) add(at(t++, i * 0.01, y, -0.1));
+    add(at(t++, 1.0, y, 2.0));
+  }
+  m.finish();
+  const std::vector<ToolSample>& kept = m.kept();
+  EXPECT_EQ(pen_changes(kept), pen_changes(all));
+  EXPECT_EQ(pen_changes(all), 800);
+  EXPECT_LT(kept.size(), all.size() / 10);
+  // Every stroke still starts and ends where it did.
+  for (size_t i = 1; i < kept.size(); ++i) {
+    if (is_down(kept[i]) && !is_down(kept[i - 1])) EXPECT_EQ(kept[i].x_mm, 0.0);
+    if (!is_down(kept[i]) && is_down(kept[i - 1])) EXPECT_EQ(kept[i - 1].x_mm, 1.0);
+  }
+}
+
+}  // namespace
+}  // namespace host::sim
