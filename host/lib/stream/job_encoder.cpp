@@ -7,29 +7,13 @@
 
 #include <algorithm>  // std::min
 
-#include "firmware/protocol/codec.h"  // proto::encode, message structs
-#include "firmware/protocol/crc16.h"  // proto::crc16_update
+#include "firmware/protocol/codec.h"         // proto::encode, message structs
+#include "firmware/protocol/crc16.h"         // proto::crc16_update
+#include "host/lib/stream/encode_command.h"  // encode_command
 
 namespace host {
 
 namespace {
-
-// Encodes one message into a queued command or throws PlanError with the codec's verdict.
-template <typename Msg>
-QueuedCommand make(const Msg& msg, int step, int curve) {
-  proto::Payload payload;
-  const proto::ErrorCode error = proto::encode(msg, &payload);
-  if (error != proto::ErrorCode::kOk) {
-    throw PlanError(fmt::format("step {}: command '{}' has a field out of range (code {})", step,
-                                static_cast<char>(Msg::kLetter), static_cast<int>(error)));
-  }
-  QueuedCommand c;
-  c.letter = static_cast<uint8_t>(Msg::kLetter);
-  c.payload.assign(payload.bytes, payload.bytes + payload.length);
-  c.step = step;
-  c.curve = curve;
-  return c;
-}
 
 // A feed in um/s as the u16 the protocol carries, or PlanError.
 uint16_t feed16(int32_t feed_um_per_s, int step) {
@@ -52,7 +36,7 @@ void append_spline(const PlanStep& s, int index, unsigned max_payload, bool comp
   header.knot_count = static_cast<uint16_t>(knot_count);
   header.feed_um_per_s = feed16(s.feed_um_per_s, index);
   header.tool_offset_um = s.tool_offset_um;
-  out->push_back(make(header, index, s.curve));
+  out->push_back(encode_command(header, index, s.curve));
   append_spline_data(s.spline.firmware(), index, s.curve, max_payload, compact, out);
 }
 
@@ -127,7 +111,8 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
   }
   std::vector<QueuedCommand> out;
   // Job numbering from here (the controller reports progress by it; send --resume).
-  out.push_back(make(proto::JobMarkCmd{0, 0, 0}, -1, -1));  // its job_id is set at the end
+  out.push_back(
+      encode_command(proto::JobMarkCmd{0, 0, 0}, -1, -1));  // its job_id is set at the end
   if (!options.title.empty()) {
     proto::TextCmd text{};
     text.row = 0;
@@ -136,12 +121,12 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
       const char ch = options.title[i];
       text.text[i] = (ch >= 0x20 && ch <= 0x7E) ? ch : '?';
     }
-    out.push_back(make(text, -1, -1));
+    out.push_back(encode_command(text, -1, -1));
   }
   proto::ResolutionCmd resolution{};
   resolution.max_step_um = options.max_step_um;
   resolution.chord_tolerance_um = options.chord_tolerance_um;
-  out.push_back(make(resolution, -1, -1));
+  out.push_back(encode_command(resolution, -1, -1));
 
   core::PointUm at = {0, 0};  // where the tool is in X/Y (plans start at the zero point)
   for (size_t i = 0; i < plan.steps.size(); ++i) {
@@ -155,17 +140,17 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
     switch (s.kind) {
       case PlanStep::kPenUp: {
         proto::ZMoveCmd z{s.z_um, options.z_rapid_um_per_s};
-        out.push_back(make(z, index, s.curve));
+        out.push_back(encode_command(z, index, s.curve));
         break;
       }
       case PlanStep::kPenDown: {
         proto::ZMoveCmd z{s.z_um, feed16(s.feed_um_per_s, index)};
-        out.push_back(make(z, index, s.curve));
+        out.push_back(encode_command(z, index, s.curve));
         break;
       }
       case PlanStep::kRapid: {
         proto::RapidMoveCmd r{s.to.x_um, s.to.y_um};
-        out.push_back(make(r, index, s.curve));
+        out.push_back(encode_command(r, index, s.curve));
         break;
       }
       case PlanStep::kFeed: {
@@ -178,26 +163,26 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
           break;
         }
         proto::FeedMoveCmd g{s.to.x_um, s.to.y_um, feed16(s.feed_um_per_s, index)};
-        out.push_back(make(g, index, s.curve));
+        out.push_back(encode_command(g, index, s.curve));
         break;
       }
       case PlanStep::kSpline:
         append_spline(s, index, options.max_payload, options.compact_splines, &out);
         break;
       case PlanStep::kPause:
-        out.push_back(make(pause_command(s.text), index, s.curve));
+        out.push_back(encode_command(pause_command(s.text), index, s.curve));
         break;
       case PlanStep::kDwell:
         // Longer than one #W can carry: several in a row (nothing happens between them).
         for (uint32_t left = s.dwell_ms; left > 0;) {
           const uint16_t ms = static_cast<uint16_t>(std::min<uint32_t>(left, 65535));
-          out.push_back(make(proto::DwellCmd{ms}, index, s.curve));
+          out.push_back(encode_command(proto::DwellCmd{ms}, index, s.curve));
           left -= ms;
         }
         break;
       case PlanStep::kSpindle:
-        out.push_back(
-            make(proto::SpindleCmd{static_cast<uint8_t>(s.spindle_on ? 1 : 0)}, index, s.curve));
+        out.push_back(encode_command(proto::SpindleCmd{static_cast<uint8_t>(s.spindle_on ? 1 : 0)},
+                                     index, s.curve));
         break;
       case PlanStep::kDrill: {
         if (s.z_um >= s.z_start_um) {
@@ -206,12 +191,12 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
         }
         const proto::DrillCmd d{s.to.x_um, s.to.y_um, s.z_start_um, s.z_um,
                                 feed16(s.feed_um_per_s, index)};
-        out.push_back(make(d, index, s.curve));
+        out.push_back(encode_command(d, index, s.curve));
         break;
       }
     }
   }
-  out.front() = make(proto::JobMarkCmd{0, 0, job_id_of(out)}, -1, -1);
+  out.front() = encode_command(proto::JobMarkCmd{0, 0, job_id_of(out)}, -1, -1);
   return out;
 }
 

@@ -3,10 +3,11 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include "firmware/core/curve_walker.h"     // kDefaultChordToleranceUm
-#include "firmware/protocol/codec.h"        // proto::encode, proto::decode
-#include "host/lib/plan/firmware_points.h"  // firmware_points_um
-#include "host/lib/stream/spline_frames.h"  // is_spline_data, add_spline_data
+#include "firmware/core/curve_walker.h"      // kDefaultChordToleranceUm
+#include "firmware/protocol/codec.h"         // proto::encode, proto::decode
+#include "host/lib/plan/firmware_points.h"   // firmware_points_um
+#include "host/lib/stream/encode_command.h"  // encode_command
+#include "host/lib/stream/spline_frames.h"   // is_spline_data, add_spline_data
 
 namespace host {
 
@@ -14,19 +15,6 @@ namespace {
 
 bool is_job_command(const QueuedCommand& c) {
   return !is_spline_data(c.letter) && c.letter != proto::kCmdJobMark;
-}
-
-template <typename Msg>
-QueuedCommand command_of(const Msg& msg) {
-  proto::Payload payload;
-  if (proto::encode(msg, &payload) != proto::ErrorCode::kOk) {
-    throw PlanError(fmt::format("resume: command '{}' has a field out of range",
-                                static_cast<char>(Msg::kLetter)));
-  }
-  QueuedCommand c;
-  c.letter = static_cast<uint8_t>(Msg::kLetter);
-  c.payload.assign(payload.bytes, payload.bytes + payload.length);
-  return c;
 }
 
 template <typename Msg>
@@ -194,9 +182,9 @@ std::vector<QueuedCommand> resume_commands(const std::vector<QueuedCommand>& job
   // Always to the travel height, also from above it (after a restart Z is unknown until the
   // zeroing, which runs before this stream: never travel in X/Y at an unknown height).
   if (travel_z_um != INT32_MIN) {
-    out.push_back(command_of(proto::ZMoveCmd{travel_z_um, options.z_rapid_um_per_s}));
+    out.push_back(encode_command(proto::ZMoveCmd{travel_z_um, options.z_rapid_um_per_s}));
   }
-  out.push_back(command_of(proto::RapidMoveCmd{at.x_um, at.y_um}));
+  out.push_back(encode_command(proto::RapidMoveCmd{at.x_um, at.y_um}));
   if (spindle_at < job.size()) {
     out.push_back(job[spindle_at]);  // on again (every stop switched it off), then its run-up
     for (size_t i = spindle_at + 1; i < from && job[i].letter == proto::kCmdDwell; ++i)
@@ -213,7 +201,7 @@ std::vector<QueuedCommand> resume_commands(const std::vector<QueuedCommand>& job
   mark.job_index = at.job_index;
   mark.first_point = job[from].letter == proto::kCmdSplineHeader ? at.curve_point : 0;
   mark.job_id = job_id_of(job);
-  out.push_back(command_of(mark));
+  out.push_back(encode_command(mark));
   out.insert(out.end(), job.begin() + static_cast<long>(from), job.end());
   return out;
 }

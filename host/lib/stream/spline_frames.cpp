@@ -7,27 +7,11 @@
 
 #include "firmware/protocol/codec.h"           // proto::encode, proto::decode
 #include "firmware/protocol/compact_spline.h"  // put_compact_point, unpack_compact
+#include "host/lib/stream/encode_command.h"    // encode_command
 
 namespace host {
 
 namespace {
-
-// Encodes one message into a queued command or throws PlanError with the codec's verdict.
-template <typename Msg>
-QueuedCommand make(const Msg& msg, int step, int curve) {
-  proto::Payload payload;
-  const proto::ErrorCode error = proto::encode(msg, &payload);
-  if (error != proto::ErrorCode::kOk) {
-    throw PlanError(fmt::format("step {}: command '{}' has a field out of range (code {})", step,
-                                static_cast<char>(Msg::kLetter), static_cast<int>(error)));
-  }
-  QueuedCommand c;
-  c.letter = static_cast<uint8_t>(Msg::kLetter);
-  c.payload.assign(payload.bytes, payload.bytes + payload.length);
-  c.step = step;
-  c.curve = curve;
-  return c;
-}
 
 // One #D frame: control points from *next_control, then knots from *next_knot once every
 // control point is in, as many as room bytes hold.
@@ -96,11 +80,12 @@ void append_compact_data(const core::Spline& sp, int index, int curve, unsigned 
       d.knot_n = static_cast<uint8_t>(d.knot_n + (repeat ? 2 : 1));
       next_knot += repeat ? 2 : 1;
     }
-    if (d.data_n > 0) out->push_back(make(d, index, curve));
+    if (d.data_n > 0) out->push_back(encode_command(d, index, curve));
     if (wide) {
       const unsigned full_room =
           std::min<unsigned>(max_payload, proto::kMaxPayload) - proto::kSplineDataHeaderBytes;
-      out->push_back(make(full_data(sp, full_room, &next_control, &next_knot), index, curve));
+      out->push_back(
+          encode_command(full_data(sp, full_room, &next_control, &next_knot), index, curve));
     } else if (d.data_n == 0) {
       // Not reached: a point takes at most 11 bytes, a knot 5, and a payload 12 at least.
       throw PlanError(fmt::format("step {}: a spline value does not fit a #K frame", index));
@@ -121,7 +106,7 @@ void append_spline_data(const core::Spline& sp, int step, int curve, unsigned ma
   unsigned next_control = 0;
   unsigned next_knot = 0;
   while (next_control < sp.control_count || next_knot < sp.knot_count) {
-    out->push_back(make(full_data(sp, room, &next_control, &next_knot), step, curve));
+    out->push_back(encode_command(full_data(sp, room, &next_control, &next_knot), step, curve));
   }
 }
 
