@@ -13,6 +13,7 @@
 #include "firmware/core/curve_walker.h"
 #include "firmware/protocol/codec.h"
 #include "firmware/protocol/compact_spline.h"
+#include "host_tests/core/spline_equality.h"
 
 namespace {
 
@@ -113,17 +114,6 @@ core::Spline random_spline(std::mt19937* rng, uint16_t n, uint8_t p, bool ration
   return s;
 }
 
-void expect_same(const core::Spline& a, const core::Spline& b) {
-  ASSERT_EQ(a.control_count, b.control_count);
-  ASSERT_EQ(a.knot_count, b.knot_count);
-  for (uint16_t i = 0; i < a.control_count; ++i) {
-    EXPECT_EQ(a.control[i].x_um, b.control[i].x_um) << i;
-    EXPECT_EQ(a.control[i].y_um, b.control[i].y_um) << i;
-    EXPECT_EQ(a.control[i].weight_q14, b.control[i].weight_q14) << i;
-  }
-  for (uint16_t i = 0; i < a.knot_count; ++i) EXPECT_EQ(a.knot[i], b.knot[i]) << i;
-}
-
 // Stores s with #K frames (through the codec) and returns the stored spline.
 core::Spline store_compact(const core::Spline& s, unsigned room = 60) {
   app::SplineStore store;
@@ -170,8 +160,8 @@ TEST(SplineCompact, RandomSplinesStoreExactlyAsWithFullFrames) {
     SCOPED_TRACE(trial);
     const core::Spline full = store_full(s);
     const core::Spline compact = store_compact(s);
-    expect_same(full, compact);
-    expect_same(s, compact);
+    test::expect_same_spline(full, compact);
+    test::expect_same_spline(s, compact);
   }
 }
 
@@ -197,9 +187,9 @@ TEST(SplineCompact, LargestSplineAndLargestDifferencesFitTheFrames) {
   // A span of 2^31 or more does not fit a #K frame (the encoder sends #D for it).
   EXPECT_EQ(proto::put_compact_knot(-1, INT32_MAX, false, false, value), 0);
   EXPECT_EQ(proto::put_compact_knot(0, INT32_MAX, false, true, value), 5);
-  expect_same(s, store_compact(s));
+  test::expect_same_spline(s, store_compact(s));
   // The smallest payload a controller may announce (16 bytes: 12 of data) still carries it.
-  expect_same(s, store_compact(s, 12));
+  test::expect_same_spline(s, store_compact(s, 12));
 }
 
 TEST(SplineCompact, SameSplineWalksToTheSamePointsFromBothEncodings) {
@@ -311,7 +301,7 @@ struct OpenStore {
     }
     ASSERT_EQ(store.add_compact(through_wire(k), kTravel, &detail, &done), proto::ErrorCode::kOk);
     EXPECT_TRUE(done);
-    expect_same(s, *store.spline(slot));
+    test::expect_same_spline(s, *store.spline(slot));
   }
 };
 

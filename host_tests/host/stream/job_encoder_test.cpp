@@ -5,6 +5,7 @@
 #include "firmware/protocol/codec.h"
 #include "host/lib/stream/job_encoder.h"
 #include "host/lib/stream/spline_frames.h"
+#include "host_tests/core/spline_equality.h"
 
 namespace host {
 namespace {
@@ -74,19 +75,6 @@ core::Spline reassemble(const std::vector<QueuedCommand>& cmds) {
   return s;
 }
 
-void expect_same_spline(const core::Spline& a, const core::Spline& b) {
-  ASSERT_EQ(a.degree, b.degree);
-  ASSERT_EQ(a.rational, b.rational);
-  ASSERT_EQ(a.control_count, b.control_count);
-  ASSERT_EQ(a.knot_count, b.knot_count);
-  for (int i = 0; i < a.control_count; ++i) {
-    EXPECT_EQ(a.control[i].x_um, b.control[i].x_um) << i;
-    EXPECT_EQ(a.control[i].y_um, b.control[i].y_um) << i;
-    EXPECT_EQ(a.control[i].weight_q14, b.control[i].weight_q14) << i;
-  }
-  for (int k = 0; k < a.knot_count; ++k) EXPECT_EQ(a.knot[k], b.knot[k]) << k;
-}
-
 TEST(JobEncoder, StepsMapToTheirCommandLetters) {
   const auto cmds = encode_job(plan_with_spline(wavy_spline(4, false)), EncodeOptions{});
   std::string letters;
@@ -113,7 +101,7 @@ TEST(JobEncoder, TitleBecomesLcdRowZero) {
 TEST(JobEncoder, SplineSurvivesPackingAtFullPayload) {
   const core::Spline spline = wavy_spline(40, true);
   const auto cmds = encode_job(plan_with_spline(spline), EncodeOptions{});
-  expect_same_spline(spline, reassemble(cmds));
+  test::expect_same_spline(spline, reassemble(cmds));
 }
 
 TEST(JobEncoder, SplineSurvivesPackingAtASmallPayload) {
@@ -125,7 +113,7 @@ TEST(JobEncoder, SplineSurvivesPackingAtASmallPayload) {
       o.compact_splines = compact;
       const auto cmds = encode_job(plan_with_spline(spline), o);
       for (const auto& c : cmds) EXPECT_LE(c.payload.size(), 16u);
-      expect_same_spline(spline, reassemble(cmds));
+      test::expect_same_spline(spline, reassemble(cmds));
     }
   }
 }
@@ -163,7 +151,7 @@ TEST(JobEncoder, KnotSpanTooWideForACompactFrameGoesInAFullFrame) {
   }
   EXPECT_GE(k_frames, 1);
   EXPECT_EQ(d_frames, 1);
-  expect_same_spline(spline, reassemble(cmds));
+  test::expect_same_spline(spline, reassemble(cmds));
 }
 
 TEST(JobEncoder, CompactSplineDataIsTheSameSplineInFewerBytes) {
@@ -184,7 +172,7 @@ TEST(JobEncoder, CompactSplineDataIsTheSameSplineInFewerBytes) {
     EXPECT_GT(k_frames, 0);
     EXPECT_GT(d_frames, 0);
     for (const auto& c : k) EXPECT_NE(c.letter, proto::kCmdSplineData);
-    expect_same_spline(reassemble(d), reassemble(k));
+    test::expect_same_spline(reassemble(d), reassemble(k));
     // Points 1 and 4 mm apart: x, y and a weight change two bytes each instead of 4, 4 and 2;
     // knot spans of 100 one byte instead of 4.
     EXPECT_LT(k_bytes * 10, d_bytes * (rational ? 6 : 5)) << rational;
