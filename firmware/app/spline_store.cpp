@@ -73,7 +73,7 @@ proto::ErrorCode SplineStore::check_next(uint8_t control_index, uint8_t control_
   return proto::ErrorCode::kOk;
 }
 
-// Points control_from.. (already written) inside the travel.
+// The n points from index `from` (written, not yet committed) inside the travel.
 static bool inside_travel(const core::Spline& sp, uint16_t from, uint8_t n,
                           const int32_t travel_um[2]) {
   for (uint8_t i = 0; i < n; ++i) {
@@ -111,18 +111,15 @@ proto::ErrorCode SplineStore::add(const proto::SplineDataCmd& d, const int32_t t
   *completed = false;
   const proto::ErrorCode e = check_next(d.control_index, d.control_n, d.knot_index, d.knot_n);
   if (e != proto::ErrorCode::kOk) return e;
+  // Written behind the stored values: only commit() makes them part of the spline.
   core::Spline& sp = spline_[open_];
-  for (uint8_t i = 0; i < d.control_n; ++i) {
-    const core::ControlPoint& p = d.control[i];
-    if (p.x_um > travel_um[0] || p.x_um < -travel_um[0] || p.y_um > travel_um[1] ||
-        p.y_um < -travel_um[1])
-      return proto::ErrorCode::kOutOfTravel;
-  }
   for (uint8_t i = 0; i < d.control_n; ++i) {
     core::ControlPoint p = d.control[i];
     if (!sp.rational) p.weight_q14 = core::kWeightOneQ14;
     sp.control[d.control_index + i] = p;
   }
+  if (!inside_travel(sp, d.control_index, d.control_n, travel_um))
+    return proto::ErrorCode::kOutOfTravel;
   for (uint8_t i = 0; i < d.knot_n; ++i) sp.knot[d.knot_index + i] = d.knot[i];
   return commit(d.control_n, d.knot_n, detail, completed);
 }
