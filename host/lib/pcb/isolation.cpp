@@ -34,9 +34,6 @@ double seg_dist(const IntPoint& x, const IntPoint& a, const IntPoint& b) {
 // of two islands whose clearances overlap lie within the box, so only vertices inside it and
 // edges that reach into it are compared (a board-wide net has thousands of edges).
 double island_distance_nm(const Paths& a, const Paths& b, const BoxNm& near) {
-  auto close = [&](const IntPoint& p) {
-    return p.X >= near.min_x && p.X <= near.max_x && p.Y >= near.min_y && p.Y <= near.max_y;
-  };
   struct Edge {
     IntPoint p, q;
   };
@@ -61,7 +58,7 @@ double island_distance_nm(const Paths& a, const Paths& b, const BoxNm& near) {
     const std::vector<Edge>& v = pass ? edges_a : edges_b;
     for (const Path& pu : u) {
       for (const IntPoint& x : pu) {
-        if (!close(x)) continue;
+        if (!near.contains(x)) continue;
         for (const Edge& e : v) best = std::min(best, seg_dist(x, e.p, e.q));
       }
     }

@@ -63,10 +63,6 @@ struct Piece {
   std::vector<BoxNm> hole_boxes;
 };
 
-bool inside_box(const BoxNm& b, const IntPoint& p) {
-  return p.X >= b.min_x && p.X <= b.max_x && p.Y >= b.min_y && p.Y <= b.max_y;
-}
-
 void collect_pieces(const ClipperLib::PolyNode& node, std::vector<Piece>* out) {
   for (const ClipperLib::PolyNode* o : node.Childs) {
     Piece p;
@@ -183,11 +179,10 @@ IsolationCheck check_isolation(const Paths& copper_nm,
     if (!interior_point(left, &inner[i])) continue;
     for (size_t k = 0; k < pieces.size(); ++k) {
       const Piece& p = pieces[k];
-      if (!inside_box(p.box, inner[i]) || ClipperLib::PointInPolygon(inner[i], p.outer) == 0)
-        continue;
+      if (!p.box.contains(inner[i]) || ClipperLib::PointInPolygon(inner[i], p.outer) == 0) continue;
       bool in_hole = false;
       for (size_t h = 0; h < p.holes.size() && !in_hole; ++h) {
-        in_hole = inside_box(p.hole_boxes[h], inner[i]) &&
+        in_hole = p.hole_boxes[h].contains(inner[i]) &&
                   ClipperLib::PointInPolygon(inner[i], p.holes[h]) != 0;
       }
       if (in_hole) continue;

@@ -82,10 +82,10 @@ Paths clip_to_box(const Paths& paths, const BoxNm& box) {
   Paths out;
   if (box.empty()) return out;
   for (const Path& p : paths) {
-    const BoxNm pb = box_of(Paths{p});
+    BoxNm pb;
+    pb.add(p);
     if (!pb.overlaps(box)) continue;
-    if (pb.min_x >= box.min_x && pb.max_x <= box.max_x && pb.min_y >= box.min_y &&
-        pb.max_y <= box.max_y) {
+    if (box.contains(pb)) {
       out.push_back(p);  // wholly inside
       continue;
     }

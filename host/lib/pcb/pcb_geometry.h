@@ -31,6 +31,13 @@ struct BoxNm {
     return !empty() && !o.empty() && min_x <= o.max_x && o.min_x <= max_x && min_y <= o.max_y &&
            o.min_y <= max_y;
   }
+  bool contains(const ClipperLib::IntPoint& p) const {
+    return p.X >= min_x && p.X <= max_x && p.Y >= min_y && p.Y <= max_y;
+  }
+  bool contains(const BoxNm& o) const {
+    return !o.empty() && o.min_x >= min_x && o.max_x <= max_x && o.min_y >= min_y &&
+           o.max_y <= max_y;
+  }
 };
 BoxNm box_of(const ClipperLib::Paths& paths);
 // The box both boxes share (empty if they do not overlap).

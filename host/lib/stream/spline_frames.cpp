@@ -13,6 +13,11 @@ namespace host {
 
 namespace {
 
+// Data bytes of a frame with this header in the controller's payload size.
+unsigned data_room(unsigned max_payload, unsigned header_bytes) {
+  return std::min<unsigned>(max_payload, proto::kMaxPayload) - header_bytes;
+}
+
 // One #D frame: control points from *next_control, then knots from *next_knot once every
 // control point is in, as many as room bytes hold.
 proto::SplineDataCmd full_data(const core::Spline& sp, unsigned room, unsigned* next_control,
@@ -39,8 +44,7 @@ proto::SplineDataCmd full_data(const core::Spline& sp, unsigned room, unsigned* 
 // fits (variable length); a knot span of 2^31 or more does not, and goes in a #D frame.
 void append_compact_data(const core::Spline& sp, int index, int curve, unsigned max_payload,
                          std::vector<QueuedCommand>* out) {
-  const unsigned room =
-      std::min<unsigned>(max_payload, proto::kMaxPayload) - proto::kCompactHeaderBytes;
+  const unsigned room = data_room(max_payload, proto::kCompactHeaderBytes);
   unsigned next_control = 0;
   unsigned next_knot = 0;
   uint8_t value[proto::kMaxCompactPointBytes];
@@ -82,8 +86,7 @@ void append_compact_data(const core::Spline& sp, int index, int curve, unsigned 
     }
     if (d.data_n > 0) out->push_back(encode_command(d, index, curve));
     if (wide) {
-      const unsigned full_room =
-          std::min<unsigned>(max_payload, proto::kMaxPayload) - proto::kSplineDataHeaderBytes;
+      const unsigned full_room = data_room(max_payload, proto::kSplineDataHeaderBytes);
       out->push_back(
           encode_command(full_data(sp, full_room, &next_control, &next_knot), index, curve));
     } else if (d.data_n == 0) {
@@ -101,8 +104,7 @@ void append_spline_data(const core::Spline& sp, int step, int curve, unsigned ma
     append_compact_data(sp, step, curve, max_payload, out);
     return;
   }
-  const unsigned room =
-      std::min<unsigned>(max_payload, proto::kMaxPayload) - proto::kSplineDataHeaderBytes;
+  const unsigned room = data_room(max_payload, proto::kSplineDataHeaderBytes);
   unsigned next_control = 0;
   unsigned next_knot = 0;
   while (next_control < sp.control_count || next_knot < sp.knot_count) {
