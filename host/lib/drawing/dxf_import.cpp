@@ -9,7 +9,6 @@
 #include <cerrno>     // errno
 #include <climits>    // INT_MAX
 #include <cmath>      // std::isfinite, std::fabs
-#include <fstream>    // std::ifstream
 #include <map>        // std::map
 #include <memory>     // std::unique_ptr
 #include <new>        // std::bad_alloc
@@ -21,6 +20,7 @@
 
 #include "host/lib/drawing/conics.h"
 #include "host/lib/drawing/dxf_scan.h"
+#include "host/lib/drawing/file_text.h"  // read_file_text
 
 namespace host {
 
@@ -764,20 +764,10 @@ Drawing import_dxf_text(const std::string& text, const std::string& path) {
 }
 
 Drawing import_dxf(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ImportError(path + ": cannot open the file");
-  // Read straight into one string (a stringstream and its str() held the file twice).
   std::string text;
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  in.seekg(0, std::ios::beg);
-  if (size > 0) text.reserve(static_cast<size_t>(size));
-  in.clear();
-  char buffer[1 << 16];
-  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-    text.append(buffer, static_cast<size_t>(in.gcount()));
-  }
-  if (in.bad()) throw ImportError(path + ": cannot read the file");
+  const FileRead r = read_file_text(path, &text);
+  if (r == FileRead::kCannotOpen) throw ImportError(path + ": cannot open the file");
+  if (r == FileRead::kReadError) throw ImportError(path + ": cannot read the file");
   return import_dxf_text(text, path);
 }
 

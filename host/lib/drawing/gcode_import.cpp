@@ -7,12 +7,12 @@
 #include <algorithm>  // std::max, std::min
 #include <cctype>     // std::isdigit, std::toupper
 #include <cmath>      // std::atan2, std::fabs, std::lround
-#include <fstream>    // std::ifstream
 #include <regex>      // std::regex_search
 #include <set>        // std::set
 #include <sstream>    // std::istringstream, std::ostringstream
 
 #include "host/lib/drawing/conics.h"
+#include "host/lib/drawing/file_text.h"  // read_file_text
 #include "host/lib/drawing/gcode_words.h"
 
 namespace host {
@@ -558,11 +558,11 @@ Drawing import_gcode_text(const std::string& text, const std::string& name) {
 }
 
 Drawing import_gcode(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ImportError(path + ": cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return import_gcode_text(text.str(), path);
+  std::string text;
+  const FileRead r = read_file_text(path, &text);
+  if (r == FileRead::kCannotOpen) throw ImportError(path + ": cannot open the file");
+  if (r == FileRead::kReadError) throw ImportError(path + ": cannot read the file");
+  return import_gcode_text(text, path);
 }
 
 }  // namespace host

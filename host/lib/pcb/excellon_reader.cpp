@@ -3,10 +3,11 @@
 #include <cctype>   // std::isdigit, std::isspace, std::isalpha
 #include <cmath>    // std::fabs, std::llround
 #include <cstdlib>  // std::strtod
-#include <fstream>  // std::ifstream
 #include <map>      // std::map
-#include <sstream>  // std::ostringstream, std::istringstream
+#include <sstream>  // std::istringstream
 #include <vector>   // std::vector
+
+#include "host/lib/drawing/file_text.h"  // read_file_text
 
 namespace host::pcb {
 
@@ -410,11 +411,10 @@ PcbLayer read_excellon_text(const std::string& text, const std::string& path) {
 }
 
 PcbLayer read_excellon_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw PcbReadError(path + ": cannot open the file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  const std::string text = s.str();
+  std::string text;
+  const FileRead r = read_file_text(path, &text);
+  if (r == FileRead::kCannotOpen) throw PcbReadError(path + ": cannot open the file");
+  if (r == FileRead::kReadError) throw PcbReadError(path + ": read error");
   if (text.empty()) throw PcbReadError(path + ": the file is empty");
   return read_excellon_text(text, path);
 }

@@ -5,12 +5,11 @@
 #include <cmath>          // std::atan2, std::hypot, std::fabs
 #include <cstdio>         // std::snprintf
 #include <cstdlib>        // std::strtod
-#include <fstream>        // std::ifstream
 #include <map>            // std::map
-#include <sstream>        // std::ostringstream
 #include <unordered_map>  // std::unordered_map
 #include <vector>         // std::vector
 
+#include "host/lib/drawing/file_text.h"  // read_file_text
 #include "host/lib/pcb/gerber_macro.h"
 #include "host/lib/pcb/gerber_outline.h"
 #include "host/lib/pcb/gerber_shapes.h"
@@ -1175,12 +1174,10 @@ PcbLayer read_gerber_text(const std::string& text, const std::string& path,
 }
 
 PcbLayer read_gerber_file(const std::string& path, const GerberOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw PcbReadError(path + ": cannot open the file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (!in && !in.eof()) throw PcbReadError(path + ": read error");
-  const std::string text = s.str();
+  std::string text;
+  const FileRead r = read_file_text(path, &text);
+  if (r == FileRead::kCannotOpen) throw PcbReadError(path + ": cannot open the file");
+  if (r == FileRead::kReadError) throw PcbReadError(path + ": read error");
   if (text.empty()) throw PcbReadError(path + ": the file is empty");
   return read_gerber_text(text, path, options);
 }

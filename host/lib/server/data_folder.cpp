@@ -8,8 +8,9 @@
 #include <cstring>    // std::strcmp
 #include <fstream>    // std::ifstream
 #include <random>     // std::random_device
-#include <sstream>    // std::ostringstream
 #include <stdexcept>  // std::runtime_error
+
+#include "host/lib/drawing/file_text.h"  // read_file_text
 
 namespace host::server {
 
@@ -82,11 +83,10 @@ void write_file(const fs::path& path, const std::string& content) {
 }
 
 std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path.string() + ": cannot read");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  std::string text;
+  if (read_file_text(path.string(), &text) != FileRead::kOk)
+    throw std::runtime_error(path.string() + ": cannot read");
+  return text;
 }
 
 }  // namespace host::server

@@ -1,0 +1,25 @@
+// Whole-file reading (see file_text.h).
+#include "host/lib/drawing/file_text.h"
+
+#include <filesystem>    // std::filesystem::file_size, is_directory
+#include <fstream>       // std::ifstream
+#include <system_error>  // std::error_code
+
+namespace host {
+
+FileRead read_file_text(const std::string& path, std::string* text) {
+  text->clear();
+  std::error_code ec;
+  // A directory opens as a stream on Linux, and its "size" can be 2^63.
+  if (std::filesystem::is_directory(path, ec)) return FileRead::kCannotOpen;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return FileRead::kCannotOpen;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > 0) text->reserve(static_cast<size_t>(size));
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0)
+    text->append(buffer, static_cast<size_t>(in.gcount()));
+  return in.bad() ? FileRead::kReadError : FileRead::kOk;
+}
+
+}  // namespace host

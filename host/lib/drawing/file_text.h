@@ -1,0 +1,19 @@
+// A whole input file read into one string, for the importers and readers that then parse
+// it from memory.
+#ifndef HOST_LIB_DRAWING_FILE_TEXT_H
+#define HOST_LIB_DRAWING_FILE_TEXT_H
+
+#include <string>  // std::string
+
+namespace host {
+
+enum class FileRead { kOk, kCannotOpen, kReadError };
+
+// Reads the file at path into *text, sized once from the file's length (a stringstream and
+// its str() held a large file twice). Each caller words its own error.
+// A directory or a file that cannot be opened is kCannotOpen.
+FileRead read_file_text(const std::string& path, std::string* text);
+
+}  // namespace host
+
+#endif  // HOST_LIB_DRAWING_FILE_TEXT_H
