@@ -731,13 +731,7 @@ class GroupFeed : public std::streambuf {
 
 Drawing import_dxf_text(const std::string& text, const std::string& path) {
   try {
-    {
-      // The whole file is checked before dxflib reads any of it.
-      DxfScanner check(text, path);
-      DxfGroup g;
-      while (check.next(&g)) {
-      }
-    }
+    check_dxf(text, path);  // the whole file, before dxflib reads any of it
     DxfScanner groups(text, path);
     DxfReader reader(path);
     GroupFeed feed(groups, reader);

@@ -8,7 +8,6 @@
 #include <cstddef>  // size_t
 #include <memory>   // std::unique_ptr
 #include <string>   // std::string
-#include <vector>   // std::vector
 
 namespace host {
 
@@ -19,15 +18,12 @@ struct DxfGroup {
   long line = 0;  // line of the group code, from 1
 };
 
-// Splits `text` (the file's bytes) into groups up to and including the closing 0/EOF.
-// Comments (group 999) are dropped. Throws ImportError naming `path`, the line, the entity
-// and the problem; content after 0/EOF other than blanks, NUL and Ctrl-Z is refused.
-std::vector<DxfGroup> scan_dxf(const std::string& text, const std::string& path);
-
-// The same check one group at a time, without holding the groups (a million-entity file
-// has over ten million; held, they took several times the file's size). `text` must
-// outlive the scanner. next() returns false after the closing 0/EOF has been returned and
-// throws ImportError exactly where scan_dxf would.
+// Splits `text` (the file's bytes) into groups up to and including the closing 0/EOF, one
+// group at a time, without holding them (a million-entity file has over ten million).
+// Comments (group 999) are dropped. `text` must outlive the scanner. next() returns false
+// after the closing 0/EOF has been returned; it throws ImportError naming `path`, the line,
+// the entity and the problem; content after 0/EOF other than blanks, NUL and Ctrl-Z is
+// refused.
 class DxfScanner {
  public:
   DxfScanner(const std::string& text, const std::string& path);
@@ -40,6 +36,9 @@ class DxfScanner {
   struct State;
   std::unique_ptr<State> s_;
 };
+
+// Scans the whole text, so that nothing of a broken file is read: throws what next() would.
+void check_dxf(const std::string& text, const std::string& path);
 
 // Largest count a group may announce (control points, knots, vertices) whatever the file's
 // size: far beyond any sane drawing, small enough that dxflib's allocation of it is modest.
