@@ -130,7 +130,7 @@ IsolationCheck check_isolation(const Paths& copper_nm,
   // 1. The tool, shrunk by the tolerance, must not reach copper.
   const double shrunk = (tool_radius_mm - tolerance_mm) * kNmPerMm;
   if (shrunk > 0 && !centres.empty()) {
-    const Paths swept_in = union_of(sweep_open(centres, shrunk, kArcToleranceNm));
+    const Paths swept_in = sweep_open(centres, shrunk, kArcToleranceNm);
     ClipperLib::Clipper c;
     c.AddPaths(copper, ClipperLib::ptSubject, true);
     c.AddPaths(swept_in, ClipperLib::ptClip, true);
@@ -158,8 +158,7 @@ IsolationCheck check_isolation(const Paths& copper_nm,
   const cInt m = static_cast<cInt>(4 * radius_nm + 1e6);
   const Path frame{IntPoint(b.min_x - m, b.min_y - m), IntPoint(b.max_x + m, b.min_y - m),
                    IntPoint(b.max_x + m, b.max_y + m), IntPoint(b.min_x - m, b.max_y + m)};
-  const Paths swept =
-      centres.empty() ? Paths{} : union_of(sweep_open(centres, radius_nm, kArcToleranceNm));
+  const Paths swept = centres.empty() ? Paths{} : sweep_open(centres, radius_nm, kArcToleranceNm);
   ClipperLib::Clipper c;
   c.AddPath(frame, ClipperLib::ptSubject, true);
   c.AddPaths(swept, ClipperLib::ptClip, true);
@@ -168,14 +167,22 @@ IsolationCheck check_isolation(const Paths& copper_nm,
   std::vector<Piece> pieces;
   collect_pieces(tree, &pieces);
 
+  std::vector<BoxNm> swept_boxes(swept.size());
+  for (size_t k = 0; k < swept.size(); ++k) swept_boxes[k].add(swept[k]);
+
   std::map<size_t, std::vector<size_t>> by_piece;
   std::vector<IntPoint> inner(islands.size());
   for (size_t i = 0; i < islands.size(); ++i) {
     // A point of the island the tool leaves standing (the island is otherwise all cut away,
     // which the first check reports).
     // Only the swept area over the island's box matters: cut to it first (linear), or every
-    // island's difference sweeps the whole job (A64-OlinuXino: 1 133 islands, minutes).
-    const Paths left = difference_of(islands[i].paths, clip_to_box(swept, islands[i].box));
+    // island's difference sweeps the whole job (A64-OlinuXino: 1 133 islands, minutes); and
+    // only the swept paths whose boxes reach it (a thin tool's sweep is a band per contour).
+    Paths near;
+    for (size_t k = 0; k < swept.size(); ++k) {
+      if (swept_boxes[k].overlaps(islands[i].box)) near.push_back(swept[k]);
+    }
+    const Paths left = difference_of(islands[i].paths, clip_to_box(near, islands[i].box));
     if (!interior_point(left, &inner[i])) continue;
     for (size_t k = 0; k < pieces.size(); ++k) {
       const Piece& p = pieces[k];

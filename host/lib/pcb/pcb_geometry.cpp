@@ -171,13 +171,49 @@ Paths offset_closed(const Paths& paths, double delta_nm, double arc_tolerance_nm
   return out;
 }
 
-Paths sweep_open(const Paths& paths, double radius_nm, double arc_tolerance_nm) {
+namespace {
+
+Paths sweep_together(const Paths& paths, double radius_nm, double arc_tolerance_nm) {
   ClipperOffset o;
   o.ArcTolerance = arc_tolerance_nm;
   o.AddPaths(paths, ClipperLib::jtRound, ClipperLib::etOpenRound);
   Paths out;
-  o.Execute(out, radius_nm);
+  o.Execute(out, radius_nm);  // the union of the swept paths
   return out;
+}
+
+}  // namespace
+
+// Clipper's union visits, at every scan beam, each edge that crosses it: one union of a
+// whole board's swept paths is slow in the board's width (A64-OlinuXino, 0.2 mm tool: 12 s).
+// Neighbours (sorted by x) are swept in groups, narrow strips, and the groups' unions, with
+// far fewer edges left, are joined (2.4 s).
+Paths sweep_open(const Paths& paths, double radius_nm, double arc_tolerance_nm) {
+  const size_t kGroupVertices = 20000;
+  size_t vertices = 0;
+  for (const Path& p : paths) vertices += p.size();
+  if (vertices <= kGroupVertices) return sweep_together(paths, radius_nm, arc_tolerance_nm);
+  std::vector<std::pair<double, size_t>> by_x;  // box centre x, index
+  by_x.reserve(paths.size());
+  for (size_t i = 0; i < paths.size(); ++i) {
+    BoxNm b;
+    b.add(paths[i]);
+    by_x.emplace_back(b.empty() ? 0.0 : (static_cast<double>(b.min_x) + b.max_x) / 2, i);
+  }
+  std::sort(by_x.begin(), by_x.end());
+  Paths groups, group;
+  size_t in_group = 0;
+  for (size_t k = 0; k < by_x.size(); ++k) {
+    group.push_back(paths[by_x[k].second]);
+    in_group += group.back().size();
+    if (in_group >= kGroupVertices || k + 1 == by_x.size()) {
+      const Paths swept = sweep_together(group, radius_nm, arc_tolerance_nm);
+      groups.insert(groups.end(), swept.begin(), swept.end());
+      group.clear();
+      in_group = 0;
+    }
+  }
+  return union_of(groups);
 }
 
 Paths intersection_of(const Paths& a, const Paths& b) {

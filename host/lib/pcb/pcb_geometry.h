@@ -73,7 +73,7 @@ double signed_area(const ClipperLib::Paths& paths);
 ClipperLib::Paths offset_closed(const ClipperLib::Paths& paths, double delta_nm,
                                 double arc_tolerance_nm);
 
-// Open paths swept by a disc of radius radius_nm (round ends and joins).
+// The union of open paths swept by a disc of radius radius_nm (round ends and joins).
 ClipperLib::Paths sweep_open(const ClipperLib::Paths& paths, double radius_nm,
                              double arc_tolerance_nm);
 

@@ -196,6 +196,28 @@ TEST(Isolation, CheckerFindsIslandsWithNoCutBetweenThem) {
   EXPECT_EQ(c.islands, 3u);
 }
 
+// A loop around the first pad whose ends stop short of each other; the second pad is left in
+// the uncut field. The tool closes the loop when its ends are less than a tool width apart.
+// The separation is judged with the whole tool (radius 0.1 mm), not the one shrunk by the
+// tolerance that the copper check uses.
+IsolationCheck check_open_loop(double gap_mm) {
+  const ClipperLib::Paths copper = {rect(0, 0, 1, 1), rect(3, 0, 4, 1)};
+  const double h = gap_mm / 2;
+  const std::vector<Point2> open_loop = {Point2(0.5 + h, -0.3), Point2(1.3, -0.3),
+                                         Point2(1.3, 1.3),      Point2(-0.3, 1.3),
+                                         Point2(-0.3, -0.3),    Point2(0.5 - h, -0.3)};
+  return check_isolation(copper, {open_loop}, 0.1, 0.002);
+}
+
+TEST(Isolation, CheckerSeparatesWithTheWholeToolWidth) {
+  // 0.197 mm: closed by the 0.2 mm tool, open to a 0.196 mm one (radius less tolerance).
+  const IsolationCheck bridged = check_open_loop(0.197);
+  EXPECT_TRUE(bridged.ok()) << describe(bridged);
+  const IsolationCheck open = check_open_loop(0.203);
+  EXPECT_TRUE(open.hits.empty());
+  EXPECT_EQ(open.unseparated.size(), 1u) << describe(open);
+}
+
 TEST(Isolation, BadOptionsAreRefused) {
   IsolationOptions o;
   o.tool_width_mm = 0;
