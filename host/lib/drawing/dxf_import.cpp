@@ -336,7 +336,7 @@ class DxfReader : public DL_CreationAdapter {
     c.spline = s;
     c.kind = kind;
     c.source = label();
-    space().curves.push_back(c);
+    space().curves.push_back(std::move(c));
   }
 
   void flush_polyline() {
@@ -660,20 +660,18 @@ Drawing DxfReader::finish() {
                         " is a unit this tool does not convert (supported: 0 unitless = mm, "
                         "1 inch, 2 foot, 4 mm, 5 cm, 6 m, 8 microinch, 9 mil, 13 micron, 14 dm)");
   }
-  std::vector<Curve> curves;
   ExpansionBudget budget;
   const Eigen::Matrix2d to_mm = Eigen::Matrix2d::Identity() * dr.unit_to_mm;
-  // The model space's own curves are moved, not copied (a million-line drawing held them
-  // three times over); blocks may be inserted many times, so expand() copies those. It
-  // counts the model space's copy and checks the budget with these control points in it.
-  curves.reserve(model_.curves.size());
+  // The model space's own curves are scaled in place and the vector moved, not copied (a
+  // million-line drawing held them three times over, then twice while a second vector was
+  // filled); blocks may be inserted many times, so expand() copies those. It counts the
+  // model space's copy and checks the budget with these control points in it.
   for (Curve& c : model_.curves) {
     budget.control_points += static_cast<long>(c.spline.control.size());
     c.spline = transformed(c.spline, to_mm, Point2(0, 0));
-    curves.push_back(std::move(c));
   }
-  model_.curves.clear();
-  model_.curves.shrink_to_fit();
+  std::vector<Curve> curves = std::move(model_.curves);
+  model_.curves = std::vector<Curve>();
   expand(model_, to_mm, Point2(0, 0), 0, "", budget, curves);
   for (const Curve& c : curves) {
     for (const Point2& p : c.spline.control) {
