@@ -34,7 +34,8 @@ struct IsolationCheck {
 };
 
 // copper_nm and the paths in one frame (the machine frame for a planned job). Paths are
-// tool-centre polylines (mm) traced with the tool down; each is swept by a disc.
+// tool-centre polylines (mm) traced with the tool down; each is swept by a disc. Samples
+// within a tenth of the tolerance of a straight run are left out before the sweep.
 IsolationCheck check_isolation(const ClipperLib::Paths& copper_nm,
                                const std::vector<std::vector<Point2>>& tool_paths_mm,
                                double tool_radius_mm, double tolerance_mm);

@@ -159,6 +159,18 @@ TEST(Isolation, CheckerKeepsAShortExcursionInALongStraightRunOfSamples) {
   EXPECT_NEAR(hit.hits[0].at_mm.x(), 5.0, 0.05);
 }
 
+TEST(Isolation, CheckerSeesASampleLessThanTheToleranceOffAStraightRun) {
+  // The tool shrunk by the tolerance (radius 98 um) clears the copper by 1 um along the run;
+  // one sample 1.5 um off it reaches 0.5 um into the copper. Thinning the samples by more
+  // than the tolerance allows would straighten it away.
+  const ClipperLib::Paths copper = {rect(0, 0, 10, 1)};
+  std::vector<Point2> bumped;
+  for (int i = 0; i <= 1000; ++i) bumped.push_back(Point2(i * 0.01, i == 500 ? 1.0975 : 1.099));
+  const IsolationCheck hit = check_isolation(copper, {bumped}, 0.1, 0.002);
+  ASSERT_EQ(hit.hits.size(), 1u) << describe(hit);
+  EXPECT_NEAR(hit.hits[0].at_mm.x(), 5.0, 0.01);
+}
+
 TEST(Isolation, DescribeListsTheLargestHitsAndCountsTheRest) {
   IsolationCheck c;
   for (int i = 0; i < 25; ++i) {
