@@ -511,9 +511,9 @@ void run_run(const RunArgs& a) {
   sim::SimJobOptions o;
   o.encode = encode_options(a.plan);
   o.realtime = a.realtime;
-  // Machine time in lockstep: a poll every 50 ms keeps the progress current and costs the
-  // link little (the real machine is polled every 250 ms).
-  o.sender.status_interval = std::chrono::milliseconds(50);
+  // Polled as `send` polls the real machine (every 250 ms, here of machine time), so the
+  // frames and bytes reported are those a real run would put on the wire.
+  o.sender.status_interval = std::chrono::milliseconds(250);
   // The plot shows what its pixels can: keep a tool position every half pixel or so.
   o.trace_step_mm = plot_step_mm(plan);
   // A board: the isolation cuts at full resolution, to check them against the copper.

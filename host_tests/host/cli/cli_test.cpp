@@ -238,6 +238,12 @@ TEST(Cli, RunCarriesAPcbProgramWithToolChangesDwellsAndHolesToTheEnd) {
   EXPECT_LT(kept["samples_kept"].get<size_t>(), kept["samples_simulated"].get<size_t>());
   EXPECT_GT(kept["step_mm"].get<double>(), 0.0);
   EXPECT_EQ(r.out.find("thinned to"), std::string::npos) << r.out;
+  // Status polled as `send` polls a real link (every 250 ms, here of machine time): the
+  // frames and bytes reported are what a real run puts on the wire (it polled every 50 ms,
+  // five times the job's own bytes).
+  const double polls_at_250ms = j["simulated_machine_ms"].get<double>() / 250;
+  EXPECT_GT(polls_at_250ms, 100);
+  EXPECT_NEAR(j["status_queries"].get<double>(), polls_at_250ms, 0.05 * polls_at_250ms);
 }
 
 }  // namespace
