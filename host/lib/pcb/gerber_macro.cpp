@@ -238,7 +238,7 @@ Paths evaluate_macro(const ApertureMacro& macro, const std::vector<double>& para
              ++i) {
           Paths ring{circle_path(c, d, tol_nm)};
           if (d - 2 * thick > 0)
-            ring = difference_paths(ring, {circle_path(c, d - 2 * thick, tol_nm)});
+            ring = difference_of(ring, {circle_path(c, d - 2 * thick, tol_nm)});
           rings.insert(rings.end(), ring.begin(), ring.end());
           d -= 2 * (thick + gap);
         }
@@ -247,7 +247,7 @@ Paths evaluate_macro(const ApertureMacro& macro, const std::vector<double>& para
           rings.push_back(rect_path(c, cl, ct));
           rings.push_back(rect_path(c, ct, cl));
         }
-        prim = union_paths(rings);
+        prim = union_of(rings);
         rot = m[8];
       } else if (code == "7") {
         need(5, "thermal (7)");
@@ -261,7 +261,7 @@ Paths evaluate_macro(const ApertureMacro& macro, const std::vector<double>& para
           cut.push_back(rect_path(c, 2 * outer, gap));
           cut.push_back(rect_path(c, gap, 2 * outer));
         }
-        prim = difference_paths(ring, cut);
+        prim = difference_of(ring, cut);
         rot = m.size() > 5 ? m[5] : 0;
       } else {
         bad("unknown primitive '" + code + "'");
@@ -269,9 +269,9 @@ Paths evaluate_macro(const ApertureMacro& macro, const std::vector<double>& para
       rotate_all(prim, rot);
       if (exposure == 1) {
         prim.insert(prim.end(), shape.begin(), shape.end());
-        shape = union_paths(prim);
+        shape = union_of(prim);
       } else if (exposure == 0) {
-        shape = difference_paths(shape, prim);
+        shape = difference_of(shape, prim);
       } else if (exposure == 2) {  // toggle (old spec)
         ClipperLib::Clipper c;
         c.AddPaths(shape, ClipperLib::ptSubject, true);

@@ -292,7 +292,7 @@ Paths GerberReader::evaluate(std::vector<Batch>& batches) {
       if (b.dark) {
         touched = union_objects(b.paths, b.starts, touched);
       } else if (!touched.empty()) {
-        touched = difference_paths(touched, union_objects(b.paths, b.starts, {}));
+        touched = difference_of(touched, union_objects(b.paths, b.starts, {}));
       }
       result.swap(kept);
       result.insert(result.end(), std::make_move_iterator(touched.begin()),
@@ -559,7 +559,7 @@ void GerberReader::aperture_definition(const std::string& s) {
       note("rectangular aperture hole (deprecated)");
     }
     if (params[hole_at] > 0) {
-      ap.shape = difference_paths(ap.shape, {hole});
+      ap.shape = difference_of(ap.shape, {hole});
       ap.has_hole = true;
     }
   }
@@ -1060,7 +1060,7 @@ void GerberReader::draw_line(IntPoint from, IntPoint to) {
     for (IntPoint& p : end_copy) p = {p.X + to.X, p.Y + to.Y};
     swept.push_back(end_copy);
   }
-  add_object(union_paths(swept));
+  add_object(union_of(swept));
 }
 
 void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool region) {

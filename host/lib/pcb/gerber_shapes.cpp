@@ -145,23 +145,6 @@ void make_positive(Path& path) {
   if (!ClipperLib::Orientation(path)) ClipperLib::ReversePath(path);
 }
 
-Paths union_paths(const Paths& paths) {
-  ClipperLib::Clipper c;
-  c.AddPaths(paths, ClipperLib::ptSubject, true);
-  Paths out;
-  c.Execute(ClipperLib::ctUnion, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  return out;
-}
-
-Paths difference_paths(const Paths& subject, const Paths& clip) {
-  ClipperLib::Clipper c;
-  c.AddPaths(subject, ClipperLib::ptSubject, true);
-  c.AddPaths(clip, ClipperLib::ptClip, true);
-  Paths out;
-  c.Execute(ClipperLib::ctDifference, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  return out;
-}
-
 void split_by_box(const Paths& all, const BoxNm& box, Paths& touched, Paths& kept) {
   for (const Path& p : all) {
     BoxNm b;
@@ -171,55 +154,19 @@ void split_by_box(const Paths& all, const BoxNm& box, Paths& touched, Paths& kep
 }
 
 Paths union_objects(const Paths& paths, const std::vector<size_t>& starts, const Paths& base) {
-  const size_t kPerStrip = 128;
-  if (starts.size() <= kPerStrip) {
-    Paths all = base;
-    all.insert(all.end(), paths.begin(), paths.end());
-    return union_paths(all);
-  }
-  struct Object {
-    cInt x;
-    size_t begin, end;
-  };
-  std::vector<Object> objects;
+  std::vector<Paths> objects;
   objects.reserve(starts.size());
   for (size_t k = 0; k < starts.size(); ++k) {
     const size_t end = k + 1 < starts.size() ? starts[k + 1] : paths.size();
-    if (starts[k] >= end || paths[starts[k]].empty()) continue;
-    cInt lo = paths[starts[k]][0].X, hi = lo;
-    for (const IntPoint& p : paths[starts[k]]) {
-      lo = std::min(lo, p.X);
-      hi = std::max(hi, p.X);
+    if (starts[k] < end) {
+      objects.emplace_back(paths.begin() + static_cast<long>(starts[k]),
+                           paths.begin() + static_cast<long>(end));
     }
-    objects.push_back({lo / 2 + hi / 2, starts[k], end});
   }
-  std::sort(objects.begin(), objects.end(),
-            [](const Object& a, const Object& b) { return a.x < b.x; });
-  std::vector<Paths> strips;
-  for (size_t k = 0; k < objects.size(); k += kPerStrip) {
-    Paths strip;
-    for (size_t j = k; j < objects.size() && j < k + kPerStrip; ++j) {
-      strip.insert(strip.end(), paths.begin() + static_cast<long>(objects[j].begin),
-                   paths.begin() + static_cast<long>(objects[j].end));
-    }
-    strips.push_back(union_paths(strip));
-  }
-  // Neighbours in x merged pairwise, so each union stays narrow until the last.
-  while (strips.size() > 1) {
-    std::vector<Paths> next;
-    for (size_t k = 0; k < strips.size(); k += 2) {
-      if (k + 1 == strips.size()) {
-        next.push_back(std::move(strips[k]));
-        break;
-      }
-      strips[k].insert(strips[k].end(), strips[k + 1].begin(), strips[k + 1].end());
-      next.push_back(union_paths(strips[k]));
-    }
-    strips.swap(next);
-  }
-  Paths all = base;
-  all.insert(all.end(), strips[0].begin(), strips[0].end());
-  return base.empty() ? strips[0] : union_paths(all);
+  Paths all = united_by_strips(objects, union_of);
+  if (base.empty()) return all;
+  all.insert(all.end(), base.begin(), base.end());
+  return union_of(all);
 }
 
 }  // namespace host::pcb

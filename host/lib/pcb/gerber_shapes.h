@@ -47,18 +47,13 @@ void translate_paths(ClipperLib::Paths& paths, ClipperLib::cInt dx, ClipperLib::
 // Makes the outer boundary counter-clockwise (a region contour may be either way round).
 void make_positive(ClipperLib::Path& path);
 
-// Boolean operations with non-zero filling.
-ClipperLib::Paths union_paths(const ClipperLib::Paths& paths);
-ClipperLib::Paths difference_paths(const ClipperLib::Paths& subject, const ClipperLib::Paths& clip);
-
 // Paths whose boxes meet `box` go to `touched`, the others to `kept`.
 void split_by_box(const ClipperLib::Paths& all, const BoxNm& box, ClipperLib::Paths& touched,
                   ClipperLib::Paths& kept);
 
 // Union of `base` and many small objects (object k is paths[starts[k]] up to the next start:
-// an outer and its holes). Done in strips of objects sorted by x, then once over the strips,
-// so that Clipper's active edge list stays short: one union over a whole board costs time
-// in proportion to vertices times the edges across the board.
+// an outer and its holes), strip by strip (united_by_strips): one union over a whole board
+// costs time in proportion to vertices times the edges across the board.
 ClipperLib::Paths union_objects(const ClipperLib::Paths& paths, const std::vector<size_t>& starts,
                                 const ClipperLib::Paths& base);
 

@@ -5,8 +5,9 @@
 
 #include <clipper.hpp>  // ClipperLib::Paths
 
-#include <cmath>   // std::llround
-#include <vector>  // std::vector
+#include <cmath>       // std::llround
+#include <functional>  // std::function
+#include <vector>      // std::vector
 
 #include "host/lib/drawing/bspline.h"  // Point2
 
@@ -61,6 +62,14 @@ std::vector<Island> copper_islands(const ClipperLib::Paths& copper);
 
 // Union of the input under the non-zero rule, orientation normalised (outers positive).
 ClipperLib::Paths union_of(const ClipperLib::Paths& paths);
+
+// The union of many pieces (an aperture flash, a stroke, an island with its holes: each a
+// region of its own), made strip by strip: the pieces sorted by the middle of their boxes
+// in x, cut into groups of a few thousand vertices, each group united by `united` (which
+// returns the union of what it is given), and neighbouring strips joined pairwise.
+ClipperLib::Paths united_by_strips(
+    const std::vector<ClipperLib::Paths>& pieces,
+    const std::function<ClipperLib::Paths(const ClipperLib::Paths&)>& united);
 
 // Area-weighted centre of a set of polygons (holes negative), in nm; the first vertex
 // when the area vanishes.

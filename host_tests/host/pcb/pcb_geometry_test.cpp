@@ -119,5 +119,41 @@ TEST(SweepOpen, PathsSweptInGroupsCoverWhatEachPathSweptAloneCovers) {
   EXPECT_LT(std::fabs(signed_area(difference_of(expected, grouped))), 1e-6 * area);
 }
 
+// Rings (an outer and its hole) over a field, grown island by island in strips: the same
+// region as Clipper's own offset of all of them at once, every hole kept.
+TEST(OffsetClosed, GrowingManyIslandsInStripsGivesClippersOwnOffset) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> centre(0, 100e6);
+  Paths rings;
+  size_t vertices = 0;
+  while (vertices < 50000) {  // more than one strip (20 000 vertices)
+    const double cx = centre(rng), cy = centre(rng);
+    Path outer, hole;
+    for (int k = 0; k < 64; ++k) {
+      const double a = 2 * M_PI * k / 64;
+      outer.emplace_back(static_cast<ClipperLib::cInt>(cx + 1e6 * std::cos(a)),
+                         static_cast<ClipperLib::cInt>(cy + 1e6 * std::sin(a)));
+      hole.emplace_back(static_cast<ClipperLib::cInt>(cx + 0.6e6 * std::cos(-a)),
+                        static_cast<ClipperLib::cInt>(cy + 0.6e6 * std::sin(-a)));
+    }
+    rings.push_back(outer);
+    rings.push_back(hole);
+    vertices += outer.size() + hole.size();
+  }
+  const Paths copper = union_of(rings);
+  const double delta_nm = 0.15e6, arc_tol_nm = 500;
+  ClipperLib::ClipperOffset whole;
+  whole.ArcTolerance = arc_tol_nm;
+  whole.AddPaths(copper, ClipperLib::jtRound, ClipperLib::etClosedPolygon);
+  Paths expected;
+  whole.Execute(expected, delta_nm);
+  const Paths grown = offset_closed(copper, delta_nm, arc_tol_nm);
+  const double area = signed_area(expected);
+  ASSERT_GT(area, 1e15);  // over 1 000 mm2 of rings
+  EXPECT_NEAR(signed_area(grown), area, 1e-6 * area);
+  EXPECT_LT(std::fabs(signed_area(difference_of(grown, expected))), 1e-6 * area);
+  EXPECT_LT(std::fabs(signed_area(difference_of(expected, grown))), 1e-6 * area);
+}
+
 }  // namespace
 }  // namespace host::pcb
