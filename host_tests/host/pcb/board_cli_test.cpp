@@ -164,6 +164,23 @@ TEST(BoardCli, AnUnreadableGerberIsAnInputError) {
   EXPECT_NE(r.err.find("t-F.Cu.gbr"), std::string::npos) << r.err;
 }
 
+TEST(BoardCli, OnlyTheJobSidesCopperIsRead) {
+  // The bottom copper is broken: a top-side job does not read it (it says so), a bottom-side
+  // job does and stops at its error.
+  const std::string dir = write_board("sides");
+  std::ofstream(dir + "/t-B.Cu.gbr") << "%FSLAX46Y46*%\n%MOMM*%\nD99*\nX0Y0D03*\nM02*\n";
+  for (const std::string side : {"", " --side top"}) {
+    const ToolRun top = run("board " + dir + side + " -o " + dir + "/out --no-plot --json");
+    EXPECT_EQ(top.code, 0) << side << top.err;
+    EXPECT_NE(top.err.find("t-B.Cu.gbr: copper of the other side: not read for this job"),
+              std::string::npos)
+        << top.err;
+  }
+  const ToolRun bottom = run("board " + dir + " --side bottom -o " + dir + "/out --no-plot");
+  EXPECT_EQ(bottom.code, 2) << bottom.out;
+  EXPECT_NE(bottom.err.find("t-B.Cu.gbr:3: D99"), std::string::npos) << bottom.err;
+}
+
 TEST(BoardCli, TwoFilesForOneCopperLayerAreAnInputErrorNamingBoth) {
   const std::string dir = write_board("twice");
   std::ofstream(dir + "/u-F.Cu.gbr")
