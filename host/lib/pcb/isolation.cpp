@@ -87,10 +87,8 @@ Paths clip_to(const Paths& contours, const Paths& area) {
 
 }  // namespace
 
-std::vector<NarrowGap> find_narrow_gaps(const Paths& copper, double radius_nm,
-                                        double arc_tolerance_nm, size_t* island_count) {
-  const std::vector<Island> islands = copper_islands(copper);
-  if (island_count) *island_count = islands.size();
+std::vector<NarrowGap> find_narrow_gaps(const std::vector<Island>& islands, double radius_nm,
+                                        double arc_tolerance_nm) {
   struct Grown {
     Paths paths;
     BoxNm box;
@@ -161,18 +159,20 @@ IsolationResult plan_isolation(const Paths& copper_in, const IsolationOptions& o
   if (!(o.overlap >= 0 && o.overlap <= 0.9))
     throw std::invalid_argument("the pass overlap must be between 0 and 0.9");
   IsolationResult r;
-  const Paths copper = union_of(copper_in);
+  // Islands once: the narrow gaps, the contours and the clearing rings all start from them.
+  const std::vector<Island> islands = copper_islands(copper_in);
   // The tool centre's distance from the copper (r.tool_radius_mm stays the tool's own).
   const double radius_nm = (o.tool_width_mm / 2 + o.clearance_mm) * kNmPerMm;
   const double step_nm = o.tool_width_mm * kNmPerMm * (1.0 - o.overlap);
   const double arc_tol_nm = o.arc_tolerance_mm * kNmPerMm;
   r.tool_radius_mm = o.tool_width_mm / 2;
-  r.narrow_gaps = find_narrow_gaps(copper, radius_nm, arc_tol_nm, &r.islands);
-  if (copper.empty()) return r;
+  r.islands = islands.size();
+  r.narrow_gaps = find_narrow_gaps(islands, radius_nm, arc_tol_nm);
+  if (islands.empty()) return r;
 
   if (!o.mill_all) {
     for (int k = 0; k < o.passes; ++k) {
-      for (const Path& p : offset_closed(copper, radius_nm + k * step_nm, arc_tol_nm)) {
+      for (const Path& p : grown_islands(islands, radius_nm + k * step_nm, arc_tol_nm)) {
         ToolPathNm t;
         t.path = p;
         t.pass = k;
@@ -186,7 +186,8 @@ IsolationResult plan_isolation(const Paths& copper_in, const IsolationOptions& o
   // may go) is covered; the area's own inset boundary is the last contour.
   Paths area = o.area_nm;
   if (area.empty()) {
-    BoxNm b = box_of(copper);
+    BoxNm b;
+    for (const Island& island : islands) b.add(island.paths[0]);
     const cInt m = static_cast<cInt>(4 * radius_nm);
     area.push_back(Path{IntPoint(b.min_x - m, b.min_y - m), IntPoint(b.max_x + m, b.min_y - m),
                         IntPoint(b.max_x + m, b.max_y + m), IntPoint(b.min_x - m, b.max_y + m)});
@@ -194,7 +195,7 @@ IsolationResult plan_isolation(const Paths& copper_in, const IsolationOptions& o
   const Paths centre_area = offset_closed(union_of(area), -radius_nm, arc_tol_nm);
   for (int k = 0; k < 100000; ++k) {
     const double d = radius_nm + k * step_nm;
-    const Paths contours = offset_closed(copper, d, arc_tol_nm);
+    const Paths contours = grown_islands(islands, d, arc_tol_nm);
     if (k == 0) {
       for (const Path& p : contours) {
         ToolPathNm t;
@@ -210,7 +211,7 @@ IsolationResult plan_isolation(const Paths& copper_in, const IsolationOptions& o
         r.paths.push_back(t);
       }
     }
-    const Paths left = difference_of(centre_area, offset_closed(copper, d + step_nm, arc_tol_nm));
+    const Paths left = difference_of(centre_area, grown_islands(islands, d + step_nm, arc_tol_nm));
     if (std::fabs(signed_area(left)) < kMinOverlapAreaNm2) break;
   }
   const int last_pass = r.paths.empty() ? 1 : r.paths.back().pass + 1;
@@ -222,7 +223,7 @@ IsolationResult plan_isolation(const Paths& copper_in, const IsolationOptions& o
   }
   // Where the fronts of two islands meet, cusps wider than the step stay uncut: one short
   // stroke along each leftover sliver's long axis, kept where the tool centre may go.
-  const Paths allowed = difference_of(centre_area, offset_closed(copper, radius_nm, arc_tol_nm));
+  const Paths allowed = difference_of(centre_area, grown_islands(islands, radius_nm, arc_tol_nm));
   const Paths reachable = offset_closed(allowed, radius_nm, arc_tol_nm);
   for (int round = 0; round < 3; ++round) {
     Paths centres;

@@ -8,6 +8,7 @@
 
 #include <vector>  // std::vector
 
+#include "host/lib/pcb/pcb_geometry.h"  // Island
 #include "host/lib/pcb/pcb_layer.h"
 
 namespace host::pcb {
@@ -52,9 +53,10 @@ struct IsolationResult {
 // non-positive tool width, passes < 1 or overlap outside [0, 0.9].
 IsolationResult plan_isolation(const ClipperLib::Paths& copper_nm, const IsolationOptions& o);
 
-// Islands whose tool clearances (copper grown by radius_nm) overlap: the narrow gaps.
-std::vector<NarrowGap> find_narrow_gaps(const ClipperLib::Paths& copper_nm, double radius_nm,
-                                        double arc_tolerance_nm, size_t* island_count);
+// Islands (copper_islands()) whose tool clearances (copper grown by radius_nm) overlap: the
+// narrow gaps.
+std::vector<NarrowGap> find_narrow_gaps(const std::vector<Island>& islands, double radius_nm,
+                                        double arc_tolerance_nm);
 
 }  // namespace host::pcb
 

@@ -218,16 +218,25 @@ Paths united_by_strips(const std::vector<Paths>& pieces,
   return strips.size() == 1 ? strips[0] : union_of(all);
 }
 
-Paths offset_closed(const Paths& paths, double delta_nm, double arc_tolerance_nm) {
-  // Growing distributes over a union, island by island (an island keeps its holes); a
-  // shrink does not (touching pieces), so that is done in one piece.
-  if (delta_nm <= 0 || vertex_count(paths) <= kStripVertices)
-    return offset_together(paths, delta_nm, arc_tolerance_nm, ClipperLib::etClosedPolygon);
+Paths grown_islands(const std::vector<Island>& islands, double delta_nm, double arc_tolerance_nm) {
   std::vector<Paths> pieces;
-  for (Island& island : copper_islands(paths)) pieces.push_back(std::move(island.paths));
+  Paths all;
+  for (const Island& island : islands) {
+    pieces.push_back(island.paths);
+    all.insert(all.end(), island.paths.begin(), island.paths.end());
+  }
+  if (vertex_count(all) <= kStripVertices)
+    return offset_together(all, delta_nm, arc_tolerance_nm, ClipperLib::etClosedPolygon);
   return united_by_strips(pieces, [&](const Paths& group) {
     return offset_together(group, delta_nm, arc_tolerance_nm, ClipperLib::etClosedPolygon);
   });
+}
+
+Paths offset_closed(const Paths& paths, double delta_nm, double arc_tolerance_nm) {
+  // A shrink does not distribute over a union (touching pieces): done in one piece.
+  if (delta_nm <= 0 || vertex_count(paths) <= kStripVertices)
+    return offset_together(paths, delta_nm, arc_tolerance_nm, ClipperLib::etClosedPolygon);
+  return grown_islands(copper_islands(paths), delta_nm, arc_tolerance_nm);
 }
 
 Paths sweep_open(const Paths& paths, double radius_nm, double arc_tolerance_nm) {

@@ -81,6 +81,11 @@ double signed_area(const ClipperLib::Paths& paths);
 // Closed polygons offset by delta_nm (round joins, the given arc tolerance).
 ClipperLib::Paths offset_closed(const ClipperLib::Paths& paths, double delta_nm,
                                 double arc_tolerance_nm);
+// The same for copper already split into islands, grown (delta_nm > 0): each island keeps
+// its holes, and growing distributes over the union, so a large board is grown strip by
+// strip (united_by_strips) without uniting its copper again.
+ClipperLib::Paths grown_islands(const std::vector<Island>& islands, double delta_nm,
+                                double arc_tolerance_nm);
 
 // The union of open paths swept by a disc of radius radius_nm (round ends and joins).
 ClipperLib::Paths sweep_open(const ClipperLib::Paths& paths, double radius_nm,
