@@ -17,9 +17,7 @@
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
-#include "host/lib/pcb/board_files.h"  // BoardFileSet
-#include "host/lib/pcb/excellon_reader.h"
-#include "host/lib/pcb/gerber_reader.h"
+#include "host/lib/pcb/board_files.h"  // BoardFileSet, read_board_file
 #include "host/lib/pcb/isolation_check.h"
 #include "host/lib/pcb/pcb_file_names.h"
 #include "host/lib/pcb/pcb_geometry.h"
@@ -47,23 +45,10 @@ struct BoardFiles {
 
 PcbLayer read_layer(const std::string& path, LayerKind forced) {
   try {
-    const pcb::PcbFileFormat f = pcb::pcb_file_format(path);
-    if (f == pcb::PcbFileFormat::kExcellon) {
-      PcbLayer l = pcb::read_excellon_file(path);
-      l.kind = LayerKind::kDrill;
-      return l;
-    }
-    if (f == pcb::PcbFileFormat::kGerber || forced != LayerKind::kUnknown) {
-      pcb::GerberOptions o;
-      o.kind_if_unknown = forced;
-      PcbLayer l = pcb::read_gerber_file(path, o);
-      if (forced != LayerKind::kUnknown) l.kind = forced;
-      return l;
-    }
+    return pcb::read_board_file(path, forced);
   } catch (const pcb::PcbReadError& e) {
     throw CommandFailure(kExitUsage, e.what());
   }
-  throw CommandFailure(kExitUsage, path + ": not a Gerber or Excellon file");
 }
 
 void add_layer(BoardFiles* b, PcbLayer l, bool from_directory) {

@@ -27,6 +27,10 @@ PcbLayer read_board_text(const std::string& text, const std::string& name, Layer
   throw PcbReadError(name + ": not a Gerber or Excellon file");
 }
 
+PcbLayer read_board_file(const std::string& path, LayerKind kind) {
+  return read_board_text(read_pcb_file_text(path), path, kind);
+}
+
 bool left_out_by_name(PcbFileFormat format, const std::string& name) {
   return format == PcbFileFormat::kGerber && layer_kind_from_file_name(name) == LayerKind::kUnknown;
 }

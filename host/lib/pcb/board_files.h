@@ -20,6 +20,8 @@ PcbFileFormat board_file_format(const std::string& name, const std::string& text
 // name). Throws PcbReadError with the reader's message (file and line), or "NAME: not a
 // Gerber or Excellon file".
 PcbLayer read_board_text(const std::string& text, const std::string& name, LayerKind kind);
+// The same from a file on disk (PcbReadError also when it cannot be read).
+PcbLayer read_board_file(const std::string& path, LayerKind kind);
 
 // Whether a file of the given format and name is left out of a board given as a folder
 // (silkscreen, mask, paste: a Gerber whose name says no copper, drill or outline).

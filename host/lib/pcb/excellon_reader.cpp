@@ -7,8 +7,6 @@
 #include <sstream>  // std::istringstream
 #include <vector>   // std::vector
 
-#include "host/lib/drawing/file_text.h"  // read_file_text
-
 namespace host::pcb {
 
 using ClipperLib::cInt;
@@ -411,12 +409,7 @@ PcbLayer read_excellon_text(const std::string& text, const std::string& path) {
 }
 
 PcbLayer read_excellon_file(const std::string& path) {
-  std::string text;
-  const FileRead r = read_file_text(path, &text);
-  if (r == FileRead::kCannotOpen) throw PcbReadError(path + ": cannot open the file");
-  if (r == FileRead::kReadError) throw PcbReadError(path + ": read error");
-  if (text.empty()) throw PcbReadError(path + ": the file is empty");
-  return read_excellon_text(text, path);
+  return read_excellon_text(read_pcb_file_text(path), path);
 }
 
 }  // namespace host::pcb

@@ -9,7 +9,6 @@
 #include <unordered_map>  // std::unordered_map
 #include <vector>         // std::vector
 
-#include "host/lib/drawing/file_text.h"  // read_file_text
 #include "host/lib/pcb/gerber_macro.h"
 #include "host/lib/pcb/gerber_outline.h"
 #include "host/lib/pcb/gerber_shapes.h"
@@ -1174,12 +1173,7 @@ PcbLayer read_gerber_text(const std::string& text, const std::string& path,
 }
 
 PcbLayer read_gerber_file(const std::string& path, const GerberOptions& options) {
-  std::string text;
-  const FileRead r = read_file_text(path, &text);
-  if (r == FileRead::kCannotOpen) throw PcbReadError(path + ": cannot open the file");
-  if (r == FileRead::kReadError) throw PcbReadError(path + ": read error");
-  if (text.empty()) throw PcbReadError(path + ": the file is empty");
-  return read_gerber_text(text, path, options);
+  return read_gerber_text(read_pcb_file_text(path), path, options);
 }
 
 }  // namespace host::pcb

@@ -1,5 +1,7 @@
 #include "host/lib/pcb/pcb_layer.h"
 
+#include "host/lib/drawing/file_text.h"  // read_file_text
+
 namespace host::pcb {
 
 const char* layer_kind_name(LayerKind kind) {
@@ -16,6 +18,15 @@ const char* layer_kind_name(LayerKind kind) {
       break;
   }
   return "unknown";
+}
+
+std::string read_pcb_file_text(const std::string& path) {
+  std::string text;
+  const FileRead r = read_file_text(path, &text);
+  if (r == FileRead::kCannotOpen) throw PcbReadError(path + ": cannot open the file");
+  if (r == FileRead::kReadError) throw PcbReadError(path + ": read error");
+  if (text.empty()) throw PcbReadError(path + ": the file is empty");
+  return text;
 }
 
 }  // namespace host::pcb

@@ -61,6 +61,10 @@ class PcbReadError : public std::runtime_error {
   explicit PcbReadError(const std::string& msg) : std::runtime_error(msg) {}
 };
 
+// The text of a PCB file; PcbReadError naming it when it cannot be opened or read, or is
+// empty.
+std::string read_pcb_file_text(const std::string& path);
+
 }  // namespace host::pcb
 
 #endif  // HOST_LIB_PCB_PCB_LAYER_H

@@ -181,6 +181,22 @@ TEST(BoardCli, OnlyTheJobSidesCopperIsRead) {
   EXPECT_NE(bottom.err.find("t-B.Cu.gbr:3: D99"), std::string::npos) << bottom.err;
 }
 
+TEST(BoardCli, FilesNamedByOptionAreReadAsThatLayerWhateverTheirNames) {
+  // An Excellon file with a name no tool knows (holes.txt) given as --drill is drilled; a
+  // missing one is named with the reason.
+  const std::string dir = write_board("named");
+  std::ofstream(dir + "/holes.txt") << kDrillInch;
+  const ToolRun r = run("board --top " + dir + "/t-F.Cu.gbr --drill " + dir + "/holes.txt -o " +
+                        dir + "/out --no-plot --no-check --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["holes"], 3);
+  const ToolRun missing = run("board --top " + dir + "/t-F.Cu.gbr --drill " + dir +
+                              "/nowhere.txt -o " + dir + "/out --no-plot");
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.err.find("nowhere.txt: cannot open the file"), std::string::npos)
+      << missing.err;
+}
+
 TEST(BoardCli, TwoFilesForOneCopperLayerAreAnInputErrorNamingBoth) {
   const std::string dir = write_board("twice");
   std::ofstream(dir + "/u-F.Cu.gbr")
