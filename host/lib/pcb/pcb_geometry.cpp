@@ -219,14 +219,8 @@ Paths united_by_strips(const std::vector<Paths>& pieces,
 }
 
 Paths grown_islands(const std::vector<Island>& islands, double delta_nm, double arc_tolerance_nm) {
-  std::vector<Paths> pieces;
-  Paths all;
-  for (const Island& island : islands) {
-    pieces.push_back(island.paths);
-    all.insert(all.end(), island.paths.begin(), island.paths.end());
-  }
-  if (vertex_count(all) <= kStripVertices)
-    return offset_together(all, delta_nm, arc_tolerance_nm, ClipperLib::etClosedPolygon);
+  std::vector<Paths> pieces;  // a board of fewer vertices than a strip is one offset
+  for (const Island& island : islands) pieces.push_back(island.paths);
   return united_by_strips(pieces, [&](const Paths& group) {
     return offset_together(group, delta_nm, arc_tolerance_nm, ClipperLib::etClosedPolygon);
   });
@@ -240,8 +234,6 @@ Paths offset_closed(const Paths& paths, double delta_nm, double arc_tolerance_nm
 }
 
 Paths sweep_open(const Paths& paths, double radius_nm, double arc_tolerance_nm) {
-  if (vertex_count(paths) <= kStripVertices)
-    return offset_together(paths, radius_nm, arc_tolerance_nm, ClipperLib::etOpenRound);
   std::vector<Paths> pieces;
   for (const Path& p : paths) pieces.push_back(Paths{p});
   return united_by_strips(pieces, [&](const Paths& group) {

@@ -65,8 +65,8 @@ ClipperLib::Paths union_of(const ClipperLib::Paths& paths);
 
 // The union of many pieces (an aperture flash, a stroke, an island with its holes: each a
 // region of its own), made strip by strip: the pieces sorted by the middle of their boxes
-// in x, cut into groups of a few thousand vertices, each group united by `united` (which
-// returns the union of what it is given), and neighbouring strips joined pairwise.
+// in x, cut into groups of about 20 000 vertices, each group united by `united` (which
+// returns the union of what it is given), and the strips joined by one last union.
 ClipperLib::Paths united_by_strips(
     const std::vector<ClipperLib::Paths>& pieces,
     const std::function<ClipperLib::Paths(const ClipperLib::Paths&)>& united);
