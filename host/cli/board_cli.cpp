@@ -132,13 +132,16 @@ BoardFiles read_input(const std::string& input, const std::string& side_asked = 
   if (files.empty()) throw CommandFailure(kExitUsage, input + ": no PCB files there");
   const LayerKind wanted_copper = copper_for_side(side_asked.empty() ? b.side : side_asked, files);
   for (const std::string& f : files) {
-    // In a directory, only files whose names say copper, drill or outline are read (no
-    // silkscreen, mask or paste), and of the copper only the job side's: reading the other
-    // was a fifth of a large board's planning time.
+    // In a directory, only files whose names or X2 file functions say copper, drill or
+    // outline are read (no silkscreen, mask or paste), and of the copper only the job
+    // side's: reading the other was a fifth of a large board's planning time.
     if (directory && pcb::pcb_file_format(f) == pcb::PcbFileFormat::kGerber) {
-      const LayerKind named = pcb::layer_kind_from_file_name(f);
+      LayerKind named = pcb::layer_kind_from_file_name(f);
+      if (named == LayerKind::kUnknown) named = pcb::layer_kind_from_x2(pcb::read_file_head(f));
       if (named == LayerKind::kUnknown) {
-        b.notes.push_back(f + ": not a copper, drill or outline file name: left out");
+        b.notes.push_back(f +
+                          ": neither its name nor an X2 file function says copper, drill or "
+                          "outline: left out (name it with --top, --bottom or --outline)");
         continue;
       }
       if (wanted_copper != LayerKind::kUnknown && named != wanted_copper &&

@@ -88,18 +88,21 @@ struct PlanArgs {
 
 void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   cmd->add_option("FILE", a->file, "drawing (DXF, G-code)")->required();
-  cmd->add_option("--feed", a->feed_mm_s, "cutting feed in mm/s")
-      ->check(CLI::Range(0.1, 60.0))
-      ->capture_default_str();
+  CLI::Option* feed = cmd->add_option("--feed", a->feed_mm_s,
+                                      "cutting feed in mm/s (PCB isolation: 5 unless given)")
+                          ->check(CLI::Range(0.1, 60.0))
+                          ->capture_default_str();
   cmd->add_option("--tol", a->tol_mm, "chord tolerance of the generated points in mm")
       ->check(CLI::Range(0.001, 1.0))
       ->capture_default_str();
   cmd->add_option("--scale", a->scale, "scale factor applied to the drawing")
       ->check(CLI::Range(1e-3, 1e3))
       ->capture_default_str();
-  cmd->add_option("--margin", a->margin_mm, "offset of the drawing from the zero corner, mm")
-      ->check(CLI::Range(0.0, 100.0))
-      ->capture_default_str();
+  CLI::Option* margin =
+      cmd->add_option("--margin", a->margin_mm,
+                      "offset of the drawing from the zero corner, mm (PCB: 5 unless given)")
+          ->check(CLI::Range(0.0, 100.0))
+          ->capture_default_str();
   cmd->add_option("--work", a->work_mm, "work area W H in mm (default A4)")->expected(2);
   cmd->add_option("--chain-tol", a->chain_tol_mm, "join curves whose ends are closer, mm")
       ->check(CLI::Range(0.0, 1.0))
@@ -125,6 +128,14 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   cmd->add_flag("--drill-as-z-moves", a->drill_as_z_moves,
                 "G-code drilling cycles as plain Z moves instead of the drill command");
   add_board_options(cmd, &a->board);
+  // PCB files take `engraver board`'s defaults where no option is given: the board that
+  // `board` showed is the board that runs.
+  cmd->parse_complete_callback([a, feed, margin] {
+    if (!is_pcb_input(a->file)) return;
+    const MachineDefaults board;
+    if (feed->count() == 0) a->feed_mm_s = board.feed_mm_s;
+    if (margin->count() == 0) a->margin_mm = board.margin_mm;
+  });
 }
 
 JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {

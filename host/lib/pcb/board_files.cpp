@@ -31,10 +31,6 @@ PcbLayer read_board_file(const std::string& path, LayerKind kind) {
   return read_board_text(read_pcb_file_text(path), path, kind);
 }
 
-bool left_out_by_name(PcbFileFormat format, const std::string& name) {
-  return format == PcbFileFormat::kGerber && layer_kind_from_file_name(name) == LayerKind::kUnknown;
-}
-
 bool BoardFileSet::add(PcbLayer layer) {
   switch (layer.kind) {
     case LayerKind::kCopperTop:

@@ -23,10 +23,6 @@ PcbLayer read_board_text(const std::string& text, const std::string& name, Layer
 // The same from a file on disk (PcbReadError also when it cannot be read).
 PcbLayer read_board_file(const std::string& path, LayerKind kind);
 
-// Whether a file of the given format and name is left out of a board given as a folder
-// (silkscreen, mask, paste: a Gerber whose name says no copper, drill or outline).
-bool left_out_by_name(PcbFileFormat format, const std::string& name);
-
 // The layers of one board by kind.
 struct BoardFileSet {
   std::vector<PcbLayer> copper_top, copper_bottom, drill, outline;

@@ -743,30 +743,16 @@ bool GerberReader::copies_stand_alone(const std::vector<Batch>& block) const {
 void GerberReader::attribute(const std::string& body) {
   // TF.FileFunction,Copper,L1,Top  (also from "G04 #@! TF...")
   if (!starts_with(body, "TF.FileFunction") && !starts_with(body, "TF,.FileFunction")) return;
-  std::vector<std::string> f = split(body, ',');
-  if (f.size() < 2) return;
-  const std::string function = trim(f[1]);
-  const std::string side = f.size() > 3 ? trim(f[3]) : "";  // Copper,L<n>,Top|Inr|Bot[,...]
-  std::string value = function;
-  for (size_t k = 2; k < f.size(); ++k) value += "," + trim(f[k]);
+  const size_t comma = body.find(',', 3);
+  if (comma == std::string::npos) return;
+  std::vector<std::string> f = split(body.substr(comma + 1), ',');
+  std::string value;
+  for (const std::string& field : f) value += (value.empty() ? "" : ",") + trim(field);
   note("X2 TF.FileFunction " + value);
   x2_kind_given_ = true;
-  if (function == "Copper") {
-    if (side == "Top") {
-      x2_kind_ = LayerKind::kCopperTop;
-    } else if (side == "Bot") {
-      x2_kind_ = LayerKind::kCopperBottom;
-    } else {
-      x2_kind_ = LayerKind::kUnknown;
-      note("an inner copper layer: this machine engraves the outer ones");
-    }
-  } else if (function == "Profile") {
-    x2_kind_ = LayerKind::kOutline;
-  } else if (function == "Plated" || function == "NonPlated") {
-    x2_kind_ = LayerKind::kDrill;
-  } else {
-    x2_kind_ = LayerKind::kUnknown;
-  }
+  x2_kind_ = layer_kind_from_file_function(value);
+  if (trim(f[0]) == "Copper" && x2_kind_ == LayerKind::kUnknown)
+    note("an inner copper layer: this machine engraves the outer ones");
 }
 
 // ---------------------------------------------------------------------------------------------

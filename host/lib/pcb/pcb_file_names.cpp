@@ -3,6 +3,7 @@
 #include <algorithm>  // std::transform
 #include <cctype>     // std::tolower
 #include <fstream>    // std::ifstream
+#include <vector>     // std::vector
 
 #include "host/lib/drawing/drawing.h"  // starts_like_excellon
 
@@ -79,12 +80,52 @@ PcbFileFormat pcb_file_format(const std::string& path, const std::string& head_t
   return PcbFileFormat::kNone;
 }
 
-PcbFileFormat pcb_file_format(const std::string& path) {
+LayerKind layer_kind_from_file_function(const std::string& value) {
+  std::vector<std::string> fields;
+  size_t start = 0;
+  for (;;) {
+    const size_t comma = value.find(',', start);
+    std::string f = value.substr(start, comma == std::string::npos ? comma : comma - start);
+    const size_t first = f.find_first_not_of(" \t");
+    const size_t last = f.find_last_not_of(" \t");
+    fields.push_back(first == std::string::npos ? "" : f.substr(first, last - first + 1));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  const std::string& function = fields[0];
+  if (function == "Copper") {  // Copper,L<n>,Top|Inr|Bot[,...]
+    const std::string side = fields.size() > 2 ? fields[2] : "";
+    if (side == "Top") return LayerKind::kCopperTop;
+    if (side == "Bot") return LayerKind::kCopperBottom;
+    return LayerKind::kUnknown;
+  }
+  if (function == "Profile") return LayerKind::kOutline;
+  if (function == "Plated" || function == "NonPlated") return LayerKind::kDrill;
+  return LayerKind::kUnknown;
+}
+
+LayerKind layer_kind_from_x2(const std::string& head_text) {
+  for (const char* key : {"TF.FileFunction,", "TF,.FileFunction,"}) {
+    const size_t at = head_text.find(key);
+    if (at == std::string::npos) continue;
+    const size_t from = at + std::string(key).size();
+    const size_t end = head_text.find('*', from);
+    if (end == std::string::npos) return LayerKind::kUnknown;  // cut off by the head's end
+    return layer_kind_from_file_function(head_text.substr(from, end - from));
+  }
+  return LayerKind::kUnknown;
+}
+
+std::string read_file_head(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string head(4096, '\0');
   in.read(&head[0], static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<size_t>(in.gcount()));
-  return pcb_file_format(path, head);
+  return head;
+}
+
+PcbFileFormat pcb_file_format(const std::string& path) {
+  return pcb_file_format(path, read_file_head(path));
 }
 
 }  // namespace host::pcb

@@ -15,6 +15,20 @@ enum class PcbFileFormat { kNone, kGerber, kExcellon };
 // -Edge.Cuts (also with '_'), .DRL/.XLN. kUnknown when the name says nothing.
 LayerKind layer_kind_from_file_name(const std::string& path);
 
+// Layer kind from the value of an X2 file function, the fields after "TF.FileFunction,":
+// Copper,L1,Top / Copper,L2,Bot / Profile / Plated / NonPlated; kUnknown for any other
+// (inner copper, silkscreen, mask, paste).
+LayerKind layer_kind_from_file_function(const std::string& value);
+
+// Layer kind from the X2 TF.FileFunction in the head of a Gerber file (as %TF...*% or as
+// KiCad 5's "G04 #@! TF...*" comment); kUnknown when there is none or it names no layer
+// this machine cuts.
+LayerKind layer_kind_from_x2(const std::string& head_text);
+
+// The first few kB of `path` (empty if it cannot be opened): where formats and X2 file
+// functions are found.
+std::string read_file_head(const std::string& path);
+
 // Gerber or Excellon by extension, else by content (%FS / %MO, M48); kNone otherwise.
 PcbFileFormat pcb_file_format(const std::string& path, const std::string& head_text);
 

@@ -134,6 +134,49 @@ TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {
   EXPECT_NE(r.out.find("simulated isolation cuts"), std::string::npos) << r.out;
 }
 
+// `run` (and `send`, which plans the same way) on PCB files plans the job that `board` showed:
+// the board's feed and margin where none is given, the given ones where they are.
+TEST(BoardCli, RunPlansTheBoardThatTheBoardCommandShowed) {
+  const std::string dir = write_board("same");
+  auto board_json = [&](const std::string& options) {
+    const ToolRun b = run("board " + dir + " -o " + dir + "/out --json --no-check " + options);
+    EXPECT_EQ(b.code, 0) << b.err;
+    return nlohmann::json::parse(b.out);
+  };
+  auto run_json = [&](const std::string& options) {
+    const ToolRun r = run("run " + dir + " -o " + dir + "/run --cut-step 1.8 " + options);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return nlohmann::json::parse(
+        std::ifstream(dir + "/run/" + std::to_string(getpid()) + "-same.json"));
+  };
+  for (const std::string options : {"", "--feed 8 --margin 12"}) {
+    const nlohmann::json b = board_json(options + " --cut-step 1.8");
+    const nlohmann::json r = run_json(options);
+    EXPECT_NEAR(r["planned_cut_mm"].get<double>(), b["cut_length_mm"].get<double>(), 1e-9)
+        << options;
+    // The margin moves the board, and so the rapids from the zero to it and back.
+    EXPECT_NEAR(r["planned_rapid_mm"].get<double>(), b["rapid_length_mm"].get<double>(), 1e-9)
+        << options;
+    EXPECT_EQ(r["feed_mm_per_s"].get<double>(), options.empty() ? 5.0 : 8.0);
+  }
+}
+
+// In a folder, a Gerber whose name says nothing is read when its X2 file function names the
+// layer, and left out with a way to name it when nothing does.
+TEST(BoardCli, AFoldersGerberWithAPlainNameIsReadByItsX2FileFunction) {
+  const std::string dir = write_board("x2");
+  std::filesystem::rename(dir + "/t-F.Cu.gbr", dir + "/layer1.gbr");  // X2: Copper,L1,Top
+  std::ofstream(dir + "/notes.gbr") << "%FSLAX46Y46*%\n%MOMM*%\nM02*\n";
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out --json --no-check --no-plot");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["islands"], 2);
+  EXPECT_EQ(r.err.find("layer1.gbr"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("notes.gbr: neither its name nor an X2 file function says copper"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("name it with --top, --bottom or --outline"), std::string::npos) << r.err;
+}
+
 // A copper file that neither X2 nor its name identifies (Eagle writes .gbx): refused with
 // the ways to name it, and run as copper with a "top:" prefix.
 TEST(BoardCli, ACopperFileWithoutAKnownNameIsNamedByItsSidePrefix) {

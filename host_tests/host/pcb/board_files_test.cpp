@@ -2,6 +2,7 @@
 // the name or the content, the reader's message naming the upload, the layers for the
 // planner (drill files merged, a layer given twice refused) and the board's name.
 #include "host/lib/pcb/board_files.h"
+#include "host/lib/pcb/pcb_file_names.h"
 
 #include <gtest/gtest.h>
 
@@ -40,6 +41,25 @@ TEST(BoardFiles, FormatAndKindComeFromTheNameOrTheContent) {
   // A forced kind wins over the name (how the server re-reads its archive).
   EXPECT_EQ(read_board_text(outline, "x.gbr", LayerKind::kCopperBottom).kind,
             LayerKind::kCopperBottom);
+}
+
+// A board folder reads a Gerber with a name that says nothing when its X2 file function
+// says copper, drill or outline (board_cli.cpp); the same mapping as the reader's.
+TEST(BoardFiles, KindFromTheX2FileFunctionInAFilesHead) {
+  EXPECT_EQ(layer_kind_from_x2("%FSLAX46Y46*%\n%TF.FileFunction,Copper,L1,Top*%\n"),
+            LayerKind::kCopperTop);
+  EXPECT_EQ(layer_kind_from_x2("G04 #@! TF.FileFunction,Copper,L2,Bot,Signal*\n"),
+            LayerKind::kCopperBottom);  // KiCad 5's comment form
+  EXPECT_EQ(layer_kind_from_x2("%TF.FileFunction, Profile ,NP*%"), LayerKind::kOutline);
+  EXPECT_EQ(layer_kind_from_x2("%TF.FileFunction,NonPlated,1,2,NPTH*%"), LayerKind::kDrill);
+  EXPECT_EQ(layer_kind_from_x2("%TF.FileFunction,Copper,L2,Inr*%"), LayerKind::kUnknown);
+  EXPECT_EQ(layer_kind_from_x2("%TF.FileFunction,Legend,Top*%"), LayerKind::kUnknown);
+  EXPECT_EQ(layer_kind_from_x2("%TF.FileFunction,Copper,L1,To"), LayerKind::kUnknown);  // cut off
+  EXPECT_EQ(layer_kind_from_x2("%FSLAX46Y46*%\n%MOMM*%\n"), LayerKind::kUnknown);
+  // What the reader takes from the whole file, the head alone gives.
+  const std::string x2 = text_of("x2_attributes.gbr");
+  EXPECT_EQ(layer_kind_from_x2(x2.substr(0, 4096)),
+            read_board_text(x2, "x.gbr", LayerKind::kUnknown).kind);
 }
 
 TEST(BoardFiles, ErrorsNameTheUploadAndTheLine) {
