@@ -61,6 +61,16 @@ struct Space {
   std::vector<InsertRef> inserts;
 };
 
+// Consecutive LINEs of one space where each starts exactly where the previous one ended
+// (how CAD programs and tracers write a contour) become one polyline, the last curve of
+// that space: a million segments then take one curve, not a million.
+struct LineChain {
+  Space* space = nullptr;  // none: the next LINE starts a new curve
+  Point2 end{0, 0};
+  int lines = 0;
+  std::string last;  // "#N (line L)" of the newest LINE in it
+};
+
 // A polyline being collected from addPolyline/addVertex calls.
 struct OpenPolyline {
   bool active = false;
@@ -101,6 +111,7 @@ class DxfReader : public DL_CreationAdapter {
   }
 
   void addBlock(const DL_BlockData& d) override {
+    end_chain();
     flush_polyline();
     block_name_ = d.name;
     in_block_ = true;
@@ -109,6 +120,7 @@ class DxfReader : public DL_CreationAdapter {
     check_finite(d.bpx, d.bpy, "base point");
   }
   void endBlock() override {
+    end_chain();
     flush_polyline();
     in_block_ = false;
   }
@@ -122,7 +134,22 @@ class DxfReader : public DL_CreationAdapter {
       warn("zero-length LINE skipped");
       return;
     }
-    add_curve("LINE", line_spline(a, b));
+    if (chain_.space == &space() && a == chain_.end) {
+      // Continues the previous LINE: one more corner of its polyline.
+      BSpline& s = space().curves.back().spline;
+      s.control.push_back(b);
+      s.knots.back() = static_cast<double>(s.control.size() - 1);
+      s.knots.push_back(s.knots.back());
+      ++chain_.lines;
+      chain_.last = "#" + std::to_string(finished_.ordinal) + " (line " +
+                    std::to_string(finished_.line) + ")";
+    } else {
+      end_chain();
+      add_curve("LINE", line_spline(a, b));
+      chain_.space = &space();
+      chain_.lines = 1;
+    }
+    chain_.end = b;
   }
 
   void addArc(const DL_ArcData& d) override {
@@ -262,9 +289,11 @@ class DxfReader : public DL_CreationAdapter {
   // Counts the entity; false when it is to be ignored (paper space). Flushes a pending
   // polyline (its SEQEND may be missing).
   bool take(const std::string& kind) {
+    if (kind != "LINE") end_chain();
     if (kind != "POLYLINE" && kind != "LWPOLYLINE") flush_polyline();
     if (!in_block_) ++counts_[kind];
     if (paper_space()) {
+      end_chain();
       if (!in_block_) ++paper_space_skipped_;
       return false;
     }
@@ -273,6 +302,7 @@ class DxfReader : public DL_CreationAdapter {
   }
 
   void skip(const std::string& kind) {
+    end_chain();
     flush_polyline();
     if (in_block_) return;
     ++counts_[kind];
@@ -337,6 +367,18 @@ class DxfReader : public DL_CreationAdapter {
     c.kind = kind;
     c.source = label();
     space().curves.push_back(std::move(c));
+  }
+
+  // The polyline of chained LINEs is complete: its source names the first and last LINE.
+  void end_chain() {
+    if (chain_.space != nullptr && chain_.lines > 1) {
+      const int more = chain_.lines - 1;
+      chain_.space->curves.back().source +=
+          (more == 1 ? std::string(" and the LINE that continues it, ")
+                     : " and the " + std::to_string(more) + " LINEs that continue it, to ") +
+          chain_.last;
+    }
+    chain_ = LineChain();
   }
 
   void flush_polyline() {
@@ -408,6 +450,7 @@ class DxfReader : public DL_CreationAdapter {
   std::map<std::string, Space> blocks_;
   Space model_;
   OpenPolyline poly_;
+  LineChain chain_;
   std::map<std::string, int> counts_;
   std::map<std::string, int> skipped_;
   int paper_space_skipped_ = 0;
@@ -606,6 +649,7 @@ void DxfReader::expand(const Space& s, const Eigen::Matrix2d& a, const Point2& b
 }
 
 Drawing DxfReader::finish() {
+  end_chain();
   flush_polyline();
   Drawing dr;
   dr.path = path_;

@@ -13,39 +13,54 @@ namespace {
 
 // Splits a clamped spline at interior knots until every piece has at most max_control
 // control points. A knot of multiplicity = degree makes the curve pass through one control
-// point, where it is cut into two clamped curves.
-std::vector<BSpline> split_to_fit(const BSpline& clamped_spline, size_t max_control) {
+// point, where it is cut into two clamped curves. Each cut works on a window of the next
+// few dozen control points (knot insertion only changes points near the knot), so a curve
+// of a million points is split in linear time.
+std::vector<BSpline> split_to_fit(const BSpline& c, size_t max_control) {
+  const size_t p = static_cast<size_t>(c.degree);
+  // Enough for the cut knot (index <= max_control), its run (< p more) and the spans that
+  // inserting it reads (p more).
+  const size_t window = max_control + 2 * p + 2;
   std::vector<BSpline> out;
-  BSpline s = clamped_spline;
-  const size_t p = static_cast<size_t>(s.degree);
-  while (s.control.size() > max_control) {
-    // Run starts (first index) of distinct interior knot values.
+  // The part not yet cut off: `head` (taken from c and perhaps changed by knot insertion),
+  // then c's control points from next_control and knots from next_knot; head always holds
+  // control count + degree + 1 knots.
+  BSpline head;
+  head.degree = c.degree;
+  size_t next_control = 0, next_knot = 0;
+  for (;;) {
+    while (head.control.size() < window && next_control < c.control.size()) {
+      head.control.push_back(c.control[next_control]);
+      if (c.rational()) head.weights.push_back(c.weights[next_control]);
+      ++next_control;
+    }
+    while (head.knots.size() < head.control.size() + p + 1)
+      head.knots.push_back(c.knots[next_knot++]);
+    if (head.control.size() <= max_control) break;
+    // The last run start (first index) of an interior knot value within the first max_control.
     size_t best = 0;
-    for (size_t i = p + 1; i < s.control.size(); ++i) {
-      if (s.knots[i] != s.knots[i - 1] && i <= max_control) best = i;
+    for (size_t i = p + 1; i <= max_control; ++i) {
+      if (head.knots[i] != head.knots[i - 1]) best = i;
     }
     if (best == 0) throw ConversionError("no interior knot to split the curve at");
-    const double u = s.knots[best];
+    const double u = head.knots[best];
     size_t mult = 0;
-    for (double k : s.knots) mult += (k == u) ? 1 : 0;
-    for (; mult < p; ++mult) s = insert_knot(s, u);
+    while (best + mult < head.knots.size() && head.knots[best + mult] == u) ++mult;
+    for (; mult < p; ++mult) head = insert_knot(head, u);
     // Joint control point: index best - 1 (the run of u starts at knot index best).
-    BSpline left, right;
-    left.degree = right.degree = s.degree;
-    left.control.assign(s.control.begin(), s.control.begin() + best);
-    right.control.assign(s.control.begin() + best - 1, s.control.end());
-    if (s.rational()) {
-      left.weights.assign(s.weights.begin(), s.weights.begin() + best);
-      right.weights.assign(s.weights.begin() + best - 1, s.weights.end());
-    }
-    left.knots.assign(s.knots.begin(), s.knots.begin() + best + p);
+    BSpline left;
+    left.degree = c.degree;
+    left.control.assign(head.control.begin(), head.control.begin() + best);
+    if (c.rational()) left.weights.assign(head.weights.begin(), head.weights.begin() + best);
+    left.knots.assign(head.knots.begin(), head.knots.begin() + best + p);
     left.knots.push_back(u);
-    right.knots.assign(s.knots.begin() + best - 1, s.knots.end());
-    right.knots.front() = u;
-    out.push_back(left);
-    s = right;
+    out.push_back(std::move(left));
+    head.control.erase(head.control.begin(), head.control.begin() + best - 1);
+    if (c.rational()) head.weights.erase(head.weights.begin(), head.weights.begin() + best - 1);
+    head.knots.erase(head.knots.begin(), head.knots.begin() + best - 1);
+    head.knots.front() = u;
   }
-  out.push_back(s);
+  out.push_back(std::move(head));
   return out;
 }
 

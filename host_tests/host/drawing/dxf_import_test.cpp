@@ -45,6 +45,58 @@ TEST(DxfImport, LineBecomesDegreeOneSplineInMm) {
   EXPECT_TRUE(d.warnings.empty());
 }
 
+// LINEs that continue one another in the file (each starts where the previous one ended,
+// as CAD programs and tracers write a contour) are one polyline; a gap, a LINE drawn the
+// other way or another entity between them starts a new curve.
+TEST(DxfImport, ChainedLinesBecomeOnePolyline) {
+  const std::string point = Groups().g(0, "POINT").g(8, "0").pt(10, 6, 0).str();
+  const std::string e = line_entity(0, 0, 1, 0) + line_entity(1, 0, 1, 1) +
+                        line_entity(1, 1, 0, 1) + line_entity(0, 1, 0, 0) +  // closed square
+                        line_entity(5, 0, 6, 0) +                            // after a gap
+                        line_entity(7, 0, 6, 0) +                            // drawn the other way
+                        point + line_entity(6, 0, 6, 5);  // continues, but a POINT comes first
+  const Drawing d = import_text("chain.dxf", dxf_text(e));
+  ASSERT_EQ(d.curves.size(), 4u);
+  const BSpline& square = d.curves[0].spline;
+  EXPECT_EQ(square.degree, 1);
+  const std::vector<Point2> corners = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}};
+  ASSERT_EQ(square.control.size(), corners.size());
+  for (size_t i = 0; i < corners.size(); ++i) EXPECT_EQ(square.control[i], corners[i]) << i;
+  EXPECT_EQ(square.knots, (std::vector<double>{0, 0, 1, 2, 3, 4, 4}));
+  EXPECT_EQ(check_bspline(square), "");
+  EXPECT_EQ(d.curves[0].kind, "LINE");
+  EXPECT_NE(d.curves[0].source.find("LINE #1 ("), std::string::npos) << d.curves[0].source;
+  EXPECT_NE(d.curves[0].source.find("and the 3 LINEs that continue it, to #4 (line "),
+            std::string::npos)
+      << d.curves[0].source;
+  for (size_t c = 1; c < 4; ++c) {
+    EXPECT_EQ(d.curves[c].spline.control.size(), 2u) << c;
+    EXPECT_EQ(d.curves[c].source.find("continue"), std::string::npos) << d.curves[c].source;
+  }
+  EXPECT_EQ(d.curves[3].spline.control[1], Point2(6, 5));
+}
+
+// In a block the chain is the block's own: inserted, it is one curve; model-space LINEs
+// around the block definition do not join it.
+TEST(DxfImport, ChainedLinesInABlockStayInTheBlock) {
+  Groups b;
+  b.g(0, "BLOCK").g(8, "0").g(2, "B").g(70, 0).pt(10, 0, 0).g(3, "B");
+  const std::string blocks = b.str() + line_entity(1, 1, 3, 1) + line_entity(3, 1, 3, 2) +
+                             Groups().g(0, "ENDBLK").g(8, "0").str();
+  const std::string ins =
+      Groups().g(0, "INSERT").g(5, "90").g(8, "0").g(2, "B").pt(10, 10, 0).str();
+  const Drawing d =
+      import_text("chain_block.dxf", dxf_text(line_entity(3, 2, 4, 2) + ins, 4, blocks));
+  ASSERT_EQ(d.curves.size(), 2u);
+  size_t chained = d.curves[0].spline.control.size() == 3 ? 0 : 1;
+  ASSERT_EQ(d.curves[chained].spline.control.size(), 3u);
+  EXPECT_EQ(d.curves[chained].spline.control[2], Point2(13, 2));
+  EXPECT_NE(d.curves[chained].source.find("and the LINE that continues it, #2 (line "),
+            std::string::npos)
+      << d.curves[chained].source;
+  EXPECT_EQ(d.curves[1 - chained].spline.control.size(), 2u);
+}
+
 struct UnitCase {
   int insunits;
   double mm_per_unit;

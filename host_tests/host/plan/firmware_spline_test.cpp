@@ -130,6 +130,66 @@ TEST(FirmwareSpline, CurveWithMoreThan64ControlPointsIsSplitWithoutChangingShape
   EXPECT_LT((end_point(from_firmware_spline(f.back())) - end_point(s)).norm(), 0.001);
 }
 
+// A DXF contour of chained LINEs is one polyline of any length: its pieces are slices of it
+// that keep every vertex, in order, each joined to the next at a shared vertex.
+TEST(FirmwareSpline, LongPolylineIsSlicedAtItsVertices) {
+  BSpline s;
+  s.degree = 1;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) s.control.emplace_back(0.01 * i, 5.0 + 3.0 * std::sin(i * 0.01));
+  s.knots.push_back(0);
+  for (int i = 0; i < n; ++i) s.knots.push_back(i);
+  s.knots.push_back(n - 1);
+  const std::vector<core::Spline> f = to_firmware_splines(s);
+  ASSERT_EQ(f.size(), static_cast<size_t>((n - 1 + core::kMaxControlPoints - 2) /
+                                          (core::kMaxControlPoints - 1)));
+  size_t vertex = 0;
+  for (size_t k = 0; k < f.size(); ++k) {
+    EXPECT_EQ(core::validate_spline(f[k]), core::GeometryError::kOk);
+    if (k > 0) --vertex;  // the joint is the previous piece's last vertex
+    for (int i = 0; i < f[k].control_count; ++i, ++vertex) {
+      ASSERT_EQ(f[k].control[i].x_um, std::lround(s.control[vertex].x() * 1000)) << k << " " << i;
+      ASSERT_EQ(f[k].control[i].y_um, std::lround(s.control[vertex].y() * 1000)) << k << " " << i;
+    }
+  }
+  EXPECT_EQ(vertex, static_cast<size_t>(n));
+}
+
+// A long rational cubic with single, double and triple knots: cut where it passes through a
+// control point already, or where knots are inserted, without changing the shape.
+TEST(FirmwareSpline, LongRationalCubicWithMixedKnotsIsSplitWithoutChangingShape) {
+  BSpline s;
+  s.degree = 3;
+  const int n = 300;
+  for (int i = 0; i < n; ++i) {
+    s.control.emplace_back(0.3 * i, 20.0 + 8.0 * std::sin(i * 0.17) + (i % 7 == 0 ? 2.0 : 0.0));
+    s.weights.push_back(1.0 + 0.4 * std::sin(i * 0.23));
+  }
+  s.knots.assign(4, 0.0);
+  double t = 0;
+  while (s.knots.size() < static_cast<size_t>(n)) {
+    t += 1.0 + 0.5 * std::sin(t);
+    const size_t copies = s.knots.size() % 37 == 0 ? 3 : (s.knots.size() % 11 == 0 ? 2 : 1);
+    for (size_t c = 0; c < copies && s.knots.size() < static_cast<size_t>(n); ++c)
+      s.knots.push_back(t);
+  }
+  s.knots.insert(s.knots.end(), 4, t + 1.0);
+  ASSERT_EQ(check_bspline(s), "");
+  const std::vector<core::Spline> f = to_firmware_splines(s);
+  ASSERT_GE(f.size(), 5u);
+  for (size_t k = 0; k < f.size(); ++k) {
+    EXPECT_LE(f[k].control_count, core::kMaxControlPoints);
+    EXPECT_EQ(core::validate_spline(f[k]), core::GeometryError::kOk);
+    if (k > 0) {
+      EXPECT_EQ(f[k].control[0].x_um, f[k - 1].control[f[k - 1].control_count - 1].x_um);
+      EXPECT_EQ(f[k].control[0].y_um, f[k - 1].control[f[k - 1].control_count - 1].y_um);
+    }
+  }
+  EXPECT_LT(max_deviation_mm(s, f), 0.001);
+  EXPECT_LT((start_point(from_firmware_spline(f.front())) - start_point(s)).norm(), 0.001);
+  EXPECT_LT((end_point(from_firmware_spline(f.back())) - end_point(s)).norm(), 0.001);
+}
+
 TEST(FirmwareSpline, CoordinateBeyondOneMetreIsRefused) {
   const BSpline s = line_spline({0, 0}, {1500, 0});
   try {
