@@ -485,7 +485,7 @@ std::string input_name(const std::string& input) {
 }
 
 void add_board_options(CLI::App* cmd, BoardArgs* a) {
-  const std::string g = "PCB boards";
+  const std::string g = kBoardOptionsGroup;
   cmd->add_option("--tool-width", a->tool_width_mm, "isolation: V-bit width at the depth, mm")
       ->group(g)
       ->check(CLI::Range(0.01, 5.0))

@@ -43,7 +43,8 @@ struct BoardArgs {
   std::string side;  // "top", "bottom" or empty (the side whose copper is given)
 };
 
-// Adds the board options to a command, in their own group.
+// Adds the board options to a command, in their own group (kBoardOptionsGroup).
+inline constexpr const char* kBoardOptionsGroup = "PCB boards";
 void add_board_options(CLI::App* cmd, BoardArgs* args);
 
 // What `run` and `send` already carry for drawings.

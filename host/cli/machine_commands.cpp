@@ -86,8 +86,26 @@ struct PlanArgs {
   BoardArgs board;
 };
 
+// Options for drawings only (DXF, G-code): PCB files are cut at their own size and depths.
+const char* const kDrawingGroup = "Drawings (DXF, G-code)";
+
+// An option of the other kind of input is refused rather than ignored.
+void refuse_options_of_the_other_input(const CLI::App& cmd, bool pcb) {
+  for (const CLI::Option* o : cmd.get_options()) {
+    if (o->count() == 0) continue;
+    if (pcb && o->get_group() == kDrawingGroup)
+      throw CLI::ValidationError(o->get_name() + " is for drawings (DXF, G-code), not PCB files");
+    if (!pcb && o->get_group() == kBoardOptionsGroup)
+      throw CLI::ValidationError(o->get_name() +
+                                 " is for PCB files (Gerber, Excellon, a board folder), not "
+                                 "drawings");
+  }
+}
+
 void add_plan_options(CLI::App* cmd, PlanArgs* a) {
-  cmd->add_option("FILE", a->file, "drawing (DXF, G-code)")->required();
+  cmd->add_option("FILE", a->file,
+                  "drawing (DXF, G-code) or PCB files (Gerber, Excellon, a board folder)")
+      ->required();
   CLI::Option* feed = cmd->add_option("--feed", a->feed_mm_s,
                                       "cutting feed in mm/s (PCB isolation: 5 unless given)")
                           ->check(CLI::Range(0.1, 60.0))
@@ -95,43 +113,57 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   cmd->add_option("--tol", a->tol_mm, "chord tolerance of the generated points in mm")
       ->check(CLI::Range(0.001, 1.0))
       ->capture_default_str();
-  cmd->add_option("--scale", a->scale, "scale factor applied to the drawing")
-      ->check(CLI::Range(1e-3, 1e3))
-      ->capture_default_str();
   CLI::Option* margin =
       cmd->add_option("--margin", a->margin_mm,
                       "offset of the drawing from the zero corner, mm (PCB: 5 unless given)")
           ->check(CLI::Range(0.0, 100.0))
           ->capture_default_str();
   cmd->add_option("--work", a->work_mm, "work area W H in mm (default A4)")->expected(2);
+  cmd->add_option("--z-up", a->z_up_mm, "travel height in mm")->capture_default_str();
+  const std::string g = kDrawingGroup;
+  cmd->add_option("--scale", a->scale, "scale factor applied to the drawing")
+      ->group(g)
+      ->check(CLI::Range(1e-3, 1e3))
+      ->capture_default_str();
   cmd->add_option("--chain-tol", a->chain_tol_mm, "join curves whose ends are closer, mm")
+      ->group(g)
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  cmd->add_flag("--no-reorder", a->no_reorder, "trace curves in drawing order");
-  cmd->add_option("--z-up", a->z_up_mm, "travel height in mm")->capture_default_str();
-  cmd->add_option("--z-down", a->z_down_mm, "cutting depth in mm")->capture_default_str();
+  cmd->add_flag("--no-reorder", a->no_reorder, "trace curves in drawing order")->group(g);
+  cmd->add_option("--z-down", a->z_down_mm, "cutting depth in mm")->group(g)->capture_default_str();
   cmd->add_option("--offset", a->offset_mm,
                   "X Y in mm: machine = drawing + offset (keeps the file's zero; no --margin)")
+      ->group(g)
       ->expected(2)
       ->excludes("--margin");
   cmd->add_option("--tool-side", a->tool_side,
                   "cut left or right of the drawn path (tool-radius offset on the controller)")
+      ->group(g)
       ->check(CLI::IsMember({"centre", "left", "right"}))
       ->capture_default_str();
   cmd->add_option("--tool-radius", a->tool_radius_mm, "tool radius in mm for --tool-side")
+      ->group(g)
       ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
   cmd->add_option("--fit-tol", a->fit_tol_mm,
                   "G-code: fit runs of short G1 moves within this many mm (0: send each move)")
+      ->group(g)
       ->check(CLI::Range(0.0, 0.1))
       ->capture_default_str();
   cmd->add_flag("--drill-as-z-moves", a->drill_as_z_moves,
-                "G-code drilling cycles as plain Z moves instead of the drill command");
+                "G-code drilling cycles as plain Z moves instead of the drill command")
+      ->group(g);
   add_board_options(cmd, &a->board);
   // PCB files take `engraver board`'s defaults where no option is given: the board that
-  // `board` showed is the board that runs.
-  cmd->parse_complete_callback([a, feed, margin] {
-    if (!is_pcb_input(a->file)) return;
+  // `board` showed is the board that runs. A missing file is left to the reader to name.
+  cmd->parse_complete_callback([cmd, a, feed, margin] {
+    std::string first = a->file.substr(0, a->file.find(','));  // FILE or "top:A,B"
+    for (const char* side : {"top:", "bottom:"})
+      if (first.rfind(side, 0) == 0) first = first.substr(std::string(side).size());
+    if (!std::filesystem::exists(first)) return;
+    const bool pcb = is_pcb_input(a->file);
+    refuse_options_of_the_other_input(*cmd, pcb);
+    if (!pcb) return;
     const MachineDefaults board;
     if (feed->count() == 0) a->feed_mm_s = board.feed_mm_s;
     if (margin->count() == 0) a->margin_mm = board.margin_mm;

@@ -161,6 +161,25 @@ TEST(BoardCli, RunPlansTheBoardThatTheBoardCommandShowed) {
   }
 }
 
+// An option of the other kind of input is refused, not ignored: a board is cut at its own
+// size and depths, a drawing has no copper to isolate.
+TEST(BoardCli, OptionsForTheOtherKindOfInputAreRefused) {
+  const std::string dir = write_board("options");
+  const ToolRun scaled = run("run " + dir + " -o " + dir + "/out --scale 2");
+  EXPECT_EQ(scaled.code, 2) << scaled.err;
+  EXPECT_NE(scaled.err.find("--scale is for drawings (DXF, G-code), not PCB files"),
+            std::string::npos)
+      << scaled.err;
+  const std::string dxf = dir + "/line.dxf";
+  std::ofstream(dxf) << "0\nSECTION\n2\nENTITIES\n0\nLINE\n8\n0\n10\n1\n20\n1\n11\n9\n21\n1\n"
+                        "0\nENDSEC\n0\nEOF\n";
+  const ToolRun widened = run("run " + dxf + " -o " + dir + "/out --tool-width 0.1");
+  EXPECT_EQ(widened.code, 2) << widened.err;
+  EXPECT_NE(widened.err.find("--tool-width is for PCB files"), std::string::npos) << widened.err;
+  const ToolRun plain = run("run " + dxf + " -o " + dir + "/out --scale 2");
+  EXPECT_EQ(plain.code, 0) << plain.err;
+}
+
 // In a folder, a Gerber whose name says nothing is read when its X2 file function names the
 // layer, and left out with a way to name it when nothing does.
 TEST(BoardCli, AFoldersGerberWithAPlainNameIsReadByItsX2FileFunction) {
