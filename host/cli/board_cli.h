@@ -47,9 +47,11 @@ struct BoardArgs {
 inline constexpr const char* kBoardOptionsGroup = "PCB boards";
 void add_board_options(CLI::App* cmd, BoardArgs* args);
 
-// What `run` and `send` already carry for drawings.
+// The machine options `engraver board` plans with, which `run` and `send` also take for PCB
+// files where none is given.
 struct MachineDefaults {
   double feed_mm_s = 5.0;
+  double chord_tol_mm = pcb::kBoardChordToleranceMm;  // of the controller's points (#U)
   double z_up_mm = 2.0;
   double margin_mm = 5.0;
   double work_w_mm = 297.0, work_h_mm = 210.0;

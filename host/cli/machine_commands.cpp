@@ -110,9 +110,11 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
                                       "cutting feed in mm/s (PCB isolation: 5 unless given)")
                           ->check(CLI::Range(0.1, 60.0))
                           ->capture_default_str();
-  cmd->add_option("--tol", a->tol_mm, "chord tolerance of the generated points in mm")
-      ->check(CLI::Range(0.001, 1.0))
-      ->capture_default_str();
+  CLI::Option* tol =
+      cmd->add_option("--tol", a->tol_mm,
+                      "chord tolerance of the generated points in mm (PCB: 0.001 unless given)")
+          ->check(CLI::Range(0.001, 1.0))
+          ->capture_default_str();
   CLI::Option* margin =
       cmd->add_option("--margin", a->margin_mm,
                       "offset of the drawing from the zero corner, mm (PCB: 5 unless given)")
@@ -156,7 +158,7 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   add_board_options(cmd, &a->board);
   // PCB files take `engraver board`'s defaults where no option is given: the board that
   // `board` showed is the board that runs. A missing file is left to the reader to name.
-  cmd->parse_complete_callback([cmd, a, feed, margin] {
+  cmd->parse_complete_callback([cmd, a, feed, tol, margin] {
     std::string first = a->file.substr(0, a->file.find(','));  // FILE or "top:A,B"
     for (const char* side : {"top:", "bottom:"})
       if (first.rfind(side, 0) == 0) first = first.substr(std::string(side).size());
@@ -166,14 +168,21 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
     if (!pcb) return;
     const MachineDefaults board;
     if (feed->count() == 0) a->feed_mm_s = board.feed_mm_s;
+    if (tol->count() == 0) a->tol_mm = board.chord_tol_mm;
     if (margin->count() == 0) a->margin_mm = board.margin_mm;
   });
 }
 
 JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
-  if (is_pcb_input(a.file))
-    return plan_pcb_input(a.file, a.board,
-                          {a.feed_mm_s, a.z_up_mm, a.margin_mm, a.work_mm[0], a.work_mm[1]});
+  if (is_pcb_input(a.file)) {
+    MachineDefaults m;
+    m.feed_mm_s = a.feed_mm_s;
+    m.z_up_mm = a.z_up_mm;
+    m.margin_mm = a.margin_mm;
+    m.work_w_mm = a.work_mm[0];
+    m.work_h_mm = a.work_mm[1];
+    return plan_pcb_input(a.file, a.board, m);
+  }
   *drawing = import_drawing(a.file);
   for (const std::string& w : drawing->warnings) std::cerr << "engraver: warning: " << w << "\n";
   PlanOptions o;
@@ -619,6 +628,7 @@ void run_run(const RunArgs& a) {
   j["traced_cut_mm"] = r.cut_mm;
   j["traced_rapid_mm"] = r.rapid_mm;
   j["feed_mm_per_s"] = feed;
+  j["chord_tolerance_mm"] = a.plan.tol_mm;
   j["simulated_job_s"] = r.motion_s;
   j["simulated_cut_s"] = r.cut_s;
   j["cut_length_over_feed_s"] = ideal_s;

@@ -25,6 +25,12 @@ struct BoardLayers {
   const PcbLayer* outline = nullptr;
 };
 
+// The chord tolerance a board is sent with (#U): the controller's points cut inside a curve
+// by up to this much, toward the copper the curve goes round, so it comes out of the
+// isolation clearance. At 5 um the A64-OlinuXino's top isolation touched copper in the
+// simulator (-3.4 um); at 1 um its least clearance is +1.4 um (docs/performance.md).
+constexpr double kBoardChordToleranceMm = 0.001;
+
 struct BoardOptions {
   BoardSide side = BoardSide::kTop;  // kBottom: the bottom copper, everything mirrored in x
   IsolationOptions isolation;        // tool width, passes, overlap, mill_all

@@ -1,7 +1,8 @@
 // Job planning for the server: import, plan, estimate, describe.
 #include "host/lib/server/job_planning.h"
 
-#include <cmath>  // std::lround
+#include <algorithm>  // std::min
+#include <cmath>      // std::lround
 
 #include "firmware/config/machine_config.h"
 #include "host/lib/drawing/drawing.h"
@@ -69,10 +70,12 @@ JobPlan plan_file(const std::string& path, const std::string& display_name,
   }
 }
 
-EncodeOptions encode_options(const JobPlanSettings& settings, const std::string& title) {
+EncodeOptions encode_options(const JobRecord& job) {
   EncodeOptions e;
-  e.chord_tolerance_um = static_cast<uint16_t>(std::lround(settings.tol_mm * 1000.0));
-  e.title = title;
+  double tol_mm = job.settings.tol_mm;
+  if (is_board_job(job)) tol_mm = std::min(tol_mm, pcb::kBoardChordToleranceMm);
+  e.chord_tolerance_um = static_cast<uint16_t>(std::lround(tol_mm * 1000.0));
+  e.title = std::filesystem::path(job.name).stem().string();
   return e;
 }
 

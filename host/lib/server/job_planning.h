@@ -18,8 +18,10 @@ namespace host::server {
 // `display_name` instead of `path` (the archive path means nothing to the person).
 JobPlan plan_file(const std::string& path, const std::string& display_name,
                   const JobPlanSettings& settings, double work_w_mm, double work_h_mm);
-// The encoder's options for the job (title, chord tolerance).
-EncodeOptions encode_options(const JobPlanSettings& settings, const std::string& title);
+// The encoder's options for the job: its name (without extension) as the title, and its
+// chord tolerance, for a board at most pcb::kBoardChordToleranceMm (the controller's chords
+// come out of the isolation clearance).
+EncodeOptions encode_options(const JobRecord& job);
 // Estimated run time: cut length at the feed, travel at the rapid rate, pen lifts.
 double planned_seconds(const JobPlan& plan, const JobPlanSettings& settings);
 // The plan for the archive: summary and every step.

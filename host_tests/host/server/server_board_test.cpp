@@ -53,6 +53,22 @@ void expect_refused(const httplib::Result& r, int status, const std::string& nee
   EXPECT_NE(body.value("error", "").find(needle), std::string::npos) << r->body;
 }
 
+// A board is sent with points at most 1 um off its curves, whatever tol_mm says: the
+// controller's chords come out of the isolation clearance. A drawing keeps its tol_mm.
+TEST(ServerBoards, ABoardIsSentWithTheBoardsChordTolerance) {
+  JobRecord board;
+  board.name = "blinky.zip";
+  board.input_file = kBoardManifest;
+  board.settings.tol_mm = 0.005;
+  EXPECT_EQ(encode_options(board).chord_tolerance_um, 1);
+  EXPECT_EQ(encode_options(board).title, "blinky");
+  JobRecord drawing = board;
+  drawing.input_file = "input.dxf";
+  EXPECT_EQ(encode_options(drawing).chord_tolerance_um, 5);
+  drawing.settings.tol_mm = 0.002;
+  EXPECT_EQ(encode_options(drawing).chord_tolerance_um, 2);
+}
+
 TEST(ServerBoards, BoardUploadedAsSeveralFilesRunsOnASimulatedMachineAndIsArchived) {
   test::TempDir dir;
   SimRig sim(false);

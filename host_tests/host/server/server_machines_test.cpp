@@ -125,7 +125,7 @@ host::test::CutPath uninterrupted_cut(ServerRig& server, int64_t id, JobPlan* pl
   *plan_out = plan_file((server.data().job_dir(rec->key) / rec->input_file).string(), rec->name,
                         rec->settings, spec.fit.work_width_mm, spec.fit.work_height_mm);
   sim::SimJobOptions so;
-  so.encode = encode_options(rec->settings, fs::path(rec->name).stem().string());
+  so.encode = encode_options(*rec);
   const sim::SimJobResult ref = sim::run_sim_job(*plan_out, so);
   EXPECT_EQ(ref.outcome, JobOutcome::kCompleted) << ref.message;
   return host::test::cut_path(ref.trace, *plan_out);
