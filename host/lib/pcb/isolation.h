@@ -22,8 +22,9 @@ struct IsolationOptions {
                                     // bounds grown by two tool widths
   double arc_tolerance_mm = 0.001;  // chord error of Clipper's round joins
   // Kept between the tool's edge and the copper on top of the tool radius: room for the curve
-  // fit (2 um) and the machine's contour error at corners (8 um on the simulated machine), so
-  // the tool that really cuts does not touch copper. Narrow gaps are judged with it too.
+  // fit (2 um) and the machine's contour error (up to 7 um on the simulated machine with the
+  // board's 1 um chords, kBoardChordToleranceMm), so the tool that really cuts does not touch
+  // copper. Narrow gaps are judged with it too.
   double clearance_mm = 0.008;
 };
 
