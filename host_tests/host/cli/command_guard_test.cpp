@@ -100,6 +100,15 @@ TEST(CommandGuard, ImportErrorIsAnInputError) {
   EXPECT_EQ(r.err, "engraver: plate.dxf: line 3: bad\n");
 }
 
+// A reader's message may quote a line of a binary file: its control bytes and broken UTF-8
+// reach the terminal as \xNN, never as escape sequences; UTF-8 text stays as it is.
+TEST(CommandGuard, BytesThatWouldDisturbATerminalAreShownAsHex) {
+  const GuardRun r = info_throwing(
+      [] { throw ImportError("g.gbr:1: unexpected '\x1b[2J' in '\xff\xfe\t0.5 \xc2\xb5m'"); });
+  EXPECT_EQ(r.code, kExitUsage);
+  EXPECT_EQ(r.err, "engraver: g.gbr:1: unexpected '\\x1B[2J' in '\\xFF\\xFE\t0.5 \xc2\xb5m'\n");
+}
+
 TEST(CommandGuard, PlanErrorIsARefusedJob) {
   const GuardRun r = info_throwing([] { throw PlanError("outside the work area"); });
   EXPECT_EQ(r.code, kExitJobFailed);
