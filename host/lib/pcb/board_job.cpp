@@ -117,7 +117,7 @@ class StepWriter {
       spindle(false);
       PlanStep s;
       s.kind = PlanStep::kPause;
-      s.text = label;
+      s.set_text(label);
       plan_->steps.push_back(s);
       ++report->tool_changes;
     }
@@ -176,7 +176,7 @@ class StepWriter {
     for (size_t k = 0; k < pieces.size(); ++k) {
       PlanStep s;
       s.kind = PlanStep::kSpline;
-      s.spline = CompactSpline(pieces[k]);
+      s.set_spline(CompactSpline(pieces[k]));
       s.to = um(k + 1 == pieces.size() ? end_point(pc.spline)
                                        : end_point(from_firmware_spline(pieces[k])));
       s.feed_um_per_s = um(feed);
@@ -500,7 +500,8 @@ BoardJob plan_board(const BoardLayers& layers, const BoardOptions& o) {
       std::vector<Point2> pts;
       for (const PlanStep& s : plan.steps) {
         if (s.kind != PlanStep::kSpline || s.curve != static_cast<int>(i)) continue;
-        const std::vector<Point2> piece = sample(from_firmware_spline(s.spline.firmware()), 0.0005);
+        const std::vector<Point2> piece =
+            sample(from_firmware_spline(s.spline().firmware()), 0.0005);
         pts.insert(pts.end(), piece.begin() + (pts.empty() ? 0 : 1), piece.end());
       }
       if (plan.curves[i].chained && !job.isolation_paths_mm.empty()) {

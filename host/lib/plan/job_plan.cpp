@@ -13,6 +13,30 @@ namespace host {
 
 using namespace plan_detail;
 
+const CompactSpline& PlanStep::spline() const {
+  static const CompactSpline kNone;
+  return extra_ ? extra_->spline : kNone;
+}
+
+void PlanStep::set_spline(CompactSpline spline) {
+  auto e = std::make_shared<Extra>();
+  e->spline = std::move(spline);
+  if (extra_) e->text = extra_->text;
+  extra_ = std::move(e);
+}
+
+const std::string& PlanStep::text() const {
+  static const std::string kNone;
+  return extra_ ? extra_->text : kNone;
+}
+
+void PlanStep::set_text(std::string text) {
+  auto e = std::make_shared<Extra>();
+  e->text = std::move(text);
+  if (extra_) e->spline = extra_->spline;
+  extra_ = std::move(e);
+}
+
 // Defined in program_plan.cpp: the planner for programs (G-code), which keeps their order.
 JobPlan plan_program(const Drawing& drawing, const PlanOptions& options);
 

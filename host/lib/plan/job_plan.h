@@ -7,6 +7,7 @@
 #include <stdint.h>  // int32_t
 
 #include <functional>  // std::function
+#include <memory>      // std::shared_ptr
 #include <stdexcept>   // std::runtime_error
 #include <string>      // std::string
 #include <vector>      // std::vector
@@ -86,12 +87,26 @@ struct PlanStep {
   int32_t z_um = 0;            // kPenUp, kPenDown
   int32_t feed_um_per_s = 0;   // kPenDown, kFeed, kSpline
   int32_t tool_offset_um = 0;  // kSpline, kFeed: signed offset, > 0 left of travel, < 0 right
-  CompactSpline spline;        // kSpline only (validated, in machine micrometres); empty else
-  std::string text;            // kPause: operator message (LCD, at most 16 characters used)
   uint32_t dwell_ms = 0;       // kDwell
-  bool spindle_on = false;     // kSpindle
   int32_t z_start_um = 0;      // kDrill: height above the board where the plunge starts
   int curve = -1;              // index into JobPlan::curves of the curve this step draws
+  bool spindle_on = false;     // kSpindle
+
+  // kSpline: the curve (validated, in machine micrometres); empty for every other kind.
+  const CompactSpline& spline() const;
+  void set_spline(CompactSpline spline);
+  // kPause: the operator's message (LCD, at most 16 characters used); empty otherwise.
+  const std::string& text() const;
+  void set_text(std::string text);
+
+ private:
+  // Only spline and pause steps have these, so the others (a million feeds in a large job)
+  // stay small. Never changed once made: copies of a step share them.
+  struct Extra {
+    CompactSpline spline;
+    std::string text;
+  };
+  std::shared_ptr<const Extra> extra_;
 };
 
 // A planned curve: the drawing curve in the machine frame (mm), in the direction drawn.

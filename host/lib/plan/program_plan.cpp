@@ -223,7 +223,7 @@ class ProgramPlanner {
     lift_to(to_um(z));
     PlanStep p;
     p.kind = PlanStep::kPause;
-    p.text = lcd_text(op);
+    p.set_text(lcd_text(op));
     push(p);
   }
 

@@ -86,7 +86,7 @@ pcb::BoardJob plan(const pcb::BoardFileSet& set, const pcb::BoardOptions& o) {
   if (!job.report.first_tool.empty()) {
     PlanStep mount;
     mount.kind = PlanStep::kPause;
-    mount.text = job.report.first_tool;
+    mount.set_text(job.report.first_tool);
     job.plan.steps.insert(job.plan.steps.begin(), mount);
   }
   return job;

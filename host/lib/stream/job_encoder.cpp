@@ -28,16 +28,16 @@ uint16_t feed16(int32_t feed_um_per_s, int step) {
 void append_spline(const PlanStep& s, int index, unsigned max_payload, bool compact,
                    std::vector<QueuedCommand>* out) {
   proto::SplineHeaderCmd header{};
-  header.degree = s.spline.degree;
-  header.rational = s.spline.rational;
-  const size_t control_count = s.spline.control.size();
-  const size_t knot_count = s.spline.knot.size();
+  header.degree = s.spline().degree;
+  header.rational = s.spline().rational;
+  const size_t control_count = s.spline().control.size();
+  const size_t knot_count = s.spline().knot.size();
   header.control_count = static_cast<uint16_t>(control_count);
   header.knot_count = static_cast<uint16_t>(knot_count);
   header.feed_um_per_s = feed16(s.feed_um_per_s, index);
   header.tool_offset_um = s.tool_offset_um;
   out->push_back(encode_command(header, index, s.curve));
-  append_spline_data(s.spline.firmware(), index, s.curve, max_payload, compact, out);
+  append_spline_data(s.spline().firmware(), index, s.curve, max_payload, compact, out);
 }
 
 // #P with the operator message: the LCD row holds 16 characters, the rest is cut; characters
@@ -73,7 +73,7 @@ void check_step_fits(const PlanStep& s, const proto::SessionReply& c, int step) 
       check_travel(s.to.y_um, c.travel_y_um, 'Y', step);
       break;
     case PlanStep::kSpline:
-      for (const core::ControlPoint& p : s.spline.control) {
+      for (const core::ControlPoint& p : s.spline().control) {
         check_travel(p.x_um, c.travel_x_um, 'X', step);
         check_travel(p.y_um, c.travel_y_um, 'Y', step);
       }
@@ -110,6 +110,8 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
     throw PlanError(fmt::format("controller payload {} bytes is too small", options.max_payload));
   }
   std::vector<QueuedCommand> out;
+  // At least one command per step: a million feeds then grow no copy of the list.
+  out.reserve(plan.steps.size() + 8);
   // Job numbering from here (the controller reports progress by it; send --resume).
   out.push_back(
       encode_command(proto::JobMarkCmd{0, 0, 0}, -1, -1));  // its job_id is set at the end
@@ -158,7 +160,7 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
           // The controller offsets curves only: a straight line with an offset goes as a
           // degree-1 spline from where the tool is.
           PlanStep line = s;
-          line.spline = CompactSpline(straight_spline(from, s.to));
+          line.set_spline(CompactSpline(straight_spline(from, s.to)));
           append_spline(line, index, options.max_payload, options.compact_splines, &out);
           break;
         }
@@ -170,7 +172,7 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
         append_spline(s, index, options.max_payload, options.compact_splines, &out);
         break;
       case PlanStep::kPause:
-        out.push_back(encode_command(pause_command(s.text), index, s.curve));
+        out.push_back(encode_command(pause_command(s.text()), index, s.curve));
         break;
       case PlanStep::kDwell:
         // Longer than one #W can carry: several in a row (nothing happens between them).

@@ -76,7 +76,7 @@ TEST(BoardJob, ContoursGoOutAsArcsAndLinesFarSmallerThanTheirVertices) {
   EXPECT_LT(controls * 4, job.report.isolation_vertices);
   for (const PlanStep& s : job.plan.steps) {
     if (s.kind == PlanStep::kSpline)
-      EXPECT_EQ(core::validate_spline(s.spline.firmware()), core::GeometryError::kOk);
+      EXPECT_EQ(core::validate_spline(s.spline().firmware()), core::GeometryError::kOk);
   }
 }
 
@@ -89,8 +89,8 @@ TEST(BoardJob, DrillsEveryHoleWithAPauseNamingEachNewTool) {
   std::vector<std::string> pauses;
   for (const PlanStep& s : job.plan.steps) {
     if (s.kind == PlanStep::kPause) {
-      pauses.push_back(s.text);
-      EXPECT_LE(s.text.size(), 16u);
+      pauses.push_back(s.text());
+      EXPECT_LE(s.text().size(), 16u);
     }
   }
   EXPECT_EQ(pauses, (std::vector<std::string>{"Drill 0.80mm", "Drill 1.00mm", "Cutter 1.00mm"}));

@@ -101,9 +101,9 @@ TEST(JobPlan, SplineStepsCarryValidFirmwareSplinesStartingAtTheRapidTarget) {
     if (s.kind == PlanStep::kRapid && !rapid) rapid = &s;
     if (s.kind == PlanStep::kSpline) {
       ++splines;
-      EXPECT_EQ(core::validate_spline(s.spline.firmware()), core::GeometryError::kOk);
+      EXPECT_EQ(core::validate_spline(s.spline().firmware()), core::GeometryError::kOk);
       EXPECT_EQ(s.feed_um_per_s, 10000);
-      const Point2 start = start_point(from_firmware_spline(s.spline.firmware()));
+      const Point2 start = start_point(from_firmware_spline(s.spline().firmware()));
       ASSERT_NE(rapid, nullptr);
       EXPECT_NEAR(start.x() * 1000, rapid->to.x_um, 1.0);
       EXPECT_NEAR(start.y() * 1000, rapid->to.y_um, 1.0);

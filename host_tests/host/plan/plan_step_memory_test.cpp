@@ -25,9 +25,27 @@ Drawing separate_lines(int n) {
 }
 
 TEST(PlanStepMemory, AStepIsFarSmallerThanAFirmwareSpline) {
-  // Fails if a core::Spline (or anything of its size) goes back into PlanStep.
+  // Fails if a core::Spline (or anything of its size) goes back into PlanStep, or the
+  // spline's vectors and the pause text sit in every step again (128 bytes then).
   EXPECT_LT(sizeof(PlanStep), sizeof(core::Spline) / 4);
-  EXPECT_LE(sizeof(PlanStep), 192u);
+  EXPECT_LE(sizeof(PlanStep), 64u);
+}
+
+TEST(PlanStepMemory, ASplineAndATextAreKeptTogetherAndCopiesShareThem) {
+  PlanStep s;
+  EXPECT_TRUE(s.spline().empty());
+  EXPECT_TRUE(s.text().empty());
+  const core::Spline line = to_firmware_splines(line_spline({1, 2}, {3, 4})).front();
+  s.set_spline(CompactSpline(line));
+  s.set_text("T1 0.8mm drill");
+  EXPECT_EQ(s.spline().control.size(), 2u);  // setting the text kept the spline
+  EXPECT_EQ(s.text(), "T1 0.8mm drill");
+  PlanStep copy = s;
+  EXPECT_EQ(&copy.spline(), &s.spline());  // shared, not copied
+  copy.set_text("other");                  // a change makes the copy its own
+  EXPECT_EQ(s.text(), "T1 0.8mm drill");
+  EXPECT_EQ(copy.text(), "other");
+  EXPECT_EQ(copy.spline().control.size(), 2u);
 }
 
 TEST(PlanStepMemory, StepsWithoutACurveHoldNoSplineStorage) {
@@ -37,9 +55,9 @@ TEST(PlanStepMemory, StepsWithoutACurveHoldNoSplineStorage) {
   ASSERT_GT(p.steps.size(), 2000u);  // per line: rapid, plunge, feed, lift
   for (const PlanStep& s : p.steps) {
     ASSERT_NE(s.kind, PlanStep::kSpline);
-    EXPECT_TRUE(s.spline.empty());
-    EXPECT_EQ(s.spline.control.capacity(), 0u);
-    EXPECT_EQ(s.spline.knot.capacity(), 0u);
+    EXPECT_TRUE(s.spline().empty());
+    EXPECT_EQ(s.spline().control.capacity(), 0u);
+    EXPECT_EQ(s.spline().knot.capacity(), 0u);
   }
   // Reserved once from a close bound: no over-reserve (4 + control points per curve once
   // made the vector several times larger than the job), no doubling (1.5x at the peak).
@@ -71,9 +89,9 @@ TEST(PlanStepMemory, SplineStepsHoldOnlyTheControlPointsAndKnotsTheyUse) {
   for (const PlanStep& s : p.steps) {
     if (s.kind != PlanStep::kSpline) continue;
     ++splines;
-    EXPECT_EQ(s.spline.control.size(), 2u);
-    EXPECT_EQ(s.spline.knot.size(), 4u);
-    EXPECT_EQ(core::validate_spline(s.spline.firmware()), core::GeometryError::kOk);
+    EXPECT_EQ(s.spline().control.size(), 2u);
+    EXPECT_EQ(s.spline().knot.size(), 4u);
+    EXPECT_EQ(core::validate_spline(s.spline().firmware()), core::GeometryError::kOk);
   }
   EXPECT_EQ(splines, 3);
 }

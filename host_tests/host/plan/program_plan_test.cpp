@@ -48,8 +48,8 @@ TEST(ProgramPlan, MillingStepsFollowTheProgramStepByStep) {
   EXPECT_EQ(s[0].z_um, 2000);
   EXPECT_FALSE(s[1].spindle_on);
   EXPECT_EQ(s[2].dwell_ms, 1000u);
-  EXPECT_EQ(s[3].z_um, 20000);       // the program's tool-change height
-  EXPECT_EQ(s[4].text, "T1 0.2mm");  // the tool and the message's last word fit 16 columns
+  EXPECT_EQ(s[3].z_um, 20000);         // the program's tool-change height
+  EXPECT_EQ(s[4].text(), "T1 0.2mm");  // the tool and the message's last word fit 16 columns
   EXPECT_TRUE(s[5].spindle_on);
   EXPECT_EQ(s[6].dwell_ms, 500u);
   EXPECT_EQ(s[7].to.x_um, 5000);  // (10, 10) in the machine frame
@@ -76,10 +76,10 @@ TEST(ProgramPlan, AToolChangeShowsTheToolAndTheMessagesLastWordOnTheLcd) {
       "G21\nG0 Z10\nT3\n(MSG, Change tool bit to mill diameter 0.00800in)\nM6\nM0\nG1 Z-0.1\nG1 "
       "X1\n");
   ASSERT_EQ(p.steps[2].kind, PlanStep::kPause);
-  EXPECT_EQ(p.steps[2].text, "T3 0.00800in");
+  EXPECT_EQ(p.steps[2].text(), "T3 0.00800in");
   const JobPlan q =
       plan_text("G21\nG0 Z10\n(MSG, Please check the clamps now)\nM0\nG1 Z-0.1\nG1 X1\n");
-  EXPECT_EQ(q.steps[2].text, "Please check the");  // not a tool change: the first 16
+  EXPECT_EQ(q.steps[2].text(), "Please check the");  // not a tool change: the first 16
 }
 
 TEST(ProgramPlan, TheToolChangeHeightIsCappedAtHalfTheZTravel) {
@@ -140,7 +140,7 @@ TEST(ProgramPlan, G81HolesBecomeDrillStepsInFileOrder) {
   // Up to the tool-change height, stop, spindle on; each drill step goes to its hole itself
   // at the height the tool is at (here still the tool-change height, then R); off, home.
   EXPECT_EQ(kinds(p), "UUPOXXXOR") << kinds(p);
-  EXPECT_EQ(p.steps[2].text, "Change tool T1");
+  EXPECT_EQ(p.steps[2].text(), "Change tool T1");
 }
 
 TEST(ProgramPlan, HolesAsZMovesWhenAsked) {

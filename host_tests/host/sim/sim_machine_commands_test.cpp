@@ -59,7 +59,7 @@ JobPlan drill_job() {
   PlanStep run_up = step(PlanStep::kDwell);
   run_up.dwell_ms = 300;
   PlanStep change = step(PlanStep::kPause);
-  change.text = "T2 1.0mm drill";
+  change.set_text("T2 1.0mm drill");
   PlanStep home = step(PlanStep::kRapid);
   plan.steps = {up,     on, run_up, drill_at(10000, 10000), off, up,
                 change, on, run_up, drill_at(20000, 10000), off, up,

@@ -43,7 +43,7 @@ JobPlan plan_with_spline(const core::Spline& spline) {
   down.feed_um_per_s = 2000;
   PlanStep curve;
   curve.kind = PlanStep::kSpline;
-  curve.spline = CompactSpline(spline);
+  curve.set_spline(CompactSpline(spline));
   curve.to = {spline.control[spline.control_count - 1].x_um,
               spline.control[spline.control_count - 1].y_um};
   curve.feed_um_per_s = 10000;
@@ -257,8 +257,7 @@ std::vector<QueuedCommand> encode_machine_steps(const std::vector<PlanStep>& ste
 TEST(JobEncoder, PauseCarriesItsTextCutToTheLcdRow) {
   PlanStep pause;
   pause.kind = PlanStep::kPause;
-  pause.text = "Tool change: 0.8 mm drill";
-  pause.text[4] = '\t';  // not printable on the LCD
+  pause.set_text("Tool\tchange: 0.8 mm drill");  // a tab is not printable on the LCD
   const auto cmds = encode_machine_steps({pause});
   ASSERT_EQ(cmds.size(), 1u);
   const auto p = decoded<proto::PauseCmd>(cmds[0]);
