@@ -90,7 +90,7 @@ void JobIntake::stage_drawing(const Submission& sub, const fs::path& staging, Jo
   job->width_mm = std::max(0.0, plan.extents_mm.max.x());
   job->height_mm = std::max(0.0, plan.extents_mm.max.y());
   job->planned_s = planned_seconds(plan, sub.settings);
-  write_file(staging / "plan.json", plan_json(plan).dump(1) + "\n");
+  write_plan_json(staging / "plan.json", plan);
   write_plot(plot_input_from_plan(plan, sub.name), (staging / "plot.svg").string(),
              (staging / "plot.png").string());
   *stored = sub.content;
@@ -118,7 +118,7 @@ void JobIntake::stage_board(const Submission& sub, const std::vector<UploadFile>
   job->width_mm = w;
   job->height_mm = h;
   job->planned_s = planned_seconds_by_steps(plan);
-  write_file(staging / "plan.json", plan_json(plan).dump(1) + "\n");
+  write_plan_json(staging / "plan.json", plan);
   BoardPlotInput in;
   in.title = fmt::format("{} ({} side)", job->name, b.manifest["side"].get<std::string>());
   in.job = &b.job;

@@ -3,6 +3,9 @@
 
 #include <algorithm>  // std::min
 #include <cmath>      // std::lround
+#include <fstream>    // std::ofstream
+#include <stdexcept>  // std::runtime_error
+#include <utility>    // std::move
 
 #include "firmware/config/machine_config.h"
 #include "host/lib/drawing/drawing.h"
@@ -55,14 +58,14 @@ const char* step_name(PlanStep::Kind kind) {
 JobPlan plan_file(const std::string& path, const std::string& display_name,
                   const JobPlanSettings& settings, double work_w_mm, double work_h_mm) {
   try {
-    const Drawing drawing = import_drawing(path);
+    Drawing drawing = import_drawing(path);
     PlanOptions o;
     o.scale = settings.scale;
     o.margin_mm = settings.margin_mm;
     o.work_width_mm = work_w_mm;
     o.work_height_mm = work_h_mm;
     o.feed_mm_per_s = settings.feed_mm_s;
-    return plan_job(drawing, o);
+    return plan_job(std::move(drawing), o);  // the drawing's curves move into the plan
   } catch (const ImportError& e) {
     throw ImportError(replaced(e.what(), path, display_name));
   } catch (const PlanError& e) {
@@ -88,7 +91,10 @@ double planned_seconds(const JobPlan& plan, const JobPlanSettings& settings) {
          (plan.pen_lifts + 1) * 2.0 * z_travel_mm / z_mm_s;
 }
 
-nlohmann::json plan_json(const JobPlan& plan) {
+namespace {
+
+// plan.json without its steps.
+nlohmann::json plan_summary_json(const JobPlan& plan) {
   nlohmann::json j;
   j["curves"] = plan.curves.size();
   j["pen_lifts"] = plan.pen_lifts;
@@ -97,19 +103,41 @@ nlohmann::json plan_json(const JobPlan& plan) {
   j["offset_mm"] = {plan.offset_mm.x(), plan.offset_mm.y()};
   j["extents_mm"] = {{"min", {plan.extents_mm.min.x(), plan.extents_mm.min.y()}},
                      {"max", {plan.extents_mm.max.x(), plan.extents_mm.max.y()}}};
-  nlohmann::json steps = nlohmann::json::array();
-  for (const PlanStep& s : plan.steps) {
-    nlohmann::json step = {{"kind", step_name(s.kind)}, {"curve", s.curve}};
-    if (s.kind == PlanStep::kPenUp || s.kind == PlanStep::kPenDown) step["z_um"] = s.z_um;
-    if (s.kind == PlanStep::kRapid || s.kind == PlanStep::kFeed || s.kind == PlanStep::kSpline ||
-        s.kind == PlanStep::kDrill) {
-      step["to_um"] = {s.to.x_um, s.to.y_um};
-    }
-    if (s.feed_um_per_s != 0) step["feed_um_per_s"] = s.feed_um_per_s;
-    steps.push_back(step);
+  return j;
+}
+
+nlohmann::json step_json(const PlanStep& s) {
+  nlohmann::json step = {{"kind", step_name(s.kind)}, {"curve", s.curve}};
+  if (s.kind == PlanStep::kPenUp || s.kind == PlanStep::kPenDown) step["z_um"] = s.z_um;
+  if (s.kind == PlanStep::kRapid || s.kind == PlanStep::kFeed || s.kind == PlanStep::kSpline ||
+      s.kind == PlanStep::kDrill) {
+    step["to_um"] = {s.to.x_um, s.to.y_um};
   }
+  if (s.feed_um_per_s != 0) step["feed_um_per_s"] = s.feed_um_per_s;
+  return step;
+}
+
+}  // namespace
+
+nlohmann::json plan_json(const JobPlan& plan) {
+  nlohmann::json j = plan_summary_json(plan);
+  nlohmann::json steps = nlohmann::json::array();
+  for (const PlanStep& s : plan.steps) steps.push_back(step_json(s));
   j["steps"] = steps;
   return j;
+}
+
+void write_plan_json(const std::filesystem::path& path, const JobPlan& plan) {
+  // "steps" sorts last among the keys: the summary's text, then the steps one by one (a
+  // million steps as one JSON tree took 1.4 GB).
+  std::string head = plan_summary_json(plan).dump(1);
+  head.resize(head.size() - 2);  // without the closing "\n}"
+  std::ofstream out(path, std::ios::binary);
+  out << head << ",\n \"steps\": [";
+  for (size_t i = 0; i < plan.steps.size(); ++i)
+    out << (i == 0 ? "\n  " : ",\n  ") << step_json(plan.steps[i]).dump();
+  out << (plan.steps.empty() ? "]\n}\n" : "\n ]\n}\n");
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
 }
 
 void restore_job_input(const std::filesystem::path& dir, const JobRecord& job,
@@ -127,7 +155,7 @@ JobPlan plan_archived_job(const std::filesystem::path& dir, const JobRecord& job
   if (is_board_job(job)) {
     const pcb::BoardJob board = plan_board_folder(dir, job.settings, work_w_mm, work_h_mm);
     if (write_archive) {
-      write_file(dir / "plan.json", plan_json(board.plan).dump(1) + "\n");
+      write_plan_json(dir / "plan.json", board.plan);
       BoardPlotInput in;
       in.title = job.name;
       in.job = &board;
@@ -138,7 +166,7 @@ JobPlan plan_archived_job(const std::filesystem::path& dir, const JobRecord& job
   const JobPlan plan =
       plan_file((dir / job.input_file).string(), job.name, job.settings, work_w_mm, work_h_mm);
   if (write_archive) {
-    write_file(dir / "plan.json", plan_json(plan).dump(1) + "\n");
+    write_plan_json(dir / "plan.json", plan);
     write_plot(plot_input_from_plan(plan, job.name), (dir / "plot.svg").string(),
                (dir / "plot.png").string());
   }

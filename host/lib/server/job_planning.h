@@ -26,6 +26,8 @@ EncodeOptions encode_options(const JobRecord& job);
 double planned_seconds(const JobPlan& plan, const JobPlanSettings& settings);
 // The plan for the archive: summary and every step.
 nlohmann::json plan_json(const JobPlan& plan);
+// The same written to `path` step by step (the archive's plan.json of a large job).
+void write_plan_json(const std::filesystem::path& path, const JobPlan& plan);
 
 // Writes a job's input into its archive folder from the bytes the store keeps (a server
 // sharing the queue runs a job uploaded to another): the file, or a board's files.
