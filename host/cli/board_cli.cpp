@@ -405,10 +405,10 @@ void run_board(const BoardCommand& a) {
   }
   {
     std::ofstream out(base + ".board.json");
-    out << j.dump(2) << "\n";
+    out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   }
   if (a.json) {
-    std::cout << j.dump(2) << "\n";
+    std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else {
     const pcb::BoardReport& r = job.report;
     std::cout << fmt::format(

@@ -175,7 +175,7 @@ void run_info(const InfoArgs& a) {
   if (print_pcb_info_if_pcb(a.file, a.json)) return;  // Gerber, Excellon
   const Drawing d = import_drawing(a.file);
   if (a.json) {
-    std::cout << info_json(d).dump(2) << "\n";
+    std::cout << info_json(d).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else {
     print_info(d);
   }

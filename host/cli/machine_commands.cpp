@@ -660,7 +660,7 @@ void run_run(const RunArgs& a) {
   j["spindle_on_at_end"] = r.spindle_on;
   {
     std::ofstream out(base + ".json");
-    out << j.dump(2) << "\n";
+    out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   }
   std::cout << fmt::format(
       "{}: {} curves, {} pen lifts; job {}\n"

@@ -141,7 +141,7 @@ void print_json(const PcbLayer& l, const char* format) {
   }
   j["tools"] = tools;
   j["notes"] = l.notes;
-  std::cout << j.dump(2) << "\n";
+  std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
 }
 
 }  // namespace

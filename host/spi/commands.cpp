@@ -61,7 +61,9 @@ int run_decode(const DecodeOptions& o, std::ostream& out, std::ostream& err) {
     return kExitUnusable;
   }
   if (o.json)
-    out << decode_json(info, frames, o.raw).dump(2) << "\n";
+    out << decode_json(info, frames, o.raw)
+               .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
+        << "\n";
   else
     out << decode_text(info, frames, o.raw);
   for (const Frame& f : frames)
@@ -137,7 +139,7 @@ int run_diff(const DiffOptions& o, std::ostream& out, std::ostream& err) {
     j["hint"] = hint;
     j["ignored_before"] = d.ignored_before;
     j["ignored_after"] = d.ignored_after;
-    out << j.dump(2) << "\n";
+    out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else {
     out << diff_text(frames, expected, d, !o.raw);
     if (partial)

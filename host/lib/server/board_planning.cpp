@@ -204,7 +204,9 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
                     {"cutout_length_mm", r.cutout_length_mm},
                     {"tool_changes", r.tool_changes},
                     {"narrow_gaps", gaps}}}};
-  out.files.emplace_back(kBoardManifest, out.manifest.dump(1) + "\n");
+  out.files.emplace_back(
+      kBoardManifest,
+      out.manifest.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   out.files.insert(out.files.end(), layer_files.begin(), layer_files.end());
   return out;
 }

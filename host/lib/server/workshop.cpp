@@ -442,7 +442,8 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
                         {"scale", job.settings.scale},
                         {"margin_mm", job.settings.margin_mm}};
   try {
-    write_file(dir / "report.json", report.dump(2) + "\n");
+    write_file(dir / "report.json",
+               report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     std::string text;
     for (const std::string& line : log) text += line + "\n";
     write_file(dir / "machine.log", text);

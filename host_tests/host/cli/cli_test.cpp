@@ -73,6 +73,22 @@ TEST(Cli, InfoJsonHasEveryCurveWithKnotsAndControlPoints) {
   EXPECT_DOUBLE_EQ(j["extents_mm"]["width"].get<double>(), 124.0);
 }
 
+// A DXF handle (or any text the file carries) that is not UTF-8 becomes U+FFFD in the JSON;
+// the JSON library refused to write it and `info --json` ended as an internal error.
+TEST(Cli, InfoJsonOfAFileWithTextThatIsNotUtf8IsValidJson) {
+  const std::string path =
+      write_temp("cli_handle.dxf",
+                 "0\nSECTION\n2\nENTITIES\n0\nLINE\n5\n2\xc4\n8\n0\n10\n1\n20\n1\n11\n9\n21\n1\n"
+                 "0\nENDSEC\n0\nEOF\n");
+  const ToolRun r = run("info --json " + path);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["curves"].size(), 1u);
+  EXPECT_NE(j["curves"][0]["source"].get<std::string>().find("handle 2\xEF\xBF\xBD,"),
+            std::string::npos)
+      << j["curves"][0]["source"];
+}
+
 TEST(Cli, PointsCsvHasHeaderAndRowsPerCurveFromZero) {
   const ToolRun r = run("points --csv " + kSample);
   ASSERT_EQ(r.code, 0) << r.err;
