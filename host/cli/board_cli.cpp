@@ -17,6 +17,7 @@
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
+#include "host/cli/terminal_text.h"
 #include "host/lib/pcb/board_files.h"  // BoardFileSet, read_board_file
 #include "host/lib/pcb/isolation_check.h"
 #include "host/lib/pcb/pcb_file_names.h"
@@ -359,7 +360,7 @@ void run_board(const BoardCommand& a) {
       if (!f.empty() && b.name.empty()) b.name = board_name(f);
     if (b.name.empty() && !a.drills.empty()) b.name = board_name(a.drills.front());
   }
-  for (const std::string& n : b.notes) std::cerr << "engraver: note: " << n << "\n";
+  for (const std::string& n : b.notes) std::cerr << "engraver: note: " << printable(n) << "\n";
   MachineDefaults md = a.machine;
   md.work_w_mm = a.work_mm[0];
   md.work_h_mm = a.work_mm[1];
@@ -559,7 +560,7 @@ bool is_pcb_input(const std::string& input) {
 
 JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d) {
   const BoardFiles b = read_input(input, args.side);
-  for (const std::string& n : b.notes) std::cerr << "engraver: note: " << n << "\n";
+  for (const std::string& n : b.notes) std::cerr << "engraver: note: " << printable(n) << "\n";
   const pcb::BoardOptions o = board_options(args, d, b);
   g_last_job = plan(b, o);
   g_last_title = b.name;

@@ -4,7 +4,6 @@
 #include <cxxabi.h>  // abi::__cxa_demangle, abi::__cxa_current_exception_type
 #include <unistd.h>  // _exit
 
-#include <cstdio>     // std::snprintf
 #include <cstdlib>    // std::free
 #include <exception>  // std::set_terminate, std::current_exception
 #include <iostream>   // std::cerr
@@ -13,6 +12,7 @@
 #include <typeinfo>   // std::type_info
 
 #include "host/cli/exit_codes.h"
+#include "host/cli/terminal_text.h"
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/plan/job_plan.h"
 #if __has_include(<clipper.hpp>)  // the PCB readers are linked (host_pcb brings Clipper)
@@ -91,34 +91,6 @@ void install_terminate_guard(CLI::App& app) {
 }
 
 namespace {
-
-// Bytes that would disturb a terminal (control characters, escape sequences, broken UTF-8: a
-// reader's message may quote a line of a binary file) as \xNN; newlines, tabs and UTF-8
-// text ("µm") as they are.
-std::string printable(const std::string& s) {
-  std::string out;
-  for (size_t i = 0; i < s.size();) {
-    const unsigned char c = static_cast<unsigned char>(s[i]);
-    const size_t len = c < 0x80           ? 1
-                       : (c >> 5) == 0x06 ? 2
-                       : (c >> 4) == 0x0E ? 3
-                       : (c >> 3) == 0x1E ? 4
-                                          : 0;
-    bool ok = len > 0 && i + len <= s.size();
-    for (size_t k = 1; ok && k < len; ++k) ok = (static_cast<unsigned char>(s[i + k]) >> 6) == 2;
-    if (len == 1 && ((c < 0x20 && c != '\n' && c != '\t') || c == 0x7F)) ok = false;
-    if (ok) {
-      out.append(s, i, len);
-      i += len;
-    } else {
-      char hex[5];
-      std::snprintf(hex, sizeof hex, "\\x%02X", c);
-      out += hex;
-      ++i;
-    }
-  }
-  return out;
-}
 
 int run_guarded_to(CLI::App& app, int argc, const char* const* argv, std::ostream& err) {
   try {

@@ -12,6 +12,7 @@
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
 #include "host/cli/pcb_info.h"
+#include "host/cli/terminal_text.h"
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
@@ -118,57 +119,57 @@ std::string list(const std::vector<T>& v, size_t limit) {
   return o.str();
 }
 
-void print_info(const Drawing& d) {
-  std::cout << std::fixed << std::setprecision(3);
-  std::cout << "file:     " << d.path << "\n";
-  std::cout << "format:   " << d.format << "\n";
-  std::cout << "units:    " << d.units << " (1 unit = " << d.unit_to_mm << " mm)\n";
-  std::cout << "entities: ";
-  if (d.entity_counts.empty()) std::cout << "none";
+void print_info(const Drawing& d, std::ostream& out) {
+  out << std::fixed << std::setprecision(3);
+  out << "file:     " << d.path << "\n";
+  out << "format:   " << d.format << "\n";
+  out << "units:    " << d.units << " (1 unit = " << d.unit_to_mm << " mm)\n";
+  out << "entities: ";
+  if (d.entity_counts.empty()) out << "none";
   bool first = true;
   for (const auto& e : d.entity_counts) {
-    std::cout << (first ? "" : ", ") << e.first << " " << e.second;
+    out << (first ? "" : ", ") << e.first << " " << e.second;
     first = false;
   }
-  std::cout << "\n";
+  out << "\n";
   const Extents e = d.extents();
   if (e.empty()) {
-    std::cout << "extents:  (no curves)\n";
+    out << "extents:  (no curves)\n";
   } else {
-    std::cout << "extents:  x " << e.min.x() << " .. " << e.max.x() << " mm, y " << e.min.y()
-              << " .. " << e.max.y() << " mm (" << e.width() << " x " << e.height() << " mm)\n";
+    out << "extents:  x " << e.min.x() << " .. " << e.max.x() << " mm, y " << e.min.y() << " .. "
+        << e.max.y() << " mm (" << e.width() << " x " << e.height() << " mm)\n";
   }
-  std::cout << "curves:   " << d.curves.size() << "\n";
+  out << "curves:   " << d.curves.size() << "\n";
   for (size_t i = 0; i < d.curves.size(); ++i) {
     const Curve& c = d.curves[i];
     const BSpline& s = c.spline;
     const Point2 a = start_point(s), b = end_point(s);
-    std::cout << "  " << i << ": " << c.source << ": degree " << s.degree
-              << (s.rational() ? ", rational" : "") << ", " << s.control.size()
-              << " control points, " << s.knots.size() << " knots, from (" << a.x() << ", " << a.y()
-              << ") to (" << b.x() << ", " << b.y() << ") mm\n";
+    out << "  " << i << ": " << c.source << ": degree " << s.degree
+        << (s.rational() ? ", rational" : "") << ", " << s.control.size() << " control points, "
+        << s.knots.size() << " knots, from (" << a.x() << ", " << a.y() << ") to (" << b.x() << ", "
+        << b.y() << ") mm\n";
     if (c.kind == "SPLINE") {
-      std::cout << "       knots: " << list(s.knots, 24) << "\n";
+      out << "       knots: " << list(s.knots, 24) << "\n";
       std::ostringstream cp;
       cp << std::fixed << std::setprecision(4);
       for (size_t k = 0; k < s.control.size() && k < 16; ++k) {
         cp << (k ? " " : "") << "(" << s.control[k].x() << ", " << s.control[k].y() << ")";
       }
       if (s.control.size() > 16) cp << " ...";
-      std::cout << "       control points (mm): " << cp.str() << "\n";
-      if (s.rational()) std::cout << "       weights: " << list(s.weights, 24) << "\n";
+      out << "       control points (mm): " << cp.str() << "\n";
+      if (s.rational()) out << "       weights: " << list(s.weights, 24) << "\n";
     }
   }
   if (!d.program.empty()) {
-    std::cout << "program:  " << d.program.size()
-              << " operations, planned in this order (nothing reordered):\n";
+    out << "program:  " << d.program.size()
+        << " operations, planned in this order (nothing reordered):\n";
     const size_t limit = 200;
     for (size_t i = 0; i < d.program.size() && i < limit; ++i)
-      std::cout << "  " << describe_op(d, d.program[i]) << "\n";
-    if (d.program.size() > limit) std::cout << "  ... (" << d.program.size() - limit << " more)\n";
+      out << "  " << describe_op(d, d.program[i]) << "\n";
+    if (d.program.size() > limit) out << "  ... (" << d.program.size() - limit << " more)\n";
   }
-  std::cout << "problems: " << (d.warnings.empty() ? "none" : "") << "\n";
-  for (const std::string& w : d.warnings) std::cout << "  - " << w << "\n";
+  out << "problems: " << (d.warnings.empty() ? "none" : "") << "\n";
+  for (const std::string& w : d.warnings) out << "  - " << w << "\n";
 }
 
 void run_info(const InfoArgs& a) {
@@ -177,7 +178,9 @@ void run_info(const InfoArgs& a) {
   if (a.json) {
     std::cout << info_json(d).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else {
-    print_info(d);
+    std::ostringstream out;  // names and messages quote the file: shown terminal-safe
+    print_info(d, out);
+    std::cout << printable(out.str());
   }
 }
 
@@ -191,7 +194,7 @@ void run_points(const PointsArgs& a) {
   const int tol = static_cast<int>(std::llround(tol_um));
   if (print_board_points_if_pcb(a.file, a.tol_mm, a.csv)) return;  // isolation tool centres
   const Drawing d = import_drawing(a.file);
-  for (const std::string& w : d.warnings) std::cerr << "warning: " << w << "\n";
+  for (const std::string& w : d.warnings) std::cerr << "warning: " << printable(w) << "\n";
   std::cout << std::fixed << std::setprecision(3);
   if (a.csv) std::cout << "curve,x_mm,y_mm\n";
   ProgressMeter progress("points", "curves", std::cerr, ProgressMeter::for_stderr());
@@ -205,7 +208,7 @@ void run_points(const PointsArgs& a) {
                                                d.curves[i].source + "): " + e.what());
     }
     if (!a.csv) {
-      std::cout << "# curve " << i << ": " << d.curves[i].source << ": " << pts.size()
+      std::cout << "# curve " << i << ": " << printable(d.curves[i].source) << ": " << pts.size()
                 << " points (x_mm y_mm)\n";
     }
     for (const Point2& p : pts) {

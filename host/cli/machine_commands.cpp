@@ -21,6 +21,7 @@
 #include "host/cli/board_cli.h"  // PCB input (Gerber, Excellon, a board's directory)
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
+#include "host/cli/terminal_text.h"
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/job_plan.h"
@@ -184,7 +185,8 @@ JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
     return plan_pcb_input(a.file, a.board, m);
   }
   *drawing = import_drawing(a.file);
-  for (const std::string& w : drawing->warnings) std::cerr << "engraver: warning: " << w << "\n";
+  for (const std::string& w : drawing->warnings)
+    std::cerr << "engraver: warning: " << printable(w) << "\n";
   PlanOptions o;
   o.scale = a.scale;
   o.margin_mm = a.margin_mm;

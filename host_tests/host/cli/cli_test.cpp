@@ -89,6 +89,19 @@ TEST(Cli, InfoJsonOfAFileWithTextThatIsNotUtf8IsValidJson) {
       << j["curves"][0]["source"];
 }
 
+// What `info` shows of the file (names, messages) reaches the terminal without its control
+// bytes: an escape sequence in a handle is shown as \x1B, not run by the terminal.
+TEST(Cli, InfoShowsControlBytesOfTheFileAsHex) {
+  const std::string path =
+      write_temp("cli_escape.dxf",
+                 "0\nSECTION\n2\nENTITIES\n0\nLINE\n5\n2\x1b[2J\n8\n0\n10\n1\n20\n1\n11\n9\n21\n1\n"
+                 "0\nENDSEC\n0\nEOF\n");
+  const ToolRun r = run("info " + path);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("handle 2\\x1B[2J,"), std::string::npos) << r.out;
+}
+
 TEST(Cli, PointsCsvHasHeaderAndRowsPerCurveFromZero) {
   const ToolRun r = run("points --csv " + kSample);
   ASSERT_EQ(r.code, 0) << r.err;
