@@ -136,9 +136,10 @@ BoardFiles read_input(const std::string& input, const std::string& side_asked = 
     // In a directory, only files whose names or X2 file functions say copper, drill or
     // outline are read (no silkscreen, mask or paste), and of the copper only the job
     // side's: reading the other was a fifth of a large board's planning time.
-    if (directory && pcb::pcb_file_format(f) == pcb::PcbFileFormat::kGerber) {
+    const std::string head = directory ? pcb::read_file_head(f) : std::string();
+    if (directory && pcb::pcb_file_format(f, head) == pcb::PcbFileFormat::kGerber) {
       LayerKind named = pcb::layer_kind_from_file_name(f);
-      if (named == LayerKind::kUnknown) named = pcb::layer_kind_from_x2(pcb::read_file_head(f));
+      if (named == LayerKind::kUnknown) named = pcb::layer_kind_from_x2(head);
       if (named == LayerKind::kUnknown) {
         b.notes.push_back(f +
                           ": neither its name nor an X2 file function says copper, drill or "
@@ -556,6 +557,17 @@ bool is_pcb_input(const std::string& input) {
   for (const std::string& f : expand_input(rest, &side, &directory))
     if (pcb::pcb_file_format(f) != pcb::PcbFileFormat::kNone) return true;
   return false;
+}
+
+bool input_exists(const std::string& input) {
+  std::string side;
+  bool directory = false;
+  std::string stripped;
+  const std::vector<std::string> files = expand_input(input, &side, &directory, &stripped);
+  if (directory) return true;
+  for (const std::string& f : files)
+    if (!std::filesystem::exists(f)) return false;
+  return !files.empty();
 }
 
 JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d) {

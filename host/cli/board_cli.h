@@ -60,6 +60,8 @@ struct MachineDefaults {
 // True when `input` names PCB files (a Gerber/Excellon file, a directory with some, a
 // comma-separated list, optionally "bottom:"/"top:" in front).
 bool is_pcb_input(const std::string& input);
+// True when every file `input` names (the same forms) exists, or it names a directory.
+bool input_exists(const std::string& input);
 
 // The name outputs are called by: a directory's own name (also with a trailing '/'), else
 // the first file's stem; a "top:"/"bottom:" prefix and further comma-separated files are

@@ -160,10 +160,7 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   // PCB files take `engraver board`'s defaults where no option is given: the board that
   // `board` showed is the board that runs. A missing file is left to the reader to name.
   cmd->parse_complete_callback([cmd, a, feed, tol, margin] {
-    std::string first = a->file.substr(0, a->file.find(','));  // FILE or "top:A,B"
-    for (const char* side : {"top:", "bottom:"})
-      if (first.rfind(side, 0) == 0) first = first.substr(std::string(side).size());
-    if (!std::filesystem::exists(first)) return;
+    if (!input_exists(a->file)) return;
     const bool pcb = is_pcb_input(a->file);
     refuse_options_of_the_other_input(*cmd, pcb);
     if (!pcb) return;

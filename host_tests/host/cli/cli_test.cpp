@@ -73,13 +73,16 @@ TEST(Cli, InfoJsonHasEveryCurveWithKnotsAndControlPoints) {
   EXPECT_DOUBLE_EQ(j["extents_mm"]["width"].get<double>(), 124.0);
 }
 
+// One LINE whose handle (group 5) is `handle`, as bytes from the file.
+std::string line_with_handle(const std::string& handle) {
+  return "0\nSECTION\n2\nENTITIES\n0\nLINE\n5\n" + handle +
+         "\n8\n0\n10\n1\n20\n1\n11\n9\n21\n1\n0\nENDSEC\n0\nEOF\n";
+}
+
 // A DXF handle (or any text the file carries) that is not UTF-8 becomes U+FFFD in the JSON;
 // the JSON library refused to write it and `info --json` ended as an internal error.
 TEST(Cli, InfoJsonOfAFileWithTextThatIsNotUtf8IsValidJson) {
-  const std::string path =
-      write_temp("cli_handle.dxf",
-                 "0\nSECTION\n2\nENTITIES\n0\nLINE\n5\n2\xc4\n8\n0\n10\n1\n20\n1\n11\n9\n21\n1\n"
-                 "0\nENDSEC\n0\nEOF\n");
+  const std::string path = write_temp("cli_handle.dxf", line_with_handle("2\xc4"));
   const ToolRun r = run("info --json " + path);
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
@@ -92,10 +95,7 @@ TEST(Cli, InfoJsonOfAFileWithTextThatIsNotUtf8IsValidJson) {
 // What `info` shows of the file (names, messages) reaches the terminal without its control
 // bytes: an escape sequence in a handle is shown as \x1B, not run by the terminal.
 TEST(Cli, InfoShowsControlBytesOfTheFileAsHex) {
-  const std::string path =
-      write_temp("cli_escape.dxf",
-                 "0\nSECTION\n2\nENTITIES\n0\nLINE\n5\n2\x1b[2J\n8\n0\n10\n1\n20\n1\n11\n9\n21\n1\n"
-                 "0\nENDSEC\n0\nEOF\n");
+  const std::string path = write_temp("cli_escape.dxf", line_with_handle("2\x1b[2J"));
   const ToolRun r = run("info " + path);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
