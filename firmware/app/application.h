@@ -150,6 +150,8 @@ class Application {
   proto::ErrorCode on_spline_data(const proto::SplineDataCmd& c, uint8_t seq, uint8_t* detail);
   proto::ErrorCode on_spline_compact(const proto::SplineCompactCmd& c, uint8_t seq,
                                      uint8_t* detail);
+  proto::ErrorCode on_spline_contour(const proto::SplineContourCmd& c, uint8_t seq,
+                                     uint8_t* detail);
   proto::ErrorCode on_hold(const proto::HoldCmd& c, uint8_t seq, uint8_t* detail);
   proto::ErrorCode on_resume(const proto::ResumeCmd& c, uint8_t seq, uint8_t* detail);
   proto::ErrorCode on_abort(const proto::AbortCmd& c, uint8_t seq, uint8_t* detail);

@@ -215,6 +215,13 @@ ErrorCode Application::on_spline_compact(const proto::SplineCompactCmd& c, uint8
   return store_.add_compact(c, travel, detail, &completed);
 }
 
+ErrorCode Application::on_spline_contour(const proto::SplineContourCmd& c, uint8_t,
+                                         uint8_t* detail) {
+  const int32_t travel[2] = {scaling_.travel_um[0], scaling_.travel_um[1]};
+  bool completed = false;
+  return store_.add_contour(c, travel, detail, &completed);
+}
+
 // ---- real-time ----
 
 ErrorCode Application::on_hold(const proto::HoldCmd&, uint8_t, uint8_t*) {

@@ -120,7 +120,8 @@ void Dispatcher::on_immediate(const proto::Frame& f) {
     error(f.seq, e, 0);
     return;
   }
-  if (cmd.protocol_version != proto::kProtocolVersion) {
+  if (cmd.protocol_version < proto::kMinProtocolVersion ||
+      cmd.protocol_version > proto::kProtocolVersion) {
     error(f.seq, proto::ErrorCode::kVersionUnsupported, proto::kProtocolVersion);
     return;
   }
@@ -131,7 +132,7 @@ void Dispatcher::on_immediate(const proto::Frame& f) {
   session_ = true;
   aborted_ = false;
   proto::SessionReply r;
-  r.protocol_version = proto::kProtocolVersion;
+  r.protocol_version = cmd.protocol_version;
   r.max_payload = proto::kMaxPayload;
   r.window_frames = proto::kWindowFrames;
   r.rx_buffer_bytes = config::kLinkRxBufferBytes;

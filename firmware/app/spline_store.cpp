@@ -2,6 +2,7 @@
 #include "firmware/app/spline_store.h"
 
 #include "firmware/protocol/compact_spline.h"  // unpack_compact
+#include "firmware/protocol/contour_spline.h"  // unpack_contour, is_contour_shape
 
 namespace app {
 
@@ -139,6 +140,25 @@ proto::ErrorCode SplineStore::add_compact(const proto::SplineCompactCmd& d,
   if (!inside_travel(sp, d.control_index, d.control_n, travel_um))
     return proto::ErrorCode::kOutOfTravel;
   return commit(d.control_n, d.knot_n, detail, completed);
+}
+
+proto::ErrorCode SplineStore::add_contour(const proto::SplineContourCmd& d,
+                                          const int32_t travel_um[2], uint8_t* detail,
+                                          bool* completed) {
+  *detail = 0;
+  *completed = false;
+  proto::ErrorCode e = check_next(d.control_index, d.control_n, 0, 0);
+  if (e != proto::ErrorCode::kOk) return e;
+  core::Spline& sp = spline_[open_];
+  if (!proto::is_contour_shape(sp) ||
+      (d.control_index > 0 && sp.control[d.control_index - 1].weight_q14 != core::kWeightOneQ14))
+    return proto::ErrorCode::kSplineSequence;
+  e = proto::unpack_contour(d, &sp);
+  if (e != proto::ErrorCode::kOk) return e;
+  if (!inside_travel(sp, d.control_index, d.control_n, travel_um))
+    return proto::ErrorCode::kOutOfTravel;
+  const bool last = (uint16_t)(d.control_index + d.control_n) == sp.control_count;
+  return commit(d.control_n, last ? (uint8_t)sp.knot_count : 0, detail, completed);
 }
 
 void SplineStore::release(uint8_t slot) {

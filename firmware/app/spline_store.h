@@ -1,13 +1,13 @@
-// Spline slots filled by #B/#D frames: checks the header against capacity, the data for order
-// and count, coordinates against the travel; validates the finished spline with the core.
-// Two slots so the next spline is received while the point generator works on one.
+// Spline slots filled by #B and #D/#K/#Q frames: checks the header against capacity, the data for
+// order and count, coordinates against the travel; validates the finished spline with the core. Two
+// slots so the next spline is received while the point generator works on one.
 #ifndef FIRMWARE_APP_SPLINE_STORE_H
 #define FIRMWARE_APP_SPLINE_STORE_H
 
 #include <stdint.h>  // uint8_t
 
 #include "firmware/core/spline.h"          // Spline
-#include "firmware/protocol/messages.h"    // SplineHeaderCmd, SplineDataCmd, SplineCompactCmd
+#include "firmware/protocol/messages.h"    // SplineHeaderCmd, SplineDataCmd, SplineCompactCmd ...
 #include "firmware/protocol/wire_codes.h"  // ErrorCode
 
 namespace app {
@@ -33,6 +33,11 @@ class SplineStore {
   // #K: as add(), the values unpacked from the compact data (kFieldRange, kPayloadLength
   // for data the codec's check lets through but the stored values refuse).
   proto::ErrorCode add_compact(const proto::SplineCompactCmd& data, const int32_t travel_um[2],
+                               uint8_t* detail, bool* completed);
+  // #Q: as add(), for a spline of contour shape (proto::is_contour_shape) whose last stored
+  // point has weight 1.0 and no knots yet (kSplineSequence otherwise); the frame that
+  // stores the last point stores every knot too.
+  proto::ErrorCode add_contour(const proto::SplineContourCmd& data, const int32_t travel_um[2],
                                uint8_t* detail, bool* completed);
   SlotState state(uint8_t slot) const { return slot < kSlots ? state_[slot] : SlotState::kFree; }
   const core::Spline* spline(uint8_t slot) const { return &spline_[slot]; }

@@ -13,7 +13,7 @@ enum { kAxisX = 0, kAxisY = 1, kAxisZ = 2, kAxisCount = 3 };
 // defaults (work area, feeds) come from default_machine_config() below, never a copy.
 enum {
   kFirmwareMajor = 0,
-  kFirmwareMinor = 2,
+  kFirmwareMinor = 3,
   kLinkRxBufferBytes = 256  // the UART receive ring: 22 ms of input at 115200 Bd
 };
 

@@ -4,6 +4,7 @@
 #include "firmware/protocol/codec.h"
 
 #include "firmware/protocol/compact_spline.h"  // scan_compact
+#include "firmware/protocol/contour_spline.h"  // scan_contour
 
 #include <stddef.h>  // offsetof
 #include <string.h>  // memcpy
@@ -307,6 +308,13 @@ ErrorCode check_spline_compact(const SplineCompactCmd& m) {
     return ErrorCode::kFieldRange;
   if ((uint16_t)(m.knot_index + m.knot_n) > core::kMaxKnots) return ErrorCode::kFieldRange;
   return scan_compact(m);
+}
+
+// The data holds exactly the points and elements the indices say (contour_spline.h).
+ErrorCode check_spline_contour(const SplineContourCmd& m) {
+  if ((uint16_t)(m.control_index + m.control_n) > core::kMaxControlPoints)
+    return ErrorCode::kFieldRange;
+  return scan_contour(m);
 }
 
 ErrorCode check_drill(const DrillCmd& m) {

@@ -1,6 +1,8 @@
 // #K compact spline data: writer, checker and unpacker (see compact_spline.h).
 #include "firmware/protocol/compact_spline.h"
 
+#include "firmware/protocol/varint.h"  // zigzag, put_varint, VarintReader
+
 namespace proto {
 
 namespace {
@@ -8,54 +10,6 @@ namespace {
 // Largest difference of two coordinates in range (a larger one is malformed, and refusing
 // it first keeps the sums inside int32).
 const int32_t kMaxDeltaUm = 2 * core::kMaxCoordinateUm;
-
-uint32_t zigzag(int32_t v) {
-  return v >= 0 ? (uint32_t)v << 1 : (((uint32_t)(-(v + 1))) << 1) | 1U;
-}
-
-int32_t unzigzag(uint32_t u) {
-  const uint32_t half = u >> 1;
-  // Odd codes are the negatives: -(half) - 1, computed without overflow.
-  return (u & 1U) ? -(int32_t)half - 1 : (int32_t)half;
-}
-
-uint8_t put_varint(uint32_t v, uint8_t* out) {
-  uint8_t n = 0;
-  while (v >= 0x80U) {
-    out[n++] = (uint8_t)((v & 0x7FU) | 0x80U);
-    v >>= 7;
-  }
-  out[n++] = (uint8_t)v;
-  return n;
-}
-
-// Reads the frame's data one varint at a time.
-class Reader {
- public:
-  explicit Reader(const SplineCompactCmd& m) : data_(m.data), size_(m.data_n), at_(0) {}
-  // kOk and *v, kPayloadLength when the data ends inside the number, kFieldRange when it
-  // is longer than 32 bits.
-  ErrorCode next(uint32_t* v) {
-    uint32_t value = 0;
-    for (uint8_t i = 0; i < kMaxVarintBytes; ++i) {
-      if (at_ >= size_) return ErrorCode::kPayloadLength;
-      const uint8_t b = data_[at_++];
-      if (i == kMaxVarintBytes - 1 && b > 0x0FU) return ErrorCode::kFieldRange;
-      value |= (uint32_t)(b & 0x7FU) << (7U * i);
-      if ((b & 0x80U) == 0) {
-        *v = value;
-        return ErrorCode::kOk;
-      }
-    }
-    return ErrorCode::kFieldRange;  // not reached: the fifth byte has no continuation bit
-  }
-  bool at_end() const { return at_ == size_; }
-
- private:
-  const uint8_t* data_;
-  uint8_t size_;
-  uint8_t at_;
-};
 
 // One point's numbers as sent.
 struct RawPoint {
@@ -65,7 +19,7 @@ struct RawPoint {
   bool has_weight;
 };
 
-ErrorCode read_point(Reader* r, RawPoint* p) {
+ErrorCode read_point(VarintReader* r, RawPoint* p) {
   uint32_t x = 0, y = 0, w = 0;
   ErrorCode e = r->next(&x);
   if (e == ErrorCode::kOk) e = r->next(&y);
@@ -108,7 +62,7 @@ uint8_t put_compact_knot(int32_t prev, int32_t k, bool first, bool repeat, uint8
 }
 
 ErrorCode scan_compact(const SplineCompactCmd& m) {
-  Reader r(m);
+  VarintReader r(m.data, m.data_n);
   for (uint8_t i = 0; i < m.control_n; ++i) {
     RawPoint p;
     const ErrorCode e = read_point(&r, &p);
@@ -128,7 +82,7 @@ ErrorCode scan_compact(const SplineCompactCmd& m) {
 }
 
 ErrorCode unpack_compact(const SplineCompactCmd& m, core::Spline* s) {
-  Reader r(m);
+  VarintReader r(m.data, m.data_n);
   core::ControlPoint prev;
   prev.x_um = 0;
   prev.y_um = 0;

@@ -17,13 +17,11 @@
 
 #include "firmware/core/spline.h"        // Spline, ControlPoint
 #include "firmware/protocol/messages.h"  // SplineCompactCmd
+#include "firmware/protocol/varint.h"    // kMaxVarintBytes
 
 namespace proto {
 
-enum {
-  kMaxVarintBytes = 5,
-  kMaxCompactPointBytes = 3 * kMaxVarintBytes  // x, y, weight
-};
+enum { kMaxCompactPointBytes = 3 * kMaxVarintBytes };  // x, y, weight
 
 // Longest knot span a #K frame carries (its varint holds the span times 2).
 static const uint32_t kMaxCompactSpan = 0x7FFFFFFFUL;

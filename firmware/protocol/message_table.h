@@ -81,6 +81,13 @@
     FIELD(SplineCompactCmd, none, data_n, 1, 60)                                             \
     ARRAY(SplineCompactCmd, data_n, data, rest, 60)                                          \
   END(SplineCompactCmd)                                                                      \
+  CMD(SplineContourCmd, kCmdSplineContour, 'Q', kQueued, "spline data, lines and arcs",      \
+      "`*O` / `*E`", on_spline_contour, check_spline_contour)                                \
+    FIELD(SplineContourCmd, u8, control_index, 0, 63)                                        \
+    FIELD(SplineContourCmd, u8, control_n, 1, 63)                                            \
+    FIELD(SplineContourCmd, none, data_n, 1, 62)                                             \
+    ARRAY(SplineContourCmd, data_n, data, rest, 62)                                          \
+  END(SplineContourCmd)                                                                      \
   CMD(ResolutionCmd, kCmdResolution, 'U', kQueued, "resolution", "`*O` / `*E`",              \
       on_resolution, no_check)                                                               \
     FIELD(ResolutionCmd, u16, max_step_um, 1, 65535)                                         \

@@ -24,7 +24,9 @@ enum {
   kCompactHeaderBytes = 4,                              // #K: indices and counts
   kMaxCompactData = kMaxPayload - kCompactHeaderBytes,  // 60
   kMaxCompactControls = kMaxCompactData / 2,            // 30: x and y take a byte at least
-  kMaxCompactKnots = kMaxCompactData                    // 60: a knot takes a byte at least
+  kMaxCompactKnots = kMaxCompactData,                   // 60: a knot takes a byte at least
+  kContourHeaderBytes = 2,                              // #Q: index and count
+  kMaxContourData = kMaxPayload - kContourHeaderBytes   // 62
 };
 
 // The C type of each wire type of the message table.
@@ -74,6 +76,8 @@ static_assert(sizeof(((SplineDataCmd*)0)->knot) == kMaxDataKnots * sizeof(int32_
               "#D knots: as many as fit a payload");
 static_assert(sizeof(((SplineCompactCmd*)0)->data) == kMaxCompactData,
               "#K data: the rest of a payload");
+static_assert(sizeof(((SplineContourCmd*)0)->data) == kMaxContourData,
+              "#Q data: the rest of a payload");
 
 }  // namespace proto
 

@@ -9,9 +9,11 @@
 
 namespace proto {
 
-// Protocol version carried in #I / *I. Bumped on any incompatible change. 2: #P #W #N #L,
-// the paused state, travel and feed limits in *I.
-static const uint8_t kProtocolVersion = 2;
+// Protocol version carried in #I / *I. 2: #P #W #N #L, the paused state, travel and feed
+// limits in *I. 3: #Q contour frames. The controller speaks every version from
+// kMinProtocolVersion (a later one only adds commands) and answers in the one asked for.
+static const uint8_t kProtocolVersion = 3;
+static const uint8_t kMinProtocolVersion = 2;
 
 // First byte of a frame: '#' host -> controller (commands), '*' controller -> host (replies).
 static const uint8_t kCommandStart = '#';

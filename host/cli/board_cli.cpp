@@ -249,7 +249,7 @@ WireMeasure measure_wire(const pcb::BoardJob& job, double tol_mm) {
     ++m.spline_frames;
     m.spline_bytes += frame_bytes(c);
   }
-  eo.compact_splines = false;
+  eo.splines = SplineFrames::kFixed;
   for (const QueuedCommand& c : encode_job(iso, eo)) {
     if (c.step >= 0) m.spline_bytes_full += frame_bytes(c);
   }
@@ -287,11 +287,7 @@ nlohmann::json report_json(const pcb::BoardJob& job, const pcb::BoardOptions& o)
   j["isolation_contours"] = r.isolation_contours;
   j["isolation_length_mm"] = r.isolation_length_mm;
   j["isolation_vertices"] = r.isolation_vertices;
-  j["fit"] = {{"lines", r.fit.lines},
-              {"arcs", r.fit.arcs},
-              {"cubics", r.fit.cubics},
-              {"smooth_joints", r.fit.smooth_joints},
-              {"corner_joints", r.fit.corner_joints}};
+  j["fit"] = {{"lines", r.fit.lines}, {"arcs", r.fit.arcs}, {"cubics", r.fit.cubics}};
   j["holes"] = r.holes;
   j["holes_on_copper"] = r.holes_on_copper;
   j["slots"] = r.slots;

@@ -374,7 +374,7 @@ void run_send(const SendArgs& a) {
   install_signals(&sender);
   const proto::SessionReply caps = sender.open_session();
   EncodeOptions enc = encode_options(a.plan);
-  enc.max_payload = caps.max_payload;
+  use_session(caps, &enc);
   enc.controller = &caps;
   std::vector<QueuedCommand> commands = encode_job(plan, enc);
   if (a.resume || !a.resume_at.empty()) {

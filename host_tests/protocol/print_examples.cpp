@@ -5,6 +5,7 @@
 
 #include "firmware/protocol/codec.h"
 #include "firmware/protocol/compact_spline.h"
+#include "firmware/protocol/contour_spline.h"
 
 namespace {
 
@@ -24,9 +25,9 @@ void show(const Msg& msg, uint8_t seq, const std::string& what) {
 
 int main() {
   std::printf("```frames\n");
-  show(proto::SessionCmd{2}, 0, "#I seq 0: open session, protocol version 2");
-  show(proto::SessionReply{2, 64, 8, 16, 256, 3, 64, 0, 2, 297000, 210000, 40000, 25000, 5000}, 0,
-       "*I seq 0: v2, payload 64, window 8, 16 slots, rx 256 B, degree 3, 64 points, fw 0.2, "
+  show(proto::SessionCmd{3}, 0, "#I seq 0: open session, protocol version 3");
+  show(proto::SessionReply{3, 64, 8, 16, 256, 3, 64, 0, 3, 297000, 210000, 40000, 25000, 5000}, 0,
+       "*I seq 0: v3, payload 64, window 8, 16 slots, rx 256 B, degree 3, 64 points, fw 0.3, "
        "travel 297 x 210 x 40 mm, feeds up to 25 mm/s (X/Y) and 5 mm/s (Z)");
   show(proto::TextCmd{0, 9, {'E', 'n', 'g', 'r', 'a', 'v', 'i', 'n', 'g'}}, 1,
        "#S seq 1: row 0 \"Engraving\"");
@@ -79,6 +80,21 @@ int main() {
        "#K seq 7, instead of seq 7 and 8: the 4 control points as differences (+12 mm, "
        "-3.5 mm; +3 mm, +5.5 mm; +3 mm, 0; +3 mm, -5.5 mm) and the 8 knots as 0, then spans "
        "0 (repeated), 0, 1000 (repeated), 0 (repeated): 26 bytes of payload instead of 80");
+  // A contour: a line, then a quarter circle turning left, as #B and one #Q.
+  show(proto::SplineHeaderCmd{2, true, 5, 8, 2000}, 17,
+       "#B seq 17: quadratic, rational, 5 control points (2 elements), 8 knots, 2 mm/s");
+  proto::SplineContourCmd q = {};
+  q.control_n = 5;
+  q.data_n = proto::put_contour_start(10000, 5000, q.data);
+  const proto::ContourElement line = {10000, 0, false, 0};
+  const proto::ContourElement arc = {5000, 5000, true, -3536};
+  q.data_n = uint8_t(q.data_n + proto::put_contour_element(line, q.data + q.data_n));
+  q.data_n = uint8_t(q.data_n + proto::put_contour_element(arc, q.data + q.data_n));
+  show(q, 18,
+       "#Q seq 18: from (10, 5) mm a line by (+10, 0) mm, then an arc by (+5, +5) mm whose "
+       "middle control point stands 3.536 mm right of the chord: the quarter circle about "
+       "(20, 10) mm; the controller makes the middle points (15, 5) and (25, 5) mm, weights "
+       "1.0 and 0.7071, and the knots 0 0 0 1 1 2 2 2");
   show(proto::ZeroingCmd{7}, 9, "#M seq 9: zero X, Y and Z with the joystick");
   show(proto::StatusCmd{}, 10, "#? seq 10: status query");
   proto::StatusReply s = {

@@ -166,95 +166,34 @@ bool fit_cubic(const std::vector<Point2>& q, double tol, int max_control, BSplin
   return true;
 }
 
-// Rational quadratic Bezier pieces (end weights 1, middle weight c) joined into one
-// B-spline. Where two pieces meet tangentially the joint is a single knot: the joint point
-// is then no control point of its own but the knot-span-weighted mean of the two middle
-// points (homogeneous), which saves a control point and a knot per joint. Each piece keeps
-// its exact shape: a rational quadratic can be reparametrised (weights w0, r w1, r^2 w2),
-// and r and the next knot span are chosen so the joint lands where it is; a corner, or
-// weights leaving [1/4, 4], takes a double knot instead.
+// Rational quadratic Bezier pieces (end weights 1, middle weight c) joined at their ends
+// into one B-spline: a double knot at every joint, so each piece keeps its exact shape and
+// the spline is in the form #Q frames carry (a line as its end point, an arc as its end
+// point and height: docs/protocol.md).
 template <typename Piece>
-BSpline join_pieces_c1(std::vector<Piece> pieces, FitStats* st) {
+BSpline join_pieces(const std::vector<Piece>& pieces) {
   BSpline s;
   s.degree = 2;
   s.control.push_back(pieces.front().p0);
   s.weights.push_back(1.0);
   s.knots = {0.0, 0.0, 0.0};
-  double w0 = 1.0, r = 1.0, span = std::max(pieces.front().len, 1e-6), t = 0;
-  auto in_range = [](double w) { return w >= 0.25 && w <= 4.0; };
-  for (size_t k = 0; k < pieces.size(); ++k) {
-    const Piece& a = pieces[k];
-    const double w1 = w0 * r * a.c, w2 = w0 * r * r;
+  double t = 0;
+  for (const Piece& a : pieces) {
     s.control.push_back(a.p1);
-    s.weights.push_back(w1);
-    t += span;
-    if (k + 1 == pieces.size()) {
-      s.control.push_back(a.p2);
-      s.weights.push_back(w2);
-      s.knots.insert(s.knots.end(), 3, t);
-      break;
-    }
-    Piece& b = pieces[k + 1];
-    const Point2 d1 = a.p2 - a.p1;
-    const double la = d1.norm();
-    if (b.straight && la > 1e-9 && w2 > w1) {
-      // A line's middle point may sit anywhere on it: near enough to the joint that the
-      // joint can be a single knot (w1 (la + lb) / lb > w2), at most half way.
-      const double lb_max = la * w1 / (w2 - w1);
-      const double len = (b.p2 - b.p0).norm();
-      if (len > 1e-9) b.p1 = b.p0 + (b.p2 - b.p0) * (std::min(0.5 * len, 0.5 * lb_max) / len);
-    }
-    const Point2 d2 = b.p1 - a.p2;
-    const double lb = d2.norm();
-    bool smooth = false;
-    double next_span = 0, next_r = 1;
-    if (la > 1e-9 && lb > 1e-9 && d1.dot(d2) > 0.999 * la * lb) {
-      // The joint's distance from the line through both middle points: 1 um at most (the
-      // joint moves onto that line; 3-point arcs meet lines within about that).
-      const Point2 m = b.p1 - a.p1;
-      const double dev = std::fabs(cross(m, a.p2 - a.p1)) / std::max(m.norm(), 1e-12);
-      const double denom = w1 * (la + lb) / lb - w2;
-      if (dev <= 1e-3 && denom > 0) {
-        next_span = w2 * span / denom;
-        const double wb1 = la * next_span * w1 / (lb * span);
-        // A line's middle weight is free: it takes the piece back to end weight 1.
-        if (b.straight) b.c = wb1 * std::sqrt(w2) / w2;
-        next_r = wb1 / (w2 * b.c);
-        const double wb2 = w2 * next_r * next_r;
-        smooth = next_span > 0.05 * b.len && next_span < 20 * b.len && in_range(wb1) &&
-                 in_range(wb2) && in_range(w2);
-      }
-    }
-    if (smooth) {
-      ++st->smooth_joints;
-      s.knots.push_back(t);
-      w0 = w2;
-      r = next_r;
-      span = next_span;
-    } else {
-      ++st->corner_joints;
-      s.control.push_back(a.p2);
-      s.weights.push_back(w2);
-      s.knots.push_back(t);
-      s.knots.push_back(t);
-      w0 = w2;
-      r = 1.0 / std::sqrt(w2);  // the next piece ends at weight 1 again
-      span = std::max(b.len, 1e-6);
-    }
+    s.weights.push_back(a.c);
+    s.control.push_back(a.p2);
+    s.weights.push_back(1.0);
+    t += std::max(a.len, 1e-6);
+    s.knots.push_back(t);
+    s.knots.push_back(t);
   }
-  // Weights scaled to a largest of 1 and put on the firmware's grid (k / 65535) so its
-  // conversion finds the scale at once; the shape moves by under 1e-4 of a control leg.
-  double w_max = 0;
-  for (double w : s.weights) w_max = std::max(w_max, w);
-  for (double& w : s.weights) w = std::max(1.0, std::round(w / w_max * 65535.0)) / 65535.0;
+  s.knots.push_back(t);
   return s;
 }
 
 // Lines and arcs (vertices p) as one spline: degree 1 with no arc, else a rational
-// quadratic (each line a straight Bezier, each arc in pieces of at most 90 degrees) with
-// single knots at tangent joints (join_pieces_c1).
-BSpline join_lines_and_arcs(const std::vector<Point2>& p, const std::vector<Primitive>& prims,
-                            FitStats* st) {
+// quadratic (each line a straight Bezier, each arc in pieces of at most 90 degrees).
+BSpline join_lines_and_arcs(const std::vector<Point2>& p, const std::vector<Primitive>& prims) {
   bool any_arc = false;
   for (const Primitive& pr : prims) any_arc = any_arc || pr.kind == Primitive::kArc;
   BSpline s;
@@ -275,15 +214,14 @@ BSpline join_lines_and_arcs(const std::vector<Point2>& p, const std::vector<Prim
   // degrees with the middle weight cos(half angle).
   struct Piece {
     Point2 p0, p1, p2;
-    double c;       // middle weight relative to the ends
-    double len;     // for the first knot span
-    bool straight;  // a line: p1 anywhere on it, any c
+    double c;    // middle weight relative to the ends
+    double len;  // its knot span
   };
   std::vector<Piece> pieces;
   for (const Primitive& pr : prims) {
     if (pr.kind == Primitive::kLine) {
       pieces.push_back(Piece{p[pr.from], 0.5 * (p[pr.from] + p[pr.to]), p[pr.to], 1.0,
-                             (p[pr.to] - p[pr.from]).norm(), true});
+                             (p[pr.to] - p[pr.from]).norm()});
       continue;
     }
     const int n = std::max(1, static_cast<int>(std::ceil(std::fabs(pr.sweep) / (kPi / 2) - 1e-9)));
@@ -300,11 +238,11 @@ BSpline join_lines_and_arcs(const std::vector<Point2>& p, const std::vector<Prim
       const Point2 end = k + 1 == n
                              ? p[pr.to]
                              : Point2(pr.centre + pr.radius * Point2(std::cos(ae), std::sin(ae)));
-      pieces.push_back(Piece{start, mid, end, std::cos(half), pr.radius * std::fabs(step), false});
+      pieces.push_back(Piece{start, mid, end, std::cos(half), pr.radius * std::fabs(step)});
       start = end;
     }
   }
-  return join_pieces_c1(pieces, st);
+  return join_pieces(pieces);
 }
 
 }  // namespace
@@ -403,14 +341,14 @@ std::vector<BSpline> fit_polyline(const std::vector<Point2>& in, bool closed, co
   std::vector<Primitive> run;
   for (const Primitive& pr : merged) {
     if (pr.kind == Primitive::kCubic) {
-      if (!run.empty()) out.push_back(join_lines_and_arcs(p, run, &st));
+      if (!run.empty()) out.push_back(join_lines_and_arcs(p, run));
       run.clear();
       out.push_back(pr.cubic);
     } else {
       run.push_back(pr);
     }
   }
-  if (!run.empty()) out.push_back(join_lines_and_arcs(p, run, &st));
+  if (!run.empty()) out.push_back(join_lines_and_arcs(p, run));
   return out;
 }
 

@@ -16,8 +16,6 @@ struct FitStats {
   int arcs = 0;    // circular arcs recovered (each up to a full circle)
   int cubics = 0;  // runs fitted with a cubic B-spline
   int input_vertices = 0;
-  int smooth_joints = 0;  // tangent joints as single knots
-  int corner_joints = 0;  // double knots (corners, or weights that would leave the range)
 };
 
 struct FitOptions {

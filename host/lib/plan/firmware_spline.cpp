@@ -7,6 +7,8 @@
 #include <cstring>    // memset
 #include <sstream>    // std::ostringstream
 
+#include "host/lib/plan/contour_form.h"  // snap_to_contour_form
+
 namespace host {
 
 namespace {
@@ -205,6 +207,8 @@ core::Spline to_firmware(const BSpline& s) {
           "(1 / 2^28 of the knot vector)");
     }
   }
+  // Lines and arcs between corners go out as #Q frames: the plan holds what those rebuild.
+  snap_to_contour_form(&f);
   const core::GeometryError e = core::validate_spline(f);
   if (e != core::GeometryError::kOk) {
     std::ostringstream o;

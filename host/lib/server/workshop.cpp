@@ -310,7 +310,7 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     const JobPlan plan = plan_archived_job(dir, job, slot.spec.fit.work_width_mm,
                                            slot.spec.fit.work_height_mm, fetched);
     EncodeOptions enc = encode_options(job);
-    enc.max_payload = caps.max_payload;
+    use_session(caps, &enc);
     if (job.start_curve >= 0) {
       // Continue an interrupted job. On the machine it stopped on, still holding this job's
       // progress (same job_id, at or past the first uncut curve): exactly where it stopped,

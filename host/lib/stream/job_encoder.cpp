@@ -25,7 +25,7 @@ uint16_t feed16(int32_t feed_um_per_s, int step) {
 
 // #B then the data frames (#K compact, or #D) carrying the spline's control points, then
 // its knots.
-void append_spline(const PlanStep& s, int index, unsigned max_payload, bool compact,
+void append_spline(const PlanStep& s, int index, unsigned max_payload, SplineFrames encoding,
                    std::vector<QueuedCommand>* out) {
   proto::SplineHeaderCmd header{};
   header.degree = s.spline().degree;
@@ -37,7 +37,7 @@ void append_spline(const PlanStep& s, int index, unsigned max_payload, bool comp
   header.feed_um_per_s = feed16(s.feed_um_per_s, index);
   header.tool_offset_um = s.tool_offset_um;
   out->push_back(encode_command(header, index, s.curve));
-  append_spline_data(s.spline().firmware(), index, s.curve, max_payload, compact, out);
+  append_spline_data(s.spline().firmware(), index, s.curve, max_payload, encoding, out);
 }
 
 // #P with the operator message: the LCD row holds 16 characters, the rest is cut; characters
@@ -105,6 +105,12 @@ core::Spline straight_spline(const core::PointUm& a, const core::PointUm& b) {
 
 }  // namespace
 
+void use_session(const proto::SessionReply& caps, EncodeOptions* o) {
+  o->max_payload = caps.max_payload;
+  if (caps.protocol_version < 3 && o->splines == SplineFrames::kContour)
+    o->splines = SplineFrames::kCompact;
+}
+
 std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& options) {
   if (options.max_payload < 16) {
     throw PlanError(fmt::format("controller payload {} bytes is too small", options.max_payload));
@@ -161,7 +167,7 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
           // degree-1 spline from where the tool is.
           PlanStep line = s;
           line.set_spline(CompactSpline(straight_spline(from, s.to)));
-          append_spline(line, index, options.max_payload, options.compact_splines, &out);
+          append_spline(line, index, options.max_payload, options.splines, &out);
           break;
         }
         proto::FeedMoveCmd g{s.to.x_um, s.to.y_um, feed16(s.feed_um_per_s, index)};
@@ -169,7 +175,7 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
         break;
       }
       case PlanStep::kSpline:
-        append_spline(s, index, options.max_payload, options.compact_splines, &out);
+        append_spline(s, index, options.max_payload, options.splines, &out);
         break;
       case PlanStep::kPause:
         out.push_back(encode_command(pause_command(s.text()), index, s.curve));

@@ -20,16 +20,27 @@ struct QueuedCommand {
   int curve = -1;  // index into JobPlan::curves, -1 if none
 };
 
+// How spline data goes on the wire.
+enum class SplineFrames {
+  kFixed,    // #D: fixed-width points and knots
+  kCompact,  // #K: differences (a knot span of 2^31 or more in a #D frame)
+  kContour   // #Q for a spline of lines and arcs in contour form (protocol 3), else #K
+};
+
 struct EncodeOptions {
-  unsigned max_payload = 64;         // from the controller's *I
-  uint16_t max_step_um = 1000;       // #U: longest distance between generated points
-  uint16_t chord_tolerance_um = 5;   // #U: chord error
-  uint16_t z_rapid_um_per_s = 5000;  // #Z feed for pen-up moves
-  std::string title;                 // #S row 0 at the start (cut to 16 characters)
-  bool compact_splines = true;       // spline data as #K (differences), else #D
+  unsigned max_payload = 64;                      // from the controller's *I
+  uint16_t max_step_um = 1000;                    // #U: longest distance between generated points
+  uint16_t chord_tolerance_um = 5;                // #U: chord error
+  uint16_t z_rapid_um_per_s = 5000;               // #Z feed for pen-up moves
+  std::string title;                              // #S row 0 at the start (cut to 16 characters)
+  SplineFrames splines = SplineFrames::kContour;  // set from the controller: use_session()
   // The controller's *I: when set, every target is checked against its travel first.
   const proto::SessionReply* controller = nullptr;
 };
+
+// What the controller's *I says about the encoding: its payload size, and #Q frames only
+// from protocol version 3 on (an older controller gets #K frames).
+void use_session(const proto::SessionReply& caps, EncodeOptions* o);
 
 // The whole job as queued commands, in order, starting with #J 0 (job numbering). Tool offsets go
 // in the spline header (the controller offsets; a straight feed with an offset becomes a degree-1

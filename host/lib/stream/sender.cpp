@@ -271,6 +271,13 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (proto::decode_frame(frame, &r) != proto::ErrorCode::kOk) break;
       stats_.error_replies++;
       if (r.code == proto::ErrorCode::kSeqStale) break;  // superseded real-time frame
+      // An older controller names its version: open the session in that one.
+      if (r.code == proto::ErrorCode::kVersionUnsupported && !session_open_ &&
+          r.detail >= proto::kMinProtocolVersion && r.detail < session_version_) {
+        session_version_ = r.detail;
+        version_lowered_ = true;
+        break;
+      }
       if (commands_ != nullptr && (is_resend_error(r.code) || r.code == proto::ErrorCode::kBusy)) {
         const size_t expected = index_of_seq(r.next_expected_seq);
         // One lost frame makes every later frame of the window answer seq_gap with the same
@@ -402,12 +409,14 @@ proto::SessionReply Sender::open_session() {
   session_open_ = false;
   for (int attempt = 0; attempt < 5 && !session_open_; ++attempt) {
     session_seq_ = static_cast<uint8_t>(session_seq_ + 1);
-    proto::SessionCmd cmd{proto::kProtocolVersion};
+    proto::SessionCmd cmd{session_version_};
     proto::Payload p;
     proto::encode(cmd, &p);
     send_frame(proto::kCmdSession, session_seq_, std::vector<uint8_t>(p.bytes, p.bytes + p.length));
+    version_lowered_ = false;
     const auto deadline = now() + options_.reply_timeout;
-    while (!session_open_ && !failed_ && now() < deadline) pump(milliseconds(10));
+    while (!session_open_ && !failed_ && !version_lowered_ && now() < deadline)
+      pump(milliseconds(10));
     if (failed_) throw LinkError(message_);
   }
   if (!session_open_) {

@@ -119,6 +119,10 @@ class Sender {
   proto::SessionReply session_{};
   bool session_open_ = false;
   uint8_t session_seq_ = 0;
+  // The version #I asks for: ours, or an older controller's own that it named when it
+  // refused ours (then version_lowered_ until #I is sent again).
+  uint8_t session_version_ = proto::kProtocolVersion;
+  bool version_lowered_ = false;
   uint8_t realtime_seq_ = 0;
   uint8_t status_seq_ = 0;
   bool realtime_acked_ = false;

@@ -7,6 +7,8 @@
 
 #include "firmware/protocol/codec.h"           // proto::encode, proto::decode
 #include "firmware/protocol/compact_spline.h"  // put_compact_point, unpack_compact
+#include "firmware/protocol/contour_spline.h"  // put_contour_element, unpack_contour
+#include "host/lib/plan/contour_form.h"        // contour_elements
 #include "host/lib/stream/encode_command.h"    // encode_command
 
 namespace host {
@@ -96,11 +98,46 @@ void append_compact_data(const core::Spline& sp, int index, int curve, unsigned 
   }
 }
 
+// #Q frames: the first point, then each element as its end point (and an arc's height),
+// each frame as full as the payload allows.
+void append_contour_data(const core::Spline& sp, const std::vector<proto::ContourElement>& elements,
+                         int index, int curve, unsigned max_payload,
+                         std::vector<QueuedCommand>* out) {
+  const unsigned room = data_room(max_payload, proto::kContourHeaderBytes);
+  uint8_t value[proto::kMaxContourElementBytes];
+  size_t next = 0;
+  bool first = true;
+  while (first || next < elements.size()) {
+    proto::SplineContourCmd d{};
+    d.control_index = static_cast<uint8_t>(first ? 0 : 1 + 2 * next);
+    if (first) {
+      d.data_n = proto::put_contour_start(sp.control[0].x_um, sp.control[0].y_um, d.data);
+      d.control_n = 1;
+      first = false;
+    }
+    while (next < elements.size()) {
+      const uint8_t n = proto::put_contour_element(elements[next], value);
+      if (d.data_n + n > room) break;
+      std::copy(value, value + n, d.data + d.data_n);
+      d.data_n = static_cast<uint8_t>(d.data_n + n);
+      d.control_n = static_cast<uint8_t>(d.control_n + 2);
+      ++next;
+    }
+    out->push_back(encode_command(d, index, curve));
+  }
+}
+
 }  // namespace
 
 void append_spline_data(const core::Spline& sp, int step, int curve, unsigned max_payload,
-                        bool compact, std::vector<QueuedCommand>* out) {
-  if (compact) {
+                        SplineFrames encoding, std::vector<QueuedCommand>* out) {
+  if (encoding == SplineFrames::kContour) {
+    if (const auto elements = contour_elements(sp)) {
+      append_contour_data(sp, *elements, step, curve, max_payload, out);
+      return;
+    }
+  }
+  if (encoding != SplineFrames::kFixed) {
     append_compact_data(sp, step, curve, max_payload, out);
     return;
   }
@@ -113,7 +150,8 @@ void append_spline_data(const core::Spline& sp, int step, int curve, unsigned ma
 }
 
 bool is_spline_data(uint8_t letter) {
-  return letter == proto::kCmdSplineData || letter == proto::kCmdSplineCompact;
+  return letter == proto::kCmdSplineData || letter == proto::kCmdSplineCompact ||
+         letter == proto::kCmdSplineContour;
 }
 
 bool add_spline_data(const QueuedCommand& c, core::Spline* s) {
@@ -130,6 +168,11 @@ bool add_spline_data(const QueuedCommand& c, core::Spline* s) {
     proto::SplineCompactCmd d;
     if (proto::decode(c.payload.data(), length, &d) != proto::ErrorCode::kOk) return false;
     return proto::unpack_compact(d, s) == proto::ErrorCode::kOk;
+  }
+  if (c.letter == proto::kCmdSplineContour) {
+    proto::SplineContourCmd d;
+    if (proto::decode(c.payload.data(), length, &d) != proto::ErrorCode::kOk) return false;
+    return proto::unpack_contour(d, s) == proto::ErrorCode::kOk;
   }
   return false;
 }

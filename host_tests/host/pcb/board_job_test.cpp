@@ -11,6 +11,7 @@
 #include "host/lib/plan/firmware_spline.h"
 #include "host/lib/sim/sim_job.h"
 #include "host/lib/stream/job_encoder.h"
+#include "host/lib/stream/spline_frames.h"  // is_spline_data
 #include "host_tests/host/pcb/synthetic_board.h"
 
 namespace host::pcb {
@@ -168,31 +169,40 @@ TEST(BoardJob, LayersLineUpAndTheBottomSideIsMirrored) {
 }
 
 // The whole board (isolation, drilling with tool changes, cut-out) on the simulated machine,
-// its splines once as compact #K frames and once as #D: the job completes both times and the
-// machine cuts the same path (the firmware stores the same splines), from far fewer bytes.
-TEST(BoardJob, WholeBoardRunsTheSameFromCompactAndFullSplineFrames) {
+// its splines as #D, as compact #K and as #Q contour frames: the job completes each time and
+// the machine cuts the same path (the firmware stores the same splines), from fewer bytes
+// each time.
+TEST(BoardJob, WholeBoardRunsTheSameFromFullCompactAndContourSplineFrames) {
   Board b;
   const BoardJob job = plan_board(b.layers(), BoardOptions());
-  sim::SimJobResult run[2];
-  size_t spline_bytes[2] = {0, 0};
-  for (int compact = 0; compact < 2; ++compact) {
+  const SplineFrames kinds[3] = {SplineFrames::kFixed, SplineFrames::kCompact,
+                                 SplineFrames::kContour};
+  sim::SimJobResult run[3];
+  size_t spline_bytes[3] = {0, 0, 0};
+  int contour_frames = 0;
+  for (int k = 0; k < 3; ++k) {
     sim::SimJobOptions o;
-    o.encode.compact_splines = compact == 1;
+    o.encode.splines = kinds[k];
     for (const QueuedCommand& c : encode_job(job.plan, o.encode)) {
-      if (c.letter == proto::kCmdSplineData || c.letter == proto::kCmdSplineCompact)
-        spline_bytes[compact] += frame_bytes(c);
-      if (compact == 1) EXPECT_NE(c.letter, proto::kCmdSplineData);
+      if (is_spline_data(c.letter)) spline_bytes[k] += frame_bytes(c);
+      if (k > 0) EXPECT_NE(c.letter, proto::kCmdSplineData);
+      if (k < 2) EXPECT_NE(c.letter, proto::kCmdSplineContour);
+      if (k == 2) contour_frames += c.letter == proto::kCmdSplineContour;
     }
-    run[compact] = sim::run_sim_job(job.plan, o);
-    ASSERT_EQ(run[compact].outcome, JobOutcome::kCompleted) << run[compact].message;
-    EXPECT_EQ(run[compact].pauses_confirmed, 3);  // the V-bit, two drill sizes, the cutter
+    run[k] = sim::run_sim_job(job.plan, o);
+    ASSERT_EQ(run[k].outcome, JobOutcome::kCompleted) << run[k].message;
+    EXPECT_EQ(run[k].pauses_confirmed, 3);  // the V-bit, two drill sizes, the cutter
   }
+  EXPECT_GT(contour_frames, 0);
   EXPECT_LT(spline_bytes[1] * 2, spline_bytes[0]);
-  EXPECT_LT(run[1].wire_bytes, run[0].wire_bytes);
-  EXPECT_NEAR(run[1].cut_mm, run[0].cut_mm, 1e-6);
-  EXPECT_NEAR(run[1].rapid_mm, run[0].rapid_mm, 1e-6);
-  EXPECT_NEAR(run[1].max_contour_error_um, run[0].max_contour_error_um, 1e-6);
-  EXPECT_EQ(run[1].trace_samples, run[0].trace_samples);
+  EXPECT_LT(spline_bytes[2] * 4, spline_bytes[1] * 3);  // #Q: at least a quarter fewer than #K
+  for (int k = 1; k < 3; ++k) {
+    EXPECT_LT(run[k].wire_bytes, run[k - 1].wire_bytes);
+    EXPECT_NEAR(run[k].cut_mm, run[0].cut_mm, 1e-6);
+    EXPECT_NEAR(run[k].rapid_mm, run[0].rapid_mm, 1e-6);
+    EXPECT_NEAR(run[k].max_contour_error_um, run[0].max_contour_error_um, 1e-6);
+    EXPECT_EQ(run[k].trace_samples, run[0].trace_samples);
+  }
 }
 
 TEST(BoardJob, NarrowGapIsAnErrorNamingThePlace) {

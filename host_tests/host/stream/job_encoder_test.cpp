@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "firmware/protocol/codec.h"
+#include "firmware/protocol/contour_spline.h"
 #include "host/lib/stream/job_encoder.h"
 #include "host/lib/stream/spline_frames.h"
 #include "host_tests/core/spline_equality.h"
@@ -110,7 +111,7 @@ TEST(JobEncoder, SplineSurvivesPackingAtASmallPayload) {
       const core::Spline spline = wavy_spline(core::kMaxControlPoints, rational);
       EncodeOptions o;
       o.max_payload = 16;
-      o.compact_splines = compact;
+      o.splines = compact ? SplineFrames::kCompact : SplineFrames::kFixed;
       const auto cmds = encode_job(plan_with_spline(spline), o);
       for (const auto& c : cmds) EXPECT_LE(c.payload.size(), 16u);
       test::expect_same_spline(spline, reassemble(cmds));
@@ -158,7 +159,7 @@ TEST(JobEncoder, CompactSplineDataIsTheSameSplineInFewerBytes) {
   for (bool rational : {true, false}) {
     const core::Spline spline = wavy_spline(core::kMaxControlPoints, rational);
     EncodeOptions full;
-    full.compact_splines = false;
+    full.splines = SplineFrames::kFixed;
     const auto k = encode_job(plan_with_spline(spline), EncodeOptions{});
     const auto d = encode_job(plan_with_spline(spline), full);
     int k_frames = 0, d_frames = 0;
@@ -337,6 +338,72 @@ TEST(JobEncoder, JobLeavingTheControllersTravelIsRefusedNamingTheStep) {
   EXPECT_THROW(encode_job(plan, o), PlanError);
   o.controller = nullptr;
   EXPECT_NO_THROW(encode_job(plan, o));
+}
+
+// A contour of n elements (lines and quarter arcs by turns) as the controller holds it after
+// #Q frames: corners of weight 1.0, the middles contour_middle makes, knots 0 0 0 .. n n n.
+core::Spline contour_spline(int n) {
+  core::Spline s{};
+  s.degree = 2;
+  s.rational = true;
+  s.control_count = static_cast<uint16_t>(2 * n + 1);
+  s.knot_count = static_cast<uint16_t>(2 * n + 4);
+  s.control[0] = {1000, 1000, core::kWeightOneQ14};
+  for (int i = 0; i < n; ++i) {
+    const proto::ContourElement e = i % 2 ? proto::ContourElement{3000, 3000, true, -2121}
+                                          : proto::ContourElement{5000, 0, false, 0};
+    const core::ControlPoint& p0 = s.control[2 * i];
+    proto::contour_middle(p0, e, &s.control[2 * i + 1]);
+    s.control[2 * i + 2] = {p0.x_um + e.dx_um, p0.y_um + e.dy_um, core::kWeightOneQ14};
+  }
+  for (int j = 0; j < s.knot_count; ++j)
+    s.knot[j] = j < 3 ? 0 : j + 3 >= s.knot_count ? n : (j - 1) / 2;
+  return s;
+}
+
+TEST(JobEncoder, ALinesAndArcsSplineGoesAsContourFramesInFewerBytes) {
+  const core::Spline spline = contour_spline(31);
+  for (unsigned payload : {64u, 16u}) {
+    EncodeOptions o;
+    o.max_payload = payload;
+    const auto q = encode_job(plan_with_spline(spline), o);
+    o.splines = SplineFrames::kCompact;
+    const auto k = encode_job(plan_with_spline(spline), o);
+    size_t q_bytes = 0, k_bytes = 0;
+    for (const auto& c : q) {
+      EXPECT_NE(c.letter, proto::kCmdSplineCompact);
+      EXPECT_LE(c.payload.size(), payload);
+      if (c.letter == proto::kCmdSplineContour) q_bytes += frame_bytes(c);
+    }
+    for (const auto& c : k) {
+      EXPECT_NE(c.letter, proto::kCmdSplineContour);
+      if (c.letter == proto::kCmdSplineCompact) k_bytes += frame_bytes(c);
+    }
+    EXPECT_GT(q_bytes, 0u);
+    EXPECT_LT(q_bytes * 10, k_bytes * 6) << "payload " << payload;  // 40 % fewer at least
+    test::expect_same_spline(spline, reassemble(q));
+    test::expect_same_spline(spline, reassemble(k));
+  }
+  // A middle point the controller would not make: #K frames, the same spline.
+  core::Spline moved = spline;
+  moved.control[3].x_um += 1;
+  for (const auto& c : encode_job(plan_with_spline(moved), EncodeOptions{}))
+    EXPECT_NE(c.letter, proto::kCmdSplineContour);
+  test::expect_same_spline(moved, reassemble(encode_job(plan_with_spline(moved), EncodeOptions{})));
+}
+
+TEST(JobEncoder, AVersion2ControllerGetsCompactFrames) {
+  proto::SessionReply caps{};
+  caps.max_payload = 40;
+  caps.protocol_version = 2;
+  EncodeOptions o;
+  use_session(caps, &o);
+  EXPECT_EQ(o.max_payload, 40u);
+  EXPECT_EQ(o.splines, SplineFrames::kCompact);
+  caps.protocol_version = 3;
+  EncodeOptions p;
+  use_session(caps, &p);
+  EXPECT_EQ(p.splines, SplineFrames::kContour);
 }
 
 TEST(JobEncoder, WireBytesCountHeaderAndCrc) {

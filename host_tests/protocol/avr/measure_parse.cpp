@@ -1,6 +1,7 @@
 // AVR (ATmega2560 in simavr) measurement: cycles to parse and decode one full #D frame
-// (64-byte payload), one byte at a time, and the CRC share; then a full #K frame: parse,
-// decode (with its structure check) and unpacking into a spline. Prints over UART0.
+// (64-byte payload), one byte at a time, and the CRC share; then a full #K frame and a full
+// #Q frame: parse, decode (with its structure check) and unpacking into a spline. Prints
+// over UART0.
 // Build and run: see docs/performance.md "Path controller and protocol".
 #include <avr/interrupt.h>  // cli
 #include <avr/io.h>         // TCCR1B, TCNT1, UCSR0A, UDR0
@@ -9,6 +10,7 @@
 
 #include "firmware/protocol/codec.h"           // write_frame, decode_frame
 #include "firmware/protocol/compact_spline.h"  // put_compact_point, unpack_compact
+#include "firmware/protocol/contour_spline.h"  // put_contour_element, unpack_contour
 #include "firmware/protocol/crc16.h"           // crc16
 #include "firmware/protocol/parser.h"          // Parser
 
@@ -76,6 +78,39 @@ static void build_compact_frame() {
   proto::write_frame(k, 8, g_k_frame, sizeof g_k_frame, &g_k_size);
 }
 
+// A #Q as full as a PCB contour makes it: pad outlines, quarter arcs of 0.1-0.3 mm radius
+// and lines of 0.2-1.5 mm by turns, up to 64 payload bytes.
+static uint8_t g_q_frame[proto::kMaxFrameBytes];
+static uint8_t g_q_size;
+static core::Spline g_q_spline;
+
+static void build_contour_frame() {
+  static const int16_t kArc[4][3] = {
+      {212, 212, -88}, {-283, 283, -117}, {-141, -141, -59}, {300, -300, -124}};
+  static const int16_t kLine[4][2] = {{1500, 0}, {0, 900}, {-400, 0}, {0, -1200}};
+  proto::SplineContourCmd q;
+  q.control_index = 0;
+  q.control_n = 1;
+  q.data_n = proto::put_contour_start(123456L, -98765L, q.data);
+  uint8_t value[proto::kMaxContourElementBytes];
+  for (uint8_t i = 0;; ++i) {
+    proto::ContourElement e;
+    e.arc = (i % 2) != 0;
+    e.dx_um = e.arc ? kArc[(i / 2) % 4][0] : kLine[(i / 2) % 4][0];
+    e.dy_um = e.arc ? kArc[(i / 2) % 4][1] : kLine[(i / 2) % 4][1];
+    e.height_um = e.arc ? kArc[(i / 2) % 4][2] : 0;
+    const uint8_t n = proto::put_contour_element(e, value);
+    if (q.data_n + n > proto::kMaxContourData) break;
+    for (uint8_t b = 0; b < n; ++b) q.data[q.data_n++] = value[b];
+    q.control_n = (uint8_t)(q.control_n + 2U);
+  }
+  g_q_spline.degree = 2;
+  g_q_spline.rational = true;
+  g_q_spline.control_count = q.control_n;
+  g_q_spline.knot_count = (uint16_t)(q.control_n + 3U);
+  proto::write_frame(q, 9, g_q_frame, sizeof g_q_frame, &g_q_size);
+}
+
 int main() {
   UCSR0A = _BV(U2X0);
   UBRR0 = 1;
@@ -130,6 +165,23 @@ int main() {
          compact.control_n, compact.knot_n, (unsigned)ke, (unsigned)ku);
   printf("k_parse_cycles=%u k_decode_cycles=%u k_unpack_cycles=%u\n", parse_cycles, decode_cycles,
          unpack_cycles);
+
+  build_contour_frame();
+  static proto::Parser q_parser(proto::kCommandStart);
+  proto::SplineContourCmd contour;
+  t0 = TCNT1;
+  for (uint8_t i = 0; i < g_q_size; ++i) q_parser.feed(g_q_frame[i]);
+  parse_cycles = (uint16_t)(TCNT1 - t0);
+  t0 = TCNT1;
+  const proto::ErrorCode qe = proto::decode_frame(q_parser.frame(), &contour);
+  decode_cycles = (uint16_t)(TCNT1 - t0);
+  t0 = TCNT1;
+  const proto::ErrorCode qu = proto::unpack_contour(contour, &g_q_spline);
+  const uint16_t q_unpack_cycles = (uint16_t)(TCNT1 - t0);
+  printf("q_frame_bytes=%u q_points=%u decode=%u unpack=%u\n", g_q_size, contour.control_n,
+         (unsigned)qe, (unsigned)qu);
+  printf("q_parse_cycles=%u q_decode_cycles=%u q_unpack_cycles=%u\n", parse_cycles, decode_cycles,
+         q_unpack_cycles);
   while (!(UCSR0A & _BV(TXC0))) {
   }
   cli();
