@@ -42,8 +42,9 @@ uint32_t isqrt_rounded(uint32_t n) {
   return n - r * r > r ? r + 1U : r;  // (r + 1/2)^2 = r^2 + r + 1/4
 }
 
-int32_t absolute(int32_t v) {
-  return v < 0 ? -v : v;
+// |v| <= limit, for any v (negating INT32_MIN would overflow).
+bool within(int32_t v, int32_t limit) {
+  return v >= -limit && v <= limit;
 }
 
 // Reads the numbers of one element.
@@ -72,11 +73,11 @@ ErrorCode contour_middle(const core::ControlPoint& p0, const ContourElement& e,
   middle->y_um = p0.y_um + e.dy_um / 2;
   middle->weight_q14 = core::kWeightOneQ14;
   if (!e.arc) return ErrorCode::kOk;
-  if (absolute(e.dx_um) > kMaxContourArcAxisUm || absolute(e.dy_um) > kMaxContourArcAxisUm)
+  if (!within(e.dx_um, kMaxContourArcAxisUm) || !within(e.dy_um, kMaxContourArcAxisUm))
     return ErrorCode::kFieldRange;
   const uint32_t chord2 = (uint32_t)(e.dx_um * e.dx_um) + (uint32_t)(e.dy_um * e.dy_um);
   const int32_t chord = (int32_t)core::isqrt32(chord2);
-  if (chord == 0 || absolute(e.height_um) > chord) return ErrorCode::kFieldRange;
+  if (chord == 0 || !within(e.height_um, chord)) return ErrorCode::kFieldRange;
   // The unit normal (-dy, dx) / chord times the height; |height * d| < 2^29.
   middle->x_um += divide_rounded(-e.height_um * e.dy_um, chord);
   middle->y_um += divide_rounded(e.height_um * e.dx_um, chord);
@@ -145,7 +146,7 @@ ErrorCode unpack_contour(const SplineContourCmd& m, core::Spline* s) {
     ContourElement el;
     ErrorCode e = read_element(&r, &el);
     if (e != ErrorCode::kOk) return e;
-    if (absolute(el.dx_um) > kMaxDeltaUm || absolute(el.dy_um) > kMaxDeltaUm)
+    if (!within(el.dx_um, kMaxDeltaUm) || !within(el.dy_um, kMaxDeltaUm))
       return ErrorCode::kFieldRange;
     core::ControlPoint p1;
     p1.x_um = p0.x_um + el.dx_um;

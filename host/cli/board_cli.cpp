@@ -223,9 +223,10 @@ pcb::BoardJob plan(const BoardFiles& b, const pcb::BoardOptions& o) {
 
 struct WireMeasure {
   size_t spline_frames = 0;
-  size_t spline_bytes = 0;       // #B and #K frames of the isolation curves (as sent)
-  size_t spline_bytes_full = 0;  // the same with #D frames (fixed-width fields)
-  size_t g1_lines = 0;           // the same curves as G1 lines at the chord tolerance
+  size_t spline_bytes = 0;          // #B and #Q (or #K) frames of the isolation (as sent)
+  size_t spline_bytes_compact = 0;  // the same with #K frames only (protocol 2)
+  size_t spline_bytes_full = 0;     // the same with #D frames (fixed-width fields)
+  size_t g1_lines = 0;              // the same curves as G1 lines at the chord tolerance
   size_t g1_bytes = 0;
   size_t g1_vertex_bytes = 0;  // G1 through every vertex of Clipper's flattened contours
 };
@@ -248,6 +249,10 @@ WireMeasure measure_wire(const pcb::BoardJob& job, double tol_mm) {
     if (c.step < 0) continue;  // set-up frames
     ++m.spline_frames;
     m.spline_bytes += frame_bytes(c);
+  }
+  eo.splines = SplineFrames::kCompact;
+  for (const QueuedCommand& c : encode_job(iso, eo)) {
+    if (c.step >= 0) m.spline_bytes_compact += frame_bytes(c);
   }
   eo.splines = SplineFrames::kFixed;
   for (const QueuedCommand& c : encode_job(iso, eo)) {
@@ -376,6 +381,7 @@ void run_board(const BoardCommand& a) {
   const WireMeasure w = measure_wire(job, a.tol_mm);
   j["isolation_spline_frames"] = w.spline_frames;
   j["isolation_spline_bytes"] = w.spline_bytes;
+  j["isolation_spline_bytes_compact"] = w.spline_bytes_compact;
   j["isolation_spline_bytes_fixed_width"] = w.spline_bytes_full;
   j["isolation_g1_lines_same_tolerance"] = w.g1_lines;
   j["isolation_g1_bytes_same_tolerance"] = w.g1_bytes;
@@ -413,7 +419,7 @@ void run_board(const BoardCommand& a) {
         "{}: {} side, first tool {}\n"
         "  isolation: {} islands, {} contours, {:.1f} mm ({} lines, {} arcs, {} cubics); "
         "{} narrow gaps\n"
-        "  as splines {} bytes in {} frames ({} with fixed-width #D data); as G1 at {} mm: {} "
+        "  as splines {} bytes in {} frames ({} as #K, {} as #D); as G1 at {} mm: {} "
         "bytes ({:.1f}x); G1 through every vertex: {} bytes\n"
         "  drilling: {} holes ({} on copper), {} slots, {} sizes; travel {:.1f} mm (file order "
         "{:.1f} mm)\n"
@@ -421,7 +427,8 @@ void run_board(const BoardCommand& a) {
         "  files -> plan: {:.3f} s CPU, peak {:.1f} MB\n",
         b.name, j["side"].get<std::string>(), r.first_tool, r.islands, r.isolation_contours,
         r.isolation_length_mm, r.fit.lines, r.fit.arcs, r.fit.cubics, r.narrow_gaps.size(),
-        w.spline_bytes, w.spline_frames, w.spline_bytes_full, a.tol_mm, w.g1_bytes,
+        w.spline_bytes, w.spline_frames, w.spline_bytes_compact, w.spline_bytes_full, a.tol_mm,
+        w.g1_bytes,
         w.spline_bytes ? static_cast<double>(w.g1_bytes) / static_cast<double>(w.spline_bytes)
                        : 0.0,
         w.g1_vertex_bytes, r.holes, r.holes_on_copper, r.slots, r.drill_tools,
