@@ -135,6 +135,10 @@ TEST(SplineContour, ArcsOfEverySizeAndAngleStayOnTheirCircle) {
                                      int32_t(std::llround((dx * my - dy * mx) / chord))};
     core::ControlPoint m;
     ASSERT_EQ(proto::contour_middle(p0, e, &m), proto::ErrorCode::kOk);
+    // The middle: half the chord (toward p0) plus the height along the normal, rounded.
+    const double c_int = std::floor(std::sqrt(dx * dx + dy * dy));
+    EXPECT_LE(std::fabs(m.x_um - (p0.x_um + e.dx_um / 2 - e.height_um * dy / c_int)), 0.5 + 1e-9);
+    EXPECT_LE(std::fabs(m.y_um - (p0.y_um + e.dy_um / 2 + e.height_um * dx / c_int)), 0.5 + 1e-9);
     // The weight is the rounded exact cos(half angle) of the integer middle point.
     const double lx = m.x_um - p0.x_um, ly = m.y_um - p0.y_um;
     const double w = std::min(1.0, std::sqrt((dx * dx + dy * dy) / (4 * (lx * lx + ly * ly))));
