@@ -153,6 +153,7 @@ UploadFields upload_fields(const httplib::Request& req) {
       u.error = fmt::format("{} '{}' is not a number", n.key, text);
       return u;
     }
+    if (n.value == &u.sub.settings.margin_mm) u.sub.margin_given = !text.empty();
   }
   return u;
 }

@@ -9,6 +9,7 @@
 
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/pcb/board_files.h"
+#include "host/lib/pcb/board_job.h"  // pcb::BoardOptions
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/plot/board_plot.h"
 #include "host/lib/plot/plan_plot.h"
@@ -210,7 +211,11 @@ IntakeResult JobIntake::submit(const Submission& sub) {
     job.settings = sub.settings;
     std::string stored;
     if (board) {
-      stage_board(sub, files, skip_other, zip, staging, &job, &stored);
+      // A board sits where `engraver board` puts it unless the sender said otherwise.
+      Submission resolved = sub;
+      if (!sub.margin_given) resolved.settings.margin_mm = pcb::BoardOptions().margin_mm;
+      job.settings = resolved.settings;
+      stage_board(resolved, files, skip_other, zip, staging, &job, &stored);
     } else {
       stage_drawing(sub, staging, &job, &stored);
     }

@@ -28,6 +28,7 @@ struct Submission {
   int priority = 0;
   std::string tag;
   JobPlanSettings settings;
+  bool margin_given = false;  // settings.margin_mm is the sender's; else a board gets board's 5 mm
   BoardSettings board;
 };
 

@@ -106,9 +106,11 @@ TEST(ServerBoards, BoardUploadedAsSeveralFilesRunsOnASimulatedMachineAndIsArchiv
   EXPECT_EQ(queued["input_file"], "board.json");
   EXPECT_EQ(queued["priority"], 2);
   EXPECT_GT(queued["planned_s"].get<double>(), 10.0);  // three cut-out passes at 3 mm/s alone
-  // Planned at upload: the board spans the 20 x 15 mm outline plus the cutter.
-  EXPECT_GT(queued["size_mm"][0].get<double>(), 20.0);
-  EXPECT_LT(queued["size_mm"][0].get<double>(), 23.0);
+  // Planned at upload: the board spans the 20 x 15 mm outline plus the cutter, from the
+  // 5 mm margin `engraver board` leaves.
+  EXPECT_EQ(queued["margin_mm"], 5.0);
+  EXPECT_GT(queued["size_mm"][0].get<double>(), 25.0);
+  EXPECT_LT(queued["size_mm"][0].get<double>(), 28.0);
 
   ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "completed"; }, 100))
       << server.job(id).dump();
@@ -154,6 +156,31 @@ TEST(ServerBoards, BoardUploadedAsSeveralFilesRunsOnASimulatedMachineAndIsArchiv
   double lowest_mm = 0;
   for (const auto& s : sim.machine().trace()) lowest_mm = std::min(lowest_mm, s.z_mm);
   EXPECT_LT(lowest_mm, -1.7);
+}
+
+// A board's margin is `engraver board`'s 5 mm unless the upload gives one (0 included); a
+// drawing keeps 0.
+TEST(ServerBoards, ABoardSitsAtTheBoardCommandsMarginUnlessTheUploadSaysOtherwise) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {});
+  auto upload = [&](const std::string& margin) {
+    httplib::MultipartFormDataItems form = blinky_form();
+    if (!margin.empty()) form.push_back({"margin_mm", margin, "", ""});
+    auto r = server.client().Post("/api/jobs", server.auth(), form);
+    EXPECT_TRUE(r && r->status == 201) << (r ? r->body : "no reply");
+    return r && r->status == 201 ? nlohmann::json::parse(r->body) : nlohmann::json::object();
+  };
+  const nlohmann::json by_default = upload("");
+  const nlohmann::json at_zero = upload("0");
+  const nlohmann::json at_two = upload("2");
+  EXPECT_EQ(by_default["margin_mm"], 5.0);
+  EXPECT_EQ(at_zero["margin_mm"], 0.0);
+  EXPECT_EQ(at_two["margin_mm"], 2.0);
+  const double w = at_zero["size_mm"][0].get<double>();
+  EXPECT_NEAR(by_default["size_mm"][0].get<double>(), w + 5.0, 1e-6);
+  EXPECT_NEAR(at_two["size_mm"][0].get<double>(), w + 2.0, 1e-6);
+  const int64_t drawing = server.upload_ok("square.ngc", test::square_gcode(10, 10, 10));
+  EXPECT_EQ(server.job(drawing)["margin_mm"], 0.0);
 }
 
 TEST(ServerBoards, BrokenBoardIsRefusedWithTheReadersMessageAndNothingIsStored) {
