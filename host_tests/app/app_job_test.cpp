@@ -95,6 +95,28 @@ TEST(AppSession, SessionStartAfterAnEarlyHoldStartsIdleAndRunsQueuedWork) {
   EXPECT_TRUE(rig.host.errors.empty());
 }
 
+// docs/protocol.md section 4: the controller speaks versions 2 and 3 and answers in the one
+// asked for; another is refused naming the newest it speaks.
+TEST(AppSession, VersionsTwoAndThreeOpenASessionInThatVersionOthersAreRefused) {
+  for (uint8_t version : {2, 3}) {
+    AppRig rig;
+    rig.host.open_session(version);
+    rig.run(5);
+    EXPECT_TRUE(rig.host.session_open) << int(version);
+    EXPECT_EQ(rig.host.session.protocol_version, version);
+    EXPECT_TRUE(rig.host.errors.empty());
+  }
+  for (uint8_t version : {1, 4}) {
+    AppRig rig;
+    rig.host.open_session(version);
+    rig.run(5);
+    EXPECT_FALSE(rig.host.session_open) << int(version);
+    ASSERT_EQ(rig.host.errors.size(), 1u);
+    EXPECT_EQ(rig.host.errors[0].code, ErrorCode::kVersionUnsupported);
+    EXPECT_EQ(rig.host.errors[0].detail, proto::kProtocolVersion);
+  }
+}
+
 TEST(AppZeroing, JoystickJogsWithARampedSpeedAndConfirmSetsTheZero) {
   AppRig rig;
   ASSERT_TRUE(rig.open_session());

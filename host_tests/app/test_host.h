@@ -40,6 +40,7 @@ class TestHost {
   proto::StatusReply status{};
   bool have_status = false;
   bool session_open = false;
+  proto::SessionReply session{};  // the newest *I
   int acks = 0;
   int timeouts = 0;
 
@@ -63,9 +64,9 @@ class TestHost {
     const Frame f = make(msg);
     transmit(f.letter, ++realtime_seq_, f.payload, false);
   }
-  void open_session() {
+  void open_session(uint8_t version = proto::kProtocolVersion) {
     session_seq_ = uint8_t(session_seq_ + 1);
-    const Frame f = make(proto::SessionCmd{proto::kProtocolVersion});
+    const Frame f = make(proto::SessionCmd{version});
     transmit(f.letter, session_seq_, f.payload, false);
     first_seq_ = uint8_t(session_seq_ + 1);
     frames_.clear();
@@ -146,7 +147,7 @@ class TestHost {
   void on_reply(const proto::Frame& f) {
     switch (f.letter) {
       case proto::kReplySession:
-        session_open = true;
+        session_open = proto::decode_frame(f, &session) == proto::ErrorCode::kOk;
         break;
       case proto::kReplyAck: {
         ++acks;
