@@ -14,6 +14,7 @@ namespace proto {
 // kMinProtocolVersion (a later one only adds commands) and answers in the one asked for.
 static const uint8_t kProtocolVersion = 3;
 static const uint8_t kMinProtocolVersion = 2;
+static const uint8_t kContourFramesVersion = 3;  // #Q from this version on
 
 // First byte of a frame: '#' host -> controller (commands), '*' controller -> host (replies).
 static const uint8_t kCommandStart = '#';

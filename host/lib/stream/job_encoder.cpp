@@ -107,7 +107,7 @@ core::Spline straight_spline(const core::PointUm& a, const core::PointUm& b) {
 
 void use_session(const proto::SessionReply& caps, EncodeOptions* o) {
   o->max_payload = caps.max_payload;
-  if (caps.protocol_version < 3 && o->splines == SplineFrames::kContour)
+  if (caps.protocol_version < proto::kContourFramesVersion && o->splines == SplineFrames::kContour)
     o->splines = SplineFrames::kCompact;
 }
 

@@ -123,6 +123,9 @@ void append_contour_data(const core::Spline& sp, const std::vector<proto::Contou
       d.control_n = static_cast<uint8_t>(d.control_n + 2);
       ++next;
     }
+    // Not reached: an element takes at most 9 bytes (arcs are short), a payload 14 at least.
+    if (d.control_n == 0)
+      throw PlanError(fmt::format("step {}: a contour element does not fit a #Q frame", index));
     out->push_back(encode_command(d, index, curve));
   }
 }
