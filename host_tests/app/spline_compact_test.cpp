@@ -13,6 +13,7 @@
 #include "firmware/core/curve_walker.h"
 #include "firmware/protocol/codec.h"
 #include "firmware/protocol/compact_spline.h"
+#include "host_tests/app/through_wire.h"
 #include "host_tests/core/spline_equality.h"
 
 namespace {
@@ -78,16 +79,6 @@ std::vector<proto::SplineDataCmd> full_frames(const core::Spline& s) {
   return out;
 }
 
-// Encodes and decodes a frame through the codec (as the wire carries it).
-template <typename Msg>
-Msg through_wire(const Msg& m) {
-  proto::Payload p;
-  EXPECT_EQ(proto::encode(m, &p), proto::ErrorCode::kOk);
-  Msg back;
-  EXPECT_EQ(proto::decode(p.bytes, p.length, &back), proto::ErrorCode::kOk);
-  return back;
-}
-
 // A spline with n points on a random walk of steps up to `step` um (clamped to +-1 m),
 // degree p, uniform-ish increasing knots; rational with random weights when asked.
 core::Spline random_spline(std::mt19937* rng, uint16_t n, uint8_t p, bool rational, int32_t step) {
@@ -121,7 +112,8 @@ core::Spline store_compact(const core::Spline& s, unsigned room = 60) {
   bool done = false;
   EXPECT_EQ(store.begin(header_of(s), &slot), proto::ErrorCode::kOk);
   for (const proto::SplineCompactCmd& d : compact_frames(s, room)) {
-    EXPECT_EQ(store.add_compact(through_wire(d), kTravel, &detail, &done), proto::ErrorCode::kOk);
+    EXPECT_EQ(store.add_compact(test::through_wire(d), kTravel, &detail, &done),
+              proto::ErrorCode::kOk);
   }
   EXPECT_TRUE(done);
   EXPECT_EQ(store.state(slot), app::SlotState::kReady);
@@ -134,7 +126,7 @@ core::Spline store_full(const core::Spline& s) {
   bool done = false;
   EXPECT_EQ(store.begin(header_of(s), &slot), proto::ErrorCode::kOk);
   for (const proto::SplineDataCmd& d : full_frames(s)) {
-    EXPECT_EQ(store.add(through_wire(d), kTravel, &detail, &done), proto::ErrorCode::kOk);
+    EXPECT_EQ(store.add(test::through_wire(d), kTravel, &detail, &done), proto::ErrorCode::kOk);
   }
   EXPECT_TRUE(done);
   return *store.spline(slot);
@@ -277,7 +269,7 @@ struct OpenStore {
       for (uint8_t b = 0; b < n; ++b) first.data[first.data_n++] = value[b];
       ++first.control_n;
     }
-    EXPECT_EQ(store.add_compact(through_wire(first), kTravel, &detail, &done),
+    EXPECT_EQ(store.add_compact(test::through_wire(first), kTravel, &detail, &done),
               proto::ErrorCode::kOk);
   }
   // The rest as #K frames: the spline then stores complete and exactly s.
@@ -290,7 +282,8 @@ struct OpenStore {
       for (uint8_t b = 0; b < n; ++b) d.data[d.data_n++] = value[b];
       ++d.control_n;
     }
-    ASSERT_EQ(store.add_compact(through_wire(d), kTravel, &detail, &done), proto::ErrorCode::kOk);
+    ASSERT_EQ(store.add_compact(test::through_wire(d), kTravel, &detail, &done),
+              proto::ErrorCode::kOk);
     proto::SplineCompactCmd k{};
     k.control_index = uint8_t(s.control_count);
     for (uint16_t i = 0; i < s.knot_count; ++i) {
@@ -299,7 +292,8 @@ struct OpenStore {
       for (uint8_t b = 0; b < n; ++b) k.data[k.data_n++] = value[b];
       ++k.knot_n;
     }
-    ASSERT_EQ(store.add_compact(through_wire(k), kTravel, &detail, &done), proto::ErrorCode::kOk);
+    ASSERT_EQ(store.add_compact(test::through_wire(k), kTravel, &detail, &done),
+              proto::ErrorCode::kOk);
     EXPECT_TRUE(done);
     test::expect_same_spline(s, *store.spline(slot));
   }

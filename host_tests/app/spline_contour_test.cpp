@@ -12,6 +12,7 @@
 #include "firmware/core/spline.h"
 #include "firmware/protocol/codec.h"
 #include "firmware/protocol/contour_spline.h"
+#include "host_tests/app/through_wire.h"
 #include "host_tests/core/spline_equality.h"
 
 namespace {
@@ -52,15 +53,6 @@ std::vector<proto::SplineContourCmd> contour_frames(core::PointUm start,
   return out;
 }
 
-template <typename Msg>
-Msg through_wire(const Msg& m) {
-  proto::Payload p;
-  EXPECT_EQ(proto::encode(m, &p), proto::ErrorCode::kOk);
-  Msg back;
-  EXPECT_EQ(proto::decode(p.bytes, p.length, &back), proto::ErrorCode::kOk);
-  return back;
-}
-
 // The spline the store holds after the frames (each must be accepted).
 core::Spline store_contour(core::PointUm start, const std::vector<proto::ContourElement>& els,
                            unsigned room = 62) {
@@ -70,7 +62,8 @@ core::Spline store_contour(core::PointUm start, const std::vector<proto::Contour
   EXPECT_EQ(store.begin(contour_header(uint16_t(els.size())), &slot), proto::ErrorCode::kOk);
   for (const proto::SplineContourCmd& d : contour_frames(start, els, room)) {
     EXPECT_FALSE(done);
-    EXPECT_EQ(store.add_contour(through_wire(d), kTravel, &detail, &done), proto::ErrorCode::kOk);
+    EXPECT_EQ(store.add_contour(test::through_wire(d), kTravel, &detail, &done),
+              proto::ErrorCode::kOk);
   }
   EXPECT_TRUE(done);
   EXPECT_EQ(store.state(slot), app::SlotState::kReady);
