@@ -111,6 +111,31 @@ static void build_contour_frame() {
   proto::write_frame(q, 9, g_q_frame, sizeof g_q_frame, &g_q_size);
 }
 
+// Cycles to parse a spline data frame byte by byte, decode it into *cmd and unpack it into s.
+struct FrameCycles {
+  uint16_t parse, decode, unpack;
+  proto::ErrorCode decoded, unpacked;
+};
+
+template <typename Cmd>
+static FrameCycles time_spline_frame(const uint8_t* frame, uint8_t size, Cmd* cmd,
+                                     proto::ErrorCode (*unpack)(const Cmd&, core::Spline*),
+                                     core::Spline* s) {
+  static proto::Parser parser(proto::kCommandStart);
+  parser.reset();
+  FrameCycles c;
+  uint16_t t0 = TCNT1;
+  for (uint8_t i = 0; i < size; ++i) parser.feed(frame[i]);
+  c.parse = (uint16_t)(TCNT1 - t0);
+  t0 = TCNT1;
+  c.decoded = proto::decode_frame(parser.frame(), cmd);
+  c.decode = (uint16_t)(TCNT1 - t0);
+  t0 = TCNT1;
+  c.unpacked = unpack(*cmd, s);
+  c.unpack = (uint16_t)(TCNT1 - t0);
+  return c;
+}
+
 int main() {
   UCSR0A = _BV(U2X0);
   UBRR0 = 1;
@@ -150,38 +175,20 @@ int main() {
   printf("parser_ram_bytes=%u\n", (unsigned)sizeof(proto::Parser));
 
   build_compact_frame();
-  static proto::Parser k_parser(proto::kCommandStart);
   proto::SplineCompactCmd compact;
-  t0 = TCNT1;
-  for (uint8_t i = 0; i < g_k_size; ++i) k_parser.feed(g_k_frame[i]);
-  parse_cycles = (uint16_t)(TCNT1 - t0);
-  t0 = TCNT1;
-  const proto::ErrorCode ke = proto::decode_frame(k_parser.frame(), &compact);
-  decode_cycles = (uint16_t)(TCNT1 - t0);
-  t0 = TCNT1;
-  const proto::ErrorCode ku = proto::unpack_compact(compact, &g_spline);
-  const uint16_t unpack_cycles = (uint16_t)(TCNT1 - t0);
+  const FrameCycles k =
+      time_spline_frame(g_k_frame, g_k_size, &compact, proto::unpack_compact, &g_spline);
   printf("k_frame_bytes=%u k_points=%u k_knots=%u decode=%u unpack=%u\n", g_k_size,
-         compact.control_n, compact.knot_n, (unsigned)ke, (unsigned)ku);
-  printf("k_parse_cycles=%u k_decode_cycles=%u k_unpack_cycles=%u\n", parse_cycles, decode_cycles,
-         unpack_cycles);
+         compact.control_n, compact.knot_n, (unsigned)k.decoded, (unsigned)k.unpacked);
+  printf("k_parse_cycles=%u k_decode_cycles=%u k_unpack_cycles=%u\n", k.parse, k.decode, k.unpack);
 
   build_contour_frame();
-  static proto::Parser q_parser(proto::kCommandStart);
   proto::SplineContourCmd contour;
-  t0 = TCNT1;
-  for (uint8_t i = 0; i < g_q_size; ++i) q_parser.feed(g_q_frame[i]);
-  parse_cycles = (uint16_t)(TCNT1 - t0);
-  t0 = TCNT1;
-  const proto::ErrorCode qe = proto::decode_frame(q_parser.frame(), &contour);
-  decode_cycles = (uint16_t)(TCNT1 - t0);
-  t0 = TCNT1;
-  const proto::ErrorCode qu = proto::unpack_contour(contour, &g_q_spline);
-  const uint16_t q_unpack_cycles = (uint16_t)(TCNT1 - t0);
+  const FrameCycles q =
+      time_spline_frame(g_q_frame, g_q_size, &contour, proto::unpack_contour, &g_q_spline);
   printf("q_frame_bytes=%u q_points=%u decode=%u unpack=%u\n", g_q_size, contour.control_n,
-         (unsigned)qe, (unsigned)qu);
-  printf("q_parse_cycles=%u q_decode_cycles=%u q_unpack_cycles=%u\n", parse_cycles, decode_cycles,
-         q_unpack_cycles);
+         (unsigned)q.decoded, (unsigned)q.unpacked);
+  printf("q_parse_cycles=%u q_decode_cycles=%u q_unpack_cycles=%u\n", q.parse, q.decode, q.unpack);
   while (!(UCSR0A & _BV(TXC0))) {
   }
   cli();
