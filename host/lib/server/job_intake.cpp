@@ -103,7 +103,7 @@ void JobIntake::stage_board(const Submission& sub, const std::vector<UploadFile>
   double work_w = 0, work_h = 0;
   work_area(&work_w, &work_h);
   const PlannedBoard b =
-      plan_board_upload(files, skip_other, job->name, sub.board, sub.settings, work_w, work_h);
+      plan_board_upload(files, skip_other, job->name, sub.board, job->settings, work_w, work_h);
   job->input_file = kBoardManifest;
   for (const auto& [file, bytes] : b.files) write_file(staging / file, bytes);
   if (zip != nullptr) write_file(staging / "input.zip", *zip);  // as it came, all files in it
@@ -212,10 +212,8 @@ IntakeResult JobIntake::submit(const Submission& sub) {
     std::string stored;
     if (board) {
       // A board sits where `engraver board` puts it unless the sender said otherwise.
-      Submission resolved = sub;
-      if (!sub.margin_given) resolved.settings.margin_mm = pcb::BoardOptions().margin_mm;
-      job.settings = resolved.settings;
-      stage_board(resolved, files, skip_other, zip, staging, &job, &stored);
+      if (!sub.margin_given) job.settings.margin_mm = pcb::BoardOptions().margin_mm;
+      stage_board(sub, files, skip_other, zip, staging, &job, &stored);
     } else {
       stage_drawing(sub, staging, &job, &stored);
     }

@@ -52,7 +52,8 @@ class JobIntake {
   // bytes the store keeps. Throws ImportError / PlanError with the message for the sender.
   void stage_drawing(const Submission& sub, const std::filesystem::path& staging, JobRecord* job,
                      std::string* stored) const;
-  // zip: the upload as it came when it was one zip file (kept as input.zip), else null.
+  // zip: the upload as it came when it was one zip file (kept as input.zip), else null. Planned
+  // with job->settings (the board's margin resolved), sub.board.
   void stage_board(const Submission& sub, const std::vector<UploadFile>& files, bool skip_other,
                    const std::string* zip, const std::filesystem::path& staging, JobRecord* job,
                    std::string* stored) const;
