@@ -115,7 +115,7 @@ bool snap_to_contour_form(core::Spline* s) {
 }
 
 std::optional<std::vector<proto::ContourElement>> contour_elements(const core::Spline& s) {
-  if (!contour_knots(s)) return std::nullopt;
+  if (!proto::is_contour_shape(s)) return std::nullopt;
   for (uint16_t j = 0; j < s.knot_count; ++j)
     if (s.knot[j] != pattern(j, s.knot_count)) return std::nullopt;
   if (s.control[0].weight_q14 != core::kWeightOneQ14) return std::nullopt;
