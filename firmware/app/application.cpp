@@ -246,7 +246,7 @@ void Application::poll() {
   if (!have_snapshot_) return;  // the tick has not run yet: positions unknown
   follow_tick_events();
   if (stop_request_owed_ && request(RequestKind::kStop, 0)) stop_request_owed_ = false;
-  dispatcher_.poll(ms_);
+  dispatcher_.poll(link_ms());
   if (dispatcher_.last_error() != shown_error_) {
     shown_error_ = dispatcher_.last_error();
     if (shown_error_ != proto::ErrorCode::kOk)
@@ -707,11 +707,16 @@ bool Application::execute_drill(QueueItem* item) {
 void Application::watchdog() {
   if (!dispatcher_.session_open() || hold_requested_) return;
   if (state() != proto::MachineState::kRunning) return;
-  if (dispatcher_.ms_since_valid(ms_) < (uint16_t)proto::kLinkTimeoutMs) return;
+  if (dispatcher_.ms_since_valid(link_ms()) < (uint16_t)proto::kLinkTimeoutMs) return;
   if (request(RequestKind::kLinkHold, 0)) {
     hold_requested_ = true;
     link_hold_ = true;
   }
+}
+
+// The link's time-outs count the board's link clock, else the tick (link_clock.h).
+uint16_t Application::link_ms() const {
+  return board_.link_clock != 0 ? board_.link_clock->link_ms() : ms_;
 }
 
 void Application::update_screen() {

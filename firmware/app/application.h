@@ -20,6 +20,7 @@
 #include "firmware/app/status_screen.h"    // StatusScreen
 #include "firmware/app/tick_link.h"        // RequestRing, StatusRing
 #include "firmware/config/machine_config.h"
+#include "hal/interfaces/link_clock.h"
 #include "hal/interfaces/motion_axes.h"
 #include "hal/interfaces/operator_inputs.h"
 #include "hal/interfaces/serial_port.h"
@@ -34,6 +35,8 @@ struct Board {
   hal::TextDisplay* display;
   hal::OperatorInputs* inputs;
   hal::Spindle* spindle;  // 0 on a machine without a switched spindle
+  // What the link's time-outs count; 0 (the controller): the 1 ms tick (link_clock.h).
+  hal::LinkClock* link_clock;
 };
 
 class Application;
@@ -158,6 +161,7 @@ class Application {
   proto::ErrorCode on_override(const proto::OverrideCmd& c, uint8_t seq, uint8_t* detail);
   proto::ErrorCode on_clear_alarm(const proto::ClearAlarmCmd& c, uint8_t seq, uint8_t* detail);
   void watchdog();
+  uint16_t link_ms() const;
   void update_screen();
   void track_job();
   void track_dropped_job(bool stopped);

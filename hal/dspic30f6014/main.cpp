@@ -119,6 +119,7 @@ int main() {
   board.display = lcd;
   board.inputs = g_panel;
   board.spindle = spindle;
+  board.link_clock = 0;  // the 1 ms tick is wall-clock time: the link's time-outs count it
   g_app->init(board, *machine);
 
   dspic::install_tick(on_tick, 0);

@@ -755,8 +755,10 @@ void add_machine_commands(CLI::App& app) {
       "  engraver sim --listen serial:/tmp/sim-tty & engraver send board.dxf --to "
       "serial:/tmp/host-tty\n"
       "Clock: fast while the host talks, the wall clock's pace after 500 ms of machine time "
-      "without a byte from it (docs/user-guide.md).\nExit: 0 stopped, 2 bad option or "
-      "address.");
+      "without a byte from it (docs/user-guide.md). The link's time-outs count the wall "
+      "clock whatever the pace, as on the machine: a partial frame is dropped after 200 ms "
+      "without a byte, a running machine holds after 2 s without a valid frame.\n"
+      "Exit: 0 stopped, 2 bad option or address.");
   sim->callback([sim_args] { run_sim(*sim_args); });
 
   auto run_args = std::make_shared<RunArgs>();

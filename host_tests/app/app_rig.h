@@ -27,8 +27,9 @@ struct AppRig {
   long now = 0;
   int polls_per_ms = 1;
 
-  explicit AppRig(uint32_t seed = 1) : host(&link, seed) {
-    app::Board b{&link, &plant, &display, &inputs, &spindle};
+  // link_clock: what the link's time-outs count (0: the tick, as on the controller).
+  explicit AppRig(uint32_t seed = 1, hal::LinkClock* link_clock = nullptr) : host(&link, seed) {
+    app::Board b{&link, &plant, &display, &inputs, &spindle, link_clock};
     app.init(b, cfg);
   }
 

@@ -1,13 +1,15 @@
 // The simulated machine: firmware application + TMC428 driver + TMC428 model + UART timing.
 #include "host/lib/sim/sim_machine.h"
 
-#include <cmath>  // std::lround
+#include <chrono>  // steady_clock
+#include <cmath>   // std::lround
 
 #include "firmware/app/application.h"        // app::Application, app::Board
 #include "hal/drivers/tmc428/tmc428.h"       // drivers::Tmc428
 #include "hal/fake/motion/tmc428_model.h"    // fake::Tmc428Model
 #include "hal/fake/spi/recording_spi.h"      // fake::RecordingSpi
 #include "hal/fake/spindle/fake_spindle.h"   // fake::FakeSpindle
+#include "hal/interfaces/link_clock.h"       // hal::LinkClock
 #include "hal/interfaces/operator_inputs.h"  // hal::OperatorInputs
 #include "hal/interfaces/serial_port.h"      // hal::SerialPort
 #include "hal/interfaces/text_display.h"     // hal::TextDisplay
@@ -54,6 +56,37 @@ class SimDisplay : public hal::TextDisplay {
   std::string rows[kRows] = {std::string(kColumns, ' '), std::string(kColumns, ' ')};
 };
 
+// The firmware's link clock: machine time plus an offset, or the wall clock from an anchor.
+// Switching keeps the count continuous, so a time-out running at the switch stays sane.
+class SimLinkClock : public hal::LinkClock {
+ public:
+  explicit SimLinkClock(const uint64_t& machine_ms) : machine_ms_(machine_ms) {}
+  uint16_t link_ms() override { return static_cast<uint16_t>(now_ms()); }
+  uint64_t now_ms() const {
+    if (!wall_) return machine_ms_ + machine_offset_ms_;
+    const auto elapsed = std::chrono::steady_clock::now() - wall_anchor_;
+    return wall_base_ms_ +
+           static_cast<uint64_t>(
+               std::chrono::duration_cast<std::chrono::milliseconds>(elapsed).count());
+  }
+  void set_wall(bool wall) {
+    if (wall == wall_) return;
+    const uint64_t at = now_ms();
+    wall_ = wall;
+    wall_base_ms_ = at;
+    wall_anchor_ = std::chrono::steady_clock::now();
+    machine_offset_ms_ = at - machine_ms_;  // unsigned: wraps as the firmware's count does
+  }
+  bool wall() const { return wall_; }
+
+ private:
+  const uint64_t& machine_ms_;
+  bool wall_ = false;
+  uint64_t machine_offset_ms_ = 0;
+  uint64_t wall_base_ms_ = 0;
+  std::chrono::steady_clock::time_point wall_anchor_;
+};
+
 // The operator panel: the simulated operator sets the bits.
 class SimInputs : public hal::OperatorInputs {
  public:
@@ -64,10 +97,11 @@ class SimInputs : public hal::OperatorInputs {
 }  // namespace
 
 struct SimMachine::Parts {
-  explicit Parts(const config::MachineConfig& cfg)
+  Parts(const config::MachineConfig& cfg, const uint64_t& machine_ms)
       : chip(cfg.tmc428_clock_hz),
         spi(chip, cfg.spi_clock_hz, cfg.tmc428_clock_hz),
-        driver(spi, cfg) {}
+        driver(spi, cfg),
+        link_clock(machine_ms) {}
   fake::Tmc428Model chip;
   fake::RecordingSpi spi;
   drivers::Tmc428 driver;
@@ -75,12 +109,13 @@ struct SimMachine::Parts {
   SimDisplay display;
   SimInputs inputs;
   fake::FakeSpindle spindle;
+  SimLinkClock link_clock;
   app::Application app;
   int32_t usteps_per_mm[config::kAxisCount] = {1, 1, 1};
 };
 
 SimMachine::SimMachine(const SimOptions& options)
-    : options_(options), parts_(std::make_unique<Parts>(options.machine)) {
+    : options_(options), parts_(std::make_unique<Parts>(options.machine, now_ms_)) {
   Parts& p = *parts_;
   p.spi.set_recording(options.record_spi);  // minutes of traffic: off unless asked for
   p.chip.set_logging(false);
@@ -101,6 +136,7 @@ SimMachine::SimMachine(const SimOptions& options)
   board.display = &p.display;
   board.inputs = &p.inputs;
   board.spindle = &p.spindle;
+  board.link_clock = &p.link_clock;
   p.app.init(board, options.machine);
   record_position();
 }
@@ -115,6 +151,14 @@ std::string SimMachine::take_to_host() {
   std::string out;
   out.swap(from_uart_);
   return out;
+}
+
+void SimMachine::set_link_time(LinkTime time) {
+  parts_->link_clock.set_wall(time == LinkTime::kWall);
+}
+
+SimMachine::LinkTime SimMachine::link_time() const {
+  return parts_->link_clock.wall() ? LinkTime::kWall : LinkTime::kMachine;
 }
 
 bool SimMachine::busy() const {

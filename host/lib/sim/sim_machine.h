@@ -55,6 +55,15 @@ class SimMachine {
   void step_ms();
   uint64_t now_ms() const { return now_ms_; }
 
+  // What the firmware's link time-outs count (hal::LinkClock: the 200 ms inter-byte frame
+  // time-out, the 2 s link watchdog). kMachine (the default): machine time, for a client in
+  // lockstep with it (SimLink). kWall: the wall clock, for another program on a socket
+  // (SimServer), as the real controller sees its link however fast machine time runs between
+  // the bytes. A switch continues the count from where it stood.
+  enum class LinkTime { kMachine, kWall };
+  void set_link_time(LinkTime time);
+  LinkTime link_time() const;
+
   // True while the axes move or bytes wait in either UART direction.
   bool busy() const;
   // Bytes from the PC that have not reached the firmware's UART yet.

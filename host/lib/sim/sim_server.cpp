@@ -123,6 +123,9 @@ int open_device(const std::string& path) {
 
 SimServer::SimServer(SimMachine& machine, const ServerOptions& options)
     : impl_(std::make_unique<Impl>(machine, options)) {
+  // The client's bytes come in wall-clock time, however fast machine time runs between them:
+  // the firmware's link time-outs count the wall clock, as on the real controller.
+  machine.set_link_time(SimMachine::LinkTime::kWall);
   if (!options.device.empty()) {
     impl_->device_fd = open_device(options.device);
     return;

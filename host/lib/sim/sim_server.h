@@ -7,10 +7,12 @@
 // - fast (default): machine time runs as fast as the computer allows while the host is
 //   talking: while bytes from it wait for the UART, and for fast_window_ms of machine time
 //   after the last one reached the UART. After that, machine time follows the wall clock
-//   until the host sends again, as a real machine's does. A silent host meets at most
-//   fast_window_ms more machine time than wall time: the 2 s link watchdog trips after
-//   1.5 s to 2 s of wall-clock silence, and a few lost polls do not trip it.
+//   until the host sends again, as a real machine's does.
 // - nobody connected and nothing moving: machine time stands still (nothing would change).
+// Whatever the pace, the firmware's link time-outs (the 200 ms inter-byte frame time-out,
+// the 2 s link watchdog) count the wall clock of the link (SimMachine::LinkTime::kWall, set
+// by the constructor): a frame may arrive in pieces up to 200 ms apart, noise does not age
+// the watchdog, and 2 s without a valid frame trip it, as on the real controller.
 #ifndef HOST_LIB_SIM_SIM_SERVER_H
 #define HOST_LIB_SIM_SIM_SERVER_H
 
