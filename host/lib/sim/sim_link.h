@@ -2,7 +2,8 @@
 // machine's UART, and a read runs machine time until the machine answers or the read's
 // time-out has passed in machine time. Sender and machine move in lockstep, so nothing
 // depends on how the operating system schedules threads, and machine time never waits for
-// the wall clock (unless real-time pacing is asked for).
+// the wall clock (unless real-time pacing is asked for). The firmware's link time-outs count
+// machine time here too (SimMachine::LinkTime::kMachine, unlike a SimServer's wall clock).
 #ifndef HOST_LIB_SIM_SIM_LINK_H
 #define HOST_LIB_SIM_SIM_LINK_H
 

@@ -118,9 +118,11 @@ proto::TextCmd lcd_text(const char* text) {
 
 TEST(SimServerLinkTime, FramesWrittenInPiecesWithRealDelaysAreAllAnswered) {
   sim::SimMachine machine{sim::SimOptions{}};
+  EXPECT_EQ(machine.link_time(), sim::SimMachine::LinkTime::kMachine);  // lockstep clients
   sim::ServerOptions so;
   so.port = 0;
   sim::SimServer server(machine, so);
+  EXPECT_EQ(machine.link_time(), sim::SimMachine::LinkTime::kWall);
   test::Serving serving(server);
   RawClient client(server.port());
   int answered = 0;
