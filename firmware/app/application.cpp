@@ -58,16 +58,14 @@ Application::Application()
   tick_.stop_pending = false;
   job_.next_index = 0;
   job_.first_point = 0;
+  job_.next_id = 0;
   job_.numbering = false;
+  job_.next_pending = false;
   job_.valid = false;
   job_.id = 0;
   job_.index = 0;
   job_.point = 0;
-  job_.item_first = 0;
   job_.started = false;
-  job_.dropped = false;
-  job_.items_at_drop = 0;
-  job_.index_at_drop = 0;
   for (uint8_t i = 0; i < config::kAxisCount; ++i) {
     tick_.pos[i] = 0;
     latest_.pos_usteps[i] = 0;
@@ -286,26 +284,29 @@ void Application::take_snapshots() {
 }
 
 void Application::follow_tick_events() {
-  // A completed stop (abort, session reset, alarm cleared): everything the ring held is gone.
+  // A completed stop (abort, session reset, alarm cleared): the ring is gone. What the tick
+  // finished while it decelerated along the path counts; then the commands that were
+  // executing are forgotten, with where the one cut short got to.
   if (latest_.stops_done != seen_stops_) {
-    track_dropped_job(true);  // the stop is complete: where the dropped job really ended
-    job_.dropped = false;
-    seen_stops_ = latest_.stops_done;
-    if (!stop_request_owed_) stopping_ = false;
-    seen_items_ = latest_.items_done;
-    int32_t at[config::kAxisCount];
-    position_um(at);
-    planner_.set_origin(at);
-  }
-  if (!stopping_) {
     while (seen_items_ != latest_.items_done) {
       ++seen_items_;
       finish_oldest();
     }
-    track_job();
-  } else {
-    track_dropped_job(false);
+    // A command cut short stays the first unfinished one (not the first one dropped).
+    if (track_job(true)) job_.next_pending = false;
+    queue_.drop_executing();
+    seen_stops_ = latest_.stops_done;
+    if (!stop_request_owed_) stopping_ = false;
+    int32_t at[config::kAxisCount];
+    position_um(at);
+    planner_.set_origin(at);
   }
+  // Also while a stop is under way: the tick may still finish commands as it decelerates.
+  while (seen_items_ != latest_.items_done) {
+    ++seen_items_;
+    finish_oldest();
+  }
+  track_job(false);
   if (latest_.jogs_done != seen_jogs_) {
     seen_jogs_ = latest_.jogs_done;
     if (jog_active_) {
@@ -342,55 +343,79 @@ void Application::finish_oldest() {
   if (item == 0 || queue_.in_flight() == 0) return;
   if (item->kind == ItemKind::kText)
     screen_.show_text(item->text.row, item->text.chars, item->text.length, ms_);
-  last_executed_seq_ = item->seq;
+  if (!stopping_) {  // a dropped command finishing as the tick stops is not this session's
+    last_executed_seq_ = item->seq;
+    ++items_done_;
+  }
   if (item->job_index != kNotInJob) {
     job_.index = item->job_index < PROTO_I32_MAX ? item->job_index + 1 : item->job_index;
     job_.point = 0;
-    job_.item_first = 0;
+    job_.id = item->job_id;
     job_.started = false;
   }
-  ++items_done_;
   queue_.finished();
 }
 
-// Job progress while the job runs: the oldest unfinished command is the one the tick works
-// on (the commands before it finished); the tick says how many of its curve points it reached.
-void Application::track_job() {
-  const QueueItem* item = queue_.oldest();
-  if (item == 0 || item->job_index == kNotInJob) return;
-  job_.index = item->job_index;
-  job_.item_first = item->kind == ItemKind::kSpline ? item->spline.first_point : 0;
-  job_.point = (uint16_t)(job_.item_first + latest_.item_points);
-  job_.started = latest_.item_started != 0;
-}
-
-// After a drop the queue is gone but the tick decelerates along the path and may still reach
-// points, even finish commands: follow it until the stop is complete. Commands after a
-// numbered one are numbered consecutively, and none but a resumed spline starts past point 0.
+// Job progress: the first job command not finished is the first numbered item in the queue
+// (un-numbered ones, a setup or a resume's lead-in, may run in front of it; later #J marks
+// number only what follows them). If it is the oldest item the tick works on it and says how
+// many of its curve points it reached. With no numbered item queued: the command a #J with
+// nothing after it (or a drop) named, else what the last finished command left.
 // stopped: the tick has dropped its ring (its stopped_ values are the final ones).
-void Application::track_dropped_job(bool stopped) {
-  if (!job_.dropped) return;
-  const uint16_t finished = (uint16_t)(latest_.items_done - job_.items_at_drop);
-  if (finished != 0) {
-    job_.index = job_.index_at_drop + finished;
-    job_.item_first = 0;
+// True when a numbered item is queued.
+bool Application::track_job(bool stopped) {
+  for (uint8_t i = 0; i < queue_.size(); ++i) {
+    const QueueItem* item = queue_.at(i);
+    if (item->job_index == kNotInJob) continue;
+    const uint16_t first = item->kind == ItemKind::kSpline ? item->spline.first_point : 0;
+    if (i != 0) {
+      report_job(item->job_index, first, item->job_id, false);
+      return true;
+    }
+    // After a stop only a command that was executing got anywhere.
+    const bool ticked = !stopped || queue_.in_flight() != 0;
+    const uint32_t point = (uint32_t)first + (!ticked   ? 0
+                                              : stopped ? latest_.stopped_points
+                                                        : latest_.item_points);
+    const bool started = ticked && (stopped ? latest_.stopped_started : latest_.item_started) != 0;
+    report_job(item->job_index, point > 0xFFFFUL ? 0xFFFFU : (uint16_t)point, item->job_id,
+               started);
+    return true;
   }
-  job_.point =
-      (uint16_t)(job_.item_first + (stopped ? latest_.stopped_points : latest_.item_points));
-  job_.started = (stopped ? latest_.stopped_started : latest_.item_started) != 0;
+  if (job_.next_pending) report_job(job_.next_index, job_.first_point, job_.next_id, false);
+  return false;
 }
 
-// Forgets the queued work (the ring is dropped by the tick's stop).
+// Sets the reported progress. The same command and point again (a resume's #J while its
+// lead-in runs) keeps "began to move": the tool was on its path when the job stopped.
+void Application::report_job(int32_t index, uint16_t point, uint16_t id, bool started) {
+  const bool same = index == job_.index && point == job_.point && id == job_.id;
+  job_.started = started || (same && job_.started);
+  job_.index = index;
+  job_.point = point;
+  job_.id = id;
+}
+
+// Forgets the queued work. What the tick has (points in the ring) stays in the queue until
+// the stop completes (follow_tick_events): the tick may finish some of it as it decelerates.
 void Application::drop_job() {
-  const QueueItem* oldest = queue_.oldest();
-  if (!stopping_ && !job_.dropped && oldest != 0 && oldest->job_index != kNotInJob) {
-    track_job();
-    job_.dropped = true;
-    job_.items_at_drop = seen_items_;
-    job_.index_at_drop = job_.index;
+  // A spline or drill partly handed to the tick is executing too.
+  const QueueItem* partly = queue_.to_execute();
+  if (partly != 0 && ((partly->kind == ItemKind::kSpline && spline_started_) ||
+                      (partly->kind == ItemKind::kDrill && partly->stage > 0)))
+    queue_.executed();
+  // The first job command dropped unstarted follows the executing ones in the progress.
+  for (uint8_t i = queue_.in_flight(); i < queue_.size(); ++i) {
+    const QueueItem* item = queue_.at(i);
+    if (item->job_index == kNotInJob) continue;
+    job_.next_index = item->job_index;
+    job_.first_point = item->kind == ItemKind::kSpline ? item->spline.first_point : 0;
+    job_.next_id = item->job_id;
+    job_.next_pending = true;
+    break;
   }
   job_.numbering = false;  // until the next #J
-  queue_.clear();
+  queue_.drop_waiting();
   store_.clear();
   generator_.stop();
   spline_started_ = false;

@@ -163,8 +163,8 @@ class Application {
   void watchdog();
   uint16_t link_ms() const;
   void update_screen();
-  void track_job();
-  void track_dropped_job(bool stopped);
+  bool track_job(bool stopped);
+  void report_job(int32_t index, uint16_t point, uint16_t id, bool started);
 
   Board board_;
   ApplicationSink sink_;
@@ -233,23 +233,23 @@ class Application {
   bool spindle_on_;
   proto::ErrorCode shown_error_;
 
-  // Job progress for the status (resume after a lost link or an abort): set by #J, kept
-  // through #I, #X and alarms. Background loop only; the tick's part comes by snapshot.
+  // Job progress for the status (resume after a lost link or an abort): the first job
+  // command that has not finished, whatever #J marks are queued behind it; kept through #I,
+  // #X and alarms until the job moves on. Background loop only; the tick's part comes by
+  // snapshot.
   struct JobProgress {
-    int32_t next_index;    // index the next stored job command gets
-    uint16_t first_point;  // for the spline stored right after the #J
-    bool numbering;        // a #J was stored in this session
-    bool valid;            // a #J was stored since power-up: index/point mean something
-    uint16_t id;           // the host's identity of the job (the #J's job_id)
-    int32_t index;         // first job command not finished
-    uint16_t point;        // curve point the tool heads for in it (points before reached)
-    uint16_t item_first;   // that command's first point (a resumed spline's)
-    bool started;          // that command began to move
-    // The job was dropped (abort, #I, alarm) while that command ran: the tick may still
-    // finish commands while it decelerates; counted from items_done at the drop.
-    bool dropped;
-    uint16_t items_at_drop;
-    int32_t index_at_drop;
+    // The next job command not stored yet: the index and first point the next stored command
+    // gets while numbering (a #J sets them), or, after a drop, the first dropped one.
+    int32_t next_index;
+    uint16_t first_point;
+    uint16_t next_id;   // the job_id of that #J
+    bool numbering;     // a #J was stored in this session: stored commands get numbers
+    bool next_pending;  // nothing is stored for next_index yet (a #J with nothing after it)
+    bool valid;         // a #J was stored since power-up: index/point mean something
+    uint16_t id;        // the reported command's job (its #J's job_id)
+    int32_t index;      // first job command not finished
+    uint16_t point;     // curve point the tool heads for in it (points before reached)
+    bool started;       // that command began to move (through a resume's lead-in: it had)
   };
   JobProgress job_;
 };

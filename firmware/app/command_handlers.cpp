@@ -51,6 +51,7 @@ QueueItem Application::new_item(ItemKind kind, uint8_t seq) {
   item.seq = seq;
   item.stage = 0;
   item.job_index = kNotInJob;
+  item.job_id = 0;
   return item;
 }
 
@@ -59,6 +60,7 @@ ErrorCode Application::enqueue(const QueueItem& item) {
   QueueItem numbered = item;
   if (job_.numbering) {
     numbered.job_index = job_.next_index;
+    numbered.job_id = job_.next_id;
     if (numbered.kind == ItemKind::kSpline) numbered.spline.first_point = job_.first_point;
   }
   if (!queue_.push(numbered)) return ErrorCode::kBusy;
@@ -66,22 +68,22 @@ ErrorCode Application::enqueue(const QueueItem& item) {
   if (job_.numbering) {
     job_.next_index = job_.next_index < PROTO_I32_MAX ? job_.next_index + 1 : job_.next_index;
     job_.first_point = 0;  // the mark's first point applies to the command right after it
+    job_.next_pending = false;
   }
   return ErrorCode::kOk;
 }
 
 // Numbers the commands that follow (not #D, not #J): job_index, job_index + 1, ... The
-// progress in the status starts there (a new job, or the resumed part of an old one).
+// progress in the status moves there once everything queued before the mark has finished
+// (a new job, or the resumed part of an old one).
 ErrorCode Application::on_job_mark(const proto::JobMarkCmd& c, uint8_t, uint8_t*) {
   job_.numbering = true;
   job_.next_index = c.job_index;
   job_.first_point = c.first_point;
-  job_.id = c.job_id;
+  job_.next_id = c.job_id;
+  job_.next_pending = true;
   job_.valid = true;
-  job_.index = c.job_index;
-  job_.point = c.first_point;
-  job_.started = false;
-  job_.dropped = false;
+  track_job(false);
   return ErrorCode::kOk;
 }
 

@@ -71,6 +71,7 @@ struct QueueItem {
   uint8_t seq;        // frame sequence number (last_executed_seq)
   uint8_t stage;      // steps already handed over, for items of several steps (pause, drill)
   int32_t job_index;  // position in the job (#J numbering), kNotInJob before any #J
+  uint16_t job_id;    // the job_id of the #J that numbered it
   union {
     TextArgs text;
     ResolutionArgs resolution;
@@ -112,6 +113,12 @@ class CommandQueue {
   void finished() {
     if (done_ != exec_) ++done_;
   }
+  // Forgets the items not handed to the generator yet (a stop: the executing ones stay until
+  // the tick has dropped its ring, so the job progress can follow what it still finishes).
+  void drop_waiting() { head_ = exec_; }
+  // Forgets the items that were executing when the work was dropped (the ring is gone); items
+  // stored since stay.
+  void drop_executing() { done_ = exec_; }
   // The stored item offset_from_oldest places after the oldest unfinished one, 0 if none.
   const QueueItem* at(uint8_t offset_from_oldest) const {
     if (offset_from_oldest >= (uint8_t)(head_ - done_)) return 0;

@@ -21,6 +21,7 @@ Dispatcher::Dispatcher()
       tx_len_(0),
       alarm_seq_(0),
       session_(false),
+      session_version_(0),
       aborted_(false),
       held_(false),
       held_letter_(0),
@@ -130,6 +131,7 @@ void Dispatcher::on_immediate(const proto::Frame& f) {
   realtime_.reset();
   held_ = false;
   session_ = true;
+  session_version_ = cmd.protocol_version;
   aborted_ = false;
   proto::SessionReply r;
   r.protocol_version = cmd.protocol_version;
@@ -195,6 +197,13 @@ void Dispatcher::on_queued(const proto::Frame& f) {
   }
   switch (window_.classify(f.seq)) {
     case proto::SeqClass::kNew: {
+      // A command of a later version than the session's does not exist in it (detail: the
+      // version that brings it).
+      const uint8_t since = proto::version_of_command(f.letter);
+      if (since > session_version_) {
+        error(f.seq, proto::ErrorCode::kUnknownCommand, since);
+        break;
+      }
       uint8_t detail = 0;
       const proto::ErrorCode e = sink_->store(f, &detail);
       if (e == proto::ErrorCode::kOk) {

@@ -50,6 +50,7 @@ class Dispatcher {
   void abort_stream();
 
   bool session_open() const { return session_; }
+  uint8_t session_version() const { return session_version_; }
   bool aborted() const { return aborted_; }
   bool frame_held() const { return held_; }
   uint8_t next_expected() const { return window_.next_expected(); }
@@ -87,6 +88,7 @@ class Dispatcher {
   uint16_t tx_len_;
   uint8_t alarm_seq_;
   bool session_;
+  uint8_t session_version_;  // the protocol version the session was opened in
   bool aborted_;
   bool held_;
   uint8_t held_letter_;

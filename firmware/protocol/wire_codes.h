@@ -40,6 +40,12 @@ PROTO_MESSAGE_TABLE(PROTO_LETTER_CMD, PROTO_LETTER_REPLY, PROTO_LETTER_SKIP, PRO
 #undef PROTO_LETTER_REPLY
 #undef PROTO_LETTER_SKIP
 
+// The protocol version a command letter exists from (a session of an earlier version refuses
+// it as an unknown command).
+inline uint8_t version_of_command(uint8_t letter) {
+  return letter == kCmdSplineContour ? kContourFramesVersion : kMinProtocolVersion;
+}
+
 // How the dispatcher treats a frame, by its letter.
 enum class FrameKind : uint8_t {
   kUnknown = 0,    // letter not defined in this direction

@@ -117,6 +117,35 @@ TEST(AppSession, VersionsTwoAndThreeOpenASessionInThatVersionOthersAreRefused) {
   }
 }
 
+// docs/protocol.md section 4: version 3 only adds #Q. In a version-2 session a #Q is an
+// unknown command (detail: the version that brings it), nothing is stored; the same frames
+// run in a version-3 session. (Frames of the document's examples, section 6.)
+TEST(AppSession, ContourFramesAreAnUnknownCommandInAVersionTwoSession) {
+  const std::vector<uint8_t> header = {2, 1, 5, 0, 8, 0, 0xD0, 7, 0, 0, 0, 0};
+  const std::vector<uint8_t> contour = {0x00, 0x05, 0xA0, 0x9C, 0x01, 0x90, 0x4E, 0xC0, 0xB8,
+                                        0x02, 0x00, 0xA1, 0x9C, 0x01, 0x90, 0x4E, 0x9F, 0x37};
+  for (uint8_t version : {2, 3}) {
+    AppRig rig;
+    rig.host.open_session(version);
+    ASSERT_TRUE(rig.run_until([&] { return rig.host.session_open; }, 100));
+    ASSERT_TRUE(rig.zero_here());
+    rig.host.queue(TestHost::Frame{proto::kCmdSplineHeader, header});
+    rig.host.queue(TestHost::Frame{proto::kCmdSplineContour, contour});
+    if (version == 2) {
+      rig.run(200);
+      ASSERT_EQ(rig.host.errors.size(), 1u);
+      EXPECT_EQ(rig.host.errors[0].code, ErrorCode::kUnknownCommand);
+      EXPECT_EQ(rig.host.errors[0].detail, proto::kContourFramesVersion);
+      EXPECT_EQ(rig.host.acked(), 2u);  // #M and #B; the #Q not stored
+      continue;
+    }
+    ASSERT_TRUE(rig.run_job(20000));
+    EXPECT_TRUE(rig.host.errors.empty());
+    EXPECT_NEAR(rig.position_um().x, 25000, 1.0);  // the quarter circle's end
+    EXPECT_NEAR(rig.position_um().y, 10000, 1.0);
+  }
+}
+
 TEST(AppZeroing, JoystickJogsWithARampedSpeedAndConfirmSetsTheZero) {
   AppRig rig;
   ASSERT_TRUE(rig.open_session());

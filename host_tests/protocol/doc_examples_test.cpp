@@ -1,13 +1,17 @@
 // The hex examples in docs/protocol.md (```frames blocks) are valid frames: each parses as
-// exactly one frame, its payload decodes, and re-encoding gives the same bytes.
+// exactly one frame, its payload decodes, and re-encoding gives the same bytes. And what the
+// controller's rules fix about a reply is what its example and its text say: the seqs of an
+// `*E`, the flags and numbers an `*?` describes.
 #include <gtest/gtest.h>
 
+#include <cstdio>   // std::snprintf
 #include <fstream>  // std::ifstream
 #include <set>      // std::set
 #include <sstream>  // std::istringstream
 #include <string>   // std::string
 #include <vector>   // std::vector
 
+#include "firmware/protocol/codec.h"          // proto::decode
 #include "firmware/protocol/message_table.h"  // PROTO_MESSAGE_TABLE
 #include "host_tests/protocol/frame_helpers.h"
 #include "host_tests/protocol/message_roundtrip.h"
@@ -85,6 +89,98 @@ TEST(DocExamples, EveryExampleIsOneValidFrameThatRoundTrips) {
     EXPECT_EQ(proto::ErrorCode::kOk, r.decode) << e.text;
     EXPECT_TRUE(r.same_bytes) << e.text;
   }
+}
+
+template <typename Msg>
+Msg payload_of(const Example& e) {
+  Msg m{};
+  EXPECT_EQ(proto::ErrorCode::kOk,
+            proto::decode(e.bytes.data() + proto::kHeaderBytes, e.bytes[3], &m))
+      << e.text;
+  return m;
+}
+
+bool says(const Example& e, const std::string& words) {
+  return e.text.find(words) != std::string::npos;
+}
+
+// docs/protocol.md section 3 and 4: an `*E` answers a frame with that frame's seq. A queued
+// frame refused for its payload or its execution is not stored and does not use up its seq,
+// so next_expected_seq is its own seq; a seq_gap frame is 1..7 ahead of the expected seq.
+TEST(DocExamples, ErrorRepliesCarryTheSeqsTheControllerAnswersWith) {
+  const std::vector<Example> examples = read_examples();
+  int checked = 0;
+  for (size_t i = 0; i < examples.size(); ++i) {
+    const Example& e = examples[i];
+    if (e.bytes.size() < 4 || e.bytes[0] != proto::kReplyStart || e.bytes[1] != proto::kReplyError)
+      continue;
+    const proto::ErrorReply r = payload_of<proto::ErrorReply>(e);
+    const uint8_t seq = e.bytes[2];
+    const int code = static_cast<int>(r.code);
+    if (r.code == proto::ErrorCode::kSeqGap) {
+      const uint8_t ahead = static_cast<uint8_t>(seq - r.next_expected_seq);
+      EXPECT_TRUE(ahead >= 1 && ahead < proto::kWindowFrames) << e.text;
+      ++checked;
+      continue;
+    }
+    // The command it answers: the newest example before it with that seq.
+    const Example* cmd = nullptr;
+    for (size_t j = i; j-- > 0;) {
+      const Example& c = examples[j];
+      if (c.bytes.size() >= 4 && c.bytes[0] == proto::kCommandStart && c.bytes[2] == seq) {
+        cmd = &c;
+        break;
+      }
+    }
+    ASSERT_NE(cmd, nullptr) << "no command example with the seq of: " << e.text;
+    const bool refused_for_content = (code >= 10 && code < 20) || code >= 30;
+    if (proto::command_kind(cmd->bytes[1]) == proto::FrameKind::kQueued && refused_for_content) {
+      EXPECT_EQ(r.next_expected_seq, seq) << e.text;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 2);
+}
+
+// The `*?` example's text names each flag that is set (and no other), with the numbers the
+// flags make valid, as the status table of section 3 defines them.
+TEST(DocExamples, StatusExampleTextSaysWhatItsFlagsAndFieldsSay) {
+  int checked = 0;
+  for (const Example& e : read_examples()) {
+    if (e.bytes.size() < 4 || e.bytes[0] != proto::kReplyStart || e.bytes[1] != proto::kReplyStatus)
+      continue;
+    ++checked;
+    const proto::StatusReply r = payload_of<proto::StatusReply>(e);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "flags 0x%02X", r.flags);
+    EXPECT_TRUE(says(e, buf)) << buf << ": " << e.text;
+    const bool executed = (r.flags & proto::kStatusExecuted) != 0;
+    std::snprintf(buf, sizeof buf, "done %u", r.last_executed_seq);
+    EXPECT_EQ(executed, says(e, buf)) << buf << ": " << e.text;
+    EXPECT_EQ(executed, says(e, "done ")) << e.text;
+    const bool job = (r.flags & proto::kStatusJob) != 0;
+    std::snprintf(buf, sizeof buf, "job command %ld", static_cast<long>(r.job_index));
+    EXPECT_EQ(job, says(e, buf)) << buf << ": " << e.text;
+    std::snprintf(buf, sizeof buf, "of job %04X", r.job_id);
+    EXPECT_EQ(job, says(e, buf)) << buf << ": " << e.text;
+    if (r.curve_point != 0) {
+      std::snprintf(buf, sizeof buf, "curve point %u", r.curve_point);
+      EXPECT_TRUE(says(e, buf)) << buf << ": " << e.text;
+    }
+    EXPECT_EQ((r.flags & proto::kStatusJobStarted) != 0, says(e, "under way")) << e.text;
+    EXPECT_EQ((r.flags & proto::kStatusZeroed) != 0, says(e, "zeroed")) << e.text;
+    EXPECT_EQ((r.flags & proto::kStatusSession) != 0, says(e, "session open")) << e.text;
+    EXPECT_EQ((r.flags & proto::kStatusFramePending) != 0, says(e, "held")) << e.text;
+    EXPECT_EQ((r.flags & proto::kStatusAborted) != 0, says(e, "aborted")) << e.text;
+    EXPECT_EQ((r.flags & proto::kStatusLinkHold) != 0, says(e, "link")) << e.text;
+    std::snprintf(buf, sizeof buf, "%u free", r.queue_free);
+    EXPECT_TRUE(says(e, buf)) << buf << ": " << e.text;
+    std::snprintf(buf, sizeof buf, "expects %u", r.next_expected_seq);
+    EXPECT_TRUE(says(e, buf)) << buf << ": " << e.text;
+    std::snprintf(buf, sizeof buf, "%u %%", r.override_percent);
+    EXPECT_TRUE(says(e, buf)) << buf << ": " << e.text;
+  }
+  EXPECT_GE(checked, 1);
 }
 
 }  // namespace

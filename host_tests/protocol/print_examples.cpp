@@ -97,40 +97,45 @@ int main() {
        "1.0 and 0.7071, and the knots 0 0 0 1 1 2 2 2");
   show(proto::ZeroingCmd{7}, 9, "#M seq 9: zero X, Y and Z with the joystick");
   show(proto::StatusCmd{}, 10, "#? seq 10: status query");
-  proto::StatusReply s = {
-      proto::MachineState::kRunning,
-      proto::Alarm::kNone,
-      proto::kStatusZeroed | proto::kStatusSession | proto::kStatusJob | proto::kStatusJobStarted,
-      100,
-      12,
-      10,
-      5,
-      proto::ErrorCode::kOk,
-      12000,
-      -3500,
-      -200,
-      0,
-      1,
-      7,
-      18,
-      0x5A17};
+  proto::StatusReply s = {proto::MachineState::kRunning,
+                          proto::Alarm::kNone,
+                          proto::kStatusZeroed | proto::kStatusSession | proto::kStatusExecuted |
+                              proto::kStatusJob | proto::kStatusJobStarted,
+                          100,
+                          12,
+                          10,
+                          5,
+                          proto::ErrorCode::kOk,
+                          12000,
+                          -3500,
+                          -200,
+                          0,
+                          1,
+                          7,
+                          18,
+                          0x5A17};
   show(s, 10,
-       "*? seq 10: running, zeroed, session open, 100 %, 12 free, expects 10, "
-       "done 5, at (12, -3.5, -0.2) mm, 1 spline slot free, job command 7 under way "
-       "(heading for curve point 18) of job 5A17");
+       "*? seq 10: running; flags 0xE6: zeroed, session open, done 5, job command 7 under way "
+       "(heading for curve point 18) of job 5A17; 100 %, 12 free, expects 10, at (12, -3.5, "
+       "-0.2) mm, 1 spline slot free");
   show(proto::ErrorReply{proto::ErrorCode::kSeqGap, 0, 10}, 12,
        "*E seq 12: seq_gap (20), controller expects seq 10");
-  show(proto::ErrorReply{proto::ErrorCode::kGeometry, 5, 9}, 8,
-       "*E seq 8: geometry (35), detail 5 = knots decreasing");
+  show(proto::ErrorReply{proto::ErrorCode::kGeometry, 5, 8}, 8,
+       "*E seq 8: geometry (35), detail 5 = knots decreasing; the refused frame did not use up "
+       "its seq: the controller expects seq 8 again");
   show(proto::HoldCmd{}, 0, "#H real-time seq 0: feed hold");
   show(proto::OverrideCmd{120}, 1, "#V real-time seq 1: feed override 120 %");
   show(proto::ResumeCmd{}, 2, "#R real-time seq 2: resume");
   show(proto::AbortCmd{}, 3, "#X real-time seq 3: abort");
-  show(proto::ClearAlarmCmd{}, 4, "#C real-time seq 4: clear alarm");
-  show(proto::AckReply{16, 2, true}, 4,
-       "*O seq 4: real-time frame done (real-time flag set; 16 queue slots, 2 spline slots free)");
   show(proto::AlarmReply{proto::Alarm::kLimitSwitch, proto::MachineState::kAlarm}, 1,
        "*A alarm #1: limit switch (1), state alarm (5)");
+  show(proto::ClearAlarmCmd{}, 4, "#C real-time seq 4: clear alarm (the one just reported)");
+  show(proto::AckReply{16, 2, true}, 4,
+       "*O seq 4: real-time frame done (real-time flag set; 16 queue slots, 2 spline slots free)");
+  show(proto::ClearAlarmCmd{}, 5, "#C real-time seq 5: clear alarm, with none active");
+  show(proto::ErrorReply{proto::ErrorCode::kBadState, 0, 19}, 5,
+       "*E seq 5: bad_state (33): no alarm to clear (next_expected_seq 19 is the ordered "
+       "stream's, untouched by real-time frames)");
   show(proto::PauseCmd{13, {'T', 'o', 'o', 'l', ' ', '2', ':', ' ', '0', '.', '8', 'm', 'm'}}, 11,
        "#P seq 11: pause, LCD \"Tool 2: 0.8mm\", wait for the confirm button");
   show(proto::SpindleCmd{1}, 12, "#N seq 12: spindle on");
