@@ -2,7 +2,8 @@
 // per-point Horner evaluation in 32x16 fixed point.
 #include "firmware/core/span_evaluator.h"
 
-#include "firmware/core/divide.h"  // reciprocal_of, mul_reciprocal_q27
+#include "firmware/core/divide.h"        // reciprocal_of, mul_reciprocal_q27
+#include "firmware/core/wide_product.h"  // Wide, mul_wide
 
 namespace core {
 
@@ -117,6 +118,31 @@ Direction scale_direction(int64_t x, int64_t y) {
     d.dx = (int16_t)shl64(x, (uint8_t)-shift);
     d.dy = (int16_t)shl64(y, (uint8_t)-shift);
   }
+  return d;
+}
+
+// The same for exact wide components (the rational derivative): identical results without
+// 64-bit shifts or divisions; division by 2^shift truncates toward zero on the magnitude.
+Direction scale_direction_wide(const Wide& x, const Wide& y) {
+  Direction d = {0, 0};
+  const Wide ax = wide_abs(x);
+  const Wide ay = wide_abs(y);
+  const uint8_t bits_x = wide_bit_length(ax);
+  const uint8_t bits_y = wide_bit_length(ay);
+  const uint8_t bits = bits_x > bits_y ? bits_x : bits_y;
+  if (bits == 0) return d;
+  // The larger magnitude into [2^13, 2^14): shifted right by bits - 14, or left.
+  uint16_t rx;
+  uint16_t ry;
+  if (bits >= 14) {
+    rx = (uint16_t)wide_shift_right_low(ax, (uint8_t)(bits - 14));
+    ry = (uint16_t)wide_shift_right_low(ay, (uint8_t)(bits - 14));
+  } else {
+    rx = (uint16_t)(ax.lo << (14 - bits));
+    ry = (uint16_t)(ay.lo << (14 - bits));
+  }
+  d.dx = wide_negative(x) ? (int16_t) - (int16_t)rx : (int16_t)rx;
+  d.dy = wide_negative(y) ? (int16_t) - (int16_t)ry : (int16_t)ry;
   return d;
 }
 
@@ -329,10 +355,11 @@ Direction SpanEvaluator::direction(uq16_t t) const {
   const int32_t w = horner(cw_, degree_, t);
   const int32_t nx = horner(cx_, degree_, t);
   const int32_t ny = horner(cy_, degree_, t);
-  // px, py q(6-s); w q27; nx, ny q6; w1 q(27-s): both products in q(33-s) um.
-  const int64_t qx = (int64_t)px * w - (int64_t)nx * w1;
-  const int64_t qy = (int64_t)py * w - (int64_t)ny * w1;
-  return scale_direction(qx, qy);
+  // px, py q(6-s); w q27; nx, ny q6; w1 q(27-s): both products in q(33-s) um, exact
+  // (held wide: no 64-bit multiply).
+  const Wide qx = wide_sub(mul_wide(px, w), mul_wide(nx, w1));
+  const Wide qy = wide_sub(mul_wide(py, w), mul_wide(ny, w1));
+  return scale_direction_wide(qx, qy);
 }
 
 // Coefficients k c[k] >> dir_shift_ of the derivative: times 1, 2, 3 as adds (a multiply
