@@ -57,17 +57,30 @@ bool shorter_than_1um(int32_t dx, int32_t dy) {
 
 // The chord a -> b of one trial step, prepared once for the distances of all its samples:
 // b - a shifted left (exactly: the direction is b - a's own) so that its larger component
-// lies in [2^29, 2^30), and 2^29 / (|n| / 2^15), so that a distance is two products.
+// lies in [2^29, 2^30), and 2^29 / (|n| / 2^16), so that a distance is two products.
 struct Chord {
   PointQ6 a;
   int32_t bx;
   int32_t by;
   int32_t nx;
   int32_t ny;
-  int32_t along_end;     // (b - a) . n / 2^30: where the projection leaves the segment
-  uint16_t inv_len_q14;  // 2^29 / (|n| >> 15): |n| / 2^30 is in [1/2, 1.42)
+  int16_t nx16;  // n / 2^16 (14 significant bits): enough for the projection
+  int16_t ny16;
+  int32_t along_end;     // (b - a) . n / 2^32: where the projection leaves the segment
+  uint16_t inv_len_q15;  // 2^29 / |n16|: |n| / 2^30 is in [1/2, 1.42)
   bool short_chord;      // |b - a| < 1 um: distances are to a
 };
+
+// floor(v * s / 2^16) for |v| < 2^30 and a signed 16-bit s: two 16x16 products.
+int32_t mul_32x16_hi(int32_t v, int16_t s) {
+  const int32_t lo = mul_s16_u16(s, low_half(v));  // |.| < 2^31
+  return (int32_t)high_half(v) * s + (int32_t)high_half(lo);
+}
+
+// (qx, qy) . n / 2^32 from the 14-bit n (|.| < 2^30 for |q| < 2^29).
+int32_t along_q32(const Chord& c, int32_t qx, int32_t qy) {
+  return mul_32x16_hi(qx, c.nx16) + mul_32x16_hi(qy, c.ny16);
+}
 
 Chord make_chord(const PointQ6& a, const PointQ6& b) {
   Chord c;
@@ -76,7 +89,8 @@ Chord make_chord(const PointQ6& a, const PointQ6& b) {
   c.by = b.y_q6 - a.y_q6;
   c.short_chord = shorter_than_1um(c.bx, c.by);
   c.nx = c.ny = c.along_end = 0;
-  c.inv_len_q14 = 0;
+  c.nx16 = c.ny16 = 0;
+  c.inv_len_q15 = 0;
   if (c.short_chord) return c;
   uint32_t m = abs_u32(c.bx) | abs_u32(c.by);  // same leading bit as the larger, >= 45
   uint32_t nx = (uint32_t)c.bx;
@@ -93,9 +107,13 @@ Chord make_chord(const PointQ6& a, const PointQ6& b) {
   }
   c.nx = (int32_t)nx;
   c.ny = (int32_t)ny;
-  c.along_end = mul_q30(c.bx, c.nx) + mul_q30(c.by, c.ny);
-  const uint16_t len = (uint16_t)length_q6(c.nx >> 15, c.ny >> 15);  // in [2^14, 2^15.5)
-  c.inv_len_q14 = div_u32_u16(1UL << 29, len, 0);                    // in (2^13.5, 2^15]
+  c.nx16 = high_half(c.nx);
+  c.ny16 = high_half(c.ny);
+  c.along_end = along_q32(c, c.bx, c.by);
+  const uint16_t ax = (uint16_t)abs_u32(c.nx16);
+  const uint16_t ay = (uint16_t)abs_u32(c.ny16);
+  const uint16_t len = isqrt32(mul_u16_u16(ax, ax) + mul_u16_u16(ay, ay));  // [2^13, 2^14.5)
+  c.inv_len_q15 = div_u32_u16((1UL << 29) - 1, len, 0);                     // < 2^16
   return c;
 }
 
@@ -105,12 +123,14 @@ uint32_t chord_distance_q6(const Chord& c, const PointQ6& q) {
   const int32_t qx = q.x_q6 - c.a.x_q6;
   const int32_t qy = q.y_q6 - c.a.y_q6;
   if (c.short_chord) return length_q6(qx, qy);
-  const int32_t along = mul_q30(qx, c.nx) + mul_q30(qy, c.ny);
+  // The projection with 14-bit n: it only picks the formula, and at its two boundaries the
+  // line distance and the end distance agree.
+  const int32_t along = along_q32(c, qx, qy);
   if (along <= 0) return length_q6(qx, qy);
   if (along >= c.along_end) return length_q6(qx - c.bx, qy - c.by);
-  // |q x n| / 2^30 (< 2^29), times 2^30 / |n|.
+  // |q x n| / 2^30 (< 2^29), times 2^30 / |n| = inv_len_q15 / 2^15.
   const uint32_t cross = abs_u32(mul_q30(qx, c.ny) - mul_q30(qy, c.nx));
-  return (uint32_t)mul_32x16_uq16((int32_t)cross, c.inv_len_q14) << 2;
+  return (uint32_t)mul_32x16_uq16((int32_t)cross, c.inv_len_q15) << 1;
 }
 
 bool is_zero(const Direction& d) {

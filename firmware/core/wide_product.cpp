@@ -87,8 +87,12 @@ int32_t mul_q30(int32_t a, int32_t b) {
   const int16_t bh = high_half(b);
   const uint16_t bl = low_half(b);
   // a b = ah bh 2^32 + (ah bl + al bh) 2^16 + al bl; the middle sum < 2^31 in magnitude.
+  // Its floor / 2^14 as 4 * (its high half) + (its low half) / 2^14, and al bl / 2^30 from
+  // its top byte: whole-byte moves (a 32-bit shift by 14 or 30 is a bit loop on the AVR).
   const int32_t mid = mul_s16_u16(ah, bl) + mul_s16_u16(bh, al);
-  return mul_s16_s16(ah, bh) * 4 + (mid >> 14) + (int32_t)(mul_u16_u16(al, bl) >> 30);
+  const uint8_t low_top = (uint8_t)(mul_u16_u16(al, bl) >> 24);
+  const int32_t high = mul_s16_s16(ah, bh) + high_half(mid);  // |.| < 2^29
+  return high * 4 + (int32_t)((low_half(mid) >> 14) + (low_top >> 6));
 }
 
 }  // namespace core
