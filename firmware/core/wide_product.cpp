@@ -22,8 +22,11 @@ Wide negate(const Wide& a) {
 }  // namespace
 
 Wide mul_wide(int32_t a, int32_t b) {
-  const uint32_t ua = abs_u32(a);
-  const uint32_t ub = abs_u32(b);
+  const Wide r = mul_wide_u(abs_u32(a), abs_u32(b));
+  return ((a < 0) != (b < 0)) ? negate(r) : r;
+}
+
+Wide mul_wide_u(uint32_t ua, uint32_t ub) {
   const uint16_t ah = (uint16_t)(ua >> 16);
   const uint16_t al = (uint16_t)ua;
   const uint16_t bh = (uint16_t)(ub >> 16);
@@ -38,7 +41,7 @@ Wide mul_wide(int32_t a, int32_t b) {
     r.lo += add_lo;
     r.hi += (mids[i] >> 16) + (r.lo < add_lo ? 1U : 0U);
   }
-  return ((a < 0) != (b < 0)) ? negate(r) : r;
+  return r;
 }
 
 Wide wide_add(const Wide& a, const Wide& b) {

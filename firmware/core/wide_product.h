@@ -19,6 +19,9 @@ struct Wide {
 // a * b exactly (any int32 operands): four 16x16 products on the magnitudes, sign after.
 Wide mul_wide(int32_t a, int32_t b);
 
+// a * b exactly for unsigned operands (the magnitude part of mul_wide).
+Wide mul_wide_u(uint32_t a, uint32_t b);
+
 // a - b and a + b (two's complement, exact while the result fits 64 bits).
 Wide wide_sub(const Wide& a, const Wide& b);
 Wide wide_add(const Wide& a, const Wide& b);
