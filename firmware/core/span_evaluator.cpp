@@ -11,12 +11,13 @@ namespace {
 
 // Homogeneous point used during setup: x, y in um * weight with 9 fraction bits
 // (|.| < 2^32 for |coord| <= 1e6 relative and weight < 4), w in Q29 (< 2^31).
+// Indexed (x, y, w) so that setup() loops over the coordinates: each 64-bit step is code
+// once, not twice (64-bit arithmetic is long inline code on 8- and 16-bit cores).
 struct Homog {
-  int64_t x;
-  int64_t y;
-  int64_t w;
+  int64_t v[3];
 };
 
+enum { kX = 0, kY = 1, kW = 2 };
 enum { kSetupShift = 9, kAlphaShift = 29 };
 
 // a + alpha * (b - a) with alpha in Q29, rounded. |b - a| < 2^33 keeps the product < 2^62.
@@ -54,6 +55,14 @@ __attribute__((noinline)) int64_t div_round_pow2(int64_t num, uint8_t n) {
   return num >= 0 ? (num + half) >> n : -((-num + half) >> n);
 }
 
+// Coordinate i of a Bezier point in um * 2^extra_bits relative to the span's first control
+// point, rounded: x / w. Polynomial spans have w = 2^29 everywhere, so the division is a
+// shift (the same value).
+int64_t bezier_coordinate(const Homog& h, uint8_t i, uint8_t extra_bits, bool poly) {
+  if (poly) return div_round_pow2(h.v[i], (uint8_t)(kSetupShift - extra_bits));
+  return div_round(shl64(h.v[i], (uint8_t)(kAlphaShift - kSetupShift + extra_bits)), h.v[kW]);
+}
+
 // The De Boor blend factors of one span: alpha[u][r-1][jj-1] = (u - knot[j]) /
 // (knot[j+p+1-r] - knot[j]) in Q29 (<= 2^29) for u = knot[span] (0) and knot[span+1] (1),
 // j = span - p + jj. Computed once per span: each blossom below uses the same ones. Every
@@ -81,9 +90,9 @@ void blend_factors(const Spline& s, uint16_t span, Alphas* a) {
 void blossom_level(uint8_t p, bool rational, const Alphas& a, uint8_t side, uint8_t r, Homog* d) {
   for (uint8_t jj = p; jj >= r; --jj) {
     const int64_t alpha = a.q29[side][r - 1][jj - 1];
-    d[jj].x = lerp64(d[jj - 1].x, d[jj].x, alpha);
-    d[jj].y = lerp64(d[jj - 1].y, d[jj].y, alpha);
-    if (rational) d[jj].w = lerp64(d[jj - 1].w, d[jj].w, alpha);
+    for (uint8_t i = 0; i < (rational ? 3 : 2); ++i) {
+      d[jj].v[i] = lerp64(d[jj - 1].v[i], d[jj].v[i], alpha);
+    }
   }
 }
 
@@ -265,18 +274,19 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
     if (spline.rational && c.weight_q14 == 0) return GeometryError::kZeroWeight;
   }
   const ControlPoint& ref = spline.control[span - p];
+  const int32_t ref_um[2] = {ref.x_um, ref.y_um};
+  const bool poly = !spline.rational;
   Homog d0[kMaxDegree + 1];
   for (uint8_t j = 0; j <= p; ++j) {
     const ControlPoint& c = spline.control[span - p + j];
-    const int64_t w_q14 = spline.rational ? c.weight_q14 : kWeightOneQ14;
-    if (spline.rational) {
-      d0[j].x = ((int64_t)c.x_um - ref.x_um) * w_q14 / (1 << (14 - kSetupShift));
-      d0[j].y = ((int64_t)c.y_um - ref.y_um) * w_q14 / (1 << (14 - kSetupShift));
-    } else {  // weight 1: the same values, shifted (polynomial spans skip every weight step)
-      d0[j].x = shl64((int64_t)c.x_um - ref.x_um, kSetupShift);
-      d0[j].y = shl64((int64_t)c.y_um - ref.y_um, kSetupShift);
+    const int32_t at_um[2] = {c.x_um, c.y_um};
+    const int64_t w_q14 = poly ? kWeightOneQ14 : c.weight_q14;
+    for (uint8_t i = 0; i < 2; ++i) {
+      const int64_t rel = (int64_t)at_um[i] - ref_um[i];
+      // Weight 1: the same value, shifted (polynomial spans skip every weight step).
+      d0[j].v[i] = poly ? shl64(rel, kSetupShift) : rel * w_q14 / (1 << (14 - kSetupShift));
     }
-    d0[j].w = w_q14 << (kAlphaShift - 14);
+    d0[j].v[kW] = w_q14 << (kAlphaShift - 14);
   }
   Homog b[kMaxDegree + 1];
   int64_t w_max = 1;  // each b[k].w mixes weight_q14 << 15 >= 2^15; 1 keeps w_max a divisor
@@ -284,48 +294,38 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   blend_factors(spline, span, &alphas);
   bezier_points(p, spline.rational, alphas, d0, b);
   for (uint8_t k = 0; k <= p; ++k) {
-    if (b[k].w > w_max) w_max = b[k].w;
+    if (b[k].v[kW] > w_max) w_max = b[k].v[kW];
   }
-  // Origin: the span start rounded to 1 um (absolute). Polynomial spans have w = 2^29
-  // everywhere, so their divisions by w are shifts (the same values).
-  const bool poly = !spline.rational;
-  if (poly) {
-    origin_.x_um = (int32_t)(ref.x_um + div_round_pow2(b[0].x, kSetupShift));
-    origin_.y_um = (int32_t)(ref.y_um + div_round_pow2(b[0].y, kSetupShift));
-  } else {
-    origin_.x_um =
-        (int32_t)(ref.x_um + div_round(shl64(b[0].x, kAlphaShift - kSetupShift), b[0].w));
-    origin_.y_um =
-        (int32_t)(ref.y_um + div_round(shl64(b[0].y, kAlphaShift - kSetupShift), b[0].w));
-  }
-  origin_q6_.x_q6 = origin_.x_um * (1L << kQ6Shift);  // |.| < 2^26: once, not per point
-  origin_q6_.y_q6 = origin_.y_um * (1L << kQ6Shift);
-  // Numerators relative to the origin, weights normalised to max 1, in q6 / q27.
-  int64_t nx[kMaxDegree + 1], ny[kMaxDegree + 1], nw[kMaxDegree + 1];
-  const int64_t ox = shl64((int64_t)origin_.x_um - ref.x_um, kSetupShift);
-  const int64_t oy = shl64((int64_t)origin_.y_um - ref.y_um, kSetupShift);
-  for (uint8_t k = 0; k <= p; ++k) {
-    // x - w * o in um*w q9; w in q29.
-    const int64_t rx = b[k].x - (poly ? ox : (ox * b[k].w) >> kAlphaShift);
-    const int64_t ry = b[k].y - (poly ? oy : (oy * b[k].w) >> kAlphaShift);
-    if (spline.rational) {
-      // rx * 2^29 / w_max is um*w_norm in q9; to q6: * 2^26 / w_max.
-      nx[k] = div_round(shl64(rx, 26), w_max);
-      ny[k] = div_round(shl64(ry, 26), w_max);
-      nw[k] = div_round(shl64(b[k].w, kQ27Shift), w_max);
-    } else {
-      nx[k] = div_round_pow2(rx, kSetupShift - kQ6Shift);
-      ny[k] = div_round_pow2(ry, kSetupShift - kQ6Shift);
-      nw[k] = (int64_t)1 << kQ27Shift;
+  // Per coordinate: the origin (the span start rounded to 1 um, absolute), the end point
+  // straight from the last Bezier point (exact up to setup rounding), and the numerators
+  // relative to the origin in q6 with the weights normalised to max 1.
+  int64_t n[3][kMaxDegree + 1];
+  int32_t origin_um[2];
+  int32_t end_q6[2];
+  for (uint8_t i = 0; i < 2; ++i) {
+    origin_um[i] = (int32_t)(ref_um[i] + bezier_coordinate(b[0], i, 0, poly));
+    end_q6[i] = (int32_t)(shl64(ref_um[i], kQ6Shift) + bezier_coordinate(b[p], i, kQ6Shift, poly));
+    const int64_t o = shl64((int64_t)origin_um[i] - ref_um[i], kSetupShift);
+    for (uint8_t k = 0; k <= p; ++k) {
+      // x - w * o in um*w q9; w in q29 (2^29 for polynomial spans: x - o).
+      const int64_t r = b[k].v[i] - (poly ? o : (o * b[k].v[kW]) >> kAlphaShift);
+      // Rational: r * 2^29 / w_max is um*w_norm in q9; to q6: * 2^26 / w_max.
+      n[i][k] = poly ? div_round_pow2(r, kSetupShift - kQ6Shift) : div_round(shl64(r, 26), w_max);
     }
   }
-  int64_t c[kMaxDegree + 1];
-  power_basis(p, nx, c);
-  for (uint8_t k = 0; k <= kMaxDegree; ++k) cx_[k] = (int32_t)c[k];
-  power_basis(p, ny, c);
-  for (uint8_t k = 0; k <= kMaxDegree; ++k) cy_[k] = (int32_t)c[k];
-  power_basis(p, nw, c);
-  for (uint8_t k = 0; k <= kMaxDegree; ++k) cw_[k] = (int32_t)c[k];
+  for (uint8_t k = 0; k <= p; ++k) {
+    n[kW][k] = poly ? (int64_t)1 << kQ27Shift : div_round(shl64(b[k].v[kW], kQ27Shift), w_max);
+  }
+  origin_.x_um = origin_um[kX];
+  origin_.y_um = origin_um[kY];
+  origin_q6_.x_q6 = origin_.x_um * (1L << kQ6Shift);  // |.| < 2^26: once, not per point
+  origin_q6_.y_q6 = origin_.y_um * (1L << kQ6Shift);
+  int32_t* const coefficients[3] = {cx_, cy_, cw_};
+  for (uint8_t i = 0; i < 3; ++i) {
+    int64_t c[kMaxDegree + 1];
+    power_basis(p, n[i], c);
+    for (uint8_t k = 0; k <= kMaxDegree; ++k) coefficients[i][k] = (int32_t)c[k];
+  }
   degree_ = p;
   // Derivative coefficients k * c[k] keep as many fraction bits as their Horner sums
   // allow (|sum| <= sum of k |c[k]| < 2^31): full q6 for ordinary spans.
@@ -342,27 +342,18 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   while ((dsum >> dir_shift_) >= ((int64_t)1 << 30)) ++dir_shift_;
   rational_ = spline.rational;
   start_ = evaluate_q6(0);
-  // End point straight from the last Bezier point (exact up to setup rounding).
-  if (poly) {
-    end_.x_q6 =
-        (int32_t)(shl64(ref.x_um, kQ6Shift) + div_round_pow2(b[p].x, kSetupShift - kQ6Shift));
-    end_.y_q6 =
-        (int32_t)(shl64(ref.y_um, kQ6Shift) + div_round_pow2(b[p].y, kSetupShift - kQ6Shift));
-  } else {
-    end_.x_q6 = (int32_t)(shl64(ref.x_um, kQ6Shift) +
-                          div_round(shl64(b[p].x, kAlphaShift - kSetupShift + kQ6Shift), b[p].w));
-    end_.y_q6 = (int32_t)(shl64(ref.y_um, kQ6Shift) +
-                          div_round(shl64(b[p].y, kAlphaShift - kSetupShift + kQ6Shift), b[p].w));
-  }
+  end_.x_q6 = end_q6[kX];
+  end_.y_q6 = end_q6[kY];
   // End tangent: direction of the last non-degenerate Bezier leg into b[p] (projected).
   end_dir_.dx = end_dir_.dy = 0;
   for (int8_t k = (int8_t)(p - 1); k >= 0 && end_dir_.dx == 0 && end_dir_.dy == 0; --k) {
-    // Polynomial: both weights 2^29, so the products are the difference times 2^21.
-    const int64_t ex =
-        poly ? shl64(b[p].x - b[k].x, 21) : b[p].x * (b[k].w >> 8) - b[k].x * (b[p].w >> 8);
-    const int64_t ey =
-        poly ? shl64(b[p].y - b[k].y, 21) : b[p].y * (b[k].w >> 8) - b[k].y * (b[p].w >> 8);
-    end_dir_ = scale_direction(ex, ey);
+    int64_t e[2];
+    for (uint8_t i = 0; i < 2; ++i) {
+      // Polynomial: both weights 2^29, so the products are the difference times 2^21.
+      e[i] = poly ? shl64(b[p].v[i] - b[k].v[i], 21)
+                  : b[p].v[i] * (b[k].v[kW] >> 8) - b[k].v[i] * (b[p].v[kW] >> 8);
+    }
+    end_dir_ = scale_direction(e[kX], e[kY]);
   }
   return GeometryError::kOk;
 }
