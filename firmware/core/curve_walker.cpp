@@ -11,13 +11,6 @@ namespace core {
 
 namespace {
 
-// Squared length of a q6 difference, in q12 um^2 (64-bit: differences reach 2^27).
-int64_t dist2_q12(const PointQ6& a, const PointQ6& b) {
-  const int64_t dx = (int64_t)a.x_q6 - b.x_q6;
-  const int64_t dy = (int64_t)a.y_q6 - b.y_q6;
-  return dx * dx + dy * dy;
-}
-
 // |(dx, dy)| in q6 (|dx|, |dy| < 2^31): scaled into 15 bits, isqrt, scaled back.
 uint32_t length_q6(int32_t dx, int32_t dy) {
   uint32_t ax = abs_u32(dx);
@@ -182,6 +175,24 @@ int32_t blend_q15(int32_t wa, int32_t a, int32_t wb, int32_t b, uint16_t m) {
 // division for a signed / 4).
 int16_t quarter_toward_zero(int32_t v) {
   return v < 0 ? (int16_t) - (int16_t)(abs_u32(v) >> 2) : (int16_t)(v >> 2);
+}
+
+// trunc(r 64 s / denom), the miter's offset (q6), for |r| <= 10^5, |s| <= 2^16 and denom in
+// [4390, 65536]: the product held wide (< 2^39) and divided in two 32/16 steps.
+int32_t miter_q6(int32_t r, int32_t s, uint32_t denom) {
+  const Wide mag = mul_wide((int32_t)abs_u32(r * 64), (int32_t)abs_u32(s));
+  uint32_t q;
+  if (denom >= 65536UL) {
+    q = wide_shift_right_low(mag, 16);
+  } else {
+    // Digits mag.hi (< 2^7 < denom), mag.lo's high and low halves.
+    uint16_t rem = 0;
+    const uint16_t d = (uint16_t)denom;
+    const uint16_t q_hi = div_u32_u16((mag.hi << 16) | (mag.lo >> 16), d, &rem);
+    const uint16_t q_lo = div_u32_u16(((uint32_t)rem << 16) | (mag.lo & 0xFFFFU), d, 0);
+    q = ((uint32_t)q_hi << 16) | q_lo;
+  }
+  return ((r < 0) != (s < 0)) ? -(int32_t)q : (int32_t)q;
 }
 
 // Sign of ax * bx + ay * by < 0, exactly (32x32 products held wide).
@@ -384,7 +395,7 @@ bool CurveWalker::joint(PointUm* out) {
   Direction out_dir = usable_direction(0);
   if (is_zero(out_dir)) out_dir = in_dir;
   last_dir_ = out_dir;
-  const bool jump = dist2_q12(end, start) > 64 * 64;  // more than 1 um apart
+  const bool jump = longer_than_1um(end.x_q6 - start.x_q6, end.y_q6 - start.y_q6);
   if (settings_.tool_offset_um == 0) {
     if (jump) {
       pending_ = true;
@@ -413,23 +424,29 @@ bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direc
   const int32_t r = settings_.tool_offset_um;
   const Unit n1 = left_normal(in_dir);
   const Unit n2 = left_normal(out_dir);
-  const int64_t cross_q30 = (int64_t)n1.x_q15 * n2.y_q15 - (int64_t)n1.y_q15 * n2.x_q15;
-  const int64_t dot_q30 = (int64_t)n1.x_q15 * n2.x_q15 + (int64_t)n1.y_q15 * n2.y_q15;
-  const int64_t r_abs = r < 0 ? -(int64_t)r : r;
-  const int64_t gap_q30 = r_abs * (cross_q30 < 0 ? -cross_q30 : cross_q30);  // ~ |R| sin
-  if (dot_q30 > 0 && gap_q30 * 4 <= (int64_t)tol_um_ << 30) {
+  // Unit normals (|n| <= 2^15 (1 + 2^-14)): cross and dot < 2^31 in magnitude. 32-bit and
+  // 16x16 arithmetic only here (64-bit code is large on 8- and 16-bit cores).
+  const int32_t cross_q30 = n1.x_q15 * n2.y_q15 - n1.y_q15 * n2.x_q15;
+  const int32_t dot_q30 = n1.x_q15 * n2.x_q15 + n1.y_q15 * n2.y_q15;
+  const int32_t r_abs = (int32_t)abs_u32(r);  // <= kMaxToolOffsetUm
+  // |R| sin(turn) * 4 <= tol, i.e. r_abs |cross| <= tol 2^28 (exact, the product wide).
+  Wide tol_q28;
+  tol_q28.hi = (uint32_t)tol_um_ >> 4;
+  tol_q28.lo = (uint32_t)tol_um_ << 28;
+  const Wide gap_q30 = mul_wide(r_abs, (int32_t)abs_u32(cross_q30));  // ~ |R| sin
+  if (dot_q30 > 0 && !wide_negative(wide_sub(tol_q28, gap_q30))) {
     return emit_checked(at, offset_point(at, n2), out);
   }
   // Turning left (cross > 0) puts a left offset (R > 0) on the inside: concave. An exact
   // reversal (cross 0) is convex on both sides: the tool goes round the end.
   const bool concave = cross_q30 != 0 && (cross_q30 > 0) == (r > 0);
   if (concave) {
-    const int64_t denom_q15 = 32768 + (dot_q30 >> 15);                  // 1 + cos(turn)
+    const int32_t denom_q15 = 32768 + (dot_q30 >> 15);                  // 1 + cos(turn)
     if (denom_q15 < 4390) return fail(GeometryError::kOffsetTooLarge);  // turn > ~150 deg
     // Miter: at + R (n1 + n2) / (1 + n1.n2).
     PointQ6 m;
-    m.x_q6 = at.x_q6 + (int32_t)((int64_t)r * 64 * (n1.x_q15 + n2.x_q15) / denom_q15);
-    m.y_q6 = at.y_q6 + (int32_t)((int64_t)r * 64 * (n1.y_q15 + n2.y_q15) / denom_q15);
+    m.x_q6 = at.x_q6 + miter_q6(r, n1.x_q15 + n2.x_q15, (uint32_t)denom_q15);
+    m.y_q6 = at.y_q6 + miter_q6(r, n1.y_q15 + n2.y_q15, (uint32_t)denom_q15);
     return emit_checked(at, m, out);
   }
   // Convex: arc from n1 to n2 about the corner, split at the bisector when over 90 deg.
@@ -462,11 +479,14 @@ bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direc
   // Points per half: chord error of an arc step phi is R phi^2 / 8 <= tol. A half is
   // <= 90 deg and its chord c = |a - b|; the normalised-lerp spacing is at most 1.3x the
   // even one, and the angle at most 1.11 c: steps = ceil(1.45 c sqrt(R / (8 tol))).
-  const int64_t cx = (int64_t)arc_a_.x_q15 - arc_b_.x_q15;
-  const int64_t cy = (int64_t)arc_a_.y_q15 - arc_b_.y_q15;
-  const uint32_t c_q15 = isqrt32((uint32_t)(cx * cx + cy * cy));
-  const uint32_t root_q8 = isqrt32((uint32_t)((r_abs << 16) / (8 * (int64_t)tol_um_)));
-  int64_t steps = ((int64_t)c_q15 * 145 * root_q8) / ((int64_t)100 * 32768 * 256) + 1;
+  // (A half is <= 90 degrees: c^2 <= 2^31.) r 2^16 / (8 tol) = r 2^13 / tol, and the
+  // steps' division by 100 2^23 is a shift and a 32/16 division: the same floors.
+  const uint32_t cx = (uint32_t)(arc_a_.x_q15 - arc_b_.x_q15);
+  const uint32_t cy = (uint32_t)(arc_a_.y_q15 - arc_b_.y_q15);
+  const uint32_t c_q15 = isqrt32(cx * cx + cy * cy);
+  const uint32_t root_q8 = isqrt32(div_u32_by_u16((uint32_t)r_abs << 13, tol_um_, 0));
+  const Wide spread = mul_wide((int32_t)(c_q15 * 145), (int32_t)root_q8);  // < 2^39
+  uint32_t steps = div_u32_by_u16(wide_shift_right_low(spread, 23), 100, 0) + 1;
   if (steps > 256) steps = 256;
   arc_steps_ = (uint16_t)steps;
   arc_index_ = 1;
