@@ -88,9 +88,10 @@ void blend_factors(const Spline& s, uint16_t span, Alphas* a) {
 
 // One level r of De Boor's triangle in place, every blend at the knot of `side`.
 void blossom_level(uint8_t p, bool rational, const Alphas& a, uint8_t side, uint8_t r, Homog* d) {
+  const uint8_t coordinates = rational ? 3 : 2;
   for (uint8_t jj = p; jj >= r; --jj) {
     const int64_t alpha = a.q29[side][r - 1][jj - 1];
-    for (uint8_t i = 0; i < (rational ? 3 : 2); ++i) {
+    for (uint8_t i = 0; i < coordinates; ++i) {
       d[jj].v[i] = lerp64(d[jj - 1].v[i], d[jj].v[i], alpha);
     }
   }
