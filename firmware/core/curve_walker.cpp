@@ -2,61 +2,202 @@
 // spline, tool-radius offset along the normal, corner arcs and miters, stop on overcut.
 #include "firmware/core/curve_walker.h"
 
-#include "firmware/core/divide.h"       // div_u32_u16
-#include "firmware/core/fixed_point.h"  // mul_32x16_q15, mul_u16_u16, abs_u32, kUq16One
-#include "firmware/core/isqrt.h"        // isqrt32
+#include "firmware/core/divide.h"        // div_u32_u16
+#include "firmware/core/fixed_point.h"   // mul_32x16_q15, mul_u16_u16, abs_u32, kUq16One
+#include "firmware/core/isqrt.h"         // isqrt32
+#include "firmware/core/wide_product.h"  // mul_wide, mul_q30
 
 namespace core {
 
 namespace {
 
-// Squared length of a q6 difference, in q12 um^2 (64-bit: differences reach 2^27).
-int64_t dist2_q12(const PointQ6& a, const PointQ6& b) {
-  const int64_t dx = (int64_t)a.x_q6 - b.x_q6;
-  const int64_t dy = (int64_t)a.y_q6 - b.y_q6;
-  return dx * dx + dy * dy;
-}
-
-// |(dx, dy)| for 64-bit components: scaled into 15 bits, isqrt, scaled back.
-int64_t length_q6(int64_t dx, int64_t dy) {
-  if (dx < 0) dx = -dx;
-  if (dy < 0) dy = -dy;
+// |(dx, dy)| in q6 (|dx|, |dy| < 2^31): scaled into 15 bits, isqrt, scaled back.
+uint32_t length_q6(int32_t dx, int32_t dy) {
+  uint32_t ax = abs_u32(dx);
+  uint32_t ay = abs_u32(dy);
   uint8_t shift = 0;
-  while ((dx >> shift) >= 32768 || (dy >> shift) >= 32768) ++shift;
-  const uint32_t sx = (uint32_t)(dx >> shift);
-  const uint32_t sy = (uint32_t)(dy >> shift);
-  return (int64_t)isqrt32(sx * sx + sy * sy) << shift;
+  while ((ax | ay) >= (1UL << 23)) {  // whole bytes first (a variable shift is a bit loop)
+    ax >>= 8;
+    ay >>= 8;
+    shift = (uint8_t)(shift + 8);
+  }
+  while ((ax | ay) >= 32768) {
+    ax >>= 1;
+    ay >>= 1;
+    ++shift;
+  }
+  const uint16_t sx = (uint16_t)ax;
+  const uint16_t sy = (uint16_t)ay;
+  return (uint32_t)isqrt32(mul_u16_u16(sx, sx) + mul_u16_u16(sy, sy)) << shift;
 }
 
-// Distance (q6) from q to the segment ab: to the line when q projects inside the
-// segment, else to the nearer end (a hairpin tip can poke out past an end).
-int64_t chord_distance_q6(const PointQ6& a, const PointQ6& b, const PointQ6& q) {
-  const int64_t bx = (int64_t)b.x_q6 - a.x_q6;
-  const int64_t by = (int64_t)b.y_q6 - a.y_q6;
-  const int64_t qx = (int64_t)q.x_q6 - a.x_q6;
-  const int64_t qy = (int64_t)q.y_q6 - a.y_q6;
-  const int64_t len = length_q6(bx, by);
-  const int64_t along = bx * qx + by * qy;  // |b - a| * projection, < 2^55
-  if (len < 64 || along <= 0) return length_q6(qx, qy);
-  if (along >= bx * bx + by * by) return length_q6(qx - bx, qy - by);
-  const int64_t cross = bx * qy - by * qx;  // < 2^55
-  return (cross < 0 ? -cross : cross) / len;
+// |(dx, dy)| > 1 um (64 q6) and < 1 um, exactly (no root for most vectors).
+bool longer_than_1um(int32_t dx, int32_t dy) {
+  const uint32_t ax = abs_u32(dx);
+  const uint32_t ay = abs_u32(dy);
+  if (ax > 64 || ay > 64) return true;
+  return mul_u16_u16((uint16_t)ax, (uint16_t)ax) + mul_u16_u16((uint16_t)ay, (uint16_t)ay) >
+         64 * 64;
+}
+
+bool shorter_than_1um(int32_t dx, int32_t dy) {
+  const uint32_t ax = abs_u32(dx);
+  const uint32_t ay = abs_u32(dy);
+  if (ax >= 64 || ay >= 64) return false;
+  return mul_u16_u16((uint16_t)ax, (uint16_t)ax) + mul_u16_u16((uint16_t)ay, (uint16_t)ay) <
+         64 * 64;
+}
+
+// The chord a -> b of one trial step, prepared once for the distances of all its samples:
+// b - a shifted left (exactly: the direction is b - a's own) so that its larger component
+// lies in [2^29, 2^30), and 2^29 / (|n| / 2^16), so that a distance is two products.
+struct Chord {
+  PointQ6 a;
+  int32_t bx;
+  int32_t by;
+  int32_t nx;
+  int32_t ny;
+  int16_t nx16;  // n / 2^16 (14 significant bits): enough for the projection
+  int16_t ny16;
+  int32_t along_end;     // (b - a) . n / 2^32: where the projection leaves the segment
+  uint16_t inv_len_q15;  // 2^29 / |n16|: |n| / 2^30 is in [1/2, 1.42)
+  bool short_chord;      // |b - a| < 1 um: distances are to a
+};
+
+// floor(v * s / 2^16) for |v| < 2^30 and a signed 16-bit s: two 16x16 products.
+int32_t mul_32x16_hi(int32_t v, int16_t s) {
+  const int32_t lo = mul_s16_u16(s, low_half(v));  // |.| < 2^31
+  return (int32_t)high_half(v) * s + (int32_t)high_half(lo);
+}
+
+// (qx, qy) . n / 2^32 from the 14-bit n (|.| < 2^30 for |q| < 2^29).
+int32_t along_q32(const Chord& c, int32_t qx, int32_t qy) {
+  return mul_32x16_hi(qx, c.nx16) + mul_32x16_hi(qy, c.ny16);
+}
+
+Chord make_chord(const PointQ6& a, const PointQ6& b) {
+  Chord c;
+  c.a = a;
+  c.bx = b.x_q6 - a.x_q6;  // |.| < 2^28: coordinates and offsets stay below 2^27
+  c.by = b.y_q6 - a.y_q6;
+  c.short_chord = shorter_than_1um(c.bx, c.by);
+  c.nx = c.ny = c.along_end = 0;
+  c.nx16 = c.ny16 = 0;
+  c.inv_len_q15 = 0;
+  if (c.short_chord) return c;
+  uint32_t m = abs_u32(c.bx) | abs_u32(c.by);  // same leading bit as the larger, >= 45
+  uint32_t nx = (uint32_t)c.bx;
+  uint32_t ny = (uint32_t)c.by;
+  while (m < (1UL << 21)) {  // whole bytes first
+    m <<= 8;
+    nx <<= 8;
+    ny <<= 8;
+  }
+  while (m < (1UL << 29)) {
+    m <<= 1;
+    nx <<= 1;
+    ny <<= 1;
+  }
+  c.nx = (int32_t)nx;
+  c.ny = (int32_t)ny;
+  c.nx16 = high_half(c.nx);
+  c.ny16 = high_half(c.ny);
+  c.along_end = along_q32(c, c.bx, c.by);
+  const uint16_t ax = (uint16_t)abs_u32(c.nx16);
+  const uint16_t ay = (uint16_t)abs_u32(c.ny16);
+  const uint16_t len = isqrt32(mul_u16_u16(ax, ax) + mul_u16_u16(ay, ay));  // [2^13, 2^14.5)
+  c.inv_len_q15 = div_u32_u16((1UL << 29) - 1, len, 0);                     // < 2^16
+  return c;
+}
+
+// Distance (q6) from q to the chord: to the line when q projects inside the segment, else
+// to the nearer end (a hairpin tip can poke out past an end). Relative error ~2^-13.
+uint32_t chord_distance_q6(const Chord& c, const PointQ6& q) {
+  const int32_t qx = q.x_q6 - c.a.x_q6;
+  const int32_t qy = q.y_q6 - c.a.y_q6;
+  if (c.short_chord) return length_q6(qx, qy);
+  // The projection with 14-bit n: it only picks the formula, and at its two boundaries the
+  // line distance and the end distance agree.
+  const int32_t along = along_q32(c, qx, qy);
+  if (along <= 0) return length_q6(qx, qy);
+  if (along >= c.along_end) return length_q6(qx - c.bx, qy - c.by);
+  // |q x n| / 2^30 (< 2^29), times 2^30 / |n| = inv_len_q15 / 2^15.
+  const uint32_t cross = abs_u32(mul_q30(qx, c.ny) - mul_q30(qy, c.nx));
+  return (uint32_t)mul_32x16_uq16((int32_t)cross, c.inv_len_q15) << 1;
 }
 
 bool is_zero(const Direction& d) {
   return d.dx == 0 && d.dy == 0;
 }
 
-// Largest q8 factor sqrt(target / err) clamped to [lo_q8, hi_q8]: the step ratio that
-// would bring a chord error err (which scales with h^2) to target.
-uint32_t step_factor_q8(int64_t target, int64_t err, uint32_t lo_q8, uint32_t hi_q8) {
-  if (err <= 0) return hi_q8;
-  int64_t ratio_q16 = target * 65536 / err;
-  if (ratio_q16 > 0xFFFFFFFFLL) ratio_q16 = 0xFFFFFFFFLL;
-  uint32_t f = isqrt32((uint32_t)ratio_q16);  // sqrt(ratio) in q8
+// Largest q8 factor sqrt(target / err) clamped to [lo_q8, hi_q8] (16 <= lo, hi <= 512): the
+// step ratio that would bring a chord error err (which scales with h^2) to target. The
+// ratio is one 32/16 division on err normalised to 16 bits (q14 when >= 1, else q16).
+uint16_t step_factor_q8(uint32_t target, uint32_t err, uint16_t lo_q8, uint16_t hi_q8) {
+  if (err <= (target >> 2)) return hi_q8;  // ratio >= 4: f >= 512
+  if ((err >> 8) > target) return lo_q8;   // ratio < 1/256: f < 16
+  uint32_t e = err;
+  int8_t k = 0;  // err ~ e * 2^k with e in [2^15, 2^16)
+  while (e >= (1UL << 16)) {
+    e >>= 1;
+    ++k;
+  }
+  while (e < (1UL << 15)) {
+    e <<= 1;
+    --k;
+  }
+  const uint8_t frac = target >= err ? 14 : 16;  // the quotient stays below 2^16
+  const int8_t s = (int8_t)(frac - k);
+  const uint32_t n = s >= 0 ? target << s : target >> -s;  // < (e + 1) 2^16 (ratio bound)
+  const uint16_t q = (n >> 16) >= e ? 0xFFFFU : div_u32_u16(n, (uint16_t)e, 0);
+  const uint32_t ratio_q16 = frac == 14 ? (uint32_t)q << 2 : q;
+  uint16_t f = isqrt32(ratio_q16);  // sqrt(ratio) in q8
   if (f < lo_q8) f = lo_q8;
   if (f > hi_q8) f = hi_q8;
   return f;
+}
+
+// step * f / 256 for step <= 2^16 and f <= 512, without a 32x32 product.
+uint32_t scale_step_q8(uint32_t step, uint16_t f_q8) {
+  if (step >= kUq16One) return (uint32_t)f_q8 << 8;
+  return mul_u16_u16((uint16_t)step, f_q8) >> 8;
+}
+
+// (wa * a + wb * b) / m truncated toward zero, for |a|, |b| <= 2^15 and wa + wb = m <= 256:
+// the quotient's magnitude <= 2^15, a 32/16 division.
+int32_t blend_q15(int32_t wa, int32_t a, int32_t wb, int32_t b, uint16_t m) {
+  const int32_t num = wa * a + wb * b;  // |.| <= 2^23
+  const int32_t q = (int32_t)div_u32_u16(abs_u32(num), m, 0);
+  return num < 0 ? -q : q;
+}
+
+// v / 4 truncated toward zero for |v| <= 2^15, as a shift (avr-gcc -Os calls a 32/32
+// division for a signed / 4).
+int16_t quarter_toward_zero(int32_t v) {
+  return v < 0 ? (int16_t) - (int16_t)(abs_u32(v) >> 2) : (int16_t)(v >> 2);
+}
+
+// trunc(r 64 s / denom), the miter's offset (q6), for |r| <= 10^5, |s| <= 2^16 and denom in
+// [4390, 65536]: the product held wide (< 2^39) and divided in two 32/16 steps.
+int32_t miter_q6(int32_t r, int32_t s, uint32_t denom) {
+  const Wide mag = mul_wide((int32_t)abs_u32(r * 64), (int32_t)abs_u32(s));
+  uint32_t q;
+  if (denom >= 65536UL) {
+    q = wide_shift_right_low(mag, 16);
+  } else {
+    // Digits mag.hi (< 2^7 < denom), mag.lo's high and low halves.
+    uint16_t rem = 0;
+    const uint16_t d = (uint16_t)denom;
+    const uint16_t q_hi = div_u32_u16((mag.hi << 16) | (mag.lo >> 16), d, &rem);
+    const uint16_t q_lo = div_u32_u16(((uint32_t)rem << 16) | (mag.lo & 0xFFFFU), d, 0);
+    q = ((uint32_t)q_hi << 16) | q_lo;
+  }
+  return ((r < 0) != (s < 0)) ? -(int32_t)q : (int32_t)q;
+}
+
+// Sign of ax * bx + ay * by < 0, exactly (32x32 products held wide).
+bool dot_negative(int32_t ax, int32_t ay, int32_t bx, int32_t by) {
+  return wide_negative(wide_add(mul_wide(ax, bx), mul_wide(ay, by)));
 }
 
 }  // namespace
@@ -79,6 +220,8 @@ CurveWalker::CurveWalker()
       t_q16_(0),
       h_q16_(0),
       tol_um_(kDefaultChordToleranceUm),
+      accept_q6_(0),
+      target_q6_(0),
       pending_(false),
       arc_steps_(0),
       arc_index_(0),
@@ -88,6 +231,7 @@ CurveWalker::CurveWalker()
   last_dir_.dy = 0;
   last_out_.x_q6 = last_out_.y_q6 = 0;
   last_base_ = pending_point_ = arc_center_ = last_out_;
+  step_point_ = step_base_ = path_base_ = last_out_;
   arc_a_.x_q15 = arc_a_.y_q15 = 0;
   arc_b_ = arc_c_ = arc_a_;
 }
@@ -118,6 +262,9 @@ GeometryError CurveWalker::begin(const Spline* spline, const StepSettings& setti
   }
   tol_um_ = settings.chord_tolerance_um;
   if (tol_um_ == 0 || tol_um_ > 10000) tol_um_ = kDefaultChordToleranceUm;
+  // Adaptive thresholds 0.9 and 0.7 tol in q6 (< 2^20), once here, not per step.
+  accept_q6_ = (uint32_t)tol_um_ * 64 * 9 / 10;
+  target_q6_ = (uint32_t)tol_um_ * 64 * 7 / 10;
   phase_ = kStart;
   return error_;
 }
@@ -156,19 +303,29 @@ bool CurveWalker::fail(GeometryError e) {
 }
 
 // Next parameter of the uniform mode: k * 65536 / steps_per_span.
+// A 32/16 division (the quotient < 2^16 before the span end).
 uint32_t CurveWalker::uniform_next() const {
-  return (uint32_t)(((uint32_t)step_index_ + 1) * kUq16One / settings_.steps_per_span);
+  const uint16_t k = (uint16_t)(step_index_ + 1);
+  if (k >= settings_.steps_per_span) return kUq16One;
+  return div_u32_u16((uint32_t)k << 16, settings_.steps_per_span, 0);
 }
 
 // Emits the next point inside the span, or handles the span's end.
 bool CurveWalker::step_in_span(PointUm* out) {
-  const uint32_t t_next = settings_.mode == StepMode::kUniform ? uniform_next() : adaptive_next();
+  if (settings_.mode != StepMode::kUniform) {
+    const uint32_t t_next = adaptive_next();
+    if (t_next >= kUq16One) return joint(out);
+    t_q16_ = t_next;
+    ++step_index_;
+    return emit_checked(step_base_, step_point_, out);  // the accepted trial's end
+  }
+  const uint32_t t_next = uniform_next();
   if (t_next >= kUq16One) return joint(out);
   t_q16_ = t_next;
   ++step_index_;
   Direction d;
   const PointQ6 p = path_point(t_next, &d);
-  return emit_checked(eval_.evaluate_q6(t_next), p, out);
+  return emit_checked(path_base_, p, out);
 }
 
 // Chord-adaptive step: the longest step (within the span) whose path points at 1/4, 1/2
@@ -179,32 +336,36 @@ bool CurveWalker::step_in_span(PointUm* out) {
 // the tests show to be enough on random curves; it is not a proof.
 // Bounded: a rejected step shrinks to at most half and a step of 1/65536 is accepted.
 uint32_t CurveWalker::adaptive_next() {
-  const int64_t accept_q6 = (int64_t)tol_um_ * 64 * 9 / 10;
-  const int64_t target_q6 = (int64_t)tol_um_ * 64 * 7 / 10;
   uint32_t h = h_q16_ < 1 ? 1 : h_q16_;
+  const uint8_t parts_log2 = (eval_.rational() || settings_.tool_offset_um != 0) ? 3 : 2;
+  const uint8_t parts = (uint8_t)(1U << parts_log2);
   for (uint8_t tries = 0; tries < 24; ++tries) {
     uint32_t t1 = t_q16_ + h;
     if (t1 > kUq16One) t1 = kUq16One;
     const uint32_t step = t1 - t_q16_;
     Direction d;
     const PointQ6 b = path_point(t1, &d);
-    int64_t worst = 0;
-    const uint32_t parts = (eval_.rational() || settings_.tool_offset_um != 0) ? 8 : 4;
-    for (uint32_t q = 1; q < parts; ++q) {
-      const PointQ6 mid = path_point(t_q16_ + step * q / parts, &d);
-      const int64_t e = chord_distance_q6(last_out_, b, mid);
+    const PointQ6 b_base = path_base_;
+    const Chord chord = make_chord(last_out_, b);
+    uint32_t worst = 0;
+    uint32_t step_q = 0;  // step * q, so that t = t_q16_ + step * q / parts is a shift
+    for (uint8_t q = 1; q < parts; ++q) {
+      step_q += step;
+      const PointQ6 mid = path_point(t_q16_ + (step_q >> parts_log2), &d);
+      const uint32_t e = chord_distance_q6(chord, mid);
       if (e > worst) worst = e;
     }
-    if (worst <= accept_q6 || step <= 1) {
+    if (worst <= accept_q6_ || step <= 1) {
+      step_point_ = b;
+      step_base_ = b_base;
       // Next step: grow toward the target error (chord error ~ h^2), at most x2.
-      const uint32_t f = step_factor_q8(target_q6, worst, 256, 512);
-      uint32_t grown = (uint32_t)((uint64_t)step * f / 256);
+      const uint32_t grown = scale_step_q8(step, step_factor_q8(target_q6_, worst, 256, 512));
       h_q16_ = grown < 1 ? 1 : (grown > kUq16One ? kUq16One : grown);
       if (t1 >= kUq16One && h_q16_ < h) h_q16_ = h;  // a short last step says nothing
       return t1;
     }
-    const uint32_t f = step_factor_q8(target_q6, worst, 16, 128);  // shrink 1/16 .. 1/2
-    h = (uint32_t)((uint64_t)step * f / 256);
+    // Shrink 1/16 .. 1/2.
+    h = scale_step_q8(step, step_factor_q8(target_q6_, worst, 16, 128));
     if (h < 1) h = 1;
   }
   return t_q16_ + 1;  // not reached: 24 halvings take any step down to 1
@@ -234,7 +395,7 @@ bool CurveWalker::joint(PointUm* out) {
   Direction out_dir = usable_direction(0);
   if (is_zero(out_dir)) out_dir = in_dir;
   last_dir_ = out_dir;
-  const bool jump = dist2_q12(end, start) > 64 * 64;  // more than 1 um apart
+  const bool jump = longer_than_1um(end.x_q6 - start.x_q6, end.y_q6 - start.y_q6);
   if (settings_.tool_offset_um == 0) {
     if (jump) {
       pending_ = true;
@@ -263,23 +424,29 @@ bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direc
   const int32_t r = settings_.tool_offset_um;
   const Unit n1 = left_normal(in_dir);
   const Unit n2 = left_normal(out_dir);
-  const int64_t cross_q30 = (int64_t)n1.x_q15 * n2.y_q15 - (int64_t)n1.y_q15 * n2.x_q15;
-  const int64_t dot_q30 = (int64_t)n1.x_q15 * n2.x_q15 + (int64_t)n1.y_q15 * n2.y_q15;
-  const int64_t r_abs = r < 0 ? -(int64_t)r : r;
-  const int64_t gap_q30 = r_abs * (cross_q30 < 0 ? -cross_q30 : cross_q30);  // ~ |R| sin
-  if (dot_q30 > 0 && gap_q30 * 4 <= (int64_t)tol_um_ << 30) {
+  // Unit normals (|n| <= 2^15 (1 + 2^-14)): cross and dot < 2^31 in magnitude. 32-bit and
+  // 16x16 arithmetic only here (64-bit code is large on 8- and 16-bit cores).
+  const int32_t cross_q30 = n1.x_q15 * n2.y_q15 - n1.y_q15 * n2.x_q15;
+  const int32_t dot_q30 = n1.x_q15 * n2.x_q15 + n1.y_q15 * n2.y_q15;
+  const int32_t r_abs = (int32_t)abs_u32(r);  // <= kMaxToolOffsetUm
+  // |R| sin(turn) * 4 <= tol, i.e. r_abs |cross| <= tol 2^28 (exact, the product wide).
+  Wide tol_q28;
+  tol_q28.hi = (uint32_t)tol_um_ >> 4;
+  tol_q28.lo = (uint32_t)tol_um_ << 28;
+  const Wide gap_q30 = mul_wide(r_abs, (int32_t)abs_u32(cross_q30));  // ~ |R| sin
+  if (dot_q30 > 0 && !wide_negative(wide_sub(tol_q28, gap_q30))) {
     return emit_checked(at, offset_point(at, n2), out);
   }
   // Turning left (cross > 0) puts a left offset (R > 0) on the inside: concave. An exact
   // reversal (cross 0) is convex on both sides: the tool goes round the end.
   const bool concave = cross_q30 != 0 && (cross_q30 > 0) == (r > 0);
   if (concave) {
-    const int64_t denom_q15 = 32768 + (dot_q30 >> 15);                  // 1 + cos(turn)
+    const int32_t denom_q15 = 32768 + (dot_q30 >> 15);                  // 1 + cos(turn)
     if (denom_q15 < 4390) return fail(GeometryError::kOffsetTooLarge);  // turn > ~150 deg
     // Miter: at + R (n1 + n2) / (1 + n1.n2).
     PointQ6 m;
-    m.x_q6 = at.x_q6 + (int32_t)((int64_t)r * 64 * (n1.x_q15 + n2.x_q15) / denom_q15);
-    m.y_q6 = at.y_q6 + (int32_t)((int64_t)r * 64 * (n1.y_q15 + n2.y_q15) / denom_q15);
+    m.x_q6 = at.x_q6 + miter_q6(r, n1.x_q15 + n2.x_q15, (uint32_t)denom_q15);
+    m.y_q6 = at.y_q6 + miter_q6(r, n1.y_q15 + n2.y_q15, (uint32_t)denom_q15);
     return emit_checked(at, m, out);
   }
   // Convex: arc from n1 to n2 about the corner, split at the bisector when over 90 deg.
@@ -312,11 +479,14 @@ bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direc
   // Points per half: chord error of an arc step phi is R phi^2 / 8 <= tol. A half is
   // <= 90 deg and its chord c = |a - b|; the normalised-lerp spacing is at most 1.3x the
   // even one, and the angle at most 1.11 c: steps = ceil(1.45 c sqrt(R / (8 tol))).
-  const int64_t cx = (int64_t)arc_a_.x_q15 - arc_b_.x_q15;
-  const int64_t cy = (int64_t)arc_a_.y_q15 - arc_b_.y_q15;
-  const uint32_t c_q15 = isqrt32((uint32_t)(cx * cx + cy * cy));
-  const uint32_t root_q8 = isqrt32((uint32_t)((r_abs << 16) / (8 * (int64_t)tol_um_)));
-  int64_t steps = ((int64_t)c_q15 * 145 * root_q8) / ((int64_t)100 * 32768 * 256) + 1;
+  // (A half is <= 90 degrees: c^2 <= 2^31.) r 2^16 / (8 tol) = r 2^13 / tol, and the
+  // steps' division by 100 2^23 is a shift and a 32/16 division: the same floors.
+  const uint32_t cx = (uint32_t)(arc_a_.x_q15 - arc_b_.x_q15);
+  const uint32_t cy = (uint32_t)(arc_a_.y_q15 - arc_b_.y_q15);
+  const uint32_t c_q15 = isqrt32(cx * cx + cy * cy);
+  const uint32_t root_q8 = isqrt32(div_u32_by_u16((uint32_t)r_abs << 13, tol_um_, 0));
+  const Wide spread = mul_wide((int32_t)(c_q15 * 145), (int32_t)root_q8);  // < 2^39
+  uint32_t steps = div_u32_by_u16(wide_shift_right_low(spread, 23), 100, 0) + 1;
   if (steps > 256) steps = 256;
   arc_steps_ = (uint16_t)steps;
   arc_index_ = 1;
@@ -328,11 +498,11 @@ bool CurveWalker::arc_point(PointUm* out) {
   const int32_t k = arc_index_;
   const int32_t m = arc_steps_;
   Direction blend;
-  const int32_t bx = ((m - k) * arc_a_.x_q15 + k * arc_b_.x_q15) / m;
-  const int32_t by = ((m - k) * arc_a_.y_q15 + k * arc_b_.y_q15) / m;
+  const int32_t bx = blend_q15(m - k, arc_a_.x_q15, k, arc_b_.x_q15, (uint16_t)m);
+  const int32_t by = blend_q15(m - k, arc_a_.y_q15, k, arc_b_.y_q15, (uint16_t)m);
   // left_normal() of the blend rotated right gives the unit blend itself.
-  blend.dx = (int16_t)(by / 4);
-  blend.dy = (int16_t)(-bx / 4);
+  blend.dx = quarter_toward_zero(by);
+  blend.dy = quarter_toward_zero(-bx);
   const Unit n = left_normal(blend);
   const PointQ6 p = offset_point(arc_center_, n);
   if (arc_index_ >= arc_steps_) {
@@ -350,6 +520,7 @@ bool CurveWalker::arc_point(PointUm* out) {
 // Path point at t: the curve point, moved by the tool offset along the left normal.
 PointQ6 CurveWalker::path_point(uint32_t t_q16, Direction* dir) {
   const PointQ6 base = eval_.evaluate_q6(t_q16);
+  path_base_ = base;
   if (settings_.tool_offset_um == 0) return base;
   *dir = usable_direction(t_q16);
   if (is_zero(*dir)) *dir = last_dir_;
@@ -424,11 +595,12 @@ PointQ6 CurveWalker::offset_point(const PointQ6& base, const Unit& n) const {
 // (which means |R| exceeds the radius of curvature on the offset side).
 bool CurveWalker::emit_checked(const PointQ6& base, const PointQ6& p, PointUm* out) {
   if (settings_.tool_offset_um != 0) {
-    const int64_t bx = (int64_t)base.x_q6 - last_base_.x_q6;
-    const int64_t by = (int64_t)base.y_q6 - last_base_.y_q6;
-    const int64_t ox = (int64_t)p.x_q6 - last_out_.x_q6;
-    const int64_t oy = (int64_t)p.y_q6 - last_out_.y_q6;
-    if (bx * bx + by * by > 64 * 64 && bx * ox + by * oy < 0) {
+    // Differences < 2^28 (coordinates and offsets < 2^27 q6): 32-bit, products held wide.
+    const int32_t bx = base.x_q6 - last_base_.x_q6;
+    const int32_t by = base.y_q6 - last_base_.y_q6;
+    const int32_t ox = p.x_q6 - last_out_.x_q6;
+    const int32_t oy = p.y_q6 - last_out_.y_q6;
+    if (longer_than_1um(bx, by) && dot_negative(bx, by, ox, oy)) {
       return fail(GeometryError::kOffsetTooLarge);
     }
   }

@@ -2,7 +2,8 @@
 // per-point Horner evaluation in 32x16 fixed point.
 #include "firmware/core/span_evaluator.h"
 
-#include "firmware/core/divide.h"  // reciprocal_of, mul_reciprocal_q27
+#include "firmware/core/divide.h"        // reciprocal_of, mul_reciprocal_q27
+#include "firmware/core/wide_product.h"  // Wide, mul_wide
 
 namespace core {
 
@@ -10,55 +11,107 @@ namespace {
 
 // Homogeneous point used during setup: x, y in um * weight with 9 fraction bits
 // (|.| < 2^32 for |coord| <= 1e6 relative and weight < 4), w in Q29 (< 2^31).
+// Indexed (x, y, w) so that setup() loops over the coordinates: each 64-bit step is code
+// once, not twice (64-bit arithmetic is long inline code on 8- and 16-bit cores).
 struct Homog {
-  int64_t x;
-  int64_t y;
-  int64_t w;
+  int64_t v[3];
 };
 
+enum { kX = 0, kY = 1, kW = 2 };
 enum { kSetupShift = 9, kAlphaShift = 29 };
 
 // a + alpha * (b - a) with alpha in Q29, rounded. |b - a| < 2^33 keeps the product < 2^62.
+// alpha 0 and 1 (every De Boor level has one of each at the span's own knots) give a and b
+// exactly, without the multiply.
 int64_t lerp64(int64_t a, int64_t b, int64_t alpha_q29) {
+  if (alpha_q29 == 0) return a;
+  if (alpha_q29 == ((int64_t)1 << kAlphaShift)) return b;
   return a + (((b - a) * alpha_q29 + ((int64_t)1 << (kAlphaShift - 1))) >> kAlphaShift);
 }
 
 // v * 2^n without the undefined behaviour of shifting a negative value left.
 int64_t shl64(int64_t v, uint8_t n) {
-  return v * ((int64_t)1 << n);
+  return (int64_t)((uint64_t)v << n);  // two's complement (GCC on every target): v * 2^n
 }
 
 // (num / den) in Q29, rounded, for 0 <= num <= den, den > 0 (both < 2^33).
+// num 0 and num = den (a blend at a knot of the span itself) need no division.
 int64_t ratio_q29(int64_t num, int64_t den) {
+  if (num == 0) return 0;
+  if (num == den) return (int64_t)1 << kAlphaShift;
   return (shl64(num, kAlphaShift) + den / 2) / den;
 }
 
-// round(num / den) for den > 0 (rounds half away from zero).
-int64_t div_round(int64_t num, int64_t den) {
+// round(num / den) for den > 0 (rounds half away from zero). Out of line, like
+// div_round_pow2: inlined, the two made setup() 2.7 KB larger on the AVR and 3 % faster.
+__attribute__((noinline)) int64_t div_round(int64_t num, int64_t den) {
   return num >= 0 ? (num + den / 2) / den : -((-num + den / 2) / den);
 }
 
-// Blossom of span `span` with k arguments equal to knot[span+1] and p-k equal to
-// knot[span]: the k-th Bezier point of the span (De Boor's triangle with varying
-// parameters). Every denominator knot[j+p+1-r] - knot[j] covers the span: never zero.
-Homog blossom(const Spline& s, uint16_t span, const Homog* d0, uint8_t k) {
+// round(num / 2^n) for n in 1..62, rounded half away from zero: div_round(num, 2^n)
+// without a 64-bit division.
+__attribute__((noinline)) int64_t div_round_pow2(int64_t num, uint8_t n) {
+  const int64_t half = (int64_t)1 << (n - 1);
+  return num >= 0 ? (num + half) >> n : -((-num + half) >> n);
+}
+
+// Coordinate i of a Bezier point in um * 2^extra_bits relative to the span's first control
+// point, rounded: x / w. Polynomial spans have w = 2^29 everywhere, so the division is a
+// shift (the same value).
+int64_t bezier_coordinate(const Homog& h, uint8_t i, uint8_t extra_bits, bool poly) {
+  if (poly) return div_round_pow2(h.v[i], (uint8_t)(kSetupShift - extra_bits));
+  return div_round(shl64(h.v[i], (uint8_t)(kAlphaShift - kSetupShift + extra_bits)), h.v[kW]);
+}
+
+// The De Boor blend factors of one span: alpha[u][r-1][jj-1] = (u - knot[j]) /
+// (knot[j+p+1-r] - knot[j]) in Q29 (<= 2^29) for u = knot[span] (0) and knot[span+1] (1),
+// j = span - p + jj. Computed once per span: each blossom below uses the same ones. Every
+// denominator covers the span: never zero.
+struct Alphas {
+  int32_t q29[2][kMaxDegree][kMaxDegree];
+};
+
+void blend_factors(const Spline& s, uint16_t span, Alphas* a) {
   const uint8_t p = s.degree;
-  Homog d[kMaxDegree + 1];
-  for (uint8_t j = 0; j <= p; ++j) d[j] = d0[j];
-  for (uint8_t r = 1; r <= p; ++r) {
-    // Arguments u_{i+1} first, then u_i (the blossom is symmetric).
-    const int64_t u = r <= k ? s.knot[span + 1] : s.knot[span];
-    for (uint8_t jj = p; jj >= r; --jj) {
-      const uint16_t j = (uint16_t)(span - p + jj);  // control index of d[jj]
-      const int64_t lo = s.knot[j];
-      const int64_t hi = s.knot[j + p + 1 - r];
-      const int64_t alpha = ratio_q29(u - lo, hi - lo);
-      d[jj].x = lerp64(d[jj - 1].x, d[jj].x, alpha);
-      d[jj].y = lerp64(d[jj - 1].y, d[jj].y, alpha);
-      d[jj].w = lerp64(d[jj - 1].w, d[jj].w, alpha);
+  for (uint8_t side = 0; side < 2; ++side) {
+    const int64_t u = s.knot[span + side];
+    for (uint8_t r = 1; r <= p; ++r) {
+      for (uint8_t jj = r; jj <= p; ++jj) {
+        const uint16_t j = (uint16_t)(span - p + jj);  // control index of d[jj]
+        const int64_t lo = s.knot[j];
+        const int64_t hi = s.knot[j + p + 1 - r];
+        a->q29[side][r - 1][jj - 1] = (int32_t)ratio_q29(u - lo, hi - lo);
+      }
     }
   }
-  return d[p];
+}
+
+// One level r of De Boor's triangle in place, every blend at the knot of `side`.
+void blossom_level(uint8_t p, bool rational, const Alphas& a, uint8_t side, uint8_t r, Homog* d) {
+  const uint8_t coordinates = rational ? 3 : 2;
+  for (uint8_t jj = p; jj >= r; --jj) {
+    const int64_t alpha = a.q29[side][r - 1][jj - 1];
+    for (uint8_t i = 0; i < coordinates; ++i) {
+      d[jj].v[i] = lerp64(d[jj - 1].v[i], d[jj].v[i], alpha);
+    }
+  }
+}
+
+// The Bezier points b[0..p] of the span: b[k] is the blossom with k arguments equal to
+// knot[span+1] (levels 1..k of the triangle) and p-k equal to knot[span] (levels k+1..p).
+// The blossom is symmetric, so b[k] and b[k+1] share their first k levels: those are done
+// once (16 level blends for a cubic instead of 24). Equal weights (a polynomial spline) stay
+// equal: their blend is skipped.
+void bezier_points(uint8_t p, bool rational, const Alphas& a, const Homog* d0, Homog* b) {
+  Homog shared[kMaxDegree + 1];  // after k levels at knot[span+1]
+  for (uint8_t j = 0; j <= p; ++j) shared[j] = d0[j];
+  for (uint8_t k = 0; k <= p; ++k) {
+    if (k > 0) blossom_level(p, rational, a, 1, k, shared);
+    Homog d[kMaxDegree + 1];
+    for (uint8_t j = 0; j <= p; ++j) d[j] = shared[j];
+    for (uint8_t r = (uint8_t)(k + 1); r <= p; ++r) blossom_level(p, rational, a, 0, r, d);
+    b[k] = d[p];
+  }
 }
 
 // Power-basis coefficients of a degree-p Bezier polynomial with values b[0..p].
@@ -95,29 +148,40 @@ int32_t horner(const int32_t* c, uint8_t p, uq16_t t) {
 }
 
 // Scales (x, y) so that the larger magnitude lies in [2^13, 2^14): a direction only.
-Direction scale_direction(int64_t x, int64_t y) {
+// Exact wide components (the rational derivative, the span end): no 64-bit shifts or
+// divisions; division by 2^shift truncates toward zero on the magnitude.
+Direction scale_direction_wide(const Wide& x, const Wide& y) {
   Direction d = {0, 0};
-  int64_t ax = x < 0 ? -x : x;
-  int64_t ay = y < 0 ? -y : y;
-  int64_t m = ax > ay ? ax : ay;
-  if (m == 0) return d;
-  int8_t shift = 0;
-  while (m >= ((int64_t)1 << 14)) {
-    m >>= 1;
-    ++shift;
-  }
-  while (m < ((int64_t)1 << 13)) {
-    m <<= 1;
-    --shift;
-  }
-  if (shift >= 0) {
-    d.dx = (int16_t)(x / ((int64_t)1 << shift));
-    d.dy = (int16_t)(y / ((int64_t)1 << shift));
+  const Wide ax = wide_abs(x);
+  const Wide ay = wide_abs(y);
+  const uint8_t bits_x = wide_bit_length(ax);
+  const uint8_t bits_y = wide_bit_length(ay);
+  const uint8_t bits = bits_x > bits_y ? bits_x : bits_y;
+  if (bits == 0) return d;
+  // The larger magnitude into [2^13, 2^14): shifted right by bits - 14, or left.
+  uint16_t rx;
+  uint16_t ry;
+  if (bits >= 14) {
+    rx = (uint16_t)wide_shift_right_low(ax, (uint8_t)(bits - 14));
+    ry = (uint16_t)wide_shift_right_low(ay, (uint8_t)(bits - 14));
   } else {
-    d.dx = (int16_t)shl64(x, (uint8_t)-shift);
-    d.dy = (int16_t)shl64(y, (uint8_t)-shift);
+    rx = (uint16_t)(ax.lo << (14 - bits));
+    ry = (uint16_t)(ay.lo << (14 - bits));
   }
+  d.dx = wide_negative(x) ? (int16_t) - (int16_t)rx : (int16_t)rx;
+  d.dy = wide_negative(y) ? (int16_t) - (int16_t)ry : (int16_t)ry;
   return d;
+}
+
+// The same for a 64-bit pair (the span setup).
+Direction scale_direction(int64_t x, int64_t y) {
+  Wide wx;
+  wx.hi = (uint32_t)((uint64_t)x >> 32);
+  wx.lo = (uint32_t)x;
+  Wide wy;
+  wy.hi = (uint32_t)((uint64_t)y >> 32);
+  wy.lo = (uint32_t)y;
+  return scale_direction_wide(wx, wy);
 }
 
 // The same for 32-bit components (the polynomial derivative): identical results, without
@@ -211,51 +275,58 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
     if (spline.rational && c.weight_q14 == 0) return GeometryError::kZeroWeight;
   }
   const ControlPoint& ref = spline.control[span - p];
+  const int32_t ref_um[2] = {ref.x_um, ref.y_um};
+  const bool poly = !spline.rational;
   Homog d0[kMaxDegree + 1];
   for (uint8_t j = 0; j <= p; ++j) {
     const ControlPoint& c = spline.control[span - p + j];
-    const int64_t w_q14 = spline.rational ? c.weight_q14 : kWeightOneQ14;
-    d0[j].x = ((int64_t)c.x_um - ref.x_um) * w_q14 / (1 << (14 - kSetupShift));
-    d0[j].y = ((int64_t)c.y_um - ref.y_um) * w_q14 / (1 << (14 - kSetupShift));
-    d0[j].w = w_q14 << (kAlphaShift - 14);
+    const int32_t at_um[2] = {c.x_um, c.y_um};
+    const int64_t w_q14 = poly ? kWeightOneQ14 : c.weight_q14;
+    for (uint8_t i = 0; i < 2; ++i) {
+      const int64_t rel = (int64_t)at_um[i] - ref_um[i];
+      // Weight 1: the same value, shifted (polynomial spans skip every weight step).
+      d0[j].v[i] = poly ? shl64(rel, kSetupShift) : rel * w_q14 / (1 << (14 - kSetupShift));
+    }
+    d0[j].v[kW] = w_q14 << (kAlphaShift - 14);
   }
   Homog b[kMaxDegree + 1];
   int64_t w_max = 1;  // each b[k].w mixes weight_q14 << 15 >= 2^15; 1 keeps w_max a divisor
+  Alphas alphas;
+  blend_factors(spline, span, &alphas);
+  bezier_points(p, spline.rational, alphas, d0, b);
   for (uint8_t k = 0; k <= p; ++k) {
-    b[k] = blossom(spline, span, d0, k);
-    if (b[k].w > w_max) w_max = b[k].w;
+    if (b[k].v[kW] > w_max) w_max = b[k].v[kW];
   }
-  // Origin: the span start rounded to 1 um (absolute).
-  origin_.x_um = (int32_t)(ref.x_um + div_round(shl64(b[0].x, kAlphaShift - kSetupShift), b[0].w));
-  origin_.y_um = (int32_t)(ref.y_um + div_round(shl64(b[0].y, kAlphaShift - kSetupShift), b[0].w));
-  origin_q6_.x_q6 = origin_.x_um * (1L << kQ6Shift);  // |.| < 2^26: once, not per point
-  origin_q6_.y_q6 = origin_.y_um * (1L << kQ6Shift);
-  // Numerators relative to the origin, weights normalised to max 1, in q6 / q27.
-  int64_t nx[kMaxDegree + 1], ny[kMaxDegree + 1], nw[kMaxDegree + 1];
-  const int64_t ox = shl64((int64_t)origin_.x_um - ref.x_um, kSetupShift);
-  const int64_t oy = shl64((int64_t)origin_.y_um - ref.y_um, kSetupShift);
-  for (uint8_t k = 0; k <= p; ++k) {
-    // x - w * o in um*w q9; w in q29.
-    const int64_t rx = b[k].x - ((ox * b[k].w) >> kAlphaShift);
-    const int64_t ry = b[k].y - ((oy * b[k].w) >> kAlphaShift);
-    if (spline.rational) {
-      // rx * 2^29 / w_max is um*w_norm in q9; to q6: * 2^26 / w_max.
-      nx[k] = div_round(shl64(rx, 26), w_max);
-      ny[k] = div_round(shl64(ry, 26), w_max);
-      nw[k] = div_round(shl64(b[k].w, kQ27Shift), w_max);
-    } else {
-      nx[k] = div_round(rx, 1 << (kSetupShift - kQ6Shift));
-      ny[k] = div_round(ry, 1 << (kSetupShift - kQ6Shift));
-      nw[k] = (int64_t)1 << kQ27Shift;
+  // Per coordinate: the origin (the span start rounded to 1 um, absolute), the end point
+  // straight from the last Bezier point (exact up to setup rounding), and the numerators
+  // relative to the origin in q6 with the weights normalised to max 1.
+  int64_t n[3][kMaxDegree + 1];
+  int32_t origin_um[2];
+  int32_t end_q6[2];
+  for (uint8_t i = 0; i < 2; ++i) {
+    origin_um[i] = (int32_t)(ref_um[i] + bezier_coordinate(b[0], i, 0, poly));
+    end_q6[i] = (int32_t)(shl64(ref_um[i], kQ6Shift) + bezier_coordinate(b[p], i, kQ6Shift, poly));
+    const int64_t o = shl64((int64_t)origin_um[i] - ref_um[i], kSetupShift);
+    for (uint8_t k = 0; k <= p; ++k) {
+      // x - w * o in um*w q9; w in q29 (2^29 for polynomial spans: x - o).
+      const int64_t r = b[k].v[i] - (poly ? o : (o * b[k].v[kW]) >> kAlphaShift);
+      // Rational: r * 2^29 / w_max is um*w_norm in q9; to q6: * 2^26 / w_max.
+      n[i][k] = poly ? div_round_pow2(r, kSetupShift - kQ6Shift) : div_round(shl64(r, 26), w_max);
     }
   }
-  int64_t c[kMaxDegree + 1];
-  power_basis(p, nx, c);
-  for (uint8_t k = 0; k <= kMaxDegree; ++k) cx_[k] = (int32_t)c[k];
-  power_basis(p, ny, c);
-  for (uint8_t k = 0; k <= kMaxDegree; ++k) cy_[k] = (int32_t)c[k];
-  power_basis(p, nw, c);
-  for (uint8_t k = 0; k <= kMaxDegree; ++k) cw_[k] = (int32_t)c[k];
+  for (uint8_t k = 0; k <= p; ++k) {
+    n[kW][k] = poly ? (int64_t)1 << kQ27Shift : div_round(shl64(b[k].v[kW], kQ27Shift), w_max);
+  }
+  origin_.x_um = origin_um[kX];
+  origin_.y_um = origin_um[kY];
+  origin_q6_.x_q6 = origin_.x_um * (1L << kQ6Shift);  // |.| < 2^26: once, not per point
+  origin_q6_.y_q6 = origin_.y_um * (1L << kQ6Shift);
+  int32_t* const coefficients[3] = {cx_, cy_, cw_};
+  for (uint8_t i = 0; i < 3; ++i) {
+    int64_t c[kMaxDegree + 1];
+    power_basis(p, n[i], c);
+    for (uint8_t k = 0; k <= kMaxDegree; ++k) coefficients[i][k] = (int32_t)c[k];
+  }
   degree_ = p;
   // Derivative coefficients k * c[k] keep as many fraction bits as their Horner sums
   // allow (|sum| <= sum of k |c[k]| < 2^31): full q6 for ordinary spans.
@@ -272,17 +343,18 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   while ((dsum >> dir_shift_) >= ((int64_t)1 << 30)) ++dir_shift_;
   rational_ = spline.rational;
   start_ = evaluate_q6(0);
-  // End point straight from the last Bezier point (exact up to setup rounding).
-  end_.x_q6 = (int32_t)(shl64(ref.x_um, kQ6Shift) +
-                        div_round(shl64(b[p].x, kAlphaShift - kSetupShift + kQ6Shift), b[p].w));
-  end_.y_q6 = (int32_t)(shl64(ref.y_um, kQ6Shift) +
-                        div_round(shl64(b[p].y, kAlphaShift - kSetupShift + kQ6Shift), b[p].w));
+  end_.x_q6 = end_q6[kX];
+  end_.y_q6 = end_q6[kY];
   // End tangent: direction of the last non-degenerate Bezier leg into b[p] (projected).
   end_dir_.dx = end_dir_.dy = 0;
   for (int8_t k = (int8_t)(p - 1); k >= 0 && end_dir_.dx == 0 && end_dir_.dy == 0; --k) {
-    const int64_t ex = b[p].x * (b[k].w >> 8) - b[k].x * (b[p].w >> 8);
-    const int64_t ey = b[p].y * (b[k].w >> 8) - b[k].y * (b[p].w >> 8);
-    end_dir_ = scale_direction(ex, ey);
+    int64_t e[2];
+    for (uint8_t i = 0; i < 2; ++i) {
+      // Polynomial: both weights 2^29, so the products are the difference times 2^21.
+      e[i] = poly ? shl64(b[p].v[i] - b[k].v[i], 21)
+                  : b[p].v[i] * (b[k].v[kW] >> 8) - b[k].v[i] * (b[p].v[kW] >> 8);
+    }
+    end_dir_ = scale_direction(e[kX], e[kY]);
   }
   return GeometryError::kOk;
 }
@@ -303,10 +375,12 @@ PointQ6 SpanEvaluator::evaluate_q6(uint32_t t_q16) const {
 PointQ6 SpanEvaluator::rational_q6(uq16_t t) const {
   // W > 0: a convex combination of weights > 0 (<= 2^27, normalised at setup); rounding
   // can never make it 0, and reciprocal_of treats w <= 0 as 1 anyway.
-  const Reciprocal inv_w = reciprocal_of(horner_inline(cw_, degree_, t));
+  // The three sums through the out-of-line horner() (inlined, they made this function
+  // 937 dsPIC instructions; a call costs a few cycles against ~2 500 for the point).
+  const Reciprocal inv_w = reciprocal_of(horner(cw_, degree_, t));
   PointQ6 r;
-  r.x_q6 = origin_q6_.x_q6 + mul_reciprocal_q27(horner_inline(cx_, degree_, t), inv_w);
-  r.y_q6 = origin_q6_.y_q6 + mul_reciprocal_q27(horner_inline(cy_, degree_, t), inv_w);
+  r.x_q6 = origin_q6_.x_q6 + mul_reciprocal_q27(horner(cx_, degree_, t), inv_w);
+  r.y_q6 = origin_q6_.y_q6 + mul_reciprocal_q27(horner(cy_, degree_, t), inv_w);
   return r;
 }
 
@@ -329,10 +403,11 @@ Direction SpanEvaluator::direction(uq16_t t) const {
   const int32_t w = horner(cw_, degree_, t);
   const int32_t nx = horner(cx_, degree_, t);
   const int32_t ny = horner(cy_, degree_, t);
-  // px, py q(6-s); w q27; nx, ny q6; w1 q(27-s): both products in q(33-s) um.
-  const int64_t qx = (int64_t)px * w - (int64_t)nx * w1;
-  const int64_t qy = (int64_t)py * w - (int64_t)ny * w1;
-  return scale_direction(qx, qy);
+  // px, py q(6-s); w q27; nx, ny q6; w1 q(27-s): both products in q(33-s) um, exact
+  // (held wide: no 64-bit multiply).
+  const Wide qx = wide_sub(mul_wide(px, w), mul_wide(nx, w1));
+  const Wide qy = wide_sub(mul_wide(py, w), mul_wide(ny, w1));
+  return scale_direction_wide(qx, qy);
 }
 
 // Coefficients k c[k] >> dir_shift_ of the derivative: times 1, 2, 3 as adds (a multiply

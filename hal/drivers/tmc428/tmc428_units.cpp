@@ -9,11 +9,6 @@ static uint64_t div_round(uint64_t a, uint64_t b) {
   return (a + b / 2) / b;
 }
 
-uint32_t pulse_rate_mhz(uint32_t f_clk_hz, uint16_t v, uint8_t pulse_div) {
-  const uint64_t num = (uint64_t)f_clk_hz * v * 1000u;
-  return (uint32_t)div_round(num, (uint64_t)1 << (pulse_div + 16));
-}
-
 uint32_t usteps_per_s_per_unit_q16(uint32_t f_clk_hz, uint8_t pulse_div) {
   return (uint32_t)div_round(f_clk_hz, (uint64_t)1 << pulse_div);
 }
@@ -42,11 +37,6 @@ uint32_t a_max_for_accel(uint32_t f_clk_hz, uint32_t accel_usteps_per_s2, uint8_
   if (a_q8 > (((uint64_t)1 << 62) >> (ramp_div + 5))) return 65535u;
   const uint64_t a_max = div_round(a_q8 << (ramp_div + 5), f_clk_hz);
   return a_max > 65535u ? 65535u : (uint32_t)a_max;
-}
-
-uint32_t accel_for_a_max(uint32_t f_clk_hz, uint16_t a_max, uint8_t pulse_div, uint8_t ramp_div) {
-  const uint64_t f2 = (uint64_t)f_clk_hz * f_clk_hz;
-  return (uint32_t)div_round(f2 * a_max, (uint64_t)1 << (pulse_div + ramp_div + 29));
 }
 
 bool a_max_allowed(uint16_t a_max, uint8_t pulse_div, uint8_t ramp_div) {

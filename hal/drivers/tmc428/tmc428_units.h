@@ -45,11 +45,8 @@ struct AxisSettings {
   uint16_t accel_units_per_ms;         // velocity units the ramp adds per millisecond
 };
 
-// Micro-step pulse rate of velocity v in milli-hertz, rounded: R = f_clk v / 2^(pulse_div+16)
-// ([428DS] §8.14; 2^16 = 2048 * 32).
-uint32_t pulse_rate_mhz(uint32_t f_clk_hz, uint16_t v, uint8_t pulse_div);
-
-// One velocity LSB in microsteps/s as Q16.16 = f_clk / 2^pulse_div, rounded.
+// One velocity LSB in microsteps/s as Q16.16 = f_clk / 2^pulse_div, rounded: the pulse rate
+// of velocity v is R = f_clk v / 2^(pulse_div+16) ([428DS] §8.14; 2^16 = 2048 * 32).
 uint32_t usteps_per_s_per_unit_q16(uint32_t f_clk_hz, uint8_t pulse_div);
 
 // Largest pulse_div (finest velocity LSB) whose v = 2047 still reaches rate_usteps_per_s;
@@ -63,9 +60,6 @@ uint16_t velocity_for_rate(uint32_t f_clk_hz, uint32_t rate_usteps_per_s, uint8_
 // ([428DS] §8.14). Saturates at 65535.
 uint32_t a_max_for_accel(uint32_t f_clk_hz, uint32_t accel_usteps_per_s2, uint8_t pulse_div,
                          uint8_t ramp_div);
-
-// Acceleration in microsteps/s^2 of a_max (rounded), the inverse of a_max_for_accel.
-uint32_t accel_for_a_max(uint32_t f_clk_hz, uint16_t a_max, uint8_t pulse_div, uint8_t ramp_div);
 
 // True if a_max is inside the [428DS] §8.7.1 bounds for |ramp_div - pulse_div| > 1.
 bool a_max_allowed(uint16_t a_max, uint8_t pulse_div, uint8_t ramp_div);

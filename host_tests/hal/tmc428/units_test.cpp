@@ -1,6 +1,8 @@
 // TMC428 unit conversions against the data sheet formulas and worked examples.
 #include <gtest/gtest.h>
 
+#include <cmath>  // std::ldexp, std::fabs
+
 #include "firmware/config/machine_config.h"
 #include "hal/drivers/tmc428/tmc428_units.h"
 
@@ -15,7 +17,8 @@ struct RateRow {
   double max_hz;
 };
 
-// R = f_clk v / (2^pulse_div 2048 32): the velocity quantisation table of tmc428.md §4.
+// R = f_clk v / (2^pulse_div 2048 32): the velocity quantisation table of tmc428.md §4, from
+// the one velocity LSB the firmware uses (usteps_per_s_per_unit_q16 / 2^16).
 TEST(Tmc428Units, PulseRateMatchesTheQuantisationTable) {
   const RateRow rows[] = {
       {10000000, 0, 152.6, 312300}, {10000000, 2, 38.15, 78090},  {10000000, 3, 19.07, 39040},
@@ -26,8 +29,9 @@ TEST(Tmc428Units, PulseRateMatchesTheQuantisationTable) {
   for (const RateRow& r : rows) {
     SCOPED_TRACE(testing::Message() << r.f_clk_hz << " Hz pulse_div " << int(r.pulse_div));
     // The table prints 4 significant digits: agree within 0.05 %.
-    EXPECT_NEAR(pulse_rate_mhz(r.f_clk_hz, 1, r.pulse_div) / 1000.0, r.lsb_hz, r.lsb_hz * 5e-4);
-    EXPECT_NEAR(pulse_rate_mhz(r.f_clk_hz, 2047, r.pulse_div) / 1000.0, r.max_hz, r.max_hz * 5e-4);
+    const double lsb_hz = usteps_per_s_per_unit_q16(r.f_clk_hz, r.pulse_div) / 65536.0;
+    EXPECT_NEAR(lsb_hz, r.lsb_hz, r.lsb_hz * 5e-4);
+    EXPECT_NEAR(lsb_hz * 2047, r.max_hz, r.max_hz * 5e-4);
   }
 }
 
@@ -57,10 +61,14 @@ TEST(Tmc428Units, AMaxFollowsTheAccelerationFormula) {
   // dR = f_clk^2 a_max / 2^(pd+rd+29): 512000 usteps/s^2 at pd 2, rd 5:
   // a_max = 512000 * 2^36 / 10^14 = 351.8 -> 352.
   EXPECT_EQ(a_max_for_accel(10000000, 512000, 2, 5), 352u);
-  // And back: 10^14 * 352 / 2^36 = 512227.3.
-  EXPECT_EQ(accel_for_a_max(10000000, 352, 2, 5), 512227u);
+  // And back (the data sheet's formula): 10^14 * 352 / 2^36 = 512227.4, 351 gives 510772.2:
+  // 352 is the nearest.
+  const double accel_352 = 1e14 * 352 / std::ldexp(1.0, 36);
+  const double accel_351 = 1e14 * 351 / std::ldexp(1.0, 36);
+  EXPECT_NEAR(accel_352, 512227.4, 0.05);
+  EXPECT_LT(std::fabs(accel_352 - 512000), std::fabs(accel_351 - 512000));
   // 16 MHz, pd = rd = 0, a_max 1: 2.56e14 / 2^29 = 476837.2 usteps/s^2.
-  EXPECT_EQ(accel_for_a_max(16000000, 1, 0, 0), 476837u);
+  EXPECT_EQ(a_max_for_accel(16000000, 476837, 0, 0), 1u);
 }
 
 TEST(Tmc428Units, RampDivIsTheSmallestGivingAMaxOfAtLeast256) {
