@@ -53,6 +53,17 @@ uint16_t reach_speed_capped_um_s(uint16_t exit_um_s, uint16_t accel_um_s_per_ms,
   return core::isqrt32(v_sq);  // < cap <= 32767
 }
 
+bool unit_direction_q14(const int32_t d_um[config::kAxisCount],
+                        int16_t dir_q14[config::kAxisCount]) {
+  int16_t n[3];
+  int8_t shift;
+  normalise3(d_um, n, &shift);
+  const uint16_t len = length3(n);
+  if (len == 0) return false;
+  for (uint8_t i = 0; i < 3; ++i) dir_q14[i] = (int16_t)((int32_t)n[i] * kOneQ14 / len);
+  return true;
+}
+
 Planner::Planner() : last_cruise_um_s_(0), last_length_um_(0), have_dir_(false) {
   for (uint8_t i = 0; i < config::kAxisCount; ++i) {
     last_um_[i] = 0;
@@ -84,7 +95,8 @@ void Planner::set_origin(const int32_t at_um[config::kAxisCount]) {
 }
 
 // Length, direction, acceleration and cruise limit of the segment last -> target.
-void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount]) {
+void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount],
+                           const int16_t* line_dir_q14) {
   int32_t d[3];
   for (uint8_t i = 0; i < 3; ++i) {
     e->target_usteps[i] = um_to_usteps(scaling_, i, target_um[i]);
@@ -102,7 +114,9 @@ void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCo
     e->accel_um_s_per_ms = scaling_.plan_accel_um_s_per_ms[0];
     return;
   }
-  for (uint8_t i = 0; i < 3; ++i) e->dir_q14[i] = (int16_t)((int32_t)n[i] * kOneQ14 / len);
+  for (uint8_t i = 0; i < 3; ++i) {
+    e->dir_q14[i] = line_dir_q14 != 0 ? line_dir_q14[i] : (int16_t)((int32_t)n[i] * kOneQ14 / len);
+  }
   const uint32_t len_q4 = scale_length_q4(len, shift);
   e->length_um = (len_q4 + 8) >> 4;
   uint16_t accel = 65535U;
@@ -188,10 +202,10 @@ uint16_t Planner::capture_for(const int16_t in_q14[3], const int16_t out_q14[3])
 }
 
 bool Planner::push(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
-                   uint16_t feed_um_s, uint8_t flags, uint16_t tag) {
+                   uint16_t feed_um_s, uint8_t flags, uint16_t tag, const int16_t* line_dir_q14) {
   if (ring->free_space() == 0) return false;
   PlanEntry e;
-  fill_segment(&e, target_um);
+  fill_segment(&e, target_um, line_dir_q14);
   e.feed_um_s = feed_um_s;
   e.flags = flags;
   e.tag = tag;

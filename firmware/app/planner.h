@@ -29,6 +29,10 @@ uint16_t reach_speed_um_s(uint16_t exit_um_s, uint16_t accel_um_s_per_ms, uint32
 uint16_t reach_speed_capped_um_s(uint16_t exit_um_s, uint16_t accel_um_s_per_ms, uint32_t length_um,
                                  uint16_t cap_um_s);
 
+// Unit vector of d_um in Q14 (16384 = 1); false (and dir_q14 untouched) when d_um is zero.
+bool unit_direction_q14(const int32_t d_um[config::kAxisCount],
+                        int16_t dir_q14[config::kAxisCount]);
+
 class Planner {
  public:
   Planner();
@@ -36,14 +40,18 @@ class Planner {
   // The path starts here (machine position after boot, zeroing, abort or alarm).
   void set_origin(const int32_t at_um[config::kAxisCount]);
   // Plans the segment from the last point to target and publishes it. False when the ring
-  // is full (nothing changed: call again later).
+  // is full (nothing changed: call again later). line_dir_q14 (or 0): the unit direction of
+  // the straight line the segment is a piece of (a chord split at the #U maximum step); it
+  // stands for the piece's own, which the rounding of its ends to micrometres tilts (by up
+  // to 45 degrees for 1 um pieces), so that the pieces of a line meet without turns.
   bool push(CoordinateRing* ring, const int32_t target_um[config::kAxisCount], uint16_t feed_um_s,
-            uint8_t flags, uint16_t tag);
+            uint8_t flags, uint16_t tag, const int16_t* line_dir_q14 = 0);
   // Where the last pushed segment ends.
   const int32_t* last_um() const { return last_um_; }
 
  private:
-  void fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount]);
+  void fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount],
+                    const int16_t* line_dir_q14);
   uint16_t corner_speed(const int16_t in_q14[3], const int16_t out_q14[3], int32_t omc_q14,
                         uint32_t sin_half_q14) const;
   uint16_t curve_speed(const int16_t in_q14[3], const int16_t out_q14[3], uint32_t sin_half_q14,
