@@ -298,6 +298,8 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   std::string message;
   std::vector<QueuedCommand> commands;
   size_t executed = 0;
+  // The feed override as the machine reported it: when it changed and to what.
+  nlohmann::json overrides = nlohmann::json::array();
   const char* outcome = "not started";
   try {
     // Uploaded to another server sharing the queue: the input comes from the store.
@@ -350,8 +352,12 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
       slot.started = started;
       if (stopping_) sender.request_abort();  // claimed just as stop() looked at the slots
     }
+    // A feed override belongs to the job that set it: every run starts at 100 %, whatever
+    // the machine's last job left.
+    if (!sender.set_override(100)) throw LinkError("the machine did not take feed override 100%");
+    note("feed override set to 100% for this run");
     proto::MachineState last_state = proto::MachineState::kIdle;
-    int last_override = 100;
+    int last_override = -1;  // none reported yet
     Clock::time_point last_notify = started;
     const JobOutcome result = sender.run(commands, [&](const Progress& p) {
       {
@@ -363,6 +369,11 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
       }
       executed = p.executed;
       const bool state_changed = p.status.state != last_state;
+      if (p.status.override_percent != last_override) {
+        overrides.push_back({{"elapsed_s", seconds_since(started)},
+                             {"percent", int(p.status.override_percent)},
+                             {"executed", p.executed}});
+      }
       if (state_changed || p.status.override_percent != last_override) {
         note(fmt::format("machine {} override {}% at {}/{} x {:.3f} y {:.3f} z {:.3f}",
                          machine_state_name(p.status.state), int(p.status.override_percent),
@@ -437,6 +448,7 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   report["retransmits"] = st.retransmits;
   report["status_queries"] = st.status_queries;
   report["error_replies"] = st.error_replies;
+  report["feed_overrides"] = overrides;
   report["settings"] = {{"feed_mm_s", job.settings.feed_mm_s},
                         {"tol_mm", job.settings.tol_mm},
                         {"scale", job.settings.scale},
