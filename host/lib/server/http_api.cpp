@@ -78,34 +78,67 @@ nlohmann::json job_json(const JobRecord& j) {
           {"input_file", j.input_file}};
 }
 
+// Every field an upload may carry (multipart parts or query parameters); others are refused.
+const char* const kUploadFields[] = {"file",   "name",          "priority",          "tag",
+                                     "side",   "tool_width_mm", "allow_narrow_gaps", "feed_mm_s",
+                                     "tol_mm", "scale",         "margin_mm"};
+
+std::string unknown_upload_field(const std::string& key) {
+  for (const char* f : kUploadFields) {
+    if (key == f) return "";
+  }
+  std::string known;
+  for (const char* f : kUploadFields) known += std::string(known.empty() ? "" : ", ") + f;
+  return fmt::format("unknown field '{}' (an upload takes {})", key, known);
+}
+
+// An upload's body as read: the parts of a multipart form, or the raw bytes.
+struct UploadBody {
+  bool multipart = false;
+  httplib::MultipartFormDataItems parts;
+  std::string raw;
+};
+
 // The upload's fields: multipart form (file + fields) or a raw body with query parameters.
 struct UploadFields {
   Submission sub;
   std::string error;
 };
 
-UploadFields upload_fields(const httplib::Request& req) {
+UploadFields upload_fields(const httplib::Request& req, const UploadBody& body) {
   UploadFields u;
+  for (const auto& p : req.params) {
+    if (u.error.empty()) u.error = unknown_upload_field(p.first);
+  }
+  for (const auto& p : body.parts) {
+    if (u.error.empty()) u.error = unknown_upload_field(p.name);
+  }
+  if (!u.error.empty()) return u;
   auto field = [&](const std::string& key, std::string* out) {
-    if (req.is_multipart_form_data()) {
-      if (req.has_file(key)) *out = req.get_file_value(key).content;
+    if (body.multipart) {
+      for (const auto& p : body.parts) {
+        if (p.name == key) *out = p.content;
+      }
     } else if (req.has_param(key)) {
       *out = req.get_param_value(key);
     }
   };
-  if (req.is_multipart_form_data()) {
-    if (!req.has_file("file")) {
+  if (body.multipart) {
+    std::vector<const httplib::MultipartFormData*> files;
+    for (const auto& p : body.parts) {
+      if (p.name == "file") files.push_back(&p);
+    }
+    if (files.empty()) {
       u.error = "multipart upload without a 'file' part";
       return u;
     }
     // Several "file" parts: the files of one board (copper, drill, outline).
-    const auto parts = req.files.equal_range("file");
-    if (std::distance(parts.first, parts.second) == 1) {
-      u.sub.name = parts.first->second.filename;
-      u.sub.content = parts.first->second.content;
+    if (files.size() == 1) {
+      u.sub.name = files[0]->filename;
+      u.sub.content = files[0]->content;
     } else {
-      for (auto it = parts.first; it != parts.second; ++it) {
-        u.sub.files.push_back(UploadFile{it->second.filename, it->second.content});
+      for (const httplib::MultipartFormData* f : files) {
+        u.sub.files.push_back(UploadFile{f->filename, f->content});
       }
       field("name", &u.sub.name);  // the board's name; "" takes it from the files
     }
@@ -115,7 +148,7 @@ UploadFields upload_fields(const httplib::Request& req) {
       return u;
     }
     u.sub.name = req.get_param_value("name");
-    u.sub.content = req.body;
+    u.sub.content = body.raw;
   }
   std::string text;
   field("priority", &text);
@@ -158,12 +191,30 @@ UploadFields upload_fields(const httplib::Request& req) {
   return u;
 }
 
+// Why a body is not JSON, in plain words: where it goes wrong and what stands there.
+std::string json_problem(const std::string& body, size_t byte) {
+  if (body.find_first_not_of(" \t\r\n") == std::string::npos) return "the body is empty";
+  if (byte > body.size()) return "the body ends before the JSON value does";
+  const size_t at = byte == 0 ? 0 : byte - 1;  // nlohmann counts from 1
+  std::string near = body.substr(at, 16);
+  for (char& c : near) {
+    if (static_cast<unsigned char>(c) < 0x20) c = ' ';
+  }
+  return fmt::format("unexpected text at byte {}: '{}'", at + 1, near);
+}
+
 // The JSON object of a request body, or an error.
 bool body_object(const httplib::Request& req, httplib::Response& res, nlohmann::json* out) {
+  // The parser stops at a NUL byte; whatever follows it would be ignored, not refused.
+  const size_t nul = req.body.find('\0');
+  if (nul != std::string::npos) {
+    send_error(res, 400, fmt::format("malformed JSON: a NUL byte at byte {}", nul + 1));
+    return false;
+  }
   try {
     *out = nlohmann::json::parse(req.body);
-  } catch (const nlohmann::json::exception& e) {
-    send_error(res, 400, std::string("malformed JSON: ") + e.what());
+  } catch (const nlohmann::json::parse_error& e) {
+    send_error(res, 400, "malformed JSON: " + json_problem(req.body, e.byte));
     return false;
   }
   if (!out->is_object()) {
@@ -321,8 +372,34 @@ void HttpApi::routes() {
         });
 
   // ---- Changes (token checked above) ----
-  s.Post("/api/jobs", [this](const httplib::Request& req, httplib::Response& res) {
-    const UploadFields u = upload_fields(req);
+  // Read by the handler itself: httplib would cap a body sent as a form (curl --data-binary
+  // without a Content-Type) at 8 KB and parse it as form fields.
+  s.Post("/api/jobs", [this](const httplib::Request& req, httplib::Response& res,
+                             const httplib::ContentReader& read) {
+    UploadBody body;
+    body.multipart = req.is_multipart_form_data();
+    bool ok = false;
+    if (body.multipart) {
+      ok = read(
+          [&](const httplib::MultipartFormData& part) {
+            body.parts.push_back(part);
+            return true;
+          },
+          [&](const char* data, size_t n) {
+            body.parts.back().content.append(data, n);
+            return true;
+          });
+    } else {
+      ok = read([&](const char* data, size_t n) {
+        body.raw.append(data, n);
+        return true;
+      });
+    }
+    if (!ok) {
+      if (res.status == 413) return send_error(res, 413, "upload larger than the limit");
+      return send_error(res, 400, "the upload's body could not be read");
+    }
+    const UploadFields u = upload_fields(req, body);
     if (!u.error.empty()) return send_error(res, 400, u.error);
     const IntakeResult r = intake_.submit(u.sub);
     if (r.status != 201) return send_error(res, r.status, r.error);

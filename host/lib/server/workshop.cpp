@@ -397,7 +397,14 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
         break;
       case JobOutcome::kAborted:
         state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
-        if (stopping_) message = "the server stopped while the job was running; " + message;
+        if (stopping_) {
+          // The sender's abort came from stop(), not from an operator.
+          outcome = "server stopped";
+          message = fmt::format(
+              "the server stopped while the job was running, after {} of {} "
+              "commands",
+              executed, commands.size());
+        }
         break;
       case JobOutcome::kAlarm:
       case JobOutcome::kRejected:
