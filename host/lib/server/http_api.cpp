@@ -1,6 +1,8 @@
 // HTTP routes of the workshop server (cpp-httplib).
 #include "host/lib/server/http_api.h"
 
+#include "host/lib/server/connection_threads.h"
+
 #include <fmt/format.h>  // fmt::format
 #include <httplib.h>     // httplib::Server
 
@@ -234,8 +236,9 @@ HttpApi::HttpApi(JobStore& store, JobIntake& intake, Workshop& workshop, const D
       data_(data),
       options_(std::move(options)),
       http_(std::make_unique<httplib::Server>()) {
-  // Enough threads for several pages with an event stream each, plus API calls.
-  http_->new_task_queue = [] { return new httplib::ThreadPool(32); };
+  // A thread per connection: an open page's event stream holds its thread for as long as
+  // the page is open, and must not take one that a control request needs.
+  http_->new_task_queue = [] { return new ConnectionThreads(); };
   // Multipart framing on top of the file; httplib answers 413 beyond this.
   http_->set_payload_max_length(intake_.max_bytes() + 64 * 1024);
   routes();
@@ -267,6 +270,18 @@ void HttpApi::run() {
 void HttpApi::stop() {
   stopping_ = true;
   http_->stop();
+}
+
+std::string HttpApi::event_text(uint64_t version) {
+  std::lock_guard<std::mutex> lock(event_mutex_);
+  // Every open page waits for the same change: one snapshot serves them all.
+  if (event_version_ != version || event_.empty()) {
+    event_ = "data: " +
+             workshop_.snapshot().dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) +
+             "\n\n";
+    event_version_ = version;
+  }
+  return event_;
 }
 
 void HttpApi::routes() {
@@ -314,17 +329,23 @@ void HttpApi::routes() {
     send_json(res, 200, workshop_.snapshot());
   });
   s.Get("/api/events", [this](const httplib::Request&, httplib::Response& res) {
+    // Counted while the response (and so the stream) lives.
+    auto slot =
+        std::shared_ptr<std::atomic<int>>(&open_streams_, [](std::atomic<int>* n) { --*n; });
+    if (++open_streams_ > options_.max_event_streams) {
+      res.set_header("Retry-After", "10");
+      return send_error(res, 503,
+                        fmt::format("too many open event streams (at most {}); try again later",
+                                    options_.max_event_streams));
+    }
     res.set_header("Cache-Control", "no-cache");
     auto seen = std::make_shared<uint64_t>(~uint64_t{0});
     res.set_chunked_content_provider(
-        "text/event-stream", [this, seen](size_t, httplib::DataSink& sink) {
+        "text/event-stream", [this, seen, slot](size_t, httplib::DataSink& sink) {
           if (stopping_) return false;
           *seen = workshop_.wait_change(*seen, std::chrono::milliseconds(1000));
           if (stopping_) return false;
-          const std::string event =
-              "data: " +
-              workshop_.snapshot().dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) +
-              "\n\n";
+          const std::string event = event_text(*seen);
           return sink.write(event.data(), event.size());
         });
   });
