@@ -38,6 +38,7 @@ struct ServeArgs {
   bool no_zero = false;
   std::string db;
   double stale_s = 30.0;
+  std::vector<std::string> allowed_hosts;
 };
 
 // The job store: the data folder's SQLite file, or a PostgreSQL database shared by servers.
@@ -104,6 +105,7 @@ void run_serve(const ServeArgs& a) {
   ho.port = port;
   ho.web_dir = a.web;
   ho.token = token;
+  ho.allowed_hosts = a.allowed_hosts;
   server::HttpApi http(store, intake, workshop, data, ho);
   const int bound = http.bind();
 
@@ -125,6 +127,8 @@ void run_serve(const ServeArgs& a) {
   std::thread serving([&http] { http.run(); });
   std::cerr << fmt::format("engraver: serving http://{}:{}/ as '{}', data in {}, {} machine(s)\n",
                            ho.address, bound, wo.owner, a.data, machines.size());
+  std::cerr << fmt::format("engraver: answering requests for host {}\n",
+                           http.allowed_hosts().describe());
   if (created) {
     std::cerr << fmt::format(
         "engraver: access token (shown once; kept in {}/token): {}\n"
@@ -162,6 +166,11 @@ void add_serve_commands(CLI::App& app) {
                    "largest upload accepted, MB (a board: all its files, unpacked)")
       ->check(CLI::Range(0.001, 1024.0))
       ->capture_default_str();
+  serve->add_option("--allowed-host", args->allowed_hosts,
+                    "a name or address the page is opened with, besides the listen address, "
+                    "localhost, 127.0.0.1, [::1] (and, listening on all addresses, the host "
+                    "name and the PC's addresses); requests naming another Host get 403 "
+                    "(repeat the option)");
   serve->add_option("--web", args->web, "folder of the page's files")->capture_default_str();
   serve->add_option("--poll-ms", args->poll_ms, "status poll interval while a job runs")
       ->check(CLI::Range(1, 1000))

@@ -235,6 +235,7 @@ HttpApi::HttpApi(JobStore& store, JobIntake& intake, Workshop& workshop, const D
       workshop_(workshop),
       data_(data),
       options_(std::move(options)),
+      hosts_(options_.address, options_.allowed_hosts),
       http_(std::make_unique<httplib::Server>()) {
   // A thread per connection: an open page's event stream holds its thread for as long as
   // the page is open, and must not take one that a control request needs.
@@ -287,8 +288,18 @@ std::string HttpApi::event_text(uint64_t version) {
 void HttpApi::routes() {
   httplib::Server& s = *http_;
 
-  // The token guards every method but GET/HEAD, before any handler runs.
+  // Before any handler runs: the Host must be one of this server's names (a page from
+  // another site gets nowhere through a name that resolves here), and the token guards
+  // every method but GET/HEAD.
   s.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    const std::string host = req.get_header_value("Host");
+    if (!hosts_.allows(host)) {
+      send_error(res, 403,
+                 fmt::format("Host '{}' is not a name of this server (it answers to {}; "
+                             "serve --allowed-host NAME adds one)",
+                             host, hosts_.describe()));
+      return httplib::Server::HandlerResponse::Handled;
+    }
     if (req.method == "GET" || req.method == "HEAD")
       return httplib::Server::HandlerResponse::Unhandled;
     if (!same_secret(token_of(req), options_.token)) {

@@ -10,7 +10,9 @@
 #include <memory>      // std::unique_ptr
 #include <mutex>       // std::mutex
 #include <string>      // std::string
+#include <vector>      // std::vector
 
+#include "host/lib/server/allowed_hosts.h"
 #include "host/lib/server/data_folder.h"
 #include "host/lib/server/job_intake.h"
 #include "host/lib/server/job_store.h"
@@ -27,6 +29,8 @@ struct HttpOptions {
   int port = 8080;                    // 0 = any free port
   std::filesystem::path web_dir;      // index.html, app.js, style.css
   std::string token;
+  // Host header names answered besides AllowedHosts' defaults (--allowed-host).
+  std::vector<std::string> allowed_hosts;
   // Open event streams (pages) served at once; one more is answered 503 (each holds a
   // thread; control requests never wait for them).
   int max_event_streams = 1024;
@@ -44,6 +48,7 @@ class HttpApi {
   // Serves until stop() (call bind() first).
   void run();
   void stop();
+  const AllowedHosts& allowed_hosts() const { return hosts_; }
 
  private:
   void routes();
@@ -54,6 +59,7 @@ class HttpApi {
   Workshop& workshop_;
   const DataFolder& data_;
   HttpOptions options_;
+  AllowedHosts hosts_;
   std::unique_ptr<httplib::Server> http_;
   std::atomic<bool> stopping_{false};
   std::atomic<int> open_streams_{0};

@@ -104,6 +104,31 @@ TEST(ServeCommand, StartsOnAFreshFolderShowsTheTokenOnceAndStopsCleanly) {
   }
 }
 
+TEST(ServeCommand, AllowedHostAddsANameTheServerAnswersTo) {
+  test::TempDir dir;
+  const int port = test::free_port();
+  const fs::path log = dir.path() / "serve.log";
+  ServeProcess serve({"serve", "--data", (dir.path() / "data").string(), "--listen",
+                      "127.0.0.1:" + std::to_string(port), "--allowed-host", "workshop.example"},
+                     log);
+  httplib::Client client("127.0.0.1", port);
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        auto r = client.Get("/api/status");
+        return r && r->status == 200;
+      },
+      20))
+      << text_of(log);
+  auto named = client.Get("/api/jobs", {{"Host", "workshop.example:" + std::to_string(port)}});
+  ASSERT_TRUE(named);
+  EXPECT_EQ(named->status, 200);
+  auto other = client.Get("/api/jobs", {{"Host", "other.example"}});
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 403) << other->body;
+  EXPECT_EQ(serve.stop(), 0);
+  EXPECT_NE(text_of(log).find("workshop.example"), std::string::npos) << text_of(log);
+}
+
 TEST(ServeCommand, BadOptionsAreUsageErrors) {
   test::TempDir dir;
   const std::vector<std::vector<std::string>> bad = {
