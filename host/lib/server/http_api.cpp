@@ -2,6 +2,7 @@
 #include "host/lib/server/http_api.h"
 
 #include "host/lib/server/connection_threads.h"
+#include "host/lib/server/run_archive.h"
 
 #include <fmt/format.h>  // fmt::format
 #include <httplib.h>     // httplib::Server
@@ -13,6 +14,8 @@
 #include <iterator>  // std::distance
 
 namespace host::server {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -384,7 +387,9 @@ void HttpApi::routes() {
   s.Get(R"(/api/jobs/(\d{1,18}))", [this](const httplib::Request& req, httplib::Response& res) {
     const auto job = store_.get(std::stoll(req.matches[1]));
     if (!job) return send_error(res, 404, "no such job");
-    send_json(res, 200, job_json(*job));
+    nlohmann::json j = job_json(*job);
+    j["runs"] = run_count(data_.job_dir(job->key));  // runs/1 .. runs/N in its archive
+    send_json(res, 200, j);
   });
   s.Get(R"(/api/jobs/(\d{1,18})/files/([a-z.]{1,16}))",
         [this](const httplib::Request& req, httplib::Response& res) {
@@ -396,10 +401,28 @@ void HttpApi::routes() {
                                    : file == "plot.png"                      ? "image/png"
                                    : file.find(".json") != std::string::npos ? "application/json"
                                                                              : "text/plain";
+          // A run's files: the newest run's.
+          const fs::path dir = data_.job_dir(job->key);
+          const fs::path path = is_run_file(file) ? run_file(dir, 0, file) : dir / file;
           try {
-            res.set_content(read_file(data_.job_dir(job->key) / file), type);
+            res.set_content(read_file(path), type);
           } catch (const std::exception&) {
             send_error(res, 404, "the job has no " + file + " (yet)");
+          }
+        });
+  s.Get(R"(/api/jobs/(\d{1,18})/runs/([1-9]\d{0,5})/([a-z.]{1,16}))",
+        [this](const httplib::Request& req, httplib::Response& res) {
+          const std::string file = req.matches[3];
+          if (!is_run_file(file))
+            return send_error(res, 404, "a run holds machine.log, report.json");
+          const auto job = store_.get(std::stoll(req.matches[1]));
+          if (!job) return send_error(res, 404, "no such job");
+          const int run = std::stoi(req.matches[2]);
+          try {
+            res.set_content(read_file(run_file(data_.job_dir(job->key), run, file)),
+                            file == "report.json" ? "application/json" : "text/plain");
+          } catch (const std::exception&) {
+            send_error(res, 404, fmt::format("the job has no run {} with a {}", run, file));
           }
         });
 

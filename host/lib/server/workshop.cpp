@@ -9,6 +9,7 @@
 
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/server/job_planning.h"
+#include "host/lib/server/run_archive.h"
 #include "host/lib/stream/job_resume.h"  // resume_from_curve
 #include "host/lib/stream/link.h"
 
@@ -285,9 +286,21 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
                        const proto::SessionReply& caps) {
   const fs::path dir = data_.job_dir(job.key);
   const Clock::time_point started = Clock::now();
-  std::vector<std::string> log;
+  // This run's folder in the archive; its machine.log is written as the job runs.
+  std::unique_ptr<RunArchive> run;
+  std::string archive_error;
+  try {
+    run = std::make_unique<RunArchive>(dir);
+  } catch (const std::exception& e) {
+    archive_error = e.what();
+  }
   auto note = [&](const std::string& line) {
-    log.push_back(fmt::format("{:9.3f} {}", seconds_since(started), line));
+    if (!run || !archive_error.empty()) return;
+    try {
+      run->log(fmt::format("{:9.3f} {}", seconds_since(started), line));
+    } catch (const std::exception& e) {
+      archive_error = e.what();  // the job goes on; its message says the log is incomplete
+    }
   };
   note(fmt::format("job {} '{}' on {} ({}), server {}", job.id, job.name, slot.spec.name,
                    slot.spec.address, options_.owner));
@@ -461,14 +474,14 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
                         {"scale", job.settings.scale},
                         {"margin_mm", job.settings.margin_mm}};
   try {
-    write_file(dir / "report.json",
-               report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-    std::string text;
-    for (const std::string& line : log) text += line + "\n";
-    write_file(dir / "machine.log", text);
+    if (run) {
+      report["run"] = run->number();
+      run->write_report(report);
+    }
   } catch (const std::exception& e) {
-    message += fmt::format(" (archive: {})", e.what());
+    archive_error = e.what();
   }
+  if (!archive_error.empty()) message += fmt::format(" (archive: {})", archive_error);
   try {
     store_.finish(job.id, state, message, static_cast<int64_t>(executed),
                   static_cast<int64_t>(commands.size()), resume_curve);

@@ -173,7 +173,7 @@ def main():
         for j in jobs:
             reports = []
             for _, data in servers:
-                for path in glob.glob(os.path.join(data, "jobs", "*", "report.json")):
+                for path in glob.glob(os.path.join(data, "jobs", "*", "runs", "*", "report.json")):
                     report = json.load(open(path))
                     if report["id"] == j["id"]:
                         reports.append(report)
@@ -186,14 +186,16 @@ def main():
              ("completed", "failed"), 120, "the board job to finish")
         board = get(servers[0][0], f"/api/jobs/{board_id}")
         assert board["state"] == "completed" and board["server"] == "server2", board
-        key = [p for p in glob.glob(os.path.join(servers[1][1], "jobs", "*", "report.json"))
+        key = [p for p in glob.glob(os.path.join(servers[1][1], "jobs", "*", "runs", "1",
+                                                 "report.json"))
                if json.load(open(p))["id"] == board_id]
         assert len(key) == 1, key
-        archive = os.path.dirname(key[0])
+        run = os.path.dirname(key[0])
+        archive = os.path.dirname(os.path.dirname(run))
         for name, kept in zip(BOARD_FILES, ("copper.top.gbr", "drill.drl", "outline.gbr")):
             assert (open(os.path.join(archive, kept), "rb").read() ==
                     open(os.path.join(BOARD_DIR, name), "rb").read()), kept
-        for kept in ("board.json", "plan.json", "plot.svg", "plot.png", "machine.log"):
+        for kept in ("board.json", "plan.json", "plot.svg", "plot.png", "runs/1/machine.log"):
             assert os.path.getsize(os.path.join(archive, kept)) > 0, kept
         print(f"board job {board_id} uploaded to server1 ran on server2 from the database")
 

@@ -53,6 +53,13 @@ class ServeProcess {
     pid_ = 0;
     return status_ = -1;
   }
+  // Killed at once, as by a power cut of the server's process (SIGKILL).
+  void kill9() {
+    if (pid_ <= 0) return;
+    kill(pid_, SIGKILL);
+    waitpid(pid_, nullptr, 0);
+    pid_ = 0;
+  }
   // Waits for the process to end by itself; its exit status.
   int wait_exit() {
     int st = 0;
@@ -127,6 +134,66 @@ TEST(ServeCommand, AllowedHostAddsANameTheServerAnswersTo) {
   EXPECT_EQ(other->status, 403) << other->body;
   EXPECT_EQ(serve.stop(), 0);
   EXPECT_NE(text_of(log).find("workshop.example"), std::string::npos) << text_of(log);
+}
+
+// kill -9 mid-job: the machine log of the run is on disk up to the moment of the kill, and
+// the run after the restart (continue) is a second run beside it.
+TEST(ServeCommand, KilledMidJobTheRunsLogIsKept) {
+  test::TempDir dir;
+  test::SimRig sim(true);  // real time: the job is still running when the server is killed
+  const int port = test::free_port();
+  const fs::path data = dir.path() / "data";
+  const std::vector<std::string> args = {"serve",
+                                         "--data",
+                                         data.string(),
+                                         "--listen",
+                                         "127.0.0.1:" + std::to_string(port),
+                                         "--machine",
+                                         sim.address() + " name=m1"};
+  auto serve = std::make_unique<ServeProcess>(args, dir.path() / "serve1.log");
+  httplib::Client client("127.0.0.1", port);
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        auto r = client.Get("/api/status");
+        return r && r->status == 200;
+      },
+      20));
+  const std::string token = text_of(data / "token").substr(0, 48);
+  auto up =
+      client.Post("/api/jobs?name=slow.ngc&feed_mm_s=4", {{"Authorization", "Bearer " + token}},
+                  test::square_gcode(10, 10, 40), "application/octet-stream");
+  ASSERT_TRUE(up && up->status == 201) << (up ? up->body : "no answer");
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        auto r = client.Get("/api/status");
+        if (!r || r->status != 200) return false;
+        const auto running = nlohmann::json::parse(r->body)["running"];
+        return !running.empty() && running[0]["executed"].get<int>() >= 3;
+      },
+      20));
+  serve->kill9();
+  fs::path job_dir;
+  for (const auto& e : fs::directory_iterator(data / "jobs")) job_dir = e.path();
+  const std::string log = text_of(job_dir / "runs" / "1" / "machine.log");
+  EXPECT_NE(log.find("planned:"), std::string::npos) << log;
+  EXPECT_NE(log.find("machine running"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(job_dir / "runs" / "1" / "report.json"));  // it never ended
+
+  // Started again: the job is interrupted; re-queued, it runs as run 2, run 1 untouched.
+  serve = std::make_unique<ServeProcess>(args, dir.path() / "serve2.log");
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        auto r = client.Get("/api/jobs/1");
+        return r && r->status == 200 && nlohmann::json::parse(r->body)["state"] == "interrupted";
+      },
+      20));
+  auto c = client.Post("/api/jobs/1/control", {{"Authorization", "Bearer " + token}},
+                       R"({"action": "requeue"})", "application/json");
+  ASSERT_TRUE(c && c->status == 200) << (c ? c->body : "no answer");
+  EXPECT_TRUE(
+      test::wait_until([&] { return fs::exists(job_dir / "runs" / "2" / "machine.log"); }, 20));
+  EXPECT_EQ(text_of(job_dir / "runs" / "1" / "machine.log"), log);
+  EXPECT_EQ(serve->stop(), 0);
 }
 
 TEST(ServeCommand, BadOptionsAreUsageErrors) {

@@ -156,6 +156,42 @@ TEST(ServerMachines, FeedOverrideBelongsToItsJobAndIsInItsReport) {
   ASSERT_TRUE(test::wait_until([&] { return server.job(first)["state"] == "aborted"; }, 20));
 }
 
+// Each start of a job is a run of its own in the archive: an aborted run's log and report
+// stay when the job is re-queued and runs again.
+TEST(ServerMachines, EveryRunKeepsItsOwnLogAndReport) {
+  test::TempDir dir;
+  SimRig sim(true);
+  ServerRig server(dir.path(), {test::machine("m1", sim.address())});
+  const int64_t id = server.upload_ok("twice.ngc", test::square_gcode(10, 10, 10), "&feed_mm_s=20");
+  ASSERT_FALSE(wait_cutting(server, id).is_null()) << server.job(id).dump();
+  ASSERT_EQ(server.control(id, R"({"action": "abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 20));
+  ASSERT_EQ(server.control(id, R"({"action": "requeue"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "completed"; }, 60));
+  EXPECT_EQ(server.job(id)["runs"], 2);
+  auto get = [&](const std::string& path) {
+    auto r = server.client().Get(fmt::format("/api/jobs/{}/{}", id, path).c_str());
+    return r && r->status == 200 ? r->body : std::string("(no answer)");
+  };
+  const nlohmann::json first = nlohmann::json::parse(get("runs/1/report.json"));
+  const nlohmann::json second = nlohmann::json::parse(get("runs/2/report.json"));
+  EXPECT_EQ(first["state"], "aborted");
+  EXPECT_EQ(first["run"], 1);
+  EXPECT_EQ(second["state"], "completed");
+  EXPECT_EQ(second["run"], 2);
+  EXPECT_LT(first["executed"].get<int>(), second["executed"].get<int>());
+  EXPECT_NE(get("runs/1/machine.log").find("ended: aborted"), std::string::npos);
+  EXPECT_NE(get("runs/2/machine.log").find("ended: completed"), std::string::npos);
+  // The job's own report.json and machine.log are the newest run's.
+  EXPECT_EQ(get("files/report.json"), get("runs/2/report.json"));
+  EXPECT_EQ(get("files/machine.log"), get("runs/2/machine.log"));
+  EXPECT_EQ(get("runs/3/report.json"), "(no answer)");
+  // On disk: jobs/<key>/runs/1/, runs/2/.
+  const fs::path job_dir = server.data().job_dir(server.store().get(id)->key);
+  EXPECT_TRUE(fs::exists(job_dir / "runs" / "1" / "machine.log"));
+  EXPECT_TRUE(fs::exists(job_dir / "runs" / "2" / "report.json"));
+}
+
 // A simulated machine whose link goes away and comes back on the same port; the machine
 // keeps its state (its time stands still while nobody serves it).
 class FlakyLinkMachine {
