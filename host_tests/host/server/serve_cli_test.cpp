@@ -6,6 +6,7 @@
 #include <sys/wait.h>  // waitpid
 #include <unistd.h>    // fork, execv
 
+#include <cstdlib>  // std::system
 #include <fstream>  // std::ifstream
 #include <sstream>  // std::ostringstream
 
@@ -19,13 +20,14 @@ namespace fs = std::filesystem;
 // Runs the tool in the background with stderr to a file; stop() sends SIGTERM and waits.
 class ServeProcess {
  public:
-  ServeProcess(const std::vector<std::string>& args, const fs::path& log) {
+  ServeProcess(const std::vector<std::string>& args, const fs::path& log,
+               const std::string& exe_path = ENGRAVER_EXE) {
     pid_ = fork();
     if (pid_ == 0) {
       FILE* f = std::freopen(log.c_str(), "w", stderr);
       (void)f;
       std::vector<char*> argv;
-      std::string exe = ENGRAVER_EXE;
+      std::string exe = exe_path;
       argv.push_back(&exe[0]);
       std::vector<std::string> copy = args;
       for (std::string& a : copy) argv.push_back(&a[0]);
@@ -60,12 +62,19 @@ class ServeProcess {
     waitpid(pid_, nullptr, 0);
     pid_ = 0;
   }
-  // Waits for the process to end by itself; its exit status.
+  // Waits (up to 20 s) for the process to end by itself; its exit status (-1 when it had
+  // to be killed).
   int wait_exit() {
-    int st = 0;
-    waitpid(pid_, &st, 0);
-    pid_ = 0;
-    return status_ = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    for (int i = 0; i < 400; ++i) {
+      int st = 0;
+      if (waitpid(pid_, &st, WNOHANG) == pid_) {
+        pid_ = 0;
+        return status_ = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    kill9();
+    return status_ = -1;
   }
 
  private:
@@ -194,6 +203,60 @@ TEST(ServeCommand, KilledMidJobTheRunsLogIsKept) {
       test::wait_until([&] { return fs::exists(job_dir / "runs" / "2" / "machine.log"); }, 20));
   EXPECT_EQ(text_of(job_dir / "runs" / "1" / "machine.log"), log);
   EXPECT_EQ(serve->stop(), 0);
+}
+
+// `cmake --install` to a fresh prefix: the installed engraver serves the installed page,
+// wherever the source checkout is; a copied engraver without the page refuses to start.
+TEST(ServeCommand, TheInstalledEngraverServesTheInstalledPage) {
+  test::TempDir dir;
+  const fs::path prefix = dir.path() / "prefix";
+  const std::string install = std::string(CMAKE_EXE) + " --install '" + ENGRAVER_BUILD_DIR +
+                              "' --prefix '" + prefix.string() + "' > '" +
+                              (dir.path() / "install.log").string() + "' 2>&1";
+  ASSERT_EQ(std::system(install.c_str()), 0) << text_of(dir.path() / "install.log");
+  const fs::path exe = prefix / "bin" / "engraver";
+  ASSERT_TRUE(fs::exists(exe));
+  // The installed page is the page of this checkout, a copy (not a link to it).
+  const fs::path page = prefix / "share" / "engraver" / "web" / "index.html";
+  EXPECT_EQ(text_of(page), text_of(fs::path(ENGRAVER_WEB_DIR) / "index.html"));
+  EXPECT_FALSE(fs::is_symlink(page));
+  const int port = test::free_port();
+  const fs::path log = dir.path() / "serve.log";
+  ServeProcess serve({"serve", "--data", (dir.path() / "data").string(), "--listen",
+                      "127.0.0.1:" + std::to_string(port)},
+                     log, exe.string());
+  httplib::Client client("127.0.0.1", port);
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        auto r = client.Get("/app.js");
+        return r && r->status == 200;
+      },
+      20))
+      << text_of(log);
+  auto index = client.Get("/");
+  ASSERT_TRUE(index);
+  EXPECT_EQ(index->status, 200);
+  EXPECT_EQ(index->body, text_of(page));
+  EXPECT_EQ(serve.stop(), 0);
+
+  // The binary copied alone: no page beside it, so it does not start (exit 2, says where).
+  const fs::path alone = dir.path() / "alone" / "bin" / "engraver";
+  fs::create_directories(alone.parent_path());
+  fs::copy_file(exe, alone);
+  ServeProcess copied({"serve", "--data", (dir.path() / "data2").string(), "--listen",
+                       "127.0.0.1:" + std::to_string(port)},
+                      dir.path() / "alone.log", alone.string());
+  EXPECT_EQ(copied.wait_exit(), 2);
+  const std::string why = text_of(dir.path() / "alone.log");
+  EXPECT_NE(why.find("share/engraver/web lacks the page's index.html"), std::string::npos) << why;
+  EXPECT_NE(why.find("--web"), std::string::npos) << why;
+  // --web naming a folder without the page: the same.
+  fs::create_directories(dir.path() / "empty");
+  ServeProcess empty({"serve", "--data", (dir.path() / "data3").string(), "--web",
+                      (dir.path() / "empty").string()},
+                     dir.path() / "empty.log");
+  EXPECT_EQ(empty.wait_exit(), 2);
+  EXPECT_NE(text_of(dir.path() / "empty.log").find("lacks the page's"), std::string::npos);
 }
 
 TEST(ServeCommand, BadOptionsAreUsageErrors) {
