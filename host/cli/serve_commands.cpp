@@ -41,6 +41,7 @@ struct ServeArgs {
   std::string db;
   double stale_s = 30.0;
   std::vector<std::string> allowed_hosts;
+  std::string archive;
 };
 
 // The job store: the data folder's SQLite file, or a PostgreSQL database shared by servers.
@@ -107,7 +108,7 @@ void run_serve(const ServeArgs& a) {
                                 "give the folder with --web)",
                                 missing, a.web.empty() ? "looked beside this engraver" : "--web"));
   }
-  server::DataFolder data(a.data);
+  server::DataFolder data(a.data, a.archive);
   bool created = false;
   const std::string token = data.token(&created);
   const std::unique_ptr<server::JobStore> store_owner = open_store(a.db, data);
@@ -204,6 +205,10 @@ void add_serve_commands(CLI::App& app) {
                     "job store: 'sqlite' (DATA/jobs.sqlite, default) or a PostgreSQL "
                     "connection ('postgresql://host/db' or 'host=... dbname=...') shared by "
                     "several servers; give each server its own --name");
+  serve->add_option("--archive", args->archive,
+                    "folder of the jobs' archives instead of DATA/jobs: give every server "
+                    "of one --db queue the same (a network mount), so each serves every "
+                    "job's files");
   serve
       ->add_option("--stale-s", args->stale_s,
                    "a server sharing the store and silent this long is taken for dead: its "

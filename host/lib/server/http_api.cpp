@@ -407,7 +407,15 @@ void HttpApi::routes() {
           try {
             res.set_content(read_file(path), type);
           } catch (const std::exception&) {
-            send_error(res, 404, "the job has no " + file + " (yet)");
+            // Servers on one queue keep the jobs they ran in their own archive unless they
+            // share one (--archive): say where the file is.
+            send_error(res, 404,
+                       job->owner.empty()
+                           ? "the job has no " + file + " (yet)"
+                           : fmt::format("the job has no {} here (yet); it ran on server '{}', "
+                                         "whose archive holds the files of its runs unless "
+                                         "the servers share one (serve --archive)",
+                                         file, job->owner));
           }
         });
   s.Get(R"(/api/jobs/(\d{1,18})/runs/([1-9]\d{0,5})/([a-z.]{1,16}))",
