@@ -5,9 +5,10 @@
 #include <signal.h>      // sigaction
 #include <unistd.h>      // gethostname
 
-#include <atomic>    // std::atomic
-#include <iostream>  // std::cerr
-#include <thread>    // std::thread
+#include <atomic>      // std::atomic
+#include <filesystem>  // std::filesystem::path
+#include <iostream>    // std::cerr
+#include <thread>      // std::thread
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
@@ -17,6 +18,7 @@
 #include "host/lib/server/job_intake.h"
 #include "host/lib/server/machine_spec.h"
 #include "host/lib/server/sqlite_job_store.h"
+#include "host/lib/server/web_files.h"
 #include "host/lib/server/workshop.h"
 #ifdef ENGRAVER_HAVE_POSTGRES
 #include "host/lib/server/postgres_job_store.h"
@@ -32,12 +34,14 @@ struct ServeArgs {
   std::vector<std::string> machines;
   std::string inbox;
   double max_upload_mb = 20.0;
-  std::string web = ENGRAVER_WEB_DIR;
+  std::string web;  // "": installed beside the executable (ENGRAVER_WEB_FROM_BIN)
   int poll_ms = 100;
   std::string name;
   bool no_zero = false;
   std::string db;
   double stale_s = 30.0;
+  std::vector<std::string> allowed_hosts;
+  std::string archive;
 };
 
 // The job store: the data folder's SQLite file, or a PostgreSQL database shared by servers.
@@ -85,7 +89,26 @@ void run_serve(const ServeArgs& a) {
       throw CommandFailure(kExitUsage, e.what());
     }
   }
-  server::DataFolder data(a.data);
+  // The page must be there before anyone opens it: a missing one is an error now, not a
+  // 500 later.
+  std::filesystem::path web_dir = a.web;
+  if (web_dir.empty()) {
+    try {
+      web_dir = server::web_dir_beside_executable(ENGRAVER_WEB_FROM_BIN);
+    } catch (const std::exception& e) {
+      throw CommandFailure(kExitUsage,
+                           std::string(e.what()) + "; give the page's folder with --web");
+    }
+  }
+  const std::string missing = server::missing_web_files(web_dir);
+  if (!missing.empty()) {
+    throw CommandFailure(
+        kExitUsage, fmt::format("the web page: {} ({}; `cmake --install` puts it in "
+                                "PREFIX/share/engraver/web beside PREFIX/bin/engraver, or "
+                                "give the folder with --web)",
+                                missing, a.web.empty() ? "looked beside this engraver" : "--web"));
+  }
+  server::DataFolder data(a.data, a.archive);
   bool created = false;
   const std::string token = data.token(&created);
   const std::unique_ptr<server::JobStore> store_owner = open_store(a.db, data);
@@ -102,8 +125,9 @@ void run_serve(const ServeArgs& a) {
   server::HttpOptions ho;
   ho.address = a.listen.substr(0, colon);
   ho.port = port;
-  ho.web_dir = a.web;
+  ho.web_dir = web_dir;
   ho.token = token;
+  ho.allowed_hosts = a.allowed_hosts;
   server::HttpApi http(store, intake, workshop, data, ho);
   const int bound = http.bind();
 
@@ -125,6 +149,8 @@ void run_serve(const ServeArgs& a) {
   std::thread serving([&http] { http.run(); });
   std::cerr << fmt::format("engraver: serving http://{}:{}/ as '{}', data in {}, {} machine(s)\n",
                            ho.address, bound, wo.owner, a.data, machines.size());
+  std::cerr << fmt::format("engraver: answering requests for host {}\n",
+                           http.allowed_hosts().describe());
   if (created) {
     std::cerr << fmt::format(
         "engraver: access token (shown once; kept in {}/token): {}\n"
@@ -162,7 +188,14 @@ void add_serve_commands(CLI::App& app) {
                    "largest upload accepted, MB (a board: all its files, unpacked)")
       ->check(CLI::Range(0.001, 1024.0))
       ->capture_default_str();
-  serve->add_option("--web", args->web, "folder of the page's files")->capture_default_str();
+  serve->add_option("--allowed-host", args->allowed_hosts,
+                    "a name or address the page is opened with, besides the listen address, "
+                    "localhost, 127.0.0.1, [::1] (and, listening on all addresses, the host "
+                    "name and the PC's addresses); requests naming another Host get 403 "
+                    "(repeat the option)");
+  serve->add_option("--web", args->web,
+                    "folder of the page's files (default: " ENGRAVER_WEB_FROM_BIN
+                    " beside this engraver, where cmake --install puts them)");
   serve->add_option("--poll-ms", args->poll_ms, "status poll interval while a job runs")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
@@ -172,6 +205,10 @@ void add_serve_commands(CLI::App& app) {
                     "job store: 'sqlite' (DATA/jobs.sqlite, default) or a PostgreSQL "
                     "connection ('postgresql://host/db' or 'host=... dbname=...') shared by "
                     "several servers; give each server its own --name");
+  serve->add_option("--archive", args->archive,
+                    "folder of the jobs' archives instead of DATA/jobs: give every server "
+                    "of one --db queue the same (a network mount), so each serves every "
+                    "job's files");
   serve
       ->add_option("--stale-s", args->stale_s,
                    "a server sharing the store and silent this long is taken for dead: its "

@@ -42,16 +42,22 @@ std::string random_hex(size_t bytes) {
   return s;
 }
 
-DataFolder::DataFolder(const fs::path& root) : root_(root) {
+DataFolder::DataFolder(const fs::path& root, const fs::path& archive)
+    : root_(root),
+      jobs_(archive.empty() ? root / "jobs" : archive),
+      staging_(archive.empty() ? root / "tmp" : archive / ".staging") {
   std::error_code ec;
   fs::create_directories(root_ / "jobs", ec);
   if (!ec) fs::remove_all(root_ / "tmp", ec);
   if (!ec) fs::create_directories(root_ / "tmp", ec);
   if (ec) throw std::runtime_error(root_.string() + ": cannot use as data folder: " + ec.message());
+  // A shared archive's staging folder is not cleared: other servers' uploads are in it.
+  fs::create_directories(staging_, ec);
+  if (ec) throw std::runtime_error(jobs_.string() + ": cannot use as archive: " + ec.message());
 }
 
 fs::path DataFolder::new_staging_dir() const {
-  const fs::path dir = root_ / "tmp" / random_hex(12);
+  const fs::path dir = staging_ / random_hex(12);
   fs::create_directories(dir);
   return dir;
 }

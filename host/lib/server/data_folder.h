@@ -15,12 +15,16 @@ bool is_archive_file(const std::string& name);
 class DataFolder {
  public:
   // Creates the folder (and jobs/, tmp/) if needed; clears tmp/ (uploads a crash left).
+  // archive: where the jobs' folders go instead of jobs/ ("" = jobs/): a folder shared by
+  // the servers of one queue (a network mount), so that each serves every job's files.
   // Throws std::runtime_error naming the folder.
-  explicit DataFolder(const std::filesystem::path& root);
+  explicit DataFolder(const std::filesystem::path& root, const std::filesystem::path& archive = {});
   const std::filesystem::path& root() const { return root_; }
   std::filesystem::path database() const { return root_ / "jobs.sqlite"; }
-  std::filesystem::path job_dir(const std::string& key) const { return root_ / "jobs" / key; }
-  // A fresh, empty staging folder for an upload (tmp/<random>).
+  std::filesystem::path job_dir(const std::string& key) const { return jobs_ / key; }
+  // A fresh, empty staging folder for an upload: tmp/<random>, or with a shared archive
+  // ARCHIVE/.staging/<random> (on the archive's file system, so the finished job's folder
+  // is renamed into place, never copied).
   std::filesystem::path new_staging_dir() const;
   // The access token; created (random, file mode 0600) on first use. *created tells whether
   // it was made now (the CLI shows it once).
@@ -28,6 +32,8 @@ class DataFolder {
 
  private:
   std::filesystem::path root_;
+  std::filesystem::path jobs_;
+  std::filesystem::path staging_;
 };
 
 // A random lower-case hex string of 2 * bytes characters (from the OS's random source).

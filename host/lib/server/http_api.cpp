@@ -1,6 +1,9 @@
 // HTTP routes of the workshop server (cpp-httplib).
 #include "host/lib/server/http_api.h"
 
+#include "host/lib/server/connection_threads.h"
+#include "host/lib/server/run_archive.h"
+
 #include <fmt/format.h>  // fmt::format
 #include <httplib.h>     // httplib::Server
 
@@ -11,6 +14,8 @@
 #include <iterator>  // std::distance
 
 namespace host::server {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -78,34 +83,67 @@ nlohmann::json job_json(const JobRecord& j) {
           {"input_file", j.input_file}};
 }
 
+// Every field an upload may carry (multipart parts or query parameters); others are refused.
+const char* const kUploadFields[] = {"file",   "name",          "priority",          "tag",
+                                     "side",   "tool_width_mm", "allow_narrow_gaps", "feed_mm_s",
+                                     "tol_mm", "scale",         "margin_mm"};
+
+std::string unknown_upload_field(const std::string& key) {
+  for (const char* f : kUploadFields) {
+    if (key == f) return "";
+  }
+  std::string known;
+  for (const char* f : kUploadFields) known += std::string(known.empty() ? "" : ", ") + f;
+  return fmt::format("unknown field '{}' (an upload takes {})", key, known);
+}
+
+// An upload's body as read: the parts of a multipart form, or the raw bytes.
+struct UploadBody {
+  bool multipart = false;
+  httplib::MultipartFormDataItems parts;
+  std::string raw;
+};
+
 // The upload's fields: multipart form (file + fields) or a raw body with query parameters.
 struct UploadFields {
   Submission sub;
   std::string error;
 };
 
-UploadFields upload_fields(const httplib::Request& req) {
+UploadFields upload_fields(const httplib::Request& req, const UploadBody& body) {
   UploadFields u;
+  for (const auto& p : req.params) {
+    if (u.error.empty()) u.error = unknown_upload_field(p.first);
+  }
+  for (const auto& p : body.parts) {
+    if (u.error.empty()) u.error = unknown_upload_field(p.name);
+  }
+  if (!u.error.empty()) return u;
   auto field = [&](const std::string& key, std::string* out) {
-    if (req.is_multipart_form_data()) {
-      if (req.has_file(key)) *out = req.get_file_value(key).content;
+    if (body.multipart) {
+      for (const auto& p : body.parts) {
+        if (p.name == key) *out = p.content;
+      }
     } else if (req.has_param(key)) {
       *out = req.get_param_value(key);
     }
   };
-  if (req.is_multipart_form_data()) {
-    if (!req.has_file("file")) {
+  if (body.multipart) {
+    std::vector<const httplib::MultipartFormData*> files;
+    for (const auto& p : body.parts) {
+      if (p.name == "file") files.push_back(&p);
+    }
+    if (files.empty()) {
       u.error = "multipart upload without a 'file' part";
       return u;
     }
     // Several "file" parts: the files of one board (copper, drill, outline).
-    const auto parts = req.files.equal_range("file");
-    if (std::distance(parts.first, parts.second) == 1) {
-      u.sub.name = parts.first->second.filename;
-      u.sub.content = parts.first->second.content;
+    if (files.size() == 1) {
+      u.sub.name = files[0]->filename;
+      u.sub.content = files[0]->content;
     } else {
-      for (auto it = parts.first; it != parts.second; ++it) {
-        u.sub.files.push_back(UploadFile{it->second.filename, it->second.content});
+      for (const httplib::MultipartFormData* f : files) {
+        u.sub.files.push_back(UploadFile{f->filename, f->content});
       }
       field("name", &u.sub.name);  // the board's name; "" takes it from the files
     }
@@ -115,7 +153,7 @@ UploadFields upload_fields(const httplib::Request& req) {
       return u;
     }
     u.sub.name = req.get_param_value("name");
-    u.sub.content = req.body;
+    u.sub.content = body.raw;
   }
   std::string text;
   field("priority", &text);
@@ -158,12 +196,30 @@ UploadFields upload_fields(const httplib::Request& req) {
   return u;
 }
 
+// Why a body is not JSON, in plain words: where it goes wrong and what stands there.
+std::string json_problem(const std::string& body, size_t byte) {
+  if (body.find_first_not_of(" \t\r\n") == std::string::npos) return "the body is empty";
+  if (byte > body.size()) return "the body ends before the JSON value does";
+  const size_t at = byte == 0 ? 0 : byte - 1;  // nlohmann counts from 1
+  std::string near = body.substr(at, 16);
+  for (char& c : near) {
+    if (static_cast<unsigned char>(c) < 0x20) c = ' ';
+  }
+  return fmt::format("unexpected text at byte {}: '{}'", at + 1, near);
+}
+
 // The JSON object of a request body, or an error.
 bool body_object(const httplib::Request& req, httplib::Response& res, nlohmann::json* out) {
+  // The parser stops at a NUL byte; whatever follows it would be ignored, not refused.
+  const size_t nul = req.body.find('\0');
+  if (nul != std::string::npos) {
+    send_error(res, 400, fmt::format("malformed JSON: a NUL byte at byte {}", nul + 1));
+    return false;
+  }
   try {
     *out = nlohmann::json::parse(req.body);
-  } catch (const nlohmann::json::exception& e) {
-    send_error(res, 400, std::string("malformed JSON: ") + e.what());
+  } catch (const nlohmann::json::parse_error& e) {
+    send_error(res, 400, "malformed JSON: " + json_problem(req.body, e.byte));
     return false;
   }
   if (!out->is_object()) {
@@ -182,9 +238,11 @@ HttpApi::HttpApi(JobStore& store, JobIntake& intake, Workshop& workshop, const D
       workshop_(workshop),
       data_(data),
       options_(std::move(options)),
+      hosts_(options_.address, options_.allowed_hosts),
       http_(std::make_unique<httplib::Server>()) {
-  // Enough threads for several pages with an event stream each, plus API calls.
-  http_->new_task_queue = [] { return new httplib::ThreadPool(32); };
+  // A thread per connection: an open page's event stream holds its thread for as long as
+  // the page is open, and must not take one that a control request needs.
+  http_->new_task_queue = [] { return new ConnectionThreads(); };
   // Multipart framing on top of the file; httplib answers 413 beyond this.
   http_->set_payload_max_length(intake_.max_bytes() + 64 * 1024);
   routes();
@@ -218,11 +276,33 @@ void HttpApi::stop() {
   http_->stop();
 }
 
+std::string HttpApi::event_text(uint64_t version) {
+  std::lock_guard<std::mutex> lock(event_mutex_);
+  // Every open page waits for the same change: one snapshot serves them all.
+  if (event_version_ != version || event_.empty()) {
+    event_ = "data: " +
+             workshop_.snapshot().dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) +
+             "\n\n";
+    event_version_ = version;
+  }
+  return event_;
+}
+
 void HttpApi::routes() {
   httplib::Server& s = *http_;
 
-  // The token guards every method but GET/HEAD, before any handler runs.
+  // Before any handler runs: the Host must be one of this server's names (a page from
+  // another site gets nowhere through a name that resolves here), and the token guards
+  // every method but GET/HEAD.
   s.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    const std::string host = req.get_header_value("Host");
+    if (!hosts_.allows(host)) {
+      send_error(res, 403,
+                 fmt::format("Host '{}' is not a name of this server (it answers to {}; "
+                             "serve --allowed-host NAME adds one)",
+                             host, hosts_.describe()));
+      return httplib::Server::HandlerResponse::Handled;
+    }
     if (req.method == "GET" || req.method == "HEAD")
       return httplib::Server::HandlerResponse::Unhandled;
     if (!same_secret(token_of(req), options_.token)) {
@@ -263,17 +343,23 @@ void HttpApi::routes() {
     send_json(res, 200, workshop_.snapshot());
   });
   s.Get("/api/events", [this](const httplib::Request&, httplib::Response& res) {
+    // Counted while the response (and so the stream) lives.
+    auto slot =
+        std::shared_ptr<std::atomic<int>>(&open_streams_, [](std::atomic<int>* n) { --*n; });
+    if (++open_streams_ > options_.max_event_streams) {
+      res.set_header("Retry-After", "10");
+      return send_error(res, 503,
+                        fmt::format("too many open event streams (at most {}); try again later",
+                                    options_.max_event_streams));
+    }
     res.set_header("Cache-Control", "no-cache");
     auto seen = std::make_shared<uint64_t>(~uint64_t{0});
     res.set_chunked_content_provider(
-        "text/event-stream", [this, seen](size_t, httplib::DataSink& sink) {
+        "text/event-stream", [this, seen, slot](size_t, httplib::DataSink& sink) {
           if (stopping_) return false;
           *seen = workshop_.wait_change(*seen, std::chrono::milliseconds(1000));
           if (stopping_) return false;
-          const std::string event =
-              "data: " +
-              workshop_.snapshot().dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) +
-              "\n\n";
+          const std::string event = event_text(*seen);
           return sink.write(event.data(), event.size());
         });
   });
@@ -301,7 +387,9 @@ void HttpApi::routes() {
   s.Get(R"(/api/jobs/(\d{1,18}))", [this](const httplib::Request& req, httplib::Response& res) {
     const auto job = store_.get(std::stoll(req.matches[1]));
     if (!job) return send_error(res, 404, "no such job");
-    send_json(res, 200, job_json(*job));
+    nlohmann::json j = job_json(*job);
+    j["runs"] = run_count(data_.job_dir(job->key));  // runs/1 .. runs/N in its archive
+    send_json(res, 200, j);
   });
   s.Get(R"(/api/jobs/(\d{1,18})/files/([a-z.]{1,16}))",
         [this](const httplib::Request& req, httplib::Response& res) {
@@ -313,16 +401,68 @@ void HttpApi::routes() {
                                    : file == "plot.png"                      ? "image/png"
                                    : file.find(".json") != std::string::npos ? "application/json"
                                                                              : "text/plain";
+          // A run's files: the newest run's.
+          const fs::path dir = data_.job_dir(job->key);
+          const fs::path path = is_run_file(file) ? run_file(dir, 0, file) : dir / file;
           try {
-            res.set_content(read_file(data_.job_dir(job->key) / file), type);
+            res.set_content(read_file(path), type);
           } catch (const std::exception&) {
-            send_error(res, 404, "the job has no " + file + " (yet)");
+            // Servers on one queue keep the jobs they ran in their own archive unless they
+            // share one (--archive): say where the file is.
+            send_error(res, 404,
+                       job->owner.empty()
+                           ? "the job has no " + file + " (yet)"
+                           : fmt::format("the job has no {} here (yet); it ran on server '{}', "
+                                         "whose archive holds the files of its runs unless "
+                                         "the servers share one (serve --archive)",
+                                         file, job->owner));
+          }
+        });
+  s.Get(R"(/api/jobs/(\d{1,18})/runs/([1-9]\d{0,5})/([a-z.]{1,16}))",
+        [this](const httplib::Request& req, httplib::Response& res) {
+          const std::string file = req.matches[3];
+          if (!is_run_file(file))
+            return send_error(res, 404, "a run holds machine.log, report.json");
+          const auto job = store_.get(std::stoll(req.matches[1]));
+          if (!job) return send_error(res, 404, "no such job");
+          const int run = std::stoi(req.matches[2]);
+          try {
+            res.set_content(read_file(run_file(data_.job_dir(job->key), run, file)),
+                            file == "report.json" ? "application/json" : "text/plain");
+          } catch (const std::exception&) {
+            send_error(res, 404, fmt::format("the job has no run {} with a {}", run, file));
           }
         });
 
   // ---- Changes (token checked above) ----
-  s.Post("/api/jobs", [this](const httplib::Request& req, httplib::Response& res) {
-    const UploadFields u = upload_fields(req);
+  // Read by the handler itself: httplib would cap a body sent as a form (curl --data-binary
+  // without a Content-Type) at 8 KB and parse it as form fields.
+  s.Post("/api/jobs", [this](const httplib::Request& req, httplib::Response& res,
+                             const httplib::ContentReader& read) {
+    UploadBody body;
+    body.multipart = req.is_multipart_form_data();
+    bool ok = false;
+    if (body.multipart) {
+      ok = read(
+          [&](const httplib::MultipartFormData& part) {
+            body.parts.push_back(part);
+            return true;
+          },
+          [&](const char* data, size_t n) {
+            body.parts.back().content.append(data, n);
+            return true;
+          });
+    } else {
+      ok = read([&](const char* data, size_t n) {
+        body.raw.append(data, n);
+        return true;
+      });
+    }
+    if (!ok) {
+      if (res.status == 413) return send_error(res, 413, "upload larger than the limit");
+      return send_error(res, 400, "the upload's body could not be read");
+    }
+    const UploadFields u = upload_fields(req, body);
     if (!u.error.empty()) return send_error(res, 400, u.error);
     const IntakeResult r = intake_.submit(u.sub);
     if (r.status != 201) return send_error(res, r.status, r.error);

@@ -5,10 +5,14 @@
 #define HOST_LIB_SERVER_HTTP_API_H
 
 #include <atomic>      // std::atomic
+#include <cstdint>     // uint64_t
 #include <filesystem>  // std::filesystem::path
 #include <memory>      // std::unique_ptr
+#include <mutex>       // std::mutex
 #include <string>      // std::string
+#include <vector>      // std::vector
 
+#include "host/lib/server/allowed_hosts.h"
 #include "host/lib/server/data_folder.h"
 #include "host/lib/server/job_intake.h"
 #include "host/lib/server/job_store.h"
@@ -25,6 +29,11 @@ struct HttpOptions {
   int port = 8080;                    // 0 = any free port
   std::filesystem::path web_dir;      // index.html, app.js, style.css
   std::string token;
+  // Host header names answered besides AllowedHosts' defaults (--allowed-host).
+  std::vector<std::string> allowed_hosts;
+  // Open event streams (pages) served at once; one more is answered 503 (each holds a
+  // thread; control requests never wait for them).
+  int max_event_streams = 1024;
 };
 
 class HttpApi {
@@ -39,16 +48,24 @@ class HttpApi {
   // Serves until stop() (call bind() first).
   void run();
   void stop();
+  const AllowedHosts& allowed_hosts() const { return hosts_; }
 
  private:
   void routes();
+  // The server-sent event for the workshop's change counter `version`.
+  std::string event_text(uint64_t version);
   JobStore& store_;
   JobIntake& intake_;
   Workshop& workshop_;
   const DataFolder& data_;
   HttpOptions options_;
+  AllowedHosts hosts_;
   std::unique_ptr<httplib::Server> http_;
   std::atomic<bool> stopping_{false};
+  std::atomic<int> open_streams_{0};
+  std::mutex event_mutex_;  // guards the two below
+  uint64_t event_version_ = 0;
+  std::string event_;
 };
 
 }  // namespace host::server

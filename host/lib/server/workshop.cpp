@@ -9,6 +9,7 @@
 
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/server/job_planning.h"
+#include "host/lib/server/run_archive.h"
 #include "host/lib/stream/job_resume.h"  // resume_from_curve
 #include "host/lib/stream/link.h"
 
@@ -285,9 +286,21 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
                        const proto::SessionReply& caps) {
   const fs::path dir = data_.job_dir(job.key);
   const Clock::time_point started = Clock::now();
-  std::vector<std::string> log;
+  // This run's folder in the archive; its machine.log is written as the job runs.
+  std::unique_ptr<RunArchive> run;
+  std::string archive_error;
+  try {
+    run = std::make_unique<RunArchive>(dir);
+  } catch (const std::exception& e) {
+    archive_error = e.what();
+  }
   auto note = [&](const std::string& line) {
-    log.push_back(fmt::format("{:9.3f} {}", seconds_since(started), line));
+    if (!run || !archive_error.empty()) return;
+    try {
+      run->log(fmt::format("{:9.3f} {}", seconds_since(started), line));
+    } catch (const std::exception& e) {
+      archive_error = e.what();  // the job goes on; its message says the log is incomplete
+    }
   };
   note(fmt::format("job {} '{}' on {} ({}), server {}", job.id, job.name, slot.spec.name,
                    slot.spec.address, options_.owner));
@@ -298,6 +311,8 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   std::string message;
   std::vector<QueuedCommand> commands;
   size_t executed = 0;
+  // The feed override as the machine reported it: when it changed and to what.
+  nlohmann::json overrides = nlohmann::json::array();
   const char* outcome = "not started";
   try {
     // Uploaded to another server sharing the queue: the input comes from the store.
@@ -350,8 +365,12 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
       slot.started = started;
       if (stopping_) sender.request_abort();  // claimed just as stop() looked at the slots
     }
+    // A feed override belongs to the job that set it: every run starts at 100 %, whatever
+    // the machine's last job left.
+    if (!sender.set_override(100)) throw LinkError("the machine did not take feed override 100%");
+    note("feed override set to 100% for this run");
     proto::MachineState last_state = proto::MachineState::kIdle;
-    int last_override = 100;
+    int last_override = -1;  // none reported yet
     Clock::time_point last_notify = started;
     const JobOutcome result = sender.run(commands, [&](const Progress& p) {
       {
@@ -363,6 +382,11 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
       }
       executed = p.executed;
       const bool state_changed = p.status.state != last_state;
+      if (p.status.override_percent != last_override) {
+        overrides.push_back({{"elapsed_s", seconds_since(started)},
+                             {"percent", int(p.status.override_percent)},
+                             {"executed", p.executed}});
+      }
       if (state_changed || p.status.override_percent != last_override) {
         note(fmt::format("machine {} override {}% at {}/{} x {:.3f} y {:.3f} z {:.3f}",
                          machine_state_name(p.status.state), int(p.status.override_percent),
@@ -386,7 +410,14 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
         break;
       case JobOutcome::kAborted:
         state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
-        if (stopping_) message = "the server stopped while the job was running; " + message;
+        if (stopping_) {
+          // The sender's abort came from stop(), not from an operator.
+          outcome = "server stopped";
+          message = fmt::format(
+              "the server stopped while the job was running, after {} of {} "
+              "commands",
+              executed, commands.size());
+        }
         break;
       case JobOutcome::kAlarm:
       case JobOutcome::kRejected:
@@ -437,19 +468,20 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   report["retransmits"] = st.retransmits;
   report["status_queries"] = st.status_queries;
   report["error_replies"] = st.error_replies;
+  report["feed_overrides"] = overrides;
   report["settings"] = {{"feed_mm_s", job.settings.feed_mm_s},
                         {"tol_mm", job.settings.tol_mm},
                         {"scale", job.settings.scale},
                         {"margin_mm", job.settings.margin_mm}};
   try {
-    write_file(dir / "report.json",
-               report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-    std::string text;
-    for (const std::string& line : log) text += line + "\n";
-    write_file(dir / "machine.log", text);
+    if (run) {
+      report["run"] = run->number();
+      run->write_report(report);
+    }
   } catch (const std::exception& e) {
-    message += fmt::format(" (archive: {})", e.what());
+    archive_error = e.what();
   }
+  if (!archive_error.empty()) message += fmt::format(" (archive: {})", archive_error);
   try {
     store_.finish(job.id, state, message, static_cast<int64_t>(executed),
                   static_cast<int64_t>(commands.size()), resume_curve);

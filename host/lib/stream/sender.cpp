@@ -463,6 +463,11 @@ void Sender::send_realtime(uint8_t letter, const std::vector<uint8_t>& payload) 
   }
 }
 
+bool Sender::set_override(int percent) {
+  send_realtime(proto::kCmdOverride, {static_cast<uint8_t>(percent)});
+  return read_status().override_percent == percent;  // the machine's word, any version
+}
+
 // Starts manual zeroing if the machine is not zeroed and waits for the operator's confirm.
 bool Sender::ensure_zeroed(const std::function<void(const Progress&)>& on_progress) {
   query_status();

@@ -75,6 +75,9 @@ class Sender {
   // Status queries until the machine has come to rest (not running or holding: a #I or #X
   // decelerates along the path first); throws LinkError if that takes longer than `limit`.
   proto::StatusReply read_status_at_rest(std::chrono::milliseconds limit);
+  // Sets the feed override now (session open, no job running): the real-time frame, then a
+  // status. False when the status shows another override; LinkError when none comes.
+  bool set_override(int percent);
   // Sends every command and waits until they have run. on_progress is called at each status.
   JobOutcome run(const std::vector<QueuedCommand>& commands,
                  const std::function<void(const Progress&)>& on_progress);

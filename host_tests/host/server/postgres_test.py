@@ -7,8 +7,11 @@ machines, and two servers with two machines each and their own data folders. Job
 uploaded to both servers alternately; each must complete once, on one server, and both
 servers must have taken some. A board (three Gerber/Excellon files) uploaded to one server
 and tagged for machines only the other one has online runs there from the files the
-database keeps. Exit 77 (ctest: skipped) when PostgreSQL is not installed.
-Usage: postgres_test.py ENGRAVER
+database keeps. Each server serves the files of the jobs it ran; the other answers 404
+naming it. With --shared-archive both servers keep their jobs' folders in one archive
+(`serve --archive`) and each serves every job's files.
+Exit 77 (ctest: skipped) when PostgreSQL is not installed.
+Usage: postgres_test.py ENGRAVER [--shared-archive]
 """
 import glob
 import json
@@ -20,6 +23,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import urllib.error
 import urllib.request
 
 SKIP = 77
@@ -77,8 +81,18 @@ def wait(predicate, timeout_s, what):
     raise AssertionError("timed out waiting for " + what)
 
 
+def fetch(base, path):
+    """(HTTP status, body) of a GET."""
+    try:
+        with urllib.request.urlopen(base + path, timeout=30) as r:
+            return r.status, r.read()
+    except urllib.error.HTTPError as e:
+        return e.code, e.read()
+
+
 def main():
     engraver = sys.argv[1]
+    shared = sys.argv[2:] == ["--shared-archive"]
     bins = sorted(glob.glob("/usr/lib/postgresql/*/bin"))
     if not bins or not os.access(os.path.join(bins[-1], "initdb"), os.X_OK):
         print("PostgreSQL not installed: skipped")
@@ -134,15 +148,16 @@ def main():
                 specs += ["--machine", f"tcp://127.0.0.1:{free_port()} name=s1off tags=pcb"]
             http_port = free_port()
             data = os.path.join(tmp, f"data{s + 1}")
+            archive = os.path.join(tmp, "shared") if shared else os.path.join(data, "jobs")
             log = open(os.path.join(tmp, f"serve{s + 1}.log"), "w")
             procs.append(subprocess.Popen(
                 [engraver, "serve", "--data", data, "--listen", f"127.0.0.1:{http_port}",
                  "--db", conninfo, "--name", f"server{s + 1}", "--poll-ms", "5",
-                 "--stale-s", "3"] + specs,
+                 "--stale-s", "3"] + (["--archive", archive] if shared else []) + specs,
                 stdout=log, stderr=subprocess.STDOUT))
-            servers.append((f"http://127.0.0.1:{http_port}", data))
+            servers.append((f"http://127.0.0.1:{http_port}", data, archive))
         tokens = []
-        for base, data in servers:
+        for base, data, _ in servers:
             wait(lambda: os.path.exists(os.path.join(data, "token")), 20, "a server's token")
             time.sleep(0.3)
             tokens.append(open(os.path.join(data, "token")).read().strip())
@@ -172,13 +187,21 @@ def main():
         # Exactly once: one report per job over both archives, from the server that ran it.
         for j in jobs:
             reports = []
-            for _, data in servers:
-                for path in glob.glob(os.path.join(data, "jobs", "*", "report.json")):
+            for archive in sorted(set(a for _, _, a in servers)):
+                for path in glob.glob(os.path.join(archive, "*", "runs", "*", "report.json")):
                     report = json.load(open(path))
                     if report["id"] == j["id"]:
                         reports.append(report)
             assert len(reports) == 1, (j, reports)
             assert reports[0]["server"] == j["server"] and reports[0]["state"] == "completed"
+            # The job's report through each server: the one that ran it serves it; the other
+            # too when the archive is shared, else it answers 404 naming where it ran.
+            for base, _, _ in servers:
+                status, body = fetch(base, f"/api/jobs/{j['id']}/files/report.json")
+                if shared or base == servers[int(j["server"][-1]) - 1][0]:
+                    assert status == 200 and json.loads(body)["id"] == j["id"], (status, body)
+                else:
+                    assert status == 404 and f"server '{j['server']}'".encode() in body, body
 
         # A board uploaded to server 1 runs on server 2: its files come from the database.
         board_id = upload_board(servers[0][0], tokens[0], "pcb")
@@ -186,16 +209,19 @@ def main():
              ("completed", "failed"), 120, "the board job to finish")
         board = get(servers[0][0], f"/api/jobs/{board_id}")
         assert board["state"] == "completed" and board["server"] == "server2", board
-        key = [p for p in glob.glob(os.path.join(servers[1][1], "jobs", "*", "report.json"))
+        key = [p for p in glob.glob(os.path.join(servers[1][2], "*", "runs", "1",
+                                                 "report.json"))
                if json.load(open(p))["id"] == board_id]
         assert len(key) == 1, key
-        archive = os.path.dirname(key[0])
+        run = os.path.dirname(key[0])
+        archive = os.path.dirname(os.path.dirname(run))
         for name, kept in zip(BOARD_FILES, ("copper.top.gbr", "drill.drl", "outline.gbr")):
             assert (open(os.path.join(archive, kept), "rb").read() ==
                     open(os.path.join(BOARD_DIR, name), "rb").read()), kept
-        for kept in ("board.json", "plan.json", "plot.svg", "plot.png", "machine.log"):
+        for kept in ("board.json", "plan.json", "plot.svg", "plot.png", "runs/1/machine.log"):
             assert os.path.getsize(os.path.join(archive, kept)) > 0, kept
-        print(f"board job {board_id} uploaded to server1 ran on server2 from the database")
+        print(f"board job {board_id} uploaded to server1 ran on server2 from the "
+              + ("shared archive" if shared else "database"))
 
         # A server dies mid-job (kill -9): the other one marks its running jobs interrupted
         # (--stale-s 3); re-queued, they run there.

@@ -6,6 +6,7 @@
 #include <sys/wait.h>  // waitpid
 #include <unistd.h>    // fork, execv
 
+#include <cstdlib>  // std::system
 #include <fstream>  // std::ifstream
 #include <sstream>  // std::ostringstream
 
@@ -19,13 +20,14 @@ namespace fs = std::filesystem;
 // Runs the tool in the background with stderr to a file; stop() sends SIGTERM and waits.
 class ServeProcess {
  public:
-  ServeProcess(const std::vector<std::string>& args, const fs::path& log) {
+  ServeProcess(const std::vector<std::string>& args, const fs::path& log,
+               const std::string& exe_path = ENGRAVER_EXE) {
     pid_ = fork();
     if (pid_ == 0) {
       FILE* f = std::freopen(log.c_str(), "w", stderr);
       (void)f;
       std::vector<char*> argv;
-      std::string exe = ENGRAVER_EXE;
+      std::string exe = exe_path;
       argv.push_back(&exe[0]);
       std::vector<std::string> copy = args;
       for (std::string& a : copy) argv.push_back(&a[0]);
@@ -53,12 +55,26 @@ class ServeProcess {
     pid_ = 0;
     return status_ = -1;
   }
-  // Waits for the process to end by itself; its exit status.
-  int wait_exit() {
-    int st = 0;
-    waitpid(pid_, &st, 0);
+  // Killed at once, as by a power cut of the server's process (SIGKILL).
+  void kill9() {
+    if (pid_ <= 0) return;
+    kill(pid_, SIGKILL);
+    waitpid(pid_, nullptr, 0);
     pid_ = 0;
-    return status_ = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  }
+  // Waits (up to 20 s) for the process to end by itself; its exit status (-1 when it had
+  // to be killed).
+  int wait_exit() {
+    for (int i = 0; i < 400; ++i) {
+      int st = 0;
+      if (waitpid(pid_, &st, WNOHANG) == pid_) {
+        pid_ = 0;
+        return status_ = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    kill9();
+    return status_ = -1;
   }
 
  private:
@@ -102,6 +118,145 @@ TEST(ServeCommand, StartsOnAFreshFolderShowsTheTokenOnceAndStopsCleanly) {
     }
     EXPECT_EQ(fs::status(data / "token").permissions() & fs::perms::others_read, fs::perms::none);
   }
+}
+
+TEST(ServeCommand, AllowedHostAddsANameTheServerAnswersTo) {
+  test::TempDir dir;
+  const int port = test::free_port();
+  const fs::path log = dir.path() / "serve.log";
+  ServeProcess serve({"serve", "--data", (dir.path() / "data").string(), "--listen",
+                      "127.0.0.1:" + std::to_string(port), "--allowed-host", "workshop.example"},
+                     log);
+  httplib::Client client("127.0.0.1", port);
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        auto r = client.Get("/api/status");
+        return r && r->status == 200;
+      },
+      20))
+      << text_of(log);
+  auto named = client.Get("/api/jobs", {{"Host", "workshop.example:" + std::to_string(port)}});
+  ASSERT_TRUE(named);
+  EXPECT_EQ(named->status, 200);
+  auto other = client.Get("/api/jobs", {{"Host", "other.example"}});
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 403) << other->body;
+  EXPECT_EQ(serve.stop(), 0);
+  EXPECT_NE(text_of(log).find("workshop.example"), std::string::npos) << text_of(log);
+}
+
+// kill -9 mid-job: the machine log of the run is on disk up to the moment of the kill, and
+// the run after the restart (continue) is a second run beside it.
+TEST(ServeCommand, KilledMidJobTheRunsLogIsKept) {
+  test::TempDir dir;
+  test::SimRig sim(true);  // real time: the job is still running when the server is killed
+  const int port = test::free_port();
+  const fs::path data = dir.path() / "data";
+  const std::vector<std::string> args = {"serve",
+                                         "--data",
+                                         data.string(),
+                                         "--listen",
+                                         "127.0.0.1:" + std::to_string(port),
+                                         "--machine",
+                                         sim.address() + " name=m1"};
+  auto serve = std::make_unique<ServeProcess>(args, dir.path() / "serve1.log");
+  httplib::Client client("127.0.0.1", port);
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        auto r = client.Get("/api/status");
+        return r && r->status == 200;
+      },
+      20));
+  const std::string token = text_of(data / "token").substr(0, 48);
+  auto up =
+      client.Post("/api/jobs?name=slow.ngc&feed_mm_s=4", {{"Authorization", "Bearer " + token}},
+                  test::square_gcode(10, 10, 40), "application/octet-stream");
+  ASSERT_TRUE(up && up->status == 201) << (up ? up->body : "no answer");
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        auto r = client.Get("/api/status");
+        if (!r || r->status != 200) return false;
+        const auto running = nlohmann::json::parse(r->body)["running"];
+        return !running.empty() && running[0]["executed"].get<int>() >= 3;
+      },
+      20));
+  serve->kill9();
+  fs::path job_dir;
+  for (const auto& e : fs::directory_iterator(data / "jobs")) job_dir = e.path();
+  const std::string log = text_of(job_dir / "runs" / "1" / "machine.log");
+  EXPECT_NE(log.find("planned:"), std::string::npos) << log;
+  EXPECT_NE(log.find("machine running"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(job_dir / "runs" / "1" / "report.json"));  // it never ended
+
+  // Started again: the job is interrupted; re-queued, it runs as run 2, run 1 untouched.
+  serve = std::make_unique<ServeProcess>(args, dir.path() / "serve2.log");
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        auto r = client.Get("/api/jobs/1");
+        return r && r->status == 200 && nlohmann::json::parse(r->body)["state"] == "interrupted";
+      },
+      20));
+  auto c = client.Post("/api/jobs/1/control", {{"Authorization", "Bearer " + token}},
+                       R"({"action": "requeue"})", "application/json");
+  ASSERT_TRUE(c && c->status == 200) << (c ? c->body : "no answer");
+  EXPECT_TRUE(
+      test::wait_until([&] { return fs::exists(job_dir / "runs" / "2" / "machine.log"); }, 20));
+  EXPECT_EQ(text_of(job_dir / "runs" / "1" / "machine.log"), log);
+  EXPECT_EQ(serve->stop(), 0);
+}
+
+// `cmake --install` to a fresh prefix: the installed engraver serves the installed page,
+// wherever the source checkout is; a copied engraver without the page refuses to start.
+TEST(ServeCommand, TheInstalledEngraverServesTheInstalledPage) {
+  test::TempDir dir;
+  const fs::path prefix = dir.path() / "prefix";
+  const std::string install = std::string(CMAKE_EXE) + " --install '" + ENGRAVER_BUILD_DIR +
+                              "' --prefix '" + prefix.string() + "' > '" +
+                              (dir.path() / "install.log").string() + "' 2>&1";
+  ASSERT_EQ(std::system(install.c_str()), 0) << text_of(dir.path() / "install.log");
+  const fs::path exe = prefix / "bin" / "engraver";
+  ASSERT_TRUE(fs::exists(exe));
+  // The installed page is the page of this checkout, a copy (not a link to it).
+  const fs::path page = prefix / "share" / "engraver" / "web" / "index.html";
+  EXPECT_EQ(text_of(page), text_of(fs::path(ENGRAVER_WEB_DIR) / "index.html"));
+  EXPECT_FALSE(fs::is_symlink(page));
+  const int port = test::free_port();
+  const fs::path log = dir.path() / "serve.log";
+  ServeProcess serve({"serve", "--data", (dir.path() / "data").string(), "--listen",
+                      "127.0.0.1:" + std::to_string(port)},
+                     log, exe.string());
+  httplib::Client client("127.0.0.1", port);
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        auto r = client.Get("/app.js");
+        return r && r->status == 200;
+      },
+      20))
+      << text_of(log);
+  auto index = client.Get("/");
+  ASSERT_TRUE(index);
+  EXPECT_EQ(index->status, 200);
+  EXPECT_EQ(index->body, text_of(page));
+  EXPECT_EQ(serve.stop(), 0);
+
+  // The binary copied alone: no page beside it, so it does not start (exit 2, says where).
+  const fs::path alone = dir.path() / "alone" / "bin" / "engraver";
+  fs::create_directories(alone.parent_path());
+  fs::copy_file(exe, alone);
+  ServeProcess copied({"serve", "--data", (dir.path() / "data2").string(), "--listen",
+                       "127.0.0.1:" + std::to_string(port)},
+                      dir.path() / "alone.log", alone.string());
+  EXPECT_EQ(copied.wait_exit(), 2);
+  const std::string why = text_of(dir.path() / "alone.log");
+  EXPECT_NE(why.find("share/engraver/web lacks the page's index.html"), std::string::npos) << why;
+  EXPECT_NE(why.find("--web"), std::string::npos) << why;
+  // --web naming a folder without the page: the same.
+  fs::create_directories(dir.path() / "empty");
+  ServeProcess empty({"serve", "--data", (dir.path() / "data3").string(), "--web",
+                      (dir.path() / "empty").string()},
+                     dir.path() / "empty.log");
+  EXPECT_EQ(empty.wait_exit(), 2);
+  EXPECT_NE(text_of(dir.path() / "empty.log").find("lacks the page's"), std::string::npos);
 }
 
 TEST(ServeCommand, BadOptionsAreUsageErrors) {

@@ -119,6 +119,12 @@ TEST(ServerApi, RestartKeepsQueuedJobsAndRunningOnesBecomeInterrupted) {
   EXPECT_EQ(r["state"], "interrupted");
   EXPECT_LT(r["executed"].get<int>(), r["total"].get<int>());
   EXPECT_GE(r["resume_curve"].get<int>(), 0);
+  // Said as it happened: the server stopped; no operator aborted anything.
+  EXPECT_NE(r["message"].get<std::string>().find("the server stopped"), std::string::npos) << r;
+  auto log = server.client().Get(fmt::format("/api/jobs/{}/files/machine.log", running).c_str());
+  ASSERT_TRUE(log && log->status == 200);
+  EXPECT_NE(log->body.find("server stopped"), std::string::npos) << log->body;
+  EXPECT_EQ(log->body.find("operator"), std::string::npos) << log->body;
   ASSERT_TRUE(test::wait_until(
       [&] {
         for (int64_t id : queued) {
@@ -183,6 +189,11 @@ TEST(ServerApi, BadRequestsAreRefusedWithAReasonAndStoreNothing) {
   refused(server.upload("a.ngc", good, "&feed_mm_s=1000"), 400, "feed_mm_s");
   refused(server.upload("a.ngc", good, "&priority=1e9"), 400, "priority");
   refused(server.upload("a.ngc", good, "&tag=../x"), 400, "tag");
+  // A misspelt field is refused by its name, not ignored (raw upload and multipart form).
+  refused(server.upload("a.ngc", good, "&priorty=5"), 400, "unknown field 'priorty'");
+  httplib::MultipartFormDataItems form = {{"file", good, "a.ngc", "application/octet-stream"},
+                                          {"feedrate", "5", "", ""}};
+  refused(client.Post("/api/jobs", server.auth(), form), 400, "unknown field 'feedrate'");
   refused(client.Post("/api/jobs", server.auth(), good, "application/octet-stream"), 400, "name");
 
   EXPECT_TRUE(server.jobs().empty());
@@ -193,6 +204,20 @@ TEST(ServerApi, BadRequestsAreRefusedWithAReasonAndStoreNothing) {
   const int64_t id = server.upload_ok("ok.ngc", good);
   const size_t files = files_under(jobs);
   refused(server.control(id, "{\"action\": "), 400, "malformed JSON");
+  // Plain words, not the JSON library's internals.
+  for (const std::string& bad :
+       {std::string("{\"action\": "), std::string("{action: hold}"), std::string("")}) {
+    auto c = server.control(id, bad);
+    ASSERT_TRUE(c);
+    EXPECT_EQ(c->body.find("json.exception"), std::string::npos) << c->body;
+    EXPECT_EQ(c->body.find("last read"), std::string::npos) << c->body;
+  }
+  refused(server.control(id, "{action: hold}"), 400, "unexpected text at byte 2: 'action: hold}'");
+  refused(server.control(id, "{\"action\": "), 400, "ends before");
+  // Anything after the object, a NUL byte included, refuses the whole request.
+  refused(server.control(id, std::string("{\"action\": \"cancel\"}\0garbage", 28)), 400,
+          "NUL byte at byte 21");
+  refused(server.control(id, R"({"action": "cancel"} garbage)"), 400, "byte 22");
   refused(server.control(id, "[1, 2]"), 400, "object");
   refused(server.control(id, R"({"action": 3})"), 400, "action");
   refused(server.control(id, R"({"action": "explode"})"), 400, "explode");

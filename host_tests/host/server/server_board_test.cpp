@@ -387,7 +387,7 @@ TEST(ServerBoards, BoardFolderInTheInboxBecomesAJobOnceItStopsChanging) {
   EXPECT_EQ(read_file(archive / "outline.gbr"), board_file("blinky-Edge.Cuts.gbr"));
   ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "completed"; }, 100))
       << server.job(id).dump();
-  EXPECT_TRUE(fs::exists(archive / "report.json"));
+  EXPECT_TRUE(fs::exists(archive / "runs" / "1" / "report.json"));
 
   // A broken board goes to refused/ with the reader's message; nothing is queued.
   const fs::path broken = inbox / "broken";

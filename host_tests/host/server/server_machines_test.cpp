@@ -85,6 +85,113 @@ TEST(ServerMachines, HoldResumeOverrideAndAbortOfARunningJob) {
   EXPECT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "running"; }, 20));
 }
 
+// Waits until the job runs on its machine past the set-up frames; its live progress.
+nlohmann::json wait_cutting(const ServerRig& server, int64_t id) {
+  nlohmann::json p;
+  test::wait_until(
+      [&] {
+        p = server.running(id);
+        return !p.is_null() && p["machine_state"] == "running" && p["executed"] >= 3;
+      },
+      20);
+  return p;
+}
+
+nlohmann::json report_of(const ServerRig& server, int64_t id) {
+  auto r = server.client().Get(fmt::format("/api/jobs/{}/files/report.json", id).c_str());
+  return r && r->status == 200 ? nlohmann::json::parse(r->body) : nlohmann::json();
+}
+
+// The override percentages report.json recorded, in order.
+std::vector<int> override_percents(const nlohmann::json& report) {
+  std::vector<int> out;
+  for (const auto& o : report["feed_overrides"]) out.push_back(o["percent"].get<int>());
+  return out;
+}
+
+// 200 % set on one job stays with that job: the next job on the machine, and the same job
+// run again, start at 100 %; the report and the machine log say when it changed.
+TEST(ServerMachines, FeedOverrideBelongsToItsJobAndIsInItsReport) {
+  test::TempDir dir;
+  SimRig sim(true);  // real time, so the jobs run long enough to be steered
+  ServerRig server(dir.path(), {test::machine("m1", sim.address())});
+  const std::string slow = test::square_gcode(10, 10, 40);
+  const int64_t first = server.upload_ok("first.ngc", slow, "&feed_mm_s=4");
+  ASSERT_FALSE(wait_cutting(server, first).is_null()) << server.job(first).dump();
+  auto r = server.control(first, R"({"action": "override", "percent": 200})");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  ASSERT_TRUE(
+      test::wait_until([&] { return server.running(first)["override_percent"] == 200; }, 10));
+  ASSERT_EQ(server.control(first, R"({"action": "abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(first)["state"] == "aborted"; }, 20));
+  const nlohmann::json first_report = report_of(server, first);
+  EXPECT_EQ(override_percents(first_report), (std::vector<int>{100, 200})) << first_report.dump();
+  auto log = server.client().Get(fmt::format("/api/jobs/{}/files/machine.log", first).c_str());
+  ASSERT_TRUE(log && log->status == 200);
+  EXPECT_NE(log->body.find("override 200%"), std::string::npos) << log->body;
+
+  // The next job on the machine runs at 100 %.
+  const int64_t second = server.upload_ok("second.ngc", slow, "&feed_mm_s=4");
+  const nlohmann::json running = wait_cutting(server, second);
+  ASSERT_FALSE(running.is_null()) << server.job(second).dump();
+  EXPECT_EQ(running["override_percent"], 100) << running.dump();
+  ASSERT_EQ(server.control(second, R"({"action": "abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(second)["state"] == "aborted"; }, 20));
+  EXPECT_EQ(override_percents(report_of(server, second)), (std::vector<int>{100}));
+
+  // The first job re-queued after 200 % was set on it again (then aborted) starts at 100 %.
+  const int64_t third = server.upload_ok("third.ngc", slow, "&feed_mm_s=4");
+  ASSERT_FALSE(wait_cutting(server, third).is_null());
+  ASSERT_EQ(server.control(third, R"({"action": "override", "percent": 200})")->status, 200);
+  ASSERT_TRUE(
+      test::wait_until([&] { return server.running(third)["override_percent"] == 200; }, 10));
+  ASSERT_EQ(server.control(third, R"({"action": "abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(third)["state"] == "aborted"; }, 20));
+  ASSERT_EQ(server.control(first, R"({"action": "requeue"})")->status, 200);
+  const nlohmann::json again = wait_cutting(server, first);
+  ASSERT_FALSE(again.is_null()) << server.job(first).dump();
+  EXPECT_EQ(again["override_percent"], 100) << again.dump();
+  ASSERT_EQ(server.control(first, R"({"action": "abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(first)["state"] == "aborted"; }, 20));
+}
+
+// Each start of a job is a run of its own in the archive: an aborted run's log and report
+// stay when the job is re-queued and runs again.
+TEST(ServerMachines, EveryRunKeepsItsOwnLogAndReport) {
+  test::TempDir dir;
+  SimRig sim(true);
+  ServerRig server(dir.path(), {test::machine("m1", sim.address())});
+  const int64_t id = server.upload_ok("twice.ngc", test::square_gcode(10, 10, 10), "&feed_mm_s=20");
+  ASSERT_FALSE(wait_cutting(server, id).is_null()) << server.job(id).dump();
+  ASSERT_EQ(server.control(id, R"({"action": "abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 20));
+  ASSERT_EQ(server.control(id, R"({"action": "requeue"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "completed"; }, 60));
+  EXPECT_EQ(server.job(id)["runs"], 2);
+  auto get = [&](const std::string& path) {
+    auto r = server.client().Get(fmt::format("/api/jobs/{}/{}", id, path).c_str());
+    return r && r->status == 200 ? r->body : std::string("(no answer)");
+  };
+  const nlohmann::json first = nlohmann::json::parse(get("runs/1/report.json"));
+  const nlohmann::json second = nlohmann::json::parse(get("runs/2/report.json"));
+  EXPECT_EQ(first["state"], "aborted");
+  EXPECT_EQ(first["run"], 1);
+  EXPECT_EQ(second["state"], "completed");
+  EXPECT_EQ(second["run"], 2);
+  EXPECT_LT(first["executed"].get<int>(), second["executed"].get<int>());
+  EXPECT_NE(get("runs/1/machine.log").find("ended: aborted"), std::string::npos);
+  EXPECT_NE(get("runs/2/machine.log").find("ended: completed"), std::string::npos);
+  // The job's own report.json and machine.log are the newest run's.
+  EXPECT_EQ(get("files/report.json"), get("runs/2/report.json"));
+  EXPECT_EQ(get("files/machine.log"), get("runs/2/machine.log"));
+  EXPECT_EQ(get("runs/3/report.json"), "(no answer)");
+  // On disk: jobs/<key>/runs/1/, runs/2/.
+  const fs::path job_dir = server.data().job_dir(server.store().get(id)->key);
+  EXPECT_TRUE(fs::exists(job_dir / "runs" / "1" / "machine.log"));
+  EXPECT_TRUE(fs::exists(job_dir / "runs" / "2" / "report.json"));
+}
+
 // A simulated machine whose link goes away and comes back on the same port; the machine
 // keeps its state (its time stands still while nobody serves it).
 class FlakyLinkMachine {

@@ -1,0 +1,96 @@
+// The server's own names and addresses (see allowed_hosts.h).
+#include "host/lib/server/allowed_hosts.h"
+
+#include <arpa/inet.h>   // inet_ntop
+#include <ifaddrs.h>     // getifaddrs
+#include <netinet/in.h>  // sockaddr_in, sockaddr_in6
+#include <unistd.h>      // gethostname
+
+#include <algorithm>  // std::transform
+#include <cctype>     // std::tolower
+
+namespace host::server {
+
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+// The addresses of this PC's network interfaces, IPv6 in brackets.
+std::vector<std::string> interface_addresses() {
+  std::vector<std::string> out;
+  ifaddrs* list = nullptr;
+  if (getifaddrs(&list) != 0) return out;
+  for (ifaddrs* i = list; i != nullptr; i = i->ifa_next) {
+    if (i->ifa_addr == nullptr) continue;
+    char buf[INET6_ADDRSTRLEN] = {};
+    if (i->ifa_addr->sa_family == AF_INET) {
+      const auto* a = reinterpret_cast<const sockaddr_in*>(i->ifa_addr);
+      if (inet_ntop(AF_INET, &a->sin_addr, buf, sizeof buf)) out.push_back(buf);
+    } else if (i->ifa_addr->sa_family == AF_INET6) {
+      const auto* a = reinterpret_cast<const sockaddr_in6*>(i->ifa_addr);
+      if (inet_ntop(AF_INET6, &a->sin6_addr, buf, sizeof buf))
+        out.push_back("[" + std::string(buf) + "]");
+    }
+  }
+  freeifaddrs(list);
+  return out;
+}
+
+}  // namespace
+
+std::string host_of_header(const std::string& host_header) {
+  std::string h = lower(host_header);
+  if (h.empty()) return "";
+  if (h[0] == '[') {  // [v6] or [v6]:port
+    const size_t close = h.find(']');
+    if (close == std::string::npos) return "";
+    const std::string rest = h.substr(close + 1);
+    if (!rest.empty() && rest[0] != ':') return "";
+    return h.substr(0, close + 1);
+  }
+  const size_t colon = h.find(':');
+  if (colon != std::string::npos) {
+    if (h.find(':', colon + 1) != std::string::npos) return "";  // bare IPv6: not a Host
+    h = h.substr(0, colon);
+  }
+  if (!h.empty() && h.back() == '.') h.pop_back();  // "localhost." is "localhost"
+  return h;
+}
+
+AllowedHosts::AllowedHosts(const std::string& listen_address,
+                           const std::vector<std::string>& extra) {
+  add("localhost");
+  add("127.0.0.1");
+  add("[::1]");
+  const bool v6 = listen_address.find(':') != std::string::npos && listen_address[0] != '[';
+  add(v6 ? "[" + listen_address + "]" : listen_address);
+  if (listen_address == "0.0.0.0" || listen_address == "::" || listen_address == "[::]" ||
+      listen_address.empty()) {
+    char name[256] = {};
+    if (gethostname(name, sizeof name - 1) == 0 && name[0] != '\0') add(name);
+    for (const std::string& a : interface_addresses()) add(a);
+  }
+  for (const std::string& e : extra) add(e);
+}
+
+void AllowedHosts::add(const std::string& name) {
+  const std::string h = host_of_header(name);
+  if (!h.empty()) names_.insert(h);
+}
+
+bool AllowedHosts::allows(const std::string& host_header) const {
+  const std::string h = host_of_header(host_header);
+  return !h.empty() && names_.count(h) > 0;
+}
+
+std::string AllowedHosts::describe() const {
+  std::string out;
+  for (const std::string& n : names_) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+}  // namespace host::server

@@ -1,0 +1,163 @@
+#!/usr/bin/env python3
+"""The API examples of docs/user-guide.md exactly as printed: every `TOKEN=...` and `curl ...`
+line of the `engraver serve` section runs with bash and the real curl against `engraver
+serve` on loopback (one `engraver sim --realtime` machine). Only the data folder, the port
+and the files' contents are this test's: the files are made under the names the examples
+use (board.ngc larger than 8 KB, the blinky board from data/).
+
+Exit 77 (ctest: skipped) when curl is not installed.
+Usage: guide_examples_test.py ENGRAVER USER_GUIDE.md
+"""
+import json
+import math
+import os
+import re
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+
+SKIP = 77
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+DOC_DATA, DOC_PORT = "/srv/engraver", "127.0.0.1:8080"
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def wait(predicate, timeout_s, what):
+    end = time.monotonic() + timeout_s
+    while time.monotonic() < end:
+        if predicate():
+            return
+        time.sleep(0.05)
+    raise AssertionError("timed out waiting for " + what)
+
+
+def serve_examples(guide):
+    """The shell commands of the serve section's indented code: TOKEN= and curl lines,
+    continuation lines joined as bash would read them."""
+    text = open(guide, encoding="utf-8").read()
+    start = text.index("## `engraver serve")
+    end = text.find("\n## ", start + 1)
+    section = text[start:end if end > 0 else len(text)]
+    commands, current = [], None
+    for line in section.split("\n"):
+        code = line[4:] if line.startswith("    ") else None
+        if current is not None:
+            current += "\n" + code
+            if not code.endswith("\\"):
+                commands.append(current)
+                current = None
+            continue
+        if code is None or not re.match(r"(TOKEN=|curl )", code.strip()):
+            continue
+        if code.endswith("\\"):
+            current = code.strip()
+        else:
+            commands.append(code.strip())
+    return commands
+
+
+def board_ngc():
+    """A drawing larger than 8 KB: a circle of 1 500 segments (about 12 s at 10 mm/s)."""
+    lines = ["G21", "G90", "G0 Z2", "G0 X45 Y25", "G1 Z-0.1 F100"]
+    for i in range(1, 1501):
+        a = 2 * math.pi * i / 1500
+        lines.append(f"G1 X{25 + 20 * math.cos(a):.4f} Y{25 + 20 * math.sin(a):.4f} F600")
+    return "\n".join(lines + ["G0 Z2", ""])
+
+
+def get(base, path):
+    with urllib.request.urlopen(base + path, timeout=10) as r:
+        return json.load(r)
+
+
+def machine_online(base):
+    try:
+        return get(base, "/api/status")["machines"][0]["link"] == "online"
+    except OSError:  # not listening yet
+        return False
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    engraver, guide = sys.argv[1], sys.argv[2]
+    if shutil.which("curl") is None:
+        print("curl not installed: skipped")
+        return SKIP
+    commands = serve_examples(guide)
+    curls = [c for c in commands if c.startswith("curl ")]
+    assert len(curls) >= 4 and commands[0].startswith("TOKEN="), commands
+    procs = []
+    tmp = tempfile.mkdtemp(prefix="engraver-guide-")
+    try:
+        sim_port, http_port = free_port(), free_port()
+        procs.append(subprocess.Popen(
+            [engraver, "sim", "--realtime", "--listen", f"127.0.0.1:{sim_port}"],
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+        data = os.path.join(tmp, "data")
+        procs.append(subprocess.Popen(
+            [engraver, "serve", "--data", data, "--listen", f"127.0.0.1:{http_port}",
+             "--machine", f"tcp://127.0.0.1:{sim_port} name=left"],
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+        base = f"http://127.0.0.1:{http_port}"
+        wait(lambda: os.path.exists(os.path.join(data, "token")), 10, "the server's token")
+        wait(lambda: machine_online(base), 20, "the server up and its machine online")
+        work = os.path.join(tmp, "work")
+        os.mkdir(work)
+        with open(os.path.join(work, "board.ngc"), "w") as f:
+            f.write(board_ngc())
+        assert os.path.getsize(os.path.join(work, "board.ngc")) > 8 * 1024
+        for name in ("blinky-F.Cu.gbr", "blinky.drl", "blinky-Edge.Cuts.gbr", "blinky.zip"):
+            shutil.copy(os.path.join(DATA, name), work)
+
+        prelude = [c for c in commands if c.startswith("TOKEN=")]
+        jobs_before = 0
+        for cmd in curls:
+            print("$ " + cmd)
+            if "/control" in cmd:
+                # A control example steers job 1: it must be on its machine by now.
+                wait(lambda: [j["id"] for j in get(base, "/api/status")["running"]] == [1], 20,
+                     "job 1 on its machine")
+            script = "\n".join(prelude + [cmd]).replace(DOC_DATA, data).replace(
+                DOC_PORT, f"127.0.0.1:{http_port}")
+            assert DOC_PORT not in script and DOC_DATA not in script, script
+            run = subprocess.run(["bash", "-c", script], cwd=work, capture_output=True,
+                                 text=True, timeout=60)
+            print(run.stdout)
+            assert run.returncode == 0, run.stderr
+            answer = json.loads(run.stdout)
+            assert "error" not in answer, answer
+            if "/api/jobs?" in cmd or cmd.rstrip().endswith("/api/jobs"):
+                jobs_before += 1
+                assert answer["id"] == jobs_before, answer
+        # What the examples did: the drawing on the machine, held; the boards queued.
+        wait(lambda: get(base, "/api/status")["running"][0]["machine_state"] == "held", 10,
+             "job 1 held")
+        jobs = {j["id"]: j for j in get(base, "/api/jobs")["jobs"]}
+        assert jobs[1]["name"] == "board.ngc" and jobs[1]["priority"] == 5, jobs[1]
+        boards = [j for j in jobs.values() if j["input_file"] == "board.json"]
+        assert len(boards) == 2 and all(j["state"] == "queued" for j in boards), boards
+        print(f"guide examples passed: {len(curls)} curl commands")
+        return 0
+    finally:
+        for p in reversed(procs):
+            p.terminate()
+        for p in procs:
+            try:
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                p.kill()
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
