@@ -18,6 +18,7 @@
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
 #include "host/cli/terminal_text.h"
+#include "host/lib/pcb/board_check.h"
 #include "host/lib/pcb/board_files.h"  // BoardFileSet, read_board_file
 #include "host/lib/pcb/isolation_check.h"
 #include "host/lib/pcb/pcb_file_names.h"
@@ -315,12 +316,7 @@ std::string g_last_title;
 double g_last_check_tol_mm = 0;
 double g_last_isolation_z_mm = 0;
 
-// The swept tool may reach into the copper by the fit tolerance and 1 um of rounding (the
-// planned paths keep the clearance on top, the simulated ones use it for the machine's
-// contour error).
-double isolation_check_tolerance_mm(const pcb::BoardOptions& o) {
-  return o.fit_tolerance_mm + 0.001;
-}
+using pcb::isolation_check_tolerance_mm;
 
 // ---- engraver board ----
 
@@ -388,16 +384,17 @@ void run_board(const BoardCommand& a) {
   j["isolation_g1_bytes_every_vertex"] = w.g1_vertex_bytes;
   j["chord_tolerance_mm"] = a.tol_mm;
   bool check_ok = true;
+  pcb::IsolationCheck c;
   if (!a.no_check && !job.copper_machine_nm.empty()) {
     const double tol = isolation_check_tolerance_mm(o);
-    const pcb::IsolationCheck c = pcb::check_isolation(
-        job.copper_machine_nm, job.isolation_paths_mm, job.tool_radius_mm, tol);
+    c = pcb::check_planned_isolation(job, o);
     j["check"] = {{"tolerance_mm", tol},
                   {"islands", c.islands},
                   {"copper_hits", c.hits.size()},
                   {"unseparated_pairs", c.unseparated.size()}};
     check_ok = c.hits.empty() && c.unseparated.size() <= job.report.narrow_gaps.size();
-    if (!c.ok()) std::cerr << "engraver: isolation check: " << pcb::describe(c) << "\n";
+    if (!c.ok() && c.hits.empty())
+      std::cerr << "engraver: isolation check: " << pcb::describe(c) << "\n";
   }
   std::filesystem::create_directories(a.outdir);
   const std::string base = (std::filesystem::path(a.outdir) / b.name).string();
@@ -439,6 +436,11 @@ void run_board(const BoardCommand& a) {
     if (!a.no_plot) std::cout << "  plot: " << base << ".board.svg, .png; ";
     std::cout << "report: " << base << ".board.json\n";
   }
+  try {
+    pcb::refuse_copper_hits(c, "the planned isolation paths");
+  } catch (const pcb::CopperCutError& e) {
+    throw CommandFailure(kExitCutsCopper, e.what());
+  }
   if (!check_ok) throw CommandFailure(kExitJobFailed, "the isolation check failed (see above)");
 }
 
@@ -472,8 +474,8 @@ void add_board_command(CLI::App& app) {
       "Example: engraver board board-F.Cu.gbr board-PTH.drl board-Edge.Cuts.gbr -o out\n"
       "         engraver board --side bottom samples/pcb/multivibrator/\n"
       "Then: engraver run board/ (simulate) or engraver send board/ --to tcp://HOST:PORT.\n"
-      "Exit: 0 planned and checked, 1 refused (narrow gaps, work area, check failed), 2 bad "
-      "input.");
+      "Exit: 0 planned and checked, 1 refused (narrow gaps, work area, islands left joined), "
+      "2 bad input, 8 the tool would cut copper.");
   cmd->callback([a] { run_board(*a); });
 }
 
@@ -581,6 +583,14 @@ JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const Ma
   g_last_title = b.name;
   g_last_check_tol_mm = isolation_check_tolerance_mm(o);
   g_last_isolation_z_mm = -o.isolation_depth_mm;
+  try {
+    // Refused before a byte is sent (send) or the machine is simulated (run).
+    const int tol_um = static_cast<int>(std::lround(d.chord_tol_mm * 1000));
+    pcb::refuse_copper_hits(pcb::check_controller_isolation(*g_last_job, o, tol_um),
+                            fmt::format("the controller's points at {} mm chords", d.chord_tol_mm));
+  } catch (const pcb::CopperCutError& e) {
+    throw CommandFailure(kExitCutsCopper, b.name + ": " + e.what());
+  }
   const pcb::BoardReport& r = g_last_job->report;
   std::cerr << fmt::format(
       "engraver: board {}: mount {} first; {} contours, {} holes, {} tool changes\n", b.name,
@@ -660,7 +670,8 @@ bool print_board_points_if_pcb(const std::string& input, double tol_mm, bool csv
   MachineDefaults d;
   d.work_w_mm = d.work_h_mm = 1e6;  // points in the file frame: no work area applies
   const BoardFiles b = read_input(input);
-  const pcb::BoardOptions o = board_options(a, d, b);
+  pcb::BoardOptions o = board_options(a, d, b);
+  o.travel_width_mm = o.travel_height_mm = d.work_w_mm;
   const pcb::BoardJob job = plan(b, o);
   for (const pcb::NarrowGap& g : job.report.narrow_gaps)
     std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation) << "\n";

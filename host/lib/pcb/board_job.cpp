@@ -215,6 +215,7 @@ void check_options(const BoardOptions& o) {
     throw PlanError("the travel height and the drill start height must be above the board");
   if (!(o.tab_height_mm >= 0 && o.tab_height_mm < o.cutout_depth_mm))
     throw PlanError("the tab height must be below the cut-out depth");
+  check_work_area(o.work_width_mm, o.work_height_mm, o.travel_width_mm, o.travel_height_mm);
 }
 
 }  // namespace

@@ -140,6 +140,79 @@ TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {
   EXPECT_NE(r.out.find("simulated isolation cuts"), std::string::npos) << r.out;
 }
 
+// Without an outline nothing cuts below the drill start height, so the pen-down threshold
+// once fell above it: the travel from hole to hole (at +0.5 mm) counted as cutting, in the
+// traced length, the contour error (mm) and the plot. Copper with drilling, and drilling
+// alone.
+TEST(BoardCli, RunOfABoardWithoutOutlineCountsNoDrillTravelAsCutting) {
+  const std::string dir = write_board("no-outline");
+  std::filesystem::remove(dir + "/t-Edge.Cuts.gbr");
+  const std::string drill_only = dir + "/drill-only";
+  std::filesystem::create_directories(drill_only);
+  std::filesystem::copy_file(dir + "/t-PTH.drl", drill_only + "/d.drl");
+  for (const std::string& input : {dir, drill_only}) {
+    const ToolRun r = run("run " + input + " -o " + dir + "/out");
+    ASSERT_EQ(r.code, 0) << r.err << r.out;
+    const nlohmann::json j = nlohmann::json::parse(
+        std::ifstream(dir + "/out/" + std::filesystem::path(input).filename().string() + ".json"));
+    EXPECT_NEAR(j["traced_cut_mm"].get<double>(), j["planned_cut_mm"].get<double>(), 0.5) << input;
+    EXPECT_LT(j["max_contour_error_um"].get<double>(), 10.0) << input;
+    EXPECT_GT(j["traced_rapid_mm"].get<double>(), 20.0) << input;  // hole to hole
+  }
+}
+
+// A job that would cut copper is a failed job (exit 8), refused before anything runs: with
+// no clearance and 30 um chords, the controller's points round the pads sag into the copper.
+// `send` refuses before it connects (the address here would fail with 6), `run` before it
+// simulates.
+TEST(BoardCli, AJobWhoseControllerPointsCutCopperIsRefusedBySendAndRun) {
+  const std::string dir = write_board("cuts", "%ADD13C,0.200000*%\nD13*\nX14000000Y14000000D03*\n");
+  const std::string options = " --clearance 0 --tol 0.03";
+  const ToolRun send = run("send " + dir + options + " --to tcp://127.0.0.1:1");
+  EXPECT_EQ(send.code, 8) << send.err;
+  EXPECT_NE(send.err.find("the job would cut copper: the controller's points at 0.03 mm chords "
+                          "cut into copper in "),
+            std::string::npos)
+      << send.err;
+  EXPECT_EQ(send.err.find("cannot connect"), std::string::npos) << send.err;
+  const ToolRun sim = run("run " + dir + options + " -o " + dir + "/out");
+  EXPECT_EQ(sim.code, 8) << sim.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out")) << "simulated although refused";
+  // The default chords (1 um) keep the tool off the copper.
+  EXPECT_EQ(run("send " + dir + " --clearance 0 --to tcp://127.0.0.1:1").code, 6);
+}
+
+// `run`'s own check of the simulated tool path: on a real board without clearance the
+// machine's contour error takes the tool into the copper (32 places, 5.9 um), which the
+// controller's points alone do not show; the job is failed (exit 8), not reported as done.
+TEST(BoardCli, RunFailsAJobWhoseSimulatedPathCutsCopper) {
+  const std::string board =
+      std::string(ENGRAVER_SOURCE_DIR) + "/../shared/samples/pcb/multivibrator";
+  if (!std::filesystem::is_directory(board)) GTEST_SKIP() << board << " (shared samples) absent";
+  const std::string out = testing::TempDir() + "/" + std::to_string(getpid()) + "-sim-cuts";
+  const ToolRun r = run("run " + board + " --clearance 0 -o " + out);
+  EXPECT_EQ(r.code, 8) << r.err;
+  EXPECT_NE(r.err.find("the job would cut copper: the simulated tool path cut into copper in "),
+            std::string::npos)
+      << r.err;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out + "/multivibrator.json"));
+  EXPECT_GT(j["simulated_isolation_check"]["copper_hits"].get<int>(), 0);
+}
+
+// A work area beyond the controller's travel is refused by `board` as by `run` (one check):
+// `board` once planned it and exited 0, and `run` then refused the job.
+TEST(BoardCli, AWorkAreaBeyondTheControllersTravelIsRefusedByBoardAsByRun) {
+  const std::string dir = write_board("work");
+  for (const std::string command : {"board", "run"}) {
+    const ToolRun r = run(command + " " + dir + " -o " + dir + "/out --work 300 300");
+    EXPECT_EQ(r.code, 1) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("--work 300 300 mm is beyond the controller's travel of 297 x 210 mm"),
+              std::string::npos)
+        << command << ": " << r.err;
+  }
+  EXPECT_EQ(run("board " + dir + " -o " + dir + "/out --work 297 210").code, 0);
+}
+
 // `run` (and `send`, which plans the same way) on PCB files plans the job that `board` showed:
 // the board's feed and margin where none is given, the given ones where they are.
 TEST(BoardCli, RunPlansTheBoardThatTheBoardCommandShowed) {
