@@ -43,7 +43,15 @@ struct BoardFiles {
   std::string name;          // for output files and the job title
   std::string side;          // from a "top:" / "bottom:" prefix
   std::vector<std::string> notes;
+  std::vector<std::string> warnings;  // the readers' (a parameter ignored, a tool left out)
 };
+
+// Everything said about a board's files, on stderr.
+void print_notes(const BoardFiles& b) {
+  for (const std::string& n : b.notes) std::cerr << "engraver: note: " << printable(n) << "\n";
+  for (const std::string& w : b.warnings)
+    std::cerr << "engraver: warning: " << printable(w) << "\n";
+}
 
 PcbLayer read_layer(const std::string& path, LayerKind forced) {
   try {
@@ -53,8 +61,20 @@ PcbLayer read_layer(const std::string& path, LayerKind forced) {
   }
 }
 
+// The reader's warnings about a layer (its other notes are for `engraver info`).
+const PcbLayer& take_warnings(BoardFiles* b, const PcbLayer& l) {
+  const std::string warning = "warning: ";
+  for (const std::string& n : l.notes) {
+    const size_t at = n.find(warning);
+    if (at != std::string::npos)
+      b->warnings.push_back(l.path + ": " + n.substr(0, at) + n.substr(at + warning.size()));
+  }
+  return l;
+}
+
 void add_layer(BoardFiles* b, PcbLayer l, bool from_directory) {
   const std::string path = l.path;
+  take_warnings(b, l);
   if (b->layers.add(std::move(l))) return;
   if (from_directory) {
     b->notes.push_back(path + ": not a copper, drill or outline layer: left out");
@@ -72,8 +92,10 @@ bool has_prefix(const std::string& s, const std::string& p) {
 }
 
 // "bottom:a,b" -> side "bottom", files {a, b}; a directory -> its PCB files.
+// left_out: a directory's files that are neither Gerber nor Excellon (by name or content).
 std::vector<std::string> expand_input(const std::string& input, std::string* side, bool* directory,
-                                      std::string* stripped = nullptr) {
+                                      std::string* stripped = nullptr,
+                                      std::vector<std::string>* left_out = nullptr) {
   std::string rest = input;
   for (const char* s : {"top:", "bottom:"}) {
     if (has_prefix(rest, s)) {
@@ -88,10 +110,14 @@ std::vector<std::string> expand_input(const std::string& input, std::string* sid
     for (const auto& e : std::filesystem::directory_iterator(rest)) {
       if (!e.is_regular_file()) continue;
       const std::string p = e.path().string();
-      if (pcb::pcb_file_format(p) == pcb::PcbFileFormat::kNone) continue;
+      if (pcb::pcb_file_format(p) == pcb::PcbFileFormat::kNone) {
+        if (left_out) left_out->push_back(p);
+        continue;
+      }
       files.push_back(p);
     }
     std::sort(files.begin(), files.end());
+    if (left_out) std::sort(left_out->begin(), left_out->end());
     return files;
   }
   size_t start = 0;
@@ -130,7 +156,11 @@ BoardFiles read_input(const std::string& input, const std::string& side_asked = 
   BoardFiles b;
   bool directory = false;
   std::string stripped;
-  const std::vector<std::string> files = expand_input(input, &b.side, &directory, &stripped);
+  std::vector<std::string> left_out;
+  const std::vector<std::string> files =
+      expand_input(input, &b.side, &directory, &stripped, &left_out);
+  for (const std::string& f : left_out)
+    b.notes.push_back(f + ": neither Gerber nor Excellon (by its name or content): left out");
   if (files.empty()) throw CommandFailure(kExitUsage, input + ": no PCB files there");
   const LayerKind wanted_copper = copper_for_side(side_asked.empty() ? b.side : side_asked, files);
   for (const std::string& f : files) {
@@ -163,6 +193,16 @@ BoardFiles read_input(const std::string& input, const std::string& side_asked = 
     add_layer(&b, std::move(l), directory);
   }
   b.name = board_name(directory ? stripped : files.front());
+  if (directory && b.layers.copper_top.empty() && b.layers.copper_bottom.empty()) {
+    // A board folder without copper is a folder whose copper was not recognised: planning
+    // its holes alone would look like success.
+    std::string msg = input +
+                      ": no copper layer for the job among the folder's files (name it with "
+                      "--top or --bottom; to cut only holes or an outline, give that file "
+                      "itself)";
+    for (const std::string& n : b.notes) msg += "\n  " + n;
+    throw CommandFailure(kExitUsage, msg);
+  }
   return b;
 }
 
@@ -344,21 +384,26 @@ void run_board(const BoardCommand& a) {
                        &one.layers.outline})
       for (PcbLayer& l : *kind) b.layers.add(std::move(l));
     b.notes.insert(b.notes.end(), one.notes.begin(), one.notes.end());
+    b.warnings.insert(b.warnings.end(), one.warnings.begin(), one.warnings.end());
     if (b.name.empty()) b.name = one.name;
     if (b.side.empty()) b.side = one.side;
   }
   // A layer named by its option is that kind, whatever its name or attributes say.
-  if (!a.top.empty()) b.layers.copper_top.push_back(read_layer(a.top, LayerKind::kCopperTop));
+  if (!a.top.empty())
+    b.layers.copper_top.push_back(take_warnings(&b, read_layer(a.top, LayerKind::kCopperTop)));
   if (!a.bottom.empty())
-    b.layers.copper_bottom.push_back(read_layer(a.bottom, LayerKind::kCopperBottom));
-  if (!a.outline.empty()) b.layers.outline.push_back(read_layer(a.outline, LayerKind::kOutline));
-  for (const std::string& d : a.drills) b.layers.drill.push_back(read_layer(d, LayerKind::kDrill));
+    b.layers.copper_bottom.push_back(
+        take_warnings(&b, read_layer(a.bottom, LayerKind::kCopperBottom)));
+  if (!a.outline.empty())
+    b.layers.outline.push_back(take_warnings(&b, read_layer(a.outline, LayerKind::kOutline)));
+  for (const std::string& d : a.drills)
+    b.layers.drill.push_back(take_warnings(&b, read_layer(d, LayerKind::kDrill)));
   if (b.name.empty()) {
     for (const std::string& f : {a.top, a.bottom, a.outline})
       if (!f.empty() && b.name.empty()) b.name = board_name(f);
     if (b.name.empty() && !a.drills.empty()) b.name = board_name(a.drills.front());
   }
-  for (const std::string& n : b.notes) std::cerr << "engraver: note: " << printable(n) << "\n";
+  print_notes(b);
   MachineDefaults md = a.machine;
   md.work_w_mm = a.work_mm[0];
   md.work_h_mm = a.work_mm[1];
@@ -577,7 +622,7 @@ bool input_exists(const std::string& input) {
 
 JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d) {
   const BoardFiles b = read_input(input, args.side);
-  for (const std::string& n : b.notes) std::cerr << "engraver: note: " << printable(n) << "\n";
+  print_notes(b);
   const pcb::BoardOptions o = board_options(args, d, b);
   g_last_job = plan(b, o);
   g_last_title = b.name;

@@ -250,7 +250,9 @@ PcbLayer GerberReader::read() {
   layer.units = units_;
   layer.apertures_or_tools = static_cast<int>(apertures_.size());
   layer.arc_tolerance_nm = opt_.arc_tolerance_nm;
-  if (x2_kind_given_) {
+  if (opt_.forced_kind != LayerKind::kUnknown) {
+    layer.kind = opt_.forced_kind;
+  } else if (x2_kind_given_) {
     layer.kind = x2_kind_;
   } else {
     layer.kind = layer_kind_from_file_name(path_);

@@ -147,14 +147,11 @@ TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {
 TEST(BoardCli, RunOfABoardWithoutOutlineCountsNoDrillTravelAsCutting) {
   const std::string dir = write_board("no-outline");
   std::filesystem::remove(dir + "/t-Edge.Cuts.gbr");
-  const std::string drill_only = dir + "/drill-only";
-  std::filesystem::create_directories(drill_only);
-  std::filesystem::copy_file(dir + "/t-PTH.drl", drill_only + "/d.drl");
-  for (const std::string& input : {dir, drill_only}) {
+  for (const std::string& input : {dir, dir + "/t-PTH.drl"}) {
     const ToolRun r = run("run " + input + " -o " + dir + "/out");
     ASSERT_EQ(r.code, 0) << r.err << r.out;
     const nlohmann::json j = nlohmann::json::parse(
-        std::ifstream(dir + "/out/" + std::filesystem::path(input).filename().string() + ".json"));
+        std::ifstream(dir + "/out/" + std::filesystem::path(input).stem().string() + ".json"));
     EXPECT_NEAR(j["traced_cut_mm"].get<double>(), j["planned_cut_mm"].get<double>(), 0.5) << input;
     EXPECT_LT(j["max_contour_error_um"].get<double>(), 10.0) << input;
     EXPECT_GT(j["traced_rapid_mm"].get<double>(), 20.0) << input;  // hole to hole
@@ -211,6 +208,55 @@ TEST(BoardCli, AWorkAreaBeyondTheControllersTravelIsRefusedByBoardAsByRun) {
         << command << ": " << r.err;
   }
   EXPECT_EQ(run("board " + dir + " -o " + dir + "/out --work 297 210").code, 0);
+}
+
+// EAGLE and Fritzing write their drill file as .txt starting with '%' then M48: recognised
+// by its content in a folder (it was left out without a word: no holes, exit 0).
+TEST(BoardCli, AFoldersTxtDrillFileIsRecognisedByItsContent) {
+  const std::string dir = write_board("txt-drill");
+  std::filesystem::remove(dir + "/t-PTH.drl");
+  std::ofstream(dir + "/t.txt") << "%\n" << kDrillInch;
+  std::ofstream(dir + "/readme.txt") << "Made with EAGLE\n";
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["holes"], 3);
+  // Every file left out is named, with the reason.
+  EXPECT_NE(r.err.find("readme.txt: neither Gerber nor Excellon (by its name or content): left "
+                       "out"),
+            std::string::npos)
+      << r.err;
+}
+
+// A folder job whose copper is not recognised is not a success: planning its holes alone
+// looked like one (exit 0).
+TEST(BoardCli, AFolderWithoutCopperIsRefused) {
+  const std::string dir = write_board("no-copper");
+  std::filesystem::remove(dir + "/t-F.Cu.gbr");
+  std::string plain = kTopCopper;  // no X2 file function, a name that says nothing
+  plain.replace(plain.find("%EXTRA%"), 7, "");
+  plain.replace(plain.find("%TF.FileFunction,Copper,L1,Top*%\n"), 33, "");
+  std::ofstream(dir + "/t-layer1.gbr") << plain;
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("no copper layer for the job among the folder's files"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("t-layer1.gbr: neither its name nor an X2 file function says"),
+            std::string::npos)
+      << r.err;
+}
+
+// An option names the layer whatever the file's name says: a copper file named "outline"
+// given with --top is copper (it was read as outline strokes).
+TEST(BoardCli, AnExplicitTopOptionWinsOverAnOutlineName) {
+  const std::string dir = write_board("explicit");
+  std::string top = kTopCopper;
+  top.replace(top.find("%EXTRA%"), 7, "");
+  top.replace(top.find("%TF.FileFunction,Copper,L1,Top*%\n"), 33, "");
+  std::ofstream(dir + "/board-outline-copper.gbr") << top;
+  const ToolRun r =
+      run("board --top " + dir + "/board-outline-copper.gbr -o " + dir + "/out --json --no-plot");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["islands"], 2);
 }
 
 // `run` (and `send`, which plans the same way) on PCB files plans the job that `board` showed:
