@@ -121,7 +121,7 @@ class GerberReader {
 
   // Operations.
   double number(const std::string& s, const char* what) const;
-  cInt coordinate(const std::string& s, bool is_x) const;
+  cInt coordinate(const std::string& s, bool is_x);
   void operate(int d, const std::string* x, const std::string* y, const std::string* i,
                const std::string* j);
   void draw_line(IntPoint from, IntPoint to);
@@ -179,6 +179,14 @@ class GerberReader {
 
   // Image offset (%OF, deprecated).
   cInt offset_x_ = 0, offset_y_ = 0;
+  // Deprecated image transforms (%IR, %MI, %SF), applied to the finished image.
+  int rotation_deg_ = 0;                      // 0, 90, 180, 270 counterclockwise about the origin
+  bool mirror_a_ = false, mirror_b_ = false;  // x -> -x, y -> -y
+  double scale_a_ = 1, scale_b_ = 1;
+  std::vector<std::string> transforms_;  // the non-identity ones, for the message
+  void image_transform(const std::string& which);
+  void need_units(const std::string& what);
+  void transform_image(Paths& paths) const;
 
   LayerKind x2_kind_ = LayerKind::kUnknown;
   bool x2_kind_given_ = false;
@@ -265,6 +273,7 @@ PcbLayer GerberReader::read() {
     layer.polygons_nm = evaluate(batches_);
   }
   if (offset_x_ != 0 || offset_y_ != 0) translate_paths(layer.polygons_nm, offset_x_, offset_y_);
+  transform_image(layer.polygons_nm);
   for (const Note& nt : notes_) {
     std::string s = "line " + std::to_string(nt.first_line) + ": " + nt.text;
     if (nt.count > 1) s += " (" + std::to_string(nt.count) + " times)";
@@ -376,17 +385,35 @@ void GerberReader::extended_command(const std::string& cmd) {
   } else if (code == "TF" || code == "TA" || code == "TO" || code == "TD") {
     attribute(cmd);
   } else if (code == "IP") {
-    if (arg == "NEG") fail("negative image polarity (%IPNEG) is not supported");
+    if (arg == "NEG") {
+      fail(
+          "%IPNEG (deprecated negative image: what is drawn is clear, everything around it "
+          "copper, to an extent the file does not define) is not supported: write the layer "
+          "with positive polarity");
+    }
     if (arg != "POS") fail("image polarity '" + arg + "' is neither POS nor NEG");
     note("%IPPOS (deprecated image polarity) ignored");
+  } else if (code == "IC") {
+    // Input code: ASCII is what every reader reads (OrCAD, P-CAD, Mentor write %ICAS*%).
+    if (arg != "AS") fail("input code %IC" + arg + " is not supported (only ASCII, %ICAS)");
+    note("warning: %ICAS (deprecated input code: ASCII) ignored");
   } else if (code == "IN" || code == "LN") {
     note("%" + code + " (deprecated name) ignored");
   } else if (code == "MI") {
     const std::string a = strip_all_space(arg);
-    if (a != "A0B0" && a != "A0" && a != "B0" && !a.empty()) {
-      fail("mirror image (%MI" + a + ") is not supported");
+    for (const char axis : {'A', 'B'}) {
+      const size_t at = a.find(axis);
+      if (at == std::string::npos) continue;
+      const std::string v = a.substr(at + 1, 1);
+      if (v != "0" && v != "1") fail("mirror image '%MI" + a + "': A and B take 0 or 1");
+      (axis == 'A' ? mirror_a_ : mirror_b_) = v == "1";
     }
-    note("%MI without mirroring (deprecated) ignored");
+    if (mirror_a_ || mirror_b_) {
+      image_transform("%MI" + a);
+      note("warning: %MI" + a + " (deprecated mirror image) applied");
+    } else {
+      note("%MI without mirroring (deprecated) ignored");
+    }
   } else if (code == "SF") {
     double a = 1, b = 1;
     for (const char axis : {'A', 'B'}) {
@@ -396,8 +423,16 @@ void GerberReader::extended_command(const std::string& cmd) {
       while (end < arg.size() && arg[end] != 'A' && arg[end] != 'B') ++end;
       (axis == 'A' ? a : b) = number(arg.substr(at + 1, end - at - 1), "scale factor");
     }
-    if (a != 1 || b != 1) fail("scale factor (%SF" + arg + ") other than 1 is not supported");
-    note("%SF with scale 1 (deprecated) ignored");
+    if (!(a > 0 && a <= 1000 && b > 0 && b <= 1000))
+      fail("scale factor %SF" + arg + " must be above 0 and at most 1000");
+    if (a != 1 || b != 1) {
+      scale_a_ = a;
+      scale_b_ = b;
+      image_transform("%SF" + arg);
+      note("warning: %SF" + arg + " (deprecated scale factor) applied");
+    } else {
+      note("%SF with scale 1 (deprecated) ignored");
+    }
   } else if (code == "OF") {
     double a = 0, b = 0;
     for (const char axis : {'A', 'B'}) {
@@ -407,14 +442,22 @@ void GerberReader::extended_command(const std::string& cmd) {
       while (end < arg.size() && arg[end] != 'A' && arg[end] != 'B') ++end;
       (axis == 'A' ? a : b) = number(arg.substr(at + 1, end - at - 1), "offset");
     }
-    if (unit_nm_ == 0 && (a != 0 || b != 0)) fail("%OF before the units are set");
+    if (a != 0 || b != 0) need_units("%OF");
     offset_x_ = static_cast<cInt>(std::llround(a * unit_nm_));
     offset_y_ = static_cast<cInt>(std::llround(b * unit_nm_));
+    if (a != 0 || b != 0) image_transform("%OF" + arg);
     note("%OF image offset (deprecated) applied");
   } else if (code == "IR") {
-    if (number(arg, "image rotation") != 0)
-      fail("image rotation (%IR" + arg + ") is not supported");
-    note("%IR0 (deprecated) ignored");
+    const double deg = number(arg, "image rotation");
+    if (deg != 0 && deg != 90 && deg != 180 && deg != 270)
+      fail("image rotation %IR" + arg + " must be 0, 90, 180 or 270");
+    rotation_deg_ = static_cast<int>(deg);
+    if (rotation_deg_ != 0) {
+      image_transform("%IR" + arg);
+      note("warning: %IR" + arg + " (deprecated image rotation) applied");
+    } else {
+      note("%IR0 (deprecated) ignored");
+    }
   } else if (code == "AS") {
     if (arg != "AXBY") fail("axis select (%AS" + arg + ") other than AXBY is not supported");
     note("%ASAXBY (deprecated) ignored");
@@ -425,11 +468,66 @@ void GerberReader::extended_command(const std::string& cmd) {
     if (!identity) {
       fail("aperture transformation %" + cmd + " is not supported (only LMN, LR0, LS1)");
     }
+  } else if (code == "KO" && arg.empty()) {
+    note("warning: %KO (deprecated knockout, off) ignored");
   } else if (code == "IJ" || code == "KO") {
-    fail("%" + code + " (deprecated image justify / knockout) is not supported");
+    fail("%" + cmd.substr(0, 20) +
+         " (deprecated image justify / knockout: it clears or moves the image by rules the "
+         "current specification no longer defines) is not supported");
+  } else if (code == "AB") {
+    fail("block aperture %" + cmd.substr(0, 20) +
+         " is not supported yet: flatten the blocks when writing the file (most CAD programs "
+         "can), or write it without them");
   } else {
     fail("unknown extended command '%" + cmd.substr(0, 20) + "'");
   }
+}
+
+// A deprecated transform of the whole image. One alone is applied; the specification does not
+// say in which order several combine, so a file with more is refused rather than guessed.
+void GerberReader::image_transform(const std::string& which) {
+  for (const std::string& t : transforms_)
+    if (t.substr(0, 3) == which.substr(0, 3)) return;  // the same parameter again
+  transforms_.push_back(which);
+  if (transforms_.size() > 1) {
+    fail("the deprecated image transforms " + transforms_[0] + " and " + transforms_[1] +
+         " together are not supported (the order they combine in is not defined)");
+  }
+}
+
+// Scale, mirror, rotate about the origin; exact for the quarter turns and mirrors.
+void GerberReader::transform_image(Paths& paths) const {
+  if (rotation_deg_ == 0 && !mirror_a_ && !mirror_b_ && scale_a_ == 1 && scale_b_ == 1) return;
+  for (Path& p : paths) {
+    for (IntPoint& v : p) {
+      cInt x = scale_a_ == 1 ? v.X : static_cast<cInt>(std::llround(v.X * scale_a_));
+      cInt y = scale_b_ == 1 ? v.Y : static_cast<cInt>(std::llround(v.Y * scale_b_));
+      if (mirror_a_) x = -x;
+      if (mirror_b_) y = -y;
+      switch (rotation_deg_) {
+        case 90:
+          v = IntPoint(-y, x);
+          break;
+        case 180:
+          v = IntPoint(-x, -y);
+          break;
+        case 270:
+          v = IntPoint(y, -x);
+          break;
+        default:
+          v = IntPoint(x, y);
+      }
+    }
+    if (mirror_a_ != mirror_b_) ClipperLib::ReversePath(p);  // a mirror flips orientation
+  }
+}
+
+// No %MO (nor G70/G71) before the first size: the format's legacy default, inch, as gerbv
+// and pcb2gcode read it.
+void GerberReader::need_units(const std::string& what) {
+  if (unit_nm_ != 0) return;
+  set_units(25.4e6, "the default");
+  note("warning: no units (%MO) before " + what + ": inch assumed (the format's old default)");
 }
 
 void GerberReader::set_units(double unit_nm, const char* how) {
@@ -491,13 +589,18 @@ void GerberReader::aperture_definition(const std::string& s) {
     }
   }
   if (name.empty()) fail("aperture D" + std::to_string(number_d) + " has no template name");
-  if (unit_nm_ == 0)
-    fail("aperture D" + std::to_string(number_d) + " defined before the units (%MO)");
+  need_units("aperture D" + std::to_string(number_d));
   const double u = unit_nm_, tol = opt_.arc_tolerance_nm;
-  for (double p : params) {
-    if (!(std::fabs(p * u) <= kMaxApertureNm)) {
+  // Only lengths are sizes: a polygon's vertex count and rotation, and a macro's parameters
+  // (angles among them: 45 deg is not 1.1 m in an inch file), are not; a macro's shape is
+  // checked once evaluated.
+  const bool standard = name == "C" || name == "R" || name == "O" || name == "P";
+  for (size_t i = 0; i < params.size() && standard; ++i) {
+    const bool length = name != "P" || i == 0 || i >= 3;
+    if (length && !(std::fabs(params[i] * u) <= kMaxApertureNm)) {
       fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
     }
+    if (!std::isfinite(params[i])) fail("aperture D" + std::to_string(number_d) + ": bad number");
   }
   Aperture ap;
   auto need = [&](size_t lo, size_t hi) {
@@ -549,6 +652,13 @@ void GerberReader::aperture_definition(const std::string& s) {
       ap.shape = evaluate_macro(m->second, params, u, tol);
     } catch (const MacroError& e) {
       fail(std::string(e.what()) + " (macro statement at line " + std::to_string(e.line) + ")");
+    }
+    for (const Path& p : ap.shape) {
+      for (const IntPoint& v : p) {
+        if (std::fabs(static_cast<double>(v.X)) > kMaxApertureNm ||
+            std::fabs(static_cast<double>(v.Y)) > kMaxApertureNm)
+          fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
+      }
     }
   }
   if (ap.type != 'M' && params.size() > hole_at) {
@@ -619,7 +729,7 @@ void GerberReader::step_repeat(const std::string& s) {
          " copies");
   }
   if (x == 1 && y == 1) return;
-  if (unit_nm_ == 0) fail("step-and-repeat before the units (%MO)");
+  need_units("step-and-repeat");
   if (!(std::fabs(i * unit_nm_ * x) <= kMaxCoordNm && std::fabs(j * unit_nm_ * y) <= kMaxCoordNm)) {
     fail("step-and-repeat '%SR" + s + "' reaches beyond 10 m");
   }
@@ -895,9 +1005,9 @@ double GerberReader::number(const std::string& s, const char* what) const {
   return v;
 }
 
-cInt GerberReader::coordinate(const std::string& s, bool is_x) const {
+cInt GerberReader::coordinate(const std::string& s, bool is_x) {
   if (!have_format_) fail("coordinates before the format (%FS)");
-  if (unit_nm_ == 0) fail("coordinates before the units (%MO or G70/G71)");
+  need_units("coordinates");
   const int integer = is_x ? x_int_ : y_int_, decimals = is_x ? x_dec_ : y_dec_;
   double nm = 0;
   if (s.find('.') != std::string::npos) {
@@ -1096,7 +1206,14 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
     if (best < 0) fail("single-quadrant arc (G74) with no centre giving 90 degrees or less");
   }
   const double r0 = std::hypot(a.x - c.x, a.y - c.y), r1 = std::hypot(b.x - c.x, b.y - c.y);
-  if (std::fabs(r0 - r1) > std::max(10000.0, 0.5 * std::max(r0, r1))) {
+  // A centre on the start or end point: a zero-radius arc, which gerbv and pcb2gcode draw as
+  // the straight line between its ends (a point when they meet).
+  const bool degenerate = std::min(r0, r1) <= 1000.0;
+  if (degenerate) {
+    note(
+        "warning: an arc whose centre is its own start or end point (zero radius) drawn as "
+        "a straight line");
+  } else if (std::fabs(r0 - r1) > std::max(10000.0, 0.5 * std::max(r0, r1))) {
     char msg[160];
     std::snprintf(msg, sizeof msg,
                   "arc end point is not on its circle (radius %.3f mm at the start, %.3f mm at "
@@ -1104,11 +1221,13 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
                   r0 * 1e-6, r1 * 1e-6);
     fail(msg);
   }
-  if (std::fabs(r0 - r1) > std::max(10000.0, 0.01 * r0)) {
+  if (!degenerate && std::fabs(r0 - r1) > std::max(10000.0, 0.01 * r0)) {
     note("an arc whose end is not on its circle (radii differ by more than 10 um)");
   }
   Path pts;
-  if (from != to || sweep != 0) {
+  if (degenerate) {
+    if (from != to) pts.push_back(to);
+  } else if (from != to || sweep != 0) {
     append_arc(pts, c, r0, r1, std::atan2(a.y - c.y, a.x - c.x), sweep, opt_.arc_tolerance_nm);
     if (!pts.empty()) pts.back() = to;
   }
