@@ -343,6 +343,7 @@ nlohmann::json report_json(const pcb::BoardJob& job, const pcb::BoardOptions& o)
   j["tabs"] = r.tabs;
   j["cutout_length_mm"] = r.cutout_length_mm;
   j["tool_changes"] = r.tool_changes;
+  j["notes"] = r.notes;
   j["steps"] = job.plan.steps.size();
   j["cut_length_mm"] = job.plan.cut_length_mm;
   j["rapid_length_mm"] = job.plan.rapid_length_mm;
@@ -409,6 +410,8 @@ void run_board(const BoardCommand& a) {
   md.work_h_mm = a.work_mm[1];
   const pcb::BoardOptions o = board_options(a.board, md, b);
   const pcb::BoardJob job = plan(b, o);
+  for (const std::string& n : job.report.notes)
+    std::cerr << "engraver: note: " << printable(n) << "\n";
   const double plan_cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   const double plan_wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
@@ -637,6 +640,7 @@ JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const Ma
     throw CommandFailure(kExitCutsCopper, b.name + ": " + e.what());
   }
   const pcb::BoardReport& r = g_last_job->report;
+  for (const std::string& n : r.notes) std::cerr << "engraver: note: " << printable(n) << "\n";
   std::cerr << fmt::format(
       "engraver: board {}: mount {} first; {} contours, {} holes, {} tool changes\n", b.name,
       r.first_tool, r.isolation_contours, r.holes, r.tool_changes);

@@ -248,10 +248,17 @@ std::string tool_label(const char* what, double diameter_mm) {
   return s.substr(0, 16);
 }
 
-BoardJob plan_board(const BoardLayers& layers, const BoardOptions& o) {
+BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
   check_options(o);
   BoardJob job;
   BoardReport& rep = job.report;
+  BoardLayers layers = given;
+  if (layers.outline && layers.outline->polygons_nm.empty()) {
+    // KiCad writes an Edge.Cuts file holding only its aperture list when no outline is drawn.
+    rep.notes.push_back(layers.outline->path +
+                        ": the outline layer draws nothing: planned without a cut-out");
+    layers.outline = nullptr;
+  }
   const double sx = o.side == BoardSide::kBottom ? -1.0 : 1.0;
   job.frame.sx = sx;
   const PcbLayer* copper = o.side == BoardSide::kBottom ? layers.copper_bottom : layers.copper_top;

@@ -191,6 +191,7 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
   const pcb::BoardOptions options = board_options(side, board, settings, work_w_mm, work_h_mm);
   out.job = plan(set, options, settings);
   const pcb::BoardReport& r = out.job.report;
+  for (const std::string& n : r.notes) notes.push_back(n);  // e.g. an empty outline left out
   nlohmann::json gaps = nlohmann::json::array();
   for (const pcb::NarrowGap& g : r.narrow_gaps)
     gaps.push_back(pcb::describe_gap(g, options.isolation));

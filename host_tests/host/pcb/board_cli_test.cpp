@@ -259,6 +259,25 @@ TEST(BoardCli, AnExplicitTopOptionWinsOverAnOutlineName) {
   EXPECT_EQ(nlohmann::json::parse(r.out)["islands"], 2);
 }
 
+// KiCad writes an Edge.Cuts file holding only its aperture list when no outline is drawn:
+// the board is planned without a cut-out, and says so (it was refused whole: "the outline
+// layer has no closed loop").
+TEST(BoardCli, AnEmptyOutlineFilePlansTheBoardWithoutACutout) {
+  const std::string dir = write_board("empty-outline");
+  std::ofstream(dir + "/t-Edge.Cuts.gbr", std::ios::trunc)
+      << "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Profile,NP*%\n%ADD10C,0.100000*%\nM02*\n";
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out --json --no-plot");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["cutout_length_mm"], 0.0);
+  EXPECT_EQ(j["holes"], 3);
+  EXPECT_NE(r.err.find("t-Edge.Cuts.gbr: the outline layer draws nothing: planned without a "
+                       "cut-out"),
+            std::string::npos)
+      << r.err;
+  ASSERT_EQ(j["notes"].size(), 1u);
+}
+
 // `run` (and `send`, which plans the same way) on PCB files plans the job that `board` showed:
 // the board's feed and margin where none is given, the given ones where they are.
 TEST(BoardCli, RunPlansTheBoardThatTheBoardCommandShowed) {
