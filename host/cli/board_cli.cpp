@@ -44,6 +44,7 @@ struct BoardFiles {
   std::string side;          // from a "top:" / "bottom:" prefix
   std::vector<std::string> notes;
   std::vector<std::string> warnings;  // the readers' (a parameter ignored, a tool left out)
+  bool from_directory = false;        // the name is the folder's
 };
 
 // Everything said about a board's files, on stderr.
@@ -168,9 +169,18 @@ BoardFiles read_input(const std::string& input, const std::string& side_asked = 
     // outline are read (no silkscreen, mask or paste), and of the copper only the job
     // side's: reading the other was a fifth of a large board's planning time.
     const std::string head = directory ? pcb::read_file_head(f) : std::string();
+    std::string how;  // what said which layer the file is
+    if (directory && pcb::pcb_file_format(f, head) == pcb::PcbFileFormat::kExcellon)
+      how = pcb::pcb_file_format(f, "") == pcb::PcbFileFormat::kExcellon ? "its name"
+                                                                         : "its content (M48)";
     if (directory && pcb::pcb_file_format(f, head) == pcb::PcbFileFormat::kGerber) {
-      LayerKind named = pcb::layer_kind_from_file_name(f);
-      if (named == LayerKind::kUnknown) named = pcb::layer_kind_from_x2(head);
+      // The file's own X2 file function first, then the table of usual names.
+      LayerKind named = pcb::layer_kind_from_x2(head);
+      how = "its X2 file function";
+      if (named == LayerKind::kUnknown) {
+        named = pcb::layer_kind_from_file_name(f);
+        how = "its name";
+      }
       if (named == LayerKind::kUnknown) {
         b.notes.push_back(f +
                           ": neither its name nor an X2 file function says copper, drill or "
@@ -190,8 +200,11 @@ BoardFiles read_input(const std::string& input, const std::string& side_asked = 
       l.kind = b.side == "bottom" ? LayerKind::kCopperBottom : LayerKind::kCopperTop;
       b.notes.push_back(f + ": taken as " + b.side + " copper (from the '" + b.side + ":' prefix)");
     }
+    if (directory && !how.empty() && l.kind != LayerKind::kUnknown)
+      b.notes.push_back(f + ": taken as " + pcb::layer_kind_name(l.kind) + " (from " + how + ")");
     add_layer(&b, std::move(l), directory);
   }
+  b.from_directory = directory;
   b.name = board_name(directory ? stripped : files.front());
   if (directory && b.layers.copper_top.empty() && b.layers.copper_bottom.empty()) {
     // A board folder without copper is a folder whose copper was not recognised: planning
@@ -386,7 +399,10 @@ void run_board(const BoardCommand& a) {
       for (PcbLayer& l : *kind) b.layers.add(std::move(l));
     b.notes.insert(b.notes.end(), one.notes.begin(), one.notes.end());
     b.warnings.insert(b.warnings.end(), one.warnings.begin(), one.warnings.end());
-    if (b.name.empty()) b.name = one.name;
+    if (b.name.empty()) {
+      b.name = one.name;
+      b.from_directory = one.from_directory;
+    }
     if (b.side.empty()) b.side = one.side;
   }
   // A layer named by its option is that kind, whatever its name or attributes say.
@@ -404,6 +420,13 @@ void run_board(const BoardCommand& a) {
       if (!f.empty() && b.name.empty()) b.name = board_name(f);
     if (b.name.empty() && !a.drills.empty()) b.name = board_name(a.drills.front());
   }
+  // A bottom-side job of named files is named after its bottom copper (it took the first
+  // file's name, often the top's); a folder keeps the folder's.
+  const std::string side = !a.board.side.empty() ? a.board.side : b.side;
+  const bool bottom = side == "bottom" || (side.empty() && b.layers.copper_top.empty() &&
+                                           !b.layers.copper_bottom.empty());
+  if (bottom && !b.from_directory && !b.layers.copper_bottom.empty())
+    b.name = board_name(b.layers.copper_bottom.front().path);
   print_notes(b);
   MachineDefaults md = a.machine;
   md.work_w_mm = a.work_mm[0];
@@ -533,8 +556,16 @@ const CommandRegistrar registrar("board", add_board_command);
 
 std::string input_name(const std::string& input) {
   std::string s = input;
+  const bool bottom = s.rfind("bottom:", 0) == 0;
   for (const char* side : {"top:", "bottom:"}) {
     if (s.rfind(side, 0) == 0) s = s.substr(std::string(side).size());
+  }
+  if (bottom && !std::filesystem::is_directory(s)) {
+    // A bottom job of several files is named after its bottom copper.
+    std::string side;
+    bool directory = false;
+    for (const std::string& f : expand_input(s, &side, &directory))
+      if (pcb::layer_kind_from_file_name(f) == LayerKind::kCopperBottom) return board_name(f);
   }
   return board_name(s.substr(0, s.find(',')));
 }

@@ -278,6 +278,34 @@ TEST(BoardCli, AnEmptyOutlineFilePlansTheBoardWithoutACutout) {
   ASSERT_EQ(j["notes"].size(), 1u);
 }
 
+// The file's X2 file function comes before its name, and every file read says what it was
+// taken for and why.
+TEST(BoardCli, AFoldersFilesSayWhatTheyWereTakenFor) {
+  const std::string dir = write_board("taken-for");
+  // A name that says bottom copper, a file function that says top: the file function wins.
+  std::filesystem::rename(dir + "/t-F.Cu.gbr", dir + "/t_Bottom.gbr");
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out --json --no-plot");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["side"], "top");
+  EXPECT_NE(r.err.find("t_Bottom.gbr: taken as copper top (from its X2 file function)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("t-PTH.drl: taken as drill (from its name)"), std::string::npos) << r.err;
+}
+
+// A bottom-side job's outputs are named after the bottom copper, not the first file given.
+TEST(BoardCli, ABottomJobIsNamedAfterItsBottomCopper) {
+  const std::string dir = write_board("bottom-name");
+  std::string bottom = kTopCopper;
+  bottom.replace(bottom.find("%EXTRA%"), 7, "");
+  bottom.replace(bottom.find("Copper,L1,Top"), 13, "Copper,L2,Bot");
+  std::ofstream(dir + "/back.gbl") << bottom;
+  const ToolRun r = run("board --top " + dir + "/t-F.Cu.gbr --bottom " + dir +
+                        "/back.gbl --side bottom -o " + dir + "/out --no-plot");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/back.board.json"));
+}
+
 // `run` (and `send`, which plans the same way) on PCB files plans the job that `board` showed:
 // the board's feed and margin where none is given, the given ones where they are.
 TEST(BoardCli, RunPlansTheBoardThatTheBoardCommandShowed) {
@@ -335,7 +363,9 @@ TEST(BoardCli, AFoldersGerberWithAPlainNameIsReadByItsX2FileFunction) {
   const ToolRun r = run("board " + dir + " -o " + dir + "/out --json --no-check --no-plot");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["islands"], 2);
-  EXPECT_EQ(r.err.find("layer1.gbr"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("layer1.gbr: taken as copper top (from its X2 file function)"),
+            std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find("notes.gbr: neither its name nor an X2 file function says copper"),
             std::string::npos)
       << r.err;
