@@ -227,6 +227,16 @@ TEST(Cli, RunRefusesAWorkAreaBeyondTheTravel) {
       << r.err;
 }
 
+// An Excellon file named .tap (a G-code extension) starting with '%' then M48, as EAGLE and
+// Fritzing write drill files: read as drilling by its content, not as G-code.
+TEST(Cli, AnExcellonFileNamedTapIsReadByItsContent) {
+  const std::string path = write_temp(
+      "cli_drill.tap", "%\nM48\nINCH\nT1C0.0315\n%\nG90\nG05\nT1\nX0.3937Y0.3937\nM30\n");
+  const ToolRun r = run("info " + path);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("format:    Excellon"), std::string::npos) << r.out;
+}
+
 TEST(Cli, RunOnATooLargeDrawingSaysWhatWouldFit) {
   const ToolRun r = run("run " + kSample + " --scale 3 -o " + testing::TempDir());
   EXPECT_EQ(r.code, 1);
