@@ -393,8 +393,12 @@ void ExcellonReader::body_line(const std::string& s) {
     if (zero.x != 0 || zero.y != 0) note("G93 work zero offset applied");
     return;
   }
-  if (s == "M16" || s == "M17") {
+  if (starts_with(s, "M16") || starts_with(s, "M17")) {
+    // Tool up; Allegro's route files may carry the next position on the same line.
     plunged_ = false;
+    if (s.size() > 3) {
+      if (!position(s.substr(3), at_)) fail("unexpected '" + s.substr(3, 20) + "' after M16");
+    }
     return;
   }
   if (starts_with(s, "G00") || starts_with(s, "G01")) {

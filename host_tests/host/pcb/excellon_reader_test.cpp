@@ -150,10 +150,11 @@ TEST(ExcellonWriters, G93SetsTheWorkZero) {  // Mentor writes G93X0Y0
   EXPECT_EQ(moved.holes[0].at.x, 11000000);
 }
 
-TEST(ExcellonWriters, M16EndsARouteAnywhere) {  // Allegro route files
+// Allegro route files: M16 (tool up) also with the next position on its line.
+TEST(ExcellonWriters, M16EndsARouteAnywhere) {
   const PcbLayer l = read_excellon_text(
-      "M48\nMETRIC\nT1C1.0\n%\nT1\nM16\nG00X1.0Y1.0\nM15\nG01X5.0Y1.0\nM16\nM17\nG05\nX9.0Y9."
-      "0\nM30\n",
+      "M48\nMETRIC\nT1C1.0\n%\nT1\nM16\nG00X1.0Y1.0\nM15\nG01X5.0Y1.0\nM16X6.0Y1.0\nM17\n"
+      "G05\nX9.0Y9.0\nM30\n",
       "route.rou");
   ASSERT_EQ(l.slots.size(), 1u);
   EXPECT_EQ(l.slots[0].to.x, 5000000);
