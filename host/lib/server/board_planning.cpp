@@ -142,6 +142,8 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
     } catch (const pcb::PcbReadError& e) {
       throw ImportError(e.what());
     }
+    for (const std::string& n : layer.notes)  // the reader's warnings, as the CLI prints them
+      if (n.find("warning: ") != std::string::npos) notes.push_back(f.name + ": " + n);
     const LayerKind kind = layer.kind;
     std::string file;
     switch (kind) {
