@@ -28,17 +28,25 @@ const double kMaxCoordNm = 1e10;    // 10 m: anything beyond is a broken file
 const double kMaxApertureNm = 1e9;  // 1 m
 const long kMaxStepRepeatCopies = 10000;
 
-struct Aperture {
-  char type = 'C';         // C R O P, or M for a macro
-  double circle_d_nm = 0;  // type C
-  Paths shape;             // around the origin; positive outers, negative holes
-  bool has_hole = false;
-};
-
 struct Batch {
   bool dark = true;
   Paths paths;
   std::vector<size_t> starts;  // where each object (an outer and its holes) begins in paths
+};
+
+struct Aperture {
+  char type = 'C';         // C R O P, M for a macro, B for a block (%AB)
+  double circle_d_nm = 0;  // type C
+  Paths shape;             // around the origin; positive outers, negative holes
+  bool has_hole = false;
+  std::vector<Batch> block;  // type B: its objects by polarity, around the origin
+};
+
+// An aperture block being read (%ABDnn*% .. %AB*%).
+struct OpenBlock {
+  int number_d = 0;
+  size_t batch_start = 0;  // its objects are batches_[batch_start ..]
+  bool dark = true;        // the polarity before it
 };
 
 struct Note {
@@ -177,6 +185,10 @@ class GerberReader {
   cInt sr_i_ = 0, sr_j_ = 0;
   size_t sr_batch_start_ = 0, sr_stroke_start_ = 0;
 
+  // Aperture blocks being read, innermost last.
+  std::vector<OpenBlock> blocks_;
+  void aperture_block(const std::string& arg);
+
   // Image offset (%OF, deprecated).
   cInt offset_x_ = 0, offset_y_ = 0;
   // Deprecated image transforms (%IR, %MI, %SF), applied to the finished image.
@@ -252,6 +264,8 @@ PcbLayer GerberReader::read() {
     }
   }
   if (region_) fail("G36 region still open at M02");
+  if (!blocks_.empty())
+    fail("block aperture D" + std::to_string(blocks_.back().number_d) + " still open at M02");
 
   PcbLayer layer;
   layer.path = path_;
@@ -475,9 +489,7 @@ void GerberReader::extended_command(const std::string& cmd) {
          " (deprecated image justify / knockout: it clears or moves the image by rules the "
          "current specification no longer defines) is not supported");
   } else if (code == "AB") {
-    fail("block aperture %" + cmd.substr(0, 20) +
-         " is not supported yet: flatten the blocks when writing the file (most CAD programs "
-         "can), or write it without them");
+    aperture_block(arg);
   } else {
     fail("unknown extended command '%" + cmd.substr(0, 20) + "'");
   }
@@ -528,6 +540,35 @@ void GerberReader::need_units(const std::string& what) {
   if (unit_nm_ != 0) return;
   set_units(25.4e6, "the default");
   note("warning: no units (%MO) before " + what + ": inch assumed (the format's old default)");
+}
+
+// %ABDnn*% opens a block aperture, %AB*% closes the innermost one: the objects drawn between
+// become aperture Dnn, flashed like any aperture (at the flash point, their polarities kept,
+// or all inverted when flashed with clear polarity).
+void GerberReader::aperture_block(const std::string& arg) {
+  if (in_sr_) fail("a block aperture (%AB) inside a step-and-repeat is not supported");
+  if (!arg.empty()) {
+    if (arg[0] != 'D' || arg.size() < 3 ||
+        arg.find_first_not_of("0123456789", 1) != std::string::npos)
+      fail("block aperture '%AB" + arg + "' needs an aperture number Dnn (10 or more)");
+    const int n = std::stoi(arg.substr(1, 7));
+    if (n < 10) fail("block aperture '%AB" + arg + "' needs an aperture number of 10 or more");
+    if (blocks_.size() >= 16) fail("block apertures nested more than 16 deep");
+    blocks_.push_back({n, batches_.size(), dark_});
+    batches_.push_back({dark_, {}, {}});  // its objects start a batch of their own
+    return;
+  }
+  if (blocks_.empty()) fail("%AB closes a block aperture that was never opened");
+  const OpenBlock b = blocks_.back();
+  blocks_.pop_back();
+  Aperture ap;
+  ap.type = 'B';
+  ap.block.assign(std::make_move_iterator(batches_.begin() + static_cast<long>(b.batch_start)),
+                  std::make_move_iterator(batches_.end()));
+  batches_.resize(b.batch_start);
+  dark_ = b.dark;
+  if (apertures_.count(b.number_d)) note("aperture D" + std::to_string(b.number_d) + " redefined");
+  apertures_[b.number_d] = std::move(ap);
 }
 
 void GerberReader::set_units(double unit_nm, const char* how) {
@@ -701,6 +742,7 @@ void GerberReader::aperture_macro(const std::vector<std::string>& parts,
 void GerberReader::step_repeat(const std::string& s) {
   if (in_sr_) close_step_repeat();
   if (s.empty()) return;
+  if (!blocks_.empty()) fail("a step-and-repeat inside a block aperture (%AB) is not supported");
   double x = 1, y = 1, i = 0, j = 0;
   size_t k = 0;
   while (k < s.size()) {
@@ -1113,6 +1155,21 @@ void GerberReader::operate(int d, const std::string* xs, const std::string* ys,
 
 void GerberReader::flash(IntPoint at) {
   const Aperture& ap = current_aperture();
+  if (ap.type == 'B') {
+    const bool dark = dark_;
+    for (const Batch& b : ap.block) {
+      dark_ = dark ? b.dark : !b.dark;
+      for (size_t k = 0; k < b.starts.size(); ++k) {
+        const size_t end = k + 1 < b.starts.size() ? b.starts[k + 1] : b.paths.size();
+        Paths object(b.paths.begin() + static_cast<long>(b.starts[k]),
+                     b.paths.begin() + static_cast<long>(end));
+        translate_paths(object, at.X, at.Y);
+        add_object(std::move(object));
+      }
+    }
+    dark_ = dark;
+    return;
+  }
   Paths copy = ap.shape;
   translate_paths(copy, at.X, at.Y);
   add_object(std::move(copy));
@@ -1120,6 +1177,8 @@ void GerberReader::flash(IntPoint at) {
 
 void GerberReader::draw_line(IntPoint from, IntPoint to) {
   const Aperture& ap = current_aperture();
+  if (ap.type == 'B')
+    fail("block aperture D" + std::to_string(aperture_) + " can only be flashed (D03)");
   add_centre_line(from, {to});
   if (ap.shape.empty()) return;  // zero-size aperture: a line of no width
   const VecNm a{static_cast<double>(from.X), static_cast<double>(from.Y)};

@@ -251,6 +251,21 @@ TEST(GerberReader, AZeroRadiusArcIsAStraightLine) {
   EXPECT_TRUE(has_note(l, "zero radius"));
 }
 
+// A block aperture (%AB, in the specification since 2016): the objects drawn inside, with
+// their polarities, flashed like an aperture at each flash point. Here a 2 mm square with a
+// 0.5 mm clear hole, flashed at (10, 0) and (20, 0).
+TEST(GerberReader, BlockAperturesAreFlashedWithTheirPolarities) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD10R,2X2*%\n%ADD11C,0.5*%\n%ABD12*%\nD10*\nX0Y0D03*\n"
+      "%LPC*%\nD11*\nX0Y0D03*\n%AB*%\n%LPD*%\nD12*\nX10000000Y0D03*\nX20000000Y0D03*\nM02*\n",
+      "block-F.Cu.gbr");
+  EXPECT_TRUE(covered(l, 10.8, 0));
+  EXPECT_TRUE(covered(l, 20.8, 0.8));
+  EXPECT_FALSE(covered(l, 10, 0));  // the clear hole
+  EXPECT_FALSE(covered(l, 0, 0));   // nothing where the block was defined
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 2 * (4 - kPi * 0.0625), 2e-3);  // flattened holes
+}
+
 TEST(GerberReader, RegionsWithCutInAndClockwiseContours) {
   const PcbLayer l = read_gerber_file(data_file("regions.gbr"));
   EXPECT_NEAR(area_mm2(l.polygons_nm), 100 - 16 + 9, 1e-9);
