@@ -18,6 +18,7 @@
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
 #include "host/cli/terminal_text.h"
+#include "host/lib/pcb/board_check.h"
 #include "host/lib/pcb/board_files.h"  // BoardFileSet, read_board_file
 #include "host/lib/pcb/isolation_check.h"
 #include "host/lib/pcb/pcb_file_names.h"
@@ -42,7 +43,16 @@ struct BoardFiles {
   std::string name;          // for output files and the job title
   std::string side;          // from a "top:" / "bottom:" prefix
   std::vector<std::string> notes;
+  std::vector<std::string> warnings;  // the readers' (a parameter ignored, a tool left out)
+  bool from_directory = false;        // the name is the folder's
 };
+
+// Everything said about a board's files, on stderr.
+void print_notes(const BoardFiles& b) {
+  for (const std::string& n : b.notes) std::cerr << "engraver: note: " << printable(n) << "\n";
+  for (const std::string& w : b.warnings)
+    std::cerr << "engraver: warning: " << printable(w) << "\n";
+}
 
 PcbLayer read_layer(const std::string& path, LayerKind forced) {
   try {
@@ -52,8 +62,20 @@ PcbLayer read_layer(const std::string& path, LayerKind forced) {
   }
 }
 
+// The reader's warnings about a layer (its other notes are for `engraver info`).
+const PcbLayer& take_warnings(BoardFiles* b, const PcbLayer& l) {
+  const std::string warning = "warning: ";
+  for (const std::string& n : l.notes) {
+    const size_t at = n.find(warning);
+    if (at != std::string::npos)
+      b->warnings.push_back(l.path + ": " + n.substr(0, at) + n.substr(at + warning.size()));
+  }
+  return l;
+}
+
 void add_layer(BoardFiles* b, PcbLayer l, bool from_directory) {
   const std::string path = l.path;
+  take_warnings(b, l);
   if (b->layers.add(std::move(l))) return;
   if (from_directory) {
     b->notes.push_back(path + ": not a copper, drill or outline layer: left out");
@@ -71,8 +93,10 @@ bool has_prefix(const std::string& s, const std::string& p) {
 }
 
 // "bottom:a,b" -> side "bottom", files {a, b}; a directory -> its PCB files.
+// left_out: a directory's files that are neither Gerber nor Excellon (by name or content).
 std::vector<std::string> expand_input(const std::string& input, std::string* side, bool* directory,
-                                      std::string* stripped = nullptr) {
+                                      std::string* stripped = nullptr,
+                                      std::vector<std::string>* left_out = nullptr) {
   std::string rest = input;
   for (const char* s : {"top:", "bottom:"}) {
     if (has_prefix(rest, s)) {
@@ -87,10 +111,14 @@ std::vector<std::string> expand_input(const std::string& input, std::string* sid
     for (const auto& e : std::filesystem::directory_iterator(rest)) {
       if (!e.is_regular_file()) continue;
       const std::string p = e.path().string();
-      if (pcb::pcb_file_format(p) == pcb::PcbFileFormat::kNone) continue;
+      if (pcb::pcb_file_format(p) == pcb::PcbFileFormat::kNone) {
+        if (left_out) left_out->push_back(p);
+        continue;
+      }
       files.push_back(p);
     }
     std::sort(files.begin(), files.end());
+    if (left_out) std::sort(left_out->begin(), left_out->end());
     return files;
   }
   size_t start = 0;
@@ -129,7 +157,11 @@ BoardFiles read_input(const std::string& input, const std::string& side_asked = 
   BoardFiles b;
   bool directory = false;
   std::string stripped;
-  const std::vector<std::string> files = expand_input(input, &b.side, &directory, &stripped);
+  std::vector<std::string> left_out;
+  const std::vector<std::string> files =
+      expand_input(input, &b.side, &directory, &stripped, &left_out);
+  for (const std::string& f : left_out)
+    b.notes.push_back(f + ": neither Gerber nor Excellon (by its name or content): left out");
   if (files.empty()) throw CommandFailure(kExitUsage, input + ": no PCB files there");
   const LayerKind wanted_copper = copper_for_side(side_asked.empty() ? b.side : side_asked, files);
   for (const std::string& f : files) {
@@ -137,9 +169,18 @@ BoardFiles read_input(const std::string& input, const std::string& side_asked = 
     // outline are read (no silkscreen, mask or paste), and of the copper only the job
     // side's: reading the other was a fifth of a large board's planning time.
     const std::string head = directory ? pcb::read_file_head(f) : std::string();
+    std::string how;  // what said which layer the file is
+    if (directory && pcb::pcb_file_format(f, head) == pcb::PcbFileFormat::kExcellon)
+      how = pcb::pcb_file_format(f, "") == pcb::PcbFileFormat::kExcellon ? "its name"
+                                                                         : "its content (M48)";
     if (directory && pcb::pcb_file_format(f, head) == pcb::PcbFileFormat::kGerber) {
-      LayerKind named = pcb::layer_kind_from_file_name(f);
-      if (named == LayerKind::kUnknown) named = pcb::layer_kind_from_x2(head);
+      // The file's own X2 file function first, then the table of usual names.
+      LayerKind named = pcb::layer_kind_from_x2(head);
+      how = "its X2 file function";
+      if (named == LayerKind::kUnknown) {
+        named = pcb::layer_kind_from_file_name(f);
+        how = "its name";
+      }
       if (named == LayerKind::kUnknown) {
         b.notes.push_back(f +
                           ": neither its name nor an X2 file function says copper, drill or "
@@ -159,9 +200,22 @@ BoardFiles read_input(const std::string& input, const std::string& side_asked = 
       l.kind = b.side == "bottom" ? LayerKind::kCopperBottom : LayerKind::kCopperTop;
       b.notes.push_back(f + ": taken as " + b.side + " copper (from the '" + b.side + ":' prefix)");
     }
+    if (directory && !how.empty() && l.kind != LayerKind::kUnknown)
+      b.notes.push_back(f + ": taken as " + pcb::layer_kind_name(l.kind) + " (from " + how + ")");
     add_layer(&b, std::move(l), directory);
   }
+  b.from_directory = directory;
   b.name = board_name(directory ? stripped : files.front());
+  if (directory && b.layers.copper_top.empty() && b.layers.copper_bottom.empty()) {
+    // A board folder without copper is a folder whose copper was not recognised: planning
+    // its holes alone would look like success.
+    std::string msg = input +
+                      ": no copper layer for the job among the folder's files (name it with "
+                      "--top or --bottom; to cut only holes or an outline, give that file "
+                      "itself)";
+    for (const std::string& n : b.notes) msg += "\n  " + n;
+    throw CommandFailure(kExitUsage, msg);
+  }
   return b;
 }
 
@@ -302,6 +356,7 @@ nlohmann::json report_json(const pcb::BoardJob& job, const pcb::BoardOptions& o)
   j["tabs"] = r.tabs;
   j["cutout_length_mm"] = r.cutout_length_mm;
   j["tool_changes"] = r.tool_changes;
+  j["notes"] = r.notes;
   j["steps"] = job.plan.steps.size();
   j["cut_length_mm"] = job.plan.cut_length_mm;
   j["rapid_length_mm"] = job.plan.rapid_length_mm;
@@ -315,12 +370,7 @@ std::string g_last_title;
 double g_last_check_tol_mm = 0;
 double g_last_isolation_z_mm = 0;
 
-// The swept tool may reach into the copper by the fit tolerance and 1 um of rounding (the
-// planned paths keep the clearance on top, the simulated ones use it for the machine's
-// contour error).
-double isolation_check_tolerance_mm(const pcb::BoardOptions& o) {
-  return o.fit_tolerance_mm + 0.001;
-}
+using pcb::isolation_check_tolerance_mm;
 
 // ---- engraver board ----
 
@@ -348,26 +398,43 @@ void run_board(const BoardCommand& a) {
                        &one.layers.outline})
       for (PcbLayer& l : *kind) b.layers.add(std::move(l));
     b.notes.insert(b.notes.end(), one.notes.begin(), one.notes.end());
-    if (b.name.empty()) b.name = one.name;
+    b.warnings.insert(b.warnings.end(), one.warnings.begin(), one.warnings.end());
+    if (b.name.empty()) {
+      b.name = one.name;
+      b.from_directory = one.from_directory;
+    }
     if (b.side.empty()) b.side = one.side;
   }
   // A layer named by its option is that kind, whatever its name or attributes say.
-  if (!a.top.empty()) b.layers.copper_top.push_back(read_layer(a.top, LayerKind::kCopperTop));
+  if (!a.top.empty())
+    b.layers.copper_top.push_back(take_warnings(&b, read_layer(a.top, LayerKind::kCopperTop)));
   if (!a.bottom.empty())
-    b.layers.copper_bottom.push_back(read_layer(a.bottom, LayerKind::kCopperBottom));
-  if (!a.outline.empty()) b.layers.outline.push_back(read_layer(a.outline, LayerKind::kOutline));
-  for (const std::string& d : a.drills) b.layers.drill.push_back(read_layer(d, LayerKind::kDrill));
+    b.layers.copper_bottom.push_back(
+        take_warnings(&b, read_layer(a.bottom, LayerKind::kCopperBottom)));
+  if (!a.outline.empty())
+    b.layers.outline.push_back(take_warnings(&b, read_layer(a.outline, LayerKind::kOutline)));
+  for (const std::string& d : a.drills)
+    b.layers.drill.push_back(take_warnings(&b, read_layer(d, LayerKind::kDrill)));
   if (b.name.empty()) {
     for (const std::string& f : {a.top, a.bottom, a.outline})
       if (!f.empty() && b.name.empty()) b.name = board_name(f);
     if (b.name.empty() && !a.drills.empty()) b.name = board_name(a.drills.front());
   }
-  for (const std::string& n : b.notes) std::cerr << "engraver: note: " << printable(n) << "\n";
+  // A bottom-side job of named files is named after its bottom copper (it took the first
+  // file's name, often the top's); a folder keeps the folder's.
+  const std::string side = !a.board.side.empty() ? a.board.side : b.side;
+  const bool bottom = side == "bottom" || (side.empty() && b.layers.copper_top.empty() &&
+                                           !b.layers.copper_bottom.empty());
+  if (bottom && !b.from_directory && !b.layers.copper_bottom.empty())
+    b.name = board_name(b.layers.copper_bottom.front().path);
+  print_notes(b);
   MachineDefaults md = a.machine;
   md.work_w_mm = a.work_mm[0];
   md.work_h_mm = a.work_mm[1];
   const pcb::BoardOptions o = board_options(a.board, md, b);
   const pcb::BoardJob job = plan(b, o);
+  for (const std::string& n : job.report.notes)
+    std::cerr << "engraver: note: " << printable(n) << "\n";
   const double plan_cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   const double plan_wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
@@ -388,16 +455,17 @@ void run_board(const BoardCommand& a) {
   j["isolation_g1_bytes_every_vertex"] = w.g1_vertex_bytes;
   j["chord_tolerance_mm"] = a.tol_mm;
   bool check_ok = true;
+  pcb::IsolationCheck c;
   if (!a.no_check && !job.copper_machine_nm.empty()) {
     const double tol = isolation_check_tolerance_mm(o);
-    const pcb::IsolationCheck c = pcb::check_isolation(
-        job.copper_machine_nm, job.isolation_paths_mm, job.tool_radius_mm, tol);
+    c = pcb::check_planned_isolation(job, o);
     j["check"] = {{"tolerance_mm", tol},
                   {"islands", c.islands},
                   {"copper_hits", c.hits.size()},
                   {"unseparated_pairs", c.unseparated.size()}};
     check_ok = c.hits.empty() && c.unseparated.size() <= job.report.narrow_gaps.size();
-    if (!c.ok()) std::cerr << "engraver: isolation check: " << pcb::describe(c) << "\n";
+    if (!c.ok() && c.hits.empty())
+      std::cerr << "engraver: isolation check: " << pcb::describe(c) << "\n";
   }
   std::filesystem::create_directories(a.outdir);
   const std::string base = (std::filesystem::path(a.outdir) / b.name).string();
@@ -439,6 +507,11 @@ void run_board(const BoardCommand& a) {
     if (!a.no_plot) std::cout << "  plot: " << base << ".board.svg, .png; ";
     std::cout << "report: " << base << ".board.json\n";
   }
+  try {
+    pcb::refuse_copper_hits(c, "the planned isolation paths");
+  } catch (const pcb::CopperCutError& e) {
+    throw CommandFailure(kExitCutsCopper, e.what());
+  }
   if (!check_ok) throw CommandFailure(kExitJobFailed, "the isolation check failed (see above)");
 }
 
@@ -472,8 +545,8 @@ void add_board_command(CLI::App& app) {
       "Example: engraver board board-F.Cu.gbr board-PTH.drl board-Edge.Cuts.gbr -o out\n"
       "         engraver board --side bottom samples/pcb/multivibrator/\n"
       "Then: engraver run board/ (simulate) or engraver send board/ --to tcp://HOST:PORT.\n"
-      "Exit: 0 planned and checked, 1 refused (narrow gaps, work area, check failed), 2 bad "
-      "input.");
+      "Exit: 0 planned and checked, 1 refused (narrow gaps, work area, islands left joined), "
+      "2 bad input, 8 the tool would cut copper.");
   cmd->callback([a] { run_board(*a); });
 }
 
@@ -483,8 +556,16 @@ const CommandRegistrar registrar("board", add_board_command);
 
 std::string input_name(const std::string& input) {
   std::string s = input;
+  const bool bottom = s.rfind("bottom:", 0) == 0;
   for (const char* side : {"top:", "bottom:"}) {
     if (s.rfind(side, 0) == 0) s = s.substr(std::string(side).size());
+  }
+  if (bottom && !std::filesystem::is_directory(s)) {
+    // A bottom job of several files is named after its bottom copper.
+    std::string side;
+    bool directory = false;
+    for (const std::string& f : expand_input(s, &side, &directory))
+      if (pcb::layer_kind_from_file_name(f) == LayerKind::kCopperBottom) return board_name(f);
   }
   return board_name(s.substr(0, s.find(',')));
 }
@@ -575,13 +656,22 @@ bool input_exists(const std::string& input) {
 
 JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d) {
   const BoardFiles b = read_input(input, args.side);
-  for (const std::string& n : b.notes) std::cerr << "engraver: note: " << printable(n) << "\n";
+  print_notes(b);
   const pcb::BoardOptions o = board_options(args, d, b);
   g_last_job = plan(b, o);
   g_last_title = b.name;
   g_last_check_tol_mm = isolation_check_tolerance_mm(o);
   g_last_isolation_z_mm = -o.isolation_depth_mm;
+  try {
+    // Refused before a byte is sent (send) or the machine is simulated (run).
+    const int tol_um = static_cast<int>(std::lround(d.chord_tol_mm * 1000));
+    pcb::refuse_copper_hits(pcb::check_controller_isolation(*g_last_job, o, tol_um),
+                            fmt::format("the controller's points at {} mm chords", d.chord_tol_mm));
+  } catch (const pcb::CopperCutError& e) {
+    throw CommandFailure(kExitCutsCopper, b.name + ": " + e.what());
+  }
   const pcb::BoardReport& r = g_last_job->report;
+  for (const std::string& n : r.notes) std::cerr << "engraver: note: " << printable(n) << "\n";
   std::cerr << fmt::format(
       "engraver: board {}: mount {} first; {} contours, {} holes, {} tool changes\n", b.name,
       r.first_tool, r.isolation_contours, r.holes, r.tool_changes);
@@ -660,7 +750,8 @@ bool print_board_points_if_pcb(const std::string& input, double tol_mm, bool csv
   MachineDefaults d;
   d.work_w_mm = d.work_h_mm = 1e6;  // points in the file frame: no work area applies
   const BoardFiles b = read_input(input);
-  const pcb::BoardOptions o = board_options(a, d, b);
+  pcb::BoardOptions o = board_options(a, d, b);
+  o.travel_width_mm = o.travel_height_mm = d.work_w_mm;
   const pcb::BoardJob job = plan(b, o);
   for (const pcb::NarrowGap& g : job.report.narrow_gaps)
     std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation) << "\n";

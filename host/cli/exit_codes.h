@@ -13,7 +13,10 @@ enum ExitCode {
   kExitOk = 0,         // done
   kExitJobFailed = 1,  // the job was refused or failed (plan, work area, validation, link)
   kExitUsage = 2,      // bad command line or unreadable / invalid input file
-  kExitInternal = 70   // an unexpected failure inside the tool (a bug); sysexits' EX_SOFTWARE
+  // The job's tool paths (planned, or simulated by `run`) would cut copper: refused.
+  // 3..7 are send/run's (machine_commands.cpp).
+  kExitCutsCopper = 8,
+  kExitInternal = 70  // an unexpected failure inside the tool (a bug); sysexits' EX_SOFTWARE
 };
 
 // Thrown by a command to print what() on stderr and exit with code.

@@ -23,6 +23,7 @@
 #include "host/cli/exit_codes.h"
 #include "host/cli/terminal_text.h"
 #include "host/lib/drawing/drawing.h"
+#include "host/lib/pcb/board_check.h"  // refuse_copper_hits
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/plot/plan_plot.h"
@@ -179,6 +180,7 @@ JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
     m.margin_mm = a.margin_mm;
     m.work_w_mm = a.work_mm[0];
     m.work_h_mm = a.work_mm[1];
+    m.chord_tol_mm = a.tol_mm;
     return plan_pcb_input(a.file, a.board, m);
   }
   *drawing = import_drawing(a.file);
@@ -694,12 +696,18 @@ void run_run(const RunArgs& a) {
         iso->paths, iso->samples, iso->check.hits.size(), iso->tolerance_mm,
         iso->check.unseparated.size(), iso->min_clearance_um, iso->min_clearance_at_mm.x(),
         iso->min_clearance_at_mm.y(), iso->planned_min_clearance_um);
-    if (!iso->check.hits.empty())
-      std::cerr << "engraver: simulated isolation check: " << pcb::describe(iso->check) << "\n";
   }
   if (r.outcome != JobOutcome::kCompleted) {
     throw CommandFailure(exit_code(r.outcome),
                          fmt::format("job {}: {}", outcome_name(r.outcome), r.message));
+  }
+  if (iso) {
+    // The simulated machine cut copper: the real one would too.
+    try {
+      pcb::refuse_copper_hits(iso->check, "the simulated tool path");
+    } catch (const pcb::CopperCutError& e) {
+      throw CommandFailure(kExitCutsCopper, name + ": " + e.what());
+    }
   }
 }
 
@@ -727,7 +735,8 @@ void add_machine_commands(CLI::App& app) {
       "After a lost link: engraver send board.dxf --to ... --feed 8 --resume\n"
       "Keys: h hold, r resume, x abort, +/- feed override. Signals: INT/TERM abort, USR1 hold, "
       "USR2 resume.\nExit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, "
-      "5 command refused by the controller, 6 link lost, 7 stalled (no progress for 30 s).");
+      "5 command refused by the controller, 6 link lost, 7 stalled (no progress for 30 s), 8 a "
+      "board job that would cut copper (refused before streaming).");
   send->callback([send_args] {
     try {
       run_send(*send_args);
@@ -774,7 +783,8 @@ void add_machine_commands(CLI::App& app) {
       "Example: engraver run samples/engraver-word.dxf -o out\n"
       "Progress on stderr (a bar on a terminal, a line every 5 s otherwise).\n"
       "Exit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, 5 command refused by "
-      "the controller, 6 link lost, 7 stalled (no progress for 30 s of machine time).");
+      "the controller, 6 link lost, 7 stalled (no progress for 30 s of machine time), 8 a board "
+      "job whose controller points or simulated path cut copper.");
   run->callback([run_args] {
     try {
       run_run(*run_args);

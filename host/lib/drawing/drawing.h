@@ -72,7 +72,9 @@ class ImportError : public std::runtime_error {
 void check_readable(const std::string& path);
 
 // True when the text starts like an Excellon drill file: M48 on the first line that is not
-// blank or a ';' comment (G-code may carry an M48, enable overrides, further down).
+// blank, a ';' comment, a lone '%' (EAGLE's and Fritzing's drill files start with one) or a
+// unit line written before the header (INCH,TZ / METRIC in old EAGLE files). G-code may
+// carry an M48 (enable overrides) further down, after its first command.
 bool starts_like_excellon(const std::string& text);
 
 // Reads a drawing; the format is chosen from the content and the extension (DXF; G-code

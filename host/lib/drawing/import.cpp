@@ -54,7 +54,13 @@ bool starts_like_excellon(const std::string& text) {
   while (i < text.size()) {
     const size_t end = std::min(text.find('\n', i), text.size());
     const size_t a = text.find_first_not_of(" \t\r", i);
-    if (a < end && text[a] != ';') return text.compare(a, 3, "M48") == 0;
+    if (a < end && text[a] != ';') {
+      const size_t last = text.find_last_not_of(" \t\r", end - 1);
+      const std::string line = text.substr(a, last + 1 - a);
+      const bool skipped =
+          line == "%" || line.compare(0, 4, "INCH") == 0 || line.compare(0, 6, "METRIC") == 0;
+      if (!skipped) return line.compare(0, 3, "M48") == 0;
+    }
     i = end + 1;
   }
   return false;

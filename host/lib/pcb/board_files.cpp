@@ -19,7 +19,7 @@ PcbLayer read_board_text(const std::string& text, const std::string& name, Layer
   }
   if (f == PcbFileFormat::kGerber || kind != LayerKind::kUnknown) {
     GerberOptions o;
-    o.kind_if_unknown = kind;
+    o.forced_kind = kind;
     PcbLayer l = read_gerber_text(text, name, o);
     if (kind != LayerKind::kUnknown) l.kind = kind;
     return l;

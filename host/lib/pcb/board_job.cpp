@@ -215,6 +215,7 @@ void check_options(const BoardOptions& o) {
     throw PlanError("the travel height and the drill start height must be above the board");
   if (!(o.tab_height_mm >= 0 && o.tab_height_mm < o.cutout_depth_mm))
     throw PlanError("the tab height must be below the cut-out depth");
+  check_work_area(o.work_width_mm, o.work_height_mm, o.travel_width_mm, o.travel_height_mm);
 }
 
 }  // namespace
@@ -247,10 +248,17 @@ std::string tool_label(const char* what, double diameter_mm) {
   return s.substr(0, 16);
 }
 
-BoardJob plan_board(const BoardLayers& layers, const BoardOptions& o) {
+BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
   check_options(o);
   BoardJob job;
   BoardReport& rep = job.report;
+  BoardLayers layers = given;
+  if (layers.outline && layers.outline->polygons_nm.empty()) {
+    // KiCad writes an Edge.Cuts file holding only its aperture list when no outline is drawn.
+    rep.notes.push_back(layers.outline->path +
+                        ": the outline layer draws nothing: planned without a cut-out");
+    layers.outline = nullptr;
+  }
   const double sx = o.side == BoardSide::kBottom ? -1.0 : 1.0;
   job.frame.sx = sx;
   const PcbLayer* copper = o.side == BoardSide::kBottom ? layers.copper_bottom : layers.copper_top;

@@ -52,6 +52,9 @@ struct BoardOptions {
   double margin_mm = 5.0;  // the job's lower-left corner (tool extent) in the machine
   double work_width_mm = 297.0;
   double work_height_mm = 210.0;
+  // The controller's travel: the work area may not be larger (check_work_area()).
+  double travel_width_mm = machine_travel_mm(config::kAxisX);
+  double travel_height_mm = machine_travel_mm(config::kAxisY);
   bool allow_narrow_gaps = false;  // plan anyway (the gaps stay in the report)
 };
 
@@ -80,9 +83,9 @@ struct BoardReport {
   double drill_travel_ordered_mm = 0;
   int tabs = 0;
   double cutout_length_mm = 0;
-  size_t tool_changes = 0;  // kPause steps
-  std::string first_tool;   // mounted before the job starts
-  std::vector<std::string> notes;
+  size_t tool_changes = 0;         // kPause steps
+  std::string first_tool;          // mounted before the job starts
+  std::vector<std::string> notes;  // what the planner left out and why (an empty outline)
 };
 
 struct BoardJob {

@@ -47,7 +47,12 @@ class ExcellonReader {
   void body_line(const std::string& s);
   void comment(const std::string& s);
   void units_line(const std::string& s);
+  bool units_command(const std::string& s);
   void set_units(bool metric);
+  void holesize_comment(const std::string& s);
+  void define_tool(int n, double diameter, double unit_nm);
+  bool oversize(int tool) const;
+  void add_slot(const PointNm& from, const PointNm& to);
   void tool(const std::string& s, bool in_header);
   double number(const std::string& s, const char* what) const;
   cInt coordinate(const std::string& s) const;
@@ -68,7 +73,10 @@ class ExcellonReader {
   bool routing_ = false;  // G00/G01 route mode
   bool plunged_ = false;  // M15 .. M16
   std::map<int, cInt> tools_;
+  std::map<int, double> pending_tools_;             // diameters given before the units (PADS)
+  std::map<int, std::pair<double, int>> oversize_;  // tool -> diameter mm, holes left out
   int tool_ = 0;
+  PointNm offset_;  // G93 work zero
   PointNm at_;
   PcbLayer layer_;
   mutable std::vector<std::pair<std::string, std::pair<int, int>>>
@@ -110,10 +118,26 @@ PcbLayer ExcellonReader::read() {
       header_line(s);
     } else {
       if (s == "%") continue;  // rewind stop (old)
+      if (units_command(s)) {
+        // Old EAGLE .drd: INCH,TZ before M48.
+        if (seen_header) note("units '" + s.substr(0, 20) + "' in the body");
+        continue;
+      }
       body_line(s);
     }
   }
   if (!done_) fail("the file ends without M30 (end of program): it may be cut short");
+  if (!pending_tools_.empty() && unit_nm_ == 0)
+    fail("tool T" + std::to_string(pending_tools_.begin()->first) +
+         " has a diameter but the file never gives its units (METRIC/INCH, M71/M72)");
+  for (const auto& [tool, o] : oversize_) {
+    std::ostringstream mm;
+    mm << std::round(o.first * 1000) / 1000;
+    std::string w = "tool T" + std::to_string(tool) + " (" + mm.str() +
+                    " mm) is larger than 100 mm, not a drill: its " + std::to_string(o.second) +
+                    " hole(s) or slot(s) left out";
+    layer_.notes.push_back("warning: " + w);
+  }
   if (!seen_header) note("no M48 header");
   layer_.path = path_;
   layer_.kind = LayerKind::kDrill;
@@ -128,6 +152,10 @@ PcbLayer ExcellonReader::read() {
 }
 
 void ExcellonReader::comment(const std::string& s) {
+  if (s.find("Holesize") != std::string::npos) {
+    holesize_comment(s);
+    return;
+  }
   // KiCad: ";FORMAT={-:-/ absolute / inch / decimal}" or "{3:3/ absolute / metric /
   // suppress trailing zeros}"; Eagle/Altium: ";FILE_FORMAT=2:4".
   const size_t f = s.find("FORMAT");
@@ -150,6 +178,74 @@ void ExcellonReader::comment(const std::string& s) {
 void ExcellonReader::set_units(bool metric) {
   unit_nm_ = metric ? 1e6 : 25.4e6;
   units_ = metric ? "mm" : "inch";
+  // Tools the header defined before its unit line (PADS writes them first).
+  for (const auto& [n, d] : pending_tools_) define_tool(n, d, unit_nm_);
+  if (!pending_tools_.empty()) note("tools defined before the units line");
+  pending_tools_.clear();
+}
+
+// Allegro: ";T1 Holesize 1. = 13.000000 Tolerance = +2.000000/-2.000000 PLATED MILS
+// Quantity = 2": the only place some of its drill files give a tool's size.
+void ExcellonReader::holesize_comment(const std::string& s) {
+  std::istringstream in(s.substr(1));
+  std::string t, word, holesize, eq;
+  double value = 0;
+  if (!(in >> t >> word >> holesize >> eq >> value) || t.size() < 2 || t[0] != 'T' ||
+      word != "Holesize" || eq != "=")
+    return;
+  const int n = std::atoi(t.c_str() + 1);
+  double unit_nm = 0;
+  while (in >> word) {
+    if (word == "MILS" || word == "MIL") unit_nm = 25400;
+    if (word == "MM" || word == "METRIC") unit_nm = 1e6;
+    if (word == "INCH" || word == "INCHES") unit_nm = 25.4e6;
+  }
+  if (n <= 0 || unit_nm == 0) {
+    note("hole size comment without a tool number or a unit ignored: '" + s.substr(0, 40) + "'");
+    return;
+  }
+  if (!tools_.count(n) && !oversize_.count(n)) {
+    define_tool(n, value, unit_nm);
+    note("tool sizes from ';Tn Holesize' comments (Allegro)");
+  }
+}
+
+void ExcellonReader::define_tool(int n, double diameter, double unit_nm) {
+  const double nm = diameter * unit_nm;
+  if (!(nm > 0)) fail("tool T" + std::to_string(n) + " diameter must be above 0");
+  if (nm > kMaxToolNm) {
+    // A routed cut-out is written as one huge "drill" by some programs: leave its holes out,
+    // not the whole file.
+    oversize_[n] = {nm / 1e6, 0};
+    tools_.erase(n);
+    return;
+  }
+  oversize_.erase(n);
+  tools_[n] = static_cast<cInt>(std::llround(nm));
+}
+
+bool ExcellonReader::oversize(int tool) const {
+  return oversize_.count(tool) != 0;
+}
+
+void ExcellonReader::add_slot(const PointNm& from, const PointNm& to) {
+  if (oversize(tool_))
+    ++oversize_[tool_].second;
+  else
+    layer_.slots.push_back({from, to, tools_[tool_], tool_});
+}
+
+// METRIC/INCH lines and M71/M72 with a zeros field ("M71,TZ", Upverter); true if s was one.
+bool ExcellonReader::units_command(const std::string& s) {
+  if (starts_with(s, "METRIC") || starts_with(s, "INCH")) {
+    units_line(s);
+    return true;
+  }
+  if ((starts_with(s, "M71,") || starts_with(s, "M72,"))) {
+    units_line(std::string(s[2] == '1' ? "METRIC" : "INCH") + s.substr(3));
+    return true;
+  }
+  return false;
 }
 
 void ExcellonReader::units_line(const std::string& s) {
@@ -203,27 +299,31 @@ void ExcellonReader::tool(const std::string& s, bool in_header) {
     k = end;
   }
   if (has_diameter) {
-    if (unit_nm_ == 0)
-      fail("tool T" + std::to_string(n) + " defined before the units (METRIC/INCH)");
-    const double nm = diameter * unit_nm_;
-    if (!(nm > 0 && nm <= kMaxToolNm)) {
+    if (!(diameter > 0))
       fail("tool T" + std::to_string(n) + " diameter " + s.substr(s.find('C') + 1) +
-           " is not between 0 and 100 mm");
+           " is not above 0");
+    if (unit_nm_ == 0) {
+      if (!in_header)
+        fail("tool T" + std::to_string(n) + " defined before the units (METRIC/INCH)");
+      pending_tools_[n] = diameter;  // converted when the unit line comes
+      return;
     }
-    tools_[n] = static_cast<cInt>(std::llround(nm));
+    define_tool(n, diameter, unit_nm_);
     if (in_header) return;
     note("tool defined in the body");
   }
   if (in_header) return;
-  if (n != 0 && !tools_.count(n))
+  if (pending_tools_.count(n))
+    fail("tool T" + std::to_string(n) + " defined before the units (METRIC/INCH), and none came");
+  if (n != 0 && !tools_.count(n) && !oversize(n))
     fail("tool T" + std::to_string(n) + " has no diameter (no T" + std::to_string(n) +
          "C... in the header)");
   tool_ = n;
 }
 
 void ExcellonReader::header_line(const std::string& s) {
-  if (starts_with(s, "METRIC") || starts_with(s, "INCH")) {
-    units_line(s);
+  if (units_command(s)) {
+    // METRIC/INCH, M71,TZ
   } else if (s[0] == 'T' && s.size() > 1 && std::isdigit(static_cast<unsigned char>(s[1]))) {
     tool(s, true);
   } else if (starts_with(s, "FMAT")) {
@@ -245,6 +345,8 @@ void ExcellonReader::header_line(const std::string& s) {
 void ExcellonReader::need_tool() const {
   if (tool_ == 0) fail("a hole or slot before any tool is selected (Tn)");
 }
+
+// Adds a hole or slot of the current tool, or counts it as left out (an oversize tool).
 
 void ExcellonReader::body_line(const std::string& s) {
   if (s[0] == 'T' && s.size() > 1 && std::isdigit(static_cast<unsigned char>(s[1]))) {
@@ -280,8 +382,23 @@ void ExcellonReader::body_line(const std::string& s) {
     plunged_ = true;
     return;
   }
-  if (s == "M16" || s == "M17") {
+  if (starts_with(s, "G93")) {
+    // Work zero: later absolute coordinates are relative to it (Mentor writes G93X0Y0).
+    PointNm zero;
+    const bool incremental = incremental_;
+    incremental_ = false;
+    position(s.substr(3), zero);
+    incremental_ = incremental;
+    offset_ = zero;
+    if (zero.x != 0 || zero.y != 0) note("G93 work zero offset applied");
+    return;
+  }
+  if (starts_with(s, "M16") || starts_with(s, "M17")) {
+    // Tool up; Allegro's route files may carry the next position on the same line.
     plunged_ = false;
+    if (s.size() > 3) {
+      if (!position(s.substr(3), at_)) fail("unexpected '" + s.substr(3, 20) + "' after M16");
+    }
     return;
   }
   if (starts_with(s, "G00") || starts_with(s, "G01")) {
@@ -294,7 +411,7 @@ void ExcellonReader::body_line(const std::string& s) {
       if (!routing_) fail("G01 outside route mode (no G00 before it)");
       if (has && plunged_) {
         need_tool();
-        layer_.slots.push_back({at_, p, tools_[tool_], tool_});
+        add_slot(at_, p);
       }
     }
     at_ = p;
@@ -311,7 +428,7 @@ void ExcellonReader::body_line(const std::string& s) {
       PointNm to = from;  // incremental ends are relative to the start
       if (!position(s.substr(g85 + 3), to)) fail("G85 slot without an end point");
       need_tool();
-      layer_.slots.push_back({from, to, tools_[tool_], tool_});
+      add_slot(from, to);
       at_ = to;
       return;
     }
@@ -320,13 +437,16 @@ void ExcellonReader::body_line(const std::string& s) {
     if (routing_) {
       if (plunged_) {
         need_tool();
-        layer_.slots.push_back({at_, p, tools_[tool_], tool_});
+        add_slot(at_, p);
       }
       at_ = p;
       return;
     }
     need_tool();
-    layer_.holes.push_back({p, tools_[tool_], tool_});
+    if (oversize(tool_))
+      ++oversize_[tool_].second;
+    else
+      layer_.holes.push_back({p, tools_[tool_], tool_});
     at_ = p;
     return;
   }
@@ -394,7 +514,7 @@ bool ExcellonReader::position(const std::string& s, PointNm& p) const {
     if (value.empty()) fail("'" + std::string(1, axis) + "' without a value in '" + s + "'");
     const cInt v = coordinate(value);
     cInt& dst = axis == 'X' ? p.x : p.y;
-    dst = incremental_ ? dst + v : v;
+    dst = incremental_ ? dst + v : v + (axis == 'X' ? offset_.x : offset_.y);
     if (dst > kMaxCoordNm || dst < -kMaxCoordNm) fail("position beyond 10 m");
     any = true;
     k = end;

@@ -28,17 +28,25 @@ const double kMaxCoordNm = 1e10;    // 10 m: anything beyond is a broken file
 const double kMaxApertureNm = 1e9;  // 1 m
 const long kMaxStepRepeatCopies = 10000;
 
-struct Aperture {
-  char type = 'C';         // C R O P, or M for a macro
-  double circle_d_nm = 0;  // type C
-  Paths shape;             // around the origin; positive outers, negative holes
-  bool has_hole = false;
-};
-
 struct Batch {
   bool dark = true;
   Paths paths;
   std::vector<size_t> starts;  // where each object (an outer and its holes) begins in paths
+};
+
+struct Aperture {
+  char type = 'C';         // C R O P, M for a macro, B for a block (%AB)
+  double circle_d_nm = 0;  // type C
+  Paths shape;             // around the origin; positive outers, negative holes
+  bool has_hole = false;
+  std::vector<Batch> block;  // type B: its objects by polarity, around the origin
+};
+
+// An aperture block being read (%ABDnn*% .. %AB*%).
+struct OpenBlock {
+  int number_d = 0;
+  size_t batch_start = 0;  // its objects are batches_[batch_start ..]
+  bool dark = true;        // the polarity before it
 };
 
 struct Note {
@@ -121,7 +129,7 @@ class GerberReader {
 
   // Operations.
   double number(const std::string& s, const char* what) const;
-  cInt coordinate(const std::string& s, bool is_x) const;
+  cInt coordinate(const std::string& s, bool is_x);
   void operate(int d, const std::string* x, const std::string* y, const std::string* i,
                const std::string* j);
   void draw_line(IntPoint from, IntPoint to);
@@ -177,8 +185,20 @@ class GerberReader {
   cInt sr_i_ = 0, sr_j_ = 0;
   size_t sr_batch_start_ = 0, sr_stroke_start_ = 0;
 
+  // Aperture blocks being read, innermost last.
+  std::vector<OpenBlock> blocks_;
+  void aperture_block(const std::string& arg);
+
   // Image offset (%OF, deprecated).
   cInt offset_x_ = 0, offset_y_ = 0;
+  // Deprecated image transforms (%IR, %MI, %SF), applied to the finished image.
+  int rotation_deg_ = 0;                      // 0, 90, 180, 270 counterclockwise about the origin
+  bool mirror_a_ = false, mirror_b_ = false;  // x -> -x, y -> -y
+  double scale_a_ = 1, scale_b_ = 1;
+  std::vector<std::string> transforms_;  // the non-identity ones, for the message
+  void image_transform(const std::string& which);
+  void need_units(const std::string& what);
+  void transform_image(Paths& paths) const;
 
   LayerKind x2_kind_ = LayerKind::kUnknown;
   bool x2_kind_given_ = false;
@@ -244,13 +264,17 @@ PcbLayer GerberReader::read() {
     }
   }
   if (region_) fail("G36 region still open at M02");
+  if (!blocks_.empty())
+    fail("block aperture D" + std::to_string(blocks_.back().number_d) + " still open at M02");
 
   PcbLayer layer;
   layer.path = path_;
   layer.units = units_;
   layer.apertures_or_tools = static_cast<int>(apertures_.size());
   layer.arc_tolerance_nm = opt_.arc_tolerance_nm;
-  if (x2_kind_given_) {
+  if (opt_.forced_kind != LayerKind::kUnknown) {
+    layer.kind = opt_.forced_kind;
+  } else if (x2_kind_given_) {
     layer.kind = x2_kind_;
   } else {
     layer.kind = layer_kind_from_file_name(path_);
@@ -263,6 +287,7 @@ PcbLayer GerberReader::read() {
     layer.polygons_nm = evaluate(batches_);
   }
   if (offset_x_ != 0 || offset_y_ != 0) translate_paths(layer.polygons_nm, offset_x_, offset_y_);
+  transform_image(layer.polygons_nm);
   for (const Note& nt : notes_) {
     std::string s = "line " + std::to_string(nt.first_line) + ": " + nt.text;
     if (nt.count > 1) s += " (" + std::to_string(nt.count) + " times)";
@@ -374,17 +399,35 @@ void GerberReader::extended_command(const std::string& cmd) {
   } else if (code == "TF" || code == "TA" || code == "TO" || code == "TD") {
     attribute(cmd);
   } else if (code == "IP") {
-    if (arg == "NEG") fail("negative image polarity (%IPNEG) is not supported");
+    if (arg == "NEG") {
+      fail(
+          "%IPNEG (deprecated negative image: what is drawn is clear, everything around it "
+          "copper, to an extent the file does not define) is not supported: write the layer "
+          "with positive polarity");
+    }
     if (arg != "POS") fail("image polarity '" + arg + "' is neither POS nor NEG");
     note("%IPPOS (deprecated image polarity) ignored");
+  } else if (code == "IC") {
+    // Input code: ASCII is what every reader reads (OrCAD, P-CAD, Mentor write %ICAS*%).
+    if (arg != "AS") fail("input code %IC" + arg + " is not supported (only ASCII, %ICAS)");
+    note("warning: %ICAS (deprecated input code: ASCII) ignored");
   } else if (code == "IN" || code == "LN") {
     note("%" + code + " (deprecated name) ignored");
   } else if (code == "MI") {
     const std::string a = strip_all_space(arg);
-    if (a != "A0B0" && a != "A0" && a != "B0" && !a.empty()) {
-      fail("mirror image (%MI" + a + ") is not supported");
+    for (const char axis : {'A', 'B'}) {
+      const size_t at = a.find(axis);
+      if (at == std::string::npos) continue;
+      const std::string v = a.substr(at + 1, 1);
+      if (v != "0" && v != "1") fail("mirror image '%MI" + a + "': A and B take 0 or 1");
+      (axis == 'A' ? mirror_a_ : mirror_b_) = v == "1";
     }
-    note("%MI without mirroring (deprecated) ignored");
+    if (mirror_a_ || mirror_b_) {
+      image_transform("%MI" + a);
+      note("warning: %MI" + a + " (deprecated mirror image) applied");
+    } else {
+      note("%MI without mirroring (deprecated) ignored");
+    }
   } else if (code == "SF") {
     double a = 1, b = 1;
     for (const char axis : {'A', 'B'}) {
@@ -394,8 +437,16 @@ void GerberReader::extended_command(const std::string& cmd) {
       while (end < arg.size() && arg[end] != 'A' && arg[end] != 'B') ++end;
       (axis == 'A' ? a : b) = number(arg.substr(at + 1, end - at - 1), "scale factor");
     }
-    if (a != 1 || b != 1) fail("scale factor (%SF" + arg + ") other than 1 is not supported");
-    note("%SF with scale 1 (deprecated) ignored");
+    if (!(a > 0 && a <= 1000 && b > 0 && b <= 1000))
+      fail("scale factor %SF" + arg + " must be above 0 and at most 1000");
+    if (a != 1 || b != 1) {
+      scale_a_ = a;
+      scale_b_ = b;
+      image_transform("%SF" + arg);
+      note("warning: %SF" + arg + " (deprecated scale factor) applied");
+    } else {
+      note("%SF with scale 1 (deprecated) ignored");
+    }
   } else if (code == "OF") {
     double a = 0, b = 0;
     for (const char axis : {'A', 'B'}) {
@@ -405,14 +456,22 @@ void GerberReader::extended_command(const std::string& cmd) {
       while (end < arg.size() && arg[end] != 'A' && arg[end] != 'B') ++end;
       (axis == 'A' ? a : b) = number(arg.substr(at + 1, end - at - 1), "offset");
     }
-    if (unit_nm_ == 0 && (a != 0 || b != 0)) fail("%OF before the units are set");
+    if (a != 0 || b != 0) need_units("%OF");
     offset_x_ = static_cast<cInt>(std::llround(a * unit_nm_));
     offset_y_ = static_cast<cInt>(std::llround(b * unit_nm_));
+    if (a != 0 || b != 0) image_transform("%OF" + arg);
     note("%OF image offset (deprecated) applied");
   } else if (code == "IR") {
-    if (number(arg, "image rotation") != 0)
-      fail("image rotation (%IR" + arg + ") is not supported");
-    note("%IR0 (deprecated) ignored");
+    const double deg = number(arg, "image rotation");
+    if (deg != 0 && deg != 90 && deg != 180 && deg != 270)
+      fail("image rotation %IR" + arg + " must be 0, 90, 180 or 270");
+    rotation_deg_ = static_cast<int>(deg);
+    if (rotation_deg_ != 0) {
+      image_transform("%IR" + arg);
+      note("warning: %IR" + arg + " (deprecated image rotation) applied");
+    } else {
+      note("%IR0 (deprecated) ignored");
+    }
   } else if (code == "AS") {
     if (arg != "AXBY") fail("axis select (%AS" + arg + ") other than AXBY is not supported");
     note("%ASAXBY (deprecated) ignored");
@@ -423,11 +482,93 @@ void GerberReader::extended_command(const std::string& cmd) {
     if (!identity) {
       fail("aperture transformation %" + cmd + " is not supported (only LMN, LR0, LS1)");
     }
+  } else if (code == "KO" && arg.empty()) {
+    note("warning: %KO (deprecated knockout, off) ignored");
   } else if (code == "IJ" || code == "KO") {
-    fail("%" + code + " (deprecated image justify / knockout) is not supported");
+    fail("%" + cmd.substr(0, 20) +
+         " (deprecated image justify / knockout: it clears or moves the image by rules the "
+         "current specification no longer defines) is not supported");
+  } else if (code == "AB") {
+    aperture_block(arg);
   } else {
     fail("unknown extended command '%" + cmd.substr(0, 20) + "'");
   }
+}
+
+// A deprecated transform of the whole image. One alone is applied; the specification does not
+// say in which order several combine, so a file with more is refused rather than guessed.
+void GerberReader::image_transform(const std::string& which) {
+  for (const std::string& t : transforms_)
+    if (t.substr(0, 3) == which.substr(0, 3)) return;  // the same parameter again
+  transforms_.push_back(which);
+  if (transforms_.size() > 1) {
+    fail("the deprecated image transforms " + transforms_[0] + " and " + transforms_[1] +
+         " together are not supported (the order they combine in is not defined)");
+  }
+}
+
+// Scale, mirror, rotate about the origin; exact for the quarter turns and mirrors.
+void GerberReader::transform_image(Paths& paths) const {
+  if (rotation_deg_ == 0 && !mirror_a_ && !mirror_b_ && scale_a_ == 1 && scale_b_ == 1) return;
+  for (Path& p : paths) {
+    for (IntPoint& v : p) {
+      cInt x = scale_a_ == 1 ? v.X : static_cast<cInt>(std::llround(v.X * scale_a_));
+      cInt y = scale_b_ == 1 ? v.Y : static_cast<cInt>(std::llround(v.Y * scale_b_));
+      if (mirror_a_) x = -x;
+      if (mirror_b_) y = -y;
+      switch (rotation_deg_) {
+        case 90:
+          v = IntPoint(-y, x);
+          break;
+        case 180:
+          v = IntPoint(-x, -y);
+          break;
+        case 270:
+          v = IntPoint(y, -x);
+          break;
+        default:
+          v = IntPoint(x, y);
+      }
+    }
+    if (mirror_a_ != mirror_b_) ClipperLib::ReversePath(p);  // a mirror flips orientation
+  }
+}
+
+// No %MO (nor G70/G71) before the first size: the format's legacy default, inch, as gerbv
+// and pcb2gcode read it.
+void GerberReader::need_units(const std::string& what) {
+  if (unit_nm_ != 0) return;
+  set_units(25.4e6, "the default");
+  note("warning: no units (%MO) before " + what + ": inch assumed (the format's old default)");
+}
+
+// %ABDnn*% opens a block aperture, %AB*% closes the innermost one: the objects drawn between
+// become aperture Dnn, flashed like any aperture (at the flash point, their polarities kept,
+// or all inverted when flashed with clear polarity).
+void GerberReader::aperture_block(const std::string& arg) {
+  if (in_sr_) fail("a block aperture (%AB) inside a step-and-repeat is not supported");
+  if (!arg.empty()) {
+    if (arg[0] != 'D' || arg.size() < 3 ||
+        arg.find_first_not_of("0123456789", 1) != std::string::npos)
+      fail("block aperture '%AB" + arg + "' needs an aperture number Dnn (10 or more)");
+    const int n = std::stoi(arg.substr(1, 7));
+    if (n < 10) fail("block aperture '%AB" + arg + "' needs an aperture number of 10 or more");
+    if (blocks_.size() >= 16) fail("block apertures nested more than 16 deep");
+    blocks_.push_back({n, batches_.size(), dark_});
+    batches_.push_back({dark_, {}, {}});  // its objects start a batch of their own
+    return;
+  }
+  if (blocks_.empty()) fail("%AB closes a block aperture that was never opened");
+  const OpenBlock b = blocks_.back();
+  blocks_.pop_back();
+  Aperture ap;
+  ap.type = 'B';
+  ap.block.assign(std::make_move_iterator(batches_.begin() + static_cast<long>(b.batch_start)),
+                  std::make_move_iterator(batches_.end()));
+  batches_.resize(b.batch_start);
+  dark_ = b.dark;
+  if (apertures_.count(b.number_d)) note("aperture D" + std::to_string(b.number_d) + " redefined");
+  apertures_[b.number_d] = std::move(ap);
 }
 
 void GerberReader::set_units(double unit_nm, const char* how) {
@@ -489,13 +630,18 @@ void GerberReader::aperture_definition(const std::string& s) {
     }
   }
   if (name.empty()) fail("aperture D" + std::to_string(number_d) + " has no template name");
-  if (unit_nm_ == 0)
-    fail("aperture D" + std::to_string(number_d) + " defined before the units (%MO)");
+  need_units("aperture D" + std::to_string(number_d));
   const double u = unit_nm_, tol = opt_.arc_tolerance_nm;
-  for (double p : params) {
-    if (!(std::fabs(p * u) <= kMaxApertureNm)) {
+  // Only lengths are sizes: a polygon's vertex count and rotation, and a macro's parameters
+  // (angles among them: 45 deg is not 1.1 m in an inch file), are not; a macro's shape is
+  // checked once evaluated.
+  const bool standard = name == "C" || name == "R" || name == "O" || name == "P";
+  for (size_t i = 0; i < params.size() && standard; ++i) {
+    const bool length = name != "P" || i == 0 || i >= 3;
+    if (length && !(std::fabs(params[i] * u) <= kMaxApertureNm)) {
       fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
     }
+    if (!std::isfinite(params[i])) fail("aperture D" + std::to_string(number_d) + ": bad number");
   }
   Aperture ap;
   auto need = [&](size_t lo, size_t hi) {
@@ -548,6 +694,13 @@ void GerberReader::aperture_definition(const std::string& s) {
     } catch (const MacroError& e) {
       fail(std::string(e.what()) + " (macro statement at line " + std::to_string(e.line) + ")");
     }
+    for (const Path& p : ap.shape) {
+      for (const IntPoint& v : p) {
+        if (std::fabs(static_cast<double>(v.X)) > kMaxApertureNm ||
+            std::fabs(static_cast<double>(v.Y)) > kMaxApertureNm)
+          fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
+      }
+    }
   }
   if (ap.type != 'M' && params.size() > hole_at) {
     Path hole;
@@ -589,6 +742,7 @@ void GerberReader::aperture_macro(const std::vector<std::string>& parts,
 void GerberReader::step_repeat(const std::string& s) {
   if (in_sr_) close_step_repeat();
   if (s.empty()) return;
+  if (!blocks_.empty()) fail("a step-and-repeat inside a block aperture (%AB) is not supported");
   double x = 1, y = 1, i = 0, j = 0;
   size_t k = 0;
   while (k < s.size()) {
@@ -617,7 +771,7 @@ void GerberReader::step_repeat(const std::string& s) {
          " copies");
   }
   if (x == 1 && y == 1) return;
-  if (unit_nm_ == 0) fail("step-and-repeat before the units (%MO)");
+  need_units("step-and-repeat");
   if (!(std::fabs(i * unit_nm_ * x) <= kMaxCoordNm && std::fabs(j * unit_nm_ * y) <= kMaxCoordNm)) {
     fail("step-and-repeat '%SR" + s + "' reaches beyond 10 m");
   }
@@ -893,9 +1047,9 @@ double GerberReader::number(const std::string& s, const char* what) const {
   return v;
 }
 
-cInt GerberReader::coordinate(const std::string& s, bool is_x) const {
+cInt GerberReader::coordinate(const std::string& s, bool is_x) {
   if (!have_format_) fail("coordinates before the format (%FS)");
-  if (unit_nm_ == 0) fail("coordinates before the units (%MO or G70/G71)");
+  need_units("coordinates");
   const int integer = is_x ? x_int_ : y_int_, decimals = is_x ? x_dec_ : y_dec_;
   double nm = 0;
   if (s.find('.') != std::string::npos) {
@@ -1001,6 +1155,21 @@ void GerberReader::operate(int d, const std::string* xs, const std::string* ys,
 
 void GerberReader::flash(IntPoint at) {
   const Aperture& ap = current_aperture();
+  if (ap.type == 'B') {
+    const bool dark = dark_;
+    for (const Batch& b : ap.block) {
+      dark_ = dark ? b.dark : !b.dark;
+      for (size_t k = 0; k < b.starts.size(); ++k) {
+        const size_t end = k + 1 < b.starts.size() ? b.starts[k + 1] : b.paths.size();
+        Paths object(b.paths.begin() + static_cast<long>(b.starts[k]),
+                     b.paths.begin() + static_cast<long>(end));
+        translate_paths(object, at.X, at.Y);
+        add_object(std::move(object));
+      }
+    }
+    dark_ = dark;
+    return;
+  }
   Paths copy = ap.shape;
   translate_paths(copy, at.X, at.Y);
   add_object(std::move(copy));
@@ -1008,6 +1177,8 @@ void GerberReader::flash(IntPoint at) {
 
 void GerberReader::draw_line(IntPoint from, IntPoint to) {
   const Aperture& ap = current_aperture();
+  if (ap.type == 'B')
+    fail("block aperture D" + std::to_string(aperture_) + " can only be flashed (D03)");
   add_centre_line(from, {to});
   if (ap.shape.empty()) return;  // zero-size aperture: a line of no width
   const VecNm a{static_cast<double>(from.X), static_cast<double>(from.Y)};
@@ -1094,7 +1265,14 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
     if (best < 0) fail("single-quadrant arc (G74) with no centre giving 90 degrees or less");
   }
   const double r0 = std::hypot(a.x - c.x, a.y - c.y), r1 = std::hypot(b.x - c.x, b.y - c.y);
-  if (std::fabs(r0 - r1) > std::max(10000.0, 0.5 * std::max(r0, r1))) {
+  // A centre on the start or end point: a zero-radius arc, which gerbv and pcb2gcode draw as
+  // the straight line between its ends (a point when they meet).
+  const bool degenerate = std::min(r0, r1) <= 1000.0;
+  if (degenerate) {
+    note(
+        "warning: an arc whose centre is its own start or end point (zero radius) drawn as "
+        "a straight line");
+  } else if (std::fabs(r0 - r1) > std::max(10000.0, 0.5 * std::max(r0, r1))) {
     char msg[160];
     std::snprintf(msg, sizeof msg,
                   "arc end point is not on its circle (radius %.3f mm at the start, %.3f mm at "
@@ -1102,11 +1280,13 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
                   r0 * 1e-6, r1 * 1e-6);
     fail(msg);
   }
-  if (std::fabs(r0 - r1) > std::max(10000.0, 0.01 * r0)) {
+  if (!degenerate && std::fabs(r0 - r1) > std::max(10000.0, 0.01 * r0)) {
     note("an arc whose end is not on its circle (radii differ by more than 10 um)");
   }
   Path pts;
-  if (from != to || sweep != 0) {
+  if (degenerate) {
+    if (from != to) pts.push_back(to);
+  } else if (from != to || sweep != 0) {
     append_arc(pts, c, r0, r1, std::atan2(a.y - c.y, a.x - c.x), sweep, opt_.arc_tolerance_nm);
     if (!pts.empty()) pts.back() = to;
   }

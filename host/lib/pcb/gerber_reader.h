@@ -15,6 +15,9 @@ struct GerberOptions {
   // Used when neither X2 TF.FileFunction nor the file name says what the layer is (the
   // command line's --layer).
   LayerKind kind_if_unknown = LayerKind::kUnknown;
+  // The kind the user named (--top, --outline...): wins over X2 and the name (an explicit
+  // option always does), and decides how the file is read (copper or outline strokes).
+  LayerKind forced_kind = LayerKind::kUnknown;
   // Largest distance between a flattened arc or circle and the true curve (inscribed
   // polygons, so copper is at most this much smaller than drawn).
   double arc_tolerance_nm = 500;

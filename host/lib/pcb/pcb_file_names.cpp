@@ -32,6 +32,45 @@ bool contains(const std::string& s, const char* part) {
   return s.find(part) != std::string::npos;
 }
 
+bool ends_with(const std::string& s, const char* tail) {
+  const std::string t(tail);
+  return s.size() >= t.size() && s.compare(s.size() - t.size(), t.size(), t) == 0;
+}
+
+// Words of layers that are not copper (silkscreen, mask, paste, assembly, documentation).
+bool names_other_layer(const std::string& name) {
+  for (const char* w : {"silk", "mask", "paste", "assy", "assembl", "legend", "overlay", "fab",
+                        "doc", "keepout", "courtyard", "stencil"}) {
+    if (contains(name, w)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+namespace {
+
+// The broad table of copper names beyond the extensions: DipTrace (Top.gbr, Bottom.gbr,
+// also after '_'), gEDA/pcb (NAME.top.gbr, NAME.bottom.gbr), Allegro/OrCAD (TOP.art,
+// BOTTOM.art, ETCH_TOP.art), PADS (art01.pho: layer 1, the top), FAB 3000 (.tl, .bl).
+LayerKind copper_from_name_table(const std::string& name, const std::string& ext) {
+  if (ext == ".tl") return LayerKind::kCopperTop;
+  if (ext == ".bl") return LayerKind::kCopperBottom;
+  if (names_other_layer(name)) return LayerKind::kUnknown;
+  const std::string stem = name.substr(0, name.size() - ext.size());
+  if (ext == ".gbr" || ext == ".art" || ext == ".ger" || ext == ".pho") {
+    if (stem == "top" || ends_with(stem, "_top") || ends_with(stem, ".top") ||
+        ends_with(stem, "-top") || stem == "toplayer" || stem == "etch_top")
+      return LayerKind::kCopperTop;
+    if (stem == "bottom" || ends_with(stem, "_bottom") || ends_with(stem, ".bottom") ||
+        ends_with(stem, "-bottom") || stem == "bot" || ends_with(stem, "_bot") ||
+        stem == "bottomlayer")
+      return LayerKind::kCopperBottom;
+  }
+  if (ext == ".pho" && stem == "art01") return LayerKind::kCopperTop;
+  return LayerKind::kUnknown;
+}
+
 }  // namespace
 
 LayerKind layer_kind_from_file_name(const std::string& path) {
@@ -39,6 +78,8 @@ LayerKind layer_kind_from_file_name(const std::string& path) {
   const std::string ext = extension(name);
   if (ext == ".gtl" || ext == ".cmp" || ext == ".top") return LayerKind::kCopperTop;
   if (ext == ".gbl" || ext == ".sol" || ext == ".bot") return LayerKind::kCopperBottom;
+  const LayerKind table = copper_from_name_table(name, ext);
+  if (table != LayerKind::kUnknown) return table;
   if (ext == ".gko" || ext == ".gm1" || ext == ".gml" || ext == ".gbr_outline") {
     return LayerKind::kOutline;
   }
@@ -65,7 +106,7 @@ PcbFileFormat pcb_file_format(const std::string& path, const std::string& head_t
   if (ext == ".gbr" || ext == ".ger" || ext == ".gtl" || ext == ".gbl" || ext == ".gto" ||
       ext == ".gbo" || ext == ".gts" || ext == ".gbs" || ext == ".gko" || ext == ".gm1" ||
       ext == ".gml" || ext == ".gbx" || ext == ".pho" || ext == ".art" || ext == ".cmp" ||
-      ext == ".sol") {
+      ext == ".sol" || ext == ".tl" || ext == ".bl") {
     return PcbFileFormat::kGerber;
   }
   if (ext == ".drl" || ext == ".xln" || ext == ".exc" || ext == ".drd") {

@@ -136,6 +136,12 @@ class PlanError : public std::runtime_error {
   explicit PlanError(const std::string& msg) : std::runtime_error(msg) {}
 };
 
+// The one check of a work area against the controller's travel, for drawings and boards:
+// throws PlanError ("--work W H mm is beyond the controller's travel ...") when it is larger
+// or not positive.
+void check_work_area(double work_width_mm, double work_height_mm, double travel_width_mm,
+                     double travel_height_mm);
+
 // Plans the whole job; every check is done before anything is returned. A drawing without
 // a program (DXF) is reordered for short rapids; a program (G-code) keeps the file's order
 // and its pauses, dwells, spindle switching and drilling (see program_plan.cpp).

@@ -143,22 +143,32 @@ Point2 offset_point(const BSpline& s, bool at_start, int32_t offset_um) {
   return p + Point2(-d.y(), d.x()) * (offset_um / 1000.0);
 }
 
+}  // namespace plan_detail
+
+void check_work_area(double work_width_mm, double work_height_mm, double travel_width_mm,
+                     double travel_height_mm) {
+  using plan_detail::mm;
+  if (!(work_width_mm > 0) || !(work_height_mm > 0)) {
+    throw PlanError("--work " + mm(work_width_mm) + " " + mm(work_height_mm) +
+                    ": the work area must have a positive width and height");
+  }
+  if (work_width_mm > travel_width_mm + 1e-9 || work_height_mm > travel_height_mm + 1e-9) {
+    throw PlanError(
+        "--work " + mm(work_width_mm) + " " + mm(work_height_mm) +
+        " mm is beyond the controller's travel of " + mm(travel_width_mm) + " x " +
+        mm(travel_height_mm) +
+        " mm: the controller would stop the job once the tool got there. Use a work "
+        "area within the travel and scale the drawing down (--scale) if it does not fit");
+  }
+}
+
+namespace plan_detail {
+
 void check_options(const PlanOptions& o) {
   if (!(o.scale > 0) || !std::isfinite(o.scale)) throw PlanError("scale must be positive");
   if (!(o.feed_mm_per_s > 0) || !(o.plunge_mm_per_s > 0)) throw PlanError("feeds must be positive");
   if (!(o.tool_radius_mm >= 0)) throw PlanError("tool radius must not be negative");
-  if (!(o.work_width_mm > 0) || !(o.work_height_mm > 0)) {
-    throw PlanError("--work " + mm(o.work_width_mm) + " " + mm(o.work_height_mm) +
-                    ": the work area must have a positive width and height");
-  }
-  if (o.work_width_mm > o.travel_width_mm + 1e-9 || o.work_height_mm > o.travel_height_mm + 1e-9) {
-    throw PlanError(
-        "--work " + mm(o.work_width_mm) + " " + mm(o.work_height_mm) +
-        " mm is beyond the controller's travel of " + mm(o.travel_width_mm) + " x " +
-        mm(o.travel_height_mm) +
-        " mm: the controller would stop the job once the tool got there. Use a work "
-        "area within the travel and scale the drawing down (--scale) if it does not fit");
-  }
+  check_work_area(o.work_width_mm, o.work_height_mm, o.travel_width_mm, o.travel_height_mm);
   for (double z : {o.z_up_mm, o.z_down_mm}) {
     if (!(std::fabs(z) <= o.travel_z_mm)) {
       throw PlanError("Z " + mm(z) + " mm is beyond the controller's Z travel of +-" +

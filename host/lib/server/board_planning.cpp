@@ -3,10 +3,12 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include <cmath>  // std::hypot
+#include <algorithm>  // std::min
+#include <cmath>      // std::hypot, std::lround
 
 #include "firmware/config/machine_config.h"
 #include "host/lib/drawing/drawing.h"
+#include "host/lib/pcb/board_check.h"  // refuse_copper_hits
 #include "host/lib/pcb/board_files.h"
 #include "host/lib/pcb/cutout.h"
 #include "host/lib/server/data_folder.h"
@@ -73,7 +75,8 @@ std::string server_words(std::string text) {
 // The board planner's errors as the intake's: what cannot run is refused with the message.
 // A workshop job goes to whichever machine is free, so unlike `engraver send` it starts
 // with a pause (#P) naming the first tool: the operator mounts it and confirms.
-pcb::BoardJob plan(const pcb::BoardFileSet& set, const pcb::BoardOptions& o) {
+pcb::BoardJob plan(const pcb::BoardFileSet& set, const pcb::BoardOptions& o,
+                   const JobPlanSettings& settings) {
   pcb::PcbLayer drill;
   pcb::BoardJob job;
   try {
@@ -83,6 +86,12 @@ pcb::BoardJob plan(const pcb::BoardFileSet& set, const pcb::BoardOptions& o) {
   } catch (const PlanError& e) {
     throw PlanError(server_words(e.what()));
   }
+  // A job that would cut copper is refused with the places (a PlanError): the controller's
+  // points at the chord tolerance the job is sent with (encode_options()).
+  const double tol_mm = std::min(settings.tol_mm, pcb::kBoardChordToleranceMm);
+  pcb::refuse_copper_hits(
+      pcb::check_controller_isolation(job, o, static_cast<int>(std::lround(tol_mm * 1000))),
+      fmt::format("the controller's points at {} mm chords", tol_mm));
   if (!job.report.first_tool.empty()) {
     PlanStep mount;
     mount.kind = PlanStep::kPause;
@@ -133,6 +142,8 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
     } catch (const pcb::PcbReadError& e) {
       throw ImportError(e.what());
     }
+    for (const std::string& n : layer.notes)  // the reader's warnings, as the CLI prints them
+      if (n.find("warning: ") != std::string::npos) notes.push_back(f.name + ": " + n);
     const LayerKind kind = layer.kind;
     std::string file;
     switch (kind) {
@@ -180,8 +191,9 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
 
   PlannedBoard out;
   const pcb::BoardOptions options = board_options(side, board, settings, work_w_mm, work_h_mm);
-  out.job = plan(set, options);
+  out.job = plan(set, options, settings);
   const pcb::BoardReport& r = out.job.report;
+  for (const std::string& n : r.notes) notes.push_back(n);  // e.g. an empty outline left out
   nlohmann::json gaps = nlohmann::json::array();
   for (const pcb::NarrowGap& g : r.narrow_gaps)
     gaps.push_back(pcb::describe_gap(g, options.isolation));
@@ -232,7 +244,8 @@ pcb::BoardJob plan_board_folder(const fs::path& dir, const JobPlanSettings& sett
     b.tool_width_mm = m.at("tool_width_mm").get<double>();
     b.allow_narrow_gaps = m.value("allow_narrow_gaps", false);
     return plan(set,
-                board_options(m.at("side").get<std::string>(), b, settings, work_w_mm, work_h_mm));
+                board_options(m.at("side").get<std::string>(), b, settings, work_w_mm, work_h_mm),
+                settings);
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error((dir / kBoardManifest).string() + ": damaged: " + e.what());
   }

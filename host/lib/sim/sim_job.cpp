@@ -1,9 +1,10 @@
 // One job through the simulated machine over real loopback TCP, and its measurements.
 #include "host/lib/sim/sim_job.h"
 
-#include <atomic>  // std::atomic
-#include <chrono>  // steady_clock
-#include <thread>  // std::thread
+#include <algorithm>  // std::max, std::min
+#include <atomic>     // std::atomic
+#include <chrono>     // steady_clock
+#include <thread>     // std::thread
 
 #include <time.h>  // clock_gettime
 
@@ -14,12 +15,38 @@
 namespace host::sim {
 
 double pen_threshold_mm(const JobPlan& plan) {
-  int32_t up = 0, down = 0;
+  // Cutting heights: pen-down Z into the work (at or below its zero) and drill bottoms;
+  // travel heights: pen-up Z and the drill start height, where the controller travels from
+  // hole to hole. The threshold lies halfway between the highest cut and the lowest travel
+  // above it (a drill-only job travels at its start height, far below the pen-up height).
+  int32_t last_up = 0, last_down = 0;
+  bool have_cut = false;
+  int32_t cut = 0;
+  auto add_cut = [&](int32_t z) {
+    cut = have_cut ? std::max(cut, z) : z;
+    have_cut = true;
+  };
   for (const PlanStep& s : plan.steps) {
-    if (s.kind == PlanStep::kPenUp) up = s.z_um;
-    if (s.kind == PlanStep::kPenDown) down = s.z_um;
+    if (s.kind == PlanStep::kPenUp) last_up = s.z_um;
+    if (s.kind == PlanStep::kPenDown) {
+      last_down = s.z_um;
+      if (s.z_um <= 0) add_cut(s.z_um);
+    }
+    if (s.kind == PlanStep::kDrill) add_cut(s.z_um);
   }
-  return (up + down) / 2000.0;
+  bool have_travel = false;
+  int32_t travel = 0;
+  auto add_travel = [&](int32_t z) {
+    if (!have_cut || z <= cut) return;  // e.g. the top of a holding tab: still in the board
+    travel = have_travel ? std::min(travel, z) : z;
+    have_travel = true;
+  };
+  for (const PlanStep& s : plan.steps) {
+    if (s.kind == PlanStep::kPenUp) add_travel(s.z_um);
+    if (s.kind == PlanStep::kDrill) add_travel(s.z_start_um);
+  }
+  if (!have_travel) return (last_up + last_down) / 2000.0;  // heights above the work's zero
+  return (cut + travel) / 2000.0;
 }
 
 std::vector<bool> pen_down_samples(const std::vector<ToolSample>& trace, const JobPlan& plan) {

@@ -65,7 +65,8 @@ struct SimJobResult {
 // start at all; every other ending is in the result.
 SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options);
 
-// Pen-down samples: Z below halfway between the plan's travel and cutting heights.
+// Pen-down samples: Z below halfway between the plan's highest cutting height (pen down into
+// the work, drill bottoms) and its lowest travel height above that (pen up, drill start).
 double pen_threshold_mm(const JobPlan& plan);
 // Which trace samples cut: below the threshold after the tool was first lifted (at power-on
 // the tool stands at Z 0, which is below the threshold but not cutting).

@@ -227,6 +227,16 @@ TEST(Cli, RunRefusesAWorkAreaBeyondTheTravel) {
       << r.err;
 }
 
+// An Excellon file named .tap (a G-code extension) starting with '%' then M48, as EAGLE and
+// Fritzing write drill files: read as drilling by its content, not as G-code.
+TEST(Cli, AnExcellonFileNamedTapIsReadByItsContent) {
+  const std::string path = write_temp(
+      "cli_drill.tap", "%\nM48\nINCH\nT1C0.0315\n%\nG90\nG05\nT1\nX0.3937Y0.3937\nM30\n");
+  const ToolRun r = run("info " + path);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("format:    Excellon"), std::string::npos) << r.out;
+}
+
 TEST(Cli, RunOnATooLargeDrawingSaysWhatWouldFit) {
   const ToolRun r = run("run " + kSample + " --scale 3 -o " + testing::TempDir());
   EXPECT_EQ(r.code, 1);
@@ -259,8 +269,9 @@ TEST(Cli, RunCarriesAPcbProgramWithToolChangesDwellsAndHolesToTheEnd) {
   EXPECT_EQ(j["outcome"], "completed");
   EXPECT_EQ(j["pauses_confirmed_by_simulated_operator"], 2);  // one stop per tool change
   EXPECT_EQ(j["spindle_on_at_end"], false);
-  // The square (4 x 0.4 in) was cut, and both holes drilled to 0.07 in.
-  EXPECT_GT(j["traced_cut_mm"].get<double>(), 4 * 0.4 * 25.4 - 0.1);
+  // The 0.4 x 0.2 in rectangle was cut, and nothing else: the travel at the R plane
+  // (0.08 in) to and between the holes is not cutting (it once counted, 40 mm in all).
+  EXPECT_NEAR(j["traced_cut_mm"].get<double>(), 1.2 * 25.4, 0.1);
   // A short job's plot path keeps its step: a fraction of the samples, within the budget.
   const nlohmann::json& kept = j["plot_tool_path"];
   EXPECT_GT(kept["samples_kept"].get<size_t>(), 10u);

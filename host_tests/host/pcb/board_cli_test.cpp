@@ -140,6 +140,172 @@ TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {
   EXPECT_NE(r.out.find("simulated isolation cuts"), std::string::npos) << r.out;
 }
 
+// Without an outline nothing cuts below the drill start height, so the pen-down threshold
+// once fell above it: the travel from hole to hole (at +0.5 mm) counted as cutting, in the
+// traced length, the contour error (mm) and the plot. Copper with drilling, and drilling
+// alone.
+TEST(BoardCli, RunOfABoardWithoutOutlineCountsNoDrillTravelAsCutting) {
+  const std::string dir = write_board("no-outline");
+  std::filesystem::remove(dir + "/t-Edge.Cuts.gbr");
+  for (const std::string& input : {dir, dir + "/t-PTH.drl"}) {
+    const ToolRun r = run("run " + input + " -o " + dir + "/out");
+    ASSERT_EQ(r.code, 0) << r.err << r.out;
+    const nlohmann::json j = nlohmann::json::parse(
+        std::ifstream(dir + "/out/" + std::filesystem::path(input).stem().string() + ".json"));
+    EXPECT_NEAR(j["traced_cut_mm"].get<double>(), j["planned_cut_mm"].get<double>(), 0.5) << input;
+    EXPECT_LT(j["max_contour_error_um"].get<double>(), 10.0) << input;
+    EXPECT_GT(j["traced_rapid_mm"].get<double>(), 20.0) << input;  // hole to hole
+  }
+}
+
+// A job that would cut copper is a failed job (exit 8), refused before anything runs: with
+// no clearance and 30 um chords, the controller's points round the pads sag into the copper.
+// `send` refuses before it connects (the address here would fail with 6), `run` before it
+// simulates.
+TEST(BoardCli, AJobWhoseControllerPointsCutCopperIsRefusedBySendAndRun) {
+  const std::string dir = write_board("cuts", "%ADD13C,0.200000*%\nD13*\nX14000000Y14000000D03*\n");
+  const std::string options = " --clearance 0 --tol 0.03";
+  const ToolRun send = run("send " + dir + options + " --to tcp://127.0.0.1:1");
+  EXPECT_EQ(send.code, 8) << send.err;
+  EXPECT_NE(send.err.find("the job would cut copper: the controller's points at 0.03 mm chords "
+                          "cut into copper in "),
+            std::string::npos)
+      << send.err;
+  EXPECT_EQ(send.err.find("cannot connect"), std::string::npos) << send.err;
+  const ToolRun sim = run("run " + dir + options + " -o " + dir + "/out");
+  EXPECT_EQ(sim.code, 8) << sim.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out")) << "simulated although refused";
+  // The default chords (1 um) keep the tool off the copper.
+  EXPECT_EQ(run("send " + dir + " --clearance 0 --to tcp://127.0.0.1:1").code, 6);
+}
+
+// `run`'s own check of the simulated tool path: on a real board without clearance the
+// machine's contour error takes the tool into the copper (32 places, 5.9 um), which the
+// controller's points alone do not show; the job is failed (exit 8), not reported as done.
+TEST(BoardCli, RunFailsAJobWhoseSimulatedPathCutsCopper) {
+  const std::string board =
+      std::string(ENGRAVER_SOURCE_DIR) + "/../shared/samples/pcb/multivibrator";
+  if (!std::filesystem::is_directory(board)) GTEST_SKIP() << board << " (shared samples) absent";
+  const std::string out = testing::TempDir() + "/" + std::to_string(getpid()) + "-sim-cuts";
+  const ToolRun r = run("run " + board + " --clearance 0 -o " + out);
+  EXPECT_EQ(r.code, 8) << r.err;
+  EXPECT_NE(r.err.find("the job would cut copper: the simulated tool path cut into copper in "),
+            std::string::npos)
+      << r.err;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out + "/multivibrator.json"));
+  EXPECT_GT(j["simulated_isolation_check"]["copper_hits"].get<int>(), 0);
+}
+
+// A work area beyond the controller's travel is refused by `board` as by `run` (one check):
+// `board` once planned it and exited 0, and `run` then refused the job.
+TEST(BoardCli, AWorkAreaBeyondTheControllersTravelIsRefusedByBoardAsByRun) {
+  const std::string dir = write_board("work");
+  for (const std::string command : {"board", "run"}) {
+    const ToolRun r = run(command + " " + dir + " -o " + dir + "/out --work 300 300");
+    EXPECT_EQ(r.code, 1) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("--work 300 300 mm is beyond the controller's travel of 297 x 210 mm"),
+              std::string::npos)
+        << command << ": " << r.err;
+  }
+  EXPECT_EQ(run("board " + dir + " -o " + dir + "/out --work 297 210").code, 0);
+}
+
+// EAGLE and Fritzing write their drill file as .txt starting with '%' then M48: recognised
+// by its content in a folder (it was left out without a word: no holes, exit 0).
+TEST(BoardCli, AFoldersTxtDrillFileIsRecognisedByItsContent) {
+  const std::string dir = write_board("txt-drill");
+  std::filesystem::remove(dir + "/t-PTH.drl");
+  std::ofstream(dir + "/t.txt") << "%\n" << kDrillInch;
+  std::ofstream(dir + "/readme.txt") << "Made with EAGLE\n";
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["holes"], 3);
+  // Every file left out is named, with the reason.
+  EXPECT_NE(r.err.find("readme.txt: neither Gerber nor Excellon (by its name or content): left "
+                       "out"),
+            std::string::npos)
+      << r.err;
+}
+
+// A folder job whose copper is not recognised is not a success: planning its holes alone
+// looked like one (exit 0).
+TEST(BoardCli, AFolderWithoutCopperIsRefused) {
+  const std::string dir = write_board("no-copper");
+  std::filesystem::remove(dir + "/t-F.Cu.gbr");
+  std::string plain = kTopCopper;  // no X2 file function, a name that says nothing
+  plain.replace(plain.find("%EXTRA%"), 7, "");
+  plain.replace(plain.find("%TF.FileFunction,Copper,L1,Top*%\n"), 33, "");
+  std::ofstream(dir + "/t-layer1.gbr") << plain;
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("no copper layer for the job among the folder's files"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("t-layer1.gbr: neither its name nor an X2 file function says"),
+            std::string::npos)
+      << r.err;
+}
+
+// An option names the layer whatever the file's name says: a copper file named "outline"
+// given with --top is copper (it was read as outline strokes).
+TEST(BoardCli, AnExplicitTopOptionWinsOverAnOutlineName) {
+  const std::string dir = write_board("explicit");
+  std::string top = kTopCopper;
+  top.replace(top.find("%EXTRA%"), 7, "");
+  top.replace(top.find("%TF.FileFunction,Copper,L1,Top*%\n"), 33, "");
+  std::ofstream(dir + "/board-outline-copper.gbr") << top;
+  const ToolRun r =
+      run("board --top " + dir + "/board-outline-copper.gbr -o " + dir + "/out --json --no-plot");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["islands"], 2);
+}
+
+// KiCad writes an Edge.Cuts file holding only its aperture list when no outline is drawn:
+// the board is planned without a cut-out, and says so (it was refused whole: "the outline
+// layer has no closed loop").
+TEST(BoardCli, AnEmptyOutlineFilePlansTheBoardWithoutACutout) {
+  const std::string dir = write_board("empty-outline");
+  std::ofstream(dir + "/t-Edge.Cuts.gbr", std::ios::trunc)
+      << "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Profile,NP*%\n%ADD10C,0.100000*%\nM02*\n";
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out --json --no-plot");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["cutout_length_mm"], 0.0);
+  EXPECT_EQ(j["holes"], 3);
+  EXPECT_NE(r.err.find("t-Edge.Cuts.gbr: the outline layer draws nothing: planned without a "
+                       "cut-out"),
+            std::string::npos)
+      << r.err;
+  ASSERT_EQ(j["notes"].size(), 1u);
+}
+
+// The file's X2 file function comes before its name, and every file read says what it was
+// taken for and why.
+TEST(BoardCli, AFoldersFilesSayWhatTheyWereTakenFor) {
+  const std::string dir = write_board("taken-for");
+  // A name that says bottom copper, a file function that says top: the file function wins.
+  std::filesystem::rename(dir + "/t-F.Cu.gbr", dir + "/t_Bottom.gbr");
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out --json --no-plot");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["side"], "top");
+  EXPECT_NE(r.err.find("t_Bottom.gbr: taken as copper top (from its X2 file function)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("t-PTH.drl: taken as drill (from its name)"), std::string::npos) << r.err;
+}
+
+// A bottom-side job's outputs are named after the bottom copper, not the first file given.
+TEST(BoardCli, ABottomJobIsNamedAfterItsBottomCopper) {
+  const std::string dir = write_board("bottom-name");
+  std::string bottom = kTopCopper;
+  bottom.replace(bottom.find("%EXTRA%"), 7, "");
+  bottom.replace(bottom.find("Copper,L1,Top"), 13, "Copper,L2,Bot");
+  std::ofstream(dir + "/back.gbl") << bottom;
+  const ToolRun r = run("board --top " + dir + "/t-F.Cu.gbr --bottom " + dir +
+                        "/back.gbl --side bottom -o " + dir + "/out --no-plot");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/back.board.json"));
+}
+
 // `run` (and `send`, which plans the same way) on PCB files plans the job that `board` showed:
 // the board's feed and margin where none is given, the given ones where they are.
 TEST(BoardCli, RunPlansTheBoardThatTheBoardCommandShowed) {
@@ -197,7 +363,9 @@ TEST(BoardCli, AFoldersGerberWithAPlainNameIsReadByItsX2FileFunction) {
   const ToolRun r = run("board " + dir + " -o " + dir + "/out --json --no-check --no-plot");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["islands"], 2);
-  EXPECT_EQ(r.err.find("layer1.gbr"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("layer1.gbr: taken as copper top (from its X2 file function)"),
+            std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find("notes.gbr: neither its name nor an X2 file function says copper"),
             std::string::npos)
       << r.err;

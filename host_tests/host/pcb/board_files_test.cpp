@@ -45,6 +45,31 @@ TEST(BoardFiles, FormatAndKindComeFromTheNameOrTheContent) {
 
 // A board folder reads a Gerber with a name that says nothing when its X2 file function
 // says copper, drill or outline (board_cli.cpp); the same mapping as the reader's.
+// The broad name table: the copper names of DipTrace, gEDA/pcb, Allegro/OrCAD, PADS and
+// FAB 3000 (each was left out of a board folder); their silkscreen and masks are not copper.
+TEST(BoardFiles, CopperNamesOfManyEdaPrograms) {
+  const std::pair<const char*, LayerKind> names[] = {
+      {"board_Top.gbr", LayerKind::kCopperTop},        // DipTrace
+      {"board_Bottom.gbr", LayerKind::kCopperBottom},  // DipTrace
+      {"Top.gbr", LayerKind::kCopperTop},
+      {"board.top.gbr", LayerKind::kCopperTop},  // gEDA/pcb
+      {"board.bottom.gbr", LayerKind::kCopperBottom},
+      {"TOP.art", LayerKind::kCopperTop},  // Allegro / OrCAD
+      {"BOTTOM.art", LayerKind::kCopperBottom},
+      {"art01.pho", LayerKind::kCopperTop},  // PADS: layer 1
+      {"board.tl", LayerKind::kCopperTop},   // FAB 3000
+      {"board.bl", LayerKind::kCopperBottom},
+      {"board_TopSilk.gbr", LayerKind::kUnknown},
+      {"SOLDERMASK_TOP.art", LayerKind::kUnknown},
+      {"board.topmask.gbr", LayerKind::kUnknown},
+      {"board.bottompaste.gbr", LayerKind::kUnknown},
+  };
+  for (const auto& [name, kind] : names) {
+    EXPECT_EQ(layer_kind_from_file_name(name), kind) << name;
+    EXPECT_EQ(pcb_file_format(name, ""), PcbFileFormat::kGerber) << name;
+  }
+}
+
 TEST(BoardFiles, KindFromTheX2FileFunctionInAFilesHead) {
   EXPECT_EQ(layer_kind_from_x2("%FSLAX46Y46*%\n%TF.FileFunction,Copper,L1,Top*%\n"),
             LayerKind::kCopperTop);

@@ -86,5 +86,80 @@ TEST(ExcellonReader, IncrementalAndBodyToolsAndUnitsSwitch) {
   EXPECT_FALSE(l.notes.empty());
 }
 
+// ---- Excellon as its writers write it ----
+
+bool has_note(const PcbLayer& l, const std::string& part) {
+  for (const std::string& n : l.notes)
+    if (n.find(part) != std::string::npos) return true;
+  return false;
+}
+
+TEST(ExcellonWriters, UnitsAndZerosOnTheM71Line) {  // Upverter
+  const PcbLayer l = read_excellon_text("M48\nM71,TZ\nT1C0.8\n%\nT1\nX10000Y5000\nM30\n", "u.drl");
+  EXPECT_EQ(l.units, "mm");
+  ASSERT_EQ(l.holes.size(), 1u);
+  expect_hole(l.holes[0], 10000000, 5000000, 800000, 1);  // TZ, 3.3: "10000" is 10.000
+}
+
+TEST(ExcellonWriters, ToolsDefinedBeforeTheUnitLine) {  // PADS
+  const PcbLayer l =
+      read_excellon_text("M48\nT1C0.035\nT2C0.04\nINCH,LZ\n%\nT2\nX1.0Y0.5\nM30\n", "p.drl");
+  ASSERT_EQ(l.holes.size(), 1u);
+  expect_hole(l.holes[0], 25400000, 12700000, 1016000, 2);
+  EXPECT_EQ(l.apertures_or_tools, 2);
+}
+
+TEST(ExcellonWriters, ToolSizesOnlyInAllegroHolesizeComments) {
+  const PcbLayer l = read_excellon_text(
+      "%\n;T1 Holesize 1. = 13.000000 Tolerance = +2.000000/-2.000000 PLATED MILS Quantity = 1\n"
+      ";T02 Holesize 2. = 1.000000 Tolerance = +0.000000/-0.000000 NON_PLATED MM Quantity = 1\n"
+      "M48\nINCH,LZ\n%\nT01\nX1.0Y1.0\nT02\nX2.0Y1.0\nM30\n",
+      "allegro.drl");
+  ASSERT_EQ(l.holes.size(), 2u);
+  expect_hole(l.holes[0], 25400000, 25400000, 330200, 1);  // 13 mils
+  expect_hole(l.holes[1], 50800000, 25400000, 1000000, 2);
+}
+
+TEST(ExcellonWriters, AnOversizeToolLeavesOutItsHolesNotTheFile) {
+  // A 139.7 mm (5.5 in) "drill": a routed cut-out written as one tool.
+  const PcbLayer l = read_excellon_text(
+      "M48\nINCH,LZ\nT1C0.035\nT2C5.5\n%\nT1\nX1.0Y1.0\nT2\nX2.0Y2.0\nX3.0Y2.0\nT1\nX1.5Y1.0\n"
+      "M30\n",
+      "big.drl");
+  ASSERT_EQ(l.holes.size(), 2u);
+  EXPECT_EQ(l.holes[1].at.x, 38100000);
+  EXPECT_TRUE(has_note(l, "tool T2 (139.7 mm) is larger than 100 mm, not a drill: its 2 hole(s)"))
+      << ::testing::PrintToString(l.notes);
+}
+
+TEST(ExcellonWriters, UnitsBeforeM48AndAPercentFirstLine) {  // old EAGLE .drd, Fritzing .txt
+  const PcbLayer l =
+      read_excellon_text("%\nINCH,TZ\nM48\nT1C0.032\n%\nT1\nX10000Y5000\nM30\n", "e.drd");
+  ASSERT_EQ(l.holes.size(), 1u);
+  expect_hole(l.holes[0], 25400000, 12700000, 812800, 1);  // 2.4, TZ: "10000" is 1.0000
+}
+
+TEST(ExcellonWriters, G93SetsTheWorkZero) {  // Mentor writes G93X0Y0
+  const PcbLayer zero =
+      read_excellon_text("M48\nMETRIC\nT1C0.8\n%\nG93X0Y0\nT1\nX1.0Y2.0\nM30\n", "m.drl");
+  ASSERT_EQ(zero.holes.size(), 1u);
+  expect_hole(zero.holes[0], 1000000, 2000000, 800000, 1);
+  const PcbLayer moved =
+      read_excellon_text("M48\nMETRIC\nT1C0.8\n%\nG93X10.0Y0\nT1\nX1.0Y2.0\nM30\n", "m.drl");
+  ASSERT_EQ(moved.holes.size(), 1u);
+  EXPECT_EQ(moved.holes[0].at.x, 11000000);
+}
+
+// Allegro route files: M16 (tool up) also with the next position on its line.
+TEST(ExcellonWriters, M16EndsARouteAnywhere) {
+  const PcbLayer l = read_excellon_text(
+      "M48\nMETRIC\nT1C1.0\n%\nT1\nM16\nG00X1.0Y1.0\nM15\nG01X5.0Y1.0\nM16X6.0Y1.0\nM17\n"
+      "G05\nX9.0Y9.0\nM30\n",
+      "route.rou");
+  ASSERT_EQ(l.slots.size(), 1u);
+  EXPECT_EQ(l.slots[0].to.x, 5000000);
+  ASSERT_EQ(l.holes.size(), 1u);
+}
+
 }  // namespace
 }  // namespace host::pcb

@@ -181,6 +181,91 @@ TEST(GerberReader, DeprecatedFormsAreReadWithNotes) {
       covered(l, (0.5 - 0.25 * std::cos(kPi / 4)) * in, (0.75 + 0.25 * std::sin(kPi / 4)) * in));
 }
 
+// The legacy image parameters as the specification says: input code and knockout-off are
+// ignored with a warning; a mirror, a quarter-turn rotation or a scale changes the image and
+// is applied. A 1 mm square pad flashed at (10, 5) mm:
+PcbLayer legacy(const std::string& params) {
+  return read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n" + params + "%ADD10R,1X1*%\nD10*\nX10000000Y5000000D03*\nM02*\n",
+      "legacy-F.Cu.gbr");
+}
+
+TEST(GerberLegacyParameters, InputCodeAndKnockoutOffAreIgnoredWithAWarning) {
+  const PcbLayer l = legacy("%ICAS*%\n%KO*%\n");
+  EXPECT_TRUE(covered(l, 10, 5));
+  EXPECT_TRUE(has_note(l, "warning: %ICAS (deprecated input code: ASCII) ignored"));
+  EXPECT_TRUE(has_note(l, "warning: %KO"));
+}
+
+TEST(GerberLegacyParameters, MirrorRotationAndScaleAreApplied) {
+  const PcbLayer mirrored = legacy("%MIA1B0*%\n");
+  EXPECT_TRUE(covered(mirrored, -10, 5));
+  EXPECT_FALSE(covered(mirrored, 10, 5));
+  EXPECT_NEAR(area_mm2(mirrored.polygons_nm), 1.0, 1e-9);  // orientation kept: positive
+  const PcbLayer rotated = legacy("%IR90*%\n");
+  EXPECT_TRUE(covered(rotated, -5, 10));
+  EXPECT_FALSE(covered(rotated, 10, 5));
+  const PcbLayer scaled = legacy("%SFA2B1*%\n");
+  EXPECT_TRUE(covered(scaled, 20.9, 5));  // the pad is scaled too: 2 x 1 mm
+  EXPECT_FALSE(covered(scaled, 10, 5));
+  EXPECT_NEAR(area_mm2(scaled.polygons_nm), 2.0, 1e-9);
+  EXPECT_TRUE(has_note(scaled, "warning: %SFA2B1 (deprecated scale factor) applied"));
+  // The identities stay notes, no warning.
+  const PcbLayer identity = legacy("%IPPOS*%\n%IR0*%\n%MIA0B0*%\n%SFA1B1*%\n%OFA0B0*%\n");
+  EXPECT_TRUE(covered(identity, 10, 5));
+  for (const std::string& n : identity.notes) EXPECT_EQ(n.find("warning"), std::string::npos) << n;
+}
+
+// In an inch file a macro's rotation (45 deg) is an angle, not 45 in = 1.14 m: it was
+// refused as "larger than 1 m". A 0.05 x 0.02 in centre line turned by 45 deg.
+TEST(GerberReader, AnInchMacrosRotationIsNotALength) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX24Y24*%\n%MOIN*%\n%AMROT*\n21,1,$1,$2,0,0,$3*%\n%ADD10ROT,0.05X0.02X45*%\n"
+      "D10*\nX10000Y10000D03*\nM02*\n",
+      "rot-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 0.05 * 0.02 * 25.4 * 25.4, 1e-6);
+  EXPECT_TRUE(covered(l, 25.4 + 0.4, 25.4 + 0.4));   // along the 45 degree diagonal
+  EXPECT_FALSE(covered(l, 25.4 + 0.5, 25.4 - 0.1));  // off it
+}
+
+// No %MO: the format's legacy default, inch (gerbv and pcb2gcode read it so), with a warning.
+TEST(GerberReader, NoUnitsMeansInchWithAWarning) {
+  const PcbLayer l = read_gerber_text("%FSLAX24Y24*%\n%ADD10C,0.1*%\nD10*\nX10000Y5000D03*\nM02*\n",
+                                      "no-mo-F.Cu.gbr");
+  EXPECT_EQ(l.units, "inch");
+  EXPECT_TRUE(covered(l, 25.4, 12.7));
+  EXPECT_NEAR(area_mm2(l.polygons_nm), kPi * 1.27 * 1.27, 0.01);
+  EXPECT_TRUE(has_note(l, "warning: no units (%MO) before aperture D10: inch assumed"));
+}
+
+// A G03 whose I/J puts the centre on its own end point: a zero-radius arc, drawn as the
+// straight line between its ends (it was refused: "0.000 mm at the end").
+TEST(GerberReader, AZeroRadiusArcIsAStraightLine) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD10C,0.2*%\nD10*\nG75*\nX0Y0D02*\n"
+      "G03X1000000Y0I1000000J0D01*\nM02*\n",
+      "arc-F.Cu.gbr");
+  EXPECT_TRUE(covered(l, 0.5, 0));
+  EXPECT_FALSE(covered(l, 0.5, 0.2));
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 1 * 0.2 + kPi * 0.01, 1e-3);
+  EXPECT_TRUE(has_note(l, "zero radius"));
+}
+
+// A block aperture (%AB, in the specification since 2016): the objects drawn inside, with
+// their polarities, flashed like an aperture at each flash point. Here a 2 mm square with a
+// 0.5 mm clear hole, flashed at (10, 0) and (20, 0).
+TEST(GerberReader, BlockAperturesAreFlashedWithTheirPolarities) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD10R,2X2*%\n%ADD11C,0.5*%\n%ABD12*%\nD10*\nX0Y0D03*\n"
+      "%LPC*%\nD11*\nX0Y0D03*\n%AB*%\n%LPD*%\nD12*\nX10000000Y0D03*\nX20000000Y0D03*\nM02*\n",
+      "block-F.Cu.gbr");
+  EXPECT_TRUE(covered(l, 10.8, 0));
+  EXPECT_TRUE(covered(l, 20.8, 0.8));
+  EXPECT_FALSE(covered(l, 10, 0));  // the clear hole
+  EXPECT_FALSE(covered(l, 0, 0));   // nothing where the block was defined
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 2 * (4 - kPi * 0.0625), 2e-3);  // flattened holes
+}
+
 TEST(GerberReader, RegionsWithCutInAndClockwiseContours) {
   const PcbLayer l = read_gerber_file(data_file("regions.gbr"));
   EXPECT_NEAR(area_mm2(l.polygons_nm), 100 - 16 + 9, 1e-9);

@@ -2,6 +2,8 @@
 // doubles instead), with every pen change kept and the measurements taken on every sample.
 #include "host/lib/sim/trace_meter.h"
 
+#include "host/lib/sim/sim_job.h"  // pen_threshold_mm
+
 #include <gtest/gtest.h>
 
 #include <cmath>   // std::abs
@@ -103,6 +105,44 @@ TEST(TraceMeter, CoarseningNeverDropsAPenChange) {
     if (is_down(kept[i]) && !is_down(kept[i - 1])) EXPECT_EQ(kept[i].x_mm, 0.0);
     if (!is_down(kept[i]) && is_down(kept[i - 1])) EXPECT_EQ(kept[i - 1].x_mm, 1.0);
   }
+}
+
+// A board's drilling travels from hole to hole at the drill start height (+0.5 mm), far
+// below the pen-up height: that travel is not cutting, with or without isolation before it,
+// and the top of a holding tab (a pen-up inside the board) is not travel.
+TEST(TraceMeter, DrillTravelAtTheStartHeightIsNotCutting) {
+  PlanStep up;
+  up.kind = PlanStep::kPenUp;
+  up.z_um = 2000;
+  PlanStep drill;
+  drill.kind = PlanStep::kDrill;
+  drill.z_start_um = 500;
+  drill.z_um = -1800;
+  PlanStep iso;
+  iso.kind = PlanStep::kPenDown;
+  iso.z_um = -50;
+  PlanStep cut = iso;
+  cut.z_um = -600;
+  PlanStep tab_top = up;
+  tab_top.z_um = -1300;
+  JobPlan drilling;
+  drilling.steps = {up, drill, drill};
+  EXPECT_DOUBLE_EQ(pen_threshold_mm(drilling), (0.5 - 1.8) / 2);
+  JobPlan isolation_and_drilling;
+  isolation_and_drilling.steps = {up, iso, up, drill, drill, up};
+  EXPECT_DOUBLE_EQ(pen_threshold_mm(isolation_and_drilling), (0.5 - 0.05) / 2);
+  JobPlan with_cutout;
+  with_cutout.steps = {up, drill, up, cut, tab_top, cut, up};
+  EXPECT_DOUBLE_EQ(pen_threshold_mm(with_cutout), (0.5 - 0.6) / 2);
+  // Travel between two holes at +0.5 mm: all rapid.
+  TraceMeter m(isolation_and_drilling, 0);
+  m.add(at(0, 0, 0, 2.0));
+  m.add(at(1, 0, 0, 0.5));
+  m.add(at(2, 0, 0, -1.8));
+  m.add(at(3, 0, 0, 0.5));
+  m.add(at(4, 30, 0, 0.5));
+  EXPECT_DOUBLE_EQ(m.cut_mm(), 0.0);
+  EXPECT_DOUBLE_EQ(m.rapid_mm(), 30.0);
 }
 
 }  // namespace

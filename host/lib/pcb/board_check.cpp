@@ -1,0 +1,40 @@
+// The planned board's isolation check and the refusal of a job that cuts copper (see
+// board_check.h).
+#include "host/lib/pcb/board_check.h"
+
+#include <fmt/format.h>  // fmt::format
+
+#include "host/lib/plan/firmware_points.h"  // firmware_points_mm
+
+namespace host::pcb {
+
+double isolation_check_tolerance_mm(const BoardOptions& o) {
+  return o.fit_tolerance_mm + 0.001;
+}
+
+IsolationCheck check_planned_isolation(const BoardJob& job, const BoardOptions& o) {
+  if (job.copper_machine_nm.empty()) return IsolationCheck{};
+  return check_isolation(job.copper_machine_nm, job.isolation_paths_mm, job.tool_radius_mm,
+                         isolation_check_tolerance_mm(o));
+}
+
+IsolationCheck check_controller_isolation(const BoardJob& job, const BoardOptions& o,
+                                          int chord_tolerance_um) {
+  if (job.copper_machine_nm.empty()) return IsolationCheck{};
+  std::vector<std::vector<Point2>> paths;
+  paths.reserve(job.isolation_curves);
+  for (size_t i = 0; i < job.isolation_curves; ++i)
+    paths.push_back(firmware_points_mm(job.plan.curves[i].spline, chord_tolerance_um));
+  return check_isolation(job.copper_machine_nm, paths, job.tool_radius_mm,
+                         isolation_check_tolerance_mm(o));
+}
+
+void refuse_copper_hits(const IsolationCheck& c, const std::string& paths) {
+  if (c.hits.empty()) return;
+  throw CopperCutError(fmt::format(
+      "the job would cut copper: {} cut into copper in {} place(s) (a larger clearance, a "
+      "finer chord tolerance or a narrower tool keeps the tool off it): {}",
+      paths, c.hits.size(), describe(c)));
+}
+
+}  // namespace host::pcb
