@@ -31,7 +31,8 @@ StepSettings default_step_settings();
 
 // Usage: begin(); then next() until it returns false; then error() says whether the curve
 // finished (kOk) or stopped (e.g. kOffsetTooLarge). Each next() call does bounded work:
-// one point (adaptive: at most 24 trials of 4 evaluations, 8 for rational spans or with an
+// one point (adaptive: at most 24 trials of 1 evaluation on polynomial spans without
+// offset (4 if a sample falls beyond the chord's end), 8 for rational spans or with an
 // offset; a corner arc: one arc point), or at a knot the next span's setup plus the joint
 // point. Adaptive steps keep the real chord error <= tolerance (docs/core-math.md).
 //

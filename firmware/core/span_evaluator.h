@@ -69,6 +69,11 @@ class SpanEvaluator {
   PointUm end_point() const { return round_point(end_); }
   // Derivative direction at the span end (t = 1).
   Direction end_direction() const;
+  // Taylor coefficients of a polynomial span about t0 over a step h (uq16, t0 < 1,
+  // t0 + h <= 1): P(t0 + h s) = P(t0) + a1 s + a2 s^2 + a3 s^3 with a2, a3 in q6 um
+  // (|.| < 2^30). False (nothing written) for rational spans and for spans whose
+  // coefficients are too large for that bound.
+  bool step_bend_q6(uint32_t t0_q16, uint32_t h_q16, PointQ6* a2, PointQ6* a3) const;
   uint8_t degree() const { return degree_; }
   bool rational() const { return rational_; }
 

@@ -155,6 +155,53 @@ TEST(SpanEvaluator, SpanEndEqualsNextSpanStartAndClampedEndsHitControlPoints) {
   EXPECT_EQ(a.end_point().y_um, 123);
 }
 
+// step_bend_q6 against Eigen: with f(s) = P(t0 + h s) a cubic in s, the third difference
+// f(1) - 3 f(2/3) + 3 f(1/3) - f(0) is 2 a3 / 9 and f(0) - 2 f(1/2) + f(1) is
+// a2 / 2 + 3 a3 / 4, exactly.
+TEST(SpanEvaluator, StepBendIsTheTaylorCoefficientsOfTheStep) {
+  std::mt19937 rng(7);
+  const testcurves::RandomOptions o = testcurves::default_options();
+  double worst_um = 0;
+  int checked = 0;
+  for (int i = 0; i < 200; ++i) {
+    const core::Spline s = testcurves::random_spline(rng, o);
+    const reference::Curve curve(s);
+    for (uint16_t span = core::first_span(s); span < core::span_end(s);
+         span = core::next_span(s, span)) {
+      core::SpanEvaluator e;
+      ASSERT_EQ(e.setup(s, span), core::GeometryError::kOk);
+      const uint32_t t0 = rng() % 65536;
+      uint32_t h = 1 + rng() % (65536 - t0);
+      if (i % 4 == 0) h = 65536 - t0;  // up to the span end (t0 0 and h 1 included)
+      core::PointQ6 a2;
+      core::PointQ6 a3;
+      // Spans whose coefficients are too large (the random extremes) are refused.
+      if (!e.step_bend_q6(t0, h, &a2, &a3)) continue;
+      auto f = [&](double frac) { return curve.at_span(span, (t0 + h * frac) / 65536.0); };
+      const Eigen::Vector2d want3 = (f(1) - 3 * f(2.0 / 3) + 3 * f(1.0 / 3) - f(0)) * 4.5;
+      const Eigen::Vector2d want2 = (f(0) - 2 * f(0.5) + f(1) - 0.75 * want3) * 2;
+      const Eigen::Vector2d got2(a2.x_q6 / 64.0, a2.y_q6 / 64.0);
+      const Eigen::Vector2d got3(a3.x_q6 / 64.0, a3.y_q6 / 64.0);
+      worst_um = std::max(worst_um, std::max((got2 - want2).norm(), (got3 - want3).norm()));
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 200);
+  EXPECT_LE(worst_um, 0.5);
+}
+
+TEST(SpanEvaluator, StepBendIsRefusedOnRationalSpans) {
+  std::mt19937 rng(8);
+  testcurves::RandomOptions o = testcurves::default_options();
+  o.rational = true;
+  const core::Spline s = testcurves::random_spline(rng, o);
+  core::SpanEvaluator e;
+  ASSERT_EQ(e.setup(s, core::first_span(s)), core::GeometryError::kOk);
+  core::PointQ6 a2;
+  core::PointQ6 a3;
+  EXPECT_FALSE(e.step_bend_q6(0, 4096, &a2, &a3));
+}
+
 TEST(SpanEvaluator, RefusesAZeroLengthOrOutOfDomainSpan) {
   const core::Spline s = testcurves::clamped_uniform(2, {{0, 0}, {1, 1}, {2, 0}, {3, 3}});
   core::SpanEvaluator e;
