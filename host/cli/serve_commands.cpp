@@ -5,13 +5,15 @@
 #include <signal.h>      // sigaction
 #include <unistd.h>      // gethostname
 
-#include <atomic>    // std::atomic
-#include <iostream>  // std::cerr
-#include <thread>    // std::thread
+#include <atomic>      // std::atomic
+#include <filesystem>  // std::filesystem::canonical
+#include <iostream>    // std::cerr
+#include <thread>      // std::thread
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
 #include "host/lib/server/data_folder.h"
+#include "host/lib/server/data_folder_lock.h"
 #include "host/lib/server/http_api.h"
 #include "host/lib/server/inbox_watcher.h"
 #include "host/lib/server/job_intake.h"
@@ -85,6 +87,13 @@ void run_serve(const ServeArgs& a) {
       throw CommandFailure(kExitUsage, e.what());
     }
   }
+  // Before anything in the folder is touched: one server per data folder.
+  std::unique_ptr<server::DataFolderLock> folder_lock;
+  try {
+    folder_lock = std::make_unique<server::DataFolderLock>(a.data);
+  } catch (const server::FolderInUse& e) {
+    throw CommandFailure(kExitJobFailed, e.what());
+  }
   server::DataFolder data(a.data);
   bool created = false;
   const std::string token = data.token(&created);
@@ -96,6 +105,10 @@ void run_serve(const ServeArgs& a) {
   wo.sender.status_interval = std::chrono::milliseconds(a.poll_ms);
   wo.sender.zero_first = !a.no_zero;
   wo.stale_after = std::chrono::milliseconds(static_cast<int64_t>(a.stale_s * 1000));
+  std::error_code ec;
+  const std::filesystem::path folder = std::filesystem::canonical(a.data, ec);
+  wo.holder = host_name() + ":" + (ec ? a.data : folder.string());
+  wo.say = [](const std::string& line) { std::cerr << "engraver: " << line << "\n"; };
   server::Workshop workshop(store, data, machines, wo);
   server::JobIntake intake(store, data, workshop.fits(),
                            static_cast<size_t>(a.max_upload_mb * 1024 * 1024));
@@ -113,7 +126,11 @@ void run_serve(const ServeArgs& a) {
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
 
-  workshop.start();
+  try {
+    workshop.start();
+  } catch (const server::NameInUse& e) {
+    throw CommandFailure(kExitJobFailed, e.what());
+  }
   std::unique_ptr<server::InboxWatcher> inbox;
   if (!a.inbox.empty()) {
     server::JobPlanSettings settings;
@@ -175,7 +192,8 @@ void add_serve_commands(CLI::App& app) {
   serve
       ->add_option("--stale-s", args->stale_s,
                    "a server sharing the store and silent this long is taken for dead: its "
-                   "running jobs become interrupted")
+                   "lease is revoked and its running jobs become interrupted (a server stops "
+                   "sending a quarter of this before, when it cannot renew its lease)")
       ->check(CLI::Range(2.0, 3600.0))
       ->capture_default_str();
   serve->footer(
