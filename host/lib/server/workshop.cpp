@@ -275,14 +275,12 @@ void Workshop::machine_loop(Slot& slot) {
       link = open_link(parse_link_spec(slot.spec.address), options_.connect_timeout);
       SenderOptions so = options_.sender;
       // Each batch of commands goes out only under the lease its job was claimed with.
+      // A veto is kept as the slot's reason: the job ends interrupted (continuable), not
+      // aborted.
       so.send_veto = [this, &slot] {
-        int64_t epoch = 0;
-        {
-          std::lock_guard<std::mutex> lock(slot.mutex);
-          if (!slot.fenced.empty()) return slot.fenced;
-          epoch = slot.lease_epoch;
-        }
-        return lease_.why_not(epoch);
+        std::lock_guard<std::mutex> lock(slot.mutex);
+        if (slot.fenced.empty()) slot.fenced = lease_.why_not(slot.lease_epoch);
+        return slot.fenced;
       };
       sender = std::make_unique<Sender>(*link, so);
       caps = sender->open_session();
