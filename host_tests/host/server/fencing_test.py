@@ -482,7 +482,13 @@ def main():
             states = {j["id"]: j["state"] for j in jobs}
             return all(states.get(jid) == "completed" for jid in ids.values())
         print(f"chaos over ({time.monotonic() - T0:.0f} s)")
-        wait(all_done, 120 + 2 * len(ids), "every job to complete")
+        try:
+            wait(all_done, 120 + 2 * len(ids), "every job to complete")
+        except AssertionError:
+            jobs = request(B.base, "/api/jobs?limit=1000", timeout=5)[1]["jobs"]
+            left = [(j["id"], j["state"], j["server"], j["message"]) for j in jobs
+                    if j["id"] in ids.values() and j["state"] != "completed"]
+            raise AssertionError(f"{len(left)} jobs not completed: {left[:20]}")
         print(f"all completed ({time.monotonic() - T0:.0f} s)")
         stop_user.set()
         helper.join()
