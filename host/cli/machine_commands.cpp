@@ -458,11 +458,16 @@ class TraceWriter {
  public:
   explicit TraceWriter(const std::string& path) : out_(path, std::ios::trunc) {
     if (!out_) throw CommandFailure(kExitUsage, fmt::format("--trace '{}': cannot write", path));
-    out_ << "t_ms,x_mm,y_mm,z_mm,pen\n";
+    out_ << "t_ms,x_mm,y_mm,z_mm,pen,wall_ms\n";
   }
+  // wall_ms: Unix time when the sample was simulated, to line up several machines' traces
+  // (the machine clock may run up to the fast window ahead of it).
   void add(const sim::ToolSample& s) {
-    out_ << fmt::format("{},{:.4f},{:.4f},{:.4f},{}\n", s.t_ms, s.x_mm, s.y_mm, s.z_mm,
-                        s.z_mm < 0 ? 1 : 0);
+    const auto wall_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                             std::chrono::system_clock::now().time_since_epoch())
+                             .count();
+    out_ << fmt::format("{},{:.4f},{:.4f},{:.4f},{},{}\n", s.t_ms, s.x_mm, s.y_mm, s.z_mm,
+                        s.z_mm < 0 ? 1 : 0, wall_ms);
   }
   bool ok() {
     out_.flush();
@@ -752,7 +757,7 @@ void add_machine_commands(CLI::App& app) {
       ->capture_default_str();
   sim->add_flag("--realtime", sim_args->realtime, "machine time always follows the wall clock");
   sim->add_option("--trace", sim_args->trace,
-                  "write the executed tool positions as CSV: t_ms,x_mm,y_mm,z_mm,pen");
+                  "write the executed tool positions as CSV: t_ms,x_mm,y_mm,z_mm,pen,wall_ms");
   sim->add_option("--pause-confirm-ms", sim_args->pause_confirm_ms,
                   "the simulated operator confirms a pause (#P) after this long; -1 never")
       ->capture_default_str();

@@ -6,13 +6,14 @@
 #include <unistd.h>      // gethostname
 
 #include <atomic>      // std::atomic
-#include <filesystem>  // std::filesystem::path
+#include <filesystem>  // std::filesystem::path, canonical
 #include <iostream>    // std::cerr
 #include <thread>      // std::thread
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
 #include "host/lib/server/data_folder.h"
+#include "host/lib/server/data_folder_lock.h"
 #include "host/lib/server/http_api.h"
 #include "host/lib/server/inbox_watcher.h"
 #include "host/lib/server/job_intake.h"
@@ -108,6 +109,13 @@ void run_serve(const ServeArgs& a) {
                                 "give the folder with --web)",
                                 missing, a.web.empty() ? "looked beside this engraver" : "--web"));
   }
+  // Before anything in the folder is touched: one server per data folder.
+  std::unique_ptr<server::DataFolderLock> folder_lock;
+  try {
+    folder_lock = std::make_unique<server::DataFolderLock>(a.data);
+  } catch (const server::FolderInUse& e) {
+    throw CommandFailure(kExitJobFailed, e.what());
+  }
   server::DataFolder data(a.data, a.archive);
   bool created = false;
   const std::string token = data.token(&created);
@@ -119,6 +127,10 @@ void run_serve(const ServeArgs& a) {
   wo.sender.status_interval = std::chrono::milliseconds(a.poll_ms);
   wo.sender.zero_first = !a.no_zero;
   wo.stale_after = std::chrono::milliseconds(static_cast<int64_t>(a.stale_s * 1000));
+  std::error_code ec;
+  const std::filesystem::path folder = std::filesystem::canonical(a.data, ec);
+  wo.holder = host_name() + ":" + (ec ? a.data : folder.string());
+  wo.say = [](const std::string& line) { std::cerr << "engraver: " << line << "\n"; };
   server::Workshop workshop(store, data, machines, wo);
   server::JobIntake intake(store, data, workshop.fits(),
                            static_cast<size_t>(a.max_upload_mb * 1024 * 1024));
@@ -137,7 +149,11 @@ void run_serve(const ServeArgs& a) {
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
 
-  workshop.start();
+  try {
+    workshop.start();
+  } catch (const server::NameInUse& e) {
+    throw CommandFailure(kExitJobFailed, e.what());
+  }
   std::unique_ptr<server::InboxWatcher> inbox;
   if (!a.inbox.empty()) {
     server::JobPlanSettings settings;
@@ -212,7 +228,8 @@ void add_serve_commands(CLI::App& app) {
   serve
       ->add_option("--stale-s", args->stale_s,
                    "a server sharing the store and silent this long is taken for dead: its "
-                   "running jobs become interrupted")
+                   "lease is revoked and its running jobs become interrupted (a server stops "
+                   "sending a quarter of this before, when it cannot renew its lease)")
       ->check(CLI::Range(2.0, 3600.0))
       ->capture_default_str();
   serve->footer(

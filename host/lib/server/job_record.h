@@ -54,6 +54,13 @@ struct JobRecord {
   int64_t created_ms = 0;  // Unix time, ms
   int64_t started_ms = 0;
   int64_t finished_ms = 0;
+  // Where the controller last said the job stood (saved as it runs, and when it ends), in the
+  // numbering of the whole job (docs/protocol.md, #J): the first job command not finished,
+  // its curve point, and the controller's job_id of that progress. -1: none known.
+  int64_t resume_index = -1;
+  int resume_point = 0;
+  int resume_job_id = -1;
+  int64_t lease_epoch = 0;  // the owner's lease the job was claimed under (JobStore)
 };
 
 // What a machine offers; a job fits when its extents and tag do.

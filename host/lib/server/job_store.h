@@ -20,6 +20,37 @@ class StoreError : public std::runtime_error {
   explicit StoreError(const std::string& msg) : std::runtime_error(msg) {}
 };
 
+// Another live server holds the name (PostgreSQL: same --name on another PC or folder).
+class NameInUse : public StoreError {
+ public:
+  explicit NameInUse(const std::string& msg) : StoreError(msg) {}
+};
+
+// The lease a claim or a running job's update named is gone: the server was taken for dead
+// (silent longer than stale_after) and its jobs were interrupted.
+class LeaseLost : public StoreError {
+ public:
+  explicit LeaseLost(const std::string& msg) : StoreError(msg) {}
+};
+
+// A server's claim on its name. The epoch grows each time the name is taken, so a server that
+// was taken for dead (and whose name was taken again, or revoked) can change nothing under
+// its old lease: every change to a job it runs names the lease and is refused once it is gone.
+struct Lease {
+  std::string owner;
+  int64_t epoch = 0;
+};
+
+// How far a running job got: saved while it runs and when it ends.
+struct JobProgress {
+  int64_t executed = 0;       // commands of the stream sent executed
+  int64_t total = 0;          // commands in that stream
+  int resume_curve = -1;      // first plan curve not fully cut (-1: none)
+  int64_t resume_index = -1;  // JobRecord::resume_index (-1: not known)
+  int resume_point = 0;
+  int resume_job_id = -1;
+};
+
 class JobStore {
  public:
   virtual ~JobStore() = default;
@@ -35,27 +66,40 @@ class JobStore {
   // Whether a queued job fits (cheap; a machine asks before it opens its link).
   virtual bool has_claimable(const MachineFit& fit) = 0;
   // Takes the best queued job that fits (priority, then age) and marks it running on
-  // `machine` for `owner`, atomically. None when nothing fits.
+  // `machine` under `lease`, atomically. None when nothing fits; LeaseLost when the lease is
+  // gone.
   virtual std::optional<JobRecord> claim(const MachineFit& fit, const std::string& machine,
-                                         const std::string& owner) = 0;
-  // A running job ended (completed/aborted/failed/interrupted). False if it was not running.
-  virtual bool finish(int64_t id, JobState state, const std::string& message, int64_t executed,
-                      int64_t total, int resume_curve) = 0;
+                                         const Lease& lease) = 0;
+  // Where a running job has got to. False when it is not running under `lease` any more
+  // (interrupted by another server: stop sending it).
+  virtual bool save_progress(int64_t id, const Lease& lease, const JobProgress& progress) = 0;
+  // A running job ended (completed/aborted/failed/interrupted). False if it was not running
+  // under `lease`.
+  virtual bool finish(int64_t id, const Lease& lease, JobState state, const std::string& message,
+                      const JobProgress& progress) = 0;
   // Queued -> cancelled. False when the job is not queued.
   virtual bool cancel(int64_t id) = 0;
   // Interrupted, aborted or failed -> queued again, from the start or (continue_job, an
-  // interrupted job with a known resume_curve) from its first uncut curve. False otherwise.
+  // interrupted job whose position is known: resume_index or resume_curve) from where it
+  // stopped. False otherwise.
   virtual bool requeue(int64_t id, bool continue_job) = 0;
   // Changes a queued job's priority. False when the job is not queued.
   virtual bool set_priority(int64_t id, int priority) = 0;
+  // Takes the name `owner` for this server with a new epoch. `holder` says who holds it
+  // (host and data folder): a live lease (renewed within stale_ms) of another holder is
+  // refused with NameInUse; one of the same holder is taken over (its process is gone: the
+  // data folder's lock says so).
+  virtual Lease acquire_lease(const std::string& owner, const std::string& holder,
+                              int64_t stale_ms) = 0;
+  // This server is alive (every second or so). False: the lease is gone.
+  virtual bool renew_lease(const Lease& lease) = 0;
   // At start-up: jobs this owner left running (the server died) become interrupted.
   // Returns how many.
   virtual int interrupt_running(const std::string& owner, const std::string& message) = 0;
-  // This server is alive (called every second or so by each server sharing the store).
-  virtual void heartbeat(const std::string& owner) = 0;
-  // Running jobs of servers not heard from since `cutoff_ms` (Unix ms) become interrupted:
-  // a server that died mid-job loses no job. Returns how many.
-  virtual int interrupt_stale(int64_t cutoff_ms, const std::string& message) = 0;
+  // Leases not renewed for stale_ms are revoked, and running jobs not under a standing lease
+  // become interrupted, in one transaction: a server that died (or froze) mid-job loses no
+  // job and, if it wakes, can change none of them. Returns how many jobs.
+  virtual int interrupt_stale(int64_t stale_ms, const std::string& message) = 0;
 };
 
 }  // namespace host::server

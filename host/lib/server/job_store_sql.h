@@ -28,7 +28,34 @@ inline std::string tag_list(const MachineFit& fit) {
 inline const char* const kColumns =
     "id, key, name, input_file, state, priority, tag, feed_mm_s, tol_mm, scale, margin_mm, "
     "width_mm, height_mm, planned_s, machine, owner, message, executed, total, resume_curve, "
-    "created_ms, started_ms, finished_ms, start_curve";
+    "created_ms, started_ms, finished_ms, start_curve, resume_index, resume_point, "
+    "resume_job_id, lease_epoch";
+
+// Columns added after the first release: ALTERed into an older database at open.
+struct AddedColumn {
+  const char* table;
+  const char* name;
+  const char* type_and_default;
+};
+inline const AddedColumn kAddedColumns[] = {
+    {"jobs", "resume_index", "BIGINT NOT NULL DEFAULT -1"},
+    {"jobs", "resume_point", "INTEGER NOT NULL DEFAULT 0"},
+    {"jobs", "resume_job_id", "INTEGER NOT NULL DEFAULT -1"},
+    {"jobs", "lease_epoch", "BIGINT NOT NULL DEFAULT 0"},
+    {"servers", "epoch", "BIGINT NOT NULL DEFAULT 0"},
+    {"servers", "revoked", "INTEGER NOT NULL DEFAULT 0"},
+    {"servers", "holder", "TEXT NOT NULL DEFAULT ''"},
+};
+
+// The running job's updates (progress, end) are fenced: only the server that claimed it, under
+// the lease it claimed it with, while that lease stands. ?1/$1 id, then owner and epoch at the
+// numbers given.
+inline std::string fenced_running(char mark, int owner, int epoch) {
+  const std::string o = mark + std::to_string(owner), e = mark + std::to_string(epoch);
+  return "id = " + std::string(1, mark) + "1 AND state = 'running' AND owner = " + o +
+         " AND lease_epoch = " + e + " AND EXISTS (SELECT 1 FROM servers WHERE name = " + o +
+         " AND epoch = " + e + " AND revoked = 0)";
+}
 
 }  // namespace host::server::sql
 

@@ -20,6 +20,9 @@ using sql::kColumns;
 using sql::now_ms;
 using sql::tag_list;
 
+// Lease times come from the database's clock: servers on several PCs need not agree on theirs.
+const char* kDbNowMs = "(extract(epoch from clock_timestamp()) * 1000)::bigint";
+
 const char* kFitWhere =
     "state = 'queued' AND width_mm <= $1 AND height_mm <= $2 AND "
     "(tag = '' OR position(',' || tag || ',' in $3) > 0)";
@@ -50,6 +53,10 @@ JobRecord record(const pqxx::row& row) {
   r.started_ms = row[21].as<int64_t>();
   r.finished_ms = row[22].as<int64_t>();
   r.start_curve = row[23].as<int>();
+  r.resume_index = row[24].as<int64_t>();
+  r.resume_point = row[25].as<int>();
+  r.resume_job_id = row[26].as<int>();
+  r.lease_epoch = row[27].as<int64_t>();
   return r;
 }
 
@@ -84,6 +91,10 @@ PostgresJobStore::PostgresJobStore(const std::string& conninfo){PG_TRY({
       " input BYTEA NOT NULL)");
   w.exec("CREATE INDEX IF NOT EXISTS jobs_queue ON jobs (state, priority DESC, id)");
   w.exec("CREATE TABLE IF NOT EXISTS servers (name TEXT PRIMARY KEY, seen_ms BIGINT NOT NULL)");
+  for (const sql::AddedColumn& c : sql::kAddedColumns) {
+    w.exec(fmt::format("ALTER TABLE {} ADD COLUMN IF NOT EXISTS {} {}", c.table, c.name,
+                       c.type_and_default));
+  }
   w.commit();
 })}
 
@@ -153,34 +164,63 @@ bool PostgresJobStore::has_claimable(const MachineFit& fit) {
 }
 
 std::optional<JobRecord> PostgresJobStore::claim(const MachineFit& fit, const std::string& machine,
-                                                 const std::string& owner) {
+                                                 const Lease& lease) {
   std::lock_guard<std::mutex> lock(mutex_);
   PG_TRY({
     pqxx::work w(conn_->db);
+    // FOR SHARE: a revocation (interrupt_stale) waits for this claim, then interrupts it.
+    if (w.exec_params("SELECT 1 FROM servers WHERE name = $1 AND epoch = $2 AND revoked = 0"
+                      " FOR SHARE",
+                      lease.owner, lease.epoch)
+            .empty()) {
+      throw LeaseLost(
+          fmt::format("PostgreSQL job store: the lease of server '{}' (epoch {}) "
+                      "is gone",
+                      lease.owner, lease.epoch));
+    }
     // The row is locked by the inner SELECT; another server's claim skips it instead of
     // waiting, then finds the next job.
     const pqxx::result r = w.exec_params(
         fmt::format("UPDATE jobs SET state = 'running', machine = $4, owner = $5,"
-                    " started_ms = $6, message = '', executed = 0"
+                    " started_ms = $6, message = '', executed = 0, lease_epoch = $7"
                     " WHERE id = (SELECT id FROM jobs WHERE {} ORDER BY priority DESC, id"
                     " LIMIT 1 FOR UPDATE SKIP LOCKED) RETURNING {}",
                     kFitWhere, kColumns),
-        fit.work_width_mm, fit.work_height_mm, tag_list(fit), machine, owner, now_ms());
+        fit.work_width_mm, fit.work_height_mm, tag_list(fit), machine, lease.owner, now_ms(),
+        lease.epoch);
     w.commit();
     if (r.empty()) return std::nullopt;
     return record(r[0]);
   })
 }
 
-bool PostgresJobStore::finish(int64_t id, JobState state, const std::string& message,
-                              int64_t executed, int64_t total, int resume_curve) {
+bool PostgresJobStore::save_progress(int64_t id, const Lease& lease, const JobProgress& p) {
   std::lock_guard<std::mutex> lock(mutex_);
   PG_TRY({
     pqxx::work w(conn_->db);
     const pqxx::result r = w.exec_params(
-        "UPDATE jobs SET state = $2, message = $3, executed = $4, total = $5,"
-        " resume_curve = $6, finished_ms = $7 WHERE id = $1 AND state = 'running'",
-        id, std::string(state_name(state)), message, executed, total, resume_curve, now_ms());
+        "UPDATE jobs SET executed = $4, total = $5, resume_curve = $6, resume_index = $7,"
+        " resume_point = $8, resume_job_id = $9 WHERE " +
+            sql::fenced_running('$', 2, 3),
+        id, lease.owner, lease.epoch, p.executed, p.total, p.resume_curve, p.resume_index,
+        p.resume_point, p.resume_job_id);
+    w.commit();
+    return r.affected_rows() == 1;
+  })
+}
+
+bool PostgresJobStore::finish(int64_t id, const Lease& lease, JobState state,
+                              const std::string& message, const JobProgress& p) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  PG_TRY({
+    pqxx::work w(conn_->db);
+    const pqxx::result r = w.exec_params(
+        "UPDATE jobs SET state = $4, message = $5, executed = $6, total = $7,"
+        " resume_curve = $8, resume_index = $9, resume_point = $10, resume_job_id = $11,"
+        " finished_ms = $12 WHERE " +
+            sql::fenced_running('$', 2, 3),
+        id, lease.owner, lease.epoch, std::string(state_name(state)), message, p.executed, p.total,
+        p.resume_curve, p.resume_index, p.resume_point, p.resume_job_id, now_ms());
     w.commit();
     return r.affected_rows() == 1;
   })
@@ -207,8 +247,9 @@ bool PostgresJobStore::requeue(int64_t id, bool continue_job) {
         continue_job
             ? "UPDATE jobs SET state = 'queued', machine = '', owner = '',"
               " start_curve = resume_curve WHERE id = $1 AND state = 'interrupted'"
-              " AND resume_curve >= 0"
-            : "UPDATE jobs SET state = 'queued', machine = '', owner = '', start_curve = -1"
+              " AND (resume_curve >= 0 OR resume_index >= 0)"
+            : "UPDATE jobs SET state = 'queued', machine = '', owner = '', start_curve = -1,"
+              " resume_curve = -1, resume_index = -1, resume_point = 0, resume_job_id = -1"
               " WHERE id = $1 AND state IN ('interrupted', 'aborted', 'failed')",
         id);
     w.commit();
@@ -240,27 +281,69 @@ int PostgresJobStore::interrupt_running(const std::string& owner, const std::str
   })
 }
 
-void PostgresJobStore::heartbeat(const std::string& owner) {
+Lease PostgresJobStore::acquire_lease(const std::string& owner, const std::string& holder,
+                                      int64_t stale_ms) {
   std::lock_guard<std::mutex> lock(mutex_);
   PG_TRY({
     pqxx::work w(conn_->db);
     w.exec_params(
-        "INSERT INTO servers (name, seen_ms) VALUES ($1, $2)"
-        " ON CONFLICT (name) DO UPDATE SET seen_ms = excluded.seen_ms",
-        owner, now_ms());
+        "INSERT INTO servers (name, seen_ms, epoch, revoked, holder) VALUES ($1, 0, 0, 1, '')"
+        " ON CONFLICT (name) DO NOTHING",
+        owner);
+    const pqxx::row row = w.exec_params1(
+        fmt::format("SELECT seen_ms, revoked, holder, {} FROM servers WHERE name = $1 FOR UPDATE",
+                    kDbNowMs),
+        owner);
+    const int64_t seen = row[0].as<int64_t>();
+    const int64_t now = row[3].as<int64_t>();
+    const std::string held_by = row[2].as<std::string>();
+    if (row[1].as<int>() == 0 && seen >= now - stale_ms && held_by != holder) {
+      throw NameInUse(fmt::format(
+          "another server named '{}' is alive (last heard {:.1f} s ago, at {}): give this one "
+          "its own --name, or wait {:.0f} s if that one has died",
+          owner, (now - seen) / 1000.0, held_by.empty() ? "?" : held_by, stale_ms / 1000.0));
+    }
+    const pqxx::row e = w.exec_params1(
+        fmt::format("UPDATE servers SET seen_ms = {}, epoch = epoch + 1, revoked = 0,"
+                    " holder = $2 WHERE name = $1 RETURNING epoch",
+                    kDbNowMs),
+        owner, holder);
     w.commit();
+    Lease lease;
+    lease.owner = owner;
+    lease.epoch = e[0].as<int64_t>();
+    return lease;
   })
 }
 
-int PostgresJobStore::interrupt_stale(int64_t cutoff_ms, const std::string& message) {
+bool PostgresJobStore::renew_lease(const Lease& lease) {
   std::lock_guard<std::mutex> lock(mutex_);
   PG_TRY({
     pqxx::work w(conn_->db);
+    const pqxx::result r =
+        w.exec_params(fmt::format("UPDATE servers SET seen_ms = {} WHERE name = $1 AND epoch = $2"
+                                  " AND revoked = 0",
+                                  kDbNowMs),
+                      lease.owner, lease.epoch);
+    w.commit();
+    return r.affected_rows() == 1;
+  })
+}
+
+int PostgresJobStore::interrupt_stale(int64_t stale_ms, const std::string& message) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  PG_TRY({
+    pqxx::work w(conn_->db);
+    w.exec_params(
+        fmt::format("UPDATE servers SET revoked = 1 WHERE revoked = 0 AND seen_ms < {} - $1",
+                    kDbNowMs),
+        stale_ms);
     const pqxx::result r = w.exec_params(
-        "UPDATE jobs SET state = 'interrupted', message = $2, finished_ms = $3"
-        " WHERE state = 'running' AND owner NOT IN"
-        " (SELECT name FROM servers WHERE seen_ms >= $1)",
-        cutoff_ms, message, now_ms());
+        "UPDATE jobs SET state = 'interrupted', message = $1, finished_ms = $2"
+        " WHERE state = 'running' AND NOT EXISTS (SELECT 1 FROM servers WHERE"
+        " servers.name = jobs.owner AND servers.epoch = jobs.lease_epoch AND"
+        " servers.revoked = 0)",
+        message, now_ms());
     w.commit();
     return static_cast<int>(r.affected_rows());
   })

@@ -79,6 +79,10 @@ class Statement {
     r.started_ms = i64(21);
     r.finished_ms = i64(22);
     r.start_curve = static_cast<int>(i64(23));
+    r.resume_index = i64(24);
+    r.resume_point = static_cast<int>(i64(25));
+    r.resume_job_id = static_cast<int>(i64(26));
+    r.lease_epoch = i64(27);
     return r;
   }
 
@@ -118,6 +122,19 @@ SqliteJobStore::SqliteJobStore(const std::string& path) : path_(path) {
       " start_curve INTEGER NOT NULL DEFAULT -1)");
   exec("CREATE INDEX IF NOT EXISTS jobs_queue ON jobs (state, priority DESC, id)");
   exec("CREATE TABLE IF NOT EXISTS servers (name TEXT PRIMARY KEY, seen_ms INTEGER NOT NULL)");
+  add_missing_columns();
+}
+
+void SqliteJobStore::add_missing_columns() {
+  for (const sql::AddedColumn& c : sql::kAddedColumns) {
+    bool present = false;
+    {
+      Statement s(db_, path_, fmt::format("PRAGMA table_info({})", c.table));
+      while (s.step()) present = present || s.text(1) == c.name;
+    }
+    if (!present)
+      exec(fmt::format("ALTER TABLE {} ADD COLUMN {} {}", c.table, c.name, c.type_and_default));
+  }
 }
 
 SqliteJobStore::~SqliteJobStore() {
@@ -176,12 +193,22 @@ bool SqliteJobStore::has_claimable(const MachineFit& fit) {
 }
 
 std::optional<JobRecord> SqliteJobStore::claim(const MachineFit& fit, const std::string& machine,
-                                               const std::string& owner) {
+                                               const Lease& lease) {
   std::lock_guard<std::mutex> lock(mutex_);
   // IMMEDIATE: the write lock is taken before the SELECT, so another process using the same
-  // file cannot claim the job between our SELECT and UPDATE.
+  // file cannot claim the job (or revoke the lease) between our SELECT and UPDATE.
   exec("BEGIN IMMEDIATE");
   try {
+    {
+      Statement l(db_, path_,
+                  "SELECT 1 FROM servers WHERE name = ?1 AND epoch = ?2 AND revoked = 0");
+      l.bind(1, lease.owner).bind(2, lease.epoch);
+      if (!l.step()) {
+        exec("COMMIT");
+        throw LeaseLost(fmt::format("{}: the lease of server '{}' (epoch {}) is gone", path_,
+                                    lease.owner, lease.epoch));
+      }
+    }
     int64_t id = 0;
     {
       Statement s(db_, path_,
@@ -196,8 +223,8 @@ std::optional<JobRecord> SqliteJobStore::claim(const MachineFit& fit, const std:
     }
     Statement u(db_, path_,
                 "UPDATE jobs SET state = 'running', machine = ?2, owner = ?3, started_ms = ?4,"
-                " message = '', executed = 0 WHERE id = ?1");
-    u.bind(1, id).bind(2, machine).bind(3, owner).bind(4, now_ms());
+                " message = '', executed = 0, lease_epoch = ?5 WHERE id = ?1");
+    u.bind(1, id).bind(2, machine).bind(3, lease.owner).bind(4, now_ms()).bind(5, lease.epoch);
     u.step();
     Statement r(db_, path_, fmt::format("SELECT {} FROM jobs WHERE id = ?1", kColumns));
     r.bind(1, id);
@@ -205,20 +232,39 @@ std::optional<JobRecord> SqliteJobStore::claim(const MachineFit& fit, const std:
     JobRecord job = r.record();
     exec("COMMIT");
     return job;
+  } catch (const LeaseLost&) {
+    throw;
   } catch (...) {
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
     throw;
   }
 }
 
-bool SqliteJobStore::finish(int64_t id, JobState state, const std::string& message,
-                            int64_t executed, int64_t total, int resume_curve) {
+bool SqliteJobStore::save_progress(int64_t id, const Lease& lease, const JobProgress& p) {
   std::lock_guard<std::mutex> lock(mutex_);
   Statement s(db_, path_,
-              "UPDATE jobs SET state = ?2, message = ?3, executed = ?4, total = ?5,"
-              " resume_curve = ?6, finished_ms = ?7 WHERE id = ?1 AND state = 'running'");
-  s.bind(1, id).bind(2, std::string(state_name(state))).bind(3, message).bind(4, executed);
-  s.bind(5, total).bind(6, int64_t{resume_curve}).bind(7, now_ms());
+              "UPDATE jobs SET executed = ?4, total = ?5, resume_curve = ?6, resume_index = ?7,"
+              " resume_point = ?8, resume_job_id = ?9 WHERE " +
+                  sql::fenced_running('?', 2, 3));
+  s.bind(1, id).bind(2, lease.owner).bind(3, lease.epoch).bind(4, p.executed).bind(5, p.total);
+  s.bind(6, int64_t{p.resume_curve}).bind(7, p.resume_index).bind(8, int64_t{p.resume_point});
+  s.bind(9, int64_t{p.resume_job_id});
+  s.step();
+  return sqlite3_changes(db_) == 1;
+}
+
+bool SqliteJobStore::finish(int64_t id, const Lease& lease, JobState state,
+                            const std::string& message, const JobProgress& p) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_,
+              "UPDATE jobs SET state = ?4, message = ?5, executed = ?6, total = ?7,"
+              " resume_curve = ?8, resume_index = ?9, resume_point = ?10, resume_job_id = ?11,"
+              " finished_ms = ?12 WHERE " +
+                  sql::fenced_running('?', 2, 3));
+  s.bind(1, id).bind(2, lease.owner).bind(3, lease.epoch);
+  s.bind(4, std::string(state_name(state))).bind(5, message).bind(6, p.executed);
+  s.bind(7, p.total).bind(8, int64_t{p.resume_curve}).bind(9, p.resume_index);
+  s.bind(10, int64_t{p.resume_point}).bind(11, int64_t{p.resume_job_id}).bind(12, now_ms());
   s.step();
   return sqlite3_changes(db_) == 1;
 }
@@ -239,9 +285,11 @@ bool SqliteJobStore::requeue(int64_t id, bool continue_job) {
               continue_job
                   ? "UPDATE jobs SET state = 'queued', machine = '', owner = '',"
                     " start_curve = resume_curve WHERE id = ?1 AND state = 'interrupted'"
-                    " AND resume_curve >= 0"
-                  : "UPDATE jobs SET state = 'queued', machine = '', owner = '', start_curve = -1"
-                    " WHERE id = ?1 AND state IN ('interrupted', 'aborted', 'failed')");
+                    " AND (resume_curve >= 0 OR resume_index >= 0)"
+                  : "UPDATE jobs SET state = 'queued', machine = '', owner = '', start_curve = -1,"
+                    " resume_curve = -1, resume_index = -1, resume_point = 0,"
+                    " resume_job_id = -1 WHERE id = ?1 AND state IN ('interrupted', 'aborted',"
+                    " 'failed')");
   s.bind(1, id);
   s.step();
   return sqlite3_changes(db_) == 1;
@@ -265,24 +313,76 @@ int SqliteJobStore::interrupt_running(const std::string& owner, const std::strin
   return sqlite3_changes(db_);
 }
 
-void SqliteJobStore::heartbeat(const std::string& owner) {
+Lease SqliteJobStore::acquire_lease(const std::string& owner, const std::string& holder,
+                                    int64_t stale_ms) {
   std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_,
-              "INSERT INTO servers (name, seen_ms) VALUES (?1, ?2)"
-              " ON CONFLICT (name) DO UPDATE SET seen_ms = excluded.seen_ms");
-  s.bind(1, owner).bind(2, now_ms());
-  s.step();
+  exec("BEGIN IMMEDIATE");
+  try {
+    const int64_t now = now_ms();
+    {
+      Statement s(db_, path_, "SELECT seen_ms, revoked, holder FROM servers WHERE name = ?1");
+      s.bind(1, owner);
+      if (s.step() && s.i64(1) == 0 && s.i64(0) >= now - stale_ms && s.text(2) != holder) {
+        const std::string msg = fmt::format(
+            "another server named '{}' is alive (last heard {:.1f} s ago, at {}): give this "
+            "one its own --name, or wait {:.0f} s if that one has died",
+            owner, (now - s.i64(0)) / 1000.0, s.text(2).empty() ? "?" : s.text(2),
+            stale_ms / 1000.0);
+        throw NameInUse(msg);
+      }
+    }
+    Statement u(db_, path_,
+                "INSERT INTO servers (name, seen_ms, epoch, revoked, holder)"
+                " VALUES (?1, ?2, 1, 0, ?3) ON CONFLICT (name) DO UPDATE SET"
+                " seen_ms = excluded.seen_ms, epoch = servers.epoch + 1, revoked = 0,"
+                " holder = excluded.holder");
+    u.bind(1, owner).bind(2, now).bind(3, holder);
+    u.step();
+    Statement e(db_, path_, "SELECT epoch FROM servers WHERE name = ?1");
+    e.bind(1, owner);
+    e.step();
+    Lease lease{owner, e.i64(0)};
+    exec("COMMIT");
+    return lease;
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
 }
 
-int SqliteJobStore::interrupt_stale(int64_t cutoff_ms, const std::string& message) {
+bool SqliteJobStore::renew_lease(const Lease& lease) {
   std::lock_guard<std::mutex> lock(mutex_);
   Statement s(db_, path_,
-              "UPDATE jobs SET state = 'interrupted', message = ?2, finished_ms = ?3"
-              " WHERE state = 'running' AND owner NOT IN"
-              " (SELECT name FROM servers WHERE seen_ms >= ?1)");
-  s.bind(1, cutoff_ms).bind(2, message).bind(3, now_ms());
+              "UPDATE servers SET seen_ms = ?3 WHERE name = ?1 AND epoch = ?2 AND revoked = 0");
+  s.bind(1, lease.owner).bind(2, lease.epoch).bind(3, now_ms());
   s.step();
-  return sqlite3_changes(db_);
+  return sqlite3_changes(db_) == 1;
+}
+
+int SqliteJobStore::interrupt_stale(int64_t stale_ms, const std::string& message) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  exec("BEGIN IMMEDIATE");
+  try {
+    const int64_t now = now_ms();
+    {
+      Statement r(db_, path_, "UPDATE servers SET revoked = 1 WHERE revoked = 0 AND seen_ms < ?1");
+      r.bind(1, now - stale_ms);
+      r.step();
+    }
+    Statement s(db_, path_,
+                "UPDATE jobs SET state = 'interrupted', message = ?1, finished_ms = ?2"
+                " WHERE state = 'running' AND NOT EXISTS (SELECT 1 FROM servers WHERE"
+                " servers.name = jobs.owner AND servers.epoch = jobs.lease_epoch AND"
+                " servers.revoked = 0)");
+    s.bind(1, message).bind(2, now);
+    s.step();
+    const int n = sqlite3_changes(db_);
+    exec("COMMIT");
+    return n;
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
 }
 
 }  // namespace host::server

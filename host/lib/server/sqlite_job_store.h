@@ -26,18 +26,22 @@ class SqliteJobStore : public JobStore {
   std::vector<JobRecord> list(const std::string& state_filter, size_t limit) override;
   bool has_claimable(const MachineFit& fit) override;
   std::optional<JobRecord> claim(const MachineFit& fit, const std::string& machine,
-                                 const std::string& owner) override;
-  bool finish(int64_t id, JobState state, const std::string& message, int64_t executed,
-              int64_t total, int resume_curve) override;
+                                 const Lease& lease) override;
+  bool save_progress(int64_t id, const Lease& lease, const JobProgress& progress) override;
+  bool finish(int64_t id, const Lease& lease, JobState state, const std::string& message,
+              const JobProgress& progress) override;
   bool cancel(int64_t id) override;
   bool requeue(int64_t id, bool continue_job) override;
   bool set_priority(int64_t id, int priority) override;
+  Lease acquire_lease(const std::string& owner, const std::string& holder,
+                      int64_t stale_ms) override;
+  bool renew_lease(const Lease& lease) override;
   int interrupt_running(const std::string& owner, const std::string& message) override;
-  void heartbeat(const std::string& owner) override;
-  int interrupt_stale(int64_t cutoff_ms, const std::string& message) override;
+  int interrupt_stale(int64_t stale_ms, const std::string& message) override;
 
  private:
   void exec(const std::string& sql);
+  void add_missing_columns();
   std::string path_;
   sqlite3* db_ = nullptr;
   std::mutex mutex_;  // one statement sequence at a time (claim is select + update)

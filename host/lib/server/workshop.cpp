@@ -8,6 +8,7 @@
 #include <optional>    // std::optional
 
 #include "host/lib/drawing/drawing.h"
+#include "host/lib/server/job_continue.h"
 #include "host/lib/server/job_planning.h"
 #include "host/lib/server/run_archive.h"
 #include "host/lib/stream/job_resume.h"  // resume_from_curve
@@ -22,14 +23,6 @@ namespace {
 
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-// The curve of the first command not executed: where a resumed job starts again.
-int first_uncut_curve(const std::vector<QueuedCommand>& commands, size_t executed) {
-  for (size_t i = executed; i < commands.size(); ++i) {
-    if (commands[i].curve >= 0) return commands[i].curve;
-  }
-  return -1;
 }
 
 }  // namespace
@@ -55,11 +48,17 @@ struct Workshop::Slot {
   Clock::time_point started;
   proto::StatusReply last_status{};
   bool have_last_status = false;
+  int64_t lease_epoch = 0;  // the lease the running job was claimed under
+  std::string fenced;       // why the running job was stopped for its lease ("" = it was not)
 };
 
 Workshop::Workshop(JobStore& store, const DataFolder& data, std::vector<MachineSpec> machines,
                    WorkshopOptions options)
-    : store_(store), data_(data), options_(std::move(options)) {
+    : store_(store),
+      data_(data),
+      options_(std::move(options)),
+      lease_(store, options_.owner, options_.holder, options_.stale_after),
+      saver_(store, options_.progress_interval, [this](int64_t id) { save_refused(id); }) {
   for (MachineSpec& m : machines) {
     auto slot = std::make_unique<Slot>();
     slot->spec = std::move(m);
@@ -78,7 +77,7 @@ std::vector<MachineFit> Workshop::fits() const {
 }
 
 void Workshop::start() {
-  store_.heartbeat(options_.owner);
+  lease_.acquire();
   store_.interrupt_running(options_.owner, "the server stopped while the job was running");
   stopping_ = false;
   heartbeat_thread_ = std::thread([this] { heartbeat_loop(); });
@@ -104,11 +103,13 @@ void Workshop::stop() {
 void Workshop::heartbeat_loop() {
   while (!stopping_) {
     try {
-      store_.heartbeat(options_.owner);
-      const int64_t now = std::chrono::duration_cast<std::chrono::milliseconds>(
-                              std::chrono::system_clock::now().time_since_epoch())
-                              .count();
-      if (store_.interrupt_stale(now - options_.stale_after.count(),
+      const int64_t epoch = lease_.current().epoch;
+      if (lease_.renew() == ServerLease::Renewal::kLost) {
+        if (epoch != 0) lease_lost(lease_.why_not(epoch));  // once per lease
+        lease_.acquire();  // a fresh epoch for new jobs; the old ones stay interrupted
+        if (options_.say) options_.say(fmt::format("took a new lease as '{}'", options_.owner));
+      }
+      if (store_.interrupt_stale(options_.stale_after.count(),
                                  "the server running the job stopped answering") > 0) {
         notify(true);
       }
@@ -117,6 +118,34 @@ void Workshop::heartbeat_loop() {
     }
     std::unique_lock<std::mutex> lock(change_mutex_);
     change_cv_.wait_for(lock, options_.heartbeat, [&] { return stopping_.load(); });
+  }
+}
+
+// The store revoked our lease (we were taken for dead): every machine still running a job
+// under it is stopped (#X: the controller keeps the job's position for "continue").
+void Workshop::lease_lost(const std::string& why) {
+  if (options_.say) options_.say(why);
+  for (auto& slot : slots_) {
+    std::lock_guard<std::mutex> lock(slot->mutex);
+    if (slot->sender == nullptr) continue;
+    slot->fenced = why;
+    slot->sender->request_abort();
+    slot->link_message = why;
+  }
+  notify(true);
+}
+
+// The store refused a running job's progress: it no longer runs under our lease.
+void Workshop::save_refused(int64_t job_id) {
+  for (auto& slot : slots_) {
+    std::lock_guard<std::mutex> lock(slot->mutex);
+    if (slot->job_id != job_id || slot->sender == nullptr) continue;
+    slot->fenced = fmt::format(
+        "the store refused job {}'s progress: it no longer runs under "
+        "this server's lease; stopped",
+        job_id);
+    slot->sender->request_abort();
+    slot->link_message = slot->fenced;
   }
 }
 
@@ -151,6 +180,8 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
         slot->sender->request_hold();
         break;
       case JobControl::kResume:
+        // Resuming under a lapsed lease could cut what another machine now cuts.
+        if (!lease_.valid(slot->lease_epoch)) return {409, lease_.why_not(slot->lease_epoch)};
         slot->sender->request_resume();
         break;
       case JobControl::kAbort:
@@ -243,7 +274,16 @@ void Workshop::machine_loop(Slot& slot) {
     proto::SessionReply caps{};
     try {
       link = open_link(parse_link_spec(slot.spec.address), options_.connect_timeout);
-      sender = std::make_unique<Sender>(*link, options_.sender);
+      SenderOptions so = options_.sender;
+      // Each batch of commands goes out only under the lease its job was claimed with.
+      // A veto is kept as the slot's reason: the job ends interrupted (continuable), not
+      // aborted.
+      so.send_veto = [this, &slot] {
+        std::lock_guard<std::mutex> lock(slot.mutex);
+        if (slot.fenced.empty()) slot.fenced = lease_.why_not(slot.lease_epoch);
+        return slot.fenced;
+      };
+      sender = std::make_unique<Sender>(*link, so);
       caps = sender->open_session();
     } catch (const std::exception& e) {
       bool changed = false;
@@ -266,10 +306,15 @@ void Workshop::machine_loop(Slot& slot) {
       slot.link_message.clear();
     }
     if (changed) notify(false);
+    const Lease lease = lease_.current();
     if (!work || stopping_) continue;
+    if (!lease_.valid(lease.epoch)) {  // the heartbeat renews it or takes a new one
+      sleep_for(options_.poll);
+      continue;
+    }
     std::optional<JobRecord> job;
     try {
-      job = store_.claim(slot.spec.fit, slot.spec.name, options_.owner);
+      job = store_.claim(slot.spec.fit, slot.spec.name, lease);
     } catch (const StoreError& e) {
       std::lock_guard<std::mutex> lock(slot.mutex);
       slot.link_message = e.what();
@@ -313,6 +358,14 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   size_t executed = 0;
   // The feed override as the machine reported it: when it changed and to what.
   nlohmann::json overrides = nlohmann::json::array();
+  uint16_t job_id = 0;  // the controller's id of the whole job (#J)
+  // Where it stands; a continued job keeps its saved position until the machine reports.
+  JobProgress progress;
+  progress.resume_curve = job.resume_curve;
+  progress.resume_index = job.resume_index;
+  progress.resume_point = job.resume_point;
+  progress.resume_job_id = job.resume_job_id;
+  const Lease lease{job.owner, job.lease_epoch};
   const char* outcome = "not started";
   try {
     // Uploaded to another server sharing the queue: the input comes from the store.
@@ -326,30 +379,12 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
                                            slot.spec.fit.work_height_mm, fetched);
     EncodeOptions enc = encode_options(job);
     use_session(caps, &enc);
-    if (job.start_curve >= 0) {
-      // Continue an interrupted job. On the machine it stopped on, still holding this job's
-      // progress (same job_id, at or past the first uncut curve): exactly where it stopped,
-      // as send --resume does. Elsewhere: from the first uncut curve (the hook).
-      const std::vector<QueuedCommand> full = encode_job(plan, enc);
-      const std::optional<ResumePoint> at =
-          resume_point_of(sender.read_status_at_rest(std::chrono::seconds(30)));
-      size_t curve_start = full.size();
-      for (size_t i = 0; i < full.size() && curve_start == full.size(); ++i) {
-        if (full[i].curve == job.start_curve) curve_start = i;
-      }
-      if (at && resume_mismatch(full, *at).empty() &&
-          command_of_job_index(full, at->job_index) >= curve_start &&
-          command_of_job_index(full, at->job_index) < full.size()) {
-        commands = resume_commands(full, *at, enc);
-        note("continuing at " + describe_resume_point(full, *at) + ", where the machine stopped");
-      } else {
-        if (!options_.resume_encoder)
-          throw PlanError("continuing mid-job needs a resume encoder (WorkshopOptions)");
-        commands = options_.resume_encoder(plan, enc, job.start_curve);
-        note(fmt::format("continuing from curve {}", job.start_curve));
-      }
+    const std::vector<QueuedCommand> full = encode_job(plan, enc);
+    job_id = job_id_of(full);
+    if (job.start_curve >= 0 || job.resume_index >= 0) {
+      commands = continue_commands(job, full, plan, enc, sender, options_.resume_encoder, note);
     } else {
-      commands = encode_job(plan, enc);
+      commands = full;
     }
     note(fmt::format("planned: {} curves, {} commands, {} bytes, about {:.1f} s",
                      plan.curves.size(), commands.size(), wire_bytes(commands), job.planned_s));
@@ -363,6 +398,8 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
       slot.have_status = false;
       slot.planned_s = job.planned_s;
       slot.started = started;
+      slot.lease_epoch = job.lease_epoch;
+      slot.fenced.clear();
       if (stopping_) sender.request_abort();  // claimed just as stop() looked at the slots
     }
     // A feed override belongs to the job that set it: every run starts at 100 %, whatever
@@ -382,6 +419,17 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
       }
       executed = p.executed;
       const bool state_changed = p.status.state != last_state;
+      progress = progress_of(progress, commands, p.executed, p.status, job_id);
+      saver_.post(job.id, lease, progress, state_changed);
+      // A lapsed lease stops the machine even when every command has been sent already.
+      const std::string lapsed = lease_.why_not(job.lease_epoch);
+      if (!lapsed.empty()) {
+        {
+          std::lock_guard<std::mutex> lock(slot.mutex);
+          if (slot.fenced.empty()) slot.fenced = lapsed;
+        }
+        sender.request_abort();
+      }
       if (p.status.override_percent != last_override) {
         overrides.push_back({{"elapsed_s", seconds_since(started)},
                              {"percent", int(p.status.override_percent)},
@@ -403,7 +451,12 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     });
     outcome = outcome_name(result);
     message = sender.message();
-    switch (result) {
+    std::string fenced;
+    {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      fenced = slot.fenced;
+    }
+    switch (fenced.empty() || result == JobOutcome::kCompleted ? result : JobOutcome::kLinkLost) {
       case JobOutcome::kCompleted:
         state = JobState::kCompleted;
         executed = commands.size();
@@ -428,6 +481,10 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
         state = JobState::kInterrupted;
         break;
     }
+    if (!fenced.empty() && result != JobOutcome::kCompleted) {
+      outcome = "stopped: lease lost";
+      message = fenced;
+    }
   } catch (const LinkError& e) {
     state = JobState::kInterrupted;
     outcome = "link lost";
@@ -446,8 +503,12 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     slot.have_last_status = state != JobState::kInterrupted;
     if (slot.have_last_status) slot.last_status = sender.last_status();
   }
-  const int resume_curve =
+  saver_.forget(job.id);
+  progress.executed = static_cast<int64_t>(executed);
+  progress.total = static_cast<int64_t>(commands.size());
+  progress.resume_curve =
       state == JobState::kInterrupted ? first_uncut_curve(commands, executed) : -1;
+  const int resume_curve = progress.resume_curve;
   note(fmt::format("ended: {} ({}): {}", state_name(state), outcome, message));
   const SenderStats& st = sender.stats();
   nlohmann::json report;
@@ -461,6 +522,8 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   report["commands"] = commands.size();
   report["executed"] = executed;
   report["resume_curve"] = resume_curve;
+  report["resume_at"] = {{"job_command", progress.resume_index},
+                         {"curve_point", progress.resume_point}};
   report["planned_s"] = job.planned_s;
   report["elapsed_s"] = seconds_since(started);
   report["frames_sent"] = st.frames_sent;
@@ -483,8 +546,12 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   }
   if (!archive_error.empty()) message += fmt::format(" (archive: {})", archive_error);
   try {
-    store_.finish(job.id, state, message, static_cast<int64_t>(executed),
-                  static_cast<int64_t>(commands.size()), resume_curve);
+    if (!store_.finish(job.id, lease, state, message, progress) && options_.say) {
+      options_.say(
+          fmt::format("job {} ended {} here, but the store no longer had it running "
+                      "under this server's lease: its record was left as it is",
+                      job.id, state_name(state)));
+    }
   } catch (const StoreError&) {
     // The record stays 'running'; the next start of this server marks it interrupted.
   }

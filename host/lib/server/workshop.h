@@ -21,6 +21,8 @@
 #include "host/lib/server/data_folder.h"
 #include "host/lib/server/job_store.h"
 #include "host/lib/server/machine_spec.h"
+#include "host/lib/server/progress_saver.h"
+#include "host/lib/server/server_lease.h"
 #include "host/lib/stream/job_encoder.h"
 #include "host/lib/stream/sender.h"
 
@@ -44,6 +46,13 @@ struct WorkshopOptions {
   // for `stale_after` is taken for dead and its running jobs become interrupted.
   std::chrono::milliseconds heartbeat{1000};
   std::chrono::milliseconds stale_after{30000};
+  // Who holds the name `owner` (host and data folder): JobStore::acquire_lease.
+  std::string holder = "local";
+  // A running job's position is saved at most this often (and at each change of machine
+  // state), so "continue" works after a crash (ProgressSaver).
+  std::chrono::milliseconds progress_interval{1000};
+  // Messages for the operator (a lost lease); the CLI prints them.
+  std::function<void(const std::string&)> say;
   SenderOptions sender;
   ResumeEncoder resume_encoder = continue_from_curve();  // "continue" (see above)
 };
@@ -63,7 +72,8 @@ class Workshop {
   Workshop(const Workshop&) = delete;
   Workshop& operator=(const Workshop&) = delete;
 
-  // Marks jobs this owner left running as interrupted, then starts one worker per machine.
+  // Takes the lease on the owner's name (throws NameInUse when another live server has it),
+  // marks jobs this owner left running as interrupted, then starts one worker per machine.
   void start();
   // Aborts running jobs (they become interrupted: the server stopped), joins the workers.
   void stop();
@@ -86,11 +96,15 @@ class Workshop {
   void run_job(Slot& slot, const JobRecord& job, Sender& sender, const proto::SessionReply& caps);
   void sleep_for(std::chrono::milliseconds ms);
   void heartbeat_loop();
+  void lease_lost(const std::string& why);
+  void save_refused(int64_t job_id);
 
   JobStore& store_;
   const DataFolder& data_;
   WorkshopOptions options_;
+  ServerLease lease_;
   std::vector<std::unique_ptr<Slot>> slots_;
+  ProgressSaver saver_;  // after slots_: its thread is gone before they are
   std::vector<std::thread> threads_;
   std::thread heartbeat_thread_;
   std::atomic<bool> stopping_{false};

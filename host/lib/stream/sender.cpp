@@ -575,6 +575,15 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
       commands_ = nullptr;
       return failure_;
     }
+    if (next_ < commands.size() && options_.send_veto) {
+      std::string veto = options_.send_veto();
+      if (!veto.empty()) {
+        send_realtime(proto::kCmdAbort, {});
+        message_ = std::move(veto);
+        commands_ = nullptr;
+        return JobOutcome::kAborted;
+      }
+    }
     // Fill the window (frames and bytes) unless the controller said busy.
     size_t inflight_bytes = 0;
     for (size_t i = base_; i < next_; ++i) inflight_bytes += frame_bytes(commands[i]);

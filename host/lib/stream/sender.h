@@ -32,6 +32,10 @@ struct SenderOptions {
   // Where time comes from (empty: the wall clock). The one-process simulator gives its
   // machine time here, so every interval and time-out above runs in machine time.
   std::function<std::chrono::steady_clock::time_point()> clock;
+  // Asked before each batch of commands goes out (empty: always allowed). A non-empty answer
+  // is why nothing more may be sent: the job is aborted (#X) at once with that message (the
+  // workshop server: its lease on the job is gone).
+  std::function<std::string()> send_veto;
 };
 
 // How a job ended; the CLI maps these to exit codes.

@@ -25,6 +25,19 @@ JobRecord job(const std::string& key, int priority = 0, double w = 50, double h 
   return j;
 }
 
+// A lease on `name` (one holder, taken for dead after 30 s).
+Lease lease_of(JobStore& store, const std::string& name) {
+  return store.acquire_lease(name, "test-host:/data", 30000);
+}
+
+JobProgress at(int64_t executed, int64_t total, int resume_curve) {
+  JobProgress p;
+  p.executed = executed;
+  p.total = total;
+  p.resume_curve = resume_curve;
+  return p;
+}
+
 TEST(SqliteJobStore, ClaimsByPriorityThenAge) {
   test::TempDir dir;
   SqliteJobStore store((dir.path() / "jobs.sqlite").string());
@@ -32,14 +45,15 @@ TEST(SqliteJobStore, ClaimsByPriorityThenAge) {
   const int64_t high = store.add(job("b", 5), "");
   const int64_t low2 = store.add(job("c", 0), "");
   MachineFit fit;
-  EXPECT_EQ(store.claim(fit, "m1", "s")->id, high);
-  EXPECT_EQ(store.claim(fit, "m1", "s")->id, low);
-  const auto third = store.claim(fit, "m2", "s");
+  const Lease lease = lease_of(store, "s");
+  EXPECT_EQ(store.claim(fit, "m1", lease)->id, high);
+  EXPECT_EQ(store.claim(fit, "m1", lease)->id, low);
+  const auto third = store.claim(fit, "m2", lease);
   ASSERT_TRUE(third);
   EXPECT_EQ(third->id, low2);
   EXPECT_EQ(third->state, JobState::kRunning);
   EXPECT_EQ(third->machine, "m2");
-  EXPECT_FALSE(store.claim(fit, "m1", "s"));
+  EXPECT_FALSE(store.claim(fit, "m1", lease));
 }
 
 TEST(SqliteJobStore, ClaimsOnlyJobsThatFitTheMachine) {
@@ -48,17 +62,18 @@ TEST(SqliteJobStore, ClaimsOnlyJobsThatFitTheMachine) {
   const int64_t big = store.add(job("big", 9, 250, 150), "");
   const int64_t brass = store.add(job("brass", 8, 20, 20, "brass"), "");
   const int64_t any = store.add(job("any", 0), "");
+  const Lease lease = lease_of(store, "s");
   MachineFit small;
   small.work_width_mm = 200;
   small.work_height_mm = 200;
   small.tags = {"pen"};
   EXPECT_TRUE(store.has_claimable(small));
-  EXPECT_EQ(store.claim(small, "small", "s")->id, any);  // too big, wrong tag: skipped
+  EXPECT_EQ(store.claim(small, "small", lease)->id, any);  // too big, wrong tag: skipped
   EXPECT_FALSE(store.has_claimable(small));
   MachineFit brass_machine;
   brass_machine.tags = {"pen", "brass"};
-  EXPECT_EQ(store.claim(brass_machine, "b", "s")->id, big);
-  EXPECT_EQ(store.claim(brass_machine, "b", "s")->id, brass);
+  EXPECT_EQ(store.claim(brass_machine, "b", lease)->id, big);
+  EXPECT_EQ(store.claim(brass_machine, "b", lease)->id, brass);
 }
 
 TEST(SqliteJobStore, ConcurrentClaimsTakeEachJobOnce) {
@@ -70,12 +85,14 @@ TEST(SqliteJobStore, ConcurrentClaimsTakeEachJobOnce) {
   }
   // Two connections (as two processes would have), two threads each.
   SqliteJobStore a(path), b(path);
+  const Lease lease = lease_of(a, "s");
   std::vector<std::vector<int64_t>> got(4);
   std::vector<std::thread> threads;
   for (int t = 0; t < 4; ++t) {
     threads.emplace_back([&, t] {
       SqliteJobStore& s = t % 2 ? a : b;
-      while (auto j = s.claim(MachineFit{}, "m" + std::to_string(t), "s")) got[t].push_back(j->id);
+      while (auto j = s.claim(MachineFit{}, "m" + std::to_string(t), lease))
+        got[t].push_back(j->id);
     });
   }
   for (auto& t : threads) t.join();
@@ -96,11 +113,12 @@ TEST(SqliteJobStore, StateRulesForCancelRequeueAndPriority) {
   EXPECT_TRUE(store.set_priority(id, 7));
   EXPECT_EQ(store.get(id)->priority, 7);
   EXPECT_FALSE(store.requeue(id, false));  // queued already
-  ASSERT_TRUE(store.claim(MachineFit{}, "m", "s"));
+  const Lease lease = lease_of(store, "s");
+  ASSERT_TRUE(store.claim(MachineFit{}, "m", lease));
   EXPECT_FALSE(store.cancel(id));  // running: abort it on the machine instead
   EXPECT_FALSE(store.set_priority(id, 1));
-  EXPECT_TRUE(store.finish(id, JobState::kInterrupted, "link lost", 5, 20, 2));
-  EXPECT_FALSE(store.finish(id, JobState::kCompleted, "twice", 20, 20, -1));
+  EXPECT_TRUE(store.finish(id, lease, JobState::kInterrupted, "link lost", at(5, 20, 2)));
+  EXPECT_FALSE(store.finish(id, lease, JobState::kCompleted, "twice", at(20, 20, -1)));
   const JobRecord r = *store.get(id);
   EXPECT_EQ(r.state, JobState::kInterrupted);
   EXPECT_EQ(r.executed, 5);
@@ -122,8 +140,8 @@ TEST(SqliteJobStore, RestartKeepsQueuedJobsAndMarksOwnRunningJobsInterrupted) {
     mine = store.add(job("mine", 3), "");
     theirs = store.add(job("theirs", 2), "");
     queued = store.add(job("queued", 1), "");
-    store.claim(MachineFit{}, "m1", "this-server");
-    store.claim(MachineFit{}, "m9", "other-server");
+    store.claim(MachineFit{}, "m1", lease_of(store, "this-server"));
+    store.claim(MachineFit{}, "m9", lease_of(store, "other-server"));
   }  // the process dies here without finishing anything
   SqliteJobStore store(path);
   EXPECT_EQ(store.interrupt_running("this-server", "server restarted"), 1);
@@ -135,27 +153,95 @@ TEST(SqliteJobStore, RestartKeepsQueuedJobsAndMarksOwnRunningJobsInterrupted) {
   EXPECT_EQ(store.list("queued", 10).size(), 1u);
 }
 
-TEST(SqliteJobStore, RunningJobsOfASilentServerBecomeInterrupted) {
+TEST(SqliteJobStore, RunningJobsOfASilentServerBecomeInterruptedAndItsLeaseIsFenced) {
   test::TempDir dir;
   SqliteJobStore store((dir.path() / "jobs.sqlite").string());
   const int64_t alive_job = store.add(job("a"), "");
   const int64_t dead_job = store.add(job("b"), "");
   const int64_t queued = store.add(job("c"), "");
-  store.heartbeat("dead");
-  ASSERT_EQ(store.claim(MachineFit{}, "m1", "alive")->id, alive_job);
-  ASSERT_EQ(store.claim(MachineFit{}, "m2", "dead")->id, dead_job);
+  const Lease dead = lease_of(store, "dead");
+  const Lease alive = lease_of(store, "alive");
+  ASSERT_EQ(store.claim(MachineFit{}, "m1", alive)->id, alive_job);
+  ASSERT_EQ(store.claim(MachineFit{}, "m2", dead)->id, dead_job);
+  EXPECT_TRUE(store.save_progress(dead_job, dead, at(3, 20, 1)));
   std::this_thread::sleep_for(std::chrono::milliseconds(30));
-  store.heartbeat("alive");  // "dead" said nothing since
-  const int64_t cutoff = std::chrono::duration_cast<std::chrono::milliseconds>(
-                             std::chrono::system_clock::now().time_since_epoch())
-                             .count() -
-                         20;
-  EXPECT_EQ(store.interrupt_stale(cutoff, "server gone"), 1);
+  ASSERT_TRUE(store.renew_lease(alive));  // "dead" said nothing since
+  EXPECT_EQ(store.interrupt_stale(20, "server gone"), 1);
   EXPECT_EQ(store.get(dead_job)->state, JobState::kInterrupted);
   EXPECT_EQ(store.get(dead_job)->message, "server gone");
+  EXPECT_EQ(store.get(dead_job)->executed, 3);  // the progress it saved is kept
   EXPECT_EQ(store.get(alive_job)->state, JobState::kRunning);
   EXPECT_EQ(store.get(queued)->state, JobState::kQueued);
-  EXPECT_EQ(store.interrupt_stale(cutoff, "again"), 0);
+  EXPECT_EQ(store.interrupt_stale(20, "again"), 0);
+
+  // The silent server wakes: nothing it does under its old lease is taken.
+  EXPECT_FALSE(store.renew_lease(dead));
+  EXPECT_FALSE(store.save_progress(dead_job, dead, at(9, 20, 2)));
+  EXPECT_FALSE(store.finish(dead_job, dead, JobState::kCompleted, "done", at(20, 20, -1)));
+  EXPECT_THROW(store.claim(MachineFit{}, "m2", dead), LeaseLost);
+  EXPECT_EQ(store.get(queued)->state, JobState::kQueued);
+  // Re-queued, the job runs under the other server; the woken one cannot touch it either.
+  ASSERT_TRUE(store.requeue(dead_job, true));
+  ASSERT_EQ(store.claim(MachineFit{}, "m1", alive)->id, dead_job);
+  EXPECT_FALSE(store.save_progress(dead_job, dead, at(9, 20, 2)));
+  EXPECT_FALSE(store.finish(dead_job, dead, JobState::kAborted, "x", at(9, 20, 2)));
+  EXPECT_TRUE(store.finish(dead_job, alive, JobState::kCompleted, "", at(20, 20, -1)));
+  // It takes its name again with a new epoch and works on under that.
+  const Lease again = lease_of(store, "dead");
+  EXPECT_GT(again.epoch, dead.epoch);
+  EXPECT_EQ(store.claim(MachineFit{}, "m2", again)->id, queued);
+}
+
+TEST(SqliteJobStore, ALiveNameIsRefusedToAnotherHolderAndTakenOverByItsOwn) {
+  test::TempDir dir;
+  SqliteJobStore store((dir.path() / "jobs.sqlite").string());
+  const Lease first = store.acquire_lease("shop", "pc1:/srv/a", 30000);
+  try {
+    store.acquire_lease("shop", "pc2:/srv/b", 30000);
+    FAIL() << "a second live server with the same name was let in";
+  } catch (const NameInUse& e) {
+    EXPECT_NE(std::string(e.what()).find("another server named 'shop' is alive"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("pc1:/srv/a"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(store.renew_lease(first));  // untouched
+  // The same holder again (the process died; its data folder lock is free): a new epoch,
+  // and the old one is fenced.
+  const Lease second = store.acquire_lease("shop", "pc1:/srv/a", 30000);
+  EXPECT_GT(second.epoch, first.epoch);
+  EXPECT_FALSE(store.renew_lease(first));
+  // A name silent longer than stale_ms is free for anyone.
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  EXPECT_GT(store.acquire_lease("shop", "pc2:/srv/b", 20).epoch, second.epoch);
+}
+
+TEST(SqliteJobStore, ProgressSavedWhileRunningMakesAnInterruptedJobContinuable) {
+  test::TempDir dir;
+  SqliteJobStore store((dir.path() / "jobs.sqlite").string());
+  const int64_t id = store.add(job("a"), "");
+  const Lease lease = lease_of(store, "s");
+  ASSERT_TRUE(store.claim(MachineFit{}, "m", lease));
+  JobProgress p = at(7, 30, -1);  // past the last curve: only the position says where
+  p.resume_index = 12;
+  p.resume_point = 18;
+  p.resume_job_id = 0x5A17;
+  ASSERT_TRUE(store.save_progress(id, lease, p));
+  EXPECT_EQ(store.get(id)->state, JobState::kRunning);
+  EXPECT_EQ(store.get(id)->executed, 7);
+  // The server dies; its restart marks the job interrupted, the position is kept.
+  EXPECT_EQ(store.interrupt_running("s", "server restarted"), 1);
+  const JobRecord r = *store.get(id);
+  EXPECT_EQ(r.resume_index, 12);
+  EXPECT_EQ(r.resume_point, 18);
+  EXPECT_EQ(r.resume_job_id, 0x5A17);
+  EXPECT_TRUE(store.requeue(id, true));
+  EXPECT_EQ(store.get(id)->resume_index, 12);
+  // Re-run from the start instead: the position is forgotten.
+  ASSERT_TRUE(store.claim(MachineFit{}, "m", lease));
+  ASSERT_TRUE(store.finish(id, lease, JobState::kFailed, "alarm", p));
+  EXPECT_TRUE(store.requeue(id, false));
+  EXPECT_EQ(store.get(id)->resume_index, -1);
+  EXPECT_EQ(store.get(id)->resume_curve, -1);
 }
 
 TEST(SqliteJobStore, UnopenableFileIsAnErrorNamingIt) {

@@ -87,7 +87,8 @@ TEST(ServerApi, PriorityDecidesWhichQueuedJobRunsFirst) {
                                 R"({"priority": 9})", "application/json");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 200) << r->body;
-  const auto first = server.store().claim(MachineFit{}, "m", "x");
+  const auto first =
+      server.store().claim(MachineFit{}, "m", server.store().acquire_lease("x", "h", 30000));
   ASSERT_TRUE(first);
   EXPECT_EQ(first->id, low);
   EXPECT_EQ(server.job(high)["state"], "queued");
@@ -96,7 +97,8 @@ TEST(ServerApi, PriorityDecidesWhichQueuedJobRunsFirst) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 200);
   EXPECT_EQ(server.job(high)["state"], "cancelled");
-  EXPECT_FALSE(server.store().claim(MachineFit{}, "m", "x"));
+  EXPECT_FALSE(
+      server.store().claim(MachineFit{}, "m", server.store().acquire_lease("x", "h", 30000)));
 }
 
 TEST(ServerApi, RestartKeepsQueuedJobsAndRunningOnesBecomeInterrupted) {
