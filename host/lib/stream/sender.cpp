@@ -220,6 +220,10 @@ void Sender::handle_reply(const proto::Frame& frame) {
       last_status_ = r;
       have_status_ = true;
       status_outstanding_ = false;
+      if (status_before_resume_)
+        status_before_resume_ = false;  // asked before the #R: says nothing of it
+      else
+        resume_sent_ = false;
       queue_free_ = r.queue_free;
       if (commands_ == nullptr) break;
       // Everything before next_expected is stored.
@@ -398,6 +402,16 @@ void Sender::query_status() {
 
 // Time for the next status query: each interval, or with a zero interval as soon as the
 // previous one was answered (a lost query or reply is given up after 50 ms).
+// A resume means something only to a machine in a hold: one this sender asked for, or one
+// the last status shows (the panel's, the link watchdog's), unless a #R already went out
+// since. Anything else would be refused (bad_state) and end the job.
+bool Sender::resume_may_act() const {
+  if (operator_hold_) return true;
+  if (resume_sent_ || !have_status_) return false;
+  return last_status_.state == proto::MachineState::kHolding ||
+         last_status_.state == proto::MachineState::kHeld;
+}
+
 bool Sender::status_due(Clock::time_point last_poll) const {
   if (options_.status_interval.count() > 0) {
     return now() - last_poll >= options_.status_interval;
@@ -551,6 +565,8 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
   seen_ = Seen();
   last_progress_ = now();
   operator_hold_ = false;
+  resume_sent_ = false;
+  status_before_resume_ = false;
 
   while (true) {
     if (abort_requested_) {
@@ -565,7 +581,11 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
       operator_hold_ = true;
     }
     if (resume_requested_.exchange(false)) {
-      send_realtime(proto::kCmdResume, {});
+      if (resume_may_act()) {
+        send_realtime(proto::kCmdResume, {});
+        resume_sent_ = true;
+        status_before_resume_ = status_outstanding_;
+      }
       operator_hold_ = false;
     }
     if (const int pct = override_requested_.exchange(0)) {

@@ -110,6 +110,7 @@ class Sender {
   bool spline_room(const std::vector<QueuedCommand>& commands) const;
   void sample_round_trip(size_t index);
   bool status_due(std::chrono::steady_clock::time_point last_poll) const;
+  bool resume_may_act() const;
   std::chrono::steady_clock::time_point now() const;
   void track_executed(uint8_t last_executed_seq);
   bool stalled();
@@ -163,6 +164,10 @@ class Sender {
   } seen_;
   std::chrono::steady_clock::time_point last_progress_;
   bool operator_hold_ = false;  // the operator asked for a hold (not a stall)
+  // A #R went out and no status asked after it came back yet: another resume request is the
+  // same one again (a second #R to a machine no longer held is refused, bad_state).
+  bool resume_sent_ = false;
+  bool status_before_resume_ = false;  // a #? asked before that #R is still to be answered
   std::vector<std::chrono::steady_clock::time_point> first_sent_;  // per command (Karn)
   std::vector<bool> resent_;
   size_t last_gap_expected_ = SIZE_MAX;  // the seq_gap we went back for, and when

@@ -110,6 +110,30 @@ TEST(SimJob, HoldStopsTheToolAndResumeFinishesTheJob) {
   EXPECT_LE(r.max_contour_error_um, 10.0);
 }
 
+// Two resume requests in a row (two clicks, two API calls): the second finds the machine
+// already resumed and must not end the job (a second #R was refused, bad_state, and the job
+// failed as if a queued command had been refused).
+TEST(SimJob, ASecondResumeRightAfterTheFirstIsHarmless) {
+  const JobPlan plan = plan_of(drawing_of({circle_curve(20, 20, 10), circle_curve(50, 20, 10)}));
+  sim::SimJobOptions o = fast_options();
+  bool held_seen = false;
+  int resumes = 0;
+  o.on_progress = [&](Sender& s, const Progress& p) {
+    if (!held_seen && p.executed * 2 >= p.total) s.request_hold();
+    if (p.status.state == proto::MachineState::kHeld) held_seen = true;
+    // One request per progress report, so each is taken after the #R before it went out.
+    if (held_seen && resumes < 4) {
+      s.request_resume();
+      ++resumes;
+    }
+  };
+  const sim::SimJobResult r = sim::run_sim_job(plan, o);
+  ASSERT_EQ(r.outcome, JobOutcome::kCompleted) << r.message;
+  EXPECT_TRUE(held_seen);
+  EXPECT_EQ(resumes, 4);
+  EXPECT_LE(r.max_contour_error_um, 10.0);
+}
+
 TEST(SimJob, AbortStopsTheJobAndSaysSo) {
   const JobPlan plan = plan_of(drawing_of({circle_curve(20, 20, 10), circle_curve(50, 20, 10)}));
   sim::SimJobOptions o = fast_options();
