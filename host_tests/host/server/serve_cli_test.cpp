@@ -81,18 +81,10 @@ class ServeProcess {
     return -2;
   }
   // Waits (up to 20 s) for the process to end by itself; its exit status (-1 when it had
-  // to be killed).
+  // to be stopped).
   int wait_exit() {
-    for (int i = 0; i < 400; ++i) {
-      int st = 0;
-      if (waitpid(pid_, &st, WNOHANG) == pid_) {
-        pid_ = 0;
-        return status_ = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    kill9();
-    return status_ = -1;
+    const int st = wait_exit_within(std::chrono::seconds(20));
+    return st == -2 ? status_ = -1 : st;
   }
 
  private:
