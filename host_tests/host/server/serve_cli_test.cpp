@@ -99,6 +99,16 @@ std::string text_of(const fs::path& p) {
   return s.str();
 }
 
+// True once GET `path` answers 200 (the server is up), within 20 s.
+bool answers(httplib::Client& client, const char* path) {
+  return test::wait_until(
+      [&] {
+        auto r = client.Get(path);
+        return r && r->status == 200;
+      },
+      20);
+}
+
 TEST(ServeCommand, StartsOnAFreshFolderShowsTheTokenOnceAndStopsCleanly) {
   test::TempDir dir;
   const fs::path data = dir.path() / "data";
@@ -107,13 +117,7 @@ TEST(ServeCommand, StartsOnAFreshFolderShowsTheTokenOnceAndStopsCleanly) {
     const fs::path log = dir.path() / ("serve" + std::to_string(run) + ".log");
     ServeProcess serve({"serve", "--data", data.string(), "--listen", "127.0.0.1:" + port}, log);
     httplib::Client client("127.0.0.1", std::stoi(port));
-    ASSERT_TRUE(test::wait_until(
-        [&] {
-          auto r = client.Get("/");
-          return r && r->status == 200;
-        },
-        20))
-        << text_of(log);
+    ASSERT_TRUE(answers(client, "/")) << text_of(log);
     auto page = client.Get("/");
     EXPECT_NE(page->body.find("Engraver workshop"), std::string::npos);
     EXPECT_EQ(serve.stop(), 0) << text_of(log);
@@ -138,13 +142,7 @@ TEST(ServeCommand, AllowedHostAddsANameTheServerAnswersTo) {
                       "127.0.0.1:" + std::to_string(port), "--allowed-host", "workshop.example"},
                      log);
   httplib::Client client("127.0.0.1", port);
-  ASSERT_TRUE(test::wait_until(
-      [&] {
-        auto r = client.Get("/api/status");
-        return r && r->status == 200;
-      },
-      20))
-      << text_of(log);
+  ASSERT_TRUE(answers(client, "/api/status")) << text_of(log);
   auto named = client.Get("/api/jobs", {{"Host", "workshop.example:" + std::to_string(port)}});
   ASSERT_TRUE(named);
   EXPECT_EQ(named->status, 200);
@@ -171,12 +169,7 @@ TEST(ServeCommand, KilledMidJobTheRunsLogIsKept) {
                                          sim.address() + " name=m1"};
   auto serve = std::make_unique<ServeProcess>(args, dir.path() / "serve1.log");
   httplib::Client client("127.0.0.1", port);
-  ASSERT_TRUE(test::wait_until(
-      [&] {
-        auto r = client.Get("/api/status");
-        return r && r->status == 200;
-      },
-      20));
+  ASSERT_TRUE(answers(client, "/api/status"));
   const std::string token = text_of(data / "token").substr(0, 48);
   auto up =
       client.Post("/api/jobs?name=slow.ngc&feed_mm_s=4", {{"Authorization", "Bearer " + token}},
@@ -236,13 +229,7 @@ TEST(ServeCommand, TheInstalledEngraverServesTheInstalledPage) {
                       "127.0.0.1:" + std::to_string(port)},
                      log, exe.string());
   httplib::Client client("127.0.0.1", port);
-  ASSERT_TRUE(test::wait_until(
-      [&] {
-        auto r = client.Get("/app.js");
-        return r && r->status == 200;
-      },
-      20))
-      << text_of(log);
+  ASSERT_TRUE(answers(client, "/app.js")) << text_of(log);
   auto index = client.Get("/");
   ASSERT_TRUE(index);
   EXPECT_EQ(index->status, 200);
