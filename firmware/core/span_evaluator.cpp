@@ -46,26 +46,55 @@ __attribute__((noinline)) int64_t ratio_q29(int64_t num, int64_t den) {
   return (shl64(num, kAlphaShift) + den / 2) / den;
 }
 
-// round(num / den) for den > 0 (rounds half away from zero). Out of line, like
-// div_round_pow2: inlined, the two made setup() 2.7 KB larger on the AVR and 3 % faster.
-__attribute__((noinline)) int64_t div_round(int64_t num, int64_t den) {
-  return num >= 0 ? (num + den / 2) / den : -((-num + den / 2) / den);
+// round(num / d) for d > 0 (rounds half away from zero; d a weight in Q29, < 2^31). A
+// power-of-two d (every weight of a polynomial span is 2^29) is a shift with the same value:
+// polynomial spans share this code with rational ones and skip the 64-bit division.
+__attribute__((noinline)) int64_t div_round(int64_t num, uint32_t d) {
+  const uint64_t mag = num >= 0 ? (uint64_t)num : (uint64_t)-num;
+  uint64_t q;
+  if ((d & (d - 1)) == 0) {
+    uint8_t n = 0;
+    uint32_t m = d;
+    while (m >= 256) {  // whole bytes first (a variable shift is a bit loop)
+      m >>= 8;
+      n = (uint8_t)(n + 8);
+    }
+    while (m > 1) {
+      m >>= 1;
+      ++n;
+    }
+    q = n == 0 ? mag : (mag + (d >> 1)) >> n;
+  } else {
+    q = (mag + (d >> 1)) / d;
+  }
+  return num >= 0 ? (int64_t)q : -(int64_t)q;
 }
 
-// round(num / 2^n) for n in 1..62, rounded half away from zero: div_round(num, 2^n)
-// without a 64-bit division.
-__attribute__((noinline)) int64_t div_round_pow2(int64_t num, uint8_t n) {
-  const int64_t half = (int64_t)1 << (n - 1);
-  return num >= 0 ? (num + half) >> n : -((-num + half) >> n);
+// (v * w) >> 29 (floor) for a Q29 weight w; w = 2^29 (polynomial spans) gives v without
+// the 64-bit product.
+__attribute__((noinline)) int64_t mul_weight_q29(int64_t v, uint32_t w_q29) {
+  if (w_q29 == (1UL << kAlphaShift)) return v;
+  return (v * (int64_t)w_q29) >> kAlphaShift;
+}
+
+// rel * w_q14 / 2^5 truncated toward zero: a coordinate times its weight in q9. Weight 1
+// (every control point of a polynomial span) is rel * 2^9 without the 64-bit product.
+__attribute__((noinline)) int64_t weighted_q9(int32_t rel, uint16_t w_q14) {
+  if (w_q14 == kWeightOneQ14) return shl64(rel, kSetupShift);
+  return (int64_t)rel * w_q14 / (1 << (14 - kSetupShift));
+}
+
+// v * (w_q29 >> 8), the products of the end tangent; w = 2^29 is a shift.
+__attribute__((noinline)) int64_t mul_weight_q21(int64_t v, uint32_t w_q29) {
+  if (w_q29 == (1UL << kAlphaShift)) return shl64(v, kAlphaShift - 8);
+  return v * (int64_t)(w_q29 >> 8);
 }
 
 // Coordinate i of a Bezier point in um * 2^extra_bits relative to the span's first control
-// point, rounded: x / w. Polynomial spans have w = 2^29 everywhere, so the division is a
-// shift (the same value).
-__attribute__((noinline)) int64_t bezier_coordinate(const Homog& h, uint8_t i, uint8_t extra_bits,
-                                                    bool poly) {
-  if (poly) return div_round_pow2(h.v[i], (uint8_t)(kSetupShift - extra_bits));
-  return div_round(shl64(h.v[i], (uint8_t)(kAlphaShift - kSetupShift + extra_bits)), h.v[kW]);
+// point, rounded: x / w (a shift for polynomial spans, whose w is 2^29 everywhere).
+__attribute__((noinline)) int64_t bezier_coordinate(const Homog& h, uint8_t i, uint8_t extra_bits) {
+  return div_round(shl64(h.v[i], (uint8_t)(kAlphaShift - kSetupShift + extra_bits)),
+                   (uint32_t)h.v[kW]);
 }
 
 // The De Boor blend factors of one span: alpha[u][r-1][jj-1] = (u - knot[j]) /
@@ -122,9 +151,11 @@ __attribute__((noinline)) void bezier_points(uint8_t p, bool rational, const Alp
 
 // Power-basis coefficients of a degree-p Bezier polynomial with values b[0..p]:
 // c[k] = C(p, k) times the k-th forward difference of b at 0 (binomials 1..3 as adds).
-// The differences are taken in place in b (one loop, exact integer arithmetic).
-__attribute__((noinline)) void power_basis(uint8_t p, int64_t* b, int64_t* c) {
-  c[0] = b[0];
+// The differences are taken in place in b (one loop). Only adds and subtracts: on the low
+// 32 bits of the exact 64-bit values they give the low 32 bits of the exact result, which
+// is all that is kept (|c[k]| < 2^31), so the arithmetic is 32-bit (wrapping, unsigned).
+void power_basis(uint8_t p, uint32_t* b, int32_t* c) {
+  c[0] = (int32_t)b[0];
   for (uint8_t k = 1; k <= kMaxDegree; ++k) {
     if (k > p) {
       c[k] = 0;
@@ -132,9 +163,38 @@ __attribute__((noinline)) void power_basis(uint8_t p, int64_t* b, int64_t* c) {
     }
     for (uint8_t j = p; j >= k; --j) b[j] -= b[j - 1];
     // C(p, k): 1 at k = p, p at k = 1, 3 for (3, 2).
-    const int64_t v = b[k];
-    c[k] = k == p ? v : (k == 1 && p == 2 ? v + v : v + v + v);
+    const uint32_t v = b[k];
+    c[k] = (int32_t)(k == p ? v : (k == 1 && p == 2 ? v + v : v + v + v));
   }
+}
+
+// Coefficients of one coordinate i (x or y, or the weight) from the Bezier points:
+// numerators (x - w o) 2^26 / w_max rounded (w 2^27 / w_max), then the power basis. For x
+// and y, o is the span start rounded to 1 um (written to *origin_um, absolute) and the span
+// end (q6, absolute) goes to *end_q6. Out of line and per coordinate: the 64-bit
+// temporaries stay in a small stack frame (on the AVR a frame above 63 bytes makes every
+// spill five instructions).
+__attribute__((noinline)) void coordinate_coefficients(const Homog* b, uint8_t p, uint8_t i,
+                                                       int32_t ref_um, uint32_t w_max, int32_t* c,
+                                                       int32_t* origin_um, int32_t* end_q6) {
+  int64_t o_q9 = 0;
+  uint8_t shift = kQ27Shift;
+  if (i != kW) {
+    const int32_t start_um = (int32_t)bezier_coordinate(b[0], i, 0);  // |.| < 2^22
+    *origin_um = ref_um + start_um;
+    *end_q6 = (int32_t)((uint32_t)ref_um * (1UL << kQ6Shift) +
+                        (uint32_t)bezier_coordinate(b[p], i, kQ6Shift));
+    o_q9 = shl64(start_um, kSetupShift);
+    shift = 26;
+  }
+  uint32_t n[kMaxDegree + 1];
+  for (uint8_t k = 0; k <= p; ++k) {
+    // x - w * o in um*w q9 (w in q29: x - o for polynomial spans).
+    const int64_t r = b[k].v[i] - mul_weight_q29(o_q9, (uint32_t)b[k].v[kW]);
+    // Rational: r * 2^29 / w_max is um*w_norm in q9; to q6: * 2^26 / w_max.
+    n[k] = (uint32_t)div_round(shl64(r, shift), w_max);
+  }
+  power_basis(p, n, c);
 }
 
 // Horner in t (uq16; t_q16 = 65536 handled as 1.0 by the caller) over coefficients c,
@@ -222,6 +282,39 @@ Direction scale_direction32(int32_t x, int32_t y) {
   return d;
 }
 
+// Direction of the last non-degenerate Bezier leg into b[p] (projected): the end tangent.
+__attribute__((noinline)) Direction end_tangent(const Homog* b, uint8_t p) {
+  Direction d = {0, 0};
+  for (int8_t k = (int8_t)(p - 1); k >= 0 && d.dx == 0 && d.dy == 0; --k) {
+    int64_t e[2];
+    for (uint8_t i = 0; i < 2; ++i) {
+      e[i] = mul_weight_q21(b[p].v[i], (uint32_t)b[k].v[kW]) -
+             mul_weight_q21(b[k].v[i], (uint32_t)b[p].v[kW]);
+    }
+    d = scale_direction(e[kX], e[kY]);
+  }
+  return d;
+}
+
+// The Bezier points of the span, homogeneous, relative to its first control point (out of
+// line: the arrays of the blossom stay out of setup()'s frame).
+__attribute__((noinline)) void bezier_of_span(const Spline& spline, uint16_t span, Homog* b) {
+  const uint8_t p = spline.degree;
+  const ControlPoint& ref = spline.control[span - p];
+  Homog d0[kMaxDegree + 1];
+  for (uint8_t j = 0; j <= p; ++j) {
+    const ControlPoint& c = spline.control[span - p + j];
+    const uint16_t w_q14 = spline.rational ? c.weight_q14 : kWeightOneQ14;
+    // |c - ref| < 2^22 (coordinates within kMaxCoordinateUm, checked by setup()).
+    d0[j].v[kX] = weighted_q9(c.x_um - ref.x_um, w_q14);
+    d0[j].v[kY] = weighted_q9(c.y_um - ref.y_um, w_q14);
+    d0[j].v[kW] = (int64_t)((uint32_t)w_q14 << (kAlphaShift - 14));
+  }
+  Alphas alphas;
+  blend_factors(spline, span, &alphas);
+  bezier_points(p, spline.rational, alphas, d0, b);
+}
+
 }  // namespace
 
 // Rounds a q6 point to whole micrometres.
@@ -282,58 +375,26 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
     if (spline.rational && c.weight_q14 == 0) return GeometryError::kZeroWeight;
   }
   const ControlPoint& ref = spline.control[span - p];
-  const int32_t ref_um[2] = {ref.x_um, ref.y_um};
-  const bool poly = !spline.rational;
-  Homog d0[kMaxDegree + 1];
-  for (uint8_t j = 0; j <= p; ++j) {
-    const ControlPoint& c = spline.control[span - p + j];
-    const int32_t at_um[2] = {c.x_um, c.y_um};
-    const int64_t w_q14 = poly ? kWeightOneQ14 : c.weight_q14;
-    for (uint8_t i = 0; i < 2; ++i) {
-      const int64_t rel = (int64_t)at_um[i] - ref_um[i];
-      // Weight 1: the same value, shifted (polynomial spans skip every weight step).
-      d0[j].v[i] = poly ? shl64(rel, kSetupShift) : rel * w_q14 / (1 << (14 - kSetupShift));
-    }
-    d0[j].v[kW] = w_q14 << (kAlphaShift - 14);
-  }
   Homog b[kMaxDegree + 1];
-  int64_t w_max = 1;  // each b[k].w mixes weight_q14 << 15 >= 2^15; 1 keeps w_max a divisor
-  Alphas alphas;
-  blend_factors(spline, span, &alphas);
-  bezier_points(p, spline.rational, alphas, d0, b);
+  bezier_of_span(spline, span, b);
+  // Each b[k].w mixes weight_q14 << 15 (in [2^15, 2^31)); 1 keeps w_max a divisor.
+  uint32_t w_max = 1;
   for (uint8_t k = 0; k <= p; ++k) {
-    if (b[k].v[kW] > w_max) w_max = b[k].v[kW];
+    const uint32_t w = (uint32_t)b[k].v[kW];
+    if (w > w_max) w_max = w;
   }
   // Per coordinate: the origin (the span start rounded to 1 um, absolute), the end point
   // straight from the last Bezier point (exact up to setup rounding), and the numerators
   // relative to the origin in q6 with the weights normalised to max 1.
-  int64_t n[3][kMaxDegree + 1];
   int32_t origin_um[2];
   int32_t end_q6[2];
-  for (uint8_t i = 0; i < 2; ++i) {
-    origin_um[i] = (int32_t)(ref_um[i] + bezier_coordinate(b[0], i, 0, poly));
-    end_q6[i] = (int32_t)(shl64(ref_um[i], kQ6Shift) + bezier_coordinate(b[p], i, kQ6Shift, poly));
-    const int64_t o = shl64((int64_t)origin_um[i] - ref_um[i], kSetupShift);
-    for (uint8_t k = 0; k <= p; ++k) {
-      // x - w * o in um*w q9; w in q29 (2^29 for polynomial spans: x - o).
-      const int64_t r = b[k].v[i] - (poly ? o : (o * b[k].v[kW]) >> kAlphaShift);
-      // Rational: r * 2^29 / w_max is um*w_norm in q9; to q6: * 2^26 / w_max.
-      n[i][k] = poly ? div_round_pow2(r, kSetupShift - kQ6Shift) : div_round(shl64(r, 26), w_max);
-    }
-  }
-  for (uint8_t k = 0; k <= p; ++k) {
-    n[kW][k] = poly ? (int64_t)1 << kQ27Shift : div_round(shl64(b[k].v[kW], kQ27Shift), w_max);
-  }
+  coordinate_coefficients(b, p, kX, ref.x_um, w_max, cx_, &origin_um[kX], &end_q6[kX]);
+  coordinate_coefficients(b, p, kY, ref.y_um, w_max, cy_, &origin_um[kY], &end_q6[kY]);
+  coordinate_coefficients(b, p, kW, 0, w_max, cw_, 0, 0);
   origin_.x_um = origin_um[kX];
   origin_.y_um = origin_um[kY];
   origin_q6_.x_q6 = origin_.x_um * (1L << kQ6Shift);  // |.| < 2^26: once, not per point
   origin_q6_.y_q6 = origin_.y_um * (1L << kQ6Shift);
-  int32_t* const coefficients[3] = {cx_, cy_, cw_};
-  for (uint8_t i = 0; i < 3; ++i) {
-    int64_t c[kMaxDegree + 1];
-    power_basis(p, n[i], c);
-    for (uint8_t k = 0; k <= kMaxDegree; ++k) coefficients[i][k] = (int32_t)c[k];
-  }
   degree_ = p;
   // Derivative coefficients k * c[k] keep as many fraction bits as their Horner sums
   // allow (|sum| <= sum of k |c[k]| < 2^31): full q6 for ordinary spans.
@@ -360,17 +421,7 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   start_ = evaluate_q6(0);
   end_.x_q6 = end_q6[kX];
   end_.y_q6 = end_q6[kY];
-  // End tangent: direction of the last non-degenerate Bezier leg into b[p] (projected).
-  end_dir_.dx = end_dir_.dy = 0;
-  for (int8_t k = (int8_t)(p - 1); k >= 0 && end_dir_.dx == 0 && end_dir_.dy == 0; --k) {
-    int64_t e[2];
-    for (uint8_t i = 0; i < 2; ++i) {
-      // Polynomial: both weights 2^29, so the products are the difference times 2^21.
-      e[i] = poly ? shl64(b[p].v[i] - b[k].v[i], 21)
-                  : b[p].v[i] * (b[k].v[kW] >> 8) - b[k].v[i] * (b[p].v[kW] >> 8);
-    }
-    end_dir_ = scale_direction(e[kX], e[kY]);
-  }
+  end_dir_ = end_tangent(b, p);
   return GeometryError::kOk;
 }
 
