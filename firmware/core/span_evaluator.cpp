@@ -136,6 +136,7 @@ void blossom_level(uint8_t p, bool rational, const Alphas& a, uint8_t side, uint
 // The blossom is symmetric, so b[k] and b[k+1] share their first k levels: those are done
 // once (16 level blends for a cubic instead of 24). Equal weights (a polynomial spline) stay
 // equal: their blend is skipped.
+// d0 may be b (it is read before b is written).
 __attribute__((noinline)) void bezier_points(uint8_t p, bool rational, const Alphas& a,
                                              const Homog* d0, Homog* b) {
   Homog shared[kMaxDegree + 1];  // after k levels at knot[span+1]
@@ -297,22 +298,21 @@ __attribute__((noinline)) Direction end_tangent(const Homog* b, uint8_t p) {
 }
 
 // The Bezier points of the span, homogeneous, relative to its first control point (out of
-// line: the arrays of the blossom stay out of setup()'s frame).
+// line: the arrays of the blossom stay out of setup()'s frame). b holds the control points
+// first: bezier_points() copies them before it writes b.
 __attribute__((noinline)) void bezier_of_span(const Spline& spline, uint16_t span, Homog* b) {
   const uint8_t p = spline.degree;
-  const ControlPoint& ref = spline.control[span - p];
-  Homog d0[kMaxDegree + 1];
+  const ControlPoint* const c = &spline.control[span - p];
   for (uint8_t j = 0; j <= p; ++j) {
-    const ControlPoint& c = spline.control[span - p + j];
-    const uint16_t w_q14 = spline.rational ? c.weight_q14 : kWeightOneQ14;
+    const uint16_t w_q14 = spline.rational ? c[j].weight_q14 : kWeightOneQ14;
     // |c - ref| < 2^22 (coordinates within kMaxCoordinateUm, checked by setup()).
-    d0[j].v[kX] = weighted_q9(c.x_um - ref.x_um, w_q14);
-    d0[j].v[kY] = weighted_q9(c.y_um - ref.y_um, w_q14);
-    d0[j].v[kW] = (int64_t)((uint32_t)w_q14 << (kAlphaShift - 14));
+    b[j].v[kX] = weighted_q9(c[j].x_um - c[0].x_um, w_q14);
+    b[j].v[kY] = weighted_q9(c[j].y_um - c[0].y_um, w_q14);
+    b[j].v[kW] = (int64_t)((uint32_t)w_q14 << (kAlphaShift - 14));
   }
   Alphas alphas;
   blend_factors(spline, span, &alphas);
-  bezier_points(p, spline.rational, alphas, d0, b);
+  bezier_points(p, spline.rational, alphas, b, b);
 }
 
 }  // namespace
