@@ -4,13 +4,19 @@
 namespace drivers {
 namespace tmc428 {
 
-// Rounded a / b for b > 0.
-static uint64_t div_round(uint64_t a, uint64_t b) {
-  return (a + b / 2) / b;
+enum Rounding { kFloor, kNearest, kCeil };
+
+// (a 2^shift) / b for b > 0, rounded as asked. Every 64-bit quotient of this file goes
+// through here: one copy of the 64-bit code (long inline code on 8- and 16-bit cores).
+static __attribute__((noinline)) uint64_t div_shifted(uint64_t a, uint8_t shift, uint64_t b,
+                                                      Rounding rounding) {
+  const uint64_t num = a << shift;
+  const uint64_t add = rounding == kCeil ? b - 1 : (rounding == kNearest ? b / 2 : 0);
+  return (num + add) / b;
 }
 
 uint32_t usteps_per_s_per_unit_q16(uint32_t f_clk_hz, uint8_t pulse_div) {
-  return (uint32_t)div_round(f_clk_hz, (uint64_t)1 << pulse_div);
+  return (uint32_t)div_shifted(f_clk_hz, 0, (uint64_t)1 << pulse_div, kNearest);
 }
 
 int8_t choose_pulse_div(uint32_t f_clk_hz, uint32_t rate_usteps_per_s) {
@@ -23,8 +29,7 @@ int8_t choose_pulse_div(uint32_t f_clk_hz, uint32_t rate_usteps_per_s) {
 }
 
 uint16_t velocity_for_rate(uint32_t f_clk_hz, uint32_t rate_usteps_per_s, uint8_t pulse_div) {
-  const uint64_t num = (uint64_t)rate_usteps_per_s << (pulse_div + 16);
-  const uint64_t v = (num + f_clk_hz - 1) / f_clk_hz;
+  const uint64_t v = div_shifted(rate_usteps_per_s, (uint8_t)(pulse_div + 16), f_clk_hz, kCeil);
   return (uint16_t)(v > (uint64_t)kMaxVelocity ? (uint64_t)kMaxVelocity : v);
 }
 
@@ -33,9 +38,10 @@ uint32_t a_max_for_accel(uint32_t f_clk_hz, uint32_t accel_usteps_per_s2, uint8_
   // Two stages so nothing overflows 64 bits: first the acceleration in velocity LSB per
   // second (Q8), accel 2^(pd+16) / f_clk, then per ramp clock times 256:
   // a_max = A 2^(rd+5) 256 / f_clk.
-  const uint64_t a_q8 = div_round((uint64_t)accel_usteps_per_s2 << (pulse_div + 24), f_clk_hz);
+  const uint64_t a_q8 =
+      div_shifted(accel_usteps_per_s2, (uint8_t)(pulse_div + 24), f_clk_hz, kNearest);
   if (a_q8 > (((uint64_t)1 << 62) >> (ramp_div + 5))) return 65535u;
-  const uint64_t a_max = div_round(a_q8 << (ramp_div + 5), f_clk_hz);
+  const uint64_t a_max = div_shifted(a_q8, (uint8_t)(ramp_div + 5), f_clk_hz, kNearest);
   return a_max > 65535u ? 65535u : (uint32_t)a_max;
 }
 
@@ -77,9 +83,8 @@ bool pmul_pdiv_for(uint16_t a_max, uint8_t ramp_div, uint8_t pulse_div, uint8_t*
   // 0.95 p 8 2^pdiv = a_max 95 2^(pdiv+pd) / (100 2^(rd+4)), truncated like pmulpdiv.c.
   bool found = false;
   for (uint8_t pd = 0; pd <= kMaxDiv; ++pd) {
-    const uint64_t num = ((uint64_t)a_max * 95u) << (pd + pulse_div);
-    const uint64_t den = (uint64_t)100u << (ramp_div + 4);
-    const uint64_t value = num / den;
+    const uint64_t value = div_shifted((uint32_t)a_max * 95u, (uint8_t)(pd + pulse_div),
+                                       (uint64_t)100u << (ramp_div + 4), kFloor);
     if (value >= 128 && value <= 255) {
       *pmul = (uint8_t)value;
       *pdiv = pd;
@@ -91,14 +96,15 @@ bool pmul_pdiv_for(uint16_t a_max, uint8_t ramp_div, uint8_t pulse_div, uint8_t*
 
 uint16_t accel_units_per_ms(uint32_t f_clk_hz, uint16_t a_max, uint8_t ramp_div) {
   // a_max / 256 per ramp clock, f_clk / 2^(rd+5) ramp clocks per second, / 1000.
-  const uint64_t units = div_round((uint64_t)a_max * f_clk_hz, (uint64_t)1000u << (ramp_div + 13));
+  const uint64_t units =
+      div_shifted((uint64_t)a_max * f_clk_hz, 0, (uint64_t)1000u << (ramp_div + 13), kNearest);
   if (units == 0) return 1;
   return units > 65535u ? 65535u : (uint16_t)units;
 }
 
 uint32_t um_to_usteps(const config::AxisConfig& axis, uint32_t um, bool round_up) {
   const uint64_t num = (uint64_t)um * axis.full_steps_per_rev * axis.microsteps_per_step;
-  const uint64_t q = round_up ? (num + axis.pitch_um - 1) / axis.pitch_um : num / axis.pitch_um;
+  const uint64_t q = div_shifted(num, 0, axis.pitch_um, round_up ? kCeil : kFloor);
   return q > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)q;
 }
 
