@@ -115,10 +115,15 @@ void PathController::tick(const int32_t pos_usteps[config::kAxisCount], Coordina
     }
     take_popped();
   }
-  int16_t dir_um[3];
+  // The direction to the target in um * 2^fine: n * um_per_ustep / 2^16, rounded, keeps
+  // the fraction bits of the micrometre (um_shift >= 16). Rounded down to whole micrometres
+  // (~1 300 units for a 0.08 um microstep) it leaned a fixed way, and as the tick aims at
+  // the target every ms, a long slow move ran that angle times the distance off its line.
+  const uint8_t fine = scaling_.um_shift > 16 ? (uint8_t)(scaling_.um_shift - 16) : 0;
+  int16_t dir[3];
   uint32_t sum_sq = 0;
   int8_t len_shift = 0;
-  int32_t along = 0;  // dir_um projected on the segment direction, * 2^14
+  int32_t along = 0;  // dir projected on the segment direction, * 2^14
   const PlanEntry* next = 0;
   const uint32_t per_tick_um = um_per_tick(speed_um_s_) + 1U;  // once: speed is fixed here
   for (uint8_t captures = 0;; ++captures) {
@@ -127,14 +132,16 @@ void PathController::tick(const int32_t pos_usteps[config::kAxisCount], Coordina
     int16_t n[3];
     int8_t shift;
     normalise3(d, n, &shift);
-    // n * um_per_ustep: a 16x16 product and a shift by whole bytes first (um_shift >= 16).
+    // n * um_per_ustep: a 16x16 product (|.| <= 32767 * 65535: + 2^15 cannot overflow),
+    // rounded to its high half (a byte move).
     for (uint8_t i = 0; i < 3; ++i) {
-      dir_um[i] = (int16_t)core::asr32(core::mul_s16_u16(n[i], scaling_.um_per_ustep_q[i]),
-                                       scaling_.um_shift);
+      const int32_t p = core::mul_s16_u16(n[i], scaling_.um_per_ustep_q[i]);
+      dir[i] = scaling_.um_shift < 16 ? (int16_t)core::asr32(p, scaling_.um_shift)
+                                      : core::high_half(p + 0x8000L);
     }
-    sum_sq = sum_squares3(dir_um);
-    len_shift = shift;
-    along = dot(dir_um, cur_.dir_q14);
+    sum_sq = sum_squares3(dir);
+    len_shift = (int8_t)(shift - fine);  // len in um = |dir| * 2^len_shift
+    along = dot(dir, cur_.dir_q14);
     next = ring->front();
     if (next == 0 || captures >= kMaxCapturesPerTick) break;
     // Switch early by the distance of one tick as well, so no target is jumped over.
@@ -198,19 +205,20 @@ void PathController::tick(const int32_t pos_usteps[config::kAxisCount], Coordina
     }
   }
   speed_um_s_ = v;
-  output(v == 0 ? 0 : dir_um, len, v_units);
+  output(v == 0 ? 0 : dir, len, v_units);
 }
 
-// Velocity vector of length speed along dir_um, in native units, with the quantisation
-// residue of each axis carried to the next tick (keeps the mean direction exact).
-void PathController::output(const int16_t dir_um[3], uint16_t len, int16_t v_units[3]) {
+// Velocity vector of length speed along dir (len = |dir|, any unit), in native units, with
+// the quantisation residue of each axis carried to the next tick (keeps the mean direction
+// exact).
+void PathController::output(const int16_t dir[3], uint16_t len, int16_t v_units[3]) {
   // One 32/16 division per tick (DIV.UD on the dsPIC): scale = speed * 2^k / len < 2^16,
   // k = 13 unless len is short against the speed (then as many bits as fit; >= 2^15 of
   // them, so the scale keeps 15 significant bits). |dir_i| <= len, so each component
   // dir_i * scale >> k is at most the speed: a 16x16 product.
   uint16_t scale = 0;
   uint8_t k = 13;
-  if (dir_um != 0 && len != 0) {
+  if (dir != 0 && len != 0) {
     uint32_t num = ((uint32_t)speed_um_s_ << 16) >> 3;  // speed * 2^13: byte move, 3 steps
     const uint32_t limit = (uint32_t)len << 16;
     while (k > 0 && num >= limit) {
@@ -225,13 +233,17 @@ void PathController::output(const int16_t dir_um[3], uint16_t len, int16_t v_uni
       residue_q8_[i] = 0;
       continue;
     }
-    // |c| <= speed < 2^15; c * units_per_um_s_q < 2^31. An axis that does not move (Z
-    // while cutting) skips both products: only its residue is carried.
+    // The axis speed c in um/s with 8 fraction bits (|c| <= speed < 2^15: < 2^23), then
+    // c * units_per_um_s_q / 2^(units_shift - 8) as a 32x16 product (units_shift >= 16).
+    // Rounded down to whole um/s, c leaned a fixed way like the direction above. An axis
+    // that does not move (Z while cutting) skips the products: only its residue is carried.
     int32_t units_q8 = 0;
-    if (dir_um[i] != 0) {
-      const int16_t c_um_s = (int16_t)core::asr32(core::mul_s16_u16(dir_um[i], scale), k);
-      units_q8 = core::asr32(core::mul_s16_u16(c_um_s, scaling_.units_per_um_s_q[i]),
-                             (uint8_t)(scaling_.units_shift - 8));
+    if (dir[i] != 0) {
+      const int32_t p = core::mul_s16_u16(dir[i], scale);  // c * 2^k
+      const int32_t c_q8 = k >= 8 ? core::asr32(p, (uint8_t)(k - 8)) : p * (1L << (8 - k));
+      const uint8_t us = scaling_.units_shift;
+      units_q8 = core::asr32(core::mul_32x16_uq16(c_q8, scaling_.units_per_um_s_q[i]),
+                             us > 16 ? (uint8_t)(us - 16) : 0);
     }
     int32_t acc = residue_q8_[i] + units_q8;
     int32_t out = (acc + 128) >> 8;

@@ -51,7 +51,7 @@ class PathController {
   void take_popped();
   void leave_target();
   uint16_t cruise_of(const PlanEntry& e) const;
-  void output(const int16_t dir_um[3], uint16_t len, int16_t v_units[3]);
+  void output(const int16_t dir[3], uint16_t len, int16_t v_units[3]);
 
   AxisScaling scaling_;
   PlanEntry cur_;
