@@ -34,9 +34,31 @@ struct FieldSpec {
   uint8_t offset;        // of the field in the message struct
   uint8_t count_offset;  // text, arrays: of the uint8_t count in the struct
   uint8_t max_count;     // text, arrays
-  int32_t min;
-  int32_t max;
+  int16_t min;           // range ends as PROTO_LIMIT codes (range_end() decodes them)
+  int16_t max;
 };
+
+// Range ends that do not fit 16 bits, stored in FieldSpec as codes kWideLimitCode + i: a
+// field table entry is 8 bytes instead of 12 (the tables are flash). Every range end must
+// be -32768..32759 or listed here: the static_asserts after the tables check each one.
+const int32_t kWideLimits[] = {65535L,   PROTO_COORD_MAX, PROTO_COORD_MIN, 100000L,
+                               -100000L, PROTO_I32_MAX,   PROTO_I32_MIN};
+enum { kWideLimitCode = 32760, kNoLimitCode = 32767 };  // small values: -32768..32759
+#define PROTO_LIMIT(v)                                           \
+  ((v) == 65535L                            ? kWideLimitCode + 0 \
+   : (v) == PROTO_COORD_MAX                 ? kWideLimitCode + 1 \
+   : (v) == PROTO_COORD_MIN                 ? kWideLimitCode + 2 \
+   : (v) == 100000L                         ? kWideLimitCode + 3 \
+   : (v) == -100000L                        ? kWideLimitCode + 4 \
+   : (v) == PROTO_I32_MAX                   ? kWideLimitCode + 5 \
+   : (v) == PROTO_I32_MIN                   ? kWideLimitCode + 6 \
+   : (v) >= -32768L && (v) < kWideLimitCode ? (int16_t)(v)       \
+                                            : (int16_t)kNoLimitCode)
+#define PROTO_LIMIT_OK(v) (PROTO_LIMIT(v) != kNoLimitCode)
+
+int32_t range_end(int16_t code) {
+  return code >= kWideLimitCode ? kWideLimits[code - kWideLimitCode] : code;
+}
 
 #define PROTO_WIRE_u8 kWireU8
 #define PROTO_WIRE_u16 kWireU16
@@ -61,14 +83,16 @@ struct FieldSpec {
   const FieldSpec k##Type##Fields[] = {
 #define PROTO_SPEC_REPLY(Type, name, letter, display, check) const FieldSpec k##Type##Fields[] = {
 #define PROTO_SPEC_FIELD(Type, wire, field, min, max) \
-  {PROTO_WIRE_##wire, (uint8_t)offsetof(Type, field), 0, 0, min, max},
+  {PROTO_WIRE_##wire, (uint8_t)offsetof(Type, field), 0, 0, PROTO_LIMIT(min), PROTO_LIMIT(max)},
 #define PROTO_SPEC_TEXT(Type, count, field, max) \
   {kWireText, (uint8_t)offsetof(Type, field), (uint8_t)offsetof(Type, count), max, 0x20, 0x7E},
-#define PROTO_SPEC_ARRAY(Type, count, field, element, max)            \
-  {                                                                   \
-      PROTO_ARRAY_WIRE_##element,     (uint8_t)offsetof(Type, field), \
-      (uint8_t)offsetof(Type, count), max,                            \
-      PROTO_ARRAY_MIN_##element,      PROTO_ARRAY_MAX_##element},
+#define PROTO_SPEC_ARRAY(Type, count, field, element, max) \
+  {PROTO_ARRAY_WIRE_##element,                             \
+   (uint8_t)offsetof(Type, field),                         \
+   (uint8_t)offsetof(Type, count),                         \
+   max,                                                    \
+   PROTO_LIMIT(PROTO_ARRAY_MIN_##element),                 \
+   PROTO_LIMIT(PROTO_ARRAY_MAX_##element)},
 #define PROTO_SPEC_END(Type)  \
   { kWireEnd, 0, 0, 0, 0, 0 } \
   }                           \
@@ -82,6 +106,22 @@ PROTO_MESSAGE_TABLE(PROTO_SPEC_CMD, PROTO_SPEC_REPLY, PROTO_SPEC_FIELD, PROTO_SP
 #undef PROTO_SPEC_TEXT
 #undef PROTO_SPEC_ARRAY
 #undef PROTO_SPEC_END
+
+// Every range end has a code (see kWideLimits).
+#define PROTO_SKIP(...)
+#define PROTO_CHECK_FIELD(Type, wire, field, min, max) \
+  static_assert(PROTO_LIMIT_OK(min) && PROTO_LIMIT_OK(max), "add the range end to kWideLimits");
+#define PROTO_CHECK_ARRAY(Type, count, field, element, max)                                   \
+  static_assert(                                                                              \
+      PROTO_LIMIT_OK(PROTO_ARRAY_MIN_##element) && PROTO_LIMIT_OK(PROTO_ARRAY_MAX_##element), \
+      "add the range end to kWideLimits");
+PROTO_MESSAGE_TABLE(PROTO_SKIP, PROTO_SKIP, PROTO_CHECK_FIELD, PROTO_SKIP, PROTO_CHECK_ARRAY,
+                    PROTO_SKIP)
+#undef PROTO_SKIP
+#undef PROTO_CHECK_FIELD
+#undef PROTO_CHECK_ARRAY
+#undef PROTO_LIMIT_OK
+#undef PROTO_LIMIT
 
 // ---- little-endian bytes ----
 
@@ -109,8 +149,8 @@ uint8_t scalar_bytes(uint8_t type) {
   return 1;
 }
 
-bool in_range(int32_t v, const FieldSpec& f) {
-  return v >= f.min && v <= f.max;
+bool in_range(int32_t v, int32_t lo, int32_t hi) {
+  return v >= lo && v <= hi;
 }
 
 // A scalar field's value from the struct, widened.
@@ -152,24 +192,26 @@ void store(uint8_t* msg, const FieldSpec& f, int32_t v) {
 // Every field inside its range (and the enums inside their lists).
 ErrorCode check_fields(const uint8_t* msg, const FieldSpec* f) {
   for (; f->type != kWireEnd; ++f) {
+    const int32_t lo = range_end(f->min);  // once per field, not per element
+    const int32_t hi = range_end(f->max);
     if (f->type == kWireText || f->type == kWirePoints || f->type == kWireKnots ||
         f->type == kWireBytes) {
       const uint8_t n = msg[f->count_offset];
       if (n > f->max_count) return ErrorCode::kFieldRange;
       for (uint8_t i = 0; i < n; ++i) {
         if (f->type == kWireText) {
-          if (!in_range((uint8_t)msg[f->offset + i], *f)) return ErrorCode::kFieldRange;
+          if (!in_range((uint8_t)msg[f->offset + i], lo, hi)) return ErrorCode::kFieldRange;
         } else if (f->type == kWirePoints) {
           core::ControlPoint p;
           memcpy(&p, msg + f->offset + i * sizeof p, sizeof p);
-          if (!in_range(p.x_um, *f) || !in_range(p.y_um, *f) || p.weight_q14 == 0)
+          if (!in_range(p.x_um, lo, hi) || !in_range(p.y_um, lo, hi) || p.weight_q14 == 0)
             return ErrorCode::kFieldRange;
         }
       }
       continue;
     }
     const int32_t v = load(msg, *f);
-    if (!in_range(v, *f)) return ErrorCode::kFieldRange;
+    if (!in_range(v, lo, hi)) return ErrorCode::kFieldRange;
     if (f->type == kWireState && v > (int32_t)MachineState::kPaused) return ErrorCode::kFieldRange;
     if (f->type == kWireAlarm && v > (int32_t)Alarm::kSoftLimit) return ErrorCode::kFieldRange;
     if (f->type == kWireError && !is_known_error((uint8_t)v)) return ErrorCode::kFieldRange;
