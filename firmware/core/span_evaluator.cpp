@@ -305,7 +305,7 @@ __attribute__((noinline)) void bezier_of_span(const Spline& spline, uint16_t spa
     // |c - ref| < 2^22 (coordinates within kMaxCoordinateUm, checked by setup()).
     b[j].v[kX] = weighted_q9(c[j].x_um - c[0].x_um, w_q14);
     b[j].v[kY] = weighted_q9(c[j].y_um - c[0].y_um, w_q14);
-    b[j].v[kW] = (int64_t)((uint32_t)w_q14 << (kAlphaShift - 14));
+    b[j].v[kW] = (int64_t)w_q14 << (kAlphaShift - 14);
   }
   Alphas alphas;
   blend_factors(spline, span, &alphas);
