@@ -283,9 +283,7 @@ void Application::tick_publish(const int32_t pos[config::kAxisCount], uint8_t li
   s.at_rest = tick_.path.at_rest() ? 1 : 0;
   s.finished = tick_.path.finished() && ring_.empty() ? 1 : 0;
   s.probes_done = tick_.probes_done;
-  s.probe_result = tick_.probe_result;
   s.probe_closed = tick_.probe_hits >= kProbeDebounceTicks ? 1 : 0;
-  s.probe_z_usteps = tick_.probe_z_usteps;
   status_.push(s);  // full: the background loop is behind; the next one carries the counts
 }
 
@@ -733,7 +731,8 @@ bool Application::execute_item(QueueItem* item) {
     case ItemKind::kMapHeights: {
       const MapHeightsArgs& m = item->map_heights;
       for (uint8_t i = 0; i < m.n; ++i) map_.set((uint16_t)(m.index + i), m.height_um[i]);
-      if (m.completes) map_.complete();
+      // The frame that ends the grid (checked when it was stored) switches it on.
+      if ((uint16_t)(m.index + m.n) == (uint16_t)map_.cols() * map_.rows()) map_.complete();
       return push_point(target, last_feed_um_s_, kPointEndOfItem);
     }
     case ItemKind::kSpline: {
@@ -847,9 +846,10 @@ bool Application::execute_probe(QueueItem* item) {
   if (item->stage == 1) {
     if (latest_.probes_done == p.seen_probes) return false;
     position_um(at);
-    at[config::kAxisZ] = usteps_to_um(scaling_, config::kAxisZ, latest_.probe_z_usteps);
-    note_probe(latest_.probe_result, at);
-    if (latest_.probe_result != 1) {
+    const uint8_t result = tick_.probe_result;  // handed over in TickOwned (application.h)
+    at[config::kAxisZ] = usteps_to_um(scaling_, config::kAxisZ, tick_.probe_z_usteps);
+    note_probe(result, at);
+    if (result != 1) {
       probing_ = false;
       raise_alarm(proto::Alarm::kProbeNoContact);
       return false;

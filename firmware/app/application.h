@@ -209,11 +209,15 @@ class Application {
     uint8_t buttons;          // panel state seen by the previous tick
     uint8_t confirm_presses;  // confirm button presses (wraps), for #P
     bool stop_pending;
-    uint8_t probe_hits;      // ticks the probe input has read closed in a row (saturates)
-    int32_t probe_first_z;   // Z (usteps) at the first of them
-    uint8_t probes_done;     // probe descents ended
-    uint8_t probe_result;    // the last one's (proto: 1 contact, 2 no contact)
-    int32_t probe_z_usteps;  // the last one's Z
+    uint8_t probe_hits;     // ticks the probe input has read closed in a row (saturates)
+    int32_t probe_first_z;  // Z (usteps) at the first of them
+    uint8_t probes_done;    // probe descents ended
+    // The last descent's result (1 contact, 2 no contact) and Z (the first closed tick's, or
+    // where it ended): written before the snapshot that carries the new probes_done, read by
+    // the background loop only once it saw that count; the next descent, which would write
+    // them again, is the background's own to hand over. (Not in every snapshot: RAM.)
+    volatile uint8_t probe_result;
+    volatile int32_t probe_z_usteps;
   };
   TickOwned tick_;
 

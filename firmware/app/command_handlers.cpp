@@ -225,7 +225,6 @@ ErrorCode Application::on_height_map_data(const proto::HeightMapDataCmd& c, uint
   QueueItem item = new_item(ItemKind::kMapHeights, seq);
   item.map_heights.index = c.index;
   item.map_heights.n = c.height_n;
-  item.map_heights.completes = end == map_rx_.points;
   int16_t lowest = map_rx_.lowest;
   int16_t highest = map_rx_.highest;
   for (uint8_t i = 0; i < c.height_n; ++i) {
@@ -234,7 +233,7 @@ ErrorCode Application::on_height_map_data(const proto::HeightMapDataCmd& c, uint
     if (h < lowest) lowest = h;
     if (h > highest) highest = h;
   }
-  if (item.map_heights.completes && highest - lowest > proto::kMaxHeightMapSpanUm) {
+  if (end == map_rx_.points && highest - lowest > proto::kMaxHeightMapSpanUm) {
     *detail = proto::kHeightMapSpan;
     return ErrorCode::kHeightMap;
   }

@@ -85,8 +85,7 @@ struct MapHeaderArgs {
 struct MapHeightsArgs {
   uint8_t index;
   uint8_t n;
-  int16_t height_um[8];  // proto::kMaxHeightsPerFrame; no item grows the union (drill: 18)
-  bool completes;        // the last heights of the map: compensation on
+  int16_t height_um[8];  // proto::kMaxHeightsPerFrame: 18 bytes, as the drill's (the union's)
 };
 
 // QueueItem::job_index of a command stored while no #J numbering was active.

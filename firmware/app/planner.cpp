@@ -263,6 +263,7 @@ void Planner::begin_follow(const int32_t target_um[config::kAxisCount]) {
   }
   follow_.pieces = (uint16_t)n;
   follow_.left = (uint16_t)n;
+  if (n == 1) return;  // the common case (spline points): no pieces, no divisions
   for (uint8_t i = 0; i < 3; ++i) {
     uint16_t r = 0;
     const uint32_t q = core::div_u32_by_u16(ad[i], (uint16_t)n, &r);

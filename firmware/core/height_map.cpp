@@ -54,25 +54,43 @@ bool HeightMap::begin(uint8_t cols, uint8_t rows, int32_t x0_um, int32_t y0_um, 
   rows_ = rows;
   init_axis(&x_, x0_um, pitch_x_um, cols);
   init_axis(&y_, y0_um, pitch_y_um, rows);
-  for (uint16_t i = 0; i < kMaxPoints; ++i) height_um_[i] = 0;
+  for (uint16_t i = 0; i < sizeof packed_; ++i) packed_[i] = 0;
   return true;
+}
+
+// Byte 3k/2 holds the low 8 bits of an even index; the next byte's low nibble its high 4
+// bits and its high nibble the low 4 of the odd index after it, whose high 8 follow.
+int16_t HeightMap::height(uint16_t i) const {
+  const uint8_t* p = &packed_[i + (i >> 1)];
+  const uint16_t v = (i & 1U) ? (uint16_t)((p[0] >> 4) | ((uint16_t)p[1] << 4))
+                              : (uint16_t)(p[0] | ((uint16_t)(p[1] & 0x0FU) << 8));
+  return (int16_t)((v & 0x0800U) ? (v | 0xF000U) : v);  // 12-bit two's complement
 }
 
 bool HeightMap::set(uint16_t index, int16_t height_um) {
   if (cols_ == 0 || index >= (uint16_t)cols_ * rows_) return false;
   if (height_um > kMaxHeightUm || height_um < -kMaxHeightUm) return false;
-  height_um_[index] = height_um;
+  const uint16_t v = (uint16_t)height_um & 0x0FFFU;
+  uint8_t* p = &packed_[index + (index >> 1)];
+  if (index & 1U) {
+    p[0] = (uint8_t)((p[0] & 0x0FU) | ((v & 0x0FU) << 4));
+    p[1] = (uint8_t)(v >> 4);
+  } else {
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)((p[1] & 0xF0U) | (v >> 8));
+  }
   return true;
 }
 
 void HeightMap::complete() {
   if (cols_ == 0) return;
   const uint16_t n = (uint16_t)cols_ * rows_;
-  lowest_um_ = height_um_[0];
-  highest_um_ = height_um_[0];
+  lowest_um_ = height(0);
+  highest_um_ = lowest_um_;
   for (uint16_t i = 1; i < n; ++i) {
-    if (height_um_[i] < lowest_um_) lowest_um_ = height_um_[i];
-    if (height_um_[i] > highest_um_) highest_um_ = height_um_[i];
+    const int16_t h = height(i);
+    if (h < lowest_um_) lowest_um_ = h;
+    if (h > highest_um_) highest_um_ = h;
   }
   active_ = true;
 }
@@ -106,11 +124,11 @@ int16_t HeightMap::offset_um(int32_t x_um, int32_t y_um) {
   if (!active_) return 0;
   const uint16_t fx = locate(&x_, x_um);
   const uint16_t fy = locate(&y_, y_um);
-  const int16_t* h0 = &height_um_[(uint16_t)y_.cell * cols_ + x_.cell];
-  const int16_t* h1 = h0 + cols_;
+  const uint16_t i0 = (uint16_t)((uint16_t)y_.cell * cols_ + x_.cell);
+  const uint16_t i1 = (uint16_t)(i0 + cols_);
   // Along X on the cell's two rows (Q4: heights <= 1 000 um fit easily), then along Y.
-  const int32_t bottom = lerp_q4((int32_t)h0[0] << 4, (int32_t)h0[1] << 4, fx);
-  const int32_t top = lerp_q4((int32_t)h1[0] << 4, (int32_t)h1[1] << 4, fx);
+  const int32_t bottom = lerp_q4((int32_t)height(i0) << 4, (int32_t)height(i0 + 1U) << 4, fx);
+  const int32_t top = lerp_q4((int32_t)height(i1) << 4, (int32_t)height(i1 + 1U) << 4, fx);
   int32_t z = asr32(lerp_q4(bottom, top, fy) + 8L, 4);
   // A convex combination of the corners: inside [lowest, highest] already; kept so for sure.
   if (z < lowest_um_) z = lowest_um_;

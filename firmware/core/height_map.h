@@ -1,7 +1,8 @@
 // The blank's surface as a grid of heights (the probed height map, docs/protocol.md #A/#E):
 // the offset to add to a planned Z at any X/Y, by bilinear interpolation in fixed point
 // (16x16 products, no division and no 64-bit arithmetic per point), the nearest edge value
-// outside the grid. 16 x 16 points of int16: 512 bytes, 540 with the grid and the cache.
+// outside the grid. 16 x 16 heights of 12 bits (-2048..2047 um; the map holds -1000..1000):
+// 384 bytes, 419 with the grid and the cache (AVR/dsPIC sizes).
 #ifndef FIRMWARE_CORE_HEIGHT_MAP_H
 #define FIRMWARE_CORE_HEIGHT_MAP_H
 
@@ -49,8 +50,10 @@ class HeightMap {
   static void init_axis(Axis* a, int32_t origin_um, uint16_t pitch_um, uint8_t points);
   // Cell index and the position in it as a fraction, Q14 (0..16384), clamped to the grid.
   static uint16_t locate(Axis* a, int32_t v_um);
+  // Height index i, packed two in three bytes (low 8 bits, then the high 4 of each).
+  int16_t height(uint16_t i) const;
 
-  int16_t height_um_[kMaxPoints];
+  uint8_t packed_[kMaxPoints * 3 / 2];
   Axis x_;
   Axis y_;
   int16_t lowest_um_;
