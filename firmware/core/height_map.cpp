@@ -54,7 +54,7 @@ bool HeightMap::begin(uint8_t cols, uint8_t rows, int32_t x0_um, int32_t y0_um, 
   rows_ = rows;
   init_axis(&x_, x0_um, pitch_x_um, cols);
   init_axis(&y_, y0_um, pitch_y_um, rows);
-  for (uint16_t i = 0; i < sizeof packed_; ++i) packed_[i] = 0;
+  for (uint16_t i = 0; i < (uint16_t)sizeof packed_; ++i) packed_[i] = 0;
   return true;
 }
 
