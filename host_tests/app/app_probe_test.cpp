@@ -111,6 +111,8 @@ TEST(AppProbe, AOneTickGlitchIsDebouncedAway) {
   flat_surface(&rig, -1500);
   rig.host.queue(proto::ProbeCmd{-3000, 1000, 500});
   ASSERT_TRUE(rig.run_until([&] { return rig.position_um().z < -600; }, 20000));
+  rig.run(150);  // an LCD refresh
+  EXPECT_EQ(rig.display.row[1].substr(0, 8), "PROBE Z-") << "the LCD shows the descent";
   rig.probe.force(true);
   rig.step();
   rig.probe.release();
