@@ -679,7 +679,9 @@ TEST(AppMemory, ApplicationStateFitsTheTargetBudget) {
       "CommandQueue %zu, Dispatcher %zu\n",
       sizeof(app::Application), sizeof(app::CoordinateRing), sizeof(app::PlanEntry),
       sizeof(app::SplineStore), sizeof(app::CommandQueue), sizeof(app::Dispatcher));
-  EXPECT_LE(sizeof(app::Application), 5632u);  // leaves >= 2.5 KB of the 8 KB for port + stack
+  // 5632 before issue 25; +568 for the height map (16 x 16 heights of 12 bits, 384 bytes,
+  // with its grid) and the probe's state.
+  EXPECT_LE(sizeof(app::Application), 6200u);  // leaves ~2 KB of the 8 KB for port + stack
 }
 
 }  // namespace

@@ -356,8 +356,8 @@ TEST(CodecMalformed, ZeroingAxesMustBe1To7) {
 TEST(CodecMalformed, ReplyEnumsOutsideTheirListsAreOutOfRange) {
   expect_range_error<proto::ErrorReply>({0, 0, 0});  // kOk is not an error
   expect_range_error<proto::ErrorReply>({6, 0, 0});  // unassigned code
-  expect_range_error<proto::ErrorReply>({38, 0, 0});
-  expect_range_error<proto::AlarmReply>({8, 5});
+  expect_range_error<proto::ErrorReply>({39, 0, 0});
+  expect_range_error<proto::AlarmReply>({12, 5});  // after the probe alarms 8..11
   expect_range_error<proto::AlarmReply>({1, 7});
   Bytes status(31, 0);
   status[3] = 100;
@@ -451,9 +451,40 @@ TEST(CodecFrame, EncodeFrameRejectsOversizePayloadAndBadLetter) {
   EXPECT_EQ(70, proto::encode_frame('#', 'D', 0, payload, 64, out, sizeof out));
 }
 
+// #A: no map (both sides 0) or 2..16 x 2..16 points at least 1 mm apart, the far corner
+// inside the coordinate range; #E: 1..8 heights of -1000..1000 um.
+TEST(CodecHeightMap, HeaderAndHeightsOutsideTheirRulesAreOutOfRange) {
+  EXPECT_EQ(ErrorCode::kOk, encode_error(proto::HeightMapHeaderCmd{0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(ErrorCode::kOk, encode_error(proto::HeightMapHeaderCmd{16, 2, -5000, 0, 1000, 65535}));
+  EXPECT_EQ(ErrorCode::kFieldRange,
+            encode_error(proto::HeightMapHeaderCmd{0, 3, 0, 0, 5000, 5000}));
+  EXPECT_EQ(ErrorCode::kFieldRange,
+            encode_error(proto::HeightMapHeaderCmd{1, 3, 0, 0, 5000, 5000}));
+  EXPECT_EQ(ErrorCode::kFieldRange, encode_error(proto::HeightMapHeaderCmd{3, 3, 0, 0, 999, 5000}));
+  EXPECT_EQ(ErrorCode::kFieldRange,
+            encode_error(proto::HeightMapHeaderCmd{17, 3, 0, 0, 5000, 5000}));
+  EXPECT_EQ(ErrorCode::kFieldRange,
+            encode_error(proto::HeightMapHeaderCmd{16, 2, 990000, 0, 5000, 5000}));  // far corner
+  proto::HeightMapDataCmd d{};
+  d.height_n = 2;
+  d.height_um[0] = -1000;
+  d.height_um[1] = 1000;
+  EXPECT_EQ(ErrorCode::kOk, encode_error(d));
+  d.height_um[1] = 1001;
+  EXPECT_EQ(ErrorCode::kFieldRange, encode_error(d));
+  d.height_um[1] = 0;
+  d.height_n = 9;
+  EXPECT_EQ(ErrorCode::kFieldRange, encode_error(d));
+  d.height_n = 0;
+  EXPECT_EQ(ErrorCode::kFieldRange, encode_error(d));
+  // The wire length follows height_n: 2 + 4 n.
+  d.height_n = 3;
+  EXPECT_EQ(14u, encoded(d).size());
+}
+
 TEST(CodecErrors, KnownErrorListMatchesTheDocumentedValues) {
-  const int documented[] = {0,  1,  2,  3,  4,  5,  10, 11, 12, 20, 21,
-                            22, 23, 24, 30, 31, 32, 33, 34, 35, 36, 37};
+  const int documented[] = {0,  1,  2,  3,  4,  5,  10, 11, 12, 20, 21, 22,
+                            23, 24, 30, 31, 32, 33, 34, 35, 36, 37, 38};
   int known = 0;
   for (int c = 0; c < 256; ++c) known += proto::is_known_error(static_cast<uint8_t>(c)) ? 1 : 0;
   EXPECT_EQ(static_cast<int>(sizeof documented / sizeof documented[0]), known);

@@ -11,6 +11,7 @@
 #include "firmware/app/spline_store.h"     // SplineStore
 #include "firmware/app/vector3.h"          // normalise3, length3 (tick parts)
 #include "firmware/config/machine_config.h"
+#include "firmware/core/height_map.h"          // HeightMap
 #include "firmware/core/isqrt.h"               // isqrt32, isqrt32_from (tick parts)
 #include "firmware/protocol/codec.h"           // write_frame, decode_frame
 #include "firmware/protocol/compact_spline.h"  // put_compact_point, put_compact_knot
@@ -123,6 +124,85 @@ void series_print(const char* name, const Series& s) {
   PROXY_PRINTF(": min %lu avg %lu max %lu %s (n = %u)\n", (unsigned long)s.min,
                (unsigned long)(s.n ? s.sum / s.n : 0), (unsigned long)s.max, counter_unit(),
                (unsigned)s.n);
+}
+
+core::HeightMap g_map;
+
+// A 16 x 16 map, 1.4 mm apart from (-1, -1) mm over the measured path: a tilted blank
+// (0.5 %, 0.3 %) with +-5 um of pseudo-random probe noise.
+void build_map() {
+  PROXY_CHECK(g_map.begin(16, 16, -1000, -1000, 1400, 1400));
+  uint32_t state = 0x2545F491UL;
+  for (uint16_t i = 0; i < 256; ++i) {
+    const int16_t tilt = (int16_t)((i % 16U) * 7U) - (int16_t)((i / 16U) * 4U);
+    PROXY_CHECK(g_map.set(i, (int16_t)(tilt + (int16_t)(next_random(&state) % 11U) - 5)));
+  }
+  g_map.complete();
+}
+
+// The measured path, cut into points at most 0.8 mm apart (a spline's points: none of them
+// is split again for the map), at a cutting depth; every planner push timed, with or without
+// the map, and HeightMap::offset_um alone at each point.
+void measure_map_path(bool with_map, Series* push, Series* offset) {
+  g_planner.init(g_scaling, app::default_planner_settings(10));
+  g_planner.set_height_map(with_map ? &g_map : 0);
+  g_controller.init(g_scaling);
+  g_controller.flush(&g_ring);
+  int32_t pos[3];
+  g_plant.read_actual_usteps(pos);
+  const int32_t at[3] = {0, 0, 0};
+  g_plant.set_actual_usteps(at);
+  g_planner.set_origin(at);
+  uint8_t next = 0;
+  uint8_t piece = 0;
+  for (uint16_t ms = 0; ms < 30000; ++ms) {
+    for (uint8_t k = 0; k < 2 && next < kPathPoints; ++k) {
+      const int32_t* from = next == 0 ? at : kPathUm[next - 1];
+      const int32_t* to = kPathUm[next];
+      const int32_t dx = to[0] - from[0], dy = to[1] - from[1];
+      const int32_t span =
+          (dx < 0 ? -dx : dx) > (dy < 0 ? -dy : dy) ? (dx < 0 ? -dx : dx) : (dy < 0 ? -dy : dy);
+      const uint8_t pieces = (uint8_t)((span + 799) / 800);
+      const uint8_t k1 = (uint8_t)(piece + 1);
+      const int32_t um[3] = {from[0] + dx * k1 / pieces, from[1] + dy * k1 / pieces, -100};
+      const uint32_t a = cycles_now();
+      const bool ok = g_planner.push(&g_ring, um, 10000, 0, 1);
+      const uint32_t b = cycles_now();
+      if (!ok) break;
+      series_add(push, a, b);
+      if (with_map) {
+        const uint32_t c = cycles_now();
+        const int16_t h = g_map.offset_um(um[0], um[1]);
+        const uint32_t d = cycles_now();
+        PROXY_CHECK(h >= g_map.lowest_um() && h <= g_map.highest_um());
+        series_add(offset, c, d);
+      }
+      if (++piece == pieces) {
+        piece = 0;
+        ++next;
+      }
+    }
+    g_plant.read_actual_usteps(pos);
+    int16_t v[3];
+    g_controller.tick(pos, &g_ring, v);
+    g_plant.write_velocity_units(v);
+    g_plant.step_1ms();
+    if (next == kPathPoints && g_ring.empty() && g_controller.at_rest()) break;
+  }
+  PROXY_CHECK(next == kPathPoints);
+}
+
+void measure_height_map() {
+  build_map();
+  Series plain = {0xFFFFFFFFUL, 0, 0, 0};
+  Series mapped = {0xFFFFFFFFUL, 0, 0, 0};
+  Series offset = {0xFFFFFFFFUL, 0, 0, 0};
+  measure_map_path(false, &plain, &offset);
+  measure_map_path(true, &mapped, &offset);
+  series_print(PROXY_STR("planner push, points <= 0.8 mm apart, no map"), plain);
+  series_print(PROXY_STR("planner push, the same points, 16 x 16 height map on"), mapped);
+  series_print(PROXY_STR("height map offset alone (HeightMap::offset_um)"), offset);
+  PROXY_PRINTF("memory sizeof HeightMap %u bytes\n", (unsigned)sizeof(core::HeightMap));
 }
 
 app::SplineStore g_store;
@@ -372,6 +452,7 @@ void run_app_measurements() {
   series_print(PROXY_STR("path controller tick (PathController::tick)"), tick);
   series_print(PROXY_STR("planner push of one point (background)"), push);
   measure_tick_parts();
+  measure_height_map();
   measure_spline_data_frame();
   check_compact_spline_frames();
   PROXY_PRINTF(
