@@ -743,41 +743,109 @@ std::optional<SimulatedIsolation> check_simulated_isolation(
   return s;
 }
 
-bool print_board_points_if_pcb(const std::string& input, double tol_mm, bool csv) {
+bool print_board_points_if_pcb(const std::string& input, const BoardArgs& args, double tol_mm,
+                               bool csv) {
   if (!is_pcb_input(input)) return false;
-  BoardArgs a;
-  a.allow_narrow_gaps = true;
   MachineDefaults d;
   d.work_w_mm = d.work_h_mm = 1e6;  // points in the file frame: no work area applies
-  const BoardFiles b = read_input(input);
-  pcb::BoardOptions o = board_options(a, d, b);
+  const BoardFiles b = read_input(input, args.side);
+  print_notes(b);
+  pcb::BoardOptions o = board_options(args, d, b);
   o.travel_width_mm = o.travel_height_mm = d.work_w_mm;
   const pcb::BoardJob job = plan(b, o);
+  for (const std::string& n : job.report.notes)
+    std::cerr << "engraver: note: " << printable(n) << "\n";
   for (const pcb::NarrowGap& g : job.report.narrow_gaps)
     std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation) << "\n";
   const int tol_um = static_cast<int>(std::lround(tol_mm * 1000));
-  // Machine frame back to the files' frame.
-  auto to_file = [&](const Point2& m) {
-    return Point2((m.x() - job.frame.offset_mm.x()) / job.frame.sx,
-                  m.y() - job.frame.offset_mm.y());
-  };
-  if (csv) std::cout << "curve,x_mm,y_mm\n";
-  std::cout << std::fixed << std::setprecision(4);
-  for (size_t i = 0; i < job.isolation_curves; ++i) {
-    const PlannedCurve& c = job.plan.curves[i];
-    const std::vector<Point2> pts = firmware_points_mm(c.spline, tol_um);
+  if (csv) std::cout << "tool,tool_name,tool_diameter_um,path,point,x_um,y_um,z_um\n";
+  std::cout << std::fixed << std::setprecision(1);
+  for (const BoardToolPath& p : board_tool_paths(job, tol_um)) {
+    const pcb::BoardTool& t = job.tools[p.tool];
     if (!csv)
-      std::cout << "# curve " << i << ": " << c.source << ": " << pts.size()
-                << " points (x_mm y_mm)\n";
-    for (const Point2& p : pts) {
-      const Point2 f = to_file(p);
+      std::cout << "# tool " << p.tool + 1 << " (" << t.label << "), path " << p.path << " at z "
+                << p.z_um << " um: " << p.points_file_mm.size() << " points (x_um y_um)\n";
+    for (size_t k = 0; k < p.points_file_mm.size(); ++k) {
+      const Point2& f = p.points_file_mm[k];
       if (csv)
-        std::cout << i << "," << f.x() << "," << f.y() << "\n";
+        std::cout << p.tool + 1 << "," << t.label << "," << t.diameter_mm * 1000 << "," << p.path
+                  << "," << k << "," << f.x() * 1000 << "," << f.y() * 1000 << "," << p.z_um
+                  << "\n";
       else
-        std::cout << f.x() << " " << f.y() << "\n";
+        std::cout << f.x() * 1000 << " " << f.y() * 1000 << "\n";
     }
   }
   return true;
+}
+
+std::vector<BoardToolPath> board_tool_paths(const pcb::BoardJob& job, int chord_tolerance_um) {
+  std::vector<BoardToolPath> out;
+  const JobPlan& plan = job.plan;
+  size_t tool = 0;
+  int32_t z_um = 0;
+  bool down = false;  // the tool below the surface: a new path starts at each change of z
+  bool open = false;  // the last path in `out` takes the next points
+  int last_curve = -1;
+  Point2 at(0, 0);
+  auto start = [&]() {
+    BoardToolPath p;
+    p.tool = tool;
+    p.path = out.size();
+    p.z_um = z_um;
+    out.push_back(p);
+    open = true;
+  };
+  auto add = [&](const Point2& machine) {
+    if (!open) start();
+    const Point2 f = job.frame.to_file(machine);
+    std::vector<Point2>& pts = out.back().points_file_mm;
+    if (pts.empty() || (pts.back() - f).norm() > 1e-9) pts.push_back(f);
+  };
+  for (const PlanStep& s : plan.steps) {
+    switch (s.kind) {
+      case PlanStep::kPause:
+        if (tool + 1 < job.tools.size()) ++tool;
+        open = false;
+        break;
+      case PlanStep::kPenDown:
+      case PlanStep::kPenUp:
+        z_um = s.z_um;
+        down = s.z_um < 0;
+        open = false;
+        last_curve = -1;
+        break;
+      case PlanStep::kRapid:
+        at = Point2(s.to.x_um * 1e-3, s.to.y_um * 1e-3);
+        open = false;
+        break;
+      case PlanStep::kDrill: {
+        const int32_t z = z_um;
+        z_um = s.z_um;
+        open = false;
+        at = Point2(s.to.x_um * 1e-3, s.to.y_um * 1e-3);
+        add(at);
+        open = false;
+        z_um = z;
+        break;
+      }
+      case PlanStep::kFeed:
+        if (!down) break;
+        if (!open) add(at);
+        at = Point2(s.to.x_um * 1e-3, s.to.y_um * 1e-3);
+        add(at);
+        break;
+      case PlanStep::kSpline:
+        if (!down || s.curve < 0 || s.curve == last_curve) break;
+        last_curve = s.curve;
+        for (const Point2& p : firmware_points_mm(plan.curves[s.curve].spline, chord_tolerance_um))
+          add(p);
+        at = Point2(s.to.x_um * 1e-3, s.to.y_um * 1e-3);
+        break;
+      default:
+        break;
+    }
+  }
+  return out;
 }
 
 }  // namespace host::cli

@@ -93,9 +93,23 @@ std::optional<double> board_isolation_z_mm();
 std::optional<SimulatedIsolation> check_simulated_isolation(
     const std::vector<std::vector<Point2>>& cut_paths_mm, size_t samples);
 
-// `engraver points` on PCB input: the tool-centre points of the isolation paths, in the
-// files' frame. False when the input is not PCB files.
-bool print_board_points_if_pcb(const std::string& input, double tol_mm, bool csv);
+// `engraver points` on PCB input, planned with the board options: every tool-centre path of
+// the job, tool by tool (the controller's points at tol_mm for curves), in the files' frame.
+// False when the input is not PCB files.
+bool print_board_points_if_pcb(const std::string& input, const BoardArgs& args, double tol_mm,
+                               bool csv);
+
+// One run of tool-centre points traced at one depth with one tool.
+struct BoardToolPath {
+  size_t tool = 0;                     // index into BoardJob::tools
+  size_t path = 0;                     // index in the job's order
+  int32_t z_um = 0;                    // machine Z (below the surface: negative)
+  std::vector<Point2> points_file_mm;  // the files' frame
+};
+// The job's paths: isolation contours, drill holes (one point each, at the drill's depth),
+// slots and cut-out passes (a new path at each change of depth, as over a tab), with the
+// controller's points at the chord tolerance for curves.
+std::vector<BoardToolPath> board_tool_paths(const pcb::BoardJob& job, int chord_tolerance_um);
 
 }  // namespace host::cli
 

@@ -109,7 +109,9 @@ class StepWriter {
   }
   // A tool change: stop the spindle, wait for the operator, start it again. The first tool
   // of the job is mounted before it starts (no pause).
-  void tool(const std::string& label, BoardReport* report) {
+  void tool(const std::string& label, double diameter_mm, BoardJob* job) {
+    BoardReport* report = &job->report;
+    job->tools.push_back(BoardTool{label, diameter_mm});
     if (tools_ == 0) {
       report->first_tool = label;
     } else {
@@ -437,7 +439,7 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
   StepWriter w(&plan, o, offset);
   w.pen_up(o.z_travel_mm);
   if (!iso.empty()) {
-    w.tool(tool_label("V-bit", o.isolation.tool_width_mm), &rep);
+    w.tool(tool_label("V-bit", o.isolation.tool_width_mm), o.isolation.tool_width_mm, &job);
     // Nearest contour start next, from the zero corner.
     std::vector<bool> done(iso.size(), false);
     for (size_t n = 0; n < iso.size(); ++n) {
@@ -459,7 +461,7 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
     job.isolation_curves = plan.curves.size();
   }
   for (const DrillTool& d : drills) {
-    w.tool(d.label, &rep);
+    w.tool(d.label, d.diameter_mm, &job);
     for (const Point2& h : d.holes) w.drill(h + offset);
     for (const auto& s : d.slots) {
       w.pen_up(o.z_travel_mm);
@@ -470,7 +472,7 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
     w.pen_up(o.z_travel_mm);
   }
   if (!cut.empty()) {
-    w.tool(tool_label("Cutter", o.cutout.cutter_diameter_mm), &rep);
+    w.tool(tool_label("Cutter", o.cutout.cutter_diameter_mm), o.cutout.cutter_diameter_mm, &job);
     const int passes = static_cast<int>(std::ceil(o.cutout_depth_mm / o.cutout_step_mm - 1e-9));
     const double tab_top = -(o.cutout_depth_mm - o.tab_height_mm);
     for (const Trace& t : cut) {

@@ -66,6 +66,9 @@ struct BoardFrame {
     return Point2(sx * file_mm.x() + offset_mm.x(), file_mm.y() + offset_mm.y());
   }
   ClipperLib::Paths to_machine_nm(const ClipperLib::Paths& file_nm) const;
+  Point2 to_file(const Point2& machine_mm) const {
+    return Point2((machine_mm.x() - offset_mm.x()) / sx, machine_mm.y() - offset_mm.y());
+  }
 };
 
 struct BoardReport {
@@ -88,8 +91,15 @@ struct BoardReport {
   std::vector<std::string> notes;  // what the planner left out and why (an empty outline)
 };
 
+// A tool of the job, in the order they are mounted (tools[0] before the job starts).
+struct BoardTool {
+  std::string label;  // as on the LCD at its change ("Drill 0.80mm")
+  double diameter_mm = 0;
+};
+
 struct BoardJob {
   JobPlan plan;
+  std::vector<BoardTool> tools;
   BoardReport report;
   BoardFrame frame;
   size_t isolation_curves = 0;          // plan.curves[0 .. isolation_curves) isolate copper

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -87,26 +88,116 @@ TEST(BoardCli, NarrowGapRefusesTheJobAndNamesThePlace) {
   EXPECT_EQ(narrow.code, 0) << narrow.err;
 }
 
+// `points --csv` rows of a board job (tool,tool_name,tool_diameter_um,path,point,x_um,y_um,
+// z_um).
+struct PointRow {
+  int tool = 0;
+  std::string tool_name;
+  double tool_diameter_um = 0;
+  int path = 0, point = 0;
+  double x_um = 0, y_um = 0, z_um = 0;
+};
+
+std::vector<PointRow> point_rows(const std::string& csv, std::string* header) {
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, *header);
+  std::vector<PointRow> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::istringstream l(line);
+    for (std::string x; std::getline(l, x, ',');) f.push_back(x);
+    EXPECT_EQ(f.size(), 8u) << line;
+    if (f.size() != 8) continue;
+    rows.push_back(PointRow{std::stoi(f[0]), f[1], std::stod(f[2]), std::stoi(f[3]),
+                            std::stoi(f[4]), std::stod(f[5]), std::stod(f[6]), std::stod(f[7])});
+  }
+  return rows;
+}
+
 TEST(BoardCli, PointsOnACopperLayerAreToolCentresAroundTheCopper) {
   const std::string dir = write_board("points");
   const ToolRun r = run("points " + dir + "/t-F.Cu.gbr --csv");
   ASSERT_EQ(r.code, 0) << r.err;
-  std::istringstream in(r.out);
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "curve,x_mm,y_mm");
+  std::string header;
+  const std::vector<PointRow> rows = point_rows(r.out, &header);
+  EXPECT_EQ(header, "tool,tool_name,tool_diameter_um,path,point,x_um,y_um,z_um");
   double min_x = 1e9, max_x = -1e9;
-  int rows = 0;
-  while (std::getline(in, line)) {
-    const size_t a = line.find(','), b = line.find(',', a + 1);
-    const double x = std::stod(line.substr(a + 1, b - a - 1));
-    min_x = std::min(min_x, x), max_x = std::max(max_x, x);
-    ++rows;
+  for (const PointRow& p : rows) {
+    EXPECT_EQ(p.tool, 1);
+    EXPECT_EQ(p.tool_name, "V-bit 0.20mm");
+    EXPECT_EQ(p.tool_diameter_um, 200);
+    EXPECT_EQ(p.z_um, -50);  // the isolation depth
+    min_x = std::min(min_x, p.x_um), max_x = std::max(max_x, p.x_um);
   }
-  EXPECT_GT(rows, 20);
+  EXPECT_GT(rows.size(), 20u);
   // Pad edges less / plus the tool radius and the 8 um clearance, file frame.
-  EXPECT_NEAR(min_x, 10 - 0.8 - 0.108, 0.006);
-  EXPECT_NEAR(max_x, 26 + 0.108, 0.006);
+  EXPECT_NEAR(min_x, (10 - 0.8 - 0.108) * 1000, 6);
+  EXPECT_NEAR(max_x, (26 + 0.108) * 1000, 6);
+}
+
+// `points` plans with the board options, as `board` and `run` do: the tool width, passes,
+// clearance and side reach the paths, and every tool of a board folder is listed.
+TEST(BoardCli, PointsTakeTheBoardOptionsAndListEveryTool) {
+  const std::string dir = write_board("points-options");
+  const ToolRun r = run("points " + dir +
+                        " --csv --tool-width 0.1 --passes 2 --overlap 0.5 --clearance 0.02 "
+                        "--side top");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::string header;
+  const std::vector<PointRow> rows = point_rows(r.out, &header);
+  double min_x = 1e9;
+  std::set<std::string> tools;
+  int last_path = -1, last_point = -1;
+  for (const PointRow& p : rows) {
+    tools.insert(std::to_string(p.tool) + " " + p.tool_name);
+    if (p.tool == 1) min_x = std::min(min_x, p.x_um);
+    // Points numbered from 0 within each path, paths in order.
+    if (p.path != last_path) {
+      EXPECT_EQ(p.path, last_path + 1);
+      EXPECT_EQ(p.point, 0);
+    } else {
+      EXPECT_EQ(p.point, last_point + 1);
+    }
+    last_path = p.path, last_point = p.point;
+  }
+  EXPECT_EQ(tools, (std::set<std::string>{"1 V-bit 0.10mm", "2 Drill 0.80mm", "3 Drill 1.00mm",
+                                          "4 Cutter 1.00mm"}));
+  // The second pass of a 0.1 mm tool, half overlapping: 0.05 + 0.02 + 0.05 mm out of the pad.
+  EXPECT_NEAR(min_x, (10 - 0.8 - 0.12) * 1000, 6);
+  // Holes: one point each at the drill's depth, in the files' frame (inch file, mm copper).
+  int holes = 0;
+  for (const PointRow& p : rows) {
+    if (p.tool_name.rfind("Drill", 0) != 0) continue;
+    ++holes;
+    EXPECT_EQ(p.z_um, -1800);
+  }
+  EXPECT_EQ(holes, 3);
+  // The bottom side is mirrored for the machine, but the points stay in the files' frame.
+  std::string bottom_copper = kTopCopper;
+  bottom_copper.replace(bottom_copper.find("L1,Top"), 6, "L2,Bot");
+  bottom_copper.replace(bottom_copper.find("%EXTRA%"), 7, "");
+  std::ofstream(dir + "/t-B.Cu.gbr") << bottom_copper;
+  const ToolRun bottom = run("points " + dir + "/t-B.Cu.gbr --csv --tool-width 0.1");
+  ASSERT_EQ(bottom.code, 0) << bottom.err;
+  double bottom_min_x = 1e9;
+  for (const PointRow& p : point_rows(bottom.out, &header))
+    bottom_min_x = std::min(bottom_min_x, p.x_um);
+  EXPECT_NEAR(bottom_min_x, (10 - 0.8 - 0.058) * 1000, 6);
+  // Board options are refused for drawings.
+  const ToolRun drawing =
+      run("points " + std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf --passes 2");
+  EXPECT_EQ(drawing.code, 2);
+  EXPECT_NE(drawing.err.find("--passes is for PCB files"), std::string::npos) << drawing.err;
+}
+
+// The help of `points` and `info` names the PCB inputs both read.
+TEST(BoardCli, PointsAndInfoHelpNameThePcbInputs) {
+  for (const char* cmd : {"points", "info"}) {
+    const ToolRun r = run(std::string(cmd) + " --help");
+    EXPECT_EQ(r.code, 0);
+    EXPECT_NE(r.out.find("Gerber, Excellon, a board folder"), std::string::npos) << r.out;
+  }
 }
 
 TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {
