@@ -234,6 +234,8 @@ pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, co
   o.isolation.overlap = a.overlap;
   o.isolation.clearance_mm = a.clearance_mm;
   o.isolation.mill_all = a.mill_all;
+  o.isolation.clearing_tool_width_mm = a.clearing_tool_mm;
+  o.isolation.narrow_passes = a.narrow_passes;
   o.isolation_depth_mm = a.depth_mm;
   o.drill_depth_mm = a.drill_depth_mm;
   o.drill_start_mm = a.drill_start_mm;
@@ -322,6 +324,22 @@ WireMeasure measure_wire(const pcb::BoardJob& job, double tol_mm) {
   // Clipper's vertices (what a G-code CAM writes from the same polygons).
   m.g1_vertex_bytes = job.report.isolation_vertices * g1(Point2(123.456, 78.901)).size();
   return m;
+}
+
+// Bytes of the job's frames as sent (set-up frames left out), tool by tool in job order.
+std::vector<size_t> bytes_per_tool(const pcb::BoardJob& job) {
+  std::vector<size_t> tool_of_step(job.plan.steps.size(), 0);
+  size_t tool = 0;
+  for (size_t i = 0; i < job.plan.steps.size(); ++i) {
+    if (job.plan.steps[i].kind == PlanStep::kPause) ++tool;
+    tool_of_step[i] = tool;
+  }
+  std::vector<size_t> bytes(std::max<size_t>(job.tools.size(), tool + 1), 0);
+  EncodeOptions eo;
+  eo.title.clear();
+  for (const QueuedCommand& c : encode_job(job.plan, eo))
+    if (c.step >= 0) bytes[tool_of_step[static_cast<size_t>(c.step)]] += frame_bytes(c);
+  return bytes;
 }
 
 double peak_memory_mb() {
@@ -454,6 +472,16 @@ void run_board(const BoardCommand& a) {
   j["isolation_g1_bytes_same_tolerance"] = w.g1_bytes;
   j["isolation_g1_bytes_every_vertex"] = w.g1_vertex_bytes;
   j["chord_tolerance_mm"] = a.tol_mm;
+  const std::vector<size_t> tool_bytes = bytes_per_tool(job);
+  j["bytes_per_tool"] = nlohmann::json::array();
+  std::string tool_bytes_text;
+  for (size_t t = 0; t < job.tools.size(); ++t) {
+    j["bytes_per_tool"].push_back({{"tool", t + 1},
+                                   {"name", job.tools[t].label},
+                                   {"diameter_mm", job.tools[t].diameter_mm},
+                                   {"bytes", tool_bytes[t]}});
+    tool_bytes_text += fmt::format("{}{} {} B", t ? ", " : "", job.tools[t].label, tool_bytes[t]);
+  }
   bool check_ok = true;
   pcb::IsolationCheck c;
   if (!a.no_check && !job.copper_machine_nm.empty()) {
@@ -492,6 +520,7 @@ void run_board(const BoardCommand& a) {
         "  drilling: {} holes ({} on copper), {} slots, {} sizes; travel {:.1f} mm (file order "
         "{:.1f} mm)\n"
         "  cut-out: {:.1f} mm per pass, {} tabs; {} tool changes\n"
+        "  bytes per tool: {}\n"
         "  files -> plan: {:.3f} s CPU, peak {:.1f} MB\n",
         b.name, j["side"].get<std::string>(), r.first_tool, r.islands, r.isolation_contours,
         r.isolation_length_mm, r.fit.lines, r.fit.arcs, r.fit.cubics, r.narrow_gaps.size(),
@@ -501,7 +530,7 @@ void run_board(const BoardCommand& a) {
                        : 0.0,
         w.g1_vertex_bytes, r.holes, r.holes_on_copper, r.slots, r.drill_tools,
         r.drill_travel_ordered_mm, r.drill_travel_file_order_mm, r.cutout_length_mm, r.tabs,
-        r.tool_changes, plan_cpu_s, plan_peak_mb);
+        r.tool_changes, tool_bytes_text, plan_cpu_s, plan_peak_mb);
     for (const pcb::NarrowGap& g : r.narrow_gaps)
       std::cout << "  " << pcb::describe_gap(g, o.isolation) << "\n";
     if (!a.no_plot) std::cout << "  plot: " << base << ".board.svg, .png; ";
@@ -591,6 +620,16 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
       ->check(CLI::Range(0.0, 0.1))
       ->capture_default_str();
   cmd->add_flag("--mill-all", a->mill_all, "clear all copper-free area")->group(g);
+  cmd->add_option("--clearing-tool", a->clearing_tool_mm,
+                  "isolation: a wider tool for the outer part of the --passes width, mm "
+                  "(mounted after the isolation tool; 0: none)")
+      ->group(g)
+      ->check(CLI::Range(0.0, 10.0));
+  cmd->add_option("--narrow-passes", a->narrow_passes,
+                  "with --clearing-tool: passes of the isolation tool next to the copper")
+      ->group(g)
+      ->check(CLI::Range(1, 50))
+      ->capture_default_str();
   cmd->add_option("--depth", a->depth_mm, "isolation depth, mm")->group(g)->capture_default_str();
   cmd->add_option("--drill-depth", a->drill_depth_mm, "drill plunge depth, mm")
       ->group(g)

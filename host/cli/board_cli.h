@@ -40,7 +40,9 @@ struct BoardArgs {
   double tab_height_mm = 0.5;
   bool no_spindle = false;
   bool allow_narrow_gaps = false;
-  std::string side;  // "top", "bottom" or empty (the side whose copper is given)
+  std::string side;             // "top", "bottom" or empty (the side whose copper is given)
+  double clearing_tool_mm = 0;  // > 0: a wider tool for the outer passes
+  int narrow_passes = 1;        // with a clearing tool: passes of the isolation tool
 };
 
 // Adds the board options to a command, in their own group (kBoardOptionsGroup).

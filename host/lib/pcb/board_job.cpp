@@ -35,6 +35,7 @@ struct Trace {
   std::vector<BSpline> curves;
   std::string source;
   std::vector<bool> lifted;  // cut-out: per curve, true over a tab
+  bool clearing = false;     // isolation cut with the clearing tool
 };
 
 struct DrillTool {
@@ -304,13 +305,16 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
       Trace tr;
       tr.curves = fit_polyline(pts, t.closed, fo, &rep.fit);
       if (tr.curves.empty()) continue;
-      tr.source = fmt::format("isolation contour {} (pass {})", i, t.pass + 1);
+      tr.source = fmt::format("{} contour {} (pass {})", t.clearing ? "clearing" : "isolation", i,
+                              t.pass + 1);
+      tr.clearing = t.clearing;
       rep.isolation_vertices += t.path.size() + (t.closed ? 1 : 0);
       rep.isolation_length_mm += polyline_length(pts, t.closed);
       iso.push_back(tr);
     }
     rep.isolation_contours = iso.size();
     job.tool_radius_mm = iso_result.tool_radius_mm;
+    job.clearing_tool_radius_mm = iso_result.clearing_tool_radius_mm;
   }
 
   // ---- Drilling ----
@@ -413,7 +417,8 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
     return e;
   };
   for (const Trace& t : iso)
-    for (const BSpline& b : t.curves) grow(extents_of(b), job.tool_radius_mm);
+    for (const BSpline& b : t.curves)
+      grow(extents_of(b), t.clearing ? job.clearing_tool_radius_mm : job.tool_radius_mm);
   for (const Trace& t : cut)
     for (const BSpline& b : t.curves) grow(extents_of(b), job.cutter_radius_mm);
   for (const DrillTool& d : drills) {
@@ -438,28 +443,39 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
   // ---- Steps ----
   StepWriter w(&plan, o, offset);
   w.pen_up(o.z_travel_mm);
-  if (!iso.empty()) {
-    w.tool(tool_label("V-bit", o.isolation.tool_width_mm), o.isolation.tool_width_mm, &job);
-    // Nearest contour start next, from the zero corner.
-    std::vector<bool> done(iso.size(), false);
-    for (size_t n = 0; n < iso.size(); ++n) {
+  // The isolation tool's contours, then the clearing tool's, each nearest start next.
+  auto cut_isolation = [&](bool clearing) {
+    std::vector<const Trace*> todo;
+    for (const Trace& t : iso)
+      if (t.clearing == clearing) todo.push_back(&t);
+    if (todo.empty()) return;
+    if (clearing)
+      w.tool(tool_label("Clear", o.isolation.clearing_tool_width_mm),
+             o.isolation.clearing_tool_width_mm, &job);
+    else
+      w.tool(tool_label("V-bit", o.isolation.tool_width_mm), o.isolation.tool_width_mm, &job);
+    std::vector<bool> done(todo.size(), false);
+    for (size_t n = 0; n < todo.size(); ++n) {
       size_t best = 0;
       double best_d = 1e300;
-      for (size_t i = 0; i < iso.size(); ++i) {
+      for (size_t i = 0; i < todo.size(); ++i) {
         if (done[i]) continue;
-        const double d = (start_point(iso[i].curves.front()) + offset - w.at()).squaredNorm();
+        const double d = (start_point(todo[i]->curves.front()) + offset - w.at()).squaredNorm();
         if (d < best_d) best_d = d, best = i;
       }
       done[best] = true;
-      const Trace& t = iso[best];
+      const Trace& t = *todo[best];
       w.pen_up(o.z_travel_mm);
       w.rapid(start_point(t.curves.front()) + offset);
       w.pen_down(-o.isolation_depth_mm, o.plunge_mm_per_s);
       for (size_t k = 0; k < t.curves.size(); ++k)
         w.curve(t.curves[k], t.source, k > 0, o.feed_mm_per_s);
     }
-    job.isolation_curves = plan.curves.size();
-  }
+  };
+  cut_isolation(false);
+  job.isolation_curves = plan.curves.size();
+  cut_isolation(true);
+  job.clearing_curves = plan.curves.size() - job.isolation_curves;
   for (const DrillTool& d : drills) {
     w.tool(d.label, d.diameter_mm, &job);
     for (const Point2& h : d.holes) w.drill(h + offset);
@@ -506,7 +522,9 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
   // ---- What the checks and the plot need, in the machine frame ----
   if (copper) {
     job.copper_machine_nm = union_of(job.frame.to_machine_nm(copper->polygons_nm));
-    for (size_t i = 0; i < job.isolation_curves; ++i) {
+    for (size_t i = 0; i < job.isolation_curves + job.clearing_curves; ++i) {
+      std::vector<std::vector<Point2>>& paths =
+          i < job.isolation_curves ? job.isolation_paths_mm : job.clearing_paths_mm;
       std::vector<Point2> pts;
       for (const PlanStep& s : plan.steps) {
         if (s.kind != PlanStep::kSpline || s.curve != static_cast<int>(i)) continue;
@@ -514,11 +532,11 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
             sample(from_firmware_spline(s.spline().firmware()), 0.0005);
         pts.insert(pts.end(), piece.begin() + (pts.empty() ? 0 : 1), piece.end());
       }
-      if (plan.curves[i].chained && !job.isolation_paths_mm.empty()) {
-        std::vector<Point2>& last = job.isolation_paths_mm.back();
+      if (plan.curves[i].chained && !paths.empty()) {
+        std::vector<Point2>& last = paths.back();
         last.insert(last.end(), pts.begin() + (pts.empty() ? 0 : 1), pts.end());
       } else {
-        job.isolation_paths_mm.push_back(pts);
+        paths.push_back(pts);
       }
     }
   }
@@ -540,10 +558,11 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
     }
   }
   if (layers.outline) job.board_machine_nm = union_of(job.frame.to_machine_nm(cp.board_nm));
-  for (size_t i = job.isolation_curves; i < plan.curves.size(); ++i) {
+  const size_t first_cutout = job.isolation_curves + job.clearing_curves;
+  for (size_t i = first_cutout; i < plan.curves.size(); ++i) {
     if (plan.curves[i].source == "hole" || plan.curves[i].source == "slot") continue;
     const std::vector<Point2> pts = sample(plan.curves[i].spline, 0.002);
-    if (plan.curves[i].chained && !job.cutout_paths_mm.empty() && i > job.isolation_curves) {
+    if (plan.curves[i].chained && !job.cutout_paths_mm.empty() && i > first_cutout) {
       std::vector<Point2>& last = job.cutout_paths_mm.back();
       last.insert(last.end(), pts.begin() + 1, pts.end());
     } else {

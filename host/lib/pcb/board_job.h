@@ -112,6 +112,11 @@ struct BoardJob {
   std::vector<std::vector<Point2>> cutout_paths_mm;  // machine frame
   std::vector<std::vector<Point2>> tab_paths_mm;     // stretches lifted over tabs
   double cutter_radius_mm = 0;
+  // The clearing tool's curves follow the isolation's: plan.curves[isolation_curves ..
+  // isolation_curves + clearing_curves).
+  size_t clearing_curves = 0;
+  double clearing_tool_radius_mm = 0;
+  std::vector<std::vector<Point2>> clearing_paths_mm;  // its planned tool centres, machine frame
 };
 
 // Text of a narrow gap for messages: "gap 0.12 mm < tool 0.20 mm at (x, y) mm".

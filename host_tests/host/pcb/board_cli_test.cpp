@@ -68,6 +68,11 @@ TEST(BoardCli, WholeBoardIsPlannedCheckedPlottedAndReported) {
   // Compact #K data: well under the fixed-width #D frames of the same splines.
   EXPECT_LT(j["isolation_spline_bytes"].get<double>(),
             0.6 * j["isolation_spline_bytes_fixed_width"].get<double>());
+  // Bytes per tool, in the order they are mounted, adding up to the job's frames.
+  ASSERT_EQ(j["bytes_per_tool"].size(), 4u) << j.dump(2);
+  EXPECT_EQ(j["bytes_per_tool"][0]["name"], "V-bit 0.20mm");
+  EXPECT_EQ(j["bytes_per_tool"][3]["name"], "Cutter 1.00mm");
+  for (const auto& t : j["bytes_per_tool"]) EXPECT_GT(t["bytes"].get<int>(), 0) << t.dump();
   const std::string base = dir + "/out/" + std::to_string(getpid()) + "-ok";
   EXPECT_TRUE(std::filesystem::exists(base + ".board.png"));
   EXPECT_TRUE(std::filesystem::exists(base + ".board.svg"));
@@ -189,6 +194,25 @@ TEST(BoardCli, PointsTakeTheBoardOptionsAndListEveryTool) {
       run("points " + std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf --passes 2");
   EXPECT_EQ(drawing.code, 2);
   EXPECT_NE(drawing.err.find("--passes is for PCB files"), std::string::npos) << drawing.err;
+}
+
+// A clearing tool from the command line: a second tool after the V-bit, its bytes reported.
+TEST(BoardCli, ClearingToolIsASecondToolWithItsBytesReported) {
+  const std::string dir = write_board("clearing");
+  std::filesystem::remove(dir + "/t-PTH.drl");
+  std::filesystem::remove(dir + "/t-Edge.Cuts.gbr");
+  const ToolRun r = run("board " + dir + " -o " + dir +
+                        "/out --json --no-plot --tool-width 0.1 --passes 8 --clearing-tool 0.6");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["bytes_per_tool"].size(), 2u) << j.dump(2);
+  EXPECT_EQ(j["bytes_per_tool"][1]["name"], "Clear 0.60mm");
+  EXPECT_EQ(j["tool_changes"], 1);
+  EXPECT_EQ(j["check"]["copper_hits"], 0);
+  const ToolRun same =
+      run("board " + dir + " -o " + dir + "/out --tool-width 0.1 --passes 8 --clearing-tool 0.1");
+  EXPECT_EQ(same.code, 1) << same.err;
+  EXPECT_NE(same.err.find("the clearing tool must be wider"), std::string::npos) << same.err;
 }
 
 // The help of `points` and `info` names the PCB inputs both read.

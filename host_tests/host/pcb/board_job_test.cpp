@@ -6,6 +6,7 @@
 
 #include <map>  // std::map
 
+#include "host/lib/pcb/board_check.h"  // check_planned_isolation
 #include "host/lib/pcb/isolation_check.h"
 #include "host/lib/pcb/pcb_geometry.h"
 #include "host/lib/plan/firmware_spline.h"
@@ -262,6 +263,105 @@ TEST(BoardJob, EveryStepGoesOnTheWireOneDrillFramePerHole) {
   EXPECT_EQ(letters['P'], 3);          // tool changes
   EXPECT_EQ(letters['N'], 2 * 3 + 2);  // on at the start, off/on around each pause, off at the end
   EXPECT_GT(letters['B'], 0);          // spline headers
+}
+
+// Two 0.25 mm tracks meeting at 45 degrees (the shape of pcb2gcode's sharp_corner board).
+PcbLayer sharp_corner() {
+  ClipperLib::Paths c = track(153.67, -106.68, 138.43, -106.68, 0.25);
+  const ClipperLib::Paths b = track(138.43, -106.68, 151.13, -93.98, 0.25);
+  c.insert(c.end(), b.begin(), b.end());
+  return test::copper_layer(c, LayerKind::kCopperTop);
+}
+
+ClipperLib::Paths open_centres_nm(const std::vector<std::vector<Point2>>& paths) {
+  ClipperLib::Paths out;
+  for (const std::vector<Point2>& p : paths) {
+    ClipperLib::Path q;
+    for (const Point2& v : p) q.push_back(test::nm(v.x(), v.y()));
+    out.push_back(q);
+  }
+  return out;
+}
+
+size_t job_bytes(const JobPlan& plan) {
+  size_t n = 0;
+  for (const QueuedCommand& c : encode_job(plan, EncodeOptions())) n += frame_bytes(c);
+  return n;
+}
+
+// 0.1 mm x 20 passes next to a sharp corner: the same width cleared with a 1 mm tool after
+// one narrow pass; the wide tool stays behind the narrow pass's band, leaves no ring uncut
+// between the two, and the job is far smaller.
+TEST(BoardJob, ClearingToolCutsTheOuterPassesBehindTheNarrowPass) {
+  const PcbLayer copper = sharp_corner();
+  BoardLayers l;
+  l.copper_top = &copper;
+  BoardOptions narrow;
+  narrow.isolation.tool_width_mm = 0.1;
+  narrow.isolation.passes = 20;
+  BoardOptions wide = narrow;
+  wide.isolation.clearing_tool_width_mm = 1.0;
+  const BoardJob one = plan_board(l, narrow);
+  const BoardJob two = plan_board(l, wide);
+  ASSERT_EQ(two.tools.size(), 2u);
+  EXPECT_EQ(two.tools[0].label, "V-bit 0.10mm");
+  EXPECT_EQ(two.tools[1].label, "Clear 1.00mm");
+  EXPECT_EQ(two.report.tool_changes, 1u);
+  EXPECT_GT(two.clearing_curves, 0u);
+  // One narrow pass round the island, and pieces of further ones in the 45 degree notch,
+  // where the wide tool cannot reach.
+  EXPECT_GT(two.isolation_paths_mm.size(), 1u);
+  EXPECT_TRUE(check_planned_isolation(two, wide).ok());
+
+  // The wide tool's edge never comes nearer the copper than the narrow pass's band allows
+  // (clearance + one narrow pass less its overlap: 0.083 mm) ...
+  const double edge_mm = clearing_edge_distance_mm(wide.isolation);
+  EXPECT_NEAR(edge_mm, 0.008 + 0.1 - 0.25 * 0.1, 1e-9);
+  const double tol_mm = isolation_check_tolerance_mm(wide);
+  const auto grown = [&](double mm) {
+    return offset_closed(two.copper_machine_nm, mm * kNmPerMm, 1000);
+  };
+  const IsolationCheck behind =
+      check_isolation(grown(edge_mm), two.clearing_paths_mm, two.clearing_tool_radius_mm, tol_mm);
+  EXPECT_TRUE(behind.hits.empty()) << describe(behind);
+  // ... and comes right up to it (the check above is not empty-handed).
+  EXPECT_FALSE(check_isolation(grown(edge_mm + 0.01), two.clearing_paths_mm,
+                               two.clearing_tool_radius_mm, tol_mm)
+                   .hits.empty());
+  // The band 20 narrow passes clear (clearance .. 0.008 + 0.1 + 19 x 0.075 mm) is cleared
+  // by the two tools together as well as by the narrow tool alone (which leaves cusps too,
+  // between its passes' sharp corners in the 45 degree notch): no ring left between them.
+  const auto left_uncut_mm2 = [&](const BoardJob& job) {
+    const auto grown_by = [&](double mm) {
+      return offset_closed(job.copper_machine_nm, mm * kNmPerMm, 1000);
+    };
+    ClipperLib::Paths swept =
+        sweep_open(open_centres_nm(job.isolation_paths_mm), job.tool_radius_mm * kNmPerMm, 1000);
+    const ClipperLib::Paths wide_swept = sweep_open(open_centres_nm(job.clearing_paths_mm),
+                                                    job.clearing_tool_radius_mm * kNmPerMm, 1000);
+    swept.insert(swept.end(), wide_swept.begin(), wide_swept.end());
+    const double outer_mm = 0.008 + 0.1 + 19 * 0.075;
+    const ClipperLib::Paths band =
+        difference_of(grown_by(outer_mm - 0.005), grown_by(narrow.isolation.clearance_mm + 0.005));
+    return std::fabs(signed_area(difference_of(band, union_of(swept)))) / (kNmPerMm * kNmPerMm);
+  };
+  const double left_one_mm2 = left_uncut_mm2(one), left_two_mm2 = left_uncut_mm2(two);
+  EXPECT_LT(left_one_mm2, 0.01);
+  EXPECT_LT(left_two_mm2, left_one_mm2 + 1e-4) << left_one_mm2;
+
+  // Bytes: the whole job, as sent.
+  const size_t bytes_one = job_bytes(one.plan), bytes_two = job_bytes(two.plan);
+  EXPECT_LT(bytes_two * 3, bytes_one) << bytes_one << " -> " << bytes_two;
+}
+
+TEST(BoardJob, AClearingToolNotWiderThanTheToolIsRefused) {
+  const PcbLayer copper = sharp_corner();
+  BoardLayers l;
+  l.copper_top = &copper;
+  BoardOptions o;
+  o.isolation.passes = 4;
+  o.isolation.clearing_tool_width_mm = 0.2;
+  EXPECT_THROW(plan_board(l, o), PlanError);
 }
 
 }  // namespace
