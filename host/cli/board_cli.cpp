@@ -14,6 +14,7 @@
 #include <iomanip>     // std::setprecision
 #include <iostream>    // std::cout, std::cerr
 #include <limits>      // std::numeric_limits
+#include <sstream>     // std::istringstream
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
@@ -236,6 +237,26 @@ pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, co
   o.isolation.mill_all = a.mill_all;
   o.isolation.clearing_tool_width_mm = a.clearing_tool_mm;
   o.isolation.narrow_passes = a.narrow_passes;
+  if (!a.align_holes.empty()) {
+    o.alignment.enabled = true;
+    o.alignment.hole_diameter_mm = a.align_diameter_mm;
+    o.alignment.hole_depth_mm = a.align_depth_mm;
+    if (a.align_holes != "auto") {
+      std::istringstream in(a.align_holes);
+      for (std::string xy; std::getline(in, xy, ';');) {
+        double x = 0, y = 0;
+        char comma = 0, extra = 0;
+        std::istringstream one(xy);
+        if (!(one >> x >> comma >> y) || comma != ',' || (one >> extra))
+          throw CommandFailure(kExitUsage, "--align-holes: '" + xy +
+                                               "' is not X,Y (mm, file frame); holes are "
+                                               "separated by ';', or say auto");
+        o.alignment.holes_file_mm.emplace_back(x, y);
+      }
+    }
+  } else if (!a.align_measured_mm.empty()) {
+    throw CommandFailure(kExitUsage, "--align-measured needs the job's --align-holes");
+  }
   o.isolation_depth_mm = a.depth_mm;
   o.drill_depth_mm = a.drill_depth_mm;
   o.drill_start_mm = a.drill_start_mm;
@@ -258,7 +279,10 @@ pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, co
   return o;
 }
 
-pcb::BoardJob plan(const BoardFiles& b, const pcb::BoardOptions& o) {
+// measured_mm: X1 Y1 X2 Y2 of the alignment holes after the flip; the job is planned once
+// without, for where they should be, then turned and shifted onto them.
+pcb::BoardJob plan(const BoardFiles& b, const pcb::BoardOptions& o,
+                   const std::vector<double>& measured_mm = {}) {
   PcbLayer drill;  // several drill files (plated and not) make one drill layer
   pcb::BoardLayers l;
   try {
@@ -267,6 +291,16 @@ pcb::BoardJob plan(const BoardFiles& b, const pcb::BoardOptions& o) {
     throw CommandFailure(kExitUsage, e.what());
   }
   try {
+    if (measured_mm.size() == 4) {
+      const pcb::BoardJob nominal = pcb::plan_board(l, o);
+      const Point2 expected[2] = {nominal.alignment_holes_mm.at(0),
+                                  nominal.alignment_holes_mm.at(1)};
+      const Point2 measured[2] = {Point2(measured_mm[0], measured_mm[1]),
+                                  Point2(measured_mm[2], measured_mm[3])};
+      pcb::BoardOptions aligned = o;
+      aligned.alignment.placement = pcb::measured_alignment(expected, measured);
+      return pcb::plan_board(l, aligned);
+    }
     return pcb::plan_board(l, o);
   } catch (const PlanError& e) {
     throw CommandFailure(kExitJobFailed, e.what());
@@ -450,7 +484,7 @@ void run_board(const BoardCommand& a) {
   md.work_w_mm = a.work_mm[0];
   md.work_h_mm = a.work_mm[1];
   const pcb::BoardOptions o = board_options(a.board, md, b);
-  const pcb::BoardJob job = plan(b, o);
+  const pcb::BoardJob job = plan(b, o, a.board.align_measured_mm);
   for (const std::string& n : job.report.notes)
     std::cerr << "engraver: note: " << printable(n) << "\n";
   const double plan_cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
@@ -665,6 +699,25 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
       ->capture_default_str();
   cmd->add_option("--side", a->side, "top or bottom (mirrored); default: the copper given")
       ->group(g);
+  cmd->add_option("--align-holes", a->align_holes,
+                  "double-sided: alignment holes for pins, 'auto' (on the flip axis below and "
+                  "above the board) or X,Y[;X,Y...] mm in the files' frame, each with its mirror; "
+                  "drilled with the top side, which leaves the cut-out to the bottom")
+      ->group(g);
+  cmd->add_option("--align-diameter", a->align_diameter_mm, "alignment hole (pin) diameter, mm")
+      ->group(g)
+      ->check(CLI::Range(0.1, 10.0))
+      ->capture_default_str();
+  cmd->add_option("--align-depth", a->align_depth_mm,
+                  "alignment hole depth, through the blank into the spoil board, mm")
+      ->group(g)
+      ->check(CLI::Range(0.1, 20.0))
+      ->capture_default_str();
+  cmd->add_option("--align-measured", a->align_measured_mm,
+                  "double-sided, second setup: X1 Y1 X2 Y2, machine mm where alignment holes 1 "
+                  "and 2 were found after the flip; the job is turned and shifted onto them")
+      ->group(g)
+      ->expected(4);
   cmd->add_flag("--no-spindle", a->no_spindle, "no spindle on/off commands")->group(g);
   cmd->add_flag("--allow-narrow-gaps", a->allow_narrow_gaps,
                 "plan even where copper is closer than the tool width (reported)")
@@ -697,7 +750,7 @@ JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const Ma
   const BoardFiles b = read_input(input, args.side);
   print_notes(b);
   const pcb::BoardOptions o = board_options(args, d, b);
-  g_last_job = plan(b, o);
+  g_last_job = plan(b, o, args.align_measured_mm);
   g_last_title = b.name;
   g_last_check_tol_mm = isolation_check_tolerance_mm(o);
   g_last_isolation_z_mm = -o.isolation_depth_mm;
@@ -782,6 +835,38 @@ std::optional<SimulatedIsolation> check_simulated_isolation(
   return s;
 }
 
+std::vector<Point2> board_alignment_holes_mm() {
+  return g_last_job ? g_last_job->alignment_holes_mm : std::vector<Point2>{};
+}
+
+pcb::RigidTransform board_placement() {
+  return g_last_job ? g_last_job->frame.placement : pcb::RigidTransform{};
+}
+
+std::vector<std::vector<Point2>> board_isolation_paths_mm() {
+  return g_last_job ? g_last_job->isolation_paths_mm : std::vector<std::vector<Point2>>{};
+}
+
+Registration registration_error(const std::vector<std::vector<Point2>>& cut_paths_mm,
+                                const pcb::RigidTransform& blank_error,
+                                const std::vector<std::vector<Point2>>& nominal_paths_mm) {
+  Registration r;
+  if (nominal_paths_mm.empty()) return r;
+  const sim::NearestSegment nominal(nominal_paths_mm, 0.25);
+  const pcb::RigidTransform onto_board = blank_error.inverse();
+  double sum = 0;
+  for (const std::vector<Point2>& path : cut_paths_mm) {
+    for (const Point2& p : path) {
+      const double d_um = nominal.distance(onto_board.apply(p)) * 1000.0;
+      r.max_um = std::max(r.max_um, d_um);
+      sum += d_um;
+      ++r.samples;
+    }
+  }
+  r.mean_um = r.samples ? sum / static_cast<double>(r.samples) : 0;
+  return r;
+}
+
 bool print_board_points_if_pcb(const std::string& input, const BoardArgs& args, double tol_mm,
                                bool csv) {
   if (!is_pcb_input(input)) return false;
@@ -791,7 +876,7 @@ bool print_board_points_if_pcb(const std::string& input, const BoardArgs& args, 
   print_notes(b);
   pcb::BoardOptions o = board_options(args, d, b);
   o.travel_width_mm = o.travel_height_mm = d.work_w_mm;
-  const pcb::BoardJob job = plan(b, o);
+  const pcb::BoardJob job = plan(b, o, args.align_measured_mm);
   for (const std::string& n : job.report.notes)
     std::cerr << "engraver: note: " << printable(n) << "\n";
   for (const pcb::NarrowGap& g : job.report.narrow_gaps)

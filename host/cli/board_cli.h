@@ -43,6 +43,11 @@ struct BoardArgs {
   std::string side;             // "top", "bottom" or empty (the side whose copper is given)
   double clearing_tool_mm = 0;  // > 0: a wider tool for the outer passes
   int narrow_passes = 1;        // with a clearing tool: passes of the isolation tool
+  // Double-sided: "auto" or "X,Y[;X,Y...]" (file frame, mm); empty: no alignment holes.
+  std::string align_holes;
+  double align_diameter_mm = 3.0;
+  double align_depth_mm = 3.0;
+  std::vector<double> align_measured_mm;  // X1 Y1 X2 Y2: holes 1 and 2 measured after the flip
 };
 
 // Adds the board options to a command, in their own group (kBoardOptionsGroup).
@@ -94,6 +99,23 @@ std::optional<double> board_isolation_z_mm();
 // nullopt when the last plan was not a board (or has no copper).
 std::optional<SimulatedIsolation> check_simulated_isolation(
     const std::vector<std::vector<Point2>>& cut_paths_mm, size_t samples);
+
+// Double-sided boards after `plan_pcb_input`: the job's alignment holes (machine frame before
+// the measured placement; empty without), its measured placement, and its isolation paths.
+std::vector<Point2> board_alignment_holes_mm();
+pcb::RigidTransform board_placement();
+std::vector<std::vector<Point2>> board_isolation_paths_mm();
+
+// How far the simulated cuts (machine frame) land on the board from where they belong: each
+// sample taken back through the blank's placement error onto the board as planned without
+// it, against the nominal job's isolation paths (max and mean, um).
+struct Registration {
+  double max_um = 0, mean_um = 0;
+  size_t samples = 0;
+};
+Registration registration_error(const std::vector<std::vector<Point2>>& cut_paths_mm,
+                                const pcb::RigidTransform& blank_error,
+                                const std::vector<std::vector<Point2>>& nominal_paths_mm);
 
 // `engraver points` on PCB input, planned with the board options: every tool-centre path of
 // the job, tool by tool (the controller's points at tol_mm for curves), in the files' frame.

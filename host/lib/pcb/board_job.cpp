@@ -41,6 +41,7 @@ struct Trace {
 struct DrillTool {
   std::string label;
   double diameter_mm = 0;
+  double depth_mm = 0;
   std::vector<Point2> holes;                     // mirrored file frame
   std::vector<std::pair<Point2, Point2>> slots;  // mirrored file frame
 };
@@ -65,7 +66,7 @@ double polyline_length(const std::vector<Point2>& p, bool closed) {
 class StepWriter {
  public:
   StepWriter(JobPlan* plan, const BoardOptions& o, const Point2& offset)
-      : plan_(plan), o_(o), offset_(offset) {}
+      : plan_(plan), o_(o), offset_(offset), place_(o.alignment.placement) {}
 
   void pen_up(double z_mm) {
     if (!plan_->steps.empty() && plan_->steps.back().kind == PlanStep::kPenUp &&
@@ -90,7 +91,7 @@ class StepWriter {
     plan_->rapid_length_mm += (machine - at_).norm();
     PlanStep s;
     s.kind = PlanStep::kRapid;
-    s.to = um(machine);
+    s.to = um(place_.apply(machine));
     plan_->steps.push_back(s);
     at_ = machine;
   }
@@ -132,20 +133,20 @@ class StepWriter {
   int reference(const Point2& a, const Point2& b, const std::string& source) {
     PlannedCurve pc;
     pc.spline.degree = 1;
-    pc.spline.control = {a, b};
+    pc.spline.control = {place_.apply(a), place_.apply(b)};
     pc.spline.knots = {0.0, 0.0, 1.0, 1.0};
     pc.drawing_index = static_cast<int>(plan_->curves.size());
     pc.source = source;
     plan_->curves.push_back(pc);
     return pc.drawing_index;
   }
-  void drill(const Point2& machine) {
+  void drill(const Point2& machine, double depth_mm) {
     PlanStep s;
     s.curve = reference(machine, machine, "hole");
     s.kind = PlanStep::kDrill;
-    s.to = um(machine);
+    s.to = um(place_.apply(machine));
     s.z_start_um = um(o_.drill_start_mm);
-    s.z_um = um(-o_.drill_depth_mm);
+    s.z_um = um(-depth_mm);
     s.feed_um_per_s = um(o_.drill_feed_mm_per_s);
     plan_->steps.push_back(s);
     plan_->rapid_length_mm += (machine - at_).norm();
@@ -155,7 +156,7 @@ class StepWriter {
     PlanStep s;
     s.curve = reference(at_, machine, "slot");
     s.kind = PlanStep::kFeed;
-    s.to = um(machine);
+    s.to = um(place_.apply(machine));
     s.feed_um_per_s = um(feed);
     plan_->steps.push_back(s);
     plan_->cut_length_mm += (machine - at_).norm();
@@ -164,7 +165,11 @@ class StepWriter {
   // One fitted curve (file frame, mirrored) traced with the tool down; returns its index.
   int curve(const BSpline& file_curve, const std::string& source, bool chained, double feed) {
     PlannedCurve pc;
-    pc.spline = transformed(file_curve, Eigen::Matrix2d::Identity(), offset_);
+    // The placement turns and shifts the control points: B-splines are affine invariant.
+    Eigen::Matrix2d turn;
+    turn << std::cos(place_.rotation_rad), -std::sin(place_.rotation_rad),
+        std::sin(place_.rotation_rad), std::cos(place_.rotation_rad);
+    pc.spline = transformed(file_curve, turn, place_.apply(offset_));
     pc.drawing_index = static_cast<int>(plan_->curves.size());
     pc.chained = chained;
     pc.source = source;
@@ -192,7 +197,7 @@ class StepWriter {
       plan_->extents_mm.add(pts[i]);
       if (i > 0) plan_->cut_length_mm += (pts[i] - pts[i - 1]).norm();
     }
-    at_ = end_point(pc.spline);
+    at_ = place_.inverse().apply(end_point(pc.spline));
     return index;
   }
   Point2 at() const { return at_; }
@@ -201,7 +206,8 @@ class StepWriter {
   JobPlan* plan_;
   const BoardOptions& o_;
   Point2 offset_;
-  Point2 at_{0, 0};
+  RigidTransform place_;  // the measured placement (identity: none)
+  Point2 at_{0, 0};       // before the placement
   bool spindle_on_ = false;
   bool cutting_ = false;
   int tools_ = 0;
@@ -225,6 +231,18 @@ void check_options(const BoardOptions& o) {
 
 Paths BoardFrame::to_machine_nm(const Paths& file_nm) const {
   Paths out;
+  if (!placement.identity()) {
+    for (const Path& p : file_nm) {
+      Path q;
+      for (const IntPoint& v : p) {
+        const Point2 m = to_machine(to_mm(v));
+        q.emplace_back(nm_from_mm(m.x()), nm_from_mm(m.y()));
+      }
+      if (sx < 0) ClipperLib::ReversePath(q);  // mirroring flips orientation: restore it
+      out.push_back(q);
+    }
+    return out;
+  }
   const ClipperLib::cInt ox = nm_from_mm(offset_mm.x()), oy = nm_from_mm(offset_mm.y());
   for (const Path& p : file_nm) {
     Path q;
@@ -359,6 +377,7 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
       DrillTool t;
       t.diameter_mm = g.diameter_mm;
       t.label = tool_label("Drill", g.diameter_mm);
+      t.depth_mm = o.drill_depth_mm;
       t.holes = g.holes_mm;
       drills.push_back(t);
     }
@@ -373,6 +392,7 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
         t = &drills.back();
         t->diameter_mm = dm;
         t->label = tool_label("Drill", dm);
+        t->depth_mm = o.drill_depth_mm;
       }
       t->slots.emplace_back(Point2(sx * a.x(), a.y()), Point2(sx * b.x(), b.y()));
     }
@@ -404,6 +424,86 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
     job.cutter_radius_mm = o.cutout.cutter_diameter_mm / 2;
   }
 
+  // ---- Double-sided: one frame for both setups, alignment holes ----
+  Extents region;  // side-independent, mirrored file frame: placed at the margin
+  if (o.alignment.enabled) {
+    const AlignmentOptions& a = o.alignment;
+    if (!(a.hole_diameter_mm > 0) || !(a.hole_depth_mm > 0))
+      throw PlanError("the alignment holes' diameter and depth must be positive");
+    // The board's extents in the file frame, the same for both sides' jobs.
+    Extents board;
+    if (layers.outline) {
+      for (const Path& p : cp.board_nm)
+        for (const IntPoint& v : p) board.add(to_mm(v));
+    } else if (layers.drill) {
+      for (const Hole& h : layers.drill->holes) board.add(to_mm(IntPoint(h.at.x, h.at.y)));
+    } else if (copper) {
+      for (const Path& p : copper->polygons_nm)
+        for (const IntPoint& v : p) board.add(to_mm(v));
+      rep.notes.push_back(
+          "alignment: the flip axis is the middle of this side's copper (no outline or drill "
+          "file): give the same outline or drill file to both sides' jobs so their axes agree");
+    }
+    if (board.empty()) throw PlanError("alignment holes need a board (outline, drill or copper)");
+    const double axis = (board.min.x() + board.max.x()) / 2;
+    job.flip_axis_file_x_mm = axis;
+    const double r = a.hole_diameter_mm / 2;
+    // Clear of the board and of the cut-out's cutter beside it.
+    const double keep_mm = r + 2 * o.cutout.cutter_diameter_mm + 1.0;
+    std::vector<Point2> holes;
+    if (a.holes_file_mm.empty()) {
+      holes = {Point2(axis, board.min.y() - keep_mm), Point2(axis, board.max.y() + keep_mm)};
+    } else {
+      for (const Point2& h : a.holes_file_mm) {
+        if (h.x() > board.min.x() - keep_mm && h.x() < board.max.x() + keep_mm &&
+            h.y() > board.min.y() - keep_mm && h.y() < board.max.y() + keep_mm)
+          throw PlanError(fmt::format(
+              "alignment hole at ({:.3f}, {:.3f}) mm is not outside the board ({:.3f} .. {:.3f} "
+              "x {:.3f} .. {:.3f} mm) by {:.3f} mm",
+              h.x(), h.y(), board.min.x(), board.max.x(), board.min.y(), board.max.y(), keep_mm));
+        holes.push_back(h);
+        if (std::fabs(h.x() - axis) > 0.001) holes.emplace_back(2 * axis - h.x(), h.y());
+      }
+    }
+    for (const Point2& h : holes) {
+      region.add(Point2(sx * h.x() - r, h.y() - r));
+      region.add(Point2(sx * h.x() + r, h.y() + r));
+    }
+    // The board and its mirror image: the same region from either side.
+    for (const Point2& c : {board.min, board.max}) {
+      region.add(Point2(sx * c.x(), c.y()));
+      region.add(Point2(sx * (2 * axis - c.x()), c.y()));
+    }
+    const double grow_mm = o.cutout.cutter_diameter_mm + 1.0;
+    region.add(region.min - Point2(grow_mm, grow_mm));
+    for (const Point2& h : holes) job.alignment_holes_mm.push_back(Point2(sx * h.x(), h.y()));
+    if (o.side == BoardSide::kTop) {
+      // First setup: the holes, through the blank into the spoil board; the cut-out waits for
+      // the second setup (the blank must stay whole to be turned over).
+      DrillTool pins;
+      pins.diameter_mm = a.hole_diameter_mm;
+      pins.depth_mm = a.hole_depth_mm;
+      pins.label = tool_label("Pins", a.hole_diameter_mm);
+      for (const Point2& h : holes) pins.holes.emplace_back(sx * h.x(), h.y());
+      drills.push_back(pins);
+      rep.holes += pins.holes.size();
+      rep.drill_tools = drills.size();
+      if (!cut.empty())
+        rep.notes.push_back("alignment: the cut-out is left for the bottom side's job");
+      cut.clear();
+      rep.tabs = 0;
+      rep.cutout_length_mm = 0;
+    } else {
+      if (!drills.empty())
+        rep.notes.push_back("alignment: the holes were drilled with the top side: not again");
+      drills.clear();
+      rep.holes = 0;
+      rep.slots = 0;
+      rep.drill_tools = 0;
+      rep.drill_travel_ordered_mm = rep.drill_travel_file_order_mm = 0;
+    }
+  }
+
   // ---- Placement: the tool's lower-left extent at (margin, margin) ----
   Extents ext;
   auto grow = [&](const Extents& e, double r) {
@@ -428,9 +528,16 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
     grow(e, d.diameter_mm / 2);
   }
   if (ext.empty()) throw PlanError("nothing to do: the layers hold no copper, hole or outline");
-  const Point2 offset = Point2(o.margin_mm, o.margin_mm) - ext.min;
+  // Double-sided: the side-independent region at the margin (both jobs in one frame).
+  const Point2 offset = Point2(o.margin_mm, o.margin_mm) - (region.empty() ? ext.min : region.min);
   job.frame.offset_mm = offset;
-  const double need_w = ext.width() + o.margin_mm, need_h = ext.height() + o.margin_mm;
+  job.frame.placement = o.alignment.placement;
+  for (Point2& h : job.alignment_holes_mm) h += offset;
+  if (ext.min.x() + offset.x() < 0 || ext.min.y() + offset.y() < 0)
+    throw PlanError(
+        fmt::format("the board job reaches {:.2f} mm beyond the machine zero: raise the margin",
+                    -std::min(ext.min.x() + offset.x(), ext.min.y() + offset.y())));
+  const double need_w = ext.max.x() + offset.x(), need_h = ext.max.y() + offset.y();
   if (need_w > o.work_width_mm + 1e-6 || need_h > o.work_height_mm + 1e-6) {
     throw PlanError(fmt::format(
         "the board job needs {:.2f} x {:.2f} mm (tool extents plus the {:.1f} mm margin) but the "
@@ -478,7 +585,7 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
   job.clearing_curves = plan.curves.size() - job.isolation_curves;
   for (const DrillTool& d : drills) {
     w.tool(d.label, d.diameter_mm, &job);
-    for (const Point2& h : d.holes) w.drill(h + offset);
+    for (const Point2& h : d.holes) w.drill(h + offset, d.depth_mm);
     for (const auto& s : d.slots) {
       w.pen_up(o.z_travel_mm);
       w.rapid(s.first + offset);
@@ -495,7 +602,8 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
       for (size_t k = 0; k < t.curves.size(); ++k) {
         if (!t.lifted[k]) continue;
         std::vector<Point2> tab;
-        for (const Point2& q : sample(t.curves[k], 0.002)) tab.push_back(q + offset);
+        for (const Point2& q : sample(t.curves[k], 0.002))
+          tab.push_back(o.alignment.placement.apply(q + offset));
         job.tab_paths_mm.push_back(tab);
       }
     }

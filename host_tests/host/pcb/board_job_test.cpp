@@ -364,5 +364,97 @@ TEST(BoardJob, AClearingToolNotWiderThanTheToolIsRefused) {
   EXPECT_THROW(plan_board(l, o), PlanError);
 }
 
+// Double-sided: the top and bottom jobs of one board (different copper, the same drill and
+// outline) planned in one frame, so turning the blank over about the vertical line through
+// the alignment holes takes every feature of the top job onto the bottom job's.
+TEST(BoardJob, DoubleSidedJobsShareOneFrameSymmetricAboutTheFlipAxis) {
+  Board b;
+  PcbLayer bottom_copper =
+      test::copper_layer(ClipperLib::Paths{pad(30, 20, 0.8)}, LayerKind::kCopperBottom);
+  BoardLayers top_layers = b.layers();
+  BoardLayers bottom_layers = b.layers();
+  bottom_layers.copper_top = nullptr;
+  bottom_layers.copper_bottom = &bottom_copper;
+  BoardOptions o;
+  o.alignment.enabled = true;
+  const BoardJob top = plan_board(top_layers, o);
+  o.side = BoardSide::kBottom;
+  const BoardJob bottom = plan_board(bottom_layers, o);
+  ASSERT_EQ(top.alignment_holes_mm.size(), 2u);
+  ASSERT_EQ(bottom.alignment_holes_mm.size(), 2u);
+  EXPECT_NEAR(top.flip_axis_file_x_mm, 17.5, 1e-9);  // the outline's middle
+  for (size_t i = 0; i < 2; ++i)
+    EXPECT_LT((top.alignment_holes_mm[i] - bottom.alignment_holes_mm[i]).norm(), 1e-9);
+  const double axis_x = top.alignment_holes_mm[0].x();
+  EXPECT_NEAR(top.alignment_holes_mm[1].x(), axis_x, 1e-9);
+  for (const Point2& file : {Point2(25, 10), Point2(10, 15), Point2(0, 0), Point2(35, 25)}) {
+    const Point2 t = top.frame.to_machine(file), u = bottom.frame.to_machine(file);
+    EXPECT_NEAR(2 * axis_x - t.x(), u.x(), 1e-9) << file.transpose();
+    EXPECT_NEAR(t.y(), u.y(), 1e-9) << file.transpose();
+  }
+  // The top job drills the holes through the blank into the spoil board and leaves the
+  // cut-out; the bottom job drills nothing and cuts the board out.
+  ASSERT_EQ(top.tools.back().label, "Pins 3.00mm");
+  int pin_holes = 0;
+  for (const PlanStep& s : top.plan.steps)
+    if (s.kind == PlanStep::kDrill && s.z_um == -3000) ++pin_holes;
+  EXPECT_EQ(pin_holes, 2);
+  EXPECT_TRUE(top.cutout_paths_mm.empty());
+  EXPECT_EQ(count(bottom.plan, PlanStep::kDrill), 0);
+  EXPECT_FALSE(bottom.cutout_paths_mm.empty());
+}
+
+// The measured placement turns and shifts every coordinate of the job (B-splines: their
+// control points), and the copper the checks use with it.
+TEST(BoardJob, AMeasuredPlacementTurnsAndShiftsEveryCoordinate) {
+  Board b;
+  BoardOptions o;
+  o.side = BoardSide::kBottom;
+  o.alignment.enabled = true;
+  const BoardJob nominal = plan_board(b.layers(true), o);
+  o.alignment.placement = placement_error(Point2(20, 20), 0.3, -0.2, 0.5);
+  const BoardJob placed = plan_board(b.layers(true), o);
+  ASSERT_EQ(nominal.plan.curves.size(), placed.plan.curves.size());
+  for (size_t i = 0; i < nominal.plan.curves.size(); ++i) {
+    const BSpline& n = nominal.plan.curves[i].spline;
+    const BSpline& p = placed.plan.curves[i].spline;
+    ASSERT_EQ(n.control.size(), p.control.size());
+    for (size_t k = 0; k < n.control.size(); ++k)
+      EXPECT_LT((o.alignment.placement.apply(n.control[k]) - p.control[k]).norm(), 1e-9);
+  }
+  ASSERT_EQ(nominal.plan.steps.size(), placed.plan.steps.size());
+  for (size_t i = 0; i < nominal.plan.steps.size(); ++i) {
+    const PlanStep& n = nominal.plan.steps[i];
+    if (n.kind != PlanStep::kRapid) continue;
+    const Point2 want =
+        o.alignment.placement.apply(Point2(n.to.x_um * 1e-3, n.to.y_um * 1e-3)) * 1000;
+    EXPECT_NEAR(placed.plan.steps[i].to.x_um, want.x(), 0.5);
+    EXPECT_NEAR(placed.plan.steps[i].to.y_um, want.y(), 0.5);
+  }
+  EXPECT_TRUE(check_planned_isolation(placed, o).ok());
+  // The holes where the pins stand are the same: the placement is of this setup only.
+  EXPECT_LT((nominal.alignment_holes_mm[0] - placed.alignment_holes_mm[0]).norm(), 1e-9);
+}
+
+// Two holes measured to the micrometre give the blank's placement: 0.3 mm and 0.5 degrees off
+// comes back within a micrometre 100 mm away; the wrong holes are refused.
+TEST(BoardAlignment, TwoMeasuredHolesGiveTheBlanksPlacement) {
+  const Point2 expected[2] = {Point2(50, 5), Point2(50, 60)};
+  const RigidTransform error = placement_error(Point2(50, 32.5), 0.3, 0.2, 0.5);
+  Point2 measured[2];
+  for (int i = 0; i < 2; ++i) {
+    const Point2 m = error.apply(expected[i]);
+    measured[i] = Point2(std::round(m.x() * 1000) / 1000, std::round(m.y() * 1000) / 1000);
+  }
+  const RigidTransform found = measured_alignment(expected, measured);
+  for (const Point2& p : {Point2(0, 0), Point2(100, 100), Point2(150, 20)})
+    EXPECT_LT((found.apply(p) - error.apply(p)).norm(), 0.002) << p.transpose();
+  EXPECT_LT((error.inverse().apply(error.apply(Point2(3, 4))) - Point2(3, 4)).norm(), 1e-12);
+  const Point2 swapped[2] = {measured[1], measured[0]};
+  EXPECT_THROW(measured_alignment(expected, swapped), PlanError);
+  const Point2 too_far[2] = {measured[0], measured[1] + Point2(0, 0.5)};
+  EXPECT_THROW(measured_alignment(expected, too_far), PlanError);
+}
+
 }  // namespace
 }  // namespace host::pcb
