@@ -215,6 +215,42 @@ TEST(BoardCli, ClearingToolIsASecondToolWithItsBytesReported) {
   EXPECT_NE(same.err.find("the clearing tool must be wider"), std::string::npos) << same.err;
 }
 
+// A double-sided board's second setup, simulated end to end: the flipped blank sits 0.3 mm
+// and 0.5 degrees off on its pins; the simulated operator measures the two alignment holes,
+// the job is turned and shifted onto them and cuts within 10 um of where the bottom copper
+// lies under the top side's frame. On the pins alone the same blank is cut 0.3 mm off,
+// through copper (exit 8).
+TEST(BoardCli, FlippedBlankOffByAFewTenthsIsCutWhereItBelongsAfterMeasuringTheHoles) {
+  const std::string dir = write_board("flip");
+  std::string bottom_copper = kTopCopper;
+  bottom_copper.replace(bottom_copper.find("L1,Top"), 6, "L2,Bot");
+  bottom_copper.replace(bottom_copper.find("%EXTRA%"), 7, "");
+  std::filesystem::remove(dir + "/t-F.Cu.gbr");
+  std::ofstream(dir + "/t-B.Cu.gbr") << bottom_copper;
+  const std::string job = "run " + dir + " --side bottom --align-holes auto --cut-step 1.8 ";
+  const ToolRun aligned = run(job + "-o " + dir + "/aligned --blank-error 0.3 -0.2 0.5");
+  ASSERT_EQ(aligned.code, 0) << aligned.err << aligned.out;
+  const std::string name = std::to_string(getpid()) + "-flip";
+  const nlohmann::json a = nlohmann::json::parse(std::ifstream(dir + "/aligned/" + name + ".json"));
+  EXPECT_EQ(a["flip"]["aligned"], true);
+  EXPECT_NEAR(a["flip"]["alignment"]["rotation_deg"].get<double>(), 0.5, 0.01);
+  EXPECT_LT(a["registration_error"]["max_um"].get<double>(), 10.0) << a["registration_error"];
+  EXPECT_GT(a["registration_error"]["samples"].get<int>(), 1000);
+  EXPECT_EQ(a["simulated_isolation_check"]["copper_hits"], 0);
+  EXPECT_NE(aligned.out.find("the job aligned to the measured holes"), std::string::npos);
+
+  const ToolRun pins = run(job + "-o " + dir + "/pins --blank-error 0.3 -0.2 0.5 --pins-only");
+  EXPECT_EQ(pins.code, 8) << pins.err << pins.out;
+  const nlohmann::json p = nlohmann::json::parse(std::ifstream(dir + "/pins/" + name + ".json"));
+  EXPECT_GT(p["registration_error"]["max_um"].get<double>(), 300.0) << p["registration_error"];
+  EXPECT_GT(p["simulated_isolation_check"]["copper_hits"].get<int>(), 0);
+
+  // A blank error needs alignment holes to measure.
+  const ToolRun none = run("run " + dir + " --side bottom -o " + dir + "/none --blank-error 0 0 1");
+  EXPECT_EQ(none.code, 2) << none.err;
+  EXPECT_NE(none.err.find("--align-holes"), std::string::npos) << none.err;
+}
+
 // The help of `points` and `info` names the PCB inputs both read.
 TEST(BoardCli, PointsAndInfoHelpNameThePcbInputs) {
   for (const char* cmd : {"points", "info"}) {
