@@ -7,7 +7,7 @@
 
 #include <algorithm>   // std::sort
 #include <chrono>      // steady_clock
-#include <cmath>       // std::lround
+#include <cmath>       // std::lround, M_PI
 #include <ctime>       // std::clock
 #include <filesystem>  // directories
 #include <fstream>     // std::ofstream
@@ -506,6 +506,18 @@ void run_board(const BoardCommand& a) {
   j["isolation_g1_bytes_same_tolerance"] = w.g1_bytes;
   j["isolation_g1_bytes_every_vertex"] = w.g1_vertex_bytes;
   j["chord_tolerance_mm"] = a.tol_mm;
+  if (!job.alignment_holes_mm.empty()) {
+    // Where the pins stand (machine frame), hole 1 first: what the operator measures.
+    nlohmann::json holes = nlohmann::json::array();
+    for (const Point2& h : job.alignment_holes_mm) holes.push_back({h.x(), h.y()});
+    j["alignment"] = {
+        {"holes_mm", holes},
+        {"flip_axis_machine_x_mm", job.alignment_holes_mm.front().x()},
+        {"flip_axis_file_x_mm", job.flip_axis_file_x_mm},
+        {"placement",
+         {{"rotation_deg", job.frame.placement.rotation_rad * 180 / M_PI},
+          {"shift_mm", {job.frame.placement.shift_mm.x(), job.frame.placement.shift_mm.y()}}}}};
+  }
   const std::vector<size_t> tool_bytes = bytes_per_tool(job);
   j["bytes_per_tool"] = nlohmann::json::array();
   std::string tool_bytes_text;
@@ -567,6 +579,9 @@ void run_board(const BoardCommand& a) {
         r.tool_changes, tool_bytes_text, plan_cpu_s, plan_peak_mb);
     for (const pcb::NarrowGap& g : r.narrow_gaps)
       std::cout << "  " << pcb::describe_gap(g, o.isolation) << "\n";
+    for (size_t i = 0; i < job.alignment_holes_mm.size(); ++i)
+      std::cout << fmt::format("  alignment hole {} at ({:.3f}, {:.3f}) mm\n", i + 1,
+                               job.alignment_holes_mm[i].x(), job.alignment_holes_mm[i].y());
     if (!a.no_plot) std::cout << "  plot: " << base << ".board.svg, .png; ";
     std::cout << "report: " << base << ".board.json\n";
   }

@@ -347,6 +347,46 @@ TEST(BoardCli, RunFailsAJobWhoseSimulatedPathCutsCopper) {
   EXPECT_GT(j["simulated_isolation_check"]["copper_hits"].get<int>(), 0);
 }
 
+// The guide's double-sided workflow on the shared multivibrator, as printed there: the hole
+// positions the report lists, the measured holes the simulated operator finds for a blank
+// 0.3 mm, -0.2 mm and 0.5 degrees off, the alignment found from them, and the cut within
+// 10 um (pins only: exit 8).
+TEST(BoardCli, GuidesDoubleSidedWorkflowOnTheMultivibrator) {
+  const std::string board =
+      std::string(ENGRAVER_SOURCE_DIR) + "/../shared/samples/pcb/multivibrator";
+  if (!std::filesystem::is_directory(board)) GTEST_SKIP() << board << " (shared samples) absent";
+  const std::string out = testing::TempDir() + "/" + std::to_string(getpid()) + "-double";
+  const ToolRun b = run("board " + board + " --side bottom --align-holes auto -o " + out);
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_NE(b.out.find("  alignment hole 1 at (30.495, 8.500) mm\n"
+                       "  alignment hole 2 at (30.495, 49.250) mm\n"),
+            std::string::npos)
+      << b.out;
+  const ToolRun m = run("board " + board +
+                        " --side bottom --align-holes auto --align-measured 30.973 8.301 30.617 "
+                        "49.049 --json --no-plot -o " +
+                        out);
+  ASSERT_EQ(m.code, 0) << m.err;
+  const nlohmann::json mj = nlohmann::json::parse(m.out);
+  EXPECT_NEAR(mj["alignment"]["placement"]["rotation_deg"].get<double>(), 0.5, 0.002);
+  const ToolRun r = run("run " + board + " --side bottom --align-holes auto --blank-error 0.3 " +
+                        "-0.2 0.5 -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("double-sided: blank placed off by (0.300, -0.200) mm and 0.50 deg; the "
+                       "job aligned to the measured holes; the cuts land "),
+            std::string::npos)
+      << r.out;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out + "/multivibrator.json"));
+  EXPECT_EQ(j["flip"]["measured_holes_mm"],
+            nlohmann::json::parse("[30.973, 8.301, 30.617, 49.049]"));
+  EXPECT_LT(j["registration_error"]["max_um"].get<double>(), 10.0);
+  const ToolRun pins = run("run " + board +
+                           " --side bottom --align-holes auto --blank-error 0.3 -0.2 0.5 "
+                           "--pins-only -o " +
+                           out);
+  EXPECT_EQ(pins.code, 8) << pins.err;
+}
+
 // A work area beyond the controller's travel is refused by `board` as by `run` (one check):
 // `board` once planned it and exited 0, and `run` then refused the job.
 TEST(BoardCli, AWorkAreaBeyondTheControllersTravelIsRefusedByBoardAsByRun) {
