@@ -812,8 +812,27 @@ std::optional<SimulatedIsolation> check_simulated_isolation(
   s.tolerance_mm = g_last_check_tol_mm;
   s.paths = cut_paths_mm.size();
   s.samples = samples;
+  // With a clearing tool both tools cut at the isolation depth: a simulated path is the tool's
+  // whose planned paths are nearer its middle sample, and is swept by that tool's radius.
+  std::vector<std::vector<Point2>> narrow_cuts, wide_cuts;
+  if (job.clearing_paths_mm.empty()) {
+    narrow_cuts = cut_paths_mm;
+  } else {
+    const sim::NearestSegment narrow(job.isolation_paths_mm, 0.25);
+    const sim::NearestSegment wide(job.clearing_paths_mm, 0.25);
+    for (const std::vector<Point2>& path : cut_paths_mm) {
+      if (path.empty()) continue;
+      const Point2& m = path[path.size() / 2];
+      (narrow.distance(m) <= wide.distance(m) ? narrow_cuts : wide_cuts).push_back(path);
+    }
+  }
   s.check =
-      pcb::check_isolation(job.copper_machine_nm, cut_paths_mm, job.tool_radius_mm, s.tolerance_mm);
+      pcb::check_isolation(job.copper_machine_nm, narrow_cuts, job.tool_radius_mm, s.tolerance_mm);
+  if (!wide_cuts.empty()) {
+    const pcb::IsolationCheck w = pcb::check_isolation(job.copper_machine_nm, wide_cuts,
+                                                       job.clearing_tool_radius_mm, s.tolerance_mm);
+    s.check.hits.insert(s.check.hits.end(), w.hits.begin(), w.hits.end());
+  }
   // Clearance: each sample's distance to the copper's edges less the tool radius (a sample
   // inside copper is a hit of the check above).
   std::vector<std::vector<Point2>> edges;
@@ -824,18 +843,25 @@ std::optional<SimulatedIsolation> check_simulated_isolation(
     edges.push_back(std::move(line));
   }
   const sim::NearestSegment copper(edges, 0.25);
-  auto clearance_um = [&](const Point2& p) {
-    return (copper.distance(p) - job.tool_radius_mm) * 1000.0;
+  auto clearance_um = [&](const Point2& p, double radius_mm) {
+    return (copper.distance(p) - radius_mm) * 1000.0;
   };
   s.min_clearance_um = std::numeric_limits<double>::infinity();
-  for (const std::vector<Point2>& path : cut_paths_mm) {
+  for (const std::vector<Point2>& path : narrow_cuts) {
     for (const Point2& p : path) {
-      const double c = clearance_um(p);
+      const double c = clearance_um(p, job.tool_radius_mm);
       if (c < s.min_clearance_um) {
         s.min_clearance_um = c;
         s.min_clearance_at_mm = p;
       }
     }
+  }
+  if (!job.clearing_paths_mm.empty()) {
+    s.clearing_min_clearance_um = std::numeric_limits<double>::infinity();
+    for (const std::vector<Point2>& path : wide_cuts)
+      for (const Point2& p : path)
+        s.clearing_min_clearance_um =
+            std::min(s.clearing_min_clearance_um, clearance_um(p, job.clearing_tool_radius_mm));
   }
   s.planned_min_clearance_um = std::numeric_limits<double>::infinity();
   for (const std::vector<Point2>& path : job.isolation_paths_mm) {
@@ -844,7 +870,8 @@ std::optional<SimulatedIsolation> check_simulated_isolation(
       const int n = 1 + static_cast<int>((b - a).norm() / 0.005);
       for (int k = 0; k < n; ++k)
         s.planned_min_clearance_um =
-            std::min(s.planned_min_clearance_um, clearance_um(a + (b - a) * (double(k) / n)));
+            std::min(s.planned_min_clearance_um,
+                     clearance_um(a + (b - a) * (double(k) / n), job.tool_radius_mm));
     }
   }
   return s;
@@ -859,7 +886,11 @@ pcb::RigidTransform board_placement() {
 }
 
 std::vector<std::vector<Point2>> board_isolation_paths_mm() {
-  return g_last_job ? g_last_job->isolation_paths_mm : std::vector<std::vector<Point2>>{};
+  if (!g_last_job) return {};
+  std::vector<std::vector<Point2>> paths = g_last_job->isolation_paths_mm;
+  paths.insert(paths.end(), g_last_job->clearing_paths_mm.begin(),
+               g_last_job->clearing_paths_mm.end());
+  return paths;
 }
 
 Registration registration_error(const std::vector<std::vector<Point2>>& cut_paths_mm,

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>  // CLI::App
 
+#include <limits>    // std::numeric_limits
 #include <memory>    // std::shared_ptr
 #include <optional>  // std::optional
 #include <string>    // std::string
@@ -93,6 +94,8 @@ struct SimulatedIsolation {
   Point2 min_clearance_at_mm{0, 0};
   double planned_min_clearance_um = 0;  // the same for the planned paths (every 5 um)
   size_t paths = 0, samples = 0;
+  // With a clearing tool: its own edge's least clearance (NaN without one).
+  double clearing_min_clearance_um = std::numeric_limits<double>::quiet_NaN();
 };
 // The isolation depth (machine Z, mm) when the last plan was a board with isolation.
 std::optional<double> board_isolation_z_mm();
@@ -101,7 +104,8 @@ std::optional<SimulatedIsolation> check_simulated_isolation(
     const std::vector<std::vector<Point2>>& cut_paths_mm, size_t samples);
 
 // Double-sided boards after `plan_pcb_input`: the job's alignment holes (machine frame before
-// the measured placement; empty without), its measured placement, and its isolation paths.
+// the measured placement; empty without), its measured placement, and its isolation paths
+// (the clearing tool's too).
 std::vector<Point2> board_alignment_holes_mm();
 pcb::RigidTransform board_placement();
 std::vector<std::vector<Point2>> board_isolation_paths_mm();

@@ -708,6 +708,9 @@ void run_run(const RunArgs& a) {
         {"min_clearance_um", iso->min_clearance_um},
         {"planned_min_clearance_um", iso->planned_min_clearance_um},
         {"min_clearance_at_mm", {iso->min_clearance_at_mm.x(), iso->min_clearance_at_mm.y()}}};
+    if (!std::isnan(iso->clearing_min_clearance_um))
+      j["simulated_isolation_check"]["clearing_tool_min_clearance_um"] =
+          iso->clearing_min_clearance_um;
   }
   if (flip) {
     j["flip"] = {{"blank_error",

@@ -95,6 +95,16 @@ class StepWriter {
     plan_->steps.push_back(s);
     at_ = machine;
   }
+  // Back to the machine's zero (not turned and shifted with the job).
+  void rapid_home() {
+    const Point2 home = place_.inverse().apply(Point2(0, 0));
+    plan_->rapid_length_mm += (home - at_).norm();
+    PlanStep s;
+    s.kind = PlanStep::kRapid;
+    s.to = um(Point2(0, 0));
+    plan_->steps.push_back(s);
+    at_ = home;
+  }
   void spindle(bool on) {
     if (!o_.spindle || on == spindle_on_) return;
     PlanStep s;
@@ -625,7 +635,7 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
   }
   w.spindle(false);
   w.pen_up(o.z_travel_mm);
-  w.rapid(Point2(0, 0));
+  w.rapid_home();
 
   // ---- What the checks and the plot need, in the machine frame ----
   if (copper) {

@@ -251,6 +251,26 @@ TEST(BoardCli, FlippedBlankOffByAFewTenthsIsCutWhereItBelongsAfterMeasuringTheHo
   EXPECT_NE(none.err.find("--align-holes"), std::string::npos) << none.err;
 }
 
+// The simulated machine's cuts with a clearing tool: each tool's paths swept by its own
+// radius; the wide tool's edge stays 83 um from the copper (clearance 8 um + one 0.1 mm pass
+// less its 25 um overlap) less the machine's contour error.
+TEST(BoardCli, RunChecksTheClearingToolsCutsWithItsOwnRadius) {
+  const std::string dir = write_board("clearing-run");
+  std::filesystem::remove(dir + "/t-PTH.drl");
+  std::filesystem::remove(dir + "/t-Edge.Cuts.gbr");
+  const ToolRun r = run("run " + dir + " -o " + dir +
+                        "/out --tool-width 0.1 --passes 6 --clearing-tool 0.4 --allow-narrow-gaps");
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  const nlohmann::json j = nlohmann::json::parse(
+      std::ifstream(dir + "/out/" + std::to_string(getpid()) + "-clearing-run.json"));
+  const nlohmann::json& c = j["simulated_isolation_check"];
+  EXPECT_EQ(c["copper_hits"], 0) << c.dump();
+  ASSERT_TRUE(c.contains("clearing_tool_min_clearance_um")) << c.dump();
+  EXPECT_GT(c["clearing_tool_min_clearance_um"].get<double>(), 83.0 - 10.0) << c.dump();
+  EXPECT_LT(c["clearing_tool_min_clearance_um"].get<double>(), 83.0 + 10.0) << c.dump();
+  EXPECT_GT(c["min_clearance_um"].get<double>(), 0.0) << c.dump();
+}
+
 // The help of `points` and `info` names the PCB inputs both read.
 TEST(BoardCli, PointsAndInfoHelpNameThePcbInputs) {
   for (const char* cmd : {"points", "info"}) {

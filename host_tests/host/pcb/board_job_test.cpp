@@ -425,13 +425,17 @@ TEST(BoardJob, AMeasuredPlacementTurnsAndShiftsEveryCoordinate) {
   ASSERT_EQ(nominal.plan.steps.size(), placed.plan.steps.size());
   for (size_t i = 0; i < nominal.plan.steps.size(); ++i) {
     const PlanStep& n = nominal.plan.steps[i];
-    if (n.kind != PlanStep::kRapid) continue;
+    if (n.kind != PlanStep::kRapid || i + 1 == nominal.plan.steps.size()) continue;
     const Point2 want =
         o.alignment.placement.apply(Point2(n.to.x_um * 1e-3, n.to.y_um * 1e-3)) * 1000;
     EXPECT_NEAR(placed.plan.steps[i].to.x_um, want.x(), 0.5);
     EXPECT_NEAR(placed.plan.steps[i].to.y_um, want.y(), 0.5);
   }
   EXPECT_TRUE(check_planned_isolation(placed, o).ok());
+  // The job still ends at the machine's zero.
+  EXPECT_EQ(placed.plan.steps.back().kind, PlanStep::kRapid);
+  EXPECT_EQ(placed.plan.steps.back().to.x_um, 0);
+  EXPECT_EQ(placed.plan.steps.back().to.y_um, 0);
   // The holes where the pins stand are the same: the placement is of this setup only.
   EXPECT_LT((nominal.alignment_holes_mm[0] - placed.alignment_holes_mm[0]).norm(), 1e-9);
 }
