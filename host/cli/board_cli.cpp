@@ -7,13 +7,14 @@
 
 #include <algorithm>   // std::sort
 #include <chrono>      // steady_clock
-#include <cmath>       // std::lround
+#include <cmath>       // std::lround, M_PI
 #include <ctime>       // std::clock
 #include <filesystem>  // directories
 #include <fstream>     // std::ofstream
 #include <iomanip>     // std::setprecision
 #include <iostream>    // std::cout, std::cerr
 #include <limits>      // std::numeric_limits
+#include <sstream>     // std::istringstream
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
@@ -234,6 +235,28 @@ pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, co
   o.isolation.overlap = a.overlap;
   o.isolation.clearance_mm = a.clearance_mm;
   o.isolation.mill_all = a.mill_all;
+  o.isolation.clearing_tool_width_mm = a.clearing_tool_mm;
+  o.isolation.narrow_passes = a.narrow_passes;
+  if (!a.align_holes.empty()) {
+    o.alignment.enabled = true;
+    o.alignment.hole_diameter_mm = a.align_diameter_mm;
+    o.alignment.hole_depth_mm = a.align_depth_mm;
+    if (a.align_holes != "auto") {
+      std::istringstream in(a.align_holes);
+      for (std::string xy; std::getline(in, xy, ';');) {
+        double x = 0, y = 0;
+        char comma = 0, extra = 0;
+        std::istringstream one(xy);
+        if (!(one >> x >> comma >> y) || comma != ',' || (one >> extra))
+          throw CommandFailure(kExitUsage, "--align-holes: '" + xy +
+                                               "' is not X,Y (mm, file frame); holes are "
+                                               "separated by ';', or say auto");
+        o.alignment.holes_file_mm.emplace_back(x, y);
+      }
+    }
+  } else if (!a.align_measured_mm.empty()) {
+    throw CommandFailure(kExitUsage, "--align-measured needs the job's --align-holes");
+  }
   o.isolation_depth_mm = a.depth_mm;
   o.drill_depth_mm = a.drill_depth_mm;
   o.drill_start_mm = a.drill_start_mm;
@@ -256,7 +279,10 @@ pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, co
   return o;
 }
 
-pcb::BoardJob plan(const BoardFiles& b, const pcb::BoardOptions& o) {
+// measured_mm: X1 Y1 X2 Y2 of the alignment holes after the flip; the job is planned once
+// without, for where they should be, then turned and shifted onto them.
+pcb::BoardJob plan(const BoardFiles& b, const pcb::BoardOptions& o,
+                   const std::vector<double>& measured_mm = {}) {
   PcbLayer drill;  // several drill files (plated and not) make one drill layer
   pcb::BoardLayers l;
   try {
@@ -265,6 +291,16 @@ pcb::BoardJob plan(const BoardFiles& b, const pcb::BoardOptions& o) {
     throw CommandFailure(kExitUsage, e.what());
   }
   try {
+    if (measured_mm.size() == 4) {
+      const pcb::BoardJob nominal = pcb::plan_board(l, o);
+      const Point2 expected[2] = {nominal.alignment_holes_mm.at(0),
+                                  nominal.alignment_holes_mm.at(1)};
+      const Point2 measured[2] = {Point2(measured_mm[0], measured_mm[1]),
+                                  Point2(measured_mm[2], measured_mm[3])};
+      pcb::BoardOptions aligned = o;
+      aligned.alignment.placement = pcb::measured_alignment(expected, measured);
+      return pcb::plan_board(l, aligned);
+    }
     return pcb::plan_board(l, o);
   } catch (const PlanError& e) {
     throw CommandFailure(kExitJobFailed, e.what());
@@ -322,6 +358,22 @@ WireMeasure measure_wire(const pcb::BoardJob& job, double tol_mm) {
   // Clipper's vertices (what a G-code CAM writes from the same polygons).
   m.g1_vertex_bytes = job.report.isolation_vertices * g1(Point2(123.456, 78.901)).size();
   return m;
+}
+
+// Bytes of the job's frames as sent (set-up frames left out), tool by tool in job order.
+std::vector<size_t> bytes_per_tool(const pcb::BoardJob& job) {
+  std::vector<size_t> tool_of_step(job.plan.steps.size(), 0);
+  size_t tool = 0;
+  for (size_t i = 0; i < job.plan.steps.size(); ++i) {
+    if (job.plan.steps[i].kind == PlanStep::kPause) ++tool;
+    tool_of_step[i] = tool;
+  }
+  std::vector<size_t> bytes(std::max<size_t>(job.tools.size(), tool + 1), 0);
+  EncodeOptions eo;
+  eo.title.clear();
+  for (const QueuedCommand& c : encode_job(job.plan, eo))
+    if (c.step >= 0) bytes[tool_of_step[static_cast<size_t>(c.step)]] += frame_bytes(c);
+  return bytes;
 }
 
 double peak_memory_mb() {
@@ -432,7 +484,7 @@ void run_board(const BoardCommand& a) {
   md.work_w_mm = a.work_mm[0];
   md.work_h_mm = a.work_mm[1];
   const pcb::BoardOptions o = board_options(a.board, md, b);
-  const pcb::BoardJob job = plan(b, o);
+  const pcb::BoardJob job = plan(b, o, a.board.align_measured_mm);
   for (const std::string& n : job.report.notes)
     std::cerr << "engraver: note: " << printable(n) << "\n";
   const double plan_cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
@@ -454,6 +506,28 @@ void run_board(const BoardCommand& a) {
   j["isolation_g1_bytes_same_tolerance"] = w.g1_bytes;
   j["isolation_g1_bytes_every_vertex"] = w.g1_vertex_bytes;
   j["chord_tolerance_mm"] = a.tol_mm;
+  if (!job.alignment_holes_mm.empty()) {
+    // Where the pins stand (machine frame), hole 1 first: what the operator measures.
+    nlohmann::json holes = nlohmann::json::array();
+    for (const Point2& h : job.alignment_holes_mm) holes.push_back({h.x(), h.y()});
+    j["alignment"] = {
+        {"holes_mm", holes},
+        {"flip_axis_machine_x_mm", job.alignment_holes_mm.front().x()},
+        {"flip_axis_file_x_mm", job.flip_axis_file_x_mm},
+        {"placement",
+         {{"rotation_deg", job.frame.placement.rotation_rad * 180 / M_PI},
+          {"shift_mm", {job.frame.placement.shift_mm.x(), job.frame.placement.shift_mm.y()}}}}};
+  }
+  const std::vector<size_t> tool_bytes = bytes_per_tool(job);
+  j["bytes_per_tool"] = nlohmann::json::array();
+  std::string tool_bytes_text;
+  for (size_t t = 0; t < job.tools.size(); ++t) {
+    j["bytes_per_tool"].push_back({{"tool", t + 1},
+                                   {"name", job.tools[t].label},
+                                   {"diameter_mm", job.tools[t].diameter_mm},
+                                   {"bytes", tool_bytes[t]}});
+    tool_bytes_text += fmt::format("{}{} {} B", t ? ", " : "", job.tools[t].label, tool_bytes[t]);
+  }
   bool check_ok = true;
   pcb::IsolationCheck c;
   if (!a.no_check && !job.copper_machine_nm.empty()) {
@@ -492,6 +566,7 @@ void run_board(const BoardCommand& a) {
         "  drilling: {} holes ({} on copper), {} slots, {} sizes; travel {:.1f} mm (file order "
         "{:.1f} mm)\n"
         "  cut-out: {:.1f} mm per pass, {} tabs; {} tool changes\n"
+        "  bytes per tool: {}\n"
         "  files -> plan: {:.3f} s CPU, peak {:.1f} MB\n",
         b.name, j["side"].get<std::string>(), r.first_tool, r.islands, r.isolation_contours,
         r.isolation_length_mm, r.fit.lines, r.fit.arcs, r.fit.cubics, r.narrow_gaps.size(),
@@ -501,9 +576,12 @@ void run_board(const BoardCommand& a) {
                        : 0.0,
         w.g1_vertex_bytes, r.holes, r.holes_on_copper, r.slots, r.drill_tools,
         r.drill_travel_ordered_mm, r.drill_travel_file_order_mm, r.cutout_length_mm, r.tabs,
-        r.tool_changes, plan_cpu_s, plan_peak_mb);
+        r.tool_changes, tool_bytes_text, plan_cpu_s, plan_peak_mb);
     for (const pcb::NarrowGap& g : r.narrow_gaps)
       std::cout << "  " << pcb::describe_gap(g, o.isolation) << "\n";
+    for (size_t i = 0; i < job.alignment_holes_mm.size(); ++i)
+      std::cout << fmt::format("  alignment hole {} at ({:.3f}, {:.3f}) mm\n", i + 1,
+                               job.alignment_holes_mm[i].x(), job.alignment_holes_mm[i].y());
     if (!a.no_plot) std::cout << "  plot: " << base << ".board.svg, .png; ";
     std::cout << "report: " << base << ".board.json\n";
   }
@@ -591,6 +669,16 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
       ->check(CLI::Range(0.0, 0.1))
       ->capture_default_str();
   cmd->add_flag("--mill-all", a->mill_all, "clear all copper-free area")->group(g);
+  cmd->add_option("--clearing-tool", a->clearing_tool_mm,
+                  "isolation: a wider tool for the outer part of the --passes width, mm "
+                  "(mounted after the isolation tool; 0: none)")
+      ->group(g)
+      ->check(CLI::Range(0.0, 10.0));
+  cmd->add_option("--narrow-passes", a->narrow_passes,
+                  "with --clearing-tool: passes of the isolation tool next to the copper")
+      ->group(g)
+      ->check(CLI::Range(1, 50))
+      ->capture_default_str();
   cmd->add_option("--depth", a->depth_mm, "isolation depth, mm")->group(g)->capture_default_str();
   cmd->add_option("--drill-depth", a->drill_depth_mm, "drill plunge depth, mm")
       ->group(g)
@@ -626,6 +714,25 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
       ->capture_default_str();
   cmd->add_option("--side", a->side, "top or bottom (mirrored); default: the copper given")
       ->group(g);
+  cmd->add_option("--align-holes", a->align_holes,
+                  "double-sided: alignment holes for pins, 'auto' (on the flip axis below and "
+                  "above the board) or X,Y[;X,Y...] mm in the files' frame, each with its mirror; "
+                  "drilled with the top side, which leaves the cut-out to the bottom")
+      ->group(g);
+  cmd->add_option("--align-diameter", a->align_diameter_mm, "alignment hole (pin) diameter, mm")
+      ->group(g)
+      ->check(CLI::Range(0.1, 10.0))
+      ->capture_default_str();
+  cmd->add_option("--align-depth", a->align_depth_mm,
+                  "alignment hole depth, through the blank into the spoil board, mm")
+      ->group(g)
+      ->check(CLI::Range(0.1, 20.0))
+      ->capture_default_str();
+  cmd->add_option("--align-measured", a->align_measured_mm,
+                  "double-sided, second setup: X1 Y1 X2 Y2, machine mm where alignment holes 1 "
+                  "and 2 were found after the flip; the job is turned and shifted onto them")
+      ->group(g)
+      ->expected(4);
   cmd->add_flag("--no-spindle", a->no_spindle, "no spindle on/off commands")->group(g);
   cmd->add_flag("--allow-narrow-gaps", a->allow_narrow_gaps,
                 "plan even where copper is closer than the tool width (reported)")
@@ -658,7 +765,7 @@ JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const Ma
   const BoardFiles b = read_input(input, args.side);
   print_notes(b);
   const pcb::BoardOptions o = board_options(args, d, b);
-  g_last_job = plan(b, o);
+  g_last_job = plan(b, o, args.align_measured_mm);
   g_last_title = b.name;
   g_last_check_tol_mm = isolation_check_tolerance_mm(o);
   g_last_isolation_z_mm = -o.isolation_depth_mm;
@@ -705,8 +812,27 @@ std::optional<SimulatedIsolation> check_simulated_isolation(
   s.tolerance_mm = g_last_check_tol_mm;
   s.paths = cut_paths_mm.size();
   s.samples = samples;
+  // With a clearing tool both tools cut at the isolation depth: a simulated path is the tool's
+  // whose planned paths are nearer its middle sample, and is swept by that tool's radius.
+  std::vector<std::vector<Point2>> narrow_cuts, wide_cuts;
+  if (job.clearing_paths_mm.empty()) {
+    narrow_cuts = cut_paths_mm;
+  } else {
+    const sim::NearestSegment narrow(job.isolation_paths_mm, 0.25);
+    const sim::NearestSegment wide(job.clearing_paths_mm, 0.25);
+    for (const std::vector<Point2>& path : cut_paths_mm) {
+      if (path.empty()) continue;
+      const Point2& m = path[path.size() / 2];
+      (narrow.distance(m) <= wide.distance(m) ? narrow_cuts : wide_cuts).push_back(path);
+    }
+  }
   s.check =
-      pcb::check_isolation(job.copper_machine_nm, cut_paths_mm, job.tool_radius_mm, s.tolerance_mm);
+      pcb::check_isolation(job.copper_machine_nm, narrow_cuts, job.tool_radius_mm, s.tolerance_mm);
+  if (!wide_cuts.empty()) {
+    const pcb::IsolationCheck w = pcb::check_isolation(job.copper_machine_nm, wide_cuts,
+                                                       job.clearing_tool_radius_mm, s.tolerance_mm);
+    s.check.hits.insert(s.check.hits.end(), w.hits.begin(), w.hits.end());
+  }
   // Clearance: each sample's distance to the copper's edges less the tool radius (a sample
   // inside copper is a hit of the check above).
   std::vector<std::vector<Point2>> edges;
@@ -717,18 +843,25 @@ std::optional<SimulatedIsolation> check_simulated_isolation(
     edges.push_back(std::move(line));
   }
   const sim::NearestSegment copper(edges, 0.25);
-  auto clearance_um = [&](const Point2& p) {
-    return (copper.distance(p) - job.tool_radius_mm) * 1000.0;
+  auto clearance_um = [&](const Point2& p, double radius_mm) {
+    return (copper.distance(p) - radius_mm) * 1000.0;
   };
   s.min_clearance_um = std::numeric_limits<double>::infinity();
-  for (const std::vector<Point2>& path : cut_paths_mm) {
+  for (const std::vector<Point2>& path : narrow_cuts) {
     for (const Point2& p : path) {
-      const double c = clearance_um(p);
+      const double c = clearance_um(p, job.tool_radius_mm);
       if (c < s.min_clearance_um) {
         s.min_clearance_um = c;
         s.min_clearance_at_mm = p;
       }
     }
+  }
+  if (!job.clearing_paths_mm.empty()) {
+    s.clearing_min_clearance_um = std::numeric_limits<double>::infinity();
+    for (const std::vector<Point2>& path : wide_cuts)
+      for (const Point2& p : path)
+        s.clearing_min_clearance_um =
+            std::min(s.clearing_min_clearance_um, clearance_um(p, job.clearing_tool_radius_mm));
   }
   s.planned_min_clearance_um = std::numeric_limits<double>::infinity();
   for (const std::vector<Point2>& path : job.isolation_paths_mm) {
@@ -737,47 +870,152 @@ std::optional<SimulatedIsolation> check_simulated_isolation(
       const int n = 1 + static_cast<int>((b - a).norm() / 0.005);
       for (int k = 0; k < n; ++k)
         s.planned_min_clearance_um =
-            std::min(s.planned_min_clearance_um, clearance_um(a + (b - a) * (double(k) / n)));
+            std::min(s.planned_min_clearance_um,
+                     clearance_um(a + (b - a) * (double(k) / n), job.tool_radius_mm));
     }
   }
   return s;
 }
 
-bool print_board_points_if_pcb(const std::string& input, double tol_mm, bool csv) {
+std::vector<Point2> board_alignment_holes_mm() {
+  return g_last_job ? g_last_job->alignment_holes_mm : std::vector<Point2>{};
+}
+
+pcb::RigidTransform board_placement() {
+  return g_last_job ? g_last_job->frame.placement : pcb::RigidTransform{};
+}
+
+std::vector<std::vector<Point2>> board_isolation_paths_mm() {
+  if (!g_last_job) return {};
+  std::vector<std::vector<Point2>> paths = g_last_job->isolation_paths_mm;
+  paths.insert(paths.end(), g_last_job->clearing_paths_mm.begin(),
+               g_last_job->clearing_paths_mm.end());
+  return paths;
+}
+
+Registration registration_error(const std::vector<std::vector<Point2>>& cut_paths_mm,
+                                const pcb::RigidTransform& blank_error,
+                                const std::vector<std::vector<Point2>>& nominal_paths_mm) {
+  Registration r;
+  if (nominal_paths_mm.empty()) return r;
+  const sim::NearestSegment nominal(nominal_paths_mm, 0.25);
+  const pcb::RigidTransform onto_board = blank_error.inverse();
+  double sum = 0;
+  for (const std::vector<Point2>& path : cut_paths_mm) {
+    for (const Point2& p : path) {
+      const double d_um = nominal.distance(onto_board.apply(p)) * 1000.0;
+      r.max_um = std::max(r.max_um, d_um);
+      sum += d_um;
+      ++r.samples;
+    }
+  }
+  r.mean_um = r.samples ? sum / static_cast<double>(r.samples) : 0;
+  return r;
+}
+
+bool print_board_points_if_pcb(const std::string& input, const BoardArgs& args, double tol_mm,
+                               bool csv) {
   if (!is_pcb_input(input)) return false;
-  BoardArgs a;
-  a.allow_narrow_gaps = true;
   MachineDefaults d;
   d.work_w_mm = d.work_h_mm = 1e6;  // points in the file frame: no work area applies
-  const BoardFiles b = read_input(input);
-  pcb::BoardOptions o = board_options(a, d, b);
+  const BoardFiles b = read_input(input, args.side);
+  print_notes(b);
+  pcb::BoardOptions o = board_options(args, d, b);
   o.travel_width_mm = o.travel_height_mm = d.work_w_mm;
-  const pcb::BoardJob job = plan(b, o);
+  const pcb::BoardJob job = plan(b, o, args.align_measured_mm);
+  for (const std::string& n : job.report.notes)
+    std::cerr << "engraver: note: " << printable(n) << "\n";
   for (const pcb::NarrowGap& g : job.report.narrow_gaps)
     std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation) << "\n";
   const int tol_um = static_cast<int>(std::lround(tol_mm * 1000));
-  // Machine frame back to the files' frame.
-  auto to_file = [&](const Point2& m) {
-    return Point2((m.x() - job.frame.offset_mm.x()) / job.frame.sx,
-                  m.y() - job.frame.offset_mm.y());
-  };
-  if (csv) std::cout << "curve,x_mm,y_mm\n";
-  std::cout << std::fixed << std::setprecision(4);
-  for (size_t i = 0; i < job.isolation_curves; ++i) {
-    const PlannedCurve& c = job.plan.curves[i];
-    const std::vector<Point2> pts = firmware_points_mm(c.spline, tol_um);
+  if (csv) std::cout << "tool,tool_name,tool_diameter_um,path,point,x_um,y_um,z_um\n";
+  std::cout << std::fixed << std::setprecision(1);
+  for (const BoardToolPath& p : board_tool_paths(job, tol_um)) {
+    const pcb::BoardTool& t = job.tools[p.tool];
     if (!csv)
-      std::cout << "# curve " << i << ": " << c.source << ": " << pts.size()
-                << " points (x_mm y_mm)\n";
-    for (const Point2& p : pts) {
-      const Point2 f = to_file(p);
+      std::cout << "# tool " << p.tool + 1 << " (" << t.label << "), path " << p.path << " at z "
+                << p.z_um << " um: " << p.points_file_mm.size() << " points (x_um y_um)\n";
+    for (size_t k = 0; k < p.points_file_mm.size(); ++k) {
+      const Point2& f = p.points_file_mm[k];
       if (csv)
-        std::cout << i << "," << f.x() << "," << f.y() << "\n";
+        std::cout << p.tool + 1 << "," << t.label << "," << t.diameter_mm * 1000 << "," << p.path
+                  << "," << k << "," << f.x() * 1000 << "," << f.y() * 1000 << "," << p.z_um
+                  << "\n";
       else
-        std::cout << f.x() << " " << f.y() << "\n";
+        std::cout << f.x() * 1000 << " " << f.y() * 1000 << "\n";
     }
   }
   return true;
+}
+
+std::vector<BoardToolPath> board_tool_paths(const pcb::BoardJob& job, int chord_tolerance_um) {
+  std::vector<BoardToolPath> out;
+  const JobPlan& plan = job.plan;
+  size_t tool = 0;
+  int32_t z_um = 0;
+  bool down = false;  // the tool below the surface: a new path starts at each change of z
+  bool open = false;  // the last path in `out` takes the next points
+  int last_curve = -1;
+  Point2 at(0, 0);
+  auto start = [&]() {
+    BoardToolPath p;
+    p.tool = tool;
+    p.path = out.size();
+    p.z_um = z_um;
+    out.push_back(p);
+    open = true;
+  };
+  auto add = [&](const Point2& machine) {
+    if (!open) start();
+    const Point2 f = job.frame.to_file(machine);
+    std::vector<Point2>& pts = out.back().points_file_mm;
+    if (pts.empty() || (pts.back() - f).norm() > 1e-9) pts.push_back(f);
+  };
+  for (const PlanStep& s : plan.steps) {
+    switch (s.kind) {
+      case PlanStep::kPause:
+        if (tool + 1 < job.tools.size()) ++tool;
+        open = false;
+        break;
+      case PlanStep::kPenDown:
+      case PlanStep::kPenUp:
+        z_um = s.z_um;
+        down = s.z_um < 0;
+        open = false;
+        last_curve = -1;
+        break;
+      case PlanStep::kRapid:
+        at = Point2(s.to.x_um * 1e-3, s.to.y_um * 1e-3);
+        open = false;
+        break;
+      case PlanStep::kDrill: {
+        const int32_t z = z_um;
+        z_um = s.z_um;
+        open = false;
+        at = Point2(s.to.x_um * 1e-3, s.to.y_um * 1e-3);
+        add(at);
+        open = false;
+        z_um = z;
+        break;
+      }
+      case PlanStep::kFeed:
+        if (!down) break;
+        if (!open) add(at);
+        at = Point2(s.to.x_um * 1e-3, s.to.y_um * 1e-3);
+        add(at);
+        break;
+      case PlanStep::kSpline:
+        if (!down || s.curve < 0 || s.curve == last_curve) break;
+        last_curve = s.curve;
+        for (const Point2& p : firmware_points_mm(plan.curves[s.curve].spline, chord_tolerance_um))
+          add(p);
+        at = Point2(s.to.x_um * 1e-3, s.to.y_um * 1e-3);
+        break;
+      default:
+        break;
+    }
+  }
+  return out;
 }
 
 }  // namespace host::cli

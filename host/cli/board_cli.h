@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>  // CLI::App
 
+#include <limits>    // std::numeric_limits
 #include <memory>    // std::shared_ptr
 #include <optional>  // std::optional
 #include <string>    // std::string
@@ -40,7 +41,14 @@ struct BoardArgs {
   double tab_height_mm = 0.5;
   bool no_spindle = false;
   bool allow_narrow_gaps = false;
-  std::string side;  // "top", "bottom" or empty (the side whose copper is given)
+  std::string side;             // "top", "bottom" or empty (the side whose copper is given)
+  double clearing_tool_mm = 0;  // > 0: a wider tool for the outer passes
+  int narrow_passes = 1;        // with a clearing tool: passes of the isolation tool
+  // Double-sided: "auto" or "X,Y[;X,Y...]" (file frame, mm); empty: no alignment holes.
+  std::string align_holes;
+  double align_diameter_mm = 3.0;
+  double align_depth_mm = 3.0;
+  std::vector<double> align_measured_mm;  // X1 Y1 X2 Y2: holes 1 and 2 measured after the flip
 };
 
 // Adds the board options to a command, in their own group (kBoardOptionsGroup).
@@ -86,6 +94,8 @@ struct SimulatedIsolation {
   Point2 min_clearance_at_mm{0, 0};
   double planned_min_clearance_um = 0;  // the same for the planned paths (every 5 um)
   size_t paths = 0, samples = 0;
+  // With a clearing tool: its own edge's least clearance (NaN without one).
+  double clearing_min_clearance_um = std::numeric_limits<double>::quiet_NaN();
 };
 // The isolation depth (machine Z, mm) when the last plan was a board with isolation.
 std::optional<double> board_isolation_z_mm();
@@ -93,9 +103,41 @@ std::optional<double> board_isolation_z_mm();
 std::optional<SimulatedIsolation> check_simulated_isolation(
     const std::vector<std::vector<Point2>>& cut_paths_mm, size_t samples);
 
-// `engraver points` on PCB input: the tool-centre points of the isolation paths, in the
-// files' frame. False when the input is not PCB files.
-bool print_board_points_if_pcb(const std::string& input, double tol_mm, bool csv);
+// Double-sided boards after `plan_pcb_input`: the job's alignment holes (machine frame before
+// the measured placement; empty without), its measured placement, and its isolation paths
+// (the clearing tool's too).
+std::vector<Point2> board_alignment_holes_mm();
+pcb::RigidTransform board_placement();
+std::vector<std::vector<Point2>> board_isolation_paths_mm();
+
+// How far the simulated cuts (machine frame) land on the board from where they belong: each
+// sample taken back through the blank's placement error onto the board as planned without
+// it, against the nominal job's isolation paths (max and mean, um).
+struct Registration {
+  double max_um = 0, mean_um = 0;
+  size_t samples = 0;
+};
+Registration registration_error(const std::vector<std::vector<Point2>>& cut_paths_mm,
+                                const pcb::RigidTransform& blank_error,
+                                const std::vector<std::vector<Point2>>& nominal_paths_mm);
+
+// `engraver points` on PCB input, planned with the board options: every tool-centre path of
+// the job, tool by tool (the controller's points at tol_mm for curves), in the files' frame.
+// False when the input is not PCB files.
+bool print_board_points_if_pcb(const std::string& input, const BoardArgs& args, double tol_mm,
+                               bool csv);
+
+// One run of tool-centre points traced at one depth with one tool.
+struct BoardToolPath {
+  size_t tool = 0;                     // index into BoardJob::tools
+  size_t path = 0;                     // index in the job's order
+  int32_t z_um = 0;                    // machine Z (below the surface: negative)
+  std::vector<Point2> points_file_mm;  // the files' frame
+};
+// The job's paths: isolation contours, drill holes (one point each, at the drill's depth),
+// slots and cut-out passes (a new path at each change of depth, as over a tab), with the
+// controller's points at the chord tolerance for curves.
+std::vector<BoardToolPath> board_tool_paths(const pcb::BoardJob& job, int chord_tolerance_um);
 
 }  // namespace host::cli
 

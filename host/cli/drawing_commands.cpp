@@ -31,6 +31,7 @@ struct PointsArgs {
   std::string file;
   double tol_mm = 0.005;
   bool csv = false;
+  BoardArgs board;  // PCB input: the job `board` plans
 };
 
 nlohmann::json point_json(const Point2& p) {
@@ -184,6 +185,17 @@ void run_info(const InfoArgs& a) {
   }
 }
 
+// The board options on a drawing are refused rather than ignored.
+void refuse_board_options_for_drawings(const CLI::App& cmd, const std::string& file) {
+  if (is_pcb_input(file)) return;
+  for (const CLI::Option* o : cmd.get_options()) {
+    if (o->count() > 0 && o->get_group() == kBoardOptionsGroup)
+      throw CLI::ValidationError(o->get_name() +
+                                 " is for PCB files (Gerber, Excellon, a board folder), not "
+                                 "drawings");
+  }
+}
+
 void run_points(const PointsArgs& a) {
   const double tol_um = a.tol_mm * 1000.0;
   if (!(tol_um >= 1.0 - 1e-9 && tol_um <= 10000.0 + 1e-9)) {
@@ -192,7 +204,7 @@ void run_points(const PointsArgs& a) {
                          "steps with a whole-micrometre chord tolerance)");
   }
   const int tol = static_cast<int>(std::llround(tol_um));
-  if (print_board_points_if_pcb(a.file, a.tol_mm, a.csv)) return;  // isolation tool centres
+  if (print_board_points_if_pcb(a.file, a.board, a.tol_mm, a.csv)) return;  // tool centres
   const Drawing d = import_drawing(a.file);
   for (const std::string& w : d.warnings) std::cerr << "warning: " << printable(w) << "\n";
   std::cout << std::fixed << std::setprecision(3);
@@ -227,13 +239,17 @@ void add_drawing_commands(CLI::App& app) {
   CLI::App* info = app.add_subcommand(
       "info",
       "Show what a drawing holds: entities by type, curves (degree, rational, knots, "
-      "control points), extents, units and the problems found");
-  info->add_option("FILE", info_args->file, "drawing (DXF, G-code)")->required();
+      "control points), extents, units and the problems found; of a Gerber or Excellon file, "
+      "its layer, apertures or tools, polygons and holes");
+  info->add_option("FILE", info_args->file,
+                   "drawing (DXF, G-code) or PCB file (Gerber, Excellon, a board folder)")
+      ->required();
   info->add_flag("--json", info_args->json, "print JSON instead of text");
   info->footer(
       "Examples:\n"
       "  engraver info samples/engraver-word.dxf\n"
       "  engraver info --json board_back.ngc > board_back.json\n"
+      "  engraver info board-F.Cu.gbr\n"
       "Exit codes: 0 shown; 2 bad option, or the file cannot be read or imported (the message "
       "names the file and the place in it).");
   info->callback([info_args]() { run_info(*info_args); });
@@ -242,18 +258,29 @@ void add_drawing_commands(CLI::App& app) {
   CLI::App* points =
       app.add_subcommand("points",
                          "Print the points the firmware's point generator produces for each curve "
-                         "(drawing frame, mm)");
-  points->add_option("FILE", points_args->file, "drawing (DXF, G-code)")->required();
+                         "(drawing frame, mm); for PCB files, every tool-centre path of the board "
+                         "job, tool by tool (files' frame, um)");
+  points
+      ->add_option("FILE", points_args->file,
+                   "drawing (DXF, G-code) or PCB files (Gerber, Excellon, a board folder)")
+      ->required();
   points->add_option("--tol", points_args->tol_mm, "chord tolerance in mm (0.001 .. 10)")
       ->capture_default_str();
-  points->add_flag("--csv", points_args->csv, "CSV: header, then curve,x_mm,y_mm rows");
+  points->add_flag("--csv", points_args->csv,
+                   "CSV: header, then curve,x_mm,y_mm rows (PCB files: tool,tool_name,"
+                   "tool_diameter_um,path,point,x_um,y_um,z_um)");
+  add_board_options(points, &points_args->board);
   points->footer(
       "Examples:\n"
       "  engraver points samples/engraver-word.dxf --tol 0.005 --csv > points.csv\n"
       "  engraver points board_outline.ngc --tol 0.01\n"
+      "  engraver points board/ --side bottom --tool-width 0.1 --passes 3 --csv > paths.csv\n"
       "Exit codes: 0 printed; 1 a curve the firmware cannot hold; 2 bad option, or the file "
       "cannot be read or imported.");
-  points->callback([points_args]() { run_points(*points_args); });
+  points->callback([points, points_args]() {
+    refuse_board_options_for_drawings(*points, points_args->file);
+    run_points(*points_args);
+  });
 }
 
 const CommandRegistrar registrar("drawing", add_drawing_commands);

@@ -10,6 +10,7 @@
 
 #include <atomic>      // std::atomic
 #include <chrono>      // steady_clock
+#include <cmath>       // std::round, M_PI
 #include <filesystem>  // create_directories
 #include <fstream>     // std::ofstream
 #include <iostream>    // std::cerr
@@ -529,7 +530,47 @@ struct RunArgs {
   PlanArgs plan;
   std::string outdir = "out";
   bool realtime = false;
+  std::vector<double> blank_error;  // DX DY DEG: the flipped blank placed off by this much
+  bool pins_only = false;           // with blank_error: no measured alignment
 };
+
+// A double-sided board's second setup, simulated: the blank on the pins off by an error, the
+// simulated operator measuring the alignment holes (unless pins only), the job aligned to them.
+struct FlipSimulation {
+  pcb::RigidTransform error;      // nominal machine frame -> where the board really lies
+  pcb::RigidTransform alignment;  // the job's measured placement (identity: pins only)
+  std::vector<std::vector<Point2>> nominal_isolation_mm;  // the job as planned without error
+  std::vector<double> measured_mm;
+};
+
+// Plans the nominal job, places the blank off by the error and, unless pins only, re-plans the
+// job onto the holes as the simulated operator measures them (to the micrometre).
+JobPlan plan_flip(const RunArgs& a, FlipSimulation* f) {
+  Drawing drawing;
+  JobPlan plan = load_plan(a.plan, &drawing);
+  const std::vector<Point2> holes = board_alignment_holes_mm();
+  if (holes.size() < 2)
+    throw CommandFailure(kExitUsage,
+                         "--blank-error simulates a double-sided board's second setup: give the "
+                         "board job its --align-holes");
+  if (!a.plan.board.align_measured_mm.empty())
+    throw CommandFailure(kExitUsage,
+                         "--blank-error measures the holes itself: leave out --align-measured");
+  f->nominal_isolation_mm = board_isolation_paths_mm();
+  f->error = pcb::placement_error((holes[0] + holes[1]) / 2, a.blank_error[0], a.blank_error[1],
+                                  a.blank_error[2]);
+  if (a.pins_only) return plan;
+  PlanArgs aligned = a.plan;
+  for (size_t i = 0; i < 2; ++i) {
+    const Point2 m = f->error.apply(holes[i]);
+    for (double v : {m.x(), m.y()})
+      aligned.board.align_measured_mm.push_back(std::round(v * 1000) / 1000);
+  }
+  f->measured_mm = aligned.board.align_measured_mm;
+  plan = load_plan(aligned, &drawing);
+  f->alignment = board_placement();
+  return plan;
+}
 
 // The points the firmware core generates for the job's curves (the same core, on the host),
 // and the bytes the same path would take as G-code G1 lines at the same tolerance (for
@@ -562,7 +603,11 @@ double plot_step_mm(const JobPlan& plan) {
 
 void run_run(const RunArgs& a) {
   JobPlan plan;
-  {
+  std::optional<FlipSimulation> flip;
+  if (!a.blank_error.empty()) {
+    flip.emplace();
+    plan = plan_flip(a, &*flip);
+  } else {
     Drawing drawing;  // only the plan is needed from here on
     plan = load_plan(a.plan, &drawing);
   }
@@ -612,8 +657,20 @@ void run_run(const RunArgs& a) {
   const double feed = a.plan.feed_mm_s;
   const double ideal_s = plan.cut_length_mm / feed;
   std::optional<SimulatedIsolation> iso;
-  if (isolation_cuts)
+  std::optional<Registration> registration;
+  if (isolation_cuts && flip) {
+    // Where the cuts land on the board: back through the placement error; then into the
+    // frame the job was planned in, for the check against its copper.
+    registration =
+        registration_error(isolation_cuts->paths(), flip->error, flip->nominal_isolation_mm);
+    const pcb::RigidTransform back = flip->error.inverse();
+    std::vector<std::vector<Point2>> on_copper = isolation_cuts->paths();
+    for (std::vector<Point2>& path : on_copper)
+      for (Point2& p : path) p = flip->alignment.apply(back.apply(p));
+    iso = check_simulated_isolation(on_copper, isolation_cuts->samples());
+  } else if (isolation_cuts) {
     iso = check_simulated_isolation(isolation_cuts->paths(), isolation_cuts->samples());
+  }
   nlohmann::json j;
   j["drawing"] = a.plan.file;
   j["outcome"] = outcome_name(r.outcome);
@@ -651,6 +708,24 @@ void run_run(const RunArgs& a) {
         {"min_clearance_um", iso->min_clearance_um},
         {"planned_min_clearance_um", iso->planned_min_clearance_um},
         {"min_clearance_at_mm", {iso->min_clearance_at_mm.x(), iso->min_clearance_at_mm.y()}}};
+    if (!std::isnan(iso->clearing_min_clearance_um))
+      j["simulated_isolation_check"]["clearing_tool_min_clearance_um"] =
+          iso->clearing_min_clearance_um;
+  }
+  if (flip) {
+    j["flip"] = {{"blank_error",
+                  {{"dx_mm", a.blank_error[0]},
+                   {"dy_mm", a.blank_error[1]},
+                   {"rotation_deg", a.blank_error[2]}}},
+                 {"measured_holes_mm", flip->measured_mm},
+                 {"aligned", !a.pins_only},
+                 {"alignment",
+                  {{"rotation_deg", flip->alignment.rotation_rad * 180 / M_PI},
+                   {"shift_mm", {flip->alignment.shift_mm.x(), flip->alignment.shift_mm.y()}}}}};
+    if (registration)
+      j["registration_error"] = {{"max_um", registration->max_um},
+                                 {"mean_um", registration->mean_um},
+                                 {"samples", registration->samples}};
   }
   j["plot_tool_path"] = {{"samples_kept", r.trace.size()},
                          {"samples_simulated", r.trace_samples},
@@ -701,6 +776,14 @@ void run_run(const RunArgs& a) {
         iso->paths, iso->samples, iso->check.hits.size(), iso->tolerance_mm,
         iso->check.unseparated.size(), iso->min_clearance_um, iso->min_clearance_at_mm.x(),
         iso->min_clearance_at_mm.y(), iso->planned_min_clearance_um);
+  }
+  if (registration) {
+    std::cout << fmt::format(
+        "  double-sided: blank placed off by ({:.3f}, {:.3f}) mm and {:.2f} deg; {}; the cuts "
+        "land {:.1f} um (max, mean {:.1f} um) from where they belong on the board\n",
+        a.blank_error[0], a.blank_error[1], a.blank_error[2],
+        a.pins_only ? "pins only, no measured alignment" : "the job aligned to the measured holes",
+        registration->max_um, registration->mean_um);
   }
   if (r.outcome != JobOutcome::kCompleted) {
     throw CommandFailure(exit_code(r.outcome),
@@ -784,6 +867,14 @@ void add_machine_commands(CLI::App& app) {
   run->add_option("-o,--outdir", run_args->outdir, "where NAME.svg/.png/.json go")
       ->capture_default_str();
   run->add_flag("--realtime", run_args->realtime, "simulate in real time");
+  run->add_option("--blank-error", run_args->blank_error,
+                  "double-sided, second setup: DX DY DEG, the simulated machine's flipped blank "
+                  "sits this far off on its pins (mm, mm, degrees about the holes' middle); the "
+                  "simulated operator measures the alignment holes and the job is aligned to "
+                  "them; the report gives the registration error")
+      ->expected(3);
+  run->add_flag("--pins-only", run_args->pins_only,
+                "with --blank-error: no measured alignment (the pins alone)");
   run->footer(
       "Example: engraver run samples/engraver-word.dxf -o out\n"
       "Progress on stderr (a bar on a terminal, a line every 5 s otherwise).\n"

@@ -8,14 +8,30 @@
 
 namespace host::pcb {
 
+namespace {
+
+// The clearing tool's paths swept by its own radius: its copper hits join the check's (the
+// islands are separated by the isolation tool's passes, which go round every one).
+void add_clearing_hits(const BoardJob& job, const std::vector<std::vector<Point2>>& paths,
+                       const BoardOptions& o, IsolationCheck* c) {
+  if (paths.empty()) return;
+  const IsolationCheck w = check_isolation(
+      job.copper_machine_nm, paths, job.clearing_tool_radius_mm, isolation_check_tolerance_mm(o));
+  c->hits.insert(c->hits.end(), w.hits.begin(), w.hits.end());
+}
+
+}  // namespace
+
 double isolation_check_tolerance_mm(const BoardOptions& o) {
   return o.fit_tolerance_mm + 0.001;
 }
 
 IsolationCheck check_planned_isolation(const BoardJob& job, const BoardOptions& o) {
   if (job.copper_machine_nm.empty()) return IsolationCheck{};
-  return check_isolation(job.copper_machine_nm, job.isolation_paths_mm, job.tool_radius_mm,
-                         isolation_check_tolerance_mm(o));
+  IsolationCheck c = check_isolation(job.copper_machine_nm, job.isolation_paths_mm,
+                                     job.tool_radius_mm, isolation_check_tolerance_mm(o));
+  add_clearing_hits(job, job.clearing_paths_mm, o, &c);
+  return c;
 }
 
 IsolationCheck check_controller_isolation(const BoardJob& job, const BoardOptions& o,
@@ -25,8 +41,13 @@ IsolationCheck check_controller_isolation(const BoardJob& job, const BoardOption
   paths.reserve(job.isolation_curves);
   for (size_t i = 0; i < job.isolation_curves; ++i)
     paths.push_back(firmware_points_mm(job.plan.curves[i].spline, chord_tolerance_um));
-  return check_isolation(job.copper_machine_nm, paths, job.tool_radius_mm,
-                         isolation_check_tolerance_mm(o));
+  IsolationCheck c = check_isolation(job.copper_machine_nm, paths, job.tool_radius_mm,
+                                     isolation_check_tolerance_mm(o));
+  std::vector<std::vector<Point2>> clearing;
+  for (size_t i = job.isolation_curves; i < job.isolation_curves + job.clearing_curves; ++i)
+    clearing.push_back(firmware_points_mm(job.plan.curves[i].spline, chord_tolerance_um));
+  add_clearing_hits(job, clearing, o, &c);
+  return c;
 }
 
 void refuse_copper_hits(const IsolationCheck& c, const std::string& paths) {

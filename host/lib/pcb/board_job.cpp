@@ -35,11 +35,13 @@ struct Trace {
   std::vector<BSpline> curves;
   std::string source;
   std::vector<bool> lifted;  // cut-out: per curve, true over a tab
+  bool clearing = false;     // isolation cut with the clearing tool
 };
 
 struct DrillTool {
   std::string label;
   double diameter_mm = 0;
+  double depth_mm = 0;
   std::vector<Point2> holes;                     // mirrored file frame
   std::vector<std::pair<Point2, Point2>> slots;  // mirrored file frame
 };
@@ -64,7 +66,7 @@ double polyline_length(const std::vector<Point2>& p, bool closed) {
 class StepWriter {
  public:
   StepWriter(JobPlan* plan, const BoardOptions& o, const Point2& offset)
-      : plan_(plan), o_(o), offset_(offset) {}
+      : plan_(plan), o_(o), offset_(offset), place_(o.alignment.placement) {}
 
   void pen_up(double z_mm) {
     if (!plan_->steps.empty() && plan_->steps.back().kind == PlanStep::kPenUp &&
@@ -89,9 +91,19 @@ class StepWriter {
     plan_->rapid_length_mm += (machine - at_).norm();
     PlanStep s;
     s.kind = PlanStep::kRapid;
-    s.to = um(machine);
+    s.to = um(place_.apply(machine));
     plan_->steps.push_back(s);
     at_ = machine;
+  }
+  // Back to the machine's zero (not turned and shifted with the job).
+  void rapid_home() {
+    const Point2 home = place_.inverse().apply(Point2(0, 0));
+    plan_->rapid_length_mm += (home - at_).norm();
+    PlanStep s;
+    s.kind = PlanStep::kRapid;
+    s.to = um(Point2(0, 0));
+    plan_->steps.push_back(s);
+    at_ = home;
   }
   void spindle(bool on) {
     if (!o_.spindle || on == spindle_on_) return;
@@ -109,7 +121,9 @@ class StepWriter {
   }
   // A tool change: stop the spindle, wait for the operator, start it again. The first tool
   // of the job is mounted before it starts (no pause).
-  void tool(const std::string& label, BoardReport* report) {
+  void tool(const std::string& label, double diameter_mm, BoardJob* job) {
+    BoardReport* report = &job->report;
+    job->tools.push_back(BoardTool{label, diameter_mm});
     if (tools_ == 0) {
       report->first_tool = label;
     } else {
@@ -129,20 +143,20 @@ class StepWriter {
   int reference(const Point2& a, const Point2& b, const std::string& source) {
     PlannedCurve pc;
     pc.spline.degree = 1;
-    pc.spline.control = {a, b};
+    pc.spline.control = {place_.apply(a), place_.apply(b)};
     pc.spline.knots = {0.0, 0.0, 1.0, 1.0};
     pc.drawing_index = static_cast<int>(plan_->curves.size());
     pc.source = source;
     plan_->curves.push_back(pc);
     return pc.drawing_index;
   }
-  void drill(const Point2& machine) {
+  void drill(const Point2& machine, double depth_mm) {
     PlanStep s;
     s.curve = reference(machine, machine, "hole");
     s.kind = PlanStep::kDrill;
-    s.to = um(machine);
+    s.to = um(place_.apply(machine));
     s.z_start_um = um(o_.drill_start_mm);
-    s.z_um = um(-o_.drill_depth_mm);
+    s.z_um = um(-depth_mm);
     s.feed_um_per_s = um(o_.drill_feed_mm_per_s);
     plan_->steps.push_back(s);
     plan_->rapid_length_mm += (machine - at_).norm();
@@ -152,7 +166,7 @@ class StepWriter {
     PlanStep s;
     s.curve = reference(at_, machine, "slot");
     s.kind = PlanStep::kFeed;
-    s.to = um(machine);
+    s.to = um(place_.apply(machine));
     s.feed_um_per_s = um(feed);
     plan_->steps.push_back(s);
     plan_->cut_length_mm += (machine - at_).norm();
@@ -161,7 +175,11 @@ class StepWriter {
   // One fitted curve (file frame, mirrored) traced with the tool down; returns its index.
   int curve(const BSpline& file_curve, const std::string& source, bool chained, double feed) {
     PlannedCurve pc;
-    pc.spline = transformed(file_curve, Eigen::Matrix2d::Identity(), offset_);
+    // The placement turns and shifts the control points: B-splines are affine invariant.
+    Eigen::Matrix2d turn;
+    turn << std::cos(place_.rotation_rad), -std::sin(place_.rotation_rad),
+        std::sin(place_.rotation_rad), std::cos(place_.rotation_rad);
+    pc.spline = transformed(file_curve, turn, place_.apply(offset_));
     pc.drawing_index = static_cast<int>(plan_->curves.size());
     pc.chained = chained;
     pc.source = source;
@@ -189,7 +207,7 @@ class StepWriter {
       plan_->extents_mm.add(pts[i]);
       if (i > 0) plan_->cut_length_mm += (pts[i] - pts[i - 1]).norm();
     }
-    at_ = end_point(pc.spline);
+    at_ = place_.inverse().apply(end_point(pc.spline));
     return index;
   }
   Point2 at() const { return at_; }
@@ -198,7 +216,8 @@ class StepWriter {
   JobPlan* plan_;
   const BoardOptions& o_;
   Point2 offset_;
-  Point2 at_{0, 0};
+  RigidTransform place_;  // the measured placement (identity: none)
+  Point2 at_{0, 0};       // before the placement
   bool spindle_on_ = false;
   bool cutting_ = false;
   int tools_ = 0;
@@ -222,6 +241,18 @@ void check_options(const BoardOptions& o) {
 
 Paths BoardFrame::to_machine_nm(const Paths& file_nm) const {
   Paths out;
+  if (!placement.identity()) {
+    for (const Path& p : file_nm) {
+      Path q;
+      for (const IntPoint& v : p) {
+        const Point2 m = to_machine(to_mm(v));
+        q.emplace_back(nm_from_mm(m.x()), nm_from_mm(m.y()));
+      }
+      if (sx < 0) ClipperLib::ReversePath(q);  // mirroring flips orientation: restore it
+      out.push_back(q);
+    }
+    return out;
+  }
   const ClipperLib::cInt ox = nm_from_mm(offset_mm.x()), oy = nm_from_mm(offset_mm.y());
   for (const Path& p : file_nm) {
     Path q;
@@ -302,13 +333,16 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
       Trace tr;
       tr.curves = fit_polyline(pts, t.closed, fo, &rep.fit);
       if (tr.curves.empty()) continue;
-      tr.source = fmt::format("isolation contour {} (pass {})", i, t.pass + 1);
+      tr.source = fmt::format("{} contour {} (pass {})", t.clearing ? "clearing" : "isolation", i,
+                              t.pass + 1);
+      tr.clearing = t.clearing;
       rep.isolation_vertices += t.path.size() + (t.closed ? 1 : 0);
       rep.isolation_length_mm += polyline_length(pts, t.closed);
       iso.push_back(tr);
     }
     rep.isolation_contours = iso.size();
     job.tool_radius_mm = iso_result.tool_radius_mm;
+    job.clearing_tool_radius_mm = iso_result.clearing_tool_radius_mm;
   }
 
   // ---- Drilling ----
@@ -353,6 +387,7 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
       DrillTool t;
       t.diameter_mm = g.diameter_mm;
       t.label = tool_label("Drill", g.diameter_mm);
+      t.depth_mm = o.drill_depth_mm;
       t.holes = g.holes_mm;
       drills.push_back(t);
     }
@@ -367,6 +402,7 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
         t = &drills.back();
         t->diameter_mm = dm;
         t->label = tool_label("Drill", dm);
+        t->depth_mm = o.drill_depth_mm;
       }
       t->slots.emplace_back(Point2(sx * a.x(), a.y()), Point2(sx * b.x(), b.y()));
     }
@@ -398,6 +434,86 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
     job.cutter_radius_mm = o.cutout.cutter_diameter_mm / 2;
   }
 
+  // ---- Double-sided: one frame for both setups, alignment holes ----
+  Extents region;  // side-independent, mirrored file frame: placed at the margin
+  if (o.alignment.enabled) {
+    const AlignmentOptions& a = o.alignment;
+    if (!(a.hole_diameter_mm > 0) || !(a.hole_depth_mm > 0))
+      throw PlanError("the alignment holes' diameter and depth must be positive");
+    // The board's extents in the file frame, the same for both sides' jobs.
+    Extents board;
+    if (layers.outline) {
+      for (const Path& p : cp.board_nm)
+        for (const IntPoint& v : p) board.add(to_mm(v));
+    } else if (layers.drill) {
+      for (const Hole& h : layers.drill->holes) board.add(to_mm(IntPoint(h.at.x, h.at.y)));
+    } else if (copper) {
+      for (const Path& p : copper->polygons_nm)
+        for (const IntPoint& v : p) board.add(to_mm(v));
+      rep.notes.push_back(
+          "alignment: the flip axis is the middle of this side's copper (no outline or drill "
+          "file): give the same outline or drill file to both sides' jobs so their axes agree");
+    }
+    if (board.empty()) throw PlanError("alignment holes need a board (outline, drill or copper)");
+    const double axis = (board.min.x() + board.max.x()) / 2;
+    job.flip_axis_file_x_mm = axis;
+    const double r = a.hole_diameter_mm / 2;
+    // Clear of the board and of the cut-out's cutter beside it.
+    const double keep_mm = r + 2 * o.cutout.cutter_diameter_mm + 1.0;
+    std::vector<Point2> holes;
+    if (a.holes_file_mm.empty()) {
+      holes = {Point2(axis, board.min.y() - keep_mm), Point2(axis, board.max.y() + keep_mm)};
+    } else {
+      for (const Point2& h : a.holes_file_mm) {
+        if (h.x() > board.min.x() - keep_mm && h.x() < board.max.x() + keep_mm &&
+            h.y() > board.min.y() - keep_mm && h.y() < board.max.y() + keep_mm)
+          throw PlanError(fmt::format(
+              "alignment hole at ({:.3f}, {:.3f}) mm is not outside the board ({:.3f} .. {:.3f} "
+              "x {:.3f} .. {:.3f} mm) by {:.3f} mm",
+              h.x(), h.y(), board.min.x(), board.max.x(), board.min.y(), board.max.y(), keep_mm));
+        holes.push_back(h);
+        if (std::fabs(h.x() - axis) > 0.001) holes.emplace_back(2 * axis - h.x(), h.y());
+      }
+    }
+    for (const Point2& h : holes) {
+      region.add(Point2(sx * h.x() - r, h.y() - r));
+      region.add(Point2(sx * h.x() + r, h.y() + r));
+    }
+    // The board and its mirror image: the same region from either side.
+    for (const Point2& c : {board.min, board.max}) {
+      region.add(Point2(sx * c.x(), c.y()));
+      region.add(Point2(sx * (2 * axis - c.x()), c.y()));
+    }
+    const double grow_mm = o.cutout.cutter_diameter_mm + 1.0;
+    region.add(region.min - Point2(grow_mm, grow_mm));
+    for (const Point2& h : holes) job.alignment_holes_mm.push_back(Point2(sx * h.x(), h.y()));
+    if (o.side == BoardSide::kTop) {
+      // First setup: the holes, through the blank into the spoil board; the cut-out waits for
+      // the second setup (the blank must stay whole to be turned over).
+      DrillTool pins;
+      pins.diameter_mm = a.hole_diameter_mm;
+      pins.depth_mm = a.hole_depth_mm;
+      pins.label = tool_label("Pins", a.hole_diameter_mm);
+      for (const Point2& h : holes) pins.holes.emplace_back(sx * h.x(), h.y());
+      drills.push_back(pins);
+      rep.holes += pins.holes.size();
+      rep.drill_tools = drills.size();
+      if (!cut.empty())
+        rep.notes.push_back("alignment: the cut-out is left for the bottom side's job");
+      cut.clear();
+      rep.tabs = 0;
+      rep.cutout_length_mm = 0;
+    } else {
+      if (!drills.empty())
+        rep.notes.push_back("alignment: the holes were drilled with the top side: not again");
+      drills.clear();
+      rep.holes = 0;
+      rep.slots = 0;
+      rep.drill_tools = 0;
+      rep.drill_travel_ordered_mm = rep.drill_travel_file_order_mm = 0;
+    }
+  }
+
   // ---- Placement: the tool's lower-left extent at (margin, margin) ----
   Extents ext;
   auto grow = [&](const Extents& e, double r) {
@@ -411,7 +527,8 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
     return e;
   };
   for (const Trace& t : iso)
-    for (const BSpline& b : t.curves) grow(extents_of(b), job.tool_radius_mm);
+    for (const BSpline& b : t.curves)
+      grow(extents_of(b), t.clearing ? job.clearing_tool_radius_mm : job.tool_radius_mm);
   for (const Trace& t : cut)
     for (const BSpline& b : t.curves) grow(extents_of(b), job.cutter_radius_mm);
   for (const DrillTool& d : drills) {
@@ -421,9 +538,16 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
     grow(e, d.diameter_mm / 2);
   }
   if (ext.empty()) throw PlanError("nothing to do: the layers hold no copper, hole or outline");
-  const Point2 offset = Point2(o.margin_mm, o.margin_mm) - ext.min;
+  // Double-sided: the side-independent region at the margin (both jobs in one frame).
+  const Point2 offset = Point2(o.margin_mm, o.margin_mm) - (region.empty() ? ext.min : region.min);
   job.frame.offset_mm = offset;
-  const double need_w = ext.width() + o.margin_mm, need_h = ext.height() + o.margin_mm;
+  job.frame.placement = o.alignment.placement;
+  for (Point2& h : job.alignment_holes_mm) h += offset;
+  if (ext.min.x() + offset.x() < 0 || ext.min.y() + offset.y() < 0)
+    throw PlanError(
+        fmt::format("the board job reaches {:.2f} mm beyond the machine zero: raise the margin",
+                    -std::min(ext.min.x() + offset.x(), ext.min.y() + offset.y())));
+  const double need_w = ext.max.x() + offset.x(), need_h = ext.max.y() + offset.y();
   if (need_w > o.work_width_mm + 1e-6 || need_h > o.work_height_mm + 1e-6) {
     throw PlanError(fmt::format(
         "the board job needs {:.2f} x {:.2f} mm (tool extents plus the {:.1f} mm margin) but the "
@@ -436,31 +560,42 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
   // ---- Steps ----
   StepWriter w(&plan, o, offset);
   w.pen_up(o.z_travel_mm);
-  if (!iso.empty()) {
-    w.tool(tool_label("V-bit", o.isolation.tool_width_mm), &rep);
-    // Nearest contour start next, from the zero corner.
-    std::vector<bool> done(iso.size(), false);
-    for (size_t n = 0; n < iso.size(); ++n) {
+  // The isolation tool's contours, then the clearing tool's, each nearest start next.
+  auto cut_isolation = [&](bool clearing) {
+    std::vector<const Trace*> todo;
+    for (const Trace& t : iso)
+      if (t.clearing == clearing) todo.push_back(&t);
+    if (todo.empty()) return;
+    if (clearing)
+      w.tool(tool_label("Clear", o.isolation.clearing_tool_width_mm),
+             o.isolation.clearing_tool_width_mm, &job);
+    else
+      w.tool(tool_label("V-bit", o.isolation.tool_width_mm), o.isolation.tool_width_mm, &job);
+    std::vector<bool> done(todo.size(), false);
+    for (size_t n = 0; n < todo.size(); ++n) {
       size_t best = 0;
       double best_d = 1e300;
-      for (size_t i = 0; i < iso.size(); ++i) {
+      for (size_t i = 0; i < todo.size(); ++i) {
         if (done[i]) continue;
-        const double d = (start_point(iso[i].curves.front()) + offset - w.at()).squaredNorm();
+        const double d = (start_point(todo[i]->curves.front()) + offset - w.at()).squaredNorm();
         if (d < best_d) best_d = d, best = i;
       }
       done[best] = true;
-      const Trace& t = iso[best];
+      const Trace& t = *todo[best];
       w.pen_up(o.z_travel_mm);
       w.rapid(start_point(t.curves.front()) + offset);
       w.pen_down(-o.isolation_depth_mm, o.plunge_mm_per_s);
       for (size_t k = 0; k < t.curves.size(); ++k)
         w.curve(t.curves[k], t.source, k > 0, o.feed_mm_per_s);
     }
-    job.isolation_curves = plan.curves.size();
-  }
+  };
+  cut_isolation(false);
+  job.isolation_curves = plan.curves.size();
+  cut_isolation(true);
+  job.clearing_curves = plan.curves.size() - job.isolation_curves;
   for (const DrillTool& d : drills) {
-    w.tool(d.label, &rep);
-    for (const Point2& h : d.holes) w.drill(h + offset);
+    w.tool(d.label, d.diameter_mm, &job);
+    for (const Point2& h : d.holes) w.drill(h + offset, d.depth_mm);
     for (const auto& s : d.slots) {
       w.pen_up(o.z_travel_mm);
       w.rapid(s.first + offset);
@@ -470,14 +605,15 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
     w.pen_up(o.z_travel_mm);
   }
   if (!cut.empty()) {
-    w.tool(tool_label("Cutter", o.cutout.cutter_diameter_mm), &rep);
+    w.tool(tool_label("Cutter", o.cutout.cutter_diameter_mm), o.cutout.cutter_diameter_mm, &job);
     const int passes = static_cast<int>(std::ceil(o.cutout_depth_mm / o.cutout_step_mm - 1e-9));
     const double tab_top = -(o.cutout_depth_mm - o.tab_height_mm);
     for (const Trace& t : cut) {
       for (size_t k = 0; k < t.curves.size(); ++k) {
         if (!t.lifted[k]) continue;
         std::vector<Point2> tab;
-        for (const Point2& q : sample(t.curves[k], 0.002)) tab.push_back(q + offset);
+        for (const Point2& q : sample(t.curves[k], 0.002))
+          tab.push_back(o.alignment.placement.apply(q + offset));
         job.tab_paths_mm.push_back(tab);
       }
     }
@@ -499,12 +635,14 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
   }
   w.spindle(false);
   w.pen_up(o.z_travel_mm);
-  w.rapid(Point2(0, 0));
+  w.rapid_home();
 
   // ---- What the checks and the plot need, in the machine frame ----
   if (copper) {
     job.copper_machine_nm = union_of(job.frame.to_machine_nm(copper->polygons_nm));
-    for (size_t i = 0; i < job.isolation_curves; ++i) {
+    for (size_t i = 0; i < job.isolation_curves + job.clearing_curves; ++i) {
+      std::vector<std::vector<Point2>>& paths =
+          i < job.isolation_curves ? job.isolation_paths_mm : job.clearing_paths_mm;
       std::vector<Point2> pts;
       for (const PlanStep& s : plan.steps) {
         if (s.kind != PlanStep::kSpline || s.curve != static_cast<int>(i)) continue;
@@ -512,11 +650,11 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
             sample(from_firmware_spline(s.spline().firmware()), 0.0005);
         pts.insert(pts.end(), piece.begin() + (pts.empty() ? 0 : 1), piece.end());
       }
-      if (plan.curves[i].chained && !job.isolation_paths_mm.empty()) {
-        std::vector<Point2>& last = job.isolation_paths_mm.back();
+      if (plan.curves[i].chained && !paths.empty()) {
+        std::vector<Point2>& last = paths.back();
         last.insert(last.end(), pts.begin() + (pts.empty() ? 0 : 1), pts.end());
       } else {
-        job.isolation_paths_mm.push_back(pts);
+        paths.push_back(pts);
       }
     }
   }
@@ -538,10 +676,11 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
     }
   }
   if (layers.outline) job.board_machine_nm = union_of(job.frame.to_machine_nm(cp.board_nm));
-  for (size_t i = job.isolation_curves; i < plan.curves.size(); ++i) {
+  const size_t first_cutout = job.isolation_curves + job.clearing_curves;
+  for (size_t i = first_cutout; i < plan.curves.size(); ++i) {
     if (plan.curves[i].source == "hole" || plan.curves[i].source == "slot") continue;
     const std::vector<Point2> pts = sample(plan.curves[i].spline, 0.002);
-    if (plan.curves[i].chained && !job.cutout_paths_mm.empty() && i > job.isolation_curves) {
+    if (plan.curves[i].chained && !job.cutout_paths_mm.empty() && i > first_cutout) {
       std::vector<Point2>& last = job.cutout_paths_mm.back();
       last.insert(last.end(), pts.begin() + 1, pts.end());
     } else {

@@ -7,6 +7,7 @@
 #include <string>  // std::string
 #include <vector>  // std::vector
 
+#include "host/lib/pcb/board_alignment.h"  // RigidTransform
 #include "host/lib/pcb/contour_fit.h"
 #include "host/lib/pcb/cutout.h"
 #include "host/lib/pcb/isolation.h"
@@ -30,6 +31,23 @@ struct BoardLayers {
 // isolation clearance. At 5 um the A64-OlinuXino's top isolation touched copper in the
 // simulator (-3.4 um); at 1 um its least clearance is +1.4 um (docs/performance.md).
 constexpr double kBoardChordToleranceMm = 0.001;
+
+// Double-sided boards (docs/user-guide.md): both setups planned in one frame, symmetric about
+// the flip axis (the vertical line through the middle of the board's outline, else of its
+// holes), with alignment holes for pins drilled through the blank into the spoil board in the
+// first (top) setup. The top job drills the holes and leaves the cut-out for the bottom job,
+// which drills nothing (the holes go through the board).
+struct AlignmentOptions {
+  bool enabled = false;
+  // File frame; each one is drilled with its mirror image about the flip axis. Empty: two on
+  // the flip axis, below and above the board.
+  std::vector<Point2> holes_file_mm;
+  double hole_diameter_mm = 3.0;
+  double hole_depth_mm = 3.0;  // through the blank into the spoil board
+  // This setup's measured alignment (measured_alignment()): applied to every coordinate of
+  // the job in the machine frame before it is encoded. Identity: none.
+  RigidTransform placement;
+};
 
 struct BoardOptions {
   BoardSide side = BoardSide::kTop;  // kBottom: the bottom copper, everything mirrored in x
@@ -56,16 +74,23 @@ struct BoardOptions {
   double travel_width_mm = machine_travel_mm(config::kAxisX);
   double travel_height_mm = machine_travel_mm(config::kAxisY);
   bool allow_narrow_gaps = false;  // plan anyway (the gaps stay in the report)
+  AlignmentOptions alignment;
 };
 
-// How file coordinates (mm) map into the machine frame: x' = sx * x + offset.x, y' = y + offset.y.
+// How file coordinates (mm) map into the machine frame: x' = sx * x + offset.x, y' = y + offset.y,
+// then the measured placement of a double-sided board's second setup.
 struct BoardFrame {
   double sx = 1.0;  // -1 for the bottom side
   Point2 offset_mm{0, 0};
+  RigidTransform placement;
   Point2 to_machine(const Point2& file_mm) const {
-    return Point2(sx * file_mm.x() + offset_mm.x(), file_mm.y() + offset_mm.y());
+    return placement.apply(Point2(sx * file_mm.x() + offset_mm.x(), file_mm.y() + offset_mm.y()));
   }
   ClipperLib::Paths to_machine_nm(const ClipperLib::Paths& file_nm) const;
+  Point2 to_file(const Point2& machine_mm) const {
+    const Point2 m = placement.inverse().apply(machine_mm);
+    return Point2((m.x() - offset_mm.x()) / sx, m.y() - offset_mm.y());
+  }
 };
 
 struct BoardReport {
@@ -88,8 +113,15 @@ struct BoardReport {
   std::vector<std::string> notes;  // what the planner left out and why (an empty outline)
 };
 
+// A tool of the job, in the order they are mounted (tools[0] before the job starts).
+struct BoardTool {
+  std::string label;  // as on the LCD at its change ("Drill 0.80mm")
+  double diameter_mm = 0;
+};
+
 struct BoardJob {
   JobPlan plan;
+  std::vector<BoardTool> tools;
   BoardReport report;
   BoardFrame frame;
   size_t isolation_curves = 0;          // plan.curves[0 .. isolation_curves) isolate copper
@@ -102,6 +134,15 @@ struct BoardJob {
   std::vector<std::vector<Point2>> cutout_paths_mm;  // machine frame
   std::vector<std::vector<Point2>> tab_paths_mm;     // stretches lifted over tabs
   double cutter_radius_mm = 0;
+  // The clearing tool's curves follow the isolation's: plan.curves[isolation_curves ..
+  // isolation_curves + clearing_curves).
+  size_t clearing_curves = 0;
+  double clearing_tool_radius_mm = 0;
+  std::vector<std::vector<Point2>> clearing_paths_mm;  // its planned tool centres, machine frame
+  // Double-sided: the alignment holes (hole 1 first) where the pins stand, machine frame
+  // before this setup's placement; and the flip axis (file frame, x).
+  std::vector<Point2> alignment_holes_mm;
+  double flip_axis_file_x_mm = 0;
 };
 
 // Text of a narrow gap for messages: "gap 0.12 mm < tool 0.20 mm at (x, y) mm".

@@ -87,6 +87,13 @@ Paths clip_to(const Paths& contours, const Paths& area) {
 
 }  // namespace
 
+double clearing_edge_distance_mm(const IsolationOptions& o) {
+  if (!(o.clearing_tool_width_mm > 0) || o.narrow_passes >= o.passes) return 0;
+  const double step = o.tool_width_mm * (1.0 - o.overlap);
+  const double narrow_outer = o.clearance_mm + o.tool_width_mm + (o.narrow_passes - 1) * step;
+  return narrow_outer - o.overlap * o.tool_width_mm;
+}
+
 std::vector<NarrowGap> find_narrow_gaps(const std::vector<Island>& islands, double radius_nm,
                                         double arc_tolerance_nm) {
   struct Grown {
@@ -170,6 +177,73 @@ IsolationResult plan_isolation(const Paths& copper_in, const IsolationOptions& o
   r.narrow_gaps = find_narrow_gaps(islands, radius_nm, arc_tol_nm);
   if (islands.empty()) return r;
 
+  if (o.clearing_tool_width_mm > 0) {
+    if (!(o.clearing_tool_width_mm > o.tool_width_mm))
+      throw std::invalid_argument("the clearing tool must be wider than the isolation tool");
+    if (o.mill_all) throw std::invalid_argument("a clearing tool cannot be combined with mill-all");
+    if (o.narrow_passes < 1)
+      throw std::invalid_argument("at least one pass of the isolation tool is needed");
+  }
+  const double edge_mm = clearing_edge_distance_mm(o);
+  if (!o.mill_all && edge_mm > 0) {
+    // The narrow tool's first passes, then the clearing tool out to the edge `passes` narrow
+    // passes would reach: its inner edge at edge_mm, passes overlapping by the overlap.
+    for (int k = 0; k < o.narrow_passes; ++k) {
+      for (const Path& p : grown_islands(islands, radius_nm + k * step_nm, arc_tol_nm)) {
+        ToolPathNm t;
+        t.path = p;
+        t.pass = k;
+        r.paths.push_back(t);
+      }
+    }
+    const double wide_mm = o.clearing_tool_width_mm;
+    const double outer_mm =
+        o.clearance_mm + o.tool_width_mm + (o.passes - 1) * o.tool_width_mm * (1.0 - o.overlap);
+    const double wide_step_mm = wide_mm * (1.0 - o.overlap);
+    const int wide_passes =
+        1 + std::max(0, static_cast<int>(
+                            std::ceil((outer_mm - edge_mm - wide_mm) / wide_step_mm - 1e-9)));
+    r.clearing_tool_radius_mm = wide_mm / 2;
+    for (int k = 0; k < wide_passes; ++k) {
+      const double centre_mm = edge_mm + wide_mm / 2 + k * wide_step_mm;
+      for (const Path& p : grown_islands(islands, centre_mm * kNmPerMm, arc_tol_nm)) {
+        ToolPathNm t;
+        t.path = p;
+        t.pass = o.narrow_passes + k;
+        t.clearing = true;
+        r.paths.push_back(t);
+      }
+    }
+    // Where the wide tool cannot reach (into an acute corner between tracks), the narrow
+    // tool's further passes clear what is left of the band, clipped to that part.
+    Paths centres;
+    Paths wide_centres;
+    for (const ToolPathNm& t : r.paths)
+      (t.clearing ? wide_centres : centres).push_back(t.closed ? as_open(t.path) : t.path);
+    Paths swept = sweep_open(centres, radius_nm - o.clearance_mm * kNmPerMm, arc_tol_nm);
+    const Paths wide_swept = sweep_open(wide_centres, wide_mm / 2 * kNmPerMm, arc_tol_nm);
+    swept.insert(swept.end(), wide_swept.begin(), wide_swept.end());
+    const Paths band = difference_of(grown_islands(islands, outer_mm * kNmPerMm, arc_tol_nm),
+                                     grown_islands(islands, o.clearance_mm * kNmPerMm, arc_tol_nm));
+    const Paths left = difference_of(band, union_of(swept));
+    if (std::fabs(signed_area(left)) >= kMinOverlapAreaNm2) {
+      const Paths near_left = offset_closed(left, o.tool_width_mm * kNmPerMm, arc_tol_nm);
+      for (int k = o.narrow_passes; k < o.passes; ++k) {
+        for (const Path& p :
+             clip_to(grown_islands(islands, radius_nm + k * step_nm, arc_tol_nm), near_left)) {
+          ToolPathNm t;
+          t.path = p;
+          t.closed = false;
+          t.pass = k;
+          r.paths.push_back(t);
+        }
+      }
+    }
+    std::stable_sort(r.paths.begin(), r.paths.end(), [](const ToolPathNm& a, const ToolPathNm& b) {
+      return !a.clearing && b.clearing;
+    });
+    return r;
+  }
   if (!o.mill_all) {
     for (int k = 0; k < o.passes; ++k) {
       for (const Path& p : grown_islands(islands, radius_nm + k * step_nm, arc_tol_nm)) {

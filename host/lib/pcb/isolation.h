@@ -26,6 +26,11 @@ struct IsolationOptions {
   // board's 1 um chords, kBoardChordToleranceMm), so the tool that really cuts does not touch
   // copper. Narrow gaps are judged with it too.
   double clearance_mm = 0.008;
+  // A wider tool for the outer part of the isolation (pcb2gcode's mill-diameters list): the
+  // first narrow_passes passes are cut with the tool above next to the copper, the rest of the
+  // width `passes` narrow passes would clear with this one. 0: none.
+  double clearing_tool_width_mm = 0;
+  int narrow_passes = 1;
 };
 
 // Two islands closer than the tool width plus twice the clearance: the tool cannot pass
@@ -40,18 +45,26 @@ struct NarrowGap {
 struct ToolPathNm {
   ClipperLib::Path path;
   bool closed = true;
-  int pass = 0;  // 0: the contour next to the copper
+  int pass = 0;           // 0: the contour next to the copper
+  bool clearing = false;  // cut with the clearing tool
 };
 
 struct IsolationResult {
-  std::vector<ToolPathNm> paths;  // pass 0 first
+  std::vector<ToolPathNm> paths;  // pass 0 first; the clearing tool's last
   std::vector<NarrowGap> narrow_gaps;
   size_t islands = 0;
   double tool_radius_mm = 0;
+  double clearing_tool_radius_mm = 0;  // 0: no clearing paths
 };
 
+// How far from the copper the clearing tool's edge stays (mm): inside the band the narrow
+// passes cut, overlapping their outer part by the overlap of one narrow pass, so the copper's
+// edge is shaped by the narrow tool alone. 0 without a clearing tool.
+double clearing_edge_distance_mm(const IsolationOptions& o);
+
 // Plans the isolation of copper (Clipper polygons, nm). Throws std::invalid_argument for a
-// non-positive tool width, passes < 1 or overlap outside [0, 0.9].
+// non-positive tool width, passes < 1 or overlap outside [0, 0.9], a clearing tool not wider
+// than the tool, or one with mill_all.
 IsolationResult plan_isolation(const ClipperLib::Paths& copper_nm, const IsolationOptions& o);
 
 // Islands (copper_islands()) whose tool clearances (copper grown by radius_nm) overlap: the

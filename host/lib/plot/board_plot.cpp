@@ -133,6 +133,8 @@ void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int heigh
   polygon_paths(cr, f, job.copper_machine_nm);
   cairo_fill(cr);
   const double s = f.scale_px_per_mm;
+  stroke_group(cr, f, job.clearing_paths_mm, 2 * job.clearing_tool_radius_mm * s, kIsolation);
+  stroke_group(cr, f, job.clearing_paths_mm, 0.6, kIsolationCentre);
   stroke_group(cr, f, job.isolation_paths_mm, 2 * job.tool_radius_mm * s, kIsolation);
   stroke_group(cr, f, job.isolation_paths_mm, 0.6, kIsolationCentre);
   stroke_group(cr, f, job.cutout_paths_mm, 2 * job.cutter_radius_mm * s, kCutout);

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -67,6 +68,11 @@ TEST(BoardCli, WholeBoardIsPlannedCheckedPlottedAndReported) {
   // Compact #K data: well under the fixed-width #D frames of the same splines.
   EXPECT_LT(j["isolation_spline_bytes"].get<double>(),
             0.6 * j["isolation_spline_bytes_fixed_width"].get<double>());
+  // Bytes per tool, in the order they are mounted, adding up to the job's frames.
+  ASSERT_EQ(j["bytes_per_tool"].size(), 4u) << j.dump(2);
+  EXPECT_EQ(j["bytes_per_tool"][0]["name"], "V-bit 0.20mm");
+  EXPECT_EQ(j["bytes_per_tool"][3]["name"], "Cutter 1.00mm");
+  for (const auto& t : j["bytes_per_tool"]) EXPECT_GT(t["bytes"].get<int>(), 0) << t.dump();
   const std::string base = dir + "/out/" + std::to_string(getpid()) + "-ok";
   EXPECT_TRUE(std::filesystem::exists(base + ".board.png"));
   EXPECT_TRUE(std::filesystem::exists(base + ".board.svg"));
@@ -87,26 +93,191 @@ TEST(BoardCli, NarrowGapRefusesTheJobAndNamesThePlace) {
   EXPECT_EQ(narrow.code, 0) << narrow.err;
 }
 
+// `points --csv` rows of a board job (tool,tool_name,tool_diameter_um,path,point,x_um,y_um,
+// z_um).
+struct PointRow {
+  int tool = 0;
+  std::string tool_name;
+  double tool_diameter_um = 0;
+  int path = 0, point = 0;
+  double x_um = 0, y_um = 0, z_um = 0;
+};
+
+std::vector<PointRow> point_rows(const std::string& csv, std::string* header) {
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, *header);
+  std::vector<PointRow> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::istringstream l(line);
+    for (std::string x; std::getline(l, x, ',');) f.push_back(x);
+    EXPECT_EQ(f.size(), 8u) << line;
+    if (f.size() != 8) continue;
+    rows.push_back(PointRow{std::stoi(f[0]), f[1], std::stod(f[2]), std::stoi(f[3]),
+                            std::stoi(f[4]), std::stod(f[5]), std::stod(f[6]), std::stod(f[7])});
+  }
+  return rows;
+}
+
 TEST(BoardCli, PointsOnACopperLayerAreToolCentresAroundTheCopper) {
   const std::string dir = write_board("points");
   const ToolRun r = run("points " + dir + "/t-F.Cu.gbr --csv");
   ASSERT_EQ(r.code, 0) << r.err;
-  std::istringstream in(r.out);
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "curve,x_mm,y_mm");
+  std::string header;
+  const std::vector<PointRow> rows = point_rows(r.out, &header);
+  EXPECT_EQ(header, "tool,tool_name,tool_diameter_um,path,point,x_um,y_um,z_um");
   double min_x = 1e9, max_x = -1e9;
-  int rows = 0;
-  while (std::getline(in, line)) {
-    const size_t a = line.find(','), b = line.find(',', a + 1);
-    const double x = std::stod(line.substr(a + 1, b - a - 1));
-    min_x = std::min(min_x, x), max_x = std::max(max_x, x);
-    ++rows;
+  for (const PointRow& p : rows) {
+    EXPECT_EQ(p.tool, 1);
+    EXPECT_EQ(p.tool_name, "V-bit 0.20mm");
+    EXPECT_EQ(p.tool_diameter_um, 200);
+    EXPECT_EQ(p.z_um, -50);  // the isolation depth
+    min_x = std::min(min_x, p.x_um), max_x = std::max(max_x, p.x_um);
   }
-  EXPECT_GT(rows, 20);
+  EXPECT_GT(rows.size(), 20u);
   // Pad edges less / plus the tool radius and the 8 um clearance, file frame.
-  EXPECT_NEAR(min_x, 10 - 0.8 - 0.108, 0.006);
-  EXPECT_NEAR(max_x, 26 + 0.108, 0.006);
+  EXPECT_NEAR(min_x, (10 - 0.8 - 0.108) * 1000, 6);
+  EXPECT_NEAR(max_x, (26 + 0.108) * 1000, 6);
+}
+
+// `points` plans with the board options, as `board` and `run` do: the tool width, passes,
+// clearance and side reach the paths, and every tool of a board folder is listed.
+TEST(BoardCli, PointsTakeTheBoardOptionsAndListEveryTool) {
+  const std::string dir = write_board("points-options");
+  const ToolRun r = run("points " + dir +
+                        " --csv --tool-width 0.1 --passes 2 --overlap 0.5 --clearance 0.02 "
+                        "--side top");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::string header;
+  const std::vector<PointRow> rows = point_rows(r.out, &header);
+  double min_x = 1e9;
+  std::set<std::string> tools;
+  int last_path = -1, last_point = -1;
+  for (const PointRow& p : rows) {
+    tools.insert(std::to_string(p.tool) + " " + p.tool_name);
+    if (p.tool == 1) min_x = std::min(min_x, p.x_um);
+    // Points numbered from 0 within each path, paths in order.
+    if (p.path != last_path) {
+      EXPECT_EQ(p.path, last_path + 1);
+      EXPECT_EQ(p.point, 0);
+    } else {
+      EXPECT_EQ(p.point, last_point + 1);
+    }
+    last_path = p.path, last_point = p.point;
+  }
+  EXPECT_EQ(tools, (std::set<std::string>{"1 V-bit 0.10mm", "2 Drill 0.80mm", "3 Drill 1.00mm",
+                                          "4 Cutter 1.00mm"}));
+  // The second pass of a 0.1 mm tool, half overlapping: 0.05 + 0.02 + 0.05 mm out of the pad.
+  EXPECT_NEAR(min_x, (10 - 0.8 - 0.12) * 1000, 6);
+  // Holes: one point each at the drill's depth, in the files' frame (inch file, mm copper).
+  int holes = 0;
+  for (const PointRow& p : rows) {
+    if (p.tool_name.rfind("Drill", 0) != 0) continue;
+    ++holes;
+    EXPECT_EQ(p.z_um, -1800);
+  }
+  EXPECT_EQ(holes, 3);
+  // The bottom side is mirrored for the machine, but the points stay in the files' frame.
+  std::string bottom_copper = kTopCopper;
+  bottom_copper.replace(bottom_copper.find("L1,Top"), 6, "L2,Bot");
+  bottom_copper.replace(bottom_copper.find("%EXTRA%"), 7, "");
+  std::ofstream(dir + "/t-B.Cu.gbr") << bottom_copper;
+  const ToolRun bottom = run("points " + dir + "/t-B.Cu.gbr --csv --tool-width 0.1");
+  ASSERT_EQ(bottom.code, 0) << bottom.err;
+  double bottom_min_x = 1e9;
+  for (const PointRow& p : point_rows(bottom.out, &header))
+    bottom_min_x = std::min(bottom_min_x, p.x_um);
+  EXPECT_NEAR(bottom_min_x, (10 - 0.8 - 0.058) * 1000, 6);
+  // Board options are refused for drawings.
+  const ToolRun drawing =
+      run("points " + std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf --passes 2");
+  EXPECT_EQ(drawing.code, 2);
+  EXPECT_NE(drawing.err.find("--passes is for PCB files"), std::string::npos) << drawing.err;
+}
+
+// A clearing tool from the command line: a second tool after the V-bit, its bytes reported.
+TEST(BoardCli, ClearingToolIsASecondToolWithItsBytesReported) {
+  const std::string dir = write_board("clearing");
+  std::filesystem::remove(dir + "/t-PTH.drl");
+  std::filesystem::remove(dir + "/t-Edge.Cuts.gbr");
+  const ToolRun r = run("board " + dir + " -o " + dir +
+                        "/out --json --no-plot --tool-width 0.1 --passes 8 --clearing-tool 0.6");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["bytes_per_tool"].size(), 2u) << j.dump(2);
+  EXPECT_EQ(j["bytes_per_tool"][1]["name"], "Clear 0.60mm");
+  EXPECT_EQ(j["tool_changes"], 1);
+  EXPECT_EQ(j["check"]["copper_hits"], 0);
+  const ToolRun same =
+      run("board " + dir + " -o " + dir + "/out --tool-width 0.1 --passes 8 --clearing-tool 0.1");
+  EXPECT_EQ(same.code, 1) << same.err;
+  EXPECT_NE(same.err.find("the clearing tool must be wider"), std::string::npos) << same.err;
+}
+
+// A double-sided board's second setup, simulated end to end: the flipped blank sits 0.3 mm
+// and 0.5 degrees off on its pins; the simulated operator measures the two alignment holes,
+// the job is turned and shifted onto them and cuts within 10 um of where the bottom copper
+// lies under the top side's frame. On the pins alone the same blank is cut 0.3 mm off,
+// through copper (exit 8).
+TEST(BoardCli, FlippedBlankOffByAFewTenthsIsCutWhereItBelongsAfterMeasuringTheHoles) {
+  const std::string dir = write_board("flip");
+  std::string bottom_copper = kTopCopper;
+  bottom_copper.replace(bottom_copper.find("L1,Top"), 6, "L2,Bot");
+  bottom_copper.replace(bottom_copper.find("%EXTRA%"), 7, "");
+  std::filesystem::remove(dir + "/t-F.Cu.gbr");
+  std::ofstream(dir + "/t-B.Cu.gbr") << bottom_copper;
+  const std::string job = "run " + dir + " --side bottom --align-holes auto --cut-step 1.8 ";
+  const ToolRun aligned = run(job + "-o " + dir + "/aligned --blank-error 0.3 -0.2 0.5");
+  ASSERT_EQ(aligned.code, 0) << aligned.err << aligned.out;
+  const std::string name = std::to_string(getpid()) + "-flip";
+  const nlohmann::json a = nlohmann::json::parse(std::ifstream(dir + "/aligned/" + name + ".json"));
+  EXPECT_EQ(a["flip"]["aligned"], true);
+  EXPECT_NEAR(a["flip"]["alignment"]["rotation_deg"].get<double>(), 0.5, 0.01);
+  EXPECT_LT(a["registration_error"]["max_um"].get<double>(), 10.0) << a["registration_error"];
+  EXPECT_GT(a["registration_error"]["samples"].get<int>(), 1000);
+  EXPECT_EQ(a["simulated_isolation_check"]["copper_hits"], 0);
+  EXPECT_NE(aligned.out.find("the job aligned to the measured holes"), std::string::npos);
+
+  const ToolRun pins = run(job + "-o " + dir + "/pins --blank-error 0.3 -0.2 0.5 --pins-only");
+  EXPECT_EQ(pins.code, 8) << pins.err << pins.out;
+  const nlohmann::json p = nlohmann::json::parse(std::ifstream(dir + "/pins/" + name + ".json"));
+  EXPECT_GT(p["registration_error"]["max_um"].get<double>(), 300.0) << p["registration_error"];
+  EXPECT_GT(p["simulated_isolation_check"]["copper_hits"].get<int>(), 0);
+
+  // A blank error needs alignment holes to measure.
+  const ToolRun none = run("run " + dir + " --side bottom -o " + dir + "/none --blank-error 0 0 1");
+  EXPECT_EQ(none.code, 2) << none.err;
+  EXPECT_NE(none.err.find("--align-holes"), std::string::npos) << none.err;
+}
+
+// The simulated machine's cuts with a clearing tool: each tool's paths swept by its own
+// radius; the wide tool's edge stays 83 um from the copper (clearance 8 um + one 0.1 mm pass
+// less its 25 um overlap) less the machine's contour error.
+TEST(BoardCli, RunChecksTheClearingToolsCutsWithItsOwnRadius) {
+  const std::string dir = write_board("clearing-run");
+  std::filesystem::remove(dir + "/t-PTH.drl");
+  std::filesystem::remove(dir + "/t-Edge.Cuts.gbr");
+  const ToolRun r = run("run " + dir + " -o " + dir +
+                        "/out --tool-width 0.1 --passes 6 --clearing-tool 0.4 --allow-narrow-gaps");
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  const nlohmann::json j = nlohmann::json::parse(
+      std::ifstream(dir + "/out/" + std::to_string(getpid()) + "-clearing-run.json"));
+  const nlohmann::json& c = j["simulated_isolation_check"];
+  EXPECT_EQ(c["copper_hits"], 0) << c.dump();
+  ASSERT_TRUE(c.contains("clearing_tool_min_clearance_um")) << c.dump();
+  EXPECT_GT(c["clearing_tool_min_clearance_um"].get<double>(), 83.0 - 10.0) << c.dump();
+  EXPECT_LT(c["clearing_tool_min_clearance_um"].get<double>(), 83.0 + 10.0) << c.dump();
+  EXPECT_GT(c["min_clearance_um"].get<double>(), 0.0) << c.dump();
+}
+
+// The help of `points` and `info` names the PCB inputs both read.
+TEST(BoardCli, PointsAndInfoHelpNameThePcbInputs) {
+  for (const char* cmd : {"points", "info"}) {
+    const ToolRun r = run(std::string(cmd) + " --help");
+    EXPECT_EQ(r.code, 0);
+    EXPECT_NE(r.out.find("Gerber, Excellon, a board folder"), std::string::npos) << r.out;
+  }
 }
 
 TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {
@@ -194,6 +365,46 @@ TEST(BoardCli, RunFailsAJobWhoseSimulatedPathCutsCopper) {
       << r.err;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(out + "/multivibrator.json"));
   EXPECT_GT(j["simulated_isolation_check"]["copper_hits"].get<int>(), 0);
+}
+
+// The guide's double-sided workflow on the shared multivibrator, as printed there: the hole
+// positions the report lists, the measured holes the simulated operator finds for a blank
+// 0.3 mm, -0.2 mm and 0.5 degrees off, the alignment found from them, and the cut within
+// 10 um (pins only: exit 8).
+TEST(BoardCli, GuidesDoubleSidedWorkflowOnTheMultivibrator) {
+  const std::string board =
+      std::string(ENGRAVER_SOURCE_DIR) + "/../shared/samples/pcb/multivibrator";
+  if (!std::filesystem::is_directory(board)) GTEST_SKIP() << board << " (shared samples) absent";
+  const std::string out = testing::TempDir() + "/" + std::to_string(getpid()) + "-double";
+  const ToolRun b = run("board " + board + " --side bottom --align-holes auto -o " + out);
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_NE(b.out.find("  alignment hole 1 at (30.495, 8.500) mm\n"
+                       "  alignment hole 2 at (30.495, 49.250) mm\n"),
+            std::string::npos)
+      << b.out;
+  const ToolRun m = run("board " + board +
+                        " --side bottom --align-holes auto --align-measured 30.973 8.301 30.617 "
+                        "49.049 --json --no-plot -o " +
+                        out);
+  ASSERT_EQ(m.code, 0) << m.err;
+  const nlohmann::json mj = nlohmann::json::parse(m.out);
+  EXPECT_NEAR(mj["alignment"]["placement"]["rotation_deg"].get<double>(), 0.5, 0.002);
+  const ToolRun r = run("run " + board + " --side bottom --align-holes auto --blank-error 0.3 " +
+                        "-0.2 0.5 -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("double-sided: blank placed off by (0.300, -0.200) mm and 0.50 deg; the "
+                       "job aligned to the measured holes; the cuts land "),
+            std::string::npos)
+      << r.out;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out + "/multivibrator.json"));
+  EXPECT_EQ(j["flip"]["measured_holes_mm"],
+            nlohmann::json::parse("[30.973, 8.301, 30.617, 49.049]"));
+  EXPECT_LT(j["registration_error"]["max_um"].get<double>(), 10.0);
+  const ToolRun pins = run("run " + board +
+                           " --side bottom --align-holes auto --blank-error 0.3 -0.2 0.5 "
+                           "--pins-only -o " +
+                           out);
+  EXPECT_EQ(pins.code, 8) << pins.err;
 }
 
 // A work area beyond the controller's travel is refused by `board` as by `run` (one check):

@@ -6,6 +6,7 @@
 
 #include <map>  // std::map
 
+#include "host/lib/pcb/board_check.h"  // check_planned_isolation
 #include "host/lib/pcb/isolation_check.h"
 #include "host/lib/pcb/pcb_geometry.h"
 #include "host/lib/plan/firmware_spline.h"
@@ -262,6 +263,201 @@ TEST(BoardJob, EveryStepGoesOnTheWireOneDrillFramePerHole) {
   EXPECT_EQ(letters['P'], 3);          // tool changes
   EXPECT_EQ(letters['N'], 2 * 3 + 2);  // on at the start, off/on around each pause, off at the end
   EXPECT_GT(letters['B'], 0);          // spline headers
+}
+
+// Two 0.25 mm tracks meeting at 45 degrees (the shape of pcb2gcode's sharp_corner board).
+PcbLayer sharp_corner() {
+  ClipperLib::Paths c = track(153.67, -106.68, 138.43, -106.68, 0.25);
+  const ClipperLib::Paths b = track(138.43, -106.68, 151.13, -93.98, 0.25);
+  c.insert(c.end(), b.begin(), b.end());
+  return test::copper_layer(c, LayerKind::kCopperTop);
+}
+
+ClipperLib::Paths open_centres_nm(const std::vector<std::vector<Point2>>& paths) {
+  ClipperLib::Paths out;
+  for (const std::vector<Point2>& p : paths) {
+    ClipperLib::Path q;
+    for (const Point2& v : p) q.push_back(test::nm(v.x(), v.y()));
+    out.push_back(q);
+  }
+  return out;
+}
+
+size_t job_bytes(const JobPlan& plan) {
+  size_t n = 0;
+  for (const QueuedCommand& c : encode_job(plan, EncodeOptions())) n += frame_bytes(c);
+  return n;
+}
+
+// 0.1 mm x 20 passes next to a sharp corner: the same width cleared with a 1 mm tool after
+// one narrow pass; the wide tool stays behind the narrow pass's band, leaves no ring uncut
+// between the two, and the job is far smaller.
+TEST(BoardJob, ClearingToolCutsTheOuterPassesBehindTheNarrowPass) {
+  const PcbLayer copper = sharp_corner();
+  BoardLayers l;
+  l.copper_top = &copper;
+  BoardOptions narrow;
+  narrow.isolation.tool_width_mm = 0.1;
+  narrow.isolation.passes = 20;
+  BoardOptions wide = narrow;
+  wide.isolation.clearing_tool_width_mm = 1.0;
+  const BoardJob one = plan_board(l, narrow);
+  const BoardJob two = plan_board(l, wide);
+  ASSERT_EQ(two.tools.size(), 2u);
+  EXPECT_EQ(two.tools[0].label, "V-bit 0.10mm");
+  EXPECT_EQ(two.tools[1].label, "Clear 1.00mm");
+  EXPECT_EQ(two.report.tool_changes, 1u);
+  EXPECT_GT(two.clearing_curves, 0u);
+  // One narrow pass round the island, and pieces of further ones in the 45 degree notch,
+  // where the wide tool cannot reach.
+  EXPECT_GT(two.isolation_paths_mm.size(), 1u);
+  EXPECT_TRUE(check_planned_isolation(two, wide).ok());
+
+  // The wide tool's edge never comes nearer the copper than the narrow pass's band allows
+  // (clearance + one narrow pass less its overlap: 0.083 mm) ...
+  const double edge_mm = clearing_edge_distance_mm(wide.isolation);
+  EXPECT_NEAR(edge_mm, 0.008 + 0.1 - 0.25 * 0.1, 1e-9);
+  const double tol_mm = isolation_check_tolerance_mm(wide);
+  const auto grown = [&](double mm) {
+    return offset_closed(two.copper_machine_nm, mm * kNmPerMm, 1000);
+  };
+  const IsolationCheck behind =
+      check_isolation(grown(edge_mm), two.clearing_paths_mm, two.clearing_tool_radius_mm, tol_mm);
+  EXPECT_TRUE(behind.hits.empty()) << describe(behind);
+  // ... and comes right up to it (the check above is not empty-handed).
+  EXPECT_FALSE(check_isolation(grown(edge_mm + 0.01), two.clearing_paths_mm,
+                               two.clearing_tool_radius_mm, tol_mm)
+                   .hits.empty());
+  // The band 20 narrow passes clear (clearance .. 0.008 + 0.1 + 19 x 0.075 mm) is cleared
+  // by the two tools together as well as by the narrow tool alone (which leaves cusps too,
+  // between its passes' sharp corners in the 45 degree notch): no ring left between them.
+  const auto left_uncut_mm2 = [&](const BoardJob& job) {
+    const auto grown_by = [&](double mm) {
+      return offset_closed(job.copper_machine_nm, mm * kNmPerMm, 1000);
+    };
+    ClipperLib::Paths swept =
+        sweep_open(open_centres_nm(job.isolation_paths_mm), job.tool_radius_mm * kNmPerMm, 1000);
+    const ClipperLib::Paths wide_swept = sweep_open(open_centres_nm(job.clearing_paths_mm),
+                                                    job.clearing_tool_radius_mm * kNmPerMm, 1000);
+    swept.insert(swept.end(), wide_swept.begin(), wide_swept.end());
+    const double outer_mm = 0.008 + 0.1 + 19 * 0.075;
+    const ClipperLib::Paths band =
+        difference_of(grown_by(outer_mm - 0.005), grown_by(narrow.isolation.clearance_mm + 0.005));
+    return std::fabs(signed_area(difference_of(band, union_of(swept)))) / (kNmPerMm * kNmPerMm);
+  };
+  const double left_one_mm2 = left_uncut_mm2(one), left_two_mm2 = left_uncut_mm2(two);
+  EXPECT_LT(left_one_mm2, 0.01);
+  EXPECT_LT(left_two_mm2, left_one_mm2 + 1e-4) << left_one_mm2;
+
+  // Bytes: the whole job, as sent.
+  const size_t bytes_one = job_bytes(one.plan), bytes_two = job_bytes(two.plan);
+  EXPECT_LT(bytes_two * 3, bytes_one) << bytes_one << " -> " << bytes_two;
+}
+
+TEST(BoardJob, AClearingToolNotWiderThanTheToolIsRefused) {
+  const PcbLayer copper = sharp_corner();
+  BoardLayers l;
+  l.copper_top = &copper;
+  BoardOptions o;
+  o.isolation.passes = 4;
+  o.isolation.clearing_tool_width_mm = 0.2;
+  EXPECT_THROW(plan_board(l, o), PlanError);
+}
+
+// Double-sided: the top and bottom jobs of one board (different copper, the same drill and
+// outline) planned in one frame, so turning the blank over about the vertical line through
+// the alignment holes takes every feature of the top job onto the bottom job's.
+TEST(BoardJob, DoubleSidedJobsShareOneFrameSymmetricAboutTheFlipAxis) {
+  Board b;
+  PcbLayer bottom_copper =
+      test::copper_layer(ClipperLib::Paths{pad(30, 20, 0.8)}, LayerKind::kCopperBottom);
+  BoardLayers top_layers = b.layers();
+  BoardLayers bottom_layers = b.layers();
+  bottom_layers.copper_top = nullptr;
+  bottom_layers.copper_bottom = &bottom_copper;
+  BoardOptions o;
+  o.alignment.enabled = true;
+  const BoardJob top = plan_board(top_layers, o);
+  o.side = BoardSide::kBottom;
+  const BoardJob bottom = plan_board(bottom_layers, o);
+  ASSERT_EQ(top.alignment_holes_mm.size(), 2u);
+  ASSERT_EQ(bottom.alignment_holes_mm.size(), 2u);
+  EXPECT_NEAR(top.flip_axis_file_x_mm, 17.5, 1e-9);  // the outline's middle
+  for (size_t i = 0; i < 2; ++i)
+    EXPECT_LT((top.alignment_holes_mm[i] - bottom.alignment_holes_mm[i]).norm(), 1e-9);
+  const double axis_x = top.alignment_holes_mm[0].x();
+  EXPECT_NEAR(top.alignment_holes_mm[1].x(), axis_x, 1e-9);
+  for (const Point2& file : {Point2(25, 10), Point2(10, 15), Point2(0, 0), Point2(35, 25)}) {
+    const Point2 t = top.frame.to_machine(file), u = bottom.frame.to_machine(file);
+    EXPECT_NEAR(2 * axis_x - t.x(), u.x(), 1e-9) << file.transpose();
+    EXPECT_NEAR(t.y(), u.y(), 1e-9) << file.transpose();
+  }
+  // The top job drills the holes through the blank into the spoil board and leaves the
+  // cut-out; the bottom job drills nothing and cuts the board out.
+  ASSERT_EQ(top.tools.back().label, "Pins 3.00mm");
+  int pin_holes = 0;
+  for (const PlanStep& s : top.plan.steps)
+    if (s.kind == PlanStep::kDrill && s.z_um == -3000) ++pin_holes;
+  EXPECT_EQ(pin_holes, 2);
+  EXPECT_TRUE(top.cutout_paths_mm.empty());
+  EXPECT_EQ(count(bottom.plan, PlanStep::kDrill), 0);
+  EXPECT_FALSE(bottom.cutout_paths_mm.empty());
+}
+
+// The measured placement turns and shifts every coordinate of the job (B-splines: their
+// control points), and the copper the checks use with it.
+TEST(BoardJob, AMeasuredPlacementTurnsAndShiftsEveryCoordinate) {
+  Board b;
+  BoardOptions o;
+  o.side = BoardSide::kBottom;
+  o.alignment.enabled = true;
+  const BoardJob nominal = plan_board(b.layers(true), o);
+  o.alignment.placement = placement_error(Point2(20, 20), 0.3, -0.2, 0.5);
+  const BoardJob placed = plan_board(b.layers(true), o);
+  ASSERT_EQ(nominal.plan.curves.size(), placed.plan.curves.size());
+  for (size_t i = 0; i < nominal.plan.curves.size(); ++i) {
+    const BSpline& n = nominal.plan.curves[i].spline;
+    const BSpline& p = placed.plan.curves[i].spline;
+    ASSERT_EQ(n.control.size(), p.control.size());
+    for (size_t k = 0; k < n.control.size(); ++k)
+      EXPECT_LT((o.alignment.placement.apply(n.control[k]) - p.control[k]).norm(), 1e-9);
+  }
+  ASSERT_EQ(nominal.plan.steps.size(), placed.plan.steps.size());
+  for (size_t i = 0; i < nominal.plan.steps.size(); ++i) {
+    const PlanStep& n = nominal.plan.steps[i];
+    if (n.kind != PlanStep::kRapid || i + 1 == nominal.plan.steps.size()) continue;
+    const Point2 want =
+        o.alignment.placement.apply(Point2(n.to.x_um * 1e-3, n.to.y_um * 1e-3)) * 1000;
+    EXPECT_NEAR(placed.plan.steps[i].to.x_um, want.x(), 0.5);
+    EXPECT_NEAR(placed.plan.steps[i].to.y_um, want.y(), 0.5);
+  }
+  EXPECT_TRUE(check_planned_isolation(placed, o).ok());
+  // The job still ends at the machine's zero.
+  EXPECT_EQ(placed.plan.steps.back().kind, PlanStep::kRapid);
+  EXPECT_EQ(placed.plan.steps.back().to.x_um, 0);
+  EXPECT_EQ(placed.plan.steps.back().to.y_um, 0);
+  // The holes where the pins stand are the same: the placement is of this setup only.
+  EXPECT_LT((nominal.alignment_holes_mm[0] - placed.alignment_holes_mm[0]).norm(), 1e-9);
+}
+
+// Two holes measured to the micrometre give the blank's placement: 0.3 mm and 0.5 degrees off
+// comes back within a micrometre 100 mm away; the wrong holes are refused.
+TEST(BoardAlignment, TwoMeasuredHolesGiveTheBlanksPlacement) {
+  const Point2 expected[2] = {Point2(50, 5), Point2(50, 60)};
+  const RigidTransform error = placement_error(Point2(50, 32.5), 0.3, 0.2, 0.5);
+  Point2 measured[2];
+  for (int i = 0; i < 2; ++i) {
+    const Point2 m = error.apply(expected[i]);
+    measured[i] = Point2(std::round(m.x() * 1000) / 1000, std::round(m.y() * 1000) / 1000);
+  }
+  const RigidTransform found = measured_alignment(expected, measured);
+  for (const Point2& p : {Point2(0, 0), Point2(100, 100), Point2(150, 20)})
+    EXPECT_LT((found.apply(p) - error.apply(p)).norm(), 0.002) << p.transpose();
+  EXPECT_LT((error.inverse().apply(error.apply(Point2(3, 4))) - Point2(3, 4)).norm(), 1e-12);
+  const Point2 swapped[2] = {measured[1], measured[0]};
+  EXPECT_THROW(measured_alignment(expected, swapped), PlanError);
+  const Point2 too_far[2] = {measured[0], measured[1] + Point2(0, 0.5)};
+  EXPECT_THROW(measured_alignment(expected, too_far), PlanError);
 }
 
 }  // namespace
