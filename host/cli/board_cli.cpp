@@ -234,6 +234,7 @@ pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, co
   o.isolation.overlap = a.overlap;
   o.isolation.clearance_mm = a.clearance_mm;
   o.isolation.mill_all = a.mill_all;
+  o.isolation.isolate_empty_holes = a.isolate_empty_holes;
   o.isolation_depth_mm = a.depth_mm;
   o.drill_depth_mm = a.drill_depth_mm;
   o.drill_start_mm = a.drill_start_mm;
@@ -591,6 +592,9 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
       ->check(CLI::Range(0.0, 0.1))
       ->capture_default_str();
   cmd->add_flag("--mill-all", a->mill_all, "clear all copper-free area")->group(g);
+  cmd->add_flag("--isolate-empty-holes", a->isolate_empty_holes,
+                "also cut inside openings of an island that hold no other island (hatched pours)")
+      ->group(g);
   cmd->add_option("--depth", a->depth_mm, "isolation depth, mm")->group(g)->capture_default_str();
   cmd->add_option("--drill-depth", a->drill_depth_mm, "drill plunge depth, mm")
       ->group(g)

@@ -26,6 +26,9 @@ struct IsolationOptions {
   // board's 1 um chords, kBoardChordToleranceMm), so the tool that really cuts does not touch
   // copper. Narrow gaps are judged with it too.
   double clearance_mm = 0.008;
+  // A hole in an island that holds no other island (a hatched pour's opening) separates
+  // nothing: no contour is cut inside it unless this is set. mill_all clears them anyway.
+  bool isolate_empty_holes = false;
 };
 
 // Two islands closer than the tool width plus twice the clearance: the tool cannot pass
@@ -47,6 +50,7 @@ struct IsolationResult {
   std::vector<ToolPathNm> paths;  // pass 0 first
   std::vector<NarrowGap> narrow_gaps;
   size_t islands = 0;
+  size_t empty_holes_skipped = 0;  // holes left uncut (IsolationOptions::isolate_empty_holes)
   double tool_radius_mm = 0;
 };
 
