@@ -257,6 +257,7 @@ pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, co
   } else if (!a.align_measured_mm.empty()) {
     throw CommandFailure(kExitUsage, "--align-measured needs the job's --align-holes");
   }
+  o.isolation.isolate_empty_holes = a.isolate_empty_holes;
   o.isolation_depth_mm = a.depth_mm;
   o.drill_depth_mm = a.drill_depth_mm;
   o.drill_start_mm = a.drill_start_mm;
@@ -679,6 +680,9 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
       ->group(g)
       ->check(CLI::Range(1, 50))
       ->capture_default_str();
+  cmd->add_flag("--isolate-empty-holes", a->isolate_empty_holes,
+                "also cut inside openings of an island that hold no other island (hatched pours)")
+      ->group(g);
   cmd->add_option("--depth", a->depth_mm, "isolation depth, mm")->group(g)->capture_default_str();
   cmd->add_option("--drill-depth", a->drill_depth_mm, "drill plunge depth, mm")
       ->group(g)

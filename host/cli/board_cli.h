@@ -27,6 +27,7 @@ struct BoardArgs {
   double overlap = 0.25;
   double clearance_mm = pcb::IsolationOptions().clearance_mm;
   bool mill_all = false;
+  bool isolate_empty_holes = false;  // hatched pours' openings (IsolationOptions)
   double depth_mm = 0.05;
   double drill_depth_mm = 1.8;
   double drill_start_mm = 0.5;

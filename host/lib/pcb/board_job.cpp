@@ -313,6 +313,11 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
     }
     rep.islands = iso_result.islands;
     rep.narrow_gaps = iso_result.narrow_gaps;
+    if (iso_result.empty_holes_skipped > 0)
+      rep.notes.push_back(fmt::format(
+          "{}: {} opening(s) in the copper hold no other island (a hatched pour): no contour "
+          "inside them (--isolate-empty-holes cuts them)",
+          copper->path, iso_result.empty_holes_skipped));
     if (!rep.narrow_gaps.empty() && !o.allow_narrow_gaps) {
       std::string msg = fmt::format(
           "{}: {} place(s) where the copper is closer than the tool width {:.3f} mm plus its "

@@ -85,6 +85,27 @@ Paths clip_to(const Paths& contours, const Paths& area) {
   return out;
 }
 
+// The islands without their empty holes (see IsolationOptions::isolate_empty_holes).
+std::vector<Island> without_empty_holes(const std::vector<Island>& islands, size_t* skipped) {
+  std::vector<Island> out;
+  out.reserve(islands.size());
+  for (const Island& island : islands) {
+    Island kept;
+    kept.box = island.box;
+    size_t next_empty = 0;
+    for (size_t k = 0; k < island.paths.size(); ++k) {
+      if (next_empty < island.empty_holes.size() && island.empty_holes[next_empty] == k) {
+        ++next_empty;
+        ++*skipped;
+        continue;
+      }
+      kept.paths.push_back(island.paths[k]);
+    }
+    out.push_back(std::move(kept));
+  }
+  return out;
+}
+
 }  // namespace
 
 double clearing_edge_distance_mm(const IsolationOptions& o) {
@@ -245,8 +266,10 @@ IsolationResult plan_isolation(const Paths& copper_in, const IsolationOptions& o
     return r;
   }
   if (!o.mill_all) {
+    const std::vector<Island> cut =
+        o.isolate_empty_holes ? islands : without_empty_holes(islands, &r.empty_holes_skipped);
     for (int k = 0; k < o.passes; ++k) {
-      for (const Path& p : grown_islands(islands, radius_nm + k * step_nm, arc_tol_nm)) {
+      for (const Path& p : grown_islands(cut, radius_nm + k * step_nm, arc_tol_nm)) {
         ToolPathNm t;
         t.path = p;
         t.pass = k;

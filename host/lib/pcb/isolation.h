@@ -31,6 +31,9 @@ struct IsolationOptions {
   // width `passes` narrow passes would clear with this one. 0: none.
   double clearing_tool_width_mm = 0;
   int narrow_passes = 1;
+  // A hole in an island that holds no other island (a hatched pour's opening) separates
+  // nothing: no contour is cut inside it unless this is set. mill_all clears them anyway.
+  bool isolate_empty_holes = false;
 };
 
 // Two islands closer than the tool width plus twice the clearance: the tool cannot pass
@@ -53,6 +56,7 @@ struct IsolationResult {
   std::vector<ToolPathNm> paths;  // pass 0 first; the clearing tool's last
   std::vector<NarrowGap> narrow_gaps;
   size_t islands = 0;
+  size_t empty_holes_skipped = 0;  // holes left uncut (IsolationOptions::isolate_empty_holes)
   double tool_radius_mm = 0;
   double clearing_tool_radius_mm = 0;  // 0: no clearing paths
 };

@@ -127,17 +127,37 @@ IsolationCheck check_isolation(const Paths& copper_nm,
     // it kept at 50 nm (A64-OlinuXino top: 0.79 -> 0.36 million; check 63 -> 31 s).
     if (!p.empty()) centres.push_back(without_collinear(p, tolerance_mm * kNmPerMm / 10));
   }
-  const Paths copper = union_of(copper_nm);
+  // The islands are the union's pieces: their paths together are the union (a second union
+  // would sweep the whole board again).
+  Paths copper;
+  for (const Island& island : islands)
+    copper.insert(copper.end(), island.paths.begin(), island.paths.end());
 
   // 1. The tool, shrunk by the tolerance, must not reach copper.
   const double shrunk = (tool_radius_mm - tolerance_mm) * kNmPerMm;
   if (shrunk > 0 && !centres.empty()) {
-    const Paths swept_in = sweep_open(centres, shrunk, kArcToleranceNm);
+    // Copper AND the union of the sweeps is the union, strip by strip, of the copper near a
+    // strip AND that strip's sweep: the whole job's sweep is never united in one piece (on
+    // A64-OlinuXino, top, 0.2 mm: 3.3 -> 1.9 s of the check).
+    std::vector<Paths> pieces;
+    pieces.reserve(centres.size());
+    for (const Path& p : centres) pieces.push_back(Paths{p});
+    const Paths cut_copper = united_by_strips(pieces, [&](const Paths& group) {
+      const Paths swept_in = sweep_open(group, shrunk, kArcToleranceNm);
+      const BoxNm near = box_of(swept_in);
+      Paths copper_near;
+      for (const Island& island : islands) {
+        if (!island.box.overlaps(near)) continue;
+        const Paths part =
+            near.contains(island.box) ? island.paths : clip_to_box(island.paths, near);
+        copper_near.insert(copper_near.end(), part.begin(), part.end());
+      }
+      return intersection_of(copper_near, swept_in);
+    });
     ClipperLib::Clipper c;
-    c.AddPaths(copper, ClipperLib::ptSubject, true);
-    c.AddPaths(swept_in, ClipperLib::ptClip, true);
+    c.AddPaths(cut_copper, ClipperLib::ptSubject, true);
     ClipperLib::PolyTree tree;
-    c.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    c.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
     std::vector<Piece> overlaps;
     collect_pieces(tree, &overlaps);
     for (const Piece& p : overlaps) {

@@ -115,6 +115,7 @@ void collect_islands(const PolyNode& node, std::vector<Island>* out) {
     Island island;
     island.paths.push_back(outer->Contour);
     for (const PolyNode* hole : outer->Childs) {
+      if (hole->Childs.empty()) island.empty_holes.push_back(island.paths.size());
       island.paths.push_back(hole->Contour);
       collect_islands(*hole, out);
     }

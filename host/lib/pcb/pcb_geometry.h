@@ -54,6 +54,9 @@ ClipperLib::Paths clip_to_box(const ClipperLib::Paths& paths, const BoxNm& box);
 struct Island {
   ClipperLib::Paths paths;  // paths[0] is the outer boundary
   BoxNm box;
+  // Holes (indices into paths) that hold no other island: a hatched pour's openings, which
+  // separate nothing.
+  std::vector<size_t> empty_holes;
 };
 
 // Copper split into islands (the union is taken first, so overlapping input is fine).

@@ -120,6 +120,23 @@ std::vector<PointRow> point_rows(const std::string& csv, std::string* header) {
   return rows;
 }
 
+TEST(BoardCli, AnOpeningThatHoldsNoIslandIsCutOnlyWhenAsked) {
+  // A 4 mm square pad with a 1 mm clear square in its middle: an opening with nothing in it.
+  const std::string dir = write_board(
+      "opening",
+      "%ADD13R,4.000000X4.000000*%\n%ADD14R,1.000000X1.000000*%\nD13*\nX30000000Y5000000D03*\n"
+      "%LPC*%\nD14*\nX30000000Y5000000D03*\n%LPD*%\n");
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["isolation_contours"], 3);
+  EXPECT_NE(r.err.find("t-F.Cu.gbr: 1 opening(s) in the copper hold no other island"),
+            std::string::npos)
+      << r.err;
+  const ToolRun all = run("board " + dir + " -o " + dir + "/out --json --isolate-empty-holes");
+  ASSERT_EQ(all.code, 0) << all.err;
+  EXPECT_EQ(nlohmann::json::parse(all.out)["isolation_contours"], 4);
+}
+
 TEST(BoardCli, PointsOnACopperLayerAreToolCentresAroundTheCopper) {
   const std::string dir = write_board("points");
   const ToolRun r = run("points " + dir + "/t-F.Cu.gbr --csv");

@@ -56,6 +56,44 @@ TEST(Isolation, OneContourPerIslandAtTheToolRadiusPlusTheClearance) {
   EXPECT_TRUE(c.ok()) << describe(c);
 }
 
+// A hatched plane: a 10 mm square with a 3 x 3 grid of 1 mm openings, and one 3 mm opening
+// that holds a pad. Copper made as a hatch is: the plane, then every opening cut out of it.
+ClipperLib::Paths hatched_plane_with_a_pad() {
+  ClipperLib::Paths openings;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      openings.push_back(rect(1 + 2 * i, 1 + 2 * j, 2 + 2 * i, 2 + 2 * j));
+  openings.push_back(rect(6.5, 6.5, 9.5, 9.5));
+  ClipperLib::Paths copper = difference_of({rect(0, 0, 10, 10)}, openings);
+  copper.push_back(pad(8, 8, 0.5));
+  return copper;
+}
+
+TEST(Isolation, AHatchOpeningThatHoldsNoIslandGetsNoContour) {
+  const ClipperLib::Paths copper = hatched_plane_with_a_pad();
+  IsolationOptions o;
+  o.tool_width_mm = 0.2;
+  const IsolationResult r = plan_isolation(copper, o);
+  EXPECT_EQ(r.islands, 2u);
+  EXPECT_EQ(r.empty_holes_skipped, 9u);
+  // Round the plane, inside the opening that holds the pad, round the pad: three.
+  ASSERT_EQ(r.paths.size(), 3u);
+  for (const ToolPathNm& t : r.paths) {
+    for (const auto& q : t.path) EXPECT_NEAR(distance_to_copper(to_mm(q), copper), 0.108, 0.0011);
+  }
+  const IsolationCheck c = check_isolation(copper, centre_lines(r), 0.1, 0.002);
+  EXPECT_TRUE(c.ok()) << describe(c);
+}
+
+TEST(Isolation, HatchOpeningsAreIsolatedWhenAsked) {
+  IsolationOptions o;
+  o.tool_width_mm = 0.2;
+  o.isolate_empty_holes = true;
+  const IsolationResult r = plan_isolation(hatched_plane_with_a_pad(), o);
+  EXPECT_EQ(r.empty_holes_skipped, 0u);
+  EXPECT_EQ(r.paths.size(), 12u);  // and one inside each of the nine openings
+}
+
 TEST(Isolation, GapNarrowerThanTheToolIsReportedWithItsPlace) {
   // Two pads 0.15 mm apart at x = 10.0 .. 10.15; the tool is 0.2 mm wide.
   const ClipperLib::Paths copper = {rect(8, 0, 10, 2), rect(10.15, 0, 12, 2), rect(20, 0, 21, 1)};
@@ -169,6 +207,33 @@ TEST(Isolation, CheckerSeesASampleLessThanTheToleranceOffAStraightRun) {
   const IsolationCheck hit = check_isolation(copper, {bumped}, 0.1, 0.002);
   ASSERT_EQ(hit.hits.size(), 1u) << describe(hit);
   EXPECT_NEAR(hit.hits[0].at_mm.x(), 5.0, 0.01);
+}
+
+TEST(Isolation, CheckerFindsEveryHitOnABoardCheckedInStrips) {
+  // 120 pads in a row, each ringed by a planned contour of 200 samples 1 um apart in
+  // radius, so thinning keeps them (24 000 in all: the check works in several strips), and two
+  // strokes that each cut a copper strip that runs along the whole row: one hit each, none lost or
+  // split between strips.
+  ClipperLib::Paths copper;
+  std::vector<std::vector<Point2>> paths;
+  for (int i = 0; i < 120; ++i) {
+    const double x = 2.0 * i;
+    copper.push_back(pad(x, 0, 0.5));
+    std::vector<Point2> ring;
+    for (int k = 0; k <= 200; ++k) {
+      const double a = 2 * 3.14159265358979 * k / 200;
+      const double r = k % 2 ? 0.6105 : 0.6095;
+      ring.push_back(Point2(x + r * std::cos(a), r * std::sin(a)));
+    }
+    paths.push_back(ring);
+  }
+  copper.push_back(rect(-1, 3, 239, 3.5));
+  ASSERT_TRUE(check_isolation(copper, paths, 0.1, 0.002).ok());
+  paths.push_back({Point2(10.0, 2.5), Point2(10.0, 4.0)});
+  paths.push_back({Point2(230.0, 2.5), Point2(230.0, 4.0)});
+  const IsolationCheck c = check_isolation(copper, paths, 0.1, 0.002);
+  ASSERT_EQ(c.hits.size(), 2u) << describe(c);
+  EXPECT_NEAR(c.hits[0].at_mm.x() + c.hits[1].at_mm.x(), 240.0, 0.01);
 }
 
 TEST(Isolation, DescribeListsTheLargestHitsAndCountsTheRest) {
