@@ -44,8 +44,6 @@ class PathController {
   bool item_started() const { return item_started_; }
   uint16_t stopped_points() const { return stopped_points_; }
   bool stopped_started() const { return stopped_started_; }
-  // Tag of the current target (the item being worked on).
-  uint16_t current_tag() const { return cur_.tag; }
 
  private:
   void take_popped();
