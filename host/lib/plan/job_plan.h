@@ -15,7 +15,7 @@
 #include "firmware/config/machine_config.h"
 #include "firmware/core/spline.h"
 #include "host/lib/drawing/drawing.h"
-#include "host/lib/plan/compact_spline.h"
+#include "host/lib/plan/step_spline.h"
 
 namespace host {
 
@@ -93,8 +93,8 @@ struct PlanStep {
   bool spindle_on = false;     // kSpindle
 
   // kSpline: the curve (validated, in machine micrometres); empty for every other kind.
-  const CompactSpline& spline() const;
-  void set_spline(CompactSpline spline);
+  const StepSpline& spline() const;
+  void set_spline(StepSpline spline);
   // kPause: the operator's message (LCD, at most 16 characters used); empty otherwise.
   const std::string& text() const;
   void set_text(std::string text);
@@ -103,7 +103,7 @@ struct PlanStep {
   // Only spline and pause steps have these, so the others (a million feeds in a large job)
   // stay small. Never changed once made: copies of a step share them.
   struct Extra {
-    CompactSpline spline;
+    StepSpline spline;
     std::string text;
   };
   std::shared_ptr<const Extra> extra_;

@@ -166,7 +166,7 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
           // The controller offsets curves only: a straight line with an offset goes as a
           // degree-1 spline from where the tool is.
           PlanStep line = s;
-          line.set_spline(CompactSpline(straight_spline(from, s.to)));
+          line.set_spline(StepSpline(straight_spline(from, s.to)));
           append_spline(line, index, options.max_payload, options.splines, &out);
           break;
         }

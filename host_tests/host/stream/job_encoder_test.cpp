@@ -44,7 +44,7 @@ JobPlan plan_with_spline(const core::Spline& spline) {
   down.feed_um_per_s = 2000;
   PlanStep curve;
   curve.kind = PlanStep::kSpline;
-  curve.set_spline(CompactSpline(spline));
+  curve.set_spline(StepSpline(spline));
   curve.to = {spline.control[spline.control_count - 1].x_um,
               spline.control[spline.control_count - 1].y_um};
   curve.feed_um_per_s = 10000;
@@ -155,7 +155,7 @@ TEST(JobEncoder, KnotSpanTooWideForACompactFrameGoesInAFullFrame) {
   test::expect_same_spline(spline, reassemble(cmds));
 }
 
-TEST(JobEncoder, CompactSplineDataIsTheSameSplineInFewerBytes) {
+TEST(JobEncoder, StepSplineDataIsTheSameSplineInFewerBytes) {
   for (bool rational : {true, false}) {
     const core::Spline spline = wavy_spline(core::kMaxControlPoints, rational);
     EncodeOptions full;
