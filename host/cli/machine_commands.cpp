@@ -39,15 +39,6 @@ namespace host::cli {
 
 namespace {
 
-// Exit codes of send/run beyond the common ones (docs/user-guide.md).
-enum MachineExit {
-  kExitAborted = 3,
-  kExitAlarm = 4,
-  kExitRefused = 5,
-  kExitLinkLost = 6,
-  kExitStalled = 7
-};
-
 int exit_code(JobOutcome outcome) {
   switch (outcome) {
     case JobOutcome::kCompleted:
