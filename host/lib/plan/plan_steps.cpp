@@ -9,10 +9,6 @@
 
 namespace host {
 
-double machine_travel_mm(int axis) {
-  return config::default_machine_config().axis[axis].travel_um / 1000.0;
-}
-
 namespace plan_detail {
 
 namespace {

@@ -107,6 +107,7 @@ core::Spline straight_spline(const core::PointUm& a, const core::PointUm& b) {
 
 void use_session(const proto::SessionReply& caps, EncodeOptions* o) {
   o->max_payload = caps.max_payload;
+  o->z_rapid_um_per_s = caps.max_feed_z_um_per_s;
   if (caps.protocol_version < proto::kContourFramesVersion && o->splines == SplineFrames::kContour)
     o->splines = SplineFrames::kCompact;
 }
