@@ -17,7 +17,6 @@ Dispatcher::Dispatcher()
       last_byte_ms_(0),
       last_valid_ms_(0),
       last_error_reply_ms_(0),
-      tx_dropped_(0),
       tx_len_(0),
       alarm_seq_(0),
       session_(false),
@@ -291,15 +290,14 @@ void Dispatcher::error(uint8_t seq, proto::ErrorCode code, uint8_t detail) {
   reply(r, seq);
 }
 
-// Encodes a reply into the transmit buffer; if even that is full the reply is dropped and
-// counted (the host recovers with #? and its retransmit timer).
+// Encodes a reply into the transmit buffer; if even that is full the reply is dropped (the
+// host recovers with #? and its retransmit timer).
 template <typename Msg>
 void Dispatcher::reply(const Msg& msg, uint8_t seq) {
   uint8_t size = 0;
   if (kTxBytes - tx_len_ < proto::kMaxFrameBytes) flush_tx();
   if (proto::write_frame(msg, seq, tx_ + tx_len_, (uint16_t)(kTxBytes - tx_len_), &size) !=
       proto::ErrorCode::kOk) {
-    ++tx_dropped_;
     return;
   }
   tx_len_ = (uint16_t)(tx_len_ + size);

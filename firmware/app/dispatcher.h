@@ -61,7 +61,6 @@ class Dispatcher {
   // Milliseconds since the last CRC-valid frame, modulo 65536 (it wraps after 65.5 s; the
   // link watchdog acts at 2 s, long before).
   uint16_t ms_since_valid(uint16_t now_ms) const { return (uint16_t)(now_ms - last_valid_ms_); }
-  uint16_t tx_dropped() const { return tx_dropped_; }
 
  private:
   void on_frame(const proto::Frame& f, uint16_t now_ms);
@@ -86,7 +85,6 @@ class Dispatcher {
   uint16_t last_byte_ms_;
   uint16_t last_valid_ms_;
   uint16_t last_error_reply_ms_;
-  uint16_t tx_dropped_;
   uint16_t tx_len_;
   uint8_t alarm_seq_;
   bool session_;

@@ -46,8 +46,6 @@ class PathController {
   bool stopped_started() const { return stopped_started_; }
   // Flags of the current target (0 without one).
   uint8_t current_flags() const { return have_target_ ? cur_.flags : 0; }
-  // Tag of the current target (the item being worked on).
-  uint16_t current_tag() const { return cur_.tag; }
 
  private:
   void take_popped();

@@ -21,8 +21,6 @@ class SplineStore {
   void clear();
   bool has_free_slot() const;
   uint8_t free_slots() const;
-  // True while a spline is open for #D data.
-  bool filling() const { return open_ < kSlots; }
   // #B: checks the header (kFieldRange) and opens a free slot (caller checked there is one).
   proto::ErrorCode begin(const proto::SplineHeaderCmd& header, uint8_t* slot);
   // #D: appends in order (kSplineSequence), coordinates within +-travel (kOutOfTravel). When

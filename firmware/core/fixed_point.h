@@ -82,11 +82,6 @@ inline int32_t mul_32x16_q15(int32_t a, q15_t b) {
   return hi_part * 2 + (int32_t)((lo_signed + 16384L) >> 15);
 }
 
-// a * b for two 16-bit values, widened before the multiply.
-inline int32_t mul_16x16(int16_t a, int16_t b) {
-  return (int32_t)a * (int32_t)b;
-}
-
 // v >> n (arithmetic, n in 0..31) with a whole-byte step first: a variable shift is a loop
 // of single-bit steps on the AVR (and on the dsPIC for 32-bit values), a shift by 8 is a
 // byte move.

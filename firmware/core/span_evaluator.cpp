@@ -510,14 +510,4 @@ Direction SpanEvaluator::end_direction() const {
   return end_dir_;
 }
 
-// Sets up a throwaway evaluator (tests and tools).
-PointUm evaluate_spline(const Spline& spline, uint16_t span, uq16_t t) {
-  SpanEvaluator e;
-  if (e.setup(spline, span) != GeometryError::kOk) {
-    PointUm z = {0, 0};
-    return z;
-  }
-  return e.evaluate(t);
-}
-
 }  // namespace core

@@ -95,10 +95,6 @@ class SpanEvaluator {
   uint8_t dir_shift_;  // fraction bits dropped from the derivative coefficients (0..3)
 };
 
-// Convenience (tests, tools): the point of span `span` at t, or (0,0) if the span is
-// invalid. Sets up a SpanEvaluator every call: not for loops.
-PointUm evaluate_spline(const Spline& spline, uint16_t span, uq16_t t);
-
 }  // namespace core
 
 #endif  // FIRMWARE_CORE_SPAN_EVALUATOR_H

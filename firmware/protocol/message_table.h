@@ -1,9 +1,10 @@
 // Every wire message, declared once: its letter, kind, payload fields (wire type, name,
-// range), reply, display name and handler. messages.h builds the structs and letters from
-// it, codec.cpp the field tables its one walker encodes, decodes and checks with, frame.cpp
-// command_kind(), names.cpp the display names, the application its dispatch switch, and a
-// test checks docs/protocol.md against it. Adding a command: one CMD row with its fields,
-// the handler it names, and its line in docs/protocol.md.
+// range), reply, display name and handler. messages.h builds the structs from it,
+// wire_codes.h the letters, codec.cpp the field tables its one walker encodes, decodes and
+// checks with, frame.cpp command_kind() and message_name() (the display names), the
+// application its dispatch switch, and a test checks docs/protocol.md against it. Adding a
+// command: one CMD row with its fields, the handler it names, and its line in
+// docs/protocol.md.
 //
 // An X-macro: PROTO_MESSAGE_TABLE(CMD, REPLY, FIELD, TEXT, ARRAY, END) calls
 //   CMD(Type, letter_name, letter, kind, "name", "reply", handler, extra_check)

@@ -433,9 +433,9 @@ struct BoardCommand {
   std::vector<std::string> drills;
   BoardArgs board;
   MachineDefaults machine;
-  std::vector<double> work_mm{297.0, 210.0};
+  std::vector<double> work_mm{defaults::work_width_mm(), defaults::work_height_mm()};
   std::string outdir = "out";
-  double tol_mm = 0.005;
+  double tol_mm = defaults::kChordToleranceMm;
   bool json = false;
   bool no_check = false;
   bool no_plot = false;

@@ -15,6 +15,7 @@
 
 #include "host/lib/pcb/board_job.h"
 #include "host/lib/pcb/isolation_check.h"  // IsolationCheck
+#include "host/lib/plan/job_defaults.h"
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/plot/plot.h"  // ToolPathSegment
 
@@ -22,24 +23,24 @@ namespace host::cli {
 
 // Board options shared by `board`, `run` and `send` (tools, passes, depths, tabs, side).
 struct BoardArgs {
-  double tool_width_mm = 0.2;
-  int passes = 1;
-  double overlap = 0.25;
-  double clearance_mm = pcb::IsolationOptions().clearance_mm;
+  double tool_width_mm = defaults::kToolWidthMm;
+  int passes = defaults::kPasses;
+  double overlap = defaults::kOverlap;
+  double clearance_mm = defaults::kClearanceMm;
   bool mill_all = false;
   bool isolate_empty_holes = false;  // hatched pours' openings (IsolationOptions)
-  double depth_mm = 0.05;
-  double drill_depth_mm = 1.8;
-  double drill_start_mm = 0.5;
-  double drill_feed_mm_s = 1.0;
-  double cutter_mm = 1.0;
-  double cut_depth_mm = 1.8;
-  double cut_step_mm = 0.6;
-  double cut_feed_mm_s = 3.0;
-  double tab_width_mm = 2.0;
-  int tabs = 4;
+  double depth_mm = defaults::kIsolationDepthMm;
+  double drill_depth_mm = defaults::kDrillDepthMm;
+  double drill_start_mm = defaults::kDrillStartMm;
+  double drill_feed_mm_s = defaults::kDrillFeedMmPerS;
+  double cutter_mm = defaults::kCutterMm;
+  double cut_depth_mm = defaults::kCutDepthMm;
+  double cut_step_mm = defaults::kCutStepMm;
+  double cut_feed_mm_s = defaults::kCutFeedMmPerS;
+  double tab_width_mm = defaults::kTabWidthMm;
+  int tabs = defaults::kTabs;
   double tab_spacing_mm = 0;  // > 0: one tab per this much outline instead of --tabs
-  double tab_height_mm = 0.5;
+  double tab_height_mm = defaults::kTabHeightMm;
   bool no_spindle = false;
   bool allow_narrow_gaps = false;
   std::string side;             // "top", "bottom" or empty (the side whose copper is given)
@@ -59,11 +60,11 @@ void add_board_options(CLI::App* cmd, BoardArgs* args);
 // The machine options `engraver board` plans with, which `run` and `send` also take for PCB
 // files where none is given.
 struct MachineDefaults {
-  double feed_mm_s = 5.0;
-  double chord_tol_mm = pcb::kBoardChordToleranceMm;  // of the controller's points (#U)
-  double z_up_mm = 2.0;
-  double margin_mm = 5.0;
-  double work_w_mm = 297.0, work_h_mm = 210.0;
+  double feed_mm_s = defaults::kBoardFeedMmPerS;
+  double chord_tol_mm = defaults::kBoardChordToleranceMm;  // of the controller's points (#U)
+  double z_up_mm = defaults::kZUpMm;
+  double margin_mm = defaults::kBoardMarginMm;
+  double work_w_mm = defaults::work_width_mm(), work_h_mm = defaults::work_height_mm();
 };
 
 // True when `input` names PCB files (a Gerber/Excellon file, a directory with some, a

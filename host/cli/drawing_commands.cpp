@@ -16,6 +16,7 @@
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
+#include "host/lib/plan/job_defaults.h"
 #include "host/lib/progress/progress_meter.h"
 
 namespace host::cli {
@@ -29,7 +30,7 @@ struct InfoArgs {
 
 struct PointsArgs {
   std::string file;
-  double tol_mm = 0.005;
+  double tol_mm = defaults::kChordToleranceMm;
   bool csv = false;
   BoardArgs board;  // PCB input: the job `board` plans
 };

@@ -40,15 +40,6 @@ namespace host::cli {
 
 namespace {
 
-// Exit codes of send/run beyond the common ones (docs/user-guide.md).
-enum MachineExit {
-  kExitAborted = 3,
-  kExitAlarm = 4,
-  kExitRefused = 5,
-  kExitLinkLost = 6,
-  kExitStalled = 7
-};
-
 int exit_code(JobOutcome outcome) {
   switch (outcome) {
     case JobOutcome::kCompleted:
@@ -69,22 +60,19 @@ int exit_code(JobOutcome outcome) {
 
 struct PlanArgs {
   std::string file;
-  double feed_mm_s = 10.0;
-  double tol_mm = 0.005;
-  double scale = 1.0;
-  double margin_mm = 0.0;
-  // The reference machine's travel (firmware/config/machine_config.h).
-  std::vector<double> work_mm{
-      config::default_machine_config().axis[config::kAxisX].travel_um / 1000.0,
-      config::default_machine_config().axis[config::kAxisY].travel_um / 1000.0};
-  double chain_tol_mm = 0.01;
+  double feed_mm_s = defaults::feed_mm_per_s();
+  double tol_mm = defaults::kChordToleranceMm;
+  double scale = defaults::kScale;
+  double margin_mm = defaults::kMarginMm;
+  std::vector<double> work_mm{defaults::work_width_mm(), defaults::work_height_mm()};
+  double chain_tol_mm = defaults::kChainToleranceMm;
   bool no_reorder = false;
-  double z_up_mm = 2.0;
-  double z_down_mm = -0.1;
+  double z_up_mm = defaults::kZUpMm;
+  double z_down_mm = defaults::kZDownMm;
   std::vector<double> offset_mm;  // X Y: drawing coordinates + offset instead of --margin
   std::string tool_side = "centre";
   double tool_radius_mm = 0.0;
-  double fit_tol_mm = 0.005;
+  double fit_tol_mm = defaults::kFitToleranceMm;
   bool drill_as_z_moves = false;
   BoardArgs board;
 };
@@ -109,18 +97,24 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   cmd->add_option("FILE", a->file,
                   "drawing (DXF, G-code) or PCB files (Gerber, Excellon, a board folder)")
       ->required();
-  CLI::Option* feed = cmd->add_option("--feed", a->feed_mm_s,
-                                      "cutting feed in mm/s (PCB isolation: 5 unless given)")
-                          ->check(CLI::Range(0.1, 60.0))
-                          ->capture_default_str();
+  CLI::Option* feed =
+      cmd->add_option("--feed", a->feed_mm_s,
+                      fmt::format("cutting feed in mm/s (PCB isolation: {} unless given)",
+                                  defaults::kBoardFeedMmPerS))
+          ->check(CLI::Range(0.1, 60.0))
+          ->capture_default_str();
   CLI::Option* tol =
-      cmd->add_option("--tol", a->tol_mm,
-                      "chord tolerance of the generated points in mm (PCB: 0.001 unless given)")
+      cmd->add_option(
+             "--tol", a->tol_mm,
+             fmt::format("chord tolerance of the generated points in mm (PCB: {} unless given)",
+                         defaults::kBoardChordToleranceMm))
           ->check(CLI::Range(0.001, 1.0))
           ->capture_default_str();
   CLI::Option* margin =
-      cmd->add_option("--margin", a->margin_mm,
-                      "offset of the drawing from the zero corner, mm (PCB: 5 unless given)")
+      cmd->add_option(
+             "--margin", a->margin_mm,
+             fmt::format("offset of the drawing from the zero corner, mm (PCB: {} unless given)",
+                         defaults::kBoardMarginMm))
           ->check(CLI::Range(0.0, 100.0))
           ->capture_default_str();
   cmd->add_option("--work", a->work_mm, "work area W H in mm (default A4)")->expected(2);
@@ -380,6 +374,7 @@ void run_send(const SendArgs& a) {
   use_session(caps, &enc);
   enc.controller = &caps;
   std::vector<QueuedCommand> commands = encode_job(plan, enc);
+  const uint16_t job_id = job_id_of(commands);  // the whole job's, also when resumed
   if (a.resume || !a.resume_at.empty()) {
     commands = resume_stream(a, sender, commands, enc);
     if (commands.empty()) {
@@ -388,9 +383,9 @@ void run_send(const SendArgs& a) {
     }
   }
   std::cerr << fmt::format(
-      "engraver: {} -> {}: {} curves, {} commands, {} bytes; keys: h hold, "
+      "engraver: {} -> {}: {} curves, {} commands, {} bytes, job id {}; keys: h hold, "
       "r resume, x abort, +/- feed override\n",
-      a.plan.file, link->name(), plan.curves.size(), commands.size(), wire_bytes(commands));
+      a.plan.file, link->name(), plan.curves.size(), commands.size(), wire_bytes(commands), job_id);
   JobOutcome outcome;
   {
     Keyboard keys(sender);
@@ -681,6 +676,7 @@ void run_run(const RunArgs& a) {
   j["frames_sent"] = r.stats.frames_sent;
   j["bytes_sent"] = r.stats.bytes_sent;
   j["job_wire_bytes"] = r.wire_bytes;
+  j["job_id"] = r.job_id;
   const PointCount points = count_points(plan, a.plan.tol_mm);
   j["gcode_g1_bytes_same_tolerance"] = points.gcode_bytes;
   j["retransmits"] = r.stats.retransmits;

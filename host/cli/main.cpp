@@ -23,9 +23,9 @@ int main(int argc, char** argv) {
       "Examples:\n"
       "  engraver info samples/engraver-word.dxf\n"
       "  engraver points samples/engraver-word.dxf --tol 0.005 --csv > points.csv\n"
-      "\nExit codes: 0 done; 1 job refused or failed; 2 usage or input error; send and run "
-      "also 3 aborted, 4 machine alarm, 5 command refused by the controller, 6 link lost; 70 "
-      "internal error (docs/user-guide.md, \"Exit codes\"). Each command's --help lists its own.");
+      "\nExit codes: " +
+      host::cli::exit_codes_summary() +
+      " (docs/user-guide.md, \"Exit codes\"). Each command's --help lists its own.");
   app.set_version_flag("--version", std::string("engraver ") + ENGRAVER_VERSION);
   app.require_subcommand(1);
   host::cli::add_registered_commands(app);

@@ -3,16 +3,13 @@
 
 #include <cstdio>  // std::snprintf
 
-#include "hal/drivers/tmc428/tmc428_map.h"  // find_register, register_name
+#include "hal/drivers/tmc428/tmc428_map.h"   // find_register, register_name
+#include "hal/drivers/tmc428/tmc428_regs.h"  // sign_extend
 
 namespace host::spi {
 namespace {
 
-int64_t sign_extend(uint32_t v, int bits) {
-  uint32_t m = 1u << (bits - 1);
-  v &= (1u << bits) - 1;
-  return static_cast<int64_t>(static_cast<int32_t>((v ^ m) - m));
-}
+using drivers::tmc428::sign_extend;  // the driver's, for the same register fields
 
 uint32_t bits_of(uint32_t v, int hi, int lo) {
   return (v >> lo) & ((1u << (hi - lo + 1)) - 1);
@@ -80,7 +77,7 @@ Tmc428Datagram decode_tmc428(uint32_t mosi, bool has_miso, uint32_t miso) {
     const uint32_t raw = bits_of(v, f->hi, f->lo);
     switch (f->kind) {
       case drivers::tmc428::kFieldSigned:
-        add(f->name, sign_extend(raw, f->hi - f->lo + 1));
+        add(f->name, sign_extend(raw, static_cast<uint8_t>(f->hi - f->lo + 1)));
         break;
       case drivers::tmc428::kFieldHex:
         add(f->name, raw, true);

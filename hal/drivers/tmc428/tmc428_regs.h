@@ -120,9 +120,6 @@ inline uint32_t read_datagram(uint8_t address) {
 }
 
 // Fields of a MOSI datagram.
-inline uint8_t datagram_address_byte(uint32_t mosi) {
-  return (uint8_t)(mosi >> 24);
-}
 inline bool datagram_is_read(uint32_t mosi) {
   return (mosi & 0x01000000UL) != 0;
 }

@@ -194,7 +194,7 @@ class StepWriter {
     for (size_t k = 0; k < pieces.size(); ++k) {
       PlanStep s;
       s.kind = PlanStep::kSpline;
-      s.set_spline(CompactSpline(pieces[k]));
+      s.set_spline(StepSpline(pieces[k]));
       s.to = um(k + 1 == pieces.size() ? end_point(pc.spline)
                                        : end_point(from_firmware_spline(pieces[k])));
       s.feed_um_per_s = um(feed);

@@ -26,11 +26,8 @@ struct BoardLayers {
   const PcbLayer* outline = nullptr;
 };
 
-// The chord tolerance a board is sent with (#U): the controller's points cut inside a curve
-// by up to this much, toward the copper the curve goes round, so it comes out of the
-// isolation clearance. At 5 um the A64-OlinuXino's top isolation touched copper in the
-// simulator (-3.4 um); at 1 um its least clearance is +1.4 um (docs/performance.md).
-constexpr double kBoardChordToleranceMm = 0.001;
+// The chord tolerance a board is sent with (#U), see job_defaults.h.
+constexpr double kBoardChordToleranceMm = defaults::kBoardChordToleranceMm;
 
 // Double-sided boards (docs/user-guide.md): both setups planned in one frame, symmetric about
 // the flip axis (the vertical line through the middle of the board's outline, else of its
@@ -52,27 +49,30 @@ struct AlignmentOptions {
 struct BoardOptions {
   BoardSide side = BoardSide::kTop;  // kBottom: the bottom copper, everything mirrored in x
   IsolationOptions isolation;        // tool width, passes, overlap, mill_all
-  double isolation_depth_mm = 0.05;  // cutting depth of the V-bit below the copper surface
-  double fit_tolerance_mm = 0.002;   // polyline -> lines/arcs/cubics
-  double z_travel_mm = 2.0;
-  double feed_mm_per_s = 5.0;  // isolation
-  double plunge_mm_per_s = 1.0;
-  double drill_start_mm = 0.5;  // height above the board where each plunge starts
-  double drill_depth_mm = 1.8;  // plunge depth (board thickness + breakthrough)
-  double drill_feed_mm_per_s = 1.0;
+  // Cutting depth of the V-bit below the copper surface
+  double isolation_depth_mm = defaults::kIsolationDepthMm;
+  double fit_tolerance_mm = defaults::kBoardFitToleranceMm;  // polyline -> lines/arcs/cubics
+  double z_travel_mm = defaults::kZUpMm;
+  double feed_mm_per_s = defaults::kBoardFeedMmPerS;  // isolation
+  double plunge_mm_per_s = defaults::kBoardPlungeMmPerS;
+  // Height above the board where each plunge starts
+  double drill_start_mm = defaults::kDrillStartMm;
+  double drill_depth_mm = defaults::kDrillDepthMm;  // plunge depth (board thickness + breakthrough)
+  double drill_feed_mm_per_s = defaults::kDrillFeedMmPerS;
   CutoutOptions cutout;
-  double cutout_depth_mm = 1.8;
-  double cutout_step_mm = 0.6;  // depth per cut-out pass
-  double tab_height_mm = 0.5;   // tabs keep this much of the board's thickness
-  double cutout_feed_mm_per_s = 3.0;
+  double cutout_depth_mm = defaults::kCutDepthMm;
+  double cutout_step_mm = defaults::kCutStepMm;   // depth per cut-out pass
+  double tab_height_mm = defaults::kTabHeightMm;  // tabs keep this much of the board's thickness
+  double cutout_feed_mm_per_s = defaults::kCutFeedMmPerS;
   bool spindle = true;  // spindle on/off steps and spin-up dwells
-  uint32_t spindle_spinup_ms = 2000;
-  double margin_mm = 5.0;  // the job's lower-left corner (tool extent) in the machine
-  double work_width_mm = 297.0;
-  double work_height_mm = 210.0;
+  uint32_t spindle_spinup_ms = defaults::kSpindleSpinupMs;
+  // The job's lower-left corner (tool extent) in the machine
+  double margin_mm = defaults::kBoardMarginMm;
+  double work_width_mm = defaults::work_width_mm();
+  double work_height_mm = defaults::work_height_mm();
   // The controller's travel: the work area may not be larger (check_work_area()).
-  double travel_width_mm = machine_travel_mm(config::kAxisX);
-  double travel_height_mm = machine_travel_mm(config::kAxisY);
+  double travel_width_mm = defaults::travel_mm(config::kAxisX);
+  double travel_height_mm = defaults::travel_mm(config::kAxisY);
   bool allow_narrow_gaps = false;  // plan anyway (the gaps stay in the report)
   AlignmentOptions alignment;
 };

@@ -8,13 +8,14 @@
 
 #include "host/lib/drawing/bspline.h"  // Point2
 #include "host/lib/pcb/pcb_layer.h"
+#include "host/lib/plan/job_defaults.h"
 
 namespace host::pcb {
 
 struct CutoutOptions {
-  double cutter_diameter_mm = 1.0;
-  double tab_width_mm = 2.0;        // material left standing at each tab (0: no tabs)
-  int tab_count = 4;                // tabs on each outer loop, evenly spaced
+  double cutter_diameter_mm = defaults::kCutterMm;
+  double tab_width_mm = defaults::kTabWidthMm;  // material left standing at each tab (0: no tabs)
+  int tab_count = defaults::kTabs;              // tabs on each outer loop, evenly spaced
   double tab_spacing_mm = 0;        // > 0: one tab per this much loop length instead of tab_count
   double join_tolerance_mm = 0.02;  // open strokes whose ends are closer are joined
   double arc_tolerance_mm = 0.001;

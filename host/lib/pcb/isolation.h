@@ -10,22 +10,22 @@
 
 #include "host/lib/pcb/pcb_geometry.h"  // Island
 #include "host/lib/pcb/pcb_layer.h"
+#include "host/lib/plan/job_defaults.h"
 
 namespace host::pcb {
 
 struct IsolationOptions {
-  double tool_width_mm = 0.2;       // a V-bit's width at the cutting depth
-  int passes = 1;                   // contours per island, each farther out
-  double overlap = 0.25;            // fraction of the tool width a pass overlaps the previous one
+  double tool_width_mm = defaults::kToolWidthMm;  // a V-bit's width at the cutting depth
+  int passes = defaults::kPasses;                 // contours per island, each farther out
+  double overlap =
+      defaults::kOverlap;           // fraction of the tool width a pass overlaps the previous one
   bool mill_all = false;            // keep offsetting until the whole copper-free area is cleared
   ClipperLib::Paths area_nm;        // mill_all: the area to clear (the board); empty: the copper's
                                     // bounds grown by two tool widths
   double arc_tolerance_mm = 0.001;  // chord error of Clipper's round joins
-  // Kept between the tool's edge and the copper on top of the tool radius: room for the curve
-  // fit (2 um) and the machine's contour error (up to 7 um on the simulated machine with the
-  // board's 1 um chords, kBoardChordToleranceMm), so the tool that really cuts does not touch
-  // copper. Narrow gaps are judged with it too.
-  double clearance_mm = 0.008;
+  // Kept between the tool's edge and the copper on top of the tool radius (why: job_defaults.h).
+  // Narrow gaps are judged with it too.
+  double clearance_mm = defaults::kClearanceMm;
   // A wider tool for the outer part of the isolation (pcb2gcode's mill-diameters list): the
   // first narrow_passes passes are cut with the tool above next to the copper, the rest of the
   // width `passes` narrow passes would clear with this one. 0: none.

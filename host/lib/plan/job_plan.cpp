@@ -13,12 +13,12 @@ namespace host {
 
 using namespace plan_detail;
 
-const CompactSpline& PlanStep::spline() const {
-  static const CompactSpline kNone;
+const StepSpline& PlanStep::spline() const {
+  static const StepSpline kNone;
   return extra_ ? extra_->spline : kNone;
 }
 
-void PlanStep::set_spline(CompactSpline spline) {
+void PlanStep::set_spline(StepSpline spline) {
   auto e = std::make_shared<Extra>();
   e->spline = std::move(spline);
   if (extra_) e->text = extra_->text;

@@ -15,7 +15,8 @@
 #include "firmware/config/machine_config.h"
 #include "firmware/core/spline.h"
 #include "host/lib/drawing/drawing.h"
-#include "host/lib/plan/compact_spline.h"
+#include "host/lib/plan/job_defaults.h"  // every default below
+#include "host/lib/plan/step_spline.h"
 
 namespace host {
 
@@ -28,41 +29,41 @@ enum class ToolSide { kCentre, kLeft, kRight };
 // version runs. Holes with a dwell at the bottom (G82) or pecks (G83) always use Z moves.
 enum class DrillMode { kDrillCommand, kZMoves };
 
-// The controller's travel from the zero (firmware/config/machine_config.h), in mm.
-double machine_travel_mm(int axis);
-
 struct PlanOptions {
-  double scale = 1.0;      // applied to the drawing (mm) before anything else
-  double margin_mm = 0.0;  // the drawing's lower-left corner goes to (margin, margin)
+  double scale = defaults::kScale;  // applied to the drawing (mm) before anything else
+  // The drawing's lower-left corner goes to (margin, margin)
+  double margin_mm = defaults::kMarginMm;
   // Instead: machine = drawing * scale + offset_mm, the same for every file of one board
   // (the back, drill and outline programs of a PCB then line up).
   bool fixed_offset = false;
   Point2 offset_mm{0, 0};
-  double work_width_mm = 297.0;  // work area: x in [0, width], y in [0, height] (A4)
-  double work_height_mm = 210.0;
-  bool reorder = true;               // greedy nearest-neighbour ordering, with reversal
-  double chain_tolerance_mm = 0.01;  // ends closer than this: no pen lift between curves
+  double work_width_mm = defaults::work_width_mm();  // work area: x in [0, width], y in [0, height]
+  double work_height_mm = defaults::work_height_mm();
+  bool reorder = true;  // greedy nearest-neighbour ordering, with reversal
+  // Ends closer than this: no pen lift between curves
+  double chain_tolerance_mm = defaults::kChainToleranceMm;
   ToolSide tool_side = ToolSide::kCentre;
-  double tool_radius_mm = 0.0;   // used when tool_side != kCentre
-  double z_up_mm = 2.0;          // pen-up (travel) height above the work zero
-  double z_down_mm = -0.1;       // pen-down (cutting) height
-  double feed_mm_per_s = 10.0;   // cutting feed for splines and straight feeds
-  double plunge_mm_per_s = 2.0;  // Z feed for pen down
-  bool lines_as_feeds = true;    // a single straight segment becomes a kFeed, not a spline
+  double tool_radius_mm = 0.0;                       // used when tool_side != kCentre
+  double z_up_mm = defaults::kZUpMm;                 // pen-up (travel) height above the work zero
+  double z_down_mm = defaults::kZDownMm;             // pen-down (cutting) height
+  double feed_mm_per_s = defaults::feed_mm_per_s();  // cutting feed for splines and straight feeds
+  double plunge_mm_per_s = defaults::kPlungeMmPerS;  // Z feed for pen down
+  bool lines_as_feeds = true;  // a single straight segment becomes a kFeed, not a spline
   // The controller's travel: the work area may not be larger, Z moves stay within +-Z.
-  double travel_width_mm = machine_travel_mm(config::kAxisX);
-  double travel_height_mm = machine_travel_mm(config::kAxisY);
-  double travel_z_mm = machine_travel_mm(config::kAxisZ);
+  double travel_width_mm = defaults::travel_mm(config::kAxisX);
+  double travel_height_mm = defaults::travel_mm(config::kAxisY);
+  double travel_z_mm = defaults::travel_mm(config::kAxisZ);
   // Programs with an order (G-code, Drawing::program non-empty):
   bool file_depths = true;  // cut at the program's own Z where it gives one (else z_down_mm)
   DrillMode drill_mode = DrillMode::kDrillCommand;
-  double drill_feed_max_mm_per_s = 5.0;  // the file's plunge feed is capped here (Z axis)
+  // The file's plunge feed is capped here (Z axis)
+  double drill_feed_max_mm_per_s = defaults::kDrillFeedMaxMmPerS;
   // Highest the tool goes for a pause (the program's tool-change height is capped here):
   // Z is zeroed at the work, about mid-travel, so half the Z travel is above it.
-  double pause_z_max_mm = machine_travel_mm(config::kAxisZ) / 2;
+  double pause_z_max_mm = defaults::travel_mm(config::kAxisZ) / 2;
   // Runs of short G1 moves are sent as cubic B-splines within this distance of the
   // program's path (0: every move as a straight feed).
-  double fit_tolerance_mm = 0.005;
+  double fit_tolerance_mm = defaults::kFitToleranceMm;
   // Called now and then while the curves are ordered (done, total), for a progress bar.
   std::function<void(size_t, size_t)> progress;
 };
@@ -93,8 +94,8 @@ struct PlanStep {
   bool spindle_on = false;     // kSpindle
 
   // kSpline: the curve (validated, in machine micrometres); empty for every other kind.
-  const CompactSpline& spline() const;
-  void set_spline(CompactSpline spline);
+  const StepSpline& spline() const;
+  void set_spline(StepSpline spline);
   // kPause: the operator's message (LCD, at most 16 characters used); empty otherwise.
   const std::string& text() const;
   void set_text(std::string text);
@@ -103,7 +104,7 @@ struct PlanStep {
   // Only spline and pause steps have these, so the others (a million feeds in a large job)
   // stay small. Never changed once made: copies of a step share them.
   struct Extra {
-    CompactSpline spline;
+    StepSpline spline;
     std::string text;
   };
   std::shared_ptr<const Extra> extra_;

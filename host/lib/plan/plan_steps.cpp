@@ -9,10 +9,6 @@
 
 namespace host {
 
-double machine_travel_mm(int axis) {
-  return config::default_machine_config().axis[axis].travel_um / 1000.0;
-}
-
 namespace plan_detail {
 
 namespace {
@@ -200,7 +196,7 @@ void append_curve_steps(const PlannedCurve& c, int index, int32_t offset, const 
   for (size_t k = 0; k < pieces.size(); ++k) {
     PlanStep s;
     s.kind = PlanStep::kSpline;
-    s.set_spline(CompactSpline(pieces[k]));
+    s.set_spline(StepSpline(pieces[k]));
     s.to = to_um(k + 1 == pieces.size() ? end_point(c.spline)
                                         : end_point(from_firmware_spline(pieces[k])));
     s.feed_um_per_s = feed;

@@ -27,11 +27,11 @@ struct UploadFile {
 };
 
 // What a board job asks beyond JobPlanSettings (tol_mm and margin_mm apply to boards;
-// feeds are the board planner's: isolation 5, drilling 1, cut-out 3 mm/s). Every board job
+// feeds are the board planner's defaults, host/lib/plan/job_defaults.h). Every board job
 // starts with a pause naming the first tool (the operator mounts it and confirms).
 struct BoardSettings {
   std::string side;  // "top", "bottom" or "" (the side whose copper is given)
-  double tool_width_mm = 0.2;
+  double tool_width_mm = defaults::kToolWidthMm;
   bool allow_narrow_gaps = false;  // plan where copper is closer than the tool (reported)
 };
 // Why board settings are refused ("" when fine).

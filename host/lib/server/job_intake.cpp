@@ -75,8 +75,8 @@ void JobIntake::work_area(double* w_mm, double* h_mm) const {
     *h_mm = std::max(*h_mm, m.work_height_mm);
   }
   if (machines_.empty()) {
-    *w_mm = 297.0;  // no machine yet: the reference machine's A4 table
-    *h_mm = 210.0;
+    *w_mm = defaults::work_width_mm();  // no machine yet: the reference machine's table
+    *h_mm = defaults::work_height_mm();
   }
 }
 
@@ -212,7 +212,7 @@ IntakeResult JobIntake::submit(const Submission& sub) {
     std::string stored;
     if (board) {
       // A board sits where `engraver board` puts it unless the sender said otherwise.
-      if (!sub.margin_given) job.settings.margin_mm = pcb::BoardOptions().margin_mm;
+      if (!sub.margin_given) job.settings.margin_mm = defaults::kBoardMarginMm;
       stage_board(sub, files, skip_other, zip, staging, &job, &stored);
     } else {
       stage_drawing(sub, staging, &job, &stored);

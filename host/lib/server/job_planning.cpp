@@ -86,7 +86,7 @@ double planned_seconds(const JobPlan& plan, const JobPlanSettings& settings) {
   const config::MachineConfig m = config::default_machine_config();
   const double rapid_mm_s = m.rapid_feed_um_per_s / 1000.0;
   const double z_mm_s = m.axis[config::kAxisZ].max_speed_um_per_s / 1000.0;
-  const double z_travel_mm = 2.1;  // default pen up to pen down
+  const double z_travel_mm = defaults::kZUpMm - defaults::kZDownMm;  // pen up to pen down
   return plan.cut_length_mm / settings.feed_mm_s + plan.rapid_length_mm / rapid_mm_s +
          (plan.pen_lifts + 1) * 2.0 * z_travel_mm / z_mm_s;
 }

@@ -7,6 +7,8 @@
 #include <string>   // std::string
 #include <vector>   // std::vector
 
+#include "host/lib/plan/job_defaults.h"
+
 namespace host::server {
 
 enum class JobState {
@@ -26,10 +28,10 @@ bool is_final(JobState state);
 
 // How a job is planned (kept with the job so a restart or another server plans it the same).
 struct JobPlanSettings {
-  double feed_mm_s = 10.0;
-  double tol_mm = 0.005;
-  double scale = 1.0;
-  double margin_mm = 0.0;
+  double feed_mm_s = defaults::feed_mm_per_s();
+  double tol_mm = defaults::kChordToleranceMm;
+  double scale = defaults::kScale;
+  double margin_mm = defaults::kMarginMm;
 };
 
 struct JobRecord {
@@ -65,8 +67,8 @@ struct JobRecord {
 
 // What a machine offers; a job fits when its extents and tag do.
 struct MachineFit {
-  double work_width_mm = 297.0;
-  double work_height_mm = 210.0;
+  double work_width_mm = defaults::work_width_mm();
+  double work_height_mm = defaults::work_height_mm();
   std::vector<std::string> tags;
 };
 bool job_fits(const JobRecord& job, const MachineFit& fit);

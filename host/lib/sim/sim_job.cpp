@@ -68,11 +68,14 @@ void stream_job(Link& link, const JobPlan& plan, const SimJobOptions& options,
   Sender sender(link, sender_options);
   const proto::SessionReply caps = sender.open_session();
   EncodeOptions enc = options.encode;
-  enc.max_payload = std::min<unsigned>(enc.max_payload, caps.max_payload);
+  const unsigned max_payload = enc.max_payload;  // a smaller payload asked for is kept
+  use_session(caps, &enc);
+  enc.max_payload = std::min<unsigned>(max_payload, caps.max_payload);
   enc.controller = &caps;
   const std::vector<QueuedCommand> commands = encode_job(plan, enc);
   r->commands = commands.size();
   r->wire_bytes = wire_bytes(commands);
+  r->job_id = job_id_of(commands);
   r->outcome = sender.run(commands, [&](const Progress& p) {
     if (options.on_progress) options.on_progress(sender, p);
   });

@@ -45,6 +45,7 @@ struct SimJobResult {
   SenderStats stats;
   size_t commands = 0;
   size_t wire_bytes = 0;              // the job's frames once each (no retransmits, no polls)
+  uint16_t job_id = 0;                // job_id_of() the commands: the job's identity (#J)
   uint64_t virtual_ms = 0;            // machine time simulated
   double wall_s = 0;                  // real time it took
   double cpu_s = 0;                   // processor time this thread used for it (load-independent)

@@ -271,10 +271,6 @@ const std::vector<fake::SpiRecord>& SimMachine::spi_records() const {
   return parts_->spi.records();
 }
 
-void SimMachine::clear_spi_records() {
-  parts_->spi.clear();
-}
-
 const fake::SpiTiming& SimMachine::spi_timing() const {
   return parts_->spi.timing();
 }

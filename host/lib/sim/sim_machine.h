@@ -79,7 +79,6 @@ class SimMachine {
   // Every tool position change, one sample per millisecond at most: kept in trace() unless a
   // sink takes them (then nothing is stored: long jobs record in bounded memory).
   const std::vector<ToolSample>& trace() const { return trace_; }
-  void clear_trace() { trace_.clear(); }
   void set_sample_sink(std::function<void(const ToolSample&)> sink) { sink_ = std::move(sink); }
   std::string lcd_line(int row) const;
   // #P pauses the simulated operator confirmed; the spindle output and its switchings.
@@ -97,7 +96,6 @@ class SimMachine {
   // while recording is on (SimOptions::record_spi, set_spi_recording).
   void set_spi_recording(bool on);
   const std::vector<fake::SpiRecord>& spi_records() const;
-  void clear_spi_records();
   // The bus timing of the records (for fake::write_spi_vcd).
   const fake::SpiTiming& spi_timing() const;
 

@@ -107,6 +107,7 @@ core::Spline straight_spline(const core::PointUm& a, const core::PointUm& b) {
 
 void use_session(const proto::SessionReply& caps, EncodeOptions* o) {
   o->max_payload = caps.max_payload;
+  o->z_rapid_um_per_s = caps.max_feed_z_um_per_s;
   if (caps.protocol_version < proto::kContourFramesVersion && o->splines == SplineFrames::kContour)
     o->splines = SplineFrames::kCompact;
 }
@@ -166,7 +167,7 @@ std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& 
           // The controller offsets curves only: a straight line with an offset goes as a
           // degree-1 spline from where the tool is.
           PlanStep line = s;
-          line.set_spline(CompactSpline(straight_spline(from, s.to)));
+          line.set_spline(StepSpline(straight_spline(from, s.to)));
           append_spline(line, index, options.max_payload, options.splines, &out);
           break;
         }

@@ -8,6 +8,7 @@
 #include <vector>   // std::vector
 
 #include "firmware/protocol/messages.h"  // proto::SessionReply
+#include "host/lib/plan/job_defaults.h"
 #include "host/lib/plan/job_plan.h"
 
 namespace host {
@@ -28,18 +29,22 @@ enum class SplineFrames {
 };
 
 struct EncodeOptions {
-  unsigned max_payload = 64;                      // from the controller's *I
-  uint16_t max_step_um = 1000;                    // #U: longest distance between generated points
-  uint16_t chord_tolerance_um = 5;                // #U: chord error
-  uint16_t z_rapid_um_per_s = 5000;               // #Z feed for pen-up moves
+  unsigned max_payload = 64;     // from the controller's *I
+  uint16_t max_step_um = 1000;   // #U: longest distance between generated points
+  uint16_t chord_tolerance_um =  // #U: chord error
+      static_cast<uint16_t>(defaults::kChordToleranceMm * 1000 + 0.5);
+  // #Z feed for pen-up moves: the reference machine's fastest Z, the controller's (*I) once
+  // use_session() has seen it.
+  uint16_t z_rapid_um_per_s = defaults::z_rapid_um_per_s();
   std::string title;                              // #S row 0 at the start (cut to 16 characters)
   SplineFrames splines = SplineFrames::kContour;  // set from the controller: use_session()
   // The controller's *I: when set, every target is checked against its travel first.
   const proto::SessionReply* controller = nullptr;
 };
 
-// What the controller's *I says about the encoding: its payload size, and #Q frames only
-// from protocol version 3 on (an older controller gets #K frames).
+// What the controller's *I says about the encoding: its payload size, its fastest Z feed
+// (pen-up moves), and #Q frames only from protocol version 3 on (an older controller gets #K
+// frames).
 void use_session(const proto::SessionReply& caps, EncodeOptions* o);
 
 // The whole job as queued commands, in order, starting with #J 0 (job numbering). Tool offsets go

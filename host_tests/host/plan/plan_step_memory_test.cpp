@@ -36,7 +36,7 @@ TEST(PlanStepMemory, ASplineAndATextAreKeptTogetherAndCopiesShareThem) {
   EXPECT_TRUE(s.spline().empty());
   EXPECT_TRUE(s.text().empty());
   const core::Spline line = to_firmware_splines(line_spline({1, 2}, {3, 4})).front();
-  s.set_spline(CompactSpline(line));
+  s.set_spline(StepSpline(line));
   s.set_text("T1 0.8mm drill");
   EXPECT_EQ(s.spline().control.size(), 2u);  // setting the text kept the spline
   EXPECT_EQ(s.text(), "T1 0.8mm drill");
@@ -96,11 +96,11 @@ TEST(PlanStepMemory, SplineStepsHoldOnlyTheControlPointsAndKnotsTheyUse) {
   EXPECT_EQ(splines, 3);
 }
 
-TEST(CompactSpline, RoundTripsTheFirmwareForm) {
+TEST(StepSpline, RoundTripsTheFirmwareForm) {
   const std::vector<core::Spline> pieces = to_firmware_splines(arc_spline({20, 20}, 10, 0.3, 5.0));
   ASSERT_FALSE(pieces.empty());
   for (const core::Spline& f : pieces) {
-    const CompactSpline c(f);
+    const StepSpline c(f);
     EXPECT_EQ(c.control.size(), f.control_count);
     EXPECT_EQ(c.knot.size(), f.knot_count);
     const core::Spline back = c.firmware();

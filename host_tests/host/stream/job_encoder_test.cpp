@@ -44,7 +44,7 @@ JobPlan plan_with_spline(const core::Spline& spline) {
   down.feed_um_per_s = 2000;
   PlanStep curve;
   curve.kind = PlanStep::kSpline;
-  curve.set_spline(CompactSpline(spline));
+  curve.set_spline(StepSpline(spline));
   curve.to = {spline.control[spline.control_count - 1].x_um,
               spline.control[spline.control_count - 1].y_um};
   curve.feed_um_per_s = 10000;
@@ -155,7 +155,7 @@ TEST(JobEncoder, KnotSpanTooWideForACompactFrameGoesInAFullFrame) {
   test::expect_same_spline(spline, reassemble(cmds));
 }
 
-TEST(JobEncoder, CompactSplineDataIsTheSameSplineInFewerBytes) {
+TEST(JobEncoder, StepSplineDataIsTheSameSplineInFewerBytes) {
   for (bool rational : {true, false}) {
     const core::Spline spline = wavy_spline(core::kMaxControlPoints, rational);
     EncodeOptions full;
@@ -404,6 +404,31 @@ TEST(JobEncoder, AVersion2ControllerGetsCompactFrames) {
   EncodeOptions p;
   use_session(caps, &p);
   EXPECT_EQ(p.splines, SplineFrames::kContour);
+}
+
+// Pen-up Z moves go at the reference machine's fastest Z until a controller answers, then at
+// the fastest Z feed its *I reports.
+TEST(JobEncoder, PenUpGoesAtTheControllersFastestZ) {
+  JobPlan plan;
+  PlanStep up;
+  up.kind = PlanStep::kPenUp;
+  up.z_um = 2000;
+  plan.steps.push_back(up);
+  auto pen_up_feed = [&](const EncodeOptions& o) {
+    for (const QueuedCommand& c : encode_job(plan, o))
+      if (c.letter == proto::kCmdZMove) return decoded<proto::ZMoveCmd>(c).feed_um_per_s;
+    ADD_FAILURE() << "no #Z";
+    return uint16_t{0};
+  };
+  EncodeOptions o;
+  EXPECT_EQ(pen_up_feed(o),
+            config::default_machine_config().axis[config::kAxisZ].max_speed_um_per_s);
+  proto::SessionReply caps{};
+  caps.max_payload = 64;
+  caps.protocol_version = 3;
+  caps.max_feed_z_um_per_s = 3200;
+  use_session(caps, &o);
+  EXPECT_EQ(pen_up_feed(o), 3200);
 }
 
 TEST(JobEncoder, WireBytesCountHeaderAndCrc) {

@@ -1,17 +1,17 @@
 // core::Spline <-> the compact host-side copy a plan step keeps.
-#include "host/lib/plan/compact_spline.h"
+#include "host/lib/plan/step_spline.h"
 
 #include <algorithm>  // std::copy, std::min
 
 namespace host {
 
-CompactSpline::CompactSpline(const core::Spline& s)
+StepSpline::StepSpline(const core::Spline& s)
     : degree(s.degree),
       rational(s.rational),
       control(s.control, s.control + std::min<unsigned>(s.control_count, core::kMaxControlPoints)),
       knot(s.knot, s.knot + std::min<unsigned>(s.knot_count, core::kMaxKnots)) {}
 
-core::Spline CompactSpline::firmware() const {
+core::Spline StepSpline::firmware() const {
   core::Spline s{};
   s.degree = degree;
   s.rational = rational;

@@ -2,8 +2,8 @@
 // core::Spline holds room for the most a controller slot takes (about 1.1 kB); a job of
 // a million steps with one inline in each step held gigabytes, most of it for steps that
 // have no curve at all (feeds, rapids, pen moves).
-#ifndef HOST_LIB_PLAN_COMPACT_SPLINE_H
-#define HOST_LIB_PLAN_COMPACT_SPLINE_H
+#ifndef HOST_LIB_PLAN_STEP_SPLINE_H
+#define HOST_LIB_PLAN_STEP_SPLINE_H
 
 #include <stdint.h>  // uint8_t, int32_t
 
@@ -13,15 +13,15 @@
 
 namespace host {
 
-struct CompactSpline {
+struct StepSpline {
   uint8_t degree = 0;
   bool rational = false;
   std::vector<core::ControlPoint> control;  // control_count entries
   std::vector<int32_t> knot;                // knot_count entries
 
-  CompactSpline() = default;
+  StepSpline() = default;
   // Copies the used part of `s` (control_count and knot_count must be within the arrays).
-  explicit CompactSpline(const core::Spline& s);
+  explicit StepSpline(const core::Spline& s);
   // The firmware form (what the controller's slot holds), e.g. for validate_spline.
   core::Spline firmware() const;
   bool empty() const { return control.empty(); }
@@ -29,4 +29,4 @@ struct CompactSpline {
 
 }  // namespace host
 
-#endif  // HOST_LIB_PLAN_COMPACT_SPLINE_H
+#endif  // HOST_LIB_PLAN_STEP_SPLINE_H
