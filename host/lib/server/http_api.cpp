@@ -62,6 +62,10 @@ nlohmann::json job_json(const JobRecord& j) {
   return {{"id", j.id},
           {"name", j.name},
           {"state", state_name(j.state)},
+          // A running job before its commands are made has no size yet: not "0 of 0".
+          {"stage", j.state != JobState::kRunning ? ""
+                    : j.total > 0                 ? "cutting"
+                                                  : "planning"},
           {"priority", j.priority},
           {"tag", j.tag},
           {"feed_mm_s", j.settings.feed_mm_s},
@@ -391,6 +395,18 @@ void HttpApi::routes() {
     j["runs"] = run_count(data_.job_dir(job->key));  // runs/1 .. runs/N in its archive
     send_json(res, 200, j);
   });
+  s.Get(R"(/api/jobs/(\d{1,18})/path)",
+        [this](const httplib::Request& req, httplib::Response& res) {
+          const int64_t id = std::stoll(req.matches[1]);
+          const std::shared_ptr<const std::string> path = workshop_.live_path(id);
+          if (!path) {
+            return send_error(res, 404,
+                              fmt::format("job {} is not cutting on a machine of this server (its "
+                                          "path is served while it runs)",
+                                          id));
+          }
+          res.set_content(*path, "application/json");
+        });
   s.Get(R"(/api/jobs/(\d{1,18})/files/([a-z.]{1,16}))",
         [this](const httplib::Request& req, httplib::Response& res) {
           const std::string file = req.matches[2];
