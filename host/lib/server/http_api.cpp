@@ -9,6 +9,9 @@
 
 #include <nlohmann/json.hpp>  // nlohmann::json
 
+#include <netinet/in.h>  // sockaddr_in, ntohs
+#include <sys/socket.h>  // listen, getsockname, getsockopt
+
 #include <charconv>  // std::from_chars
 #include <cstdlib>   // std::strtod
 #include <iterator>  // std::distance
@@ -247,6 +250,11 @@ HttpApi::HttpApi(JobStore& store, JobIntake& intake, Workshop& workshop, const D
   // A thread per connection: an open page's event stream holds its thread for as long as
   // the page is open, and must not take one that a control request needs.
   http_->new_task_queue = [] { return new ConnectionThreads(); };
+  // The listening socket, to widen its backlog once bound (see widen_backlog).
+  http_->set_socket_options([this](int fd) {
+    httplib::default_socket_options(fd);
+    listen_fd_ = fd;
+  });
   // Multipart framing on top of the file; httplib answers 413 beyond this.
   http_->set_payload_max_length(intake_.max_bytes() + 64 * 1024);
   routes();
@@ -268,7 +276,29 @@ int HttpApi::bind() {
         fmt::format("cannot listen on {}:{} (in use or not an address of this PC)",
                     options_.address, options_.port));
   }
+  widen_backlog(port);
   return port;
+}
+
+// Debian's libcpp-httplib listens with a backlog of 5, built in: a burst of connections
+// (pages opening, a script) overflowed it, and each connection past it waited for the
+// client's SYN retry a second later. listen() again on the bound socket sets a new backlog.
+void HttpApi::widen_backlog(int port) {
+  const int fd = listen_fd_;
+  sockaddr_storage a{};
+  socklen_t n = sizeof a;
+  int listening = 0;
+  socklen_t m = sizeof listening;
+  if (fd < 0 || ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &n) != 0 ||
+      ::getsockopt(fd, SOL_SOCKET, SO_ACCEPTCONN, &listening, &m) != 0 || !listening) {
+    return;
+  }
+  // Only the socket httplib bound for us: a listener on `port`.
+  const int bound = a.ss_family == AF_INET ? ntohs(reinterpret_cast<const sockaddr_in&>(a).sin_port)
+                    : a.ss_family == AF_INET6
+                        ? ntohs(reinterpret_cast<const sockaddr_in6&>(a).sin6_port)
+                        : -1;
+  if (bound == port) ::listen(fd, kListenBacklog);
 }
 
 void HttpApi::run() {
