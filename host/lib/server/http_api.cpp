@@ -277,6 +277,7 @@ int HttpApi::bind() {
                     options_.address, options_.port));
   }
   widen_backlog(port);
+  hosts_.set_port(port);
   return port;
 }
 
