@@ -15,6 +15,8 @@
 #include <charconv>  // std::from_chars
 #include <cstdlib>   // std::strtod
 #include <iterator>  // std::distance
+#include <regex>     // std::regex
+#include <set>       // std::set
 
 namespace host::server {
 
@@ -119,12 +121,28 @@ struct UploadFields {
 
 UploadFields upload_fields(const httplib::Request& req, const UploadBody& body) {
   UploadFields u;
+  // Every field once (only a form's `file` parts repeat: a board's files); a second value
+  // would silently win or lose.
+  std::set<std::string> seen;
+  auto check = [&](const std::string& key, bool repeats) {
+    if (!u.error.empty()) return;
+    u.error = unknown_upload_field(key);
+    if (u.error.empty() && !seen.insert(key).second && !repeats) {
+      u.error = fmt::format("field '{}' given more than once", key);
+    }
+  };
   for (const auto& p : req.params) {
-    if (u.error.empty()) u.error = unknown_upload_field(p.first);
+    check(p.first, false);
+    // Read from one place only: what is given in the other would be ignored.
+    if (u.error.empty() && body.multipart) {
+      u.error =
+          fmt::format("field '{}' in the query of a form upload (give it as a part)", p.first);
+    }
+    if (u.error.empty() && p.first == "file") {
+      u.error = "field 'file' in the query (a raw upload's body is the file; ?name=FILE_NAME)";
+    }
   }
-  for (const auto& p : body.parts) {
-    if (u.error.empty()) u.error = unknown_upload_field(p.name);
-  }
+  for (const auto& p : body.parts) check(p.name, p.name == "file");
   if (!u.error.empty()) return u;
   auto field = [&](const std::string& key, std::string* out) {
     if (body.multipart) {
@@ -223,8 +241,19 @@ bool body_object(const httplib::Request& req, httplib::Response& res, nlohmann::
     send_error(res, 400, fmt::format("malformed JSON: a NUL byte at byte {}", nul + 1));
     return false;
   }
+  // A key given twice would silently take its last value ({"action": "hold", "action":
+  // "abort"}): refused, as for upload fields.
+  std::set<std::string> keys;
+  std::string twice;
+  const auto note_key = [&](int depth, nlohmann::json::parse_event_t event, nlohmann::json& key) {
+    if (event == nlohmann::json::parse_event_t::key && depth == 1 && twice.empty() &&
+        !keys.insert(key.get<std::string>()).second) {
+      twice = key.get<std::string>();
+    }
+    return true;
+  };
   try {
-    *out = nlohmann::json::parse(req.body);
+    *out = nlohmann::json::parse(req.body, note_key);
   } catch (const nlohmann::json::parse_error& e) {
     send_error(res, 400, "malformed JSON: " + json_problem(req.body, e.byte));
     return false;
@@ -233,7 +262,38 @@ bool body_object(const httplib::Request& req, httplib::Response& res, nlohmann::
     send_error(res, 400, "expected a JSON object");
     return false;
   }
+  if (!twice.empty()) {
+    send_error(res, 400, fmt::format("key '{}' given more than once", twice));
+    return false;
+  }
   return true;
+}
+
+// The keys of `body` not among `known` (a misspelt "percnet" is refused, not ignored).
+bool known_keys(const nlohmann::json& body, std::initializer_list<const char*> known,
+                httplib::Response& res) {
+  for (const auto& item : body.items()) {
+    bool ok = false;
+    for (const char* k : known) ok = ok || item.key() == k;
+    if (ok) continue;
+    std::string list;
+    for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
+    send_error(res, 400, fmt::format("unknown key '{}' (this request takes {})", item.key(), list));
+    return false;
+  }
+  return true;
+}
+
+// The methods a known path answers ("" for a path the server does not have): a request with
+// another method gets 405 naming them (Allow), not a 404 that says the path is unknown.
+std::string allowed_methods(const std::string& path) {
+  static const std::regex kGet(
+      R"(/|/app\.js|/style\.css|/api/status|/api/events|/api/jobs/\d{1,18}(/path|/files/[a-z.]{1,16}|/runs/[1-9]\d{0,5}/[a-z.]{1,16})?)");
+  static const std::regex kPost(R"(/api/jobs/\d{1,18}/(control|priority))");
+  if (path == "/api/jobs") return "GET, HEAD, POST";
+  if (std::regex_match(path, kGet)) return "GET, HEAD";
+  if (std::regex_match(path, kPost)) return "POST";
+  return "";
 }
 
 }  // namespace
@@ -336,6 +396,13 @@ void HttpApi::routes() {
                  fmt::format("Host '{}' is not a name of this server (it answers to {}; "
                              "serve --allowed-host NAME adds one)",
                              host, hosts_.describe()));
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    // A known path with a method it does not take: 405 before the token is asked for.
+    const std::string allow = allowed_methods(req.path);
+    if (!allow.empty() && (", " + allow + ",").find(", " + req.method + ",") == std::string::npos) {
+      res.set_header("Allow", allow);
+      send_error(res, 405, fmt::format("{} takes {}, not {}", req.path, allow, req.method));
       return httplib::Server::HandlerResponse::Handled;
     }
     if (req.method == "GET" || req.method == "HEAD")
@@ -522,12 +589,16 @@ void HttpApi::routes() {
            const int64_t id = std::stoll(req.matches[1]);
            nlohmann::json body;
            if (!body_object(req, res, &body)) return;
+           if (!known_keys(body, {"action", "percent"}, res)) return;
            if (!body.contains("action") || !body["action"].is_string()) {
              return send_error(res, 400,
                                "expected {\"action\": \"hold|resume|abort|override|"
                                "cancel|requeue|continue\"}");
            }
            const std::string action = body["action"];
+           if (body.contains("percent") && action != "override") {
+             return send_error(res, 400, "percent goes with the override action only");
+           }
            if (!store_.get(id)) return send_error(res, 404, "no such job");
            auto done = [&](bool ok, const std::string& why) {
              if (!ok) return send_error(res, 409, why);
@@ -578,6 +649,7 @@ void HttpApi::routes() {
            const int64_t id = std::stoll(req.matches[1]);
            nlohmann::json body;
            if (!body_object(req, res, &body)) return;
+           if (!known_keys(body, {"priority"}, res)) return;
            if (!body.contains("priority") || !body["priority"].is_number_integer() ||
                body["priority"].get<int64_t>() < -1000 || body["priority"].get<int64_t>() > 1000) {
              return send_error(res, 400, "expected {\"priority\": -1000 .. 1000}");
