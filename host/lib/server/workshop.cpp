@@ -450,8 +450,9 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
                      plan.curves.size(), commands.size(), wire_bytes(commands), job.planned_s));
     JobPath path(plan);
     auto path_json = std::make_shared<const std::string>(path.to_json().dump());
-    // Its size is known now: not "0 of 0" in the store while the first status is awaited.
-    progress.total = static_cast<int64_t>(commands.size());
+    // Its size and first curve are known now: not "0 of 0" in the store while the first
+    // status is awaited, and continuable from that curve whatever stops it next.
+    progress = progress_of(progress, commands, 0, proto::StatusReply{}, job_id);
     saver_.post(job.id, lease, progress, true);
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
