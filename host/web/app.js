@@ -52,9 +52,108 @@ function showMachines(machines) {
   }
 }
 
+// ---- Live preview of a running job: its path (GET /api/jobs/N/path, in mm), the part
+// executed so far and the tool where the machine reports it (from the event stream).
+const SVG = 'http://www.w3.org/2000/svg';
+const livePaths = new Map();  // job id -> { svg, path, done, shown, full }
+
+function svgEl(name, attrs) {
+  const e = document.createElementNS(SVG, name);
+  for (const [k, v] of Object.entries(attrs || {})) e.setAttribute(k, v);
+  return e;
+}
+
+function pointsAttr(points) { return points.map((p) => p[0] + ',' + p[1]).join(' '); }
+
+// The first `mm` of a piece's polyline.
+function pieceUpTo(piece, mm) {
+  const out = [piece.points_mm[0]];
+  let along = piece.start_mm;
+  for (let i = 1; i < piece.points_mm.length; ++i) {
+    const a = piece.points_mm[i - 1], b = piece.points_mm[i];
+    const len = Math.hypot(b[0] - a[0], b[1] - a[1]);
+    if (along + len >= mm) {
+      const t = len > 0 ? (mm - along) / len : 0;
+      out.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
+      return out;
+    }
+    along += len;
+    out.push(b);
+  }
+  return out;
+}
+
+function livePreview(j) {
+  let live = livePaths.get(j.id);
+  if (!live) {
+    // y up as on the machine: everything in a group mirrored about the x axis.
+    const svg = svgEl('svg', { class: 'live-path', id: 'live-path-' + j.id });
+    const g = svgEl('g', { transform: 'scale(1,-1)' });
+    const plan = svgEl('g', { class: 'plan' });
+    const done = svgEl('g', { class: 'done' });
+    const current = svgEl('polyline', { class: 'cut current' });
+    const tool = svgEl('circle', { class: 'tool', r: '1' });
+    tool.style.display = 'none';
+    done.appendChild(current);
+    g.append(plan, done, tool);
+    svg.appendChild(g);
+    live = { svg: svg, plan: plan, done: done, current: current, tool: tool, path: null,
+      full: 0, last: null };
+    livePaths.set(j.id, live);
+    fetch('/api/jobs/' + j.id + '/path').then((r) => r.ok ? r.json() : null).then((path) => {
+      if (!path) { livePaths.delete(j.id); return; }  // not cutting yet: asked again later
+      drawPlan(live, path);
+      if (live.last) updateLive(live, live.last);
+    }).catch(() => livePaths.delete(j.id));
+  }
+  live.last = j;
+  if (live.path) updateLive(live, j);
+  return live.svg;
+}
+
+function drawPlan(live, path) {
+  live.path = path;
+  let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+  for (const piece of path.pieces) {
+    for (const [x, y] of piece.points_mm) {
+      x0 = Math.min(x0, x); y0 = Math.min(y0, y); x1 = Math.max(x1, x); y1 = Math.max(y1, y);
+    }
+    live.plan.appendChild(svgEl('polyline', { class: piece.pen_down ? 'cut' : 'travel',
+      points: pointsAttr(piece.points_mm) }));
+  }
+  if (x0 > x1) { x0 = y0 = 0; x1 = y1 = 1; }
+  const m = Math.max(2, 0.03 * Math.max(x1 - x0, y1 - y0));
+  live.svg.setAttribute('viewBox', [x0 - m, -(y1 + m), x1 - x0 + 2 * m, y1 - y0 + 2 * m].join(' '));
+  live.tool.setAttribute('r', String(Math.max(0.5, m / 2)));
+}
+
+// The executed part: pieces done whole are added once; the current one is redrawn.
+function updateLive(live, j) {
+  const pieces = live.path.pieces;
+  const mm = j.executed_mm;
+  while (live.full < pieces.length &&
+         pieces[live.full].start_mm + pieces[live.full].length_mm <= mm) {
+    const piece = pieces[live.full++];
+    live.done.insertBefore(svgEl('polyline', { class: piece.pen_down ? 'cut' : 'travel',
+      points: pointsAttr(piece.points_mm) }), live.current);
+  }
+  const now = live.full < pieces.length ? pieces[live.full] : null;
+  live.current.setAttribute('points', now && mm > now.start_mm ? pointsAttr(pieceUpTo(now, mm)) : '');
+  live.current.setAttribute('class', now && !now.pen_down ? 'travel current' : 'cut current');
+  live.svg.dataset.executedMm = String(mm);
+  if (j.position_mm) {
+    live.tool.style.display = '';
+    live.tool.setAttribute('cx', String(j.position_mm[0]));
+    live.tool.setAttribute('cy', String(j.position_mm[1]));
+  }
+}
+
 function showRunning(running) {
   const box = $('#running');
   box.replaceChildren();
+  for (const id of [...livePaths.keys()]) {
+    if (!running.some((j) => j.id === id)) livePaths.delete(id);
+  }
   if (running.length === 0) {
     const p = document.createElement('p'); p.className = 'muted'; p.textContent = 'No job running.';
     box.appendChild(p);
@@ -64,10 +163,12 @@ function showRunning(running) {
     const div = document.createElement('div'); div.className = 'job'; div.id = 'running-' + j.id;
     const title = document.createElement('div');
     title.textContent = '#' + j.id + ' ' + j.name + ' on ' + j.machine + ' — ' + j.machine_state +
-      ', feed ' + j.override_percent + ' %, ' + j.executed + '/' + j.total + ' commands, ' +
-      fmtSeconds(j.remaining_s) + ' left';
+      (j.machine_state === 'planning' ? '…' : ', feed ' + j.override_percent + ' %, ' +
+        j.executed + '/' + j.total + ' commands, ' + j.executed_mm.toFixed(1) + ' of ' +
+        j.path_mm.toFixed(1) + ' mm, ' + fmtSeconds(j.remaining_s) + ' left');
     const bar = document.createElement('progress'); bar.max = 1; bar.value = j.fraction;
     div.appendChild(title); div.appendChild(bar);
+    if (j.machine_state !== 'planning') div.appendChild(livePreview(j));
     button(div, 'Hold', () => control(j.id, 'hold'));
     button(div, 'Resume', () => control(j.id, 'resume'));
     button(div, 'Abort', () => { if (confirm('Abort job #' + j.id + '?')) control(j.id, 'abort'); });
@@ -91,7 +192,9 @@ async function refreshJobs() {
   tbody.replaceChildren();
   for (const j of data.jobs) {
     const tr = document.createElement('tr'); tr.id = 'job-' + j.id;
-    cell(tr, j.id); cell(tr, j.name); cell(tr, j.state, 'state-' + j.state); cell(tr, j.priority);
+    cell(tr, j.id); cell(tr, j.name);
+    cell(tr, j.stage === 'planning' ? 'running (planning)' : j.state, 'state-' + j.state);
+    cell(tr, j.priority);
     cell(tr, j.machine); cell(tr, fmtSeconds(j.planned_s)); cell(tr, j.message);
     const files = cell(tr, '');
     for (const f of ['plot.svg', 'plan.json', 'report.json', 'machine.log', j.input_file]) {

@@ -61,6 +61,20 @@ std::string host_of_header(const std::string& host_header) {
   return h;
 }
 
+int port_of_header(const std::string& host_header) {
+  if (host_of_header(host_header).empty()) return -2;
+  const size_t close = host_header[0] == '[' ? host_header.find(']') : 0;
+  const size_t colon = host_header.find(':', close);
+  if (colon == std::string::npos) return -1;
+  const std::string digits = host_header.substr(colon + 1);
+  if (digits.empty() || digits.size() > 5 ||
+      digits.find_first_not_of("0123456789") != std::string::npos) {
+    return -2;
+  }
+  const int port = std::stoi(digits);
+  return port >= 1 && port <= 65535 ? port : -2;
+}
+
 AllowedHosts::AllowedHosts(const std::string& listen_address,
                            const std::vector<std::string>& extra) {
   add("localhost");
@@ -79,17 +93,27 @@ AllowedHosts::AllowedHosts(const std::string& listen_address,
 
 void AllowedHosts::add(const std::string& name) {
   const std::string h = host_of_header(name);
-  if (!h.empty()) names_.insert(h);
+  const int port = port_of_header(name);
+  if (h.empty() || port == -2) return;
+  names_.insert(h);
+  if (port > 0) with_port_.insert(h + ":" + std::to_string(port));
 }
 
 bool AllowedHosts::allows(const std::string& host_header) const {
   const std::string h = host_of_header(host_header);
-  return !h.empty() && names_.count(h) > 0;
+  const int port = port_of_header(host_header);
+  if (h.empty() || port == -2 || names_.count(h) == 0) return false;
+  // Another port than ours reaches us only through something in between: a page on that
+  // port is another origin, and must not read or steer this server.
+  return port == -1 || port_ == 0 || port == port_ ||
+         with_port_.count(h + ":" + std::to_string(port)) > 0;
 }
 
 std::string AllowedHosts::describe() const {
   std::string out;
-  for (const std::string& n : names_) out += (out.empty() ? "" : ", ") + n;
+  const std::string port = port_ > 0 ? ":" + std::to_string(port_) : "";
+  for (const std::string& n : names_) out += (out.empty() ? "" : ", ") + n + port;
+  for (const std::string& n : with_port_) out += ", " + n;
   return out;
 }
 

@@ -17,18 +17,27 @@ class AllowedHosts {
   // [::1]; listening on all addresses (0.0.0.0, ::) adds the PC's host name and the
   // addresses of its network interfaces.
   AllowedHosts(const std::string& listen_address, const std::vector<std::string>& extra);
+  // The port the server listens on: a Host header that names a port must name this one
+  // (or a NAME:PORT given as extra, for a proxy in front). 0: any port (not yet bound).
+  void set_port(int port) { port_ = port; }
   // Whether a request with this Host header ("name", "name:port", "[v6]:port") is served.
+  // Without a port (the scheme's default: a proxy in front, or the server on port 80) any
+  // allowed name is.
   bool allows(const std::string& host_header) const;
   // The names, comma-separated (for the start-up message).
   std::string describe() const;
 
  private:
   void add(const std::string& name);
-  std::set<std::string> names_;  // lower case, no port, IPv6 in brackets
+  std::set<std::string> names_;      // lower case, no port, IPv6 in brackets
+  std::set<std::string> with_port_;  // extra NAME:PORT, as host_of_header + ":" + port
+  int port_ = 0;
 };
 
 // The host part of a Host header in the form AllowedHosts keeps ("" when malformed).
 std::string host_of_header(const std::string& host_header);
+// Its port: -1 when it names none, -2 when that is not a port (1 .. 65535).
+int port_of_header(const std::string& host_header);
 
 }  // namespace host::server
 

@@ -9,9 +9,14 @@
 
 #include <nlohmann/json.hpp>  // nlohmann::json
 
+#include <netinet/in.h>  // sockaddr_in, ntohs
+#include <sys/socket.h>  // listen, getsockname, getsockopt
+
 #include <charconv>  // std::from_chars
 #include <cstdlib>   // std::strtod
 #include <iterator>  // std::distance
+#include <regex>     // std::regex
+#include <set>       // std::set
 
 namespace host::server {
 
@@ -62,6 +67,10 @@ nlohmann::json job_json(const JobRecord& j) {
   return {{"id", j.id},
           {"name", j.name},
           {"state", state_name(j.state)},
+          // A running job before its commands are made has no size yet: not "0 of 0".
+          {"stage", j.state != JobState::kRunning ? ""
+                    : j.total > 0                 ? "cutting"
+                                                  : "planning"},
           {"priority", j.priority},
           {"tag", j.tag},
           {"feed_mm_s", j.settings.feed_mm_s},
@@ -112,12 +121,28 @@ struct UploadFields {
 
 UploadFields upload_fields(const httplib::Request& req, const UploadBody& body) {
   UploadFields u;
+  // Every field once (only a form's `file` parts repeat: a board's files); a second value
+  // would silently win or lose.
+  std::set<std::string> seen;
+  auto check = [&](const std::string& key, bool repeats) {
+    if (!u.error.empty()) return;
+    u.error = unknown_upload_field(key);
+    if (u.error.empty() && !seen.insert(key).second && !repeats) {
+      u.error = fmt::format("field '{}' given more than once", key);
+    }
+  };
   for (const auto& p : req.params) {
-    if (u.error.empty()) u.error = unknown_upload_field(p.first);
+    check(p.first, false);
+    // Read from one place only: what is given in the other would be ignored.
+    if (u.error.empty() && body.multipart) {
+      u.error =
+          fmt::format("field '{}' in the query of a form upload (give it as a part)", p.first);
+    }
+    if (u.error.empty() && p.first == "file") {
+      u.error = "field 'file' in the query (a raw upload's body is the file; ?name=FILE_NAME)";
+    }
   }
-  for (const auto& p : body.parts) {
-    if (u.error.empty()) u.error = unknown_upload_field(p.name);
-  }
+  for (const auto& p : body.parts) check(p.name, p.name == "file");
   if (!u.error.empty()) return u;
   auto field = [&](const std::string& key, std::string* out) {
     if (body.multipart) {
@@ -216,8 +241,19 @@ bool body_object(const httplib::Request& req, httplib::Response& res, nlohmann::
     send_error(res, 400, fmt::format("malformed JSON: a NUL byte at byte {}", nul + 1));
     return false;
   }
+  // A key given twice would silently take its last value ({"action": "hold", "action":
+  // "abort"}): refused, as for upload fields.
+  std::set<std::string> keys;
+  std::string twice;
+  const auto note_key = [&](int depth, nlohmann::json::parse_event_t event, nlohmann::json& key) {
+    if (event == nlohmann::json::parse_event_t::key && depth == 1 && twice.empty() &&
+        !keys.insert(key.get<std::string>()).second) {
+      twice = key.get<std::string>();
+    }
+    return true;
+  };
   try {
-    *out = nlohmann::json::parse(req.body);
+    *out = nlohmann::json::parse(req.body, note_key);
   } catch (const nlohmann::json::parse_error& e) {
     send_error(res, 400, "malformed JSON: " + json_problem(req.body, e.byte));
     return false;
@@ -226,7 +262,38 @@ bool body_object(const httplib::Request& req, httplib::Response& res, nlohmann::
     send_error(res, 400, "expected a JSON object");
     return false;
   }
+  if (!twice.empty()) {
+    send_error(res, 400, fmt::format("key '{}' given more than once", twice));
+    return false;
+  }
   return true;
+}
+
+// The keys of `body` not among `known` (a misspelt "percnet" is refused, not ignored).
+bool known_keys(const nlohmann::json& body, std::initializer_list<const char*> known,
+                httplib::Response& res) {
+  for (const auto& item : body.items()) {
+    bool ok = false;
+    for (const char* k : known) ok = ok || item.key() == k;
+    if (ok) continue;
+    std::string list;
+    for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
+    send_error(res, 400, fmt::format("unknown key '{}' (this request takes {})", item.key(), list));
+    return false;
+  }
+  return true;
+}
+
+// The methods a known path answers ("" for a path the server does not have): a request with
+// another method gets 405 naming them (Allow), not a 404 that says the path is unknown.
+std::string allowed_methods(const std::string& path) {
+  static const std::regex kGet(
+      R"(/|/app\.js|/style\.css|/api/status|/api/events|/api/jobs/\d{1,18}(/path|/files/[a-z.]{1,16}|/runs/[1-9]\d{0,5}/[a-z.]{1,16})?)");
+  static const std::regex kPost(R"(/api/jobs/\d{1,18}/(control|priority))");
+  if (path == "/api/jobs") return "GET, HEAD, POST";
+  if (std::regex_match(path, kGet)) return "GET, HEAD";
+  if (std::regex_match(path, kPost)) return "POST";
+  return "";
 }
 
 }  // namespace
@@ -243,6 +310,11 @@ HttpApi::HttpApi(JobStore& store, JobIntake& intake, Workshop& workshop, const D
   // A thread per connection: an open page's event stream holds its thread for as long as
   // the page is open, and must not take one that a control request needs.
   http_->new_task_queue = [] { return new ConnectionThreads(); };
+  // The listening socket, to widen its backlog once bound (see widen_backlog).
+  http_->set_socket_options([this](int fd) {
+    httplib::default_socket_options(fd);
+    listen_fd_ = fd;
+  });
   // Multipart framing on top of the file; httplib answers 413 beyond this.
   http_->set_payload_max_length(intake_.max_bytes() + 64 * 1024);
   routes();
@@ -264,7 +336,30 @@ int HttpApi::bind() {
         fmt::format("cannot listen on {}:{} (in use or not an address of this PC)",
                     options_.address, options_.port));
   }
+  widen_backlog(port);
+  hosts_.set_port(port);
   return port;
+}
+
+// Debian's libcpp-httplib listens with a backlog of 5, built in: a burst of connections
+// (pages opening, a script) overflowed it, and each connection past it waited for the
+// client's SYN retry a second later. listen() again on the bound socket sets a new backlog.
+void HttpApi::widen_backlog(int port) {
+  const int fd = listen_fd_;
+  sockaddr_storage a{};
+  socklen_t n = sizeof a;
+  int listening = 0;
+  socklen_t m = sizeof listening;
+  if (fd < 0 || ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &n) != 0 ||
+      ::getsockopt(fd, SOL_SOCKET, SO_ACCEPTCONN, &listening, &m) != 0 || !listening) {
+    return;
+  }
+  // Only the socket httplib bound for us: a listener on `port`.
+  const int bound = a.ss_family == AF_INET ? ntohs(reinterpret_cast<const sockaddr_in&>(a).sin_port)
+                    : a.ss_family == AF_INET6
+                        ? ntohs(reinterpret_cast<const sockaddr_in6&>(a).sin6_port)
+                        : -1;
+  if (bound == port) ::listen(fd, kListenBacklog);
 }
 
 void HttpApi::run() {
@@ -301,6 +396,13 @@ void HttpApi::routes() {
                  fmt::format("Host '{}' is not a name of this server (it answers to {}; "
                              "serve --allowed-host NAME adds one)",
                              host, hosts_.describe()));
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    // A known path with a method it does not take: 405 before the token is asked for.
+    const std::string allow = allowed_methods(req.path);
+    if (!allow.empty() && (", " + allow + ",").find(", " + req.method + ",") == std::string::npos) {
+      res.set_header("Allow", allow);
+      send_error(res, 405, fmt::format("{} takes {}, not {}", req.path, allow, req.method));
       return httplib::Server::HandlerResponse::Handled;
     }
     if (req.method == "GET" || req.method == "HEAD")
@@ -391,6 +493,18 @@ void HttpApi::routes() {
     j["runs"] = run_count(data_.job_dir(job->key));  // runs/1 .. runs/N in its archive
     send_json(res, 200, j);
   });
+  s.Get(R"(/api/jobs/(\d{1,18})/path)",
+        [this](const httplib::Request& req, httplib::Response& res) {
+          const int64_t id = std::stoll(req.matches[1]);
+          const std::shared_ptr<const std::string> path = workshop_.live_path(id);
+          if (!path) {
+            return send_error(res, 404,
+                              fmt::format("job {} is not cutting on a machine of this server (its "
+                                          "path is served while it runs)",
+                                          id));
+          }
+          res.set_content(*path, "application/json");
+        });
   s.Get(R"(/api/jobs/(\d{1,18})/files/([a-z.]{1,16}))",
         [this](const httplib::Request& req, httplib::Response& res) {
           const std::string file = req.matches[2];
@@ -475,12 +589,16 @@ void HttpApi::routes() {
            const int64_t id = std::stoll(req.matches[1]);
            nlohmann::json body;
            if (!body_object(req, res, &body)) return;
+           if (!known_keys(body, {"action", "percent"}, res)) return;
            if (!body.contains("action") || !body["action"].is_string()) {
              return send_error(res, 400,
                                "expected {\"action\": \"hold|resume|abort|override|"
                                "cancel|requeue|continue\"}");
            }
            const std::string action = body["action"];
+           if (body.contains("percent") && action != "override") {
+             return send_error(res, 400, "percent goes with the override action only");
+           }
            if (!store_.get(id)) return send_error(res, 404, "no such job");
            auto done = [&](bool ok, const std::string& why) {
              if (!ok) return send_error(res, 409, why);
@@ -531,6 +649,7 @@ void HttpApi::routes() {
            const int64_t id = std::stoll(req.matches[1]);
            nlohmann::json body;
            if (!body_object(req, res, &body)) return;
+           if (!known_keys(body, {"priority"}, res)) return;
            if (!body.contains("priority") || !body["priority"].is_number_integer() ||
                body["priority"].get<int64_t>() < -1000 || body["priority"].get<int64_t>() > 1000) {
              return send_error(res, 400, "expected {\"priority\": -1000 .. 1000}");

@@ -52,6 +52,8 @@ class HttpApi {
 
  private:
   void routes();
+  void widen_backlog(int port);
+  static const int kListenBacklog = 1024;  // connections waiting to be accepted
   // The server-sent event for the workshop's change counter `version`.
   std::string event_text(uint64_t version);
   JobStore& store_;
@@ -63,6 +65,7 @@ class HttpApi {
   std::unique_ptr<httplib::Server> http_;
   std::atomic<bool> stopping_{false};
   std::atomic<int> open_streams_{0};
+  int listen_fd_ = -1;      // the socket bind() listens on
   std::mutex event_mutex_;  // guards the two below
   uint64_t event_version_ = 0;
   std::string event_;

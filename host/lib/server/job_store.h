@@ -81,7 +81,8 @@ class JobStore {
   virtual bool cancel(int64_t id) = 0;
   // Interrupted, aborted or failed -> queued again, from the start or (continue_job, an
   // interrupted job whose position is known: resume_index or resume_curve) from where it
-  // stopped. False otherwise.
+  // stopped; an interrupted job with nothing executed and no position (stopped before its
+  // first save) continues from the start. False otherwise.
   virtual bool requeue(int64_t id, bool continue_job) = 0;
   // Changes a queued job's priority. False when the job is not queued.
   virtual bool set_priority(int64_t id, int priority) = 0;

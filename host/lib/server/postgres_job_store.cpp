@@ -247,7 +247,7 @@ bool PostgresJobStore::requeue(int64_t id, bool continue_job) {
         continue_job
             ? "UPDATE jobs SET state = 'queued', machine = '', owner = '',"
               " start_curve = resume_curve WHERE id = $1 AND state = 'interrupted'"
-              " AND (resume_curve >= 0 OR resume_index >= 0)"
+              " AND (resume_curve >= 0 OR resume_index >= 0 OR executed = 0)"
             : "UPDATE jobs SET state = 'queued', machine = '', owner = '', start_curve = -1,"
               " resume_curve = -1, resume_index = -1, resume_point = 0, resume_job_id = -1"
               " WHERE id = $1 AND state IN ('interrupted', 'aborted', 'failed')",

@@ -9,6 +9,7 @@
 
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/server/job_continue.h"
+#include "host/lib/server/job_path.h"
 #include "host/lib/server/job_planning.h"
 #include "host/lib/server/run_archive.h"
 #include "host/lib/stream/job_resume.h"  // resume_from_curve
@@ -40,8 +41,16 @@ struct Workshop::Slot {
   std::string link_state = "unknown";  // unknown, online, offline
   std::string link_message;
   Sender* sender = nullptr;  // while a job runs
-  int64_t job_id = 0;
+  int64_t job_id = 0;        // from its claim until it ends
   std::string job_name;
+  bool planning = false;  // claimed, its commands not made yet (no sender)
+  // What the operator asked for while it was planning: done when its commands start.
+  bool hold_pending = false;
+  bool abort_pending = false;
+  int override_pending = 0;                      // percent, 0 = none
+  std::shared_ptr<const std::string> path_json;  // JobPath of the running job
+  double executed_mm = 0;                        // along that path
+  double path_mm = 0;
   Progress progress;
   bool have_status = false;
   double planned_s = 0;
@@ -174,7 +183,25 @@ uint64_t Workshop::wait_change(uint64_t seen, std::chrono::milliseconds timeout)
 ControlResult Workshop::control(int64_t job_id, JobControl control, int percent) {
   for (auto& slot : slots_) {
     std::lock_guard<std::mutex> lock(slot->mutex);
-    if (slot->job_id != job_id || slot->sender == nullptr) continue;
+    if (slot->job_id != job_id || (slot->sender == nullptr && !slot->planning)) continue;
+    if (slot->sender == nullptr) {  // still planning: kept for when its commands start
+      switch (control) {
+        case JobControl::kHold:
+          slot->hold_pending = true;
+          break;
+        case JobControl::kResume:
+          slot->hold_pending = false;
+          break;
+        case JobControl::kAbort:
+          slot->abort_pending = true;
+          break;
+        case JobControl::kOverride:
+          if (percent < 10 || percent > 200) return {400, "override must be 10 .. 200 percent"};
+          slot->override_pending = percent;
+          break;
+      }
+      return {};
+    }
     switch (control) {
       case JobControl::kHold:
         slot->sender->request_hold();
@@ -210,7 +237,7 @@ nlohmann::json Workshop::snapshot() {
     m["tags"] = slot->spec.fit.tags;
     m["link"] = slot->link_state;
     m["message"] = slot->link_message;
-    m["job"] = slot->sender != nullptr ? slot->job_id : 0;
+    m["job"] = slot->job_id;
     if (slot->have_last_status) {
       const proto::StatusReply& st = slot->last_status;
       m["state"] = machine_state_name(st.state);
@@ -219,7 +246,7 @@ nlohmann::json Workshop::snapshot() {
       m["state"] = slot->link_state == "online" ? "idle" : "unknown";
     }
     machines.push_back(m);
-    if (slot->sender == nullptr) continue;
+    if (slot->job_id == 0) continue;
     const Progress& p = slot->progress;
     const double elapsed = seconds_since(slot->started);
     const double f = p.total > 0 ? double(p.executed) / double(p.total) : 0.0;
@@ -235,8 +262,17 @@ nlohmann::json Workshop::snapshot() {
     j["fraction"] = f;
     j["elapsed_s"] = elapsed;
     j["remaining_s"] = remaining;
-    j["machine_state"] = slot->have_status ? machine_state_name(p.status.state) : "starting";
+    j["machine_state"] = slot->planning      ? "planning"
+                         : slot->have_status ? machine_state_name(p.status.state)
+                                             : "starting";
     j["override_percent"] = slot->have_status ? p.status.override_percent : 100;
+    // The machine's reported position and how far along the job's path it has got.
+    j["position_mm"] = nlohmann::json();
+    if (slot->have_status) {
+      j["position_mm"] = {p.status.x_um / 1000.0, p.status.y_um / 1000.0, p.status.z_um / 1000.0};
+    }
+    j["executed_mm"] = slot->executed_mm;
+    j["path_mm"] = slot->path_mm;
     running.push_back(j);
   }
   uint64_t version = 0, jobs_version = 0;
@@ -250,6 +286,14 @@ nlohmann::json Workshop::snapshot() {
           {"version", version},
           {"jobs_version", jobs_version},
           {"can_continue", can_continue()}};
+}
+
+std::shared_ptr<const std::string> Workshop::live_path(int64_t job_id) {
+  for (auto& slot : slots_) {
+    std::lock_guard<std::mutex> lock(slot->mutex);
+    if (slot->job_id == job_id && slot->path_json) return slot->path_json;
+  }
+  return nullptr;
 }
 
 void Workshop::machine_loop(Slot& slot) {
@@ -367,6 +411,22 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   progress.resume_job_id = job.resume_job_id;
   const Lease lease{job.owner, job.lease_epoch};
   const char* outcome = "not started";
+  {
+    // Claimed: on the page (planning) and steerable before its commands exist.
+    std::lock_guard<std::mutex> lock(slot.mutex);
+    slot.job_id = job.id;
+    slot.job_name = job.name;
+    slot.planning = true;
+    slot.hold_pending = slot.abort_pending = false;
+    slot.override_pending = 0;
+    slot.path_json.reset();
+    slot.executed_mm = slot.path_mm = 0;
+    slot.progress = Progress{};
+    slot.have_status = false;
+    slot.planned_s = job.planned_s;
+    slot.started = started;
+  }
+  notify(false);
   try {
     // Uploaded to another server sharing the queue: the input comes from the store.
     const bool fetched = !fs::exists(dir / job.input_file);
@@ -388,20 +448,36 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     }
     note(fmt::format("planned: {} curves, {} commands, {} bytes, about {:.1f} s",
                      plan.curves.size(), commands.size(), wire_bytes(commands), job.planned_s));
+    JobPath path(plan);
+    auto path_json = std::make_shared<const std::string>(path.to_json().dump());
+    // Its size and first curve are known now: not "0 of 0" in the store while the first
+    // status is awaited, and continuable from that curve whatever stops it next.
+    progress = progress_of(progress, commands, 0, proto::StatusReply{}, job_id);
+    saver_.post(job.id, lease, progress, true);
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
       slot.sender = &sender;
-      slot.job_id = job.id;
-      slot.job_name = job.name;
+      slot.planning = false;
       slot.progress = Progress{};
       slot.progress.total = commands.size();
-      slot.have_status = false;
-      slot.planned_s = job.planned_s;
-      slot.started = started;
+      slot.path_json = std::move(path_json);
+      slot.path_mm = path.length_mm();
       slot.lease_epoch = job.lease_epoch;
       slot.fenced.clear();
       if (stopping_) sender.request_abort();  // claimed just as stop() looked at the slots
+      // Asked for while it was planning; run() sends them before its first command (the
+      // override after this run's reset to 100 %).
+      if (slot.abort_pending) sender.request_abort();
+      if (slot.hold_pending) sender.request_hold();
+      if (slot.override_pending != 0) sender.request_override(slot.override_pending);
+      if (slot.hold_pending || slot.abort_pending || slot.override_pending != 0) {
+        note(fmt::format(
+            "asked for while planning:{}{}{}", slot.hold_pending ? " hold" : "",
+            slot.abort_pending ? " abort" : "",
+            slot.override_pending != 0 ? fmt::format(" override {}%", slot.override_pending) : ""));
+      }
     }
+    notify(false);
     // A feed override belongs to the job that set it: every run starts at 100 %, whatever
     // the machine's last job left.
     if (!sender.set_override(100)) throw LinkError("the machine did not take feed override 100%");
@@ -410,8 +486,15 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     int last_override = -1;  // none reported yet
     Clock::time_point last_notify = started;
     const JobOutcome result = sender.run(commands, [&](const Progress& p) {
+      // The plan step running (or next): that of the first command not done yet.
+      size_t next = p.executed;
+      while (next < commands.size() && commands[next].step < 0) ++next;
+      const int step = next < commands.size() ? commands[next].step : -1;
+      const double executed_mm =
+          path.advance(step, Point2(p.status.x_um / 1000.0, p.status.y_um / 1000.0));
       {
         std::lock_guard<std::mutex> lock(slot.mutex);
+        slot.executed_mm = executed_mm;
         slot.progress = p;
         slot.have_status = true;
         slot.last_status = p.status;
@@ -498,6 +581,8 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     std::lock_guard<std::mutex> lock(slot.mutex);
     slot.sender = nullptr;
     slot.job_id = 0;
+    slot.planning = false;
+    slot.path_json.reset();
     // The machine as the sender last heard it (idle after a completed job); unknown when
     // the link went away.
     slot.have_last_status = state != JobState::kInterrupted;

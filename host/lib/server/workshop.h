@@ -82,8 +82,12 @@ class Workshop {
   ControlResult control(int64_t job_id, JobControl control, int percent);
   bool can_continue() const { return static_cast<bool>(options_.resume_encoder); }
 
-  // Machines (state, position, job) and the progress of running jobs.
+  // Machines (state, position, job) and the progress of running jobs: a job claimed and
+  // still being planned is "planning"; a cutting one has its position along its path.
   nlohmann::json snapshot();
+  // The tool path (JobPath::to_json) of a job running on a machine of this server, null
+  // when none is (the page's live preview).
+  std::shared_ptr<const std::string> live_path(int64_t job_id);
   // Something changed that the page shows (a job queued, a state, progress).
   void notify(bool jobs_changed);
   // Waits until the change counter differs from `seen` (or the timeout); returns it.

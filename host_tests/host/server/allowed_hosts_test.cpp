@@ -36,6 +36,40 @@ TEST(AllowedHosts, AllAddressesAddTheHostNameAndAllowedHostAddsNames) {
   EXPECT_FALSE(named.allows("shop.example"));
 }
 
+// A Host naming another port than the server's is another origin (a page on that port,
+// forwarded here): refused, unless that NAME:PORT was allowed (a proxy in front). No port
+// is the scheme's default (a proxy, or the server on 80). A port that is no port is refused.
+TEST(AllowedHosts, APortInTheHostMustBeTheServersOwn) {
+  AllowedHosts hosts("127.0.0.1", {"workshop.example:443"});
+  hosts.set_port(8080);
+  for (const char* ok : {"127.0.0.1:8080", "localhost:8080", "[::1]:8080", "localhost",
+                         "workshop.example", "workshop.example:8080", "workshop.example:443"}) {
+    EXPECT_TRUE(hosts.allows(ok)) << ok;
+  }
+  for (const char* bad : {"127.0.0.1:9999", "localhost:80", "[::1]:8081", "localhost:443",
+                          "localhost:", "localhost:80a", "localhost:0", "localhost:65536",
+                          "localhost:+8080", "[::1]:", "[::1]x"}) {
+    EXPECT_FALSE(hosts.allows(bad)) << bad;
+  }
+  EXPECT_NE(hosts.describe().find("localhost:8080"), std::string::npos) << hosts.describe();
+  EXPECT_NE(hosts.describe().find("workshop.example:443"), std::string::npos);
+}
+
+TEST(AllowedHosts, TheServerRefusesAHostWithAnotherPort) {
+  test::TempDir dir;
+  test::ServerRig server(dir.path(), {});
+  auto client = server.client();
+  const int other = server.port() == 65535 ? 65534 : server.port() + 1;
+  auto r = client.Get("/api/jobs", {{"Host", fmt::format("127.0.0.1:{}", other)}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 403) << r->body;
+  EXPECT_NE(r->body.find(fmt::format("127.0.0.1:{}", server.port())), std::string::npos)
+      << r->body;  // the message names the server's own
+  r = client.Get("/api/jobs", {{"Host", fmt::format("127.0.0.1:{}", server.port())}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body;
+}
+
 TEST(AllowedHosts, TheServerRefusesAnotherHostBeforeAnyHandler) {
   test::TempDir dir;
   test::ServerRig server(dir.path(), {});

@@ -423,10 +423,15 @@ def main():
             if i >= COLUMNS * 19:
                 break
             ids[i] = None
-        count = max(6, int(chaos_s * 1.2))
+        # As many jobs as the four real-time machines can cut in about the chaos time (a job
+        # takes 5-25 s: travel to its place on the table and home). 1.2 a second queued
+        # 360 jobs for a 300 s soak, ~1 500 s of cutting, more than the wait below allowed.
+        count = max(6, int(chaos_s * 0.5))
         indexes = list(range(3, 3 + min(count, COLUMNS * 19 - 3)))
+        planned_s = 0.0
         for k, i in enumerate(indexes):
             ids[i] = upload(A if k % 2 else B, i, 10)
+            planned_s += job(A if k % 2 else B, ids[i])["planned_s"]
         ids = {i: ids[i] for i in indexes}
         stop_user = threading.Event()
         actions = []
@@ -440,17 +445,22 @@ def main():
                 for s in alive():
                     try:
                         _, st = request(s.base, "/api/status", timeout=2)
-                        for j in st["running"]:
-                            if j["machine_state"] == "held":
-                                request(s.base, f"/api/jobs/{j['id']}/control", s.token,
-                                        b'{"action": "resume"}', timeout=2)
                         _, listed = request(s.base, "/api/jobs?state=interrupted&limit=1000",
                                             timeout=2)
-                        for j in listed["jobs"]:
-                            request(s.base, f"/api/jobs/{j['id']}/control", s.token,
-                                    b'{"action": "continue"}', timeout=2)
                     except (OSError, urllib.error.HTTPError, ValueError):
-                        pass
+                        continue
+                    # Each on its own: one refused (409) must not keep the others waiting.
+                    # (It did: a job interrupted before its first save could not be
+                    # continued, and every older interrupted job stayed so behind it.)
+                    controls = [(j["id"], b'{"action": "resume"}') for j in st["running"]
+                                if j["machine_state"] == "held"]
+                    controls += [(j["id"], b'{"action": "continue"}') for j in listed["jobs"]]
+                    for jid, body in controls:
+                        try:
+                            request(s.base, f"/api/jobs/{jid}/control", s.token, body,
+                                    timeout=2)
+                        except (OSError, urllib.error.HTTPError, ValueError):
+                            pass
                 time.sleep(0.3)
 
         helper = threading.Thread(target=user, daemon=True)
@@ -483,7 +493,10 @@ def main():
             return all(states.get(jid) == "completed" for jid in ids.values())
         print(f"chaos over ({time.monotonic() - T0:.0f} s)")
         try:
-            wait(all_done, 120 + 2 * len(ids), "every job to complete")
+            # The planned cutting time over four machines, with room for restarts under load.
+            budget_s = 120 + 2.0 * planned_s / 4
+            print(f"{len(ids)} jobs, {planned_s:.0f} s planned; waiting up to {budget_s:.0f} s")
+            wait(all_done, budget_s, "every job to complete")
         except AssertionError:
             jobs = request(B.base, "/api/jobs?limit=1000", timeout=5)[1]["jobs"]
             left = [(j["id"], j["state"], j["server"], j["message"]) for j in jobs

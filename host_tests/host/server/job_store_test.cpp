@@ -244,6 +244,27 @@ TEST(SqliteJobStore, ProgressSavedWhileRunningMakesAnInterruptedJobContinuable) 
   EXPECT_EQ(store.get(id)->resume_curve, -1);
 }
 
+// A server that dies between the claim and its first save leaves the job interrupted with
+// nothing executed and no position: "continue" runs it from the start (it answered 409,
+// and the fencing soak's operator, who only continues, waited for it forever). A job that
+// executed something without a position saved stays for a re-queue.
+TEST(SqliteJobStore, AJobInterruptedBeforeItsFirstSaveContinuesFromTheStart) {
+  test::TempDir dir;
+  SqliteJobStore store((dir.path() / "jobs.sqlite").string());
+  const int64_t fresh = store.add(job("fresh"), "");
+  const int64_t cut = store.add(job("cut"), "");
+  const Lease lease = lease_of(store, "s");
+  ASSERT_EQ(store.claim(MachineFit{}, "m1", lease)->id, fresh);
+  ASSERT_EQ(store.claim(MachineFit{}, "m2", lease)->id, cut);
+  ASSERT_TRUE(store.save_progress(cut, lease, at(4, 20, -1)));
+  EXPECT_EQ(store.interrupt_running("s", "server restarted"), 2);
+  EXPECT_TRUE(store.requeue(fresh, true));
+  EXPECT_EQ(store.get(fresh)->state, JobState::kQueued);
+  EXPECT_EQ(store.get(fresh)->start_curve, -1);  // from the start
+  EXPECT_FALSE(store.requeue(cut, true));
+  EXPECT_TRUE(store.requeue(cut, false));
+}
+
 TEST(SqliteJobStore, UnopenableFileIsAnErrorNamingIt) {
   try {
     SqliteJobStore store("/nonexistent-folder/x/jobs.sqlite");

@@ -3,7 +3,9 @@
 `engraver serve` (with one `engraver sim` machine), enters the token, uploads a drawing
 through the page's form, watches the job finish on the page, then uploads a board's three
 files (copper, drill, outline) together as one job and watches it finish, and keeps a
-screenshot.
+screenshot. Then, on a second server with a real-time machine, watches a running job's live
+preview: the executed part of the path ends where the tool marker is (the machine's
+reported position), grows as the job runs, and both stay inside the drawing.
 
 Drives Chromium over the DevTools protocol with a minimal WebSocket client (standard
 library only). Exit 77 (ctest: skipped) when Chromium is not installed.
@@ -113,6 +115,81 @@ def wait(predicate, timeout_s, what):
     raise AssertionError("timed out waiting for " + what)
 
 
+def live_shot(screenshot):
+    return os.path.splitext(screenshot)[0] + "-live.png"
+
+
+# The executed part as the page drew it: its length (mm, summed over the polylines) and its
+# last point, the tool marker's centre, and whether the marker lies inside the drawing.
+LIVE_STATE = """(() => {
+  const svg = document.querySelector('#live-path-1');
+  if (!svg) return null;
+  const tool = svg.querySelector('.tool');
+  let length = 0, last = null;
+  for (const line of svg.querySelectorAll('.done polyline')) {
+    const pts = (line.getAttribute('points') || '').trim().split(/\\s+/).filter((p) => p)
+      .map((p) => p.split(',').map(Number));
+    for (let i = 1; i < pts.length; ++i) {
+      length += Math.hypot(pts[i][0] - pts[i - 1][0], pts[i][1] - pts[i - 1][1]);
+    }
+    if (pts.length) last = pts[pts.length - 1];
+  }
+  const box = svg.getBoundingClientRect(), t = tool.getBoundingClientRect();
+  return { executed_mm: Number(svg.dataset.executedMm || 0), drawn_mm: length, last: last,
+           tool: tool.style.display === 'none' ? null
+             : [Number(tool.getAttribute('cx')), Number(tool.getAttribute('cy'))],
+           inside: t.width > 0 && t.left >= box.left && t.right <= box.right &&
+             t.top >= box.top && t.bottom <= box.bottom };
+})()"""
+
+
+def live_preview(dt, engraver, tmp, procs, drawing, screenshot):
+    """A job on a real-time machine (slow enough to watch): the live preview follows it."""
+    sim_port, http_port = free_port(), free_port()
+    procs.append(subprocess.Popen(
+        [engraver, "sim", "--realtime", "--listen", f"127.0.0.1:{sim_port}"],
+        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+    data = os.path.join(tmp, "data-live")
+    procs.append(subprocess.Popen(
+        [engraver, "serve", "--data", data, "--listen", f"127.0.0.1:{http_port}",
+         "--poll-ms", "5", "--machine", f"tcp://127.0.0.1:{sim_port} name=bench-live"],
+        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+    base = f"http://127.0.0.1:{http_port}"
+    wait(lambda: os.path.exists(os.path.join(data, "token")), 10, "the second server's token")
+    token = open(os.path.join(data, "token")).read().strip()
+    dt.call("Page.navigate", url=base + "/")
+    wait(lambda: dt.js("document.readyState") == "complete", 30, "the second page to load")
+    wait(lambda: dt.js("document.querySelector('#live').textContent") == "live", 30,
+         "the second page's event stream")
+    with open(drawing, "rb") as f:
+        req = urllib.request.Request(base + "/api/jobs?name=live-square.ngc&feed_mm_s=5",
+                                     data=f.read(), method="POST",
+                                     headers={"Authorization": "Bearer " + token})
+    with urllib.request.urlopen(req, timeout=10) as r:
+        assert json.load(r)["id"] == 1
+    state = {}
+
+    def cutting():
+        state.update(dt.js(LIVE_STATE) or {})
+        return state.get("tool") is not None and state.get("executed_mm", 0) > 10
+    wait(cutting, 60, "the live preview to show the tool 10 mm into the job")
+    first = dict(state)
+    for _ in range(5):
+        s = dt.js(LIVE_STATE)
+        # What is drawn as executed is as long as the server says and ends at the tool.
+        assert abs(s["drawn_mm"] - s["executed_mm"]) < 0.05, s
+        assert s["last"] is not None and s["tool"] is not None, s
+        assert abs(s["last"][0] - s["tool"][0]) < 0.1 and abs(s["last"][1] - s["tool"][1]) < 0.1, s
+        assert s["inside"], s
+        time.sleep(0.4)
+    later = dt.js(LIVE_STATE)
+    assert later["executed_mm"] > first["executed_mm"] + 2, (first, later)
+    assert later["tool"] != first["tool"], (first, later)
+    shot = dt.call("Page.captureScreenshot", format="png")
+    with open(live_shot(screenshot), "wb") as f:
+        f.write(base64.b64decode(shot["data"]))
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -210,7 +287,9 @@ def main():
         shot = dt.call("Page.captureScreenshot", format="png")
         with open(screenshot, "wb") as f:
             f.write(base64.b64decode(shot["data"]))
-        print(f"page test passed; screenshot {screenshot}")
+
+        live_preview(dt, engraver, tmp, procs, drawing, screenshot)
+        print(f"page test passed; screenshots {screenshot}, {live_shot(screenshot)}")
         return 0
     finally:
         for p in reversed(procs):

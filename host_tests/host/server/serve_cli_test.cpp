@@ -206,6 +206,13 @@ TEST(ServeCommand, KilledMidJobTheRunsLogIsKept) {
       test::wait_until([&] { return fs::exists(job_dir / "runs" / "2" / "machine.log"); }, 20));
   EXPECT_EQ(text_of(job_dir / "runs" / "1" / "machine.log"), log);
   EXPECT_EQ(serve->stop(), 0);
+  // Stopped (Ctrl-C) with run 2 going: the server stopped it, no operator did.
+  const std::string run2 = text_of(job_dir / "runs" / "2" / "report.json");
+  EXPECT_NE(run2.find("the server stopped while the job was running"), std::string::npos) << run2;
+  for (const fs::path& f : {job_dir / "runs" / "2" / "report.json",
+                            job_dir / "runs" / "2" / "machine.log", dir.path() / "serve2.log"}) {
+    EXPECT_EQ(text_of(f).find("by the operator"), std::string::npos) << f << ": " << text_of(f);
+  }
 }
 
 // `cmake --install` to a fresh prefix: the installed engraver serves the installed page,

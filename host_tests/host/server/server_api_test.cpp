@@ -300,3 +300,99 @@ TEST(ServerApi, EventStreamSendsTheStateAtOnceAndAgainWhenAJobIsQueued) {
 
 }  // namespace
 }  // namespace host::server
+
+namespace host::server {
+namespace {
+
+// A field or key given twice, a control key the server does not know, a field in the query
+// of a form upload: refused by name (400), nothing queued or changed.
+TEST(ServerApi, DuplicateAndUnknownFieldsAndKeysAreRefusedByName) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {});
+  auto client = server.client();
+  auto refused = [&](const httplib::Result& r, const std::string& needle) {
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 400) << r->body;
+    EXPECT_NE(r->body.find(needle), std::string::npos) << r->body;
+  };
+  const std::string good = test::square_gcode(10, 10, 10);
+  refused(server.upload("a.ngc", good, "&priority=1&priority=5"),
+          "field 'priority' given more than once");
+  refused(server.upload("a.ngc", good, "&name=b.ngc"), "field 'name' given more than once");
+  refused(server.upload("a.ngc", good, "&file=x"), "field 'file' in the query");
+  httplib::MultipartFormDataItems twice = {{"file", good, "a.ngc", "application/octet-stream"},
+                                           {"priority", "1", "", ""},
+                                           {"priority", "5", "", ""}};
+  refused(client.Post("/api/jobs", server.auth(), twice), "field 'priority' given more than once");
+  httplib::MultipartFormDataItems form = {{"file", good, "a.ngc", "application/octet-stream"}};
+  refused(client.Post("/api/jobs?priority=5", server.auth(), form),
+          "field 'priority' in the query of a form upload");
+  EXPECT_TRUE(server.jobs().empty());
+
+  const int64_t id = server.upload_ok("ok.ngc", good);
+  refused(server.control(id, R"({"action": "cancel", "action": "hold"})"),
+          "key 'action' given more than once");
+  refused(server.control(id, R"({"action": "cancel", "force": true})"),
+          "unknown key 'force' (this request takes action, percent)");
+  refused(server.control(id, R"({"action": "cancel", "percent": 50})"),
+          "percent goes with the override action only");
+  refused(server.control(id, R"({"action": "override", "percnet": 50})"), "unknown key 'percnet'");
+  refused(client.Post(fmt::format("/api/jobs/{}/priority", id).c_str(), server.auth(),
+                      R"({"priority": 1, "priority": 9})", "application/json"),
+          "key 'priority' given more than once");
+  refused(client.Post(fmt::format("/api/jobs/{}/priority", id).c_str(), server.auth(),
+                      R"({"priority": 1, "when": "now"})", "application/json"),
+          "unknown key 'when'");
+  // Nested objects may repeat keys of the top level: only the request's own keys count.
+  refused(server.control(id, R"({"action": "cancel", "x": {"action": 1}})"), "unknown key 'x'");
+  const nlohmann::json job = server.job(id);
+  EXPECT_EQ(job["state"], "queued");
+  EXPECT_EQ(job["priority"], 0);
+  // A clean request still works.
+  auto ok = server.control(id, R"({"action": "cancel"})");
+  ASSERT_TRUE(ok);
+  EXPECT_EQ(ok->status, 200) << ok->body;
+}
+
+// A known path asked with a method it does not take answers 405 with Allow (before the
+// token is asked for); an unknown path stays 404 (401 without the token).
+TEST(ServerApi, WrongMethodsOnKnownPathsAnswer405WithAllow) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {});
+  const int64_t id = server.upload_ok("ok.ngc", test::square_gcode(10, 10, 10));
+  httplib::Client client("127.0.0.1", server.port());
+  client.set_read_timeout(10, 0);
+  struct Case {
+    const char* method;
+    std::string path;
+    const char* allow;
+  };
+  const std::string job = fmt::format("/api/jobs/{}", id);
+  const Case cases[] = {{"DELETE", "/api/status", "GET, HEAD"},
+                        {"POST", "/api/status", "GET, HEAD"},
+                        {"PUT", "/", "GET, HEAD"},
+                        {"DELETE", "/api/jobs", "GET, HEAD, POST"},
+                        {"DELETE", job, "GET, HEAD"},
+                        {"PATCH", job + "/files/plot.svg", "GET, HEAD"},
+                        {"POST", job + "/path", "GET, HEAD"},
+                        {"GET", job + "/control", "POST"},
+                        {"PUT", job + "/priority", "POST"},
+                        {"OPTIONS", "/api/events", "GET, HEAD"}};
+  for (const Case& c : cases) {
+    httplib::Request req;
+    req.method = c.method;
+    req.path = c.path;
+    auto r = client.send(req);
+    ASSERT_TRUE(r) << c.method << " " << c.path;
+    EXPECT_EQ(r->status, 405) << c.method << " " << c.path << ": " << r->body;
+    EXPECT_EQ(r->get_header_value("Allow"), c.allow) << c.method << " " << c.path;
+    EXPECT_NE(r->body.find(c.allow), std::string::npos) << r->body;
+  }
+  auto r = client.Get("/api/nothing");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 404);
+  EXPECT_EQ(server.job(id)["state"], "queued");
+}
+
+}  // namespace
+}  // namespace host::server

@@ -384,3 +384,136 @@ TEST(ServerMachines, ContinueHandsTheFirstUncutCurveToTheResumeHook) {
 
 }  // namespace
 }  // namespace host::server
+
+namespace host::server {
+namespace {
+
+// The point `at_mm` along a path from GET /api/jobs/N/path.
+std::vector<double> point_along(const nlohmann::json& path, double at_mm) {
+  for (const auto& piece : path["pieces"]) {
+    const auto& pts = piece["points_mm"];
+    double along = piece["start_mm"].get<double>();
+    for (size_t i = 0; i + 1 < pts.size(); ++i) {
+      const double ax = pts[i][0], ay = pts[i][1], bx = pts[i + 1][0], by = pts[i + 1][1];
+      const double len = std::hypot(bx - ax, by - ay);
+      if (along + len >= at_mm) {
+        const double t = len > 0 ? (at_mm - along) / len : 0;
+        return {ax + t * (bx - ax), ay + t * (by - ay)};
+      }
+      along += len;
+    }
+  }
+  return {};
+}
+
+// The event stream's running job carries the machine's position and how far along the
+// job's path it is; the path itself is served while the job runs: the point that far along
+// it is where the machine reports itself.
+TEST(ServerMachines, RunningJobShowsThePositionAndTheExecutedLengthOfItsPath) {
+  test::TempDir dir;
+  SimRig sim(true);
+  ServerRig server(dir.path(), {test::machine("m1", sim.address())});
+  const int64_t id = server.upload_ok("slow.ngc", test::square_gcode(10, 10, 40), "&feed_mm_s=8");
+  nlohmann::json first;
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        first = server.running(id);
+        return !first.is_null() && first["executed_mm"].get<double>() > 20;
+      },
+      30))
+      << server.status().dump();
+  auto r = server.client().Get(fmt::format("/api/jobs/{}/path", id).c_str());
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const nlohmann::json path = nlohmann::json::parse(r->body);
+  EXPECT_NEAR(path["length_mm"].get<double>(), first["path_mm"].get<double>(), 0.001);
+  // A 40 mm square with a half circle on top (r 20), its corner put at the zero: no travel.
+  EXPECT_NEAR(path["length_mm"].get<double>(), 40 + 40 + M_PI * 20 + 40, 0.1)
+      << r->body.substr(0, 400);
+  for (int sample = 0; sample < 5; ++sample) {
+    const nlohmann::json now = server.running(id);
+    ASSERT_FALSE(now.is_null());
+    const double at_mm = now["executed_mm"].get<double>();
+    const std::vector<double> on_path = point_along(path, at_mm);
+    ASSERT_EQ(on_path.size(), 2u);
+    const auto& pos = now["position_mm"];
+    EXPECT_NEAR(on_path[0], pos[0].get<double>(), 0.05) << now.dump();
+    EXPECT_NEAR(on_path[1], pos[1].get<double>(), 0.05) << now.dump();
+    EXPECT_LT(at_mm, path["length_mm"].get<double>());
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_GT(server.running(id)["executed_mm"].get<double>(), at_mm) << "it moves on";
+  }
+  auto a = server.control(id, R"({"action": "abort"})");
+  ASSERT_TRUE(a && a->status == 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 20));
+  r = server.client().Get(fmt::format("/api/jobs/{}/path", id).c_str());
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 404) << r->body;
+}
+
+}  // namespace
+}  // namespace host::server
+
+namespace host::server {
+namespace {
+
+// A spiral of `moves` short G1 moves: a job that takes a while to plan.
+std::string spiral_gcode(int moves) {
+  std::string g = "G21\nG90\nG0 Z2\nG0 X65 Y60\nG1 Z-0.1 F100\n";
+  for (int i = 0; i < moves; ++i) {
+    const double a = i * 0.05, r = 5 + i * 0.0005;
+    g += fmt::format("G1 X{:.3f} Y{:.3f} F600\n", 60 + r * std::cos(a), 60 + r * std::sin(a));
+  }
+  return g + "G0 Z2\n";
+}
+
+// A hold asked for right after the claim, while the job is still being planned, is taken
+// (not 409) and stops the job before it moves; the queue shows the job as planning (not
+// "0 of 0") until its commands exist. Resume lets it cut.
+TEST(ServerMachines, HoldWhilePlanningIsKeptAndStopsTheJobBeforeItMoves) {
+  test::TempDir dir;
+  SimRig sim(true);
+  ServerRig server(dir.path(), {test::machine("m1", sim.address())}, 8 * 1024 * 1024);
+  const int64_t id = server.upload_ok("spiral.ngc", spiral_gcode(8000));
+  nlohmann::json listed;
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const nlohmann::json p = server.running(id);
+        if (p.is_null() || p["machine_state"] != "planning") return false;
+        listed = server.jobs()[0];
+        return true;
+      },
+      30))
+      << server.status().dump();
+  auto r = server.control(id, R"({"action": "hold"})");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(listed["state"], "running");
+  EXPECT_EQ(listed["stage"], "planning") << listed.dump();
+  ASSERT_TRUE(test::wait_until([&] { return server.running(id)["machine_state"] == "held"; }, 30))
+      << server.status().dump();
+  const nlohmann::json held = server.running(id);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const nlohmann::json still = server.running(id);
+  EXPECT_EQ(still["machine_state"], "held");
+  EXPECT_EQ(still["position_mm"], held["position_mm"]) << "a held machine must not move";
+  EXPECT_LT(still["executed_mm"].get<double>(), 0.001) << "held before it moved";
+  const nlohmann::json cutting = server.jobs()[0];
+  EXPECT_EQ(cutting["stage"], "cutting") << cutting.dump();
+  EXPECT_GT(cutting["total"].get<int>(), 0);
+
+  r = server.control(id, R"({"action": "resume"})");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body;
+  EXPECT_TRUE(test::wait_until([&] { return server.running(id)["executed_mm"] > 1.0; }, 20))
+      << server.status().dump();
+  r = server.control(id, R"({"action": "abort"})");
+  ASSERT_TRUE(r && r->status == 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 20));
+  auto log = server.client().Get(fmt::format("/api/jobs/{}/files/machine.log", id).c_str());
+  ASSERT_TRUE(log && log->status == 200);
+  EXPECT_NE(log->body.find("asked for while planning: hold"), std::string::npos) << log->body;
+}
+
+}  // namespace
+}  // namespace host::server
