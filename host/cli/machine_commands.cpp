@@ -21,11 +21,13 @@
 #include "host/cli/board_cli.h"  // PCB input (Gerber, Excellon, a board's directory)
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
+#include "host/cli/height_map_cli.h"  // --surface, --height-map, the depth report
 #include "host/cli/terminal_text.h"
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/pcb/board_check.h"  // refuse_copper_hits
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/job_plan.h"
+#include "host/lib/plot/height_map_plot.h"
 #include "host/lib/plot/plan_plot.h"
 #include "host/lib/plot/plot.h"
 #include "host/lib/progress/progress_meter.h"
@@ -529,6 +531,8 @@ struct RunArgs {
   PlanArgs plan;
   std::string outdir = "out";
   bool realtime = false;
+  std::string surface;  // --surface: the simulated blank
+  HeightMapArgs map;
 };
 
 // The points the firmware core generates for the job's curves (the same core, on the host),
@@ -574,11 +578,40 @@ void run_run(const RunArgs& a) {
   o.sender.status_interval = std::chrono::milliseconds(250);
   // The plot shows what its pixels can: keep a tool position every half pixel or so.
   o.trace_step_mm = plot_step_mm(plan);
-  // A board: the isolation cuts at full resolution, to check them against the copper.
+  // The simulated blank (--surface) over the job unless its area is given, and the map the
+  // controller follows (--height-map).
+  const std::optional<heightmap::SurfaceSpec> surface_spec = surface_spec_of(a.surface);
+  std::optional<heightmap::SurfaceModel> surface;
+  if (surface_spec) {
+    // The blank: from the zero corner to the job's far end and as far again as the margin.
+    const Extents& e = plan.extents_mm;
+    surface.emplace(*surface_spec,
+                    e.empty() ? heightmap::AreaMm{0, 0, a.plan.work_mm[0], a.plan.work_mm[1]}
+                              : heightmap::AreaMm{0, 0, e.max.x() + std::max(0.0, e.min.x()),
+                                                  e.max.y() + std::max(0.0, e.min.y())});
+  }
+  const std::optional<heightmap::HeightMap> map = load_height_map(a.map);
+  // A board: the isolation cuts at full resolution, to check them against the copper (at
+  // their planned height: the map's height taken off again), and their depth of cut
+  // against the simulated blank.
   std::optional<sim::CutPathCollector> isolation_cuts;
+  std::optional<heightmap::DepthMeter> depth;
   if (const std::optional<double> z = board_isolation_z_mm()) {
     isolation_cuts.emplace(*z, 0.002);
-    o.on_sample = [&isolation_cuts](const sim::ToolSample& s) { isolation_cuts->add(s); };
+    if (surface) {
+      heightmap::DepthOptions d;
+      d.isolation_z_mm = *z;
+      d.vbit_angle_deg = a.map.vbit_angle_deg;
+      d.copper_um = a.map.copper_um;
+      d.planned_width_um = a.plan.board.tool_width_mm * 1000.0;
+      depth.emplace(*surface, map ? &*map : nullptr, d);
+    }
+    o.on_sample = [&isolation_cuts, &depth, &map](const sim::ToolSample& s) {
+      sim::ToolSample planned = s;
+      if (map) planned.z_mm -= map->interpolate_um(s.x_mm, s.y_mm) / 1000.0;
+      isolation_cuts->add(planned);
+      if (depth) depth->add(s.x_mm, s.y_mm, s.z_mm);
+    };
   }
   const sim::SimJobResult r = [&] {
     ProgressMeter bar("run", "commands", std::cerr, ProgressMeter::for_stderr());
@@ -640,6 +673,13 @@ void run_run(const RunArgs& a) {
   j["cut_length_over_feed_s"] = ideal_s;
   j["max_contour_error_um"] = r.max_contour_error_um;
   j["max_contour_error_at_mm"] = {r.worst_contour_sample.x_mm, r.worst_contour_sample.y_mm};
+  std::optional<heightmap::DepthReport> depth_report;
+  if (depth) {
+    depth_report = depth->report();
+    j["surface"] = heightmap::surface_spec_text(surface->spec());
+    j["depth_of_cut"] = depth_report_json(*depth_report, map.has_value());
+    write_depth_error_svg(depth_report->kept, 50.0, name, base + ".depth.svg");
+  }
   if (iso) {
     j["simulated_isolation_check"] = {
         {"tolerance_mm", iso->tolerance_mm},
@@ -701,6 +741,10 @@ void run_run(const RunArgs& a) {
         iso->paths, iso->samples, iso->check.hits.size(), iso->tolerance_mm,
         iso->check.unseparated.size(), iso->min_clearance_um, iso->min_clearance_at_mm.x(),
         iso->min_clearance_at_mm.y(), iso->planned_min_clearance_um);
+  }
+  if (depth_report) {
+    std::cout << depth_report_text(*depth_report, map.has_value());
+    std::cout << fmt::format("  depth error plot: {}.depth.svg\n", base);
   }
   if (r.outcome != JobOutcome::kCompleted) {
     throw CommandFailure(exit_code(r.outcome),
@@ -784,6 +828,8 @@ void add_machine_commands(CLI::App& app) {
   run->add_option("-o,--outdir", run_args->outdir, "where NAME.svg/.png/.json go")
       ->capture_default_str();
   run->add_flag("--realtime", run_args->realtime, "simulate in real time");
+  add_surface_option(run, &run_args->surface);
+  add_height_map_options(run, &run_args->map, true);
   run->footer(
       "Example: engraver run samples/engraver-word.dxf -o out\n"
       "Progress on stderr (a bar on a terminal, a line every 5 s otherwise).\n"
