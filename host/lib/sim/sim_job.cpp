@@ -70,9 +70,15 @@ void stream_job(Link& link, const JobPlan& plan, const SimJobOptions& options,
   EncodeOptions enc = options.encode;
   enc.max_payload = std::min<unsigned>(enc.max_payload, caps.max_payload);
   enc.controller = &caps;
-  const std::vector<QueuedCommand> commands = encode_job(plan, enc);
+  std::vector<QueuedCommand> commands = encode_job(plan, enc);
   r->commands = commands.size();
   r->wire_bytes = wire_bytes(commands);
+  if (options.before_job) {
+    std::vector<QueuedCommand> setup = options.before_job(sender);
+    r->setup_commands = setup.size();
+    r->setup_wire_bytes = wire_bytes(setup);
+    commands.insert(commands.begin(), setup.begin(), setup.end());
+  }
   r->outcome = sender.run(commands, [&](const Progress& p) {
     if (options.on_progress) options.on_progress(sender, p);
   });

@@ -37,6 +37,10 @@ struct SimJobOptions {
   std::function<void(const ToolSample&)> on_sample;
   // Called at every status (e.g. to hold/resume/abort through the sender).
   std::function<void(Sender&, const Progress&)> on_progress;
+  // Called once the session is open, before the job: may use the sender (e.g. to probe the
+  // blank) and returns commands sent just before the job's (e.g. the height map); they are
+  // not counted in the job's commands or wire bytes. A throw ends the run (passed on).
+  std::function<std::vector<QueuedCommand>(Sender&)> before_job;
 };
 
 struct SimJobResult {
@@ -44,7 +48,9 @@ struct SimJobResult {
   std::string message;
   SenderStats stats;
   size_t commands = 0;
-  size_t wire_bytes = 0;              // the job's frames once each (no retransmits, no polls)
+  size_t wire_bytes = 0;      // the job's frames once each (no retransmits, no polls)
+  size_t setup_commands = 0;  // sent before the job (SimJobOptions::before_job)
+  size_t setup_wire_bytes = 0;
   uint64_t virtual_ms = 0;            // machine time simulated
   double wall_s = 0;                  // real time it took
   double cpu_s = 0;                   // processor time this thread used for it (load-independent)
