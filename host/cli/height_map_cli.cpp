@@ -33,7 +33,7 @@ void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, bool report_options
   cmd->add_option("--probe-spacing", a->grid.spacing_mm,
                   "largest distance between probe points, mm")
       ->group(g)
-      ->check(CLI::Range(1.0, 300.0))
+      ->check(CLI::Range(1.0, 65.0))
       ->capture_default_str();
   cmd->add_option("--probe-grid", a->grid_rows_cols, "ROWS COLS: exactly this grid (2..16 each)")
       ->group(g)

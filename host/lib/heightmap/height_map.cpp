@@ -106,11 +106,18 @@ void validate(const HeightMap& m, const std::string& what) {
       fail(what, fmt::format("the height at row {}, col {} is not finite", i / m.cols, i % m.cols));
   if (m.repeatability_um && !(*m.repeatability_um >= 0))
     fail(what, "repeatability_um must be 0 or above");
-  const double range = m.max_um() - m.min_um();
+  // Z 0 (the copper at the zero corner) counts: the controller adds the heights to the Z
+  // it was zeroed at, so their span from it is what it must follow.
+  const double range = std::max(m.max_um(), 0.0) - std::min(m.min_um(), 0.0);
   if (range > kMaxMapRangeUm)
-    fail(what, fmt::format("the heights span {:.1f} um, more than the {:g} um a blank may be "
-                           "out of flat (clamp it flat, check the probe clip)",
+    fail(what, fmt::format("the heights span {:.1f} um with Z 0, more than the {:g} um a blank "
+                           "may be out of flat (clamp it flat, check the probe clip)",
                            range, kMaxMapRangeUm));
+  if (m.pitch_x_mm < kMinPitchMm || m.pitch_x_mm > kMaxPitchMm || m.pitch_y_mm < kMinPitchMm ||
+      m.pitch_y_mm > kMaxPitchMm)
+    fail(what, fmt::format("the grid's pitch ({:g}, {:g}) mm is outside the controller's {:g} .. "
+                           "{:g} mm",
+                           m.pitch_x_mm, m.pitch_y_mm, kMinPitchMm, kMaxPitchMm));
 }
 
 std::string height_map_text(const HeightMap& m) {

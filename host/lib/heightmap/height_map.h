@@ -21,6 +21,9 @@ constexpr int kMaxGridSide = 16;
 // A blank whose probed heights span more than this is a setup error (not clamped flat, or a
 // bad probe), never compensated.
 constexpr double kMaxMapRangeUm = 1000.0;
+// The controller's grid pitch: 1 mm to 65.535 mm (a u16 in um, #A).
+constexpr double kMinPitchMm = 1.0;
+constexpr double kMaxPitchMm = 65.535;
 
 struct HeightMap {
   double origin_x_mm = 0, origin_y_mm = 0;  // the grid's point (row 0, col 0)
@@ -45,7 +48,8 @@ struct HeightMap {
 };
 
 // Throws HeightMapError naming `what` (a file name) when the map breaks a rule: 2 to 16
-// points a side, pitches above 0, finite numbers, one height per point, range <= 1 mm.
+// points a side, pitches 1 to 65.535 mm, finite numbers, one height per point, heights
+// spanning at most 1 mm with Z 0.
 void validate(const HeightMap& map, const std::string& what);
 
 // The file's text (JSON) and back; read_height_map_text validates and names `what`.

@@ -43,6 +43,11 @@ ProbeGrid plan_probe_grid(const AreaMm& job, const GridOptions& o) {
   if (!(w > 0) || !(h > 0))
     throw GridError("the job has no extent to probe (no cutting moves, and no margin)");
   ProbeGrid g;
+  if (!(o.spacing_mm <= kMaxPitchMm) && o.rows == 0 && o.cols == 0)
+    throw GridError(
+        fmt::format("a probe spacing of {:g} mm is more than the controller's largest "
+                    "pitch, {:g} mm",
+                    o.spacing_mm, kMaxPitchMm));
   if (o.rows > 0 || o.cols > 0) {
     if (o.rows < 2 || o.cols < 2 || o.rows > kMaxGridSide || o.cols > kMaxGridSide)
       throw GridError(fmt::format("a probe grid of {} x {}: rows and cols must each be 2 to {}",
@@ -63,6 +68,12 @@ ProbeGrid plan_probe_grid(const AreaMm& job, const GridOptions& o) {
   g.origin_y_mm = y0;
   g.pitch_x_mm = w / (g.cols - 1);
   g.pitch_y_mm = h / (g.rows - 1);
+  if (std::max(g.pitch_x_mm, g.pitch_y_mm) > kMaxPitchMm ||
+      std::min(g.pitch_x_mm, g.pitch_y_mm) < kMinPitchMm)
+    throw GridError(fmt::format(
+        "a probe grid of {} x {} over {:.1f} x {:.1f} mm has a pitch of ({:.3f}, {:.3f}) mm; the "
+        "controller takes {:g} to {:g} mm",
+        g.rows, g.cols, w, h, g.pitch_x_mm, g.pitch_y_mm, kMinPitchMm, kMaxPitchMm));
   return g;
 }
 

@@ -95,8 +95,13 @@ TEST(HeightMapFile, RefusesEachBrokenFieldByName) {
       {"\"cols\":3,", "", "m.json: 'grid.cols' is missing"},
       {"\"rows\":2", "\"rows\":2.5", "m.json: 'grid.rows' must be a whole number"},
       {"[0.0,10.0,20.0]", "[0.0,10.0,1020.0]",
-       "m.json: the heights span 1020.0 um, more than the 1000 um a blank may be out of flat "
-       "(clamp it flat, check the probe clip)"},
+       "m.json: the heights span 1020.0 um with Z 0, more than the 1000 um a blank may be out "
+       "of flat (clamp it flat, check the probe clip)"},
+      {"[0.0,10.0,20.0]", "[-990.0,10.0,20.0]",  // 50.5 above Z 0, 990 below
+       "m.json: the heights span 1040.5 um with Z 0, more than the 1000 um a blank may be out "
+       "of flat (clamp it flat, check the probe clip)"},
+      {"\"pitch_mm\":[10.0,20.0]", "\"pitch_mm\":[70.0,20.0]",
+       "m.json: the grid's pitch (70, 20) mm is outside the controller's 1 .. 65.535 mm"},
       {"\"repeatability_um\": 1.5", "\"repeatability_um\": -1",
        "m.json: repeatability_um must be 0 or above"},
       {"{", "[", ""},  // not JSON: the parser's words follow

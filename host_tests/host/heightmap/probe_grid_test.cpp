@@ -53,6 +53,19 @@ TEST(ProbeGrid, RefusesMorePointsThanTheControllerKeeps) {
   EXPECT_THROW(plan_probe_grid(AreaMm{0, 0, 100, 20}, o), GridError);
 }
 
+TEST(ProbeGrid, RefusesAPitchTheControllerCannotTake) {
+  GridOptions o;
+  o.rows = 2;
+  o.cols = 2;
+  o.margin_mm = 0;
+  EXPECT_THROW(plan_probe_grid(AreaMm{0, 0, 100, 20}, o), GridError);  // 100 mm pitch
+  o.rows = o.cols = 16;
+  EXPECT_THROW(plan_probe_grid(AreaMm{0, 0, 10, 10}, o), GridError);  // 0.67 mm pitch
+  o.rows = o.cols = 0;
+  o.spacing_mm = 70;
+  EXPECT_THROW(plan_probe_grid(AreaMm{0, 0, 100, 20}, o), GridError);
+}
+
 TEST(ProbeOrder, ASerpentineVisitsEveryPointOnceWithOnlyNeighbourSteps) {
   GridOptions o;
   o.rows = 4;
