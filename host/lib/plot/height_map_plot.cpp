@@ -7,6 +7,7 @@
 
 #include <algorithm>  // std::min
 #include <cmath>      // std::abs
+#include <cstdint>    // uint32_t
 #include <stdexcept>  // std::runtime_error
 
 namespace host {
@@ -98,20 +99,32 @@ void write_height_map_svg(const heightmap::HeightMap& map, const std::string& ti
   const Frame f = fit(map.origin_x_mm, map.origin_y_mm, map.max_x_mm(), map.max_y_mm());
   const double lo = map.min_um(), hi = map.max_um(), span = std::max(hi - lo, 1e-6);
   svg(svg_path, [&](cairo_t* cr) {
-    // The surface as the controller interpolates it, in small squares (about 4 pt each).
-    const int nx = std::max(1, static_cast<int>((map.max_x_mm() - map.origin_x_mm) * f.scale / 4));
-    const int ny = std::max(1, static_cast<int>((map.max_y_mm() - map.origin_y_mm) * f.scale / 4));
-    const double dx = (map.max_x_mm() - map.origin_x_mm) / nx;
-    const double dy = (map.max_y_mm() - map.origin_y_mm) / ny;
+    // The surface as the controller interpolates it: an image of one pixel per 2 pt,
+    // embedded once (small whatever the map), scaled onto the grid's rectangle.
+    const double w_pt = (map.max_x_mm() - map.origin_x_mm) * f.scale;
+    const double h_pt = (map.max_y_mm() - map.origin_y_mm) * f.scale;
+    const int nx = std::max(2, static_cast<int>(w_pt / 2)),
+              ny = std::max(2, static_cast<int>(h_pt / 2));
+    cairo_surface_t* img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, nx, ny);
+    const int stride = cairo_image_surface_get_stride(img);
+    unsigned char* px = cairo_image_surface_get_data(img);
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
-        const double x = map.origin_x_mm + (i + 0.5) * dx, y = map.origin_y_mm + (j + 0.5) * dy;
+        const double x = map.origin_x_mm + (i + 0.5) / nx * (map.max_x_mm() - map.origin_x_mm);
+        const double y = map.max_y_mm() - (j + 0.5) / ny * (map.max_y_mm() - map.origin_y_mm);
         const Rgb c = sequential((map.interpolate_um(x, y) - lo) / span);
-        cairo_set_source_rgb(cr, c.r, c.g, c.b);
-        cairo_rectangle(cr, f.x(x - dx / 2), f.y(y + dy / 2), dx * f.scale + 0.3,
-                        dy * f.scale + 0.3);
-        cairo_fill(cr);
+        uint32_t* p = reinterpret_cast<uint32_t*>(px + j * stride) + i;
+        *p = (static_cast<uint32_t>(c.r * 255) << 16) | (static_cast<uint32_t>(c.g * 255) << 8) |
+             static_cast<uint32_t>(c.b * 255);
       }
+    cairo_surface_mark_dirty(img);
+    cairo_save(cr);
+    cairo_translate(cr, f.x(map.origin_x_mm), f.y(map.max_y_mm()));
+    cairo_scale(cr, w_pt / nx, h_pt / ny);
+    cairo_set_source_surface(cr, img, 0, 0);
+    cairo_paint(cr);
+    cairo_restore(cr);
+    cairo_surface_destroy(img);
     // The probe points, each with its height.
     for (int r = 0; r < map.rows; ++r)
       for (int c = 0; c < map.cols; ++c) {
@@ -143,14 +156,46 @@ void write_depth_error_svg(const std::vector<heightmap::DepthSample>& samples, d
   svg(svg_path, [&](cairo_t* cr) {
     cairo_set_line_width(cr, 1.6);
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
-    for (size_t i = 1; i < samples.size(); ++i) {
-      if (samples[i].starts_path) continue;
-      const Rgb c = diverging(0.5 * (samples[i].error_um + samples[i - 1].error_um) / range_um);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    // Runs of one colour step (a twentieth of the scale) as one polyline, thinned to half a
+    // point: the file stays small whatever the path's length.
+    auto step_of = [range_um](double e) {
+      return static_cast<int>(std::lround(std::clamp(e / range_um, -1.0, 1.0) * 10));
+    };
+    int run_step = 0;
+    bool open = false;
+    double last_x = 0, last_y = 0;
+    auto finish = [&] {
+      if (!open) return;
+      const Rgb c = diverging(run_step / 10.0);
       cairo_set_source_rgb(cr, c.r, c.g, c.b);
-      cairo_move_to(cr, f.x(samples[i - 1].x_mm), f.y(samples[i - 1].y_mm));
-      cairo_line_to(cr, f.x(samples[i].x_mm), f.y(samples[i].y_mm));
       cairo_stroke(cr);
+      open = false;
+    };
+    for (size_t i = 0; i < samples.size(); ++i) {
+      const heightmap::DepthSample& s = samples[i];
+      const double x = f.x(s.x_mm), y = f.y(s.y_mm);
+      const int step = step_of(s.error_um);
+      if (s.starts_path || i == 0) {
+        finish();
+      } else if (step != run_step) {
+        cairo_line_to(cr, x, y);
+        finish();
+        cairo_move_to(cr, x, y);  // the next run starts where this one ended
+        open = true;
+      } else if (std::abs(x - last_x) < 0.5 && std::abs(y - last_y) < 0.5) {
+        continue;
+      }
+      if (!open) {
+        cairo_move_to(cr, x, y);
+        open = true;
+      }
+      cairo_line_to(cr, x, y);
+      run_step = step;
+      last_x = x;
+      last_y = y;
     }
+    finish();
     text(cr, kSidePt, 24, 15,
          fmt::format("{}: depth error along the isolation paths, worst {:+.1f} um", title, worst));
     colour_bar(
