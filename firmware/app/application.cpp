@@ -7,8 +7,9 @@ namespace app {
 
 namespace {
 
-const uint8_t kItemsPerPoll = 4;   // command items started per background pass
-const uint8_t kPointsPerPoll = 8;  // spline points generated per background pass
+const uint8_t kItemsPerPoll = 4;     // command items started per background pass
+const uint8_t kPointsPerPoll = 8;    // spline points generated per background pass
+const uint16_t kProbeSettleMs = 20;  // after a touch, before the retract reads the position
 
 }  // namespace
 
@@ -40,12 +41,26 @@ Application::Application()
       wait_start_ms_(0),
       paused_(false),
       spindle_on_(false),
-      shown_error_(proto::ErrorCode::kOk) {
+      shown_error_(proto::ErrorCode::kOk),
+      probe_result_(0),
+      probe_count_(0),
+      probing_(false) {
   board_.link = 0;
   board_.motion = 0;
   board_.display = 0;
   board_.inputs = 0;
   board_.spindle = 0;
+  board_.link_clock = 0;
+  board_.probe = 0;
+  tick_.probe_hits = 0;
+  tick_.probe_first_z = 0;
+  tick_.probes_done = 0;
+  tick_.probe_result = 0;
+  tick_.probe_z_usteps = 0;
+  map_rx_.points = 0;
+  map_rx_.expected = 0;
+  map_rx_.lowest = 0;
+  map_rx_.highest = 0;
   tick_.mode = (uint8_t)TickMode::kFollow;
   tick_.alarm = kTickAlarmNone;
   tick_.driver_check_ms = 0;
@@ -69,7 +84,10 @@ Application::Application()
   for (uint8_t i = 0; i < config::kAxisCount; ++i) {
     tick_.pos[i] = 0;
     latest_.pos_usteps[i] = 0;
+    probe_at_um_[i] = 0;
   }
+  latest_.probe_closed = 0;
+  latest_.probes_done = 0;
 }
 
 void Application::init(const Board& board, const config::MachineConfig& cfg) {
@@ -78,6 +96,7 @@ void Application::init(const Board& board, const config::MachineConfig& cfg) {
   if (!build_axis_scaling(cfg, *board.motion, &scaling_))
     app_alarm_ = proto::Alarm::kMotionChipFault;
   planner_.init(scaling_, default_planner_settings(cfg.capture_radius_um));
+  planner_.set_height_map(&map_);
   tick_.path.init(scaling_);
   tick_.jog.init(scaling_);
   sink_.app_ = this;
@@ -112,7 +131,7 @@ void Application::tick_1ms() {
       // A limit switch mid-job: zero velocities in this very tick, latch the alarm.
       tick_latch_alarm(kTickAlarmLimit);
     } else {
-      tick_.path.tick(pos, &ring_, v);
+      if (!tick_probe(pos)) tick_.path.tick(pos, &ring_, v);  // a touch: velocities stay 0
       if (tick_.stop_pending && tick_.path.at_rest()) {
         tick_.path.flush(&ring_);
         tick_.path.set_hold(false);
@@ -121,6 +140,7 @@ void Application::tick_1ms() {
       }
     }
   } else if (tick_.mode == (uint8_t)TickMode::kJog) {
+    tick_probe(pos);  // keeps the debounce current (no descent while jogging)
     const JogResult r = tick_.jog.tick(buttons, limits, pos, v);
     if (r != JogResult::kRunning) {
       if (r == JogResult::kConfirmed) {
@@ -143,6 +163,34 @@ void Application::tick_1ms() {
 
 // One step of the power drivers' status check every kDriverCheckEveryMs (at most one SPI
 // datagram; the blocking Tmc428::read_driver_status() can take ~70 ms and never runs here).
+// The probe input, debounced (kProbeDebounceTicks closed ticks in a row; the Z of the first is
+// the contact height, so it is latched within one tick of the touch). While the path follows
+// a probe descent (#Y): a contact drops the ring at once (the chip ramps Z to rest), reaching
+// the descent's end without one is "no contact". True when the path was stopped.
+bool Application::tick_probe(const int32_t pos[config::kAxisCount]) {
+  const bool raw = board_.probe != 0 && board_.probe->closed();
+  if (!raw) {
+    tick_.probe_hits = 0;
+  } else {
+    if (tick_.probe_hits == 0) tick_.probe_first_z = pos[config::kAxisZ];
+    if (tick_.probe_hits < 255U) ++tick_.probe_hits;
+  }
+  if (tick_.mode != (uint8_t)TickMode::kFollow || (tick_.path.current_flags() & kPointProbe) == 0)
+    return false;
+  if (tick_.probe_hits >= kProbeDebounceTicks) {
+    tick_.probe_result = 1;
+    tick_.probe_z_usteps = tick_.probe_first_z;
+  } else if (tick_.path.finished() && tick_.path.at_rest()) {
+    tick_.probe_result = 2;
+    tick_.probe_z_usteps = pos[config::kAxisZ];
+  } else {
+    return false;
+  }
+  tick_.probes_done = (uint8_t)(tick_.probes_done + 1U);
+  tick_.path.flush(&ring_);
+  return true;
+}
+
 void Application::tick_check_drivers() {
   if (++tick_.driver_check_ms < kDriverCheckEveryMs) return;
   tick_.driver_check_ms = 0;
@@ -234,6 +282,10 @@ void Application::tick_publish(const int32_t pos[config::kAxisCount], uint8_t li
   s.holding = tick_.path.holding() ? 1 : 0;
   s.at_rest = tick_.path.at_rest() ? 1 : 0;
   s.finished = tick_.path.finished() && ring_.empty() ? 1 : 0;
+  s.probes_done = tick_.probes_done;
+  s.probe_result = tick_.probe_result;
+  s.probe_closed = tick_.probe_hits >= kProbeDebounceTicks ? 1 : 0;
+  s.probe_z_usteps = tick_.probe_z_usteps;
   status_.push(s);  // full: the background loop is behind; the next one carries the counts
 }
 
@@ -421,6 +473,8 @@ void Application::drop_job() {
   spline_started_ = false;
   jog_active_ = false;
   paused_ = false;
+  probing_ = false;
+  map_rx_.points = 0;  // #E frames dropped or not: a new #A first
   set_spindle(false);  // abort, session reset and alarms stop the tool too
 }
 
@@ -512,6 +566,18 @@ uint8_t ApplicationSink::spline_slots_free() {
 }
 void ApplicationSink::fill_session(proto::SessionReply* reply) {
   app_->fill_session(reply);
+}
+
+void ApplicationSink::fill_probe_result(proto::ProbeResultReply* reply) {
+  app_->fill_probe_result(reply);
+}
+
+void Application::fill_probe_result(proto::ProbeResultReply* r) {
+  r->result = probe_result_;
+  r->probe_count = probe_count_;
+  r->x_um = probe_at_um_[0];
+  r->y_um = probe_at_um_[1];
+  r->z_um = probe_at_um_[2];
 }
 
 void Application::reset_session() {
@@ -652,6 +718,24 @@ bool Application::execute_item(QueueItem* item) {
       return push_point(target, last_feed_um_s_, kPointEndOfItem);
     case ItemKind::kDrill:
       return execute_drill(item);
+    case ItemKind::kProbe:
+      return execute_probe(item);
+    case ItemKind::kMapHeader:
+      // In queue order: the points before it keep the old map, those after follow the new.
+      if (item->map_header.cols == 0) {
+        map_.clear();
+      } else {
+        map_.begin(item->map_header.cols, item->map_header.rows, item->map_header.x0_um,
+                   item->map_header.y0_um, item->map_header.pitch_x_um,
+                   item->map_header.pitch_y_um);
+      }
+      return push_point(target, last_feed_um_s_, kPointEndOfItem);
+    case ItemKind::kMapHeights: {
+      const MapHeightsArgs& m = item->map_heights;
+      for (uint8_t i = 0; i < m.n; ++i) map_.set((uint16_t)(m.index + i), m.height_um[i]);
+      if (m.completes) map_.complete();
+      return push_point(target, last_feed_um_s_, kPointEndOfItem);
+    }
     case ItemKind::kSpline: {
       const uint8_t slot = item->spline.slot;
       const SlotState s = store_.state(slot);
@@ -728,6 +812,71 @@ bool Application::execute_drill(QueueItem* item) {
   return true;
 }
 
+// #Y: 0 the checks at a standstill, then the descent to z_limit (machine Z, no map offset);
+// 1 wait for the tick's verdict; 2 let Z come to rest, then retract above the contact.
+bool Application::execute_probe(QueueItem* item) {
+  ProbeArgs& p = item->probe;
+  int32_t at[config::kAxisCount];
+  if (item->stage == 0) {
+    if (!standing_still()) return false;
+    if (board_.probe == 0) {
+      raise_alarm(proto::Alarm::kProbeMissing);
+      return false;
+    }
+    if (spindle_on_) {
+      raise_alarm(proto::Alarm::kProbeSpindleOn);
+      return false;
+    }
+    if (latest_.probe_closed) {
+      raise_alarm(proto::Alarm::kProbeClosedAtStart);
+      return false;
+    }
+    position_um(at);
+    if (p.z_limit_um >= at[config::kAxisZ]) {  // nothing below to probe: nothing moves
+      note_probe(2, at);
+      raise_alarm(proto::Alarm::kProbeNoContact);
+      return false;
+    }
+    const int32_t* m = planner_.machine_um();
+    const int32_t target[config::kAxisCount] = {m[0], m[1], p.z_limit_um};
+    p.seen_probes = latest_.probes_done;
+    if (!planner_.push_machine(&ring_, target, p.feed_um_s, kPointProbe, item_tag_)) return false;
+    probing_ = true;
+    item->stage = 1;
+  }
+  if (item->stage == 1) {
+    if (latest_.probes_done == p.seen_probes) return false;
+    position_um(at);
+    at[config::kAxisZ] = usteps_to_um(scaling_, config::kAxisZ, latest_.probe_z_usteps);
+    note_probe(latest_.probe_result, at);
+    if (latest_.probe_result != 1) {
+      probing_ = false;
+      raise_alarm(proto::Alarm::kProbeNoContact);
+      return false;
+    }
+    wait_start_ms_ = latest_.ms;
+    item->stage = 2;
+  }
+  if (item->stage == 2) {
+    // The tick dropped the descent; the chip ramps Z down from the probe feed meanwhile.
+    if ((uint16_t)(latest_.ms - wait_start_ms_) < kProbeSettleMs) return false;
+    position_um(at);
+    planner_.set_origin(at);
+    item->stage = 3;
+  }
+  const int32_t* m = planner_.machine_um();
+  const int32_t up[config::kAxisCount] = {m[0], m[1], probe_at_um_[config::kAxisZ] + p.retract_um};
+  if (!planner_.push_machine(&ring_, up, rapid_feed(), kPointEndOfItem, item_tag_)) return false;
+  probing_ = false;
+  return true;
+}
+
+void Application::note_probe(uint8_t result, const int32_t at_um[config::kAxisCount]) {
+  probe_result_ = result;
+  probe_count_ = (uint16_t)(probe_count_ + 1U);
+  for (uint8_t i = 0; i < config::kAxisCount; ++i) probe_at_um_[i] = at_um[i];
+}
+
 // Link watchdog: running with no valid frame for kLinkTimeoutMs -> feed hold.
 void Application::watchdog() {
   if (!dispatcher_.session_open() || hold_requested_) return;
@@ -751,6 +900,8 @@ void Application::update_screen() {
   info.zeroed = zeroed_;
   info.z_mode = latest_.z_mode != 0;  // the tick's jog state, through its snapshot
   info.paused = paused_;
+  info.probing = probing_;
+  info.probe_closed = latest_.probe_closed != 0;
   info.items_done = items_done_;
   info.items_stored = items_stored_;
   position_um(info.pos_um);

@@ -20,9 +20,11 @@
 #include "firmware/app/status_screen.h"    // StatusScreen
 #include "firmware/app/tick_link.h"        // RequestRing, StatusRing
 #include "firmware/config/machine_config.h"
+#include "firmware/core/height_map.h"  // HeightMap
 #include "hal/interfaces/link_clock.h"
 #include "hal/interfaces/motion_axes.h"
 #include "hal/interfaces/operator_inputs.h"
+#include "hal/interfaces/probe_input.h"
 #include "hal/interfaces/serial_port.h"
 #include "hal/interfaces/spindle.h"
 #include "hal/interfaces/text_display.h"
@@ -37,6 +39,7 @@ struct Board {
   hal::Spindle* spindle;  // 0 on a machine without a switched spindle
   // What the link's time-outs count; 0 (the controller): the 1 ms tick (link_clock.h).
   hal::LinkClock* link_clock;
+  hal::ProbeInput* probe;  // 0 on a machine without a probe input (#Y: alarm 11)
 };
 
 class Application;
@@ -56,6 +59,7 @@ class ApplicationSink : public CommandSink {
   uint8_t queue_free();
   uint8_t spline_slots_free();
   void fill_session(proto::SessionReply* reply);
+  void fill_probe_result(proto::ProbeResultReply* reply);
 
  private:
   friend class Application;
@@ -93,6 +97,9 @@ class Application {
   const StatusScreen& screen() const { return screen_; }
   const AxisScaling& scaling() const { return scaling_; }
   const PathController& path() const { return tick_.path; }
+  // The height map the planner follows (#A/#E), and the probe input as the tick debounced it.
+  const core::HeightMap& height_map() const { return map_; }
+  bool probe_closed() const { return latest_.probe_closed != 0; }
 
   // What the dispatcher calls (through ApplicationSink) from poll().
   proto::ErrorCode store(const proto::Frame& frame, uint8_t* detail);
@@ -102,9 +109,11 @@ class Application {
   uint8_t queue_free();
   uint8_t spline_slots_free();
   void fill_session(proto::SessionReply* reply);
+  void fill_probe_result(proto::ProbeResultReply* reply);
 
  private:
   // Tick side.
+  bool tick_probe(const int32_t pos[config::kAxisCount]);
   void tick_take_requests();
   void tick_check_drivers();
   void tick_latch_alarm(uint8_t alarm);
@@ -116,6 +125,8 @@ class Application {
   void execute();
   bool execute_item(QueueItem* item);
   bool execute_drill(QueueItem* item);
+  bool execute_probe(QueueItem* item);
+  void note_probe(uint8_t result, const int32_t at_um[config::kAxisCount]);
   bool standing_still() const;
   void set_spindle(bool on);
   bool push_point(const int32_t target[config::kAxisCount], uint16_t feed, uint8_t flags);
@@ -160,6 +171,11 @@ class Application {
   proto::ErrorCode on_abort(const proto::AbortCmd& c, uint8_t seq, uint8_t* detail);
   proto::ErrorCode on_override(const proto::OverrideCmd& c, uint8_t seq, uint8_t* detail);
   proto::ErrorCode on_clear_alarm(const proto::ClearAlarmCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_probe(const proto::ProbeCmd& c, uint8_t seq, uint8_t* detail);
+  proto::ErrorCode on_height_map_header(const proto::HeightMapHeaderCmd& c, uint8_t seq,
+                                        uint8_t* detail);
+  proto::ErrorCode on_height_map_data(const proto::HeightMapDataCmd& c, uint8_t seq,
+                                      uint8_t* detail);
   void watchdog();
   uint16_t link_ms() const;
   void update_screen();
@@ -193,6 +209,11 @@ class Application {
     uint8_t buttons;          // panel state seen by the previous tick
     uint8_t confirm_presses;  // confirm button presses (wraps), for #P
     bool stop_pending;
+    uint8_t probe_hits;      // ticks the probe input has read closed in a row (saturates)
+    int32_t probe_first_z;   // Z (usteps) at the first of them
+    uint8_t probes_done;     // probe descents ended
+    uint8_t probe_result;    // the last one's (proto: 1 contact, 2 no contact)
+    int32_t probe_z_usteps;  // the last one's Z
   };
   TickOwned tick_;
 
@@ -232,6 +253,22 @@ class Application {
   bool paused_;             // a #P waits for the operator
   bool spindle_on_;
   proto::ErrorCode shown_error_;
+
+  // The height map (#A/#E) as executed in queue order, followed by the planner; and what the
+  // stored frames said about it so far (checked as they arrive: sequence, span).
+  core::HeightMap map_;
+  struct MapReception {
+    uint16_t points;    // cols x rows of the last #A (0: none, or no map)
+    uint16_t expected;  // the next #E index
+    int16_t lowest;     // of the heights stored so far and 0
+    int16_t highest;
+  };
+  MapReception map_rx_;
+  // The last probe's result (#T), since power-up.
+  uint8_t probe_result_;  // 0 none, 1 contact, 2 no contact
+  uint16_t probe_count_;
+  int32_t probe_at_um_[config::kAxisCount];
+  bool probing_;  // a #Y is under way (the LCD says so)
 
   // Job progress for the status (resume after a lost link or an abort): the first job
   // command that has not finished, whatever #J marks are queued behind it; kept through #I,

@@ -182,6 +182,70 @@ ErrorCode Application::on_drill(const proto::DrillCmd& c, uint8_t seq, uint8_t*)
   return enqueue(item);
 }
 
+// #Y: machine Z, so the limit must lie inside the Z travel; the rest is checked when it runs
+// (spindle, probe input, the Z it starts from).
+ErrorCode Application::on_probe(const proto::ProbeCmd& c, uint8_t seq, uint8_t*) {
+  const ErrorCode e = motion_check(0, 0, &c.z_limit_um);
+  if (e != ErrorCode::kOk) return e;
+  QueueItem item = new_item(ItemKind::kProbe, seq);
+  item.probe.z_limit_um = c.z_limit_um;
+  item.probe.feed_um_s = c.feed_um_per_s;
+  item.probe.retract_um = c.retract_um;
+  item.probe.seen_probes = 0;
+  return enqueue(item);
+}
+
+ErrorCode Application::on_height_map_header(const proto::HeightMapHeaderCmd& c, uint8_t seq,
+                                            uint8_t*) {
+  QueueItem item = new_item(ItemKind::kMapHeader, seq);
+  item.map_header.cols = c.cols;
+  item.map_header.rows = c.rows;
+  item.map_header.x0_um = c.x0_um;
+  item.map_header.y0_um = c.y0_um;
+  item.map_header.pitch_x_um = c.pitch_x_um;
+  item.map_header.pitch_y_um = c.pitch_y_um;
+  const ErrorCode e = enqueue(item);
+  if (e != ErrorCode::kOk) return e;
+  map_rx_.points = (uint16_t)((uint16_t)c.cols * c.rows);
+  map_rx_.expected = 0;
+  map_rx_.lowest = 0;  // the span counts the job's zero height too
+  map_rx_.highest = 0;
+  return ErrorCode::kOk;
+}
+
+// #E: the next heights of the map announced by #A, in order; the frame that completes it is
+// refused if the map (and 0) would span more than 1 mm.
+ErrorCode Application::on_height_map_data(const proto::HeightMapDataCmd& c, uint8_t seq,
+                                          uint8_t* detail) {
+  const uint16_t end = (uint16_t)(c.index + c.height_n);
+  if (map_rx_.points == 0 || c.index != map_rx_.expected || end > map_rx_.points) {
+    *detail = proto::kHeightMapSequence;
+    return ErrorCode::kHeightMap;
+  }
+  QueueItem item = new_item(ItemKind::kMapHeights, seq);
+  item.map_heights.index = c.index;
+  item.map_heights.n = c.height_n;
+  item.map_heights.completes = end == map_rx_.points;
+  int16_t lowest = map_rx_.lowest;
+  int16_t highest = map_rx_.highest;
+  for (uint8_t i = 0; i < c.height_n; ++i) {
+    const int16_t h = (int16_t)c.height_um[i];  // the codec kept it within +-1000
+    item.map_heights.height_um[i] = h;
+    if (h < lowest) lowest = h;
+    if (h > highest) highest = h;
+  }
+  if (item.map_heights.completes && highest - lowest > proto::kMaxHeightMapSpanUm) {
+    *detail = proto::kHeightMapSpan;
+    return ErrorCode::kHeightMap;
+  }
+  const ErrorCode e = enqueue(item);
+  if (e != ErrorCode::kOk) return e;
+  map_rx_.expected = end;
+  map_rx_.lowest = lowest;
+  map_rx_.highest = highest;
+  return ErrorCode::kOk;
+}
+
 ErrorCode Application::on_zeroing(const proto::ZeroingCmd& c, uint8_t seq, uint8_t*) {
   if (!queue_.empty() || stopping_) return ErrorCode::kBadState;
   QueueItem item = new_item(ItemKind::kZeroing, seq);

@@ -18,7 +18,10 @@ enum class ItemKind : uint8_t {
   kPause = 7,       // text (row unused): shown until the operator confirms
   kDwell = 8,       // dwell
   kSpindle = 9,     // spindle
-  kDrill = 10       // drill
+  kDrill = 10,      // drill
+  kProbe = 11,      // probe: Z down to contact (#Y)
+  kMapHeader = 12,  // map_header: a new height map grid, compensation off (#A)
+  kMapHeights = 13  // map_heights: heights of the map from an index (#E)
 };
 
 // What each kind carries (one of these is in use per item, chosen by its kind).
@@ -63,6 +66,29 @@ struct DrillArgs {
   uint16_t feed_um_s;  // plunge
 };
 
+struct ProbeArgs {
+  int32_t z_limit_um;
+  uint16_t feed_um_s;
+  uint16_t retract_um;
+  uint8_t seen_probes;  // the tick's probe count when the descent was handed over
+};
+
+struct MapHeaderArgs {
+  int32_t x0_um;
+  int32_t y0_um;
+  uint16_t pitch_x_um;
+  uint16_t pitch_y_um;
+  uint8_t cols;  // 0: no map
+  uint8_t rows;
+};
+
+struct MapHeightsArgs {
+  uint8_t index;
+  uint8_t n;
+  int16_t height_um[8];  // proto::kMaxHeightsPerFrame; no item grows the union (drill: 18)
+  bool completes;        // the last heights of the map: compensation on
+};
+
 // QueueItem::job_index of a command stored while no #J numbering was active.
 static const int32_t kNotInJob = -1;
 
@@ -82,6 +108,9 @@ struct QueueItem {
     DwellArgs dwell;
     SpindleArgs spindle;
     DrillArgs drill;
+    ProbeArgs probe;
+    MapHeaderArgs map_header;
+    MapHeightsArgs map_heights;
   };
 };
 

@@ -12,9 +12,10 @@ namespace app {
 
 // Flags of a ring entry.
 enum PointFlags {
-  kPointRapid = 0x01,      // part of a rapid (#F) move
-  kPointEndOfItem = 0x02,  // last point of a queued command (spline, move): progress count
-  kPointCurvePoint = 0x04  // a point of the curve walker (not a piece of a split chord)
+  kPointRapid = 0x01,       // part of a rapid (#F) move
+  kPointEndOfItem = 0x02,   // last point of a queued command (spline, move): progress count
+  kPointCurvePoint = 0x04,  // a point of the curve walker (not a piece of a split chord)
+  kPointProbe = 0x08        // a probe's descent (#Y): the tick stops it when the probe closes
 };
 
 // One target point and the straight segment that leads to it from the previous point.

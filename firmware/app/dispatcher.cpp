@@ -115,6 +115,12 @@ void Dispatcher::on_immediate(const proto::Frame& f) {
     reply(r, f.seq);
     return;
   }
+  if (f.letter == proto::kCmdProbeResult) {  // read-only like #?: any time
+    proto::ProbeResultReply r;
+    sink_->fill_probe_result(&r);
+    reply(r, f.seq);
+    return;
+  }
   proto::SessionCmd cmd;
   const proto::ErrorCode e = proto::decode_frame(f, &cmd);
   if (e != proto::ErrorCode::kOk) {

@@ -32,6 +32,8 @@ class CommandSink {
   virtual uint8_t spline_slots_free() = 0;
   // *I: what the application reports (queue slots, travel, feeds, firmware version).
   virtual void fill_session(proto::SessionReply* reply) = 0;
+  // *T: the last probe's result (#T).
+  virtual void fill_probe_result(proto::ProbeResultReply* reply) = 0;
 
  protected:
   ~CommandSink() {}

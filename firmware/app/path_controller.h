@@ -44,6 +44,8 @@ class PathController {
   bool item_started() const { return item_started_; }
   uint16_t stopped_points() const { return stopped_points_; }
   bool stopped_started() const { return stopped_started_; }
+  // Flags of the current target (0 without one).
+  uint8_t current_flags() const { return have_target_ ? cur_.flags : 0; }
   // Tag of the current target (the item being worked on).
   uint16_t current_tag() const { return cur_.tag; }
 

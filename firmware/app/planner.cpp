@@ -2,6 +2,7 @@
 #include "firmware/app/planner.h"
 
 #include "firmware/app/vector3.h"       // normalise3, length3
+#include "firmware/core/divide.h"       // div_u32_by_u16
 #include "firmware/core/fixed_point.h"  // abs_u32
 #include "firmware/core/isqrt.h"        // isqrt32
 
@@ -64,9 +65,11 @@ bool unit_direction_q14(const int32_t d_um[config::kAxisCount],
   return true;
 }
 
-Planner::Planner() : last_cruise_um_s_(0), last_length_um_(0), have_dir_(false) {
+Planner::Planner() : map_(0), last_cruise_um_s_(0), last_length_um_(0), have_dir_(false) {
+  follow_.left = 0;
   for (uint8_t i = 0; i < config::kAxisCount; ++i) {
     last_um_[i] = 0;
+    planned_um_[i] = 0;
     last_dir_q14_[i] = 0;
     normal_accel_um_s_per_ms_[i] = 0;
   }
@@ -89,6 +92,7 @@ void Planner::init(const AxisScaling& scaling, const PlannerSettings& settings) 
 
 void Planner::set_origin(const int32_t at_um[config::kAxisCount]) {
   for (uint8_t i = 0; i < config::kAxisCount; ++i) last_um_[i] = at_um[i];
+  set_planned_from_machine();
   have_dir_ = false;
   last_cruise_um_s_ = 0;
   last_length_um_ = 0;
@@ -201,8 +205,112 @@ uint16_t Planner::capture_for(const int16_t in_q14[3], const int16_t out_q14[3])
   return (uint16_t)r;
 }
 
+// The planned position of the machine position last_um_: with the map on, a Z above the
+// highest height by more than nothing is travel (its offset is that height), else the
+// surface's offset where the tool stands comes off.
+void Planner::set_planned_from_machine() {
+  for (uint8_t i = 0; i < config::kAxisCount; ++i) planned_um_[i] = last_um_[i];
+  follow_.left = 0;
+  if (map_ == 0 || !map_->active()) return;
+  const int32_t travel_z = last_um_[2] - map_->highest_um();
+  planned_um_[2] =
+      travel_z > 0 ? travel_z : last_um_[2] - map_->offset_um(last_um_[0], last_um_[1]);
+}
+
+// The map's offset for a planned point: the surface height under a cutting point, the
+// highest height under a travel one.
+int32_t Planner::offset_at(const int32_t planned_um[config::kAxisCount]) {
+  if (planned_um[2] > 0) return map_->highest_um();
+  return map_->offset_um(planned_um[0], planned_um[1]);
+}
+
 bool Planner::push(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
                    uint16_t feed_um_s, uint8_t flags, uint16_t tag, const int16_t* line_dir_q14) {
+  if (map_ != 0 && map_->active())
+    return push_followed(ring, target_um, feed_um_s, flags, tag, line_dir_q14);
+  if (!push_segment(ring, target_um, feed_um_s, flags, tag, line_dir_q14)) return false;
+  for (uint8_t i = 0; i < 3; ++i) planned_um_[i] = target_um[i];
+  return true;
+}
+
+bool Planner::push_machine(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
+                           uint16_t feed_um_s, uint8_t flags, uint16_t tag,
+                           const int16_t* line_dir_q14) {
+  if (!push_segment(ring, target_um, feed_um_s, flags, tag, line_dir_q14)) return false;
+  set_planned_from_machine();
+  return true;
+}
+
+// Splits planned_um_ -> target into n = ceil(span / kFollowStepUm) pieces when both ends cut
+// (travel has one offset all along: nothing to follow). One 32/16 division per axis and
+// segment, none per piece.
+void Planner::begin_follow(const int32_t target_um[config::kAxisCount]) {
+  int32_t d[3];
+  uint32_t ad[3];
+  for (uint8_t i = 0; i < 3; ++i) {
+    follow_.to_um[i] = target_um[i];
+    follow_.at_um[i] = planned_um_[i];
+    d[i] = target_um[i] - planned_um_[i];
+    ad[i] = core::abs_u32(d[i]);
+  }
+  const uint32_t span = ad[0] > ad[1] ? ad[0] : ad[1];
+  uint32_t n = 1;
+  if (target_um[2] <= 0 && planned_um_[2] <= 0 && span > kFollowStepUm) {
+    uint16_t rest = 0;
+    n = core::div_u32_by_u16(span, kFollowStepUm, &rest);
+    if (rest != 0) ++n;
+    // Coordinates are within +-1e6 um: n <= 2000, so the DDA's terms fit 16 bits.
+  }
+  follow_.pieces = (uint16_t)n;
+  follow_.left = (uint16_t)n;
+  for (uint8_t i = 0; i < 3; ++i) {
+    uint16_t r = 0;
+    const uint32_t q = core::div_u32_by_u16(ad[i], (uint16_t)n, &r);
+    follow_.step_um[i] = d[i] < 0 ? -(int32_t)q : (int32_t)q;
+    follow_.unit[i] = (int8_t)(d[i] < 0 ? -1 : 1);
+    follow_.frac[i] = r;
+    follow_.acc[i] = (uint16_t)(n >> 1);
+  }
+}
+
+// push() with the map on: each piece's machine Z is its planned Z plus the offset there.
+// A full ring keeps the pieces pushed so far; the caller calls again with the same target.
+bool Planner::push_followed(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
+                            uint16_t feed_um_s, uint8_t flags, uint16_t tag,
+                            const int16_t* line_dir_q14) {
+  if (follow_.left == 0 || follow_.to_um[0] != target_um[0] || follow_.to_um[1] != target_um[1] ||
+      follow_.to_um[2] != target_um[2])
+    begin_follow(target_um);
+  while (follow_.left > 1) {
+    int32_t piece[3];
+    uint16_t acc[3];
+    for (uint8_t i = 0; i < 3; ++i) {
+      piece[i] = follow_.at_um[i] + follow_.step_um[i];
+      acc[i] = (uint16_t)(follow_.acc[i] + follow_.frac[i]);  // < 2 n <= 4000
+      if (acc[i] >= follow_.pieces) {
+        acc[i] = (uint16_t)(acc[i] - follow_.pieces);
+        piece[i] += follow_.unit[i];
+      }
+    }
+    int32_t machine[3] = {piece[0], piece[1], piece[2] + offset_at(piece)};
+    if (!push_segment(ring, machine, feed_um_s, (uint8_t)(flags & kPointRapid), tag, line_dir_q14))
+      return false;
+    for (uint8_t i = 0; i < 3; ++i) {
+      follow_.at_um[i] = piece[i];
+      follow_.acc[i] = acc[i];
+    }
+    --follow_.left;
+  }
+  const int32_t machine[3] = {target_um[0], target_um[1], target_um[2] + offset_at(target_um)};
+  if (!push_segment(ring, machine, feed_um_s, flags, tag, line_dir_q14)) return false;
+  follow_.left = 0;
+  for (uint8_t i = 0; i < 3; ++i) planned_um_[i] = target_um[i];
+  return true;
+}
+
+bool Planner::push_segment(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
+                           uint16_t feed_um_s, uint8_t flags, uint16_t tag,
+                           const int16_t* line_dir_q14) {
   if (ring->free_space() == 0) return false;
   PlanEntry e;
   fill_segment(&e, target_um, line_dir_q14);

@@ -8,6 +8,7 @@
 
 #include "firmware/app/axis_scaling.h"     // AxisScaling
 #include "firmware/app/coordinate_ring.h"  // CoordinateRing, PlanEntry
+#include "firmware/core/height_map.h"      // HeightMap
 
 namespace app {
 
@@ -17,6 +18,9 @@ struct PlannerSettings {
   uint16_t cut_tolerance_um;      // path error allowed from switching targets early
   uint16_t max_override_percent;  // plan for feeds up to this override
 };
+
+// Cutting segments are split into pieces at most this long (X/Y) while a height map is on.
+static const uint16_t kFollowStepUm = 1000;
 
 // Defaults: capture 10 um, corner 4 um, cut 2 um, override up to 200 %.
 PlannerSettings default_planner_settings(uint16_t capture_radius_um);
@@ -37,8 +41,20 @@ class Planner {
  public:
   Planner();
   void init(const AxisScaling& scaling, const PlannerSettings& settings);
-  // The path starts here (machine position after boot, zeroing, abort or alarm).
+  // The path starts here (machine position after boot, zeroing, abort or alarm). With a
+  // height map the planned Z there is the machine Z less the offset push() would add.
   void set_origin(const int32_t at_um[config::kAxisCount]);
+  // The height map the targets follow (0: none; it is used while it is active). push() adds
+  // its offset to the Z of every target: a target at or below the work surface (planned Z
+  // <= 0, cutting) gets the interpolated surface height there, one above it (travel) the
+  // map's highest height, so travel keeps its clearance over the highest probed point; a
+  // cutting segment is cut into pieces of at most kFollowStepUm so Z follows the surface
+  // between its ends. last_um() stays in planned coordinates.
+  void set_height_map(core::HeightMap* map) { map_ = map; }
+  // push() without the map's offset: target is a machine position (the probe's moves).
+  bool push_machine(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
+                    uint16_t feed_um_s, uint8_t flags, uint16_t tag,
+                    const int16_t* line_dir_q14 = 0);
   // Plans the segment from the last point to target and publishes it. False when the ring
   // is full (nothing changed: call again later). line_dir_q14 (or 0): the unit direction of
   // the straight line the segment is a piece of (a chord split at the #U maximum step); it
@@ -46,8 +62,10 @@ class Planner {
   // to 45 degrees for 1 um pieces), so that the pieces of a line meet without turns.
   bool push(CoordinateRing* ring, const int32_t target_um[config::kAxisCount], uint16_t feed_um_s,
             uint8_t flags, uint16_t tag, const int16_t* line_dir_q14 = 0);
-  // Where the last pushed segment ends.
-  const int32_t* last_um() const { return last_um_; }
+  // Where the last pushed segment ends, planned (before the height map's offset).
+  const int32_t* last_um() const { return planned_um_; }
+  // The same, as the machine goes there (with the offset).
+  const int32_t* machine_um() const { return last_um_; }
 
  private:
   void fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount],
@@ -58,10 +76,33 @@ class Planner {
                        uint32_t in_um, uint32_t out_um) const;
   uint16_t capture_for(const int16_t in_q14[3], const int16_t out_q14[3]) const;
   void replan(CoordinateRing* ring);
+  bool push_segment(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
+                    uint16_t feed_um_s, uint8_t flags, uint16_t tag, const int16_t* line_dir_q14);
+  void set_planned_from_machine();
+  bool push_followed(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
+                     uint16_t feed_um_s, uint8_t flags, uint16_t tag, const int16_t* line_dir_q14);
+  int32_t offset_at(const int32_t planned_um[config::kAxisCount]);
+  void begin_follow(const int32_t target_um[config::kAxisCount]);
+
+  // A cutting segment being split for the height map: a DDA from planned_um_ to the target
+  // (piece k ends at from + round(k d / n)), as PointGenerator's chord split.
+  struct FollowSplit {
+    int32_t to_um[config::kAxisCount];  // the target it was set up for
+    int32_t at_um[config::kAxisCount];  // end of the last piece pushed
+    int32_t step_um[config::kAxisCount];
+    uint16_t frac[config::kAxisCount];
+    uint16_t acc[config::kAxisCount];
+    int8_t unit[config::kAxisCount];
+    uint16_t pieces;
+    uint16_t left;  // pieces not pushed yet; 0: no split set up
+  };
 
   AxisScaling scaling_;
   PlannerSettings settings_;
-  int32_t last_um_[config::kAxisCount];
+  int32_t last_um_[config::kAxisCount];     // machine position the last segment ends at
+  int32_t planned_um_[config::kAxisCount];  // the same before the map's offset
+  core::HeightMap* map_;
+  FollowSplit follow_;
   int16_t last_dir_q14_[config::kAxisCount];
   uint16_t last_cruise_um_s_;
   uint32_t last_length_um_;  // of the last segment with a length (curve speed)

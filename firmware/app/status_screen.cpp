@@ -48,6 +48,14 @@ const char* alarm_name(proto::Alarm a) {
       return "PATH FAULT";
     case proto::Alarm::kSoftLimit:
       return "SOFT LIMIT";
+    case proto::Alarm::kProbeNoContact:
+      return "PROBE NO TOUCH";
+    case proto::Alarm::kProbeClosedAtStart:
+      return "PROBE CLOSED";
+    case proto::Alarm::kProbeSpindleOn:
+      return "PROBE: SPINDLE";
+    case proto::Alarm::kProbeMissing:
+      return "NO PROBE INPUT";
     default:
       return "ALARM";
   }
@@ -156,6 +164,14 @@ void StatusScreen::compose(const ScreenInfo& info, uint16_t now_ms, char out[2][
     put(out[1], &n, "CONFIRM TO GO ON");
   } else if (text_on_[1]) {
     put(out[1], &n, text_[1]);
+  } else if (info.probing || info.probe_closed) {
+    // "PROBE Z-0.14" while a #Y runs; "PROBE TOUCH Z.." whenever the input reads closed
+    // (the operator sees the clip work before probing, or that it is shorted).
+    char num[12];
+    put(out[1], &n, info.probe_closed ? "PROBE TOUCH Z" : "PROBE Z");
+    const uint8_t k = format_mm(info.pos_um[2], num);
+    num[k] = 0;
+    put(out[1], &n, num);
   } else {
     // "X12.34 Y-5.60" (Z while zeroing Z).
     char num[12];

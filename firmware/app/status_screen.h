@@ -17,6 +17,8 @@ struct ScreenInfo {
   bool zeroed;
   bool z_mode;          // zeroing: joystick drives Z
   bool paused;          // a #P waits: its text on top, the confirm prompt below
+  bool probing;         // a #Y descends or retracts: "PROBE Z..." below
+  bool probe_closed;    // the probe input reads closed (debounced)
   uint16_t items_done;  // job progress since the session started
   uint16_t items_stored;
   int32_t pos_um[3];

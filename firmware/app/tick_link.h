@@ -63,7 +63,14 @@ struct TickStatus {
   uint8_t z_mode;           // zeroing: the joystick drives Z
   uint8_t item_started;     // the item being worked on has a target (it began to move)
   uint8_t stopped_started;  // item_started when the ring was last dropped
+  uint8_t probes_done;      // probe descents ended (contact or no contact, wraps)
+  uint8_t probe_result;     // the last one's: 1 contact, 2 no contact
+  uint8_t probe_closed;     // the probe input, debounced
+  int32_t probe_z_usteps;   // the last one's Z: the first closed tick's, or where it ended
 };
+
+// Probe input debounce: closed this many ticks in a row counts (the first one's Z is kept).
+static const uint8_t kProbeDebounceTicks = 2;
 
 typedef core::SpscRing<TickRequest, 8> RequestRing;
 typedef core::SpscRing<TickStatus, 4> StatusRing;

@@ -171,7 +171,7 @@ ErrorCode check_fields(const uint8_t* msg, const FieldSpec* f) {
     const int32_t v = load(msg, *f);
     if (!in_range(v, *f)) return ErrorCode::kFieldRange;
     if (f->type == kWireState && v > (int32_t)MachineState::kPaused) return ErrorCode::kFieldRange;
-    if (f->type == kWireAlarm && v > (int32_t)Alarm::kSoftLimit) return ErrorCode::kFieldRange;
+    if (f->type == kWireAlarm && v > (int32_t)kLastAlarm) return ErrorCode::kFieldRange;
     if (f->type == kWireError && !is_known_error((uint8_t)v)) return ErrorCode::kFieldRange;
   }
   return ErrorCode::kOk;
@@ -321,6 +321,26 @@ ErrorCode check_drill(const DrillCmd& m) {
   return m.z_bottom_um < m.z_start_um ? ErrorCode::kOk : ErrorCode::kFieldRange;
 }
 
+// cols and rows both 0 (no map) or both 2..16; pitches of a map >= 1 mm; its far corner
+// inside the coordinate range.
+ErrorCode check_height_map_header(const HeightMapHeaderCmd& m) {
+  if (m.cols == 0 && m.rows == 0) return ErrorCode::kOk;
+  if (m.cols < 2 || m.rows < 2) return ErrorCode::kFieldRange;
+  if (m.pitch_x_um < kMinHeightMapPitchUm || m.pitch_y_um < kMinHeightMapPitchUm)
+    return ErrorCode::kFieldRange;
+  const int32_t x1 = m.x0_um + (int32_t)(m.cols - 1U) * (int32_t)m.pitch_x_um;
+  const int32_t y1 = m.y0_um + (int32_t)(m.rows - 1U) * (int32_t)m.pitch_y_um;
+  return x1 <= PROTO_COORD_MAX && y1 <= PROTO_COORD_MAX ? ErrorCode::kOk : ErrorCode::kFieldRange;
+}
+
+ErrorCode check_height_map_data(const HeightMapDataCmd& m) {
+  for (uint8_t i = 0; i < m.height_n; ++i) {
+    if (m.height_um[i] > kMaxHeightMapSpanUm || m.height_um[i] < -kMaxHeightMapSpanUm)
+      return ErrorCode::kFieldRange;
+  }
+  return ErrorCode::kOk;
+}
+
 template <typename Msg>
 const uint8_t* bytes_of(const Msg& m) {
   return reinterpret_cast<const uint8_t*>(&m);
@@ -332,7 +352,7 @@ bool is_known_error(uint8_t code) {
   return code <= (uint8_t)ErrorCode::kRxOverrun ||
          (code >= (uint8_t)ErrorCode::kUnknownCommand && code <= (uint8_t)ErrorCode::kFieldRange) ||
          (code >= (uint8_t)ErrorCode::kSeqGap && code <= (uint8_t)ErrorCode::kVersionUnsupported) ||
-         (code >= (uint8_t)ErrorCode::kBusy && code <= (uint8_t)ErrorCode::kOutOfTravel);
+         (code >= (uint8_t)ErrorCode::kBusy && code <= (uint8_t)ErrorCode::kHeightMap);
 }
 
 // encode / decode / check of every message, each one the walker over its field list.

@@ -137,6 +137,30 @@
     FIELD(JobMarkCmd, u16, first_point, 0, 65535)                                            \
     FIELD(JobMarkCmd, u16, job_id, 0, 65535)                                                 \
   END(JobMarkCmd)                                                                            \
+  CMD(ProbeCmd, kCmdProbe, 'Y', kQueued, "probe (Z down to contact)", "`*O` / `*E`",        \
+      on_probe, no_check)                                                                    \
+    FIELD(ProbeCmd, i32, z_limit_um, PROTO_COORD_MIN, PROTO_COORD_MAX)                       \
+    FIELD(ProbeCmd, u16, feed_um_per_s, 1, 65535)                                            \
+    FIELD(ProbeCmd, u16, retract_um, 0, 65535)                                               \
+  END(ProbeCmd)                                                                              \
+  CMD(ProbeResultCmd, kCmdProbeResult, 'T', kImmediate, "probe result query", "`*T`",        \
+      dispatcher_handles, no_check)                                                          \
+  END(ProbeResultCmd)                                                                        \
+  CMD(HeightMapHeaderCmd, kCmdHeightMapHeader, 'A', kQueued, "height map header",            \
+      "`*O` / `*E`", on_height_map_header, check_height_map_header)                          \
+    FIELD(HeightMapHeaderCmd, u8, cols, 0, 16)                                               \
+    FIELD(HeightMapHeaderCmd, u8, rows, 0, 16)                                               \
+    FIELD(HeightMapHeaderCmd, i32, x0_um, PROTO_COORD_MIN, PROTO_COORD_MAX)                  \
+    FIELD(HeightMapHeaderCmd, i32, y0_um, PROTO_COORD_MIN, PROTO_COORD_MAX)                  \
+    FIELD(HeightMapHeaderCmd, u16, pitch_x_um, 0, 65535)                                     \
+    FIELD(HeightMapHeaderCmd, u16, pitch_y_um, 0, 65535)                                     \
+  END(HeightMapHeaderCmd)                                                                    \
+  CMD(HeightMapDataCmd, kCmdHeightMapData, 'E', kQueued, "height map heights",               \
+      "`*O` / `*E`", on_height_map_data, check_height_map_data)                              \
+    FIELD(HeightMapDataCmd, u8, index, 0, 255)                                               \
+    FIELD(HeightMapDataCmd, u8, height_n, 1, 8)                                              \
+    ARRAY(HeightMapDataCmd, height_n, height_um, i32, 8)                                     \
+  END(HeightMapDataCmd)                                                                      \
   REPLY(AckReply, kReplyAck, 'O', "acknowledge", no_check)                                   \
     FIELD(AckReply, u8, queue_free, 0, 255)                                                  \
     FIELD(AckReply, u8, spline_slots_free, 0, 255)                                           \
@@ -165,7 +189,7 @@
   END(SessionReply)                                                                          \
   REPLY(StatusReply, kReplyStatus, '?', "status", no_check)                                  \
     FIELD(StatusReply, state, state, 0, 6)                                                   \
-    FIELD(StatusReply, alarm, alarm, 0, 7)                                                   \
+    FIELD(StatusReply, alarm, alarm, 0, 11)                                                  \
     FIELD(StatusReply, u8, flags, 0, 255)                                                    \
     FIELD(StatusReply, u8, override_percent, 10, 200)                                        \
     FIELD(StatusReply, u8, queue_free, 0, 255)                                               \
@@ -182,9 +206,16 @@
     FIELD(StatusReply, u16, job_id, 0, 65535)                                                \
   END(StatusReply)                                                                           \
   REPLY(AlarmReply, kReplyAlarm, 'A', "alarm notice (unsolicited)", no_check)                \
-    FIELD(AlarmReply, alarm, alarm, 0, 7)                                                    \
+    FIELD(AlarmReply, alarm, alarm, 0, 11)                                                   \
     FIELD(AlarmReply, state, state, 0, 6)                                                    \
-  END(AlarmReply)
+  END(AlarmReply)                                                                            \
+  REPLY(ProbeResultReply, kReplyProbeResult, 'T', "probe result", no_check)                  \
+    FIELD(ProbeResultReply, u8, result, 0, 2)                                                \
+    FIELD(ProbeResultReply, u16, probe_count, 0, 65535)                                      \
+    FIELD(ProbeResultReply, i32, x_um, PROTO_I32_MIN, PROTO_I32_MAX)                         \
+    FIELD(ProbeResultReply, i32, y_um, PROTO_I32_MIN, PROTO_I32_MAX)                         \
+    FIELD(ProbeResultReply, i32, z_um, PROTO_I32_MIN, PROTO_I32_MAX)                         \
+  END(ProbeResultReply)
 // clang-format on
 
 #endif  // FIRMWARE_PROTOCOL_MESSAGE_TABLE_H

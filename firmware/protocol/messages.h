@@ -26,7 +26,11 @@ enum {
   kMaxCompactControls = kMaxCompactData / 2,            // 30: x and y take a byte at least
   kMaxCompactKnots = kMaxCompactData,                   // 60: a knot takes a byte at least
   kContourHeaderBytes = 2,                              // #Q: index and count
-  kMaxContourData = kMaxPayload - kContourHeaderBytes   // 62
+  kMaxContourData = kMaxPayload - kContourHeaderBytes,  // 62
+  kMaxHeightMapSide = 16,                               // #A: at most 16 x 16 grid points
+  kMaxHeightsPerFrame = 8,      // #E: heights in one frame (a queue item holds them)
+  kMinHeightMapPitchUm = 1000,  // #A: grid points at least 1 mm apart
+  kMaxHeightMapSpanUm = 1000    // #E: |height| and the map's span (with 0) at most 1 mm
 };
 
 // The C type of each wire type of the message table.
@@ -78,6 +82,8 @@ static_assert(sizeof(((SplineCompactCmd*)0)->data) == kMaxCompactData,
               "#K data: the rest of a payload");
 static_assert(sizeof(((SplineContourCmd*)0)->data) == kMaxContourData,
               "#Q data: the rest of a payload");
+static_assert(sizeof(((HeightMapDataCmd*)0)->height_um) == kMaxHeightsPerFrame * sizeof(int32_t),
+              "#E heights: as many as a queue item carries");
 
 }  // namespace proto
 

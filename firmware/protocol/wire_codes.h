@@ -82,7 +82,14 @@ enum class ErrorCode : uint8_t {
   kSplineSequence = 34,  // #D without #B, index not the next expected, or too much data
   kGeometry = 35,        // spline rejected by the core; detail = core::GeometryError
   kNotZeroed = 36,       // motion before the machine was zeroed
-  kOutOfTravel = 37      // target outside the configured travel
+  kOutOfTravel = 37,     // target outside the configured travel
+  kHeightMap = 38        // #A/#E refused; detail = HeightMapError
+};
+
+// Detail of kHeightMap: why a height map frame was refused (nothing of it is kept).
+enum HeightMapError {
+  kHeightMapSequence = 1,  // #E without #A, index not the next expected, or past cols x rows
+  kHeightMapSpan = 2       // the completed map spans more than kMaxHeightMapSpanUm (0 counted)
 };
 
 // Number of distinct ErrorCode values the parser counts (codes 0..kRxOverrun).
@@ -102,14 +109,20 @@ enum class MachineState : uint8_t {
 // Alarm codes (status reply and *A). Stable numbers.
 enum class Alarm : uint8_t {
   kNone = 0,
-  kLimitSwitch = 1,      // a limit switch tripped during motion: position suspect, re-zero
-  kDriverFault = 2,      // a TMC246 reported overtemperature / short, or its chain broke
-  kPowerLost = 3,        // driver undervoltage: e-stop pressed or supply lost, re-zero
-  kFollowingError = 4,   // actual position did not follow the target
-  kMotionChipFault = 5,  // TMC428 read-back or SPI check failed
-  kPathFault = 6,        // the point generator failed at run time (geometry error)
-  kSoftLimit = 7         // a target outside the travel reached the path controller
+  kLimitSwitch = 1,         // a limit switch tripped during motion: position suspect, re-zero
+  kDriverFault = 2,         // a TMC246 reported overtemperature / short, or its chain broke
+  kPowerLost = 3,           // driver undervoltage: e-stop pressed or supply lost, re-zero
+  kFollowingError = 4,      // actual position did not follow the target
+  kMotionChipFault = 5,     // TMC428 read-back or SPI check failed
+  kPathFault = 6,           // the point generator failed at run time (geometry error)
+  kSoftLimit = 7,           // a target outside the travel reached the path controller
+  kProbeNoContact = 8,      // #Y reached its z_limit without the probe closing
+  kProbeClosedAtStart = 9,  // #Y: the probe input was closed before it moved (clip shorted?)
+  kProbeSpindleOn = 10,     // #Y with the spindle on: refused, nothing moved
+  kProbeMissing = 11        // #Y on a machine without a probe input: nothing moved
 };
+// The newest alarm value (the codec's range check).
+static const uint8_t kLastAlarm = 11;
 
 // Bits of the status reply's flags byte.
 enum {

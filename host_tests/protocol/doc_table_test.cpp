@@ -266,7 +266,9 @@ TEST(DocTable, FieldTablesGiveEachFieldItsOffset) {
   const auto all = declared();
   const std::map<std::string, std::pair<char, bool>> sections = {
       {"### `#B`", {'B', false}}, {"### `#D`", {'D', false}}, {"### `#K`", {'K', false}},
-      {"### `#L`", {'L', false}}, {"### `*I`", {'I', true}},  {"### `*?`", {'?', true}}};
+      {"### `#L`", {'L', false}}, {"### `*I`", {'I', true}},  {"### `*?`", {'?', true}},
+      {"### `#Y`", {'Y', false}}, {"### `#T`", {'T', true}},  {"### `#A`", {'A', false}},
+      {"### `#E`", {'E', false}}};
   for (const auto& s : sections) {
     const MessageDecl* m = find(all, s.second.first, s.second.second);
     ASSERT_NE(m, nullptr) << s.first;

@@ -146,6 +146,22 @@ int main() {
   show(proto::JobMarkCmd{7, 18, 0x5A17}, 16,
        "#J seq 16: job 5A17, the next job command is number 7; resume its spline at curve "
        "point 18");
+  show(proto::ProbeCmd{-3000, 200, 1000}, 17,
+       "#Y seq 17: probe: Z down at 0.2 mm/s to at most Z -3 mm, on contact back up 1 mm");
+  show(proto::ProbeResultCmd{}, 18, "#T seq 18: probe result query");
+  show(proto::ProbeResultReply{1, 3, 10000, 5000, -137}, 18,
+       "*T seq 18: contact, the 3rd probe since power-up, at X 10 mm, Y 5 mm: the copper is at "
+       "Z -0.137 mm");
+  show(proto::AlarmReply{proto::Alarm::kProbeNoContact, proto::MachineState::kAlarm}, 2,
+       "*A alarm #2: probe without contact (8), state alarm (5)");
+  show(proto::HeightMapHeaderCmd{3, 2, 0, 0, 40000, 30000}, 19,
+       "#A seq 19: height map of 3 x 2 points from (0, 0), 40 mm apart in X, 30 mm in Y");
+  show(proto::HeightMapDataCmd{0, 6, {0, -40, -95, 25, -20, -80}}, 20,
+       "#E seq 20: its heights from index 0: 0, -40, -95 um (row Y 0), 25, -20, -80 um (row Y "
+       "30 mm); the map is complete, compensation on");
+  show(proto::ErrorReply{proto::ErrorCode::kHeightMap, proto::kHeightMapSpan, 20}, 20,
+       "*E seq 20: height_map (38), detail 2: had the map spanned more than 1 mm, it would be "
+       "refused (and the controller would expect seq 20 again)");
   std::printf("```\n");
   return 0;
 }

@@ -62,6 +62,8 @@ const char* error_name(proto::ErrorCode code) {
       return "machine not zeroed";
     case proto::ErrorCode::kOutOfTravel:
       return "target outside the machine travel";
+    case proto::ErrorCode::kHeightMap:
+      return "height map refused (out of sequence, or spans more than 1 mm)";
   }
   return "unknown error";
 }
@@ -84,6 +86,14 @@ const char* alarm_name(proto::Alarm alarm) {
       return "path generation fault";
     case proto::Alarm::kSoftLimit:
       return "soft limit";
+    case proto::Alarm::kProbeNoContact:
+      return "probe: no contact within the depth limit";
+    case proto::Alarm::kProbeClosedAtStart:
+      return "probe: input closed before probing (clip shorted?)";
+    case proto::Alarm::kProbeSpindleOn:
+      return "probe: spindle on";
+    case proto::Alarm::kProbeMissing:
+      return "probe: this machine has no probe input";
   }
   return "unknown alarm";
 }
