@@ -49,6 +49,8 @@ class DepthMeter {
   // planned height is its Z less the map's height there; its depth is the TRUE surface's
   // height there less its Z.
   DepthMeter(const SurfaceModel& truth, const HeightMap* applied, const DepthOptions& options);
+  // The map the controller follows from now on (probed after the meter was made).
+  void set_applied_map(const HeightMap* applied) { applied_ = applied; }
   // One executed tool position (machine frame, mm), in time order.
   void add(double x_mm, double y_mm, double z_mm);
   DepthReport report() const;
