@@ -1,7 +1,8 @@
 // Interrupt priorities, the vectors, the trap handlers and hal::irq_save/irq_restore.
 #include "hal/dspic30f6014/interrupts.h"
 
-#include "hal/dspic30f6014/registers.h"  // IPCx, INTCON1, IFS0, SR, RCON
+#include "hal/dspic30f6014/probe_pin.h"  // ProbePin
+#include "hal/dspic30f6014/registers.h"  // IPCx, INTCON1, IFS0, IFS1, SR, RCON
 #include "hal/dspic30f6014/timer1.h"     // timer1_acknowledge
 #include "hal/dspic30f6014/uart1.h"      // Uart1
 #include "hal/interfaces/irq.h"          // hal::irq_save, hal::irq_restore
@@ -13,6 +14,7 @@ namespace {
 Uart1* g_uart1 = 0;
 void (*g_tick)(void*) = 0;
 void* g_tick_context = 0;
+ProbePin* g_probe = 0;
 }  // namespace
 
 // Survives the reset a trap handler causes (not cleared by the start-up code).
@@ -25,6 +27,7 @@ void configure_interrupt_priorities() {
   IPC1::write(0);
   IPC2::write(
       (uint16_t)((kU1RxPriority << IPC2bits::U1RXIP) | (kU1TxPriority << IPC2bits::U1TXIP)));
+  IPC4::write((uint16_t)(kProbePriority << IPC4bits::INT1IP));  // enabled by ProbePin::init
 }
 
 void install_uart1(Uart1* uart) {
@@ -34,6 +37,10 @@ void install_uart1(Uart1* uart) {
 void install_tick(void (*tick)(void*), void* context) {
   g_tick_context = context;
   g_tick = tick;
+}
+
+void install_probe(ProbePin* probe) {
+  g_probe = probe;
 }
 
 uint8_t take_trap_cause() {
@@ -100,6 +107,14 @@ DSPIC_ISR(_U1TXInterrupt) {
     dspic::g_uart1->on_tx_interrupt();
   } else {
     dspic::IFS0::clear_bit<dspic::IFS0bits::U1TXIF>();
+  }
+}
+
+DSPIC_ISR(_INT1Interrupt) {
+  if (dspic::g_probe != 0) {
+    dspic::g_probe->on_int1_interrupt();
+  } else {
+    dspic::IFS1::clear_bit<dspic::IFS1bits::INT1IF>();
   }
 }
 

@@ -22,6 +22,7 @@
 #include "hal/dspic30f6014/lcd_pins.h"                  // dspic::LcdPins
 #include "hal/dspic30f6014/panel_pins.h"                // dspic::PanelPins
 #include "hal/dspic30f6014/ports.h"                     // dspic::init_ports
+#include "hal/dspic30f6014/probe_pin.h"                 // dspic::ProbePin
 #include "hal/dspic30f6014/spi1.h"                      // dspic::Spi1
 #include "hal/dspic30f6014/spindle_pin.h"               // dspic::SpindlePin
 #include "hal/dspic30f6014/startup_messages.h"          // dspic::startup_line, tmc428_line
@@ -59,6 +60,7 @@ Slot<drivers::OperatorPanel> g_panel_slot;
 Slot<dspic::Uart1> g_uart_slot;
 Slot<dspic::Spi1> g_spi_slot;
 Slot<dspic::SpindlePin> g_spindle_slot;
+Slot<dspic::ProbePin> g_probe_slot;
 Slot<drivers::Tmc428> g_tmc_slot;
 Slot<app::Application> g_app_slot;
 
@@ -97,6 +99,7 @@ int main() {
   dspic::Uart1* uart = new (g_uart_slot.place(), core::InPlace()) dspic::Uart1();
   dspic::Spi1* spi = new (g_spi_slot.place(), core::InPlace()) dspic::Spi1();
   dspic::SpindlePin* spindle = new (g_spindle_slot.place(), core::InPlace()) dspic::SpindlePin();
+  dspic::ProbePin* probe = new (g_probe_slot.place(), core::InPlace()) dspic::ProbePin();
   drivers::Tmc428* tmc = new (g_tmc_slot.place(), core::InPlace()) drivers::Tmc428(*spi, *machine);
   g_app = new (g_app_slot.place(), core::InPlace()) app::Application();
 
@@ -120,7 +123,11 @@ int main() {
   board.inputs = g_panel;
   board.spindle = spindle;
   board.link_clock = 0;  // the 1 ms tick is wall-clock time: the link's time-outs count it
+  board.probe = probe;
   g_app->init(board, *machine);
+
+  dspic::install_probe(probe);
+  probe->init();
 
   dspic::install_tick(on_tick, 0);
   dspic::timer1_start_1ms();

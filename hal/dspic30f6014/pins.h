@@ -7,6 +7,10 @@
 //   RB8..RB14 <- panel contacts to GND (active low, external pull-ups): joystick left,
 //   right, down, up, Z button, confirm, clear -- the order of hal::InputBits.
 //   RB6/RB7 stay free for in-circuit programming (PGC/PGD).
+//   RA12 INT1 <- probe: the clip on the copper blank, pulled up to 5 V (10 kOhm); the clamped
+//   tool (spindle frame at GND) touching the copper pulls it low (active low, falling edge).
+//   Why not a TMC428 reference input: all three carry the six multiplexed limit switches,
+//   and an input there is read over SPI and stops the axis on its own.
 #ifndef HAL_DSPIC30F6014_PINS_H
 #define HAL_DSPIC30F6014_PINS_H
 
@@ -28,7 +32,8 @@ enum {
   kLcdEBit = 10,          // RD10
   kSpindleBit = 11,       // RD11
   kPanelFirstBit = 8,     // RB8 = hal::kJoyLeft ... RB14 = hal::kButtonClear
-  kPanelMask = 0x7F00     // RB8..RB14
+  kPanelMask = 0x7F00,    // RB8..RB14
+  kProbeBit = 12          // RA12 = INT1
 };
 
 }  // namespace pins

@@ -32,11 +32,21 @@ typedef Sfr16<0x0090> IEC2;
 typedef Sfr16<0x0094> IPC0;  // INT0IP<2:0> IC1IP<6:4> OC1IP<10:8> T1IP<14:12>
 typedef Sfr16<0x0096> IPC1;
 typedef Sfr16<0x0098> IPC2;  // SPI1IP<2:0> U1RXIP<6:4> U1TXIP<10:8> ADCIP<14:12>
+typedef Sfr16<0x009C> IPC4;  // INT1IP<2:0> IC7IP<6:4> IC8IP<10:8> OC3IP<14:12>
 namespace INTCON1bits {
 enum { OSCFAIL = 1, STKERR = 2, ADDRERR = 3, MATHERR = 4, NSTDIS = 15 };
 }
 namespace INTCON2bits {
-enum { ALTIVT = 15 };
+enum { INT0EP = 0, INT1EP = 1, ALTIVT = 15 };  // INTxEP 1: falling edge
+}
+namespace IFS1bits {  // and IEC1
+enum { INT1IF = 0 };
+}
+namespace IEC1bits {
+enum { INT1IE = 0 };
+}
+namespace IPC4bits {
+enum { INT1IP = 0 };
 }
 namespace IFS0bits {  // and IEC0: the same positions with ...IE names
 enum { T1IF = 3, SPI1IF = 8, U1RXIF = 9, U1TXIF = 10 };
@@ -124,6 +134,8 @@ enum {
 
 // ---- A/D port configuration and I/O ports (sec. 6; there is no PORTE on the 6014) ----
 typedef Sfr16<0x02A8> ADPCFG;  // bit n = 1: ANn/RBn digital
+typedef Sfr16<0x02C0> TRISA;
+typedef Sfr16<0x02C2> PORTA;
 typedef Sfr16<0x02C6> TRISB;
 typedef Sfr16<0x02C8> PORTB;
 typedef Sfr16<0x02CA> LATB;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "firmware/app/application.h"
+#include "hal/fake/probe/surface_probe.h"
 #include "hal/fake/spindle/fake_spindle.h"
 #include "host_tests/app/fake_board.h"
 #include "host_tests/app/kinematic_plant.h"
@@ -22,19 +23,26 @@ struct AppRig {
   FakeDisplay display;
   FakeInputs inputs;
   fake::FakeSpindle spindle;
+  fake::SurfaceProbe probe;  // no surface: never closes (tests set one)
   app::Application app;
   TestHost host;
   long now = 0;
   int polls_per_ms = 1;
 
   // link_clock: what the link's time-outs count (0: the tick, as on the controller).
-  explicit AppRig(uint32_t seed = 1, hal::LinkClock* link_clock = nullptr) : host(&link, seed) {
-    app::Board b{&link, &plant, &display, &inputs, &spindle, link_clock};
+  // with_probe false: a machine without a probe input.
+  explicit AppRig(uint32_t seed = 1, hal::LinkClock* link_clock = nullptr, bool with_probe = true)
+      : host(&link, seed) {
+    app::Board b{
+        &link, &plant, &display, &inputs, &spindle, link_clock, with_probe ? &probe : nullptr};
     app.init(b, cfg);
   }
 
   void step() {
     ++now;
+    const P3 tip = position_um();
+    probe.set_tool_tip_um(int32_t(std::floor(tip.x)), int32_t(std::floor(tip.y)),
+                          int32_t(std::floor(tip.z)));
     app.tick_1ms();
     plant.step_1ms();
     for (int i = 0; i < polls_per_ms; ++i) app.poll();

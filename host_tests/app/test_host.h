@@ -37,6 +37,8 @@ class TestHost {
   Impairments impair;
   std::vector<proto::ErrorReply> errors;  // every *E received
   std::vector<proto::AlarmReply> alarms;
+  proto::ProbeResultReply probe{};  // the last *T
+  int probe_replies = 0;
   proto::StatusReply status{};
   bool have_status = false;
   bool session_open = false;
@@ -74,6 +76,7 @@ class TestHost {
     session_open = false;
   }
   void query_status() { transmit(proto::kCmdStatus, status_seq_++, {}, false); }
+  void query_probe() { transmit(proto::kCmdProbeResult, status_seq_++, {}, false); }
   // Any frame with a chosen seq, outside the window bookkeeping (for sequence tests).
   void send_raw(uint8_t letter, uint8_t seq, const std::vector<uint8_t>& payload) {
     transmit(letter, seq, payload, false);
@@ -187,6 +190,9 @@ class TestHost {
         if (proto::decode_frame(f, &r) == proto::ErrorCode::kOk) alarms.push_back(r);
         break;
       }
+      case proto::kReplyProbeResult:
+        if (proto::decode_frame(f, &probe) == proto::ErrorCode::kOk) ++probe_replies;
+        break;
       default:
         break;
     }

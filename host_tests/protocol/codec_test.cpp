@@ -451,6 +451,37 @@ TEST(CodecFrame, EncodeFrameRejectsOversizePayloadAndBadLetter) {
   EXPECT_EQ(70, proto::encode_frame('#', 'D', 0, payload, 64, out, sizeof out));
 }
 
+// #A: no map (both sides 0) or 2..16 x 2..16 points at least 1 mm apart, the far corner
+// inside the coordinate range; #E: 1..8 heights of -1000..1000 um.
+TEST(CodecHeightMap, HeaderAndHeightsOutsideTheirRulesAreOutOfRange) {
+  EXPECT_EQ(ErrorCode::kOk, encode_error(proto::HeightMapHeaderCmd{0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(ErrorCode::kOk, encode_error(proto::HeightMapHeaderCmd{16, 2, -5000, 0, 1000, 65535}));
+  EXPECT_EQ(ErrorCode::kFieldRange,
+            encode_error(proto::HeightMapHeaderCmd{0, 3, 0, 0, 5000, 5000}));
+  EXPECT_EQ(ErrorCode::kFieldRange,
+            encode_error(proto::HeightMapHeaderCmd{1, 3, 0, 0, 5000, 5000}));
+  EXPECT_EQ(ErrorCode::kFieldRange, encode_error(proto::HeightMapHeaderCmd{3, 3, 0, 0, 999, 5000}));
+  EXPECT_EQ(ErrorCode::kFieldRange,
+            encode_error(proto::HeightMapHeaderCmd{17, 3, 0, 0, 5000, 5000}));
+  EXPECT_EQ(ErrorCode::kFieldRange,
+            encode_error(proto::HeightMapHeaderCmd{16, 2, 990000, 0, 5000, 5000}));  // far corner
+  proto::HeightMapDataCmd d{};
+  d.height_n = 2;
+  d.height_um[0] = -1000;
+  d.height_um[1] = 1000;
+  EXPECT_EQ(ErrorCode::kOk, encode_error(d));
+  d.height_um[1] = 1001;
+  EXPECT_EQ(ErrorCode::kFieldRange, encode_error(d));
+  d.height_um[1] = 0;
+  d.height_n = 9;
+  EXPECT_EQ(ErrorCode::kFieldRange, encode_error(d));
+  d.height_n = 0;
+  EXPECT_EQ(ErrorCode::kFieldRange, encode_error(d));
+  // The wire length follows height_n: 2 + 4 n.
+  d.height_n = 3;
+  EXPECT_EQ(14u, encoded(d).size());
+}
+
 TEST(CodecErrors, KnownErrorListMatchesTheDocumentedValues) {
   const int documented[] = {0,  1,  2,  3,  4,  5,  10, 11, 12, 20, 21, 22,
                             23, 24, 30, 31, 32, 33, 34, 35, 36, 37, 38};

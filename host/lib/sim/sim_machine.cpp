@@ -7,6 +7,7 @@
 #include "firmware/app/application.h"        // app::Application, app::Board
 #include "hal/drivers/tmc428/tmc428.h"       // drivers::Tmc428
 #include "hal/fake/motion/tmc428_model.h"    // fake::Tmc428Model
+#include "hal/fake/probe/surface_probe.h"    // fake::SurfaceProbe
 #include "hal/fake/spi/recording_spi.h"      // fake::RecordingSpi
 #include "hal/fake/spindle/fake_spindle.h"   // fake::FakeSpindle
 #include "hal/interfaces/link_clock.h"       // hal::LinkClock
@@ -109,6 +110,7 @@ struct SimMachine::Parts {
   SimDisplay display;
   SimInputs inputs;
   fake::FakeSpindle spindle;
+  fake::SurfaceProbe probe;
   SimLinkClock link_clock;
   app::Application app;
   int32_t usteps_per_mm[config::kAxisCount] = {1, 1, 1};
@@ -137,6 +139,8 @@ SimMachine::SimMachine(const SimOptions& options)
   board.inputs = &p.inputs;
   board.spindle = &p.spindle;
   board.link_clock = &p.link_clock;
+  board.probe = &p.probe;
+  p.probe.set_surface(options.surface_um);
   p.app.init(board, options.machine);
   record_position();
 }
@@ -200,6 +204,14 @@ int SimMachine::spindle_switches() const {
   return parts_->spindle.switches();
 }
 
+void SimMachine::set_surface(std::function<int32_t(int32_t x_um, int32_t y_um)> surface_um) {
+  parts_->probe.set_surface(std::move(surface_um));
+}
+
+bool SimMachine::probe_closed() const {
+  return parts_->app.probe_closed();
+}
+
 void SimMachine::record_position() {
   const ToolSample s = position();
   if (have_sample_ && last_sample_.x_mm == s.x_mm && last_sample_.y_mm == s.y_mm &&
@@ -236,6 +248,10 @@ void SimMachine::step_ms() {
   ++now_ms_;
   p.chip.advance_to_ns(now_ms_ * 1000000ull);
   operate_panel();
+  int32_t tip_um[config::kAxisCount];
+  for (int a = 0; a < config::kAxisCount; ++a)
+    tip_um[a] = static_cast<int32_t>(int64_t(p.chip.x_actual(a)) * 1000 / p.usteps_per_mm[a]);
+  p.probe.set_tool_tip_um(tip_um[0], tip_um[1], tip_um[2]);
   p.app.tick_1ms();
   p.app.poll();
   tx_credit_ = std::min(tx_credit_ + bytes_per_ms, 4.0 + bytes_per_ms);

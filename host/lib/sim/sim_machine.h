@@ -31,6 +31,10 @@ struct SimOptions {
   // Record every SPI datagram from power-on (the TMC428 init included); off by default:
   // a minute of motion is ~420 000 datagrams. set_spi_recording() switches it later.
   bool record_spi = false;
+  // The blank's top surface: the Z (um) of the copper at a machine X/Y (um), in the frame of
+  // position() x 1000. The simulated probe input closes where the tool tip reaches it (#Y).
+  // Empty: no board, the probe never closes.
+  std::function<int32_t(int32_t x_um, int32_t y_um)> surface_um;
 };
 
 // One sample of the tool position (from the model's x_actual), when it moved.
@@ -82,6 +86,10 @@ class SimMachine {
   int pauses_confirmed() const { return pauses_confirmed_; }
   bool spindle_on() const;
   int spindle_switches() const;
+  // Replaces SimOptions::surface_um (a new blank; empty: none).
+  void set_surface(std::function<int32_t(int32_t x_um, int32_t y_um)> surface_um);
+  // The probe input as the firmware reads it now (the tool tip on or in the surface).
+  bool probe_closed() const;
   // The firmware's tool position in mm (model x_actual / microsteps per mm).
   ToolSample position() const;
 
