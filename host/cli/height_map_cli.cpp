@@ -3,7 +3,15 @@
 
 #include <fmt/format.h>  // fmt::format
 
+#include <filesystem>  // std::filesystem::path
+#include <iostream>    // std::cerr
+
 #include "host/cli/exit_codes.h"
+#include "host/lib/heightmap/controller_map.h"
+#include "host/lib/heightmap/job_area.h"
+#include "host/lib/heightmap/probe_session.h"
+#include "host/lib/plot/height_map_plot.h"
+#include "host/lib/progress/progress_meter.h"
 
 namespace host::cli {
 
@@ -23,13 +31,20 @@ std::optional<heightmap::SurfaceSpec> surface_spec_of(const std::string& text) {
   }
 }
 
-void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, bool report_options) {
+void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, HeightMapCommand command) {
   const std::string g = kHeightMapGroup;
-  cmd->add_option("--height-map", a->height_map,
-                  "the blank's height map (JSON): the controller follows it; with --probe, "
-                  "where the probed map is written")
-      ->group(g);
-  cmd->add_flag("--probe", a->probe, "probe the blank on a grid over the job first")->group(g);
+  if (command == HeightMapCommand::kProbe) {
+    a->probe = true;
+    cmd->add_option("--height-map", a->height_map,
+                    "where the map is written (JSON; default NAME.map.json here)")
+        ->group(g);
+  } else {
+    cmd->add_option("--height-map", a->height_map,
+                    "the blank's height map (JSON): the controller follows it; with --probe, "
+                    "where the probed map is written (default NAME.map.json)")
+        ->group(g);
+    cmd->add_flag("--probe", a->probe, "probe the blank on a grid over the job first")->group(g);
+  }
   cmd->add_option("--probe-spacing", a->grid.spacing_mm,
                   "largest distance between probe points, mm")
       ->group(g)
@@ -54,7 +69,7 @@ void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, bool report_options
       ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
   cmd->add_option("--blank", a->blank, "the blank's name, kept in the map")->group(g);
-  if (!report_options) return;
+  if (command != HeightMapCommand::kRun) return;
   cmd->add_option("--vbit-angle", a->vbit_angle_deg,
                   "V-bit included angle in degrees (the depth report's groove width)")
       ->group(g)
@@ -72,6 +87,78 @@ std::optional<heightmap::HeightMap> load_height_map(const HeightMapArgs& a) {
     return heightmap::read_height_map_file(a.height_map);
   } catch (const heightmap::HeightMapError& e) {
     throw CommandFailure(kExitUsage, e.what());
+  }
+}
+
+std::string default_map_path(const std::string& dir, const std::string& name) {
+  return (std::filesystem::path(dir) / (name + ".map.json")).string();
+}
+
+std::string map_picture_path(const std::string& map_path) {
+  const std::string json = ".json";
+  if (map_path.size() > json.size() &&
+      map_path.compare(map_path.size() - json.size(), json.size(), json) == 0)
+    return map_path.substr(0, map_path.size() - json.size()) + ".svg";
+  return map_path + ".svg";
+}
+
+// The controller refused the probe (its alarm): send/run's "command refused" (exit 5).
+constexpr int kExitProbeRefusedByController = 5;
+
+heightmap::HeightMap probe_for_job(Sender& sender, const JobPlan& plan, const HeightMapArgs& a,
+                                   double z_up_mm, const std::string& map_path) {
+  const std::optional<heightmap::AreaMm> area = heightmap::cutting_area(plan);
+  if (!area) throw CommandFailure(kExitUsage, "the job cuts nothing: there is nothing to probe");
+  heightmap::ProbeOptions o;
+  o.grid = a.grid;
+  if (a.grid_rows_cols.size() == 2) {
+    o.grid.rows = a.grid_rows_cols[0];
+    o.grid.cols = a.grid_rows_cols[1];
+  }
+  o.twice = a.probe_twice;
+  o.outlier_limit_um = a.outlier_limit_um;
+  o.blank = a.blank;
+  heightmap::ProbeMotion m;
+  m.travel_z_mm = z_up_mm;
+  heightmap::ProbeRun run;
+  try {
+    ProgressMeter bar("probe", "touches", std::cerr, ProgressMeter::for_stderr());
+    run = heightmap::probe_blank(*area, o, heightmap::controller_touch(sender, m),
+                                 [&bar](size_t done, size_t total) { bar.update(done, total); });
+  } catch (const heightmap::GridError& e) {
+    throw CommandFailure(kExitUsage, std::string("probe grid: ") + e.what());
+  } catch (const heightmap::ProbeFailed& e) {
+    throw CommandFailure(kExitProbeRefusedByController, e.what());
+  } catch (const heightmap::ProbeRefused& e) {
+    throw CommandFailure(kExitJobFailed, std::string("probing refused: ") + e.what());
+  } catch (const heightmap::HeightMapError& e) {
+    throw CommandFailure(kExitJobFailed, std::string("probing refused: ") + e.what());
+  }
+  for (const std::string& r : run.reprobed) std::cerr << "engraver: probed again: " << r << "\n";
+  const heightmap::HeightMap& map = run.map;
+  try {
+    heightmap::write_height_map_file(map, map_path);
+    write_height_map_svg(map, std::filesystem::path(map_path).stem().string(),
+                         map_picture_path(map_path));
+  } catch (const std::runtime_error& e) {
+    throw CommandFailure(kExitUsage, e.what());
+  }
+  std::cerr << fmt::format(
+      "engraver: probed {} x {} points ({} touches), heights {:.1f} .. {:.1f} um{}; map {}, "
+      "picture {}\n",
+      map.rows, map.cols, run.touches, map.min_um(), map.max_um(),
+      map.repeatability_um ? fmt::format(", repeatability {:.1f} um", *map.repeatability_um)
+                           : std::string(),
+      map_path, map_picture_path(map_path));
+  return map;
+}
+
+void refuse_job_leaving_map(const JobPlan& plan, const heightmap::HeightMap& map,
+                            const std::string& what) {
+  try {
+    heightmap::refuse_job_outside_map(plan, map, what);
+  } catch (const heightmap::HeightMapError& e) {
+    throw CommandFailure(kExitJobFailed, e.what());
   }
 }
 

@@ -14,6 +14,8 @@
 #include "host/lib/heightmap/height_map.h"
 #include "host/lib/heightmap/probe_grid.h"
 #include "host/lib/heightmap/surface_model.h"
+#include "host/lib/plan/job_plan.h"
+#include "host/lib/stream/sender.h"
 
 namespace host::cli {
 
@@ -37,9 +39,27 @@ struct HeightMapArgs {
   double vbit_angle_deg = 30;
   double copper_um = 35;
 };
-void add_height_map_options(CLI::App* cmd, HeightMapArgs* args, bool report_options);
+// `probe` itself has no --probe (it always probes) and only `run` has the report's options.
+enum class HeightMapCommand { kProbe, kSend, kRun };
+void add_height_map_options(CLI::App* cmd, HeightMapArgs* args, HeightMapCommand command);
 // The map from --height-map (not --probe); a bad file is a usage error naming it.
 std::optional<heightmap::HeightMap> load_height_map(const HeightMapArgs& args);
+
+// NAME.map.json in `dir` (probe, send: the current directory; run: its outdir).
+std::string default_map_path(const std::string& dir, const std::string& name);
+// The map's picture beside it: board.map.json -> board.map.svg.
+std::string map_picture_path(const std::string& map_path);
+
+// Probes the blank over the job's cutting area through the sender (zeroing it first if it
+// is not), says what was probed again, writes the map to `map_path` and its picture, and
+// returns it. Ends the command (CommandFailure) with exit 1 when the probing is refused (an
+// outlier, two touches apart, the span), 2 for a grid the options cannot make or a map that
+// cannot be written, 5 when the controller refuses the probe (its alarm); a LinkError passes.
+heightmap::HeightMap probe_for_job(Sender& sender, const JobPlan& plan, const HeightMapArgs& a,
+                                   double z_up_mm, const std::string& map_path);
+// Exit 1 (nothing sent) when the job cuts outside the map.
+void refuse_job_leaving_map(const JobPlan& plan, const heightmap::HeightMap& map,
+                            const std::string& what);
 
 // The depth report as the run's JSON and its printed lines.
 nlohmann::json depth_report_json(const heightmap::DepthReport& r, bool compensated);

@@ -28,6 +28,20 @@ void DepthMeter::add(double x, double y, double z_mm) {
   }
   const double depth = truth_.height_um(x, y) - z_um;
   const double error = depth - r_.planned_depth_um;
+  const double step = inside_ ? std::hypot(x - last_x_, y - last_y_) : 0.0;
+  const bool starts = !inside_;
+  inside_ = true;
+  // Only the tool moving along the path cuts the groove: the last micrometres of a plunge
+  // or the first of a lift, at one place, are not the path's depth.
+  if (step <= kMovedMm) {
+    if (starts) {
+      last_x_ = x;
+      last_y_ = y;
+      starts_path_ = true;
+    }
+    last_error_ = error;  // the plunge's depth when the tool sets off
+    return;
+  }
   const double width = o_.planned_width_um + 2.0 * half_tan_ * error;
   if (!any_) {
     r_.min_depth_um = r_.max_depth_um = depth;
@@ -46,20 +60,18 @@ void DepthMeter::add(double x, double y, double z_mm) {
     r_.max_error_at_mm[0] = x;
     r_.max_error_at_mm[1] = y;
   }
-  const double step = inside_ ? std::hypot(x - last_x_, y - last_y_) : 0.0;
-  if (inside_ && step > kMovedMm) {
-    // Along the path: the segment's error is its ends' mean.
-    const double mean = 0.5 * (error + last_error_);
-    r_.length_mm += step;
-    sum_sq_ += mean * mean * step;
-    if (mean + r_.planned_depth_um < o_.copper_um) r_.uncut_mm += step;
-  }
-  const bool starts = !inside_;
-  if (starts || r_.length_mm - kept_from_mm_ >= o_.keep_step_mm) {
-    r_.kept.push_back(DepthSample{x, y, error, starts});
+  // Along the path: the segment's error is its ends' mean (the path's first end is the
+  // place the plunge reached, at the depth it reached there).
+  const double mean = 0.5 * (error + last_error_);
+  r_.length_mm += step;
+  sum_sq_ += mean * mean * step;
+  if (mean + r_.planned_depth_um < o_.copper_um) r_.uncut_mm += step;
+  if (starts_path_ || r_.length_mm - kept_from_mm_ >= o_.keep_step_mm) {
+    if (starts_path_) r_.kept.push_back(DepthSample{last_x_, last_y_, error, true});
+    r_.kept.push_back(DepthSample{x, y, error, false});
     kept_from_mm_ = r_.length_mm;
+    starts_path_ = false;
   }
-  inside_ = true;
   last_x_ = x;
   last_y_ = y;
   last_error_ = error;

@@ -61,6 +61,7 @@ class DepthMeter {
   DepthOptions o_;
   double half_tan_ = 0;  // tan(angle / 2): width grows 2 * half_tan_ per um deeper
   bool inside_ = false;
+  bool starts_path_ = false;  // the next moving sample begins a path in the plot
   double last_x_ = 0, last_y_ = 0, last_error_ = 0, kept_from_mm_ = 0;
   double sum_sq_ = 0;  // error squared times length
   bool any_ = false;

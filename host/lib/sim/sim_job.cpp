@@ -64,7 +64,7 @@ namespace {
 
 // Opens a session, encodes the plan for the controller's payload size and runs it.
 void stream_job(Link& link, const JobPlan& plan, const SimJobOptions& options,
-                const SenderOptions& sender_options, SimJobResult* r) {
+                const SenderOptions& sender_options, SimJobResult* r, std::atomic<bool>* in_setup) {
   Sender sender(link, sender_options);
   const proto::SessionReply caps = sender.open_session();
   EncodeOptions enc = options.encode;
@@ -74,7 +74,9 @@ void stream_job(Link& link, const JobPlan& plan, const SimJobOptions& options,
   r->commands = commands.size();
   r->wire_bytes = wire_bytes(commands);
   if (options.before_job) {
+    *in_setup = true;
     std::vector<QueuedCommand> setup = options.before_job(sender);
+    *in_setup = false;
     r->setup_commands = setup.size();
     r->setup_wire_bytes = wire_bytes(setup);
     commands.insert(commands.begin(), setup.begin(), setup.end());
@@ -103,8 +105,14 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
   SimMachine machine(options.machine);
   TraceMeter meter(plan, options.trace_step_mm, options.trace_max_samples);
   meter.add(machine.position());
-  machine.set_sample_sink([&meter, &options](const ToolSample& s) {
-    meter.add(s);
+  // The job is measured, not what runs before it (probing: SimJobOptions::before_job).
+  std::atomic<bool> in_setup{false};  // the TCP server's thread reads it
+  machine.set_sample_sink([&meter, &options, &in_setup](const ToolSample& s) {
+    if (!in_setup) {
+      ToolSample planned = s;
+      if (options.z_offset_mm) planned.z_mm -= options.z_offset_mm(s.x_mm, s.y_mm);
+      meter.add(planned);
+    }
     if (options.on_sample) options.on_sample(s);
   });
   const uint64_t start_ms = machine.now_ms();
@@ -117,7 +125,7 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
     // The wrapper (tests) sees the link; the sender's clock is the machine's either way.
     if (options.wrap_link) link = options.wrap_link(std::move(link));
     try {
-      stream_job(*link, plan, options, so, &r);
+      stream_job(*link, plan, options, so, &r, &in_setup);
     } catch (const LinkError& e) {
       r.outcome = JobOutcome::kLinkLost;
       r.message = e.what();
@@ -135,7 +143,7 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
       spec.port = server.port();
       std::unique_ptr<Link> link = open_link(spec, std::chrono::milliseconds(2000));
       if (options.wrap_link) link = options.wrap_link(std::move(link));
-      stream_job(*link, plan, options, options.sender, &r);
+      stream_job(*link, plan, options, options.sender, &r, &in_setup);
     } catch (const LinkError& e) {
       r.outcome = JobOutcome::kLinkLost;
       r.message = e.what();

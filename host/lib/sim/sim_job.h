@@ -41,6 +41,10 @@ struct SimJobOptions {
   // blank) and returns commands sent just before the job's (e.g. the height map); they are
   // not counted in the job's commands or wire bytes. A throw ends the run (passed on).
   std::function<std::vector<QueuedCommand>(Sender&)> before_job;
+  // The height (mm) the controller adds to the planned Z at (x, y) (a height map it follows),
+  // taken off the samples the job is measured and plotted by (pen up/down, path lengths), so
+  // they are classified by their planned heights. Empty: none.
+  std::function<double(double x_mm, double y_mm)> z_offset_mm;
 };
 
 struct SimJobResult {
