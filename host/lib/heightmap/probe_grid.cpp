@@ -99,15 +99,27 @@ std::vector<Outlier> find_outliers(const ProbeGrid& g, const std::vector<double>
     return r >= 0 && r < g.rows && c >= 0 && c < g.cols && !out[index(r, c)];
   };
   const int dirs[4][2] = {{0, 1}, {1, 0}, {0, -1}, {-1, 0}};
-  // What the points not yet found predict for (r, c).
+  // What the points not yet found predict for (r, c), along each axis: quadratics through
+  // three or four of them where there are (exact for a tilt and a bow, however strong),
+  // else straight lines.
   auto predictions = [&](int r, int c) {
     std::vector<double> p;
-    for (int d = 0; d < 4; ++d) {
+    for (int d = 0; d < 2; ++d) {
       const int dr = dirs[d][0], dc = dirs[d][1];
-      if (usable(r + dr, c + dc) && usable(r + 2 * dr, c + 2 * dc))
-        p.push_back(2 * h[index(r + dr, c + dc)] - h[index(r + 2 * dr, c + 2 * dc)]);
-      if (d < 2 && usable(r + dr, c + dc) && usable(r - dr, c - dc))
-        p.push_back(0.5 * (h[index(r + dr, c + dc)] + h[index(r - dr, c - dc)]));
+      auto ok = [&](int k) { return usable(r + k * dr, c + k * dc); };
+      auto h_at = [&](int k) { return h[index(r + k * dr, c + k * dc)]; };
+      const size_t before = p.size();
+      if (ok(-2) && ok(-1) && ok(1) && ok(2))
+        p.push_back((-h_at(-2) + 4 * h_at(-1) + 4 * h_at(1) - h_at(2)) / 6);
+      for (int s = -1; s <= 1; s += 2) {
+        if (ok(-s) && ok(s) && ok(2 * s)) p.push_back(h_at(-s) / 3 + h_at(s) - h_at(2 * s) / 3);
+        if (ok(s) && ok(2 * s) && ok(3 * s))
+          p.push_back(3 * h_at(s) - 3 * h_at(2 * s) + h_at(3 * s));
+      }
+      if (p.size() > before) continue;
+      if (ok(-1) && ok(1)) p.push_back(0.5 * (h_at(-1) + h_at(1)));
+      for (int s = -1; s <= 1; s += 2)
+        if (ok(s) && ok(2 * s)) p.push_back(2 * h_at(s) - h_at(2 * s));
     }
     return p;
   };

@@ -53,9 +53,11 @@ struct Outlier {
   GridPoint point;
   double height_um = 0, predicted_um = 0;
 };
-// Each point against the median of its neighbours' predictions (midpoints of opposite
-// neighbours, straight-line extrapolations of two in a row), so one bad point does not
-// condemn the points around it. A 2 x 2 grid has no prediction: nothing found.
+// Each point against the median of its neighbours' predictions along each axis
+// (quadratics through three or four points where the row or column has them, exact for a
+// tilt and a bow; else midpoints and straight-line extrapolations), the most condemned
+// point first and then again without it, so one bad point does not condemn the points
+// around it. A 2 x 2 grid has no prediction: nothing found.
 std::vector<Outlier> find_outliers(const ProbeGrid& grid, const std::vector<double>& heights_um,
                                    double limit_um);
 // "row 3, col 5 at (42.000, 17.500) mm reads 61.2 um, its neighbours 12.0 um".
