@@ -38,8 +38,11 @@ double median(std::vector<double> v) {
 
 ProbeGrid plan_probe_grid(const AreaMm& job, const GridOptions& o) {
   if (!(o.margin_mm >= 0)) throw GridError("the probe margin must be 0 mm or above");
-  const double x0 = job.x0 - o.margin_mm, y0 = job.y0 - o.margin_mm;
-  const double w = job.x1 - job.x0 + 2 * o.margin_mm, h = job.y1 - job.y0 + 2 * o.margin_mm;
+  // The margin stops at the zero corner (X 0, Y 0: where the blank begins, perhaps at the
+  // travel's end) unless the job itself goes beyond it.
+  auto low = [&](double v) { return v < 0 ? v - o.margin_mm : std::max(0.0, v - o.margin_mm); };
+  const double x0 = low(job.x0), y0 = low(job.y0);
+  const double w = job.x1 + o.margin_mm - x0, h = job.y1 + o.margin_mm - y0;
   if (!(w > 0) || !(h > 0))
     throw GridError("the job has no extent to probe (no cutting moves, and no margin)");
   ProbeGrid g;

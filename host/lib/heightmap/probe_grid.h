@@ -16,7 +16,8 @@ namespace host::heightmap {
 struct GridOptions {
   double spacing_mm = 10.0;  // the largest pitch; used when rows/cols are 0
   int rows = 0, cols = 0;    // both given: exactly this grid
-  double margin_mm = 1.0;    // the grid reaches this far beyond the job on every side
+  double margin_mm = 1.0;    // the grid reaches this far beyond the job on every side, but
+                             // not below X 0 / Y 0 where the job does not
 };
 
 // The grid's geometry: a HeightMap without heights.

@@ -23,6 +23,19 @@ TEST(ProbeGrid, SpacingGivesTheFewestPointsThatKeepEveryPitchWithinIt) {
   EXPECT_DOUBLE_EQ(g.y_mm(g.rows - 1), 36);
 }
 
+TEST(ProbeGrid, TheMarginStopsAtTheZeroCorner) {
+  GridOptions o;
+  o.spacing_mm = 10;
+  o.margin_mm = 1;
+  const ProbeGrid g = plan_probe_grid(AreaMm{0, 0.5, 40, 20}, o);  // a drawing at the corner
+  EXPECT_DOUBLE_EQ(g.origin_x_mm, 0);
+  EXPECT_DOUBLE_EQ(g.origin_y_mm, 0);
+  EXPECT_DOUBLE_EQ(g.x_mm(g.cols - 1), 41);
+  EXPECT_DOUBLE_EQ(g.y_mm(g.rows - 1), 21);
+  const ProbeGrid below = plan_probe_grid(AreaMm{-5, -5, 40, 20}, o);  // a job past it
+  EXPECT_DOUBLE_EQ(below.origin_x_mm, -6);
+}
+
 TEST(ProbeGrid, RowsAndColsAreTakenAsGiven) {
   GridOptions o;
   o.rows = 3;
@@ -39,10 +52,10 @@ TEST(ProbeGrid, RefusesMorePointsThanTheControllerKeeps) {
   GridOptions o;
   o.spacing_mm = 5;
   try {
-    plan_probe_grid(AreaMm{0, 0, 100, 20}, o);  // 102 mm / 5 -> 22 points
+    plan_probe_grid(AreaMm{0, 0, 100, 20}, o);  // 101 mm (from X 0) / 5 -> 22 points
     FAIL();
   } catch (const GridError& e) {
-    EXPECT_NE(std::string(e.what()).find("use a spacing of 6.8 mm or more"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("use a spacing of 6.7 mm or more"), std::string::npos)
         << e.what();
   }
   o.spacing_mm = 0;
