@@ -22,11 +22,15 @@
 #include "host/cli/board_cli.h"  // PCB input (Gerber, Excellon, a board's directory)
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
+#include "host/cli/height_map_cli.h"  // --surface, --height-map, the depth report
 #include "host/cli/terminal_text.h"
 #include "host/lib/drawing/drawing.h"
-#include "host/lib/pcb/board_check.h"  // refuse_copper_hits
+#include "host/lib/heightmap/controller_map.h"   // height_map_commands
+#include "host/lib/heightmap/simulated_blank.h"  // the blank the simulated probe touches
+#include "host/lib/pcb/board_check.h"            // refuse_copper_hits
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/job_plan.h"
+#include "host/lib/plot/height_map_plot.h"
 #include "host/lib/plot/plan_plot.h"
 #include "host/lib/plot/plot.h"
 #include "host/lib/progress/progress_meter.h"
@@ -302,6 +306,7 @@ std::string machine_detail(const Progress& p) {
 
 struct SendArgs {
   PlanArgs plan;
+  HeightMapArgs map;
   std::string to;
   bool no_zero = false;
   int poll_ms = 250;
@@ -362,6 +367,9 @@ void run_send(const SendArgs& a) {
   if (!a.resume_at.empty()) parse_resume_at(a.resume_at);  // a bad one before anything else
   Drawing drawing;
   const JobPlan plan = load_plan(a.plan, &drawing);
+  // A map from a file is checked against the job before anything is sent.
+  std::optional<heightmap::HeightMap> map = load_height_map(a.map);
+  if (map) refuse_job_leaving_map(plan, *map, a.map.height_map);
   const LinkSpec spec = parse_link_spec(a.to);  // LinkError -> usage error below
   std::unique_ptr<Link> link = open_link(spec, std::chrono::milliseconds(5000));
   SenderOptions so;
@@ -381,6 +389,19 @@ void run_send(const SendArgs& a) {
       std::cerr << "engraver: nothing to resume: the controller says the job has finished\n";
       return;
     }
+  }
+  if (a.map.probe) {
+    std::cerr << "engraver: probing the blank: the probe clip on the blank, the spindle off\n";
+    const std::string path = a.map.height_map.empty()
+                                 ? default_map_path(".", input_name(a.plan.file))
+                                 : a.map.height_map;
+    map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path);
+    refuse_job_leaving_map(plan, *map, path);
+  }
+  // The map goes first (a controller that restarted has lost it: a resume sends it again).
+  if (map) {
+    const std::vector<QueuedCommand> frames = heightmap::height_map_commands(*map);
+    commands.insert(commands.begin(), frames.begin(), frames.end());
   }
   std::cerr << fmt::format(
       "engraver: {} -> {}: {} curves, {} commands, {} bytes, job id {}; keys: h hold, "
@@ -410,9 +431,39 @@ void run_send(const SendArgs& a) {
   }
 }
 
+// ---- engraver probe ----
+
+struct ProbeArgs {
+  PlanArgs plan;
+  HeightMapArgs map;
+  std::string to;
+  bool no_zero = false;
+};
+
+void run_probe(const ProbeArgs& a) {
+  Drawing drawing;
+  const JobPlan plan = load_plan(a.plan, &drawing);
+  const std::string path =
+      a.map.height_map.empty() ? default_map_path(".", input_name(a.plan.file)) : a.map.height_map;
+  const LinkSpec spec = parse_link_spec(a.to);
+  std::unique_ptr<Link> link = open_link(spec, std::chrono::milliseconds(5000));
+  SenderOptions so;
+  so.zero_first = !a.no_zero;
+  Sender sender(*link, so);
+  install_signals(&sender);
+  sender.open_session();
+  std::cerr << fmt::format(
+      "engraver: probing the blank under {} through {}: the probe clip on the blank, the "
+      "spindle off\n",
+      a.plan.file, link->name());
+  probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path);
+  g_sender = nullptr;
+}
+
 // ---- engraver sim ----
 
 struct SimArgs {
+  std::string surface;  // --surface: the simulated blank
   std::string listen = "127.0.0.1:10001";
   bool realtime = false;
   std::string trace;
@@ -479,13 +530,27 @@ void run_sim(const SimArgs& a) {
   so.realtime = a.realtime;
   sim::SimOptions mo;
   mo.pause_confirm_ms = a.pause_confirm_ms;
+  // The simulated blank over the work area (unless --surface gives its area).
+  std::shared_ptr<heightmap::SimulatedBlank> blank;
+  if (const std::optional<heightmap::SurfaceSpec> spec = surface_spec_of(a.surface)) {
+    const config::MachineConfig& mc = mo.machine;
+    blank = std::make_shared<heightmap::SimulatedBlank>(heightmap::SurfaceModel(
+        *spec, heightmap::AreaMm{0, 0, mc.axis[config::kAxisX].travel_um / 1000.0,
+                                 mc.axis[config::kAxisY].travel_um / 1000.0}));
+    mo.surface_um = [blank](int32_t x_um, int32_t y_um) { return blank->surface_um(x_um, y_um); };
+  }
   sim::SimMachine machine{mo};
   if (!machine.chip_ok()) std::cerr << "engraver: simulated TMC428 failed its self-check\n";
   std::unique_ptr<TraceWriter> trace;
   if (!a.trace.empty()) {
     trace = std::make_unique<TraceWriter>(a.trace);
     trace->add(machine.position());
-    machine.set_sample_sink([&trace](const sim::ToolSample& s) { trace->add(s); });
+  }
+  if (trace || blank) {
+    machine.set_sample_sink([&trace, blank](const sim::ToolSample& s) {
+      if (blank) blank->tool_at(s.x_mm, s.y_mm, s.z_mm);
+      if (trace) trace->add(s);
+    });
   }
   std::unique_ptr<sim::SimServer> server;
   try {
@@ -527,6 +592,8 @@ struct RunArgs {
   bool realtime = false;
   std::vector<double> blank_error;  // DX DY DEG: the flipped blank placed off by this much
   bool pins_only = false;           // with blank_error: no measured alignment
+  std::string surface;  // --surface: the simulated blank
+  HeightMapArgs map;
 };
 
 // A double-sided board's second setup, simulated: the blank on the pins off by an error, the
@@ -614,11 +681,77 @@ void run_run(const RunArgs& a) {
   o.sender.status_interval = std::chrono::milliseconds(250);
   // The plot shows what its pixels can: keep a tool position every half pixel or so.
   o.trace_step_mm = plot_step_mm(plan);
-  // A board: the isolation cuts at full resolution, to check them against the copper.
+  // The simulated blank (--surface) over the job unless its area is given, and the map the
+  // controller follows (--height-map).
+  const std::optional<heightmap::SurfaceSpec> surface_spec = surface_spec_of(a.surface);
+  std::optional<heightmap::SurfaceModel> surface;
+  if (surface_spec) {
+    // The blank: from the zero corner to the job's far end and as far again as the margin.
+    const Extents& e = plan.extents_mm;
+    surface.emplace(*surface_spec,
+                    e.empty() ? heightmap::AreaMm{0, 0, a.plan.work_mm[0], a.plan.work_mm[1]}
+                              : heightmap::AreaMm{0, 0, e.max.x() + std::max(0.0, e.min.x()),
+                                                  e.max.y() + std::max(0.0, e.min.y())});
+  }
+  std::optional<heightmap::HeightMap> map = load_height_map(a.map);
+  if (map) refuse_job_leaving_map(plan, *map, a.map.height_map);
+  if (a.map.probe && !surface)
+    throw CommandFailure(kExitUsage,
+                         "run --probe needs a simulated blank to touch: give --surface too");
+  // The simulated probe touches the simulated blank.
+  std::shared_ptr<heightmap::SimulatedBlank> blank;
+  if (surface) {
+    blank = std::make_shared<heightmap::SimulatedBlank>(*surface);
+    o.machine.surface_um = [blank](int32_t x_um, int32_t y_um) {
+      return blank->surface_um(x_um, y_um);
+    };
+  }
+  // Measured from the job's first command on (not the probing's touches).
+  bool job_started = !a.map.probe;
+  // A board: the isolation cuts at full resolution, to check them against the copper (at
+  // their planned height: the map's height taken off again), and their depth of cut
+  // against the simulated blank.
   std::optional<sim::CutPathCollector> isolation_cuts;
+  std::optional<heightmap::DepthMeter> depth;
   if (const std::optional<double> z = board_isolation_z_mm()) {
     isolation_cuts.emplace(*z, 0.002);
-    o.on_sample = [&isolation_cuts](const sim::ToolSample& s) { isolation_cuts->add(s); };
+    if (surface) {
+      heightmap::DepthOptions d;
+      d.isolation_z_mm = *z;
+      d.vbit_angle_deg = a.map.vbit_angle_deg;
+      d.copper_um = a.map.copper_um;
+      d.planned_width_um = a.plan.board.tool_width_mm * 1000.0;
+      depth.emplace(*surface, map ? &*map : nullptr, d);  // --probe: set when probed
+    }
+  }
+  o.on_sample = [&isolation_cuts, &depth, &map, &blank, &job_started](const sim::ToolSample& s) {
+    if (blank) blank->tool_at(s.x_mm, s.y_mm, s.z_mm);
+    if (!job_started || !isolation_cuts) return;
+    sim::ToolSample planned = s;
+    if (map) planned.z_mm -= map->interpolate_um(s.x_mm, s.y_mm) / 1000.0;
+    isolation_cuts->add(planned);
+    if (depth) depth->add(s.x_mm, s.y_mm, s.z_mm);
+  };
+  const std::string name = input_name(a.plan.file);
+  std::filesystem::create_directories(a.outdir);
+  const std::string base = (std::filesystem::path(a.outdir) / name).string();
+  const std::string map_path =
+      a.map.height_map.empty() ? default_map_path(a.outdir, name) : a.map.height_map;
+  if (a.map.probe || map) {
+    o.z_offset_mm = [&map](double x_mm, double y_mm) {
+      return map ? map->interpolate_um(x_mm, y_mm) / 1000.0 : 0.0;
+    };
+  }
+  if (a.map.probe || map) {
+    o.before_job = [&](Sender& sender) {
+      if (a.map.probe) {
+        map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, map_path);
+        refuse_job_leaving_map(plan, *map, map_path);
+        if (depth) depth->set_applied_map(&*map);
+      }
+      job_started = true;
+      return heightmap::height_map_commands(*map);
+    };
   }
   const sim::SimJobResult r = [&] {
     ProgressMeter bar("run", "commands", std::cerr, ProgressMeter::for_stderr());
@@ -627,10 +760,6 @@ void run_run(const RunArgs& a) {
     };
     return sim::run_sim_job(plan, o);
   }();
-
-  const std::string name = input_name(a.plan.file);
-  std::filesystem::create_directories(a.outdir);
-  const std::string base = (std::filesystem::path(a.outdir) / name).string();
 
   // Plot: the drawing's curves against the simulated tool path.
   PlotInput plot = plot_input_from_plan(plan, name, 0.01, false);
@@ -693,6 +822,23 @@ void run_run(const RunArgs& a) {
   j["cut_length_over_feed_s"] = ideal_s;
   j["max_contour_error_um"] = r.max_contour_error_um;
   j["max_contour_error_at_mm"] = {r.worst_contour_sample.x_mm, r.worst_contour_sample.y_mm};
+  std::optional<heightmap::DepthReport> depth_report;
+  if (depth) {
+    depth_report = depth->report();
+    j["surface"] = heightmap::surface_spec_text(surface->spec());
+    j["depth_of_cut"] = depth_report_json(*depth_report, map.has_value());
+    write_depth_error_svg(depth_report->kept, 50.0, name, base + ".depth.svg");
+  }
+  if (map) {
+    j["height_map"] = {{"file", a.map.probe ? map_path : a.map.height_map},
+                       {"rows", map->rows},
+                       {"cols", map->cols},
+                       {"min_um", map->min_um()},
+                       {"max_um", map->max_um()},
+                       {"frames", r.setup_commands},
+                       {"wire_bytes", r.setup_wire_bytes}};
+    if (!a.map.probe) write_height_map_svg(*map, name, map_picture_path(base + ".map.json"));
+  }
   if (iso) {
     j["simulated_isolation_check"] = {
         {"tolerance_mm", iso->tolerance_mm},
@@ -780,6 +926,9 @@ void run_run(const RunArgs& a) {
         a.blank_error[0], a.blank_error[1], a.blank_error[2],
         a.pins_only ? "pins only, no measured alignment" : "the job aligned to the measured holes",
         registration->max_um, registration->mean_um);
+  if (depth_report) {
+    std::cout << depth_report_text(*depth_report, map.has_value());
+    std::cout << fmt::format("  depth error plot: {}.depth.svg\n", base);
   }
   if (r.outcome != JobOutcome::kCompleted) {
     throw CommandFailure(exit_code(r.outcome),
@@ -799,6 +948,7 @@ void add_machine_commands(CLI::App& app) {
   auto send_args = std::make_shared<SendArgs>();
   CLI::App* send = app.add_subcommand("send", "plan a drawing and stream it to the machine");
   add_plan_options(send, &send_args->plan);
+  add_height_map_options(send, &send_args->map, HeightMapCommand::kSend);
   send->add_option("--to", send_args->to,
                    "tcp://HOST:PORT (XPort, default port 10001) or serial:DEVICE[,BAUD]")
       ->required();
@@ -829,6 +979,30 @@ void add_machine_commands(CLI::App& app) {
     }
   });
 
+  auto probe_args = std::make_shared<ProbeArgs>();
+  CLI::App* probe =
+      app.add_subcommand("probe", "probe the blank on a grid over a job and write its height map");
+  add_plan_options(probe, &probe_args->plan);
+  add_height_map_options(probe, &probe_args->map, HeightMapCommand::kProbe);
+  probe
+      ->add_option("--to", probe_args->to,
+                   "tcp://HOST:PORT (XPort, default port 10001) or serial:DEVICE[,BAUD]")
+      ->required();
+  probe->add_flag("--no-zero", probe_args->no_zero, "do not start manual zeroing if not zeroed");
+  probe->footer(
+      "Example: engraver probe board/ --to tcp://192.168.1.50:10001 --height-map board.map.json\n"
+      "then: engraver send board/ --to ... --height-map board.map.json\n"
+      "Exit: 0 map written, 1 probing refused (a point disagreeing with its neighbours, two "
+      "touches apart, heights spanning more than 1 mm), 2 bad input or options, 5 the "
+      "controller refused the probe (no contact, spindle on, probe closed), 6 link lost.");
+  probe->callback([probe_args] {
+    try {
+      run_probe(*probe_args);
+    } catch (const LinkError& e) {
+      throw CommandFailure(kExitLinkLost, e.what());
+    }
+  });
+
   auto sim_args = std::make_shared<SimArgs>();
   CLI::App* sim = app.add_subcommand("sim", "run the simulated machine on a TCP port");
   sim->add_option("--listen", sim_args->listen,
@@ -837,6 +1011,7 @@ void add_machine_commands(CLI::App& app) {
   sim->add_flag("--realtime", sim_args->realtime, "machine time always follows the wall clock");
   sim->add_option("--trace", sim_args->trace,
                   "write the executed tool positions as CSV: t_ms,x_mm,y_mm,z_mm,pen,wall_ms");
+  add_surface_option(sim, &sim_args->surface);
   sim->add_option("--pause-confirm-ms", sim_args->pause_confirm_ms,
                   "the simulated operator confirms a pause (#P) after this long; -1 never")
       ->capture_default_str();
@@ -871,6 +1046,8 @@ void add_machine_commands(CLI::App& app) {
       ->expected(3);
   run->add_flag("--pins-only", run_args->pins_only,
                 "with --blank-error: no measured alignment (the pins alone)");
+  add_surface_option(run, &run_args->surface);
+  add_height_map_options(run, &run_args->map, HeightMapCommand::kRun);
   run->footer(
       "Example: engraver run samples/engraver-word.dxf -o out\n"
       "Progress on stderr (a bar on a terminal, a line every 5 s otherwise).\n"

@@ -64,7 +64,7 @@ namespace {
 
 // Opens a session, encodes the plan for the controller's payload size and runs it.
 void stream_job(Link& link, const JobPlan& plan, const SimJobOptions& options,
-                const SenderOptions& sender_options, SimJobResult* r) {
+                const SenderOptions& sender_options, SimJobResult* r, std::atomic<bool>* in_setup) {
   Sender sender(link, sender_options);
   const proto::SessionReply caps = sender.open_session();
   EncodeOptions enc = options.encode;
@@ -72,10 +72,18 @@ void stream_job(Link& link, const JobPlan& plan, const SimJobOptions& options,
   use_session(caps, &enc);
   enc.max_payload = std::min<unsigned>(max_payload, caps.max_payload);
   enc.controller = &caps;
-  const std::vector<QueuedCommand> commands = encode_job(plan, enc);
+  std::vector<QueuedCommand> commands = encode_job(plan, enc);
   r->commands = commands.size();
   r->wire_bytes = wire_bytes(commands);
   r->job_id = job_id_of(commands);
+  if (options.before_job) {
+    *in_setup = true;
+    std::vector<QueuedCommand> setup = options.before_job(sender);
+    *in_setup = false;
+    r->setup_commands = setup.size();
+    r->setup_wire_bytes = wire_bytes(setup);
+    commands.insert(commands.begin(), setup.begin(), setup.end());
+  }
   r->outcome = sender.run(commands, [&](const Progress& p) {
     if (options.on_progress) options.on_progress(sender, p);
   });
@@ -100,8 +108,14 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
   SimMachine machine(options.machine);
   TraceMeter meter(plan, options.trace_step_mm, options.trace_max_samples);
   meter.add(machine.position());
-  machine.set_sample_sink([&meter, &options](const ToolSample& s) {
-    meter.add(s);
+  // The job is measured, not what runs before it (probing: SimJobOptions::before_job).
+  std::atomic<bool> in_setup{false};  // the TCP server's thread reads it
+  machine.set_sample_sink([&meter, &options, &in_setup](const ToolSample& s) {
+    if (!in_setup) {
+      ToolSample planned = s;
+      if (options.z_offset_mm) planned.z_mm -= options.z_offset_mm(s.x_mm, s.y_mm);
+      meter.add(planned);
+    }
     if (options.on_sample) options.on_sample(s);
   });
   const uint64_t start_ms = machine.now_ms();
@@ -114,7 +128,7 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
     // The wrapper (tests) sees the link; the sender's clock is the machine's either way.
     if (options.wrap_link) link = options.wrap_link(std::move(link));
     try {
-      stream_job(*link, plan, options, so, &r);
+      stream_job(*link, plan, options, so, &r, &in_setup);
     } catch (const LinkError& e) {
       r.outcome = JobOutcome::kLinkLost;
       r.message = e.what();
@@ -132,7 +146,7 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
       spec.port = server.port();
       std::unique_ptr<Link> link = open_link(spec, std::chrono::milliseconds(2000));
       if (options.wrap_link) link = options.wrap_link(std::move(link));
-      stream_job(*link, plan, options, options.sender, &r);
+      stream_job(*link, plan, options, options.sender, &r, &in_setup);
     } catch (const LinkError& e) {
       r.outcome = JobOutcome::kLinkLost;
       r.message = e.what();

@@ -37,6 +37,14 @@ struct SimJobOptions {
   std::function<void(const ToolSample&)> on_sample;
   // Called at every status (e.g. to hold/resume/abort through the sender).
   std::function<void(Sender&, const Progress&)> on_progress;
+  // Called once the session is open, before the job: may use the sender (e.g. to probe the
+  // blank) and returns commands sent just before the job's (e.g. the height map); they are
+  // not counted in the job's commands or wire bytes. A throw ends the run (passed on).
+  std::function<std::vector<QueuedCommand>(Sender&)> before_job;
+  // The height (mm) the controller adds to the planned Z at (x, y) (a height map it follows),
+  // taken off the samples the job is measured and plotted by (pen up/down, path lengths), so
+  // they are classified by their planned heights. Empty: none.
+  std::function<double(double x_mm, double y_mm)> z_offset_mm;
 };
 
 struct SimJobResult {
@@ -46,6 +54,8 @@ struct SimJobResult {
   size_t commands = 0;
   size_t wire_bytes = 0;              // the job's frames once each (no retransmits, no polls)
   uint16_t job_id = 0;                // job_id_of() the commands: the job's identity (#J)
+  size_t setup_commands = 0;  // sent before the job (SimJobOptions::before_job)
+  size_t setup_wire_bytes = 0;
   uint64_t virtual_ms = 0;            // machine time simulated
   double wall_s = 0;                  // real time it took
   double cpu_s = 0;                   // processor time this thread used for it (load-independent)

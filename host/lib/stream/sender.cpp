@@ -224,6 +224,13 @@ void Sender::handle_reply(const proto::Frame& frame) {
       }
       break;
     }
+    case proto::kReplyProbeResult: {
+      proto::ProbeResultReply r;
+      if (proto::decode_frame(frame, &r) != proto::ErrorCode::kOk) break;
+      last_probe_ = r;
+      have_probe_ = true;
+      break;
+    }
     case proto::kReplyStatus: {
       proto::StatusReply r;
       if (proto::decode_frame(frame, &r) != proto::ErrorCode::kOk) break;
@@ -460,6 +467,17 @@ proto::StatusReply Sender::read_status() {
     if (have_status_) return last_status_;
   }
   throw LinkError(fmt::format("{}: no status reply from the controller", link_.name()));
+}
+
+proto::ProbeResultReply Sender::read_probe_result() {
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    have_probe_ = false;
+    send_frame(proto::kCmdProbeResult, status_seq_++, {});
+    const auto deadline = now() + options_.reply_timeout;
+    while (!have_probe_ && now() < deadline) pump(milliseconds(5));
+    if (have_probe_) return last_probe_;
+  }
+  throw LinkError(fmt::format("{}: no probe result from the controller", link_.name()));
 }
 
 proto::StatusReply Sender::read_status_at_rest(milliseconds limit) {

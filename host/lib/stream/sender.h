@@ -79,6 +79,8 @@ class Sender {
   // Status queries until the machine has come to rest (not running or holding: a #I or #X
   // decelerates along the path first); throws LinkError if that takes longer than `limit`.
   proto::StatusReply read_status_at_rest(std::chrono::milliseconds limit);
+  // The controller's last probe result (#T -> *T, protocol 4); LinkError when none comes.
+  proto::ProbeResultReply read_probe_result();
   // Sets the feed override now (session open, no job running): the real-time frame, then a
   // status. False when the status shows another override; LinkError when none comes.
   bool set_override(int percent);
@@ -123,6 +125,8 @@ class Sender {
   SenderStats stats_;
   std::string message_;
   proto::StatusReply last_status_{};
+  proto::ProbeResultReply last_probe_{};
+  bool have_probe_ = false;
   bool have_status_ = false;
   proto::SessionReply session_{};
   bool session_open_ = false;

@@ -1,0 +1,195 @@
+// Height map options and the depth report's words (height_map_cli.h).
+#include "host/cli/height_map_cli.h"
+
+#include <fmt/format.h>  // fmt::format
+
+#include <filesystem>  // std::filesystem::path
+#include <iostream>    // std::cerr
+
+#include "host/cli/exit_codes.h"
+#include "host/lib/heightmap/controller_map.h"
+#include "host/lib/heightmap/job_area.h"
+#include "host/lib/heightmap/probe_session.h"
+#include "host/lib/plot/height_map_plot.h"
+#include "host/lib/progress/progress_meter.h"
+
+namespace host::cli {
+
+void add_surface_option(CLI::App* cmd, std::string* surface) {
+  cmd->add_option("--surface", *surface,
+                  "simulated blank: tilt=0.1mm,tilt_y=0um,bow=0.2mm,bump=X:Y:R:H,noise=2um,"
+                  "seed=1,area=X0:Y0:X1:Y1 (each length with mm or um; docs/user-guide.md)")
+      ->group(kHeightMapGroup);
+}
+
+std::optional<heightmap::SurfaceSpec> surface_spec_of(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  try {
+    return heightmap::parse_surface_spec(text);
+  } catch (const heightmap::SurfaceSpecError& e) {
+    throw CommandFailure(kExitUsage, e.what());
+  }
+}
+
+void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, HeightMapCommand command) {
+  const std::string g = kHeightMapGroup;
+  if (command == HeightMapCommand::kProbe) {
+    a->probe = true;
+    cmd->add_option("--height-map", a->height_map,
+                    "where the map is written (JSON; default NAME.map.json here)")
+        ->group(g);
+  } else {
+    cmd->add_option("--height-map", a->height_map,
+                    "the blank's height map (JSON): the controller follows it; with --probe, "
+                    "where the probed map is written (default NAME.map.json)")
+        ->group(g);
+    cmd->add_flag("--probe", a->probe, "probe the blank on a grid over the job first")->group(g);
+  }
+  cmd->add_option("--probe-spacing", a->grid.spacing_mm,
+                  "largest distance between probe points, mm")
+      ->group(g)
+      ->check(CLI::Range(1.0, 65.0))
+      ->capture_default_str();
+  cmd->add_option("--probe-grid", a->grid_rows_cols, "ROWS COLS: exactly this grid (2..16 each)")
+      ->group(g)
+      ->expected(2)
+      ->excludes("--probe-spacing");
+  cmd->add_option("--probe-margin", a->grid.margin_mm,
+                  "the grid reaches this far beyond the job, mm")
+      ->group(g)
+      ->check(CLI::Range(0.0, 50.0))
+      ->capture_default_str();
+  cmd->add_flag("--probe-twice", a->probe_twice,
+                "probe every point twice (the map records the repeatability)")
+      ->group(g);
+  cmd->add_option("--outlier-limit", a->outlier_limit_um,
+                  "a point further than this from its neighbours' prediction is probed again, "
+                  "then refused, um")
+      ->group(g)
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--blank", a->blank, "the blank's name, kept in the map")->group(g);
+  if (command != HeightMapCommand::kRun) return;
+  cmd->add_option("--vbit-angle", a->vbit_angle_deg,
+                  "V-bit included angle in degrees (the depth report's groove width)")
+      ->group(g)
+      ->check(CLI::Range(5.0, 150.0))
+      ->capture_default_str();
+  cmd->add_option("--copper-um", a->copper_um, "copper thickness in um (the depth report)")
+      ->group(g)
+      ->check(CLI::Range(1.0, 500.0))
+      ->capture_default_str();
+}
+
+std::optional<heightmap::HeightMap> load_height_map(const HeightMapArgs& a) {
+  if (a.height_map.empty() || a.probe) return std::nullopt;
+  try {
+    return heightmap::read_height_map_file(a.height_map);
+  } catch (const heightmap::HeightMapError& e) {
+    throw CommandFailure(kExitUsage, e.what());
+  }
+}
+
+std::string default_map_path(const std::string& dir, const std::string& name) {
+  return (std::filesystem::path(dir) / (name + ".map.json")).string();
+}
+
+std::string map_picture_path(const std::string& map_path) {
+  const std::string json = ".json";
+  if (map_path.size() > json.size() &&
+      map_path.compare(map_path.size() - json.size(), json.size(), json) == 0)
+    return map_path.substr(0, map_path.size() - json.size()) + ".svg";
+  return map_path + ".svg";
+}
+
+// The controller refused the probe (its alarm): send/run's "command refused" (exit 5).
+constexpr int kExitProbeRefusedByController = 5;
+
+heightmap::HeightMap probe_for_job(Sender& sender, const JobPlan& plan, const HeightMapArgs& a,
+                                   double z_up_mm, const std::string& map_path) {
+  const std::optional<heightmap::AreaMm> area = heightmap::cutting_area(plan);
+  if (!area) throw CommandFailure(kExitUsage, "the job cuts nothing: there is nothing to probe");
+  heightmap::ProbeOptions o;
+  o.grid = a.grid;
+  if (a.grid_rows_cols.size() == 2) {
+    o.grid.rows = a.grid_rows_cols[0];
+    o.grid.cols = a.grid_rows_cols[1];
+  }
+  o.twice = a.probe_twice;
+  o.outlier_limit_um = a.outlier_limit_um;
+  o.blank = a.blank;
+  heightmap::ProbeMotion m;
+  m.travel_z_mm = z_up_mm;
+  heightmap::ProbeRun run;
+  try {
+    ProgressMeter bar("probe", "touches", std::cerr, ProgressMeter::for_stderr());
+    run = heightmap::probe_blank(*area, o, heightmap::controller_touch(sender, m),
+                                 [&bar](size_t done, size_t total) { bar.update(done, total); });
+  } catch (const heightmap::GridError& e) {
+    throw CommandFailure(kExitUsage, std::string("probe grid: ") + e.what());
+  } catch (const heightmap::ProbeFailed& e) {
+    throw CommandFailure(kExitProbeRefusedByController, e.what());
+  } catch (const heightmap::ProbeRefused& e) {
+    throw CommandFailure(kExitJobFailed, std::string("probing refused: ") + e.what());
+  } catch (const heightmap::HeightMapError& e) {
+    throw CommandFailure(kExitJobFailed, std::string("probing refused: ") + e.what());
+  }
+  for (const std::string& r : run.reprobed) std::cerr << "engraver: probed again: " << r << "\n";
+  const heightmap::HeightMap& map = run.map;
+  try {
+    heightmap::write_height_map_file(map, map_path);
+    write_height_map_svg(map, std::filesystem::path(map_path).stem().string(),
+                         map_picture_path(map_path));
+  } catch (const std::runtime_error& e) {
+    throw CommandFailure(kExitUsage, e.what());
+  }
+  std::cerr << fmt::format(
+      "engraver: probed {} x {} points ({} touches), heights {:.1f} .. {:.1f} um{}; map {}, "
+      "picture {}\n",
+      map.rows, map.cols, run.touches, map.min_um(), map.max_um(),
+      map.repeatability_um ? fmt::format(", repeatability {:.1f} um", *map.repeatability_um)
+                           : std::string(),
+      map_path, map_picture_path(map_path));
+  return map;
+}
+
+void refuse_job_leaving_map(const JobPlan& plan, const heightmap::HeightMap& map,
+                            const std::string& what) {
+  try {
+    heightmap::refuse_job_outside_map(plan, map, what);
+  } catch (const heightmap::HeightMapError& e) {
+    throw CommandFailure(kExitJobFailed, e.what());
+  }
+}
+
+nlohmann::json depth_report_json(const heightmap::DepthReport& r, bool compensated) {
+  return {{"compensated_with_height_map", compensated},
+          {"isolation_samples", r.samples},
+          {"isolation_length_mm", r.length_mm},
+          {"planned_depth_um", r.planned_depth_um},
+          {"depth_min_um", r.min_depth_um},
+          {"depth_max_um", r.max_depth_um},
+          {"max_depth_error_um", r.max_error_um},
+          {"max_depth_error_at_mm", {r.max_error_at_mm[0], r.max_error_at_mm[1]}},
+          {"rms_depth_error_um", r.rms_error_um},
+          {"planned_groove_width_um", r.planned_width_um},
+          {"groove_width_min_um", r.min_width_um},
+          {"groove_width_max_um", r.max_width_um},
+          {"max_groove_width_error_um", r.max_width_error_um},
+          {"copper_not_cut_through_mm", r.uncut_mm},
+          {"copper_not_cut_through_share", r.uncut_share}};
+}
+
+std::string depth_report_text(const heightmap::DepthReport& r, bool compensated) {
+  return fmt::format(
+      "  depth of cut against the simulated blank ({}): {:.1f} mm of isolation, depth {:.1f} .. "
+      "{:.1f} um (planned {:.1f}); max error {:+.1f} um at ({:.3f}, {:.3f}) mm, RMS {:.1f} um\n"
+      "  V-bit groove width {:.1f} .. {:.1f} um (planned {:.1f}, worst {:+.1f} um); copper not "
+      "cut through along {:.1f} mm ({:.1f} % of the isolation)\n",
+      compensated ? "with the height map" : "no height map", r.length_mm, r.min_depth_um,
+      r.max_depth_um, r.planned_depth_um, r.max_error_um, r.max_error_at_mm[0],
+      r.max_error_at_mm[1], r.rms_error_um, r.min_width_um, r.max_width_um, r.planned_width_um,
+      r.max_width_error_um, r.uncut_mm, 100.0 * r.uncut_share);
+}
+
+}  // namespace host::cli

@@ -1,0 +1,85 @@
+// Height map frames and probe touches through the controller (controller_map.h).
+#include "host/lib/heightmap/controller_map.h"
+
+#include <fmt/format.h>  // fmt::format
+
+#include <cmath>   // std::lround
+#include <memory>  // std::make_shared
+
+#include "firmware/protocol/messages.h"
+#include "host/lib/stream/encode_command.h"
+
+namespace host::heightmap {
+
+namespace {
+
+int32_t um(double mm) {
+  return static_cast<int32_t>(std::lround(mm * 1000.0));
+}
+
+}  // namespace
+
+std::vector<QueuedCommand> height_map_commands(const HeightMap& map) {
+  validate(map, "the height map");
+  std::vector<QueuedCommand> out;
+  proto::HeightMapHeaderCmd header{};
+  header.cols = static_cast<uint8_t>(map.cols);
+  header.rows = static_cast<uint8_t>(map.rows);
+  header.x0_um = um(map.origin_x_mm);
+  header.y0_um = um(map.origin_y_mm);
+  header.pitch_x_um = static_cast<uint16_t>(um(map.pitch_x_mm));
+  header.pitch_y_um = static_cast<uint16_t>(um(map.pitch_y_mm));
+  out.push_back(encode_command(header));
+  const size_t n = map.heights_um.size();
+  for (size_t first = 0; first < n; first += 8) {
+    proto::HeightMapDataCmd data{};
+    data.index = static_cast<uint8_t>(first);
+    data.height_n = static_cast<uint8_t>(std::min<size_t>(8, n - first));
+    for (uint8_t i = 0; i < data.height_n; ++i)
+      data.height_um[i] = static_cast<int32_t>(std::lround(map.heights_um[first + i]));
+    out.push_back(encode_command(data));
+  }
+  return out;
+}
+
+QueuedCommand clear_height_map_command() {
+  return encode_command(proto::HeightMapHeaderCmd{});
+}
+
+ProbeTouch controller_touch(Sender& sender, const ProbeMotion& m) {
+  auto first = std::make_shared<bool>(true);
+  return [&sender, m, first](double x_mm, double y_mm) {
+    std::vector<QueuedCommand> c;
+    const uint16_t rapid_z = 65535;  // Z moves at the machine's rapid rate (capped there)
+    if (*first) c.push_back(encode_command(proto::ZMoveCmd{um(m.travel_z_mm), rapid_z}));
+    *first = false;
+    c.push_back(encode_command(proto::ZMoveCmd{um(m.start_z_mm), rapid_z}));
+    c.push_back(encode_command(proto::RapidMoveCmd{um(x_mm), um(y_mm)}));
+    proto::ProbeCmd probe{};
+    probe.z_limit_um = um(m.limit_z_mm);
+    probe.feed_um_per_s = static_cast<uint16_t>(um(m.feed_mm_s));
+    probe.retract_um = static_cast<uint16_t>(um(m.retract_mm));
+    c.push_back(encode_command(probe));
+    const uint16_t before = sender.read_probe_result().probe_count;
+    const JobOutcome outcome = sender.run(c, [](const Progress&) {});
+    if (outcome != JobOutcome::kCompleted)
+      throw ProbeFailed(fmt::format("probing at ({:.3f}, {:.3f}) mm: {}: {}", x_mm, y_mm,
+                                    outcome_name(outcome), sender.message()));
+    // The touch is done when the controller counts it (its queue may still be moving).
+    sender.read_status_at_rest(std::chrono::seconds(60));
+    const proto::ProbeResultReply r = sender.read_probe_result();
+    if (r.probe_count == before)
+      throw ProbeFailed(
+          fmt::format("probing at ({:.3f}, {:.3f}) mm: the controller counted no "
+                      "probe",
+                      x_mm, y_mm));
+    if (r.result != 1)
+      throw ProbeFailed(
+          fmt::format("probing at ({:.3f}, {:.3f}) mm: no contact down to Z {:.3f} "
+                      "mm (is the probe clip on the blank?)",
+                      x_mm, y_mm, r.z_um / 1000.0));
+    return static_cast<double>(r.z_um);
+  };
+}
+
+}  // namespace host::heightmap

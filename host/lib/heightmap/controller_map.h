@@ -1,0 +1,40 @@
+// The height map and the probe through the controller's messages (docs/protocol.md): the
+// map as #A/#E frames sent before a job, and one probe touch as #Z/#F/#Y then #T.
+#ifndef HOST_LIB_HEIGHTMAP_CONTROLLER_MAP_H
+#define HOST_LIB_HEIGHTMAP_CONTROLLER_MAP_H
+
+#include <vector>  // std::vector
+
+#include "host/lib/heightmap/height_map.h"
+#include "host/lib/heightmap/probe_session.h"  // ProbeTouch
+#include "host/lib/stream/job_encoder.h"       // QueuedCommand
+#include "host/lib/stream/sender.h"
+
+namespace host::heightmap {
+
+// The map as the controller takes it: one #A header, then the heights (um, rounded) row by
+// row, 8 to a #E frame. The map must be valid (validate()).
+std::vector<QueuedCommand> height_map_commands(const HeightMap& map);
+// The #A that clears the controller's map (compensation off).
+QueuedCommand clear_height_map_command();
+
+// How the tool probes (machine Z, mm; Z 0 is the copper at the zero corner).
+struct ProbeMotion {
+  double travel_z_mm = 2.0;  // height of the first travel (from wherever the tool stands)
+  double start_z_mm = 1.0;   // the probe starts down from here at each point
+  double limit_z_mm = -1.0;  // no contact by here: refused (the controller's alarm)
+  double feed_mm_s = 1.0;    // down, a micrometre a millisecond: the contact within 1 um
+  double retract_mm = 0.5;   // above the contact after it
+};
+
+// A probe touch through the sender: travel to (x, y) at start_z, #Y, then the result from
+// #T. Throws ProbeFailed with the controller's word (no contact, spindle on, probe closed).
+class ProbeFailed : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+ProbeTouch controller_touch(Sender& sender, const ProbeMotion& motion);
+
+}  // namespace host::heightmap
+
+#endif  // HOST_LIB_HEIGHTMAP_CONTROLLER_MAP_H
