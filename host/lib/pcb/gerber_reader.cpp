@@ -26,6 +26,9 @@ namespace {
 const double kPi = 3.14159265358979323846;
 const double kMaxCoordNm = 1e10;    // 10 m: anything beyond is a broken file
 const double kMaxApertureNm = 1e9;  // 1 m
+// Start and end radii further apart than this make an arc ill-defined: drawn as both we and
+// gerbv read it (closer, the two readings differ by less than the flattening of curves).
+const double kIllDefinedArcNm = 1000;
 const long kMaxStepRepeatCopies = 10000;
 
 struct Batch {
@@ -140,6 +143,7 @@ class GerberReader {
   void count_vertices(size_t n);
   void add_centre_line(IntPoint from, const Path& points);
   void finish_contour();
+  Paths both_readings(const Paths& ours, const Paths& theirs) const;
   void set_units(double unit_nm, const char* how);
 
   const std::string& text_;
@@ -169,6 +173,7 @@ class GerberReader {
   bool dark_ = true;
   bool region_ = false;
   Path contour_;
+  Path contour_as_gerbv_;  // the same region as gerbv draws it, once an ill-defined arc is in it
   bool done_ = false;
 
   // What has been drawn.
@@ -176,7 +181,9 @@ class GerberReader {
   size_t vertices_ = 0;        // in batches_ and strokes_
   size_t reclipped_ = 0;       // copper vertices clipped again by later batches
   std::vector<Path> strokes_;  // centre lines (outline layers)
-  bool stroke_open_ = false;   // the last stroke continues at at_
+  int ill_defined_arcs_ = 0;   // arcs whose start and end radii differ by > kIllDefinedArcNm
+  double ill_defined_max_nm_ = 0;
+  bool stroke_open_ = false;  // the last stroke continues at at_
 
   // Step and repeat.
   bool in_sr_ = false;
@@ -288,6 +295,15 @@ PcbLayer GerberReader::read() {
   }
   if (offset_x_ != 0 || offset_y_ != 0) translate_paths(layer.polygons_nm, offset_x_, offset_y_);
   transform_image(layer.polygons_nm);
+  if (ill_defined_arcs_ > 0) {
+    char msg[240];
+    std::snprintf(msg, sizeof msg,
+                  "warning: %d arcs whose end is not on their circle (start and end radii differ "
+                  "by up to %.1f um): copper is where either reading puts it (through both end "
+                  "points, and at the start radius as gerbv draws them)",
+                  ill_defined_arcs_, ill_defined_max_nm_ * 1e-3);
+    layer.notes.push_back(msg);
+  }
   for (const Note& nt : notes_) {
     std::string s = "line " + std::to_string(nt.first_line) + ": " + nt.text;
     if (nt.count > 1) s += " (" + std::to_string(nt.count) + " times)";
@@ -958,6 +974,7 @@ void GerberReader::word_block(const std::string& raw) {
           if (region_) fail("G36 inside a region (missing G37)");
           region_ = true;
           contour_.clear();
+          contour_as_gerbv_.clear();
         } else if (g == 37) {
           if (!region_) fail("G37 without G36");
           finish_contour();
@@ -1138,6 +1155,7 @@ void GerberReader::operate(int d, const std::string* xs, const std::string* ys,
       if (region_) {
         if (contour_.empty()) contour_.push_back(from);
         contour_.push_back(to);
+        if (!contour_as_gerbv_.empty()) contour_as_gerbv_.push_back(to);
       } else {
         draw_line(from, to);
       }
@@ -1272,26 +1290,42 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
     note(
         "warning: an arc whose centre is its own start or end point (zero radius) drawn as "
         "a straight line");
-  } else if (std::fabs(r0 - r1) > std::max(10000.0, 0.5 * std::max(r0, r1))) {
-    char msg[160];
+  } else if (std::fabs(r0 - r1) > opt_.max_arc_radius_mismatch_nm) {
+    char msg[200];
     std::snprintf(msg, sizeof msg,
                   "arc end point is not on its circle (radius %.3f mm at the start, %.3f mm at "
-                  "the end)",
-                  r0 * 1e-6, r1 * 1e-6);
+                  "the end; more than %.3f mm apart is not an arc a reader can trust)",
+                  r0 * 1e-6, r1 * 1e-6, opt_.max_arc_radius_mismatch_nm * 1e-6);
     fail(msg);
   }
-  if (!degenerate && std::fabs(r0 - r1) > std::max(10000.0, 0.01 * r0)) {
-    note("an arc whose end is not on its circle (radii differ by more than 10 um)");
+  // An ill-defined arc (its centre rounded, as 3-decimal inch I/J are): we draw it through
+  // both end points, gerbv keeps the start radius up to the end angle. Copper is where
+  // either reading puts it, so no tool cuts where a common viewer shows copper.
+  const double mismatch_nm = degenerate ? 0 : std::fabs(r0 - r1);
+  const bool ill_defined = mismatch_nm > kIllDefinedArcNm;
+  if (ill_defined) {
+    ++ill_defined_arcs_;
+    ill_defined_max_nm_ = std::max(ill_defined_max_nm_, mismatch_nm);
   }
-  Path pts;
+  Path pts, at_start_radius;
+  const double a0 = std::atan2(a.y - c.y, a.x - c.x);
   if (degenerate) {
     if (from != to) pts.push_back(to);
   } else if (from != to || sweep != 0) {
-    append_arc(pts, c, r0, r1, std::atan2(a.y - c.y, a.x - c.x), sweep, opt_.arc_tolerance_nm);
+    append_arc(pts, c, r0, r1, a0, sweep, opt_.arc_tolerance_nm);
     if (!pts.empty()) pts.back() = to;
+    if (ill_defined) append_arc(at_start_radius, c, r0, r0, a0, sweep, opt_.arc_tolerance_nm);
   }
   if (region) {
     if (contour_.empty()) contour_.push_back(from);
+    // gerbv's contour: a line to the arc's start, the arc at the start radius, and the next
+    // segment from where that arc ends.
+    if (ill_defined && contour_as_gerbv_.empty()) contour_as_gerbv_ = contour_;
+    if (!contour_as_gerbv_.empty()) {
+      if (contour_as_gerbv_.back() != from) contour_as_gerbv_.push_back(from);
+      const Path& theirs = ill_defined ? at_start_radius : pts;
+      contour_as_gerbv_.insert(contour_as_gerbv_.end(), theirs.begin(), theirs.end());
+    }
     contour_.insert(contour_.end(), pts.begin(), pts.end());
     return;
   }
@@ -1308,7 +1342,20 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
   off.AddPath(line, ClipperLib::jtRound, ClipperLib::etOpenRound);
   Paths out;
   off.Execute(out, ap.circle_d_nm / 2);
+  if (ill_defined) {
+    Path theirs{from};
+    theirs.insert(theirs.end(), at_start_radius.begin(), at_start_radius.end());
+    out = both_readings(out, sweep_open({theirs}, ap.circle_d_nm / 2, opt_.arc_tolerance_nm));
+  }
   add_object(std::move(out));
+}
+
+Paths GerberReader::both_readings(const Paths& ours, const Paths& theirs) const {
+  // Dark: copper under either reading. Clear: only what both readings clear.
+  if (!dark_) return intersection_of(ours, theirs);
+  Paths both = ours;
+  both.insert(both.end(), theirs.begin(), theirs.end());
+  return union_of(both);
 }
 
 void GerberReader::finish_contour() {
@@ -1326,8 +1373,15 @@ void GerberReader::finish_contour() {
   strokes_.push_back(stroke);
   stroke_open_ = false;
   if (c.front() == c.back()) c.pop_back();
+  Path theirs;
+  theirs.swap(contour_as_gerbv_);
   if (c.size() < 3) return;
   make_positive(c);
+  if (theirs.size() >= 3) {
+    make_positive(theirs);
+    add_object(both_readings({c}, {theirs}));
+    return;
+  }
   add_object({c});
 }
 
