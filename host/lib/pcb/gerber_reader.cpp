@@ -141,7 +141,7 @@ class GerberReader {
   const Aperture& current_aperture() const;
   void add_object(Paths paths);
   void count_vertices(size_t n);
-  void add_centre_line(IntPoint from, const Path& points);
+  void add_centre_line(IntPoint from, const Path& points, double width_nm);
   void finish_contour();
   Paths both_readings(const Paths& ours, const Paths& theirs) const;
   void set_units(double unit_nm, const char* how);
@@ -178,10 +178,11 @@ class GerberReader {
 
   // What has been drawn.
   std::vector<Batch> batches_;
-  size_t vertices_ = 0;        // in batches_ and strokes_
-  size_t reclipped_ = 0;       // copper vertices clipped again by later batches
-  std::vector<Path> strokes_;  // centre lines (outline layers)
-  int ill_defined_arcs_ = 0;   // arcs whose start and end radii differ by > kIllDefinedArcNm
+  size_t vertices_ = 0;                   // in batches_ and strokes_
+  size_t reclipped_ = 0;                  // copper vertices clipped again by later batches
+  std::vector<Path> strokes_;             // centre lines (outline layers)
+  std::vector<double> stroke_widths_nm_;  // the aperture's width drawing each one
+  int ill_defined_arcs_ = 0;  // arcs whose start and end radii differ by > kIllDefinedArcNm
   double ill_defined_max_nm_ = 0;
   bool stroke_open_ = false;  // the last stroke continues at at_
 
@@ -288,7 +289,17 @@ PcbLayer GerberReader::read() {
     if (layer.kind == LayerKind::kUnknown) layer.kind = opt_.kind_if_unknown;
   }
   if (layer.kind == LayerKind::kOutline) {
-    layer.polygons_nm = join_strokes(strokes_, opt_.arc_tolerance_nm * 4 + 2000);
+    // Strokes of one width joined end to end; the width stays with each, so loops can be
+    // closed as the drawn strokes close them.
+    std::map<double, std::vector<Path>> by_width;
+    for (size_t k = 0; k < strokes_.size(); ++k)
+      by_width[stroke_widths_nm_[k]].push_back(strokes_[k]);
+    for (const auto& [width, strokes] : by_width) {
+      for (Path& p : join_strokes(strokes, opt_.arc_tolerance_nm * 4 + 2000)) {
+        layer.polygons_nm.push_back(std::move(p));
+        layer.outline_widths_nm.push_back(static_cast<cInt>(width));
+      }
+    }
     layer.outline_paths_are_open = true;
   } else {
     layer.polygons_nm = evaluate(batches_);
@@ -811,6 +822,9 @@ void GerberReader::close_step_repeat() {
   std::vector<Path> block_strokes(strokes_.begin() + static_cast<long>(sr_stroke_start_),
                                   strokes_.end());
   strokes_.resize(sr_stroke_start_);
+  std::vector<double> block_widths(stroke_widths_nm_.begin() + static_cast<long>(sr_stroke_start_),
+                                   stroke_widths_nm_.end());
+  stroke_widths_nm_.resize(sr_stroke_start_);
   if (copies_stand_alone(block)) {
     // Each copy's clear objects can only clear its own dark ones: evaluate the block once
     // and add the copies as dark objects (the polarity changes are not repeated per copy).
@@ -838,9 +852,11 @@ void GerberReader::close_step_repeat() {
         Paths copy(block_strokes.begin(), block_strokes.end());
         translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
         strokes_.insert(strokes_.end(), copy.begin(), copy.end());
+        stroke_widths_nm_.insert(stroke_widths_nm_.end(), block_widths.begin(), block_widths.end());
       }
     }
     block_strokes.clear();
+    block_widths.clear();
   }
   for (long iy = 0; iy < sr_y_; ++iy) {
     for (long ix = 0; ix < sr_x_; ++ix) {
@@ -863,6 +879,7 @@ void GerberReader::close_step_repeat() {
       }
       translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
       strokes_.insert(strokes_.end(), copy.begin(), copy.end());
+      stroke_widths_nm_.insert(stroke_widths_nm_.end(), block_widths.begin(), block_widths.end());
     }
   }
   stroke_open_ = false;
@@ -1121,9 +1138,11 @@ void GerberReader::add_object(Paths paths) {
   }
 }
 
-void GerberReader::add_centre_line(IntPoint from, const Path& points) {
-  if (!stroke_open_ || strokes_.empty() || strokes_.back().back() != from) {
+void GerberReader::add_centre_line(IntPoint from, const Path& points, double width_nm) {
+  if (!stroke_open_ || strokes_.empty() || strokes_.back().back() != from ||
+      stroke_widths_nm_.back() != width_nm) {
     strokes_.push_back({from});
+    stroke_widths_nm_.push_back(width_nm);
   }
   Path& s = strokes_.back();
   s.insert(s.end(), points.begin(), points.end());
@@ -1193,11 +1212,20 @@ void GerberReader::flash(IntPoint at) {
   add_object(std::move(copy));
 }
 
+// The width a stroke draws: the circle's diameter, the smaller side of a rectangle or obround.
+double stroke_width_nm(const Aperture& ap) {
+  if (ap.type == 'C') return ap.circle_d_nm;
+  if (ap.shape.empty() || ap.type == 'B') return 0;
+  BoxNm b;
+  for (const Path& p : ap.shape) b.add(p);
+  return static_cast<double>(std::min(b.max_x - b.min_x, b.max_y - b.min_y));
+}
+
 void GerberReader::draw_line(IntPoint from, IntPoint to) {
   const Aperture& ap = current_aperture();
   if (ap.type == 'B')
     fail("block aperture D" + std::to_string(aperture_) + " can only be flashed (D03)");
-  add_centre_line(from, {to});
+  add_centre_line(from, {to}, stroke_width_nm(ap));
   if (ap.shape.empty()) return;  // zero-size aperture: a line of no width
   const VecNm a{static_cast<double>(from.X), static_cast<double>(from.Y)};
   const VecNm b{static_cast<double>(to.X), static_cast<double>(to.Y)};
@@ -1333,7 +1361,7 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
   if (ap.type != 'C') {
     fail("an arc drawn with a non-circular aperture D" + std::to_string(aperture_));
   }
-  add_centre_line(from, pts);
+  add_centre_line(from, pts, ap.circle_d_nm);
   if (ap.circle_d_nm <= 0) return;
   Path line{from};
   line.insert(line.end(), pts.begin(), pts.end());
@@ -1371,6 +1399,7 @@ void GerberReader::finish_contour() {
   if (stroke.front() != stroke.back()) stroke.push_back(stroke.front());
   count_vertices(stroke.size());
   strokes_.push_back(stroke);
+  stroke_widths_nm_.push_back(0);
   stroke_open_ = false;
   if (c.front() == c.back()) c.pop_back();
   Path theirs;
