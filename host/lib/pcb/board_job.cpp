@@ -419,6 +419,7 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
   CutoutPlan cp;
   if (layers.outline) {
     cp = plan_cutout(*layers.outline, o.cutout);
+    rep.notes.insert(rep.notes.end(), cp.notes.begin(), cp.notes.end());
     rep.tabs = cp.tabs;
     FitOptions fo;
     fo.tolerance_mm = o.fit_tolerance_mm;

@@ -4,6 +4,8 @@
 #include <algorithm>  // std::reverse
 #include <cmath>      // std::fabs
 #include <sstream>    // std::ostringstream
+#include <string>     // std::string
+#include <utility>    // std::pair
 
 #include "host/lib/pcb/pcb_geometry.h"
 
@@ -47,21 +49,11 @@ std::vector<CutoutPiece> split_at(const std::vector<Point2>& pts, const std::vec
 
 }  // namespace
 
-Paths outline_loops(const PcbLayer& outline, double join_tolerance_mm) {
-  if (!outline.outline_paths_are_open) return outline.polygons_nm;
-  const double tol_nm = join_tolerance_mm * kNmPerMm;
-  std::vector<Path> open;
-  Paths loops;
-  for (const Path& p : outline.polygons_nm) {
-    if (p.size() < 2) continue;
-    if (p.size() > 2 && dist_nm(p.front(), p.back()) <= tol_nm) {
-      loops.push_back(p);
-      loops.back().pop_back();
-    } else {
-      open.push_back(p);
-    }
-  }
-  // Chain strokes: extend the current chain by any stroke starting or ending at its end.
+namespace {
+
+// Where the centre lines, chained end to end within `tol_nm`, leave a chain open (for the
+// refusal's message); false when every chain closes.
+bool open_chain_end(const std::vector<Path>& open, double tol_nm, IntPoint& end) {
   std::vector<bool> used(open.size(), false);
   for (size_t s = 0; s < open.size(); ++s) {
     if (used[s]) continue;
@@ -81,27 +73,114 @@ Paths outline_loops(const PcbLayer& outline, double join_tolerance_mm) {
       }
     }
     if (dist_nm(chain.front(), chain.back()) > tol_nm) {
-      std::ostringstream e;
-      e << outline.path << ": the board outline does not close: a stroke chain ends at ("
-        << to_mm(chain.back()).x() << ", " << to_mm(chain.back()).y()
-        << ") mm, nothing continues it within " << join_tolerance_mm << " mm";
-      throw CutoutError(e.str());
+      end = chain.back();
+      return true;
     }
-    chain.pop_back();
-    loops.push_back(chain);
+  }
+  return false;
+}
+
+// A face of the plane the strokes enclose, grown back by the stroke radius to the strokes'
+// centre lines; positive for board, negative for a cut-out.
+void add_face(const Path& hole, double radius_nm, bool board, Paths& loops) {
+  Path face = hole;
+  if (!ClipperLib::Orientation(face)) ClipperLib::ReversePath(face);
+  ClipperLib::ClipperOffset off(1000.0);  // keep every corner the centre lines have
+  off.AddPath(face, ClipperLib::jtMiter, ClipperLib::etClosedPolygon);
+  Paths grown;
+  off.Execute(grown, radius_nm);
+  for (Path& p : grown) {
+    if (ClipperLib::Orientation(p) != board) ClipperLib::ReversePath(p);
+    loops.push_back(std::move(p));
+  }
+}
+
+std::string mm_point(const IntPoint& p) {
+  std::ostringstream o;
+  o << "(" << to_mm(p).x() << ", " << to_mm(p).y() << ") mm";
+  return o.str();
+}
+
+}  // namespace
+
+Paths outline_loops(const PcbLayer& outline, double join_tolerance_mm,
+                    std::vector<std::string>* notes) {
+  if (!outline.outline_paths_are_open) {
+    Paths even_odd;
+    ClipperLib::Clipper c;
+    c.AddPaths(outline.polygons_nm, ClipperLib::ptSubject, true);
+    c.Execute(ClipperLib::ctUnion, even_odd, ClipperLib::pftEvenOdd, ClipperLib::pftEvenOdd);
+    return even_odd;
+  }
+  // The strokes as drawn, unioned: duplicates, overlaps and T-junctions merge, and ends
+  // closer than the stroke width meet (as in gerbv's picture). The chaining tolerance is the
+  // widest stroke (at least join_tolerance_mm); the faces the strokes enclose, grown back by
+  // half of it, are the loops.
+  double width_nm = join_tolerance_mm * kNmPerMm;
+  for (ClipperLib::cInt w : outline.outline_widths_nm) width_nm = std::max(width_nm, double(w));
+  const double radius_nm = width_nm / 2 + 1000;  // 1 um more: ends exactly a width apart meet
+  std::vector<Path> strokes;
+  Paths open_strokes, closed_strokes;
+  for (const Path& p : outline.polygons_nm) {
+    if (p.size() < 2) continue;
+    strokes.push_back(p);
+    (p.size() > 2 && p.front() == p.back() ? closed_strokes : open_strokes).push_back(p);
+  }
+  ClipperLib::ClipperOffset sweep(2.0, 0.25 * 1000);
+  sweep.AddPaths(open_strokes, ClipperLib::jtRound, ClipperLib::etOpenRound);
+  sweep.AddPaths(closed_strokes, ClipperLib::jtRound, ClipperLib::etClosedLine);
+  ClipperLib::PolyTree drawn;
+  sweep.Execute(drawn, radius_nm);
+
+  Paths loops;
+  int stray = 0;
+  IntPoint first_stray;
+  // Depth 0: the outside of a group of strokes; 1: a face inside it (board); 2: strokes
+  // inside that face; 3: a face inside those (a cut-out); and so on.
+  std::vector<std::pair<const ClipperLib::PolyNode*, int>> todo;
+  for (const ClipperLib::PolyNode* n : drawn.Childs) todo.push_back({n, 0});
+  while (!todo.empty()) {
+    const auto [node, depth] = todo.back();
+    todo.pop_back();
+    if (node->IsHole()) {
+      add_face(node->Contour, radius_nm, (depth / 2) % 2 == 0, loops);
+    } else if (node->Childs.empty()) {
+      if (stray++ == 0) first_stray = node->Contour.front();
+    }
+    for (const ClipperLib::PolyNode* c : node->Childs) todo.push_back({c, depth + 1});
+  }
+  const double tol_mm = 2 * radius_nm / kNmPerMm;
+  if (loops.empty()) {
+    std::ostringstream e;
+    e << outline.path << ": the board outline does not close";
+    IntPoint end;
+    if (open_chain_end(strokes, 2 * radius_nm, end)) {
+      e << ": a stroke chain ends at (" << to_mm(end).x() << ", " << to_mm(end).y()
+        << ") mm, nothing continues it within " << tol_mm << " mm";
+    } else {
+      e << ": its strokes enclose no area";
+    }
+    throw CutoutError(e.str());
+  }
+  if (stray > 0 && notes) {
+    std::ostringstream n;
+    n << outline.path << ": warning: " << stray
+      << " group(s) of outline strokes enclose nothing (first near " << mm_point(first_stray)
+      << "): left out of the cut-out";
+    notes->push_back(n.str());
   }
   return loops;
 }
 
 CutoutPlan plan_cutout(const PcbLayer& outline, const CutoutOptions& o) {
   if (!(o.cutter_diameter_mm > 0)) throw CutoutError("the cutter diameter must be positive");
-  const Paths loops = outline_loops(outline, o.join_tolerance_mm);
-  if (loops.empty()) throw CutoutError(outline.path + ": the outline layer has no closed loop");
   CutoutPlan plan;
-  // Even-odd: the outermost loop is the board, a loop inside it a cut-out, and so on.
+  const Paths loops = outline_loops(outline, o.join_tolerance_mm, &plan.notes);
+  if (loops.empty()) throw CutoutError(outline.path + ": the outline layer has no closed loop");
+  // Boards positive, cut-outs negative: faces side by side (a T-junction) make one board.
   ClipperLib::Clipper c;
   c.AddPaths(loops, ClipperLib::ptSubject, true);
-  c.Execute(ClipperLib::ctUnion, plan.board_nm, ClipperLib::pftEvenOdd, ClipperLib::pftEvenOdd);
+  c.Execute(ClipperLib::ctUnion, plan.board_nm, ClipperLib::pftPositive, ClipperLib::pftPositive);
   plan.board_area_mm2 = signed_area(plan.board_nm) / (kNmPerMm * kNmPerMm);
   const Paths cutter = offset_closed(plan.board_nm, o.cutter_diameter_mm * kNmPerMm / 2,
                                      o.arc_tolerance_mm * kNmPerMm);

@@ -26,6 +26,9 @@ namespace {
 const double kPi = 3.14159265358979323846;
 const double kMaxCoordNm = 1e10;    // 10 m: anything beyond is a broken file
 const double kMaxApertureNm = 1e9;  // 1 m
+// Start and end radii further apart than this make an arc ill-defined: drawn as both we and
+// gerbv read it (closer, the two readings differ by less than the flattening of curves).
+const double kIllDefinedArcNm = 1000;
 const long kMaxStepRepeatCopies = 10000;
 
 struct Batch {
@@ -138,8 +141,9 @@ class GerberReader {
   const Aperture& current_aperture() const;
   void add_object(Paths paths);
   void count_vertices(size_t n);
-  void add_centre_line(IntPoint from, const Path& points);
+  void add_centre_line(IntPoint from, const Path& points, double width_nm);
   void finish_contour();
+  Paths both_readings(const Paths& ours, const Paths& theirs) const;
   void set_units(double unit_nm, const char* how);
 
   const std::string& text_;
@@ -169,14 +173,18 @@ class GerberReader {
   bool dark_ = true;
   bool region_ = false;
   Path contour_;
+  Path contour_as_gerbv_;  // the same region as gerbv draws it, once an ill-defined arc is in it
   bool done_ = false;
 
   // What has been drawn.
   std::vector<Batch> batches_;
-  size_t vertices_ = 0;        // in batches_ and strokes_
-  size_t reclipped_ = 0;       // copper vertices clipped again by later batches
-  std::vector<Path> strokes_;  // centre lines (outline layers)
-  bool stroke_open_ = false;   // the last stroke continues at at_
+  size_t vertices_ = 0;                   // in batches_ and strokes_
+  size_t reclipped_ = 0;                  // copper vertices clipped again by later batches
+  std::vector<Path> strokes_;             // centre lines (outline layers)
+  std::vector<double> stroke_widths_nm_;  // the aperture's width drawing each one
+  int ill_defined_arcs_ = 0;  // arcs whose start and end radii differ by > kIllDefinedArcNm
+  double ill_defined_max_nm_ = 0;
+  bool stroke_open_ = false;  // the last stroke continues at at_
 
   // Step and repeat.
   bool in_sr_ = false;
@@ -281,13 +289,32 @@ PcbLayer GerberReader::read() {
     if (layer.kind == LayerKind::kUnknown) layer.kind = opt_.kind_if_unknown;
   }
   if (layer.kind == LayerKind::kOutline) {
-    layer.polygons_nm = join_strokes(strokes_, opt_.arc_tolerance_nm * 4 + 2000);
+    // Strokes of one width joined end to end; the width stays with each, so loops can be
+    // closed as the drawn strokes close them.
+    std::map<double, std::vector<Path>> by_width;
+    for (size_t k = 0; k < strokes_.size(); ++k)
+      by_width[stroke_widths_nm_[k]].push_back(strokes_[k]);
+    for (const auto& [width, strokes] : by_width) {
+      for (Path& p : join_strokes(strokes, opt_.arc_tolerance_nm * 4 + 2000)) {
+        layer.polygons_nm.push_back(std::move(p));
+        layer.outline_widths_nm.push_back(static_cast<cInt>(width));
+      }
+    }
     layer.outline_paths_are_open = true;
   } else {
     layer.polygons_nm = evaluate(batches_);
   }
   if (offset_x_ != 0 || offset_y_ != 0) translate_paths(layer.polygons_nm, offset_x_, offset_y_);
   transform_image(layer.polygons_nm);
+  if (ill_defined_arcs_ > 0) {
+    char msg[240];
+    std::snprintf(msg, sizeof msg,
+                  "warning: %d arcs whose end is not on their circle (start and end radii differ "
+                  "by up to %.1f um): copper is where either reading puts it (through both end "
+                  "points, and at the start radius as gerbv draws them)",
+                  ill_defined_arcs_, ill_defined_max_nm_ * 1e-3);
+    layer.notes.push_back(msg);
+  }
   for (const Note& nt : notes_) {
     std::string s = "line " + std::to_string(nt.first_line) + ": " + nt.text;
     if (nt.count > 1) s += " (" + std::to_string(nt.count) + " times)";
@@ -795,6 +822,9 @@ void GerberReader::close_step_repeat() {
   std::vector<Path> block_strokes(strokes_.begin() + static_cast<long>(sr_stroke_start_),
                                   strokes_.end());
   strokes_.resize(sr_stroke_start_);
+  std::vector<double> block_widths(stroke_widths_nm_.begin() + static_cast<long>(sr_stroke_start_),
+                                   stroke_widths_nm_.end());
+  stroke_widths_nm_.resize(sr_stroke_start_);
   if (copies_stand_alone(block)) {
     // Each copy's clear objects can only clear its own dark ones: evaluate the block once
     // and add the copies as dark objects (the polarity changes are not repeated per copy).
@@ -822,9 +852,11 @@ void GerberReader::close_step_repeat() {
         Paths copy(block_strokes.begin(), block_strokes.end());
         translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
         strokes_.insert(strokes_.end(), copy.begin(), copy.end());
+        stroke_widths_nm_.insert(stroke_widths_nm_.end(), block_widths.begin(), block_widths.end());
       }
     }
     block_strokes.clear();
+    block_widths.clear();
   }
   for (long iy = 0; iy < sr_y_; ++iy) {
     for (long ix = 0; ix < sr_x_; ++ix) {
@@ -847,6 +879,7 @@ void GerberReader::close_step_repeat() {
       }
       translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
       strokes_.insert(strokes_.end(), copy.begin(), copy.end());
+      stroke_widths_nm_.insert(stroke_widths_nm_.end(), block_widths.begin(), block_widths.end());
     }
   }
   stroke_open_ = false;
@@ -958,6 +991,7 @@ void GerberReader::word_block(const std::string& raw) {
           if (region_) fail("G36 inside a region (missing G37)");
           region_ = true;
           contour_.clear();
+          contour_as_gerbv_.clear();
         } else if (g == 37) {
           if (!region_) fail("G37 without G36");
           finish_contour();
@@ -1104,9 +1138,11 @@ void GerberReader::add_object(Paths paths) {
   }
 }
 
-void GerberReader::add_centre_line(IntPoint from, const Path& points) {
-  if (!stroke_open_ || strokes_.empty() || strokes_.back().back() != from) {
+void GerberReader::add_centre_line(IntPoint from, const Path& points, double width_nm) {
+  if (!stroke_open_ || strokes_.empty() || strokes_.back().back() != from ||
+      stroke_widths_nm_.back() != width_nm) {
     strokes_.push_back({from});
+    stroke_widths_nm_.push_back(width_nm);
   }
   Path& s = strokes_.back();
   s.insert(s.end(), points.begin(), points.end());
@@ -1138,6 +1174,7 @@ void GerberReader::operate(int d, const std::string* xs, const std::string* ys,
       if (region_) {
         if (contour_.empty()) contour_.push_back(from);
         contour_.push_back(to);
+        if (!contour_as_gerbv_.empty()) contour_as_gerbv_.push_back(to);
       } else {
         draw_line(from, to);
       }
@@ -1175,11 +1212,20 @@ void GerberReader::flash(IntPoint at) {
   add_object(std::move(copy));
 }
 
+// The width a stroke draws: the circle's diameter, the smaller side of a rectangle or obround.
+double stroke_width_nm(const Aperture& ap) {
+  if (ap.type == 'C') return ap.circle_d_nm;
+  if (ap.shape.empty() || ap.type == 'B') return 0;
+  BoxNm b;
+  for (const Path& p : ap.shape) b.add(p);
+  return static_cast<double>(std::min(b.max_x - b.min_x, b.max_y - b.min_y));
+}
+
 void GerberReader::draw_line(IntPoint from, IntPoint to) {
   const Aperture& ap = current_aperture();
   if (ap.type == 'B')
     fail("block aperture D" + std::to_string(aperture_) + " can only be flashed (D03)");
-  add_centre_line(from, {to});
+  add_centre_line(from, {to}, stroke_width_nm(ap));
   if (ap.shape.empty()) return;  // zero-size aperture: a line of no width
   const VecNm a{static_cast<double>(from.X), static_cast<double>(from.Y)};
   const VecNm b{static_cast<double>(to.X), static_cast<double>(to.Y)};
@@ -1272,26 +1318,42 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
     note(
         "warning: an arc whose centre is its own start or end point (zero radius) drawn as "
         "a straight line");
-  } else if (std::fabs(r0 - r1) > std::max(10000.0, 0.5 * std::max(r0, r1))) {
-    char msg[160];
+  } else if (std::fabs(r0 - r1) > opt_.max_arc_radius_mismatch_nm) {
+    char msg[200];
     std::snprintf(msg, sizeof msg,
                   "arc end point is not on its circle (radius %.3f mm at the start, %.3f mm at "
-                  "the end)",
-                  r0 * 1e-6, r1 * 1e-6);
+                  "the end; more than %.3f mm apart is not an arc a reader can trust)",
+                  r0 * 1e-6, r1 * 1e-6, opt_.max_arc_radius_mismatch_nm * 1e-6);
     fail(msg);
   }
-  if (!degenerate && std::fabs(r0 - r1) > std::max(10000.0, 0.01 * r0)) {
-    note("an arc whose end is not on its circle (radii differ by more than 10 um)");
+  // An ill-defined arc (its centre rounded, as 3-decimal inch I/J are): we draw it through
+  // both end points, gerbv keeps the start radius up to the end angle. Copper is where
+  // either reading puts it, so no tool cuts where a common viewer shows copper.
+  const double mismatch_nm = degenerate ? 0 : std::fabs(r0 - r1);
+  const bool ill_defined = mismatch_nm > kIllDefinedArcNm;
+  if (ill_defined) {
+    ++ill_defined_arcs_;
+    ill_defined_max_nm_ = std::max(ill_defined_max_nm_, mismatch_nm);
   }
-  Path pts;
+  Path pts, at_start_radius;
+  const double a0 = std::atan2(a.y - c.y, a.x - c.x);
   if (degenerate) {
     if (from != to) pts.push_back(to);
   } else if (from != to || sweep != 0) {
-    append_arc(pts, c, r0, r1, std::atan2(a.y - c.y, a.x - c.x), sweep, opt_.arc_tolerance_nm);
+    append_arc(pts, c, r0, r1, a0, sweep, opt_.arc_tolerance_nm);
     if (!pts.empty()) pts.back() = to;
+    if (ill_defined) append_arc(at_start_radius, c, r0, r0, a0, sweep, opt_.arc_tolerance_nm);
   }
   if (region) {
     if (contour_.empty()) contour_.push_back(from);
+    // gerbv's contour: a line to the arc's start, the arc at the start radius, and the next
+    // segment from where that arc ends.
+    if (ill_defined && contour_as_gerbv_.empty()) contour_as_gerbv_ = contour_;
+    if (!contour_as_gerbv_.empty()) {
+      if (contour_as_gerbv_.back() != from) contour_as_gerbv_.push_back(from);
+      const Path& theirs = ill_defined ? at_start_radius : pts;
+      contour_as_gerbv_.insert(contour_as_gerbv_.end(), theirs.begin(), theirs.end());
+    }
     contour_.insert(contour_.end(), pts.begin(), pts.end());
     return;
   }
@@ -1299,7 +1361,7 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
   if (ap.type != 'C') {
     fail("an arc drawn with a non-circular aperture D" + std::to_string(aperture_));
   }
-  add_centre_line(from, pts);
+  add_centre_line(from, pts, ap.circle_d_nm);
   if (ap.circle_d_nm <= 0) return;
   Path line{from};
   line.insert(line.end(), pts.begin(), pts.end());
@@ -1308,7 +1370,20 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
   off.AddPath(line, ClipperLib::jtRound, ClipperLib::etOpenRound);
   Paths out;
   off.Execute(out, ap.circle_d_nm / 2);
+  if (ill_defined) {
+    Path theirs{from};
+    theirs.insert(theirs.end(), at_start_radius.begin(), at_start_radius.end());
+    out = both_readings(out, sweep_open({theirs}, ap.circle_d_nm / 2, opt_.arc_tolerance_nm));
+  }
   add_object(std::move(out));
+}
+
+Paths GerberReader::both_readings(const Paths& ours, const Paths& theirs) const {
+  // Dark: copper under either reading. Clear: only what both readings clear.
+  if (!dark_) return intersection_of(ours, theirs);
+  Paths both = ours;
+  both.insert(both.end(), theirs.begin(), theirs.end());
+  return union_of(both);
 }
 
 void GerberReader::finish_contour() {
@@ -1324,10 +1399,18 @@ void GerberReader::finish_contour() {
   if (stroke.front() != stroke.back()) stroke.push_back(stroke.front());
   count_vertices(stroke.size());
   strokes_.push_back(stroke);
+  stroke_widths_nm_.push_back(0);
   stroke_open_ = false;
   if (c.front() == c.back()) c.pop_back();
+  Path theirs;
+  theirs.swap(contour_as_gerbv_);
   if (c.size() < 3) return;
   make_positive(c);
+  if (theirs.size() >= 3) {
+    make_positive(theirs);
+    add_object(both_readings({c}, {theirs}));
+    return;
+  }
   add_object({c});
 }
 

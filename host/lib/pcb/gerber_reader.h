@@ -21,6 +21,10 @@ struct GerberOptions {
   // Largest distance between a flattened arc or circle and the true curve (inscribed
   // polygons, so copper is at most this much smaller than drawn).
   double arc_tolerance_nm = 500;
+  // Refuse an arc whose start and end radii differ by more than this (a centre rounded to
+  // 3-decimal inches is up to 18 um off, and Protel boards show 53 um; beyond 0.1 mm the
+  // file does not say where its copper is).
+  double max_arc_radius_mismatch_nm = 100000;
   // Refuse files whose copper needs more polygon vertices than this before the union (a
   // step-and-repeat of a large block can ask for any amount of memory).
   size_t max_vertices = 20000000;

@@ -46,10 +46,13 @@ struct PcbLayer {
   // end to end are joined; a closed one repeats its first point at the end).
   ClipperLib::Paths polygons_nm;
   bool outline_paths_are_open = false;  // outline layer: polygons_nm holds centre lines
-  std::vector<Hole> holes;              // drill layers
-  std::vector<Slot> slots;              // drill layers
-  std::vector<std::string> notes;       // deprecated forms accepted, attributes read
-  double arc_tolerance_nm = 0;          // chord error used where arcs were flattened
+  // Outline layer: the width each centre line was drawn with (parallel to polygons_nm; empty
+  // when not known). Strokes close a loop where their drawn widths meet, as gerbv shows.
+  std::vector<ClipperLib::cInt> outline_widths_nm;
+  std::vector<Hole> holes;         // drill layers
+  std::vector<Slot> slots;         // drill layers
+  std::vector<std::string> notes;  // deprecated forms accepted, attributes read
+  double arc_tolerance_nm = 0;     // chord error used where arcs were flattened
   // What the file declared, for `engraver info`.
   std::string units;           // "mm" or "inch"
   int apertures_or_tools = 0;  // apertures (Gerber) or tools (Excellon) defined

@@ -53,6 +53,10 @@ TEST(GerberErrors, NameFileLineAndProblem) {
        "bad.gbr:6: arc end point is not on its circle (radius 1.000 mm at the start, 11.000"},
       {"D10*\nG75*\nG02X10000Y0I1000J0D01*\nM02*\n",
        "bad.gbr:6: arc end point is not on its circle (radius 1.000 mm at the start, 9.000 mm"},
+      // Radii 10 and 10.2 mm: more than the 0.1 mm an ill-defined arc may be off.
+      {"D10*\nG75*\nX0Y0D02*\nG02X20200Y0I10000J0D01*\nM02*\n",
+       "bad.gbr:7: arc end point is not on its circle (radius 10.000 mm at the start, 10.200 mm "
+       "at the end; more than 0.100 mm apart"},
       {"%ADD11FOO,1*%\nM02*\n", "bad.gbr:4: aperture D11 uses 'FOO', which is neither"},
       {"%ADD11C*%\nM02*\n", "bad.gbr:4: aperture D11 C takes 1 to 3 parameters, got 0"},
       {"%ADD11C,-1*%\nM02*\n", "bad.gbr:4: aperture D11 has a negative size"},

@@ -251,6 +251,36 @@ TEST(GerberReader, AZeroRadiusArcIsAStraightLine) {
   EXPECT_TRUE(has_note(l, "zero radius"));
 }
 
+// Arcs whose ends are 50.8 um off their start radius (3-decimal inch I/J, as Protel writes):
+// copper is where our reading (through both end points) or gerbv's (the start radius up to
+// the end angle) puts it. Both points below are copper only in gerbv's reading.
+TEST(GerberReader, IllDefinedArcsAreCopperInBothReadings) {
+  const PcbLayer l = read_gerber_file(data_file("ill_defined_arcs.gbr"));
+  // The stroke (0.254 mm wide) ends at radius 12.7508 mm round (12.7, 0); gerbv's end cap is
+  // at radius 12.7, so radius 12.6 just above the axis is inside gerbv's stroke only.
+  EXPECT_TRUE(covered(l, 12.7 + 12.6, 0.005));
+  EXPECT_TRUE(covered(l, 12.7 + 12.75, 0.005));  // and ours
+  // The region's arc (centre (63.5, 0)) ends at radius 12.6492; gerbv keeps 12.7.
+  const double a = 175 * kPi / 180;
+  EXPECT_TRUE(covered(l, 63.5 + 12.68 * std::cos(a), 12.68 * std::sin(a)));
+  EXPECT_FALSE(covered(l, 63.5 + 12.75 * std::cos(a), 12.75 * std::sin(a)));
+  EXPECT_TRUE(has_note(l,
+                       "warning: 2 arcs whose end is not on their circle (start and end radii "
+                       "differ by up to 50.8 um)"));
+}
+
+// A clear ill-defined arc clears only what both readings clear: copper stays wherever
+// either reading leaves it.
+TEST(GerberReader, AClearIllDefinedArcClearsOnlyWhatBothReadingsClear) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX23Y23*%\n%MOIN*%\n%ADD10C,0.010*%\n%ADD11R,1.2X0.2*%\nD11*\nX1000Y0D03*\n"
+      "%LPC*%\nD10*\nG75*\nX0Y0D02*\nG02X1002Y0I500J0D01*\nM02*\n",
+      "clear-F.Cu.gbr");
+  EXPECT_TRUE(covered(l, 12.7 + 12.6, 0.005));   // cleared by gerbv's reading only
+  EXPECT_FALSE(covered(l, 12.7 + 12.7, 0.005));  // cleared by both
+  EXPECT_TRUE(covered(l, 12.7 + 12.85, 0.005));  // cleared by ours only
+}
+
 // A block aperture (%AB, in the specification since 2016): the objects drawn inside, with
 // their polarities, flashed like an aperture at each flash point. Here a 2 mm square with a
 // 0.5 mm clear hole, flashed at (10, 0) and (20, 0).
