@@ -926,6 +926,7 @@ void run_run(const RunArgs& a) {
         a.blank_error[0], a.blank_error[1], a.blank_error[2],
         a.pins_only ? "pins only, no measured alignment" : "the job aligned to the measured holes",
         registration->max_um, registration->mean_um);
+  }
   if (depth_report) {
     std::cout << depth_report_text(*depth_report, map.has_value());
     std::cout << fmt::format("  depth error plot: {}.depth.svg\n", base);

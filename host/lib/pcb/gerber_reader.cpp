@@ -23,6 +23,12 @@ using ClipperLib::Paths;
 
 namespace {
 
+// How far an arc's end radius may be from its start radius (nm): the reader's limit, or for
+// small arcs half the start radius, at most 1 mm (see GerberReadOptions).
+double arc_mismatch_limit_nm(double start_radius_nm, double limit_nm) {
+  return std::max(limit_nm, std::min(1e6, start_radius_nm / 2));
+}
+
 const double kPi = 3.14159265358979323846;
 const double kMaxCoordNm = 1e10;    // 10 m: anything beyond is a broken file
 const double kMaxApertureNm = 1e9;  // 1 m
@@ -1318,12 +1324,13 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
     note(
         "warning: an arc whose centre is its own start or end point (zero radius) drawn as "
         "a straight line");
-  } else if (std::fabs(r0 - r1) > opt_.max_arc_radius_mismatch_nm) {
+  } else if (std::fabs(r0 - r1) > arc_mismatch_limit_nm(r0, opt_.max_arc_radius_mismatch_nm)) {
     char msg[200];
     std::snprintf(msg, sizeof msg,
                   "arc end point is not on its circle (radius %.3f mm at the start, %.3f mm at "
                   "the end; more than %.3f mm apart is not an arc a reader can trust)",
-                  r0 * 1e-6, r1 * 1e-6, opt_.max_arc_radius_mismatch_nm * 1e-6);
+                  r0 * 1e-6, r1 * 1e-6,
+                  arc_mismatch_limit_nm(r0, opt_.max_arc_radius_mismatch_nm) * 1e-6);
     fail(msg);
   }
   // An ill-defined arc (its centre rounded, as 3-decimal inch I/J are): we draw it through

@@ -24,6 +24,8 @@ struct GerberOptions {
   // Refuse an arc whose start and end radii differ by more than this (a centre rounded to
   // 3-decimal inches is up to 18 um off, and Protel boards show 53 um; beyond 0.1 mm the
   // file does not say where its copper is).
+  // Small arcs may be off by up to half their start radius, at most 1 mm (gerbv reads such
+  // files, e.g. its jj/l1-3.grb with 0.255 and 0.136 mm; the copper covers both readings).
   double max_arc_radius_mismatch_nm = 100000;
   // Refuse files whose copper needs more polygon vertices than this before the union (a
   // step-and-repeat of a large block can ask for any amount of memory).
