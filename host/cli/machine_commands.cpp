@@ -592,7 +592,7 @@ struct RunArgs {
   bool realtime = false;
   std::vector<double> blank_error;  // DX DY DEG: the flipped blank placed off by this much
   bool pins_only = false;           // with blank_error: no measured alignment
-  std::string surface;  // --surface: the simulated blank
+  std::string surface;              // --surface: the simulated blank
   HeightMapArgs map;
 };
 
