@@ -139,15 +139,21 @@ void expect_same_board_points(const EncodedJob& server, const std::string& input
   ASSERT_EQ(r.code, 0) << r.err;
   std::istringstream lines(r.out);
   std::string line;
-  std::getline(lines, line);  // header
+  std::getline(lines, line);  // header: tool,tool_name,tool_diameter_um,path,point,x_um,...
+  ASSERT_EQ(line.rfind("tool,tool_name,tool_diameter_um,path,point,x_um,y_um", 0), 0u) << line;
   Extents printed;
   int curves = 0;
   while (std::getline(lines, line)) {
-    int curve = 0;
-    double x = 0, y = 0;
-    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf", &curve, &x, &y), 3) << line;
-    curves = std::max(curves, curve + 1);
-    printed.add(Point2(x, y));
+    int tool = 0, path = 0, point = 0;
+    char name[64] = {};
+    double diameter_um = 0, x_um = 0, y_um = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%63[^,],%lf,%d,%d,%lf,%lf", &tool, name, &diameter_um,
+                          &path, &point, &x_um, &y_um),
+              7)
+        << line;
+    if (std::string(name).rfind("V-bit", 0) != 0) continue;  // the isolation tool's paths
+    curves = std::max(curves, path + 1);
+    printed.add(Point2(x_um / 1000, y_um / 1000));
   }
   Extents planned;
   int isolation = 0;
