@@ -4,6 +4,7 @@
 #include <fmt/format.h>  // fmt::format
 
 #include <filesystem>  // std::filesystem::path
+#include <fstream>     // std::ofstream
 #include <iostream>    // std::cerr
 
 #include "host/cli/exit_codes.h"
@@ -100,6 +101,27 @@ std::string map_picture_path(const std::string& map_path) {
       map_path.compare(map_path.size() - json.size(), json.size(), json) == 0)
     return map_path.substr(0, map_path.size() - json.size()) + ".svg";
   return map_path + ".svg";
+}
+
+void check_map_writable(const std::string& map_path) {
+  // The map is written beside its path and renamed (write_height_map_file), the picture
+  // directly: both files must be creatable in that directory.
+  for (const std::string& path : {map_path + ".part", map_picture_path(map_path) + ".part"}) {
+    std::error_code ec;
+    const bool fresh = !std::filesystem::exists(path, ec);
+    bool ok = std::filesystem::path(map_path).has_filename() &&
+              !std::filesystem::is_directory(map_path, ec);
+    if (ok) {
+      std::ofstream probe(path, std::ios::app);
+      ok = static_cast<bool>(probe);
+    }
+    if (fresh) std::filesystem::remove(path, ec);
+    if (!ok)
+      throw CommandFailure(kExitUsage,
+                           fmt::format("{}: cannot write the height map there; nothing was "
+                                       "probed (give --height-map a file in a writable folder)",
+                                       map_path));
+  }
 }
 
 // The controller refused the probe (its alarm): send/run's "command refused" (exit 5).

@@ -50,6 +50,10 @@ std::string default_map_path(const std::string& dir, const std::string& name);
 // The map's picture beside it: board.map.json -> board.map.svg.
 std::string map_picture_path(const std::string& map_path);
 
+// Before any motion of a probing: the map (and its picture) can be written at map_path,
+// else a usage error (exit 2) saying nothing was probed.
+void check_map_writable(const std::string& map_path);
+
 // Probes the blank over the job's cutting area through the sender (zeroing it first if it
 // is not), says what was probed again, writes the map to `map_path` and its picture, and
 // returns it. Ends the command (CommandFailure) with exit 1 when the probing is refused (an

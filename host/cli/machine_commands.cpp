@@ -370,6 +370,10 @@ void run_send(const SendArgs& a) {
   // A map from a file is checked against the job before anything is sent.
   std::optional<heightmap::HeightMap> map = load_height_map(a.map);
   if (map) refuse_job_leaving_map(plan, *map, a.map.height_map);
+  const std::string probe_map_path = a.map.height_map.empty()
+                                         ? default_map_path(".", input_name(a.plan.file))
+                                         : a.map.height_map;
+  if (a.map.probe) check_map_writable(probe_map_path);  // before anything moves
   const LinkSpec spec = parse_link_spec(a.to);  // LinkError -> usage error below
   std::unique_ptr<Link> link = open_link(spec, std::chrono::milliseconds(5000));
   SenderOptions so;
@@ -392,11 +396,8 @@ void run_send(const SendArgs& a) {
   }
   if (a.map.probe) {
     std::cerr << "engraver: probing the blank: the probe clip on the blank, the spindle off\n";
-    const std::string path = a.map.height_map.empty()
-                                 ? default_map_path(".", input_name(a.plan.file))
-                                 : a.map.height_map;
-    map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path);
-    refuse_job_leaving_map(plan, *map, path);
+    map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, probe_map_path);
+    refuse_job_leaving_map(plan, *map, probe_map_path);
   }
   // The map goes first (a controller that restarted has lost it: a resume sends it again);
   // without one, a clear: no map of an earlier job compensates this one.
@@ -444,6 +445,7 @@ void run_probe(const ProbeArgs& a) {
   const JobPlan plan = load_plan(a.plan, &drawing);
   const std::string path =
       a.map.height_map.empty() ? default_map_path(".", input_name(a.plan.file)) : a.map.height_map;
+  check_map_writable(path);  // before the machine moves, not after every point is probed
   const LinkSpec spec = parse_link_spec(a.to);
   std::unique_ptr<Link> link = open_link(spec, std::chrono::milliseconds(5000));
   SenderOptions so;
@@ -736,6 +738,7 @@ void run_run(const RunArgs& a) {
   const std::string base = (std::filesystem::path(a.outdir) / name).string();
   const std::string map_path =
       a.map.height_map.empty() ? default_map_path(a.outdir, name) : a.map.height_map;
+  if (a.map.probe) check_map_writable(map_path);
   if (a.map.probe || map) {
     o.z_offset_mm = [&map](double x_mm, double y_mm) {
       return map ? map->interpolate_um(x_mm, y_mm) / 1000.0 : 0.0;

@@ -164,6 +164,9 @@ HeightMap read_height_map_text(const std::string& text_in, const std::string& wh
     j = Json::parse(text_in);
   } catch (const Json::parse_error& e) {
     fail(what, fmt::format("not JSON ({})", e.what()));
+  } catch (const Json::exception& e) {
+    // A number JSON allows but a double does not hold (1e400: out_of_range).
+    fail(what, fmt::format("a number beyond the range of any height or length ({})", e.what()));
   }
   if (!j.is_object()) fail(what, "not a height map (expected a JSON object)");
   only_keys(j,

@@ -4,6 +4,7 @@
 #include <fmt/format.h>  // fmt::format
 
 #include <cmath>   // std::cos
+#include <map>     // std::map
 #include <vector>  // std::vector
 
 namespace host::heightmap {
@@ -75,11 +76,19 @@ void check_range(const std::string& key, double um, double lo, double hi) {
 SurfaceSpec parse_surface_spec(const std::string& text) {
   SurfaceSpec s;
   if (text.empty()) throw SurfaceSpecError("--surface: empty (e.g. tilt=0.1mm,bow=0.2mm)");
+  std::map<std::string, std::string> given;  // each key once (tilt and tilt_x are one)
   for (const std::string& item : split(text, ',')) {
     const size_t eq = item.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
       throw SurfaceSpecError(fmt::format("--surface: '{}' is not KEY=VALUE", item));
     const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
+    const std::string same = key == "tilt" ? "tilt_x" : key;
+    const auto earlier = given.find(same);
+    if (earlier != given.end())
+      throw SurfaceSpecError(
+          fmt::format("--surface: '{}' is given twice ('{}' and '{}'): give each key once", same,
+                      earlier->second, item));
+    given[same] = item;
     if (key == "tilt" || key == "tilt_x") {
       s.tilt_x_um = length_um(key, value);
       check_range(key, s.tilt_x_um, -kMaxShapeUm, kMaxShapeUm);

@@ -74,4 +74,40 @@ TEST(HeightMapCli, BadSurfaceOrProbeWithoutABlankIsAUsageError) {
   std::filesystem::remove_all(dir);
 }
 
+// A map file whose number JSON allows but a double does not hold: bad input (2) naming the
+// file, before any connection (port 9: nothing listens there), not an internal error (70).
+TEST(HeightMapCli, AMapWithANumberBeyondADoubleIsBadInput) {
+  const std::string dir = out_dir("huge");
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/huge.map.json";
+  std::ofstream(path) << R"({"format": "engraver height map", "version": 1,
+    "units": {"xy": "mm", "height": "um"},
+    "grid": {"origin_mm": [0, 0], "pitch_mm": [10, 10], "rows": 2, "cols": 2},
+    "heights_um": [[0, 1e400], [0, 0]]})";
+  for (const std::string& cmd : {"send " + kWord + " --to tcp://127.0.0.1:9 --height-map " + path,
+                                 "run " + kWord + " -o " + dir + " --height-map " + path}) {
+    const ToolRun r = run_tool(kExe, cmd);
+    EXPECT_EQ(r.code, 2) << cmd << "\n" << r.err;
+    EXPECT_NE(r.err.find(path + ": a number beyond the range"), std::string::npos) << r.err;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// probe (and send --probe) find out that the map cannot be written before anything moves:
+// before connecting at all (port 9: nothing listens there), not after probing every point.
+TEST(HeightMapCli, AMapThatCannotBeWrittenIsRefusedBeforeProbing) {
+  const std::string dir = out_dir("unwritable");
+  const std::string path = dir + "/no/such/folder/word.map.json";
+  for (const std::string& cmd :
+       {"probe " + kWord + " --to tcp://127.0.0.1:9 --height-map " + path,
+        "send " + kWord + " --to tcp://127.0.0.1:9 --probe --height-map " + path}) {
+    const ToolRun r = run_tool(kExe, cmd);
+    EXPECT_EQ(r.code, 2) << cmd << "\n" << r.err;
+    EXPECT_NE(r.err.find(path + ": cannot write the height map there; nothing was probed"),
+              std::string::npos)
+        << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
 }  // namespace

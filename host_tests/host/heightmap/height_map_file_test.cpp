@@ -123,6 +123,22 @@ TEST(HeightMapFile, RefusesEachBrokenFieldByName) {
   }
 }
 
+// JSON allows any number; 1e400 is beyond a double (the parser's out_of_range): bad input,
+// refused with the file's name like any other broken field, never an internal error.
+TEST(HeightMapFile, RefusesANumberBeyondADouble) {
+  for (const char* huge : {"1e400", "-1e400"}) {
+    std::string text = kThreeByTwo;
+    text.replace(text.find("50.5]"), 4, huge);
+    try {
+      read_height_map_text(text, "m.json");
+      ADD_FAILURE() << "read " << huge;
+    } catch (const HeightMapError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("m.json: a number beyond the range", 0), 0u)
+          << e.what();
+    }
+  }
+}
+
 TEST(HeightMapFile, RefusesAGridLargerThanTheControllerKeeps) {
   HeightMap m = three_by_two();
   m.cols = 17;

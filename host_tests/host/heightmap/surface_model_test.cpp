@@ -52,6 +52,20 @@ TEST(SurfaceSpec, RefusesUnknownKeysAndBadValues) {
   EXPECT_THROW(parse_surface_spec(""), SurfaceSpecError);
 }
 
+// A key given twice would silently take the last value: refused, naming both.
+TEST(SurfaceSpec, RefusesAKeyGivenTwice) {
+  for (const char* text : {"tilt=0.1mm,bow=0.2mm,tilt=0.3mm", "tilt=0.1mm,tilt_x=0.1mm",
+                           "noise=2um,noise=2um", "seed=1,bow=1um,seed=2"}) {
+    try {
+      parse_surface_spec(text);
+      ADD_FAILURE() << text;
+    } catch (const SurfaceSpecError& e) {
+      EXPECT_NE(std::string(e.what()).find("given twice"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(parse_surface_spec("tilt=0.1mm,tilt_y=0.2mm").tilt_y_um, 200.0);  // two keys
+}
+
 TEST(SurfaceModel, TiltRisesAcrossTheAreaAndIsZeroAtTheMachineZero) {
   const SurfaceModel m(parse_surface_spec("tilt=0.1mm"), kBoard);
   EXPECT_NEAR(m.height_um(0, 0), 0.0, 1e-9);
