@@ -370,11 +370,10 @@ void run_send(const SendArgs& a) {
   // A map from a file is checked against the job before anything is sent.
   std::optional<heightmap::HeightMap> map = load_height_map(a.map);
   if (map) refuse_job_leaving_map(plan, *map, a.map.height_map);
-  const std::string probe_map_path = a.map.height_map.empty()
-                                         ? default_map_path(".", input_name(a.plan.file))
-                                         : a.map.height_map;
+  const std::string probe_map_path =
+      a.map.height_map.empty() ? default_map_path(".", input_name(a.plan.file)) : a.map.height_map;
   if (a.map.probe) check_map_writable(probe_map_path);  // before anything moves
-  const LinkSpec spec = parse_link_spec(a.to);  // LinkError -> usage error below
+  const LinkSpec spec = parse_link_spec(a.to);          // LinkError -> usage error below
   std::unique_ptr<Link> link = open_link(spec, std::chrono::milliseconds(5000));
   SenderOptions so;
   so.zero_first = !a.no_zero;
