@@ -4,10 +4,11 @@
 
 #include <asio.hpp>  // tcp acceptor and socket
 
-#include <fcntl.h>    // open
-#include <poll.h>     // poll
-#include <termios.h>  // raw mode for a device
-#include <unistd.h>   // read, write, close
+#include <fcntl.h>       // open
+#include <poll.h>        // poll
+#include <sys/socket.h>  // send, MSG_NOSIGNAL
+#include <termios.h>     // raw mode for a device
+#include <unistd.h>      // read, write, close
 
 #include <fmt/format.h>  // fmt::format
 
@@ -55,12 +56,14 @@ struct SimServer::Impl {
     }
   }
 
-  // Sends what the firmware transmitted. False when the connection broke.
+  // Sends what the firmware transmitted. False when the connection broke. A socket whose
+  // client hung up must not raise SIGPIPE (it would end `engraver sim`): MSG_NOSIGNAL.
   bool transmit() {
     const std::string out = machine.take_to_host();
     size_t at = 0;
     while (at < out.size()) {
-      const ssize_t n = ::write(fd(), out.data() + at, out.size() - at);
+      const ssize_t n = client ? ::send(fd(), out.data() + at, out.size() - at, MSG_NOSIGNAL)
+                               : ::write(fd(), out.data() + at, out.size() - at);
       if (n > 0) {
         at += static_cast<size_t>(n);
         continue;

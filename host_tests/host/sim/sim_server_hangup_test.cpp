@@ -1,0 +1,88 @@
+// The simulator's TCP server when a client hangs up with replies still on their way (an
+// `engraver send` whose job was refused, killed): its writes to the dead socket must not
+// raise SIGPIPE (which ends the process: `engraver sim` died of it), and the next client is
+// served. The server runs in this test's process, so SIGPIPE would end the test.
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>   // inet_pton
+#include <netinet/in.h>  // sockaddr_in
+#include <sys/socket.h>  // socket, connect
+#include <unistd.h>      // close, write
+
+#include <chrono>  // milliseconds
+#include <thread>  // sleep_for
+#include <vector>  // std::vector
+
+#include "firmware/protocol/codec.h"
+#include "host/lib/sim/sim_server.h"
+#include "host/lib/stream/sender.h"
+#include "host_tests/host/sim/sim_test_jobs.h"
+
+namespace host {
+namespace {
+
+using std::chrono::milliseconds;
+
+template <typename Msg>
+void append_frame(const Msg& m, uint8_t seq, std::vector<uint8_t>* out) {
+  uint8_t buf[proto::kMaxFrameBytes];
+  uint8_t n = 0;
+  ASSERT_EQ(proto::write_frame(m, seq, buf, sizeof buf, &n), proto::ErrorCode::kOk);
+  out->insert(out->end(), buf, buf + n);
+}
+
+// Connects, sends frames the controller answers over the next few hundred milliseconds (a
+// session and status queries), and hangs up as a client that exits does: its end closed
+// (FIN: the server's socket is in CLOSE_WAIT), then gone (the server's next bytes are
+// answered with a reset, after which a write is EPIPE: SIGPIPE unless the server asks for
+// none).
+void hang_up_with_replies_in_flight(uint16_t port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  ASSERT_GE(fd, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(port);
+  ::inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
+  ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+  std::vector<uint8_t> bytes;
+  append_frame(proto::SessionCmd{proto::kProtocolVersion}, 0, &bytes);
+  for (int i = 0; i < 600; ++i) append_frame(proto::StatusCmd{}, 1, &bytes);
+  size_t at = 0;
+  while (at < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + at, bytes.size() - at);
+    ASSERT_GT(n, 0);
+    at += static_cast<size_t>(n);
+  }
+  // The first reply: the server has taken every byte and is answering the rest (the end of
+  // the stream is not among what it read).
+  uint8_t reply[64];
+  ASSERT_GT(::read(fd, reply, sizeof reply), 0);
+  ::shutdown(fd, SHUT_WR);
+  ::close(fd);
+}
+
+TEST(SimServer, AClientHangingUpWithRepliesInFlightDoesNotEndTheServer) {
+  sim::SimMachine machine{sim::SimOptions{}};
+  sim::ServerOptions so;
+  so.port = 0;
+  sim::SimServer server(machine, so);
+  test::Serving serving(server);
+  // Whether the server writes before it reads the end of the stream is a race: try often.
+  // Each time the bytes the client left on the wire (the simulated UART, 115200 baud) are
+  // answered into the void within the pause.
+  for (int i = 0; i < 5; ++i) {
+    hang_up_with_replies_in_flight(server.port());
+    std::this_thread::sleep_for(milliseconds(500));
+  }
+  // Still here (SIGPIPE would have ended the process), and the next client is served.
+  auto link = open_link(parse_link_spec("tcp://127.0.0.1:" + std::to_string(server.port())),
+                        milliseconds(2000));
+  Sender sender(*link, SenderOptions{});
+  const proto::SessionReply caps = sender.open_session();
+  EXPECT_GT(caps.max_payload, 0);
+  EXPECT_EQ(sender.read_status().state, proto::MachineState::kIdle);
+  serving.stop();
+}
+
+}  // namespace
+}  // namespace host
