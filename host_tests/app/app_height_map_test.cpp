@@ -249,6 +249,61 @@ TEST(AppHeightMap, LoadingOrClearingAMapNeverMovesAStandingMachine) {
   }
 }
 
+// The safety rule: compensation never drives Z below the job's lowest planned depth
+// minus the map's range (with Z 0). Random maps of up to 1 mm span, sent before the job or
+// while the tool stands at the depth (the map then applies from the next move), a spline
+// leaving the grid and cuts along its rows (over every grid point) and beyond its edges.
+TEST(AppHeightMap, ZNeverGoesBelowTheLowestDepthMinusTheMapsRange) {
+  uint32_t state = 12345;
+  auto next = [&state](int lo, int hi) {
+    state = state * 1103515245u + 12345u;
+    return lo + int((state >> 8) % uint32_t(hi - lo + 1));
+  };
+  const core::Spline s = blob_spline(30000, 20000, 25000, 12);  // leaves the map's grid
+  for (int trial = 0; trial < 6; ++trial) {
+    const bool while_down = trial % 2 == 1;
+    // Below Z 0 only (the map's range is then its depth: the rule is tight where the path
+    // crosses the lowest grid point), or across it.
+    int32_t h[12];
+    const int low = trial < 4 ? next(-1000, -100) : next(-900, -100);
+    const int high = trial < 4 ? 0 : low + 1000;
+    for (int32_t& v : h) v = next(low, high);
+    const double lowest = std::min(0, *std::min_element(h, h + 12));
+    const double highest = std::max(0, *std::max_element(h, h + 12));
+    Ready rig;
+    auto map = [&](TestHost* host) {
+      host->queue(proto::HeightMapHeaderCmd{kCols, kRows, 0, 0, kPitch, kPitch});
+      proto::HeightMapDataCmd d{};
+      d.height_n = 8;
+      std::copy(h, h + 8, d.height_um);
+      host->queue(d);
+      d.index = 8;
+      d.height_n = 4;
+      std::copy(h + 8, h + 12, d.height_um);
+      host->queue(d);
+    };
+    if (!while_down) map(&rig.host);
+    rig.host.queue(proto::ZMoveCmd{kTravelZ, 5000});
+    rig.host.queue(proto::RapidMoveCmd{s.control[0].x_um, s.control[0].y_um});
+    rig.host.queue(proto::ZMoveCmd{kDepth, 2000});
+    if (while_down) map(&rig.host);
+    for (const auto& f : spline_frames(s, 8000)) rig.host.queue(f);
+    for (const int32_t y : {0, kPitch, 2 * kPitch}) {  // along each row of the grid
+      rig.host.queue(proto::FeedMoveCmd{-5000, y, 8000});
+      rig.host.queue(proto::FeedMoveCmd{(kCols - 1) * kPitch + 5000, y, 8000});
+    }
+    rig.host.queue(proto::ZMoveCmd{kTravelZ, 5000});
+    ASSERT_TRUE(rig.run_job(200000)) << trial;
+    EXPECT_TRUE(rig.host.errors.empty()) << trial;
+    EXPECT_TRUE(rig.app.height_map().active()) << trial;
+    double deepest = 1e9;
+    for (const P3& p : rig.recorded_um()) deepest = std::min(deepest, p.z);
+    EXPECT_GE(deepest, kDepth - (highest - lowest) - 1.0)
+        << "trial " << trial << (while_down ? " (map sent with the tool down)" : "") << ": heights "
+        << lowest << " .. " << highest;
+  }
+}
+
 bool refused(const TestHost& h, ErrorCode code, uint8_t detail) {
   for (const auto& e : h.errors)
     if (e.code == code && e.detail == detail) return true;
