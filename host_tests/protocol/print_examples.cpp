@@ -154,14 +154,15 @@ int main() {
        "Z -0.137 mm");
   show(proto::AlarmReply{proto::Alarm::kProbeNoContact, proto::MachineState::kAlarm}, 2,
        "*A alarm #2: probe without contact (8), state alarm (5)");
-  show(proto::HeightMapHeaderCmd{3, 2, 0, 0, 40000, 30000}, 19,
-       "#A seq 19: height map of 3 x 2 points from (0, 0), 40 mm apart in X, 30 mm in Y");
-  show(proto::HeightMapDataCmd{0, 6, {0, -40, -95, 25, -20, -80}}, 20,
-       "#E seq 20: its heights from index 0: 0, -40, -95 um (row Y 0), 25, -20, -80 um (row Y "
+  show(proto::HeightMapHeaderCmd{3, 2, 0, 0, 40000, 30000}, 18,
+       "#A seq 18 (the #T query before it used up no seq): height map of 3 x 2 points from (0, 0), "
+       "40 mm apart in X, 30 mm in Y");
+  show(proto::HeightMapDataCmd{0, 6, {0, -40, -95, 25, -20, -80}}, 19,
+       "#E seq 19: its heights from index 0: 0, -40, -95 um (row Y 0), 25, -20, -80 um (row Y "
        "30 mm); the map is complete, compensation on");
-  show(proto::ErrorReply{proto::ErrorCode::kHeightMap, proto::kHeightMapSpan, 20}, 20,
-       "*E seq 20: height_map (38), detail 2: had the map spanned more than 1 mm, it would be "
-       "refused (and the controller would expect seq 20 again)");
+  show(proto::ErrorReply{proto::ErrorCode::kHeightMap, proto::kHeightMapSpan, 19}, 19,
+       "*E seq 19: height_map (38), detail 2: had the map spanned more than 1 mm, it would be "
+       "refused (and the controller would expect seq 19 again)");
   std::printf("```\n");
   return 0;
 }
