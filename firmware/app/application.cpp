@@ -656,13 +656,10 @@ bool Application::push_point(const int32_t target[config::kAxisCount], uint16_t 
   return planner_.push(&ring_, target, feed, flags, item_tag_);
 }
 
-// The end of a map item: where the machine already goes (no offset added, so no motion),
-// and the planned position taken from it under the new map: the change applies from the
-// next point generated, never to the standing tool.
+// The end of a map item: where the machine already goes (no offset added, so no motion);
+// the change applies from the next point generated, never to the standing tool.
 bool Application::push_map_marker() {
-  const int32_t* m = planner_.machine_um();
-  const int32_t here[config::kAxisCount] = {m[0], m[1], m[2]};
-  return planner_.push_machine(&ring_, here, last_feed_um_s_, kPointEndOfItem, item_tag_);
+  return planner_.push_standing(&ring_, last_feed_um_s_, kPointEndOfItem, item_tag_);
 }
 
 // True when the item is fully handed over (its last ring entry flagged end-of-item).

@@ -241,6 +241,13 @@ bool Planner::push_machine(CoordinateRing* ring, const int32_t target_um[config:
   return true;
 }
 
+bool Planner::push_standing(CoordinateRing* ring, uint16_t feed_um_s, uint8_t flags, uint16_t tag) {
+  const int32_t here[config::kAxisCount] = {last_um_[0], last_um_[1], last_um_[2]};
+  if (!push_segment(ring, here, feed_um_s, flags, tag, 0)) return false;
+  follow_.left = 0;  // a split under way (of the old map) is over
+  return true;
+}
+
 // Splits planned_um_ -> target into n = ceil(span / kFollowStepUm) pieces when both ends cut
 // (travel has one offset all along: nothing to follow). One 32/16 division per axis and
 // segment, none per piece.

@@ -51,6 +51,10 @@ class Planner {
   // cutting segment is cut into pieces of at most kFollowStepUm so Z follows the surface
   // between its ends. last_um() stays in planned coordinates.
   void set_height_map(core::HeightMap* map) { map_ = map; }
+  // A zero-length point where the last segment ends (an item's end marker): nothing moves
+  // and the planned position stays, so a height map changed just before applies from the
+  // next target pushed on (its planned point plus the new offset), never on the spot.
+  bool push_standing(CoordinateRing* ring, uint16_t feed_um_s, uint8_t flags, uint16_t tag);
   // push() without the map's offset: target is a machine position (the probe's moves).
   bool push_machine(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
                     uint16_t feed_um_s, uint8_t flags, uint16_t tag,

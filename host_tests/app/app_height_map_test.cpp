@@ -241,8 +241,8 @@ TEST(AppHeightMap, LoadingOrClearingAMapNeverMovesAStandingMachine) {
     ASSERT_TRUE(rig.run_job(20000));
     EXPECT_NEAR(rig.position_um().z, z + 60, 1.5) << where;
     expect_no_motion(&rig, clear_map, where);
-    // The next motion follows the change: a Z target is the planned one again.
-    rig.host.queue(proto::ZMoveCmd{z, 2000});
+    // The next motion follows the change: the next point is the planned one again (the
+    // tool goes back to the planned Z along that move, not on the spot).
     rig.host.queue(proto::FeedMoveCmd{kX + 2000, kY, 2000});
     ASSERT_TRUE(rig.run_job(20000));
     EXPECT_NEAR(rig.position_um().z, z, 1.5) << where;

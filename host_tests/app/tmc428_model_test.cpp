@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "firmware/app/application.h"
 #include "hal/drivers/tmc428/tmc428.h"
@@ -110,6 +111,96 @@ TEST(Tmc428Model, ApplicationStopsOnALimitSwitchAndLatchesTheAlarm) {
   EXPECT_EQ(chip.x_actual(0), stopped);  // nothing moves until the alarm is cleared
   ASSERT_FALSE(host.alarms.empty());
   EXPECT_EQ(host.alarms[0].alarm, proto::Alarm::kLimitSwitch);
+}
+
+// A height map loaded or cleared on a standing machine (zeroed or not, the tool in the work)
+// moves no motor: the chip's positions stay and no axis gets a velocity (docs/protocol.md,
+// #A). The map lies 150 um above the zero at the standing point: the old behaviour moved Z
+// there on loading and plunged it back on clearing.
+TEST(Tmc428Model, AHeightMapChangeMovesNoMotorOfAStandingMachine) {
+  config::MachineConfig cfg = config::default_machine_config();
+  fake::Tmc428Model chip;
+  chip.set_logging(false);
+  fake::RecordingSpi spi(chip, 1250000);
+  spi.set_recording(false);
+  drivers::Tmc428 driver(spi, cfg);
+  ASSERT_EQ(driver.init(), drivers::Tmc428InitResult::kOk);
+  spi.set_advance_device(false);
+  FakeLink link;
+  FakeDisplay display;
+  FakeInputs inputs;
+  app::Application application;
+  application.init(app::Board{&link, &driver, &display, &inputs}, cfg);
+  TestHost host(&link);
+  long now = 0;
+  auto step = [&] {
+    application.tick_1ms();
+    chip.advance_us(1000);
+    application.poll();
+    host.step(++now);
+  };
+  auto settle = [&] {
+    for (int i = 0; i < 20000 && !(host.all_acked() && application.queue_size() == 0 &&
+                                   application.state() == proto::MachineState::kIdle);
+         ++i)
+      step();
+    for (int i = 0; i < 300; ++i) step();
+  };
+  auto send_map = [&](int32_t height_um) {
+    host.queue(proto::HeightMapHeaderCmd{2, 2, -50000, -50000, 60000, 60000});
+    proto::HeightMapDataCmd d{};
+    d.height_n = 4;
+    for (int k = 0; k < 4; ++k) d.height_um[k] = height_um;
+    host.queue(d);
+  };
+  // Every motor where it stood and still, through the frames queue() adds.
+  auto expect_still = [&](const std::function<void()>& queue, const char* what) {
+    settle();
+    const int32_t at[3] = {chip.x_actual(0), chip.x_actual(1), chip.x_actual(2)};
+    queue();
+    for (int i = 0; i < 20000 && !(host.all_acked() && application.queue_size() == 0); ++i) {
+      step();
+      for (int m = 0; m < 3; ++m) {
+        ASSERT_EQ(chip.v_actual(m), 0) << what << ": motor " << m << " moved";
+        ASSERT_EQ(chip.x_actual(m), at[m]) << what << ": motor " << m;
+      }
+    }
+    for (int i = 0; i < 300; ++i) {
+      step();
+      for (int m = 0; m < 3; ++m) ASSERT_EQ(chip.x_actual(m), at[m]) << what << ": motor " << m;
+    }
+    EXPECT_TRUE(host.errors.empty()) << what;
+  };
+  host.open_session();
+  for (int i = 0; i < 50; ++i) step();
+  ASSERT_FALSE(application.zeroed());
+  expect_still([&] { send_map(150); }, "load, not zeroed");
+  expect_still(
+      [&] {
+        host.queue(proto::HeightMapHeaderCmd{0, 0, 0, 0, 0, 0});
+      },
+      "clear, not zeroed");
+  host.queue(proto::ZeroingCmd{7});
+  for (int i = 0; i < 100; ++i) step();
+  inputs.bits = hal::kButtonConfirm;
+  for (int i = 0; i < 30; ++i) step();
+  inputs.bits = 0;
+  for (int i = 0; i < 100; ++i) step();
+  ASSERT_TRUE(application.zeroed());
+  host.queue(proto::ZMoveCmd{1000, 5000});
+  host.queue(proto::RapidMoveCmd{5000, 5000});
+  host.queue(proto::ZMoveCmd{-100, 2000});
+  expect_still([&] { send_map(150); }, "load, tool down");
+  const int32_t z_down = chip.x_actual(2);
+  host.queue(proto::FeedMoveCmd{6000, 5000, 2000});  // follows the map: Z at -100 + 150
+  settle();
+  EXPECT_NEAR(std::abs(chip.x_actual(2) - z_down), 150 * 256 / 100, 8)
+      << "the next move follows the new map";
+  expect_still(
+      [&] {
+        host.queue(proto::HeightMapHeaderCmd{0, 0, 0, 0, 0, 0});
+      },
+      "clear, tool down");
 }
 
 }  // namespace
