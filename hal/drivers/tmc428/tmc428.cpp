@@ -135,11 +135,12 @@ Tmc428InitResult Tmc428::check_presence() {
 // 0 (changing pulse_div is safe only in RAMP mode, §8.14; ramp_div 0 makes the continuous
 // driver update fast for the chain check).
 void Tmc428::stop_all() {
+  // Every value written is 0 (kRampMode is 0).
+  static const uint8_t kStopRegisters[] = {kVMax, kRefConfRampMode, kVTarget, kDivisors};
   for (uint8_t m = 0; m < config::kAxisCount; ++m) {
-    write_reg(motor_reg(m, kVMax), 0);
-    write_reg(motor_reg(m, kRefConfRampMode), kRampMode);
-    write_reg(motor_reg(m, kVTarget), 0);
-    write_reg(motor_reg(m, kDivisors), 0);
+    for (uint8_t i = 0; i < sizeof kStopRegisters; ++i) {
+      write_reg(motor_reg(m, kStopRegisters[i]), 0);
+    }
   }
 }
 
