@@ -136,9 +136,10 @@ Tmc428InitResult Tmc428::check_presence() {
 // driver update fast for the chain check).
 void Tmc428::stop_all() {
   // Every value written is 0 (kRampMode is 0).
-  static const uint8_t kStopRegisters[] = {kVMax, kRefConfRampMode, kVTarget, kDivisors};
+  enum { kStopCount = 4 };
+  static const uint8_t kStopRegisters[kStopCount] = {kVMax, kRefConfRampMode, kVTarget, kDivisors};
   for (uint8_t m = 0; m < config::kAxisCount; ++m) {
-    for (uint8_t i = 0; i < sizeof kStopRegisters; ++i) {
+    for (uint8_t i = 0; i < kStopCount; ++i) {
       write_reg(motor_reg(m, kStopRegisters[i]), 0);
     }
   }
