@@ -8,27 +8,41 @@ namespace app {
 
 namespace {
 
-// Smallest shift >= 0 that brings every value of v below 2^16, given v as Q(max_shift).
-uint8_t fit_shift(const uint64_t* v_q32, uint8_t n) {
+// floor(a m 2^shift / (b1 b2)) for b1 b2 > 0 (a m 2^shift < 2^64): every 64-bit step of
+// this file goes through here, out of line and with 32-bit arguments (64-bit code is long
+// inline code on 8- and 16-bit cores).
+__attribute__((noinline)) uint64_t mul_div(uint32_t a, uint32_t m, uint8_t shift, uint32_t b1,
+                                           uint32_t b2) {
+  return (((uint64_t)a * m) << shift) / ((uint64_t)b1 * b2);
+}
+
+// Largest shift <= 32 that brings v (a Q32 value) below 2^16 as Q(shift).
+__attribute__((noinline)) uint8_t fit_shift(uint64_t v_q32) {
   uint8_t shift = 32;
-  for (uint8_t i = 0; i < n; ++i) {
-    while (shift > 0 && (v_q32[i] >> (32 - shift)) >= 65536ULL) --shift;
-  }
+  while (shift > 0 && (v_q32 >> (32 - shift)) >= 65536ULL) --shift;
   return shift;
 }
 
-// Saturates a 64-bit value into 16 bits unsigned.
-uint16_t sat_u16(uint64_t v) {
-  return v > 65535ULL ? (uint16_t)65535U : (uint16_t)v;
+// Saturates into 16 bits unsigned.
+uint16_t sat_u16(uint32_t v) {
+  return v > 65535UL ? (uint16_t)65535U : (uint16_t)v;
+}
+
+// Saturates at limit (the values below compare with 32-bit limits only).
+uint32_t sat_u32(uint64_t v, uint32_t limit) {
+  return v > limit ? limit : (uint32_t)v;
 }
 
 }  // namespace
 
+// The fixed-point factors are the exact quotients floor(x 2^shift / y) for the largest
+// shift (<= 32) that keeps every axis's factor in 16 bits.
 bool build_axis_scaling(const config::MachineConfig& cfg, const hal::MotionAxes& motion,
                         AxisScaling* s) {
   bool ok = true;
-  uint64_t um_per_ustep_q32[config::kAxisCount];
-  uint64_t units_per_um_s_q32[config::kAxisCount];
+  uint32_t ustep_s_per_unit_q16[config::kAxisCount];
+  s->um_shift = 32;
+  s->units_shift = 32;
   for (uint8_t a = 0; a < config::kAxisCount; ++a) {
     int32_t upm = config::usteps_per_mm(cfg.axis[a]);
     if (upm < 1) {
@@ -40,47 +54,54 @@ bool build_axis_scaling(const config::MachineConfig& cfg, const hal::MotionAxes&
       ok = false;
     }
     s->usteps_per_mm[a] = upm;
-    um_per_ustep_q32[a] = (1000ULL << 32) / (uint64_t)upm;
-    uint64_t ustep_s_per_unit_q16 = motion.usteps_per_s_per_unit_q16(a);
-    if (ustep_s_per_unit_q16 == 0) {
-      ustep_s_per_unit_q16 = 1;
+    uint32_t u = motion.usteps_per_s_per_unit_q16(a);
+    if (u == 0) {
+      u = 1;
       ok = false;
     }
-    // units per (um/s) = upm / 1000 / (usteps/s per unit)
-    units_per_um_s_q32[a] = ((uint64_t)upm << 32) * 65536ULL / 1000ULL / ustep_s_per_unit_q16;
+    ustep_s_per_unit_q16[a] = u;
+    // um per ustep = 1000 / upm; units per (um/s) = upm / 1000 / (usteps/s per unit).
+    const uint8_t um_fit = fit_shift(mul_div(1000, 1, 32, (uint32_t)upm, 1));
+    const uint8_t units_fit = fit_shift(mul_div((uint32_t)upm, 1, 48, u, 1000));
+    if (um_fit < s->um_shift) s->um_shift = um_fit;
+    if (units_fit < s->units_shift) s->units_shift = units_fit;
     int16_t vmax = motion.max_velocity_units(a);
     if (vmax < 1) {
       vmax = 1;
       ok = false;
     }
     s->max_units[a] = vmax;
-    // um/s of v_max: vmax * usteps/s per unit / upm * 1000
-    uint64_t chip_max_um_s = (uint64_t)vmax * ustep_s_per_unit_q16 * 1000ULL / 65536ULL / upm;
-    uint64_t max_um_s = cfg.axis[a].max_speed_um_per_s;
+    // um/s of v_max: vmax * usteps/s per unit / upm * 1000 (the q16 and upm as one divisor).
+    const uint32_t chip_max_um_s =
+        sat_u32(mul_div((uint32_t)vmax * 1000U, u, 0, (uint32_t)upm, 65536UL), 0xFFFFFFFFUL);
+    uint32_t max_um_s = cfg.axis[a].max_speed_um_per_s;
     if (chip_max_um_s < max_um_s) max_um_s = chip_max_um_s;
-    if (max_um_s > 32767ULL) max_um_s = 32767ULL;
+    if (max_um_s > 32767UL) max_um_s = 32767UL;
     if (max_um_s < 1) max_um_s = 1;
     s->max_speed_um_s[a] = (uint16_t)max_um_s;
-    uint64_t acc =
-        (uint64_t)motion.accel_units_per_ms(a) * ustep_s_per_unit_q16 * 1000ULL / 65536ULL / upm;
+    // Held below 2^24: saturates the chip's and (with the configured limit < 2^23) the
+    // planner's figure just as the exact value would, and keeps acc * 192 in 32 bits.
+    uint32_t acc = sat_u32(
+        mul_div((uint32_t)motion.accel_units_per_ms(a) * 1000U, u, 0, (uint32_t)upm, 65536UL),
+        0xFFFFFFUL);
     if (acc < 4) {
       acc = 4;
       ok = false;
     }
     s->chip_accel_um_s_per_ms[a] = sat_u16(acc);
-    uint64_t plan = acc * kPlanAccelFraction256 / 256;
+    uint32_t plan = acc * kPlanAccelFraction256 / 256;
     // The configured axis acceleration is a limit too (the chip ramp may be set steeper).
-    uint64_t cfg_acc = cfg.axis[a].accel_um_per_s2 / 1000U;
+    const uint32_t cfg_acc = cfg.axis[a].accel_um_per_s2 / 1000U;
     if (cfg_acc >= 1 && cfg_acc < plan) plan = cfg_acc;
     if (plan < 1) plan = 1;
     s->plan_accel_um_s_per_ms[a] = sat_u16(plan);
     s->travel_um[a] = cfg.axis[a].travel_um;
   }
-  s->um_shift = fit_shift(um_per_ustep_q32, config::kAxisCount);
-  s->units_shift = fit_shift(units_per_um_s_q32, config::kAxisCount);
   for (uint8_t a = 0; a < config::kAxisCount; ++a) {
-    s->um_per_ustep_q[a] = (uint16_t)(um_per_ustep_q32[a] >> (32 - s->um_shift));
-    s->units_per_um_s_q[a] = (uint16_t)(units_per_um_s_q32[a] >> (32 - s->units_shift));
+    const uint32_t upm = (uint32_t)s->usteps_per_mm[a];
+    s->um_per_ustep_q[a] = (uint16_t)mul_div(1000, 1, s->um_shift, upm, 1);
+    s->units_per_um_s_q[a] =
+        (uint16_t)mul_div(upm, 1, (uint8_t)(16 + s->units_shift), ustep_s_per_unit_q16[a], 1000);
   }
   // The tick needs a microstep below 1 um (um_shift 16) for 15-bit direction vectors and
   // a native velocity unit above 1 um/s (units_shift >= 16 keeps products in 31 bits).

@@ -49,6 +49,9 @@ StepSettings default_step_settings();
 // Offset larger than the radius of curvature on the offset side: detected when the
 // offset path runs backward relative to the curve between two consecutive points; the
 // walker stops with kOffsetTooLarge (points already emitted stay valid).
+// A trial step's chord, prepared for distances (curve_walker.cpp).
+struct Chord;
+
 class CurveWalker {
  public:
   CurveWalker();
@@ -79,6 +82,7 @@ class CurveWalker {
   bool arc_point(PointUm* out);
   uint32_t uniform_next() const;
   uint32_t adaptive_next();
+  uint32_t sampled_error(const Chord& chord, uint32_t step, uint8_t parts_log2);
   PointQ6 path_point(uint32_t t_q16, Direction* dir);
   PointQ6 offset_point(const PointQ6& base, const Unit& normal) const;
   Unit left_normal(const Direction& d) const;

@@ -2,6 +2,8 @@
 // per-point Horner evaluation in 32x16 fixed point.
 #include "firmware/core/span_evaluator.h"
 
+#include <string.h>  // memset
+
 #include "firmware/core/divide.h"        // reciprocal_of, mul_reciprocal_q27
 #include "firmware/core/wide_product.h"  // Wide, mul_wide
 
@@ -338,13 +340,9 @@ uint16_t next_span(const Spline& spline, uint16_t span) {
   return i < spline.control_count ? i : spline.control_count;
 }
 
-SpanEvaluator::SpanEvaluator() : degree_(0), rational_(false), dir_shift_(0) {
-  origin_.x_um = origin_.y_um = 0;
-  origin_q6_.x_q6 = origin_q6_.y_q6 = 0;
-  start_.x_q6 = start_.y_q6 = 0;
-  end_ = start_;
-  end_dir_.dx = end_dir_.dy = 0;
-  for (uint8_t k = 0; k <= kMaxDegree; ++k) cx_[k] = cy_[k] = cw_[k] = 0;
+// All zero (degree 0: unset); plain data, so one memset rather than a store per member.
+SpanEvaluator::SpanEvaluator() {
+  memset(static_cast<void*>(this), 0, sizeof *this);
 }
 
 // Blossoms the span into Bezier points relative to its first control point, then stores

@@ -3,6 +3,7 @@
 // machine with fine microsteps (short direction vectors, where the scale loses bits).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 
@@ -97,6 +98,73 @@ TEST(TickMath, ScalingRefusesMicrostepsBelowTheDivisionRange) {
   app::AxisScaling s{};
   EXPECT_FALSE(app::build_axis_scaling(cfg, rig.plant, &s));
   EXPECT_EQ(s.usteps_per_mm[0], 65535);
+}
+
+// build_axis_scaling against its plain 64-bit formulas (the code before its 64-bit steps
+// went through one out-of-line helper) on random machines: every field equal.
+TEST(TickMath, AxisScalingIsTheExact64BitQuotients) {
+  std::mt19937_64 rng(22);
+  auto pick = [&rng](uint64_t top) {
+    const uint64_t v = rng() >> (rng() % 64);
+    return rng() % 4 == 0 ? v % 16 : v % (top + 1);
+  };
+  for (int trial = 0; trial < 20000; ++trial) {
+    config::MachineConfig cfg = config::default_machine_config();
+    KinematicPlant plant;
+    for (int a = 0; a < 3; ++a) {
+      cfg.axis[a].microsteps_per_step = uint8_t(1u << (rng() % 7));
+      cfg.axis[a].pitch_um = uint32_t(1 + pick(20000));
+      cfg.axis[a].max_speed_um_per_s = uint32_t(pick(0xFFFFFFFFu));
+      cfg.axis[a].accel_um_per_s2 = uint32_t(pick(0xFFFFFFFFu));
+      plant.axis[a].usteps_per_s_per_unit_q16 = uint32_t(pick(0xFFFFFFFFu));
+      plant.axis[a].max_units = int16_t(pick(0xFFFF));
+      plant.axis[a].accel_units_per_ms = uint16_t(pick(0xFFFF));
+    }
+    app::AxisScaling s{};
+    const bool ok = app::build_axis_scaling(cfg, plant, &s);
+    bool ref_ok = true;
+    uint64_t um_q32[3], units_q32[3];
+    for (int a = 0; a < 3; ++a) {
+      int64_t upm = config::usteps_per_mm(cfg.axis[a]);
+      if (upm < 1 || upm > 65535) ref_ok = false;
+      upm = std::min<int64_t>(std::max<int64_t>(upm, 1), 65535);
+      ASSERT_EQ(s.usteps_per_mm[a], upm);
+      uint64_t u = plant.axis[a].usteps_per_s_per_unit_q16;
+      if (u == 0) u = 1, ref_ok = false;
+      um_q32[a] = (1000ULL << 32) / uint64_t(upm);
+      units_q32[a] = (uint64_t(upm) << 48) / 1000 / u;
+      int64_t vmax = plant.axis[a].max_units;
+      if (vmax < 1) vmax = 1, ref_ok = false;
+      ASSERT_EQ(s.max_units[a], vmax);
+      const uint64_t chip_max = uint64_t(vmax) * u * 1000 / 65536 / uint64_t(upm);
+      const uint64_t max_um_s = std::max<uint64_t>(
+          std::min<uint64_t>({chip_max, cfg.axis[a].max_speed_um_per_s, 32767}), 1);
+      ASSERT_EQ(s.max_speed_um_s[a], max_um_s) << trial;
+      uint64_t acc = uint64_t(plant.axis[a].accel_units_per_ms) * u * 1000 / 65536 / uint64_t(upm);
+      if (acc < 4) acc = 4, ref_ok = false;
+      ASSERT_EQ(s.chip_accel_um_s_per_ms[a], std::min<uint64_t>(acc, 65535)) << trial;
+      uint64_t plan = acc * 192 / 256;
+      const uint64_t cfg_acc = cfg.axis[a].accel_um_per_s2 / 1000;
+      if (cfg_acc >= 1 && cfg_acc < plan) plan = cfg_acc;
+      plan = std::min<uint64_t>(std::max<uint64_t>(plan, 1), 65535);
+      ASSERT_EQ(s.plan_accel_um_s_per_ms[a], plan) << trial;
+    }
+    for (const bool units : {false, true}) {
+      const uint64_t* v = units ? units_q32 : um_q32;
+      int shift = 32;
+      for (int a = 0; a < 3; ++a) {
+        while (shift > 0 && (v[a] >> (32 - shift)) >= 65536) --shift;
+      }
+      ASSERT_EQ(units ? s.units_shift : s.um_shift, shift) << trial;
+      for (int a = 0; a < 3; ++a) {
+        ASSERT_EQ(units ? s.units_per_um_s_q[a] : s.um_per_ustep_q[a],
+                  uint16_t(v[a] >> (32 - shift)))
+            << trial;
+      }
+      if (shift < 16) ref_ok = false;
+    }
+    ASSERT_EQ(ok, ref_ok) << trial;
+  }
 }
 
 TEST(TickMath, FineMicrostepsRunTheFeedAndEndOnTarget) {

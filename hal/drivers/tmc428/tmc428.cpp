@@ -13,14 +13,33 @@ namespace {
 // Patterns for the presence check: complementary, so a stuck data line shows either way.
 const uint32_t kProbeA = 0xA5A;
 const uint32_t kProbeB = 0x5A5;
-const uint32_t kSmgpReadMask = 0x31FFFFUL;
 // Each datagram is at least 32 SCK periods of >= 8 f_clk (SPI <= f_clk / 8): 256 f_clk.
 const uint32_t kMinClocksPerDatagram = 256;
 
-// 12-bit two's complement of a velocity.
-uint32_t v12(int16_t v) {
-  return (uint32_t)(uint16_t)v & 0xFFFu;
-}
+// The registers configure_motors() writes per motor, in order, each read back through
+// the mask of its fields: all of them but the interrupt flags (cleared by writing 1) and
+// lp (read-only).
+struct MotorRegister {
+  uint8_t reg;
+  uint32_t readback_mask;
+};
+const MotorRegister kMotorRegisters[] = {
+    {kDivisors, kAllFields_kDivisors},
+    {kVMin, kAllFields_kVMin},
+    {kVMax, kAllFields_kVMax},
+    {kAMax, kAllFields_kAMax},
+    {kPmulPdiv, kAllFields_kPmulPdiv},
+    {kCurrentScale, kAllFields_kCurrentScale},
+    {kInterrupt, TMC428_FIELD_MASK(kField_kInterrupt_int_mask)},
+    {kRefConfRampMode, kAllFields_kRefConfRampMode & ~(uint32_t)kLatchPending}};
+enum { kMotorRegisterCount = sizeof kMotorRegisters / sizeof kMotorRegisters[0] };
+
+// The two RAM tables: where each starts and its entries.
+struct RamTable {
+  uint8_t address;
+  const uint8_t* entries;
+};
+const RamTable kRamTables[2] = {{kRamDriverChain, kDriverChainTable}, {kRamSineTable, kSineTable}};
 
 }  // namespace
 
@@ -88,8 +107,9 @@ Tmc428InitResult Tmc428::init() {
   // SMGP: 3 drivers (LSMD 2), TMC24x polarities (all 0), clk2_div 7 (f_SCK_S = f_clk/16,
   // [429DS] §8.2.5.3), continuous update + refmux for the six multiplexed switches
   // ([428DS] §9.7). Written after the RAM tables so the chain never sends garbage.
-  const uint32_t smgp = 2u | (7u << kSmgpClk2DivShift) | kSmgpContinuousUpdate | kSmgpRefMux;
-  if (!write_and_verify(kSmgp, smgp, kSmgpReadMask)) return Tmc428InitResult::kRegisterReadback;
+  const uint32_t smgp = field_value(kField_kSmgp_lsmd, 2) | field_value(kField_kSmgp_clk2_div, 7) |
+                        kSmgpContinuousUpdate | kSmgpRefMux;
+  if (!write_and_verify(kSmgp, smgp, kAllFields_kSmgp)) return Tmc428InitResult::kRegisterReadback;
   r = check_chain();
   if (r != Tmc428InitResult::kOk) return r;
   r = configure_motors();
@@ -102,8 +122,8 @@ Tmc428InitResult Tmc428::init() {
 // A register without motion effect, so a chip left running by a warm restart is not moved.
 Tmc428InitResult Tmc428::check_presence() {
   const uint8_t reg = motor_reg(0, kDxRefTolerance);
-  const bool a_ok = write_and_verify(reg, kProbeA, 0xFFF);
-  const bool b_ok = write_and_verify(reg, kProbeB, 0xFFF);
+  const bool a_ok = write_and_verify(reg, kProbeA, kAllFields_kDxRefTolerance);
+  const bool b_ok = write_and_verify(reg, kProbeB, kAllFields_kDxRefTolerance);
   write_reg(reg, 0);
   if (answer_stuck_) return Tmc428InitResult::kNoResponse;
   if (!a_ok || !b_ok) return Tmc428InitResult::kRegisterReadback;
@@ -115,37 +135,36 @@ Tmc428InitResult Tmc428::check_presence() {
 // 0 (changing pulse_div is safe only in RAMP mode, §8.14; ramp_div 0 makes the continuous
 // driver update fast for the chain check).
 void Tmc428::stop_all() {
+  // Every value written is 0 (kRampMode is 0).
+  enum { kStopCount = 4 };
+  static const uint8_t kStopRegisters[kStopCount] = {kVMax, kRefConfRampMode, kVTarget, kDivisors};
   for (uint8_t m = 0; m < config::kAxisCount; ++m) {
-    write_reg(motor_reg(m, kVMax), 0);
-    write_reg(motor_reg(m, kRefConfRampMode), kRampMode);
-    write_reg(motor_reg(m, kVTarget), 0);
-    write_reg(motor_reg(m, kDivisors), 0);
+    for (uint8_t i = 0; i < kStopCount; ++i) {
+      write_reg(motor_reg(m, kStopRegisters[i]), 0);
+    }
   }
 }
 
 // Both RAM tables ([428DS] §13 steps 2-3; TMC428 RAM is random at power-on, §7.3), then
 // read back (RW = 1 on RAM returns the same pair layout).
 Tmc428InitResult Tmc428::load_ram() {
-  for (uint8_t k = 0; k < kRamPairs; ++k) {
-    write_reg((uint8_t)(kRamDriverChain + 2 * k),
-              ram_pair_data(kDriverChainTable[2 * k], kDriverChainTable[2 * k + 1]));
-  }
-  for (uint8_t k = 0; k < kRamPairs; ++k) {
-    write_reg((uint8_t)(kRamSineTable + 2 * k),
-              ram_pair_data(kSineTable[2 * k], kSineTable[2 * k + 1]));
-  }
-  bool same = true;
-  for (uint8_t k = 0; k < kRamPairs; ++k) {
-    uint32_t got = 0;
-    if (!read_reg((uint8_t)(kRamDriverChain + 2 * k), &got)) same = false;
-    if ((got & 0x3F3F) != ram_pair_data(kDriverChainTable[2 * k], kDriverChainTable[2 * k + 1])) {
-      same = false;
+  for (uint8_t t = 0; t < 2; ++t) {
+    const RamTable& table = kRamTables[t];
+    for (uint8_t k = 0; k < kRamPairs; ++k) {
+      write_reg((uint8_t)(table.address + 2 * k),
+                ram_pair_data(table.entries[2 * k], table.entries[2 * k + 1]));
     }
   }
-  for (uint8_t k = 0; k < kRamPairs; ++k) {
-    uint32_t got = 0;
-    if (!read_reg((uint8_t)(kRamSineTable + 2 * k), &got)) same = false;
-    if ((got & 0x3F3F) != ram_pair_data(kSineTable[2 * k], kSineTable[2 * k + 1])) same = false;
+  bool same = true;
+  for (uint8_t t = 0; t < 2; ++t) {
+    const RamTable& table = kRamTables[t];
+    for (uint8_t k = 0; k < kRamPairs; ++k) {
+      uint32_t got = 0;
+      if (!read_reg((uint8_t)(table.address + 2 * k), &got)) same = false;
+      if ((got & 0x3F3F) != ram_pair_data(table.entries[2 * k], table.entries[2 * k + 1])) {
+        same = false;
+      }
+    }
   }
   return same ? Tmc428InitResult::kOk : Tmc428InitResult::kRamReadback;
 }
@@ -172,16 +191,7 @@ Tmc428InitResult Tmc428::check_chain() {
   uint32_t low = 0;
   uint32_t high = 0;
   if (!fetch_chain_words(&low, &high)) return Tmc428InitResult::kChainTimeout;
-  // Motor 1's bits go out first and end in the last driver, whose status arrives first:
-  // motor 1 = high[11:0], motor 2 = low[23:12], motor 3 = low[11:0] ([429DS] Fig. 8.5).
-  driver_status_[0] = (uint16_t)(high & 0xFFF);
-  driver_status_[1] = (uint16_t)((low >> 12) & 0xFFF);
-  driver_status_[2] = (uint16_t)(low & 0xFFF);
-  for (uint8_t a = 0; a < config::kAxisCount; ++a) {
-    // TMC246 status bit 8 is always 1 ([246DS] §4).
-    if ((driver_status_[a] & 0x100) == 0) return Tmc428InitResult::kChainReadback;
-  }
-  return Tmc428InitResult::kOk;
+  return store_driver_status(low, high) ? Tmc428InitResult::kOk : Tmc428InitResult::kChainReadback;
 }
 
 // Per-motor registers ([428DS] §13 step 5), each read back. pulse_div is written while
@@ -196,22 +206,23 @@ Tmc428InitResult Tmc428::configure_motors() {
   const uint32_t polls = 2 * period / kMinClocksPerDatagram + 16;
   for (uint8_t m = 0; m < config::kAxisCount; ++m) {
     const AxisSettings& s = settings_[m];
-    const bool ok =
-        write_and_verify(motor_reg(m, kDivisors), divisors_data(s.pulse_div, s.ramp_div, s.usrs),
-                         0xFF07) &&
-        write_and_verify(motor_reg(m, kVMin), s.v_min, 0x7FF) &&
-        write_and_verify(motor_reg(m, kVMax), s.v_max, 0x7FF) &&
-        write_and_verify(motor_reg(m, kAMax), s.a_max, 0x7FF) &&
-        write_and_verify(motor_reg(m, kPmulPdiv), pmul_pdiv_data(s.pmul, s.pdiv), 0xFF0F) &&
-        write_and_verify(motor_reg(m, kCurrentScale),
-                         current_scale_data(s.is_agtat, s.is_aleat, s.is_v0, s.a_threshold),
-                         0x7777FF) &&
+    // In the order of kMotorRegisters.
+    const uint32_t data[kMotorRegisterCount] = {
+        divisors_data(s.pulse_div, s.ramp_div, s.usrs), s.v_min, s.v_max, s.a_max,
+        pmul_pdiv_data(s.pmul, s.pdiv),
+        current_scale_data(s.is_agtat, s.is_aleat, s.is_v0, s.a_threshold),
         // INT_STOP unmasked so a switch stop shows as INT in every status byte; write 1s
         // to clear stale flags (Tab. 8-6).
-        write_and_verify(motor_reg(m, kInterrupt), ((uint32_t)kIntStop << 8) | 0xFF, 0xFF00) &&
+        field_value(kField_kInterrupt_int_mask, kIntStop) |
+            TMC428_FIELD_MASK(kField_kInterrupt_int_flags),
         // ref_conf 0: stop on both switches, hard stop, left = reference ([428DS] Tab. 8-4).
-        write_and_verify(motor_reg(m, kRefConfRampMode), kVelocityMode, 0xF03);
-    if (!ok) return Tmc428InitResult::kRegisterReadback;
+        field_value(kField_kRefConfRampMode_ramp_mode, kVelocityMode)};
+    for (uint8_t i = 0; i < kMotorRegisterCount; ++i) {
+      if (!write_and_verify(motor_reg(m, kMotorRegisters[i].reg), data[i],
+                            kMotorRegisters[i].readback_mask)) {
+        return Tmc428InitResult::kRegisterReadback;
+      }
+    }
   }
   chain_poll_limit_ = (uint16_t)(polls > 0xFFFF ? 0xFFFF : polls);
   return Tmc428InitResult::kOk;
@@ -220,14 +231,21 @@ Tmc428InitResult Tmc428::configure_motors() {
 bool Tmc428::read_driver_status() {
   uint32_t low = 0;
   uint32_t high = 0;
-  if (!fetch_chain_words(&low, &high)) return false;
+  return fetch_chain_words(&low, &high) && store_driver_status(low, high);
+}
+
+// Motor 1's bits go out first and end in the last driver, whose status arrives first:
+// motor 1 = high[11:0], motor 2 = low[23:12], motor 3 = low[11:0] ([429DS] Fig. 8.5).
+// False when a status lacks TMC246 bit 8, which is always 1 ([246DS] §4).
+bool Tmc428::store_driver_status(uint32_t low, uint32_t high) {
   driver_status_[0] = (uint16_t)(high & 0xFFF);
   driver_status_[1] = (uint16_t)((low >> 12) & 0xFFF);
   driver_status_[2] = (uint16_t)(low & 0xFFF);
+  bool all_one = true;
   for (uint8_t a = 0; a < config::kAxisCount; ++a) {
-    if ((driver_status_[a] & 0x100) == 0) return false;
+    if ((driver_status_[a] & 0x100) == 0) all_one = false;
   }
-  return true;
+  return all_one;
 }
 
 // TMC246 status bits (TMC246B data sheet sec. 4, status word).
@@ -271,10 +289,7 @@ uint8_t Tmc428::poll_driver_check() {
   check_step_ = kCheckArm;
   uint32_t high = 0;
   if (!read_reg(kDatagramHighWord, &high)) return hal::kDriverCheckPending;
-  // Same layout as check_chain(): motor 1 = high[11:0], motor 2 = low[23:12], 3 = low[11:0].
-  driver_status_[0] = (uint16_t)(high & 0xFFF);
-  driver_status_[1] = (uint16_t)((check_low_word_ >> 12) & 0xFFF);
-  driver_status_[2] = (uint16_t)(check_low_word_ & 0xFFF);
+  store_driver_status(check_low_word_, high);  // a missing bit 8 is classified below
   uint8_t worst = hal::kDriverCheckOk;
   for (uint8_t a = 0; a < config::kAxisCount; ++a) {
     const uint8_t c = classify_driver_status(driver_status_[a]);
@@ -298,7 +313,7 @@ bool Tmc428::read_actual_usteps(int32_t out[config::kAxisCount]) {
   for (uint8_t a = 0; a < config::kAxisCount; ++a) {
     uint32_t data = 0;
     if (!read_reg(motor_reg(a, kXActual), &data)) return false;
-    out[a] = sign_extend(data, 24);
+    out[a] = sign_extend(data, TMC428_FIELD_WIDTH(kField_kXActual_x));
   }
   return true;
 }
@@ -311,7 +326,8 @@ bool Tmc428::write_velocity_units(const int16_t v[config::kAxisCount]) {
     int16_t value = v[a];
     if (value > top) value = top;
     if (value < -top) value = (int16_t)-top;
-    if (write_reg(motor_reg(a, kVTarget), v12(value)) == 0xFFFFFFFFUL) sane = false;
+    const uint32_t data = field_value(kField_kVTarget_v, (uint32_t)(int32_t)value);
+    if (write_reg(motor_reg(a, kVTarget), data) == 0xFFFFFFFFUL) sane = false;
   }
   return sane;
 }
@@ -321,7 +337,7 @@ bool Tmc428::read_velocity_units(int16_t out[config::kAxisCount]) {
   for (uint8_t a = 0; a < config::kAxisCount; ++a) {
     uint32_t data = 0;
     if (!read_reg(motor_reg(a, kVActual), &data)) return false;
-    out[a] = (int16_t)sign_extend(data, 12);
+    out[a] = (int16_t)sign_extend(data, TMC428_FIELD_WIDTH(kField_kVActual_v));
   }
   return true;
 }
@@ -331,7 +347,7 @@ bool Tmc428::set_actual_usteps(const int32_t usteps[config::kAxisCount]) {
   if (!ready_) return false;
   bool sane = true;
   for (uint8_t a = 0; a < config::kAxisCount; ++a) {
-    const uint32_t x = (uint32_t)usteps[a] & 0xFFFFFFUL;
+    const uint32_t x = field_value(kField_kXActual_x, (uint32_t)usteps[a]);
     if (write_reg(motor_reg(a, kXActual), x) == 0xFFFFFFFFUL) sane = false;
     if (write_reg(motor_reg(a, kXTarget), x) == 0xFFFFFFFFUL) sane = false;
   }

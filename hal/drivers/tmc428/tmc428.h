@@ -89,6 +89,7 @@ class Tmc428 : public hal::MotionAxes {
   Tmc428InitResult configure_motors();
   Tmc428InitResult check_chain();
   bool fetch_chain_words(uint32_t* low, uint32_t* high);
+  bool store_driver_status(uint32_t low, uint32_t high);
 
   hal::SpiMaster& spi_;
   const config::MachineConfig& machine_;

@@ -8,8 +8,10 @@
 //
 // TMC428_REGISTER_MAP(REG, FIELD, END) calls, per register,
 //   REG(block, idx, constant, "name")   block kMotorBlock (SMDA 0..2) or kCommonBlock (3)
-//   FIELD("name", hi, lo, kind)         kind: kFieldUnsigned kFieldSigned kFieldHex
-//                                       kFieldRampMode (RAMP SOFT VELOCITY HOLD)
+//   FIELD(constant, name, hi, lo, kind)  kind: kFieldUnsigned kFieldSigned kFieldHex
+//                                        kFieldRampMode (RAMP SOFT VELOCITY HOLD)
+//                                        (constant: the REG row's; tmc428_regs.h makes
+//                                        kField_<constant>_<name> of it for the builders)
 //   END(constant)
 #ifndef HAL_DRIVERS_TMC428_TMC428_MAP_H
 #define HAL_DRIVERS_TMC428_TMC428_MAP_H
@@ -23,95 +25,95 @@
 // clang-format off
 #define TMC428_REGISTER_MAP(REG, FIELD, END)                                     \
   REG(kMotorBlock, 0, kXTarget, "x_target")                                      \
-    FIELD("x", 23, 0, kFieldSigned)                                              \
+    FIELD(kXTarget, x, 23, 0, kFieldSigned)                                      \
   END(kXTarget)                                                                  \
   REG(kMotorBlock, 1, kXActual, "x_actual")                                      \
-    FIELD("x", 23, 0, kFieldSigned)                                              \
+    FIELD(kXActual, x, 23, 0, kFieldSigned)                                      \
   END(kXActual)                                                                  \
   REG(kMotorBlock, 2, kVMin, "v_min")                                            \
-    FIELD("v", 10, 0, kFieldUnsigned)                                            \
+    FIELD(kVMin, v, 10, 0, kFieldUnsigned)                                       \
   END(kVMin)                                                                     \
   REG(kMotorBlock, 3, kVMax, "v_max")                                            \
-    FIELD("v", 10, 0, kFieldUnsigned)                                            \
+    FIELD(kVMax, v, 10, 0, kFieldUnsigned)                                       \
   END(kVMax)                                                                     \
   REG(kMotorBlock, 4, kVTarget, "v_target")                                      \
-    FIELD("v", 11, 0, kFieldSigned)                                              \
+    FIELD(kVTarget, v, 11, 0, kFieldSigned)                                      \
   END(kVTarget)                                                                  \
   REG(kMotorBlock, 5, kVActual, "v_actual")                                      \
-    FIELD("v", 11, 0, kFieldSigned)                                              \
+    FIELD(kVActual, v, 11, 0, kFieldSigned)                                      \
   END(kVActual)                                                                  \
   REG(kMotorBlock, 6, kAMax, "a_max")                                            \
-    FIELD("a", 10, 0, kFieldUnsigned)                                            \
+    FIELD(kAMax, a, 10, 0, kFieldUnsigned)                                       \
   END(kAMax)                                                                     \
   REG(kMotorBlock, 7, kAActual, "a_actual")                                      \
-    FIELD("a", 11, 0, kFieldSigned)                                              \
+    FIELD(kAActual, a, 11, 0, kFieldSigned)                                      \
   END(kAActual)                                                                  \
   REG(kMotorBlock, 8, kCurrentScale, "current_scale")                            \
-    FIELD("is_agtat", 22, 20, kFieldUnsigned)                                    \
-    FIELD("is_aleat", 18, 16, kFieldUnsigned)                                    \
-    FIELD("is_v0", 14, 12, kFieldUnsigned)                                       \
-    FIELD("a_threshold", 10, 0, kFieldUnsigned)                                  \
+    FIELD(kCurrentScale, is_agtat, 22, 20, kFieldUnsigned)                       \
+    FIELD(kCurrentScale, is_aleat, 18, 16, kFieldUnsigned)                       \
+    FIELD(kCurrentScale, is_v0, 14, 12, kFieldUnsigned)                          \
+    FIELD(kCurrentScale, a_threshold, 10, 0, kFieldUnsigned)                     \
   END(kCurrentScale)                                                             \
   REG(kMotorBlock, 9, kPmulPdiv, "pmul_pdiv")                                    \
-    FIELD("pmul", 15, 8, kFieldUnsigned)                                         \
-    FIELD("pdiv", 3, 0, kFieldUnsigned)                                          \
+    FIELD(kPmulPdiv, pmul, 15, 8, kFieldUnsigned)                                \
+    FIELD(kPmulPdiv, pdiv, 3, 0, kFieldUnsigned)                                 \
   END(kPmulPdiv)                                                                 \
   REG(kMotorBlock, 10, kRefConfRampMode, "ref_conf_mode")                        \
-    FIELD("ramp_mode", 1, 0, kFieldRampMode)                                     \
-    FIELD("ref_conf", 11, 8, kFieldHex)                                          \
-    FIELD("lp", 16, 16, kFieldUnsigned)                                          \
+    FIELD(kRefConfRampMode, ramp_mode, 1, 0, kFieldRampMode)                     \
+    FIELD(kRefConfRampMode, ref_conf, 11, 8, kFieldHex)                          \
+    FIELD(kRefConfRampMode, lp, 16, 16, kFieldUnsigned)                          \
   END(kRefConfRampMode)                                                          \
   REG(kMotorBlock, 11, kInterrupt, "interrupt")                                  \
-    FIELD("int_mask", 15, 8, kFieldHex)                                          \
-    FIELD("int_flags", 7, 0, kFieldHex)                                          \
+    FIELD(kInterrupt, int_mask, 15, 8, kFieldHex)                                \
+    FIELD(kInterrupt, int_flags, 7, 0, kFieldHex)                                \
   END(kInterrupt)                                                                \
   REG(kMotorBlock, 12, kDivisors, "dividers")                                    \
-    FIELD("pulse_div", 15, 12, kFieldUnsigned)                                   \
-    FIELD("ramp_div", 11, 8, kFieldUnsigned)                                     \
-    FIELD("usrs", 2, 0, kFieldUnsigned)                                          \
+    FIELD(kDivisors, pulse_div, 15, 12, kFieldUnsigned)                          \
+    FIELD(kDivisors, ramp_div, 11, 8, kFieldUnsigned)                            \
+    FIELD(kDivisors, usrs, 2, 0, kFieldUnsigned)                                 \
   END(kDivisors)                                                                 \
   REG(kMotorBlock, 13, kDxRefTolerance, "dx_ref_tolerance")                      \
-    FIELD("dx_ref_tolerance", 11, 0, kFieldUnsigned)                             \
+    FIELD(kDxRefTolerance, dx_ref_tolerance, 11, 0, kFieldUnsigned)              \
   END(kDxRefTolerance)                                                           \
   REG(kMotorBlock, 14, kXLatched, "x_latched")                                   \
-    FIELD("x", 23, 0, kFieldSigned)                                              \
+    FIELD(kXLatched, x, 23, 0, kFieldSigned)                                     \
   END(kXLatched)                                                                 \
   REG(kCommonBlock, 0, kDatagramLowWord, "datagram_low_word")                    \
-    FIELD("data", 23, 0, kFieldHex)                                              \
+    FIELD(kDatagramLowWord, data, 23, 0, kFieldHex)                              \
   END(kDatagramLowWord)                                                          \
   REG(kCommonBlock, 1, kDatagramHighWord, "datagram_high_word")                  \
-    FIELD("data", 23, 0, kFieldHex)                                              \
+    FIELD(kDatagramHighWord, data, 23, 0, kFieldHex)                             \
   END(kDatagramHighWord)                                                         \
   REG(kCommonBlock, 2, kCoverPosLen, "cover_pos_len")                            \
-    FIELD("cover_pos", 13, 8, kFieldUnsigned)                                    \
-    FIELD("cover_len", 4, 0, kFieldUnsigned)                                     \
-    FIELD("cover_waiting", 23, 23, kFieldUnsigned)                               \
+    FIELD(kCoverPosLen, cover_pos, 13, 8, kFieldUnsigned)                        \
+    FIELD(kCoverPosLen, cover_len, 4, 0, kFieldUnsigned)                         \
+    FIELD(kCoverPosLen, cover_waiting, 23, 23, kFieldUnsigned)                   \
   END(kCoverPosLen)                                                              \
   REG(kCommonBlock, 3, kCoverDatagram, "cover_datagram")                         \
-    FIELD("cover_datagram", 23, 0, kFieldHex)                                    \
+    FIELD(kCoverDatagram, cover_datagram, 23, 0, kFieldHex)                      \
   END(kCoverDatagram)                                                            \
   REG(kCommonBlock, 8, kPowerDown, "power_down")                                 \
   END(kPowerDown)                                                                \
   REG(kCommonBlock, 14, kRefSwitches, "ref_switches")                            \
-    FIELD("r1", 0, 0, kFieldUnsigned)                                            \
-    FIELD("l1", 1, 1, kFieldUnsigned)                                            \
-    FIELD("r2", 2, 2, kFieldUnsigned)                                            \
-    FIELD("l2", 3, 3, kFieldUnsigned)                                            \
-    FIELD("r3", 4, 4, kFieldUnsigned)                                            \
-    FIELD("l3", 5, 5, kFieldUnsigned)                                            \
+    FIELD(kRefSwitches, r1, 0, 0, kFieldUnsigned)                                \
+    FIELD(kRefSwitches, l1, 1, 1, kFieldUnsigned)                                \
+    FIELD(kRefSwitches, r2, 2, 2, kFieldUnsigned)                                \
+    FIELD(kRefSwitches, l2, 3, 3, kFieldUnsigned)                                \
+    FIELD(kRefSwitches, r3, 4, 4, kFieldUnsigned)                                \
+    FIELD(kRefSwitches, l3, 5, 5, kFieldUnsigned)                                \
   END(kRefSwitches)                                                              \
   REG(kCommonBlock, 15, kSmgp, "SMGP")                                           \
-    FIELD("lsmd", 1, 0, kFieldUnsigned)                                          \
-    FIELD("pol_nscs_s", 2, 2, kFieldUnsigned)                                    \
-    FIELD("pol_sck_s", 3, 3, kFieldUnsigned)                                     \
-    FIELD("pol_ph_ab", 4, 4, kFieldUnsigned)                                     \
-    FIELD("pol_fd_ab", 5, 5, kFieldUnsigned)                                     \
-    FIELD("pol_dac_ab", 6, 6, kFieldUnsigned)                                    \
-    FIELD("cs_comind", 7, 7, kFieldUnsigned)                                     \
-    FIELD("clk2_div", 15, 8, kFieldUnsigned)                                     \
-    FIELD("cont_update", 16, 16, kFieldUnsigned)                                 \
-    FIELD("refmux", 20, 20, kFieldUnsigned)                                      \
-    FIELD("mot1r", 21, 21, kFieldUnsigned)                                       \
+    FIELD(kSmgp, lsmd, 1, 0, kFieldUnsigned)                                     \
+    FIELD(kSmgp, pol_nscs_s, 2, 2, kFieldUnsigned)                               \
+    FIELD(kSmgp, pol_sck_s, 3, 3, kFieldUnsigned)                                \
+    FIELD(kSmgp, pol_ph_ab, 4, 4, kFieldUnsigned)                                \
+    FIELD(kSmgp, pol_fd_ab, 5, 5, kFieldUnsigned)                                \
+    FIELD(kSmgp, pol_dac_ab, 6, 6, kFieldUnsigned)                               \
+    FIELD(kSmgp, cs_comind, 7, 7, kFieldUnsigned)                                \
+    FIELD(kSmgp, clk2_div, 15, 8, kFieldUnsigned)                                \
+    FIELD(kSmgp, cont_update, 16, 16, kFieldUnsigned)                            \
+    FIELD(kSmgp, refmux, 20, 20, kFieldUnsigned)                                 \
+    FIELD(kSmgp, mot1r, 21, 21, kFieldUnsigned)                                  \
   END(kSmgp)
 // clang-format on
 

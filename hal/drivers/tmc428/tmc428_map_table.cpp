@@ -9,7 +9,7 @@ namespace tmc428 {
 namespace {
 
 #define TMC428_TABLE_REG(block, idx, constant, text) const RegisterField kFields_##constant[] = {
-#define TMC428_TABLE_FIELD(text, hi, lo, kind) {text, hi, lo, kind},
+#define TMC428_TABLE_FIELD(constant, name, hi, lo, kind) {#name, hi, lo, kind},
 #define TMC428_TABLE_END(constant) \
   { 0, 0, 0, kFieldEnd }           \
   }                                \

@@ -53,13 +53,50 @@ enum : uint8_t {
 // ramp_mode values, [428DS] Tab. 8-3.
 enum : uint8_t { kRampMode = 0, kSoftMode = 1, kVelocityMode = 2, kHoldMode = 3 };
 
-// ref_conf bits as they sit in the IDX 10 register, [428DS] Tab. 8-4 ([429DS] §8.1.11.2).
+// ---- Register fields, from the map's FIELD rows (tmc428_map.h): their bits are written
+// there only. kField_<register>_<field> = lowest bit | width << 5, e.g.
+// kField_kDivisors_pulse_div; kAllFields_<register> = the mask of all its fields.
+#define TMC428_FIELD_POSITION(constant, name, hi, lo, kind) \
+  kField_##constant##_##name = (lo) | (((hi) - (lo) + 1) << 5),
+#define TMC428_FIELD_SKIP(...)
+enum FieldPosition {
+  TMC428_REGISTER_MAP(TMC428_FIELD_SKIP, TMC428_FIELD_POSITION, TMC428_FIELD_SKIP)
+      kFieldPositionNone = 0
+};
+#undef TMC428_FIELD_POSITION
+
+// Lowest bit, width and in-place mask of a field position (constant expressions).
+#define TMC428_FIELD_LO(position) ((position)&31)
+#define TMC428_FIELD_WIDTH(position) ((position) >> 5)
+#define TMC428_FIELD_MASK(position) \
+  ((((uint32_t)1 << TMC428_FIELD_WIDTH(position)) - 1) << TMC428_FIELD_LO(position))
+
+#define TMC428_ALL_FIELDS_REG(block, idx, constant, text) kAllFields_##constant = 0
+#define TMC428_ALL_FIELDS_FIELD(constant, name, hi, lo, kind) \
+  | TMC428_FIELD_MASK(kField_##constant##_##name)
+#define TMC428_ALL_FIELDS_END(constant) ,
 enum : uint32_t {
-  kDisableStopL = 0x100,
-  kDisableStopR = 0x200,
-  kSoftStop = 0x400,
-  kRefRnL = 0x800,
-  kLatchPending = 0x10000  // lp, RO
+  TMC428_REGISTER_MAP(TMC428_ALL_FIELDS_REG, TMC428_ALL_FIELDS_FIELD, TMC428_ALL_FIELDS_END)
+      kAllFieldsNone = 0
+};
+#undef TMC428_ALL_FIELDS_REG
+#undef TMC428_ALL_FIELDS_FIELD
+#undef TMC428_ALL_FIELDS_END
+#undef TMC428_FIELD_SKIP
+
+// A value placed in its field (bits beyond the field's width dropped).
+inline uint32_t field_value(uint16_t position, uint32_t value) {
+  return (value << TMC428_FIELD_LO(position)) & TMC428_FIELD_MASK(position);
+}
+
+// ref_conf bits as they sit in the IDX 10 register, [428DS] Tab. 8-4 ([429DS] §8.1.11.2):
+// ref_conf bit 0..3 and lp.
+enum : uint32_t {
+  kDisableStopL = (uint32_t)1 << TMC428_FIELD_LO(kField_kRefConfRampMode_ref_conf),
+  kDisableStopR = kDisableStopL << 1,
+  kSoftStop = kDisableStopL << 2,
+  kRefRnL = kDisableStopL << 3,
+  kLatchPending = TMC428_FIELD_MASK(kField_kRefConfRampMode_lp)  // RO
 };
 
 // interrupt_flags / interrupt_mask bits, [428DS] Tab. 8-6.
@@ -76,17 +113,17 @@ enum : uint8_t {
 
 // SMGP fields, [429DS] §8.2.5 / [428DS] §9.7.
 enum : uint32_t {
-  kSmgpLsmdMask = 0x3,
-  kSmgpPolarityNscsS = 0x4,
-  kSmgpPolaritySckS = 0x8,
-  kSmgpPolarityPhAb = 0x10,
-  kSmgpPolarityFdAb = 0x20,
-  kSmgpPolarityDacAb = 0x40,
-  kSmgpCsComInd = 0x80,
-  kSmgpClk2DivShift = 8,
-  kSmgpContinuousUpdate = 0x10000,
-  kSmgpRefMux = 0x100000,
-  kSmgpMot1r = 0x200000
+  kSmgpLsmdMask = TMC428_FIELD_MASK(kField_kSmgp_lsmd),
+  kSmgpPolarityNscsS = TMC428_FIELD_MASK(kField_kSmgp_pol_nscs_s),
+  kSmgpPolaritySckS = TMC428_FIELD_MASK(kField_kSmgp_pol_sck_s),
+  kSmgpPolarityPhAb = TMC428_FIELD_MASK(kField_kSmgp_pol_ph_ab),
+  kSmgpPolarityFdAb = TMC428_FIELD_MASK(kField_kSmgp_pol_fd_ab),
+  kSmgpPolarityDacAb = TMC428_FIELD_MASK(kField_kSmgp_pol_dac_ab),
+  kSmgpCsComInd = TMC428_FIELD_MASK(kField_kSmgp_cs_comind),
+  kSmgpClk2DivShift = TMC428_FIELD_LO(kField_kSmgp_clk2_div),
+  kSmgpContinuousUpdate = TMC428_FIELD_MASK(kField_kSmgp_cont_update),
+  kSmgpRefMux = TMC428_FIELD_MASK(kField_kSmgp_refmux),
+  kSmgpMot1r = TMC428_FIELD_MASK(kField_kSmgp_mot1r)
 };
 
 // Driver-chain RAM primary signal codes, [428DS] Tab. 11-1.
@@ -143,18 +180,25 @@ inline int32_t sign_extend(uint32_t value, uint8_t bits) {
   return (value & sign) ? (int32_t)(value | ~mask) : (int32_t)value;
 }
 
-// Register data words built from fields.
+// Register data words built from their fields (positions from the map).
 inline uint32_t divisors_data(uint8_t pulse_div, uint8_t ramp_div, uint8_t usrs) {
-  return ((uint32_t)(pulse_div & 0xF) << 12) | ((uint32_t)(ramp_div & 0xF) << 8) | (usrs & 0x7);
+  return field_value(kField_kDivisors_pulse_div, pulse_div) |
+         field_value(kField_kDivisors_ramp_div, ramp_div) |
+         field_value(kField_kDivisors_usrs, usrs);
 }
 inline uint32_t current_scale_data(uint8_t is_agtat, uint8_t is_aleat, uint8_t is_v0,
                                    uint16_t a_threshold) {
-  return ((uint32_t)(is_agtat & 7) << 20) | ((uint32_t)(is_aleat & 7) << 16) |
-         ((uint32_t)(is_v0 & 7) << 12) | (a_threshold & 0x7FF);
+  return field_value(kField_kCurrentScale_is_agtat, is_agtat) |
+         field_value(kField_kCurrentScale_is_aleat, is_aleat) |
+         field_value(kField_kCurrentScale_is_v0, is_v0) |
+         field_value(kField_kCurrentScale_a_threshold, a_threshold);
 }
+// pmul is 128..255: its bit 7 (register bit 15) is forced to 1 ([428DS] §8.11).
 inline uint32_t pmul_pdiv_data(uint8_t pmul, uint8_t pdiv) {
-  return ((uint32_t)(pmul | 0x80) << 8) | (pdiv & 0xF);
+  return field_value(kField_kPmulPdiv_pmul, (uint32_t)pmul | 0x80) |
+         field_value(kField_kPmulPdiv_pdiv, pdiv);
 }
+// RAM is not a register of the map: two 6-bit entries, [428DS] §10.
 inline uint32_t ram_pair_data(uint8_t even_entry, uint8_t odd_entry) {
   return ((uint32_t)(odd_entry & 0x3F) << 8) | (even_entry & 0x3F);
 }

@@ -6,31 +6,47 @@ namespace tmc428 {
 
 enum Rounding { kFloor, kNearest, kCeil };
 
-// (a 2^shift) / b for b > 0, rounded as asked. Every 64-bit quotient of this file goes
-// through here: one copy of the 64-bit code (long inline code on 8- and 16-bit cores).
-static __attribute__((noinline)) uint64_t div_shifted(uint64_t a, uint8_t shift, uint64_t b,
+// (a m 2^shift) / (b 2^b_shift) for b > 0, rounded as asked (the numerator < 2^64).
+// Every 64-bit step of this file goes through here: one copy of the 64-bit code (long
+// inline code on 8- and 16-bit cores), called with 32-bit factors and shifts.
+static __attribute__((noinline)) uint64_t div_shifted(uint64_t a, uint32_t m, uint8_t shift,
+                                                      uint32_t b, uint8_t b_shift,
                                                       Rounding rounding) {
-  const uint64_t num = a << shift;
-  const uint64_t add = rounding == kCeil ? b - 1 : (rounding == kNearest ? b / 2 : 0);
-  return (num + add) / b;
+  const uint64_t num = (a * m) << shift;
+  const uint64_t den = (uint64_t)b << b_shift;
+  const uint64_t add = rounding == kCeil ? den - 1 : (rounding == kNearest ? den / 2 : 0);
+  return (num + add) / den;
+}
+
+// The same for a 32-bit a, saturated at 2^32 - 1 (every caller but a_max_for_accel compares
+// with 32-bit limits: no 64-bit compares at the call sites).
+static __attribute__((noinline)) uint32_t div_shifted32(uint32_t a, uint32_t m, uint8_t shift,
+                                                        uint32_t b, uint8_t b_shift,
+                                                        Rounding rounding) {
+  const uint64_t q = div_shifted(a, m, shift, b, b_shift, rounding);
+  return q > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)q;
 }
 
 uint32_t usteps_per_s_per_unit_q16(uint32_t f_clk_hz, uint8_t pulse_div) {
-  return (uint32_t)div_shifted(f_clk_hz, 0, (uint64_t)1 << pulse_div, kNearest);
+  return div_shifted32(f_clk_hz, 1, 0, 1, pulse_div, kNearest);
 }
 
 int8_t choose_pulse_div(uint32_t f_clk_hz, uint32_t rate_usteps_per_s) {
-  // 2047 f_clk / 2^(pd+16) >= rate  <=>  2047 f_clk >= rate 2^(pd+16)
-  const uint64_t top = (uint64_t)kMaxVelocity * f_clk_hz;
+  // 2047 f_clk / 2^(pd+16) >= rate  <=>  2047 f_clk >= rate 2^(pd+16)  <=>
+  // floor(2047 f_clk / 2^(pd+16)) >= rate (rate an integer)
   for (int8_t pd = kMaxDiv; pd >= 0; --pd) {
-    if (((uint64_t)rate_usteps_per_s << (pd + 16)) <= top) return pd;
+    if (div_shifted32(kMaxVelocity, f_clk_hz, 0, 1, (uint8_t)(pd + 16), kFloor) >=
+        rate_usteps_per_s) {
+      return pd;
+    }
   }
   return -1;
 }
 
 uint16_t velocity_for_rate(uint32_t f_clk_hz, uint32_t rate_usteps_per_s, uint8_t pulse_div) {
-  const uint64_t v = div_shifted(rate_usteps_per_s, (uint8_t)(pulse_div + 16), f_clk_hz, kCeil);
-  return (uint16_t)(v > (uint64_t)kMaxVelocity ? (uint64_t)kMaxVelocity : v);
+  const uint32_t v =
+      div_shifted32(rate_usteps_per_s, 1, (uint8_t)(pulse_div + 16), f_clk_hz, 0, kCeil);
+  return (uint16_t)(v > (uint32_t)kMaxVelocity ? (uint32_t)kMaxVelocity : v);
 }
 
 uint32_t a_max_for_accel(uint32_t f_clk_hz, uint32_t accel_usteps_per_s2, uint8_t pulse_div,
@@ -39,9 +55,9 @@ uint32_t a_max_for_accel(uint32_t f_clk_hz, uint32_t accel_usteps_per_s2, uint8_
   // second (Q8), accel 2^(pd+16) / f_clk, then per ramp clock times 256:
   // a_max = A 2^(rd+5) 256 / f_clk.
   const uint64_t a_q8 =
-      div_shifted(accel_usteps_per_s2, (uint8_t)(pulse_div + 24), f_clk_hz, kNearest);
+      div_shifted(accel_usteps_per_s2, 1, (uint8_t)(pulse_div + 24), f_clk_hz, 0, kNearest);
   if (a_q8 > (((uint64_t)1 << 62) >> (ramp_div + 5))) return 65535u;
-  const uint64_t a_max = div_shifted(a_q8, (uint8_t)(ramp_div + 5), f_clk_hz, kNearest);
+  const uint64_t a_max = div_shifted(a_q8, 1, (uint8_t)(ramp_div + 5), f_clk_hz, 0, kNearest);
   return a_max > 65535u ? 65535u : (uint32_t)a_max;
 }
 
@@ -83,8 +99,8 @@ bool pmul_pdiv_for(uint16_t a_max, uint8_t ramp_div, uint8_t pulse_div, uint8_t*
   // 0.95 p 8 2^pdiv = a_max 95 2^(pdiv+pd) / (100 2^(rd+4)), truncated like pmulpdiv.c.
   bool found = false;
   for (uint8_t pd = 0; pd <= kMaxDiv; ++pd) {
-    const uint64_t value = div_shifted((uint32_t)a_max * 95u, (uint8_t)(pd + pulse_div),
-                                       (uint64_t)100u << (ramp_div + 4), kFloor);
+    const uint32_t value = div_shifted32((uint32_t)a_max * 95u, 1, (uint8_t)(pd + pulse_div), 100u,
+                                         (uint8_t)(ramp_div + 4), kFloor);
     if (value >= 128 && value <= 255) {
       *pmul = (uint8_t)value;
       *pdiv = pd;
@@ -96,16 +112,15 @@ bool pmul_pdiv_for(uint16_t a_max, uint8_t ramp_div, uint8_t pulse_div, uint8_t*
 
 uint16_t accel_units_per_ms(uint32_t f_clk_hz, uint16_t a_max, uint8_t ramp_div) {
   // a_max / 256 per ramp clock, f_clk / 2^(rd+5) ramp clocks per second, / 1000.
-  const uint64_t units =
-      div_shifted((uint64_t)a_max * f_clk_hz, 0, (uint64_t)1000u << (ramp_div + 13), kNearest);
+  const uint32_t units =
+      div_shifted32(a_max, f_clk_hz, 0, 1000u, (uint8_t)(ramp_div + 13), kNearest);
   if (units == 0) return 1;
   return units > 65535u ? 65535u : (uint16_t)units;
 }
 
 uint32_t um_to_usteps(const config::AxisConfig& axis, uint32_t um, bool round_up) {
-  const uint64_t num = (uint64_t)um * axis.full_steps_per_rev * axis.microsteps_per_step;
-  const uint64_t q = div_shifted(num, 0, axis.pitch_um, round_up ? kCeil : kFloor);
-  return q > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)q;
+  return div_shifted32(um, (uint32_t)axis.full_steps_per_rev * axis.microsteps_per_step, 0,
+                       axis.pitch_um, 0, round_up ? kCeil : kFloor);
 }
 
 // usrs for a microstep count (1, 2, 4 .. 64), -1 otherwise ([428DS] §8.14).

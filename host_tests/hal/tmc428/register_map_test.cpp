@@ -82,4 +82,54 @@ TEST(Tmc428RegisterMap, NamesAreTheBenchNames) {
   EXPECT_STREQ(name, "unused_c4");
 }
 
+// The driver's data builders and read-back masks take their bits from the map's field
+// rows (issue 26): each builder with every argument all ones sets exactly the map's bits
+// of its register, and each field's bits only where the map puts them.
+const RegisterInfo& reg(uint8_t address) {
+  const RegisterInfo* r = find_register(address);
+  EXPECT_NE(r, nullptr);
+  return *r;
+}
+
+uint32_t one_field_bits(const RegisterInfo& r, const char* name) {
+  for (const RegisterField* f = r.fields; f->kind != kFieldEnd; ++f) {
+    if (std::string(f->name) != name) continue;
+    uint32_t bits = 0;
+    for (int b = f->lo; b <= f->hi; ++b) bits |= 1UL << b;
+    return bits;
+  }
+  ADD_FAILURE() << "no field " << name << " in " << r.name;
+  return 0;
+}
+
+TEST(Tmc428RegisterMap, BuildersSetTheMapsFieldBits) {
+  EXPECT_EQ(divisors_data(0xFF, 0xFF, 0xFF), field_bits(reg(kDivisors)));
+  EXPECT_EQ(divisors_data(0xFF, 0, 0), one_field_bits(reg(kDivisors), "pulse_div"));
+  EXPECT_EQ(divisors_data(0, 0xFF, 0), one_field_bits(reg(kDivisors), "ramp_div"));
+  EXPECT_EQ(divisors_data(0, 0, 0xFF), one_field_bits(reg(kDivisors), "usrs"));
+  EXPECT_EQ(current_scale_data(0xFF, 0xFF, 0xFF, 0xFFFF), field_bits(reg(kCurrentScale)));
+  EXPECT_EQ(current_scale_data(0xFF, 0, 0, 0), one_field_bits(reg(kCurrentScale), "is_agtat"));
+  EXPECT_EQ(current_scale_data(0, 0xFF, 0, 0), one_field_bits(reg(kCurrentScale), "is_aleat"));
+  EXPECT_EQ(current_scale_data(0, 0, 0xFF, 0), one_field_bits(reg(kCurrentScale), "is_v0"));
+  EXPECT_EQ(current_scale_data(0, 0, 0, 0xFFFF), one_field_bits(reg(kCurrentScale), "a_threshold"));
+  EXPECT_EQ(pmul_pdiv_data(0xFF, 0xFF), field_bits(reg(kPmulPdiv)));
+  EXPECT_EQ(pmul_pdiv_data(0, 0xFF), one_field_bits(reg(kPmulPdiv), "pdiv") | 0x8000u);
+}
+
+TEST(Tmc428RegisterMap, ReadBackMasksAndFlagBitsAreTheMaps) {
+  EXPECT_EQ(kAllFields_kDivisors, field_bits(reg(kDivisors)));
+  EXPECT_EQ(kAllFields_kCurrentScale, field_bits(reg(kCurrentScale)));
+  EXPECT_EQ(kAllFields_kPmulPdiv, field_bits(reg(kPmulPdiv)));
+  EXPECT_EQ(kAllFields_kVMax, field_bits(reg(kVMax)));
+  EXPECT_EQ(kAllFields_kDxRefTolerance, field_bits(reg(kDxRefTolerance)));
+  EXPECT_EQ(kAllFields_kSmgp, field_bits(reg(kSmgp)));
+  EXPECT_EQ(kSmgpContinuousUpdate, one_field_bits(reg(kSmgp), "cont_update"));
+  EXPECT_EQ(kSmgpRefMux, one_field_bits(reg(kSmgp), "refmux"));
+  EXPECT_EQ(kSmgpClk2DivShift, 8u);
+  EXPECT_EQ(kSmgpClk2DivShift, (uint32_t)__builtin_ctzl(one_field_bits(reg(kSmgp), "clk2_div")));
+  const uint32_t ref_conf = one_field_bits(reg(kRefConfRampMode), "ref_conf");
+  EXPECT_EQ((uint32_t)(kDisableStopL | kDisableStopR | kSoftStop | kRefRnL), ref_conf);
+  EXPECT_EQ(kLatchPending, one_field_bits(reg(kRefConfRampMode), "lp"));
+}
+
 }  // namespace
