@@ -417,11 +417,6 @@ nlohmann::json report_json(const pcb::BoardJob& job, const pcb::BoardOptions& o)
   return j;
 }
 
-std::optional<pcb::BoardJob> g_last_job;
-std::string g_last_title;
-double g_last_check_tol_mm = 0;
-double g_last_isolation_z_mm = 0;
-
 using pcb::isolation_check_tolerance_mm;
 
 // ---- engraver board ----
@@ -764,40 +759,34 @@ bool input_exists(const std::string& input) {
   return !files.empty();
 }
 
-JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d) {
+JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d,
+                       commands::PlannedBoard* board) {
   const BoardFiles b = read_input(input, args.side);
   print_notes(b);
   const pcb::BoardOptions o = board_options(args, d, b);
-  g_last_job = plan(b, o, args.align_measured_mm);
-  g_last_title = b.name;
-  g_last_check_tol_mm = isolation_check_tolerance_mm(o);
-  g_last_isolation_z_mm = -o.isolation_depth_mm;
+  const auto job = std::make_shared<const pcb::BoardJob>(plan(b, o, args.align_measured_mm));
   try {
     // Refused before a byte is sent (send) or the machine is simulated (run).
     const int tol_um = static_cast<int>(std::lround(d.chord_tol_mm * 1000));
-    pcb::refuse_copper_hits(pcb::check_controller_isolation(*g_last_job, o, tol_um),
+    pcb::refuse_copper_hits(pcb::check_controller_isolation(*job, o, tol_um),
                             fmt::format("the controller's points at {} mm chords", d.chord_tol_mm));
   } catch (const pcb::CopperCutError& e) {
     throw CommandFailure(kExitCutsCopper, b.name + ": " + e.what());
   }
-  const pcb::BoardReport& r = g_last_job->report;
+  const pcb::BoardReport& r = job->report;
   for (const std::string& n : r.notes) std::cerr << "engraver: note: " << printable(n) << "\n";
   std::cerr << fmt::format(
       "engraver: board {}: mount {} first; {} contours, {} holes, {} tool changes\n", b.name,
       r.first_tool, r.isolation_contours, r.holes, r.tool_changes);
   for (const pcb::NarrowGap& g : r.narrow_gaps)
     std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation) << "\n";
-  return g_last_job->plan;
-}
-
-std::optional<commands::PlannedBoard> last_planned_board() {
-  if (!g_last_job) return std::nullopt;
-  commands::PlannedBoard b;
-  b.job = &*g_last_job;
-  b.title = g_last_title;
-  b.check_tolerance_mm = g_last_check_tol_mm;
-  b.isolation_z_mm = g_last_isolation_z_mm;
-  return b;
+  if (board) {
+    board->job = job;
+    board->title = b.name;
+    board->check_tolerance_mm = pcb::isolation_check_tolerance_mm(o);
+    board->isolation_z_mm = -o.isolation_depth_mm;
+  }
+  return job->plan;
 }
 
 bool print_board_points_if_pcb(const std::string& input, const BoardArgs& args, double tol_mm,

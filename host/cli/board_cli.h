@@ -78,13 +78,10 @@ bool input_exists(const std::string& input);
 // left out. For drawings too.
 std::string input_name(const std::string& input);
 
-// Reads and plans the board; errors end the command (CommandFailure) naming the file. The
-// job is kept for write_board_plot_if_planned().
-JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d);
-
-// The board the last plan_pcb_input() planned (for `run`'s checks and board plot); nullopt
-// when nothing was planned from PCB files.
-std::optional<commands::PlannedBoard> last_planned_board();
+// Reads and plans the board; errors end the command (CommandFailure) naming the file. With
+// `board`: the board job itself and what `run` checks its simulated path with.
+JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d,
+                       commands::PlannedBoard* board = nullptr);
 
 // `engraver points` on PCB input, planned with the board options: every tool-centre path of
 // the job, tool by tool (the controller's points at tol_mm for curves), in the files' frame.

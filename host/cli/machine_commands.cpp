@@ -138,7 +138,8 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   });
 }
 
-JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
+// A board's job goes to `board` too (when given).
+JobPlan load_plan(const PlanArgs& a, Drawing* drawing, commands::PlannedBoard* board = nullptr) {
   if (is_pcb_input(a.file)) {
     MachineDefaults m;
     m.feed_mm_s = a.feed_mm_s;
@@ -147,7 +148,7 @@ JobPlan load_plan(const PlanArgs& a, Drawing* drawing) {
     m.work_w_mm = a.work_mm[0];
     m.work_h_mm = a.work_mm[1];
     m.chord_tol_mm = a.tol_mm;
-    return plan_pcb_input(a.file, a.board, m);
+    return plan_pcb_input(a.file, a.board, m, board);
   }
   *drawing = import_drawing(a.file);
   for (const std::string& w : drawing->warnings)
@@ -335,19 +336,13 @@ struct RunArgs {
   HeightMapArgs map;
 };
 
-// The planned board's job (run plans at most one board).
-const pcb::BoardJob* planned_board_job() {
-  const std::optional<commands::PlannedBoard> b = last_planned_board();
-  return b ? b->job : nullptr;
-}
-
 // A double-sided board's second setup: plans the nominal job, places the blank off by the
 // error and, unless pins only, re-plans the job onto the holes as the simulated operator
 // measures them (to the micrometre).
-JobPlan plan_flip(const RunArgs& a, commands::FlipSimulation* f) {
+JobPlan plan_flip(const RunArgs& a, commands::FlipSimulation* f, commands::PlannedBoard* board) {
   Drawing drawing;
-  JobPlan plan = load_plan(a.plan, &drawing);
-  const pcb::BoardJob* nominal = planned_board_job();
+  JobPlan plan = load_plan(a.plan, &drawing, board);
+  const pcb::BoardJob* nominal = board->job.get();
   const std::vector<Point2> holes = nominal ? nominal->alignment_holes_mm : std::vector<Point2>{};
   if (holes.size() < 2)
     throw CommandFailure(kExitUsage,
@@ -370,13 +365,14 @@ JobPlan plan_flip(const RunArgs& a, commands::FlipSimulation* f) {
       aligned.board.align_measured_mm.push_back(std::round(v * 1000) / 1000);
   }
   f->measured_mm = aligned.board.align_measured_mm;
-  plan = load_plan(aligned, &drawing);
-  f->alignment = planned_board_job()->frame.placement;
+  plan = load_plan(aligned, &drawing, board);
+  f->alignment = board->job->frame.placement;
   return plan;
 }
 
 // Run's options as the library takes them (the plan is made already).
-commands::RunOptions run_options(const RunArgs& a, const JobPlan& plan) {
+commands::RunOptions run_options(const RunArgs& a, const JobPlan& plan,
+                                 const commands::PlannedBoard& board) {
   commands::RunOptions o;
   o.file = a.plan.file;
   o.name = input_name(a.plan.file);
@@ -388,7 +384,7 @@ commands::RunOptions run_options(const RunArgs& a, const JobPlan& plan) {
   o.realtime = a.realtime;
   o.encode = encode_options(a.plan);
   o.surface = surface_spec_of(a.surface);
-  o.board = last_planned_board();
+  if (board.job) o.board = board;
   o.depth.vbit_angle_deg = a.map.vbit_angle_deg;
   o.depth.copper_um = a.map.copper_um;
   o.depth.planned_width_um = a.plan.board.tool_width_mm * 1000.0;
@@ -410,15 +406,16 @@ commands::RunOptions run_options(const RunArgs& a, const JobPlan& plan) {
 // Stages: plan (and a flip's second plan), simulate, plot, check, report, refuse a failed job.
 void run_run(const RunArgs& a) {
   JobPlan plan;
+  commands::PlannedBoard board;  // PCB input: its board job
   std::optional<commands::FlipSimulation> flip;
   if (!a.blank_error.empty()) {
     flip.emplace();
-    plan = plan_flip(a, &*flip);
+    plan = plan_flip(a, &*flip, &board);
   } else {
     Drawing drawing;  // only the plan is needed from here on
-    plan = load_plan(a.plan, &drawing);
+    plan = load_plan(a.plan, &drawing, &board);
   }
-  commands::RunOptions o = run_options(a, plan);
+  commands::RunOptions o = run_options(a, plan, board);
   o.flip = flip;
   commands::RunResult r = [&o, &plan] {
     ProgressMeter bar("run", "commands", std::cerr, ProgressMeter::for_stderr());
@@ -442,7 +439,7 @@ void run_run(const RunArgs& a) {
   commands::refuse_failed_run(o, r);
 }
 
-void add_machine_commands(CLI::App& app) {
+void add_send_command(CLI::App& app) {
   auto send_args = std::make_shared<SendArgs>();
   CLI::App* send = app.add_subcommand("send", "plan a drawing and stream it to the machine");
   add_plan_options(send, &send_args->plan);
@@ -476,7 +473,9 @@ void add_machine_commands(CLI::App& app) {
       throw CommandFailure(kExitLinkLost, e.what());
     }
   });
+}
 
+void add_probe_command(CLI::App& app) {
   auto probe_args = std::make_shared<ProbeArgs>();
   CLI::App* probe =
       app.add_subcommand("probe", "probe the blank on a grid over a job and write its height map");
@@ -500,7 +499,9 @@ void add_machine_commands(CLI::App& app) {
       throw CommandFailure(kExitLinkLost, e.what());
     }
   });
+}
 
+void add_sim_command(CLI::App& app) {
   auto sim_args = std::make_shared<SimArgs>();
   CLI::App* sim = app.add_subcommand("sim", "run the simulated machine on a TCP port");
   sim->add_option("--listen", sim_args->listen,
@@ -526,7 +527,9 @@ void add_machine_commands(CLI::App& app) {
       "without a byte, a running machine holds after 2 s without a valid frame.\n"
       "Exit: 0 stopped, 2 bad option or address.");
   sim->callback([sim_args] { run_sim(*sim_args); });
+}
 
+void add_run_command(CLI::App& app) {
   auto run_args = std::make_shared<RunArgs>();
   CLI::App* run = app.add_subcommand(
       "run",
@@ -559,6 +562,13 @@ void add_machine_commands(CLI::App& app) {
       throw CommandFailure(kExitLinkLost, e.what());
     }
   });
+}
+
+void add_machine_commands(CLI::App& app) {
+  add_send_command(app);
+  add_probe_command(app);
+  add_sim_command(app);
+  add_run_command(app);
 }
 
 const CommandRegistrar registrar("machine", add_machine_commands);

@@ -167,7 +167,7 @@ void write_run_plots(const JobPlan& plan, const RunOptions& o, const RunResult& 
   if (o.board && o.board->job) {  // copper, isolation width, holes
     BoardPlotInput in;
     in.title = o.board->title + " (simulated)";
-    in.job = o.board->job;
+    in.job = o.board->job.get();
     in.simulated = plot.tool_path;
     write_board_plot(in, r.base + ".board.svg", r.base + ".board.png");
   }

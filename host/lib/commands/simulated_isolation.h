@@ -4,6 +4,7 @@
 #define HOST_LIB_COMMANDS_SIMULATED_ISOLATION_H
 
 #include <limits>    // std::numeric_limits
+#include <memory>    // std::shared_ptr
 #include <optional>  // std::optional
 #include <string>    // std::string
 #include <vector>    // std::vector
@@ -17,7 +18,7 @@ namespace host::commands {
 // A planned board as `run` checks its simulated path: the job, its title, the planned paths'
 // check tolerance and the machine Z of its isolation cuts.
 struct PlannedBoard {
-  const pcb::BoardJob* job = nullptr;
+  std::shared_ptr<const pcb::BoardJob> job;  // none: not a board
   std::string title;
   double check_tolerance_mm = 0;
   double isolation_z_mm = 0;
