@@ -19,7 +19,6 @@
 #include "host/lib/plot/height_map_plot.h"
 #include "host/lib/plot/plan_plot.h"
 #include "host/lib/plot/plot.h"
-#include "host/lib/sim/cut_paths.h"
 
 namespace host::commands {
 
@@ -64,7 +63,7 @@ struct RunMeters {
   bool job_started = false;  // measured from the job's first command on (not the probing's)
   // A board: the isolation cuts at full resolution, to check them against the copper (at
   // their planned height: the map's height taken off again), and their depth of cut.
-  std::optional<sim::CutPathCollector> isolation_cuts;
+  std::shared_ptr<sim::CutPathCollector> isolation_cuts;
   std::optional<heightmap::DepthMeter> depth;
 };
 
@@ -122,7 +121,7 @@ RunResult simulate_run(const JobPlan& plan, const RunOptions& o) {
   }
   m.job_started = !o.probe;
   if (const std::optional<double> z = o.board ? o.board->checked_isolation_z_mm() : std::nullopt) {
-    m.isolation_cuts.emplace(*z, 0.002);
+    m.isolation_cuts = std::make_shared<sim::CutPathCollector>(*z, 0.002);
     if (m.surface) {
       heightmap::DepthOptions d = o.depth;
       d.isolation_z_mm = *z;
@@ -138,11 +137,7 @@ RunResult simulate_run(const JobPlan& plan, const RunOptions& o) {
   };
   r.sim = sim::run_sim_job(plan, so);
   r.pause_confirm_ms = so.machine.pause_confirm_ms;
-  if (m.isolation_cuts) {
-    r.isolation_cut = true;
-    r.isolation_paths_mm = m.isolation_cuts->paths();
-    r.isolation_samples = m.isolation_cuts->samples();
-  }
+  r.isolation_cuts = m.isolation_cuts;
   if (m.depth) r.depth = m.depth->report();
   r.points = count_points(plan, o.chord_tolerance_mm);
   return r;
@@ -176,24 +171,24 @@ void write_run_plots(const JobPlan& plan, const RunOptions& o, const RunResult& 
 }
 
 void check_run(const RunOptions& o, RunResult* r) {
-  if (!r->isolation_cut) return;
+  if (!r->isolation_cuts) return;
+  const std::vector<std::vector<Point2>>& cuts = r->isolation_cuts->paths();
+  const size_t samples = r->isolation_cuts->samples();
   const PlannedBoard& board = *o.board;
   if (!o.flip) {
-    r->isolation = check_simulated_isolation(*board.job, board.check_tolerance_mm,
-                                             r->isolation_paths_mm, r->isolation_samples);
+    r->isolation = check_simulated_isolation(*board.job, board.check_tolerance_mm, cuts, samples);
     return;
   }
   // Where the cuts land on the board: back through the placement error; then into the frame
   // the job was planned in, for the check against its copper.
   const FlipSimulation& flip = *o.flip;
-  r->registration =
-      registration_error(r->isolation_paths_mm, flip.error, flip.nominal_isolation_mm);
+  r->registration = registration_error(cuts, flip.error, flip.nominal_isolation_mm);
   const pcb::RigidTransform back = flip.error.inverse();
-  std::vector<std::vector<Point2>> on_copper = r->isolation_paths_mm;
+  std::vector<std::vector<Point2>> on_copper = cuts;
   for (std::vector<Point2>& path : on_copper)
     for (Point2& p : path) p = flip.alignment.apply(back.apply(p));
-  r->isolation = check_simulated_isolation(*board.job, board.check_tolerance_mm, on_copper,
-                                           r->isolation_samples);
+  r->isolation =
+      check_simulated_isolation(*board.job, board.check_tolerance_mm, on_copper, samples);
 }
 
 namespace {

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>  // nlohmann::json
 
 #include <functional>  // std::function
+#include <memory>      // std::shared_ptr
 #include <optional>    // std::optional
 #include <string>      // std::string
 #include <vector>      // std::vector
@@ -16,6 +17,7 @@
 #include "host/lib/heightmap/surface_model.h"  // SurfaceSpec
 #include "host/lib/plan/job_defaults.h"
 #include "host/lib/plan/job_plan.h"
+#include "host/lib/sim/cut_paths.h"
 #include "host/lib/sim/sim_job.h"
 #include "host/lib/stream/job_encoder.h"  // EncodeOptions
 
@@ -74,10 +76,9 @@ struct RunResult {
   std::optional<heightmap::HeightMap> map;  // the one followed (loaded or probed)
   std::optional<heightmap::SurfaceSpec> surface;
   std::optional<heightmap::DepthReport> depth;  // a board on a simulated blank
-  // A board's isolation cuts as simulated, at full resolution and their planned heights.
-  bool isolation_cut = false;
-  std::vector<std::vector<Point2>> isolation_paths_mm;
-  size_t isolation_samples = 0;
+  // A board's isolation cuts as simulated, at full resolution and their planned heights
+  // (kept, not copied: a large board's paths are many samples).
+  std::shared_ptr<sim::CutPathCollector> isolation_cuts;
   std::optional<SimulatedIsolation> isolation;  // check_run()
   std::optional<Registration> registration;     // check_run(), a flip
   std::string base;                             // OUTDIR/NAME
