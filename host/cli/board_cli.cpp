@@ -27,7 +27,6 @@
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
 #include "host/lib/plot/board_plot.h"
-#include "host/lib/sim/contour_error.h"  // NearestSegment
 #include "host/lib/stream/job_encoder.h"
 
 namespace host::cli {
@@ -418,11 +417,6 @@ nlohmann::json report_json(const pcb::BoardJob& job, const pcb::BoardOptions& o)
   return j;
 }
 
-std::optional<pcb::BoardJob> g_last_job;
-std::string g_last_title;
-double g_last_check_tol_mm = 0;
-double g_last_isolation_z_mm = 0;
-
 using pcb::isolation_check_tolerance_mm;
 
 // ---- engraver board ----
@@ -765,156 +759,34 @@ bool input_exists(const std::string& input) {
   return !files.empty();
 }
 
-JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d) {
+JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d,
+                       commands::PlannedBoard* board) {
   const BoardFiles b = read_input(input, args.side);
   print_notes(b);
   const pcb::BoardOptions o = board_options(args, d, b);
-  g_last_job = plan(b, o, args.align_measured_mm);
-  g_last_title = b.name;
-  g_last_check_tol_mm = isolation_check_tolerance_mm(o);
-  g_last_isolation_z_mm = -o.isolation_depth_mm;
+  const auto job = std::make_shared<const pcb::BoardJob>(plan(b, o, args.align_measured_mm));
   try {
     // Refused before a byte is sent (send) or the machine is simulated (run).
     const int tol_um = static_cast<int>(std::lround(d.chord_tol_mm * 1000));
-    pcb::refuse_copper_hits(pcb::check_controller_isolation(*g_last_job, o, tol_um),
+    pcb::refuse_copper_hits(pcb::check_controller_isolation(*job, o, tol_um),
                             fmt::format("the controller's points at {} mm chords", d.chord_tol_mm));
   } catch (const pcb::CopperCutError& e) {
     throw CommandFailure(kExitCutsCopper, b.name + ": " + e.what());
   }
-  const pcb::BoardReport& r = g_last_job->report;
+  const pcb::BoardReport& r = job->report;
   for (const std::string& n : r.notes) std::cerr << "engraver: note: " << printable(n) << "\n";
   std::cerr << fmt::format(
       "engraver: board {}: mount {} first; {} contours, {} holes, {} tool changes\n", b.name,
       r.first_tool, r.isolation_contours, r.holes, r.tool_changes);
   for (const pcb::NarrowGap& g : r.narrow_gaps)
     std::cerr << "engraver: warning: " << pcb::describe_gap(g, o.isolation) << "\n";
-  return g_last_job->plan;
-}
-
-bool write_board_plot_if_planned(const std::string& base,
-                                 const std::vector<ToolPathSegment>& simulated) {
-  if (!g_last_job) return false;
-  BoardPlotInput in;
-  in.title = g_last_title + " (simulated)";
-  in.job = &*g_last_job;
-  in.simulated = simulated;
-  write_board_plot(in, base + ".board.svg", base + ".board.png");
-  return true;
-}
-
-std::optional<double> board_isolation_z_mm() {
-  if (!g_last_job || g_last_job->copper_machine_nm.empty() || g_last_job->isolation_curves == 0)
-    return std::nullopt;
-  return g_last_isolation_z_mm;
-}
-
-std::optional<SimulatedIsolation> check_simulated_isolation(
-    const std::vector<std::vector<Point2>>& cut_paths_mm, size_t samples) {
-  if (!board_isolation_z_mm()) return std::nullopt;
-  const pcb::BoardJob& job = *g_last_job;
-  SimulatedIsolation s;
-  s.tolerance_mm = g_last_check_tol_mm;
-  s.paths = cut_paths_mm.size();
-  s.samples = samples;
-  // With a clearing tool both tools cut at the isolation depth: a simulated path is the tool's
-  // whose planned paths are nearer its middle sample, and is swept by that tool's radius.
-  std::vector<std::vector<Point2>> narrow_cuts, wide_cuts;
-  if (job.clearing_paths_mm.empty()) {
-    narrow_cuts = cut_paths_mm;
-  } else {
-    const sim::NearestSegment narrow(job.isolation_paths_mm, 0.25);
-    const sim::NearestSegment wide(job.clearing_paths_mm, 0.25);
-    for (const std::vector<Point2>& path : cut_paths_mm) {
-      if (path.empty()) continue;
-      const Point2& m = path[path.size() / 2];
-      (narrow.distance(m) <= wide.distance(m) ? narrow_cuts : wide_cuts).push_back(path);
-    }
+  if (board) {
+    board->job = job;
+    board->title = b.name;
+    board->check_tolerance_mm = pcb::isolation_check_tolerance_mm(o);
+    board->isolation_z_mm = -o.isolation_depth_mm;
   }
-  s.check =
-      pcb::check_isolation(job.copper_machine_nm, narrow_cuts, job.tool_radius_mm, s.tolerance_mm);
-  if (!wide_cuts.empty()) {
-    const pcb::IsolationCheck w = pcb::check_isolation(job.copper_machine_nm, wide_cuts,
-                                                       job.clearing_tool_radius_mm, s.tolerance_mm);
-    s.check.hits.insert(s.check.hits.end(), w.hits.begin(), w.hits.end());
-  }
-  // Clearance: each sample's distance to the copper's edges less the tool radius (a sample
-  // inside copper is a hit of the check above).
-  std::vector<std::vector<Point2>> edges;
-  for (const ClipperLib::Path& p : job.copper_machine_nm) {
-    std::vector<Point2> line;
-    for (const ClipperLib::IntPoint& q : p) line.push_back(Point2(q.X * 1e-6, q.Y * 1e-6));
-    if (!line.empty()) line.push_back(line.front());
-    edges.push_back(std::move(line));
-  }
-  const sim::NearestSegment copper(edges, 0.25);
-  auto clearance_um = [&](const Point2& p, double radius_mm) {
-    return (copper.distance(p) - radius_mm) * 1000.0;
-  };
-  s.min_clearance_um = std::numeric_limits<double>::infinity();
-  for (const std::vector<Point2>& path : narrow_cuts) {
-    for (const Point2& p : path) {
-      const double c = clearance_um(p, job.tool_radius_mm);
-      if (c < s.min_clearance_um) {
-        s.min_clearance_um = c;
-        s.min_clearance_at_mm = p;
-      }
-    }
-  }
-  if (!job.clearing_paths_mm.empty()) {
-    s.clearing_min_clearance_um = std::numeric_limits<double>::infinity();
-    for (const std::vector<Point2>& path : wide_cuts)
-      for (const Point2& p : path)
-        s.clearing_min_clearance_um =
-            std::min(s.clearing_min_clearance_um, clearance_um(p, job.clearing_tool_radius_mm));
-  }
-  s.planned_min_clearance_um = std::numeric_limits<double>::infinity();
-  for (const std::vector<Point2>& path : job.isolation_paths_mm) {
-    for (size_t i = 0; i < path.size(); ++i) {
-      const Point2 a = path[i], b = i + 1 < path.size() ? path[i + 1] : a;
-      const int n = 1 + static_cast<int>((b - a).norm() / 0.005);
-      for (int k = 0; k < n; ++k)
-        s.planned_min_clearance_um =
-            std::min(s.planned_min_clearance_um,
-                     clearance_um(a + (b - a) * (double(k) / n), job.tool_radius_mm));
-    }
-  }
-  return s;
-}
-
-std::vector<Point2> board_alignment_holes_mm() {
-  return g_last_job ? g_last_job->alignment_holes_mm : std::vector<Point2>{};
-}
-
-pcb::RigidTransform board_placement() {
-  return g_last_job ? g_last_job->frame.placement : pcb::RigidTransform{};
-}
-
-std::vector<std::vector<Point2>> board_isolation_paths_mm() {
-  if (!g_last_job) return {};
-  std::vector<std::vector<Point2>> paths = g_last_job->isolation_paths_mm;
-  paths.insert(paths.end(), g_last_job->clearing_paths_mm.begin(),
-               g_last_job->clearing_paths_mm.end());
-  return paths;
-}
-
-Registration registration_error(const std::vector<std::vector<Point2>>& cut_paths_mm,
-                                const pcb::RigidTransform& blank_error,
-                                const std::vector<std::vector<Point2>>& nominal_paths_mm) {
-  Registration r;
-  if (nominal_paths_mm.empty()) return r;
-  const sim::NearestSegment nominal(nominal_paths_mm, 0.25);
-  const pcb::RigidTransform onto_board = blank_error.inverse();
-  double sum = 0;
-  for (const std::vector<Point2>& path : cut_paths_mm) {
-    for (const Point2& p : path) {
-      const double d_um = nominal.distance(onto_board.apply(p)) * 1000.0;
-      r.max_um = std::max(r.max_um, d_um);
-      sum += d_um;
-      ++r.samples;
-    }
-  }
-  r.mean_um = r.samples ? sum / static_cast<double>(r.samples) : 0;
-  return r;
+  return job->plan;
 }
 
 bool print_board_points_if_pcb(const std::string& input, const BoardArgs& args, double tol_mm,

@@ -7,12 +7,12 @@
 
 #include <CLI/CLI.hpp>  // CLI::App
 
-#include <limits>    // std::numeric_limits
 #include <memory>    // std::shared_ptr
 #include <optional>  // std::optional
 #include <string>    // std::string
 #include <vector>    // std::vector
 
+#include "host/lib/commands/simulated_isolation.h"  // PlannedBoard
 #include "host/lib/pcb/board_job.h"
 #include "host/lib/pcb/isolation_check.h"  // IsolationCheck
 #include "host/lib/plan/job_defaults.h"
@@ -78,50 +78,10 @@ bool input_exists(const std::string& input);
 // left out. For drawings too.
 std::string input_name(const std::string& input);
 
-// Reads and plans the board; errors end the command (CommandFailure) naming the file. The
-// job is kept for write_board_plot_if_planned().
-JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d);
-
-// After `run`: the board plot (copper, isolation, holes, cut-out, the simulated path) at
-// base + ".board.svg/.png", when the last plan was a board. Returns whether it wrote one.
-bool write_board_plot_if_planned(const std::string& base,
-                                 const std::vector<ToolPathSegment>& simulated);
-
-// After `run` of a board: the isolation check of the planned paths applied to the simulated
-// tool centres at the isolation depth, and their least clearance to copper.
-struct SimulatedIsolation {
-  pcb::IsolationCheck check;
-  double tolerance_mm = 0;      // the same as the planned paths' check
-  double min_clearance_um = 0;  // tool edge to copper, least over every cut sample
-  Point2 min_clearance_at_mm{0, 0};
-  double planned_min_clearance_um = 0;  // the same for the planned paths (every 5 um)
-  size_t paths = 0, samples = 0;
-  // With a clearing tool: its own edge's least clearance (NaN without one).
-  double clearing_min_clearance_um = std::numeric_limits<double>::quiet_NaN();
-};
-// The isolation depth (machine Z, mm) when the last plan was a board with isolation.
-std::optional<double> board_isolation_z_mm();
-// nullopt when the last plan was not a board (or has no copper).
-std::optional<SimulatedIsolation> check_simulated_isolation(
-    const std::vector<std::vector<Point2>>& cut_paths_mm, size_t samples);
-
-// Double-sided boards after `plan_pcb_input`: the job's alignment holes (machine frame before
-// the measured placement; empty without), its measured placement, and its isolation paths
-// (the clearing tool's too).
-std::vector<Point2> board_alignment_holes_mm();
-pcb::RigidTransform board_placement();
-std::vector<std::vector<Point2>> board_isolation_paths_mm();
-
-// How far the simulated cuts (machine frame) land on the board from where they belong: each
-// sample taken back through the blank's placement error onto the board as planned without
-// it, against the nominal job's isolation paths (max and mean, um).
-struct Registration {
-  double max_um = 0, mean_um = 0;
-  size_t samples = 0;
-};
-Registration registration_error(const std::vector<std::vector<Point2>>& cut_paths_mm,
-                                const pcb::RigidTransform& blank_error,
-                                const std::vector<std::vector<Point2>>& nominal_paths_mm);
+// Reads and plans the board; errors end the command (CommandFailure) naming the file. With
+// `board`: the board job itself and what `run` checks its simulated path with.
+JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d,
+                       commands::PlannedBoard* board = nullptr);
 
 // `engraver points` on PCB input, planned with the board options: every tool-centre path of
 // the job, tool by tool (the controller's points at tol_mm for curves), in the files' frame.

@@ -4,13 +4,11 @@
 #include <algorithm>  // std::max, std::min
 #include <cmath>      // std::round
 
+#include "host/lib/plan/tool_path_walk.h"
+
 namespace host::server {
 
 namespace {
-
-Point2 mm(const core::PointUm& p) {
-  return Point2(p.x_um / 1000.0, p.y_um / 1000.0);
-}
 
 // Micrometres are all the page can show; shorter numbers keep a large job's path small.
 double um_rounded(double v_mm) {
@@ -30,17 +28,15 @@ void nearest_on_segment(const Point2& a, const Point2& b, const Point2& p, doubl
 
 JobPath::JobPath(const JobPlan& plan, double tol_mm) {
   Point2 at(0, 0);  // a plan starts at the zero
-  bool down = false;
-  int last_curve = -1;
   piece_of_step_.resize(plan.steps.size());
-  // A new piece from where the tool stands through `points`.
-  auto add = [&](const std::vector<Point2>& points) {
+  // A new piece from where the tool stands through the move's points.
+  auto add = [&](const ToolMove& m) {
     Piece p;
-    p.pen_down = down;
+    p.pen_down = m.pen_down;
     p.start_mm = length_mm_;
     p.points_mm.push_back(at);
     p.at_mm.push_back(length_mm_);
-    for (const Point2& q : points) {
+    for (const Point2& q : m.points_mm) {
       length_mm_ += (q - p.points_mm.back()).norm();
       p.points_mm.push_back(q);
       p.at_mm.push_back(length_mm_);
@@ -48,39 +44,11 @@ JobPath::JobPath(const JobPlan& plan, double tol_mm) {
     at = p.points_mm.back();
     pieces_.push_back(std::move(p));
   };
-  for (size_t i = 0; i < plan.steps.size(); ++i) {
-    const PlanStep& s = plan.steps[i];
-    piece_of_step_[i] = pieces_.size();
-    switch (s.kind) {
-      case PlanStep::kPenUp:
-        down = false;
-        break;
-      case PlanStep::kPenDown:
-        down = true;
-        break;
-      case PlanStep::kRapid:
-      case PlanStep::kFeed:
-      case PlanStep::kDrill:  // the tool goes to the hole at travel height
-        add({mm(s.to)});
-        break;
-      case PlanStep::kSpline:
-        // A curve sent as several splines is one piece: its first step's.
-        if (s.curve >= 0 && s.curve == last_curve) {
-          piece_of_step_[i] = pieces_.size() - 1;
-        } else if (s.curve >= 0) {
-          add(sample(plan.curves[s.curve].spline, tol_mm));
-          last_curve = s.curve;
-        } else {
-          add({mm(s.to)});
-        }
-        break;
-      case PlanStep::kPause:
-      case PlanStep::kDwell:
-      case PlanStep::kSpindle:
-        break;
-    }
-    if (s.kind != PlanStep::kSpline) last_curve = -1;
-  }
+  walk_tool_path(plan, tol_mm, [&](const ToolMove& m) {
+    // A curve sent as several splines is one piece: its first step's.
+    piece_of_step_[m.step] = m.kind == StepMove::kContinues ? pieces_.size() - 1 : pieces_.size();
+    if (m.kind == StepMove::kNew) add(m);
+  });
 }
 
 double JobPath::advance(int step, const Point2& position_mm) {

@@ -1,0 +1,84 @@
+// Signals and keys for the machine commands (see operator_controls.h).
+#include "host/cli/operator_controls.h"
+
+#include <signal.h>  // sigaction
+#include <unistd.h>  // isatty, read
+
+#include <algorithm>  // std::max, std::min
+
+namespace host::cli {
+
+namespace {
+
+Sender* g_sender = nullptr;           // for the signal handlers (request_* set atomics)
+std::atomic<bool>* g_stop = nullptr;  // for `sim`
+
+extern "C" void on_signal(int sig) {
+  if (g_sender == nullptr) return;
+  if (sig == SIGUSR1)
+    g_sender->request_hold();
+  else if (sig == SIGUSR2)
+    g_sender->request_resume();
+  else
+    g_sender->request_abort();
+}
+
+extern "C" void on_stop(int) {
+  if (g_stop != nullptr) *g_stop = true;
+}
+
+}  // namespace
+
+void signals_to(Sender* sender) {
+  g_sender = sender;
+  if (sender == nullptr) return;
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  for (int sig : {SIGINT, SIGTERM, SIGUSR1, SIGUSR2}) sigaction(sig, &sa, nullptr);
+}
+
+void signals_stop(std::atomic<bool>* stop) {
+  g_stop = stop;
+  struct sigaction sa {};
+  sa.sa_handler = on_stop;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+Keyboard::Keyboard(Sender& sender) : sender_(sender) {
+  if (!isatty(STDIN_FILENO)) return;
+  tcgetattr(STDIN_FILENO, &saved_);
+  termios raw = saved_;
+  raw.c_lflag &= ~static_cast<tcflag_t>(ICANON | ECHO);
+  raw.c_cc[VMIN] = 0;
+  raw.c_cc[VTIME] = 1;  // read() returns every 100 ms so the thread can stop
+  tcsetattr(STDIN_FILENO, TCSANOW, &raw);
+  active_ = true;
+  thread_ = std::thread([this] { loop(); });
+}
+
+Keyboard::~Keyboard() {
+  if (!active_) return;
+  stop_ = true;
+  thread_.join();
+  tcsetattr(STDIN_FILENO, TCSANOW, &saved_);
+}
+
+void Keyboard::loop() {
+  int override_pct = 100;
+  while (!stop_) {
+    char c;
+    if (read(STDIN_FILENO, &c, 1) != 1) continue;
+    if (c == 'h' || c == ' ') sender_.request_hold();
+    if (c == 'r') sender_.request_resume();
+    if (c == 'x' || c == 'q') sender_.request_abort();
+    if (c == '+' || c == '-') {
+      override_pct = std::max(10, std::min(200, override_pct + (c == '+' ? 10 : -10)));
+      sender_.request_override(override_pct);
+    }
+  }
+}
+
+}  // namespace host::cli

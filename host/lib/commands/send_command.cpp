@@ -1,0 +1,151 @@
+// `engraver send` as a function (see send_command.h).
+#include "host/lib/commands/send_command.h"
+
+#include <fmt/format.h>  // fmt::format
+
+#include <stdexcept>  // std::invalid_argument
+#include <vector>     // std::vector
+
+#include "host/lib/commands/exit_codes.h"
+#include "host/lib/heightmap/controller_map.h"  // job_map_commands
+#include "host/lib/stream/job_resume.h"
+
+namespace host::commands {
+
+int exit_code_of(JobOutcome outcome) {
+  switch (outcome) {
+    case JobOutcome::kCompleted:
+      return kExitOk;
+    case JobOutcome::kAborted:
+      return kExitAborted;
+    case JobOutcome::kAlarm:
+      return kExitAlarm;
+    case JobOutcome::kRejected:
+      return kExitRefused;
+    case JobOutcome::kLinkLost:
+      return kExitLinkLost;
+    case JobOutcome::kStalled:
+      return kExitStalled;
+  }
+  return kExitJobFailed;
+}
+
+ResumeAt parse_resume_at(const std::string& text) {
+  const size_t colon = text.find(':');
+  try {
+    size_t used = 0;
+    const long index = std::stol(text.substr(0, colon), &used);
+    if (used != text.substr(0, colon).size() || index < 0) throw std::invalid_argument(text);
+    long point = 0;
+    if (colon != std::string::npos) {
+      point = std::stol(text.substr(colon + 1), &used);
+      if (used != text.size() - colon - 1 || point < 0 || point > 65535)
+        throw std::invalid_argument(text);
+    }
+    return ResumeAt{static_cast<int32_t>(index), static_cast<uint16_t>(point)};
+  } catch (const std::exception&) {
+    throw CommandFailure(kExitUsage,
+                         fmt::format("--resume-at '{}': expected INDEX or INDEX:POINT (job "
+                                     "command and curve point, as the progress line shows them)",
+                                     text));
+  }
+}
+
+namespace {
+
+// The stream that continues the job instead of the whole job.
+std::vector<QueuedCommand> resume_stream(const SendOptions& o, Sender& sender,
+                                         const std::vector<QueuedCommand>& job,
+                                         const EncodeOptions& enc, std::ostream& log) {
+  // The new session stopped what was left: where it came to rest is where to go on.
+  const proto::StatusReply status = sender.read_status_at_rest(std::chrono::seconds(30));
+  std::optional<ResumePoint> at;
+  if (o.resume_at) {
+    at = resume_point_at(job, o.resume_at->index, o.resume_at->point, status.z_um);
+  } else {
+    at = resume_point_of(status);
+    if (at && !resume_mismatch(job, *at).empty())
+      throw CommandFailure(kExitJobFailed, resume_mismatch(job, *at));
+    if (!at) {
+      throw CommandFailure(
+          kExitJobFailed,
+          "the controller reports no job progress (it was restarted or never ran a job): zero it "
+          "at the job's zero point again and use --resume-at INDEX:POINT with the 'job' figures "
+          "of the last progress line");
+    }
+  }
+  log << fmt::format("engraver: resuming at {}; the tool goes to ({:.3f}, {:.3f}) mm\n",
+                     describe_resume_point(job, *at), at->x_um / 1000.0, at->y_um / 1000.0);
+  return resume_commands(job, *at, enc);
+}
+
+// Streams the commands with the operator's controls attached; the outcome.
+JobOutcome stream(Sender& sender, const std::vector<QueuedCommand>& commands, const SendOptions& o,
+                  std::ostream& log) {
+  std::shared_ptr<void> keys = o.while_streaming ? o.while_streaming(sender) : nullptr;
+  bool told_zero = false;
+  return sender.run(commands, [&](const Progress& p) {
+    if (p.status.state == proto::MachineState::kZeroing && !told_zero) {
+      log << "engraver: zero the machine: jog to the corner with the joystick, then press "
+             "confirm\n";
+      told_zero = true;
+    }
+    if (o.on_progress) o.on_progress(p);
+  });
+}
+
+// Detaches the operator's controls from the sender however the job ends.
+struct ControlsAttached {
+  ControlsAttached(const SendOptions& o, Sender* sender) : o_(o) {
+    if (o_.attach_controls) o_.attach_controls(sender);
+  }
+  ~ControlsAttached() {
+    if (o_.attach_controls) o_.attach_controls(nullptr);
+  }
+  const SendOptions& o_;
+};
+
+}  // namespace
+
+SendResult send_job(Link& link, const JobPlan& plan, const SendOptions& o, std::ostream& log) {
+  Sender sender(link, o.sender);
+  const ControlsAttached controls(o, &sender);
+  const proto::SessionReply caps = sender.open_session();
+  EncodeOptions enc = o.encode;
+  use_session(caps, &enc);
+  enc.controller = &caps;
+  std::vector<QueuedCommand> commands = encode_job(plan, enc);
+  SendResult r;
+  r.job_id = job_id_of(commands);
+  if (o.resume || o.resume_at) {
+    commands = resume_stream(o, sender, commands, enc, log);
+    if (commands.empty()) {
+      log << "engraver: nothing to resume: the controller says the job has finished\n";
+      r.nothing_left = true;
+      return r;
+    }
+  }
+  std::optional<heightmap::HeightMap> map = o.map;
+  if (o.probe) {
+    log << "engraver: probing the blank: the probe clip on the blank, the spindle off\n";
+    map = o.probe(sender);
+  }
+  // The map goes first (a controller that restarted has lost it: a resume sends it again);
+  // without one, a clear: no map of an earlier job compensates this one.
+  const std::vector<QueuedCommand> frames = heightmap::job_map_commands(map ? &*map : nullptr);
+  commands.insert(commands.begin(), frames.begin(), frames.end());
+  log << fmt::format(
+      "engraver: {} -> {}: {} curves, {} commands, {} bytes, job id {}; keys: h hold, "
+      "r resume, x abort, +/- feed override\n",
+      o.file, link.name(), plan.curves.size(), commands.size(), wire_bytes(commands), r.job_id);
+  r.commands = commands.size();
+  r.outcome = stream(sender, commands, o, log);
+  r.message = sender.message();
+  r.stats = sender.stats();
+  log << fmt::format("engraver: job {}: {} ({} frames, {} bytes, {} resent after busy or loss)\n",
+                     outcome_name(r.outcome), r.message, r.stats.frames_sent, r.stats.bytes_sent,
+                     r.stats.retransmits);
+  return r;
+}
+
+}  // namespace host::commands

@@ -1,0 +1,85 @@
+// The board planner's isolation stage (see board_stages.h).
+#include "host/lib/pcb/board_stages.h"
+
+#include <fmt/format.h>  // fmt::format
+
+#include <stdexcept>  // std::invalid_argument
+#include "host/lib/pcb/pcb_geometry.h"
+
+namespace host::pcb::board_stages {
+
+using ClipperLib::IntPoint;
+using ClipperLib::Path;
+using ClipperLib::Paths;
+
+std::vector<Point2> polyline_mm(const Path& p, double sx) {
+  std::vector<Point2> out;
+  for (const IntPoint& q : p) {
+    const Point2 m = to_mm(q);
+    out.emplace_back(sx * m.x(), m.y());
+  }
+  return out;
+}
+
+double polyline_length(const std::vector<Point2>& p, bool closed) {
+  double l = 0;
+  for (size_t i = 1; i < p.size(); ++i) l += (p[i] - p[i - 1]).norm();
+  if (closed && p.size() > 1) l += (p.front() - p.back()).norm();
+  return l;
+}
+
+std::vector<Trace> isolate(const BoardLayers& layers, const PcbLayer* copper, const BoardOptions& o,
+                           double sx, BoardJob& job) {
+  BoardReport& rep = job.report;
+  std::vector<Trace> iso;
+  IsolationResult iso_result;
+  IsolationOptions io = o.isolation;
+  if (io.mill_all && io.area_nm.empty() && layers.outline) {
+    io.area_nm = plan_cutout(*layers.outline, o.cutout).board_nm;
+  }
+  try {
+    iso_result = plan_isolation(copper->polygons_nm, io);
+  } catch (const std::invalid_argument& e) {
+    throw PlanError(e.what());
+  }
+  rep.islands = iso_result.islands;
+  rep.narrow_gaps = iso_result.narrow_gaps;
+  if (iso_result.empty_holes_skipped > 0)
+    rep.notes.push_back(fmt::format(
+        "{}: {} opening(s) in the copper hold no other island (a hatched pour): no contour "
+        "inside them (--isolate-empty-holes cuts them)",
+        copper->path, iso_result.empty_holes_skipped));
+  if (!rep.narrow_gaps.empty() && !o.allow_narrow_gaps) {
+    std::string msg = fmt::format(
+        "{}: {} place(s) where the copper is closer than the tool width {:.3f} mm plus its "
+        "clearance, so the tool cannot separate the islands:",
+        copper->path, rep.narrow_gaps.size(), io.tool_width_mm);
+    for (size_t i = 0; i < rep.narrow_gaps.size() && i < 20; ++i)
+      msg += "\n  " + describe_gap(rep.narrow_gaps[i], io);
+    if (rep.narrow_gaps.size() > 20) msg += "\n  ...";
+    msg += "\nUse a narrower tool (--tool-width) or plan anyway (--allow-narrow-gaps).";
+    throw PlanError(msg);
+  }
+  FitOptions fo;
+  fo.tolerance_mm = o.fit_tolerance_mm;
+  for (size_t i = 0; i < iso_result.paths.size(); ++i) {
+    const ToolPathNm& t = iso_result.paths[i];
+    const std::vector<Point2> pts = polyline_mm(t.path, sx);
+    if (pts.size() < 2) continue;
+    Trace tr;
+    tr.curves = fit_polyline(pts, t.closed, fo, &rep.fit);
+    if (tr.curves.empty()) continue;
+    tr.source = fmt::format("{} contour {} (pass {})", t.clearing ? "clearing" : "isolation", i,
+                            t.pass + 1);
+    tr.clearing = t.clearing;
+    rep.isolation_vertices += t.path.size() + (t.closed ? 1 : 0);
+    rep.isolation_length_mm += polyline_length(pts, t.closed);
+    iso.push_back(tr);
+  }
+  rep.isolation_contours = iso.size();
+  job.tool_radius_mm = iso_result.tool_radius_mm;
+  job.clearing_tool_radius_mm = iso_result.clearing_tool_radius_mm;
+  return iso;
+}
+
+}  // namespace host::pcb::board_stages

@@ -1,0 +1,117 @@
+// `engraver run` as a function: the stages on a small drawing, the report's fields against
+// the simulation's figures, and the refusals.
+#include <gtest/gtest.h>
+
+#include <filesystem>  // temp_directory_path, exists
+
+#include "host/lib/commands/exit_codes.h"
+#include "host/lib/commands/run_command.h"
+#include "host_tests/host/sim/sim_test_jobs.h"
+
+namespace host::commands {
+namespace {
+
+namespace fs = std::filesystem;
+
+RunOptions small_run(const std::string& dir) {
+  RunOptions o;
+  o.file = "two-lines.dxf";
+  o.name = "two-lines";
+  o.outdir = dir;
+  o.feed_mm_s = 10.0;
+  o.chord_tolerance_mm = 0.01;
+  o.encode.chord_tolerance_um = 10;
+  return o;
+}
+
+JobPlan two_lines() {
+  return test::plan_of(
+      test::drawing_of({test::line_curve(0, 0, 10, 0), test::line_curve(20, 5, 20, 15)}));
+}
+
+TEST(RunCommand, ReportsTheSimulatedJobAndWritesItsPlots) {
+  const std::string dir = (fs::temp_directory_path() / "run_command_test").string();
+  fs::remove_all(dir);
+  const JobPlan plan = two_lines();
+  const RunOptions o = small_run(dir);
+  const RunResult r = run_job(plan, o);
+  ASSERT_EQ(r.sim.outcome, JobOutcome::kCompleted) << r.sim.message;
+  EXPECT_EQ(r.base, (fs::path(dir) / "two-lines").string());
+  EXPECT_TRUE(fs::exists(r.base + ".svg"));
+  EXPECT_TRUE(fs::exists(r.base + ".png"));
+  EXPECT_FALSE(fs::exists(r.base + ".board.svg"));  // not a board
+  EXPECT_FALSE(r.isolation);                        // nothing to check against copper
+
+  const nlohmann::json j = run_report_json(plan, o, r);
+  EXPECT_EQ(j["drawing"], "two-lines.dxf");
+  EXPECT_EQ(j["outcome"], "completed");
+  EXPECT_EQ(j["curves"], 2);
+  EXPECT_EQ(j["commands"], r.sim.commands);
+  EXPECT_EQ(j["job_id"], r.sim.job_id);
+  EXPECT_EQ(j["job_wire_bytes"], r.sim.wire_bytes);
+  EXPECT_EQ(j["feed_mm_per_s"], 10.0);
+  EXPECT_EQ(j["chord_tolerance_mm"], 0.01);
+  // 10 + 10 mm of lines at 10 mm/s; the tool traced them (to a tenth of a millimetre).
+  EXPECT_NEAR(j["planned_cut_mm"].get<double>(), 20.0, 1e-9);
+  EXPECT_NEAR(j["cut_length_over_feed_s"].get<double>(), 2.0, 1e-9);
+  EXPECT_NEAR(j["traced_cut_mm"].get<double>(), 20.0, 0.1);
+  // Straight lines: the controller generates a handful of points, each one G1 line.
+  const PointCount n = count_points(plan, 0.01);
+  EXPECT_EQ(j["points_generated"], n.points);
+  EXPECT_EQ(j["gcode_g1_bytes_same_tolerance"], n.gcode_bytes);
+  EXPECT_GE(n.points, 4u);
+  EXPECT_FALSE(j.contains("height_map"));
+  EXPECT_FALSE(j.contains("simulated_isolation_check"));
+  EXPECT_FALSE(j.contains("flip"));
+  EXPECT_EQ(j["pause_confirm_ms"], sim::SimOptions{}.pause_confirm_ms);
+
+  const std::string text = run_report_text(plan, o, r);
+  EXPECT_EQ(text.rfind("two-lines.dxf: 2 curves, ", 0), 0u) << text;
+  EXPECT_NE(text.find("plot: " + r.base + ".svg"), std::string::npos) << text;
+  EXPECT_NO_THROW(refuse_failed_run(o, r));
+  write_run_report(j, r);
+  EXPECT_TRUE(fs::exists(r.base + ".json"));
+  fs::remove_all(dir);
+}
+
+TEST(RunCommand, ProbingWithoutASimulatedBlankIsAUsageErrorBeforeAnythingRuns) {
+  const std::string dir = (fs::temp_directory_path() / "run_command_probe_test").string();
+  fs::remove_all(dir);
+  RunOptions o = small_run(dir);
+  bool probed = false;
+  o.probe = [&probed](Sender&) {
+    probed = true;
+    return heightmap::HeightMap{};
+  };
+  try {
+    simulate_run(two_lines(), o);
+    FAIL() << "probed nothing";
+  } catch (const CommandFailure& e) {
+    EXPECT_EQ(e.code, kExitUsage);
+  }
+  EXPECT_FALSE(probed);
+  EXPECT_FALSE(fs::exists(dir));  // nothing written
+}
+
+TEST(RunCommand, AJobThatDidNotCompleteEndsWithItsOutcomesCode) {
+  RunResult r;
+  r.sim.outcome = JobOutcome::kAlarm;
+  r.sim.message = "limit switch";
+  try {
+    refuse_failed_run(small_run("unused"), r);
+    FAIL() << "an alarm passed";
+  } catch (const CommandFailure& e) {
+    EXPECT_EQ(e.code, kExitAlarm);
+    EXPECT_EQ(std::string(e.what()), "job alarm: limit switch");
+  }
+}
+
+TEST(RunCommand, PlotStepIsHalfAPixelOfTheJobAndAFloorForEmptyJobs) {
+  EXPECT_DOUBLE_EQ(plot_step_mm(JobPlan{}), 0.05);
+  const JobPlan plan = two_lines();  // about 25 x 20 mm with its 5 mm margin
+  EXPECT_NEAR(plot_step_mm(plan), std::max(plan.extents_mm.max.x(), plan.extents_mm.max.y()) / 2000,
+              1e-12);
+}
+
+}  // namespace
+}  // namespace host::commands
