@@ -121,12 +121,6 @@ pcb::BoardJob plan(const pcb::BoardFileSet& set, pcb::BoardOptions o,
   pcb::refuse_copper_hits(
       pcb::check_controller_isolation(job, o, static_cast<int>(std::lround(tol_mm * 1000))),
       fmt::format("the controller's points at {} mm chords", tol_mm));
-  // A job that moves without cutting would end "completed" with nothing made.
-  bool cuts = false;
-  for (const PlanStep& step : job.plan.steps) {
-    cuts = cuts || step.kind == PlanStep::kDrill || step.kind == PlanStep::kPenDown;
-  }
-  if (!cuts) throw PlanError("the job cuts nothing (no copper, hole or outline for its side)");
   if (!job.report.first_tool.empty()) {
     PlanStep mount;
     mount.kind = PlanStep::kPause;
@@ -172,6 +166,10 @@ std::string check_board_settings(const BoardSettings& s) {
     return "align_measured takes X1,Y1,X2,Y2 (mm, where holes 1 and 2 were found)";
   if (!s.align_measured_mm.empty() && s.align_holes.empty())
     return "align_measured needs the job's align_holes";
+  if (!(s.probe_spacing_mm >= heightmap::kMinPitchMm &&
+        s.probe_spacing_mm <= heightmap::kMaxPitchMm))
+    return fmt::format("probe_spacing_mm must be {} .. {}", heightmap::kMinPitchMm,
+                       heightmap::kMaxPitchMm);
   if (s.probe_first && s.height_map_from != 0)
     return "probe_first and height_map_from exclude each other (probe, or use another job's map)";
   if (s.height_map_from < 0) return "height_map_from must be a job id";
@@ -302,6 +300,7 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
                   {"align_depth_mm", board.align_depth_mm},
                   {"align_measured_mm", board.align_measured_mm},
                   {"probe_first", board.probe_first},
+                  {"probe_spacing_mm", board.probe_spacing_mm},
                   {"height_map_from", board.height_map_from},
                   {"height_map_flip", board.height_map_flip},
                   {"files", listed},
@@ -351,6 +350,7 @@ BoardSettings board_settings_of(const nlohmann::json& m) {
   b.align_depth_mm = m.value("align_depth_mm", defaults::kAlignDepthMm);
   b.align_measured_mm = m.value("align_measured_mm", std::vector<double>{});
   b.probe_first = m.value("probe_first", false);
+  b.probe_spacing_mm = m.value("probe_spacing_mm", 10.0);
   b.height_map_from = m.value("height_map_from", int64_t{0});
   b.height_map_flip = m.value("height_map_flip", "table");
   return b;

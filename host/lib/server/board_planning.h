@@ -47,6 +47,7 @@ struct BoardSettings {
   // The height map (board_height_map.h): probe the blank first, or use the map another job
   // (the top side of this board, flipped on its pins since) probed. 0: none.
   bool probe_first = false;
+  double probe_spacing_mm = 10.0;  // the probe grid's largest pitch (probe --probe-spacing)
   int64_t height_map_from = 0;
   std::string height_map_flip = "table";  // how the reused map follows the flip
 };

@@ -99,7 +99,7 @@ const char* const kUploadFields[] = {
     // A board's (board_planning.h, BoardSettings).
     "side", "tool_width_mm", "allow_narrow_gaps", "passes", "clearing_tool_mm", "narrow_passes",
     "align_holes", "align_diameter_mm", "align_depth_mm", "align_measured", "probe_first",
-    "height_map_from", "height_map_flip"};
+    "height_map_from", "height_map_flip", "probe_spacing_mm"};
 // The fields above from "side" on: a board's only (a drawing that gives one is refused).
 const size_t kFirstBoardField = 8;
 
@@ -268,7 +268,8 @@ UploadFields upload_fields(const httplib::Request& req, const UploadBody& body) 
                                  {"tool_width_mm", &u.sub.board.tool_width_mm},
                                  {"clearing_tool_mm", &u.sub.board.clearing_tool_mm},
                                  {"align_diameter_mm", &u.sub.board.align_diameter_mm},
-                                 {"align_depth_mm", &u.sub.board.align_depth_mm}};
+                                 {"align_depth_mm", &u.sub.board.align_depth_mm},
+                                 {"probe_spacing_mm", &u.sub.board.probe_spacing_mm}};
   for (const NumberField& n : numbers) {
     text.clear();
     field(n.key, &text);

@@ -806,6 +806,7 @@ std::optional<heightmap::HeightMap> Workshop::board_height_map(
       note("probe clip confirmed: probing");
       heightmap::ProbeOptions o;
       o.blank = job.name;
+      o.grid.spacing_mm = board.probe_spacing_mm;
       heightmap::ProbeRun probed;
       try {
         probed = heightmap::probe_blank(

@@ -125,6 +125,29 @@ TEST(ServerHeightMap, ProbeFirstWaitsForTheClipProbesKeepsTheMapAndCutsWithIt) {
   EXPECT_LT(deepest_um, 50 + 8);
 }
 
+// The grid's pitch is the upload's (engraver probe --probe-spacing), within the controller's.
+TEST(ServerHeightMap, TheProbeSpacingIsTheUploads) {
+  test::TempDir dir;
+  SimRig sim(false, 0, blank(warped_um));
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  auto refused = server.client().Post("/api/jobs", server.auth(),
+                                      blinky({{"probe_first", "1"}, {"probe_spacing_mm", "0.5"}}));
+  ASSERT_TRUE(refused);
+  EXPECT_EQ(refused->status, 400);
+  EXPECT_NE(refused->body.find("probe_spacing_mm must be 1 .. 65.535"), std::string::npos);
+  const int64_t id = post(server, blinky({{"probe_first", "1"}, {"probe_spacing_mm", "4"}}));
+  ASSERT_TRUE(test::wait_until([&] { return waiting_for_clip(server, id); }, 30));
+  server.control(id, R"({"action":"probe_ready"})");
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "completed"; }, 120))
+      << server.job(id).dump();
+  const heightmap::HeightMap map =
+      heightmap::read_height_map_text(archived(server, id, "heightmap.json"), "heightmap.json");
+  EXPECT_LE(map.pitch_x_mm, 4.0);
+  EXPECT_LE(map.pitch_y_mm, 4.0);
+  EXPECT_GT(map.pitch_x_mm, 3.0);
+  EXPECT_GE(map.cols, 6);
+}
+
 TEST(ServerHeightMap, NoContactFailsTheJobWithNothingCut) {
   test::TempDir dir;
   SimRig sim(false);  // no blank: the probe never closes
