@@ -160,10 +160,11 @@ def main():
                 job = int(probe_ready.group(1))
                 jobs = check_held_and_queued()
                 checked_before_probe = True
-                control(1, "abort")
+                # The queue first: once job 1 is gone the machine claims the next job.
                 for j in jobs.values():
                     if j["state"] == "queued" and j["id"] != job:
                         control(j["id"], "cancel")
+                control(1, "abort")
                 wait(lambda: probe_job_waiting(job), 30, f"job {job} asking for the probe clip")
             elif "/control" in cmd:
                 # A control example steers job 1: it must be on its machine by now.
