@@ -647,11 +647,11 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
   const std::string g = kBoardOptionsGroup;
   cmd->add_option("--tool-width", a->tool_width_mm, "isolation: V-bit width at the depth, mm")
       ->group(g)
-      ->check(CLI::Range(0.01, 5.0))
+      ->check(CLI::Range(defaults::kToolWidthRangeMm.min, defaults::kToolWidthRangeMm.max))
       ->capture_default_str();
   cmd->add_option("--passes", a->passes, "isolation passes")
       ->group(g)
-      ->check(CLI::Range(1, 50))
+      ->check(CLI::Range(int(defaults::kPassesRange.min), int(defaults::kPassesRange.max)))
       ->capture_default_str();
   cmd->add_option("--overlap", a->overlap, "overlap of passes (fraction of the tool width)")
       ->group(g)
@@ -668,11 +668,11 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
                   "isolation: a wider tool for the outer part of the --passes width, mm "
                   "(mounted after the isolation tool; 0: none)")
       ->group(g)
-      ->check(CLI::Range(0.0, 10.0));
+      ->check(CLI::Range(defaults::kClearingToolRangeMm.min, defaults::kClearingToolRangeMm.max));
   cmd->add_option("--narrow-passes", a->narrow_passes,
                   "with --clearing-tool: passes of the isolation tool next to the copper")
       ->group(g)
-      ->check(CLI::Range(1, 50))
+      ->check(CLI::Range(int(defaults::kPassesRange.min), int(defaults::kPassesRange.max)))
       ->capture_default_str();
   cmd->add_flag("--isolate-empty-holes", a->isolate_empty_holes,
                 "also cut inside openings of an island that hold no other island (hatched pours)")
@@ -719,12 +719,12 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
       ->group(g);
   cmd->add_option("--align-diameter", a->align_diameter_mm, "alignment hole (pin) diameter, mm")
       ->group(g)
-      ->check(CLI::Range(0.1, 10.0))
+      ->check(CLI::Range(defaults::kAlignDiameterRangeMm.min, defaults::kAlignDiameterRangeMm.max))
       ->capture_default_str();
   cmd->add_option("--align-depth", a->align_depth_mm,
                   "alignment hole depth, through the blank into the spoil board, mm")
       ->group(g)
-      ->check(CLI::Range(0.1, 20.0))
+      ->check(CLI::Range(defaults::kAlignDepthRangeMm.min, defaults::kAlignDepthRangeMm.max))
       ->capture_default_str();
   cmd->add_option("--align-measured", a->align_measured_mm,
                   "double-sided, second setup: X1 Y1 X2 Y2, machine mm where alignment holes 1 "

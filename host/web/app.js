@@ -168,6 +168,13 @@ function showRunning(running) {
         j.path_mm.toFixed(1) + ' mm, ' + fmtSeconds(j.remaining_s) + ' left');
     const bar = document.createElement('progress'); bar.max = 1; bar.value = j.fraction;
     div.appendChild(title); div.appendChild(bar);
+    if (j.probe) {  // a probe-first board: the probe clip, then the touches
+      const ask = document.createElement('p'); ask.className = 'probe'; ask.id = 'probe-' + j.id;
+      ask.textContent = j.probe.stage === 'probe_clip' ? 'Put the probe clip on the blank, the spindle off.'
+        : 'Probing the blank: ' + j.probe.touches + ' of ' + j.probe.planned + ' touches';
+      div.appendChild(ask);
+      if (j.probe.stage === 'probe_clip') button(ask, 'Clip on: probe', () => control(j.id, 'probe_ready'));
+    }
     if (j.machine_state !== 'planning') div.appendChild(livePreview(j));
     button(div, 'Hold', () => control(j.id, 'hold'));
     button(div, 'Resume', () => control(j.id, 'resume'));
@@ -178,10 +185,10 @@ function showRunning(running) {
   }
 }
 
-function showPreview(job) {
+function showPreview(job, file) {
   $('#preview-box').hidden = false;
-  $('#preview-name').textContent = '#' + job.id + ' ' + job.name;
-  $('#preview').src = '/api/jobs/' + job.id + '/files/plot.svg';
+  $('#preview-name').textContent = '#' + job.id + ' ' + job.name + (file ? ' (height map)' : '');
+  $('#preview').src = '/api/jobs/' + job.id + '/files/' + (file || 'plot.svg');
 }
 
 async function refreshJobs() {
@@ -197,12 +204,15 @@ async function refreshJobs() {
     cell(tr, j.priority);
     cell(tr, j.machine); cell(tr, fmtSeconds(j.planned_s)); cell(tr, j.message);
     const files = cell(tr, '');
-    for (const f of ['plot.svg', 'plan.json', 'report.json', 'machine.log', j.input_file]) {
+    const kept = ['plot.svg', 'plan.json', 'report.json', 'machine.log', j.input_file];
+    if (j.height_map) kept.push('heightmap.svg', 'heightmap.json');
+    for (const f of kept) {
       const a = document.createElement('a'); a.href = '/api/jobs/' + j.id + '/files/' + f;
       a.textContent = f.replace('input.', '') + ' '; files.appendChild(a);
     }
     const actions = cell(tr, '');
     button(actions, 'Preview', () => showPreview(j));
+    if (j.height_map) button(actions, 'Height map', () => showPreview(j, 'heightmap.svg'));
     if (j.state === 'queued') button(actions, 'Cancel', () => control(j.id, 'cancel'));
     if (['interrupted', 'aborted', 'failed'].includes(j.state)) {
       button(actions, 'Re-queue', () => control(j.id, 'requeue'));
@@ -219,7 +229,13 @@ $('#upload').addEventListener('submit', async (ev) => {
   const out = $('#upload-result');
   out.textContent = 'uploading…'; out.className = '';
   // Several files chosen together are one board (copper, drill, outline): one request.
-  const r = await fetch('/api/jobs', { method: 'POST', headers: authHeaders(), body: new FormData(ev.target) });
+  // A drawing takes no board fields, a board no feed (the server refuses what does not apply).
+  const form = new FormData(ev.target);
+  const files = $('#file').files;
+  const drawing = files.length === 1 && /\.(dxf|ngc|nc|gcode|tap|g)$/i.test(files[0].name);
+  const boardFields = ['side', 'tool_width_mm', 'allow_narrow_gaps', 'probe_first'];
+  for (const k of drawing ? boardFields : ['feed_mm_s']) form.delete(k);
+  const r = await fetch('/api/jobs', { method: 'POST', headers: authHeaders(), body: form });
   const body = await r.json().catch(() => ({ error: r.statusText }));
   if (r.ok) {
     out.textContent = 'queued as #' + body.id; out.className = 'ok';

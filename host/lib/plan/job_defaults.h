@@ -85,6 +85,22 @@ inline constexpr int kTabs = 4;              // per outer loop
 inline constexpr double kTabHeightMm = 0.5;  // board thickness a tab keeps
 inline constexpr uint32_t kSpindleSpinupMs = 2000;
 
+// ---- The ranges the board options take: `board`/`run`/`send` (CLI::Range) and the server's
+// upload fields (check_board_settings) refuse the same values ----
+
+struct Range {
+  double min, max;
+  // Written so that NaN is outside.
+  bool holds(double v) const { return v >= min && v <= max; }
+};
+inline constexpr Range kToolWidthRangeMm{0.01, 5.0};
+inline constexpr Range kPassesRange{1, 50};  // isolation passes, and narrow passes
+inline constexpr Range kClearingToolRangeMm{0.0, 10.0};  // 0: no clearing tool
+inline constexpr Range kAlignDiameterRangeMm{0.1, 10.0};
+inline constexpr Range kAlignDepthRangeMm{0.1, 20.0};
+inline constexpr double kAlignDiameterMm = 3.0;  // alignment hole (pin) diameter
+inline constexpr double kAlignDepthMm = 3.0;     // through the blank into the spoil board
+
 }  // namespace host::defaults
 
 #endif  // HOST_LIB_PLAN_JOB_DEFAULTS_H

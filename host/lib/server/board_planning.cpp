@@ -5,12 +5,14 @@
 
 #include <algorithm>  // std::min
 #include <cmath>      // std::hypot, std::lround
+#include <sstream>    // std::istringstream
 
 #include "firmware/config/machine_config.h"
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/pcb/board_check.h"  // refuse_copper_hits
 #include "host/lib/pcb/board_files.h"
 #include "host/lib/pcb/cutout.h"
+#include "host/lib/server/board_height_map.h"
 #include "host/lib/server/data_folder.h"
 
 namespace host::server {
@@ -54,7 +56,17 @@ pcb::BoardOptions board_options(const std::string& side, const BoardSettings& b,
   pcb::BoardOptions o;
   o.side = side == "bottom" ? pcb::BoardSide::kBottom : pcb::BoardSide::kTop;
   o.isolation.tool_width_mm = b.tool_width_mm;
+  o.isolation.passes = b.passes;
+  o.isolation.clearing_tool_width_mm = b.clearing_tool_mm;
+  o.isolation.narrow_passes = b.narrow_passes;
   o.allow_narrow_gaps = b.allow_narrow_gaps;
+  if (!b.align_holes.empty()) {
+    o.alignment.enabled = true;
+    o.alignment.hole_diameter_mm = b.align_diameter_mm;
+    o.alignment.hole_depth_mm = b.align_depth_mm;
+    const std::string why = parse_align_holes(b.align_holes, &o.alignment.holes_file_mm);
+    if (!why.empty()) throw PlanError(why);
+  }
   o.margin_mm = s.margin_mm;
   o.work_width_mm = work_w_mm;
   o.work_height_mm = work_h_mm;
@@ -64,7 +76,12 @@ pcb::BoardOptions board_options(const std::string& side, const BoardSettings& b,
 // The command line's words in the planner's advice, as the server's fields.
 std::string server_words(std::string text) {
   const std::pair<const char*, const char*> words[] = {
-      {"--tool-width", "tool_width_mm"}, {"--allow-narrow-gaps", "allow_narrow_gaps=1"}};
+      {"--tool-width", "tool_width_mm"},
+      {"--allow-narrow-gaps", "allow_narrow_gaps=1"},
+      {"--clearing-tool", "clearing_tool_mm"},
+      {"--narrow-passes", "narrow_passes"},
+      {"--passes", "passes"},
+      {"--align-holes", "align_holes"}};
   for (const auto& [from, to] : words) {
     const size_t at = text.find(from);
     if (at != std::string::npos) text.replace(at, std::string(from).size(), to);
@@ -75,12 +92,24 @@ std::string server_words(std::string text) {
 // The board planner's errors as the intake's: what cannot run is refused with the message.
 // A workshop job goes to whichever machine is free, so unlike `engraver send` it starts
 // with a pause (#P) naming the first tool: the operator mounts it and confirms.
-pcb::BoardJob plan(const pcb::BoardFileSet& set, const pcb::BoardOptions& o,
-                   const JobPlanSettings& settings) {
+// measured_mm: X1 Y1 X2 Y2 of the alignment holes after the flip (as `board
+// --align-measured`): planned once for where they should be, then turned and shifted onto them.
+pcb::BoardJob plan(const pcb::BoardFileSet& set, pcb::BoardOptions o,
+                   const JobPlanSettings& settings, const std::vector<double>& measured_mm) {
   pcb::PcbLayer drill;
   pcb::BoardJob job;
   try {
-    job = pcb::plan_board(set.layers(&drill), o);
+    const pcb::BoardLayers layers = set.layers(&drill);
+    if (measured_mm.size() == 4) {
+      if (!o.alignment.enabled) throw PlanError("align_measured needs the job's align_holes");
+      const pcb::BoardJob nominal = pcb::plan_board(layers, o);
+      const Point2 expected[2] = {nominal.alignment_holes_mm.at(0),
+                                  nominal.alignment_holes_mm.at(1)};
+      const Point2 measured[2] = {Point2(measured_mm[0], measured_mm[1]),
+                                  Point2(measured_mm[2], measured_mm[3])};
+      o.alignment.placement = pcb::measured_alignment(expected, measured);
+    }
+    job = pcb::plan_board(layers, o);
   } catch (const pcb::CutoutError& e) {
     throw PlanError(e.what());
   } catch (const PlanError& e) {
@@ -108,9 +137,63 @@ bool is_board_job(const JobRecord& job) {
 }
 
 std::string check_board_settings(const BoardSettings& s) {
+  using namespace defaults;
   if (!s.side.empty() && s.side != "top" && s.side != "bottom") return "side must be top or bottom";
-  if (!(s.tool_width_mm >= 0.01 && s.tool_width_mm <= 5.0))
-    return "tool_width_mm must be 0.01 .. 5";
+  const struct {
+    const char* name;
+    double value;
+    Range range;
+  } numbers[] = {{"tool_width_mm", s.tool_width_mm, kToolWidthRangeMm},
+                 {"passes", double(s.passes), kPassesRange},
+                 {"clearing_tool_mm", s.clearing_tool_mm, kClearingToolRangeMm},
+                 {"narrow_passes", double(s.narrow_passes), kPassesRange},
+                 {"align_diameter_mm", s.align_diameter_mm, kAlignDiameterRangeMm},
+                 {"align_depth_mm", s.align_depth_mm, kAlignDepthRangeMm}};
+  for (const auto& n : numbers) {
+    if (!n.range.holds(n.value))
+      return fmt::format("{} must be {} .. {}", n.name, n.range.min, n.range.max);
+  }
+  if (s.clearing_tool_mm > 0 && s.clearing_tool_mm <= s.tool_width_mm)
+    return "clearing_tool_mm must be wider than tool_width_mm (0: no clearing tool)";
+  if (s.clearing_tool_mm == 0 && s.narrow_passes != 1)
+    return "narrow_passes goes with a clearing tool (clearing_tool_mm)";
+  std::vector<Point2> holes;
+  if (!s.align_holes.empty()) {
+    const std::string why = parse_align_holes(s.align_holes, &holes);
+    if (!why.empty()) return why;
+  }
+  if (!s.align_measured_mm.empty() && s.align_measured_mm.size() != 4)
+    return "align_measured takes X1,Y1,X2,Y2 (mm, where holes 1 and 2 were found)";
+  if (!s.align_measured_mm.empty() && s.align_holes.empty())
+    return "align_measured needs the job's align_holes";
+  if (!(s.probe_spacing_mm >= heightmap::kMinPitchMm &&
+        s.probe_spacing_mm <= heightmap::kMaxPitchMm))
+    return fmt::format("probe_spacing_mm must be {} .. {}", heightmap::kMinPitchMm,
+                       heightmap::kMaxPitchMm);
+  if (s.probe_first && s.height_map_from != 0)
+    return "probe_first and height_map_from exclude each other (probe, or use another job's map)";
+  if (s.height_map_from < 0) return "height_map_from must be a job id";
+  if (s.height_map_flip != "table" && s.height_map_flip != "blank")
+    return "height_map_flip must be table or blank";
+  return "";
+}
+
+std::string parse_align_holes(const std::string& text, std::vector<Point2>* holes_file_mm) {
+  holes_file_mm->clear();
+  if (text == "auto") return "";
+  std::istringstream in(text);
+  for (std::string xy; std::getline(in, xy, ';');) {
+    double x = 0, y = 0;
+    char comma = 0, extra = 0;
+    std::istringstream one(xy);
+    if (!(one >> x >> comma >> y) || comma != ',' || (one >> extra) || !std::isfinite(x) ||
+        !std::isfinite(y)) {
+      return "align_holes: '" + xy +
+             "' is not X,Y (mm, files' frame); holes are separated by ';', or say auto";
+    }
+    holes_file_mm->emplace_back(x, y);
+  }
+  if (holes_file_mm->empty()) return "align_holes: no hole given (X,Y[;X,Y...] or auto)";
   return "";
 }
 
@@ -188,10 +271,18 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
   }
   std::string side = board.side;
   if (side.empty()) side = set.copper_top.empty() && !set.copper_bottom.empty() ? "bottom" : "top";
+  // The other side's copper alone: the job would drill and cut out, and never isolate.
+  const bool top = side == "top";
+  if ((top ? set.copper_top : set.copper_bottom).empty() &&
+      !(top ? set.copper_bottom : set.copper_top).empty()) {
+    throw PlanError(fmt::format(
+        "{}: side={} but the files hold {} copper only: ask for side={}, or add the {} copper",
+        board_name, side, top ? "bottom" : "top", top ? "bottom" : "top", side));
+  }
 
   PlannedBoard out;
   const pcb::BoardOptions options = board_options(side, board, settings, work_w_mm, work_h_mm);
-  out.job = plan(set, options, settings);
+  out.job = plan(set, options, settings, board.align_measured_mm);
   const pcb::BoardReport& r = out.job.report;
   for (const std::string& n : r.notes) notes.push_back(n);  // e.g. an empty outline left out
   nlohmann::json gaps = nlohmann::json::array();
@@ -201,6 +292,17 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
                   {"side", side},
                   {"tool_width_mm", board.tool_width_mm},
                   {"allow_narrow_gaps", board.allow_narrow_gaps},
+                  {"passes", board.passes},
+                  {"clearing_tool_mm", board.clearing_tool_mm},
+                  {"narrow_passes", board.narrow_passes},
+                  {"align_holes", board.align_holes},
+                  {"align_diameter_mm", board.align_diameter_mm},
+                  {"align_depth_mm", board.align_depth_mm},
+                  {"align_measured_mm", board.align_measured_mm},
+                  {"probe_first", board.probe_first},
+                  {"probe_spacing_mm", board.probe_spacing_mm},
+                  {"height_map_from", board.height_map_from},
+                  {"height_map_flip", board.height_map_flip},
                   {"files", listed},
                   {"notes", notes},
                   {"report",
@@ -216,11 +318,50 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
                     {"cutout_length_mm", r.cutout_length_mm},
                     {"tool_changes", r.tool_changes},
                     {"narrow_gaps", gaps}}}};
+  // Where a probe-first job probes; where the bottom side's job finds the flip axis.
+  if (const std::optional<heightmap::AreaMm> area = board_probe_area(out.job))
+    out.manifest["probe_area_mm"] = area_json(*area);
+  if (!out.job.alignment_holes_mm.empty()) {
+    out.manifest["flip_axis_machine_x_mm"] = out.job.alignment_holes_mm.front().x();
+    // Where the pins stand (machine frame, hole 1 first): what align_measured is measured
+    // against after the flip.
+    nlohmann::json holes = nlohmann::json::array();
+    for (const Point2& h : out.job.alignment_holes_mm) holes.push_back({h.x(), h.y()});
+    out.manifest["alignment_holes_mm"] = holes;
+  }
   out.files.emplace_back(
       kBoardManifest,
       out.manifest.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   out.files.insert(out.files.end(), layer_files.begin(), layer_files.end());
   return out;
+}
+
+BoardSettings board_settings_of(const nlohmann::json& m) {
+  // Manifests written before a field existed plan as they did then.
+  BoardSettings b;
+  b.side = m.value("side", "");
+  b.tool_width_mm = m.at("tool_width_mm").get<double>();
+  b.allow_narrow_gaps = m.value("allow_narrow_gaps", false);
+  b.passes = m.value("passes", defaults::kPasses);
+  b.clearing_tool_mm = m.value("clearing_tool_mm", 0.0);
+  b.narrow_passes = m.value("narrow_passes", 1);
+  b.align_holes = m.value("align_holes", "");
+  b.align_diameter_mm = m.value("align_diameter_mm", defaults::kAlignDiameterMm);
+  b.align_depth_mm = m.value("align_depth_mm", defaults::kAlignDepthMm);
+  b.align_measured_mm = m.value("align_measured_mm", std::vector<double>{});
+  b.probe_first = m.value("probe_first", false);
+  b.probe_spacing_mm = m.value("probe_spacing_mm", 10.0);
+  b.height_map_from = m.value("height_map_from", int64_t{0});
+  b.height_map_flip = m.value("height_map_flip", "table");
+  return b;
+}
+
+BoardSettings read_board_settings(const fs::path& dir) {
+  try {
+    return board_settings_of(nlohmann::json::parse(read_file(dir / kBoardManifest)));
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error((dir / kBoardManifest).string() + ": damaged: " + e.what());
+  }
 }
 
 pcb::BoardJob plan_board_folder(const fs::path& dir, const JobPlanSettings& settings,
@@ -240,12 +381,10 @@ pcb::BoardJob plan_board_folder(const fs::path& dir, const JobPlanSettings& sett
         throw ImportError(e.what());
       }
     }
-    BoardSettings b;
-    b.tool_width_mm = m.at("tool_width_mm").get<double>();
-    b.allow_narrow_gaps = m.value("allow_narrow_gaps", false);
+    const BoardSettings b = board_settings_of(m);
     return plan(set,
                 board_options(m.at("side").get<std::string>(), b, settings, work_w_mm, work_h_mm),
-                settings);
+                settings, b.align_measured_mm);
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error((dir / kBoardManifest).string() + ": damaged: " + e.what());
   }

@@ -21,7 +21,9 @@ const char* const kArchiveFiles[] = {
     "input.nc", "input.gcode", "input.tap", "input.g", "input.gbr", "input.drl", "input",
     // A board job: its manifest and layers (board_planning.h).
     "board.json", "copper.top.gbr", "copper.bot.gbr", "outline.gbr", "drill.drl", "drill.b.drl",
-    "drill.c.drl", "drill.d.drl", "input.zip", nullptr};
+    "drill.c.drl", "drill.d.drl", "input.zip",
+    // Its height map (board_height_map.h).
+    "heightmap.json", "heightmap.svg", nullptr};
 
 bool is_archive_file(const std::string& name) {
   for (const char* const* f = kArchiveFiles; *f != nullptr; ++f) {

@@ -1,6 +1,7 @@
 // HTTP routes of the workshop server (cpp-httplib).
 #include "host/lib/server/http_api.h"
 
+#include "host/lib/server/board_height_map.h"
 #include "host/lib/server/connection_threads.h"
 #include "host/lib/server/run_archive.h"
 
@@ -93,9 +94,14 @@ nlohmann::json job_json(const JobRecord& j) {
 }
 
 // Every field an upload may carry (multipart parts or query parameters); others are refused.
-const char* const kUploadFields[] = {"file",   "name",          "priority",          "tag",
-                                     "side",   "tool_width_mm", "allow_narrow_gaps", "feed_mm_s",
-                                     "tol_mm", "scale",         "margin_mm"};
+const char* const kUploadFields[] = {
+    "file", "name", "priority", "tag", "feed_mm_s", "tol_mm", "scale", "margin_mm",
+    // A board's (board_planning.h, BoardSettings).
+    "side", "tool_width_mm", "allow_narrow_gaps", "passes", "clearing_tool_mm", "narrow_passes",
+    "align_holes", "align_diameter_mm", "align_depth_mm", "align_measured", "probe_first",
+    "height_map_from", "height_map_flip", "probe_spacing_mm"};
+// The fields above from "side" on: a board's only (a drawing that gives one is refused).
+const size_t kFirstBoardField = 8;
 
 std::string unknown_upload_field(const std::string& key) {
   for (const char* f : kUploadFields) {
@@ -191,14 +197,65 @@ UploadFields upload_fields(const httplib::Request& req, const UploadBody& body) 
     u.sub.priority = static_cast<int>(p);
   }
   field("tag", &u.sub.tag);
+  // Given: present with a value (the page's form sends its empty fields too).
+  auto given = [&](const char* key) {
+    std::string value;
+    field(key, &value);
+    return !value.empty();
+  };
+  for (size_t i = kFirstBoardField; i < sizeof(kUploadFields) / sizeof(kUploadFields[0]); ++i) {
+    if (given(kUploadFields[i])) u.sub.board_fields.push_back(kUploadFields[i]);
+  }
+  u.sub.feed_given = given("feed_mm_s");
+  u.sub.tol_given = given("tol_mm");
   field("side", &u.sub.board.side);
+  field("align_holes", &u.sub.board.align_holes);
+  field("height_map_flip", &u.sub.board.height_map_flip);
+  if (u.sub.board.height_map_flip.empty()) u.sub.board.height_map_flip = "table";
+  for (const auto& [key, flag] :
+       {std::pair<const char*, bool*>{"allow_narrow_gaps", &u.sub.board.allow_narrow_gaps},
+        {"probe_first", &u.sub.board.probe_first}}) {
+    text.clear();
+    field(key, &text);
+    if (text == "1" || text == "true" || text == "on") {
+      *flag = true;
+    } else if (!text.empty() && text != "0" && text != "false") {
+      u.error = fmt::format("{} must be 1 or 0", key);
+      return u;
+    }
+  }
+  struct IntField {
+    const char* key;
+    int64_t* value;
+  };
+  int64_t passes = u.sub.board.passes, narrow = u.sub.board.narrow_passes;
+  for (const IntField& n : {IntField{"passes", &passes}, IntField{"narrow_passes", &narrow},
+                            IntField{"height_map_from", &u.sub.board.height_map_from}}) {
+    text.clear();
+    field(n.key, &text);
+    if (!text.empty() && (!parse_int(text, n.value) || *n.value < 0 || *n.value > 1000000000)) {
+      u.error = fmt::format("{} '{}' is not a whole number", n.key, text);
+      return u;
+    }
+  }
+  u.sub.board.passes = static_cast<int>(passes);
+  u.sub.board.narrow_passes = static_cast<int>(narrow);
   text.clear();
-  field("allow_narrow_gaps", &text);
-  if (text == "1" || text == "true" || text == "on") {
-    u.sub.board.allow_narrow_gaps = true;
-  } else if (!text.empty() && text != "0" && text != "false") {
-    u.error = "allow_narrow_gaps must be 1 or 0";
-    return u;
+  field("align_measured", &text);
+  if (!text.empty()) {
+    // X1,Y1,X2,Y2
+    size_t from = 0;
+    while (true) {
+      const size_t comma = text.find(',', from);
+      double v = 0;
+      if (!parse_double(text.substr(from, comma - from), &v)) {
+        u.error = fmt::format("align_measured '{}' is not X1,Y1,X2,Y2 (mm)", text);
+        return u;
+      }
+      u.sub.board.align_measured_mm.push_back(v);
+      if (comma == std::string::npos) break;
+      from = comma + 1;
+    }
   }
   struct NumberField {
     const char* key;
@@ -208,7 +265,11 @@ UploadFields upload_fields(const httplib::Request& req, const UploadBody& body) 
                                  {"tol_mm", &u.sub.settings.tol_mm},
                                  {"scale", &u.sub.settings.scale},
                                  {"margin_mm", &u.sub.settings.margin_mm},
-                                 {"tool_width_mm", &u.sub.board.tool_width_mm}};
+                                 {"tool_width_mm", &u.sub.board.tool_width_mm},
+                                 {"clearing_tool_mm", &u.sub.board.clearing_tool_mm},
+                                 {"align_diameter_mm", &u.sub.board.align_diameter_mm},
+                                 {"align_depth_mm", &u.sub.board.align_depth_mm},
+                                 {"probe_spacing_mm", &u.sub.board.probe_spacing_mm}};
   for (const NumberField& n : numbers) {
     text.clear();
     field(n.key, &text);
@@ -385,6 +446,11 @@ std::string HttpApi::event_text(uint64_t version) {
 
 void HttpApi::routes() {
   httplib::Server& s = *http_;
+  // A board job's map in its archive (probed, or taken over from another job).
+  const auto has_height_map = [this](const JobRecord& j) {
+    std::error_code ec;
+    return is_board_job(j) && fs::exists(data_.job_dir(j.key) / kHeightMapFile, ec);
+  };
 
   // Before any handler runs: the Host must be one of this server's names (a page from
   // another site gets nowhere through a name that resolves here), and the token guards
@@ -465,7 +531,7 @@ void HttpApi::routes() {
           return sink.write(event.data(), event.size());
         });
   });
-  s.Get("/api/jobs", [this](const httplib::Request& req, httplib::Response& res) {
+  s.Get("/api/jobs", [this, has_height_map](const httplib::Request& req, httplib::Response& res) {
     std::string state;
     if (req.has_param("state")) {
       state = req.get_param_value("state");
@@ -483,16 +549,19 @@ void HttpApi::routes() {
     nlohmann::json jobs = nlohmann::json::array();
     for (const JobRecord& j : store_.list(state, static_cast<size_t>(limit))) {
       jobs.push_back(job_json(j));
+      jobs.back()["height_map"] = has_height_map(j);
     }
     send_json(res, 200, {{"jobs", jobs}});
   });
-  s.Get(R"(/api/jobs/(\d{1,18}))", [this](const httplib::Request& req, httplib::Response& res) {
-    const auto job = store_.get(std::stoll(req.matches[1]));
-    if (!job) return send_error(res, 404, "no such job");
-    nlohmann::json j = job_json(*job);
-    j["runs"] = run_count(data_.job_dir(job->key));  // runs/1 .. runs/N in its archive
-    send_json(res, 200, j);
-  });
+  s.Get(R"(/api/jobs/(\d{1,18}))",
+        [this, has_height_map](const httplib::Request& req, httplib::Response& res) {
+          const auto job = store_.get(std::stoll(req.matches[1]));
+          if (!job) return send_error(res, 404, "no such job");
+          nlohmann::json j = job_json(*job);
+          j["runs"] = run_count(data_.job_dir(job->key));  // runs/1 .. runs/N in its archive
+          j["height_map"] = has_height_map(*job);
+          send_json(res, 200, j);
+        });
   s.Get(R"(/api/jobs/(\d{1,18})/path)",
         [this](const httplib::Request& req, httplib::Response& res) {
           const int64_t id = std::stoll(req.matches[1]);
@@ -511,7 +580,8 @@ void HttpApi::routes() {
           if (!is_archive_file(file)) return send_error(res, 404, "no such archive file");
           const auto job = store_.get(std::stoll(req.matches[1]));
           if (!job) return send_error(res, 404, "no such job");
-          const std::string type = file == "plot.svg"                        ? "image/svg+xml"
+          const bool svg = file.size() > 4 && file.compare(file.size() - 4, 4, ".svg") == 0;
+          const std::string type = svg                                       ? "image/svg+xml"
                                    : file == "plot.png"                      ? "image/png"
                                    : file.find(".json") != std::string::npos ? "application/json"
                                                                              : "text/plain";
@@ -593,7 +663,7 @@ void HttpApi::routes() {
            if (!body.contains("action") || !body["action"].is_string()) {
              return send_error(res, 400,
                                "expected {\"action\": \"hold|resume|abort|override|"
-                               "cancel|requeue|continue\"}");
+                               "cancel|requeue|continue|probe_ready\"}");
            }
            const std::string action = body["action"];
            if (body.contains("percent") && action != "override") {
@@ -629,6 +699,8 @@ void HttpApi::routes() {
              c = JobControl::kResume;
            } else if (action == "abort") {
              c = JobControl::kAbort;
+           } else if (action == "probe_ready") {
+             c = JobControl::kConfirmProbe;
            } else if (action == "override") {
              c = JobControl::kOverride;
              if (!body.contains("percent") || !body["percent"].is_number_integer()) {

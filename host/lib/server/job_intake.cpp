@@ -6,6 +6,7 @@
 #include <algorithm>  // std::max
 #include <cctype>     // std::isalnum
 #include <fstream>    // std::ofstream
+#include <optional>   // std::optional
 
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/pcb/board_files.h"
@@ -181,6 +182,30 @@ IntakeResult JobIntake::submit(const Submission& sub) {
   if (why.empty()) why = check_tag(sub.tag);
   if (why.empty()) why = check_settings(sub.settings);
   if (why.empty() && board) why = check_board_settings(sub.board);
+  if (why.empty() && board && sub.feed_given) {
+    why = fmt::format(
+        "feed_mm_s does not apply to a board: it is cut at the board planner's feeds "
+        "(isolation {} mm/s, drilling {} mm/s, cut-out {} mm/s)",
+        defaults::kBoardFeedMmPerS, defaults::kDrillFeedMmPerS, defaults::kCutFeedMmPerS);
+  }
+  if (why.empty() && board && sub.tol_given &&
+      sub.settings.tol_mm != defaults::kBoardChordToleranceMm) {
+    why = fmt::format(
+        "tol_mm of a board must be {} (a board is sent with 1 um chords, the controller's "
+        "finest: coarser ones cut into the isolation clearance)",
+        defaults::kBoardChordToleranceMm);
+  }
+  if (why.empty() && !board && !sub.board_fields.empty()) {
+    why = fmt::format("{} applies to a board (Gerber and Excellon files), not to {}",
+                      sub.board_fields.front(), sub.name);
+  }
+  if (why.empty() && board && sub.board.height_map_from != 0) {
+    const std::optional<JobRecord> from = store_.get(sub.board.height_map_from);
+    if (!from || !is_board_job(*from)) {
+      why = fmt::format("height_map_from: no board job {} (the job whose height map to use)",
+                        sub.board.height_map_from);
+    }
+  }
   if (why.empty() && board && sub.settings.scale != 1.0) {
     why = "scale does not apply to a board (Gerber and Excellon give true sizes)";
   }
@@ -209,6 +234,10 @@ IntakeResult JobIntake::submit(const Submission& sub) {
     job.priority = sub.priority;
     job.tag = sub.tag;
     job.settings = sub.settings;
+    if (board) {  // what it is cut and sent with, on the record
+      job.settings.feed_mm_s = defaults::kBoardFeedMmPerS;
+      job.settings.tol_mm = defaults::kBoardChordToleranceMm;
+    }
     std::string stored;
     if (board) {
       // A board sits where `engraver board` puts it unless the sender said otherwise.

@@ -29,7 +29,10 @@ struct Submission {
   std::string tag;
   JobPlanSettings settings;
   bool margin_given = false;  // settings.margin_mm is the sender's; else a board gets board's 5 mm
+  bool feed_given = false;    // a board refuses feed_mm_s (its feeds are the board planner's)
+  bool tol_given = false;     // a board is sent with 1 um chords: tol_mm other than 0.001 refused
   BoardSettings board;
+  std::vector<std::string> board_fields;  // the board's fields the sender gave (a drawing: none)
 };
 
 struct IntakeResult {

@@ -8,6 +8,12 @@
 #include <optional>    // std::optional
 
 #include "host/lib/drawing/drawing.h"
+#include "host/lib/heightmap/controller_map.h"  // height_map_commands, controller_touch
+#include "host/lib/heightmap/job_area.h"        // refuse_job_outside_map
+#include "host/lib/heightmap/probe_session.h"   // probe_blank
+#include "host/lib/plot/height_map_plot.h"      // write_height_map_svg
+#include "host/lib/server/board_height_map.h"
+#include "host/lib/server/board_planning.h"
 #include "host/lib/server/job_continue.h"
 #include "host/lib/server/job_path.h"
 #include "host/lib/server/job_planning.h"
@@ -59,7 +65,26 @@ struct Workshop::Slot {
   bool have_last_status = false;
   int64_t lease_epoch = 0;  // the lease the running job was claimed under
   std::string fenced;       // why the running job was stopped for its lease ("" = it was not)
+  // A probe-first board job before it cuts: "probe_clip" (waiting for the operator to put
+  // the probe clip on the blank and confirm), then "probing"; "" otherwise.
+  std::string probe_stage;
+  bool probe_confirmed = false;
+  Sender* probing_sender = nullptr;  // while probing: an abort stops the touch
+  size_t probe_done = 0, probe_total = 0;
+  // The controller may still hold the map of this machine's last job (#A: it stays through
+  // #I): the next job without one clears it first.
+  bool controller_has_map = false;
 };
+
+namespace {
+
+// The operator aborted a job before it cut (waiting for the probe clip, or probing).
+class AbortedBeforeCutting : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace
 
 Workshop::Workshop(JobStore& store, const DataFolder& data, std::vector<MachineSpec> machines,
                    WorkshopOptions options)
@@ -184,8 +209,22 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
   for (auto& slot : slots_) {
     std::lock_guard<std::mutex> lock(slot->mutex);
     if (slot->job_id != job_id || (slot->sender == nullptr && !slot->planning)) continue;
+    if (control == JobControl::kConfirmProbe) {
+      if (slot->probe_stage != "probe_clip") {
+        return {409, fmt::format("job {} is not waiting for the probe clip", job_id)};
+      }
+      slot->probe_confirmed = true;
+      notify(false);
+      return {};
+    }
     if (slot->sender == nullptr) {  // still planning: kept for when its commands start
+      if (control == JobControl::kAbort) {
+        if (slot->probing_sender != nullptr) slot->probing_sender->request_abort();
+        notify(false);
+      }
       switch (control) {
+        case JobControl::kConfirmProbe:
+          break;
         case JobControl::kHold:
           slot->hold_pending = true;
           break;
@@ -217,6 +256,8 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
       case JobControl::kOverride:
         if (percent < 10 || percent > 200) return {400, "override must be 10 .. 200 percent"};
         slot->sender->request_override(percent);
+        break;
+      case JobControl::kConfirmProbe:
         break;
     }
     return {};
@@ -262,9 +303,19 @@ nlohmann::json Workshop::snapshot() {
     j["fraction"] = f;
     j["elapsed_s"] = elapsed;
     j["remaining_s"] = remaining;
-    j["machine_state"] = slot->planning      ? "planning"
-                         : slot->have_status ? machine_state_name(p.status.state)
-                                             : "starting";
+    j["machine_state"] = !slot->probe_stage.empty() ? slot->probe_stage.c_str()
+                         : slot->planning           ? "planning"
+                         : slot->have_status        ? machine_state_name(p.status.state)
+                                                    : "starting";
+    if (!slot->probe_stage.empty()) {
+      j["probe"] = {{"stage", slot->probe_stage},
+                    {"touches", slot->probe_done},
+                    {"planned", slot->probe_total},
+                    {"ask", slot->probe_stage == "probe_clip"
+                                ? "put the probe clip on the blank, the spindle off, then "
+                                  "confirm (action probe_ready)"
+                                : "probing the blank"}};
+    }
     j["override_percent"] = slot->have_status ? p.status.override_percent : 100;
     // The machine's reported position and how far along the job's path it has got.
     j["position_mm"] = nlohmann::json();
@@ -411,12 +462,18 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   progress.resume_job_id = job.resume_job_id;
   const Lease lease{job.owner, job.lease_epoch};
   const char* outcome = "not started";
+  nlohmann::json height_map;  // the map the job was cut with (report.json), null: none
   {
     // Claimed: on the page (planning) and steerable before its commands exist.
     std::lock_guard<std::mutex> lock(slot.mutex);
     slot.job_id = job.id;
     slot.job_name = job.name;
     slot.planning = true;
+    slot.probe_stage.clear();
+    slot.probe_confirmed = false;
+    slot.lease_epoch = job.lease_epoch;  // probing sends before the job's commands do
+    slot.fenced.clear();
+    slot.probe_done = slot.probe_total = 0;
     slot.hold_pending = slot.abort_pending = false;
     slot.override_pending = 0;
     slot.path_json.reset();
@@ -445,6 +502,28 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
       commands = continue_commands(job, full, plan, enc, sender, options_.resume_encoder, note);
     } else {
       commands = full;
+    }
+    // The height map goes first (a continued job sends it again: a restarted controller
+    // has lost it); a job without one clears the last job's.
+    const std::optional<heightmap::HeightMap> map = board_height_map(slot, job, plan, sender, note);
+    bool clear_map = false;
+    {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      clear_map = !map && slot.controller_has_map;
+      slot.controller_has_map = static_cast<bool>(map);
+    }
+    if (map) {
+      const std::vector<QueuedCommand> frames = heightmap::height_map_commands(*map);
+      commands.insert(commands.begin(), frames.begin(), frames.end());
+      height_map = nlohmann::json{{"file", std::string(kHeightMapFile)},
+                                  {"rows", map->rows},
+                                  {"cols", map->cols},
+                                  {"min_um", map->min_um()},
+                                  {"max_um", map->max_um()},
+                                  {"probed_at", map->probed_at}};
+    } else if (clear_map) {
+      commands.insert(commands.begin(), heightmap::clear_height_map_command());
+      note("the last job's height map cleared on the controller");
     }
     note(fmt::format("planned: {} curves, {} commands, {} bytes, about {:.1f} s",
                      plan.curves.size(), commands.size(), wire_bytes(commands), job.planned_s));
@@ -572,6 +651,10 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     state = JobState::kInterrupted;
     outcome = "link lost";
     message = e.what();
+  } catch (const AbortedBeforeCutting& e) {
+    state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
+    outcome = "aborted before cutting";
+    message = e.what();
   } catch (const std::exception& e) {
     state = JobState::kFailed;
     outcome = "not sent";
@@ -582,6 +665,8 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     slot.sender = nullptr;
     slot.job_id = 0;
     slot.planning = false;
+    slot.probe_stage.clear();
+    slot.probing_sender = nullptr;
     slot.path_json.reset();
     // The machine as the sender last heard it (idle after a completed job); unknown when
     // the link went away.
@@ -617,6 +702,7 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   report["status_queries"] = st.status_queries;
   report["error_replies"] = st.error_replies;
   report["feed_overrides"] = overrides;
+  report["height_map"] = height_map;
   report["settings"] = {{"feed_mm_s", job.settings.feed_mm_s},
                         {"tol_mm", job.settings.tol_mm},
                         {"scale", job.settings.scale},
@@ -640,6 +726,130 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   } catch (const StoreError&) {
     // The record stays 'running'; the next start of this server marks it interrupted.
   }
+}
+
+std::optional<heightmap::HeightMap> Workshop::board_height_map(
+    Slot& slot, const JobRecord& job, const JobPlan& plan, Sender& sender,
+    const std::function<void(const std::string&)>& note) {
+  if (!is_board_job(job)) return std::nullopt;
+  const fs::path dir = data_.job_dir(job.key);
+  const BoardSettings board = read_board_settings(dir);
+  if (!board.probe_first && board.height_map_from == 0) return std::nullopt;
+  const fs::path map_path = dir / kHeightMapFile;
+  heightmap::HeightMap map;
+  auto keep = [&](const std::string& title) {
+    heightmap::write_height_map_file(map, map_path.string());
+    write_height_map_svg(map, title, (dir / kHeightMapPicture).string());
+  };
+  try {
+    if (board.height_map_from != 0) {
+      // The top side's map, the blank flipped on its pins since.
+      const std::optional<JobRecord> from = store_.get(board.height_map_from);
+      if (!from) throw std::runtime_error(fmt::format("no job {}", board.height_map_from));
+      const fs::path from_dir = data_.job_dir(from->key);
+      if (!fs::exists(from_dir / kHeightMapFile)) {
+        throw std::runtime_error(fmt::format(
+            "job {} has no height map (here): it was not probed, or not yet, or on a server "
+            "whose archive this one does not share",
+            from->id));
+      }
+      const heightmap::HeightMap top =
+          heightmap::read_height_map_file((from_dir / kHeightMapFile).string());
+      double axis_mm = 0;
+      if (board.height_map_flip == "blank") {
+        const nlohmann::json m = nlohmann::json::parse(read_file(from_dir / kBoardManifest));
+        if (!m.contains("flip_axis_machine_x_mm")) {
+          throw std::runtime_error(fmt::format(
+              "job {} has no alignment holes: no flip axis to mirror its map about", from->id));
+        }
+        axis_mm = m["flip_axis_machine_x_mm"].get<double>();
+      }
+      map = map_after_flip(top, axis_mm, board.height_map_flip);
+      note(fmt::format("height map of job {} ({} x {} points, flip {})", from->id, map.rows,
+                       map.cols, board.height_map_flip));
+      keep(fmt::format("{} (the map of job {}, flip {})", job.name, from->id,
+                       board.height_map_flip));
+    } else if (fs::exists(map_path)) {
+      // Probed in an earlier run of this job (interrupted, continued): the blank has not
+      // moved, or the job would have been uploaded again.
+      map = heightmap::read_height_map_file(map_path.string());
+      note("height map probed in an earlier run of this job");
+    } else {
+      const nlohmann::json m = nlohmann::json::parse(read_file(dir / kBoardManifest));
+      std::optional<heightmap::AreaMm> area;
+      if (m.contains("probe_area_mm")) area = area_of_json(m["probe_area_mm"]);
+      if (!area) area = heightmap::cutting_area(plan);
+      if (!area) throw std::runtime_error("the job cuts nothing: there is nothing to probe");
+      {
+        std::lock_guard<std::mutex> lock(slot.mutex);
+        slot.probe_stage = "probe_clip";
+      }
+      notify(false);
+      note("waiting for the probe clip on the blank (action probe_ready)");
+      // The operator's confirm, an abort, or the server stopping.
+      while (true) {
+        {
+          std::lock_guard<std::mutex> lock(slot.mutex);
+          if (slot.abort_pending || stopping_) {
+            throw AbortedBeforeCutting("aborted while waiting for the probe clip; nothing was cut");
+          }
+          if (slot.probe_confirmed) {
+            slot.probe_stage = "probing";
+            slot.probing_sender = &sender;
+            break;
+          }
+        }
+        std::unique_lock<std::mutex> lock(change_mutex_);
+        change_cv_.wait_for(lock, std::chrono::milliseconds(100));
+      }
+      notify(false);
+      note("probe clip confirmed: probing");
+      heightmap::ProbeOptions o;
+      o.blank = job.name;
+      o.grid.spacing_mm = board.probe_spacing_mm;
+      heightmap::ProbeRun probed;
+      try {
+        probed = heightmap::probe_blank(
+            *area, o, heightmap::controller_touch(sender, heightmap::ProbeMotion{}),
+            [&](size_t done, size_t planned) {
+              {
+                std::lock_guard<std::mutex> lock(slot.mutex);
+                slot.probe_done = done;
+                slot.probe_total = planned;
+              }
+              notify(false);
+            });
+      } catch (const std::exception& e) {
+        bool aborted = false;
+        {
+          std::lock_guard<std::mutex> lock(slot.mutex);
+          slot.probing_sender = nullptr;
+          aborted = slot.abort_pending || stopping_;
+        }
+        if (aborted) throw AbortedBeforeCutting("aborted while probing; nothing was cut");
+        throw;
+      }
+      {
+        std::lock_guard<std::mutex> lock(slot.mutex);
+        slot.probing_sender = nullptr;
+        slot.probe_stage.clear();
+      }
+      for (const std::string& r : probed.reprobed) note("probed again: " + r);
+      map = probed.map;
+      note(fmt::format("probed {} x {} points ({} touches), heights {:.1f} .. {:.1f} um", map.rows,
+                       map.cols, probed.touches, map.min_um(), map.max_um()));
+      keep(job.name);
+    }
+    heightmap::refuse_job_outside_map(plan, map, kHeightMapFile);
+  } catch (const AbortedBeforeCutting&) {
+    throw;
+  } catch (const LinkError&) {
+    throw;
+  } catch (const std::exception& e) {
+    // No contact, the spindle on, an outlier, a map out of range: nothing was cut.
+    throw std::runtime_error(fmt::format("height map: {}; nothing was cut", e.what()));
+  }
+  return map;
 }
 
 }  // namespace host::server

@@ -13,10 +13,12 @@
 #include <functional>          // std::function
 #include <memory>              // std::unique_ptr
 #include <mutex>               // std::mutex
+#include <optional>            // std::optional
 #include <string>              // std::string
 #include <thread>              // std::thread
 #include <vector>              // std::vector
 
+#include "host/lib/heightmap/height_map.h"
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/server/data_folder.h"
 #include "host/lib/server/job_store.h"
@@ -57,7 +59,9 @@ struct WorkshopOptions {
   ResumeEncoder resume_encoder = continue_from_curve();  // "continue" (see above)
 };
 
-enum class JobControl { kHold, kResume, kAbort, kOverride };
+// kConfirmProbe: the operator has put the probe clip on the blank (a probe-first board job
+// waits for it before it probes).
+enum class JobControl { kHold, kResume, kAbort, kOverride, kConfirmProbe };
 
 struct ControlResult {
   int status = 200;  // 200 done, 404 no such job, 409 not possible in its state
@@ -102,6 +106,11 @@ class Workshop {
   void heartbeat_loop();
   void lease_lost(const std::string& why);
   void save_refused(int64_t job_id);
+  // A board job's height map (probed here after the operator's confirm, or another job's),
+  // kept in its archive folder; nullopt for a job without one. Throws what ends the job.
+  std::optional<heightmap::HeightMap> board_height_map(
+      Slot& slot, const JobRecord& job, const JobPlan& plan, Sender& sender,
+      const std::function<void(const std::string&)>& note);
 
   JobStore& store_;
   const DataFolder& data_;

@@ -3,7 +3,10 @@
 line of the `engraver serve` section runs with bash and the real curl against `engraver
 serve` on loopback (one `engraver sim --realtime` machine). Only the data folder, the port
 and the files' contents are this test's: the files are made under the names the examples
-use (board.ngc larger than 8 KB, the blinky board from data/).
+use (board.ngc larger than 8 KB, the blinky board from data/, its copper also as
+blinky-B.Cu.gbr for the bottom side). Before the `probe_ready` example the test itself
+frees the machine (aborts job 1, cancels the other queued boards) so that the probe-first
+job reaches the probe clip; the sim has a warped blank (--surface) for it to probe.
 
 Exit 77 (ctest: skipped) when curl is not installed.
 Usage: guide_examples_test.py ENGRAVER USER_GUIDE.md
@@ -101,7 +104,8 @@ def main():
     try:
         sim_port, http_port = free_port(), free_port()
         procs.append(subprocess.Popen(
-            [engraver, "sim", "--realtime", "--listen", f"127.0.0.1:{sim_port}"],
+            [engraver, "sim", "--realtime", "--listen", f"127.0.0.1:{sim_port}",
+             "--surface", "tilt=0.05mm,bow=0.03mm"],
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
         data = os.path.join(tmp, "data")
         procs.append(subprocess.Popen(
@@ -118,12 +122,51 @@ def main():
         assert os.path.getsize(os.path.join(work, "board.ngc")) > 8 * 1024
         for name in ("blinky-F.Cu.gbr", "blinky.drl", "blinky-Edge.Cuts.gbr", "blinky.zip"):
             shutil.copy(os.path.join(DATA, name), work)
+        shutil.copy(os.path.join(DATA, "blinky-F.Cu.gbr"), os.path.join(work, "blinky-B.Cu.gbr"))
 
         prelude = [c for c in commands if c.startswith("TOKEN=")]
         jobs_before = 0
+        checked_before_probe = False
+
+        def check_held_and_queued():
+            # What the first examples did: the drawing on the machine, held; boards queued.
+            wait(lambda: get(base, "/api/status")["running"][0]["machine_state"] == "held", 10,
+                 "job 1 held")
+            jobs = {j["id"]: j for j in get(base, "/api/jobs")["jobs"]}
+            assert jobs[1]["name"] == "board.ngc" and jobs[1]["priority"] == 5, jobs[1]
+            boards = [j for j in jobs.values() if j["input_file"] == "board.json"]
+            assert len(boards) >= 2 and all(j["state"] == "queued" for j in boards), boards
+            return jobs
+
+        def control(job, action):
+            req = urllib.request.Request(
+                f"{base}/api/jobs/{job}/control", data=json.dumps({"action": action}).encode(),
+                method="POST", headers={"Authorization": "Bearer " + open(
+                    os.path.join(data, "token")).read().strip()})
+            with urllib.request.urlopen(req, timeout=10) as r:
+                return json.load(r)
+
+        def probe_job_waiting(job):
+            for j in get(base, "/api/status")["running"]:
+                if j["id"] == job and j["machine_state"] == "probe_clip":
+                    return True
+            return False
+
         for cmd in curls:
             print("$ " + cmd)
-            if "/control" in cmd:
+            probe_ready = re.search(r"probe_ready.*?/api/jobs/(\d+)/control", cmd, re.S)
+            if probe_ready:
+                # Free the machine for the probe-first job, which then asks for the clip.
+                job = int(probe_ready.group(1))
+                jobs = check_held_and_queued()
+                checked_before_probe = True
+                # The queue first: once job 1 is gone the machine claims the next job.
+                for j in jobs.values():
+                    if j["state"] == "queued" and j["id"] != job:
+                        control(j["id"], "cancel")
+                control(1, "abort")
+                wait(lambda: probe_job_waiting(job), 30, f"job {job} asking for the probe clip")
+            elif "/control" in cmd:
                 # A control example steers job 1: it must be on its machine by now.
                 wait(lambda: [j["id"] for j in get(base, "/api/status")["running"]] == [1], 20,
                      "job 1 on its machine")
@@ -139,13 +182,18 @@ def main():
             if "/api/jobs?" in cmd or cmd.rstrip().endswith("/api/jobs"):
                 jobs_before += 1
                 assert answer["id"] == jobs_before, answer
-        # What the examples did: the drawing on the machine, held; the boards queued.
-        wait(lambda: get(base, "/api/status")["running"][0]["machine_state"] == "held", 10,
-             "job 1 held")
-        jobs = {j["id"]: j for j in get(base, "/api/jobs")["jobs"]}
-        assert jobs[1]["name"] == "board.ngc" and jobs[1]["priority"] == 5, jobs[1]
-        boards = [j for j in jobs.values() if j["input_file"] == "board.json"]
-        assert len(boards) == 2 and all(j["state"] == "queued" for j in boards), boards
+        if not checked_before_probe:
+            check_held_and_queued()
+        else:
+            # The confirm was taken: the job probes the simulated blank (or has got further).
+            def probing_or_later():
+                j = get(base, "/api/jobs/4")
+                running = [r for r in get(base, "/api/status")["running"] if r["id"] == 4]
+                return j["state"] != "running" or (
+                    running and running[0]["machine_state"] != "probe_clip")
+            wait(probing_or_later, 30, "job 4 probing after the confirm")
+            assert get(base, "/api/jobs/4")["state"] in ("running", "completed"), \
+                get(base, "/api/jobs/4")
         print(f"guide examples passed: {len(curls)} curl commands")
         return 0
     finally:

@@ -2,7 +2,9 @@
 """The workshop page in a real browser: headless Chromium loads the page served by
 `engraver serve` (with one `engraver sim` machine), enters the token, uploads a drawing
 through the page's form, watches the job finish on the page, then uploads a board's three
-files (copper, drill, outline) together as one job and watches it finish, and keeps a
+files (copper, drill, outline) together as one job and watches it finish, then the same
+board with "probe first": the page asks for the probe clip, the test clicks its button, the
+job probes the simulated warped blank and finishes, and its height map is shown; and keeps a
 screenshot. Then, on a second server with a real-time machine, watches a running job's live
 preview: the executed part of the path ends where the tool marker is (the machine's
 reported position), grows as the job runs, and both stay inside the drawing.
@@ -201,7 +203,8 @@ def main():
     tmp = tempfile.mkdtemp(prefix="engraver-page-")
     try:
         sim_port, http_port = free_port(), free_port()
-        procs.append(subprocess.Popen([engraver, "sim", "--listen", f"127.0.0.1:{sim_port}"],
+        procs.append(subprocess.Popen([engraver, "sim", "--listen", f"127.0.0.1:{sim_port}",
+                                       "--surface", "tilt=0.05mm,bow=0.03mm"],
                                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
         data = os.path.join(tmp, "data")
         procs.append(subprocess.Popen(
@@ -274,6 +277,27 @@ def main():
             manifest = json.load(r)
         assert [f["name"] for f in manifest["files"]] == [
             "blinky-F.Cu.gbr", "blinky.drl", "blinky-Edge.Cuts.gbr"], manifest
+        # Probe first: the page asks for the probe clip with a button; once clicked, the job
+        # probes, cuts with the map, and its height map picture is shown.
+        dt.js("document.querySelector('#probe_first').checked = true")
+        dt.js("document.querySelector('#upload').requestSubmit()")
+        wait(lambda: "queued as #3" in (dt.js("document.querySelector('#upload-result')"
+                                              ".textContent") or ""), 30,
+             "the probe-first board to be accepted")
+        ask = "document.querySelector('#probe-3')"
+        wait(lambda: "probe clip" in (dt.js(f"{ask} ? {ask}.innerText : ''") or ""), 60,
+             "the page to ask for the probe clip")
+        dt.js(f"{ask}.querySelector('button').click()")
+        probe_row = "document.querySelector('#job-3')"
+        wait(lambda: "completed" in (dt.js(f"{probe_row} ? {probe_row}.innerText : ''") or ""),
+             120, "the probe-first board to finish on the page")
+        assert "heightmap.svg" in dt.js(f"{probe_row}.innerText")
+        dt.js(f"[...{probe_row}.querySelectorAll('button')]"
+              ".find(b => b.textContent === 'Height map').click()")
+        wait(lambda: dt.js("(() => { const i = document.querySelector('#preview');"
+                           " return i.src.endsWith('/files/heightmap.svg') && i.complete &&"
+                           " i.naturalWidth > 0; })()"), 30, "the height map picture")
+        dt.js("document.querySelector('#probe_first').checked = false")
         # Without the token the page's request is refused and nothing is queued.
         dt.js("(() => { const t = document.querySelector('#token'); t.value = 'wrong';"
               " t.dispatchEvent(new Event('change')); })()")
@@ -282,7 +306,9 @@ def main():
                                  or ""), 30, "the refusal of a wrong token")
         with urllib.request.urlopen(base + "/api/jobs", timeout=10) as r:
             jobs = json.load(r)["jobs"]
-        assert len(jobs) == 2 and all(j["state"] == "completed" for j in jobs), jobs
+        assert len(jobs) == 3 and all(j["state"] == "completed" for j in jobs), jobs
+        assert [j["height_map"] for j in sorted(jobs, key=lambda j: j["id"])] == [
+            False, False, True], jobs
 
         shot = dt.call("Page.captureScreenshot", format="png")
         with open(screenshot, "wb") as f:

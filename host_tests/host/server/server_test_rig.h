@@ -53,7 +53,8 @@ class TempDir {
 // One simulated machine serving a loopback port from a thread until kill().
 class SimRig {
  public:
-  explicit SimRig(bool realtime, uint16_t port = 0) : machine_(sim::SimOptions{}) {
+  explicit SimRig(bool realtime, uint16_t port = 0, sim::SimOptions options = sim::SimOptions{})
+      : machine_(std::move(options)) {
     sim::ServerOptions so;
     so.port = port;
     so.realtime = realtime;
