@@ -656,12 +656,6 @@ bool Application::push_point(const int32_t target[config::kAxisCount], uint16_t 
   return planner_.push(&ring_, target, feed, flags, item_tag_);
 }
 
-// The end of a map item: where the machine already goes (no offset added, so no motion);
-// the change applies from the next point generated, never to the standing tool.
-bool Application::push_map_marker() {
-  return planner_.push_standing(&ring_, last_feed_um_s_, kPointEndOfItem, item_tag_);
-}
-
 // True when the item is fully handed over (its last ring entry flagged end-of-item).
 bool Application::execute_item(QueueItem* item) {
   const int32_t* last = planner_.last_um();
@@ -736,13 +730,15 @@ bool Application::execute_item(QueueItem* item) {
                    item->map_header.y0_um, item->map_header.pitch_x_um,
                    item->map_header.pitch_y_um);
       }
-      return push_map_marker();
+      // Where the machine already goes (no offset added, so no motion): the change applies
+      // from the next point generated, never to the standing tool.
+      return planner_.push_standing(&ring_, last_feed_um_s_, kPointEndOfItem, item_tag_);
     case ItemKind::kMapHeights: {
       const MapHeightsArgs& m = item->map_heights;
       for (uint8_t i = 0; i < m.n; ++i) map_.set((uint16_t)(m.index + i), m.height_um[i]);
       // The frame that ends the grid (checked when it was stored) switches it on.
       if ((uint16_t)(m.index + m.n) == (uint16_t)map_.cols() * map_.rows()) map_.complete();
-      return push_map_marker();
+      return planner_.push_standing(&ring_, last_feed_um_s_, kPointEndOfItem, item_tag_);
     }
     case ItemKind::kSpline: {
       const uint8_t slot = item->spline.slot;

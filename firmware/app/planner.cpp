@@ -242,8 +242,8 @@ bool Planner::push_machine(CoordinateRing* ring, const int32_t target_um[config:
 }
 
 bool Planner::push_standing(CoordinateRing* ring, uint16_t feed_um_s, uint8_t flags, uint16_t tag) {
-  const int32_t here[config::kAxisCount] = {last_um_[0], last_um_[1], last_um_[2]};
-  if (!push_segment(ring, here, feed_um_s, flags, tag, 0)) return false;
+  // To last_um_ itself: push_segment reads the target before it writes last_um_ (the same).
+  if (!push_segment(ring, last_um_, feed_um_s, flags, tag, 0)) return false;
   follow_.left = 0;  // a split under way (of the old map) is over
   return true;
 }

@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>  // fmt::format
 
+#include <cmath>       // std::isfinite
+#include <cstdlib>     // std::strtod
 #include <filesystem>  // std::filesystem::path
 #include <fstream>     // std::ofstream
 #include <iostream>    // std::cerr
@@ -32,8 +34,26 @@ std::optional<heightmap::SurfaceSpec> surface_spec_of(const std::string& text) {
   }
 }
 
+namespace {
+
+// CLI::Range lets NaN through (every comparison with it is false): refused before it.
+CLI::Validator finite_number() {
+  return CLI::Validator(
+      [](std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v))
+          return fmt::format("'{}' is not a finite number", text);
+        return std::string();
+      },
+      "NUMBER");
+}
+
+}  // namespace
+
 void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, HeightMapCommand command) {
   const std::string g = kHeightMapGroup;
+  const CLI::Validator finite = finite_number();
   if (command == HeightMapCommand::kProbe) {
     a->probe = true;
     cmd->add_option("--height-map", a->height_map,
@@ -49,6 +69,7 @@ void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, HeightMapCommand co
   cmd->add_option("--probe-spacing", a->grid.spacing_mm,
                   "largest distance between probe points, mm")
       ->group(g)
+      ->check(finite)
       ->check(CLI::Range(1.0, 65.0))
       ->capture_default_str();
   cmd->add_option("--probe-grid", a->grid_rows_cols, "ROWS COLS: exactly this grid (2..16 each)")
@@ -58,6 +79,7 @@ void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, HeightMapCommand co
   cmd->add_option("--probe-margin", a->grid.margin_mm,
                   "the grid reaches this far beyond the job, mm")
       ->group(g)
+      ->check(finite)
       ->check(CLI::Range(0.0, 50.0))
       ->capture_default_str();
   cmd->add_flag("--probe-twice", a->probe_twice,
@@ -67,6 +89,7 @@ void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, HeightMapCommand co
                   "a point further than this from its neighbours' prediction is probed again, "
                   "then refused, um")
       ->group(g)
+      ->check(finite)
       ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
   cmd->add_option("--blank", a->blank, "the blank's name, kept in the map")->group(g);
@@ -74,10 +97,12 @@ void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, HeightMapCommand co
   cmd->add_option("--vbit-angle", a->vbit_angle_deg,
                   "V-bit included angle in degrees (the depth report's groove width)")
       ->group(g)
+      ->check(finite)
       ->check(CLI::Range(5.0, 150.0))
       ->capture_default_str();
   cmd->add_option("--copper-um", a->copper_um, "copper thickness in um (the depth report)")
       ->group(g)
+      ->check(finite)
       ->check(CLI::Range(1.0, 500.0))
       ->capture_default_str();
 }

@@ -110,4 +110,20 @@ TEST(HeightMapCli, AMapThatCannotBeWrittenIsRefusedBeforeProbing) {
   EXPECT_FALSE(std::filesystem::exists(dir));
 }
 
+// A number option of the height map's given as NaN passed CLI::Range (every comparison with
+// NaN is false): refused as bad input before anything is tried.
+TEST(HeightMapCli, NotANumberOptionsAreRefused) {
+  const std::string dir = out_dir("nan");
+  for (const std::string& cmd :
+       {"probe " + kWord + " --to tcp://127.0.0.1:9 --probe-spacing nan",
+        "probe " + kWord + " --to tcp://127.0.0.1:9 --outlier-limit nan",
+        "run " + kWord + " -o " + dir + " --surface tilt=0.1mm --vbit-angle nan",
+        "run " + kWord + " -o " + dir + " --surface tilt=0.1mm --copper-um nan"}) {
+    const ToolRun r = run_tool(kExe, cmd);
+    EXPECT_EQ(r.code, 2) << cmd << "\n" << r.err;
+    EXPECT_NE(r.err.find("'nan' is not a finite number"), std::string::npos) << r.err;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
