@@ -12,6 +12,7 @@
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
+#include "host/cli/serve_summary.h"
 #include "host/lib/server/data_folder.h"
 #include "host/lib/server/data_folder_lock.h"
 #include "host/lib/server/http_api.h"
@@ -188,8 +189,7 @@ void run_serve(const ServeArgs& a) {
 
 void add_serve_commands(CLI::App& app) {
   auto args = std::make_shared<ServeArgs>();
-  CLI::App* serve = app.add_subcommand(
-      "serve", "the workshop server: job queue, archive, machines, web page and JSON API");
+  CLI::App* serve = app.add_subcommand("serve", kServeSummary);
   serve->add_option("--data", args->data, "data folder: job database, token, archive")
       ->capture_default_str();
   serve->add_option("--listen", args->listen, "ADDR:PORT of the page and API (loopback default)")

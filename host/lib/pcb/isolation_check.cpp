@@ -7,6 +7,7 @@
 #include <cmath>      // std::fabs, std::sqrt
 #include <map>        // std::map
 
+#include "host/lib/pcb/near_copper.h"
 #include "host/lib/pcb/pcb_geometry.h"
 
 namespace host::pcb {
@@ -139,9 +140,11 @@ IsolationCheck check_isolation(const Paths& copper_nm,
     // Copper AND the union of the sweeps is the union, strip by strip, of the copper near a
     // strip AND that strip's sweep: the whole job's sweep is never united in one piece (on
     // A64-OlinuXino, top, 0.2 mm: 3.3 -> 1.9 s of the check).
+    // Only the centres' runs that come within the shrunk radius of copper (or run inside
+    // it) can cut it: the others are never swept (A64-OlinuXino top, 0.2 mm: none, and the
+    // check 7 -> 4 s).
     std::vector<Paths> pieces;
-    pieces.reserve(centres.size());
-    for (const Path& p : centres) pieces.push_back(Paths{p});
+    for (const Path& p : runs_near_copper(centres, copper, shrunk)) pieces.push_back(Paths{p});
     const Paths cut_copper = united_by_strips(pieces, [&](const Paths& group) {
       const Paths swept_in = sweep_open(group, shrunk, kArcToleranceNm);
       const BoxNm near = box_of(swept_in);

@@ -10,6 +10,7 @@
 #include <stdexcept>  // std::runtime_error
 
 #include "host/lib/pcb/pcb_geometry.h"
+#include "host/lib/plot/png_rows.h"
 
 namespace host {
 
@@ -18,6 +19,7 @@ namespace {
 const double kTitleBandPx = 40.0;
 const double kBottomBandPx = 60.0;
 const double kSideMarginPx = 20.0;
+const int kBandRows = 128;  // PNG rows drawn at a time: 0.7 MB at 1 400 px wide
 
 struct Rgba {
   double r, g, b, a;
@@ -62,8 +64,28 @@ PlotFrame board_plot_frame(const pcb::BoardJob& job, int width_px, int* height_p
 
 namespace {
 
-void polygon_paths(cairo_t* cr, const PlotFrame& f, const ClipperLib::Paths& paths) {
+// The rows of the picture being drawn: the whole height for SVG; for the PNG one band at a
+// time (the picture is drawn once per band), where a mask of the band's size replaces
+// cairo's full-size group surface.
+struct Band {
+  double y0_px = -1e30, y1_px = 1e30;  // rows drawn: y0 <= y < y1
+  cairo_surface_t* mask = nullptr;     // A8, the band's size; nullptr: draw with groups
+  bool misses(double min_y_px, double max_y_px, double margin_px) const {
+    return max_y_px + margin_px < y0_px || min_y_px - margin_px > y1_px;
+  }
+};
+
+void polygon_paths(cairo_t* cr, const PlotFrame& f, const ClipperLib::Paths& paths,
+                   const Band& band) {
   for (const auto& p : paths) {
+    if (p.empty()) continue;
+    double lo = 1e30, hi = -1e30;
+    for (const auto& q : p) {
+      const double y = f.to_px(pcb::to_mm(q)).y();
+      lo = std::min(lo, y);
+      hi = std::max(hi, y);
+    }
+    if (band.misses(lo, hi, 2.0)) continue;  // adds no crossing to the band's rows
     for (size_t i = 0; i < p.size(); ++i) {
       const Point2 q = f.to_px(pcb::to_mm(p[i]));
       if (i == 0)
@@ -86,19 +108,50 @@ void polyline(cairo_t* cr, const PlotFrame& f, const std::vector<Point2>& pts) {
   if (pts.size() == 1) cairo_rel_line_to(cr, 0.01, 0);
 }
 
-// A set of paths stroked in one go: where strokes of one colour overlap, the colour stays
-// even (the group is painted once with its alpha).
-void stroke_group(cairo_t* cr, const PlotFrame& f, const std::vector<std::vector<Point2>>& paths,
-                  double width_px, const Rgba& c) {
-  cairo_push_group(cr);
-  cairo_set_source_rgb(cr, c.r, c.g, c.b);
-  cairo_set_line_width(cr, std::max(width_px, 0.5));
+// Strokes the paths that reach the band.
+void stroke_paths(cairo_t* cr, const PlotFrame& f, const std::vector<std::vector<Point2>>& paths,
+                  double width_px, const Band& band) {
+  cairo_set_line_width(cr, width_px);
   for (const auto& p : paths) {
+    double lo = 1e30, hi = -1e30;
+    for (const Point2& q : p) {
+      const double y = f.to_px(q).y();
+      lo = std::min(lo, y);
+      hi = std::max(hi, y);
+    }
+    if (p.empty() || band.misses(lo, hi, width_px / 2 + 2.0)) continue;
     polyline(cr, f, p);
     cairo_stroke(cr);
   }
-  cairo_pop_group_to_source(cr);
-  cairo_paint_with_alpha(cr, c.a);
+}
+
+// A set of paths stroked in one go: where strokes of one colour overlap, the colour stays
+// even (the group, or the band's mask, is painted once with its alpha).
+void stroke_group(cairo_t* cr, const PlotFrame& f, const std::vector<std::vector<Point2>>& paths,
+                  double width_px, const Rgba& c, const Band& band) {
+  const double w = std::max(width_px, 0.5);
+  if (!band.mask) {
+    cairo_push_group(cr);
+    cairo_set_source_rgb(cr, c.r, c.g, c.b);
+    stroke_paths(cr, f, paths, w, band);
+    cairo_pop_group_to_source(cr);
+    cairo_paint_with_alpha(cr, c.a);
+    return;
+  }
+  if (paths.empty()) return;
+  cairo_t* m = cairo_create(band.mask);
+  cairo_set_operator(m, CAIRO_OPERATOR_CLEAR);
+  cairo_paint(m);
+  cairo_set_operator(m, CAIRO_OPERATOR_OVER);
+  cairo_translate(m, 0, -band.y0_px);
+  cairo_set_line_cap(m, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_join(m, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_source_rgb(m, 0, 0, 0);
+  stroke_paths(m, f, paths, w, band);
+  cairo_destroy(m);
+  cairo_surface_mark_dirty(band.mask);
+  set(cr, c);
+  cairo_mask_surface(cr, band.mask, 0, band.y0_px);
 }
 
 double nice_length(double target) {
@@ -117,7 +170,8 @@ void legend_box(cairo_t* cr, double x, double y, const Rgba& c, const std::strin
   cairo_show_text(cr, label.c_str());
 }
 
-void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int height_px) {
+void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int height_px,
+            const Band& band) {
   const pcb::BoardJob& job = *in.job;
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
@@ -126,20 +180,20 @@ void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int heigh
   cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
   if (!job.board_machine_nm.empty()) {
     set(cr, kBoard);
-    polygon_paths(cr, f, job.board_machine_nm);
+    polygon_paths(cr, f, job.board_machine_nm, band);
     cairo_fill(cr);
   }
   set(cr, kCopper);
-  polygon_paths(cr, f, job.copper_machine_nm);
+  polygon_paths(cr, f, job.copper_machine_nm, band);
   cairo_fill(cr);
   const double s = f.scale_px_per_mm;
-  stroke_group(cr, f, job.clearing_paths_mm, 2 * job.clearing_tool_radius_mm * s, kIsolation);
-  stroke_group(cr, f, job.clearing_paths_mm, 0.6, kIsolationCentre);
-  stroke_group(cr, f, job.isolation_paths_mm, 2 * job.tool_radius_mm * s, kIsolation);
-  stroke_group(cr, f, job.isolation_paths_mm, 0.6, kIsolationCentre);
-  stroke_group(cr, f, job.cutout_paths_mm, 2 * job.cutter_radius_mm * s, kCutout);
-  stroke_group(cr, f, job.cutout_paths_mm, 0.6, kCutoutCentre);
-  stroke_group(cr, f, job.tab_paths_mm, 2 * job.cutter_radius_mm * s, kTab);
+  stroke_group(cr, f, job.clearing_paths_mm, 2 * job.clearing_tool_radius_mm * s, kIsolation, band);
+  stroke_group(cr, f, job.clearing_paths_mm, 0.6, kIsolationCentre, band);
+  stroke_group(cr, f, job.isolation_paths_mm, 2 * job.tool_radius_mm * s, kIsolation, band);
+  stroke_group(cr, f, job.isolation_paths_mm, 0.6, kIsolationCentre, band);
+  stroke_group(cr, f, job.cutout_paths_mm, 2 * job.cutter_radius_mm * s, kCutout, band);
+  stroke_group(cr, f, job.cutout_paths_mm, 0.6, kCutoutCentre, band);
+  stroke_group(cr, f, job.tab_paths_mm, 2 * job.cutter_radius_mm * s, kTab, band);
   set(cr, kHole);
   for (const pcb::Hole& h : job.holes_machine) {
     const Point2 c = f.to_px(pcb::to_mm(ClipperLib::IntPoint(h.at.x, h.at.y)));
@@ -157,7 +211,7 @@ void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int heigh
     std::vector<std::vector<Point2>> down;
     for (const ToolPathSegment& seg : in.simulated)
       if (seg.pen_down) down.push_back(seg.points_mm);
-    stroke_group(cr, f, down, 0.5, kSimulated);
+    stroke_group(cr, f, down, 0.5, kSimulated, band);
   }
   set(cr, kGap);
   cairo_set_line_width(cr, 2.0);
@@ -223,22 +277,41 @@ void write_board_plot(const BoardPlotInput& in, const std::string& svg_path,
     cairo_surface_t* s = cairo_svg_surface_create(svg_path.c_str(), in.width_px, height_px);
     check(s, svg_path);
     cairo_t* cr = cairo_create(s);
-    render(cr, in, f, height_px);
+    render(cr, in, f, height_px, Band());
     cairo_destroy(cr);
     cairo_surface_finish(s);
     check(s, svg_path);
     cairo_surface_destroy(s);
   }
   if (!png_path.empty()) {
-    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, in.width_px, height_px);
+    // Drawn band by band into one band-sized surface, each band handed to the PNG writer.
+    const int band_rows = std::min(height_px, kBandRows);
+    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, in.width_px, band_rows);
     check(s, png_path);
-    cairo_t* cr = cairo_create(s);
-    render(cr, in, f, height_px);
-    cairo_destroy(cr);
-    const cairo_status_t st = cairo_surface_write_to_png(s, png_path.c_str());
+    Band band;
+    band.mask = cairo_image_surface_create(CAIRO_FORMAT_A8, in.width_px, band_rows);
+    check(band.mask, png_path);
+    try {
+      PngRows png(png_path, in.width_px, height_px);
+      for (int y0 = 0; y0 < height_px; y0 += band_rows) {
+        band.y0_px = y0;
+        band.y1_px = y0 + band_rows;
+        cairo_t* cr = cairo_create(s);
+        cairo_translate(cr, 0, -y0);
+        render(cr, in, f, height_px, band);
+        cairo_destroy(cr);
+        cairo_surface_flush(s);
+        png.add_rows(cairo_image_surface_get_data(s), cairo_image_surface_get_stride(s),
+                     std::min(band_rows, height_px - y0));
+      }
+      png.finish();
+    } catch (...) {
+      cairo_surface_destroy(band.mask);
+      cairo_surface_destroy(s);
+      throw;
+    }
+    cairo_surface_destroy(band.mask);
     cairo_surface_destroy(s);
-    if (st != CAIRO_STATUS_SUCCESS)
-      throw std::runtime_error(png_path + ": cannot write the plot: " + cairo_status_to_string(st));
   }
 }
 

@@ -3,6 +3,9 @@
 
 #include <cairo.h>  // read the PNG back
 #include <gtest/gtest.h>
+#include <sys/resource.h>  // getrusage
+#include <sys/wait.h>      // waitpid
+#include <unistd.h>        // fork
 
 #include <filesystem>  // temp_directory_path
 
@@ -59,6 +62,53 @@ TEST(BoardPlot, CopperIsolationAndHolesAppearWhereTheyAre) {
   EXPECT_GT(cut.b, cut.r + 40);
   const Pixel outside = pixel_at(s, f.to_px(job.frame.to_machine(Point2(4.8, 2.7))));
   EXPECT_EQ(outside.r + outside.g + outside.b, 3 * 255);
+  cairo_surface_destroy(s);
+  std::filesystem::remove(png);
+}
+
+// The PNG is drawn a band of rows at a time: a plot of 6 000 x 6 000 pixels (140 MB as one
+// cairo surface, twice that with a stroke group) is written in a few MB, and is whole.
+TEST(BoardPlot, ALargePngIsWrittenInBandsOfRows) {
+  pcb::PcbLayer top =
+      pcb::test::copper_layer({pcb::test::rect(0, 0, 40, 40)}, pcb::LayerKind::kCopperTop);
+  pcb::BoardLayers l;
+  l.copper_top = &top;
+  pcb::BoardOptions o;
+  o.isolation.tool_width_mm = 0.4;
+  const pcb::BoardJob job = pcb::plan_board(l, o);
+  BoardPlotInput in;
+  in.title = "large";
+  in.job = &job;
+  in.width_px = 6000;
+  const std::string png =
+      (std::filesystem::temp_directory_path() / "pcb_board_plot_large_test.png").string();
+  // In a child process, so that its peak resident memory counts this plot alone.
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    rusage before{}, after{};
+    getrusage(RUSAGE_SELF, &before);
+    write_board_plot(in, "", png);
+    getrusage(RUSAGE_SELF, &after);
+    _exit(after.ru_maxrss - before.ru_maxrss < 32 * 1024 ? 0 : 1);  // kB
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "the plot's peak memory grew by 32 MB or more";
+  cairo_surface_t* s = cairo_image_surface_create_from_png(png.c_str());
+  ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
+  int h = 0;
+  const PlotFrame f = board_plot_frame(job, 6000, &h);
+  EXPECT_EQ(cairo_image_surface_get_height(s), h);
+  // Copper and the tool's width on every band: along a line down the middle of the board.
+  for (double y = 1; y < 39.5; y += 0.5) {
+    const Pixel copper = pixel_at(s, f.to_px(job.frame.to_machine(Point2(20, y))));
+    EXPECT_GT(copper.r, 180) << y;
+    EXPECT_LT(copper.b, 100) << y;
+    const Pixel cut = pixel_at(s, f.to_px(job.frame.to_machine(Point2(40.1, y))));
+    EXPECT_GT(cut.b, cut.r + 40) << y;
+  }
   cairo_surface_destroy(s);
   std::filesystem::remove(png);
 }

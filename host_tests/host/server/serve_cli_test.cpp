@@ -243,10 +243,11 @@ TEST(ServeCommand, TheInstalledEngraverServesTheInstalledPage) {
   EXPECT_EQ(index->body, text_of(page));
   EXPECT_EQ(serve.stop(), 0);
 
-  // The binary copied alone: no page beside it, so it does not start (exit 2, says where).
+  // The binaries copied alone: no page beside them, so it does not start (exit 2, says where).
   const fs::path alone = dir.path() / "alone" / "bin" / "engraver";
   fs::create_directories(alone.parent_path());
   fs::copy_file(exe, alone);
+  fs::copy_file(prefix / "bin" / "engraver-serve", alone.parent_path() / "engraver-serve");
   ServeProcess copied({"serve", "--data", (dir.path() / "data2").string(), "--listen",
                        "127.0.0.1:" + std::to_string(port)},
                       dir.path() / "alone.log", alone.string());
@@ -274,6 +275,20 @@ TEST(ServeCommand, BadOptionsAreUsageErrors) {
     ServeProcess p(args, dir.path() / "bad.log");
     EXPECT_EQ(p.wait_exit(), 2) << args.back() << ": " << text_of(dir.path() / "bad.log");
   }
+}
+
+// `engraver serve` runs engraver-serve from beside engraver (the server's libraries stay out
+// of the other commands' start-up); engraver copied without it says what is missing.
+TEST(ServeCommand, EngraverWithoutEngraverServeSaysWhatIsMissing) {
+  test::TempDir dir;
+  const fs::path alone = dir.path() / "bin" / "engraver";
+  fs::create_directories(alone.parent_path());
+  fs::copy_file(ENGRAVER_EXE, alone);
+  ServeProcess p({"serve", "--data", (dir.path() / "d").string()}, dir.path() / "alone.log",
+                 alone.string());
+  EXPECT_EQ(p.wait_exit(), 2);
+  const std::string why = text_of(dir.path() / "alone.log");
+  EXPECT_NE(why.find("engraver-serve"), std::string::npos) << why;
 }
 
 bool answers(int port) {
