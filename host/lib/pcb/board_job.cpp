@@ -3,9 +3,10 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include <algorithm>  // std::min
-#include <cmath>      // std::llround, std::ceil
-#include <stdexcept>  // std::invalid_argument
+#include <algorithm>   // std::min
+#include <cmath>       // std::llround, std::ceil
+#include <functional>  // std::function
+#include <stdexcept>   // std::invalid_argument
 
 #include "host/lib/pcb/drill_order.h"
 #include "host/lib/pcb/pcb_geometry.h"
@@ -481,6 +482,16 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
         if (std::fabs(h.x() - axis) > 0.001) holes.emplace_back(2 * axis - h.x(), h.y());
       }
     }
+    // Holes given twice, or a hole overlapping its own mirror image or another's, would be
+    // drilled into each other: no pin stands in them.
+    for (size_t i = 0; i < holes.size(); ++i)
+      for (size_t k = i + 1; k < holes.size(); ++k)
+        if ((holes[i] - holes[k]).norm() < a.hole_diameter_mm)
+          throw PlanError(fmt::format(
+              "alignment holes at ({:.3f}, {:.3f}) and ({:.3f}, {:.3f}) mm (file frame, with "
+              "their mirror images about the flip axis x = {:.3f} mm) overlap: holes of {:.2f} "
+              "mm need their centres that far apart; give each hole once",
+              holes[i].x(), holes[i].y(), holes[k].x(), holes[k].y(), axis, a.hole_diameter_mm));
     for (const Point2& h : holes) {
       region.add(Point2(sx * h.x() - r, h.y() - r));
       region.add(Point2(sx * h.x() + r, h.y() + r));
@@ -521,28 +532,34 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
   }
 
   // ---- Placement: the tool's lower-left extent at (margin, margin) ----
-  Extents ext;
-  auto grow = [&](const Extents& e, double r) {
-    if (e.empty()) return;
-    ext.add(Point2(e.min.x() - r, e.min.y() - r));
-    ext.add(Point2(e.max.x() + r, e.max.y() + r));
+  // The tools' extents with every point taken through `place` (the mirrored file frame
+  // into the machine's); a circle's extent is the same turned or not.
+  auto tool_extents = [&](const std::function<Point2(const Point2&)>& place) {
+    Extents ext;
+    auto grow = [&](const Extents& e, double r) {
+      if (e.empty()) return;
+      ext.add(Point2(e.min.x() - r, e.min.y() - r));
+      ext.add(Point2(e.max.x() + r, e.max.y() + r));
+    };
+    auto extents_of = [&](const std::vector<Point2>& pts) {
+      Extents e;
+      for (const Point2& p : pts) e.add(place(p));
+      return e;
+    };
+    for (const Trace& t : iso)
+      for (const BSpline& b : t.curves)
+        grow(extents_of(sample(b, 0.001)),
+             t.clearing ? job.clearing_tool_radius_mm : job.tool_radius_mm);
+    for (const Trace& t : cut)
+      for (const BSpline& b : t.curves) grow(extents_of(sample(b, 0.001)), job.cutter_radius_mm);
+    for (const DrillTool& d : drills) {
+      std::vector<Point2> pts = d.holes;
+      for (const auto& s : d.slots) pts.push_back(s.first), pts.push_back(s.second);
+      grow(extents_of(pts), d.diameter_mm / 2);
+    }
+    return ext;
   };
-  auto extents_of = [](const BSpline& b) {
-    Extents e;
-    for (const Point2& p : sample(b, 0.001)) e.add(p);
-    return e;
-  };
-  for (const Trace& t : iso)
-    for (const BSpline& b : t.curves)
-      grow(extents_of(b), t.clearing ? job.clearing_tool_radius_mm : job.tool_radius_mm);
-  for (const Trace& t : cut)
-    for (const BSpline& b : t.curves) grow(extents_of(b), job.cutter_radius_mm);
-  for (const DrillTool& d : drills) {
-    Extents e;
-    for (const Point2& p : d.holes) e.add(p);
-    for (const auto& s : d.slots) e.add(s.first), e.add(s.second);
-    grow(e, d.diameter_mm / 2);
-  }
+  const Extents ext = tool_extents([](const Point2& p) { return p; });
   if (ext.empty()) throw PlanError("nothing to do: the layers hold no copper, hole or outline");
   // Double-sided: the side-independent region at the margin (both jobs in one frame).
   const Point2 offset = Point2(o.margin_mm, o.margin_mm) - (region.empty() ? ext.min : region.min);
@@ -559,6 +576,19 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
         "the board job needs {:.2f} x {:.2f} mm (tool extents plus the {:.1f} mm margin) but the "
         "work area is {:.1f} x {:.1f} mm",
         need_w, need_h, o.margin_mm, o.work_width_mm, o.work_height_mm));
+  }
+  if (!o.alignment.placement.identity()) {
+    // Turned and shifted onto the measured holes, the job must still lie on the work area.
+    const RigidTransform& place = o.alignment.placement;
+    const Extents placed = tool_extents([&](const Point2& p) { return place.apply(p + offset); });
+    if (placed.min.x() < -1e-6 || placed.min.y() < -1e-6 ||
+        placed.max.x() > o.work_width_mm + 1e-6 || placed.max.y() > o.work_height_mm + 1e-6)
+      throw PlanError(fmt::format(
+          "turned and shifted onto the measured alignment holes, the board job spans ({:.2f}, "
+          "{:.2f}) .. ({:.2f}, {:.2f}) mm (tool extents) but the work area is (0, 0) .. "
+          "({:.1f}, {:.1f}) mm: place the blank on the work area and measure its holes again",
+          placed.min.x(), placed.min.y(), placed.max.x(), placed.max.y(), o.work_width_mm,
+          o.work_height_mm));
   }
   JobPlan& plan = job.plan;
   plan.offset_mm = offset;
