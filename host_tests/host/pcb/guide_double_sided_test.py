@@ -93,7 +93,7 @@ def main():
     tmp = tempfile.mkdtemp(prefix="guide-double-sided-")
     port = free_port()
     sim = subprocess.Popen([exe, "sim", "--listen", f"127.0.0.1:{port}", "--pause-confirm-ms",
-                            "50"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                            "50"], stdout=subprocess.DEVNULL, stderr=open(os.path.join(tmp, "sim.log"), "w"))
     failures = []
     try:
         wait_port(port, 10)
@@ -102,6 +102,7 @@ def main():
             line = command.replace(" -o out", " -o " + tmp)
             if GUIDE_ADDRESS in line:
                 line = line.replace(GUIDE_ADDRESS, f"tcp://127.0.0.1:{port}") + " --poll-ms 1"
+                wait_port(port, 10)  # the simulator listens again once the last link closed
             line = exe + line[len("engraver"):]
             r = subprocess.run(line, shell=True, cwd=source, capture_output=True, text=True,
                                timeout=600)
@@ -143,6 +144,8 @@ def main():
     finally:
         sim.terminate()
         sim.wait(10)
+        if failures:
+            print(open(os.path.join(tmp, "sim.log")).read())
         shutil.rmtree(tmp, ignore_errors=True)
     for f in failures:
         print("FAIL:", f)
