@@ -809,8 +809,10 @@ void GerberReader::define_aperture(const std::string& s, size_t k, int number_d)
            (lo == hi ? "" : " to " + std::to_string(hi)) + " parameters, got " +
            std::to_string(params.size()));
     }
-    for (double p : params) {
-      if (p < 0) fail("aperture D" + std::to_string(number_d) + " has a negative size");
+    for (size_t i = 0; i < params.size(); ++i) {
+      // A polygon's rotation (its third parameter) may be negative: clockwise.
+      if (params[i] < 0 && !(name == "P" && i == 2))
+        fail("aperture D" + std::to_string(number_d) + " has a negative size");
     }
   };
   size_t hole_at = 0;

@@ -274,6 +274,16 @@ TEST(GerberReader, AOneSizeRectangleIsASquareAndAnUnusedBadApertureIsLeftOut) {
                        "bad aperture parameter '0.03260.326')"));
 }
 
+// A polygon aperture's rotation may be negative (clockwise; gerbv's own test file): it was
+// refused as "a negative size". A hexagon turned -30 degrees has a vertex on the y axis.
+TEST(GerberReader, APolygonsNegativeRotationIsClockwise) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD10P,2X6X-30*%\nD10*\nX0Y0D03*\nM02*\n", "p-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 1.5 * std::sqrt(3.0), 1e-5);  // hexagon of radius 1
+  EXPECT_TRUE(covered(l, 0, -0.99));
+  EXPECT_FALSE(covered(l, 0.99, 0));
+}
+
 // In an inch file a macro's rotation (45 deg) is an angle, not 45 in = 1.14 m: it was
 // refused as "larger than 1 m". A 0.05 x 0.02 in centre line turned by 45 deg.
 TEST(GerberReader, AnInchMacrosRotationIsNotALength) {
