@@ -229,6 +229,28 @@ pcb::BoardOptions board_options(const BoardArgs& a, const MachineDefaults& d, co
   if (side != "top" && side != "bottom")
     throw CommandFailure(kExitUsage, "--side must be top or bottom, not '" + side + "'");
   o.side = side == "bottom" ? pcb::BoardSide::kBottom : pcb::BoardSide::kTop;
+  // Copper given only for the other side would leave a job without isolation that looks
+  // planned (holes and cut-out alone).
+  const std::vector<PcbLayer>& job_copper =
+      o.side == pcb::BoardSide::kBottom ? b.layers.copper_bottom : b.layers.copper_top;
+  const std::vector<PcbLayer>& other_copper =
+      o.side == pcb::BoardSide::kBottom ? b.layers.copper_top : b.layers.copper_bottom;
+  if (job_copper.empty() && !other_copper.empty()) {
+    const std::string other = side == "bottom" ? "top" : "bottom";
+    throw CommandFailure(kExitUsage, "the job's side is " + side + " but the copper given (" +
+                                         other_copper.front().path + ") is " + other +
+                                         " copper: nothing to isolate; give --side " + other +
+                                         " or the " + side + " copper");
+  }
+  if (a.clearing_tool_mm > 0 && a.narrow_passes >= a.passes)
+    throw CommandFailure(kExitUsage,
+                         fmt::format("--clearing-tool cuts the passes beyond --narrow-passes ({}), "
+                                     "but --passes is {}: give more --passes, or no clearing tool",
+                                     a.narrow_passes, a.passes));
+  if (!(a.clearing_tool_mm > 0) && a.narrow_passes != 1)
+    throw CommandFailure(kExitUsage,
+                         "--narrow-passes counts the isolation tool's passes next to "
+                         "the copper with a --clearing-tool: give the clearing tool");
   o.isolation.tool_width_mm = a.tool_width_mm;
   o.isolation.passes = a.passes;
   o.isolation.overlap = a.overlap;
@@ -293,6 +315,10 @@ pcb::BoardJob plan(const BoardFiles& b, const pcb::BoardOptions& o,
   try {
     if (measured_mm.size() == 4) {
       const pcb::BoardJob nominal = pcb::plan_board(l, o);
+      if (nominal.alignment_holes_mm.size() < 2)
+        throw CommandFailure(kExitUsage,
+                             "--align-measured needs two alignment holes; --align-holes gave one "
+                             "(a hole on the flip axis is its own mirror image): give another");
       const Point2 expected[2] = {nominal.alignment_holes_mm.at(0),
                                   nominal.alignment_holes_mm.at(1)};
       const Point2 measured[2] = {Point2(measured_mm[0], measured_mm[1]),
@@ -664,14 +690,17 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
       ->check(CLI::Range(0.0, 0.1))
       ->capture_default_str();
   cmd->add_flag("--mill-all", a->mill_all, "clear all copper-free area")->group(g);
-  cmd->add_option("--clearing-tool", a->clearing_tool_mm,
-                  "isolation: a wider tool for the outer part of the --passes width, mm "
-                  "(mounted after the isolation tool; 0: none)")
-      ->group(g)
-      ->check(CLI::Range(defaults::kClearingToolRangeMm.min, defaults::kClearingToolRangeMm.max));
+  CLI::Option* clearing =
+      cmd->add_option("--clearing-tool", a->clearing_tool_mm,
+                      "isolation: a wider tool for the outer part of the --passes width, mm "
+                      "(mounted after the isolation tool; 0: none)")
+          ->group(g)
+          ->check(CLI::Range(defaults::kClearingToolRangeMm.min,
+                             defaults::kClearingToolRangeMm.max));
   cmd->add_option("--narrow-passes", a->narrow_passes,
                   "with --clearing-tool: passes of the isolation tool next to the copper")
       ->group(g)
+      ->needs(clearing)
       ->check(CLI::Range(int(defaults::kPassesRange.min), int(defaults::kPassesRange.max)))
       ->capture_default_str();
   cmd->add_flag("--isolate-empty-holes", a->isolate_empty_holes,
@@ -716,7 +745,12 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
                   "double-sided: alignment holes for pins, 'auto' (on the flip axis below and "
                   "above the board) or X,Y[;X,Y...] mm in the files' frame, each with its mirror; "
                   "drilled with the top side, which leaves the cut-out to the bottom")
-      ->group(g);
+      ->group(g)
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            return v.empty() ? std::string("empty: say auto, or X,Y[;X,Y...] mm") : "";
+          },
+          "", "not empty"));
   cmd->add_option("--align-diameter", a->align_diameter_mm, "alignment hole (pin) diameter, mm")
       ->group(g)
       ->check(CLI::Range(defaults::kAlignDiameterRangeMm.min, defaults::kAlignDiameterRangeMm.max))
@@ -793,11 +827,14 @@ bool print_board_points_if_pcb(const std::string& input, const BoardArgs& args, 
                                bool csv) {
   if (!is_pcb_input(input)) return false;
   MachineDefaults d;
-  d.work_w_mm = d.work_h_mm = 1e6;  // points in the file frame: no work area applies
+  // Points in the file frame: no work area applies, unless the job is turned and shifted
+  // onto measured holes (machine positions): then `board`'s default work area, as it checks.
+  const bool placed = !args.align_measured_mm.empty();
+  if (!placed) d.work_w_mm = d.work_h_mm = 1e6;
   const BoardFiles b = read_input(input, args.side);
   print_notes(b);
   pcb::BoardOptions o = board_options(args, d, b);
-  o.travel_width_mm = o.travel_height_mm = d.work_w_mm;
+  if (!placed) o.travel_width_mm = o.travel_height_mm = d.work_w_mm;
   const pcb::BoardJob job = plan(b, o, args.align_measured_mm);
   for (const std::string& n : job.report.notes)
     std::cerr << "engraver: note: " << printable(n) << "\n";

@@ -16,7 +16,8 @@ struct CommandRegistrar {
   CommandRegistrar(const char* group, AddCommands add);
 };
 
-// Calls every registered group, in group-name order (stable --help).
+// Calls every registered group, in group-name order (stable --help); then every number option
+// of every command refuses "nan" and "inf" (a usage error naming the option).
 void add_registered_commands(CLI::App& app);
 
 // When the first argument is neither an option nor one of app's commands: a message that

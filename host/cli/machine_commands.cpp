@@ -549,7 +549,8 @@ void add_run_command(CLI::App& app) {
                   "them; the report gives the registration error")
       ->expected(3);
   run->add_flag("--pins-only", run_args->pins_only,
-                "with --blank-error: no measured alignment (the pins alone)");
+                "with --blank-error: no measured alignment (the pins alone)")
+      ->needs("--blank-error");  // alone it would be ignored without a word
   add_surface_option(run, &run_args->surface);
   add_height_map_options(run, &run_args->map, HeightMapCommand::kRun);
   run->footer(

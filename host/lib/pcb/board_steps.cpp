@@ -3,8 +3,9 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include <algorithm>  // std::min
-#include <cmath>      // std::llround, std::ceil
+#include <algorithm>   // std::min
+#include <cmath>       // std::llround, std::ceil
+#include <functional>  // std::function
 
 #include "host/lib/pcb/pcb_geometry.h"
 #include "host/lib/plan/firmware_spline.h"
@@ -225,28 +226,34 @@ void write_isolation(const std::vector<Trace>& iso, bool clearing, const Point2&
 Point2 place(const std::vector<Trace>& iso, const std::vector<Trace>& cut,
              const std::vector<DrillTool>& drills, const Extents& region, const BoardOptions& o,
              BoardJob& job) {
-  Extents ext;
-  auto grow = [&](const Extents& e, double r) {
-    if (e.empty()) return;
-    ext.add(Point2(e.min.x() - r, e.min.y() - r));
-    ext.add(Point2(e.max.x() + r, e.max.y() + r));
+  // The tools' extents with every point taken through `place` (the mirrored file frame
+  // into the machine's); a circle's extent is the same turned or not.
+  auto tool_extents = [&](const std::function<Point2(const Point2&)>& place) {
+    Extents ext;
+    auto grow = [&](const Extents& e, double r) {
+      if (e.empty()) return;
+      ext.add(Point2(e.min.x() - r, e.min.y() - r));
+      ext.add(Point2(e.max.x() + r, e.max.y() + r));
+    };
+    auto extents_of = [&](const std::vector<Point2>& pts) {
+      Extents e;
+      for (const Point2& p : pts) e.add(place(p));
+      return e;
+    };
+    for (const Trace& t : iso)
+      for (const BSpline& b : t.curves)
+        grow(extents_of(sample(b, 0.001)),
+             t.clearing ? job.clearing_tool_radius_mm : job.tool_radius_mm);
+    for (const Trace& t : cut)
+      for (const BSpline& b : t.curves) grow(extents_of(sample(b, 0.001)), job.cutter_radius_mm);
+    for (const DrillTool& d : drills) {
+      std::vector<Point2> pts = d.holes;
+      for (const auto& s : d.slots) pts.push_back(s.first), pts.push_back(s.second);
+      grow(extents_of(pts), d.diameter_mm / 2);
+    }
+    return ext;
   };
-  auto extents_of = [](const BSpline& b) {
-    Extents e;
-    for (const Point2& p : sample(b, 0.001)) e.add(p);
-    return e;
-  };
-  for (const Trace& t : iso)
-    for (const BSpline& b : t.curves)
-      grow(extents_of(b), t.clearing ? job.clearing_tool_radius_mm : job.tool_radius_mm);
-  for (const Trace& t : cut)
-    for (const BSpline& b : t.curves) grow(extents_of(b), job.cutter_radius_mm);
-  for (const DrillTool& d : drills) {
-    Extents e;
-    for (const Point2& p : d.holes) e.add(p);
-    for (const auto& s : d.slots) e.add(s.first), e.add(s.second);
-    grow(e, d.diameter_mm / 2);
-  }
+  const Extents ext = tool_extents([](const Point2& p) { return p; });
   if (ext.empty()) throw PlanError("nothing to do: the layers hold no copper, hole or outline");
   // Double-sided: the side-independent region at the margin (both jobs in one frame).
   const Point2 offset = Point2(o.margin_mm, o.margin_mm) - (region.empty() ? ext.min : region.min);
@@ -263,6 +270,20 @@ Point2 place(const std::vector<Trace>& iso, const std::vector<Trace>& cut,
         "the board job needs {:.2f} x {:.2f} mm (tool extents plus the {:.1f} mm margin) but the "
         "work area is {:.1f} x {:.1f} mm",
         need_w, need_h, o.margin_mm, o.work_width_mm, o.work_height_mm));
+  }
+  if (!o.alignment.placement.identity()) {
+    // Turned and shifted onto the measured holes, the job must still lie on the work area.
+    const RigidTransform& placement = o.alignment.placement;
+    const Extents placed =
+        tool_extents([&](const Point2& p) { return placement.apply(p + offset); });
+    if (placed.min.x() < -1e-6 || placed.min.y() < -1e-6 ||
+        placed.max.x() > o.work_width_mm + 1e-6 || placed.max.y() > o.work_height_mm + 1e-6)
+      throw PlanError(fmt::format(
+          "turned and shifted onto the measured alignment holes, the board job spans ({:.2f}, "
+          "{:.2f}) .. ({:.2f}, {:.2f}) mm (tool extents) but the work area is (0, 0) .. "
+          "({:.1f}, {:.1f}) mm: place the blank on the work area and measure its holes again",
+          placed.min.x(), placed.min.y(), placed.max.x(), placed.max.y(), o.work_width_mm,
+          o.work_height_mm));
   }
   JobPlan& plan = job.plan;
   plan.offset_mm = offset;

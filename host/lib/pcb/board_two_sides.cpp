@@ -55,6 +55,16 @@ Extents align_sides(const BoardLayers& layers, const PcbLayer* copper, const Cut
       if (std::fabs(h.x() - axis) > 0.001) holes.emplace_back(2 * axis - h.x(), h.y());
     }
   }
+  // Holes given twice, or a hole overlapping its own mirror image or another's, would be
+  // drilled into each other: no pin stands in them.
+  for (size_t i = 0; i < holes.size(); ++i)
+    for (size_t k = i + 1; k < holes.size(); ++k)
+      if ((holes[i] - holes[k]).norm() < a.hole_diameter_mm)
+        throw PlanError(fmt::format(
+            "alignment holes at ({:.3f}, {:.3f}) and ({:.3f}, {:.3f}) mm (file frame, with "
+            "their mirror images about the flip axis x = {:.3f} mm) overlap: holes of {:.2f} "
+            "mm need their centres that far apart; give each hole once",
+            holes[i].x(), holes[i].y(), holes[k].x(), holes[k].y(), axis, a.hole_diameter_mm));
   for (const Point2& h : holes) {
     region.add(Point2(sx * h.x() - r, h.y() - r));
     region.add(Point2(sx * h.x() + r, h.y() + r));

@@ -58,7 +58,7 @@ class ExcellonReader {
   cInt coordinate(const std::string& s) const;
   // Reads X/Y pairs from s (modal: a missing axis keeps its value); true if any was given.
   bool position(const std::string& s, PointNm& p) const;
-  void need_tool() const;
+  void need_tool();
 
   const std::string& text_;
   std::string path_;
@@ -75,7 +75,7 @@ class ExcellonReader {
   std::map<int, cInt> tools_;
   std::map<int, double> pending_tools_;             // diameters given before the units (PADS)
   std::map<int, std::pair<double, int>> oversize_;  // tool -> diameter mm, holes left out
-  int tool_ = 0;
+  int tool_ = -1;   // none selected (T0 unloads the tool unless the header defines a T0)
   PointNm offset_;  // G93 work zero
   PointNm at_;
   PcbLayer layer_;
@@ -318,7 +318,8 @@ void ExcellonReader::tool(const std::string& s, bool in_header) {
   if (n != 0 && !tools_.count(n) && !oversize(n))
     fail("tool T" + std::to_string(n) + " has no diameter (no T" + std::to_string(n) +
          "C... in the header)");
-  tool_ = n;
+  // T0 with no T0 defined unloads the tool; a defined T0 is a tool like any (EKF's files).
+  tool_ = n == 0 && !tools_.count(0) && !oversize(0) ? -1 : n;
 }
 
 void ExcellonReader::header_line(const std::string& s) {
@@ -342,8 +343,23 @@ void ExcellonReader::header_line(const std::string& s) {
   }
 }
 
-void ExcellonReader::need_tool() const {
-  if (tool_ == 0) fail("a hole or slot before any tool is selected (Tn)");
+// A hole before any tool: the only tool defined is the one meant (with a warning); with more,
+// which one is not known.
+void ExcellonReader::need_tool() {
+  if (tool_ >= 0) return;
+  if (tools_.size() == 1 && oversize_.empty()) {
+    tool_ = tools_.begin()->first;
+    note("warning: a hole before any tool is selected: drilled with T" + std::to_string(tool_) +
+         ", the only tool defined");
+    return;
+  }
+  std::string defined;
+  for (const auto& t : tools_)
+    defined += (defined.empty() ? "" : ", ") + ("T" + std::to_string(t.first));
+  fail("a hole or slot before any tool is selected (Tn), and " +
+       (tools_.empty() ? std::string("no tool is defined")
+                       : "the header defines " + std::to_string(tools_.size()) + " (" + defined +
+                             "): which one is meant is not known"));
 }
 
 // Adds a hole or slot of the current tool, or counts it as left out (an oversize tool).

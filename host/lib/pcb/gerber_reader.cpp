@@ -7,6 +7,7 @@
 #include <cstdlib>        // std::strtod
 #include <map>            // std::map
 #include <unordered_map>  // std::unordered_map
+#include <utility>        // std::pair
 #include <vector>         // std::vector
 
 #include "host/lib/pcb/gerber_macro.h"
@@ -130,6 +131,7 @@ class GerberReader {
   // Extended commands.
   void format_spec(const std::string& s);
   void aperture_definition(const std::string& s);
+  void define_aperture(const std::string& s, size_t name_at, int number_d);
   void aperture_macro(const std::vector<std::string>& parts, const std::vector<int>& lines);
   void step_repeat(const std::string& s);
   void close_step_repeat();
@@ -168,6 +170,7 @@ class GerberReader {
 
   // Apertures.
   std::map<int, Aperture> apertures_;
+  std::map<int, std::string> bad_apertures_;  // D number -> why its definition was refused
   std::unordered_map<std::string, ApertureMacro> macros_;
   int aperture_ = -1;
 
@@ -208,6 +211,10 @@ class GerberReader {
   // Deprecated image transforms (%IR, %MI, %SF), applied to the finished image.
   int rotation_deg_ = 0;                      // 0, 90, 180, 270 counterclockwise about the origin
   bool mirror_a_ = false, mirror_b_ = false;  // x -> -x, y -> -y
+  double layer_rotation_deg_ = 0;             // %RO: any angle, counterclockwise
+  bool negative_ = false;                     // %IPNEG: copper where nothing is drawn
+  void knockout(const std::string& arg);
+  std::pair<double, double> axis_values(const std::string& arg, const char* what) const;
   double scale_a_ = 1, scale_b_ = 1;
   std::vector<std::string> transforms_;  // the non-identity ones, for the message
   void image_transform(const std::string& which);
@@ -278,6 +285,9 @@ PcbLayer GerberReader::read() {
     }
   }
   if (region_) fail("G36 region still open at M02");
+  for (const auto& bad : bad_apertures_)
+    note("warning: aperture D" + std::to_string(bad.first) +
+         " never used: its definition is left out (" + bad.second + ")");
   if (!blocks_.empty())
     fail("block aperture D" + std::to_string(blocks_.back().number_d) + " still open at M02");
 
@@ -312,6 +322,16 @@ PcbLayer GerberReader::read() {
   }
   if (offset_x_ != 0 || offset_y_ != 0) translate_paths(layer.polygons_nm, offset_x_, offset_y_);
   transform_image(layer.polygons_nm);
+  if (negative_ && layer.kind != LayerKind::kOutline && !layer.polygons_nm.empty()) {
+    cInt x0 = layer.polygons_nm[0][0].X, x1 = x0, y0 = layer.polygons_nm[0][0].Y, y1 = y0;
+    for (const Path& p : layer.polygons_nm)
+      for (const IntPoint& v : p) {
+        x0 = std::min(x0, v.X), x1 = std::max(x1, v.X);
+        y0 = std::min(y0, v.Y), y1 = std::max(y1, v.Y);
+      }
+    const Path box = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+    layer.polygons_nm = difference_of({box}, layer.polygons_nm);
+  }
   if (ill_defined_arcs_ > 0) {
     char msg[240];
     std::snprintf(msg, sizeof msg,
@@ -433,10 +453,14 @@ void GerberReader::extended_command(const std::string& cmd) {
     attribute(cmd);
   } else if (code == "IP") {
     if (arg == "NEG") {
-      fail(
-          "%IPNEG (deprecated negative image: what is drawn is clear, everything around it "
-          "copper, to an extent the file does not define) is not supported: write the layer "
-          "with positive polarity");
+      // What is drawn is clear, the rest copper. The copper's extent is not defined: here the
+      // image's bounding box, as gerbv fills its picture; isolation then keeps the tool
+      // inside each drawn (clear) shape, off the copper around it.
+      negative_ = true;
+      note(
+          "warning: %IPNEG (deprecated negative image) applied: copper is the image's "
+          "bounding box less what is drawn");
+      return;
     }
     if (arg != "POS") fail("image polarity '" + arg + "' is neither POS nor NEG");
     note("%IPPOS (deprecated image polarity) ignored");
@@ -517,10 +541,35 @@ void GerberReader::extended_command(const std::string& cmd) {
     }
   } else if (code == "KO" && arg.empty()) {
     note("warning: %KO (deprecated knockout, off) ignored");
-  } else if (code == "IJ" || code == "KO") {
-    fail("%" + cmd.substr(0, 20) +
-         " (deprecated image justify / knockout: it clears or moves the image by rules the "
-         "current specification no longer defines) is not supported");
+  } else if (code == "KO") {
+    knockout(arg);
+  } else if (code == "IJ") {
+    // Justify moves the image by its own extent against a film (platen) size the file does
+    // not give: ignored, the coordinates are taken as written (the other layers' frame).
+    note("warning: %IJ" + arg.substr(0, 20) +
+         " (deprecated image justify) ignored: coordinates as written");
+  } else if (code == "IO") {
+    // Image offset: like %OF, in the units current here.
+    const std::pair<double, double> ab = axis_values(arg, "image offset");
+    if (ab.first != 0 || ab.second != 0) {
+      need_units("%IO");
+      offset_x_ += static_cast<cInt>(std::llround(ab.first * unit_nm_));
+      offset_y_ += static_cast<cInt>(std::llround(ab.second * unit_nm_));
+      image_transform("%IO" + arg);
+      note("warning: %IO" + arg + " (deprecated image offset) applied");
+    } else {
+      note("%IO without offset (deprecated) ignored");
+    }
+  } else if (code == "RO") {
+    const double deg = number(arg, "layer rotation");
+    if (!(std::fabs(deg) <= 360)) fail("layer rotation %RO" + arg + " must be -360 .. 360 degrees");
+    layer_rotation_deg_ = deg;
+    if (deg != 0) {
+      image_transform("%RO" + arg);
+      note("warning: %RO" + arg + " (deprecated layer rotation) applied");
+    } else {
+      note("%RO0 (deprecated) ignored");
+    }
   } else if (code == "AB") {
     aperture_block(arg);
   } else {
@@ -540,8 +589,68 @@ void GerberReader::image_transform(const std::string& which) {
   }
 }
 
+// "A<a>B<b>" (either may be left out: 0), decimal numbers in the current units.
+std::pair<double, double> GerberReader::axis_values(const std::string& arg,
+                                                    const char* what) const {
+  double a = 0, b = 0;
+  for (const char axis : {'A', 'B'}) {
+    const size_t at = arg.find(axis);
+    if (at == std::string::npos) continue;
+    size_t end = at + 1;
+    while (end < arg.size() && arg[end] != 'A' && arg[end] != 'B') ++end;
+    (axis == 'A' ? a : b) = number(arg.substr(at + 1, end - at - 1), what);
+  }
+  return {a, b};
+}
+
+// %KOCX<x>Y<y>I<w>J<h>: the box from (x, y), w wide and h high (current units), cleared where
+// it stands in the drawing order, as gerbv draws it. Without a box the knockout surrounds the
+// objects that follow by a border, and gerbv draws no dark (D) box: both refused.
+void GerberReader::knockout(const std::string& arg) {
+  const char polarity = arg[0];
+  if (polarity == 'D')
+    fail("%KO" + arg.substr(0, 20) +
+         " (deprecated knockout with dark polarity) is not supported (gerbv does not draw it "
+         "either): only %KOC boxes, which clear");
+  if (polarity != 'C' || arg.find('X') == std::string::npos || arg.find('Y') == std::string::npos ||
+      arg.find('I') == std::string::npos || arg.find('J') == std::string::npos)
+    fail("%KO" + arg.substr(0, 20) +
+         " (deprecated knockout) without a box (C or D, then X, Y, I, J) is not supported");
+  double v[4] = {0, 0, 0, 0};
+  const char* letters = "XYIJ";
+  for (int k = 0; k < 4; ++k) {
+    const size_t at = arg.find(letters[k]);
+    size_t end = at + 1;
+    while (end < arg.size() && std::string("XYIJ").find(arg[end]) == std::string::npos) ++end;
+    v[k] = number(arg.substr(at + 1, end - at - 1), "knockout box");
+  }
+  need_units("%KO");
+  if (!(v[2] > 0 && v[3] > 0)) fail("%KO" + arg.substr(0, 20) + ": the box needs a size above 0");
+  for (double x : v)
+    if (!(std::fabs(x * unit_nm_) <= kMaxApertureNm * 10)) fail("%KO box beyond 10 m");
+  const bool dark = dark_;
+  dark_ = false;
+  add_object({rect_path({(v[0] + v[2] / 2) * unit_nm_, (v[1] + v[3] / 2) * unit_nm_},
+                        v[2] * unit_nm_, v[3] * unit_nm_)});
+  dark_ = dark;
+  note(
+      "warning: %KOC box (deprecated knockout) applied: cleared where it stands in the "
+      "drawing order");
+}
+
 // Scale, mirror, rotate about the origin; exact for the quarter turns and mirrors.
 void GerberReader::transform_image(Paths& paths) const {
+  if (layer_rotation_deg_ != 0) {
+    // %RO, alone (image_transform() refuses it with another): any angle, rounded to 1 nm.
+    const double a = layer_rotation_deg_ * M_PI / 180, c = std::cos(a), s = std::sin(a);
+    for (Path& p : paths)
+      for (IntPoint& v : p) {
+        const double x = static_cast<double>(v.X), y = static_cast<double>(v.Y);
+        v = IntPoint(static_cast<cInt>(std::llround(c * x - s * y)),
+                     static_cast<cInt>(std::llround(s * x + c * y)));
+      }
+    return;
+  }
   if (rotation_deg_ == 0 && !mirror_a_ && !mirror_b_ && scale_a_ == 1 && scale_b_ == 1) return;
   for (Path& p : paths) {
     for (IntPoint& v : p) {
@@ -646,6 +755,9 @@ void GerberReader::format_spec(const std::string& s) {
   have_format_ = true;
 }
 
+// A definition whose parameters cannot be read (old writers' "R,0.03260.326") is refused
+// where the aperture is used, as gerbv leaves an unusable aperture out: a file that never
+// uses it reads, with a warning.
 void GerberReader::aperture_definition(const std::string& s) {
   // D<n><template>[,<p1>X<p2>...]
   if (s.empty() || s[0] != 'D') fail("aperture definition '%AD" + s + "' without D number");
@@ -653,6 +765,20 @@ void GerberReader::aperture_definition(const std::string& s) {
   while (k < s.size() && std::isdigit(static_cast<unsigned char>(s[k]))) ++k;
   if (k == 1 || k > 8) fail("aperture definition '%AD" + s + "' has a bad D number");
   const int number_d = std::stoi(s.substr(1, k - 1));
+  bad_apertures_.erase(number_d);
+  try {
+    define_aperture(s, k, number_d);
+  } catch (const PcbReadError& e) {
+    if (s.find(',', k) == std::string::npos) throw;  // no parameters: nothing to defer
+    apertures_.erase(number_d);
+    std::string why = e.what();  // "PATH:LINE: what": kept as "line LINE: what"
+    if (why.compare(0, path_.size() + 1, path_ + ":") == 0)
+      why = "line " + why.substr(path_.size() + 1);
+    bad_apertures_[number_d] = why;
+  }
+}
+
+void GerberReader::define_aperture(const std::string& s, size_t k, int number_d) {
   const size_t comma = s.find(',', k);
   const std::string name =
       trim(s.substr(k, comma == std::string::npos ? std::string::npos : comma - k));
@@ -683,8 +809,10 @@ void GerberReader::aperture_definition(const std::string& s) {
            (lo == hi ? "" : " to " + std::to_string(hi)) + " parameters, got " +
            std::to_string(params.size()));
     }
-    for (double p : params) {
-      if (p < 0) fail("aperture D" + std::to_string(number_d) + " has a negative size");
+    for (size_t i = 0; i < params.size(); ++i) {
+      // A polygon's rotation (its third parameter) may be negative: clockwise.
+      if (params[i] < 0 && !(name == "P" && i == 2))
+        fail("aperture D" + std::to_string(number_d) + " has a negative size");
     }
   };
   size_t hole_at = 0;
@@ -693,6 +821,19 @@ void GerberReader::aperture_definition(const std::string& s) {
     ap.type = 'C';
     ap.circle_d_nm = params[0] * u;
     if (ap.circle_d_nm > 0) ap.shape.push_back(circle_path({0, 0}, ap.circle_d_nm, tol));
+    hole_at = 1;
+  } else if ((name == "R" || name == "O") && params.size() == 1) {
+    // One size: the specification wants X and Y; gerbv draws a rectangle of no height
+    // (nothing). Read as the square (or circle) it most likely is: more copper, never less,
+    // so the isolation keeps off whatever the writer meant.
+    ap.type = name[0];
+    const double w = params[0] * u;
+    if (w < 0) fail("aperture D" + std::to_string(number_d) + " has a negative size");
+    if (w > 0)
+      ap.shape.push_back(name == "R" ? rect_path({0, 0}, w, w) : circle_path({0, 0}, w, tol));
+    note("warning: aperture D" + std::to_string(number_d) + " " + name +
+         " has one size, not X and Y: read as " + (name == "R" ? "a square" : "a circle") +
+         " of that size (gerbv draws nothing)");
     hole_at = 1;
   } else if (name == "R" || name == "O") {
     need(2, 4);
@@ -1030,6 +1171,9 @@ void GerberReader::word_block(const std::string& raw) {
           if (d != -1) fail("two operations (D01/D02/D03) in one block");
           d = dn;
         } else {  // select an aperture (D10 and up; lower numbers in old files)
+          if (bad_apertures_.count(dn))
+            fail("D" + value +
+                 " selects an aperture whose definition was refused: " + bad_apertures_[dn]);
           if (!apertures_.count(dn)) fail("D" + value + " selects an aperture that is not defined");
           if (region_) note("an aperture selected inside a region (not allowed by the spec)");
           aperture_ = dn;

@@ -101,6 +101,25 @@ TEST(ExcellonWriters, UnitsAndZerosOnTheM71Line) {  // Upverter
   expect_hole(l.holes[0], 10000000, 5000000, 800000, 1);  // TZ, 3.3: "10000" is 10.000
 }
 
+// EKF's drill files define a T0 and select it: a tool like any (T0 unloads the tool only when
+// no T0 is defined). A hole before any tool is selected takes the only tool defined, with a
+// warning (with several it is refused: gerber_errors_test).
+TEST(ExcellonWriters, ADefinedToolZeroAndAHoleBeforeTheOnlyTool) {
+  const PcbLayer t0 = read_excellon_text(
+      "M48\nMETRIC\nT0C0.5\nT1C0.8\n%\nT0\nX1.0Y1.0\nT1\nX2.0Y1.0\nM30\n", "t0.drl");
+  ASSERT_EQ(t0.holes.size(), 2u);
+  expect_hole(t0.holes[0], 1000000, 1000000, 500000, 0);
+  const PcbLayer first = read_excellon_text("M48\nMETRIC\nT1C0.8\n%\nX1.0Y1.0\nM30\n", "f.drl");
+  ASSERT_EQ(first.holes.size(), 1u);
+  expect_hole(first.holes[0], 1000000, 1000000, 800000, 1);
+  bool warned = false;
+  for (const std::string& n : first.notes)
+    warned |= n.find(
+                  "line 5: warning: a hole before any tool is selected: drilled with T1, the "
+                  "only tool defined") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
 TEST(ExcellonWriters, ToolsDefinedBeforeTheUnitLine) {  // PADS
   const PcbLayer l =
       read_excellon_text("M48\nT1C0.035\nT2C0.04\nINCH,LZ\n%\nT2\nX1.0Y0.5\nM30\n", "p.drl");

@@ -61,12 +61,26 @@ TEST(GerberErrors, NameFileLineAndProblem) {
       {"D10*\nG75*\nX0Y0D02*\nG02X350Y0I100J0D01*\nM02*\n",
        "bad.gbr:7: arc end point is not on its circle (radius 0.100 mm at the start, 0.250 mm "
        "at the end; more than 0.100 mm apart"},
-      {"%ADD11FOO,1*%\nM02*\n", "bad.gbr:4: aperture D11 uses 'FOO', which is neither"},
+      // A definition with parameters that cannot be read is refused where it is used.
+      {"%ADD11FOO,1*%\nD11*\nM02*\n",
+       "bad.gbr:5: D11 selects an aperture whose definition was refused: line 4: aperture D11 "
+       "uses 'FOO', which is neither"},
       {"%ADD11C*%\nM02*\n", "bad.gbr:4: aperture D11 C takes 1 to 3 parameters, got 0"},
-      {"%ADD11C,-1*%\nM02*\n", "bad.gbr:4: aperture D11 has a negative size"},
-      {"%ADD11P,1X2*%\nM02*\n", "bad.gbr:4: polygon aperture D11 needs 3 to 12 vertices"},
-      {"%ADD11C,2000*%\nM02*\n", "bad.gbr:4: aperture D11 is larger than 1 m"},
-      {"%AMM1*\n1,1,$1x,0,0*%\n%ADD11M1,1*%\nM02*\n", "bad.gbr:6: macro M1: missing number"},
+      {"%ADD11C,-1*%\nD11*\nM02*\n",
+       "bad.gbr:5: D11 selects an aperture whose definition was refused: line 4: aperture D11 "
+       "has a negative size"},
+      {"%ADD11P,1X2*%\nD11*\nM02*\n",
+       "bad.gbr:5: D11 selects an aperture whose definition was refused: line 4: polygon "
+       "aperture D11 needs 3 to 12 vertices"},
+      {"%ADD11C,2000*%\nD11*\nM02*\n",
+       "bad.gbr:5: D11 selects an aperture whose definition was refused: line 4: aperture D11 "
+       "is larger than 1 m"},
+      {"%ADD11R,0.03260.326*%\nD10*\nX0Y0D03*\nD11*\nM02*\n",
+       "bad.gbr:7: D11 selects an aperture whose definition was refused: line 4: bad aperture "
+       "parameter '0.03260.326'"},
+      {"%AMM1*\n1,1,$1x,0,0*%\n%ADD11M1,1*%\nD11*\nM02*\n",
+       "bad.gbr:7: D11 selects an aperture whose definition was refused: line 6: macro M1: "
+       "missing number"},
       {"%AMM1*\n9,1,1,0,0*%\n%ADD11M1*%\nM02*\n", "bad.gbr:6: macro M1: unknown primitive '9'"},
       {"%AMM1*\n1,1,1*%\n%ADD11M1*%\nM02*\n",
        "bad.gbr:6: macro M1: circle (1) needs 4 modifiers, got 2"},
@@ -76,14 +90,19 @@ TEST(GerberErrors, NameFileLineAndProblem) {
        "bad.gbr:6: macro M1: exposure must be 0 or 1, not 7777777777777777777"},
       {"%SRX1000Y1000I1J1*%\nM02*\n", "bad.gbr:4: step-and-repeat '%SRX1000Y1000I1J1' makes more"},
       {"%SRX0Y1I1J1*%\nM02*\n", "bad.gbr:4: step-and-repeat '%SRX0Y1I1J1' needs whole"},
-      {"%IPNEG*%\nM02*\n", "bad.gbr:4: %IPNEG (deprecated negative image: what is drawn is clear"},
+      {"%IPX*%\nM02*\n", "bad.gbr:4: image polarity 'X' is neither POS nor NEG"},
+      {"%RO400*%\nM02*\n", "bad.gbr:4: layer rotation %RO400 must be -360 .. 360 degrees"},
+      {"%OFA1B0*%\n%IOA0B1*%\nM02*\n",
+       "bad.gbr:5: the deprecated image transforms %OFA1B0 and %IOA0B1 together are not"},
       {"%MIA2*%\nM02*\n", "bad.gbr:4: mirror image '%MIA2': A and B take 0 or 1"},
       {"%SFA0B1*%\nM02*\n", "bad.gbr:4: scale factor %SFA0B1 must be above 0"},
       {"%IR45*%\nM02*\n", "bad.gbr:4: image rotation %IR45 must be 0, 90, 180 or 270"},
       {"%MIA1*%\n%IR90*%\nM02*\n",
        "bad.gbr:5: the deprecated image transforms %MIA1 and %IR90 together are not supported"},
       {"%ICEB*%\nM02*\n", "bad.gbr:4: input code %ICEB is not supported (only ASCII, %ICAS)"},
-      {"%KOCX0Y0I1J1*%\nM02*\n", "bad.gbr:4: %KOCX0Y0I1J1 (deprecated image justify / knockout"},
+      {"%KOC*%\nM02*\n", "bad.gbr:4: %KOC (deprecated knockout) without a box (C or D, then"},
+      {"%KODX0Y0I1J1*%\nM02*\n",
+       "bad.gbr:4: %KODX0Y0I1J1 (deprecated knockout with dark polarity) is not supported"},
       {"%ABD12*%\nM02*\n", "bad.gbr:5: block aperture D12 still open at M02"},
       {"%AB*%\nM02*\n", "bad.gbr:4: %AB closes a block aperture that was never opened"},
       {"%ABD12*%\n%ADD10C,1*%\nD10*\nX0Y0D03*\n%AB*%\nD12*\nX1000Y0D01*\nM02*\n",
@@ -120,7 +139,11 @@ TEST(GerberErrors, FilesThatCannotBeOpened) {
 
 TEST(ExcellonErrors, NameFileLineAndProblem) {
   const Case cases[] = {
-      {"M48\nMETRIC\nT1C0.8\n%\nX1.0Y1.0\nM30\n", "bad.drl:5: a hole or slot before any tool"},
+      {"M48\nMETRIC\nT1C0.8\nT2C1.0\n%\nX1.0Y1.0\nM30\n",
+       "bad.drl:6: a hole or slot before any tool is selected (Tn), and the header defines 2 (T1, "
+       "T2): which one is meant is not known"},
+      {"M48\nMETRIC\n%\nX1.0Y1.0\nM30\n",
+       "bad.drl:4: a hole or slot before any tool is selected (Tn), and no tool is defined"},
       {"M48\nMETRIC\nT1C0.8\n%\nT2\nM30\n", "bad.drl:5: tool T2 has no diameter"},
       {"M48\nT1C0.8\n%\nT1\nM30\n", "bad.drl:4: tool T1 defined before the units"},
       {"M48\nMETRIC\nT1C0.8\n%\nT1\nX1.0Y1.0\n", "bad.drl:6: the file ends without M30"},

@@ -216,6 +216,74 @@ TEST(GerberLegacyParameters, MirrorRotationAndScaleAreApplied) {
   for (const std::string& n : identity.notes) EXPECT_EQ(n.find("warning"), std::string::npos) << n;
 }
 
+// The rest of the deprecated parameters (issue 24): %IO (image offset, current units) and %RO
+// (layer rotation, any angle) move the image and are applied, %KOC with a box clears it where
+// it stands (each as gerbv draws it: gerbv_agreement_test), %IJ (justify against a film size
+// the file does not give) is ignored with a warning: the coordinates as written.
+TEST(GerberLegacyParameters, ImageOffsetLayerRotationAndKnockoutAreAppliedJustifyIgnored) {
+  const PcbLayer offset = legacy("%IOA-10B1*%\n");
+  EXPECT_TRUE(covered(offset, 0, 6));
+  EXPECT_FALSE(covered(offset, 10, 5));
+  EXPECT_TRUE(has_note(offset, "warning: %IOA-10B1 (deprecated image offset) applied"));
+  const PcbLayer turned = legacy("%RO30*%\n");  // (10, 5) turned 30 degrees about the origin
+  const double c = std::cos(kPi / 6), s = std::sin(kPi / 6);
+  EXPECT_TRUE(covered(turned, 10 * c - 5 * s, 10 * s + 5 * c));
+  EXPECT_FALSE(covered(turned, 10, 5));
+  EXPECT_NEAR(area_mm2(turned.polygons_nm), 1.0, 1e-5);  // corners rounded to 1 nm
+  // A 0.4 x 0.4 mm box cleared out of the pad's lower left corner, before a second pad.
+  const PcbLayer knocked = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD10R,1X1*%\nD10*\nX10000000Y5000000D03*\n"
+      "%KOCX9.5Y4.5I0.4J0.4*%\nX20000000Y5000000D03*\nM02*\n",
+      "ko-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(knocked.polygons_nm), 2.0 - 0.16, 1e-6);
+  EXPECT_FALSE(covered(knocked, 9.7, 4.7));
+  EXPECT_TRUE(has_note(knocked, "warning: %KOC box (deprecated knockout) applied"));
+  const PcbLayer justified = legacy("%IJALBC*%\n");
+  EXPECT_TRUE(covered(justified, 10, 5));
+  EXPECT_TRUE(has_note(justified, "warning: %IJALBC (deprecated image justify) ignored"));
+}
+
+// %IPNEG: what is drawn is clear, copper the rest of the image's extent (its bounding box, as
+// gerbv fills its picture): two 1 mm pads 10 mm apart make a 1 x 11 mm box less 2 mm².
+TEST(GerberLegacyParameters, ANegativeImageIsItsBoxLessWhatIsDrawn) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%IPNEG*%\n%ADD10R,1X1*%\nD10*\nX0Y0D03*\nX10000000Y0D03*\n"
+      "M02*\n",
+      "neg-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 11.0 - 2.0, 1e-6);
+  EXPECT_TRUE(covered(l, 5, 0));
+  EXPECT_FALSE(covered(l, 0, 0));
+  EXPECT_TRUE(has_note(l, "warning: %IPNEG (deprecated negative image) applied"));
+}
+
+// "R,0.035": one size where the specification wants X and Y (EKF's files). gerbv draws a
+// rectangle of no height (nothing); read as the square, more copper rather than less, with a
+// warning. A definition whose numbers cannot be read ("R,0.03260.326") is left out with a
+// warning when nothing uses it (refused where it is used: gerber_errors_test).
+TEST(GerberReader, AOneSizeRectangleIsASquareAndAnUnusedBadApertureIsLeftOut) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD10R,1*%\n%ADD11R,0.03260.326*%\nD10*\nX0Y0D03*\nM02*\n",
+      "r1-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 1.0, 1e-9);
+  EXPECT_TRUE(covered(l, 0.45, 0.45));
+  EXPECT_TRUE(has_note(l,
+                       "line 3: warning: aperture D10 R has one size, not X and Y: read as a "
+                       "square of that size (gerbv draws nothing)"));
+  EXPECT_TRUE(has_note(l,
+                       "warning: aperture D11 never used: its definition is left out (line 4: "
+                       "bad aperture parameter '0.03260.326')"));
+}
+
+// A polygon aperture's rotation may be negative (clockwise; gerbv's own test file): it was
+// refused as "a negative size". A hexagon turned -30 degrees has a vertex on the y axis.
+TEST(GerberReader, APolygonsNegativeRotationIsClockwise) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD10P,2X6X-30*%\nD10*\nX0Y0D03*\nM02*\n", "p-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 1.5 * std::sqrt(3.0), 1e-5);  // hexagon of radius 1
+  EXPECT_TRUE(covered(l, 0, -0.99));
+  EXPECT_FALSE(covered(l, 0.99, 0));
+}
+
 // In an inch file a macro's rotation (45 deg) is an angle, not 45 in = 1.14 m: it was
 // refused as "larger than 1 m". A 0.05 x 0.02 in centre line turned by 45 deg.
 TEST(GerberReader, AnInchMacrosRotationIsNotALength) {

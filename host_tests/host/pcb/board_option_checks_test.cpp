@@ -1,0 +1,179 @@
+// The board options' checks as a user meets them (issue 24, an outside tester's findings):
+// numbers that are not finite, copper of the other side only, a measured alignment that
+// moves the job off the work area, and options that would otherwise be silently ignored.
+#include <gtest/gtest.h>
+#include <unistd.h>  // getpid
+
+#include <cmath>  // std::cos, std::sin
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "host_tests/host/cli/tool_run.h"
+
+namespace {
+
+using host_tests::ToolRun;
+
+ToolRun run(const std::string& args) {
+  return host_tests::run_tool(ENGRAVER_EXE, args);
+}
+
+// Two pads joined by a track on either side (mm), two holes in them, a 40 x 30 mm outline.
+std::string write_board(const std::string& name) {
+  const std::string dir = testing::TempDir() + "/" + std::to_string(getpid()) + "-opt-" + name;
+  std::filesystem::create_directories(dir);
+  for (const std::string side : {"F.Cu", "B.Cu"})
+    std::ofstream(dir + "/b-" + side + ".gbr")
+        << "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Copper,"
+        << (side == "F.Cu" ? "L1,Top" : "L2,Bot")
+        << "*%\n%ADD10C,1.600000*%\n%ADD11C,0.300000*%\n"
+           "D10*\nX10000000Y10000000D03*\nX30000000Y20000000D03*\n"
+           "D11*\nX10000000Y10000000D02*\nX30000000Y20000000D01*\nM02*\n";
+  std::ofstream(dir + "/b-PTH.drl")
+      << "M48\nMETRIC\nT1C0.800\n%\nG90\nG05\nT1\nX10.0Y10.0\nX30.0Y20.0\nM30\n";
+  std::ofstream(dir + "/b-Edge.Cuts.gbr")
+      << "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Profile,NP*%\n%ADD10C,0.100000*%\nD10*\n"
+         "X0Y0D02*\nX40000000Y0D01*\nX40000000Y30000000D01*\nX0Y30000000D01*\nX0Y0D01*\nM02*\n";
+  return dir;
+}
+
+// "nan" and "inf" parse as numbers and pass every range check (comparisons with NaN are
+// false): they were planned with and refused later as a failed job (exit 1), or not at all.
+TEST(BoardOptionChecks, NumbersThatAreNotFiniteAreBadInputNamingTheOption) {
+  const std::string dir = write_board("nan");
+  const std::string out = " -o " + dir + "/out";
+  struct Case {
+    std::string args, option, value;
+  };
+  const Case cases[] = {
+      {"board " + dir + " --tool-width nan" + out, "--tool-width", "nan"},
+      {"board " + dir + " --depth inf" + out, "--depth", "inf"},
+      {"board " + dir + " --tab-width -inf" + out, "--tab-width", "-inf"},
+      {"board " + dir + " --work nan 200" + out, "--work", "nan"},
+      {"board " + dir + " --feed NaN" + out, "--feed", "NaN"},
+      {"board " + dir + " --align-holes auto --align-measured 1 2 nan 4" + out, "--align-measured",
+       "nan"},
+      {"run " + dir + " --cut-depth inf" + out, "--cut-depth", "inf"},
+      {"points " + dir + " --overlap nan", "--overlap", "nan"},
+  };
+  for (const Case& c : cases) {
+    const ToolRun r = run(c.args);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.option + ": '" + c.value + "' is not a finite number"),
+              std::string::npos)
+        << c.args << "\n"
+        << r.err;
+  }
+}
+
+// Only bottom copper with --side top (or the reverse) planned holes and cut-out alone, exit 0.
+TEST(BoardOptionChecks, CopperOfTheOtherSideOnlyIsRefusedNotPlannedEmpty) {
+  const std::string dir = write_board("side");
+  const std::string files = " --drill " + dir + "/b-PTH.drl --outline " + dir + "/b-Edge.Cuts.gbr";
+  for (const std::string& command :
+       {"board --top " + dir + "/b-F.Cu.gbr" + files + " --side bottom -o " + dir + "/out",
+        "board --bottom " + dir + "/b-F.Cu.gbr" + files + " --side top -o " + dir + "/out",
+        "run top:" + dir + "/b-F.Cu.gbr," + dir + "/b-PTH.drl --side bottom -o " + dir + "/out",
+        "points top:" + dir + "/b-F.Cu.gbr," + dir + "/b-PTH.drl --side bottom"}) {
+    const ToolRun r = run(command);
+    EXPECT_EQ(r.code, 2) << command << "\n" << r.err;
+    EXPECT_NE(r.err.find("copper: nothing to isolate; give --side "), std::string::npos)
+        << command << "\n"
+        << r.err;
+  }
+  // The side whose copper is given plans.
+  EXPECT_EQ(run("board --bottom " + dir + "/b-F.Cu.gbr" + files + " -o " + dir + "/out").code, 0);
+}
+
+// The alignment holes of the bottom job (machine mm, hole 1 first).
+std::vector<double> nominal_holes(const std::string& dir) {
+  const ToolRun r =
+      run("board " + dir + " --side bottom --align-holes auto --json --no-plot -o " + dir + "/out");
+  EXPECT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const nlohmann::json& h = j["alignment"]["holes_mm"];
+  return {h[0][0].get<double>(), h[0][1].get<double>(), h[1][0].get<double>(),
+          h[1][1].get<double>()};
+}
+
+// The measured holes for a blank shifted by (dx, dy) and turned by deg about hole 1.
+std::string measured(const std::vector<double>& h, double dx, double dy, double deg) {
+  const double a = deg * M_PI / 180, vx = h[2] - h[0], vy = h[3] - h[1];
+  const double x1 = h[0] + dx, y1 = h[1] + dy;
+  return std::to_string(x1) + " " + std::to_string(y1) + " " +
+         std::to_string(x1 + std::cos(a) * vx - std::sin(a) * vy) + " " +
+         std::to_string(y1 + std::sin(a) * vx + std::cos(a) * vy);
+}
+
+// The work area was checked on the job before it was turned and shifted onto the measured
+// holes: a blank measured off the table planned and ran (exit 0).
+TEST(BoardOptionChecks, AMeasuredAlignmentThatMovesTheJobOffTheWorkAreaIsRefusedEverywhere) {
+  const std::string dir = write_board("placed");
+  const std::vector<double> h = nominal_holes(dir);
+  ASSERT_EQ(h.size(), 4u);
+  const std::string off =
+      " --side bottom --align-holes auto --align-measured " + measured(h, 280, 0, 0);
+  for (const std::string& command :
+       {"board " + dir + off + " -o " + dir + "/out", "run " + dir + off + " -o " + dir + "/out",
+        "points " + dir + off}) {
+    const ToolRun r = run(command);
+    EXPECT_EQ(r.code, 1) << command << "\n" << r.err;
+    EXPECT_NE(r.err.find("turned and shifted onto the measured alignment holes, the board job "
+                         "spans ("),
+              std::string::npos)
+        << command << "\n"
+        << r.err;
+    EXPECT_NE(r.err.find("but the work area is (0, 0) .. (297.0, 210.0) mm"), std::string::npos)
+        << r.err;
+  }
+  // The cut-out's cutter reaches 6 mm from x = 0 (the 5 mm margin and 1 mm of the outline's
+  // clearance for the pins): 5.5 mm to the left fits unturned; turned 3 degrees about hole 1,
+  // the board's upper left corner, 35 mm above it, reaches 1.8 mm further left, beyond x = 0:
+  // the turn itself is checked.
+  const std::string board =
+      "board " + dir + " --side bottom --align-holes auto --no-plot -o " + dir + "/out";
+  EXPECT_EQ(run(board + " --align-measured " + measured(h, -5.5, 0, 0)).code, 0);
+  const ToolRun turned = run(board + " --align-measured " + measured(h, -5.5, 0, 3));
+  EXPECT_EQ(turned.code, 1) << turned.err;
+  EXPECT_NE(turned.err.find("spans (-"), std::string::npos) << turned.err;
+}
+
+// Options that did nothing in these combinations, without a word.
+TEST(BoardOptionChecks, OptionsThatWouldBeIgnoredAreRefused) {
+  const std::string dir = write_board("ignored");
+  const std::string board = "board " + dir + " --no-plot -o " + dir + "/out ";
+  struct Case {
+    std::string args;
+    int code;
+    std::string says;
+  };
+  const Case cases[] = {
+      // The clearing tool cuts the passes beyond the narrow ones: with one pass, none.
+      {board + "--clearing-tool 0.8", 2, "--clearing-tool cuts the passes beyond"},
+      {board + "--clearing-tool 0.8 --passes 3 --narrow-passes 3", 2,
+       "--clearing-tool cuts the passes beyond --narrow-passes (3), but --passes is 3"},
+      {board + "--narrow-passes 2", 2, "--narrow-passes requires --clearing-tool"},
+      {board + "--narrow-passes 2 --clearing-tool 0", 2,
+       "--narrow-passes counts the isolation tool's passes"},
+      {"run " + dir + " --pins-only -o " + dir + "/out", 2, "--pins-only requires --blank-error"},
+      {board + "--align-holes ''", 2, "--align-holes: empty: say auto"},
+      // The same hole twice, and a hole overlapping its own mirror image (axis x = 20).
+      {board + "--align-holes '10,-20;10,-20'", 1, "overlap: holes of 3.00 mm"},
+      {board + "--align-holes '19,-20'", 1, "overlap: holes of 3.00 mm"},
+      // One hole on the flip axis is one hole: no second to measure (was an internal error).
+      {board + "--align-holes '20,-20' --align-measured 1 2 3 4", 2,
+       "--align-measured needs two alignment holes"},
+  };
+  for (const Case& c : cases) {
+    const ToolRun r = run(c.args);
+    EXPECT_EQ(r.code, c.code) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;
+  }
+  // What they are for still plans.
+  EXPECT_EQ(run(board + "--clearing-tool 0.8 --passes 4 --narrow-passes 2").code, 0);
+  EXPECT_EQ(run(board + "--align-holes '10,-20'").code, 0);
+}
+
+}  // namespace
