@@ -52,7 +52,7 @@ void NearestSegment::add(const std::vector<Point2>& line) {
 
 void NearestSegment::index() {
   if (segments_.empty()) return;
-  segments_.shrink_to_fit();
+  if (segments_.capacity() > segments_.size() + segments_.size() / 4) segments_.shrink_to_fit();
   Point2 lo(1e300, 1e300), hi(-1e300, -1e300);
   for (const Segment& s : segments_) {
     lo = lo.cwiseMin(s.a).cwiseMin(s.b);

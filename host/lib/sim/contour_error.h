@@ -26,6 +26,8 @@ class NearestSegment {
   // Built polyline by polyline (no copy of a large job's curves): add(), then index().
   explicit NearestSegment(double cell_mm = 0.5) : cell_(cell_mm) {}
   void add(const std::vector<Point2>& polyline);
+  // Room for this many segments (a million lines' index grew by doubling to twice its size).
+  void reserve(size_t segments) { segments_.reserve(segments); }
   void index();
 
   // Distance in mm; searches outward ring by ring until no closer segment can exist.

@@ -14,6 +14,12 @@ namespace {
 // a copy of a million lines' polylines held 70 MB while the job started.
 std::unique_ptr<NearestSegment> reference_of(const JobPlan& plan) {
   auto index = std::make_unique<NearestSegment>();
+  size_t segments = 0;  // the lines' exactly; a sampled curve's grow the list
+  for (const PlannedCurve& c : plan.curves) {
+    if (c.spline.degree == 1 && c.spline.weights.empty() && !c.spline.control.empty())
+      segments += c.spline.control.size() - 1;
+  }
+  index->reserve(segments);
   for (const PlannedCurve& c : plan.curves) {
     if (c.spline.degree == 1 && c.spline.weights.empty())
       index->add(c.spline.control);
