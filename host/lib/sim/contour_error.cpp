@@ -1,8 +1,8 @@
 // Grid-indexed nearest-segment distance for contour error measurement.
 #include "host/lib/sim/contour_error.h"
 
-#include <algorithm>  // std::min, std::max
-#include <cmath>      // std::floor
+#include <algorithm>  // std::min, std::max, std::nth_element, std::sort
+#include <cmath>      // std::floor, std::sqrt
 #include <cstdlib>    // std::labs
 #include <limits>     // std::numeric_limits
 
@@ -20,74 +20,204 @@ double point_segment_distance2(double px, double py, double ax, double ay, doubl
   return dx * dx + dy * dy;
 }
 
+// The fine grid's cell is this many times the median segment's extent (a cell then holds a
+// few segments), and it is used only when that is below the coarse cell / kFineUse.
+constexpr double kFinePerSegment = 4.0;
+constexpr double kFineUse = 8.0;
+constexpr double kFineMinMm = 0.0005;
+// Rings of fine cells searched before the coarse grid is asked (a contour error within
+// about three fine cells, as on any job that follows its path, never needs it).
+constexpr long kFineRings = 3;
+
+uint64_t fine_key(long ix, long iy) {
+  return (static_cast<uint64_t>(ix) << 32) | static_cast<uint32_t>(iy);
+}
+
+double extent_of(const Point2& a, const Point2& b) {
+  return std::max(std::abs(b.x() - a.x()), std::abs(b.y() - a.y()));
+}
+
 }  // namespace
 
 NearestSegment::NearestSegment(const std::vector<std::vector<Point2>>& polylines, double cell_mm)
     : cell_(cell_mm) {
-  Point2 lo(1e300, 1e300), hi(-1e300, -1e300);
-  for (const auto& line : polylines) {
-    for (size_t i = 0; i + 1 < line.size(); ++i) segments_.push_back({line[i], line[i + 1]});
-    if (line.size() == 1) segments_.push_back({line[0], line[0]});
-    for (const Point2& p : line) {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-  }
+  for (const auto& line : polylines) add(line);
+  index();
+}
+
+void NearestSegment::add(const std::vector<Point2>& line) {
+  for (size_t i = 0; i + 1 < line.size(); ++i) segments_.push_back({line[i], line[i + 1]});
+  if (line.size() == 1) segments_.push_back({line[0], line[0]});
+}
+
+void NearestSegment::index() {
   if (segments_.empty()) return;
+  if (segments_.capacity() > segments_.size() + segments_.size() / 4) segments_.shrink_to_fit();
+  Point2 lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (const Segment& s : segments_) {
+    lo = lo.cwiseMin(s.a).cwiseMin(s.b);
+    hi = hi.cwiseMax(s.a).cwiseMax(s.b);
+  }
   min_ = lo;
-  nx_ = static_cast<long>((hi.x() - lo.x()) / cell_) + 1;
-  ny_ = static_cast<long>((hi.y() - lo.y()) / cell_) + 1;
-  cells_.resize(static_cast<size_t>(nx_ * ny_));
-  for (size_t s = 0; s < segments_.size(); ++s) {
-    const Segment& g = segments_[s];
-    const long x0 = static_cast<long>((std::min(g.a.x(), g.b.x()) - min_.x()) / cell_);
-    const long x1 = static_cast<long>((std::max(g.a.x(), g.b.x()) - min_.x()) / cell_);
-    const long y0 = static_cast<long>((std::min(g.a.y(), g.b.y()) - min_.y()) / cell_);
-    const long y1 = static_cast<long>((std::max(g.a.y(), g.b.y()) - min_.y()) / cell_);
-    for (long ix = x0; ix <= x1; ++ix) {
-      for (long iy = y0; iy <= y1; ++iy)
-        cells_[static_cast<size_t>(ix * ny_ + iy)].push_back(int(s));
-    }
+  max_ = hi;
+  {
+    std::vector<float> extents;
+    extents.reserve(segments_.size());
+    for (const Segment& s : segments_) extents.push_back(static_cast<float>(extent_of(s.a, s.b)));
+    std::nth_element(extents.begin(), extents.begin() + extents.size() / 2, extents.end());
+    const double fine = std::max(kFinePerSegment * extents[extents.size() / 2], kFineMinMm);
+    if (fine <= cell_ / kFineUse) fine_cell_ = fine;
+  }
+  coarse_.cell = cell_;
+  build_coarse(&coarse_, false);
+  if (fine_cell_ > 0) {
+    build_fine();
+    coarse_long_.cell = cell_;
+    build_coarse(&coarse_long_, true);
   }
 }
 
-double NearestSegment::distance(const Point2& p) const {
-  if (segments_.empty()) return std::numeric_limits<double>::infinity();
-  const double px = p.x(), py = p.y();
-  auto dist2 = [&](int s) {
-    const Segment& g = segments_[static_cast<size_t>(s)];
-    return point_segment_distance2(px, py, g.a.x(), g.a.y(), g.b.x(), g.b.y());
+bool NearestSegment::is_short(const Segment& s) const {
+  return fine_cell_ > 0 && extent_of(s.a, s.b) <= fine_cell_;
+}
+
+void NearestSegment::build_coarse(Grid* g, bool long_only) const {
+  g->nx = static_cast<long>((max_.x() - min_.x()) / g->cell) + 1;
+  g->ny = static_cast<long>((max_.y() - min_.y()) / g->cell) + 1;
+  const size_t cells = static_cast<size_t>(g->nx * g->ny);
+  // Two passes (count, then fill): one array of entries, no list per cell.
+  g->start.assign(cells + 1, 0);
+  auto for_cells = [&](const Segment& s, auto&& f) {
+    const long x0 = static_cast<long>((std::min(s.a.x(), s.b.x()) - min_.x()) / g->cell);
+    const long x1 = static_cast<long>((std::max(s.a.x(), s.b.x()) - min_.x()) / g->cell);
+    const long y0 = static_cast<long>((std::min(s.a.y(), s.b.y()) - min_.y()) / g->cell);
+    const long y1 = static_cast<long>((std::max(s.a.y(), s.b.y()) - min_.y()) / g->cell);
+    for (long ix = x0; ix <= x1; ++ix)
+      for (long iy = y0; iy <= y1; ++iy) f(static_cast<size_t>(ix * g->ny + iy));
   };
-  // Consecutive queries follow the tool: the previous answer bounds the search at once.
-  double best2 = dist2(hint_);
-  int best_s = hint_;
-  const long cx = static_cast<long>(std::floor((px - min_.x()) / cell_));
-  const long cy = static_cast<long>(std::floor((py - min_.y()) / cell_));
-  const long max_ring = std::max(nx_, ny_) + std::labs(cx) + std::labs(cy) + 1;
+  for (const Segment& s : segments_) {
+    if (long_only && is_short(s)) continue;
+    for_cells(s, [&](size_t c) { ++g->start[c + 1]; });
+  }
+  for (size_t c = 0; c < cells; ++c) g->start[c + 1] += g->start[c];
+  g->entries.resize(g->start[cells]);
+  std::vector<uint32_t> fill(g->start.begin(), g->start.end() - 1);
+  for (size_t i = 0; i < segments_.size(); ++i) {
+    if (long_only && is_short(segments_[i])) continue;
+    for_cells(segments_[i], [&](size_t c) { g->entries[fill[c]++] = static_cast<uint32_t>(i); });
+  }
+  if (g->entries.empty()) *g = Grid();
+}
+
+void NearestSegment::build_fine() {
+  std::vector<std::pair<uint64_t, uint32_t>> keyed;
+  for (size_t i = 0; i < segments_.size(); ++i) {
+    const Segment& s = segments_[i];
+    if (!is_short(s)) continue;
+    const long x0 = static_cast<long>((std::min(s.a.x(), s.b.x()) - min_.x()) / fine_cell_);
+    const long x1 = static_cast<long>((std::max(s.a.x(), s.b.x()) - min_.x()) / fine_cell_);
+    const long y0 = static_cast<long>((std::min(s.a.y(), s.b.y()) - min_.y()) / fine_cell_);
+    const long y1 = static_cast<long>((std::max(s.a.y(), s.b.y()) - min_.y()) / fine_cell_);
+    for (long ix = x0; ix <= x1; ++ix)
+      for (long iy = y0; iy <= y1; ++iy) keyed.emplace_back(fine_key(ix, iy), uint32_t(i));
+  }
+  std::sort(keyed.begin(), keyed.end());
+  fine_entries_.reserve(keyed.size());
+  for (size_t i = 0; i < keyed.size(); ++i) {
+    if (i == 0 || keyed[i].first != keyed[i - 1].first) {
+      fine_cells_[keyed[i].first] = {static_cast<uint32_t>(fine_entries_.size()),
+                                     static_cast<uint32_t>(fine_entries_.size())};
+    }
+    fine_entries_.push_back(keyed[i].second);
+    fine_cells_[keyed[i].first].second = static_cast<uint32_t>(fine_entries_.size());
+  }
+}
+
+double NearestSegment::dist2(uint32_t s, double px, double py) const {
+  ++examined_;
+  const Segment& g = segments_[s];
+  return point_segment_distance2(px, py, g.a.x(), g.a.y(), g.b.x(), g.b.y());
+}
+
+double NearestSegment::search(const Grid& g, const Point2& p, double* best2,
+                              uint32_t* best_s) const {
+  const double px = p.x(), py = p.y();
+  const long cx = static_cast<long>(std::floor((px - min_.x()) / g.cell));
+  const long cy = static_cast<long>(std::floor((py - min_.y()) / g.cell));
+  const long max_ring = std::max(g.nx, g.ny) + std::labs(cx) + std::labs(cy) + 1;
   // From p to the nearest side of its own cell: what ring 1 is at least away.
-  const double fx = px - min_.x() - cx * cell_, fy = py - min_.y() - cy * cell_;
-  const double edge = std::max(0.0, std::min(std::min(fx, cell_ - fx), std::min(fy, cell_ - fy)));
+  const double fx = px - min_.x() - cx * g.cell, fy = py - min_.y() - cy * g.cell;
+  const double edge = std::max(0.0, std::min(std::min(fx, g.cell - fx), std::min(fy, g.cell - fy)));
   for (long ring = 0; ring <= max_ring; ++ring) {
     // Every segment nearer than the ring's inner bound has been seen: stop when one beats it.
-    const double bound = (ring - 1) * cell_ + edge;
-    if (ring > 0 && best2 <= bound * bound) break;
-    for (long ix = std::max(0L, cx - ring); ix <= std::min(nx_ - 1, cx + ring); ++ix) {
+    const double bound = (ring - 1) * g.cell + edge;
+    if (ring > 0 && *best2 <= bound * bound) return bound;
+    for (long ix = std::max(0L, cx - ring); ix <= std::min(g.nx - 1, cx + ring); ++ix) {
       const bool edge_x = std::labs(ix - cx) == ring;
-      for (long iy = std::max(0L, cy - ring); iy <= std::min(ny_ - 1, cy + ring); ++iy) {
+      for (long iy = std::max(0L, cy - ring); iy <= std::min(g.ny - 1, cy + ring); ++iy) {
         if (!edge_x && std::labs(iy - cy) != ring) {
           iy = cy + ring - 1;  // inside the ring: jump to its far edge
           continue;
         }
-        for (int s : cells_[static_cast<size_t>(ix * ny_ + iy)]) {
-          const double d2 = dist2(s);
-          if (d2 < best2) {
-            best2 = d2;
-            best_s = s;
+        const size_t c = static_cast<size_t>(ix * g.ny + iy);
+        for (uint32_t k = g.start[c]; k < g.start[c + 1]; ++k) {
+          const double d2 = dist2(g.entries[k], px, py);
+          if (d2 < *best2) {
+            *best2 = d2;
+            *best_s = g.entries[k];
           }
         }
       }
     }
   }
+  return std::numeric_limits<double>::infinity();
+}
+
+double NearestSegment::search_fine(const Point2& p, double* best2, uint32_t* best_s) const {
+  const double px = p.x(), py = p.y(), cell = fine_cell_;
+  const long cx = static_cast<long>(std::floor((px - min_.x()) / cell));
+  const long cy = static_cast<long>(std::floor((py - min_.y()) / cell));
+  const double fx = px - min_.x() - cx * cell, fy = py - min_.y() - cy * cell;
+  const double edge = std::max(0.0, std::min(std::min(fx, cell - fx), std::min(fy, cell - fy)));
+  for (long ring = 0; ring <= kFineRings; ++ring) {
+    const double bound = (ring - 1) * cell + edge;
+    if (ring > 0 && *best2 <= bound * bound) return bound;
+    for (long ix = cx - ring; ix <= cx + ring; ++ix) {
+      const bool edge_x = std::labs(ix - cx) == ring;
+      for (long iy = cy - ring; iy <= cy + ring; ++iy) {
+        if (!edge_x && std::labs(iy - cy) != ring) {
+          iy = cy + ring - 1;
+          continue;
+        }
+        if (ix < 0 || iy < 0) continue;  // below the extents: no segment there
+        const auto it = fine_cells_.find(fine_key(ix, iy));
+        if (it == fine_cells_.end()) continue;
+        for (uint32_t k = it->second.first; k < it->second.second; ++k) {
+          const double d2 = dist2(fine_entries_[k], px, py);
+          if (d2 < *best2) {
+            *best2 = d2;
+            *best_s = fine_entries_[k];
+          }
+        }
+      }
+    }
+  }
+  return kFineRings * cell + edge;
+}
+
+double NearestSegment::distance(const Point2& p) const {
+  if (segments_.empty()) return std::numeric_limits<double>::infinity();
+  // Consecutive queries follow the tool: the previous answer bounds the search at once.
+  double best2 = dist2(hint_, p.x(), p.y());
+  uint32_t best_s = hint_;
+  bool done = false;
+  if (fine_cell_ > 0) {
+    // Every short segment within `covered` has been seen; the long ones are searched out.
+    const double covered = search_fine(p, &best2, &best_s);
+    if (!coarse_long_.entries.empty()) search(coarse_long_, p, &best2, &best_s);
+    done = best2 <= covered * covered;
+  }
+  if (!done) search(coarse_, p, &best2, &best_s);
   hint_ = best_s;
   return std::sqrt(best2);
 }

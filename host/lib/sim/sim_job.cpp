@@ -11,6 +11,7 @@
 #include "host/lib/sim/sim_link.h"
 #include "host/lib/sim/sim_server.h"
 #include "host/lib/sim/trace_meter.h"
+#include "host/lib/stream/command_source.h"
 
 namespace host::sim {
 
@@ -72,21 +73,23 @@ void stream_job(Link& link, const JobPlan& plan, const SimJobOptions& options,
   use_session(caps, &enc);
   enc.max_payload = std::min<unsigned>(max_payload, caps.max_payload);
   enc.controller = &caps;
-  std::vector<QueuedCommand> commands = encode_job(plan, enc);
-  r->commands = commands.size();
-  r->wire_bytes = wire_bytes(commands);
-  r->job_id = job_id_of(commands);
+  // Encoded as the sender goes: only the window it has not seen stored is held.
+  EncodedJob commands(plan, enc);
+  r->commands = commands.summary().commands;
+  r->wire_bytes = commands.summary().wire_bytes;
+  r->job_id = commands.summary().job_id;
   if (options.before_job) {
     *in_setup = true;
     std::vector<QueuedCommand> setup = options.before_job(sender);
     *in_setup = false;
     r->setup_commands = setup.size();
     r->setup_wire_bytes = wire_bytes(setup);
-    commands.insert(commands.begin(), setup.begin(), setup.end());
+    commands.set_setup(std::move(setup));
   }
   r->outcome = sender.run(commands, [&](const Progress& p) {
     if (options.on_progress) options.on_progress(sender, p);
   });
+  r->commands_held_max = commands.held_max();
   r->message = sender.message();
   r->stats = sender.stats();
 }

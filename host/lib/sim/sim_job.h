@@ -52,9 +52,10 @@ struct SimJobResult {
   std::string message;
   SenderStats stats;
   size_t commands = 0;
-  size_t wire_bytes = 0;      // the job's frames once each (no retransmits, no polls)
-  uint16_t job_id = 0;        // job_id_of() the commands: the job's identity (#J)
-  size_t setup_commands = 0;  // sent before the job (SimJobOptions::before_job)
+  size_t commands_held_max = 0;  // the most encoded commands held at once (streamed: a window)
+  size_t wire_bytes = 0;         // the job's frames once each (no retransmits, no polls)
+  uint16_t job_id = 0;           // job_id_of() the commands: the job's identity (#J)
+  size_t setup_commands = 0;     // sent before the job (SimJobOptions::before_job)
   size_t setup_wire_bytes = 0;
   uint64_t virtual_ms = 0;            // machine time simulated
   double wall_s = 0;                  // real time it took

@@ -112,110 +112,147 @@ void use_session(const proto::SessionReply& caps, EncodeOptions* o) {
     o->splines = SplineFrames::kCompact;
 }
 
-std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& options) {
+JobEncoder::JobEncoder(const JobPlan& plan, const EncodeOptions& options, uint16_t job_id)
+    : plan_(plan), options_(options), job_id_(job_id) {
   if (options.max_payload < 16) {
     throw PlanError(fmt::format("controller payload {} bytes is too small", options.max_payload));
   }
+}
+
+void JobEncoder::append_preamble(std::vector<QueuedCommand>* out) const {
+  // Job numbering from here (the controller reports progress by it; send --resume).
+  out->push_back(encode_command(proto::JobMarkCmd{0, 0, job_id_}, -1, -1));
+  if (!options_.title.empty()) {
+    proto::TextCmd text{};
+    text.row = 0;
+    text.length = static_cast<uint8_t>(std::min<size_t>(options_.title.size(), proto::kLcdColumns));
+    for (uint8_t i = 0; i < text.length; ++i) {
+      const char ch = options_.title[i];
+      text.text[i] = (ch >= 0x20 && ch <= 0x7E) ? ch : '?';
+    }
+    out->push_back(encode_command(text, -1, -1));
+  }
+  proto::ResolutionCmd resolution{};
+  resolution.max_step_um = options_.max_step_um;
+  resolution.chord_tolerance_um = options_.chord_tolerance_um;
+  out->push_back(encode_command(resolution, -1, -1));
+}
+
+bool JobEncoder::next(std::vector<QueuedCommand>* out) {
+  if (!started_) {
+    started_ = true;
+    append_preamble(out);
+    return true;
+  }
+  if (step_ >= plan_.steps.size()) return false;
+  const EncodeOptions& options = options_;
+  const PlanStep& s = plan_.steps[step_];
+  const int index = static_cast<int>(step_);
+  ++step_;
+  if (options.controller != nullptr) check_step_fits(s, *options.controller, index);
+  const core::PointUm from = at_;
+  if (s.kind == PlanStep::kRapid || s.kind == PlanStep::kFeed || s.kind == PlanStep::kSpline ||
+      s.kind == PlanStep::kDrill)
+    at_ = s.to;
+  switch (s.kind) {
+    case PlanStep::kPenUp: {
+      proto::ZMoveCmd z{s.z_um, options.z_rapid_um_per_s};
+      out->push_back(encode_command(z, index, s.curve));
+      break;
+    }
+    case PlanStep::kPenDown: {
+      proto::ZMoveCmd z{s.z_um, feed16(s.feed_um_per_s, index)};
+      out->push_back(encode_command(z, index, s.curve));
+      break;
+    }
+    case PlanStep::kRapid: {
+      proto::RapidMoveCmd r{s.to.x_um, s.to.y_um};
+      out->push_back(encode_command(r, index, s.curve));
+      break;
+    }
+    case PlanStep::kFeed: {
+      if (s.tool_offset_um != 0) {
+        // The controller offsets curves only: a straight line with an offset goes as a
+        // degree-1 spline from where the tool is.
+        PlanStep line = s;
+        line.set_spline(StepSpline(straight_spline(from, s.to)));
+        append_spline(line, index, options.max_payload, options.splines, out);
+        break;
+      }
+      proto::FeedMoveCmd g{s.to.x_um, s.to.y_um, feed16(s.feed_um_per_s, index)};
+      out->push_back(encode_command(g, index, s.curve));
+      break;
+    }
+    case PlanStep::kSpline:
+      append_spline(s, index, options.max_payload, options.splines, out);
+      break;
+    case PlanStep::kPause:
+      out->push_back(encode_command(pause_command(s.text()), index, s.curve));
+      break;
+    case PlanStep::kDwell:
+      // Longer than one #W can carry: several in a row (nothing happens between them).
+      for (uint32_t left = s.dwell_ms; left > 0;) {
+        const uint16_t ms = static_cast<uint16_t>(std::min<uint32_t>(left, 65535));
+        out->push_back(encode_command(proto::DwellCmd{ms}, index, s.curve));
+        left -= ms;
+      }
+      break;
+    case PlanStep::kSpindle:
+      out->push_back(encode_command(proto::SpindleCmd{static_cast<uint8_t>(s.spindle_on ? 1 : 0)},
+                                    index, s.curve));
+      break;
+    case PlanStep::kDrill: {
+      if (s.z_um >= s.z_start_um) {
+        throw PlanError(fmt::format("step {}: drill bottom Z {} um is not below its start {} um",
+                                    index, s.z_um, s.z_start_um));
+      }
+      const proto::DrillCmd d{s.to.x_um, s.to.y_um, s.z_start_um, s.z_um,
+                              feed16(s.feed_um_per_s, index)};
+      out->push_back(encode_command(d, index, s.curve));
+      break;
+    }
+  }
+  return true;
+}
+
+EncodedJobSummary summarize_job(const JobPlan& plan, const EncodeOptions& options) {
+  EncodedJobSummary sum;
+  JobEncoder encoder(plan, options, 0);
+  std::vector<QueuedCommand> batch;
+  uint16_t crc = 0xFFFF;
+  while (encoder.next(&batch)) {
+    for (const QueuedCommand& c : batch) {
+      sum.commands++;
+      sum.wire_bytes += frame_bytes(c);
+      crc = job_crc_update(crc, c);
+    }
+    batch.clear();
+  }
+  sum.job_id = crc;
+  return sum;
+}
+
+std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& options) {
   std::vector<QueuedCommand> out;
   // At least one command per step: a million feeds then grow no copy of the list.
   out.reserve(plan.steps.size() + 8);
-  // Job numbering from here (the controller reports progress by it; send --resume).
-  out.push_back(
-      encode_command(proto::JobMarkCmd{0, 0, 0}, -1, -1));  // its job_id is set at the end
-  if (!options.title.empty()) {
-    proto::TextCmd text{};
-    text.row = 0;
-    text.length = static_cast<uint8_t>(std::min<size_t>(options.title.size(), proto::kLcdColumns));
-    for (uint8_t i = 0; i < text.length; ++i) {
-      const char ch = options.title[i];
-      text.text[i] = (ch >= 0x20 && ch <= 0x7E) ? ch : '?';
-    }
-    out.push_back(encode_command(text, -1, -1));
-  }
-  proto::ResolutionCmd resolution{};
-  resolution.max_step_um = options.max_step_um;
-  resolution.chord_tolerance_um = options.chord_tolerance_um;
-  out.push_back(encode_command(resolution, -1, -1));
-
-  core::PointUm at = {0, 0};  // where the tool is in X/Y (plans start at the zero point)
-  for (size_t i = 0; i < plan.steps.size(); ++i) {
-    const PlanStep& s = plan.steps[i];
-    const int index = static_cast<int>(i);
-    if (options.controller != nullptr) check_step_fits(s, *options.controller, index);
-    const core::PointUm from = at;
-    if (s.kind == PlanStep::kRapid || s.kind == PlanStep::kFeed || s.kind == PlanStep::kSpline ||
-        s.kind == PlanStep::kDrill)
-      at = s.to;
-    switch (s.kind) {
-      case PlanStep::kPenUp: {
-        proto::ZMoveCmd z{s.z_um, options.z_rapid_um_per_s};
-        out.push_back(encode_command(z, index, s.curve));
-        break;
-      }
-      case PlanStep::kPenDown: {
-        proto::ZMoveCmd z{s.z_um, feed16(s.feed_um_per_s, index)};
-        out.push_back(encode_command(z, index, s.curve));
-        break;
-      }
-      case PlanStep::kRapid: {
-        proto::RapidMoveCmd r{s.to.x_um, s.to.y_um};
-        out.push_back(encode_command(r, index, s.curve));
-        break;
-      }
-      case PlanStep::kFeed: {
-        if (s.tool_offset_um != 0) {
-          // The controller offsets curves only: a straight line with an offset goes as a
-          // degree-1 spline from where the tool is.
-          PlanStep line = s;
-          line.set_spline(StepSpline(straight_spline(from, s.to)));
-          append_spline(line, index, options.max_payload, options.splines, &out);
-          break;
-        }
-        proto::FeedMoveCmd g{s.to.x_um, s.to.y_um, feed16(s.feed_um_per_s, index)};
-        out.push_back(encode_command(g, index, s.curve));
-        break;
-      }
-      case PlanStep::kSpline:
-        append_spline(s, index, options.max_payload, options.splines, &out);
-        break;
-      case PlanStep::kPause:
-        out.push_back(encode_command(pause_command(s.text()), index, s.curve));
-        break;
-      case PlanStep::kDwell:
-        // Longer than one #W can carry: several in a row (nothing happens between them).
-        for (uint32_t left = s.dwell_ms; left > 0;) {
-          const uint16_t ms = static_cast<uint16_t>(std::min<uint32_t>(left, 65535));
-          out.push_back(encode_command(proto::DwellCmd{ms}, index, s.curve));
-          left -= ms;
-        }
-        break;
-      case PlanStep::kSpindle:
-        out.push_back(encode_command(proto::SpindleCmd{static_cast<uint8_t>(s.spindle_on ? 1 : 0)},
-                                     index, s.curve));
-        break;
-      case PlanStep::kDrill: {
-        if (s.z_um >= s.z_start_um) {
-          throw PlanError(fmt::format("step {}: drill bottom Z {} um is not below its start {} um",
-                                      index, s.z_um, s.z_start_um));
-        }
-        const proto::DrillCmd d{s.to.x_um, s.to.y_um, s.z_start_um, s.z_um,
-                                feed16(s.feed_um_per_s, index)};
-        out.push_back(encode_command(d, index, s.curve));
-        break;
-      }
-    }
+  JobEncoder encoder(plan, options, 0);  // its job_id is set at the end
+  while (encoder.next(&out)) {
   }
   out.front() = encode_command(proto::JobMarkCmd{0, 0, job_id_of(out)}, -1, -1);
   return out;
 }
 
+uint16_t job_crc_update(uint16_t crc, const QueuedCommand& c) {
+  if (c.letter == proto::kCmdJobMark) return crc;
+  crc = proto::crc16_update(crc, c.letter);
+  for (uint8_t b : c.payload) crc = proto::crc16_update(crc, b);
+  return crc;
+}
+
 uint16_t job_id_of(const std::vector<QueuedCommand>& commands) {
   uint16_t crc = 0xFFFF;
-  for (const QueuedCommand& c : commands) {
-    if (c.letter == proto::kCmdJobMark) continue;
-    crc = proto::crc16_update(crc, c.letter);
-    for (uint8_t b : c.payload) crc = proto::crc16_update(crc, b);
-  }
+  for (const QueuedCommand& c : commands) crc = job_crc_update(crc, c);
   return crc;
 }
 

@@ -53,9 +53,39 @@ void use_session(const proto::SessionReply& caps, EncodeOptions* o);
 // beyond 100 mm) or, with options.controller, a target outside that controller's travel.
 std::vector<QueuedCommand> encode_job(const JobPlan& plan, const EncodeOptions& options);
 
+// The same commands one plan step at a time, for a sender that streams them (a job of a
+// million steps is then never held encoded). job_id goes in the first #J (summarize_job()
+// computes it in a first pass). The plan must outlive the encoder.
+class JobEncoder {
+ public:
+  JobEncoder(const JobPlan& plan, const EncodeOptions& options, uint16_t job_id);
+  // Appends the next commands (first the #J, title and #U; then each step's); false when
+  // every step has been encoded. Throws PlanError as encode_job() does.
+  bool next(std::vector<QueuedCommand>* out);
+
+ private:
+  void append_preamble(std::vector<QueuedCommand>* out) const;
+  const JobPlan& plan_;
+  EncodeOptions options_;
+  uint16_t job_id_;
+  bool started_ = false;
+  size_t step_ = 0;
+  core::PointUm at_ = {0, 0};  // where the tool is in X/Y (plans start at the zero point)
+};
+
+// What encode_job() would return, counted without keeping the commands.
+struct EncodedJobSummary {
+  size_t commands = 0;
+  size_t wire_bytes = 0;  // wire_bytes() of the commands
+  uint16_t job_id = 0;    // job_id_of() the commands
+};
+EncodedJobSummary summarize_job(const JobPlan& plan, const EncodeOptions& options);
+
 // The job's identity for #J and the status (send --resume checks it): CRC-16 over the
 // letters and payloads of every command but #J.
 uint16_t job_id_of(const std::vector<QueuedCommand>& commands);
+// job_id_of() one command at a time (start from 0xFFFF).
+uint16_t job_crc_update(uint16_t crc, const QueuedCommand& command);
 
 // Bytes one command takes on the wire as a frame (header + payload + CRC).
 size_t frame_bytes(const QueuedCommand& command);

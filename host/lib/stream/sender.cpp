@@ -203,8 +203,8 @@ size_t Sender::index_of_seq(uint8_t seq) const {
 // "command 12 ('B' spline header, plan step 7, curve 3)" for messages (names from the
 // message table).
 std::string Sender::where(size_t index) const {
-  if (commands_ == nullptr || index >= commands_->size()) return "a command";
-  const QueuedCommand& c = (*commands_)[index];
+  if (commands_ == nullptr || !commands_->holds(index)) return "a command";
+  const QueuedCommand& c = commands_->at(index);
   const char* name = proto::message_name(proto::kCommandStart, c.letter);
   std::string s = fmt::format("command {} ('{}' {}", index, static_cast<char>(c.letter),
                               name != nullptr ? name : "unknown");
@@ -391,22 +391,36 @@ bool Sender::stalled() {
 // Whether the controller has a spline slot for the #B at next_: the newest *O or *? said
 // how many were free after the frames before splines_known_at_; every #B sent since took
 // one. (A slot frees when its spline has run; the status polls see that.)
-bool Sender::spline_room(const std::vector<QueuedCommand>& commands) const {
+bool Sender::spline_room() const {
   if (splines_free_ == kSplineSlotsUnknown) return true;
   size_t taken = 0;
-  for (size_t i = splines_known_at_; i < next_ && i < commands.size(); ++i) {
-    if (commands[i].letter == proto::kCmdSplineHeader) ++taken;
+  for (size_t i = splines_known_at_; i < next_ && i < commands_->size(); ++i) {
+    if (commands_->at(i).letter == proto::kCmdSplineHeader) ++taken;
   }
   return splines_free_ > taken;
+}
+
+// Lets go of what the controller has stored, but for the 128 commands before it (replies
+// name commands by an 8-bit seq up to 128 back) and those the spline slot count still needs.
+void Sender::release_stored(CommandSource& commands) {
+  constexpr size_t kHistory = 128;
+  const size_t keep_from = std::min(base_, splines_known_at_);
+  if (keep_from > kHistory) commands.release_before(keep_from - kHistory);
+  while (sent_base_ < base_ && !sent_.empty()) {
+    sent_.pop_front();
+    ++sent_base_;
+  }
 }
 
 // The retransmission timer's round trip: smoothed (1/8 gain) over frames acknowledged at
 // their first sending; a frame held by the controller (ack delayed for room) or sent again
 // says nothing about the link and is left out.
 void Sender::sample_round_trip(size_t index) {
-  if (index >= first_sent_.size() || resent_[index]) return;
+  if (index < sent_base_ || index - sent_base_ >= sent_.size()) return;
+  const Sent& sent = sent_[index - sent_base_];
+  if (sent.resent) return;
   if (have_status_ && (last_status_.flags & proto::kStatusFramePending)) return;
-  const auto sample = std::chrono::duration_cast<milliseconds>(now() - first_sent_[index]);
+  const auto sample = std::chrono::duration_cast<milliseconds>(now() - sent.first);
   srtt_ = (7 * srtt_ + sample) / 8;
 }
 
@@ -529,12 +543,17 @@ bool Sender::ensure_zeroed(const std::function<void(const Progress&)>& on_progre
   c.letter = proto::kCmdZeroing;
   c.payload.assign(p.bytes, p.bytes + p.length);
   const std::vector<QueuedCommand> one{c};
-  const std::vector<QueuedCommand>* saved = commands_;
-  commands_ = &one;
+  CommandList one_list(one);
+  CommandSource* saved = commands_;
+  commands_ = &one_list;
   base_ = next_ = executed_ = 0;
   auto last_poll = now();
+  bool aborted = false;
   while (!failed_) {
-    if (abort_requested_) return false;
+    if (abort_requested_) {
+      aborted = true;  // commands_ must not be left on the frame list that dies here
+      break;
+    }
     if (next_ == 0) {
       send_frame(c.letter, first_seq_, c.payload);
       next_ = 1;
@@ -557,17 +576,29 @@ bool Sender::ensure_zeroed(const std::function<void(const Progress&)>& on_progre
     }
   }
   commands_ = saved;
-  if (failed_) return false;
+  if (failed_ || aborted) return false;
   first_seq_ = static_cast<uint8_t>(first_seq_ + 1);
   return true;
 }
 
 JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
                        const std::function<void(const Progress&)>& on_progress) {
+  CommandList list(commands);
+  return run(list, on_progress);
+}
+
+JobOutcome Sender::run(CommandSource& commands,
+                       const std::function<void(const Progress&)>& on_progress) {
+  // However run() ends (a throw from on_progress too), it keeps no pointer to the commands:
+  // a later status reply must not read a list that is gone.
+  struct Forget {
+    CommandSource*& commands;
+    ~Forget() { commands = nullptr; }
+  } forget{commands_};
   if (!session_open_) open_session();
   failed_ = false;
-  first_sent_.clear();  // no round-trip samples from the zeroing frame
-  resent_.clear();
+  sent_.clear();  // no round-trip samples from the zeroing frame
+  sent_base_ = 0;
   if (!ensure_zeroed(on_progress)) {
     if (abort_requested_) {
       send_realtime(proto::kCmdAbort, {});
@@ -577,8 +608,6 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
     return failure_;
   }
   commands_ = &commands;
-  first_sent_.assign(commands.size(), Clock::time_point{});
-  resent_.assign(commands.size(), false);
   base_ = next_ = executed_ = 0;
   busy_wait_ = false;
   queue_free_ = session_.queue_slots;
@@ -632,25 +661,27 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
         return JobOutcome::kAborted;
       }
     }
+    release_stored(commands);
     // Fill the window (frames and bytes) unless the controller said busy.
     size_t inflight_bytes = 0;
-    for (size_t i = base_; i < next_; ++i) inflight_bytes += frame_bytes(commands[i]);
+    for (size_t i = base_; i < next_; ++i) inflight_bytes += frame_bytes(commands.at(i));
     // In flight may be what the queue has room for plus the one frame it can hold.
     while (!busy_wait_ && next_ < commands.size() && next_ - base_ < window_limit_ &&
            next_ - base_ <= queue_free_ &&
-           inflight_bytes + frame_bytes(commands[next_]) <= rx_bytes &&
-           (commands[next_].letter != proto::kCmdSplineHeader || spline_room(commands))) {
+           inflight_bytes + frame_bytes(commands.at(next_)) <= rx_bytes &&
+           (commands.at(next_).letter != proto::kCmdSplineHeader || spline_room())) {
+      const QueuedCommand& command = commands.at(next_);
       if (next_ == base_) oldest_sent_ = now();
-      send_frame(commands[next_].letter, static_cast<uint8_t>(first_seq_ + next_),
-                 commands[next_].payload);
-      inflight_bytes += frame_bytes(commands[next_]);
+      send_frame(command.letter, static_cast<uint8_t>(first_seq_ + next_), command.payload);
+      inflight_bytes += frame_bytes(command);
       if (next_ < high_water) stats_.retransmits++;
-      if (next_ < first_sent_.size()) {
-        // Karn: a frame sent more than once gives no round-trip sample.
-        if (next_ < high_water)
-          resent_[next_] = true;
-        else
-          first_sent_[next_] = now();
+      // Karn: a frame sent more than once gives no round-trip sample.
+      if (next_ < high_water) {
+        if (next_ >= sent_base_ && next_ - sent_base_ < sent_.size())
+          sent_[next_ - sent_base_].resent = true;
+      } else {
+        if (sent_.empty()) sent_base_ = next_;
+        sent_.push_back(Sent{now(), false});
       }
       ++next_;
       high_water = std::max(high_water, next_);

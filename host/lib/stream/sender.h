@@ -11,8 +11,11 @@
 #include <string>      // std::string
 #include <vector>      // std::vector
 
+#include <deque>                         // std::deque
 #include "firmware/protocol/messages.h"  // proto::SessionReply, proto::StatusReply
 #include "firmware/protocol/parser.h"    // proto::Parser
+
+#include "host/lib/stream/command_source.h"
 #include "host/lib/stream/job_encoder.h"
 #include "host/lib/stream/link.h"
 
@@ -87,6 +90,9 @@ class Sender {
   // Sends every command and waits until they have run. on_progress is called at each status.
   JobOutcome run(const std::vector<QueuedCommand>& commands,
                  const std::function<void(const Progress&)>& on_progress);
+  // The same from a source the sender releases as the controller stores: it keeps only the
+  // window of unacknowledged commands and the 128 before it (EncodedJob streams a plan).
+  JobOutcome run(CommandSource& commands, const std::function<void(const Progress&)>& on_progress);
 
   // Requests from other threads or signal handlers; sent as real-time frames by run().
   void request_hold() { hold_requested_ = true; }
@@ -109,7 +115,8 @@ class Sender {
   void send_realtime(uint8_t letter, const std::vector<uint8_t>& payload);
   bool ensure_zeroed(const std::function<void(const Progress&)>& on_progress);
   void query_status();
-  bool spline_room(const std::vector<QueuedCommand>& commands) const;
+  bool spline_room() const;
+  void release_stored(CommandSource& commands);
   void sample_round_trip(size_t index);
   bool status_due(std::chrono::steady_clock::time_point last_poll) const;
   bool resume_may_act() const;
@@ -142,7 +149,7 @@ class Sender {
   std::chrono::steady_clock::time_point status_sent_;
 
   // The ordered stream of the current run().
-  const std::vector<QueuedCommand>* commands_ = nullptr;
+  CommandSource* commands_ = nullptr;
   uint8_t first_seq_ = 0;    // seq of commands[0]
   size_t base_ = 0;          // oldest command not yet acknowledged
   size_t next_ = 0;          // next command to (re)send
@@ -172,8 +179,14 @@ class Sender {
   // same one again (a second #R to a machine no longer held is refused, bad_state).
   bool resume_sent_ = false;
   bool status_before_resume_ = false;  // a #? asked before that #R is still to be answered
-  std::vector<std::chrono::steady_clock::time_point> first_sent_;  // per command (Karn)
-  std::vector<bool> resent_;
+  // Per command sent and not yet acknowledged, from command sent_base_ on (Karn): when it
+  // was first sent, and whether it was sent again.
+  struct Sent {
+    std::chrono::steady_clock::time_point first;
+    bool resent = false;
+  };
+  std::deque<Sent> sent_;
+  size_t sent_base_ = 0;
   size_t last_gap_expected_ = SIZE_MAX;  // the seq_gap we went back for, and when
   std::chrono::steady_clock::time_point last_gap_at_{};
 
