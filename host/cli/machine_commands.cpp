@@ -238,18 +238,17 @@ void run_send(const SendArgs& a) {
   // A map from a file is checked against the job before anything is sent.
   o.map = load_height_map(a.map);
   if (o.map) refuse_job_leaving_map(plan, *o.map, a.map.height_map);
-  const LinkSpec spec = parse_link_spec(a.to);  // LinkError -> usage error below
+  const std::string probe_map_path =
+      a.map.height_map.empty() ? default_map_path(".", input_name(a.plan.file)) : a.map.height_map;
+  if (a.map.probe) check_map_writable(probe_map_path);  // before anything moves
+  const LinkSpec spec = parse_link_spec(a.to);          // LinkError -> usage error below
   std::unique_ptr<Link> link = open_link(spec, std::chrono::milliseconds(5000));
   o.file = a.plan.file;
   o.sender.zero_first = !a.no_zero;
   o.sender.status_interval = std::chrono::milliseconds(a.poll_ms);
   o.encode = encode_options(a.plan);
   if (a.map.probe) {
-    const std::string path = a.map.height_map.empty()
-                                 ? default_map_path(".", input_name(a.plan.file))
-                                 : a.map.height_map;
-    check_map_writable(path);  // before anything moves
-    o.probe = [&, path](Sender& sender) {
+    o.probe = [&, path = probe_map_path](Sender& sender) {
       heightmap::HeightMap map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path);
       refuse_job_leaving_map(plan, map, path);
       return map;
@@ -395,8 +394,11 @@ commands::RunOptions run_options(const RunArgs& a, const JobPlan& plan,
   if (o.map) refuse_job_leaving_map(plan, *o.map, a.map.height_map);
   o.map_file = a.map.probe && a.map.height_map.empty() ? default_map_path(a.outdir, o.name)
                                                        : a.map.height_map;
-  if (a.map.probe) {
+  if (a.map.probe && o.surface) {  // without a blank, simulate_run refuses --probe
+    std::filesystem::create_directories(a.outdir);
     check_map_writable(o.map_file);
+  }
+  if (a.map.probe) {
     o.probe = [&a, &plan, path = o.map_file](Sender& sender) {
       heightmap::HeightMap map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path);
       refuse_job_leaving_map(plan, map, path);
