@@ -8,17 +8,18 @@
 
 #include <stdint.h>  // int32_t, uint16_t
 
-#include "firmware/app/axis_scaling.h"     // AxisScaling
-#include "firmware/app/command_queue.h"    // CommandQueue
-#include "firmware/app/coordinate_ring.h"  // CoordinateRing
-#include "firmware/app/dispatcher.h"       // Dispatcher, CommandSink
-#include "firmware/app/jog_controller.h"   // JogController
-#include "firmware/app/path_controller.h"  // PathController
-#include "firmware/app/planner.h"          // Planner
-#include "firmware/app/point_generator.h"  // PointGenerator
-#include "firmware/app/spline_store.h"     // SplineStore
-#include "firmware/app/status_screen.h"    // StatusScreen
-#include "firmware/app/tick_link.h"        // RequestRing, StatusRing
+#include "firmware/app/axis_scaling.h"      // AxisScaling
+#include "firmware/app/command_handlers.h"  // APP_DECLARE_COMMAND_HANDLERS
+#include "firmware/app/command_queue.h"     // CommandQueue
+#include "firmware/app/coordinate_ring.h"   // CoordinateRing
+#include "firmware/app/dispatcher.h"        // Dispatcher, CommandSink
+#include "firmware/app/jog_controller.h"    // JogController
+#include "firmware/app/path_controller.h"   // PathController
+#include "firmware/app/planner.h"           // Planner
+#include "firmware/app/point_generator.h"   // PointGenerator
+#include "firmware/app/spline_store.h"      // SplineStore
+#include "firmware/app/status_screen.h"     // StatusScreen
+#include "firmware/app/tick_link.h"         // RequestRing, StatusRing
 #include "firmware/config/machine_config.h"
 #include "firmware/core/height_map.h"  // HeightMap
 #include "hal/interfaces/link_clock.h"
@@ -145,37 +146,8 @@ class Application {
   proto::ErrorCode enqueue(const QueueItem& item);
   proto::ErrorCode motion_check(const int32_t* x_um, const int32_t* y_um,
                                 const int32_t* z_um) const;
-  template <typename Msg>
-  proto::ErrorCode dispatcher_handles(const Msg&, uint8_t, uint8_t*) {
-    return proto::ErrorCode::kUnknownCommand;  // #I and #? never reach the application
-  }
-  proto::ErrorCode on_text(const proto::TextCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_pause(const proto::PauseCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_dwell(const proto::DwellCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_spindle(const proto::SpindleCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_resolution(const proto::ResolutionCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_feed_move(const proto::FeedMoveCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_rapid_move(const proto::RapidMoveCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_z_move(const proto::ZMoveCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_drill(const proto::DrillCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_job_mark(const proto::JobMarkCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_zeroing(const proto::ZeroingCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_spline_header(const proto::SplineHeaderCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_spline_data(const proto::SplineDataCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_spline_compact(const proto::SplineCompactCmd& c, uint8_t seq,
-                                     uint8_t* detail);
-  proto::ErrorCode on_spline_contour(const proto::SplineContourCmd& c, uint8_t seq,
-                                     uint8_t* detail);
-  proto::ErrorCode on_hold(const proto::HoldCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_resume(const proto::ResumeCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_abort(const proto::AbortCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_override(const proto::OverrideCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_clear_alarm(const proto::ClearAlarmCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_probe(const proto::ProbeCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_height_map_header(const proto::HeightMapHeaderCmd& c, uint8_t seq,
-                                        uint8_t* detail);
-  proto::ErrorCode on_height_map_data(const proto::HeightMapDataCmd& c, uint8_t seq,
-                                      uint8_t* detail);
+  // One per command of the message table with a handler (command_handlers.h).
+  APP_DECLARE_COMMAND_HANDLERS()
   void watchdog();
   uint16_t link_ms() const;
   void update_screen();

@@ -9,24 +9,12 @@ namespace app {
 
 using proto::ErrorCode;
 
-// Decodes the frame as its table row's message and calls that row's handler.
+// Decodes the frame as its table row's message and calls that row's handler (#I, #? and #T
+// never come here: the dispatcher answers them).
 ErrorCode Application::handle(const proto::Frame& f, uint8_t* detail) {
   *detail = 0;
   switch (f.letter) {
-// NOLINTBEGIN(bugprone-macro-parentheses): Type is a type name, handler a member name.
-#define APP_HANDLE_CMD(Type, name, letter, kind, display, reply, handler, check) \
-  case proto::name: {                                                            \
-    proto::Type m;                                                               \
-    const ErrorCode e = proto::decode_frame(f, &m);                              \
-    if (e != ErrorCode::kOk) return e;                                           \
-    return handler(m, f.seq, detail);                                            \
-  }
-#define APP_HANDLE_SKIP(...)
-    // NOLINTEND(bugprone-macro-parentheses)
-    PROTO_MESSAGE_TABLE(APP_HANDLE_CMD, APP_HANDLE_SKIP, APP_HANDLE_SKIP, APP_HANDLE_SKIP,
-                        APP_HANDLE_SKIP, APP_HANDLE_SKIP)
-#undef APP_HANDLE_CMD
-#undef APP_HANDLE_SKIP
+    APP_HANDLE_COMMAND_CASES()
     default:
       return ErrorCode::kUnknownCommand;
   }
