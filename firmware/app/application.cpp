@@ -14,7 +14,8 @@ const uint16_t kProbeSettleMs = 20;  // after a touch, before the retract reads 
 }  // namespace
 
 Application::Application()
-    : ms_(0),
+    : spindle_(0),
+      link_clock_(0),
       seen_items_(0),
       item_tag_(0),
       items_stored_(0),
@@ -45,44 +46,11 @@ Application::Application()
       probe_result_(0),
       probe_count_(0),
       probing_(false) {
-  board_.link = 0;
-  board_.motion = 0;
-  board_.display = 0;
-  board_.inputs = 0;
-  board_.spindle = 0;
-  board_.link_clock = 0;
-  board_.probe = 0;
-  tick_.probe_hits = 0;
-  tick_.probe_first_z = 0;
-  tick_.probes_done = 0;
-  tick_.probe_result = 0;
-  tick_.probe_z_usteps = 0;
   map_rx_.points = 0;
   map_rx_.expected = 0;
   map_rx_.lowest = 0;
   map_rx_.highest = 0;
-  tick_.mode = (uint8_t)TickMode::kFollow;
-  tick_.alarm = kTickAlarmNone;
-  tick_.driver_check_ms = 0;
-  tick_.stops_done = 0;
-  tick_.jogs_done = 0;
-  tick_.jog_confirmed = 0;
-  tick_.requests_done = 0;
-  tick_.buttons = 0;
-  tick_.confirm_presses = 0;
-  tick_.stop_pending = false;
-  job_.next_index = 0;
-  job_.first_point = 0;
-  job_.next_id = 0;
-  job_.numbering = false;
-  job_.next_pending = false;
-  job_.valid = false;
-  job_.id = 0;
-  job_.index = 0;
-  job_.point = 0;
-  job_.started = false;
   for (uint8_t i = 0; i < config::kAxisCount; ++i) {
-    tick_.pos[i] = 0;
     latest_.pos_usteps[i] = 0;
     probe_at_um_[i] = 0;
   }
@@ -91,14 +59,14 @@ Application::Application()
 }
 
 void Application::init(const Board& board, const config::MachineConfig& cfg) {
-  board_ = board;
+  spindle_ = board.spindle;
+  link_clock_ = board.link_clock;
   cfg_ = cfg;
   if (!build_axis_scaling(cfg, *board.motion, &scaling_))
     app_alarm_ = proto::Alarm::kMotionChipFault;
   planner_.init(scaling_, default_planner_settings(cfg.capture_radius_um));
   planner_.set_height_map(&map_);
-  tick_.path.init(scaling_);
-  tick_.jog.init(scaling_);
+  tick_.init(scaling_, board.motion, board.inputs, board.probe);
   sink_.app_ = this;
   dispatcher_.init(board.link, &sink_);
   screen_.init(board.display);
@@ -106,185 +74,8 @@ void Application::init(const Board& board, const config::MachineConfig& cfg) {
     last_feed_um_s_ = (uint16_t)cfg.default_feed_um_per_s;
 }
 
-// ---------------------------------------------------------------- the 1 ms tick
-
 void Application::tick_1ms() {
-  ms_ = (uint16_t)(ms_ + 1U);
-  tick_take_requests();
-  int32_t pos[config::kAxisCount];
-  uint8_t limits = 0;
-  int16_t v[config::kAxisCount] = {0, 0, 0};
-  if (!board_.motion->read_actual_usteps(pos) || !board_.motion->read_limits(&limits)) {
-    for (uint8_t i = 0; i < config::kAxisCount; ++i) pos[i] = tick_.pos[i];
-    tick_latch_alarm(kTickAlarmChip);
-  }
-  tick_check_drivers();
-  // Confirm presses for #P count in follow mode only (while zeroing, confirm sets the zero).
-  const uint8_t buttons = board_.inputs->state();
-  const bool confirm_pressed =
-      (buttons & hal::kButtonConfirm) != 0 && (tick_.buttons & hal::kButtonConfirm) == 0;
-  tick_.buttons = buttons;
-  if (tick_.mode == (uint8_t)TickMode::kFollow) {
-    if (confirm_pressed) tick_.confirm_presses = (uint8_t)(tick_.confirm_presses + 1U);
-    const bool moving = !tick_.path.finished() || !tick_.path.at_rest() || !ring_.empty();
-    if (limits != 0 && moving) {
-      // A limit switch mid-job: zero velocities in this very tick, latch the alarm.
-      tick_latch_alarm(kTickAlarmLimit);
-    } else {
-      if (!tick_probe(pos)) tick_.path.tick(pos, &ring_, v);  // a touch: velocities stay 0
-      if (tick_.stop_pending && tick_.path.at_rest()) {
-        tick_.path.flush(&ring_);
-        tick_.path.set_hold(false);
-        tick_.stop_pending = false;
-        ++tick_.stops_done;
-      }
-    }
-  } else if (tick_.mode == (uint8_t)TickMode::kJog) {
-    tick_probe(pos);  // keeps the debounce current (no descent while jogging)
-    const JogResult r = tick_.jog.tick(buttons, limits, pos, v);
-    if (r != JogResult::kRunning) {
-      if (r == JogResult::kConfirmed) {
-        board_.motion->set_actual_usteps(tick_.jog.zero_usteps());
-        for (uint8_t i = 0; i < config::kAxisCount; ++i) pos[i] = tick_.jog.zero_usteps()[i];
-      }
-      tick_.jog_confirmed = r == JogResult::kConfirmed ? 1 : 0;
-      ++tick_.jogs_done;
-      tick_.path.flush(&ring_);  // the old target is meaningless in the new coordinates
-      tick_.mode = (uint8_t)TickMode::kFollow;
-    }
-  }
-  if (tick_.mode == (uint8_t)TickMode::kAlarm) {
-    for (uint8_t i = 0; i < config::kAxisCount; ++i) v[i] = 0;
-  }
-  board_.motion->write_velocity_units(v);
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) tick_.pos[i] = pos[i];
-  tick_publish(pos, limits);
-}
-
-// One step of the power drivers' status check every kDriverCheckEveryMs (at most one SPI
-// datagram; the blocking Tmc428::read_driver_status() can take ~70 ms and never runs here).
-// The probe input, debounced (kProbeDebounceTicks closed ticks in a row; the Z of the first is
-// the contact height, so it is latched within one tick of the touch). While the path follows
-// a probe descent (#Y): a contact drops the ring at once (the chip ramps Z to rest), reaching
-// the descent's end without one is "no contact". True when the path was stopped.
-bool Application::tick_probe(const int32_t pos[config::kAxisCount]) {
-  const bool raw = board_.probe != 0 && board_.probe->closed();
-  if (!raw) {
-    tick_.probe_hits = 0;
-  } else {
-    if (tick_.probe_hits == 0) tick_.probe_first_z = pos[config::kAxisZ];
-    if (tick_.probe_hits < 255U) ++tick_.probe_hits;
-  }
-  if (tick_.mode != (uint8_t)TickMode::kFollow || (tick_.path.current_flags() & kPointProbe) == 0)
-    return false;
-  if (tick_.probe_hits >= kProbeDebounceTicks) {
-    tick_.probe_result = 1;
-    tick_.probe_z_usteps = tick_.probe_first_z;
-  } else if (tick_.path.finished() && tick_.path.at_rest()) {
-    tick_.probe_result = 2;
-    tick_.probe_z_usteps = pos[config::kAxisZ];
-  } else {
-    return false;
-  }
-  tick_.probes_done = (uint8_t)(tick_.probes_done + 1U);
-  tick_.path.flush(&ring_);
-  return true;
-}
-
-void Application::tick_check_drivers() {
-  if (++tick_.driver_check_ms < kDriverCheckEveryMs) return;
-  tick_.driver_check_ms = 0;
-  const uint8_t c = board_.motion->poll_driver_check();
-  if (c == hal::kDriverCheckFault) {
-    tick_latch_alarm(kTickAlarmDriver);
-  } else if (c == hal::kDriverCheckUndervoltage) {
-    tick_latch_alarm(kTickAlarmPower);
-  }
-}
-
-void Application::tick_latch_alarm(uint8_t alarm) {
-  if (tick_.mode != (uint8_t)TickMode::kAlarm) tick_.alarm = alarm;
-  tick_.mode = (uint8_t)TickMode::kAlarm;
-  tick_.path.stop_now();
-}
-
-void Application::tick_take_requests() {
-  TickRequest r;
-  while (requests_.pop(&r)) {
-    ++tick_.requests_done;
-    switch (r.kind) {
-      case RequestKind::kHold:
-      case RequestKind::kLinkHold:
-        tick_.path.set_hold(true);
-        break;
-      case RequestKind::kResume:
-        tick_.path.set_hold(false);
-        break;
-      case RequestKind::kOverride:
-        tick_.path.set_override_percent(r.value);
-        break;
-      case RequestKind::kStop:
-        if (tick_.mode == (uint8_t)TickMode::kJog) {
-          tick_.jog_confirmed = 0;  // zeroing cancelled; the chip ramps the jog down
-          ++tick_.jogs_done;
-          tick_.mode = (uint8_t)TickMode::kFollow;
-        }
-        if (tick_.mode == (uint8_t)TickMode::kAlarm) {
-          tick_.path.flush(&ring_);  // already standing: drop at once, stay in alarm
-          ++tick_.stops_done;
-        } else {
-          tick_.path.set_hold(true);
-          tick_.stop_pending = true;
-        }
-        break;
-      case RequestKind::kStartJog:
-        if (tick_.mode == (uint8_t)TickMode::kFollow) {
-          tick_.path.flush(&ring_);
-          tick_.jog.start(r.value, board_.inputs->state());
-          tick_.mode = (uint8_t)TickMode::kJog;
-        }
-        break;
-      case RequestKind::kClearAlarm:
-        // Tick alarm or one raised by the background loop: either way start clean (the
-        // chip ramps down whatever was still moving) and report it as a completed stop.
-        if (tick_.mode == (uint8_t)TickMode::kAlarm) {
-          tick_.mode = (uint8_t)TickMode::kFollow;
-          tick_.alarm = kTickAlarmNone;
-        }
-        tick_.path.flush(&ring_);
-        tick_.path.set_hold(false);
-        tick_.stop_pending = false;
-        ++tick_.stops_done;
-        break;
-    }
-  }
-}
-
-void Application::tick_publish(const int32_t pos[config::kAxisCount], uint8_t limits) {
-  TickStatus s;
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) s.pos_usteps[i] = pos[i];
-  s.ms = ms_;
-  s.items_done = tick_.path.items_done();
-  s.item_points = tick_.path.item_points();
-  s.item_started = tick_.path.item_started() ? 1 : 0;
-  s.stopped_points = tick_.path.stopped_points();
-  s.stopped_started = tick_.path.stopped_started() ? 1 : 0;
-  s.speed_um_s = tick_.path.speed_um_s();
-  s.mode = tick_.mode;
-  s.alarm = tick_.alarm;
-  s.stops_done = tick_.stops_done;
-  s.jogs_done = tick_.jogs_done;
-  s.jog_confirmed = tick_.jog_confirmed;
-  s.requests_done = tick_.requests_done;
-  s.confirm_presses = tick_.confirm_presses;
-  s.z_mode = tick_.jog.z_mode() ? 1 : 0;
-  s.limits = limits;
-  s.holding = tick_.path.holding() ? 1 : 0;
-  s.at_rest = tick_.path.at_rest() ? 1 : 0;
-  s.finished = tick_.path.finished() && ring_.empty() ? 1 : 0;
-  s.probes_done = tick_.probes_done;
-  s.probe_closed = tick_.probe_hits >= kProbeDebounceTicks ? 1 : 0;
-  status_.push(s);  // full: the background loop is behind; the next one carries the counts
+  tick_.tick_1ms();
 }
 
 // ---------------------------------------------------------------- the background loop
@@ -298,7 +89,7 @@ void Application::poll() {
   if (dispatcher_.last_error() != shown_error_) {
     shown_error_ = dispatcher_.last_error();
     if (shown_error_ != proto::ErrorCode::kOk)
-      screen_.show_error(shown_error_, dispatcher_.next_expected(), ms_);
+      screen_.show_error(shown_error_, dispatcher_.next_expected(), tick_.ms());
   }
   execute();
   watchdog();
@@ -309,14 +100,14 @@ bool Application::request(RequestKind kind, uint8_t value) {
   TickRequest r;
   r.kind = kind;
   r.value = value;
-  if (!requests_.push(r)) return false;
+  if (!tick_.request(r)) return false;
   requests_pushed_ = (uint8_t)(requests_pushed_ + 1U);
   return true;
 }
 
 void Application::take_snapshots() {
   TickStatus s;
-  while (status_.pop(&s)) {
+  while (tick_.take_status(&s)) {
     latest_ = s;
     // Every request up to the #C one taken: the tick's alarm state is current again.
     if (alarm_clearing_ && (uint8_t)(s.requests_done - alarm_clear_mark_) < 128U)
@@ -343,7 +134,7 @@ void Application::follow_tick_events() {
       finish_oldest();
     }
     // A command cut short stays the first unfinished one (not the first one dropped).
-    if (track_job(true)) job_.next_pending = false;
+    job_.stop_completed(queue_, latest_);
     queue_.drop_executing();
     seen_stops_ = latest_.stops_done;
     if (!stop_request_owed_) stopping_ = false;
@@ -356,7 +147,7 @@ void Application::follow_tick_events() {
     ++seen_items_;
     finish_oldest();
   }
-  track_job(false);
+  job_.track(queue_, latest_, false);
   if (latest_.jogs_done != seen_jogs_) {
     seen_jogs_ = latest_.jogs_done;
     if (jog_active_) {
@@ -392,58 +183,13 @@ void Application::finish_oldest() {
   const QueueItem* item = queue_.oldest();
   if (item == 0 || queue_.in_flight() == 0) return;
   if (item->kind == ItemKind::kText)
-    screen_.show_text(item->text.row, item->text.chars, item->text.length, ms_);
+    screen_.show_text(item->text.row, item->text.chars, item->text.length, tick_.ms());
   if (!stopping_) {  // a dropped command finishing as the tick stops is not this session's
     last_executed_seq_ = item->seq;
     ++items_done_;
   }
-  if (item->job_index != kNotInJob) {
-    job_.index = item->job_index < PROTO_I32_MAX ? item->job_index + 1 : item->job_index;
-    job_.point = 0;
-    job_.id = item->job_id;
-    job_.started = false;
-  }
+  job_.finished(*item);
   queue_.finished();
-}
-
-// Job progress: the first job command not finished is the first numbered item in the queue
-// (un-numbered ones, a setup or a resume's lead-in, may run in front of it; later #J marks
-// number only what follows them). If it is the oldest item the tick works on it and says how
-// many of its curve points it reached. With no numbered item queued: the command a #J with
-// nothing after it (or a drop) named, else what the last finished command left.
-// stopped: the tick has dropped its ring (its stopped_ values are the final ones).
-// True when a numbered item is queued.
-bool Application::track_job(bool stopped) {
-  for (uint8_t i = 0; i < queue_.size(); ++i) {
-    const QueueItem* item = queue_.at(i);
-    if (item->job_index == kNotInJob) continue;
-    const uint16_t first = item->kind == ItemKind::kSpline ? item->spline.first_point : 0;
-    if (i != 0) {
-      report_job(item->job_index, first, item->job_id, false);
-      return true;
-    }
-    // After a stop only a command that was executing got anywhere.
-    const bool ticked = !stopped || queue_.in_flight() != 0;
-    const uint32_t point = (uint32_t)first + (!ticked   ? 0
-                                              : stopped ? latest_.stopped_points
-                                                        : latest_.item_points);
-    const bool started = ticked && (stopped ? latest_.stopped_started : latest_.item_started) != 0;
-    report_job(item->job_index, point > 0xFFFFUL ? 0xFFFFU : (uint16_t)point, item->job_id,
-               started);
-    return true;
-  }
-  if (job_.next_pending) report_job(job_.next_index, job_.first_point, job_.next_id, false);
-  return false;
-}
-
-// Sets the reported progress. The same command and point again (a resume's #J while its
-// lead-in runs) keeps "began to move": the tool was on its path when the job stopped.
-void Application::report_job(int32_t index, uint16_t point, uint16_t id, bool started) {
-  const bool same = index == job_.index && point == job_.point && id == job_.id;
-  job_.started = started || (same && job_.started);
-  job_.index = index;
-  job_.point = point;
-  job_.id = id;
 }
 
 // Forgets the queued work. What the tick has (points in the ring) stays in the queue until
@@ -455,16 +201,7 @@ void Application::drop_job() {
                       (partly->kind == ItemKind::kDrill && partly->stage > 0)))
     queue_.executed();
   // The first job command dropped unstarted follows the executing ones in the progress.
-  for (uint8_t i = queue_.in_flight(); i < queue_.size(); ++i) {
-    const QueueItem* item = queue_.at(i);
-    if (item->job_index == kNotInJob) continue;
-    job_.next_index = item->job_index;
-    job_.first_point = item->kind == ItemKind::kSpline ? item->spline.first_point : 0;
-    job_.next_id = item->job_id;
-    job_.next_pending = true;
-    break;
-  }
-  job_.numbering = false;  // until the next #J
+  job_.dropping(queue_);
   queue_.drop_waiting();
   store_.clear();
   generator_.stop();
@@ -478,7 +215,7 @@ void Application::drop_job() {
 
 void Application::set_spindle(bool on) {
   spindle_on_ = on;
-  if (board_.spindle != 0) board_.spindle->set_on(on);
+  if (spindle_ != 0) spindle_->set_on(on);
 }
 
 // Everything handed to the tick is done and the axes stand still.
@@ -589,9 +326,7 @@ void Application::fill_status(proto::StatusReply* r) {
   r->alarm = alarm();
   r->flags =
       (uint8_t)((zeroed_ ? proto::kStatusZeroed : 0) | (link_hold_ ? proto::kStatusLinkHold : 0) |
-                (items_done_ != 0 ? proto::kStatusExecuted : 0) |
-                (job_.valid ? proto::kStatusJob : 0) |
-                (job_.valid && job_.started ? proto::kStatusJobStarted : 0));
+                (items_done_ != 0 ? proto::kStatusExecuted : 0) | job_.status_flags());
   r->override_percent = override_percent_;
   r->queue_free = queue_free();
   r->next_expected_seq = 0;  // filled by the dispatcher
@@ -604,9 +339,7 @@ void Application::fill_status(proto::StatusReply* r) {
   r->z_um = at[2];
   r->rejected_frames = 0;
   r->spline_slots_free = spline_slots_free();
-  r->job_index = job_.valid ? job_.index : 0;
-  r->curve_point = job_.valid ? job_.point : 0;
-  r->job_id = job_.valid ? job_.id : 0;
+  job_.fill_status(r);
 }
 
 uint8_t Application::spline_slots_free() {
@@ -650,7 +383,7 @@ void Application::execute() {
 
 bool Application::push_point(const int32_t target[config::kAxisCount], uint16_t feed,
                              uint8_t flags) {
-  return planner_.push(&ring_, target, feed, flags, item_tag_);
+  return planner_.push(tick_.ring(), target, feed, flags, item_tag_);
 }
 
 // True when the item is fully handed over (its last ring entry flagged end-of-item).
@@ -756,7 +489,7 @@ bool Application::execute_item(QueueItem* item) {
         last_feed_um_s_ = item->spline.feed_um_s;
       }
       const int32_t travel[2] = {scaling_.travel_um[0], scaling_.travel_um[1]};
-      const GenStatus g = generator_.run(&planner_, &ring_, travel, kPointsPerPoll);
+      const GenStatus g = generator_.run(&planner_, tick_.ring(), travel, kPointsPerPoll);
       if (g == GenStatus::kMore) return false;
       spline_started_ = false;
       store_.release(slot);
@@ -818,7 +551,7 @@ bool Application::execute_probe(QueueItem* item) {
   int32_t at[config::kAxisCount];
   if (item->stage == 0) {
     if (!standing_still()) return false;
-    if (board_.probe == 0) {
+    if (!tick_.has_probe()) {
       raise_alarm(proto::Alarm::kProbeMissing);
       return false;
     }
@@ -839,15 +572,16 @@ bool Application::execute_probe(QueueItem* item) {
     const int32_t* m = planner_.machine_um();
     const int32_t target[config::kAxisCount] = {m[0], m[1], p.z_limit_um};
     p.seen_probes = latest_.probes_done;
-    if (!planner_.push_machine(&ring_, target, p.feed_um_s, kPointProbe, item_tag_)) return false;
+    if (!planner_.push_machine(tick_.ring(), target, p.feed_um_s, kPointProbe, item_tag_))
+      return false;
     probing_ = true;
     item->stage = 1;
   }
   if (item->stage == 1) {
     if (latest_.probes_done == p.seen_probes) return false;
     position_um(at);
-    const uint8_t result = tick_.probe_result;  // handed over in TickOwned (application.h)
-    at[config::kAxisZ] = usteps_to_um(scaling_, config::kAxisZ, tick_.probe_z_usteps);
+    const uint8_t result = tick_.probe_result();  // handed over in ProbeWatch (motion_tick.h)
+    at[config::kAxisZ] = usteps_to_um(scaling_, config::kAxisZ, tick_.probe_z_usteps());
     note_probe(result, at);
     if (result != 1) {
       probing_ = false;
@@ -866,7 +600,8 @@ bool Application::execute_probe(QueueItem* item) {
   }
   const int32_t* m = planner_.machine_um();
   const int32_t up[config::kAxisCount] = {m[0], m[1], probe_at_um_[config::kAxisZ] + p.retract_um};
-  if (!planner_.push_machine(&ring_, up, rapid_feed(), kPointEndOfItem, item_tag_)) return false;
+  if (!planner_.push_machine(tick_.ring(), up, rapid_feed(), kPointEndOfItem, item_tag_))
+    return false;
   probing_ = false;
   return true;
 }
@@ -890,7 +625,7 @@ void Application::watchdog() {
 
 // The link's time-outs count the board's link clock, else the tick (link_clock.h).
 uint16_t Application::link_ms() const {
-  return board_.link_clock != 0 ? board_.link_clock->link_ms() : ms_;
+  return link_clock_ != 0 ? link_clock_->link_ms() : tick_.ms();
 }
 
 void Application::update_screen() {
@@ -905,7 +640,7 @@ void Application::update_screen() {
   info.items_done = items_done_;
   info.items_stored = items_stored_;
   position_um(info.pos_um);
-  screen_.update(info, ms_);
+  screen_.update(info, tick_.ms());
 }
 
 }  // namespace app

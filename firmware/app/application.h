@@ -11,15 +11,14 @@
 #include "firmware/app/axis_scaling.h"      // AxisScaling
 #include "firmware/app/command_handlers.h"  // APP_DECLARE_COMMAND_HANDLERS
 #include "firmware/app/command_queue.h"     // CommandQueue
-#include "firmware/app/coordinate_ring.h"   // CoordinateRing
 #include "firmware/app/dispatcher.h"        // Dispatcher, CommandSink
-#include "firmware/app/jog_controller.h"    // JogController
-#include "firmware/app/path_controller.h"   // PathController
+#include "firmware/app/job_progress.h"      // JobProgress
+#include "firmware/app/motion_tick.h"       // MotionTick
 #include "firmware/app/planner.h"           // Planner
 #include "firmware/app/point_generator.h"   // PointGenerator
 #include "firmware/app/spline_store.h"      // SplineStore
 #include "firmware/app/status_screen.h"     // StatusScreen
-#include "firmware/app/tick_link.h"         // RequestRing, StatusRing
+#include "firmware/app/tick_link.h"         // TickStatus, RequestKind
 #include "firmware/config/machine_config.h"
 #include "firmware/core/height_map.h"  // HeightMap
 #include "hal/interfaces/link_clock.h"
@@ -93,11 +92,11 @@ class Application {
   uint16_t items_stored() const { return items_stored_; }
   uint16_t items_done() const { return items_done_; }
   uint8_t queue_size() const { return queue_.size(); }
-  uint16_t ms() const { return ms_; }
+  uint16_t ms() const { return tick_.ms(); }
   const Dispatcher& dispatcher() const { return dispatcher_; }
   const StatusScreen& screen() const { return screen_; }
   const AxisScaling& scaling() const { return scaling_; }
-  const PathController& path() const { return tick_.path; }
+  const PathController& path() const { return tick_.path(); }
   // The height map the planner follows (#A/#E), and the probe input as the tick debounced it.
   const core::HeightMap& height_map() const { return map_; }
   bool probe_closed() const { return latest_.probe_closed != 0; }
@@ -113,13 +112,6 @@ class Application {
   void fill_probe_result(proto::ProbeResultReply* reply);
 
  private:
-  // Tick side.
-  bool tick_probe(const int32_t pos[config::kAxisCount]);
-  void tick_take_requests();
-  void tick_check_drivers();
-  void tick_latch_alarm(uint8_t alarm);
-  void tick_publish(const int32_t pos[config::kAxisCount], uint8_t limits);
-  // Background side.
   bool request(RequestKind kind, uint8_t value);
   void take_snapshots();
   void follow_tick_events();
@@ -151,47 +143,16 @@ class Application {
   void watchdog();
   uint16_t link_ms() const;
   void update_screen();
-  bool track_job(bool stopped);
-  void report_job(int32_t index, uint16_t point, uint16_t id, bool started);
 
-  Board board_;
+  hal::Spindle* spindle_;       // 0: none (Board)
+  hal::LinkClock* link_clock_;  // 0: the tick counts the link's time-outs (Board)
   ApplicationSink sink_;
   config::MachineConfig cfg_;
   AxisScaling scaling_;
 
-  // Shared between the tick and the background loop (SPSC only).
-  CoordinateRing ring_;
-  RequestRing requests_;
-  StatusRing status_;
-  volatile uint16_t ms_;  // written by the tick only
-
-  // Owned by the 1 ms tick (the timer ISR on the target): only tick_1ms() and the tick_*
-  // helpers touch these; the background loop sees them through the StatusRing snapshots.
-  struct TickOwned {
-    PathController path;
-    JogController jog;
-    int32_t pos[config::kAxisCount];
-    uint8_t mode;  // TickMode
-    uint8_t alarm;
-    uint8_t driver_check_ms;  // ms since the last poll_driver_check() step
-    uint8_t stops_done;
-    uint8_t jogs_done;
-    uint8_t jog_confirmed;
-    uint8_t requests_done;
-    uint8_t buttons;          // panel state seen by the previous tick
-    uint8_t confirm_presses;  // confirm button presses (wraps), for #P
-    bool stop_pending;
-    uint8_t probe_hits;     // ticks the probe input has read closed in a row (saturates)
-    int32_t probe_first_z;  // Z (usteps) at the first of them
-    uint8_t probes_done;    // probe descents ended
-    // The last descent's result (1 contact, 2 no contact) and Z (the first closed tick's, or
-    // where it ended): written before the snapshot that carries the new probes_done, read by
-    // the background loop only once it saw that count; the next descent, which would write
-    // them again, is the background's own to hand over. (Not in every snapshot: RAM.)
-    volatile uint8_t probe_result;
-    volatile int32_t probe_z_usteps;
-  };
-  TickOwned tick_;
+  // The 1 ms tick (timer ISR on the target) and the channels it shares with the background
+  // loop (SPSC only): tick_1ms() is its only caller.
+  MotionTick tick_;
 
   // Owned by the background loop (poll() and everything it calls, the command handlers
   // included); the tick never reads these.
@@ -246,24 +207,7 @@ class Application {
   int32_t probe_at_um_[config::kAxisCount];
   bool probing_;  // a #Y is under way (the LCD says so)
 
-  // Job progress for the status (resume after a lost link or an abort): the first job
-  // command that has not finished, whatever #J marks are queued behind it; kept through #I,
-  // #X and alarms until the job moves on. Background loop only; the tick's part comes by
-  // snapshot.
-  struct JobProgress {
-    // The next job command not stored yet: the index and first point the next stored command
-    // gets while numbering (a #J sets them), or, after a drop, the first dropped one.
-    int32_t next_index;
-    uint16_t first_point;
-    uint16_t next_id;   // the job_id of that #J
-    bool numbering;     // a #J was stored in this session: stored commands get numbers
-    bool next_pending;  // nothing is stored for next_index yet (a #J with nothing after it)
-    bool valid;         // a #J was stored since power-up: index/point mean something
-    uint16_t id;        // the reported command's job (its #J's job_id)
-    int32_t index;      // first job command not finished
-    uint16_t point;     // curve point the tool heads for in it (points before reached)
-    bool started;       // that command began to move (through a resume's lead-in: it had)
-  };
+  // Job progress for the status (job_progress.h).
   JobProgress job_;
 };
 

@@ -46,32 +46,17 @@ QueueItem Application::new_item(ItemKind kind, uint8_t seq) {
 // Stores the item; after a #J it gets the next job index (and a spline the mark's first point).
 ErrorCode Application::enqueue(const QueueItem& item) {
   QueueItem numbered = item;
-  if (job_.numbering) {
-    numbered.job_index = job_.next_index;
-    numbered.job_id = job_.next_id;
-    if (numbered.kind == ItemKind::kSpline) numbered.spline.first_point = job_.first_point;
-  }
+  job_.number(&numbered);
   if (!queue_.push(numbered)) return ErrorCode::kBusy;
   ++items_stored_;
-  if (job_.numbering) {
-    job_.next_index = job_.next_index < PROTO_I32_MAX ? job_.next_index + 1 : job_.next_index;
-    job_.first_point = 0;  // the mark's first point applies to the command right after it
-    job_.next_pending = false;
-  }
+  job_.stored();
   return ErrorCode::kOk;
 }
 
-// Numbers the commands that follow (not #D, not #J): job_index, job_index + 1, ... The
-// progress in the status moves there once everything queued before the mark has finished
-// (a new job, or the resumed part of an old one).
+// Numbers the commands that follow (job_progress.h).
 ErrorCode Application::on_job_mark(const proto::JobMarkCmd& c, uint8_t, uint8_t*) {
-  job_.numbering = true;
-  job_.next_index = c.job_index;
-  job_.first_point = c.first_point;
-  job_.next_id = c.job_id;
-  job_.next_pending = true;
-  job_.valid = true;
-  track_job(false);
+  job_.mark(c);
+  job_.track(queue_, latest_, false);
   return ErrorCode::kOk;
 }
 
