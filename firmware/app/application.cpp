@@ -67,8 +67,7 @@ void Application::init(const Board& board, const config::MachineConfig& cfg) {
   planner_.init(scaling_, default_planner_settings(cfg.capture_radius_um));
   planner_.set_height_map(&map_);
   tick_.init(scaling_, board.motion, board.inputs, board.probe);
-  sink_.app_ = this;
-  dispatcher_.init(board.link, &sink_);
+  dispatcher_.init(board.link, this);
   screen_.init(board.display);
   if (cfg.default_feed_um_per_s > 0 && cfg.default_feed_um_per_s < 65536UL)
     last_feed_um_s_ = (uint16_t)cfg.default_feed_um_per_s;
@@ -280,32 +279,6 @@ bool Application::motion_allowed() const {
 }
 
 // ---------------------------------------------------------------- CommandSink
-
-proto::ErrorCode ApplicationSink::store(const proto::Frame& frame, uint8_t* detail) {
-  return app_->store(frame, detail);
-}
-proto::ErrorCode ApplicationSink::realtime(const proto::Frame& frame) {
-  return app_->realtime(frame);
-}
-void ApplicationSink::reset_session() {
-  app_->reset_session();
-}
-void ApplicationSink::fill_status(proto::StatusReply* reply) {
-  app_->fill_status(reply);
-}
-uint8_t ApplicationSink::queue_free() {
-  return app_->queue_free();
-}
-uint8_t ApplicationSink::spline_slots_free() {
-  return app_->spline_slots_free();
-}
-void ApplicationSink::fill_session(proto::SessionReply* reply) {
-  app_->fill_session(reply);
-}
-
-void ApplicationSink::fill_probe_result(proto::ProbeResultReply* reply) {
-  app_->fill_probe_result(reply);
-}
 
 void Application::fill_probe_result(proto::ProbeResultReply* r) {
   r->result = probe_result_;

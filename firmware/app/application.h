@@ -42,36 +42,14 @@ struct Board {
   hal::ProbeInput* probe;  // 0 on a machine without a probe input (#Y: alarm 11)
 };
 
-class Application;
-
-// The dispatcher's view of the application (forwards to it). A member, never deleted through
-// a base pointer, so its non-virtual destructor is fine (the warning is silenced for it).
+// The dispatcher's view of the application is the application itself (a private CommandSink:
+// the dispatcher calls the public members below). Never deleted through a base pointer, so
+// its non-virtual destructor is fine (the warning is silenced for it).
 #if defined(__GNUC__) && __GNUC__ >= 5
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wnon-virtual-dtor"
 #endif
-class ApplicationSink : public CommandSink {
- public:
-  proto::ErrorCode store(const proto::Frame& frame, uint8_t* detail);
-  proto::ErrorCode realtime(const proto::Frame& frame);
-  void reset_session();
-  void fill_status(proto::StatusReply* reply);
-  uint8_t queue_free();
-  uint8_t spline_slots_free();
-  void fill_session(proto::SessionReply* reply);
-  void fill_probe_result(proto::ProbeResultReply* reply);
-
- private:
-  friend class Application;
-  ApplicationSink() : app_(0) {}
-  ~ApplicationSink() {}
-  Application* app_;
-};
-#if defined(__GNUC__) && __GNUC__ >= 5
-#pragma GCC diagnostic pop
-#endif
-
-class Application {
+class Application : private CommandSink {
  public:
   Application();
   void init(const Board& board, const config::MachineConfig& cfg);
@@ -101,7 +79,7 @@ class Application {
   const core::HeightMap& height_map() const { return map_; }
   bool probe_closed() const { return latest_.probe_closed != 0; }
 
-  // What the dispatcher calls (through ApplicationSink) from poll().
+  // What the dispatcher calls (as its CommandSink) from poll().
   proto::ErrorCode store(const proto::Frame& frame, uint8_t* detail);
   proto::ErrorCode realtime(const proto::Frame& frame);
   void reset_session();
@@ -146,7 +124,6 @@ class Application {
 
   hal::Spindle* spindle_;       // 0: none (Board)
   hal::LinkClock* link_clock_;  // 0: the tick counts the link's time-outs (Board)
-  ApplicationSink sink_;
   config::MachineConfig cfg_;
   AxisScaling scaling_;
 
@@ -210,6 +187,9 @@ class Application {
   // Job progress for the status (job_progress.h).
   JobProgress job_;
 };
+#if defined(__GNUC__) && __GNUC__ >= 5
+#pragma GCC diagnostic pop
+#endif
 
 }  // namespace app
 
