@@ -16,18 +16,14 @@ const uint16_t kProbeSettleMs = 20;  // after a touch, before the retract reads 
 Application::Application()
     : spindle_(0),
       link_clock_(0),
-      seen_items_(0),
       item_tag_(0),
       items_stored_(0),
       items_done_(0),
       last_feed_um_s_(1000),
-      seen_stops_(0),
-      seen_jogs_(0),
       last_executed_seq_(0),
       override_percent_(100),
       app_alarm_(proto::Alarm::kNone),
       reported_alarm_(proto::Alarm::kNone),
-      have_snapshot_(false),
       stopping_(false),
       stop_request_owed_(false),
       jog_active_(false),
@@ -35,9 +31,6 @@ Application::Application()
       hold_requested_(false),
       link_hold_(false),
       spline_started_(false),
-      alarm_clearing_(false),
-      alarm_clear_mark_(0),
-      requests_pushed_(0),
       pause_presses_(0),
       wait_start_ms_(0),
       paused_(false),
@@ -51,11 +44,8 @@ Application::Application()
   map_rx_.lowest = 0;
   map_rx_.highest = 0;
   for (uint8_t i = 0; i < config::kAxisCount; ++i) {
-    latest_.pos_usteps[i] = 0;
     probe_at_um_[i] = 0;
   }
-  latest_.probe_closed = 0;
-  latest_.probes_done = 0;
 }
 
 void Application::init(const Board& board, const config::MachineConfig& cfg) {
@@ -81,7 +71,7 @@ void Application::tick_1ms() {
 
 void Application::poll() {
   take_snapshots();
-  if (!have_snapshot_) return;  // the tick has not run yet: positions unknown
+  if (!follower_.have_snapshot()) return;  // the tick has not run yet: positions unknown
   follow_tick_events();
   if (stop_request_owed_ && request(RequestKind::kStop, 0)) stop_request_owed_ = false;
   dispatcher_.poll(link_ms());
@@ -96,26 +86,13 @@ void Application::poll() {
 }
 
 bool Application::request(RequestKind kind, uint8_t value) {
-  TickRequest r;
-  r.kind = kind;
-  r.value = value;
-  if (!tick_.request(r)) return false;
-  requests_pushed_ = (uint8_t)(requests_pushed_ + 1U);
-  return true;
+  return follower_.request(&tick_, kind, value);
 }
 
 void Application::take_snapshots() {
-  TickStatus s;
-  while (tick_.take_status(&s)) {
-    latest_ = s;
-    // Every request up to the #C one taken: the tick's alarm state is current again.
-    if (alarm_clearing_ && (uint8_t)(s.requests_done - alarm_clear_mark_) < 128U)
-      alarm_clearing_ = false;
-    if (!have_snapshot_) {
-      have_snapshot_ = true;
-      seen_items_ = s.items_done;
-      seen_stops_ = s.stops_done;
-      seen_jogs_ = s.jogs_done;
+  bool first = false;
+  while (follower_.take(&tick_, &first)) {
+    if (first) {
       int32_t at[config::kAxisCount];
       position_um(at);
       planner_.set_origin(at);
@@ -127,28 +104,20 @@ void Application::follow_tick_events() {
   // A completed stop (abort, session reset, alarm cleared): the ring is gone. What the tick
   // finished while it decelerated along the path counts; then the commands that were
   // executing are forgotten, with where the one cut short got to.
-  if (latest_.stops_done != seen_stops_) {
-    while (seen_items_ != latest_.items_done) {
-      ++seen_items_;
-      finish_oldest();
-    }
+  if (follower_.stop_completed()) {
+    while (follower_.item_finished()) finish_oldest();
     // A command cut short stays the first unfinished one (not the first one dropped).
-    job_.stop_completed(queue_, latest_);
+    job_.stop_completed(queue_, follower_.latest());
     queue_.drop_executing();
-    seen_stops_ = latest_.stops_done;
     if (!stop_request_owed_) stopping_ = false;
     int32_t at[config::kAxisCount];
     position_um(at);
     planner_.set_origin(at);
   }
   // Also while a stop is under way: the tick may still finish commands as it decelerates.
-  while (seen_items_ != latest_.items_done) {
-    ++seen_items_;
-    finish_oldest();
-  }
-  job_.track(queue_, latest_, false);
-  if (latest_.jogs_done != seen_jogs_) {
-    seen_jogs_ = latest_.jogs_done;
+  while (follower_.item_finished()) finish_oldest();
+  job_.track(queue_, follower_.latest(), false);
+  if (follower_.jog_ended()) {
     if (jog_active_) {
       jog_active_ = false;
       QueueItem* item = queue_.to_execute();
@@ -156,7 +125,7 @@ void Application::follow_tick_events() {
         queue_.executed();
         finish_oldest();
       }
-      if (latest_.jog_confirmed) zeroed_ = true;
+      if (follower_.latest().jog_confirmed) zeroed_ = true;
       int32_t at[config::kAxisCount];
       position_um(at);
       planner_.set_origin(at);
@@ -219,7 +188,7 @@ void Application::set_spindle(bool on) {
 
 // Everything handed to the tick is done and the axes stand still.
 bool Application::standing_still() const {
-  return queue_.in_flight() == 0 && latest_.finished && latest_.at_rest;
+  return queue_.in_flight() == 0 && follower_.latest().finished && follower_.latest().at_rest;
 }
 
 // Asks the tick to decelerate and drop the ring; the background waits for it to finish.
@@ -241,26 +210,25 @@ bool Application::alarm_active() const {
 }
 
 proto::Alarm Application::alarm() const {
-  if (!alarm_clearing_ && latest_.mode == (uint8_t)TickMode::kAlarm &&
-      latest_.alarm != kTickAlarmNone)
-    return (proto::Alarm)latest_.alarm;
-  return app_alarm_;
+  const proto::Alarm latched = follower_.tick_alarm();
+  return latched != proto::Alarm::kNone ? latched : app_alarm_;
 }
 
 proto::MachineState Application::state() const {
   if (alarm_active()) return proto::MachineState::kAlarm;
-  if (jog_active_ || latest_.mode == (uint8_t)TickMode::kJog) return proto::MachineState::kZeroing;
+  if (jog_active_ || follower_.latest().mode == (uint8_t)TickMode::kJog)
+    return proto::MachineState::kZeroing;
   if (paused_) return proto::MachineState::kPaused;
   if (hold_requested_)
-    return latest_.at_rest ? proto::MachineState::kHeld : proto::MachineState::kHolding;
-  if (stopping_ || !queue_.empty() || !latest_.finished || !latest_.at_rest)
+    return follower_.latest().at_rest ? proto::MachineState::kHeld : proto::MachineState::kHolding;
+  if (stopping_ || !queue_.empty() || !follower_.latest().finished || !follower_.latest().at_rest)
     return proto::MachineState::kRunning;
   return proto::MachineState::kIdle;
 }
 
 void Application::position_um(int32_t out[config::kAxisCount]) const {
   for (uint8_t i = 0; i < config::kAxisCount; ++i)
-    out[i] = usteps_to_um(scaling_, i, latest_.pos_usteps[i]);
+    out[i] = usteps_to_um(scaling_, i, follower_.latest().pos_usteps[i]);
 }
 
 bool Application::inside_travel(uint8_t axis, int32_t um) const {
@@ -391,12 +359,12 @@ bool Application::execute_item(QueueItem* item) {
       if (item->stage == 0) {
         if (!standing_still()) return false;
         screen_.show_pause(item->text.chars, item->text.length);
-        pause_presses_ = latest_.confirm_presses;
+        pause_presses_ = follower_.latest().confirm_presses;
         paused_ = true;
         item->stage = 1;
       }
       if (item->stage == 1) {
-        if (latest_.confirm_presses == pause_presses_) return false;
+        if (follower_.latest().confirm_presses == pause_presses_) return false;
         paused_ = false;
         item->stage = 2;
       }
@@ -404,11 +372,11 @@ bool Application::execute_item(QueueItem* item) {
     case ItemKind::kDwell:
       if (item->stage == 0) {
         if (!standing_still()) return false;
-        wait_start_ms_ = latest_.ms;
+        wait_start_ms_ = follower_.latest().ms;
         item->stage = 1;
       }
       if (item->stage == 1) {
-        if ((uint16_t)(latest_.ms - wait_start_ms_) < item->dwell.dwell_ms) return false;
+        if ((uint16_t)(follower_.latest().ms - wait_start_ms_) < item->dwell.dwell_ms) return false;
         item->stage = 2;
       }
       return push_point(target, last_feed_um_s_, kPointEndOfItem);
@@ -532,7 +500,7 @@ bool Application::execute_probe(QueueItem* item) {
       raise_alarm(proto::Alarm::kProbeSpindleOn);
       return false;
     }
-    if (latest_.probe_closed) {
+    if (follower_.latest().probe_closed) {
       raise_alarm(proto::Alarm::kProbeClosedAtStart);
       return false;
     }
@@ -544,14 +512,14 @@ bool Application::execute_probe(QueueItem* item) {
     }
     const int32_t* m = planner_.machine_um();
     const int32_t target[config::kAxisCount] = {m[0], m[1], p.z_limit_um};
-    p.seen_probes = latest_.probes_done;
+    p.seen_probes = follower_.latest().probes_done;
     if (!planner_.push_machine(tick_.ring(), target, p.feed_um_s, kPointProbe, item_tag_))
       return false;
     probing_ = true;
     item->stage = 1;
   }
   if (item->stage == 1) {
-    if (latest_.probes_done == p.seen_probes) return false;
+    if (follower_.latest().probes_done == p.seen_probes) return false;
     position_um(at);
     const uint8_t result = tick_.probe_result();  // handed over in ProbeWatch (motion_tick.h)
     at[config::kAxisZ] = usteps_to_um(scaling_, config::kAxisZ, tick_.probe_z_usteps());
@@ -561,12 +529,12 @@ bool Application::execute_probe(QueueItem* item) {
       raise_alarm(proto::Alarm::kProbeNoContact);
       return false;
     }
-    wait_start_ms_ = latest_.ms;
+    wait_start_ms_ = follower_.latest().ms;
     item->stage = 2;
   }
   if (item->stage == 2) {
     // The tick dropped the descent; the chip ramps Z down from the probe feed meanwhile.
-    if ((uint16_t)(latest_.ms - wait_start_ms_) < kProbeSettleMs) return false;
+    if ((uint16_t)(follower_.latest().ms - wait_start_ms_) < kProbeSettleMs) return false;
     position_um(at);
     planner_.set_origin(at);
     item->stage = 3;
@@ -606,10 +574,10 @@ void Application::update_screen() {
   info.state = state();
   info.alarm = alarm();
   info.zeroed = zeroed_;
-  info.z_mode = latest_.z_mode != 0;  // the tick's jog state, through its snapshot
+  info.z_mode = follower_.latest().z_mode != 0;  // the tick's jog state, through its snapshot
   info.paused = paused_;
   info.probing = probing_;
-  info.probe_closed = latest_.probe_closed != 0;
+  info.probe_closed = follower_.latest().probe_closed != 0;
   info.items_done = items_done_;
   info.items_stored = items_stored_;
   position_um(info.pos_um);

@@ -18,6 +18,7 @@
 #include "firmware/app/point_generator.h"   // PointGenerator
 #include "firmware/app/spline_store.h"      // SplineStore
 #include "firmware/app/status_screen.h"     // StatusScreen
+#include "firmware/app/tick_follower.h"     // TickFollower
 #include "firmware/app/tick_link.h"         // TickStatus, RequestKind
 #include "firmware/config/machine_config.h"
 #include "firmware/core/height_map.h"  // HeightMap
@@ -77,7 +78,7 @@ class Application : private CommandSink {
   const PathController& path() const { return tick_.path(); }
   // The height map the planner follows (#A/#E), and the probe input as the tick debounced it.
   const core::HeightMap& height_map() const { return map_; }
-  bool probe_closed() const { return latest_.probe_closed != 0; }
+  bool probe_closed() const { return follower_.latest().probe_closed != 0; }
 
   // What the dispatcher calls (as its CommandSink) from poll().
   proto::ErrorCode store(const proto::Frame& frame, uint8_t* detail);
@@ -139,19 +140,15 @@ class Application : private CommandSink {
   Planner planner_;
   PointGenerator generator_;
   StatusScreen screen_;
-  TickStatus latest_;
-  uint16_t seen_items_;
+  TickFollower follower_;  // requests to the tick, its snapshots and events
   uint16_t item_tag_;
   uint16_t items_stored_;
   uint16_t items_done_;
   uint16_t last_feed_um_s_;
-  uint8_t seen_stops_;
-  uint8_t seen_jogs_;
   uint8_t last_executed_seq_;
   uint8_t override_percent_;
   proto::Alarm app_alarm_;
   proto::Alarm reported_alarm_;
-  bool have_snapshot_;
   bool stopping_;
   bool stop_request_owed_;
   bool jog_active_;
@@ -159,9 +156,6 @@ class Application : private CommandSink {
   bool hold_requested_;
   bool link_hold_;
   bool spline_started_;
-  bool alarm_clearing_;       // #C sent, the tick has not taken it yet
-  uint8_t alarm_clear_mark_;  // requests_pushed_ when #C was sent
-  uint8_t requests_pushed_;
   uint8_t pause_presses_;   // confirm_presses when the pause started
   uint16_t wait_start_ms_;  // tick ms when the dwell started
   bool paused_;             // a #P waits for the operator

@@ -56,7 +56,7 @@ ErrorCode Application::enqueue(const QueueItem& item) {
 // Numbers the commands that follow (job_progress.h).
 ErrorCode Application::on_job_mark(const proto::JobMarkCmd& c, uint8_t, uint8_t*) {
   job_.mark(c);
-  job_.track(queue_, latest_, false);
+  job_.track(queue_, follower_.latest(), false);
   return ErrorCode::kOk;
 }
 
@@ -297,8 +297,7 @@ ErrorCode Application::on_clear_alarm(const proto::ClearAlarmCmd&, uint8_t, uint
   hold_requested_ = false;
   link_hold_ = false;
   // Snapshots taken before the tick saw the request still show the latched alarm.
-  alarm_clearing_ = true;
-  alarm_clear_mark_ = requests_pushed_;
+  follower_.alarm_clear_sent();
   reported_alarm_ = proto::Alarm::kNone;
   return ErrorCode::kOk;
 }
