@@ -22,14 +22,8 @@ Application::Application()
       last_feed_um_s_(1000),
       last_executed_seq_(0),
       override_percent_(100),
-      app_alarm_(proto::Alarm::kNone),
-      reported_alarm_(proto::Alarm::kNone),
-      stopping_(false),
-      stop_request_owed_(false),
       jog_active_(false),
       zeroed_(false),
-      hold_requested_(false),
-      link_hold_(false),
       spline_started_(false),
       pause_presses_(0),
       wait_start_ms_(0),
@@ -53,7 +47,7 @@ void Application::init(const Board& board, const config::MachineConfig& cfg) {
   link_clock_ = board.link_clock;
   cfg_ = cfg;
   if (!build_axis_scaling(cfg, *board.motion, &scaling_))
-    app_alarm_ = proto::Alarm::kMotionChipFault;
+    stops_.raise(proto::Alarm::kMotionChipFault);
   planner_.init(scaling_, default_planner_settings(cfg.capture_radius_um));
   planner_.set_height_map(&map_);
   tick_.init(scaling_, board.motion, board.inputs, board.probe);
@@ -73,7 +67,7 @@ void Application::poll() {
   take_snapshots();
   if (!follower_.have_snapshot()) return;  // the tick has not run yet: positions unknown
   follow_tick_events();
-  if (stop_request_owed_ && request(RequestKind::kStop, 0)) stop_request_owed_ = false;
+  if (stops_.request_owed() && request(RequestKind::kStop, 0)) stops_.request_sent_late();
   dispatcher_.poll(link_ms());
   if (dispatcher_.last_error() != shown_error_) {
     shown_error_ = dispatcher_.last_error();
@@ -109,7 +103,7 @@ void Application::follow_tick_events() {
     // A command cut short stays the first unfinished one (not the first one dropped).
     job_.stop_completed(queue_, follower_.latest());
     queue_.drop_executing();
-    if (!stop_request_owed_) stopping_ = false;
+    stops_.completed();
     int32_t at[config::kAxisCount];
     position_um(at);
     planner_.set_origin(at);
@@ -133,8 +127,7 @@ void Application::follow_tick_events() {
   }
   // A new alarm from the tick: the job is gone; tell the host once.
   const proto::Alarm a = alarm();
-  if (a != reported_alarm_) {
-    reported_alarm_ = a;
+  if (stops_.report(a)) {
     if (a != proto::Alarm::kNone) {
       // Position suspect: a switch stop, or a driver that switched off or lost its supply.
       if (a == proto::Alarm::kLimitSwitch || a == proto::Alarm::kDriverFault ||
@@ -152,7 +145,7 @@ void Application::finish_oldest() {
   if (item == 0 || queue_.in_flight() == 0) return;
   if (item->kind == ItemKind::kText)
     screen_.show_text(item->text.row, item->text.chars, item->text.length, tick_.ms());
-  if (!stopping_) {  // a dropped command finishing as the tick stops is not this session's
+  if (!stops_.stopping()) {  // a dropped command finishing as the tick stops is not this session's
     last_executed_seq_ = item->seq;
     ++items_done_;
   }
@@ -194,14 +187,11 @@ bool Application::standing_still() const {
 // Asks the tick to decelerate and drop the ring; the background waits for it to finish.
 void Application::begin_stop() {
   drop_job();
-  stopping_ = true;
-  hold_requested_ = false;
-  link_hold_ = false;
-  if (!request(RequestKind::kStop, 0)) stop_request_owed_ = true;
+  stops_.started(request(RequestKind::kStop, 0));
 }
 
 void Application::raise_alarm(proto::Alarm a) {
-  if (app_alarm_ == proto::Alarm::kNone) app_alarm_ = a;
+  stops_.raise(a);
   begin_stop();
 }
 
@@ -211,7 +201,7 @@ bool Application::alarm_active() const {
 
 proto::Alarm Application::alarm() const {
   const proto::Alarm latched = follower_.tick_alarm();
-  return latched != proto::Alarm::kNone ? latched : app_alarm_;
+  return latched != proto::Alarm::kNone ? latched : stops_.alarm();
 }
 
 proto::MachineState Application::state() const {
@@ -219,9 +209,10 @@ proto::MachineState Application::state() const {
   if (jog_active_ || follower_.latest().mode == (uint8_t)TickMode::kJog)
     return proto::MachineState::kZeroing;
   if (paused_) return proto::MachineState::kPaused;
-  if (hold_requested_)
+  if (stops_.hold_requested())
     return follower_.latest().at_rest ? proto::MachineState::kHeld : proto::MachineState::kHolding;
-  if (stopping_ || !queue_.empty() || !follower_.latest().finished || !follower_.latest().at_rest)
+  if (stops_.stopping() || !queue_.empty() || !follower_.latest().finished ||
+      !follower_.latest().at_rest)
     return proto::MachineState::kRunning;
   return proto::MachineState::kIdle;
 }
@@ -265,9 +256,9 @@ void Application::reset_session() {
 void Application::fill_status(proto::StatusReply* r) {
   r->state = state();
   r->alarm = alarm();
-  r->flags =
-      (uint8_t)((zeroed_ ? proto::kStatusZeroed : 0) | (link_hold_ ? proto::kStatusLinkHold : 0) |
-                (items_done_ != 0 ? proto::kStatusExecuted : 0) | job_.status_flags());
+  r->flags = (uint8_t)((zeroed_ ? proto::kStatusZeroed : 0) |
+                       (stops_.link_hold() ? proto::kStatusLinkHold : 0) |
+                       (items_done_ != 0 ? proto::kStatusExecuted : 0) | job_.status_flags());
   r->override_percent = override_percent_;
   r->queue_free = queue_free();
   r->next_expected_seq = 0;  // filled by the dispatcher
@@ -312,7 +303,7 @@ void Application::fill_session(proto::SessionReply* r) {
 
 // Starts queued items in order: moves and splines become ring points, the rest markers.
 void Application::execute() {
-  if (stopping_ || alarm_active()) return;
+  if (stops_.stopping() || alarm_active()) return;
   for (uint8_t n = 0; n < kItemsPerPoll; ++n) {
     QueueItem* item = queue_.to_execute();
     if (item == 0) return;
@@ -555,13 +546,10 @@ void Application::note_probe(uint8_t result, const int32_t at_um[config::kAxisCo
 
 // Link watchdog: running with no valid frame for kLinkTimeoutMs -> feed hold.
 void Application::watchdog() {
-  if (!dispatcher_.session_open() || hold_requested_) return;
+  if (!dispatcher_.session_open() || stops_.hold_requested()) return;
   if (state() != proto::MachineState::kRunning) return;
   if (dispatcher_.ms_since_valid(link_ms()) < (uint16_t)proto::kLinkTimeoutMs) return;
-  if (request(RequestKind::kLinkHold, 0)) {
-    hold_requested_ = true;
-    link_hold_ = true;
-  }
+  if (request(RequestKind::kLinkHold, 0)) stops_.held(true);
 }
 
 // The link's time-outs count the board's link clock, else the tick (link_clock.h).

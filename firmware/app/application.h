@@ -18,6 +18,7 @@
 #include "firmware/app/point_generator.h"   // PointGenerator
 #include "firmware/app/spline_store.h"      // SplineStore
 #include "firmware/app/status_screen.h"     // StatusScreen
+#include "firmware/app/stop_state.h"        // StopState
 #include "firmware/app/tick_follower.h"     // TickFollower
 #include "firmware/app/tick_link.h"         // TickStatus, RequestKind
 #include "firmware/config/machine_config.h"
@@ -141,20 +142,15 @@ class Application : private CommandSink {
   PointGenerator generator_;
   StatusScreen screen_;
   TickFollower follower_;  // requests to the tick, its snapshots and events
+  StopState stops_;        // stopping, holds, the background's alarm
   uint16_t item_tag_;
   uint16_t items_stored_;
   uint16_t items_done_;
   uint16_t last_feed_um_s_;
   uint8_t last_executed_seq_;
   uint8_t override_percent_;
-  proto::Alarm app_alarm_;
-  proto::Alarm reported_alarm_;
-  bool stopping_;
-  bool stop_request_owed_;
   bool jog_active_;
   bool zeroed_;
-  bool hold_requested_;
-  bool link_hold_;
   bool spline_started_;
   uint8_t pause_presses_;   // confirm_presses when the pause started
   uint16_t wait_start_ms_;  // tick ms when the dwell started

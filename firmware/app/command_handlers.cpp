@@ -219,7 +219,7 @@ ErrorCode Application::on_height_map_data(const proto::HeightMapDataCmd& c, uint
 }
 
 ErrorCode Application::on_zeroing(const proto::ZeroingCmd& c, uint8_t seq, uint8_t*) {
-  if (!queue_.empty() || stopping_) return ErrorCode::kBadState;
+  if (!queue_.empty() || stops_.stopping()) return ErrorCode::kBadState;
   QueueItem item = new_item(ItemKind::kZeroing, seq);
   item.zeroing.axes = c.axes;
   return enqueue(item);
@@ -264,15 +264,14 @@ ErrorCode Application::on_spline_contour(const proto::SplineContourCmd& c, uint8
 
 ErrorCode Application::on_hold(const proto::HoldCmd&, uint8_t, uint8_t*) {
   if (!request(RequestKind::kHold, 0)) return ErrorCode::kBusy;
-  hold_requested_ = true;
+  stops_.held(false);
   return ErrorCode::kOk;
 }
 
 ErrorCode Application::on_resume(const proto::ResumeCmd&, uint8_t, uint8_t*) {
-  if (!hold_requested_) return ErrorCode::kBadState;
+  if (!stops_.hold_requested()) return ErrorCode::kBadState;
   if (!request(RequestKind::kResume, 0)) return ErrorCode::kBusy;
-  hold_requested_ = false;
-  link_hold_ = false;
+  stops_.resumed();
   return ErrorCode::kOk;
 }
 
@@ -291,14 +290,10 @@ ErrorCode Application::on_override(const proto::OverrideCmd& c, uint8_t, uint8_t
 ErrorCode Application::on_clear_alarm(const proto::ClearAlarmCmd&, uint8_t, uint8_t*) {
   if (!alarm_active()) return ErrorCode::kBadState;
   if (!request(RequestKind::kClearAlarm, 0)) return ErrorCode::kBusy;
-  app_alarm_ = proto::Alarm::kNone;
   drop_job();
-  stopping_ = true;  // until the tick confirms the ring is dropped
-  hold_requested_ = false;
-  link_hold_ = false;
+  stops_.alarm_cleared();  // a stop until the tick confirms the ring is dropped
   // Snapshots taken before the tick saw the request still show the latched alarm.
   follower_.alarm_clear_sent();
-  reported_alarm_ = proto::Alarm::kNone;
   return ErrorCode::kOk;
 }
 
