@@ -247,8 +247,11 @@ void Application::fill_probe_result(proto::ProbeResultReply* r) {
   r->z_um = probe_at_um_[2];
 }
 
+// A new session starts without a height map: one left from an earlier job must never
+// compensate the next (the host sends the map again with every job that has one).
 void Application::reset_session() {
   begin_stop();
+  map_.clear();
   items_stored_ = 0;
   items_done_ = 0;
 }
@@ -316,6 +319,15 @@ void Application::execute() {
 bool Application::push_point(const int32_t target[config::kAxisCount], uint16_t feed,
                              uint8_t flags) {
   return planner_.push(tick_.ring(), target, feed, flags, item_tag_);
+}
+
+// The end of a map item: where the machine already goes (no offset added, so no motion),
+// and the planned position taken from it under the new map: the change applies from the
+// next point generated, never to the standing tool.
+bool Application::push_map_marker() {
+  const int32_t* m = planner_.machine_um();
+  const int32_t here[config::kAxisCount] = {m[0], m[1], m[2]};
+  return planner_.push_machine(&ring_, here, last_feed_um_s_, kPointEndOfItem, item_tag_);
 }
 
 // True when the item is fully handed over (its last ring entry flagged end-of-item).
@@ -392,13 +404,13 @@ bool Application::execute_item(QueueItem* item) {
                    item->map_header.y0_um, item->map_header.pitch_x_um,
                    item->map_header.pitch_y_um);
       }
-      return push_point(target, last_feed_um_s_, kPointEndOfItem);
+      return push_map_marker();
     case ItemKind::kMapHeights: {
       const MapHeightsArgs& m = item->map_heights;
       for (uint8_t i = 0; i < m.n; ++i) map_.set((uint16_t)(m.index + i), m.height_um[i]);
       // The frame that ends the grid (checked when it was stored) switches it on.
       if ((uint16_t)(m.index + m.n) == (uint16_t)map_.cols() * map_.rows()) map_.complete();
-      return push_point(target, last_feed_um_s_, kPointEndOfItem);
+      return push_map_marker();
     }
     case ItemKind::kSpline: {
       const uint8_t slot = item->spline.slot;

@@ -103,6 +103,7 @@ class Application : private CommandSink {
   bool standing_still() const;
   void set_spindle(bool on);
   bool push_point(const int32_t target[config::kAxisCount], uint16_t feed, uint8_t flags);
+  bool push_map_marker();
   void finish_oldest();
   void drop_job();
   void begin_stop();

@@ -398,11 +398,10 @@ void run_send(const SendArgs& a) {
     map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path);
     refuse_job_leaving_map(plan, *map, path);
   }
-  // The map goes first (a controller that restarted has lost it: a resume sends it again).
-  if (map) {
-    const std::vector<QueuedCommand> frames = heightmap::height_map_commands(*map);
-    commands.insert(commands.begin(), frames.begin(), frames.end());
-  }
+  // The map goes first (a controller that restarted has lost it: a resume sends it again);
+  // without one, a clear: no map of an earlier job compensates this one.
+  const std::vector<QueuedCommand> frames = heightmap::job_map_commands(map ? &*map : nullptr);
+  commands.insert(commands.begin(), frames.begin(), frames.end());
   std::cerr << fmt::format(
       "engraver: {} -> {}: {} curves, {} commands, {} bytes, job id {}; keys: h hold, "
       "r resume, x abort, +/- feed override\n",
@@ -742,17 +741,16 @@ void run_run(const RunArgs& a) {
       return map ? map->interpolate_um(x_mm, y_mm) / 1000.0 : 0.0;
     };
   }
-  if (a.map.probe || map) {
-    o.before_job = [&](Sender& sender) {
-      if (a.map.probe) {
-        map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, map_path);
-        refuse_job_leaving_map(plan, *map, map_path);
-        if (depth) depth->set_applied_map(&*map);
-      }
-      job_started = true;
-      return heightmap::height_map_commands(*map);
-    };
-  }
+  // The job's map, or a clear without one, goes just before the job (as with send).
+  o.before_job = [&](Sender& sender) {
+    if (a.map.probe) {
+      map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, map_path);
+      refuse_job_leaving_map(plan, *map, map_path);
+      if (depth) depth->set_applied_map(&*map);
+    }
+    job_started = true;
+    return heightmap::job_map_commands(map ? &*map : nullptr);
+  };
   const sim::SimJobResult r = [&] {
     ProgressMeter bar("run", "commands", std::cerr, ProgressMeter::for_stderr());
     o.on_progress = [&bar](Sender&, const Progress& p) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "host_tests/app/app_rig.h"
@@ -27,8 +28,10 @@ double surface(double x, double y) {
          fy * ((1 - fx) * kHeights[j + 1][i] + fx * kHeights[j + 1][i + 1]);
 }
 
-void send_map(TestHost* host) {
-  host->queue(proto::HeightMapHeaderCmd{kCols, kRows, 0, 0, kPitch, kPitch});
+// The map from (x0, 0); unzeroed, the machine stands at (0, 0): x0 -40 mm puts a height of
+// -95 um under it.
+void send_map(TestHost* host, int32_t x0_um = 0) {
+  host->queue(proto::HeightMapHeaderCmd{kCols, kRows, x0_um, 0, kPitch, kPitch});
   proto::HeightMapDataCmd d{};
   d.index = 0;
   d.height_n = 8;
@@ -152,6 +155,98 @@ TEST(AppHeightMap, ClearingTheMapGoesBackToThePlannedDepth) {
   ASSERT_TRUE(rig.run_job(120000));
   EXPECT_FALSE(rig.app.height_map().active());
   EXPECT_LE(measure(rig.recorded_um(), false).cut_max, 1.5);
+}
+
+// Item 1 of the map's lifetime: #I (a new session, e.g. the next `engraver send`) starts
+// without a map; the job after it cuts at its planned depth.
+TEST(AppHeightMap, ANewSessionStartsWithoutTheMapOfTheLastOne) {
+  Ready rig;
+  send_map(&rig.host);
+  ASSERT_TRUE(rig.run_job(5000));
+  ASSERT_TRUE(rig.app.height_map().active());
+  ASSERT_TRUE(rig.open_session());
+  rig.run(200);
+  EXPECT_FALSE(rig.app.height_map().active()) << "the map outlived its session";
+  ASSERT_TRUE(rig.app.zeroed());
+  rig.plant.path.clear();
+  queue_cuts(&rig.host);
+  ASSERT_TRUE(rig.run_job(120000));
+  EXPECT_TRUE(rig.host.errors.empty());
+  const Errors e = measure(rig.recorded_um(), false);
+  EXPECT_GT(e.cut_points, 1000);
+  EXPECT_LE(e.cut_max, 1.5) << "the last session's map compensated this job";
+}
+
+// Sends the frames queue() adds and lets them run: the plant must not take a single
+// microstep (every recorded sample where it stood), and the state must be idle again.
+template <typename Queue>
+void expect_no_motion(AppRig* rig, Queue queue, const char* what) {
+  rig->run_job(20000);
+  const std::array<double, 3> at = rig->plant.pos_usteps;
+  rig->plant.path.clear();
+  queue(&rig->host);
+  ASSERT_TRUE(rig->run_job(5000)) << what;
+  rig->run(300);  // anything the tick was given would have moved by now
+  EXPECT_TRUE(rig->host.errors.empty()) << what;
+  ASSERT_FALSE(rig->plant.path.empty());
+  double worst = 0;
+  for (const auto& p : rig->plant.path)
+    for (int i = 0; i < 3; ++i) worst = std::max(worst, std::abs(p[i] - at[i]));
+  EXPECT_EQ(worst, 0.0) << what << ": the standing machine moved (microsteps)";
+  EXPECT_EQ(rig->plant.pos_usteps, at) << what;
+}
+
+void clear_map(TestHost* host) {
+  host->queue(proto::HeightMapHeaderCmd{0, 0, 0, 0, 0, 0});
+}
+
+// Item 2: loading or clearing a map never moves a standing machine, zeroed or not, the tool
+// up or down in the work; the map applies from the next point the controller generates.
+TEST(AppHeightMap, LoadingOrClearingAMapNeverMovesAStandingMachine) {
+  struct NotZeroed : AppRig {
+    NotZeroed() {
+      EXPECT_TRUE(open_session());
+      plant.record = true;
+    }
+  };
+  {
+    // Unzeroed: the machine stands where it was switched on; nothing moves.
+    NotZeroed raw;
+    ASSERT_FALSE(raw.app.zeroed());
+    const auto shifted_map = [](TestHost* host) { send_map(host, -2 * kPitch); };
+    expect_no_motion(&raw, shifted_map, "load, not zeroed");
+    EXPECT_TRUE(raw.app.height_map().active());
+    expect_no_motion(&raw, clear_map, "clear, not zeroed");
+    EXPECT_FALSE(raw.app.height_map().active());
+  }
+  // (0, 40 mm): the surface 60 um above the zero, the map's highest point.
+  const int32_t kX = 0, kY = 40000;
+  for (const int32_t z : {kTravelZ, kDepth}) {
+    const char* where = z > 0 ? "tool up" : "tool down";
+    Ready rig;
+    rig.host.queue(proto::ZMoveCmd{kTravelZ, 5000});
+    rig.host.queue(proto::RapidMoveCmd{kX, kY});
+    rig.host.queue(proto::ZMoveCmd{z, 2000});
+    expect_no_motion(
+        &rig, [](TestHost* h) { send_map(h); }, where);
+    EXPECT_TRUE(rig.app.height_map().active());
+    expect_no_motion(&rig, clear_map, where);
+    // With the map followed to the standing point (Z at the planned depth + 60 um), then
+    // cleared: the tool stays (no 60 um plunge).
+    send_map(&rig.host);
+    rig.host.queue(proto::ZMoveCmd{kTravelZ, 5000});
+    rig.host.queue(proto::RapidMoveCmd{kX + 1000, kY});
+    rig.host.queue(proto::ZMoveCmd{z, 2000});
+    rig.host.queue(proto::FeedMoveCmd{kX, kY, 2000});
+    ASSERT_TRUE(rig.run_job(20000));
+    EXPECT_NEAR(rig.position_um().z, z + 60, 1.5) << where;
+    expect_no_motion(&rig, clear_map, where);
+    // The next motion follows the change: a Z target is the planned one again.
+    rig.host.queue(proto::ZMoveCmd{z, 2000});
+    rig.host.queue(proto::FeedMoveCmd{kX + 2000, kY, 2000});
+    ASSERT_TRUE(rig.run_job(20000));
+    EXPECT_NEAR(rig.position_um().z, z, 1.5) << where;
+  }
 }
 
 bool refused(const TestHost& h, ErrorCode code, uint8_t detail) {

@@ -46,6 +46,11 @@ QueuedCommand clear_height_map_command() {
   return encode_command(proto::HeightMapHeaderCmd{});
 }
 
+std::vector<QueuedCommand> job_map_commands(const HeightMap* map) {
+  if (map != nullptr) return height_map_commands(*map);
+  return {clear_height_map_command()};
+}
+
 ProbeTouch controller_touch(Sender& sender, const ProbeMotion& m) {
   auto first = std::make_shared<bool>(true);
   return [&sender, m, first](double x_mm, double y_mm) {

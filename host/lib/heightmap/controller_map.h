@@ -17,6 +17,9 @@ namespace host::heightmap {
 std::vector<QueuedCommand> height_map_commands(const HeightMap& map);
 // The #A that clears the controller's map (compensation off).
 QueuedCommand clear_height_map_command();
+// What goes just before a job's first frame: the job's map (height_map_commands), or the
+// clear when it has none (0), so that no map loaded earlier in the session compensates it.
+std::vector<QueuedCommand> job_map_commands(const HeightMap* map);
 
 // How the tool probes (machine Z, mm; Z 0 is the copper at the zero corner).
 struct ProbeMotion {
