@@ -327,7 +327,7 @@ bool Application::push_point(const int32_t target[config::kAxisCount], uint16_t 
 bool Application::push_map_marker() {
   const int32_t* m = planner_.machine_um();
   const int32_t here[config::kAxisCount] = {m[0], m[1], m[2]};
-  return planner_.push_machine(&ring_, here, last_feed_um_s_, kPointEndOfItem, item_tag_);
+  return planner_.push_machine(tick_.ring(), here, last_feed_um_s_, kPointEndOfItem, item_tag_);
 }
 
 // True when the item is fully handed over (its last ring entry flagged end-of-item).
