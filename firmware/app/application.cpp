@@ -30,16 +30,11 @@ Application::Application()
       paused_(false),
       spindle_on_(false),
       shown_error_(proto::ErrorCode::kOk),
-      probe_result_(0),
-      probe_count_(0),
       probing_(false) {
   map_rx_.points = 0;
   map_rx_.expected = 0;
   map_rx_.lowest = 0;
   map_rx_.highest = 0;
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) {
-    probe_at_um_[i] = 0;
-  }
 }
 
 void Application::init(const Board& board, const config::MachineConfig& cfg) {
@@ -240,11 +235,7 @@ bool Application::motion_allowed() const {
 // ---------------------------------------------------------------- CommandSink
 
 void Application::fill_probe_result(proto::ProbeResultReply* r) {
-  r->result = probe_result_;
-  r->probe_count = probe_count_;
-  r->x_um = probe_at_um_[0];
-  r->y_um = probe_at_um_[1];
-  r->z_um = probe_at_um_[2];
+  probes_.fill(r);
 }
 
 // A new session starts without a height map: one left from an earlier job must never
@@ -509,7 +500,7 @@ bool Application::execute_probe(QueueItem* item) {
     }
     position_um(at);
     if (p.z_limit_um >= at[config::kAxisZ]) {  // nothing below to probe: nothing moves
-      note_probe(2, at);
+      probes_.note(2, at);
       raise_alarm(proto::Alarm::kProbeNoContact);
       return false;
     }
@@ -526,7 +517,7 @@ bool Application::execute_probe(QueueItem* item) {
     position_um(at);
     const uint8_t result = tick_.probe_result();  // handed over in ProbeWatch (motion_tick.h)
     at[config::kAxisZ] = usteps_to_um(scaling_, config::kAxisZ, tick_.probe_z_usteps());
-    note_probe(result, at);
+    probes_.note(result, at);
     if (result != 1) {
       probing_ = false;
       raise_alarm(proto::Alarm::kProbeNoContact);
@@ -543,17 +534,11 @@ bool Application::execute_probe(QueueItem* item) {
     item->stage = 3;
   }
   const int32_t* m = planner_.machine_um();
-  const int32_t up[config::kAxisCount] = {m[0], m[1], probe_at_um_[config::kAxisZ] + p.retract_um};
+  const int32_t up[config::kAxisCount] = {m[0], m[1], probes_.z_um() + p.retract_um};
   if (!planner_.push_machine(tick_.ring(), up, rapid_feed(), kPointEndOfItem, item_tag_))
     return false;
   probing_ = false;
   return true;
-}
-
-void Application::note_probe(uint8_t result, const int32_t at_um[config::kAxisCount]) {
-  probe_result_ = result;
-  probe_count_ = (uint16_t)(probe_count_ + 1U);
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) probe_at_um_[i] = at_um[i];
 }
 
 // Link watchdog: running with no valid frame for kLinkTimeoutMs -> feed hold.

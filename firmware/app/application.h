@@ -16,6 +16,7 @@
 #include "firmware/app/motion_tick.h"       // MotionTick
 #include "firmware/app/planner.h"           // Planner
 #include "firmware/app/point_generator.h"   // PointGenerator
+#include "firmware/app/probe_record.h"      // ProbeRecord
 #include "firmware/app/spline_store.h"      // SplineStore
 #include "firmware/app/status_screen.h"     // StatusScreen
 #include "firmware/app/stop_state.h"        // StopState
@@ -99,7 +100,6 @@ class Application : private CommandSink {
   bool execute_item(QueueItem* item);
   bool execute_drill(QueueItem* item);
   bool execute_probe(QueueItem* item);
-  void note_probe(uint8_t result, const int32_t at_um[config::kAxisCount]);
   bool standing_still() const;
   void set_spindle(bool on);
   bool push_point(const int32_t target[config::kAxisCount], uint16_t feed, uint8_t flags);
@@ -169,11 +169,8 @@ class Application : private CommandSink {
     int16_t highest;
   };
   MapReception map_rx_;
-  // The last probe's result (#T), since power-up.
-  uint8_t probe_result_;  // 0 none, 1 contact, 2 no contact
-  uint16_t probe_count_;
-  int32_t probe_at_um_[config::kAxisCount];
-  bool probing_;  // a #Y is under way (the LCD says so)
+  ProbeRecord probes_;  // the last probe's result (#T), since power-up
+  bool probing_;        // a #Y is under way (the LCD says so)
 
   // Job progress for the status (job_progress.h).
   JobProgress job_;
