@@ -206,9 +206,9 @@ void Sender::handle_reply(const proto::Frame& frame) {
   switch (frame.letter) {
     case proto::kReplySession: {
       proto::SessionReply r;
-      if (proto::decode_frame(frame, &r) == proto::ErrorCode::kOk && frame.seq == session_seq_) {
-        session_ = r;
-        session_open_ = true;
+      if (proto::decode_frame(frame, &r) == proto::ErrorCode::kOk && frame.seq == session_.seq) {
+        session_.reply = r;
+        session_.open = true;
       }
       break;
     }
@@ -224,7 +224,7 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (proto::decode_frame(frame, &r) != proto::ErrorCode::kOk) break;
       last_status_ = r;
       have_status_ = true;
-      status_outstanding_ = false;
+      session_.status_outstanding = false;
       if (status_before_resume_)
         status_before_resume_ = false;  // asked before the #R: says nothing of it
       else
@@ -260,7 +260,7 @@ void Sender::handle_reply(const proto::Frame& frame) {
       // v2: a real-time frame's *O says so; its seq is the real-time counter's, not the
       // ordered stream's.
       if (ack.realtime) {
-        if (frame.seq == realtime_seq_) realtime_acked_ = true;
+        if (frame.seq == session_.realtime_seq) session_.realtime_acked = true;
         break;
       }
       win_.queue_free = ack.queue_free;
@@ -282,10 +282,10 @@ void Sender::handle_reply(const proto::Frame& frame) {
       stats_.error_replies++;
       if (r.code == proto::ErrorCode::kSeqStale) break;  // superseded real-time frame
       // An older controller names its version: open the session in that one.
-      if (r.code == proto::ErrorCode::kVersionUnsupported && !session_open_ &&
-          r.detail >= proto::kMinProtocolVersion && r.detail < session_version_) {
-        session_version_ = r.detail;
-        version_lowered_ = true;
+      if (r.code == proto::ErrorCode::kVersionUnsupported && !session_.open &&
+          r.detail >= proto::kMinProtocolVersion && r.detail < session_.version) {
+        session_.version = r.detail;
+        session_.version_lowered = true;
         break;
       }
       if (win_.commands != nullptr &&
@@ -362,10 +362,10 @@ void Sender::sample_round_trip(size_t index) {
 }
 
 void Sender::query_status() {
-  send_frame(proto::kCmdStatus, status_seq_++, {});
+  send_frame(proto::kCmdStatus, session_.status_seq++, {});
   stats_.status_queries++;
-  status_outstanding_ = true;
-  status_sent_ = now();
+  session_.status_outstanding = true;
+  session_.status_sent = now();
 }
 
 // Time for the next status query: each interval, or with a zero interval as soon as the
@@ -384,29 +384,29 @@ bool Sender::status_due(Clock::time_point last_poll) const {
   if (options_.status_interval.count() > 0) {
     return now() - last_poll >= options_.status_interval;
   }
-  return !status_outstanding_ || now() - status_sent_ > milliseconds(50);
+  return !session_.status_outstanding || now() - session_.status_sent > milliseconds(50);
 }
 
 proto::SessionReply Sender::open_session() {
-  session_open_ = false;
-  for (int attempt = 0; attempt < 5 && !session_open_; ++attempt) {
-    session_seq_ = static_cast<uint8_t>(session_seq_ + 1);
-    proto::SessionCmd cmd{session_version_};
+  session_.open = false;
+  for (int attempt = 0; attempt < 5 && !session_.open; ++attempt) {
+    session_.seq = static_cast<uint8_t>(session_.seq + 1);
+    proto::SessionCmd cmd{session_.version};
     proto::Payload p;
     proto::encode(cmd, &p);
-    send_frame(proto::kCmdSession, session_seq_, std::vector<uint8_t>(p.bytes, p.bytes + p.length));
-    version_lowered_ = false;
+    send_frame(proto::kCmdSession, session_.seq, std::vector<uint8_t>(p.bytes, p.bytes + p.length));
+    session_.version_lowered = false;
     const auto deadline = now() + options_.reply_timeout;
-    while (!session_open_ && !failed_ && !version_lowered_ && now() < deadline)
+    while (!session_.open && !failed_ && !session_.version_lowered && now() < deadline)
       pump(milliseconds(10));
     if (failed_) throw LinkError(message_);
   }
-  if (!session_open_) {
+  if (!session_.open) {
     throw LinkError(fmt::format("{}: no session reply from the controller", link_.name()));
   }
-  win_.first_seq = static_cast<uint8_t>(session_seq_ + 1);
-  realtime_seq_ = 0;
-  return session_;
+  win_.first_seq = static_cast<uint8_t>(session_.seq + 1);
+  session_.realtime_seq = 0;
+  return session_.reply;
 }
 
 proto::StatusReply Sender::read_status() {
@@ -423,7 +423,7 @@ proto::StatusReply Sender::read_status() {
 proto::ProbeResultReply Sender::read_probe_result() {
   for (int attempt = 0; attempt < 5; ++attempt) {
     have_probe_ = false;
-    send_frame(proto::kCmdProbeResult, status_seq_++, {});
+    send_frame(proto::kCmdProbeResult, session_.status_seq++, {});
     const auto deadline = now() + options_.reply_timeout;
     while (!have_probe_ && now() < deadline) pump(milliseconds(5));
     if (have_probe_) return last_probe_;
@@ -447,12 +447,12 @@ proto::StatusReply Sender::read_status_at_rest(milliseconds limit) {
 
 // Sends a real-time frame and waits for its ack, retrying with the same seq.
 void Sender::send_realtime(uint8_t letter, const std::vector<uint8_t>& payload) {
-  realtime_seq_ = static_cast<uint8_t>(realtime_seq_ + 1);
-  realtime_acked_ = false;
-  for (int attempt = 0; attempt < 3 && !realtime_acked_; ++attempt) {
-    send_frame(letter, realtime_seq_, payload);
+  session_.realtime_seq = static_cast<uint8_t>(session_.realtime_seq + 1);
+  session_.realtime_acked = false;
+  for (int attempt = 0; attempt < 3 && !session_.realtime_acked; ++attempt) {
+    send_frame(letter, session_.realtime_seq, payload);
     const auto deadline = now() + options_.reply_timeout;
-    while (!realtime_acked_ && now() < deadline) pump(milliseconds(5));
+    while (!session_.realtime_acked && now() < deadline) pump(milliseconds(5));
   }
 }
 
@@ -515,7 +515,7 @@ bool Sender::ensure_zeroed(const std::function<void(const Progress&)>& on_progre
 
 JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
                        const std::function<void(const Progress&)>& on_progress) {
-  if (!session_open_) open_session();
+  if (!session_.open) open_session();
   failed_ = false;
   rtt_.start(0);  // no round-trip samples from the zeroing frame
   if (!ensure_zeroed(on_progress)) {
@@ -530,13 +530,14 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
   rtt_.start(commands.size());
   win_.base = win_.next = win_.executed = 0;
   win_.busy_wait = false;
-  win_.queue_free = session_.queue_slots;
+  win_.queue_free = session_.reply.queue_slots;
   win_.splines_free = SendWindow::kSplineSlotsUnknown;
   win_.splines_known_at = 0;
-  win_.frames = std::max<size_t>(1, std::min<size_t>(session_.window_frames, proto::kWindowFrames));
+  win_.frames =
+      std::max<size_t>(1, std::min<size_t>(session_.reply.window_frames, proto::kWindowFrames));
   win_.limit = win_.frames;
   size_t high_water = 0;
-  const size_t rx_bytes = std::max<size_t>(session_.rx_buffer_bytes, proto::kMaxFrameBytes);
+  const size_t rx_bytes = std::max<size_t>(session_.reply.rx_buffer_bytes, proto::kMaxFrameBytes);
   auto last_poll = now() - options_.status_interval;
   last_reply_ = now();
   watchdog_.start(now());
@@ -560,7 +561,7 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
       if (resume_may_act()) {
         send_realtime(proto::kCmdResume, {});
         resume_sent_ = true;
-        status_before_resume_ = status_outstanding_;
+        status_before_resume_ = session_.status_outstanding;
       }
       operator_hold_ = false;
     }

@@ -14,6 +14,7 @@
 #include "firmware/protocol/parser.h"    // proto::Parser
 #include "host/lib/stream/job_encoder.h"
 #include "host/lib/stream/link.h"
+#include "host/lib/stream/link_session.h"
 #include "host/lib/stream/operator_requests.h"
 #include "host/lib/stream/round_trip_timer.h"
 #include "host/lib/stream/send_window.h"
@@ -128,20 +129,8 @@ class Sender {
   proto::ProbeResultReply last_probe_{};
   bool have_probe_ = false;
   bool have_status_ = false;
-  proto::SessionReply session_{};
-  bool session_open_ = false;
-  uint8_t session_seq_ = 0;
-  // The version #I asks for: ours, or an older controller's own that it named when it
-  // refused ours (then version_lowered_ until #I is sent again).
-  uint8_t session_version_ = proto::kProtocolVersion;
-  bool version_lowered_ = false;
-  uint8_t realtime_seq_ = 0;
-  uint8_t status_seq_ = 0;
-  bool realtime_acked_ = false;
-  bool status_outstanding_ = false;
-  std::chrono::steady_clock::time_point status_sent_;
-
-  SendWindow win_;  // the ordered stream of the current run()
+  LinkSession session_;  // #I and the un-ordered frames
+  SendWindow win_;       // the ordered stream of the current run()
   bool failed_ = false;
   JobOutcome failure_ = JobOutcome::kRejected;
   std::chrono::steady_clock::time_point last_reply_;
