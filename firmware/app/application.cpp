@@ -14,291 +14,60 @@ const uint16_t kProbeSettleMs = 20;  // after a touch, before the retract reads 
 }  // namespace
 
 Application::Application()
-    : ms_(0),
-      seen_items_(0),
+    : spindle_(0),
+      link_clock_(0),
       item_tag_(0),
       items_stored_(0),
       items_done_(0),
       last_feed_um_s_(1000),
-      seen_stops_(0),
-      seen_jogs_(0),
       last_executed_seq_(0),
       override_percent_(100),
-      app_alarm_(proto::Alarm::kNone),
-      reported_alarm_(proto::Alarm::kNone),
-      have_snapshot_(false),
-      stopping_(false),
-      stop_request_owed_(false),
       jog_active_(false),
       zeroed_(false),
-      hold_requested_(false),
-      link_hold_(false),
       spline_started_(false),
-      alarm_clearing_(false),
-      alarm_clear_mark_(0),
-      requests_pushed_(0),
       pause_presses_(0),
       wait_start_ms_(0),
       paused_(false),
       spindle_on_(false),
       shown_error_(proto::ErrorCode::kOk),
-      probe_result_(0),
-      probe_count_(0),
       probing_(false) {
-  board_.link = 0;
-  board_.motion = 0;
-  board_.display = 0;
-  board_.inputs = 0;
-  board_.spindle = 0;
-  board_.link_clock = 0;
-  board_.probe = 0;
-  tick_.probe_hits = 0;
-  tick_.probe_first_z = 0;
-  tick_.probes_done = 0;
-  tick_.probe_result = 0;
-  tick_.probe_z_usteps = 0;
   map_rx_.points = 0;
   map_rx_.expected = 0;
   map_rx_.lowest = 0;
   map_rx_.highest = 0;
-  tick_.mode = (uint8_t)TickMode::kFollow;
-  tick_.alarm = kTickAlarmNone;
-  tick_.driver_check_ms = 0;
-  tick_.stops_done = 0;
-  tick_.jogs_done = 0;
-  tick_.jog_confirmed = 0;
-  tick_.requests_done = 0;
-  tick_.buttons = 0;
-  tick_.confirm_presses = 0;
-  tick_.stop_pending = false;
-  job_.next_index = 0;
-  job_.first_point = 0;
-  job_.next_id = 0;
-  job_.numbering = false;
-  job_.next_pending = false;
-  job_.valid = false;
-  job_.id = 0;
-  job_.index = 0;
-  job_.point = 0;
-  job_.started = false;
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) {
-    tick_.pos[i] = 0;
-    latest_.pos_usteps[i] = 0;
-    probe_at_um_[i] = 0;
-  }
-  latest_.probe_closed = 0;
-  latest_.probes_done = 0;
 }
 
 void Application::init(const Board& board, const config::MachineConfig& cfg) {
-  board_ = board;
+  spindle_ = board.spindle;
+  link_clock_ = board.link_clock;
   cfg_ = cfg;
   if (!build_axis_scaling(cfg, *board.motion, &scaling_))
-    app_alarm_ = proto::Alarm::kMotionChipFault;
+    stops_.raise(proto::Alarm::kMotionChipFault);
   planner_.init(scaling_, default_planner_settings(cfg.capture_radius_um));
   planner_.set_height_map(&map_);
-  tick_.path.init(scaling_);
-  tick_.jog.init(scaling_);
-  sink_.app_ = this;
-  dispatcher_.init(board.link, &sink_);
+  tick_.init(scaling_, board.motion, board.inputs, board.probe);
+  dispatcher_.init(board.link, this);
   screen_.init(board.display);
   if (cfg.default_feed_um_per_s > 0 && cfg.default_feed_um_per_s < 65536UL)
     last_feed_um_s_ = (uint16_t)cfg.default_feed_um_per_s;
 }
 
-// ---------------------------------------------------------------- the 1 ms tick
-
 void Application::tick_1ms() {
-  ms_ = (uint16_t)(ms_ + 1U);
-  tick_take_requests();
-  int32_t pos[config::kAxisCount];
-  uint8_t limits = 0;
-  int16_t v[config::kAxisCount] = {0, 0, 0};
-  if (!board_.motion->read_actual_usteps(pos) || !board_.motion->read_limits(&limits)) {
-    for (uint8_t i = 0; i < config::kAxisCount; ++i) pos[i] = tick_.pos[i];
-    tick_latch_alarm(kTickAlarmChip);
-  }
-  tick_check_drivers();
-  // Confirm presses for #P count in follow mode only (while zeroing, confirm sets the zero).
-  const uint8_t buttons = board_.inputs->state();
-  const bool confirm_pressed =
-      (buttons & hal::kButtonConfirm) != 0 && (tick_.buttons & hal::kButtonConfirm) == 0;
-  tick_.buttons = buttons;
-  if (tick_.mode == (uint8_t)TickMode::kFollow) {
-    if (confirm_pressed) tick_.confirm_presses = (uint8_t)(tick_.confirm_presses + 1U);
-    const bool moving = !tick_.path.finished() || !tick_.path.at_rest() || !ring_.empty();
-    if (limits != 0 && moving) {
-      // A limit switch mid-job: zero velocities in this very tick, latch the alarm.
-      tick_latch_alarm(kTickAlarmLimit);
-    } else {
-      if (!tick_probe(pos)) tick_.path.tick(pos, &ring_, v);  // a touch: velocities stay 0
-      if (tick_.stop_pending && tick_.path.at_rest()) {
-        tick_.path.flush(&ring_);
-        tick_.path.set_hold(false);
-        tick_.stop_pending = false;
-        ++tick_.stops_done;
-      }
-    }
-  } else if (tick_.mode == (uint8_t)TickMode::kJog) {
-    tick_probe(pos);  // keeps the debounce current (no descent while jogging)
-    const JogResult r = tick_.jog.tick(buttons, limits, pos, v);
-    if (r != JogResult::kRunning) {
-      if (r == JogResult::kConfirmed) {
-        board_.motion->set_actual_usteps(tick_.jog.zero_usteps());
-        for (uint8_t i = 0; i < config::kAxisCount; ++i) pos[i] = tick_.jog.zero_usteps()[i];
-      }
-      tick_.jog_confirmed = r == JogResult::kConfirmed ? 1 : 0;
-      ++tick_.jogs_done;
-      tick_.path.flush(&ring_);  // the old target is meaningless in the new coordinates
-      tick_.mode = (uint8_t)TickMode::kFollow;
-    }
-  }
-  if (tick_.mode == (uint8_t)TickMode::kAlarm) {
-    for (uint8_t i = 0; i < config::kAxisCount; ++i) v[i] = 0;
-  }
-  board_.motion->write_velocity_units(v);
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) tick_.pos[i] = pos[i];
-  tick_publish(pos, limits);
-}
-
-// One step of the power drivers' status check every kDriverCheckEveryMs (at most one SPI
-// datagram; the blocking Tmc428::read_driver_status() can take ~70 ms and never runs here).
-// The probe input, debounced (kProbeDebounceTicks closed ticks in a row; the Z of the first is
-// the contact height, so it is latched within one tick of the touch). While the path follows
-// a probe descent (#Y): a contact drops the ring at once (the chip ramps Z to rest), reaching
-// the descent's end without one is "no contact". True when the path was stopped.
-bool Application::tick_probe(const int32_t pos[config::kAxisCount]) {
-  const bool raw = board_.probe != 0 && board_.probe->closed();
-  if (!raw) {
-    tick_.probe_hits = 0;
-  } else {
-    if (tick_.probe_hits == 0) tick_.probe_first_z = pos[config::kAxisZ];
-    if (tick_.probe_hits < 255U) ++tick_.probe_hits;
-  }
-  if (tick_.mode != (uint8_t)TickMode::kFollow || (tick_.path.current_flags() & kPointProbe) == 0)
-    return false;
-  if (tick_.probe_hits >= kProbeDebounceTicks) {
-    tick_.probe_result = 1;
-    tick_.probe_z_usteps = tick_.probe_first_z;
-  } else if (tick_.path.finished() && tick_.path.at_rest()) {
-    tick_.probe_result = 2;
-    tick_.probe_z_usteps = pos[config::kAxisZ];
-  } else {
-    return false;
-  }
-  tick_.probes_done = (uint8_t)(tick_.probes_done + 1U);
-  tick_.path.flush(&ring_);
-  return true;
-}
-
-void Application::tick_check_drivers() {
-  if (++tick_.driver_check_ms < kDriverCheckEveryMs) return;
-  tick_.driver_check_ms = 0;
-  const uint8_t c = board_.motion->poll_driver_check();
-  if (c == hal::kDriverCheckFault) {
-    tick_latch_alarm(kTickAlarmDriver);
-  } else if (c == hal::kDriverCheckUndervoltage) {
-    tick_latch_alarm(kTickAlarmPower);
-  }
-}
-
-void Application::tick_latch_alarm(uint8_t alarm) {
-  if (tick_.mode != (uint8_t)TickMode::kAlarm) tick_.alarm = alarm;
-  tick_.mode = (uint8_t)TickMode::kAlarm;
-  tick_.path.stop_now();
-}
-
-void Application::tick_take_requests() {
-  TickRequest r;
-  while (requests_.pop(&r)) {
-    ++tick_.requests_done;
-    switch (r.kind) {
-      case RequestKind::kHold:
-      case RequestKind::kLinkHold:
-        tick_.path.set_hold(true);
-        break;
-      case RequestKind::kResume:
-        tick_.path.set_hold(false);
-        break;
-      case RequestKind::kOverride:
-        tick_.path.set_override_percent(r.value);
-        break;
-      case RequestKind::kStop:
-        if (tick_.mode == (uint8_t)TickMode::kJog) {
-          tick_.jog_confirmed = 0;  // zeroing cancelled; the chip ramps the jog down
-          ++tick_.jogs_done;
-          tick_.mode = (uint8_t)TickMode::kFollow;
-        }
-        if (tick_.mode == (uint8_t)TickMode::kAlarm) {
-          tick_.path.flush(&ring_);  // already standing: drop at once, stay in alarm
-          ++tick_.stops_done;
-        } else {
-          tick_.path.set_hold(true);
-          tick_.stop_pending = true;
-        }
-        break;
-      case RequestKind::kStartJog:
-        if (tick_.mode == (uint8_t)TickMode::kFollow) {
-          tick_.path.flush(&ring_);
-          tick_.jog.start(r.value, board_.inputs->state());
-          tick_.mode = (uint8_t)TickMode::kJog;
-        }
-        break;
-      case RequestKind::kClearAlarm:
-        // Tick alarm or one raised by the background loop: either way start clean (the
-        // chip ramps down whatever was still moving) and report it as a completed stop.
-        if (tick_.mode == (uint8_t)TickMode::kAlarm) {
-          tick_.mode = (uint8_t)TickMode::kFollow;
-          tick_.alarm = kTickAlarmNone;
-        }
-        tick_.path.flush(&ring_);
-        tick_.path.set_hold(false);
-        tick_.stop_pending = false;
-        ++tick_.stops_done;
-        break;
-    }
-  }
-}
-
-void Application::tick_publish(const int32_t pos[config::kAxisCount], uint8_t limits) {
-  TickStatus s;
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) s.pos_usteps[i] = pos[i];
-  s.ms = ms_;
-  s.items_done = tick_.path.items_done();
-  s.item_points = tick_.path.item_points();
-  s.item_started = tick_.path.item_started() ? 1 : 0;
-  s.stopped_points = tick_.path.stopped_points();
-  s.stopped_started = tick_.path.stopped_started() ? 1 : 0;
-  s.speed_um_s = tick_.path.speed_um_s();
-  s.mode = tick_.mode;
-  s.alarm = tick_.alarm;
-  s.stops_done = tick_.stops_done;
-  s.jogs_done = tick_.jogs_done;
-  s.jog_confirmed = tick_.jog_confirmed;
-  s.requests_done = tick_.requests_done;
-  s.confirm_presses = tick_.confirm_presses;
-  s.z_mode = tick_.jog.z_mode() ? 1 : 0;
-  s.limits = limits;
-  s.holding = tick_.path.holding() ? 1 : 0;
-  s.at_rest = tick_.path.at_rest() ? 1 : 0;
-  s.finished = tick_.path.finished() && ring_.empty() ? 1 : 0;
-  s.probes_done = tick_.probes_done;
-  s.probe_closed = tick_.probe_hits >= kProbeDebounceTicks ? 1 : 0;
-  status_.push(s);  // full: the background loop is behind; the next one carries the counts
+  tick_.tick_1ms();
 }
 
 // ---------------------------------------------------------------- the background loop
 
 void Application::poll() {
   take_snapshots();
-  if (!have_snapshot_) return;  // the tick has not run yet: positions unknown
+  if (!follower_.have_snapshot()) return;  // the tick has not run yet: positions unknown
   follow_tick_events();
-  if (stop_request_owed_ && request(RequestKind::kStop, 0)) stop_request_owed_ = false;
+  if (stops_.request_owed() && request(RequestKind::kStop, 0)) stops_.request_sent_late();
   dispatcher_.poll(link_ms());
   if (dispatcher_.last_error() != shown_error_) {
     shown_error_ = dispatcher_.last_error();
     if (shown_error_ != proto::ErrorCode::kOk)
-      screen_.show_error(shown_error_, dispatcher_.next_expected(), ms_);
+      screen_.show_error(shown_error_, dispatcher_.next_expected(), tick_.ms());
   }
   execute();
   watchdog();
@@ -306,26 +75,13 @@ void Application::poll() {
 }
 
 bool Application::request(RequestKind kind, uint8_t value) {
-  TickRequest r;
-  r.kind = kind;
-  r.value = value;
-  if (!requests_.push(r)) return false;
-  requests_pushed_ = (uint8_t)(requests_pushed_ + 1U);
-  return true;
+  return follower_.request(&tick_, kind, value);
 }
 
 void Application::take_snapshots() {
-  TickStatus s;
-  while (status_.pop(&s)) {
-    latest_ = s;
-    // Every request up to the #C one taken: the tick's alarm state is current again.
-    if (alarm_clearing_ && (uint8_t)(s.requests_done - alarm_clear_mark_) < 128U)
-      alarm_clearing_ = false;
-    if (!have_snapshot_) {
-      have_snapshot_ = true;
-      seen_items_ = s.items_done;
-      seen_stops_ = s.stops_done;
-      seen_jogs_ = s.jogs_done;
+  bool first = false;
+  while (follower_.take(&tick_, &first)) {
+    if (first) {
       int32_t at[config::kAxisCount];
       position_um(at);
       planner_.set_origin(at);
@@ -337,28 +93,20 @@ void Application::follow_tick_events() {
   // A completed stop (abort, session reset, alarm cleared): the ring is gone. What the tick
   // finished while it decelerated along the path counts; then the commands that were
   // executing are forgotten, with where the one cut short got to.
-  if (latest_.stops_done != seen_stops_) {
-    while (seen_items_ != latest_.items_done) {
-      ++seen_items_;
-      finish_oldest();
-    }
+  if (follower_.stop_completed()) {
+    while (follower_.item_finished()) finish_oldest();
     // A command cut short stays the first unfinished one (not the first one dropped).
-    if (track_job(true)) job_.next_pending = false;
+    job_.stop_completed(queue_, follower_.latest());
     queue_.drop_executing();
-    seen_stops_ = latest_.stops_done;
-    if (!stop_request_owed_) stopping_ = false;
+    stops_.completed();
     int32_t at[config::kAxisCount];
     position_um(at);
     planner_.set_origin(at);
   }
   // Also while a stop is under way: the tick may still finish commands as it decelerates.
-  while (seen_items_ != latest_.items_done) {
-    ++seen_items_;
-    finish_oldest();
-  }
-  track_job(false);
-  if (latest_.jogs_done != seen_jogs_) {
-    seen_jogs_ = latest_.jogs_done;
+  while (follower_.item_finished()) finish_oldest();
+  job_.track(queue_, follower_.latest(), false);
+  if (follower_.jog_ended()) {
     if (jog_active_) {
       jog_active_ = false;
       QueueItem* item = queue_.to_execute();
@@ -366,7 +114,7 @@ void Application::follow_tick_events() {
         queue_.executed();
         finish_oldest();
       }
-      if (latest_.jog_confirmed) zeroed_ = true;
+      if (follower_.latest().jog_confirmed) zeroed_ = true;
       int32_t at[config::kAxisCount];
       position_um(at);
       planner_.set_origin(at);
@@ -374,8 +122,7 @@ void Application::follow_tick_events() {
   }
   // A new alarm from the tick: the job is gone; tell the host once.
   const proto::Alarm a = alarm();
-  if (a != reported_alarm_) {
-    reported_alarm_ = a;
+  if (stops_.report(a)) {
     if (a != proto::Alarm::kNone) {
       // Position suspect: a switch stop, or a driver that switched off or lost its supply.
       if (a == proto::Alarm::kLimitSwitch || a == proto::Alarm::kDriverFault ||
@@ -392,58 +139,13 @@ void Application::finish_oldest() {
   const QueueItem* item = queue_.oldest();
   if (item == 0 || queue_.in_flight() == 0) return;
   if (item->kind == ItemKind::kText)
-    screen_.show_text(item->text.row, item->text.chars, item->text.length, ms_);
-  if (!stopping_) {  // a dropped command finishing as the tick stops is not this session's
+    screen_.show_text(item->text.row, item->text.chars, item->text.length, tick_.ms());
+  if (!stops_.stopping()) {  // a dropped command finishing as the tick stops is not this session's
     last_executed_seq_ = item->seq;
     ++items_done_;
   }
-  if (item->job_index != kNotInJob) {
-    job_.index = item->job_index < PROTO_I32_MAX ? item->job_index + 1 : item->job_index;
-    job_.point = 0;
-    job_.id = item->job_id;
-    job_.started = false;
-  }
+  job_.finished(*item);
   queue_.finished();
-}
-
-// Job progress: the first job command not finished is the first numbered item in the queue
-// (un-numbered ones, a setup or a resume's lead-in, may run in front of it; later #J marks
-// number only what follows them). If it is the oldest item the tick works on it and says how
-// many of its curve points it reached. With no numbered item queued: the command a #J with
-// nothing after it (or a drop) named, else what the last finished command left.
-// stopped: the tick has dropped its ring (its stopped_ values are the final ones).
-// True when a numbered item is queued.
-bool Application::track_job(bool stopped) {
-  for (uint8_t i = 0; i < queue_.size(); ++i) {
-    const QueueItem* item = queue_.at(i);
-    if (item->job_index == kNotInJob) continue;
-    const uint16_t first = item->kind == ItemKind::kSpline ? item->spline.first_point : 0;
-    if (i != 0) {
-      report_job(item->job_index, first, item->job_id, false);
-      return true;
-    }
-    // After a stop only a command that was executing got anywhere.
-    const bool ticked = !stopped || queue_.in_flight() != 0;
-    const uint32_t point = (uint32_t)first + (!ticked   ? 0
-                                              : stopped ? latest_.stopped_points
-                                                        : latest_.item_points);
-    const bool started = ticked && (stopped ? latest_.stopped_started : latest_.item_started) != 0;
-    report_job(item->job_index, point > 0xFFFFUL ? 0xFFFFU : (uint16_t)point, item->job_id,
-               started);
-    return true;
-  }
-  if (job_.next_pending) report_job(job_.next_index, job_.first_point, job_.next_id, false);
-  return false;
-}
-
-// Sets the reported progress. The same command and point again (a resume's #J while its
-// lead-in runs) keeps "began to move": the tool was on its path when the job stopped.
-void Application::report_job(int32_t index, uint16_t point, uint16_t id, bool started) {
-  const bool same = index == job_.index && point == job_.point && id == job_.id;
-  job_.started = started || (same && job_.started);
-  job_.index = index;
-  job_.point = point;
-  job_.id = id;
 }
 
 // Forgets the queued work. What the tick has (points in the ring) stays in the queue until
@@ -455,16 +157,7 @@ void Application::drop_job() {
                       (partly->kind == ItemKind::kDrill && partly->stage > 0)))
     queue_.executed();
   // The first job command dropped unstarted follows the executing ones in the progress.
-  for (uint8_t i = queue_.in_flight(); i < queue_.size(); ++i) {
-    const QueueItem* item = queue_.at(i);
-    if (item->job_index == kNotInJob) continue;
-    job_.next_index = item->job_index;
-    job_.first_point = item->kind == ItemKind::kSpline ? item->spline.first_point : 0;
-    job_.next_id = item->job_id;
-    job_.next_pending = true;
-    break;
-  }
-  job_.numbering = false;  // until the next #J
+  job_.dropping(queue_);
   queue_.drop_waiting();
   store_.clear();
   generator_.stop();
@@ -478,25 +171,22 @@ void Application::drop_job() {
 
 void Application::set_spindle(bool on) {
   spindle_on_ = on;
-  if (board_.spindle != 0) board_.spindle->set_on(on);
+  if (spindle_ != 0) spindle_->set_on(on);
 }
 
 // Everything handed to the tick is done and the axes stand still.
 bool Application::standing_still() const {
-  return queue_.in_flight() == 0 && latest_.finished && latest_.at_rest;
+  return queue_.in_flight() == 0 && follower_.latest().finished && follower_.latest().at_rest;
 }
 
 // Asks the tick to decelerate and drop the ring; the background waits for it to finish.
 void Application::begin_stop() {
   drop_job();
-  stopping_ = true;
-  hold_requested_ = false;
-  link_hold_ = false;
-  if (!request(RequestKind::kStop, 0)) stop_request_owed_ = true;
+  stops_.started(request(RequestKind::kStop, 0));
 }
 
 void Application::raise_alarm(proto::Alarm a) {
-  if (app_alarm_ == proto::Alarm::kNone) app_alarm_ = a;
+  stops_.raise(a);
   begin_stop();
 }
 
@@ -505,26 +195,26 @@ bool Application::alarm_active() const {
 }
 
 proto::Alarm Application::alarm() const {
-  if (!alarm_clearing_ && latest_.mode == (uint8_t)TickMode::kAlarm &&
-      latest_.alarm != kTickAlarmNone)
-    return (proto::Alarm)latest_.alarm;
-  return app_alarm_;
+  const proto::Alarm latched = follower_.tick_alarm();
+  return latched != proto::Alarm::kNone ? latched : stops_.alarm();
 }
 
 proto::MachineState Application::state() const {
   if (alarm_active()) return proto::MachineState::kAlarm;
-  if (jog_active_ || latest_.mode == (uint8_t)TickMode::kJog) return proto::MachineState::kZeroing;
+  if (jog_active_ || follower_.latest().mode == (uint8_t)TickMode::kJog)
+    return proto::MachineState::kZeroing;
   if (paused_) return proto::MachineState::kPaused;
-  if (hold_requested_)
-    return latest_.at_rest ? proto::MachineState::kHeld : proto::MachineState::kHolding;
-  if (stopping_ || !queue_.empty() || !latest_.finished || !latest_.at_rest)
+  if (stops_.hold_requested())
+    return follower_.latest().at_rest ? proto::MachineState::kHeld : proto::MachineState::kHolding;
+  if (stops_.stopping() || !queue_.empty() || !follower_.latest().finished ||
+      !follower_.latest().at_rest)
     return proto::MachineState::kRunning;
   return proto::MachineState::kIdle;
 }
 
 void Application::position_um(int32_t out[config::kAxisCount]) const {
   for (uint8_t i = 0; i < config::kAxisCount; ++i)
-    out[i] = usteps_to_um(scaling_, i, latest_.pos_usteps[i]);
+    out[i] = usteps_to_um(scaling_, i, follower_.latest().pos_usteps[i]);
 }
 
 bool Application::inside_travel(uint8_t axis, int32_t um) const {
@@ -544,38 +234,8 @@ bool Application::motion_allowed() const {
 
 // ---------------------------------------------------------------- CommandSink
 
-proto::ErrorCode ApplicationSink::store(const proto::Frame& frame, uint8_t* detail) {
-  return app_->store(frame, detail);
-}
-proto::ErrorCode ApplicationSink::realtime(const proto::Frame& frame) {
-  return app_->realtime(frame);
-}
-void ApplicationSink::reset_session() {
-  app_->reset_session();
-}
-void ApplicationSink::fill_status(proto::StatusReply* reply) {
-  app_->fill_status(reply);
-}
-uint8_t ApplicationSink::queue_free() {
-  return app_->queue_free();
-}
-uint8_t ApplicationSink::spline_slots_free() {
-  return app_->spline_slots_free();
-}
-void ApplicationSink::fill_session(proto::SessionReply* reply) {
-  app_->fill_session(reply);
-}
-
-void ApplicationSink::fill_probe_result(proto::ProbeResultReply* reply) {
-  app_->fill_probe_result(reply);
-}
-
 void Application::fill_probe_result(proto::ProbeResultReply* r) {
-  r->result = probe_result_;
-  r->probe_count = probe_count_;
-  r->x_um = probe_at_um_[0];
-  r->y_um = probe_at_um_[1];
-  r->z_um = probe_at_um_[2];
+  probes_.fill(r);
 }
 
 // A new session starts without a height map: one left from an earlier job must never
@@ -590,11 +250,9 @@ void Application::reset_session() {
 void Application::fill_status(proto::StatusReply* r) {
   r->state = state();
   r->alarm = alarm();
-  r->flags =
-      (uint8_t)((zeroed_ ? proto::kStatusZeroed : 0) | (link_hold_ ? proto::kStatusLinkHold : 0) |
-                (items_done_ != 0 ? proto::kStatusExecuted : 0) |
-                (job_.valid ? proto::kStatusJob : 0) |
-                (job_.valid && job_.started ? proto::kStatusJobStarted : 0));
+  r->flags = (uint8_t)((zeroed_ ? proto::kStatusZeroed : 0) |
+                       (stops_.link_hold() ? proto::kStatusLinkHold : 0) |
+                       (items_done_ != 0 ? proto::kStatusExecuted : 0) | job_.status_flags());
   r->override_percent = override_percent_;
   r->queue_free = queue_free();
   r->next_expected_seq = 0;  // filled by the dispatcher
@@ -607,9 +265,7 @@ void Application::fill_status(proto::StatusReply* r) {
   r->z_um = at[2];
   r->rejected_frames = 0;
   r->spline_slots_free = spline_slots_free();
-  r->job_index = job_.valid ? job_.index : 0;
-  r->curve_point = job_.valid ? job_.point : 0;
-  r->job_id = job_.valid ? job_.id : 0;
+  job_.fill_status(r);
 }
 
 uint8_t Application::spline_slots_free() {
@@ -641,7 +297,7 @@ void Application::fill_session(proto::SessionReply* r) {
 
 // Starts queued items in order: moves and splines become ring points, the rest markers.
 void Application::execute() {
-  if (stopping_ || alarm_active()) return;
+  if (stops_.stopping() || alarm_active()) return;
   for (uint8_t n = 0; n < kItemsPerPoll; ++n) {
     QueueItem* item = queue_.to_execute();
     if (item == 0) return;
@@ -653,7 +309,7 @@ void Application::execute() {
 
 bool Application::push_point(const int32_t target[config::kAxisCount], uint16_t feed,
                              uint8_t flags) {
-  return planner_.push(&ring_, target, feed, flags, item_tag_);
+  return planner_.push(tick_.ring(), target, feed, flags, item_tag_);
 }
 
 // True when the item is fully handed over (its last ring entry flagged end-of-item).
@@ -688,12 +344,12 @@ bool Application::execute_item(QueueItem* item) {
       if (item->stage == 0) {
         if (!standing_still()) return false;
         screen_.show_pause(item->text.chars, item->text.length);
-        pause_presses_ = latest_.confirm_presses;
+        pause_presses_ = follower_.latest().confirm_presses;
         paused_ = true;
         item->stage = 1;
       }
       if (item->stage == 1) {
-        if (latest_.confirm_presses == pause_presses_) return false;
+        if (follower_.latest().confirm_presses == pause_presses_) return false;
         paused_ = false;
         item->stage = 2;
       }
@@ -701,11 +357,11 @@ bool Application::execute_item(QueueItem* item) {
     case ItemKind::kDwell:
       if (item->stage == 0) {
         if (!standing_still()) return false;
-        wait_start_ms_ = latest_.ms;
+        wait_start_ms_ = follower_.latest().ms;
         item->stage = 1;
       }
       if (item->stage == 1) {
-        if ((uint16_t)(latest_.ms - wait_start_ms_) < item->dwell.dwell_ms) return false;
+        if ((uint16_t)(follower_.latest().ms - wait_start_ms_) < item->dwell.dwell_ms) return false;
         item->stage = 2;
       }
       return push_point(target, last_feed_um_s_, kPointEndOfItem);
@@ -732,13 +388,13 @@ bool Application::execute_item(QueueItem* item) {
       }
       // Where the machine already goes (no offset added, so no motion): the change applies
       // from the next point generated, never to the standing tool.
-      return planner_.push_standing(&ring_, last_feed_um_s_, kPointEndOfItem, item_tag_);
+      return planner_.push_standing(tick_.ring(), last_feed_um_s_, kPointEndOfItem, item_tag_);
     case ItemKind::kMapHeights: {
       const MapHeightsArgs& m = item->map_heights;
       for (uint8_t i = 0; i < m.n; ++i) map_.set((uint16_t)(m.index + i), m.height_um[i]);
       // The frame that ends the grid (checked when it was stored) switches it on.
       if ((uint16_t)(m.index + m.n) == (uint16_t)map_.cols() * map_.rows()) map_.complete();
-      return planner_.push_standing(&ring_, last_feed_um_s_, kPointEndOfItem, item_tag_);
+      return planner_.push_standing(tick_.ring(), last_feed_um_s_, kPointEndOfItem, item_tag_);
     }
     case ItemKind::kSpline: {
       const uint8_t slot = item->spline.slot;
@@ -761,7 +417,7 @@ bool Application::execute_item(QueueItem* item) {
         last_feed_um_s_ = item->spline.feed_um_s;
       }
       const int32_t travel[2] = {scaling_.travel_um[0], scaling_.travel_um[1]};
-      const GenStatus g = generator_.run(&planner_, &ring_, travel, kPointsPerPoll);
+      const GenStatus g = generator_.run(&planner_, tick_.ring(), travel, kPointsPerPoll);
       if (g == GenStatus::kMore) return false;
       spline_started_ = false;
       store_.release(slot);
@@ -823,7 +479,7 @@ bool Application::execute_probe(QueueItem* item) {
   int32_t at[config::kAxisCount];
   if (item->stage == 0) {
     if (!standing_still()) return false;
-    if (board_.probe == 0) {
+    if (!tick_.has_probe()) {
       raise_alarm(proto::Alarm::kProbeMissing);
       return false;
     }
@@ -831,71 +487,64 @@ bool Application::execute_probe(QueueItem* item) {
       raise_alarm(proto::Alarm::kProbeSpindleOn);
       return false;
     }
-    if (latest_.probe_closed) {
+    if (follower_.latest().probe_closed) {
       raise_alarm(proto::Alarm::kProbeClosedAtStart);
       return false;
     }
     position_um(at);
     if (p.z_limit_um >= at[config::kAxisZ]) {  // nothing below to probe: nothing moves
-      note_probe(2, at);
+      probes_.note(2, at);
       raise_alarm(proto::Alarm::kProbeNoContact);
       return false;
     }
     const int32_t* m = planner_.machine_um();
     const int32_t target[config::kAxisCount] = {m[0], m[1], p.z_limit_um};
-    p.seen_probes = latest_.probes_done;
-    if (!planner_.push_machine(&ring_, target, p.feed_um_s, kPointProbe, item_tag_)) return false;
+    p.seen_probes = follower_.latest().probes_done;
+    if (!planner_.push_machine(tick_.ring(), target, p.feed_um_s, kPointProbe, item_tag_))
+      return false;
     probing_ = true;
     item->stage = 1;
   }
   if (item->stage == 1) {
-    if (latest_.probes_done == p.seen_probes) return false;
+    if (follower_.latest().probes_done == p.seen_probes) return false;
     position_um(at);
-    const uint8_t result = tick_.probe_result;  // handed over in TickOwned (application.h)
-    at[config::kAxisZ] = usteps_to_um(scaling_, config::kAxisZ, tick_.probe_z_usteps);
-    note_probe(result, at);
+    const uint8_t result = tick_.probe_result();  // handed over in ProbeWatch (motion_tick.h)
+    at[config::kAxisZ] = usteps_to_um(scaling_, config::kAxisZ, tick_.probe_z_usteps());
+    probes_.note(result, at);
     if (result != 1) {
       probing_ = false;
       raise_alarm(proto::Alarm::kProbeNoContact);
       return false;
     }
-    wait_start_ms_ = latest_.ms;
+    wait_start_ms_ = follower_.latest().ms;
     item->stage = 2;
   }
   if (item->stage == 2) {
     // The tick dropped the descent; the chip ramps Z down from the probe feed meanwhile.
-    if ((uint16_t)(latest_.ms - wait_start_ms_) < kProbeSettleMs) return false;
+    if ((uint16_t)(follower_.latest().ms - wait_start_ms_) < kProbeSettleMs) return false;
     position_um(at);
     planner_.set_origin(at);
     item->stage = 3;
   }
   const int32_t* m = planner_.machine_um();
-  const int32_t up[config::kAxisCount] = {m[0], m[1], probe_at_um_[config::kAxisZ] + p.retract_um};
-  if (!planner_.push_machine(&ring_, up, rapid_feed(), kPointEndOfItem, item_tag_)) return false;
+  const int32_t up[config::kAxisCount] = {m[0], m[1], probes_.z_um() + p.retract_um};
+  if (!planner_.push_machine(tick_.ring(), up, rapid_feed(), kPointEndOfItem, item_tag_))
+    return false;
   probing_ = false;
   return true;
 }
 
-void Application::note_probe(uint8_t result, const int32_t at_um[config::kAxisCount]) {
-  probe_result_ = result;
-  probe_count_ = (uint16_t)(probe_count_ + 1U);
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) probe_at_um_[i] = at_um[i];
-}
-
 // Link watchdog: running with no valid frame for kLinkTimeoutMs -> feed hold.
 void Application::watchdog() {
-  if (!dispatcher_.session_open() || hold_requested_) return;
+  if (!dispatcher_.session_open() || stops_.hold_requested()) return;
   if (state() != proto::MachineState::kRunning) return;
   if (dispatcher_.ms_since_valid(link_ms()) < (uint16_t)proto::kLinkTimeoutMs) return;
-  if (request(RequestKind::kLinkHold, 0)) {
-    hold_requested_ = true;
-    link_hold_ = true;
-  }
+  if (request(RequestKind::kLinkHold, 0)) stops_.held(true);
 }
 
 // The link's time-outs count the board's link clock, else the tick (link_clock.h).
 uint16_t Application::link_ms() const {
-  return board_.link_clock != 0 ? board_.link_clock->link_ms() : ms_;
+  return link_clock_ != 0 ? link_clock_->link_ms() : tick_.ms();
 }
 
 void Application::update_screen() {
@@ -903,14 +552,14 @@ void Application::update_screen() {
   info.state = state();
   info.alarm = alarm();
   info.zeroed = zeroed_;
-  info.z_mode = latest_.z_mode != 0;  // the tick's jog state, through its snapshot
+  info.z_mode = follower_.latest().z_mode != 0;  // the tick's jog state, through its snapshot
   info.paused = paused_;
   info.probing = probing_;
-  info.probe_closed = latest_.probe_closed != 0;
+  info.probe_closed = follower_.latest().probe_closed != 0;
   info.items_done = items_done_;
   info.items_stored = items_stored_;
   position_um(info.pos_um);
-  screen_.update(info, ms_);
+  screen_.update(info, tick_.ms());
 }
 
 }  // namespace app

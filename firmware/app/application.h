@@ -8,17 +8,20 @@
 
 #include <stdint.h>  // int32_t, uint16_t
 
-#include "firmware/app/axis_scaling.h"     // AxisScaling
-#include "firmware/app/command_queue.h"    // CommandQueue
-#include "firmware/app/coordinate_ring.h"  // CoordinateRing
-#include "firmware/app/dispatcher.h"       // Dispatcher, CommandSink
-#include "firmware/app/jog_controller.h"   // JogController
-#include "firmware/app/path_controller.h"  // PathController
-#include "firmware/app/planner.h"          // Planner
-#include "firmware/app/point_generator.h"  // PointGenerator
-#include "firmware/app/spline_store.h"     // SplineStore
-#include "firmware/app/status_screen.h"    // StatusScreen
-#include "firmware/app/tick_link.h"        // RequestRing, StatusRing
+#include "firmware/app/axis_scaling.h"      // AxisScaling
+#include "firmware/app/command_handlers.h"  // APP_DECLARE_COMMAND_HANDLERS
+#include "firmware/app/command_queue.h"     // CommandQueue
+#include "firmware/app/dispatcher.h"        // Dispatcher, CommandSink
+#include "firmware/app/job_progress.h"      // JobProgress
+#include "firmware/app/motion_tick.h"       // MotionTick
+#include "firmware/app/planner.h"           // Planner
+#include "firmware/app/point_generator.h"   // PointGenerator
+#include "firmware/app/probe_record.h"      // ProbeRecord
+#include "firmware/app/spline_store.h"      // SplineStore
+#include "firmware/app/status_screen.h"     // StatusScreen
+#include "firmware/app/stop_state.h"        // StopState
+#include "firmware/app/tick_follower.h"     // TickFollower
+#include "firmware/app/tick_link.h"         // TickStatus, RequestKind
 #include "firmware/config/machine_config.h"
 #include "firmware/core/height_map.h"  // HeightMap
 #include "hal/interfaces/link_clock.h"
@@ -42,36 +45,14 @@ struct Board {
   hal::ProbeInput* probe;  // 0 on a machine without a probe input (#Y: alarm 11)
 };
 
-class Application;
-
-// The dispatcher's view of the application (forwards to it). A member, never deleted through
-// a base pointer, so its non-virtual destructor is fine (the warning is silenced for it).
+// The dispatcher's view of the application is the application itself (a private CommandSink:
+// the dispatcher calls the public members below). Never deleted through a base pointer, so
+// its non-virtual destructor is fine (the warning is silenced for it).
 #if defined(__GNUC__) && __GNUC__ >= 5
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wnon-virtual-dtor"
 #endif
-class ApplicationSink : public CommandSink {
- public:
-  proto::ErrorCode store(const proto::Frame& frame, uint8_t* detail);
-  proto::ErrorCode realtime(const proto::Frame& frame);
-  void reset_session();
-  void fill_status(proto::StatusReply* reply);
-  uint8_t queue_free();
-  uint8_t spline_slots_free();
-  void fill_session(proto::SessionReply* reply);
-  void fill_probe_result(proto::ProbeResultReply* reply);
-
- private:
-  friend class Application;
-  ApplicationSink() : app_(0) {}
-  ~ApplicationSink() {}
-  Application* app_;
-};
-#if defined(__GNUC__) && __GNUC__ >= 5
-#pragma GCC diagnostic pop
-#endif
-
-class Application {
+class Application : private CommandSink {
  public:
   Application();
   void init(const Board& board, const config::MachineConfig& cfg);
@@ -92,16 +73,16 @@ class Application {
   uint16_t items_stored() const { return items_stored_; }
   uint16_t items_done() const { return items_done_; }
   uint8_t queue_size() const { return queue_.size(); }
-  uint16_t ms() const { return ms_; }
+  uint16_t ms() const { return tick_.ms(); }
   const Dispatcher& dispatcher() const { return dispatcher_; }
   const StatusScreen& screen() const { return screen_; }
   const AxisScaling& scaling() const { return scaling_; }
-  const PathController& path() const { return tick_.path; }
+  const PathController& path() const { return tick_.path(); }
   // The height map the planner follows (#A/#E), and the probe input as the tick debounced it.
   const core::HeightMap& height_map() const { return map_; }
-  bool probe_closed() const { return latest_.probe_closed != 0; }
+  bool probe_closed() const { return follower_.latest().probe_closed != 0; }
 
-  // What the dispatcher calls (through ApplicationSink) from poll().
+  // What the dispatcher calls (as its CommandSink) from poll().
   proto::ErrorCode store(const proto::Frame& frame, uint8_t* detail);
   proto::ErrorCode realtime(const proto::Frame& frame);
   void reset_session();
@@ -112,13 +93,6 @@ class Application {
   void fill_probe_result(proto::ProbeResultReply* reply);
 
  private:
-  // Tick side.
-  bool tick_probe(const int32_t pos[config::kAxisCount]);
-  void tick_take_requests();
-  void tick_check_drivers();
-  void tick_latch_alarm(uint8_t alarm);
-  void tick_publish(const int32_t pos[config::kAxisCount], uint8_t limits);
-  // Background side.
   bool request(RequestKind kind, uint8_t value);
   void take_snapshots();
   void follow_tick_events();
@@ -126,7 +100,6 @@ class Application {
   bool execute_item(QueueItem* item);
   bool execute_drill(QueueItem* item);
   bool execute_probe(QueueItem* item);
-  void note_probe(uint8_t result, const int32_t at_um[config::kAxisCount]);
   bool standing_still() const;
   void set_spindle(bool on);
   bool push_point(const int32_t target[config::kAxisCount], uint16_t feed, uint8_t flags);
@@ -145,81 +118,20 @@ class Application {
   proto::ErrorCode enqueue(const QueueItem& item);
   proto::ErrorCode motion_check(const int32_t* x_um, const int32_t* y_um,
                                 const int32_t* z_um) const;
-  template <typename Msg>
-  proto::ErrorCode dispatcher_handles(const Msg&, uint8_t, uint8_t*) {
-    return proto::ErrorCode::kUnknownCommand;  // #I and #? never reach the application
-  }
-  proto::ErrorCode on_text(const proto::TextCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_pause(const proto::PauseCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_dwell(const proto::DwellCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_spindle(const proto::SpindleCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_resolution(const proto::ResolutionCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_feed_move(const proto::FeedMoveCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_rapid_move(const proto::RapidMoveCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_z_move(const proto::ZMoveCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_drill(const proto::DrillCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_job_mark(const proto::JobMarkCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_zeroing(const proto::ZeroingCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_spline_header(const proto::SplineHeaderCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_spline_data(const proto::SplineDataCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_spline_compact(const proto::SplineCompactCmd& c, uint8_t seq,
-                                     uint8_t* detail);
-  proto::ErrorCode on_spline_contour(const proto::SplineContourCmd& c, uint8_t seq,
-                                     uint8_t* detail);
-  proto::ErrorCode on_hold(const proto::HoldCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_resume(const proto::ResumeCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_abort(const proto::AbortCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_override(const proto::OverrideCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_clear_alarm(const proto::ClearAlarmCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_probe(const proto::ProbeCmd& c, uint8_t seq, uint8_t* detail);
-  proto::ErrorCode on_height_map_header(const proto::HeightMapHeaderCmd& c, uint8_t seq,
-                                        uint8_t* detail);
-  proto::ErrorCode on_height_map_data(const proto::HeightMapDataCmd& c, uint8_t seq,
-                                      uint8_t* detail);
+  // One per command of the message table with a handler (command_handlers.h).
+  APP_DECLARE_COMMAND_HANDLERS()
   void watchdog();
   uint16_t link_ms() const;
   void update_screen();
-  bool track_job(bool stopped);
-  void report_job(int32_t index, uint16_t point, uint16_t id, bool started);
 
-  Board board_;
-  ApplicationSink sink_;
+  hal::Spindle* spindle_;       // 0: none (Board)
+  hal::LinkClock* link_clock_;  // 0: the tick counts the link's time-outs (Board)
   config::MachineConfig cfg_;
   AxisScaling scaling_;
 
-  // Shared between the tick and the background loop (SPSC only).
-  CoordinateRing ring_;
-  RequestRing requests_;
-  StatusRing status_;
-  volatile uint16_t ms_;  // written by the tick only
-
-  // Owned by the 1 ms tick (the timer ISR on the target): only tick_1ms() and the tick_*
-  // helpers touch these; the background loop sees them through the StatusRing snapshots.
-  struct TickOwned {
-    PathController path;
-    JogController jog;
-    int32_t pos[config::kAxisCount];
-    uint8_t mode;  // TickMode
-    uint8_t alarm;
-    uint8_t driver_check_ms;  // ms since the last poll_driver_check() step
-    uint8_t stops_done;
-    uint8_t jogs_done;
-    uint8_t jog_confirmed;
-    uint8_t requests_done;
-    uint8_t buttons;          // panel state seen by the previous tick
-    uint8_t confirm_presses;  // confirm button presses (wraps), for #P
-    bool stop_pending;
-    uint8_t probe_hits;     // ticks the probe input has read closed in a row (saturates)
-    int32_t probe_first_z;  // Z (usteps) at the first of them
-    uint8_t probes_done;    // probe descents ended
-    // The last descent's result (1 contact, 2 no contact) and Z (the first closed tick's, or
-    // where it ended): written before the snapshot that carries the new probes_done, read by
-    // the background loop only once it saw that count; the next descent, which would write
-    // them again, is the background's own to hand over. (Not in every snapshot: RAM.)
-    volatile uint8_t probe_result;
-    volatile int32_t probe_z_usteps;
-  };
-  TickOwned tick_;
+  // The 1 ms tick (timer ISR on the target) and the channels it shares with the background
+  // loop (SPSC only): tick_1ms() is its only caller.
+  MotionTick tick_;
 
   // Owned by the background loop (poll() and everything it calls, the command handlers
   // included); the tick never reads these.
@@ -229,29 +141,17 @@ class Application {
   Planner planner_;
   PointGenerator generator_;
   StatusScreen screen_;
-  TickStatus latest_;
-  uint16_t seen_items_;
+  TickFollower follower_;  // requests to the tick, its snapshots and events
+  StopState stops_;        // stopping, holds, the background's alarm
   uint16_t item_tag_;
   uint16_t items_stored_;
   uint16_t items_done_;
   uint16_t last_feed_um_s_;
-  uint8_t seen_stops_;
-  uint8_t seen_jogs_;
   uint8_t last_executed_seq_;
   uint8_t override_percent_;
-  proto::Alarm app_alarm_;
-  proto::Alarm reported_alarm_;
-  bool have_snapshot_;
-  bool stopping_;
-  bool stop_request_owed_;
   bool jog_active_;
   bool zeroed_;
-  bool hold_requested_;
-  bool link_hold_;
   bool spline_started_;
-  bool alarm_clearing_;       // #C sent, the tick has not taken it yet
-  uint8_t alarm_clear_mark_;  // requests_pushed_ when #C was sent
-  uint8_t requests_pushed_;
   uint8_t pause_presses_;   // confirm_presses when the pause started
   uint16_t wait_start_ms_;  // tick ms when the dwell started
   bool paused_;             // a #P waits for the operator
@@ -268,32 +168,15 @@ class Application {
     int16_t highest;
   };
   MapReception map_rx_;
-  // The last probe's result (#T), since power-up.
-  uint8_t probe_result_;  // 0 none, 1 contact, 2 no contact
-  uint16_t probe_count_;
-  int32_t probe_at_um_[config::kAxisCount];
-  bool probing_;  // a #Y is under way (the LCD says so)
+  ProbeRecord probes_;  // the last probe's result (#T), since power-up
+  bool probing_;        // a #Y is under way (the LCD says so)
 
-  // Job progress for the status (resume after a lost link or an abort): the first job
-  // command that has not finished, whatever #J marks are queued behind it; kept through #I,
-  // #X and alarms until the job moves on. Background loop only; the tick's part comes by
-  // snapshot.
-  struct JobProgress {
-    // The next job command not stored yet: the index and first point the next stored command
-    // gets while numbering (a #J sets them), or, after a drop, the first dropped one.
-    int32_t next_index;
-    uint16_t first_point;
-    uint16_t next_id;   // the job_id of that #J
-    bool numbering;     // a #J was stored in this session: stored commands get numbers
-    bool next_pending;  // nothing is stored for next_index yet (a #J with nothing after it)
-    bool valid;         // a #J was stored since power-up: index/point mean something
-    uint16_t id;        // the reported command's job (its #J's job_id)
-    int32_t index;      // first job command not finished
-    uint16_t point;     // curve point the tool heads for in it (points before reached)
-    bool started;       // that command began to move (through a resume's lead-in: it had)
-  };
+  // Job progress for the status (job_progress.h).
   JobProgress job_;
 };
+#if defined(__GNUC__) && __GNUC__ >= 5
+#pragma GCC diagnostic pop
+#endif
 
 }  // namespace app
 

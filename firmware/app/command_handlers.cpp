@@ -9,24 +9,12 @@ namespace app {
 
 using proto::ErrorCode;
 
-// Decodes the frame as its table row's message and calls that row's handler.
+// Decodes the frame as its table row's message and calls that row's handler (#I, #? and #T
+// never come here: the dispatcher answers them).
 ErrorCode Application::handle(const proto::Frame& f, uint8_t* detail) {
   *detail = 0;
   switch (f.letter) {
-// NOLINTBEGIN(bugprone-macro-parentheses): Type is a type name, handler a member name.
-#define APP_HANDLE_CMD(Type, name, letter, kind, display, reply, handler, check) \
-  case proto::name: {                                                            \
-    proto::Type m;                                                               \
-    const ErrorCode e = proto::decode_frame(f, &m);                              \
-    if (e != ErrorCode::kOk) return e;                                           \
-    return handler(m, f.seq, detail);                                            \
-  }
-#define APP_HANDLE_SKIP(...)
-    // NOLINTEND(bugprone-macro-parentheses)
-    PROTO_MESSAGE_TABLE(APP_HANDLE_CMD, APP_HANDLE_SKIP, APP_HANDLE_SKIP, APP_HANDLE_SKIP,
-                        APP_HANDLE_SKIP, APP_HANDLE_SKIP)
-#undef APP_HANDLE_CMD
-#undef APP_HANDLE_SKIP
+    APP_HANDLE_COMMAND_CASES()
     default:
       return ErrorCode::kUnknownCommand;
   }
@@ -58,32 +46,17 @@ QueueItem Application::new_item(ItemKind kind, uint8_t seq) {
 // Stores the item; after a #J it gets the next job index (and a spline the mark's first point).
 ErrorCode Application::enqueue(const QueueItem& item) {
   QueueItem numbered = item;
-  if (job_.numbering) {
-    numbered.job_index = job_.next_index;
-    numbered.job_id = job_.next_id;
-    if (numbered.kind == ItemKind::kSpline) numbered.spline.first_point = job_.first_point;
-  }
+  job_.number(&numbered);
   if (!queue_.push(numbered)) return ErrorCode::kBusy;
   ++items_stored_;
-  if (job_.numbering) {
-    job_.next_index = job_.next_index < PROTO_I32_MAX ? job_.next_index + 1 : job_.next_index;
-    job_.first_point = 0;  // the mark's first point applies to the command right after it
-    job_.next_pending = false;
-  }
+  job_.stored();
   return ErrorCode::kOk;
 }
 
-// Numbers the commands that follow (not #D, not #J): job_index, job_index + 1, ... The
-// progress in the status moves there once everything queued before the mark has finished
-// (a new job, or the resumed part of an old one).
+// Numbers the commands that follow (job_progress.h).
 ErrorCode Application::on_job_mark(const proto::JobMarkCmd& c, uint8_t, uint8_t*) {
-  job_.numbering = true;
-  job_.next_index = c.job_index;
-  job_.first_point = c.first_point;
-  job_.next_id = c.job_id;
-  job_.next_pending = true;
-  job_.valid = true;
-  track_job(false);
+  job_.mark(c);
+  job_.track(queue_, follower_.latest(), false);
   return ErrorCode::kOk;
 }
 
@@ -246,7 +219,7 @@ ErrorCode Application::on_height_map_data(const proto::HeightMapDataCmd& c, uint
 }
 
 ErrorCode Application::on_zeroing(const proto::ZeroingCmd& c, uint8_t seq, uint8_t*) {
-  if (!queue_.empty() || stopping_) return ErrorCode::kBadState;
+  if (!queue_.empty() || stops_.stopping()) return ErrorCode::kBadState;
   QueueItem item = new_item(ItemKind::kZeroing, seq);
   item.zeroing.axes = c.axes;
   return enqueue(item);
@@ -291,15 +264,14 @@ ErrorCode Application::on_spline_contour(const proto::SplineContourCmd& c, uint8
 
 ErrorCode Application::on_hold(const proto::HoldCmd&, uint8_t, uint8_t*) {
   if (!request(RequestKind::kHold, 0)) return ErrorCode::kBusy;
-  hold_requested_ = true;
+  stops_.held(false);
   return ErrorCode::kOk;
 }
 
 ErrorCode Application::on_resume(const proto::ResumeCmd&, uint8_t, uint8_t*) {
-  if (!hold_requested_) return ErrorCode::kBadState;
+  if (!stops_.hold_requested()) return ErrorCode::kBadState;
   if (!request(RequestKind::kResume, 0)) return ErrorCode::kBusy;
-  hold_requested_ = false;
-  link_hold_ = false;
+  stops_.resumed();
   return ErrorCode::kOk;
 }
 
@@ -318,15 +290,10 @@ ErrorCode Application::on_override(const proto::OverrideCmd& c, uint8_t, uint8_t
 ErrorCode Application::on_clear_alarm(const proto::ClearAlarmCmd&, uint8_t, uint8_t*) {
   if (!alarm_active()) return ErrorCode::kBadState;
   if (!request(RequestKind::kClearAlarm, 0)) return ErrorCode::kBusy;
-  app_alarm_ = proto::Alarm::kNone;
   drop_job();
-  stopping_ = true;  // until the tick confirms the ring is dropped
-  hold_requested_ = false;
-  link_hold_ = false;
+  stops_.alarm_cleared();  // a stop until the tick confirms the ring is dropped
   // Snapshots taken before the tick saw the request still show the latched alarm.
-  alarm_clearing_ = true;
-  alarm_clear_mark_ = requests_pushed_;
-  reported_alarm_ = proto::Alarm::kNone;
+  follower_.alarm_clear_sent();
   return ErrorCode::kOk;
 }
 

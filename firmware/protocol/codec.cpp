@@ -79,7 +79,7 @@ int32_t range_end(int16_t code) {
 #define PROTO_ARRAY_MAX_rest 255
 
 // NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and member names.
-#define PROTO_SPEC_CMD(Type, name, letter, kind, display, reply, handler, check) \
+#define PROTO_SPEC_CMD(Type, name, letter, role, display, reply, handler, check) \
   const FieldSpec k##Type##Fields[] = {
 #define PROTO_SPEC_REPLY(Type, name, letter, display, check) const FieldSpec k##Type##Fields[] = {
 #define PROTO_SPEC_FIELD(Type, wire, field, min, max) \
@@ -415,7 +415,7 @@ bool is_known_error(uint8_t code) {
         read_fields(bytes, length, reinterpret_cast<uint8_t*>(m), k##Type##Fields); \
     return e != ErrorCode::kOk ? e : check_message(*m);                             \
   }
-#define PROTO_CODEC_CMD(Type, name, letter, kind, display, reply, handler, check) \
+#define PROTO_CODEC_CMD(Type, name, letter, role, display, reply, handler, check) \
   PROTO_CODEC(Type, check)
 #define PROTO_CODEC_REPLY(Type, name, letter, display, check) PROTO_CODEC(Type, check)
 #define PROTO_CODEC_SKIP(...)

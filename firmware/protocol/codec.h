@@ -25,7 +25,7 @@ struct Payload {
   ErrorCode encode(const Type& msg, Payload* out);                   \
   ErrorCode decode(const uint8_t* bytes, uint8_t length, Type* msg); \
   ErrorCode check_message(const Type& msg);
-#define PROTO_DECLARE_CMD(Type, name, letter, kind, display, reply, handler, check) \
+#define PROTO_DECLARE_CMD(Type, name, letter, role, display, reply, handler, check) \
   PROTO_DECLARE_CODEC(Type)
 #define PROTO_DECLARE_REPLY(Type, name, letter, display, check) PROTO_DECLARE_CODEC(Type)
 #define PROTO_DECLARE_SKIP(...)

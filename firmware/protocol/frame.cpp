@@ -12,8 +12,8 @@ bool is_frame_letter(uint8_t letter) {
 }
 
 FrameKind command_kind(uint8_t letter) {
-#define PROTO_KIND_CMD(Type, name, letter_value, kind, display, reply, handler, check) \
-  if (letter == (letter_value)) return FrameKind::kind;
+#define PROTO_KIND_CMD(Type, name, letter_value, role, display, reply, handler, check) \
+  if (letter == (letter_value)) return PROTO_KIND_OF_##role;
 #define PROTO_KIND_SKIP(...)
   PROTO_MESSAGE_TABLE(PROTO_KIND_CMD, PROTO_KIND_SKIP, PROTO_KIND_SKIP, PROTO_KIND_SKIP,
                       PROTO_KIND_SKIP, PROTO_KIND_SKIP)
@@ -23,7 +23,7 @@ FrameKind command_kind(uint8_t letter) {
 }
 
 const char* message_name(uint8_t start, uint8_t letter) {
-#define PROTO_NAME_CMD(Type, name, letter_value, kind, display, reply, handler, check) \
+#define PROTO_NAME_CMD(Type, name, letter_value, role, display, reply, handler, check) \
   if (start == kCommandStart && letter == (letter_value)) return display;
 #define PROTO_NAME_REPLY(Type, name, letter_value, display, check) \
   if (start == kReplyStart && letter == (letter_value)) return display;

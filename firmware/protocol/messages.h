@@ -48,7 +48,7 @@ enum {
 // One struct per message, fields in wire order, with its start byte and letter
 // (docs/protocol.md gives the meaning of every field).
 // NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and member names.
-#define PROTO_STRUCT_CMD(Type, name, letter, kind, display, reply, handler, check) \
+#define PROTO_STRUCT_CMD(Type, name, letter, role, display, reply, handler, check) \
   struct Type {                                                                    \
     enum { kStart = kCommandStart, kLetter = letter };
 #define PROTO_STRUCT_REPLY(Type, name, letter, display, check) \

@@ -30,7 +30,7 @@ enum {
 
 // Command and reply letters, from the message table (kCmdText = 'S', kReplyAck = 'O', ...).
 // Original command letters kept; new ones added.
-#define PROTO_LETTER_CMD(Type, name, letter, kind, display, reply, handler, check) \
+#define PROTO_LETTER_CMD(Type, name, letter, role, display, reply, handler, check) \
   static const uint8_t name = letter;
 #define PROTO_LETTER_REPLY(Type, name, letter, display, check) static const uint8_t name = letter;
 #define PROTO_LETTER_SKIP(...)
@@ -46,13 +46,44 @@ inline uint8_t version_of_command(uint8_t letter) {
   return letter == kCmdSplineContour ? kContourFramesVersion : kMinProtocolVersion;
 }
 
-// How the dispatcher treats a frame, by its letter.
+// How the dispatcher treats a frame, by its letter (its role says which letters).
 enum class FrameKind : uint8_t {
   kUnknown = 0,    // letter not defined in this direction
   kQueued = 1,     // ordered stream: sequence window, acked when stored, run in order
-  kImmediate = 2,  // answered at once, no ordering (#I, #?)
-  kRealtime = 3    // acted on at once, before queued work (#H #R #X #V #C)
+  kImmediate = 2,  // answered at once, no ordering
+  kRealtime = 3    // acted on at once, before queued work
 };
+
+// What a command is, from the message table's role column: the kind, and for queued
+// commands what they do to the job numbering and the queue (docs/protocol.md, #J).
+enum class CommandRole : uint8_t {
+  kUnknown = 0,
+  kImmediate = 1,   // answered by the dispatcher itself (kind kImmediate)
+  kRealtime = 2,    // kind kRealtime
+  kJobCommand = 3,  // queued: takes a queue slot; after a #J, the next job index
+  kSplineData = 4,  // queued: fills the open spline (part of its #B), no slot, no number
+  kJobMark = 5      // queued: #J, numbers what follows, no slot, no number
+};
+
+// The kind of each role (the PROTO_KIND_OF_ macros let the table's rows name it directly).
+#define PROTO_KIND_OF_kImmediate FrameKind::kImmediate
+#define PROTO_KIND_OF_kRealtime FrameKind::kRealtime
+#define PROTO_KIND_OF_kJobCommand FrameKind::kQueued
+#define PROTO_KIND_OF_kSplineData FrameKind::kQueued
+#define PROTO_KIND_OF_kJobMark FrameKind::kQueued
+
+// The role of a command letter (kUnknown: not a command). Inline: the host's job tools use
+// it; the firmware needs only command_kind().
+inline CommandRole command_role(uint8_t letter) {
+#define PROTO_ROLE_CMD(Type, name, letter_value, role, display, reply, handler, check) \
+  if (letter == (letter_value)) return CommandRole::role;
+#define PROTO_ROLE_SKIP(...)
+  PROTO_MESSAGE_TABLE(PROTO_ROLE_CMD, PROTO_ROLE_SKIP, PROTO_ROLE_SKIP, PROTO_ROLE_SKIP,
+                      PROTO_ROLE_SKIP, PROTO_ROLE_SKIP)
+#undef PROTO_ROLE_CMD
+#undef PROTO_ROLE_SKIP
+  return CommandRole::kUnknown;
+}
 
 // Every coded error of the protocol, one list. Frame-level codes come from the parser;
 // payload codes from the codecs; the rest from the dispatcher.

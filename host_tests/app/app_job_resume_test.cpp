@@ -70,11 +70,6 @@ std::vector<Frame> the_job() {
   return job;
 }
 
-bool is_spline_data(uint8_t letter) {
-  return letter == proto::kCmdSplineData || letter == proto::kCmdSplineCompact ||
-         letter == proto::kCmdSplineContour;
-}
-
 // Each frame's job index by the document's numbering (-1: not a job command).
 std::vector<int32_t> job_indices(const std::vector<Frame>& job) {
   std::vector<int32_t> out;
@@ -85,7 +80,7 @@ std::vector<int32_t> job_indices(const std::vector<Frame>& job) {
       numbering = true;
       next = decoded<proto::JobMarkCmd>(f).job_index;
       out.push_back(-1);
-    } else if (is_spline_data(f.letter) || !numbering) {
+    } else if (proto::command_role(f.letter) != proto::CommandRole::kJobCommand || !numbering) {
       out.push_back(-1);
     } else {
       out.push_back(next++);

@@ -60,7 +60,7 @@ TEST(DocExamples, DocumentHasExamplesForEveryCommandAndReplyLetter) {
   }
   // Every row of the message table, so a new command cannot go undocumented.
   std::vector<std::string> expected;
-#define DOC_CMD(Type, name, letter_value, kind, display, reply, handler, check) \
+#define DOC_CMD(Type, name, letter_value, role, display, reply, handler, check) \
   expected.push_back(std::string("#") + char(letter_value));
 #define DOC_REPLY(Type, name, letter_value, display, check) \
   expected.push_back(std::string("*") + char(letter_value));

@@ -33,6 +33,7 @@ struct MessageDecl {
   bool reply = false;
   std::string kind, name, reply_text;
   std::vector<FieldDecl> fields;
+  proto::CommandRole role = proto::CommandRole::kUnknown;
   int min_bytes() const {
     int n = 0;
     for (const auto& f : fields) n += f.bytes;
@@ -61,13 +62,15 @@ int element_bytes(const std::string& element) {
 
 std::vector<MessageDecl> declared() {
   std::vector<MessageDecl> all;
-#define KIND_kQueued "queued"
 #define KIND_kImmediate "immediate"
 #define KIND_kRealtime "real-time"
-#define T_CMD(Type, name, letter, kind, display, reply, handler, check) \
-  all.push_back({#Type, letter, false, KIND_##kind, display, reply, {}});
+#define KIND_kJobCommand "queued"
+#define KIND_kSplineData "queued"
+#define KIND_kJobMark "queued"
+#define T_CMD(Type, name, letter, role, display, reply, handler, check) \
+  all.push_back({#Type, letter, false, KIND_##role, display, reply, {}, proto::CommandRole::role});
 #define T_REPLY(Type, name, letter, display, check) \
-  all.push_back({#Type, letter, true, "", display, "", {}});
+  all.push_back({#Type, letter, true, "", display, "", {}, proto::CommandRole::kUnknown});
 #define T_FIELD(Type, wire, field, lo, hi) \
   all.back().fields.push_back({#field, doc_wire(#wire), lo, hi, wire_bytes(#wire), 0});
 #define T_TEXT(Type, count, field, most) all.back().fields.push_back({#field, "", 0, 0, 0, most});
@@ -274,6 +277,65 @@ TEST(DocTable, FieldTablesGiveEachFieldItsOffset) {
     ASSERT_NE(m, nullptr) << s.first;
     check_row_table(*m, table_after(doc, s.first), s.first);
   }
+}
+
+// The command letters ("#D", "`#H #R`") in doc between the end of `after` and the next
+// `until`, as a set; "?" when `after` is not in the document.
+std::set<char> doc_letters(const std::string& doc, const std::string& after,
+                           const std::string& until) {
+  const size_t a = doc.find(after);
+  if (a == std::string::npos) return {'?'};
+  const size_t from = a + after.size();
+  const std::string text = doc.substr(from, doc.find(until, from) - from);
+  static const std::regex re("#([A-Z?])");
+  std::set<char> out;
+  for (std::sregex_iterator it(text.begin(), text.end(), re), end; it != end; ++it) {
+    out.insert((*it).str(1)[0]);
+  }
+  return out;
+}
+
+std::set<char> letters_of(const std::vector<MessageDecl>& all, proto::CommandRole role) {
+  std::set<char> out;
+  for (const auto& m : all) {
+    if (!m.reply && m.role == role) out.insert(m.letter);
+  }
+  return out;
+}
+
+// The lists of docs/protocol.md that name commands by what they are (spline data, job
+// commands, real-time frames) name exactly the commands of that role in the table.
+TEST(DocTable, RoleListsNameTheTablesCommandsOfThatRole) {
+  std::string doc;
+  for (const auto& line : read_doc()) doc += trim(line) + " ";  // one line, as read
+  const auto all = declared();
+  const auto spline_data = letters_of(all, proto::CommandRole::kSplineData);
+  const auto job_commands = letters_of(all, proto::CommandRole::kJobCommand);
+  EXPECT_EQ(
+      doc_letters(doc, "are the queued commands stored after a `#J`, except spline data (", ":"),
+      spline_data);
+  EXPECT_EQ(doc_letters(doc, "acknowledges a real-time frame (", ")"),
+            letters_of(all, proto::CommandRole::kRealtime));
+  EXPECT_EQ(doc_letters(doc, "`queue_free` counts command-queue slots; each ", " takes one"),
+            job_commands);
+  EXPECT_EQ(doc_letters(doc, "takes one (the job commands), ", " frames take none"), spline_data);
+  EXPECT_EQ(doc_letters(doc, "the open spline), nor does ", " ("),
+            letters_of(all, proto::CommandRole::kJobMark));
+}
+
+// command_role() and command_kind() say what the table's role column says.
+TEST(DocTable, CommandRoleAndKindFollowTheRoleColumn) {
+  for (const auto& m : declared()) {
+    if (m.reply) continue;
+    EXPECT_EQ(proto::command_role(static_cast<uint8_t>(m.letter)), m.role) << m.letter;
+    const proto::FrameKind kind = proto::command_kind(static_cast<uint8_t>(m.letter));
+    EXPECT_EQ(m.kind, kind == proto::FrameKind::kQueued     ? "queued"
+                      : kind == proto::FrameKind::kRealtime ? "real-time"
+                                                            : "immediate")
+        << m.letter;
+  }
+  EXPECT_EQ(proto::command_role('a'), proto::CommandRole::kUnknown);
+  EXPECT_EQ(proto::command_role('O'), proto::CommandRole::kUnknown);  // a reply letter only
 }
 
 }  // namespace

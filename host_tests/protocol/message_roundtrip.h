@@ -36,7 +36,7 @@ RoundTrip round_trip_as(const uint8_t* payload, uint8_t length) {
 // kUnknownCommand if none.
 inline RoundTrip round_trip_any(uint8_t start, uint8_t letter, const uint8_t* payload,
                                 uint8_t length) {
-#define RT_CMD(Type, name, letter_value, kind, display, reply, handler, check) \
+#define RT_CMD(Type, name, letter_value, role, display, reply, handler, check) \
   if (start == proto::kCommandStart && letter == (letter_value))               \
     return round_trip_as<proto::Type>(payload, length);
 #define RT_REPLY(Type, name, letter_value, display, check)     \

@@ -14,7 +14,7 @@ namespace host {
 namespace {
 
 bool is_job_command(const QueuedCommand& c) {
-  return !is_spline_data(c.letter) && c.letter != proto::kCmdJobMark;
+  return proto::command_role(c.letter) == proto::CommandRole::kJobCommand;
 }
 
 template <typename Msg>

@@ -188,23 +188,11 @@ bool Sender::pump(milliseconds wait) {
   return any;
 }
 
-// Index of the in-flight command carrying seq (within 128 of base_), or SIZE_MAX.
-size_t Sender::index_of_seq(uint8_t seq) const {
-  if (commands_ == nullptr) return SIZE_MAX;
-  const uint8_t base_seq = static_cast<uint8_t>(first_seq_ + base_);
-  // The 8-bit wrap to a signed distance is the point (sequence numbers are modulo 256).
-  // NOLINTNEXTLINE(bugprone-signed-char-misuse)
-  const int delta = static_cast<int8_t>(static_cast<uint8_t>(seq - base_seq));
-  const long index = static_cast<long>(base_) + delta;
-  if (index < 0 || index > static_cast<long>(commands_->size())) return SIZE_MAX;
-  return static_cast<size_t>(index);
-}
-
 // "command 12 ('B' spline header, plan step 7, curve 3)" for messages (names from the
 // message table).
 std::string Sender::where(size_t index) const {
-  if (commands_ == nullptr || !commands_->holds(index)) return "a command";
-  const QueuedCommand& c = commands_->at(index);
+  if (win_.commands == nullptr || !win_.commands->holds(index)) return "a command";
+  const QueuedCommand& c = win_.commands->at(index);
   const char* name = proto::message_name(proto::kCommandStart, c.letter);
   std::string s = fmt::format("command {} ('{}' {}", index, static_cast<char>(c.letter),
                               name != nullptr ? name : "unknown");
@@ -218,9 +206,9 @@ void Sender::handle_reply(const proto::Frame& frame) {
   switch (frame.letter) {
     case proto::kReplySession: {
       proto::SessionReply r;
-      if (proto::decode_frame(frame, &r) == proto::ErrorCode::kOk && frame.seq == session_seq_) {
-        session_ = r;
-        session_open_ = true;
+      if (proto::decode_frame(frame, &r) == proto::ErrorCode::kOk && frame.seq == session_.seq) {
+        session_.reply = r;
+        session_.open = true;
       }
       break;
     }
@@ -236,32 +224,33 @@ void Sender::handle_reply(const proto::Frame& frame) {
       if (proto::decode_frame(frame, &r) != proto::ErrorCode::kOk) break;
       last_status_ = r;
       have_status_ = true;
-      status_outstanding_ = false;
+      session_.status_outstanding = false;
       if (status_before_resume_)
         status_before_resume_ = false;  // asked before the #R: says nothing of it
       else
         resume_sent_ = false;
-      queue_free_ = r.queue_free;
-      if (commands_ == nullptr) break;
+      win_.queue_free = r.queue_free;
+      if (win_.commands == nullptr) break;
       // Everything before next_expected is stored.
-      const size_t stored = index_of_seq(r.next_expected_seq);
-      if (stored != SIZE_MAX && stored >= base_ && stored <= next_) {
-        splines_free_ = r.spline_slots_free;
-        splines_known_at_ = stored;
+      const size_t stored = win_.index_of_seq(r.next_expected_seq);
+      if (stored != SIZE_MAX && stored >= win_.base && stored <= win_.next) {
+        win_.splines_free = r.spline_slots_free;
+        win_.splines_known_at = stored;
       }
-      if (stored != SIZE_MAX && stored > base_ && stored <= next_) {
-        base_ = stored;
-        oldest_sent_ = now();
+      if (stored != SIZE_MAX && stored > win_.base && stored <= win_.next) {
+        win_.base = stored;
+        win_.oldest_sent = now();
       }
-      track_executed(r.last_executed_seq);
+      win_.track_executed(r.last_executed_seq);
       // No frame held: a busy refusal is over (its held frame's *O may have overtaken it).
-      if (!(r.flags & proto::kStatusFramePending)) busy_wait_ = false;
+      if (!(r.flags & proto::kStatusFramePending)) win_.busy_wait = false;
       // Unacknowledged frames past the time-out and none held: they were lost, go back.
-      const milliseconds rto = std::max(options_.min_rto, 4 * srtt_);
-      if (base_ < next_ && !(r.flags & proto::kStatusFramePending) && now() - oldest_sent_ > rto) {
-        next_ = base_;
-        busy_wait_ = false;
-        oldest_sent_ = now();
+      const milliseconds rto = rtt_.timeout(options_.min_rto);
+      if (win_.base < win_.next && !(r.flags & proto::kStatusFramePending) &&
+          now() - win_.oldest_sent > rto) {
+        win_.next = win_.base;
+        win_.busy_wait = false;
+        win_.oldest_sent = now();
       }
       break;
     }
@@ -271,19 +260,19 @@ void Sender::handle_reply(const proto::Frame& frame) {
       // v2: a real-time frame's *O says so; its seq is the real-time counter's, not the
       // ordered stream's.
       if (ack.realtime) {
-        if (frame.seq == realtime_seq_) realtime_acked_ = true;
+        if (frame.seq == session_.realtime_seq) session_.realtime_acked = true;
         break;
       }
-      queue_free_ = ack.queue_free;
-      const size_t index = index_of_seq(frame.seq);
-      if (index != SIZE_MAX && index >= base_ && index < next_) {
-        splines_free_ = ack.spline_slots_free;
-        splines_known_at_ = index + 1;
+      win_.queue_free = ack.queue_free;
+      const size_t index = win_.index_of_seq(frame.seq);
+      if (index != SIZE_MAX && index >= win_.base && index < win_.next) {
+        win_.splines_free = ack.spline_slots_free;
+        win_.splines_known_at = index + 1;
         sample_round_trip(index);
-        if (queue_free_ >= 2 && window_limit_ < window_) ++window_limit_;
-        base_ = index + 1;  // acks are cumulative: the controller stores strictly in order
-        oldest_sent_ = now();
-        busy_wait_ = false;
+        if (win_.queue_free >= 2 && win_.limit < win_.frames) ++win_.limit;
+        win_.base = index + 1;  // acks are cumulative: the controller stores strictly in order
+        win_.oldest_sent = now();
+        win_.busy_wait = false;
       }
       break;
     }
@@ -293,36 +282,37 @@ void Sender::handle_reply(const proto::Frame& frame) {
       stats_.error_replies++;
       if (r.code == proto::ErrorCode::kSeqStale) break;  // superseded real-time frame
       // An older controller names its version: open the session in that one.
-      if (r.code == proto::ErrorCode::kVersionUnsupported && !session_open_ &&
-          r.detail >= proto::kMinProtocolVersion && r.detail < session_version_) {
-        session_version_ = r.detail;
-        version_lowered_ = true;
+      if (r.code == proto::ErrorCode::kVersionUnsupported && !session_.open &&
+          r.detail >= proto::kMinProtocolVersion && r.detail < session_.version) {
+        session_.version = r.detail;
+        session_.version_lowered = true;
         break;
       }
-      if (commands_ != nullptr && (is_resend_error(r.code) || r.code == proto::ErrorCode::kBusy)) {
-        const size_t expected = index_of_seq(r.next_expected_seq);
+      if (win_.commands != nullptr &&
+          (is_resend_error(r.code) || r.code == proto::ErrorCode::kBusy)) {
+        const size_t expected = win_.index_of_seq(r.next_expected_seq);
         // One lost frame makes every later frame of the window answer seq_gap with the same
         // expected seq: go back once, not once per reply (the resent frames are on their way).
-        if (r.code == proto::ErrorCode::kSeqGap && expected == last_gap_expected_ &&
-            now() - last_gap_at_ < std::max(options_.min_rto, 4 * srtt_)) {
+        if (r.code == proto::ErrorCode::kSeqGap && expected == win_.last_gap_expected &&
+            now() - win_.last_gap_at < rtt_.timeout(options_.min_rto)) {
           break;
         }
         if (r.code == proto::ErrorCode::kSeqGap) {
-          last_gap_expected_ = expected;
-          last_gap_at_ = now();
+          win_.last_gap_expected = expected;
+          win_.last_gap_at = now();
         }
-        busy_wait_ = (r.code == proto::ErrorCode::kBusy);
-        if (expected != SIZE_MAX && expected >= base_ && expected <= next_) {
-          base_ = expected;
+        win_.busy_wait = (r.code == proto::ErrorCode::kBusy);
+        if (expected != SIZE_MAX && expected >= win_.base && expected <= win_.next) {
+          win_.base = expected;
           // Busy: the expected frame is the one the controller holds; resend after it.
-          next_ = busy_wait_ ? std::min(next_, expected + 1) : expected;
+          win_.next = win_.busy_wait ? std::min(win_.next, expected + 1) : expected;
         }
         // The store is full (spline data can fill it before the queue's slot count says so):
         // send one frame at a time until acks show room again.
-        if (busy_wait_) window_limit_ = 1;
+        if (win_.busy_wait) win_.limit = 1;
         break;
       }
-      if (commands_ == nullptr && is_resend_error(r.code)) break;  // a lost #I/#?: we retry
+      if (win_.commands == nullptr && is_resend_error(r.code)) break;  // a lost #I/#?: we retry
       failed_ = true;
       failure_ = r.code == proto::ErrorCode::kAlarmActive ? JobOutcome::kAlarm
                  : r.code == proto::ErrorCode::kAborted   ? JobOutcome::kAborted
@@ -330,7 +320,7 @@ void Sender::handle_reply(const proto::Frame& frame) {
       std::string detail;
       if (r.code == proto::ErrorCode::kGeometry)
         detail = fmt::format(" (geometry code {})", r.detail);
-      message_ = fmt::format("controller refused {}: {}{}", where(index_of_seq(frame.seq)),
+      message_ = fmt::format("controller refused {}: {}{}", where(win_.index_of_seq(frame.seq)),
                              error_name(r.code), detail);
       break;
     }
@@ -347,28 +337,10 @@ void Sender::handle_reply(const proto::Frame& frame) {
   }
 }
 
-// Execution progress. The executed frame is one the controller stored, so it lies between
-// executed_ and the stored frontier base_; its seq is read backwards from base_, which is
-// unambiguous however many frames ran since the previous status (counting forward from
-// executed_ is not: more than 127 frames between two statuses read as "behind" and the job
-// never completed).
-void Sender::track_executed(uint8_t last_executed_seq) {
-  if (base_ == 0) return;
-  const uint8_t newest_stored = static_cast<uint8_t>(first_seq_ + base_ - 1);
-  const size_t behind = static_cast<uint8_t>(newest_stored - last_executed_seq);
-  if (behind >= base_ || behind >= 128) return;  // before this run's first command
-  executed_ = std::max(executed_, base_ - behind);
-}
-
 // The watchdog: true once nothing changed for stall_limit (acks, executions, position, state).
 bool Sender::stalled() {
-  Seen s;
-  s.acked = base_;
-  s.executed = executed_;
-  s.x_um = last_status_.x_um;
-  s.y_um = last_status_.y_um;
-  s.z_um = last_status_.z_um;
-  s.state = last_status_.state;
+  const StallWatchdog::Seen s{win_.base,         win_.executed,     last_status_.x_um,
+                              last_status_.y_um, last_status_.z_um, last_status_.state};
   const auto t = now();
   // Waiting for a person is not a stall: a hold asked for here or at the machine's panel,
   // zeroing, or a pause (#P) until the operator confirms. A hold the controller made because it
@@ -378,57 +350,22 @@ bool Sender::stalled() {
       s.state == proto::MachineState::kZeroing || s.state == proto::MachineState::kPaused;
   const bool waits_for_operator =
       operator_hold_ || (held && !(last_status_.flags & proto::kStatusLinkHold));
-  if (s.acked != seen_.acked || s.executed != seen_.executed || s.x_um != seen_.x_um ||
-      s.y_um != seen_.y_um || s.z_um != seen_.z_um || s.state != seen_.state ||
-      waits_for_operator) {
-    seen_ = s;
-    last_progress_ = t;
-    return false;
-  }
-  return options_.stall_limit.count() > 0 && t - last_progress_ > options_.stall_limit;
-}
-
-// Whether the controller has a spline slot for the #B at next_: the newest *O or *? said
-// how many were free after the frames before splines_known_at_; every #B sent since took
-// one. (A slot frees when its spline has run; the status polls see that.)
-bool Sender::spline_room() const {
-  if (splines_free_ == kSplineSlotsUnknown) return true;
-  size_t taken = 0;
-  for (size_t i = splines_known_at_; i < next_ && i < commands_->size(); ++i) {
-    if (commands_->at(i).letter == proto::kCmdSplineHeader) ++taken;
-  }
-  return splines_free_ > taken;
-}
-
-// Lets go of what the controller has stored, but for the 128 commands before it (replies
-// name commands by an 8-bit seq up to 128 back) and those the spline slot count still needs.
-void Sender::release_stored(CommandSource& commands) {
-  constexpr size_t kHistory = 128;
-  const size_t keep_from = std::min(base_, splines_known_at_);
-  if (keep_from > kHistory) commands.release_before(keep_from - kHistory);
-  while (sent_base_ < base_ && !sent_.empty()) {
-    sent_.pop_front();
-    ++sent_base_;
-  }
+  return watchdog_.stalled(s, waits_for_operator, t, options_.stall_limit);
 }
 
 // The retransmission timer's round trip: smoothed (1/8 gain) over frames acknowledged at
 // their first sending; a frame held by the controller (ack delayed for room) or sent again
 // says nothing about the link and is left out.
 void Sender::sample_round_trip(size_t index) {
-  if (index < sent_base_ || index - sent_base_ >= sent_.size()) return;
-  const Sent& sent = sent_[index - sent_base_];
-  if (sent.resent) return;
   if (have_status_ && (last_status_.flags & proto::kStatusFramePending)) return;
-  const auto sample = std::chrono::duration_cast<milliseconds>(now() - sent.first);
-  srtt_ = (7 * srtt_ + sample) / 8;
+  rtt_.acknowledged(index, now());
 }
 
 void Sender::query_status() {
-  send_frame(proto::kCmdStatus, status_seq_++, {});
+  send_frame(proto::kCmdStatus, session_.status_seq++, {});
   stats_.status_queries++;
-  status_outstanding_ = true;
-  status_sent_ = now();
+  session_.status_outstanding = true;
+  session_.status_sent = now();
 }
 
 // Time for the next status query: each interval, or with a zero interval as soon as the
@@ -447,29 +384,29 @@ bool Sender::status_due(Clock::time_point last_poll) const {
   if (options_.status_interval.count() > 0) {
     return now() - last_poll >= options_.status_interval;
   }
-  return !status_outstanding_ || now() - status_sent_ > milliseconds(50);
+  return !session_.status_outstanding || now() - session_.status_sent > milliseconds(50);
 }
 
 proto::SessionReply Sender::open_session() {
-  session_open_ = false;
-  for (int attempt = 0; attempt < 5 && !session_open_; ++attempt) {
-    session_seq_ = static_cast<uint8_t>(session_seq_ + 1);
-    proto::SessionCmd cmd{session_version_};
+  session_.open = false;
+  for (int attempt = 0; attempt < 5 && !session_.open; ++attempt) {
+    session_.seq = static_cast<uint8_t>(session_.seq + 1);
+    proto::SessionCmd cmd{session_.version};
     proto::Payload p;
     proto::encode(cmd, &p);
-    send_frame(proto::kCmdSession, session_seq_, std::vector<uint8_t>(p.bytes, p.bytes + p.length));
-    version_lowered_ = false;
+    send_frame(proto::kCmdSession, session_.seq, std::vector<uint8_t>(p.bytes, p.bytes + p.length));
+    session_.version_lowered = false;
     const auto deadline = now() + options_.reply_timeout;
-    while (!session_open_ && !failed_ && !version_lowered_ && now() < deadline)
+    while (!session_.open && !failed_ && !session_.version_lowered && now() < deadline)
       pump(milliseconds(10));
     if (failed_) throw LinkError(message_);
   }
-  if (!session_open_) {
+  if (!session_.open) {
     throw LinkError(fmt::format("{}: no session reply from the controller", link_.name()));
   }
-  first_seq_ = static_cast<uint8_t>(session_seq_ + 1);
-  realtime_seq_ = 0;
-  return session_;
+  win_.first_seq = static_cast<uint8_t>(session_.seq + 1);
+  session_.realtime_seq = 0;
+  return session_.reply;
 }
 
 proto::StatusReply Sender::read_status() {
@@ -486,7 +423,7 @@ proto::StatusReply Sender::read_status() {
 proto::ProbeResultReply Sender::read_probe_result() {
   for (int attempt = 0; attempt < 5; ++attempt) {
     have_probe_ = false;
-    send_frame(proto::kCmdProbeResult, status_seq_++, {});
+    send_frame(proto::kCmdProbeResult, session_.status_seq++, {});
     const auto deadline = now() + options_.reply_timeout;
     while (!have_probe_ && now() < deadline) pump(milliseconds(5));
     if (have_probe_) return last_probe_;
@@ -510,12 +447,12 @@ proto::StatusReply Sender::read_status_at_rest(milliseconds limit) {
 
 // Sends a real-time frame and waits for its ack, retrying with the same seq.
 void Sender::send_realtime(uint8_t letter, const std::vector<uint8_t>& payload) {
-  realtime_seq_ = static_cast<uint8_t>(realtime_seq_ + 1);
-  realtime_acked_ = false;
-  for (int attempt = 0; attempt < 3 && !realtime_acked_; ++attempt) {
-    send_frame(letter, realtime_seq_, payload);
+  session_.realtime_seq = static_cast<uint8_t>(session_.realtime_seq + 1);
+  session_.realtime_acked = false;
+  for (int attempt = 0; attempt < 3 && !session_.realtime_acked; ++attempt) {
+    send_frame(letter, session_.realtime_seq, payload);
     const auto deadline = now() + options_.reply_timeout;
-    while (!realtime_acked_ && now() < deadline) pump(milliseconds(5));
+    while (!session_.realtime_acked && now() < deadline) pump(milliseconds(5));
   }
 }
 
@@ -544,25 +481,25 @@ bool Sender::ensure_zeroed(const std::function<void(const Progress&)>& on_progre
   c.payload.assign(p.bytes, p.bytes + p.length);
   const std::vector<QueuedCommand> one{c};
   CommandList one_list(one);
-  CommandSource* saved = commands_;
-  commands_ = &one_list;
-  base_ = next_ = executed_ = 0;
+  CommandSource* saved = win_.commands;
+  win_.commands = &one_list;
+  win_.base = win_.next = win_.executed = 0;
   auto last_poll = now();
   bool aborted = false;
   while (!failed_) {
-    if (abort_requested_) {
-      aborted = true;  // commands_ must not be left on the frame list that dies here
+    if (requests_.abort_asked()) {
+      aborted = true;  // win_.commands must not be left on the list that dies here
       break;
     }
-    if (next_ == 0) {
-      send_frame(c.letter, first_seq_, c.payload);
-      next_ = 1;
-      oldest_sent_ = now();
+    if (win_.next == 0) {
+      send_frame(c.letter, win_.first_seq, c.payload);
+      win_.next = 1;
+      win_.oldest_sent = now();
     }
     if (status_due(last_poll)) {
       query_status();
       last_poll = now();
-      if (base_ == 1 && (last_status_.flags & proto::kStatusZeroed)) break;
+      if (win_.base == 1 && (last_status_.flags & proto::kStatusZeroed)) break;
       Progress progress;
       progress.status = last_status_;
       if (on_progress) on_progress(progress);
@@ -575,10 +512,19 @@ bool Sender::ensure_zeroed(const std::function<void(const Progress&)>& on_progre
           fmt::format("{}: no reply for {} ms", link_.name(), options_.silence_limit.count());
     }
   }
-  commands_ = saved;
+  win_.commands = saved;
   if (failed_ || aborted) return false;
-  first_seq_ = static_cast<uint8_t>(first_seq_ + 1);
+  win_.first_seq = static_cast<uint8_t>(win_.first_seq + 1);
   return true;
+}
+
+// Lets go of what the controller has stored, but for the 128 commands before it (replies
+// name commands by an 8-bit seq up to 128 back) and those the spline slot count still needs.
+void Sender::release_stored(CommandSource& commands) {
+  constexpr size_t kHistory = 128;
+  const size_t keep_from = std::min(win_.base, win_.splines_known_at);
+  if (keep_from > kHistory) commands.release_before(keep_from - kHistory);
+  rtt_.release_before(win_.base);
 }
 
 JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
@@ -594,114 +540,108 @@ JobOutcome Sender::run(CommandSource& commands,
   struct Forget {
     CommandSource*& commands;
     ~Forget() { commands = nullptr; }
-  } forget{commands_};
-  if (!session_open_) open_session();
+  } forget{win_.commands};
+  if (!session_.open) open_session();
   failed_ = false;
-  sent_.clear();  // no round-trip samples from the zeroing frame
-  sent_base_ = 0;
+  rtt_.start(false);  // no round-trip samples from the zeroing frame
   if (!ensure_zeroed(on_progress)) {
-    if (abort_requested_) {
+    if (requests_.abort_asked()) {
       send_realtime(proto::kCmdAbort, {});
       message_ = "aborted by the operator while zeroing";
       return JobOutcome::kAborted;
     }
     return failure_;
   }
-  commands_ = &commands;
-  base_ = next_ = executed_ = 0;
-  busy_wait_ = false;
-  queue_free_ = session_.queue_slots;
-  splines_free_ = kSplineSlotsUnknown;
-  splines_known_at_ = 0;
-  window_ = std::max<size_t>(1, std::min<size_t>(session_.window_frames, proto::kWindowFrames));
-  window_limit_ = window_;
+  win_.commands = &commands;
+  rtt_.start(true);
+  win_.base = win_.next = win_.executed = 0;
+  win_.busy_wait = false;
+  win_.queue_free = session_.reply.queue_slots;
+  win_.splines_free = SendWindow::kSplineSlotsUnknown;
+  win_.splines_known_at = 0;
+  win_.frames =
+      std::max<size_t>(1, std::min<size_t>(session_.reply.window_frames, proto::kWindowFrames));
+  win_.limit = win_.frames;
   size_t high_water = 0;
-  const size_t rx_bytes = std::max<size_t>(session_.rx_buffer_bytes, proto::kMaxFrameBytes);
+  const size_t rx_bytes = std::max<size_t>(session_.reply.rx_buffer_bytes, proto::kMaxFrameBytes);
   auto last_poll = now() - options_.status_interval;
   last_reply_ = now();
-  seen_ = Seen();
-  last_progress_ = now();
+  watchdog_.start(now());
   operator_hold_ = false;
   resume_sent_ = false;
   status_before_resume_ = false;
 
   while (true) {
-    if (abort_requested_) {
+    if (requests_.abort_asked()) {
       send_realtime(proto::kCmdAbort, {});
-      message_ = fmt::format("aborted by the operator after {} of {} commands", executed_,
+      message_ = fmt::format("aborted by the operator after {} of {} commands", win_.executed,
                              commands.size());
-      commands_ = nullptr;
+      win_.commands = nullptr;
       return JobOutcome::kAborted;
     }
-    if (hold_requested_.exchange(false)) {
+    if (requests_.take_hold()) {
       send_realtime(proto::kCmdHold, {});
       operator_hold_ = true;
     }
-    if (resume_requested_.exchange(false)) {
+    if (requests_.take_resume()) {
       if (resume_may_act()) {
         send_realtime(proto::kCmdResume, {});
         resume_sent_ = true;
-        status_before_resume_ = status_outstanding_;
+        status_before_resume_ = session_.status_outstanding;
       }
       operator_hold_ = false;
     }
-    if (const int pct = override_requested_.exchange(0)) {
+    if (const int pct = requests_.take_override()) {
       send_realtime(proto::kCmdOverride, {static_cast<uint8_t>(pct)});
     }
     if (failed_) {
-      commands_ = nullptr;
+      win_.commands = nullptr;
       return failure_;
     }
-    if (next_ < commands.size() && options_.send_veto) {
+    if (win_.next < commands.size() && options_.send_veto) {
       std::string veto = options_.send_veto();
       if (!veto.empty()) {
         send_realtime(proto::kCmdAbort, {});
         message_ = std::move(veto);
-        commands_ = nullptr;
+        win_.commands = nullptr;
         return JobOutcome::kAborted;
       }
     }
-    release_stored(commands);
     // Fill the window (frames and bytes) unless the controller said busy.
     size_t inflight_bytes = 0;
-    for (size_t i = base_; i < next_; ++i) inflight_bytes += frame_bytes(commands.at(i));
+    release_stored(commands);
+    for (size_t i = win_.base; i < win_.next; ++i) inflight_bytes += frame_bytes(commands.at(i));
     // In flight may be what the queue has room for plus the one frame it can hold.
-    while (!busy_wait_ && next_ < commands.size() && next_ - base_ < window_limit_ &&
-           next_ - base_ <= queue_free_ &&
-           inflight_bytes + frame_bytes(commands.at(next_)) <= rx_bytes &&
-           (commands.at(next_).letter != proto::kCmdSplineHeader || spline_room())) {
-      const QueuedCommand& command = commands.at(next_);
-      if (next_ == base_) oldest_sent_ = now();
-      send_frame(command.letter, static_cast<uint8_t>(first_seq_ + next_), command.payload);
+    while (!win_.busy_wait && win_.next < commands.size() && win_.next - win_.base < win_.limit &&
+           win_.next - win_.base <= win_.queue_free &&
+           inflight_bytes + frame_bytes(commands.at(win_.next)) <= rx_bytes &&
+           (commands.at(win_.next).letter != proto::kCmdSplineHeader || win_.spline_room())) {
+      const QueuedCommand& command = commands.at(win_.next);
+      if (win_.next == win_.base) win_.oldest_sent = now();
+      send_frame(command.letter, static_cast<uint8_t>(win_.first_seq + win_.next),
+                 command.payload);
       inflight_bytes += frame_bytes(command);
-      if (next_ < high_water) stats_.retransmits++;
-      // Karn: a frame sent more than once gives no round-trip sample.
-      if (next_ < high_water) {
-        if (next_ >= sent_base_ && next_ - sent_base_ < sent_.size())
-          sent_[next_ - sent_base_].resent = true;
-      } else {
-        if (sent_.empty()) sent_base_ = next_;
-        sent_.push_back(Sent{now(), false});
-      }
-      ++next_;
-      high_water = std::max(high_water, next_);
+      if (win_.next < high_water) stats_.retransmits++;
+      rtt_.sent(win_.next, win_.next < high_water, now());  // Karn: again, no sample
+      ++win_.next;
+      high_water = std::max(high_water, win_.next);
     }
     if (status_due(last_poll)) {
       query_status();
       last_poll = now();
       Progress progress;
-      progress.acked = base_;
-      progress.executed = executed_;
+      progress.acked = win_.base;
+      progress.executed = win_.executed;
       progress.total = commands.size();
       progress.status = last_status_;
       if (on_progress && have_status_) on_progress(progress);
     }
     pump(milliseconds(1));
-    if (base_ == commands.size() && executed_ == commands.size() && have_status_ &&
+    if (win_.base == commands.size() && win_.executed == commands.size() && have_status_ &&
         last_status_.state == proto::MachineState::kIdle) {
       message_ = fmt::format("all {} commands executed", commands.size());
-      commands_ = nullptr;
-      first_seq_ = static_cast<uint8_t>(first_seq_ + commands.size());
+      win_.commands = nullptr;
+      win_.first_seq = static_cast<uint8_t>(win_.first_seq + commands.size());
       return JobOutcome::kCompleted;
     }
     if (stalled()) {
@@ -713,17 +653,17 @@ JobOutcome Sender::run(CommandSource& commands,
       message_ = fmt::format(
           "no progress for {} s: {} of {} commands executed, {} stored; machine {} at "
           "({:.3f}, {:.3f}, {:.3f}) mm{}",
-          options_.stall_limit.count() / 1000.0, executed_, commands.size(), base_,
+          options_.stall_limit.count() / 1000.0, win_.executed, commands.size(), win_.base,
           machine_state_name(last_status_.state), last_status_.x_um / 1000.0,
           last_status_.y_um / 1000.0, last_status_.z_um / 1000.0, why);
-      commands_ = nullptr;
+      win_.commands = nullptr;
       return JobOutcome::kStalled;
     }
     if (now() - last_reply_ > options_.silence_limit) {
       message_ =
           fmt::format("{}: no reply for {} ms after {} of {} commands executed", link_.name(),
-                      options_.silence_limit.count(), executed_, commands.size());
-      commands_ = nullptr;
+                      options_.silence_limit.count(), win_.executed, commands.size());
+      win_.commands = nullptr;
       return JobOutcome::kLinkLost;
     }
   }

@@ -4,20 +4,22 @@
 #ifndef HOST_LIB_STREAM_SENDER_H
 #define HOST_LIB_STREAM_SENDER_H
 
-#include <atomic>      // std::atomic
 #include <chrono>      // std::chrono
 #include <cstdint>     // uint8_t
 #include <functional>  // std::function
 #include <string>      // std::string
 #include <vector>      // std::vector
 
-#include <deque>                         // std::deque
 #include "firmware/protocol/messages.h"  // proto::SessionReply, proto::StatusReply
 #include "firmware/protocol/parser.h"    // proto::Parser
-
 #include "host/lib/stream/command_source.h"
 #include "host/lib/stream/job_encoder.h"
 #include "host/lib/stream/link.h"
+#include "host/lib/stream/link_session.h"
+#include "host/lib/stream/operator_requests.h"
+#include "host/lib/stream/round_trip_timer.h"
+#include "host/lib/stream/send_window.h"
+#include "host/lib/stream/stall_watchdog.h"
 
 namespace host {
 
@@ -95,14 +97,14 @@ class Sender {
   JobOutcome run(CommandSource& commands, const std::function<void(const Progress&)>& on_progress);
 
   // Requests from other threads or signal handlers; sent as real-time frames by run().
-  void request_hold() { hold_requested_ = true; }
-  void request_resume() { resume_requested_ = true; }
-  void request_abort() { abort_requested_ = true; }
-  void request_override(int percent) { override_requested_ = percent; }
+  void request_hold() { requests_.hold(); }
+  void request_resume() { requests_.resume(); }
+  void request_abort() { requests_.abort(); }
+  void request_override(int percent) { requests_.override_percent(percent); }
 
   const SenderStats& stats() const { return stats_; }
   // The smoothed round trip the retransmission timer uses (starts at 50 ms).
-  std::chrono::milliseconds smoothed_rtt() const { return srtt_; }
+  std::chrono::milliseconds smoothed_rtt() const { return rtt_.smoothed(); }
   // Why the job ended, for people: names the command, step and curve where relevant.
   const std::string& message() const { return message_; }
   const proto::StatusReply& last_status() const { return last_status_; }
@@ -115,15 +117,12 @@ class Sender {
   void send_realtime(uint8_t letter, const std::vector<uint8_t>& payload);
   bool ensure_zeroed(const std::function<void(const Progress&)>& on_progress);
   void query_status();
-  bool spline_room() const;
   void release_stored(CommandSource& commands);
   void sample_round_trip(size_t index);
   bool status_due(std::chrono::steady_clock::time_point last_poll) const;
   bool resume_may_act() const;
   std::chrono::steady_clock::time_point now() const;
-  void track_executed(uint8_t last_executed_seq);
   bool stalled();
-  size_t index_of_seq(uint8_t seq) const;
   std::string where(size_t index) const;
 
   Link& link_;
@@ -135,65 +134,20 @@ class Sender {
   proto::ProbeResultReply last_probe_{};
   bool have_probe_ = false;
   bool have_status_ = false;
-  proto::SessionReply session_{};
-  bool session_open_ = false;
-  uint8_t session_seq_ = 0;
-  // The version #I asks for: ours, or an older controller's own that it named when it
-  // refused ours (then version_lowered_ until #I is sent again).
-  uint8_t session_version_ = proto::kProtocolVersion;
-  bool version_lowered_ = false;
-  uint8_t realtime_seq_ = 0;
-  uint8_t status_seq_ = 0;
-  bool realtime_acked_ = false;
-  bool status_outstanding_ = false;
-  std::chrono::steady_clock::time_point status_sent_;
-
-  // The ordered stream of the current run().
-  CommandSource* commands_ = nullptr;
-  uint8_t first_seq_ = 0;    // seq of commands[0]
-  size_t base_ = 0;          // oldest command not yet acknowledged
-  size_t next_ = 0;          // next command to (re)send
-  size_t executed_ = 0;      // commands executed (count)
-  bool busy_wait_ = false;   // after *E busy: send nothing new until an *O
-  size_t window_ = 1;        // frames in flight the controller allows (*I)
-  size_t window_limit_ = 1;  // frames in flight allowed now: 1 after *E busy, grows per *O
-  size_t queue_free_ = 1;    // controller queue room, from the newest *O or *?
-  // Spline slots free after the ordered frames before splines_known_at_ (newest *O or *?).
-  static constexpr size_t kSplineSlotsUnknown = SIZE_MAX;
-  size_t splines_free_ = kSplineSlotsUnknown;
-  size_t splines_known_at_ = 0;
+  LinkSession session_;  // #I and the un-ordered frames
+  SendWindow win_;       // the ordered stream of the current run()
   bool failed_ = false;
   JobOutcome failure_ = JobOutcome::kRejected;
   std::chrono::steady_clock::time_point last_reply_;
-  std::chrono::steady_clock::time_point oldest_sent_;
-  std::chrono::milliseconds srtt_{50};
-  // Stall watchdog: what was seen last and when it last changed.
-  struct Seen {
-    size_t acked = 0, executed = 0;
-    int32_t x_um = 0, y_um = 0, z_um = 0;
-    proto::MachineState state = proto::MachineState::kIdle;
-  } seen_;
-  std::chrono::steady_clock::time_point last_progress_;
+  RoundTripTimer rtt_;
+  StallWatchdog watchdog_;
   bool operator_hold_ = false;  // the operator asked for a hold (not a stall)
   // A #R went out and no status asked after it came back yet: another resume request is the
   // same one again (a second #R to a machine no longer held is refused, bad_state).
   bool resume_sent_ = false;
   bool status_before_resume_ = false;  // a #? asked before that #R is still to be answered
-  // Per command sent and not yet acknowledged, from command sent_base_ on (Karn): when it
-  // was first sent, and whether it was sent again.
-  struct Sent {
-    std::chrono::steady_clock::time_point first;
-    bool resent = false;
-  };
-  std::deque<Sent> sent_;
-  size_t sent_base_ = 0;
-  size_t last_gap_expected_ = SIZE_MAX;  // the seq_gap we went back for, and when
-  std::chrono::steady_clock::time_point last_gap_at_{};
 
-  std::atomic<bool> hold_requested_{false};
-  std::atomic<bool> resume_requested_{false};
-  std::atomic<bool> abort_requested_{false};
-  std::atomic<int> override_requested_{0};
+  OperatorRequests requests_;
 };
 
 }  // namespace host

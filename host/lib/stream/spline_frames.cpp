@@ -153,8 +153,7 @@ void append_spline_data(const core::Spline& sp, int step, int curve, unsigned ma
 }
 
 bool is_spline_data(uint8_t letter) {
-  return letter == proto::kCmdSplineData || letter == proto::kCmdSplineCompact ||
-         letter == proto::kCmdSplineContour;
+  return proto::command_role(letter) == proto::CommandRole::kSplineData;
 }
 
 bool add_spline_data(const QueuedCommand& c, core::Spline* s) {

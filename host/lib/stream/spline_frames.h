@@ -19,8 +19,8 @@ namespace host {
 void append_spline_data(const core::Spline& sp, int step, int curve, unsigned max_payload,
                         SplineFrames encoding, std::vector<QueuedCommand>* out);
 
-// True for the frames that fill the open spline (#D, #K, #Q): no queue slot and no job
-// command of their own on the controller.
+// True for the frames that fill the open spline (the message table's kSplineData role: #D,
+// #K, #Q): no queue slot and no job command of their own on the controller.
 bool is_spline_data(uint8_t letter);
 // Adds the values of a #D, #K or #Q frame to s, as the controller's store does (s holds the
 // #B's degree, rationality and counts, and the values before this frame); false for any

@@ -16,7 +16,6 @@
 #include "host/lib/stream/job_encoder.h"
 #include "host/lib/stream/job_resume.h"
 #include "host/lib/stream/sender.h"
-#include "host/lib/stream/spline_frames.h"  // is_spline_data
 #include "host_tests/host/sim/cut_path.h"
 #include "host_tests/host/sim/sim_test_jobs.h"
 
@@ -98,7 +97,7 @@ Interrupted interrupted(const JobPlan& plan, int nth_spline, Cut how, int min_po
     int32_t index = -1, n = 0, job = 0;
     for (const QueuedCommand& c : cmds) {
       if (c.letter == proto::kCmdSplineHeader && n++ == nth_spline) index = job;
-      if (!is_spline_data(c.letter) && c.letter != proto::kCmdJobMark) ++job;
+      if (proto::command_role(c.letter) == proto::CommandRole::kJobCommand) ++job;
     }
     try {
       const JobOutcome o = s.run(cmds, [&](const Progress& p) {

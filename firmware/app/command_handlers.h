@@ -1,0 +1,49 @@
+// The application's command handlers, declared and dispatched from the message table's
+// handler column: a new command is a table row (firmware/protocol/message_table.h) and the
+// body of the handler it names (command_handlers.cpp). The rows of role kImmediate (#I, #?,
+// #T) are answered by the dispatcher and have none.
+#ifndef FIRMWARE_APP_COMMAND_HANDLERS_H
+#define FIRMWARE_APP_COMMAND_HANDLERS_H
+
+#include "firmware/protocol/message_table.h"  // PROTO_MESSAGE_TABLE
+#include "firmware/protocol/messages.h"       // the message structs
+
+// NOLINTBEGIN(bugprone-macro-parentheses): Type is a type name, handler a member name.
+
+// WITH(Type, letter_name, handler) for a row that has a handler (by its role), else nothing.
+#define APP_IF_HANDLED(role, WITH, Type, name, handler) \
+  APP_HANDLED_##role(WITH, Type, name, handler)
+#define APP_HANDLED_kImmediate(WITH, Type, name, handler)
+#define APP_HANDLED_kRealtime(WITH, Type, name, handler) WITH(Type, name, handler)
+#define APP_HANDLED_kJobCommand(WITH, Type, name, handler) WITH(Type, name, handler)
+#define APP_HANDLED_kSplineData(WITH, Type, name, handler) WITH(Type, name, handler)
+#define APP_HANDLED_kJobMark(WITH, Type, name, handler) WITH(Type, name, handler)
+#define APP_HANDLER_SKIP(...)
+
+// Inside the class that owns the handlers: one declaration per handler of the table.
+#define APP_DECLARE_HANDLER(Type, name, handler) \
+  proto::ErrorCode handler(const proto::Type& c, uint8_t seq, uint8_t* detail);
+#define APP_DECLARE_HANDLER_ROW(Type, name, letter, role, display, reply, handler, check) \
+  APP_IF_HANDLED(role, APP_DECLARE_HANDLER, Type, name, handler)
+#define APP_DECLARE_COMMAND_HANDLERS()                                             \
+  PROTO_MESSAGE_TABLE(APP_DECLARE_HANDLER_ROW, APP_HANDLER_SKIP, APP_HANDLER_SKIP, \
+                      APP_HANDLER_SKIP, APP_HANDLER_SKIP, APP_HANDLER_SKIP)
+
+// Inside a switch on the frame's letter (frame f, detail): decodes the frame as the row's
+// message and returns what its handler returns.
+#define APP_HANDLE_CASE(Type, name, handler)               \
+  case proto::name: {                                      \
+    proto::Type m;                                         \
+    const proto::ErrorCode e = proto::decode_frame(f, &m); \
+    if (e != proto::ErrorCode::kOk) return e;              \
+    return handler(m, f.seq, detail);                      \
+  }
+#define APP_HANDLE_CASE_ROW(Type, name, letter, role, display, reply, handler, check) \
+  APP_IF_HANDLED(role, APP_HANDLE_CASE, Type, name, handler)
+#define APP_HANDLE_COMMAND_CASES()                                                               \
+  PROTO_MESSAGE_TABLE(APP_HANDLE_CASE_ROW, APP_HANDLER_SKIP, APP_HANDLER_SKIP, APP_HANDLER_SKIP, \
+                      APP_HANDLER_SKIP, APP_HANDLER_SKIP)
+
+// NOLINTEND(bugprone-macro-parentheses)
+
+#endif  // FIRMWARE_APP_COMMAND_HANDLERS_H

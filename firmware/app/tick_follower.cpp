@@ -1,0 +1,53 @@
+// The background loop's side of the tick link (see tick_follower.h).
+#include "firmware/app/tick_follower.h"
+
+namespace app {
+
+TickFollower::TickFollower()
+    : have_snapshot_(false),
+      seen_items_(0),
+      seen_stops_(0),
+      seen_jogs_(0),
+      requests_pushed_(0),
+      alarm_clearing_(false),
+      alarm_clear_mark_(0) {
+  for (uint8_t i = 0; i < config::kAxisCount; ++i) latest_.pos_usteps[i] = 0;
+  latest_.probe_closed = 0;
+  latest_.probes_done = 0;
+}
+
+bool TickFollower::request(MotionTick* tick, RequestKind kind, uint8_t value) {
+  TickRequest r;
+  r.kind = kind;
+  r.value = value;
+  if (!tick->request(r)) return false;
+  requests_pushed_ = (uint8_t)(requests_pushed_ + 1U);
+  return true;
+}
+
+bool TickFollower::take(MotionTick* tick, bool* first) {
+  TickStatus s;
+  *first = false;
+  if (!tick->take_status(&s)) return false;
+  latest_ = s;
+  // Every request up to the #C one taken: the tick's alarm state is current again.
+  if (alarm_clearing_ && (uint8_t)(s.requests_done - alarm_clear_mark_) < 128U)
+    alarm_clearing_ = false;
+  if (!have_snapshot_) {
+    have_snapshot_ = true;
+    seen_items_ = s.items_done;
+    seen_stops_ = s.stops_done;
+    seen_jogs_ = s.jogs_done;
+    *first = true;
+  }
+  return true;
+}
+
+proto::Alarm TickFollower::tick_alarm() const {
+  if (!alarm_clearing_ && latest_.mode == (uint8_t)TickMode::kAlarm &&
+      latest_.alarm != kTickAlarmNone)
+    return (proto::Alarm)latest_.alarm;
+  return proto::Alarm::kNone;
+}
+
+}  // namespace app
