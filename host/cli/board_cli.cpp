@@ -695,8 +695,8 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
                       "isolation: a wider tool for the outer part of the --passes width, mm "
                       "(mounted after the isolation tool; 0: none)")
           ->group(g)
-          ->check(CLI::Range(defaults::kClearingToolRangeMm.min,
-                             defaults::kClearingToolRangeMm.max));
+          ->check(
+              CLI::Range(defaults::kClearingToolRangeMm.min, defaults::kClearingToolRangeMm.max));
   cmd->add_option("--narrow-passes", a->narrow_passes,
                   "with --clearing-tool: passes of the isolation tool next to the copper")
       ->group(g)

@@ -94,7 +94,7 @@ struct Range {
   bool holds(double v) const { return v >= min && v <= max; }
 };
 inline constexpr Range kToolWidthRangeMm{0.01, 5.0};
-inline constexpr Range kPassesRange{1, 50};  // isolation passes, and narrow passes
+inline constexpr Range kPassesRange{1, 50};              // isolation passes, and narrow passes
 inline constexpr Range kClearingToolRangeMm{0.0, 10.0};  // 0: no clearing tool
 inline constexpr Range kAlignDiameterRangeMm{0.1, 10.0};
 inline constexpr Range kAlignDepthRangeMm{0.1, 20.0};

@@ -618,8 +618,7 @@ JobOutcome Sender::run(CommandSource& commands,
            (commands.at(win_.next).letter != proto::kCmdSplineHeader || win_.spline_room())) {
       const QueuedCommand& command = commands.at(win_.next);
       if (win_.next == win_.base) win_.oldest_sent = now();
-      send_frame(command.letter, static_cast<uint8_t>(win_.first_seq + win_.next),
-                 command.payload);
+      send_frame(command.letter, static_cast<uint8_t>(win_.first_seq + win_.next), command.payload);
       inflight_bytes += frame_bytes(command);
       if (win_.next < high_water) stats_.retransmits++;
       rtt_.sent(win_.next, win_.next < high_water, now());  // Karn: again, no sample
