@@ -30,7 +30,8 @@ Application::Application()
       paused_(false),
       spindle_on_(false),
       shown_error_(proto::ErrorCode::kOk),
-      probing_(false) {
+      probing_(false),
+      map_clear_at_stop_(false) {
   map_rx_.points = 0;
   map_rx_.expected = 0;
   map_rx_.lowest = 0;
@@ -102,6 +103,12 @@ void Application::follow_tick_events() {
     int32_t at[config::kAxisCount];
     position_um(at);
     planner_.set_origin(at);
+    // A session reset's map goes now: the planned position above took the old map's
+    // offset off, so the next move returns to the planned depth (as a #A clear does).
+    if (map_clear_at_stop_) {
+      map_.clear();
+      map_clear_at_stop_ = false;
+    }
   }
   // Also while a stop is under way: the tick may still finish commands as it decelerates.
   while (follower_.item_finished()) finish_oldest();
@@ -242,7 +249,7 @@ void Application::fill_probe_result(proto::ProbeResultReply* r) {
 // compensate the next (the host sends the map again with every job that has one).
 void Application::reset_session() {
   begin_stop();
-  map_.clear();
+  map_clear_at_stop_ = true;  // once the stop has kept the planned position under the map
   items_stored_ = 0;
   items_done_ = 0;
 }
@@ -379,6 +386,7 @@ bool Application::execute_item(QueueItem* item) {
       return execute_probe(item);
     case ItemKind::kMapHeader:
       // In queue order: the points before it keep the old map, those after follow the new.
+      map_clear_at_stop_ = false;  // a new session's own map (or clear) wins
       if (item->map_header.cols == 0) {
         map_.clear();
       } else {

@@ -168,8 +168,9 @@ class Application : private CommandSink {
     int16_t highest;
   };
   MapReception map_rx_;
-  ProbeRecord probes_;  // the last probe's result (#T), since power-up
-  bool probing_;        // a #Y is under way (the LCD says so)
+  ProbeRecord probes_;      // the last probe's result (#T), since power-up
+  bool probing_;            // a #Y is under way (the LCD says so)
+  bool map_clear_at_stop_;  // #I: the map goes when its stop completes
 
   // Job progress for the status (job_progress.h).
   JobProgress job_;

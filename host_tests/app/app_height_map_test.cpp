@@ -177,6 +177,26 @@ TEST(AppHeightMap, ANewSessionStartsWithoutTheMapOfTheLastOne) {
   EXPECT_LE(e.cut_max, 1.5) << "the last session's map compensated this job";
 }
 
+// #I with the tool down in the work under a map: the stop keeps the planned depth (the
+// old map's offset where the tool stands comes off, as when a #A clears it), so the next
+// X/Y move goes back to the planned depth instead of carrying the old offset on.
+TEST(AppHeightMap, ANewSessionDropsTheOldMapsOffsetFromTheNextMove) {
+  Ready rig;
+  send_map(&rig.host);
+  rig.host.queue(proto::ZMoveCmd{kTravelZ, 5000});
+  rig.host.queue(proto::RapidMoveCmd{40000, 20000});  // surface -80 um here
+  rig.host.queue(proto::ZMoveCmd{kDepth, 2000});
+  ASSERT_TRUE(rig.run_job(60000));
+  ASSERT_NEAR(rig.position_um().z, kDepth - 80, 1.5);
+  ASSERT_TRUE(rig.open_session());
+  rig.run(200);
+  EXPECT_FALSE(rig.app.height_map().active());
+  rig.host.queue(proto::FeedMoveCmd{45000, 20000, 2000});
+  ASSERT_TRUE(rig.run_job(60000));
+  EXPECT_TRUE(rig.host.errors.empty());
+  EXPECT_NEAR(rig.position_um().z, kDepth, 1.5) << "the old map's offset stayed after #I";
+}
+
 // Sends the frames queue() adds and lets them run: the plant must not take a single
 // microstep (every recorded sample where it stood), and the state must be idle again.
 template <typename Queue>
