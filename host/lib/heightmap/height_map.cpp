@@ -160,14 +160,27 @@ std::string height_map_text(const HeightMap& m) {
 
 HeightMap read_height_map_text(const std::string& text_in, const std::string& what) {
   Json j;
+  // A key given twice in any object would silently take its last value (a second
+  // "heights_um" replacing the probed one): refused, as the server refuses it.
+  std::vector<std::set<std::string>> open_objects;
+  std::string twice;
+  const auto note_key = [&](int, Json::parse_event_t event, Json& parsed) {
+    if (event == Json::parse_event_t::object_start) open_objects.emplace_back();
+    if (event == Json::parse_event_t::object_end && !open_objects.empty()) open_objects.pop_back();
+    if (event == Json::parse_event_t::key && !open_objects.empty() && twice.empty() &&
+        !open_objects.back().insert(parsed.get<std::string>()).second)
+      twice = parsed.get<std::string>();
+    return true;
+  };
   try {
-    j = Json::parse(text_in);
+    j = Json::parse(text_in, note_key);
   } catch (const Json::parse_error& e) {
     fail(what, fmt::format("not JSON ({})", e.what()));
   } catch (const Json::exception& e) {
     // A number JSON allows but a double does not hold (1e400: out_of_range).
     fail(what, fmt::format("a number beyond the range of any height or length ({})", e.what()));
   }
+  if (!twice.empty()) fail(what, fmt::format("key '{}' given more than once", twice));
   if (!j.is_object()) fail(what, "not a height map (expected a JSON object)");
   only_keys(j,
             {"format", "version", "units", "grid", "heights_um", "repeatability_um", "probed_at",

@@ -139,6 +139,27 @@ TEST(HeightMapFile, RefusesANumberBeyondADouble) {
   }
 }
 
+// A key given twice would take its last value without a word (a second heights_um
+// replacing the probed one): refused by name, at the top and inside "grid".
+TEST(HeightMapFile, RefusesAKeyGivenTwice) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"  \"repeatability_um\"", "  \"heights_um\": [[0,0,0],[0,0,0]],\n  \"repeatability_um\""},
+      {"\"rows\":2}", "\"rows\":2,\"rows\":2}"},
+      {"\"version\": 1,", "\"version\": 1, \"version\": 1,"}};
+  const char* const names[] = {"heights_um", "rows", "version"};
+  for (size_t k = 0; k < std::size(cases); ++k) {
+    std::string text = kThreeByTwo;
+    text.replace(text.find(cases[k].first), std::string(cases[k].first).size(), cases[k].second);
+    try {
+      read_height_map_text(text, "m.json");
+      ADD_FAILURE() << "read a map with " << names[k] << " twice";
+    } catch (const HeightMapError& e) {
+      EXPECT_EQ(std::string(e.what()),
+                std::string("m.json: key '") + names[k] + "' given more than once");
+    }
+  }
+}
+
 TEST(HeightMapFile, RefusesAGridLargerThanTheControllerKeeps) {
   HeightMap m = three_by_two();
   m.cols = 17;
