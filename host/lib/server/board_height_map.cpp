@@ -8,6 +8,7 @@
 namespace host::server {
 
 const char kHeightMapFile[] = "heightmap.json";
+const char kHeightMapMachineFile[] = "heightmap.machine";
 const char kHeightMapPicture[] = "heightmap.svg";
 
 namespace {

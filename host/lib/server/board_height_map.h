@@ -17,8 +17,9 @@
 namespace host::server {
 
 // The archive's map of a job (its probe or the one it took over) and its picture.
-extern const char kHeightMapFile[];     // "heightmap.json"
-extern const char kHeightMapPicture[];  // "heightmap.svg"
+extern const char kHeightMapFile[];         // "heightmap.json"
+extern const char kHeightMapMachineFile[];  // "heightmap.machine": the machine probed on
+extern const char kHeightMapPicture[];      // "heightmap.svg"
 
 // Where a probe-first job probes (machine frame): everywhere it cuts, and for a board with
 // alignment holes also where its bottom side will cut after the flip (the mirror about the

@@ -5,6 +5,7 @@
 
 #include <algorithm>   // std::clamp
 #include <filesystem>  // std::filesystem::path
+#include <fstream>     // std::ofstream
 #include <optional>    // std::optional
 
 #include "host/lib/drawing/drawing.h"
@@ -736,10 +737,19 @@ std::optional<heightmap::HeightMap> Workshop::board_height_map(
   const BoardSettings board = read_board_settings(dir);
   if (!board.probe_first && board.height_map_from == 0) return std::nullopt;
   const fs::path map_path = dir / kHeightMapFile;
+  // The machine whose table the map was probed on, beside the map: a map is that machine's
+  // (its table's warp, where its blank lies), never another's.
+  const auto probed_on = [](const fs::path& job_dir) {
+    std::error_code ec;
+    return fs::exists(job_dir / kHeightMapMachineFile, ec)
+               ? read_file(job_dir / kHeightMapMachineFile)
+               : std::string();
+  };
   heightmap::HeightMap map;
-  auto keep = [&](const std::string& title) {
+  auto keep = [&](const std::string& title, const std::string& machine) {
     heightmap::write_height_map_file(map, map_path.string());
     write_height_map_svg(map, title, (dir / kHeightMapPicture).string());
+    std::ofstream(dir / kHeightMapMachineFile, std::ios::binary | std::ios::trunc) << machine;
   };
   try {
     if (board.height_map_from != 0) {
@@ -752,6 +762,13 @@ std::optional<heightmap::HeightMap> Workshop::board_height_map(
             "job {} has no height map (here): it was not probed, or not yet, or on a server "
             "whose archive this one does not share",
             from->id));
+      }
+      const std::string from_machine = probed_on(from_dir);
+      if (from_machine != slot.spec.name) {
+        throw std::runtime_error(fmt::format(
+            "job {}'s map was probed on machine '{}', this job runs on '{}': a map belongs to "
+            "the machine whose table it was probed on (probe this job first, or run it there)",
+            from->id, from_machine, slot.spec.name));
       }
       const heightmap::HeightMap top =
           heightmap::read_height_map_file((from_dir / kHeightMapFile).string());
@@ -767,11 +784,13 @@ std::optional<heightmap::HeightMap> Workshop::board_height_map(
       map = map_after_flip(top, axis_mm, board.height_map_flip);
       note(fmt::format("height map of job {} ({} x {} points, flip {})", from->id, map.rows,
                        map.cols, board.height_map_flip));
-      keep(fmt::format("{} (the map of job {}, flip {})", job.name, from->id,
-                       board.height_map_flip));
-    } else if (fs::exists(map_path)) {
-      // Probed in an earlier run of this job (interrupted, continued): the blank has not
-      // moved, or the job would have been uploaded again.
+      keep(
+          fmt::format("{} (the map of job {}, flip {})", job.name, from->id, board.height_map_flip),
+          from_machine);
+    } else if (fs::exists(map_path) && probed_on(dir) == slot.spec.name) {
+      // Probed in an earlier run of this job on this machine (interrupted, continued): the
+      // blank has not moved, or the job would have been uploaded again. On another machine
+      // the blank lies on another table: probed again below.
       map = heightmap::read_height_map_file(map_path.string());
       note("height map probed in an earlier run of this job");
     } else {
@@ -838,7 +857,7 @@ std::optional<heightmap::HeightMap> Workshop::board_height_map(
       map = probed.map;
       note(fmt::format("probed {} x {} points ({} touches), heights {:.1f} .. {:.1f} um", map.rows,
                        map.cols, probed.touches, map.min_um(), map.max_um()));
-      keep(job.name);
+      keep(job.name, slot.spec.name);
     }
     heightmap::refuse_job_outside_map(plan, map, kHeightMapFile);
   } catch (const AbortedBeforeCutting&) {

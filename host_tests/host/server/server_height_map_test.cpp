@@ -4,7 +4,8 @@
 // probe failures fail the job with nothing cut; the bottom side reuses the top side's map.
 #include <gtest/gtest.h>
 
-#include <cmath>  // std::lround
+#include <cmath>    // std::lround
+#include <fstream>  // std::ofstream
 
 #include "host/lib/heightmap/height_map.h"
 #include "host/lib/heightmap/probe_grid.h"
@@ -249,6 +250,40 @@ TEST(ServerHeightMap, TheBottomSideReusesTheTopSidesMap) {
   auto r = server.client().Post("/api/jobs", server.auth(), blinky({{"height_map_from", "999"}}));
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 400);
+}
+
+// A map belongs to the machine whose table it was probed on: a job on another machine does
+// not cut with it (the map's machine, as kept beside it in the archive, made another's here).
+TEST(ServerHeightMap, AMapProbedOnAnotherMachineIsNotUsed) {
+  test::TempDir dir;
+  SimRig sim(false, 0, blank(warped_um));
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t top = post(server, blinky({{"probe_first", "1"}, {"align_holes", "auto"}}));
+  ASSERT_TRUE(test::wait_until([&] { return waiting_for_clip(server, top); }, 30));
+  server.control(top, R"({"action":"probe_ready"})");
+  ASSERT_TRUE(test::wait_until([&] { return server.job(top)["state"] == "completed"; }, 120))
+      << server.job(top).dump();
+  int marks = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir.path())) {
+    if (e.path().filename() != kHeightMapMachineFile) continue;
+    EXPECT_EQ(read_file(e.path()), "mill");
+    std::ofstream(e.path(), std::ios::trunc) << "other mill";
+    ++marks;
+  }
+  ASSERT_EQ(marks, 1);
+  const size_t cut_before = sim.machine().trace().size();
+  const int64_t bottom = post(server, blinky({{"side", "bottom"},
+                                              {"align_holes", "auto"},
+                                              {"height_map_from", std::to_string(top)}},
+                                             "blinky-B.Cu.gbr"));
+  ASSERT_TRUE(test::wait_until([&] { return server.job(bottom)["state"] == "failed"; }, 60))
+      << server.job(bottom).dump();
+  EXPECT_NE(server.job(bottom)["message"].get<std::string>().find(
+                "was probed on machine 'other mill', this job runs on 'mill'"),
+            std::string::npos)
+      << server.job(bottom)["message"];
+  const auto& trace = sim.machine().trace();
+  for (size_t i = cut_before; i < trace.size(); ++i) EXPECT_GE(trace[i].z_mm, 0.0);
 }
 
 // The geometry of the flip. The top side's probe sees the blank's surface S (zeroed on the
