@@ -88,13 +88,14 @@ nlohmann::json run_report(const std::string& input, const std::string& name, con
   return read_json(out.path() / (name + ".json"));
 }
 
-// `engraver send INPUT` to `engraver sim`: the job id it prints.
+// `engraver send INPUT` to `engraver sim`: the job id it prints. The simulator takes a free
+// port (0) and says which: a fixed port could be another test's, and a sleep a race.
 int sent_job_id(const std::string& input) {
-  const int port = 20000 + static_cast<int>((getpid() * 7) % 20000);
-  const std::string script = "'" + kExe + " sim --listen 127.0.0.1:" + std::to_string(port) +
-                             " >/dev/null 2>&1 & S=$!; sleep 0.5; " + kExe + " send " + input +
-                             " --to tcp://127.0.0.1:" + std::to_string(port) +
-                             "; r=$?; kill $S; exit $r'";
+  const std::string script =
+      "'F=$(mktemp); " + kExe + " sim --listen 127.0.0.1:0 2>$F >/dev/null & S=$!; P=; " +
+      "for i in $(seq 200); do P=$(sed -n \"s/.* on 127.0.0.1:\\([0-9]*\\) .*/\\1/p\" $F); " +
+      "[ -n \"$P\" ] && break; sleep 0.05; done; " + kExe + " send " + input +
+      " --to tcp://127.0.0.1:$P; r=$?; kill $S; rm -f $F; exit $r'";
   const auto r = host_tests::run_tool("sh -c", script);
   EXPECT_EQ(r.code, 0) << r.err;
   std::smatch m;
