@@ -7,50 +7,28 @@ namespace app {
 
 namespace {
 
-const uint8_t kItemsPerPoll = 4;     // command items started per background pass
-const uint8_t kPointsPerPoll = 8;    // spline points generated per background pass
-const uint16_t kProbeSettleMs = 20;  // after a touch, before the retract reads the position
+const uint8_t kItemsPerPoll = 4;  // command items started per background pass
 
 }  // namespace
 
 Application::Application()
-    : spindle_(0),
-      link_clock_(0),
-      item_tag_(0),
+    : link_clock_(0),
       items_stored_(0),
       items_done_(0),
-      last_feed_um_s_(1000),
       last_executed_seq_(0),
       override_percent_(100),
-      jog_active_(false),
       zeroed_(false),
-      spline_started_(false),
-      pause_presses_(0),
-      wait_start_ms_(0),
-      paused_(false),
-      spindle_on_(false),
-      shown_error_(proto::ErrorCode::kOk),
-      probing_(false),
-      map_clear_at_stop_(false) {
-  map_rx_.points = 0;
-  map_rx_.expected = 0;
-  map_rx_.lowest = 0;
-  map_rx_.highest = 0;
-}
+      shown_error_(proto::ErrorCode::kOk) {}
 
 void Application::init(const Board& board, const config::MachineConfig& cfg) {
-  spindle_ = board.spindle;
   link_clock_ = board.link_clock;
   cfg_ = cfg;
   if (!build_axis_scaling(cfg, *board.motion, &scaling_))
     stops_.raise(proto::Alarm::kMotionChipFault);
-  planner_.init(scaling_, default_planner_settings(cfg.capture_radius_um));
-  planner_.set_height_map(&map_);
+  executor_.init(scaling_, cfg.capture_radius_um, cfg.default_feed_um_per_s, board.spindle);
   tick_.init(scaling_, board.motion, board.inputs, board.probe);
   dispatcher_.init(board.link, this);
   screen_.init(board.display);
-  if (cfg.default_feed_um_per_s > 0 && cfg.default_feed_um_per_s < 65536UL)
-    last_feed_um_s_ = (uint16_t)cfg.default_feed_um_per_s;
 }
 
 void Application::tick_1ms() {
@@ -82,11 +60,7 @@ bool Application::request(RequestKind kind, uint8_t value) {
 void Application::take_snapshots() {
   bool first = false;
   while (follower_.take(&tick_, &first)) {
-    if (first) {
-      int32_t at[config::kAxisCount];
-      position_um(at);
-      planner_.set_origin(at);
-    }
+    if (first) set_origin_here();
   }
 }
 
@@ -100,31 +74,23 @@ void Application::follow_tick_events() {
     job_.stop_completed(queue_, follower_.latest());
     queue_.drop_executing();
     stops_.completed();
-    int32_t at[config::kAxisCount];
-    position_um(at);
-    planner_.set_origin(at);
+    set_origin_here();
     // A session reset's map goes now: the planned position above took the old map's
     // offset off, so the next move returns to the planned depth (as a #A clear does).
-    if (map_clear_at_stop_) {
-      map_.clear();
-      map_clear_at_stop_ = false;
-    }
+    if (stops_.take_map_clear()) executor_.height_map().clear();
   }
   // Also while a stop is under way: the tick may still finish commands as it decelerates.
   while (follower_.item_finished()) finish_oldest();
   job_.track(queue_, follower_.latest(), false);
   if (follower_.jog_ended()) {
-    if (jog_active_) {
-      jog_active_ = false;
+    if (executor_.end_jog()) {
       QueueItem* item = queue_.to_execute();
       if (item != 0 && item->kind == ItemKind::kZeroing) {
         queue_.executed();
         finish_oldest();
       }
       if (follower_.latest().jog_confirmed) zeroed_ = true;
-      int32_t at[config::kAxisCount];
-      position_um(at);
-      planner_.set_origin(at);
+      set_origin_here();
     }
   }
   // A new alarm from the tick: the job is gone; tell the host once.
@@ -160,25 +126,20 @@ void Application::finish_oldest() {
 void Application::drop_job() {
   // A spline or drill partly handed to the tick is executing too.
   const QueueItem* partly = queue_.to_execute();
-  if (partly != 0 && ((partly->kind == ItemKind::kSpline && spline_started_) ||
-                      (partly->kind == ItemKind::kDrill && partly->stage > 0)))
-    queue_.executed();
+  if (partly != 0 && executor_.started(*partly)) queue_.executed();
   // The first job command dropped unstarted follows the executing ones in the progress.
   job_.dropping(queue_);
   queue_.drop_waiting();
   store_.clear();
-  generator_.stop();
-  spline_started_ = false;
-  jog_active_ = false;
-  paused_ = false;
-  probing_ = false;
-  map_rx_.points = 0;  // #E frames dropped or not: a new #A first
-  set_spindle(false);  // abort, session reset and alarms stop the tool too
+  executor_.drop();
+  map_rx_.drop();
 }
 
-void Application::set_spindle(bool on) {
-  spindle_on_ = on;
-  if (spindle_ != 0) spindle_->set_on(on);
+// The planner continues from where the machine is now.
+void Application::set_origin_here() {
+  int32_t at[config::kAxisCount];
+  position_um(at);
+  executor_.planner().set_origin(at);
 }
 
 // Everything handed to the tick is done and the axes stand still.
@@ -208,9 +169,9 @@ proto::Alarm Application::alarm() const {
 
 proto::MachineState Application::state() const {
   if (alarm_active()) return proto::MachineState::kAlarm;
-  if (jog_active_ || follower_.latest().mode == (uint8_t)TickMode::kJog)
+  if (executor_.jog_active() || follower_.latest().mode == (uint8_t)TickMode::kJog)
     return proto::MachineState::kZeroing;
-  if (paused_) return proto::MachineState::kPaused;
+  if (executor_.paused()) return proto::MachineState::kPaused;
   if (stops_.hold_requested())
     return follower_.latest().at_rest ? proto::MachineState::kHeld : proto::MachineState::kHolding;
   if (stops_.stopping() || !queue_.empty() || !follower_.latest().finished ||
@@ -220,8 +181,7 @@ proto::MachineState Application::state() const {
 }
 
 void Application::position_um(int32_t out[config::kAxisCount]) const {
-  for (uint8_t i = 0; i < config::kAxisCount; ++i)
-    out[i] = usteps_to_um(scaling_, i, follower_.latest().pos_usteps[i]);
+  follower_.position_um(scaling_, out);
 }
 
 bool Application::inside_travel(uint8_t axis, int32_t um) const {
@@ -242,14 +202,14 @@ bool Application::motion_allowed() const {
 // ---------------------------------------------------------------- CommandSink
 
 void Application::fill_probe_result(proto::ProbeResultReply* r) {
-  probes_.fill(r);
+  executor_.probes().fill(r);
 }
 
 // A new session starts without a height map: one left from an earlier job must never
 // compensate the next (the host sends the map again with every job that has one).
 void Application::reset_session() {
   begin_stop();
-  map_clear_at_stop_ = true;  // once the stop has kept the planned position under the map
+  stops_.clear_map_at_stop();  // once the stop has kept the planned position under the map
   items_stored_ = 0;
   items_done_ = 0;
 }
@@ -302,244 +262,21 @@ void Application::fill_session(proto::SessionReply* r) {
 
 // ---------------------------------------------------------------- execution
 
-// Starts queued items in order: moves and splines become ring points, the rest markers.
+// Starts queued items in order (item_executor.h).
 void Application::execute() {
   if (stops_.stopping() || alarm_active()) return;
+  ExecutionContext c = {&tick_,    &follower_,   &store_, &screen_,           &stops_,
+                        &scaling_, rapid_feed(), false,   proto::Alarm::kNone};
   for (uint8_t n = 0; n < kItemsPerPoll; ++n) {
     QueueItem* item = queue_.to_execute();
     if (item == 0) return;
-    if (!execute_item(item)) return;  // waiting (ring full, data missing, zeroing)
+    c.standing_still = standing_still();
+    if (!executor_.run(item, &c)) {  // waiting (ring full, data missing, zeroing), or an alarm
+      if (c.alarm != proto::Alarm::kNone) raise_alarm(c.alarm);
+      return;
+    }
     queue_.executed();
-    item_tag_ = (uint16_t)(item_tag_ + 1U);
   }
-}
-
-bool Application::push_point(const int32_t target[config::kAxisCount], uint16_t feed,
-                             uint8_t flags) {
-  return planner_.push(tick_.ring(), target, feed, flags, item_tag_);
-}
-
-// True when the item is fully handed over (its last ring entry flagged end-of-item).
-bool Application::execute_item(QueueItem* item) {
-  const int32_t* last = planner_.last_um();
-  int32_t target[config::kAxisCount] = {last[0], last[1], last[2]};
-  switch (item->kind) {
-    case ItemKind::kText:
-      return push_point(target, last_feed_um_s_, kPointEndOfItem);
-    case ItemKind::kResolution:
-      generator_.set_resolution(item->resolution.max_step_um, item->resolution.chord_tolerance_um);
-      return push_point(target, last_feed_um_s_, kPointEndOfItem);
-    case ItemKind::kFeedMove:
-    case ItemKind::kRapidMove:
-      target[0] = item->move.x_um;
-      target[1] = item->move.y_um;
-      last_feed_um_s_ = item->move.feed_um_s;
-      return push_point(
-          target, item->move.feed_um_s,
-          (uint8_t)(kPointEndOfItem | (item->kind == ItemKind::kRapidMove ? kPointRapid : 0)));
-    case ItemKind::kZMove:
-      target[2] = item->z_move.z_um;
-      last_feed_um_s_ = item->z_move.feed_um_s;
-      return push_point(target, item->z_move.feed_um_s, kPointEndOfItem);
-    case ItemKind::kZeroing:
-      // Only from a standstill with everything before it finished.
-      if (jog_active_ || !standing_still()) return false;
-      if (request(RequestKind::kStartJog, item->zeroing.axes)) jog_active_ = true;
-      return false;  // completed when the tick reports the end of zeroing
-    case ItemKind::kPause:
-      // Stage 0: wait for a standstill, show the text; 1: wait for the confirm button.
-      if (item->stage == 0) {
-        if (!standing_still()) return false;
-        screen_.show_pause(item->text.chars, item->text.length);
-        pause_presses_ = follower_.latest().confirm_presses;
-        paused_ = true;
-        item->stage = 1;
-      }
-      if (item->stage == 1) {
-        if (follower_.latest().confirm_presses == pause_presses_) return false;
-        paused_ = false;
-        item->stage = 2;
-      }
-      return push_point(target, last_feed_um_s_, kPointEndOfItem);
-    case ItemKind::kDwell:
-      if (item->stage == 0) {
-        if (!standing_still()) return false;
-        wait_start_ms_ = follower_.latest().ms;
-        item->stage = 1;
-      }
-      if (item->stage == 1) {
-        if ((uint16_t)(follower_.latest().ms - wait_start_ms_) < item->dwell.dwell_ms) return false;
-        item->stage = 2;
-      }
-      return push_point(target, last_feed_um_s_, kPointEndOfItem);
-    case ItemKind::kSpindle:
-      // Switched at a standstill: never while the tool is still cutting or about to.
-      if (item->stage == 0) {
-        if (!standing_still()) return false;
-        set_spindle(item->spindle.on != 0);
-        item->stage = 1;
-      }
-      return push_point(target, last_feed_um_s_, kPointEndOfItem);
-    case ItemKind::kDrill:
-      return execute_drill(item);
-    case ItemKind::kProbe:
-      return execute_probe(item);
-    case ItemKind::kMapHeader:
-      // In queue order: the points before it keep the old map, those after follow the new.
-      map_clear_at_stop_ = false;  // a new session's own map (or clear) wins
-      if (item->map_header.cols == 0) {
-        map_.clear();
-      } else {
-        map_.begin(item->map_header.cols, item->map_header.rows, item->map_header.x0_um,
-                   item->map_header.y0_um, item->map_header.pitch_x_um,
-                   item->map_header.pitch_y_um);
-      }
-      // Where the machine already goes (no offset added, so no motion): the change applies
-      // from the next point generated, never to the standing tool.
-      return planner_.push_standing(tick_.ring(), last_feed_um_s_, kPointEndOfItem, item_tag_);
-    case ItemKind::kMapHeights: {
-      const MapHeightsArgs& m = item->map_heights;
-      for (uint8_t i = 0; i < m.n; ++i) map_.set((uint16_t)(m.index + i), m.height_um[i]);
-      // The frame that ends the grid (checked when it was stored) switches it on.
-      if ((uint16_t)(m.index + m.n) == (uint16_t)map_.cols() * map_.rows()) map_.complete();
-      return planner_.push_standing(tick_.ring(), last_feed_um_s_, kPointEndOfItem, item_tag_);
-    }
-    case ItemKind::kSpline: {
-      const uint8_t slot = item->spline.slot;
-      const SlotState s = store_.state(slot);
-      if (s == SlotState::kFilling) return false;  // data still arriving
-      if (s != SlotState::kReady) {
-        // Rejected at its last #D (already reported): nothing to run, keep the order.
-        store_.release(slot);
-        return push_point(target, last_feed_um_s_, kPointEndOfItem);
-      }
-      if (!spline_started_) {
-        if (generator_.begin(store_.spline(slot), item->spline.feed_um_s, last[2], item_tag_,
-                             item->spline.tool_offset_um,
-                             item->spline.first_point) != core::GeometryError::kOk) {
-          store_.release(slot);
-          raise_alarm(proto::Alarm::kPathFault);
-          return false;
-        }
-        spline_started_ = true;
-        last_feed_um_s_ = item->spline.feed_um_s;
-      }
-      const int32_t travel[2] = {scaling_.travel_um[0], scaling_.travel_um[1]};
-      const GenStatus g = generator_.run(&planner_, tick_.ring(), travel, kPointsPerPoll);
-      if (g == GenStatus::kMore) return false;
-      spline_started_ = false;
-      store_.release(slot);
-      if (g == GenStatus::kDone) return true;
-      raise_alarm(g == GenStatus::kOutside ? proto::Alarm::kSoftLimit : proto::Alarm::kPathFault);
-      return false;
-    }
-  }
-  return false;
-}
-
-// #L as ring points, one stage per point (a full ring retries the same stage later):
-// 0 up to the start height if below it, 1 X/Y at that travel height, 2 down to the start
-// height, 3 plunge at the feed, 4 back up to the start height (end of the item).
-bool Application::execute_drill(QueueItem* item) {
-  const DrillArgs& d = item->drill;
-  const uint8_t rapid = kPointRapid;
-  while (item->stage < 5) {
-    const int32_t* last = planner_.last_um();
-    int32_t target[config::kAxisCount] = {last[0], last[1], last[2]};
-    uint16_t feed = rapid_feed();
-    uint8_t flags = rapid;
-    bool skip = false;
-    switch (item->stage) {
-      case 0:
-        skip = last[2] >= d.z_start_um;
-        target[2] = d.z_start_um;
-        break;
-      case 1:
-        skip = last[0] == d.x_um && last[1] == d.y_um;
-        target[0] = d.x_um;
-        target[1] = d.y_um;
-        break;
-      case 2:
-        skip = last[2] == d.z_start_um;
-        target[2] = d.z_start_um;
-        break;
-      case 3:
-        target[2] = d.z_bottom_um;
-        feed = d.feed_um_s;
-        flags = 0;
-        break;
-      default:
-        target[2] = d.z_start_um;
-        flags = (uint8_t)(rapid | kPointEndOfItem);
-        break;
-    }
-    if (!skip && !push_point(target, feed, flags)) return false;
-    item->stage = (uint8_t)(item->stage + 1U);
-  }
-  last_feed_um_s_ = d.feed_um_s;
-  return true;
-}
-
-// #Y: 0 the checks at a standstill, then the descent to z_limit (machine Z, no map offset);
-// 1 wait for the tick's verdict; 2 let Z come to rest, then retract above the contact.
-bool Application::execute_probe(QueueItem* item) {
-  ProbeArgs& p = item->probe;
-  int32_t at[config::kAxisCount];
-  if (item->stage == 0) {
-    if (!standing_still()) return false;
-    if (!tick_.has_probe()) {
-      raise_alarm(proto::Alarm::kProbeMissing);
-      return false;
-    }
-    if (spindle_on_) {
-      raise_alarm(proto::Alarm::kProbeSpindleOn);
-      return false;
-    }
-    if (follower_.latest().probe_closed) {
-      raise_alarm(proto::Alarm::kProbeClosedAtStart);
-      return false;
-    }
-    position_um(at);
-    if (p.z_limit_um >= at[config::kAxisZ]) {  // nothing below to probe: nothing moves
-      probes_.note(2, at);
-      raise_alarm(proto::Alarm::kProbeNoContact);
-      return false;
-    }
-    const int32_t* m = planner_.machine_um();
-    const int32_t target[config::kAxisCount] = {m[0], m[1], p.z_limit_um};
-    p.seen_probes = follower_.latest().probes_done;
-    if (!planner_.push_machine(tick_.ring(), target, p.feed_um_s, kPointProbe, item_tag_))
-      return false;
-    probing_ = true;
-    item->stage = 1;
-  }
-  if (item->stage == 1) {
-    if (follower_.latest().probes_done == p.seen_probes) return false;
-    position_um(at);
-    const uint8_t result = tick_.probe_result();  // handed over in ProbeWatch (motion_tick.h)
-    at[config::kAxisZ] = usteps_to_um(scaling_, config::kAxisZ, tick_.probe_z_usteps());
-    probes_.note(result, at);
-    if (result != 1) {
-      probing_ = false;
-      raise_alarm(proto::Alarm::kProbeNoContact);
-      return false;
-    }
-    wait_start_ms_ = follower_.latest().ms;
-    item->stage = 2;
-  }
-  if (item->stage == 2) {
-    // The tick dropped the descent; the chip ramps Z down from the probe feed meanwhile.
-    if ((uint16_t)(follower_.latest().ms - wait_start_ms_) < kProbeSettleMs) return false;
-    position_um(at);
-    planner_.set_origin(at);
-    item->stage = 3;
-  }
-  const int32_t* m = planner_.machine_um();
-  const int32_t up[config::kAxisCount] = {m[0], m[1], probes_.z_um() + p.retract_um};
-  if (!planner_.push_machine(tick_.ring(), up, rapid_feed(), kPointEndOfItem, item_tag_))
-    return false;
-  probing_ = false;
-  return true;
 }
 
 // Link watchdog: running with no valid frame for kLinkTimeoutMs -> feed hold.
@@ -561,8 +298,8 @@ void Application::update_screen() {
   info.alarm = alarm();
   info.zeroed = zeroed_;
   info.z_mode = follower_.latest().z_mode != 0;  // the tick's jog state, through its snapshot
-  info.paused = paused_;
-  info.probing = probing_;
+  info.paused = executor_.paused();
+  info.probing = executor_.probing();
   info.probe_closed = follower_.latest().probe_closed != 0;
   info.items_done = items_done_;
   info.items_stored = items_stored_;

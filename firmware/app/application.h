@@ -12,18 +12,16 @@
 #include "firmware/app/command_handlers.h"  // APP_DECLARE_COMMAND_HANDLERS
 #include "firmware/app/command_queue.h"     // CommandQueue
 #include "firmware/app/dispatcher.h"        // Dispatcher, CommandSink
+#include "firmware/app/item_executor.h"     // ItemExecutor
 #include "firmware/app/job_progress.h"      // JobProgress
+#include "firmware/app/map_reception.h"     // MapReception
 #include "firmware/app/motion_tick.h"       // MotionTick
-#include "firmware/app/planner.h"           // Planner
-#include "firmware/app/point_generator.h"   // PointGenerator
-#include "firmware/app/probe_record.h"      // ProbeRecord
 #include "firmware/app/spline_store.h"      // SplineStore
 #include "firmware/app/status_screen.h"     // StatusScreen
 #include "firmware/app/stop_state.h"        // StopState
 #include "firmware/app/tick_follower.h"     // TickFollower
 #include "firmware/app/tick_link.h"         // TickStatus, RequestKind
 #include "firmware/config/machine_config.h"
-#include "firmware/core/height_map.h"  // HeightMap
 #include "hal/interfaces/link_clock.h"
 #include "hal/interfaces/motion_axes.h"
 #include "hal/interfaces/operator_inputs.h"
@@ -66,7 +64,7 @@ class Application : private CommandSink {
   proto::MachineState state() const;
   proto::Alarm alarm() const;
   bool zeroed() const { return zeroed_; }
-  bool spindle_on() const { return spindle_on_; }
+  bool spindle_on() const { return executor_.spindle_on(); }
   // Actual position as last published by the tick, micrometres.
   void position_um(int32_t out[config::kAxisCount]) const;
   uint8_t last_executed_seq() const { return last_executed_seq_; }
@@ -79,7 +77,7 @@ class Application : private CommandSink {
   const AxisScaling& scaling() const { return scaling_; }
   const PathController& path() const { return tick_.path(); }
   // The height map the planner follows (#A/#E), and the probe input as the tick debounced it.
-  const core::HeightMap& height_map() const { return map_; }
+  const core::HeightMap& height_map() const { return executor_.height_map(); }
   bool probe_closed() const { return follower_.latest().probe_closed != 0; }
 
   // What the dispatcher calls (as its CommandSink) from poll().
@@ -97,12 +95,8 @@ class Application : private CommandSink {
   void take_snapshots();
   void follow_tick_events();
   void execute();
-  bool execute_item(QueueItem* item);
-  bool execute_drill(QueueItem* item);
-  bool execute_probe(QueueItem* item);
   bool standing_still() const;
-  void set_spindle(bool on);
-  bool push_point(const int32_t target[config::kAxisCount], uint16_t feed, uint8_t flags);
+  void set_origin_here();
   void finish_oldest();
   void drop_job();
   void begin_stop();
@@ -116,6 +110,10 @@ class Application : private CommandSink {
   proto::ErrorCode handle(const proto::Frame& frame, uint8_t* detail);
   QueueItem new_item(ItemKind kind, uint8_t seq);
   proto::ErrorCode enqueue(const QueueItem& item);
+  proto::ErrorCode enqueue_text(ItemKind kind, uint8_t seq, uint8_t row, const char* text,
+                                uint8_t length);
+  proto::ErrorCode enqueue_move(ItemKind kind, uint8_t seq, const int32_t* x_um,
+                                const int32_t* y_um, uint16_t feed_um_s);
   proto::ErrorCode motion_check(const int32_t* x_um, const int32_t* y_um,
                                 const int32_t* z_um) const;
   // One per command of the message table with a handler (command_handlers.h).
@@ -124,7 +122,6 @@ class Application : private CommandSink {
   uint16_t link_ms() const;
   void update_screen();
 
-  hal::Spindle* spindle_;       // 0: none (Board)
   hal::LinkClock* link_clock_;  // 0: the tick counts the link's time-outs (Board)
   config::MachineConfig cfg_;
   AxisScaling scaling_;
@@ -138,39 +135,17 @@ class Application : private CommandSink {
   Dispatcher dispatcher_;
   CommandQueue queue_;
   SplineStore store_;
-  Planner planner_;
-  PointGenerator generator_;
+  ItemExecutor executor_;  // queued items into ring points; the height map, the spindle
+  MapReception map_rx_;    // #A/#E checked as they arrive
   StatusScreen screen_;
   TickFollower follower_;  // requests to the tick, its snapshots and events
   StopState stops_;        // stopping, holds, the background's alarm
-  uint16_t item_tag_;
   uint16_t items_stored_;
   uint16_t items_done_;
-  uint16_t last_feed_um_s_;
   uint8_t last_executed_seq_;
   uint8_t override_percent_;
-  bool jog_active_;
   bool zeroed_;
-  bool spline_started_;
-  uint8_t pause_presses_;   // confirm_presses when the pause started
-  uint16_t wait_start_ms_;  // tick ms when the dwell started
-  bool paused_;             // a #P waits for the operator
-  bool spindle_on_;
   proto::ErrorCode shown_error_;
-
-  // The height map (#A/#E) as executed in queue order, followed by the planner; and what the
-  // stored frames said about it so far (checked as they arrive: sequence, span).
-  core::HeightMap map_;
-  struct MapReception {
-    uint16_t points;    // cols x rows of the last #A (0: none, or no map)
-    uint16_t expected;  // the next #E index
-    int16_t lowest;     // of the heights stored so far and 0
-    int16_t highest;
-  };
-  MapReception map_rx_;
-  ProbeRecord probes_;      // the last probe's result (#T), since power-up
-  bool probing_;            // a #Y is under way (the LCD says so)
-  bool map_clear_at_stop_;  // #I: the map goes when its stop completes
 
   // Job progress for the status (job_progress.h).
   JobProgress job_;

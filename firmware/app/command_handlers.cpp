@@ -79,18 +79,20 @@ uint16_t Application::rapid_feed() const {
 // ---- queued ----
 
 ErrorCode Application::on_text(const proto::TextCmd& c, uint8_t seq, uint8_t*) {
-  QueueItem item = new_item(ItemKind::kText, seq);
-  item.text.row = c.row;
-  item.text.length = c.length;
-  for (uint8_t i = 0; i < c.length; ++i) item.text.chars[i] = c.text[i];
-  return enqueue(item);
+  return enqueue_text(ItemKind::kText, seq, c.row, c.text, c.length);
 }
 
 ErrorCode Application::on_pause(const proto::PauseCmd& c, uint8_t seq, uint8_t*) {
-  QueueItem item = new_item(ItemKind::kPause, seq);
-  item.text.row = 0;
-  item.text.length = c.length;
-  for (uint8_t i = 0; i < c.length; ++i) item.text.chars[i] = c.text[i];
+  return enqueue_text(ItemKind::kPause, seq, 0, c.text, c.length);
+}
+
+// #S and #P: a line of text for the LCD.
+ErrorCode Application::enqueue_text(ItemKind kind, uint8_t seq, uint8_t row, const char* text,
+                                    uint8_t length) {
+  QueueItem item = new_item(kind, seq);
+  item.text.row = row;
+  item.text.length = length;
+  for (uint8_t i = 0; i < length; ++i) item.text.chars[i] = text[i];
   return enqueue(item);
 }
 
@@ -114,22 +116,22 @@ ErrorCode Application::on_resolution(const proto::ResolutionCmd& c, uint8_t seq,
 }
 
 ErrorCode Application::on_feed_move(const proto::FeedMoveCmd& c, uint8_t seq, uint8_t*) {
-  const ErrorCode e = motion_check(&c.x_um, &c.y_um, 0);
-  if (e != ErrorCode::kOk) return e;
-  QueueItem item = new_item(ItemKind::kFeedMove, seq);
-  item.move.x_um = c.x_um;
-  item.move.y_um = c.y_um;
-  item.move.feed_um_s = c.feed_um_per_s;
-  return enqueue(item);
+  return enqueue_move(ItemKind::kFeedMove, seq, &c.x_um, &c.y_um, c.feed_um_per_s);
 }
 
 ErrorCode Application::on_rapid_move(const proto::RapidMoveCmd& c, uint8_t seq, uint8_t*) {
-  const ErrorCode e = motion_check(&c.x_um, &c.y_um, 0);
+  return enqueue_move(ItemKind::kRapidMove, seq, &c.x_um, &c.y_um, rapid_feed());
+}
+
+// #G and #M: an X/Y move inside the travel.
+ErrorCode Application::enqueue_move(ItemKind kind, uint8_t seq, const int32_t* x_um,
+                                    const int32_t* y_um, uint16_t feed_um_s) {
+  const ErrorCode e = motion_check(x_um, y_um, 0);
   if (e != ErrorCode::kOk) return e;
-  QueueItem item = new_item(ItemKind::kRapidMove, seq);
-  item.move.x_um = c.x_um;
-  item.move.y_um = c.y_um;
-  item.move.feed_um_s = rapid_feed();
+  QueueItem item = new_item(kind, seq);
+  item.move.x_um = *x_um;
+  item.move.y_um = *y_um;
+  item.move.feed_um_s = feed_um_s;
   return enqueue(item);
 }
 
@@ -178,44 +180,19 @@ ErrorCode Application::on_height_map_header(const proto::HeightMapHeaderCmd& c, 
   item.map_header.pitch_x_um = c.pitch_x_um;
   item.map_header.pitch_y_um = c.pitch_y_um;
   const ErrorCode e = enqueue(item);
-  if (e != ErrorCode::kOk) return e;
-  map_rx_.points = (uint16_t)((uint16_t)c.cols * c.rows);
-  map_rx_.expected = 0;
-  map_rx_.lowest = 0;  // the span counts the job's zero height too
-  map_rx_.highest = 0;
-  return ErrorCode::kOk;
+  if (e == ErrorCode::kOk) map_rx_.announced((uint16_t)((uint16_t)c.cols * c.rows));
+  return e;
 }
 
-// #E: the next heights of the map announced by #A, in order; the frame that completes it is
-// refused if the map (and 0) would span more than 1 mm.
+// #E: the next heights of the map announced by #A, in order (map_reception.h).
 ErrorCode Application::on_height_map_data(const proto::HeightMapDataCmd& c, uint8_t seq,
                                           uint8_t* detail) {
-  const uint16_t end = (uint16_t)(c.index + c.height_n);
-  if (map_rx_.points == 0 || c.index != map_rx_.expected || end > map_rx_.points) {
-    *detail = proto::kHeightMapSequence;
-    return ErrorCode::kHeightMap;
-  }
   QueueItem item = new_item(ItemKind::kMapHeights, seq);
-  item.map_heights.index = c.index;
-  item.map_heights.n = c.height_n;
-  int16_t lowest = map_rx_.lowest;
-  int16_t highest = map_rx_.highest;
-  for (uint8_t i = 0; i < c.height_n; ++i) {
-    const int16_t h = (int16_t)c.height_um[i];  // the codec kept it within +-1000
-    item.map_heights.height_um[i] = h;
-    if (h < lowest) lowest = h;
-    if (h > highest) highest = h;
-  }
-  if (end == map_rx_.points && highest - lowest > proto::kMaxHeightMapSpanUm) {
-    *detail = proto::kHeightMapSpan;
-    return ErrorCode::kHeightMap;
-  }
-  const ErrorCode e = enqueue(item);
-  if (e != ErrorCode::kOk) return e;
-  map_rx_.expected = end;
-  map_rx_.lowest = lowest;
-  map_rx_.highest = highest;
-  return ErrorCode::kOk;
+  MapSpan span;
+  ErrorCode e = map_rx_.check(c, &item.map_heights, &span, detail);
+  if (e == ErrorCode::kOk) e = enqueue(item);
+  if (e == ErrorCode::kOk) map_rx_.accepted(item.map_heights, span);
+  return e;
 }
 
 ErrorCode Application::on_zeroing(const proto::ZeroingCmd& c, uint8_t seq, uint8_t*) {
@@ -241,23 +218,20 @@ ErrorCode Application::on_spline_header(const proto::SplineHeaderCmd& c, uint8_t
 
 // Stored in the spline's slot, no queue item of its own.
 ErrorCode Application::on_spline_data(const proto::SplineDataCmd& c, uint8_t, uint8_t* detail) {
-  const int32_t travel[2] = {scaling_.travel_um[0], scaling_.travel_um[1]};
   bool completed = false;
-  return store_.add(c, travel, detail, &completed);
+  return store_.add(c, scaling_.travel_um, detail, &completed);
 }
 
 ErrorCode Application::on_spline_compact(const proto::SplineCompactCmd& c, uint8_t,
                                          uint8_t* detail) {
-  const int32_t travel[2] = {scaling_.travel_um[0], scaling_.travel_um[1]};
   bool completed = false;
-  return store_.add_compact(c, travel, detail, &completed);
+  return store_.add_compact(c, scaling_.travel_um, detail, &completed);
 }
 
 ErrorCode Application::on_spline_contour(const proto::SplineContourCmd& c, uint8_t,
                                          uint8_t* detail) {
-  const int32_t travel[2] = {scaling_.travel_um[0], scaling_.travel_um[1]};
   bool completed = false;
-  return store_.add_contour(c, travel, detail, &completed);
+  return store_.add_contour(c, scaling_.travel_um, detail, &completed);
 }
 
 // ---- real-time ----

@@ -107,63 +107,79 @@ uint16_t PathController::cruise_of(const PlanEntry& e) const {
 
 void PathController::tick(const int32_t pos_usteps[config::kAxisCount], CoordinateRing* ring,
                           int16_t v_units[config::kAxisCount]) {
-  if (!have_target_) {
-    if (!ring->pop(&cur_)) {
-      speed_um_s_ = 0;
-      output(0, 0, v_units);
-      return;
-    }
-    take_popped();
+  if (!have_target_ && !take_target(ring)) {
+    speed_um_s_ = 0;
+    output(0, 0, v_units);
+    return;
   }
-  // The direction to the target in um * 2^fine: n * um_per_ustep / 2^16, rounded, keeps
-  // the fraction bits of the micrometre (um_shift >= 16). Rounded down to whole micrometres
-  // (~1 300 units for a 0.08 um microstep) it leaned a fixed way, and as the tick aims at
-  // the target every ms, a long slow move ran that angle times the distance off its line.
+  // Aims at the current target, and takes the next ones from the ring while the tool is
+  // inside their capture radius (or past them).
   const uint8_t fine = scaling_.um_shift > 16 ? (uint8_t)(scaling_.um_shift - 16) : 0;
-  int16_t dir[3];
-  uint32_t sum_sq = 0;
-  int8_t len_shift = 0;
-  int32_t along = 0;  // dir projected on the segment direction, * 2^14
-  const PlanEntry* next = 0;
   const uint32_t per_tick_um = um_per_tick(speed_um_s_) + 1U;  // once: speed is fixed here
+  Aim aim;
+  const PlanEntry* next = 0;
   for (uint8_t captures = 0;; ++captures) {
-    int32_t d[3];
-    for (uint8_t i = 0; i < 3; ++i) d[i] = cur_.target_usteps[i] - pos_usteps[i];
-    int16_t n[3];
-    int8_t shift;
-    normalise3(d, n, &shift);
-    // n * um_per_ustep: a 16x16 product (|.| <= 32767 * 65535: + 2^15 cannot overflow),
-    // rounded to its high half (a byte move).
-    for (uint8_t i = 0; i < 3; ++i) {
-      const int32_t p = core::mul_s16_u16(n[i], scaling_.um_per_ustep_q[i]);
-      dir[i] = scaling_.um_shift < 16 ? (int16_t)core::asr32(p, scaling_.um_shift)
-                                      : core::high_half(p + 0x8000L);
-    }
-    sum_sq = sum_squares3(dir);
-    len_shift = (int8_t)(shift - fine);  // len in um = |dir| * 2^len_shift
-    along = dot(dir, cur_.dir_q14);
+    aim_at_target(pos_usteps, fine, &aim);
     next = ring->front();
     if (next == 0 || captures >= kMaxCapturesPerTick) break;
     // Switch early by the distance of one tick as well, so no target is jumped over.
     uint32_t capture_um = cur_.capture_um;
     if (per_tick_um > capture_um) capture_um = per_tick_um;
-    const bool passed = cur_.length_um > 0 && along < 0;
+    const bool passed = cur_.length_um > 0 && aim.along < 0;
     // The capture test compares squares: only the target finally kept needs a root.
-    if (!passed && length_q4_exceeds(sum_sq, len_shift, capture_um << 4)) break;
+    if (!passed && length_q4_exceeds(aim.sum_sq, aim.len_shift, capture_um << 4)) break;
     leave_target();
     ring->pop(&cur_);  // front() was not null: this pops it, straight into the target
     take_popped();
   }
   // Moving along the segment, the vector's length is close to its projection on the
   // segment direction: a Newton step from there is exact and cheaper than the full root.
-  const uint16_t len = core::isqrt32_from(sum_sq, along > 0 ? (uint16_t)(along >> 14) : 0);
-  const uint32_t len_q4 = scale_length_q4(len, len_shift);
+  const uint16_t len =
+      core::isqrt32_from(aim.sum_sq, aim.along > 0 ? (uint16_t)(aim.along >> 14) : 0);
+  const uint32_t len_q4 = scale_length_q4(len, aim.len_shift);
+  uint16_t v = ramp_speed(len_q4 >> 4, next);
+  if (next == 0 && !hold_) v = approach_end(v, len_q4);
+  speed_um_s_ = v;
+  output(v == 0 ? 0 : aim.dir, len, v_units);
+}
 
-  // Speed: accelerate toward the cruise speed, never above what still lets the machine
-  // reach the next corner (or a stop at the end of the buffer) at the planned speed.
-  // A hold only lowers the cruise speed: the corner and end-of-buffer limits stay, so the
-  // tool slows at the planned rate along the buffered points (braking to the current target
-  // instead would drop the speed faster than the chip's ramps follow and leave the path).
+// The first target from the ring; false while it is empty.
+inline bool PathController::take_target(CoordinateRing* ring) {
+  if (!ring->pop(&cur_)) return false;
+  take_popped();
+  return true;
+}
+
+// The direction to the current target in um * 2^fine: n * um_per_ustep / 2^16, rounded,
+// keeps the fraction bits of the micrometre (um_shift >= 16). Rounded down to whole
+// micrometres (~1 300 units for a 0.08 um microstep) it leaned a fixed way, and as the tick
+// aims at the target every ms, a long slow move ran that angle times the distance off its
+// line.
+inline void PathController::aim_at_target(const int32_t pos_usteps[config::kAxisCount],
+                                          uint8_t fine, Aim* aim) const {
+  int32_t d[3];
+  for (uint8_t i = 0; i < 3; ++i) d[i] = cur_.target_usteps[i] - pos_usteps[i];
+  int16_t n[3];
+  int8_t shift;
+  normalise3(d, n, &shift);
+  // n * um_per_ustep: a 16x16 product (|.| <= 32767 * 65535: + 2^15 cannot overflow),
+  // rounded to its high half (a byte move).
+  for (uint8_t i = 0; i < 3; ++i) {
+    const int32_t p = core::mul_s16_u16(n[i], scaling_.um_per_ustep_q[i]);
+    aim->dir[i] = scaling_.um_shift < 16 ? (int16_t)core::asr32(p, scaling_.um_shift)
+                                         : core::high_half(p + 0x8000L);
+  }
+  aim->sum_sq = sum_squares3(aim->dir);
+  aim->len_shift = (int8_t)(shift - fine);  // len in um = |dir| * 2^len_shift
+  aim->along = dot(aim->dir, cur_.dir_q14);
+}
+
+// Speed: accelerate toward the cruise speed, never above what still lets the machine
+// reach the next corner (or a stop at the end of the buffer) at the planned speed.
+// A hold only lowers the cruise speed: the corner and end-of-buffer limits stay, so the
+// tool slows at the planned rate along the buffered points (braking to the current target
+// instead would drop the speed faster than the chip's ramps follow and leave the path).
+inline uint16_t PathController::ramp_speed(uint32_t len_um, const PlanEntry* next) const {
   const uint16_t cruise = hold_ ? 0 : cruise_of(cur_);
   uint16_t exit = 0;
   if (next != 0) {
@@ -171,7 +187,6 @@ void PathController::tick(const int32_t pos_usteps[config::kAxisCount], Coordina
     const uint16_t next_cruise = cruise_of(*next);
     if (next_cruise < exit) exit = next_cruise;
   }
-  const uint32_t len_um = len_q4 >> 4;
   const uint32_t travel_um = um_per_tick(speed_um_s_);  // covered before the next tick
   const uint16_t a = cur_.accel_um_s_per_ms;
   uint16_t v = speed_um_s_;
@@ -179,33 +194,29 @@ void PathController::tick(const int32_t pos_usteps[config::kAxisCount], Coordina
   const uint16_t allow = reach_speed_capped_um_s(
       exit, a, len_um > travel_um ? len_um - travel_um : 0, cruise > v ? cruise : v);
   const uint16_t goal = cruise < allow ? cruise : allow;
-  if (goal > v) {
-    v = (uint16_t)(goal - v > a ? v + a : goal);
-  } else if (allow < v) {
-    v = allow;  // on the braking curve
-  } else {
-    v = (uint16_t)(v - goal > a ? v - a : goal);
+  if (goal > v) return (uint16_t)(goal - v > a ? v + a : goal);
+  if (allow < v) return allow;  // on the braking curve
+  return (uint16_t)(v - goal > a ? v - a : goal);
+}
+
+// The last buffered target, not held: arrival inside the window, else the approach.
+inline uint16_t PathController::approach_end(uint16_t v, uint32_t len_q4) {
+  const uint16_t a = cur_.accel_um_s_per_ms;
+  if (len_q4 <= kArriveQ4 && v <= a) {
+    if (!arrived_) leave_target();
+    arrived_ = true;
+    return 0;
   }
-  if (next == 0 && !hold_) {
-    if (len_q4 <= kArriveQ4 && v <= a) {
-      if (!arrived_) leave_target();
-      arrived_ = true;
-      v = 0;
-    } else if (len_q4 <= kArriveQ4) {
-      v = (uint16_t)(v - a);  // inside the window but still fast: one more ramp step
-    } else {
-      // Last micrometres: proportional approach (v = 256/s * distance) so the stop is
-      // exact; never below min(p, a) so the approach cannot stall short of the target.
-      // The approach slows by at most a per tick (no step the chip's ramp cannot follow);
-      // the braking rule above already guarantees the stop, this only makes it gentle.
-      const uint32_t p = len_q4 * 16U;
-      if (p < v) v = (uint32_t)(v - p) > a ? (uint16_t)(v - a) : (uint16_t)p;
-      const uint16_t floor_v = p < a ? (uint16_t)p : a;
-      if (v < floor_v) v = floor_v;
-    }
-  }
-  speed_um_s_ = v;
-  output(v == 0 ? 0 : dir, len, v_units);
+  if (len_q4 <= kArriveQ4) return (uint16_t)(v - a);  // still fast: one more ramp step
+  // Last micrometres: proportional approach (v = 256/s * distance) so the stop is
+  // exact; never below min(p, a) so the approach cannot stall short of the target.
+  // The approach slows by at most a per tick (no step the chip's ramp cannot follow);
+  // the braking rule above already guarantees the stop, this only makes it gentle.
+  const uint32_t p = len_q4 * 16U;
+  if (p < v) v = (uint32_t)(v - p) > a ? (uint16_t)(v - a) : (uint16_t)p;
+  const uint16_t floor_v = p < a ? (uint16_t)p : a;
+  if (v < floor_v) v = floor_v;
+  return v;
 }
 
 // Velocity vector of length speed along dir (len = |dir|, any unit), in native units, with

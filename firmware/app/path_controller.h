@@ -48,6 +48,18 @@ class PathController {
   uint8_t current_flags() const { return have_target_ ? cur_.flags : 0; }
 
  private:
+  // Where the current target lies from the tool: the direction in um * 2^fine, its squared
+  // length, len in um = |dir| * 2^len_shift, and dir projected on the segment, * 2^14.
+  struct Aim {
+    int16_t dir[3];
+    uint32_t sum_sq;
+    int8_t len_shift;
+    int32_t along;
+  };
+  bool take_target(CoordinateRing* ring);
+  void aim_at_target(const int32_t pos_usteps[config::kAxisCount], uint8_t fine, Aim* aim) const;
+  uint16_t ramp_speed(uint32_t len_um, const PlanEntry* next) const;
+  uint16_t approach_end(uint16_t v, uint32_t len_q4);
   void take_popped();
   void leave_target();
   uint16_t cruise_of(const PlanEntry& e) const;

@@ -17,7 +17,8 @@ class StopState {
         hold_requested_(false),
         link_hold_(false),
         alarm_(proto::Alarm::kNone),
-        reported_(proto::Alarm::kNone) {}
+        reported_(proto::Alarm::kNone),
+        map_clear_owed_(false) {}
 
   // A stop began (the job is dropped): holds end with it; request_sent false: the tick's
   // request ring was full, the request is owed until request_sent_late().
@@ -34,6 +35,17 @@ class StopState {
     if (!request_owed_) stopping_ = false;
   }
   bool stopping() const { return stopping_; }
+
+  // A session reset's height map goes when its stop completes (so the planned position
+  // taken then has the old map's offset off), unless a #A executed first replaced it.
+  void clear_map_at_stop() { map_clear_owed_ = true; }
+  void map_replaced() { map_clear_owed_ = false; }
+  // True once when the completed stop owes the map's clearing.
+  bool take_map_clear() {
+    const bool owed = map_clear_owed_;
+    map_clear_owed_ = false;
+    return owed;
+  }
 
   // A feed hold the tick took (#H; by_link: the link watchdog's), and a resume (#R).
   void held(bool by_link) {
@@ -75,6 +87,7 @@ class StopState {
   bool link_hold_;
   proto::Alarm alarm_;
   proto::Alarm reported_;
+  bool map_clear_owed_;  // #I: the map goes when its stop completes
 };
 
 }  // namespace app

@@ -50,4 +50,9 @@ proto::Alarm TickFollower::tick_alarm() const {
   return proto::Alarm::kNone;
 }
 
+void TickFollower::position_um(const AxisScaling& scaling, int32_t out[config::kAxisCount]) const {
+  for (uint8_t i = 0; i < config::kAxisCount; ++i)
+    out[i] = usteps_to_um(scaling, i, latest_.pos_usteps[i]);
+}
+
 }  // namespace app

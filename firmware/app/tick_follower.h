@@ -4,8 +4,9 @@
 #ifndef FIRMWARE_APP_TICK_FOLLOWER_H
 #define FIRMWARE_APP_TICK_FOLLOWER_H
 
-#include <stdint.h>  // uint8_t, uint16_t
+#include <stdint.h>  // int32_t, uint8_t, uint16_t
 
+#include "firmware/app/axis_scaling.h"     // AxisScaling
 #include "firmware/app/motion_tick.h"      // MotionTick
 #include "firmware/app/tick_link.h"        // TickStatus, RequestKind
 #include "firmware/protocol/wire_codes.h"  // Alarm
@@ -22,6 +23,8 @@ class TickFollower {
   bool take(MotionTick* tick, bool* first);
   bool have_snapshot() const { return have_snapshot_; }
   const TickStatus& latest() const { return latest_; }
+  // The actual position in the latest snapshot, micrometres.
+  void position_um(const AxisScaling& scaling, int32_t out[config::kAxisCount]) const;
 
   // Each true once per event the tick reported, in the snapshots taken so far.
   // A kStop or kClearAlarm request done (ring dropped).
