@@ -12,53 +12,24 @@ void put(char* out, uint8_t* n, const char* s) {
   while (*s && *n < StatusScreen::kCols) out[(*n)++] = *s++;
 }
 
+// By proto::MachineState (kIdle shows READY once zeroed).
+const char* const kStateNames[] = {"IDLE", "RUN", "HOLDING", "HOLD", "ZEROING", "ALARM", "PAUSED"};
+
 const char* state_name(proto::MachineState s, bool zeroed) {
-  switch (s) {
-    case proto::MachineState::kIdle:
-      return zeroed ? "READY" : "IDLE";
-    case proto::MachineState::kRunning:
-      return "RUN";
-    case proto::MachineState::kHolding:
-      return "HOLDING";
-    case proto::MachineState::kHeld:
-      return "HOLD";
-    case proto::MachineState::kZeroing:
-      return "ZEROING";
-    case proto::MachineState::kAlarm:
-      return "ALARM";
-    case proto::MachineState::kPaused:
-      return "PAUSED";
-  }
-  return "?";
+  if (s == proto::MachineState::kIdle && zeroed) return "READY";
+  const uint8_t i = (uint8_t)s;
+  return i < sizeof kStateNames / sizeof kStateNames[0] ? kStateNames[i] : "?";
 }
 
+// By proto::Alarm, from kLimitSwitch (1) to kLastAlarm.
+const char* const kAlarmNames[proto::kLastAlarm] = {
+    "LIMIT SWITCH", "DRIVER FAULT",   "POWER LOST",    "FOLLOWING ERR",
+    "MOTION CHIP",  "PATH FAULT",     "SOFT LIMIT",    "PROBE NO TOUCH",
+    "PROBE CLOSED", "PROBE: SPINDLE", "NO PROBE INPUT"};
+
 const char* alarm_name(proto::Alarm a) {
-  switch (a) {
-    case proto::Alarm::kLimitSwitch:
-      return "LIMIT SWITCH";
-    case proto::Alarm::kDriverFault:
-      return "DRIVER FAULT";
-    case proto::Alarm::kPowerLost:
-      return "POWER LOST";
-    case proto::Alarm::kFollowingError:
-      return "FOLLOWING ERR";
-    case proto::Alarm::kMotionChipFault:
-      return "MOTION CHIP";
-    case proto::Alarm::kPathFault:
-      return "PATH FAULT";
-    case proto::Alarm::kSoftLimit:
-      return "SOFT LIMIT";
-    case proto::Alarm::kProbeNoContact:
-      return "PROBE NO TOUCH";
-    case proto::Alarm::kProbeClosedAtStart:
-      return "PROBE CLOSED";
-    case proto::Alarm::kProbeSpindleOn:
-      return "PROBE: SPINDLE";
-    case proto::Alarm::kProbeMissing:
-      return "NO PROBE INPUT";
-    default:
-      return "ALARM";
-  }
+  const uint8_t i = (uint8_t)a;
+  return i >= 1 && i <= proto::kLastAlarm ? kAlarmNames[i - 1] : "ALARM";
 }
 
 }  // namespace
