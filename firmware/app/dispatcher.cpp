@@ -46,28 +46,24 @@ void Dispatcher::poll(uint16_t now_ms) {
   while (n < kMaxRxBytesPerPoll && port_->read_byte(&byte)) {
     ++n;
     last_byte_ms_ = now_ms;
-    for (proto::ParseEvent ev = parser_.feed(byte); ev != proto::ParseEvent::kNone;
-         ev = parser_.poll()) {
-      if (ev == proto::ParseEvent::kFrame) {
-        on_frame(parser_.frame(), now_ms);
-      } else {
-        on_rejected(parser_.last_error(), now_ms);
-      }
-    }
+    on_events(parser_.feed(byte), now_ms);
   }
   // A partial frame that stopped arriving is dropped, its bytes re-scanned.
   if (n == 0 && parser_.in_frame() &&
-      (uint16_t)(now_ms - last_byte_ms_) >= (uint16_t)proto::kInterByteTimeoutMs) {
-    for (proto::ParseEvent ev = parser_.expire(); ev != proto::ParseEvent::kNone;
-         ev = parser_.poll()) {
-      if (ev == proto::ParseEvent::kFrame) {
-        on_frame(parser_.frame(), now_ms);
-      } else {
-        on_rejected(parser_.last_error(), now_ms);
-      }
+      (uint16_t)(now_ms - last_byte_ms_) >= (uint16_t)proto::kInterByteTimeoutMs)
+    on_events(parser_.expire(), now_ms);
+  flush_tx();
+}
+
+// The parser's event ev and those it has queued behind it.
+void Dispatcher::on_events(proto::ParseEvent ev, uint16_t now_ms) {
+  for (; ev != proto::ParseEvent::kNone; ev = parser_.poll()) {
+    if (ev == proto::ParseEvent::kFrame) {
+      on_frame(parser_.frame(), now_ms);
+    } else {
+      on_rejected(parser_.last_error(), now_ms);
     }
   }
-  flush_tx();
 }
 
 void Dispatcher::on_rejected(proto::ErrorCode code, uint16_t now_ms) {
@@ -291,15 +287,21 @@ void Dispatcher::error(uint8_t seq, proto::ErrorCode code, uint8_t detail) {
 }
 
 // Encodes a reply into the transmit buffer; if even that is full the reply is dropped (the
-// host recovers with #? and its retransmit timer).
+// host recovers with #? and its retransmit timer). One copy per message type: the payload.
 template <typename Msg>
 void Dispatcher::reply(const Msg& msg, uint8_t seq) {
-  uint8_t size = 0;
+  proto::Payload payload;
+  if (proto::encode(msg, &payload) != proto::ErrorCode::kOk) return;
+  send_frame((uint8_t)Msg::kStart, (uint8_t)Msg::kLetter, seq, payload);
+}
+
+// The frame around an encoded payload, shared by every reply.
+void Dispatcher::send_frame(uint8_t start, uint8_t letter, uint8_t seq,
+                            const proto::Payload& payload) {
   if (kTxBytes - tx_len_ < proto::kMaxFrameBytes) flush_tx();
-  if (proto::write_frame(msg, seq, tx_ + tx_len_, (uint16_t)(kTxBytes - tx_len_), &size) !=
-      proto::ErrorCode::kOk) {
-    return;
-  }
+  const uint8_t size = proto::encode_frame(start, letter, seq, payload.bytes, payload.length,
+                                           tx_ + tx_len_, (uint16_t)(kTxBytes - tx_len_));
+  if (size == 0) return;
   tx_len_ = (uint16_t)(tx_len_ + size);
   flush_tx();
 }

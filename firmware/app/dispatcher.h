@@ -6,6 +6,7 @@
 
 #include <stdint.h>  // uint8_t, uint16_t
 
+#include "firmware/protocol/codec.h"            // Payload
 #include "firmware/protocol/frame.h"            // Frame
 #include "firmware/protocol/messages.h"         // StatusReply, Alarm
 #include "firmware/protocol/parser.h"           // Parser
@@ -63,6 +64,7 @@ class Dispatcher {
   uint16_t ms_since_valid(uint16_t now_ms) const { return (uint16_t)(now_ms - last_valid_ms_); }
 
  private:
+  void on_events(proto::ParseEvent ev, uint16_t now_ms);
   void on_frame(const proto::Frame& f, uint16_t now_ms);
   void on_rejected(proto::ErrorCode code, uint16_t now_ms);
   void on_queued(const proto::Frame& f);
@@ -74,6 +76,7 @@ class Dispatcher {
   void error(uint8_t seq, proto::ErrorCode code, uint8_t detail);
   template <typename Msg>
   void reply(const Msg& msg, uint8_t seq);
+  void send_frame(uint8_t start, uint8_t letter, uint8_t seq, const proto::Payload& payload);
   void flush_tx();
 
   hal::SerialPort* port_;
