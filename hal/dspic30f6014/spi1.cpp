@@ -17,16 +17,21 @@ const uint32_t Spi1::kTimeoutAnswer;
 Spi1::Spi1() : spin_limit_(0), timeouts_(0) {}
 
 // Smallest divider (fastest clock) whose exact SCK, Fcy / divider, does not exceed the
-// limit; of equal dividers the one with the smaller primary prescale is kept.
+// limit; of equal dividers the one with the smaller primary prescale is kept. ceil(Fcy / d)
+// <= max_sck exactly when d >= ceil(Fcy / max_sck): one division, not one per setting.
 uint16_t Spi1::prescale_bits(uint32_t fcy_hz, uint32_t max_sck_hz) {
+  uint32_t least = 0;  // any divider clocks 0 Hz slowly enough
+  if (fcy_hz != 0) {
+    if (max_sck_hz == 0) return kNoPrescale;
+    least = (fcy_hz - 1u) / max_sck_hz + 1u;
+  }
   uint16_t best = kNoPrescale;
   uint16_t best_divider = 0xFFFF;
   for (int8_t ppre = 3; ppre >= 0; --ppre) {    // primary 1, 4, 16, 64
     for (int8_t spre = 7; spre >= 0; --spre) {  // secondary 1 .. 8
       const uint16_t divider = (uint16_t)(kPrimary[ppre] * (uint16_t)(8 - spre));
       if (divider == 1) continue;  // 1:1 with 1:1 is not a valid setting
-      const uint32_t sck_ceiling = (fcy_hz + divider - 1u) / divider;
-      if (sck_ceiling > max_sck_hz || divider >= best_divider) continue;
+      if (divider < least || divider >= best_divider) continue;
       best_divider = divider;
       best = (uint16_t)(ppre | (spre << 2));
     }

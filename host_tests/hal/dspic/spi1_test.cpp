@@ -60,6 +60,43 @@ TEST_F(Spi1Test, PrescaleNeverPicksOneToOne) {
   EXPECT_DOUBLE_EQ(sck_from_spi1con(dspic::Spi1::prescale_bits(20000000, 30000000)), 10e6);
 }
 
+// The settings in the order prescale_bits prefers them, each checked by its own SCK (the
+// search as it was before one division replaced one per setting).
+uint16_t prescale_by_search(uint32_t fcy_hz, uint32_t max_sck_hz) {
+  const uint16_t primary[4] = {64, 16, 4, 1};
+  uint16_t best = dspic::Spi1::kNoPrescale;
+  uint16_t best_divider = 0xFFFF;
+  for (int ppre = 3; ppre >= 0; --ppre) {
+    for (int spre = 7; spre >= 0; --spre) {
+      const uint16_t divider = (uint16_t)(primary[ppre] * (8 - spre));
+      if (divider == 1) continue;
+      const uint32_t sck_ceiling = (fcy_hz + divider - 1u) / divider;
+      if (sck_ceiling > max_sck_hz || divider >= best_divider) continue;
+      best_divider = divider;
+      best = (uint16_t)(ppre | (spre << 2));
+    }
+  }
+  return best;
+}
+
+TEST_F(Spi1Test, PrescaleIsTheSearchOverEverySetting) {
+  const uint32_t edges[] = {0u, 1u, 2u, 39062u, 39063u, 1250000u, 10000000u, 0xFFFFFFFFu};
+  for (uint32_t fcy : {0u, 1u, 20000000u, 0xFFFFF000u})
+    for (uint32_t sck : edges)
+      EXPECT_EQ(dspic::Spi1::prescale_bits(fcy, sck), prescale_by_search(fcy, sck))
+          << fcy << " " << sck;
+  uint32_t x = 12345u;  // xorshift: the same inputs every run
+  for (int i = 0; i < 200000; ++i) {
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    const uint32_t fcy = x % 400000000u;
+    const uint32_t sck = x >> (i % 32);
+    ASSERT_EQ(dspic::Spi1::prescale_bits(fcy, sck), prescale_by_search(fcy, sck))
+        << fcy << " " << sck;
+  }
+}
+
 TEST_F(Spi1Test, InitRefusesAClockSlowerThanTheLargestDivider) {
   dspic::Spi1 slow;
   EXPECT_EQ(dspic::Spi1::prescale_bits(20000000, 30000), dspic::Spi1::kNoPrescale);
