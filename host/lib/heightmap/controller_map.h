@@ -3,7 +3,8 @@
 #ifndef HOST_LIB_HEIGHTMAP_CONTROLLER_MAP_H
 #define HOST_LIB_HEIGHTMAP_CONTROLLER_MAP_H
 
-#include <vector>  // std::vector
+#include <functional>  // std::function
+#include <vector>      // std::vector
 
 #include "host/lib/heightmap/height_map.h"
 #include "host/lib/heightmap/probe_session.h"  // ProbeTouch
@@ -32,11 +33,13 @@ struct ProbeMotion {
 
 // A probe touch through the sender: travel to (x, y) at start_z, #Y, then the result from
 // #T. Throws ProbeFailed with the controller's word (no contact, spindle on, probe closed).
+// on_progress sees each status of the touch (the workshop shows the live position).
 class ProbeFailed : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
-ProbeTouch controller_touch(Sender& sender, const ProbeMotion& motion);
+ProbeTouch controller_touch(Sender& sender, const ProbeMotion& motion,
+                            std::function<void(const Progress&)> on_progress = nullptr);
 
 }  // namespace host::heightmap
 

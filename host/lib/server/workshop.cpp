@@ -71,6 +71,7 @@ struct Workshop::Slot {
   std::string probe_stage;
   bool probe_confirmed = false;
   Sender* probing_sender = nullptr;  // while probing: an abort stops the touch
+  bool probe_waiting = false;        // probing, held between touches (the operator's hold)
   size_t probe_done = 0, probe_total = 0;
   // The controller may still hold the map of this machine's last job (#A: it stays through
   // #I): the next job without one clears it first.
@@ -128,6 +129,8 @@ void Workshop::stop() {
   for (auto& slot : slots_) {
     std::lock_guard<std::mutex> lock(slot->mutex);
     if (slot->sender != nullptr) slot->sender->request_abort();
+    // Probing stops at once too (the touch under way: #X), not after the grid.
+    if (slot->probing_sender != nullptr) slot->probing_sender->request_abort();
   }
   change_cv_.notify_all();
   for (std::thread& t : threads_) t.join();
@@ -219,10 +222,11 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
       return {};
     }
     if (slot->sender == nullptr) {  // still planning: kept for when its commands start
-      if (control == JobControl::kAbort) {
-        if (slot->probing_sender != nullptr) slot->probing_sender->request_abort();
-        notify(false);
+      if (control == JobControl::kAbort && slot->probing_sender != nullptr) {
+        slot->probing_sender->request_abort();
       }
+      // A hold while probing stops it between touches (probing_touch); wake its wait.
+      if (control != JobControl::kOverride) notify(false);
       switch (control) {
         case JobControl::kConfirmProbe:
           break;
@@ -279,11 +283,18 @@ nlohmann::json Workshop::snapshot() {
     m["tags"] = slot->spec.fit.tags;
     m["link"] = slot->link_state;
     m["message"] = slot->link_message;
-    m["job"] = slot->job_id;
+    m["job"] = slot->job_id != 0 ? nlohmann::json(slot->job_id) : nlohmann::json();
+    const bool probing = slot->probe_stage == "probing";
     if (slot->have_last_status) {
       const proto::StatusReply& st = slot->last_status;
-      m["state"] = machine_state_name(st.state);
+      // Probing is the workshop's run of touches: the machine's own state between them is
+      // idle, which the operator must not read as "free".
+      m["state"] = !probing              ? machine_state_name(st.state)
+                   : slot->probe_waiting ? "held"
+                                         : "probing";
       m["position_mm"] = {st.x_um / 1000.0, st.y_um / 1000.0, st.z_um / 1000.0};
+    } else if (probing) {
+      m["state"] = slot->probe_waiting ? "held" : "probing";
     } else {
       m["state"] = slot->link_state == "online" ? "idle" : "unknown";
     }
@@ -312,6 +323,7 @@ nlohmann::json Workshop::snapshot() {
       j["probe"] = {{"stage", slot->probe_stage},
                     {"touches", slot->probe_done},
                     {"planned", slot->probe_total},
+                    {"held", slot->probe_waiting},
                     {"ask", slot->probe_stage == "probe_clip"
                                 ? "put the probe clip on the blank, the spindle off, then "
                                   "confirm (action probe_ready)"
@@ -322,6 +334,9 @@ nlohmann::json Workshop::snapshot() {
     j["position_mm"] = nlohmann::json();
     if (slot->have_status) {
       j["position_mm"] = {p.status.x_um / 1000.0, p.status.y_um / 1000.0, p.status.z_um / 1000.0};
+    } else if (probing && slot->have_last_status) {
+      const proto::StatusReply& st = slot->last_status;
+      j["position_mm"] = {st.x_um / 1000.0, st.y_um / 1000.0, st.z_um / 1000.0};
     }
     j["executed_mm"] = slot->executed_mm;
     j["path_mm"] = slot->path_mm;
@@ -368,6 +383,7 @@ void Workshop::machine_loop(Slot& slot) {
     std::unique_ptr<Link> link;
     std::unique_ptr<Sender> sender;
     proto::SessionReply caps{};
+    proto::StatusReply idle_status{};  // the machine between jobs, as the page shows it
     try {
       link = open_link(parse_link_spec(slot.spec.address), options_.connect_timeout);
       SenderOptions so = options_.sender;
@@ -381,6 +397,7 @@ void Workshop::machine_loop(Slot& slot) {
       };
       sender = std::make_unique<Sender>(*link, so);
       caps = sender->open_session();
+      idle_status = sender->read_status();
     } catch (const std::exception& e) {
       bool changed = false;
       {
@@ -397,9 +414,12 @@ void Workshop::machine_loop(Slot& slot) {
     bool changed = false;
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      changed = slot.link_state != "online";
+      changed = slot.link_state != "online" || !slot.have_last_status ||
+                slot.last_status.state != idle_status.state;
       slot.link_state = "online";
       slot.link_message.clear();
+      slot.last_status = idle_status;
+      slot.have_last_status = true;
     }
     if (changed) notify(false);
     const Lease lease = lease_.current();
@@ -661,6 +681,16 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     outcome = "not sent";
     message = e.what();
   }
+  // The machine as it is now, asked (an abort's last status during the run still said
+  // running); unknown when the link went away or does not answer. No lock held meanwhile.
+  std::optional<proto::StatusReply> at_rest;
+  if (state != JobState::kInterrupted) {
+    try {
+      at_rest = sender.read_status_at_rest(std::chrono::milliseconds(2000));
+    } catch (const std::exception&) {
+      at_rest.reset();
+    }
+  }
   {
     std::lock_guard<std::mutex> lock(slot.mutex);
     slot.sender = nullptr;
@@ -668,12 +698,12 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     slot.planning = false;
     slot.probe_stage.clear();
     slot.probing_sender = nullptr;
+    slot.probe_waiting = false;
     slot.path_json.reset();
-    // The machine as the sender last heard it (idle after a completed job); unknown when
-    // the link went away.
-    slot.have_last_status = state != JobState::kInterrupted;
-    if (slot.have_last_status) slot.last_status = sender.last_status();
+    slot.have_last_status = at_rest.has_value();
+    if (at_rest) slot.last_status = *at_rest;
   }
+  notify(false);
   saver_.forget(job.id);
   progress.executed = static_cast<int64_t>(executed);
   progress.total = static_cast<int64_t>(commands.size());
@@ -727,6 +757,48 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   } catch (const StoreError&) {
     // The record stays 'running'; the next start of this server marks it interrupted.
   }
+}
+
+// One touch of a board job's probing grid. Before it, the operator's hold waits (the touch
+// before has finished: the tool stands retracted above its contact) and an abort or the
+// server stopping ends the probing; each status of the touch is the machine's on the page.
+heightmap::ProbeTouch Workshop::probing_touch(Slot& slot, Sender& sender) {
+  auto last_notify = std::make_shared<Clock::time_point>();
+  heightmap::ProbeTouch touch = heightmap::controller_touch(
+      sender, heightmap::ProbeMotion{}, [this, &slot, last_notify](const Progress& p) {
+        {
+          std::lock_guard<std::mutex> lock(slot.mutex);
+          slot.last_status = p.status;
+          slot.have_last_status = true;
+        }
+        if (Clock::now() - *last_notify > std::chrono::milliseconds(100)) {
+          *last_notify = Clock::now();
+          notify(false);
+        }
+      });
+  return [this, &slot, touch](double x_mm, double y_mm) {
+    wait_between_touches(slot);
+    return touch(x_mm, y_mm);
+  };
+}
+
+void Workshop::wait_between_touches(Slot& slot) {
+  bool waited = false;
+  while (true) {
+    {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      slot.probe_waiting = slot.hold_pending && !slot.abort_pending && !stopping_;
+      if (slot.abort_pending || stopping_) {
+        throw AbortedBeforeCutting("aborted while probing; nothing was cut");
+      }
+      if (!slot.probe_waiting) break;
+    }
+    if (!waited) notify(false);  // the page shows it held
+    waited = true;
+    std::unique_lock<std::mutex> lock(change_mutex_);
+    change_cv_.wait_for(lock, std::chrono::milliseconds(100));
+  }
+  if (waited) notify(false);
 }
 
 std::optional<heightmap::HeightMap> Workshop::board_height_map(
@@ -828,16 +900,15 @@ std::optional<heightmap::HeightMap> Workshop::board_height_map(
       o.grid.spacing_mm = board.probe_spacing_mm;
       heightmap::ProbeRun probed;
       try {
-        probed = heightmap::probe_blank(
-            *area, o, heightmap::controller_touch(sender, heightmap::ProbeMotion{}),
-            [&](size_t done, size_t planned) {
-              {
-                std::lock_guard<std::mutex> lock(slot.mutex);
-                slot.probe_done = done;
-                slot.probe_total = planned;
-              }
-              notify(false);
-            });
+        probed = heightmap::probe_blank(*area, o, probing_touch(slot, sender),
+                                        [&](size_t done, size_t planned) {
+                                          {
+                                            std::lock_guard<std::mutex> lock(slot.mutex);
+                                            slot.probe_done = done;
+                                            slot.probe_total = planned;
+                                          }
+                                          notify(false);
+                                        });
       } catch (const std::exception& e) {
         bool aborted = false;
         {

@@ -19,6 +19,7 @@
 #include <vector>              // std::vector
 
 #include "host/lib/heightmap/height_map.h"
+#include "host/lib/heightmap/probe_session.h"  // ProbeTouch
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/server/data_folder.h"
 #include "host/lib/server/job_store.h"
@@ -111,6 +112,9 @@ class Workshop {
   std::optional<heightmap::HeightMap> board_height_map(
       Slot& slot, const JobRecord& job, const JobPlan& plan, Sender& sender,
       const std::function<void(const std::string&)>& note);
+  // A touch of the probing grid that waits while the operator holds, ends on an abort.
+  heightmap::ProbeTouch probing_touch(Slot& slot, Sender& sender);
+  void wait_between_touches(Slot& slot);
 
   JobStore& store_;
   const DataFolder& data_;
