@@ -103,6 +103,15 @@ class Workshop {
   struct Slot;
   void machine_loop(Slot& slot);
   void run_job(Slot& slot, const JobRecord& job, Sender& sender, const proto::SessionReply& caps);
+  // run_job's steps, in order (workshop.cpp).
+  struct JobRun;
+  void claim_slot(Slot& slot, const JobRun& run);
+  void make_commands(Slot& slot, JobRun& run, Sender& sender, const proto::SessionReply& caps);
+  void hand_to_sender(Slot& slot, JobRun& run, Sender& sender);
+  void stream_commands(Slot& slot, JobRun& run, Sender& sender);
+  void follow_status(Slot& slot, JobRun& run, Sender& sender, const Progress& p);
+  void release_slot(Slot& slot, const JobRun& run, Sender& sender);
+  void finish_run(Slot& slot, JobRun& run, Sender& sender);
   void sleep_for(std::chrono::milliseconds ms);
   void heartbeat_loop();
   void lease_lost(const std::string& why);

@@ -138,10 +138,11 @@ TEST(ServerProbingControl, StatusShowsTheMachineProbingAndWhereItIs) {
   std::set<std::vector<double>> positions;
   test::wait_until(
       [&] {
-        const nlohmann::json m = machine_of(server);
-        const nlohmann::json j = server.running(id);
-        if (m["state"] != "probing" || !j.is_object() || j["machine_state"] != "probing")
-          return false;
+        const nlohmann::json status = server.status();  // one snapshot for both
+        if (!status.is_object() || status["running"].empty()) return false;
+        const nlohmann::json m = status["machines"][0];
+        const nlohmann::json j = status["running"][0];
+        if (m["state"] != "probing" || j["machine_state"] != "probing") return false;
         EXPECT_EQ(m["job"], id);
         EXPECT_EQ(j["position_mm"], m["position_mm"]);
         positions.insert(m["position_mm"].get<std::vector<double>>());
