@@ -90,4 +90,19 @@ ProbeTouch controller_touch(Sender& sender, const ProbeMotion& m,
   };
 }
 
+std::string raise_tool_after_abort(Link& link, SenderOptions options, double z_mm) {
+  options.zero_first = false;
+  try {
+    Sender lift(link, options);
+    lift.open_session();
+    const uint16_t rapid_z = 65535;
+    const std::vector<QueuedCommand> up = {encode_command(proto::ZMoveCmd{um(z_mm), rapid_z})};
+    if (lift.run(up, [](const Progress&) {}) != JobOutcome::kCompleted)
+      return fmt::format("the tool was not raised: {}", lift.message());
+    return fmt::format("the tool raised to Z {:.3f} mm", z_mm);
+  } catch (const std::exception& e) {
+    return fmt::format("the tool was not raised: {}", e.what());
+  }
+}
+
 }  // namespace host::heightmap

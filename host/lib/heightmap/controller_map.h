@@ -4,6 +4,7 @@
 #define HOST_LIB_HEIGHTMAP_CONTROLLER_MAP_H
 
 #include <functional>  // std::function
+#include <string>      // std::string
 #include <vector>      // std::vector
 
 #include "host/lib/heightmap/height_map.h"
@@ -40,6 +41,10 @@ class ProbeFailed : public std::runtime_error {
 };
 ProbeTouch controller_touch(Sender& sender, const ProbeMotion& motion,
                             std::function<void(const Progress&)> on_progress = nullptr);
+// After an abort stopped a touch where it was (#X: mid-descent, or on the copper): a new
+// session on the link ends the abort and the tool goes up to `z_mm` (nothing else moves; no
+// zeroing). Returns what happened, for the operator; never throws.
+std::string raise_tool_after_abort(Link& link, SenderOptions options, double z_mm);
 
 }  // namespace host::heightmap
 
