@@ -21,6 +21,7 @@
 #include "host/lib/commands/send_command.h"
 #include "host/lib/commands/sim_command.h"
 #include "host/lib/drawing/drawing.h"
+#include "host/lib/heightmap/controller_map.h"  // raise_tool_after_abort
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/progress/progress_meter.h"
 #include "host/lib/stream/sender.h"
@@ -293,7 +294,17 @@ void run_probe(const ProbeArgs& a) {
       "engraver: probing the blank under {} through {}: the probe clip on the blank, the "
       "spindle off\n",
       a.plan.file, link->name());
-  probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path);
+  try {
+    probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path);
+  } catch (const CommandFailure&) {
+    signals_to(nullptr);
+    // Ctrl-C stopped the touch where it was (#X): the tool up before engraver ends.
+    if (abort_signalled()) {
+      std::cerr << "engraver: probing stopped: "
+                << heightmap::raise_tool_after_abort(*link, so, a.plan.z_up_mm) << "\n";
+    }
+    throw;
+  }
   signals_to(nullptr);
 }
 

@@ -12,6 +12,7 @@ namespace {
 
 Sender* g_sender = nullptr;           // for the signal handlers (request_* set atomics)
 std::atomic<bool>* g_stop = nullptr;  // for `sim`
+volatile sig_atomic_t g_abort_signalled = 0;
 
 extern "C" void on_signal(int sig) {
   if (g_sender == nullptr) return;
@@ -19,8 +20,10 @@ extern "C" void on_signal(int sig) {
     g_sender->request_hold();
   else if (sig == SIGUSR2)
     g_sender->request_resume();
-  else
+  else {
     g_sender->request_abort();
+    g_abort_signalled = 1;
+  }
 }
 
 extern "C" void on_stop(int) {
@@ -36,6 +39,10 @@ void signals_to(Sender* sender) {
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
   for (int sig : {SIGINT, SIGTERM, SIGUSR1, SIGUSR2}) sigaction(sig, &sa, nullptr);
+}
+
+bool abort_signalled() {
+  return g_abort_signalled != 0;
 }
 
 void signals_stop(std::atomic<bool>* stop) {

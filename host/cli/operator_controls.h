@@ -14,6 +14,8 @@ namespace host::cli {
 
 // Signals go to this sender from now on (nullptr: to none; the handlers only set atomics).
 void signals_to(Sender* sender);
+// Whether SIGINT or SIGTERM (Ctrl-C) asked signals_to's sender to abort since the start.
+bool abort_signalled();
 
 // INT and TERM set `stop` (for `sim`, which has no sender); it must outlive the process's
 // handling of them.

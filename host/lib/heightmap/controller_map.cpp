@@ -51,9 +51,10 @@ std::vector<QueuedCommand> job_map_commands(const HeightMap* map) {
   return {clear_height_map_command()};
 }
 
-ProbeTouch controller_touch(Sender& sender, const ProbeMotion& m) {
+ProbeTouch controller_touch(Sender& sender, const ProbeMotion& m,
+                            std::function<void(const Progress&)> on_progress) {
   auto first = std::make_shared<bool>(true);
-  return [&sender, m, first](double x_mm, double y_mm) {
+  return [&sender, m, first, on_progress](double x_mm, double y_mm) {
     std::vector<QueuedCommand> c;
     const uint16_t rapid_z = 65535;  // Z moves at the machine's rapid rate (capped there)
     if (*first) c.push_back(encode_command(proto::ZMoveCmd{um(m.travel_z_mm), rapid_z}));
@@ -66,7 +67,9 @@ ProbeTouch controller_touch(Sender& sender, const ProbeMotion& m) {
     probe.retract_um = static_cast<uint16_t>(um(m.retract_mm));
     c.push_back(encode_command(probe));
     const uint16_t before = sender.read_probe_result().probe_count;
-    const JobOutcome outcome = sender.run(c, [](const Progress&) {});
+    const JobOutcome outcome = sender.run(c, [&on_progress](const Progress& p) {
+      if (on_progress) on_progress(p);
+    });
     if (outcome != JobOutcome::kCompleted)
       throw ProbeFailed(fmt::format("probing at ({:.3f}, {:.3f}) mm: {}: {}", x_mm, y_mm,
                                     outcome_name(outcome), sender.message()));
@@ -85,6 +88,21 @@ ProbeTouch controller_touch(Sender& sender, const ProbeMotion& m) {
                       x_mm, y_mm, r.z_um / 1000.0));
     return static_cast<double>(r.z_um);
   };
+}
+
+std::string raise_tool_after_abort(Link& link, SenderOptions options, double z_mm) {
+  options.zero_first = false;
+  try {
+    Sender lift(link, options);
+    lift.open_session();
+    const uint16_t rapid_z = 65535;
+    const std::vector<QueuedCommand> up = {encode_command(proto::ZMoveCmd{um(z_mm), rapid_z})};
+    if (lift.run(up, [](const Progress&) {}) != JobOutcome::kCompleted)
+      return fmt::format("the tool was not raised: {}", lift.message());
+    return fmt::format("the tool raised to Z {:.3f} mm", z_mm);
+  } catch (const std::exception& e) {
+    return fmt::format("the tool was not raised: {}", e.what());
+  }
 }
 
 }  // namespace host::heightmap

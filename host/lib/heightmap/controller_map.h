@@ -3,7 +3,9 @@
 #ifndef HOST_LIB_HEIGHTMAP_CONTROLLER_MAP_H
 #define HOST_LIB_HEIGHTMAP_CONTROLLER_MAP_H
 
-#include <vector>  // std::vector
+#include <functional>  // std::function
+#include <string>      // std::string
+#include <vector>      // std::vector
 
 #include "host/lib/heightmap/height_map.h"
 #include "host/lib/heightmap/probe_session.h"  // ProbeTouch
@@ -32,11 +34,17 @@ struct ProbeMotion {
 
 // A probe touch through the sender: travel to (x, y) at start_z, #Y, then the result from
 // #T. Throws ProbeFailed with the controller's word (no contact, spindle on, probe closed).
+// on_progress sees each status of the touch (the workshop shows the live position).
 class ProbeFailed : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
-ProbeTouch controller_touch(Sender& sender, const ProbeMotion& motion);
+ProbeTouch controller_touch(Sender& sender, const ProbeMotion& motion,
+                            std::function<void(const Progress&)> on_progress = nullptr);
+// After an abort stopped a touch where it was (#X: mid-descent, or on the copper): a new
+// session on the link ends the abort and the tool goes up to `z_mm` (nothing else moves; no
+// zeroing). Returns what happened, for the operator; never throws.
+std::string raise_tool_after_abort(Link& link, SenderOptions options, double z_mm);
 
 }  // namespace host::heightmap
 

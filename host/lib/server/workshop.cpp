@@ -71,6 +71,7 @@ struct Workshop::Slot {
   std::string probe_stage;
   bool probe_confirmed = false;
   Sender* probing_sender = nullptr;  // while probing: an abort stops the touch
+  bool probe_waiting = false;        // probing, held between touches (the operator's hold)
   size_t probe_done = 0, probe_total = 0;
   // The controller may still hold the map of this machine's last job (#A: it stays through
   // #I): the next job without one clears it first.
@@ -128,6 +129,8 @@ void Workshop::stop() {
   for (auto& slot : slots_) {
     std::lock_guard<std::mutex> lock(slot->mutex);
     if (slot->sender != nullptr) slot->sender->request_abort();
+    // Probing stops at once too (the touch under way: #X), not after the grid.
+    if (slot->probing_sender != nullptr) slot->probing_sender->request_abort();
   }
   change_cv_.notify_all();
   for (std::thread& t : threads_) t.join();
@@ -219,10 +222,11 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
       return {};
     }
     if (slot->sender == nullptr) {  // still planning: kept for when its commands start
-      if (control == JobControl::kAbort) {
-        if (slot->probing_sender != nullptr) slot->probing_sender->request_abort();
-        notify(false);
+      if (control == JobControl::kAbort && slot->probing_sender != nullptr) {
+        slot->probing_sender->request_abort();
       }
+      // A hold while probing stops it between touches (probing_touch); wake its wait.
+      if (control != JobControl::kOverride) notify(false);
       switch (control) {
         case JobControl::kConfirmProbe:
           break;
@@ -279,11 +283,18 @@ nlohmann::json Workshop::snapshot() {
     m["tags"] = slot->spec.fit.tags;
     m["link"] = slot->link_state;
     m["message"] = slot->link_message;
-    m["job"] = slot->job_id;
+    m["job"] = slot->job_id != 0 ? nlohmann::json(slot->job_id) : nlohmann::json();
+    const bool probing = slot->probe_stage == "probing";
     if (slot->have_last_status) {
       const proto::StatusReply& st = slot->last_status;
-      m["state"] = machine_state_name(st.state);
+      // Probing is the workshop's run of touches: the machine's own state between them is
+      // idle, which the operator must not read as "free".
+      m["state"] = !probing              ? machine_state_name(st.state)
+                   : slot->probe_waiting ? "held"
+                                         : "probing";
       m["position_mm"] = {st.x_um / 1000.0, st.y_um / 1000.0, st.z_um / 1000.0};
+    } else if (probing) {
+      m["state"] = slot->probe_waiting ? "held" : "probing";
     } else {
       m["state"] = slot->link_state == "online" ? "idle" : "unknown";
     }
@@ -312,6 +323,7 @@ nlohmann::json Workshop::snapshot() {
       j["probe"] = {{"stage", slot->probe_stage},
                     {"touches", slot->probe_done},
                     {"planned", slot->probe_total},
+                    {"held", slot->probe_waiting},
                     {"ask", slot->probe_stage == "probe_clip"
                                 ? "put the probe clip on the blank, the spindle off, then "
                                   "confirm (action probe_ready)"
@@ -322,6 +334,9 @@ nlohmann::json Workshop::snapshot() {
     j["position_mm"] = nlohmann::json();
     if (slot->have_status) {
       j["position_mm"] = {p.status.x_um / 1000.0, p.status.y_um / 1000.0, p.status.z_um / 1000.0};
+    } else if (probing && slot->have_last_status) {
+      const proto::StatusReply& st = slot->last_status;
+      j["position_mm"] = {st.x_um / 1000.0, st.y_um / 1000.0, st.z_um / 1000.0};
     }
     j["executed_mm"] = slot->executed_mm;
     j["path_mm"] = slot->path_mm;
@@ -368,6 +383,7 @@ void Workshop::machine_loop(Slot& slot) {
     std::unique_ptr<Link> link;
     std::unique_ptr<Sender> sender;
     proto::SessionReply caps{};
+    proto::StatusReply idle_status{};  // the machine between jobs, as the page shows it
     try {
       link = open_link(parse_link_spec(slot.spec.address), options_.connect_timeout);
       SenderOptions so = options_.sender;
@@ -381,6 +397,7 @@ void Workshop::machine_loop(Slot& slot) {
       };
       sender = std::make_unique<Sender>(*link, so);
       caps = sender->open_session();
+      idle_status = sender->read_status();
     } catch (const std::exception& e) {
       bool changed = false;
       {
@@ -397,9 +414,12 @@ void Workshop::machine_loop(Slot& slot) {
     bool changed = false;
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      changed = slot.link_state != "online";
+      changed = slot.link_state != "online" || !slot.have_last_status ||
+                slot.last_status.state != idle_status.state;
       slot.link_state = "online";
       slot.link_message.clear();
+      slot.last_status = idle_status;
+      slot.have_last_status = true;
     }
     if (changed) notify(false);
     const Lease lease = lease_.current();
@@ -423,32 +443,42 @@ void Workshop::machine_loop(Slot& slot) {
   }
 }
 
-void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
-                       const proto::SessionReply& caps) {
-  const fs::path dir = data_.job_dir(job.key);
-  const Clock::time_point started = Clock::now();
-  // This run's folder in the archive; its machine.log is written as the job runs.
-  std::unique_ptr<RunArchive> run;
-  std::string archive_error;
-  try {
-    run = std::make_unique<RunArchive>(dir);
-  } catch (const std::exception& e) {
-    archive_error = e.what();
-  }
-  auto note = [&](const std::string& line) {
-    if (!run || !archive_error.empty()) return;
+// One run of a job on a machine: what its steps share, and how it ended (report.json).
+struct Workshop::JobRun {
+  JobRun(const JobRecord& record, const fs::path& job_dir)
+      : job(record), dir(job_dir), lease{record.owner, record.lease_epoch} {
+    progress.resume_curve = job.resume_curve;
+    progress.resume_index = job.resume_index;
+    progress.resume_point = job.resume_point;
+    progress.resume_job_id = job.resume_job_id;
     try {
-      run->log(fmt::format("{:9.3f} {}", seconds_since(started), line));
+      archive = std::make_unique<RunArchive>(dir);
     } catch (const std::exception& e) {
-      archive_error = e.what();  // the job goes on; its message says the log is incomplete
+      archive_error = e.what();
     }
-  };
-  note(fmt::format("job {} '{}' on {} ({}), server {}", job.id, job.name, slot.spec.name,
-                   slot.spec.address, options_.owner));
-  note(fmt::format("session: protocol v{}, max payload {}, window {}", int(caps.protocol_version),
-                   int(caps.max_payload), int(caps.window_frames)));
+  }
+  // A line of this run's machine.log; a log that cannot be written ends nothing (the
+  // job's message says the log is incomplete).
+  void note(const std::string& line) {
+    if (!archive || !archive_error.empty()) return;
+    try {
+      archive->log(fmt::format("{:9.3f} {}", seconds_since(started), line));
+    } catch (const std::exception& e) {
+      archive_error = e.what();
+    }
+  }
+  std::function<void(const std::string&)> noter() {
+    return [this](const std::string& line) { note(line); };
+  }
 
+  const JobRecord& job;
+  const fs::path dir;
+  const Clock::time_point started = Clock::now();
+  const Lease lease;
+  std::unique_ptr<RunArchive> archive;  // this run's folder in the archive
+  std::string archive_error;
   JobState state = JobState::kFailed;
+  const char* outcome = "not started";
   std::string message;
   std::vector<QueuedCommand> commands;
   size_t executed = 0;
@@ -457,22 +487,53 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   uint16_t job_id = 0;  // the controller's id of the whole job (#J)
   // Where it stands; a continued job keeps its saved position until the machine reports.
   JobProgress progress;
-  progress.resume_curve = job.resume_curve;
-  progress.resume_index = job.resume_index;
-  progress.resume_point = job.resume_point;
-  progress.resume_job_id = job.resume_job_id;
-  const Lease lease{job.owner, job.lease_epoch};
-  const char* outcome = "not started";
-  nlohmann::json height_map;  // the map the job was cut with (report.json), null: none
+  nlohmann::json height_map;    // the map the job was cut with (report.json), null: none
+  std::optional<JobPath> path;  // the tool path, for the live position along it
+  // What the progress callback has reported so far.
+  proto::MachineState last_state = proto::MachineState::kIdle;
+  int last_override = -1;  // none reported yet
+  Clock::time_point last_notify = started;
+};
+
+void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
+                       const proto::SessionReply& caps) {
+  JobRun r(job, data_.job_dir(job.key));
+  r.note(fmt::format("job {} '{}' on {} ({}), server {}", job.id, job.name, slot.spec.name,
+                     slot.spec.address, options_.owner));
+  r.note(fmt::format("session: protocol v{}, max payload {}, window {}", int(caps.protocol_version),
+                     int(caps.max_payload), int(caps.window_frames)));
+  claim_slot(slot, r);
+  try {
+    make_commands(slot, r, sender, caps);
+    hand_to_sender(slot, r, sender);
+    stream_commands(slot, r, sender);
+  } catch (const LinkError& e) {
+    r.state = JobState::kInterrupted;
+    r.outcome = "link lost";
+    r.message = e.what();
+  } catch (const AbortedBeforeCutting& e) {
+    r.state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
+    r.outcome = "aborted before cutting";
+    r.message = e.what();
+  } catch (const std::exception& e) {
+    r.state = JobState::kFailed;
+    r.outcome = "not sent";
+    r.message = e.what();
+  }
+  release_slot(slot, r, sender);
+  finish_run(slot, r, sender);
+}
+
+// Claimed: on the page (planning) and steerable before its commands exist.
+void Workshop::claim_slot(Slot& slot, const JobRun& r) {
   {
-    // Claimed: on the page (planning) and steerable before its commands exist.
     std::lock_guard<std::mutex> lock(slot.mutex);
-    slot.job_id = job.id;
-    slot.job_name = job.name;
+    slot.job_id = r.job.id;
+    slot.job_name = r.job.name;
     slot.planning = true;
     slot.probe_stage.clear();
     slot.probe_confirmed = false;
-    slot.lease_epoch = job.lease_epoch;  // probing sends before the job's commands do
+    slot.lease_epoch = r.job.lease_epoch;  // probing sends before the job's commands do
     slot.fenced.clear();
     slot.probe_done = slot.probe_total = 0;
     slot.hold_pending = slot.abort_pending = false;
@@ -481,185 +542,203 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     slot.executed_mm = slot.path_mm = 0;
     slot.progress = Progress{};
     slot.have_status = false;
-    slot.planned_s = job.planned_s;
-    slot.started = started;
+    slot.planned_s = r.job.planned_s;
+    slot.started = r.started;
   }
   notify(false);
-  try {
-    // Uploaded to another server sharing the queue: the input comes from the store.
-    const bool fetched = !fs::exists(dir / job.input_file);
-    if (fetched) {
-      const std::optional<std::string> bytes = store_.input(job.id);
-      if (!bytes) throw std::runtime_error((dir / job.input_file).string() + ": missing");
-      restore_job_input(dir, job, *bytes);
-    }
-    const JobPlan plan = plan_archived_job(dir, job, slot.spec.fit.work_width_mm,
-                                           slot.spec.fit.work_height_mm, fetched);
-    EncodeOptions enc = encode_options(job);
-    use_session(caps, &enc);
-    const std::vector<QueuedCommand> full = encode_job(plan, enc);
-    job_id = job_id_of(full);
-    if (job.start_curve >= 0 || job.resume_index >= 0) {
-      commands = continue_commands(job, full, plan, enc, sender, options_.resume_encoder, note);
-    } else {
-      commands = full;
-    }
-    // The height map goes first (a continued job sends it again: a restarted controller
-    // has lost it); a job without one clears the last job's.
-    const std::optional<heightmap::HeightMap> map = board_height_map(slot, job, plan, sender, note);
-    bool clear_map = false;
-    {
-      std::lock_guard<std::mutex> lock(slot.mutex);
-      clear_map = !map && slot.controller_has_map;
-      slot.controller_has_map = static_cast<bool>(map);
-    }
-    if (map) {
-      const std::vector<QueuedCommand> frames = heightmap::height_map_commands(*map);
-      commands.insert(commands.begin(), frames.begin(), frames.end());
-      height_map = nlohmann::json{{"file", std::string(kHeightMapFile)},
+}
+
+// The job's plan and commands (continued where it stopped), its height map first.
+void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
+                             const proto::SessionReply& caps) {
+  const JobRecord& job = r.job;
+  // Uploaded to another server sharing the queue: the input comes from the store.
+  const bool fetched = !fs::exists(r.dir / job.input_file);
+  if (fetched) {
+    const std::optional<std::string> bytes = store_.input(job.id);
+    if (!bytes) throw std::runtime_error((r.dir / job.input_file).string() + ": missing");
+    restore_job_input(r.dir, job, *bytes);
+  }
+  const JobPlan plan = plan_archived_job(r.dir, job, slot.spec.fit.work_width_mm,
+                                         slot.spec.fit.work_height_mm, fetched);
+  EncodeOptions enc = encode_options(job);
+  use_session(caps, &enc);
+  const std::vector<QueuedCommand> full = encode_job(plan, enc);
+  r.job_id = job_id_of(full);
+  if (job.start_curve >= 0 || job.resume_index >= 0) {
+    r.commands =
+        continue_commands(job, full, plan, enc, sender, options_.resume_encoder, r.noter());
+  } else {
+    r.commands = full;
+  }
+  // The height map goes first (a continued job sends it again: a restarted controller
+  // has lost it); a job without one clears the last job's.
+  const std::optional<heightmap::HeightMap> map =
+      board_height_map(slot, job, plan, sender, r.noter());
+  bool clear_map = false;
+  {
+    std::lock_guard<std::mutex> lock(slot.mutex);
+    clear_map = !map && slot.controller_has_map;
+    slot.controller_has_map = static_cast<bool>(map);
+  }
+  if (map) {
+    const std::vector<QueuedCommand> frames = heightmap::height_map_commands(*map);
+    r.commands.insert(r.commands.begin(), frames.begin(), frames.end());
+    r.height_map = nlohmann::json{{"file", std::string(kHeightMapFile)},
                                   {"rows", map->rows},
                                   {"cols", map->cols},
                                   {"min_um", map->min_um()},
                                   {"max_um", map->max_um()},
                                   {"probed_at", map->probed_at}};
-    } else if (clear_map) {
-      commands.insert(commands.begin(), heightmap::clear_height_map_command());
-      note("the last job's height map cleared on the controller");
+  } else if (clear_map) {
+    r.commands.insert(r.commands.begin(), heightmap::clear_height_map_command());
+    r.note("the last job's height map cleared on the controller");
+  }
+  r.note(fmt::format("planned: {} curves, {} commands, {} bytes, about {:.1f} s",
+                     plan.curves.size(), r.commands.size(), wire_bytes(r.commands), job.planned_s));
+  r.path.emplace(plan);
+}
+
+// The commands exist: the slot takes the sender and what the operator asked for meanwhile.
+void Workshop::hand_to_sender(Slot& slot, JobRun& r, Sender& sender) {
+  auto path_json = std::make_shared<const std::string>(r.path->to_json().dump());
+  // Its size and first curve are known now: not "0 of 0" in the store while the first
+  // status is awaited, and continuable from that curve whatever stops it next.
+  r.progress = progress_of(r.progress, r.commands, 0, proto::StatusReply{}, r.job_id);
+  saver_.post(r.job.id, r.lease, r.progress, true);
+  {
+    std::lock_guard<std::mutex> lock(slot.mutex);
+    slot.sender = &sender;
+    slot.planning = false;
+    slot.progress = Progress{};
+    slot.progress.total = r.commands.size();
+    slot.path_json = std::move(path_json);
+    slot.path_mm = r.path->length_mm();
+    slot.lease_epoch = r.job.lease_epoch;
+    slot.fenced.clear();
+    if (stopping_) sender.request_abort();  // claimed just as stop() looked at the slots
+    // Asked for while it was planning; run() sends them before its first command (the
+    // override after this run's reset to 100 %).
+    if (slot.abort_pending) sender.request_abort();
+    if (slot.hold_pending) sender.request_hold();
+    if (slot.override_pending != 0) sender.request_override(slot.override_pending);
+    if (slot.hold_pending || slot.abort_pending || slot.override_pending != 0) {
+      r.note(fmt::format(
+          "asked for while planning:{}{}{}", slot.hold_pending ? " hold" : "",
+          slot.abort_pending ? " abort" : "",
+          slot.override_pending != 0 ? fmt::format(" override {}%", slot.override_pending) : ""));
     }
-    note(fmt::format("planned: {} curves, {} commands, {} bytes, about {:.1f} s",
-                     plan.curves.size(), commands.size(), wire_bytes(commands), job.planned_s));
-    JobPath path(plan);
-    auto path_json = std::make_shared<const std::string>(path.to_json().dump());
-    // Its size and first curve are known now: not "0 of 0" in the store while the first
-    // status is awaited, and continuable from that curve whatever stops it next.
-    progress = progress_of(progress, commands, 0, proto::StatusReply{}, job_id);
-    saver_.post(job.id, lease, progress, true);
+  }
+  notify(false);
+}
+
+// Sends the commands, following each status, and judges how the run ended.
+void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
+  // A feed override belongs to the job that set it: every run starts at 100 %, whatever
+  // the machine's last job left.
+  if (!sender.set_override(100)) throw LinkError("the machine did not take feed override 100%");
+  r.note("feed override set to 100% for this run");
+  const JobOutcome result =
+      sender.run(r.commands, [&](const Progress& p) { follow_status(slot, r, sender, p); });
+  r.outcome = outcome_name(result);
+  r.message = sender.message();
+  std::string fenced;
+  {
+    std::lock_guard<std::mutex> lock(slot.mutex);
+    fenced = slot.fenced;
+  }
+  switch (fenced.empty() || result == JobOutcome::kCompleted ? result : JobOutcome::kLinkLost) {
+    case JobOutcome::kCompleted:
+      r.state = JobState::kCompleted;
+      r.executed = r.commands.size();
+      break;
+    case JobOutcome::kAborted:
+      r.state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
+      if (stopping_) {
+        // The sender's abort came from stop(), not from an operator.
+        r.outcome = "server stopped";
+        r.message = fmt::format(
+            "the server stopped while the job was running, after {} of {} "
+            "commands",
+            r.executed, r.commands.size());
+      }
+      break;
+    case JobOutcome::kAlarm:
+    case JobOutcome::kRejected:
+      r.state = JobState::kFailed;
+      break;
+    case JobOutcome::kLinkLost:
+    case JobOutcome::kStalled:  // the sender's watchdog: answered, but no progress
+      r.state = JobState::kInterrupted;
+      break;
+  }
+  if (!fenced.empty() && result != JobOutcome::kCompleted) {
+    r.outcome = "stopped: lease lost";
+    r.message = fenced;
+  }
+}
+
+// One status of the running job: the page, the saved progress, the lease, the log.
+void Workshop::follow_status(Slot& slot, JobRun& r, Sender& sender, const Progress& p) {
+  const std::vector<QueuedCommand>& commands = r.commands;
+  // The plan step running (or next): that of the first command not done yet.
+  size_t next = p.executed;
+  while (next < commands.size() && commands[next].step < 0) ++next;
+  const int step = next < commands.size() ? commands[next].step : -1;
+  const double executed_mm =
+      r.path->advance(step, Point2(p.status.x_um / 1000.0, p.status.y_um / 1000.0));
+  {
+    std::lock_guard<std::mutex> lock(slot.mutex);
+    slot.executed_mm = executed_mm;
+    slot.progress = p;
+    slot.have_status = true;
+    slot.last_status = p.status;
+    slot.have_last_status = true;
+  }
+  r.executed = p.executed;
+  const bool state_changed = p.status.state != r.last_state;
+  r.progress = progress_of(r.progress, commands, p.executed, p.status, r.job_id);
+  saver_.post(r.job.id, r.lease, r.progress, state_changed);
+  // A lapsed lease stops the machine even when every command has been sent already.
+  const std::string lapsed = lease_.why_not(r.job.lease_epoch);
+  if (!lapsed.empty()) {
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      slot.sender = &sender;
-      slot.planning = false;
-      slot.progress = Progress{};
-      slot.progress.total = commands.size();
-      slot.path_json = std::move(path_json);
-      slot.path_mm = path.length_mm();
-      slot.lease_epoch = job.lease_epoch;
-      slot.fenced.clear();
-      if (stopping_) sender.request_abort();  // claimed just as stop() looked at the slots
-      // Asked for while it was planning; run() sends them before its first command (the
-      // override after this run's reset to 100 %).
-      if (slot.abort_pending) sender.request_abort();
-      if (slot.hold_pending) sender.request_hold();
-      if (slot.override_pending != 0) sender.request_override(slot.override_pending);
-      if (slot.hold_pending || slot.abort_pending || slot.override_pending != 0) {
-        note(fmt::format(
-            "asked for while planning:{}{}{}", slot.hold_pending ? " hold" : "",
-            slot.abort_pending ? " abort" : "",
-            slot.override_pending != 0 ? fmt::format(" override {}%", slot.override_pending) : ""));
-      }
+      if (slot.fenced.empty()) slot.fenced = lapsed;
     }
+    sender.request_abort();
+  }
+  if (p.status.override_percent != r.last_override) {
+    r.overrides.push_back({{"elapsed_s", seconds_since(r.started)},
+                           {"percent", int(p.status.override_percent)},
+                           {"executed", p.executed}});
+  }
+  if (state_changed || p.status.override_percent != r.last_override) {
+    r.note(fmt::format("machine {} override {}% at {}/{} x {:.3f} y {:.3f} z {:.3f}",
+                       machine_state_name(p.status.state), int(p.status.override_percent),
+                       p.executed, p.total, p.status.x_um / 1000.0, p.status.y_um / 1000.0,
+                       p.status.z_um / 1000.0));
+    r.last_state = p.status.state;
+    r.last_override = p.status.override_percent;
+  }
+  // The page needs a few updates a second, not one per status reply.
+  if (state_changed || Clock::now() - r.last_notify > std::chrono::milliseconds(100)) {
+    r.last_notify = Clock::now();
     notify(false);
-    // A feed override belongs to the job that set it: every run starts at 100 %, whatever
-    // the machine's last job left.
-    if (!sender.set_override(100)) throw LinkError("the machine did not take feed override 100%");
-    note("feed override set to 100% for this run");
-    proto::MachineState last_state = proto::MachineState::kIdle;
-    int last_override = -1;  // none reported yet
-    Clock::time_point last_notify = started;
-    const JobOutcome result = sender.run(commands, [&](const Progress& p) {
-      // The plan step running (or next): that of the first command not done yet.
-      size_t next = p.executed;
-      while (next < commands.size() && commands[next].step < 0) ++next;
-      const int step = next < commands.size() ? commands[next].step : -1;
-      const double executed_mm =
-          path.advance(step, Point2(p.status.x_um / 1000.0, p.status.y_um / 1000.0));
-      {
-        std::lock_guard<std::mutex> lock(slot.mutex);
-        slot.executed_mm = executed_mm;
-        slot.progress = p;
-        slot.have_status = true;
-        slot.last_status = p.status;
-        slot.have_last_status = true;
-      }
-      executed = p.executed;
-      const bool state_changed = p.status.state != last_state;
-      progress = progress_of(progress, commands, p.executed, p.status, job_id);
-      saver_.post(job.id, lease, progress, state_changed);
-      // A lapsed lease stops the machine even when every command has been sent already.
-      const std::string lapsed = lease_.why_not(job.lease_epoch);
-      if (!lapsed.empty()) {
-        {
-          std::lock_guard<std::mutex> lock(slot.mutex);
-          if (slot.fenced.empty()) slot.fenced = lapsed;
-        }
-        sender.request_abort();
-      }
-      if (p.status.override_percent != last_override) {
-        overrides.push_back({{"elapsed_s", seconds_since(started)},
-                             {"percent", int(p.status.override_percent)},
-                             {"executed", p.executed}});
-      }
-      if (state_changed || p.status.override_percent != last_override) {
-        note(fmt::format("machine {} override {}% at {}/{} x {:.3f} y {:.3f} z {:.3f}",
-                         machine_state_name(p.status.state), int(p.status.override_percent),
-                         p.executed, p.total, p.status.x_um / 1000.0, p.status.y_um / 1000.0,
-                         p.status.z_um / 1000.0));
-        last_state = p.status.state;
-        last_override = p.status.override_percent;
-      }
-      // The page needs a few updates a second, not one per status reply.
-      if (state_changed || Clock::now() - last_notify > std::chrono::milliseconds(100)) {
-        last_notify = Clock::now();
-        notify(false);
-      }
-    });
-    outcome = outcome_name(result);
-    message = sender.message();
-    std::string fenced;
-    {
-      std::lock_guard<std::mutex> lock(slot.mutex);
-      fenced = slot.fenced;
+  }
+}
+
+// The job has ended on the machine: the slot is free, showing the machine as it is now.
+void Workshop::release_slot(Slot& slot, const JobRun& r, Sender& sender) {
+  // Asked (an abort's last status during the run still said running); unknown when the
+  // link went away or does not answer. No lock held meanwhile.
+  std::optional<proto::StatusReply> at_rest;
+  if (r.state != JobState::kInterrupted) {
+    try {
+      at_rest = sender.read_status_at_rest(std::chrono::milliseconds(2000));
+    } catch (const std::exception&) {
+      at_rest.reset();
     }
-    switch (fenced.empty() || result == JobOutcome::kCompleted ? result : JobOutcome::kLinkLost) {
-      case JobOutcome::kCompleted:
-        state = JobState::kCompleted;
-        executed = commands.size();
-        break;
-      case JobOutcome::kAborted:
-        state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
-        if (stopping_) {
-          // The sender's abort came from stop(), not from an operator.
-          outcome = "server stopped";
-          message = fmt::format(
-              "the server stopped while the job was running, after {} of {} "
-              "commands",
-              executed, commands.size());
-        }
-        break;
-      case JobOutcome::kAlarm:
-      case JobOutcome::kRejected:
-        state = JobState::kFailed;
-        break;
-      case JobOutcome::kLinkLost:
-      case JobOutcome::kStalled:  // the sender's watchdog: answered, but no progress
-        state = JobState::kInterrupted;
-        break;
-    }
-    if (!fenced.empty() && result != JobOutcome::kCompleted) {
-      outcome = "stopped: lease lost";
-      message = fenced;
-    }
-  } catch (const LinkError& e) {
-    state = JobState::kInterrupted;
-    outcome = "link lost";
-    message = e.what();
-  } catch (const AbortedBeforeCutting& e) {
-    state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
-    outcome = "aborted before cutting";
-    message = e.what();
-  } catch (const std::exception& e) {
-    state = JobState::kFailed;
-    outcome = "not sent";
-    message = e.what();
   }
   {
     std::lock_guard<std::mutex> lock(slot.mutex);
@@ -668,65 +747,113 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     slot.planning = false;
     slot.probe_stage.clear();
     slot.probing_sender = nullptr;
+    slot.probe_waiting = false;
     slot.path_json.reset();
-    // The machine as the sender last heard it (idle after a completed job); unknown when
-    // the link went away.
-    slot.have_last_status = state != JobState::kInterrupted;
-    if (slot.have_last_status) slot.last_status = sender.last_status();
+    slot.have_last_status = at_rest.has_value();
+    if (at_rest) slot.last_status = *at_rest;
   }
-  saver_.forget(job.id);
-  progress.executed = static_cast<int64_t>(executed);
-  progress.total = static_cast<int64_t>(commands.size());
+  notify(false);
+  saver_.forget(r.job.id);
+}
+
+// The run's report in its archive and the job's record in the store.
+void Workshop::finish_run(Slot& slot, JobRun& r, Sender& sender) {
+  const JobRecord& job = r.job;
+  JobProgress& progress = r.progress;
+  progress.executed = static_cast<int64_t>(r.executed);
+  progress.total = static_cast<int64_t>(r.commands.size());
   progress.resume_curve =
-      state == JobState::kInterrupted ? first_uncut_curve(commands, executed) : -1;
-  const int resume_curve = progress.resume_curve;
-  note(fmt::format("ended: {} ({}): {}", state_name(state), outcome, message));
+      r.state == JobState::kInterrupted ? first_uncut_curve(r.commands, r.executed) : -1;
+  r.note(fmt::format("ended: {} ({}): {}", state_name(r.state), r.outcome, r.message));
   const SenderStats& st = sender.stats();
   nlohmann::json report;
   report["id"] = job.id;
   report["name"] = job.name;
   report["machine"] = slot.spec.name;
   report["server"] = options_.owner;
-  report["state"] = state_name(state);
-  report["outcome"] = outcome;
-  report["message"] = message;
-  report["commands"] = commands.size();
-  report["executed"] = executed;
-  report["resume_curve"] = resume_curve;
+  report["state"] = state_name(r.state);
+  report["outcome"] = r.outcome;
+  report["message"] = r.message;
+  report["commands"] = r.commands.size();
+  report["executed"] = r.executed;
+  report["resume_curve"] = progress.resume_curve;
   report["resume_at"] = {{"job_command", progress.resume_index},
                          {"curve_point", progress.resume_point}};
   report["planned_s"] = job.planned_s;
-  report["elapsed_s"] = seconds_since(started);
+  report["elapsed_s"] = seconds_since(r.started);
   report["frames_sent"] = st.frames_sent;
   report["bytes_sent"] = st.bytes_sent;
   report["retransmits"] = st.retransmits;
   report["status_queries"] = st.status_queries;
   report["error_replies"] = st.error_replies;
-  report["feed_overrides"] = overrides;
-  report["height_map"] = height_map;
+  report["feed_overrides"] = r.overrides;
+  report["height_map"] = r.height_map;
   report["settings"] = {{"feed_mm_s", job.settings.feed_mm_s},
                         {"tol_mm", job.settings.tol_mm},
                         {"scale", job.settings.scale},
                         {"margin_mm", job.settings.margin_mm}};
   try {
-    if (run) {
-      report["run"] = run->number();
-      run->write_report(report);
+    if (r.archive) {
+      report["run"] = r.archive->number();
+      r.archive->write_report(report);
     }
   } catch (const std::exception& e) {
-    archive_error = e.what();
+    r.archive_error = e.what();
   }
-  if (!archive_error.empty()) message += fmt::format(" (archive: {})", archive_error);
+  std::string message = r.message;
+  if (!r.archive_error.empty()) message += fmt::format(" (archive: {})", r.archive_error);
   try {
-    if (!store_.finish(job.id, lease, state, message, progress) && options_.say) {
+    if (!store_.finish(job.id, r.lease, r.state, message, progress) && options_.say) {
       options_.say(
           fmt::format("job {} ended {} here, but the store no longer had it running "
                       "under this server's lease: its record was left as it is",
-                      job.id, state_name(state)));
+                      job.id, state_name(r.state)));
     }
   } catch (const StoreError&) {
     // The record stays 'running'; the next start of this server marks it interrupted.
   }
+}
+
+// One touch of a board job's probing grid. Before it, the operator's hold waits (the touch
+// before has finished: the tool stands retracted above its contact) and an abort or the
+// server stopping ends the probing; each status of the touch is the machine's on the page.
+heightmap::ProbeTouch Workshop::probing_touch(Slot& slot, Sender& sender) {
+  auto last_notify = std::make_shared<Clock::time_point>();
+  heightmap::ProbeTouch touch = heightmap::controller_touch(
+      sender, heightmap::ProbeMotion{}, [this, &slot, last_notify](const Progress& p) {
+        {
+          std::lock_guard<std::mutex> lock(slot.mutex);
+          slot.last_status = p.status;
+          slot.have_last_status = true;
+        }
+        if (Clock::now() - *last_notify > std::chrono::milliseconds(100)) {
+          *last_notify = Clock::now();
+          notify(false);
+        }
+      });
+  return [this, &slot, touch](double x_mm, double y_mm) {
+    wait_between_touches(slot);
+    return touch(x_mm, y_mm);
+  };
+}
+
+void Workshop::wait_between_touches(Slot& slot) {
+  bool waited = false;
+  while (true) {
+    {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      slot.probe_waiting = slot.hold_pending && !slot.abort_pending && !stopping_;
+      if (slot.abort_pending || stopping_) {
+        throw AbortedBeforeCutting("aborted while probing; nothing was cut");
+      }
+      if (!slot.probe_waiting) break;
+    }
+    if (!waited) notify(false);  // the page shows it held
+    waited = true;
+    std::unique_lock<std::mutex> lock(change_mutex_);
+    change_cv_.wait_for(lock, std::chrono::milliseconds(100));
+  }
+  if (waited) notify(false);
 }
 
 std::optional<heightmap::HeightMap> Workshop::board_height_map(
@@ -828,16 +955,15 @@ std::optional<heightmap::HeightMap> Workshop::board_height_map(
       o.grid.spacing_mm = board.probe_spacing_mm;
       heightmap::ProbeRun probed;
       try {
-        probed = heightmap::probe_blank(
-            *area, o, heightmap::controller_touch(sender, heightmap::ProbeMotion{}),
-            [&](size_t done, size_t planned) {
-              {
-                std::lock_guard<std::mutex> lock(slot.mutex);
-                slot.probe_done = done;
-                slot.probe_total = planned;
-              }
-              notify(false);
-            });
+        probed = heightmap::probe_blank(*area, o, probing_touch(slot, sender),
+                                        [&](size_t done, size_t planned) {
+                                          {
+                                            std::lock_guard<std::mutex> lock(slot.mutex);
+                                            slot.probe_done = done;
+                                            slot.probe_total = planned;
+                                          }
+                                          notify(false);
+                                        });
       } catch (const std::exception& e) {
         bool aborted = false;
         {

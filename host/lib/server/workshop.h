@@ -19,6 +19,7 @@
 #include <vector>              // std::vector
 
 #include "host/lib/heightmap/height_map.h"
+#include "host/lib/heightmap/probe_session.h"  // ProbeTouch
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/server/data_folder.h"
 #include "host/lib/server/job_store.h"
@@ -102,6 +103,15 @@ class Workshop {
   struct Slot;
   void machine_loop(Slot& slot);
   void run_job(Slot& slot, const JobRecord& job, Sender& sender, const proto::SessionReply& caps);
+  // run_job's steps, in order (workshop.cpp).
+  struct JobRun;
+  void claim_slot(Slot& slot, const JobRun& run);
+  void make_commands(Slot& slot, JobRun& run, Sender& sender, const proto::SessionReply& caps);
+  void hand_to_sender(Slot& slot, JobRun& run, Sender& sender);
+  void stream_commands(Slot& slot, JobRun& run, Sender& sender);
+  void follow_status(Slot& slot, JobRun& run, Sender& sender, const Progress& p);
+  void release_slot(Slot& slot, const JobRun& run, Sender& sender);
+  void finish_run(Slot& slot, JobRun& run, Sender& sender);
   void sleep_for(std::chrono::milliseconds ms);
   void heartbeat_loop();
   void lease_lost(const std::string& why);
@@ -111,6 +121,9 @@ class Workshop {
   std::optional<heightmap::HeightMap> board_height_map(
       Slot& slot, const JobRecord& job, const JobPlan& plan, Sender& sender,
       const std::function<void(const std::string&)>& note);
+  // A touch of the probing grid that waits while the operator holds, ends on an abort.
+  heightmap::ProbeTouch probing_touch(Slot& slot, Sender& sender);
+  void wait_between_touches(Slot& slot);
 
   JobStore& store_;
   const DataFolder& data_;

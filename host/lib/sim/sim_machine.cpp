@@ -157,6 +157,14 @@ std::string SimMachine::take_to_host() {
   return out;
 }
 
+void SimMachine::drop_link_bytes() {
+  Parts& p = *parts_;
+  to_uart_.clear();
+  p.serial.rx.clear();
+  p.serial.tx.clear();
+  from_uart_.clear();
+}
+
 void SimMachine::set_link_time(LinkTime time) {
   parts_->link_clock.set_wall(time == LinkTime::kWall);
 }

@@ -54,6 +54,10 @@ class SimMachine {
   void from_host(const uint8_t* data, size_t size);
   // Bytes the firmware sent that have left its UART by now.
   std::string take_to_host();
+  // The host's connection is gone (or a new one starts): what it sent that the firmware has
+  // not read yet, and the replies nobody has taken, are dropped. Frames the firmware had
+  // already taken stay taken, as on a lost link.
+  void drop_link_bytes();
 
   // One millisecond: UART bytes, model time, the 1 ms tick, a background-loop pass.
   void step_ms();

@@ -84,10 +84,13 @@ struct SimServer::Impl {
     return ::poll(&p, 1, timeout_ms) > 0 ? p.revents : 0;
   }
 
+  // A departed client's unread frames must not run after it, nor its replies go to the
+  // next client: dropped (the machine then meets the silence of a lost link).
   void drop_client() {
     asio::error_code ignored;
     client->close(ignored);
     client.reset();
+    machine.drop_link_bytes();
   }
 
   // Accepts a pending connection, if any, without blocking.
@@ -100,6 +103,7 @@ struct SimServer::Impl {
     s.non_blocking(true, ec);
     s.set_option(asio::ip::tcp::no_delay(true), ec);
     client = std::make_unique<asio::ip::tcp::socket>(std::move(s));
+    machine.drop_link_bytes();  // what the firmware said to nobody meanwhile
     last_host_ms = machine.now_ms();
   }
 };

@@ -1,0 +1,79 @@
+// `engraver probe` and Ctrl-C: the touch under way stops at once (#X), and the tool goes up
+// to the travel height before engraver exits, not left where the descent stopped.
+#include <gtest/gtest.h>
+#include <signal.h>    // kill, SIGINT
+#include <spawn.h>     // posix_spawn
+#include <sys/wait.h>  // waitpid
+
+#include <chrono>      // steady_clock
+#include <filesystem>  // temp paths
+#include <string>      // std::string
+#include <thread>      // sleep_for
+#include <vector>      // std::vector
+
+#include "host/lib/plan/job_plan.h"  // defaults::kZUpMm
+#include "host/lib/sim/sim_server.h"
+
+extern char** environ;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A waitpid with a time limit: the exit status, or -1 (still running: then it is killed).
+int wait_exit(pid_t pid, double limit_s) {
+  const auto end = Clock::now() + std::chrono::duration<double>(limit_s);
+  int status = 0;
+  while (Clock::now() < end) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -2;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, &status, 0);
+  return -1;
+}
+
+TEST(ProbeCli, CtrlCStopsTheTouchAtOnceAndRaisesTheTool) {
+  host::sim::SimOptions o;
+  o.surface_um = [](int32_t, int32_t) { return 0; };  // a flat blank at Z 0
+  host::sim::SimMachine machine(o);
+  host::sim::ServerOptions so;
+  so.port = 0;
+  so.realtime = true;  // a descent at 1 mm/s takes a second: time to interrupt it
+  host::sim::SimServer server(machine, so);
+  std::atomic<bool> stop{false};
+  std::thread serving([&] { server.run(stop); });
+  const std::string map =
+      testing::TempDir() + "/probe_interrupt_" + std::to_string(getpid()) + ".map.json";
+  std::filesystem::remove(map);
+  const std::string word = std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf";
+  const std::string to = "tcp://127.0.0.1:" + std::to_string(server.port());
+  std::vector<std::string> args = {ENGRAVER_EXE, "probe", word, "--to", to, "--height-map", map};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, ENGRAVER_EXE, nullptr, nullptr, argv.data(), environ), 0);
+  // The first descent under way (from Z 1 mm down to the copper at Z 0).
+  const auto end = Clock::now() + std::chrono::seconds(30);
+  bool descending = false;
+  while (!descending && Clock::now() < end) {
+    const host::sim::ToolSample t = machine.position();
+    descending = t.z_mm < 0.7 && t.z_mm > 0.2;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ASSERT_TRUE(descending);
+  kill(pid, SIGINT);
+  const auto interrupted = Clock::now();
+  const int code = wait_exit(pid, 10);
+  const double took_s = std::chrono::duration<double>(Clock::now() - interrupted).count();
+  EXPECT_EQ(code, 5) << "-1: still probing 10 s after Ctrl-C";
+  EXPECT_LT(took_s, 8.0);  // the stop, a new session and the lift, on a loaded PC
+  EXPECT_FALSE(std::filesystem::exists(map)) << "no map from an interrupted grid";
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_NEAR(machine.position().z_mm, host::defaults::kZUpMm, 0.01) << "the tool up";
+  stop = true;
+  serving.join();
+}
+
+}  // namespace

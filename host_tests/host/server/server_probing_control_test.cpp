@@ -1,0 +1,198 @@
+// The operator's controls while a probe-first board job probes (issue 25, the workshop):
+// hold pauses the probing between touches with the tool retracted, resume goes on, abort
+// and the server stopping end it at once with nothing cut; /api/status shows the machine
+// probing where it is, and the machine's state after an abort at once.
+#include <gtest/gtest.h>
+
+#include <cmath>  // std::lround
+
+#include <set>  // std::set
+
+#include "host/lib/server/data_folder.h"
+#include "host_tests/host/server/server_test_rig.h"
+
+namespace host::server {
+namespace {
+
+using test::ServerRig;
+using test::SimRig;
+namespace fs = std::filesystem;
+
+std::string board_file(const std::string& name) {
+  return read_file(fs::path(ENGRAVER_SOURCE_DIR) / "host_tests/host/server/data" / name);
+}
+
+// The blinky board probed first on a 2 mm grid (many touches: time to act while it probes).
+int64_t post_probe_first(const ServerRig& server) {
+  httplib::MultipartFormDataItems form = {
+      {"file", board_file("blinky-F.Cu.gbr"), "blinky-F.Cu.gbr", "application/octet-stream"},
+      {"file", board_file("blinky.drl"), "blinky.drl", "application/octet-stream"},
+      {"file", board_file("blinky-Edge.Cuts.gbr"), "blinky-Edge.Cuts.gbr",
+       "application/octet-stream"},
+      {"probe_first", "1", "", ""},
+      {"probe_spacing_mm", "2", "", ""}};
+  auto r = server.client().Post("/api/jobs", server.auth(), form);
+  if (!r || r->status != 201)
+    throw std::runtime_error("upload failed: " + (r ? r->body : std::string("no answer")));
+  return nlohmann::json::parse(r->body)["id"].get<int64_t>();
+}
+
+// A blank tilted 0.1 mm over 50 mm in x (um above the zero corner's copper).
+int32_t tilted_um(int32_t x_um, int32_t) {
+  return static_cast<int32_t>(std::lround(2.0 * x_um / 1000.0));
+}
+
+sim::SimOptions tilted_blank() {
+  sim::SimOptions o;
+  o.surface_um = tilted_um;
+  return o;
+}
+
+nlohmann::json machine_of(const ServerRig& server) {
+  const nlohmann::json s = server.status();
+  return s.is_object() && !s["machines"].empty() ? s["machines"][0] : nlohmann::json();
+}
+
+size_t touches(const ServerRig& server, int64_t id) {
+  const nlohmann::json j = server.running(id);
+  return j.is_object() && j.contains("probe") ? j["probe"]["touches"].get<size_t>() : 0;
+}
+
+// Claimed, confirmed, and `n` touches into its grid.
+void probe_until(const ServerRig& server, int64_t id, size_t n) {
+  ASSERT_TRUE(
+      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30))
+      << server.status().dump();
+  ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return touches(server, id) >= n; }, 30))
+      << server.status().dump();
+}
+
+bool held_between_touches(const ServerRig& server, int64_t id) {
+  const nlohmann::json j = server.running(id);
+  return j.is_object() && j.contains("probe") && j["probe"].value("held", false) &&
+         machine_of(server)["state"] == "held";
+}
+
+TEST(ServerProbingControl, HoldPausesTheProbingBetweenTouchesWithTheToolUpAndResumeGoesOn) {
+  test::TempDir dir;
+  SimRig sim(false, 0, tilted_blank());
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t id = post_probe_first(server);
+  probe_until(server, id, 2);
+  const size_t planned = server.running(id)["probe"]["planned"];
+  auto r = server.control(id, R"({"action":"hold"})");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body;
+  ASSERT_TRUE(test::wait_until([&] { return held_between_touches(server, id); }, 20))
+      << server.status().dump();
+  const size_t held_at = touches(server, id);
+  EXPECT_LT(held_at, planned) << "the hold came after the grid";
+  const sim::ToolSample tool = sim.machine().position();
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_EQ(touches(server, id), held_at) << "no touch while held";
+  EXPECT_EQ(sim.machine().position().z_mm, tool.z_mm) << "a held machine must not move";
+  // Retracted above the last contact (0.5 mm), not resting on the copper.
+  const double copper_mm = tilted_um(std::lround(tool.x_mm * 1000), 0) / 1000.0;
+  EXPECT_GT(tool.z_mm, copper_mm + 0.4) << tool.x_mm << " " << tool.y_mm;
+  EXPECT_TRUE(held_between_touches(server, id));
+  r = server.control(id, R"({"action":"resume"})");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body;
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "completed"; }, 120))
+      << server.job(id).dump();
+}
+
+TEST(ServerProbingControl, AbortWhileHeldInProbingEndsItWithNothingCut) {
+  test::TempDir dir;
+  SimRig sim(false, 0, tilted_blank());
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t id = post_probe_first(server);
+  probe_until(server, id, 2);
+  ASSERT_EQ(server.control(id, R"({"action":"hold"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return held_between_touches(server, id); }, 20))
+      << server.status().dump();
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 20))
+      << server.job(id).dump();
+  const nlohmann::json j = server.job(id);
+  EXPECT_NE(j["message"].get<std::string>().find("nothing was cut"), std::string::npos) << j.dump();
+  EXPECT_EQ(j["executed"], 0);
+  double lowest_mm = 1e9;
+  for (const auto& s : sim.machine().trace()) lowest_mm = std::min(lowest_mm, s.z_mm);
+  EXPECT_GT(lowest_mm, -0.01) << "only touches: never below the copper";
+  // The machine's own state at once, and no job named.
+  const nlohmann::json m = machine_of(server);
+  EXPECT_EQ(m["state"], "idle") << m.dump();
+  EXPECT_TRUE(m["job"].is_null()) << m.dump();
+}
+
+// /api/status while it probes: the machine is `probing`, where the tool stands, not idle at
+// the origin.
+TEST(ServerProbingControl, StatusShowsTheMachineProbingAndWhereItIs) {
+  test::TempDir dir;
+  SimRig sim(false, 0, tilted_blank());
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t id = post_probe_first(server);
+  probe_until(server, id, 1);
+  std::set<std::vector<double>> positions;
+  test::wait_until(
+      [&] {
+        const nlohmann::json status = server.status();  // one snapshot for both
+        if (!status.is_object() || status["running"].empty()) return false;
+        const nlohmann::json m = status["machines"][0];
+        const nlohmann::json j = status["running"][0];
+        if (m["state"] != "probing" || j["machine_state"] != "probing") return false;
+        EXPECT_EQ(m["job"], id);
+        EXPECT_EQ(j["position_mm"], m["position_mm"]);
+        positions.insert(m["position_mm"].get<std::vector<double>>());
+        return positions.size() >= 3;
+      },
+      30);
+  EXPECT_GE(positions.size(), 3u) << server.status().dump();
+  EXPECT_EQ(positions.count({0.0, 0.0, 0.0}), 0u);
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 20));
+}
+
+// The server stopping (Ctrl-C to engraver serve) while it probes: the probing ends at once,
+// not after its grid, and the job is interrupted (continuable) with nothing cut.
+TEST(ServerProbingControl, StoppingTheServerEndsTheProbingAtOnce) {
+  test::TempDir dir;
+  SimRig sim(false, 0, tilted_blank());
+  fs::path archive;
+  int64_t id = 0;
+  {
+    ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+    id = post_probe_first(server);
+    archive = server.data().job_dir(server.store().get(id)->key);
+    probe_until(server, id, 2);
+    server.shutdown();
+  }
+  // No map: the grid was not finished.
+  EXPECT_FALSE(fs::exists(archive / "heightmap.json"));
+  ServerRig again(dir.path(), {});
+  const nlohmann::json j = again.job(id);
+  EXPECT_EQ(j["state"], "interrupted") << j.dump();
+  EXPECT_NE(j["message"].get<std::string>().find("nothing was cut"), std::string::npos) << j.dump();
+  EXPECT_EQ(j["executed"], 0);
+}
+
+// After an abort the machine's state follows at once (not the run's last "running"), and
+// the machine names no job 0.
+TEST(ServerProbingControl, AfterAnAbortTheMachineStateFollowsAtOnce) {
+  test::TempDir dir;
+  SimRig sim(true);
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t id = server.upload_ok("squares.ngc", test::squares_gcode(6, 10));
+  ASSERT_TRUE(
+      test::wait_until([&] { return server.running(id)["machine_state"] == "running"; }, 30));
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 20));
+  const nlohmann::json m = machine_of(server);
+  EXPECT_EQ(m["state"], "idle") << m.dump();
+  EXPECT_TRUE(m["job"].is_null()) << m.dump();
+}
+
+}  // namespace
+}  // namespace host::server
