@@ -6,6 +6,7 @@
 #include <algorithm>   // std::clamp
 #include <filesystem>  // std::filesystem::path
 #include <fstream>     // std::ofstream
+#include <memory>      // std::unique_ptr
 #include <optional>    // std::optional
 
 #include "host/lib/drawing/drawing.h"
@@ -18,6 +19,7 @@
 #include "host/lib/server/job_continue.h"
 #include "host/lib/server/job_path.h"
 #include "host/lib/server/job_planning.h"
+#include "host/lib/server/job_stream.h"
 #include "host/lib/server/run_archive.h"
 #include "host/lib/stream/job_resume.h"  // resume_from_curve
 #include "host/lib/stream/link.h"
@@ -36,9 +38,7 @@ double seconds_since(Clock::time_point t) {
 }  // namespace
 
 ResumeEncoder continue_from_curve() {
-  return [](const JobPlan& plan, const EncodeOptions& options, int first_curve) {
-    return resume_from_curve(encode_job(plan, options), first_curve, options);
-  };
+  return ContinueFromCurve();
 }
 
 // One machine: its spec, what it is doing now, and the sender of the running job.
@@ -450,7 +450,9 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
 
   JobState state = JobState::kFailed;
   std::string message;
-  std::vector<QueuedCommand> commands;
+  // The plan and its stream live past the try: an interrupted job's first uncut curve.
+  std::unique_ptr<const JobPlan> planned;
+  std::optional<JobStream> commands;
   size_t executed = 0;
   // The feed override as the machine reported it: when it changed and to what.
   nlohmann::json overrides = nlohmann::json::array();
@@ -493,17 +495,16 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
       if (!bytes) throw std::runtime_error((dir / job.input_file).string() + ": missing");
       restore_job_input(dir, job, *bytes);
     }
-    const JobPlan plan = plan_archived_job(dir, job, slot.spec.fit.work_width_mm,
-                                           slot.spec.fit.work_height_mm, fetched);
+    planned = std::make_unique<const JobPlan>(plan_archived_job(
+        dir, job, slot.spec.fit.work_width_mm, slot.spec.fit.work_height_mm, fetched));
+    const JobPlan& plan = *planned;
     EncodeOptions enc = encode_options(job);
     use_session(caps, &enc);
-    const std::vector<QueuedCommand> full = encode_job(plan, enc);
-    job_id = job_id_of(full);
-    if (job.start_curve >= 0 || job.resume_index >= 0) {
-      commands = continue_commands(job, full, plan, enc, sender, options_.resume_encoder, note);
-    } else {
-      commands = full;
-    }
+    // Encoded as the sender goes (and again for the progress): never held whole.
+    commands.emplace(plan, enc);
+    job_id = commands->job_id();
+    if (job.start_curve >= 0 || job.resume_index >= 0)
+      continue_stream(job, plan, enc, sender, options_.resume_encoder, note, &*commands);
     // The height map goes first (a continued job sends it again: a restarted controller
     // has lost it); a job without one clears the last job's.
     const std::optional<heightmap::HeightMap> map = board_height_map(slot, job, plan, sender, note);
@@ -514,8 +515,7 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
       slot.controller_has_map = static_cast<bool>(map);
     }
     if (map) {
-      const std::vector<QueuedCommand> frames = heightmap::height_map_commands(*map);
-      commands.insert(commands.begin(), frames.begin(), frames.end());
+      commands->set_setup(heightmap::height_map_commands(*map));
       height_map = nlohmann::json{{"file", std::string(kHeightMapFile)},
                                   {"rows", map->rows},
                                   {"cols", map->cols},
@@ -523,23 +523,24 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
                                   {"max_um", map->max_um()},
                                   {"probed_at", map->probed_at}};
     } else if (clear_map) {
-      commands.insert(commands.begin(), heightmap::clear_height_map_command());
+      commands->set_setup({heightmap::clear_height_map_command()});
       note("the last job's height map cleared on the controller");
     }
     note(fmt::format("planned: {} curves, {} commands, {} bytes, about {:.1f} s",
-                     plan.curves.size(), commands.size(), wire_bytes(commands), job.planned_s));
+                     plan.curves.size(), commands->size(), commands->wire_bytes(), job.planned_s));
     JobPath path(plan);
     auto path_json = std::make_shared<const std::string>(path.to_json().dump());
     // Its size and first curve are known now: not "0 of 0" in the store while the first
     // status is awaited, and continuable from that curve whatever stops it next.
-    progress = progress_of(progress, commands, 0, proto::StatusReply{}, job_id);
+    progress = progress_of(progress, commands->size(), 0, commands->first_uncut_curve(0),
+                           proto::StatusReply{}, job_id);
     saver_.post(job.id, lease, progress, true);
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
       slot.sender = &sender;
       slot.planning = false;
       slot.progress = Progress{};
-      slot.progress.total = commands.size();
+      slot.progress.total = commands->size();
       slot.path_json = std::move(path_json);
       slot.path_mm = path.length_mm();
       slot.lease_epoch = job.lease_epoch;
@@ -565,11 +566,9 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     proto::MachineState last_state = proto::MachineState::kIdle;
     int last_override = -1;  // none reported yet
     Clock::time_point last_notify = started;
-    const JobOutcome result = sender.run(commands, [&](const Progress& p) {
+    const JobOutcome result = sender.run(commands->source(), [&](const Progress& p) {
       // The plan step running (or next): that of the first command not done yet.
-      size_t next = p.executed;
-      while (next < commands.size() && commands[next].step < 0) ++next;
-      const int step = next < commands.size() ? commands[next].step : -1;
+      const int step = commands->step_from(p.executed);
       const double executed_mm =
           path.advance(step, Point2(p.status.x_um / 1000.0, p.status.y_um / 1000.0));
       {
@@ -582,7 +581,8 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
       }
       executed = p.executed;
       const bool state_changed = p.status.state != last_state;
-      progress = progress_of(progress, commands, p.executed, p.status, job_id);
+      progress = progress_of(progress, p.total, p.executed, commands->first_uncut_curve(p.executed),
+                             p.status, job_id);
       saver_.post(job.id, lease, progress, state_changed);
       // A lapsed lease stops the machine even when every command has been sent already.
       const std::string lapsed = lease_.why_not(job.lease_epoch);
@@ -622,7 +622,7 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     switch (fenced.empty() || result == JobOutcome::kCompleted ? result : JobOutcome::kLinkLost) {
       case JobOutcome::kCompleted:
         state = JobState::kCompleted;
-        executed = commands.size();
+        executed = commands->size();
         break;
       case JobOutcome::kAborted:
         state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
@@ -632,7 +632,7 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
           message = fmt::format(
               "the server stopped while the job was running, after {} of {} "
               "commands",
-              executed, commands.size());
+              executed, commands->size());
         }
         break;
       case JobOutcome::kAlarm:
@@ -676,9 +676,10 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   }
   saver_.forget(job.id);
   progress.executed = static_cast<int64_t>(executed);
-  progress.total = static_cast<int64_t>(commands.size());
+  const size_t total = commands ? commands->size() : 0;
+  progress.total = static_cast<int64_t>(total);
   progress.resume_curve =
-      state == JobState::kInterrupted ? first_uncut_curve(commands, executed) : -1;
+      state == JobState::kInterrupted && commands ? commands->first_uncut_curve(executed) : -1;
   const int resume_curve = progress.resume_curve;
   note(fmt::format("ended: {} ({}): {}", state_name(state), outcome, message));
   const SenderStats& st = sender.stats();
@@ -690,7 +691,7 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   report["state"] = state_name(state);
   report["outcome"] = outcome;
   report["message"] = message;
-  report["commands"] = commands.size();
+  report["commands"] = total;
   report["executed"] = executed;
   report["resume_curve"] = resume_curve;
   report["resume_at"] = {{"job_command", progress.resume_index},

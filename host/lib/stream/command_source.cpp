@@ -18,6 +18,14 @@ void EncodedJob::set_setup(std::vector<QueuedCommand> setup) {
   held_max_ = held_.size();
 }
 
+void EncodedJob::prepend_setup(const std::vector<QueuedCommand>& setup) {
+  if (first_ != 0 || held_.size() != setup_count_)
+    throw std::logic_error("EncodedJob: set-up added after the job began");
+  held_.insert(held_.begin(), setup.begin(), setup.end());
+  setup_count_ += setup.size();
+  held_max_ = std::max(held_max_, held_.size());
+}
+
 void EncodedJob::start_at(size_t from) {
   if (first_ != 0 || held_.size() != setup_count_)
     throw std::logic_error("EncodedJob: start set after the job began");

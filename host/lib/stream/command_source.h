@@ -49,6 +49,9 @@ class EncodedJob : public CommandSource {
   // Commands sent before the job's (a height map, a resume's prefix); only before the first
   // at().
   void set_setup(std::vector<QueuedCommand> setup);
+  // More commands before those (a height map before a resume's prefix); only before the
+  // first at().
+  void prepend_setup(const std::vector<QueuedCommand>& setup);
   // The job from its command `from` on (a resume: resume_prefix() gives `from`); the commands
   // before it are encoded and dropped. Only before the first at().
   void start_at(size_t from);
