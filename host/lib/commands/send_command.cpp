@@ -8,6 +8,7 @@
 
 #include "host/lib/commands/exit_codes.h"
 #include "host/lib/heightmap/controller_map.h"  // job_map_commands
+#include "host/lib/stream/command_source.h"     // EncodedJob
 #include "host/lib/stream/job_resume.h"
 
 namespace host::commands {
@@ -53,34 +54,49 @@ ResumeAt parse_resume_at(const std::string& text) {
 
 namespace {
 
-// The stream that continues the job instead of the whole job.
-std::vector<QueuedCommand> resume_stream(const SendOptions& o, Sender& sender,
-                                         const std::vector<QueuedCommand>& job,
-                                         const EncodeOptions& enc, std::ostream& log) {
+// Where the controller's stopped job goes on: the resume point from its status or the
+// --resume-at figures, checked against this job (the plan encoded again: no list is held).
+ResumePoint resume_point(const SendOptions& o, Sender& sender, const JobPass& job,
+                         uint16_t job_id) {
   // The new session stopped what was left: where it came to rest is where to go on.
   const proto::StatusReply status = sender.read_status_at_rest(std::chrono::seconds(30));
-  std::optional<ResumePoint> at;
-  if (o.resume_at) {
-    at = resume_point_at(job, o.resume_at->index, o.resume_at->point, status.z_um);
-  } else {
-    at = resume_point_of(status);
-    if (at && !resume_mismatch(job, *at).empty())
-      throw CommandFailure(kExitJobFailed, resume_mismatch(job, *at));
-    if (!at) {
-      throw CommandFailure(
-          kExitJobFailed,
-          "the controller reports no job progress (it was restarted or never ran a job): zero it "
-          "at the job's zero point again and use --resume-at INDEX:POINT with the 'job' figures "
-          "of the last progress line");
-    }
+  if (o.resume_at) return resume_point_at(job, o.resume_at->index, o.resume_at->point, status.z_um);
+  const std::optional<ResumePoint> at = resume_point_of(status);
+  if (!at) {
+    throw CommandFailure(
+        kExitJobFailed,
+        "the controller reports no job progress (it was restarted or never ran a job): zero it "
+        "at the job's zero point again and use --resume-at INDEX:POINT with the 'job' figures "
+        "of the last progress line");
   }
+  const std::string mismatch = resume_mismatch(job_id, *at);
+  if (!mismatch.empty()) throw CommandFailure(kExitJobFailed, mismatch);
+  return *at;
+}
+
+// The setup frames that go before what is left of the job (a resume's prefix), the job's
+// stream set to start where it goes on and the bytes of the job's commands it leaves out;
+// false when nothing is left.
+bool resume_stream(const SendOptions& o, Sender& sender, const JobPlan& plan,
+                   const EncodeOptions& enc, EncodedJob* job, std::vector<QueuedCommand>* setup,
+                   size_t* skipped_bytes, std::ostream& log) {
+  const JobPass pass = pass_over(plan, enc, job->summary().job_id);
+  const ResumePoint at = resume_point(o, sender, pass, job->summary().job_id);
   log << fmt::format("engraver: resuming at {}; the tool goes to ({:.3f}, {:.3f}) mm\n",
-                     describe_resume_point(job, *at), at->x_um / 1000.0, at->y_um / 1000.0);
-  return resume_commands(job, *at, enc);
+                     describe_resume_point(pass, at), at.x_um / 1000.0, at.y_um / 1000.0);
+  size_t from = 0;
+  *setup = resume_prefix(pass, at, enc, &from);
+  if (setup->empty()) return false;
+  job->start_at(from);
+  size_t index = 0;
+  pass([&](const QueuedCommand& c) {
+    if (index++ < from) *skipped_bytes += frame_bytes(c);
+  });
+  return true;
 }
 
 // Streams the commands with the operator's controls attached; the outcome.
-JobOutcome stream(Sender& sender, const std::vector<QueuedCommand>& commands, const SendOptions& o,
+JobOutcome stream(Sender& sender, CommandSource& commands, const SendOptions& o,
                   std::ostream& log) {
   std::shared_ptr<void> keys = o.while_streaming ? o.while_streaming(sender) : nullptr;
   bool told_zero = false;
@@ -114,16 +130,17 @@ SendResult send_job(Link& link, const JobPlan& plan, const SendOptions& o, std::
   EncodeOptions enc = o.encode;
   use_session(caps, &enc);
   enc.controller = &caps;
-  std::vector<QueuedCommand> commands = encode_job(plan, enc);
+  // Encoded as the sender goes: memory does not grow with the job.
+  EncodedJob commands(plan, enc);
   SendResult r;
-  r.job_id = job_id_of(commands);
-  if (o.resume || o.resume_at) {
-    commands = resume_stream(o, sender, commands, enc, log);
-    if (commands.empty()) {
-      log << "engraver: nothing to resume: the controller says the job has finished\n";
-      r.nothing_left = true;
-      return r;
-    }
+  r.job_id = commands.summary().job_id;
+  std::vector<QueuedCommand> setup;
+  size_t skipped_bytes = 0;
+  if ((o.resume || o.resume_at) &&
+      !resume_stream(o, sender, plan, enc, &commands, &setup, &skipped_bytes, log)) {
+    log << "engraver: nothing to resume: the controller says the job has finished\n";
+    r.nothing_left = true;
+    return r;
   }
   std::optional<heightmap::HeightMap> map = o.map;
   if (o.probe) {
@@ -132,15 +149,18 @@ SendResult send_job(Link& link, const JobPlan& plan, const SendOptions& o, std::
   }
   // The map goes first (a controller that restarted has lost it: a resume sends it again);
   // without one, a clear: no map of an earlier job compensates this one.
-  const std::vector<QueuedCommand> frames = heightmap::job_map_commands(map ? &*map : nullptr);
-  commands.insert(commands.begin(), frames.begin(), frames.end());
+  std::vector<QueuedCommand> frames = heightmap::job_map_commands(map ? &*map : nullptr);
+  frames.insert(frames.end(), setup.begin(), setup.end());
+  const size_t bytes = wire_bytes(frames) + commands.summary().wire_bytes - skipped_bytes;
+  commands.set_setup(std::move(frames));
   log << fmt::format(
       "engraver: {} -> {}: {} curves, {} commands, {} bytes, job id {}; keys: h hold, "
       "r resume, x abort, +/- feed override\n",
-      o.file, link.name(), plan.curves.size(), commands.size(), wire_bytes(commands), r.job_id);
+      o.file, link.name(), plan.curves.size(), commands.size(), bytes, r.job_id);
   r.commands = commands.size();
   r.outcome = stream(sender, commands, o, log);
   r.message = sender.message();
+  r.commands_held_max = commands.held_max();
   r.stats = sender.stats();
   log << fmt::format("engraver: job {}: {} ({} frames, {} bytes, {} resent after busy or loss)\n",
                      outcome_name(r.outcome), r.message, r.stats.frames_sent, r.stats.bytes_sent,

@@ -51,14 +51,17 @@ struct SendResult {
   JobOutcome outcome = JobOutcome::kCompleted;
   std::string message;
   SenderStats stats;
-  uint16_t job_id = 0;        // the whole job's, also when resumed
-  size_t commands = 0;        // streamed: the height map's, then the job's (or what was left)
-  bool nothing_left = false;  // resumed a job the controller says has finished: nothing sent
+  uint16_t job_id = 0;           // the whole job's, also when resumed
+  size_t commands = 0;           // streamed: the height map's, then the job's (or what was left)
+  bool nothing_left = false;     // resumed a job the controller says has finished: nothing sent
+  size_t commands_held_max = 0;  // the most encoded commands held at once (a window, not the job)
 };
 
-// Opens a session on the link, encodes the job for that controller and streams it (or, with
-// resume/resume_at, the rest of it), saying on `log` what it does. Throws CommandFailure when
-// a resume point does not fit the job (exit 1), LinkError when the link fails to open a session.
+// Opens a session on the link, encodes the job for that controller as the sender goes and
+// streams it (or, with resume/resume_at, the rest of it: the plan is encoded again to find
+// the resume point, no list of the job is held), saying on `log` what it does. Throws
+// CommandFailure when a resume point does not fit the job (exit 1), LinkError when the link fails
+// to open a session.
 SendResult send_job(Link& link, const JobPlan& plan, const SendOptions& o, std::ostream& log);
 
 }  // namespace host::commands

@@ -12,20 +12,20 @@
 
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/server/job_record.h"
+#include "host/lib/server/job_stream.h"
 #include "host/lib/server/workshop.h"  // ResumeEncoder
 #include "host/lib/stream/sender.h"
 
 namespace host::server {
 
-// The stream that continues `job` (whose whole stream is `full`) on the machine behind
-// `sender` (its session open). `note` gets one line for the machine log saying which way.
-// Throws PlanError when there is nothing to continue from, LinkError when the machine does
-// not come to rest.
-std::vector<QueuedCommand> continue_commands(const JobRecord& job,
-                                             const std::vector<QueuedCommand>& full,
-                                             const JobPlan& plan, const EncodeOptions& enc,
-                                             Sender& sender, const ResumeEncoder& hook,
-                                             const std::function<void(const std::string&)>& note);
+// Sets `stream` (the whole job's) to continue `job` on the machine behind `sender` (its
+// session open): a resume's prefix and the plan's commands from the resume point on, none of
+// them held whole (a custom hook's list instead when the hook is not continue_from_curve()'s).
+// `note` gets one line for the machine log saying which way. Throws PlanError when there is
+// nothing to continue from, LinkError when the machine does not come to rest.
+void continue_stream(const JobRecord& job, const JobPlan& plan, const EncodeOptions& enc,
+                     Sender& sender, const ResumeEncoder& hook,
+                     const std::function<void(const std::string&)>& note, JobStream* stream);
 
 }  // namespace host::server
 

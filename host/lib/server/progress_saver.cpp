@@ -16,11 +16,11 @@ int first_uncut_curve(const std::vector<QueuedCommand>& sent, size_t executed) {
   return -1;
 }
 
-JobProgress progress_of(JobProgress known, const std::vector<QueuedCommand>& sent, size_t executed,
+JobProgress progress_of(JobProgress known, size_t total, size_t executed, int first_uncut,
                         const proto::StatusReply& status, uint16_t job_id) {
   known.executed = static_cast<int64_t>(executed);
-  known.total = static_cast<int64_t>(sent.size());
-  known.resume_curve = first_uncut_curve(sent, executed);
+  known.total = static_cast<int64_t>(total);
+  known.resume_curve = first_uncut;
   const std::optional<ResumePoint> at = resume_point_of(status);
   // Before our #J has been taken, the status still tells the previous job's progress.
   if (at && at->job_id == job_id) {

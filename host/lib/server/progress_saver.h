@@ -21,10 +21,11 @@
 
 namespace host::server {
 
-// `known` updated from a status of the stream `sent` (of which `executed` commands have run):
-// counts and first uncut curve always; the controller's position when the status is about
-// this job (its whole stream's job_id is `job_id`); else the last one known stays.
-JobProgress progress_of(JobProgress known, const std::vector<QueuedCommand>& sent, size_t executed,
+// `known` updated from a status of a stream of `total` commands (of which `executed` have
+// run; first_uncut: the curve of the first not executed, -1 none): counts and first uncut
+// curve always; the controller's position when the status is about this job (its whole
+// stream's job_id is `job_id`); else the last one known stays.
+JobProgress progress_of(JobProgress known, size_t total, size_t executed, int first_uncut,
                         const proto::StatusReply& status, uint16_t job_id);
 // The curve of the first command of `sent` not executed (-1: none left).
 int first_uncut_curve(const std::vector<QueuedCommand>& sent, size_t executed);

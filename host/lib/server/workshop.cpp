@@ -6,6 +6,7 @@
 #include <algorithm>   // std::clamp
 #include <filesystem>  // std::filesystem::path
 #include <fstream>     // std::ofstream
+#include <memory>      // std::unique_ptr
 #include <optional>    // std::optional
 
 #include "host/lib/drawing/drawing.h"
@@ -18,6 +19,7 @@
 #include "host/lib/server/job_continue.h"
 #include "host/lib/server/job_path.h"
 #include "host/lib/server/job_planning.h"
+#include "host/lib/server/job_stream.h"
 #include "host/lib/server/run_archive.h"
 #include "host/lib/stream/job_resume.h"  // resume_from_curve
 #include "host/lib/stream/link.h"
@@ -36,9 +38,7 @@ double seconds_since(Clock::time_point t) {
 }  // namespace
 
 ResumeEncoder continue_from_curve() {
-  return [](const JobPlan& plan, const EncodeOptions& options, int first_curve) {
-    return resume_from_curve(encode_job(plan, options), first_curve, options);
-  };
+  return ContinueFromCurve();
 }
 
 // One machine: its spec, what it is doing now, and the sender of the running job.
@@ -480,7 +480,9 @@ struct Workshop::JobRun {
   JobState state = JobState::kFailed;
   const char* outcome = "not started";
   std::string message;
-  std::vector<QueuedCommand> commands;
+  // The plan and its stream live past the try: an interrupted job's first uncut curve.
+  std::unique_ptr<const JobPlan> planned;
+  std::optional<JobStream> commands;
   size_t executed = 0;
   // The feed override as the machine reported it: when it changed and to what.
   nlohmann::json overrides = nlohmann::json::array();
@@ -559,18 +561,16 @@ void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
     if (!bytes) throw std::runtime_error((r.dir / job.input_file).string() + ": missing");
     restore_job_input(r.dir, job, *bytes);
   }
-  const JobPlan plan = plan_archived_job(r.dir, job, slot.spec.fit.work_width_mm,
-                                         slot.spec.fit.work_height_mm, fetched);
+  r.planned = std::make_unique<const JobPlan>(plan_archived_job(
+      r.dir, job, slot.spec.fit.work_width_mm, slot.spec.fit.work_height_mm, fetched));
+  const JobPlan& plan = *r.planned;
   EncodeOptions enc = encode_options(job);
   use_session(caps, &enc);
-  const std::vector<QueuedCommand> full = encode_job(plan, enc);
-  r.job_id = job_id_of(full);
-  if (job.start_curve >= 0 || job.resume_index >= 0) {
-    r.commands =
-        continue_commands(job, full, plan, enc, sender, options_.resume_encoder, r.noter());
-  } else {
-    r.commands = full;
-  }
+  // Encoded as the sender goes (and again for the progress): never held whole.
+  r.commands.emplace(plan, enc);
+  r.job_id = r.commands->job_id();
+  if (job.start_curve >= 0 || job.resume_index >= 0)
+    continue_stream(job, plan, enc, sender, options_.resume_encoder, r.noter(), &*r.commands);
   // The height map goes first (a continued job sends it again: a restarted controller
   // has lost it); a job without one clears the last job's.
   const std::optional<heightmap::HeightMap> map =
@@ -582,8 +582,7 @@ void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
     slot.controller_has_map = static_cast<bool>(map);
   }
   if (map) {
-    const std::vector<QueuedCommand> frames = heightmap::height_map_commands(*map);
-    r.commands.insert(r.commands.begin(), frames.begin(), frames.end());
+    r.commands->set_setup(heightmap::height_map_commands(*map));
     r.height_map = nlohmann::json{{"file", std::string(kHeightMapFile)},
                                   {"rows", map->rows},
                                   {"cols", map->cols},
@@ -591,11 +590,12 @@ void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
                                   {"max_um", map->max_um()},
                                   {"probed_at", map->probed_at}};
   } else if (clear_map) {
-    r.commands.insert(r.commands.begin(), heightmap::clear_height_map_command());
+    r.commands->set_setup({heightmap::clear_height_map_command()});
     r.note("the last job's height map cleared on the controller");
   }
   r.note(fmt::format("planned: {} curves, {} commands, {} bytes, about {:.1f} s",
-                     plan.curves.size(), r.commands.size(), wire_bytes(r.commands), job.planned_s));
+                     plan.curves.size(), r.commands->size(), r.commands->wire_bytes(),
+                     job.planned_s));
   r.path.emplace(plan);
 }
 
@@ -604,14 +604,15 @@ void Workshop::hand_to_sender(Slot& slot, JobRun& r, Sender& sender) {
   auto path_json = std::make_shared<const std::string>(r.path->to_json().dump());
   // Its size and first curve are known now: not "0 of 0" in the store while the first
   // status is awaited, and continuable from that curve whatever stops it next.
-  r.progress = progress_of(r.progress, r.commands, 0, proto::StatusReply{}, r.job_id);
+  r.progress = progress_of(r.progress, r.commands->size(), 0, r.commands->first_uncut_curve(0),
+                           proto::StatusReply{}, r.job_id);
   saver_.post(r.job.id, r.lease, r.progress, true);
   {
     std::lock_guard<std::mutex> lock(slot.mutex);
     slot.sender = &sender;
     slot.planning = false;
     slot.progress = Progress{};
-    slot.progress.total = r.commands.size();
+    slot.progress.total = r.commands->size();
     slot.path_json = std::move(path_json);
     slot.path_mm = r.path->length_mm();
     slot.lease_epoch = r.job.lease_epoch;
@@ -639,7 +640,7 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
   if (!sender.set_override(100)) throw LinkError("the machine did not take feed override 100%");
   r.note("feed override set to 100% for this run");
   const JobOutcome result =
-      sender.run(r.commands, [&](const Progress& p) { follow_status(slot, r, sender, p); });
+      sender.run(r.commands->source(), [&](const Progress& p) { follow_status(slot, r, sender, p); });
   r.outcome = outcome_name(result);
   r.message = sender.message();
   std::string fenced;
@@ -650,7 +651,7 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
   switch (fenced.empty() || result == JobOutcome::kCompleted ? result : JobOutcome::kLinkLost) {
     case JobOutcome::kCompleted:
       r.state = JobState::kCompleted;
-      r.executed = r.commands.size();
+      r.executed = r.commands->size();
       break;
     case JobOutcome::kAborted:
       r.state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
@@ -660,7 +661,7 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
         r.message = fmt::format(
             "the server stopped while the job was running, after {} of {} "
             "commands",
-            r.executed, r.commands.size());
+            r.executed, r.commands->size());
       }
       break;
     case JobOutcome::kAlarm:
@@ -680,11 +681,8 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
 
 // One status of the running job: the page, the saved progress, the lease, the log.
 void Workshop::follow_status(Slot& slot, JobRun& r, Sender& sender, const Progress& p) {
-  const std::vector<QueuedCommand>& commands = r.commands;
   // The plan step running (or next): that of the first command not done yet.
-  size_t next = p.executed;
-  while (next < commands.size() && commands[next].step < 0) ++next;
-  const int step = next < commands.size() ? commands[next].step : -1;
+  const int step = r.commands->step_from(p.executed);
   const double executed_mm =
       r.path->advance(step, Point2(p.status.x_um / 1000.0, p.status.y_um / 1000.0));
   {
@@ -697,7 +695,8 @@ void Workshop::follow_status(Slot& slot, JobRun& r, Sender& sender, const Progre
   }
   r.executed = p.executed;
   const bool state_changed = p.status.state != r.last_state;
-  r.progress = progress_of(r.progress, commands, p.executed, p.status, r.job_id);
+  r.progress = progress_of(r.progress, p.total, p.executed,
+                           r.commands->first_uncut_curve(p.executed), p.status, r.job_id);
   saver_.post(r.job.id, r.lease, r.progress, state_changed);
   // A lapsed lease stops the machine even when every command has been sent already.
   const std::string lapsed = lease_.why_not(r.job.lease_epoch);
@@ -761,9 +760,11 @@ void Workshop::finish_run(Slot& slot, JobRun& r, Sender& sender) {
   const JobRecord& job = r.job;
   JobProgress& progress = r.progress;
   progress.executed = static_cast<int64_t>(r.executed);
-  progress.total = static_cast<int64_t>(r.commands.size());
-  progress.resume_curve =
-      r.state == JobState::kInterrupted ? first_uncut_curve(r.commands, r.executed) : -1;
+  const size_t total = r.commands ? r.commands->size() : 0;
+  progress.total = static_cast<int64_t>(total);
+  progress.resume_curve = r.state == JobState::kInterrupted && r.commands
+                              ? r.commands->first_uncut_curve(r.executed)
+                              : -1;
   r.note(fmt::format("ended: {} ({}): {}", state_name(r.state), r.outcome, r.message));
   const SenderStats& st = sender.stats();
   nlohmann::json report;
@@ -774,7 +775,7 @@ void Workshop::finish_run(Slot& slot, JobRun& r, Sender& sender) {
   report["state"] = state_name(r.state);
   report["outcome"] = r.outcome;
   report["message"] = r.message;
-  report["commands"] = r.commands.size();
+  report["commands"] = total;
   report["executed"] = r.executed;
   report["resume_curve"] = progress.resume_curve;
   report["resume_at"] = {{"job_command", progress.resume_index},

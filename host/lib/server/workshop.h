@@ -37,7 +37,12 @@ using ResumeEncoder = std::function<std::vector<QueuedCommand>(
     const JobPlan& plan, const EncodeOptions& options, int first_curve)>;
 // The default: the job as encode_job() makes it, continued from the curve's first command
 // with send --resume's machinery (host::resume_from_curve: pen up, travel to where the job
-// stood before that curve, #J, the rest).
+// stood before that curve, #J, the rest). The workshop streams it instead of calling it
+// (continue_stream(): the same commands, the job never held whole).
+struct ContinueFromCurve {
+  std::vector<QueuedCommand> operator()(const JobPlan& plan, const EncodeOptions& options,
+                                        int first_curve) const;
+};
 ResumeEncoder continue_from_curve();
 
 struct WorkshopOptions {

@@ -9,6 +9,7 @@
 #include <vector>   // std::vector
 
 #include "host/lib/stream/job_encoder.h"
+#include "host/lib/stream/resume_scan.h"  // JobPass
 
 namespace host {
 
@@ -45,9 +46,16 @@ class EncodedJob : public CommandSource {
   EncodedJob(const JobPlan& plan, const EncodeOptions& options);
   // The plan's commands only: not the set-up.
   const EncodedJobSummary& summary() const { return summary_; }
-  // Commands sent before the job's (a height map); only before the first at().
+  // Commands sent before the job's (a height map, a resume's prefix); only before the first
+  // at().
   void set_setup(std::vector<QueuedCommand> setup);
-  size_t size() const override { return setup_count_ + summary_.commands; }
+  // More commands before those (a height map before a resume's prefix); only before the
+  // first at().
+  void prepend_setup(const std::vector<QueuedCommand>& setup);
+  // The job from its command `from` on (a resume: resume_prefix() gives `from`); the commands
+  // before it are encoded and dropped. Only before the first at().
+  void start_at(size_t from);
+  size_t size() const override { return setup_count_ + summary_.commands - skip_; }
   const QueuedCommand& at(size_t i) override;
   void release_before(size_t index) override;
   bool holds(size_t i) const override { return i >= first_ && i < first_ + held_.size(); }
@@ -58,12 +66,17 @@ class EncodedJob : public CommandSource {
  private:
   EncodedJobSummary summary_;
   size_t setup_count_ = 0;
+  size_t skip_ = 0;     // the job's commands before start_at()'s
+  size_t skipped_ = 0;  // of those, dropped so far
   JobEncoder encoder_;
   std::deque<QueuedCommand> held_;  // commands first_ .. first_ + held_.size() - 1
   size_t first_ = 0;
   size_t held_max_ = 0;
   std::vector<QueuedCommand> batch_;
 };
+
+// The plan's commands as encode_job() gives them, one pass per call (the resume's scans).
+JobPass pass_over(const JobPlan& plan, const EncodeOptions& options, uint16_t job_id);
 
 }  // namespace host
 

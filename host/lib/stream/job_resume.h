@@ -12,6 +12,7 @@
 
 #include "firmware/protocol/messages.h"  // proto::StatusReply
 #include "host/lib/stream/job_encoder.h"
+#include "host/lib/stream/resume_scan.h"  // JobPass
 
 namespace host {
 
@@ -31,6 +32,7 @@ std::optional<ResumePoint> resume_point_of(const proto::StatusReply& status);
 // Empty when `job` is the job the controller ran (same job_id); otherwise why not: a resume
 // with another file or other plan options would cut something else.
 std::string resume_mismatch(const std::vector<QueuedCommand>& job, const ResumePoint& at);
+std::string resume_mismatch(uint16_t job_id, const ResumePoint& at);
 
 // Job commands are the queued commands the controller numbers after a #J: every command of
 // the stream except #D (part of its #B) and #J. Index into `job` of job command job_index;
@@ -50,6 +52,11 @@ size_t command_of_job_index(const std::vector<QueuedCommand>& job, int32_t job_i
 // Empty when nothing is left to do.
 std::vector<QueuedCommand> resume_commands(const std::vector<QueuedCommand>& job,
                                            const ResumePoint& at, const EncodeOptions& options);
+// The same without the job's list: the commands before job[*from] (*from: the stream index
+// of job command at.job_index, or the job's size with an empty prefix when it finished); the
+// caller streams the job from *from on (EncodedJob::start_at).
+std::vector<QueuedCommand> resume_prefix(const JobPass& job, const ResumePoint& at,
+                                         const EncodeOptions& options, size_t* from);
 
 // The controller counts curve points in 16 bits and stops at 65 535 (the tool is at or past
 // that point). Empty when curve point `curve_point` of job command job_index can be resumed
@@ -65,6 +72,8 @@ std::string curve_point_problem(int32_t job_index, size_t point_count, uint16_t 
 // Throws PlanError when job_index is not a job command or the point is past the curve's end.
 ResumePoint resume_point_at(const std::vector<QueuedCommand>& job, int32_t job_index,
                             uint16_t curve_point, int32_t tool_z_um);
+ResumePoint resume_point_at(const JobPass& job, int32_t job_index, uint16_t curve_point,
+                            int32_t tool_z_um);
 
 // Continues `job` from the first command of plan curve first_curve (the pen-up and travel
 // that lead to it), the tool taken to where the previous move ended: what the workshop
@@ -73,9 +82,12 @@ ResumePoint resume_point_at(const std::vector<QueuedCommand>& job, int32_t job_i
 // Throws PlanError when no command belongs to that curve.
 std::vector<QueuedCommand> resume_from_curve(const std::vector<QueuedCommand>& job, int first_curve,
                                              const EncodeOptions& options);
+// The job index of the first job command of plan curve `curve`; PlanError when there is none.
+int32_t job_index_of_curve(const JobPass& job, int curve);
 
 // "job command 12 of 40 (plan step 7, curve 3), curve point 18" for messages.
 std::string describe_resume_point(const std::vector<QueuedCommand>& job, const ResumePoint& at);
+std::string describe_resume_point(const JobPass& job, const ResumePoint& at);
 
 }  // namespace host
 

@@ -26,6 +26,7 @@ struct SendWindow {
   size_t base = 0;         // oldest command not yet acknowledged
   size_t next = 0;         // next command to (re)send
   size_t executed = 0;     // commands executed (count)
+  size_t high_water = 0;   // one past the furthest command sent (one below it is a resend)
   bool busy_wait = false;  // after *E busy: send nothing new until an *O
   size_t frames = 1;       // frames in flight the controller allows (*I)
   size_t limit = 1;        // frames in flight allowed now: 1 after *E busy, grows per *O

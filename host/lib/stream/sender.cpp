@@ -221,107 +221,17 @@ void Sender::handle_reply(const proto::Frame& frame) {
     }
     case proto::kReplyStatus: {
       proto::StatusReply r;
-      if (proto::decode_frame(frame, &r) != proto::ErrorCode::kOk) break;
-      last_status_ = r;
-      have_status_ = true;
-      session_.status_outstanding = false;
-      if (status_before_resume_)
-        status_before_resume_ = false;  // asked before the #R: says nothing of it
-      else
-        resume_sent_ = false;
-      win_.queue_free = r.queue_free;
-      if (win_.commands == nullptr) break;
-      // Everything before next_expected is stored.
-      const size_t stored = win_.index_of_seq(r.next_expected_seq);
-      if (stored != SIZE_MAX && stored >= win_.base && stored <= win_.next) {
-        win_.splines_free = r.spline_slots_free;
-        win_.splines_known_at = stored;
-      }
-      if (stored != SIZE_MAX && stored > win_.base && stored <= win_.next) {
-        win_.base = stored;
-        win_.oldest_sent = now();
-      }
-      win_.track_executed(r.last_executed_seq);
-      // No frame held: a busy refusal is over (its held frame's *O may have overtaken it).
-      if (!(r.flags & proto::kStatusFramePending)) win_.busy_wait = false;
-      // Unacknowledged frames past the time-out and none held: they were lost, go back.
-      const milliseconds rto = rtt_.timeout(options_.min_rto);
-      if (win_.base < win_.next && !(r.flags & proto::kStatusFramePending) &&
-          now() - win_.oldest_sent > rto) {
-        win_.next = win_.base;
-        win_.busy_wait = false;
-        win_.oldest_sent = now();
-      }
+      if (proto::decode_frame(frame, &r) == proto::ErrorCode::kOk) handle_status(r);
       break;
     }
     case proto::kReplyAck: {
       proto::AckReply ack;
-      if (proto::decode_frame(frame, &ack) != proto::ErrorCode::kOk) break;
-      // v2: a real-time frame's *O says so; its seq is the real-time counter's, not the
-      // ordered stream's.
-      if (ack.realtime) {
-        if (frame.seq == session_.realtime_seq) session_.realtime_acked = true;
-        break;
-      }
-      win_.queue_free = ack.queue_free;
-      const size_t index = win_.index_of_seq(frame.seq);
-      if (index != SIZE_MAX && index >= win_.base && index < win_.next) {
-        win_.splines_free = ack.spline_slots_free;
-        win_.splines_known_at = index + 1;
-        sample_round_trip(index);
-        if (win_.queue_free >= 2 && win_.limit < win_.frames) ++win_.limit;
-        win_.base = index + 1;  // acks are cumulative: the controller stores strictly in order
-        win_.oldest_sent = now();
-        win_.busy_wait = false;
-      }
+      if (proto::decode_frame(frame, &ack) == proto::ErrorCode::kOk) handle_ack(ack, frame.seq);
       break;
     }
     case proto::kReplyError: {
       proto::ErrorReply r;
-      if (proto::decode_frame(frame, &r) != proto::ErrorCode::kOk) break;
-      stats_.error_replies++;
-      if (r.code == proto::ErrorCode::kSeqStale) break;  // superseded real-time frame
-      // An older controller names its version: open the session in that one.
-      if (r.code == proto::ErrorCode::kVersionUnsupported && !session_.open &&
-          r.detail >= proto::kMinProtocolVersion && r.detail < session_.version) {
-        session_.version = r.detail;
-        session_.version_lowered = true;
-        break;
-      }
-      if (win_.commands != nullptr &&
-          (is_resend_error(r.code) || r.code == proto::ErrorCode::kBusy)) {
-        const size_t expected = win_.index_of_seq(r.next_expected_seq);
-        // One lost frame makes every later frame of the window answer seq_gap with the same
-        // expected seq: go back once, not once per reply (the resent frames are on their way).
-        if (r.code == proto::ErrorCode::kSeqGap && expected == win_.last_gap_expected &&
-            now() - win_.last_gap_at < rtt_.timeout(options_.min_rto)) {
-          break;
-        }
-        if (r.code == proto::ErrorCode::kSeqGap) {
-          win_.last_gap_expected = expected;
-          win_.last_gap_at = now();
-        }
-        win_.busy_wait = (r.code == proto::ErrorCode::kBusy);
-        if (expected != SIZE_MAX && expected >= win_.base && expected <= win_.next) {
-          win_.base = expected;
-          // Busy: the expected frame is the one the controller holds; resend after it.
-          win_.next = win_.busy_wait ? std::min(win_.next, expected + 1) : expected;
-        }
-        // The store is full (spline data can fill it before the queue's slot count says so):
-        // send one frame at a time until acks show room again.
-        if (win_.busy_wait) win_.limit = 1;
-        break;
-      }
-      if (win_.commands == nullptr && is_resend_error(r.code)) break;  // a lost #I/#?: we retry
-      failed_ = true;
-      failure_ = r.code == proto::ErrorCode::kAlarmActive ? JobOutcome::kAlarm
-                 : r.code == proto::ErrorCode::kAborted   ? JobOutcome::kAborted
-                                                          : JobOutcome::kRejected;
-      std::string detail;
-      if (r.code == proto::ErrorCode::kGeometry)
-        detail = fmt::format(" (geometry code {})", r.detail);
-      message_ = fmt::format("controller refused {}: {}{}", where(win_.index_of_seq(frame.seq)),
-                             error_name(r.code), detail);
+      if (proto::decode_frame(frame, &r) == proto::ErrorCode::kOk) handle_error(r, frame.seq);
       break;
     }
     case proto::kReplyAlarm: {
@@ -335,6 +245,111 @@ void Sender::handle_reply(const proto::Frame& frame) {
     default:
       break;
   }
+}
+
+// *S: what the controller has stored and executed, its room, and lost frames to send again.
+void Sender::handle_status(const proto::StatusReply& r) {
+  last_status_ = r;
+  have_status_ = true;
+  session_.status_outstanding = false;
+  if (status_before_resume_)
+    status_before_resume_ = false;  // asked before the #R: says nothing of it
+  else
+    resume_sent_ = false;
+  win_.queue_free = r.queue_free;
+  if (win_.commands == nullptr) return;
+  // Everything before next_expected is stored.
+  const size_t stored = win_.index_of_seq(r.next_expected_seq);
+  if (stored != SIZE_MAX && stored >= win_.base && stored <= win_.next) {
+    win_.splines_free = r.spline_slots_free;
+    win_.splines_known_at = stored;
+  }
+  if (stored != SIZE_MAX && stored > win_.base && stored <= win_.next) {
+    win_.base = stored;
+    win_.oldest_sent = now();
+  }
+  win_.track_executed(r.last_executed_seq);
+  // No frame held: a busy refusal is over (its held frame's *O may have overtaken it).
+  if (!(r.flags & proto::kStatusFramePending)) win_.busy_wait = false;
+  // Unacknowledged frames past the time-out and none held: they were lost, go back.
+  const milliseconds rto = rtt_.timeout(options_.min_rto);
+  if (win_.base < win_.next && !(r.flags & proto::kStatusFramePending) &&
+      now() - win_.oldest_sent > rto) {
+    win_.next = win_.base;
+    win_.busy_wait = false;
+    win_.oldest_sent = now();
+  }
+}
+
+// *O: the frame with this seq and every one before it is stored.
+void Sender::handle_ack(const proto::AckReply& ack, uint8_t seq) {
+  // v2: a real-time frame's *O says so; its seq is the real-time counter's, not the
+  // ordered stream's.
+  if (ack.realtime) {
+    if (seq == session_.realtime_seq) session_.realtime_acked = true;
+    return;
+  }
+  win_.queue_free = ack.queue_free;
+  const size_t index = win_.index_of_seq(seq);
+  if (index != SIZE_MAX && index >= win_.base && index < win_.next) {
+    win_.splines_free = ack.spline_slots_free;
+    win_.splines_known_at = index + 1;
+    sample_round_trip(index);
+    if (win_.queue_free >= 2 && win_.limit < win_.frames) ++win_.limit;
+    win_.base = index + 1;  // acks are cumulative: the controller stores strictly in order
+    win_.oldest_sent = now();
+    win_.busy_wait = false;
+  }
+}
+
+// *E: a frame to send again (lost, or refused for room), or the end of the job.
+void Sender::handle_error(const proto::ErrorReply& r, uint8_t seq) {
+  stats_.error_replies++;
+  if (r.code == proto::ErrorCode::kSeqStale) return;  // superseded real-time frame
+  // An older controller names its version: open the session in that one.
+  if (r.code == proto::ErrorCode::kVersionUnsupported && !session_.open &&
+      r.detail >= proto::kMinProtocolVersion && r.detail < session_.version) {
+    session_.version = r.detail;
+    session_.version_lowered = true;
+    return;
+  }
+  if (win_.commands != nullptr && (is_resend_error(r.code) || r.code == proto::ErrorCode::kBusy)) {
+    go_back(r);
+    return;
+  }
+  if (win_.commands == nullptr && is_resend_error(r.code)) return;  // a lost #I/#?: we retry
+  failed_ = true;
+  failure_ = r.code == proto::ErrorCode::kAlarmActive ? JobOutcome::kAlarm
+             : r.code == proto::ErrorCode::kAborted   ? JobOutcome::kAborted
+                                                      : JobOutcome::kRejected;
+  std::string detail;
+  if (r.code == proto::ErrorCode::kGeometry) detail = fmt::format(" (geometry code {})", r.detail);
+  message_ = fmt::format("controller refused {}: {}{}", where(win_.index_of_seq(seq)),
+                         error_name(r.code), detail);
+}
+
+// Go-back-N from the frame the controller expects (a gap, a damaged frame, busy).
+void Sender::go_back(const proto::ErrorReply& r) {
+  const size_t expected = win_.index_of_seq(r.next_expected_seq);
+  // One lost frame makes every later frame of the window answer seq_gap with the same
+  // expected seq: go back once, not once per reply (the resent frames are on their way).
+  if (r.code == proto::ErrorCode::kSeqGap && expected == win_.last_gap_expected &&
+      now() - win_.last_gap_at < rtt_.timeout(options_.min_rto)) {
+    return;
+  }
+  if (r.code == proto::ErrorCode::kSeqGap) {
+    win_.last_gap_expected = expected;
+    win_.last_gap_at = now();
+  }
+  win_.busy_wait = (r.code == proto::ErrorCode::kBusy);
+  if (expected != SIZE_MAX && expected >= win_.base && expected <= win_.next) {
+    win_.base = expected;
+    // Busy: the expected frame is the one the controller holds; resend after it.
+    win_.next = win_.busy_wait ? std::min(win_.next, expected + 1) : expected;
+  }
+  // The store is full (spline data can fill it before the queue's slot count says so):
+  // send one frame at a time until acks show room again.
+  if (win_.busy_wait) win_.limit = 1;
 }
 
 // The watchdog: true once nothing changed for stall_limit (acks, executions, position, state).
@@ -533,6 +548,123 @@ JobOutcome Sender::run(const std::vector<QueuedCommand>& commands,
   return run(list, on_progress);
 }
 
+// Sets the window up for a new ordered stream of commands.
+void Sender::start_window(CommandSource& commands) {
+  win_.commands = &commands;
+  rtt_.start(true);
+  win_.base = win_.next = win_.executed = 0;
+  win_.busy_wait = false;
+  win_.queue_free = session_.reply.queue_slots;
+  win_.splines_free = SendWindow::kSplineSlotsUnknown;
+  win_.splines_known_at = 0;
+  win_.frames =
+      std::max<size_t>(1, std::min<size_t>(session_.reply.window_frames, proto::kWindowFrames));
+  win_.limit = win_.frames;
+  win_.high_water = 0;
+  last_reply_ = now();
+  watchdog_.start(now());
+  operator_hold_ = false;
+  resume_sent_ = false;
+  status_before_resume_ = false;
+}
+
+// The operator's requests as real-time frames; an abort (or a veto on sending more) ends
+// the job: true, with *outcome set.
+bool Sender::take_requests(CommandSource& commands, JobOutcome* outcome) {
+  if (requests_.abort_asked()) {
+    send_realtime(proto::kCmdAbort, {});
+    message_ = fmt::format("aborted by the operator after {} of {} commands", win_.executed,
+                           commands.size());
+    *outcome = JobOutcome::kAborted;
+    return true;
+  }
+  if (requests_.take_hold()) {
+    send_realtime(proto::kCmdHold, {});
+    operator_hold_ = true;
+  }
+  if (requests_.take_resume()) {
+    if (resume_may_act()) {
+      send_realtime(proto::kCmdResume, {});
+      resume_sent_ = true;
+      status_before_resume_ = session_.status_outstanding;
+    }
+    operator_hold_ = false;
+  }
+  if (const int pct = requests_.take_override()) {
+    send_realtime(proto::kCmdOverride, {static_cast<uint8_t>(pct)});
+  }
+  if (failed_) {
+    *outcome = failure_;
+    return true;
+  }
+  if (win_.next < commands.size() && options_.send_veto) {
+    std::string veto = options_.send_veto();
+    if (!veto.empty()) {
+      send_realtime(proto::kCmdAbort, {});
+      message_ = std::move(veto);
+      *outcome = JobOutcome::kAborted;
+      return true;
+    }
+  }
+  return false;
+}
+
+// Fills the window (frames and bytes) unless the controller said busy.
+void Sender::fill_window(CommandSource& commands) {
+  const size_t rx_bytes = std::max<size_t>(session_.reply.rx_buffer_bytes, proto::kMaxFrameBytes);
+  size_t inflight_bytes = 0;
+  release_stored(commands);
+  for (size_t i = win_.base; i < win_.next; ++i) inflight_bytes += frame_bytes(commands.at(i));
+  // In flight may be what the queue has room for plus the one frame it can hold.
+  while (!win_.busy_wait && win_.next < commands.size() && win_.next - win_.base < win_.limit &&
+         win_.next - win_.base <= win_.queue_free &&
+         inflight_bytes + frame_bytes(commands.at(win_.next)) <= rx_bytes &&
+         (commands.at(win_.next).letter != proto::kCmdSplineHeader || win_.spline_room())) {
+    const QueuedCommand& command = commands.at(win_.next);
+    if (win_.next == win_.base) win_.oldest_sent = now();
+    send_frame(command.letter, static_cast<uint8_t>(win_.first_seq + win_.next), command.payload);
+    inflight_bytes += frame_bytes(command);
+    if (win_.next < win_.high_water) stats_.retransmits++;
+    rtt_.sent(win_.next, win_.next < win_.high_water, now());  // Karn: again, no sample
+    ++win_.next;
+    win_.high_water = std::max(win_.high_water, win_.next);
+  }
+}
+
+// How the job ends now, if it does: every command executed and the machine idle, no
+// progress for the stall limit, or no reply for the silence limit.
+bool Sender::job_ended(CommandSource& commands, JobOutcome* outcome) {
+  if (win_.base == commands.size() && win_.executed == commands.size() && have_status_ &&
+      last_status_.state == proto::MachineState::kIdle) {
+    message_ = fmt::format("all {} commands executed", commands.size());
+    win_.first_seq = static_cast<uint8_t>(win_.first_seq + commands.size());
+    *outcome = JobOutcome::kCompleted;
+    return true;
+  }
+  if (stalled()) {
+    std::string why;
+    if (last_status_.flags & proto::kStatusLinkHold)
+      why = "; the controller holds the job: it heard nothing from the host for 2 s";
+    else if (last_status_.flags & proto::kStatusFramePending)
+      why = "; the controller holds a frame it has no room for";
+    message_ = fmt::format(
+        "no progress for {} s: {} of {} commands executed, {} stored; machine {} at "
+        "({:.3f}, {:.3f}, {:.3f}) mm{}",
+        options_.stall_limit.count() / 1000.0, win_.executed, commands.size(), win_.base,
+        machine_state_name(last_status_.state), last_status_.x_um / 1000.0,
+        last_status_.y_um / 1000.0, last_status_.z_um / 1000.0, why);
+    *outcome = JobOutcome::kStalled;
+    return true;
+  }
+  if (now() - last_reply_ > options_.silence_limit) {
+    message_ = fmt::format("{}: no reply for {} ms after {} of {} commands executed", link_.name(),
+                           options_.silence_limit.count(), win_.executed, commands.size());
+    *outcome = JobOutcome::kLinkLost;
+    return true;
+  }
+  return false;
+}
+
 JobOutcome Sender::run(CommandSource& commands,
                        const std::function<void(const Progress&)>& on_progress) {
   // However run() ends (a throw from on_progress too), it keeps no pointer to the commands:
@@ -552,79 +684,11 @@ JobOutcome Sender::run(CommandSource& commands,
     }
     return failure_;
   }
-  win_.commands = &commands;
-  rtt_.start(true);
-  win_.base = win_.next = win_.executed = 0;
-  win_.busy_wait = false;
-  win_.queue_free = session_.reply.queue_slots;
-  win_.splines_free = SendWindow::kSplineSlotsUnknown;
-  win_.splines_known_at = 0;
-  win_.frames =
-      std::max<size_t>(1, std::min<size_t>(session_.reply.window_frames, proto::kWindowFrames));
-  win_.limit = win_.frames;
-  size_t high_water = 0;
-  const size_t rx_bytes = std::max<size_t>(session_.reply.rx_buffer_bytes, proto::kMaxFrameBytes);
+  start_window(commands);
   auto last_poll = now() - options_.status_interval;
-  last_reply_ = now();
-  watchdog_.start(now());
-  operator_hold_ = false;
-  resume_sent_ = false;
-  status_before_resume_ = false;
-
-  while (true) {
-    if (requests_.abort_asked()) {
-      send_realtime(proto::kCmdAbort, {});
-      message_ = fmt::format("aborted by the operator after {} of {} commands", win_.executed,
-                             commands.size());
-      win_.commands = nullptr;
-      return JobOutcome::kAborted;
-    }
-    if (requests_.take_hold()) {
-      send_realtime(proto::kCmdHold, {});
-      operator_hold_ = true;
-    }
-    if (requests_.take_resume()) {
-      if (resume_may_act()) {
-        send_realtime(proto::kCmdResume, {});
-        resume_sent_ = true;
-        status_before_resume_ = session_.status_outstanding;
-      }
-      operator_hold_ = false;
-    }
-    if (const int pct = requests_.take_override()) {
-      send_realtime(proto::kCmdOverride, {static_cast<uint8_t>(pct)});
-    }
-    if (failed_) {
-      win_.commands = nullptr;
-      return failure_;
-    }
-    if (win_.next < commands.size() && options_.send_veto) {
-      std::string veto = options_.send_veto();
-      if (!veto.empty()) {
-        send_realtime(proto::kCmdAbort, {});
-        message_ = std::move(veto);
-        win_.commands = nullptr;
-        return JobOutcome::kAborted;
-      }
-    }
-    // Fill the window (frames and bytes) unless the controller said busy.
-    size_t inflight_bytes = 0;
-    release_stored(commands);
-    for (size_t i = win_.base; i < win_.next; ++i) inflight_bytes += frame_bytes(commands.at(i));
-    // In flight may be what the queue has room for plus the one frame it can hold.
-    while (!win_.busy_wait && win_.next < commands.size() && win_.next - win_.base < win_.limit &&
-           win_.next - win_.base <= win_.queue_free &&
-           inflight_bytes + frame_bytes(commands.at(win_.next)) <= rx_bytes &&
-           (commands.at(win_.next).letter != proto::kCmdSplineHeader || win_.spline_room())) {
-      const QueuedCommand& command = commands.at(win_.next);
-      if (win_.next == win_.base) win_.oldest_sent = now();
-      send_frame(command.letter, static_cast<uint8_t>(win_.first_seq + win_.next), command.payload);
-      inflight_bytes += frame_bytes(command);
-      if (win_.next < high_water) stats_.retransmits++;
-      rtt_.sent(win_.next, win_.next < high_water, now());  // Karn: again, no sample
-      ++win_.next;
-      high_water = std::max(high_water, win_.next);
-    }
+  JobOutcome outcome = JobOutcome::kCompleted;
+  while (!take_requests(commands, &outcome)) {
+    fill_window(commands);
     if (status_due(last_poll)) {
       query_status();
       last_poll = now();
@@ -636,36 +700,9 @@ JobOutcome Sender::run(CommandSource& commands,
       if (on_progress && have_status_) on_progress(progress);
     }
     pump(milliseconds(1));
-    if (win_.base == commands.size() && win_.executed == commands.size() && have_status_ &&
-        last_status_.state == proto::MachineState::kIdle) {
-      message_ = fmt::format("all {} commands executed", commands.size());
-      win_.commands = nullptr;
-      win_.first_seq = static_cast<uint8_t>(win_.first_seq + commands.size());
-      return JobOutcome::kCompleted;
-    }
-    if (stalled()) {
-      std::string why;
-      if (last_status_.flags & proto::kStatusLinkHold)
-        why = "; the controller holds the job: it heard nothing from the host for 2 s";
-      else if (last_status_.flags & proto::kStatusFramePending)
-        why = "; the controller holds a frame it has no room for";
-      message_ = fmt::format(
-          "no progress for {} s: {} of {} commands executed, {} stored; machine {} at "
-          "({:.3f}, {:.3f}, {:.3f}) mm{}",
-          options_.stall_limit.count() / 1000.0, win_.executed, commands.size(), win_.base,
-          machine_state_name(last_status_.state), last_status_.x_um / 1000.0,
-          last_status_.y_um / 1000.0, last_status_.z_um / 1000.0, why);
-      win_.commands = nullptr;
-      return JobOutcome::kStalled;
-    }
-    if (now() - last_reply_ > options_.silence_limit) {
-      message_ =
-          fmt::format("{}: no reply for {} ms after {} of {} commands executed", link_.name(),
-                      options_.silence_limit.count(), win_.executed, commands.size());
-      win_.commands = nullptr;
-      return JobOutcome::kLinkLost;
-    }
+    if (job_ended(commands, &outcome)) break;
   }
+  return outcome;
 }
 
 }  // namespace host

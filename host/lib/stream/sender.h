@@ -114,6 +114,14 @@ class Sender {
   void send_frame(uint8_t letter, uint8_t seq, const std::vector<uint8_t>& payload);
   bool pump(std::chrono::milliseconds wait);
   void handle_reply(const proto::Frame& frame);
+  void handle_status(const proto::StatusReply& r);
+  void handle_ack(const proto::AckReply& ack, uint8_t seq);
+  void handle_error(const proto::ErrorReply& r, uint8_t seq);
+  void go_back(const proto::ErrorReply& r);
+  void start_window(CommandSource& commands);
+  bool take_requests(CommandSource& commands, JobOutcome* outcome);
+  void fill_window(CommandSource& commands);
+  bool job_ended(CommandSource& commands, JobOutcome* outcome);
   void send_realtime(uint8_t letter, const std::vector<uint8_t>& payload);
   bool ensure_zeroed(const std::function<void(const Progress&)>& on_progress);
   void query_status();

@@ -2,12 +2,16 @@
 // streamed to the simulated machine in lockstep through send_job.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>  // fmt::format
+
 #include <sstream>  // std::ostringstream
 
+#include "firmware/protocol/wire_codes.h"  // proto::command_role
 #include "host/lib/commands/exit_codes.h"
 #include "host/lib/commands/send_command.h"
 #include "host/lib/sim/sim_link.h"
 #include "host/lib/sim/sim_machine.h"
+#include "host_tests/host/sim/cut_path.h"
 #include "host_tests/host/sim/sim_test_jobs.h"
 
 namespace host::commands {
@@ -105,6 +109,91 @@ TEST(SendCommand, ResumeOnAControllerThatRanNoJobIsRefusedWithoutStreaming) {
     EXPECT_NE(std::string(e.what()).find("--resume-at"), std::string::npos) << e.what();
   }
   EXPECT_EQ(attached, (std::vector<bool>{true, false}));  // detached on the way out too
+}
+
+// n separate short lines in a row: four commands each (pen up, rapid, pen down, feed).
+JobPlan separate_lines(int n) {
+  std::vector<Curve> curves;
+  for (int i = 0; i < n; ++i) {
+    const double x = 10 + (i % 40) * 2.0, y = 10 + (i / 40) * 2.0;
+    curves.push_back(test::line_curve(x, y, x + 0.5, y));
+  }
+  PlanOptions o;
+  o.reorder = false;
+  o.z_up_mm = 0.2;  // short pen lifts: a short job in machine time
+  return plan_job(test::drawing_of(std::move(curves)), o);
+}
+
+TEST(SendCommand, HoldsOnlyTheSendersWindowWhateverTheJobsLength) {
+  // 600 lines: ~2 400 commands; send keeps what is in flight and the 128 before it.
+  sim::SimMachine machine{sim::SimOptions{}};
+  sim::SimLink link(machine);
+  std::ostringstream log;
+  const SendResult r = send_job(link, separate_lines(600), lockstep_send(machine), log);
+  ASSERT_EQ(r.outcome, JobOutcome::kCompleted) << r.message << "\n" << log.str();
+  EXPECT_GT(r.commands, 2400u);
+  EXPECT_GT(r.commands_held_max, 0u);
+  EXPECT_LE(r.commands_held_max, 128u + 64u);
+}
+
+JobPlan three_curves() {
+  return test::plan_of(test::drawing_of(
+      {test::circle_curve(20, 20, 10), test::s_curve(40, 20), test::circle_curve(75, 20, 8)}));
+}
+
+// Job command index of the plan's nth spline header.
+int32_t job_index_of_spline(const JobPlan& plan, int nth) {
+  int32_t job = 0;
+  int n = 0;
+  for (const QueuedCommand& c : encode_job(plan, EncodeOptions{})) {
+    if (c.letter == proto::kCmdSplineHeader && n++ == nth) return job;
+    if (proto::command_role(c.letter) == proto::CommandRole::kJobCommand) ++job;
+  }
+  return -1;
+}
+
+TEST(SendCommand, ResumesAStreamedJobFromTheMiddleAndCutsTheSamePath) {
+  const JobPlan plan = three_curves();
+  std::vector<sim::ToolSample> reference;
+  {
+    sim::SimMachine machine{sim::SimOptions{}};
+    sim::SimLink link(machine);
+    std::ostringstream log;
+    ASSERT_EQ(send_job(link, plan, lockstep_send(machine), log).outcome, JobOutcome::kCompleted);
+    reference = machine.trace();
+  }
+  // The link is cut part way along the S curve; the machine's watchdog holds the job.
+  sim::SimMachine machine{sim::SimOptions{}};
+  const int32_t s_curve = job_index_of_spline(plan, 1);
+  {
+    sim::SimLink link(machine);
+    SendOptions o = lockstep_send(machine);
+    o.on_progress = [s_curve](const Progress& p) {
+      if ((p.status.flags & proto::kStatusJob) && p.status.job_index == s_curve &&
+          p.status.curve_point >= 5)
+        throw LinkError("test: link cut");
+    };
+    std::ostringstream log;
+    EXPECT_THROW(send_job(link, plan, o, log), LinkError);
+  }
+  for (int ms = 0; ms < 4000; ++ms) machine.step_ms();
+  sim::SimLink link(machine);
+  SendOptions o = lockstep_send(machine);
+  o.resume = true;
+  std::ostringstream log;
+  const SendResult r = send_job(link, plan, o, log);
+  ASSERT_EQ(r.outcome, JobOutcome::kCompleted) << r.message << "\n" << log.str();
+  EXPECT_NE(log.str().find(fmt::format("resuming at job command {} of", s_curve)),
+            std::string::npos)
+      << log.str();
+  EXPECT_NE(log.str().find("cut short"), std::string::npos) << log.str();
+  // Every point cut lies on the uninterrupted path, all of it was cut, nothing twice.
+  const test::CutPath ref = test::cut_path(reference, plan);
+  const test::CutPath got = test::cut_path(machine.trace(), plan);
+  ASSERT_GT(ref.length_mm, 100.0);
+  EXPECT_LT(test::max_distance_mm(got, ref), 0.010);
+  EXPECT_LT(test::max_distance_mm(ref, got), 0.010);
+  EXPECT_NEAR(got.length_mm, ref.length_mm, 0.02);
 }
 
 }  // namespace
