@@ -1,6 +1,7 @@
 // #Q contour data: writer, checker and unpacker (see contour_spline.h).
 #include "firmware/protocol/contour_spline.h"
 
+#include "firmware/core/divide.h"             // div_u32_u16
 #include "firmware/core/isqrt.h"              // isqrt32
 #include "firmware/protocol/varint.h"         // zigzag, put_varint
 #include "firmware/protocol/varint_spline.h"  // read_varint_spline
@@ -9,9 +10,12 @@ namespace proto {
 
 namespace {
 
-// n / d rounded to nearest (halves away from zero), d > 0.
-int32_t divide_rounded(int32_t n, int32_t d) {
-  return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d);
+// n / d rounded to nearest (halves away from zero), d > 0 and |n| <= d * d (the quotient
+// fits 16 bits): one 32/16 division.
+int32_t divide_rounded(int32_t n, uint16_t d) {
+  const uint32_t magnitude = (uint32_t)(n >= 0 ? n : -n) + d / 2U;
+  const int32_t q = (int32_t)core::div_u32_u16(magnitude, d, 0);
+  return n >= 0 ? q : -q;
 }
 
 // floor(n * 2^26 / d) for n < 4 d and d < 2^31: long division, a quotient bit a step, so
@@ -51,16 +55,20 @@ ErrorCode contour_middle(const core::ControlPoint& p0, const ContourElement& e,
   if (!e.arc) return ErrorCode::kOk;
   if (!within(e.dx_um, kMaxContourArcAxisUm) || !within(e.dy_um, kMaxContourArcAxisUm))
     return ErrorCode::kFieldRange;
-  const uint32_t chord2 = (uint32_t)(e.dx_um * e.dx_um) + (uint32_t)(e.dy_um * e.dy_um);
-  const int32_t chord = (int32_t)core::isqrt32(chord2);
+  // Every factor below fits 16 bits: |dx|, |dy| <= 16383, |height| <= chord < 2^15.
+  const int16_t dx = (int16_t)e.dx_um;
+  const int16_t dy = (int16_t)e.dy_um;
+  const uint32_t chord2 = (uint32_t)((int32_t)dx * dx) + (uint32_t)((int32_t)dy * dy);
+  const uint16_t chord = core::isqrt32(chord2);
   if (chord == 0 || !within(e.height_um, chord)) return ErrorCode::kFieldRange;
-  // The unit normal (-dy, dx) / chord times the height; |height * d| < 2^29.
-  middle->x_um += divide_rounded(-e.height_um * e.dy_um, chord);
-  middle->y_um += divide_rounded(e.height_um * e.dx_um, chord);
+  const int16_t h = (int16_t)e.height_um;
+  // The unit normal (-dy, dx) / chord times the height; |height * d| <= chord^2 < 2^29.
+  middle->x_um += divide_rounded(-((int32_t)h * dy), chord);
+  middle->y_um += divide_rounded((int32_t)h * dx, chord);
   // weight^2 = cos^2(half angle) = chord^2 / (4 leg^2), from the rounded middle point.
-  const int32_t lx = middle->x_um - p0.x_um;
-  const int32_t ly = middle->y_um - p0.y_um;
-  const uint32_t leg2 = (uint32_t)(lx * lx) + (uint32_t)(ly * ly);  // < 2^31: |l| < 2^15
+  const int16_t lx = (int16_t)(middle->x_um - p0.x_um);  // |l| < 2^15
+  const int16_t ly = (int16_t)(middle->y_um - p0.y_um);
+  const uint32_t leg2 = (uint32_t)((int32_t)lx * lx) + (uint32_t)((int32_t)ly * ly);  // < 2^31
   // A leg no longer than half the chord (rounding, at a height of about 0): weight 1.0.
   if (leg2 <= chord2 / 4U) return ErrorCode::kOk;
   middle->weight_q14 = (uint16_t)isqrt_rounded(ratio_q26(chord2, leg2));
