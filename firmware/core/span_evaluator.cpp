@@ -358,17 +358,9 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   }
   // The window this span reads must be sound even if nobody validated the spline: no
   // zero or negative denominator, no zero weight, no coordinate beyond the headroom.
-  for (uint16_t j = (uint16_t)(span - p); j < (uint16_t)(span + p + 1); ++j) {
-    if (spline.knot[j + 1] < spline.knot[j]) return GeometryError::kKnotsDecreasing;
-  }
-  for (uint16_t j = (uint16_t)(span - p); j <= span; ++j) {
-    const ControlPoint& c = spline.control[j];
-    if (c.x_um > kMaxCoordinateUm || c.x_um < -kMaxCoordinateUm || c.y_um > kMaxCoordinateUm ||
-        c.y_um < -kMaxCoordinateUm) {
-      return GeometryError::kCoordinateOutOfRange;
-    }
-    if (spline.rational && c.weight_q14 == 0) return GeometryError::kZeroWeight;
-  }
+  GeometryError e = check_knot_order(spline, (uint16_t)(span - p), (uint16_t)(span + p + 1));
+  if (e == GeometryError::kOk) e = check_points(spline, (uint16_t)(span - p), span);
+  if (e != GeometryError::kOk) return e;
   const ControlPoint& ref = spline.control[span - p];
   Homog b[kMaxDegree + 1];
   bezier_of_span(spline, span, b);
@@ -381,13 +373,11 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   // Per coordinate: the origin (the span start rounded to 1 um, absolute), the end point
   // straight from the last Bezier point (exact up to setup rounding), and the numerators
   // relative to the origin in q6 with the weights normalised to max 1.
-  int32_t origin_um[2];
-  int32_t end_q6[2];
-  coordinate_coefficients(b, p, kX, ref.x_um, w_max, cx_, &origin_um[kX], &end_q6[kX]);
-  coordinate_coefficients(b, p, kY, ref.y_um, w_max, cy_, &origin_um[kY], &end_q6[kY]);
+  // Straight into the members (evaluate_q6 below reads origin_q6_ and the coefficients, not
+  // end_). Through locals, avr-gcc 5.4.0 miscompiled this call sequence once (docs/performance.md).
+  coordinate_coefficients(b, p, kX, ref.x_um, w_max, cx_, &origin_.x_um, &end_.x_q6);
+  coordinate_coefficients(b, p, kY, ref.y_um, w_max, cy_, &origin_.y_um, &end_.y_q6);
   coordinate_coefficients(b, p, kW, 0, w_max, cw_, 0, 0);
-  origin_.x_um = origin_um[kX];
-  origin_.y_um = origin_um[kY];
   origin_q6_.x_q6 = origin_.x_um * (1L << kQ6Shift);  // |.| < 2^26: once, not per point
   origin_q6_.y_q6 = origin_.y_um * (1L << kQ6Shift);
   degree_ = p;
@@ -414,8 +404,6 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   while (top >= (1UL << (26 + dir_shift_))) ++dir_shift_;
   rational_ = spline.rational;
   start_ = evaluate_q6(0);
-  end_.x_q6 = end_q6[kX];
-  end_.y_q6 = end_q6[kY];
   end_dir_ = end_tangent(b, p);
   return GeometryError::kOk;
 }
