@@ -40,12 +40,27 @@ int64_t shl64(int64_t v, uint8_t n) {
   return (int64_t)((uint64_t)v << n);  // two's complement (GCC on every target): v * 2^n
 }
 
-// (num / den) in Q29, rounded, for 0 <= num <= den, den > 0 (both < 2^33).
-// num 0 and num = den (a blend at a knot of the span itself) need no division.
-__attribute__((noinline)) int64_t ratio_q29(int64_t num, int64_t den) {
+// (num / den) in Q29, rounded (halves up), for num <= den, den > 0: long division, a
+// quotient bit a step in 32-bit words (den may fill 32 bits: the bit shifted out of the
+// remainder is kept), no 64-bit division. num 0 and num = den (a blend at a knot of the
+// span itself) need none at all.
+__attribute__((noinline)) uint32_t ratio_q29(uint32_t num, uint32_t den) {
   if (num == 0) return 0;
-  if (num == den) return (int64_t)1 << kAlphaShift;
-  return (shl64(num, kAlphaShift) + den / 2) / den;
+  if (num == den) return 1UL << kAlphaShift;
+  uint32_t rem = num;  // < den
+  uint32_t q = 0;
+  for (uint8_t i = 0; i < kAlphaShift; ++i) {
+    const bool carry = (rem & 0x80000000UL) != 0;
+    rem <<= 1;
+    q <<= 1;
+    if (carry || rem >= den) {
+      rem -= den;  // 2 rem - den, in [0, den), modulo 2^32
+      q |= 1U;
+    }
+  }
+  // floor(num 2^29 / den) = q with remainder rem: + den / 2 before the floor adds 1 when
+  // rem + floor(den / 2) >= den.
+  return rem >= den - (den >> 1) ? q + 1U : q;
 }
 
 // round(num / d) for d > 0 (rounds half away from zero; d a weight in Q29, < 2^31). A
@@ -110,12 +125,14 @@ struct Alphas {
 __attribute__((noinline)) void blend_factors(const Spline& s, uint16_t span, Alphas* a) {
   const uint8_t p = s.degree;
   for (uint8_t side = 0; side < 2; ++side) {
-    const int64_t u = s.knot[span + side];
+    // knot[j] <= u <= knot[j + p + 1 - r] (the window is in order): both differences are
+    // below 2^32, exact as unsigned 32-bit ones.
+    const uint32_t u = (uint32_t)s.knot[span + side];
     for (uint8_t r = 1; r <= p; ++r) {
       for (uint8_t jj = r; jj <= p; ++jj) {
         const uint16_t j = (uint16_t)(span - p + jj);  // control index of d[jj]
-        const int64_t lo = s.knot[j];
-        const int64_t hi = s.knot[j + p + 1 - r];
+        const uint32_t lo = (uint32_t)s.knot[j];
+        const uint32_t hi = (uint32_t)s.knot[j + p + 1 - r];
         a->q29[side][r - 1][jj - 1] = (int32_t)ratio_q29(u - lo, hi - lo);
       }
     }
