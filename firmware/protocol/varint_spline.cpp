@@ -70,8 +70,8 @@ ErrorCode read_varint_spline(const VarintSplineFrame& f, core::Spline* s) {
   if (f.contour) {
     if (start ? (f.control_n & 1U) == 0 : ((at & 1U) == 0 || (f.control_n & 1U) != 0))
       return ErrorCode::kFieldRange;
-    items =
-        (uint8_t)((f.control_n + 1U) / 2U);  // the first point and (n - 1) / 2 elements, or n / 2
+    // The first point and (n - 1) / 2 elements, or n / 2 elements.
+    items = (uint8_t)((f.control_n + 1U) / 2U);
   }
   VarintReader r(f.data, f.data_n);
   core::ControlPoint prev;
@@ -80,27 +80,34 @@ ErrorCode read_varint_spline(const VarintSplineFrame& f, core::Spline* s) {
   prev.weight_q14 = core::kWeightOneQ14;
   if (s != 0 && at > 0) prev = s->control[at - 1];
   for (uint8_t i = 0; i < items; ++i, start = false) {
+    // x (flagged but at a #Q start), y, and the third number when flagged.
     uint32_t v[3] = {0, 0, 0};
-    ErrorCode e = r.next(&v[0]);
-    if (e == ErrorCode::kOk) e = r.next(&v[1]);
-    const bool flagged = !start && (v[0] & 1U) != 0;
-    if (e == ErrorCode::kOk && flagged) e = r.next(&v[2]);
-    if (e != ErrorCode::kOk) return e;
+    for (uint8_t k = 0; k < 3; ++k) {
+      if (k == 2 && (start || (v[0] & 1U) == 0)) break;
+      const ErrorCode e = r.next(&v[k]);
+      if (e != ErrorCode::kOk) return e;
+    }
     if (s == 0) continue;
+    const bool flagged = !start && (v[0] & 1U) != 0;
+    if (!start) v[0] >>= 1;
+    // Every difference within kMaxDeltaUm (a #Q height beyond it is refused by
+    // contour_middle all the same: kFieldRange either way).
+    int32_t dv[3];
+    for (uint8_t k = 0; k < 3; ++k) {
+      dv[k] = unzigzag(v[k]);
+      if (!within(dv[k], kMaxDeltaUm)) return ErrorCode::kFieldRange;
+    }
     ContourElement d;
-    d.dx_um = unzigzag(start ? v[0] : v[0] >> 1);
-    d.dy_um = unzigzag(v[1]);
+    d.dx_um = dv[0];
+    d.dy_um = dv[1];
     d.arc = flagged;
-    d.height_um = unzigzag(v[2]);  // #K: the weight's difference
-    if (!within(d.dx_um, kMaxDeltaUm) || !within(d.dy_um, kMaxDeltaUm))
-      return ErrorCode::kFieldRange;
+    d.height_um = dv[2];  // #K: the weight's difference
     core::ControlPoint p;
     p.x_um = prev.x_um + d.dx_um;
     p.y_um = prev.y_um + d.dy_um;
     p.weight_q14 = core::kWeightOneQ14;
     if (!f.contour) {
       if (flagged && !s->rational) return ErrorCode::kFieldRange;
-      if (!within(d.height_um, kMaxDeltaUm)) return ErrorCode::kFieldRange;
       const int32_t w = (int32_t)prev.weight_q14 + d.height_um;
       if (w < 1 || w > 65535L) return ErrorCode::kFieldRange;
       p.weight_q14 = (uint16_t)w;
@@ -108,7 +115,7 @@ ErrorCode read_varint_spline(const VarintSplineFrame& f, core::Spline* s) {
     if (!point_ok(p)) return ErrorCode::kFieldRange;
     if (f.contour && !start) {
       core::ControlPoint* middle = &s->control[at++];
-      e = contour_middle(prev, d, middle);
+      const ErrorCode e = contour_middle(prev, d, middle);
       if (e != ErrorCode::kOk) return e;
       if (!point_ok(*middle)) return ErrorCode::kFieldRange;
     }
