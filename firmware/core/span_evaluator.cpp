@@ -100,9 +100,10 @@ __attribute__((noinline)) int64_t mul_weight_q29(int64_t v, uint32_t w_q29) {
 
 // rel * w_q14 / 2^5 truncated toward zero: a coordinate times its weight in q9. Weight 1
 // (every control point of a polynomial span) is rel * 2^9 without the 64-bit product.
-__attribute__((noinline)) int64_t weighted_q9(int32_t rel, uint16_t w_q14) {
-  if (w_q14 == kWeightOneQ14) return shl64(rel, kSetupShift);
-  return (int64_t)rel * w_q14 / (1 << (14 - kSetupShift));
+// Written through out (no 8-byte return value to copy at the call).
+__attribute__((noinline)) void weighted_q9(int32_t rel, uint16_t w_q14, int64_t* out) {
+  *out = w_q14 == kWeightOneQ14 ? shl64(rel, kSetupShift)
+                                : (int64_t)rel * w_q14 / (1 << (14 - kSetupShift));
 }
 
 // v * (w_q29 >> 8), the products of the end tangent; w = 2^29 is a shift.
@@ -324,8 +325,8 @@ __attribute__((noinline)) void bezier_of_span(const Spline& spline, uint16_t spa
   for (uint8_t j = 0; j <= p; ++j) {
     const uint16_t w_q14 = spline.rational ? c[j].weight_q14 : kWeightOneQ14;
     // |c - ref| < 2^22 (coordinates within kMaxCoordinateUm, checked by setup()).
-    b[j].v[kX] = weighted_q9(c[j].x_um - c[0].x_um, w_q14);
-    b[j].v[kY] = weighted_q9(c[j].y_um - c[0].y_um, w_q14);
+    weighted_q9(c[j].x_um - c[0].x_um, w_q14, &b[j].v[kX]);
+    weighted_q9(c[j].y_um - c[0].y_um, w_q14, &b[j].v[kY]);
     b[j].v[kW] = (int64_t)w_q14 << (kAlphaShift - 14);
   }
   Alphas alphas;
