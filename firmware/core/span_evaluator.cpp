@@ -91,11 +91,11 @@ __attribute__((noinline)) int64_t div_round(int64_t num, uint32_t d) {
   return num >= 0 ? (int64_t)q : -(int64_t)q;
 }
 
-// (v * w) >> 29 (floor) for a Q29 weight w; w = 2^29 (polynomial spans) gives v without
-// the 64-bit product.
-__attribute__((noinline)) int64_t mul_weight_q29(int64_t v, uint32_t w_q29) {
+// (v * w) >> 29 (floor) for a Q29 weight w < 2^31 and a 32-bit v (a 32x32 product);
+// w = 2^29 (polynomial spans) gives v without the product.
+__attribute__((noinline)) int64_t mul_weight_q29(int32_t v, uint32_t w_q29) {
   if (w_q29 == (1UL << kAlphaShift)) return v;
-  return (v * (int64_t)w_q29) >> kAlphaShift;
+  return ((int64_t)v * (int64_t)(int32_t)w_q29) >> kAlphaShift;
 }
 
 // rel * w_q14 / 2^5 truncated toward zero: a coordinate times its weight in q9. Weight 1
@@ -114,9 +114,11 @@ __attribute__((noinline)) int64_t mul_weight_q21(int64_t v, uint32_t w_q29) {
 
 // Coordinate i of a Bezier point in um * 2^extra_bits relative to the span's first control
 // point, rounded: x / w (a shift for polynomial spans, whose w is 2^29 everywhere).
-__attribute__((noinline)) int64_t bezier_coordinate(const Homog& h, uint8_t i, uint8_t extra_bits) {
-  return div_round(shl64(h.v[i], (uint8_t)(kAlphaShift - kSetupShift + extra_bits)),
-                   (uint32_t)h.v[kW]);
+__attribute__((noinline)) uint32_t bezier_coordinate(const Homog& h, uint8_t i,
+                                                     uint8_t extra_bits) {
+  // The low 32 bits: all that the callers keep.
+  return (uint32_t)div_round(shl64(h.v[i], (uint8_t)(kAlphaShift - kSetupShift + extra_bits)),
+                             (uint32_t)h.v[kW]);
 }
 
 // The De Boor blend factors of one span: alpha[u][r-1][jj-1] = (u - knot[j]) /
@@ -200,14 +202,14 @@ void power_basis(uint8_t p, uint32_t* b, int32_t* c) {
 __attribute__((noinline)) void coordinate_coefficients(const Homog* b, uint8_t p, uint8_t i,
                                                        int32_t ref_um, uint32_t w_max, int32_t* c,
                                                        int32_t* origin_um, int32_t* end_q6) {
-  int64_t o_q9 = 0;
+  int32_t o_q9 = 0;  // |start| * 2^9 < 2^31
   uint8_t shift = kQ27Shift;
   if (i != kW) {
     const int32_t start_um = (int32_t)bezier_coordinate(b[0], i, 0);  // |.| < 2^22
     *origin_um = ref_um + start_um;
     *end_q6 = (int32_t)((uint32_t)ref_um * (1UL << kQ6Shift) +
                         (uint32_t)bezier_coordinate(b[p], i, kQ6Shift));
-    o_q9 = shl64(start_um, kSetupShift);
+    o_q9 = (int32_t)((uint32_t)start_um << kSetupShift);
     shift = 26;
   }
   uint32_t n[kMaxDegree + 1];
