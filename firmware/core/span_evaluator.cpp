@@ -372,9 +372,7 @@ SpanEvaluator::SpanEvaluator() {
 GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   degree_ = 0;
   const uint8_t p = spline.degree;
-  if (p == 0 || p > kMaxDegree || span < p || span >= spline.control_count ||
-      spline.control_count > kMaxControlPoints ||
-      spline.knot_count != spline.control_count + p + 1 ||
+  if (check_shape(spline) != GeometryError::kOk || span < p || span >= spline.control_count ||
       spline.knot[span + 1] <= spline.knot[span]) {
     return GeometryError::kKnotRangeEmpty;
   }

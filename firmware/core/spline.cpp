@@ -23,13 +23,20 @@ GeometryError check_points(const Spline& spline, uint16_t first, uint16_t last) 
 
 // Checks, in order: degree, counts, knot order, non-empty domain, coordinates, weights.
 // The order is part of the contract (one code per spline, the first problem found).
-GeometryError validate_spline(const Spline& spline) {
+GeometryError check_shape(const Spline& spline) {
   const uint16_t p = spline.degree;
   if (p == 0 || p > kMaxDegree) return GeometryError::kDegreeUnsupported;
   if (spline.control_count > kMaxControlPoints) return GeometryError::kTooManyControlPoints;
   if (spline.control_count < p + 1) return GeometryError::kTooFewControlPoints;
   if (spline.knot_count != spline.control_count + p + 1) return GeometryError::kKnotCountMismatch;
-  GeometryError e = check_knot_order(spline, 0, (uint16_t)(spline.knot_count - 1U));
+  return GeometryError::kOk;
+}
+
+GeometryError validate_spline(const Spline& spline) {
+  const uint16_t p = spline.degree;
+  GeometryError e = check_shape(spline);
+  if (e != GeometryError::kOk) return e;
+  e = check_knot_order(spline, 0, (uint16_t)(spline.knot_count - 1U));
   if (e != GeometryError::kOk) return e;
   // The curve lives on [knot[p], knot[n]]; it needs one span of positive length there.
   if (spline.knot[spline.control_count] == spline.knot[p]) return GeometryError::kKnotRangeEmpty;
