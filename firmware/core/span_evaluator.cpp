@@ -262,15 +262,15 @@ Direction scale_direction_wide(const Wide& x, const Wide& y) {
   return d;
 }
 
-// The same for a 64-bit pair (the span setup).
-__attribute__((noinline)) Direction scale_direction(int64_t x, int64_t y) {
-  Wide wx;
-  wx.hi = (uint32_t)((uint64_t)x >> 32);
-  wx.lo = (uint32_t)x;
-  Wide wy;
-  wy.hi = (uint32_t)((uint64_t)y >> 32);
-  wy.lo = (uint32_t)y;
-  return scale_direction_wide(wx, wy);
+// The same for a 64-bit pair e[0], e[1] (the span setup; through a pointer: no 16 bytes
+// of arguments to copy).
+__attribute__((noinline)) Direction scale_direction(const int64_t* e) {
+  Wide w[2];
+  for (uint8_t i = 0; i < 2; ++i) {
+    w[i].hi = (uint32_t)((uint64_t)e[i] >> 32);
+    w[i].lo = (uint32_t)e[i];
+  }
+  return scale_direction_wide(w[0], w[1]);
 }
 
 // The same for 32-bit components (the polynomial derivative): identical results, without
@@ -313,7 +313,7 @@ __attribute__((noinline)) Direction end_tangent(const Homog* b, uint8_t p) {
       e[i] = mul_weight_q21(b[p].v[i], (uint32_t)b[k].v[kW]) -
              mul_weight_q21(b[k].v[i], (uint32_t)b[p].v[kW]);
     }
-    d = scale_direction(e[kX], e[kY]);
+    d = scale_direction(e);
   }
   return d;
 }
