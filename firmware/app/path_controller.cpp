@@ -1,6 +1,8 @@
 // The 1 ms path controller (see path_controller.h and docs/firmware.md "The tick").
 #include "firmware/app/path_controller.h"
 
+#include <string.h>  // memset
+
 #include "firmware/app/planner.h"       // reach_speed_um_s
 #include "firmware/app/vector3.h"       // normalise3, length3, scale_length_q4
 #include "firmware/core/divide.h"       // div_u32_u16
@@ -26,23 +28,12 @@ uint32_t um_per_tick(uint16_t v_um_s) {
 
 }  // namespace
 
-PathController::PathController()
-    : speed_um_s_(0),
-      items_done_(0),
-      item_points_(0),
-      item_started_(false),
-      stopped_points_(0),
-      stopped_started_(false),
-      override_q8_(256),
-      override_percent_(100),
-      have_target_(false),
-      arrived_(false),
-      hold_(false) {
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) {
-    cur_.target_usteps[i] = 0;
-    residue_q8_[i] = 0;
-  }
-  cur_.tag = 0;
+// Every member zero (no target, standing), then the 100 % override: plain data, so one
+// memset rather than a store per member.
+PathController::PathController() {
+  memset(static_cast<void*>(this), 0, sizeof *this);
+  override_q8_ = 256;
+  override_percent_ = 100;
 }
 
 void PathController::init(const AxisScaling& scaling) {

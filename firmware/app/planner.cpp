@@ -1,6 +1,8 @@
 // Look-ahead planner: segment geometry, corner speeds, capture radii, backward pass.
 #include "firmware/app/planner.h"
 
+#include <string.h>  // memset
+
 #include "firmware/app/vector3.h"       // normalise3, length3
 #include "firmware/core/divide.h"       // div_u32_by_u16
 #include "firmware/core/fixed_point.h"  // abs_u32
@@ -65,14 +67,10 @@ bool unit_direction_q14(const int32_t d_um[config::kAxisCount],
   return true;
 }
 
-Planner::Planner() : map_(0), last_cruise_um_s_(0), last_length_um_(0), have_dir_(false) {
-  follow_.left = 0;
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) {
-    last_um_[i] = 0;
-    planned_um_[i] = 0;
-    last_dir_q14_[i] = 0;
-    normal_accel_um_s_per_ms_[i] = 0;
-  }
+// Every member zero (no map, nothing planned), then the settings: plain data, so one
+// memset rather than a store per member.
+Planner::Planner() {
+  memset(static_cast<void*>(this), 0, sizeof *this);
   settings_ = default_planner_settings(10);
 }
 

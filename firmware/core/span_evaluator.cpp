@@ -26,13 +26,17 @@ enum { kX = 0, kY = 1, kW = 2 };
 // AVR proxy the calls cost flash 1.6 kB less, the setup ~3 % more cycles).
 enum { kSetupShift = 9, kAlphaShift = 29 };
 
-// a + alpha * (b - a) with alpha in Q29, rounded. |b - a| < 2^33 keeps the product < 2^62.
-// alpha 0 and 1 (every De Boor level has one of each at the span's own knots) give a and b
-// exactly, without the multiply.
-__attribute__((noinline)) int64_t lerp64(int64_t a, int64_t b, int64_t alpha_q29) {
-  if (alpha_q29 == 0) return a;
-  if (alpha_q29 == ((int64_t)1 << kAlphaShift)) return b;
-  return a + (((b - a) * alpha_q29 + ((int64_t)1 << (kAlphaShift - 1))) >> kAlphaShift);
+// *b = a + alpha * (b - a) with alpha in Q29, rounded, in place (pointers and a 32-bit
+// alpha: the arguments fit the registers, no 8-byte copies at the call). |b - a| < 2^33
+// keeps the product < 2^62. alpha 0 and 1 (every De Boor level has one of each at the
+// span's own knots) give a and b exactly, without the multiply.
+__attribute__((noinline)) void lerp64(const int64_t* a, int64_t* b, int32_t alpha_q29) {
+  if (alpha_q29 == 0) {
+    *b = *a;
+    return;
+  }
+  if (alpha_q29 == (1L << kAlphaShift)) return;
+  *b = *a + (((*b - *a) * (int64_t)alpha_q29 + ((int64_t)1 << (kAlphaShift - 1))) >> kAlphaShift);
 }
 
 // v * 2^n without the undefined behaviour of shifting a negative value left.
@@ -40,12 +44,27 @@ int64_t shl64(int64_t v, uint8_t n) {
   return (int64_t)((uint64_t)v << n);  // two's complement (GCC on every target): v * 2^n
 }
 
-// (num / den) in Q29, rounded, for 0 <= num <= den, den > 0 (both < 2^33).
-// num 0 and num = den (a blend at a knot of the span itself) need no division.
-__attribute__((noinline)) int64_t ratio_q29(int64_t num, int64_t den) {
+// (num / den) in Q29, rounded (halves up), for num <= den, den > 0: long division, a
+// quotient bit a step in 32-bit words (den may fill 32 bits: the bit shifted out of the
+// remainder is kept), no 64-bit division. num 0 and num = den (a blend at a knot of the
+// span itself) need none at all.
+__attribute__((noinline)) uint32_t ratio_q29(uint32_t num, uint32_t den) {
   if (num == 0) return 0;
-  if (num == den) return (int64_t)1 << kAlphaShift;
-  return (shl64(num, kAlphaShift) + den / 2) / den;
+  if (num == den) return 1UL << kAlphaShift;
+  uint32_t rem = num;  // < den
+  uint32_t q = 0;
+  for (uint8_t i = 0; i < kAlphaShift; ++i) {
+    const bool carry = (rem & 0x80000000UL) != 0;
+    rem <<= 1;
+    q <<= 1;
+    if (carry || rem >= den) {
+      rem -= den;  // 2 rem - den, in [0, den), modulo 2^32
+      q |= 1U;
+    }
+  }
+  // floor(num 2^29 / den) = q with remainder rem: + den / 2 before the floor adds 1 when
+  // rem + floor(den / 2) >= den.
+  return rem >= den - (den >> 1) ? q + 1U : q;
 }
 
 // round(num / d) for d > 0 (rounds half away from zero; d a weight in Q29, < 2^31). A
@@ -72,18 +91,19 @@ __attribute__((noinline)) int64_t div_round(int64_t num, uint32_t d) {
   return num >= 0 ? (int64_t)q : -(int64_t)q;
 }
 
-// (v * w) >> 29 (floor) for a Q29 weight w; w = 2^29 (polynomial spans) gives v without
-// the 64-bit product.
-__attribute__((noinline)) int64_t mul_weight_q29(int64_t v, uint32_t w_q29) {
+// (v * w) >> 29 (floor) for a Q29 weight w < 2^31 and a 32-bit v (a 32x32 product);
+// w = 2^29 (polynomial spans) gives v without the product.
+__attribute__((noinline)) int64_t mul_weight_q29(int32_t v, uint32_t w_q29) {
   if (w_q29 == (1UL << kAlphaShift)) return v;
-  return (v * (int64_t)w_q29) >> kAlphaShift;
+  return ((int64_t)v * (int64_t)(int32_t)w_q29) >> kAlphaShift;
 }
 
 // rel * w_q14 / 2^5 truncated toward zero: a coordinate times its weight in q9. Weight 1
 // (every control point of a polynomial span) is rel * 2^9 without the 64-bit product.
-__attribute__((noinline)) int64_t weighted_q9(int32_t rel, uint16_t w_q14) {
-  if (w_q14 == kWeightOneQ14) return shl64(rel, kSetupShift);
-  return (int64_t)rel * w_q14 / (1 << (14 - kSetupShift));
+// Written through out (no 8-byte return value to copy at the call).
+__attribute__((noinline)) void weighted_q9(int32_t rel, uint16_t w_q14, int64_t* out) {
+  *out = w_q14 == kWeightOneQ14 ? shl64(rel, kSetupShift)
+                                : (int64_t)rel * w_q14 / (1 << (14 - kSetupShift));
 }
 
 // v * (w_q29 >> 8), the products of the end tangent; w = 2^29 is a shift.
@@ -94,9 +114,11 @@ __attribute__((noinline)) int64_t mul_weight_q21(int64_t v, uint32_t w_q29) {
 
 // Coordinate i of a Bezier point in um * 2^extra_bits relative to the span's first control
 // point, rounded: x / w (a shift for polynomial spans, whose w is 2^29 everywhere).
-__attribute__((noinline)) int64_t bezier_coordinate(const Homog& h, uint8_t i, uint8_t extra_bits) {
-  return div_round(shl64(h.v[i], (uint8_t)(kAlphaShift - kSetupShift + extra_bits)),
-                   (uint32_t)h.v[kW]);
+__attribute__((noinline)) uint32_t bezier_coordinate(const Homog& h, uint8_t i,
+                                                     uint8_t extra_bits) {
+  // The low 32 bits: all that the callers keep.
+  return (uint32_t)div_round(shl64(h.v[i], (uint8_t)(kAlphaShift - kSetupShift + extra_bits)),
+                             (uint32_t)h.v[kW]);
 }
 
 // The De Boor blend factors of one span: alpha[u][r-1][jj-1] = (u - knot[j]) /
@@ -110,12 +132,14 @@ struct Alphas {
 __attribute__((noinline)) void blend_factors(const Spline& s, uint16_t span, Alphas* a) {
   const uint8_t p = s.degree;
   for (uint8_t side = 0; side < 2; ++side) {
-    const int64_t u = s.knot[span + side];
+    // knot[j] <= u <= knot[j + p + 1 - r] (the window is in order): both differences are
+    // below 2^32, exact as unsigned 32-bit ones.
+    const uint32_t u = (uint32_t)s.knot[span + side];
     for (uint8_t r = 1; r <= p; ++r) {
       for (uint8_t jj = r; jj <= p; ++jj) {
         const uint16_t j = (uint16_t)(span - p + jj);  // control index of d[jj]
-        const int64_t lo = s.knot[j];
-        const int64_t hi = s.knot[j + p + 1 - r];
+        const uint32_t lo = (uint32_t)s.knot[j];
+        const uint32_t hi = (uint32_t)s.knot[j + p + 1 - r];
         a->q29[side][r - 1][jj - 1] = (int32_t)ratio_q29(u - lo, hi - lo);
       }
     }
@@ -126,10 +150,8 @@ __attribute__((noinline)) void blend_factors(const Spline& s, uint16_t span, Alp
 void blossom_level(uint8_t p, bool rational, const Alphas& a, uint8_t side, uint8_t r, Homog* d) {
   const uint8_t coordinates = rational ? 3 : 2;
   for (uint8_t jj = p; jj >= r; --jj) {
-    const int64_t alpha = a.q29[side][r - 1][jj - 1];
-    for (uint8_t i = 0; i < coordinates; ++i) {
-      d[jj].v[i] = lerp64(d[jj - 1].v[i], d[jj].v[i], alpha);
-    }
+    const int32_t alpha = a.q29[side][r - 1][jj - 1];
+    for (uint8_t i = 0; i < coordinates; ++i) lerp64(&d[jj - 1].v[i], &d[jj].v[i], alpha);
   }
 }
 
@@ -180,14 +202,14 @@ void power_basis(uint8_t p, uint32_t* b, int32_t* c) {
 __attribute__((noinline)) void coordinate_coefficients(const Homog* b, uint8_t p, uint8_t i,
                                                        int32_t ref_um, uint32_t w_max, int32_t* c,
                                                        int32_t* origin_um, int32_t* end_q6) {
-  int64_t o_q9 = 0;
+  int32_t o_q9 = 0;  // |start| * 2^9 < 2^31
   uint8_t shift = kQ27Shift;
   if (i != kW) {
     const int32_t start_um = (int32_t)bezier_coordinate(b[0], i, 0);  // |.| < 2^22
     *origin_um = ref_um + start_um;
     *end_q6 = (int32_t)((uint32_t)ref_um * (1UL << kQ6Shift) +
                         (uint32_t)bezier_coordinate(b[p], i, kQ6Shift));
-    o_q9 = shl64(start_um, kSetupShift);
+    o_q9 = (int32_t)((uint32_t)start_um << kSetupShift);
     shift = 26;
   }
   uint32_t n[kMaxDegree + 1];
@@ -240,15 +262,15 @@ Direction scale_direction_wide(const Wide& x, const Wide& y) {
   return d;
 }
 
-// The same for a 64-bit pair (the span setup).
-__attribute__((noinline)) Direction scale_direction(int64_t x, int64_t y) {
-  Wide wx;
-  wx.hi = (uint32_t)((uint64_t)x >> 32);
-  wx.lo = (uint32_t)x;
-  Wide wy;
-  wy.hi = (uint32_t)((uint64_t)y >> 32);
-  wy.lo = (uint32_t)y;
-  return scale_direction_wide(wx, wy);
+// The same for a 64-bit pair e[0], e[1] (the span setup; through a pointer: no 16 bytes
+// of arguments to copy).
+__attribute__((noinline)) Direction scale_direction(const int64_t* e) {
+  Wide w[2];
+  for (uint8_t i = 0; i < 2; ++i) {
+    w[i].hi = (uint32_t)((uint64_t)e[i] >> 32);
+    w[i].lo = (uint32_t)e[i];
+  }
+  return scale_direction_wide(w[0], w[1]);
 }
 
 // The same for 32-bit components (the polynomial derivative): identical results, without
@@ -291,7 +313,7 @@ __attribute__((noinline)) Direction end_tangent(const Homog* b, uint8_t p) {
       e[i] = mul_weight_q21(b[p].v[i], (uint32_t)b[k].v[kW]) -
              mul_weight_q21(b[k].v[i], (uint32_t)b[p].v[kW]);
     }
-    d = scale_direction(e[kX], e[kY]);
+    d = scale_direction(e);
   }
   return d;
 }
@@ -305,8 +327,8 @@ __attribute__((noinline)) void bezier_of_span(const Spline& spline, uint16_t spa
   for (uint8_t j = 0; j <= p; ++j) {
     const uint16_t w_q14 = spline.rational ? c[j].weight_q14 : kWeightOneQ14;
     // |c - ref| < 2^22 (coordinates within kMaxCoordinateUm, checked by setup()).
-    b[j].v[kX] = weighted_q9(c[j].x_um - c[0].x_um, w_q14);
-    b[j].v[kY] = weighted_q9(c[j].y_um - c[0].y_um, w_q14);
+    weighted_q9(c[j].x_um - c[0].x_um, w_q14, &b[j].v[kX]);
+    weighted_q9(c[j].y_um - c[0].y_um, w_q14, &b[j].v[kY]);
     b[j].v[kW] = (int64_t)w_q14 << (kAlphaShift - 14);
   }
   Alphas alphas;
@@ -350,25 +372,15 @@ SpanEvaluator::SpanEvaluator() {
 GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   degree_ = 0;
   const uint8_t p = spline.degree;
-  if (p == 0 || p > kMaxDegree || span < p || span >= spline.control_count ||
-      spline.control_count > kMaxControlPoints ||
-      spline.knot_count != spline.control_count + p + 1 ||
+  if (check_shape(spline) != GeometryError::kOk || span < p || span >= spline.control_count ||
       spline.knot[span + 1] <= spline.knot[span]) {
     return GeometryError::kKnotRangeEmpty;
   }
   // The window this span reads must be sound even if nobody validated the spline: no
   // zero or negative denominator, no zero weight, no coordinate beyond the headroom.
-  for (uint16_t j = (uint16_t)(span - p); j < (uint16_t)(span + p + 1); ++j) {
-    if (spline.knot[j + 1] < spline.knot[j]) return GeometryError::kKnotsDecreasing;
-  }
-  for (uint16_t j = (uint16_t)(span - p); j <= span; ++j) {
-    const ControlPoint& c = spline.control[j];
-    if (c.x_um > kMaxCoordinateUm || c.x_um < -kMaxCoordinateUm || c.y_um > kMaxCoordinateUm ||
-        c.y_um < -kMaxCoordinateUm) {
-      return GeometryError::kCoordinateOutOfRange;
-    }
-    if (spline.rational && c.weight_q14 == 0) return GeometryError::kZeroWeight;
-  }
+  GeometryError e = check_knot_order(spline, (uint16_t)(span - p), (uint16_t)(span + p + 1));
+  if (e == GeometryError::kOk) e = check_points(spline, (uint16_t)(span - p), span);
+  if (e != GeometryError::kOk) return e;
   const ControlPoint& ref = spline.control[span - p];
   Homog b[kMaxDegree + 1];
   bezier_of_span(spline, span, b);
@@ -381,13 +393,11 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   // Per coordinate: the origin (the span start rounded to 1 um, absolute), the end point
   // straight from the last Bezier point (exact up to setup rounding), and the numerators
   // relative to the origin in q6 with the weights normalised to max 1.
-  int32_t origin_um[2];
-  int32_t end_q6[2];
-  coordinate_coefficients(b, p, kX, ref.x_um, w_max, cx_, &origin_um[kX], &end_q6[kX]);
-  coordinate_coefficients(b, p, kY, ref.y_um, w_max, cy_, &origin_um[kY], &end_q6[kY]);
+  // Straight into the members (evaluate_q6 below reads origin_q6_ and the coefficients, not
+  // end_). Through locals, avr-gcc 5.4.0 miscompiled this call sequence once (docs/performance.md).
+  coordinate_coefficients(b, p, kX, ref.x_um, w_max, cx_, &origin_.x_um, &end_.x_q6);
+  coordinate_coefficients(b, p, kY, ref.y_um, w_max, cy_, &origin_.y_um, &end_.y_q6);
   coordinate_coefficients(b, p, kW, 0, w_max, cw_, 0, 0);
-  origin_.x_um = origin_um[kX];
-  origin_.y_um = origin_um[kY];
   origin_q6_.x_q6 = origin_.x_um * (1L << kQ6Shift);  // |.| < 2^26: once, not per point
   origin_q6_.y_q6 = origin_.y_um * (1L << kQ6Shift);
   degree_ = p;
@@ -414,8 +424,6 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   while (top >= (1UL << (26 + dir_shift_))) ++dir_shift_;
   rational_ = spline.rational;
   start_ = evaluate_q6(0);
-  end_.x_q6 = end_q6[kX];
-  end_.y_q6 = end_q6[kY];
   end_dir_ = end_tangent(b, p);
   return GeometryError::kOk;
 }

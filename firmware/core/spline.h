@@ -41,6 +41,16 @@ struct Spline {
 // Checks everything the evaluator relies on. kOk means evaluation cannot trap or loop.
 GeometryError validate_spline(const Spline& spline);
 
+// The first four checks of validate_spline (degree, counts): kDegreeUnsupported,
+// kTooManyControlPoints, kTooFewControlPoints or kKnotCountMismatch.
+GeometryError check_shape(const Spline& spline);
+// Parts of validate_spline that the span setup runs on its window alone. kKnotsDecreasing
+// when knot[i + 1] < knot[i] for an i in [first, last); needs last < knot capacity.
+GeometryError check_knot_order(const Spline& spline, uint16_t first, uint16_t last);
+// kCoordinateOutOfRange or kZeroWeight (rational only) for the first bad point in
+// [first, last], coordinates checked first.
+GeometryError check_points(const Spline& spline, uint16_t first, uint16_t last);
+
 }  // namespace core
 
 #endif  // FIRMWARE_CORE_SPLINE_H

@@ -266,7 +266,7 @@ ErrorCode read_fields(const uint8_t* bytes, uint8_t length, uint8_t* msg, const 
   bool bad_flag = false;
   for (; f->type != kWireEnd; ++f) {
     const uint8_t left = (uint8_t)(length - pos);
-    if (f->type == kWireText) {
+    if (f->type == kWireText || f->type == kWireBytes) {  // the rest of the payload
       if (left > f->max_count) return ErrorCode::kPayloadLength;
       msg[f->count_offset] = left;
       if (left > 0) memcpy(msg + f->offset, bytes + pos, left);  // bytes may be 0 when empty
@@ -274,13 +274,6 @@ ErrorCode read_fields(const uint8_t* bytes, uint8_t length, uint8_t* msg, const 
       continue;
     }
     if (f->type == kWireNone) continue;  // set by its kWireBytes array
-    if (f->type == kWireBytes) {
-      if (left > f->max_count) return ErrorCode::kPayloadLength;
-      msg[f->count_offset] = left;
-      if (left > 0) memcpy(msg + f->offset, bytes + pos, left);
-      pos = length;
-      continue;
-    }
     if (f->type == kWirePoints || f->type == kWireKnots) {
       const uint8_t n = msg[f->count_offset];
       if (n > f->max_count) return ErrorCode::kFieldRange;

@@ -46,6 +46,7 @@ ErrorCode scan_compact(const SplineCompactCmd& m);
 // kFieldRange (what was written is then meaningless) for a weight in a polynomial spline,
 // a weight outside 1..65535, a coordinate outside +-core::kMaxCoordinateUm or a knot
 // beyond int32; kPayloadLength / kFieldRange as scan_compact for malformed data.
+// s == 0: scan_compact. Both run varint_spline.h's one reader.
 ErrorCode unpack_compact(const SplineCompactCmd& m, core::Spline* s);
 
 }  // namespace proto

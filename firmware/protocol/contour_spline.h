@@ -56,6 +56,7 @@ ErrorCode scan_contour(const SplineContourCmd& m);
 // last, also every knot. Entries beyond the stored ones only. kFieldRange for a point
 // outside +-core::kMaxCoordinateUm or an element contour_middle refuses; kPayloadLength /
 // kFieldRange as scan_contour for malformed data.
+// s == 0: scan_contour. Both run varint_spline.h's one reader.
 ErrorCode unpack_contour(const SplineContourCmd& m, core::Spline* s);
 
 // True if s (degree, rational, counts) is the shape #Q frames fill: degree 2, rational, an
