@@ -234,7 +234,8 @@ void run_send(const SendArgs& a) {
   if (!a.resume_at.empty()) o.resume_at = commands::parse_resume_at(a.resume_at);
   o.resume = a.resume;
   Drawing drawing;
-  const JobPlan plan = load_plan(a.plan, &drawing);
+  commands::PlannedBoard board;  // PCB input: where its probe probes
+  const JobPlan plan = load_plan(a.plan, &drawing, &board);
   // A map from a file is checked against the job before anything is sent.
   o.map = load_height_map(a.map);
   if (o.map) refuse_job_leaving_map(plan, *o.map, a.map.height_map);
@@ -249,7 +250,8 @@ void run_send(const SendArgs& a) {
   o.encode = encode_options(a.plan);
   if (a.map.probe) {
     o.probe = [&, path = probe_map_path](Sender& sender) {
-      heightmap::HeightMap map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path);
+      heightmap::HeightMap map =
+          probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path, board.probe_area);
       refuse_job_leaving_map(plan, map, path);
       return map;
     };
@@ -278,7 +280,8 @@ struct ProbeArgs {
 
 void run_probe(const ProbeArgs& a) {
   Drawing drawing;
-  const JobPlan plan = load_plan(a.plan, &drawing);
+  commands::PlannedBoard board;  // PCB input: where its probe probes
+  const JobPlan plan = load_plan(a.plan, &drawing, &board);
   const std::string path =
       a.map.height_map.empty() ? default_map_path(".", input_name(a.plan.file)) : a.map.height_map;
   check_map_writable(path);  // before the machine moves, not after every point is probed
@@ -293,7 +296,7 @@ void run_probe(const ProbeArgs& a) {
       "engraver: probing the blank under {} through {}: the probe clip on the blank, the "
       "spindle off\n",
       a.plan.file, link->name());
-  probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path);
+  probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path, board.probe_area);
   signals_to(nullptr);
 }
 
@@ -399,8 +402,8 @@ commands::RunOptions run_options(const RunArgs& a, const JobPlan& plan,
     check_map_writable(o.map_file);
   }
   if (a.map.probe) {
-    o.probe = [&a, &plan, path = o.map_file](Sender& sender) {
-      heightmap::HeightMap map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path);
+    o.probe = [&a, &plan, path = o.map_file, area = board.probe_area](Sender& sender) {
+      heightmap::HeightMap map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path, area);
       refuse_job_leaving_map(plan, map, path);
       return map;
     };

@@ -9,6 +9,7 @@
 #include <string>    // std::string
 #include <vector>    // std::vector
 
+#include "host/lib/heightmap/surface_model.h"  // AreaMm
 #include "host/lib/pcb/board_alignment.h"  // RigidTransform
 #include "host/lib/pcb/board_job.h"
 #include "host/lib/pcb/isolation_check.h"  // IsolationCheck
@@ -22,6 +23,8 @@ struct PlannedBoard {
   std::string title;
   double check_tolerance_mm = 0;
   double isolation_z_mm = 0;
+  // Where a probe of this board probes (pcb::board_probe_area: with the bottom side's cuts).
+  std::optional<heightmap::AreaMm> probe_area;
   // The isolation cuts' Z when the board has copper and isolation cuts to check.
   std::optional<double> checked_isolation_z_mm() const {
     if (job == nullptr || job->copper_machine_nm.empty() || job->isolation_curves == 0)

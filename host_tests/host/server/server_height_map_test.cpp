@@ -245,8 +245,9 @@ TEST(ServerHeightMap, TheBottomSideReusesTheTopSidesMap) {
       server,
       blinky({{"side", "bottom"}, {"height_map_from", std::to_string(plain)}}, "blinky-B.Cu.gbr"));
   ASSERT_TRUE(test::wait_until([&] { return server.job(orphan)["state"] == "failed"; }, 60));
-  EXPECT_NE(server.job(orphan)["message"].get<std::string>().find("has no height map"),
-            std::string::npos);
+  EXPECT_NE(
+      server.job(orphan)["message"].get<std::string>().find("ended completed without a height map"),
+      std::string::npos);
   auto r = server.client().Post("/api/jobs", server.auth(), blinky({{"height_map_from", "999"}}));
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 400);
