@@ -63,7 +63,7 @@ namespace {
 heightmap::HeightMap source_map(const JobRecord& from, const std::filesystem::path& from_dir,
                                 const std::string& machine) {
   if (!std::filesystem::exists(from_dir / kHeightMapFile)) {
-    if (is_final(from.state)) {
+    if (is_final(from.state) && from.state != JobState::kCompleted) {
       throw std::runtime_error(fmt::format("job {} ended {} without a height map{}", from.id,
                                            state_name(from.state),
                                            from.message.empty() ? "" : " (" + from.message + ")"));

@@ -559,7 +559,7 @@ void HttpApi::routes() {
     for (const JobRecord& j : store_.list(state, static_cast<size_t>(limit))) {
       jobs.push_back(job_json(j));
       jobs.back()["height_map"] = has_height_map(j);
-      jobs.back()["waiting"] = map_wait_text(j, map_source_of(store_, data_, j));
+      jobs.back()["waiting"] = map_wait_of(store_, data_, j);
     }
     send_json(res, 200, {{"jobs", jobs}});
   });
@@ -570,7 +570,7 @@ void HttpApi::routes() {
           nlohmann::json j = job_json(*job);
           j["runs"] = run_count(data_.job_dir(job->key));  // runs/1 .. runs/N in its archive
           j["height_map"] = has_height_map(*job);
-          j["waiting"] = map_wait_text(*job, map_source_of(store_, data_, *job));
+          j["waiting"] = map_wait_of(store_, data_, *job);
           send_json(res, 200, j);
         });
   s.Get(R"(/api/jobs/(\d{1,18})/path)",

@@ -45,6 +45,11 @@ std::string map_wait_text(const JobRecord& job, const MapSource& source) {
   return fmt::format("waiting for the height map of job {}", source.from);
 }
 
+std::string map_wait_of(JobStore& store, const DataFolder& data, const JobRecord& job) {
+  if (job.state != JobState::kQueued) return "";
+  return map_wait_text(job, map_source_of(store, data, job));
+}
+
 std::vector<int64_t> jobs_not_for_machine(JobStore& store, const DataFolder& data,
                                           const std::string& machine,
                                           const std::vector<std::string>& machines) {

@@ -28,6 +28,9 @@ MapSource map_source_of(JobStore& store, const DataFolder& data, const JobRecord
 // and may still make one; "" otherwise (it may run, or it runs to fail with the reason).
 std::string map_wait_text(const JobRecord& job, const MapSource& source);
 
+// map_wait_text of a job, looking at its source only when it is queued.
+std::string map_wait_of(JobStore& store, const DataFolder& data, const JobRecord& job);
+
 // The queued jobs a machine leaves in the queue: those waiting for their map, and those
 // whose map was probed on another of `machines` (that one takes them).
 std::vector<int64_t> jobs_not_for_machine(JobStore& store, const DataFolder& data,
