@@ -799,7 +799,8 @@ bool input_exists(const std::string& input) {
 
 JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d,
                        commands::PlannedBoard* board) {
-  const BoardFiles b = read_input(input, args.side, !args.align_holes.empty());
+  const bool probe_area = board != nullptr && board->with_probe_area;
+  const BoardFiles b = read_input(input, args.side, probe_area && !args.align_holes.empty());
   print_notes(b);
   const pcb::BoardOptions o = board_options(args, d, b);
   const auto job = std::make_shared<const pcb::BoardJob>(plan(b, o, args.align_measured_mm));
@@ -823,6 +824,8 @@ JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const Ma
     board->title = b.name;
     board->check_tolerance_mm = pcb::isolation_check_tolerance_mm(o);
     board->isolation_z_mm = -o.isolation_depth_mm;
+  }
+  if (probe_area) {
     PcbLayer drill;  // the layers again: the bottom side is planned from them too
     board->probe_area = pcb::board_probe_area(b.layers.layers(&drill), o, *job);
   }

@@ -235,6 +235,7 @@ void run_send(const SendArgs& a) {
   o.resume = a.resume;
   Drawing drawing;
   commands::PlannedBoard board;  // PCB input: where its probe probes
+  board.with_probe_area = a.map.probe;
   const JobPlan plan = load_plan(a.plan, &drawing, &board);
   // A map from a file is checked against the job before anything is sent.
   o.map = load_height_map(a.map);
@@ -281,6 +282,7 @@ struct ProbeArgs {
 void run_probe(const ProbeArgs& a) {
   Drawing drawing;
   commands::PlannedBoard board;  // PCB input: where its probe probes
+  board.with_probe_area = true;
   const JobPlan plan = load_plan(a.plan, &drawing, &board);
   const std::string path =
       a.map.height_map.empty() ? default_map_path(".", input_name(a.plan.file)) : a.map.height_map;
@@ -415,6 +417,7 @@ commands::RunOptions run_options(const RunArgs& a, const JobPlan& plan,
 void run_run(const RunArgs& a) {
   JobPlan plan;
   commands::PlannedBoard board;  // PCB input: its board job
+  board.with_probe_area = a.map.probe;
   std::optional<commands::FlipSimulation> flip;
   if (!a.blank_error.empty()) {
     flip.emplace();

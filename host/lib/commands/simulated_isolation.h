@@ -23,7 +23,9 @@ struct PlannedBoard {
   std::string title;
   double check_tolerance_mm = 0;
   double isolation_z_mm = 0;
-  // Where a probe of this board probes (pcb::board_probe_area: with the bottom side's cuts).
+  // Asked by the caller before planning (a probe comes): where it probes, made then
+  // (pcb::board_probe_area: a double-sided top side plans its bottom side for it too).
+  bool with_probe_area = false;
   std::optional<heightmap::AreaMm> probe_area;
   // The isolation cuts' Z when the board has copper and isolation cuts to check.
   std::optional<double> checked_isolation_z_mm() const {
