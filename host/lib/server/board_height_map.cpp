@@ -52,9 +52,10 @@ std::string map_probed_on(const std::filesystem::path& job_dir) {
 
 void keep_height_map(const std::filesystem::path& job_dir, const heightmap::HeightMap& map,
                      const std::string& title, const std::string& machine) {
-  heightmap::write_height_map_file(map, (job_dir / kHeightMapFile).string());
-  write_height_map_svg(map, title, (job_dir / kHeightMapPicture).string());
+  // The machine first: a queue that sees the map sees whose it is (map_source.h).
   std::ofstream(job_dir / kHeightMapMachineFile, std::ios::binary | std::ios::trunc) << machine;
+  write_height_map_svg(map, title, (job_dir / kHeightMapPicture).string());
+  heightmap::write_height_map_file(map, (job_dir / kHeightMapFile).string());
 }
 
 namespace {
