@@ -10,7 +10,7 @@
 #include <vector>    // std::vector
 
 #include "host/lib/heightmap/surface_model.h"  // AreaMm
-#include "host/lib/pcb/board_alignment.h"  // RigidTransform
+#include "host/lib/pcb/board_alignment.h"      // RigidTransform
 #include "host/lib/pcb/board_job.h"
 #include "host/lib/pcb/isolation_check.h"  // IsolationCheck
 
