@@ -21,6 +21,7 @@
 #include "host/cli/terminal_text.h"
 #include "host/lib/pcb/board_check.h"
 #include "host/lib/pcb/board_files.h"  // BoardFileSet, read_board_file
+#include "host/lib/pcb/board_probe_area.h"
 #include "host/lib/pcb/isolation_check.h"
 #include "host/lib/pcb/pcb_file_names.h"
 #include "host/lib/pcb/pcb_geometry.h"
@@ -153,7 +154,10 @@ LayerKind copper_for_side(const std::string& side, const std::vector<std::string
 }
 
 // side_asked: --side, or "" (a "top:"/"bottom:" prefix, else the board's default side).
-BoardFiles read_input(const std::string& input, const std::string& side_asked = "") {
+// both_copper: the other side's copper too (a double-sided board's probe area reaches over
+// the bottom side's cuts, board_probe_area.h).
+BoardFiles read_input(const std::string& input, const std::string& side_asked = "",
+                      bool both_copper = false) {
   BoardFiles b;
   bool directory = false;
   std::string stripped;
@@ -187,7 +191,7 @@ BoardFiles read_input(const std::string& input, const std::string& side_asked = 
                           "outline: left out (name it with --top, --bottom or --outline)");
         continue;
       }
-      if (wanted_copper != LayerKind::kUnknown && named != wanted_copper &&
+      if (!both_copper && wanted_copper != LayerKind::kUnknown && named != wanted_copper &&
           (named == LayerKind::kCopperTop || named == LayerKind::kCopperBottom)) {
         b.notes.push_back(f + ": copper of the other side: not read for this job");
         continue;
@@ -795,7 +799,8 @@ bool input_exists(const std::string& input) {
 
 JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d,
                        commands::PlannedBoard* board) {
-  const BoardFiles b = read_input(input, args.side);
+  const bool probe_area = board != nullptr && board->with_probe_area;
+  const BoardFiles b = read_input(input, args.side, probe_area && !args.align_holes.empty());
   print_notes(b);
   const pcb::BoardOptions o = board_options(args, d, b);
   const auto job = std::make_shared<const pcb::BoardJob>(plan(b, o, args.align_measured_mm));
@@ -819,6 +824,10 @@ JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const Ma
     board->title = b.name;
     board->check_tolerance_mm = pcb::isolation_check_tolerance_mm(o);
     board->isolation_z_mm = -o.isolation_depth_mm;
+  }
+  if (probe_area) {
+    PcbLayer drill;  // the layers again: the bottom side is planned from them too
+    board->probe_area = pcb::board_probe_area(b.layers.layers(&drill), o, *job);
   }
   return job->plan;
 }

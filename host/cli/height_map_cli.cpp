@@ -153,8 +153,10 @@ void check_map_writable(const std::string& map_path) {
 constexpr int kExitProbeRefusedByController = 5;
 
 heightmap::HeightMap probe_for_job(Sender& sender, const JobPlan& plan, const HeightMapArgs& a,
-                                   double z_up_mm, const std::string& map_path) {
-  const std::optional<heightmap::AreaMm> area = heightmap::cutting_area(plan);
+                                   double z_up_mm, const std::string& map_path,
+                                   const std::optional<heightmap::AreaMm>& board_area) {
+  const std::optional<heightmap::AreaMm> area =
+      board_area ? board_area : heightmap::cutting_area(plan);
   if (!area) throw CommandFailure(kExitUsage, "the job cuts nothing: there is nothing to probe");
   heightmap::ProbeOptions o;
   o.grid = a.grid;

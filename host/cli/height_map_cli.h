@@ -59,8 +59,10 @@ void check_map_writable(const std::string& map_path);
 // returns it. Ends the command (CommandFailure) with exit 1 when the probing is refused (an
 // outlier, two touches apart, the span), 2 for a grid the options cannot make or a map that
 // cannot be written, 5 when the controller refuses the probe (its alarm); a LinkError passes.
+// area: where to probe (a board's pcb::board_probe_area); nullopt: where the plan cuts.
 heightmap::HeightMap probe_for_job(Sender& sender, const JobPlan& plan, const HeightMapArgs& a,
-                                   double z_up_mm, const std::string& map_path);
+                                   double z_up_mm, const std::string& map_path,
+                                   const std::optional<heightmap::AreaMm>& area);
 // Exit 1 (nothing sent) when the job cuts outside the map.
 void refuse_job_leaving_map(const JobPlan& plan, const heightmap::HeightMap& map,
                             const std::string& what);

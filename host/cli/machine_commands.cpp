@@ -235,7 +235,9 @@ void run_send(const SendArgs& a) {
   if (!a.resume_at.empty()) o.resume_at = commands::parse_resume_at(a.resume_at);
   o.resume = a.resume;
   Drawing drawing;
-  const JobPlan plan = load_plan(a.plan, &drawing);
+  commands::PlannedBoard board;  // PCB input: where its probe probes
+  board.with_probe_area = a.map.probe;
+  const JobPlan plan = load_plan(a.plan, &drawing, &board);
   // A map from a file is checked against the job before anything is sent.
   o.map = load_height_map(a.map);
   if (o.map) refuse_job_leaving_map(plan, *o.map, a.map.height_map);
@@ -250,7 +252,8 @@ void run_send(const SendArgs& a) {
   o.encode = encode_options(a.plan);
   if (a.map.probe) {
     o.probe = [&, path = probe_map_path](Sender& sender) {
-      heightmap::HeightMap map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path);
+      heightmap::HeightMap map =
+          probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path, board.probe_area);
       refuse_job_leaving_map(plan, map, path);
       return map;
     };
@@ -279,7 +282,9 @@ struct ProbeArgs {
 
 void run_probe(const ProbeArgs& a) {
   Drawing drawing;
-  const JobPlan plan = load_plan(a.plan, &drawing);
+  commands::PlannedBoard board;  // PCB input: where its probe probes
+  board.with_probe_area = true;
+  const JobPlan plan = load_plan(a.plan, &drawing, &board);
   const std::string path =
       a.map.height_map.empty() ? default_map_path(".", input_name(a.plan.file)) : a.map.height_map;
   check_map_writable(path);  // before the machine moves, not after every point is probed
@@ -295,7 +300,7 @@ void run_probe(const ProbeArgs& a) {
       "spindle off\n",
       a.plan.file, link->name());
   try {
-    probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path);
+    probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path, board.probe_area);
   } catch (const CommandFailure&) {
     signals_to(nullptr);
     // Ctrl-C stopped the touch where it was (#X): the tool up before engraver ends.
@@ -410,8 +415,8 @@ commands::RunOptions run_options(const RunArgs& a, const JobPlan& plan,
     check_map_writable(o.map_file);
   }
   if (a.map.probe) {
-    o.probe = [&a, &plan, path = o.map_file](Sender& sender) {
-      heightmap::HeightMap map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path);
+    o.probe = [&a, &plan, path = o.map_file, area = board.probe_area](Sender& sender) {
+      heightmap::HeightMap map = probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path, area);
       refuse_job_leaving_map(plan, map, path);
       return map;
     };
@@ -423,6 +428,7 @@ commands::RunOptions run_options(const RunArgs& a, const JobPlan& plan,
 void run_run(const RunArgs& a) {
   JobPlan plan;
   commands::PlannedBoard board;  // PCB input: its board job
+  board.with_probe_area = a.map.probe;
   std::optional<commands::FlipSimulation> flip;
   if (!a.blank_error.empty()) {
     flip.emplace();

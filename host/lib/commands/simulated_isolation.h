@@ -9,7 +9,8 @@
 #include <string>    // std::string
 #include <vector>    // std::vector
 
-#include "host/lib/pcb/board_alignment.h"  // RigidTransform
+#include "host/lib/heightmap/surface_model.h"  // AreaMm
+#include "host/lib/pcb/board_alignment.h"      // RigidTransform
 #include "host/lib/pcb/board_job.h"
 #include "host/lib/pcb/isolation_check.h"  // IsolationCheck
 
@@ -22,6 +23,10 @@ struct PlannedBoard {
   std::string title;
   double check_tolerance_mm = 0;
   double isolation_z_mm = 0;
+  // Asked by the caller before planning (a probe comes): where it probes, made then
+  // (pcb::board_probe_area: a double-sided top side plans its bottom side for it too).
+  bool with_probe_area = false;
+  std::optional<heightmap::AreaMm> probe_area;
   // The isolation cuts' Z when the board has copper and isolation cuts to check.
   std::optional<double> checked_isolation_z_mm() const {
     if (job == nullptr || job->copper_machine_nm.empty() || job->isolation_curves == 0)

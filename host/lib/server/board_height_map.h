@@ -7,12 +7,16 @@
 #include <nlohmann/json.hpp>  // nlohmann::json
 
 #include <filesystem>  // std::filesystem::path
+#include <functional>  // std::function
 #include <optional>    // std::optional
 #include <string>      // std::string
 
 #include "host/lib/heightmap/height_map.h"
 #include "host/lib/heightmap/surface_model.h"  // AreaMm
-#include "host/lib/pcb/board_job.h"
+#include "host/lib/plan/job_plan.h"
+#include "host/lib/server/board_planning.h"  // BoardSettings
+#include "host/lib/server/data_folder.h"
+#include "host/lib/server/job_store.h"
 
 namespace host::server {
 
@@ -21,11 +25,7 @@ extern const char kHeightMapFile[];         // "heightmap.json"
 extern const char kHeightMapMachineFile[];  // "heightmap.machine": the machine probed on
 extern const char kHeightMapPicture[];      // "heightmap.svg"
 
-// Where a probe-first job probes (machine frame): everywhere it cuts, and for a board with
-// alignment holes also where its bottom side will cut after the flip (the mirror about the
-// flip axis, the outline's cut-out included), so the bottom job can use the same map.
-// nullopt for a job that cuts nothing.
-std::optional<heightmap::AreaMm> board_probe_area(const pcb::BoardJob& job);
+// The probe area in board.json (probe_area_mm: X0, Y0, X1, Y1): pcb::board_probe_area.
 nlohmann::json area_json(const heightmap::AreaMm& a);
 heightmap::AreaMm area_of_json(const nlohmann::json& j);
 
@@ -40,6 +40,33 @@ heightmap::AreaMm area_of_json(const nlohmann::json& j);
 // Throws HeightMapError for an unknown flip.
 heightmap::HeightMap map_after_flip(const heightmap::HeightMap& top, double flip_axis_x_mm,
                                     const std::string& flip);
+
+// The machine a job folder's map was probed on ("" when none is named).
+std::string map_probed_on(const std::filesystem::path& job_dir);
+// Keeps a job's map, its picture and its machine in its archive folder.
+void keep_height_map(const std::filesystem::path& job_dir, const heightmap::HeightMap& map,
+                     const std::string& title, const std::string& machine);
+
+// The map a height_map_from job cuts with: its source job's, flipped as asked, checked
+// against `plan` and only then kept in `job_dir`. Throws std::runtime_error with the reason
+// (no such job, the source ended or has no map yet, another machine's map, no flip axis, a
+// map that does not cover the job).
+heightmap::HeightMap map_from_source_job(JobStore& store, const DataFolder& data,
+                                         const std::filesystem::path& job_dir,
+                                         const std::string& job_name, const BoardSettings& board,
+                                         const std::string& machine, const JobPlan& plan,
+                                         const std::function<void(const std::string&)>& note);
+
+// Why a planned board's height map fields are refused at upload (400), naming the field;
+// "" when fine: a probe_spacing_mm that makes more than 16 points a side over the probe
+// area, height_map_flip=blank from a job without alignment holes, and a source job's map
+// (when it has one already) that does not cover this job where it will lie.
+std::string check_height_map_fields(JobStore& store, const DataFolder& data,
+                                    const BoardSettings& board, const PlannedBoard& planned);
+
+// The height map's messages (the library's, worded for the command line) with the
+// server's fields: probe_first=1 for --probe, and no --outlier-limit (the server keeps it).
+std::string server_map_words(std::string text);
 
 }  // namespace host::server
 

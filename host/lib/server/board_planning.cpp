@@ -11,6 +11,7 @@
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/pcb/board_check.h"  // refuse_copper_hits
 #include "host/lib/pcb/board_files.h"
+#include "host/lib/pcb/board_probe_area.h"
 #include "host/lib/pcb/cutout.h"
 #include "host/lib/server/board_height_map.h"
 #include "host/lib/server/data_folder.h"
@@ -319,10 +320,12 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
                     {"tool_changes", r.tool_changes},
                     {"narrow_gaps", gaps}}}};
   // Where a probe-first job probes; where the bottom side's job finds the flip axis.
-  if (const std::optional<heightmap::AreaMm> area = board_probe_area(out.job))
+  pcb::PcbLayer drill;  // the layers again: the bottom side is planned from them too
+  if (const std::optional<heightmap::AreaMm> area =
+          pcb::board_probe_area(set.layers(&drill), options, out.job))
     out.manifest["probe_area_mm"] = area_json(*area);
   if (!out.job.alignment_holes_mm.empty()) {
-    out.manifest["flip_axis_machine_x_mm"] = out.job.alignment_holes_mm.front().x();
+    out.manifest["flip_axis_machine_x_mm"] = pcb::flip_axis_machine_x_mm(out.job);
     // Where the pins stand (machine frame, hole 1 first): what align_measured is measured
     // against after the flip.
     nlohmann::json holes = nlohmann::json::array();

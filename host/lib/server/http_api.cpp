@@ -3,6 +3,7 @@
 
 #include "host/lib/server/board_height_map.h"
 #include "host/lib/server/connection_threads.h"
+#include "host/lib/server/map_source.h"
 #include "host/lib/server/run_archive.h"
 
 #include <fmt/format.h>  // fmt::format
@@ -14,6 +15,7 @@
 #include <sys/socket.h>  // listen, getsockname, getsockopt
 
 #include <charconv>  // std::from_chars
+#include <cmath>     // std::isfinite
 #include <cstdlib>   // std::strtod
 #include <iterator>  // std::distance
 #include <regex>     // std::regex
@@ -61,7 +63,9 @@ bool parse_double(const std::string& s, double* out) {
   if (s.empty() || s.size() > 32) return false;
   char* end = nullptr;
   *out = std::strtod(s.c_str(), &end);
-  return end == s.c_str() + s.size();
+  // NaN and infinity (also 1e400) are no length: refused here, naming the field, not by
+  // the planner after every comparison with them was false.
+  return end == s.c_str() + s.size() && std::isfinite(*out);
 }
 
 nlohmann::json job_json(const JobRecord& j) {
@@ -249,7 +253,7 @@ UploadFields upload_fields(const httplib::Request& req, const UploadBody& body) 
       const size_t comma = text.find(',', from);
       double v = 0;
       if (!parse_double(text.substr(from, comma - from), &v)) {
-        u.error = fmt::format("align_measured '{}' is not X1,Y1,X2,Y2 (mm)", text);
+        u.error = fmt::format("align_measured '{}' is not X1,Y1,X2,Y2 (finite numbers, mm)", text);
         return u;
       }
       u.sub.board.align_measured_mm.push_back(v);
@@ -274,7 +278,7 @@ UploadFields upload_fields(const httplib::Request& req, const UploadBody& body) 
     text.clear();
     field(n.key, &text);
     if (!text.empty() && !parse_double(text, n.value)) {
-      u.error = fmt::format("{} '{}' is not a number", n.key, text);
+      u.error = fmt::format("{} '{}' is not a finite number", n.key, text);
       return u;
     }
     if (n.value == &u.sub.settings.margin_mm) u.sub.margin_given = !text.empty();
@@ -317,6 +321,11 @@ bool body_object(const httplib::Request& req, httplib::Response& res, nlohmann::
     *out = nlohmann::json::parse(req.body, note_key);
   } catch (const nlohmann::json::parse_error& e) {
     send_error(res, 400, "malformed JSON: " + json_problem(req.body, e.byte));
+    return false;
+  } catch (const nlohmann::json::exception& e) {
+    // A number beyond a double (1e400): the parser's out_of_range, without its tag.
+    const std::string what = e.what();
+    send_error(res, 400, "malformed JSON: " + what.substr(what.find(']') + 2));
     return false;
   }
   if (!out->is_object()) {
@@ -550,6 +559,7 @@ void HttpApi::routes() {
     for (const JobRecord& j : store_.list(state, static_cast<size_t>(limit))) {
       jobs.push_back(job_json(j));
       jobs.back()["height_map"] = has_height_map(j);
+      jobs.back()["waiting"] = map_wait_of(store_, data_, j);
     }
     send_json(res, 200, {{"jobs", jobs}});
   });
@@ -560,6 +570,7 @@ void HttpApi::routes() {
           nlohmann::json j = job_json(*job);
           j["runs"] = run_count(data_.job_dir(job->key));  // runs/1 .. runs/N in its archive
           j["height_map"] = has_height_map(*job);
+          j["waiting"] = map_wait_of(store_, data_, *job);
           send_json(res, 200, j);
         });
   s.Get(R"(/api/jobs/(\d{1,18})/path)",

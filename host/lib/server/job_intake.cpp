@@ -16,12 +16,23 @@
 #include "host/lib/plot/plan_plot.h"
 #include "host/lib/plot/plot.h"
 #include "host/lib/server/board_bundle.h"
+#include "host/lib/server/board_height_map.h"  // check_height_map_fields
 #include "host/lib/server/job_planning.h"
 #include "host/lib/server/zip_upload.h"
 
 namespace host::server {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// A field refused once the board is planned (it needs the plan): 400, naming the field.
+class FieldError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace
 
 std::string check_upload_name(const std::string& name) {
   if (name.empty()) return "the file has no name";
@@ -105,6 +116,8 @@ void JobIntake::stage_board(const Submission& sub, const std::vector<UploadFile>
   work_area(&work_w, &work_h);
   const PlannedBoard b =
       plan_board_upload(files, skip_other, job->name, sub.board, job->settings, work_w, work_h);
+  const std::string why = check_height_map_fields(store_, data_, sub.board, b);
+  if (!why.empty()) throw FieldError(why);
   job->input_file = kBoardManifest;
   for (const auto& [file, bytes] : b.files) write_file(staging / file, bytes);
   if (zip != nullptr) write_file(staging / "input.zip", *zip);  // as it came, all files in it
@@ -199,6 +212,11 @@ IntakeResult JobIntake::submit(const Submission& sub) {
     why = fmt::format("{} applies to a board (Gerber and Excellon files), not to {}",
                       sub.board_fields.front(), sub.name);
   }
+  if (why.empty() && board && sub.board.height_map_from == 0 &&
+      std::find(sub.board_fields.begin(), sub.board_fields.end(), "height_map_flip") !=
+          sub.board_fields.end()) {
+    why = "height_map_flip goes with height_map_from (how that job's map follows the flip)";
+  }
   if (why.empty() && board && sub.board.height_map_from != 0) {
     const std::optional<JobRecord> from = store_.get(sub.board.height_map_from);
     if (!from || !is_board_job(*from)) {
@@ -263,6 +281,9 @@ IntakeResult JobIntake::submit(const Submission& sub) {
       throw;
     }
     r.status = 201;
+  } catch (const FieldError& e) {
+    r.status = 400;
+    r.error = e.what();
   } catch (const ImportError& e) {
     r.status = 422;
     r.error = e.what();

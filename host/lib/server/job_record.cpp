@@ -41,6 +41,8 @@ bool is_final(JobState state) {
 
 bool job_fits(const JobRecord& job, const MachineFit& fit) {
   if (job.width_mm > fit.work_width_mm || job.height_mm > fit.work_height_mm) return false;
+  if (std::find(fit.not_now_ids.begin(), fit.not_now_ids.end(), job.id) != fit.not_now_ids.end())
+    return false;
   return job.tag.empty() || std::find(fit.tags.begin(), fit.tags.end(), job.tag) != fit.tags.end();
 }
 

@@ -70,6 +70,8 @@ struct MachineFit {
   double work_width_mm = defaults::work_width_mm();
   double work_height_mm = defaults::work_height_mm();
   std::vector<std::string> tags;
+  // Queued jobs this machine leaves for now (map_source.h: waiting for another job's map).
+  std::vector<int64_t> not_now_ids;
 };
 bool job_fits(const JobRecord& job, const MachineFit& fit);
 

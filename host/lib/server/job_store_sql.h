@@ -25,6 +25,16 @@ inline std::string tag_list(const MachineFit& fit) {
   return s;
 }
 
+// " AND id NOT IN (3,7)" for the jobs a machine leaves for now (MachineFit::not_now_ids;
+// numbers only, never text from outside), "" for none.
+inline std::string not_now_sql(const MachineFit& fit) {
+  if (fit.not_now_ids.empty()) return "";
+  std::string s = " AND id NOT IN (";
+  for (size_t i = 0; i < fit.not_now_ids.size(); ++i)
+    s += (i ? "," : "") + std::to_string(fit.not_now_ids[i]);
+  return s + ")";
+}
+
 inline const char* const kColumns =
     "id, key, name, input_file, state, priority, tag, feed_mm_s, tol_mm, scale, margin_mm, "
     "width_mm, height_mm, planned_s, machine, owner, message, executed, total, resume_curve, "

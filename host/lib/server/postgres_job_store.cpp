@@ -17,6 +17,7 @@ struct PostgresJobStore::Connection {
 namespace {
 
 using sql::kColumns;
+using sql::not_now_sql;
 using sql::now_ms;
 using sql::tag_list;
 
@@ -157,8 +158,9 @@ bool PostgresJobStore::has_claimable(const MachineFit& fit) {
   std::lock_guard<std::mutex> lock(mutex_);
   PG_TRY({
     pqxx::work w(conn_->db);
-    return !w.exec_params(fmt::format("SELECT id FROM jobs WHERE {} LIMIT 1", kFitWhere),
-                          fit.work_width_mm, fit.work_height_mm, tag_list(fit))
+    return !w.exec_params(
+                 fmt::format("SELECT id FROM jobs WHERE {}{} LIMIT 1", kFitWhere, not_now_sql(fit)),
+                 fit.work_width_mm, fit.work_height_mm, tag_list(fit))
                 .empty();
   })
 }
@@ -183,9 +185,9 @@ std::optional<JobRecord> PostgresJobStore::claim(const MachineFit& fit, const st
     const pqxx::result r = w.exec_params(
         fmt::format("UPDATE jobs SET state = 'running', machine = $4, owner = $5,"
                     " started_ms = $6, message = '', executed = 0, lease_epoch = $7"
-                    " WHERE id = (SELECT id FROM jobs WHERE {} ORDER BY priority DESC, id"
+                    " WHERE id = (SELECT id FROM jobs WHERE {}{} ORDER BY priority DESC, id"
                     " LIMIT 1 FOR UPDATE SKIP LOCKED) RETURNING {}",
-                    kFitWhere, kColumns),
+                    kFitWhere, not_now_sql(fit), kColumns),
         fit.work_width_mm, fit.work_height_mm, tag_list(fit), machine, lease.owner, now_ms(),
         lease.epoch);
     w.commit();

@@ -11,6 +11,7 @@ namespace host::server {
 namespace {
 
 using sql::kColumns;
+using sql::not_now_sql;
 using sql::now_ms;
 using sql::tag_list;
 
@@ -187,7 +188,8 @@ std::vector<JobRecord> SqliteJobStore::list(const std::string& state_filter, siz
 
 bool SqliteJobStore::has_claimable(const MachineFit& fit) {
   std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_, fmt::format("SELECT id FROM jobs WHERE {} LIMIT 1", kFitWhere));
+  Statement s(db_, path_,
+              fmt::format("SELECT id FROM jobs WHERE {}{} LIMIT 1", kFitWhere, not_now_sql(fit)));
   s.bind(1, fit.work_width_mm).bind(2, fit.work_height_mm).bind(3, tag_list(fit));
   return s.step();
 }
@@ -212,8 +214,8 @@ std::optional<JobRecord> SqliteJobStore::claim(const MachineFit& fit, const std:
     int64_t id = 0;
     {
       Statement s(db_, path_,
-                  fmt::format("SELECT id FROM jobs WHERE {} ORDER BY priority DESC, id LIMIT 1",
-                              kFitWhere));
+                  fmt::format("SELECT id FROM jobs WHERE {}{} ORDER BY priority DESC, id LIMIT 1",
+                              kFitWhere, not_now_sql(fit)));
       s.bind(1, fit.work_width_mm).bind(2, fit.work_height_mm).bind(3, tag_list(fit));
       if (!s.step()) {
         exec("COMMIT");

@@ -20,6 +20,7 @@
 #include "host/lib/server/job_path.h"
 #include "host/lib/server/job_planning.h"
 #include "host/lib/server/job_stream.h"
+#include "host/lib/server/map_source.h"
 #include "host/lib/server/run_archive.h"
 #include "host/lib/stream/job_resume.h"  // resume_from_curve
 #include "host/lib/stream/link.h"
@@ -363,12 +364,20 @@ std::shared_ptr<const std::string> Workshop::live_path(int64_t job_id) {
   return nullptr;
 }
 
+MachineFit Workshop::fit_now(const Slot& slot) {
+  std::vector<std::string> machines;
+  for (const auto& other : slots_) machines.push_back(other->spec.name);
+  MachineFit fit = slot.spec.fit;
+  fit.not_now_ids = jobs_not_for_machine(store_, data_, slot.spec.name, machines);
+  return fit;
+}
+
 void Workshop::machine_loop(Slot& slot) {
   Clock::time_point next_probe = Clock::now();
   while (!stopping_) {
     bool work = false;
     try {
-      work = store_.has_claimable(slot.spec.fit);
+      work = store_.has_claimable(fit_now(slot));
     } catch (const StoreError& e) {
       std::lock_guard<std::mutex> lock(slot.mutex);
       slot.link_message = e.what();
@@ -430,7 +439,7 @@ void Workshop::machine_loop(Slot& slot) {
     }
     std::optional<JobRecord> job;
     try {
-      job = store_.claim(slot.spec.fit, slot.spec.name, lease);
+      job = store_.claim(fit_now(slot), slot.spec.name, lease);
     } catch (const StoreError& e) {
       std::lock_guard<std::mutex> lock(slot.mutex);
       slot.link_message = e.what();
@@ -639,8 +648,8 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
   // the machine's last job left.
   if (!sender.set_override(100)) throw LinkError("the machine did not take feed override 100%");
   r.note("feed override set to 100% for this run");
-  const JobOutcome result =
-      sender.run(r.commands->source(), [&](const Progress& p) { follow_status(slot, r, sender, p); });
+  const JobOutcome result = sender.run(
+      r.commands->source(), [&](const Progress& p) { follow_status(slot, r, sender, p); });
   r.outcome = outcome_name(result);
   r.message = sender.message();
   std::string fenced;
@@ -864,127 +873,22 @@ std::optional<heightmap::HeightMap> Workshop::board_height_map(
   const fs::path dir = data_.job_dir(job.key);
   const BoardSettings board = read_board_settings(dir);
   if (!board.probe_first && board.height_map_from == 0) return std::nullopt;
-  const fs::path map_path = dir / kHeightMapFile;
-  // The machine whose table the map was probed on, beside the map: a map is that machine's
-  // (its table's warp, where its blank lies), never another's.
-  const auto probed_on = [](const fs::path& job_dir) {
-    std::error_code ec;
-    return fs::exists(job_dir / kHeightMapMachineFile, ec)
-               ? read_file(job_dir / kHeightMapMachineFile)
-               : std::string();
-  };
   heightmap::HeightMap map;
-  auto keep = [&](const std::string& title, const std::string& machine) {
-    heightmap::write_height_map_file(map, map_path.string());
-    write_height_map_svg(map, title, (dir / kHeightMapPicture).string());
-    std::ofstream(dir / kHeightMapMachineFile, std::ios::binary | std::ios::trunc) << machine;
-  };
   try {
     if (board.height_map_from != 0) {
       // The top side's map, the blank flipped on its pins since.
-      const std::optional<JobRecord> from = store_.get(board.height_map_from);
-      if (!from) throw std::runtime_error(fmt::format("no job {}", board.height_map_from));
-      const fs::path from_dir = data_.job_dir(from->key);
-      if (!fs::exists(from_dir / kHeightMapFile)) {
-        throw std::runtime_error(fmt::format(
-            "job {} has no height map (here): it was not probed, or not yet, or on a server "
-            "whose archive this one does not share",
-            from->id));
-      }
-      const std::string from_machine = probed_on(from_dir);
-      if (from_machine != slot.spec.name) {
-        throw std::runtime_error(fmt::format(
-            "job {}'s map was probed on machine '{}', this job runs on '{}': a map belongs to "
-            "the machine whose table it was probed on (probe this job first, or run it there)",
-            from->id, from_machine, slot.spec.name));
-      }
-      const heightmap::HeightMap top =
-          heightmap::read_height_map_file((from_dir / kHeightMapFile).string());
-      double axis_mm = 0;
-      if (board.height_map_flip == "blank") {
-        const nlohmann::json m = nlohmann::json::parse(read_file(from_dir / kBoardManifest));
-        if (!m.contains("flip_axis_machine_x_mm")) {
-          throw std::runtime_error(fmt::format(
-              "job {} has no alignment holes: no flip axis to mirror its map about", from->id));
-        }
-        axis_mm = m["flip_axis_machine_x_mm"].get<double>();
-      }
-      map = map_after_flip(top, axis_mm, board.height_map_flip);
-      note(fmt::format("height map of job {} ({} x {} points, flip {})", from->id, map.rows,
-                       map.cols, board.height_map_flip));
-      keep(
-          fmt::format("{} (the map of job {}, flip {})", job.name, from->id, board.height_map_flip),
-          from_machine);
-    } else if (fs::exists(map_path) && probed_on(dir) == slot.spec.name) {
+      return map_from_source_job(store_, data_, dir, job.name, board, slot.spec.name, plan, note);
+    }
+    if (fs::exists(dir / kHeightMapFile) && map_probed_on(dir) == slot.spec.name) {
       // Probed in an earlier run of this job on this machine (interrupted, continued): the
       // blank has not moved, or the job would have been uploaded again. On another machine
-      // the blank lies on another table: probed again below.
-      map = heightmap::read_height_map_file(map_path.string());
+      // the blank lies on another table: probed again below. A map belongs to the machine
+      // whose table it was probed on, never another's.
+      map = heightmap::read_height_map_file((dir / kHeightMapFile).string());
       note("height map probed in an earlier run of this job");
     } else {
-      const nlohmann::json m = nlohmann::json::parse(read_file(dir / kBoardManifest));
-      std::optional<heightmap::AreaMm> area;
-      if (m.contains("probe_area_mm")) area = area_of_json(m["probe_area_mm"]);
-      if (!area) area = heightmap::cutting_area(plan);
-      if (!area) throw std::runtime_error("the job cuts nothing: there is nothing to probe");
-      {
-        std::lock_guard<std::mutex> lock(slot.mutex);
-        slot.probe_stage = "probe_clip";
-      }
-      notify(false);
-      note("waiting for the probe clip on the blank (action probe_ready)");
-      // The operator's confirm, an abort, or the server stopping.
-      while (true) {
-        {
-          std::lock_guard<std::mutex> lock(slot.mutex);
-          if (slot.abort_pending || stopping_) {
-            throw AbortedBeforeCutting("aborted while waiting for the probe clip; nothing was cut");
-          }
-          if (slot.probe_confirmed) {
-            slot.probe_stage = "probing";
-            slot.probing_sender = &sender;
-            break;
-          }
-        }
-        std::unique_lock<std::mutex> lock(change_mutex_);
-        change_cv_.wait_for(lock, std::chrono::milliseconds(100));
-      }
-      notify(false);
-      note("probe clip confirmed: probing");
-      heightmap::ProbeOptions o;
-      o.blank = job.name;
-      o.grid.spacing_mm = board.probe_spacing_mm;
-      heightmap::ProbeRun probed;
-      try {
-        probed = heightmap::probe_blank(*area, o, probing_touch(slot, sender),
-                                        [&](size_t done, size_t planned) {
-                                          {
-                                            std::lock_guard<std::mutex> lock(slot.mutex);
-                                            slot.probe_done = done;
-                                            slot.probe_total = planned;
-                                          }
-                                          notify(false);
-                                        });
-      } catch (const std::exception& e) {
-        bool aborted = false;
-        {
-          std::lock_guard<std::mutex> lock(slot.mutex);
-          slot.probing_sender = nullptr;
-          aborted = slot.abort_pending || stopping_;
-        }
-        if (aborted) throw AbortedBeforeCutting("aborted while probing; nothing was cut");
-        throw;
-      }
-      {
-        std::lock_guard<std::mutex> lock(slot.mutex);
-        slot.probing_sender = nullptr;
-        slot.probe_stage.clear();
-      }
-      for (const std::string& r : probed.reprobed) note("probed again: " + r);
-      map = probed.map;
-      note(fmt::format("probed {} x {} points ({} touches), heights {:.1f} .. {:.1f} um", map.rows,
-                       map.cols, probed.touches, map.min_um(), map.max_um()));
-      keep(job.name, slot.spec.name);
+      map = probe_board_blank(slot, job, board, plan, sender, note);
+      keep_height_map(dir, map, job.name, slot.spec.name);
     }
     heightmap::refuse_job_outside_map(plan, map, kHeightMapFile);
   } catch (const AbortedBeforeCutting&) {
@@ -993,9 +897,84 @@ std::optional<heightmap::HeightMap> Workshop::board_height_map(
     throw;
   } catch (const std::exception& e) {
     // No contact, the spindle on, an outlier, a map out of range: nothing was cut.
-    throw std::runtime_error(fmt::format("height map: {}; nothing was cut", e.what()));
+    throw std::runtime_error(
+        fmt::format("height map: {}; nothing was cut", server_map_words(e.what())));
   }
   return map;
+}
+
+heightmap::HeightMap Workshop::probe_board_blank(
+    Slot& slot, const JobRecord& job, const BoardSettings& board, const JobPlan& plan,
+    Sender& sender, const std::function<void(const std::string&)>& note) {
+  const fs::path dir = data_.job_dir(job.key);
+  const nlohmann::json m = nlohmann::json::parse(read_file(dir / kBoardManifest));
+  std::optional<heightmap::AreaMm> area;
+  if (m.contains("probe_area_mm")) area = area_of_json(m["probe_area_mm"]);
+  if (!area) area = heightmap::cutting_area(plan);
+  if (!area) throw std::runtime_error("the job cuts nothing: there is nothing to probe");
+  wait_for_probe_clip(slot, sender, note);
+  note("probe clip confirmed: probing");
+  heightmap::ProbeOptions o;
+  o.blank = job.name;
+  o.grid.spacing_mm = board.probe_spacing_mm;
+  heightmap::ProbeRun probed;
+  try {
+    probed = heightmap::probe_blank(*area, o, probing_touch(slot, sender),
+                                    [&](size_t done, size_t planned) {
+                                      {
+                                        std::lock_guard<std::mutex> lock(slot.mutex);
+                                        slot.probe_done = done;
+                                        slot.probe_total = planned;
+                                      }
+                                      notify(false);
+                                    });
+  } catch (const std::exception& e) {
+    bool aborted = false;
+    {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      slot.probing_sender = nullptr;
+      aborted = slot.abort_pending || stopping_;
+    }
+    if (aborted) throw AbortedBeforeCutting("aborted while probing; nothing was cut");
+    throw;
+  }
+  {
+    std::lock_guard<std::mutex> lock(slot.mutex);
+    slot.probing_sender = nullptr;
+    slot.probe_stage.clear();
+  }
+  for (const std::string& r : probed.reprobed) note("probed again: " + r);
+  const heightmap::HeightMap& map = probed.map;
+  note(fmt::format("probed {} x {} points ({} touches), heights {:.1f} .. {:.1f} um", map.rows,
+                   map.cols, probed.touches, map.min_um(), map.max_um()));
+  return map;
+}
+
+void Workshop::wait_for_probe_clip(Slot& slot, Sender& sender,
+                                   const std::function<void(const std::string&)>& note) {
+  {
+    std::lock_guard<std::mutex> lock(slot.mutex);
+    slot.probe_stage = "probe_clip";
+  }
+  notify(false);
+  note("waiting for the probe clip on the blank (action probe_ready)");
+  // The operator's confirm, an abort, or the server stopping.
+  while (true) {
+    {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      if (slot.abort_pending || stopping_) {
+        throw AbortedBeforeCutting("aborted while waiting for the probe clip; nothing was cut");
+      }
+      if (slot.probe_confirmed) {
+        slot.probe_stage = "probing";
+        slot.probing_sender = &sender;
+        break;
+      }
+    }
+    std::unique_lock<std::mutex> lock(change_mutex_);
+    change_cv_.wait_for(lock, std::chrono::milliseconds(100));
+  }
+  notify(false);
 }
 
 }  // namespace host::server

@@ -21,6 +21,7 @@
 #include "host/lib/heightmap/height_map.h"
 #include "host/lib/heightmap/probe_session.h"  // ProbeTouch
 #include "host/lib/plan/job_plan.h"
+#include "host/lib/server/board_planning.h"  // BoardSettings
 #include "host/lib/server/data_folder.h"
 #include "host/lib/server/job_store.h"
 #include "host/lib/server/machine_spec.h"
@@ -129,6 +130,16 @@ class Workshop {
   // A touch of the probing grid that waits while the operator holds, ends on an abort.
   heightmap::ProbeTouch probing_touch(Slot& slot, Sender& sender);
   void wait_between_touches(Slot& slot);
+  // Asks for the probe clip and probes the blank over the board's probe area (board.json).
+  heightmap::HeightMap probe_board_blank(Slot& slot, const JobRecord& job,
+                                         const BoardSettings& board, const JobPlan& plan,
+                                         Sender& sender,
+                                         const std::function<void(const std::string&)>& note);
+  // Until the operator confirms the clip (probe_ready); AbortedBeforeCutting on an abort.
+  void wait_for_probe_clip(Slot& slot, Sender& sender,
+                           const std::function<void(const std::string&)>& note);
+  // The machine's fit, less the queued jobs it leaves for now (map_source.h).
+  MachineFit fit_now(const Slot& slot);
 
   JobStore& store_;
   const DataFolder& data_;

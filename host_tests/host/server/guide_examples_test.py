@@ -5,8 +5,11 @@ serve` on loopback (one `engraver sim --realtime` machine). Only the data folder
 and the files' contents are this test's: the files are made under the names the examples
 use (board.ngc larger than 8 KB, the blinky board from data/, its copper also as
 blinky-B.Cu.gbr for the bottom side). Before the `probe_ready` example the test itself
-frees the machine (aborts job 1, cancels the other queued boards) so that the probe-first
-job reaches the probe clip; the sim has a warped blank (--surface) for it to probe.
+frees the machine (aborts job 1, cancels the other queued boards but the bottom side, which
+waits for the probe-first job's map) so that the probe-first job reaches the probe clip; the
+sim has a warped blank (--surface) for it to probe. A second machine ('right') comes online
+then: the bottom side, uploaded before its top side probed, stays queued, waiting for the
+map, though a machine is free.
 
 Exit 77 (ctest: skipped) when curl is not installed.
 Usage: guide_examples_test.py ENGRAVER USER_GUIDE.md
@@ -102,7 +105,7 @@ def main():
     procs = []
     tmp = tempfile.mkdtemp(prefix="engraver-guide-")
     try:
-        sim_port, http_port = free_port(), free_port()
+        sim_port, http_port, right_port = free_port(), free_port(), free_port()
         procs.append(subprocess.Popen(
             [engraver, "sim", "--realtime", "--listen", f"127.0.0.1:{sim_port}",
              "--surface", "tilt=0.05mm,bow=0.03mm"],
@@ -110,7 +113,8 @@ def main():
         data = os.path.join(tmp, "data")
         procs.append(subprocess.Popen(
             [engraver, "serve", "--data", data, "--listen", f"127.0.0.1:{http_port}",
-             "--machine", f"tcp://127.0.0.1:{sim_port} name=left"],
+             "--machine", f"tcp://127.0.0.1:{sim_port} name=left",
+             "--machine", f"tcp://127.0.0.1:{right_port} name=right"],
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
         base = f"http://127.0.0.1:{http_port}"
         wait(lambda: os.path.exists(os.path.join(data, "token")), 10, "the server's token")
@@ -162,7 +166,7 @@ def main():
                 checked_before_probe = True
                 # The queue first: once job 1 is gone the machine claims the next job.
                 for j in jobs.values():
-                    if j["state"] == "queued" and j["id"] != job:
+                    if j["state"] == "queued" and j["id"] != job and not j["waiting"]:
                         control(j["id"], "cancel")
                 control(1, "abort")
                 wait(lambda: probe_job_waiting(job), 30, f"job {job} asking for the probe clip")
@@ -185,6 +189,16 @@ def main():
         if not checked_before_probe:
             check_held_and_queued()
         else:
+            # The second machine comes online: the bottom side (job 5) waits for job 4's map.
+            procs.append(subprocess.Popen(
+                [engraver, "sim", "--listen", f"127.0.0.1:{right_port}"],
+                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+            wait(lambda: get(base, "/api/status")["machines"][1]["link"] == "online", 20,
+                 "the second machine online")
+            time.sleep(1.0)
+            bottom = get(base, "/api/jobs/5")
+            assert bottom["state"] == "queued", bottom
+            assert bottom["waiting"] == "waiting for the height map of job 4", bottom
             # The confirm was taken: the job probes the simulated blank (or has got further).
             def probing_or_later():
                 j = get(base, "/api/jobs/4")

@@ -17,8 +17,11 @@
 #include <string>      // std::string
 #include <vector>      // std::vector
 
+#include "host/lib/heightmap/height_map.h"
+#include "host/lib/heightmap/probe_grid.h"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/job_defaults.h"
+#include "host/lib/server/board_height_map.h"  // area_of_json
 #include "host/lib/server/job_planning.h"
 #include "host_tests/host/cli/tool_run.h"
 #include "host_tests/host/server/server_test_rig.h"
@@ -210,6 +213,48 @@ TEST(SamePlan, ExcellonIsPlannedAlikeByRunSendBoardAndTheServer) {
   const EncodedJob server = server_job(sub, true);
   expect_same_job(server, drl.string(), "blinky");
   expect_same_board_report(server, drl.string(), "blinky");
+}
+
+// A double-sided board's top side probes the same grid from `engraver probe` (as `run
+// --probe` and `send --probe`) and from the server: the area over both sides' cuts
+// (pcb::board_probe_area). ../shared/samples/pcb/example_board; skipped without it.
+TEST(SamePlan, ADoubleSidedBoardsProbeAreaIsTheServers) {
+  const fs::path board = fs::path(ENGRAVER_SOURCE_DIR) / "../shared/samples/pcb/example_board";
+  if (!fs::exists(board)) GTEST_SKIP() << board << " is not here";
+  Submission sub;
+  for (const auto& e : fs::directory_iterator(board))
+    sub.files.push_back(UploadFile{e.path().filename().string(), read_text(e.path())});
+  sub.board.side = "top";
+  sub.board.tool_width_mm = 0.04;
+  sub.board.align_holes = "auto";
+  sub.board.probe_first = true;
+  TempDir dir;
+  DataFolder data(dir.path() / "data");
+  SqliteJobStore store(data.database().string());
+  JobIntake intake(store, data, {MachineFit{}}, 64 * 1024 * 1024);
+  const IntakeResult r = intake.submit(sub);
+  ASSERT_EQ(r.status, 201) << r.error;
+  const nlohmann::json m = read_json(data.job_dir(store.get(r.id)->key) / "board.json");
+  const heightmap::ProbeGrid server =
+      heightmap::plan_probe_grid(area_of_json(m.at("probe_area_mm")), heightmap::GridOptions{});
+
+  SimRig sim(false, 0, [] {
+    sim::SimOptions o;
+    o.surface_um = [](int32_t, int32_t) { return 0; };  // a flat blank: the probe touches
+    return o;
+  }());
+  const fs::path map_file = dir.path() / "top.map.json";
+  const auto probed = host_tests::run_tool(
+      kExe, "probe " + board.string() + " --side top --tool-width 0.04 --align-holes auto --to " +
+                sim.address() + " --height-map " + map_file.string());
+  ASSERT_EQ(probed.code, 0) << probed.err;
+  const heightmap::HeightMap cli = heightmap::read_height_map_file(map_file.string());
+  EXPECT_EQ(cli.rows, server.rows);
+  EXPECT_EQ(cli.cols, server.cols);
+  EXPECT_NEAR(cli.origin_x_mm, server.origin_x_mm, 1e-6);
+  EXPECT_NEAR(cli.origin_y_mm, server.origin_y_mm, 1e-6);
+  EXPECT_NEAR(cli.max_x_mm(), server.x_mm(server.cols - 1), 1e-6);
+  EXPECT_NEAR(cli.max_y_mm(), server.y_mm(server.rows - 1), 1e-6);
 }
 
 }  // namespace

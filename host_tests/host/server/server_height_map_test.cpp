@@ -195,6 +195,9 @@ TEST(ServerHeightMap, AnOutlierFailsTheJobNamingThePoint) {
   const std::string message = j["message"];
   EXPECT_NE(message.find("row 1, col 1"), std::string::npos) << message;
   EXPECT_NE(message.find("nothing was cut"), std::string::npos) << message;
+  // The server's words: no command line option (--outlier-limit) it does not take.
+  EXPECT_EQ(message.find("--"), std::string::npos) << message;
+  EXPECT_NE(message.find("requeue the job"), std::string::npos) << message;
   EXPECT_EQ(j["executed"], 0);
   EXPECT_GT(lowest_z_mm(sim), -1.01);
 }

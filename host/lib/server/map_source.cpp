@@ -1,0 +1,68 @@
+// Jobs waiting for another job's height map (map_source.h).
+#include "host/lib/server/map_source.h"
+
+#include <fmt/format.h>  // fmt::format
+
+#include <algorithm>  // std::find
+
+#include "host/lib/server/board_height_map.h"  // kHeightMapFile, kHeightMapMachineFile
+#include "host/lib/server/board_planning.h"    // is_board_job, read_board_settings
+
+namespace host::server {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Queued jobs a machine looks at each time it looks for work (a workshop's queue is short).
+constexpr size_t kQueuedLooked = 500;
+
+}  // namespace
+
+MapSource map_source_of(JobStore& store, const DataFolder& data, const JobRecord& job) {
+  MapSource s;
+  if (!is_board_job(job)) return s;
+  try {
+    s.from = read_board_settings(data.job_dir(job.key)).height_map_from;
+  } catch (const std::exception&) {
+    return s;  // not in this archive (another server's upload): its run says what is wrong
+  }
+  if (s.from == 0) return s;
+  const std::optional<JobRecord> from = store.get(s.from);
+  if (!from) return s;
+  const fs::path dir = data.job_dir(from->key);
+  std::error_code ec;
+  s.has_map = fs::exists(dir / kHeightMapFile, ec);
+  if (s.has_map && fs::exists(dir / kHeightMapMachineFile, ec))
+    s.machine = read_file(dir / kHeightMapMachineFile);
+  s.source_ended = !s.has_map && is_final(from->state);
+  return s;
+}
+
+std::string map_wait_text(const JobRecord& job, const MapSource& source) {
+  if (job.state != JobState::kQueued || source.from == 0 || source.has_map || source.source_ended)
+    return "";
+  return fmt::format("waiting for the height map of job {}", source.from);
+}
+
+std::string map_wait_of(JobStore& store, const DataFolder& data, const JobRecord& job) {
+  if (job.state != JobState::kQueued) return "";
+  return map_wait_text(job, map_source_of(store, data, job));
+}
+
+std::vector<int64_t> jobs_not_for_machine(JobStore& store, const DataFolder& data,
+                                          const std::string& machine,
+                                          const std::vector<std::string>& machines) {
+  std::vector<int64_t> out;
+  for (const JobRecord& job : store.list(state_name(JobState::kQueued), kQueuedLooked)) {
+    const MapSource s = map_source_of(store, data, job);
+    if (s.from == 0) continue;
+    const bool waiting = !map_wait_text(job, s).empty();
+    const bool elsewhere = s.has_map && s.machine != machine &&
+                           std::find(machines.begin(), machines.end(), s.machine) != machines.end();
+    if (waiting || elsewhere) out.push_back(job.id);
+  }
+  return out;
+}
+
+}  // namespace host::server

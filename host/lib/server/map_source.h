@@ -1,0 +1,42 @@
+// A job that cuts with another job's height map (height_map_from: the bottom side of a
+// board whose top side probes) waits in the queue until that map exists, and then runs on
+// the machine it was probed on (a map is that machine's table): which queued jobs a machine
+// leaves alone, and what the job's record says while it waits.
+#ifndef HOST_LIB_SERVER_MAP_SOURCE_H
+#define HOST_LIB_SERVER_MAP_SOURCE_H
+
+#include <cstdint>  // int64_t
+#include <string>   // std::string
+#include <vector>   // std::vector
+
+#include "host/lib/server/data_folder.h"
+#include "host/lib/server/job_record.h"
+#include "host/lib/server/job_store.h"
+
+namespace host::server {
+
+// Where a job's map source stands.
+struct MapSource {
+  int64_t from = 0;           // the job whose map it takes; 0: none (or not a board job)
+  bool has_map = false;       // that job's map is in the archive
+  std::string machine;        // the machine it was probed on ("" when no map)
+  bool source_ended = false;  // no map, and the source job will not make one (it ended)
+};
+MapSource map_source_of(JobStore& store, const DataFolder& data, const JobRecord& job);
+
+// "waiting for the height map of job 4 (running)" while a queued job's source has no map
+// and may still make one; "" otherwise (it may run, or it runs to fail with the reason).
+std::string map_wait_text(const JobRecord& job, const MapSource& source);
+
+// map_wait_text of a job, looking at its source only when it is queued.
+std::string map_wait_of(JobStore& store, const DataFolder& data, const JobRecord& job);
+
+// The queued jobs a machine leaves in the queue: those waiting for their map, and those
+// whose map was probed on another of `machines` (that one takes them).
+std::vector<int64_t> jobs_not_for_machine(JobStore& store, const DataFolder& data,
+                                          const std::string& machine,
+                                          const std::vector<std::string>& machines);
+
+}  // namespace host::server
+
+#endif  // HOST_LIB_SERVER_MAP_SOURCE_H
