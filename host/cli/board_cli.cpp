@@ -87,7 +87,10 @@ commands::CommandLog stderr_log() {
   return [](const std::string& line) { std::cerr << "engraver: " << printable(line) << "\n"; };
 }
 
-void add_board_options(CLI::App* cmd, BoardArgs* a) {
+namespace {
+
+// The isolation tool, its passes and depth.
+void add_isolation_options(CLI::App* cmd, BoardArgs* a) {
   const std::string g = kBoardOptionsGroup;
   cmd->add_option("--tool-width", a->tool_width_mm, "isolation: V-bit width at the depth, mm")
       ->group(g)
@@ -125,6 +128,11 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
                 "also cut inside openings of an island that hold no other island (hatched pours)")
       ->group(g);
   cmd->add_option("--depth", a->depth_mm, "isolation depth, mm")->group(g)->capture_default_str();
+}
+
+// Drilling, the cut-out and its tabs.
+void add_drill_and_cutout_options(CLI::App* cmd, BoardArgs* a) {
+  const std::string g = kBoardOptionsGroup;
   cmd->add_option("--drill-depth", a->drill_depth_mm, "drill plunge depth, mm")
       ->group(g)
       ->capture_default_str();
@@ -157,6 +165,11 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
   cmd->add_option("--tab-height", a->tab_height_mm, "board thickness the tabs keep, mm")
       ->group(g)
       ->capture_default_str();
+}
+
+// The side, and a double-sided board's alignment holes.
+void add_side_and_alignment_options(CLI::App* cmd, BoardArgs* a) {
+  const std::string g = kBoardOptionsGroup;
   cmd->add_option("--side", a->side, "top or bottom (mirrored); default: the copper given")
       ->group(g);
   cmd->add_option("--align-holes", a->align_holes,
@@ -183,6 +196,15 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
                   "and 2 were found after the flip; the job is turned and shifted onto them")
       ->group(g)
       ->expected(4);
+}
+
+}  // namespace
+
+void add_board_options(CLI::App* cmd, BoardArgs* a) {
+  const std::string g = kBoardOptionsGroup;
+  add_isolation_options(cmd, a);
+  add_drill_and_cutout_options(cmd, a);
+  add_side_and_alignment_options(cmd, a);
   cmd->add_flag("--no-spindle", a->no_spindle, "no spindle on/off commands")->group(g);
   cmd->add_flag("--allow-narrow-gaps", a->allow_narrow_gaps,
                 "plan even where copper is closer than the tool width (reported)")

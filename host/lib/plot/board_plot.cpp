@@ -170,30 +170,9 @@ void legend_box(cairo_t* cr, double x, double y, const Rgba& c, const std::strin
   cairo_show_text(cr, label.c_str());
 }
 
-void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int height_px,
-            const Band& band) {
-  const pcb::BoardJob& job = *in.job;
-  cairo_set_source_rgb(cr, 1, 1, 1);
-  cairo_paint(cr);
-  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
-  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
-  if (!job.board_machine_nm.empty()) {
-    set(cr, kBoard);
-    polygon_paths(cr, f, job.board_machine_nm, band);
-    cairo_fill(cr);
-  }
-  set(cr, kCopper);
-  polygon_paths(cr, f, job.copper_machine_nm, band);
-  cairo_fill(cr);
+// The holes as dots, the slots as strokes of their width.
+void draw_holes(cairo_t* cr, const pcb::BoardJob& job, const PlotFrame& f) {
   const double s = f.scale_px_per_mm;
-  stroke_group(cr, f, job.clearing_paths_mm, 2 * job.clearing_tool_radius_mm * s, kIsolation, band);
-  stroke_group(cr, f, job.clearing_paths_mm, 0.6, kIsolationCentre, band);
-  stroke_group(cr, f, job.isolation_paths_mm, 2 * job.tool_radius_mm * s, kIsolation, band);
-  stroke_group(cr, f, job.isolation_paths_mm, 0.6, kIsolationCentre, band);
-  stroke_group(cr, f, job.cutout_paths_mm, 2 * job.cutter_radius_mm * s, kCutout, band);
-  stroke_group(cr, f, job.cutout_paths_mm, 0.6, kCutoutCentre, band);
-  stroke_group(cr, f, job.tab_paths_mm, 2 * job.cutter_radius_mm * s, kTab, band);
   set(cr, kHole);
   for (const pcb::Hole& h : job.holes_machine) {
     const Point2 c = f.to_px(pcb::to_mm(ClipperLib::IntPoint(h.at.x, h.at.y)));
@@ -207,12 +186,11 @@ void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int heigh
               pcb::to_mm(ClipperLib::IntPoint(sl.to.x, sl.to.y))});
     cairo_stroke(cr);
   }
-  if (!in.simulated.empty()) {
-    std::vector<std::vector<Point2>> down;
-    for (const ToolPathSegment& seg : in.simulated)
-      if (seg.pen_down) down.push_back(seg.points_mm);
-    stroke_group(cr, f, down, 0.5, kSimulated, band);
-  }
+}
+
+// A ring around each narrow gap.
+void draw_gaps(cairo_t* cr, const pcb::BoardJob& job, const PlotFrame& f) {
+  const double s = f.scale_px_per_mm;
   set(cr, kGap);
   cairo_set_line_width(cr, 2.0);
   for (const pcb::NarrowGap& g : job.report.narrow_gaps) {
@@ -222,7 +200,11 @@ void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int heigh
     cairo_arc(cr, c.x(), c.y(), std::max(8.0, 0.5 * s), 0, 2 * 3.14159265358979);
     cairo_stroke(cr);
   }
-  // Title, legend, scale bar.
+}
+
+// Title, legend, scale bar.
+void draw_labels(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int height_px) {
+  const double s = f.scale_px_per_mm;
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
   cairo_set_font_size(cr, 16);
   cairo_set_source_rgb(cr, 0, 0, 0);
@@ -252,6 +234,41 @@ void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int heigh
   label << bar_mm << " mm";
   cairo_move_to(cr, x0, y + 16);
   cairo_show_text(cr, label.str().c_str());
+}
+
+void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int height_px,
+            const Band& band) {
+  const pcb::BoardJob& job = *in.job;
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
+  if (!job.board_machine_nm.empty()) {
+    set(cr, kBoard);
+    polygon_paths(cr, f, job.board_machine_nm, band);
+    cairo_fill(cr);
+  }
+  set(cr, kCopper);
+  polygon_paths(cr, f, job.copper_machine_nm, band);
+  cairo_fill(cr);
+  const double s = f.scale_px_per_mm;
+  stroke_group(cr, f, job.clearing_paths_mm, 2 * job.clearing_tool_radius_mm * s, kIsolation, band);
+  stroke_group(cr, f, job.clearing_paths_mm, 0.6, kIsolationCentre, band);
+  stroke_group(cr, f, job.isolation_paths_mm, 2 * job.tool_radius_mm * s, kIsolation, band);
+  stroke_group(cr, f, job.isolation_paths_mm, 0.6, kIsolationCentre, band);
+  stroke_group(cr, f, job.cutout_paths_mm, 2 * job.cutter_radius_mm * s, kCutout, band);
+  stroke_group(cr, f, job.cutout_paths_mm, 0.6, kCutoutCentre, band);
+  stroke_group(cr, f, job.tab_paths_mm, 2 * job.cutter_radius_mm * s, kTab, band);
+  draw_holes(cr, job, f);
+  if (!in.simulated.empty()) {
+    std::vector<std::vector<Point2>> down;
+    for (const ToolPathSegment& seg : in.simulated)
+      if (seg.pen_down) down.push_back(seg.points_mm);
+    stroke_group(cr, f, down, 0.5, kSimulated, band);
+  }
+  draw_gaps(cr, job, f);
+  draw_labels(cr, in, f, height_px);
 }
 
 void check(cairo_surface_t* s, const std::string& path) {
