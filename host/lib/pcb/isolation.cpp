@@ -9,11 +9,6 @@
 
 namespace host::pcb {
 
-using ClipperLib::cInt;
-using ClipperLib::IntPoint;
-using ClipperLib::Path;
-using ClipperLib::Paths;
-
 namespace {
 
 // Intersections smaller than this (nm^2, a 0.1 um square) are numerical touching.

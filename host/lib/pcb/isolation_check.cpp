@@ -12,11 +12,6 @@
 
 namespace host::pcb {
 
-using ClipperLib::cInt;
-using ClipperLib::IntPoint;
-using ClipperLib::Path;
-using ClipperLib::Paths;
-
 namespace {
 
 const double kArcToleranceNm = 200;  // flattening of the swept discs

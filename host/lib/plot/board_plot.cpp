@@ -10,6 +10,7 @@
 #include <stdexcept>  // std::runtime_error
 
 #include "host/lib/pcb/pcb_geometry.h"
+#include "host/lib/plot/cairo_plot.h"  // nice_length, check_cairo_surface
 #include "host/lib/plot/png_rows.h"
 
 namespace host {
@@ -154,13 +155,6 @@ void stroke_group(cairo_t* cr, const PlotFrame& f, const std::vector<std::vector
   cairo_mask_surface(cr, band.mask, 0, band.y0_px);
 }
 
-double nice_length(double target) {
-  const double p = std::pow(10.0, std::floor(std::log10(target)));
-  if (target >= 5 * p) return 5 * p;
-  if (target >= 2 * p) return 2 * p;
-  return p;
-}
-
 void legend_box(cairo_t* cr, double x, double y, const Rgba& c, const std::string& label) {
   set(cr, c);
   cairo_rectangle(cr, x, y - 8, 24, 12);
@@ -271,15 +265,6 @@ void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int heigh
   draw_labels(cr, in, f, height_px);
 }
 
-void check(cairo_surface_t* s, const std::string& path) {
-  const cairo_status_t st = cairo_surface_status(s);
-  if (st != CAIRO_STATUS_SUCCESS) {
-    const std::string msg = cairo_status_to_string(st);
-    cairo_surface_destroy(s);
-    throw std::runtime_error(path + ": cannot write the plot: " + msg);
-  }
-}
-
 }  // namespace
 
 void write_board_plot(const BoardPlotInput& in, const std::string& svg_path,
@@ -292,22 +277,22 @@ void write_board_plot(const BoardPlotInput& in, const std::string& svg_path,
   if (height_px > 20000) throw std::runtime_error("the board plot would be over 20000 pixels high");
   if (!svg_path.empty()) {
     cairo_surface_t* s = cairo_svg_surface_create(svg_path.c_str(), in.width_px, height_px);
-    check(s, svg_path);
+    check_cairo_surface(s, svg_path);
     cairo_t* cr = cairo_create(s);
     render(cr, in, f, height_px, Band());
     cairo_destroy(cr);
     cairo_surface_finish(s);
-    check(s, svg_path);
+    check_cairo_surface(s, svg_path);
     cairo_surface_destroy(s);
   }
   if (!png_path.empty()) {
     // Drawn band by band into one band-sized surface, each band handed to the PNG writer.
     const int band_rows = std::min(height_px, kBandRows);
     cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, in.width_px, band_rows);
-    check(s, png_path);
+    check_cairo_surface(s, png_path);
     Band band;
     band.mask = cairo_image_surface_create(CAIRO_FORMAT_A8, in.width_px, band_rows);
-    check(band.mask, png_path);
+    check_cairo_surface(band.mask, png_path);
     try {
       PngRows png(png_path, in.width_px, height_px);
       for (int y0 = 0; y0 < height_px; y0 += band_rows) {
