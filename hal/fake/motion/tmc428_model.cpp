@@ -180,6 +180,18 @@ bool Tmc428Model::switches_out_of_reach(int m, uint64_t max_steps) const {
   return true;
 }
 
+// Where a segment from t ends: at the next ramp clock (*ramp_edge) while ramping, else at t1
+// (and the last ramp step is 0).
+uint64_t Tmc428Model::segment_end(Motor& mo, bool ramping, uint64_t t, uint64_t t1,
+                                  unsigned ramp_shift, uint64_t* ramp_edge) {
+  if (!ramping) {
+    mo.last_ramp = 0;
+    return t1;
+  }
+  *ramp_edge = ((t >> ramp_shift) + 1) << ramp_shift;
+  return *ramp_edge < t1 ? *ramp_edge : t1;
+}
+
 // One ramp clock: the velocity a_max nearer the target.
 void Tmc428Model::ramp_clock(Motor& mo, int32_t tgt) {
   const int32_t diff = tgt - mo.v_q8;
@@ -198,14 +210,8 @@ void Tmc428Model::advance_out_of_reach(int m, uint64_t t, uint64_t t1, unsigned 
   const int32_t tgt = effective_target_q8(m);
   while (t < t1) {
     const bool ramping = mode != kHold && mo.v_q8 != tgt && mo.a_max > 0;
-    uint64_t seg_end = t1;
     uint64_t ramp_edge = 0;
-    if (ramping) {
-      ramp_edge = ((t >> ramp_shift) + 1) << ramp_shift;
-      if (ramp_edge < seg_end) seg_end = ramp_edge;
-    } else {
-      mo.last_ramp = 0;
-    }
+    const uint64_t seg_end = segment_end(mo, ramping, t, t1, ramp_shift, &ramp_edge);
     const int32_t vi = mo.v_q8 / 256;
     if (vi != 0) {
       const uint64_t n = (seg_end >> pulse_shift) - (t >> pulse_shift);
@@ -280,14 +286,8 @@ void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
     stop_at_switch(m, &vi);
     const int32_t tgt = effective_target_q8(m);
     const bool ramping = mode != kHold && mo.v_q8 != tgt && mo.a_max > 0;
-    uint64_t seg_end = t1;
     uint64_t ramp_edge = 0;
-    if (ramping) {
-      ramp_edge = ((t >> ramp_shift) + 1) << ramp_shift;
-      if (ramp_edge < seg_end) seg_end = ramp_edge;
-    } else {
-      mo.last_ramp = 0;
-    }
+    const uint64_t seg_end = segment_end(mo, ramping, t, t1, ramp_shift, &ramp_edge);
     if (vi != 0) {
       const uint64_t n = (seg_end >> pulse_shift) - (t >> pulse_shift);  // pulse edges in (t, end]
       if (n != 0) {

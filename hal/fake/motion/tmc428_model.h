@@ -117,6 +117,8 @@ class Tmc428Model : public SpiDevice {
   void stop_at_switch(int m, int32_t* vi);
   int64_t steps_to_stop_switch(int m, int dir) const;
   static void ramp_clock(Motor& mo, int32_t tgt);
+  static uint64_t segment_end(Motor& mo, bool ramping, uint64_t t, uint64_t t1, unsigned ramp_shift,
+                              uint64_t* ramp_edge);
   bool switches_out_of_reach(int m, uint64_t max_steps) const;
   int32_t effective_target_q8(int m) const;
   bool left_active(int m) const;

@@ -28,19 +28,7 @@ const char* const kDrillNames[] = {"drill.drl", "drill.b.drl", "drill.c.drl", "d
 const size_t kMaxDrillFiles = sizeof(kDrillNames) / sizeof(kDrillNames[0]);
 
 const char* kind_key(LayerKind k) {
-  switch (k) {
-    case LayerKind::kCopperTop:
-      return "copper_top";
-    case LayerKind::kCopperBottom:
-      return "copper_bottom";
-    case LayerKind::kOutline:
-      return "outline";
-    case LayerKind::kDrill:
-      return "drill";
-    case LayerKind::kUnknown:
-      break;
-  }
-  return "unknown";
+  return pcb::layer_kind_key(k);
 }
 
 LayerKind kind_from_key(const std::string& key) {
