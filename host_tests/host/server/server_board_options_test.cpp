@@ -100,13 +100,12 @@ TEST(ServerBoardOptions, TheCommandLinesRangesAreTheServers) {
 TEST(ServerBoardOptions, AClearingToolWithNoPassesForItIsRefusedAsOnTheCommandLine) {
   test::TempDir dir;
   ServerRig server(dir.path(), {});
-  expect_error(posted(server,
-                      with(blinky(), {{"passes", "2"},
-                                      {"clearing_tool_mm", "0.6"},
-                                      {"narrow_passes", "2"}}),
-                      422),
-               "clearing_tool_mm cuts the passes beyond narrow_passes (2), but passes is 2: "
-               "give more passes");
+  expect_error(
+      posted(server,
+             with(blinky(), {{"passes", "2"}, {"clearing_tool_mm", "0.6"}, {"narrow_passes", "2"}}),
+             422),
+      "clearing_tool_mm cuts the passes beyond narrow_passes (2), but passes is 2: "
+      "give more passes");
 }
 
 // Double-sided: the top job drills the alignment holes (and leaves the cut-out to the
