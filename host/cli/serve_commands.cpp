@@ -70,19 +70,25 @@ std::string host_name() {
   return buf;
 }
 
-void run_serve(const ServeArgs& a) {
-  const size_t colon = a.listen.rfind(':');
+// ADDR:PORT's port (colon: where ADDR ends); exit 2 for anything else.
+int listen_port(const std::string& listen, size_t* colon) {
+  *colon = listen.rfind(':');
   int port = -1;
-  if (colon != std::string::npos) {
+  if (*colon != std::string::npos) {
     try {
-      port = std::stoi(a.listen.substr(colon + 1));
+      port = std::stoi(listen.substr(*colon + 1));
     } catch (const std::exception&) {
       port = -1;
     }
   }
   if (port < 0 || port > 65535) {
-    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': expected ADDR:PORT", a.listen));
+    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': expected ADDR:PORT", listen));
   }
+  return port;
+}
+
+// The --machine specs, named m1, m2 ... where they give no name; exit 2 for a bad one.
+std::vector<server::MachineSpec> parse_machines(const ServeArgs& a) {
   std::vector<server::MachineSpec> machines;
   for (size_t i = 0; i < a.machines.size(); ++i) {
     try {
@@ -91,6 +97,11 @@ void run_serve(const ServeArgs& a) {
       throw CommandFailure(kExitUsage, e.what());
     }
   }
+  return machines;
+}
+
+// The workshop page's folder (--web, else beside this executable).
+std::filesystem::path served_web_dir(const ServeArgs& a) {
   // The page must be there before anyone opens it: a missing one is an error now, not a
   // 500 later.
   std::filesystem::path web_dir = a.web;
@@ -110,6 +121,48 @@ void run_serve(const ServeArgs& a) {
                                 "give the folder with --web)",
                                 missing, a.web.empty() ? "looked beside this engraver" : "--web"));
   }
+  return web_dir;
+}
+
+server::WorkshopOptions workshop_options(const ServeArgs& a) {
+  server::WorkshopOptions wo;
+  wo.owner = a.name.empty() ? host_name() : a.name;
+  wo.sender.status_interval = std::chrono::milliseconds(a.poll_ms);
+  wo.sender.zero_first = !a.no_zero;
+  wo.stale_after = std::chrono::milliseconds(static_cast<int64_t>(a.stale_s * 1000));
+  std::error_code ec;
+  const std::filesystem::path folder = std::filesystem::canonical(a.data, ec);
+  wo.holder = host_name() + ":" + (ec ? a.data : folder.string());
+  wo.say = [](const std::string& line) { std::cerr << "engraver: " << line << "\n"; };
+  return wo;
+}
+
+// What the server says when it starts: where, the token once, the machines.
+void print_serving(const ServeArgs& a, const server::HttpApi& http, const std::string& address,
+                   int bound, const std::string& owner, bool created, const std::string& token,
+                   const std::vector<server::MachineSpec>& machines) {
+  std::cerr << fmt::format("engraver: serving http://{}:{}/ as '{}', data in {}, {} machine(s)\n",
+                           address, bound, owner, a.data, machines.size());
+  std::cerr << fmt::format("engraver: answering requests for host {}\n",
+                           http.allowed_hosts().describe());
+  if (created) {
+    std::cerr << fmt::format(
+        "engraver: access token (shown once; kept in {}/token): {}\n"
+        "engraver: every request that changes anything needs it (the page asks for it)\n",
+        a.data, token);
+  }
+  // The machine list as the machines' names on the page.
+  for (const server::MachineSpec& m : machines) {
+    std::cerr << fmt::format("engraver: machine {} at {}, work area {} x {} mm\n", m.name,
+                             m.address, m.fit.work_width_mm, m.fit.work_height_mm);
+  }
+}
+
+void run_serve(const ServeArgs& a) {
+  size_t colon = 0;
+  const int port = listen_port(a.listen, &colon);
+  const std::vector<server::MachineSpec> machines = parse_machines(a);
+  const std::filesystem::path web_dir = served_web_dir(a);
   // Before anything in the folder is touched: one server per data folder.
   std::unique_ptr<server::DataFolderLock> folder_lock;
   try {
@@ -123,15 +176,7 @@ void run_serve(const ServeArgs& a) {
   const std::unique_ptr<server::JobStore> store_owner = open_store(a.db, data);
   server::JobStore& store = *store_owner;
 
-  server::WorkshopOptions wo;
-  wo.owner = a.name.empty() ? host_name() : a.name;
-  wo.sender.status_interval = std::chrono::milliseconds(a.poll_ms);
-  wo.sender.zero_first = !a.no_zero;
-  wo.stale_after = std::chrono::milliseconds(static_cast<int64_t>(a.stale_s * 1000));
-  std::error_code ec;
-  const std::filesystem::path folder = std::filesystem::canonical(a.data, ec);
-  wo.holder = host_name() + ":" + (ec ? a.data : folder.string());
-  wo.say = [](const std::string& line) { std::cerr << "engraver: " << line << "\n"; };
+  const server::WorkshopOptions wo = workshop_options(a);
   server::Workshop workshop(store, data, machines, wo);
   server::JobIntake intake(store, data, workshop.fits(),
                            static_cast<size_t>(a.max_upload_mb * 1024 * 1024));
@@ -164,21 +209,7 @@ void run_serve(const ServeArgs& a) {
     inbox->start();
   }
   std::thread serving([&http] { http.run(); });
-  std::cerr << fmt::format("engraver: serving http://{}:{}/ as '{}', data in {}, {} machine(s)\n",
-                           ho.address, bound, wo.owner, a.data, machines.size());
-  std::cerr << fmt::format("engraver: answering requests for host {}\n",
-                           http.allowed_hosts().describe());
-  if (created) {
-    std::cerr << fmt::format(
-        "engraver: access token (shown once; kept in {}/token): {}\n"
-        "engraver: every request that changes anything needs it (the page asks for it)\n",
-        a.data, token);
-  }
-  // The machine list as the machines' names on the page.
-  for (const server::MachineSpec& m : machines) {
-    std::cerr << fmt::format("engraver: machine {} at {}, work area {} x {} mm\n", m.name,
-                             m.address, m.fit.work_width_mm, m.fit.work_height_mm);
-  }
+  print_serving(a, http, ho.address, bound, wo.owner, created, token, machines);
   while (!g_stop_serve) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   std::cerr << "engraver: stopping (running jobs are aborted and marked interrupted)\n";
   if (inbox) inbox->stop();

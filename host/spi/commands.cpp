@@ -71,6 +71,52 @@ int run_decode(const DecodeOptions& o, std::ostream& out, std::ostream& err) {
   return kExitOk;
 }
 
+namespace {
+
+// Probes on the wrong lines: the answer line looks like what the firmware should send.
+// "" when not.
+std::string swapped_lines_hint(const std::vector<Frame>& frames,
+                               const std::vector<Expected>& expected, const DiffResult& d,
+                               const DiffOptions& o) {
+  bool any_miso = false;
+  for (const Frame& f : frames) any_miso = any_miso || f.has_miso;
+  if (!d.same() && any_miso) {
+    DiffResult swapped;
+    if (diff_datagrams(swap_mosi_miso(frames), expected, &swapped, o.within).ok() &&
+        swapped.equal > d.equal && swapped.equal * 2 >= static_cast<int>(expected.size()))
+      return "MOSI and MISO look swapped: " + std::to_string(swapped.equal) +
+             " datagrams match with the two exchanged (swap --mosi/--miso)";
+  }
+  return "";
+}
+
+// The comparison as JSON (o.json) or text with its notes and verdict.
+void print_diff(const DiffOptions& o, const std::vector<Frame>& frames,
+                const std::vector<Expected>& expected, const DiffResult& d, size_t partial,
+                size_t errors, const std::string& hint, std::ostream& out) {
+  if (o.json) {
+    nlohmann::json j = diff_json(frames, expected, d);
+    j["partial_frames_left_out"] = partial;
+    j["frame_errors"] = errors;
+    j["hint"] = hint;
+    j["ignored_before"] = d.ignored_before;
+    j["ignored_after"] = d.ignored_after;
+    out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+  } else {
+    out << diff_text(frames, expected, d, !o.raw);
+    if (partial)
+      out << "# note: " << partial << " datagram(s) cut by the capture window left out\n";
+    if (errors) out << "# note: " << errors << " datagram(s) with frame errors (marked !)\n";
+    if (!hint.empty()) out << "# hint: " << hint << "\n";
+    if (d.ignored_before || d.ignored_after)
+      out << "# note: --within: " << d.ignored_before << " datagram(s) before and "
+          << d.ignored_after << " after the expected sequence not compared\n";
+    out << diff_verdict(d, frames.size(), expected.size()) << "\n";
+  }
+}
+
+}  // namespace
+
 int run_diff(const DiffOptions& o, std::ostream& out, std::ostream& err) {
   std::error_code ec;
   std::ifstream in(o.expected, std::ios::binary);
@@ -121,36 +167,8 @@ int run_diff(const DiffOptions& o, std::ostream& out, std::ostream& err) {
     print_error(err, e);
     return kExitUnusable;
   }
-  // Probes on the wrong lines: the answer line looks like what the firmware should send.
-  std::string hint;
-  bool any_miso = false;
-  for (const Frame& f : frames) any_miso = any_miso || f.has_miso;
-  if (!d.same() && any_miso) {
-    DiffResult swapped;
-    if (diff_datagrams(swap_mosi_miso(frames), expected, &swapped, o.within).ok() &&
-        swapped.equal > d.equal && swapped.equal * 2 >= static_cast<int>(expected.size()))
-      hint = "MOSI and MISO look swapped: " + std::to_string(swapped.equal) +
-             " datagrams match with the two exchanged (swap --mosi/--miso)";
-  }
-  if (o.json) {
-    nlohmann::json j = diff_json(frames, expected, d);
-    j["partial_frames_left_out"] = partial;
-    j["frame_errors"] = errors;
-    j["hint"] = hint;
-    j["ignored_before"] = d.ignored_before;
-    j["ignored_after"] = d.ignored_after;
-    out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
-  } else {
-    out << diff_text(frames, expected, d, !o.raw);
-    if (partial)
-      out << "# note: " << partial << " datagram(s) cut by the capture window left out\n";
-    if (errors) out << "# note: " << errors << " datagram(s) with frame errors (marked !)\n";
-    if (!hint.empty()) out << "# hint: " << hint << "\n";
-    if (d.ignored_before || d.ignored_after)
-      out << "# note: --within: " << d.ignored_before << " datagram(s) before and "
-          << d.ignored_after << " after the expected sequence not compared\n";
-    out << diff_verdict(d, frames.size(), expected.size()) << "\n";
-  }
+  const std::string hint = swapped_lines_hint(frames, expected, d, o);
+  print_diff(o, frames, expected, d, partial, errors, hint, out);
   return d.same() ? kExitOk : kExitDiffer;
 }
 

@@ -45,20 +45,28 @@ std::vector<Frame> swap_mosi_miso(const std::vector<Frame>& frames) {
   return out;
 }
 
-Error diff_datagrams(const std::vector<Frame>& frames, const std::vector<Expected>& expected,
-                     DiffResult* out, bool within) {
-  *out = DiffResult();
+namespace {
+
+// The alignment's score table, filled row by row (captured datagrams) and column by column
+// (expected lines): where each cell came from, and each row's score at the last column.
+struct Alignment {
+  size_t m = 0;  // expected lines
+  std::vector<uint8_t> back;
+  std::vector<int32_t> last_column;
+  size_t at(size_t i, size_t j) const { return i * (m + 1) + j; }
+};
+
+Alignment align(const std::vector<Frame>& frames, const std::vector<Expected>& expected,
+                bool within) {
   const size_t n = frames.size(), m = expected.size();
-  if (static_cast<long long>(n + 1) * static_cast<long long>(m + 1) > kMaxDiffCells)
-    return {"E_TOO_BIG", "too many datagrams to align (" + std::to_string(n) + " captured x " +
-                             std::to_string(m) + " expected); cut the capture shorter"};
-  for (const Expected& e : expected)
-    if (!e.miso.any)
-      for (const Frame& f : frames)
-        if (!f.has_miso) out->miso_checked = false;
-  std::vector<uint8_t> back((n + 1) * (m + 1), 0);
-  std::vector<int32_t> prev(m + 1), cur(m + 1), last_column(n + 1);
-  auto at = [m](size_t i, size_t j) { return i * (m + 1) + j; };
+  Alignment al;
+  al.m = m;
+  std::vector<uint8_t>& back = al.back;
+  back.assign((n + 1) * (m + 1), 0);
+  std::vector<int32_t> prev(m + 1), cur(m + 1);
+  std::vector<int32_t>& last_column = al.last_column;
+  last_column.assign(n + 1, 0);
+  auto at = [&al](size_t i, size_t j) { return al.at(i, j); };
   // Row 0: only expected lines skipped.
   prev[0] = 0;
   for (size_t j = 1; j <= m; ++j) {
@@ -91,7 +99,17 @@ Error diff_datagrams(const std::vector<Frame>& frames, const std::vector<Expecte
     last_column[i] = cur[m];
     std::swap(prev, cur);
   }
-  // Trace back from the end.
+  return al;
+}
+
+// The steps from the table's end back to its start (with --within, from where the whole
+// expected sequence scores best, and to where it begins).
+void trace_back(const Alignment& al, const std::vector<Frame>& frames,
+                const std::vector<Expected>& expected, bool within, DiffResult* out) {
+  const size_t n = frames.size(), m = expected.size();
+  const std::vector<int32_t>& last_column = al.last_column;
+  auto at = [&al](size_t i, size_t j) { return al.at(i, j); };
+  const std::vector<uint8_t>& back = al.back;
   std::vector<DiffStep> rev;
   size_t i = n, j = m;
   if (within) {
@@ -125,6 +143,12 @@ Error diff_datagrams(const std::vector<Frame>& frames, const std::vector<Expecte
     }
   }
   out->steps.assign(rev.rbegin(), rev.rend());
+}
+
+// Repeatable lines: present when reached through a skip, extra beyond their count, a note
+// below it; then the counts of each mark.
+void settle_repeats(const std::vector<Expected>& expected, DiffResult* out) {
+  const size_t m = expected.size();
   // A repeatable line reached through a skip and then repeats is present, not missing.
   std::vector<bool> seen(m, false);
   for (const DiffStep& s : out->steps)
@@ -151,6 +175,23 @@ Error diff_datagrams(const std::vector<Frame>& frames, const std::vector<Expecte
     if (s.mark == Mark::kMissing) ++out->missing;
     if (s.mark == Mark::kExtra) ++out->extra;
   }
+}
+
+}  // namespace
+
+Error diff_datagrams(const std::vector<Frame>& frames, const std::vector<Expected>& expected,
+                     DiffResult* out, bool within) {
+  *out = DiffResult();
+  const size_t n = frames.size(), m = expected.size();
+  if (static_cast<long long>(n + 1) * static_cast<long long>(m + 1) > kMaxDiffCells)
+    return {"E_TOO_BIG", "too many datagrams to align (" + std::to_string(n) + " captured x " +
+                             std::to_string(m) + " expected); cut the capture shorter"};
+  for (const Expected& e : expected)
+    if (!e.miso.any)
+      for (const Frame& f : frames)
+        if (!f.has_miso) out->miso_checked = false;
+  trace_back(align(frames, expected, within), frames, expected, within, out);
+  settle_repeats(expected, out);
   return {};
 }
 

@@ -37,6 +37,76 @@ Error parse_timescale(const std::vector<std::string>& words, int64_t* ps) {
   return {};
 }
 
+// Where a VCD reader stands.
+struct VcdState {
+  int64_t scale_ps = 1000;                   // VCD default is 1 ns when $timescale is missing
+  std::unordered_map<std::string, int> ids;  // identifier code -> channel (-1: not 1-bit)
+  bool in_defs = true;
+  bool have_time = false;
+  int64_t now_ps = 0;
+  size_t changes = 0;
+};
+
+// One token of the header ($timescale, $var, what to skip, $enddefinitions).
+Error read_header_token(std::istream& in, std::string tok, VcdState* st, Trace* out) {
+  if (tok == "$enddefinitions") {
+    in >> tok;  // $end
+    st->in_defs = false;
+    return {};
+  }
+  if (tok == "$timescale") {
+    std::vector<std::string> words;
+    while (in >> tok && tok != "$end") words.push_back(tok);
+    return parse_timescale(words, &st->scale_ps);
+  }
+  if (tok == "$var") {
+    std::vector<std::string> words;
+    while (in >> tok && tok != "$end") words.push_back(tok);
+    if (words.size() < 4) return {"E_FORMAT", "VCD: short $var declaration"};
+    const std::string& id = words[2];
+    if (words[1] == "1" && !st->ids.count(id)) {
+      Channel ch;
+      ch.name = words[3];
+      out->channels.push_back(ch);
+      st->ids[id] = static_cast<int>(out->channels.size()) - 1;
+    } else if (!st->ids.count(id)) {
+      st->ids[id] = -1;
+    }
+    return {};
+  }
+  if (tok[0] == '$' && tok != "$end") {
+    // $date, $version, $comment, $scope, $upscope...: skip to $end.
+    while (in >> tok && tok != "$end") {
+    }
+    return {};
+  }
+  if (tok[0] == '#' || tok[0] == '0' || tok[0] == '1')
+    return {"E_FORMAT", "VCD: value changes before $enddefinitions"};
+  return {"E_FORMAT", "VCD: unexpected '" + tok.substr(0, 20) + "' in the header"};
+}
+
+// A timestamp "#N"; *stop when it is the file's last token, cut off while being written.
+Error read_timestamp(const std::string& tok, bool last_token, VcdState* st, Trace* out,
+                     bool* stop) {
+  char* endp = nullptr;
+  long long t = std::strtoll(tok.c_str() + 1, &endp, 10);
+  if (tok.size() < 2 || *endp != '\0' || t < 0) {
+    if (last_token) {
+      *stop = true;
+      return {};
+    }
+    return {"E_FORMAT", "VCD: bad timestamp '" + tok.substr(0, 20) + "'"};
+  }
+  if (t > std::numeric_limits<int64_t>::max() / st->scale_ps)
+    return {"E_FORMAT", "VCD: timestamp out of range"};
+  int64_t t_ps = static_cast<int64_t>(t) * st->scale_ps;
+  if (st->have_time && t_ps < st->now_ps) return {"E_FORMAT", "VCD: time goes backwards at " + tok};
+  if (!st->have_time) out->start_ps = t_ps;
+  st->have_time = true;
+  st->now_ps = t_ps;
+  return {};
+}
+
 }  // namespace
 
 Error parse_vcd(const std::string& text, Trace* out) {
@@ -44,50 +114,12 @@ Error parse_vcd(const std::string& text, Trace* out) {
   out->format = "vcd";
   std::istringstream in(text);
   std::string tok;
-  int64_t scale_ps = 1000;                   // VCD default is 1 ns when $timescale is missing
-  std::unordered_map<std::string, int> ids;  // identifier code -> channel (-1: not 1-bit)
-  bool in_defs = true;
-  bool have_time = false;
-  int64_t now_ps = 0;
-  size_t changes = 0;
+  VcdState st;
   while (in >> tok) {
-    if (in_defs) {
-      if (tok == "$enddefinitions") {
-        in >> tok;  // $end
-        in_defs = false;
-        continue;
-      }
-      if (tok == "$timescale") {
-        std::vector<std::string> words;
-        while (in >> tok && tok != "$end") words.push_back(tok);
-        Error e = parse_timescale(words, &scale_ps);
-        if (!e.ok()) return e;
-        continue;
-      }
-      if (tok == "$var") {
-        std::vector<std::string> words;
-        while (in >> tok && tok != "$end") words.push_back(tok);
-        if (words.size() < 4) return {"E_FORMAT", "VCD: short $var declaration"};
-        const std::string& id = words[2];
-        if (words[1] == "1" && !ids.count(id)) {
-          Channel ch;
-          ch.name = words[3];
-          out->channels.push_back(ch);
-          ids[id] = static_cast<int>(out->channels.size()) - 1;
-        } else if (!ids.count(id)) {
-          ids[id] = -1;
-        }
-        continue;
-      }
-      if (tok[0] == '$' && tok != "$end") {
-        // $date, $version, $comment, $scope, $upscope...: skip to $end.
-        while (in >> tok && tok != "$end") {
-        }
-        continue;
-      }
-      if (tok[0] == '#' || tok[0] == '0' || tok[0] == '1')
-        return {"E_FORMAT", "VCD: value changes before $enddefinitions"};
-      return {"E_FORMAT", "VCD: unexpected '" + tok.substr(0, 20) + "' in the header"};
+    if (st.in_defs) {
+      const Error e = read_header_token(in, tok, &st, out);
+      if (!e.ok()) return e;
+      continue;
     }
     // A file cut off while being written ends in a partial token: stop there.
     std::streampos after = in.tellg();
@@ -103,19 +135,10 @@ Error parse_vcd(const std::string& text, Trace* out) {
     }
     if (c == '$') continue;  // $dumpvars, $end, $dumpall...
     if (c == '#') {
-      char* endp = nullptr;
-      long long t = std::strtoll(tok.c_str() + 1, &endp, 10);
-      if (tok.size() < 2 || *endp != '\0' || t < 0) {
-        if (last_token) break;
-        return {"E_FORMAT", "VCD: bad timestamp '" + tok.substr(0, 20) + "'"};
-      }
-      if (t > std::numeric_limits<int64_t>::max() / scale_ps)
-        return {"E_FORMAT", "VCD: timestamp out of range"};
-      int64_t t_ps = static_cast<int64_t>(t) * scale_ps;
-      if (have_time && t_ps < now_ps) return {"E_FORMAT", "VCD: time goes backwards at " + tok};
-      if (!have_time) out->start_ps = t_ps;
-      have_time = true;
-      now_ps = t_ps;
+      bool stop = false;
+      const Error e = read_timestamp(tok, last_token, &st, out, &stop);
+      if (!e.ok()) return e;
+      if (stop) break;
       continue;
     }
     std::string id;
@@ -130,24 +153,25 @@ Error parse_vcd(const std::string& text, Trace* out) {
       if (last_token) break;
       return {"E_FORMAT", "VCD: unexpected '" + tok.substr(0, 20) + "'"};
     }
-    auto it = ids.find(id);
-    if (it == ids.end() && last_token) break;
-    if (it == ids.end()) return {"E_FORMAT", "VCD: change for undeclared identifier '" + id + "'"};
+    auto it = st.ids.find(id);
+    if (it == st.ids.end() && last_token) break;
+    if (it == st.ids.end())
+      return {"E_FORMAT", "VCD: change for undeclared identifier '" + id + "'"};
     if (it->second < 0) continue;
     bool high = (value == '1');
     Channel& ch = out->channels[it->second];
-    if (!have_time || now_ps == out->start_ps) {
+    if (!st.have_time || st.now_ps == out->start_ps) {
       ch.initial_high = high;  // $dumpvars/first timestamp: the starting level
       ch.toggles_ps.clear();
     } else {
-      ch.set_level(now_ps, high);
+      ch.set_level(st.now_ps, high);
     }
-    ++changes;
+    ++st.changes;
   }
-  if (in_defs) return {"E_FORMAT", "VCD: no $enddefinitions (not a VCD or truncated header)"};
+  if (st.in_defs) return {"E_FORMAT", "VCD: no $enddefinitions (not a VCD or truncated header)"};
   if (out->channels.empty()) return {"E_FORMAT", "VCD: no 1-bit wires declared"};
-  if (!have_time && changes == 0) return {"E_FORMAT", "VCD: no value changes"};
-  out->end_ps = now_ps;
+  if (!st.have_time && st.changes == 0) return {"E_FORMAT", "VCD: no value changes"};
+  out->end_ps = st.now_ps;
   return {};
 }
 

@@ -180,6 +180,87 @@ bool Tmc428Model::switches_out_of_reach(int m, uint64_t max_steps) const {
   return true;
 }
 
+// Where a segment from t ends: at the next ramp clock (*ramp_edge) while ramping, else at t1
+// (and the last ramp step is 0).
+uint64_t Tmc428Model::segment_end(Motor& mo, bool ramping, uint64_t t, uint64_t t1,
+                                  unsigned ramp_shift, uint64_t* ramp_edge) {
+  if (!ramping) {
+    mo.last_ramp = 0;
+    return t1;
+  }
+  *ramp_edge = ((t >> ramp_shift) + 1) << ramp_shift;
+  return *ramp_edge < t1 ? *ramp_edge : t1;
+}
+
+// One ramp clock: the velocity a_max nearer the target.
+void Tmc428Model::ramp_clock(Motor& mo, int32_t tgt) {
+  const int32_t diff = tgt - mo.v_q8;
+  const int32_t a = (int32_t)mo.a_max;
+  mo.last_ramp = diff > a ? a : (diff < -a ? -a : diff);
+  mo.v_q8 += mo.last_ramp;
+}
+
+// No switch can change in (t, t1] (at most one microstep per pulse clock), so the ramp
+// target is constant and no stop or flag can happen: closed-form segments between ramp
+// clocks.
+void Tmc428Model::advance_out_of_reach(int m, uint64_t t, uint64_t t1, unsigned pulse_shift,
+                                       unsigned ramp_shift) {
+  Motor& mo = motor_[m];
+  const uint32_t mode = mo.ref_ramp & kModeMask;
+  const int32_t tgt = effective_target_q8(m);
+  while (t < t1) {
+    const bool ramping = mode != kHold && mo.v_q8 != tgt && mo.a_max > 0;
+    uint64_t ramp_edge = 0;
+    const uint64_t seg_end = segment_end(mo, ramping, t, t1, ramp_shift, &ramp_edge);
+    const int32_t vi = mo.v_q8 / 256;
+    if (vi != 0) {
+      const uint64_t n = (seg_end >> pulse_shift) - (t >> pulse_shift);
+      const uint64_t total = mo.pulse_acc + n * (uint64_t)std::abs(vi);
+      mo.pulse_acc = (uint32_t)(total % 2048);
+      const int64_t steps = (int64_t)(total / 2048);
+      mo.x = wrap24((int64_t)mo.x + (vi > 0 ? steps : -steps));
+    }
+    if (ramping && seg_end == ramp_edge) ramp_clock(mo, tgt);
+    t = seg_end;
+  }
+}
+
+// Moving into an active stop switch: the stop flag, and a hard stop at once (*vi = 0); a
+// soft stop ramps via the target.
+void Tmc428Model::stop_at_switch(int m, int32_t* vi) {
+  Motor& mo = motor_[m];
+  const uint32_t mode = mo.ref_ramp & kModeMask;
+  const bool soft = (mo.ref_ramp & kSoftStop) != 0;
+  if (mode != kHold && *vi != 0) {
+    const bool into_left = *vi < 0 && !(mo.ref_ramp & kDisableStopL) && left_active(m) &&
+                           (mo.force_left >= 0 || stop_allowed(m, mo.left_pos));
+    const bool into_right = *vi > 0 && !(mo.ref_ramp & kDisableStopR) && right_active(m) &&
+                            (mo.force_right >= 0 || stop_allowed(m, mo.right_pos));
+    if (into_left || into_right) {
+      mo.int_flags = (uint8_t)((mo.int_flags | kIntStop) & mo.int_mask);
+      if (!soft) {
+        mo.v_q8 = 0;
+        *vi = 0;
+      }
+    }
+  }
+}
+
+// Microsteps until a stop switch turns on moving in dir; -1: none ahead.
+int64_t Tmc428Model::steps_to_stop_switch(int m, int dir) const {
+  const Motor& mo = motor_[m];
+  int64_t dist = -1;
+  if (dir < 0 && !(mo.ref_ramp & kDisableStopL) && left_exists(m) && mo.has_left_pos &&
+      mo.force_left < 0 && stop_allowed(m, mo.left_pos) && mo.x > mo.left_pos) {
+    dist = (int64_t)mo.x - mo.left_pos;
+  }
+  if (dir > 0 && !(mo.ref_ramp & kDisableStopR) && right_exists(m) && mo.has_right_pos &&
+      mo.force_right < 0 && stop_allowed(m, mo.right_pos) && mo.x < mo.right_pos) {
+    dist = (int64_t)mo.right_pos - mo.x;
+  }
+  return dist;
+}
+
 // Integrates one motor over (t0, t1]: ramp clock by ramp clock while the velocity changes,
 // one closed-form segment when it does not; a switch hit splits a segment at its pulse.
 void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
@@ -189,7 +270,6 @@ void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
   // Both clocks are powers of two: shifts, not 64-bit divisions, in this hot loop.
   const unsigned pulse_shift = 5 + pd, ramp_shift = 5 + rd;
   const uint32_t mode = mo.ref_ramp & kModeMask;
-  const bool soft = (mo.ref_ramp & kSoftStop) != 0;
   uint64_t t = t0;
   // Idle: at rest with no velocity to ramp to. Nothing can change (no pulse, so no switch
   // edge either); most datagrams find most motors so (Z while cutting, all three at rest).
@@ -198,77 +278,22 @@ void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
     return;
   }
   if (switches_out_of_reach(m, ((t1 - t0) >> pulse_shift) + 2)) {
-    // Fast path: no switch can change in this interval (at most one microstep per pulse
-    // clock), so the ramp target is constant and no stop or flag can happen.
-    const int32_t tgt = effective_target_q8(m);
-    while (t < t1) {
-      const bool ramping = mode != kHold && mo.v_q8 != tgt && mo.a_max > 0;
-      uint64_t seg_end = t1;
-      uint64_t ramp_edge = 0;
-      if (ramping) {
-        ramp_edge = ((t >> ramp_shift) + 1) << ramp_shift;
-        if (ramp_edge < seg_end) seg_end = ramp_edge;
-      } else {
-        mo.last_ramp = 0;
-      }
-      const int32_t vi = mo.v_q8 / 256;
-      if (vi != 0) {
-        const uint64_t n = (seg_end >> pulse_shift) - (t >> pulse_shift);
-        const uint64_t total = mo.pulse_acc + n * (uint64_t)std::abs(vi);
-        mo.pulse_acc = (uint32_t)(total % 2048);
-        const int64_t steps = (int64_t)(total / 2048);
-        mo.x = wrap24((int64_t)mo.x + (vi > 0 ? steps : -steps));
-      }
-      if (ramping && seg_end == ramp_edge) {
-        const int32_t diff = tgt - mo.v_q8;
-        const int32_t a = (int32_t)mo.a_max;
-        mo.last_ramp = diff > a ? a : (diff < -a ? -a : diff);
-        mo.v_q8 += mo.last_ramp;
-      }
-      t = seg_end;
-    }
+    advance_out_of_reach(m, t, t1, pulse_shift, ramp_shift);
     return;
   }
   while (t < t1) {
     int32_t vi = mo.v_q8 / 256;  // integer part, toward zero
-    // Moving into an active stop switch: hard stop at once, soft stop ramps via the target.
-    if (mode != kHold && vi != 0) {
-      const bool into_left = vi < 0 && !(mo.ref_ramp & kDisableStopL) && left_active(m) &&
-                             (mo.force_left >= 0 || stop_allowed(m, mo.left_pos));
-      const bool into_right = vi > 0 && !(mo.ref_ramp & kDisableStopR) && right_active(m) &&
-                              (mo.force_right >= 0 || stop_allowed(m, mo.right_pos));
-      if (into_left || into_right) {
-        mo.int_flags = (uint8_t)((mo.int_flags | kIntStop) & mo.int_mask);
-        if (!soft) {
-          mo.v_q8 = 0;
-          vi = 0;
-        }
-      }
-    }
+    stop_at_switch(m, &vi);
     const int32_t tgt = effective_target_q8(m);
     const bool ramping = mode != kHold && mo.v_q8 != tgt && mo.a_max > 0;
-    uint64_t seg_end = t1;
     uint64_t ramp_edge = 0;
-    if (ramping) {
-      ramp_edge = ((t >> ramp_shift) + 1) << ramp_shift;
-      if (ramp_edge < seg_end) seg_end = ramp_edge;
-    } else {
-      mo.last_ramp = 0;
-    }
+    const uint64_t seg_end = segment_end(mo, ramping, t, t1, ramp_shift, &ramp_edge);
     if (vi != 0) {
       const uint64_t n = (seg_end >> pulse_shift) - (t >> pulse_shift);  // pulse edges in (t, end]
       if (n != 0) {
         const uint64_t av = (uint64_t)std::abs(vi);
         const int dir = vi > 0 ? 1 : -1;
-        int64_t dist = -1;  // microsteps until a stop switch turns on, -1 = none ahead
-        if (dir < 0 && !(mo.ref_ramp & kDisableStopL) && left_exists(m) && mo.has_left_pos &&
-            mo.force_left < 0 && stop_allowed(m, mo.left_pos) && mo.x > mo.left_pos) {
-          dist = (int64_t)mo.x - mo.left_pos;
-        }
-        if (dir > 0 && !(mo.ref_ramp & kDisableStopR) && right_exists(m) && mo.has_right_pos &&
-            mo.force_right < 0 && stop_allowed(m, mo.right_pos) && mo.x < mo.right_pos) {
-          dist = (int64_t)mo.right_pos - mo.x;
-        }
+        const int64_t dist = steps_to_stop_switch(m, dir);
         uint64_t total = mo.pulse_acc + n * av;
         const uint64_t steps = total / 2048;
         if (dist > 0 && (uint64_t)dist <= steps) {
@@ -280,13 +305,8 @@ void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
           mo.pulse_acc = (uint32_t)(total - (uint64_t)dist * 2048);
           mo.x = wrap24((int64_t)mo.x + dir * dist);
           note_switches(m);
-          if (ramping && edge == ramp_edge) {
-            // The ramp clock of this same tick still happens (before the stop check).
-            const int32_t diff = tgt - mo.v_q8;
-            const int32_t a = (int32_t)mo.a_max;
-            mo.last_ramp = diff > a ? a : (diff < -a ? -a : diff);
-            mo.v_q8 += mo.last_ramp;
-          }
+          // The ramp clock of this same tick still happens (before the stop check).
+          if (ramping && edge == ramp_edge) ramp_clock(mo, tgt);
           t = edge;
           continue;  // the stop check at the top of the loop acts on the switch
         }
@@ -297,12 +317,7 @@ void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
         }
       }
     }
-    if (ramping && seg_end == ramp_edge) {
-      const int32_t diff = tgt - mo.v_q8;
-      const int32_t a = (int32_t)mo.a_max;
-      mo.last_ramp = diff > a ? a : (diff < -a ? -a : diff);
-      mo.v_q8 += mo.last_ramp;
-    }
+    if (ramping && seg_end == ramp_edge) ramp_clock(mo, tgt);
     t = seg_end;
   }
 }
@@ -460,47 +475,41 @@ uint32_t Tmc428Model::common_reg(int jdx) const {
   }
 }
 
-void Tmc428Model::write_register(uint8_t addr, uint32_t data) {
-  data &= 0xFFFFFF;
-  if (addr & 0x80) {
-    const int pair = (addr >> 1) & 0x3F;
-    ram_[2 * pair] = (uint8_t)(data & 0x3F);
-    ram_[2 * pair + 1] = (uint8_t)((data >> 8) & 0x3F);
-    return;
+// A write to the common registers (SMDA 3): the chain capture, cover datagram, global
+// parameters.
+void Tmc428Model::write_global_register(int idx, uint32_t data) {
+  switch (idx) {
+    case 0:
+    case 1:
+      arm_chain_capture();
+      break;
+    case 2:
+      cover_pos_len_ = data & 0x3F1F;
+      break;
+    case 3:
+      cover_datagram_ = data;
+      cover_waiting_ = true;
+      if (!chain_scheduled_) schedule_chain(now_);
+      break;
+    case 15:
+      smgp_ = data & 0x31FFFF;
+      for (int m = 0; m < kMotors; ++m) note_switches(m);
+      break;
+    default:
+      break;  // power_down (JDX 8), RO and unused addresses: no effect here
   }
-  const int smda = (addr >> 5) & 3;
-  const int idx = (addr >> 1) & 0xF;
-  if (smda == 3) {
-    switch (idx) {
-      case 0:
-      case 1:
-        arm_chain_capture();
-        break;
-      case 2:
-        cover_pos_len_ = data & 0x3F1F;
-        break;
-      case 3:
-        cover_datagram_ = data;
-        cover_waiting_ = true;
-        if (!chain_scheduled_) schedule_chain(now_);
-        break;
-      case 15:
-        smgp_ = data & 0x31FFFF;
-        for (int m = 0; m < kMotors; ++m) note_switches(m);
-        break;
-      default:
-        break;  // power_down (JDX 8), RO and unused addresses: no effect here
-    }
-    return;
-  }
-  Motor& mo = motor_[smda];
+}
+
+// A write to motor m's registers (SMDA 0..2).
+void Tmc428Model::write_motor_register(int m, int idx, uint32_t data) {
+  Motor& mo = motor_[m];
   switch (idx) {
     case 0:
       mo.x_target = data;
       break;
     case 1:
       mo.x = sext(data, 24);
-      note_switches(smda);
+      note_switches(m);
       break;
     case 2:
       mo.v_min = data & 0x7FF;
@@ -542,6 +551,23 @@ void Tmc428Model::write_register(uint8_t addr, uint32_t data) {
     default:
       break;  // a_actual RO, IDX 15 unused
   }
+}
+
+void Tmc428Model::write_register(uint8_t addr, uint32_t data) {
+  data &= 0xFFFFFF;
+  if (addr & 0x80) {
+    const int pair = (addr >> 1) & 0x3F;
+    ram_[2 * pair] = (uint8_t)(data & 0x3F);
+    ram_[2 * pair + 1] = (uint8_t)((data >> 8) & 0x3F);
+    return;
+  }
+  const int smda = (addr >> 5) & 3;
+  const int idx = (addr >> 1) & 0xF;
+  if (smda == 3) {
+    write_global_register(idx, data);
+    return;
+  }
+  write_motor_register(smda, idx, data);
 }
 
 // ---- SPI ----------------------------------------------------------------------------------

@@ -108,8 +108,17 @@ class Tmc428Model : public SpiDevice {
 
   uint32_t read_register(uint8_t addr) const;
   void write_register(uint8_t addr, uint32_t data);
+  void write_global_register(int idx, uint32_t data);
+  void write_motor_register(int m, int idx, uint32_t data);
   void advance_to_tick(uint64_t t);
   void advance_motor(int m, uint64_t t0, uint64_t t1);
+  void advance_out_of_reach(int m, uint64_t t, uint64_t t1, unsigned pulse_shift,
+                            unsigned ramp_shift);
+  void stop_at_switch(int m, int32_t* vi);
+  int64_t steps_to_stop_switch(int m, int dir) const;
+  static void ramp_clock(Motor& mo, int32_t tgt);
+  static uint64_t segment_end(Motor& mo, bool ramping, uint64_t t, uint64_t t1, unsigned ramp_shift,
+                              uint64_t* ramp_edge);
   bool switches_out_of_reach(int m, uint64_t max_steps) const;
   int32_t effective_target_q8(int m) const;
   bool left_active(int m) const;

@@ -116,28 +116,30 @@ class Interpreter {
     }
   }
 
-  bool execute(const LineWords& w) {
-    if (w.have('F')) feed_ = w.get('F');  // converted when used (units may change later)
-    if (w.have('T')) tool_ = static_cast<int>(w.get('T'));
+  // What a line's M words ask for besides the spindle (switched after a tool change).
+  struct MCodes {
     bool tool_change = false, stop = false, end = false;
-    int stop_code = 0;
+    int stop_code = 0;  // M0 or M1
+  };
+  MCodes m_codes(const LineWords& w) {
+    MCodes c;
     for (int m : w.m) {
       switch (m) {
         case 0:
         case 1:
-          stop = true;
-          stop_code = m;
+          c.stop = true;
+          c.stop_code = m;
           break;
         case 2:
         case 30:
-          end = true;
+          c.end = true;
           break;
         case 3:
         case 4:
         case 5:
           break;  // below, after a tool change
         case 6:
-          tool_change = true;
+          c.tool_change = true;
           break;
         case 7:
         case 8:
@@ -158,15 +160,16 @@ class Interpreter {
                             " is not supported (M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M30 M48 M49 are)");
       }
     }
-    if (tool_change) {
-      pause(message_.empty() ? "Change tool T" + std::to_string(tool_) : message_, tool_);
-    }
-    for (int m : w.m) {
-      if (m == 3 || m == 4) spindle(true);
-      if (m == 5) spindle(false);
-    }
-    int motion_set = -2;  // a motion word on this line (-2: none)
+    return c;
+  }
+
+  // A line's G words: the modal state they set, and what they ask for on this line.
+  struct GCodes {
+    int motion = -2;  // a motion word on this line (-2: none, -1: G80)
     bool dwell = false;
+  };
+  GCodes g_codes(const LineWords& w) {
+    GCodes c;
     for (int g : w.g10) {
       switch (g) {
         case 0:
@@ -176,13 +179,13 @@ class Interpreter {
         case 810:
         case 820:
         case 830:
-          motion_set = g / 10;
+          c.motion = g / 10;
           break;
         case 800:
-          motion_set = -1;
+          c.motion = -1;
           break;
         case 40:
-          dwell = true;
+          c.dwell = true;
           break;
         case 200:
           to_mm_ = 25.4;
@@ -235,20 +238,38 @@ class Interpreter {
                             "G61.1 G64 G80 G81 G82 G83 G90 G91 G90.1 G91.1 G94 G98 G99 are)");
       }
     }
-    if (dwell) {
-      if (!w.have('P')) throw ImportError(where_ + ": G4 without P (seconds)");
-      if (w.get('P') < 0) throw ImportError(where_ + ": G4 P is negative");
-      if (w.get('P') > 0) {
-        flush();
-        ProgramOp op;
-        op.kind = ProgramOp::kDwell;
-        op.dwell_s = w.get('P');  // LinuxCNC: P in seconds
-        add(op);
-      }
+    return c;
+  }
+
+  // G4 P (seconds).
+  void dwell(const LineWords& w) {
+    if (!w.have('P')) throw ImportError(where_ + ": G4 without P (seconds)");
+    if (w.get('P') < 0) throw ImportError(where_ + ": G4 P is negative");
+    if (w.get('P') > 0) {
+      flush();
+      ProgramOp op;
+      op.kind = ProgramOp::kDwell;
+      op.dwell_s = w.get('P');  // LinuxCNC: P in seconds
+      add(op);
     }
-    if (motion_set != -2) motion_ = motion_set;
+  }
+
+  bool execute(const LineWords& w) {
+    if (w.have('F')) feed_ = w.get('F');  // converted when used (units may change later)
+    if (w.have('T')) tool_ = static_cast<int>(w.get('T'));
+    const MCodes mc = m_codes(w);
+    if (mc.tool_change) {
+      pause(message_.empty() ? "Change tool T" + std::to_string(tool_) : message_, tool_);
+    }
+    for (int m : w.m) {
+      if (m == 3 || m == 4) spindle(true);
+      if (m == 5) spindle(false);
+    }
+    const GCodes gc = g_codes(w);
+    if (gc.dwell) dwell(w);
+    if (gc.motion != -2) motion_ = gc.motion;
     const bool axes = w.have('X') || w.have('Y') || w.have('Z');
-    if (axes && dwell) throw ImportError(where_ + ": G4 with X/Y/Z words on the same line");
+    if (axes && gc.dwell) throw ImportError(where_ + ": G4 with X/Y/Z words on the same line");
     if (axes) {
       if (motion_ == -1) {
         throw ImportError(where_ +
@@ -260,11 +281,11 @@ class Interpreter {
         move(w);
       }
     }
-    if (stop) {
-      pause(message_.empty() ? (stop_code == 0 ? "Program stop (M0)" : "Optional stop (M1)")
+    if (mc.stop) {
+      pause(message_.empty() ? (mc.stop_code == 0 ? "Program stop (M0)" : "Optional stop (M1)")
                              : message_);
     }
-    if (end) {
+    if (mc.end) {
       flush();
       if (spindle_on_) spindle(false);
       return false;

@@ -137,6 +137,189 @@ double evaluate_macro_expression(const std::string& text, const std::vector<doub
   return v;
 }
 
+namespace {
+
+// A primitive statement's modifiers, evaluated, and the checks every primitive makes.
+struct PrimitiveArgs {
+  const ApertureMacro& macro;
+  const MacroStatement& st;
+  std::vector<std::string> fields;  // the code, then the modifiers as written
+  std::vector<double> m;            // the modifiers' values
+  double unit_nm, tol_nm;
+  const std::string& code() const { return fields[0]; }
+  [[noreturn]] void bad(const std::string& what) const {
+    throw MacroError(st.line, "macro " + macro.name + ": " + what);
+  }
+  void need(size_t n, const char* what) const {
+    if (m.size() < n) {
+      bad(std::string(what) + " needs " + std::to_string(n) + " modifiers, got " +
+          std::to_string(m.size()));
+    }
+  }
+  double len(double v) const {
+    const double nm = v * unit_nm;
+    if (!(std::fabs(nm) <= 1e10)) bad("a size or position beyond 10 m");
+    return nm;
+  }
+  // 0 off, 1 on, 2 toggle (old spec); anything else is refused before any cast.
+  int exposure_of(double v) const {
+    if (v != 0 && v != 1 && v != 2) bad("exposure must be 0 or 1, not " + fields[1]);
+    return static_cast<int>(v);
+  }
+};
+
+// A primitive's shape before its rotation, its exposure and its rotation (degrees).
+struct Primitive {
+  Paths paths;
+  int exposure = 1;
+  double rot = 0;
+};
+
+// 1: a circle.
+Primitive circle(const PrimitiveArgs& a) {
+  Primitive p;
+  a.need(4, "circle (1)");
+  p.exposure = a.exposure_of(a.m[0]);
+  if (a.m[1] > 0)
+    p.paths.push_back(circle_path({a.len(a.m[2]), a.len(a.m[3])}, a.len(a.m[1]), a.tol_nm));
+  p.rot = a.m.size() > 4 ? a.m[4] : 0;
+  return p;
+}
+
+// 2, 20: a line of a width between two points.
+Primitive vector_line(const PrimitiveArgs& a) {
+  Primitive p;
+  a.need(7, "vector line (20)");
+  p.exposure = a.exposure_of(a.m[0]);
+  Path path =
+      line_rect({a.len(a.m[2]), a.len(a.m[3])}, {a.len(a.m[4]), a.len(a.m[5])}, a.len(a.m[1]));
+  if (!path.empty()) p.paths.push_back(path);
+  p.rot = a.m[6];
+  return p;
+}
+
+// 21: a rectangle by its centre; 22: by its lower-left corner.
+Primitive box_line(const PrimitiveArgs& a) {
+  Primitive p;
+  a.need(6, a.code() == "21" ? "center line (21)" : "lower-left line (22)");
+  p.exposure = a.exposure_of(a.m[0]);
+  const double w = a.len(a.m[1]), h = a.len(a.m[2]);
+  VecNm c{a.len(a.m[3]), a.len(a.m[4])};
+  if (a.code() == "22") c = {c.x + w / 2, c.y + h / 2};
+  if (w > 0 && h > 0) p.paths.push_back(rect_path(c, w, h));
+  p.rot = a.m[5];
+  return p;
+}
+
+// 4: a closed outline of n + 1 points.
+Primitive outline(const PrimitiveArgs& a) {
+  Primitive p;
+  a.need(2, "outline (4)");
+  p.exposure = a.exposure_of(a.m[0]);
+  const double n = a.m[1];
+  if (!(n >= 1 && n <= 100000) || n != std::floor(n)) a.bad("outline with a bad vertex count");
+  const size_t count = static_cast<size_t>(n);
+  a.need(2 + 2 * (count + 1) + 1, "outline (4)");
+  Path path;
+  for (size_t i = 0; i <= count; ++i) {
+    path.push_back(to_int({a.len(a.m[2 + 2 * i]), a.len(a.m[3 + 2 * i])}));
+  }
+  if (path.front() == path.back()) path.pop_back();  // closed as the spec asks
+  make_positive(path);
+  p.paths.push_back(path);
+  p.rot = a.m[2 + 2 * (count + 1)];
+  return p;
+}
+
+// 5: a regular polygon.
+Primitive polygon(const PrimitiveArgs& a) {
+  Primitive p;
+  a.need(5, "polygon (5)");
+  p.exposure = a.exposure_of(a.m[0]);
+  if (!(a.m[1] >= 3 && a.m[1] <= 12)) a.bad("polygon needs 3 to 12 vertices");
+  if (a.m[4] > 0) {
+    p.paths.push_back(regular_polygon_path({a.len(a.m[2]), a.len(a.m[3])}, a.len(a.m[4]),
+                                           static_cast<int>(a.m[1]), 0));
+  }
+  p.rot = a.m.size() > 5 ? a.m[5] : 0;
+  return p;
+}
+
+// 6: rings and a cross hair.
+Primitive moire(const PrimitiveArgs& a) {
+  Primitive p;
+  a.need(9, "moire (6)");
+  const VecNm c{a.len(a.m[0]), a.len(a.m[1])};
+  const double thick = a.len(a.m[3]), gap = a.len(a.m[4]);
+  double d = a.len(a.m[2]);
+  Paths rings;
+  for (int i = 0; i < static_cast<int>(std::fmax(0.0, std::fmin(a.m[5], 1000.0))) && d > 0; ++i) {
+    Paths ring{circle_path(c, d, a.tol_nm)};
+    if (d - 2 * thick > 0) ring = difference_of(ring, {circle_path(c, d - 2 * thick, a.tol_nm)});
+    rings.insert(rings.end(), ring.begin(), ring.end());
+    d -= 2 * (thick + gap);
+  }
+  const double ct = a.len(a.m[6]), cl = a.len(a.m[7]);
+  if (ct > 0 && cl > 0) {
+    rings.push_back(rect_path(c, cl, ct));
+    rings.push_back(rect_path(c, ct, cl));
+  }
+  p.paths = union_of(rings);
+  p.rot = a.m[8];
+  return p;
+}
+
+// 7: a ring cut by a cross.
+Primitive thermal(const PrimitiveArgs& a) {
+  Primitive p;
+  a.need(5, "thermal (7)");
+  const VecNm c{a.len(a.m[0]), a.len(a.m[1])};
+  const double outer = a.len(a.m[2]), inner = a.len(a.m[3]), gap = a.len(a.m[4]);
+  if (!(outer > inner) || inner < 0 || gap < 0) a.bad("thermal needs outer > inner >= 0");
+  Paths ring{circle_path(c, outer, a.tol_nm)};
+  Paths cut;
+  if (inner > 0) cut.push_back(circle_path(c, inner, a.tol_nm));
+  if (gap > 0) {
+    cut.push_back(rect_path(c, 2 * outer, gap));
+    cut.push_back(rect_path(c, gap, 2 * outer));
+  }
+  p.paths = difference_of(ring, cut);
+  p.rot = a.m.size() > 5 ? a.m[5] : 0;
+  return p;
+}
+
+Primitive primitive(const PrimitiveArgs& a) {
+  const std::string& code = a.code();
+  if (code == "1") return circle(a);
+  if (code == "2" || code == "20") return vector_line(a);
+  if (code == "21" || code == "22") return box_line(a);
+  if (code == "4") return outline(a);
+  if (code == "5") return polygon(a);
+  if (code == "6") return moire(a);
+  if (code == "7") return thermal(a);
+  a.bad("unknown primitive '" + code + "'");
+}
+
+// The primitive, rotated, added to the shape, cut from it or toggled in it.
+void expose(const PrimitiveArgs& a, Primitive prim, Paths* shape) {
+  rotate_all(prim.paths, prim.rot);
+  if (prim.exposure == 1) {
+    prim.paths.insert(prim.paths.end(), shape->begin(), shape->end());
+    *shape = union_of(prim.paths);
+  } else if (prim.exposure == 0) {
+    *shape = difference_of(*shape, prim.paths);
+  } else if (prim.exposure == 2) {  // toggle (old spec)
+    ClipperLib::Clipper c;
+    c.AddPaths(*shape, ClipperLib::ptSubject, true);
+    c.AddPaths(prim.paths, ClipperLib::ptClip, true);
+    c.Execute(ClipperLib::ctXor, *shape, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  } else {
+    a.bad("exposure must be 0 or 1, not " + std::to_string(prim.exposure));
+  }
+}
+
+}  // namespace
+
 Paths evaluate_macro(const ApertureMacro& macro, const std::vector<double>& params, double unit_nm,
                      double tol_nm) {
   std::vector<double> vars(1, 0.0);
@@ -165,121 +348,8 @@ Paths evaluate_macro(const ApertureMacro& macro, const std::vector<double>& para
       for (size_t i = 1; i < fields.size(); ++i) {
         m.push_back(evaluate_macro_expression(fields[i], vars));
       }
-      const std::string& code = fields[0];
-      auto need = [&](size_t n, const char* what) {
-        if (m.size() < n) {
-          bad(std::string(what) + " needs " + std::to_string(n) + " modifiers, got " +
-              std::to_string(m.size()));
-        }
-      };
-      auto len = [&](double v) {
-        const double nm = v * unit_nm;
-        if (!(std::fabs(nm) <= 1e10)) bad("a size or position beyond 10 m");
-        return nm;
-      };
-      // 0 off, 1 on, 2 toggle (old spec); anything else is refused before any cast.
-      auto exposure_of = [&](double v) {
-        if (v != 0 && v != 1 && v != 2) bad("exposure must be 0 or 1, not " + fields[1]);
-        return static_cast<int>(v);
-      };
-      Paths prim;
-      int exposure = 1;
-      double rot = 0;
-      if (code == "1") {
-        need(4, "circle (1)");
-        exposure = exposure_of(m[0]);
-        if (m[1] > 0) prim.push_back(circle_path({len(m[2]), len(m[3])}, len(m[1]), tol_nm));
-        rot = m.size() > 4 ? m[4] : 0;
-      } else if (code == "2" || code == "20") {
-        need(7, "vector line (20)");
-        exposure = exposure_of(m[0]);
-        Path p = line_rect({len(m[2]), len(m[3])}, {len(m[4]), len(m[5])}, len(m[1]));
-        if (!p.empty()) prim.push_back(p);
-        rot = m[6];
-      } else if (code == "21" || code == "22") {
-        need(6, code == "21" ? "center line (21)" : "lower-left line (22)");
-        exposure = exposure_of(m[0]);
-        const double w = len(m[1]), h = len(m[2]);
-        VecNm c{len(m[3]), len(m[4])};
-        if (code == "22") c = {c.x + w / 2, c.y + h / 2};
-        if (w > 0 && h > 0) prim.push_back(rect_path(c, w, h));
-        rot = m[5];
-      } else if (code == "4") {
-        need(2, "outline (4)");
-        exposure = exposure_of(m[0]);
-        const double n = m[1];
-        if (!(n >= 1 && n <= 100000) || n != std::floor(n)) bad("outline with a bad vertex count");
-        const size_t count = static_cast<size_t>(n);
-        need(2 + 2 * (count + 1) + 1, "outline (4)");
-        Path p;
-        for (size_t i = 0; i <= count; ++i) {
-          p.push_back(to_int({len(m[2 + 2 * i]), len(m[3 + 2 * i])}));
-        }
-        if (p.front() == p.back()) p.pop_back();  // closed as the spec asks
-        make_positive(p);
-        prim.push_back(p);
-        rot = m[2 + 2 * (count + 1)];
-      } else if (code == "5") {
-        need(5, "polygon (5)");
-        exposure = exposure_of(m[0]);
-        if (!(m[1] >= 3 && m[1] <= 12)) bad("polygon needs 3 to 12 vertices");
-        if (m[4] > 0) {
-          prim.push_back(
-              regular_polygon_path({len(m[2]), len(m[3])}, len(m[4]), static_cast<int>(m[1]), 0));
-        }
-        rot = m.size() > 5 ? m[5] : 0;
-      } else if (code == "6") {
-        need(9, "moire (6)");
-        const VecNm c{len(m[0]), len(m[1])};
-        const double thick = len(m[3]), gap = len(m[4]);
-        double d = len(m[2]);
-        Paths rings;
-        for (int i = 0; i < static_cast<int>(std::fmax(0.0, std::fmin(m[5], 1000.0))) && d > 0;
-             ++i) {
-          Paths ring{circle_path(c, d, tol_nm)};
-          if (d - 2 * thick > 0)
-            ring = difference_of(ring, {circle_path(c, d - 2 * thick, tol_nm)});
-          rings.insert(rings.end(), ring.begin(), ring.end());
-          d -= 2 * (thick + gap);
-        }
-        const double ct = len(m[6]), cl = len(m[7]);
-        if (ct > 0 && cl > 0) {
-          rings.push_back(rect_path(c, cl, ct));
-          rings.push_back(rect_path(c, ct, cl));
-        }
-        prim = union_of(rings);
-        rot = m[8];
-      } else if (code == "7") {
-        need(5, "thermal (7)");
-        const VecNm c{len(m[0]), len(m[1])};
-        const double outer = len(m[2]), inner = len(m[3]), gap = len(m[4]);
-        if (!(outer > inner) || inner < 0 || gap < 0) bad("thermal needs outer > inner >= 0");
-        Paths ring{circle_path(c, outer, tol_nm)};
-        Paths cut;
-        if (inner > 0) cut.push_back(circle_path(c, inner, tol_nm));
-        if (gap > 0) {
-          cut.push_back(rect_path(c, 2 * outer, gap));
-          cut.push_back(rect_path(c, gap, 2 * outer));
-        }
-        prim = difference_of(ring, cut);
-        rot = m.size() > 5 ? m[5] : 0;
-      } else {
-        bad("unknown primitive '" + code + "'");
-      }
-      rotate_all(prim, rot);
-      if (exposure == 1) {
-        prim.insert(prim.end(), shape.begin(), shape.end());
-        shape = union_of(prim);
-      } else if (exposure == 0) {
-        shape = difference_of(shape, prim);
-      } else if (exposure == 2) {  // toggle (old spec)
-        ClipperLib::Clipper c;
-        c.AddPaths(shape, ClipperLib::ptSubject, true);
-        c.AddPaths(prim, ClipperLib::ptClip, true);
-        c.Execute(ClipperLib::ctXor, shape, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-      } else {
-        bad("exposure must be 0 or 1, not " + std::to_string(exposure));
-      }
+      PrimitiveArgs a{macro, st, fields, m, unit_nm, tol_nm};
+      expose(a, primitive(a), &shape);
     } catch (const std::invalid_argument& e) {
       bad(e.what());
     }

@@ -5,11 +5,6 @@
 
 namespace host::pcb {
 
-using ClipperLib::cInt;
-using ClipperLib::IntPoint;
-using ClipperLib::Path;
-using ClipperLib::Paths;
-
 namespace {
 
 const double kPi = 3.14159265358979323846;

@@ -9,11 +9,6 @@
 
 namespace host::pcb {
 
-using ClipperLib::cInt;
-using ClipperLib::IntPoint;
-using ClipperLib::Path;
-using ClipperLib::Paths;
-
 namespace {
 
 // Intersections smaller than this (nm^2, a 0.1 um square) are numerical touching.
@@ -179,13 +174,174 @@ std::vector<NarrowGap> find_narrow_gaps(const std::vector<Island>& islands, doub
   return gaps;
 }
 
-IsolationResult plan_isolation(const Paths& copper_in, const IsolationOptions& o) {
+namespace {
+
+// The tool centre's distances: from the copper, between passes, and Clipper's arc tolerance.
+struct PassGeometry {
+  double radius_nm = 0, step_nm = 0, arc_tol_nm = 0;
+};
+
+void add_tool_paths(const Paths& paths, int pass, bool closed, bool clearing, IsolationResult* r) {
+  for (const Path& p : paths) {
+    ToolPathNm t;
+    t.path = p;
+    t.pass = pass;
+    t.closed = closed;
+    t.clearing = clearing;
+    r->paths.push_back(t);
+  }
+}
+
+void check_isolation_options(const IsolationOptions& o) {
   if (!(o.tool_width_mm > 0)) throw std::invalid_argument("the tool width must be positive");
   if (o.passes < 1) throw std::invalid_argument("at least one isolation pass is needed");
   if (!(o.clearance_mm >= 0 && o.clearance_mm <= 1))
     throw std::invalid_argument("the isolation clearance must be between 0 and 1 mm");
   if (!(o.overlap >= 0 && o.overlap <= 0.9))
     throw std::invalid_argument("the pass overlap must be between 0 and 0.9");
+}
+
+// The narrow tool's first passes, then the clearing tool out to the edge `passes` narrow
+// passes would reach: its inner edge at edge_mm, passes overlapping by the overlap.
+void plan_with_clearing_tool(const std::vector<Island>& islands, const IsolationOptions& o,
+                             const PassGeometry& g, double edge_mm, IsolationResult* r) {
+  const double radius_nm = g.radius_nm, step_nm = g.step_nm, arc_tol_nm = g.arc_tol_nm;
+  for (int k = 0; k < o.narrow_passes; ++k) {
+    add_tool_paths(grown_islands(islands, radius_nm + k * step_nm, arc_tol_nm), k, true, false, r);
+  }
+  const double wide_mm = o.clearing_tool_width_mm;
+  const double outer_mm =
+      o.clearance_mm + o.tool_width_mm + (o.passes - 1) * o.tool_width_mm * (1.0 - o.overlap);
+  const double wide_step_mm = wide_mm * (1.0 - o.overlap);
+  const int wide_passes =
+      1 + std::max(
+              0, static_cast<int>(std::ceil((outer_mm - edge_mm - wide_mm) / wide_step_mm - 1e-9)));
+  r->clearing_tool_radius_mm = wide_mm / 2;
+  for (int k = 0; k < wide_passes; ++k) {
+    const double centre_mm = edge_mm + wide_mm / 2 + k * wide_step_mm;
+    add_tool_paths(grown_islands(islands, centre_mm * kNmPerMm, arc_tol_nm), o.narrow_passes + k,
+                   true, true, r);
+  }
+  // Where the wide tool cannot reach (into an acute corner between tracks), the narrow
+  // tool's further passes clear what is left of the band, clipped to that part.
+  Paths centres;
+  Paths wide_centres;
+  for (const ToolPathNm& t : r->paths)
+    (t.clearing ? wide_centres : centres).push_back(t.closed ? as_open(t.path) : t.path);
+  Paths swept = sweep_open(centres, radius_nm - o.clearance_mm * kNmPerMm, arc_tol_nm);
+  const Paths wide_swept = sweep_open(wide_centres, wide_mm / 2 * kNmPerMm, arc_tol_nm);
+  swept.insert(swept.end(), wide_swept.begin(), wide_swept.end());
+  const Paths band = difference_of(grown_islands(islands, outer_mm * kNmPerMm, arc_tol_nm),
+                                   grown_islands(islands, o.clearance_mm * kNmPerMm, arc_tol_nm));
+  const Paths left = difference_of(band, union_of(swept));
+  if (std::fabs(signed_area(left)) >= kMinOverlapAreaNm2) {
+    const Paths near_left = offset_closed(left, o.tool_width_mm * kNmPerMm, arc_tol_nm);
+    for (int k = o.narrow_passes; k < o.passes; ++k) {
+      add_tool_paths(
+          clip_to(grown_islands(islands, radius_nm + k * step_nm, arc_tol_nm), near_left), k, false,
+          false, r);
+    }
+  }
+  std::stable_sort(r->paths.begin(), r->paths.end(), [](const ToolPathNm& a, const ToolPathNm& b) {
+    return !a.clearing && b.clearing;
+  });
+}
+
+// Contours around each island, `passes` of them.
+void plan_contours(const std::vector<Island>& islands, const IsolationOptions& o,
+                   const PassGeometry& g, IsolationResult* r) {
+  const double radius_nm = g.radius_nm, step_nm = g.step_nm, arc_tol_nm = g.arc_tol_nm;
+  const std::vector<Island> cut =
+      o.isolate_empty_holes ? islands : without_empty_holes(islands, &r->empty_holes_skipped);
+  for (int k = 0; k < o.passes; ++k) {
+    add_tool_paths(grown_islands(cut, radius_nm + k * step_nm, arc_tol_nm), k, true, false, r);
+  }
+}
+
+// One stroke along a piece's principal axis (of its vertices), end to end.
+Path principal_axis_stroke(const Path& piece) {
+  double mx = 0, my = 0;
+  for (const IntPoint& q : piece) mx += static_cast<double>(q.X), my += static_cast<double>(q.Y);
+  mx /= static_cast<double>(piece.size()), my /= static_cast<double>(piece.size());
+  double sxx = 0, syy = 0, sxy = 0;
+  for (const IntPoint& q : piece) {
+    const double dx = static_cast<double>(q.X) - mx, dy = static_cast<double>(q.Y) - my;
+    sxx += dx * dx, syy += dy * dy, sxy += dx * dy;
+  }
+  const double angle = 0.5 * std::atan2(2 * sxy, sxx - syy);
+  const double ux = std::cos(angle), uy = std::sin(angle);
+  double lo = 0, hi = 0;
+  for (const IntPoint& q : piece) {
+    const double t = (static_cast<double>(q.X) - mx) * ux + (static_cast<double>(q.Y) - my) * uy;
+    lo = std::min(lo, t), hi = std::max(hi, t);
+  }
+  return Path{IntPoint(static_cast<cInt>(mx + lo * ux), static_cast<cInt>(my + lo * uy)),
+              IntPoint(static_cast<cInt>(mx + hi * ux), static_cast<cInt>(my + hi * uy))};
+}
+
+// Where the fronts of two islands meet, cusps wider than the step stay uncut: one short
+// stroke along each leftover sliver's long axis, kept where the tool centre may go.
+void add_cusp_strokes(const std::vector<Island>& islands, const Paths& centre_area, int last_pass,
+                      const PassGeometry& g, IsolationResult* r) {
+  const double radius_nm = g.radius_nm, arc_tol_nm = g.arc_tol_nm;
+  const Paths allowed = difference_of(centre_area, grown_islands(islands, radius_nm, arc_tol_nm));
+  const Paths reachable = offset_closed(allowed, radius_nm, arc_tol_nm);
+  for (int round = 0; round < 3; ++round) {
+    Paths centres;
+    for (const ToolPathNm& t : r->paths) centres.push_back(t.closed ? as_open(t.path) : t.path);
+    const Paths left = difference_of(reachable, sweep_open(centres, radius_nm, arc_tol_nm));
+    Paths strokes;
+    for (const Path& piece : left) {
+      if (ClipperLib::Area(piece) < kMinOverlapAreaNm2 * 100) continue;  // slivers < 1 um^2
+      strokes.push_back(principal_axis_stroke(piece));
+    }
+    if (strokes.empty()) break;
+    ClipperLib::Clipper c;
+    c.AddPaths(strokes, ClipperLib::ptSubject, false);
+    c.AddPaths(allowed, ClipperLib::ptClip, true);
+    ClipperLib::PolyTree tree;
+    c.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    Paths kept;
+    ClipperLib::OpenPathsFromPolyTree(tree, kept);
+    if (kept.empty()) break;
+    add_tool_paths(kept, last_pass + 1 + round, false, false, r);
+  }
+}
+
+// Clearing: contours grow until the area (shrunk by the tool radius, where the tool centre
+// may go) is covered; the area's own inset boundary is the last contour.
+void plan_mill_all(const std::vector<Island>& islands, const IsolationOptions& o,
+                   const PassGeometry& g, IsolationResult* r) {
+  const double radius_nm = g.radius_nm, step_nm = g.step_nm, arc_tol_nm = g.arc_tol_nm;
+  Paths area = o.area_nm;
+  if (area.empty()) {
+    BoxNm b;
+    for (const Island& island : islands) b.add(island.paths[0]);
+    const cInt m = static_cast<cInt>(4 * radius_nm);
+    area.push_back(Path{IntPoint(b.min_x - m, b.min_y - m), IntPoint(b.max_x + m, b.min_y - m),
+                        IntPoint(b.max_x + m, b.max_y + m), IntPoint(b.min_x - m, b.max_y + m)});
+  }
+  const Paths centre_area = offset_closed(union_of(area), -radius_nm, arc_tol_nm);
+  for (int k = 0; k < 100000; ++k) {
+    const double d = radius_nm + k * step_nm;
+    const Paths contours = grown_islands(islands, d, arc_tol_nm);
+    if (k == 0) {
+      add_tool_paths(contours, 0, true, false, r);
+    } else {
+      add_tool_paths(clip_to(contours, centre_area), k, false, false, r);
+    }
+    const Paths left = difference_of(centre_area, grown_islands(islands, d + step_nm, arc_tol_nm));
+    if (std::fabs(signed_area(left)) < kMinOverlapAreaNm2) break;
+  }
+  const int last_pass = r->paths.empty() ? 1 : r->paths.back().pass + 1;
+  add_tool_paths(centre_area, last_pass, true, false, r);
+  add_cusp_strokes(islands, centre_area, last_pass, g, r);
+}
+
+}  // namespace
+
+IsolationResult plan_isolation(const Paths& copper_in, const IsolationOptions& o) {
+  check_isolation_options(o);
   IsolationResult r;
   // Islands once: the narrow gaps, the contours and the clearing rings all start from them.
   const std::vector<Island> islands = copper_islands(copper_in);
@@ -206,167 +362,13 @@ IsolationResult plan_isolation(const Paths& copper_in, const IsolationOptions& o
       throw std::invalid_argument("at least one pass of the isolation tool is needed");
   }
   const double edge_mm = clearing_edge_distance_mm(o);
+  const PassGeometry g{radius_nm, step_nm, arc_tol_nm};
   if (!o.mill_all && edge_mm > 0) {
-    // The narrow tool's first passes, then the clearing tool out to the edge `passes` narrow
-    // passes would reach: its inner edge at edge_mm, passes overlapping by the overlap.
-    for (int k = 0; k < o.narrow_passes; ++k) {
-      for (const Path& p : grown_islands(islands, radius_nm + k * step_nm, arc_tol_nm)) {
-        ToolPathNm t;
-        t.path = p;
-        t.pass = k;
-        r.paths.push_back(t);
-      }
-    }
-    const double wide_mm = o.clearing_tool_width_mm;
-    const double outer_mm =
-        o.clearance_mm + o.tool_width_mm + (o.passes - 1) * o.tool_width_mm * (1.0 - o.overlap);
-    const double wide_step_mm = wide_mm * (1.0 - o.overlap);
-    const int wide_passes =
-        1 + std::max(0, static_cast<int>(
-                            std::ceil((outer_mm - edge_mm - wide_mm) / wide_step_mm - 1e-9)));
-    r.clearing_tool_radius_mm = wide_mm / 2;
-    for (int k = 0; k < wide_passes; ++k) {
-      const double centre_mm = edge_mm + wide_mm / 2 + k * wide_step_mm;
-      for (const Path& p : grown_islands(islands, centre_mm * kNmPerMm, arc_tol_nm)) {
-        ToolPathNm t;
-        t.path = p;
-        t.pass = o.narrow_passes + k;
-        t.clearing = true;
-        r.paths.push_back(t);
-      }
-    }
-    // Where the wide tool cannot reach (into an acute corner between tracks), the narrow
-    // tool's further passes clear what is left of the band, clipped to that part.
-    Paths centres;
-    Paths wide_centres;
-    for (const ToolPathNm& t : r.paths)
-      (t.clearing ? wide_centres : centres).push_back(t.closed ? as_open(t.path) : t.path);
-    Paths swept = sweep_open(centres, radius_nm - o.clearance_mm * kNmPerMm, arc_tol_nm);
-    const Paths wide_swept = sweep_open(wide_centres, wide_mm / 2 * kNmPerMm, arc_tol_nm);
-    swept.insert(swept.end(), wide_swept.begin(), wide_swept.end());
-    const Paths band = difference_of(grown_islands(islands, outer_mm * kNmPerMm, arc_tol_nm),
-                                     grown_islands(islands, o.clearance_mm * kNmPerMm, arc_tol_nm));
-    const Paths left = difference_of(band, union_of(swept));
-    if (std::fabs(signed_area(left)) >= kMinOverlapAreaNm2) {
-      const Paths near_left = offset_closed(left, o.tool_width_mm * kNmPerMm, arc_tol_nm);
-      for (int k = o.narrow_passes; k < o.passes; ++k) {
-        for (const Path& p :
-             clip_to(grown_islands(islands, radius_nm + k * step_nm, arc_tol_nm), near_left)) {
-          ToolPathNm t;
-          t.path = p;
-          t.closed = false;
-          t.pass = k;
-          r.paths.push_back(t);
-        }
-      }
-    }
-    std::stable_sort(r.paths.begin(), r.paths.end(), [](const ToolPathNm& a, const ToolPathNm& b) {
-      return !a.clearing && b.clearing;
-    });
-    return r;
-  }
-  if (!o.mill_all) {
-    const std::vector<Island> cut =
-        o.isolate_empty_holes ? islands : without_empty_holes(islands, &r.empty_holes_skipped);
-    for (int k = 0; k < o.passes; ++k) {
-      for (const Path& p : grown_islands(cut, radius_nm + k * step_nm, arc_tol_nm)) {
-        ToolPathNm t;
-        t.path = p;
-        t.pass = k;
-        r.paths.push_back(t);
-      }
-    }
-    return r;
-  }
-
-  // Clearing: contours grow until the area (shrunk by the tool radius, where the tool centre
-  // may go) is covered; the area's own inset boundary is the last contour.
-  Paths area = o.area_nm;
-  if (area.empty()) {
-    BoxNm b;
-    for (const Island& island : islands) b.add(island.paths[0]);
-    const cInt m = static_cast<cInt>(4 * radius_nm);
-    area.push_back(Path{IntPoint(b.min_x - m, b.min_y - m), IntPoint(b.max_x + m, b.min_y - m),
-                        IntPoint(b.max_x + m, b.max_y + m), IntPoint(b.min_x - m, b.max_y + m)});
-  }
-  const Paths centre_area = offset_closed(union_of(area), -radius_nm, arc_tol_nm);
-  for (int k = 0; k < 100000; ++k) {
-    const double d = radius_nm + k * step_nm;
-    const Paths contours = grown_islands(islands, d, arc_tol_nm);
-    if (k == 0) {
-      for (const Path& p : contours) {
-        ToolPathNm t;
-        t.path = p;
-        r.paths.push_back(t);
-      }
-    } else {
-      for (const Path& p : clip_to(contours, centre_area)) {
-        ToolPathNm t;
-        t.path = p;
-        t.closed = false;
-        t.pass = k;
-        r.paths.push_back(t);
-      }
-    }
-    const Paths left = difference_of(centre_area, grown_islands(islands, d + step_nm, arc_tol_nm));
-    if (std::fabs(signed_area(left)) < kMinOverlapAreaNm2) break;
-  }
-  const int last_pass = r.paths.empty() ? 1 : r.paths.back().pass + 1;
-  for (const Path& p : centre_area) {
-    ToolPathNm t;
-    t.path = p;
-    t.pass = last_pass;
-    r.paths.push_back(t);
-  }
-  // Where the fronts of two islands meet, cusps wider than the step stay uncut: one short
-  // stroke along each leftover sliver's long axis, kept where the tool centre may go.
-  const Paths allowed = difference_of(centre_area, grown_islands(islands, radius_nm, arc_tol_nm));
-  const Paths reachable = offset_closed(allowed, radius_nm, arc_tol_nm);
-  for (int round = 0; round < 3; ++round) {
-    Paths centres;
-    for (const ToolPathNm& t : r.paths) centres.push_back(t.closed ? as_open(t.path) : t.path);
-    const Paths left = difference_of(reachable, sweep_open(centres, radius_nm, arc_tol_nm));
-    Paths strokes;
-    for (const Path& piece : left) {
-      if (ClipperLib::Area(piece) < kMinOverlapAreaNm2 * 100) continue;  // slivers < 1 um^2
-      // Principal axis of the piece's vertices.
-      double mx = 0, my = 0;
-      for (const IntPoint& q : piece)
-        mx += static_cast<double>(q.X), my += static_cast<double>(q.Y);
-      mx /= static_cast<double>(piece.size()), my /= static_cast<double>(piece.size());
-      double sxx = 0, syy = 0, sxy = 0;
-      for (const IntPoint& q : piece) {
-        const double dx = static_cast<double>(q.X) - mx, dy = static_cast<double>(q.Y) - my;
-        sxx += dx * dx, syy += dy * dy, sxy += dx * dy;
-      }
-      const double angle = 0.5 * std::atan2(2 * sxy, sxx - syy);
-      const double ux = std::cos(angle), uy = std::sin(angle);
-      double lo = 0, hi = 0;
-      for (const IntPoint& q : piece) {
-        const double t =
-            (static_cast<double>(q.X) - mx) * ux + (static_cast<double>(q.Y) - my) * uy;
-        lo = std::min(lo, t), hi = std::max(hi, t);
-      }
-      strokes.push_back(
-          Path{IntPoint(static_cast<cInt>(mx + lo * ux), static_cast<cInt>(my + lo * uy)),
-               IntPoint(static_cast<cInt>(mx + hi * ux), static_cast<cInt>(my + hi * uy))});
-    }
-    if (strokes.empty()) break;
-    ClipperLib::Clipper c;
-    c.AddPaths(strokes, ClipperLib::ptSubject, false);
-    c.AddPaths(allowed, ClipperLib::ptClip, true);
-    ClipperLib::PolyTree tree;
-    c.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-    Paths kept;
-    ClipperLib::OpenPathsFromPolyTree(tree, kept);
-    if (kept.empty()) break;
-    for (const Path& p : kept) {
-      ToolPathNm t;
-      t.path = p;
-      t.closed = false;
-      t.pass = last_pass + 1 + round;
-      r.paths.push_back(t);
-    }
+    plan_with_clearing_tool(islands, o, g, edge_mm, &r);
+  } else if (!o.mill_all) {
+    plan_contours(islands, o, g, &r);
+  } else {
+    plan_mill_all(islands, o, g, &r);
   }
   return r;
 }

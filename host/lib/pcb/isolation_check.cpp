@@ -12,11 +12,6 @@
 
 namespace host::pcb {
 
-using ClipperLib::cInt;
-using ClipperLib::IntPoint;
-using ClipperLib::Path;
-using ClipperLib::Paths;
-
 namespace {
 
 const double kArcToleranceNm = 200;  // flattening of the swept discs
@@ -110,14 +105,8 @@ Path without_collinear(const Path& p, double near_nm) {
   return out;
 }
 
-}  // namespace
-
-IsolationCheck check_isolation(const Paths& copper_nm,
-                               const std::vector<std::vector<Point2>>& tool_paths_mm,
-                               double tool_radius_mm, double tolerance_mm) {
-  IsolationCheck r;
-  const std::vector<Island> islands = copper_islands(copper_nm);
-  r.islands = islands.size();
+// The tool-centre paths in nanometres, a lone point as a zero-length run.
+Paths centre_paths(const std::vector<std::vector<Point2>>& tool_paths_mm, double tolerance_mm) {
   Paths centres;
   for (const std::vector<Point2>& path : tool_paths_mm) {
     Path p;
@@ -128,75 +117,58 @@ IsolationCheck check_isolation(const Paths& copper_nm,
     // it kept at 50 nm (A64-OlinuXino top: 0.79 -> 0.36 million; check 63 -> 31 s).
     if (!p.empty()) centres.push_back(without_collinear(p, tolerance_mm * kNmPerMm / 10));
   }
-  // The islands are the union's pieces: their paths together are the union (a second union
-  // would sweep the whole board again).
-  Paths copper;
-  for (const Island& island : islands)
-    copper.insert(copper.end(), island.paths.begin(), island.paths.end());
+  return centres;
+}
 
-  // 1. The tool, shrunk by the tolerance, must not reach copper.
+// 1. The tool, shrunk by the tolerance, must not reach copper.
+void find_copper_hits(const std::vector<Island>& islands, const Paths& copper, const Paths& centres,
+                      double tool_radius_mm, double tolerance_mm, IsolationCheck* r) {
   const double shrunk = (tool_radius_mm - tolerance_mm) * kNmPerMm;
-  if (shrunk > 0 && !centres.empty()) {
-    // Copper AND the union of the sweeps is the union, strip by strip, of the copper near a
-    // strip AND that strip's sweep: the whole job's sweep is never united in one piece (on
-    // A64-OlinuXino, top, 0.2 mm: 3.3 -> 1.9 s of the check).
-    // Only the centres' runs that come within the shrunk radius of copper (or run inside
-    // it) can cut it: the others are never swept (A64-OlinuXino top, 0.2 mm: none, and the
-    // check 7 -> 4 s).
-    std::vector<Paths> pieces;
-    for (const Path& p : runs_near_copper(centres, copper, shrunk)) pieces.push_back(Paths{p});
-    const Paths cut_copper = united_by_strips(pieces, [&](const Paths& group) {
-      const Paths swept_in = sweep_open(group, shrunk, kArcToleranceNm);
-      const BoxNm near = box_of(swept_in);
-      Paths copper_near;
-      for (const Island& island : islands) {
-        if (!island.box.overlaps(near)) continue;
-        const Paths part =
-            near.contains(island.box) ? island.paths : clip_to_box(island.paths, near);
-        copper_near.insert(copper_near.end(), part.begin(), part.end());
-      }
-      return intersection_of(copper_near, swept_in);
-    });
-    ClipperLib::Clipper c;
-    c.AddPaths(cut_copper, ClipperLib::ptSubject, true);
-    ClipperLib::PolyTree tree;
-    c.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-    std::vector<Piece> overlaps;
-    collect_pieces(tree, &overlaps);
-    for (const Piece& p : overlaps) {
-      Paths region{p.outer};
-      region.insert(region.end(), p.holes.begin(), p.holes.end());
-      const double a = std::fabs(signed_area(region));
-      if (a < kMinHitAreaNm2) continue;
-      CopperHit h;
-      h.at_mm = to_mm(centroid(region));
-      h.area_mm2 = a / (kNmPerMm * kNmPerMm);
-      r.hits.push_back(h);
+  if (!(shrunk > 0) || centres.empty()) return;
+  // Copper AND the union of the sweeps is the union, strip by strip, of the copper near a
+  // strip AND that strip's sweep: the whole job's sweep is never united in one piece (on
+  // A64-OlinuXino, top, 0.2 mm: 3.3 -> 1.9 s of the check).
+  // Only the centres' runs that come within the shrunk radius of copper (or run inside
+  // it) can cut it: the others are never swept (A64-OlinuXino top, 0.2 mm: none, and the
+  // check 7 -> 4 s).
+  std::vector<Paths> pieces;
+  for (const Path& p : runs_near_copper(centres, copper, shrunk)) pieces.push_back(Paths{p});
+  const Paths cut_copper = united_by_strips(pieces, [&](const Paths& group) {
+    const Paths swept_in = sweep_open(group, shrunk, kArcToleranceNm);
+    const BoxNm near = box_of(swept_in);
+    Paths copper_near;
+    for (const Island& island : islands) {
+      if (!island.box.overlaps(near)) continue;
+      const Paths part = near.contains(island.box) ? island.paths : clip_to_box(island.paths, near);
+      copper_near.insert(copper_near.end(), part.begin(), part.end());
     }
-  }
-
-  // 2. Material left standing (everything minus the full swept tool) in connected pieces;
-  // each island must sit in a piece of its own.
-  const double radius_nm = tool_radius_mm * kNmPerMm;
-  BoxNm b = box_of(copper);
-  if (b.empty()) return r;
-  const cInt m = static_cast<cInt>(4 * radius_nm + 1e6);
-  const Path frame{IntPoint(b.min_x - m, b.min_y - m), IntPoint(b.max_x + m, b.min_y - m),
-                   IntPoint(b.max_x + m, b.max_y + m), IntPoint(b.min_x - m, b.max_y + m)};
-  const Paths swept = centres.empty() ? Paths{} : sweep_open(centres, radius_nm, kArcToleranceNm);
+    return intersection_of(copper_near, swept_in);
+  });
   ClipperLib::Clipper c;
-  c.AddPath(frame, ClipperLib::ptSubject, true);
-  c.AddPaths(swept, ClipperLib::ptClip, true);
+  c.AddPaths(cut_copper, ClipperLib::ptSubject, true);
   ClipperLib::PolyTree tree;
-  c.Execute(ClipperLib::ctDifference, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  std::vector<Piece> pieces;
-  collect_pieces(tree, &pieces);
+  c.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  std::vector<Piece> overlaps;
+  collect_pieces(tree, &overlaps);
+  for (const Piece& p : overlaps) {
+    Paths region{p.outer};
+    region.insert(region.end(), p.holes.begin(), p.holes.end());
+    const double a = std::fabs(signed_area(region));
+    if (a < kMinHitAreaNm2) continue;
+    CopperHit h;
+    h.at_mm = to_mm(centroid(region));
+    h.area_mm2 = a / (kNmPerMm * kNmPerMm);
+    r->hits.push_back(h);
+  }
+}
 
+// Which standing piece holds each island (by a point of the island the tool leaves standing,
+// inner[i]).
+void locate_islands(const std::vector<Island>& islands, const Paths& swept,
+                    const std::vector<Piece>& pieces,
+                    std::map<size_t, std::vector<size_t>>* by_piece, std::vector<IntPoint>* inner) {
   std::vector<BoxNm> swept_boxes(swept.size());
   for (size_t k = 0; k < swept.size(); ++k) swept_boxes[k].add(swept[k]);
-
-  std::map<size_t, std::vector<size_t>> by_piece;
-  std::vector<IntPoint> inner(islands.size());
   for (size_t i = 0; i < islands.size(); ++i) {
     // A point of the island the tool leaves standing (the island is otherwise all cut away,
     // which the first check reports).
@@ -208,20 +180,44 @@ IsolationCheck check_isolation(const Paths& copper_nm,
       if (swept_boxes[k].overlaps(islands[i].box)) near.push_back(swept[k]);
     }
     const Paths left = difference_of(islands[i].paths, clip_to_box(near, islands[i].box));
-    if (!interior_point(left, &inner[i])) continue;
+    if (!interior_point(left, &(*inner)[i])) continue;
     for (size_t k = 0; k < pieces.size(); ++k) {
       const Piece& p = pieces[k];
-      if (!p.box.contains(inner[i]) || ClipperLib::PointInPolygon(inner[i], p.outer) == 0) continue;
+      if (!p.box.contains((*inner)[i]) || ClipperLib::PointInPolygon((*inner)[i], p.outer) == 0)
+        continue;
       bool in_hole = false;
       for (size_t h = 0; h < p.holes.size() && !in_hole; ++h) {
-        in_hole = p.hole_boxes[h].contains(inner[i]) &&
-                  ClipperLib::PointInPolygon(inner[i], p.holes[h]) != 0;
+        in_hole = p.hole_boxes[h].contains((*inner)[i]) &&
+                  ClipperLib::PointInPolygon((*inner)[i], p.holes[h]) != 0;
       }
       if (in_hole) continue;
-      by_piece[k].push_back(i);
+      (*by_piece)[k].push_back(i);
       break;
     }
   }
+}
+
+// 2. Material left standing (everything minus the full swept tool) in connected pieces;
+// each island must sit in a piece of its own.
+void find_unseparated(const std::vector<Island>& islands, const Paths& copper, const Paths& centres,
+                      double tool_radius_mm, IsolationCheck* r) {
+  const double radius_nm = tool_radius_mm * kNmPerMm;
+  BoxNm b = box_of(copper);
+  if (b.empty()) return;
+  const cInt m = static_cast<cInt>(4 * radius_nm + 1e6);
+  const Path frame{IntPoint(b.min_x - m, b.min_y - m), IntPoint(b.max_x + m, b.min_y - m),
+                   IntPoint(b.max_x + m, b.max_y + m), IntPoint(b.min_x - m, b.max_y + m)};
+  const Paths swept = centres.empty() ? Paths{} : sweep_open(centres, radius_nm, kArcToleranceNm);
+  ClipperLib::Clipper c;
+  c.AddPath(frame, ClipperLib::ptSubject, true);
+  c.AddPaths(swept, ClipperLib::ptClip, true);
+  ClipperLib::PolyTree tree;
+  c.Execute(ClipperLib::ctDifference, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  std::vector<Piece> pieces;
+  collect_pieces(tree, &pieces);
+  std::map<size_t, std::vector<size_t>> by_piece;
+  std::vector<IntPoint> inner(islands.size());
+  locate_islands(islands, swept, pieces, &by_piece, &inner);
   for (const auto& entry : by_piece) {
     const std::vector<size_t>& v = entry.second;
     for (size_t k = 1; k < v.size(); ++k) {
@@ -230,9 +226,28 @@ IsolationCheck check_isolation(const Paths& copper_nm,
       u.island_b = v[k];
       u.a_mm = to_mm(inner[v[0]]);
       u.b_mm = to_mm(inner[v[k]]);
-      r.unseparated.push_back(u);
+      r->unseparated.push_back(u);
     }
   }
+}
+
+}  // namespace
+
+IsolationCheck check_isolation(const Paths& copper_nm,
+                               const std::vector<std::vector<Point2>>& tool_paths_mm,
+                               double tool_radius_mm, double tolerance_mm) {
+  IsolationCheck r;
+  const std::vector<Island> islands = copper_islands(copper_nm);
+  r.islands = islands.size();
+  const Paths centres = centre_paths(tool_paths_mm, tolerance_mm);
+  // The islands are the union's pieces: their paths together are the union (a second union
+  // would sweep the whole board again).
+  Paths copper;
+  for (const Island& island : islands)
+    copper.insert(copper.end(), island.paths.begin(), island.paths.end());
+
+  find_copper_hits(islands, copper, centres, tool_radius_mm, tolerance_mm, &r);
+  find_unseparated(islands, copper, centres, tool_radius_mm, &r);
   return r;
 }
 

@@ -13,6 +13,12 @@
 
 namespace host::pcb {
 
+// The Clipper types the PCB planners work in (integer nanometres).
+using ClipperLib::cInt;
+using ClipperLib::IntPoint;
+using ClipperLib::Path;
+using ClipperLib::Paths;
+
 const double kNmPerMm = 1e6;
 
 inline Point2 to_mm(const ClipperLib::IntPoint& p) {

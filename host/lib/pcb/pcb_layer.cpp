@@ -4,20 +4,34 @@
 
 namespace host::pcb {
 
+namespace {
+
+// Each kind's name in messages and its key in the server's board.json.
+struct KindNames {
+  LayerKind kind;
+  const char* name;
+  const char* key;
+};
+const KindNames kKindNames[] = {{LayerKind::kCopperTop, "copper top", "copper_top"},
+                                {LayerKind::kCopperBottom, "copper bottom", "copper_bottom"},
+                                {LayerKind::kOutline, "outline", "outline"},
+                                {LayerKind::kDrill, "drill", "drill"},
+                                {LayerKind::kUnknown, "unknown", "unknown"}};
+
+const KindNames& names_of(LayerKind kind) {
+  for (const KindNames& k : kKindNames)
+    if (k.kind == kind) return k;
+  return kKindNames[sizeof(kKindNames) / sizeof(kKindNames[0]) - 1];
+}
+
+}  // namespace
+
 const char* layer_kind_name(LayerKind kind) {
-  switch (kind) {
-    case LayerKind::kCopperTop:
-      return "copper top";
-    case LayerKind::kCopperBottom:
-      return "copper bottom";
-    case LayerKind::kOutline:
-      return "outline";
-    case LayerKind::kDrill:
-      return "drill";
-    case LayerKind::kUnknown:
-      break;
-  }
-  return "unknown";
+  return names_of(kind).name;
+}
+
+const char* layer_kind_key(LayerKind kind) {
+  return names_of(kind).key;
 }
 
 std::string read_pcb_file_text(const std::string& path) {

@@ -16,6 +16,8 @@ namespace host::pcb {
 // extension, else the command line.
 enum class LayerKind { kUnknown, kCopperTop, kCopperBottom, kOutline, kDrill };
 const char* layer_kind_name(LayerKind kind);
+// "copper_top", "copper_bottom", "outline", "drill" (the server's board.json).
+const char* layer_kind_key(LayerKind kind);
 
 struct PointNm {
   ClipperLib::cInt x = 0;

@@ -10,6 +10,7 @@
 #include <stdexcept>  // std::runtime_error
 
 #include "host/lib/pcb/pcb_geometry.h"
+#include "host/lib/plot/cairo_plot.h"  // nice_length, check_cairo_surface
 #include "host/lib/plot/png_rows.h"
 
 namespace host {
@@ -154,13 +155,6 @@ void stroke_group(cairo_t* cr, const PlotFrame& f, const std::vector<std::vector
   cairo_mask_surface(cr, band.mask, 0, band.y0_px);
 }
 
-double nice_length(double target) {
-  const double p = std::pow(10.0, std::floor(std::log10(target)));
-  if (target >= 5 * p) return 5 * p;
-  if (target >= 2 * p) return 2 * p;
-  return p;
-}
-
 void legend_box(cairo_t* cr, double x, double y, const Rgba& c, const std::string& label) {
   set(cr, c);
   cairo_rectangle(cr, x, y - 8, 24, 12);
@@ -170,30 +164,9 @@ void legend_box(cairo_t* cr, double x, double y, const Rgba& c, const std::strin
   cairo_show_text(cr, label.c_str());
 }
 
-void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int height_px,
-            const Band& band) {
-  const pcb::BoardJob& job = *in.job;
-  cairo_set_source_rgb(cr, 1, 1, 1);
-  cairo_paint(cr);
-  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
-  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
-  if (!job.board_machine_nm.empty()) {
-    set(cr, kBoard);
-    polygon_paths(cr, f, job.board_machine_nm, band);
-    cairo_fill(cr);
-  }
-  set(cr, kCopper);
-  polygon_paths(cr, f, job.copper_machine_nm, band);
-  cairo_fill(cr);
+// The holes as dots, the slots as strokes of their width.
+void draw_holes(cairo_t* cr, const pcb::BoardJob& job, const PlotFrame& f) {
   const double s = f.scale_px_per_mm;
-  stroke_group(cr, f, job.clearing_paths_mm, 2 * job.clearing_tool_radius_mm * s, kIsolation, band);
-  stroke_group(cr, f, job.clearing_paths_mm, 0.6, kIsolationCentre, band);
-  stroke_group(cr, f, job.isolation_paths_mm, 2 * job.tool_radius_mm * s, kIsolation, band);
-  stroke_group(cr, f, job.isolation_paths_mm, 0.6, kIsolationCentre, band);
-  stroke_group(cr, f, job.cutout_paths_mm, 2 * job.cutter_radius_mm * s, kCutout, band);
-  stroke_group(cr, f, job.cutout_paths_mm, 0.6, kCutoutCentre, band);
-  stroke_group(cr, f, job.tab_paths_mm, 2 * job.cutter_radius_mm * s, kTab, band);
   set(cr, kHole);
   for (const pcb::Hole& h : job.holes_machine) {
     const Point2 c = f.to_px(pcb::to_mm(ClipperLib::IntPoint(h.at.x, h.at.y)));
@@ -207,12 +180,11 @@ void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int heigh
               pcb::to_mm(ClipperLib::IntPoint(sl.to.x, sl.to.y))});
     cairo_stroke(cr);
   }
-  if (!in.simulated.empty()) {
-    std::vector<std::vector<Point2>> down;
-    for (const ToolPathSegment& seg : in.simulated)
-      if (seg.pen_down) down.push_back(seg.points_mm);
-    stroke_group(cr, f, down, 0.5, kSimulated, band);
-  }
+}
+
+// A ring around each narrow gap.
+void draw_gaps(cairo_t* cr, const pcb::BoardJob& job, const PlotFrame& f) {
+  const double s = f.scale_px_per_mm;
   set(cr, kGap);
   cairo_set_line_width(cr, 2.0);
   for (const pcb::NarrowGap& g : job.report.narrow_gaps) {
@@ -222,7 +194,11 @@ void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int heigh
     cairo_arc(cr, c.x(), c.y(), std::max(8.0, 0.5 * s), 0, 2 * 3.14159265358979);
     cairo_stroke(cr);
   }
-  // Title, legend, scale bar.
+}
+
+// Title, legend, scale bar.
+void draw_labels(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int height_px) {
+  const double s = f.scale_px_per_mm;
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
   cairo_set_font_size(cr, 16);
   cairo_set_source_rgb(cr, 0, 0, 0);
@@ -254,13 +230,39 @@ void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int heigh
   cairo_show_text(cr, label.str().c_str());
 }
 
-void check(cairo_surface_t* s, const std::string& path) {
-  const cairo_status_t st = cairo_surface_status(s);
-  if (st != CAIRO_STATUS_SUCCESS) {
-    const std::string msg = cairo_status_to_string(st);
-    cairo_surface_destroy(s);
-    throw std::runtime_error(path + ": cannot write the plot: " + msg);
+void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int height_px,
+            const Band& band) {
+  const pcb::BoardJob& job = *in.job;
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
+  if (!job.board_machine_nm.empty()) {
+    set(cr, kBoard);
+    polygon_paths(cr, f, job.board_machine_nm, band);
+    cairo_fill(cr);
   }
+  set(cr, kCopper);
+  polygon_paths(cr, f, job.copper_machine_nm, band);
+  cairo_fill(cr);
+  const double s = f.scale_px_per_mm;
+  stroke_group(cr, f, job.clearing_paths_mm, 2 * job.clearing_tool_radius_mm * s, kIsolation, band);
+  stroke_group(cr, f, job.clearing_paths_mm, 0.6, kIsolationCentre, band);
+  stroke_group(cr, f, job.isolation_paths_mm, 2 * job.tool_radius_mm * s, kIsolation, band);
+  stroke_group(cr, f, job.isolation_paths_mm, 0.6, kIsolationCentre, band);
+  stroke_group(cr, f, job.cutout_paths_mm, 2 * job.cutter_radius_mm * s, kCutout, band);
+  stroke_group(cr, f, job.cutout_paths_mm, 0.6, kCutoutCentre, band);
+  stroke_group(cr, f, job.tab_paths_mm, 2 * job.cutter_radius_mm * s, kTab, band);
+  draw_holes(cr, job, f);
+  if (!in.simulated.empty()) {
+    std::vector<std::vector<Point2>> down;
+    for (const ToolPathSegment& seg : in.simulated)
+      if (seg.pen_down) down.push_back(seg.points_mm);
+    stroke_group(cr, f, down, 0.5, kSimulated, band);
+  }
+  draw_gaps(cr, job, f);
+  draw_labels(cr, in, f, height_px);
 }
 
 }  // namespace
@@ -275,22 +277,22 @@ void write_board_plot(const BoardPlotInput& in, const std::string& svg_path,
   if (height_px > 20000) throw std::runtime_error("the board plot would be over 20000 pixels high");
   if (!svg_path.empty()) {
     cairo_surface_t* s = cairo_svg_surface_create(svg_path.c_str(), in.width_px, height_px);
-    check(s, svg_path);
+    check_cairo_surface(s, svg_path);
     cairo_t* cr = cairo_create(s);
     render(cr, in, f, height_px, Band());
     cairo_destroy(cr);
     cairo_surface_finish(s);
-    check(s, svg_path);
+    check_cairo_surface(s, svg_path);
     cairo_surface_destroy(s);
   }
   if (!png_path.empty()) {
     // Drawn band by band into one band-sized surface, each band handed to the PNG writer.
     const int band_rows = std::min(height_px, kBandRows);
     cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, in.width_px, band_rows);
-    check(s, png_path);
+    check_cairo_surface(s, png_path);
     Band band;
     band.mask = cairo_image_surface_create(CAIRO_FORMAT_A8, in.width_px, band_rows);
-    check(band.mask, png_path);
+    check_cairo_surface(band.mask, png_path);
     try {
       PngRows png(png_path, in.width_px, height_px);
       for (int y0 = 0; y0 < height_px; y0 += band_rows) {

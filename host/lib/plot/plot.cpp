@@ -10,6 +10,8 @@
 #include <functional>  // std::function
 #include <sstream>     // std::ostringstream
 
+#include "host/lib/plot/cairo_plot.h"  // nice_length, check_cairo_surface
+
 namespace host {
 
 namespace {
@@ -145,14 +147,6 @@ void draw_layer(cairo_t* cr, const Layer& layer, const PlotFrame& f, const PlotI
     raster_layer(cr, layer, f, in);
 }
 
-// A round length (1, 2 or 5 times a power of ten) near a fifth of the plot width.
-double nice_length(double target) {
-  const double p = std::pow(10.0, std::floor(std::log10(target)));
-  if (target >= 5 * p) return 5 * p;
-  if (target >= 2 * p) return 2 * p;
-  return p;
-}
-
 void text(cairo_t* cr, double x, double y, const std::string& s) {
   cairo_move_to(cr, x, y);
   cairo_show_text(cr, s.c_str());
@@ -266,15 +260,6 @@ void add_svg_text(const std::string& path, const PlotInput& in) {
   if (!o) throw std::runtime_error(path + ": cannot write the plot");
 }
 
-void check(cairo_surface_t* s, const std::string& path) {
-  const cairo_status_t st = cairo_surface_status(s);
-  if (st != CAIRO_STATUS_SUCCESS) {
-    const std::string msg = cairo_status_to_string(st);
-    cairo_surface_destroy(s);
-    throw std::runtime_error(path + ": cannot write the plot: " + msg);
-  }
-}
-
 }  // namespace
 
 PlotFrame plot_frame(const PlotInput& in) {
@@ -305,18 +290,18 @@ void write_plot(const PlotInput& in, const std::string& svg_path, const std::str
   }
   if (!svg_path.empty()) {
     cairo_surface_t* s = cairo_svg_surface_create(svg_path.c_str(), in.width_px, in.height_px);
-    check(s, svg_path);
+    check_cairo_surface(s, svg_path);
     cairo_t* cr = cairo_create(s);
     render(cr, in);
     cairo_destroy(cr);
     cairo_surface_finish(s);
-    check(s, svg_path);
+    check_cairo_surface(s, svg_path);
     cairo_surface_destroy(s);
     add_svg_text(svg_path, in);
   }
   if (!png_path.empty()) {
     cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, in.width_px, in.height_px);
-    check(s, png_path);
+    check_cairo_surface(s, png_path);
     cairo_t* cr = cairo_create(s);
     render(cr, in);
     cairo_destroy(cr);

@@ -5,10 +5,10 @@
 
 #include <algorithm>  // std::min
 #include <cmath>      // std::hypot, std::lround
-#include <sstream>    // std::istringstream
 
 #include "firmware/config/machine_config.h"
 #include "host/lib/drawing/drawing.h"
+#include "host/lib/pcb/board_args.h"   // resolve_board_options
 #include "host/lib/pcb/board_check.h"  // refuse_copper_hits
 #include "host/lib/pcb/board_files.h"
 #include "host/lib/pcb/board_probe_area.h"
@@ -29,19 +29,7 @@ const char* const kDrillNames[] = {"drill.drl", "drill.b.drl", "drill.c.drl", "d
 const size_t kMaxDrillFiles = sizeof(kDrillNames) / sizeof(kDrillNames[0]);
 
 const char* kind_key(LayerKind k) {
-  switch (k) {
-    case LayerKind::kCopperTop:
-      return "copper_top";
-    case LayerKind::kCopperBottom:
-      return "copper_bottom";
-    case LayerKind::kOutline:
-      return "outline";
-    case LayerKind::kDrill:
-      return "drill";
-    case LayerKind::kUnknown:
-      break;
-  }
-  return "unknown";
+  return pcb::layer_kind_key(k);
 }
 
 LayerKind kind_from_key(const std::string& key) {
@@ -52,26 +40,34 @@ LayerKind kind_from_key(const std::string& key) {
   throw std::runtime_error("board.json: unknown layer kind '" + key + "'");
 }
 
+// The command line's words in the planner's advice, as the server's fields.
+std::string server_words(std::string text);
+
+// The server's board settings through the CLI's resolver (pcb/board_args.h): one place says
+// what a board job is planned with.
 pcb::BoardOptions board_options(const std::string& side, const BoardSettings& b,
-                                const JobPlanSettings& s, double work_w_mm, double work_h_mm) {
-  pcb::BoardOptions o;
-  o.side = side == "bottom" ? pcb::BoardSide::kBottom : pcb::BoardSide::kTop;
-  o.isolation.tool_width_mm = b.tool_width_mm;
-  o.isolation.passes = b.passes;
-  o.isolation.clearing_tool_width_mm = b.clearing_tool_mm;
-  o.isolation.narrow_passes = b.narrow_passes;
-  o.allow_narrow_gaps = b.allow_narrow_gaps;
-  if (!b.align_holes.empty()) {
-    o.alignment.enabled = true;
-    o.alignment.hole_diameter_mm = b.align_diameter_mm;
-    o.alignment.hole_depth_mm = b.align_depth_mm;
-    const std::string why = parse_align_holes(b.align_holes, &o.alignment.holes_file_mm);
-    if (!why.empty()) throw PlanError(why);
+                                const JobPlanSettings& s, const pcb::BoardFileSet& set,
+                                double work_w_mm, double work_h_mm) {
+  pcb::BoardArgs a;
+  a.side = side;
+  a.tool_width_mm = b.tool_width_mm;
+  a.passes = b.passes;
+  a.clearing_tool_mm = b.clearing_tool_mm;
+  a.narrow_passes = b.narrow_passes;
+  a.allow_narrow_gaps = b.allow_narrow_gaps;
+  a.align_holes = b.align_holes;
+  a.align_diameter_mm = b.align_diameter_mm;
+  a.align_depth_mm = b.align_depth_mm;
+  a.align_measured_mm = b.align_measured_mm;
+  pcb::BoardMachine m;
+  m.margin_mm = s.margin_mm;
+  m.work_w_mm = work_w_mm;
+  m.work_h_mm = work_h_mm;
+  try {
+    return pcb::resolve_board_options(a, m, set, "");
+  } catch (const pcb::BoardArgsError& e) {
+    throw PlanError(server_words(e.what()));
   }
-  o.margin_mm = s.margin_mm;
-  o.work_width_mm = work_w_mm;
-  o.work_height_mm = work_h_mm;
-  return o;
 }
 
 // The command line's words in the planner's advice, as the server's fields.
@@ -82,10 +78,11 @@ std::string server_words(std::string text) {
       {"--clearing-tool", "clearing_tool_mm"},
       {"--narrow-passes", "narrow_passes"},
       {"--passes", "passes"},
-      {"--align-holes", "align_holes"}};
+      {"--align-holes", "align_holes"},
+      {"--align-measured", "align_measured"}};
   for (const auto& [from, to] : words) {
-    const size_t at = text.find(from);
-    if (at != std::string::npos) text.replace(at, std::string(from).size(), to);
+    for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at))
+      text.replace(at, std::string(from).size(), to);
   }
   return text;
 }
@@ -180,22 +177,7 @@ std::string check_board_settings(const BoardSettings& s) {
 }
 
 std::string parse_align_holes(const std::string& text, std::vector<Point2>* holes_file_mm) {
-  holes_file_mm->clear();
-  if (text == "auto") return "";
-  std::istringstream in(text);
-  for (std::string xy; std::getline(in, xy, ';');) {
-    double x = 0, y = 0;
-    char comma = 0, extra = 0;
-    std::istringstream one(xy);
-    if (!(one >> x >> comma >> y) || comma != ',' || (one >> extra) || !std::isfinite(x) ||
-        !std::isfinite(y)) {
-      return "align_holes: '" + xy +
-             "' is not X,Y (mm, files' frame); holes are separated by ';', or say auto";
-    }
-    holes_file_mm->emplace_back(x, y);
-  }
-  if (holes_file_mm->empty()) return "align_holes: no hole given (X,Y[;X,Y...] or auto)";
-  return "";
+  return server_words(pcb::parse_align_holes(text, holes_file_mm));
 }
 
 bool is_pcb_upload(const UploadFile& file) {
@@ -282,7 +264,7 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
   }
 
   PlannedBoard out;
-  const pcb::BoardOptions options = board_options(side, board, settings, work_w_mm, work_h_mm);
+  const pcb::BoardOptions options = board_options(side, board, settings, set, work_w_mm, work_h_mm);
   out.job = plan(set, options, settings, board.align_measured_mm);
   const pcb::BoardReport& r = out.job.report;
   for (const std::string& n : r.notes) notes.push_back(n);  // e.g. an empty outline left out
@@ -385,9 +367,9 @@ pcb::BoardJob plan_board_folder(const fs::path& dir, const JobPlanSettings& sett
       }
     }
     const BoardSettings b = board_settings_of(m);
-    return plan(set,
-                board_options(m.at("side").get<std::string>(), b, settings, work_w_mm, work_h_mm),
-                settings, b.align_measured_mm);
+    return plan(
+        set, board_options(m.at("side").get<std::string>(), b, settings, set, work_w_mm, work_h_mm),
+        settings, b.align_measured_mm);
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error((dir / kBoardManifest).string() + ": damaged: " + e.what());
   }

@@ -52,7 +52,7 @@ std::string write_board(const std::string& name, const std::string& extra = "") 
 
 TEST(BoardCli, WholeBoardIsPlannedCheckedPlottedAndReported) {
   const std::string dir = write_board("ok");
-  const ToolRun r = run("board " + dir + " -o " + dir + "/out --json");
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out --json --wire-bytes");
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["islands"], 2);

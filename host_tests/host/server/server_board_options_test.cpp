@@ -94,6 +94,20 @@ TEST(ServerBoardOptions, TheCommandLinesRangesAreTheServers) {
                "align_measured needs the job's align_holes");
 }
 
+// The server resolves its board settings with the command line's resolver
+// (pcb/board_args.h): a clearing tool with no passes left for it is refused, not planned as
+// if it were not there.
+TEST(ServerBoardOptions, AClearingToolWithNoPassesForItIsRefusedAsOnTheCommandLine) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {});
+  expect_error(
+      posted(server,
+             with(blinky(), {{"passes", "2"}, {"clearing_tool_mm", "0.6"}, {"narrow_passes", "2"}}),
+             422),
+      "clearing_tool_mm cuts the passes beyond narrow_passes (2), but passes is 2: "
+      "give more passes");
+}
+
 // Double-sided: the top job drills the alignment holes (and leaves the cut-out to the
 // bottom); the bottom job, measured after the flip, is turned and shifted onto them.
 TEST(ServerBoardOptions, AlignmentHolesAndTheMeasuredAlignmentPlanAsTheCommandLineDoes) {

@@ -1,0 +1,410 @@
+// PCB input of the engraver's commands (see board_input.h).
+#include "host/lib/commands/board_input.h"
+
+#include <fmt/format.h>  // fmt::format
+
+#include <algorithm>   // std::sort
+#include <cmath>       // std::lround
+#include <filesystem>  // directories
+
+#include "host/lib/commands/exit_codes.h"  // CommandFailure
+#include "host/lib/pcb/board_check.h"
+#include "host/lib/pcb/board_probe_area.h"
+#include "host/lib/pcb/isolation_check.h"
+#include "host/lib/pcb/pcb_file_names.h"
+#include "host/lib/plan/firmware_points.h"
+
+namespace host::commands {
+
+namespace {
+
+using pcb::LayerKind;
+using pcb::PcbLayer;
+
+PcbLayer read_layer(const std::string& path, LayerKind forced) {
+  try {
+    return pcb::read_board_file(path, forced);
+  } catch (const pcb::PcbReadError& e) {
+    throw CommandFailure(kExitUsage, e.what());
+  }
+}
+
+// The reader's warnings about a layer (its other notes are for `engraver info`).
+const PcbLayer& take_warnings(BoardFiles* b, const PcbLayer& l) {
+  const std::string warning = "warning: ";
+  for (const std::string& n : l.notes) {
+    const size_t at = n.find(warning);
+    if (at != std::string::npos)
+      b->warnings.push_back(l.path + ": " + n.substr(0, at) + n.substr(at + warning.size()));
+  }
+  return l;
+}
+
+void add_layer(BoardFiles* b, PcbLayer l, bool from_directory) {
+  const std::string path = l.path;
+  take_warnings(b, l);
+  if (b->layers.add(std::move(l))) return;
+  if (from_directory) {
+    b->notes.push_back(path + ": not a copper, drill or outline layer: left out");
+    return;
+  }
+  throw CommandFailure(
+      kExitUsage, path +
+                      ": cannot tell which layer this is (no X2 TF.FileFunction, no "
+                      "usual name); name it with --top, --bottom or --outline (engraver board), "
+                      "or give copper as top:FILE or bottom:FILE");
+}
+
+bool has_prefix(const std::string& s, const std::string& p) {
+  return s.compare(0, p.size(), p) == 0;
+}
+
+// "bottom:a,b" -> side "bottom", files {a, b}; a directory -> its PCB files.
+// left_out: a directory's files that are neither Gerber nor Excellon (by name or content).
+std::vector<std::string> expand_input(const std::string& input, std::string* side, bool* directory,
+                                      std::string* stripped = nullptr,
+                                      std::vector<std::string>* left_out = nullptr) {
+  std::string rest = input;
+  for (const char* s : {"top:", "bottom:"}) {
+    if (has_prefix(rest, s)) {
+      *side = std::string(s, std::string(s).size() - 1);
+      rest = rest.substr(std::string(s).size());
+    }
+  }
+  std::vector<std::string> files;
+  if (stripped) *stripped = rest;
+  *directory = std::filesystem::is_directory(rest);
+  if (*directory) {
+    for (const auto& e : std::filesystem::directory_iterator(rest)) {
+      if (!e.is_regular_file()) continue;
+      const std::string p = e.path().string();
+      if (pcb::pcb_file_format(p) == pcb::PcbFileFormat::kNone) {
+        if (left_out) left_out->push_back(p);
+        continue;
+      }
+      files.push_back(p);
+    }
+    std::sort(files.begin(), files.end());
+    if (left_out) std::sort(left_out->begin(), left_out->end());
+    return files;
+  }
+  size_t start = 0;
+  while (start <= rest.size()) {
+    const size_t comma = rest.find(',', start);
+    const std::string f = rest.substr(start, comma == std::string::npos ? comma : comma - start);
+    if (!f.empty()) files.push_back(f);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return files;
+}
+
+// The copper kind a board folder's file names show for the job's side: the side asked for,
+// else top if a file is named as top copper (the default side then); kUnknown if the names
+// cannot tell.
+LayerKind copper_for_side(const std::string& side, const std::vector<std::string>& files) {
+  if (side == "top") return LayerKind::kCopperTop;
+  if (side == "bottom") return LayerKind::kCopperBottom;
+  for (const std::string& f : files) {
+    if (pcb::pcb_file_format(f) == pcb::PcbFileFormat::kGerber &&
+        pcb::layer_kind_from_file_name(f) == LayerKind::kCopperTop)
+      return LayerKind::kCopperTop;
+  }
+  return LayerKind::kUnknown;
+}
+
+}  // namespace
+
+std::string board_name(const std::string& input_or_file) {
+  std::filesystem::path p(input_or_file);
+  if (p.filename().empty()) p = p.parent_path();
+  return std::filesystem::is_directory(p) ? p.filename().string() : p.stem().string();
+}
+
+std::string input_name(const std::string& input) {
+  std::string s = input;
+  const bool bottom = s.rfind("bottom:", 0) == 0;
+  for (const char* side : {"top:", "bottom:"}) {
+    if (s.rfind(side, 0) == 0) s = s.substr(std::string(side).size());
+  }
+  if (bottom && !std::filesystem::is_directory(s)) {
+    // A bottom job of several files is named after its bottom copper.
+    std::string side;
+    bool directory = false;
+    for (const std::string& f : expand_input(s, &side, &directory))
+      if (pcb::layer_kind_from_file_name(f) == LayerKind::kCopperBottom) return board_name(f);
+  }
+  return board_name(s.substr(0, s.find(',')));
+}
+
+// side_asked: --side, or "" (a "top:"/"bottom:" prefix, else the board's default side).
+BoardFiles read_board_input(const std::string& input, const std::string& side_asked,
+                            bool both_copper) {
+  BoardFiles b;
+  bool directory = false;
+  std::string stripped;
+  std::vector<std::string> left_out;
+  const std::vector<std::string> files =
+      expand_input(input, &b.side, &directory, &stripped, &left_out);
+  for (const std::string& f : left_out)
+    b.notes.push_back(f + ": neither Gerber nor Excellon (by its name or content): left out");
+  if (files.empty()) throw CommandFailure(kExitUsage, input + ": no PCB files there");
+  const LayerKind wanted_copper = copper_for_side(side_asked.empty() ? b.side : side_asked, files);
+  for (const std::string& f : files) {
+    // In a directory, only files whose names or X2 file functions say copper, drill or
+    // outline are read (no silkscreen, mask or paste), and of the copper only the job
+    // side's: reading the other was a fifth of a large board's planning time.
+    const std::string head = directory ? pcb::read_file_head(f) : std::string();
+    std::string how;  // what said which layer the file is
+    if (directory && pcb::pcb_file_format(f, head) == pcb::PcbFileFormat::kExcellon)
+      how = pcb::pcb_file_format(f, "") == pcb::PcbFileFormat::kExcellon ? "its name"
+                                                                         : "its content (M48)";
+    if (directory && pcb::pcb_file_format(f, head) == pcb::PcbFileFormat::kGerber) {
+      // The file's own X2 file function first, then the table of usual names.
+      LayerKind named = pcb::layer_kind_from_x2(head);
+      how = "its X2 file function";
+      if (named == LayerKind::kUnknown) {
+        named = pcb::layer_kind_from_file_name(f);
+        how = "its name";
+      }
+      if (named == LayerKind::kUnknown) {
+        b.notes.push_back(f +
+                          ": neither its name nor an X2 file function says copper, drill or "
+                          "outline: left out (name it with --top, --bottom or --outline)");
+        continue;
+      }
+      if (!both_copper && wanted_copper != LayerKind::kUnknown && named != wanted_copper &&
+          (named == LayerKind::kCopperTop || named == LayerKind::kCopperBottom)) {
+        b.notes.push_back(f + ": copper of the other side: not read for this job");
+        continue;
+      }
+    }
+    PcbLayer l = read_layer(f, LayerKind::kUnknown);
+    if (l.kind == LayerKind::kUnknown && !directory && files.size() == 1 && !b.side.empty() &&
+        pcb::pcb_file_format(f) == pcb::PcbFileFormat::kGerber) {
+      // "top:FILE" names the copper side of a file nothing else names (Eagle's .gbx).
+      l.kind = b.side == "bottom" ? LayerKind::kCopperBottom : LayerKind::kCopperTop;
+      b.notes.push_back(f + ": taken as " + b.side + " copper (from the '" + b.side + ":' prefix)");
+    }
+    if (directory && !how.empty() && l.kind != LayerKind::kUnknown)
+      b.notes.push_back(f + ": taken as " + pcb::layer_kind_name(l.kind) + " (from " + how + ")");
+    add_layer(&b, std::move(l), directory);
+  }
+  b.from_directory = directory;
+  b.name = board_name(directory ? stripped : files.front());
+  if (directory && b.layers.copper_top.empty() && b.layers.copper_bottom.empty()) {
+    // A board folder without copper is a folder whose copper was not recognised: planning
+    // its holes alone would look like success.
+    std::string msg = input +
+                      ": no copper layer for the job among the folder's files (name it with "
+                      "--top or --bottom; to cut only holes or an outline, give that file "
+                      "itself)";
+    for (const std::string& n : b.notes) msg += "\n  " + n;
+    throw CommandFailure(kExitUsage, msg);
+  }
+  return b;
+}
+
+void add_named_layer(BoardFiles* b, const std::string& path, LayerKind kind) {
+  PcbLayer l = read_layer(path, kind);
+  take_warnings(b, l);
+  l.kind = kind;  // whatever its name or attributes say
+  b->layers.add(std::move(l));
+}
+
+void log_board_notes(const BoardFiles& b, const CommandLog& log) {
+  for (const std::string& n : b.notes) log("note: " + n);
+  for (const std::string& w : b.warnings) log("warning: " + w);
+}
+
+pcb::BoardOptions board_options_for(const pcb::BoardArgs& args, const pcb::BoardMachine& m,
+                                    const BoardFiles& b) {
+  try {
+    return pcb::resolve_board_options(args, m, b.layers, b.side);
+  } catch (const pcb::BoardArgsError& e) {
+    throw CommandFailure(kExitUsage, e.what());
+  }
+}
+
+// measured_mm: X1 Y1 X2 Y2 of the alignment holes after the flip; the job is planned once
+// without, for where they should be, then turned and shifted onto them.
+pcb::BoardJob plan_board_files(const BoardFiles& b, const pcb::BoardOptions& o,
+                               const std::vector<double>& measured_mm) {
+  PcbLayer drill;  // several drill files (plated and not) make one drill layer
+  pcb::BoardLayers l;
+  try {
+    l = b.layers.layers(&drill);
+  } catch (const PlanError& e) {
+    throw CommandFailure(kExitUsage, e.what());
+  }
+  try {
+    if (measured_mm.size() == 4) {
+      const pcb::BoardJob nominal = pcb::plan_board(l, o);
+      if (nominal.alignment_holes_mm.size() < 2)
+        throw CommandFailure(kExitUsage,
+                             "--align-measured needs two alignment holes; --align-holes gave one "
+                             "(a hole on the flip axis is its own mirror image): give another");
+      const Point2 expected[2] = {nominal.alignment_holes_mm.at(0),
+                                  nominal.alignment_holes_mm.at(1)};
+      const Point2 measured[2] = {Point2(measured_mm[0], measured_mm[1]),
+                                  Point2(measured_mm[2], measured_mm[3])};
+      pcb::BoardOptions aligned = o;
+      aligned.alignment.placement = pcb::measured_alignment(expected, measured);
+      return pcb::plan_board(l, aligned);
+    }
+    return pcb::plan_board(l, o);
+  } catch (const PlanError& e) {
+    throw CommandFailure(kExitJobFailed, e.what());
+  } catch (const pcb::CutoutError& e) {
+    throw CommandFailure(kExitUsage, e.what());
+  }
+}
+
+bool is_pcb_input(const std::string& input) {
+  std::string side;
+  bool directory = false;
+  std::string rest = input;
+  if (has_prefix(rest, "top:") || has_prefix(rest, "bottom:")) return true;
+  if (std::filesystem::is_directory(rest)) return !expand_input(rest, &side, &directory).empty();
+  for (const std::string& f : expand_input(rest, &side, &directory))
+    if (pcb::pcb_file_format(f) != pcb::PcbFileFormat::kNone) return true;
+  return false;
+}
+
+bool input_exists(const std::string& input) {
+  std::string side;
+  bool directory = false;
+  std::string stripped;
+  const std::vector<std::string> files = expand_input(input, &side, &directory, &stripped);
+  if (directory) return true;
+  for (const std::string& f : files)
+    if (!std::filesystem::exists(f)) return false;
+  return !files.empty();
+}
+
+JobPlan plan_pcb_input(const std::string& input, const pcb::BoardArgs& args,
+                       const pcb::BoardMachine& m, const CommandLog& log, PlannedBoard* board) {
+  const bool probe_area = board != nullptr && board->with_probe_area;
+  const BoardFiles b = read_board_input(input, args.side, probe_area && !args.align_holes.empty());
+  log_board_notes(b, log);
+  const pcb::BoardOptions o = board_options_for(args, m, b);
+  const auto job =
+      std::make_shared<const pcb::BoardJob>(plan_board_files(b, o, args.align_measured_mm));
+  try {
+    // Refused before a byte is sent (send) or the machine is simulated (run).
+    const int tol_um = static_cast<int>(std::lround(m.chord_tol_mm * 1000));
+    pcb::refuse_copper_hits(pcb::check_controller_isolation(*job, o, tol_um),
+                            fmt::format("the controller's points at {} mm chords", m.chord_tol_mm));
+  } catch (const pcb::CopperCutError& e) {
+    throw CommandFailure(kExitCutsCopper, b.name + ": " + e.what());
+  }
+  const pcb::BoardReport& r = job->report;
+  for (const std::string& n : r.notes) log("note: " + n);
+  log(fmt::format("board {}: mount {} first; {} contours, {} holes, {} tool changes", b.name,
+                  r.first_tool, r.isolation_contours, r.holes, r.tool_changes));
+  for (const pcb::NarrowGap& g : r.narrow_gaps)
+    log("warning: " + pcb::describe_gap(g, o.isolation));
+  if (board) {
+    board->job = job;
+    board->title = b.name;
+    board->check_tolerance_mm = pcb::isolation_check_tolerance_mm(o);
+    board->isolation_z_mm = -o.isolation_depth_mm;
+  }
+  if (probe_area) {
+    pcb::PcbLayer drill;  // the layers again: the bottom side is planned from them too
+    board->probe_area = pcb::board_probe_area(b.layers.layers(&drill), o, *job);
+  }
+  return job->plan;
+}
+
+BoardPoints board_points(const std::string& input, const pcb::BoardArgs& args, double tol_mm,
+                         const CommandLog& log) {
+  pcb::BoardMachine m;
+  // Points in the file frame: no work area applies, unless the job is turned and shifted
+  // onto measured holes (machine positions): then `board`'s default work area, as it checks.
+  const bool placed = !args.align_measured_mm.empty();
+  if (!placed) m.work_w_mm = m.work_h_mm = 1e6;
+  const BoardFiles b = read_board_input(input, args.side);
+  log_board_notes(b, log);
+  pcb::BoardOptions o = board_options_for(args, m, b);
+  if (!placed) o.travel_width_mm = o.travel_height_mm = m.work_w_mm;
+  BoardPoints out;
+  out.job = plan_board_files(b, o, args.align_measured_mm);
+  for (const std::string& n : out.job.report.notes) log("note: " + n);
+  for (const pcb::NarrowGap& g : out.job.report.narrow_gaps)
+    log("warning: " + pcb::describe_gap(g, o.isolation));
+  out.paths = board_tool_paths(out.job, static_cast<int>(std::lround(tol_mm * 1000)));
+  return out;
+}
+
+std::vector<BoardToolPath> board_tool_paths(const pcb::BoardJob& job, int chord_tolerance_um) {
+  std::vector<BoardToolPath> out;
+  const JobPlan& plan = job.plan;
+  size_t tool = 0;
+  int32_t z_um = 0;
+  bool down = false;  // the tool below the surface: a new path starts at each change of z
+  bool open = false;  // the last path in `out` takes the next points
+  int last_curve = -1;
+  Point2 at(0, 0);
+  auto start = [&]() {
+    BoardToolPath p;
+    p.tool = tool;
+    p.path = out.size();
+    p.z_um = z_um;
+    out.push_back(p);
+    open = true;
+  };
+  auto add = [&](const Point2& machine) {
+    if (!open) start();
+    const Point2 f = job.frame.to_file(machine);
+    std::vector<Point2>& pts = out.back().points_file_mm;
+    if (pts.empty() || (pts.back() - f).norm() > 1e-9) pts.push_back(f);
+  };
+  for (const PlanStep& s : plan.steps) {
+    switch (s.kind) {
+      case PlanStep::kPause:
+        if (tool + 1 < job.tools.size()) ++tool;
+        open = false;
+        break;
+      case PlanStep::kPenDown:
+      case PlanStep::kPenUp:
+        z_um = s.z_um;
+        down = s.z_um < 0;
+        open = false;
+        last_curve = -1;
+        break;
+      case PlanStep::kRapid:
+        at = Point2(s.to.x_um * 1e-3, s.to.y_um * 1e-3);
+        open = false;
+        break;
+      case PlanStep::kDrill: {
+        const int32_t z = z_um;
+        z_um = s.z_um;
+        open = false;
+        at = Point2(s.to.x_um * 1e-3, s.to.y_um * 1e-3);
+        add(at);
+        open = false;
+        z_um = z;
+        break;
+      }
+      case PlanStep::kFeed:
+        if (!down) break;
+        if (!open) add(at);
+        at = Point2(s.to.x_um * 1e-3, s.to.y_um * 1e-3);
+        add(at);
+        break;
+      case PlanStep::kSpline:
+        if (!down || s.curve < 0 || s.curve == last_curve) break;
+        last_curve = s.curve;
+        for (const Point2& p : firmware_points_mm(plan.curves[s.curve].spline, chord_tolerance_um))
+          add(p);
+        at = Point2(s.to.x_um * 1e-3, s.to.y_um * 1e-3);
+        break;
+      default:
+        break;
+    }
+  }
+  return out;
+}
+
+}  // namespace host::commands

@@ -1,0 +1,337 @@
+// `engraver info` and `engraver points` as functions (see info_command.h).
+#include "host/lib/commands/info_command.h"
+
+#include <algorithm>  // std::min, std::max
+#include <cmath>      // std::isnan, std::llround
+#include <iomanip>    // std::setprecision
+#include <map>        // std::map
+#include <sstream>    // std::ostringstream
+
+#include "host/lib/commands/exit_codes.h"  // CommandFailure
+#include "host/lib/pcb/excellon_reader.h"
+#include "host/lib/pcb/gerber_reader.h"
+#include "host/lib/pcb/pcb_file_names.h"
+#include "host/lib/plan/firmware_points.h"
+#include "host/lib/plan/firmware_spline.h"
+
+namespace host::commands {
+
+namespace {
+
+using pcb::PcbLayer;
+
+struct Box {
+  bool empty = true;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // mm
+  void add(double x_nm, double y_nm, double r_nm = 0) {
+    const double xa = (x_nm - r_nm) * 1e-6, xb = (x_nm + r_nm) * 1e-6;
+    const double ya = (y_nm - r_nm) * 1e-6, yb = (y_nm + r_nm) * 1e-6;
+    if (empty) {
+      x0 = xa, x1 = xb, y0 = ya, y1 = yb;
+      empty = false;
+      return;
+    }
+    x0 = std::min(x0, xa), x1 = std::max(x1, xb), y0 = std::min(y0, ya), y1 = std::max(y1, yb);
+  }
+};
+
+Box extents(const PcbLayer& l) {
+  Box b;
+  for (const auto& path : l.polygons_nm) {
+    for (const auto& p : path) b.add(static_cast<double>(p.X), static_cast<double>(p.Y));
+  }
+  for (const auto& h : l.holes) {
+    b.add(static_cast<double>(h.at.x), static_cast<double>(h.at.y),
+          static_cast<double>(h.diameter_nm) / 2);
+  }
+  for (const auto& s : l.slots) {
+    const double r = static_cast<double>(s.diameter_nm) / 2;
+    b.add(static_cast<double>(s.from.x), static_cast<double>(s.from.y), r);
+    b.add(static_cast<double>(s.to.x), static_cast<double>(s.to.y), r);
+  }
+  return b;
+}
+
+struct Counts {
+  size_t outers = 0, holes = 0, vertices = 0;
+  std::map<int, std::pair<double, size_t>> tools;  // tool -> (diameter mm, holes + slots)
+};
+
+Counts count(const PcbLayer& l) {
+  Counts c;
+  for (const auto& path : l.polygons_nm) {
+    c.vertices += path.size();
+    if (l.outline_paths_are_open || ClipperLib::Orientation(path)) {
+      ++c.outers;
+    } else {
+      ++c.holes;
+    }
+  }
+  for (const auto& h : l.holes) {
+    auto& t = c.tools[h.tool];
+    t.first = static_cast<double>(h.diameter_nm) * 1e-6;
+    ++t.second;
+  }
+  for (const auto& s : l.slots) {
+    auto& t = c.tools[s.tool];
+    t.first = static_cast<double>(s.diameter_nm) * 1e-6;
+    ++t.second;
+  }
+  return c;
+}
+
+}  // namespace
+
+std::string pcb_info_text(const PcbFileInfo& info) {
+  const PcbLayer& l = info.layer;
+  const std::string& format = info.format;
+  std::ostringstream out;
+  const Box b = extents(l);
+  const Counts c = count(l);
+  out << std::fixed << std::setprecision(3);
+  out << "file:      " << l.path << "\n";
+  out << "format:    " << format << "\n";
+  out << "layer:     " << pcb::layer_kind_name(l.kind) << "\n";
+  out << "units:     " << (l.units.empty() ? "not given" : l.units) << "\n";
+  if (b.empty) {
+    out << "extents:   (nothing drawn)\n";
+  } else {
+    out << "extents:   x " << b.x0 << " .. " << b.x1 << " mm, y " << b.y0 << " .. " << b.y1
+        << " mm (" << b.x1 - b.x0 << " x " << b.y1 - b.y0 << " mm)\n";
+  }
+  if (l.kind == pcb::LayerKind::kDrill) {
+    out << "tools:     " << l.apertures_or_tools << " defined, " << c.tools.size() << " used\n";
+    for (const auto& t : c.tools) {
+      out << "  T" << t.first << ": " << t.second.first << " mm, " << t.second.second
+          << " holes and slots\n";
+    }
+    out << "holes:     " << l.holes.size() << "\n";
+    out << "slots:     " << l.slots.size() << "\n";
+  } else {
+    out << "apertures: " << l.apertures_or_tools << "\n";
+    if (l.outline_paths_are_open) {
+      size_t closed = 0;
+      for (const auto& p : l.polygons_nm) closed += p.size() > 2 && p.front() == p.back();
+      out << "paths:     " << l.polygons_nm.size() << " centre lines (" << closed << " closed), "
+          << c.vertices << " vertices\n";
+    } else {
+      out << "polygons:  " << c.outers << " copper areas, " << c.holes << " holes in them, "
+          << c.vertices << " vertices (arcs within " << l.arc_tolerance_nm * 1e-3 << " um)\n";
+    }
+  }
+  out << "notes:     " << (l.notes.empty() ? "none" : "") << "\n";
+  for (const std::string& n : l.notes) out << "  - " << n << "\n";
+  return out.str();
+}
+
+nlohmann::json pcb_info_json(const PcbFileInfo& info) {
+  const PcbLayer& l = info.layer;
+  const Box b = extents(l);
+  const Counts c = count(l);
+  nlohmann::json j;
+  j["file"] = l.path;
+  j["format"] = info.format;
+  j["layer"] = pcb::layer_kind_name(l.kind);
+  j["units"] = l.units;
+  j["extents_mm"] = b.empty ? nlohmann::json(nullptr)
+                            : nlohmann::json{{"min", {b.x0, b.y0}}, {"max", {b.x1, b.y1}}};
+  j["apertures_or_tools"] = l.apertures_or_tools;
+  j["polygons"] = c.outers;
+  j["polygon_holes"] = c.holes;
+  j["vertices"] = c.vertices;
+  j["open_paths"] = l.outline_paths_are_open;
+  j["holes"] = l.holes.size();
+  j["slots"] = l.slots.size();
+  j["arc_tolerance_nm"] = l.arc_tolerance_nm;
+  nlohmann::json tools = nlohmann::json::object();
+  for (const auto& t : c.tools) {
+    tools["T" + std::to_string(t.first)] = {{"diameter_mm", t.second.first},
+                                            {"count", t.second.second}};
+  }
+  j["tools"] = tools;
+  j["notes"] = l.notes;
+  return j;
+}
+
+namespace {
+
+nlohmann::json point_json(const Point2& p) {
+  return {p.x(), p.y()};
+}
+
+// One program operation as a line of text (drawing frame, mm).
+std::string describe_op(const Drawing& d, const ProgramOp& op) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(3) << op.source << ": ";
+  switch (op.kind) {
+    case ProgramOp::kCut:
+      o << "cut " << d.curves[op.curve].source << " (curve " << op.curve << ")";
+      if (std::isnan(op.depth_mm)) {
+        o << " at the planner's depth";
+      } else {
+        o << " at Z " << op.depth_mm << " mm";
+      }
+      break;
+    case ProgramOp::kPause:
+      o << "pause for the operator: \"" << op.text << "\"";
+      break;
+    case ProgramOp::kDwell:
+      o << "dwell " << op.dwell_s << " s";
+      break;
+    case ProgramOp::kSpindle:
+      o << "spindle " << (op.spindle_on ? "on" : "off");
+      break;
+    case ProgramOp::kDrill:
+      o << "drill at (" << op.at.x() << ", " << op.at.y() << ") mm from Z " << op.z_start_mm
+        << " to " << op.z_bottom_mm << " mm";
+      if (op.feed_mm_per_s > 0) o << " at " << op.feed_mm_per_s << " mm/s";
+      if (op.peck_mm > 0) o << ", pecks of " << op.peck_mm << " mm";
+      if (op.dwell_s > 0) o << ", dwell " << op.dwell_s << " s at the bottom";
+      o << ", then Z " << op.retract_mm << " mm";
+      break;
+  }
+  return o.str();
+}
+
+}  // namespace
+
+nlohmann::json drawing_info_json(const Drawing& d) {
+  nlohmann::json j;
+  j["file"] = d.path;
+  j["format"] = d.format;
+  j["units"] = d.units;
+  j["unit_to_mm"] = d.unit_to_mm;
+  j["entities"] = d.entity_counts;
+  const Extents e = d.extents();
+  if (!e.empty()) {
+    j["extents_mm"] = {{"min", point_json(e.min)},
+                       {"max", point_json(e.max)},
+                       {"width", e.width()},
+                       {"height", e.height()}};
+  } else {
+    j["extents_mm"] = nullptr;
+  }
+  j["curves"] = nlohmann::json::array();
+  for (const Curve& c : d.curves) {
+    nlohmann::json cj;
+    cj["source"] = c.source;
+    cj["kind"] = c.kind;
+    cj["degree"] = c.spline.degree;
+    cj["rational"] = c.spline.rational();
+    cj["knots"] = c.spline.knots;
+    cj["control_points_mm"] = nlohmann::json::array();
+    for (const Point2& p : c.spline.control) cj["control_points_mm"].push_back(point_json(p));
+    if (c.spline.rational()) cj["weights"] = c.spline.weights;
+    cj["start_mm"] = point_json(start_point(c.spline));
+    cj["end_mm"] = point_json(end_point(c.spline));
+    j["curves"].push_back(cj);
+  }
+  j["program"] = nlohmann::json::array();
+  for (const ProgramOp& op : d.program) j["program"].push_back(describe_op(d, op));
+  j["problems"] = d.warnings;
+  return j;
+}
+
+namespace {
+
+// Numbers in a list, space separated, at most `limit` shown.
+template <typename T>
+std::string list(const std::vector<T>& v, size_t limit) {
+  std::ostringstream o;
+  o << std::setprecision(10);
+  for (size_t i = 0; i < v.size() && i < limit; ++i) o << (i ? " " : "") << v[i];
+  if (v.size() > limit) o << " ... (" << v.size() << " in all)";
+  return o.str();
+}
+
+}  // namespace
+
+std::string drawing_info_text(const Drawing& d) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(3);
+  out << "file:     " << d.path << "\n";
+  out << "format:   " << d.format << "\n";
+  out << "units:    " << d.units << " (1 unit = " << d.unit_to_mm << " mm)\n";
+  out << "entities: ";
+  if (d.entity_counts.empty()) out << "none";
+  bool first = true;
+  for (const auto& e : d.entity_counts) {
+    out << (first ? "" : ", ") << e.first << " " << e.second;
+    first = false;
+  }
+  out << "\n";
+  const Extents e = d.extents();
+  if (e.empty()) {
+    out << "extents:  (no curves)\n";
+  } else {
+    out << "extents:  x " << e.min.x() << " .. " << e.max.x() << " mm, y " << e.min.y() << " .. "
+        << e.max.y() << " mm (" << e.width() << " x " << e.height() << " mm)\n";
+  }
+  out << "curves:   " << d.curves.size() << "\n";
+  for (size_t i = 0; i < d.curves.size(); ++i) {
+    const Curve& c = d.curves[i];
+    const BSpline& s = c.spline;
+    const Point2 a = start_point(s), b = end_point(s);
+    out << "  " << i << ": " << c.source << ": degree " << s.degree
+        << (s.rational() ? ", rational" : "") << ", " << s.control.size() << " control points, "
+        << s.knots.size() << " knots, from (" << a.x() << ", " << a.y() << ") to (" << b.x() << ", "
+        << b.y() << ") mm\n";
+    if (c.kind == "SPLINE") {
+      out << "       knots: " << list(s.knots, 24) << "\n";
+      std::ostringstream cp;
+      cp << std::fixed << std::setprecision(4);
+      for (size_t k = 0; k < s.control.size() && k < 16; ++k) {
+        cp << (k ? " " : "") << "(" << s.control[k].x() << ", " << s.control[k].y() << ")";
+      }
+      if (s.control.size() > 16) cp << " ...";
+      out << "       control points (mm): " << cp.str() << "\n";
+      if (s.rational()) out << "       weights: " << list(s.weights, 24) << "\n";
+    }
+  }
+  if (!d.program.empty()) {
+    out << "program:  " << d.program.size()
+        << " operations, planned in this order (nothing reordered):\n";
+    const size_t limit = 200;
+    for (size_t i = 0; i < d.program.size() && i < limit; ++i)
+      out << "  " << describe_op(d, d.program[i]) << "\n";
+    if (d.program.size() > limit) out << "  ... (" << d.program.size() - limit << " more)\n";
+  }
+  out << "problems: " << (d.warnings.empty() ? "none" : "") << "\n";
+  for (const std::string& w : d.warnings) out << "  - " << w << "\n";
+  return out.str();
+}
+
+std::optional<PcbFileInfo> read_pcb_file_info(const std::string& path) {
+  const pcb::PcbFileFormat f = pcb::pcb_file_format(path);
+  if (f == pcb::PcbFileFormat::kNone) return std::nullopt;
+  const bool gerber = f == pcb::PcbFileFormat::kGerber;
+  PcbFileInfo info;
+  try {
+    info.layer = gerber ? pcb::read_gerber_file(path) : pcb::read_excellon_file(path);
+  } catch (const pcb::PcbReadError& e) {
+    throw CommandFailure(kExitUsage, e.what());
+  }
+  info.format = gerber ? "Gerber RS-274X" : "Excellon";
+  return info;
+}
+
+int points_tolerance_um(double tol_mm) {
+  const double tol_um = tol_mm * 1000.0;
+  if (!(tol_um >= 1.0 - 1e-9 && tol_um <= 10000.0 + 1e-9)) {
+    throw CommandFailure(kExitUsage,
+                         "--tol must be between 0.001 and 10 mm (the firmware "
+                         "steps with a whole-micrometre chord tolerance)");
+  }
+  return static_cast<int>(std::llround(tol_um));
+}
+
+std::vector<Point2> curve_points(const Drawing& d, size_t curve, int tol_um) {
+  try {
+    return firmware_points_mm(d.curves[curve].spline, tol_um);
+  } catch (const ConversionError& e) {
+    throw CommandFailure(kExitJobFailed, d.path + ": curve " + std::to_string(curve) + " (" +
+                                             d.curves[curve].source + "): " + e.what());
+  }
+}
+
+}  // namespace host::commands

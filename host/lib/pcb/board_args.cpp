@@ -1,0 +1,128 @@
+// The one resolver of board options (see board_args.h).
+#include "host/lib/pcb/board_args.h"
+
+#include <fmt/format.h>  // fmt::format
+
+#include <cmath>    // std::isfinite
+#include <sstream>  // std::istringstream
+
+namespace host::pcb {
+
+namespace {
+
+// Copper given only for the other side would leave a job without isolation that looks
+// planned (holes and cut-out alone).
+void refuse_other_side_copper(BoardSide side, const BoardFileSet& layers) {
+  const bool bottom = side == BoardSide::kBottom;
+  const std::vector<PcbLayer>& job_copper = bottom ? layers.copper_bottom : layers.copper_top;
+  const std::vector<PcbLayer>& other_copper = bottom ? layers.copper_top : layers.copper_bottom;
+  if (!job_copper.empty() || other_copper.empty()) return;
+  const std::string name = bottom ? "bottom" : "top", other = bottom ? "top" : "bottom";
+  throw BoardArgsError("the job's side is " + name + " but the copper given (" +
+                       other_copper.front().path + ") is " + other +
+                       " copper: nothing to isolate; give --side " + other + " or the " + name +
+                       " copper");
+}
+
+void refuse_unpaired_clearing_tool(const BoardArgs& a) {
+  if (a.clearing_tool_mm > 0 && a.narrow_passes >= a.passes)
+    throw BoardArgsError(
+        fmt::format("--clearing-tool cuts the passes beyond --narrow-passes ({}), "
+                    "but --passes is {}: give more --passes, or no clearing tool",
+                    a.narrow_passes, a.passes));
+  if (!(a.clearing_tool_mm > 0) && a.narrow_passes != 1)
+    throw BoardArgsError(
+        "--narrow-passes counts the isolation tool's passes next to "
+        "the copper with a --clearing-tool: give the clearing tool");
+}
+
+AlignmentOptions alignment_options(const BoardArgs& a) {
+  AlignmentOptions o;
+  if (a.align_holes.empty()) {
+    if (!a.align_measured_mm.empty())
+      throw BoardArgsError("--align-measured needs the job's --align-holes");
+    return o;
+  }
+  o.enabled = true;
+  o.hole_diameter_mm = a.align_diameter_mm;
+  o.hole_depth_mm = a.align_depth_mm;
+  const std::string why = parse_align_holes(a.align_holes, &o.holes_file_mm);
+  if (!why.empty()) throw BoardArgsError(why);
+  return o;
+}
+
+IsolationOptions isolation_options(const BoardArgs& a) {
+  IsolationOptions o;
+  o.tool_width_mm = a.tool_width_mm;
+  o.passes = a.passes;
+  o.overlap = a.overlap;
+  o.clearance_mm = a.clearance_mm;
+  o.mill_all = a.mill_all;
+  o.clearing_tool_width_mm = a.clearing_tool_mm;
+  o.narrow_passes = a.narrow_passes;
+  o.isolate_empty_holes = a.isolate_empty_holes;
+  return o;
+}
+
+}  // namespace
+
+BoardSide resolve_board_side(const std::string& asked, const std::string& prefix,
+                             const BoardFileSet& layers) {
+  std::string side = asked.empty() ? prefix : asked;
+  if (side.empty())
+    side = layers.copper_top.empty() && !layers.copper_bottom.empty() ? "bottom" : "top";
+  if (side != "top" && side != "bottom")
+    throw BoardArgsError("--side must be top or bottom, not '" + side + "'");
+  return side == "bottom" ? BoardSide::kBottom : BoardSide::kTop;
+}
+
+std::string parse_align_holes(const std::string& text, std::vector<Point2>* holes_file_mm) {
+  holes_file_mm->clear();
+  if (text == "auto") return "";
+  std::istringstream in(text);
+  for (std::string xy; std::getline(in, xy, ';');) {
+    double x = 0, y = 0;
+    char comma = 0, extra = 0;
+    std::istringstream one(xy);
+    if (!(one >> x >> comma >> y) || comma != ',' || (one >> extra) || !std::isfinite(x) ||
+        !std::isfinite(y)) {
+      return "--align-holes: '" + xy +
+             "' is not X,Y (mm, files' frame); holes are separated by ';', or say auto";
+    }
+    holes_file_mm->emplace_back(x, y);
+  }
+  if (holes_file_mm->empty()) return "--align-holes: no hole given (X,Y[;X,Y...] or auto)";
+  return "";
+}
+
+BoardOptions resolve_board_options(const BoardArgs& a, const BoardMachine& m,
+                                   const BoardFileSet& layers, const std::string& prefix_side) {
+  BoardOptions o;
+  o.side = resolve_board_side(a.side, prefix_side, layers);
+  refuse_other_side_copper(o.side, layers);
+  refuse_unpaired_clearing_tool(a);
+  o.isolation = isolation_options(a);
+  o.alignment = alignment_options(a);
+  o.isolation_depth_mm = a.depth_mm;
+  o.drill_depth_mm = a.drill_depth_mm;
+  o.drill_start_mm = a.drill_start_mm;
+  o.drill_feed_mm_per_s = a.drill_feed_mm_s;
+  o.cutout.cutter_diameter_mm = a.cutter_mm;
+  o.cutout.tab_width_mm = a.tab_width_mm;
+  o.cutout.tab_count = a.tabs;
+  o.cutout.tab_spacing_mm = a.tab_spacing_mm;
+  o.cutout_depth_mm = a.cut_depth_mm;
+  o.cutout_step_mm = a.cut_step_mm;
+  o.cutout_feed_mm_per_s = a.cut_feed_mm_s;
+  o.tab_height_mm = a.tab_height_mm;
+  o.spindle = !a.no_spindle;
+  o.allow_narrow_gaps = a.allow_narrow_gaps;
+  o.feed_mm_per_s = m.feed_mm_s;
+  o.z_travel_mm = m.z_up_mm;
+  o.margin_mm = m.margin_mm;
+  o.work_width_mm = m.work_w_mm;
+  o.work_height_mm = m.work_h_mm;
+  return o;
+}
+
+}  // namespace host::pcb

@@ -1,0 +1,79 @@
+// `engraver info` and `engraver points` as functions: a Gerber file's and a drawing's
+// reports, the firmware's points of a curve and the refused tolerances.
+#include <gtest/gtest.h>
+#include <unistd.h>  // getpid
+
+#include <filesystem>  // temp_directory_path
+#include <fstream>     // std::ofstream
+
+#include "host/lib/commands/exit_codes.h"
+#include "host/lib/commands/info_command.h"
+#include "host_tests/host/sim/sim_test_jobs.h"
+
+namespace host::commands {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string write_file(const std::string& name, const std::string& text) {
+  const fs::path p =
+      fs::temp_directory_path() / ("info_command_test-" + std::to_string(getpid()) + "-" + name);
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+TEST(InfoCommand, AGerberFilesLayerExtentsAndPolygons) {
+  const std::string path = write_file(
+      "pads-F.Cu.gbr",
+      "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Copper,L1,Top*%\n%ADD10R,2.000000X2.000000*%\n"
+      "D10*\nX10000000Y10000000D03*\nX20000000Y10000000D03*\nM02*\n");
+  const std::optional<PcbFileInfo> info = read_pcb_file_info(path);
+  ASSERT_TRUE(info.has_value());
+  EXPECT_EQ(info->format, "Gerber RS-274X");
+  const nlohmann::json j = pcb_info_json(*info);
+  EXPECT_EQ(j["layer"], pcb::layer_kind_name(pcb::LayerKind::kCopperTop));
+  EXPECT_EQ(j["polygons"], 2);
+  EXPECT_DOUBLE_EQ(j["extents_mm"]["min"][0].get<double>(), 9.0);
+  EXPECT_DOUBLE_EQ(j["extents_mm"]["max"][0].get<double>(), 21.0);
+  const std::string text = pcb_info_text(*info);
+  EXPECT_NE(text.find("extents:   x 9.000 .. 21.000 mm, y 9.000 .. 11.000 mm"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("polygons:  2 copper areas"), std::string::npos) << text;
+}
+
+TEST(InfoCommand, AnotherFileIsNotPcbAndABrokenOneIsAUsageError) {
+  EXPECT_FALSE(read_pcb_file_info(write_file("drawing.dxf", "0\nEOF\n")).has_value());
+  const std::string broken = write_file("broken.drl", "M48\nMETRIC\nT1C\n%\nT1\nX1Y1\nM30\n");
+  try {
+    read_pcb_file_info(broken);
+    FAIL() << "read a drill file with a tool without a diameter";
+  } catch (const CommandFailure& e) {
+    EXPECT_EQ(e.code, kExitUsage);
+  }
+}
+
+TEST(InfoCommand, ADrawingsCurvesAndTheirFirmwarePoints) {
+  Drawing d = test::drawing_of({test::line_curve(0, 0, 10, 0), test::line_curve(20, 5, 20, 15)});
+  d.path = "two-lines.dxf";
+  const nlohmann::json j = drawing_info_json(d);
+  ASSERT_EQ(j["curves"].size(), 2u);
+  EXPECT_DOUBLE_EQ(j["curves"][1]["end_mm"][1].get<double>(), 15.0);
+  EXPECT_DOUBLE_EQ(j["extents_mm"]["width"].get<double>(), 20.0);
+  const std::string text = drawing_info_text(d);
+  EXPECT_NE(text.find("curves:   2"), std::string::npos) << text;
+  const std::vector<Point2> pts = curve_points(d, 0, points_tolerance_um(0.005));
+  ASSERT_GE(pts.size(), 2u);
+  EXPECT_NEAR(pts.back().x(), 10.0, 1e-3);
+  EXPECT_EQ(points_tolerance_um(0.005), 5);
+  for (double bad : {0.0005, 11.0}) {
+    try {
+      points_tolerance_um(bad);
+      FAIL() << bad;
+    } catch (const CommandFailure& e) {
+      EXPECT_EQ(e.code, kExitUsage);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace host::commands
