@@ -211,13 +211,22 @@ class GerberReader {
   // Deprecated image transforms (%IR, %MI, %SF), applied to the finished image.
   int rotation_deg_ = 0;                      // 0, 90, 180, 270 counterclockwise about the origin
   bool mirror_a_ = false, mirror_b_ = false;  // x -> -x, y -> -y
+  bool swap_ab_ = false;                      // %ASAYBX: x and y swap
   double layer_rotation_deg_ = 0;             // %RO: any angle, counterclockwise
   bool negative_ = false;                     // %IPNEG: copper where nothing is drawn
+  int negative_line_ = 0;
   void knockout(const std::string& arg);
   std::pair<double, double> axis_values(const std::string& arg, const char* what) const;
   double scale_a_ = 1, scale_b_ = 1;
-  std::vector<std::string> transforms_;  // the non-identity ones, for the message
-  void image_transform(const std::string& which);
+  // The non-identity ones in force, each the last of its parameter (a later one replaces an
+  // earlier, as gerbv reads them): reported as applied at the end.
+  struct ImageTransform {
+    std::string which;  // "%RO30"
+    std::string what;   // "layer rotation"
+    int line = 0;
+  };
+  std::vector<ImageTransform> transforms_;
+  void image_transform(const std::string& which, const char* what, bool identity);
   void need_units(const std::string& what);
   void transform_image(Paths& paths) const;
 
@@ -329,8 +338,17 @@ PcbLayer GerberReader::read() {
         x0 = std::min(x0, v.X), x1 = std::max(x1, v.X);
         y0 = std::min(y0, v.Y), y1 = std::max(y1, v.Y);
       }
-    const Path box = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+    // gerbv fills its whole picture, which has a border of 5 % of the image's width and
+    // height (`gerbv -x png`'s default): copper out to there, so a shape drawn on the box's
+    // edge leaves no sliver of copper between it and the edge.
+    const cInt mx = (x1 - x0) / 20, my = (y1 - y0) / 20;
+    const Path box = {
+        {x0 - mx, y0 - my}, {x1 + mx, y0 - my}, {x1 + mx, y1 + my}, {x0 - mx, y1 + my}};
     layer.polygons_nm = difference_of({box}, layer.polygons_nm);
+    notes_.push_back(
+        {"warning: %IPNEG (deprecated negative image) applied: copper is the "
+         "image's bounding box with gerbv's 5 % border, less what is drawn",
+         negative_line_, 1});
   }
   if (ill_defined_arcs_ > 0) {
     char msg[240];
@@ -341,6 +359,8 @@ PcbLayer GerberReader::read() {
                   ill_defined_arcs_, ill_defined_max_nm_ * 1e-3);
     layer.notes.push_back(msg);
   }
+  for (const ImageTransform& t : transforms_)
+    notes_.push_back({"warning: " + t.which + " (deprecated " + t.what + ") applied", t.line, 1});
   for (const Note& nt : notes_) {
     std::string s = "line " + std::to_string(nt.first_line) + ": " + nt.text;
     if (nt.count > 1) s += " (" + std::to_string(nt.count) + " times)";
@@ -456,13 +476,15 @@ void GerberReader::extended_command(const std::string& cmd) {
       // What is drawn is clear, the rest copper. The copper's extent is not defined: here the
       // image's bounding box, as gerbv fills its picture; isolation then keeps the tool
       // inside each drawn (clear) shape, off the copper around it.
+      // One polarity per image: a later %IP replaces an earlier (gerbv keeps the last).
+      if (negative_) return;
       negative_ = true;
-      note(
-          "warning: %IPNEG (deprecated negative image) applied: copper is the image's "
-          "bounding box less what is drawn");
+      negative_line_ = line_;
       return;
     }
     if (arg != "POS") fail("image polarity '" + arg + "' is neither POS nor NEG");
+    if (negative_) note("warning: %IPNEG replaced by the later %IPPOS (only the last applies)");
+    negative_ = false;
     note("%IPPOS (deprecated image polarity) ignored");
   } else if (code == "IC") {
     // Input code: ASCII is what every reader reads (OrCAD, P-CAD, Mentor write %ICAS*%).
@@ -479,12 +501,8 @@ void GerberReader::extended_command(const std::string& cmd) {
       if (v != "0" && v != "1") fail("mirror image '%MI" + a + "': A and B take 0 or 1");
       (axis == 'A' ? mirror_a_ : mirror_b_) = v == "1";
     }
-    if (mirror_a_ || mirror_b_) {
-      image_transform("%MI" + a);
-      note("warning: %MI" + a + " (deprecated mirror image) applied");
-    } else {
-      note("%MI without mirroring (deprecated) ignored");
-    }
+    image_transform("%MI" + a, "mirror image", !mirror_a_ && !mirror_b_);
+    if (!mirror_a_ && !mirror_b_) note("%MI without mirroring (deprecated) ignored");
   } else if (code == "SF") {
     double a = 1, b = 1;
     for (const char axis : {'A', 'B'}) {
@@ -496,14 +514,10 @@ void GerberReader::extended_command(const std::string& cmd) {
     }
     if (!(a > 0 && a <= 1000 && b > 0 && b <= 1000))
       fail("scale factor %SF" + arg + " must be above 0 and at most 1000");
-    if (a != 1 || b != 1) {
-      scale_a_ = a;
-      scale_b_ = b;
-      image_transform("%SF" + arg);
-      note("warning: %SF" + arg + " (deprecated scale factor) applied");
-    } else {
-      note("%SF with scale 1 (deprecated) ignored");
-    }
+    scale_a_ = a;
+    scale_b_ = b;
+    image_transform("%SF" + arg, "scale factor", a == 1 && b == 1);
+    if (a == 1 && b == 1) note("%SF with scale 1 (deprecated) ignored");
   } else if (code == "OF") {
     double a = 0, b = 0;
     for (const char axis : {'A', 'B'}) {
@@ -516,22 +530,21 @@ void GerberReader::extended_command(const std::string& cmd) {
     if (a != 0 || b != 0) need_units("%OF");
     offset_x_ = static_cast<cInt>(std::llround(a * unit_nm_));
     offset_y_ = static_cast<cInt>(std::llround(b * unit_nm_));
-    if (a != 0 || b != 0) image_transform("%OF" + arg);
-    note("%OF image offset (deprecated) applied");
+    image_transform("%OF" + arg, "image offset", a == 0 && b == 0);
+    if (a == 0 && b == 0) note("%OF without offset (deprecated) ignored");
   } else if (code == "IR") {
     const double deg = number(arg, "image rotation");
     if (deg != 0 && deg != 90 && deg != 180 && deg != 270)
       fail("image rotation %IR" + arg + " must be 0, 90, 180 or 270");
     rotation_deg_ = static_cast<int>(deg);
-    if (rotation_deg_ != 0) {
-      image_transform("%IR" + arg);
-      note("warning: %IR" + arg + " (deprecated image rotation) applied");
-    } else {
-      note("%IR0 (deprecated) ignored");
-    }
+    image_transform("%IR" + arg, "image rotation", rotation_deg_ == 0);
+    if (rotation_deg_ == 0) note("%IR0 (deprecated) ignored");
   } else if (code == "AS") {
-    if (arg != "AXBY") fail("axis select (%AS" + arg + ") other than AXBY is not supported");
-    note("%ASAXBY (deprecated) ignored");
+    // Axis select: AYBX sends the file's X to the output's B (y) axis: x and y swap.
+    if (arg != "AXBY" && arg != "AYBX") fail("axis select %AS" + arg + " is neither AXBY nor AYBX");
+    swap_ab_ = arg == "AYBX";
+    image_transform("%AS" + arg, "axis select", !swap_ab_);
+    if (!swap_ab_) note("%ASAXBY (deprecated) ignored");
   } else if (code == "LM" || code == "LR" || code == "LS") {
     const bool identity = (code == "LM" && arg == "N") ||
                           (code == "LR" && number(arg, "rotation") == 0) ||
@@ -551,25 +564,18 @@ void GerberReader::extended_command(const std::string& cmd) {
   } else if (code == "IO") {
     // Image offset: like %OF, in the units current here.
     const std::pair<double, double> ab = axis_values(arg, "image offset");
-    if (ab.first != 0 || ab.second != 0) {
-      need_units("%IO");
-      offset_x_ += static_cast<cInt>(std::llround(ab.first * unit_nm_));
-      offset_y_ += static_cast<cInt>(std::llround(ab.second * unit_nm_));
-      image_transform("%IO" + arg);
-      note("warning: %IO" + arg + " (deprecated image offset) applied");
-    } else {
-      note("%IO without offset (deprecated) ignored");
-    }
+    const bool none = ab.first == 0 && ab.second == 0;
+    if (!none) need_units("%IO");
+    offset_x_ = static_cast<cInt>(std::llround(ab.first * unit_nm_));
+    offset_y_ = static_cast<cInt>(std::llround(ab.second * unit_nm_));
+    image_transform("%IO" + arg, "image offset", none);
+    if (none) note("%IO without offset (deprecated) ignored");
   } else if (code == "RO") {
     const double deg = number(arg, "layer rotation");
     if (!(std::fabs(deg) <= 360)) fail("layer rotation %RO" + arg + " must be -360 .. 360 degrees");
     layer_rotation_deg_ = deg;
-    if (deg != 0) {
-      image_transform("%RO" + arg);
-      note("warning: %RO" + arg + " (deprecated layer rotation) applied");
-    } else {
-      note("%RO0 (deprecated) ignored");
-    }
+    image_transform("%RO" + arg, "layer rotation", deg == 0);
+    if (deg == 0) note("%RO0 (deprecated) ignored");
   } else if (code == "AB") {
     aperture_block(arg);
   } else {
@@ -577,14 +583,25 @@ void GerberReader::extended_command(const std::string& cmd) {
   }
 }
 
-// A deprecated transform of the whole image. One alone is applied; the specification does not
-// say in which order several combine, so a file with more is refused rather than guessed.
-void GerberReader::image_transform(const std::string& which) {
-  for (const std::string& t : transforms_)
-    if (t.substr(0, 3) == which.substr(0, 3)) return;  // the same parameter again
-  transforms_.push_back(which);
+// A deprecated transform of the whole image (identity: it does nothing). Of one parameter
+// given twice the last applies (gerbv keeps the last value); the specification does not say in
+// which order different ones combine, so a file with two is refused rather than guessed.
+void GerberReader::image_transform(const std::string& which, const char* what, bool identity) {
+  for (size_t k = 0; k < transforms_.size(); ++k) {
+    if (transforms_[k].which.compare(0, 3, which, 0, 3) != 0) continue;
+    note("warning: " + transforms_[k].which + " replaced by the later " + which +
+         " (only the last applies)");
+    if (identity)
+      transforms_.erase(transforms_.begin() + static_cast<long>(k));
+    else
+      transforms_[k] = {which, what, line_};
+    return;
+  }
+  if (identity) return;
+  transforms_.push_back({which, what, line_});
   if (transforms_.size() > 1) {
-    fail("the deprecated image transforms " + transforms_[0] + " and " + transforms_[1] +
+    fail("the deprecated image transforms " + transforms_[0].which + " and " +
+         transforms_[1].which +
          " together are not supported (the order they combine in is not defined)");
   }
 }
@@ -603,17 +620,14 @@ std::pair<double, double> GerberReader::axis_values(const std::string& arg,
   return {a, b};
 }
 
-// %KOCX<x>Y<y>I<w>J<h>: the box from (x, y), w wide and h high (current units), cleared where
-// it stands in the drawing order, as gerbv draws it. Without a box the knockout surrounds the
-// objects that follow by a border, and gerbv draws no dark (D) box: both refused.
+// %KOCX<x>Y<y>I<w>J<h>: the box from (x, y), w wide and h high (current units), cleared (C)
+// or filled (D) where it stands in the drawing order, as gerbv draws it. Without a box the
+// knockout surrounds the objects that follow by a border: refused.
 void GerberReader::knockout(const std::string& arg) {
   const char polarity = arg[0];
-  if (polarity == 'D')
-    fail("%KO" + arg.substr(0, 20) +
-         " (deprecated knockout with dark polarity) is not supported (gerbv does not draw it "
-         "either): only %KOC boxes, which clear");
-  if (polarity != 'C' || arg.find('X') == std::string::npos || arg.find('Y') == std::string::npos ||
-      arg.find('I') == std::string::npos || arg.find('J') == std::string::npos)
+  if ((polarity != 'C' && polarity != 'D') || arg.find('X') == std::string::npos ||
+      arg.find('Y') == std::string::npos || arg.find('I') == std::string::npos ||
+      arg.find('J') == std::string::npos)
     fail("%KO" + arg.substr(0, 20) +
          " (deprecated knockout) without a box (C or D, then X, Y, I, J) is not supported");
   double v[4] = {0, 0, 0, 0};
@@ -629,13 +643,14 @@ void GerberReader::knockout(const std::string& arg) {
   for (double x : v)
     if (!(std::fabs(x * unit_nm_) <= kMaxApertureNm * 10)) fail("%KO box beyond 10 m");
   const bool dark = dark_;
-  dark_ = false;
+  dark_ = polarity == 'D';
   add_object({rect_path({(v[0] + v[2] / 2) * unit_nm_, (v[1] + v[3] / 2) * unit_nm_},
                         v[2] * unit_nm_, v[3] * unit_nm_)});
   dark_ = dark;
-  note(
-      "warning: %KOC box (deprecated knockout) applied: cleared where it stands in the "
-      "drawing order");
+  note(polarity == 'C' ? "warning: %KOC box (deprecated knockout) applied: cleared where it "
+                         "stands in the drawing order"
+                       : "warning: %KOD box (deprecated knockout, dark) applied: copper where "
+                         "it stands in the drawing order");
 }
 
 // Scale, mirror, rotate about the origin; exact for the quarter turns and mirrors.
@@ -649,6 +664,14 @@ void GerberReader::transform_image(Paths& paths) const {
         v = IntPoint(static_cast<cInt>(std::llround(c * x - s * y)),
                      static_cast<cInt>(std::llround(s * x + c * y)));
       }
+    return;
+  }
+  if (swap_ab_) {
+    // Alone (image_transform() refuses it with another); a mirror: the orientation flips.
+    for (Path& p : paths) {
+      for (IntPoint& v : p) v = IntPoint(v.Y, v.X);
+      ClipperLib::ReversePath(p);
+    }
     return;
   }
   if (rotation_deg_ == 0 && !mirror_a_ && !mirror_b_ && scale_a_ == 1 && scale_b_ == 1) return;
