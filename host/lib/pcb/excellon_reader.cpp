@@ -45,6 +45,9 @@ class ExcellonReader {
   void note(const std::string& text) const;
   void header_line(const std::string& s);
   void body_line(const std::string& s);
+  bool mode_command(const std::string& s);
+  bool route_command(const std::string& s);
+  void position_line(const std::string& s);
   void comment(const std::string& s);
   void units_line(const std::string& s);
   bool units_command(const std::string& s);
@@ -420,43 +423,39 @@ void ExcellonReader::need_tool() {
                              "): which one is meant is not known"));
 }
 
-// Adds a hole or slot of the current tool, or counts it as left out (an oversize tool).
-
+// One line after the header: a tool change, a mode, a route move, or a position.
 void ExcellonReader::body_line(const std::string& s) {
   if (s[0] == 'T' && s.size() > 1 && std::isdigit(static_cast<unsigned char>(s[1]))) {
     tool(s, false);
-    return;
+  } else if (mode_command(s) || route_command(s)) {
+    // done
+  } else if (s[0] == 'R' && s.size() > 1 && std::isdigit(static_cast<unsigned char>(s[1]))) {
+    repeat_hole(s);
+  } else if (s[0] == 'X' || s[0] == 'Y') {
+    position_line(s);
+  } else if (starts_with(s, "M47") || starts_with(s, "M45")) {
+    note("operator message '" + s.substr(0, 30) + "' ignored");
+  } else if (s != "M48") {
+    fail("unknown or unsupported command '" + s.substr(0, 30) + "'");
   }
+}
+
+// End of program, absolute/incremental, drill mode, units in the body, the work zero (G93);
+// true if s was one.
+bool ExcellonReader::mode_command(const std::string& s) {
   if (s == "M30" || s == "M00" || s == "M02") {
     done_ = true;
-    return;
-  }
-  if (s == "G90") {
-    incremental_ = false;
-    return;
-  }
-  if (s == "G91") {
-    incremental_ = true;
-    note("G91 incremental coordinates");
-    return;
-  }
-  if (s == "G05" || s == "G5" || s == "G81") {
+  } else if (s == "G90" || s == "G91") {
+    incremental_ = s == "G91";
+    if (incremental_) note("G91 incremental coordinates");
+  } else if (s == "G05" || s == "G5" || s == "G81") {
     routing_ = false;
     plunged_ = false;
-    return;
-  }
-  if (s == "M71" || s == "M72") {
+  } else if (s == "M71" || s == "M72") {
     const std::string before = units_;
     set_units(s == "M71");
     if (!before.empty() && before != units_) note(s + " switches units in the body");
-    return;
-  }
-  if (s == "M15") {
-    if (!routing_) fail("M15 (tool down) outside route mode (G00)");
-    plunged_ = true;
-    return;
-  }
-  if (starts_with(s, "G93")) {
+  } else if (starts_with(s, "G93")) {
     // Work zero: later absolute coordinates are relative to it (Mentor writes G93X0Y0).
     PointNm zero;
     const bool incremental = incremental_;
@@ -465,17 +464,24 @@ void ExcellonReader::body_line(const std::string& s) {
     incremental_ = incremental;
     offset_ = zero;
     if (zero.x != 0 || zero.y != 0) note("G93 work zero offset applied");
-    return;
+  } else {
+    return false;
   }
-  if (starts_with(s, "M16") || starts_with(s, "M17")) {
+  return true;
+}
+
+// Route mode: G00 (move), M15 (tool down), G01 (cut a slot), M16/M17 (tool up); true if s was
+// one of them.
+bool ExcellonReader::route_command(const std::string& s) {
+  if (s == "M15") {
+    if (!routing_) fail("M15 (tool down) outside route mode (G00)");
+    plunged_ = true;
+  } else if (starts_with(s, "M16") || starts_with(s, "M17")) {
     // Tool up; Allegro's route files may carry the next position on the same line.
     plunged_ = false;
-    if (s.size() > 3) {
-      if (!position(s.substr(3), at_)) fail("unexpected '" + s.substr(3, 20) + "' after M16");
-    }
-    return;
-  }
-  if (starts_with(s, "G00") || starts_with(s, "G01")) {
+    if (s.size() > 3 && !position(s.substr(3), at_))
+      fail("unexpected '" + s.substr(3, 20) + "' after M16");
+  } else if (starts_with(s, "G00") || starts_with(s, "G01")) {
     PointNm p = at_;
     const bool has = position(s.substr(3), p);
     if (starts_with(s, "G00")) {
@@ -489,46 +495,38 @@ void ExcellonReader::body_line(const std::string& s) {
       }
     }
     at_ = p;
-    return;
-  }
-  if (starts_with(s, "G02") || starts_with(s, "G03")) {
+  } else if (starts_with(s, "G02") || starts_with(s, "G03")) {
     fail("routed arcs (" + s.substr(0, 3) + ") are not supported");
+  } else {
+    return false;
   }
-  if (s[0] == 'R' && s.size() > 1 && std::isdigit(static_cast<unsigned char>(s[1]))) {
-    repeat_hole(s);
+  return true;
+}
+
+// "X..Y..": a hole (drill mode), a route move (route mode), or with G85 a slot.
+void ExcellonReader::position_line(const std::string& s) {
+  const size_t g85 = s.find("G85");
+  if (g85 != std::string::npos) {
+    PointNm from = at_;
+    position(s.substr(0, g85), from);
+    PointNm to = from;  // incremental ends are relative to the start
+    if (!position(s.substr(g85 + 3), to)) fail("G85 slot without an end point");
+    need_tool();
+    add_slot(from, to);
+    at_ = to;
     return;
   }
-  if (s[0] == 'X' || s[0] == 'Y') {
-    const size_t g85 = s.find("G85");
-    if (g85 != std::string::npos) {
-      PointNm from = at_;
-      position(s.substr(0, g85), from);
-      PointNm to = from;  // incremental ends are relative to the start
-      if (!position(s.substr(g85 + 3), to)) fail("G85 slot without an end point");
-      need_tool();
-      add_slot(from, to);
-      at_ = to;
-      return;
-    }
-    PointNm p = at_;
-    position(s, p);
-    if (routing_) {
-      if (plunged_) {
-        need_tool();
-        add_slot(at_, p);
-      }
-      at_ = p;
-      return;
-    }
+  PointNm p = at_;
+  position(s, p);
+  if (!routing_) {
     drill_hole(p);
     return;
   }
-  if (starts_with(s, "M47") || starts_with(s, "M45")) {
-    note("operator message '" + s.substr(0, 30) + "' ignored");
-    return;
+  if (plunged_) {
+    need_tool();
+    add_slot(at_, p);
   }
-  if (s == "M48") return;
-  fail("unknown or unsupported command '" + s.substr(0, 30) + "'");
+  at_ = p;
 }
 
 double ExcellonReader::number(const std::string& s, const char* what) const {

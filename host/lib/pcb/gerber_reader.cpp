@@ -1,6 +1,6 @@
 #include "host/lib/pcb/gerber_reader.h"
 
-#include <algorithm>      // std::min, std::max
+#include <algorithm>      // std::min, std::max, std::count
 #include <cctype>         // std::isdigit, std::isspace
 #include <cmath>          // std::atan2, std::hypot, std::fabs
 #include <cstdio>         // std::snprintf
@@ -116,6 +116,10 @@ class GerberReader {
   PcbLayer read();
 
  private:
+  void read_blocks();
+  LayerKind layer_kind() const;
+  void outline_loops(PcbLayer* layer) const;
+  void negative_image(Paths* drawn);
   [[noreturn]] void fail(const std::string& what) const {
     throw PcbReadError(path_ + ":" + std::to_string(line_) + ": " + what);
   }
@@ -125,6 +129,9 @@ class GerberReader {
   void extended_block(const std::string& body, int first_line);
   void extended_command(const std::string& cmd);
   void word_block(const std::string& word);
+  void g_code(int g, const std::string& value);
+  void d_code(int dn, const std::string& value, int* d);
+  void m_code(int m, const std::string& value);
   void comment(const std::string& text);
   void attribute(const std::string& body);
 
@@ -216,7 +223,12 @@ class GerberReader {
   bool negative_ = false;                     // %IPNEG: copper where nothing is drawn
   int negative_line_ = 0;
   void knockout(const std::string& arg);
-  std::pair<double, double> axis_values(const std::string& arg, const char* what) const;
+  std::pair<double, double> axis_values(const std::string& arg, const char* what,
+                                        double missing) const;
+  bool deprecated_parameter(const std::string& code, const std::string& arg);
+  void image_polarity(const std::string& arg);
+  void mirror_image(const std::string& arg);
+  void image_offset(const std::string& code, const std::string& arg);
   double scale_a_ = 1, scale_b_ = 1;
   // The non-identity ones in force, each the last of its parameter (a later one replaces an
   // earlier, as gerbv reads them): reported as applied at the end.
@@ -246,6 +258,43 @@ void GerberReader::note(const std::string& text) {
 }
 
 PcbLayer GerberReader::read() {
+  read_blocks();
+  PcbLayer layer;
+  layer.path = path_;
+  layer.units = units_;
+  layer.apertures_or_tools = static_cast<int>(apertures_.size());
+  layer.arc_tolerance_nm = opt_.arc_tolerance_nm;
+  layer.kind = layer_kind();
+  if (layer.kind == LayerKind::kOutline) {
+    outline_loops(&layer);
+  } else {
+    layer.polygons_nm = evaluate(batches_);
+  }
+  if (offset_x_ != 0 || offset_y_ != 0) translate_paths(layer.polygons_nm, offset_x_, offset_y_);
+  transform_image(layer.polygons_nm);
+  if (negative_ && layer.kind != LayerKind::kOutline && !layer.polygons_nm.empty())
+    negative_image(&layer.polygons_nm);
+  if (ill_defined_arcs_ > 0) {
+    char msg[240];
+    std::snprintf(msg, sizeof msg,
+                  "warning: %d arcs whose end is not on their circle (start and end radii differ "
+                  "by up to %.1f um): copper is where either reading puts it (through both end "
+                  "points, and at the start radius as gerbv draws them)",
+                  ill_defined_arcs_, ill_defined_max_nm_ * 1e-3);
+    layer.notes.push_back(msg);
+  }
+  for (const ImageTransform& t : transforms_)
+    notes_.push_back({"warning: " + t.which + " (deprecated " + t.what + ") applied", t.line, 1});
+  for (const Note& nt : notes_) {
+    std::string s = "line " + std::to_string(nt.first_line) + ": " + nt.text;
+    if (nt.count > 1) s += " (" + std::to_string(nt.count) + " times)";
+    layer.notes.push_back(s);
+  }
+  return layer;
+}
+
+// Every block of the file up to M02, then what must hold at its end.
+void GerberReader::read_blocks() {
   const size_t n = text_.size();
   size_t pos = 0;
   while (pos < n && !done_) {
@@ -255,31 +304,22 @@ PcbLayer GerberReader::read() {
       ++pos;
     } else if (is_space(c)) {
       ++pos;
-    } else if (c == '%') {
-      const size_t end = text_.find('%', pos + 1);
-      if (end == std::string::npos) fail("'%' block never closed with '%'");
-      const std::string body = text_.substr(pos + 1, end - pos - 1);
-      const int first = line_;
-      last_block_line_ = first;
-      extended_block(body, first);
-      line_ = first;
-      for (char b : body) {
-        if (b == '\n') ++line_;
-      }
-      pos = end + 1;
     } else {
-      const size_t end = text_.find('*', pos);
-      if (end == std::string::npos) {
+      // A %..% extended block, or a data block up to its '*'.
+      const bool extended = c == '%';
+      const size_t end = extended ? text_.find('%', pos + 1) : text_.find('*', pos);
+      if (end == std::string::npos && extended) fail("'%' block never closed with '%'");
+      if (end == std::string::npos)
         fail("data block '" + trim(text_.substr(pos, 40)) + "' never ends with '*'");
-      }
-      const std::string word = text_.substr(pos, end - pos);
+      const std::string body =
+          extended ? text_.substr(pos + 1, end - pos - 1) : text_.substr(pos, end - pos);
       const int first = line_;
       last_block_line_ = first;
-      word_block(word);
-      line_ = first;
-      for (char b : word) {
-        if (b == '\n') ++line_;
-      }
+      if (extended)
+        extended_block(body, first);
+      else
+        word_block(body);
+      line_ = first + static_cast<int>(std::count(body.begin(), body.end(), '\n'));
       pos = end + 1;
     }
   }
@@ -299,74 +339,49 @@ PcbLayer GerberReader::read() {
          " never used: its definition is left out (" + bad.second + ")");
   if (!blocks_.empty())
     fail("block aperture D" + std::to_string(blocks_.back().number_d) + " still open at M02");
+}
 
-  PcbLayer layer;
-  layer.path = path_;
-  layer.units = units_;
-  layer.apertures_or_tools = static_cast<int>(apertures_.size());
-  layer.arc_tolerance_nm = opt_.arc_tolerance_nm;
-  if (opt_.forced_kind != LayerKind::kUnknown) {
-    layer.kind = opt_.forced_kind;
-  } else if (x2_kind_given_) {
-    layer.kind = x2_kind_;
-  } else {
-    layer.kind = layer_kind_from_file_name(path_);
-    if (layer.kind == LayerKind::kUnknown) layer.kind = opt_.kind_if_unknown;
-  }
-  if (layer.kind == LayerKind::kOutline) {
-    // Strokes of one width joined end to end; the width stays with each, so loops can be
-    // closed as the drawn strokes close them.
-    std::map<double, std::vector<Path>> by_width;
-    for (size_t k = 0; k < strokes_.size(); ++k)
-      by_width[stroke_widths_nm_[k]].push_back(strokes_[k]);
-    for (const auto& [width, strokes] : by_width) {
-      for (Path& p : join_strokes(strokes, opt_.arc_tolerance_nm * 4 + 2000)) {
-        layer.polygons_nm.push_back(std::move(p));
-        layer.outline_widths_nm.push_back(static_cast<cInt>(width));
-      }
+// The kind given by the caller, else the file's X2 file function, else its name.
+LayerKind GerberReader::layer_kind() const {
+  if (opt_.forced_kind != LayerKind::kUnknown) return opt_.forced_kind;
+  if (x2_kind_given_) return x2_kind_;
+  const LayerKind named = layer_kind_from_file_name(path_);
+  return named == LayerKind::kUnknown ? opt_.kind_if_unknown : named;
+}
+
+// Strokes of one width joined end to end; the width stays with each, so loops can be closed as
+// the drawn strokes close them.
+void GerberReader::outline_loops(PcbLayer* layer) const {
+  std::map<double, std::vector<Path>> by_width;
+  for (size_t k = 0; k < strokes_.size(); ++k)
+    by_width[stroke_widths_nm_[k]].push_back(strokes_[k]);
+  for (const auto& [width, strokes] : by_width) {
+    for (Path& p : join_strokes(strokes, opt_.arc_tolerance_nm * 4 + 2000)) {
+      layer->polygons_nm.push_back(std::move(p));
+      layer->outline_widths_nm.push_back(static_cast<cInt>(width));
     }
-    layer.outline_paths_are_open = true;
-  } else {
-    layer.polygons_nm = evaluate(batches_);
   }
-  if (offset_x_ != 0 || offset_y_ != 0) translate_paths(layer.polygons_nm, offset_x_, offset_y_);
-  transform_image(layer.polygons_nm);
-  if (negative_ && layer.kind != LayerKind::kOutline && !layer.polygons_nm.empty()) {
-    cInt x0 = layer.polygons_nm[0][0].X, x1 = x0, y0 = layer.polygons_nm[0][0].Y, y1 = y0;
-    for (const Path& p : layer.polygons_nm)
-      for (const IntPoint& v : p) {
-        x0 = std::min(x0, v.X), x1 = std::max(x1, v.X);
-        y0 = std::min(y0, v.Y), y1 = std::max(y1, v.Y);
-      }
-    // gerbv fills its whole picture, which has a border of 5 % of the image's width and
-    // height (`gerbv -x png`'s default): copper out to there, so a shape drawn on the box's
-    // edge leaves no sliver of copper between it and the edge.
-    const cInt mx = (x1 - x0) / 20, my = (y1 - y0) / 20;
-    const Path box = {
-        {x0 - mx, y0 - my}, {x1 + mx, y0 - my}, {x1 + mx, y1 + my}, {x0 - mx, y1 + my}};
-    layer.polygons_nm = difference_of({box}, layer.polygons_nm);
-    notes_.push_back(
-        {"warning: %IPNEG (deprecated negative image) applied: copper is the "
-         "image's bounding box with gerbv's 5 % border, less what is drawn",
-         negative_line_, 1});
-  }
-  if (ill_defined_arcs_ > 0) {
-    char msg[240];
-    std::snprintf(msg, sizeof msg,
-                  "warning: %d arcs whose end is not on their circle (start and end radii differ "
-                  "by up to %.1f um): copper is where either reading puts it (through both end "
-                  "points, and at the start radius as gerbv draws them)",
-                  ill_defined_arcs_, ill_defined_max_nm_ * 1e-3);
-    layer.notes.push_back(msg);
-  }
-  for (const ImageTransform& t : transforms_)
-    notes_.push_back({"warning: " + t.which + " (deprecated " + t.what + ") applied", t.line, 1});
-  for (const Note& nt : notes_) {
-    std::string s = "line " + std::to_string(nt.first_line) + ": " + nt.text;
-    if (nt.count > 1) s += " (" + std::to_string(nt.count) + " times)";
-    layer.notes.push_back(s);
-  }
-  return layer;
+  layer->outline_paths_are_open = true;
+}
+
+// %IPNEG: the copper is the image's extent less what is drawn. gerbv fills its whole picture,
+// which has a border of 5 % of the image's width and height (`gerbv -x png`'s default):
+// copper out to there, so a shape drawn on the box's edge leaves no sliver between it and the
+// edge.
+void GerberReader::negative_image(Paths* drawn) {
+  cInt x0 = (*drawn)[0][0].X, x1 = x0, y0 = (*drawn)[0][0].Y, y1 = y0;
+  for (const Path& p : *drawn)
+    for (const IntPoint& v : p) {
+      x0 = std::min(x0, v.X), x1 = std::max(x1, v.X);
+      y0 = std::min(y0, v.Y), y1 = std::max(y1, v.Y);
+    }
+  const cInt mx = (x1 - x0) / 20, my = (y1 - y0) / 20;
+  const Path box = {{x0 - mx, y0 - my}, {x1 + mx, y0 - my}, {x1 + mx, y1 + my}, {x0 - mx, y1 + my}};
+  *drawn = difference_of({box}, *drawn);
+  notes_.push_back(
+      {"warning: %IPNEG (deprecated negative image) applied: copper is the image's bounding box "
+       "with gerbv's 5 % border, less what is drawn",
+       negative_line_, 1});
 }
 
 Paths GerberReader::evaluate(std::vector<Batch>& batches) {
@@ -450,42 +465,36 @@ void GerberReader::extended_command(const std::string& cmd) {
   if (code == "FS") {
     format_spec(arg);
   } else if (code == "MO") {
-    if (arg == "MM") {
-      set_units(1e6, "MOMM");
-    } else if (arg == "IN") {
-      set_units(25.4e6, "MOIN");
-    } else {
-      fail("unit '" + arg + "' is neither MM nor IN");
-    }
+    if (arg != "MM" && arg != "IN") fail("unit '" + arg + "' is neither MM nor IN");
+    set_units(arg == "MM" ? 1e6 : 25.4e6, arg == "MM" ? "MOMM" : "MOIN");
   } else if (code == "AD") {
     aperture_definition(arg);
   } else if (code == "LP") {
-    if (arg == "D") {
-      dark_ = true;
-    } else if (arg == "C") {
-      dark_ = false;
-    } else {
-      fail("polarity '" + arg + "' is neither D nor C");
-    }
+    if (arg != "D" && arg != "C") fail("polarity '" + arg + "' is neither D nor C");
+    dark_ = arg == "D";
   } else if (code == "SR") {
     step_repeat(arg);
   } else if (code == "TF" || code == "TA" || code == "TO" || code == "TD") {
     attribute(cmd);
-  } else if (code == "IP") {
-    if (arg == "NEG") {
-      // What is drawn is clear, the rest copper. The copper's extent is not defined: here the
-      // image's bounding box, as gerbv fills its picture; isolation then keeps the tool
-      // inside each drawn (clear) shape, off the copper around it.
-      // One polarity per image: a later %IP replaces an earlier (gerbv keeps the last).
-      if (negative_) return;
-      negative_ = true;
-      negative_line_ = line_;
-      return;
+  } else if (code == "LM" || code == "LR" || code == "LS") {
+    const bool identity = (code == "LM" && arg == "N") ||
+                          (code == "LR" && number(arg, "rotation") == 0) ||
+                          (code == "LS" && number(arg, "scale") == 1);
+    if (!identity) {
+      fail("aperture transformation %" + cmd + " is not supported (only LMN, LR0, LS1)");
     }
-    if (arg != "POS") fail("image polarity '" + arg + "' is neither POS nor NEG");
-    if (negative_) note("warning: %IPNEG replaced by the later %IPPOS (only the last applies)");
-    negative_ = false;
-    note("%IPPOS (deprecated image polarity) ignored");
+  } else if (code == "AB") {
+    aperture_block(arg);
+  } else if (!deprecated_parameter(code, arg)) {
+    fail("unknown extended command '%" + cmd.substr(0, 20) + "'");
+  }
+}
+
+// The image parameters the specification deprecated, each as it says and as gerbv draws it;
+// false if `code` is none of them.
+bool GerberReader::deprecated_parameter(const std::string& code, const std::string& arg) {
+  if (code == "IP") {
+    image_polarity(arg);
   } else if (code == "IC") {
     // Input code: ASCII is what every reader reads (OrCAD, P-CAD, Mentor write %ICAS*%).
     if (arg != "AS") fail("input code %IC" + arg + " is not supported (only ASCII, %ICAS)");
@@ -493,45 +502,17 @@ void GerberReader::extended_command(const std::string& cmd) {
   } else if (code == "IN" || code == "LN") {
     note("%" + code + " (deprecated name) ignored");
   } else if (code == "MI") {
-    const std::string a = strip_all_space(arg);
-    for (const char axis : {'A', 'B'}) {
-      const size_t at = a.find(axis);
-      if (at == std::string::npos) continue;
-      const std::string v = a.substr(at + 1, 1);
-      if (v != "0" && v != "1") fail("mirror image '%MI" + a + "': A and B take 0 or 1");
-      (axis == 'A' ? mirror_a_ : mirror_b_) = v == "1";
-    }
-    image_transform("%MI" + a, "mirror image", !mirror_a_ && !mirror_b_);
-    if (!mirror_a_ && !mirror_b_) note("%MI without mirroring (deprecated) ignored");
+    mirror_image(arg);
   } else if (code == "SF") {
-    double a = 1, b = 1;
-    for (const char axis : {'A', 'B'}) {
-      const size_t at = arg.find(axis);
-      if (at == std::string::npos) continue;
-      size_t end = at + 1;
-      while (end < arg.size() && arg[end] != 'A' && arg[end] != 'B') ++end;
-      (axis == 'A' ? a : b) = number(arg.substr(at + 1, end - at - 1), "scale factor");
-    }
-    if (!(a > 0 && a <= 1000 && b > 0 && b <= 1000))
+    const std::pair<double, double> ab = axis_values(arg, "scale factor", 1);
+    if (!(ab.first > 0 && ab.first <= 1000 && ab.second > 0 && ab.second <= 1000))
       fail("scale factor %SF" + arg + " must be above 0 and at most 1000");
-    scale_a_ = a;
-    scale_b_ = b;
-    image_transform("%SF" + arg, "scale factor", a == 1 && b == 1);
-    if (a == 1 && b == 1) note("%SF with scale 1 (deprecated) ignored");
-  } else if (code == "OF") {
-    double a = 0, b = 0;
-    for (const char axis : {'A', 'B'}) {
-      const size_t at = arg.find(axis);
-      if (at == std::string::npos) continue;
-      size_t end = at + 1;
-      while (end < arg.size() && arg[end] != 'A' && arg[end] != 'B') ++end;
-      (axis == 'A' ? a : b) = number(arg.substr(at + 1, end - at - 1), "offset");
-    }
-    if (a != 0 || b != 0) need_units("%OF");
-    offset_x_ = static_cast<cInt>(std::llround(a * unit_nm_));
-    offset_y_ = static_cast<cInt>(std::llround(b * unit_nm_));
-    image_transform("%OF" + arg, "image offset", a == 0 && b == 0);
-    if (a == 0 && b == 0) note("%OF without offset (deprecated) ignored");
+    scale_a_ = ab.first;
+    scale_b_ = ab.second;
+    image_transform("%SF" + arg, "scale factor", ab.first == 1 && ab.second == 1);
+    if (ab.first == 1 && ab.second == 1) note("%SF with scale 1 (deprecated) ignored");
+  } else if (code == "OF" || code == "IO") {
+    image_offset(code, arg);
   } else if (code == "IR") {
     const double deg = number(arg, "image rotation");
     if (deg != 0 && deg != 90 && deg != 180 && deg != 270)
@@ -545,42 +526,73 @@ void GerberReader::extended_command(const std::string& cmd) {
     swap_ab_ = arg == "AYBX";
     image_transform("%AS" + arg, "axis select", !swap_ab_);
     if (!swap_ab_) note("%ASAXBY (deprecated) ignored");
-  } else if (code == "LM" || code == "LR" || code == "LS") {
-    const bool identity = (code == "LM" && arg == "N") ||
-                          (code == "LR" && number(arg, "rotation") == 0) ||
-                          (code == "LS" && number(arg, "scale") == 1);
-    if (!identity) {
-      fail("aperture transformation %" + cmd + " is not supported (only LMN, LR0, LS1)");
-    }
-  } else if (code == "KO" && arg.empty()) {
-    note("warning: %KO (deprecated knockout, off) ignored");
   } else if (code == "KO") {
-    knockout(arg);
+    if (arg.empty()) note("warning: %KO (deprecated knockout, off) ignored");
+    if (!arg.empty()) knockout(arg);
   } else if (code == "IJ") {
     // Justify moves the image by its own extent against a film (platen) size the file does
     // not give: ignored, the coordinates are taken as written (the other layers' frame).
     note("warning: %IJ" + arg.substr(0, 20) +
          " (deprecated image justify) ignored: coordinates as written");
-  } else if (code == "IO") {
-    // Image offset: like %OF, in the units current here.
-    const std::pair<double, double> ab = axis_values(arg, "image offset");
-    const bool none = ab.first == 0 && ab.second == 0;
-    if (!none) need_units("%IO");
-    offset_x_ = static_cast<cInt>(std::llround(ab.first * unit_nm_));
-    offset_y_ = static_cast<cInt>(std::llround(ab.second * unit_nm_));
-    image_transform("%IO" + arg, "image offset", none);
-    if (none) note("%IO without offset (deprecated) ignored");
   } else if (code == "RO") {
     const double deg = number(arg, "layer rotation");
     if (!(std::fabs(deg) <= 360)) fail("layer rotation %RO" + arg + " must be -360 .. 360 degrees");
     layer_rotation_deg_ = deg;
     image_transform("%RO" + arg, "layer rotation", deg == 0);
     if (deg == 0) note("%RO0 (deprecated) ignored");
-  } else if (code == "AB") {
-    aperture_block(arg);
   } else {
-    fail("unknown extended command '%" + cmd.substr(0, 20) + "'");
+    return false;
   }
+  return true;
+}
+
+// %IPPOS / %IPNEG: one polarity per image; a later %IP replaces an earlier (gerbv keeps the
+// last).
+void GerberReader::image_polarity(const std::string& arg) {
+  if (arg == "NEG") {
+    // What is drawn is clear, the rest copper. The copper's extent is not defined: here the
+    // image's bounding box with gerbv's border, as gerbv fills its picture; isolation then
+    // keeps the tool inside each drawn (clear) shape, off the copper around it.
+    if (!negative_) negative_line_ = line_;
+    negative_ = true;
+    return;
+  }
+  if (arg != "POS") fail("image polarity '" + arg + "' is neither POS nor NEG");
+  if (negative_) note("warning: %IPNEG replaced by the later %IPPOS (only the last applies)");
+  negative_ = false;
+  note("%IPPOS (deprecated image polarity) ignored");
+}
+
+// %MIA<0|1>B<0|1>: mirror x (A) and y (B) about the origin.
+void GerberReader::mirror_image(const std::string& arg) {
+  const std::string a = strip_all_space(arg);
+  for (const char axis : {'A', 'B'}) {
+    const size_t at = a.find(axis);
+    if (at == std::string::npos) continue;
+    const std::string v = a.substr(at + 1, 1);
+    if (v != "0" && v != "1") fail("mirror image '%MI" + a + "': A and B take 0 or 1");
+    (axis == 'A' ? mirror_a_ : mirror_b_) = v == "1";
+  }
+  image_transform("%MI" + a, "mirror image", !mirror_a_ && !mirror_b_);
+  if (!mirror_a_ && !mirror_b_) note("%MI without mirroring (deprecated) ignored");
+}
+
+// %OFA<a>B<b> (offset) and %IOA<a>B<b> (image offset): the image moved by a, b in the units
+// current where it stands. A zero offset is an identity, which undoes an earlier one.
+void GerberReader::image_offset(const std::string& code, const std::string& arg) {
+  const std::pair<double, double> ab =
+      axis_values(arg, code == "OF" ? "offset" : "image offset", 0);
+  const bool none = ab.first == 0 && ab.second == 0;
+  if (!none) need_units("%" + code);
+  bool replaces = false;
+  for (const ImageTransform& t : transforms_)
+    replaces = replaces || t.which.compare(1, 2, code) == 0;
+  if (!none || replaces) {
+    offset_x_ = static_cast<cInt>(std::llround(ab.first * unit_nm_));
+    offset_y_ = static_cast<cInt>(std::llround(ab.second * unit_nm_));
+  }
+  image_transform("%" + code + arg, "image offset", none);
+  if (none) note("%" + code + " without offset (deprecated) ignored");
 }
 
 // A deprecated transform of the whole image (identity: it does nothing). Of one parameter
@@ -606,10 +618,10 @@ void GerberReader::image_transform(const std::string& which, const char* what, b
   }
 }
 
-// "A<a>B<b>" (either may be left out: 0), decimal numbers in the current units.
-std::pair<double, double> GerberReader::axis_values(const std::string& arg,
-                                                    const char* what) const {
-  double a = 0, b = 0;
+// "A<a>B<b>" (either may be left out: `missing`), decimal numbers.
+std::pair<double, double> GerberReader::axis_values(const std::string& arg, const char* what,
+                                                    double missing) const {
+  double a = missing, b = missing;
   for (const char axis : {'A', 'B'}) {
     const size_t at = arg.find(axis);
     if (at == std::string::npos) continue;
@@ -1153,68 +1165,15 @@ void GerberReader::word_block(const std::string& raw) {
       return std::stoi(value);
     };
     switch (letter) {
-      case 'G': {
-        const int g = code();
-        if (g == 1 || g == 2 || g == 3) {
-          interpolation_ = g;
-        } else if (g == 36) {
-          if (region_) fail("G36 inside a region (missing G37)");
-          region_ = true;
-          contour_.clear();
-          contour_as_gerbv_.clear();
-        } else if (g == 37) {
-          if (!region_) fail("G37 without G36");
-          finish_contour();
-          region_ = false;
-        } else if (g == 74 || g == 75) {
-          quadrant_ = g;
-          if (g == 74) note("G74 single-quadrant arcs (deprecated)");
-        } else if (g == 54 || g == 55) {
-          note("G" + value + " before an aperture number (deprecated) ignored");
-        } else if (g == 70) {
-          note("G70 inch units (deprecated)");
-          set_units(25.4e6, "G70");
-        } else if (g == 71) {
-          note("G71 millimetre units (deprecated)");
-          set_units(1e6, "G71");
-        } else if (g == 90) {
-          incremental_ = false;
-          note("G90 absolute coordinates (deprecated)");
-        } else if (g == 91) {
-          incremental_ = true;
-          note("G91 incremental coordinates (deprecated)");
-        } else {
-          fail("unknown or unsupported G code G" + value);
-        }
+      case 'G':
+        g_code(code(), value);
         break;
-      }
-      case 'D': {
-        const int dn = code();
-        if (dn >= 1 && dn <= 3) {
-          if (d != -1) fail("two operations (D01/D02/D03) in one block");
-          d = dn;
-        } else {  // select an aperture (D10 and up; lower numbers in old files)
-          if (bad_apertures_.count(dn))
-            fail("D" + value +
-                 " selects an aperture whose definition was refused: " + bad_apertures_[dn]);
-          if (!apertures_.count(dn)) fail("D" + value + " selects an aperture that is not defined");
-          if (region_) note("an aperture selected inside a region (not allowed by the spec)");
-          aperture_ = dn;
-        }
+      case 'D':
+        d_code(code(), value, &d);
         break;
-      }
-      case 'M': {
-        const int m = code();
-        if (m == 2) {
-          if (in_sr_) close_step_repeat();
-          done_ = true;
-        } else if (m == 0 || m == 1) {
-          note("M0" + value.substr(value.size() - 1) + " (deprecated stop) ignored");
-        } else {
-          fail("unknown M code M" + value);
-        }
+      case 'M':
+        m_code(code(), value);
         break;
-      }
       case 'X':
         xs = value;
         x = &xs;
@@ -1243,6 +1202,63 @@ void GerberReader::word_block(const std::string& raw) {
     d = last_d_;
   }
   if (d != -1) operate(d, x, y, i, j);
+}
+
+// A G code of a data block: interpolation, regions, quadrants, and the deprecated ones.
+void GerberReader::g_code(int g, const std::string& value) {
+  if (g == 1 || g == 2 || g == 3) {
+    interpolation_ = g;
+  } else if (g == 36) {
+    if (region_) fail("G36 inside a region (missing G37)");
+    region_ = true;
+    contour_.clear();
+    contour_as_gerbv_.clear();
+  } else if (g == 37) {
+    if (!region_) fail("G37 without G36");
+    finish_contour();
+    region_ = false;
+  } else if (g == 74 || g == 75) {
+    quadrant_ = g;
+    if (g == 74) note("G74 single-quadrant arcs (deprecated)");
+  } else if (g == 54 || g == 55) {
+    note("G" + value + " before an aperture number (deprecated) ignored");
+  } else if (g == 70 || g == 71) {
+    note(g == 70 ? "G70 inch units (deprecated)" : "G71 millimetre units (deprecated)");
+    set_units(g == 70 ? 25.4e6 : 1e6, g == 70 ? "G70" : "G71");
+  } else if (g == 90 || g == 91) {
+    incremental_ = g == 91;
+    note(g == 90 ? "G90 absolute coordinates (deprecated)"
+                 : "G91 incremental coordinates (deprecated)");
+  } else {
+    fail("unknown or unsupported G code G" + value);
+  }
+}
+
+// D01/D02/D03 (the block's operation, into *d), or an aperture selected.
+void GerberReader::d_code(int dn, const std::string& value, int* d) {
+  if (dn >= 1 && dn <= 3) {
+    if (*d != -1) fail("two operations (D01/D02/D03) in one block");
+    *d = dn;
+    return;
+  }
+  // Select an aperture (D10 and up; lower numbers in old files).
+  if (bad_apertures_.count(dn))
+    fail("D" + value + " selects an aperture whose definition was refused: " + bad_apertures_[dn]);
+  if (!apertures_.count(dn)) fail("D" + value + " selects an aperture that is not defined");
+  if (region_) note("an aperture selected inside a region (not allowed by the spec)");
+  aperture_ = dn;
+}
+
+// M02 ends the file; M00/M01 (stops) are ignored.
+void GerberReader::m_code(int m, const std::string& value) {
+  if (m == 2) {
+    if (in_sr_) close_step_repeat();
+    done_ = true;
+  } else if (m == 0 || m == 1) {
+    note("M0" + value.substr(value.size() - 1) + " (deprecated stop) ignored");
+  } else {
+    fail("unknown M code M" + value);
+  }
 }
 
 double GerberReader::number(const std::string& s, const char* what) const {
