@@ -139,6 +139,12 @@ class GerberReader {
   void format_spec(const std::string& s);
   void aperture_definition(const std::string& s);
   void define_aperture(const std::string& s, size_t name_at, int number_d);
+  void check_standard_sizes(const std::string& name, const std::vector<double>& params,
+                            int number_d) const;
+  Aperture standard_aperture(const std::string& name, const std::vector<double>& params,
+                             int number_d, size_t* hole_at);
+  void punch_hole(Aperture* ap, const std::vector<double>& params, size_t hole_at);
+  Aperture macro_aperture(const std::string& name, const std::vector<double>& params, int number_d);
   void aperture_macro(const std::vector<std::string>& parts, const std::vector<int>& lines);
   void step_repeat(const std::string& s);
   void close_step_repeat();
@@ -825,18 +831,37 @@ void GerberReader::define_aperture(const std::string& s, size_t k, int number_d)
   }
   if (name.empty()) fail("aperture D" + std::to_string(number_d) + " has no template name");
   need_units("aperture D" + std::to_string(number_d));
-  const double u = unit_nm_, tol = opt_.arc_tolerance_nm;
-  // Only lengths are sizes: a polygon's vertex count and rotation, and a macro's parameters
-  // (angles among them: 45 deg is not 1.1 m in an inch file), are not; a macro's shape is
-  // checked once evaluated.
-  const bool standard = name == "C" || name == "R" || name == "O" || name == "P";
-  for (size_t i = 0; i < params.size() && standard; ++i) {
+  Aperture ap;
+  if (name == "C" || name == "R" || name == "O" || name == "P") {
+    check_standard_sizes(name, params, number_d);
+    size_t hole_at = 0;
+    ap = standard_aperture(name, params, number_d, &hole_at);
+    if (params.size() > hole_at) punch_hole(&ap, params, hole_at);
+  } else {
+    ap = macro_aperture(name, params, number_d);
+  }
+  if (apertures_.count(number_d)) note("aperture D" + std::to_string(number_d) + " redefined");
+  apertures_[number_d] = std::move(ap);
+}
+
+// Only lengths are sizes: a polygon's vertex count and rotation are not (nor a macro's
+// parameters, angles among them: 45 deg is not 1.1 m in an inch file; a macro's shape is
+// checked once evaluated).
+void GerberReader::check_standard_sizes(const std::string& name, const std::vector<double>& params,
+                                        int number_d) const {
+  for (size_t i = 0; i < params.size(); ++i) {
     const bool length = name != "P" || i == 0 || i >= 3;
-    if (length && !(std::fabs(params[i] * u) <= kMaxApertureNm)) {
+    if (length && !(std::fabs(params[i] * unit_nm_) <= kMaxApertureNm)) {
       fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
     }
     if (!std::isfinite(params[i])) fail("aperture D" + std::to_string(number_d) + ": bad number");
   }
+}
+
+// C, R, O or P; *hole_at: where its hole's parameters start.
+Aperture GerberReader::standard_aperture(const std::string& name, const std::vector<double>& params,
+                                         int number_d, size_t* hole_at_out) {
+  const double u = unit_nm_, tol = opt_.arc_tolerance_nm;
   Aperture ap;
   auto need = [&](size_t lo, size_t hi) {
     if (params.size() < lo || params.size() > hi) {
@@ -891,41 +916,51 @@ void GerberReader::define_aperture(const std::string& s, size_t k, int number_d)
           regular_polygon_path({0, 0}, params[0] * u, static_cast<int>(vertices), rot));
     }
     hole_at = 3;
+  }
+  *hole_at_out = hole_at;
+  return ap;
+}
+
+// A standard aperture's hole: a circle (one parameter) or a rectangle (two, deprecated).
+void GerberReader::punch_hole(Aperture* ap, const std::vector<double>& params, size_t hole_at) {
+  const double u = unit_nm_, tol = opt_.arc_tolerance_nm;
+  Path hole;
+  if (params.size() == hole_at + 1) {
+    hole = circle_path({0, 0}, params[hole_at] * u, tol);
   } else {
-    auto m = macros_.find(name);
-    if (m == macros_.end()) {
-      fail("aperture D" + std::to_string(number_d) + " uses '" + name +
-           "', which is neither C, R, O, P nor a macro defined before it");
-    }
-    ap.type = 'M';
-    try {
-      ap.shape = evaluate_macro(m->second, params, u, tol);
-    } catch (const MacroError& e) {
-      fail(std::string(e.what()) + " (macro statement at line " + std::to_string(e.line) + ")");
-    }
-    for (const Path& p : ap.shape) {
-      for (const IntPoint& v : p) {
-        if (std::fabs(static_cast<double>(v.X)) > kMaxApertureNm ||
-            std::fabs(static_cast<double>(v.Y)) > kMaxApertureNm)
-          fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
-      }
+    hole = rect_path({0, 0}, params[hole_at] * u, params[hole_at + 1] * u);
+    note("rectangular aperture hole (deprecated)");
+  }
+  if (params[hole_at] > 0) {
+    ap->shape = difference_of(ap->shape, {hole});
+    ap->has_hole = true;
+  }
+}
+
+// An aperture from a macro defined before it, its shape checked once evaluated.
+Aperture GerberReader::macro_aperture(const std::string& name, const std::vector<double>& params,
+                                      int number_d) {
+  const double u = unit_nm_, tol = opt_.arc_tolerance_nm;
+  Aperture ap;
+  auto m = macros_.find(name);
+  if (m == macros_.end()) {
+    fail("aperture D" + std::to_string(number_d) + " uses '" + name +
+         "', which is neither C, R, O, P nor a macro defined before it");
+  }
+  ap.type = 'M';
+  try {
+    ap.shape = evaluate_macro(m->second, params, u, tol);
+  } catch (const MacroError& e) {
+    fail(std::string(e.what()) + " (macro statement at line " + std::to_string(e.line) + ")");
+  }
+  for (const Path& p : ap.shape) {
+    for (const IntPoint& v : p) {
+      if (std::fabs(static_cast<double>(v.X)) > kMaxApertureNm ||
+          std::fabs(static_cast<double>(v.Y)) > kMaxApertureNm)
+        fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
     }
   }
-  if (ap.type != 'M' && params.size() > hole_at) {
-    Path hole;
-    if (params.size() == hole_at + 1) {
-      hole = circle_path({0, 0}, params[hole_at] * u, tol);
-    } else {
-      hole = rect_path({0, 0}, params[hole_at] * u, params[hole_at + 1] * u);
-      note("rectangular aperture hole (deprecated)");
-    }
-    if (params[hole_at] > 0) {
-      ap.shape = difference_of(ap.shape, {hole});
-      ap.has_hole = true;
-    }
-  }
-  if (apertures_.count(number_d)) note("aperture D" + std::to_string(number_d) + " redefined");
-  apertures_[number_d] = std::move(ap);
+  return ap;
 }
 
 void GerberReader::aperture_macro(const std::vector<std::string>& parts,
