@@ -158,6 +158,11 @@ class GerberReader {
                const std::string* j);
   void draw_line(IntPoint from, IntPoint to);
   void draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool region);
+  void arc_centre(const VecNm& a, const VecNm& b, bool same_point, cInt i, cInt j, VecNm* centre,
+                  double* sweep);
+  bool zero_radius_arc(double r0, double r1);
+  void region_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill);
+  void stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill);
   void flash(IntPoint at);
   const Aperture& current_aperture() const;
   void add_object(Paths paths);
@@ -1489,68 +1494,29 @@ void GerberReader::draw_line(IntPoint from, IntPoint to) {
   add_object(union_of(swept));
 }
 
+// The sweep from a to b about c (radians; negative: clockwise); a full turn when they meet and
+// full_if_same.
+double arc_sweep(const VecNm& a, const VecNm& b, const VecNm& c, bool clockwise,
+                 bool full_if_same) {
+  const double a0 = std::atan2(a.y - c.y, a.x - c.x);
+  const double a1 = std::atan2(b.y - c.y, b.x - c.x);
+  double s = a1 - a0;
+  if (clockwise) {
+    if (s > 0 || (s == 0 && full_if_same)) s -= 2 * kPi;
+  } else {
+    if (s < 0 || (s == 0 && full_if_same)) s += 2 * kPi;
+  }
+  return s;
+}
+
 void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool region) {
-  const bool clockwise = interpolation_ == 2;
   const VecNm a{static_cast<double>(from.X), static_cast<double>(from.Y)};
   const VecNm b{static_cast<double>(to.X), static_cast<double>(to.Y)};
-  auto sweep_of = [&](VecNm c, bool full_if_same) {
-    const double a0 = std::atan2(a.y - c.y, a.x - c.x);
-    const double a1 = std::atan2(b.y - c.y, b.x - c.x);
-    double s = a1 - a0;
-    if (clockwise) {
-      if (s > 0 || (s == 0 && full_if_same)) s -= 2 * kPi;
-    } else {
-      if (s < 0 || (s == 0 && full_if_same)) s += 2 * kPi;
-    }
-    return s;
-  };
   VecNm c;
   double sweep = 0;
-  if (quadrant_ == 0) {
-    note("an arc before G74/G75: single-quadrant mode assumed (the old default)");
-    quadrant_ = 74;
-  }
-  if (quadrant_ == 75) {
-    c = {a.x + static_cast<double>(i), a.y + static_cast<double>(j)};
-    sweep = sweep_of(c, from == to);
-  } else {
-    // Single quadrant: I and J are unsigned; the centre is the one giving an arc of at most
-    // 90 degrees with the closest radii.
-    double best = -1;
-    for (int sx = -1; sx <= 1; sx += 2) {
-      for (int sy = -1; sy <= 1; sy += 2) {
-        const VecNm cc{a.x + sx * std::fabs(static_cast<double>(i)),
-                       a.y + sy * std::fabs(static_cast<double>(j))};
-        const double s = sweep_of(cc, false);
-        if (std::fabs(s) > kPi / 2 + 1e-6) continue;
-        const double err =
-            std::fabs(std::hypot(a.x - cc.x, a.y - cc.y) - std::hypot(b.x - cc.x, b.y - cc.y));
-        if (best < 0 || err < best) {
-          best = err;
-          c = cc;
-          sweep = s;
-        }
-      }
-    }
-    if (best < 0) fail("single-quadrant arc (G74) with no centre giving 90 degrees or less");
-  }
+  arc_centre(a, b, from == to, i, j, &c, &sweep);
   const double r0 = std::hypot(a.x - c.x, a.y - c.y), r1 = std::hypot(b.x - c.x, b.y - c.y);
-  // A centre on the start or end point: a zero-radius arc, which gerbv and pcb2gcode draw as
-  // the straight line between its ends (a point when they meet).
-  const bool degenerate = std::min(r0, r1) <= 1000.0;
-  if (degenerate) {
-    note(
-        "warning: an arc whose centre is its own start or end point (zero radius) drawn as "
-        "a straight line");
-  } else if (std::fabs(r0 - r1) > arc_mismatch_limit_nm(r0, opt_.max_arc_radius_mismatch_nm)) {
-    char msg[200];
-    std::snprintf(msg, sizeof msg,
-                  "arc end point is not on its circle (radius %.3f mm at the start, %.3f mm at "
-                  "the end; more than %.3f mm apart is not an arc a reader can trust)",
-                  r0 * 1e-6, r1 * 1e-6,
-                  arc_mismatch_limit_nm(r0, opt_.max_arc_radius_mismatch_nm) * 1e-6);
-    fail(msg);
-  }
+  const bool degenerate = zero_radius_arc(r0, r1);
   // An ill-defined arc (its centre rounded, as 3-decimal inch I/J are): we draw it through
   // both end points, gerbv keeps the start radius up to the end angle. Copper is where
   // either reading puts it, so no tool cuts where a common viewer shows copper.
@@ -1569,19 +1535,91 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
     if (!pts.empty()) pts.back() = to;
     if (ill_defined) append_arc(at_start_radius, c, r0, r0, a0, sweep, opt_.arc_tolerance_nm);
   }
-  if (region) {
-    if (contour_.empty()) contour_.push_back(from);
-    // gerbv's contour: a line to the arc's start, the arc at the start radius, and the next
-    // segment from where that arc ends.
-    if (ill_defined && contour_as_gerbv_.empty()) contour_as_gerbv_ = contour_;
-    if (!contour_as_gerbv_.empty()) {
-      if (contour_as_gerbv_.back() != from) contour_as_gerbv_.push_back(from);
-      const Path& theirs = ill_defined ? at_start_radius : pts;
-      contour_as_gerbv_.insert(contour_as_gerbv_.end(), theirs.begin(), theirs.end());
-    }
-    contour_.insert(contour_.end(), pts.begin(), pts.end());
-    return;
+  if (region)
+    region_arc(from, pts, ill_defined ? &at_start_radius : nullptr);
+  else
+    stroke_arc(from, pts, ill_defined ? &at_start_radius : nullptr);
+}
+
+// The arc's centre and sweep from its I, J: signed offsets (G75), or unsigned ones whose signs
+// give an arc of at most 90 degrees with the closest radii (G74).
+void GerberReader::arc_centre(const VecNm& a, const VecNm& b, bool same_point, cInt i, cInt j,
+                              VecNm* centre, double* sweep_out) {
+  const bool clockwise = interpolation_ == 2;
+  VecNm c;
+  double sweep = 0;
+  if (quadrant_ == 0) {
+    note("an arc before G74/G75: single-quadrant mode assumed (the old default)");
+    quadrant_ = 74;
   }
+  if (quadrant_ == 75) {
+    c = {a.x + static_cast<double>(i), a.y + static_cast<double>(j)};
+    sweep = arc_sweep(a, b, c, clockwise, same_point);
+  } else {
+    // Single quadrant: I and J are unsigned; the centre is the one giving an arc of at most
+    // 90 degrees with the closest radii.
+    double best = -1;
+    for (int sx = -1; sx <= 1; sx += 2) {
+      for (int sy = -1; sy <= 1; sy += 2) {
+        const VecNm cc{a.x + sx * std::fabs(static_cast<double>(i)),
+                       a.y + sy * std::fabs(static_cast<double>(j))};
+        const double s = arc_sweep(a, b, cc, clockwise, false);
+        if (std::fabs(s) > kPi / 2 + 1e-6) continue;
+        const double err =
+            std::fabs(std::hypot(a.x - cc.x, a.y - cc.y) - std::hypot(b.x - cc.x, b.y - cc.y));
+        if (best < 0 || err < best) {
+          best = err;
+          c = cc;
+          sweep = s;
+        }
+      }
+    }
+    if (best < 0) fail("single-quadrant arc (G74) with no centre giving 90 degrees or less");
+  }
+  *centre = c;
+  *sweep_out = sweep;
+}
+
+// True for a zero-radius arc (a centre on its start or end point), which gerbv and pcb2gcode
+// draw as the straight line between its ends (a point when they meet); refuses an arc whose
+// end lies too far off its circle.
+bool GerberReader::zero_radius_arc(double r0, double r1) {
+  const bool degenerate = std::min(r0, r1) <= 1000.0;
+  if (degenerate) {
+    note(
+        "warning: an arc whose centre is its own start or end point (zero radius) drawn as "
+        "a straight line");
+  } else if (std::fabs(r0 - r1) > arc_mismatch_limit_nm(r0, opt_.max_arc_radius_mismatch_nm)) {
+    char msg[200];
+    std::snprintf(msg, sizeof msg,
+                  "arc end point is not on its circle (radius %.3f mm at the start, %.3f mm at "
+                  "the end; more than %.3f mm apart is not an arc a reader can trust)",
+                  r0 * 1e-6, r1 * 1e-6,
+                  arc_mismatch_limit_nm(r0, opt_.max_arc_radius_mismatch_nm) * 1e-6);
+    fail(msg);
+  }
+  return degenerate;
+}
+
+// An arc in a region's contour; theirs: the same arc as gerbv draws it (at its start radius),
+// for an ill-defined arc.
+void GerberReader::region_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill) {
+  const bool ill_defined = theirs_if_ill != nullptr;
+  if (contour_.empty()) contour_.push_back(from);
+  // gerbv's contour: a line to the arc's start, the arc at the start radius, and the next
+  // segment from where that arc ends.
+  if (ill_defined && contour_as_gerbv_.empty()) contour_as_gerbv_ = contour_;
+  if (!contour_as_gerbv_.empty()) {
+    if (contour_as_gerbv_.back() != from) contour_as_gerbv_.push_back(from);
+    const Path& theirs = ill_defined ? *theirs_if_ill : pts;
+    contour_as_gerbv_.insert(contour_as_gerbv_.end(), theirs.begin(), theirs.end());
+  }
+  contour_.insert(contour_.end(), pts.begin(), pts.end());
+}
+
+// An arc stroked with the current (circular) aperture; for an ill-defined arc, copper where
+// either reading puts it.
+void GerberReader::stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill) {
   const Aperture& ap = current_aperture();
   if (ap.type != 'C') {
     fail("an arc drawn with a non-circular aperture D" + std::to_string(aperture_));
@@ -1595,9 +1633,9 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
   off.AddPath(line, ClipperLib::jtRound, ClipperLib::etOpenRound);
   Paths out;
   off.Execute(out, ap.circle_d_nm / 2);
-  if (ill_defined) {
+  if (theirs_if_ill) {
     Path theirs{from};
-    theirs.insert(theirs.end(), at_start_radius.begin(), at_start_radius.end());
+    theirs.insert(theirs.end(), theirs_if_ill->begin(), theirs_if_ill->end());
     out = both_readings(out, sweep_open({theirs}, ap.circle_d_nm / 2, opt_.arc_tolerance_nm));
   }
   add_object(std::move(out));
