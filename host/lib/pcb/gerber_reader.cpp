@@ -234,6 +234,13 @@ class GerberReader {
   bool negative_ = false;                     // %IPNEG: copper where nothing is drawn
   int negative_line_ = 0;
   void knockout(const std::string& arg);
+  void open_knockout(const std::string& arg);
+  void close_knockout();
+  bool knockout_open_ = false;  // %KOC/%KOD without a box, until the next %KO
+  bool knockout_dark_ = false;
+  double knockout_border_nm_ = 0;
+  size_t knockout_start_ = 0;  // the first batch of the objects it surrounds
+  int knockout_line_ = 0;
   std::pair<double, double> axis_values(const std::string& arg, const char* what,
                                         double missing) const;
   bool deprecated_parameter(const std::string& code, const std::string& arg);
@@ -338,6 +345,7 @@ void GerberReader::read_blocks() {
     line_ = last_block_line_;
     fail("the file ends without M02 (end of file): it may be cut short, so it is not used");
   }
+  close_knockout();
   for (size_t k = pos; k < n; ++k) {
     if (!is_space(text_[k])) {
       note("text after M02 ignored");
@@ -538,7 +546,8 @@ bool GerberReader::deprecated_parameter(const std::string& code, const std::stri
     image_transform("%AS" + arg, "axis select", !swap_ab_);
     if (!swap_ab_) note("%ASAXBY (deprecated) ignored");
   } else if (code == "KO") {
-    if (arg.empty()) note("warning: %KO (deprecated knockout, off) ignored");
+    if (arg.empty() && !knockout_open_) note("warning: %KO (deprecated knockout, off) ignored");
+    if (arg.empty()) close_knockout();
     if (!arg.empty()) knockout(arg);
   } else if (code == "IJ") {
     // Justify moves the image by its own extent against a film (platen) size the file does
@@ -648,11 +657,19 @@ std::pair<double, double> GerberReader::axis_values(const std::string& arg, cons
 // knockout surrounds the objects that follow by a border: refused.
 void GerberReader::knockout(const std::string& arg) {
   const char polarity = arg[0];
-  if ((polarity != 'C' && polarity != 'D') || arg.find('X') == std::string::npos ||
-      arg.find('Y') == std::string::npos || arg.find('I') == std::string::npos ||
-      arg.find('J') == std::string::npos)
+  if (polarity != 'C' && polarity != 'D')
+    fail("%KO" + arg.substr(0, 20) + " (deprecated knockout): the polarity is neither C nor D");
+  close_knockout();  // a knockout ends where the next begins
+  const size_t letters_given =
+      (arg.find('X') != std::string::npos) + (arg.find('Y') != std::string::npos) +
+      (arg.find('I') != std::string::npos) + (arg.find('J') != std::string::npos);
+  if (letters_given == 0) {
+    open_knockout(arg);
+    return;
+  }
+  if (letters_given != 4)
     fail("%KO" + arg.substr(0, 20) +
-         " (deprecated knockout) without a box (C or D, then X, Y, I, J) is not supported");
+         " (deprecated knockout): a box needs all of X, Y, I and J, a border alone K");
   double v[4] = {0, 0, 0, 0};
   const char* letters = "XYIJ";
   for (int k = 0; k < 4; ++k) {
@@ -674,6 +691,62 @@ void GerberReader::knockout(const std::string& arg) {
                          "stands in the drawing order"
                        : "warning: %KOD box (deprecated knockout, dark) applied: copper where "
                          "it stands in the drawing order");
+}
+
+// %KOC[K<border>] or %KOD[K<border>] without a box: the objects that follow, up to the next
+// %KO, get a box around them, grown by the border (current units), cleared (C) or filled (D)
+// before them, as gerbv draws it.
+void GerberReader::open_knockout(const std::string& arg) {
+  double border = 0;
+  const size_t k = arg.find('K');
+  if (k != std::string::npos)
+    border = number(arg.substr(k + 1), "knockout border");
+  else if (arg.size() > 1)
+    fail("%KO" + arg.substr(0, 20) + " (deprecated knockout): bad parameters");
+  need_units("%KO");
+  if (!(border >= 0 && border * unit_nm_ <= kMaxApertureNm))
+    fail("%KO" + arg.substr(0, 20) + ": the border must be 0 .. 1 m");
+  if (in_sr_ || !blocks_.empty())
+    fail("a knockout around objects (%KO" + arg.substr(0, 20) +
+         ") inside a step-and-repeat or a block aperture is not supported");
+  knockout_open_ = true;
+  knockout_dark_ = arg[0] == 'D';
+  knockout_border_nm_ = border * unit_nm_;
+  knockout_line_ = line_;
+  knockout_start_ = batches_.size();
+  batches_.push_back({dark_, {}, {}});  // the objects it surrounds start a batch of their own
+}
+
+// Ends an open knockout: its box goes in before the objects it surrounds.
+void GerberReader::close_knockout() {
+  if (!knockout_open_) return;
+  knockout_open_ = false;
+  if (in_sr_ || !blocks_.empty())
+    fail(
+        "a knockout around objects that ends inside a step-and-repeat or a block aperture is "
+        "not supported");
+  bool any = false;
+  cInt x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  for (size_t b = knockout_start_; b < batches_.size(); ++b)
+    for (const Path& p : batches_[b].paths)
+      for (const IntPoint& v : p) {
+        x0 = any ? std::min(x0, v.X) : v.X, x1 = any ? std::max(x1, v.X) : v.X;
+        y0 = any ? std::min(y0, v.Y) : v.Y, y1 = any ? std::max(y1, v.Y) : v.Y;
+        any = true;
+      }
+  if (!any) return;
+  const cInt m = static_cast<cInt>(std::llround(knockout_border_nm_));
+  Batch box;
+  box.dark = knockout_dark_;
+  box.paths = {{{x0 - m, y0 - m}, {x1 + m, y0 - m}, {x1 + m, y1 + m}, {x0 - m, y1 + m}}};
+  box.starts = {0};
+  count_vertices(4);
+  batches_.insert(batches_.begin() + static_cast<long>(knockout_start_), std::move(box));
+  notes_.push_back({std::string("warning: %KO") + (knockout_dark_ ? "D" : "C") +
+                        " around the objects that follow (deprecated knockout) applied: their "
+                        "box grown by the border " +
+                        (knockout_dark_ ? "filled" : "cleared") + " before them",
+                    knockout_line_, 1});
 }
 
 // Scale, mirror, rotate about the origin; exact for the quarter turns and mirrors.

@@ -283,6 +283,23 @@ TEST(GerberLegacyParameters, ADarkKnockoutIsCopperAndAxisSelectSwapsXAndY) {
   EXPECT_TRUE(has_note(swapped, "warning: %ASAYBX (deprecated axis select) applied"));
 }
 
+// A knockout without a box (it was refused by name): the objects up to the next %KO get their
+// box, grown by the border K, cleared (C) before them, as gerbv draws it. A 1 mm pad in a
+// 10 mm one: the box 3 x 3 mm around it is cleared, the pad itself drawn.
+TEST(GerberLegacyParameters, AKnockoutWithoutABoxClearsAroundTheObjectsThatFollow) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD10R,10X10*%\n%ADD11C,1*%\nD10*\nX5000000Y5000000D03*\n"
+      "%KOCK1*%\nD11*\nX5000000Y5000000D03*\n%KO*%\nX9000000Y9000000D03*\nM02*\n",
+      "kok-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 100 - 9 + kPi / 4, 2e-3);  // the last pad lies inside
+  EXPECT_TRUE(covered(l, 5, 5));
+  EXPECT_FALSE(covered(l, 4.2, 5));
+  EXPECT_FALSE(covered(l, 3.6, 6.4));
+  EXPECT_TRUE(covered(l, 3.4, 5));
+  EXPECT_TRUE(has_note(l, "line 7: warning: %KOC around the objects that follow (deprecated "
+                          "knockout) applied"));
+}
+
 // One image polarity per file, the last given (gerbv keeps the last): %IPPOS after %IPNEG was
 // ignored, and the image read negative.
 TEST(GerberLegacyParameters, TheLastImagePolarityApplies) {

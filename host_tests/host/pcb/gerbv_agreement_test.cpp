@@ -84,7 +84,7 @@ INSTANTIATE_TEST_SUITE_P(OwnFiles, GerbvAgreement,
                                            "slots_decimal.drl", "inch_lz_format.drl",
                                            // Deprecated parameters applied as gerbv does.
                                            "image_offset.gbr", "layer_rotation.gbr", "knockout.gbr",
-                                           "image_negative.gbr"));
+                                           "image_negative.gbr", "knockout_border.gbr"));
 
 }  // namespace
 }  // namespace host::pcb
