@@ -296,8 +296,9 @@ TEST(GerberLegacyParameters, AKnockoutWithoutABoxClearsAroundTheObjectsThatFollo
   EXPECT_FALSE(covered(l, 4.2, 5));
   EXPECT_FALSE(covered(l, 3.6, 6.4));
   EXPECT_TRUE(covered(l, 3.4, 5));
-  EXPECT_TRUE(has_note(l, "line 7: warning: %KOC around the objects that follow (deprecated "
-                          "knockout) applied"));
+  EXPECT_TRUE(has_note(l,
+                       "line 7: warning: %KOC around the objects that follow (deprecated "
+                       "knockout) applied"));
 }
 
 // One image polarity per file, the last given (gerbv keeps the last): %IPPOS after %IPNEG was
