@@ -64,6 +64,7 @@ void add_board_command(CLI::App& app) {
                 "also encode the isolation as #K frames, #D frames and G1 lines and report "
                 "their bytes (docs/performance.md)");
   cmd->add_option("--tol", a->run.tol_mm, "chord tolerance for the G1 comparison, mm")
+      ->check(CLI::Range(0.001, 1.0))
       ->capture_default_str();
   cmd->add_option("-o,--outdir", a->run.outdir, "where NAME.board.svg/.png/.json go")
       ->capture_default_str();
@@ -75,7 +76,8 @@ void add_board_command(CLI::App& app) {
       "         engraver board --side bottom samples/pcb/multivibrator/\n"
       "Then: engraver run board/ (simulate) or engraver send board/ --to tcp://HOST:PORT.\n"
       "Exit: 0 planned and checked, 1 refused (narrow gaps, work area, islands left joined), "
-      "2 bad input, 8 the tool would cut copper.");
+      "2 bad input (a file, an option out of its range or options that cannot go together), 8 "
+      "the tool would cut copper.");
   cmd->callback([a] { run_board(*a); });
 }
 
@@ -94,35 +96,26 @@ void add_isolation_options(CLI::App* cmd, BoardArgs* a) {
   const std::string g = kBoardOptionsGroup;
   cmd->add_option("--tool-width", a->tool_width_mm, "isolation: V-bit width at the depth, mm")
       ->group(g)
-      ->check(CLI::Range(defaults::kToolWidthRangeMm.min, defaults::kToolWidthRangeMm.max))
       ->capture_default_str();
-  cmd->add_option("--passes", a->passes, "isolation passes")
-      ->group(g)
-      ->check(CLI::Range(int(defaults::kPassesRange.min), int(defaults::kPassesRange.max)))
-      ->capture_default_str();
+  cmd->add_option("--passes", a->passes, "isolation passes")->group(g)->capture_default_str();
   cmd->add_option("--overlap", a->overlap, "overlap of passes (fraction of the tool width)")
       ->group(g)
-      ->check(CLI::Range(0.0, 0.9))
       ->capture_default_str();
   cmd->add_option("--clearance", a->clearance_mm,
                   "isolation: kept between the tool's edge and the copper for the fit and the "
                   "machine's contour error, mm")
       ->group(g)
-      ->check(CLI::Range(0.0, 0.1))
       ->capture_default_str();
   cmd->add_flag("--mill-all", a->mill_all, "clear all copper-free area")->group(g);
   CLI::Option* clearing =
       cmd->add_option("--clearing-tool", a->clearing_tool_mm,
                       "isolation: a wider tool for the outer part of the --passes width, mm "
                       "(mounted after the isolation tool; 0: none)")
-          ->group(g)
-          ->check(
-              CLI::Range(defaults::kClearingToolRangeMm.min, defaults::kClearingToolRangeMm.max));
+          ->group(g);
   cmd->add_option("--narrow-passes", a->narrow_passes,
                   "with --clearing-tool: passes of the isolation tool next to the copper")
       ->group(g)
       ->needs(clearing)
-      ->check(CLI::Range(int(defaults::kPassesRange.min), int(defaults::kPassesRange.max)))
       ->capture_default_str();
   cmd->add_flag("--isolate-empty-holes", a->isolate_empty_holes,
                 "also cut inside openings of an island that hold no other island (hatched pours)")
@@ -160,8 +153,7 @@ void add_drill_and_cutout_options(CLI::App* cmd, BoardArgs* a) {
   cmd->add_option("--tabs", a->tabs, "holding tabs per board")->group(g)->capture_default_str();
   cmd->add_option("--tab-spacing", a->tab_spacing_mm,
                   "one tab per this much outline length, mm (instead of --tabs)")
-      ->group(g)
-      ->check(CLI::Range(0.0, 10000.0));
+      ->group(g);
   cmd->add_option("--tab-height", a->tab_height_mm, "board thickness the tabs keep, mm")
       ->group(g)
       ->capture_default_str();
@@ -184,12 +176,10 @@ void add_side_and_alignment_options(CLI::App* cmd, BoardArgs* a) {
           "", "not empty"));
   cmd->add_option("--align-diameter", a->align_diameter_mm, "alignment hole (pin) diameter, mm")
       ->group(g)
-      ->check(CLI::Range(defaults::kAlignDiameterRangeMm.min, defaults::kAlignDiameterRangeMm.max))
       ->capture_default_str();
   cmd->add_option("--align-depth", a->align_depth_mm,
                   "alignment hole depth, through the blank into the spoil board, mm")
       ->group(g)
-      ->check(CLI::Range(defaults::kAlignDepthRangeMm.min, defaults::kAlignDepthRangeMm.max))
       ->capture_default_str();
   cmd->add_option("--align-measured", a->align_measured_mm,
                   "double-sided, second setup: X1 Y1 X2 Y2, machine mm where alignment holes 1 "
@@ -207,7 +197,8 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
   add_side_and_alignment_options(cmd, a);
   cmd->add_flag("--no-spindle", a->no_spindle, "no spindle on/off commands")->group(g);
   cmd->add_flag("--allow-narrow-gaps", a->allow_narrow_gaps,
-                "plan even where copper is closer than the tool width (reported)")
+                "plan even where copper is closer than the tool width (reported; exit 0 though "
+                "the copper there stays joined)")
       ->group(g);
 }
 

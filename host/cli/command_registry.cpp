@@ -1,10 +1,10 @@
 // The registry of command groups (see command_registry.h).
 #include "host/cli/command_registry.h"
 
-#include <cmath>    // std::isfinite
-#include <cstdlib>  // std::strtod
-#include <map>      // std::map
-#include <string>   // std::string
+#include <map>     // std::map
+#include <string>  // std::string
+
+#include "host/cli/option_ranges.h"
 
 namespace host::cli {
 
@@ -17,24 +17,6 @@ std::map<std::string, AddCommands>& registry() {
   return groups;
 }
 
-// "nan" and "inf" parse as numbers and pass CLI::Range (every comparison with NaN is false):
-// refused for every number option, naming the option, before a command sees them.
-std::string refuse_non_finite(std::string& value) {
-  char* end = nullptr;
-  const double v = std::strtod(value.c_str(), &end);
-  if (end != value.c_str() && *end == '\0' && !std::isfinite(v))
-    return "'" + value + "' is not a finite number";
-  return "";
-}
-
-void refuse_non_finite_numbers(CLI::App* app) {
-  for (CLI::Option* o : app->get_options()) {
-    if (o->get_type_name().rfind("FLOAT", 0) == 0)
-      o->check(CLI::Validator(refuse_non_finite, "", "finite"));
-  }
-  for (CLI::App* sub : app->get_subcommands({})) refuse_non_finite_numbers(sub);
-}
-
 }  // namespace
 
 CommandRegistrar::CommandRegistrar(const char* group, AddCommands add) {
@@ -43,7 +25,7 @@ CommandRegistrar::CommandRegistrar(const char* group, AddCommands add) {
 
 void add_registered_commands(CLI::App& app) {
   for (const auto& g : registry()) g.second(app);
-  refuse_non_finite_numbers(&app);
+  add_option_checks(&app);
 }
 
 std::string unknown_command_message(const CLI::App& app, int argc, const char* const* argv) {

@@ -17,7 +17,8 @@ struct CommandRegistrar {
 };
 
 // Calls every registered group, in group-name order (stable --help); then every number option
-// of every command refuses "nan" and "inf" (a usage error naming the option).
+// of every command refuses "nan", "inf" and what is not a plain decimal, and the board options
+// take their one range from option_ranges() (usage errors naming the option).
 void add_registered_commands(CLI::App& app);
 
 // When the first argument is neither an option nor one of app's commands: a message that

@@ -73,7 +73,6 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
       cmd->add_option("--feed", a->feed_mm_s,
                       fmt::format("cutting feed in mm/s (PCB isolation: {} unless given)",
                                   defaults::kBoardFeedMmPerS))
-          ->check(CLI::Range(0.1, 60.0))
           ->capture_default_str();
   CLI::Option* tol =
       cmd->add_option(
@@ -87,7 +86,6 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
              "--margin", a->margin_mm,
              fmt::format("offset of the drawing from the zero corner, mm (PCB: {} unless given)",
                          defaults::kBoardMarginMm))
-          ->check(CLI::Range(0.0, 100.0))
           ->capture_default_str();
   cmd->add_option("--work", a->work_mm, "work area W H in mm (default A4)")->expected(2);
   cmd->add_option("--z-up", a->z_up_mm, "travel height in mm")->capture_default_str();

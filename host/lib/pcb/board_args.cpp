@@ -24,7 +24,8 @@ void refuse_other_side_copper(BoardSide side, const BoardFileSet& layers) {
                        " copper");
 }
 
-void refuse_unpaired_clearing_tool(const BoardArgs& a) {
+// Options each within its range (option_ranges in the CLI) that cannot go together.
+void refuse_option_combinations(const BoardArgs& a) {
   if (a.clearing_tool_mm > 0 && a.narrow_passes >= a.passes)
     throw BoardArgsError(
         fmt::format("--clearing-tool cuts the passes beyond --narrow-passes ({}), "
@@ -34,6 +35,20 @@ void refuse_unpaired_clearing_tool(const BoardArgs& a) {
     throw BoardArgsError(
         "--narrow-passes counts the isolation tool's passes next to "
         "the copper with a --clearing-tool: give the clearing tool");
+  if (a.clearing_tool_mm > 0 && !(a.clearing_tool_mm > a.tool_width_mm))
+    throw BoardArgsError(
+        fmt::format("--clearing-tool ({} mm) must be wider than "
+                    "--tool-width ({} mm): it cuts the outer passes",
+                    a.clearing_tool_mm, a.tool_width_mm));
+  if (a.clearing_tool_mm > 0 && a.mill_all)
+    throw BoardArgsError(
+        "--clearing-tool cannot be combined with --mill-all (which clears all "
+        "copper-free area with the isolation tool): give one of them");
+  if (!(a.tab_height_mm < a.cut_depth_mm))
+    throw BoardArgsError(
+        fmt::format("--tab-height ({} mm) must be below --cut-depth "
+                    "({} mm): a tab keeps part of the board",
+                    a.tab_height_mm, a.cut_depth_mm));
 }
 
 AlignmentOptions alignment_options(const BoardArgs& a) {
@@ -100,7 +115,7 @@ BoardOptions resolve_board_options(const BoardArgs& a, const BoardMachine& m,
   BoardOptions o;
   o.side = resolve_board_side(a.side, prefix_side, layers);
   refuse_other_side_copper(o.side, layers);
-  refuse_unpaired_clearing_tool(a);
+  refuse_option_combinations(a);
   o.isolation = isolation_options(a);
   o.alignment = alignment_options(a);
   o.isolation_depth_mm = a.depth_mm;

@@ -45,6 +45,9 @@ class ExcellonReader {
   void note(const std::string& text) const;
   void header_line(const std::string& s);
   void body_line(const std::string& s);
+  bool mode_command(const std::string& s);
+  bool route_command(const std::string& s);
+  void position_line(const std::string& s);
   void comment(const std::string& s);
   void units_line(const std::string& s);
   bool units_command(const std::string& s);
@@ -73,8 +76,17 @@ class ExcellonReader {
   bool routing_ = false;  // G00/G01 route mode
   bool plunged_ = false;  // M15 .. M16
   std::map<int, cInt> tools_;
-  std::map<int, double> pending_tools_;             // diameters given before the units (PADS)
-  std::map<int, std::pair<double, int>> oversize_;  // tool -> diameter mm, holes left out
+  std::map<int, double> pending_tools_;  // diameters given before the units (PADS)
+  // A tool larger than 100 mm: its holes and slots are left out and counted.
+  struct Oversize {
+    double diameter_mm = 0;
+    int holes = 0, slots = 0;
+  };
+  std::map<int, Oversize> oversize_;
+  std::string oversize_text() const;
+  int left_out() const;  // holes and slots of oversize tools
+  void drill_hole(const PointNm& at);
+  void repeat_hole(const std::string& s);
   int tool_ = -1;   // none selected (T0 unloads the tool unless the header defines a T0)
   PointNm offset_;  // G93 work zero
   PointNm at_;
@@ -130,14 +142,10 @@ PcbLayer ExcellonReader::read() {
   if (!pending_tools_.empty() && unit_nm_ == 0)
     fail("tool T" + std::to_string(pending_tools_.begin()->first) +
          " has a diameter but the file never gives its units (METRIC/INCH, M71/M72)");
-  for (const auto& [tool, o] : oversize_) {
-    std::ostringstream mm;
-    mm << std::round(o.first * 1000) / 1000;
-    std::string w = "tool T" + std::to_string(tool) + " (" + mm.str() +
-                    " mm) is larger than 100 mm, not a drill: its " + std::to_string(o.second) +
-                    " hole(s) or slot(s) left out";
-    layer_.notes.push_back("warning: " + w);
-  }
+  if (layer_.holes.empty() && layer_.slots.empty() && !oversize_.empty() && left_out() > 0)
+    fail("every hole and slot is of a tool larger than 100 mm, which is not a drill (" +
+         oversize_text() + "): nothing is left to drill");
+  if (!oversize_.empty() && left_out() > 0) layer_.notes.push_back("warning: " + oversize_text());
   if (!seen_header) note("no M48 header");
   layer_.path = path_;
   layer_.kind = LayerKind::kDrill;
@@ -216,12 +224,65 @@ void ExcellonReader::define_tool(int n, double diameter, double unit_nm) {
   if (nm > kMaxToolNm) {
     // A routed cut-out is written as one huge "drill" by some programs: leave its holes out,
     // not the whole file.
-    oversize_[n] = {nm / 1e6, 0};
+    oversize_[n] = {nm / 1e6, 0, 0};
     tools_.erase(n);
     return;
   }
   oversize_.erase(n);
   tools_[n] = static_cast<cInt>(std::llround(nm));
+}
+
+static std::string count_of(int n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+// "tool T1 (139.7 mm) is larger than 100 mm: its 2 holes and 1 slot left out; tool T2 ..."
+std::string ExcellonReader::oversize_text() const {
+  std::string text;
+  for (const auto& [tool, o] : oversize_) {
+    if (o.holes + o.slots == 0) continue;
+    std::ostringstream mm;
+    mm << std::round(o.diameter_mm * 1000) / 1000;
+    std::string what = o.holes ? count_of(o.holes, "hole", "holes") : "";
+    if (o.slots) what += (what.empty() ? "" : " and ") + count_of(o.slots, "slot", "slots");
+    text += (text.empty() ? "" : "; ") + ("tool T" + std::to_string(tool)) + " (" + mm.str() +
+            " mm) is larger than 100 mm, not a drill: its " + what + " left out";
+  }
+  return text;
+}
+
+int ExcellonReader::left_out() const {
+  int n = 0;
+  for (const auto& t : oversize_) n += t.second.holes + t.second.slots;
+  return n;
+}
+
+// A hole of the current tool at `at` (or one more left out: an oversize tool).
+void ExcellonReader::drill_hole(const PointNm& at) {
+  need_tool();
+  if (oversize(tool_))
+    ++oversize_[tool_].holes;
+  else
+    layer_.holes.push_back({at, tools_[tool_], tool_});
+  at_ = at;
+}
+
+// "R<n>X<dx>Y<dy>": the last hole repeated n times, each dx, dy further (Excellon's repeat
+// hole; either step may be left out: 0).
+void ExcellonReader::repeat_hole(const std::string& s) {
+  size_t k = 1;
+  while (k < s.size() && std::isdigit(static_cast<unsigned char>(s[k]))) ++k;
+  if (k > 6) fail("repeat count in '" + s.substr(0, 30) + "' above 99999");
+  const int n = std::stoi(s.substr(1, k - 1));
+  PointNm step;
+  const bool incremental = incremental_;
+  incremental_ = true;  // the steps are increments, whatever the mode
+  position(s.substr(k), step);
+  incremental_ = incremental;
+  const PointNm from = at_;
+  for (int i = 1; i <= n; ++i) drill_hole({from.x + step.x * i, from.y + step.y * i});
+  if (std::llabs(at_.x) > kMaxCoordNm || std::llabs(at_.y) > kMaxCoordNm)
+    fail("repeated holes beyond 10 m");
 }
 
 bool ExcellonReader::oversize(int tool) const {
@@ -230,7 +291,7 @@ bool ExcellonReader::oversize(int tool) const {
 
 void ExcellonReader::add_slot(const PointNm& from, const PointNm& to) {
   if (oversize(tool_))
-    ++oversize_[tool_].second;
+    ++oversize_[tool_].slots;
   else
     layer_.slots.push_back({from, to, tools_[tool_], tool_});
 }
@@ -347,8 +408,8 @@ void ExcellonReader::header_line(const std::string& s) {
 // which one is not known.
 void ExcellonReader::need_tool() {
   if (tool_ >= 0) return;
-  if (tools_.size() == 1 && oversize_.empty()) {
-    tool_ = tools_.begin()->first;
+  if (tools_.size() + oversize_.size() == 1) {
+    tool_ = tools_.empty() ? oversize_.begin()->first : tools_.begin()->first;
     note("warning: a hole before any tool is selected: drilled with T" + std::to_string(tool_) +
          ", the only tool defined");
     return;
@@ -362,43 +423,39 @@ void ExcellonReader::need_tool() {
                              "): which one is meant is not known"));
 }
 
-// Adds a hole or slot of the current tool, or counts it as left out (an oversize tool).
-
+// One line after the header: a tool change, a mode, a route move, or a position.
 void ExcellonReader::body_line(const std::string& s) {
   if (s[0] == 'T' && s.size() > 1 && std::isdigit(static_cast<unsigned char>(s[1]))) {
     tool(s, false);
-    return;
+  } else if (mode_command(s) || route_command(s)) {
+    // done
+  } else if (s[0] == 'R' && s.size() > 1 && std::isdigit(static_cast<unsigned char>(s[1]))) {
+    repeat_hole(s);
+  } else if (s[0] == 'X' || s[0] == 'Y') {
+    position_line(s);
+  } else if (starts_with(s, "M47") || starts_with(s, "M45")) {
+    note("operator message '" + s.substr(0, 30) + "' ignored");
+  } else if (s != "M48") {
+    fail("unknown or unsupported command '" + s.substr(0, 30) + "'");
   }
+}
+
+// End of program, absolute/incremental, drill mode, units in the body, the work zero (G93);
+// true if s was one.
+bool ExcellonReader::mode_command(const std::string& s) {
   if (s == "M30" || s == "M00" || s == "M02") {
     done_ = true;
-    return;
-  }
-  if (s == "G90") {
-    incremental_ = false;
-    return;
-  }
-  if (s == "G91") {
-    incremental_ = true;
-    note("G91 incremental coordinates");
-    return;
-  }
-  if (s == "G05" || s == "G5" || s == "G81") {
+  } else if (s == "G90" || s == "G91") {
+    incremental_ = s == "G91";
+    if (incremental_) note("G91 incremental coordinates");
+  } else if (s == "G05" || s == "G5" || s == "G81") {
     routing_ = false;
     plunged_ = false;
-    return;
-  }
-  if (s == "M71" || s == "M72") {
+  } else if (s == "M71" || s == "M72") {
     const std::string before = units_;
     set_units(s == "M71");
     if (!before.empty() && before != units_) note(s + " switches units in the body");
-    return;
-  }
-  if (s == "M15") {
-    if (!routing_) fail("M15 (tool down) outside route mode (G00)");
-    plunged_ = true;
-    return;
-  }
-  if (starts_with(s, "G93")) {
+  } else if (starts_with(s, "G93")) {
     // Work zero: later absolute coordinates are relative to it (Mentor writes G93X0Y0).
     PointNm zero;
     const bool incremental = incremental_;
@@ -407,17 +464,24 @@ void ExcellonReader::body_line(const std::string& s) {
     incremental_ = incremental;
     offset_ = zero;
     if (zero.x != 0 || zero.y != 0) note("G93 work zero offset applied");
-    return;
+  } else {
+    return false;
   }
-  if (starts_with(s, "M16") || starts_with(s, "M17")) {
+  return true;
+}
+
+// Route mode: G00 (move), M15 (tool down), G01 (cut a slot), M16/M17 (tool up); true if s was
+// one of them.
+bool ExcellonReader::route_command(const std::string& s) {
+  if (s == "M15") {
+    if (!routing_) fail("M15 (tool down) outside route mode (G00)");
+    plunged_ = true;
+  } else if (starts_with(s, "M16") || starts_with(s, "M17")) {
     // Tool up; Allegro's route files may carry the next position on the same line.
     plunged_ = false;
-    if (s.size() > 3) {
-      if (!position(s.substr(3), at_)) fail("unexpected '" + s.substr(3, 20) + "' after M16");
-    }
-    return;
-  }
-  if (starts_with(s, "G00") || starts_with(s, "G01")) {
+    if (s.size() > 3 && !position(s.substr(3), at_))
+      fail("unexpected '" + s.substr(3, 20) + "' after M16");
+  } else if (starts_with(s, "G00") || starts_with(s, "G01")) {
     PointNm p = at_;
     const bool has = position(s.substr(3), p);
     if (starts_with(s, "G00")) {
@@ -431,47 +495,38 @@ void ExcellonReader::body_line(const std::string& s) {
       }
     }
     at_ = p;
-    return;
-  }
-  if (starts_with(s, "G02") || starts_with(s, "G03")) {
+  } else if (starts_with(s, "G02") || starts_with(s, "G03")) {
     fail("routed arcs (" + s.substr(0, 3) + ") are not supported");
+  } else {
+    return false;
   }
-  if (s[0] == 'X' || s[0] == 'Y') {
-    const size_t g85 = s.find("G85");
-    if (g85 != std::string::npos) {
-      PointNm from = at_;
-      position(s.substr(0, g85), from);
-      PointNm to = from;  // incremental ends are relative to the start
-      if (!position(s.substr(g85 + 3), to)) fail("G85 slot without an end point");
-      need_tool();
-      add_slot(from, to);
-      at_ = to;
-      return;
-    }
-    PointNm p = at_;
-    position(s, p);
-    if (routing_) {
-      if (plunged_) {
-        need_tool();
-        add_slot(at_, p);
-      }
-      at_ = p;
-      return;
-    }
+  return true;
+}
+
+// "X..Y..": a hole (drill mode), a route move (route mode), or with G85 a slot.
+void ExcellonReader::position_line(const std::string& s) {
+  const size_t g85 = s.find("G85");
+  if (g85 != std::string::npos) {
+    PointNm from = at_;
+    position(s.substr(0, g85), from);
+    PointNm to = from;  // incremental ends are relative to the start
+    if (!position(s.substr(g85 + 3), to)) fail("G85 slot without an end point");
     need_tool();
-    if (oversize(tool_))
-      ++oversize_[tool_].second;
-    else
-      layer_.holes.push_back({p, tools_[tool_], tool_});
-    at_ = p;
+    add_slot(from, to);
+    at_ = to;
     return;
   }
-  if (starts_with(s, "M47") || starts_with(s, "M45")) {
-    note("operator message '" + s.substr(0, 30) + "' ignored");
+  PointNm p = at_;
+  position(s, p);
+  if (!routing_) {
+    drill_hole(p);
     return;
   }
-  if (s == "M48") return;
-  fail("unknown or unsupported command '" + s.substr(0, 30) + "'");
+  if (plunged_) {
+    need_tool();
+    add_slot(at_, p);
+  }
+  at_ = p;
 }
 
 double ExcellonReader::number(const std::string& s, const char* what) const {

@@ -1,6 +1,6 @@
 #include "host/lib/pcb/gerber_reader.h"
 
-#include <algorithm>      // std::min, std::max
+#include <algorithm>      // std::min, std::max, std::count
 #include <cctype>         // std::isdigit, std::isspace
 #include <cmath>          // std::atan2, std::hypot, std::fabs
 #include <cstdio>         // std::snprintf
@@ -116,6 +116,10 @@ class GerberReader {
   PcbLayer read();
 
  private:
+  void read_blocks();
+  LayerKind layer_kind() const;
+  void outline_loops(PcbLayer* layer) const;
+  void negative_image(Paths* drawn);
   [[noreturn]] void fail(const std::string& what) const {
     throw PcbReadError(path_ + ":" + std::to_string(line_) + ": " + what);
   }
@@ -125,6 +129,9 @@ class GerberReader {
   void extended_block(const std::string& body, int first_line);
   void extended_command(const std::string& cmd);
   void word_block(const std::string& word);
+  void g_code(int g, const std::string& value);
+  void d_code(int dn, const std::string& value, int* d);
+  void m_code(int m, const std::string& value);
   void comment(const std::string& text);
   void attribute(const std::string& body);
 
@@ -132,6 +139,12 @@ class GerberReader {
   void format_spec(const std::string& s);
   void aperture_definition(const std::string& s);
   void define_aperture(const std::string& s, size_t name_at, int number_d);
+  void check_standard_sizes(const std::string& name, const std::vector<double>& params,
+                            int number_d) const;
+  Aperture standard_aperture(const std::string& name, const std::vector<double>& params,
+                             int number_d, size_t* hole_at);
+  void punch_hole(Aperture* ap, const std::vector<double>& params, size_t hole_at);
+  Aperture macro_aperture(const std::string& name, const std::vector<double>& params, int number_d);
   void aperture_macro(const std::vector<std::string>& parts, const std::vector<int>& lines);
   void step_repeat(const std::string& s);
   void close_step_repeat();
@@ -145,6 +158,11 @@ class GerberReader {
                const std::string* j);
   void draw_line(IntPoint from, IntPoint to);
   void draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool region);
+  void arc_centre(const VecNm& a, const VecNm& b, bool same_point, cInt i, cInt j, VecNm* centre,
+                  double* sweep);
+  bool zero_radius_arc(double r0, double r1);
+  void region_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill);
+  void stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill);
   void flash(IntPoint at);
   const Aperture& current_aperture() const;
   void add_object(Paths paths);
@@ -211,13 +229,34 @@ class GerberReader {
   // Deprecated image transforms (%IR, %MI, %SF), applied to the finished image.
   int rotation_deg_ = 0;                      // 0, 90, 180, 270 counterclockwise about the origin
   bool mirror_a_ = false, mirror_b_ = false;  // x -> -x, y -> -y
+  bool swap_ab_ = false;                      // %ASAYBX: x and y swap
   double layer_rotation_deg_ = 0;             // %RO: any angle, counterclockwise
   bool negative_ = false;                     // %IPNEG: copper where nothing is drawn
+  int negative_line_ = 0;
   void knockout(const std::string& arg);
-  std::pair<double, double> axis_values(const std::string& arg, const char* what) const;
+  void open_knockout(const std::string& arg);
+  void close_knockout();
+  bool knockout_open_ = false;  // %KOC/%KOD without a box, until the next %KO
+  bool knockout_dark_ = false;
+  double knockout_border_nm_ = 0;
+  size_t knockout_start_ = 0;  // the first batch of the objects it surrounds
+  int knockout_line_ = 0;
+  std::pair<double, double> axis_values(const std::string& arg, const char* what,
+                                        double missing) const;
+  bool deprecated_parameter(const std::string& code, const std::string& arg);
+  void image_polarity(const std::string& arg);
+  void mirror_image(const std::string& arg);
+  void image_offset(const std::string& code, const std::string& arg);
   double scale_a_ = 1, scale_b_ = 1;
-  std::vector<std::string> transforms_;  // the non-identity ones, for the message
-  void image_transform(const std::string& which);
+  // The non-identity ones in force, each the last of its parameter (a later one replaces an
+  // earlier, as gerbv reads them): reported as applied at the end.
+  struct ImageTransform {
+    std::string which;  // "%RO30"
+    std::string what;   // "layer rotation"
+    int line = 0;
+  };
+  std::vector<ImageTransform> transforms_;
+  void image_transform(const std::string& which, const char* what, bool identity);
   void need_units(const std::string& what);
   void transform_image(Paths& paths) const;
 
@@ -237,6 +276,43 @@ void GerberReader::note(const std::string& text) {
 }
 
 PcbLayer GerberReader::read() {
+  read_blocks();
+  PcbLayer layer;
+  layer.path = path_;
+  layer.units = units_;
+  layer.apertures_or_tools = static_cast<int>(apertures_.size());
+  layer.arc_tolerance_nm = opt_.arc_tolerance_nm;
+  layer.kind = layer_kind();
+  if (layer.kind == LayerKind::kOutline) {
+    outline_loops(&layer);
+  } else {
+    layer.polygons_nm = evaluate(batches_);
+  }
+  if (offset_x_ != 0 || offset_y_ != 0) translate_paths(layer.polygons_nm, offset_x_, offset_y_);
+  transform_image(layer.polygons_nm);
+  if (negative_ && layer.kind != LayerKind::kOutline && !layer.polygons_nm.empty())
+    negative_image(&layer.polygons_nm);
+  if (ill_defined_arcs_ > 0) {
+    char msg[240];
+    std::snprintf(msg, sizeof msg,
+                  "warning: %d arcs whose end is not on their circle (start and end radii differ "
+                  "by up to %.1f um): copper is where either reading puts it (through both end "
+                  "points, and at the start radius as gerbv draws them)",
+                  ill_defined_arcs_, ill_defined_max_nm_ * 1e-3);
+    layer.notes.push_back(msg);
+  }
+  for (const ImageTransform& t : transforms_)
+    notes_.push_back({"warning: " + t.which + " (deprecated " + t.what + ") applied", t.line, 1});
+  for (const Note& nt : notes_) {
+    std::string s = "line " + std::to_string(nt.first_line) + ": " + nt.text;
+    if (nt.count > 1) s += " (" + std::to_string(nt.count) + " times)";
+    layer.notes.push_back(s);
+  }
+  return layer;
+}
+
+// Every block of the file up to M02, then what must hold at its end.
+void GerberReader::read_blocks() {
   const size_t n = text_.size();
   size_t pos = 0;
   while (pos < n && !done_) {
@@ -246,31 +322,22 @@ PcbLayer GerberReader::read() {
       ++pos;
     } else if (is_space(c)) {
       ++pos;
-    } else if (c == '%') {
-      const size_t end = text_.find('%', pos + 1);
-      if (end == std::string::npos) fail("'%' block never closed with '%'");
-      const std::string body = text_.substr(pos + 1, end - pos - 1);
-      const int first = line_;
-      last_block_line_ = first;
-      extended_block(body, first);
-      line_ = first;
-      for (char b : body) {
-        if (b == '\n') ++line_;
-      }
-      pos = end + 1;
     } else {
-      const size_t end = text_.find('*', pos);
-      if (end == std::string::npos) {
+      // A %..% extended block, or a data block up to its '*'.
+      const bool extended = c == '%';
+      const size_t end = extended ? text_.find('%', pos + 1) : text_.find('*', pos);
+      if (end == std::string::npos && extended) fail("'%' block never closed with '%'");
+      if (end == std::string::npos)
         fail("data block '" + trim(text_.substr(pos, 40)) + "' never ends with '*'");
-      }
-      const std::string word = text_.substr(pos, end - pos);
+      const std::string body =
+          extended ? text_.substr(pos + 1, end - pos - 1) : text_.substr(pos, end - pos);
       const int first = line_;
       last_block_line_ = first;
-      word_block(word);
-      line_ = first;
-      for (char b : word) {
-        if (b == '\n') ++line_;
-      }
+      if (extended)
+        extended_block(body, first);
+      else
+        word_block(body);
+      line_ = first + static_cast<int>(std::count(body.begin(), body.end(), '\n'));
       pos = end + 1;
     }
   }
@@ -278,6 +345,7 @@ PcbLayer GerberReader::read() {
     line_ = last_block_line_;
     fail("the file ends without M02 (end of file): it may be cut short, so it is not used");
   }
+  close_knockout();
   for (size_t k = pos; k < n; ++k) {
     if (!is_space(text_[k])) {
       note("text after M02 ignored");
@@ -290,63 +358,49 @@ PcbLayer GerberReader::read() {
          " never used: its definition is left out (" + bad.second + ")");
   if (!blocks_.empty())
     fail("block aperture D" + std::to_string(blocks_.back().number_d) + " still open at M02");
+}
 
-  PcbLayer layer;
-  layer.path = path_;
-  layer.units = units_;
-  layer.apertures_or_tools = static_cast<int>(apertures_.size());
-  layer.arc_tolerance_nm = opt_.arc_tolerance_nm;
-  if (opt_.forced_kind != LayerKind::kUnknown) {
-    layer.kind = opt_.forced_kind;
-  } else if (x2_kind_given_) {
-    layer.kind = x2_kind_;
-  } else {
-    layer.kind = layer_kind_from_file_name(path_);
-    if (layer.kind == LayerKind::kUnknown) layer.kind = opt_.kind_if_unknown;
-  }
-  if (layer.kind == LayerKind::kOutline) {
-    // Strokes of one width joined end to end; the width stays with each, so loops can be
-    // closed as the drawn strokes close them.
-    std::map<double, std::vector<Path>> by_width;
-    for (size_t k = 0; k < strokes_.size(); ++k)
-      by_width[stroke_widths_nm_[k]].push_back(strokes_[k]);
-    for (const auto& [width, strokes] : by_width) {
-      for (Path& p : join_strokes(strokes, opt_.arc_tolerance_nm * 4 + 2000)) {
-        layer.polygons_nm.push_back(std::move(p));
-        layer.outline_widths_nm.push_back(static_cast<cInt>(width));
-      }
+// The kind given by the caller, else the file's X2 file function, else its name.
+LayerKind GerberReader::layer_kind() const {
+  if (opt_.forced_kind != LayerKind::kUnknown) return opt_.forced_kind;
+  if (x2_kind_given_) return x2_kind_;
+  const LayerKind named = layer_kind_from_file_name(path_);
+  return named == LayerKind::kUnknown ? opt_.kind_if_unknown : named;
+}
+
+// Strokes of one width joined end to end; the width stays with each, so loops can be closed as
+// the drawn strokes close them.
+void GerberReader::outline_loops(PcbLayer* layer) const {
+  std::map<double, std::vector<Path>> by_width;
+  for (size_t k = 0; k < strokes_.size(); ++k)
+    by_width[stroke_widths_nm_[k]].push_back(strokes_[k]);
+  for (const auto& [width, strokes] : by_width) {
+    for (Path& p : join_strokes(strokes, opt_.arc_tolerance_nm * 4 + 2000)) {
+      layer->polygons_nm.push_back(std::move(p));
+      layer->outline_widths_nm.push_back(static_cast<cInt>(width));
     }
-    layer.outline_paths_are_open = true;
-  } else {
-    layer.polygons_nm = evaluate(batches_);
   }
-  if (offset_x_ != 0 || offset_y_ != 0) translate_paths(layer.polygons_nm, offset_x_, offset_y_);
-  transform_image(layer.polygons_nm);
-  if (negative_ && layer.kind != LayerKind::kOutline && !layer.polygons_nm.empty()) {
-    cInt x0 = layer.polygons_nm[0][0].X, x1 = x0, y0 = layer.polygons_nm[0][0].Y, y1 = y0;
-    for (const Path& p : layer.polygons_nm)
-      for (const IntPoint& v : p) {
-        x0 = std::min(x0, v.X), x1 = std::max(x1, v.X);
-        y0 = std::min(y0, v.Y), y1 = std::max(y1, v.Y);
-      }
-    const Path box = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-    layer.polygons_nm = difference_of({box}, layer.polygons_nm);
-  }
-  if (ill_defined_arcs_ > 0) {
-    char msg[240];
-    std::snprintf(msg, sizeof msg,
-                  "warning: %d arcs whose end is not on their circle (start and end radii differ "
-                  "by up to %.1f um): copper is where either reading puts it (through both end "
-                  "points, and at the start radius as gerbv draws them)",
-                  ill_defined_arcs_, ill_defined_max_nm_ * 1e-3);
-    layer.notes.push_back(msg);
-  }
-  for (const Note& nt : notes_) {
-    std::string s = "line " + std::to_string(nt.first_line) + ": " + nt.text;
-    if (nt.count > 1) s += " (" + std::to_string(nt.count) + " times)";
-    layer.notes.push_back(s);
-  }
-  return layer;
+  layer->outline_paths_are_open = true;
+}
+
+// %IPNEG: the copper is the image's extent less what is drawn. gerbv fills its whole picture,
+// which has a border of 5 % of the image's width and height (`gerbv -x png`'s default):
+// copper out to there, so a shape drawn on the box's edge leaves no sliver between it and the
+// edge.
+void GerberReader::negative_image(Paths* drawn) {
+  cInt x0 = (*drawn)[0][0].X, x1 = x0, y0 = (*drawn)[0][0].Y, y1 = y0;
+  for (const Path& p : *drawn)
+    for (const IntPoint& v : p) {
+      x0 = std::min(x0, v.X), x1 = std::max(x1, v.X);
+      y0 = std::min(y0, v.Y), y1 = std::max(y1, v.Y);
+    }
+  const cInt mx = (x1 - x0) / 20, my = (y1 - y0) / 20;
+  const Path box = {{x0 - mx, y0 - my}, {x1 + mx, y0 - my}, {x1 + mx, y1 + my}, {x0 - mx, y1 + my}};
+  *drawn = difference_of({box}, *drawn);
+  notes_.push_back(
+      {"warning: %IPNEG (deprecated negative image) applied: copper is the image's bounding box "
+       "with gerbv's 5 % border, less what is drawn",
+       negative_line_, 1});
 }
 
 Paths GerberReader::evaluate(std::vector<Batch>& batches) {
@@ -430,108 +484,17 @@ void GerberReader::extended_command(const std::string& cmd) {
   if (code == "FS") {
     format_spec(arg);
   } else if (code == "MO") {
-    if (arg == "MM") {
-      set_units(1e6, "MOMM");
-    } else if (arg == "IN") {
-      set_units(25.4e6, "MOIN");
-    } else {
-      fail("unit '" + arg + "' is neither MM nor IN");
-    }
+    if (arg != "MM" && arg != "IN") fail("unit '" + arg + "' is neither MM nor IN");
+    set_units(arg == "MM" ? 1e6 : 25.4e6, arg == "MM" ? "MOMM" : "MOIN");
   } else if (code == "AD") {
     aperture_definition(arg);
   } else if (code == "LP") {
-    if (arg == "D") {
-      dark_ = true;
-    } else if (arg == "C") {
-      dark_ = false;
-    } else {
-      fail("polarity '" + arg + "' is neither D nor C");
-    }
+    if (arg != "D" && arg != "C") fail("polarity '" + arg + "' is neither D nor C");
+    dark_ = arg == "D";
   } else if (code == "SR") {
     step_repeat(arg);
   } else if (code == "TF" || code == "TA" || code == "TO" || code == "TD") {
     attribute(cmd);
-  } else if (code == "IP") {
-    if (arg == "NEG") {
-      // What is drawn is clear, the rest copper. The copper's extent is not defined: here the
-      // image's bounding box, as gerbv fills its picture; isolation then keeps the tool
-      // inside each drawn (clear) shape, off the copper around it.
-      negative_ = true;
-      note(
-          "warning: %IPNEG (deprecated negative image) applied: copper is the image's "
-          "bounding box less what is drawn");
-      return;
-    }
-    if (arg != "POS") fail("image polarity '" + arg + "' is neither POS nor NEG");
-    note("%IPPOS (deprecated image polarity) ignored");
-  } else if (code == "IC") {
-    // Input code: ASCII is what every reader reads (OrCAD, P-CAD, Mentor write %ICAS*%).
-    if (arg != "AS") fail("input code %IC" + arg + " is not supported (only ASCII, %ICAS)");
-    note("warning: %ICAS (deprecated input code: ASCII) ignored");
-  } else if (code == "IN" || code == "LN") {
-    note("%" + code + " (deprecated name) ignored");
-  } else if (code == "MI") {
-    const std::string a = strip_all_space(arg);
-    for (const char axis : {'A', 'B'}) {
-      const size_t at = a.find(axis);
-      if (at == std::string::npos) continue;
-      const std::string v = a.substr(at + 1, 1);
-      if (v != "0" && v != "1") fail("mirror image '%MI" + a + "': A and B take 0 or 1");
-      (axis == 'A' ? mirror_a_ : mirror_b_) = v == "1";
-    }
-    if (mirror_a_ || mirror_b_) {
-      image_transform("%MI" + a);
-      note("warning: %MI" + a + " (deprecated mirror image) applied");
-    } else {
-      note("%MI without mirroring (deprecated) ignored");
-    }
-  } else if (code == "SF") {
-    double a = 1, b = 1;
-    for (const char axis : {'A', 'B'}) {
-      const size_t at = arg.find(axis);
-      if (at == std::string::npos) continue;
-      size_t end = at + 1;
-      while (end < arg.size() && arg[end] != 'A' && arg[end] != 'B') ++end;
-      (axis == 'A' ? a : b) = number(arg.substr(at + 1, end - at - 1), "scale factor");
-    }
-    if (!(a > 0 && a <= 1000 && b > 0 && b <= 1000))
-      fail("scale factor %SF" + arg + " must be above 0 and at most 1000");
-    if (a != 1 || b != 1) {
-      scale_a_ = a;
-      scale_b_ = b;
-      image_transform("%SF" + arg);
-      note("warning: %SF" + arg + " (deprecated scale factor) applied");
-    } else {
-      note("%SF with scale 1 (deprecated) ignored");
-    }
-  } else if (code == "OF") {
-    double a = 0, b = 0;
-    for (const char axis : {'A', 'B'}) {
-      const size_t at = arg.find(axis);
-      if (at == std::string::npos) continue;
-      size_t end = at + 1;
-      while (end < arg.size() && arg[end] != 'A' && arg[end] != 'B') ++end;
-      (axis == 'A' ? a : b) = number(arg.substr(at + 1, end - at - 1), "offset");
-    }
-    if (a != 0 || b != 0) need_units("%OF");
-    offset_x_ = static_cast<cInt>(std::llround(a * unit_nm_));
-    offset_y_ = static_cast<cInt>(std::llround(b * unit_nm_));
-    if (a != 0 || b != 0) image_transform("%OF" + arg);
-    note("%OF image offset (deprecated) applied");
-  } else if (code == "IR") {
-    const double deg = number(arg, "image rotation");
-    if (deg != 0 && deg != 90 && deg != 180 && deg != 270)
-      fail("image rotation %IR" + arg + " must be 0, 90, 180 or 270");
-    rotation_deg_ = static_cast<int>(deg);
-    if (rotation_deg_ != 0) {
-      image_transform("%IR" + arg);
-      note("warning: %IR" + arg + " (deprecated image rotation) applied");
-    } else {
-      note("%IR0 (deprecated) ignored");
-    }
-  } else if (code == "AS") {
-    if (arg != "AXBY") fail("axis select (%AS" + arg + ") other than AXBY is not supported");
-    note("%ASAXBY (deprecated) ignored");
   } else if (code == "LM" || code == "LR" || code == "LS") {
     const bool identity = (code == "LM" && arg == "N") ||
                           (code == "LR" && number(arg, "rotation") == 0) ||
@@ -539,60 +502,146 @@ void GerberReader::extended_command(const std::string& cmd) {
     if (!identity) {
       fail("aperture transformation %" + cmd + " is not supported (only LMN, LR0, LS1)");
     }
-  } else if (code == "KO" && arg.empty()) {
-    note("warning: %KO (deprecated knockout, off) ignored");
+  } else if (code == "AB") {
+    aperture_block(arg);
+  } else if (!deprecated_parameter(code, arg)) {
+    fail("unknown extended command '%" + cmd.substr(0, 20) + "'");
+  }
+}
+
+// The image parameters the specification deprecated, each as it says and as gerbv draws it;
+// false if `code` is none of them.
+bool GerberReader::deprecated_parameter(const std::string& code, const std::string& arg) {
+  if (code == "IP") {
+    image_polarity(arg);
+  } else if (code == "IC") {
+    // Input code: ASCII is what every reader reads (OrCAD, P-CAD, Mentor write %ICAS*%).
+    if (arg != "AS") fail("input code %IC" + arg + " is not supported (only ASCII, %ICAS)");
+    note("warning: %ICAS (deprecated input code: ASCII) ignored");
+  } else if (code == "IN" || code == "LN") {
+    note("%" + code + " (deprecated name) ignored");
+  } else if (code == "MI") {
+    mirror_image(arg);
+  } else if (code == "SF") {
+    const std::pair<double, double> ab = axis_values(arg, "scale factor", 1);
+    if (!(ab.first > 0 && ab.first <= 1000 && ab.second > 0 && ab.second <= 1000))
+      fail("scale factor %SF" + arg + " must be above 0 and at most 1000");
+    scale_a_ = ab.first;
+    scale_b_ = ab.second;
+    image_transform("%SF" + arg, "scale factor", ab.first == 1 && ab.second == 1);
+    if (ab.first == 1 && ab.second == 1) note("%SF with scale 1 (deprecated) ignored");
+  } else if (code == "OF" || code == "IO") {
+    image_offset(code, arg);
+  } else if (code == "IR") {
+    const double deg = number(arg, "image rotation");
+    if (deg != 0 && deg != 90 && deg != 180 && deg != 270)
+      fail("image rotation %IR" + arg + " must be 0, 90, 180 or 270");
+    rotation_deg_ = static_cast<int>(deg);
+    image_transform("%IR" + arg, "image rotation", rotation_deg_ == 0);
+    if (rotation_deg_ == 0) note("%IR0 (deprecated) ignored");
+  } else if (code == "AS") {
+    // Axis select: AYBX sends the file's X to the output's B (y) axis: x and y swap.
+    if (arg != "AXBY" && arg != "AYBX") fail("axis select %AS" + arg + " is neither AXBY nor AYBX");
+    swap_ab_ = arg == "AYBX";
+    image_transform("%AS" + arg, "axis select", !swap_ab_);
+    if (!swap_ab_) note("%ASAXBY (deprecated) ignored");
   } else if (code == "KO") {
-    knockout(arg);
+    if (arg.empty() && !knockout_open_) note("warning: %KO (deprecated knockout, off) ignored");
+    if (arg.empty()) close_knockout();
+    if (!arg.empty()) knockout(arg);
   } else if (code == "IJ") {
     // Justify moves the image by its own extent against a film (platen) size the file does
     // not give: ignored, the coordinates are taken as written (the other layers' frame).
     note("warning: %IJ" + arg.substr(0, 20) +
          " (deprecated image justify) ignored: coordinates as written");
-  } else if (code == "IO") {
-    // Image offset: like %OF, in the units current here.
-    const std::pair<double, double> ab = axis_values(arg, "image offset");
-    if (ab.first != 0 || ab.second != 0) {
-      need_units("%IO");
-      offset_x_ += static_cast<cInt>(std::llround(ab.first * unit_nm_));
-      offset_y_ += static_cast<cInt>(std::llround(ab.second * unit_nm_));
-      image_transform("%IO" + arg);
-      note("warning: %IO" + arg + " (deprecated image offset) applied");
-    } else {
-      note("%IO without offset (deprecated) ignored");
-    }
   } else if (code == "RO") {
     const double deg = number(arg, "layer rotation");
     if (!(std::fabs(deg) <= 360)) fail("layer rotation %RO" + arg + " must be -360 .. 360 degrees");
     layer_rotation_deg_ = deg;
-    if (deg != 0) {
-      image_transform("%RO" + arg);
-      note("warning: %RO" + arg + " (deprecated layer rotation) applied");
-    } else {
-      note("%RO0 (deprecated) ignored");
-    }
-  } else if (code == "AB") {
-    aperture_block(arg);
+    image_transform("%RO" + arg, "layer rotation", deg == 0);
+    if (deg == 0) note("%RO0 (deprecated) ignored");
   } else {
-    fail("unknown extended command '%" + cmd.substr(0, 20) + "'");
+    return false;
   }
+  return true;
 }
 
-// A deprecated transform of the whole image. One alone is applied; the specification does not
-// say in which order several combine, so a file with more is refused rather than guessed.
-void GerberReader::image_transform(const std::string& which) {
-  for (const std::string& t : transforms_)
-    if (t.substr(0, 3) == which.substr(0, 3)) return;  // the same parameter again
-  transforms_.push_back(which);
+// %IPPOS / %IPNEG: one polarity per image; a later %IP replaces an earlier (gerbv keeps the
+// last).
+void GerberReader::image_polarity(const std::string& arg) {
+  if (arg == "NEG") {
+    // What is drawn is clear, the rest copper. The copper's extent is not defined: here the
+    // image's bounding box with gerbv's border, as gerbv fills its picture; isolation then
+    // keeps the tool inside each drawn (clear) shape, off the copper around it.
+    if (!negative_) negative_line_ = line_;
+    negative_ = true;
+    return;
+  }
+  if (arg != "POS") fail("image polarity '" + arg + "' is neither POS nor NEG");
+  if (negative_) note("warning: %IPNEG replaced by the later %IPPOS (only the last applies)");
+  negative_ = false;
+  note("%IPPOS (deprecated image polarity) ignored");
+}
+
+// %MIA<0|1>B<0|1>: mirror x (A) and y (B) about the origin.
+void GerberReader::mirror_image(const std::string& arg) {
+  const std::string a = strip_all_space(arg);
+  for (const char axis : {'A', 'B'}) {
+    const size_t at = a.find(axis);
+    if (at == std::string::npos) continue;
+    const std::string v = a.substr(at + 1, 1);
+    if (v != "0" && v != "1") fail("mirror image '%MI" + a + "': A and B take 0 or 1");
+    (axis == 'A' ? mirror_a_ : mirror_b_) = v == "1";
+  }
+  image_transform("%MI" + a, "mirror image", !mirror_a_ && !mirror_b_);
+  if (!mirror_a_ && !mirror_b_) note("%MI without mirroring (deprecated) ignored");
+}
+
+// %OFA<a>B<b> (offset) and %IOA<a>B<b> (image offset): the image moved by a, b in the units
+// current where it stands. A zero offset is an identity, which undoes an earlier one.
+void GerberReader::image_offset(const std::string& code, const std::string& arg) {
+  const std::pair<double, double> ab =
+      axis_values(arg, code == "OF" ? "offset" : "image offset", 0);
+  const bool none = ab.first == 0 && ab.second == 0;
+  if (!none) need_units("%" + code);
+  bool replaces = false;
+  for (const ImageTransform& t : transforms_)
+    replaces = replaces || t.which.compare(1, 2, code) == 0;
+  if (!none || replaces) {
+    offset_x_ = static_cast<cInt>(std::llround(ab.first * unit_nm_));
+    offset_y_ = static_cast<cInt>(std::llround(ab.second * unit_nm_));
+  }
+  image_transform("%" + code + arg, "image offset", none);
+  if (none) note("%" + code + " without offset (deprecated) ignored");
+}
+
+// A deprecated transform of the whole image (identity: it does nothing). Of one parameter
+// given twice the last applies (gerbv keeps the last value); the specification does not say in
+// which order different ones combine, so a file with two is refused rather than guessed.
+void GerberReader::image_transform(const std::string& which, const char* what, bool identity) {
+  for (size_t k = 0; k < transforms_.size(); ++k) {
+    if (transforms_[k].which.compare(0, 3, which, 0, 3) != 0) continue;
+    note("warning: " + transforms_[k].which + " replaced by the later " + which +
+         " (only the last applies)");
+    if (identity)
+      transforms_.erase(transforms_.begin() + static_cast<long>(k));
+    else
+      transforms_[k] = {which, what, line_};
+    return;
+  }
+  if (identity) return;
+  transforms_.push_back({which, what, line_});
   if (transforms_.size() > 1) {
-    fail("the deprecated image transforms " + transforms_[0] + " and " + transforms_[1] +
+    fail("the deprecated image transforms " + transforms_[0].which + " and " +
+         transforms_[1].which +
          " together are not supported (the order they combine in is not defined)");
   }
 }
 
-// "A<a>B<b>" (either may be left out: 0), decimal numbers in the current units.
-std::pair<double, double> GerberReader::axis_values(const std::string& arg,
-                                                    const char* what) const {
-  double a = 0, b = 0;
+// "A<a>B<b>" (either may be left out: `missing`), decimal numbers.
+std::pair<double, double> GerberReader::axis_values(const std::string& arg, const char* what,
+                                                    double missing) const {
+  double a = missing, b = missing;
   for (const char axis : {'A', 'B'}) {
     const size_t at = arg.find(axis);
     if (at == std::string::npos) continue;
@@ -603,19 +652,24 @@ std::pair<double, double> GerberReader::axis_values(const std::string& arg,
   return {a, b};
 }
 
-// %KOCX<x>Y<y>I<w>J<h>: the box from (x, y), w wide and h high (current units), cleared where
-// it stands in the drawing order, as gerbv draws it. Without a box the knockout surrounds the
-// objects that follow by a border, and gerbv draws no dark (D) box: both refused.
+// %KOCX<x>Y<y>I<w>J<h>: the box from (x, y), w wide and h high (current units), cleared (C)
+// or filled (D) where it stands in the drawing order, as gerbv draws it. Without a box the
+// knockout surrounds the objects that follow by a border: refused.
 void GerberReader::knockout(const std::string& arg) {
   const char polarity = arg[0];
-  if (polarity == 'D')
+  if (polarity != 'C' && polarity != 'D')
+    fail("%KO" + arg.substr(0, 20) + " (deprecated knockout): the polarity is neither C nor D");
+  close_knockout();  // a knockout ends where the next begins
+  const size_t letters_given =
+      (arg.find('X') != std::string::npos) + (arg.find('Y') != std::string::npos) +
+      (arg.find('I') != std::string::npos) + (arg.find('J') != std::string::npos);
+  if (letters_given == 0) {
+    open_knockout(arg);
+    return;
+  }
+  if (letters_given != 4)
     fail("%KO" + arg.substr(0, 20) +
-         " (deprecated knockout with dark polarity) is not supported (gerbv does not draw it "
-         "either): only %KOC boxes, which clear");
-  if (polarity != 'C' || arg.find('X') == std::string::npos || arg.find('Y') == std::string::npos ||
-      arg.find('I') == std::string::npos || arg.find('J') == std::string::npos)
-    fail("%KO" + arg.substr(0, 20) +
-         " (deprecated knockout) without a box (C or D, then X, Y, I, J) is not supported");
+         " (deprecated knockout): a box needs all of X, Y, I and J, a border alone K");
   double v[4] = {0, 0, 0, 0};
   const char* letters = "XYIJ";
   for (int k = 0; k < 4; ++k) {
@@ -629,13 +683,70 @@ void GerberReader::knockout(const std::string& arg) {
   for (double x : v)
     if (!(std::fabs(x * unit_nm_) <= kMaxApertureNm * 10)) fail("%KO box beyond 10 m");
   const bool dark = dark_;
-  dark_ = false;
+  dark_ = polarity == 'D';
   add_object({rect_path({(v[0] + v[2] / 2) * unit_nm_, (v[1] + v[3] / 2) * unit_nm_},
                         v[2] * unit_nm_, v[3] * unit_nm_)});
   dark_ = dark;
-  note(
-      "warning: %KOC box (deprecated knockout) applied: cleared where it stands in the "
-      "drawing order");
+  note(polarity == 'C' ? "warning: %KOC box (deprecated knockout) applied: cleared where it "
+                         "stands in the drawing order"
+                       : "warning: %KOD box (deprecated knockout, dark) applied: copper where "
+                         "it stands in the drawing order");
+}
+
+// %KOC[K<border>] or %KOD[K<border>] without a box: the objects that follow, up to the next
+// %KO, get a box around them, grown by the border (current units), cleared (C) or filled (D)
+// before them, as gerbv draws it.
+void GerberReader::open_knockout(const std::string& arg) {
+  double border = 0;
+  const size_t k = arg.find('K');
+  if (k != std::string::npos)
+    border = number(arg.substr(k + 1), "knockout border");
+  else if (arg.size() > 1)
+    fail("%KO" + arg.substr(0, 20) + " (deprecated knockout): bad parameters");
+  need_units("%KO");
+  if (!(border >= 0 && border * unit_nm_ <= kMaxApertureNm))
+    fail("%KO" + arg.substr(0, 20) + ": the border must be 0 .. 1 m");
+  if (in_sr_ || !blocks_.empty())
+    fail("a knockout around objects (%KO" + arg.substr(0, 20) +
+         ") inside a step-and-repeat or a block aperture is not supported");
+  knockout_open_ = true;
+  knockout_dark_ = arg[0] == 'D';
+  knockout_border_nm_ = border * unit_nm_;
+  knockout_line_ = line_;
+  knockout_start_ = batches_.size();
+  batches_.push_back({dark_, {}, {}});  // the objects it surrounds start a batch of their own
+}
+
+// Ends an open knockout: its box goes in before the objects it surrounds.
+void GerberReader::close_knockout() {
+  if (!knockout_open_) return;
+  knockout_open_ = false;
+  if (in_sr_ || !blocks_.empty())
+    fail(
+        "a knockout around objects that ends inside a step-and-repeat or a block aperture is "
+        "not supported");
+  bool any = false;
+  cInt x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  for (size_t b = knockout_start_; b < batches_.size(); ++b)
+    for (const Path& p : batches_[b].paths)
+      for (const IntPoint& v : p) {
+        x0 = any ? std::min(x0, v.X) : v.X, x1 = any ? std::max(x1, v.X) : v.X;
+        y0 = any ? std::min(y0, v.Y) : v.Y, y1 = any ? std::max(y1, v.Y) : v.Y;
+        any = true;
+      }
+  if (!any) return;
+  const cInt m = static_cast<cInt>(std::llround(knockout_border_nm_));
+  Batch box;
+  box.dark = knockout_dark_;
+  box.paths = {{{x0 - m, y0 - m}, {x1 + m, y0 - m}, {x1 + m, y1 + m}, {x0 - m, y1 + m}}};
+  box.starts = {0};
+  count_vertices(4);
+  batches_.insert(batches_.begin() + static_cast<long>(knockout_start_), std::move(box));
+  notes_.push_back({std::string("warning: %KO") + (knockout_dark_ ? "D" : "C") +
+                        " around the objects that follow (deprecated knockout) applied: their "
+                        "box grown by the border " +
+                        (knockout_dark_ ? "filled" : "cleared") + " before them",
+                    knockout_line_, 1});
 }
 
 // Scale, mirror, rotate about the origin; exact for the quarter turns and mirrors.
@@ -649,6 +760,14 @@ void GerberReader::transform_image(Paths& paths) const {
         v = IntPoint(static_cast<cInt>(std::llround(c * x - s * y)),
                      static_cast<cInt>(std::llround(s * x + c * y)));
       }
+    return;
+  }
+  if (swap_ab_) {
+    // Alone (image_transform() refuses it with another); a mirror: the orientation flips.
+    for (Path& p : paths) {
+      for (IntPoint& v : p) v = IntPoint(v.Y, v.X);
+      ClipperLib::ReversePath(p);
+    }
     return;
   }
   if (rotation_deg_ == 0 && !mirror_a_ && !mirror_b_ && scale_a_ == 1 && scale_b_ == 1) return;
@@ -790,18 +909,37 @@ void GerberReader::define_aperture(const std::string& s, size_t k, int number_d)
   }
   if (name.empty()) fail("aperture D" + std::to_string(number_d) + " has no template name");
   need_units("aperture D" + std::to_string(number_d));
-  const double u = unit_nm_, tol = opt_.arc_tolerance_nm;
-  // Only lengths are sizes: a polygon's vertex count and rotation, and a macro's parameters
-  // (angles among them: 45 deg is not 1.1 m in an inch file), are not; a macro's shape is
-  // checked once evaluated.
-  const bool standard = name == "C" || name == "R" || name == "O" || name == "P";
-  for (size_t i = 0; i < params.size() && standard; ++i) {
+  Aperture ap;
+  if (name == "C" || name == "R" || name == "O" || name == "P") {
+    check_standard_sizes(name, params, number_d);
+    size_t hole_at = 0;
+    ap = standard_aperture(name, params, number_d, &hole_at);
+    if (params.size() > hole_at) punch_hole(&ap, params, hole_at);
+  } else {
+    ap = macro_aperture(name, params, number_d);
+  }
+  if (apertures_.count(number_d)) note("aperture D" + std::to_string(number_d) + " redefined");
+  apertures_[number_d] = std::move(ap);
+}
+
+// Only lengths are sizes: a polygon's vertex count and rotation are not (nor a macro's
+// parameters, angles among them: 45 deg is not 1.1 m in an inch file; a macro's shape is
+// checked once evaluated).
+void GerberReader::check_standard_sizes(const std::string& name, const std::vector<double>& params,
+                                        int number_d) const {
+  for (size_t i = 0; i < params.size(); ++i) {
     const bool length = name != "P" || i == 0 || i >= 3;
-    if (length && !(std::fabs(params[i] * u) <= kMaxApertureNm)) {
+    if (length && !(std::fabs(params[i] * unit_nm_) <= kMaxApertureNm)) {
       fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
     }
     if (!std::isfinite(params[i])) fail("aperture D" + std::to_string(number_d) + ": bad number");
   }
+}
+
+// C, R, O or P; *hole_at: where its hole's parameters start.
+Aperture GerberReader::standard_aperture(const std::string& name, const std::vector<double>& params,
+                                         int number_d, size_t* hole_at_out) {
+  const double u = unit_nm_, tol = opt_.arc_tolerance_nm;
   Aperture ap;
   auto need = [&](size_t lo, size_t hi) {
     if (params.size() < lo || params.size() > hi) {
@@ -856,41 +994,51 @@ void GerberReader::define_aperture(const std::string& s, size_t k, int number_d)
           regular_polygon_path({0, 0}, params[0] * u, static_cast<int>(vertices), rot));
     }
     hole_at = 3;
+  }
+  *hole_at_out = hole_at;
+  return ap;
+}
+
+// A standard aperture's hole: a circle (one parameter) or a rectangle (two, deprecated).
+void GerberReader::punch_hole(Aperture* ap, const std::vector<double>& params, size_t hole_at) {
+  const double u = unit_nm_, tol = opt_.arc_tolerance_nm;
+  Path hole;
+  if (params.size() == hole_at + 1) {
+    hole = circle_path({0, 0}, params[hole_at] * u, tol);
   } else {
-    auto m = macros_.find(name);
-    if (m == macros_.end()) {
-      fail("aperture D" + std::to_string(number_d) + " uses '" + name +
-           "', which is neither C, R, O, P nor a macro defined before it");
-    }
-    ap.type = 'M';
-    try {
-      ap.shape = evaluate_macro(m->second, params, u, tol);
-    } catch (const MacroError& e) {
-      fail(std::string(e.what()) + " (macro statement at line " + std::to_string(e.line) + ")");
-    }
-    for (const Path& p : ap.shape) {
-      for (const IntPoint& v : p) {
-        if (std::fabs(static_cast<double>(v.X)) > kMaxApertureNm ||
-            std::fabs(static_cast<double>(v.Y)) > kMaxApertureNm)
-          fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
-      }
+    hole = rect_path({0, 0}, params[hole_at] * u, params[hole_at + 1] * u);
+    note("rectangular aperture hole (deprecated)");
+  }
+  if (params[hole_at] > 0) {
+    ap->shape = difference_of(ap->shape, {hole});
+    ap->has_hole = true;
+  }
+}
+
+// An aperture from a macro defined before it, its shape checked once evaluated.
+Aperture GerberReader::macro_aperture(const std::string& name, const std::vector<double>& params,
+                                      int number_d) {
+  const double u = unit_nm_, tol = opt_.arc_tolerance_nm;
+  Aperture ap;
+  auto m = macros_.find(name);
+  if (m == macros_.end()) {
+    fail("aperture D" + std::to_string(number_d) + " uses '" + name +
+         "', which is neither C, R, O, P nor a macro defined before it");
+  }
+  ap.type = 'M';
+  try {
+    ap.shape = evaluate_macro(m->second, params, u, tol);
+  } catch (const MacroError& e) {
+    fail(std::string(e.what()) + " (macro statement at line " + std::to_string(e.line) + ")");
+  }
+  for (const Path& p : ap.shape) {
+    for (const IntPoint& v : p) {
+      if (std::fabs(static_cast<double>(v.X)) > kMaxApertureNm ||
+          std::fabs(static_cast<double>(v.Y)) > kMaxApertureNm)
+        fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
     }
   }
-  if (ap.type != 'M' && params.size() > hole_at) {
-    Path hole;
-    if (params.size() == hole_at + 1) {
-      hole = circle_path({0, 0}, params[hole_at] * u, tol);
-    } else {
-      hole = rect_path({0, 0}, params[hole_at] * u, params[hole_at + 1] * u);
-      note("rectangular aperture hole (deprecated)");
-    }
-    if (params[hole_at] > 0) {
-      ap.shape = difference_of(ap.shape, {hole});
-      ap.has_hole = true;
-    }
-  }
-  if (apertures_.count(number_d)) note("aperture D" + std::to_string(number_d) + " redefined");
-  apertures_[number_d] = std::move(ap);
+  return ap;
 }
 
 void GerberReader::aperture_macro(const std::vector<std::string>& parts,
@@ -1130,68 +1278,15 @@ void GerberReader::word_block(const std::string& raw) {
       return std::stoi(value);
     };
     switch (letter) {
-      case 'G': {
-        const int g = code();
-        if (g == 1 || g == 2 || g == 3) {
-          interpolation_ = g;
-        } else if (g == 36) {
-          if (region_) fail("G36 inside a region (missing G37)");
-          region_ = true;
-          contour_.clear();
-          contour_as_gerbv_.clear();
-        } else if (g == 37) {
-          if (!region_) fail("G37 without G36");
-          finish_contour();
-          region_ = false;
-        } else if (g == 74 || g == 75) {
-          quadrant_ = g;
-          if (g == 74) note("G74 single-quadrant arcs (deprecated)");
-        } else if (g == 54 || g == 55) {
-          note("G" + value + " before an aperture number (deprecated) ignored");
-        } else if (g == 70) {
-          note("G70 inch units (deprecated)");
-          set_units(25.4e6, "G70");
-        } else if (g == 71) {
-          note("G71 millimetre units (deprecated)");
-          set_units(1e6, "G71");
-        } else if (g == 90) {
-          incremental_ = false;
-          note("G90 absolute coordinates (deprecated)");
-        } else if (g == 91) {
-          incremental_ = true;
-          note("G91 incremental coordinates (deprecated)");
-        } else {
-          fail("unknown or unsupported G code G" + value);
-        }
+      case 'G':
+        g_code(code(), value);
         break;
-      }
-      case 'D': {
-        const int dn = code();
-        if (dn >= 1 && dn <= 3) {
-          if (d != -1) fail("two operations (D01/D02/D03) in one block");
-          d = dn;
-        } else {  // select an aperture (D10 and up; lower numbers in old files)
-          if (bad_apertures_.count(dn))
-            fail("D" + value +
-                 " selects an aperture whose definition was refused: " + bad_apertures_[dn]);
-          if (!apertures_.count(dn)) fail("D" + value + " selects an aperture that is not defined");
-          if (region_) note("an aperture selected inside a region (not allowed by the spec)");
-          aperture_ = dn;
-        }
+      case 'D':
+        d_code(code(), value, &d);
         break;
-      }
-      case 'M': {
-        const int m = code();
-        if (m == 2) {
-          if (in_sr_) close_step_repeat();
-          done_ = true;
-        } else if (m == 0 || m == 1) {
-          note("M0" + value.substr(value.size() - 1) + " (deprecated stop) ignored");
-        } else {
-          fail("unknown M code M" + value);
-        }
+      case 'M':
+        m_code(code(), value);
         break;
-      }
       case 'X':
         xs = value;
         x = &xs;
@@ -1220,6 +1315,63 @@ void GerberReader::word_block(const std::string& raw) {
     d = last_d_;
   }
   if (d != -1) operate(d, x, y, i, j);
+}
+
+// A G code of a data block: interpolation, regions, quadrants, and the deprecated ones.
+void GerberReader::g_code(int g, const std::string& value) {
+  if (g == 1 || g == 2 || g == 3) {
+    interpolation_ = g;
+  } else if (g == 36) {
+    if (region_) fail("G36 inside a region (missing G37)");
+    region_ = true;
+    contour_.clear();
+    contour_as_gerbv_.clear();
+  } else if (g == 37) {
+    if (!region_) fail("G37 without G36");
+    finish_contour();
+    region_ = false;
+  } else if (g == 74 || g == 75) {
+    quadrant_ = g;
+    if (g == 74) note("G74 single-quadrant arcs (deprecated)");
+  } else if (g == 54 || g == 55) {
+    note("G" + value + " before an aperture number (deprecated) ignored");
+  } else if (g == 70 || g == 71) {
+    note(g == 70 ? "G70 inch units (deprecated)" : "G71 millimetre units (deprecated)");
+    set_units(g == 70 ? 25.4e6 : 1e6, g == 70 ? "G70" : "G71");
+  } else if (g == 90 || g == 91) {
+    incremental_ = g == 91;
+    note(g == 90 ? "G90 absolute coordinates (deprecated)"
+                 : "G91 incremental coordinates (deprecated)");
+  } else {
+    fail("unknown or unsupported G code G" + value);
+  }
+}
+
+// D01/D02/D03 (the block's operation, into *d), or an aperture selected.
+void GerberReader::d_code(int dn, const std::string& value, int* d) {
+  if (dn >= 1 && dn <= 3) {
+    if (*d != -1) fail("two operations (D01/D02/D03) in one block");
+    *d = dn;
+    return;
+  }
+  // Select an aperture (D10 and up; lower numbers in old files).
+  if (bad_apertures_.count(dn))
+    fail("D" + value + " selects an aperture whose definition was refused: " + bad_apertures_[dn]);
+  if (!apertures_.count(dn)) fail("D" + value + " selects an aperture that is not defined");
+  if (region_) note("an aperture selected inside a region (not allowed by the spec)");
+  aperture_ = dn;
+}
+
+// M02 ends the file; M00/M01 (stops) are ignored.
+void GerberReader::m_code(int m, const std::string& value) {
+  if (m == 2) {
+    if (in_sr_) close_step_repeat();
+    done_ = true;
+  } else if (m == 0 || m == 1) {
+    note("M0" + value.substr(value.size() - 1) + " (deprecated stop) ignored");
+  } else {
+    fail("unknown M code M" + value);
+  }
 }
 
 double GerberReader::number(const std::string& s, const char* what) const {
@@ -1415,68 +1567,29 @@ void GerberReader::draw_line(IntPoint from, IntPoint to) {
   add_object(union_of(swept));
 }
 
+// The sweep from a to b about c (radians; negative: clockwise); a full turn when they meet and
+// full_if_same.
+double arc_sweep(const VecNm& a, const VecNm& b, const VecNm& c, bool clockwise,
+                 bool full_if_same) {
+  const double a0 = std::atan2(a.y - c.y, a.x - c.x);
+  const double a1 = std::atan2(b.y - c.y, b.x - c.x);
+  double s = a1 - a0;
+  if (clockwise) {
+    if (s > 0 || (s == 0 && full_if_same)) s -= 2 * kPi;
+  } else {
+    if (s < 0 || (s == 0 && full_if_same)) s += 2 * kPi;
+  }
+  return s;
+}
+
 void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool region) {
-  const bool clockwise = interpolation_ == 2;
   const VecNm a{static_cast<double>(from.X), static_cast<double>(from.Y)};
   const VecNm b{static_cast<double>(to.X), static_cast<double>(to.Y)};
-  auto sweep_of = [&](VecNm c, bool full_if_same) {
-    const double a0 = std::atan2(a.y - c.y, a.x - c.x);
-    const double a1 = std::atan2(b.y - c.y, b.x - c.x);
-    double s = a1 - a0;
-    if (clockwise) {
-      if (s > 0 || (s == 0 && full_if_same)) s -= 2 * kPi;
-    } else {
-      if (s < 0 || (s == 0 && full_if_same)) s += 2 * kPi;
-    }
-    return s;
-  };
   VecNm c;
   double sweep = 0;
-  if (quadrant_ == 0) {
-    note("an arc before G74/G75: single-quadrant mode assumed (the old default)");
-    quadrant_ = 74;
-  }
-  if (quadrant_ == 75) {
-    c = {a.x + static_cast<double>(i), a.y + static_cast<double>(j)};
-    sweep = sweep_of(c, from == to);
-  } else {
-    // Single quadrant: I and J are unsigned; the centre is the one giving an arc of at most
-    // 90 degrees with the closest radii.
-    double best = -1;
-    for (int sx = -1; sx <= 1; sx += 2) {
-      for (int sy = -1; sy <= 1; sy += 2) {
-        const VecNm cc{a.x + sx * std::fabs(static_cast<double>(i)),
-                       a.y + sy * std::fabs(static_cast<double>(j))};
-        const double s = sweep_of(cc, false);
-        if (std::fabs(s) > kPi / 2 + 1e-6) continue;
-        const double err =
-            std::fabs(std::hypot(a.x - cc.x, a.y - cc.y) - std::hypot(b.x - cc.x, b.y - cc.y));
-        if (best < 0 || err < best) {
-          best = err;
-          c = cc;
-          sweep = s;
-        }
-      }
-    }
-    if (best < 0) fail("single-quadrant arc (G74) with no centre giving 90 degrees or less");
-  }
+  arc_centre(a, b, from == to, i, j, &c, &sweep);
   const double r0 = std::hypot(a.x - c.x, a.y - c.y), r1 = std::hypot(b.x - c.x, b.y - c.y);
-  // A centre on the start or end point: a zero-radius arc, which gerbv and pcb2gcode draw as
-  // the straight line between its ends (a point when they meet).
-  const bool degenerate = std::min(r0, r1) <= 1000.0;
-  if (degenerate) {
-    note(
-        "warning: an arc whose centre is its own start or end point (zero radius) drawn as "
-        "a straight line");
-  } else if (std::fabs(r0 - r1) > arc_mismatch_limit_nm(r0, opt_.max_arc_radius_mismatch_nm)) {
-    char msg[200];
-    std::snprintf(msg, sizeof msg,
-                  "arc end point is not on its circle (radius %.3f mm at the start, %.3f mm at "
-                  "the end; more than %.3f mm apart is not an arc a reader can trust)",
-                  r0 * 1e-6, r1 * 1e-6,
-                  arc_mismatch_limit_nm(r0, opt_.max_arc_radius_mismatch_nm) * 1e-6);
-    fail(msg);
-  }
+  const bool degenerate = zero_radius_arc(r0, r1);
   // An ill-defined arc (its centre rounded, as 3-decimal inch I/J are): we draw it through
   // both end points, gerbv keeps the start radius up to the end angle. Copper is where
   // either reading puts it, so no tool cuts where a common viewer shows copper.
@@ -1495,19 +1608,91 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
     if (!pts.empty()) pts.back() = to;
     if (ill_defined) append_arc(at_start_radius, c, r0, r0, a0, sweep, opt_.arc_tolerance_nm);
   }
-  if (region) {
-    if (contour_.empty()) contour_.push_back(from);
-    // gerbv's contour: a line to the arc's start, the arc at the start radius, and the next
-    // segment from where that arc ends.
-    if (ill_defined && contour_as_gerbv_.empty()) contour_as_gerbv_ = contour_;
-    if (!contour_as_gerbv_.empty()) {
-      if (contour_as_gerbv_.back() != from) contour_as_gerbv_.push_back(from);
-      const Path& theirs = ill_defined ? at_start_radius : pts;
-      contour_as_gerbv_.insert(contour_as_gerbv_.end(), theirs.begin(), theirs.end());
-    }
-    contour_.insert(contour_.end(), pts.begin(), pts.end());
-    return;
+  if (region)
+    region_arc(from, pts, ill_defined ? &at_start_radius : nullptr);
+  else
+    stroke_arc(from, pts, ill_defined ? &at_start_radius : nullptr);
+}
+
+// The arc's centre and sweep from its I, J: signed offsets (G75), or unsigned ones whose signs
+// give an arc of at most 90 degrees with the closest radii (G74).
+void GerberReader::arc_centre(const VecNm& a, const VecNm& b, bool same_point, cInt i, cInt j,
+                              VecNm* centre, double* sweep_out) {
+  const bool clockwise = interpolation_ == 2;
+  VecNm c;
+  double sweep = 0;
+  if (quadrant_ == 0) {
+    note("an arc before G74/G75: single-quadrant mode assumed (the old default)");
+    quadrant_ = 74;
   }
+  if (quadrant_ == 75) {
+    c = {a.x + static_cast<double>(i), a.y + static_cast<double>(j)};
+    sweep = arc_sweep(a, b, c, clockwise, same_point);
+  } else {
+    // Single quadrant: I and J are unsigned; the centre is the one giving an arc of at most
+    // 90 degrees with the closest radii.
+    double best = -1;
+    for (int sx = -1; sx <= 1; sx += 2) {
+      for (int sy = -1; sy <= 1; sy += 2) {
+        const VecNm cc{a.x + sx * std::fabs(static_cast<double>(i)),
+                       a.y + sy * std::fabs(static_cast<double>(j))};
+        const double s = arc_sweep(a, b, cc, clockwise, false);
+        if (std::fabs(s) > kPi / 2 + 1e-6) continue;
+        const double err =
+            std::fabs(std::hypot(a.x - cc.x, a.y - cc.y) - std::hypot(b.x - cc.x, b.y - cc.y));
+        if (best < 0 || err < best) {
+          best = err;
+          c = cc;
+          sweep = s;
+        }
+      }
+    }
+    if (best < 0) fail("single-quadrant arc (G74) with no centre giving 90 degrees or less");
+  }
+  *centre = c;
+  *sweep_out = sweep;
+}
+
+// True for a zero-radius arc (a centre on its start or end point), which gerbv and pcb2gcode
+// draw as the straight line between its ends (a point when they meet); refuses an arc whose
+// end lies too far off its circle.
+bool GerberReader::zero_radius_arc(double r0, double r1) {
+  const bool degenerate = std::min(r0, r1) <= 1000.0;
+  if (degenerate) {
+    note(
+        "warning: an arc whose centre is its own start or end point (zero radius) drawn as "
+        "a straight line");
+  } else if (std::fabs(r0 - r1) > arc_mismatch_limit_nm(r0, opt_.max_arc_radius_mismatch_nm)) {
+    char msg[200];
+    std::snprintf(msg, sizeof msg,
+                  "arc end point is not on its circle (radius %.3f mm at the start, %.3f mm at "
+                  "the end; more than %.3f mm apart is not an arc a reader can trust)",
+                  r0 * 1e-6, r1 * 1e-6,
+                  arc_mismatch_limit_nm(r0, opt_.max_arc_radius_mismatch_nm) * 1e-6);
+    fail(msg);
+  }
+  return degenerate;
+}
+
+// An arc in a region's contour; theirs: the same arc as gerbv draws it (at its start radius),
+// for an ill-defined arc.
+void GerberReader::region_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill) {
+  const bool ill_defined = theirs_if_ill != nullptr;
+  if (contour_.empty()) contour_.push_back(from);
+  // gerbv's contour: a line to the arc's start, the arc at the start radius, and the next
+  // segment from where that arc ends.
+  if (ill_defined && contour_as_gerbv_.empty()) contour_as_gerbv_ = contour_;
+  if (!contour_as_gerbv_.empty()) {
+    if (contour_as_gerbv_.back() != from) contour_as_gerbv_.push_back(from);
+    const Path& theirs = ill_defined ? *theirs_if_ill : pts;
+    contour_as_gerbv_.insert(contour_as_gerbv_.end(), theirs.begin(), theirs.end());
+  }
+  contour_.insert(contour_.end(), pts.begin(), pts.end());
+}
+
+// An arc stroked with the current (circular) aperture; for an ill-defined arc, copper where
+// either reading puts it.
+void GerberReader::stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill) {
   const Aperture& ap = current_aperture();
   if (ap.type != 'C') {
     fail("an arc drawn with a non-circular aperture D" + std::to_string(aperture_));
@@ -1521,9 +1706,9 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
   off.AddPath(line, ClipperLib::jtRound, ClipperLib::etOpenRound);
   Paths out;
   off.Execute(out, ap.circle_d_nm / 2);
-  if (ill_defined) {
+  if (theirs_if_ill) {
     Path theirs{from};
-    theirs.insert(theirs.end(), at_start_radius.begin(), at_start_radius.end());
+    theirs.insert(theirs.end(), theirs_if_ill->begin(), theirs_if_ill->end());
     out = both_readings(out, sweep_open({theirs}, ap.circle_d_nm / 2, opt_.arc_tolerance_nm));
   }
   add_object(std::move(out));

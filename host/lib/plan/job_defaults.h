@@ -98,8 +98,24 @@ inline constexpr Range kPassesRange{1, 50};              // isolation passes, an
 inline constexpr Range kClearingToolRangeMm{0.0, 10.0};  // 0: no clearing tool
 inline constexpr Range kAlignDiameterRangeMm{0.1, 10.0};
 inline constexpr Range kAlignDepthRangeMm{0.1, 20.0};
-inline constexpr double kAlignDiameterMm = 3.0;  // alignment hole (pin) diameter
-inline constexpr double kAlignDepthMm = 3.0;     // through the blank into the spoil board
+// The rest of the board options (host/cli/option_ranges.cpp holds the table by name).
+inline constexpr Range kOverlapRange{0.0, 0.9};  // a fraction of the tool width
+inline constexpr Range kClearanceRangeMm{0.0, 0.1};
+inline constexpr Range kIsolationDepthRangeMm{0.001, 5.0};
+inline constexpr Range kDrillDepthRangeMm{0.01, 20.0};
+inline constexpr Range kHeightAboveBoardRangeMm{0.1, 50.0};  // travel and drill start
+inline constexpr Range kFeedRangeMmPerS{0.1, 60.0};          // every feed and plunge feed
+inline constexpr Range kCutterRangeMm{0.1, 10.0};
+inline constexpr Range kCutDepthRangeMm{0.01, 20.0};  // the cut-out's depth and its step
+inline constexpr Range kTabWidthRangeMm{0.0, 100.0};  // 0: no tabs
+inline constexpr Range kTabsRange{0, 100};            // 0: no tabs
+inline constexpr Range kTabSpacingRangeMm{0.0, 10000.0};
+inline constexpr Range kTabHeightRangeMm{0.0, 20.0};
+inline constexpr Range kMarginRangeMm{0.0, 100.0};
+inline constexpr Range kWorkAreaRangeMm{1.0, 10000.0};      // each side
+inline constexpr Range kMachinePositionRangeMm{-1e4, 1e4};  // a measured position
+inline constexpr double kAlignDiameterMm = 3.0;             // alignment hole (pin) diameter
+inline constexpr double kAlignDepthMm = 3.0;  // through the blank into the spoil board
 
 }  // namespace host::defaults
 

@@ -228,8 +228,10 @@ TEST(BoardCli, ClearingToolIsASecondToolWithItsBytesReported) {
   EXPECT_EQ(j["check"]["copper_hits"], 0);
   const ToolRun same =
       run("board " + dir + " -o " + dir + "/out --tool-width 0.1 --passes 8 --clearing-tool 0.1");
-  EXPECT_EQ(same.code, 1) << same.err;
-  EXPECT_NE(same.err.find("the clearing tool must be wider"), std::string::npos) << same.err;
+  EXPECT_EQ(same.code, 2) << same.err;  // bad input naming both options (was 1, unnamed)
+  EXPECT_NE(same.err.find("--clearing-tool (0.1 mm) must be wider than --tool-width (0.1 mm)"),
+            std::string::npos)
+      << same.err;
 }
 
 // A double-sided board's second setup, simulated end to end: the flipped blank sits 0.3 mm

@@ -4,12 +4,15 @@
 #include <gtest/gtest.h>
 #include <unistd.h>  // getpid
 
+#include <fmt/format.h>  // fmt::format
+
 #include <cmath>  // std::cos, std::sin
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "host/cli/option_ranges.h"
 #include "host_tests/host/cli/tool_run.h"
 
 namespace {
@@ -174,6 +177,110 @@ TEST(BoardOptionChecks, OptionsThatWouldBeIgnoredAreRefused) {
   // What they are for still plans.
   EXPECT_EQ(run(board + "--clearing-tool 0.8 --passes 4 --narrow-passes 2").code, 0);
   EXPECT_EQ(run(board + "--align-holes '10,-20'").code, 0);
+}
+
+// ---- One range per option, the same in every command (issue 24, F4) ----
+
+using host::cli::option_ranges;
+using host::cli::OptionRange;
+
+std::string bound(double v) {
+  return fmt::format("{:g}", v);
+}
+
+// Just outside a bound: a whole step for a count, a thousandth of the range otherwise.
+std::string outside(const OptionRange& r, bool below) {
+  const double step = r.integer ? 1.0 : (r.max - r.min) * 1e-3;
+  return bound(below ? r.min - step : r.max + step);
+}
+
+std::string values(const OptionRange& r, const std::string& v) {
+  const int n = std::string(r.option) == "--work"             ? 2
+                : std::string(r.option) == "--align-measured" ? 4
+                                                              : 1;
+  std::string out;
+  for (int k = 0; k < n; ++k) out += " " + v;
+  return out;
+}
+
+// Every bound of the table is allowed, and a step beyond it is not.
+TEST(BoardOptionRanges, EveryBoundOfTheTableIsInsideAndAStepBeyondIsOutside) {
+  for (const OptionRange& r : option_ranges()) {
+    EXPECT_LT(r.min, r.max) << r.option;
+    EXPECT_EQ(host::cli::range_refusal(r, bound(r.min)), "") << r.option;
+    EXPECT_EQ(host::cli::range_refusal(r, bound(r.max)), "") << r.option;
+    for (const bool below : {true, false}) {
+      const std::string v = outside(r, below);
+      EXPECT_EQ(host::cli::range_refusal(r, v),
+                v + " is outside the allowed range " + bound(r.min) + " .. " + bound(r.max) +
+                    (*r.unit ? std::string(" ") + r.unit : std::string()))
+          << r.option;
+    }
+  }
+}
+
+// A walk over the table through the built tool: in every command that takes the board options,
+// a value a step beyond either bound is a usage error (exit 2) naming the option and its range,
+// before any file is read.
+TEST(BoardOptionRanges, EveryCommandRefusesAValueBeyondEitherBoundNamingTheOption) {
+  const std::string dir = write_board("ranges");
+  int checked = 0;
+  for (const std::string command : {"board", "points", "run", "send", "probe"}) {
+    const std::string help = run(command + " --help").out;
+    for (const OptionRange& r : option_ranges()) {
+      if (help.find(std::string("  ") + r.option + " ") == std::string::npos) continue;
+      ++checked;
+      // The range as the help shows it.
+      EXPECT_NE(help.find(std::string(r.option) + " " + (r.integer ? "INT" : "FLOAT") + ":in [" +
+                          bound(r.min) + " .. " + bound(r.max) + "]"),
+                std::string::npos)
+          << command << " " << r.option;
+      for (const bool below : {true, false}) {
+        const std::string v = outside(r, below);
+        const std::string args = command + " " + dir + " " + r.option + values(r, v);
+        const ToolRun t = run(args);
+        EXPECT_EQ(t.code, 2) << args << "\n" << t.err;
+        EXPECT_NE(t.err.find(std::string(r.option) + ": " + v + " is outside the allowed range " +
+                             bound(r.min) + " .. " + bound(r.max)),
+                  std::string::npos)
+            << args << "\n"
+            << t.err;
+      }
+    }
+  }  // board, run, send and probe have every option of the table; points all but the machine's.
+  EXPECT_EQ(checked, 4 * static_cast<int>(option_ranges().size()) +
+                         static_cast<int>(option_ranges().size()) - 4);
+}
+
+// The outside tester's findings: values planned with and refused later as a failed job
+// (exit 1) by a message that did not name the option, or accepted.
+TEST(BoardOptionRanges, TheTestersValuesAreUsageErrorsNamingTheOption) {
+  const std::string dir = write_board("tester");
+  const std::string board = "board " + dir + " --no-plot -o " + dir + "/out ";
+  struct Case {
+    std::string args, says;
+  };
+  const Case cases[] = {
+      {"--depth 0", "--depth: 0 is outside the allowed range 0.001 .. 5 mm"},
+      {"--drill-feed 0", "--drill-feed: 0 is outside the allowed range 0.1 .. 60 mm/s"},
+      {"--cut-step 0", "--cut-step: 0 is outside the allowed range 0.01 .. 20 mm"},
+      {"--z-up -1", "--z-up: -1 is outside the allowed range 0.1 .. 50 mm"},
+      {"--tab-width -5", "--tab-width: -5 is outside the allowed range 0 .. 100 mm"},
+      {"--depth 0x1p-3", "--depth: '0x1p-3' is not a decimal number"},
+      {"--passes 0x3", "--passes: '0x3' is not a decimal number"},
+      {"--clearing-tool 0.1 --passes 3",
+       "--clearing-tool (0.1 mm) must be wider than --tool-width (0.2 mm)"},
+      {"--clearing-tool 0.8 --passes 3 --mill-all",
+       "--clearing-tool cannot be combined with --mill-all"},
+      {"--tab-height 1.8", "--tab-height (1.8 mm) must be below --cut-depth (1.8 mm)"},
+  };
+  for (const Case& c : cases) {
+    const ToolRun r = run(board + c.args);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;
+  }
+  // A plain decimal with an exponent is a decimal.
+  EXPECT_EQ(run(board + "--depth 5e-2").code, 0);
 }
 
 }  // namespace

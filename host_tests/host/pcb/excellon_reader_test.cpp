@@ -147,8 +147,54 @@ TEST(ExcellonWriters, AnOversizeToolLeavesOutItsHolesNotTheFile) {
       "big.drl");
   ASSERT_EQ(l.holes.size(), 2u);
   EXPECT_EQ(l.holes[1].at.x, 38100000);
-  EXPECT_TRUE(has_note(l, "tool T2 (139.7 mm) is larger than 100 mm, not a drill: its 2 hole(s)"))
+  EXPECT_TRUE(has_note(l,
+                       "tool T2 (139.7 mm) is larger than 100 mm, not a drill: its 2 holes "
+                       "left out"))
       << ::testing::PrintToString(l.notes);
+}
+
+// Excellon's repeat hole: "R3X2.0" drills the last hole 3 more times, 2 mm apart (refused as
+// an unknown command; from the corpus).
+TEST(ExcellonWriters, RepeatHoleDrillsTheLastHoleAgainStepByStep) {
+  const PcbLayer l = read_excellon_text(
+      "M48\nMETRIC\nT1C0.8\n%\nG90\nG05\nT1\nX1.0Y1.0\nR3X2.0\nR2Y-0.5X0.5\nM30\n", "r.drl");
+  ASSERT_EQ(l.holes.size(), 6u);
+  for (int k = 0; k < 4; ++k) expect_hole(l.holes[k], (1 + 2 * k) * 1000000, 1000000, 800000, 1);
+  expect_hole(l.holes[4], 7500000, 500000, 800000, 1);
+  expect_hole(l.holes[5], 8000000, 0, 800000, 1);
+}
+
+// Holes and slots are counted apart, in words ("its 3 hole(s) or slot(s)" for 2 holes and a
+// slot).
+TEST(ExcellonWriters, AnOversizeToolsWarningCountsHolesAndSlotsApart) {
+  const PcbLayer l = read_excellon_text(
+      "M48\nMETRIC\nT1C0.8\nT2C139.7\n%\nG90\nG05\nT1\nX1.0Y1.0\nT2\nX2.0Y2.0\nX3.0Y2.0\n"
+      "G00X0Y0\nM15\nG01X50.0Y0\nM16\nM30\n",
+      "big.drl");
+  ASSERT_EQ(l.holes.size(), 1u);
+  EXPECT_TRUE(l.slots.empty());
+  EXPECT_TRUE(has_note(l,
+                       "warning: tool T2 (139.7 mm) is larger than 100 mm, not a drill: its 2 "
+                       "holes and 1 slot left out"))
+      << ::testing::PrintToString(l.notes);
+}
+
+// When the only tool is over 100 mm nothing is left to drill: refused saying so (it said that
+// no tool was defined, or read as an empty drill file and the board said "nothing to do").
+TEST(ExcellonWriters, OnlyAnOversizeToolIsRefusedSayingSo) {
+  for (const std::string& body : {std::string("T1\nX10.0Y10.0\n"), std::string("X10.0Y10.0\n")}) {
+    try {
+      read_excellon_text("M48\nMETRIC\nT1C139.7\n%\nG90\nG05\n" + body + "M30\n", "big.drl");
+      ADD_FAILURE() << "read: " << body;
+    } catch (const PcbReadError& e) {
+      EXPECT_NE(std::string(e.what()).find(
+                    "every hole and slot is of a tool larger than 100 mm, which is not a drill "
+                    "(tool T1 (139.7 mm) is larger than 100 mm, not a drill: its 1 hole left "
+                    "out): nothing is left to drill"),
+                std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 TEST(ExcellonWriters, UnitsBeforeM48AndAPercentFirstLine) {  // old EAGLE .drd, Fritzing .txt

@@ -250,10 +250,81 @@ TEST(GerberLegacyParameters, ANegativeImageIsItsBoxLessWhatIsDrawn) {
       "%FSLAX46Y46*%\n%MOMM*%\n%IPNEG*%\n%ADD10R,1X1*%\nD10*\nX0Y0D03*\nX10000000Y0D03*\n"
       "M02*\n",
       "neg-F.Cu.gbr");
-  EXPECT_NEAR(area_mm2(l.polygons_nm), 11.0 - 2.0, 1e-6);
+  // gerbv's picture has a border of 5 % of the width and the height: 12.1 x 1.1 mm.
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 12.1 * 1.1 - 2.0, 1e-6);
   EXPECT_TRUE(covered(l, 5, 0));
   EXPECT_FALSE(covered(l, 0, 0));
   EXPECT_TRUE(has_note(l, "warning: %IPNEG (deprecated negative image) applied"));
+}
+
+// A round pad alone in a negative image: its bounding box less the pad left four slivers of
+// copper in the corners, each an island to isolate. With gerbv's border, one ring.
+TEST(GerberLegacyParameters, ANegativeImageOfOnePadIsOneRingNotSlivers) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%IPNEG*%\n%ADD10C,1*%\nD10*\nX0Y0D03*\nM02*\n", "neg1-F.Cu.gbr");
+  int outers = 0;
+  for (const auto& p : l.polygons_nm) outers += ClipperLib::Orientation(p) ? 1 : 0;
+  EXPECT_EQ(outers, 1);
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 1.1 * 1.1 - kPi / 4, 1e-3);
+  EXPECT_TRUE(covered(l, 0.52, 0));  // beyond the pad's edge, inside the border
+}
+
+// A dark knockout box (%KOD) is copper where it stands, as gerbv draws it (it was refused), and
+// axis select AYBX swaps x and y (it was refused): both from the corpus of real files.
+TEST(GerberLegacyParameters, ADarkKnockoutIsCopperAndAxisSelectSwapsXAndY) {
+  const PcbLayer dark = legacy("%KODX0Y0I2J1*%\n");
+  EXPECT_NEAR(area_mm2(dark.polygons_nm), 1.0 + 2.0, 1e-6);
+  EXPECT_TRUE(covered(dark, 1.9, 0.9));
+  EXPECT_TRUE(has_note(dark, "warning: %KOD box (deprecated knockout, dark) applied"));
+  const PcbLayer swapped = legacy("%ASAYBX*%\n");
+  EXPECT_TRUE(covered(swapped, 5, 10));
+  EXPECT_FALSE(covered(swapped, 10, 5));
+  EXPECT_NEAR(area_mm2(swapped.polygons_nm), 1.0, 1e-9);  // orientation kept: positive
+  EXPECT_TRUE(has_note(swapped, "warning: %ASAYBX (deprecated axis select) applied"));
+}
+
+// A knockout without a box (it was refused by name): the objects up to the next %KO get their
+// box, grown by the border K, cleared (C) before them, as gerbv draws it. A 1 mm pad in a
+// 10 mm one: the box 3 x 3 mm around it is cleared, the pad itself drawn.
+TEST(GerberLegacyParameters, AKnockoutWithoutABoxClearsAroundTheObjectsThatFollow) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD10R,10X10*%\n%ADD11C,1*%\nD10*\nX5000000Y5000000D03*\n"
+      "%KOCK1*%\nD11*\nX5000000Y5000000D03*\n%KO*%\nX9000000Y9000000D03*\nM02*\n",
+      "kok-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 100 - 9 + kPi / 4, 2e-3);  // the last pad lies inside
+  EXPECT_TRUE(covered(l, 5, 5));
+  EXPECT_FALSE(covered(l, 4.2, 5));
+  EXPECT_FALSE(covered(l, 3.6, 6.4));
+  EXPECT_TRUE(covered(l, 3.4, 5));
+  EXPECT_TRUE(has_note(l,
+                       "line 7: warning: %KOC around the objects that follow (deprecated "
+                       "knockout) applied"));
+}
+
+// One image polarity per file, the last given (gerbv keeps the last): %IPPOS after %IPNEG was
+// ignored, and the image read negative.
+TEST(GerberLegacyParameters, TheLastImagePolarityApplies) {
+  const PcbLayer l = legacy("%IPNEG*%\n%IPPOS*%\n");
+  EXPECT_TRUE(covered(l, 10, 5));
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 1.0, 1e-9);
+  EXPECT_FALSE(has_note(l, "%IPNEG (deprecated negative image) applied"));
+  EXPECT_TRUE(has_note(l, "warning: %IPNEG replaced by the later %IPPOS (only the last applies)"));
+  const PcbLayer neg = legacy("%IPPOS*%\n%IPNEG*%\n");
+  EXPECT_FALSE(covered(neg, 10, 5));
+}
+
+// Of a parameter given twice only the last applies; both were reported as applied.
+TEST(GerberLegacyParameters, OfTwoRotationsOnlyTheLastIsReportedApplied) {
+  const PcbLayer l = legacy("%RO30*%\n%RO90*%\n");
+  EXPECT_TRUE(covered(l, -5, 10));  // (10, 5) turned 90 degrees
+  EXPECT_TRUE(has_note(l, "line 4: warning: %RO90 (deprecated layer rotation) applied"));
+  EXPECT_FALSE(has_note(l, "%RO30 (deprecated layer rotation) applied"))
+      << ::testing::PrintToString(l.notes);
+  EXPECT_TRUE(has_note(l, "warning: %RO30 replaced by the later %RO90 (only the last applies)"));
+  // A later identity leaves nothing applied.
+  const PcbLayer back = legacy("%RO30*%\n%RO0*%\n");
+  EXPECT_TRUE(covered(back, 10, 5));
+  for (const std::string& n : back.notes) EXPECT_EQ(n.find("applied"), std::string::npos) << n;
 }
 
 // "R,0.035": one size where the specification wants X and Y (EKF's files). gerbv draws a

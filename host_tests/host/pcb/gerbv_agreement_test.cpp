@@ -26,8 +26,8 @@ TEST_P(GerbvAgreement, CopperOrHolesMatchGerbvsImage) {
   const PcbLayer l = drill ? read_excellon_file(path) : read_gerber_file(path);
   const ClipperLib::Paths shapes = drill ? test::drill_shapes(l) : l.polygons_nm;
   ASSERT_FALSE(shapes.empty());
-  // A negative image's copper is its bounding box less what is drawn; gerbv fills its whole
-  // picture: compared over the box alone.
+  // A negative image's copper is its bounding box with gerbv's 5 % border less what is drawn;
+  // gerbv fills its whole picture: compared over that box alone.
   const bool negative = name == "image_negative.gbr";
   const test::Window win = test::window_around(l, negative ? 0.0 : 0.5, 2000);
   const test::Raster ours = test::rasterise(shapes, win);
@@ -84,7 +84,7 @@ INSTANTIATE_TEST_SUITE_P(OwnFiles, GerbvAgreement,
                                            "slots_decimal.drl", "inch_lz_format.drl",
                                            // Deprecated parameters applied as gerbv does.
                                            "image_offset.gbr", "layer_rotation.gbr", "knockout.gbr",
-                                           "image_negative.gbr"));
+                                           "image_negative.gbr", "knockout_border.gbr"));
 
 }  // namespace
 }  // namespace host::pcb

@@ -1,0 +1,35 @@
+// The one range of every number option of the board commands, by name: every command that
+// has the option (board, points, run, send, probe) checks it the same way, at parse time,
+// naming the option and the range (a usage error, exit 2).
+#ifndef HOST_CLI_OPTION_RANGES_H
+#define HOST_CLI_OPTION_RANGES_H
+
+#include <CLI/CLI.hpp>  // CLI::App
+
+#include <string>  // std::string
+#include <vector>  // std::vector
+
+namespace host::cli {
+
+struct OptionRange {
+  const char* option;  // "--depth"
+  double min, max;     // both allowed
+  const char* unit;    // "mm", "mm/s", "" (a count or a fraction)
+  bool integer;        // a count: the bounds are whole
+};
+
+// The table, in the order the options appear in `board --help`.
+const std::vector<OptionRange>& option_ranges();
+
+// "0 is outside the allowed range 0.001 .. 5 mm" for a value outside `r`, "" inside (CLI11
+// puts the option's name in front).
+std::string range_refusal(const OptionRange& r, const std::string& value);
+
+// Adds the table's check to every option of a table name in `app` and its commands, and to
+// every number option a check that the value is a plain decimal (no hex float, no digit
+// separators) and finite.
+void add_option_checks(CLI::App* app);
+
+}  // namespace host::cli
+
+#endif  // HOST_CLI_OPTION_RANGES_H
