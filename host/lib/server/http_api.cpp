@@ -359,6 +359,37 @@ bool known_keys(const nlohmann::json& body, std::initializer_list<const char*> k
   return true;
 }
 
+// The machine action a control request names (hold, resume, abort, probe_ready, override with
+// its percent); false, with the error answered, for anything else.
+bool machine_control(const std::string& action, const nlohmann::json& body, httplib::Response& res,
+                     JobControl* c, int* percent) {
+  if (action == "hold") {
+    *c = JobControl::kHold;
+  } else if (action == "resume") {
+    *c = JobControl::kResume;
+  } else if (action == "abort") {
+    *c = JobControl::kAbort;
+  } else if (action == "probe_ready") {
+    *c = JobControl::kConfirmProbe;
+  } else if (action == "override") {
+    *c = JobControl::kOverride;
+    if (!body.contains("percent") || !body["percent"].is_number_integer()) {
+      send_error(res, 400, "override needs \"percent\": 10 .. 200");
+      return false;
+    }
+    const int64_t p = body["percent"];
+    if (p < 10 || p > 200) {
+      send_error(res, 400, "percent must be 10 .. 200");
+      return false;
+    }
+    *percent = static_cast<int>(p);
+  } else {
+    send_error(res, 400, "unknown action '" + action + "'");
+    return false;
+  }
+  return true;
+}
+
 // The methods a known path answers ("" for a path the server does not have): a request with
 // another method gets 405 naming them (Allow), not a 404 that says the path is unknown.
 std::string allowed_methods(const std::string& path) {
@@ -458,14 +489,26 @@ std::string HttpApi::event_text(uint64_t version) {
   return event_;
 }
 
-void HttpApi::routes() {
-  httplib::Server& s = *http_;
+bool HttpApi::has_height_map(const JobRecord& j) const {
   // A board job's map in its archive (probed, or taken over from another job).
-  const auto has_height_map = [this](const JobRecord& j) {
-    std::error_code ec;
-    return is_board_job(j) && fs::exists(data_.job_dir(j.key) / kHeightMapFile, ec);
-  };
+  std::error_code ec;
+  return is_board_job(j) && fs::exists(data_.job_dir(j.key) / kHeightMapFile, ec);
+}
 
+void HttpApi::routes() {
+  route_checks();
+  route_page();
+  route_status();
+  route_jobs();
+  route_job_files();
+  route_upload();
+  route_control();
+  route_priority();
+}
+
+// Before every route: the Host check, 405 for a wrong method, the token; the error body.
+void HttpApi::route_checks() {
+  httplib::Server& s = *http_;
   // Before any handler runs: the Host must be one of this server's names (a page from
   // another site gets nowhere through a name that resolves here), and the token guards
   // every method but GET/HEAD.
@@ -500,8 +543,11 @@ void HttpApi::routes() {
                                           : "bad request";
     send_error(res, res.status, why);
   });
+}
 
-  // ---- The page ----
+// The page's files.
+void HttpApi::route_page() {
+  httplib::Server& s = *http_;
   struct WebFile {
     const char* route;
     const char* file;
@@ -519,8 +565,11 @@ void HttpApi::routes() {
       }
     });
   }
+}
 
-  // ---- Read-only API ----
+// The workshop's state, once or as server-sent events.
+void HttpApi::route_status() {
+  httplib::Server& s = *http_;
   s.Get("/api/status", [this](const httplib::Request&, httplib::Response& res) {
     send_json(res, 200, workshop_.snapshot());
   });
@@ -545,7 +594,12 @@ void HttpApi::routes() {
           return sink.write(event.data(), event.size());
         });
   });
-  s.Get("/api/jobs", [this, has_height_map](const httplib::Request& req, httplib::Response& res) {
+}
+
+// The jobs: the list, one job, a running job's path.
+void HttpApi::route_jobs() {
+  httplib::Server& s = *http_;
+  s.Get("/api/jobs", [this](const httplib::Request& req, httplib::Response& res) {
     std::string state;
     if (req.has_param("state")) {
       state = req.get_param_value("state");
@@ -567,15 +621,14 @@ void HttpApi::routes() {
     }
     send_json(res, 200, {{"jobs", jobs}});
   });
-  s.Get(R"(/api/jobs/(\d{1,18}))",
-        [this, has_height_map](const httplib::Request& req, httplib::Response& res) {
-          const auto job = store_.get(std::stoll(req.matches[1]));
-          if (!job) return send_error(res, 404, "no such job");
-          nlohmann::json j = job_json(*job);
-          j["runs"] = run_count(data_.job_dir(job->key));  // runs/1 .. runs/N in its archive
-          j["height_map"] = has_height_map(*job);
-          send_json(res, 200, j);
-        });
+  s.Get(R"(/api/jobs/(\d{1,18}))", [this](const httplib::Request& req, httplib::Response& res) {
+    const auto job = store_.get(std::stoll(req.matches[1]));
+    if (!job) return send_error(res, 404, "no such job");
+    nlohmann::json j = job_json(*job);
+    j["runs"] = run_count(data_.job_dir(job->key));  // runs/1 .. runs/N in its archive
+    j["height_map"] = has_height_map(*job);
+    send_json(res, 200, j);
+  });
   s.Get(R"(/api/jobs/(\d{1,18})/path)",
         [this](const httplib::Request& req, httplib::Response& res) {
           const int64_t id = std::stoll(req.matches[1]);
@@ -588,6 +641,11 @@ void HttpApi::routes() {
           }
           res.set_content(*path, "application/json");
         });
+}
+
+// A job's archive files and its runs' files.
+void HttpApi::route_job_files() {
+  httplib::Server& s = *http_;
   s.Get(R"(/api/jobs/(\d{1,18})/files/([a-z.]{1,16}))",
         [this](const httplib::Request& req, httplib::Response& res) {
           const std::string file = req.matches[2];
@@ -631,7 +689,11 @@ void HttpApi::routes() {
             send_error(res, 404, fmt::format("the job has no run {} with a {}", run, file));
           }
         });
+}
 
+// A new job.
+void HttpApi::route_upload() {
+  httplib::Server& s = *http_;
   // ---- Changes (token checked above) ----
   // Read by the handler itself: httplib would cap a body sent as a form (curl --data-binary
   // without a Content-Type) at 8 KB and parse it as form fields.
@@ -668,6 +730,11 @@ void HttpApi::routes() {
     const auto job = store_.get(r.id);
     send_json(res, 201, job ? job_json(*job) : nlohmann::json{{"id", r.id}});
   });
+}
+
+// A job's control actions: the store's (cancel, requeue, continue), the machine's.
+void HttpApi::route_control() {
+  httplib::Server& s = *http_;
   s.Post(R"(/api/jobs/(\d{1,18})/control)",
          [this](const httplib::Request& req, httplib::Response& res) {
            const int64_t id = std::stoll(req.matches[1]);
@@ -684,52 +751,19 @@ void HttpApi::routes() {
              return send_error(res, 400, "percent goes with the override action only");
            }
            if (!store_.get(id)) return send_error(res, 404, "no such job");
-           auto done = [&](bool ok, const std::string& why) {
-             if (!ok) return send_error(res, 409, why);
-             workshop_.notify(true);
-             send_json(res, 200, job_json(*store_.get(id)));
-           };
-           if (action == "cancel") {
-             return done(store_.cancel(id), "only a queued job can be cancelled");
-           }
-           if (action == "requeue") {
-             return done(store_.requeue(id, false),
-                         "only an interrupted, aborted or failed job can be re-queued");
-           }
-           if (action == "continue") {
-             if (!workshop_.can_continue()) {
-               return send_error(res, 501,
-                                 "continuing from the first uncut curve needs send --resume "
-                                 "(protocol v2); re-queue the job to run it from the start");
-             }
-             return done(store_.requeue(id, true),
-                         "only an interrupted job with a known curve can be continued");
-           }
+           if (store_control(id, action, res)) return;
            JobControl c;
            int percent = 0;
-           if (action == "hold") {
-             c = JobControl::kHold;
-           } else if (action == "resume") {
-             c = JobControl::kResume;
-           } else if (action == "abort") {
-             c = JobControl::kAbort;
-           } else if (action == "probe_ready") {
-             c = JobControl::kConfirmProbe;
-           } else if (action == "override") {
-             c = JobControl::kOverride;
-             if (!body.contains("percent") || !body["percent"].is_number_integer()) {
-               return send_error(res, 400, "override needs \"percent\": 10 .. 200");
-             }
-             const int64_t p = body["percent"];
-             if (p < 10 || p > 200) return send_error(res, 400, "percent must be 10 .. 200");
-             percent = static_cast<int>(p);
-           } else {
-             return send_error(res, 400, "unknown action '" + action + "'");
-           }
+           if (!machine_control(action, body, res, &c, &percent)) return;
            const ControlResult r = workshop_.control(id, c, percent);
            if (r.status != 200) return send_error(res, r.status, r.error);
            send_json(res, 200, {{"id", id}, {"requested", action}});
          });
+}
+
+// A queued job's priority.
+void HttpApi::route_priority() {
+  httplib::Server& s = *http_;
   s.Post(R"(/api/jobs/(\d{1,18})/priority)",
          [this](const httplib::Request& req, httplib::Response& res) {
            const int64_t id = std::stoll(req.matches[1]);
@@ -750,6 +784,28 @@ void HttpApi::routes() {
            workshop_.notify(true);
            send_json(res, 200, job_json(*store_.get(id)));
          });
+}
+
+bool HttpApi::store_control(int64_t id, const std::string& action, httplib::Response& res) {
+  auto done = [&](bool ok, const std::string& why) {
+    if (!ok) return send_error(res, 409, why);
+    workshop_.notify(true);
+    send_json(res, 200, job_json(*store_.get(id)));
+  };
+  if (action == "cancel") {
+    done(store_.cancel(id), "only a queued job can be cancelled");
+  } else if (action == "requeue") {
+    done(store_.requeue(id, false), "only an interrupted, aborted or failed job can be re-queued");
+  } else if (action == "continue" && !workshop_.can_continue()) {
+    send_error(res, 501,
+               "continuing from the first uncut curve needs send --resume "
+               "(protocol v2); re-queue the job to run it from the start");
+  } else if (action == "continue") {
+    done(store_.requeue(id, true), "only an interrupted job with a known curve can be continued");
+  } else {
+    return false;
+  }
+  return true;
 }
 
 }  // namespace host::server

@@ -20,7 +20,8 @@
 
 namespace httplib {
 class Server;
-}
+struct Response;
+}  // namespace httplib
 
 namespace host::server {
 
@@ -51,7 +52,19 @@ class HttpApi {
   const AllowedHosts& allowed_hosts() const { return hosts_; }
 
  private:
+  // The routes, by what they serve (http_api.cpp).
   void routes();
+  void route_checks();
+  void route_page();
+  void route_status();
+  void route_jobs();
+  void route_job_files();
+  void route_upload();
+  void route_control();
+  void route_priority();
+  // Cancel, requeue, continue: answered from the store (true), else false.
+  bool store_control(int64_t id, const std::string& action, httplib::Response& res);
+  bool has_height_map(const JobRecord& job) const;
   void widen_backlog(int port);
   static const int kListenBacklog = 1024;  // connections waiting to be accepted
   // The server-sent event for the workshop's change counter `version`.
