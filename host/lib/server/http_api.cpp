@@ -78,6 +78,8 @@ const char* const kBoardFields[] = {
     "narrow_passes", "align_holes",     "align_diameter_mm", "align_depth_mm",  "align_measured",
     "probe_first",   "height_map_from", "height_map_flip",   "probe_spacing_mm"};
 
+}  // namespace
+
 std::vector<std::string> upload_field_names() {
   std::vector<std::string> names(std::begin(kFileFields), std::end(kFileFields));
   for (size_t i = 0; i < kJobFieldCount; ++i) {
@@ -86,6 +88,8 @@ std::vector<std::string> upload_field_names() {
   names.insert(names.end(), std::begin(kBoardFields), std::end(kBoardFields));
   return names;
 }
+
+namespace {
 
 std::string unknown_upload_field(const std::string& key) {
   static const std::vector<std::string> kNames = upload_field_names();

@@ -37,6 +37,10 @@ struct HttpOptions {
   int max_event_streams = 1024;
 };
 
+// Every field an upload takes (multipart parts or query parameters): the file's, the job
+// record's (job_record_fields.h), a board's.
+std::vector<std::string> upload_field_names();
+
 class HttpApi {
  public:
   HttpApi(JobStore& store, JobIntake& intake, Workshop& workshop, const DataFolder& data,

@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 #include <sqlite3.h>  // sqlite3_exec: a database as the previous version left it
 
+#include <algorithm>   // std::find
 #include <cmath>       // std::isnan
 #include <filesystem>  // std::filesystem::path
 #include <fstream>     // std::ifstream
 #include <set>         // std::set
 #include <sstream>     // std::stringstream
 
+#include "host/lib/server/http_api.h"  // upload_field_names
 #include "host/lib/server/job_record_fields.h"
 #include "host/lib/server/sqlite_job_store.h"
 #include "host_tests/host/server/server_test_rig.h"
@@ -226,12 +228,16 @@ TEST(JobRecordFields, AFirstReleaseDatabaseGetsTheColumnsAddedSince) {
   EXPECT_EQ(old->machine, "");
 }
 
-// The rows of the user guide's table of a job's fields: key cell -> the whole row.
-std::vector<std::pair<std::string, std::string>> guide_job_fields() {
-  std::ifstream in(fs::path(ENGRAVER_SOURCE_DIR) / "docs" / "user-guide.md");
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
   std::stringstream text;
   text << in.rdbuf();
-  const std::string guide = text.str();
+  return text.str();
+}
+
+// The rows of the user guide's table of a job's fields: key cell -> the whole row.
+std::vector<std::pair<std::string, std::string>> guide_job_fields() {
+  const std::string guide = read_text(fs::path(ENGRAVER_SOURCE_DIR) / "docs" / "user-guide.md");
   const size_t start = guide.find("A job's fields (JSON:");
   const size_t table = guide.find("| key | what |", start);
   std::vector<std::pair<std::string, std::string>> rows;
@@ -269,6 +275,42 @@ TEST(JobRecordFields, TheUserGuideListsEveryFieldOfAJobWithItsRange) {
       }
     }
   }
+}
+
+TEST(JobRecordFields, TheUserGuidesUploadRowNamesEveryUploadField) {
+  const std::string guide = read_text(fs::path(ENGRAVER_SOURCE_DIR) / "docs" / "user-guide.md");
+  const size_t row = guide.find("| `POST /api/jobs` |");
+  ASSERT_NE(row, std::string::npos);
+  const std::string line = guide.substr(row, guide.find('\n', row) - row);
+  for (const std::string& field : upload_field_names()) {
+    EXPECT_NE(line.find("`" + field + "`"), std::string::npos) << field;
+  }
+}
+
+// The page's form: every field an upload field; the record's fields with the table's ranges as
+// their min and max and the record's defaults as their values.
+TEST(JobRecordFields, ThePagesFormTakesUploadFieldsInTheTablesRanges) {
+  const std::string page = read_text(fs::path(ENGRAVER_WEB_DIR) / "index.html");
+  const std::vector<std::string> known = upload_field_names();
+  const std::string form = page.substr(page.find("<form id=\"upload\""));
+  size_t at = 0;
+  int ranged = 0;
+  while ((at = form.find(" name=\"", at)) != std::string::npos && at < form.find("</form>")) {
+    at += 7;
+    const std::string name = form.substr(at, form.find('"', at) - at);
+    EXPECT_NE(std::find(known.begin(), known.end(), name), known.end()) << name;
+    const std::string tag = form.substr(at, form.find('>', at) - at);
+    const JobField* f = job_field_by_json_key(name);
+    if (f == nullptr || std::isnan(f->lowest)) continue;
+    ++ranged;
+    EXPECT_NE(tag.find(fmt::format("min=\"{}\"", f->lowest)), std::string::npos) << tag;
+    EXPECT_NE(tag.find(fmt::format("max=\"{}\"", f->highest)), std::string::npos) << tag;
+    // Its initial value is the record's default (job_defaults.h), not a figure of its own.
+    const std::string value =
+        std::visit([](const auto& v) { return fmt::format("value=\"{}\"", v); }, field_default(*f));
+    EXPECT_NE(tag.find(value), std::string::npos) << tag << " wants " << value;
+  }
+  EXPECT_EQ(ranged, 2);  // priority, feed_mm_s
 }
 
 }  // namespace
