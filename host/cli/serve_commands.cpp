@@ -19,12 +19,10 @@
 #include "host/lib/server/inbox_watcher.h"
 #include "host/lib/server/job_intake.h"
 #include "host/lib/server/machine_spec.h"
+#include "host/lib/server/postgres_job_store.h"
 #include "host/lib/server/sqlite_job_store.h"
 #include "host/lib/server/web_files.h"
 #include "host/lib/server/workshop.h"
-#ifdef ENGRAVER_HAVE_POSTGRES
-#include "host/lib/server/postgres_job_store.h"
-#endif
 
 namespace host::cli {
 
@@ -52,11 +50,7 @@ std::unique_ptr<server::JobStore> open_store(const std::string& db,
   if (db.empty() || db == "sqlite") {
     return std::make_unique<server::SqliteJobStore>(data.database().string());
   }
-#ifdef ENGRAVER_HAVE_POSTGRES
   return std::make_unique<server::PostgresJobStore>(db);
-#else
-  throw CommandFailure(kExitUsage, "--db: this engraver was built without PostgreSQL (libpqxx)");
-#endif
 }
 
 std::atomic<bool> g_stop_serve{false};

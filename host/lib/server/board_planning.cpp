@@ -184,14 +184,25 @@ bool is_pcb_upload(const UploadFile& file) {
   return pcb::board_file_format(file.name, file.content) != pcb::PcbFileFormat::kNone;
 }
 
-PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_other,
-                               const std::string& board_name, const BoardSettings& board,
-                               const JobPlanSettings& settings, double work_w_mm,
-                               double work_h_mm) {
+namespace {
+
+// The upload's layers as read: the planner's set, the archive's files under the server's names,
+// what the manifest lists of them and the notes (files left out, the readers' warnings).
+struct UploadLayers {
   pcb::BoardFileSet set;
+  NamedFiles files;
   nlohmann::json listed = nlohmann::json::array();
   nlohmann::json notes = nlohmann::json::array();
-  NamedFiles layer_files;
+};
+
+// Reads each file into its layer, under its server name; throws ImportError / PlanError.
+UploadLayers read_upload_layers(const std::vector<UploadFile>& files, bool skip_other,
+                                const std::string& board_name) {
+  UploadLayers u;
+  pcb::BoardFileSet& set = u.set;
+  nlohmann::json& listed = u.listed;
+  nlohmann::json& notes = u.notes;
+  NamedFiles& layer_files = u.files;
   for (const UploadFile& f : files) {
     if (!is_pcb_upload(f)) {
       if (skip_other) {
@@ -252,9 +263,15 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
     for (const auto& n : notes) msg += "\n  " + n.get<std::string>();
     throw ImportError(msg);
   }
+  return u;
+}
+
+// The side to cut: the one asked for, else the one whose copper is given; the other side's
+// copper alone is refused (the job would drill and cut out, and never isolate).
+std::string board_side(const BoardSettings& board, const pcb::BoardFileSet& set,
+                       const std::string& board_name) {
   std::string side = board.side;
   if (side.empty()) side = set.copper_top.empty() && !set.copper_bottom.empty() ? "bottom" : "top";
-  // The other side's copper alone: the job would drill and cut out, and never isolate.
   const bool top = side == "top";
   if ((top ? set.copper_top : set.copper_bottom).empty() &&
       !(top ? set.copper_bottom : set.copper_top).empty()) {
@@ -262,7 +279,37 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
         "{}: side={} but the files hold {} copper only: ask for side={}, or add the {} copper",
         board_name, side, top ? "bottom" : "top", top ? "bottom" : "top", side));
   }
+  return side;
+}
 
+// The manifest's report: what the planner made of the board.
+nlohmann::json report_json(const pcb::BoardReport& r, const nlohmann::json& gaps) {
+  return {{"first_tool", r.first_tool},
+          {"islands", r.islands},
+          {"isolation_contours", r.isolation_contours},
+          {"isolation_length_mm", r.isolation_length_mm},
+          {"holes", r.holes},
+          {"holes_on_copper", r.holes_on_copper},
+          {"slots", r.slots},
+          {"drill_tools", r.drill_tools},
+          {"tabs", r.tabs},
+          {"cutout_length_mm", r.cutout_length_mm},
+          {"tool_changes", r.tool_changes},
+          {"narrow_gaps", gaps}};
+}
+
+}  // namespace
+
+PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_other,
+                               const std::string& board_name, const BoardSettings& board,
+                               const JobPlanSettings& settings, double work_w_mm,
+                               double work_h_mm) {
+  UploadLayers layers = read_upload_layers(files, skip_other, board_name);
+  const pcb::BoardFileSet& set = layers.set;
+  const nlohmann::json& listed = layers.listed;
+  nlohmann::json& notes = layers.notes;
+  const NamedFiles& layer_files = layers.files;
+  const std::string side = board_side(board, set, board_name);
   PlannedBoard out;
   const pcb::BoardOptions options = board_options(side, board, settings, set, work_w_mm, work_h_mm);
   out.job = plan(set, options, settings, board.align_measured_mm);
@@ -288,19 +335,7 @@ PlannedBoard plan_board_upload(const std::vector<UploadFile>& files, bool skip_o
                   {"height_map_flip", board.height_map_flip},
                   {"files", listed},
                   {"notes", notes},
-                  {"report",
-                   {{"first_tool", r.first_tool},
-                    {"islands", r.islands},
-                    {"isolation_contours", r.isolation_contours},
-                    {"isolation_length_mm", r.isolation_length_mm},
-                    {"holes", r.holes},
-                    {"holes_on_copper", r.holes_on_copper},
-                    {"slots", r.slots},
-                    {"drill_tools", r.drill_tools},
-                    {"tabs", r.tabs},
-                    {"cutout_length_mm", r.cutout_length_mm},
-                    {"tool_changes", r.tool_changes},
-                    {"narrow_gaps", gaps}}}};
+                  {"report", report_json(r, gaps)}};
   // Where a probe-first job probes; where the bottom side's job finds the flip axis.
   pcb::PcbLayer drill;  // the layers again: the bottom side is planned from them too
   if (const std::optional<heightmap::AreaMm> area =

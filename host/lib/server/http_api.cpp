@@ -3,6 +3,7 @@
 
 #include "host/lib/server/board_height_map.h"
 #include "host/lib/server/connection_threads.h"
+#include "host/lib/server/job_record_fields.h"
 #include "host/lib/server/map_source.h"
 #include "host/lib/server/run_archive.h"
 
@@ -69,50 +70,38 @@ bool parse_double(const std::string& s, double* out) {
 }
 
 nlohmann::json job_json(const JobRecord& j) {
-  return {{"id", j.id},
-          {"name", j.name},
-          {"state", state_name(j.state)},
-          // A running job before its commands are made has no size yet: not "0 of 0".
-          {"stage", j.state != JobState::kRunning ? ""
-                    : j.total > 0                 ? "cutting"
-                                                  : "planning"},
-          {"priority", j.priority},
-          {"tag", j.tag},
-          {"feed_mm_s", j.settings.feed_mm_s},
-          {"tol_mm", j.settings.tol_mm},
-          {"scale", j.settings.scale},
-          {"margin_mm", j.settings.margin_mm},
-          {"size_mm", {j.width_mm, j.height_mm}},
-          {"planned_s", j.planned_s},
-          {"machine", j.machine},
-          {"server", j.owner},
-          {"message", j.message},
-          {"executed", j.executed},
-          {"total", j.total},
-          {"resume_curve", j.resume_curve},
-          {"start_curve", j.start_curve},
-          {"created_ms", j.created_ms},
-          {"started_ms", j.started_ms},
-          {"finished_ms", j.finished_ms},
-          {"input_file", j.input_file}};
+  return job_record_json(j);
 }
 
-// Every field an upload may carry (multipart parts or query parameters); others are refused.
-const char* const kUploadFields[] = {
-    "file", "name", "priority", "tag", "feed_mm_s", "tol_mm", "scale", "margin_mm",
-    // A board's (board_planning.h, BoardSettings).
-    "side", "tool_width_mm", "allow_narrow_gaps", "passes", "clearing_tool_mm", "narrow_passes",
-    "align_holes", "align_diameter_mm", "align_depth_mm", "align_measured", "probe_first",
-    "height_map_from", "height_map_flip", "probe_spacing_mm"};
-// The fields above from "side" on: a board's only (a drawing that gives one is refused).
-const size_t kFirstBoardField = 8;
+// Every field an upload may carry (multipart parts or query parameters); others are refused:
+// the file parts, the job record's upload fields (job_record_fields.h), a board's fields.
+const char* const kFileFields[] = {"file", "name"};
+// A board's (board_planning.h, BoardSettings): a drawing that gives one is refused.
+const char* const kBoardFields[] = {
+    "side",          "tool_width_mm",   "allow_narrow_gaps", "passes",          "clearing_tool_mm",
+    "narrow_passes", "align_holes",     "align_diameter_mm", "align_depth_mm",  "align_measured",
+    "probe_first",   "height_map_from", "height_map_flip",   "probe_spacing_mm"};
+
+}  // namespace
+
+std::vector<std::string> upload_field_names() {
+  std::vector<std::string> names(std::begin(kFileFields), std::end(kFileFields));
+  for (size_t i = 0; i < kJobFieldCount; ++i) {
+    if (kJobFields[i].source == FieldSource::kUpload) names.push_back(kJobFields[i].json_key);
+  }
+  names.insert(names.end(), std::begin(kBoardFields), std::end(kBoardFields));
+  return names;
+}
+
+namespace {
 
 std::string unknown_upload_field(const std::string& key) {
-  for (const char* f : kUploadFields) {
+  static const std::vector<std::string> kNames = upload_field_names();
+  for (const std::string& f : kNames) {
     if (key == f) return "";
   }
   std::string known;
-  for (const char* f : kUploadFields) known += std::string(known.empty() ? "" : ", ") + f;
+  for (const std::string& f : kNames) known += (known.empty() ? "" : ", ") + f;
   return fmt::format("unknown field '{}' (an upload takes {})", key, known);
 }
 
@@ -129,160 +118,189 @@ struct UploadFields {
   std::string error;
 };
 
-UploadFields upload_fields(const httplib::Request& req, const UploadBody& body) {
-  UploadFields u;
-  // Every field once (only a form's `file` parts repeat: a board's files); a second value
-  // would silently win or lose.
+// Every field known and given once (only a form's `file` parts repeat: a board's files; a
+// second value would silently win or lose), each in one place only: "" or why not.
+std::string check_field_names(const httplib::Request& req, const UploadBody& body) {
   std::set<std::string> seen;
+  std::string error;
   auto check = [&](const std::string& key, bool repeats) {
-    if (!u.error.empty()) return;
-    u.error = unknown_upload_field(key);
-    if (u.error.empty() && !seen.insert(key).second && !repeats) {
-      u.error = fmt::format("field '{}' given more than once", key);
+    if (!error.empty()) return;
+    error = unknown_upload_field(key);
+    if (error.empty() && !seen.insert(key).second && !repeats) {
+      error = fmt::format("field '{}' given more than once", key);
     }
   };
   for (const auto& p : req.params) {
     check(p.first, false);
     // Read from one place only: what is given in the other would be ignored.
-    if (u.error.empty() && body.multipart) {
-      u.error =
-          fmt::format("field '{}' in the query of a form upload (give it as a part)", p.first);
+    if (error.empty() && body.multipart) {
+      error = fmt::format("field '{}' in the query of a form upload (give it as a part)", p.first);
     }
-    if (u.error.empty() && p.first == "file") {
-      u.error = "field 'file' in the query (a raw upload's body is the file; ?name=FILE_NAME)";
+    if (error.empty() && p.first == "file") {
+      error = "field 'file' in the query (a raw upload's body is the file; ?name=FILE_NAME)";
     }
   }
   for (const auto& p : body.parts) check(p.name, p.name == "file");
-  if (!u.error.empty()) return u;
-  auto field = [&](const std::string& key, std::string* out) {
-    if (body.multipart) {
-      for (const auto& p : body.parts) {
-        if (p.name == key) *out = p.content;
+  return error;
+}
+
+// A field's value from the form's part or the query ("" when not given; the page's form
+// sends its empty fields too, and an empty field counts as not given).
+class UploadValues {
+ public:
+  UploadValues(const httplib::Request& req, const UploadBody& body) : req_(req), body_(body) {}
+  std::string get(const std::string& key) const {
+    std::string out;
+    if (body_.multipart) {
+      for (const auto& p : body_.parts) {
+        if (p.name == key) out = p.content;
       }
-    } else if (req.has_param(key)) {
-      *out = req.get_param_value(key);
+    } else if (req_.has_param(key)) {
+      out = req_.get_param_value(key);
     }
-  };
-  if (body.multipart) {
-    std::vector<const httplib::MultipartFormData*> files;
-    for (const auto& p : body.parts) {
-      if (p.name == "file") files.push_back(&p);
-    }
-    if (files.empty()) {
-      u.error = "multipart upload without a 'file' part";
-      return u;
-    }
-    // Several "file" parts: the files of one board (copper, drill, outline).
-    if (files.size() == 1) {
-      u.sub.name = files[0]->filename;
-      u.sub.content = files[0]->content;
-    } else {
-      for (const httplib::MultipartFormData* f : files) {
-        u.sub.files.push_back(UploadFile{f->filename, f->content});
-      }
-      field("name", &u.sub.name);  // the board's name; "" takes it from the files
-    }
+    return out;
+  }
+  bool given(const std::string& key) const { return !get(key).empty(); }
+
+ private:
+  const httplib::Request& req_;
+  const UploadBody& body_;
+};
+
+// The file or files: one `file` part, a board's several, or a raw body named by ?name=.
+std::string read_files(const httplib::Request& req, const UploadBody& body,
+                       const UploadValues& values, Submission* sub) {
+  if (!body.multipart) {
+    if (!req.has_param("name")) return "raw upload without ?name=FILE_NAME";
+    sub->name = req.get_param_value("name");
+    sub->content = body.raw;
+    return "";
+  }
+  std::vector<const httplib::MultipartFormData*> files;
+  for (const auto& p : body.parts) {
+    if (p.name == "file") files.push_back(&p);
+  }
+  if (files.empty()) return "multipart upload without a 'file' part";
+  // Several "file" parts: the files of one board (copper, drill, outline).
+  if (files.size() == 1) {
+    sub->name = files[0]->filename;
+    sub->content = files[0]->content;
   } else {
-    if (!req.has_param("name")) {
-      u.error = "raw upload without ?name=FILE_NAME";
-      return u;
+    for (const httplib::MultipartFormData* f : files) {
+      sub->files.push_back(UploadFile{f->filename, f->content});
     }
-    u.sub.name = req.get_param_value("name");
-    u.sub.content = body.raw;
+    sub->name = values.get("name");  // the board's name; "" takes it from the files
   }
-  std::string text;
-  field("priority", &text);
-  if (!text.empty()) {
-    int64_t p = 0;
-    if (!parse_int(text, &p) || p < -1000 || p > 1000) {
-      u.error = "priority must be an integer -1000 .. 1000";
-      return u;
+  return "";
+}
+
+// The job record's upload fields (priority, tag, the plan settings), from the field table;
+// their ranges are checked at intake (an inbox job's too), priority's here as well.
+std::string read_record_fields(const UploadValues& values, Submission* sub) {
+  JobRecord record;
+  record.priority = sub->priority;
+  record.tag = sub->tag;
+  record.settings = sub->settings;
+  for (size_t i = 0; i < kJobFieldCount; ++i) {
+    const JobField& f = kJobFields[i];
+    const std::string text = values.get(f.json_key);
+    if (f.source != FieldSource::kUpload || text.empty()) continue;
+    void* at = f.member(record);
+    int64_t whole = 0;
+    if (f.type == FieldType::kText) {
+      *static_cast<std::string*>(at) = text;
+    } else if (f.type == FieldType::kDouble) {
+      if (!parse_double(text, static_cast<double*>(at))) {
+        return fmt::format("{} '{}' is not a finite number", f.json_key, text);
+      }
+    } else if (!parse_int(text, &whole) ||
+               !field_range_error(f, static_cast<double>(whole)).empty()) {
+      return field_range_error(f, NAN);
+    } else {
+      *static_cast<int*>(at) = static_cast<int>(whole);
     }
-    u.sub.priority = static_cast<int>(p);
   }
-  field("tag", &u.sub.tag);
-  // Given: present with a value (the page's form sends its empty fields too).
-  auto given = [&](const char* key) {
-    std::string value;
-    field(key, &value);
-    return !value.empty();
-  };
-  for (size_t i = kFirstBoardField; i < sizeof(kUploadFields) / sizeof(kUploadFields[0]); ++i) {
-    if (given(kUploadFields[i])) u.sub.board_fields.push_back(kUploadFields[i]);
+  sub->priority = record.priority;
+  sub->tag = record.tag;
+  sub->settings = record.settings;
+  sub->feed_given = values.given("feed_mm_s");
+  sub->tol_given = values.given("tol_mm");
+  sub->margin_given = values.given("margin_mm");
+  return "";
+}
+
+// X1,Y1,X2,Y2 (mm) into `out`: "" or why not.
+std::string read_align_measured(const std::string& text, std::vector<double>* out) {
+  size_t from = 0;
+  while (true) {
+    const size_t comma = text.find(',', from);
+    double v = 0;
+    if (!parse_double(text.substr(from, comma - from), &v)) {
+      return fmt::format("align_measured '{}' is not X1,Y1,X2,Y2 (finite numbers, mm)", text);
+    }
+    out->push_back(v);
+    if (comma == std::string::npos) return "";
+    from = comma + 1;
   }
-  u.sub.feed_given = given("feed_mm_s");
-  u.sub.tol_given = given("tol_mm");
-  field("side", &u.sub.board.side);
-  field("align_holes", &u.sub.board.align_holes);
-  field("height_map_flip", &u.sub.board.height_map_flip);
-  if (u.sub.board.height_map_flip.empty()) u.sub.board.height_map_flip = "table";
+}
+
+// A board's fields (their ranges are checked at intake, with the command line's).
+std::string read_board_fields(const UploadValues& values, BoardSettings* board) {
+  board->side = values.get("side");
+  board->align_holes = values.get("align_holes");
+  board->height_map_flip = values.get("height_map_flip");
+  if (board->height_map_flip.empty()) board->height_map_flip = "table";
   for (const auto& [key, flag] :
-       {std::pair<const char*, bool*>{"allow_narrow_gaps", &u.sub.board.allow_narrow_gaps},
-        {"probe_first", &u.sub.board.probe_first}}) {
-    text.clear();
-    field(key, &text);
+       {std::pair<const char*, bool*>{"allow_narrow_gaps", &board->allow_narrow_gaps},
+        {"probe_first", &board->probe_first}}) {
+    const std::string text = values.get(key);
     if (text == "1" || text == "true" || text == "on") {
       *flag = true;
     } else if (!text.empty() && text != "0" && text != "false") {
-      u.error = fmt::format("{} must be 1 or 0", key);
-      return u;
+      return fmt::format("{} must be 1 or 0", key);
     }
   }
-  struct IntField {
-    const char* key;
-    int64_t* value;
-  };
-  int64_t passes = u.sub.board.passes, narrow = u.sub.board.narrow_passes;
-  for (const IntField& n : {IntField{"passes", &passes}, IntField{"narrow_passes", &narrow},
-                            IntField{"height_map_from", &u.sub.board.height_map_from}}) {
-    text.clear();
-    field(n.key, &text);
-    if (!text.empty() && (!parse_int(text, n.value) || *n.value < 0 || *n.value > 1000000000)) {
-      u.error = fmt::format("{} '{}' is not a whole number", n.key, text);
-      return u;
+  int64_t passes = board->passes, narrow = board->narrow_passes;
+  for (const auto& [key, value] : {std::pair<const char*, int64_t*>{"passes", &passes},
+                                   {"narrow_passes", &narrow},
+                                   {"height_map_from", &board->height_map_from}}) {
+    const std::string text = values.get(key);
+    if (!text.empty() && (!parse_int(text, value) || *value < 0 || *value > 1000000000)) {
+      return fmt::format("{} '{}' is not a whole number", key, text);
     }
   }
-  u.sub.board.passes = static_cast<int>(passes);
-  u.sub.board.narrow_passes = static_cast<int>(narrow);
-  text.clear();
-  field("align_measured", &text);
-  if (!text.empty()) {
-    // X1,Y1,X2,Y2
-    size_t from = 0;
-    while (true) {
-      const size_t comma = text.find(',', from);
-      double v = 0;
-      if (!parse_double(text.substr(from, comma - from), &v)) {
-        u.error = fmt::format("align_measured '{}' is not X1,Y1,X2,Y2 (finite numbers, mm)", text);
-        return u;
-      }
-      u.sub.board.align_measured_mm.push_back(v);
-      if (comma == std::string::npos) break;
-      from = comma + 1;
+  board->passes = static_cast<int>(passes);
+  board->narrow_passes = static_cast<int>(narrow);
+  const std::string measured = values.get("align_measured");
+  if (!measured.empty()) {
+    const std::string why = read_align_measured(measured, &board->align_measured_mm);
+    if (!why.empty()) return why;
+  }
+  for (const auto& [key, value] :
+       {std::pair<const char*, double*>{"tool_width_mm", &board->tool_width_mm},
+        {"clearing_tool_mm", &board->clearing_tool_mm},
+        {"align_diameter_mm", &board->align_diameter_mm},
+        {"align_depth_mm", &board->align_depth_mm},
+        {"probe_spacing_mm", &board->probe_spacing_mm}}) {
+    const std::string text = values.get(key);
+    if (!text.empty() && !parse_double(text, value)) {
+      return fmt::format("{} '{}' is not a finite number", key, text);
     }
   }
-  struct NumberField {
-    const char* key;
-    double* value;
-  };
-  const NumberField numbers[] = {{"feed_mm_s", &u.sub.settings.feed_mm_s},
-                                 {"tol_mm", &u.sub.settings.tol_mm},
-                                 {"scale", &u.sub.settings.scale},
-                                 {"margin_mm", &u.sub.settings.margin_mm},
-                                 {"tool_width_mm", &u.sub.board.tool_width_mm},
-                                 {"clearing_tool_mm", &u.sub.board.clearing_tool_mm},
-                                 {"align_diameter_mm", &u.sub.board.align_diameter_mm},
-                                 {"align_depth_mm", &u.sub.board.align_depth_mm},
-                                 {"probe_spacing_mm", &u.sub.board.probe_spacing_mm}};
-  for (const NumberField& n : numbers) {
-    text.clear();
-    field(n.key, &text);
-    if (!text.empty() && !parse_double(text, n.value)) {
-      u.error = fmt::format("{} '{}' is not a finite number", n.key, text);
-      return u;
-    }
-    if (n.value == &u.sub.settings.margin_mm) u.sub.margin_given = !text.empty();
+  return "";
+}
+
+UploadFields upload_fields(const httplib::Request& req, const UploadBody& body) {
+  UploadFields u;
+  const UploadValues values(req, body);
+  u.error = check_field_names(req, body);
+  if (u.error.empty()) u.error = read_files(req, body, values, &u.sub);
+  if (u.error.empty()) u.error = read_record_fields(values, &u.sub);
+  if (!u.error.empty()) return u;
+  for (const char* key : kBoardFields) {
+    if (values.given(key)) u.sub.board_fields.push_back(key);
   }
+  u.error = read_board_fields(values, &u.sub.board);
   return u;
 }
 
@@ -349,6 +367,37 @@ bool known_keys(const nlohmann::json& body, std::initializer_list<const char*> k
     std::string list;
     for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
     send_error(res, 400, fmt::format("unknown key '{}' (this request takes {})", item.key(), list));
+    return false;
+  }
+  return true;
+}
+
+// The machine action a control request names (hold, resume, abort, probe_ready, override with
+// its percent); false, with the error answered, for anything else.
+bool machine_control(const std::string& action, const nlohmann::json& body, httplib::Response& res,
+                     JobControl* c, int* percent) {
+  if (action == "hold") {
+    *c = JobControl::kHold;
+  } else if (action == "resume") {
+    *c = JobControl::kResume;
+  } else if (action == "abort") {
+    *c = JobControl::kAbort;
+  } else if (action == "probe_ready") {
+    *c = JobControl::kConfirmProbe;
+  } else if (action == "override") {
+    *c = JobControl::kOverride;
+    if (!body.contains("percent") || !body["percent"].is_number_integer()) {
+      send_error(res, 400, "override needs \"percent\": 10 .. 200");
+      return false;
+    }
+    const int64_t p = body["percent"];
+    if (p < 10 || p > 200) {
+      send_error(res, 400, "percent must be 10 .. 200");
+      return false;
+    }
+    *percent = static_cast<int>(p);
+  } else {
+    send_error(res, 400, "unknown action '" + action + "'");
     return false;
   }
   return true;
@@ -453,14 +502,26 @@ std::string HttpApi::event_text(uint64_t version) {
   return event_;
 }
 
-void HttpApi::routes() {
-  httplib::Server& s = *http_;
+bool HttpApi::has_height_map(const JobRecord& j) const {
   // A board job's map in its archive (probed, or taken over from another job).
-  const auto has_height_map = [this](const JobRecord& j) {
-    std::error_code ec;
-    return is_board_job(j) && fs::exists(data_.job_dir(j.key) / kHeightMapFile, ec);
-  };
+  std::error_code ec;
+  return is_board_job(j) && fs::exists(data_.job_dir(j.key) / kHeightMapFile, ec);
+}
 
+void HttpApi::routes() {
+  route_checks();
+  route_page();
+  route_status();
+  route_jobs();
+  route_job_files();
+  route_upload();
+  route_control();
+  route_priority();
+}
+
+// Before every route: the Host check, 405 for a wrong method, the token; the error body.
+void HttpApi::route_checks() {
+  httplib::Server& s = *http_;
   // Before any handler runs: the Host must be one of this server's names (a page from
   // another site gets nowhere through a name that resolves here), and the token guards
   // every method but GET/HEAD.
@@ -495,8 +556,11 @@ void HttpApi::routes() {
                                           : "bad request";
     send_error(res, res.status, why);
   });
+}
 
-  // ---- The page ----
+// The page's files.
+void HttpApi::route_page() {
+  httplib::Server& s = *http_;
   struct WebFile {
     const char* route;
     const char* file;
@@ -514,8 +578,11 @@ void HttpApi::routes() {
       }
     });
   }
+}
 
-  // ---- Read-only API ----
+// The workshop's state, once or as server-sent events.
+void HttpApi::route_status() {
+  httplib::Server& s = *http_;
   s.Get("/api/status", [this](const httplib::Request&, httplib::Response& res) {
     send_json(res, 200, workshop_.snapshot());
   });
@@ -540,7 +607,12 @@ void HttpApi::routes() {
           return sink.write(event.data(), event.size());
         });
   });
-  s.Get("/api/jobs", [this, has_height_map](const httplib::Request& req, httplib::Response& res) {
+}
+
+// The jobs: the list, one job, a running job's path.
+void HttpApi::route_jobs() {
+  httplib::Server& s = *http_;
+  s.Get("/api/jobs", [this](const httplib::Request& req, httplib::Response& res) {
     std::string state;
     if (req.has_param("state")) {
       state = req.get_param_value("state");
@@ -563,16 +635,15 @@ void HttpApi::routes() {
     }
     send_json(res, 200, {{"jobs", jobs}});
   });
-  s.Get(R"(/api/jobs/(\d{1,18}))",
-        [this, has_height_map](const httplib::Request& req, httplib::Response& res) {
-          const auto job = store_.get(std::stoll(req.matches[1]));
-          if (!job) return send_error(res, 404, "no such job");
-          nlohmann::json j = job_json(*job);
-          j["runs"] = run_count(data_.job_dir(job->key));  // runs/1 .. runs/N in its archive
-          j["height_map"] = has_height_map(*job);
-          j["waiting"] = map_wait_of(store_, data_, *job);
-          send_json(res, 200, j);
-        });
+  s.Get(R"(/api/jobs/(\d{1,18}))", [this](const httplib::Request& req, httplib::Response& res) {
+    const auto job = store_.get(std::stoll(req.matches[1]));
+    if (!job) return send_error(res, 404, "no such job");
+    nlohmann::json j = job_json(*job);
+    j["runs"] = run_count(data_.job_dir(job->key));  // runs/1 .. runs/N in its archive
+    j["height_map"] = has_height_map(*job);
+    j["waiting"] = map_wait_of(store_, data_, *job);
+    send_json(res, 200, j);
+  });
   s.Get(R"(/api/jobs/(\d{1,18})/path)",
         [this](const httplib::Request& req, httplib::Response& res) {
           const int64_t id = std::stoll(req.matches[1]);
@@ -585,6 +656,11 @@ void HttpApi::routes() {
           }
           res.set_content(*path, "application/json");
         });
+}
+
+// A job's archive files and its runs' files.
+void HttpApi::route_job_files() {
+  httplib::Server& s = *http_;
   s.Get(R"(/api/jobs/(\d{1,18})/files/([a-z.]{1,16}))",
         [this](const httplib::Request& req, httplib::Response& res) {
           const std::string file = req.matches[2];
@@ -628,7 +704,11 @@ void HttpApi::routes() {
             send_error(res, 404, fmt::format("the job has no run {} with a {}", run, file));
           }
         });
+}
 
+// A new job.
+void HttpApi::route_upload() {
+  httplib::Server& s = *http_;
   // ---- Changes (token checked above) ----
   // Read by the handler itself: httplib would cap a body sent as a form (curl --data-binary
   // without a Content-Type) at 8 KB and parse it as form fields.
@@ -665,6 +745,11 @@ void HttpApi::routes() {
     const auto job = store_.get(r.id);
     send_json(res, 201, job ? job_json(*job) : nlohmann::json{{"id", r.id}});
   });
+}
+
+// A job's control actions: the store's (cancel, requeue, continue), the machine's.
+void HttpApi::route_control() {
+  httplib::Server& s = *http_;
   s.Post(R"(/api/jobs/(\d{1,18})/control)",
          [this](const httplib::Request& req, httplib::Response& res) {
            const int64_t id = std::stoll(req.matches[1]);
@@ -681,61 +766,31 @@ void HttpApi::routes() {
              return send_error(res, 400, "percent goes with the override action only");
            }
            if (!store_.get(id)) return send_error(res, 404, "no such job");
-           auto done = [&](bool ok, const std::string& why) {
-             if (!ok) return send_error(res, 409, why);
-             workshop_.notify(true);
-             send_json(res, 200, job_json(*store_.get(id)));
-           };
-           if (action == "cancel") {
-             return done(store_.cancel(id), "only a queued job can be cancelled");
-           }
-           if (action == "requeue") {
-             return done(store_.requeue(id, false),
-                         "only an interrupted, aborted or failed job can be re-queued");
-           }
-           if (action == "continue") {
-             if (!workshop_.can_continue()) {
-               return send_error(res, 501,
-                                 "continuing from the first uncut curve needs send --resume "
-                                 "(protocol v2); re-queue the job to run it from the start");
-             }
-             return done(store_.requeue(id, true),
-                         "only an interrupted job with a known curve can be continued");
-           }
+           if (store_control(id, action, res)) return;
            JobControl c;
            int percent = 0;
-           if (action == "hold") {
-             c = JobControl::kHold;
-           } else if (action == "resume") {
-             c = JobControl::kResume;
-           } else if (action == "abort") {
-             c = JobControl::kAbort;
-           } else if (action == "probe_ready") {
-             c = JobControl::kConfirmProbe;
-           } else if (action == "override") {
-             c = JobControl::kOverride;
-             if (!body.contains("percent") || !body["percent"].is_number_integer()) {
-               return send_error(res, 400, "override needs \"percent\": 10 .. 200");
-             }
-             const int64_t p = body["percent"];
-             if (p < 10 || p > 200) return send_error(res, 400, "percent must be 10 .. 200");
-             percent = static_cast<int>(p);
-           } else {
-             return send_error(res, 400, "unknown action '" + action + "'");
-           }
+           if (!machine_control(action, body, res, &c, &percent)) return;
            const ControlResult r = workshop_.control(id, c, percent);
            if (r.status != 200) return send_error(res, r.status, r.error);
            send_json(res, 200, {{"id", id}, {"requested", action}});
          });
+}
+
+// A queued job's priority.
+void HttpApi::route_priority() {
+  httplib::Server& s = *http_;
   s.Post(R"(/api/jobs/(\d{1,18})/priority)",
          [this](const httplib::Request& req, httplib::Response& res) {
            const int64_t id = std::stoll(req.matches[1]);
            nlohmann::json body;
            if (!body_object(req, res, &body)) return;
            if (!known_keys(body, {"priority"}, res)) return;
+           const JobField& priority = *job_field_by_json_key("priority");
            if (!body.contains("priority") || !body["priority"].is_number_integer() ||
-               body["priority"].get<int64_t>() < -1000 || body["priority"].get<int64_t>() > 1000) {
-             return send_error(res, 400, "expected {\"priority\": -1000 .. 1000}");
+               !field_range_error(priority, body["priority"].get<double>()).empty()) {
+             return send_error(res, 400,
+                               fmt::format("expected {{\"priority\": {} .. {}}}", priority.lowest,
+                                           priority.highest));
            }
            if (!store_.get(id)) return send_error(res, 404, "no such job");
            if (!store_.set_priority(id, body["priority"].get<int>())) {
@@ -744,6 +799,28 @@ void HttpApi::routes() {
            workshop_.notify(true);
            send_json(res, 200, job_json(*store_.get(id)));
          });
+}
+
+bool HttpApi::store_control(int64_t id, const std::string& action, httplib::Response& res) {
+  auto done = [&](bool ok, const std::string& why) {
+    if (!ok) return send_error(res, 409, why);
+    workshop_.notify(true);
+    send_json(res, 200, job_json(*store_.get(id)));
+  };
+  if (action == "cancel") {
+    done(store_.cancel(id), "only a queued job can be cancelled");
+  } else if (action == "requeue") {
+    done(store_.requeue(id, false), "only an interrupted, aborted or failed job can be re-queued");
+  } else if (action == "continue" && !workshop_.can_continue()) {
+    send_error(res, 501,
+               "continuing from the first uncut curve needs send --resume "
+               "(protocol v2); re-queue the job to run it from the start");
+  } else if (action == "continue") {
+    done(store_.requeue(id, true), "only an interrupted job with a known curve can be continued");
+  } else {
+    return false;
+  }
+  return true;
 }
 
 }  // namespace host::server

@@ -20,7 +20,8 @@
 
 namespace httplib {
 class Server;
-}
+struct Response;
+}  // namespace httplib
 
 namespace host::server {
 
@@ -35,6 +36,10 @@ struct HttpOptions {
   // thread; control requests never wait for them).
   int max_event_streams = 1024;
 };
+
+// Every field an upload takes (multipart parts or query parameters): the file's, the job
+// record's (job_record_fields.h), a board's.
+std::vector<std::string> upload_field_names();
 
 class HttpApi {
  public:
@@ -51,7 +56,19 @@ class HttpApi {
   const AllowedHosts& allowed_hosts() const { return hosts_; }
 
  private:
+  // The routes, by what they serve (http_api.cpp).
   void routes();
+  void route_checks();
+  void route_page();
+  void route_status();
+  void route_jobs();
+  void route_job_files();
+  void route_upload();
+  void route_control();
+  void route_priority();
+  // Cancel, requeue, continue: answered from the store (true), else false.
+  bool store_control(int64_t id, const std::string& action, httplib::Response& res);
+  bool has_height_map(const JobRecord& job) const;
   void widen_backlog(int port);
   static const int kListenBacklog = 1024;  // connections waiting to be accepted
   // The server-sent event for the workshop's change counter `version`.

@@ -95,11 +95,17 @@ Submission InboxWatcher::board_folder(const fs::path& dir, IntakeResult* refused
 }
 
 void InboxWatcher::scan() {
+  std::vector<fs::path> ready, ready_folders;
+  find_settled(&ready, &ready_folders);
+  for (const fs::path& dir : ready_folders) take_folder(dir);
+  for (const fs::path& path : ready) take_file(path);
+}
+
+void InboxWatcher::find_settled(std::vector<fs::path>* ready,
+                                std::vector<fs::path>* ready_folders) {
   std::error_code ec;
   std::map<std::string, uintmax_t> seen;
   std::map<std::string, std::string> seen_folders;
-  std::vector<fs::path> ready;
-  std::vector<fs::path> ready_folders;
   for (const fs::directory_entry& e : fs::directory_iterator(folder_, ec)) {
     const std::string name = e.path().filename().string();
     // A board's sub-folder (not refused/, no link out of the inbox, none hidden).
@@ -109,7 +115,7 @@ void InboxWatcher::scan() {
       if (sig.empty()) continue;
       seen_folders[name] = sig;
       const auto before = folders_.find(name);
-      if (before != folders_.end() && before->second == sig) ready_folders.push_back(e.path());
+      if (before != folders_.end() && before->second == sig) ready_folders->push_back(e.path());
       continue;
     }
     // Regular files only (no links out of the folder), no hidden or partial uploads.
@@ -118,64 +124,62 @@ void InboxWatcher::scan() {
     if (ec) continue;
     seen[name] = size;
     const auto before = sizes_.find(name);
-    if (before != sizes_.end() && before->second == size) ready.push_back(e.path());
+    if (before != sizes_.end() && before->second == size) ready->push_back(e.path());
   }
   sizes_ = seen;
   folders_ = seen_folders;
-  for (const fs::path& dir : ready_folders) {
-    const std::string name = dir.filename().string();
-    IntakeResult r;
+}
+
+void InboxWatcher::take_folder(const fs::path& dir) {
+  IntakeResult r;
+  try {
+    const Submission sub = board_folder(dir, &r);
+    if (r.status == 0) r = intake_.submit(sub);
+  } catch (const std::exception& e) {
+    r.status = 500;
+    r.error = e.what();
+  }
+  folders_.erase(dir.filename().string());
+  settle(dir, r);
+}
+
+void InboxWatcher::take_file(const fs::path& path) {
+  const std::string name = path.filename().string();
+  Submission sub;
+  sub.name = name;
+  sub.settings = settings_;
+  IntakeResult r;
+  std::error_code ec;
+  if (fs::file_size(path, ec) > intake_.max_bytes()) {
+    r.status = 413;
+    r.error = fmt::format("{}: larger than the limit of {} bytes", name, intake_.max_bytes());
+  } else {
     try {
-      const Submission sub = board_folder(dir, &r);
-      if (r.status == 0) r = intake_.submit(sub);
+      sub.content = read_file(path);
+      r = intake_.submit(sub);
     } catch (const std::exception& e) {
       r.status = 500;
       r.error = e.what();
     }
-    folders_.erase(name);
-    if (r.status == 201) {
-      fs::remove_all(dir, ec);
-      if (on_queued_) on_queued_();
-    } else {
-      fs::remove_all(folder_ / "refused" / name, ec);
-      fs::rename(dir, folder_ / "refused" / name, ec);
-      try {
-        write_file(folder_ / "refused" / (name + ".why.txt"), r.error + "\n");
-      } catch (const std::exception&) {
-        // The refused folder itself is kept; the reason is in the server's log too.
-      }
-    }
   }
-  for (const fs::path& path : ready) {
-    const std::string name = path.filename().string();
-    Submission sub;
-    sub.name = name;
-    sub.settings = settings_;
-    IntakeResult r;
-    if (fs::file_size(path, ec) > intake_.max_bytes()) {
-      r.status = 413;
-      r.error = fmt::format("{}: larger than the limit of {} bytes", name, intake_.max_bytes());
-    } else {
-      try {
-        sub.content = read_file(path);
-        r = intake_.submit(sub);
-      } catch (const std::exception& e) {
-        r.status = 500;
-        r.error = e.what();
-      }
-    }
-    sizes_.erase(name);
-    if (r.status == 201) {
-      fs::remove(path, ec);
-      if (on_queued_) on_queued_();
-    } else {
-      fs::rename(path, folder_ / "refused" / name, ec);
-      try {
-        write_file(folder_ / "refused" / (name + ".why.txt"), r.error + "\n");
-      } catch (const std::exception&) {
-        // The refused file itself is kept; the reason is in the server's log too.
-      }
-    }
+  sizes_.erase(name);
+  settle(path, r);
+}
+
+void InboxWatcher::settle(const fs::path& path, const IntakeResult& r) {
+  std::error_code ec;
+  const std::string name = path.filename().string();
+  if (r.status == 201) {
+    fs::remove_all(path, ec);
+    if (on_queued_) on_queued_();
+    return;
+  }
+  fs::remove_all(folder_ / "refused" / name, ec);  // a folder refused before under its name
+  fs::rename(path, folder_ / "refused" / name, ec);
+  try {
+    write_file(folder_ / "refused" / (name + ".why.txt"), r.error + "\n");
+  } catch (const std::exception&) {
+    // The refused file or folder itself is kept; the reason is in the server's log too.
   }
 }
 

@@ -13,6 +13,7 @@
 #include <map>         // std::map
 #include <string>      // std::string
 #include <thread>      // std::thread
+#include <vector>      // std::vector
 
 #include "host/lib/server/job_intake.h"
 
@@ -37,6 +38,13 @@ class InboxWatcher {
   std::function<void()> on_queued_;
   // A board's sub-folder: its files for the intake, or the reason it is refused.
   Submission board_folder(const std::filesystem::path& dir, IntakeResult* refused) const;
+  // The files and board folders unchanged since the previous scan (an upload has finished).
+  void find_settled(std::vector<std::filesystem::path>* ready,
+                    std::vector<std::filesystem::path>* ready_folders);
+  void take_folder(const std::filesystem::path& dir);
+  void take_file(const std::filesystem::path& path);
+  // Queued: the file or folder leaves the inbox; refused: to refused/ with NAME.why.txt.
+  void settle(const std::filesystem::path& path, const IntakeResult& r);
 
   std::map<std::string, uintmax_t> sizes_;      // size seen at the previous scan
   std::map<std::string, std::string> folders_;  // sub-folder: its files and sizes then

@@ -18,6 +18,7 @@
 #include "host/lib/server/board_bundle.h"
 #include "host/lib/server/board_height_map.h"  // check_height_map_fields
 #include "host/lib/server/job_planning.h"
+#include "host/lib/server/job_record_fields.h"
 #include "host/lib/server/zip_upload.h"
 
 namespace host::server {
@@ -56,11 +57,15 @@ std::string check_tag(const std::string& tag) {
 }
 
 std::string check_settings(const JobPlanSettings& s) {
-  // Written so that NaN fails every range.
-  if (!(s.feed_mm_s >= 0.1 && s.feed_mm_s <= 60.0)) return "feed_mm_s must be 0.1 .. 60";
-  if (!(s.tol_mm >= 0.001 && s.tol_mm <= 1.0)) return "tol_mm must be 0.001 .. 1";
-  if (!(s.scale >= 1e-3 && s.scale <= 1e3)) return "scale must be 0.001 .. 1000";
-  if (!(s.margin_mm >= 0.0 && s.margin_mm <= 100.0)) return "margin_mm must be 0 .. 100";
+  // The ranges are the field table's (job_record_fields.h); NaN fails every one.
+  JobRecord job;
+  job.settings = s;
+  for (size_t i = 0; i < kJobFieldCount; ++i) {
+    const JobField& f = kJobFields[i];
+    if (f.type != FieldType::kDouble) continue;
+    const std::string why = field_range_error(f, std::get<double>(field_value(job, f)));
+    if (!why.empty()) return why;
+  }
   return "";
 }
 
@@ -141,126 +146,168 @@ void JobIntake::stage_board(const Submission& sub, const std::vector<UploadFile>
   *stored = pack_board_bundle(b.files);
 }
 
-IntakeResult JobIntake::submit(const Submission& sub) {
+// The upload's files: one file, a board's files, or a board's zip file unpacked.
+struct JobIntake::UploadedFiles {
+  std::vector<UploadFile> files;
+  bool several = false;     // a board's files (given as several, or unpacked from a zip)
+  bool board = false;       // Gerber/Excellon: planned as a board
+  bool skip_other = false;  // leave out files that are neither (a folder's or a zip's read-me)
+  const std::string* zip = nullptr;  // the upload as it came, when it was one zip file
+  std::string job_name;
+};
+
+namespace {
+
+IntakeResult refused(int status, const std::string& why) {
   IntakeResult r;
-  // One file in name/content, or a board's files, or a board as one zip file.
-  std::vector<UploadFile> files = sub.files;
-  bool several = !files.empty();
-  if (!several) files.push_back(UploadFile{sub.name, sub.content});
-  bool board = several;
-  for (const UploadFile& f : files) board = board || is_pcb_upload(f);
-  bool skip_other = sub.skip_other_files;
-  const std::string* zip = nullptr;
-  std::string why;
-  for (const UploadFile& f : files) {
-    if (several && looks_like_zip(f.content)) {
-      why =
-          fmt::format("file '{}': a zip file is uploaded alone (it holds the whole board)", f.name);
+  r.status = status;
+  r.error = why;
+  return r;
+}
+
+// A zip among several files, a zip that cannot be unpacked, too many files or a bad name:
+// why ("" when fine); *status says how it is refused.
+std::string check_files(const Submission& sub, size_t max_bytes, size_t max_files,
+                        JobIntake::UploadedFiles* up, int* status) {
+  *status = 400;
+  for (const UploadFile& f : up->files) {
+    if (up->several && looks_like_zip(f.content)) {
+      return fmt::format("file '{}': a zip file is uploaded alone (it holds the whole board)",
+                         f.name);
     }
   }
-  if (!several && looks_like_zip(sub.content)) {
-    why = check_upload_name(sub.name);
-    if (why.empty() && sub.content.size() > max_bytes_) {
-      r.status = 413;
-      r.error = fmt::format("{}: {} bytes, more than the limit of {} bytes", sub.name,
-                            sub.content.size(), max_bytes_);
-      return r;
+  if (!up->several && looks_like_zip(sub.content)) {
+    const std::string why = check_upload_name(sub.name);
+    if (!why.empty()) return why;
+    if (sub.content.size() > max_bytes) {
+      *status = 413;
+      return fmt::format("{}: {} bytes, more than the limit of {} bytes", sub.name,
+                         sub.content.size(), max_bytes);
     }
-    if (why.empty()) {
-      try {
-        files = unzip_upload(sub.content, sub.name, max_bytes_, 4 * kMaxFiles);
-      } catch (const ZipError& e) {
-        r.status = e.too_large() ? 413 : 422;
-        r.error = e.what();
-        return r;
-      }
-      zip = &sub.content;
-      several = board = skip_other = true;
+    try {
+      up->files = unzip_upload(sub.content, sub.name, max_bytes, 4 * max_files);
+    } catch (const ZipError& e) {
+      *status = e.too_large() ? 413 : 422;
+      return e.what();
     }
+    up->zip = &sub.content;
+    up->several = up->board = up->skip_other = true;
   }
-  if (why.empty() && files.size() > kMaxFiles) {
-    why = fmt::format("{} files in one upload; a board takes at most {}", files.size(), kMaxFiles);
+  if (up->files.size() > max_files) {
+    return fmt::format("{} files in one upload; a board takes at most {}", up->files.size(),
+                       max_files);
   }
-  for (const UploadFile& f : files) {
-    if (!why.empty()) break;
-    why = check_upload_name(f.name);
-    if (!why.empty() && several) why = fmt::format("file '{}': {}", f.name, why);
+  for (const UploadFile& f : up->files) {
+    const std::string why = check_upload_name(f.name);
+    if (!why.empty()) return up->several ? fmt::format("file '{}': {}", f.name, why) : why;
   }
+  return "";
+}
+
+// The upload's name as the job's: the file's, the board's given name, the files' common name,
+// or a zip's name without .zip.
+std::string job_name_of(const Submission& sub, const JobIntake::UploadedFiles& up) {
+  if (up.zip != nullptr) return fs::path(sub.name).stem().string();  // "blinky" of blinky.zip
+  if (!up.several || !sub.name.empty()) return sub.name;
   std::vector<std::string> names;
-  for (const UploadFile& f : files) names.push_back(f.name);
-  std::string job_name =
-      !several || !sub.name.empty() ? sub.name : pcb::board_name_from_files(names);
-  if (zip != nullptr) job_name = fs::path(sub.name).stem().string();  // "blinky" of blinky.zip
-  if (why.empty() && several) why = check_upload_name(job_name);
-  if (why.empty()) why = check_tag(sub.tag);
+  for (const UploadFile& f : up.files) names.push_back(f.name);
+  return pcb::board_name_from_files(names);
+}
+
+// The fields against the kind of job (a board's fields and a drawing's): why not ("" fine).
+std::string check_fields(const Submission& sub, bool board) {
+  std::string why = check_tag(sub.tag);
   if (why.empty()) why = check_settings(sub.settings);
   if (why.empty() && board) why = check_board_settings(sub.board);
-  if (why.empty() && board && sub.feed_given) {
-    why = fmt::format(
+  if (!why.empty()) return why;
+  if (board && sub.feed_given) {
+    return fmt::format(
         "feed_mm_s does not apply to a board: it is cut at the board planner's feeds "
         "(isolation {} mm/s, drilling {} mm/s, cut-out {} mm/s)",
         defaults::kBoardFeedMmPerS, defaults::kDrillFeedMmPerS, defaults::kCutFeedMmPerS);
   }
-  if (why.empty() && board && sub.tol_given &&
-      sub.settings.tol_mm != defaults::kBoardChordToleranceMm) {
-    why = fmt::format(
+  if (board && sub.tol_given && sub.settings.tol_mm != defaults::kBoardChordToleranceMm) {
+    return fmt::format(
         "tol_mm of a board must be {} (a board is sent with 1 um chords, the controller's "
         "finest: coarser ones cut into the isolation clearance)",
         defaults::kBoardChordToleranceMm);
   }
-  if (why.empty() && !board && !sub.board_fields.empty()) {
-    why = fmt::format("{} applies to a board (Gerber and Excellon files), not to {}",
-                      sub.board_fields.front(), sub.name);
+  if (!board && !sub.board_fields.empty()) {
+    return fmt::format("{} applies to a board (Gerber and Excellon files), not to {}",
+                       sub.board_fields.front(), sub.name);
   }
-  if (why.empty() && board && sub.board.height_map_from == 0 &&
+  if (board && sub.board.height_map_from == 0 &&
       std::find(sub.board_fields.begin(), sub.board_fields.end(), "height_map_flip") !=
           sub.board_fields.end()) {
-    why = "height_map_flip goes with height_map_from (how that job's map follows the flip)";
+    return "height_map_flip goes with height_map_from (how that job's map follows the flip)";
   }
-  if (why.empty() && board && sub.board.height_map_from != 0) {
+  if (board && sub.settings.scale != 1.0) {
+    return "scale does not apply to a board (Gerber and Excellon give true sizes)";
+  }
+  return field_range_error(*job_field_by_json_key("priority"), sub.priority);
+}
+
+}  // namespace
+
+IntakeResult JobIntake::submit(const Submission& sub) {
+  // One file in name/content, or a board's files, or a board as one zip file.
+  UploadedFiles up;
+  up.files = sub.files;
+  up.several = !up.files.empty();
+  if (!up.several) up.files.push_back(UploadFile{sub.name, sub.content});
+  up.board = up.several;
+  for (const UploadFile& f : up.files) up.board = up.board || is_pcb_upload(f);
+  up.skip_other = sub.skip_other_files;
+  int status = 400;
+  std::string why = check_files(sub, max_bytes_, kMaxFiles, &up, &status);
+  if (!why.empty()) return refused(status, why);
+  up.job_name = job_name_of(sub, up);
+  if (up.several) why = check_upload_name(up.job_name);
+  if (why.empty()) why = check_fields(sub, up.board);
+  if (why.empty() && up.board && sub.board.height_map_from != 0) {
     const std::optional<JobRecord> from = store_.get(sub.board.height_map_from);
     if (!from || !is_board_job(*from)) {
       why = fmt::format("height_map_from: no board job {} (the job whose height map to use)",
                         sub.board.height_map_from);
     }
   }
-  if (why.empty() && board && sub.settings.scale != 1.0) {
-    why = "scale does not apply to a board (Gerber and Excellon give true sizes)";
-  }
-  if (why.empty() && (sub.priority < -1000 || sub.priority > 1000)) {
-    why = "priority must be -1000 .. 1000";
-  }
-  if (!why.empty()) {
-    r.status = 400;
-    r.error = why;
-    return r;
-  }
+  if (!why.empty()) return refused(400, why);
   size_t total = 0;
-  for (const UploadFile& f : files) total += f.content.size();
+  for (const UploadFile& f : up.files) total += f.content.size();
   if (total > max_bytes_) {
-    r.status = 413;
-    r.error =
-        fmt::format("{}: {} bytes, more than the limit of {} bytes", job_name, total, max_bytes_);
-    return r;
+    return refused(413, fmt::format("{}: {} bytes, more than the limit of {} bytes", up.job_name,
+                                    total, max_bytes_));
   }
+  return plan_and_queue(sub, up);
+}
 
+// The job's record as the upload gives it (what the plan adds comes later).
+JobRecord JobIntake::new_record(const Submission& sub, const UploadedFiles& up,
+                                const fs::path& staging) const {
+  JobRecord job;
+  job.key = staging.filename().string();
+  job.name = up.job_name;
+  job.priority = sub.priority;
+  job.tag = sub.tag;
+  job.settings = sub.settings;
+  if (up.board) {  // what it is cut and sent with, on the record
+    job.settings.feed_mm_s = defaults::kBoardFeedMmPerS;
+    job.settings.tol_mm = defaults::kBoardChordToleranceMm;
+    // A board sits where `engraver board` puts it unless the sender said otherwise.
+    if (!sub.margin_given) job.settings.margin_mm = defaults::kBoardMarginMm;
+  }
+  return job;
+}
+
+IntakeResult JobIntake::plan_and_queue(const Submission& sub, const UploadedFiles& up) {
+  IntakeResult r;
+  const std::string& job_name = up.job_name;
   const fs::path staging = data_.new_staging_dir();
   try {
-    JobRecord job;
-    job.key = staging.filename().string();
-    job.name = job_name;
-    job.priority = sub.priority;
-    job.tag = sub.tag;
-    job.settings = sub.settings;
-    if (board) {  // what it is cut and sent with, on the record
-      job.settings.feed_mm_s = defaults::kBoardFeedMmPerS;
-      job.settings.tol_mm = defaults::kBoardChordToleranceMm;
-    }
+    JobRecord job = new_record(sub, up, staging);
     std::string stored;
-    if (board) {
-      // A board sits where `engraver board` puts it unless the sender said otherwise.
-      if (!sub.margin_given) job.settings.margin_mm = defaults::kBoardMarginMm;
-      stage_board(sub, files, skip_other, zip, staging, &job, &stored);
+    if (up.board) {
+      stage_board(sub, up.files, up.skip_other, up.zip, staging, &job, &stored);
     } else {
       stage_drawing(sub, staging, &job, &stored);
     }
@@ -285,20 +332,16 @@ IntakeResult JobIntake::submit(const Submission& sub) {
     r.status = 400;
     r.error = e.what();
   } catch (const ImportError& e) {
-    r.status = 422;
-    r.error = e.what();
+    r = refused(422, e.what());
   } catch (const PlanError& e) {
-    r.status = 422;
-    r.error = e.what();
+    r = refused(422, e.what());
   } catch (const StoreError& e) {
-    r.status = 500;
-    r.error = e.what();
+    r = refused(500, e.what());
   } catch (const std::exception& e) {
-    r.status = 500;
-    r.error = fmt::format("{}: {}", job_name, e.what());
+    r = refused(500, fmt::format("{}: {}", job_name, e.what()));
   } catch (...) {
-    r.status = 422;  // a reader threw something that is not an exception class
-    r.error = fmt::format("{}: cannot be read as a drawing", job_name);
+    // A reader threw something that is not an exception class.
+    r = refused(422, fmt::format("{}: cannot be read as a drawing", job_name));
   }
   std::error_code ec;
   fs::remove_all(staging, ec);  // gone already when the job was queued

@@ -49,8 +49,14 @@ class JobIntake {
   IntakeResult submit(const Submission& submission);
   size_t max_bytes() const { return max_bytes_; }
   static constexpr size_t kMaxFiles = 32;  // files of one board (a CAM folder with masks, silk)
+  struct UploadedFiles;                    // the upload's files as checked (job_intake.cpp)
 
  private:
+  // Plans the checked upload in a staging folder and queues it (the folder becomes the
+  // job's archive folder); nothing is left behind when it is refused.
+  IntakeResult plan_and_queue(const Submission& sub, const UploadedFiles& up);
+  JobRecord new_record(const Submission& sub, const UploadedFiles& up,
+                       const std::filesystem::path& staging) const;
   // Plans the upload into the staging folder; fills the job's plan-derived fields and the
   // bytes the store keeps. Throws ImportError / PlanError with the message for the sender.
   void stage_drawing(const Submission& sub, const std::filesystem::path& staging, JobRecord* job,

@@ -1,13 +1,16 @@
-// What the SQL job stores (SQLite, PostgreSQL) share: the jobs table's column list in the
-// order both read rows, the tag list format the fit queries match, and the clock they stamp.
+// What the SQL job stores (SQLite, PostgreSQL) share: the statements both run (written once,
+// with the dialect's parameter mark '?' or '$'), the tag list format the fit queries match,
+// and the clock they stamp. The jobs table's columns come from job_record_fields.h.
 #ifndef HOST_LIB_SERVER_JOB_STORE_SQL_H
 #define HOST_LIB_SERVER_JOB_STORE_SQL_H
 
 #include <chrono>   // std::chrono::system_clock
 #include <cstdint>  // int64_t
 #include <string>   // std::string
+#include <vector>   // std::vector
 
 #include "host/lib/server/job_record.h"  // MachineFit
+#include "host/lib/server/job_record_fields.h"
 
 namespace host::server::sql {
 
@@ -35,23 +38,14 @@ inline std::string not_now_sql(const MachineFit& fit) {
   return s + ")";
 }
 
-inline const char* const kColumns =
-    "id, key, name, input_file, state, priority, tag, feed_mm_s, tol_mm, scale, margin_mm, "
-    "width_mm, height_mm, planned_s, machine, owner, message, executed, total, resume_curve, "
-    "created_ms, started_ms, finished_ms, start_curve, resume_index, resume_point, "
-    "resume_job_id, lease_epoch";
-
-// Columns added after the first release: ALTERed into an older database at open.
+// The servers table's columns added after the first release: ALTERed into an older database at
+// open (the jobs table's come from the field table: every column a database lacks).
 struct AddedColumn {
   const char* table;
   const char* name;
   const char* type_and_default;
 };
-inline const AddedColumn kAddedColumns[] = {
-    {"jobs", "resume_index", "BIGINT NOT NULL DEFAULT -1"},
-    {"jobs", "resume_point", "INTEGER NOT NULL DEFAULT 0"},
-    {"jobs", "resume_job_id", "INTEGER NOT NULL DEFAULT -1"},
-    {"jobs", "lease_epoch", "BIGINT NOT NULL DEFAULT 0"},
+inline const AddedColumn kAddedServerColumns[] = {
     {"servers", "epoch", "BIGINT NOT NULL DEFAULT 0"},
     {"servers", "revoked", "INTEGER NOT NULL DEFAULT 0"},
     {"servers", "holder", "TEXT NOT NULL DEFAULT ''"},
@@ -65,6 +59,111 @@ inline std::string fenced_running(char mark, int owner, int epoch) {
   return "id = " + std::string(1, mark) + "1 AND state = 'running' AND owner = " + o +
          " AND lease_epoch = " + e + " AND EXISTS (SELECT 1 FROM servers WHERE name = " + o +
          " AND epoch = " + e + " AND revoked = 0)";
+}
+
+// Parameter n in the dialect's mark: "?3" (SQLite) or "$3" (PostgreSQL).
+inline std::string param(char mark, int n) {
+  return std::string(1, mark) + std::to_string(n);
+}
+
+// A running job's saved progress (JobProgress, in its order) from parameter `first` on:
+// "executed = ?4, total = ?5, ...".
+inline std::string progress_set(char mark, int first) {
+  static const char* const kProgressColumns[] = {"executed",     "total",        "resume_curve",
+                                                 "resume_index", "resume_point", "resume_job_id"};
+  std::string out;
+  for (const char* c : kProgressColumns) {
+    out += std::string(out.empty() ? "" : ", ") + c + " = " + param(mark, first++);
+  }
+  return out;
+}
+
+// ?1 id, ?2 owner, ?3 epoch, ?4.. the progress.
+inline std::string save_progress(char mark) {
+  return "UPDATE jobs SET " + progress_set(mark, 4) + " WHERE " + fenced_running(mark, 2, 3);
+}
+
+// ?1 id, ?2 owner, ?3 epoch, ?4 state, ?5 message, ?6..?11 the progress, ?12 now.
+inline std::string finish(char mark) {
+  return "UPDATE jobs SET state = " + param(mark, 4) + ", message = " + param(mark, 5) + ", " +
+         progress_set(mark, 6) + ", finished_ms = " + param(mark, 12) + " WHERE " +
+         fenced_running(mark, 2, 3);
+}
+
+// ?1 id, ?2 now.
+inline std::string cancel(char mark) {
+  return "UPDATE jobs SET state = 'cancelled', finished_ms = " + param(mark, 2) +
+         " WHERE id = " + param(mark, 1) + " AND state = 'queued'";
+}
+
+// ?1 id.
+inline std::string requeue(char mark, bool continue_job) {
+  return continue_job
+             ? "UPDATE jobs SET state = 'queued', machine = '', owner = '',"
+               " start_curve = resume_curve WHERE id = " +
+                   param(mark, 1) +
+                   " AND state = 'interrupted'"
+                   " AND (resume_curve >= 0 OR resume_index >= 0 OR executed = 0)"
+             : "UPDATE jobs SET state = 'queued', machine = '', owner = '', start_curve = -1,"
+               " resume_curve = -1, resume_index = -1, resume_point = 0, resume_job_id = -1"
+               " WHERE id = " +
+                   param(mark, 1) + " AND state IN ('interrupted', 'aborted', 'failed')";
+}
+
+// ?1 id, ?2 priority.
+inline std::string set_priority(char mark) {
+  return "UPDATE jobs SET priority = " + param(mark, 2) + " WHERE id = " + param(mark, 1) +
+         " AND state = 'queued'";
+}
+
+// ?1 owner, ?2 message, ?3 now.
+inline std::string interrupt_running(char mark) {
+  return "UPDATE jobs SET state = 'interrupted', message = " + param(mark, 2) +
+         ", finished_ms = " + param(mark, 3) +
+         " WHERE state = 'running' AND owner = " + param(mark, 1);
+}
+
+// ?1 message, ?2 now: running jobs not under a standing lease.
+inline std::string interrupt_unleased(char mark) {
+  return "UPDATE jobs SET state = 'interrupted', message = " + param(mark, 1) +
+         ", finished_ms = " + param(mark, 2) +
+         " WHERE state = 'running' AND NOT EXISTS (SELECT 1 FROM servers WHERE"
+         " servers.name = jobs.owner AND servers.epoch = jobs.lease_epoch AND"
+         " servers.revoked = 0)";
+}
+
+// ?1 owner, ?2 epoch.
+inline std::string lease_stands(char mark) {
+  return "SELECT 1 FROM servers WHERE name = " + param(mark, 1) + " AND epoch = " + param(mark, 2) +
+         " AND revoked = 0";
+}
+
+// The claim's UPDATE after the chosen job: ?1 id (SQLite) or the job's sub-select; then
+// machine, owner, now, epoch at the numbers given.
+inline std::string claim_set(char mark, int machine) {
+  return "UPDATE jobs SET state = 'running', machine = " + param(mark, machine) +
+         ", owner = " + param(mark, machine + 1) + ", started_ms = " + param(mark, machine + 2) +
+         ", message = '', executed = 0, lease_epoch = " + param(mark, machine + 3);
+}
+
+// SELECT every column of one job (?1 id), or of the newest (?1 state or '', ?2 limit).
+inline std::string select_job(char mark) {
+  return "SELECT " + job_columns() + " FROM jobs WHERE id = " + param(mark, 1);
+}
+inline std::string select_jobs(char mark) {
+  return "SELECT " + job_columns() + " FROM jobs WHERE (" + param(mark, 1) +
+         " = '' OR state = " + param(mark, 1) + ") ORDER BY id DESC LIMIT " + param(mark, 2);
+}
+
+// The jobs table's columns that `present` lacks, declared for ALTER TABLE ADD COLUMN (an older
+// database: every column a later version added, with its default).
+template <class Present>
+std::vector<std::string> missing_job_columns(SqlDialect dialect, Present present) {
+  std::vector<std::string> out;
+  for (size_t i = 0; i < kJobFieldCount; ++i) {
+    if (!present(kJobFields[i].column)) out.push_back(column_declaration(kJobFields[i], dialect));
+  }
+  return out;
 }
 
 }  // namespace host::server::sql

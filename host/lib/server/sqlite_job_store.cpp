@@ -4,13 +4,14 @@
 #include <fmt/format.h>  // fmt::format
 #include <sqlite3.h>     // sqlite3_*
 
+#include <cstring>  // std::strcmp
+
 #include "host/lib/server/job_store_sql.h"
 
 namespace host::server {
 
 namespace {
 
-using sql::kColumns;
 using sql::not_now_sql;
 using sql::now_ms;
 using sql::tag_list;
@@ -54,38 +55,21 @@ class Statement {
     const unsigned char* t = sqlite3_column_text(stmt_, c);
     return t ? reinterpret_cast<const char*>(t) : "";
   }
-  JobRecord record() const {
-    JobRecord r;
-    r.id = i64(0);
-    r.key = text(1);
-    r.name = text(2);
-    r.input_file = text(3);
-    r.state = state_from_name(text(4));
-    r.priority = static_cast<int>(i64(5));
-    r.tag = text(6);
-    r.settings.feed_mm_s = f64(7);
-    r.settings.tol_mm = f64(8);
-    r.settings.scale = f64(9);
-    r.settings.margin_mm = f64(10);
-    r.width_mm = f64(11);
-    r.height_mm = f64(12);
-    r.planned_s = f64(13);
-    r.machine = text(14);
-    r.owner = text(15);
-    r.message = text(16);
-    r.executed = i64(17);
-    r.total = i64(18);
-    r.resume_curve = static_cast<int>(i64(19));
-    r.created_ms = i64(20);
-    r.started_ms = i64(21);
-    r.finished_ms = i64(22);
-    r.start_curve = static_cast<int>(i64(23));
-    r.resume_index = i64(24);
-    r.resume_point = static_cast<int>(i64(25));
-    r.resume_job_id = static_cast<int>(i64(26));
-    r.lease_epoch = i64(27);
-    return r;
+  Statement& bind(int i, const FieldValue& v) {
+    std::visit([&](const auto& x) { bind(i, x); }, v);
+    return *this;
   }
+  // The row's columns by name (a database's column order is its history's, not the table's).
+  int column(const char* name) const {
+    for (int c = 0, n = sqlite3_column_count(stmt_); c < n; ++c) {
+      if (std::strcmp(sqlite3_column_name(stmt_, c), name) == 0) return c;
+    }
+    throw StoreError(fmt::format("{}: no column '{}' in the result", path_, name));
+  }
+  int64_t i64(const char* name) const { return i64(column(name)); }
+  double f64(const char* name) const { return f64(column(name)); }
+  std::string text(const char* name) const { return text(column(name)); }
+  JobRecord record() const { return job_from_row(*this); }
 
  private:
   [[noreturn]] void fail(const char* what) const {
@@ -109,31 +93,25 @@ SqliteJobStore::SqliteJobStore(const std::string& path) : path_(path) {
   sqlite3_busy_timeout(db_, 5000);
   exec("PRAGMA journal_mode = WAL");
   exec("PRAGMA synchronous = NORMAL");
-  exec(
-      "CREATE TABLE IF NOT EXISTS jobs ("
-      " id INTEGER PRIMARY KEY AUTOINCREMENT, key TEXT NOT NULL UNIQUE, name TEXT NOT NULL,"
-      " input_file TEXT NOT NULL, state TEXT NOT NULL, priority INTEGER NOT NULL,"
-      " tag TEXT NOT NULL, feed_mm_s REAL NOT NULL, tol_mm REAL NOT NULL, scale REAL NOT NULL,"
-      " margin_mm REAL NOT NULL, width_mm REAL NOT NULL, height_mm REAL NOT NULL,"
-      " planned_s REAL NOT NULL, machine TEXT NOT NULL DEFAULT '',"
-      " owner TEXT NOT NULL DEFAULT '', message TEXT NOT NULL DEFAULT '',"
-      " executed INTEGER NOT NULL DEFAULT 0, total INTEGER NOT NULL DEFAULT 0,"
-      " resume_curve INTEGER NOT NULL DEFAULT -1, created_ms INTEGER NOT NULL,"
-      " started_ms INTEGER NOT NULL DEFAULT 0, finished_ms INTEGER NOT NULL DEFAULT 0,"
-      " start_curve INTEGER NOT NULL DEFAULT -1)");
+  exec(create_jobs_table(SqlDialect::kSqlite, ""));
   exec("CREATE INDEX IF NOT EXISTS jobs_queue ON jobs (state, priority DESC, id)");
   exec("CREATE TABLE IF NOT EXISTS servers (name TEXT PRIMARY KEY, seen_ms INTEGER NOT NULL)");
   add_missing_columns();
 }
 
+bool SqliteJobStore::has_column(const char* table, const char* column) {
+  Statement s(db_, path_, fmt::format("PRAGMA table_info({})", table));
+  bool present = false;
+  while (s.step()) present = present || s.text(1) == column;
+  return present;
+}
+
 void SqliteJobStore::add_missing_columns() {
-  for (const sql::AddedColumn& c : sql::kAddedColumns) {
-    bool present = false;
-    {
-      Statement s(db_, path_, fmt::format("PRAGMA table_info({})", c.table));
-      while (s.step()) present = present || s.text(1) == c.name;
-    }
-    if (!present)
+  for (const std::string& c : sql::missing_job_columns(
+           SqlDialect::kSqlite, [this](const char* column) { return has_column("jobs", column); }))
+    exec("ALTER TABLE jobs ADD COLUMN " + c);
+  for (const sql::AddedColumn& c : sql::kAddedServerColumns) {
+    if (!has_column(c.table, c.name))
       exec(fmt::format("ALTER TABLE {} ADD COLUMN {} {}", c.table, c.name, c.type_and_default));
   }
 }
@@ -153,22 +131,18 @@ void SqliteJobStore::exec(const std::string& sql) {
 
 int64_t SqliteJobStore::add(const JobRecord& job, const std::string& /*input: in the archive*/) {
   std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_,
-              "INSERT INTO jobs (key, name, input_file, state, priority, tag, feed_mm_s, tol_mm,"
-              " scale, margin_mm, width_mm, height_mm, planned_s, created_ms)"
-              " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14)");
-  s.bind(1, job.key).bind(2, job.name).bind(3, job.input_file);
-  s.bind(4, std::string(state_name(job.state))).bind(5, int64_t{job.priority}).bind(6, job.tag);
-  s.bind(7, job.settings.feed_mm_s).bind(8, job.settings.tol_mm).bind(9, job.settings.scale);
-  s.bind(10, job.settings.margin_mm).bind(11, job.width_mm).bind(12, job.height_mm);
-  s.bind(13, job.planned_s).bind(14, now_ms());
+  JobRecord stamped = job;
+  stamped.created_ms = now_ms();
+  Statement s(db_, path_, insert_job('?'));
+  int i = 1;
+  for (const FieldValue& v : insert_values(stamped)) s.bind(i++, v);
   s.step();
   return sqlite3_last_insert_rowid(db_);
 }
 
 std::optional<JobRecord> SqliteJobStore::get(int64_t id) {
   std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_, fmt::format("SELECT {} FROM jobs WHERE id = ?1", kColumns));
+  Statement s(db_, path_, sql::select_job('?'));
   s.bind(1, id);
   if (!s.step()) return std::nullopt;
   return s.record();
@@ -176,10 +150,7 @@ std::optional<JobRecord> SqliteJobStore::get(int64_t id) {
 
 std::vector<JobRecord> SqliteJobStore::list(const std::string& state_filter, size_t limit) {
   std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_,
-              fmt::format("SELECT {} FROM jobs WHERE (?1 = '' OR state = ?1) ORDER BY id DESC "
-                          "LIMIT ?2",
-                          kColumns));
+  Statement s(db_, path_, sql::select_jobs('?'));
   s.bind(1, state_filter).bind(2, static_cast<int64_t>(limit));
   std::vector<JobRecord> out;
   while (s.step()) out.push_back(s.record());
@@ -202,8 +173,7 @@ std::optional<JobRecord> SqliteJobStore::claim(const MachineFit& fit, const std:
   exec("BEGIN IMMEDIATE");
   try {
     {
-      Statement l(db_, path_,
-                  "SELECT 1 FROM servers WHERE name = ?1 AND epoch = ?2 AND revoked = 0");
+      Statement l(db_, path_, sql::lease_stands('?'));
       l.bind(1, lease.owner).bind(2, lease.epoch);
       if (!l.step()) {
         exec("COMMIT");
@@ -223,12 +193,10 @@ std::optional<JobRecord> SqliteJobStore::claim(const MachineFit& fit, const std:
       }
       id = s.i64(0);
     }
-    Statement u(db_, path_,
-                "UPDATE jobs SET state = 'running', machine = ?2, owner = ?3, started_ms = ?4,"
-                " message = '', executed = 0, lease_epoch = ?5 WHERE id = ?1");
+    Statement u(db_, path_, sql::claim_set('?', 2) + " WHERE id = ?1");
     u.bind(1, id).bind(2, machine).bind(3, lease.owner).bind(4, now_ms()).bind(5, lease.epoch);
     u.step();
-    Statement r(db_, path_, fmt::format("SELECT {} FROM jobs WHERE id = ?1", kColumns));
+    Statement r(db_, path_, sql::select_job('?'));
     r.bind(1, id);
     r.step();
     JobRecord job = r.record();
@@ -244,10 +212,7 @@ std::optional<JobRecord> SqliteJobStore::claim(const MachineFit& fit, const std:
 
 bool SqliteJobStore::save_progress(int64_t id, const Lease& lease, const JobProgress& p) {
   std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_,
-              "UPDATE jobs SET executed = ?4, total = ?5, resume_curve = ?6, resume_index = ?7,"
-              " resume_point = ?8, resume_job_id = ?9 WHERE " +
-                  sql::fenced_running('?', 2, 3));
+  Statement s(db_, path_, sql::save_progress('?'));
   s.bind(1, id).bind(2, lease.owner).bind(3, lease.epoch).bind(4, p.executed).bind(5, p.total);
   s.bind(6, int64_t{p.resume_curve}).bind(7, p.resume_index).bind(8, int64_t{p.resume_point});
   s.bind(9, int64_t{p.resume_job_id});
@@ -258,11 +223,7 @@ bool SqliteJobStore::save_progress(int64_t id, const Lease& lease, const JobProg
 bool SqliteJobStore::finish(int64_t id, const Lease& lease, JobState state,
                             const std::string& message, const JobProgress& p) {
   std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_,
-              "UPDATE jobs SET state = ?4, message = ?5, executed = ?6, total = ?7,"
-              " resume_curve = ?8, resume_index = ?9, resume_point = ?10, resume_job_id = ?11,"
-              " finished_ms = ?12 WHERE " +
-                  sql::fenced_running('?', 2, 3));
+  Statement s(db_, path_, sql::finish('?'));
   s.bind(1, id).bind(2, lease.owner).bind(3, lease.epoch);
   s.bind(4, std::string(state_name(state))).bind(5, message).bind(6, p.executed);
   s.bind(7, p.total).bind(8, int64_t{p.resume_curve}).bind(9, p.resume_index);
@@ -273,9 +234,7 @@ bool SqliteJobStore::finish(int64_t id, const Lease& lease, JobState state,
 
 bool SqliteJobStore::cancel(int64_t id) {
   std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_,
-              "UPDATE jobs SET state = 'cancelled', finished_ms = ?2 WHERE id = ?1 AND state = "
-              "'queued'");
+  Statement s(db_, path_, sql::cancel('?'));
   s.bind(1, id).bind(2, now_ms());
   s.step();
   return sqlite3_changes(db_) == 1;
@@ -283,15 +242,7 @@ bool SqliteJobStore::cancel(int64_t id) {
 
 bool SqliteJobStore::requeue(int64_t id, bool continue_job) {
   std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_,
-              continue_job
-                  ? "UPDATE jobs SET state = 'queued', machine = '', owner = '',"
-                    " start_curve = resume_curve WHERE id = ?1 AND state = 'interrupted'"
-                    " AND (resume_curve >= 0 OR resume_index >= 0 OR executed = 0)"
-                  : "UPDATE jobs SET state = 'queued', machine = '', owner = '', start_curve = -1,"
-                    " resume_curve = -1, resume_index = -1, resume_point = 0,"
-                    " resume_job_id = -1 WHERE id = ?1 AND state IN ('interrupted', 'aborted',"
-                    " 'failed')");
+  Statement s(db_, path_, sql::requeue('?', continue_job));
   s.bind(1, id);
   s.step();
   return sqlite3_changes(db_) == 1;
@@ -299,7 +250,7 @@ bool SqliteJobStore::requeue(int64_t id, bool continue_job) {
 
 bool SqliteJobStore::set_priority(int64_t id, int priority) {
   std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_, "UPDATE jobs SET priority = ?2 WHERE id = ?1 AND state = 'queued'");
+  Statement s(db_, path_, sql::set_priority('?'));
   s.bind(1, id).bind(2, int64_t{priority});
   s.step();
   return sqlite3_changes(db_) == 1;
@@ -307,9 +258,7 @@ bool SqliteJobStore::set_priority(int64_t id, int priority) {
 
 int SqliteJobStore::interrupt_running(const std::string& owner, const std::string& message) {
   std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_,
-              "UPDATE jobs SET state = 'interrupted', message = ?2, finished_ms = ?3"
-              " WHERE state = 'running' AND owner = ?1");
+  Statement s(db_, path_, sql::interrupt_running('?'));
   s.bind(1, owner).bind(2, message).bind(3, now_ms());
   s.step();
   return sqlite3_changes(db_);
@@ -371,11 +320,7 @@ int SqliteJobStore::interrupt_stale(int64_t stale_ms, const std::string& message
       r.bind(1, now - stale_ms);
       r.step();
     }
-    Statement s(db_, path_,
-                "UPDATE jobs SET state = 'interrupted', message = ?1, finished_ms = ?2"
-                " WHERE state = 'running' AND NOT EXISTS (SELECT 1 FROM servers WHERE"
-                " servers.name = jobs.owner AND servers.epoch = jobs.lease_epoch AND"
-                " servers.revoked = 0)");
+    Statement s(db_, path_, sql::interrupt_unleased('?'));
     s.bind(1, message).bind(2, now);
     s.step();
     const int n = sqlite3_changes(db_);

@@ -41,6 +41,7 @@ class SqliteJobStore : public JobStore {
 
  private:
   void exec(const std::string& sql);
+  bool has_column(const char* table, const char* column);
   void add_missing_columns();
   std::string path_;
   sqlite3* db_ = nullptr;

@@ -3,20 +3,12 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#if ENGRAVER_HAVE_LIBZIP
 #include <zip.h>  // libzip
-#endif
 
 namespace host::server {
 
 bool looks_like_zip(const std::string& bytes) {
   return bytes.compare(0, 4, std::string("PK\x03\x04", 4)) == 0;
-}
-
-#if ENGRAVER_HAVE_LIBZIP
-
-bool zip_supported() {
-  return true;
 }
 
 namespace {
@@ -110,18 +102,5 @@ std::vector<UploadFile> unzip_upload(const std::string& bytes, const std::string
   }
   return files;
 }
-
-#else
-
-bool zip_supported() {
-  return false;
-}
-
-std::vector<UploadFile> unzip_upload(const std::string&, const std::string& zip_name, size_t,
-                                     size_t) {
-  throw ZipError(zip_name + ": this server was built without zip support (libzip-dev)", false);
-}
-
-#endif
 
 }  // namespace host::server

@@ -16,9 +16,6 @@ namespace host::server {
 // Starts like a zip file (a local file header).
 bool looks_like_zip(const std::string& bytes);
 
-// Built with libzip (else unzip_upload refuses every zip).
-bool zip_supported();
-
 class ZipError : public std::runtime_error {
  public:
   ZipError(const std::string& msg, bool too_large)

@@ -281,7 +281,6 @@ TEST(ServerBoards, HostileFileNameInAMultiFileUploadIsRefusedAndNothingIsStored)
 }
 
 TEST(ServerBoards, BoardAsOneZipFileBecomesAJobAndZipTricksAreRefused) {
-  if (!zip_supported()) GTEST_SKIP() << "built without libzip";
   test::TempDir dir;
   ServerRig server(dir.path(), {}, 256 * 1024);
   const std::string zip = board_file("blinky.zip");
@@ -325,7 +324,6 @@ TEST(ServerBoards, BoardAsOneZipFileBecomesAJobAndZipTricksAreRefused) {
 }
 
 TEST(ServerBoards, DamagedZipsAreRefusedWithZipErrorsAndStayWithinTheLimit) {
-  if (!zip_supported()) GTEST_SKIP() << "built without libzip";
   const std::string zip = board_file("blinky.zip");
   const size_t limit = 4096;
   uint32_t seed = 12345;
@@ -403,7 +401,6 @@ TEST(ServerBoards, BoardFolderInTheInboxBecomesAJobOnceItStopsChanging) {
             std::string::npos);
 
   // A board as one zip file in the inbox.
-  if (!zip_supported()) return;
   write_file(inbox / "zipped.zip", board_file("blinky.zip"));
   watcher.scan();
   watcher.scan();
