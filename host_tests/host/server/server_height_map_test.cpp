@@ -11,36 +11,18 @@
 #include "host/lib/heightmap/probe_grid.h"
 #include "host/lib/server/board_height_map.h"
 #include "host/lib/server/data_folder.h"
+#include "host_tests/host/server/blinky_upload.h"
 #include "host_tests/host/server/server_test_rig.h"
 
 namespace host::server {
 namespace {
 
+using test::blinky;
+using test::board_file;
+using test::post;
 using test::ServerRig;
 using test::SimRig;
 namespace fs = std::filesystem;
-
-std::string board_file(const std::string& name) {
-  return read_file(fs::path(ENGRAVER_SOURCE_DIR) / "host_tests/host/server/data" / name);
-}
-
-httplib::MultipartFormDataItems blinky(const std::vector<std::pair<std::string, std::string>>& kv,
-                                       const std::string& copper = "blinky-F.Cu.gbr") {
-  httplib::MultipartFormDataItems form = {
-      {"file", board_file("blinky-F.Cu.gbr"), copper, "application/octet-stream"},
-      {"file", board_file("blinky.drl"), "blinky.drl", "application/octet-stream"},
-      {"file", board_file("blinky-Edge.Cuts.gbr"), "blinky-Edge.Cuts.gbr",
-       "application/octet-stream"}};
-  for (const auto& [k, v] : kv) form.push_back({k, v, "", ""});
-  return form;
-}
-
-int64_t post(const ServerRig& server, const httplib::MultipartFormDataItems& form) {
-  auto r = server.client().Post("/api/jobs", server.auth(), form);
-  if (!r || r->status != 201)
-    throw std::runtime_error("upload failed: " + (r ? r->body : std::string("no answer")));
-  return nlohmann::json::parse(r->body)["id"].get<int64_t>();
-}
 
 std::string archived(const ServerRig& server, int64_t id, const std::string& file) {
   auto r = server.client().Get(fmt::format("/api/jobs/{}/files/{}", id, file).c_str());
