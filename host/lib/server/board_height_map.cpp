@@ -58,17 +58,20 @@ void keep_height_map(const std::filesystem::path& job_dir, const heightmap::Heig
   heightmap::write_height_map_file(map, (job_dir / kHeightMapFile).string());
 }
 
+std::string source_ended_text(const JobRecord& from) {
+  if (!is_final(from.state) || from.state == JobState::kCompleted) return "";
+  return fmt::format("job {} ended {} without a height map{}", from.id, state_name(from.state),
+                     from.message.empty() ? "" : " (" + from.message + ")");
+}
+
 namespace {
 
 // The source job's map as it lies in its archive; throws why there is none to use.
 heightmap::HeightMap source_map(const JobRecord& from, const std::filesystem::path& from_dir,
                                 const std::string& machine) {
   if (!std::filesystem::exists(from_dir / kHeightMapFile)) {
-    if (is_final(from.state) && from.state != JobState::kCompleted) {
-      throw std::runtime_error(fmt::format("job {} ended {} without a height map{}", from.id,
-                                           state_name(from.state),
-                                           from.message.empty() ? "" : " (" + from.message + ")"));
-    }
+    const std::string ended = source_ended_text(from);
+    if (!ended.empty()) throw std::runtime_error(ended);
     throw std::runtime_error(fmt::format(
         "job {} has no height map (here): it was not probed, or not yet, or on a server "
         "whose archive this one does not share",

@@ -47,6 +47,10 @@ std::string map_probed_on(const std::filesystem::path& job_dir);
 void keep_height_map(const std::filesystem::path& job_dir, const heightmap::HeightMap& map,
                      const std::string& title, const std::string& machine);
 
+// Why a height_map_from job cannot have `from`'s map: "job 4 ended failed without a height
+// map (its message)"; "" when `from` has not ended so (it may still probe, or completed).
+std::string source_ended_text(const JobRecord& from);
+
 // The map a height_map_from job cuts with: its source job's, flipped as asked, checked
 // against `plan` and only then kept in `job_dir`. Throws std::runtime_error with the reason
 // (no such job, the source ended or has no map yet, another machine's map, no flip axis, a

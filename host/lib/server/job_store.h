@@ -79,6 +79,9 @@ class JobStore {
                       const JobProgress& progress) = 0;
   // Queued -> cancelled. False when the job is not queued.
   virtual bool cancel(int64_t id) = 0;
+  // Queued -> failed with `message`, never claimed (no machine, no run): a job that cannot
+  // run (its height map's source job ended without one). False when the job is not queued.
+  virtual bool fail_queued(int64_t id, const std::string& message) = 0;
   // Interrupted, aborted or failed -> queued again, from the start or (continue_job, an
   // interrupted job whose position is known: resume_index or resume_curve) from where it
   // stopped; an interrupted job with nothing executed and no position (stopped before its

@@ -96,6 +96,13 @@ inline std::string cancel(char mark) {
          " WHERE id = " + param(mark, 1) + " AND state = 'queued'";
 }
 
+// ?1 id, ?2 now, ?3 message.
+inline std::string fail_queued(char mark) {
+  return "UPDATE jobs SET state = 'failed', message = " + param(mark, 3) +
+         ", finished_ms = " + param(mark, 2) + " WHERE id = " + param(mark, 1) +
+         " AND state = 'queued'";
+}
+
 // ?1 id.
 inline std::string requeue(char mark, bool continue_job) {
   return continue_job

@@ -36,6 +36,7 @@ MapSource map_source_of(JobStore& store, const DataFolder& data, const JobRecord
   if (s.has_map && fs::exists(dir / kHeightMapMachineFile, ec))
     s.machine = read_file(dir / kHeightMapMachineFile);
   s.source_ended = !s.has_map && is_final(from->state);
+  if (s.source_ended) s.ended_why = source_ended_text(*from);
   return s;
 }
 
@@ -50,6 +51,18 @@ std::string map_wait_of(JobStore& store, const DataFolder& data, const JobRecord
   return map_wait_text(job, map_source_of(store, data, job));
 }
 
+int fail_jobs_without_map_source(JobStore& store, const DataFolder& data) {
+  int failed = 0;
+  for (const JobRecord& job : store.list(state_name(JobState::kQueued), kQueuedLooked)) {
+    const MapSource s = map_source_of(store, data, job);
+    // Completed without a map here (another server's archive may have it): its run says.
+    if (s.ended_why.empty()) continue;
+    if (store.fail_queued(job.id, fmt::format("height map: {}; nothing was cut", s.ended_why)))
+      ++failed;
+  }
+  return failed;
+}
+
 std::vector<int64_t> jobs_not_for_machine(JobStore& store, const DataFolder& data,
                                           const std::string& machine,
                                           const std::vector<std::string>& machines) {
@@ -60,7 +73,7 @@ std::vector<int64_t> jobs_not_for_machine(JobStore& store, const DataFolder& dat
     const bool waiting = !map_wait_text(job, s).empty();
     const bool elsewhere = s.has_map && s.machine != machine &&
                            std::find(machines.begin(), machines.end(), s.machine) != machines.end();
-    if (waiting || elsewhere) out.push_back(job.id);
+    if (waiting || elsewhere || !s.ended_why.empty()) out.push_back(job.id);
   }
   return out;
 }

@@ -21,6 +21,8 @@ struct MapSource {
   bool has_map = false;       // that job's map is in the archive
   std::string machine;        // the machine it was probed on ("" when no map)
   bool source_ended = false;  // no map, and the source job will not make one (it ended)
+  // It ended failed, aborted or cancelled: source_ended_text (the job fails in the queue).
+  std::string ended_why;
 };
 MapSource map_source_of(JobStore& store, const DataFolder& data, const JobRecord& job);
 
@@ -31,8 +33,15 @@ std::string map_wait_text(const JobRecord& job, const MapSource& source);
 // map_wait_text of a job, looking at its source only when it is queued.
 std::string map_wait_of(JobStore& store, const DataFolder& data, const JobRecord& job);
 
-// The queued jobs a machine leaves in the queue: those waiting for their map, and those
-// whose map was probed on another of `machines` (that one takes them).
+// Queued jobs whose map source ended without a map (failed, aborted or cancelled) fail in
+// the queue, no machine claiming them (jobs_not_for_machine leaves them): their message
+// "height map: job 4 ended failed without a height map (...); nothing was cut". Returns how
+// many.
+int fail_jobs_without_map_source(JobStore& store, const DataFolder& data);
+
+// The queued jobs a machine leaves in the queue: those waiting for their map, those whose
+// map was probed on another of `machines` (that one takes them), and those whose source
+// ended without one (fail_jobs_without_map_source fails them).
 std::vector<int64_t> jobs_not_for_machine(JobStore& store, const DataFolder& data,
                                           const std::string& machine,
                                           const std::vector<std::string>& machines);

@@ -204,6 +204,16 @@ bool PostgresJobStore::cancel(int64_t id) {
   })
 }
 
+bool PostgresJobStore::fail_queued(int64_t id, const std::string& message) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  PG_TRY({
+    pqxx::work w(conn_->db);
+    const pqxx::result r = w.exec_params(sql::fail_queued('$'), id, now_ms(), message);
+    w.commit();
+    return r.affected_rows() == 1;
+  })
+}
+
 bool PostgresJobStore::requeue(int64_t id, bool continue_job) {
   std::lock_guard<std::mutex> lock(mutex_);
   PG_TRY({

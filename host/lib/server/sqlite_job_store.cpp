@@ -240,6 +240,14 @@ bool SqliteJobStore::cancel(int64_t id) {
   return sqlite3_changes(db_) == 1;
 }
 
+bool SqliteJobStore::fail_queued(int64_t id, const std::string& message) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Statement s(db_, path_, sql::fail_queued('?'));
+  s.bind(1, id).bind(2, now_ms()).bind(3, message);
+  s.step();
+  return sqlite3_changes(db_) == 1;
+}
+
 bool SqliteJobStore::requeue(int64_t id, bool continue_job) {
   std::lock_guard<std::mutex> lock(mutex_);
   Statement s(db_, path_, sql::requeue('?', continue_job));

@@ -31,6 +31,7 @@ class SqliteJobStore : public JobStore {
   bool finish(int64_t id, const Lease& lease, JobState state, const std::string& message,
               const JobProgress& progress) override;
   bool cancel(int64_t id) override;
+  bool fail_queued(int64_t id, const std::string& message) override;
   bool requeue(int64_t id, bool continue_job) override;
   bool set_priority(int64_t id, int priority) override;
   Lease acquire_lease(const std::string& owner, const std::string& holder,

@@ -49,6 +49,7 @@ struct Workshop::Slot {
   std::string link_state = "unknown";  // unknown, online, offline
   std::string link_message;
   Sender* sender = nullptr;  // while a job runs
+  Link* link = nullptr;      // the sender's link, from connect to the end of its job
   int64_t job_id = 0;        // from its claim until it ends
   std::string job_name;
   bool planning = false;  // claimed, its commands not made yet (no sender)
@@ -81,11 +82,19 @@ struct Workshop::Slot {
 
 namespace {
 
-// The operator aborted a job before it cut (waiting for the probe clip, or probing).
+// The operator aborted a job before it cut (waiting for the probe clip, or probing), or the
+// server stopped then.
 class AbortedBeforeCutting : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// Why a job ended before it cut: `while` is "probing" or "waiting for the probe clip".
+AbortedBeforeCutting ended_before_cutting(bool server_stopping, const std::string& while_doing) {
+  return AbortedBeforeCutting(
+      fmt::format("{} while {}; nothing was cut",
+                  server_stopping ? "the server stopped (interrupted)" : "aborted", while_doing));
+}
 
 }  // namespace
 
@@ -285,17 +294,21 @@ nlohmann::json Workshop::snapshot() {
     m["link"] = slot->link_state;
     m["message"] = slot->link_message;
     m["job"] = slot->job_id != 0 ? nlohmann::json(slot->job_id) : nlohmann::json();
-    const bool probing = slot->probe_stage == "probing";
+    const bool probing = !slot->probe_stage.empty();
+    // Waiting for the clip, a hold is kept for the first touch: shown at once.
+    const bool probe_held = slot->probe_waiting || (slot->probe_stage == "probe_clip" &&
+                                                    slot->hold_pending && !slot->abort_pending);
+    // Waiting for the clip and probing are the workshop's: the machine's own state then is
+    // idle, which the operator must not read as "free".
+    const char* probe_state = probe_held                          ? "held"
+                              : slot->probe_stage == "probe_clip" ? "probe_clip"
+                                                                  : "probing";
     if (slot->have_last_status) {
       const proto::StatusReply& st = slot->last_status;
-      // Probing is the workshop's run of touches: the machine's own state between them is
-      // idle, which the operator must not read as "free".
-      m["state"] = !probing              ? machine_state_name(st.state)
-                   : slot->probe_waiting ? "held"
-                                         : "probing";
+      m["state"] = probing ? probe_state : machine_state_name(st.state);
       m["position_mm"] = {st.x_um / 1000.0, st.y_um / 1000.0, st.z_um / 1000.0};
     } else if (probing) {
-      m["state"] = slot->probe_waiting ? "held" : "probing";
+      m["state"] = probe_state;
     } else {
       m["state"] = slot->link_state == "online" ? "idle" : "unknown";
     }
@@ -324,7 +337,7 @@ nlohmann::json Workshop::snapshot() {
       j["probe"] = {{"stage", slot->probe_stage},
                     {"touches", slot->probe_done},
                     {"planned", slot->probe_total},
-                    {"held", slot->probe_waiting},
+                    {"held", probe_held},
                     {"ask", slot->probe_stage == "probe_clip"
                                 ? "put the probe clip on the blank, the spindle off, then "
                                   "confirm (action probe_ready)"
@@ -377,6 +390,8 @@ void Workshop::machine_loop(Slot& slot) {
   while (!stopping_) {
     bool work = false;
     try {
+      // A bottom side whose top side ended without a map fails here, never claimed.
+      if (fail_jobs_without_map_source(store_, data_) > 0) notify(true);
       work = store_.has_claimable(fit_now(slot));
     } catch (const StoreError& e) {
       std::lock_guard<std::mutex> lock(slot.mutex);
@@ -447,7 +462,15 @@ void Workshop::machine_loop(Slot& slot) {
     }
     if (!job) continue;
     notify(true);
+    {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      slot.link = link.get();
+    }
     run_job(slot, *job, *sender, caps);
+    {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      slot.link = nullptr;
+    }
     notify(true);
   }
 }
@@ -524,7 +547,7 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     r.message = e.what();
   } catch (const AbortedBeforeCutting& e) {
     r.state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
-    r.outcome = "aborted before cutting";
+    r.outcome = stopping_ ? "server stopped before cutting" : "aborted before cutting";
     r.message = e.what();
   } catch (const std::exception& e) {
     r.state = JobState::kFailed;
@@ -853,9 +876,7 @@ void Workshop::wait_between_touches(Slot& slot) {
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
       slot.probe_waiting = slot.hold_pending && !slot.abort_pending && !stopping_;
-      if (slot.abort_pending || stopping_) {
-        throw AbortedBeforeCutting("aborted while probing; nothing was cut");
-      }
+      if (slot.abort_pending || stopping_) throw ended_before_cutting(stopping_, "probing");
       if (!slot.probe_waiting) break;
     }
     if (!waited) notify(false);  // the page shows it held
@@ -935,8 +956,21 @@ heightmap::HeightMap Workshop::probe_board_blank(
       slot.probing_sender = nullptr;
       aborted = slot.abort_pending || stopping_;
     }
-    if (aborted) throw AbortedBeforeCutting("aborted while probing; nothing was cut");
-    throw;
+    if (!aborted) throw;
+    // The touch under way stopped where it was (#X), maybe on the copper: the tool up to
+    // the travel height before the machine is free, as `engraver probe` does on Ctrl-C.
+    Link* link = nullptr;
+    {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      link = slot.link;
+    }
+    const std::string lifted =
+        link != nullptr ? heightmap::raise_tool_after_abort(*link, options_.sender,
+                                                            heightmap::ProbeMotion{}.travel_z_mm)
+                        : std::string("the tool was not raised: no link");
+    note("probing stopped: " + lifted);
+    const AbortedBeforeCutting ended = ended_before_cutting(stopping_, "probing");
+    throw AbortedBeforeCutting(fmt::format("{} ({})", ended.what(), lifted));
   }
   {
     std::lock_guard<std::mutex> lock(slot.mutex);
@@ -963,7 +997,7 @@ void Workshop::wait_for_probe_clip(Slot& slot, Sender& sender,
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
       if (slot.abort_pending || stopping_) {
-        throw AbortedBeforeCutting("aborted while waiting for the probe clip; nothing was cut");
+        throw ended_before_cutting(stopping_, "waiting for the probe clip");
       }
       if (slot.probe_confirmed) {
         slot.probe_stage = "probing";

@@ -106,6 +106,11 @@ TEST(ServerMapFlow, TheBottomSideFailsWithNothingCutWhenItsSourceFails) {
   EXPECT_NE(message.find("nothing was cut"), std::string::npos) << message;
   EXPECT_EQ(j["executed"], 0);
   EXPECT_EQ(j["height_map"], false);
+  // Failed in the queue: no machine claimed it, no run was started.
+  EXPECT_EQ(j["machine"], "") << j.dump();
+  EXPECT_EQ(j["server"], "") << j.dump();
+  EXPECT_EQ(j["runs"], 0) << j.dump();
+  EXPECT_EQ(j["started_ms"], 0) << j.dump();
   for (const SimRig* sim : {&left, &right})
     for (const auto& s : sim->machine().trace()) EXPECT_GT(s.z_mm, -1.01);
 }

@@ -8,6 +8,7 @@
 
 #include <set>  // std::set
 
+#include "host/lib/heightmap/controller_map.h"  // ProbeMotion
 #include "host/lib/server/data_folder.h"
 #include "host_tests/host/server/server_test_rig.h"
 
@@ -176,6 +177,69 @@ TEST(ServerProbingControl, StoppingTheServerEndsTheProbingAtOnce) {
   EXPECT_EQ(j["state"], "interrupted") << j.dump();
   EXPECT_NE(j["message"].get<std::string>().find("nothing was cut"), std::string::npos) << j.dump();
   EXPECT_EQ(j["executed"], 0);
+  // The server's words, not an operator's abort.
+  const std::string message = j["message"];
+  EXPECT_NE(message.find("the server stopped (interrupted) while probing"), std::string::npos)
+      << message;
+  EXPECT_EQ(message.find("aborted"), std::string::npos) << message;
+  // The touch under way stopped where it was: the tool up before the server ended.
+  EXPECT_NEAR(sim.machine().position().z_mm, heightmap::ProbeMotion{}.travel_z_mm, 0.01);
+}
+
+// A hold asked while the job waits for the clip shows at once (the machine held, the probe
+// held), and no touch follows the clip until resume; before it the machine says it waits
+// for the operator, not idle.
+TEST(ServerProbingControl, AHoldWhileWaitingForTheClipIsShownAndKept) {
+  test::TempDir dir;
+  SimRig sim(false, 0, tilted_blank());
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t id = post_probe_first(server);
+  ASSERT_TRUE(
+      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30))
+      << server.status().dump();
+  EXPECT_EQ(machine_of(server)["state"], "probe_clip") << server.status().dump();
+  EXPECT_EQ(server.running(id)["probe"]["held"], false);
+  ASSERT_EQ(server.control(id, R"({"action":"hold"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return held_between_touches(server, id); }, 5))
+      << server.status().dump();
+  EXPECT_EQ(server.running(id)["machine_state"], "probe_clip");
+  ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_EQ(touches(server, id), 0u) << "no touch while held";
+  EXPECT_TRUE(held_between_touches(server, id)) << server.status().dump();
+  ASSERT_EQ(server.control(id, R"({"action":"resume"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return touches(server, id) >= 1; }, 30))
+      << server.status().dump();
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 20));
+}
+
+// An abort in the middle of a touch (#X stops the descent where it is): the tool goes up
+// to the travel height before the machine is free, as `engraver probe` does on Ctrl-C.
+TEST(ServerProbingControl, AnAbortMidTouchRaisesTheTool) {
+  test::TempDir dir;
+  SimRig sim(true, 0, tilted_blank());  // real time: a descent takes about a second
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t id = post_probe_first(server);
+  ASSERT_TRUE(
+      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
+  ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+  // The first descent under way (from Z 1 mm towards the copper near Z 0).
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const double z = sim.machine().position().z_mm;
+        return z < 0.7 && z > 0.2;
+      },
+      30));
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 20))
+      << server.job(id).dump();
+  const nlohmann::json j = server.job(id);
+  const std::string message = j["message"];
+  EXPECT_NE(message.find("aborted while probing; nothing was cut"), std::string::npos) << message;
+  EXPECT_NE(message.find("the tool raised to Z 2.000 mm"), std::string::npos) << message;
+  EXPECT_NEAR(sim.machine().position().z_mm, heightmap::ProbeMotion{}.travel_z_mm, 0.01);
+  EXPECT_EQ(machine_of(server)["state"], "idle") << server.status().dump();
 }
 
 // After an abort the machine's state follows at once (not the run's last "running"), and
