@@ -10,6 +10,7 @@
 #include <iostream>    // std::cerr
 
 #include "host/cli/exit_codes.h"
+#include "host/cli/operator_controls.h"  // abort_signalled
 #include "host/lib/heightmap/controller_map.h"
 #include "host/lib/heightmap/job_area.h"
 #include "host/lib/heightmap/probe_session.h"
@@ -200,6 +201,23 @@ heightmap::HeightMap probe_for_job(Sender& sender, const JobPlan& plan, const He
                            : std::string(),
       map_path, map_picture_path(map_path));
   return map;
+}
+
+heightmap::HeightMap probe_raising_on_interrupt(Sender& sender, Link& link,
+                                                const SenderOptions& options, const JobPlan& plan,
+                                                const HeightMapArgs& a, double z_up_mm,
+                                                const std::string& map_path,
+                                                const std::optional<heightmap::AreaMm>& area,
+                                                int interrupted_exit) {
+  try {
+    return probe_for_job(sender, plan, a, z_up_mm, map_path, area);
+  } catch (const CommandFailure& e) {
+    if (!abort_signalled()) throw;
+    // Ctrl-C stopped the touch where it was (#X), maybe on the copper: the tool up first.
+    const std::string lifted = heightmap::raise_tool_after_abort(link, options, z_up_mm);
+    std::cerr << "engraver: probing stopped: " << lifted << "\n";
+    throw CommandFailure(interrupted_exit, e.what());
+  }
 }
 
 void refuse_job_leaving_map(const JobPlan& plan, const heightmap::HeightMap& map,

@@ -63,6 +63,16 @@ void check_map_writable(const std::string& map_path);
 heightmap::HeightMap probe_for_job(Sender& sender, const JobPlan& plan, const HeightMapArgs& a,
                                    double z_up_mm, const std::string& map_path,
                                    const std::optional<heightmap::AreaMm>& area);
+// probe_for_job on a real machine, whose Ctrl-C (SIGINT, SIGTERM: the signalled sender's
+// abort, #X) stops the touch under way where it is: the tool then goes up to z_up_mm over
+// `link` (a new session: heightmap::raise_tool_after_abort), saying so, and the failure
+// exits `interrupted_exit` (`probe` 5, `send --probe` 3: aborted).
+heightmap::HeightMap probe_raising_on_interrupt(Sender& sender, Link& link,
+                                                const SenderOptions& options, const JobPlan& plan,
+                                                const HeightMapArgs& a, double z_up_mm,
+                                                const std::string& map_path,
+                                                const std::optional<heightmap::AreaMm>& area,
+                                                int interrupted_exit);
 // Exit 1 (nothing sent) when the job cuts outside the map.
 void refuse_job_leaving_map(const JobPlan& plan, const heightmap::HeightMap& map,
                             const std::string& what);

@@ -251,7 +251,8 @@ void run_send(const SendArgs& a) {
   if (a.map.probe) {
     o.probe = [&, path = probe_map_path](Sender& sender) {
       heightmap::HeightMap map =
-          probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path, board.probe_area);
+          probe_raising_on_interrupt(sender, *link, o.sender, plan, a.map, a.plan.z_up_mm, path,
+                                     board.probe_area, kExitAborted);
       refuse_job_leaving_map(plan, map, path);
       return map;
     };
@@ -298,14 +299,10 @@ void run_probe(const ProbeArgs& a) {
       "spindle off\n",
       a.plan.file, link->name());
   try {
-    probe_for_job(sender, plan, a.map, a.plan.z_up_mm, path, board.probe_area);
+    probe_raising_on_interrupt(sender, *link, so, plan, a.map, a.plan.z_up_mm, path,
+                               board.probe_area, kExitRefused);
   } catch (const CommandFailure&) {
     signals_to(nullptr);
-    // Ctrl-C stopped the touch where it was (#X): the tool up before engraver ends.
-    if (abort_signalled()) {
-      std::cerr << "engraver: probing stopped: "
-                << heightmap::raise_tool_after_abort(*link, so, a.plan.z_up_mm) << "\n";
-    }
     throw;
   }
   signals_to(nullptr);

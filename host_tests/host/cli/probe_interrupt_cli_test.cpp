@@ -1,5 +1,6 @@
-// `engraver probe` and Ctrl-C: the touch under way stops at once (#X), and the tool goes up
-// to the travel height before engraver exits, not left where the descent stopped.
+// `engraver probe` and `send --probe` and Ctrl-C (SIGTERM): the touch under way stops at
+// once (#X), and the tool goes up to the travel height before engraver exits, not left where
+// the descent stopped.
 #include <gtest/gtest.h>
 #include <signal.h>    // kill, SIGINT
 #include <spawn.h>     // posix_spawn
@@ -33,7 +34,16 @@ int wait_exit(pid_t pid, double limit_s) {
   return -1;
 }
 
-TEST(ProbeCli, CtrlCStopsTheTouchAtOnceAndRaisesTheTool) {
+// How an engraver command probing a flat blank ended when `sig` came in the middle of its
+// first descent: its exit code, how long it took after the signal, where the tool stands.
+struct Interrupted {
+  int code = -1;
+  double took_s = 0;
+  double tool_z_mm = -9;
+};
+
+// `args` after the command name: the input, then its options; "TO" becomes the machine.
+Interrupted interrupt_first_descent(std::vector<std::string> args, int sig) {
   host::sim::SimOptions o;
   o.surface_um = [](int32_t, int32_t) { return 0; };  // a flat blank at Z 0
   host::sim::SimMachine machine(o);
@@ -43,17 +53,15 @@ TEST(ProbeCli, CtrlCStopsTheTouchAtOnceAndRaisesTheTool) {
   host::sim::SimServer server(machine, so);
   std::atomic<bool> stop{false};
   std::thread serving([&] { server.run(stop); });
-  const std::string map =
-      testing::TempDir() + "/probe_interrupt_" + std::to_string(getpid()) + ".map.json";
-  std::filesystem::remove(map);
-  const std::string word = std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf";
-  const std::string to = "tcp://127.0.0.1:" + std::to_string(server.port());
-  std::vector<std::string> args = {ENGRAVER_EXE, "probe", word, "--to", to, "--height-map", map};
+  for (std::string& a : args)
+    if (a == "TO") a = "tcp://127.0.0.1:" + std::to_string(server.port());
+  args.insert(args.begin(), ENGRAVER_EXE);
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  Interrupted r;
   pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, ENGRAVER_EXE, nullptr, nullptr, argv.data(), environ), 0);
+  EXPECT_EQ(posix_spawn(&pid, ENGRAVER_EXE, nullptr, nullptr, argv.data(), environ), 0);
   // The first descent under way (from Z 1 mm down to the copper at Z 0).
   const auto end = Clock::now() + std::chrono::seconds(30);
   bool descending = false;
@@ -62,18 +70,47 @@ TEST(ProbeCli, CtrlCStopsTheTouchAtOnceAndRaisesTheTool) {
     descending = t.z_mm < 0.7 && t.z_mm > 0.2;
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  ASSERT_TRUE(descending);
-  kill(pid, SIGINT);
+  EXPECT_TRUE(descending);
+  kill(pid, sig);
   const auto interrupted = Clock::now();
-  const int code = wait_exit(pid, 10);
-  const double took_s = std::chrono::duration<double>(Clock::now() - interrupted).count();
-  EXPECT_EQ(code, 5) << "-1: still probing 10 s after Ctrl-C";
-  EXPECT_LT(took_s, 8.0);  // the stop, a new session and the lift, on a loaded PC
-  EXPECT_FALSE(std::filesystem::exists(map)) << "no map from an interrupted grid";
+  r.code = wait_exit(pid, 10);
+  r.took_s = std::chrono::duration<double>(Clock::now() - interrupted).count();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  EXPECT_NEAR(machine.position().z_mm, host::defaults::kZUpMm, 0.01) << "the tool up";
+  r.tool_z_mm = machine.position().z_mm;
   stop = true;
   serving.join();
+  return r;
+}
+
+std::string temp_map(const std::string& name) {
+  const std::string map =
+      testing::TempDir() + "/" + name + "_" + std::to_string(getpid()) + ".map.json";
+  std::filesystem::remove(map);
+  return map;
+}
+
+const std::string kWord = std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf";
+
+TEST(ProbeCli, CtrlCStopsTheTouchAtOnceAndRaisesTheTool) {
+  const std::string map = temp_map("probe_interrupt");
+  const Interrupted r =
+      interrupt_first_descent({"probe", kWord, "--to", "TO", "--height-map", map}, SIGINT);
+  EXPECT_EQ(r.code, 5) << "-1: still probing 10 s after Ctrl-C";
+  EXPECT_LT(r.took_s, 8.0);  // the stop, a new session and the lift, on a loaded PC
+  EXPECT_FALSE(std::filesystem::exists(map)) << "no map from an interrupted grid";
+  EXPECT_NEAR(r.tool_z_mm, host::defaults::kZUpMm, 0.01) << "the tool up";
+}
+
+// `send --probe` interrupted (SIGTERM) while it probes: the same lift, exit 3 (aborted),
+// nothing of the job sent.
+TEST(ProbeCli, SendProbeInterruptedRaisesTheToolAndExitsAborted) {
+  const std::string map = temp_map("send_probe_interrupt");
+  const Interrupted r = interrupt_first_descent(
+      {"send", kWord, "--to", "TO", "--probe", "--height-map", map}, SIGTERM);
+  EXPECT_EQ(r.code, 3) << "-1: still probing 10 s after SIGTERM";
+  EXPECT_LT(r.took_s, 8.0);
+  EXPECT_FALSE(std::filesystem::exists(map)) << "no map from an interrupted grid";
+  EXPECT_NEAR(r.tool_z_mm, host::defaults::kZUpMm, 0.01) << "the tool up";
 }
 
 }  // namespace
