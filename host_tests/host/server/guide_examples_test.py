@@ -1,17 +1,19 @@
 #!/usr/bin/env python3
-"""The API examples of docs/user-guide.md exactly as printed: every `TOKEN=...` and `curl ...`
-line of the `engraver serve` section runs with bash and the real curl against `engraver
-serve` on loopback (one `engraver sim --realtime` machine). Only the data folder, the port
-and the files' contents are this test's: the files are made under the names the examples
-use (board.ngc larger than 8 KB, the blinky board from data/, its copper also as
-blinky-B.Cu.gbr for the bottom side). Before the `probe_ready` example the test itself
+"""The API examples of docs/user-guide.md exactly as printed: every `TOKEN=...`, `curl ...`
+and `NAME=$(curl ...)` line of the `engraver serve` section runs with bash and the real curl
+(and jq) against `engraver serve` on loopback (one `engraver sim --realtime` machine); a
+NAME=$(...) line's value is kept for the lines after it, as in one shell. Only the data
+folder, the port and the files' contents are this test's: the files are made under the
+names the examples use (board.ngc larger than 8 KB, the blinky board from data/; the
+double-sided example's shared two-layer sample from ../shared/samples/pcb/example_board,
+or the blinky board under its names without ../shared). Before the `probe_ready` example the test itself
 frees the machine (aborts job 1, cancels the other queued boards but the bottom side, which
 waits for the probe-first job's map) so that the probe-first job reaches the probe clip; the
 sim has a warped blank (--surface) for it to probe. A second machine ('right') comes online
 then: the bottom side, uploaded before its top side probed, stays queued, waiting for the
 map, though a machine is free.
 
-Exit 77 (ctest: skipped) when curl is not installed.
+Exit 77 (ctest: skipped) when curl or jq is not installed.
 Usage: guide_examples_test.py ENGRAVER USER_GUIDE.md
 """
 import json
@@ -62,7 +64,7 @@ def serve_examples(guide):
                 commands.append(current)
                 current = None
             continue
-        if code is None or not re.match(r"(TOKEN=|curl )", code.strip()):
+        if code is None or not re.match(r"(TOKEN=|curl |[A-Z_]+=\$\(curl )", code.strip()):
             continue
         if code.endswith("\\"):
             current = code.strip()
@@ -96,11 +98,12 @@ def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
     engraver, guide = sys.argv[1], sys.argv[2]
-    if shutil.which("curl") is None:
-        print("curl not installed: skipped")
-        return SKIP
+    for tool in ("curl", "jq"):
+        if shutil.which(tool) is None:
+            print(tool + " not installed: skipped")
+            return SKIP
     commands = serve_examples(guide)
-    curls = [c for c in commands if c.startswith("curl ")]
+    curls = [c for c in commands if not c.startswith("TOKEN=")]
     assert len(curls) >= 4 and commands[0].startswith("TOKEN="), commands
     procs = []
     tmp = tempfile.mkdtemp(prefix="engraver-guide-")
@@ -127,8 +130,17 @@ def main():
         for name in ("blinky-F.Cu.gbr", "blinky.drl", "blinky-Edge.Cuts.gbr", "blinky.zip"):
             shutil.copy(os.path.join(DATA, name), work)
         shutil.copy(os.path.join(DATA, "blinky-F.Cu.gbr"), os.path.join(work, "blinky-B.Cu.gbr"))
+        sample = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(guide))), "..",
+                              "shared", "samples", "pcb", "example_board")
+        for suffix, blinky in (("-F.Cu.gbr", "blinky-F.Cu.gbr"), ("-B.Cu.gbr", "blinky-F.Cu.gbr"),
+                               ("-PTH.drl", "blinky.drl"),
+                               ("-Edge.Cuts.gbr", "blinky-Edge.Cuts.gbr")):
+            shared = os.path.join(sample, "example_board" + suffix)
+            shutil.copy(shared if os.path.exists(shared) else os.path.join(DATA, blinky),
+                        os.path.join(work, "example_board" + suffix))
 
         prelude = [c for c in commands if c.startswith("TOKEN=")]
+        values = {}  # NAME=$(...) lines: NAME -> its value, for the lines after it
         jobs_before = 0
         checked_before_probe = False
 
@@ -156,12 +168,15 @@ def main():
                     return True
             return False
 
+        def job_of(text):
+            return values[text[1:]] if text.startswith("$") else int(text)
+
         for cmd in curls:
             print("$ " + cmd)
-            probe_ready = re.search(r"probe_ready.*?/api/jobs/(\d+)/control", cmd, re.S)
+            probe_ready = re.search(r"probe_ready.*?/api/jobs/(\d+|\$[A-Z_]+)/control", cmd, re.S)
             if probe_ready:
                 # Free the machine for the probe-first job, which then asks for the clip.
-                job = int(probe_ready.group(1))
+                job = job_of(probe_ready.group(1))
                 jobs = check_held_and_queued()
                 checked_before_probe = True
                 # The queue first: once job 1 is gone the machine claims the next job.
@@ -174,7 +189,9 @@ def main():
                 # A control example steers job 1: it must be on its machine by now.
                 wait(lambda: [j["id"] for j in get(base, "/api/status")["running"]] == [1], 20,
                      "job 1 on its machine")
-            script = "\n".join(prelude + [cmd]).replace(DOC_DATA, data).replace(
+            name = re.match(r"([A-Z_]+)=\$\(", cmd)
+            shown = [f'echo "${name.group(1)}"'] if name else []
+            script = "\n".join(prelude + [cmd] + shown).replace(DOC_DATA, data).replace(
                 DOC_PORT, f"127.0.0.1:{http_port}")
             assert DOC_PORT not in script and DOC_DATA not in script, script
             run = subprocess.run(["bash", "-c", script], cwd=work, capture_output=True,
@@ -182,32 +199,38 @@ def main():
             print(run.stdout)
             assert run.returncode == 0, run.stderr
             answer = json.loads(run.stdout)
+            if name:  # the job's id, from the upload's answer
+                assert isinstance(answer, int), (cmd, run.stdout)
+                values[name.group(1)] = answer
+                prelude.append(f"{name.group(1)}={answer}")
+                answer = {"id": answer}
             assert "error" not in answer, answer
-            if "/api/jobs?" in cmd or cmd.rstrip().endswith("/api/jobs"):
+            if re.search(r"/api/jobs(\?|[\s']|$)", cmd):
                 jobs_before += 1
                 assert answer["id"] == jobs_before, answer
         if not checked_before_probe:
             check_held_and_queued()
         else:
-            # The second machine comes online: the bottom side (job 5) waits for job 4's map.
+            # The second machine comes online: the bottom side waits for the top side's map.
+            top, bottom_id = values["TOP"], values["BOTTOM"]
             procs.append(subprocess.Popen(
                 [engraver, "sim", "--listen", f"127.0.0.1:{right_port}"],
                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
             wait(lambda: get(base, "/api/status")["machines"][1]["link"] == "online", 20,
                  "the second machine online")
             time.sleep(1.0)
-            bottom = get(base, "/api/jobs/5")
+            bottom = get(base, f"/api/jobs/{bottom_id}")
             assert bottom["state"] == "queued", bottom
-            assert bottom["waiting"] == "waiting for the height map of job 4", bottom
+            assert bottom["waiting"] == f"waiting for the height map of job {top}", bottom
             # The confirm was taken: the job probes the simulated blank (or has got further).
             def probing_or_later():
-                j = get(base, "/api/jobs/4")
-                running = [r for r in get(base, "/api/status")["running"] if r["id"] == 4]
+                j = get(base, f"/api/jobs/{top}")
+                running = [r for r in get(base, "/api/status")["running"] if r["id"] == top]
                 return j["state"] != "running" or (
                     running and running[0]["machine_state"] != "probe_clip")
-            wait(probing_or_later, 30, "job 4 probing after the confirm")
-            assert get(base, "/api/jobs/4")["state"] in ("running", "completed"), \
-                get(base, "/api/jobs/4")
+            wait(probing_or_later, 30, f"job {top} probing after the confirm")
+            assert get(base, f"/api/jobs/{top}")["state"] in ("running", "completed"), \
+                get(base, f"/api/jobs/{top}")
         print(f"guide examples passed: {len(curls)} curl commands")
         return 0
     finally:
