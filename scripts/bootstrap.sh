@@ -10,7 +10,7 @@ packages=(
   libeigen3-dev libdxflib-dev libcli11-dev libfmt-dev libasio-dev nlohmann-json3-dev
   libcairo2-dev libexpat1-dev
   gcc-avr binutils-avr avr-libc simavr libsimavr-dev python3
-  sigrok-cli socat zlib1g-dev
+  sigrok-cli socat zlib1g-dev curl jq
   libpolyclipping-dev gerbv
   libsqlite3-dev libcpp-httplib-dev chromium libpqxx-dev postgresql libzip-dev
 )
