@@ -3,21 +3,30 @@
 // machine: zeroed, inside the travel); real-time ones act at once. Background loop only.
 #include "firmware/app/application.h"
 
-#include "firmware/protocol/codec.h"  // decode_frame
+#include "firmware/protocol/codec.h"  // decode_command
 
 namespace app {
 
 using proto::ErrorCode;
 
-// Decodes the frame as its table row's message and calls that row's handler (#I, #? and #T
-// never come here: the dispatcher answers them).
+// Decodes the frame as its table row's message (one walker, proto::decode_command) and calls
+// that row's handler (#I, #? and #T never come here: the dispatcher answers them).
 ErrorCode Application::handle(const proto::Frame& f, uint8_t* detail) {
+  struct CommandRoute {
+    uint8_t letter;
+    ErrorCode (*call)(Application* app, const proto::AnyCommand& m, uint8_t seq, uint8_t* detail);
+  };
+  static const CommandRoute kRoutes[] = {APP_COMMAND_ROUTES()};
   *detail = 0;
-  switch (f.letter) {
-    APP_HANDLE_COMMAND_CASES()
-    default:
-      return ErrorCode::kUnknownCommand;
+  const uint8_t n = (uint8_t)(sizeof kRoutes / sizeof kRoutes[0]);
+  for (uint8_t i = 0; i < n; ++i) {
+    if (kRoutes[i].letter != f.letter) continue;
+    proto::AnyCommand m;
+    const ErrorCode e = proto::decode_command(f.letter, f.payload, f.length, &m);
+    if (e != ErrorCode::kOk) return e;
+    return kRoutes[i].call(this, m, f.seq, detail);
   }
+  return ErrorCode::kUnknownCommand;
 }
 
 ErrorCode Application::store(const proto::Frame& f, uint8_t* detail) {

@@ -381,7 +381,46 @@ const uint8_t* bytes_of(const Msg& m) {
   return reinterpret_cast<const uint8_t*>(&m);
 }
 
+// A command's row for decode_command: its letter, fields and extra check (on the bytes of
+// the struct).
+typedef ErrorCode (*ExtraCheck)(const uint8_t* msg);
+struct CommandCodec {
+  uint8_t letter;
+  const FieldSpec* fields;
+  ExtraCheck check;
+};
+
+template <typename Msg, ErrorCode (*Check)(const Msg&)>
+ErrorCode check_bytes(const uint8_t* msg) {
+  return Check(*reinterpret_cast<const Msg*>(msg));
+}
+
+// NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and function names.
+#define PROTO_CMD_CODEC(Type, name, letter, role, display, reply, handler, check) \
+  {letter, k##Type##Fields, &check_bytes<Type, check>},
+#define PROTO_CMD_CODEC_SKIP(...)
+// NOLINTEND(bugprone-macro-parentheses)
+const CommandCodec kCommandCodecs[] = {
+    PROTO_MESSAGE_TABLE(PROTO_CMD_CODEC, PROTO_CMD_CODEC_SKIP, PROTO_CMD_CODEC_SKIP,
+                        PROTO_CMD_CODEC_SKIP, PROTO_CMD_CODEC_SKIP, PROTO_CMD_CODEC_SKIP)};
+#undef PROTO_CMD_CODEC
+#undef PROTO_CMD_CODEC_SKIP
+
 }  // namespace
+
+ErrorCode decode_command(uint8_t letter, const uint8_t* bytes, uint8_t length, AnyCommand* msg) {
+  uint8_t* m = reinterpret_cast<uint8_t*>(msg);
+  const uint8_t n = (uint8_t)(sizeof kCommandCodecs / sizeof kCommandCodecs[0]);
+  for (uint8_t i = 0; i < n; ++i) {
+    const CommandCodec& c = kCommandCodecs[i];
+    if (c.letter != letter) continue;
+    ErrorCode e = read_fields(bytes, length, m, c.fields);
+    if (e == ErrorCode::kOk) e = check_fields(m, c.fields);
+    if (e == ErrorCode::kOk) e = c.check(m);
+    return e;
+  }
+  return ErrorCode::kUnknownCommand;
+}
 
 bool is_known_error(uint8_t code) {
   return code <= (uint8_t)ErrorCode::kRxOverrun ||
