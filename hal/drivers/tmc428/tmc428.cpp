@@ -308,14 +308,19 @@ bool Tmc428::take_interrupt_flags(uint8_t axis, uint8_t* flags) {
   return true;
 }
 
-bool Tmc428::read_actual_usteps(int32_t out[config::kAxisCount]) {
+bool Tmc428::read_axes(uint8_t reg, uint8_t bits, int32_t out[config::kAxisCount]) {
+  const uint8_t above = (uint8_t)(32U - bits);  // shifted out, then the sign shifted in
   if (!ready_) return false;
   for (uint8_t a = 0; a < config::kAxisCount; ++a) {
     uint32_t data = 0;
-    if (!read_reg(motor_reg(a, kXActual), &data)) return false;
-    out[a] = sign_extend(data, TMC428_FIELD_WIDTH(kField_kXActual_x));
+    if (!read_reg(motor_reg(a, reg), &data)) return false;
+    out[a] = (int32_t)(data << above) >> above;
   }
   return true;
+}
+
+bool Tmc428::read_actual_usteps(int32_t out[config::kAxisCount]) {
+  return read_axes(kXActual, TMC428_FIELD_WIDTH(kField_kXActual_x), out);
 }
 
 bool Tmc428::write_velocity_units(const int16_t v[config::kAxisCount]) {
@@ -333,12 +338,9 @@ bool Tmc428::write_velocity_units(const int16_t v[config::kAxisCount]) {
 }
 
 bool Tmc428::read_velocity_units(int16_t out[config::kAxisCount]) {
-  if (!ready_) return false;
-  for (uint8_t a = 0; a < config::kAxisCount; ++a) {
-    uint32_t data = 0;
-    if (!read_reg(motor_reg(a, kVActual), &data)) return false;
-    out[a] = (int16_t)sign_extend(data, TMC428_FIELD_WIDTH(kField_kVActual_v));
-  }
+  int32_t v[config::kAxisCount];
+  if (!read_axes(kVActual, TMC428_FIELD_WIDTH(kField_kVActual_v), v)) return false;
+  for (uint8_t a = 0; a < config::kAxisCount; ++a) out[a] = (int16_t)v[a];  // 11 bits
   return true;
 }
 
