@@ -406,6 +406,25 @@ const CommandCodec kCommandCodecs[] = {
 #undef PROTO_CMD_CODEC
 #undef PROTO_CMD_CODEC_SKIP
 
+// encode() of every message: the fields checked, then written (or length 0).
+ErrorCode encode_fields(const uint8_t* msg, const FieldSpec* fields, ExtraCheck check,
+                        Payload* out) {
+  out->length = 0;
+  ErrorCode e = check_fields(msg, fields);
+  if (e == ErrorCode::kOk) e = check(msg);
+  if (e == ErrorCode::kOk) write_fields(msg, fields, out);
+  return e;
+}
+
+// decode() of every message: the fields read, then checked.
+ErrorCode decode_fields(const uint8_t* bytes, uint8_t length, uint8_t* msg, const FieldSpec* fields,
+                        ExtraCheck check) {
+  ErrorCode e = read_fields(bytes, length, msg, fields);
+  if (e == ErrorCode::kOk) e = check_fields(msg, fields);
+  if (e == ErrorCode::kOk) e = check(msg);
+  return e;
+}
+
 }  // namespace
 
 ErrorCode decode_command(uint8_t letter, const uint8_t* bytes, uint8_t length, AnyCommand* msg) {
@@ -414,10 +433,7 @@ ErrorCode decode_command(uint8_t letter, const uint8_t* bytes, uint8_t length, A
   for (uint8_t i = 0; i < n; ++i) {
     const CommandCodec& c = kCommandCodecs[i];
     if (c.letter != letter) continue;
-    ErrorCode e = read_fields(bytes, length, m, c.fields);
-    if (e == ErrorCode::kOk) e = check_fields(m, c.fields);
-    if (e == ErrorCode::kOk) e = c.check(m);
-    return e;
+    return decode_fields(bytes, length, m, c.fields, c.check);
   }
   return ErrorCode::kUnknownCommand;
 }
@@ -431,22 +447,19 @@ bool is_known_error(uint8_t code) {
 
 // encode / decode / check of every message, each one the walker over its field list.
 // NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and function names.
-#define PROTO_CODEC(Type, check)                                                    \
-  ErrorCode check_message(const Type& m) {                                          \
-    const ErrorCode e = check_fields(bytes_of(m), k##Type##Fields);                 \
-    return e != ErrorCode::kOk ? e : check(m);                                      \
-  }                                                                                 \
-  ErrorCode encode(const Type& m, Payload* out) {                                   \
-    out->length = 0;                                                                \
-    const ErrorCode e = check_message(m);                                           \
-    if (e == ErrorCode::kOk) write_fields(bytes_of(m), k##Type##Fields, out);       \
-    return e;                                                                       \
-  }                                                                                 \
-  ErrorCode decode(const uint8_t* bytes, uint8_t length, Type* m) {                 \
-    const ErrorCode e =                                                             \
-        read_fields(bytes, length, reinterpret_cast<uint8_t*>(m), k##Type##Fields); \
-    return e != ErrorCode::kOk ? e : check_message(*m);                             \
+#define PROTO_CODEC(Type, check)                                                        \
+  ErrorCode check_message(const Type& m) {                                              \
+    const ErrorCode e = check_fields(bytes_of(m), k##Type##Fields);                     \
+    return e != ErrorCode::kOk ? e : check(m);                                          \
+  }                                                                                     \
+  ErrorCode encode(const Type& m, Payload* out) {                                       \
+    return encode_fields(bytes_of(m), k##Type##Fields, &check_bytes<Type, check>, out); \
+  }                                                                                     \
+  ErrorCode decode(const uint8_t* bytes, uint8_t length, Type* m) {                     \
+    return decode_fields(bytes, length, reinterpret_cast<uint8_t*>(m), k##Type##Fields, \
+                         &check_bytes<Type, check>);                                    \
   }
+
 #define PROTO_CODEC_CMD(Type, name, letter, role, display, reply, handler, check) \
   PROTO_CODEC(Type, check)
 #define PROTO_CODEC_REPLY(Type, name, letter, display, check) PROTO_CODEC(Type, check)
