@@ -148,21 +148,19 @@ void Tmc428::stop_all() {
 // Both RAM tables ([428DS] §13 steps 2-3; TMC428 RAM is random at power-on, §7.3), then
 // read back (RW = 1 on RAM returns the same pair layout).
 Tmc428InitResult Tmc428::load_ram() {
-  for (uint8_t t = 0; t < 2; ++t) {
-    const RamTable& table = kRamTables[t];
-    for (uint8_t k = 0; k < kRamPairs; ++k) {
-      write_reg((uint8_t)(table.address + 2 * k),
-                ram_pair_data(table.entries[2 * k], table.entries[2 * k + 1]));
-    }
-  }
   bool same = true;
-  for (uint8_t t = 0; t < 2; ++t) {
-    const RamTable& table = kRamTables[t];
-    for (uint8_t k = 0; k < kRamPairs; ++k) {
-      uint32_t got = 0;
-      if (!read_reg((uint8_t)(table.address + 2 * k), &got)) same = false;
-      if ((got & 0x3F3F) != ram_pair_data(table.entries[2 * k], table.entries[2 * k + 1])) {
-        same = false;
+  for (uint8_t pass = 0; pass < 2; ++pass) {  // every pair written, then every pair read back
+    for (uint8_t t = 0; t < 2; ++t) {
+      const RamTable& table = kRamTables[t];
+      for (uint8_t k = 0; k < kRamPairs; ++k) {
+        const uint8_t address = (uint8_t)(table.address + 2 * k);
+        const uint32_t data = ram_pair_data(table.entries[2 * k], table.entries[2 * k + 1]);
+        if (pass == 0) {
+          write_reg(address, data);
+          continue;
+        }
+        uint32_t got = 0;
+        if (!read_reg(address, &got) || (got & 0x3F3F) != data) same = false;
       }
     }
   }
