@@ -3,21 +3,30 @@
 // machine: zeroed, inside the travel); real-time ones act at once. Background loop only.
 #include "firmware/app/application.h"
 
-#include "firmware/protocol/codec.h"  // decode_frame
+#include "firmware/protocol/codec.h"  // decode_command
 
 namespace app {
 
 using proto::ErrorCode;
 
-// Decodes the frame as its table row's message and calls that row's handler (#I, #? and #T
-// never come here: the dispatcher answers them).
+// Decodes the frame as its table row's message (one walker, proto::decode_command) and calls
+// that row's handler (#I, #? and #T never come here: the dispatcher answers them).
 ErrorCode Application::handle(const proto::Frame& f, uint8_t* detail) {
+  struct CommandRoute {
+    uint8_t letter;
+    ErrorCode (*call)(Application* app, const proto::AnyCommand& m, uint8_t seq, uint8_t* detail);
+  };
+  static const CommandRoute kRoutes[] = {APP_COMMAND_ROUTES()};
   *detail = 0;
-  switch (f.letter) {
-    APP_HANDLE_COMMAND_CASES()
-    default:
-      return ErrorCode::kUnknownCommand;
+  const uint8_t n = (uint8_t)(sizeof kRoutes / sizeof kRoutes[0]);
+  for (uint8_t i = 0; i < n; ++i) {
+    if (kRoutes[i].letter != f.letter) continue;
+    proto::AnyCommand m;
+    const ErrorCode e = proto::decode_command(f.letter, f.payload, f.length, &m);
+    if (e != ErrorCode::kOk) return e;
+    return kRoutes[i].call(this, m, f.seq, detail);
   }
+  return ErrorCode::kUnknownCommand;
 }
 
 ErrorCode Application::store(const proto::Frame& f, uint8_t* detail) {
@@ -123,30 +132,32 @@ ErrorCode Application::on_rapid_move(const proto::RapidMoveCmd& c, uint8_t seq, 
   return enqueue_move(ItemKind::kRapidMove, seq, &c.x_um, &c.y_um, rapid_feed());
 }
 
-// #G and #M: an X/Y move inside the travel.
+// #G and #F: an X/Y move inside the travel.
 ErrorCode Application::enqueue_move(ItemKind kind, uint8_t seq, const int32_t* x_um,
                                     const int32_t* y_um, uint16_t feed_um_s) {
-  const ErrorCode e = motion_check(x_um, y_um, 0);
-  if (e != ErrorCode::kOk) return e;
   QueueItem item = new_item(kind, seq);
   item.move.x_um = *x_um;
   item.move.y_um = *y_um;
   item.move.feed_um_s = feed_um_s;
-  return enqueue(item);
+  return enqueue_inside(item, x_um, y_um, 0);
+}
+
+// Stores a motion item whose targets (the axes named) pass motion_check.
+ErrorCode Application::enqueue_inside(const QueueItem& item, const int32_t* x_um,
+                                      const int32_t* y_um, const int32_t* z_um) {
+  const ErrorCode e = motion_check(x_um, y_um, z_um);
+  return e != ErrorCode::kOk ? e : enqueue(item);
 }
 
 ErrorCode Application::on_z_move(const proto::ZMoveCmd& c, uint8_t seq, uint8_t*) {
-  const ErrorCode e = motion_check(0, 0, &c.z_um);
-  if (e != ErrorCode::kOk) return e;
   QueueItem item = new_item(ItemKind::kZMove, seq);
   item.z_move.z_um = c.z_um;
   item.z_move.feed_um_s = c.feed_um_per_s;
-  return enqueue(item);
+  return enqueue_inside(item, 0, 0, &c.z_um);
 }
 
 ErrorCode Application::on_drill(const proto::DrillCmd& c, uint8_t seq, uint8_t*) {
-  ErrorCode e = motion_check(&c.x_um, &c.y_um, &c.z_start_um);
-  if (e == ErrorCode::kOk) e = motion_check(0, 0, &c.z_bottom_um);
+  const ErrorCode e = motion_check(0, 0, &c.z_bottom_um);  // the same codes in either order
   if (e != ErrorCode::kOk) return e;
   QueueItem item = new_item(ItemKind::kDrill, seq);
   item.drill.x_um = c.x_um;
@@ -154,20 +165,18 @@ ErrorCode Application::on_drill(const proto::DrillCmd& c, uint8_t seq, uint8_t*)
   item.drill.z_start_um = c.z_start_um;
   item.drill.z_bottom_um = c.z_bottom_um;
   item.drill.feed_um_s = c.feed_um_per_s;
-  return enqueue(item);
+  return enqueue_inside(item, &c.x_um, &c.y_um, &c.z_start_um);
 }
 
 // #Y: machine Z, so the limit must lie inside the Z travel; the rest is checked when it runs
 // (spindle, probe input, the Z it starts from).
 ErrorCode Application::on_probe(const proto::ProbeCmd& c, uint8_t seq, uint8_t*) {
-  const ErrorCode e = motion_check(0, 0, &c.z_limit_um);
-  if (e != ErrorCode::kOk) return e;
   QueueItem item = new_item(ItemKind::kProbe, seq);
   item.probe.z_limit_um = c.z_limit_um;
   item.probe.feed_um_s = c.feed_um_per_s;
   item.probe.retract_um = c.retract_um;
   item.probe.seen_probes = 0;
-  return enqueue(item);
+  return enqueue_inside(item, 0, 0, &c.z_limit_um);
 }
 
 ErrorCode Application::on_height_map_header(const proto::HeightMapHeaderCmd& c, uint8_t seq,

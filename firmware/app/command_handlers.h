@@ -5,6 +5,7 @@
 #ifndef FIRMWARE_APP_COMMAND_HANDLERS_H
 #define FIRMWARE_APP_COMMAND_HANDLERS_H
 
+#include "firmware/protocol/codec.h"          // AnyCommand
 #include "firmware/protocol/message_table.h"  // PROTO_MESSAGE_TABLE
 #include "firmware/protocol/messages.h"       // the message structs
 
@@ -20,28 +21,26 @@
 #define APP_HANDLED_kJobMark(WITH, Type, name, handler) WITH(Type, name, handler)
 #define APP_HANDLER_SKIP(...)
 
-// Inside the class that owns the handlers: one declaration per handler of the table.
-#define APP_DECLARE_HANDLER(Type, name, handler) \
-  proto::ErrorCode handler(const proto::Type& c, uint8_t seq, uint8_t* detail);
+// Inside the class that owns the handlers: one declaration per handler of the table, and a
+// static call_<handler> that hands it the decoded command (the routing table's entry).
+#define APP_DECLARE_HANDLER(Type, name, handler)                                       \
+  proto::ErrorCode handler(const proto::Type& c, uint8_t seq, uint8_t* detail);        \
+  static proto::ErrorCode call_##handler(Application* app, const proto::AnyCommand& m, \
+                                         uint8_t seq, uint8_t* detail) {               \
+    return app->handler(m.m_##Type, seq, detail);                                      \
+  }
 #define APP_DECLARE_HANDLER_ROW(Type, name, letter, role, display, reply, handler, check) \
   APP_IF_HANDLED(role, APP_DECLARE_HANDLER, Type, name, handler)
 #define APP_DECLARE_COMMAND_HANDLERS()                                             \
   PROTO_MESSAGE_TABLE(APP_DECLARE_HANDLER_ROW, APP_HANDLER_SKIP, APP_HANDLER_SKIP, \
                       APP_HANDLER_SKIP, APP_HANDLER_SKIP, APP_HANDLER_SKIP)
 
-// Inside a switch on the frame's letter (frame f, detail): decodes the frame as the row's
-// message and returns what its handler returns (the case is the letter: no second check).
-#define APP_HANDLE_CASE(Type, name, handler)                           \
-  case proto::name: {                                                  \
-    proto::Type m;                                                     \
-    const proto::ErrorCode e = proto::decode(f.payload, f.length, &m); \
-    if (e != proto::ErrorCode::kOk) return e;                          \
-    return handler(m, f.seq, detail);                                  \
-  }
-#define APP_HANDLE_CASE_ROW(Type, name, letter, role, display, reply, handler, check) \
-  APP_IF_HANDLED(role, APP_HANDLE_CASE, Type, name, handler)
-#define APP_HANDLE_COMMAND_CASES()                                                               \
-  PROTO_MESSAGE_TABLE(APP_HANDLE_CASE_ROW, APP_HANDLER_SKIP, APP_HANDLER_SKIP, APP_HANDLER_SKIP, \
+// The routing table's rows (a CommandRoute initialiser): the letter and its call_<handler>.
+#define APP_ROUTE(Type, name, handler) {proto::name, &Application::call_##handler},
+#define APP_ROUTE_ROW(Type, name, letter, role, display, reply, handler, check) \
+  APP_IF_HANDLED(role, APP_ROUTE, Type, name, handler)
+#define APP_COMMAND_ROUTES()                                                               \
+  PROTO_MESSAGE_TABLE(APP_ROUTE_ROW, APP_HANDLER_SKIP, APP_HANDLER_SKIP, APP_HANDLER_SKIP, \
                       APP_HANDLER_SKIP, APP_HANDLER_SKIP)
 
 // NOLINTEND(bugprone-macro-parentheses)

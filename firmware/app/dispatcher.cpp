@@ -151,39 +151,35 @@ static bool stops_motion(uint8_t letter) {
 }
 
 void Dispatcher::on_realtime(const proto::Frame& f) {
+  const bool stops = stops_motion(f.letter);
+  bool newest = false;  // the seq becomes the reference once the command has acted
   if (!session_) {
-    if (!stops_motion(f.letter)) {
+    // #H and #X act even before #I. With no session there is no real-time seq to compare
+    // with (#I forgets it anyway), so a repeated stop acts again, which is harmless.
+    if (!stops) {
       error(f.seq, proto::ErrorCode::kNoSession, 0);
       return;
     }
-    // #H and #X act even before #I. With no session there is no real-time seq to compare
-    // with (#I forgets it anyway), so a repeated stop acts again, which is harmless.
-    const proto::ErrorCode e = sink_->realtime(f);
-    if (e != proto::ErrorCode::kOk) {
-      error(f.seq, e, 0);
+  } else {
+    const proto::SeqClass c = realtime_.classify(f.seq);
+    if (c == proto::SeqClass::kDuplicate) {
+      ack(f.seq, true);  // done already; never acted on twice
       return;
     }
-    ack(f.seq, true);
-    return;
-  }
-  const proto::SeqClass c = realtime_.classify(f.seq);
-  if (c == proto::SeqClass::kDuplicate) {
-    ack(f.seq, true);  // done already; never acted on twice
-    return;
-  }
-  // An older #R/#V/#C was superseded and must not undo a later command; an older #H or #X
-  // may be the retransmission of a lost stop, and stopping is always allowed.
-  const bool stale = c == proto::SeqClass::kStale;
-  if (stale && !stops_motion(f.letter)) {
-    error(f.seq, proto::ErrorCode::kSeqStale, 0);
-    return;
+    // An older #R/#V/#C was superseded and must not undo a later command; an older #H or
+    // #X may be the retransmission of a lost stop, and stopping is always allowed.
+    newest = c != proto::SeqClass::kStale;
+    if (!newest && !stops) {
+      error(f.seq, proto::ErrorCode::kSeqStale, 0);
+      return;
+    }
   }
   const proto::ErrorCode e = sink_->realtime(f);
   if (e != proto::ErrorCode::kOk) {
     error(f.seq, e, 0);
     return;
   }
-  if (!stale) realtime_.accept(f.seq);  // the newest seq stays the reference
+  if (newest) realtime_.accept(f.seq);  // the newest seq stays the reference
   ack(f.seq, true);
 }
 

@@ -106,6 +106,15 @@ proto::ErrorCode SplineStore::commit(uint8_t control_n, uint8_t knot_n, uint8_t*
   return proto::ErrorCode::kOk;
 }
 
+// commit() of the frame's points once they lie inside the travel.
+proto::ErrorCode SplineStore::commit_inside(uint8_t control_index, uint8_t control_n,
+                                            uint8_t knot_n, const int32_t travel_um[2],
+                                            uint8_t* detail, bool* completed) {
+  if (!inside_travel(spline_[open_], control_index, control_n, travel_um))
+    return proto::ErrorCode::kOutOfTravel;
+  return commit(control_n, knot_n, detail, completed);
+}
+
 proto::ErrorCode SplineStore::add(const proto::SplineDataCmd& d, const int32_t travel_um[2],
                                   uint8_t* detail, bool* completed) {
   *detail = 0;
@@ -119,10 +128,8 @@ proto::ErrorCode SplineStore::add(const proto::SplineDataCmd& d, const int32_t t
     if (!sp.rational) p.weight_q14 = core::kWeightOneQ14;
     sp.control[d.control_index + i] = p;
   }
-  if (!inside_travel(sp, d.control_index, d.control_n, travel_um))
-    return proto::ErrorCode::kOutOfTravel;
   for (uint8_t i = 0; i < d.knot_n; ++i) sp.knot[d.knot_index + i] = d.knot[i];
-  return commit(d.control_n, d.knot_n, detail, completed);
+  return commit_inside(d.control_index, d.control_n, d.knot_n, travel_um, detail, completed);
 }
 
 // The values are unpacked behind the stored ones; only commit() makes them part of the
@@ -137,9 +144,7 @@ proto::ErrorCode SplineStore::add_compact(const proto::SplineCompactCmd& d,
   core::Spline& sp = spline_[open_];
   e = proto::unpack_compact(d, &sp);
   if (e != proto::ErrorCode::kOk) return e;
-  if (!inside_travel(sp, d.control_index, d.control_n, travel_um))
-    return proto::ErrorCode::kOutOfTravel;
-  return commit(d.control_n, d.knot_n, detail, completed);
+  return commit_inside(d.control_index, d.control_n, d.knot_n, travel_um, detail, completed);
 }
 
 proto::ErrorCode SplineStore::add_contour(const proto::SplineContourCmd& d,
@@ -155,10 +160,9 @@ proto::ErrorCode SplineStore::add_contour(const proto::SplineContourCmd& d,
     return proto::ErrorCode::kSplineSequence;
   e = proto::unpack_contour(d, &sp);
   if (e != proto::ErrorCode::kOk) return e;
-  if (!inside_travel(sp, d.control_index, d.control_n, travel_um))
-    return proto::ErrorCode::kOutOfTravel;
   const bool last = (uint16_t)(d.control_index + d.control_n) == sp.control_count;
-  return commit(d.control_n, last ? (uint8_t)sp.knot_count : 0, detail, completed);
+  return commit_inside(d.control_index, d.control_n, last ? (uint8_t)sp.knot_count : 0, travel_um,
+                       detail, completed);
 }
 
 void SplineStore::release(uint8_t slot) {

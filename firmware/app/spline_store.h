@@ -45,6 +45,8 @@ class SplineStore {
   proto::ErrorCode check_next(uint8_t control_index, uint8_t control_n, uint8_t knot_index,
                               uint8_t knot_n) const;
   proto::ErrorCode commit(uint8_t control_n, uint8_t knot_n, uint8_t* detail, bool* completed);
+  proto::ErrorCode commit_inside(uint8_t control_index, uint8_t control_n, uint8_t knot_n,
+                                 const int32_t travel_um[2], uint8_t* detail, bool* completed);
 
   core::Spline spline_[kSlots];
   SlotState state_[kSlots];

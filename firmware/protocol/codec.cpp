@@ -381,7 +381,62 @@ const uint8_t* bytes_of(const Msg& m) {
   return reinterpret_cast<const uint8_t*>(&m);
 }
 
+// A command's row for decode_command: its letter, fields and extra check (on the bytes of
+// the struct).
+typedef ErrorCode (*ExtraCheck)(const uint8_t* msg);
+struct CommandCodec {
+  uint8_t letter;
+  const FieldSpec* fields;
+  ExtraCheck check;
+};
+
+template <typename Msg, ErrorCode (*Check)(const Msg&)>
+ErrorCode check_bytes(const uint8_t* msg) {
+  return Check(*reinterpret_cast<const Msg*>(msg));
+}
+
+// NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and function names.
+#define PROTO_CMD_CODEC(Type, name, letter, role, display, reply, handler, check) \
+  {letter, k##Type##Fields, &check_bytes<Type, check>},
+#define PROTO_CMD_CODEC_SKIP(...)
+// NOLINTEND(bugprone-macro-parentheses)
+const CommandCodec kCommandCodecs[] = {
+    PROTO_MESSAGE_TABLE(PROTO_CMD_CODEC, PROTO_CMD_CODEC_SKIP, PROTO_CMD_CODEC_SKIP,
+                        PROTO_CMD_CODEC_SKIP, PROTO_CMD_CODEC_SKIP, PROTO_CMD_CODEC_SKIP)};
+#undef PROTO_CMD_CODEC
+#undef PROTO_CMD_CODEC_SKIP
+
+// encode() of every message: the fields checked, then written (or length 0).
+ErrorCode encode_fields(const uint8_t* msg, const FieldSpec* fields, ExtraCheck check,
+                        Payload* out) {
+  out->length = 0;
+  ErrorCode e = check_fields(msg, fields);
+  if (e == ErrorCode::kOk) e = check(msg);
+  if (e == ErrorCode::kOk) write_fields(msg, fields, out);
+  return e;
+}
+
+// decode() of every message: the fields read, then checked.
+ErrorCode decode_fields(const uint8_t* bytes, uint8_t length, uint8_t* msg, const FieldSpec* fields,
+                        ExtraCheck check) {
+  ErrorCode e = read_fields(bytes, length, msg, fields);
+  if (e == ErrorCode::kOk) e = check_fields(msg, fields);
+  if (e == ErrorCode::kOk) e = check(msg);
+  return e;
+}
+
 }  // namespace
+
+ErrorCode decode_command(uint8_t letter, const uint8_t* bytes, uint8_t length, AnyCommand* msg) {
+  uint8_t* m = reinterpret_cast<uint8_t*>(msg);
+  const uint8_t n = (uint8_t)(sizeof kCommandCodecs / sizeof kCommandCodecs[0]);
+  for (uint8_t i = 0; i < n; ++i) {
+    const CommandCodec& c = kCommandCodecs[i];
+    if (c.letter != letter) continue;
+    return decode_fields(bytes, length, m, c.fields, c.check);
+  }
+  return ErrorCode::kUnknownCommand;
+}
 
 bool is_known_error(uint8_t code) {
   return code <= (uint8_t)ErrorCode::kRxOverrun ||
@@ -392,22 +447,19 @@ bool is_known_error(uint8_t code) {
 
 // encode / decode / check of every message, each one the walker over its field list.
 // NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and function names.
-#define PROTO_CODEC(Type, check)                                                    \
-  ErrorCode check_message(const Type& m) {                                          \
-    const ErrorCode e = check_fields(bytes_of(m), k##Type##Fields);                 \
-    return e != ErrorCode::kOk ? e : check(m);                                      \
-  }                                                                                 \
-  ErrorCode encode(const Type& m, Payload* out) {                                   \
-    out->length = 0;                                                                \
-    const ErrorCode e = check_message(m);                                           \
-    if (e == ErrorCode::kOk) write_fields(bytes_of(m), k##Type##Fields, out);       \
-    return e;                                                                       \
-  }                                                                                 \
-  ErrorCode decode(const uint8_t* bytes, uint8_t length, Type* m) {                 \
-    const ErrorCode e =                                                             \
-        read_fields(bytes, length, reinterpret_cast<uint8_t*>(m), k##Type##Fields); \
-    return e != ErrorCode::kOk ? e : check_message(*m);                             \
+#define PROTO_CODEC(Type, check)                                                        \
+  ErrorCode check_message(const Type& m) {                                              \
+    const ErrorCode e = check_fields(bytes_of(m), k##Type##Fields);                     \
+    return e != ErrorCode::kOk ? e : check(m);                                          \
+  }                                                                                     \
+  ErrorCode encode(const Type& m, Payload* out) {                                       \
+    return encode_fields(bytes_of(m), k##Type##Fields, &check_bytes<Type, check>, out); \
+  }                                                                                     \
+  ErrorCode decode(const uint8_t* bytes, uint8_t length, Type* m) {                     \
+    return decode_fields(bytes, length, reinterpret_cast<uint8_t*>(m), k##Type##Fields, \
+                         &check_bytes<Type, check>);                                    \
   }
+
 #define PROTO_CODEC_CMD(Type, name, letter, role, display, reply, handler, check) \
   PROTO_CODEC(Type, check)
 #define PROTO_CODEC_REPLY(Type, name, letter, display, check) PROTO_CODEC(Type, check)

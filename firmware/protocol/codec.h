@@ -37,6 +37,24 @@ PROTO_MESSAGE_TABLE(PROTO_DECLARE_CMD, PROTO_DECLARE_REPLY, PROTO_DECLARE_SKIP, 
 #undef PROTO_DECLARE_REPLY
 #undef PROTO_DECLARE_SKIP
 
+// Room for any command of the table (one member per command struct, named m_<Type>).
+// NOLINTBEGIN(bugprone-macro-parentheses): Type is a type name.
+#define PROTO_ANY_CMD_MEMBER(Type, name, letter, role, display, reply, handler, check) \
+  Type m_##Type;
+#define PROTO_ANY_CMD_SKIP(...)
+// NOLINTEND(bugprone-macro-parentheses)
+union AnyCommand {
+  PROTO_MESSAGE_TABLE(PROTO_ANY_CMD_MEMBER, PROTO_ANY_CMD_SKIP, PROTO_ANY_CMD_SKIP,
+                      PROTO_ANY_CMD_SKIP, PROTO_ANY_CMD_SKIP, PROTO_ANY_CMD_SKIP)
+};
+#undef PROTO_ANY_CMD_MEMBER
+#undef PROTO_ANY_CMD_SKIP
+
+// Decodes the payload as the command of that letter (the table's CMD row), into the union
+// member of its type: what decode() of that type returns, or kUnknownCommand when no
+// command has the letter. One walker for every command: no decoder per message type.
+ErrorCode decode_command(uint8_t letter, const uint8_t* bytes, uint8_t length, AnyCommand* msg);
+
 // Decodes a received frame's payload into msg after checking the letter matches.
 template <typename Msg>
 ErrorCode decode_frame(const Frame& frame, Msg* msg) {

@@ -2,7 +2,7 @@
 #include "firmware/protocol/compact_spline.h"
 
 #include "firmware/protocol/varint.h"         // zigzag, put_varint
-#include "firmware/protocol/varint_spline.h"  // read_varint_spline
+#include "firmware/protocol/varint_spline.h"  // read_varint_fields
 
 namespace proto {
 
@@ -26,25 +26,13 @@ uint8_t put_compact_knot(int32_t prev, int32_t k, bool first, bool repeat, uint8
   return put_varint((span << 1) | (repeat ? 1U : 0U), out);
 }
 
-// The fields read_varint_spline takes.
-static VarintSplineFrame frame_of(const SplineCompactCmd& m) {
-  VarintSplineFrame f;
-  f.data = m.data;
-  f.data_n = m.data_n;
-  f.control_index = m.control_index;
-  f.control_n = m.control_n;
-  f.knot_index = m.knot_index;
-  f.knot_n = m.knot_n;
-  f.contour = false;
-  return f;
-}
-
 ErrorCode scan_compact(const SplineCompactCmd& m) {
   return unpack_compact(m, 0);  // no spline: the structure only
 }
 
 ErrorCode unpack_compact(const SplineCompactCmd& m, core::Spline* s) {
-  return read_varint_spline(frame_of(m), s);
+  return read_varint_fields(m.data, m.data_n, m.control_index, m.control_n, m.knot_index, m.knot_n,
+                            false, s);
 }
 
 }  // namespace proto

@@ -4,7 +4,7 @@
 #include "firmware/core/divide.h"             // div_u32_u16
 #include "firmware/core/isqrt.h"              // isqrt32
 #include "firmware/protocol/varint.h"         // zigzag, put_varint
-#include "firmware/protocol/varint_spline.h"  // read_varint_spline
+#include "firmware/protocol/varint_spline.h"  // read_varint_fields
 
 namespace proto {
 
@@ -87,25 +87,12 @@ uint8_t put_contour_element(const ContourElement& e, uint8_t* out) {
   return n;
 }
 
-// The fields read_varint_spline takes.
-static VarintSplineFrame frame_of(const SplineContourCmd& m) {
-  VarintSplineFrame f;
-  f.data = m.data;
-  f.data_n = m.data_n;
-  f.control_index = m.control_index;
-  f.control_n = m.control_n;
-  f.knot_index = 0;
-  f.knot_n = 0;
-  f.contour = true;
-  return f;
-}
-
 ErrorCode scan_contour(const SplineContourCmd& m) {
   return unpack_contour(m, 0);  // no spline: the structure only
 }
 
 ErrorCode unpack_contour(const SplineContourCmd& m, core::Spline* s) {
-  return read_varint_spline(frame_of(m), s);
+  return read_varint_fields(m.data, m.data_n, m.control_index, m.control_n, 0, 0, true, s);
 }
 
 bool is_contour_shape(const core::Spline& s) {

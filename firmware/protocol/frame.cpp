@@ -11,15 +11,18 @@ bool is_frame_letter(uint8_t letter) {
   return (letter >= 'A' && letter <= 'Z') || letter == '?';
 }
 
+// The kind follows from the command's role (the queued roles differ only in what they do).
 FrameKind command_kind(uint8_t letter) {
-#define PROTO_KIND_CMD(Type, name, letter_value, role, display, reply, handler, check) \
-  if (letter == (letter_value)) return PROTO_KIND_OF_##role;
-#define PROTO_KIND_SKIP(...)
-  PROTO_MESSAGE_TABLE(PROTO_KIND_CMD, PROTO_KIND_SKIP, PROTO_KIND_SKIP, PROTO_KIND_SKIP,
-                      PROTO_KIND_SKIP, PROTO_KIND_SKIP)
-#undef PROTO_KIND_CMD
-#undef PROTO_KIND_SKIP
-  return FrameKind::kUnknown;
+  switch (command_role(letter)) {
+    case CommandRole::kUnknown:
+      return FrameKind::kUnknown;
+    case CommandRole::kImmediate:
+      return FrameKind::kImmediate;
+    case CommandRole::kRealtime:
+      return FrameKind::kRealtime;
+    default:
+      return FrameKind::kQueued;
+  }
 }
 
 const char* message_name(uint8_t start, uint8_t letter) {

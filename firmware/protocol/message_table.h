@@ -2,7 +2,7 @@
 // range), reply, display name and handler. messages.h builds the structs from it,
 // wire_codes.h the letters and command_role(), codec.cpp the field tables its one walker
 // encodes, decodes and checks with, frame.cpp command_kind() and message_name() (the display
-// names), the application its handler declarations (command_handlers.h) and dispatch switch,
+// names), the application its handler declarations and routing table (command_handlers.h),
 // and a test checks docs/protocol.md against it (its tables and its lists of spline data,
 // job commands and real-time frames). Adding a command: one CMD row with its fields, the body
 // of the handler it names, and its line in docs/protocol.md.

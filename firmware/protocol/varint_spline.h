@@ -28,6 +28,14 @@ struct VarintSplineFrame {
 // as unpack_compact / unpack_contour describe.
 ErrorCode read_varint_spline(const VarintSplineFrame& f, core::Spline* s);
 
+// read_varint_spline of the frame with those fields (#K and #Q hand theirs in).
+inline ErrorCode read_varint_fields(const uint8_t* data, uint8_t data_n, uint8_t control_index,
+                                    uint8_t control_n, uint8_t knot_index, uint8_t knot_n,
+                                    bool contour, core::Spline* s) {
+  const VarintSplineFrame f = {data, data_n, control_index, control_n, knot_index, knot_n, contour};
+  return read_varint_spline(f, s);
+}
+
 }  // namespace proto
 
 #endif  // FIRMWARE_PROTOCOL_VARINT_SPLINE_H

@@ -65,15 +65,8 @@ enum class CommandRole : uint8_t {
   kJobMark = 5      // queued: #J, numbers what follows, no slot, no number
 };
 
-// The kind of each role (the PROTO_KIND_OF_ macros let the table's rows name it directly).
-#define PROTO_KIND_OF_kImmediate FrameKind::kImmediate
-#define PROTO_KIND_OF_kRealtime FrameKind::kRealtime
-#define PROTO_KIND_OF_kJobCommand FrameKind::kQueued
-#define PROTO_KIND_OF_kSplineData FrameKind::kQueued
-#define PROTO_KIND_OF_kJobMark FrameKind::kQueued
-
-// The role of a command letter (kUnknown: not a command). Inline: the host's job tools use
-// it; the firmware needs only command_kind().
+// The role of a command letter (kUnknown: not a command); command_kind() and the host's job
+// tools use it.
 inline CommandRole command_role(uint8_t letter) {
 #define PROTO_ROLE_CMD(Type, name, letter_value, role, display, reply, handler, check) \
   if (letter == (letter_value)) return CommandRole::role;

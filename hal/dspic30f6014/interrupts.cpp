@@ -15,6 +15,17 @@ Uart1* g_uart1 = 0;
 void (*g_tick)(void*) = 0;
 void* g_tick_context = 0;
 ProbePin* g_probe = 0;
+
+// A vector's work: the registered owner's handler, or with no owner the flag cleared (else
+// the interrupt would fire again at once).
+template <typename Owner, void (Owner::*kHandler)(), typename FlagRegister, uint8_t kFlag>
+inline void serve(Owner* owner) {
+  if (owner != 0) {
+    (owner->*kHandler)();
+  } else {
+    FlagRegister::template clear_bit<kFlag>();
+  }
+}
 }  // namespace
 
 // Survives the reset a trap handler causes (not cleared by the start-up code).
@@ -71,6 +82,13 @@ static void trap(uint8_t cause) {
 #endif
 }
 
+// Trap flags live in INTCON1 and must be cleared, or the trap repeats.
+template <uint8_t kFlag>
+inline void take_trap(uint8_t cause) {
+  INTCON1::clear_bit<kFlag>();
+  trap(cause);
+}
+
 }  // namespace dspic
 
 namespace hal {
@@ -95,46 +113,29 @@ DSPIC_ISR(_T1Interrupt) {
 }
 
 DSPIC_ISR(_U1RXInterrupt) {
-  if (dspic::g_uart1 != 0) {
-    dspic::g_uart1->on_rx_interrupt();
-  } else {
-    dspic::IFS0::clear_bit<dspic::IFS0bits::U1RXIF>();
-  }
+  dspic::serve<dspic::Uart1, &dspic::Uart1::on_rx_interrupt, dspic::IFS0, dspic::IFS0bits::U1RXIF>(
+      dspic::g_uart1);
 }
 
 DSPIC_ISR(_U1TXInterrupt) {
-  if (dspic::g_uart1 != 0) {
-    dspic::g_uart1->on_tx_interrupt();
-  } else {
-    dspic::IFS0::clear_bit<dspic::IFS0bits::U1TXIF>();
-  }
+  dspic::serve<dspic::Uart1, &dspic::Uart1::on_tx_interrupt, dspic::IFS0, dspic::IFS0bits::U1TXIF>(
+      dspic::g_uart1);
 }
 
 DSPIC_ISR(_INT1Interrupt) {
-  if (dspic::g_probe != 0) {
-    dspic::g_probe->on_int1_interrupt();
-  } else {
-    dspic::IFS1::clear_bit<dspic::IFS1bits::INT1IF>();
-  }
+  dspic::serve<dspic::ProbePin, &dspic::ProbePin::on_int1_interrupt, dspic::IFS1,
+               dspic::IFS1bits::INT1IF>(dspic::g_probe);
 }
 
-// Trap flags live in INTCON1 and must be cleared, or the trap repeats.
 DSPIC_ISR(_OscillatorFail) {
-  dspic::INTCON1::clear_bit<dspic::INTCON1bits::OSCFAIL>();
-  dspic::trap(dspic::kTrapOscillatorFail);
+  dspic::take_trap<dspic::INTCON1bits::OSCFAIL>(dspic::kTrapOscillatorFail);
 }
-
 DSPIC_ISR(_AddressError) {
-  dspic::INTCON1::clear_bit<dspic::INTCON1bits::ADDRERR>();
-  dspic::trap(dspic::kTrapAddressError);
+  dspic::take_trap<dspic::INTCON1bits::ADDRERR>(dspic::kTrapAddressError);
 }
-
 DSPIC_ISR(_StackError) {
-  dspic::INTCON1::clear_bit<dspic::INTCON1bits::STKERR>();
-  dspic::trap(dspic::kTrapStackError);
+  dspic::take_trap<dspic::INTCON1bits::STKERR>(dspic::kTrapStackError);
 }
-
 DSPIC_ISR(_MathError) {
-  dspic::INTCON1::clear_bit<dspic::INTCON1bits::MATHERR>();
-  dspic::trap(dspic::kTrapMathError);
+  dspic::take_trap<dspic::INTCON1bits::MATHERR>(dspic::kTrapMathError);
 }

@@ -148,21 +148,19 @@ void Tmc428::stop_all() {
 // Both RAM tables ([428DS] §13 steps 2-3; TMC428 RAM is random at power-on, §7.3), then
 // read back (RW = 1 on RAM returns the same pair layout).
 Tmc428InitResult Tmc428::load_ram() {
-  for (uint8_t t = 0; t < 2; ++t) {
-    const RamTable& table = kRamTables[t];
-    for (uint8_t k = 0; k < kRamPairs; ++k) {
-      write_reg((uint8_t)(table.address + 2 * k),
-                ram_pair_data(table.entries[2 * k], table.entries[2 * k + 1]));
-    }
-  }
   bool same = true;
-  for (uint8_t t = 0; t < 2; ++t) {
-    const RamTable& table = kRamTables[t];
-    for (uint8_t k = 0; k < kRamPairs; ++k) {
-      uint32_t got = 0;
-      if (!read_reg((uint8_t)(table.address + 2 * k), &got)) same = false;
-      if ((got & 0x3F3F) != ram_pair_data(table.entries[2 * k], table.entries[2 * k + 1])) {
-        same = false;
+  for (uint8_t pass = 0; pass < 2; ++pass) {  // every pair written, then every pair read back
+    for (uint8_t t = 0; t < 2; ++t) {
+      const RamTable& table = kRamTables[t];
+      for (uint8_t k = 0; k < kRamPairs; ++k) {
+        const uint8_t address = (uint8_t)(table.address + 2 * k);
+        const uint32_t data = ram_pair_data(table.entries[2 * k], table.entries[2 * k + 1]);
+        if (pass == 0) {
+          write_reg(address, data);
+          continue;
+        }
+        uint32_t got = 0;
+        if (!read_reg(address, &got) || (got & 0x3F3F) != data) same = false;
       }
     }
   }
@@ -308,14 +306,19 @@ bool Tmc428::take_interrupt_flags(uint8_t axis, uint8_t* flags) {
   return true;
 }
 
-bool Tmc428::read_actual_usteps(int32_t out[config::kAxisCount]) {
+bool Tmc428::read_axes(uint8_t reg, uint8_t bits, int32_t out[config::kAxisCount]) {
+  const uint8_t above = (uint8_t)(32U - bits);  // shifted out, then the sign shifted in
   if (!ready_) return false;
   for (uint8_t a = 0; a < config::kAxisCount; ++a) {
     uint32_t data = 0;
-    if (!read_reg(motor_reg(a, kXActual), &data)) return false;
-    out[a] = sign_extend(data, TMC428_FIELD_WIDTH(kField_kXActual_x));
+    if (!read_reg(motor_reg(a, reg), &data)) return false;
+    out[a] = (int32_t)(data << above) >> above;
   }
   return true;
+}
+
+bool Tmc428::read_actual_usteps(int32_t out[config::kAxisCount]) {
+  return read_axes(kXActual, TMC428_FIELD_WIDTH(kField_kXActual_x), out);
 }
 
 bool Tmc428::write_velocity_units(const int16_t v[config::kAxisCount]) {
@@ -333,12 +336,9 @@ bool Tmc428::write_velocity_units(const int16_t v[config::kAxisCount]) {
 }
 
 bool Tmc428::read_velocity_units(int16_t out[config::kAxisCount]) {
-  if (!ready_) return false;
-  for (uint8_t a = 0; a < config::kAxisCount; ++a) {
-    uint32_t data = 0;
-    if (!read_reg(motor_reg(a, kVActual), &data)) return false;
-    out[a] = (int16_t)sign_extend(data, TMC428_FIELD_WIDTH(kField_kVActual_v));
-  }
+  int32_t v[config::kAxisCount];
+  if (!read_axes(kVActual, TMC428_FIELD_WIDTH(kField_kVActual_v), v)) return false;
+  for (uint8_t a = 0; a < config::kAxisCount; ++a) out[a] = (int16_t)v[a];  // 11 bits
   return true;
 }
 

@@ -82,6 +82,8 @@ class Tmc428 : public hal::MotionAxes {
   uint32_t transfer(uint32_t mosi);
   uint32_t write_reg(uint8_t address, uint32_t data);
   bool read_reg(uint8_t address, uint32_t* data);
+  // The signed field (its low `bits`) of one motor register, for every axis.
+  bool read_axes(uint8_t reg, uint8_t bits, int32_t out[config::kAxisCount]);
   bool write_and_verify(uint8_t address, uint32_t data, uint32_t readback_mask);
   Tmc428InitResult check_presence();
   void stop_all();
