@@ -21,6 +21,7 @@ struct BoardCommand {
   bool json = false;
   bool no_check = false;
   bool no_plot = false;
+  bool png = false;
 };
 
 void run_board(const BoardCommand& a) {
@@ -29,6 +30,7 @@ void run_board(const BoardCommand& a) {
   o.machine.work_h_mm = a.work_mm[1];
   o.check = !a.no_check;
   o.plot = !a.no_plot;
+  o.png = a.png;
   commands::BoardResult r = commands::run_board(o, stderr_log());
   const nlohmann::json report = commands::board_report_json(o, r);
   commands::write_board_outputs(o, report, &r);
@@ -66,11 +68,13 @@ void add_board_command(CLI::App& app) {
   cmd->add_option("--tol", a->run.tol_mm, "chord tolerance for the G1 comparison, mm")
       ->check(CLI::Range(0.001, 1.0))
       ->capture_default_str();
-  cmd->add_option("-o,--outdir", a->run.outdir, "where NAME.board.svg/.png/.json go")
+  cmd->add_option("-o,--outdir", a->run.outdir, "where NAME.board.svg/.json (and .png) go")
       ->capture_default_str();
   cmd->add_flag("--json", a->json, "print the report as JSON");
   cmd->add_flag("--no-check", a->no_check, "skip the geometric isolation check");
-  cmd->add_flag("--no-plot", a->no_plot, "write no plot");
+  CLI::Option* no_plot = cmd->add_flag("--no-plot", a->no_plot, "write no plot");
+  cmd->add_flag("--png", a->png, "also write the plot as NAME.board.png (1400 px wide)")
+      ->excludes(no_plot);
   cmd->footer(
       "Example: engraver board board-F.Cu.gbr board-PTH.drl board-Edge.Cuts.gbr -o out\n"
       "         engraver board --side bottom samples/pcb/multivibrator/\n"

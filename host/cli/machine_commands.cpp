@@ -342,6 +342,7 @@ struct RunArgs {
   PlanArgs plan;
   std::string outdir = "out";
   bool realtime = false;
+  bool png = false;                 // the plots as PNG too
   std::vector<double> blank_error;  // DX DY DEG: the flipped blank placed off by this much
   bool pins_only = false;           // with blank_error: no measured alignment
   std::string surface;              // --surface: the simulated blank
@@ -389,6 +390,7 @@ commands::RunOptions run_options(const RunArgs& a, const JobPlan& plan,
   o.file = a.plan.file;
   o.name = input_name(a.plan.file);
   o.outdir = a.outdir;
+  o.png = a.png;
   o.feed_mm_s = a.plan.feed_mm_s;
   o.chord_tolerance_mm = a.plan.tol_mm;
   o.work_w_mm = a.plan.work_mm[0];
@@ -553,8 +555,9 @@ void add_run_command(CLI::App& app) {
       "the main job: simulate the machine and send the drawing to it (in lockstep, one "
       "process)");
   add_plan_options(run, &run_args->plan);
-  run->add_option("-o,--outdir", run_args->outdir, "where NAME.svg/.png/.json go")
+  run->add_option("-o,--outdir", run_args->outdir, "where NAME.svg/.json (and .png) go")
       ->capture_default_str();
+  run->add_flag("--png", run_args->png, "also write the plots as PNG (NAME.png, NAME.board.png)");
   run->add_flag("--realtime", run_args->realtime, "simulate in real time");
   run->add_option("--blank-error", run_args->blank_error,
                   "double-sided, second setup: DX DY DEG, the simulated machine's flipped blank "

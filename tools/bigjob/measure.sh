@@ -5,6 +5,8 @@
 # "CPU s" (user + system) is given beside the wall time: on a loaded shared machine the
 # wall time says more about the other jobs than about this one.
 # Usage: tools/bigjob/measure.sh ENGRAVER KIND N [N...]   (KIND: contour, lines, circle)
+# The PNG plot is asked for (--png: `run` writes only the SVG by default) so the figures
+# stay those of the tables measured before.
 # BIGJOB_TIMEOUT_S=600 stops a run after that many seconds (its peak memory is still shown).
 set -eu
 engraver=$1
@@ -18,7 +20,7 @@ echo "|---|---|---|---|---|---|---|---|---|---|"
 for n in "$@"; do
   rm -rf "$dir/out"
   python3 "$here/make_job.py" "$kind" "$n" -o "$dir/job.dxf"
-  if /usr/bin/time -v timeout "${BIGJOB_TIMEOUT_S:-0}" "$engraver" run "$dir/job.dxf" -o "$dir/out" >"$dir/stdout" 2>"$dir/time"; then :; fi
+  if /usr/bin/time -v timeout "${BIGJOB_TIMEOUT_S:-0}" "$engraver" run "$dir/job.dxf" --png -o "$dir/out" >"$dir/stdout" 2>"$dir/time"; then :; fi
   wall=$(sed -n 's/.*Elapsed (wall clock) time (h:mm:ss or m:ss): //p' "$dir/time")
   rss=$(sed -n 's/.*Maximum resident set size (kbytes): //p' "$dir/time")
   user=$(sed -n 's/.*User time (seconds): //p' "$dir/time")

@@ -267,7 +267,7 @@ std::string board_report_text(const BoardCommandOptions& a, const BoardResult& r
   for (size_t i = 0; i < r.job.alignment_holes_mm.size(); ++i)
     s += fmt::format("  alignment hole {} at ({:.3f}, {:.3f}) mm\n", i + 1,
                      r.job.alignment_holes_mm[i].x(), r.job.alignment_holes_mm[i].y());
-  if (a.plot) s += "  plot: " + r.base + ".board.svg, .png; ";
+  if (a.plot) s += "  plot: " + r.base + ".board.svg" + (a.png ? ", .png; " : "; ");
   s += "report: " + r.base + ".board.json\n";
   return s;
 }
@@ -280,7 +280,7 @@ void write_board_outputs(const BoardCommandOptions& a, const nlohmann::json& rep
     BoardPlotInput in;
     in.title = fmt::format("{} ({} side)", r->name, report["side"].get<std::string>());
     in.job = &r->job;
-    write_board_plot(in, r->base + ".board.svg", r->base + ".board.png");
+    write_board_plot(in, r->base + ".board.svg", a.png ? r->base + ".board.png" : "");
   }
   std::ofstream out(r->base + ".board.json");
   out << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";

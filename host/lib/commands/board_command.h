@@ -24,9 +24,10 @@ struct BoardCommandOptions {
   pcb::BoardArgs board;
   pcb::BoardMachine machine;
   double tol_mm = defaults::kChordToleranceMm;  // of the G1 comparison (wire_bytes)
-  std::string outdir = "out";                   // NAME.board.svg/.png/.json
+  std::string outdir = "out";                   // NAME.board.svg/.json (and .png)
   bool check = true;                            // the geometric isolation check
   bool plot = true;
+  bool png = false;  // the plot as NAME.board.png too (--png): most of a small board's time
   // The isolation encoded three more ways (compact, fixed-width frames, G1 lines) to compare
   // bytes for docs/performance.md; off, the report has no such fields.
   bool wire_bytes = false;
@@ -68,7 +69,7 @@ void check_board(const BoardCommandOptions& o, BoardResult* r, const CommandLog&
 // Stage 3: the report as JSON and as the lines `board` prints.
 nlohmann::json board_report_json(const BoardCommandOptions& o, const BoardResult& r);
 std::string board_report_text(const BoardCommandOptions& o, const BoardResult& r);
-// Stage 4: OUTDIR/NAME.board.json and (o.plot) .svg/.png; sets r->base.
+// Stage 4: OUTDIR/NAME.board.json and (o.plot) .svg, (o.png) .png; sets r->base.
 void write_board_outputs(const BoardCommandOptions& o, const nlohmann::json& report,
                          BoardResult* r);
 // Stage 5: ends the command when the planned paths cut copper (exit 8) or the check failed

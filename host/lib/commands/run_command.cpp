@@ -160,13 +160,13 @@ void write_run_plots(const JobPlan& plan, const RunOptions& o, const RunResult& 
     }
     plot.tool_path.back().points_mm.push_back(Point2(s.x_mm, s.y_mm));
   }
-  write_plot(plot, r.base + ".svg", r.base + ".png");
+  write_plot(plot, r.base + ".svg", o.png ? r.base + ".png" : "");
   if (o.board && o.board->job) {  // copper, isolation width, holes
     BoardPlotInput in;
     in.title = o.board->title + " (simulated)";
     in.job = o.board->job.get();
     in.simulated = plot.tool_path;
-    write_board_plot(in, r.base + ".board.svg", r.base + ".board.png");
+    write_board_plot(in, r.base + ".board.svg", o.png ? r.base + ".board.png" : "");
   }
   if (r.depth) write_depth_error_svg(r.depth->kept, 50.0, o.name, r.base + ".depth.svg");
   if (r.map && !o.probe) write_height_map_svg(*r.map, o.name, r.base + ".map.svg");
@@ -308,14 +308,14 @@ std::string run_report_text(const JobPlan& plan, const RunOptions& o, const RunR
       "({:.2f} s of processor time: {:.0f}x real time)\n"
       "  {} pauses confirmed by the simulated operator ({} ms after each); spindle {} at the "
       "end\n"
-      "  plot: {}.svg, {}.png; report: {}.json\n",
+      "  plot: {}.svg{}; report: {}.json\n",
       o.file, plan.curves.size(), plan.pen_lifts, outcome_name(s.outcome), s.commands,
       s.stats.frames_sent, s.stats.bytes_sent, s.stats.retransmits, s.wire_bytes,
       r.points.gcode_bytes, s.cut_mm, s.rapid_mm, s.motion_s, s.cut_s,
       plan.cut_length_mm / o.feed_mm_s, s.max_contour_error_um, s.worst_contour_sample.x_mm,
       s.worst_contour_sample.y_mm, s.virtual_ms / 1000.0, s.wall_s, s.cpu_s,
       speedup(s.virtual_ms, s.cpu_s), s.pauses_confirmed, r.pause_confirm_ms,
-      s.spindle_on ? "on" : "off", base, base, base);
+      s.spindle_on ? "on" : "off", base, o.png ? ", " + base + ".png" : "", base);
   if (s.trace_step_mm > plot_step_mm(plan))
     t += fmt::format(
         "  the plot's tool path is thinned to {:.3f} mm steps ({} of {} samples kept, a long "

@@ -37,8 +37,9 @@ struct FlipSimulation {
 
 struct RunOptions {
   std::string file;                              // the input, named in the report
-  std::string name;                              // outputs are OUTDIR/NAME.svg, .png, .json ...
+  std::string name;                              // outputs are OUTDIR/NAME.svg, .json ...
   std::string outdir = "out";                    // made if missing
+  bool png = false;                              // the plots as .png too (--png)
   double feed_mm_s = defaults::feed_mm_per_s();  // the plan's, for the report
   double chord_tolerance_mm = defaults::kChordToleranceMm;  // of the controller's points
   double work_w_mm = defaults::work_width_mm(), work_h_mm = defaults::work_height_mm();
@@ -87,8 +88,8 @@ struct RunResult {
 // Stage 1: the job through a fresh simulated machine, measured as it runs (the blank, the
 // probe, the map, the isolation cuts, the depth of cut). Exit 2 for --probe without a surface.
 RunResult simulate_run(const JobPlan& plan, const RunOptions& o);
-// Stage 2: BASE.svg/.png (the drawing against the tool path), for a board BASE.board.svg/.png,
-// the depth error and the map's pictures.
+// Stage 2: BASE.svg (the drawing against the tool path), for a board BASE.board.svg, each
+// with a .png when o.png; the depth error and the map's pictures.
 void write_run_plots(const JobPlan& plan, const RunOptions& o, const RunResult& r);
 // Stage 3: a board's simulated isolation cuts against its copper; a flip's registration.
 void check_run(const RunOptions& o, RunResult* r);

@@ -79,8 +79,9 @@ TEST(BoardCommand, PlansChecksReportsAndWritesAWholeBoard) {
   EXPECT_EQ(j["bytes_per_tool"][3]["name"], "Cutter 1.00mm");
   write_board_outputs(o, j, &r);
   EXPECT_EQ(r.base, (fs::path(o.outdir) / "ok").string());
-  for (const char* ext : {".board.json", ".board.svg", ".board.png"})
+  for (const char* ext : {".board.json", ".board.svg"})
     EXPECT_TRUE(fs::exists(r.base + ext)) << ext;
+  EXPECT_FALSE(fs::exists(r.base + ".board.png"));  // only with o.png (--png)
   const std::string text = board_report_text(o, r);
   EXPECT_NE(text.find("ok: top side, first tool V-bit 0.20mm"), std::string::npos) << text;
   EXPECT_EQ(text.find("as splines"), std::string::npos) << text;

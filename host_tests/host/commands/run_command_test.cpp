@@ -38,7 +38,7 @@ TEST(RunCommand, ReportsTheSimulatedJobAndWritesItsPlots) {
   ASSERT_EQ(r.sim.outcome, JobOutcome::kCompleted) << r.sim.message;
   EXPECT_EQ(r.base, (fs::path(dir) / "two-lines").string());
   EXPECT_TRUE(fs::exists(r.base + ".svg"));
-  EXPECT_TRUE(fs::exists(r.base + ".png"));
+  EXPECT_FALSE(fs::exists(r.base + ".png"));        // only with o.png (--png)
   EXPECT_FALSE(fs::exists(r.base + ".board.svg"));  // not a board
   EXPECT_FALSE(r.isolation);                        // nothing to check against copper
 
@@ -72,6 +72,21 @@ TEST(RunCommand, ReportsTheSimulatedJobAndWritesItsPlots) {
   write_run_report(j, r);
   EXPECT_TRUE(fs::exists(r.base + ".json"));
   fs::remove_all(dir);
+}
+
+TEST(RunCommand, WritesThePngPlotWhenAskedFor) {
+  const std::string dir = (fs::temp_directory_path() / "run_command_png_test").string();
+  fs::remove_all(dir);
+  const JobPlan plan = two_lines();
+  RunOptions o = small_run(dir);
+  o.png = true;
+  const RunResult r = run_job(plan, o);
+  ASSERT_EQ(r.sim.outcome, JobOutcome::kCompleted) << r.sim.message;
+  EXPECT_TRUE(fs::exists(r.base + ".svg"));
+  EXPECT_GT(fs::file_size(r.base + ".png"), 0u);
+  const std::string text = run_report_text(plan, o, r);
+  EXPECT_NE(text.find("plot: " + r.base + ".svg, " + r.base + ".png; report:"), std::string::npos)
+      << text;
 }
 
 TEST(RunCommand, ProbingWithoutASimulatedBlankIsAUsageErrorBeforeAnythingRuns) {

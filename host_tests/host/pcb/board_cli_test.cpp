@@ -74,9 +74,30 @@ TEST(BoardCli, WholeBoardIsPlannedCheckedPlottedAndReported) {
   EXPECT_EQ(j["bytes_per_tool"][3]["name"], "Cutter 1.00mm");
   for (const auto& t : j["bytes_per_tool"]) EXPECT_GT(t["bytes"].get<int>(), 0) << t.dump();
   const std::string base = dir + "/out/" + std::to_string(getpid()) + "-ok";
-  EXPECT_TRUE(std::filesystem::exists(base + ".board.png"));
+  EXPECT_FALSE(std::filesystem::exists(base + ".board.png"));  // only with --png
   EXPECT_TRUE(std::filesystem::exists(base + ".board.svg"));
   EXPECT_TRUE(std::filesystem::exists(base + ".board.json"));
+}
+
+TEST(BoardCli, PngPlotOnlyWhenAskedFor) {
+  const std::string dir = write_board("png");
+  const std::string base = dir + "/out/" + std::to_string(getpid()) + "-png";
+  const ToolRun plain = run("board " + dir + " -o " + dir + "/out");
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  EXPECT_TRUE(std::filesystem::exists(base + ".board.svg"));
+  EXPECT_FALSE(std::filesystem::exists(base + ".board.png"));
+  EXPECT_NE(plain.out.find("plot: " + base + ".board.svg; report:"), std::string::npos)
+      << plain.out;
+  const ToolRun png = run("board " + dir + " -o " + dir + "/out --png");
+  ASSERT_EQ(png.code, 0) << png.err;
+  std::ifstream in(base + ".board.png", std::ios::binary);
+  std::string magic(4, '\0');
+  in.read(&magic[0], 4);
+  EXPECT_EQ(magic, "\x89PNG");
+  EXPECT_NE(png.out.find("plot: " + base + ".board.svg, .png; report:"), std::string::npos)
+      << png.out;
+  // A PNG of no plot is a contradiction: refused, not ignored.
+  EXPECT_EQ(run("board " + dir + " -o " + dir + "/out --png --no-plot").code, 2);
 }
 
 TEST(BoardCli, NarrowGapRefusesTheJobAndNamesThePlace) {
@@ -310,7 +331,7 @@ TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {
   EXPECT_TRUE(std::filesystem::exists(base + ".svg"));
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(base + ".json"));
   EXPECT_EQ(j["outcome"], "completed");
-  EXPECT_TRUE(std::filesystem::exists(base + ".board.png"));
+  EXPECT_FALSE(std::filesystem::exists(base + ".board.png"));  // only with --png
   // The simulated tool centres at the isolation depth (not only the planned paths) keep the
   // tool off the copper: the board's check on the trace, every isolation contour cut, and
   // the tool's edge no closer to copper than the planned paths' fit tolerance plus the
