@@ -1,0 +1,46 @@
+// The tool's arc round a convex corner of an offset path: the unit normals it steps
+// through, and the unit left normal of a curve direction they are made of.
+#ifndef FIRMWARE_CORE_CORNER_ARC_H
+#define FIRMWARE_CORE_CORNER_ARC_H
+
+#include <stdint.h>  // int32_t, uint16_t, uint8_t
+
+#include "firmware/core/span_evaluator.h"  // Direction, PointQ6
+
+namespace core {
+
+// A unit vector in Q15 (components widened to 32 bits for the arithmetic; |c| <= 2^15).
+struct UnitQ15 {
+  int32_t x_q15;
+  int32_t y_q15;
+};
+
+// Unit left normal (-dy, dx) / |d| in Q15 ((0, 32767) for a zero d): one root and two
+// 32/16 divisions.
+UnitQ15 left_unit_normal(const Direction& d);
+
+// Normals from a to b in steps points (then b to c when there are two halves), each the
+// normalised linear blend of its half's two ends; the last of a half is its end exactly.
+class CornerArc {
+ public:
+  void start(const PointQ6& center, const UnitQ15& a, const UnitQ15& b, const UnitQ15& c,
+             uint8_t halves, uint16_t steps);
+  bool active() const { return halves_left_ > 0; }
+  void stop() { halves_left_ = 0; }
+  const PointQ6& center() const { return center_; }
+  // The next normal; the arc ends after the last half's last one.
+  UnitQ15 next_normal();
+
+ private:
+  PointQ6 center_;
+  UnitQ15 a_;
+  UnitQ15 b_;
+  UnitQ15 c_;
+  uint16_t steps_;  // points per half
+  uint16_t index_;  // next point index within the half, 1..steps_
+  uint8_t halves_left_;
+};
+
+}  // namespace core
+
+#endif  // FIRMWARE_CORE_CORNER_ARC_H
