@@ -17,13 +17,12 @@ int32_t blend_q15(int32_t wa, int32_t a, int32_t wb, int32_t b, uint16_t m) {
   return num < 0 ? -q : q;
 }
 
-// v / 4 truncated toward zero for |v| <= 2^15, as a shift (avr-gcc -Os calls a 32/32
-// division for a signed / 4).
+}  // namespace
+
+// A shift, not the 32/32 division avr-gcc -Os calls for a signed / 4.
 int16_t quarter_toward_zero(int32_t v) {
   return v < 0 ? (int16_t) - (int16_t)(abs_u32(v) >> 2) : (int16_t)(v >> 2);
 }
-
-}  // namespace
 
 // No 64-bit arithmetic: DIV.UD on the dsPIC.
 UnitQ15 left_unit_normal(const Direction& d) {

@@ -15,6 +15,9 @@ struct UnitQ15 {
   int32_t y_q15;
 };
 
+// v / 4 truncated toward zero (as C's v / 4) for |v| <= 2^16.
+int16_t quarter_toward_zero(int32_t v);
+
 // Unit left normal (-dy, dx) / |d| in Q15 ((0, 32767) for a zero d): one root and two
 // 32/16 divisions.
 UnitQ15 left_unit_normal(const Direction& d);

@@ -490,8 +490,8 @@ bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direc
     } else {
       // Unit of (sx, sy): left_unit_normal() of the vector rotated right.
       Direction rot;
-      rot.dx = (int16_t)(sy / 4);
-      rot.dy = (int16_t)(-sx / 4);
+      rot.dx = quarter_toward_zero(sy);
+      rot.dy = quarter_toward_zero(-sx);
       mid = left_unit_normal(rot);
     }
     halves = 2;
