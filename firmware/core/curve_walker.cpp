@@ -56,7 +56,7 @@ bool shorter_than_1um(int32_t dx, int32_t dy) {
 // b - a shifted left (exactly: the direction is b - a's own) so that its larger component
 // lies in [2^29, 2^30), and 2^29 / (|n| / 2^16), so that a distance is two products.
 struct Chord {
-  PointQ6 a;
+  const PointQ6* a;  // the walker's last point: not copied (a smaller frame)
   int32_t bx;
   int32_t by;
   int32_t nx;
@@ -83,7 +83,7 @@ int32_t along_q32(const Chord& c, int32_t qx, int32_t qy) {
 
 void make_chord(const PointQ6& a, const PointQ6& b, Chord* out) {
   Chord& c = *out;
-  c.a = a;
+  c.a = &a;
   c.bx = b.x_q6 - a.x_q6;  // |.| < 2^28: coordinates and offsets stay below 2^27
   c.by = b.y_q6 - a.y_q6;
   c.short_chord = shorter_than_1um(c.bx, c.by);
@@ -118,8 +118,8 @@ void make_chord(const PointQ6& a, const PointQ6& b, Chord* out) {
 // Distance (q6) from q to the chord: to the line when q projects inside the segment, else
 // to the nearer end (a hairpin tip can poke out past an end). Relative error ~2^-13.
 uint32_t chord_distance_q6(const Chord& c, const PointQ6& q) {
-  const int32_t qx = q.x_q6 - c.a.x_q6;
-  const int32_t qy = q.y_q6 - c.a.y_q6;
+  const int32_t qx = q.x_q6 - c.a->x_q6;
+  const int32_t qy = q.y_q6 - c.a->y_q6;
   if (c.short_chord) return length_q6(qx, qy);
   // The projection with 14-bit n: it only picks the formula, and at its two boundaries the
   // line distance and the end distance agree.
@@ -349,24 +349,17 @@ bool CurveWalker::step_in_span(PointUm* out) {
 uint32_t CurveWalker::adaptive_next() {
   uint32_t h = h_q16_ < 1 ? 1 : h_q16_;
   const uint8_t parts_log2 = (eval_.rational() || settings_.tool_offset_um != 0) ? 3 : 2;
-  // A polynomial span without offset: the samples' distances in closed form.
-  const bool closed_form = parts_log2 == 2;
   for (uint8_t tries = 0; tries < 24; ++tries) {
     uint32_t t1 = t_q16_ + h;
     if (t1 > kUq16One) t1 = kUq16One;
     const uint32_t step = t1 - t_q16_;
+    // The trial's end straight into the members that keep the accepted one (a rejected
+    // trial's are overwritten by the next): no copies in this frame.
     Direction d;
-    const PointQ6 b = path_point(t1, &d);
-    const PointQ6 b_base = path_base_;
-    Chord chord;
-    make_chord(last_out_, b, &chord);
-    uint32_t worst = 0;
-    if (!closed_form || !polynomial_step_error(eval_, chord, t_q16_, step, &worst)) {
-      worst = sampled_error(chord, step, parts_log2);
-    }
+    step_point_ = path_point(t1, &d);
+    step_base_ = path_base_;
+    const uint32_t worst = trial_error(step, parts_log2);
     if (worst <= accept_q6_ || step <= 1) {
-      step_point_ = b;
-      step_base_ = b_base;
       // Next step: grow toward the target error (chord error ~ h^2), at most x2.
       const uint32_t grown = scale_step_q8(step, step_factor_q8(target_q6_, worst, 256, 512));
       h_q16_ = grown < 1 ? 1 : (grown > kUq16One ? kUq16One : grown);
@@ -378,6 +371,20 @@ uint32_t CurveWalker::adaptive_next() {
     if (h < 1) h = 1;
   }
   return t_q16_ + 1;  // not reached: 24 halvings take any step down to 1
+}
+
+// The chord error of the trial step from the last point to step_point_: on a polynomial
+// span without offset (parts_log2 2) the samples' distances in closed form, else sampled.
+// Out of line: the chord stays out of adaptive_next()'s frame, which then fits the AVR's
+// 63-byte displacement (a larger frame costs two instructions per access beyond it).
+__attribute__((noinline)) uint32_t CurveWalker::trial_error(uint32_t step, uint8_t parts_log2) {
+  Chord chord;
+  make_chord(last_out_, step_point_, &chord);
+  uint32_t worst = 0;
+  if (parts_log2 != 2 || !polynomial_step_error(eval_, chord, t_q16_, step, &worst)) {
+    worst = sampled_error(chord, step, parts_log2);
+  }
+  return worst;
 }
 
 // The largest distance from the chord of the path points at q / 2^parts_log2 of the step

@@ -77,6 +77,7 @@ class CurveWalker {
   bool arc_point(PointUm* out);
   uint32_t uniform_next() const;
   uint32_t adaptive_next();
+  uint32_t trial_error(uint32_t step, uint8_t parts_log2);
   uint32_t sampled_error(const Chord& chord, uint32_t step, uint8_t parts_log2);
   PointQ6 path_point(uint32_t t_q16, Direction* dir);
   PointQ6 offset_point(const PointQ6& base, const UnitQ15& normal) const;
