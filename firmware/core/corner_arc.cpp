@@ -1,9 +1,10 @@
 // Corner arc normals and the unit left normal (see corner_arc.h).
 #include "firmware/core/corner_arc.h"
 
-#include "firmware/core/divide.h"       // div_u32_u16
-#include "firmware/core/fixed_point.h"  // abs_u32, mul_u16_u16
-#include "firmware/core/isqrt.h"        // isqrt32
+#include "firmware/core/divide.h"        // div_u32_u16, div_u32_by_u16
+#include "firmware/core/fixed_point.h"   // abs_u32, mul_u16_u16
+#include "firmware/core/isqrt.h"         // isqrt32
+#include "firmware/core/wide_product.h"  // mul_wide, wide_shift_right_low
 
 namespace core {
 
@@ -53,14 +54,44 @@ UnitQ15 left_unit_normal(const Direction& d) {
   return u;
 }
 
-void CornerArc::start(const PointQ6& center, const UnitQ15& a, const UnitQ15& b, const UnitQ15& c,
-                      uint8_t halves, uint16_t steps) {
+// Split at the bisector when over 90 degrees. Points per half: chord error of an arc step
+// phi is R phi^2 / 8 <= tol. A half is <= 90 deg and its chord c = |a - b|; the
+// normalised-lerp spacing is at most 1.3x the even one, and the angle at most 1.11 c:
+// steps = ceil(1.45 c sqrt(R / (8 tol))). (A half is <= 90 degrees: c^2 <= 2^31.)
+// r 2^16 / (8 tol) = r 2^13 / tol, and the steps' division by 100 2^23 is a shift and a
+// 32/16 division: the same floors.
+void CornerArc::begin(const PointQ6& center, const UnitQ15& n1, const UnitQ15& n2, bool over_90,
+                      bool left_offset, uint32_t r_abs_um, uint16_t tol_um) {
   center_ = center;
-  a_ = a;
-  b_ = b;
-  c_ = c;
-  halves_left_ = halves;
-  steps_ = steps;
+  a_ = n1;
+  b_ = n2;
+  c_ = n2;
+  halves_left_ = 1;
+  if (over_90) {
+    const int32_t sx = n1.x_q15 + n2.x_q15;
+    const int32_t sy = n1.y_q15 + n2.y_q15;
+    if (sx == 0 && sy == 0) {
+      // Full reversal: go round the end, R * mid pointing along the old travel direction
+      // (the travel direction is n1 rotated right).
+      b_.x_q15 = left_offset ? n1.y_q15 : -n1.y_q15;
+      b_.y_q15 = left_offset ? -n1.x_q15 : n1.x_q15;
+    } else {
+      // Unit of (sx, sy): left_unit_normal() of the vector rotated right.
+      Direction rot;
+      rot.dx = quarter_toward_zero(sy);
+      rot.dy = quarter_toward_zero(-sx);
+      b_ = left_unit_normal(rot);
+    }
+    halves_left_ = 2;
+  }
+  const uint32_t cx = (uint32_t)(a_.x_q15 - b_.x_q15);
+  const uint32_t cy = (uint32_t)(a_.y_q15 - b_.y_q15);
+  const uint32_t c_q15 = isqrt32(cx * cx + cy * cy);
+  const uint32_t root_q8 = isqrt32(div_u32_by_u16(r_abs_um << 13, tol_um, 0));
+  const Wide spread = mul_wide((int32_t)(c_q15 * 145), (int32_t)root_q8);  // < 2^39
+  uint32_t steps = div_u32_by_u16(wide_shift_right_low(spread, 23), 100, 0) + 1;
+  if (steps > 256) steps = 256;
+  steps_ = (uint16_t)steps;
   index_ = 1;
 }
 

@@ -22,12 +22,15 @@ int16_t quarter_toward_zero(int32_t v);
 // 32/16 divisions.
 UnitQ15 left_unit_normal(const Direction& d);
 
-// Normals from a to b in steps points (then b to c when there are two halves), each the
-// normalised linear blend of its half's two ends; the last of a half is its end exactly.
+// The normals of the arc round a convex corner of an offset path, from n1 (the incoming
+// span's) to n2 (the outgoing one's), split at the bisector when the turn is over 90
+// degrees; each point the normalised linear blend of its half's two ends, the last of a
+// half its end exactly, as many per half as keep the arc's chord error within tol_um.
 class CornerArc {
  public:
-  void start(const PointQ6& center, const UnitQ15& a, const UnitQ15& b, const UnitQ15& c,
-             uint8_t halves, uint16_t steps);
+  // left_offset: the tool runs left of travel (R > 0); r_abs_um: |R|.
+  void begin(const PointQ6& center, const UnitQ15& n1, const UnitQ15& n2, bool over_90,
+             bool left_offset, uint32_t r_abs_um, uint16_t tol_um);
   bool active() const { return halves_left_ > 0; }
   void stop() { halves_left_ = 0; }
   const PointQ6& center() const { return center_; }

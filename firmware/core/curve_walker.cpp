@@ -219,6 +219,15 @@ int32_t miter_q6(int32_t r, int32_t s, uint32_t denom) {
   return ((r < 0) != (s < 0)) ? -(int32_t)q : (int32_t)q;
 }
 
+// |R| sin(turn) * 4 <= tol, i.e. r_abs |cross| <= tol 2^28 (exact, the product wide).
+bool smooth_turn(int32_t r_abs, int32_t cross_q30, uint16_t tol_um) {
+  Wide tol_q28;
+  tol_q28.hi = (uint32_t)tol_um >> 4;
+  tol_q28.lo = (uint32_t)tol_um << 28;
+  const Wide gap_q30 = mul_wide(r_abs, (int32_t)abs_u32(cross_q30));  // ~ |R| sin
+  return !wide_negative(wide_sub(tol_q28, gap_q30));
+}
+
 // Sign of ax * bx + ay * by < 0, exactly (32x32 products held wide).
 bool dot_negative(int32_t ax, int32_t ay, int32_t bx, int32_t by) {
   return wide_negative(wide_add(mul_wide(ax, bx), mul_wide(ay, by)));
@@ -463,12 +472,7 @@ bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direc
   const int32_t cross_q30 = n1.x_q15 * n2.y_q15 - n1.y_q15 * n2.x_q15;
   const int32_t dot_q30 = n1.x_q15 * n2.x_q15 + n1.y_q15 * n2.y_q15;
   const int32_t r_abs = (int32_t)abs_u32(r);  // <= kMaxToolOffsetUm
-  // |R| sin(turn) * 4 <= tol, i.e. r_abs |cross| <= tol 2^28 (exact, the product wide).
-  Wide tol_q28;
-  tol_q28.hi = (uint32_t)tol_um_ >> 4;
-  tol_q28.lo = (uint32_t)tol_um_ << 28;
-  const Wide gap_q30 = mul_wide(r_abs, (int32_t)abs_u32(cross_q30));  // ~ |R| sin
-  if (dot_q30 > 0 && !wide_negative(wide_sub(tol_q28, gap_q30))) {
+  if (dot_q30 > 0 && smooth_turn(r_abs, cross_q30, tol_um_)) {
     return emit_checked(at, offset_point(at, n2), out);
   }
   // Turning left (cross > 0) puts a left offset (R > 0) on the inside: concave. An exact
@@ -483,39 +487,8 @@ bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direc
     m.y_q6 = at.y_q6 + miter_q6(r, n1.y_q15 + n2.y_q15, (uint32_t)denom_q15);
     return emit_checked(at, m, out);
   }
-  // Convex: arc from n1 to n2 about the corner, split at the bisector when over 90 deg.
-  UnitQ15 mid = n2;
-  uint8_t halves = 1;
-  if (dot_q30 < 0) {
-    const int32_t sx = n1.x_q15 + n2.x_q15;
-    const int32_t sy = n1.y_q15 + n2.y_q15;
-    if (sx == 0 && sy == 0) {
-      // Full reversal: go round the end, R * mid pointing along the old travel direction
-      // (the travel direction is n1 rotated right).
-      mid.x_q15 = r > 0 ? n1.y_q15 : -n1.y_q15;
-      mid.y_q15 = r > 0 ? -n1.x_q15 : n1.x_q15;
-    } else {
-      // Unit of (sx, sy): left_unit_normal() of the vector rotated right.
-      Direction rot;
-      rot.dx = quarter_toward_zero(sy);
-      rot.dy = quarter_toward_zero(-sx);
-      mid = left_unit_normal(rot);
-    }
-    halves = 2;
-  }
-  // Points per half: chord error of an arc step phi is R phi^2 / 8 <= tol. A half is
-  // <= 90 deg and its chord c = |a - b|; the normalised-lerp spacing is at most 1.3x the
-  // even one, and the angle at most 1.11 c: steps = ceil(1.45 c sqrt(R / (8 tol))).
-  // (A half is <= 90 degrees: c^2 <= 2^31.) r 2^16 / (8 tol) = r 2^13 / tol, and the
-  // steps' division by 100 2^23 is a shift and a 32/16 division: the same floors.
-  const uint32_t cx = (uint32_t)(n1.x_q15 - mid.x_q15);
-  const uint32_t cy = (uint32_t)(n1.y_q15 - mid.y_q15);
-  const uint32_t c_q15 = isqrt32(cx * cx + cy * cy);
-  const uint32_t root_q8 = isqrt32(div_u32_by_u16((uint32_t)r_abs << 13, tol_um_, 0));
-  const Wide spread = mul_wide((int32_t)(c_q15 * 145), (int32_t)root_q8);  // < 2^39
-  uint32_t steps = div_u32_by_u16(wide_shift_right_low(spread, 23), 100, 0) + 1;
-  if (steps > 256) steps = 256;
-  arc_.start(at, n1, mid, n2, halves, (uint16_t)steps);
+  // Convex: an arc of radius |R| about the corner from n1 to n2.
+  arc_.begin(at, n1, n2, dot_q30<0, r> 0, (uint32_t)r_abs, tol_um_);
   return emit_checked(at, offset_point(at, n1), out);
 }
 
