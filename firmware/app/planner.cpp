@@ -240,9 +240,12 @@ bool Planner::push(CoordinateRing* ring, const int32_t target_um[config::kAxisCo
         piece[i] += split_.unit[i];
       }
     }
-    const int32_t machine[3] = {piece[0], piece[1], piece[2] + (following ? offset_at(piece) : 0)};
-    if (!push_segment(ring, machine, feed_um_s, (uint8_t)(flags & kPointRapid), tag, dir))
+    // The machine goes to the piece plus the map's offset (in place: a smaller frame).
+    const int32_t offset_um = following ? offset_at(piece) : 0;
+    piece[2] += offset_um;
+    if (!push_segment(ring, piece, feed_um_s, (uint8_t)(flags & kPointRapid), tag, dir))
       return false;
+    piece[2] -= offset_um;
     for (uint8_t i = 0; i < 3; ++i) {
       split_.at_um[i] = piece[i];
       split_.acc[i] = acc[i];
