@@ -224,21 +224,17 @@ int32_t Planner::offset_at(const int32_t planned_um[config::kAxisCount]) {
 
 bool Planner::push(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
                    uint16_t feed_um_s, uint8_t flags, uint16_t tag, uint16_t max_step_um) {
-  if (split_.left == 0 || split_.to_um[0] != target_um[0] || split_.to_um[1] != target_um[1] ||
-      split_.to_um[2] != target_um[2])
+  if (split_.left == 0 || split_.axis[0].to_um != target_um[0] ||
+      split_.axis[1].to_um != target_um[1] || split_.axis[2].to_um != target_um[2])
     begin_split(target_um, max_step_um);
   const bool following = map_ != 0 && map_->active();
   const int16_t* dir = split_.on_line ? split_.dir_q14 : 0;
   while (split_.left > 1) {
     int32_t piece[3];
-    uint32_t acc[3];
     for (uint8_t i = 0; i < 3; ++i) {
-      piece[i] = split_.at_um[i] + split_.step_um[i];
-      acc[i] = split_.acc[i] + split_.frac[i];  // < 2 n
-      if (acc[i] >= split_.pieces) {
-        acc[i] -= split_.pieces;
-        piece[i] += split_.unit[i];
-      }
+      const LineAxis& a = split_.axis[i];
+      piece[i] = a.at_um + a.step_um;
+      if (a.acc + a.frac >= split_.pieces) piece[i] += a.unit;  // acc + frac < 2 n
     }
     // The machine goes to the piece plus the map's offset (in place: a smaller frame).
     const int32_t offset_um = following ? offset_at(piece) : 0;
@@ -246,9 +242,11 @@ bool Planner::push(CoordinateRing* ring, const int32_t target_um[config::kAxisCo
     if (!push_segment(ring, piece, feed_um_s, (uint8_t)(flags & kPointRapid), tag, dir))
       return false;
     piece[2] -= offset_um;
-    for (uint8_t i = 0; i < 3; ++i) {
-      split_.at_um[i] = piece[i];
-      split_.acc[i] = acc[i];
+    for (uint8_t i = 0; i < 3; ++i) {  // the piece is pushed: the DDA steps on
+      LineAxis& a = split_.axis[i];
+      a.at_um = piece[i];
+      a.acc += a.frac;
+      if (a.acc >= split_.pieces) a.acc -= split_.pieces;
     }
     --split_.left;
   }
@@ -285,8 +283,8 @@ void Planner::begin_split(const int32_t target_um[config::kAxisCount], uint16_t 
   int32_t d[3];
   uint32_t ad[3];
   for (uint8_t i = 0; i < 3; ++i) {
-    split_.to_um[i] = target_um[i];
-    split_.at_um[i] = planned_um_[i];
+    split_.axis[i].to_um = target_um[i];
+    split_.axis[i].at_um = planned_um_[i];
     d[i] = target_um[i] - planned_um_[i];
     ad[i] = core::abs_u32(d[i]);
   }
@@ -318,10 +316,11 @@ void Planner::begin_split(const int32_t target_um[config::kAxisCount], uint16_t 
       q = ad[i] / n;
       r = ad[i] - q * n;
     }
-    split_.step_um[i] = d[i] < 0 ? -(int32_t)q : (int32_t)q;
-    split_.unit[i] = (int8_t)(d[i] < 0 ? -1 : 1);
-    split_.frac[i] = r;
-    split_.acc[i] = n >> 1;  // rounds each piece's end to the nearest micrometre
+    LineAxis& a = split_.axis[i];
+    a.step_um = d[i] < 0 ? -(int32_t)q : (int32_t)q;
+    a.unit = (int8_t)(d[i] < 0 ? -1 : 1);
+    a.frac = r;
+    a.acc = n >> 1;  // rounds each piece's end to the nearest micrometre
   }
 }
 

@@ -92,13 +92,16 @@ class Planner {
   // ends within half a micrometre of the line, however many pieces there are. Stepping
   // from each piece's end toward the target instead lets the rounding of every piece add
   // up into a bend off the line.
+  struct LineAxis {
+    int32_t to_um;    // the target it was set up for
+    int32_t at_um;    // end of the last piece pushed
+    int32_t step_um;  // d / n toward zero
+    uint32_t frac;    // |d| mod n
+    uint32_t acc;     // Bresenham error term, < n
+    int8_t unit;      // sign of d: what a carry adds
+  };
   struct LineSplit {
-    int32_t to_um[config::kAxisCount];    // the target it was set up for
-    int32_t at_um[config::kAxisCount];    // end of the last piece pushed
-    int32_t step_um[config::kAxisCount];  // d / n toward zero
-    uint32_t frac[config::kAxisCount];    // |d| mod n
-    uint32_t acc[config::kAxisCount];     // Bresenham error term, < n
-    int8_t unit[config::kAxisCount];      // sign of d: what a carry adds
+    LineAxis axis[config::kAxisCount];    // one record per axis: the loops walk a pointer
     uint32_t pieces;                      // n
     uint32_t left;                        // pieces not pushed yet; 0: no split set up
     int16_t dir_q14[config::kAxisCount];  // of the whole line, when on_line
