@@ -33,21 +33,15 @@ uint32_t length_q6(int32_t dx, int32_t dy) {
   return (uint32_t)isqrt32(mul_u16_u16(sx, sx) + mul_u16_u16(sy, sy)) << shift;
 }
 
-// |(dx, dy)| > 1 um (64 q6) and < 1 um, exactly (no root for most vectors).
-bool longer_than_1um(int32_t dx, int32_t dy) {
+// Sign of |(dx, dy)| - 1 um (64 q6), exactly (no root for most vectors): > 0 longer, < 0
+// shorter.
+int8_t versus_1um(int32_t dx, int32_t dy) {
   const uint32_t ax = abs_u32(dx);
   const uint32_t ay = abs_u32(dy);
-  if (ax > 64 || ay > 64) return true;
-  return mul_u16_u16((uint16_t)ax, (uint16_t)ax) + mul_u16_u16((uint16_t)ay, (uint16_t)ay) >
-         64 * 64;
-}
-
-bool shorter_than_1um(int32_t dx, int32_t dy) {
-  const uint32_t ax = abs_u32(dx);
-  const uint32_t ay = abs_u32(dy);
-  if (ax >= 64 || ay >= 64) return false;
-  return mul_u16_u16((uint16_t)ax, (uint16_t)ax) + mul_u16_u16((uint16_t)ay, (uint16_t)ay) <
-         64 * 64;
+  if (ax > 64 || ay > 64) return 1;
+  const uint32_t s =
+      mul_u16_u16((uint16_t)ax, (uint16_t)ax) + mul_u16_u16((uint16_t)ay, (uint16_t)ay);
+  return s > 64 * 64 ? 1 : (s < 64 * 64 ? -1 : 0);
 }
 
 }  // namespace
@@ -86,7 +80,7 @@ void make_chord(const PointQ6& a, const PointQ6& b, Chord* out) {
   c.a = &a;
   c.bx = b.x_q6 - a.x_q6;  // |.| < 2^28: coordinates and offsets stay below 2^27
   c.by = b.y_q6 - a.y_q6;
-  c.short_chord = shorter_than_1um(c.bx, c.by);
+  c.short_chord = versus_1um(c.bx, c.by) < 0;
   c.nx = c.ny = c.along_end = 0;
   c.nx16 = c.ny16 = 0;
   c.inv_len_q15 = 0;
@@ -438,7 +432,7 @@ bool CurveWalker::joint(PointUm* out) {
   Direction out_dir = usable_direction(0);
   if (is_zero(out_dir)) out_dir = in_dir;
   last_dir_ = out_dir;
-  const bool jump = longer_than_1um(end.x_q6 - start.x_q6, end.y_q6 - start.y_q6);
+  const bool jump = versus_1um(end.x_q6 - start.x_q6, end.y_q6 - start.y_q6) > 0;
   if (settings_.tool_offset_um == 0) {
     if (jump) {
       pending_ = true;
@@ -552,7 +546,7 @@ bool CurveWalker::emit_checked(const PointQ6& base, const PointQ6& p, PointUm* o
     const int32_t by = base.y_q6 - last_base_.y_q6;
     const int32_t ox = p.x_q6 - last_out_.x_q6;
     const int32_t oy = p.y_q6 - last_out_.y_q6;
-    if (longer_than_1um(bx, by) && dot_negative(bx, by, ox, oy)) {
+    if (versus_1um(bx, by) > 0 && dot_negative(bx, by, ox, oy)) {
       return fail(GeometryError::kOffsetTooLarge);
     }
   }
