@@ -81,10 +81,7 @@ void make_chord(const PointQ6& a, const PointQ6& b, Chord* out) {
   c.bx = b.x_q6 - a.x_q6;  // |.| < 2^28: coordinates and offsets stay below 2^27
   c.by = b.y_q6 - a.y_q6;
   c.short_chord = versus_1um(c.bx, c.by) < 0;
-  c.nx = c.ny = c.along_end = 0;
-  c.nx16 = c.ny16 = 0;
-  c.inv_len_q15 = 0;
-  if (c.short_chord) return;
+  if (c.short_chord) return;                   // nothing else is read of a short chord
   uint32_t m = abs_u32(c.bx) | abs_u32(c.by);  // same leading bit as the larger, >= 45
   uint32_t nx = (uint32_t)c.bx;
   uint32_t ny = (uint32_t)c.by;
