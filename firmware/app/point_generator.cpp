@@ -56,9 +56,7 @@ GenStatus PointGenerator::run(Planner* planner, CoordinateRing* ring, const int3
         active_ = false;
         if (walker_.error() != core::GeometryError::kOk) return GenStatus::kFailed;
         // The curve ended: the item's end marker sits on the last point.
-        const int32_t* last = planner->last_um();
-        const int32_t at[3] = {last[0], last[1], last[2]};
-        if (!planner->push(ring, at, feed_um_s_, kPointEndOfItem, tag_)) {
+        if (!planner->push(ring, planner->last_um(), feed_um_s_, kPointEndOfItem, tag_)) {
           active_ = true;  // retry the marker next time
           have_pending_ = false;
           return GenStatus::kMore;
