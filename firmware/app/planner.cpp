@@ -281,14 +281,15 @@ bool Planner::push_standing(CoordinateRing* ring, uint16_t feed_um_s, uint8_t fl
 // common case: spline points closer than the step).
 void Planner::begin_split(const int32_t target_um[config::kAxisCount], uint16_t max_step_um) {
   int32_t d[3];
-  uint32_t ad[3];
   for (uint8_t i = 0; i < 3; ++i) {
-    split_.axis[i].to_um = target_um[i];
-    split_.axis[i].at_um = planned_um_[i];
+    LineAxis& a = split_.axis[i];
+    a.to_um = target_um[i];
+    a.at_um = planned_um_[i];
     d[i] = target_um[i] - planned_um_[i];
-    ad[i] = core::abs_u32(d[i]);
   }
-  const uint32_t span = ad[0] > ad[1] ? ad[0] : ad[1];
+  const uint32_t ax = core::abs_u32(d[0]);
+  const uint32_t ay = core::abs_u32(d[1]);
+  const uint32_t span = ax > ay ? ax : ay;
   split_.on_line = max_step_um != 0 && span > max_step_um;
   uint16_t step = max_step_um;
   if (map_ != 0 && map_->active() && target_um[2] <= 0 && planned_um_[2] <= 0 &&
@@ -306,15 +307,16 @@ void Planner::begin_split(const int32_t target_um[config::kAxisCount], uint16_t 
   // Pieces of a #U split stand for the line (see push()); n > 1: d is not zero.
   if (split_.on_line) unit_direction_q14(d, split_.dir_q14);
   for (uint8_t i = 0; i < 3; ++i) {
+    const uint32_t ad = core::abs_u32(d[i]);
     uint32_t q;
     uint32_t r;
     if (n <= 0xFFFFUL) {
       uint16_t r16 = 0;
-      q = core::div_u32_by_u16(ad[i], (uint16_t)n, &r16);
+      q = core::div_u32_by_u16(ad, (uint16_t)n, &r16);
       r = r16;
     } else {  // over 65 535 pieces: a step under 31 um on a chord of metres
-      q = ad[i] / n;
-      r = ad[i] - q * n;
+      q = ad / n;
+      r = ad % n;
     }
     LineAxis& a = split_.axis[i];
     a.step_um = d[i] < 0 ? -(int32_t)q : (int32_t)q;
