@@ -208,7 +208,7 @@ uint16_t Planner::capture_for(const int16_t in_q14[3], const int16_t out_q14[3])
 // surface's offset where the tool stands comes off.
 void Planner::set_planned_from_machine() {
   for (uint8_t i = 0; i < config::kAxisCount; ++i) planned_um_[i] = last_um_[i];
-  follow_.left = 0;
+  split_.left = 0;
   if (map_ == 0 || !map_->active()) return;
   const int32_t travel_z = last_um_[2] - map_->highest_um();
   planned_um_[2] =
@@ -223,18 +223,45 @@ int32_t Planner::offset_at(const int32_t planned_um[config::kAxisCount]) {
 }
 
 bool Planner::push(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
-                   uint16_t feed_um_s, uint8_t flags, uint16_t tag, const int16_t* line_dir_q14) {
-  if (map_ != 0 && map_->active())
-    return push_followed(ring, target_um, feed_um_s, flags, tag, line_dir_q14);
-  if (!push_segment(ring, target_um, feed_um_s, flags, tag, line_dir_q14)) return false;
+                   uint16_t feed_um_s, uint8_t flags, uint16_t tag, uint16_t max_step_um) {
+  if (split_.left == 0 || split_.axis[0].to_um != target_um[0] ||
+      split_.axis[1].to_um != target_um[1] || split_.axis[2].to_um != target_um[2])
+    begin_split(target_um, max_step_um);
+  const bool following = map_ != 0 && map_->active();
+  const int16_t* dir = split_.on_line ? split_.dir_q14 : 0;
+  while (split_.left > 1) {
+    int32_t piece[3];
+    for (uint8_t i = 0; i < 3; ++i) {
+      const LineAxis& a = split_.axis[i];
+      piece[i] = a.at_um + a.step_um;
+      if (a.acc + a.frac >= split_.pieces) piece[i] += a.unit;  // acc + frac < 2 n
+    }
+    // The machine goes to the piece plus the map's offset (in place: a smaller frame).
+    const int32_t offset_um = following ? offset_at(piece) : 0;
+    piece[2] += offset_um;
+    if (!push_segment(ring, piece, feed_um_s, (uint8_t)(flags & kPointRapid), tag, dir))
+      return false;
+    piece[2] -= offset_um;
+    for (uint8_t i = 0; i < 3; ++i) {  // the piece is pushed: the DDA steps on
+      LineAxis& a = split_.axis[i];
+      a.at_um = piece[i];
+      a.acc += a.frac;
+      if (a.acc >= split_.pieces) a.acc -= split_.pieces;
+    }
+    --split_.left;
+  }
+  // The last piece ends on the target itself, with its flags.
+  const int32_t machine[3] = {target_um[0], target_um[1],
+                              target_um[2] + (following ? offset_at(target_um) : 0)};
+  if (!push_segment(ring, machine, feed_um_s, flags, tag, dir)) return false;
+  split_.left = 0;
   for (uint8_t i = 0; i < 3; ++i) planned_um_[i] = target_um[i];
   return true;
 }
 
 bool Planner::push_machine(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
-                           uint16_t feed_um_s, uint8_t flags, uint16_t tag,
-                           const int16_t* line_dir_q14) {
-  if (!push_segment(ring, target_um, feed_um_s, flags, tag, line_dir_q14)) return false;
+                           uint16_t feed_um_s, uint8_t flags, uint16_t tag) {
+  if (!push_segment(ring, target_um, feed_um_s, flags, tag, 0)) return false;
   set_planned_from_machine();
   return true;
 }
@@ -242,76 +269,61 @@ bool Planner::push_machine(CoordinateRing* ring, const int32_t target_um[config:
 bool Planner::push_standing(CoordinateRing* ring, uint16_t feed_um_s, uint8_t flags, uint16_t tag) {
   // To last_um_ itself: push_segment reads the target before it writes last_um_ (the same).
   if (!push_segment(ring, last_um_, feed_um_s, flags, tag, 0)) return false;
-  follow_.left = 0;  // a split under way (of the old map) is over
+  split_.left = 0;  // a split under way (of the old map) is over
   return true;
 }
 
-// Splits planned_um_ -> target into n = ceil(span / kFollowStepUm) pieces when both ends cut
-// (travel has one offset all along: nothing to follow). One 32/16 division per axis and
-// segment, none per piece.
-void Planner::begin_follow(const int32_t target_um[config::kAxisCount]) {
+// Splits planned_um_ -> target into n = ceil(span / step) pieces, span the larger of the X
+// and Y differences (within sqrt(2) of the length: good enough to bound the spacing). The
+// step is max_step_um (0: none), and at most kFollowStepUm when a height map is followed
+// and both ends cut (travel has one offset all along: nothing to follow). Once per
+// segment: two or three 32/16 divisions, none per piece; nothing divided when n is 1 (the
+// common case: spline points closer than the step).
+void Planner::begin_split(const int32_t target_um[config::kAxisCount], uint16_t max_step_um) {
   int32_t d[3];
-  uint32_t ad[3];
   for (uint8_t i = 0; i < 3; ++i) {
-    follow_.to_um[i] = target_um[i];
-    follow_.at_um[i] = planned_um_[i];
+    LineAxis& a = split_.axis[i];
+    a.to_um = target_um[i];
+    a.at_um = planned_um_[i];
     d[i] = target_um[i] - planned_um_[i];
-    ad[i] = core::abs_u32(d[i]);
   }
-  const uint32_t span = ad[0] > ad[1] ? ad[0] : ad[1];
+  const uint32_t ax = core::abs_u32(d[0]);
+  const uint32_t ay = core::abs_u32(d[1]);
+  const uint32_t span = ax > ay ? ax : ay;
+  split_.on_line = max_step_um != 0 && span > max_step_um;
+  uint16_t step = max_step_um;
+  if (map_ != 0 && map_->active() && target_um[2] <= 0 && planned_um_[2] <= 0 &&
+      (step == 0 || step > kFollowStepUm))
+    step = kFollowStepUm;
   uint32_t n = 1;
-  if (target_um[2] <= 0 && planned_um_[2] <= 0 && span > kFollowStepUm) {
+  if (step != 0 && span > step) {
     uint16_t rest = 0;
-    n = core::div_u32_by_u16(span, kFollowStepUm, &rest);
+    n = core::div_u32_by_u16(span, step, &rest);
     if (rest != 0) ++n;
-    // Coordinates are within +-1e6 um: n <= 2000, so the DDA's terms fit 16 bits.
   }
-  follow_.pieces = (uint16_t)n;
-  follow_.left = (uint16_t)n;
-  if (n == 1) return;  // the common case (spline points): no pieces, no divisions
+  split_.pieces = n;
+  split_.left = n;
+  if (n == 1) return;
+  // Pieces of a #U split stand for the line (see push()); n > 1: d is not zero.
+  if (split_.on_line) unit_direction_q14(d, split_.dir_q14);
   for (uint8_t i = 0; i < 3; ++i) {
-    uint16_t r = 0;
-    const uint32_t q = core::div_u32_by_u16(ad[i], (uint16_t)n, &r);
-    follow_.step_um[i] = d[i] < 0 ? -(int32_t)q : (int32_t)q;
-    follow_.unit[i] = (int8_t)(d[i] < 0 ? -1 : 1);
-    follow_.frac[i] = r;
-    follow_.acc[i] = (uint16_t)(n >> 1);
-  }
-}
-
-// push() with the map on: each piece's machine Z is its planned Z plus the offset there.
-// A full ring keeps the pieces pushed so far; the caller calls again with the same target.
-bool Planner::push_followed(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
-                            uint16_t feed_um_s, uint8_t flags, uint16_t tag,
-                            const int16_t* line_dir_q14) {
-  if (follow_.left == 0 || follow_.to_um[0] != target_um[0] || follow_.to_um[1] != target_um[1] ||
-      follow_.to_um[2] != target_um[2])
-    begin_follow(target_um);
-  while (follow_.left > 1) {
-    int32_t piece[3];
-    uint16_t acc[3];
-    for (uint8_t i = 0; i < 3; ++i) {
-      piece[i] = follow_.at_um[i] + follow_.step_um[i];
-      acc[i] = (uint16_t)(follow_.acc[i] + follow_.frac[i]);  // < 2 n <= 4000
-      if (acc[i] >= follow_.pieces) {
-        acc[i] = (uint16_t)(acc[i] - follow_.pieces);
-        piece[i] += follow_.unit[i];
-      }
+    const uint32_t ad = core::abs_u32(d[i]);
+    uint32_t q;
+    uint32_t r;
+    if (n <= 0xFFFFUL) {
+      uint16_t r16 = 0;
+      q = core::div_u32_by_u16(ad, (uint16_t)n, &r16);
+      r = r16;
+    } else {  // over 65 535 pieces: a step under 31 um on a chord of metres
+      q = ad / n;
+      r = ad % n;
     }
-    int32_t machine[3] = {piece[0], piece[1], piece[2] + offset_at(piece)};
-    if (!push_segment(ring, machine, feed_um_s, (uint8_t)(flags & kPointRapid), tag, line_dir_q14))
-      return false;
-    for (uint8_t i = 0; i < 3; ++i) {
-      follow_.at_um[i] = piece[i];
-      follow_.acc[i] = acc[i];
-    }
-    --follow_.left;
+    LineAxis& a = split_.axis[i];
+    a.step_um = d[i] < 0 ? -(int32_t)q : (int32_t)q;
+    a.unit = (int8_t)(d[i] < 0 ? -1 : 1);
+    a.frac = r;
+    a.acc = n >> 1;  // rounds each piece's end to the nearest micrometre
   }
-  const int32_t machine[3] = {target_um[0], target_um[1], target_um[2] + offset_at(target_um)};
-  if (!push_segment(ring, machine, feed_um_s, flags, tag, line_dir_q14)) return false;
-  follow_.left = 0;
-  for (uint8_t i = 0; i < 3; ++i) planned_um_[i] = target_um[i];
-  return true;
 }
 
 bool Planner::push_segment(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],

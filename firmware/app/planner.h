@@ -57,18 +57,19 @@ class Planner {
   bool push_standing(CoordinateRing* ring, uint16_t feed_um_s, uint8_t flags, uint16_t tag);
   // push() without the map's offset: target is a machine position (the probe's moves).
   bool push_machine(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
-                    uint16_t feed_um_s, uint8_t flags, uint16_t tag,
-                    const int16_t* line_dir_q14 = 0);
+                    uint16_t feed_um_s, uint8_t flags, uint16_t tag);
   // Plans the segment from the last point to target and publishes it. False when the ring
-  // is full (nothing changed: call again later). line_dir_q14 (or 0): the unit direction of
-  // the straight line the segment is a piece of (a chord split at the #U maximum step); it
-  // stands for the piece's own, which the rounding of its ends to micrometres tilts (by up
-  // to 45 degrees for 1 um pieces), so that the pieces of a line meet without turns.
+  // is full (call again later with the same target: the pieces pushed so far stay).
+  // max_step_um (0: none): the segment is cut into equal pieces at most this long (on the
+  // larger of X and Y) laid on the line, every piece's end within half a micrometre of it;
+  // the pieces carry the line's direction instead of their own, which the rounding of
+  // their ends to micrometres tilts (by up to 45 degrees for 1 um pieces), so that they
+  // meet without turns. Only the last piece carries flags (the others keep kPointRapid).
   bool push(CoordinateRing* ring, const int32_t target_um[config::kAxisCount], uint16_t feed_um_s,
-            uint8_t flags, uint16_t tag, const int16_t* line_dir_q14 = 0);
-  // Where the last pushed segment ends, planned (before the height map's offset).
+            uint8_t flags, uint16_t tag, uint16_t max_step_um = 0);
+  // Where the last target pushed whole ends, planned (before the height map's offset).
   const int32_t* last_um() const { return planned_um_; }
-  // The same, as the machine goes there (with the offset).
+  // Where the last pushed segment or piece ends, as the machine goes there (with the offset).
   const int32_t* machine_um() const { return last_um_; }
 
  private:
@@ -83,22 +84,28 @@ class Planner {
   bool push_segment(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
                     uint16_t feed_um_s, uint8_t flags, uint16_t tag, const int16_t* line_dir_q14);
   void set_planned_from_machine();
-  bool push_followed(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],
-                     uint16_t feed_um_s, uint8_t flags, uint16_t tag, const int16_t* line_dir_q14);
   int32_t offset_at(const int32_t planned_um[config::kAxisCount]);
-  void begin_follow(const int32_t target_um[config::kAxisCount]);
+  void begin_split(const int32_t target_um[config::kAxisCount], uint16_t max_step_um);
 
-  // A cutting segment being split for the height map: a DDA from planned_um_ to the target
-  // (piece k ends at from + round(k d / n)), as PointGenerator's chord split.
-  struct FollowSplit {
-    int32_t to_um[config::kAxisCount];  // the target it was set up for
-    int32_t at_um[config::kAxisCount];  // end of the last piece pushed
-    int32_t step_um[config::kAxisCount];
-    uint16_t frac[config::kAxisCount];
-    uint16_t acc[config::kAxisCount];
-    int8_t unit[config::kAxisCount];
-    uint16_t pieces;
-    uint16_t left;  // pieces not pushed yet; 0: no split set up
+  // The segment being pushed in pieces (the #U maximum step, the height map's follow
+  // step): a DDA from planned_um_ (piece k ends at from + round(k d / n)), so every piece
+  // ends within half a micrometre of the line, however many pieces there are. Stepping
+  // from each piece's end toward the target instead lets the rounding of every piece add
+  // up into a bend off the line.
+  struct LineAxis {
+    int32_t to_um;    // the target it was set up for
+    int32_t at_um;    // end of the last piece pushed
+    int32_t step_um;  // d / n toward zero
+    uint32_t frac;    // |d| mod n
+    uint32_t acc;     // Bresenham error term, < n
+    int8_t unit;      // sign of d: what a carry adds
+  };
+  struct LineSplit {
+    LineAxis axis[config::kAxisCount];    // one record per axis: the loops walk a pointer
+    uint32_t pieces;                      // n
+    uint32_t left;                        // pieces not pushed yet; 0: no split set up
+    int16_t dir_q14[config::kAxisCount];  // of the whole line, when on_line
+    bool on_line;                         // split at max_step_um: pieces carry dir_q14
   };
 
   AxisScaling scaling_;
@@ -106,7 +113,7 @@ class Planner {
   int32_t last_um_[config::kAxisCount];     // machine position the last segment ends at
   int32_t planned_um_[config::kAxisCount];  // the same before the map's offset
   core::HeightMap* map_;
-  FollowSplit follow_;
+  LineSplit split_;
   int16_t last_dir_q14_[config::kAxisCount];
   uint16_t last_cruise_um_s_;
   uint32_t last_length_um_;  // of the last segment with a length (curve speed)

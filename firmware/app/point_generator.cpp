@@ -1,9 +1,6 @@
 // Point generator: spline -> points -> planner -> coordinate ring (see point_generator.h).
 #include "firmware/app/point_generator.h"
 
-#include "firmware/core/divide.h"       // div_u32_by_u16
-#include "firmware/core/fixed_point.h"  // abs_u32
-
 namespace app {
 
 PointGenerator::PointGenerator()
@@ -14,12 +11,10 @@ PointGenerator::PointGenerator()
       point_index_(0),
       first_point_(0),
       have_pending_(false),
-      pending_is_last_(false),
       active_(false) {
   settings_ = core::default_step_settings();
   pending_.x_um = 0;
   pending_.y_um = 0;
-  split_.pieces_left = 0;
 }
 
 void PointGenerator::set_resolution(uint16_t max_step_um, uint16_t chord_tolerance_um) {
@@ -38,77 +33,18 @@ core::GeometryError PointGenerator::begin(const core::Spline* spline, uint16_t f
   point_index_ = 0;
   first_point_ = first_point;
   have_pending_ = false;
-  pending_is_last_ = false;
-  split_.pieces_left = 0;
   const core::GeometryError e = walker_.begin(spline, settings_);
   active_ = e == core::GeometryError::kOk;
   return e;
 }
 
-// Splits the chord from_um -> p into n = ceil(span / max_step) pieces (span: the larger
-// axis difference; the Chebyshev distance is within sqrt(2) of the length, good enough to
-// bound the spacing). Once per chord: two or three 32/16 divisions, none per piece.
-void PointGenerator::begin_split(const int32_t from_um[3], const core::PointUm& p) {
-  const int32_t d[2] = {p.x_um - from_um[0], p.y_um - from_um[1]};
-  const uint32_t ad[2] = {core::abs_u32(d[0]), core::abs_u32(d[1])};
-  const uint32_t span = ad[0] > ad[1] ? ad[0] : ad[1];
-  uint32_t n = 1;
-  if (max_step_um_ != 0 && span > max_step_um_) {
-    uint16_t rest = 0;
-    n = core::div_u32_by_u16(span, max_step_um_, &rest);
-    if (rest != 0) ++n;
-  }
-  split_.pieces = n;
-  split_.pieces_left = n;
-  const int32_t chord_um[3] = {d[0], d[1], z_um_ - from_um[2]};
-  // n > 1: the chord is longer than the step, so not zero.
-  if (n > 1) unit_direction_q14(chord_um, split_.dir_q14);
-  for (uint8_t i = 0; i < 2; ++i) {
-    uint32_t q;
-    uint32_t r;
-    if (n <= 0xFFFFUL) {
-      uint16_t r16 = 0;
-      q = core::div_u32_by_u16(ad[i], (uint16_t)n, &r16);
-      r = r16;
-    } else {  // over 65 535 pieces: a step under 31 um on a chord of metres
-      q = ad[i] / n;
-      r = ad[i] - q * n;
-    }
-    split_.step_um[i] = d[i] < 0 ? -(int32_t)q : (int32_t)q;
-    split_.unit[i] = (int8_t)(d[i] < 0 ? -1 : 1);
-    split_.frac[i] = r;
-    split_.acc[i] = n >> 1;  // rounds each piece's end to the nearest micrometre
-  }
-}
-
-// Pushes p, split into pieces no longer than the maximum step. False when the ring filled
-// up; the remainder is pushed on the next call with the same p (split_ remembers where).
+// Pushes p (at the spline's height); the planner splits the chord from the last point into
+// pieces no longer than the maximum step. False when the ring filled up; the planner goes
+// on with the remainder on the next call with the same p.
 bool PointGenerator::push_point(Planner* planner, CoordinateRing* ring, const core::PointUm& p,
                                 uint8_t flags) {
-  if (split_.pieces_left == 0) begin_split(planner->last_um(), p);
-  while (split_.pieces_left > 1) {
-    const int32_t* last = planner->last_um();
-    int32_t target[3] = {last[0], last[1], z_um_};
-    uint32_t acc[2];
-    for (uint8_t i = 0; i < 2; ++i) {
-      acc[i] = split_.acc[i] + split_.frac[i];  // < 2 n
-      target[i] += split_.step_um[i];
-      if (acc[i] >= split_.pieces) {
-        acc[i] -= split_.pieces;
-        target[i] += split_.unit[i];
-      }
-    }
-    if (!planner->push(ring, target, feed_um_s_, 0, tag_, split_.dir_q14)) return false;
-    split_.acc[0] = acc[0];
-    split_.acc[1] = acc[1];
-    --split_.pieces_left;
-  }
-  // The last piece ends on p itself, with p's flags.
   const int32_t target[3] = {p.x_um, p.y_um, z_um_};
-  const int16_t* dir = split_.pieces > 1 ? split_.dir_q14 : 0;
-  if (!planner->push(ring, target, feed_um_s_, flags, tag_, dir)) return false;
-  split_.pieces_left = 0;
-  return true;
+  return planner->push(ring, target, feed_um_s_, flags, tag_, max_step_um_);
 }
 
 GenStatus PointGenerator::run(Planner* planner, CoordinateRing* ring, const int32_t travel_um[2],
@@ -120,12 +56,9 @@ GenStatus PointGenerator::run(Planner* planner, CoordinateRing* ring, const int3
         active_ = false;
         if (walker_.error() != core::GeometryError::kOk) return GenStatus::kFailed;
         // The curve ended: the item's end marker sits on the last point.
-        const int32_t* last = planner->last_um();
-        const int32_t at[3] = {last[0], last[1], last[2]};
-        if (!planner->push(ring, at, feed_um_s_, kPointEndOfItem, tag_)) {
+        if (!planner->push(ring, planner->last_um(), feed_um_s_, kPointEndOfItem, tag_)) {
           active_ = true;  // retry the marker next time
           have_pending_ = false;
-          pending_is_last_ = true;
           return GenStatus::kMore;
         }
         return GenStatus::kDone;

@@ -1,6 +1,7 @@
 // Point generator of the background loop: steps a stored spline through the core (De Boor,
-// adaptive chord tolerance), splits chords longer than the #U maximum step, and hands each
-// point to the planner, which publishes it into the coordinate ring. Bounded work per call.
+// adaptive chord tolerance) and hands each point to the planner, which splits chords longer
+// than the #U maximum step and publishes the pieces into the coordinate ring. Bounded work per
+// call.
 #ifndef FIRMWARE_APP_POINT_GENERATOR_H
 #define FIRMWARE_APP_POINT_GENERATOR_H
 
@@ -40,21 +41,6 @@ class PointGenerator {
 
  private:
   bool push_point(Planner* planner, CoordinateRing* ring, const core::PointUm& p, uint8_t flags);
-  void begin_split(const int32_t from_um[3], const core::PointUm& p);
-
-  // The chord being split into pieces of at most max_step: a DDA from the chord's start
-  // (piece k ends at start + round(k d / n)), so every piece ends within half a micrometre
-  // of the chord, however many pieces there are. Stepping from each piece's end toward p
-  // instead lets the rounding of every piece add up into a bend off the line.
-  struct ChordSplit {
-    uint32_t pieces;       // n
-    uint32_t pieces_left;  // pieces not yet pushed; 0: no split set up
-    int32_t step_um[2];    // d / n toward zero, per axis
-    uint32_t frac[2];      // |d| mod n
-    uint32_t acc[2];       // Bresenham error term, < n
-    int8_t unit[2];        // sign of d: what a carry adds
-    int16_t dir_q14[3];    // of the whole chord, for the planner (see Planner::push)
-  };
 
   core::CurveWalker walker_;
   core::StepSettings settings_;
@@ -65,9 +51,7 @@ class PointGenerator {
   uint16_t point_index_;   // curve points produced so far
   uint16_t first_point_;   // points before this one are skipped
   core::PointUm pending_;  // point produced but not yet pushed (ring was full)
-  ChordSplit split_;       // of the chord that ends at pending_
   bool have_pending_;
-  bool pending_is_last_;
   bool active_;
 };
 

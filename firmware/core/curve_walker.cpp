@@ -33,21 +33,15 @@ uint32_t length_q6(int32_t dx, int32_t dy) {
   return (uint32_t)isqrt32(mul_u16_u16(sx, sx) + mul_u16_u16(sy, sy)) << shift;
 }
 
-// |(dx, dy)| > 1 um (64 q6) and < 1 um, exactly (no root for most vectors).
-bool longer_than_1um(int32_t dx, int32_t dy) {
+// Sign of |(dx, dy)| - 1 um (64 q6), exactly (no root for most vectors): > 0 longer, < 0
+// shorter.
+int8_t versus_1um(int32_t dx, int32_t dy) {
   const uint32_t ax = abs_u32(dx);
   const uint32_t ay = abs_u32(dy);
-  if (ax > 64 || ay > 64) return true;
-  return mul_u16_u16((uint16_t)ax, (uint16_t)ax) + mul_u16_u16((uint16_t)ay, (uint16_t)ay) >
-         64 * 64;
-}
-
-bool shorter_than_1um(int32_t dx, int32_t dy) {
-  const uint32_t ax = abs_u32(dx);
-  const uint32_t ay = abs_u32(dy);
-  if (ax >= 64 || ay >= 64) return false;
-  return mul_u16_u16((uint16_t)ax, (uint16_t)ax) + mul_u16_u16((uint16_t)ay, (uint16_t)ay) <
-         64 * 64;
+  if (ax > 64 || ay > 64) return 1;
+  const uint32_t s =
+      mul_u16_u16((uint16_t)ax, (uint16_t)ax) + mul_u16_u16((uint16_t)ay, (uint16_t)ay);
+  return s > 64 * 64 ? 1 : (s < 64 * 64 ? -1 : 0);
 }
 
 }  // namespace
@@ -56,7 +50,7 @@ bool shorter_than_1um(int32_t dx, int32_t dy) {
 // b - a shifted left (exactly: the direction is b - a's own) so that its larger component
 // lies in [2^29, 2^30), and 2^29 / (|n| / 2^16), so that a distance is two products.
 struct Chord {
-  PointQ6 a;
+  const PointQ6* a;  // the walker's last point: not copied (a smaller frame)
   int32_t bx;
   int32_t by;
   int32_t nx;
@@ -83,14 +77,11 @@ int32_t along_q32(const Chord& c, int32_t qx, int32_t qy) {
 
 void make_chord(const PointQ6& a, const PointQ6& b, Chord* out) {
   Chord& c = *out;
-  c.a = a;
+  c.a = &a;
   c.bx = b.x_q6 - a.x_q6;  // |.| < 2^28: coordinates and offsets stay below 2^27
   c.by = b.y_q6 - a.y_q6;
-  c.short_chord = shorter_than_1um(c.bx, c.by);
-  c.nx = c.ny = c.along_end = 0;
-  c.nx16 = c.ny16 = 0;
-  c.inv_len_q15 = 0;
-  if (c.short_chord) return;
+  c.short_chord = versus_1um(c.bx, c.by) < 0;
+  if (c.short_chord) return;                   // nothing else is read of a short chord
   uint32_t m = abs_u32(c.bx) | abs_u32(c.by);  // same leading bit as the larger, >= 45
   uint32_t nx = (uint32_t)c.bx;
   uint32_t ny = (uint32_t)c.by;
@@ -118,8 +109,8 @@ void make_chord(const PointQ6& a, const PointQ6& b, Chord* out) {
 // Distance (q6) from q to the chord: to the line when q projects inside the segment, else
 // to the nearer end (a hairpin tip can poke out past an end). Relative error ~2^-13.
 uint32_t chord_distance_q6(const Chord& c, const PointQ6& q) {
-  const int32_t qx = q.x_q6 - c.a.x_q6;
-  const int32_t qy = q.y_q6 - c.a.y_q6;
+  const int32_t qx = q.x_q6 - c.a->x_q6;
+  const int32_t qy = q.y_q6 - c.a->y_q6;
   if (c.short_chord) return length_q6(qx, qy);
   // The projection with 14-bit n: it only picks the formula, and at its two boundaries the
   // line distance and the end distance agree.
@@ -201,20 +192,6 @@ uint32_t scale_step_q8(uint32_t step, uint16_t f_q8) {
   return mul_u16_u16((uint16_t)step, f_q8) >> 8;
 }
 
-// (wa * a + wb * b) / m truncated toward zero, for |a|, |b| <= 2^15 and wa + wb = m <= 256:
-// the quotient's magnitude <= 2^15, a 32/16 division.
-int32_t blend_q15(int32_t wa, int32_t a, int32_t wb, int32_t b, uint16_t m) {
-  const int32_t num = wa * a + wb * b;  // |.| <= 2^23
-  const int32_t q = (int32_t)div_u32_u16(abs_u32(num), m, 0);
-  return num < 0 ? -q : q;
-}
-
-// v / 4 truncated toward zero for |v| <= 2^15, as a shift (avr-gcc -Os calls a 32/32
-// division for a signed / 4).
-int16_t quarter_toward_zero(int32_t v) {
-  return v < 0 ? (int16_t) - (int16_t)(abs_u32(v) >> 2) : (int16_t)(v >> 2);
-}
-
 // trunc(r 64 s / denom), the miter's offset (q6), for |r| <= 10^5, |s| <= 2^16 and denom in
 // [4390, 65536]: the product held wide (< 2^39) and divided in two 32/16 steps.
 int32_t miter_q6(int32_t r, int32_t s, uint32_t denom) {
@@ -231,6 +208,15 @@ int32_t miter_q6(int32_t r, int32_t s, uint32_t denom) {
     q = ((uint32_t)q_hi << 16) | q_lo;
   }
   return ((r < 0) != (s < 0)) ? -(int32_t)q : (int32_t)q;
+}
+
+// |R| sin(turn) * 4 <= tol, i.e. r_abs |cross| <= tol 2^28 (exact, the product wide).
+bool smooth_turn(int32_t r_abs, int32_t cross_q30, uint16_t tol_um) {
+  Wide tol_q28;
+  tol_q28.hi = (uint32_t)tol_um >> 4;
+  tol_q28.lo = (uint32_t)tol_um << 28;
+  const Wide gap_q30 = mul_wide(r_abs, (int32_t)abs_u32(cross_q30));  // ~ |R| sin
+  return !wide_negative(wide_sub(tol_q28, gap_q30));
 }
 
 // Sign of ax * bx + ay * by < 0, exactly (32x32 products held wide).
@@ -265,7 +251,7 @@ GeometryError CurveWalker::begin(const Spline* spline, const StepSettings& setti
   settings_ = settings;
   phase_ = kDone;
   pending_ = false;
-  arc_halves_left_ = 0;
+  arc_.stop();
   error_ = GeometryError::kOk;
   if (spline == 0) return error_ = GeometryError::kKnotRangeEmpty;
   error_ = validate_spline(*spline);
@@ -299,7 +285,7 @@ bool CurveWalker::next(PointUm* out) {
     pending_ = false;
     return emit_plain(pending_point_, out);
   }
-  if (arc_halves_left_ > 0) return arc_point(out);
+  if (arc_.active()) return arc_point(out);
   if (phase_ == kStart) {
     span_ = first_span(*spline_);
     const GeometryError e = eval_.setup(*spline_, span_);
@@ -320,7 +306,7 @@ bool CurveWalker::next(PointUm* out) {
 bool CurveWalker::fail(GeometryError e) {
   error_ = e;
   phase_ = kDone;
-  arc_halves_left_ = 0;
+  arc_.stop();
   pending_ = false;
   return false;
 }
@@ -363,24 +349,17 @@ bool CurveWalker::step_in_span(PointUm* out) {
 uint32_t CurveWalker::adaptive_next() {
   uint32_t h = h_q16_ < 1 ? 1 : h_q16_;
   const uint8_t parts_log2 = (eval_.rational() || settings_.tool_offset_um != 0) ? 3 : 2;
-  // A polynomial span without offset: the samples' distances in closed form.
-  const bool closed_form = parts_log2 == 2;
   for (uint8_t tries = 0; tries < 24; ++tries) {
     uint32_t t1 = t_q16_ + h;
     if (t1 > kUq16One) t1 = kUq16One;
     const uint32_t step = t1 - t_q16_;
+    // The trial's end straight into the members that keep the accepted one (a rejected
+    // trial's are overwritten by the next): no copies in this frame.
     Direction d;
-    const PointQ6 b = path_point(t1, &d);
-    const PointQ6 b_base = path_base_;
-    Chord chord;
-    make_chord(last_out_, b, &chord);
-    uint32_t worst = 0;
-    if (!closed_form || !polynomial_step_error(eval_, chord, t_q16_, step, &worst)) {
-      worst = sampled_error(chord, step, parts_log2);
-    }
+    step_point_ = path_point(t1, &d);
+    step_base_ = path_base_;
+    const uint32_t worst = trial_error(step, parts_log2);
     if (worst <= accept_q6_ || step <= 1) {
-      step_point_ = b;
-      step_base_ = b_base;
       // Next step: grow toward the target error (chord error ~ h^2), at most x2.
       const uint32_t grown = scale_step_q8(step, step_factor_q8(target_q6_, worst, 256, 512));
       h_q16_ = grown < 1 ? 1 : (grown > kUq16One ? kUq16One : grown);
@@ -392,6 +371,20 @@ uint32_t CurveWalker::adaptive_next() {
     if (h < 1) h = 1;
   }
   return t_q16_ + 1;  // not reached: 24 halvings take any step down to 1
+}
+
+// The chord error of the trial step from the last point to step_point_: on a polynomial
+// span without offset (parts_log2 2) the samples' distances in closed form, else sampled.
+// Out of line: the chord stays out of adaptive_next()'s frame, which then fits the AVR's
+// 63-byte displacement (a larger frame costs two instructions per access beyond it).
+__attribute__((noinline)) uint32_t CurveWalker::trial_error(uint32_t step, uint8_t parts_log2) {
+  Chord chord;
+  make_chord(last_out_, step_point_, &chord);
+  uint32_t worst = 0;
+  if (parts_log2 != 2 || !polynomial_step_error(eval_, chord, t_q16_, step, &worst)) {
+    worst = sampled_error(chord, step, parts_log2);
+  }
+  return worst;
 }
 
 // The largest distance from the chord of the path points at q / 2^parts_log2 of the step
@@ -422,7 +415,7 @@ bool CurveWalker::joint(PointUm* out) {
   if (ns >= span_end(*spline_)) {
     phase_ = kDone;
     const int32_t r = settings_.tool_offset_um;
-    const PointQ6 p = r == 0 ? end : offset_point(end, left_normal(in_dir));
+    const PointQ6 p = r == 0 ? end : offset_point(end, left_unit_normal(in_dir));
     t_q16_ = kUq16One;
     return emit_checked(end, p, out);
   }
@@ -436,7 +429,7 @@ bool CurveWalker::joint(PointUm* out) {
   Direction out_dir = usable_direction(0);
   if (is_zero(out_dir)) out_dir = in_dir;
   last_dir_ = out_dir;
-  const bool jump = longer_than_1um(end.x_q6 - start.x_q6, end.y_q6 - start.y_q6);
+  const bool jump = versus_1um(end.x_q6 - start.x_q6, end.y_q6 - start.y_q6) > 0;
   if (settings_.tool_offset_um == 0) {
     if (jump) {
       pending_ = true;
@@ -448,8 +441,8 @@ bool CurveWalker::joint(PointUm* out) {
   if (jump) {
     // Discontinuous curve (knot multiplicity degree + 1): end, then start, each offset.
     pending_ = true;
-    pending_point_ = offset_point(start, left_normal(out_dir));
-    const PointQ6 p = offset_point(end, left_normal(in_dir));
+    pending_point_ = offset_point(start, left_unit_normal(out_dir));
+    const PointQ6 p = offset_point(end, left_unit_normal(in_dir));
     const bool ok = emit_checked(end, p, out);
     last_base_ = start;
     return ok;
@@ -463,19 +456,14 @@ bool CurveWalker::joint(PointUm* out) {
 bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direction& out_dir,
                          PointUm* out) {
   const int32_t r = settings_.tool_offset_um;
-  const Unit n1 = left_normal(in_dir);
-  const Unit n2 = left_normal(out_dir);
+  const UnitQ15 n1 = left_unit_normal(in_dir);
+  const UnitQ15 n2 = left_unit_normal(out_dir);
   // Unit normals (|n| <= 2^15 (1 + 2^-14)): cross and dot < 2^31 in magnitude. 32-bit and
   // 16x16 arithmetic only here (64-bit code is large on 8- and 16-bit cores).
   const int32_t cross_q30 = n1.x_q15 * n2.y_q15 - n1.y_q15 * n2.x_q15;
   const int32_t dot_q30 = n1.x_q15 * n2.x_q15 + n1.y_q15 * n2.y_q15;
   const int32_t r_abs = (int32_t)abs_u32(r);  // <= kMaxToolOffsetUm
-  // |R| sin(turn) * 4 <= tol, i.e. r_abs |cross| <= tol 2^28 (exact, the product wide).
-  Wide tol_q28;
-  tol_q28.hi = (uint32_t)tol_um_ >> 4;
-  tol_q28.lo = (uint32_t)tol_um_ << 28;
-  const Wide gap_q30 = mul_wide(r_abs, (int32_t)abs_u32(cross_q30));  // ~ |R| sin
-  if (dot_q30 > 0 && !wide_negative(wide_sub(tol_q28, gap_q30))) {
+  if (dot_q30 > 0 && smooth_turn(r_abs, cross_q30, tol_um_)) {
     return emit_checked(at, offset_point(at, n2), out);
   }
   // Turning left (cross > 0) puts a left offset (R > 0) on the inside: concave. An exact
@@ -490,71 +478,15 @@ bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direc
     m.y_q6 = at.y_q6 + miter_q6(r, n1.y_q15 + n2.y_q15, (uint32_t)denom_q15);
     return emit_checked(at, m, out);
   }
-  // Convex: arc from n1 to n2 about the corner, split at the bisector when over 90 deg.
-  arc_center_ = at;
-  arc_a_ = n1;
-  if (dot_q30 < 0) {
-    Unit mid;
-    const int32_t sx = n1.x_q15 + n2.x_q15;
-    const int32_t sy = n1.y_q15 + n2.y_q15;
-    if (sx == 0 && sy == 0) {
-      // Full reversal: go round the end, R * mid pointing along the old travel direction
-      // (the travel direction is n1 rotated right).
-      const Unit tu = left_normal(in_dir);
-      mid.x_q15 = r > 0 ? tu.y_q15 : -tu.y_q15;
-      mid.y_q15 = r > 0 ? -tu.x_q15 : tu.x_q15;
-    } else {
-      // Unit of (sx, sy): left_normal() of the vector rotated right.
-      Direction rot;
-      rot.dx = (int16_t)(sy / 4);
-      rot.dy = (int16_t)(-sx / 4);
-      mid = left_normal(rot);
-    }
-    arc_b_ = mid;
-    arc_c_ = n2;
-    arc_halves_left_ = 2;
-  } else {
-    arc_b_ = n2;
-    arc_halves_left_ = 1;
-  }
-  // Points per half: chord error of an arc step phi is R phi^2 / 8 <= tol. A half is
-  // <= 90 deg and its chord c = |a - b|; the normalised-lerp spacing is at most 1.3x the
-  // even one, and the angle at most 1.11 c: steps = ceil(1.45 c sqrt(R / (8 tol))).
-  // (A half is <= 90 degrees: c^2 <= 2^31.) r 2^16 / (8 tol) = r 2^13 / tol, and the
-  // steps' division by 100 2^23 is a shift and a 32/16 division: the same floors.
-  const uint32_t cx = (uint32_t)(arc_a_.x_q15 - arc_b_.x_q15);
-  const uint32_t cy = (uint32_t)(arc_a_.y_q15 - arc_b_.y_q15);
-  const uint32_t c_q15 = isqrt32(cx * cx + cy * cy);
-  const uint32_t root_q8 = isqrt32(div_u32_by_u16((uint32_t)r_abs << 13, tol_um_, 0));
-  const Wide spread = mul_wide((int32_t)(c_q15 * 145), (int32_t)root_q8);  // < 2^39
-  uint32_t steps = div_u32_by_u16(wide_shift_right_low(spread, 23), 100, 0) + 1;
-  if (steps > 256) steps = 256;
-  arc_steps_ = (uint16_t)steps;
-  arc_index_ = 1;
+  // Convex: an arc of radius |R| about the corner from n1 to n2.
+  arc_.begin(at, n1, n2, dot_q30<0, r> 0, (uint32_t)r_abs, tol_um_);
   return emit_checked(at, offset_point(at, n1), out);
 }
 
-// One point of the corner arc: the normalised blend of the half's two normals.
+// One point of the corner arc: offset along the arc's next normal.
 bool CurveWalker::arc_point(PointUm* out) {
-  const int32_t k = arc_index_;
-  const int32_t m = arc_steps_;
-  Direction blend;
-  const int32_t bx = blend_q15(m - k, arc_a_.x_q15, k, arc_b_.x_q15, (uint16_t)m);
-  const int32_t by = blend_q15(m - k, arc_a_.y_q15, k, arc_b_.y_q15, (uint16_t)m);
-  // left_normal() of the blend rotated right gives the unit blend itself.
-  blend.dx = quarter_toward_zero(by);
-  blend.dy = quarter_toward_zero(-bx);
-  const Unit n = left_normal(blend);
-  const PointQ6 p = offset_point(arc_center_, n);
-  if (arc_index_ >= arc_steps_) {
-    --arc_halves_left_;
-    arc_index_ = 1;
-    arc_a_ = arc_b_;
-    arc_b_ = arc_c_;
-  } else {
-    ++arc_index_;
-  }
-  last_base_ = arc_center_;
+  const PointQ6 p = offset_point(arc_.center(), arc_.next_normal());
+  last_base_ = arc_.center();
   return emit_plain(p, out);
 }
 
@@ -565,7 +497,7 @@ PointQ6 CurveWalker::path_point(uint32_t t_q16, Direction* dir) {
   if (settings_.tool_offset_um == 0) return base;
   *dir = usable_direction(t_q16);
   if (is_zero(*dir)) *dir = last_dir_;
-  return offset_point(base, left_normal(*dir));
+  return offset_point(base, left_unit_normal(*dir));
 }
 
 // Derivative direction at t; at a zero derivative (a cusp or repeated control points)
@@ -581,39 +513,9 @@ Direction CurveWalker::usable_direction(uint32_t t_q16) {
   return d;
 }
 
-// Unit left normal (-dy, dx) / |d| in Q15: one root and two 32/16 divisions (no 64-bit
-// arithmetic: DIV.UD on the dsPIC).
-CurveWalker::Unit CurveWalker::left_normal(const Direction& d) const {
-  Unit u;
-  const uint32_t s = mul_u16_u16((uint16_t)abs_u32(d.dx), (uint16_t)abs_u32(d.dx)) +
-                     mul_u16_u16((uint16_t)abs_u32(d.dy), (uint16_t)abs_u32(d.dy));  // < 2^31
-  if (s == 0) {
-    u.x_q15 = 0;
-    u.y_q15 = 32767;
-    return u;
-  }
-  // |d| * 2^pre with 15 to 16 significant bits: the root of s * 4^pre in [2^30, 2^32)
-  // (relative error below 2^-15; the former Newton-refined q8 length had 2^-13).
-  uint32_t s4 = s;
-  uint8_t pre = 0;
-  while (s4 < (1UL << 30)) {
-    s4 <<= 2;
-    ++pre;
-  }
-  const uint16_t len = isqrt32(s4);  // in [2^15, 2^16)
-  // component * 2^(15 + pre) / len: the Q15 value, a 32/16 division with a quotient
-  // <= 2^15 (component <= |d|) and a dividend <= len * 2^15 < 2^31.
-  const uint8_t up = (uint8_t)(15 + pre);
-  const uint16_t ux = div_u32_u16(abs_u32(d.dy) << up, len, 0);
-  const uint16_t uy = div_u32_u16(abs_u32(d.dx) << up, len, 0);
-  u.x_q15 = d.dy > 0 ? -(int32_t)ux : (int32_t)ux;  // -dy / |d|, truncated toward zero
-  u.y_q15 = d.dx < 0 ? -(int32_t)uy : (int32_t)uy;
-  return u;
-}
-
 // base + R * normal, in q6: R * 64 < 2^23 times |normal| <= 2^15 as 16x16 products on the
 // magnitudes (truncated toward zero, the sign applied after).
-PointQ6 CurveWalker::offset_point(const PointQ6& base, const Unit& n) const {
+PointQ6 CurveWalker::offset_point(const PointQ6& base, const UnitQ15& n) const {
   const int32_t r_q6 = settings_.tool_offset_um * 64;
   const uint32_t ar = abs_u32(r_q6);
   const uint16_t ar_hi = (uint16_t)(ar >> 16);  // < 2^7
@@ -641,7 +543,7 @@ bool CurveWalker::emit_checked(const PointQ6& base, const PointQ6& p, PointUm* o
     const int32_t by = base.y_q6 - last_base_.y_q6;
     const int32_t ox = p.x_q6 - last_out_.x_q6;
     const int32_t oy = p.y_q6 - last_out_.y_q6;
-    if (longer_than_1um(bx, by) && dot_negative(bx, by, ox, oy)) {
+    if (versus_1um(bx, by) > 0 && dot_negative(bx, by, ox, oy)) {
       return fail(GeometryError::kOffsetTooLarge);
     }
   }

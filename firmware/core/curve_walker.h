@@ -5,6 +5,7 @@
 
 #include <stdint.h>  // uint16_t, int32_t
 
+#include "firmware/core/corner_arc.h"      // CornerArc, UnitQ15
 #include "firmware/core/geometry_error.h"  // GeometryError
 #include "firmware/core/span_evaluator.h"  // SpanEvaluator
 #include "firmware/core/spline.h"          // Spline, PointUm
@@ -70,22 +71,16 @@ class CurveWalker {
 
  private:
   enum Phase { kIdle, kStart, kInSpan, kDone };
-  // A unit vector in Q15 (components widened to 32 bits for the arithmetic).
-  struct Unit {
-    int32_t x_q15;
-    int32_t y_q15;
-  };
-
   bool step_in_span(PointUm* out);
   bool joint(PointUm* out);
   bool corner(const PointQ6& at, const Direction& in_dir, const Direction& out_dir, PointUm* out);
   bool arc_point(PointUm* out);
   uint32_t uniform_next() const;
   uint32_t adaptive_next();
+  uint32_t trial_error(uint32_t step, uint8_t parts_log2);
   uint32_t sampled_error(const Chord& chord, uint32_t step, uint8_t parts_log2);
   PointQ6 path_point(uint32_t t_q16, Direction* dir);
-  PointQ6 offset_point(const PointQ6& base, const Unit& normal) const;
-  Unit left_normal(const Direction& d) const;
+  PointQ6 offset_point(const PointQ6& base, const UnitQ15& normal) const;
   Direction usable_direction(uint32_t t_q16);
   bool emit_checked(const PointQ6& base, const PointQ6& p, PointUm* out);
   bool emit_plain(const PointQ6& p, PointUm* out);
@@ -112,14 +107,7 @@ class CurveWalker {
   // Pending second point of a discontinuous joint.
   bool pending_;
   PointQ6 pending_point_;
-  // Corner arc in progress: normals from a to b (then b to c if two halves).
-  uint16_t arc_steps_;  // points per half
-  uint16_t arc_index_;  // next point index within the half, 1..arc_steps_
-  uint8_t arc_halves_left_;
-  Unit arc_a_;
-  Unit arc_b_;
-  Unit arc_c_;
-  PointQ6 arc_center_;
+  CornerArc arc_;  // a convex corner's arc in progress
 };
 
 }  // namespace core

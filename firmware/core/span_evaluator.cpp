@@ -321,7 +321,8 @@ __attribute__((noinline)) Direction end_tangent(const Homog* b, uint8_t p) {
 // The Bezier points of the span, homogeneous, relative to its first control point (out of
 // line: the arrays of the blossom stay out of setup()'s frame). b holds the control points
 // first: bezier_points() copies them before it writes b.
-__attribute__((noinline)) void bezier_of_span(const Spline& spline, uint16_t span, Homog* b) {
+// Returns the largest weight of the points, b[k].w (1 at least: a divisor).
+__attribute__((noinline)) uint32_t bezier_of_span(const Spline& spline, uint16_t span, Homog* b) {
   const uint8_t p = spline.degree;
   const ControlPoint* const c = &spline.control[span - p];
   for (uint8_t j = 0; j <= p; ++j) {
@@ -334,6 +335,13 @@ __attribute__((noinline)) void bezier_of_span(const Spline& spline, uint16_t spa
   Alphas alphas;
   blend_factors(spline, span, &alphas);
   bezier_points(p, spline.rational, alphas, b, b);
+  // Each b[k].w mixes weight_q14 << 15 (in [2^15, 2^31)).
+  uint32_t w_max = 1;
+  for (uint8_t k = 0; k <= p; ++k) {
+    const uint32_t w = (uint32_t)b[k].v[kW];
+    if (w > w_max) w_max = w;
+  }
+  return w_max;
 }
 
 }  // namespace
@@ -383,13 +391,7 @@ GeometryError SpanEvaluator::setup(const Spline& spline, uint16_t span) {
   if (e != GeometryError::kOk) return e;
   const ControlPoint& ref = spline.control[span - p];
   Homog b[kMaxDegree + 1];
-  bezier_of_span(spline, span, b);
-  // Each b[k].w mixes weight_q14 << 15 (in [2^15, 2^31)); 1 keeps w_max a divisor.
-  uint32_t w_max = 1;
-  for (uint8_t k = 0; k <= p; ++k) {
-    const uint32_t w = (uint32_t)b[k].v[kW];
-    if (w > w_max) w_max = w;
-  }
+  const uint32_t w_max = bezier_of_span(spline, span, b);  // the largest b[k].w
   // Per coordinate: the origin (the span start rounded to 1 um, absolute), the end point
   // straight from the last Bezier point (exact up to setup rounding), and the numerators
   // relative to the origin in q6 with the weights normalised to max 1.
@@ -459,16 +461,11 @@ Direction SpanEvaluator::direction(uq16_t t) const {
     Direction z = {0, 0};
     return z;
   }
-  int32_t dx[kMaxDegree], dy[kMaxDegree];
-  derivative(cx_, dx);  // q(6 - dir_shift_) um
-  derivative(cy_, dy);
-  const int32_t px = horner(dx, (uint8_t)(degree_ - 1), t);
-  const int32_t py = horner(dy, (uint8_t)(degree_ - 1), t);
+  const int32_t px = derivative_at(cx_, t);  // q(6 - dir_shift_) um
+  const int32_t py = derivative_at(cy_, t);
   if (!rational_) return scale_direction32(px, py);
   // P = N / W, P' ~ N' W - N W' (W > 0 leaves the direction unchanged).
-  int32_t dw[kMaxDegree];
-  derivative(cw_, dw);
-  const int32_t w1 = horner(dw, (uint8_t)(degree_ - 1), t);
+  const int32_t w1 = derivative_at(cw_, t);
   const int32_t w = horner(cw_, degree_, t);
   const int32_t nx = horner(cx_, degree_, t);
   const int32_t ny = horner(cy_, degree_, t);
@@ -503,13 +500,16 @@ bool SpanEvaluator::step_bend_q6(uint32_t t0_q16, uint32_t h_q16, PointQ6* a2, P
   return true;
 }
 
-// Coefficients k c[k] >> dir_shift_ of the derivative: times 1, 2, 3 as adds (a multiply
-// by a variable k is a 32x32 library call on 16-bit targets), the shift usually 0.
-void SpanEvaluator::derivative(const int32_t* c, int32_t* d) const {
+// The derivative polynomial at t: its coefficients k c[k] >> dir_shift_ (times 1, 2, 3 as
+// adds: a multiply by a variable k is a 32x32 library call on 16-bit targets; the shift
+// usually 0), then Horner. The coefficients' array stays out of direction()'s frame.
+__attribute__((noinline)) int32_t SpanEvaluator::derivative_at(const int32_t* c, uq16_t t) const {
+  int32_t d[kMaxDegree];
   for (uint8_t k = 1; k <= degree_; ++k) {
     const int32_t v = dir_shift_ ? asr32(c[k], dir_shift_) : c[k];
     d[k - 1] = k == 1 ? v : (k == 2 ? v + v : v + v + v);
   }
+  return horner(d, (uint8_t)(degree_ - 1), t);
 }
 
 Direction SpanEvaluator::end_direction() const {

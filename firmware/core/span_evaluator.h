@@ -79,7 +79,7 @@ class SpanEvaluator {
 
  private:
   PointQ6 rational_q6(uq16_t t) const;
-  void derivative(const int32_t* c, int32_t* d) const;
+  int32_t derivative_at(const q6_um_t* c, uq16_t t) const;
 
   uint8_t degree_;
   bool rational_;

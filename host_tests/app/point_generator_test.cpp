@@ -1,5 +1,5 @@
-// The point generator's pieces of a chord (#U maximum step), read one by one from the
-// planner: each ends within half a micrometre per axis of the straight line, none is longer
+// The point generator's pieces of a chord (#U maximum step, split by the planner), read one
+// by one from the planner's machine position: each ends within half a micrometre per axis of the straight line, none is longer
 // than the step per axis, there are ceil(span / step) of them, and the last is the line's end
 // (also past 65 535 pieces, where the split divides differently).
 #include <gtest/gtest.h>
@@ -42,7 +42,9 @@ std::vector<Piece> pieces_of_line(Piece from, Piece to, uint16_t max_step_um) {
     app::PlanEntry e;
     rig.ring.pop(&e);
     const app::GenStatus g = gen.run(&rig.planner, &rig.ring, travel, 8);
-    const int32_t* last = rig.planner.last_um();
+    // The machine position (no map: the planned one); last_um() moves once the whole chord
+    // is pushed.
+    const int32_t* last = rig.planner.machine_um();
     if (out.empty() || out.back().x_um != last[0] || out.back().y_um != last[1])
       out.push_back({last[0], last[1]});
     if (g != app::GenStatus::kMore) break;
