@@ -142,6 +142,7 @@ class GerberReader {
   void image_offset(const std::string& code, const std::string& arg);
   void image_transform(const std::string& which, const char* what, bool identity);
   void transform_image(Paths& paths) const;
+  void check_image_transforms(bool drawn);
   std::pair<double, double> axis_values(const std::string& arg, const char* what,
                                         double missing) const;
   void knockout(const std::string& arg);
@@ -197,6 +198,7 @@ PcbLayer GerberReader::read() {
   } else {
     layer.polygons_nm = evaluate(drawn_.batches);
   }
+  check_image_transforms(!layer.polygons_nm.empty());
   if (image_.offset_x != 0 || image_.offset_y != 0)
     translate_paths(layer.polygons_nm, image_.offset_x, image_.offset_y);
   transform_image(layer.polygons_nm);
@@ -482,7 +484,9 @@ void GerberReader::image_polarity(const std::string& arg) {
     // What is drawn is clear, the rest copper. The copper's extent is not defined: here the
     // image's bounding box with gerbv's border, as gerbv fills its picture; isolation then
     // keeps the tool inside each drawn (clear) shape, off the copper around it.
-    if (!image_.negative) image_.negative_line = diag_.line;
+    if (image_.negative)
+      diag_.note("warning: %IPNEG replaced by the later %IPNEG (only the last applies)");
+    image_.negative_line = diag_.line;
     image_.negative = true;
     return;
   }
@@ -542,17 +546,33 @@ void GerberReader::image_transform(const std::string& which, const char* what, b
   }
   if (identity) return;
   image_.transforms.push_back({which, what, diag_.line});
-  if (image_.transforms.size() > 1) {
-    diag_.fail("the deprecated image transforms " + image_.transforms[0].which + " and " +
-               image_.transforms[1].which +
-               " together are not supported (the order they combine in is not defined)");
-  }
+}
+
+// Two different transforms still in force at the end (each parameter acts on the whole image,
+// so only the last value of each counts: a later identity undoes an earlier one) are refused
+// at the later one, unless nothing is drawn.
+void GerberReader::check_image_transforms(bool drawn) {
+  if (image_.transforms.size() < 2 || !drawn) return;
+  std::vector<ImageParameters::Transform> in_order = image_.transforms;
+  std::sort(in_order.begin(), in_order.end(),
+            [](const auto& a, const auto& b) { return a.line < b.line; });
+  std::string names;
+  for (size_t k = 0; k < in_order.size(); ++k)
+    names += (k == 0 ? "" : k + 1 == in_order.size() ? " and " : ", ") + in_order[k].which;
+  diag_.line = in_order.back().line;
+  diag_.fail("the deprecated image transforms " + names +
+             " together are not supported (the order they combine in is not defined)");
 }
 
 // "A<a>B<b>" (either may be left out: `missing`), decimal numbers.
 std::pair<double, double> GerberReader::axis_values(const std::string& arg, const char* what,
                                                     double missing) const {
   double a = missing, b = missing;
+  // Anything else (%IOX1Y2, a letter twice) is a parameter the file does not say: refused, not
+  // read as no offset.
+  if ((!arg.empty() && arg[0] != 'A' && arg[0] != 'B') ||
+      std::count(arg.begin(), arg.end(), 'A') > 1 || std::count(arg.begin(), arg.end(), 'B') > 1)
+    diag_.fail(std::string("bad ") + what + " '" + arg.substr(0, 20) + "': expected A<a>B<b>");
   for (const char axis : {'A', 'B'}) {
     const size_t at = arg.find(axis);
     if (at == std::string::npos) continue;
@@ -575,6 +595,12 @@ void GerberReader::knockout(const std::string& arg) {
   const size_t letters_given =
       (arg.find('X') != std::string::npos) + (arg.find('Y') != std::string::npos) +
       (arg.find('I') != std::string::npos) + (arg.find('J') != std::string::npos);
+  if (arg.size() == 1) {
+    // Neither a box nor a border: the specification gives it no area, gerbv draws nothing.
+    diag_.note("warning: %KO" + arg +
+               " without a box or a border (deprecated knockout) ignored, as gerbv reads it");
+    return;
+  }
   if (letters_given == 0) {
     open_knockout(arg);
     return;
