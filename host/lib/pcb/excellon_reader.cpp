@@ -589,11 +589,7 @@ bool ExcellonReader::position(const std::string& s, PointNm& p) const {
   size_t k = 0;
   while (k < s.size()) {
     const char axis = s[k];
-    size_t end = k + 1;
-    while (end < s.size() && (std::isdigit(static_cast<unsigned char>(s[end])) || s[end] == '.' ||
-                              s[end] == '+' || s[end] == '-')) {
-      ++end;
-    }
+    const size_t end = end_of_number(s, k + 1);
     const std::string value = s.substr(k + 1, end - k - 1);
     if (axis != 'X' && axis != 'Y')
       fail("unexpected '" + std::string(1, axis) + "' in '" + s + "'");

@@ -1201,11 +1201,7 @@ void GerberReader::word_block(const std::string& raw) {
   size_t k = 0;
   while (k < w.size()) {
     const char letter = w[k];
-    size_t end = k + 1;
-    while (end < w.size() && (std::isdigit(static_cast<unsigned char>(w[end])) || w[end] == '+' ||
-                              w[end] == '-' || w[end] == '.')) {
-      ++end;
-    }
+    const size_t end = end_of_number(w, k + 1);
     const std::string value = w.substr(k + 1, end - k - 1);
     if (value.empty()) {
       diag_.fail("unexpected '" + std::string(1, letter) + "' in '" + w.substr(0, 40) + "'");
