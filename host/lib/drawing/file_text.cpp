@@ -1,6 +1,8 @@
 // Whole-file reading (see file_text.h).
 #include "host/lib/drawing/file_text.h"
 
+#include <algorithm>     // std::transform
+#include <cctype>        // std::tolower
 #include <filesystem>    // std::filesystem::file_size, is_directory
 #include <fstream>       // std::ifstream
 #include <system_error>  // std::error_code
@@ -20,6 +22,20 @@ FileRead read_file_text(const std::string& path, std::string* text) {
   while (in.read(buffer, sizeof buffer) || in.gcount() > 0)
     text->append(buffer, static_cast<size_t>(in.gcount()));
   return in.bad() ? FileRead::kReadError : FileRead::kOk;
+}
+
+std::string read_file_head(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  return head;
+}
+
+std::string lower_ascii(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
 }
 
 }  // namespace host

@@ -14,6 +14,13 @@ enum class FileRead { kOk, kCannotOpen, kReadError };
 // A directory or a file that cannot be opened is kCannotOpen.
 FileRead read_file_text(const std::string& path, std::string* text);
 
+// The first 4 kB of the file at path (less when shorter, empty when it cannot be opened):
+// where formats are recognised by their content.
+std::string read_file_head(const std::string& path);
+
+// s with A-Z in lower case (file names, host names).
+std::string lower_ascii(std::string s);
+
 }  // namespace host
 
 #endif  // HOST_LIB_DRAWING_FILE_TEXT_H

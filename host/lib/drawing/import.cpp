@@ -11,6 +11,7 @@
 #include "host/lib/drawing/drawing.h"
 #include "host/lib/drawing/dxf_import.h"
 #include "host/lib/drawing/dxf_scan.h"
+#include "host/lib/drawing/file_text.h"  // read_file_head
 #include "host/lib/drawing/gcode_import.h"
 
 namespace host {
@@ -25,15 +26,6 @@ std::string extension(const std::string& path) {
   std::string e = path.substr(dot);
   std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
   return e;
-}
-
-// The first few KB of the file, for recognising formats by content.
-std::string head(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string s(4096, '\0');
-  in.read(&s[0], static_cast<std::streamsize>(s.size()));
-  s.resize(static_cast<size_t>(in.gcount()));
-  return s;
 }
 
 bool is_gerber(const std::string& ext, const std::string& text) {
@@ -100,7 +92,7 @@ namespace {
 Drawing import_by_format(const std::string& path) {
   check_readable(path);
   const std::string ext = extension(path);
-  const std::string text = head(path);
+  const std::string text = read_file_head(path);
   if (text.empty()) throw ImportError(path + ": the file is empty");
   if (ext == ".dxf" || looks_like_dxf(path)) return import_dxf(path);
   if (is_gerber(ext, text)) {

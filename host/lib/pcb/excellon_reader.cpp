@@ -81,14 +81,17 @@ class ExcellonReader {
   struct Oversize {
     double diameter_mm = 0;
     int holes = 0, slots = 0;
+    int line = 0;  // where its size was given
   };
   std::map<int, Oversize> oversize_;
   std::string oversize_text() const;
+  static std::string oversize_tool_text(int tool, const Oversize& o);
   int left_out() const;  // holes and slots of oversize tools
   void drill_hole(const PointNm& at);
   void repeat_hole(const std::string& s);
-  int tool_ = -1;   // none selected (T0 unloads the tool unless the header defines a T0)
-  PointNm offset_;  // G93 work zero
+  bool drilled_ = false;  // a hole drilled (the one a repeat hole repeats)
+  int tool_ = -1;         // none selected (T0 unloads the tool unless the header defines a T0)
+  PointNm offset_;        // G93 work zero
   PointNm at_;
   PcbLayer layer_;
   mutable std::vector<std::pair<std::string, std::pair<int, int>>>
@@ -145,7 +148,11 @@ PcbLayer ExcellonReader::read() {
   if (layer_.holes.empty() && layer_.slots.empty() && !oversize_.empty() && left_out() > 0)
     fail("every hole and slot is of a tool larger than 100 mm, which is not a drill (" +
          oversize_text() + "): nothing is left to drill");
-  if (!oversize_.empty() && left_out() > 0) layer_.notes.push_back("warning: " + oversize_text());
+  for (const auto& [tool, o] : oversize_) {
+    if (o.holes + o.slots > 0)
+      layer_.notes.push_back("line " + std::to_string(o.line) +
+                             ": warning: " + oversize_tool_text(tool, o));
+  }
   if (!seen_header) note("no M48 header");
   layer_.path = path_;
   layer_.kind = LayerKind::kDrill;
@@ -224,7 +231,7 @@ void ExcellonReader::define_tool(int n, double diameter, double unit_nm) {
   if (nm > kMaxToolNm) {
     // A routed cut-out is written as one huge "drill" by some programs: leave its holes out,
     // not the whole file.
-    oversize_[n] = {nm / 1e6, 0, 0};
+    oversize_[n] = {nm / 1e6, 0, 0, line_};
     tools_.erase(n);
     return;
   }
@@ -236,17 +243,22 @@ static std::string count_of(int n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
-// "tool T1 (139.7 mm) is larger than 100 mm: its 2 holes and 1 slot left out; tool T2 ..."
+// "tool T1 (139.7 mm) is larger than 100 mm, not a drill: its 2 holes and 1 slot left out"
+std::string ExcellonReader::oversize_tool_text(int tool, const Oversize& o) {
+  std::ostringstream mm;
+  mm << std::round(o.diameter_mm * 1000) / 1000;
+  std::string what = o.holes ? count_of(o.holes, "hole", "holes") : "";
+  if (o.slots) what += (what.empty() ? "" : " and ") + count_of(o.slots, "slot", "slots");
+  return "tool T" + std::to_string(tool) + " (" + mm.str() +
+         " mm) is larger than 100 mm, not a drill: its " + what + " left out";
+}
+
+// Every oversize tool that has holes or slots, "; " between them.
 std::string ExcellonReader::oversize_text() const {
   std::string text;
   for (const auto& [tool, o] : oversize_) {
     if (o.holes + o.slots == 0) continue;
-    std::ostringstream mm;
-    mm << std::round(o.diameter_mm * 1000) / 1000;
-    std::string what = o.holes ? count_of(o.holes, "hole", "holes") : "";
-    if (o.slots) what += (what.empty() ? "" : " and ") + count_of(o.slots, "slot", "slots");
-    text += (text.empty() ? "" : "; ") + ("tool T" + std::to_string(tool)) + " (" + mm.str() +
-            " mm) is larger than 100 mm, not a drill: its " + what + " left out";
+    text += (text.empty() ? "" : "; ") + oversize_tool_text(tool, o);
   }
   return text;
 }
@@ -265,6 +277,7 @@ void ExcellonReader::drill_hole(const PointNm& at) {
   else
     layer_.holes.push_back({at, tools_[tool_], tool_});
   at_ = at;
+  drilled_ = true;
 }
 
 // "R<n>X<dx>Y<dy>": the last hole repeated n times, each dx, dy further (Excellon's repeat
@@ -273,6 +286,8 @@ void ExcellonReader::repeat_hole(const std::string& s) {
   size_t k = 1;
   while (k < s.size() && std::isdigit(static_cast<unsigned char>(s[k]))) ++k;
   if (k > 6) fail("repeat count in '" + s.substr(0, 30) + "' above 99999");
+  // gerbv repeats from wherever the tool is (0, 0 at the start): holes nobody placed.
+  if (!drilled_) fail("repeat hole '" + s.substr(0, 30) + "' before any hole to repeat");
   const int n = std::stoi(s.substr(1, k - 1));
   PointNm step;
   const bool incremental = incremental_;
@@ -574,11 +589,7 @@ bool ExcellonReader::position(const std::string& s, PointNm& p) const {
   size_t k = 0;
   while (k < s.size()) {
     const char axis = s[k];
-    size_t end = k + 1;
-    while (end < s.size() && (std::isdigit(static_cast<unsigned char>(s[end])) || s[end] == '.' ||
-                              s[end] == '+' || s[end] == '-')) {
-      ++end;
-    }
+    const size_t end = end_of_number(s, k + 1);
     const std::string value = s.substr(k + 1, end - k - 1);
     if (axis != 'X' && axis != 'Y')
       fail("unexpected '" + std::string(1, axis) + "' in '" + s + "'");

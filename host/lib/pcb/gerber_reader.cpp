@@ -12,6 +12,7 @@
 
 #include "host/lib/pcb/gerber_macro.h"
 #include "host/lib/pcb/gerber_outline.h"
+#include "host/lib/pcb/gerber_reader_state.h"
 #include "host/lib/pcb/gerber_shapes.h"
 #include "host/lib/pcb/pcb_file_names.h"
 
@@ -23,6 +24,19 @@ using ClipperLib::Path;
 using ClipperLib::Paths;
 
 namespace {
+
+using gerber::Aperture;
+using gerber::ApertureTable;
+using gerber::Batch;
+using gerber::CoordinateFormat;
+using gerber::GerberDiagnostics;
+using gerber::GerberDrawing;
+using gerber::GerberUnits;
+using gerber::GraphicsState;
+using gerber::ImageParameters;
+using gerber::OpenBlock;
+using gerber::OpenKnockout;
+using gerber::StepRepeat;
 
 // How far an arc's end radius may be from its start radius (nm): the reader's limit, or for
 // small arcs half the start radius, at most 1 mm (see GerberReadOptions).
@@ -37,33 +51,6 @@ const double kMaxApertureNm = 1e9;  // 1 m
 // gerbv read it (closer, the two readings differ by less than the flattening of curves).
 const double kIllDefinedArcNm = 1000;
 const long kMaxStepRepeatCopies = 10000;
-
-struct Batch {
-  bool dark = true;
-  Paths paths;
-  std::vector<size_t> starts;  // where each object (an outer and its holes) begins in paths
-};
-
-struct Aperture {
-  char type = 'C';         // C R O P, M for a macro, B for a block (%AB)
-  double circle_d_nm = 0;  // type C
-  Paths shape;             // around the origin; positive outers, negative holes
-  bool has_hole = false;
-  std::vector<Batch> block;  // type B: its objects by polarity, around the origin
-};
-
-// An aperture block being read (%ABDnn*% .. %AB*%).
-struct OpenBlock {
-  int number_d = 0;
-  size_t batch_start = 0;  // its objects are batches_[batch_start ..]
-  bool dark = true;        // the polarity before it
-};
-
-struct Note {
-  std::string text;
-  int first_line = 0;
-  int count = 0;
-};
 
 bool is_space(char c) {
   return std::isspace(static_cast<unsigned char>(c)) != 0;
@@ -111,7 +98,7 @@ std::vector<std::string> split(const std::string& s, char sep) {
 class GerberReader {
  public:
   GerberReader(const std::string& text, const std::string& path, const GerberOptions& options)
-      : text_(text), path_(path), opt_(options) {}
+      : text_(text), opt_(options), diag_(path) {}
 
   PcbLayer read();
 
@@ -120,10 +107,6 @@ class GerberReader {
   LayerKind layer_kind() const;
   void outline_loops(PcbLayer* layer) const;
   void negative_image(Paths* drawn);
-  [[noreturn]] void fail(const std::string& what) const {
-    throw PcbReadError(path_ + ":" + std::to_string(line_) + ": " + what);
-  }
-  void note(const std::string& text);
 
   // Blocks.
   void extended_block(const std::string& body, int first_line);
@@ -146,13 +129,27 @@ class GerberReader {
   void punch_hole(Aperture* ap, const std::vector<double>& params, size_t hole_at);
   Aperture macro_aperture(const std::string& name, const std::vector<double>& params, int number_d);
   void aperture_macro(const std::vector<std::string>& parts, const std::vector<int>& lines);
+  void aperture_block(const std::string& arg);
   void step_repeat(const std::string& s);
   void close_step_repeat();
   bool copies_stand_alone(const std::vector<Batch>& block) const;
-  Paths evaluate(std::vector<Batch>& batches);  // counts reclipped_
+  Paths evaluate(std::vector<Batch>& batches);  // counts drawn_.reclipped
+
+  // Deprecated parameters.
+  bool deprecated_parameter(const std::string& code, const std::string& arg);
+  void image_polarity(const std::string& arg);
+  void mirror_image(const std::string& arg);
+  void image_offset(const std::string& code, const std::string& arg);
+  void image_transform(const std::string& which, const char* what, bool identity);
+  void transform_image(Paths& paths) const;
+  void check_image_transforms(bool drawn);
+  std::pair<double, double> axis_values(const std::string& arg, const char* what,
+                                        double missing) const;
+  void knockout(const std::string& arg);
+  void open_knockout(const std::string& arg);
+  void close_knockout();
 
   // Operations.
-  double number(const std::string& s, const char* what) const;
   cInt coordinate(const std::string& s, bool is_x);
   void operate(int d, const std::string* x, const std::string* y, const std::string* i,
                const std::string* j);
@@ -170,144 +167,55 @@ class GerberReader {
   void add_centre_line(IntPoint from, const Path& points, double width_nm);
   void finish_contour();
   Paths both_readings(const Paths& ours, const Paths& theirs) const;
-  void set_units(double unit_nm, const char* how);
 
   const std::string& text_;
-  std::string path_;
   GerberOptions opt_;
-  int line_ = 1;
+  GerberDiagnostics diag_;
   int last_block_line_ = 1;
-
-  // Format and units.
-  bool have_format_ = false;
-  int x_int_ = 2, x_dec_ = 4, y_int_ = 2, y_dec_ = 4;
-  bool omit_trailing_ = false;
-  bool incremental_ = false;
-  double unit_nm_ = 0;  // 0 = not yet set
-  std::string units_;
-
-  // Apertures.
-  std::map<int, Aperture> apertures_;
-  std::map<int, std::string> bad_apertures_;  // D number -> why its definition was refused
-  std::unordered_map<std::string, ApertureMacro> macros_;
-  int aperture_ = -1;
-
-  // Graphics state.
-  IntPoint at_{0, 0};
-  int interpolation_ = 1;  // 1 linear, 2 clockwise, 3 counter-clockwise
-  int quadrant_ = 0;       // 74 single, 75 multi, 0 not given
-  int last_d_ = 0;
-  bool dark_ = true;
-  bool region_ = false;
-  Path contour_;
-  Path contour_as_gerbv_;  // the same region as gerbv draws it, once an ill-defined arc is in it
-  bool done_ = false;
-
-  // What has been drawn.
-  std::vector<Batch> batches_;
-  size_t vertices_ = 0;                   // in batches_ and strokes_
-  size_t reclipped_ = 0;                  // copper vertices clipped again by later batches
-  std::vector<Path> strokes_;             // centre lines (outline layers)
-  std::vector<double> stroke_widths_nm_;  // the aperture's width drawing each one
-  int ill_defined_arcs_ = 0;  // arcs whose start and end radii differ by > kIllDefinedArcNm
-  double ill_defined_max_nm_ = 0;
-  bool stroke_open_ = false;  // the last stroke continues at at_
-
-  // Step and repeat.
-  bool in_sr_ = false;
-  long sr_x_ = 1, sr_y_ = 1;
-  long sr_x_saved_ = 1, sr_y_saved_ = 1;
-  cInt sr_i_ = 0, sr_j_ = 0;
-  size_t sr_batch_start_ = 0, sr_stroke_start_ = 0;
-
-  // Aperture blocks being read, innermost last.
-  std::vector<OpenBlock> blocks_;
-  void aperture_block(const std::string& arg);
-
-  // Image offset (%OF, deprecated).
-  cInt offset_x_ = 0, offset_y_ = 0;
-  // Deprecated image transforms (%IR, %MI, %SF), applied to the finished image.
-  int rotation_deg_ = 0;                      // 0, 90, 180, 270 counterclockwise about the origin
-  bool mirror_a_ = false, mirror_b_ = false;  // x -> -x, y -> -y
-  bool swap_ab_ = false;                      // %ASAYBX: x and y swap
-  double layer_rotation_deg_ = 0;             // %RO: any angle, counterclockwise
-  bool negative_ = false;                     // %IPNEG: copper where nothing is drawn
-  int negative_line_ = 0;
-  void knockout(const std::string& arg);
-  void open_knockout(const std::string& arg);
-  void close_knockout();
-  bool knockout_open_ = false;  // %KOC/%KOD without a box, until the next %KO
-  bool knockout_dark_ = false;
-  double knockout_border_nm_ = 0;
-  size_t knockout_start_ = 0;  // the first batch of the objects it surrounds
-  int knockout_line_ = 0;
-  std::pair<double, double> axis_values(const std::string& arg, const char* what,
-                                        double missing) const;
-  bool deprecated_parameter(const std::string& code, const std::string& arg);
-  void image_polarity(const std::string& arg);
-  void mirror_image(const std::string& arg);
-  void image_offset(const std::string& code, const std::string& arg);
-  double scale_a_ = 1, scale_b_ = 1;
-  // The non-identity ones in force, each the last of its parameter (a later one replaces an
-  // earlier, as gerbv reads them): reported as applied at the end.
-  struct ImageTransform {
-    std::string which;  // "%RO30"
-    std::string what;   // "layer rotation"
-    int line = 0;
-  };
-  std::vector<ImageTransform> transforms_;
-  void image_transform(const std::string& which, const char* what, bool identity);
-  void need_units(const std::string& what);
-  void transform_image(Paths& paths) const;
-
+  CoordinateFormat fmt_;
+  GerberUnits unit_;
+  ApertureTable apertures_;
+  GraphicsState gs_;
+  GerberDrawing drawn_;
+  StepRepeat sr_;
+  std::vector<OpenBlock> blocks_;  // aperture blocks being read, innermost last
+  ImageParameters image_;
+  OpenKnockout knockout_;
   LayerKind x2_kind_ = LayerKind::kUnknown;
   bool x2_kind_given_ = false;
-  std::vector<Note> notes_;
 };
-
-void GerberReader::note(const std::string& text) {
-  for (Note& n : notes_) {
-    if (n.text == text) {
-      ++n.count;
-      return;
-    }
-  }
-  notes_.push_back({text, line_, 1});
-}
 
 PcbLayer GerberReader::read() {
   read_blocks();
   PcbLayer layer;
-  layer.path = path_;
-  layer.units = units_;
-  layer.apertures_or_tools = static_cast<int>(apertures_.size());
+  layer.path = diag_.path;
+  layer.units = unit_.name;
+  layer.apertures_or_tools = static_cast<int>(apertures_.defined.size());
   layer.arc_tolerance_nm = opt_.arc_tolerance_nm;
   layer.kind = layer_kind();
   if (layer.kind == LayerKind::kOutline) {
     outline_loops(&layer);
   } else {
-    layer.polygons_nm = evaluate(batches_);
+    layer.polygons_nm = evaluate(drawn_.batches);
   }
-  if (offset_x_ != 0 || offset_y_ != 0) translate_paths(layer.polygons_nm, offset_x_, offset_y_);
+  check_image_transforms(!layer.polygons_nm.empty());
+  if (image_.offset_x != 0 || image_.offset_y != 0)
+    translate_paths(layer.polygons_nm, image_.offset_x, image_.offset_y);
   transform_image(layer.polygons_nm);
-  if (negative_ && layer.kind != LayerKind::kOutline && !layer.polygons_nm.empty())
+  if (image_.negative && layer.kind != LayerKind::kOutline && !layer.polygons_nm.empty())
     negative_image(&layer.polygons_nm);
-  if (ill_defined_arcs_ > 0) {
+  if (drawn_.ill_defined_arcs > 0) {
     char msg[240];
     std::snprintf(msg, sizeof msg,
                   "warning: %d arcs whose end is not on their circle (start and end radii differ "
                   "by up to %.1f um): copper is where either reading puts it (through both end "
                   "points, and at the start radius as gerbv draws them)",
-                  ill_defined_arcs_, ill_defined_max_nm_ * 1e-3);
+                  drawn_.ill_defined_arcs, drawn_.ill_defined_max_nm * 1e-3);
     layer.notes.push_back(msg);
   }
-  for (const ImageTransform& t : transforms_)
-    notes_.push_back({"warning: " + t.which + " (deprecated " + t.what + ") applied", t.line, 1});
-  for (const Note& nt : notes_) {
-    std::string s = "line " + std::to_string(nt.first_line) + ": " + nt.text;
-    if (nt.count > 1) s += " (" + std::to_string(nt.count) + " times)";
-    layer.notes.push_back(s);
-  }
+  for (const ImageParameters::Transform& t : image_.transforms)
+    diag_.note_at("warning: " + t.which + " (deprecated " + t.what + ") applied", t.line);
+  for (const std::string& s : diag_.lines()) layer.notes.push_back(s);
   return layer;
 }
 
@@ -315,10 +223,10 @@ PcbLayer GerberReader::read() {
 void GerberReader::read_blocks() {
   const size_t n = text_.size();
   size_t pos = 0;
-  while (pos < n && !done_) {
+  while (pos < n && !gs_.done) {
     const char c = text_[pos];
     if (c == '\n') {
-      ++line_;
+      ++diag_.line;
       ++pos;
     } else if (is_space(c)) {
       ++pos;
@@ -326,45 +234,45 @@ void GerberReader::read_blocks() {
       // A %..% extended block, or a data block up to its '*'.
       const bool extended = c == '%';
       const size_t end = extended ? text_.find('%', pos + 1) : text_.find('*', pos);
-      if (end == std::string::npos && extended) fail("'%' block never closed with '%'");
+      if (end == std::string::npos && extended) diag_.fail("'%' block never closed with '%'");
       if (end == std::string::npos)
-        fail("data block '" + trim(text_.substr(pos, 40)) + "' never ends with '*'");
+        diag_.fail("data block '" + trim(text_.substr(pos, 40)) + "' never ends with '*'");
       const std::string body =
           extended ? text_.substr(pos + 1, end - pos - 1) : text_.substr(pos, end - pos);
-      const int first = line_;
+      const int first = diag_.line;
       last_block_line_ = first;
       if (extended)
         extended_block(body, first);
       else
         word_block(body);
-      line_ = first + static_cast<int>(std::count(body.begin(), body.end(), '\n'));
+      diag_.line = first + static_cast<int>(std::count(body.begin(), body.end(), '\n'));
       pos = end + 1;
     }
   }
-  if (!done_) {
-    line_ = last_block_line_;
-    fail("the file ends without M02 (end of file): it may be cut short, so it is not used");
+  if (!gs_.done) {
+    diag_.line = last_block_line_;
+    diag_.fail("the file ends without M02 (end of file): it may be cut short, so it is not used");
   }
   close_knockout();
   for (size_t k = pos; k < n; ++k) {
     if (!is_space(text_[k])) {
-      note("text after M02 ignored");
+      diag_.note("text after M02 ignored");
       break;
     }
   }
-  if (region_) fail("G36 region still open at M02");
-  for (const auto& bad : bad_apertures_)
-    note("warning: aperture D" + std::to_string(bad.first) +
-         " never used: its definition is left out (" + bad.second + ")");
+  if (gs_.region) diag_.fail("G36 region still open at M02");
+  for (const auto& bad : apertures_.refused)
+    diag_.note("warning: aperture D" + std::to_string(bad.first) +
+               " never used: its definition is left out (" + bad.second + ")");
   if (!blocks_.empty())
-    fail("block aperture D" + std::to_string(blocks_.back().number_d) + " still open at M02");
+    diag_.fail("block aperture D" + std::to_string(blocks_.back().number_d) + " still open at M02");
 }
 
 // The kind given by the caller, else the file's X2 file function, else its name.
 LayerKind GerberReader::layer_kind() const {
   if (opt_.forced_kind != LayerKind::kUnknown) return opt_.forced_kind;
   if (x2_kind_given_) return x2_kind_;
-  const LayerKind named = layer_kind_from_file_name(path_);
+  const LayerKind named = layer_kind_from_file_name(diag_.path);
   return named == LayerKind::kUnknown ? opt_.kind_if_unknown : named;
 }
 
@@ -372,8 +280,8 @@ LayerKind GerberReader::layer_kind() const {
 // the drawn strokes close them.
 void GerberReader::outline_loops(PcbLayer* layer) const {
   std::map<double, std::vector<Path>> by_width;
-  for (size_t k = 0; k < strokes_.size(); ++k)
-    by_width[stroke_widths_nm_[k]].push_back(strokes_[k]);
+  for (size_t k = 0; k < drawn_.strokes.size(); ++k)
+    by_width[drawn_.stroke_widths_nm[k]].push_back(drawn_.strokes[k]);
   for (const auto& [width, strokes] : by_width) {
     for (Path& p : join_strokes(strokes, opt_.arc_tolerance_nm * 4 + 2000)) {
       layer->polygons_nm.push_back(std::move(p));
@@ -397,10 +305,10 @@ void GerberReader::negative_image(Paths* drawn) {
   const cInt mx = (x1 - x0) / 20, my = (y1 - y0) / 20;
   const Path box = {{x0 - mx, y0 - my}, {x1 + mx, y0 - my}, {x1 + mx, y1 + my}, {x0 - mx, y1 + my}};
   *drawn = difference_of({box}, *drawn);
-  notes_.push_back(
-      {"warning: %IPNEG (deprecated negative image) applied: copper is the image's bounding box "
-       "with gerbv's 5 % border, less what is drawn",
-       negative_line_, 1});
+  diag_.note_at(
+      "warning: %IPNEG (deprecated negative image) applied: copper is the image's bounding box "
+      "with gerbv's 5 % border, less what is drawn",
+      image_.negative_line);
 }
 
 Paths GerberReader::evaluate(std::vector<Batch>& batches) {
@@ -413,12 +321,12 @@ Paths GerberReader::evaluate(std::vector<Batch>& batches) {
       // its outer's, so a hole left out stays inside its outer and still cuts it).
       Paths touched, kept;
       split_by_box(result, box_of(b.paths), touched, kept);
-      for (const Path& p : touched) reclipped_ += p.size();
-      if (reclipped_ > opt_.max_reclipped_vertices) {
-        fail("the polarity changes re-clip more than " +
-             std::to_string(opt_.max_reclipped_vertices) +
-             " copper vertices (overlapping step-and-repeat copies with clear objects?): too "
-             "complex to read");
+      for (const Path& p : touched) drawn_.reclipped += p.size();
+      if (drawn_.reclipped > opt_.max_reclipped_vertices) {
+        diag_.fail("the polarity changes re-clip more than " +
+                   std::to_string(opt_.max_reclipped_vertices) +
+                   " copper vertices (overlapping step-and-repeat copies with clear objects?): too "
+                   "complex to read");
       }
       if (b.dark) {
         touched = union_objects(b.paths, b.starts, touched);
@@ -461,51 +369,51 @@ void GerberReader::extended_block(const std::string& body, int first_line) {
     cur += c;
   }
   if (!trim(cur).empty()) {
-    line_ = cur_line;
-    fail("'" + trim(cur).substr(0, 40) + "' in a '%' block does not end with '*'");
+    diag_.line = cur_line;
+    diag_.fail("'" + trim(cur).substr(0, 40) + "' in a '%' block does not end with '*'");
   }
   if (parts.empty()) return;
-  line_ = lines[0];
+  diag_.line = lines[0];
   if (starts_with(trim(parts[0]), "AM")) {
     aperture_macro(parts, lines);
     return;
   }
   for (size_t k = 0; k < parts.size(); ++k) {
-    line_ = lines[k];
+    diag_.line = lines[k];
     const std::string cmd = trim(without_line_breaks(parts[k]));
     if (!cmd.empty()) extended_command(cmd);
   }
 }
 
 void GerberReader::extended_command(const std::string& cmd) {
-  if (cmd.size() < 2) fail("unknown extended command '%" + cmd + "'");
+  if (cmd.size() < 2) diag_.fail("unknown extended command '%" + cmd + "'");
   const std::string code = cmd.substr(0, 2);
   const std::string arg = cmd.substr(2);
   if (code == "FS") {
     format_spec(arg);
   } else if (code == "MO") {
-    if (arg != "MM" && arg != "IN") fail("unit '" + arg + "' is neither MM nor IN");
-    set_units(arg == "MM" ? 1e6 : 25.4e6, arg == "MM" ? "MOMM" : "MOIN");
+    if (arg != "MM" && arg != "IN") diag_.fail("unit '" + arg + "' is neither MM nor IN");
+    unit_.set(diag_, arg == "MM" ? 1e6 : 25.4e6, arg == "MM" ? "MOMM" : "MOIN");
   } else if (code == "AD") {
     aperture_definition(arg);
   } else if (code == "LP") {
-    if (arg != "D" && arg != "C") fail("polarity '" + arg + "' is neither D nor C");
-    dark_ = arg == "D";
+    if (arg != "D" && arg != "C") diag_.fail("polarity '" + arg + "' is neither D nor C");
+    gs_.dark = arg == "D";
   } else if (code == "SR") {
     step_repeat(arg);
   } else if (code == "TF" || code == "TA" || code == "TO" || code == "TD") {
     attribute(cmd);
   } else if (code == "LM" || code == "LR" || code == "LS") {
     const bool identity = (code == "LM" && arg == "N") ||
-                          (code == "LR" && number(arg, "rotation") == 0) ||
-                          (code == "LS" && number(arg, "scale") == 1);
+                          (code == "LR" && diag_.number(arg, "rotation") == 0) ||
+                          (code == "LS" && diag_.number(arg, "scale") == 1);
     if (!identity) {
-      fail("aperture transformation %" + cmd + " is not supported (only LMN, LR0, LS1)");
+      diag_.fail("aperture transformation %" + cmd + " is not supported (only LMN, LR0, LS1)");
     }
   } else if (code == "AB") {
     aperture_block(arg);
   } else if (!deprecated_parameter(code, arg)) {
-    fail("unknown extended command '%" + cmd.substr(0, 20) + "'");
+    diag_.fail("unknown extended command '%" + cmd.substr(0, 20) + "'");
   }
 }
 
@@ -516,50 +424,53 @@ bool GerberReader::deprecated_parameter(const std::string& code, const std::stri
     image_polarity(arg);
   } else if (code == "IC") {
     // Input code: ASCII is what every reader reads (OrCAD, P-CAD, Mentor write %ICAS*%).
-    if (arg != "AS") fail("input code %IC" + arg + " is not supported (only ASCII, %ICAS)");
-    note("warning: %ICAS (deprecated input code: ASCII) ignored");
+    if (arg != "AS") diag_.fail("input code %IC" + arg + " is not supported (only ASCII, %ICAS)");
+    diag_.note("warning: %ICAS (deprecated input code: ASCII) ignored");
   } else if (code == "IN" || code == "LN") {
-    note("%" + code + " (deprecated name) ignored");
+    diag_.note("%" + code + " (deprecated name) ignored");
   } else if (code == "MI") {
     mirror_image(arg);
   } else if (code == "SF") {
     const std::pair<double, double> ab = axis_values(arg, "scale factor", 1);
     if (!(ab.first > 0 && ab.first <= 1000 && ab.second > 0 && ab.second <= 1000))
-      fail("scale factor %SF" + arg + " must be above 0 and at most 1000");
-    scale_a_ = ab.first;
-    scale_b_ = ab.second;
+      diag_.fail("scale factor %SF" + arg + " must be above 0 and at most 1000");
+    image_.scale_a = ab.first;
+    image_.scale_b = ab.second;
     image_transform("%SF" + arg, "scale factor", ab.first == 1 && ab.second == 1);
-    if (ab.first == 1 && ab.second == 1) note("%SF with scale 1 (deprecated) ignored");
+    if (ab.first == 1 && ab.second == 1) diag_.note("%SF with scale 1 (deprecated) ignored");
   } else if (code == "OF" || code == "IO") {
     image_offset(code, arg);
   } else if (code == "IR") {
-    const double deg = number(arg, "image rotation");
+    const double deg = diag_.number(arg, "image rotation");
     if (deg != 0 && deg != 90 && deg != 180 && deg != 270)
-      fail("image rotation %IR" + arg + " must be 0, 90, 180 or 270");
-    rotation_deg_ = static_cast<int>(deg);
-    image_transform("%IR" + arg, "image rotation", rotation_deg_ == 0);
-    if (rotation_deg_ == 0) note("%IR0 (deprecated) ignored");
+      diag_.fail("image rotation %IR" + arg + " must be 0, 90, 180 or 270");
+    image_.rotation_deg = static_cast<int>(deg);
+    image_transform("%IR" + arg, "image rotation", image_.rotation_deg == 0);
+    if (image_.rotation_deg == 0) diag_.note("%IR0 (deprecated) ignored");
   } else if (code == "AS") {
     // Axis select: AYBX sends the file's X to the output's B (y) axis: x and y swap.
-    if (arg != "AXBY" && arg != "AYBX") fail("axis select %AS" + arg + " is neither AXBY nor AYBX");
-    swap_ab_ = arg == "AYBX";
-    image_transform("%AS" + arg, "axis select", !swap_ab_);
-    if (!swap_ab_) note("%ASAXBY (deprecated) ignored");
+    if (arg != "AXBY" && arg != "AYBX")
+      diag_.fail("axis select %AS" + arg + " is neither AXBY nor AYBX");
+    image_.swap_ab = arg == "AYBX";
+    image_transform("%AS" + arg, "axis select", !image_.swap_ab);
+    if (!image_.swap_ab) diag_.note("%ASAXBY (deprecated) ignored");
   } else if (code == "KO") {
-    if (arg.empty() && !knockout_open_) note("warning: %KO (deprecated knockout, off) ignored");
+    if (arg.empty() && !knockout_.open)
+      diag_.note("warning: %KO (deprecated knockout, off) ignored");
     if (arg.empty()) close_knockout();
     if (!arg.empty()) knockout(arg);
   } else if (code == "IJ") {
     // Justify moves the image by its own extent against a film (platen) size the file does
     // not give: ignored, the coordinates are taken as written (the other layers' frame).
-    note("warning: %IJ" + arg.substr(0, 20) +
-         " (deprecated image justify) ignored: coordinates as written");
+    diag_.note("warning: %IJ" + arg.substr(0, 20) +
+               " (deprecated image justify) ignored: coordinates as written");
   } else if (code == "RO") {
-    const double deg = number(arg, "layer rotation");
-    if (!(std::fabs(deg) <= 360)) fail("layer rotation %RO" + arg + " must be -360 .. 360 degrees");
-    layer_rotation_deg_ = deg;
+    const double deg = diag_.number(arg, "layer rotation");
+    if (!(std::fabs(deg) <= 360))
+      diag_.fail("layer rotation %RO" + arg + " must be -360 .. 360 degrees");
+    image_.layer_rotation_deg = deg;
     image_transform("%RO" + arg, "layer rotation", deg == 0);
-    if (deg == 0) note("%RO0 (deprecated) ignored");
+    if (deg == 0) diag_.note("%RO0 (deprecated) ignored");
   } else {
     return false;
   }
@@ -573,14 +484,17 @@ void GerberReader::image_polarity(const std::string& arg) {
     // What is drawn is clear, the rest copper. The copper's extent is not defined: here the
     // image's bounding box with gerbv's border, as gerbv fills its picture; isolation then
     // keeps the tool inside each drawn (clear) shape, off the copper around it.
-    if (!negative_) negative_line_ = line_;
-    negative_ = true;
+    if (image_.negative)
+      diag_.note("warning: %IPNEG replaced by the later %IPNEG (only the last applies)");
+    image_.negative_line = diag_.line;
+    image_.negative = true;
     return;
   }
-  if (arg != "POS") fail("image polarity '" + arg + "' is neither POS nor NEG");
-  if (negative_) note("warning: %IPNEG replaced by the later %IPPOS (only the last applies)");
-  negative_ = false;
-  note("%IPPOS (deprecated image polarity) ignored");
+  if (arg != "POS") diag_.fail("image polarity '" + arg + "' is neither POS nor NEG");
+  if (image_.negative)
+    diag_.note("warning: %IPNEG replaced by the later %IPPOS (only the last applies)");
+  image_.negative = false;
+  diag_.note("%IPPOS (deprecated image polarity) ignored");
 }
 
 // %MIA<0|1>B<0|1>: mirror x (A) and y (B) about the origin.
@@ -590,11 +504,12 @@ void GerberReader::mirror_image(const std::string& arg) {
     const size_t at = a.find(axis);
     if (at == std::string::npos) continue;
     const std::string v = a.substr(at + 1, 1);
-    if (v != "0" && v != "1") fail("mirror image '%MI" + a + "': A and B take 0 or 1");
-    (axis == 'A' ? mirror_a_ : mirror_b_) = v == "1";
+    if (v != "0" && v != "1") diag_.fail("mirror image '%MI" + a + "': A and B take 0 or 1");
+    (axis == 'A' ? image_.mirror_a : image_.mirror_b) = v == "1";
   }
-  image_transform("%MI" + a, "mirror image", !mirror_a_ && !mirror_b_);
-  if (!mirror_a_ && !mirror_b_) note("%MI without mirroring (deprecated) ignored");
+  image_transform("%MI" + a, "mirror image", !image_.mirror_a && !image_.mirror_b);
+  if (!image_.mirror_a && !image_.mirror_b)
+    diag_.note("%MI without mirroring (deprecated) ignored");
 }
 
 // %OFA<a>B<b> (offset) and %IOA<a>B<b> (image offset): the image moved by a, b in the units
@@ -603,51 +518,67 @@ void GerberReader::image_offset(const std::string& code, const std::string& arg)
   const std::pair<double, double> ab =
       axis_values(arg, code == "OF" ? "offset" : "image offset", 0);
   const bool none = ab.first == 0 && ab.second == 0;
-  if (!none) need_units("%" + code);
+  if (!none) unit_.need(diag_, "%" + code);
   bool replaces = false;
-  for (const ImageTransform& t : transforms_)
+  for (const ImageParameters::Transform& t : image_.transforms)
     replaces = replaces || t.which.compare(1, 2, code) == 0;
   if (!none || replaces) {
-    offset_x_ = static_cast<cInt>(std::llround(ab.first * unit_nm_));
-    offset_y_ = static_cast<cInt>(std::llround(ab.second * unit_nm_));
+    image_.offset_x = static_cast<cInt>(std::llround(ab.first * unit_.nm));
+    image_.offset_y = static_cast<cInt>(std::llround(ab.second * unit_.nm));
   }
   image_transform("%" + code + arg, "image offset", none);
-  if (none) note("%" + code + " without offset (deprecated) ignored");
+  if (none) diag_.note("%" + code + " without offset (deprecated) ignored");
 }
 
 // A deprecated transform of the whole image (identity: it does nothing). Of one parameter
 // given twice the last applies (gerbv keeps the last value); the specification does not say in
 // which order different ones combine, so a file with two is refused rather than guessed.
 void GerberReader::image_transform(const std::string& which, const char* what, bool identity) {
-  for (size_t k = 0; k < transforms_.size(); ++k) {
-    if (transforms_[k].which.compare(0, 3, which, 0, 3) != 0) continue;
-    note("warning: " + transforms_[k].which + " replaced by the later " + which +
-         " (only the last applies)");
+  for (size_t k = 0; k < image_.transforms.size(); ++k) {
+    if (image_.transforms[k].which.compare(0, 3, which, 0, 3) != 0) continue;
+    diag_.note("warning: " + image_.transforms[k].which + " replaced by the later " + which +
+               " (only the last applies)");
     if (identity)
-      transforms_.erase(transforms_.begin() + static_cast<long>(k));
+      image_.transforms.erase(image_.transforms.begin() + static_cast<long>(k));
     else
-      transforms_[k] = {which, what, line_};
+      image_.transforms[k] = {which, what, diag_.line};
     return;
   }
   if (identity) return;
-  transforms_.push_back({which, what, line_});
-  if (transforms_.size() > 1) {
-    fail("the deprecated image transforms " + transforms_[0].which + " and " +
-         transforms_[1].which +
-         " together are not supported (the order they combine in is not defined)");
-  }
+  image_.transforms.push_back({which, what, diag_.line});
+}
+
+// Two different transforms still in force at the end (each parameter acts on the whole image,
+// so only the last value of each counts: a later identity undoes an earlier one) are refused
+// at the later one, unless nothing is drawn.
+void GerberReader::check_image_transforms(bool drawn) {
+  if (image_.transforms.size() < 2 || !drawn) return;
+  std::vector<ImageParameters::Transform> in_order = image_.transforms;
+  std::sort(in_order.begin(), in_order.end(),
+            [](const auto& a, const auto& b) { return a.line < b.line; });
+  std::string names;
+  for (size_t k = 0; k < in_order.size(); ++k)
+    names += (k == 0 ? "" : k + 1 == in_order.size() ? " and " : ", ") + in_order[k].which;
+  diag_.line = in_order.back().line;
+  diag_.fail("the deprecated image transforms " + names +
+             " together are not supported (the order they combine in is not defined)");
 }
 
 // "A<a>B<b>" (either may be left out: `missing`), decimal numbers.
 std::pair<double, double> GerberReader::axis_values(const std::string& arg, const char* what,
                                                     double missing) const {
   double a = missing, b = missing;
+  // Anything else (%IOX1Y2, a letter twice) is a parameter the file does not say: refused, not
+  // read as no offset.
+  if ((!arg.empty() && arg[0] != 'A' && arg[0] != 'B') ||
+      std::count(arg.begin(), arg.end(), 'A') > 1 || std::count(arg.begin(), arg.end(), 'B') > 1)
+    diag_.fail(std::string("bad ") + what + " '" + arg.substr(0, 20) + "': expected A<a>B<b>");
   for (const char axis : {'A', 'B'}) {
     const size_t at = arg.find(axis);
     if (at == std::string::npos) continue;
     size_t end = at + 1;
     while (end < arg.size() && arg[end] != 'A' && arg[end] != 'B') ++end;
-    (axis == 'A' ? a : b) = number(arg.substr(at + 1, end - at - 1), what);
+    (axis == 'A' ? a : b) = diag_.number(arg.substr(at + 1, end - at - 1), what);
   }
   return {a, b};
 }
@@ -658,39 +589,48 @@ std::pair<double, double> GerberReader::axis_values(const std::string& arg, cons
 void GerberReader::knockout(const std::string& arg) {
   const char polarity = arg[0];
   if (polarity != 'C' && polarity != 'D')
-    fail("%KO" + arg.substr(0, 20) + " (deprecated knockout): the polarity is neither C nor D");
+    diag_.fail("%KO" + arg.substr(0, 20) +
+               " (deprecated knockout): the polarity is neither C nor D");
   close_knockout();  // a knockout ends where the next begins
   const size_t letters_given =
       (arg.find('X') != std::string::npos) + (arg.find('Y') != std::string::npos) +
       (arg.find('I') != std::string::npos) + (arg.find('J') != std::string::npos);
+  if (arg.size() == 1) {
+    // Neither a box nor a border: the specification gives it no area, gerbv draws nothing.
+    diag_.note("warning: %KO" + arg +
+               " without a box or a border (deprecated knockout) ignored, as gerbv reads it");
+    return;
+  }
   if (letters_given == 0) {
     open_knockout(arg);
     return;
   }
   if (letters_given != 4)
-    fail("%KO" + arg.substr(0, 20) +
-         " (deprecated knockout): a box needs all of X, Y, I and J, a border alone K");
+    diag_.fail("%KO" + arg.substr(0, 20) +
+               " (deprecated knockout): a box needs all of X, Y, I and J, a border alone K");
   double v[4] = {0, 0, 0, 0};
   const char* letters = "XYIJ";
   for (int k = 0; k < 4; ++k) {
     const size_t at = arg.find(letters[k]);
     size_t end = at + 1;
     while (end < arg.size() && std::string("XYIJ").find(arg[end]) == std::string::npos) ++end;
-    v[k] = number(arg.substr(at + 1, end - at - 1), "knockout box");
+    v[k] = diag_.number(arg.substr(at + 1, end - at - 1), "knockout box");
   }
-  need_units("%KO");
-  if (!(v[2] > 0 && v[3] > 0)) fail("%KO" + arg.substr(0, 20) + ": the box needs a size above 0");
+  unit_.need(diag_, "%KO");
+  if (!(v[2] > 0 && v[3] > 0))
+    diag_.fail("%KO" + arg.substr(0, 20) + ": the box needs a size above 0");
   for (double x : v)
-    if (!(std::fabs(x * unit_nm_) <= kMaxApertureNm * 10)) fail("%KO box beyond 10 m");
-  const bool dark = dark_;
-  dark_ = polarity == 'D';
-  add_object({rect_path({(v[0] + v[2] / 2) * unit_nm_, (v[1] + v[3] / 2) * unit_nm_},
-                        v[2] * unit_nm_, v[3] * unit_nm_)});
-  dark_ = dark;
-  note(polarity == 'C' ? "warning: %KOC box (deprecated knockout) applied: cleared where it "
-                         "stands in the drawing order"
-                       : "warning: %KOD box (deprecated knockout, dark) applied: copper where "
-                         "it stands in the drawing order");
+    if (!(std::fabs(x * unit_.nm) <= kMaxApertureNm * 10)) diag_.fail("%KO box beyond 10 m");
+  const bool dark = gs_.dark;
+  gs_.dark = polarity == 'D';
+  add_object({rect_path({(v[0] + v[2] / 2) * unit_.nm, (v[1] + v[3] / 2) * unit_.nm},
+                        v[2] * unit_.nm, v[3] * unit_.nm)});
+  gs_.dark = dark;
+  diag_.note(polarity == 'C'
+                 ? "warning: %KOC box (deprecated knockout) applied: cleared where it "
+                   "stands in the drawing order"
+                 : "warning: %KOD box (deprecated knockout, dark) applied: copper where "
+                   "it stands in the drawing order");
 }
 
 // %KOC[K<border>] or %KOD[K<border>] without a box: the objects that follow, up to the next
@@ -700,60 +640,62 @@ void GerberReader::open_knockout(const std::string& arg) {
   double border = 0;
   const size_t k = arg.find('K');
   if (k != std::string::npos)
-    border = number(arg.substr(k + 1), "knockout border");
+    border = diag_.number(arg.substr(k + 1), "knockout border");
   else if (arg.size() > 1)
-    fail("%KO" + arg.substr(0, 20) + " (deprecated knockout): bad parameters");
-  need_units("%KO");
-  if (!(border >= 0 && border * unit_nm_ <= kMaxApertureNm))
-    fail("%KO" + arg.substr(0, 20) + ": the border must be 0 .. 1 m");
-  if (in_sr_ || !blocks_.empty())
-    fail("a knockout around objects (%KO" + arg.substr(0, 20) +
-         ") inside a step-and-repeat or a block aperture is not supported");
-  knockout_open_ = true;
-  knockout_dark_ = arg[0] == 'D';
-  knockout_border_nm_ = border * unit_nm_;
-  knockout_line_ = line_;
-  knockout_start_ = batches_.size();
-  batches_.push_back({dark_, {}, {}});  // the objects it surrounds start a batch of their own
+    diag_.fail("%KO" + arg.substr(0, 20) + " (deprecated knockout): bad parameters");
+  unit_.need(diag_, "%KO");
+  if (!(border >= 0 && border * unit_.nm <= kMaxApertureNm))
+    diag_.fail("%KO" + arg.substr(0, 20) + ": the border must be 0 .. 1 m");
+  if (sr_.active || !blocks_.empty())
+    diag_.fail("a knockout around objects (%KO" + arg.substr(0, 20) +
+               ") inside a step-and-repeat or a block aperture is not supported");
+  knockout_.open = true;
+  knockout_.dark = arg[0] == 'D';
+  knockout_.border_nm = border * unit_.nm;
+  knockout_.line = diag_.line;
+  knockout_.start = drawn_.batches.size();
+  drawn_.batches.push_back(
+      {gs_.dark, {}, {}});  // the objects it surrounds start a batch of their own
 }
 
 // Ends an open knockout: its box goes in before the objects it surrounds.
 void GerberReader::close_knockout() {
-  if (!knockout_open_) return;
-  knockout_open_ = false;
-  if (in_sr_ || !blocks_.empty())
-    fail(
+  if (!knockout_.open) return;
+  knockout_.open = false;
+  if (sr_.active || !blocks_.empty())
+    diag_.fail(
         "a knockout around objects that ends inside a step-and-repeat or a block aperture is "
         "not supported");
   bool any = false;
   cInt x0 = 0, x1 = 0, y0 = 0, y1 = 0;
-  for (size_t b = knockout_start_; b < batches_.size(); ++b)
-    for (const Path& p : batches_[b].paths)
+  for (size_t b = knockout_.start; b < drawn_.batches.size(); ++b)
+    for (const Path& p : drawn_.batches[b].paths)
       for (const IntPoint& v : p) {
         x0 = any ? std::min(x0, v.X) : v.X, x1 = any ? std::max(x1, v.X) : v.X;
         y0 = any ? std::min(y0, v.Y) : v.Y, y1 = any ? std::max(y1, v.Y) : v.Y;
         any = true;
       }
   if (!any) return;
-  const cInt m = static_cast<cInt>(std::llround(knockout_border_nm_));
+  const cInt m = static_cast<cInt>(std::llround(knockout_.border_nm));
   Batch box;
-  box.dark = knockout_dark_;
+  box.dark = knockout_.dark;
   box.paths = {{{x0 - m, y0 - m}, {x1 + m, y0 - m}, {x1 + m, y1 + m}, {x0 - m, y1 + m}}};
   box.starts = {0};
   count_vertices(4);
-  batches_.insert(batches_.begin() + static_cast<long>(knockout_start_), std::move(box));
-  notes_.push_back({std::string("warning: %KO") + (knockout_dark_ ? "D" : "C") +
-                        " around the objects that follow (deprecated knockout) applied: their "
-                        "box grown by the border " +
-                        (knockout_dark_ ? "filled" : "cleared") + " before them",
-                    knockout_line_, 1});
+  drawn_.batches.insert(drawn_.batches.begin() + static_cast<long>(knockout_.start),
+                        std::move(box));
+  diag_.note_at(std::string("warning: %KO") + (knockout_.dark ? "D" : "C") +
+                    " around the objects that follow (deprecated knockout) applied: their box "
+                    "grown by the border " +
+                    (knockout_.dark ? "filled" : "cleared") + " before them",
+                knockout_.line);
 }
 
 // Scale, mirror, rotate about the origin; exact for the quarter turns and mirrors.
 void GerberReader::transform_image(Paths& paths) const {
-  if (layer_rotation_deg_ != 0) {
+  if (image_.layer_rotation_deg != 0) {
     // %RO, alone (image_transform() refuses it with another): any angle, rounded to 1 nm.
-    const double a = layer_rotation_deg_ * M_PI / 180, c = std::cos(a), s = std::sin(a);
+    const double a = image_.layer_rotation_deg * M_PI / 180, c = std::cos(a), s = std::sin(a);
     for (Path& p : paths)
       for (IntPoint& v : p) {
         const double x = static_cast<double>(v.X), y = static_cast<double>(v.Y);
@@ -762,7 +704,7 @@ void GerberReader::transform_image(Paths& paths) const {
       }
     return;
   }
-  if (swap_ab_) {
+  if (image_.swap_ab) {
     // Alone (image_transform() refuses it with another); a mirror: the orientation flips.
     for (Path& p : paths) {
       for (IntPoint& v : p) v = IntPoint(v.Y, v.X);
@@ -770,14 +712,16 @@ void GerberReader::transform_image(Paths& paths) const {
     }
     return;
   }
-  if (rotation_deg_ == 0 && !mirror_a_ && !mirror_b_ && scale_a_ == 1 && scale_b_ == 1) return;
+  if (image_.rotation_deg == 0 && !image_.mirror_a && !image_.mirror_b && image_.scale_a == 1 &&
+      image_.scale_b == 1)
+    return;
   for (Path& p : paths) {
     for (IntPoint& v : p) {
-      cInt x = scale_a_ == 1 ? v.X : static_cast<cInt>(std::llround(v.X * scale_a_));
-      cInt y = scale_b_ == 1 ? v.Y : static_cast<cInt>(std::llround(v.Y * scale_b_));
-      if (mirror_a_) x = -x;
-      if (mirror_b_) y = -y;
-      switch (rotation_deg_) {
+      cInt x = image_.scale_a == 1 ? v.X : static_cast<cInt>(std::llround(v.X * image_.scale_a));
+      cInt y = image_.scale_b == 1 ? v.Y : static_cast<cInt>(std::llround(v.Y * image_.scale_b));
+      if (image_.mirror_a) x = -x;
+      if (image_.mirror_b) y = -y;
+      switch (image_.rotation_deg) {
         case 90:
           v = IntPoint(-y, x);
           break;
@@ -791,68 +735,56 @@ void GerberReader::transform_image(Paths& paths) const {
           v = IntPoint(x, y);
       }
     }
-    if (mirror_a_ != mirror_b_) ClipperLib::ReversePath(p);  // a mirror flips orientation
+    if (image_.mirror_a != image_.mirror_b)
+      ClipperLib::ReversePath(p);  // a mirror flips orientation
   }
-}
-
-// No %MO (nor G70/G71) before the first size: the format's legacy default, inch, as gerbv
-// and pcb2gcode read it.
-void GerberReader::need_units(const std::string& what) {
-  if (unit_nm_ != 0) return;
-  set_units(25.4e6, "the default");
-  note("warning: no units (%MO) before " + what + ": inch assumed (the format's old default)");
 }
 
 // %ABDnn*% opens a block aperture, %AB*% closes the innermost one: the objects drawn between
 // become aperture Dnn, flashed like any aperture (at the flash point, their polarities kept,
 // or all inverted when flashed with clear polarity).
 void GerberReader::aperture_block(const std::string& arg) {
-  if (in_sr_) fail("a block aperture (%AB) inside a step-and-repeat is not supported");
+  if (sr_.active) diag_.fail("a block aperture (%AB) inside a step-and-repeat is not supported");
   if (!arg.empty()) {
     if (arg[0] != 'D' || arg.size() < 3 ||
         arg.find_first_not_of("0123456789", 1) != std::string::npos)
-      fail("block aperture '%AB" + arg + "' needs an aperture number Dnn (10 or more)");
+      diag_.fail("block aperture '%AB" + arg + "' needs an aperture number Dnn (10 or more)");
     const int n = std::stoi(arg.substr(1, 7));
-    if (n < 10) fail("block aperture '%AB" + arg + "' needs an aperture number of 10 or more");
-    if (blocks_.size() >= 16) fail("block apertures nested more than 16 deep");
-    blocks_.push_back({n, batches_.size(), dark_});
-    batches_.push_back({dark_, {}, {}});  // its objects start a batch of their own
+    if (n < 10)
+      diag_.fail("block aperture '%AB" + arg + "' needs an aperture number of 10 or more");
+    if (blocks_.size() >= 16) diag_.fail("block apertures nested more than 16 deep");
+    blocks_.push_back({n, drawn_.batches.size(), gs_.dark});
+    drawn_.batches.push_back({gs_.dark, {}, {}});  // its objects start a batch of their own
     return;
   }
-  if (blocks_.empty()) fail("%AB closes a block aperture that was never opened");
+  if (blocks_.empty()) diag_.fail("%AB closes a block aperture that was never opened");
   const OpenBlock b = blocks_.back();
   blocks_.pop_back();
   Aperture ap;
   ap.type = 'B';
-  ap.block.assign(std::make_move_iterator(batches_.begin() + static_cast<long>(b.batch_start)),
-                  std::make_move_iterator(batches_.end()));
-  batches_.resize(b.batch_start);
-  dark_ = b.dark;
-  if (apertures_.count(b.number_d)) note("aperture D" + std::to_string(b.number_d) + " redefined");
-  apertures_[b.number_d] = std::move(ap);
-}
-
-void GerberReader::set_units(double unit_nm, const char* how) {
-  if (unit_nm_ != 0 && unit_nm_ != unit_nm) {
-    note(std::string("units changed by ") + how + " after coordinates were read");
-  }
-  unit_nm_ = unit_nm;
-  units_ = unit_nm == 1e6 ? "mm" : "inch";
+  ap.block.assign(
+      std::make_move_iterator(drawn_.batches.begin() + static_cast<long>(b.batch_start)),
+      std::make_move_iterator(drawn_.batches.end()));
+  drawn_.batches.resize(b.batch_start);
+  gs_.dark = b.dark;
+  if (apertures_.defined.count(b.number_d))
+    diag_.note("aperture D" + std::to_string(b.number_d) + " redefined");
+  apertures_.defined[b.number_d] = std::move(ap);
 }
 
 void GerberReader::format_spec(const std::string& s) {
   // [L|T|D][A|I][Nn][Gn]XabYab[Dn][Mn]
   size_t k = 0;
-  omit_trailing_ = false;
-  incremental_ = false;
+  fmt_.omit_trailing = false;
+  fmt_.incremental = false;
   if (k < s.size() && (s[k] == 'L' || s[k] == 'T' || s[k] == 'D')) {
-    omit_trailing_ = s[k] == 'T';
-    if (omit_trailing_) note("trailing-zero omission in %FS (deprecated)");
+    fmt_.omit_trailing = s[k] == 'T';
+    if (fmt_.omit_trailing) diag_.note("trailing-zero omission in %FS (deprecated)");
     ++k;
   }
   if (k < s.size() && (s[k] == 'A' || s[k] == 'I')) {
-    incremental_ = s[k] == 'I';
-    if (incremental_) note("incremental coordinates in %FS (deprecated)");
+    fmt_.incremental = s[k] == 'I';
+    if (fmt_.incremental) diag_.note("incremental coordinates in %FS (deprecated)");
     ++k;
   }
   while (k < s.size() && (s[k] == 'N' || s[k] == 'G')) {  // sequence and G-code digits (old)
@@ -862,16 +794,16 @@ void GerberReader::format_spec(const std::string& s) {
     if (k + 2 >= s.size() + 0 || s[k] != axis ||
         !std::isdigit(static_cast<unsigned char>(s[k + 1])) ||
         !std::isdigit(static_cast<unsigned char>(s[k + 2]))) {
-      fail("format '%FS" + s + "' needs " + axis + " with two digits (like X46)");
+      diag_.fail("format '%FS" + s + "' needs " + axis + " with two digits (like X46)");
     }
     integer = s[k + 1] - '0';
     decimals = s[k + 2] - '0';
-    if (decimals > 7 || integer + decimals > 14) fail("format '%FS" + s + "' out of range");
+    if (decimals > 7 || integer + decimals > 14) diag_.fail("format '%FS" + s + "' out of range");
     k += 3;
   };
-  digits('X', x_int_, x_dec_);
-  digits('Y', y_int_, y_dec_);
-  have_format_ = true;
+  digits('X', fmt_.x_int, fmt_.x_dec);
+  digits('Y', fmt_.y_int, fmt_.y_dec);
+  fmt_.given = true;
 }
 
 // A definition whose parameters cannot be read (old writers' "R,0.03260.326") is refused
@@ -879,21 +811,21 @@ void GerberReader::format_spec(const std::string& s) {
 // uses it reads, with a warning.
 void GerberReader::aperture_definition(const std::string& s) {
   // D<n><template>[,<p1>X<p2>...]
-  if (s.empty() || s[0] != 'D') fail("aperture definition '%AD" + s + "' without D number");
+  if (s.empty() || s[0] != 'D') diag_.fail("aperture definition '%AD" + s + "' without D number");
   size_t k = 1;
   while (k < s.size() && std::isdigit(static_cast<unsigned char>(s[k]))) ++k;
-  if (k == 1 || k > 8) fail("aperture definition '%AD" + s + "' has a bad D number");
+  if (k == 1 || k > 8) diag_.fail("aperture definition '%AD" + s + "' has a bad D number");
   const int number_d = std::stoi(s.substr(1, k - 1));
-  bad_apertures_.erase(number_d);
+  apertures_.refused.erase(number_d);
   try {
     define_aperture(s, k, number_d);
   } catch (const PcbReadError& e) {
     if (s.find(',', k) == std::string::npos) throw;  // no parameters: nothing to defer
-    apertures_.erase(number_d);
+    apertures_.defined.erase(number_d);
     std::string why = e.what();  // "PATH:LINE: what": kept as "line LINE: what"
-    if (why.compare(0, path_.size() + 1, path_ + ":") == 0)
-      why = "line " + why.substr(path_.size() + 1);
-    bad_apertures_[number_d] = why;
+    if (why.compare(0, diag_.path.size() + 1, diag_.path + ":") == 0)
+      why = "line " + why.substr(diag_.path.size() + 1);
+    apertures_.refused[number_d] = why;
   }
 }
 
@@ -904,11 +836,11 @@ void GerberReader::define_aperture(const std::string& s, size_t k, int number_d)
   std::vector<double> params;
   if (comma != std::string::npos) {
     for (const std::string& p : split(s.substr(comma + 1), 'X')) {
-      params.push_back(number(trim(p), "aperture parameter"));
+      params.push_back(diag_.number(trim(p), "aperture parameter"));
     }
   }
-  if (name.empty()) fail("aperture D" + std::to_string(number_d) + " has no template name");
-  need_units("aperture D" + std::to_string(number_d));
+  if (name.empty()) diag_.fail("aperture D" + std::to_string(number_d) + " has no template name");
+  unit_.need(diag_, "aperture D" + std::to_string(number_d));
   Aperture ap;
   if (name == "C" || name == "R" || name == "O" || name == "P") {
     check_standard_sizes(name, params, number_d);
@@ -918,8 +850,9 @@ void GerberReader::define_aperture(const std::string& s, size_t k, int number_d)
   } else {
     ap = macro_aperture(name, params, number_d);
   }
-  if (apertures_.count(number_d)) note("aperture D" + std::to_string(number_d) + " redefined");
-  apertures_[number_d] = std::move(ap);
+  if (apertures_.defined.count(number_d))
+    diag_.note("aperture D" + std::to_string(number_d) + " redefined");
+  apertures_.defined[number_d] = std::move(ap);
 }
 
 // Only lengths are sizes: a polygon's vertex count and rotation are not (nor a macro's
@@ -929,28 +862,29 @@ void GerberReader::check_standard_sizes(const std::string& name, const std::vect
                                         int number_d) const {
   for (size_t i = 0; i < params.size(); ++i) {
     const bool length = name != "P" || i == 0 || i >= 3;
-    if (length && !(std::fabs(params[i] * unit_nm_) <= kMaxApertureNm)) {
-      fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
+    if (length && !(std::fabs(params[i] * unit_.nm) <= kMaxApertureNm)) {
+      diag_.fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
     }
-    if (!std::isfinite(params[i])) fail("aperture D" + std::to_string(number_d) + ": bad number");
+    if (!std::isfinite(params[i]))
+      diag_.fail("aperture D" + std::to_string(number_d) + ": bad number");
   }
 }
 
 // C, R, O or P; *hole_at: where its hole's parameters start.
 Aperture GerberReader::standard_aperture(const std::string& name, const std::vector<double>& params,
                                          int number_d, size_t* hole_at_out) {
-  const double u = unit_nm_, tol = opt_.arc_tolerance_nm;
+  const double u = unit_.nm, tol = opt_.arc_tolerance_nm;
   Aperture ap;
   auto need = [&](size_t lo, size_t hi) {
     if (params.size() < lo || params.size() > hi) {
-      fail("aperture D" + std::to_string(number_d) + " " + name + " takes " + std::to_string(lo) +
-           (lo == hi ? "" : " to " + std::to_string(hi)) + " parameters, got " +
-           std::to_string(params.size()));
+      diag_.fail("aperture D" + std::to_string(number_d) + " " + name + " takes " +
+                 std::to_string(lo) + (lo == hi ? "" : " to " + std::to_string(hi)) +
+                 " parameters, got " + std::to_string(params.size()));
     }
     for (size_t i = 0; i < params.size(); ++i) {
       // A polygon's rotation (its third parameter) may be negative: clockwise.
       if (params[i] < 0 && !(name == "P" && i == 2))
-        fail("aperture D" + std::to_string(number_d) + " has a negative size");
+        diag_.fail("aperture D" + std::to_string(number_d) + " has a negative size");
     }
   };
   size_t hole_at = 0;
@@ -966,12 +900,12 @@ Aperture GerberReader::standard_aperture(const std::string& name, const std::vec
     // so the isolation keeps off whatever the writer meant.
     ap.type = name[0];
     const double w = params[0] * u;
-    if (w < 0) fail("aperture D" + std::to_string(number_d) + " has a negative size");
+    if (w < 0) diag_.fail("aperture D" + std::to_string(number_d) + " has a negative size");
     if (w > 0)
       ap.shape.push_back(name == "R" ? rect_path({0, 0}, w, w) : circle_path({0, 0}, w, tol));
-    note("warning: aperture D" + std::to_string(number_d) + " " + name +
-         " has one size, not X and Y: read as " + (name == "R" ? "a square" : "a circle") +
-         " of that size (gerbv draws nothing)");
+    diag_.note("warning: aperture D" + std::to_string(number_d) + " " + name +
+               " has one size, not X and Y: read as " + (name == "R" ? "a square" : "a circle") +
+               " of that size (gerbv draws nothing)");
     hole_at = 1;
   } else if (name == "R" || name == "O") {
     need(2, 4);
@@ -986,7 +920,7 @@ Aperture GerberReader::standard_aperture(const std::string& name, const std::vec
     ap.type = 'P';
     const double vertices = params[1];
     if (!(vertices >= 3 && vertices <= 12) || vertices != std::floor(vertices)) {
-      fail("polygon aperture D" + std::to_string(number_d) + " needs 3 to 12 vertices");
+      diag_.fail("polygon aperture D" + std::to_string(number_d) + " needs 3 to 12 vertices");
     }
     const double rot = params.size() > 2 ? params[2] : 0;
     if (params[0] > 0) {
@@ -1001,13 +935,13 @@ Aperture GerberReader::standard_aperture(const std::string& name, const std::vec
 
 // A standard aperture's hole: a circle (one parameter) or a rectangle (two, deprecated).
 void GerberReader::punch_hole(Aperture* ap, const std::vector<double>& params, size_t hole_at) {
-  const double u = unit_nm_, tol = opt_.arc_tolerance_nm;
+  const double u = unit_.nm, tol = opt_.arc_tolerance_nm;
   Path hole;
   if (params.size() == hole_at + 1) {
     hole = circle_path({0, 0}, params[hole_at] * u, tol);
   } else {
     hole = rect_path({0, 0}, params[hole_at] * u, params[hole_at + 1] * u);
-    note("rectangular aperture hole (deprecated)");
+    diag_.note("rectangular aperture hole (deprecated)");
   }
   if (params[hole_at] > 0) {
     ap->shape = difference_of(ap->shape, {hole});
@@ -1018,24 +952,24 @@ void GerberReader::punch_hole(Aperture* ap, const std::vector<double>& params, s
 // An aperture from a macro defined before it, its shape checked once evaluated.
 Aperture GerberReader::macro_aperture(const std::string& name, const std::vector<double>& params,
                                       int number_d) {
-  const double u = unit_nm_, tol = opt_.arc_tolerance_nm;
+  const double u = unit_.nm, tol = opt_.arc_tolerance_nm;
   Aperture ap;
-  auto m = macros_.find(name);
-  if (m == macros_.end()) {
-    fail("aperture D" + std::to_string(number_d) + " uses '" + name +
-         "', which is neither C, R, O, P nor a macro defined before it");
+  auto m = apertures_.macros.find(name);
+  if (m == apertures_.macros.end()) {
+    diag_.fail("aperture D" + std::to_string(number_d) + " uses '" + name +
+               "', which is neither C, R, O, P nor a macro defined before it");
   }
   ap.type = 'M';
   try {
     ap.shape = evaluate_macro(m->second, params, u, tol);
   } catch (const MacroError& e) {
-    fail(std::string(e.what()) + " (macro statement at line " + std::to_string(e.line) + ")");
+    diag_.fail(std::string(e.what()) + " (macro statement at line " + std::to_string(e.line) + ")");
   }
   for (const Path& p : ap.shape) {
     for (const IntPoint& v : p) {
       if (std::fabs(static_cast<double>(v.X)) > kMaxApertureNm ||
           std::fabs(static_cast<double>(v.Y)) > kMaxApertureNm)
-        fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
+        diag_.fail("aperture D" + std::to_string(number_d) + " is larger than 1 m");
     }
   }
   return ap;
@@ -1046,7 +980,7 @@ void GerberReader::aperture_macro(const std::vector<std::string>& parts,
   ApertureMacro m;
   m.name = trim(without_line_breaks(parts[0])).substr(2);
   m.line = lines[0];
-  if (m.name.empty()) fail("aperture macro without a name");
+  if (m.name.empty()) diag_.fail("aperture macro without a name");
   for (size_t k = 1; k < parts.size(); ++k) {
     const std::string st = strip_all_space(parts[k]);
     if (st.empty()) continue;
@@ -1058,20 +992,21 @@ void GerberReader::aperture_macro(const std::vector<std::string>& parts,
     if (raw.size() > 1 && raw[0] == '0' && is_space(raw[1])) continue;
     m.statements.push_back({lines[k], st});
   }
-  macros_[m.name] = std::move(m);
+  apertures_.macros[m.name] = std::move(m);
 }
 
 void GerberReader::step_repeat(const std::string& s) {
-  if (in_sr_) close_step_repeat();
+  if (sr_.active) close_step_repeat();
   if (s.empty()) return;
-  if (!blocks_.empty()) fail("a step-and-repeat inside a block aperture (%AB) is not supported");
+  if (!blocks_.empty())
+    diag_.fail("a step-and-repeat inside a block aperture (%AB) is not supported");
   double x = 1, y = 1, i = 0, j = 0;
   size_t k = 0;
   while (k < s.size()) {
     const char axis = s[k];
     size_t end = k + 1;
     while (end < s.size() && !std::isalpha(static_cast<unsigned char>(s[end]))) ++end;
-    const double v = number(s.substr(k + 1, end - k - 1), "step-and-repeat value");
+    const double v = diag_.number(s.substr(k + 1, end - k - 1), "step-and-repeat value");
     if (axis == 'X') {
       x = v;
     } else if (axis == 'Y') {
@@ -1081,90 +1016,93 @@ void GerberReader::step_repeat(const std::string& s) {
     } else if (axis == 'J') {
       j = v;
     } else {
-      fail("step-and-repeat '%SR" + s + "': unexpected '" + std::string(1, axis) + "'");
+      diag_.fail("step-and-repeat '%SR" + s + "': unexpected '" + std::string(1, axis) + "'");
     }
     k = end;
   }
   if (!(x >= 1 && y >= 1) || x != std::floor(x) || y != std::floor(y)) {
-    fail("step-and-repeat '%SR" + s + "' needs whole repeat counts of at least 1");
+    diag_.fail("step-and-repeat '%SR" + s + "' needs whole repeat counts of at least 1");
   }
   if (x * y > kMaxStepRepeatCopies) {
-    fail("step-and-repeat '%SR" + s + "' makes more than " + std::to_string(kMaxStepRepeatCopies) +
-         " copies");
+    diag_.fail("step-and-repeat '%SR" + s + "' makes more than " +
+               std::to_string(kMaxStepRepeatCopies) + " copies");
   }
   if (x == 1 && y == 1) return;
-  need_units("step-and-repeat");
-  if (!(std::fabs(i * unit_nm_ * x) <= kMaxCoordNm && std::fabs(j * unit_nm_ * y) <= kMaxCoordNm)) {
-    fail("step-and-repeat '%SR" + s + "' reaches beyond 10 m");
+  unit_.need(diag_, "step-and-repeat");
+  if (!(std::fabs(i * unit_.nm * x) <= kMaxCoordNm && std::fabs(j * unit_.nm * y) <= kMaxCoordNm)) {
+    diag_.fail("step-and-repeat '%SR" + s + "' reaches beyond 10 m");
   }
-  in_sr_ = true;
-  sr_x_ = static_cast<long>(x);
-  sr_y_ = static_cast<long>(y);
-  sr_x_saved_ = sr_x_;
-  sr_y_saved_ = sr_y_;
-  sr_i_ = static_cast<cInt>(std::llround(i * unit_nm_));
-  sr_j_ = static_cast<cInt>(std::llround(j * unit_nm_));
-  batches_.push_back({dark_, {}, {}});
-  sr_batch_start_ = batches_.size() - 1;
-  sr_stroke_start_ = strokes_.size();
-  stroke_open_ = false;
+  sr_.active = true;
+  sr_.x = static_cast<long>(x);
+  sr_.y = static_cast<long>(y);
+  sr_.x_saved = sr_.x;
+  sr_.y_saved = sr_.y;
+  sr_.i = static_cast<cInt>(std::llround(i * unit_.nm));
+  sr_.j = static_cast<cInt>(std::llround(j * unit_.nm));
+  drawn_.batches.push_back({gs_.dark, {}, {}});
+  sr_.batch_start = drawn_.batches.size() - 1;
+  sr_.stroke_start = drawn_.strokes.size();
+  drawn_.stroke_open = false;
 }
 
 void GerberReader::close_step_repeat() {
-  in_sr_ = false;
-  std::vector<Batch> block(batches_.begin() + static_cast<long>(sr_batch_start_), batches_.end());
-  batches_.resize(sr_batch_start_);
-  std::vector<Path> block_strokes(strokes_.begin() + static_cast<long>(sr_stroke_start_),
-                                  strokes_.end());
-  strokes_.resize(sr_stroke_start_);
-  std::vector<double> block_widths(stroke_widths_nm_.begin() + static_cast<long>(sr_stroke_start_),
-                                   stroke_widths_nm_.end());
-  stroke_widths_nm_.resize(sr_stroke_start_);
+  sr_.active = false;
+  std::vector<Batch> block(drawn_.batches.begin() + static_cast<long>(sr_.batch_start),
+                           drawn_.batches.end());
+  drawn_.batches.resize(sr_.batch_start);
+  std::vector<Path> block_strokes(drawn_.strokes.begin() + static_cast<long>(sr_.stroke_start),
+                                  drawn_.strokes.end());
+  drawn_.strokes.resize(sr_.stroke_start);
+  std::vector<double> block_widths(
+      drawn_.stroke_widths_nm.begin() + static_cast<long>(sr_.stroke_start),
+      drawn_.stroke_widths_nm.end());
+  drawn_.stroke_widths_nm.resize(sr_.stroke_start);
   if (copies_stand_alone(block)) {
     // Each copy's clear objects can only clear its own dark ones: evaluate the block once
     // and add the copies as dark objects (the polarity changes are not repeated per copy).
     Batch copies{true, {}, {}};
     const Paths shape = evaluate(block);
-    for (long iy = 0; iy < sr_y_; ++iy) {
-      for (long ix = 0; ix < sr_x_; ++ix) {
+    for (long iy = 0; iy < sr_.y; ++iy) {
+      for (long ix = 0; ix < sr_.x; ++ix) {
         if (ix != 0 || iy != 0) {
           for (const Path& p : shape) count_vertices(p.size());
         }
         Paths copy = shape;
-        translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
+        translate_paths(copy, sr_.i * ix, sr_.j * iy);
         copies.starts.push_back(copies.paths.size());
         copies.paths.insert(copies.paths.end(), copy.begin(), copy.end());
       }
     }
     block.clear();
     if (!copies.paths.empty()) block.push_back(std::move(copies));
-    sr_x_ = sr_y_ = 1;  // the loop below now adds the one batch and the strokes' copies
-    for (long iy = 0; iy < sr_y_saved_; ++iy) {
-      for (long ix = 0; ix < sr_x_saved_; ++ix) {
+    sr_.x = sr_.y = 1;  // the loop below now adds the one batch and the strokes' copies
+    for (long iy = 0; iy < sr_.y_saved; ++iy) {
+      for (long ix = 0; ix < sr_.x_saved; ++ix) {
         if (ix != 0 || iy != 0) {
           for (const Path& p : block_strokes) count_vertices(p.size());
         }
         Paths copy(block_strokes.begin(), block_strokes.end());
-        translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
-        strokes_.insert(strokes_.end(), copy.begin(), copy.end());
-        stroke_widths_nm_.insert(stroke_widths_nm_.end(), block_widths.begin(), block_widths.end());
+        translate_paths(copy, sr_.i * ix, sr_.j * iy);
+        drawn_.strokes.insert(drawn_.strokes.end(), copy.begin(), copy.end());
+        drawn_.stroke_widths_nm.insert(drawn_.stroke_widths_nm.end(), block_widths.begin(),
+                                       block_widths.end());
       }
     }
     block_strokes.clear();
     block_widths.clear();
   }
-  for (long iy = 0; iy < sr_y_; ++iy) {
-    for (long ix = 0; ix < sr_x_; ++ix) {
+  for (long iy = 0; iy < sr_.y; ++iy) {
+    for (long ix = 0; ix < sr_.x; ++ix) {
       for (const Batch& b : block) {
         if (ix != 0 || iy != 0) {
           for (const Path& p : b.paths) count_vertices(p.size());
         }
         Paths copy = b.paths;
-        translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
-        if (batches_.empty() || batches_.back().dark != b.dark) {
-          batches_.push_back({b.dark, {}, {}});
+        translate_paths(copy, sr_.i * ix, sr_.j * iy);
+        if (drawn_.batches.empty() || drawn_.batches.back().dark != b.dark) {
+          drawn_.batches.push_back({b.dark, {}, {}});
         }
-        Batch& dst = batches_.back();
+        Batch& dst = drawn_.batches.back();
         for (size_t start : b.starts) dst.starts.push_back(dst.paths.size() + start);
         dst.paths.insert(dst.paths.end(), copy.begin(), copy.end());
       }
@@ -1172,12 +1110,13 @@ void GerberReader::close_step_repeat() {
       if (ix != 0 || iy != 0) {
         for (const Path& p : copy) count_vertices(p.size());
       }
-      translate_paths(copy, sr_i_ * ix, sr_j_ * iy);
-      strokes_.insert(strokes_.end(), copy.begin(), copy.end());
-      stroke_widths_nm_.insert(stroke_widths_nm_.end(), block_widths.begin(), block_widths.end());
+      translate_paths(copy, sr_.i * ix, sr_.j * iy);
+      drawn_.strokes.insert(drawn_.strokes.end(), copy.begin(), copy.end());
+      drawn_.stroke_widths_nm.insert(drawn_.stroke_widths_nm.end(), block_widths.begin(),
+                                     block_widths.end());
     }
   }
-  stroke_open_ = false;
+  drawn_.stroke_open = false;
 }
 
 // True when the copies cannot touch each other or what was drawn before the block (their
@@ -1206,16 +1145,16 @@ bool GerberReader::copies_stand_alone(const std::vector<Batch>& block) const {
   }
   if (blk.empty) return false;
   const cInt w = blk.x1 - blk.x0, h = blk.y1 - blk.y0;
-  if (sr_x_ > 1 && std::llabs(sr_i_) <= w) return false;
-  if (sr_y_ > 1 && std::llabs(sr_j_) <= h) return false;
+  if (sr_.x > 1 && std::llabs(sr_.i) <= w) return false;
+  if (sr_.y > 1 && std::llabs(sr_.j) <= h) return false;
   // The whole array against everything drawn before it.
-  const cInt ax0 = blk.x0 + std::min<cInt>(0, sr_i_ * (sr_x_ - 1));
-  const cInt ax1 = blk.x1 + std::max<cInt>(0, sr_i_ * (sr_x_ - 1));
-  const cInt ay0 = blk.y0 + std::min<cInt>(0, sr_j_ * (sr_y_ - 1));
-  const cInt ay1 = blk.y1 + std::max<cInt>(0, sr_j_ * (sr_y_ - 1));
+  const cInt ax0 = blk.x0 + std::min<cInt>(0, sr_.i * (sr_.x - 1));
+  const cInt ax1 = blk.x1 + std::max<cInt>(0, sr_.i * (sr_.x - 1));
+  const cInt ay0 = blk.y0 + std::min<cInt>(0, sr_.j * (sr_.y - 1));
+  const cInt ay1 = blk.y1 + std::max<cInt>(0, sr_.j * (sr_.y - 1));
   Box before;
-  for (size_t k = 0; k < sr_batch_start_; ++k) {
-    for (const Path& p : batches_[k].paths) {
+  for (size_t k = 0; k < sr_.batch_start; ++k) {
+    for (const Path& p : drawn_.batches[k].paths) {
       for (const IntPoint& q : p) before.add(q);
     }
   }
@@ -1230,11 +1169,11 @@ void GerberReader::attribute(const std::string& body) {
   std::vector<std::string> f = split(body.substr(comma + 1), ',');
   std::string value;
   for (const std::string& field : f) value += (value.empty() ? "" : ",") + trim(field);
-  note("X2 TF.FileFunction " + value);
+  diag_.note("X2 TF.FileFunction " + value);
   x2_kind_given_ = true;
   x2_kind_ = layer_kind_from_file_function(value);
   if (trim(f[0]) == "Copper" && x2_kind_ == LayerKind::kUnknown)
-    note("an inner copper layer: this machine engraves the outer ones");
+    diag_.note("an inner copper layer: this machine engraves the outer ones");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1262,18 +1201,14 @@ void GerberReader::word_block(const std::string& raw) {
   size_t k = 0;
   while (k < w.size()) {
     const char letter = w[k];
-    size_t end = k + 1;
-    while (end < w.size() && (std::isdigit(static_cast<unsigned char>(w[end])) || w[end] == '+' ||
-                              w[end] == '-' || w[end] == '.')) {
-      ++end;
-    }
+    const size_t end = end_of_number(w, k + 1);
     const std::string value = w.substr(k + 1, end - k - 1);
     if (value.empty()) {
-      fail("unexpected '" + std::string(1, letter) + "' in '" + w.substr(0, 40) + "'");
+      diag_.fail("unexpected '" + std::string(1, letter) + "' in '" + w.substr(0, 40) + "'");
     }
     auto code = [&]() {
       if (value.size() > 6 || value.find_first_not_of("0123456789") != std::string::npos) {
-        fail("bad code '" + std::string(1, letter) + value + "'");
+        diag_.fail("bad code '" + std::string(1, letter) + value + "'");
       }
       return std::stoi(value);
     };
@@ -1304,15 +1239,15 @@ void GerberReader::word_block(const std::string& raw) {
         j = &js;
         break;
       default:
-        fail("unexpected '" + std::string(1, letter) + "' in '" + w.substr(0, 40) + "'");
+        diag_.fail("unexpected '" + std::string(1, letter) + "' in '" + w.substr(0, 40) + "'");
     }
     k = end;
   }
   if (d == -1 && (x || y || i || j)) {
-    if (last_d_ == 0) fail("coordinates without D01/D02/D03 and no earlier operation");
-    note("coordinates without an operation code: the previous D0" + std::to_string(last_d_) +
-         " repeats (deprecated)");
-    d = last_d_;
+    if (gs_.last_d == 0) diag_.fail("coordinates without D01/D02/D03 and no earlier operation");
+    diag_.note("coordinates without an operation code: the previous D0" +
+               std::to_string(gs_.last_d) + " repeats (deprecated)");
+    d = gs_.last_d;
   }
   if (d != -1) operate(d, x, y, i, j);
 }
@@ -1320,76 +1255,69 @@ void GerberReader::word_block(const std::string& raw) {
 // A G code of a data block: interpolation, regions, quadrants, and the deprecated ones.
 void GerberReader::g_code(int g, const std::string& value) {
   if (g == 1 || g == 2 || g == 3) {
-    interpolation_ = g;
+    gs_.interpolation = g;
   } else if (g == 36) {
-    if (region_) fail("G36 inside a region (missing G37)");
-    region_ = true;
-    contour_.clear();
-    contour_as_gerbv_.clear();
+    if (gs_.region) diag_.fail("G36 inside a region (missing G37)");
+    gs_.region = true;
+    gs_.contour.clear();
+    gs_.contour_as_gerbv.clear();
   } else if (g == 37) {
-    if (!region_) fail("G37 without G36");
+    if (!gs_.region) diag_.fail("G37 without G36");
     finish_contour();
-    region_ = false;
+    gs_.region = false;
   } else if (g == 74 || g == 75) {
-    quadrant_ = g;
-    if (g == 74) note("G74 single-quadrant arcs (deprecated)");
+    gs_.quadrant = g;
+    if (g == 74) diag_.note("G74 single-quadrant arcs (deprecated)");
   } else if (g == 54 || g == 55) {
-    note("G" + value + " before an aperture number (deprecated) ignored");
+    diag_.note("G" + value + " before an aperture number (deprecated) ignored");
   } else if (g == 70 || g == 71) {
-    note(g == 70 ? "G70 inch units (deprecated)" : "G71 millimetre units (deprecated)");
-    set_units(g == 70 ? 25.4e6 : 1e6, g == 70 ? "G70" : "G71");
+    diag_.note(g == 70 ? "G70 inch units (deprecated)" : "G71 millimetre units (deprecated)");
+    unit_.set(diag_, g == 70 ? 25.4e6 : 1e6, g == 70 ? "G70" : "G71");
   } else if (g == 90 || g == 91) {
-    incremental_ = g == 91;
-    note(g == 90 ? "G90 absolute coordinates (deprecated)"
-                 : "G91 incremental coordinates (deprecated)");
+    fmt_.incremental = g == 91;
+    diag_.note(g == 90 ? "G90 absolute coordinates (deprecated)"
+                       : "G91 incremental coordinates (deprecated)");
   } else {
-    fail("unknown or unsupported G code G" + value);
+    diag_.fail("unknown or unsupported G code G" + value);
   }
 }
 
 // D01/D02/D03 (the block's operation, into *d), or an aperture selected.
 void GerberReader::d_code(int dn, const std::string& value, int* d) {
   if (dn >= 1 && dn <= 3) {
-    if (*d != -1) fail("two operations (D01/D02/D03) in one block");
+    if (*d != -1) diag_.fail("two operations (D01/D02/D03) in one block");
     *d = dn;
     return;
   }
   // Select an aperture (D10 and up; lower numbers in old files).
-  if (bad_apertures_.count(dn))
-    fail("D" + value + " selects an aperture whose definition was refused: " + bad_apertures_[dn]);
-  if (!apertures_.count(dn)) fail("D" + value + " selects an aperture that is not defined");
-  if (region_) note("an aperture selected inside a region (not allowed by the spec)");
-  aperture_ = dn;
+  if (apertures_.refused.count(dn))
+    diag_.fail("D" + value +
+               " selects an aperture whose definition was refused: " + apertures_.refused[dn]);
+  if (!apertures_.defined.count(dn))
+    diag_.fail("D" + value + " selects an aperture that is not defined");
+  if (gs_.region) diag_.note("an aperture selected inside a region (not allowed by the spec)");
+  gs_.aperture = dn;
 }
 
 // M02 ends the file; M00/M01 (stops) are ignored.
 void GerberReader::m_code(int m, const std::string& value) {
   if (m == 2) {
-    if (in_sr_) close_step_repeat();
-    done_ = true;
+    if (sr_.active) close_step_repeat();
+    gs_.done = true;
   } else if (m == 0 || m == 1) {
-    note("M0" + value.substr(value.size() - 1) + " (deprecated stop) ignored");
+    diag_.note("M0" + value.substr(value.size() - 1) + " (deprecated stop) ignored");
   } else {
-    fail("unknown M code M" + value);
+    diag_.fail("unknown M code M" + value);
   }
-}
-
-double GerberReader::number(const std::string& s, const char* what) const {
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end != '\0' || !std::isfinite(v)) {
-    fail(std::string("bad ") + what + " '" + s + "'");
-  }
-  return v;
 }
 
 cInt GerberReader::coordinate(const std::string& s, bool is_x) {
-  if (!have_format_) fail("coordinates before the format (%FS)");
-  need_units("coordinates");
-  const int integer = is_x ? x_int_ : y_int_, decimals = is_x ? x_dec_ : y_dec_;
+  if (!fmt_.given) diag_.fail("coordinates before the format (%FS)");
+  unit_.need(diag_, "coordinates");
+  const int integer = is_x ? fmt_.x_int : fmt_.y_int, decimals = is_x ? fmt_.x_dec : fmt_.y_dec;
   double nm = 0;
   if (s.find('.') != std::string::npos) {
-    nm = number(s, "coordinate") * unit_nm_;
+    nm = diag_.number(s, "coordinate") * unit_.nm;
   } else {
     size_t k = 0;
     bool negative = false;
@@ -1397,30 +1325,30 @@ cInt GerberReader::coordinate(const std::string& s, bool is_x) {
     std::string digits = s.substr(k);
     if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos ||
         digits.size() > 15) {
-      fail(std::string("bad ") + (is_x ? "X" : "Y") + " coordinate '" + s + "'");
+      diag_.fail(std::string("bad ") + (is_x ? "X" : "Y") + " coordinate '" + s + "'");
     }
-    if (omit_trailing_) {
+    if (fmt_.omit_trailing) {
       while (static_cast<int>(digits.size()) < integer + decimals) digits += '0';
     }
     const long long v = std::stoll(digits);
-    nm = static_cast<double>(v) * unit_nm_;
+    nm = static_cast<double>(v) * unit_.nm;
     for (int q = 0; q < decimals; ++q) nm /= 10;
     if (negative) nm = -nm;
   }
-  if (!(std::fabs(nm) <= kMaxCoordNm)) fail("coordinate '" + s + "' is beyond 10 m");
+  if (!(std::fabs(nm) <= kMaxCoordNm)) diag_.fail("coordinate '" + s + "' is beyond 10 m");
   return static_cast<cInt>(std::llround(nm));
 }
 
 const Aperture& GerberReader::current_aperture() const {
-  if (aperture_ < 0) fail("drawing or flashing before any aperture is selected (Dnn)");
-  return apertures_.at(aperture_);
+  if (gs_.aperture < 0) diag_.fail("drawing or flashing before any aperture is selected (Dnn)");
+  return apertures_.defined.at(gs_.aperture);
 }
 
 void GerberReader::count_vertices(size_t n) {
-  vertices_ += n;
-  if (vertices_ > opt_.max_vertices) {
-    fail("the copper needs more than " + std::to_string(opt_.max_vertices) +
-         " polygon vertices: too complex to read");
+  drawn_.vertices += n;
+  if (drawn_.vertices > opt_.max_vertices) {
+    diag_.fail("the copper needs more than " + std::to_string(opt_.max_vertices) +
+               " polygon vertices: too complex to read");
   }
 }
 
@@ -1429,9 +1357,10 @@ void GerberReader::add_object(Paths paths) {
   size_t n = 0;
   for (const Path& p : paths) n += p.size();
   count_vertices(n);
-  if (batches_.empty() || batches_.back().dark != dark_) batches_.push_back({dark_, {}, {}});
-  batches_.back().starts.push_back(batches_.back().paths.size());
-  Paths& dst = batches_.back().paths;
+  if (drawn_.batches.empty() || drawn_.batches.back().dark != gs_.dark)
+    drawn_.batches.push_back({gs_.dark, {}, {}});
+  drawn_.batches.back().starts.push_back(drawn_.batches.back().paths.size());
+  Paths& dst = drawn_.batches.back().paths;
   if (dst.empty()) {
     dst = std::move(paths);
   } else {
@@ -1441,21 +1370,21 @@ void GerberReader::add_object(Paths paths) {
 }
 
 void GerberReader::add_centre_line(IntPoint from, const Path& points, double width_nm) {
-  if (!stroke_open_ || strokes_.empty() || strokes_.back().back() != from ||
-      stroke_widths_nm_.back() != width_nm) {
-    strokes_.push_back({from});
-    stroke_widths_nm_.push_back(width_nm);
+  if (!drawn_.stroke_open || drawn_.strokes.empty() || drawn_.strokes.back().back() != from ||
+      drawn_.stroke_widths_nm.back() != width_nm) {
+    drawn_.strokes.push_back({from});
+    drawn_.stroke_widths_nm.push_back(width_nm);
   }
-  Path& s = strokes_.back();
+  Path& s = drawn_.strokes.back();
   s.insert(s.end(), points.begin(), points.end());
   count_vertices(points.size() + 1);
-  stroke_open_ = true;
+  drawn_.stroke_open = true;
 }
 
 void GerberReader::operate(int d, const std::string* xs, const std::string* ys,
                            const std::string* is, const std::string* js) {
-  IntPoint to = at_;
-  if (incremental_) {
+  IntPoint to = gs_.at;
+  if (fmt_.incremental) {
     if (xs) to.X += coordinate(*xs, true);
     if (ys) to.Y += coordinate(*ys, false);
   } else {
@@ -1464,30 +1393,30 @@ void GerberReader::operate(int d, const std::string* xs, const std::string* ys,
   }
   if (std::fabs(static_cast<double>(to.X)) > kMaxCoordNm ||
       std::fabs(static_cast<double>(to.Y)) > kMaxCoordNm) {
-    fail("position beyond 10 m");
+    diag_.fail("position beyond 10 m");
   }
   const cInt i = is ? coordinate(*is, true) : 0;
   const cInt j = js ? coordinate(*js, false) : 0;
-  last_d_ = d;
-  const IntPoint from = at_;
-  at_ = to;
+  gs_.last_d = d;
+  const IntPoint from = gs_.at;
+  gs_.at = to;
   if (d == 1) {
-    if (interpolation_ == 1) {
-      if (region_) {
-        if (contour_.empty()) contour_.push_back(from);
-        contour_.push_back(to);
-        if (!contour_as_gerbv_.empty()) contour_as_gerbv_.push_back(to);
+    if (gs_.interpolation == 1) {
+      if (gs_.region) {
+        if (gs_.contour.empty()) gs_.contour.push_back(from);
+        gs_.contour.push_back(to);
+        if (!gs_.contour_as_gerbv.empty()) gs_.contour_as_gerbv.push_back(to);
       } else {
         draw_line(from, to);
       }
     } else {
-      draw_arc(from, to, i, j, region_);
+      draw_arc(from, to, i, j, gs_.region);
     }
   } else if (d == 2) {
-    if (region_) finish_contour();
-    stroke_open_ = false;
+    if (gs_.region) finish_contour();
+    drawn_.stroke_open = false;
   } else {
-    if (region_) fail("flash (D03) inside a region (G36/G37)");
+    if (gs_.region) diag_.fail("flash (D03) inside a region (G36/G37)");
     flash(to);
   }
 }
@@ -1495,9 +1424,9 @@ void GerberReader::operate(int d, const std::string* xs, const std::string* ys,
 void GerberReader::flash(IntPoint at) {
   const Aperture& ap = current_aperture();
   if (ap.type == 'B') {
-    const bool dark = dark_;
+    const bool dark = gs_.dark;
     for (const Batch& b : ap.block) {
-      dark_ = dark ? b.dark : !b.dark;
+      gs_.dark = dark ? b.dark : !b.dark;
       for (size_t k = 0; k < b.starts.size(); ++k) {
         const size_t end = k + 1 < b.starts.size() ? b.starts[k + 1] : b.paths.size();
         Paths object(b.paths.begin() + static_cast<long>(b.starts[k]),
@@ -1506,7 +1435,7 @@ void GerberReader::flash(IntPoint at) {
         add_object(std::move(object));
       }
     }
-    dark_ = dark;
+    gs_.dark = dark;
     return;
   }
   Paths copy = ap.shape;
@@ -1526,12 +1455,12 @@ double stroke_width_nm(const Aperture& ap) {
 void GerberReader::draw_line(IntPoint from, IntPoint to) {
   const Aperture& ap = current_aperture();
   if (ap.type == 'B')
-    fail("block aperture D" + std::to_string(aperture_) + " can only be flashed (D03)");
+    diag_.fail("block aperture D" + std::to_string(gs_.aperture) + " can only be flashed (D03)");
   add_centre_line(from, {to}, stroke_width_nm(ap));
   if (ap.shape.empty()) return;  // zero-size aperture: a line of no width
   const VecNm a{static_cast<double>(from.X), static_cast<double>(from.Y)};
   const VecNm b{static_cast<double>(to.X), static_cast<double>(to.Y)};
-  if (ap.has_hole) note("a draw with an aperture that has a hole: the hole is ignored");
+  if (ap.has_hole) diag_.note("a draw with an aperture that has a hole: the hole is ignored");
   if (ap.type == 'C') {
     if (from == to) {
       add_object({circle_path(a, ap.circle_d_nm, opt_.arc_tolerance_nm)});
@@ -1542,9 +1471,9 @@ void GerberReader::draw_line(IntPoint from, IntPoint to) {
   }
   if (ap.type != 'M') {  // convex: the hull of the shape at both ends
     if (ap.type == 'R')
-      note("a draw with a rectangular aperture (deprecated)");
+      diag_.note("a draw with a rectangular aperture (deprecated)");
     else
-      note("a draw with a non-circular aperture (not allowed by the current spec)");
+      diag_.note("a draw with a non-circular aperture (not allowed by the current spec)");
     Path pts;
     for (const IntPoint& p : ap.shape[0]) {
       pts.push_back({p.X + from.X, p.Y + from.Y});
@@ -1553,7 +1482,7 @@ void GerberReader::draw_line(IntPoint from, IntPoint to) {
     add_object({convex_hull(pts)});
     return;
   }
-  note("a draw with a macro aperture (not allowed by the current spec): swept shape used");
+  diag_.note("a draw with a macro aperture (not allowed by the current spec): swept shape used");
   Paths swept;
   for (const Path& outer : ap.shape) {
     if (!ClipperLib::Orientation(outer)) continue;
@@ -1596,8 +1525,8 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
   const double mismatch_nm = degenerate ? 0 : std::fabs(r0 - r1);
   const bool ill_defined = mismatch_nm > kIllDefinedArcNm;
   if (ill_defined) {
-    ++ill_defined_arcs_;
-    ill_defined_max_nm_ = std::max(ill_defined_max_nm_, mismatch_nm);
+    ++drawn_.ill_defined_arcs;
+    drawn_.ill_defined_max_nm = std::max(drawn_.ill_defined_max_nm, mismatch_nm);
   }
   Path pts, at_start_radius;
   const double a0 = std::atan2(a.y - c.y, a.x - c.x);
@@ -1618,14 +1547,14 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
 // give an arc of at most 90 degrees with the closest radii (G74).
 void GerberReader::arc_centre(const VecNm& a, const VecNm& b, bool same_point, cInt i, cInt j,
                               VecNm* centre, double* sweep_out) {
-  const bool clockwise = interpolation_ == 2;
+  const bool clockwise = gs_.interpolation == 2;
   VecNm c;
   double sweep = 0;
-  if (quadrant_ == 0) {
-    note("an arc before G74/G75: single-quadrant mode assumed (the old default)");
-    quadrant_ = 74;
+  if (gs_.quadrant == 0) {
+    diag_.note("an arc before G74/G75: single-quadrant mode assumed (the old default)");
+    gs_.quadrant = 74;
   }
-  if (quadrant_ == 75) {
+  if (gs_.quadrant == 75) {
     c = {a.x + static_cast<double>(i), a.y + static_cast<double>(j)};
     sweep = arc_sweep(a, b, c, clockwise, same_point);
   } else {
@@ -1647,7 +1576,7 @@ void GerberReader::arc_centre(const VecNm& a, const VecNm& b, bool same_point, c
         }
       }
     }
-    if (best < 0) fail("single-quadrant arc (G74) with no centre giving 90 degrees or less");
+    if (best < 0) diag_.fail("single-quadrant arc (G74) with no centre giving 90 degrees or less");
   }
   *centre = c;
   *sweep_out = sweep;
@@ -1659,7 +1588,7 @@ void GerberReader::arc_centre(const VecNm& a, const VecNm& b, bool same_point, c
 bool GerberReader::zero_radius_arc(double r0, double r1) {
   const bool degenerate = std::min(r0, r1) <= 1000.0;
   if (degenerate) {
-    note(
+    diag_.note(
         "warning: an arc whose centre is its own start or end point (zero radius) drawn as "
         "a straight line");
   } else if (std::fabs(r0 - r1) > arc_mismatch_limit_nm(r0, opt_.max_arc_radius_mismatch_nm)) {
@@ -1669,7 +1598,7 @@ bool GerberReader::zero_radius_arc(double r0, double r1) {
                   "the end; more than %.3f mm apart is not an arc a reader can trust)",
                   r0 * 1e-6, r1 * 1e-6,
                   arc_mismatch_limit_nm(r0, opt_.max_arc_radius_mismatch_nm) * 1e-6);
-    fail(msg);
+    diag_.fail(msg);
   }
   return degenerate;
 }
@@ -1678,16 +1607,16 @@ bool GerberReader::zero_radius_arc(double r0, double r1) {
 // for an ill-defined arc.
 void GerberReader::region_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill) {
   const bool ill_defined = theirs_if_ill != nullptr;
-  if (contour_.empty()) contour_.push_back(from);
+  if (gs_.contour.empty()) gs_.contour.push_back(from);
   // gerbv's contour: a line to the arc's start, the arc at the start radius, and the next
   // segment from where that arc ends.
-  if (ill_defined && contour_as_gerbv_.empty()) contour_as_gerbv_ = contour_;
-  if (!contour_as_gerbv_.empty()) {
-    if (contour_as_gerbv_.back() != from) contour_as_gerbv_.push_back(from);
+  if (ill_defined && gs_.contour_as_gerbv.empty()) gs_.contour_as_gerbv = gs_.contour;
+  if (!gs_.contour_as_gerbv.empty()) {
+    if (gs_.contour_as_gerbv.back() != from) gs_.contour_as_gerbv.push_back(from);
     const Path& theirs = ill_defined ? *theirs_if_ill : pts;
-    contour_as_gerbv_.insert(contour_as_gerbv_.end(), theirs.begin(), theirs.end());
+    gs_.contour_as_gerbv.insert(gs_.contour_as_gerbv.end(), theirs.begin(), theirs.end());
   }
-  contour_.insert(contour_.end(), pts.begin(), pts.end());
+  gs_.contour.insert(gs_.contour.end(), pts.begin(), pts.end());
 }
 
 // An arc stroked with the current (circular) aperture; for an ill-defined arc, copper where
@@ -1695,7 +1624,7 @@ void GerberReader::region_arc(IntPoint from, const Path& pts, const Path* theirs
 void GerberReader::stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill) {
   const Aperture& ap = current_aperture();
   if (ap.type != 'C') {
-    fail("an arc drawn with a non-circular aperture D" + std::to_string(aperture_));
+    diag_.fail("an arc drawn with a non-circular aperture D" + std::to_string(gs_.aperture));
   }
   add_centre_line(from, pts, ap.circle_d_nm);
   if (ap.circle_d_nm <= 0) return;
@@ -1716,7 +1645,7 @@ void GerberReader::stroke_arc(IntPoint from, const Path& pts, const Path* theirs
 
 Paths GerberReader::both_readings(const Paths& ours, const Paths& theirs) const {
   // Dark: copper under either reading. Clear: only what both readings clear.
-  if (!dark_) return intersection_of(ours, theirs);
+  if (!gs_.dark) return intersection_of(ours, theirs);
   Paths both = ours;
   both.insert(both.end(), theirs.begin(), theirs.end());
   return union_of(both);
@@ -1724,22 +1653,22 @@ Paths GerberReader::both_readings(const Paths& ours, const Paths& theirs) const 
 
 void GerberReader::finish_contour() {
   Path c;
-  c.swap(contour_);
+  c.swap(gs_.contour);
   if (c.size() < 2) return;
   if (c.front() != c.back()) {
     const double gap = std::hypot(static_cast<double>(c.front().X - c.back().X),
                                   static_cast<double>(c.front().Y - c.back().Y));
-    if (gap > 1000) note("a region contour that does not end at its start: closed");
+    if (gap > 1000) diag_.note("a region contour that does not end at its start: closed");
   }
   Path stroke = c;
   if (stroke.front() != stroke.back()) stroke.push_back(stroke.front());
   count_vertices(stroke.size());
-  strokes_.push_back(stroke);
-  stroke_widths_nm_.push_back(0);
-  stroke_open_ = false;
+  drawn_.strokes.push_back(stroke);
+  drawn_.stroke_widths_nm.push_back(0);
+  drawn_.stroke_open = false;
   if (c.front() == c.back()) c.pop_back();
   Path theirs;
-  theirs.swap(contour_as_gerbv_);
+  theirs.swap(gs_.contour_as_gerbv);
   if (c.size() < 3) return;
   make_positive(c);
   if (theirs.size() >= 3) {

@@ -1,26 +1,18 @@
 #include "host/lib/pcb/pcb_file_names.h"
 
-#include <algorithm>  // std::transform
-#include <cctype>     // std::tolower
-#include <fstream>    // std::ifstream
-#include <vector>     // std::vector
+#include <vector>  // std::vector
 
-#include "host/lib/drawing/drawing.h"  // starts_like_excellon
+#include "host/lib/drawing/drawing.h"    // starts_like_excellon
+#include "host/lib/drawing/file_text.h"  // lower_ascii
 
 namespace host::pcb {
 
 namespace {
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 // The file name without folders, lower case.
 std::string base_name(const std::string& path) {
   const size_t slash = path.find_last_of("/\\");
-  return lower(slash == std::string::npos ? path : path.substr(slash + 1));
+  return lower_ascii(slash == std::string::npos ? path : path.substr(slash + 1));
 }
 
 std::string extension(const std::string& name) {
@@ -155,14 +147,6 @@ LayerKind layer_kind_from_x2(const std::string& head_text) {
     return layer_kind_from_file_function(head_text.substr(from, end - from));
   }
   return LayerKind::kUnknown;
-}
-
-std::string read_file_head(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string head(4096, '\0');
-  in.read(&head[0], static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
-  return head;
 }
 
 PcbFileFormat pcb_file_format(const std::string& path) {

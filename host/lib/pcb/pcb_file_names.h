@@ -5,6 +5,7 @@
 
 #include <string>  // std::string
 
+#include "host/lib/drawing/file_text.h"  // read_file_head
 #include "host/lib/pcb/pcb_layer.h"
 
 namespace host::pcb {
@@ -27,7 +28,7 @@ LayerKind layer_kind_from_x2(const std::string& head_text);
 
 // The first few kB of `path` (empty if it cannot be opened): where formats and X2 file
 // functions are found.
-std::string read_file_head(const std::string& path);
+using host::read_file_head;
 
 // Gerber or Excellon by extension, else by content (%FS / %MO, M48); kNone otherwise.
 PcbFileFormat pcb_file_format(const std::string& path, const std::string& head_text);

@@ -244,22 +244,26 @@ Paths sweep_open(const Paths& paths, double radius_nm, double arc_tolerance_nm) 
   });
 }
 
-Paths intersection_of(const Paths& a, const Paths& b) {
+namespace {
+
+// a (op) b, both non-zero filled.
+Paths clip(const Paths& a, const Paths& b, ClipperLib::ClipType op) {
   Clipper c;
   c.AddPaths(a, ClipperLib::ptSubject, true);
   c.AddPaths(b, ClipperLib::ptClip, true);
   Paths out;
-  c.Execute(ClipperLib::ctIntersection, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  c.Execute(op, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
   return out;
 }
 
+}  // namespace
+
+Paths intersection_of(const Paths& a, const Paths& b) {
+  return clip(a, b, ClipperLib::ctIntersection);
+}
+
 Paths difference_of(const Paths& a, const Paths& b) {
-  Clipper c;
-  c.AddPaths(a, ClipperLib::ptSubject, true);
-  c.AddPaths(b, ClipperLib::ptClip, true);
-  Paths out;
-  c.Execute(ClipperLib::ctDifference, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  return out;
+  return clip(a, b, ClipperLib::ctDifference);
 }
 
 }  // namespace host::pcb

@@ -1,5 +1,7 @@
 #include "host/lib/pcb/pcb_layer.h"
 
+#include <cctype>  // std::isdigit
+
 #include "host/lib/drawing/file_text.h"  // read_file_text
 
 namespace host::pcb {
@@ -32,6 +34,14 @@ const char* layer_kind_name(LayerKind kind) {
 
 const char* layer_kind_key(LayerKind kind) {
   return names_of(kind).key;
+}
+
+size_t end_of_number(const std::string& word, size_t from) {
+  size_t end = from;
+  while (end < word.size() && (std::isdigit(static_cast<unsigned char>(word[end])) ||
+                               word[end] == '+' || word[end] == '-' || word[end] == '.'))
+    ++end;
+  return end;
 }
 
 std::string read_pcb_file_text(const std::string& path) {

@@ -70,6 +70,10 @@ class PcbReadError : public std::runtime_error {
 // empty.
 std::string read_pcb_file_text(const std::string& path);
 
+// Where the number that starts at `from` in a Gerber or Excellon word ends: after its digits,
+// signs and decimal point ("X-1.5Y2" from 1: 5).
+size_t end_of_number(const std::string& word, size_t from);
+
 }  // namespace host::pcb
 
 #endif  // HOST_LIB_PCB_PCB_LAYER_H

@@ -6,18 +6,11 @@
 #include <netinet/in.h>  // sockaddr_in, sockaddr_in6
 #include <unistd.h>      // gethostname
 
-#include <algorithm>  // std::transform
-#include <cctype>     // std::tolower
+#include "host/lib/drawing/file_text.h"  // lower_ascii
 
 namespace host::server {
 
 namespace {
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
 
 // The addresses of this PC's network interfaces, IPv6 in brackets.
 std::vector<std::string> interface_addresses() {
@@ -43,7 +36,7 @@ std::vector<std::string> interface_addresses() {
 }  // namespace
 
 std::string host_of_header(const std::string& host_header) {
-  std::string h = lower(host_header);
+  std::string h = lower_ascii(host_header);
   if (h.empty()) return "";
   if (h[0] == '[') {  // [v6] or [v6]:port
     const size_t close = h.find(']');

@@ -164,6 +164,27 @@ TEST(ExcellonWriters, RepeatHoleDrillsTheLastHoleAgainStepByStep) {
   expect_hole(l.holes[5], 8000000, 0, 800000, 1);
 }
 
+// A repeat hole before any hole has nothing to repeat (gerbv drills from wherever the tool
+// is, (0, 0) at the start: holes nobody placed): refused at its line.
+TEST(ExcellonWriters, ARepeatHoleBeforeAnyHoleIsRefusedAtItsLine) {
+  try {
+    read_excellon_text("M48\nMETRIC\nT1C0.8\n%\nG90\nG05\nT1\nR3X2.0\nX1.0Y1.0\nM30\n", "r.drl");
+    ADD_FAILURE() << "read";
+  } catch (const PcbReadError& e) {
+    EXPECT_EQ(std::string(e.what()), "r.drl:8: repeat hole 'R3X2.0' before any hole to repeat");
+  }
+}
+
+// The oversize tool's warning names the line that gave its size.
+TEST(ExcellonWriters, AnOversizeToolsWarningNamesItsLine) {
+  const PcbLayer l = read_excellon_text(
+      "M48\nINCH,LZ\nT1C0.035\nT2C5.5\n%\nT1\nX1.0Y1.0\nT2\nX2.0Y2.0\nM30\n", "big.drl");
+  EXPECT_TRUE(has_note(l,
+                       "line 4: warning: tool T2 (139.7 mm) is larger than 100 mm, not a drill: "
+                       "its 1 hole left out"))
+      << ::testing::PrintToString(l.notes);
+}
+
 // Holes and slots are counted apart, in words ("its 3 hole(s) or slot(s)" for 2 holes and a
 // slot).
 TEST(ExcellonWriters, AnOversizeToolsWarningCountsHolesAndSlotsApart) {

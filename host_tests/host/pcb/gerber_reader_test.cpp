@@ -313,6 +313,48 @@ TEST(GerberLegacyParameters, TheLastImagePolarityApplies) {
   EXPECT_FALSE(covered(neg, 10, 5));
 }
 
+// A repeated %IPNEG replaces the earlier one like any repeated parameter, and says so.
+TEST(GerberLegacyParameters, ARepeatedNegativeImageSaysItReplacesTheEarlier) {
+  const PcbLayer l = legacy("%IPNEG*%\n%IPNEG*%\n");
+  EXPECT_FALSE(covered(l, 10, 5));
+  EXPECT_TRUE(has_note(l,
+                       "line 4: warning: %IPNEG replaced by the later %IPNEG (only the last "
+                       "applies)"))
+      << ::testing::PrintToString(l.notes);
+  EXPECT_TRUE(has_note(l, "line 4: warning: %IPNEG (deprecated negative image) applied"));
+}
+
+// Each image parameter acts on the whole image, only its last value counts: a later %IR0
+// undoes %IR90, so the %RO90 between them is the one transform in force (it was refused at
+// %RO90 as two transforms together).
+TEST(GerberLegacyParameters, ALaterIdentityUndoesAnEarlierTransformBeforeTheyCombine) {
+  const PcbLayer l = legacy("%IR90*%\n%RO90*%\n%IR0*%\n");
+  EXPECT_TRUE(covered(l, -5, 10));  // (10, 5) turned 90 degrees by %RO90 alone
+  EXPECT_FALSE(covered(l, 10, 5));
+  EXPECT_TRUE(has_note(l, "line 4: warning: %RO90 (deprecated layer rotation) applied"))
+      << ::testing::PrintToString(l.notes);
+  EXPECT_FALSE(has_note(l, "%IR90 (deprecated image rotation) applied"));
+  // Nothing drawn under two transforms: nothing to refuse.
+  EXPECT_NO_THROW(
+      read_gerber_text("%FSLAX46Y46*%\n%MOMM*%\n%IR90*%\n%RO90*%\nM02*\n", "empty-F.Cu.gbr"));
+}
+
+// %KOC (or %KOD) with neither a box nor a border knocks out nothing (gerbv draws the file as
+// without it): ignored with a warning; it was read as a knockout with border 0, which cleared
+// a 1 mm box around the pad.
+TEST(GerberLegacyParameters, AKnockoutWithoutParametersIsIgnored) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD10R,10X10*%\n%ADD11C,1*%\nD10*\nX5000000Y5000000D03*\n"
+      "%KOC*%\nD11*\nX5000000Y5000000D03*\n%KO*%\nM02*\n",
+      "ko0-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 100, 1e-6);
+  EXPECT_TRUE(covered(l, 5.45, 5.45));
+  EXPECT_TRUE(has_note(l,
+                       "line 7: warning: %KOC without a box or a border (deprecated knockout) "
+                       "ignored"))
+      << ::testing::PrintToString(l.notes);
+}
+
 // Of a parameter given twice only the last applies; both were reported as applied.
 TEST(GerberLegacyParameters, OfTwoRotationsOnlyTheLastIsReportedApplied) {
   const PcbLayer l = legacy("%RO30*%\n%RO90*%\n");
