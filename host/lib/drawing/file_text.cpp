@@ -5,6 +5,8 @@
 #include <fstream>       // std::ifstream
 #include <system_error>  // std::error_code
 
+#include "host/lib/drawing/drawing.h"  // ImportError
+
 namespace host {
 
 FileRead read_file_text(const std::string& path, std::string* text) {
@@ -20,6 +22,14 @@ FileRead read_file_text(const std::string& path, std::string* text) {
   while (in.read(buffer, sizeof buffer) || in.gcount() > 0)
     text->append(buffer, static_cast<size_t>(in.gcount()));
   return in.bad() ? FileRead::kReadError : FileRead::kOk;
+}
+
+std::string read_drawing_text(const std::string& path) {
+  std::string text;
+  const FileRead r = read_file_text(path, &text);
+  if (r == FileRead::kCannotOpen) throw ImportError(path + ": cannot open the file");
+  if (r == FileRead::kReadError) throw ImportError(path + ": cannot read the file");
+  return text;
 }
 
 }  // namespace host

@@ -14,6 +14,10 @@ enum class FileRead { kOk, kCannotOpen, kReadError };
 // A directory or a file that cannot be opened is kCannotOpen.
 FileRead read_file_text(const std::string& path, std::string* text);
 
+// The drawing importers' read: the file's text, or ImportError "<path>: cannot open the
+// file" / "<path>: cannot read the file".
+std::string read_drawing_text(const std::string& path);
+
 }  // namespace host
 
 #endif  // HOST_LIB_DRAWING_FILE_TEXT_H
