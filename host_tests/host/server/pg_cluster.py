@@ -7,18 +7,15 @@ refuses to run as root), listening on a Unix socket in that folder, with an empt
 import glob
 import os
 import pwd
-import socket
+import shutil
 import subprocess
+import tempfile
+
+from serve_processes import free_port
 
 
 class Unavailable(Exception):
     """No PostgreSQL to start here (the test is skipped); str() says why."""
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 class PgCluster:
@@ -74,3 +71,16 @@ class PgCluster:
             subprocess.run(self.run_as + [self.tool("pg_ctl"), "-D", self.cluster, "-m", "fast",
                                           "-w", "stop"], stdout=subprocess.DEVNULL)
             self.started = False
+
+
+def temporary_cluster(prefix):
+    """A new temporary folder and a PgCluster in it, not started yet; (None, None), the reason
+    printed, where PostgreSQL cannot run (the caller skips)."""
+    tmp = tempfile.mkdtemp(prefix=prefix)
+    os.chmod(tmp, 0o755)  # the postgres user reaches its cluster inside
+    try:
+        return tmp, PgCluster(tmp)
+    except Unavailable as e:
+        print(f"{e}: skipped")
+        shutil.rmtree(tmp, ignore_errors=True)
+        return None, None

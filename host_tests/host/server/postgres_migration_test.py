@@ -14,11 +14,11 @@ import os
 import shutil
 import subprocess
 import sys
-import tempfile
 import time
 import urllib.request
 
-from pg_cluster import PgCluster, Unavailable, free_port
+from pg_cluster import temporary_cluster
+from serve_processes import free_port, get, stop_processes
 
 SKIP = 77
 PREVIOUS_SCHEMA = """
@@ -62,11 +62,6 @@ OLD_JOB = {"id": 1, "name": "old.ngc", "input_file": "input.ngc", "state": "inte
 SQUARE = "G21\nG90\nG0 Z2\nG0 X5 Y5\nG1 Z-0.1 F100\nG1 X15 Y5 F600\nG0 Z2\n"
 
 
-def get(base, path):
-    with urllib.request.urlopen(base + path, timeout=30) as r:
-        return json.load(r)
-
-
 def wait(predicate, timeout_s, what):
     end = time.monotonic() + timeout_s
     while time.monotonic() < end:
@@ -81,13 +76,8 @@ def wait(predicate, timeout_s, what):
 
 def main():
     engraver = sys.argv[1]
-    tmp = tempfile.mkdtemp(prefix="engraver-pgmig-")
-    os.chmod(tmp, 0o755)
-    try:
-        pg = PgCluster(tmp)
-    except Unavailable as e:
-        print(f"{e}: skipped")
-        shutil.rmtree(tmp, ignore_errors=True)
+    tmp, pg = temporary_cluster("engraver-pgmig-")
+    if pg is None:
         return SKIP
     serve = None
     log_path = os.path.join(tmp, "serve.log")
@@ -125,12 +115,7 @@ def main():
             print("--- serve.log:\n" + open(log_path).read())
         raise
     finally:
-        if serve is not None:
-            serve.terminate()
-            try:
-                serve.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                serve.kill()
+        stop_processes([serve] if serve is not None else [])
         pg.stop()
         shutil.rmtree(tmp, ignore_errors=True)
 

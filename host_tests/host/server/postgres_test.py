@@ -19,12 +19,12 @@ import os
 import shutil
 import subprocess
 import sys
-import tempfile
 import time
 import urllib.error
 import urllib.request
 
-from pg_cluster import PgCluster, Unavailable, free_port
+from pg_cluster import temporary_cluster
+from serve_processes import free_port, get, stop_processes
 
 SKIP = 77
 JOBS = 40
@@ -32,11 +32,6 @@ BOARD_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
 BOARD_FILES = ("blinky-F.Cu.gbr", "blinky.drl", "blinky-Edge.Cuts.gbr")
 SQUARE = ("G21\nG90\nG0 Z2\nG0 X5 Y5\nG1 Z-0.1 F100\nG1 X15 Y5 F600\nG1 X15 Y15\n"
           "G1 X5 Y15\nG1 X5 Y5\nG0 Z2\n")
-
-
-def get(base, path):
-    with urllib.request.urlopen(base + path, timeout=30) as r:
-        return json.load(r)
 
 
 def upload(base, token, name):
@@ -87,13 +82,8 @@ def fetch(base, path):
 def main():
     engraver = sys.argv[1]
     shared = sys.argv[2:] == ["--shared-archive"]
-    tmp = tempfile.mkdtemp(prefix="engraver-pg-")
-    os.chmod(tmp, 0o755)
-    try:
-        pg = PgCluster(tmp)
-    except Unavailable as e:
-        print(f"{e}: skipped")
-        shutil.rmtree(tmp, ignore_errors=True)
+    tmp, pg = temporary_cluster("engraver-pg-")
+    if pg is None:
         return SKIP
     procs = []
     try:
@@ -231,13 +221,7 @@ def main():
                 print(f"--- {name}:\n" + open(path).read())
         raise
     finally:
-        for p in reversed(procs):
-            p.terminate()
-        for p in procs:
-            try:
-                p.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                p.kill()
+        stop_processes(procs)
         pg.stop()
         shutil.rmtree(tmp, ignore_errors=True)
 
