@@ -9,7 +9,7 @@
 
 #include "host/lib/pcb/pcb_geometry.h"
 #include "host/lib/plan/firmware_spline.h"
-#include "host/lib/plan/plan_steps.h"  // plan_detail::to_um
+#include "host/lib/plan/plan_steps.h"  // plan_detail::to_um, append_spline_steps
 
 namespace host::pcb::board_stages {
 
@@ -144,21 +144,10 @@ class StepWriter {
     pc.source = source;
     const int index = static_cast<int>(plan_->curves.size());
     plan_->curves.push_back(pc);
-    std::vector<core::Spline> pieces;
     try {
-      pieces = to_firmware_splines(pc.spline);
+      plan_detail::append_spline_steps(pc.spline, index, to_um(feed), 0, plan_);
     } catch (const ConversionError& e) {
       throw PlanError(source + ": " + e.what());
-    }
-    for (size_t k = 0; k < pieces.size(); ++k) {
-      PlanStep s;
-      s.kind = PlanStep::kSpline;
-      s.set_spline(StepSpline(pieces[k]));
-      s.to = to_um(k + 1 == pieces.size() ? end_point(pc.spline)
-                                          : end_point(from_firmware_spline(pieces[k])));
-      s.feed_um_per_s = to_um(feed);
-      s.curve = index;
-      plan_->steps.push_back(s);
     }
     // Length and extents from one sampling (within 1 um).
     const std::vector<Point2> pts = sample(pc.spline, 0.001);
