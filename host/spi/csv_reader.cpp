@@ -7,15 +7,14 @@
 #include <sstream>    // std::istringstream
 
 #include "host/spi/capture.h"
+#include "host/spi/text_values.h"  // trim
 
 namespace host::spi {
 namespace {
 
-std::string trim(const std::string& s) {
-  size_t a = s.find_first_not_of(" \t\r\n\"");
-  if (a == std::string::npos) return "";
-  size_t b = s.find_last_not_of(" \t\r\n\"");
-  return s.substr(a, b - a + 1);
+// A field without spaces and the quotes around it.
+std::string trim_field(const std::string& s) {
+  return trim(s, " \t\r\n\"");
 }
 
 std::string lower(std::string s) {
@@ -35,7 +34,7 @@ std::vector<std::string> split_csv(const std::string& line) {
     else
       out.back() += c;
   }
-  for (auto& f : out) f = trim(f);
+  for (auto& f : out) f = trim_field(f);
   return out;
 }
 
@@ -85,7 +84,7 @@ std::vector<std::string> lines_of(const std::string& text) {
   std::string line;
   while (std::getline(in, line)) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (!trim(line).empty()) lines.push_back(line);
+    if (!trim_field(line).empty()) lines.push_back(line);
   }
   return lines;
 }

@@ -4,7 +4,8 @@
 #include <algorithm>  // std::lower_bound, std::nth_element
 #include <cctype>     // std::isdigit
 #include <cmath>      // std::llround
-#include <cstdlib>    // std::strtod
+
+#include "host/spi/text_values.h"  // split_number_unit, unit_scale
 
 namespace host::spi {
 namespace {
@@ -87,25 +88,12 @@ std::vector<Period> cs_periods(const Trace& t, int cs) {
 }  // namespace
 
 bool parse_duration_ps(const std::string& text, int64_t* ps) {
-  const char* s = text.c_str();
-  char* end = nullptr;
-  double v = std::strtod(s, &end);
-  if (end == s || !(v >= 0) || v > 1e6) return false;
-  std::string unit(end);
-  while (!unit.empty() && unit[0] == ' ') unit.erase(0, 1);
-  double mul = 0;
-  if (unit == "s")
-    mul = 1e12;
-  else if (unit == "ms")
-    mul = 1e9;
-  else if (unit == "us")
-    mul = 1e6;
-  else if (unit == "ns")
-    mul = 1e3;
-  else if (unit == "ps" || (unit.empty() && v == 0))
-    mul = 1;
-  else
-    return false;
+  static const UnitScale kPsPer[] = {{"s", 1e12}, {"ms", 1e9}, {"us", 1e6}, {"ns", 1e3}, {"ps", 1}};
+  double v = 0;
+  std::string unit;
+  if (!split_number_unit(text, &v, &unit) || !(v >= 0) || v > 1e6) return false;
+  const double mul = unit.empty() && v == 0 ? 1 : unit_scale(unit, kPsPer);
+  if (mul == 0) return false;
   *ps = std::llround(v * mul);
   return true;
 }

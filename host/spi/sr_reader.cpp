@@ -1,40 +1,23 @@
 // sigrok session (.sr) reader: a zip with a `metadata` ini file and raw logic sample chunks
 // (`logic-1` or `logic-1-1`, `logic-1-2`...), read directly (no sigrok-cli needed).
 #include <algorithm>  // std::sort
-#include <cstdlib>    // std::strtod
 #include <map>        // std::map
 #include <sstream>    // std::istringstream
 
 #include "host/spi/capture.h"
-#include "host/spi/zip_reader.h"  // unzip_all
+#include "host/spi/text_values.h"  // trim, split_number_unit, unit_scale
+#include "host/spi/zip_reader.h"   // unzip_all
 
 namespace host::spi {
 namespace {
 
-std::string trim(const std::string& s) {
-  size_t a = s.find_first_not_of(" \t\r\n");
-  if (a == std::string::npos) return "";
-  size_t b = s.find_last_not_of(" \t\r\n");
-  return s.substr(a, b - a + 1);
-}
-
 // "4 MHz", "500 kHz", "1000000" -> Hz; 0 if unreadable.
 uint64_t parse_rate_hz(const std::string& text) {
-  const char* s = text.c_str();
-  char* end = nullptr;
-  double v = std::strtod(s, &end);
-  if (end == s || !(v > 0)) return 0;
-  std::string unit = trim(end);
-  double mul = 1;
-  if (unit == "kHz")
-    mul = 1e3;
-  else if (unit == "MHz")
-    mul = 1e6;
-  else if (unit == "GHz")
-    mul = 1e9;
-  else if (unit != "Hz" && !unit.empty())
-    return 0;
-  double hz = v * mul;
+  static const UnitScale kHzPer[] = {{"", 1}, {"Hz", 1}, {"kHz", 1e3}, {"MHz", 1e6}, {"GHz", 1e9}};
+  double v = 0;
+  std::string unit;
+  if (!split_number_unit(text, &v, &unit) || !(v > 0)) return 0;
+  const double hz = v * unit_scale(trim(unit), kHzPer);
   if (hz < 1 || hz > 1e12) return 0;
   return static_cast<uint64_t>(hz + 0.5);
 }

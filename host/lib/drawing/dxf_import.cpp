@@ -20,7 +20,7 @@
 
 #include "host/lib/drawing/conics.h"
 #include "host/lib/drawing/dxf_scan.h"
-#include "host/lib/drawing/file_text.h"  // read_file_text
+#include "host/lib/drawing/file_text.h"  // read_drawing_text
 
 namespace host {
 
@@ -34,6 +34,19 @@ const size_t kMaxFitPoints = 1000;
 // of arrays multiplies them; the bounds keep time and memory to seconds and megabytes).
 const long kMaxBlockCopies = 20000;
 const long kMaxExpandedControlPoints = 2000000;
+
+// The $INSUNITS codes this tool converts (the DXF reference's numbering): the unit's name
+// and its length in millimetres.
+struct DxfUnit {
+  int code;
+  const char* name;
+  double mm;
+};
+const DxfUnit kDxfUnits[] = {
+    {0, "mm (assumed)", 1.0}, {1, "inch", 25.4}, {2, "foot", 304.8},        {4, "mm", 1.0},
+    {5, "cm", 10.0},          {6, "m", 1000.0},  {8, "microinch", 25.4e-6}, {9, "mil", 0.0254},
+    {13, "micron", 0.001},    {14, "dm", 100.0},
+};
 
 struct ExpansionBudget {
   long copies = 0;
@@ -440,6 +453,22 @@ class DxfReader : public DL_CreationAdapter {
   void expand(const Space& s, const Eigen::Matrix2d& a, const Point2& b, int depth,
               const std::string& via, ExpansionBudget& budget, std::vector<Curve>& out) const;
 
+  // A SPLINE record's groups (addSpline).
+  struct SplineGroups {
+    int flags = 0, degree = -1;
+    long n_knots = -1, n_control = -1, n_fit = -1;
+    std::vector<double> knots, weights;
+    std::vector<Point2> control, fit;
+    std::vector<double> control_z;
+    bool has_end_tangent = false;
+  };
+  SplineGroups spline_groups() const;
+  void check_count(long announced, size_t listed, const char* what, int code) const;
+  BSpline fit_point_spline(const SplineGroups& g);
+  BSpline control_point_spline(const SplineGroups& g) const;
+  void set_units(Drawing& dr);
+  std::vector<Curve> expanded_curves(double unit_to_mm);
+
   std::string path_;
   RawRecord pending_, finished_;
   std::map<std::string, int> type_ordinal_;
@@ -459,140 +488,137 @@ class DxfReader : public DL_CreationAdapter {
 
 // SPLINE: the counts and values are taken from the raw groups (dxflib silently pads or
 // drops knots and control points that do not match the announced counts).
-void DxfReader::addSpline(const DL_SplineData& d) {
+void DxfReader::addSpline(const DL_SplineData&) {
   if (!take("SPLINE")) return;
-  int flags = 0, degree = -1;
-  long n_knots = -1, n_control = -1, n_fit = -1;
-  std::vector<double> knots, weights;
-  std::vector<Point2> control, fit;
-  std::vector<double> control_z;
-  Point2 tangent_start(0, 0), tangent_end(0, 0);
-  bool have_ts = false, have_te = false;
-  for (const auto& g : finished_.groups) {
-    const bool is_int = g.first >= 70 && g.first <= 74;
-    const double v = is_int ? 0.0 : std::strtod(g.second.c_str(), 0);  // syntax checked
-    switch (g.first) {
-      case 70:
-        flags = group_int(g.first, g.second);
-        break;
-      case 71:
-        degree = group_int(g.first, g.second);
-        break;
-      case 72:
-        n_knots = group_int(g.first, g.second);
-        break;
-      case 73:
-        n_control = group_int(g.first, g.second);
-        break;
-      case 74:
-        n_fit = group_int(g.first, g.second);
-        break;
-      case 40:
-        knots.push_back(v);
-        break;
-      case 41:
-        weights.push_back(v);
-        break;
-      case 10:
-        control.emplace_back(v, 0.0);
-        control_z.push_back(0.0);
-        break;
-      case 20:
-        if (!control.empty()) control.back().y() = v;
-        break;
-      case 30:
-        if (!control_z.empty()) control_z.back() = v;
-        break;
-      case 11:
-        fit.emplace_back(v, 0.0);
-        break;
-      case 21:
-        if (!fit.empty()) fit.back().y() = v;
-        break;
-      case 12:
-        tangent_start.x() = v;
-        have_ts = true;
-        break;
-      case 22:
-        tangent_start.y() = v;
-        break;
-      case 13:
-        tangent_end.x() = v;
-        have_te = true;
-        break;
-      case 23:
-        tangent_end.y() = v;
-        break;
-      default:
-        break;
-    }
+  const SplineGroups g = spline_groups();
+  if (g.degree < 1 || g.degree > 3) {
+    fail("degree " + std::to_string(g.degree) + " (group 71); the machine takes degree 1 to 3");
   }
-  (void)d;
-  if (degree < 1 || degree > 3) {
-    fail("degree " + std::to_string(degree) + " (group 71); the machine takes degree 1 to 3");
-  }
-  if (n_knots >= 0 && n_knots != static_cast<long>(knots.size())) {
-    fail("announces " + std::to_string(n_knots) + " knots (group 72) but lists " +
-         std::to_string(knots.size()));
-  }
-  if (n_control >= 0 && n_control != static_cast<long>(control.size())) {
-    fail("announces " + std::to_string(n_control) + " control points (group 73) but lists " +
-         std::to_string(control.size()));
-  }
-  if (n_fit >= 0 && n_fit != static_cast<long>(fit.size())) {
-    fail("announces " + std::to_string(n_fit) + " fit points (group 74) but lists " +
-         std::to_string(fit.size()));
-  }
-  for (double z : control_z) {
+  check_count(g.n_knots, g.knots.size(), "knots", 72);
+  check_count(g.n_control, g.control.size(), "control points", 73);
+  check_count(g.n_fit, g.fit.size(), "fit points", 74);
+  for (double z : g.control_z) {
     if (z != 0.0) {
       warn("control point z ignored (drawn in plan view)");
       break;
     }
   }
-  BSpline s;
-  s.degree = degree;
-  if (control.empty()) {
-    if (fit.size() < 2) fail("has neither control points nor at least two fit points");
-    if (fit.size() > kMaxFitPoints) {
-      fail(std::to_string(fit.size()) + " fit points and no control points (at most " +
-           std::to_string(kMaxFitPoints) +
-           " are interpolated; save the spline with its control points)");
-    }
-    // Interpolate the fit points (chord-length parameters, averaged knots). CAD programs
-    // may also honour end tangents and their own knot rule: say so.
-    const int deg = std::min<int>(degree, static_cast<int>(fit.size()) - 1);
-    Eigen::MatrixXd pts(2, fit.size());
-    for (size_t i = 0; i < fit.size(); ++i) pts.col(i) = fit[i];
-    typedef Eigen::Spline<double, 2> EigenSpline;
-    const EigenSpline e = Eigen::SplineFitting<EigenSpline>::Interpolate(pts, deg);
-    s.degree = deg;
-    for (Eigen::Index i = 0; i < e.ctrls().cols(); ++i) s.control.push_back(e.ctrls().col(i));
-    for (Eigen::Index i = 0; i < e.knots().size(); ++i) s.knots.push_back(e.knots()(i));
-    std::string note = "defined by " + std::to_string(fit.size()) +
-                       " fit points only: interpolated with a degree " + std::to_string(deg) +
-                       " B-spline through them (chord-length parameters)";
-    if (have_ts || have_te) note += "; the end tangents in the file are not used";
-    warn(note + "; the CAD program's curve may differ slightly between fit points");
-  } else {
-    s.control = control;
-    s.knots = knots;
-    if (!weights.empty()) {
-      if (weights.size() != control.size()) {
-        fail(std::to_string(weights.size()) + " weights (group 41) for " +
-             std::to_string(control.size()) + " control points");
-      }
-      bool all_one = true;
-      for (double w : weights) all_one = all_one && w == 1.0;
-      if (!all_one || (flags & 4)) s.weights = weights;
-    }
-  }
+  const BSpline s = g.control.empty() ? fit_point_spline(g) : control_point_spline(g);
   const std::string problem = check_bspline(s);
   if (!problem.empty()) fail(problem);
-  if ((flags & 1) && (start_point(s) - end_point(s)).norm() > 1e-6 * (1 + s.control[0].norm())) {
+  if ((g.flags & 1) && (start_point(s) - end_point(s)).norm() > 1e-6 * (1 + s.control[0].norm())) {
     warn("flagged closed but its ends are " + num((start_point(s) - end_point(s)).norm()) +
          " apart; drawn as stored");
   }
   add_curve("SPLINE", s);
+}
+
+// The SPLINE record's groups, as listed (the counts as announced, -1 when absent).
+DxfReader::SplineGroups DxfReader::spline_groups() const {
+  SplineGroups s;
+  for (const auto& g : finished_.groups) {
+    const bool is_int = g.first >= 70 && g.first <= 74;
+    const double v = is_int ? 0.0 : std::strtod(g.second.c_str(), 0);  // syntax checked
+    switch (g.first) {
+      case 70:
+        s.flags = group_int(g.first, g.second);
+        break;
+      case 71:
+        s.degree = group_int(g.first, g.second);
+        break;
+      case 72:
+        s.n_knots = group_int(g.first, g.second);
+        break;
+      case 73:
+        s.n_control = group_int(g.first, g.second);
+        break;
+      case 74:
+        s.n_fit = group_int(g.first, g.second);
+        break;
+      case 40:
+        s.knots.push_back(v);
+        break;
+      case 41:
+        s.weights.push_back(v);
+        break;
+      case 10:
+        s.control.emplace_back(v, 0.0);
+        s.control_z.push_back(0.0);
+        break;
+      case 20:
+        if (!s.control.empty()) s.control.back().y() = v;
+        break;
+      case 30:
+        if (!s.control_z.empty()) s.control_z.back() = v;
+        break;
+      case 11:
+        s.fit.emplace_back(v, 0.0);
+        break;
+      case 21:
+        if (!s.fit.empty()) s.fit.back().y() = v;
+        break;
+      case 12:
+      case 13:
+        s.has_end_tangent = true;  // start (12) or end (13) tangent: not used
+        break;
+      default:
+        break;
+    }
+  }
+  return s;
+}
+
+// A count the record announces (group `code`; -1: none) against what it lists.
+void DxfReader::check_count(long announced, size_t listed, const char* what, int code) const {
+  if (announced >= 0 && announced != static_cast<long>(listed)) {
+    fail("announces " + std::to_string(announced) + " " + what + " (group " + std::to_string(code) +
+         ") but lists " + std::to_string(listed));
+  }
+}
+
+// A spline given by fit points only: interpolated (chord-length parameters, averaged knots).
+// CAD programs may also honour end tangents and their own knot rule: say so.
+BSpline DxfReader::fit_point_spline(const SplineGroups& g) {
+  if (g.fit.size() < 2) fail("has neither control points nor at least two fit points");
+  if (g.fit.size() > kMaxFitPoints) {
+    fail(std::to_string(g.fit.size()) + " fit points and no control points (at most " +
+         std::to_string(kMaxFitPoints) +
+         " are interpolated; save the spline with its control points)");
+  }
+  const int deg = std::min<int>(g.degree, static_cast<int>(g.fit.size()) - 1);
+  Eigen::MatrixXd pts(2, g.fit.size());
+  for (size_t i = 0; i < g.fit.size(); ++i) pts.col(i) = g.fit[i];
+  typedef Eigen::Spline<double, 2> EigenSpline;
+  const EigenSpline e = Eigen::SplineFitting<EigenSpline>::Interpolate(pts, deg);
+  BSpline s;
+  s.degree = deg;
+  for (Eigen::Index i = 0; i < e.ctrls().cols(); ++i) s.control.push_back(e.ctrls().col(i));
+  for (Eigen::Index i = 0; i < e.knots().size(); ++i) s.knots.push_back(e.knots()(i));
+  std::string note = "defined by " + std::to_string(g.fit.size()) +
+                     " fit points only: interpolated with a degree " + std::to_string(deg) +
+                     " B-spline through them (chord-length parameters)";
+  if (g.has_end_tangent) note += "; the end tangents in the file are not used";
+  warn(note + "; the CAD program's curve may differ slightly between fit points");
+  return s;
+}
+
+// A spline given by its control points and knots; weights kept when they make it rational
+// (any weight other than 1, or flag 4).
+BSpline DxfReader::control_point_spline(const SplineGroups& g) const {
+  BSpline s;
+  s.degree = g.degree;
+  s.control = g.control;
+  s.knots = g.knots;
+  if (!g.weights.empty()) {
+    if (g.weights.size() != g.control.size()) {
+      fail(std::to_string(g.weights.size()) + " weights (group 41) for " +
+           std::to_string(g.control.size()) + " control points");
+    }
+    bool all_one = true;
+    for (double w : g.weights) all_one = all_one && w == 1.0;
+    if (!all_one || (g.flags & 4)) s.weights = g.weights;
+  }
+  return s;
 }
 
 // Appends the curves of a space mapped by x -> a x + b, expanding its block references.
@@ -654,58 +680,50 @@ Drawing DxfReader::finish() {
   Drawing dr;
   dr.path = path_;
   dr.format = "DXF";
-  switch (have_insunits_ ? insunits_ : 0) {
-    case 0:
-      dr.units = "mm (assumed)";
-      dr.unit_to_mm = 1.0;
-      warnings_.push_back(
-          path_ +
-          (have_insunits_ ? ": $INSUNITS is 0 (unitless)" : ": no $INSUNITS in the header") +
-          ": coordinates taken as millimetres");
-      break;
-    case 1:
-      dr.units = "inch";
-      dr.unit_to_mm = 25.4;
-      break;
-    case 2:
-      dr.units = "foot";
-      dr.unit_to_mm = 304.8;
-      break;
-    case 4:
-      dr.units = "mm";
-      dr.unit_to_mm = 1.0;
-      break;
-    case 5:
-      dr.units = "cm";
-      dr.unit_to_mm = 10.0;
-      break;
-    case 6:
-      dr.units = "m";
-      dr.unit_to_mm = 1000.0;
-      break;
-    case 8:
-      dr.units = "microinch";
-      dr.unit_to_mm = 25.4e-6;
-      break;
-    case 9:
-      dr.units = "mil";
-      dr.unit_to_mm = 0.0254;
-      break;
-    case 13:
-      dr.units = "micron";
-      dr.unit_to_mm = 0.001;
-      break;
-    case 14:
-      dr.units = "dm";
-      dr.unit_to_mm = 100.0;
-      break;
-    default:
-      throw ImportError(path_ + ": $INSUNITS " + std::to_string(insunits_) +
-                        " is a unit this tool does not convert (supported: 0 unitless = mm, "
-                        "1 inch, 2 foot, 4 mm, 5 cm, 6 m, 8 microinch, 9 mil, 13 micron, 14 dm)");
+  set_units(dr);
+  dr.curves = expanded_curves(dr.unit_to_mm);
+  dr.entity_counts = counts_;
+  for (const auto& k : skipped_) {
+    warnings_.push_back(path_ + ": " + std::to_string(k.second) + " " + k.first + " entit" +
+                        (k.second == 1 ? "y" : "ies") +
+                        " not engraved (only lines, arcs, circles, ellipses, polylines, "
+                        "splines and block references are; convert text to outlines)");
   }
+  if (paper_space_skipped_ > 0) {
+    warnings_.push_back(path_ + ": " + std::to_string(paper_space_skipped_) +
+                        " paper-space entities ignored (only model space is engraved)");
+  }
+  dr.warnings = warnings_;
+  return dr;
+}
+
+// The drawing's unit from $INSUNITS (none or 0: millimetres, with a warning).
+void DxfReader::set_units(Drawing& dr) {
+  const int code = have_insunits_ ? insunits_ : 0;
+  std::string supported;
+  for (const DxfUnit& u : kDxfUnits) {
+    if (u.code == code) {
+      dr.units = u.name;
+      dr.unit_to_mm = u.mm;
+      if (code == 0) {
+        warnings_.push_back(
+            path_ +
+            (have_insunits_ ? ": $INSUNITS is 0 (unitless)" : ": no $INSUNITS in the header") +
+            ": coordinates taken as millimetres");
+      }
+      return;
+    }
+    supported += (supported.empty() ? "" : ", ") + std::to_string(u.code) + " " +
+                 (u.code == 0 ? "unitless = mm" : u.name);
+  }
+  throw ImportError(path_ + ": $INSUNITS " + std::to_string(insunits_) +
+                    " is a unit this tool does not convert (supported: " + supported + ")");
+}
+
+// Every curve in millimetres, block references expanded; none beyond 10 km.
+std::vector<Curve> DxfReader::expanded_curves(double unit_to_mm) {
   ExpansionBudget budget;
-  const Eigen::Matrix2d to_mm = Eigen::Matrix2d::Identity() * dr.unit_to_mm;
+  const Eigen::Matrix2d to_mm = Eigen::Matrix2d::Identity() * unit_to_mm;
   // The model space's own curves are scaled in place and the vector moved, not copied (a
   // million-line drawing held them three times over, then twice while a second vector was
   // filled); blocks may be inserted many times, so expand() copies those. It counts the
@@ -726,20 +744,7 @@ Drawing DxfReader::finish() {
       }
     }
   }
-  dr.curves = std::move(curves);
-  dr.entity_counts = counts_;
-  for (const auto& k : skipped_) {
-    warnings_.push_back(path_ + ": " + std::to_string(k.second) + " " + k.first + " entit" +
-                        (k.second == 1 ? "y" : "ies") +
-                        " not engraved (only lines, arcs, circles, ellipses, polylines, "
-                        "splines and block references are; convert text to outlines)");
-  }
-  if (paper_space_skipped_ > 0) {
-    warnings_.push_back(path_ + ": " + std::to_string(paper_space_skipped_) +
-                        " paper-space entities ignored (only model space is engraved)");
-  }
-  dr.warnings = warnings_;
-  return dr;
+  return curves;
 }
 
 // Serves the checked groups to dxflib as text, one group per underflow(), and hands each
@@ -800,11 +805,7 @@ Drawing import_dxf_text(const std::string& text, const std::string& path) {
 }
 
 Drawing import_dxf(const std::string& path) {
-  std::string text;
-  const FileRead r = read_file_text(path, &text);
-  if (r == FileRead::kCannotOpen) throw ImportError(path + ": cannot open the file");
-  if (r == FileRead::kReadError) throw ImportError(path + ": cannot read the file");
-  return import_dxf_text(text, path);
+  return import_dxf_text(read_drawing_text(path), path);
 }
 
 }  // namespace host

@@ -173,6 +173,87 @@ void check_value(long code, const std::string& v, const Where& w, size_t file_by
   }
 }
 
+// A group code line's number (0..1071), or ImportError naming what stands there.
+long group_code(const std::string& code_text, const Where& w) {
+  long code = -1;
+  if (is_decimal_int(code_text) && code_text.size() <= 6)
+    code = std::strtol(code_text.c_str(), nullptr, 10);
+  if (code < 0 || code > 1071) {
+    std::string shown = code_text.substr(0, 40);
+    for (char& c : shown) {
+      if (c == '\0') c = '?';
+    }
+    throw ImportError(w.describe() + ": '" + shown +
+                      "' is not a DXF group code (expected an integer 0..1071)");
+  }
+  return code;
+}
+
+// A group's value line (line number `line`) stripped; a text value cut to what dxflib reads,
+// a number that long or a NUL byte refused.
+std::string group_value(const std::string& value_line, long code, const Where& w, long line) {
+  std::string value = strip(value_line);
+  if (value.size() > kMaxDxfValueChars) {
+    // dxflib reads lines of at most 1023 characters (a longer one stops its reader).
+    if (is_real_code(code) || int_code_limit(code) != 0) {
+      std::ostringstream o;
+      o << w.path << ": line " << line << ", in " << w.entity << ": the value of group " << code
+        << " is " << value.size() << " characters long (a number has at most " << kMaxDxfValueChars
+        << ")";
+      throw ImportError(o.str());
+    }
+    value.resize(kMaxDxfValueChars);  // text, names: not engraved
+  }
+  if (value.find('\0') != std::string::npos) {
+    std::ostringstream o;
+    o << w.path << ": line " << line << ", in " << w.entity << ": a NUL byte in the value of group "
+      << code << " (binary data in a text file?)";
+    throw ImportError(o.str());
+  }
+  return value;
+}
+
+// A new record (group 0, or 9: dxflib ends the previous record on a header variable as on
+// group 0): the previous LWPOLYLINE's vertex count checked, the place moved on.
+void start_record(const std::string& type, Where& w, PolylineShape& poly) {
+  if (poly.active && poly.declared != poly.vertices) {
+    std::ostringstream o;
+    o << w.describe() << ": announces " << poly.declared << " vertices (group 90) but lists "
+      << poly.vertices;
+    throw ImportError(o.str());
+  }
+  poly = PolylineShape();
+  poly.active = type == "LWPOLYLINE";
+  w.entity = type.empty() ? std::string("an unnamed record") : type;
+  w.entity_line = w.line;
+  w.handle.clear();
+}
+
+// Nothing but blanks, NULs and a Ctrl-Z may follow '0 EOF' (at `pos` in the text).
+void check_nothing_after_eof(const std::string& text, size_t pos, const Where& w) {
+  const size_t rest = text.find_first_not_of(std::string(" \t\r\n\0\x1a", 6), pos);
+  if (rest == std::string::npos) return;
+  const long after = w.line + 2 +
+                     static_cast<long>(std::count(text.begin() + static_cast<long>(pos),
+                                                  text.begin() + static_cast<long>(rest), '\n'));
+  std::ostringstream o;
+  o << w.path << ": line " << after << ": data after the end-of-file marker '0 EOF' of line "
+    << w.line << " (a damaged or concatenated file?)";
+  throw ImportError(o.str());
+}
+
+// An LWPOLYLINE's vertex groups counted (10) and placed (42 after a vertex, both after 90).
+void count_vertex_group(long code, const Where& w, PolylineShape& poly) {
+  if (!poly.active || (code != 10 && code != 42)) return;
+  if (poly.declared < 0) {
+    throw ImportError(w.describe() + ": vertex data before the vertex count (group 90)");
+  }
+  if (code == 10) ++poly.vertices;
+  if (code == 42 && poly.vertices == 0) {
+    throw ImportError(w.describe() + ": a bulge (group 42) before the first vertex");
+  }
+}
+
 }  // namespace
 
 bool looks_like_dxf(const std::string& path) {
@@ -210,97 +291,36 @@ DxfScanner::~DxfScanner() = default;
 bool DxfScanner::next(DxfGroup* group) {
   if (s_->done) return false;
   const std::string& text = s_->text;
-  const std::string& path = s_->w.path;
-  const long max_count = s_->max_count;
   Where& w = s_->w;
   Lines& lines = s_->lines;
-  PolylineShape& poly = s_->poly;
-  std::string& code_line = s_->code_line;
-  std::string& value_line = s_->value_line;
-  while (lines.next(code_line)) {
+  while (lines.next(s_->code_line)) {
     w.line = lines.number();
-    const std::string code_text = strip(code_line);
+    const std::string code_text = strip(s_->code_line);
     if (code_text.empty() && lines.pos() >= text.size()) break;  // trailing blank line
-    long code = -1;
-    if (is_decimal_int(code_text) && code_text.size() <= 6)
-      code = std::strtol(code_text.c_str(), nullptr, 10);
-    if (code < 0 || code > 1071) {
-      std::string shown = code_text.substr(0, 40);
-      for (char& c : shown) {
-        if (c == '\0') c = '?';
-      }
-      throw ImportError(w.describe() + ": '" + shown +
-                        "' is not a DXF group code (expected an integer 0..1071)");
-    }
-    if (!lines.next(value_line)) {
+    const long code = group_code(code_text, w);
+    if (!lines.next(s_->value_line)) {
       throw ImportError(w.describe() + ": the file ends after group code " + code_text +
                         " without its value (truncated file?)");
     }
-    std::string value = strip(value_line);
-    if (value.size() > kMaxDxfValueChars) {
-      // dxflib reads lines of at most 1023 characters (a longer one stops its reader).
-      if (is_real_code(code) || int_code_limit(code) != 0) {
-        std::ostringstream o;
-        o << path << ": line " << lines.number() << ", in " << w.entity << ": the value of group "
-          << code << " is " << value.size() << " characters long (a number has at most "
-          << kMaxDxfValueChars << ")";
-        throw ImportError(o.str());
-      }
-      value.resize(kMaxDxfValueChars);  // text, names: not engraved
-    }
-    if (value.find('\0') != std::string::npos) {
-      std::ostringstream o;
-      o << path << ": line " << lines.number() << ", in " << w.entity
-        << ": a NUL byte in the value of group " << code << " (binary data in a text file?)";
-      throw ImportError(o.str());
-    }
+    const std::string value = group_value(s_->value_line, code, w, lines.number());
     if (code == 999) continue;  // comment: not given to dxflib
     if (code == 0 || code == 9) {
-      // dxflib ends the previous record on group 9 (header variable) as on group 0.
-      if (poly.active && poly.declared != poly.vertices) {
-        std::ostringstream o;
-        o << w.describe() << ": announces " << poly.declared << " vertices (group 90) but lists "
-          << poly.vertices;
-        throw ImportError(o.str());
-      }
-      poly = PolylineShape();
-      poly.active = value == "LWPOLYLINE";
-      w.entity = value.empty() ? std::string("an unnamed record") : value;
-      w.entity_line = w.line;
-      w.handle.clear();
+      start_record(value, w, s_->poly);
       *group = DxfGroup{static_cast<int>(code), value, w.line};
       if (code == 0 && value == "EOF") {
-        const size_t rest = text.find_first_not_of(std::string(" \t\r\n\0\x1a", 6), lines.pos());
-        if (rest != std::string::npos) {
-          const long after =
-              w.line + 2 +
-              static_cast<long>(std::count(text.begin() + static_cast<long>(lines.pos()),
-                                           text.begin() + static_cast<long>(rest), '\n'));
-          std::ostringstream o;
-          o << path << ": line " << after << ": data after the end-of-file marker '0 EOF' of line "
-            << w.line << " (a damaged or concatenated file?)";
-          throw ImportError(o.str());
-        }
+        check_nothing_after_eof(text, lines.pos(), w);
         s_->done = true;
       }
       return true;
     }
     if (code == 5) w.handle = value.substr(0, 40);
-    if (poly.active && (code == 10 || code == 42)) {
-      if (poly.declared < 0) {
-        throw ImportError(w.describe() + ": vertex data before the vertex count (group 90)");
-      }
-      if (code == 10) ++poly.vertices;
-      if (code == 42 && poly.vertices == 0) {
-        throw ImportError(w.describe() + ": a bulge (group 42) before the first vertex");
-      }
-    }
-    check_value(code, value, w, text.size(), max_count, poly);
+    count_vertex_group(code, w, s_->poly);
+    check_value(code, value, w, text.size(), s_->max_count, s_->poly);
     *group = DxfGroup{static_cast<int>(code), value, w.line};
     return true;
   }
   std::ostringstream o;
-  o << path << ": the file ends at line " << lines.number() << " inside " << w.entity
+  o << w.path << ": the file ends at line " << lines.number() << " inside " << w.entity
     << " without the closing '0 EOF' (truncated file?)";
   throw ImportError(o.str());
 }

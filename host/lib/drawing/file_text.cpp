@@ -7,6 +7,8 @@
 #include <fstream>       // std::ifstream
 #include <system_error>  // std::error_code
 
+#include "host/lib/drawing/drawing.h"  // ImportError
+
 namespace host {
 
 FileRead read_file_text(const std::string& path, std::string* text) {
@@ -36,6 +38,14 @@ std::string lower_ascii(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
+}
+
+std::string read_drawing_text(const std::string& path) {
+  std::string text;
+  const FileRead r = read_file_text(path, &text);
+  if (r == FileRead::kCannotOpen) throw ImportError(path + ": cannot open the file");
+  if (r == FileRead::kReadError) throw ImportError(path + ": cannot read the file");
+  return text;
 }
 
 }  // namespace host

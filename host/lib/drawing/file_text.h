@@ -21,6 +21,10 @@ std::string read_file_head(const std::string& path);
 // s with A-Z in lower case (file names, host names).
 std::string lower_ascii(std::string s);
 
+// The drawing importers' read: the file's text, or ImportError "<path>: cannot open the
+// file" / "<path>: cannot read the file".
+std::string read_drawing_text(const std::string& path);
+
 }  // namespace host
 
 #endif  // HOST_LIB_DRAWING_FILE_TEXT_H

@@ -12,7 +12,7 @@
 #include <sstream>    // std::istringstream, std::ostringstream
 
 #include "host/lib/drawing/conics.h"
-#include "host/lib/drawing/file_text.h"  // read_file_text
+#include "host/lib/drawing/file_text.h"  // read_drawing_text
 #include "host/lib/drawing/gcode_words.h"
 
 namespace host {
@@ -579,11 +579,7 @@ Drawing import_gcode_text(const std::string& text, const std::string& name) {
 }
 
 Drawing import_gcode(const std::string& path) {
-  std::string text;
-  const FileRead r = read_file_text(path, &text);
-  if (r == FileRead::kCannotOpen) throw ImportError(path + ": cannot open the file");
-  if (r == FileRead::kReadError) throw ImportError(path + ": cannot read the file");
-  return import_gcode_text(text, path);
+  return import_gcode_text(read_drawing_text(path), path);
 }
 
 }  // namespace host

@@ -4,11 +4,12 @@
 #include <fmt/format.h>  // fmt::format
 
 #include <algorithm>   // std::min
-#include <cmath>       // std::llround, std::ceil
+#include <cmath>       // std::ceil
 #include <functional>  // std::function
 
 #include "host/lib/pcb/pcb_geometry.h"
 #include "host/lib/plan/firmware_spline.h"
+#include "host/lib/plan/plan_steps.h"  // plan_detail::to_um, append_spline_steps
 
 namespace host::pcb::board_stages {
 
@@ -18,16 +19,7 @@ using ClipperLib::Paths;
 
 namespace {
 
-int32_t um(double mm) {
-  return static_cast<int32_t>(std::llround(mm * 1000.0));
-}
-
-core::PointUm um(const Point2& p) {
-  core::PointUm q;
-  q.x_um = um(p.x());
-  q.y_um = um(p.y());
-  return q;
-}
+using plan_detail::to_um;  // mm -> um, rounded (the drawings' planner's rounding)
 
 // Builds the plan's steps and curves in the machine frame.
 class StepWriter {
@@ -37,28 +29,28 @@ class StepWriter {
 
   void pen_up(double z_mm) {
     if (!plan_->steps.empty() && plan_->steps.back().kind == PlanStep::kPenUp &&
-        plan_->steps.back().z_um == um(z_mm))
+        plan_->steps.back().z_um == to_um(z_mm))
       return;
     if (cutting_) ++plan_->pen_lifts;
     cutting_ = false;
     PlanStep s;
     s.kind = PlanStep::kPenUp;
-    s.z_um = um(z_mm);
+    s.z_um = to_um(z_mm);
     plan_->steps.push_back(s);
   }
   void pen_down(double z_mm, double feed) {
     cutting_ = true;
     PlanStep s;
     s.kind = PlanStep::kPenDown;
-    s.z_um = um(z_mm);
-    s.feed_um_per_s = um(feed);
+    s.z_um = to_um(z_mm);
+    s.feed_um_per_s = to_um(feed);
     plan_->steps.push_back(s);
   }
   void rapid(const Point2& machine) {
     plan_->rapid_length_mm += (machine - at_).norm();
     PlanStep s;
     s.kind = PlanStep::kRapid;
-    s.to = um(place_.apply(machine));
+    s.to = to_um(place_.apply(machine));
     plan_->steps.push_back(s);
     at_ = machine;
   }
@@ -68,7 +60,7 @@ class StepWriter {
     plan_->rapid_length_mm += (home - at_).norm();
     PlanStep s;
     s.kind = PlanStep::kRapid;
-    s.to = um(Point2(0, 0));
+    s.to = to_um(Point2(0, 0));
     plan_->steps.push_back(s);
     at_ = home;
   }
@@ -121,10 +113,10 @@ class StepWriter {
     PlanStep s;
     s.curve = reference(machine, machine, "hole");
     s.kind = PlanStep::kDrill;
-    s.to = um(place_.apply(machine));
-    s.z_start_um = um(o_.drill_start_mm);
-    s.z_um = um(-depth_mm);
-    s.feed_um_per_s = um(o_.drill_feed_mm_per_s);
+    s.to = to_um(place_.apply(machine));
+    s.z_start_um = to_um(o_.drill_start_mm);
+    s.z_um = to_um(-depth_mm);
+    s.feed_um_per_s = to_um(o_.drill_feed_mm_per_s);
     plan_->steps.push_back(s);
     plan_->rapid_length_mm += (machine - at_).norm();
     at_ = machine;
@@ -133,8 +125,8 @@ class StepWriter {
     PlanStep s;
     s.curve = reference(at_, machine, "slot");
     s.kind = PlanStep::kFeed;
-    s.to = um(place_.apply(machine));
-    s.feed_um_per_s = um(feed);
+    s.to = to_um(place_.apply(machine));
+    s.feed_um_per_s = to_um(feed);
     plan_->steps.push_back(s);
     plan_->cut_length_mm += (machine - at_).norm();
     at_ = machine;
@@ -152,21 +144,10 @@ class StepWriter {
     pc.source = source;
     const int index = static_cast<int>(plan_->curves.size());
     plan_->curves.push_back(pc);
-    std::vector<core::Spline> pieces;
     try {
-      pieces = to_firmware_splines(pc.spline);
+      plan_detail::append_spline_steps(pc.spline, index, to_um(feed), 0, plan_);
     } catch (const ConversionError& e) {
       throw PlanError(source + ": " + e.what());
-    }
-    for (size_t k = 0; k < pieces.size(); ++k) {
-      PlanStep s;
-      s.kind = PlanStep::kSpline;
-      s.set_spline(StepSpline(pieces[k]));
-      s.to = um(k + 1 == pieces.size() ? end_point(pc.spline)
-                                       : end_point(from_firmware_spline(pieces[k])));
-      s.feed_um_per_s = um(feed);
-      s.curve = index;
-      plan_->steps.push_back(s);
     }
     // Length and extents from one sampling (within 1 um).
     const std::vector<Point2> pts = sample(pc.spline, 0.001);

@@ -2,9 +2,10 @@
 // reversal, chaining of touching curves, work-area check, conversion to firmware splines.
 #include "host/lib/plan/job_plan.h"
 
-#include <cmath>    // std::llround, std::isfinite
-#include <sstream>  // std::ostringstream
-#include <utility>  // std::move
+#include <cmath>        // std::llround, std::isfinite
+#include <sstream>      // std::ostringstream
+#include <type_traits>  // std::is_const_v
+#include <utility>      // std::move
 
 #include "host/lib/plan/nearest_end.h"
 #include "host/lib/plan/plan_steps.h"
@@ -188,9 +189,11 @@ void check_not_empty(const Drawing& drawing) {
     throw PlanError(drawing.path + ": the drawing has nothing to engrave");
 }
 
-}  // namespace
-
-JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
+// Checks and plans a drawing: a const one is kept; one its caller gives up (Drawing&) has
+// each curve released once scaled, so each is held once, not twice, while planning.
+template <class D>
+JobPlan plan_drawing(D& drawing, const PlanOptions& o) {
+  constexpr bool give_up = !std::is_const_v<D>;
   check_not_empty(drawing);
   check_options(o);
   if (!drawing.program.empty()) return plan_program(drawing, o);
@@ -199,29 +202,27 @@ JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
   std::vector<std::string> sources;
   scaled.reserve(drawing.curves.size());
   sources.reserve(drawing.curves.size());
-  for (const Curve& c : drawing.curves) {
+  for (auto& c : drawing.curves) {
     scaled.push_back(transformed(c.spline, scale, Point2(0, 0)));
-    sources.push_back(c.source);
+    if constexpr (give_up) {
+      c.spline = BSpline();
+      sources.push_back(std::move(c.source));
+    } else {
+      sources.push_back(c.source);
+    }
   }
+  if constexpr (give_up) std::vector<Curve>().swap(drawing.curves);
   return plan_scaled(std::move(scaled), std::move(sources), o);
 }
 
+}  // namespace
+
+JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
+  return plan_drawing(drawing, o);
+}
+
 JobPlan plan_job(Drawing&& drawing, const PlanOptions& o) {
-  check_not_empty(drawing);
-  check_options(o);
-  if (!drawing.program.empty()) return plan_program(drawing, o);
-  const Eigen::Matrix2d scale = Eigen::Matrix2d::Identity() * o.scale;
-  std::vector<BSpline> scaled;
-  std::vector<std::string> sources;
-  scaled.reserve(drawing.curves.size());
-  sources.reserve(drawing.curves.size());
-  for (Curve& c : drawing.curves) {
-    scaled.push_back(transformed(c.spline, scale, Point2(0, 0)));
-    c.spline = BSpline();  // each curve is held once, not twice, while planning
-    sources.push_back(std::move(c.source));
-  }
-  std::vector<Curve>().swap(drawing.curves);
-  return plan_scaled(std::move(scaled), std::move(sources), o);
+  return plan_drawing(drawing, o);
 }
 
 }  // namespace host

@@ -187,20 +187,24 @@ void append_curve_steps(const PlannedCurve& c, int index, int32_t offset, const 
     }
     return;
   }
-  std::vector<core::Spline> pieces;
   try {
-    pieces = to_firmware_splines(c.spline);
+    append_spline_steps(c.spline, index, feed, offset, plan);
   } catch (const ConversionError& e) {
     throw PlanError(describe(c) + ": " + e.what());
   }
+}
+
+void append_spline_steps(const BSpline& spline, int index, int32_t feed_um_per_s, int32_t offset_um,
+                         JobPlan* plan) {
+  const std::vector<core::Spline> pieces = to_firmware_splines(spline);
   for (size_t k = 0; k < pieces.size(); ++k) {
     PlanStep s;
     s.kind = PlanStep::kSpline;
     s.set_spline(StepSpline(pieces[k]));
-    s.to = to_um(k + 1 == pieces.size() ? end_point(c.spline)
+    s.to = to_um(k + 1 == pieces.size() ? end_point(spline)
                                         : end_point(from_firmware_spline(pieces[k])));
-    s.feed_um_per_s = feed;
-    s.tool_offset_um = offset;
+    s.feed_um_per_s = feed_um_per_s;
+    s.tool_offset_um = offset_um;
     s.curve = index;
     plan->steps.push_back(s);
   }

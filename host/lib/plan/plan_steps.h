@@ -48,6 +48,12 @@ Point2 offset_point(const BSpline& s, bool at_start, int32_t offset_um);
 void append_curve_steps(const PlannedCurve& c, int index, int32_t offset_um, const PlanOptions& o,
                         JobPlan* plan);
 
+// Appends a curve's spline steps (curve `index`): its firmware pieces, each ending where it
+// ends, the last exactly at the curve's end. Throws ConversionError (nothing appended) when
+// the curve has no firmware form; the caller names the curve.
+void append_spline_steps(const BSpline& spline, int index, int32_t feed_um_per_s, int32_t offset_um,
+                         JobPlan* plan);
+
 }  // namespace host::plan_detail
 
 #endif  // HOST_LIB_PLAN_PLAN_STEPS_H

@@ -6,11 +6,10 @@
 
 #include <algorithm>  // std::max
 #include <cmath>      // std::pow, std::floor
-#include <sstream>    // std::ostringstream
 #include <stdexcept>  // std::runtime_error
 
 #include "host/lib/pcb/pcb_geometry.h"
-#include "host/lib/plot/cairo_plot.h"  // nice_length, check_cairo_surface
+#include "host/lib/plot/cairo_plot.h"  // nice_length, draw_scale_bar, check_cairo_surface
 #include "host/lib/plot/png_rows.h"
 
 namespace host {
@@ -215,19 +214,7 @@ void draw_labels(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int 
   legend_box(cr, x += 80, y, kHole, "holes");
   legend_box(cr, x += 90, y, kGap, "narrow gap");
   if (!in.simulated.empty()) legend_box(cr, x += 120, y, kSimulated, "simulated tool");
-  const double bar_mm = nice_length(in.width_px / 6.0 / s);
-  const double x1 = in.width_px - kSideMarginPx, x0 = x1 - bar_mm * s;
-  cairo_set_source_rgb(cr, 0, 0, 0);
-  cairo_set_line_width(cr, 2.0);
-  cairo_move_to(cr, x0, y - 5);
-  cairo_line_to(cr, x0, y);
-  cairo_line_to(cr, x1, y);
-  cairo_line_to(cr, x1, y - 5);
-  cairo_stroke(cr);
-  std::ostringstream label;
-  label << bar_mm << " mm";
-  cairo_move_to(cr, x0, y + 16);
-  cairo_show_text(cr, label.str().c_str());
+  draw_scale_bar(cr, nice_length(in.width_px / 6.0 / s), s, in.width_px - kSideMarginPx, y);
 }
 
 void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int height_px,

@@ -10,7 +10,7 @@
 #include <functional>  // std::function
 #include <sstream>     // std::ostringstream
 
-#include "host/lib/plot/cairo_plot.h"  // nice_length, check_cairo_surface
+#include "host/lib/plot/cairo_plot.h"  // nice_length, draw_scale_bar, check_cairo_surface
 
 namespace host {
 
@@ -198,19 +198,8 @@ void render(cairo_t* cr, const PlotInput& in) {
   legend_entry(cr, kSideMarginPx, y, kDrawingColour, 5.0, false, "drawing");
   legend_entry(cr, kSideMarginPx + 120, y, kCutColour, 1.2, false, "tool path (pen down)");
   legend_entry(cr, kSideMarginPx + 320, y, kRapidColour, 0.8, true, "rapid (pen up)");
-  const double bar_mm = nice_length(in.width_px / 5.0 / f.scale_px_per_mm);
-  const double bar_px = bar_mm * f.scale_px_per_mm;
-  const double x1 = in.width_px - kSideMarginPx, x0 = x1 - bar_px;
-  cairo_set_source_rgb(cr, 0, 0, 0);
-  cairo_set_line_width(cr, 2.0);
-  cairo_move_to(cr, x0, y - 5);
-  cairo_line_to(cr, x0, y);
-  cairo_line_to(cr, x1, y);
-  cairo_line_to(cr, x1, y - 5);
-  cairo_stroke(cr);
-  std::ostringstream label;
-  label << bar_mm << " mm";
-  text(cr, x0, y + 16, label.str());
+  draw_scale_bar(cr, nice_length(in.width_px / 5.0 / f.scale_px_per_mm), f.scale_px_per_mm,
+                 in.width_px - kSideMarginPx, y);
 }
 
 // Text with &, <, > and " escaped for XML.

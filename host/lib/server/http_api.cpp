@@ -15,12 +15,13 @@
 #include <netinet/in.h>  // sockaddr_in, ntohs
 #include <sys/socket.h>  // listen, getsockname, getsockopt
 
-#include <charconv>  // std::from_chars
-#include <cmath>     // std::isfinite
-#include <cstdlib>   // std::strtod
-#include <iterator>  // std::distance
-#include <regex>     // std::regex
-#include <set>       // std::set
+#include <charconv>    // std::from_chars
+#include <cmath>       // std::isfinite
+#include <cstdlib>     // std::strtod
+#include <functional>  // std::function
+#include <iterator>    // std::distance
+#include <regex>       // std::regex
+#include <set>         // std::set
 
 namespace host::server {
 
@@ -358,7 +359,7 @@ bool body_object(const httplib::Request& req, httplib::Response& res, nlohmann::
 }
 
 // The keys of `body` not among `known` (a misspelt "percnet" is refused, not ignored).
-bool known_keys(const nlohmann::json& body, std::initializer_list<const char*> known,
+bool known_keys(const nlohmann::json& body, const std::vector<const char*>& known,
                 httplib::Response& res) {
   for (const auto& item : body.items()) {
     bool ok = false;
@@ -370,6 +371,21 @@ bool known_keys(const nlohmann::json& body, std::initializer_list<const char*> k
     return false;
   }
   return true;
+}
+
+// A job's request: POST /api/jobs/<id>/<what> with a JSON object of the known keys only.
+// The handler gets the job's id and the body; a malformed body or an unknown key is answered
+// 400 here.
+using JobRequest = std::function<void(int64_t id, nlohmann::json& body, httplib::Response& res)>;
+void post_job_request(httplib::Server& s, const char* what, std::vector<const char*> known,
+                      JobRequest handler) {
+  s.Post(fmt::format(R"(/api/jobs/(\d{{1,18}})/{})", what),
+         [known, handler](const httplib::Request& req, httplib::Response& res) {
+           const int64_t id = std::stoll(req.matches[1]);
+           nlohmann::json body;
+           if (!body_object(req, res, &body) || !known_keys(body, known, res)) return;
+           handler(id, body, res);
+         });
 }
 
 // The machine action a control request names (hold, resume, abort, probe_ready, override with
@@ -749,56 +765,46 @@ void HttpApi::route_upload() {
 
 // A job's control actions: the store's (cancel, requeue, continue), the machine's.
 void HttpApi::route_control() {
-  httplib::Server& s = *http_;
-  s.Post(R"(/api/jobs/(\d{1,18})/control)",
-         [this](const httplib::Request& req, httplib::Response& res) {
-           const int64_t id = std::stoll(req.matches[1]);
-           nlohmann::json body;
-           if (!body_object(req, res, &body)) return;
-           if (!known_keys(body, {"action", "percent"}, res)) return;
-           if (!body.contains("action") || !body["action"].is_string()) {
-             return send_error(res, 400,
-                               "expected {\"action\": \"hold|resume|abort|override|"
-                               "cancel|requeue|continue|probe_ready\"}");
-           }
-           const std::string action = body["action"];
-           if (body.contains("percent") && action != "override") {
-             return send_error(res, 400, "percent goes with the override action only");
-           }
-           if (!store_.get(id)) return send_error(res, 404, "no such job");
-           if (store_control(id, action, res)) return;
-           JobControl c;
-           int percent = 0;
-           if (!machine_control(action, body, res, &c, &percent)) return;
-           const ControlResult r = workshop_.control(id, c, percent);
-           if (r.status != 200) return send_error(res, r.status, r.error);
-           send_json(res, 200, {{"id", id}, {"requested", action}});
-         });
+  post_job_request(*http_, "control", {"action", "percent"},
+                   [this](int64_t id, nlohmann::json& body, httplib::Response& res) {
+                     if (!body.contains("action") || !body["action"].is_string()) {
+                       return send_error(res, 400,
+                                         "expected {\"action\": \"hold|resume|abort|override|"
+                                         "cancel|requeue|continue|probe_ready\"}");
+                     }
+                     const std::string action = body["action"];
+                     if (body.contains("percent") && action != "override") {
+                       return send_error(res, 400, "percent goes with the override action only");
+                     }
+                     if (!store_.get(id)) return send_error(res, 404, "no such job");
+                     if (store_control(id, action, res)) return;
+                     JobControl c;
+                     int percent = 0;
+                     if (!machine_control(action, body, res, &c, &percent)) return;
+                     const ControlResult r = workshop_.control(id, c, percent);
+                     if (r.status != 200) return send_error(res, r.status, r.error);
+                     send_json(res, 200, {{"id", id}, {"requested", action}});
+                   });
 }
 
 // A queued job's priority.
 void HttpApi::route_priority() {
-  httplib::Server& s = *http_;
-  s.Post(R"(/api/jobs/(\d{1,18})/priority)",
-         [this](const httplib::Request& req, httplib::Response& res) {
-           const int64_t id = std::stoll(req.matches[1]);
-           nlohmann::json body;
-           if (!body_object(req, res, &body)) return;
-           if (!known_keys(body, {"priority"}, res)) return;
-           const JobField& priority = *job_field_by_json_key("priority");
-           if (!body.contains("priority") || !body["priority"].is_number_integer() ||
-               !field_range_error(priority, body["priority"].get<double>()).empty()) {
-             return send_error(res, 400,
-                               fmt::format("expected {{\"priority\": {} .. {}}}", priority.lowest,
-                                           priority.highest));
-           }
-           if (!store_.get(id)) return send_error(res, 404, "no such job");
-           if (!store_.set_priority(id, body["priority"].get<int>())) {
-             return send_error(res, 409, "only a queued job's priority can change");
-           }
-           workshop_.notify(true);
-           send_json(res, 200, job_json(*store_.get(id)));
-         });
+  post_job_request(*http_, "priority", {"priority"},
+                   [this](int64_t id, nlohmann::json& body, httplib::Response& res) {
+                     const JobField& priority = *job_field_by_json_key("priority");
+                     if (!body.contains("priority") || !body["priority"].is_number_integer() ||
+                         !field_range_error(priority, body["priority"].get<double>()).empty()) {
+                       return send_error(res, 400,
+                                         fmt::format("expected {{\"priority\": {} .. {}}}",
+                                                     priority.lowest, priority.highest));
+                     }
+                     if (!store_.get(id)) return send_error(res, 404, "no such job");
+                     if (!store_.set_priority(id, body["priority"].get<int>())) {
+                       return send_error(res, 409, "only a queued job's priority can change");
+                     }
+                     workshop_.notify(true);
+                     send_json(res, 200, job_json(*store_.get(id)));
+                   });
 }
 
 bool HttpApi::store_control(int64_t id, const std::string& action, httplib::Response& res) {

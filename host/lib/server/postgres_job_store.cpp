@@ -47,46 +47,93 @@ std::string param_text(const FieldValue& v) {
   return fmt::format("{}", std::get<double>(v));
 }
 
+// A database error as the store's error.
+StoreError store_error(const pqxx::failure& e) {
+  return StoreError(fmt::format("PostgreSQL job store: {}", e.what()));
+}
+
+// Runs body(work) under the store's lock in one transaction (which the body commits);
+// database errors become StoreError.
+template <class Body>
+auto transact(std::mutex& mutex, pqxx::connection& db, Body body) {
+  std::lock_guard<std::mutex> lock(mutex);
+  try {
+    pqxx::work w(db);
+    return body(w);
+  } catch (const pqxx::failure& e) {
+    throw store_error(e);
+  }
+}
+
+// A statement with its parameters as text (as libpqxx sends any type; the columns' types
+// convert them).
+pqxx::result exec_with(pqxx::work& w, const std::string& statement,
+                       const std::vector<FieldValue>& params) {
+  std::vector<std::string> texts;
+  for (const FieldValue& v : params) texts.push_back(param_text(v));
+  return w.exec_params(statement, pqxx::prepare::make_dynamic_params(texts));
+}
+
 }  // namespace
 
-// Runs `body` in one transaction; database errors become StoreError.
-#define PG_TRY(body)                                                     \
-  try {                                                                  \
-    body                                                                 \
-  } catch (const pqxx::failure& e) {                                     \
-    throw StoreError(fmt::format("PostgreSQL job store: {}", e.what())); \
+PostgresJobStore::PostgresJobStore(const std::string& conninfo) : SqlJobStore('$', kFitWhere) {
+  try {
+    conn_ = std::make_unique<Connection>(conninfo);
+  } catch (const pqxx::failure& e) {
+    throw store_error(e);
   }
-
-PostgresJobStore::PostgresJobStore(const std::string& conninfo){PG_TRY({
-  conn_ = std::make_unique<Connection>(conninfo);
-  pqxx::work w(conn_->db);
-  // Two servers starting at once: the advisory lock makes the CREATEs take turns.
-  w.exec("SELECT pg_advisory_xact_lock(4711)");
-  w.exec(create_jobs_table(SqlDialect::kPostgres, ", input BYTEA NOT NULL"));
-  w.exec("CREATE INDEX IF NOT EXISTS jobs_queue ON jobs (state, priority DESC, id)");
-  w.exec("CREATE TABLE IF NOT EXISTS servers (name TEXT PRIMARY KEY, seen_ms BIGINT NOT NULL)");
-  const auto present = [&w](const char* column) {
-    return !w.exec_params(
-                 "SELECT 1 FROM information_schema.columns WHERE table_name = 'jobs'"
-                 " AND column_name = $1 AND table_schema = current_schema()",
-                 std::string(column))
-                .empty();
-  };
-  for (const std::string& c : sql::missing_job_columns(SqlDialect::kPostgres, present))
-    w.exec("ALTER TABLE jobs ADD COLUMN " + c);
-  for (const sql::AddedColumn& c : sql::kAddedServerColumns) {
-    w.exec(fmt::format("ALTER TABLE {} ADD COLUMN IF NOT EXISTS {} {}", c.table, c.name,
-                       c.type_and_default));
-  }
-  w.commit();
-})}
+  transact(mutex_, conn_->db, [](pqxx::work& w) {
+    // Two servers starting at once: the advisory lock makes the CREATEs take turns.
+    w.exec("SELECT pg_advisory_xact_lock(4711)");
+    w.exec(create_jobs_table(SqlDialect::kPostgres, ", input BYTEA NOT NULL"));
+    w.exec("CREATE INDEX IF NOT EXISTS jobs_queue ON jobs (state, priority DESC, id)");
+    w.exec("CREATE TABLE IF NOT EXISTS servers (name TEXT PRIMARY KEY, seen_ms BIGINT NOT NULL)");
+    const auto present = [&w](const char* column) {
+      return !w.exec_params(
+                   "SELECT 1 FROM information_schema.columns WHERE table_name = 'jobs'"
+                   " AND column_name = $1 AND table_schema = current_schema()",
+                   std::string(column))
+                  .empty();
+    };
+    for (const std::string& c : sql::missing_job_columns(SqlDialect::kPostgres, present))
+      w.exec("ALTER TABLE jobs ADD COLUMN " + c);
+    for (const sql::AddedColumn& c : sql::kAddedServerColumns) {
+      w.exec(fmt::format("ALTER TABLE {} ADD COLUMN IF NOT EXISTS {} {}", c.table, c.name,
+                         c.type_and_default));
+    }
+    w.commit();
+  });
+}
 
 PostgresJobStore::~PostgresJobStore() = default;
 
+int64_t PostgresJobStore::change(const std::string& statement,
+                                 const std::vector<FieldValue>& params) {
+  return transact(mutex_, conn_->db, [&](pqxx::work& w) {
+    const pqxx::result r = exec_with(w, statement, params);
+    w.commit();
+    return static_cast<int64_t>(r.affected_rows());
+  });
+}
+
+std::vector<JobRecord> PostgresJobStore::query_jobs(const std::string& statement,
+                                                    const std::vector<FieldValue>& params) {
+  return transact(mutex_, conn_->db, [&](pqxx::work& w) {
+    const pqxx::result r = exec_with(w, statement, params);
+    std::vector<JobRecord> out;
+    for (const pqxx::row& row : r) out.push_back(record(row));
+    return out;
+  });
+}
+
+bool PostgresJobStore::any_row(const std::string& statement,
+                               const std::vector<FieldValue>& params) {
+  return transact(mutex_, conn_->db,
+                  [&](pqxx::work& w) { return !exec_with(w, statement, params).empty(); });
+}
+
 int64_t PostgresJobStore::add(const JobRecord& job, const std::string& input) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
+  return transact(mutex_, conn_->db, [&](pqxx::work& w) {
     const pqxx::binarystring bytes(input);
     JobRecord stamped = job;
     stamped.created_ms = now_ms();
@@ -96,57 +143,20 @@ int64_t PostgresJobStore::add(const JobRecord& job, const std::string& input) {
                                        pqxx::prepare::make_dynamic_params(values), bytes);
     w.commit();
     return r[0].as<int64_t>();
-  })
+  });
 }
 
 std::optional<std::string> PostgresJobStore::input(int64_t id) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
+  return transact(mutex_, conn_->db, [&](pqxx::work& w) -> std::optional<std::string> {
     const pqxx::result r = w.exec_params("SELECT input FROM jobs WHERE id = $1", id);
     if (r.empty()) return std::nullopt;
     return pqxx::binarystring(r[0][0]).str();
-  })
-}
-
-std::optional<JobRecord> PostgresJobStore::get(int64_t id) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
-    const pqxx::result r = w.exec_params(sql::select_job('$'), id);
-    if (r.empty()) return std::nullopt;
-    return record(r[0]);
-  })
-}
-
-std::vector<JobRecord> PostgresJobStore::list(const std::string& state_filter, size_t limit) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
-    const pqxx::result r =
-        w.exec_params(sql::select_jobs('$'), state_filter, static_cast<int64_t>(limit));
-    std::vector<JobRecord> out;
-    for (const pqxx::row& row : r) out.push_back(record(row));
-    return out;
-  })
-}
-
-bool PostgresJobStore::has_claimable(const MachineFit& fit) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
-    return !w.exec_params(
-                 fmt::format("SELECT id FROM jobs WHERE {}{} LIMIT 1", kFitWhere, not_now_sql(fit)),
-                 fit.work_width_mm, fit.work_height_mm, tag_list(fit))
-                .empty();
-  })
+  });
 }
 
 std::optional<JobRecord> PostgresJobStore::claim(const MachineFit& fit, const std::string& machine,
                                                  const Lease& lease) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
+  return transact(mutex_, conn_->db, [&](pqxx::work& w) -> std::optional<JobRecord> {
     // FOR SHARE: a revocation (interrupt_stale) waits for this claim, then interrupts it.
     if (w.exec_params(sql::lease_stands('$') + " FOR SHARE", lease.owner, lease.epoch).empty()) {
       throw LeaseLost(
@@ -165,90 +175,12 @@ std::optional<JobRecord> PostgresJobStore::claim(const MachineFit& fit, const st
     w.commit();
     if (r.empty()) return std::nullopt;
     return record(r[0]);
-  })
-}
-
-bool PostgresJobStore::save_progress(int64_t id, const Lease& lease, const JobProgress& p) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
-    const pqxx::result r =
-        w.exec_params(sql::save_progress('$'), id, lease.owner, lease.epoch, p.executed, p.total,
-                      p.resume_curve, p.resume_index, p.resume_point, p.resume_job_id);
-    w.commit();
-    return r.affected_rows() == 1;
-  })
-}
-
-bool PostgresJobStore::finish(int64_t id, const Lease& lease, JobState state,
-                              const std::string& message, const JobProgress& p) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
-    const pqxx::result r =
-        w.exec_params(sql::finish('$'), id, lease.owner, lease.epoch,
-                      std::string(state_name(state)), message, p.executed, p.total, p.resume_curve,
-                      p.resume_index, p.resume_point, p.resume_job_id, now_ms());
-    w.commit();
-    return r.affected_rows() == 1;
-  })
-}
-
-bool PostgresJobStore::cancel(int64_t id) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
-    const pqxx::result r = w.exec_params(sql::cancel('$'), id, now_ms());
-    w.commit();
-    return r.affected_rows() == 1;
-  })
-}
-
-bool PostgresJobStore::fail_queued(int64_t id, const std::string& message) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
-    const pqxx::result r = w.exec_params(sql::fail_queued('$'), id, now_ms(), message);
-    w.commit();
-    return r.affected_rows() == 1;
-  })
-}
-
-bool PostgresJobStore::requeue(int64_t id, bool continue_job) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
-    const pqxx::result r = w.exec_params(sql::requeue('$', continue_job), id);
-    w.commit();
-    return r.affected_rows() == 1;
-  })
-}
-
-bool PostgresJobStore::set_priority(int64_t id, int priority) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
-    const pqxx::result r = w.exec_params(sql::set_priority('$'), id, priority);
-    w.commit();
-    return r.affected_rows() == 1;
-  })
-}
-
-int PostgresJobStore::interrupt_running(const std::string& owner, const std::string& message) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
-    const pqxx::result r = w.exec_params(sql::interrupt_running('$'), owner, message, now_ms());
-    w.commit();
-    return static_cast<int>(r.affected_rows());
-  })
+  });
 }
 
 Lease PostgresJobStore::acquire_lease(const std::string& owner, const std::string& holder,
                                       int64_t stale_ms) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
+  return transact(mutex_, conn_->db, [&](pqxx::work& w) {
     w.exec_params(
         "INSERT INTO servers (name, seen_ms, epoch, revoked, holder) VALUES ($1, 0, 0, 1, '')"
         " ON CONFLICT (name) DO NOTHING",
@@ -276,13 +208,11 @@ Lease PostgresJobStore::acquire_lease(const std::string& owner, const std::strin
     lease.owner = owner;
     lease.epoch = e[0].as<int64_t>();
     return lease;
-  })
+  });
 }
 
 bool PostgresJobStore::renew_lease(const Lease& lease) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
+  return transact(mutex_, conn_->db, [&](pqxx::work& w) {
     const pqxx::result r =
         w.exec_params(fmt::format("UPDATE servers SET seen_ms = {} WHERE name = $1 AND epoch = $2"
                                   " AND revoked = 0",
@@ -290,13 +220,11 @@ bool PostgresJobStore::renew_lease(const Lease& lease) {
                       lease.owner, lease.epoch);
     w.commit();
     return r.affected_rows() == 1;
-  })
+  });
 }
 
 int PostgresJobStore::interrupt_stale(int64_t stale_ms, const std::string& message) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  PG_TRY({
-    pqxx::work w(conn_->db);
+  return transact(mutex_, conn_->db, [&](pqxx::work& w) {
     w.exec_params(
         fmt::format("UPDATE servers SET revoked = 1 WHERE revoked = 0 AND seen_ms < {} - $1",
                     kDbNowMs),
@@ -304,7 +232,7 @@ int PostgresJobStore::interrupt_stale(int64_t stale_ms, const std::string& messa
     const pqxx::result r = w.exec_params(sql::interrupt_unleased('$'), message, now_ms());
     w.commit();
     return static_cast<int>(r.affected_rows());
-  })
+  });
 }
 
 }  // namespace host::server

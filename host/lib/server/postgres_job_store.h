@@ -8,11 +8,11 @@
 #include <mutex>   // std::mutex
 #include <string>  // std::string
 
-#include "host/lib/server/job_store.h"
+#include "host/lib/server/sql_job_store.h"
 
 namespace host::server {
 
-class PostgresJobStore : public JobStore {
+class PostgresJobStore : public SqlJobStore {
  public:
   // conninfo: libpq's "host=... dbname=..." or a postgresql:// URI. Creates the table if
   // needed. Throws StoreError (the password, if any, is not repeated).
@@ -21,25 +21,18 @@ class PostgresJobStore : public JobStore {
 
   int64_t add(const JobRecord& job, const std::string& input) override;
   std::optional<std::string> input(int64_t id) override;
-  std::optional<JobRecord> get(int64_t id) override;
-  std::vector<JobRecord> list(const std::string& state_filter, size_t limit) override;
-  bool has_claimable(const MachineFit& fit) override;
   std::optional<JobRecord> claim(const MachineFit& fit, const std::string& machine,
                                  const Lease& lease) override;
-  bool save_progress(int64_t id, const Lease& lease, const JobProgress& progress) override;
-  bool finish(int64_t id, const Lease& lease, JobState state, const std::string& message,
-              const JobProgress& progress) override;
-  bool cancel(int64_t id) override;
-  bool fail_queued(int64_t id, const std::string& message) override;
-  bool requeue(int64_t id, bool continue_job) override;
-  bool set_priority(int64_t id, int priority) override;
   Lease acquire_lease(const std::string& owner, const std::string& holder,
                       int64_t stale_ms) override;
   bool renew_lease(const Lease& lease) override;
-  int interrupt_running(const std::string& owner, const std::string& message) override;
   int interrupt_stale(int64_t stale_ms, const std::string& message) override;
 
  private:
+  int64_t change(const std::string& statement, const std::vector<FieldValue>& params) override;
+  std::vector<JobRecord> query_jobs(const std::string& statement,
+                                    const std::vector<FieldValue>& params) override;
+  bool any_row(const std::string& statement, const std::vector<FieldValue>& params) override;
   struct Connection;  // pqxx::connection (a typedef in libpqxx 6: not forward-declarable)
   std::unique_ptr<Connection> conn_;
   std::mutex mutex_;  // a libpq connection serves one thread at a time

@@ -59,6 +59,11 @@ class Statement {
     std::visit([&](const auto& x) { bind(i, x); }, v);
     return *this;
   }
+  // Parameters ?1, ?2, ... in order.
+  void bind_all(const std::vector<FieldValue>& params) {
+    int i = 1;
+    for (const FieldValue& v : params) bind(i++, v);
+  }
   // The row's columns by name (a database's column order is its history's, not the table's).
   int column(const char* name) const {
     for (int c = 0, n = sqlite3_column_count(stmt_); c < n; ++c) {
@@ -82,7 +87,7 @@ class Statement {
 
 }  // namespace
 
-SqliteJobStore::SqliteJobStore(const std::string& path) : path_(path) {
+SqliteJobStore::SqliteJobStore(const std::string& path) : SqlJobStore('?', kFitWhere), path_(path) {
   const int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX;
   if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
@@ -129,40 +134,40 @@ void SqliteJobStore::exec(const std::string& sql) {
   }
 }
 
-int64_t SqliteJobStore::add(const JobRecord& job, const std::string& /*input: in the archive*/) {
+int64_t SqliteJobStore::change(const std::string& statement,
+                               const std::vector<FieldValue>& params) {
   std::lock_guard<std::mutex> lock(mutex_);
-  JobRecord stamped = job;
-  stamped.created_ms = now_ms();
-  Statement s(db_, path_, insert_job('?'));
-  int i = 1;
-  for (const FieldValue& v : insert_values(stamped)) s.bind(i++, v);
+  Statement s(db_, path_, statement);
+  s.bind_all(params);
   s.step();
-  return sqlite3_last_insert_rowid(db_);
+  return sqlite3_changes(db_);
 }
 
-std::optional<JobRecord> SqliteJobStore::get(int64_t id) {
+std::vector<JobRecord> SqliteJobStore::query_jobs(const std::string& statement,
+                                                  const std::vector<FieldValue>& params) {
   std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_, sql::select_job('?'));
-  s.bind(1, id);
-  if (!s.step()) return std::nullopt;
-  return s.record();
-}
-
-std::vector<JobRecord> SqliteJobStore::list(const std::string& state_filter, size_t limit) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_, sql::select_jobs('?'));
-  s.bind(1, state_filter).bind(2, static_cast<int64_t>(limit));
+  Statement s(db_, path_, statement);
+  s.bind_all(params);
   std::vector<JobRecord> out;
   while (s.step()) out.push_back(s.record());
   return out;
 }
 
-bool SqliteJobStore::has_claimable(const MachineFit& fit) {
+bool SqliteJobStore::any_row(const std::string& statement, const std::vector<FieldValue>& params) {
   std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_,
-              fmt::format("SELECT id FROM jobs WHERE {}{} LIMIT 1", kFitWhere, not_now_sql(fit)));
-  s.bind(1, fit.work_width_mm).bind(2, fit.work_height_mm).bind(3, tag_list(fit));
+  Statement s(db_, path_, statement);
+  s.bind_all(params);
   return s.step();
+}
+
+int64_t SqliteJobStore::add(const JobRecord& job, const std::string& /*input: in the archive*/) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  JobRecord stamped = job;
+  stamped.created_ms = now_ms();
+  Statement s(db_, path_, insert_job('?'));
+  s.bind_all(insert_values(stamped));
+  s.step();
+  return sqlite3_last_insert_rowid(db_);
 }
 
 std::optional<JobRecord> SqliteJobStore::claim(const MachineFit& fit, const std::string& machine,
@@ -208,68 +213,6 @@ std::optional<JobRecord> SqliteJobStore::claim(const MachineFit& fit, const std:
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
     throw;
   }
-}
-
-bool SqliteJobStore::save_progress(int64_t id, const Lease& lease, const JobProgress& p) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_, sql::save_progress('?'));
-  s.bind(1, id).bind(2, lease.owner).bind(3, lease.epoch).bind(4, p.executed).bind(5, p.total);
-  s.bind(6, int64_t{p.resume_curve}).bind(7, p.resume_index).bind(8, int64_t{p.resume_point});
-  s.bind(9, int64_t{p.resume_job_id});
-  s.step();
-  return sqlite3_changes(db_) == 1;
-}
-
-bool SqliteJobStore::finish(int64_t id, const Lease& lease, JobState state,
-                            const std::string& message, const JobProgress& p) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_, sql::finish('?'));
-  s.bind(1, id).bind(2, lease.owner).bind(3, lease.epoch);
-  s.bind(4, std::string(state_name(state))).bind(5, message).bind(6, p.executed);
-  s.bind(7, p.total).bind(8, int64_t{p.resume_curve}).bind(9, p.resume_index);
-  s.bind(10, int64_t{p.resume_point}).bind(11, int64_t{p.resume_job_id}).bind(12, now_ms());
-  s.step();
-  return sqlite3_changes(db_) == 1;
-}
-
-bool SqliteJobStore::cancel(int64_t id) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_, sql::cancel('?'));
-  s.bind(1, id).bind(2, now_ms());
-  s.step();
-  return sqlite3_changes(db_) == 1;
-}
-
-bool SqliteJobStore::fail_queued(int64_t id, const std::string& message) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_, sql::fail_queued('?'));
-  s.bind(1, id).bind(2, now_ms()).bind(3, message);
-  s.step();
-  return sqlite3_changes(db_) == 1;
-}
-
-bool SqliteJobStore::requeue(int64_t id, bool continue_job) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_, sql::requeue('?', continue_job));
-  s.bind(1, id);
-  s.step();
-  return sqlite3_changes(db_) == 1;
-}
-
-bool SqliteJobStore::set_priority(int64_t id, int priority) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_, sql::set_priority('?'));
-  s.bind(1, id).bind(2, int64_t{priority});
-  s.step();
-  return sqlite3_changes(db_) == 1;
-}
-
-int SqliteJobStore::interrupt_running(const std::string& owner, const std::string& message) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  Statement s(db_, path_, sql::interrupt_running('?'));
-  s.bind(1, owner).bind(2, message).bind(3, now_ms());
-  s.step();
-  return sqlite3_changes(db_);
 }
 
 Lease SqliteJobStore::acquire_lease(const std::string& owner, const std::string& holder,

@@ -17,6 +17,8 @@
 namespace host::commands {
 namespace {
 
+const double kShortLiftMm = 0.2;  // short pen lifts: a short job in machine time
+
 int exit_code_of_resume_at(const std::string& text) {
   try {
     parse_resume_at(text);
@@ -111,25 +113,13 @@ TEST(SendCommand, ResumeOnAControllerThatRanNoJobIsRefusedWithoutStreaming) {
   EXPECT_EQ(attached, (std::vector<bool>{true, false}));  // detached on the way out too
 }
 
-// n separate short lines in a row: four commands each (pen up, rapid, pen down, feed).
-JobPlan separate_lines(int n) {
-  std::vector<Curve> curves;
-  for (int i = 0; i < n; ++i) {
-    const double x = 10 + (i % 40) * 2.0, y = 10 + (i / 40) * 2.0;
-    curves.push_back(test::line_curve(x, y, x + 0.5, y));
-  }
-  PlanOptions o;
-  o.reorder = false;
-  o.z_up_mm = 0.2;  // short pen lifts: a short job in machine time
-  return plan_job(test::drawing_of(std::move(curves)), o);
-}
-
 TEST(SendCommand, HoldsOnlyTheSendersWindowWhateverTheJobsLength) {
   // 600 lines: ~2 400 commands; send keeps what is in flight and the 128 before it.
   sim::SimMachine machine{sim::SimOptions{}};
   sim::SimLink link(machine);
   std::ostringstream log;
-  const SendResult r = send_job(link, separate_lines(600), lockstep_send(machine), log);
+  const SendResult r =
+      send_job(link, test::separate_lines(600, kShortLiftMm), lockstep_send(machine), log);
   ASSERT_EQ(r.outcome, JobOutcome::kCompleted) << r.message << "\n" << log.str();
   EXPECT_GT(r.commands, 2400u);
   EXPECT_GT(r.commands_held_max, 0u);

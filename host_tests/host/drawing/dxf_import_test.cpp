@@ -100,6 +100,7 @@ TEST(DxfImport, ChainedLinesInABlockStayInTheBlock) {
 struct UnitCase {
   int insunits;
   double mm_per_unit;
+  const char* name;  // Drawing::units
 };
 
 class DxfUnits : public testing::TestWithParam<UnitCase> {};
@@ -109,11 +110,17 @@ TEST_P(DxfUnits, CoordinatesAreConvertedToMm) {
       import_text("units.dxf", dxf_text(line_entity(0, 0, 2, 0), GetParam().insunits));
   ASSERT_EQ(d.curves.size(), 1u);
   EXPECT_NEAR(end_point(d.curves[0].spline).x(), 2 * GetParam().mm_per_unit, 1e-12);
+  EXPECT_EQ(d.units, GetParam().name);
 }
 
-INSTANTIATE_TEST_SUITE_P(MmCmMInch, DxfUnits,
-                         testing::Values(UnitCase{4, 1.0}, UnitCase{5, 10.0}, UnitCase{6, 1000.0},
-                                         UnitCase{1, 25.4}),
+// Every unit docs/user-guide.md lists.
+INSTANTIATE_TEST_SUITE_P(EveryUnit, DxfUnits,
+                         testing::Values(UnitCase{4, 1.0, "mm"}, UnitCase{5, 10.0, "cm"},
+                                         UnitCase{6, 1000.0, "m"}, UnitCase{1, 25.4, "inch"},
+                                         UnitCase{2, 304.8, "foot"},
+                                         UnitCase{8, 25.4e-6, "microinch"},
+                                         UnitCase{9, 0.0254, "mil"}, UnitCase{13, 0.001, "micron"},
+                                         UnitCase{14, 100.0, "dm"}),
                          [](const testing::TestParamInfo<UnitCase>& i) {
                            return "Insunits" + std::to_string(i.param.insunits);
                          });
@@ -137,7 +144,13 @@ TEST(DxfImport, UnsupportedUnitIsRefusedWithItsCode) {
     import_text("parsec.dxf", dxf_text(line_entity(0, 0, 2, 0), 20));
     FAIL() << "no error";
   } catch (const ImportError& e) {
-    EXPECT_NE(std::string(e.what()).find("$INSUNITS 20"), std::string::npos) << e.what();
+    // The whole message after the file's (temporary) folder.
+    const std::string m = e.what();
+    EXPECT_NE(m.find("parsec.dxf: $INSUNITS 20 is a unit this tool does not convert (supported: "
+                     "0 unitless = mm, 1 inch, 2 foot, 4 mm, 5 cm, 6 m, 8 microinch, 9 mil, "
+                     "13 micron, 14 dm)"),
+              std::string::npos)
+        << m;
   }
 }
 

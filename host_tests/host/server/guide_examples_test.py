@@ -21,22 +21,17 @@ import math
 import os
 import re
 import shutil
-import socket
 import subprocess
 import sys
 import tempfile
 import time
 import urllib.request
 
+from serve_processes import free_port, stop_processes
+
 SKIP = 77
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
 DOC_DATA, DOC_PORT = "/srv/engraver", "127.0.0.1:8080"
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def wait(predicate, timeout_s, what):
@@ -234,13 +229,7 @@ def main():
         print(f"guide examples passed: {len(curls)} curl commands")
         return 0
     finally:
-        for p in reversed(procs):
-            p.terminate()
-        for p in procs:
-            try:
-                p.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                p.kill()
+        stop_processes(procs)
         shutil.rmtree(tmp, ignore_errors=True)
 
 

@@ -12,17 +12,6 @@
 namespace host::server {
 namespace {
 
-JobPlan separate_lines(int n) {
-  std::vector<Curve> curves;
-  for (int i = 0; i < n; ++i) {
-    const double x = 10 + (i % 40) * 2.0, y = 10 + (i / 40) * 2.0;
-    curves.push_back(test::line_curve(x, y, x + 0.5, y));
-  }
-  PlanOptions o;
-  o.reorder = false;
-  return plan_job(test::drawing_of(std::move(curves)), o);
-}
-
 // The step of the first command at or after i that has one, in the whole list.
 int step_from(const std::vector<QueuedCommand>& list, size_t i) {
   for (; i < list.size(); ++i)
@@ -47,7 +36,7 @@ void walk(JobStream& stream, const std::vector<QueuedCommand>& whole) {
 }
 
 TEST(JobStream, FollowsTheWholeListHoldingOnlyAWindow) {
-  const JobPlan plan = separate_lines(2000);  // ~8 000 commands
+  const JobPlan plan = test::separate_lines(2000);  // ~8 000 commands
   const EncodeOptions enc;
   std::vector<QueuedCommand> whole = encode_job(plan, enc);
   JobStream stream(plan, enc);
@@ -62,7 +51,7 @@ TEST(JobStream, FollowsTheWholeListHoldingOnlyAWindow) {
 }
 
 TEST(JobStream, AContinuedJobStartsAtItsPrefixAfterTheMap) {
-  const JobPlan plan = separate_lines(300);
+  const JobPlan plan = test::separate_lines(300);
   const EncodeOptions enc;
   const std::vector<QueuedCommand> whole = encode_job(plan, enc);
   const size_t from = whole.size() / 2;

@@ -24,18 +24,14 @@ import tempfile
 import time
 import urllib.request
 
+from serve_processes import free_port, stop_processes
+
 CHROMIUM = "/usr/bin/chromium"
 SKIP = 77
 BOARD_FILES = [os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", f)
                for f in ("blinky-F.Cu.gbr", "blinky.drl", "blinky-Edge.Cuts.gbr")]
 DRAWING = ("G21\nG90\nG0 Z2\nG0 X5 Y5\nG1 Z-0.1 F100\nG1 X25 Y5 F600\nG1 X25 Y25\n"
            "G2 X5 Y25 I-10 J0\nG1 X5 Y5\nG0 Z2\n")
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 class DevTools:
@@ -318,13 +314,7 @@ def main():
         print(f"page test passed; screenshots {screenshot}, {live_shot(screenshot)}")
         return 0
     finally:
-        for p in reversed(procs):
-            p.terminate()
-        for p in procs:
-            try:
-                p.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                p.kill()
+        stop_processes(procs)
         shutil.rmtree(tmp, ignore_errors=True)
 
 

@@ -9,17 +9,16 @@ new upload is queued after it with every column the table has.
 Exit 77 (ctest: skipped) when PostgreSQL is not installed.
 Usage: postgres_migration_test.py ENGRAVER
 """
-import glob
 import json
 import os
-import pwd
 import shutil
-import socket
 import subprocess
 import sys
-import tempfile
 import time
 import urllib.request
+
+from pg_cluster import temporary_cluster
+from serve_processes import free_port, get, stop_processes
 
 SKIP = 77
 PREVIOUS_SCHEMA = """
@@ -63,17 +62,6 @@ OLD_JOB = {"id": 1, "name": "old.ngc", "input_file": "input.ngc", "state": "inte
 SQUARE = "G21\nG90\nG0 Z2\nG0 X5 Y5\nG1 Z-0.1 F100\nG1 X15 Y5 F600\nG0 Z2\n"
 
 
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def get(base, path):
-    with urllib.request.urlopen(base + path, timeout=30) as r:
-        return json.load(r)
-
-
 def wait(predicate, timeout_s, what):
     end = time.monotonic() + timeout_s
     while time.monotonic() < end:
@@ -88,45 +76,15 @@ def wait(predicate, timeout_s, what):
 
 def main():
     engraver = sys.argv[1]
-    bins = sorted(glob.glob("/usr/lib/postgresql/*/bin"))
-    if not bins or not os.access(os.path.join(bins[-1], "initdb"), os.X_OK):
-        print("PostgreSQL not installed: skipped")
+    tmp, pg = temporary_cluster("engraver-pgmig-")
+    if pg is None:
         return SKIP
-    pg = bins[-1]
-    tmp = tempfile.mkdtemp(prefix="engraver-pgmig-")
-    os.chmod(tmp, 0o755)
-    run_as = []
-    if os.geteuid() == 0:
-        try:
-            user = pwd.getpwnam("postgres")
-        except KeyError:
-            print("running as root and no 'postgres' user: skipped")
-            return SKIP
-        run_as = ["runuser", "-u", "postgres", "--"]
-    cluster, sockets = os.path.join(tmp, "cluster"), os.path.join(tmp, "sockets")
-    os.makedirs(sockets)
-    if run_as:
-        os.chown(sockets, user.pw_uid, user.pw_gid)
-        os.makedirs(cluster)
-        os.chown(cluster, user.pw_uid, user.pw_gid)
-    port = free_port()
     serve = None
-    pg_started = False
     log_path = os.path.join(tmp, "serve.log")
     try:
-        subprocess.run(run_as + [os.path.join(pg, "initdb"), "-D", cluster, "-A", "trust",
-                                 "-U", "engraver"], check=True, stdout=subprocess.DEVNULL)
-        subprocess.run(run_as + [os.path.join(pg, "pg_ctl"), "-D", cluster, "-w", "-l",
-                                 os.path.join(sockets, "log"), "-o",
-                                 f"-k {sockets} -p {port} -c listen_addresses=''", "start"],
-                       check=True, stdout=subprocess.DEVNULL)
-        pg_started = True
-        psql = [os.path.join(pg, "psql"), "-h", sockets, "-p", str(port), "-U", "engraver",
-                "-v", "ON_ERROR_STOP=1", "-q", "queue"]
-        subprocess.run([os.path.join(pg, "createdb"), "-h", sockets, "-p", str(port), "-U",
-                        "engraver", "queue"], check=True)
-        subprocess.run(psql, input=PREVIOUS_SCHEMA.encode(), check=True)
-        conninfo = f"host={sockets} port={port} user=engraver dbname=queue"
+        pg.start()
+        subprocess.run(pg.psql(), input=PREVIOUS_SCHEMA.encode(), check=True)
+        conninfo = pg.conninfo
 
         http_port = free_port()
         data = os.path.join(tmp, "data")
@@ -157,15 +115,8 @@ def main():
             print("--- serve.log:\n" + open(log_path).read())
         raise
     finally:
-        if serve is not None:
-            serve.terminate()
-            try:
-                serve.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                serve.kill()
-        if pg_started:
-            subprocess.run(run_as + [os.path.join(pg, "pg_ctl"), "-D", cluster, "-m", "fast",
-                                     "-w", "stop"], stdout=subprocess.DEVNULL)
+        stop_processes([serve] if serve is not None else [])
+        pg.stop()
         shutil.rmtree(tmp, ignore_errors=True)
 
 

@@ -16,15 +16,15 @@ Usage: postgres_test.py ENGRAVER [--shared-archive]
 import glob
 import json
 import os
-import pwd
 import shutil
-import socket
 import subprocess
 import sys
-import tempfile
 import time
 import urllib.error
 import urllib.request
+
+from pg_cluster import temporary_cluster
+from serve_processes import free_port, get, stop_processes
 
 SKIP = 77
 JOBS = 40
@@ -32,17 +32,6 @@ BOARD_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
 BOARD_FILES = ("blinky-F.Cu.gbr", "blinky.drl", "blinky-Edge.Cuts.gbr")
 SQUARE = ("G21\nG90\nG0 Z2\nG0 X5 Y5\nG1 Z-0.1 F100\nG1 X15 Y5 F600\nG1 X15 Y15\n"
           "G1 X5 Y15\nG1 X5 Y5\nG0 Z2\n")
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def get(base, path):
-    with urllib.request.urlopen(base + path, timeout=30) as r:
-        return json.load(r)
 
 
 def upload(base, token, name):
@@ -93,41 +82,13 @@ def fetch(base, path):
 def main():
     engraver = sys.argv[1]
     shared = sys.argv[2:] == ["--shared-archive"]
-    bins = sorted(glob.glob("/usr/lib/postgresql/*/bin"))
-    if not bins or not os.access(os.path.join(bins[-1], "initdb"), os.X_OK):
-        print("PostgreSQL not installed: skipped")
+    tmp, pg = temporary_cluster("engraver-pg-")
+    if pg is None:
         return SKIP
-    pg = bins[-1]
-    tmp = tempfile.mkdtemp(prefix="engraver-pg-")
-    os.chmod(tmp, 0o755)
-    run_as = []
-    if os.geteuid() == 0:
-        try:
-            user = pwd.getpwnam("postgres")
-        except KeyError:
-            print("running as root and no 'postgres' user: skipped")
-            return SKIP
-        run_as = ["runuser", "-u", "postgres", "--"]
-    cluster, sockets = os.path.join(tmp, "cluster"), os.path.join(tmp, "sockets")
-    os.makedirs(sockets)
-    if run_as:
-        os.chown(sockets, user.pw_uid, user.pw_gid)
-        os.makedirs(cluster)
-        os.chown(cluster, user.pw_uid, user.pw_gid)
-    port = free_port()
     procs = []
-    pg_started = False
     try:
-        subprocess.run(run_as + [os.path.join(pg, "initdb"), "-D", cluster, "-A", "trust",
-                                 "-U", "engraver"], check=True, stdout=subprocess.DEVNULL)
-        subprocess.run(run_as + [os.path.join(pg, "pg_ctl"), "-D", cluster, "-w", "-l",
-                                 os.path.join(sockets, "log"), "-o",
-                                 f"-k {sockets} -p {port} -c listen_addresses=''", "start"],
-                       check=True, stdout=subprocess.DEVNULL)
-        pg_started = True
-        subprocess.run([os.path.join(pg, "createdb"), "-h", sockets, "-p", str(port), "-U",
-                        "engraver", "queue"], check=True)
-        conninfo = f"host={sockets} port={port} user=engraver dbname=queue"
+        pg.start()
+        conninfo = pg.conninfo
 
         servers = []
         for s in range(2):
@@ -260,16 +221,8 @@ def main():
                 print(f"--- {name}:\n" + open(path).read())
         raise
     finally:
-        for p in reversed(procs):
-            p.terminate()
-        for p in procs:
-            try:
-                p.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                p.kill()
-        if pg_started:
-            subprocess.run(run_as + [os.path.join(pg, "pg_ctl"), "-D", cluster, "-m", "fast",
-                                     "-w", "stop"], stdout=subprocess.DEVNULL)
+        stop_processes(procs)
+        pg.stop()
         shutil.rmtree(tmp, ignore_errors=True)
 
 

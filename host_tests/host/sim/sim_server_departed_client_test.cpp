@@ -3,55 +3,26 @@
 // had gone, and its replies went to the next client); the next client starts clean.
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>    // inet_pton
-#include <netinet/in.h>   // sockaddr_in
 #include <netinet/tcp.h>  // TCP_CORK
-#include <sys/socket.h>   // socket, connect, setsockopt
-#include <unistd.h>       // close, write, read
+#include <sys/socket.h>   // setsockopt
+#include <unistd.h>       // close, read
 
 #include <chrono>  // milliseconds
 #include <thread>  // sleep_for
 #include <vector>  // std::vector
 
-#include "firmware/protocol/codec.h"
 #include "host/lib/sim/sim_server.h"
 #include "host/lib/stream/sender.h"
+#include "host_tests/host/sim/raw_client.h"  // append_frame, connect_to, write_all
 #include "host_tests/host/sim/sim_test_jobs.h"
 
 namespace host {
 namespace {
 
 using std::chrono::milliseconds;
-
-template <typename Msg>
-void append_frame(const Msg& m, uint8_t seq, std::vector<uint8_t>* out) {
-  uint8_t buf[proto::kMaxFrameBytes];
-  uint8_t n = 0;
-  ASSERT_EQ(proto::write_frame(m, seq, buf, sizeof buf, &n), proto::ErrorCode::kOk);
-  out->insert(out->end(), buf, buf + n);
-}
-
-int connect_to(uint16_t port) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(port);
-  ::inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
-  if (fd >= 0 && ::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
-    ::close(fd);
-    return -1;
-  }
-  return fd;
-}
-
-void write_all(int fd, const std::vector<uint8_t>& bytes) {
-  size_t at = 0;
-  while (at < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + at, bytes.size() - at);
-    ASSERT_GT(n, 0);
-    at += static_cast<size_t>(n);
-  }
-}
+using test::append_frame;
+using test::connect_to;
+using test::write_all;
 
 Sender open_sender(Link& link) {
   SenderOptions o;

@@ -4,18 +4,16 @@
 // served. The server runs in this test's process, so SIGPIPE would end the test.
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>   // inet_pton
-#include <netinet/in.h>  // sockaddr_in
-#include <sys/socket.h>  // socket, connect
-#include <unistd.h>      // close, write
+#include <sys/socket.h>  // shutdown
+#include <unistd.h>      // close, read
 
 #include <chrono>  // milliseconds
 #include <thread>  // sleep_for
 #include <vector>  // std::vector
 
-#include "firmware/protocol/codec.h"
 #include "host/lib/sim/sim_server.h"
 #include "host/lib/stream/sender.h"
+#include "host_tests/host/sim/raw_client.h"  // append_frame, connect_to, write_all
 #include "host_tests/host/sim/sim_test_jobs.h"
 
 namespace host {
@@ -23,36 +21,18 @@ namespace {
 
 using std::chrono::milliseconds;
 
-template <typename Msg>
-void append_frame(const Msg& m, uint8_t seq, std::vector<uint8_t>* out) {
-  uint8_t buf[proto::kMaxFrameBytes];
-  uint8_t n = 0;
-  ASSERT_EQ(proto::write_frame(m, seq, buf, sizeof buf, &n), proto::ErrorCode::kOk);
-  out->insert(out->end(), buf, buf + n);
-}
-
 // Connects, sends frames the controller answers over the next few hundred milliseconds (a
 // session and status queries), and hangs up as a client that exits does: its end closed
 // (FIN: the server's socket is in CLOSE_WAIT), then gone (the server's next bytes are
 // answered with a reset, after which a write is EPIPE: SIGPIPE unless the server asks for
 // none).
 void hang_up_with_replies_in_flight(uint16_t port) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  const int fd = test::connect_to(port);
   ASSERT_GE(fd, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(port);
-  ::inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
-  ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
   std::vector<uint8_t> bytes;
-  append_frame(proto::SessionCmd{proto::kProtocolVersion}, 0, &bytes);
-  for (int i = 0; i < 600; ++i) append_frame(proto::StatusCmd{}, 1, &bytes);
-  size_t at = 0;
-  while (at < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + at, bytes.size() - at);
-    ASSERT_GT(n, 0);
-    at += static_cast<size_t>(n);
-  }
+  test::append_frame(proto::SessionCmd{proto::kProtocolVersion}, 0, &bytes);
+  for (int i = 0; i < 600; ++i) test::append_frame(proto::StatusCmd{}, 1, &bytes);
+  test::write_all(fd, bytes);
   // The first reply: the server has taken every byte and is answering the rest (the end of
   // the stream is not among what it read).
   uint8_t reply[64];

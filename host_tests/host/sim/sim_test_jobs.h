@@ -63,6 +63,21 @@ inline Drawing drawing_of(std::vector<Curve> curves) {
   return d;
 }
 
+// n separate short lines in a row, planned in that order: four commands each (pen up, rapid,
+// pen down, feed), a long command list for a short drawing. z_up_mm: short pen lifts make a
+// short job in machine time.
+inline JobPlan separate_lines(int n, double z_up_mm = PlanOptions().z_up_mm) {
+  std::vector<Curve> curves;
+  for (int i = 0; i < n; ++i) {
+    const double x = 10 + (i % 40) * 2.0, y = 10 + (i / 40) * 2.0;
+    curves.push_back(line_curve(x, y, x + 0.5, y));
+  }
+  PlanOptions o;
+  o.reorder = false;
+  o.z_up_mm = z_up_mm;
+  return plan_job(drawing_of(std::move(curves)), o);
+}
+
 inline JobPlan plan_of(const Drawing& d, double feed_mm_s = 10.0) {
   PlanOptions o;
   o.feed_mm_per_s = feed_mm_s;

@@ -9,21 +9,10 @@
 namespace host {
 namespace {
 
-// n separate short lines in a row: four commands each (pen up, rapid, pen down, feed).
-JobPlan separate_lines(int n) {
-  std::vector<Curve> curves;
-  for (int i = 0; i < n; ++i) {
-    const double x = 10 + (i % 40) * 2.0, y = 10 + (i / 40) * 2.0;
-    curves.push_back(test::line_curve(x, y, x + 0.5, y));
-  }
-  PlanOptions o;
-  o.reorder = false;
-  o.z_up_mm = 0.2;  // short pen lifts: a short job in machine time
-  return plan_job(test::drawing_of(std::move(curves)), o);
-}
+const double kShortLiftMm = 0.2;  // short pen lifts: a short job in machine time
 
 TEST(StreamedJob, EncodesTheSameCommandsAsTheWholeList) {
-  const JobPlan plan = separate_lines(50);
+  const JobPlan plan = test::separate_lines(50, kShortLiftMm);
   EncodeOptions enc;
   enc.title = "lines";
   const std::vector<QueuedCommand> whole = encode_job(plan, enc);
@@ -45,7 +34,7 @@ TEST(StreamedJob, EncodesTheSameCommandsAsTheWholeList) {
 TEST(StreamedJob, SenderHoldsOnlyItsWindowWhateverTheJobsLength) {
   // 600 lines: ~2 400 commands. The sender may keep what is in flight (at most a queue's
   // worth) and the 128 before it, not the job.
-  const JobPlan plan = separate_lines(600);
+  const JobPlan plan = test::separate_lines(600, kShortLiftMm);
   sim::SimJobOptions o;
   const sim::SimJobResult r = sim::run_sim_job(plan, o);
   ASSERT_EQ(r.outcome, JobOutcome::kCompleted) << r.message;
