@@ -206,19 +206,14 @@ void check_not_empty(const Drawing& drawing) {
 }  // namespace
 
 JobPlan plan_job(const Drawing& drawing, const PlanOptions& o) {
-  check_not_empty(drawing);
-  check_options(o);
-  if (!drawing.program.empty()) return plan_program(drawing, o);
-  const Eigen::Matrix2d scale = Eigen::Matrix2d::Identity() * o.scale;
-  std::vector<BSpline> scaled;
-  std::vector<std::string> sources;
-  scaled.reserve(drawing.curves.size());
-  sources.reserve(drawing.curves.size());
-  for (const Curve& c : drawing.curves) {
-    scaled.push_back(transformed(c.spline, scale, Point2(0, 0)));
-    sources.push_back(c.source);
+  if (!drawing.program.empty()) {  // a program is planned from the drawing as it is
+    check_options(o);
+    return plan_program(drawing, o);
   }
-  return plan_scaled(std::move(scaled), std::move(sources), o);
+  // A copy planned as a moved drawing: each of its curves is let go once scaled, so this
+  // holds the drawing twice at most, as the scaled copies did.
+  Drawing copy = drawing;
+  return plan_job(std::move(copy), o);
 }
 
 JobPlan plan_job(Drawing&& drawing, const PlanOptions& o) {
