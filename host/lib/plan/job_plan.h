@@ -7,9 +7,9 @@
 #include <stdint.h>  // int32_t
 
 #include <functional>  // std::function
-#include <memory>      // std::shared_ptr
 #include <stdexcept>   // std::runtime_error
 #include <string>      // std::string
+#include <utility>     // std::swap
 #include <vector>      // std::vector
 
 #include "firmware/config/machine_config.h"
@@ -70,7 +70,8 @@ struct PlanOptions {
 
 // One machine action. Which fields mean something depends on kind.
 struct PlanStep {
-  enum Kind {
+  // One byte: a million-line job holds four million steps.
+  enum Kind : uint8_t {
     kPenUp,    // Z to z_um (travel height), at the rapid rate
     kPenDown,  // Z to z_um (cutting depth), at feed_um_per_s (plunge feed)
     kRapid,    // X/Y straight to `to` with the pen up, at the rapid rate
@@ -84,14 +85,17 @@ struct PlanStep {
                // feed_um_per_s, back to z_start_um
   };
   Kind kind = kRapid;
+  bool spindle_on = false;     // kSpindle
   core::PointUm to = {0, 0};   // kRapid, kFeed: target; kSpline: the spline's end point
   int32_t z_um = 0;            // kPenUp, kPenDown
   int32_t feed_um_per_s = 0;   // kPenDown, kFeed, kSpline
   int32_t tool_offset_um = 0;  // kSpline, kFeed: signed offset, > 0 left of travel, < 0 right
-  uint32_t dwell_ms = 0;       // kDwell
-  int32_t z_start_um = 0;      // kDrill: height above the board where the plunge starts
-  int curve = -1;              // index into JobPlan::curves of the curve this step draws
-  bool spindle_on = false;     // kSpindle
+  // Only one kind reads each of these, so they share their bytes (32 bytes of fields).
+  union {
+    uint32_t dwell_ms = 0;  // kDwell
+    int32_t z_start_um;     // kDrill: height above the board where the plunge starts
+  };
+  int curve = -1;  // index into JobPlan::curves of the curve this step draws
 
   // kSpline: the curve (validated, in machine micrometres); empty for every other kind.
   const StepSpline& spline() const;
@@ -103,11 +107,27 @@ struct PlanStep {
  private:
   // Only spline and pause steps have these, so the others (a million feeds in a large job)
   // stay small. Never changed once made: copies of a step share them.
-  struct Extra {
-    StepSpline spline;
-    std::string text;
+  struct Extra;
+  // A counted pointer one word wide (a std::shared_ptr is two: 8 more bytes in each of the
+  // four million steps of a million-line job). Counts atomically: the server copies plans
+  // across threads.
+  class ExtraRef {
+   public:
+    ExtraRef() = default;
+    explicit ExtraRef(Extra* owned) : p_(owned) {}
+    ExtraRef(const ExtraRef& other);
+    ExtraRef(ExtraRef&& other) noexcept : p_(other.p_) { other.p_ = nullptr; }
+    ExtraRef& operator=(ExtraRef other) noexcept {
+      std::swap(p_, other.p_);
+      return *this;
+    }
+    ~ExtraRef();
+    const Extra* get() const { return p_; }
+
+   private:
+    Extra* p_ = nullptr;
   };
-  std::shared_ptr<const Extra> extra_;
+  ExtraRef extra_;
 };
 
 // A planned curve: the drawing curve in the machine frame (mm), in the direction drawn.

@@ -30,27 +30,11 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 }
 
 const char* step_name(PlanStep::Kind kind) {
-  switch (kind) {
-    case PlanStep::kPenUp:
-      return "pen_up";
-    case PlanStep::kPenDown:
-      return "pen_down";
-    case PlanStep::kRapid:
-      return "rapid";
-    case PlanStep::kFeed:
-      return "feed";
-    case PlanStep::kSpline:
-      return "spline";
-    case PlanStep::kPause:
-      return "pause";
-    case PlanStep::kDwell:
-      return "dwell";
-    case PlanStep::kSpindle:
-      return "spindle";
-    case PlanStep::kDrill:
-      return "drill";
-  }
-  return "?";
+  // In the order of PlanStep::Kind.
+  static const char* const kNames[] = {"pen_up", "pen_down", "rapid",   "feed", "spline",
+                                       "pause",  "dwell",    "spindle", "drill"};
+  static_assert(sizeof(kNames) / sizeof(kNames[0]) == PlanStep::kDrill + 1, "a name per kind");
+  return kind <= PlanStep::kDrill ? kNames[kind] : "?";
 }
 
 }  // namespace

@@ -1,11 +1,12 @@
 // One protocol message as a queued command, through the shared codec (the controller's
-// own field checks), for the job encoder, the spline frames and the resume prefix.
+// own field checks), for the job encoder, the spline frames and the resume prefix; and
+// back (the resume reads the commands it continues from).
 #ifndef HOST_LIB_STREAM_ENCODE_COMMAND_H
 #define HOST_LIB_STREAM_ENCODE_COMMAND_H
 
 #include <fmt/format.h>  // fmt::format
 
-#include "firmware/protocol/codec.h"      // proto::encode
+#include "firmware/protocol/codec.h"      // proto::encode, proto::decode
 #include "host/lib/plan/job_plan.h"       // PlanError
 #include "host/lib/stream/job_encoder.h"  // QueuedCommand
 
@@ -28,6 +29,14 @@ QueuedCommand encode_command(const Msg& msg, int step = -1, int curve = -1) {
   c.step = step;
   c.curve = curve;
   return c;
+}
+
+// The message a queued command carries (its letter already checked by the caller).
+template <typename Msg>
+Msg decoded(const QueuedCommand& c) {
+  Msg m{};
+  proto::decode(c.payload.data(), static_cast<uint8_t>(c.payload.size()), &m);
+  return m;
 }
 
 }  // namespace host

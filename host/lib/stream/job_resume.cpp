@@ -5,19 +5,12 @@
 
 #include "firmware/protocol/codec.h"         // proto::encode, proto::decode
 #include "host/lib/plan/firmware_points.h"   // firmware_points_um
-#include "host/lib/stream/encode_command.h"  // encode_command
+#include "host/lib/stream/encode_command.h"  // encode_command, decoded
 #include "host/lib/stream/spline_frames.h"   // add_spline_data
 
 namespace host {
 
 namespace {
-
-template <typename Msg>
-Msg decoded(const QueuedCommand& c) {
-  Msg m{};
-  proto::decode(c.payload.data(), static_cast<uint8_t>(c.payload.size()), &m);
-  return m;
-}
 
 // The spline a #B and its data frames (#D, #K or #Q) carry, and the #B's tool offset.
 core::Spline spline_of(const std::vector<QueuedCommand>& frames, int32_t* offset_um) {

@@ -3,20 +3,14 @@
 
 #include <algorithm>  // std::max
 
-#include "firmware/core/curve_walker.h"     // kDefaultChordToleranceUm
-#include "firmware/protocol/codec.h"        // proto::decode
-#include "host/lib/stream/spline_frames.h"  // is_spline_data
+#include "firmware/core/curve_walker.h"      // kDefaultChordToleranceUm
+#include "firmware/protocol/codec.h"         // proto:: messages
+#include "host/lib/stream/encode_command.h"  // decoded
+#include "host/lib/stream/spline_frames.h"   // is_spline_data
 
 namespace host {
 
 namespace {
-
-template <typename Msg>
-Msg decoded(const QueuedCommand& c) {
-  Msg m{};
-  proto::decode(c.payload.data(), static_cast<uint8_t>(c.payload.size()), &m);
-  return m;
-}
 
 bool is_move(uint8_t letter) {
   return letter == proto::kCmdRapidMove || letter == proto::kCmdFeedMove ||
