@@ -79,7 +79,6 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
              "--tol", a->tol_mm,
              fmt::format("chord tolerance of the generated points in mm (PCB: {} unless given)",
                          defaults::kBoardChordToleranceMm))
-          ->check(CLI::Range(0.001, 1.0))
           ->capture_default_str();
   CLI::Option* margin =
       cmd->add_option(
@@ -92,11 +91,9 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   const std::string g = kDrawingGroup;
   cmd->add_option("--scale", a->scale, "scale factor applied to the drawing")
       ->group(g)
-      ->check(CLI::Range(1e-3, 1e3))
       ->capture_default_str();
   cmd->add_option("--chain-tol", a->chain_tol_mm, "join curves whose ends are closer, mm")
       ->group(g)
-      ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   cmd->add_flag("--no-reorder", a->no_reorder, "trace curves in drawing order")->group(g);
   cmd->add_option("--z-down", a->z_down_mm, "cutting depth in mm")->group(g)->capture_default_str();
@@ -112,12 +109,10 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
       ->capture_default_str();
   cmd->add_option("--tool-radius", a->tool_radius_mm, "tool radius in mm for --tool-side")
       ->group(g)
-      ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
   cmd->add_option("--fit-tol", a->fit_tol_mm,
                   "G-code: fit runs of short G1 moves within this many mm (0: send each move)")
       ->group(g)
-      ->check(CLI::Range(0.0, 0.1))
       ->capture_default_str();
   cmd->add_flag("--drill-as-z-moves", a->drill_as_z_moves,
                 "G-code drilling cycles as plain Z moves instead of the drill command")
@@ -470,7 +465,6 @@ void add_send_command(CLI::App& app) {
   send->add_flag("--no-zero", send_args->no_zero, "do not start manual zeroing if not zeroed");
   send->add_option("--poll-ms", send_args->poll_ms,
                    "status poll interval (keep-alive); 0 = one query always in flight")
-      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   send->add_flag("--resume", send_args->resume,
                  "continue the job from where the controller says it stopped (lost link, abort, "

@@ -195,9 +195,10 @@ std::string outside(const OptionRange& r, bool below) {
 }
 
 std::string values(const OptionRange& r, const std::string& v) {
-  const int n = std::string(r.option) == "--work"             ? 2
-                : std::string(r.option) == "--align-measured" ? 4
-                                                              : 1;
+  const std::string o = r.option;
+  const int n = o == "--work" || o == "--offset" || o == "--probe-grid" ? 2
+                : o == "--align-measured"                               ? 4
+                                                                        : 1;
   std::string out;
   for (int k = 0; k < n; ++k) out += " " + v;
   return out;
@@ -219,16 +220,39 @@ TEST(BoardOptionRanges, EveryBoundOfTheTableIsInsideAndAStepBeyondIsOutside) {
   }
 }
 
-// A walk over the table through the built tool: in every command that takes the board options,
-// a value a step beyond either bound is a usage error (exit 2) naming the option and its range,
-// before any file is read.
+// The commands that take an option of the table: the board options are in all five, but the
+// machine's (--feed, --z-up, --margin, --work) not in `points`; the others as listed.
+std::string commands_taking(const std::string& option) {
+  if (option == "--tol") return "board points run send probe";
+  if (option == "--feed" || option == "--z-up" || option == "--margin" || option == "--work")
+    return "board run send probe";
+  for (const char* o : {"--scale", "--chain-tol", "--offset", "--tool-radius", "--fit-tol",
+                        "--probe-spacing", "--probe-grid", "--probe-margin", "--outlier-limit"})
+    if (option == o) return "run send probe";
+  if (option == "--poll-ms") return "send";
+  if (option == "--vbit-angle" || option == "--copper-um") return "run";
+  return "board points run send probe";
+}
+
+// A walk over the table through the built tool: in every command that takes the option, a
+// value a step beyond either bound is a usage error (exit 2) naming the option and its range,
+// before any file is read or any link opened (--probe-grid 1 16 was checked only after
+// connecting: exit 6 on a dead link).
 TEST(BoardOptionRanges, EveryCommandRefusesAValueBeyondEitherBoundNamingTheOption) {
   const std::string dir = write_board("ranges");
-  int checked = 0;
+  int checked = 0, expected = 0;
   for (const std::string command : {"board", "points", "run", "send", "probe"}) {
     const std::string help = run(command + " --help").out;
+    // send and probe: a link nothing listens on (a connection would fail with exit 6).
+    const std::string link =
+        command == "send" || command == "probe" ? " --to tcp://127.0.0.1:1" : "";
     for (const OptionRange& r : option_ranges()) {
-      if (help.find(std::string("  ") + r.option + " ") == std::string::npos) continue;
+      const bool takes = (" " + commands_taking(r.option) + " ").find(" " + command + " ") !=
+                         std::string::npos;
+      expected += takes;
+      EXPECT_EQ(help.find(std::string("  ") + r.option + " ") != std::string::npos, takes)
+          << command << " " << r.option;
+      if (!takes) continue;
       ++checked;
       // The range as the help shows it.
       EXPECT_NE(help.find(std::string(r.option) + " " + (r.integer ? "INT" : "FLOAT") + ":in [" +
@@ -237,7 +261,7 @@ TEST(BoardOptionRanges, EveryCommandRefusesAValueBeyondEitherBoundNamingTheOptio
           << command << " " << r.option;
       for (const bool below : {true, false}) {
         const std::string v = outside(r, below);
-        const std::string args = command + " " + dir + " " + r.option + values(r, v);
+        const std::string args = command + " " + dir + link + " " + r.option + values(r, v);
         const ToolRun t = run(args);
         EXPECT_EQ(t.code, 2) << args << "\n" << t.err;
         EXPECT_NE(t.err.find(std::string(r.option) + ": " + v + " is outside the allowed range " +
@@ -247,9 +271,9 @@ TEST(BoardOptionRanges, EveryCommandRefusesAValueBeyondEitherBoundNamingTheOptio
             << t.err;
       }
     }
-  }  // board, run, send and probe have every option of the table; points all but the machine's.
-  EXPECT_EQ(checked, 4 * static_cast<int>(option_ranges().size()) +
-                         static_cast<int>(option_ranges().size()) - 4);
+  }
+  EXPECT_EQ(checked, expected);
+  EXPECT_GE(checked, 4 * 25 + 21);  // the 25 board options at least
 }
 
 // The outside tester's findings: values planned with and refused later as a failed job
@@ -281,6 +305,60 @@ TEST(BoardOptionRanges, TheTestersValuesAreUsageErrorsNamingTheOption) {
   }
   // A plain decimal with an exponent is a decimal.
   EXPECT_EQ(run(board + "--depth 5e-2").code, 0);
+}
+
+// The second tester's findings (issue 24, #25's CLI): values accepted and ignored, checked
+// only after connecting, or refused in CLI11's words instead of the project's.
+TEST(BoardOptionRanges, TheSecondTestersValuesAreUsageErrorsNamingTheOption) {
+  const std::string dir = write_board("tester2");
+  const std::string word = std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf";
+  const std::string out = " -o " + dir + "/out";
+  const std::string dead = " --to tcp://127.0.0.1:1";
+  struct Case {
+    std::string args, says;
+  };
+  const Case cases[] = {
+      // Silently ignored (the default grid probed, exit 0).
+      {"run " + word + " --surface tilt=0.1mm --probe --probe-grid 0 0" + out,
+       "--probe-grid: 0 is outside the allowed range 2 .. 16"},
+      {"run " + word + " --surface tilt=0.1mm --probe --probe-grid 0 -3" + out,
+       "--probe-grid: 0 is outside the allowed range 2 .. 16"},
+      // Checked after connecting: exit 6 on a dead link.
+      {"send " + word + dead + " --probe --probe-grid 1 16", "--probe-grid: 1 is outside"},
+      {"probe " + word + dead + " --probe-grid 4 17", "--probe-grid: 17 is outside"},
+      // A hex float in the simulated blank.
+      {"run " + word + " --surface tilt=0x1p-3mm" + out,
+       "--surface tilt=0x1p-3mm: '0x1p-3' is not a decimal number"},
+      {"run " + word + " --surface bump=10:0x1p3:5mm:50um" + out, "'0x1p3' is not a decimal"},
+      // No range: the message overflowed (-9.22337e+15).
+      {"run " + word + " --offset 1e300 0" + out,
+       "--offset: 1e300 is outside the allowed range -297 .. 297 mm"},
+      // CLI11's words ("not in range") before.
+      {"run " + word + " --tol 0" + out, "--tol: 0 is outside the allowed range 0.001 .. 1 mm"},
+      {"points " + word + " --tol 5", "--tol: 5 is outside the allowed range 0.001 .. 1 mm"},
+      {"run " + word + " --scale 0" + out, "--scale: 0 is outside the allowed range 0.001 .. 1000"},
+      {"send " + word + dead + " --poll-ms 5000", "--poll-ms: 5000 is outside the allowed range"},
+      {"run " + word + " --chain-tol 2" + out, "--chain-tol: 2 is outside the allowed range 0 .. 1"},
+      {"run " + word + " --tool-radius 11" + out, "--tool-radius: 11 is outside the allowed range"},
+      {"run " + word + " --probe-spacing 0.5" + out, "--probe-spacing: 0.5 is outside"},
+      {"run " + word + " --probe-margin 51" + out, "--probe-margin: 51 is outside"},
+      // CLI11's "Could not convert".
+      {"board " + dir + " --passes 1.5" + out, "--passes: '1.5' is not a whole number"},
+      {"board " + dir + " --tabs 2.5" + out, "--tabs: '2.5' is not a whole number"},
+      // Two ways to say how many tabs: a clash, neither wins.
+      {"board " + dir + " --tabs 6 --tab-spacing 30" + out, "--tabs excludes --tab-spacing"},
+      {"run " + dir + " --tab-spacing 30 --tabs 2" + out, "--tabs excludes --tab-spacing"},
+  };
+  for (const Case& c : cases) {
+    const ToolRun r = run(c.args);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;
+  }
+  // The tab height is checked where tabs are cut only: with no tabs there is none to keep.
+  const std::string board = "board " + dir + " --no-plot" + out;
+  EXPECT_EQ(run(board + " --tabs 0 --tab-height 1.8").code, 0);
+  EXPECT_EQ(run(board + " --tab-width 0 --tab-height 1.8").code, 0);
+  EXPECT_EQ(run(board + " --tab-height 1.8").code, 2);
 }
 
 }  // namespace
