@@ -21,7 +21,6 @@
 #include "host/lib/commands/send_command.h"
 #include "host/lib/commands/sim_command.h"
 #include "host/lib/drawing/drawing.h"
-#include "host/lib/heightmap/controller_map.h"  // raise_tool_after_abort
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/progress/progress_meter.h"
 #include "host/lib/stream/sender.h"
@@ -297,10 +296,8 @@ void run_probe(const ProbeArgs& a) {
   } catch (const CommandFailure&) {
     signals_to(nullptr);
     // Ctrl-C stopped the touch where it was (#X): the tool up before engraver ends.
-    if (abort_signalled()) {
-      std::cerr << "engraver: probing stopped: "
-                << heightmap::raise_tool_after_abort(*link, so, a.plan.z_up_mm) << "\n";
-    }
+    const std::string lifted = raise_tool_if_abort_signalled(*link, so, a.plan.z_up_mm);
+    if (!lifted.empty()) std::cerr << "engraver: probing stopped: " << lifted << "\n";
     throw;
   }
   signals_to(nullptr);
@@ -432,15 +429,34 @@ void run_run(const RunArgs& a) {
   }
   commands::RunOptions o = run_options(a, plan, board);
   o.flip = flip;
-  commands::RunResult r = [&o, &plan] {
+  // Ctrl-C (INT/TERM) stops the simulated machine as send stops the real one (#X), and the
+  // tool goes up: while probing and while the job runs.
+  o.attach_controls = signals_to;
+  std::string lifted;  // what the lift after a Ctrl-C did
+  o.after_stream = [&lifted, z = a.plan.z_up_mm](Link& link, const SenderOptions& so) {
+    lifted = raise_tool_if_abort_signalled(link, so, z);
+  };
+  commands::RunResult r = [&o, &plan, &lifted] {
     ProgressMeter bar("run", "commands", std::cerr, ProgressMeter::for_stderr());
     o.on_progress = [&bar](const Progress& p) {
       bar.update(p.executed, p.total, machine_detail(p));
     };
-    commands::RunResult result = commands::simulate_run(plan, o);
-    o.on_progress = nullptr;
-    return result;
+    try {
+      commands::RunResult result = commands::simulate_run(plan, o);
+      o.on_progress = nullptr;
+      return result;
+    } catch (const CommandFailure&) {
+      if (!lifted.empty()) std::cerr << "engraver: probing stopped: " << lifted << "\n";
+      throw;
+    }
   }();
+  if (!lifted.empty()) {  // stopped by Ctrl-C: what was done, nothing planned on a half job
+    std::cerr << fmt::format(
+        "engraver: run stopped: {}; {}; no plot or report (a run starts afresh: nothing to "
+        "resume)\n",
+        r.sim.message, lifted);
+    commands::refuse_failed_run(o, r);
+  }
   commands::write_run_plots(plan, o, r);
   commands::check_run(o, &r);
   nlohmann::json report = commands::run_report_json(plan, o, r);
@@ -478,7 +494,8 @@ void add_send_command(CLI::App& app) {
       "After a lost link: engraver send board.dxf --to ... --feed 8 --resume\n"
       "Keys: h hold, r resume, x abort, +/- feed override. Signals: INT/TERM abort, USR1 hold, "
       "USR2 resume.\nExit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, "
-      "5 command refused by the controller, 6 link lost, 7 stalled (no progress for 30 s), 8 a "
+      "5 command refused by the controller (or Ctrl-C while --probe touches), 6 link lost, 7 "
+      "stalled (no progress for 30 s), 8 a "
       "board job that would cut copper (refused before streaming).");
   send->callback([send_args] {
     try {
@@ -505,7 +522,8 @@ void add_probe_command(CLI::App& app) {
       "then: engraver send board/ --to ... --height-map board.map.json\n"
       "Exit: 0 map written, 1 probing refused (a point disagreeing with its neighbours, two "
       "touches apart, heights spanning more than 1 mm), 2 bad input or options, 5 the "
-      "controller refused the probe (no contact, spindle on, probe closed), 6 link lost.");
+      "controller refused the probe (no contact, spindle on, probe closed) or Ctrl-C/SIGTERM "
+      "stopped a touch (the tool is raised), 6 link lost.");
   probe->callback([probe_args] {
     try {
       run_probe(*probe_args);
@@ -567,9 +585,11 @@ void add_run_command(CLI::App& app) {
   run->footer(
       "Example: engraver run samples/engraver-word.dxf -o out\n"
       "Progress on stderr (a bar on a terminal, a line every 5 s otherwise).\n"
+      "Ctrl-C or SIGTERM stops the simulated machine (#X) and raises the tool (exit 3; while "
+      "--probe touches, exit 5 as probe).\n"
       "Exit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, 5 command refused by "
-      "the controller, 6 link lost, 7 stalled (no progress for 30 s of machine time), 8 a board "
-      "job whose controller points or simulated path cut copper.");
+      "the controller or a touch stopped, 6 link lost, 7 stalled (no progress for 30 s of "
+      "machine time), 8 a board job whose controller points or simulated path cut copper.");
   run->callback([run_args] {
     try {
       run_run(*run_args);
