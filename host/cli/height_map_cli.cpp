@@ -43,8 +43,8 @@ void refuse_surface_numbers_not_decimal(const std::string& text) {
         if (number.size() > 2 && number.compare(number.size() - 2, 2, unit) == 0)
           number.resize(number.size() - 2);
       if (!is_plain_decimal(number))
-        throw CommandFailure(kExitUsage, fmt::format("--surface {}: '{}' is not a decimal number",
-                                                     item, number));
+        throw CommandFailure(
+            kExitUsage, fmt::format("--surface {}: '{}' is not a decimal number", item, number));
     }
   }
 }
@@ -60,7 +60,6 @@ std::optional<heightmap::SurfaceSpec> surface_spec_of(const std::string& text) {
     throw CommandFailure(kExitUsage, e.what());
   }
 }
-
 
 void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, HeightMapCommand command) {
   const std::string g = kHeightMapGroup;

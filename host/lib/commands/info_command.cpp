@@ -10,12 +10,12 @@
 #include <sstream>    // std::ostringstream
 
 #include "host/lib/commands/exit_codes.h"  // CommandFailure
-#include "host/lib/plan/job_defaults.h"     // kChordToleranceRangeMm
 #include "host/lib/pcb/excellon_reader.h"
 #include "host/lib/pcb/gerber_reader.h"
 #include "host/lib/pcb/pcb_file_names.h"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
+#include "host/lib/plan/job_defaults.h"  // kChordToleranceRangeMm
 
 namespace host::commands {
 

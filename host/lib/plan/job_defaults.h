@@ -129,12 +129,13 @@ inline constexpr Range kVbitAngleRangeDeg{5.0, 150.0};
 inline constexpr Range kCopperRangeUm{1.0, 500.0};
 // --offset X Y (machine = drawing + offset): within the machine's longest travel either way.
 inline Range offset_range_mm() {
-  const double t = travel_mm(config::kAxisX) > travel_mm(config::kAxisY) ? travel_mm(config::kAxisX)
-                                                                          : travel_mm(config::kAxisY);
+  const double t = travel_mm(config::kAxisX) > travel_mm(config::kAxisY)
+                       ? travel_mm(config::kAxisX)
+                       : travel_mm(config::kAxisY);
   return Range{-t, t};
 }
-inline constexpr double kAlignDiameterMm = 3.0;             // alignment hole (pin) diameter
-inline constexpr double kAlignDepthMm = 3.0;  // through the blank into the spoil board
+inline constexpr double kAlignDiameterMm = 3.0;  // alignment hole (pin) diameter
+inline constexpr double kAlignDepthMm = 3.0;     // through the blank into the spoil board
 
 }  // namespace host::defaults
 

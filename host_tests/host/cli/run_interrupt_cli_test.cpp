@@ -1,11 +1,11 @@
 // `engraver run` and Ctrl-C (issue 24): it exited 130 without a word, while probing and while
 // the job ran. Now the simulated machine stops as `send` stops a real one (#X), the tool goes
 // up, the run says what was done and ends with the documented code (docs/user-guide.md).
+#include <fcntl.h>  // O_WRONLY
 #include <gtest/gtest.h>
 #include <signal.h>    // kill, SIGINT, SIGTERM
 #include <spawn.h>     // posix_spawn
 #include <sys/wait.h>  // waitpid
-#include <fcntl.h>     // O_WRONLY
 #include <unistd.h>    // getpid
 
 #include <chrono>      // steady_clock
@@ -51,8 +51,7 @@ Interrupted interrupt_run(const std::vector<std::string>& run_args, double after
   posix_spawn_file_actions_t files;
   posix_spawn_file_actions_init(&files);
   posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&files, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0644);
+  posix_spawn_file_actions_addopen(&files, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t pid = 0;
   Interrupted r;
   if (posix_spawn(&pid, ENGRAVER_EXE, &files, nullptr, argv.data(), environ) != 0) return r;

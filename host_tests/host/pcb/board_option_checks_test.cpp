@@ -247,8 +247,8 @@ TEST(BoardOptionRanges, EveryCommandRefusesAValueBeyondEitherBoundNamingTheOptio
     const std::string link =
         command == "send" || command == "probe" ? " --to tcp://127.0.0.1:1" : "";
     for (const OptionRange& r : option_ranges()) {
-      const bool takes = (" " + commands_taking(r.option) + " ").find(" " + command + " ") !=
-                         std::string::npos;
+      const bool takes =
+          (" " + commands_taking(r.option) + " ").find(" " + command + " ") != std::string::npos;
       expected += takes;
       EXPECT_EQ(help.find(std::string("  ") + r.option + " ") != std::string::npos, takes)
           << command << " " << r.option;
@@ -338,7 +338,8 @@ TEST(BoardOptionRanges, TheSecondTestersValuesAreUsageErrorsNamingTheOption) {
       {"points " + word + " --tol 5", "--tol: 5 is outside the allowed range 0.001 .. 1 mm"},
       {"run " + word + " --scale 0" + out, "--scale: 0 is outside the allowed range 0.001 .. 1000"},
       {"send " + word + dead + " --poll-ms 5000", "--poll-ms: 5000 is outside the allowed range"},
-      {"run " + word + " --chain-tol 2" + out, "--chain-tol: 2 is outside the allowed range 0 .. 1"},
+      {"run " + word + " --chain-tol 2" + out,
+       "--chain-tol: 2 is outside the allowed range 0 .. 1"},
       {"run " + word + " --tool-radius 11" + out, "--tool-radius: 11 is outside the allowed range"},
       {"run " + word + " --probe-spacing 0.5" + out, "--probe-spacing: 0.5 is outside"},
       {"run " + word + " --probe-margin 51" + out, "--probe-margin: 51 is outside"},
