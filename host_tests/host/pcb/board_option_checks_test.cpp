@@ -363,3 +363,35 @@ TEST(BoardOptionRanges, TheSecondTestersValuesAreUsageErrorsNamingTheOption) {
 }
 
 }  // namespace
+
+namespace {
+
+// A bottom side after a top side with alignment holes said "0 holes (2 on copper)": the
+// holes are drilled with the top side; the count in copper is the layers' alignment check.
+TEST(BoardReportText, DrillingSaysWhichSideDrillsAndWhatSitsInThePads) {
+  const std::string dir = write_board("report");
+  const std::string board = "board " + dir + " --no-plot -o " + dir + "/out ";
+  const ToolRun bottom = run(board + "--side bottom --align-holes auto");
+  ASSERT_EQ(bottom.code, 0) << bottom.err;
+  EXPECT_EQ(bottom.out.find("0 holes ("), std::string::npos) << bottom.out;
+  EXPECT_NE(bottom.out.find("  drilling: none on this side: the top side's job drills the holes "
+                            "(2 alignment holes; 2 of the board's 2 holes in this side's copper "
+                            "pads)\n"),
+            std::string::npos)
+      << bottom.out;
+  const ToolRun top = run(board + "--align-holes auto");
+  ASSERT_EQ(top.code, 0) << top.err;
+  EXPECT_NE(top.out.find("  drilling: 4 holes (2 of the board's 2 holes in this side's copper "
+                         "pads; 2 alignment holes), 0 slots, 2 sizes;"),
+            std::string::npos)
+      << top.out;
+  const ToolRun json = run(board + "--side bottom --align-holes auto --json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  const nlohmann::json j = nlohmann::json::parse(json.out);
+  EXPECT_EQ(j["holes"], 0);
+  ASSERT_TRUE(j.contains("board_holes")) << json.out;
+  EXPECT_EQ(j["board_holes"], 2);
+  EXPECT_EQ(j["holes_on_copper"], 2);
+}
+
+}  // namespace
