@@ -470,15 +470,33 @@ void run_run(const RunArgs& a) {
   commands::refuse_failed_run(o, r);
 }
 
+// The machine a command talks to: --to (required) and --no-zero.
+void add_link_options(CLI::App* cmd, std::string* to, bool* no_zero) {
+  cmd->add_option("--to", *to,
+                  "tcp://HOST:PORT (XPort, default port 10001) or serial:DEVICE[,BAUD]")
+      ->required();
+  cmd->add_flag("--no-zero", *no_zero, "do not start manual zeroing if not zeroed");
+}
+
+// Runs the command with its arguments; a link that fails ends it with kExitLinkLost.
+template <class Args>
+void callback_ending_on_link_errors(CLI::App* cmd, std::shared_ptr<Args> args,
+                                    void (*run)(const Args&)) {
+  cmd->callback([args, run] {
+    try {
+      run(*args);
+    } catch (const LinkError& e) {
+      throw CommandFailure(kExitLinkLost, e.what());
+    }
+  });
+}
+
 void add_send_command(CLI::App& app) {
   auto send_args = std::make_shared<SendArgs>();
   CLI::App* send = app.add_subcommand("send", "plan a drawing and stream it to the machine");
   add_plan_options(send, &send_args->plan);
   add_height_map_options(send, &send_args->map, HeightMapCommand::kSend);
-  send->add_option("--to", send_args->to,
-                   "tcp://HOST:PORT (XPort, default port 10001) or serial:DEVICE[,BAUD]")
-      ->required();
-  send->add_flag("--no-zero", send_args->no_zero, "do not start manual zeroing if not zeroed");
+  add_link_options(send, &send_args->to, &send_args->no_zero);
   send->add_option("--poll-ms", send_args->poll_ms,
                    "status poll interval (keep-alive); 0 = one query always in flight")
       ->capture_default_str();
@@ -497,13 +515,7 @@ void add_send_command(CLI::App& app) {
       "5 command refused by the controller (or Ctrl-C while --probe touches), 6 link lost, 7 "
       "stalled (no progress for 30 s), 8 a "
       "board job that would cut copper (refused before streaming).");
-  send->callback([send_args] {
-    try {
-      run_send(*send_args);
-    } catch (const LinkError& e) {
-      throw CommandFailure(kExitLinkLost, e.what());
-    }
-  });
+  callback_ending_on_link_errors(send, send_args, run_send);
 }
 
 void add_probe_command(CLI::App& app) {
@@ -512,11 +524,7 @@ void add_probe_command(CLI::App& app) {
       app.add_subcommand("probe", "probe the blank on a grid over a job and write its height map");
   add_plan_options(probe, &probe_args->plan);
   add_height_map_options(probe, &probe_args->map, HeightMapCommand::kProbe);
-  probe
-      ->add_option("--to", probe_args->to,
-                   "tcp://HOST:PORT (XPort, default port 10001) or serial:DEVICE[,BAUD]")
-      ->required();
-  probe->add_flag("--no-zero", probe_args->no_zero, "do not start manual zeroing if not zeroed");
+  add_link_options(probe, &probe_args->to, &probe_args->no_zero);
   probe->footer(
       "Example: engraver probe board/ --to tcp://192.168.1.50:10001 --height-map board.map.json\n"
       "then: engraver send board/ --to ... --height-map board.map.json\n"
@@ -524,13 +532,7 @@ void add_probe_command(CLI::App& app) {
       "touches apart, heights spanning more than 1 mm), 2 bad input or options, 5 the "
       "controller refused the probe (no contact, spindle on, probe closed) or Ctrl-C/SIGTERM "
       "stopped a touch (the tool is raised), 6 link lost.");
-  probe->callback([probe_args] {
-    try {
-      run_probe(*probe_args);
-    } catch (const LinkError& e) {
-      throw CommandFailure(kExitLinkLost, e.what());
-    }
-  });
+  callback_ending_on_link_errors(probe, probe_args, run_probe);
 }
 
 void add_sim_command(CLI::App& app) {
@@ -590,13 +592,7 @@ void add_run_command(CLI::App& app) {
       "Exit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, 5 command refused by "
       "the controller or a touch stopped, 6 link lost, 7 stalled (no progress for 30 s of "
       "machine time), 8 a board job whose controller points or simulated path cut copper.");
-  run->callback([run_args] {
-    try {
-      run_run(*run_args);
-    } catch (const LinkError& e) {
-      throw CommandFailure(kExitLinkLost, e.what());
-    }
-  });
+  callback_ending_on_link_errors(run, run_args, run_run);
 }
 
 void add_machine_commands(CLI::App& app) {
