@@ -9,7 +9,9 @@
 #include <cmath>  // std::cos, std::sin
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "host/cli/option_ranges.h"
@@ -392,6 +394,49 @@ TEST(BoardReportText, DrillingSaysWhichSideDrillsAndWhatSitsInThePads) {
   ASSERT_TRUE(j.contains("board_holes")) << json.out;
   EXPECT_EQ(j["board_holes"], 2);
   EXPECT_EQ(j["holes_on_copper"], 2);
+}
+
+}  // namespace
+
+namespace {
+
+// The user guide's range tables ("| option | range | option | range |") give every option of
+// the table with the range --help shows, and nothing else.
+TEST(BoardOptionRanges, TheGuidesTablesGiveEveryRangeAsTheToolChecksIt) {
+  std::ifstream guide(std::string(ENGRAVER_SOURCE_DIR) + "/docs/user-guide.md");
+  ASSERT_TRUE(guide) << "docs/user-guide.md";
+  std::map<std::string, std::string> documented;  // "--tol" -> "0.001 .. 1 mm"
+  std::string line;
+  bool table = false;
+  while (std::getline(guide, line)) {
+    if (line == "| option | range | option | range |") table = true;
+    if (!table) continue;
+    if (line.rfind("|", 0) != 0) {
+      table = false;
+      continue;
+    }
+    std::vector<std::string> cells;
+    std::stringstream row(line.substr(1));
+    std::string cell;
+    while (std::getline(row, cell, '|')) cells.push_back(cell);
+    for (size_t c = 0; c + 1 < cells.size(); c += 2) {
+      std::string range = cells[c + 1];
+      if (range.find_first_not_of(' ') == std::string::npos) continue;  // an empty cell
+      range = range.substr(range.find_first_not_of(' '));
+      range = range.substr(0, range.find_last_not_of(' ') + 1);
+      for (size_t at = cells[c].find("`--"); at != std::string::npos;
+           at = cells[c].find("`--", at + 1))
+        documented[cells[c].substr(at + 1, cells[c].find('`', at + 1) - at - 1)] = range;
+    }
+  }
+  for (const OptionRange& r : option_ranges()) {
+    const std::string expected = bound(r.min) + " .. " + bound(r.max) +
+                                 (*r.unit ? std::string(" ") + r.unit : std::string());
+    ASSERT_TRUE(documented.count(r.option)) << r.option << " is in no table of the guide";
+    EXPECT_EQ(documented[r.option], expected) << r.option;
+    documented.erase(r.option);
+  }
+  EXPECT_TRUE(documented.empty()) << documented.begin()->first << " is not an option of the table";
 }
 
 }  // namespace
