@@ -66,7 +66,6 @@ void add_board_command(CLI::App& app) {
                 "also encode the isolation as #K frames, #D frames and G1 lines and report "
                 "their bytes (docs/performance.md)");
   cmd->add_option("--tol", a->run.tol_mm, "chord tolerance for the G1 comparison, mm")
-      ->check(CLI::Range(0.001, 1.0))
       ->capture_default_str();
   cmd->add_option("-o,--outdir", a->run.outdir, "where NAME.board.svg/.json (and .png) go")
       ->capture_default_str();
@@ -157,7 +156,8 @@ void add_drill_and_cutout_options(CLI::App* cmd, BoardArgs* a) {
   cmd->add_option("--tabs", a->tabs, "holding tabs per board")->group(g)->capture_default_str();
   cmd->add_option("--tab-spacing", a->tab_spacing_mm,
                   "one tab per this much outline length, mm (instead of --tabs)")
-      ->group(g);
+      ->group(g)
+      ->excludes("--tabs");  // a clash: neither wins
   cmd->add_option("--tab-height", a->tab_height_mm, "board thickness the tabs keep, mm")
       ->group(g)
       ->capture_default_str();

@@ -112,8 +112,7 @@ void add_drawing_commands(CLI::App& app) {
       ->add_option("FILE", points_args->file,
                    "drawing (DXF, G-code) or PCB files (Gerber, Excellon, a board folder)")
       ->required();
-  points->add_option("--tol", points_args->tol_mm, "chord tolerance in mm (0.001 .. 10)")
-      ->capture_default_str();
+  points->add_option("--tol", points_args->tol_mm, "chord tolerance in mm")->capture_default_str();
   points->add_flag("--csv", points_args->csv,
                    "CSV: header, then curve,x_mm,y_mm rows (PCB files: tool,tool_name,"
                    "tool_diameter_um,path,point,x_um,y_um,z_um)");

@@ -3,14 +3,14 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include <cmath>       // std::isfinite
-#include <cstdlib>     // std::strtod
 #include <filesystem>  // std::filesystem::path
 #include <fstream>     // std::ofstream
 #include <iostream>    // std::cerr
+#include <sstream>     // std::stringstream
 
 #include "host/cli/exit_codes.h"
-#include "host/cli/operator_controls.h"  // abort_signalled
+#include "host/cli/operator_controls.h"  // raise_tool_if_abort_signalled
+#include "host/cli/option_ranges.h"  // is_plain_decimal
 #include "host/lib/heightmap/controller_map.h"
 #include "host/lib/heightmap/job_area.h"
 #include "host/lib/heightmap/probe_session.h"
@@ -26,8 +26,35 @@ void add_surface_option(CLI::App* cmd, std::string* surface) {
       ->group(kHeightMapGroup);
 }
 
+namespace {
+
+// Each number of the spec ("tilt=0.1mm", "bump=X:Y:R:H", "seed=1") as the other number
+// options take them: a plain decimal (the spec's reader, like strtod, takes hex floats).
+void refuse_surface_numbers_not_decimal(const std::string& text) {
+  std::stringstream items(text);
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos) continue;  // the reader names it
+    std::stringstream values(item.substr(eq + 1));
+    std::string v;
+    while (std::getline(values, v, ':')) {
+      std::string number = v;
+      for (const char* unit : {"mm", "um"})
+        if (number.size() > 2 && number.compare(number.size() - 2, 2, unit) == 0)
+          number.resize(number.size() - 2);
+      if (!is_plain_decimal(number))
+        throw CommandFailure(
+            kExitUsage, fmt::format("--surface {}: '{}' is not a decimal number", item, number));
+    }
+  }
+}
+
+}  // namespace
+
 std::optional<heightmap::SurfaceSpec> surface_spec_of(const std::string& text) {
   if (text.empty()) return std::nullopt;
+  refuse_surface_numbers_not_decimal(text);
   try {
     return heightmap::parse_surface_spec(text);
   } catch (const heightmap::SurfaceSpecError& e) {
@@ -35,26 +62,8 @@ std::optional<heightmap::SurfaceSpec> surface_spec_of(const std::string& text) {
   }
 }
 
-namespace {
-
-// CLI::Range lets NaN through (every comparison with it is false): refused before it.
-CLI::Validator finite_number() {
-  return CLI::Validator(
-      [](std::string& text) {
-        char* end = nullptr;
-        const double v = std::strtod(text.c_str(), &end);
-        if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v))
-          return fmt::format("'{}' is not a finite number", text);
-        return std::string();
-      },
-      "NUMBER");
-}
-
-}  // namespace
-
 void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, HeightMapCommand command) {
   const std::string g = kHeightMapGroup;
-  const CLI::Validator finite = finite_number();
   if (command == HeightMapCommand::kProbe) {
     a->probe = true;
     cmd->add_option("--height-map", a->height_map,
@@ -70,8 +79,6 @@ void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, HeightMapCommand co
   cmd->add_option("--probe-spacing", a->grid.spacing_mm,
                   "largest distance between probe points, mm")
       ->group(g)
-      ->check(finite)
-      ->check(CLI::Range(1.0, 65.0))
       ->capture_default_str();
   cmd->add_option("--probe-grid", a->grid_rows_cols, "ROWS COLS: exactly this grid (2..16 each)")
       ->group(g)
@@ -80,8 +87,6 @@ void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, HeightMapCommand co
   cmd->add_option("--probe-margin", a->grid.margin_mm,
                   "the grid reaches this far beyond the job, mm")
       ->group(g)
-      ->check(finite)
-      ->check(CLI::Range(0.0, 50.0))
       ->capture_default_str();
   cmd->add_flag("--probe-twice", a->probe_twice,
                 "probe every point twice (the map records the repeatability)")
@@ -90,21 +95,15 @@ void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, HeightMapCommand co
                   "a point further than this from its neighbours' prediction is probed again, "
                   "then refused, um")
       ->group(g)
-      ->check(finite)
-      ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
   cmd->add_option("--blank", a->blank, "the blank's name, kept in the map")->group(g);
   if (command != HeightMapCommand::kRun) return;
   cmd->add_option("--vbit-angle", a->vbit_angle_deg,
                   "V-bit included angle in degrees (the depth report's groove width)")
       ->group(g)
-      ->check(finite)
-      ->check(CLI::Range(5.0, 150.0))
       ->capture_default_str();
   cmd->add_option("--copper-um", a->copper_um, "copper thickness in um (the depth report)")
       ->group(g)
-      ->check(finite)
-      ->check(CLI::Range(1.0, 500.0))
       ->capture_default_str();
 }
 
@@ -212,9 +211,9 @@ heightmap::HeightMap probe_raising_on_interrupt(Sender& sender, Link& link,
   try {
     return probe_for_job(sender, plan, a, z_up_mm, map_path, area);
   } catch (const CommandFailure& e) {
-    if (!abort_signalled()) throw;
     // Ctrl-C stopped the touch where it was (#X), maybe on the copper: the tool up first.
-    const std::string lifted = heightmap::raise_tool_after_abort(link, options, z_up_mm);
+    const std::string lifted = raise_tool_if_abort_signalled(link, options, z_up_mm);
+    if (lifted.empty()) throw;
     std::cerr << "engraver: probing stopped: " << lifted << "\n";
     throw CommandFailure(interrupted_exit, e.what());
   }

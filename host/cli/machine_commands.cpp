@@ -21,7 +21,6 @@
 #include "host/lib/commands/send_command.h"
 #include "host/lib/commands/sim_command.h"
 #include "host/lib/drawing/drawing.h"
-#include "host/lib/heightmap/controller_map.h"  // raise_tool_after_abort
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/progress/progress_meter.h"
 #include "host/lib/stream/sender.h"
@@ -79,7 +78,6 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
              "--tol", a->tol_mm,
              fmt::format("chord tolerance of the generated points in mm (PCB: {} unless given)",
                          defaults::kBoardChordToleranceMm))
-          ->check(CLI::Range(0.001, 1.0))
           ->capture_default_str();
   CLI::Option* margin =
       cmd->add_option(
@@ -92,11 +90,9 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   const std::string g = kDrawingGroup;
   cmd->add_option("--scale", a->scale, "scale factor applied to the drawing")
       ->group(g)
-      ->check(CLI::Range(1e-3, 1e3))
       ->capture_default_str();
   cmd->add_option("--chain-tol", a->chain_tol_mm, "join curves whose ends are closer, mm")
       ->group(g)
-      ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   cmd->add_flag("--no-reorder", a->no_reorder, "trace curves in drawing order")->group(g);
   cmd->add_option("--z-down", a->z_down_mm, "cutting depth in mm")->group(g)->capture_default_str();
@@ -112,12 +108,10 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
       ->capture_default_str();
   cmd->add_option("--tool-radius", a->tool_radius_mm, "tool radius in mm for --tool-side")
       ->group(g)
-      ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
   cmd->add_option("--fit-tol", a->fit_tol_mm,
                   "G-code: fit runs of short G1 moves within this many mm (0: send each move)")
       ->group(g)
-      ->check(CLI::Range(0.0, 0.1))
       ->capture_default_str();
   cmd->add_flag("--drill-as-z-moves", a->drill_as_z_moves,
                 "G-code drilling cycles as plain Z moves instead of the drill command")
@@ -252,7 +246,7 @@ void run_send(const SendArgs& a) {
     o.probe = [&, path = probe_map_path](Sender& sender) {
       heightmap::HeightMap map =
           probe_raising_on_interrupt(sender, *link, o.sender, plan, a.map, a.plan.z_up_mm, path,
-                                     board.probe_area, kExitAborted);
+                                     board.probe_area, kExitRefused);
       refuse_job_leaving_map(plan, map, path);
       return map;
     };
@@ -436,15 +430,34 @@ void run_run(const RunArgs& a) {
   }
   commands::RunOptions o = run_options(a, plan, board);
   o.flip = flip;
-  commands::RunResult r = [&o, &plan] {
+  // Ctrl-C (INT/TERM) stops the simulated machine as send stops the real one (#X), and the
+  // tool goes up: while probing and while the job runs.
+  o.attach_controls = signals_to;
+  std::string lifted;  // what the lift after a Ctrl-C did
+  o.after_stream = [&lifted, z = a.plan.z_up_mm](Link& link, const SenderOptions& so) {
+    lifted = raise_tool_if_abort_signalled(link, so, z);
+  };
+  commands::RunResult r = [&o, &plan, &lifted] {
     ProgressMeter bar("run", "commands", std::cerr, ProgressMeter::for_stderr());
     o.on_progress = [&bar](const Progress& p) {
       bar.update(p.executed, p.total, machine_detail(p));
     };
-    commands::RunResult result = commands::simulate_run(plan, o);
-    o.on_progress = nullptr;
-    return result;
+    try {
+      commands::RunResult result = commands::simulate_run(plan, o);
+      o.on_progress = nullptr;
+      return result;
+    } catch (const CommandFailure&) {
+      if (!lifted.empty()) std::cerr << "engraver: probing stopped: " << lifted << "\n";
+      throw;
+    }
   }();
+  if (!lifted.empty()) {  // stopped by Ctrl-C: what was done, nothing planned on a half job
+    std::cerr << fmt::format(
+        "engraver: run stopped: {}; {}; no plot or report (a run starts afresh: nothing to "
+        "resume)\n",
+        r.sim.message, lifted);
+    commands::refuse_failed_run(o, r);
+  }
   commands::write_run_plots(plan, o, r);
   commands::check_run(o, &r);
   nlohmann::json report = commands::run_report_json(plan, o, r);
@@ -458,18 +471,35 @@ void run_run(const RunArgs& a) {
   commands::refuse_failed_run(o, r);
 }
 
+// The machine a command talks to: --to (required) and --no-zero.
+void add_link_options(CLI::App* cmd, std::string* to, bool* no_zero) {
+  cmd->add_option("--to", *to,
+                  "tcp://HOST:PORT (XPort, default port 10001) or serial:DEVICE[,BAUD]")
+      ->required();
+  cmd->add_flag("--no-zero", *no_zero, "do not start manual zeroing if not zeroed");
+}
+
+// Runs the command with its arguments; a link that fails ends it with kExitLinkLost.
+template <class Args>
+void callback_ending_on_link_errors(CLI::App* cmd, std::shared_ptr<Args> args,
+                                    void (*run)(const Args&)) {
+  cmd->callback([args, run] {
+    try {
+      run(*args);
+    } catch (const LinkError& e) {
+      throw CommandFailure(kExitLinkLost, e.what());
+    }
+  });
+}
+
 void add_send_command(CLI::App& app) {
   auto send_args = std::make_shared<SendArgs>();
   CLI::App* send = app.add_subcommand("send", "plan a drawing and stream it to the machine");
   add_plan_options(send, &send_args->plan);
   add_height_map_options(send, &send_args->map, HeightMapCommand::kSend);
-  send->add_option("--to", send_args->to,
-                   "tcp://HOST:PORT (XPort, default port 10001) or serial:DEVICE[,BAUD]")
-      ->required();
-  send->add_flag("--no-zero", send_args->no_zero, "do not start manual zeroing if not zeroed");
+  add_link_options(send, &send_args->to, &send_args->no_zero);
   send->add_option("--poll-ms", send_args->poll_ms,
                    "status poll interval (keep-alive); 0 = one query always in flight")
-      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   send->add_flag("--resume", send_args->resume,
                  "continue the job from where the controller says it stopped (lost link, abort, "
@@ -483,15 +513,10 @@ void add_send_command(CLI::App& app) {
       "After a lost link: engraver send board.dxf --to ... --feed 8 --resume\n"
       "Keys: h hold, r resume, x abort, +/- feed override. Signals: INT/TERM abort, USR1 hold, "
       "USR2 resume.\nExit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, "
-      "5 command refused by the controller, 6 link lost, 7 stalled (no progress for 30 s), 8 a "
+      "5 command refused by the controller (or Ctrl-C while --probe touches), 6 link lost, 7 "
+      "stalled (no progress for 30 s), 8 a "
       "board job that would cut copper (refused before streaming).");
-  send->callback([send_args] {
-    try {
-      run_send(*send_args);
-    } catch (const LinkError& e) {
-      throw CommandFailure(kExitLinkLost, e.what());
-    }
-  });
+  callback_ending_on_link_errors(send, send_args, run_send);
 }
 
 void add_probe_command(CLI::App& app) {
@@ -500,24 +525,15 @@ void add_probe_command(CLI::App& app) {
       app.add_subcommand("probe", "probe the blank on a grid over a job and write its height map");
   add_plan_options(probe, &probe_args->plan);
   add_height_map_options(probe, &probe_args->map, HeightMapCommand::kProbe);
-  probe
-      ->add_option("--to", probe_args->to,
-                   "tcp://HOST:PORT (XPort, default port 10001) or serial:DEVICE[,BAUD]")
-      ->required();
-  probe->add_flag("--no-zero", probe_args->no_zero, "do not start manual zeroing if not zeroed");
+  add_link_options(probe, &probe_args->to, &probe_args->no_zero);
   probe->footer(
       "Example: engraver probe board/ --to tcp://192.168.1.50:10001 --height-map board.map.json\n"
       "then: engraver send board/ --to ... --height-map board.map.json\n"
       "Exit: 0 map written, 1 probing refused (a point disagreeing with its neighbours, two "
       "touches apart, heights spanning more than 1 mm), 2 bad input or options, 5 the "
-      "controller refused the probe (no contact, spindle on, probe closed), 6 link lost.");
-  probe->callback([probe_args] {
-    try {
-      run_probe(*probe_args);
-    } catch (const LinkError& e) {
-      throw CommandFailure(kExitLinkLost, e.what());
-    }
-  });
+      "controller refused the probe (no contact, spindle on, probe closed) or Ctrl-C/SIGTERM "
+      "stopped a touch (the tool is raised), 6 link lost.");
+  callback_ending_on_link_errors(probe, probe_args, run_probe);
 }
 
 void add_sim_command(CLI::App& app) {
@@ -573,16 +589,12 @@ void add_run_command(CLI::App& app) {
   run->footer(
       "Example: engraver run samples/engraver-word.dxf -o out\n"
       "Progress on stderr (a bar on a terminal, a line every 5 s otherwise).\n"
+      "Ctrl-C or SIGTERM stops the simulated machine (#X) and raises the tool (exit 3; while "
+      "--probe touches, exit 5 as probe).\n"
       "Exit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, 5 command refused by "
-      "the controller, 6 link lost, 7 stalled (no progress for 30 s of machine time), 8 a board "
-      "job whose controller points or simulated path cut copper.");
-  run->callback([run_args] {
-    try {
-      run_run(*run_args);
-    } catch (const LinkError& e) {
-      throw CommandFailure(kExitLinkLost, e.what());
-    }
-  });
+      "the controller or a touch stopped, 6 link lost, 7 stalled (no progress for 30 s of "
+      "machine time), 8 a board job whose controller points or simulated path cut copper.");
+  callback_ending_on_link_errors(run, run_args, run_run);
 }
 
 void add_machine_commands(CLI::App& app) {

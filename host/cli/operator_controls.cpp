@@ -6,6 +6,8 @@
 
 #include <algorithm>  // std::max, std::min
 
+#include "host/lib/heightmap/controller_map.h"  // raise_tool_after_abort
+
 namespace host::cli {
 
 namespace {
@@ -34,15 +36,23 @@ extern "C" void on_stop(int) {
 
 void signals_to(Sender* sender) {
   g_sender = sender;
-  if (sender == nullptr) return;
   struct sigaction sa {};
-  sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
-  for (int sig : {SIGINT, SIGTERM, SIGUSR1, SIGUSR2}) sigaction(sig, &sa, nullptr);
+  for (int sig : {SIGINT, SIGTERM, SIGUSR1, SIGUSR2}) {
+    // Without a sender: INT and TERM end the process, a hold or resume has nothing to act on.
+    const bool stops = sig == SIGINT || sig == SIGTERM;
+    sa.sa_handler = sender != nullptr ? on_signal : stops ? SIG_DFL : SIG_IGN;
+    sigaction(sig, &sa, nullptr);
+  }
 }
 
 bool abort_signalled() {
   return g_abort_signalled != 0;
+}
+
+std::string raise_tool_if_abort_signalled(Link& link, const SenderOptions& options, double z_mm) {
+  if (!abort_signalled()) return "";
+  return heightmap::raise_tool_after_abort(link, options, z_mm);
 }
 
 void signals_stop(std::atomic<bool>* stop) {

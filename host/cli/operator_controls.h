@@ -6,16 +6,22 @@
 #include <termios.h>  // termios
 
 #include <atomic>  // std::atomic
+#include <string>  // std::string
 #include <thread>  // std::thread
 
 #include "host/lib/stream/sender.h"
 
 namespace host::cli {
 
-// Signals go to this sender from now on (nullptr: to none; the handlers only set atomics).
+// Signals go to this sender from now on (the handlers only set atomics); nullptr: INT and
+// TERM end the process again (a command's later stages stay interruptible).
 void signals_to(Sender* sender);
 // Whether SIGINT or SIGTERM (Ctrl-C) asked signals_to's sender to abort since the start.
 bool abort_signalled();
+// After Ctrl-C stopped the machine where it was (#X: mid-touch, or cutting): a new session on
+// the link and the tool up to z_mm; what happened, for the operator ("" without a Ctrl-C).
+// probe, send and run all end this way.
+std::string raise_tool_if_abort_signalled(Link& link, const SenderOptions& options, double z_mm);
 
 // INT and TERM set `stop` (for `sim`, which has no sender); it must outlive the process's
 // handling of them.

@@ -3,7 +3,7 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include <cmath>    // std::isfinite
+#include <cmath>    // std::isfinite, std::floor
 #include <cstdlib>  // std::strtod
 #include <regex>    // std::regex
 
@@ -23,26 +23,32 @@ OptionRange count(const char* option, const Range& r) {
   return OptionRange{option, r.min, r.max, "", true};
 }
 
-// A number as written in the documentation: digits, an optional point and exponent. strtod
-// and CLI11 also take hex floats (0x1p3), which no user means as a depth.
-bool plain_decimal(const std::string& v) {
-  static const std::regex decimal(R"([+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?)");
-  return std::regex_match(v, decimal);
-}
-
 // "nan" and "inf" parse as numbers and pass every comparison-based check.
 std::string refuse_non_number(std::string& value) {
   char* end = nullptr;
   const double v = std::strtod(value.c_str(), &end);
   if (end != value.c_str() && *end == '\0' && !std::isfinite(v))
     return "'" + value + "' is not a finite number";
-  if (!plain_decimal(value)) return "'" + value + "' is not a decimal number";
+  if (!is_plain_decimal(value)) return "'" + value + "' is not a decimal number";
   return "";
 }
 
-bool is_number_option(const CLI::Option* o) {
+// A count given as 1.5 (CLI11's own words were "Could not convert").
+std::string refuse_fraction(std::string& value) {
+  const std::string refused = refuse_non_number(value);
+  if (!refused.empty()) return refused;
+  const double v = std::strtod(value.c_str(), nullptr);
+  if (v != std::floor(v)) return "'" + value + "' is not a whole number";
+  return "";
+}
+
+bool is_integer_option(const CLI::Option* o) {
   const std::string t = o->get_type_name();
-  return t.rfind("FLOAT", 0) == 0 || t.rfind("INT", 0) == 0 || t.rfind("UINT", 0) == 0;
+  return t.rfind("INT", 0) == 0 || t.rfind("UINT", 0) == 0;
+}
+
+bool is_number_option(const CLI::Option* o) {
+  return o->get_type_name().rfind("FLOAT", 0) == 0 || is_integer_option(o);
 }
 
 std::string bound_text(double v) {
@@ -51,7 +57,10 @@ std::string bound_text(double v) {
 
 void add_checks(CLI::App* app) {
   for (CLI::Option* o : app->get_options()) {
-    if (is_number_option(o)) o->check(CLI::Validator(refuse_non_number, "", "decimal"));
+    if (is_integer_option(o))
+      o->check(CLI::Validator(refuse_fraction, "", "whole"));
+    else if (is_number_option(o))
+      o->check(CLI::Validator(refuse_non_number, "", "decimal"));
     for (const OptionRange& r : option_ranges()) {
       if (o->check_name(r.option)) {
         const std::string unit = *r.unit ? std::string(" ") + r.unit : std::string();
@@ -65,6 +74,11 @@ void add_checks(CLI::App* app) {
 }
 
 }  // namespace
+
+bool is_plain_decimal(const std::string& v) {
+  static const std::regex decimal(R"([+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?)");
+  return std::regex_match(v, decimal);
+}
 
 const std::vector<OptionRange>& option_ranges() {
   using namespace defaults;
@@ -94,6 +108,20 @@ const std::vector<OptionRange>& option_ranges() {
       real("--align-diameter", kAlignDiameterRangeMm, "mm"),
       real("--align-depth", kAlignDepthRangeMm, "mm"),
       real("--align-measured", kMachinePositionRangeMm, "mm"),
+      // Not board options: drawings', the link's and the height map's.
+      real("--tol", kChordToleranceRangeMm, "mm"),
+      real("--scale", kScaleRange, ""),
+      real("--chain-tol", kChainToleranceRangeMm, "mm"),
+      real("--offset", offset_range_mm(), "mm"),
+      real("--tool-radius", kToolRadiusRangeMm, "mm"),
+      real("--fit-tol", kFitToleranceRangeMm, "mm"),
+      OptionRange{"--poll-ms", kPollIntervalRangeMs.min, kPollIntervalRangeMs.max, "ms", true},
+      real("--probe-spacing", kProbeSpacingRangeMm, "mm"),
+      count("--probe-grid", kProbeGridRange),
+      real("--probe-margin", kProbeMarginRangeMm, "mm"),
+      real("--outlier-limit", kOutlierLimitRangeUm, "um"),
+      real("--vbit-angle", kVbitAngleRangeDeg, "degrees"),
+      real("--copper-um", kCopperRangeUm, "um"),
   };
   return table;
 }

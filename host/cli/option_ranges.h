@@ -18,6 +18,10 @@ struct OptionRange {
   bool integer;        // a count: the bounds are whole
 };
 
+// A number as written in the documentation: digits, an optional point and exponent. strtod
+// and CLI11 also take hex floats (0x1p3), which no user means as a depth.
+bool is_plain_decimal(const std::string& text);
+
 // The table, in the order the options appear in `board --help`.
 const std::vector<OptionRange>& option_ranges();
 

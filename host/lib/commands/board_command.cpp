@@ -51,6 +51,7 @@ nlohmann::json plan_report_json(const pcb::BoardJob& job, const pcb::BoardOption
   j["isolation_vertices"] = r.isolation_vertices;
   j["fit"] = {{"lines", r.fit.lines}, {"arcs", r.fit.arcs}, {"cubics", r.fit.cubics}};
   j["holes"] = r.holes;
+  j["board_holes"] = r.board_holes;
   j["holes_on_copper"] = r.holes_on_copper;
   j["slots"] = r.slots;
   j["drill_tools"] = r.drill_tools;
@@ -230,6 +231,30 @@ nlohmann::json board_report_json(const BoardCommandOptions& a, const BoardResult
   return j;
 }
 
+namespace {
+
+// The drilling line: what this job drills, and how many of the drill files' holes sit in this
+// side's copper pads (the alignment check of drill file and copper). A bottom side after a
+// top side with alignment holes drills nothing: the top side drilled every hole.
+std::string drilling_text(const pcb::BoardReport& p, size_t alignment_holes) {
+  const std::string in_pads =
+      p.board_holes ? fmt::format("{} of the board's {} holes in this side's copper pads",
+                                  p.holes_on_copper, p.board_holes)
+                    : std::string("no drill file");
+  if (p.holes == 0 && (p.board_holes > 0 || alignment_holes > 0))
+    return fmt::format(
+        "none on this side: the top side's job drills the holes ({}{})",
+        alignment_holes ? fmt::format("{} alignment holes; ", alignment_holes) : std::string(),
+        in_pads);
+  const size_t pins = p.holes > p.board_holes ? p.holes - p.board_holes : 0;
+  return fmt::format("{} holes ({}{}), {} slots, {} sizes; travel {:.1f} mm (file order {:.1f} mm)",
+                     p.holes, in_pads,
+                     pins ? fmt::format("; {} alignment holes", pins) : std::string(), p.slots,
+                     p.drill_tools, p.drill_travel_ordered_mm, p.drill_travel_file_order_mm);
+}
+
+}  // namespace
+
 std::string board_report_text(const BoardCommandOptions& a, const BoardResult& r) {
   const pcb::BoardReport& p = r.job.report;
   const std::string side = r.options.side == pcb::BoardSide::kBottom ? "bottom" : "top";
@@ -253,15 +278,12 @@ std::string board_report_text(const BoardCommandOptions& a, const BoardResult& r
                        : 0.0,
         w.g1_vertex_bytes);
   }
+  s += "  drilling: " + drilling_text(p, r.job.alignment_holes_mm.size()) + "\n";
   s += fmt::format(
-      "  drilling: {} holes ({} on copper), {} slots, {} sizes; travel {:.1f} mm (file order "
-      "{:.1f} mm)\n"
       "  cut-out: {:.1f} mm per pass, {} tabs; {} tool changes\n"
       "  bytes per tool: {}\n"
       "  files -> plan: {:.3f} s CPU, peak {:.1f} MB\n",
-      p.holes, p.holes_on_copper, p.slots, p.drill_tools, p.drill_travel_ordered_mm,
-      p.drill_travel_file_order_mm, p.cutout_length_mm, p.tabs, p.tool_changes, tool_bytes,
-      r.plan_cpu_s, r.plan_peak_mb);
+      p.cutout_length_mm, p.tabs, p.tool_changes, tool_bytes, r.plan_cpu_s, r.plan_peak_mb);
   for (const pcb::NarrowGap& g : p.narrow_gaps)
     s += "  " + pcb::describe_gap(g, r.options.isolation) + "\n";
   for (size_t i = 0; i < r.job.alignment_holes_mm.size(); ++i)

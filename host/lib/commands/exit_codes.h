@@ -14,9 +14,9 @@ enum ExitCode {
   kExitOk = 0,         // done
   kExitJobFailed = 1,  // the job was refused or failed (plan, work area, validation, link)
   kExitUsage = 2,      // bad command line or unreadable / invalid input file
-  kExitAborted = 3,    // send/run: the job was aborted
+  kExitAborted = 3,    // send/run: the job was aborted (x, Ctrl-C, SIGTERM)
   kExitAlarm = 4,      // send/run: the machine raised an alarm
-  kExitRefused = 5,    // send/run: the controller refused a command
+  kExitRefused = 5,    // send/run/probe: the controller refused a command (a stopped touch too)
   kExitLinkLost = 6,   // send/run: the link failed
   kExitStalled = 7,    // send/run: no progress for 30 s
   // The job's tool paths (planned, or simulated by `run`) would cut copper: refused.
@@ -33,9 +33,10 @@ inline constexpr ExitCodeText kExitCodes[] = {
     {kExitOk, "done"},
     {kExitJobFailed, "job refused or failed"},
     {kExitUsage, "usage or input error"},
-    {kExitAborted, "send/run: aborted"},
+    {kExitAborted, "send/run: job aborted (x, Ctrl-C, SIGTERM)"},
     {kExitAlarm, "send/run: machine alarm"},
-    {kExitRefused, "send/run: command refused by the controller"},
+    {kExitRefused,
+     "send/run/probe: command refused by the controller, or a probe touch stopped by Ctrl-C"},
     {kExitLinkLost, "send/run: link lost"},
     {kExitStalled, "send/run: stalled (no progress for 30 s)"},
     {kExitCutsCopper, "board/run/send: the tool would cut copper"},

@@ -1,6 +1,8 @@
 // `engraver info` and `engraver points` as functions (see info_command.h).
 #include "host/lib/commands/info_command.h"
 
+#include <fmt/format.h>  // fmt::format
+
 #include <algorithm>  // std::min, std::max
 #include <cmath>      // std::isnan, std::llround
 #include <iomanip>    // std::setprecision
@@ -13,6 +15,7 @@
 #include "host/lib/pcb/pcb_file_names.h"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
+#include "host/lib/plan/job_defaults.h"  // kChordToleranceRangeMm
 
 namespace host::commands {
 
@@ -317,10 +320,12 @@ std::optional<PcbFileInfo> read_pcb_file_info(const std::string& path) {
 
 int points_tolerance_um(double tol_mm) {
   const double tol_um = tol_mm * 1000.0;
-  if (!(tol_um >= 1.0 - 1e-9 && tol_um <= 10000.0 + 1e-9)) {
+  const defaults::Range r = defaults::kChordToleranceRangeMm;
+  if (!(tol_um >= r.min * 1000.0 - 1e-9 && tol_um <= r.max * 1000.0 + 1e-9)) {
     throw CommandFailure(kExitUsage,
-                         "--tol must be between 0.001 and 10 mm (the firmware "
-                         "steps with a whole-micrometre chord tolerance)");
+                         fmt::format("--tol must be between {:g} and {:g} mm (the firmware "
+                                     "steps with a whole-micrometre chord tolerance)",
+                                     r.min, r.max));
   }
   return static_cast<int>(std::llround(tol_um));
 }

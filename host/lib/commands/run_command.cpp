@@ -87,6 +87,7 @@ void follow_map(const RunOptions& o, RunMeters& m, std::optional<heightmap::Heig
   }
   // The job's map, or a clear without one, goes just before the job (as with send).
   so->before_job = [&o, &m, &map](Sender& sender) {
+    if (o.attach_controls) o.attach_controls(&sender);
     if (o.probe) {
       map = o.probe(sender);
       if (m.depth) m.depth->set_applied_map(&*map);
@@ -136,6 +137,10 @@ RunResult simulate_run(const JobPlan& plan, const RunOptions& o) {
   follow_map(o, m, r.map, &so);
   so.on_progress = [&o](Sender&, const Progress& p) {
     if (o.on_progress) o.on_progress(p);
+  };
+  so.after_stream = [&o](Link& link, const SenderOptions& sender) {
+    if (o.attach_controls) o.attach_controls(nullptr);  // before the sender is gone
+    if (o.after_stream) o.after_stream(link, sender);
   };
   r.sim = sim::run_sim_job(plan, so);
   r.pause_confirm_ms = so.machine.pause_confirm_ms;

@@ -57,6 +57,12 @@ struct RunOptions {
   std::optional<PlannedBoard> board;   // the job is this board's
   std::optional<FlipSimulation> flip;  // a board's second setup
   std::function<void(const Progress&)> on_progress;
+  // The operator's controls (signals, as send's): called with the sender once the session is
+  // open (before probing), nullptr when the simulation ends however it ends.
+  std::function<void(Sender*)> attach_controls;
+  // Called with the simulated machine's link when the stream ends, however it ends (see
+  // sim::SimJobOptions::after_stream): raises the tool after an operator's stop.
+  std::function<void(Link&, const SenderOptions&)> after_stream;
 };
 
 // The points the firmware core generates for the job's curves, and the bytes the same path

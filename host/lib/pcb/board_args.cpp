@@ -44,7 +44,9 @@ void refuse_option_combinations(const BoardArgs& a) {
     throw BoardArgsError(
         "--clearing-tool cannot be combined with --mill-all (which clears all "
         "copper-free area with the isolation tool): give one of them");
-  if (!(a.tab_height_mm < a.cut_depth_mm))
+  // Only where tabs are cut: --tabs 0 or --tab-width 0 leaves no tab to keep a height.
+  const bool tabs_cut = a.tab_width_mm > 0 && (a.tabs > 0 || a.tab_spacing_mm > 0);
+  if (tabs_cut && !(a.tab_height_mm < a.cut_depth_mm))
     throw BoardArgsError(
         fmt::format("--tab-height ({} mm) must be below --cut-depth "
                     "({} mm): a tab keeps part of the board",

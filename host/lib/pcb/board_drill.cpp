@@ -26,6 +26,7 @@ std::vector<DrillTool> drill(const BoardLayers& layers, const PcbLayer* copper,
     tool.push_back(h.tool);
   }
   rep.holes = at.size();
+  rep.board_holes = at.size();
   if (copper) {
     // Alignment check: plated holes sit in pads.
     const std::vector<Island> islands = copper_islands(copper->polygons_nm);

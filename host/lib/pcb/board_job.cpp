@@ -22,7 +22,9 @@ void check_options(const BoardOptions& o) {
     throw PlanError("feeds must be positive");
   if (!(o.z_travel_mm > 0) || !(o.drill_start_mm > 0))
     throw PlanError("the travel height and the drill start height must be above the board");
-  if (!(o.tab_height_mm >= 0 && o.tab_height_mm < o.cutout_depth_mm))
+  const CutoutOptions& c = o.cutout;  // no tab cut: no height for one to keep
+  const bool tabs_cut = c.tab_width_mm > 0 && (c.tab_count > 0 || c.tab_spacing_mm > 0);
+  if (tabs_cut && !(o.tab_height_mm >= 0 && o.tab_height_mm < o.cutout_depth_mm))
     throw PlanError("the tab height must be below the cut-out depth");
   check_work_area(o.work_width_mm, o.work_height_mm, o.travel_width_mm, o.travel_height_mm);
 }

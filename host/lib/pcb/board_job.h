@@ -100,8 +100,11 @@ struct BoardReport {
   double isolation_length_mm = 0;
   size_t isolation_vertices = 0;  // of the flattened contours (the G1 lines they would be)
   FitStats fit;
-  size_t holes = 0;
-  size_t holes_on_copper = 0;  // centre inside the isolated copper: the layers line up
+  size_t holes = 0;        // what this job drills (alignment holes too; a bottom side after a top
+                           // side with alignment holes: none, the top side drilled them all)
+  size_t board_holes = 0;  // the drill files' holes, drilled by this job or not
+  size_t holes_on_copper = 0;  // of board_holes, centre inside this side's copper: the layers
+                               // line up
   size_t slots = 0;
   size_t drill_tools = 0;
   double drill_travel_file_order_mm = 0;

@@ -114,8 +114,28 @@ inline constexpr Range kTabHeightRangeMm{0.0, 20.0};
 inline constexpr Range kMarginRangeMm{0.0, 100.0};
 inline constexpr Range kWorkAreaRangeMm{1.0, 10000.0};      // each side
 inline constexpr Range kMachinePositionRangeMm{-1e4, 1e4};  // a measured position
-inline constexpr double kAlignDiameterMm = 3.0;             // alignment hole (pin) diameter
-inline constexpr double kAlignDepthMm = 3.0;  // through the blank into the spoil board
+// The other number options of the command line (host/cli/option_ranges.cpp).
+inline constexpr Range kChordToleranceRangeMm{0.001, 1.0};  // --tol: every command's
+inline constexpr Range kScaleRange{0.001, 1000.0};
+inline constexpr Range kChainToleranceRangeMm{0.0, 1.0};
+inline constexpr Range kToolRadiusRangeMm{0.0, 10.0};  // --tool-side's offset
+inline constexpr Range kFitToleranceRangeMm{0.0, 0.1};
+inline constexpr Range kPollIntervalRangeMs{0, 1000};  // send's status poll; 0: always one
+inline constexpr Range kProbeSpacingRangeMm{1.0, 65.0};
+inline constexpr Range kProbeGridRange{2, 16};  // rows and columns each
+inline constexpr Range kProbeMarginRangeMm{0.0, 50.0};
+inline constexpr Range kOutlierLimitRangeUm{1.0, 1000.0};
+inline constexpr Range kVbitAngleRangeDeg{5.0, 150.0};
+inline constexpr Range kCopperRangeUm{1.0, 500.0};
+// --offset X Y (machine = drawing + offset): within the machine's longest travel either way.
+inline Range offset_range_mm() {
+  const double t = travel_mm(config::kAxisX) > travel_mm(config::kAxisY)
+                       ? travel_mm(config::kAxisX)
+                       : travel_mm(config::kAxisY);
+  return Range{-t, t};
+}
+inline constexpr double kAlignDiameterMm = 3.0;  // alignment hole (pin) diameter
+inline constexpr double kAlignDepthMm = 3.0;     // through the blank into the spoil board
 
 }  // namespace host::defaults
 

@@ -78,17 +78,23 @@ void stream_job(Link& link, const JobPlan& plan, const SimJobOptions& options,
   r->commands = commands.summary().commands;
   r->wire_bytes = commands.summary().wire_bytes;
   r->job_id = commands.summary().job_id;
-  if (options.before_job) {
-    *in_setup = true;
-    std::vector<QueuedCommand> setup = options.before_job(sender);
-    *in_setup = false;
-    r->setup_commands = setup.size();
-    r->setup_wire_bytes = wire_bytes(setup);
-    commands.set_setup(std::move(setup));
+  try {
+    if (options.before_job) {
+      *in_setup = true;
+      std::vector<QueuedCommand> setup = options.before_job(sender);
+      *in_setup = false;
+      r->setup_commands = setup.size();
+      r->setup_wire_bytes = wire_bytes(setup);
+      commands.set_setup(std::move(setup));
+    }
+    r->outcome = sender.run(commands, [&](const Progress& p) {
+      if (options.on_progress) options.on_progress(sender, p);
+    });
+  } catch (...) {
+    if (options.after_stream) options.after_stream(link, sender_options);
+    throw;
   }
-  r->outcome = sender.run(commands, [&](const Progress& p) {
-    if (options.on_progress) options.on_progress(sender, p);
-  });
+  if (options.after_stream) options.after_stream(link, sender_options);
   r->commands_held_max = commands.held_max();
   r->message = sender.message();
   r->stats = sender.stats();

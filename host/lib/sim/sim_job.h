@@ -41,6 +41,10 @@ struct SimJobOptions {
   // blank) and returns commands sent just before the job's (e.g. the height map); they are
   // not counted in the job's commands or wire bytes. A throw ends the run (passed on).
   std::function<std::vector<QueuedCommand>(Sender&)> before_job;
+  // Called with the link once the stream has ended, however it ended (a throw from before_job
+  // too, before it passes on), with the sender's options (its clock): e.g. to raise the tool
+  // after an operator's abort. Must not throw.
+  std::function<void(Link&, const SenderOptions&)> after_stream;
   // The height (mm) the controller adds to the planned Z at (x, y) (a height map it follows),
   // taken off the samples the job is measured and plotted by (pen up/down, path lengths), so
   // they are classified by their planned heights. Empty: none.

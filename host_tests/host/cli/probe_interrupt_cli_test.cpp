@@ -101,13 +101,13 @@ TEST(ProbeCli, CtrlCStopsTheTouchAtOnceAndRaisesTheTool) {
   EXPECT_NEAR(r.tool_z_mm, host::defaults::kZUpMm, 0.01) << "the tool up";
 }
 
-// `send --probe` interrupted (SIGTERM) while it probes: the same lift, exit 3 (aborted),
+// `send --probe` interrupted (SIGTERM) while it probes: the same lift and exit 5 as `probe`,
 // nothing of the job sent.
-TEST(ProbeCli, SendProbeInterruptedRaisesTheToolAndExitsAborted) {
+TEST(ProbeCli, SendProbeInterruptedRaisesTheToolAndExitsLikeProbe) {
   const std::string map = temp_map("send_probe_interrupt");
   const Interrupted r = interrupt_first_descent(
       {"send", kWord, "--to", "TO", "--probe", "--height-map", map}, SIGTERM);
-  EXPECT_EQ(r.code, 3) << "-1: still probing 10 s after SIGTERM";
+  EXPECT_EQ(r.code, 5) << "-1: still probing 10 s after SIGTERM";
   EXPECT_LT(r.took_s, 8.0);
   EXPECT_FALSE(std::filesystem::exists(map)) << "no map from an interrupted grid";
   EXPECT_NEAR(r.tool_z_mm, host::defaults::kZUpMm, 0.01) << "the tool up";

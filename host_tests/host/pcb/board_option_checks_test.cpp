@@ -9,7 +9,9 @@
 #include <cmath>  // std::cos, std::sin
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "host/cli/option_ranges.h"
@@ -195,9 +197,10 @@ std::string outside(const OptionRange& r, bool below) {
 }
 
 std::string values(const OptionRange& r, const std::string& v) {
-  const int n = std::string(r.option) == "--work"             ? 2
-                : std::string(r.option) == "--align-measured" ? 4
-                                                              : 1;
+  const std::string o = r.option;
+  const int n = o == "--work" || o == "--offset" || o == "--probe-grid" ? 2
+                : o == "--align-measured"                               ? 4
+                                                                        : 1;
   std::string out;
   for (int k = 0; k < n; ++k) out += " " + v;
   return out;
@@ -219,16 +222,39 @@ TEST(BoardOptionRanges, EveryBoundOfTheTableIsInsideAndAStepBeyondIsOutside) {
   }
 }
 
-// A walk over the table through the built tool: in every command that takes the board options,
-// a value a step beyond either bound is a usage error (exit 2) naming the option and its range,
-// before any file is read.
+// The commands that take an option of the table: the board options are in all five, but the
+// machine's (--feed, --z-up, --margin, --work) not in `points`; the others as listed.
+std::string commands_taking(const std::string& option) {
+  if (option == "--tol") return "board points run send probe";
+  if (option == "--feed" || option == "--z-up" || option == "--margin" || option == "--work")
+    return "board run send probe";
+  for (const char* o : {"--scale", "--chain-tol", "--offset", "--tool-radius", "--fit-tol",
+                        "--probe-spacing", "--probe-grid", "--probe-margin", "--outlier-limit"})
+    if (option == o) return "run send probe";
+  if (option == "--poll-ms") return "send";
+  if (option == "--vbit-angle" || option == "--copper-um") return "run";
+  return "board points run send probe";
+}
+
+// A walk over the table through the built tool: in every command that takes the option, a
+// value a step beyond either bound is a usage error (exit 2) naming the option and its range,
+// before any file is read or any link opened (--probe-grid 1 16 was checked only after
+// connecting: exit 6 on a dead link).
 TEST(BoardOptionRanges, EveryCommandRefusesAValueBeyondEitherBoundNamingTheOption) {
   const std::string dir = write_board("ranges");
-  int checked = 0;
+  int checked = 0, expected = 0;
   for (const std::string command : {"board", "points", "run", "send", "probe"}) {
     const std::string help = run(command + " --help").out;
+    // send and probe: a link nothing listens on (a connection would fail with exit 6).
+    const std::string link =
+        command == "send" || command == "probe" ? " --to tcp://127.0.0.1:1" : "";
     for (const OptionRange& r : option_ranges()) {
-      if (help.find(std::string("  ") + r.option + " ") == std::string::npos) continue;
+      const bool takes =
+          (" " + commands_taking(r.option) + " ").find(" " + command + " ") != std::string::npos;
+      expected += takes;
+      EXPECT_EQ(help.find(std::string("  ") + r.option + " ") != std::string::npos, takes)
+          << command << " " << r.option;
+      if (!takes) continue;
       ++checked;
       // The range as the help shows it.
       EXPECT_NE(help.find(std::string(r.option) + " " + (r.integer ? "INT" : "FLOAT") + ":in [" +
@@ -237,7 +263,7 @@ TEST(BoardOptionRanges, EveryCommandRefusesAValueBeyondEitherBoundNamingTheOptio
           << command << " " << r.option;
       for (const bool below : {true, false}) {
         const std::string v = outside(r, below);
-        const std::string args = command + " " + dir + " " + r.option + values(r, v);
+        const std::string args = command + " " + dir + link + " " + r.option + values(r, v);
         const ToolRun t = run(args);
         EXPECT_EQ(t.code, 2) << args << "\n" << t.err;
         EXPECT_NE(t.err.find(std::string(r.option) + ": " + v + " is outside the allowed range " +
@@ -247,9 +273,9 @@ TEST(BoardOptionRanges, EveryCommandRefusesAValueBeyondEitherBoundNamingTheOptio
             << t.err;
       }
     }
-  }  // board, run, send and probe have every option of the table; points all but the machine's.
-  EXPECT_EQ(checked, 4 * static_cast<int>(option_ranges().size()) +
-                         static_cast<int>(option_ranges().size()) - 4);
+  }
+  EXPECT_EQ(checked, expected);
+  EXPECT_GE(checked, 4 * 25 + 21);  // the 25 board options at least
 }
 
 // The outside tester's findings: values planned with and refused later as a failed job
@@ -281,6 +307,136 @@ TEST(BoardOptionRanges, TheTestersValuesAreUsageErrorsNamingTheOption) {
   }
   // A plain decimal with an exponent is a decimal.
   EXPECT_EQ(run(board + "--depth 5e-2").code, 0);
+}
+
+// The second tester's findings (issue 24, #25's CLI): values accepted and ignored, checked
+// only after connecting, or refused in CLI11's words instead of the project's.
+TEST(BoardOptionRanges, TheSecondTestersValuesAreUsageErrorsNamingTheOption) {
+  const std::string dir = write_board("tester2");
+  const std::string word = std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf";
+  const std::string out = " -o " + dir + "/out";
+  const std::string dead = " --to tcp://127.0.0.1:1";
+  struct Case {
+    std::string args, says;
+  };
+  const Case cases[] = {
+      // Silently ignored (the default grid probed, exit 0).
+      {"run " + word + " --surface tilt=0.1mm --probe --probe-grid 0 0" + out,
+       "--probe-grid: 0 is outside the allowed range 2 .. 16"},
+      {"run " + word + " --surface tilt=0.1mm --probe --probe-grid 0 -3" + out,
+       "--probe-grid: 0 is outside the allowed range 2 .. 16"},
+      // Checked after connecting: exit 6 on a dead link.
+      {"send " + word + dead + " --probe --probe-grid 1 16", "--probe-grid: 1 is outside"},
+      {"probe " + word + dead + " --probe-grid 4 17", "--probe-grid: 17 is outside"},
+      // A hex float in the simulated blank.
+      {"run " + word + " --surface tilt=0x1p-3mm" + out,
+       "--surface tilt=0x1p-3mm: '0x1p-3' is not a decimal number"},
+      {"run " + word + " --surface bump=10:0x1p3:5mm:50um" + out, "'0x1p3' is not a decimal"},
+      // No range: the message overflowed (-9.22337e+15).
+      {"run " + word + " --offset 1e300 0" + out,
+       "--offset: 1e300 is outside the allowed range -297 .. 297 mm"},
+      // CLI11's words ("not in range") before.
+      {"run " + word + " --tol 0" + out, "--tol: 0 is outside the allowed range 0.001 .. 1 mm"},
+      {"points " + word + " --tol 5", "--tol: 5 is outside the allowed range 0.001 .. 1 mm"},
+      {"run " + word + " --scale 0" + out, "--scale: 0 is outside the allowed range 0.001 .. 1000"},
+      {"send " + word + dead + " --poll-ms 5000", "--poll-ms: 5000 is outside the allowed range"},
+      {"run " + word + " --chain-tol 2" + out,
+       "--chain-tol: 2 is outside the allowed range 0 .. 1"},
+      {"run " + word + " --tool-radius 11" + out, "--tool-radius: 11 is outside the allowed range"},
+      {"run " + word + " --probe-spacing 0.5" + out, "--probe-spacing: 0.5 is outside"},
+      {"run " + word + " --probe-margin 51" + out, "--probe-margin: 51 is outside"},
+      // CLI11's "Could not convert".
+      {"board " + dir + " --passes 1.5" + out, "--passes: '1.5' is not a whole number"},
+      {"board " + dir + " --tabs 2.5" + out, "--tabs: '2.5' is not a whole number"},
+      // Two ways to say how many tabs: a clash, neither wins.
+      {"board " + dir + " --tabs 6 --tab-spacing 30" + out, "--tabs excludes --tab-spacing"},
+      {"run " + dir + " --tab-spacing 30 --tabs 2" + out, "--tabs excludes --tab-spacing"},
+  };
+  for (const Case& c : cases) {
+    const ToolRun r = run(c.args);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;
+  }
+  // The tab height is checked where tabs are cut only: with no tabs there is none to keep.
+  const std::string board = "board " + dir + " --no-plot" + out;
+  EXPECT_EQ(run(board + " --tabs 0 --tab-height 1.8").code, 0);
+  EXPECT_EQ(run(board + " --tab-width 0 --tab-height 1.8").code, 0);
+  EXPECT_EQ(run(board + " --tab-height 1.8").code, 2);
+}
+
+}  // namespace
+
+namespace {
+
+// A bottom side after a top side with alignment holes said "0 holes (2 on copper)": the
+// holes are drilled with the top side; the count in copper is the layers' alignment check.
+TEST(BoardReportText, DrillingSaysWhichSideDrillsAndWhatSitsInThePads) {
+  const std::string dir = write_board("report");
+  const std::string board = "board " + dir + " --no-plot -o " + dir + "/out ";
+  const ToolRun bottom = run(board + "--side bottom --align-holes auto");
+  ASSERT_EQ(bottom.code, 0) << bottom.err;
+  EXPECT_EQ(bottom.out.find("0 holes ("), std::string::npos) << bottom.out;
+  EXPECT_NE(bottom.out.find("  drilling: none on this side: the top side's job drills the holes "
+                            "(2 alignment holes; 2 of the board's 2 holes in this side's copper "
+                            "pads)\n"),
+            std::string::npos)
+      << bottom.out;
+  const ToolRun top = run(board + "--align-holes auto");
+  ASSERT_EQ(top.code, 0) << top.err;
+  EXPECT_NE(top.out.find("  drilling: 4 holes (2 of the board's 2 holes in this side's copper "
+                         "pads; 2 alignment holes), 0 slots, 2 sizes;"),
+            std::string::npos)
+      << top.out;
+  const ToolRun json = run(board + "--side bottom --align-holes auto --json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  const nlohmann::json j = nlohmann::json::parse(json.out);
+  EXPECT_EQ(j["holes"], 0);
+  ASSERT_TRUE(j.contains("board_holes")) << json.out;
+  EXPECT_EQ(j["board_holes"], 2);
+  EXPECT_EQ(j["holes_on_copper"], 2);
+}
+
+}  // namespace
+
+namespace {
+
+// The user guide's range tables ("| option | range | option | range |") give every option of
+// the table with the range --help shows, and nothing else.
+TEST(BoardOptionRanges, TheGuidesTablesGiveEveryRangeAsTheToolChecksIt) {
+  std::ifstream guide(std::string(ENGRAVER_SOURCE_DIR) + "/docs/user-guide.md");
+  ASSERT_TRUE(guide) << "docs/user-guide.md";
+  std::map<std::string, std::string> documented;  // "--tol" -> "0.001 .. 1 mm"
+  std::string line;
+  bool table = false;
+  while (std::getline(guide, line)) {
+    if (line == "| option | range | option | range |") table = true;
+    if (!table) continue;
+    if (line.rfind("|", 0) != 0) {
+      table = false;
+      continue;
+    }
+    std::vector<std::string> cells;
+    std::stringstream row(line.substr(1));
+    std::string cell;
+    while (std::getline(row, cell, '|')) cells.push_back(cell);
+    for (size_t c = 0; c + 1 < cells.size(); c += 2) {
+      std::string range = cells[c + 1];
+      if (range.find_first_not_of(' ') == std::string::npos) continue;  // an empty cell
+      range = range.substr(range.find_first_not_of(' '));
+      range = range.substr(0, range.find_last_not_of(' ') + 1);
+      for (size_t at = cells[c].find("`--"); at != std::string::npos;
+           at = cells[c].find("`--", at + 1))
+        documented[cells[c].substr(at + 1, cells[c].find('`', at + 1) - at - 1)] = range;
+    }
+  }
+  for (const OptionRange& r : option_ranges()) {
+    const std::string expected = bound(r.min) + " .. " + bound(r.max) +
+                                 (*r.unit ? std::string(" ") + r.unit : std::string());
+    ASSERT_TRUE(documented.count(r.option)) << r.option << " is in no table of the guide";
+    EXPECT_EQ(documented[r.option], expected) << r.option;
+    documented.erase(r.option);
+  }
+  EXPECT_TRUE(documented.empty()) << documented.begin()->first << " is not an option of the table";
 }
 
 }  // namespace

@@ -1,0 +1,103 @@
+// `engraver run` and Ctrl-C (issue 24): it exited 130 without a word, while probing and while
+// the job ran. Now the simulated machine stops as `send` stops a real one (#X), the tool goes
+// up, the run says what was done and ends with the documented code (docs/user-guide.md).
+#include <fcntl.h>  // O_WRONLY
+#include <gtest/gtest.h>
+#include <signal.h>    // kill, SIGINT, SIGTERM
+#include <spawn.h>     // posix_spawn
+#include <sys/wait.h>  // waitpid
+#include <unistd.h>    // getpid
+
+#include <chrono>      // steady_clock
+#include <filesystem>  // temp paths
+#include <fstream>     // std::ifstream
+#include <sstream>     // std::stringstream
+#include <string>      // std::string
+#include <thread>      // sleep_for
+#include <vector>      // std::vector
+
+extern char** environ;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Interrupted {
+  int code = -1;  // -1: still running 20 s after the signal (then killed)
+  std::string err;
+};
+
+// Runs `engraver run ARGS` in real time, waits until it has said something on stderr (the
+// plan made, the simulation started), lets it run `after_s` more and sends `sig`.
+Interrupted interrupt_run(const std::vector<std::string>& run_args, double after_s, int sig) {
+  const std::string dir = testing::TempDir() + "/run_interrupt_" + std::to_string(getpid());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string err_path = dir + "/stderr.txt";
+  std::vector<std::string> args = {ENGRAVER_EXE, "run"};
+  args.insert(args.end(), run_args.begin(), run_args.end());
+  for (const std::string& a : {std::string("--realtime"), std::string("-o"), dir + "/out"})
+    args.push_back(a);
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&files, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  Interrupted r;
+  if (posix_spawn(&pid, ENGRAVER_EXE, &files, nullptr, argv.data(), environ) != 0) return r;
+  posix_spawn_file_actions_destroy(&files);
+  const auto started_by = Clock::now() + std::chrono::seconds(60);
+  while (read_text(err_path).empty() && Clock::now() < started_by)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::duration<double>(after_s));
+  kill(pid, sig);
+  const auto end = Clock::now() + std::chrono::seconds(20);
+  int status = 0;
+  while (Clock::now() < end) {
+    if (waitpid(pid, &status, WNOHANG) == pid) {
+      r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (r.code == -1) {
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+  }
+  r.err = read_text(err_path);
+  return r;
+}
+
+const std::string kWord = std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf";
+
+// The word takes about a minute of machine time in real time: stopped a second in.
+TEST(RunInterruptCli, CtrlCWhileTheJobRunsAbortsItRaisesTheToolAndExitsThree) {
+  const Interrupted r = interrupt_run({kWord}, 1.5, SIGINT);
+  EXPECT_EQ(r.code, 3) << r.err;  // was 130 (killed by SIGINT), without a word
+  EXPECT_NE(r.err.find("engraver: run stopped: aborted by the operator "), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("the tool raised to Z 2.000 mm"), std::string::npos) << r.err;
+}
+
+// While `run --probe` touches the simulated blank: the touch stops, the tool goes up, and the
+// run ends as `probe` does (exit 5: the controller reports the touch stopped).
+TEST(RunInterruptCli, SigtermWhileProbingStopsTheTouchRaisesTheToolAndExitsAsProbeDoes) {
+  const Interrupted r = interrupt_run({kWord, "--surface", "tilt=0.1mm", "--probe"}, 1.5, SIGTERM);
+  EXPECT_EQ(r.code, 5) << r.err;  // was 143 (killed by SIGTERM)
+  EXPECT_NE(r.err.find("engraver: probing stopped: the tool raised to Z 2.000 mm"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("aborted by the operator"), std::string::npos) << r.err;
+}
+
+}  // namespace
