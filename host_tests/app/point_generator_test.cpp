@@ -1,7 +1,7 @@
 // The point generator's pieces of a chord (#U maximum step, split by the planner), read one
-// by one from the planner's machine position: each ends within half a micrometre per axis of the straight line, none is longer
-// than the step per axis, there are ceil(span / step) of them, and the last is the line's end
-// (also past 65 535 pieces, where the split divides differently).
+// by one from the planner's machine position: each ends within half a micrometre per axis of the
+// straight line, none is longer than the step per axis, there are ceil(span / step) of them, and
+// the last is the line's end (also past 65 535 pieces, where the split divides differently).
 #include <gtest/gtest.h>
 
 #include <cmath>    // std::cos, std::sin, std::lround, std::fabs, std::ceil
