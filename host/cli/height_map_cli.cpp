@@ -10,7 +10,7 @@
 
 #include "host/cli/exit_codes.h"
 #include "host/cli/operator_controls.h"  // raise_tool_if_abort_signalled
-#include "host/cli/option_ranges.h"  // is_plain_decimal
+#include "host/cli/option_ranges.h"      // is_plain_decimal
 #include "host/lib/heightmap/controller_map.h"
 #include "host/lib/heightmap/job_area.h"
 #include "host/lib/heightmap/probe_session.h"
