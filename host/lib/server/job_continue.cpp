@@ -42,7 +42,7 @@ std::vector<QueuedCommand> ContinueFromCurve::operator()(const JobPlan& plan,
 }
 
 void continue_stream(const JobRecord& job, const JobPlan& plan, const EncodeOptions& enc,
-                     Sender& sender, const ResumeEncoder& hook,
+                     Sender& sender, const ResumeEncoder& hook, bool machine_ran_it,
                      const std::function<void(const std::string&)>& note, JobStream* stream) {
   // The whole job encoded again for each look (nothing of it is held).
   const JobPass pass = pass_over(plan, enc, stream->job_id());
@@ -66,7 +66,9 @@ void continue_stream(const JobRecord& job, const JobPlan& plan, const EncodeOpti
   // continuing starts at): a job's older progress on this machine is not where it got to.
   const size_t floor = saved ? ResumeScan(pass, saved->job_index).from()
                              : first_command_of_curve(pass, job.start_curve);
-  if (at && resume_mismatch(stream->job_id(), *at).empty()) {
+  if (at && !machine_ran_it && resume_mismatch(stream->job_id(), *at).empty())
+    note("the machine's position is not used: it last ran another job (or none recorded)");
+  if (at && machine_ran_it && resume_mismatch(stream->job_id(), *at).empty()) {
     const size_t mine = ResumeScan(pass, at->job_index).from();
     const bool ahead =
         mine > floor || (mine == floor && (!saved || at->curve_point >= job.resume_point));

@@ -4,6 +4,7 @@
 #include <fmt/format.h>  // fmt::format
 
 #include <algorithm>   // std::clamp
+#include <cctype>      // std::isalnum
 #include <filesystem>  // std::filesystem::path
 #include <fstream>     // std::ofstream
 #include <memory>      // std::unique_ptr
@@ -31,6 +32,23 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 namespace {
+
+// The file naming the server job whose commands machine `name` last executed: the wire
+// job_id is a CRC of the commands, the same for two jobs of one file, so a machine's
+// status cannot tell which of them it ran.
+fs::path last_job_file(const DataFolder& data, const std::string& name) {
+  std::string safe;
+  for (const char c : name) safe += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return data.root() / "machines" / (safe + ".last_job");
+}
+
+int64_t read_last_job(const fs::path& file) {
+  try {
+    return std::stoll(read_file(file));
+  } catch (const std::exception&) {
+    return -1;  // none recorded (or unreadable): the machine's position is not trusted
+  }
+}
 
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -518,7 +536,9 @@ struct Workshop::JobRun {
   size_t executed = 0;
   // The feed override as the machine reported it: when it changed and to what.
   nlohmann::json overrides = nlohmann::json::array();
-  uint16_t job_id = 0;  // the controller's id of the whole job (#J)
+  uint16_t job_id = 0;          // the controller's id of the whole job (#J)
+  size_t setup_frames = 0;      // sent before the job's own #J (its height map)
+  bool machine_marked = false;  // the machine's last job file names this job
   // Where it stands; a continued job keeps its saved position until the machine reports.
   JobProgress progress;
   nlohmann::json height_map;    // the map the job was cut with (report.json), null: none
@@ -601,8 +621,11 @@ void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
   // Encoded as the sender goes (and again for the progress): never held whole.
   r.commands.emplace(plan, enc);
   r.job_id = r.commands->job_id();
-  if (job.start_curve >= 0 || job.resume_index >= 0)
-    continue_stream(job, plan, enc, sender, options_.resume_encoder, r.noter(), &*r.commands);
+  if (job.start_curve >= 0 || job.resume_index >= 0) {
+    const bool machine_ran_it = read_last_job(last_job_file(data_, slot.spec.name)) == job.id;
+    continue_stream(job, plan, enc, sender, options_.resume_encoder, machine_ran_it, r.noter(),
+                    &*r.commands);
+  }
   // The height map goes first (a continued job sends it again: a restarted controller
   // has lost it); a job without one clears the last job's.
   const std::optional<heightmap::HeightMap> map =
@@ -614,7 +637,9 @@ void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
     slot.controller_has_map = static_cast<bool>(map);
   }
   if (map) {
-    r.commands->set_setup(heightmap::height_map_commands(*map));
+    const std::vector<QueuedCommand> frames = heightmap::height_map_commands(*map);
+    r.setup_frames = frames.size();
+    r.commands->set_setup(frames);
     r.height_map = nlohmann::json{{"file", std::string(kHeightMapFile)},
                                   {"rows", map->rows},
                                   {"cols", map->cols},
@@ -623,6 +648,7 @@ void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
                                   {"probed_at", map->probed_at}};
   } else if (clear_map) {
     r.commands->set_setup({heightmap::clear_height_map_command()});
+    r.setup_frames = 1;
     r.note("the last job's height map cleared on the controller");
   }
   r.note(fmt::format("planned: {} curves, {} commands, {} bytes, about {:.1f} s",
@@ -726,6 +752,17 @@ void Workshop::follow_status(Slot& slot, JobRun& r, Sender& sender, const Progre
     slot.have_last_status = true;
   }
   r.executed = p.executed;
+  if (!r.machine_marked && p.executed > r.setup_frames) {
+    // The machine has this job's numbering now: its position is this job's.
+    r.machine_marked = true;
+    try {
+      const fs::path file = last_job_file(data_, slot.spec.name);
+      fs::create_directories(file.parent_path());
+      write_file(file, std::to_string(r.job.id));
+    } catch (const std::exception& e) {
+      r.note(fmt::format("the machine's last job not recorded: {}", e.what()));
+    }
+  }
   const bool state_changed = p.status.state != r.last_state;
   r.progress = progress_of(r.progress, p.total, p.executed,
                            r.commands->first_uncut_curve(p.executed), p.status, r.job_id);

@@ -347,6 +347,48 @@ TEST(ServerMachines, ContinueOnTheSameMachineGoesOnWhereItStoppedCuttingNothingT
   EXPECT_NEAR(got.length_mm, reference.length_mm, 0.02);
 }
 
+// Another job of the same file (the same wire job_id) ran on the machine after the
+// interruption: "continue" must not take that job's end for this one's (it cut nothing).
+TEST(ServerMachines, ContinueNeverUsesAnotherJobsPositionOfTheSameFile) {
+  test::TempDir dir;
+  FlakyLinkMachine m1;
+  ServerRig server(dir.path(), {test::machine("m1", m1.address())});
+  const std::string gcode = test::squares_gcode(3, 8);
+  const int64_t id = server.upload_ok("multi.ngc", gcode, "&feed_mm_s=10");
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const auto p = server.running(id);
+        return !p.is_null() && p["executed"].get<int>() > 0 &&
+               p["executed"].get<int>() * 2 >= p["total"].get<int>();
+      },
+      30));
+  m1.disconnect();
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "interrupted"; }, 20));
+  m1.connect(m1.port());
+  // The same file again, cut whole on the same machine.
+  const int64_t other = server.upload_ok("multi.ngc", gcode, "&feed_mm_s=10");
+  ASSERT_TRUE(test::wait_until([&] { return server.job(other)["state"] == "completed"; }, 60));
+  auto r = server.control(id, R"({"action": "continue"})");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body;
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "completed"; }, 60));
+  auto log = server.client().Get(fmt::format("/api/jobs/{}/files/machine.log", id).c_str());
+  ASSERT_TRUE(log && log->status == 200);
+  EXPECT_EQ(log->body.find("nothing left to send"), std::string::npos) << log->body;
+  EXPECT_NE(log->body.find("the last position saved"), std::string::npos) << log->body;
+  m1.disconnect();
+
+  // The machine cut the other job whole and all of this one (from its saved position: at
+  // most one save interval, 1 s at 10 mm/s, again).
+  JobPlan plan;
+  const host::test::CutPath reference = uninterrupted_cut(server, id, &plan);
+  const host::test::CutPath got = host::test::cut_path(m1.machine().trace(), plan);
+  std::printf("continue after another job of the same file: cut %.3f mm (2 x %.3f mm)\n",
+              got.length_mm, reference.length_mm);
+  EXPECT_GE(got.length_mm, 2 * reference.length_mm - 0.02);
+  EXPECT_LE(got.length_mm, 2 * reference.length_mm + 10.0 + 0.02);
+}
+
 TEST(ServerMachines, ContinueHandsTheFirstUncutCurveToTheResumeHook) {
   test::TempDir dir;
   SimRig sim(false);
