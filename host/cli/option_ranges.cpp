@@ -3,7 +3,7 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include <cmath>    // std::isfinite, std::floor
+#include <cmath>    // std::isfinite, std::floor, std::fabs
 #include <cstdlib>  // std::strtod
 #include <regex>    // std::regex
 
@@ -33,12 +33,14 @@ std::string refuse_non_number(std::string& value) {
   return "";
 }
 
-// A count given as 1.5 (CLI11's own words were "Could not convert").
+// A count given as 1.5 is refused (CLI11's own words were "Could not convert"); one given as
+// 2.0 or 1e1 is a whole number, handed on as "2" or "10" (CLI11 converts digits only).
 std::string refuse_fraction(std::string& value) {
   const std::string refused = refuse_non_number(value);
   if (!refused.empty()) return refused;
   const double v = std::strtod(value.c_str(), nullptr);
   if (v != std::floor(v)) return "'" + value + "' is not a whole number";
+  if (std::fabs(v) < 1e15) value = fmt::format("{:.0f}", v);  // beyond: the range refuses
   return "";
 }
 
@@ -58,7 +60,7 @@ std::string bound_text(double v) {
 void add_checks(CLI::App* app) {
   for (CLI::Option* o : app->get_options()) {
     if (is_integer_option(o))
-      o->check(CLI::Validator(refuse_fraction, "", "whole"));
+      o->transform(CLI::Validator(refuse_fraction, "", "whole"));  // may rewrite 2.0 as 2
     else if (is_number_option(o))
       o->check(CLI::Validator(refuse_non_number, "", "decimal"));
     for (const OptionRange& r : option_ranges()) {

@@ -362,6 +362,9 @@ TEST(BoardOptionRanges, TheSecondTestersValuesAreUsageErrorsNamingTheOption) {
   EXPECT_EQ(run(board + " --tabs 0 --tab-height 1.8").code, 0);
   EXPECT_EQ(run(board + " --tab-width 0 --tab-height 1.8").code, 0);
   EXPECT_EQ(run(board + " --tab-height 1.8").code, 2);
+  // A whole number written as 2.0 or 1e0 is that number (it was "Could not convert").
+  EXPECT_EQ(run(board + " --tabs 2.0").code, 0) << run(board + " --tabs 2.0").err;
+  EXPECT_EQ(run(board + " --passes 1e0").code, 0) << run(board + " --passes 1e0").err;
 }
 
 }  // namespace

@@ -18,6 +18,17 @@ using test::ServerRig;
 using test::SimRig;
 namespace fs = std::filesystem;
 
+// Waits (30 s at most) until job `id` runs and has executed half of its commands or more.
+bool past_half(const ServerRig& server, int64_t id) {
+  return test::wait_until(
+      [&] {
+        const auto p = server.running(id);
+        return !p.is_null() && p["executed"].get<int>() > 0 &&
+               p["executed"].get<int>() * 2 >= p["total"].get<int>();
+      },
+      30);
+}
+
 // The machine's position from /api/status.
 std::vector<double> position(const ServerRig& server, const std::string& machine) {
   const nlohmann::json status_now = server.status();  // kept alive for the loop
@@ -246,14 +257,7 @@ TEST(ServerMachines, MachineLostMidJobLeavesItInterruptedAndContinuesElsewhereCu
                    {test::machine("m1", first->address()),
                     test::machine("m2", fmt::format("tcp://127.0.0.1:{}", second_port))});
   const int64_t id = server.upload_ok("multi.ngc", test::squares_gcode(4, 8), "&feed_mm_s=10");
-  ASSERT_TRUE(test::wait_until(
-      [&] {
-        const auto p = server.running(id);
-        // Past half of the job: the first of the four squares is cut.
-        return !p.is_null() && p["executed"].get<int>() > 0 &&
-               p["executed"].get<int>() * 2 >= p["total"].get<int>();
-      },
-      30));
+  ASSERT_TRUE(past_half(server, id));  // the first of the four squares is cut
   EXPECT_EQ(server.job(id)["machine"], "m1");
   first->kill();  // the machine (or its link) is gone mid-job
 
@@ -313,13 +317,7 @@ TEST(ServerMachines, ContinueOnTheSameMachineGoesOnWhereItStoppedCuttingNothingT
   FlakyLinkMachine m1;
   ServerRig server(dir.path(), {test::machine("m1", m1.address())});
   const int64_t id = server.upload_ok("multi.ngc", test::squares_gcode(3, 8), "&feed_mm_s=10");
-  ASSERT_TRUE(test::wait_until(
-      [&] {
-        const auto p = server.running(id);
-        return !p.is_null() && p["executed"].get<int>() > 0 &&
-               p["executed"].get<int>() * 2 >= p["total"].get<int>();
-      },
-      30));
+  ASSERT_TRUE(past_half(server, id));
   m1.disconnect();  // the link goes: the machine stands still meanwhile (its clock stops)
   // Cut off while cutting (the second of three squares; pen down).
   EXPECT_LT(m1.machine().position().z_mm, 0.0);
@@ -355,13 +353,7 @@ TEST(ServerMachines, ContinueNeverUsesAnotherJobsPositionOfTheSameFile) {
   ServerRig server(dir.path(), {test::machine("m1", m1.address())});
   const std::string gcode = test::squares_gcode(3, 8);
   const int64_t id = server.upload_ok("multi.ngc", gcode, "&feed_mm_s=10");
-  ASSERT_TRUE(test::wait_until(
-      [&] {
-        const auto p = server.running(id);
-        return !p.is_null() && p["executed"].get<int>() > 0 &&
-               p["executed"].get<int>() * 2 >= p["total"].get<int>();
-      },
-      30));
+  ASSERT_TRUE(past_half(server, id));
   m1.disconnect();
   ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "interrupted"; }, 20));
   m1.connect(m1.port());
