@@ -8,6 +8,7 @@
 #include <regex>    // std::regex
 
 #include "host/lib/plan/job_defaults.h"
+#include "host/lib/plan/plain_decimal.h"  // host::is_plain_decimal
 
 namespace host::cli {
 
@@ -78,8 +79,7 @@ void add_checks(CLI::App* app) {
 }  // namespace
 
 bool is_plain_decimal(const std::string& v) {
-  static const std::regex decimal(R"([+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?)");
-  return std::regex_match(v, decimal);
+  return host::is_plain_decimal(v);  // the server's upload fields take the same rule
 }
 
 const std::vector<OptionRange>& option_ranges() {

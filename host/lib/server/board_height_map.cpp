@@ -163,7 +163,12 @@ std::string check_source_map(JobStore& store, const DataFolder& data, const Boar
                                       map_after_flip(top, axis_mm, board.height_map_flip),
                                       fmt::format("the height map of job {}", from->id));
   } catch (const heightmap::HeightMapError& e) {
-    return "height_map_from: " + server_map_words(e.what());
+    // At upload nothing is started but nothing is queued either.
+    std::string why = server_map_words(e.what());
+    const std::string started = "the job was not started";
+    const size_t at = why.find(started);
+    if (at != std::string::npos) why.replace(at, started.size(), "the job was not queued");
+    return "height_map_from: " + why;
   }
   return "";
 }

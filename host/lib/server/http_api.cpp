@@ -6,6 +6,7 @@
 #include "host/lib/server/job_record_fields.h"
 #include "host/lib/server/map_source.h"
 #include "host/lib/server/run_archive.h"
+#include "host/lib/server/upload_numbers.h"
 
 #include <fmt/format.h>  // fmt::format
 #include <httplib.h>     // httplib::Server
@@ -59,15 +60,6 @@ bool parse_int(const std::string& s, int64_t* out) {
   const char* end = s.data() + s.size();
   const auto r = std::from_chars(s.data(), end, *out);
   return !s.empty() && r.ec == std::errc() && r.ptr == end;
-}
-
-bool parse_double(const std::string& s, double* out) {
-  if (s.empty() || s.size() > 32) return false;
-  char* end = nullptr;
-  *out = std::strtod(s.c_str(), &end);
-  // NaN and infinity (also 1e400) are no length: refused here, naming the field, not by
-  // the planner after every comparison with them was false.
-  return end == s.c_str() + s.size() && std::isfinite(*out);
 }
 
 nlohmann::json job_json(const JobRecord& j) {
@@ -211,13 +203,13 @@ std::string read_record_fields(const UploadValues& values, Submission* sub) {
     if (f.type == FieldType::kText) {
       *static_cast<std::string*>(at) = text;
     } else if (f.type == FieldType::kDouble) {
-      if (!parse_double(text, static_cast<double*>(at))) {
-        return fmt::format("{} '{}' is not a finite number", f.json_key, text);
-      }
-    } else if (!parse_int(text, &whole) ||
-               !field_range_error(f, static_cast<double>(whole)).empty()) {
-      return field_range_error(f, NAN);
+      const std::string why = read_decimal_field(f.json_key, text, static_cast<double*>(at));
+      if (!why.empty()) return why;
     } else {
+      const std::string why = read_whole_field(f.json_key, text, &whole);
+      if (!why.empty()) return why;
+      if (!field_range_error(f, static_cast<double>(whole)).empty())
+        return field_range_error(f, NAN);
       *static_cast<int*>(at) = static_cast<int>(whole);
     }
   }
@@ -236,7 +228,7 @@ std::string read_align_measured(const std::string& text, std::vector<double>* ou
   while (true) {
     const size_t comma = text.find(',', from);
     double v = 0;
-    if (!parse_double(text.substr(from, comma - from), &v)) {
+    if (!read_decimal_field("", text.substr(from, comma - from), &v).empty()) {
       return fmt::format("align_measured '{}' is not X1,Y1,X2,Y2 (finite numbers, mm)", text);
     }
     out->push_back(v);
@@ -255,20 +247,27 @@ std::string read_board_fields(const UploadValues& values, BoardSettings* board) 
        {std::pair<const char*, bool*>{"allow_narrow_gaps", &board->allow_narrow_gaps},
         {"probe_first", &board->probe_first}}) {
     const std::string text = values.get(key);
-    if (text == "1" || text == "true" || text == "on") {
-      *flag = true;
-    } else if (!text.empty() && text != "0" && text != "false") {
-      return fmt::format("{} must be 1 or 0", key);
-    }
+    const std::string why = text.empty() ? "" : read_flag_field(key, text, flag);
+    if (!why.empty()) return why;
   }
   int64_t passes = board->passes, narrow = board->narrow_passes;
   for (const auto& [key, value] : {std::pair<const char*, int64_t*>{"passes", &passes},
                                    {"narrow_passes", &narrow},
                                    {"height_map_from", &board->height_map_from}}) {
     const std::string text = values.get(key);
-    if (!text.empty() && (!parse_int(text, value) || *value < 0 || *value > 1000000000)) {
-      return fmt::format("{} '{}' is not a whole number", key, text);
+    const std::string why = text.empty() ? "" : read_whole_field(key, text, value);
+    if (!why.empty()) return why;
+    if (!text.empty() && (*value < -1000000000 || *value > 1000000000)) {
+      return fmt::format("{} '{}' is outside -1000000000 .. 1000000000", key, text);
     }
+  }
+  // Given, the id of a job that probed: 0 or less is none, not "no map" (leave it out).
+  const std::string from = values.get("height_map_from");
+  if (!from.empty() && board->height_map_from < 1) {
+    return fmt::format(
+        "height_map_from '{}' is not a job id (the id of a board job uploaded with "
+        "probe_first=1; leave the field out to cut without a map)",
+        from);
   }
   board->passes = static_cast<int>(passes);
   board->narrow_passes = static_cast<int>(narrow);
@@ -284,9 +283,8 @@ std::string read_board_fields(const UploadValues& values, BoardSettings* board) 
         {"align_depth_mm", &board->align_depth_mm},
         {"probe_spacing_mm", &board->probe_spacing_mm}}) {
     const std::string text = values.get(key);
-    if (!text.empty() && !parse_double(text, value)) {
-      return fmt::format("{} '{}' is not a finite number", key, text);
-    }
+    const std::string why = text.empty() ? "" : read_decimal_field(key, text, value);
+    if (!why.empty()) return why;
   }
   return "";
 }

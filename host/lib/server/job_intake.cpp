@@ -19,6 +19,7 @@
 #include "host/lib/server/board_height_map.h"  // check_height_map_fields
 #include "host/lib/server/job_planning.h"
 #include "host/lib/server/job_record_fields.h"
+#include "host/lib/server/map_source.h"  // map_source_refusal
 #include "host/lib/server/zip_upload.h"
 
 namespace host::server {
@@ -264,13 +265,8 @@ IntakeResult JobIntake::submit(const Submission& sub) {
   up.job_name = job_name_of(sub, up);
   if (up.several) why = check_upload_name(up.job_name);
   if (why.empty()) why = check_fields(sub, up.board);
-  if (why.empty() && up.board && sub.board.height_map_from != 0) {
-    const std::optional<JobRecord> from = store_.get(sub.board.height_map_from);
-    if (!from || !is_board_job(*from)) {
-      why = fmt::format("height_map_from: no board job {} (the job whose height map to use)",
-                        sub.board.height_map_from);
-    }
-  }
+  if (why.empty() && up.board && sub.board.height_map_from != 0)
+    why = map_source_refusal(store_, data_, sub.board.height_map_from);
   if (!why.empty()) return refused(400, why);
   size_t total = 0;
   for (const UploadFile& f : up.files) total += f.content.size();

@@ -19,6 +19,31 @@ constexpr size_t kQueuedLooked = 500;
 
 }  // namespace
 
+std::string map_source_refusal(JobStore& store, const DataFolder& data, int64_t from) {
+  const std::optional<JobRecord> job = store.get(from);
+  if (!job || !is_board_job(*job)) {
+    return fmt::format("height_map_from: no board job {} (the job whose height map to use)", from);
+  }
+  BoardSettings board;
+  try {
+    board = read_board_settings(data.job_dir(job->key));
+  } catch (const std::exception&) {
+    return "";  // not in this archive (another server's upload): its run says what is wrong
+  }
+  if (board.height_map_from != 0) {
+    return fmt::format(
+        "height_map_from: job {} probed no map, it cuts with the map of job {}: give "
+        "height_map_from={} (a map is taken from the job that probed it)",
+        from, board.height_map_from, board.height_map_from);
+  }
+  if (!board.probe_first) {
+    return fmt::format(
+        "height_map_from: job {} makes no height map (it was uploaded without probe_first=1)",
+        from);
+  }
+  return "";
+}
+
 MapSource map_source_of(JobStore& store, const DataFolder& data, const JobRecord& job) {
   MapSource s;
   if (!is_board_job(job)) return s;
@@ -40,10 +65,24 @@ MapSource map_source_of(JobStore& store, const DataFolder& data, const JobRecord
   return s;
 }
 
+namespace {
+
+// Queued, its source's map not made yet but still to come.
+bool waits_for_map(const JobRecord& job, const MapSource& source) {
+  return job.state == JobState::kQueued && source.from != 0 && !source.has_map &&
+         !source.source_ended;
+}
+
+}  // namespace
+
 std::string map_wait_text(const JobRecord& job, const MapSource& source) {
-  if (job.state != JobState::kQueued || source.from == 0 || source.has_map || source.source_ended)
-    return "";
-  return fmt::format("waiting for the height map of job {}", source.from);
+  if (waits_for_map(job, source))
+    return fmt::format("waiting for the height map of job {}", source.from);
+  // Only that machine takes it (jobs_not_for_machine), however many others are idle.
+  if (job.state == JobState::kQueued && source.has_map && !source.machine.empty())
+    return fmt::format("waiting for machine '{}', which probed the height map of job {}",
+                       source.machine, source.from);
+  return "";
 }
 
 std::string map_wait_of(JobStore& store, const DataFolder& data, const JobRecord& job) {
@@ -70,7 +109,7 @@ std::vector<int64_t> jobs_not_for_machine(JobStore& store, const DataFolder& dat
   for (const JobRecord& job : store.list(state_name(JobState::kQueued), kQueuedLooked)) {
     const MapSource s = map_source_of(store, data, job);
     if (s.from == 0) continue;
-    const bool waiting = !map_wait_text(job, s).empty();
+    const bool waiting = waits_for_map(job, s);
     const bool elsewhere = s.has_map && s.machine != machine &&
                            std::find(machines.begin(), machines.end(), s.machine) != machines.end();
     if (waiting || elsewhere || !s.ended_why.empty()) out.push_back(job.id);

@@ -15,6 +15,13 @@
 
 namespace host::server {
 
+// Why job `from` cannot be an upload's height_map_from ("" when it can): it must be a board
+// job of this queue uploaded with probe_first=1. A job that itself cut with another job's
+// map is refused, naming that job (a map is taken from the job that probed it, once: its
+// flip would otherwise be applied twice). A job whose board.json is not in this archive
+// (another server's upload) is taken: its run checks the map.
+std::string map_source_refusal(JobStore& store, const DataFolder& data, int64_t from);
+
 // Where a job's map source stands.
 struct MapSource {
   int64_t from = 0;           // the job whose map it takes; 0: none (or not a board job)
@@ -26,8 +33,10 @@ struct MapSource {
 };
 MapSource map_source_of(JobStore& store, const DataFolder& data, const JobRecord& job);
 
-// "waiting for the height map of job 4 (running)" while a queued job's source has no map
-// and may still make one; "" otherwise (it may run, or it runs to fail with the reason).
+// Why a queued job with a map source waits: "waiting for the height map of job 4" while
+// its source has no map and may still make one; "waiting for machine 'left', which probed
+// the height map of job 4" once it has (only that machine takes it); "" otherwise (not
+// queued, no source, or it fails with the reason).
 std::string map_wait_text(const JobRecord& job, const MapSource& source);
 
 // map_wait_text of a job, looking at its source only when it is queued.

@@ -223,12 +223,12 @@ TEST(ServerHeightMap, TheBottomSideReusesTheTopSidesMap) {
   EXPECT_EQ(archived(server, bottom, "heightmap.json"), archived(server, top, "heightmap.json"));
   EXPECT_NE(archived(server, bottom, "machine.log").find(fmt::format("height map of job {}", top)),
             std::string::npos);
-  // A job with no map to give: refused at the run, nothing cut.
-  const int64_t plain = post(server, blinky({}));
-  ASSERT_TRUE(test::wait_until([&] { return server.job(plain)["state"] == "completed"; }, 120));
+  // A job with no map to give (its map gone from the archive): refused at the run, nothing
+  // cut. One that never probes is refused at upload (ServerUploadFields).
+  fs::remove(server.data().job_dir(server.store().get(top)->key) / kHeightMapFile);
   const int64_t orphan = post(
       server,
-      blinky({{"side", "bottom"}, {"height_map_from", std::to_string(plain)}}, "blinky-B.Cu.gbr"));
+      blinky({{"side", "bottom"}, {"height_map_from", std::to_string(top)}}, "blinky-B.Cu.gbr"));
   ASSERT_TRUE(test::wait_until([&] { return server.job(orphan)["state"] == "failed"; }, 60));
   EXPECT_NE(server.job(orphan)["message"].get<std::string>().find("has no height map"),
             std::string::npos);

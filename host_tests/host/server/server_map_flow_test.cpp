@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>  // std::ofstream
+#include <set>      // std::set
 
 #include "host/lib/heightmap/height_map.h"
 #include "host/lib/server/board_height_map.h"
@@ -48,6 +49,24 @@ bool waiting_for_clip(const ServerRig& server, int64_t id) {
   return j.is_object() && j["machine_state"] == "probe_clip";
 }
 
+// The fields of report.json's `height_map` as docs/user-guide.md lists them:
+// "`report.json` has `height_map` (`file`, `rows`, ...)".
+std::set<std::string> guide_report_map_fields() {
+  const std::string guide = read_file(fs::path(ENGRAVER_SOURCE_DIR) / "docs" / "user-guide.md");
+  const std::string intro = "`report.json` has `height_map` (";
+  const size_t from = guide.find(intro);
+  if (from == std::string::npos) return {};
+  const size_t to = guide.find(')', from + intro.size());
+  const std::string list = guide.substr(from + intro.size(), to - from - intro.size());
+  std::set<std::string> fields;
+  for (size_t open = list.find('`'); open != std::string::npos;) {
+    const size_t close = list.find('`', open + 1);
+    fields.insert(list.substr(open + 1, close - open - 1));
+    open = list.find('`', close + 1);
+  }
+  return fields;
+}
+
 bool ended(const ServerRig& server, int64_t id) {
   const std::string s = server.job(id)["state"];
   return s == "completed" || s == "failed" || s == "aborted";
@@ -79,6 +98,48 @@ TEST(ServerMapFlow, TheBottomSideWaitsForItsMapAndRunsWhereItWasProbed) {
   EXPECT_EQ(j["machine"], server.job(top)["machine"]);
   EXPECT_EQ(j["waiting"], "");
   EXPECT_EQ(j["height_map"], true);
+  // The top side's report names its map with the fields the guide lists.
+  auto report = server.client().Get(fmt::format("/api/jobs/{}/files/report.json", top).c_str());
+  ASSERT_TRUE(report && report->status == 200);
+  std::set<std::string> keys;
+  const nlohmann::json report_json = nlohmann::json::parse(report->body);
+  for (const auto& [key, value] : report_json["height_map"].items()) keys.insert(key);
+  EXPECT_EQ(keys, guide_report_map_fields());
+}
+
+// Once the map is made the bottom side waits for the machine that probed it, and says so,
+// though another machine is idle. The simulated operators never confirm a tool pause: the
+// top side, probed, stays on its machine at its first tool.
+TEST(ServerMapFlow, TheBottomSideNamesTheMachineItWaitsFor) {
+  test::TempDir dir;
+  sim::SimOptions never_confirms = blank(tilted_um);
+  never_confirms.pause_confirm_ms = -1;
+  SimRig left(false, 0, never_confirms), right(false, 0, never_confirms);
+  ServerRig server(
+      dir.path(), {test::machine("left", left.address()), test::machine("right", right.address())});
+  const int64_t top = post(server, blinky({{"probe_first", "1"}, {"align_holes", "auto"}}));
+  const int64_t bottom = post(server, blinky({{"side", "bottom"},
+                                              {"align_holes", "auto"},
+                                              {"height_map_from", std::to_string(top)}},
+                                             "blinky-B.Cu.gbr"));
+  ASSERT_TRUE(test::wait_until([&] { return waiting_for_clip(server, top); }, 30));
+  server.control(top, R"({"action":"probe_ready"})");
+  ASSERT_TRUE(test::wait_until([&] { return server.job(top)["height_map"] == true; }, 60));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // the other machine is free
+  const nlohmann::json j = server.job(bottom);
+  EXPECT_EQ(server.job(top)["state"], "running");
+  EXPECT_EQ(j["state"], "queued") << j.dump();
+  const std::string machine = server.job(top)["machine"];
+  EXPECT_EQ(j["waiting"], fmt::format("waiting for machine '{}', which probed the height map "
+                                      "of job {}",
+                                      machine, top));
+  bool listed = false;  // the list says the same
+  for (const auto& each : server.jobs()) {
+    if (each["id"] != bottom) continue;
+    EXPECT_EQ(each["waiting"], j["waiting"]);
+    listed = true;
+  }
+  EXPECT_TRUE(listed);
 }
 
 // The top side fails (the probe never touches): the bottom side fails too, saying why, and
@@ -145,11 +206,17 @@ TEST(ServerMapFlow, HeightMapFieldsAreCheckedAtUpload) {
       server,
       blinky({{"side", "bottom"}, {"height_map_from", std::to_string(plain)}}, "blinky-B.Cu.gbr"),
       "height_map_from", "upload it with probe_first=1");
+  // At upload the job is refused, not left unstarted.
+  expect_refused(
+      server,
+      blinky({{"side", "bottom"}, {"height_map_from", std::to_string(plain)}}, "blinky-B.Cu.gbr"),
+      "height_map_from", "the job was not queued");
   auto r = server.client().Post(
       "/api/jobs", server.auth(),
       blinky({{"side", "bottom"}, {"height_map_from", std::to_string(plain)}}, "blinky-B.Cu.gbr"));
   ASSERT_TRUE(r);
   EXPECT_EQ(r->body.find("--probe"), std::string::npos) << r->body;  // the server's words
+  EXPECT_EQ(r->body.find("not started"), std::string::npos) << r->body;
 }
 
 TEST(ServerMapFlow, NumbersThatAreNoNumberAreRefusedNamingTheField) {

@@ -1,0 +1,21 @@
+// A number as written in the documentation: digits, an optional point and exponent. strtod
+// and from_chars also take hex (0x10, 0x1p3), leading blanks, nan and inf, which no user
+// means as a depth or a count: the command line's options and the server's upload fields
+// refuse them by this one rule.
+#ifndef HOST_LIB_PLAN_PLAIN_DECIMAL_H
+#define HOST_LIB_PLAN_PLAIN_DECIMAL_H
+
+#include <regex>   // std::regex
+#include <string>  // std::string
+
+namespace host {
+
+// True for "10", "-1.5", "+10", "10.", ".5e1"; false for "0x10", " 10", "nan", "1,5", "".
+inline bool is_plain_decimal(const std::string& text) {
+  static const std::regex decimal(R"([+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?)");
+  return std::regex_match(text, decimal);
+}
+
+}  // namespace host
+
+#endif  // HOST_LIB_PLAN_PLAIN_DECIMAL_H

@@ -1,0 +1,111 @@
+// An upload's fields read as the command line reads its options (issue 25's tester): number
+// fields plain decimals (no hex, no blanks, no nan or inf), counts whole, yes/no fields one
+// of eight words, each refusal a 400 naming the field with nothing queued; height_map_from
+// the id of a board job that probed, never 0, a missing job or one that took another's map.
+#include <gtest/gtest.h>
+
+#include "host_tests/host/server/blinky_upload.h"
+#include "host_tests/host/server/server_test_rig.h"
+
+namespace host::server {
+namespace {
+
+using test::blinky;
+using test::post;
+using test::ServerRig;
+
+// A 400 naming `field` and saying `words`, and nothing queued.
+void expect_refused(ServerRig& server, const httplib::MultipartFormDataItems& form,
+                    const std::string& field, const std::string& words) {
+  const size_t jobs_before = server.jobs().size();
+  auto r = server.client().Post("/api/jobs", server.auth(), form);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400) << r->body;
+  const std::string error = nlohmann::json::parse(r->body).value("error", "");
+  EXPECT_EQ(error.rfind(field, 0), 0u) << error;  // the field first
+  EXPECT_NE(error.find(words), std::string::npos) << error;
+  EXPECT_EQ(server.jobs().size(), jobs_before);
+}
+
+// The board settings a job was queued with (its archive's board.json).
+nlohmann::json board_json(ServerRig& server, int64_t id) {
+  auto r = server.client().Get(fmt::format("/api/jobs/{}/files/board.json", id).c_str());
+  return r && r->status == 200 ? nlohmann::json::parse(r->body) : nlohmann::json();
+}
+
+TEST(ServerUploadFields, NumbersAreTheCommandLinesPlainDecimals) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {});  // no machine: every job stays queued
+  for (const char* text : {"0x10", " 10", "10 ", "1,5", "0x1p3", "ten"})
+    expect_refused(server, blinky({{"probe_spacing_mm", text}}), "probe_spacing_mm",
+                   "is not a decimal number");
+  for (const char* text : {"nan", "inf", "-inf", "1e400"})
+    expect_refused(server, blinky({{"tool_width_mm", text}}), "tool_width_mm",
+                   "is not a finite number");
+  expect_refused(server, blinky({{"passes", "0x2"}}), "passes", "is not a decimal number");
+  expect_refused(server, blinky({{"passes", "1.5"}}), "passes", "is not a whole number");
+  expect_refused(server, blinky({{"priority", "0x5"}}), "priority", "is not a decimal number");
+  expect_refused(server, blinky({{"margin_mm", "0x5"}}), "margin_mm", "is not a decimal number");
+  expect_refused(server, blinky({{"align_holes", "auto"}, {"align_measured", "0x1,0,1,2"}}),
+                 "align_measured", "finite numbers, mm");
+  // What the command line takes, the server takes, as the same numbers.
+  for (const char* text : {"+10", "10.", ".1e2", "1e1", "10"}) {
+    const int64_t id = post(server, blinky({{"probe_spacing_mm", text}, {"passes", "2.0"}}));
+    const nlohmann::json board = board_json(server, id);
+    EXPECT_EQ(board["probe_spacing_mm"], 10.0) << text;
+    EXPECT_EQ(board["passes"], 2) << text;
+  }
+  const int64_t id = post(server, blinky({{"priority", "+1e0"}}));
+  EXPECT_EQ(server.job(id)["priority"], 1);
+}
+
+TEST(ServerUploadFields, YesNoFieldsTakeEightWords) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {});
+  for (const char* yes : {"1", "true", "yes", "on"}) {
+    const int64_t id = post(server, blinky({{"probe_first", yes}, {"allow_narrow_gaps", yes}}));
+    EXPECT_EQ(board_json(server, id)["probe_first"], true) << yes;
+    EXPECT_EQ(board_json(server, id)["allow_narrow_gaps"], true) << yes;
+  }
+  for (const char* no : {"0", "false", "no", "off"}) {
+    const int64_t id = post(server, blinky({{"probe_first", no}}));
+    EXPECT_EQ(board_json(server, id)["probe_first"], false) << no;
+  }
+  for (const char* text : {"Yes", "TRUE", "y", "2", " 1"})
+    expect_refused(server, blinky({{"probe_first", text}}), "probe_first",
+                   "must be 1, true, yes or on (or 0, false, no or off)");
+}
+
+TEST(ServerUploadFields, HeightMapFromNamesABoardJobThatProbed) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {});
+  const int64_t drawing = server.upload_ok("line.ngc", "G0 X0 Y0\nG1 X10 Y0 F100\n");
+  const int64_t plain = post(server, blinky({}));
+  const int64_t top = post(server, blinky({{"probe_first", "1"}, {"align_holes", "auto"}}));
+  auto bottom_of = [](const std::string& from) {
+    return blinky({{"side", "bottom"}, {"align_holes", "auto"}, {"height_map_from", from}},
+                  "blinky-B.Cu.gbr");
+  };
+  // 0 would be "no map" and the job would run without one: not a job id.
+  expect_refused(server, bottom_of("0"), "height_map_from '0' is not a job id",
+                 "leave the field out to cut without a map");
+  expect_refused(server, bottom_of("-1"), "height_map_from '-1' is not a job id", "probe_first=1");
+  expect_refused(server, bottom_of("0x1"), "height_map_from", "is not a decimal number");
+  expect_refused(server, bottom_of("999"), "height_map_from: no board job 999", "height map");
+  expect_refused(server, bottom_of(std::to_string(drawing)),
+                 fmt::format("height_map_from: no board job {}", drawing), "height map");
+  expect_refused(server, bottom_of(std::to_string(plain)),
+                 fmt::format("height_map_from: job {} makes no height map", plain),
+                 "uploaded without probe_first=1");
+  const int64_t bottom = post(server, bottom_of(std::to_string(top)));
+  EXPECT_EQ(board_json(server, bottom)["height_map_from"], top);
+  // A map is taken from the job that probed it, not through another that took it.
+  expect_refused(server, bottom_of(std::to_string(bottom)),
+                 fmt::format("height_map_from: job {} probed no map, it cuts with the map of "
+                             "job {}: give height_map_from={}",
+                             bottom, top, top),
+                 "the job that probed it");
+}
+
+}  // namespace
+}  // namespace host::server
