@@ -7,11 +7,13 @@ folder, the port and the files' contents are this test's: the files are made und
 names the examples use (board.ngc larger than 8 KB, the blinky board from data/; the
 double-sided example's shared two-layer sample from ../shared/samples/pcb/example_board,
 or the blinky board under its names without ../shared). Before the `probe_ready` example the test itself
-frees the machine (aborts job 1, cancels the other queued boards but the bottom side, which
-waits for the probe-first job's map) so that the probe-first job reaches the probe clip; the
-sim has a warped blank (--surface) for it to probe. A second machine ('right') comes online
-then: the bottom side, uploaded before its top side probed, stays queued, waiting for the
-map, though a machine is free.
+cancels the other queued boards but the bottom side (which waits for the probe-first job's
+map) and brings a second machine ('right', a sim at full speed with a warped blank,
+--surface) online, which takes the probe-first job to the probe clip; then it aborts job 1:
+the bottom side, uploaded before its top side probed, stays queued, waiting for the map,
+though 'left' is free. After the `probe_ready` example the top side probes and cuts, and
+the bottom side runs with its map on the machine that probed it: the test waits for both to
+end `completed` (within BOTH_SIDES_S).
 
 Exit 77 (ctest: skipped) when curl or jq is not installed.
 Usage: guide_examples_test.py ENGRAVER USER_GUIDE.md
@@ -32,6 +34,7 @@ from serve_processes import free_port, stop_processes
 SKIP = 77
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
 DOC_DATA, DOC_PORT = "/srv/engraver", "127.0.0.1:8080"
+BOTH_SIDES_S = 240  # both sides of the double-sided example, probed and cut at full speed
 
 
 def wait(predicate, timeout_s, what):
@@ -170,16 +173,27 @@ def main():
             print("$ " + cmd)
             probe_ready = re.search(r"probe_ready.*?/api/jobs/(\d+|\$[A-Z_]+)/control", cmd, re.S)
             if probe_ready:
-                # Free the machine for the probe-first job, which then asks for the clip.
+                # A second machine for the probe-first job, which then asks for the clip.
                 job = job_of(probe_ready.group(1))
                 jobs = check_held_and_queued()
                 checked_before_probe = True
-                # The queue first: once job 1 is gone the machine claims the next job.
+                # The queue first: a machine online claims the next job.
                 for j in jobs.values():
                     if j["state"] == "queued" and j["id"] != job and not j["waiting"]:
                         control(j["id"], "cancel")
-                control(1, "abort")
+                procs.append(subprocess.Popen(
+                    [engraver, "sim", "--listen", f"127.0.0.1:{right_port}",
+                     "--surface", "tilt=0.05mm,bow=0.03mm"],
+                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
                 wait(lambda: probe_job_waiting(job), 30, f"job {job} asking for the probe clip")
+                # 'left' free too: the bottom side still waits for the map.
+                control(1, "abort")
+                wait(lambda: get(base, "/api/status")["machines"][0]["job"] is None, 20,
+                     "job 1 off 'left'")
+                time.sleep(1.0)
+                bottom = get(base, f"/api/jobs/{values['BOTTOM']}")
+                assert bottom["state"] == "queued", bottom
+                assert bottom["waiting"] == f"waiting for the height map of job {job}", bottom
             elif "/control" in cmd:
                 # A control example steers job 1: it must be on its machine by now.
                 wait(lambda: [j["id"] for j in get(base, "/api/status")["running"]] == [1], 20,
@@ -206,26 +220,19 @@ def main():
         if not checked_before_probe:
             check_held_and_queued()
         else:
-            # The second machine comes online: the bottom side waits for the top side's map.
+            # The confirm was taken: the top side probes and cuts, then the bottom side runs
+            # with its map where it was probed; both to the end.
             top, bottom_id = values["TOP"], values["BOTTOM"]
-            procs.append(subprocess.Popen(
-                [engraver, "sim", "--listen", f"127.0.0.1:{right_port}"],
-                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
-            wait(lambda: get(base, "/api/status")["machines"][1]["link"] == "online", 20,
-                 "the second machine online")
-            time.sleep(1.0)
-            bottom = get(base, f"/api/jobs/{bottom_id}")
-            assert bottom["state"] == "queued", bottom
-            assert bottom["waiting"] == f"waiting for the height map of job {top}", bottom
-            # The confirm was taken: the job probes the simulated blank (or has got further).
-            def probing_or_later():
-                j = get(base, f"/api/jobs/{top}")
-                running = [r for r in get(base, "/api/status")["running"] if r["id"] == top]
-                return j["state"] != "running" or (
-                    running and running[0]["machine_state"] != "probe_clip")
-            wait(probing_or_later, 30, f"job {top} probing after the confirm")
-            assert get(base, f"/api/jobs/{top}")["state"] in ("running", "completed"), \
-                get(base, f"/api/jobs/{top}")
+            final = ("completed", "failed", "aborted", "cancelled", "interrupted")
+            started = time.monotonic()
+            wait(lambda: get(base, f"/api/jobs/{bottom_id}")["state"] in final, BOTH_SIDES_S,
+                 f"the bottom side (job {bottom_id}) to end")
+            top_job, bottom = get(base, f"/api/jobs/{top}"), get(base, f"/api/jobs/{bottom_id}")
+            assert top_job["state"] == "completed" and top_job["height_map"], top_job
+            assert bottom["state"] == "completed", bottom
+            assert bottom["height_map"] and bottom["waiting"] == "", bottom
+            assert bottom["machine"] == top_job["machine"] == "right", (top_job, bottom)
+            print(f"both sides completed {time.monotonic() - started:.0f} s after the confirm")
         print(f"guide examples passed: {len(curls)} curl commands")
         return 0
     finally:
