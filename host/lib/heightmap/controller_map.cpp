@@ -73,8 +73,11 @@ ProbeTouch controller_touch(Sender& sender, const ProbeMotion& m,
     if (outcome != JobOutcome::kCompleted)
       throw ProbeFailed(fmt::format("probing at ({:.3f}, {:.3f}) mm: {}: {}", x_mm, y_mm,
                                     outcome_name(outcome), sender.message()));
-    // The touch is done when the controller counts it (its queue may still be moving).
-    sender.read_status_at_rest(std::chrono::seconds(60));
+    // The touch is done when the controller counts it (its queue may still be moving). Its
+    // last status is where the tool stands, retracted: the one a watcher keeps showing.
+    Progress rest;
+    rest.status = sender.read_status_at_rest(std::chrono::seconds(60));
+    if (on_progress) on_progress(rest);
     const proto::ProbeResultReply r = sender.read_probe_result();
     if (r.probe_count == before)
       throw ProbeFailed(

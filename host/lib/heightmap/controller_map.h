@@ -34,7 +34,8 @@ struct ProbeMotion {
 
 // A probe touch through the sender: travel to (x, y) at start_z, #Y, then the result from
 // #T. Throws ProbeFailed with the controller's word (no contact, spindle on, probe closed).
-// on_progress sees each status of the touch (the workshop shows the live position).
+// on_progress sees each status of the touch (the workshop shows the live position), the
+// last one with the tool at rest after its retract.
 class ProbeFailed : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

@@ -91,7 +91,6 @@ struct Workshop::Slot {
   std::string probe_stage;
   bool probe_confirmed = false;
   Sender* probing_sender = nullptr;  // while probing: an abort stops the touch
-  bool probe_waiting = false;        // probing, held between touches (the operator's hold)
   size_t probe_done = 0, probe_total = 0;
   // The controller may still hold the map of this machine's last job (#A: it stays through
   // #I): the next job without one clears it first.
@@ -313,9 +312,9 @@ nlohmann::json Workshop::snapshot() {
     m["message"] = slot->link_message;
     m["job"] = slot->job_id != 0 ? nlohmann::json(slot->job_id) : nlohmann::json();
     const bool probing = !slot->probe_stage.empty();
-    // Waiting for the clip, a hold is kept for the first touch: shown at once.
-    const bool probe_held = slot->probe_waiting || (slot->probe_stage == "probe_clip" &&
-                                                    slot->hold_pending && !slot->abort_pending);
+    // The hold the server has accepted, shown at once in every field: no touch starts until
+    // resume (the one under way finishes and retracts first; its position stays live).
+    const bool probe_held = probing && slot->hold_pending && !slot->abort_pending;
     // Waiting for the clip and probing are the workshop's: the machine's own state then is
     // idle, which the operator must not read as "free".
     const char* probe_state = probe_held                          ? "held"
@@ -347,10 +346,11 @@ nlohmann::json Workshop::snapshot() {
     j["fraction"] = f;
     j["elapsed_s"] = elapsed;
     j["remaining_s"] = remaining;
-    j["machine_state"] = !slot->probe_stage.empty() ? slot->probe_stage.c_str()
-                         : slot->planning           ? "planning"
-                         : slot->have_status        ? machine_state_name(p.status.state)
-                                                    : "starting";
+    j["machine_state"] = probe_held                   ? "held"
+                         : !slot->probe_stage.empty() ? slot->probe_stage.c_str()
+                         : slot->planning             ? "planning"
+                         : slot->have_status          ? machine_state_name(p.status.state)
+                                                      : "starting";
     if (!slot->probe_stage.empty()) {
       j["probe"] = {{"stage", slot->probe_stage},
                     {"touches", slot->probe_done},
@@ -815,7 +815,6 @@ void Workshop::release_slot(Slot& slot, const JobRun& r, Sender& sender) {
     slot.planning = false;
     slot.probe_stage.clear();
     slot.probing_sender = nullptr;
-    slot.probe_waiting = false;
     slot.path_json.reset();
     slot.have_last_status = at_rest.has_value();
     if (at_rest) slot.last_status = *at_rest;
@@ -887,7 +886,8 @@ void Workshop::finish_run(Slot& slot, JobRun& r, Sender& sender) {
 // One touch of a board job's probing grid. Before it, the operator's hold waits (the touch
 // before has finished: the tool stands retracted above its contact) and an abort or the
 // server stopping ends the probing; each status of the touch is the machine's on the page.
-heightmap::ProbeTouch Workshop::probing_touch(Slot& slot, Sender& sender) {
+heightmap::ProbeTouch Workshop::probing_touch(Slot& slot, Sender& sender,
+                                              const std::function<void(const std::string&)>& note) {
   auto last_notify = std::make_shared<Clock::time_point>();
   heightmap::ProbeTouch touch = heightmap::controller_touch(
       sender, heightmap::ProbeMotion{}, [this, &slot, last_notify](const Progress& p) {
@@ -901,27 +901,40 @@ heightmap::ProbeTouch Workshop::probing_touch(Slot& slot, Sender& sender) {
           notify(false);
         }
       });
-  return [this, &slot, touch](double x_mm, double y_mm) {
-    wait_between_touches(slot);
+  return [this, &slot, touch, note](double x_mm, double y_mm) {
+    wait_between_touches(slot, note);
     return touch(x_mm, y_mm);
   };
 }
 
-void Workshop::wait_between_touches(Slot& slot) {
+void Workshop::wait_between_touches(Slot& slot,
+                                    const std::function<void(const std::string&)>& note) {
   bool waited = false;
+  std::string where;  // the touches done, for the log
   while (true) {
+    std::string held;
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      slot.probe_waiting = slot.hold_pending && !slot.abort_pending && !stopping_;
       if (slot.abort_pending || stopping_) throw ended_before_cutting(stopping_, "probing");
-      if (!slot.probe_waiting) break;
+      if (!slot.hold_pending) break;
+      if (!waited) {
+        where = slot.probe_done == 0
+                    ? std::string("before the first touch")
+                    : fmt::format("after touch {} of {}", slot.probe_done, slot.probe_total);
+        const proto::StatusReply& st = slot.last_status;
+        held = fmt::format("probing held by the operator {}", where);
+        if (slot.have_last_status) {
+          held += fmt::format(": the tool at rest at x {:.3f} y {:.3f} z {:.3f}", st.x_um / 1000.0,
+                              st.y_um / 1000.0, st.z_um / 1000.0);
+        }
+      }
     }
-    if (!waited) notify(false);  // the page shows it held
+    if (!held.empty()) note(held);
     waited = true;
     std::unique_lock<std::mutex> lock(change_mutex_);
     change_cv_.wait_for(lock, std::chrono::milliseconds(100));
   }
-  if (waited) notify(false);
+  if (waited) note("probing resumed " + where);
 }
 
 std::optional<heightmap::HeightMap> Workshop::board_height_map(
@@ -977,7 +990,7 @@ heightmap::HeightMap Workshop::probe_board_blank(
   o.grid.spacing_mm = board.probe_spacing_mm;
   heightmap::ProbeRun probed;
   try {
-    probed = heightmap::probe_blank(*area, o, probing_touch(slot, sender),
+    probed = heightmap::probe_blank(*area, o, probing_touch(slot, sender, note),
                                     [&](size_t done, size_t planned) {
                                       {
                                         std::lock_guard<std::mutex> lock(slot.mutex);

@@ -127,9 +127,11 @@ class Workshop {
   std::optional<heightmap::HeightMap> board_height_map(
       Slot& slot, const JobRecord& job, const JobPlan& plan, Sender& sender,
       const std::function<void(const std::string&)>& note);
-  // A touch of the probing grid that waits while the operator holds, ends on an abort.
-  heightmap::ProbeTouch probing_touch(Slot& slot, Sender& sender);
-  void wait_between_touches(Slot& slot);
+  // A touch of the probing grid that waits while the operator holds, ends on an abort;
+  // the hold and the resume go to the run's log (`note`).
+  heightmap::ProbeTouch probing_touch(Slot& slot, Sender& sender,
+                                      const std::function<void(const std::string&)>& note);
+  void wait_between_touches(Slot& slot, const std::function<void(const std::string&)>& note);
   // Asks for the probe clip and probes the blank over the board's probe area (board.json).
   heightmap::HeightMap probe_board_blank(Slot& slot, const JobRecord& job,
                                          const BoardSettings& board, const JobPlan& plan,

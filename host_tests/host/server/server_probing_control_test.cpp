@@ -87,6 +87,14 @@ TEST(ServerProbingControl, HoldPausesTheProbingBetweenTouchesWithTheToolUpAndRes
   EXPECT_EQ(r->status, 200) << r->body;
   ASSERT_TRUE(test::wait_until([&] { return held_between_touches(server, id); }, 20))
       << server.status().dump();
+  // Held at once; the touch under way ends (retracted) before the machine stands still.
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const sim::ToolSample a = sim.machine().position();
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        return sim.machine().position().z_mm == a.z_mm;
+      },
+      20));
   const size_t held_at = touches(server, id);
   EXPECT_LT(held_at, planned) << "the hold came after the grid";
   const sim::ToolSample tool = sim.machine().position();
@@ -202,7 +210,9 @@ TEST(ServerProbingControl, AHoldWhileWaitingForTheClipIsShownAndKept) {
   ASSERT_EQ(server.control(id, R"({"action":"hold"})")->status, 200);
   ASSERT_TRUE(test::wait_until([&] { return held_between_touches(server, id); }, 5))
       << server.status().dump();
-  EXPECT_EQ(server.running(id)["machine_state"], "probe_clip");
+  // The job says held as the machine does; its probe object keeps the stage.
+  EXPECT_EQ(server.running(id)["machine_state"], "held");
+  EXPECT_EQ(server.running(id)["probe"]["stage"], "probe_clip");
   ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   EXPECT_EQ(touches(server, id), 0u) << "no touch while held";

@@ -1,0 +1,199 @@
+// A hold while a probe-first board job probes, at any instant of a touch (issue 25, Safety
+// and the workshop): the touch under way finishes and retracts, so the held machine never
+// leaves the bit at or near the copper; /api/status says held at once, the same in every
+// field, with the machine's real position; resume goes on with no point lost or probed
+// twice; machine.log records the hold and the resume with the point.
+#include <gtest/gtest.h>
+
+#include <cmath>  // std::lround, std::abs
+
+#include <map>  // std::map
+
+#include "host/lib/heightmap/controller_map.h"  // ProbeMotion
+#include "host/lib/server/data_folder.h"
+#include "host_tests/host/server/server_test_rig.h"
+
+namespace host::server {
+namespace {
+
+using test::ServerRig;
+using test::SimRig;
+namespace fs = std::filesystem;
+
+std::string board_file(const std::string& name) {
+  return read_file(fs::path(ENGRAVER_SOURCE_DIR) / "host_tests/host/server/data" / name);
+}
+
+// The blinky board probed first on a coarse grid: a few touches in real time.
+int64_t post_probe_first(const ServerRig& server) {
+  httplib::MultipartFormDataItems form = {
+      {"file", board_file("blinky-F.Cu.gbr"), "blinky-F.Cu.gbr", "application/octet-stream"},
+      {"file", board_file("blinky.drl"), "blinky.drl", "application/octet-stream"},
+      {"file", board_file("blinky-Edge.Cuts.gbr"), "blinky-Edge.Cuts.gbr",
+       "application/octet-stream"},
+      {"probe_first", "1", "", ""},
+      {"probe_spacing_mm", "12", "", ""}};
+  auto r = server.client().Post("/api/jobs", server.auth(), form);
+  if (!r || r->status != 201)
+    throw std::runtime_error("upload failed: " + (r ? r->body : std::string("no answer")));
+  return nlohmann::json::parse(r->body)["id"].get<int64_t>();
+}
+
+// A blank tilted 0.1 mm over 50 mm in x (um above the zero corner's copper).
+int32_t tilted_um(int32_t x_um, int32_t) {
+  return static_cast<int32_t>(std::lround(2.0 * x_um / 1000.0));
+}
+
+double copper_mm(double x_mm) {
+  return tilted_um(std::lround(x_mm * 1000), 0) / 1000.0;
+}
+
+sim::SimOptions tilted_blank() {
+  sim::SimOptions o;
+  o.surface_um = tilted_um;
+  return o;
+}
+
+size_t touches(const ServerRig& server, int64_t id) {
+  const nlohmann::json j = server.running(id);
+  return j.is_object() && j.contains("probe") ? j["probe"]["touches"].get<size_t>() : 0;
+}
+
+// The instants of a touch at which the operator holds.
+enum class Instant { kDescending, kAtContact, kRetracting };
+
+// Waits (polling the simulated tool) until the next touch is at `when`.
+bool reach(const SimRig& sim, Instant when) {
+  double band_entered_mm = -1;  // descending: where the tool entered 0.2 .. 0.6 mm above
+  bool touched = false;
+  return test::wait_until(
+      [&] {
+        for (int i = 0; i < 1000; ++i) {
+          const sim::ToolSample t = sim.machine().position();
+          const double above_mm = t.z_mm - copper_mm(t.x_mm);
+          const bool closed = sim.machine().probe_closed();
+          switch (when) {
+            case Instant::kDescending:
+              if (above_mm <= 0.2 || above_mm >= 0.6) {
+                band_entered_mm = -1;
+              } else if (band_entered_mm < 0) {
+                band_entered_mm = t.z_mm;
+              } else if (t.z_mm < band_entered_mm - 0.01) {
+                return true;  // going down, 10 um into the band
+              }
+              break;
+            case Instant::kAtContact:
+              if (closed) return true;
+              break;
+            case Instant::kRetracting:
+              if (closed) touched = true;
+              if (touched && above_mm > 0.1 && above_mm < 0.35) return true;
+              break;
+          }
+          std::this_thread::sleep_for(std::chrono::microseconds(500));
+        }
+        return false;
+      },
+      60);
+}
+
+// The tool has not moved for 300 ms.
+bool at_rest(const SimRig& sim) {
+  return test::wait_until(
+      [&] {
+        const sim::ToolSample a = sim.machine().position();
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        const sim::ToolSample b = sim.machine().position();
+        return a.x_mm == b.x_mm && a.y_mm == b.y_mm && a.z_mm == b.z_mm;
+      },
+      20);
+}
+
+TEST(ServerProbeHold, AHoldAtAnyInstantOfATouchLeavesTheToolRetractedAndResumeProbesEachPointOnce) {
+  test::TempDir dir;
+  SimRig sim(true, 0, tilted_blank());  // real time: a descent takes about a second
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t id = post_probe_first(server);
+  ASSERT_TRUE(
+      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
+  ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+  const double retract_mm = heightmap::ProbeMotion{}.retract_mm;
+  for (const Instant when : {Instant::kDescending, Instant::kAtContact, Instant::kRetracting}) {
+    SCOPED_TRACE(static_cast<int>(when));
+    ASSERT_TRUE(reach(sim, when)) << server.status().dump();
+    auto r = server.control(id, R"({"action":"hold"})");
+    ASSERT_TRUE(r);
+    ASSERT_EQ(r->status, 200) << r->body;
+    // Held at once, and every field says so.
+    const nlohmann::json status = server.status();
+    const nlohmann::json m = status["machines"][0];
+    const nlohmann::json j = status["running"][0];
+    EXPECT_EQ(m["state"], "held") << status.dump();
+    EXPECT_EQ(j["machine_state"], "held") << status.dump();
+    EXPECT_EQ(j["probe"]["held"], true) << status.dump();
+    ASSERT_TRUE(at_rest(sim));
+    const size_t held_at = touches(server, id);
+    const sim::ToolSample tool = sim.machine().position();
+    // The touch finished and retracted: the bit stands above its contact, not on the copper.
+    EXPECT_GE(tool.z_mm, copper_mm(tool.x_mm) + retract_mm - 0.01)
+        << "held at " << tool.x_mm << " " << tool.y_mm << " " << tool.z_mm;
+    // /api/status shows where the machine stands, not a position from the touch.
+    const nlohmann::json held = server.status();
+    EXPECT_EQ(held["machines"][0]["state"], "held") << held.dump();
+    EXPECT_EQ(held["running"][0]["machine_state"], "held") << held.dump();
+    const std::vector<double> shown = held["machines"][0]["position_mm"];
+    EXPECT_NEAR(shown[2], tool.z_mm, 0.001) << held.dump();
+    EXPECT_EQ(held["running"][0]["position_mm"], held["machines"][0]["position_mm"]);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_EQ(touches(server, id), held_at) << "no touch while held";
+    EXPECT_EQ(sim.machine().position().z_mm, tool.z_mm) << "a held machine must not move";
+    r = server.control(id, R"({"action":"resume"})");
+    ASSERT_TRUE(r);
+    ASSERT_EQ(r->status, 200) << r->body;
+    EXPECT_NE(server.running(id)["machine_state"], "held");
+  }
+  // The grid done (the map kept), the cut in real time is not needed.
+  const fs::path job_dir = server.data().job_dir(server.store().get(id)->key);
+  ASSERT_TRUE(test::wait_until([&] { return fs::exists(job_dir / "heightmap.json"); }, 120))
+      << server.status().dump();
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30))
+      << server.job(id).dump();
+
+  // Each grid point touched exactly once: a contact is the tool tip reaching the copper.
+  const nlohmann::json map = nlohmann::json::parse(read_file(job_dir / "heightmap.json"));
+  const int points = map["grid"]["rows"].get<int>() * map["grid"]["cols"].get<int>();
+  ASSERT_GE(points, 4);
+  // Contacts at grid points only: the cut that began before the abort goes into the copper.
+  const nlohmann::json& grid = map["grid"];
+  auto on_grid = [&](double v_mm, int axis) {
+    const double steps =
+        (v_mm - grid["origin_mm"][axis].get<double>()) / grid["pitch_mm"][axis].get<double>();
+    return std::abs(steps - std::lround(steps)) * grid["pitch_mm"][axis].get<double>() < 0.005;
+  };
+  std::map<std::pair<long, long>, int> contacts;
+  bool above = true;
+  for (const sim::ToolSample& s : sim.machine().trace()) {
+    const bool on = s.z_mm <= copper_mm(s.x_mm) + 0.001;
+    if (on && above && on_grid(s.x_mm, 0) && on_grid(s.y_mm, 1))
+      ++contacts[{std::lround(s.x_mm * 100), std::lround(s.y_mm * 100)}];
+    above = !on;
+  }
+  EXPECT_EQ(contacts.size(), static_cast<size_t>(points));
+  for (const auto& c : contacts) EXPECT_EQ(c.second, 1) << c.first.first << " " << c.first.second;
+  const std::string log = read_file(job_dir / "runs" / "1" / "machine.log");
+  EXPECT_NE(log.find(fmt::format("({} touches)", points)), std::string::npos) << log;
+  // Each hold and resume in the run's log, with the touches done.
+  size_t holds = 0, resumes = 0;
+  for (size_t at = 0;
+       (at = log.find("probing held by the operator after touch ", at)) != std::string::npos; ++at)
+    ++holds;
+  for (size_t at = 0; (at = log.find("probing resumed after touch ", at)) != std::string::npos;
+       ++at)
+    ++resumes;
+  EXPECT_EQ(holds, 3u) << log;
+  EXPECT_EQ(resumes, 3u) << log;
+}
+
+}  // namespace
+}  // namespace host::server
