@@ -17,6 +17,7 @@ class NearestEnd {
   // Reads the ends where they are: both vectors must outlive the index (a copy of them was
   // 32 MB of a million-line job).
   NearestEnd(const std::vector<Point2>& starts, const std::vector<Point2>& ends);
+  NearestEnd(std::vector<Point2>&&, std::vector<Point2>&&) = delete;  // would dangle
   struct Hit {
     size_t index = 0;
     bool reversed = false;  // the nearest end is the curve's end: trace it backwards
