@@ -58,11 +58,18 @@ JobPlan plan_program(const Drawing& drawing, const PlanOptions& options);
 
 namespace {
 
-// Greedy nearest neighbour from the zero, each curve either way round, into plan->curves.
-// The curves, their names and the search's index die on return: a million-line drawing
-// held 140 MB of them while the steps were made.
-void order_curves(std::vector<BSpline> scaled, std::vector<std::string> sources,
-                  const PlanOptions& o, JobPlan* plan) {
+// One curve of the greedy order: which scaled curve, which way round, and whether it
+// continues the previous one.
+struct OrderedCurve {
+  uint32_t index;
+  bool reversed;
+  bool chained;
+};
+
+// Greedy nearest neighbour from the zero, each curve either way round. Only the curves' ends
+// and the search's index are held here, and they die on return, before the planned curves
+// are made: a million-line drawing held them (~120 MB) beside the planned curves.
+std::vector<OrderedCurve> greedy_order(const std::vector<BSpline>& scaled, const PlanOptions& o) {
   std::vector<Point2> starts, ends;
   starts.reserve(scaled.size());
   ends.reserve(scaled.size());
@@ -71,8 +78,9 @@ void order_curves(std::vector<BSpline> scaled, std::vector<std::string> sources,
     ends.push_back(end_point(s));
   }
   NearestEnd index(starts, ends);
+  std::vector<OrderedCurve> order;
+  order.reserve(scaled.size());
   Point2 at(0, 0);
-  plan->curves.reserve(scaled.size());  // one each; growing by doubling held 1.5x of them
   for (size_t n = 0; n < scaled.size(); ++n) {
     if (o.progress && n % 4096 == 0) o.progress(n, scaled.size());
     size_t best = n;
@@ -85,15 +93,28 @@ void order_curves(std::vector<BSpline> scaled, std::vector<std::string> sources,
       best_d = hit.distance;
     }
     index.use(best);
+    order.push_back(OrderedCurve{static_cast<uint32_t>(best), best_rev,
+                                 n > 0 && best_d <= o.chain_tolerance_mm});
+    at = best_rev ? starts[best] : ends[best];
+  }
+  return order;
+}
+
+// The scaled curves into plan->curves in the greedy order. The curves and their names die
+// on return.
+void order_curves(std::vector<BSpline> scaled, std::vector<std::string> sources,
+                  const PlanOptions& o, JobPlan* plan) {
+  const std::vector<OrderedCurve> order = greedy_order(scaled, o);
+  plan->curves.reserve(scaled.size());  // one each; growing by doubling held 1.5x of them
+  for (const OrderedCurve& k : order) {
     PlannedCurve pc;
     // Each scaled curve is used once: move it (a copy held the drawing twice more).
-    pc.spline = best_rev ? reversed(scaled[best]) : std::move(scaled[best]);
-    scaled[best] = BSpline();
-    pc.drawing_index = static_cast<int>(best);
-    pc.reversed = best_rev;
-    pc.chained = n > 0 && best_d <= o.chain_tolerance_mm;
-    pc.source = std::move(sources[best]);
-    at = best_rev ? starts[best] : ends[best];
+    pc.spline = k.reversed ? reversed(scaled[k.index]) : std::move(scaled[k.index]);
+    scaled[k.index] = BSpline();
+    pc.drawing_index = static_cast<int>(k.index);
+    pc.reversed = k.reversed;
+    pc.chained = k.chained;
+    pc.source = std::move(sources[k.index]);
     plan->curves.push_back(std::move(pc));
   }
 }

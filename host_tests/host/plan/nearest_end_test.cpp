@@ -70,5 +70,19 @@ TEST(NearestEnd, ChainedContourAndExactTiesAsAFullScan) {
   check_same_order(s, e);
 }
 
+TEST(NearestEnd, HoldsAboutSixteenBytesACurveAndNoCopyOfTheEnds) {
+  // 100 000 separate lines: a vector per cell and a copy of the ends held ~90 bytes a curve
+  // (a million-line job: ~90 MB beside the drawing while it was ordered).
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 280), d(-2, 2);
+  std::vector<Point2> s, e;
+  for (int i = 0; i < 100000; ++i) {
+    s.emplace_back(u(rng), u(rng) * 0.7);
+    e.push_back(s.back() + Point2(d(rng), d(rng)));
+  }
+  NearestEnd grid(s, e);
+  EXPECT_LE(grid.held_bytes(), 20u * s.size());
+}
+
 }  // namespace
 }  // namespace host
