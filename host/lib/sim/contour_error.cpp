@@ -205,6 +205,11 @@ double NearestSegment::search_fine(const Point2& p, double* best2, uint32_t* bes
   return kFineRings * cell + edge;
 }
 
+double NearestSegment::upper_bound(const Point2& p) const {
+  if (segments_.empty()) return std::numeric_limits<double>::infinity();
+  return std::sqrt(dist2(hint_, p.x(), p.y()));
+}
+
 double NearestSegment::distance(const Point2& p) const {
   if (segments_.empty()) return std::numeric_limits<double>::infinity();
   // Consecutive queries follow the tool: the previous answer bounds the search at once.

@@ -32,6 +32,9 @@ class NearestSegment {
 
   // Distance in mm; searches outward ring by ring until no closer segment can exist.
   double distance(const Point2& p) const;
+  // An upper bound on distance(p) for one segment's cost: p's distance to the previous
+  // query's nearest segment (infinity before any query).
+  double upper_bound(const Point2& p) const;
   // Segment distances computed so far (how much a query costs, for tests).
   size_t segments_examined() const { return examined_; }
   // The fine grid's cell (0: none; every query uses the coarse grid).
