@@ -94,7 +94,8 @@ void TraceMeter::add(const ToolSample& b) {
     // Only the largest error is reported: a sample whose distance to the previous nearest
     // segment is within it cannot raise it, and skips the search (most samples do).
     const Point2 at(b.x_mm, b.y_mm);
-    if (down && reference_ && reference_->upper_bound(at) * 1000.0 > max_error_um_) {
+    if (down && reference_ &&
+        reference_->upper_bound(at, max_error_um_ / 1000.0) * 1000.0 > max_error_um_) {
       const double e = reference_->distance(at) * 1000.0;
       if (e > max_error_um_) {
         max_error_um_ = e;

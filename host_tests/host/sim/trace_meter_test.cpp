@@ -168,5 +168,25 @@ TEST(TraceMeter, SamplesWithinTheLargestErrorSoFarSkipTheSearch) {
   EXPECT_DOUBLE_EQ(m.worst_sample().x_mm, 9.5);
 }
 
+// The same along a fine contour (4 um segments, a sample every um): when the tool has left
+// the previous nearest segment, the next ones bound it, still without a search.
+TEST(TraceMeter, OnAFineContourTheFollowingSegmentsBoundTheError) {
+  JobPlan plan = pen_heights_plan();
+  PlannedCurve line;
+  line.spline.degree = 1;
+  for (int i = 0; i <= 2500; ++i) line.spline.control.push_back(Point2(i * 0.004, 0));
+  line.spline.knots.assign(line.spline.control.size() + 2, 0.0);
+  plan.curves.push_back(line);
+  TraceMeter m(plan, 0);
+  m.add(at(0, 0, 0, 2.0));
+  m.add(at(1, 0.001, 0.002, -0.1));  // 2 um off
+  const size_t before = m.segments_examined();
+  const int n = 9000;
+  for (int i = 0; i < n; ++i) m.add(at(2 + i, 0.0015 + i * 0.001, -0.001, -0.1));
+  const double per_sample = double(m.segments_examined() - before) / n;
+  EXPECT_NEAR(m.max_contour_error_um(), 2.0, 1e-6);
+  EXPECT_LT(per_sample, 1.6);
+}
+
 }  // namespace
 }  // namespace host::sim
