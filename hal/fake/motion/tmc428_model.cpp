@@ -218,7 +218,16 @@ void Tmc428Model::advance_out_of_reach(int m, uint64_t t, uint64_t t1, unsigned 
                                        unsigned ramp_shift) {
   Motor& mo = motor_[m];
   const uint32_t mode = mo.ref_ramp & kModeMask;
-  const int32_t tgt = effective_target_q8(m);
+  // effective_target_q8() with no switch active (none is, out of reach), without its checks:
+  // this runs for every moving motor after every datagram.
+  int32_t tgt = 0;
+  if (mode == kHold) {
+    tgt = mo.v_q8;
+  } else if (mode == kVelocity) {
+    const int32_t top = (int32_t)mo.v_max;
+    const int32_t v = sext(mo.v_target, 12);
+    tgt = (v > top ? top : (v < -top ? -top : v)) * 256;
+  }
   while (t < t1) {
     const bool ramping = mode != kHold && mo.v_q8 != tgt && mo.a_max > 0;
     uint64_t ramp_edge = 0;
