@@ -44,6 +44,11 @@ enum : uint32_t {
 }  // namespace
 
 Tmc428Model::Tmc428Model(uint32_t f_clk_hz) : f_clk_hz_(f_clk_hz) {
+  // Whole-nanosecond clock periods (10 MHz: 100 ns): ticks by a multiply, not a division.
+  if (f_clk_hz != 0 && 1000000000u % f_clk_hz == 0) {
+    ns_per_tick_ = 1000000000u / f_clk_hz;
+    tick_reciprocal_ = ns_per_tick_ > 1 ? UINT64_MAX / ns_per_tick_ + 1 : 0;
+  }
   // TMC428 RAM is not initialised at power-on ([428DS] §7.3): a fixed pseudo-random fill.
   uint32_t seed = 0x428u;
   for (uint8_t& e : ram_) {
@@ -55,8 +60,14 @@ Tmc428Model::Tmc428Model(uint32_t f_clk_hz) : f_clk_hz_(f_clk_hz) {
 // ---- time ---------------------------------------------------------------------------------
 
 uint64_t Tmc428Model::ticks_for_ns(uint64_t ns) const {
-  // Whole-nanosecond clock periods (10 MHz: 100 ns) avoid the 128-bit division.
-  if (f_clk_hz_ != 0 && 1000000000u % f_clk_hz_ == 0) return ns / (1000000000u / f_clk_hz_);
+  if (ns_per_tick_ != 0) {
+    // From the current tick (ns is never before it): ceil(2^64 / period) times fewer than
+    // 2^32 ns is the exact quotient. This runs after every SPI datagram of a simulation.
+    const uint64_t since_ns = ns - now_ * ns_per_tick_;
+    if (tick_reciprocal_ != 0 && since_ns < (uint64_t{1} << 32))
+      return now_ + (uint64_t)(((unsigned __int128)since_ns * tick_reciprocal_) >> 64);
+    return ns / ns_per_tick_;
+  }
   return (uint64_t)((unsigned __int128)ns * f_clk_hz_ / 1000000000u);
 }
 
@@ -207,7 +218,16 @@ void Tmc428Model::advance_out_of_reach(int m, uint64_t t, uint64_t t1, unsigned 
                                        unsigned ramp_shift) {
   Motor& mo = motor_[m];
   const uint32_t mode = mo.ref_ramp & kModeMask;
-  const int32_t tgt = effective_target_q8(m);
+  // effective_target_q8() with no switch active (none is, out of reach), without its checks:
+  // this runs for every moving motor after every datagram.
+  int32_t tgt = 0;
+  if (mode == kHold) {
+    tgt = mo.v_q8;
+  } else if (mode == kVelocity) {
+    const int32_t top = (int32_t)mo.v_max;
+    const int32_t v = sext(mo.v_target, 12);
+    tgt = (v > top ? top : (v < -top ? -top : v)) * 256;
+  }
   while (t < t1) {
     const bool ramping = mode != kHold && mo.v_q8 != tgt && mo.a_max > 0;
     uint64_t ramp_edge = 0;

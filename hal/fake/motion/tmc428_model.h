@@ -135,8 +135,10 @@ class Tmc428Model : public SpiDevice {
   uint64_t ticks_for_ns(uint64_t ns) const;
 
   uint32_t f_clk_hz_;
-  uint64_t now_ = 0;     // ticks
-  uint64_t now_ns_ = 0;  // exact ns clock the ticks derive from
+  uint64_t ns_per_tick_ = 0;      // 0: the clock period is no whole number of ns
+  uint64_t tick_reciprocal_ = 0;  // ceil(2^64 / ns_per_tick_), 0 for a 1 ns period
+  uint64_t now_ = 0;              // ticks
+  uint64_t now_ns_ = 0;           // exact ns clock the ticks derive from
   Motor motor_[kMotors];
   uint8_t ram_[128];
   uint32_t smgp_ = 0x000F00;  // clk2_div = 15 at power-on ([428DS] §6.1)

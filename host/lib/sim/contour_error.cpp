@@ -28,6 +28,9 @@ constexpr double kFineMinMm = 0.0005;
 // Rings of fine cells searched before the coarse grid is asked (a contour error within
 // about three fine cells, as on any job that follows its path, never needs it).
 constexpr long kFineRings = 3;
+// Segments after the previous nearest one that upper_bound() tries (a millisecond of tool
+// travel crosses one or two of a fine contour's).
+constexpr size_t kLookAhead = 2;
 
 uint64_t fine_key(long ix, long iy) {
   return (static_cast<uint64_t>(ix) << 32) | static_cast<uint32_t>(iy);
@@ -203,6 +206,22 @@ double NearestSegment::search_fine(const Point2& p, double* best2, uint32_t* bes
     }
   }
   return kFineRings * cell + edge;
+}
+
+double NearestSegment::upper_bound(const Point2& p, double enough_mm) const {
+  if (segments_.empty()) return std::numeric_limits<double>::infinity();
+  double best2 = dist2(hint_, p.x(), p.y());
+  if (best2 <= enough_mm * enough_mm) return std::sqrt(best2);
+  const size_t first = hint_ + 1;
+  const size_t last = std::min(segments_.size(), first + kLookAhead);
+  for (size_t s = first; s < last; ++s) {
+    const double d2 = dist2(static_cast<uint32_t>(s), p.x(), p.y());
+    if (d2 < best2) {
+      best2 = d2;
+      hint_ = static_cast<uint32_t>(s);
+    }
+  }
+  return std::sqrt(best2);
 }
 
 double NearestSegment::distance(const Point2& p) const {

@@ -32,6 +32,10 @@ class NearestSegment {
 
   // Distance in mm; searches outward ring by ring until no closer segment can exist.
   double distance(const Point2& p) const;
+  // An upper bound on distance(p) for a segment or a few: p's distance to the previous
+  // query's nearest segment, and when that is beyond enough_mm, to the segments after it
+  // too (the tool moves on along its path; the nearest of them is the next query's start).
+  double upper_bound(const Point2& p, double enough_mm) const;
   // Segment distances computed so far (how much a query costs, for tests).
   size_t segments_examined() const { return examined_; }
   // The fine grid's cell (0: none; every query uses the coarse grid).

@@ -30,7 +30,7 @@ class SimSerial : public hal::SerialPort {
   }
   uint16_t write(const uint8_t* data, uint16_t len) override {
     const uint16_t n = std::min<uint16_t>(len, write_space());
-    tx.insert(tx.end(), data, data + n);
+    tx.append(data, n);
     return n;
   }
   uint16_t write_space() const override {
@@ -39,8 +39,8 @@ class SimSerial : public hal::SerialPort {
   uint16_t take_rx_errors() override { return 0; }
 
   static constexpr size_t kTxRing = 128;  // as the dsPIC port's TX ring
-  std::deque<uint8_t> rx;                 // received, waiting for the application
-  std::deque<uint8_t> tx;                 // queued by the application, not sent yet
+  ByteFifo rx;                            // received, waiting for the application
+  ByteFifo tx;                            // queued by the application, not sent yet
 };
 
 // A 2 x 16 display that keeps what was written.
@@ -148,7 +148,7 @@ SimMachine::SimMachine(const SimOptions& options)
 SimMachine::~SimMachine() = default;
 
 void SimMachine::from_host(const uint8_t* data, size_t size) {
-  to_uart_.insert(to_uart_.end(), data, data + size);
+  to_uart_.append(data, size);
 }
 
 std::string SimMachine::take_to_host() {

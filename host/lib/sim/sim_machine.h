@@ -5,13 +5,13 @@
 #define HOST_LIB_SIM_SIM_MACHINE_H
 
 #include <cstdint>     // uint8_t
-#include <deque>       // std::deque
 #include <functional>  // std::function
 #include <memory>      // std::unique_ptr
 #include <string>      // std::string
 #include <vector>      // std::vector
 
 #include "firmware/config/machine_config.h"
+#include "host/lib/sim/byte_fifo.h"
 
 namespace fake {
 struct SpiRecord;  // hal/fake/spi/spi_record.h
@@ -112,7 +112,7 @@ class SimMachine {
   std::unique_ptr<Parts> parts_;
   uint64_t now_ms_ = 0;
   double rx_credit_ = 0, tx_credit_ = 0;  // bytes the UART may move this ms
-  std::deque<uint8_t> to_uart_;           // PC -> firmware, not on the wire yet
+  ByteFifo to_uart_;                      // PC -> firmware, not on the wire yet
   uint64_t last_host_byte_ms_ = 0;
   std::string from_uart_;  // firmware -> PC, delivered
   std::vector<ToolSample> trace_;

@@ -91,8 +91,12 @@ void TraceMeter::add(const ToolSample& b) {
     const double d = std::hypot(b.x_mm - a.x_mm, b.y_mm - a.y_mm);
     (down ? cut_mm_ : rapid_mm_) += d;
     if (down && prev_down_ && d > 0) cut_s_ += (b.t_ms - a.t_ms) / 1000.0;
-    if (down && reference_) {
-      const double e = reference_->distance(Point2(b.x_mm, b.y_mm)) * 1000.0;
+    // Only the largest error is reported: a sample whose distance to the previous nearest
+    // segment is within it cannot raise it, and skips the search (most samples do).
+    const Point2 at(b.x_mm, b.y_mm);
+    if (down && reference_ &&
+        reference_->upper_bound(at, max_error_um_ / 1000.0) * 1000.0 > max_error_um_) {
+      const double e = reference_->distance(at) * 1000.0;
       if (e > max_error_um_) {
         max_error_um_ = e;
         worst_ = b;

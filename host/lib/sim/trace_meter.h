@@ -37,6 +37,8 @@ class TraceMeter {
   // The pen-down sample with the largest contour error (where to look first).
   const ToolSample& worst_sample() const { return worst_; }
   size_t samples() const { return samples_; }
+  // Segment distances the contour error has cost so far (for tests).
+  size_t segments_examined() const { return reference_ ? reference_->segments_examined() : 0; }
   // The step the kept path has now (keep_step_mm, doubled each time it hit max_kept).
   double keep_step_mm() const { return step_mm_; }
   // The thinned path; take it when done.

@@ -138,6 +138,25 @@ TEST(Tmc428Model, ConstantVelocityIntegratesExactly) {
   EXPECT_NEAR(c.x_actual(0) - x0, 38147, 1);
 }
 
+// The clock ticks are worked out from the current tick by a multiply (the simulator
+// advances after every datagram): the same as dividing the whole time, for any steps.
+TEST(Tmc428Model, ClockTicksAreTheElapsedNanosecondsOverThePeriod) {
+  for (uint32_t f_clk_hz : {10000000u, 16000000u, 8000000u, 1000000000u}) {
+    Tmc428Model c(f_clk_hz);
+    uint64_t ns = 0;
+    uint32_t seed = 1;
+    for (int i = 0; i < 20000; ++i) {
+      seed = seed * 1103515245u + 12345u;
+      // Mostly datagram-sized steps, some a tick or less, now and then past 2^32 ns.
+      const uint64_t step = i % 997 == 0 ? (uint64_t{5} << 32) + seed : (seed >> 8) % 60000;
+      ns += step;
+      c.advance_ns(step);
+      const uint64_t ticks = (uint64_t)((unsigned __int128)ns * f_clk_hz / 1000000000u);
+      ASSERT_EQ(c.now_ticks(), ticks) << "f_clk " << f_clk_hz << " at " << ns << " ns";
+    }
+  }
+}
+
 TEST(Tmc428Model, NegativeVelocityMovesBackwards) {
   Tmc428Model c;
   velocity_setup(c);

@@ -145,5 +145,48 @@ TEST(TraceMeter, DrillTravelAtTheStartHeightIsNotCutting) {
   EXPECT_DOUBLE_EQ(m.rapid_mm(), 30.0);
 }
 
+// Only the largest contour error is reported: a sample within it of the previous sample's
+// nearest segment costs that one segment, not a search; the maximum found is unchanged.
+TEST(TraceMeter, SamplesWithinTheLargestErrorSoFarSkipTheSearch) {
+  JobPlan plan = pen_heights_plan();
+  PlannedCurve line;  // 10 mm along X in 1 000 segments
+  line.spline.degree = 1;
+  for (int i = 0; i <= 1000; ++i) line.spline.control.push_back(Point2(i * 0.01, 0));
+  line.spline.knots.assign(line.spline.control.size() + 2, 0.0);
+  plan.curves.push_back(line);
+  TraceMeter m(plan, 0);
+  m.add(at(0, 0, 0, 2.0));
+  m.add(at(1, 0.005, 0.020, -0.1));  // 20 um off
+  const size_t before = m.segments_examined();
+  const int n = 9000;  // 9 mm, 1 um off, a sample per um
+  for (int i = 0; i < n; ++i) m.add(at(2 + i, 0.006 + i * 0.001, 0.001, -0.1));
+  const double per_sample = double(m.segments_examined() - before) / n;
+  EXPECT_NEAR(m.max_contour_error_um(), 20.0, 1e-6);
+  EXPECT_LT(per_sample, 1.5);
+  m.add(at(2 + n, 9.5, -0.030, -0.1));  // 30 um off: still found
+  EXPECT_NEAR(m.max_contour_error_um(), 30.0, 1e-6);
+  EXPECT_DOUBLE_EQ(m.worst_sample().x_mm, 9.5);
+}
+
+// The same along a fine contour (4 um segments, a sample every um): when the tool has left
+// the previous nearest segment, the next ones bound it, still without a search.
+TEST(TraceMeter, OnAFineContourTheFollowingSegmentsBoundTheError) {
+  JobPlan plan = pen_heights_plan();
+  PlannedCurve line;
+  line.spline.degree = 1;
+  for (int i = 0; i <= 2500; ++i) line.spline.control.push_back(Point2(i * 0.004, 0));
+  line.spline.knots.assign(line.spline.control.size() + 2, 0.0);
+  plan.curves.push_back(line);
+  TraceMeter m(plan, 0);
+  m.add(at(0, 0, 0, 2.0));
+  m.add(at(1, 0.001, 0.002, -0.1));  // 2 um off
+  const size_t before = m.segments_examined();
+  const int n = 9000;
+  for (int i = 0; i < n; ++i) m.add(at(2 + i, 0.0015 + i * 0.001, -0.001, -0.1));
+  const double per_sample = double(m.segments_examined() - before) / n;
+  EXPECT_NEAR(m.max_contour_error_um(), 2.0, 1e-6);
+  EXPECT_LT(per_sample, 1.6);
+}
+
 }  // namespace
 }  // namespace host::sim
