@@ -1244,10 +1244,17 @@ void GerberReader::word_block(const std::string& raw) {
     k = end;
   }
   if (d == -1 && (x || y || i || j)) {
-    if (gs_.last_d == 0) diag_.fail("coordinates without D01/D02/D03 and no earlier operation");
-    diag_.note("coordinates without an operation code: the previous D0" +
-               std::to_string(gs_.last_d) + " repeats (deprecated)");
-    d = gs_.last_d;
+    if (gs_.last_d == 0) {
+      // Undefined by the spec; gerbv's aperture starts off, so these only move the point.
+      diag_.note(
+          "warning: coordinates without D01/D02/D03 before any operation: read as a move "
+          "(D02), as gerbv reads them");
+      d = 2;
+    } else {
+      diag_.note("coordinates without an operation code: the previous D0" +
+                 std::to_string(gs_.last_d) + " repeats (deprecated)");
+      d = gs_.last_d;
+    }
   }
   if (d != -1) operate(d, x, y, i, j);
 }

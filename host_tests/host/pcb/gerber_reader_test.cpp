@@ -409,6 +409,23 @@ TEST(GerberReader, AnInchMacrosRotationIsNotALength) {
   EXPECT_FALSE(covered(l, 25.4 + 0.5, 25.4 - 0.1));  // off it
 }
 
+// Coordinates with no D code before any operation (gerbv's exposure/example.grb starts
+// "G01X00000Y00000*"): undefined by the spec; gerbv's aperture starts off, so they only move
+// (they were refused). The next coordinates-only block repeats that D02: no track is drawn.
+TEST(GerberReader, CoordinatesBeforeAnyOperationAreAMove) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX23Y23*%\n%MOIN*%\n%ADD10C,0.050*%\nG54D10*\nG01X0Y0*\nX1000Y0*\n"
+      "X2000Y1000D03*\nM02*\n",
+      "nod-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(l.polygons_nm), kPi * 0.635 * 0.635, 0.01);  // the flash alone
+  EXPECT_TRUE(covered(l, 2 * 25.4, 25.4));
+  EXPECT_FALSE(covered(l, 0.5 * 25.4, 0));
+  EXPECT_TRUE(has_note(l,
+                       "line 5: warning: coordinates without D01/D02/D03 before any operation: "
+                       "read as a move (D02), as gerbv reads them"))
+      << ::testing::PrintToString(l.notes);
+}
+
 // No %MO: the format's legacy default, inch (gerbv and pcb2gcode read it so), with a warning.
 TEST(GerberReader, NoUnitsMeansInchWithAWarning) {
   const PcbLayer l = read_gerber_text("%FSLAX24Y24*%\n%ADD10C,0.1*%\nD10*\nX10000Y5000D03*\nM02*\n",
