@@ -6,6 +6,7 @@
 #include <algorithm>   // std::max, std::transform
 #include <cctype>      // std::tolower
 #include <cstdio>      // std::printf
+#include <cstdlib>     // std::getenv
 #include <filesystem>  // std::filesystem
 #include <fstream>     // std::ifstream
 #include <map>         // std::map
@@ -123,6 +124,12 @@ bool matches_gerbv(const std::string& path, const PcbLayer& layer, bool drill, s
   const test::Raster ours = test::rasterise(shapes, win);
   const test::Raster ref = test::gerbv_render(path, win);
   const test::Agreement a = test::compare(ours, ref);
+  // PCB_CORPUS_DIFF=DIR: a picture of each file's differences (black both, red ours only,
+  // blue gerbv's only), to look at a mismatch.
+  if (const char* diff_dir = std::getenv("PCB_CORPUS_DIFF")) {
+    test::write_difference(ours, ref,
+                           (fs::path(diff_dir) / fs::path(path).filename()).string() + ".ppm");
+  }
   std::ostringstream o;
   o << 100 * a.of_all() << " % of " << a.pixels << " px at " << win.dpi() << " dpi agree, "
     << a.beyond_edge << " of " << a.dark_either << " copper px differ beyond an edge";

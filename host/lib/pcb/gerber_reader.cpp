@@ -160,6 +160,7 @@ class GerberReader {
   bool zero_radius_arc(double r0, double r1);
   void region_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill);
   void stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill);
+  void stroke_arc_with_shape(IntPoint from, const Path& pts, const Path* theirs_if_ill);
   void flash(IntPoint at);
   const Aperture& current_aperture() const;
   void add_object(Paths paths);
@@ -1486,6 +1487,19 @@ void GerberReader::draw_line(IntPoint from, IntPoint to) {
       pts.push_back({p.X + from.X, p.Y + from.Y});
       pts.push_back({p.X + to.X, p.Y + to.Y});
     }
+    if (ap.type == 'O') {
+      // gerbv strokes an obround as a circle of its X size: copper where either puts it.
+      diag_.note(
+          "warning: a draw with an obround aperture: copper where the obround swept along it "
+          "or gerbv's stroke as wide as its X size with round ends puts it");
+      BoxNm box;
+      box.add(ap.shape[0]);
+      const double d_nm = static_cast<double>(box.max_x - box.min_x);
+      add_object(both_readings({convex_hull(pts)},
+                               {from == to ? circle_path(a, d_nm, opt_.arc_tolerance_nm)
+                                           : capsule_path(a, b, d_nm, opt_.arc_tolerance_nm)}));
+      return;
+    }
     add_object({convex_hull(pts)});
     return;
   }
@@ -1630,6 +1644,10 @@ void GerberReader::region_arc(IntPoint from, const Path& pts, const Path* theirs
 // either reading puts it.
 void GerberReader::stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill) {
   const Aperture& ap = current_aperture();
+  if (ap.type == 'R' || ap.type == 'O') {
+    stroke_arc_with_shape(from, pts, theirs_if_ill);
+    return;
+  }
   if (ap.type != 'C') {
     diag_.fail("an arc drawn with a non-circular aperture D" + std::to_string(gs_.aperture));
   }
@@ -1647,6 +1665,41 @@ void GerberReader::stroke_arc(IntPoint from, const Path& pts, const Path* theirs
     theirs.insert(theirs.end(), theirs_if_ill->begin(), theirs_if_ill->end());
     out = both_readings(out, sweep_open({theirs}, ap.circle_d_nm / 2, opt_.arc_tolerance_nm));
   }
+  add_object(std::move(out));
+}
+
+// An arc drawn with a rectangle or obround, which the spec does not allow (gerbv's tests
+// test-aperture-rectangle-1.gbx, -obround-1.gbx): drawn as gerbv draws it, a stroke as wide
+// as the aperture's X size with square (rectangle) or round (obround) ends; an ill-defined
+// arc, where either reading puts it.
+void GerberReader::stroke_arc_with_shape(IntPoint from, const Path& pts,
+                                         const Path* theirs_if_ill) {
+  const Aperture& ap = current_aperture();
+  diag_.note(std::string("warning: an arc drawn with ") +
+             (ap.type == 'R' ? "a rectangular" : "an obround") + " aperture D" +
+             std::to_string(gs_.aperture) +
+             " (not allowed by the spec): drawn as gerbv draws it, a stroke as wide as its X "
+             "size with " +
+             (ap.type == 'R' ? "square" : "round") + " ends");
+  BoxNm box;
+  for (const Path& p : ap.shape) box.add(p);
+  const double width_nm = ap.shape.empty() ? 0 : static_cast<double>(box.max_x - box.min_x);
+  add_centre_line(from, pts, width_nm);
+  if (width_nm <= 0) return;
+  const ClipperLib::EndType ends =
+      ap.type == 'R' ? ClipperLib::etOpenSquare : ClipperLib::etOpenRound;
+  const auto stroke = [&](const Path& arc) {
+    Path line{from};
+    line.insert(line.end(), arc.begin(), arc.end());
+    ClipperLib::ClipperOffset off;
+    off.ArcTolerance = opt_.arc_tolerance_nm;
+    off.AddPath(line, ClipperLib::jtRound, ends);
+    Paths out;
+    off.Execute(out, width_nm / 2);
+    return out;
+  };
+  Paths out = stroke(pts);
+  if (theirs_if_ill) out = both_readings(out, stroke(*theirs_if_ill));
   add_object(std::move(out));
 }
 

@@ -426,6 +426,51 @@ TEST(GerberReader, CoordinatesBeforeAnyOperationAreAMove) {
       << ::testing::PrintToString(l.notes);
 }
 
+// Arcs drawn with a rectangle or obround (not allowed by the spec; gerbv's
+// test-aperture-rectangle-1.gbx and -obround-1.gbx, refused before): drawn as gerbv draws
+// them, a stroke as wide as the aperture's X size (2 mm), square ends for a rectangle, round
+// for an obround. A half circle of radius 10 mm from (10, 0) counter-clockwise to (-10, 0).
+PcbLayer arc_with(const std::string& aperture) {
+  return read_gerber_text("%FSLAX46Y46*%\n%MOMM*%\n%ADD10" + aperture +
+                              "*%\nD10*\nG75*\nX10000000Y0D02*\n"
+                              "G03X-10000000Y0I-10000000J0D01*\nM02*\n",
+                          "arc-F.Cu.gbr");
+}
+
+TEST(GerberReader, AnArcWithARectangleOrObroundIsDrawnAsGerbvDrawsIt) {
+  const PcbLayer rect = arc_with("R,2X1");
+  EXPECT_TRUE(covered(rect, 0, 10.9));  // 1 mm either side of the circle at the top
+  EXPECT_FALSE(covered(rect, 0, 11.1));
+  EXPECT_TRUE(covered(rect, 10.9, -0.9));  // the square end below the start
+  EXPECT_FALSE(covered(rect, 10.9, -1.1));
+  EXPECT_NEAR(area_mm2(rect.polygons_nm), kPi * (11 * 11 - 9 * 9) / 2 + 2 * 2, 0.01);
+  EXPECT_TRUE(has_note(rect,
+                       "line 7: warning: an arc drawn with a rectangular aperture D10 (not "
+                       "allowed by the spec): drawn as gerbv draws it, a stroke as wide as its "
+                       "X size with square ends"))
+      << ::testing::PrintToString(rect.notes);
+  const PcbLayer obround = arc_with("O,2X1");
+  EXPECT_TRUE(covered(obround, 0, 10.9));
+  EXPECT_TRUE(covered(obround, 10, -0.9));  // the round end
+  EXPECT_FALSE(covered(obround, 10.9, -0.9));
+  EXPECT_NEAR(area_mm2(obround.polygons_nm), kPi * (11 * 11 - 9 * 9) / 2 + kPi, 0.01);
+  EXPECT_TRUE(has_note(obround, "an arc drawn with an obround aperture D10"));
+}
+
+// A line drawn with an obround: gerbv strokes it as a circle of the obround's X size; copper
+// where either that or the obround swept along the line puts it. Along X from (0, 0) to
+// (10, 0): a 2 x 1 mm obround is 2 mm wide in gerbv's reading, a 1 x 2 mm one in ours.
+TEST(GerberReader, ALineWithAnObroundIsCopperInBothReadings) {
+  for (const char* ap : {"O,2X1", "O,1X2"}) {
+    const PcbLayer l = read_gerber_text(std::string("%FSLAX46Y46*%\n%MOMM*%\n%ADD10") + ap +
+                                            "*%\nD10*\nX0Y0D02*\nX10000000Y0D01*\nM02*\n",
+                                        "line-F.Cu.gbr");
+    EXPECT_TRUE(covered(l, 5, 0.9)) << ap;
+    EXPECT_FALSE(covered(l, 5, 1.1)) << ap;
+    EXPECT_TRUE(has_note(l, "a draw with an obround aperture")) << ap;
+  }
+}
+
 // No %MO: the format's legacy default, inch (gerbv and pcb2gcode read it so), with a warning.
 TEST(GerberReader, NoUnitsMeansInchWithAWarning) {
   const PcbLayer l = read_gerber_text("%FSLAX24Y24*%\n%ADD10C,0.1*%\nD10*\nX10000Y5000D03*\nM02*\n",
