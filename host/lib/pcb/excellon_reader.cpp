@@ -457,6 +457,14 @@ void ExcellonReader::body_line(const std::string& s) {
     // done
   } else if (s[0] == 'R' && s.size() > 1 && std::isdigit(static_cast<unsigned char>(s[1]))) {
     repeat_hole(s);
+  } else if ((s[0] == 'X' || s[0] == 'Y') && s.find_first_of(" \t") != std::string::npos) {
+    // "X-001000 Y030000" (gerbv's test-drill-spaces.exc): gerbv skips the blanks.
+    note("warning: blanks inside a coordinate line ignored");
+    std::string packed;
+    for (char c : s) {
+      if (c != ' ' && c != '\t') packed += c;
+    }
+    position_line(packed);
   } else if (s[0] == 'X' || s[0] == 'Y') {
     position_line(s);
   } else if (starts_with(s, "M47") || starts_with(s, "M45")) {

@@ -263,5 +263,17 @@ TEST(ExcellonWriters, ALoneCarriageReturnEndsALine) {
   }
 }
 
+// Blanks between the words of a coordinate line (gerbv's test-drill-spaces.exc, refused as
+// "unexpected ' '"): skipped, as gerbv does, with a warning.
+TEST(ExcellonWriters, BlanksInsideACoordinateLineAreSkipped) {
+  const PcbLayer l = read_excellon_text(
+      "M48\nINCH,LZ\nT13C0.05\n%\nT13\nX-001000 Y030000\nX001\tY03\nM30\n", "s.exc");
+  ASSERT_EQ(l.holes.size(), 2u);
+  expect_hole(l.holes[0], -2540000, 76200000, 1270000, 13);
+  expect_hole(l.holes[1], 2540000, 76200000, 1270000, 13);
+  EXPECT_TRUE(has_note(l, "line 6: warning: blanks inside a coordinate line ignored"))
+      << ::testing::PrintToString(l.notes);
+}
+
 }  // namespace
 }  // namespace host::pcb
