@@ -836,8 +836,24 @@ void GerberReader::define_aperture(const std::string& s, size_t k, int number_d)
       trim(s.substr(k, comma == std::string::npos ? std::string::npos : comma - k));
   std::vector<double> params;
   if (comma != std::string::npos) {
-    for (const std::string& p : split(s.substr(comma + 1), 'X')) {
+    std::vector<std::string> words = split(s.substr(comma + 1), 'X');
+    const bool standard = name == "C" || name == "R" || name == "O" || name == "P";
+    if (standard && words.size() > 1 && trim(words.back()).empty()) {
+      // "%ADD14C,0.1X*%" (gerbv's exposure/example.grb): gerbv splits with strtok, which
+      // skips the empty parameter.
+      diag_.note("warning: aperture D" + std::to_string(number_d) +
+                 ": an empty last parameter ignored, as gerbv does");
+      words.pop_back();
+    }
+    for (const std::string& p : words) {
       params.push_back(diag_.number(trim(p), "aperture parameter"));
+    }
+    if (name == "P" && params.size() == 6) {
+      // "P,0.040X10X25X0.025X0.025X0.0150" (gerbv's test-aperture-polygon-flash-1.gbx):
+      // gerbv reads five parameters (the last two a rectangular hole) and ignores the sixth.
+      diag_.note("warning: polygon aperture D" + std::to_string(number_d) +
+                 ": a sixth parameter ignored, as gerbv does");
+      params.pop_back();
     }
   }
   if (name.empty()) diag_.fail("aperture D" + std::to_string(number_d) + " has no template name");

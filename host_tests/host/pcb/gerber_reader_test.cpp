@@ -471,6 +471,24 @@ TEST(GerberReader, ALineWithAnObroundIsCopperInBothReadings) {
   }
 }
 
+// Aperture parameters gerbv reads and the spec does not define (both refused before): an
+// empty last parameter (gerbv's exposure/example.grb "%ADD14C,0.1X*%") and a polygon's sixth
+// (test-aperture-polygon-flash-1.gbx), each ignored with a warning.
+TEST(GerberReader, AnEmptyLastParameterAndAPolygonsSixthAreIgnored) {
+  const PcbLayer c = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD14C,2X*%\nD14*\nX0Y0D03*\nM02*\n", "c-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(c.polygons_nm), kPi, 0.01);  // a 2 mm circle as a polygon
+  EXPECT_TRUE(has_note(c,
+                       "line 3: warning: aperture D14: an empty last parameter ignored, as "
+                       "gerbv does"))
+      << ::testing::PrintToString(c.notes);
+  const PcbLayer p = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD12P,2X4X0X0.5X0.5X0.3*%\nD12*\nX0Y0D03*\nM02*\n", "p-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(p.polygons_nm), 2 - 0.25, 1e-5);  // a square of diagonal 2, its hole
+  EXPECT_FALSE(covered(p, 0, 0));
+  EXPECT_TRUE(has_note(p, "warning: polygon aperture D12: a sixth parameter ignored"));
+}
+
 // No %MO: the format's legacy default, inch (gerbv and pcb2gcode read it so), with a warning.
 TEST(GerberReader, NoUnitsMeansInchWithAWarning) {
   const PcbLayer l = read_gerber_text("%FSLAX24Y24*%\n%ADD10C,0.1*%\nD10*\nX10000Y5000D03*\nM02*\n",
