@@ -369,9 +369,20 @@ void GerberReader::extended_block(const std::string& body, int first_line) {
     if (c == '\n') ++line;
     cur += c;
   }
-  if (!trim(cur).empty()) {
+  const std::string rest = trim(cur);
+  if (!rest.empty()) {
     diag_.line = cur_line;
-    diag_.fail("'" + trim(cur).substr(0, 40) + "' in a '%' block does not end with '*'");
+    // "%ADD181C,.031*X.015%" (gerbv's polarity/6_vbat.gbr): a size after an aperture
+    // definition's '*'. gerbv reads the definition and skips the rest; so does this (the
+    // aperture without the hole the size may have meant: more copper, never less).
+    const bool size_after_ad = !parts.empty() && starts_with(trim(parts.back()), "AD") &&
+                               rest.size() > 1 && rest[0] == 'X' &&
+                               rest.find_first_not_of("0123456789.", 1) == std::string::npos;
+    if (!size_after_ad)
+      diag_.fail("'" + rest.substr(0, 40) + "' in a '%' block does not end with '*'");
+    diag_.note("warning: '" + rest +
+               "' after the aperture definition's '*' ignored, as gerbv "
+               "ignores it");
   }
   if (parts.empty()) return;
   diag_.line = lines[0];

@@ -489,6 +489,20 @@ TEST(GerberReader, AnEmptyLastParameterAndAPolygonsSixthAreIgnored) {
   EXPECT_TRUE(has_note(p, "warning: polygon aperture D12: a sixth parameter ignored"));
 }
 
+// A size after an aperture definition's '*' in its '%' block (gerbv's polarity/6_vbat.gbr
+// "%ADD181C,.031*X.015%", refused before): ignored with a warning, as gerbv ignores it; the
+// aperture is the circle alone. Anything else there is still refused.
+TEST(GerberReader, ASizeAfterAnApertureDefinitionsStarIsIgnored) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD181C,2*X1%\nD181*\nX0Y0D03*\nM02*\n", "a-F.Cu.gbr");
+  EXPECT_TRUE(covered(l, 0, 0));
+  EXPECT_NEAR(area_mm2(l.polygons_nm), kPi, 0.01);
+  EXPECT_TRUE(has_note(l, "line 3: warning: 'X1' after the aperture definition's '*' ignored"))
+      << ::testing::PrintToString(l.notes);
+  EXPECT_THROW(read_gerber_text("%FSLAX46Y46*%\n%MOMM*%\n%LPC*X1%\nM02*\n", "b-F.Cu.gbr"),
+               PcbReadError);
+}
+
 // No %MO: the format's legacy default, inch (gerbv and pcb2gcode read it so), with a warning.
 TEST(GerberReader, NoUnitsMeansInchWithAWarning) {
   const PcbLayer l = read_gerber_text("%FSLAX24Y24*%\n%ADD10C,0.1*%\nD10*\nX10000Y5000D03*\nM02*\n",
