@@ -6,6 +6,7 @@
 #include <algorithm>   // std::max, std::transform
 #include <cctype>      // std::tolower
 #include <cstdio>      // std::printf
+#include <cstdlib>     // std::getenv
 #include <filesystem>  // std::filesystem
 #include <fstream>     // std::ifstream
 #include <map>         // std::map
@@ -115,14 +116,27 @@ struct Board {
 // the window under 16 million pixels.
 bool matches_gerbv(const std::string& path, const PcbLayer& layer, bool drill, std::string& why) {
   const ClipperLib::Paths shapes = drill ? test::drill_shapes(layer) : layer.polygons_nm;
+  // A negative image's copper is its box less what is drawn; gerbv fills its whole picture:
+  // compared inside the box (2 pixels in from it: the window starts and ends on whole pixels,
+  // which gerbv fills and our box only partly covers).
+  bool negative = false;
+  for (const std::string& n : layer.notes) {
+    if (n.find("%IPNEG (deprecated negative image) applied") != std::string::npos) negative = true;
+  }
   test::Window win;
   for (double dpi : {2000.0, 1000.0, 500.0, 250.0, 100.0}) {
-    win = test::window_around(layer, 0.5, dpi);
+    win = test::window_around(layer, negative ? -2 * 25.4 / dpi : 0.5, dpi);
     if (static_cast<double>(win.w) * win.h <= 16e6) break;
   }
   const test::Raster ours = test::rasterise(shapes, win);
   const test::Raster ref = test::gerbv_render(path, win);
   const test::Agreement a = test::compare(ours, ref);
+  // PCB_CORPUS_DIFF=DIR: a picture of each file's differences (black both, red ours only,
+  // blue gerbv's only), to look at a mismatch.
+  if (const char* diff_dir = std::getenv("PCB_CORPUS_DIFF")) {
+    test::write_difference(ours, ref,
+                           (fs::path(diff_dir) / fs::path(path).filename()).string() + ".ppm");
+  }
   std::ostringstream o;
   o << 100 * a.of_all() << " % of " << a.pixels << " px at " << win.dpi() << " dpi agree, "
     << a.beyond_edge << " of " << a.dark_either << " copper px differ beyond an edge";

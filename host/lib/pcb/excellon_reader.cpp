@@ -25,6 +25,17 @@ std::string trim(const std::string& s) {
   return s.substr(a, b - a);
 }
 
+// The next line of text from *at: a line ends at LF, CR LF, or a lone CR (old Mac files;
+// gerbv's tests end "X01000Y30000\rM30\r\n", which gerbv reads as two lines).
+bool next_line(const std::string& text, size_t& at, std::string& line) {
+  if (at >= text.size()) return false;
+  const size_t end = text.find_first_of("\r\n", at);
+  line = text.substr(at, end == std::string::npos ? std::string::npos : end - at);
+  at = end == std::string::npos ? text.size() : end + 1;
+  if (end != std::string::npos && text[end] == '\r' && at < text.size() && text[at] == '\n') ++at;
+  return true;
+}
+
 bool starts_with(const std::string& s, const char* p) {
   return s.rfind(p, 0) == 0;
 }
@@ -109,10 +120,10 @@ void ExcellonReader::note(const std::string& text) const {
 }
 
 PcbLayer ExcellonReader::read() {
-  std::istringstream in(text_);
+  size_t at = 0;
   std::string raw;
   bool seen_header = false;
-  while (!done_ && std::getline(in, raw)) {
+  while (!done_ && next_line(text_, at, raw)) {
     ++line_;
     const std::string s = trim(raw);
     if (s.empty()) continue;
@@ -446,6 +457,14 @@ void ExcellonReader::body_line(const std::string& s) {
     // done
   } else if (s[0] == 'R' && s.size() > 1 && std::isdigit(static_cast<unsigned char>(s[1]))) {
     repeat_hole(s);
+  } else if ((s[0] == 'X' || s[0] == 'Y') && s.find_first_of(" \t") != std::string::npos) {
+    // "X-001000 Y030000" (gerbv's test-drill-spaces.exc): gerbv skips the blanks.
+    note("warning: blanks inside a coordinate line ignored");
+    std::string packed;
+    for (char c : s) {
+      if (c != ' ' && c != '\t') packed += c;
+    }
+    position_line(packed);
   } else if (s[0] == 'X' || s[0] == 'Y') {
     position_line(s);
   } else if (starts_with(s, "M47") || starts_with(s, "M45")) {

@@ -160,6 +160,7 @@ class GerberReader {
   bool zero_radius_arc(double r0, double r1);
   void region_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill);
   void stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill);
+  void stroke_arc_with_shape(IntPoint from, const Path& pts, const Path* theirs_if_ill);
   void flash(IntPoint at);
   const Aperture& current_aperture() const;
   void add_object(Paths paths);
@@ -368,9 +369,20 @@ void GerberReader::extended_block(const std::string& body, int first_line) {
     if (c == '\n') ++line;
     cur += c;
   }
-  if (!trim(cur).empty()) {
+  const std::string rest = trim(cur);
+  if (!rest.empty()) {
     diag_.line = cur_line;
-    diag_.fail("'" + trim(cur).substr(0, 40) + "' in a '%' block does not end with '*'");
+    // "%ADD181C,.031*X.015%" (gerbv's polarity/6_vbat.gbr): a size after an aperture
+    // definition's '*'. gerbv reads the definition and skips the rest; so does this (the
+    // aperture without the hole the size may have meant: more copper, never less).
+    const bool size_after_ad = !parts.empty() && starts_with(trim(parts.back()), "AD") &&
+                               rest.size() > 1 && rest[0] == 'X' &&
+                               rest.find_first_not_of("0123456789.", 1) == std::string::npos;
+    if (!size_after_ad)
+      diag_.fail("'" + rest.substr(0, 40) + "' in a '%' block does not end with '*'");
+    diag_.note("warning: '" + rest +
+               "' after the aperture definition's '*' ignored, as gerbv "
+               "ignores it");
   }
   if (parts.empty()) return;
   diag_.line = lines[0];
@@ -835,8 +847,24 @@ void GerberReader::define_aperture(const std::string& s, size_t k, int number_d)
       trim(s.substr(k, comma == std::string::npos ? std::string::npos : comma - k));
   std::vector<double> params;
   if (comma != std::string::npos) {
-    for (const std::string& p : split(s.substr(comma + 1), 'X')) {
+    std::vector<std::string> words = split(s.substr(comma + 1), 'X');
+    const bool standard = name == "C" || name == "R" || name == "O" || name == "P";
+    if (standard && words.size() > 1 && trim(words.back()).empty()) {
+      // "%ADD14C,0.1X*%" (gerbv's exposure/example.grb): gerbv splits with strtok, which
+      // skips the empty parameter.
+      diag_.note("warning: aperture D" + std::to_string(number_d) +
+                 ": an empty last parameter ignored, as gerbv does");
+      words.pop_back();
+    }
+    for (const std::string& p : words) {
       params.push_back(diag_.number(trim(p), "aperture parameter"));
+    }
+    if (name == "P" && params.size() == 6) {
+      // "P,0.040X10X25X0.025X0.025X0.0150" (gerbv's test-aperture-polygon-flash-1.gbx):
+      // gerbv reads five parameters (the last two a rectangular hole) and ignores the sixth.
+      diag_.note("warning: polygon aperture D" + std::to_string(number_d) +
+                 ": a sixth parameter ignored, as gerbv does");
+      params.pop_back();
     }
   }
   if (name.empty()) diag_.fail("aperture D" + std::to_string(number_d) + " has no template name");
@@ -1244,10 +1272,17 @@ void GerberReader::word_block(const std::string& raw) {
     k = end;
   }
   if (d == -1 && (x || y || i || j)) {
-    if (gs_.last_d == 0) diag_.fail("coordinates without D01/D02/D03 and no earlier operation");
-    diag_.note("coordinates without an operation code: the previous D0" +
-               std::to_string(gs_.last_d) + " repeats (deprecated)");
-    d = gs_.last_d;
+    if (gs_.last_d == 0) {
+      // Undefined by the spec; gerbv's aperture starts off, so these only move the point.
+      diag_.note(
+          "warning: coordinates without D01/D02/D03 before any operation: read as a move "
+          "(D02), as gerbv reads them");
+      d = 2;
+    } else {
+      diag_.note("coordinates without an operation code: the previous D0" +
+                 std::to_string(gs_.last_d) + " repeats (deprecated)");
+      d = gs_.last_d;
+    }
   }
   if (d != -1) operate(d, x, y, i, j);
 }
@@ -1479,6 +1514,19 @@ void GerberReader::draw_line(IntPoint from, IntPoint to) {
       pts.push_back({p.X + from.X, p.Y + from.Y});
       pts.push_back({p.X + to.X, p.Y + to.Y});
     }
+    if (ap.type == 'O') {
+      // gerbv strokes an obround as a circle of its X size: copper where either puts it.
+      diag_.note(
+          "warning: a draw with an obround aperture: copper where the obround swept along it "
+          "or gerbv's stroke as wide as its X size with round ends puts it");
+      BoxNm box;
+      box.add(ap.shape[0]);
+      const double d_nm = static_cast<double>(box.max_x - box.min_x);
+      add_object(both_readings({convex_hull(pts)},
+                               {from == to ? circle_path(a, d_nm, opt_.arc_tolerance_nm)
+                                           : capsule_path(a, b, d_nm, opt_.arc_tolerance_nm)}));
+      return;
+    }
     add_object({convex_hull(pts)});
     return;
   }
@@ -1623,6 +1671,10 @@ void GerberReader::region_arc(IntPoint from, const Path& pts, const Path* theirs
 // either reading puts it.
 void GerberReader::stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill) {
   const Aperture& ap = current_aperture();
+  if (ap.type == 'R' || ap.type == 'O') {
+    stroke_arc_with_shape(from, pts, theirs_if_ill);
+    return;
+  }
   if (ap.type != 'C') {
     diag_.fail("an arc drawn with a non-circular aperture D" + std::to_string(gs_.aperture));
   }
@@ -1640,6 +1692,41 @@ void GerberReader::stroke_arc(IntPoint from, const Path& pts, const Path* theirs
     theirs.insert(theirs.end(), theirs_if_ill->begin(), theirs_if_ill->end());
     out = both_readings(out, sweep_open({theirs}, ap.circle_d_nm / 2, opt_.arc_tolerance_nm));
   }
+  add_object(std::move(out));
+}
+
+// An arc drawn with a rectangle or obround, which the spec does not allow (gerbv's tests
+// test-aperture-rectangle-1.gbx, -obround-1.gbx): drawn as gerbv draws it, a stroke as wide
+// as the aperture's X size with square (rectangle) or round (obround) ends; an ill-defined
+// arc, where either reading puts it.
+void GerberReader::stroke_arc_with_shape(IntPoint from, const Path& pts,
+                                         const Path* theirs_if_ill) {
+  const Aperture& ap = current_aperture();
+  diag_.note(std::string("warning: an arc drawn with ") +
+             (ap.type == 'R' ? "a rectangular" : "an obround") + " aperture D" +
+             std::to_string(gs_.aperture) +
+             " (not allowed by the spec): drawn as gerbv draws it, a stroke as wide as its X "
+             "size with " +
+             (ap.type == 'R' ? "square" : "round") + " ends");
+  BoxNm box;
+  for (const Path& p : ap.shape) box.add(p);
+  const double width_nm = ap.shape.empty() ? 0 : static_cast<double>(box.max_x - box.min_x);
+  add_centre_line(from, pts, width_nm);
+  if (width_nm <= 0) return;
+  const ClipperLib::EndType ends =
+      ap.type == 'R' ? ClipperLib::etOpenSquare : ClipperLib::etOpenRound;
+  const auto stroke = [&](const Path& arc) {
+    Path line{from};
+    line.insert(line.end(), arc.begin(), arc.end());
+    ClipperLib::ClipperOffset off;
+    off.ArcTolerance = opt_.arc_tolerance_nm;
+    off.AddPath(line, ClipperLib::jtRound, ends);
+    Paths out;
+    off.Execute(out, width_nm / 2);
+    return out;
+  };
+  Paths out = stroke(pts);
+  if (theirs_if_ill) out = both_readings(out, stroke(*theirs_if_ill));
   add_object(std::move(out));
 }
 

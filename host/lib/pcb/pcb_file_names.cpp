@@ -101,6 +101,10 @@ PcbFileFormat pcb_file_format(const std::string& path, const std::string& head_t
       ext == ".sol" || ext == ".tl" || ext == ".bl") {
     return PcbFileFormat::kGerber;
   }
+  // OrCAD's .drd is a drill drawing in Gerber (gerbv's orcad/rs232_cm.drd), EAGLE's Excellon.
+  if (ext == ".drd" && contains(head_text, "%FS") && !starts_like_excellon(head_text)) {
+    return PcbFileFormat::kGerber;
+  }
   if (ext == ".drl" || ext == ".xln" || ext == ".exc" || ext == ".drd") {
     return PcbFileFormat::kExcellon;
   }

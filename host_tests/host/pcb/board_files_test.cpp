@@ -70,6 +70,20 @@ TEST(BoardFiles, CopperNamesOfManyEdaPrograms) {
   }
 }
 
+// A .drd is Excellon (EAGLE) unless its content is Gerber: OrCAD writes its drill drawing
+// as a Gerber .drd (gerbv's orcad/rs232_cm.drd, refused as Excellon: "unknown command '*'").
+TEST(BoardFiles, ADrdWhoseContentIsGerberIsReadAsGerber) {
+  const std::string orcad =
+      "*\nG04 Mass Parameters ***\n*\n%ICAS*%\n%MOIN*%\nG74*%FSLAN2X34Y34*%\n"
+      "%ADD10C,.01*%\nD10*\nX0Y0D03*\nM02*\n";
+  EXPECT_EQ(pcb_file_format("RS232.DRD", orcad), PcbFileFormat::kGerber);
+  EXPECT_EQ(read_board_text(orcad, "RS232.DRD", LayerKind::kUnknown).polygons_nm.size(), 1u);
+  EXPECT_EQ(pcb_file_format("board.drd", "%\nINCH,TZ\nM48\nT1C0.032\n%\nT1\nX10000Y5000\nM30\n"),
+            PcbFileFormat::kExcellon);  // old EAGLE
+  EXPECT_EQ(pcb_file_format("board.drd", "M48\n;FORMAT %FS-like comment\nINCH\n"),
+            PcbFileFormat::kExcellon);
+}
+
 TEST(BoardFiles, KindFromTheX2FileFunctionInAFilesHead) {
   EXPECT_EQ(layer_kind_from_x2("%FSLAX46Y46*%\n%TF.FileFunction,Copper,L1,Top*%\n"),
             LayerKind::kCopperTop);

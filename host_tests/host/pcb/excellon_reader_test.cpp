@@ -247,5 +247,33 @@ TEST(ExcellonWriters, M16EndsARouteAnywhere) {
   ASSERT_EQ(l.holes.size(), 1u);
 }
 
+// A lone CR ends a line as LF does (gerbv's test-drill-leading-zero-1.exc ends
+// "X001Y03\rM30\r\n"; refused before as "unexpected '\r'"); CR LF is one line end.
+TEST(ExcellonWriters, ALoneCarriageReturnEndsALine) {
+  const PcbLayer l = read_excellon_text(
+      "M48\r\nINCH,LZ\r\nT13C0.05\r\n%\r\nT13\r\nX-001000Y030000\r\nX001Y03\rM30\r\nX05Y05\r\n",
+      "z.exc");
+  ASSERT_EQ(l.holes.size(), 2u);
+  expect_hole(l.holes[1], 2540000, 76200000, 1270000, 13);  // INCH,LZ 2.4: "001" is 00.1
+  try {  // line numbers count a lone CR as a line end, CR LF as one
+    read_excellon_text("M48\r\nINCH,LZ\r\nT1C0.05\r%\r\nT1\rX001Q\r\nM30\r\n", "q.exc");
+    ADD_FAILURE() << "read";
+  } catch (const PcbReadError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("q.exc:6: ", 0), 0u) << e.what();
+  }
+}
+
+// Blanks between the words of a coordinate line (gerbv's test-drill-spaces.exc, refused as
+// "unexpected ' '"): skipped, as gerbv does, with a warning.
+TEST(ExcellonWriters, BlanksInsideACoordinateLineAreSkipped) {
+  const PcbLayer l = read_excellon_text(
+      "M48\nINCH,LZ\nT13C0.05\n%\nT13\nX-001000 Y030000\nX001\tY03\nM30\n", "s.exc");
+  ASSERT_EQ(l.holes.size(), 2u);
+  expect_hole(l.holes[0], -2540000, 76200000, 1270000, 13);
+  expect_hole(l.holes[1], 2540000, 76200000, 1270000, 13);
+  EXPECT_TRUE(has_note(l, "line 6: warning: blanks inside a coordinate line ignored"))
+      << ::testing::PrintToString(l.notes);
+}
+
 }  // namespace
 }  // namespace host::pcb

@@ -47,7 +47,7 @@ TEST(GerberErrors, NameFileLineAndProblem) {
       {"D10*\nX0Y0D01D03*\nM02*\n", "bad.gbr:5: two operations"},
       {"D10*\nX12a4Y0D03*\nM02*\n", "bad.gbr:5: unexpected 'a'"},
       {"D10*\nX99999999999Y0D03*\nM02*\n", "bad.gbr:5: coordinate '99999999999' is beyond 10 m"},
-      {"%ADD11R,1X2*%\nD11*\nG75*\nG02X1000Y0I500J0D01*\nM02*\n",
+      {"%ADD11P,1X4*%\nD11*\nG75*\nG02X1000Y0I500J0D01*\nM02*\n",
        "bad.gbr:7: an arc drawn with a non-circular aperture D11"},
       {"D10*\nG74*\nG02X10000Y0I1000J0D01*\nM02*\n",
        "bad.gbr:6: arc end point is not on its circle (radius 1.000 mm at the start, 11.000"},

@@ -409,6 +409,100 @@ TEST(GerberReader, AnInchMacrosRotationIsNotALength) {
   EXPECT_FALSE(covered(l, 25.4 + 0.5, 25.4 - 0.1));  // off it
 }
 
+// Coordinates with no D code before any operation (gerbv's exposure/example.grb starts
+// "G01X00000Y00000*"): undefined by the spec; gerbv's aperture starts off, so they only move
+// (they were refused). The next coordinates-only block repeats that D02: no track is drawn.
+TEST(GerberReader, CoordinatesBeforeAnyOperationAreAMove) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX23Y23*%\n%MOIN*%\n%ADD10C,0.050*%\nG54D10*\nG01X0Y0*\nX1000Y0*\n"
+      "X2000Y1000D03*\nM02*\n",
+      "nod-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(l.polygons_nm), kPi * 0.635 * 0.635, 0.01);  // the flash alone
+  EXPECT_TRUE(covered(l, 2 * 25.4, 25.4));
+  EXPECT_FALSE(covered(l, 0.5 * 25.4, 0));
+  EXPECT_TRUE(has_note(l,
+                       "line 5: warning: coordinates without D01/D02/D03 before any operation: "
+                       "read as a move (D02), as gerbv reads them"))
+      << ::testing::PrintToString(l.notes);
+}
+
+// Arcs drawn with a rectangle or obround (not allowed by the spec; gerbv's
+// test-aperture-rectangle-1.gbx and -obround-1.gbx, refused before): drawn as gerbv draws
+// them, a stroke as wide as the aperture's X size (2 mm), square ends for a rectangle, round
+// for an obround. A half circle of radius 10 mm from (10, 0) counter-clockwise to (-10, 0).
+PcbLayer arc_with(const std::string& aperture) {
+  return read_gerber_text("%FSLAX46Y46*%\n%MOMM*%\n%ADD10" + aperture +
+                              "*%\nD10*\nG75*\nX10000000Y0D02*\n"
+                              "G03X-10000000Y0I-10000000J0D01*\nM02*\n",
+                          "arc-F.Cu.gbr");
+}
+
+TEST(GerberReader, AnArcWithARectangleOrObroundIsDrawnAsGerbvDrawsIt) {
+  const PcbLayer rect = arc_with("R,2X1");
+  EXPECT_TRUE(covered(rect, 0, 10.9));  // 1 mm either side of the circle at the top
+  EXPECT_FALSE(covered(rect, 0, 11.1));
+  EXPECT_TRUE(covered(rect, 10.9, -0.9));  // the square end below the start
+  EXPECT_FALSE(covered(rect, 10.9, -1.1));
+  EXPECT_NEAR(area_mm2(rect.polygons_nm), kPi * (11 * 11 - 9 * 9) / 2 + 2 * 2, 0.01);
+  EXPECT_TRUE(has_note(rect,
+                       "line 7: warning: an arc drawn with a rectangular aperture D10 (not "
+                       "allowed by the spec): drawn as gerbv draws it, a stroke as wide as its "
+                       "X size with square ends"))
+      << ::testing::PrintToString(rect.notes);
+  const PcbLayer obround = arc_with("O,2X1");
+  EXPECT_TRUE(covered(obround, 0, 10.9));
+  EXPECT_TRUE(covered(obround, 10, -0.9));  // the round end
+  EXPECT_FALSE(covered(obround, 10.9, -0.9));
+  EXPECT_NEAR(area_mm2(obround.polygons_nm), kPi * (11 * 11 - 9 * 9) / 2 + kPi, 0.01);
+  EXPECT_TRUE(has_note(obround, "an arc drawn with an obround aperture D10"));
+}
+
+// A line drawn with an obround: gerbv strokes it as a circle of the obround's X size; copper
+// where either that or the obround swept along the line puts it. Along X from (0, 0) to
+// (10, 0): a 2 x 1 mm obround is 2 mm wide in gerbv's reading, a 1 x 2 mm one in ours.
+TEST(GerberReader, ALineWithAnObroundIsCopperInBothReadings) {
+  for (const char* ap : {"O,2X1", "O,1X2"}) {
+    const PcbLayer l = read_gerber_text(std::string("%FSLAX46Y46*%\n%MOMM*%\n%ADD10") + ap +
+                                            "*%\nD10*\nX0Y0D02*\nX10000000Y0D01*\nM02*\n",
+                                        "line-F.Cu.gbr");
+    EXPECT_TRUE(covered(l, 5, 0.9)) << ap;
+    EXPECT_FALSE(covered(l, 5, 1.1)) << ap;
+    EXPECT_TRUE(has_note(l, "a draw with an obround aperture")) << ap;
+  }
+}
+
+// Aperture parameters gerbv reads and the spec does not define (both refused before): an
+// empty last parameter (gerbv's exposure/example.grb "%ADD14C,0.1X*%") and a polygon's sixth
+// (test-aperture-polygon-flash-1.gbx), each ignored with a warning.
+TEST(GerberReader, AnEmptyLastParameterAndAPolygonsSixthAreIgnored) {
+  const PcbLayer c = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD14C,2X*%\nD14*\nX0Y0D03*\nM02*\n", "c-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(c.polygons_nm), kPi, 0.01);  // a 2 mm circle as a polygon
+  EXPECT_TRUE(has_note(c,
+                       "line 3: warning: aperture D14: an empty last parameter ignored, as "
+                       "gerbv does"))
+      << ::testing::PrintToString(c.notes);
+  const PcbLayer p = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD12P,2X4X0X0.5X0.5X0.3*%\nD12*\nX0Y0D03*\nM02*\n", "p-F.Cu.gbr");
+  EXPECT_NEAR(area_mm2(p.polygons_nm), 2 - 0.25, 1e-5);  // a square of diagonal 2, its hole
+  EXPECT_FALSE(covered(p, 0, 0));
+  EXPECT_TRUE(has_note(p, "warning: polygon aperture D12: a sixth parameter ignored"));
+}
+
+// A size after an aperture definition's '*' in its '%' block (gerbv's polarity/6_vbat.gbr
+// "%ADD181C,.031*X.015%", refused before): ignored with a warning, as gerbv ignores it; the
+// aperture is the circle alone. Anything else there is still refused.
+TEST(GerberReader, ASizeAfterAnApertureDefinitionsStarIsIgnored) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD181C,2*X1%\nD181*\nX0Y0D03*\nM02*\n", "a-F.Cu.gbr");
+  EXPECT_TRUE(covered(l, 0, 0));
+  EXPECT_NEAR(area_mm2(l.polygons_nm), kPi, 0.01);
+  EXPECT_TRUE(has_note(l, "line 3: warning: 'X1' after the aperture definition's '*' ignored"))
+      << ::testing::PrintToString(l.notes);
+  EXPECT_THROW(read_gerber_text("%FSLAX46Y46*%\n%MOMM*%\n%LPC*X1%\nM02*\n", "b-F.Cu.gbr"),
+               PcbReadError);
+}
+
 // No %MO: the format's legacy default, inch (gerbv and pcb2gcode read it so), with a warning.
 TEST(GerberReader, NoUnitsMeansInchWithAWarning) {
   const PcbLayer l = read_gerber_text("%FSLAX24Y24*%\n%ADD10C,0.1*%\nD10*\nX10000Y5000D03*\nM02*\n",
