@@ -222,18 +222,14 @@ __attribute__((noinline)) void coordinate_coefficients(const Homog* b, uint8_t p
   power_basis(p, n, c);
 }
 
-// Horner in t (uq16; t_q16 = 65536 handled as 1.0 by the caller) over coefficients c,
-// unrolled per degree (kMaxDegree 3): no loop counter or indexing on the per-point path.
-// One copy for every caller: inlined twice into evaluate_q6 it cost 0.6 kB of flash for
-// 70 of the ~900 cycles of a point (AVR proxy).
+// Horner in t (uq16; t_q16 = 65536 handled as 1.0 by the caller) over coefficients c of
+// degree p <= kMaxDegree: one loop, one copy of the 32x16 product (unrolled per degree it
+// was three chains, 0.2 kB more on the AVR proxy, for ~20 cycles a sum). One copy for every
+// caller: inlined twice into evaluate_q6 it cost 0.6 kB of flash.
 int32_t horner(const int32_t* c, uint8_t p, uq16_t t) {
-  if (p == 3) {
-    return c[0] + mul_32x16_uq16_round(
-                      c[1] + mul_32x16_uq16_round(c[2] + mul_32x16_uq16_round(c[3], t), t), t);
-  }
-  if (p == 2) return c[0] + mul_32x16_uq16_round(c[1] + mul_32x16_uq16_round(c[2], t), t);
-  if (p == 1) return c[0] + mul_32x16_uq16_round(c[1], t);
-  return c[0];
+  int32_t acc = c[p];
+  while (p > 0) acc = c[--p] + mul_32x16_uq16_round(acc, t);
+  return acc;
 }
 
 // Scales (x, y) so that the larger magnitude lies in [2^13, 2^14): a direction only.
@@ -449,9 +445,13 @@ PointQ6 SpanEvaluator::rational_q6(uq16_t t) const {
   // The three sums through the out-of-line horner() (inlined, they made this function
   // 937 dsPIC instructions; a call costs a few cycles against ~2 500 for the point).
   const Reciprocal inv_w = reciprocal_of(horner(cw_, degree_, t));
+  // x and y through one copy of the reciprocal product (two copies: ~0.3 kB more).
+  const int32_t* const c[2] = {cx_, cy_};
+  int32_t v[2];
+  for (uint8_t i = 0; i < 2; ++i) v[i] = mul_reciprocal_q27(horner(c[i], degree_, t), inv_w);
   PointQ6 r;
-  r.x_q6 = origin_q6_.x_q6 + mul_reciprocal_q27(horner(cx_, degree_, t), inv_w);
-  r.y_q6 = origin_q6_.y_q6 + mul_reciprocal_q27(horner(cy_, degree_, t), inv_w);
+  r.x_q6 = origin_q6_.x_q6 + v[0];
+  r.y_q6 = origin_q6_.y_q6 + v[1];
   return r;
 }
 
