@@ -481,22 +481,23 @@ Direction SpanEvaluator::direction(uq16_t t) const {
 bool SpanEvaluator::step_bend_q6(uint32_t t0_q16, uint32_t h_q16, PointQ6* a2, PointQ6* a3) const {
   if (rational_ || dir_shift_ != 0 || degree_ == 0 || t0_q16 >= kUq16One) return false;
   const int32_t* const c[2] = {cx_, cy_};
-  int32_t e2[2];
-  int32_t e3[2];
+  // e = (a2.x, a2.y, a3.x, a3.y) before the powers of h: one loop, so the 32x16 product
+  // is code twice instead of six times (-0.2 kB on the AVR proxy).
+  int32_t e[4];
   for (uint8_t i = 0; i < 2; ++i) {
     const int32_t m = mul_32x16_uq16(c[i][3], (uq16_t)t0_q16);
-    e2[i] = c[i][2] + m + m + m;
-    e3[i] = c[i][3];
-    if (h_q16 < kUq16One) {
-      const uq16_t h = (uq16_t)h_q16;
-      e2[i] = mul_32x16_uq16(mul_32x16_uq16(e2[i], h), h);
-      e3[i] = mul_32x16_uq16(mul_32x16_uq16(mul_32x16_uq16(e3[i], h), h), h);
+    e[i] = c[i][2] + m + m + m;
+    e[2 + i] = c[i][3];
+  }
+  if (h_q16 < kUq16One) {
+    for (uint8_t j = 0; j < 4; ++j) {
+      for (uint8_t k = j < 2 ? 2 : 3; k > 0; --k) e[j] = mul_32x16_uq16(e[j], (uq16_t)h_q16);
     }
   }
-  a2->x_q6 = e2[0];
-  a2->y_q6 = e2[1];
-  a3->x_q6 = e3[0];
-  a3->y_q6 = e3[1];
+  a2->x_q6 = e[0];
+  a2->y_q6 = e[1];
+  a3->x_q6 = e[2];
+  a3->y_q6 = e[3];
   return true;
 }
 
