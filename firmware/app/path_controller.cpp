@@ -120,8 +120,7 @@ void PathController::tick(const int32_t pos_usteps[config::kAxisCount], Coordina
     // The capture test compares squares: only the target finally kept needs a root.
     if (!passed && length_q4_exceeds(aim.sum_sq, aim.len_shift, capture_um << 4)) break;
     leave_target();
-    ring->pop(&cur_);  // front() was not null: this pops it, straight into the target
-    take_popped();
+    take_target(ring);  // front() was not null: this pops it, straight into the target
   }
   // Moving along the segment, the vector's length is close to its projection on the
   // segment direction: a Newton step from there is exact and cheaper than the full root.
@@ -134,8 +133,9 @@ void PathController::tick(const int32_t pos_usteps[config::kAxisCount], Coordina
   output(v == 0 ? 0 : aim.dir, len, v_units);
 }
 
-// The first target from the ring; false while it is empty.
-inline bool PathController::take_target(CoordinateRing* ring) {
+// The next target from the ring, popped straight into cur_; false while it is empty. Out of
+// line: the ring's pop is code once for both callers (once per target, not per tick).
+__attribute__((noinline)) bool PathController::take_target(CoordinateRing* ring) {
   if (!ring->pop(&cur_)) return false;
   take_popped();
   return true;
