@@ -124,8 +124,11 @@ void Planner::set_origin(const int32_t at_um[config::kAxisCount]) {
   last_length_um_ = 0;
 }
 
+// fill_segment, corner_speed, curve_speed, capture_for and replan are inline: push_segment
+// is the one caller of each (out of line, their prologues and calls were 0.4 kB on the AVR
+// proxy).
 // Length, direction, acceleration and cruise limit of the segment last -> target.
-void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount],
+inline void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount],
                            const int16_t* line_dir_q14) {
   int32_t d[3];
   for (uint8_t i = 0; i < 3; ++i) {
@@ -164,7 +167,7 @@ void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCo
 // at the planned a_p, whose part along the step (u2 - u1) / |u2 - u1| is a_p sin(theta/2):
 // the ramp absorbs the step at a = a_chip - a_p sin(theta/2) (a_chip on gentle turns, about
 // a_chip - a_p at a reversal, where the tool nearly stops and then speeds up).
-uint16_t Planner::corner_speed(uint8_t axes, int32_t omc_q14, uint32_t sin_half_q14) const {
+inline uint16_t Planner::corner_speed(uint8_t axes, int32_t omc_q14, uint32_t sin_half_q14) const {
   if (omc_q14 <= 0) return kMaxSpeed;
   uint32_t a_um_s2 = 0xFFFFFFFFUL;
   for (uint8_t i = 0; i < 3; ++i, axes = (uint8_t)(axes >> 1)) {
@@ -186,7 +189,7 @@ uint16_t Planner::corner_speed(uint8_t axes, int32_t omc_q14, uint32_t sin_half_
 // The tick may speed up or slow down at the planned a_t meanwhile; the chip ramps each axis
 // at a_chip, and a_t u + a_n n stays within it on every axis when a_n^2 + a_t^2 <= a_chip^2:
 // v^2 <= R sqrt(a_chip^2 - a_t^2) (a_t = 3/4 a_chip by default: a_n = 0.66 a_chip).
-uint16_t Planner::curve_speed(uint8_t axes, uint32_t sin_half_q14, uint32_t in_um,
+inline uint16_t Planner::curve_speed(uint8_t axes, uint32_t sin_half_q14, uint32_t in_um,
                               uint32_t out_um) const {
   if (sin_half_q14 == 0) return kMaxSpeed;
   uint16_t a = 65535U;
@@ -205,7 +208,7 @@ uint16_t Planner::curve_speed(uint8_t axes, uint32_t sin_half_q14, uint32_t in_u
 
 // Switching to the next target at distance r before a corner of turn theta cuts it by
 // about r sin(theta) (r beyond 90 degrees): r = min(capture, cut / sin(theta)).
-uint16_t Planner::capture_for(const int16_t in_q14[3], const int16_t out_q14[3]) const {
+inline uint16_t Planner::capture_for(const int16_t in_q14[3], const int16_t out_q14[3]) const {
   const int32_t c = dot_q14(in_q14, out_q14);
   uint32_t sin_q14 = kOneQ14;
   if (c > 0) {
@@ -397,7 +400,7 @@ bool Planner::push_segment(CoordinateRing* ring, const int32_t target_um[config:
 
 // Backward pass from the newest entry (which must end at rest) toward the oldest. Limits
 // only ever rise when a segment is appended, so the pass stops at the first unchanged one.
-void Planner::replan(CoordinateRing* ring) {
+inline void Planner::replan(CoordinateRing* ring) {
   uint16_t exit = 0;
   for (uint16_t k = 0;; ++k) {
     PlanEntry* e = ring->newest(k);
