@@ -129,7 +129,7 @@ void Planner::set_origin(const int32_t at_um[config::kAxisCount]) {
 // proxy).
 // Length, direction, acceleration and cruise limit of the segment last -> target.
 inline void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount],
-                           const int16_t* line_dir_q14) {
+                                  const int16_t* line_dir_q14) {
   int32_t d[3];
   for (uint8_t i = 0; i < 3; ++i) {
     e->target_usteps[i] = um_to_usteps(scaling_, i, target_um[i]);
@@ -190,7 +190,7 @@ inline uint16_t Planner::corner_speed(uint8_t axes, int32_t omc_q14, uint32_t si
 // at a_chip, and a_t u + a_n n stays within it on every axis when a_n^2 + a_t^2 <= a_chip^2:
 // v^2 <= R sqrt(a_chip^2 - a_t^2) (a_t = 3/4 a_chip by default: a_n = 0.66 a_chip).
 inline uint16_t Planner::curve_speed(uint8_t axes, uint32_t sin_half_q14, uint32_t in_um,
-                              uint32_t out_um) const {
+                                     uint32_t out_um) const {
   if (sin_half_q14 == 0) return kMaxSpeed;
   uint16_t a = 65535U;
   for (uint8_t i = 0; i < 3; ++i, axes = (uint8_t)(axes >> 1)) {
