@@ -355,9 +355,6 @@ uint16_t first_span(const Spline& spline) {
   return next_span(spline, (uint16_t)(spline.degree - 1));
 }
 
-uint16_t span_end(const Spline& spline) {
-  return spline.control_count;
-}
 
 // Skips zero-length spans (repeated knots).
 uint16_t next_span(const Spline& spline, uint16_t span) {
@@ -513,8 +510,5 @@ __attribute__((noinline)) int32_t SpanEvaluator::derivative_at(const int32_t* c,
   return horner(d, (uint8_t)(degree_ - 1), t);
 }
 
-Direction SpanEvaluator::end_direction() const {
-  return end_dir_;
-}
 
 }  // namespace core

@@ -16,7 +16,9 @@ namespace core {
 // first_span() is the first non-empty span at or after index degree.
 uint16_t first_span(const Spline& spline);
 // One past the last span index usable (control_count).
-uint16_t span_end(const Spline& spline);
+inline uint16_t span_end(const Spline& spline) {
+  return spline.control_count;
+}
 // Next non-empty span after span, or span_end() when there is none.
 uint16_t next_span(const Spline& spline, uint16_t span);
 
@@ -68,7 +70,7 @@ class SpanEvaluator {
   PointQ6 start_q6() const { return start_; }
   PointUm end_point() const { return round_point(end_); }
   // Derivative direction at the span end (t = 1).
-  Direction end_direction() const;
+  Direction end_direction() const { return end_dir_; }
   // Taylor coefficients of a polynomial span about t0 over a step h (uq16, t0 < 1,
   // t0 + h <= 1): P(t0 + h s) = P(t0) + a1 s + a2 s^2 + a3 s^3 with a2, a3 in q6 um
   // (|.| < 2^30). False (nothing written) for rational spans and for spans whose
