@@ -355,7 +355,6 @@ uint16_t first_span(const Spline& spline) {
   return next_span(spline, (uint16_t)(spline.degree - 1));
 }
 
-
 // Skips zero-length spans (repeated knots).
 uint16_t next_span(const Spline& spline, uint16_t span) {
   uint16_t i = (uint16_t)(span + 1);
@@ -509,6 +508,5 @@ __attribute__((noinline)) int32_t SpanEvaluator::derivative_at(const int32_t* c,
   }
   return horner(d, (uint8_t)(degree_ - 1), t);
 }
-
 
 }  // namespace core
