@@ -343,14 +343,6 @@ __attribute__((noinline)) uint32_t bezier_of_span(const Spline& spline, uint16_t
 
 }  // namespace
 
-// Rounds a q6 point to whole micrometres.
-PointUm round_point(const PointQ6& p) {
-  PointUm r;
-  r.x_um = (p.x_q6 + 32) >> kQ6Shift;
-  r.y_um = (p.y_q6 + 32) >> kQ6Shift;
-  return r;
-}
-
 // First span with positive length at or after index degree.
 uint16_t first_span(const Spline& spline) {
   return next_span(spline, (uint16_t)(spline.degree - 1));
