@@ -38,8 +38,8 @@ core::GeometryError PointGenerator::begin(const core::Spline* spline, uint16_t f
 // Pushes p (at the spline's height); the planner splits the chord from the last point into
 // pieces no longer than the maximum step. False when the ring filled up; the planner goes
 // on with the remainder on the next call with the same p.
-inline bool PointGenerator::push_point(Planner* planner, CoordinateRing* ring, const core::PointUm& p,
-                                uint8_t flags) {
+inline bool PointGenerator::push_point(Planner* planner, CoordinateRing* ring,
+                                       const core::PointUm& p, uint8_t flags) {
   const int32_t target[3] = {p.x_um, p.y_um, z_um_};
   return planner->push(ring, target, feed_um_s_, flags, tag_, max_step_um_);
 }
