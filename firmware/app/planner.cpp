@@ -25,6 +25,39 @@ int32_t dot_q14(const int16_t a[3], const int16_t b[3]) {
   return ((int32_t)a[0] * b[0] + (int32_t)a[1] * b[1] + (int32_t)a[2] * b[2]) >> 14;
 }
 
+// Bit i set when axis i moves more than kInvolvedQ14 in either direction (the axes whose
+// limits a corner or a curve meets): once per push, for both speed limits.
+uint8_t involved_axes(const int16_t in_q14[3], const int16_t out_q14[3]) {
+  uint8_t mask = 0;
+  for (uint8_t i = 3; i-- > 0;) {  // from Z down: bit 0 ends as X's (no variable shift)
+    mask = (uint8_t)(mask << 1);
+    if (in_q14[i] > kInvolvedQ14 || in_q14[i] < -kInvolvedQ14 || out_q14[i] > kInvolvedQ14 ||
+        out_q14[i] < -kInvolvedQ14)
+      mask = (uint8_t)(mask | 1U);
+  }
+  return mask;
+}
+
+// Normalises d (normalise3: n, *shift) and returns |n| (0 for a zero d); unless it is 0,
+// writes line_dir_q14 (when given) or n / |n| in Q14 to dir_q14: |n_i| <= |n|, so each
+// quotient is a 32/16 division on the magnitude (the same value as the signed quotient).
+uint16_t unit_of(const int32_t d[3], const int16_t* line_dir_q14, int16_t dir_q14[3],
+                 int8_t* shift) {
+  int16_t n[3];
+  normalise3(d, n, shift);
+  const uint16_t len = length3(n);
+  if (len == 0) return 0;
+  for (uint8_t i = 0; i < 3; ++i) {
+    if (line_dir_q14 != 0) {
+      dir_q14[i] = line_dir_q14[i];
+      continue;
+    }
+    const int16_t q = (int16_t)core::div_u32_u16(core::abs_u32(n[i]) << 14, len, 0);
+    dir_q14[i] = n[i] < 0 ? (int16_t)-q : q;
+  }
+  return len;
+}
+
 }  // namespace
 
 PlannerSettings default_planner_settings(uint16_t capture_radius_um) {
@@ -58,13 +91,8 @@ uint16_t reach_speed_capped_um_s(uint16_t exit_um_s, uint16_t accel_um_s_per_ms,
 
 bool unit_direction_q14(const int32_t d_um[config::kAxisCount],
                         int16_t dir_q14[config::kAxisCount]) {
-  int16_t n[3];
   int8_t shift;
-  normalise3(d_um, n, &shift);
-  const uint16_t len = length3(n);
-  if (len == 0) return false;
-  for (uint8_t i = 0; i < 3; ++i) dir_q14[i] = (int16_t)((int32_t)n[i] * kOneQ14 / len);
-  return true;
+  return unit_of(d_um, 0, dir_q14, &shift) != 0;
 }
 
 // Every member zero (no map, nothing planned), then the settings: plain data, so one
@@ -96,18 +124,19 @@ void Planner::set_origin(const int32_t at_um[config::kAxisCount]) {
   last_length_um_ = 0;
 }
 
+// fill_segment, corner_speed, curve_speed, capture_for and replan are inline: push_segment
+// is the one caller of each (out of line, their prologues and calls were 0.4 kB on the AVR
+// proxy).
 // Length, direction, acceleration and cruise limit of the segment last -> target.
-void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount],
-                           const int16_t* line_dir_q14) {
+inline void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount],
+                                  const int16_t* line_dir_q14) {
   int32_t d[3];
   for (uint8_t i = 0; i < 3; ++i) {
     e->target_usteps[i] = um_to_usteps(scaling_, i, target_um[i]);
     d[i] = target_um[i] - last_um_[i];
   }
-  int16_t n[3];
   int8_t shift;
-  normalise3(d, n, &shift);
-  const uint16_t len = length3(n);
+  const uint16_t len = unit_of(d, line_dir_q14, e->dir_q14, &shift);
   if (len == 0) {
     // Zero length: keep the previous direction so the corner logic sees no turn.
     for (uint8_t i = 0; i < 3; ++i) e->dir_q14[i] = last_dir_q14_[i];
@@ -115,9 +144,6 @@ void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCo
     e->cruise_max_um_s = last_cruise_um_s_ ? last_cruise_um_s_ : scaling_.max_speed_um_s[0];
     e->accel_um_s_per_ms = scaling_.plan_accel_um_s_per_ms[0];
     return;
-  }
-  for (uint8_t i = 0; i < 3; ++i) {
-    e->dir_q14[i] = line_dir_q14 != 0 ? line_dir_q14[i] : (int16_t)((int32_t)n[i] * kOneQ14 / len);
   }
   const uint32_t len_q4 = scale_length_q4(len, shift);
   e->length_um = (len_q4 + 8) >> 4;
@@ -141,14 +167,11 @@ void Planner::fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCo
 // at the planned a_p, whose part along the step (u2 - u1) / |u2 - u1| is a_p sin(theta/2):
 // the ramp absorbs the step at a = a_chip - a_p sin(theta/2) (a_chip on gentle turns, about
 // a_chip - a_p at a reversal, where the tool nearly stops and then speeds up).
-uint16_t Planner::corner_speed(const int16_t in_q14[3], const int16_t out_q14[3], int32_t omc_q14,
-                               uint32_t sin_half_q14) const {
+inline uint16_t Planner::corner_speed(uint8_t axes, int32_t omc_q14, uint32_t sin_half_q14) const {
   if (omc_q14 <= 0) return kMaxSpeed;
   uint32_t a_um_s2 = 0xFFFFFFFFUL;
-  for (uint8_t i = 0; i < 3; ++i) {
-    const bool moves = in_q14[i] > kInvolvedQ14 || in_q14[i] < -kInvolvedQ14 ||
-                       out_q14[i] > kInvolvedQ14 || out_q14[i] < -kInvolvedQ14;
-    if (!moves) continue;
+  for (uint8_t i = 0; i < 3; ++i, axes = (uint8_t)(axes >> 1)) {
+    if (!(axes & 1U)) continue;
     const uint32_t chip = scaling_.chip_accel_um_s_per_ms[i];
     const uint32_t taken = (scaling_.plan_accel_um_s_per_ms[i] * sin_half_q14) >> 14;
     const uint32_t a = 1000UL * (chip > taken ? chip - taken : 1);
@@ -166,14 +189,12 @@ uint16_t Planner::corner_speed(const int16_t in_q14[3], const int16_t out_q14[3]
 // The tick may speed up or slow down at the planned a_t meanwhile; the chip ramps each axis
 // at a_chip, and a_t u + a_n n stays within it on every axis when a_n^2 + a_t^2 <= a_chip^2:
 // v^2 <= R sqrt(a_chip^2 - a_t^2) (a_t = 3/4 a_chip by default: a_n = 0.66 a_chip).
-uint16_t Planner::curve_speed(const int16_t in_q14[3], const int16_t out_q14[3],
-                              uint32_t sin_half_q14, uint32_t in_um, uint32_t out_um) const {
+inline uint16_t Planner::curve_speed(uint8_t axes, uint32_t sin_half_q14, uint32_t in_um,
+                                     uint32_t out_um) const {
   if (sin_half_q14 == 0) return kMaxSpeed;
   uint16_t a = 65535U;
-  for (uint8_t i = 0; i < 3; ++i) {
-    const bool moves = in_q14[i] > kInvolvedQ14 || in_q14[i] < -kInvolvedQ14 ||
-                       out_q14[i] > kInvolvedQ14 || out_q14[i] < -kInvolvedQ14;
-    if (moves) a = min16(a, normal_accel_um_s_per_ms_[i]);
+  for (uint8_t i = 0; i < 3; ++i, axes = (uint8_t)(axes >> 1)) {
+    if (axes & 1U) a = min16(a, normal_accel_um_s_per_ms_[i]);
   }
   uint32_t len = in_um < out_um ? in_um : out_um;
   if (len > 65535UL) len = 65535UL;
@@ -187,7 +208,7 @@ uint16_t Planner::curve_speed(const int16_t in_q14[3], const int16_t out_q14[3],
 
 // Switching to the next target at distance r before a corner of turn theta cuts it by
 // about r sin(theta) (r beyond 90 degrees): r = min(capture, cut / sin(theta)).
-uint16_t Planner::capture_for(const int16_t in_q14[3], const int16_t out_q14[3]) const {
+inline uint16_t Planner::capture_for(const int16_t in_q14[3], const int16_t out_q14[3]) const {
   const int32_t c = dot_q14(in_q14, out_q14);
   uint32_t sin_q14 = kOneQ14;
   if (c > 0) {
@@ -279,7 +300,9 @@ bool Planner::push_standing(CoordinateRing* ring, uint16_t feed_um_s, uint8_t fl
 // and both ends cut (travel has one offset all along: nothing to follow). Once per
 // segment: two or three 32/16 divisions, none per piece; nothing divided when n is 1 (the
 // common case: spline points closer than the step).
-void Planner::begin_split(const int32_t target_um[config::kAxisCount], uint16_t max_step_um) {
+// Always inline: push() is its one caller (-0.1 kB on the AVR proxy; -Os keeps it apart).
+inline __attribute__((always_inline)) void Planner::begin_split(
+    const int32_t target_um[config::kAxisCount], uint16_t max_step_um) {
   int32_t d[3];
   for (uint8_t i = 0; i < 3; ++i) {
     LineAxis& a = split_.axis[i];
@@ -345,10 +368,10 @@ bool Planner::push_segment(CoordinateRing* ring, const int32_t target_um[config:
     if (omc_q14 > 0) {
       // sin(theta/2) = sqrt((1 - cos theta) / 2), Q14: one root for both limits.
       const uint32_t sin_half_q14 = core::isqrt32((uint32_t)omc_q14 << 13);
-      cap = min16(cap, corner_speed(last_dir_q14_, e.dir_q14, omc_q14, sin_half_q14));
+      const uint8_t axes = involved_axes(last_dir_q14_, e.dir_q14);
+      cap = min16(cap, corner_speed(axes, omc_q14, sin_half_q14));
       if (e.length_um != 0 && last_length_um_ != 0) {
-        cap = min16(
-            cap, curve_speed(last_dir_q14_, e.dir_q14, sin_half_q14, last_length_um_, e.length_um));
+        cap = min16(cap, curve_speed(axes, sin_half_q14, last_length_um_, e.length_um));
       }
     }
     // The corner is at the last point with length; zero-length markers after it sit on the
@@ -379,7 +402,7 @@ bool Planner::push_segment(CoordinateRing* ring, const int32_t target_um[config:
 
 // Backward pass from the newest entry (which must end at rest) toward the oldest. Limits
 // only ever rise when a segment is appended, so the pass stops at the first unchanged one.
-void Planner::replan(CoordinateRing* ring) {
+inline void Planner::replan(CoordinateRing* ring) {
   uint16_t exit = 0;
   for (uint16_t k = 0;; ++k) {
     PlanEntry* e = ring->newest(k);

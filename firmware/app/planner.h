@@ -75,10 +75,9 @@ class Planner {
  private:
   void fill_segment(PlanEntry* e, const int32_t target_um[config::kAxisCount],
                     const int16_t* line_dir_q14);
-  uint16_t corner_speed(const int16_t in_q14[3], const int16_t out_q14[3], int32_t omc_q14,
-                        uint32_t sin_half_q14) const;
-  uint16_t curve_speed(const int16_t in_q14[3], const int16_t out_q14[3], uint32_t sin_half_q14,
-                       uint32_t in_um, uint32_t out_um) const;
+  // axes: bit i set when axis i takes part in the turn (involved_axes in planner.cpp).
+  uint16_t corner_speed(uint8_t axes, int32_t omc_q14, uint32_t sin_half_q14) const;
+  uint16_t curve_speed(uint8_t axes, uint32_t sin_half_q14, uint32_t in_um, uint32_t out_um) const;
   uint16_t capture_for(const int16_t in_q14[3], const int16_t out_q14[3]) const;
   void replan(CoordinateRing* ring);
   bool push_segment(CoordinateRing* ring, const int32_t target_um[config::kAxisCount],

@@ -1,20 +1,17 @@
 // Point generator: spline -> points -> planner -> coordinate ring (see point_generator.h).
 #include "firmware/app/point_generator.h"
 
+#include <string.h>  // memset
+
 namespace app {
 
-PointGenerator::PointGenerator()
-    : max_step_um_(0),
-      feed_um_s_(0),
-      z_um_(0),
-      tag_(0),
-      point_index_(0),
-      first_point_(0),
-      have_pending_(false),
-      active_(false) {
+// The walker constructs itself; every member after it is plain data and starts at zero
+// (no maximum step, idle, nothing pending): one memset from settings_ to the end rather
+// than a store per member (-0.1 kB on the AVR proxy), then the default settings.
+PointGenerator::PointGenerator() {
+  char* const from = reinterpret_cast<char*>(&settings_);
+  memset(from, 0, (size_t)(reinterpret_cast<char*>(this + 1) - from));
   settings_ = core::default_step_settings();
-  pending_.x_um = 0;
-  pending_.y_um = 0;
 }
 
 void PointGenerator::set_resolution(uint16_t max_step_um, uint16_t chord_tolerance_um) {
@@ -41,8 +38,8 @@ core::GeometryError PointGenerator::begin(const core::Spline* spline, uint16_t f
 // Pushes p (at the spline's height); the planner splits the chord from the last point into
 // pieces no longer than the maximum step. False when the ring filled up; the planner goes
 // on with the remainder on the next call with the same p.
-bool PointGenerator::push_point(Planner* planner, CoordinateRing* ring, const core::PointUm& p,
-                                uint8_t flags) {
+inline bool PointGenerator::push_point(Planner* planner, CoordinateRing* ring,
+                                       const core::PointUm& p, uint8_t flags) {
   const int32_t target[3] = {p.x_um, p.y_um, z_um_};
   return planner->push(ring, target, feed_um_s_, flags, tag_, max_step_um_);
 }

@@ -71,6 +71,7 @@ class CurveWalker {
 
  private:
   enum Phase { kIdle, kStart, kInSpan, kDone };
+  bool enter_span(uint16_t span);
   bool step_in_span(PointUm* out);
   bool joint(PointUm* out);
   bool corner(const PointQ6& at, const Direction& in_dir, const Direction& out_dir, PointUm* out);

@@ -120,6 +120,11 @@ uint16_t HeightMap::locate(Axis* a, int32_t v_um) {
   return (uint16_t)((q16 + 2U) >> 2);
 }
 
+// Out of line: the two rows share one copy (-0.1 kB on the AVR proxy, a call per row).
+__attribute__((noinline)) int32_t HeightMap::row_q4(uint16_t i, uint16_t fx_q14) const {
+  return lerp_q4((int32_t)height(i) << 4, (int32_t)height((uint16_t)(i + 1U)) << 4, fx_q14);
+}
+
 int16_t HeightMap::offset_um(int32_t x_um, int32_t y_um) {
   if (!active_) return 0;
   const uint16_t fx = locate(&x_, x_um);
@@ -127,9 +132,7 @@ int16_t HeightMap::offset_um(int32_t x_um, int32_t y_um) {
   const uint16_t i0 = (uint16_t)((uint16_t)y_.cell * cols_ + x_.cell);
   const uint16_t i1 = (uint16_t)(i0 + cols_);
   // Along X on the cell's two rows (Q4: heights <= 1 000 um fit easily), then along Y.
-  const int32_t bottom = lerp_q4((int32_t)height(i0) << 4, (int32_t)height(i0 + 1U) << 4, fx);
-  const int32_t top = lerp_q4((int32_t)height(i1) << 4, (int32_t)height(i1 + 1U) << 4, fx);
-  int32_t z = asr32(lerp_q4(bottom, top, fy) + 8L, 4);
+  int32_t z = asr32(lerp_q4(row_q4(i0, fx), row_q4(i1, fx), fy) + 8L, 4);
   // A convex combination of the corners: inside [lowest, highest] already; kept so for sure.
   if (z < lowest_um_) z = lowest_um_;
   if (z > highest_um_) z = highest_um_;

@@ -52,6 +52,8 @@ class HeightMap {
   static uint16_t locate(Axis* a, int32_t v_um);
   // Height index i, packed two in three bytes (low 8 bits, then the high 4 of each).
   int16_t height(uint16_t i) const;
+  // Heights i and i + 1 interpolated at the Q14 fraction fx, in Q4 micrometres.
+  int32_t row_q4(uint16_t i, uint16_t fx_q14) const;
 
   uint8_t packed_[kMaxPoints * 3 / 2];
   Axis x_;

@@ -19,14 +19,9 @@ Wide negate(const Wide& a) {
   return r;
 }
 
-}  // namespace
-
-Wide mul_wide(int32_t a, int32_t b) {
-  const Wide r = mul_wide_u(abs_u32(a), abs_u32(b));
-  return ((a < 0) != (b < 0)) ? negate(r) : r;
-}
-
-Wide mul_wide_u(uint32_t ua, uint32_t ub) {
+// ua * ub exactly: inline in mul_wide, which the firmware calls (mul_wide_u, unused there,
+// is left out of the image; the call between the two was 0.1 kB on the AVR proxy).
+inline __attribute__((always_inline)) Wide magnitude_product(uint32_t ua, uint32_t ub) {
   const uint16_t ah = (uint16_t)(ua >> 16);
   const uint16_t al = (uint16_t)ua;
   const uint16_t bh = (uint16_t)(ub >> 16);
@@ -42,6 +37,17 @@ Wide mul_wide_u(uint32_t ua, uint32_t ub) {
     r.hi += (mids[i] >> 16) + (r.lo < add_lo ? 1U : 0U);
   }
   return r;
+}
+
+}  // namespace
+
+Wide mul_wide(int32_t a, int32_t b) {
+  const Wide r = magnitude_product(abs_u32(a), abs_u32(b));
+  return ((a < 0) != (b < 0)) ? negate(r) : r;
+}
+
+Wide mul_wide_u(uint32_t ua, uint32_t ub) {
+  return magnitude_product(ua, ub);
 }
 
 Wide wide_add(const Wide& a, const Wide& b) {
