@@ -330,7 +330,7 @@ TEST(BoardOptionRanges, TheSecondTestersValuesAreUsageErrorsNamingTheOption) {
       {"probe " + word + dead + " --probe-grid 4 17", "--probe-grid: 17 is outside"},
       // A hex float in the simulated blank.
       {"run " + word + " --surface tilt=0x1p-3mm" + out,
-       "--surface tilt=0x1p-3mm: '0x1p-3' is not a decimal number"},
+       "--surface: tilt=0x1p-3mm: '0x1p-3' is not a decimal number"},
       {"run " + word + " --surface bump=10:0x1p3:5mm:50um" + out, "'0x1p3' is not a decimal"},
       // No range: the message overflowed (-9.22337e+15).
       {"run " + word + " --offset 1e300 0" + out,
@@ -365,6 +365,34 @@ TEST(BoardOptionRanges, TheSecondTestersValuesAreUsageErrorsNamingTheOption) {
   // A whole number written as 2.0 or 1e0 is that number (it was "Could not convert").
   EXPECT_EQ(run(board + " --tabs 2.0").code, 0) << run(board + " --tabs 2.0").err;
   EXPECT_EQ(run(board + " --passes 1e0").code, 0) << run(board + " --passes 1e0").err;
+}
+
+// --surface was read after the job was planned (a user waited for the plan to hear of a
+// typo) and in words of its own: it is read with the command line, as every option is.
+TEST(BoardOptionRanges, TheSurfaceIsCheckedBeforePlanningInTheOptionsWords) {
+  const std::string dir = write_board("surface");
+  const std::string run_board = "run " + dir + " -o " + dir + "/out --surface ";
+  struct Case {
+    std::string args, says;
+  };
+  const Case cases[] = {
+      {run_board + "tilt=0x1mm", "--surface: tilt=0x1mm: '0x1' is not a decimal number\n"},
+      {run_board + "bow=infmm", "--surface: bow=infmm: 'inf' is not a finite number\n"},
+      {run_board + "tilt=1e999um", "--surface: tilt=1e999um: '1e999' is not a finite number\n"},
+      {run_board + "tilt=2mm",
+       "--surface: tilt=2mm: 2000 um is outside the allowed range -1000 .. 1000 um\n"},
+      {run_board + "tilt=0.1", "--surface: tilt=0.1: give the length with its unit"},
+      {run_board + "tilt=1mm,tilt=2mm", "--surface: 'tilt_x' is given twice"},
+      {"sim --surface noise=1e3mm",
+       "--surface: noise=1e3mm: 1e+06 um is outside the allowed range 0 .. 100 um\n"},
+  };
+  for (const Case& c : cases) {
+    const ToolRun r = run(c.args);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
+    // The refusal is the first thing said: nothing was read or planned before it.
+    EXPECT_EQ(r.err.rfind(c.says, 0), 0u) << c.args << "\n" << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
 }
 
 }  // namespace
