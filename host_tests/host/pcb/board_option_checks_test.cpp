@@ -367,6 +367,35 @@ TEST(BoardOptionRanges, TheSecondTestersValuesAreUsageErrorsNamingTheOption) {
   EXPECT_EQ(run(board + " --passes 1e0").code, 0) << run(board + " --passes 1e0").err;
 }
 
+// The narrow-gap refusal said "use a narrower tool" without saying how narrow: the user of the
+// shipped example_board (0.057 mm gaps) had to guess. It names the widest tool that passes
+// every gap, which plans, while a micrometre more is refused; and the option to plan anyway.
+TEST(BoardOptionRanges, TheNarrowGapRefusalNamesTheToolWidthThatPasses) {
+  const std::string dir = testing::TempDir() + "/" + std::to_string(getpid()) + "-opt-narrow";
+  std::filesystem::create_directories(dir);
+  // Two 1 mm pads 0.1 mm apart.
+  std::ofstream(dir + "/gap-F.Cu.gbr")
+      << "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Copper,L1,Top*%\n%ADD10C,1.000000*%\n"
+         "D10*\nX10000000Y10000000D03*\nX11100000Y10000000D03*\nM02*\n";
+  const std::string board = "board " + dir + " --no-plot -o " + dir + "/out";
+  const ToolRun r = run(board);
+  EXPECT_EQ(r.code, 1) << r.err;
+  const std::string says = "Use a narrower tool: --tool-width ";
+  const size_t at = r.err.find(says);
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const std::string width =
+      r.err.substr(at + says.size(), r.err.find(' ', at + says.size()) - at - says.size());
+  EXPECT_EQ(width, "0.084") << r.err;  // the gap 0.100 mm less 2 x 0.008 mm clearance
+  EXPECT_NE(r.err.find(" passes every gap (the narrowest, 0.100 mm, less 2 x 0.008 mm "
+                       "clearance), or plan anyway (--allow-narrow-gaps: the copper at those "
+                       "gaps stays joined).\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(run(board + " --tool-width " + width).code, 0);
+  EXPECT_EQ(run(board + " --tool-width 0.085").code, 1);
+  EXPECT_EQ(run(board + " --allow-narrow-gaps").code, 0);
+}
+
 // --surface was read after the job was planned (a user waited for the plan to hear of a
 // typo) and in words of its own: it is read with the command line, as every option is.
 TEST(BoardOptionRanges, TheSurfaceIsCheckedBeforePlanningInTheOptionsWords) {
