@@ -778,7 +778,12 @@ void GerberReader::aperture_block(const std::string& arg) {
   drawn_.batches.resize(b.batch_start);
   gs_.dark = b.dark;
   if (apertures_.defined.count(b.number_d))
-    diag_.note("aperture D" + std::to_string(b.number_d) + " redefined");
+    diag_.note("aperture D" + std::to_string(b.number_d) +
+               " redefined by a block aperture: the block from here on");
+  // Not read again with a later %AD's definition (note_redefinition): a block is kept in place.
+  apertures_.redefined_after_use.erase(b.number_d);
+  apertures_.last.erase(b.number_d);
+  apertures_.used.erase(b.number_d);
   apertures_.defined[b.number_d] = std::move(ap);
 }
 
