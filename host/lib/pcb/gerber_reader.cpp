@@ -780,9 +780,8 @@ void GerberReader::aperture_block(const std::string& arg) {
   if (apertures_.defined.count(b.number_d))
     diag_.note("aperture D" + std::to_string(b.number_d) +
                " redefined by a block aperture: the block from here on");
-  // Not read again with a later %AD's definition (note_redefinition): a block is kept in place.
-  apertures_.redefined_after_use.erase(b.number_d);
-  apertures_.last.erase(b.number_d);
+  // Its uses are the block's; earlier %AD uses are still read with the last %AD (gerbv
+  // draws those so and knows no blocks).
   apertures_.used.erase(b.number_d);
   apertures_.defined[b.number_d] = std::move(ap);
 }

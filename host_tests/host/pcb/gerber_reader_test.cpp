@@ -155,6 +155,19 @@ TEST(GerberReader, ARedefinedApertureIsItsLastDefinitionForEveryUseAsInGerbv) {
                        "changes"));
 }
 
+// A D code redefined by a block aperture: the flashes before the block are read with the
+// last %AD (both 2 mm, as gerbv draws them; gerbv ignores %AB), those after are the block's.
+TEST(GerberReader, AnApertureRedefinedByABlockIsTheBlockFromThere) {
+  const PcbLayer l = read_gerber_file(data_file("aperture_redefined_block.gbr"));
+  EXPECT_NEAR(area_in(l, 0, 0, 4, 4), kPi, kAreaTol);
+  EXPECT_NEAR(area_in(l, 4, 0, 8, 4), kPi, kAreaTol);
+  EXPECT_NEAR(area_in(l, 8, 0, 12, 4), kPi * 0.0625, kAreaTol);  // the block: a 0.5 mm pad
+  EXPECT_TRUE(has_note(l, "line 4: aperture D10 defined again at line 8"));
+  EXPECT_TRUE(has_note(l,
+                       "line 14: aperture D10 redefined by a block aperture: the block from "
+                       "here on"));
+}
+
 // Defined again before anything drew with it: the later definition, and the note says so.
 TEST(GerberReader, AnApertureRedefinedBeforeItDrewIsItsLaterDefinition) {
   const PcbLayer l = read_gerber_text(
