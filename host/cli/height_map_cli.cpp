@@ -10,7 +10,7 @@
 
 #include "host/cli/exit_codes.h"
 #include "host/cli/operator_controls.h"  // raise_tool_if_abort_signalled
-#include "host/cli/option_ranges.h"      // is_plain_decimal
+#include "host/cli/option_ranges.h"      // number_refusal
 #include "host/lib/heightmap/controller_map.h"
 #include "host/lib/heightmap/job_area.h"
 #include "host/lib/heightmap/probe_session.h"
@@ -19,18 +19,12 @@
 
 namespace host::cli {
 
-void add_surface_option(CLI::App* cmd, std::string* surface) {
-  cmd->add_option("--surface", *surface,
-                  "simulated blank: tilt=0.1mm,tilt_y=0um,bow=0.2mm,bump=X:Y:R:H,noise=2um,"
-                  "seed=1,area=X0:Y0:X1:Y1 (each length with mm or um; docs/user-guide.md)")
-      ->group(kHeightMapGroup);
-}
-
 namespace {
 
 // Each number of the spec ("tilt=0.1mm", "bump=X:Y:R:H", "seed=1") as the other number
-// options take them: a plain decimal (the spec's reader, like strtod, takes hex floats).
-void refuse_surface_numbers_not_decimal(const std::string& text) {
+// options take them: a plain, finite decimal (the spec's reader, like strtod, takes hex
+// floats). "" when every number is one, else "ITEM: 'v' is not a decimal number".
+std::string surface_number_refusal(const std::string& text) {
   std::stringstream items(text);
   std::string item;
   while (std::getline(items, item, ',')) {
@@ -43,23 +37,47 @@ void refuse_surface_numbers_not_decimal(const std::string& text) {
       for (const char* unit : {"mm", "um"})
         if (number.size() > 2 && number.compare(number.size() - 2, 2, unit) == 0)
           number.resize(number.size() - 2);
-      if (!is_plain_decimal(number))
-        throw CommandFailure(
-            kExitUsage, fmt::format("--surface {}: '{}' is not a decimal number", item, number));
+      const std::string refused = number_refusal(number);
+      if (!refused.empty()) return item + ": " + refused;
     }
   }
+  return "";
+}
+
+// The refusal of a spec without the option's name ("tilt=0.1: give the length with its
+// unit ..."), "" for a good one: CLI11 puts "--surface: " in front, as for every option.
+std::string surface_refusal(const std::string& text) {
+  const std::string refused = surface_number_refusal(text);
+  if (!refused.empty()) return refused;
+  try {
+    heightmap::parse_surface_spec(text);
+  } catch (const heightmap::SurfaceSpecError& e) {
+    std::string m = e.what();
+    const std::string name = "--surface";
+    if (m.compare(0, name.size(), name) == 0) m.erase(0, name.size());
+    if (m.compare(0, 2, ": ") == 0 || m.compare(0, 1, " ") == 0)
+      m.erase(0, m.find_first_not_of(": "));
+    return m;
+  }
+  return "";
 }
 
 }  // namespace
 
+void add_surface_option(CLI::App* cmd, std::string* surface) {
+  // Checked while the command line is read, before anything is planned.
+  cmd->add_option("--surface", *surface,
+                  "simulated blank: tilt=0.1mm,tilt_y=0um,bow=0.2mm,bump=X:Y:R:H,noise=2um,"
+                  "seed=1,area=X0:Y0:X1:Y1 (each length with mm or um; docs/user-guide.md)")
+      ->check(CLI::Validator([](std::string& v) { return surface_refusal(v); }, "", "surface"))
+      ->group(kHeightMapGroup);
+}
+
 std::optional<heightmap::SurfaceSpec> surface_spec_of(const std::string& text) {
   if (text.empty()) return std::nullopt;
-  refuse_surface_numbers_not_decimal(text);
-  try {
-    return heightmap::parse_surface_spec(text);
-  } catch (const heightmap::SurfaceSpecError& e) {
-    throw CommandFailure(kExitUsage, e.what());
-  }
+  const std::string refused = surface_refusal(text);
+  if (!refused.empty()) throw CommandFailure(kExitUsage, "--surface: " + refused);
+  return heightmap::parse_surface_spec(text);
 }
 
 void add_height_map_options(CLI::App* cmd, HeightMapArgs* a, HeightMapCommand command) {

@@ -258,10 +258,12 @@ void run_send(const SendArgs& a) {
     if (bar) bar->update(p.executed, p.total, machine_detail(p));
   };
   const commands::SendResult r = commands::send_job(*link, plan, o, std::cerr);
-  if (r.outcome != JobOutcome::kCompleted) {
-    throw CommandFailure(commands::exit_code_of(r.outcome),
-                         fmt::format("job {}", outcome_name(r.outcome)));
-  }
+  if (r.outcome == JobOutcome::kCompleted) return;
+  // Ctrl-C (INT/TERM) stopped the machine where it was, maybe at depth: the tool goes up as
+  // in run and probe (a new session; the job's progress stays for --resume).
+  const std::string lifted = raise_tool_if_abort_signalled(*link, o.sender, a.plan.z_up_mm);
+  throw CommandFailure(commands::exit_code_of(r.outcome),
+                       commands::send_ending_text(r) + (lifted.empty() ? "" : "; " + lifted));
 }
 
 // ---- engraver probe ----
@@ -511,8 +513,9 @@ void add_send_command(CLI::App& app) {
   send->footer(
       "Example: engraver send board.dxf --to tcp://192.168.1.50:10001 --feed 8\n"
       "After a lost link: engraver send board.dxf --to ... --feed 8 --resume\n"
-      "Keys: h hold, r resume, x abort, +/- feed override. Signals: INT/TERM abort, USR1 hold, "
-      "USR2 resume.\nExit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, "
+      "Keys: h hold, r resume, x abort, +/- feed override. Signals: INT/TERM abort (then the "
+      "tool goes up to --z-up; --resume continues), USR1 hold, USR2 resume.\nExit: 0 done, 1 "
+      "job refused, 2 bad input, 3 aborted, 4 alarm, "
       "5 command refused by the controller (or Ctrl-C while --probe touches), 6 link lost, 7 "
       "stalled (no progress for 30 s), 8 a "
       "board job that would cut copper (refused before streaming).");

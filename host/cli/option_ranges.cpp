@@ -24,14 +24,8 @@ OptionRange count(const char* option, const Range& r) {
   return OptionRange{option, r.min, r.max, "", true};
 }
 
-// "nan" and "inf" parse as numbers and pass every comparison-based check.
 std::string refuse_non_number(std::string& value) {
-  char* end = nullptr;
-  const double v = std::strtod(value.c_str(), &end);
-  if (end != value.c_str() && *end == '\0' && !std::isfinite(v))
-    return "'" + value + "' is not a finite number";
-  if (!is_plain_decimal(value)) return "'" + value + "' is not a decimal number";
-  return "";
+  return number_refusal(value);
 }
 
 // A count given as 1.5 is refused (CLI11's own words were "Could not convert"); one given as
@@ -80,6 +74,16 @@ void add_checks(CLI::App* app) {
 
 bool is_plain_decimal(const std::string& v) {
   return host::is_plain_decimal(v);  // the server's upload fields take the same rule
+}
+
+// "nan" and "inf" parse as numbers and pass every comparison-based check.
+std::string number_refusal(const std::string& value) {
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (end != value.c_str() && *end == '\0' && !std::isfinite(v))
+    return "'" + value + "' is not a finite number";
+  if (!is_plain_decimal(value)) return "'" + value + "' is not a decimal number";
+  return "";
 }
 
 const std::vector<OptionRange>& option_ranges() {

@@ -21,6 +21,8 @@ struct OptionRange {
 // A number as written in the documentation: digits, an optional point and exponent. strtod
 // and CLI11 also take hex floats (0x1p3), which no user means as a depth.
 bool is_plain_decimal(const std::string& text);
+// "'0x1p3' is not a decimal number", "'nan' is not a finite number", "" for a number.
+std::string number_refusal(const std::string& value);
 
 // The table, in the order the options appear in `board --help`.
 const std::vector<OptionRange>& option_ranges();

@@ -38,6 +38,19 @@ struct Box {
   }
 };
 
+// "x A .. B mm, y C .. D mm (W x H mm)" to the micrometre, the size the difference of the
+// ends as printed: from the box itself it could differ from them in the last digit (a round
+// flash's polygon reaches 0.2497 mm on either side: "-0.250 .. 0.250 (0.499)").
+std::string extents_text(double x0, double y0, double x1, double y1) {
+  const long long ax = std::llround(x0 * 1000), bx = std::llround(x1 * 1000);
+  const long long ay = std::llround(y0 * 1000), by = std::llround(y1 * 1000);
+  const auto mm = [](long long um) {
+    return fmt::format("{:.3f}", static_cast<double>(um) / 1000);
+  };
+  return fmt::format("x {} .. {} mm, y {} .. {} mm ({} x {} mm)", mm(ax), mm(bx), mm(ay), mm(by),
+                     mm(bx - ax), mm(by - ay));
+}
+
 Box extents(const PcbLayer& l) {
   Box b;
   for (const auto& path : l.polygons_nm) {
@@ -99,8 +112,7 @@ std::string pcb_info_text(const PcbFileInfo& info) {
   if (b.empty) {
     out << "extents:   (nothing drawn)\n";
   } else {
-    out << "extents:   x " << b.x0 << " .. " << b.x1 << " mm, y " << b.y0 << " .. " << b.y1
-        << " mm (" << b.x1 - b.x0 << " x " << b.y1 - b.y0 << " mm)\n";
+    out << "extents:   " << extents_text(b.x0, b.y0, b.x1, b.y1) << "\n";
   }
   if (l.kind == pcb::LayerKind::kDrill) {
     out << "tools:     " << l.apertures_or_tools << " defined, " << c.tools.size() << " used\n";
@@ -267,8 +279,7 @@ std::string drawing_info_text(const Drawing& d) {
   if (e.empty()) {
     out << "extents:  (no curves)\n";
   } else {
-    out << "extents:  x " << e.min.x() << " .. " << e.max.x() << " mm, y " << e.min.y() << " .. "
-        << e.max.y() << " mm (" << e.width() << " x " << e.height() << " mm)\n";
+    out << "extents:  " << extents_text(e.min.x(), e.min.y(), e.max.x(), e.max.y()) << "\n";
   }
   out << "curves:   " << d.curves.size() << "\n";
   for (size_t i = 0; i < d.curves.size(); ++i) {

@@ -162,10 +162,14 @@ SendResult send_job(Link& link, const JobPlan& plan, const SendOptions& o, std::
   r.message = sender.message();
   r.commands_held_max = commands.held_max();
   r.stats = sender.stats();
-  log << fmt::format("engraver: job {}: {} ({} frames, {} bytes, {} resent after busy or loss)\n",
+  if (r.outcome == JobOutcome::kCompleted) log << "engraver: " << send_ending_text(r) << "\n";
+  return r;
+}
+
+std::string send_ending_text(const SendResult& r) {
+  return fmt::format("job {}: {} ({} frames, {} bytes, {} resent after busy or loss)",
                      outcome_name(r.outcome), r.message, r.stats.frames_sent, r.stats.bytes_sent,
                      r.stats.retransmits);
-  return r;
 }
 
 }  // namespace host::commands

@@ -57,9 +57,14 @@ struct SendResult {
   size_t commands_held_max = 0;  // the most encoded commands held at once (a window, not the job)
 };
 
+// How the job ended, in one line: "job aborted: aborted by the operator after 4 of 112
+// commands (34 frames, 405 bytes, 0 resent after busy or loss)".
+std::string send_ending_text(const SendResult& r);
+
 // Opens a session on the link, encodes the job for that controller as the sender goes and
 // streams it (or, with resume/resume_at, the rest of it: the plan is encoded again to find
-// the resume point, no list of the job is held), saying on `log` what it does. Throws
+// the resume point, no list of the job is held), saying on `log` what it does (the ending
+// only of a completed job: the caller says how any other ended, once, as its last line). Throws
 // CommandFailure when a resume point does not fit the job (exit 1), LinkError when the link fails
 // to open a session.
 SendResult send_job(Link& link, const JobPlan& plan, const SendOptions& o, std::ostream& log);

@@ -67,8 +67,8 @@ constexpr double kMaxShapeUm = 1000.0;
 
 void check_range(const std::string& key, double um, double lo, double hi) {
   if (!(um >= lo && um <= hi))
-    throw SurfaceSpecError(
-        fmt::format("--surface {}: {:g} um is outside {:g} .. {:g} um", key, um, lo, hi));
+    throw SurfaceSpecError(fmt::format(
+        "--surface {}: {:g} um is outside the allowed range {:g} .. {:g} um", key, um, lo, hi));
 }
 
 }  // namespace
@@ -91,22 +91,22 @@ SurfaceSpec parse_surface_spec(const std::string& text) {
     given[same] = item;
     if (key == "tilt" || key == "tilt_x") {
       s.tilt_x_um = length_um(key, value);
-      check_range(key, s.tilt_x_um, -kMaxShapeUm, kMaxShapeUm);
+      check_range(item, s.tilt_x_um, -kMaxShapeUm, kMaxShapeUm);
     } else if (key == "tilt_y") {
       s.tilt_y_um = length_um(key, value);
-      check_range(key, s.tilt_y_um, -kMaxShapeUm, kMaxShapeUm);
+      check_range(item, s.tilt_y_um, -kMaxShapeUm, kMaxShapeUm);
     } else if (key == "bow") {
       s.bow_um = length_um(key, value);
-      check_range(key, s.bow_um, -kMaxShapeUm, kMaxShapeUm);
+      check_range(item, s.bow_um, -kMaxShapeUm, kMaxShapeUm);
     } else if (key == "bump") {
       const std::vector<double> v = lengths_um(key, value, 4);
       if (!(v[2] > 0))
         throw SurfaceSpecError(fmt::format("--surface bump={}: the radius must be above 0", value));
-      check_range("bump height", v[3], -kMaxShapeUm, kMaxShapeUm);
+      check_range(item + " (the height)", v[3], -kMaxShapeUm, kMaxShapeUm);
       s.bump = Bump{v[0] / 1000.0, v[1] / 1000.0, v[2] / 1000.0, v[3]};
     } else if (key == "noise") {
       s.noise_um = length_um(key, value);
-      check_range(key, s.noise_um, 0.0, 100.0);
+      check_range(item, s.noise_um, 0.0, 100.0);
     } else if (key == "seed") {
       size_t used = 0;
       unsigned long long seed = 0;

@@ -26,6 +26,7 @@ using ClipperLib::Paths;
 namespace {
 
 using gerber::Aperture;
+using gerber::ApertureDefinitionText;
 using gerber::ApertureTable;
 using gerber::Batch;
 using gerber::CoordinateFormat;
@@ -163,6 +164,7 @@ class GerberReader {
   void stroke_arc_with_shape(IntPoint from, const Path& pts, const Path* theirs_if_ill);
   void flash(IntPoint at);
   const Aperture& current_aperture() const;
+  void note_redefinition(int number_d, const Aperture& ap, const std::string& text);
   void add_object(Paths paths);
   void count_vertices(size_t n);
   void add_centre_line(IntPoint from, const Path& points, double width_nm);
@@ -184,10 +186,18 @@ class GerberReader {
   OpenKnockout knockout_;
   LayerKind x2_kind_ = LayerKind::kUnknown;
   bool x2_kind_given_ = false;
+  // The second reading of a file with a D code redefined after it drew: its last definition
+  // stands for every one.
+  std::map<int, ApertureDefinitionText> last_definitions_;
 };
 
 PcbLayer GerberReader::read() {
   read_blocks();
+  if (!apertures_.redefined_after_use.empty() && last_definitions_.empty()) {
+    GerberReader again(text_, diag_.path, opt_);
+    for (int n : apertures_.redefined_after_use) again.last_definitions_[n] = apertures_.last.at(n);
+    return again.read();
+  }
   PcbLayer layer;
   layer.path = diag_.path;
   layer.units = unit_.name;
@@ -780,7 +790,11 @@ void GerberReader::aperture_block(const std::string& arg) {
   drawn_.batches.resize(b.batch_start);
   gs_.dark = b.dark;
   if (apertures_.defined.count(b.number_d))
-    diag_.note("aperture D" + std::to_string(b.number_d) + " redefined");
+    diag_.note("aperture D" + std::to_string(b.number_d) +
+               " redefined by a block aperture: the block from here on");
+  // Its uses are the block's; earlier %AD uses are still read with the last %AD (gerbv
+  // draws those so and knows no blocks).
+  apertures_.used.erase(b.number_d);
   apertures_.defined[b.number_d] = std::move(ap);
 }
 
@@ -829,8 +843,9 @@ void GerberReader::aperture_definition(const std::string& s) {
   if (k == 1 || k > 8) diag_.fail("aperture definition '%AD" + s + "' has a bad D number");
   const int number_d = std::stoi(s.substr(1, k - 1));
   apertures_.refused.erase(number_d);
+  const auto last = last_definitions_.find(number_d);
   try {
-    define_aperture(s, k, number_d);
+    define_aperture(last == last_definitions_.end() ? s : last->second.text, k, number_d);
   } catch (const PcbReadError& e) {
     if (s.find(',', k) == std::string::npos) throw;  // no parameters: nothing to defer
     apertures_.defined.erase(number_d);
@@ -878,9 +893,41 @@ void GerberReader::define_aperture(const std::string& s, size_t k, int number_d)
   } else {
     ap = macro_aperture(name, params, number_d);
   }
-  if (apertures_.defined.count(number_d))
-    diag_.note("aperture D" + std::to_string(number_d) + " redefined");
+  note_redefinition(number_d, ap, s);
   apertures_.defined[number_d] = std::move(ap);
+}
+
+// A D code defined twice: gerbv (and pcb2gcode, which reads with it) draws every use with the
+// last definition, those before it too. Said which one is used; a definition that changes
+// the aperture after it drew is read again from the start (read()) so that it is gerbv's.
+void GerberReader::note_redefinition(int number_d, const Aperture& ap, const std::string& text) {
+  const std::string d = "aperture D" + std::to_string(number_d);
+  const auto last = last_definitions_.find(number_d);
+  const auto earlier = apertures_.defined.find(number_d);
+  apertures_.last[number_d] = ApertureDefinitionText{text, diag_.line};
+  if (earlier == apertures_.defined.end()) {
+    if (last != last_definitions_.end())
+      diag_.note(d + " defined again at line " + std::to_string(last->second.line) +
+                 " after it drew: every use takes that last definition, those before it too, "
+                 "as gerbv draws them");
+    apertures_.used.erase(number_d);
+    return;
+  }
+  if (last != last_definitions_.end()) return;  // the last definition everywhere: said above
+  const Aperture& was = earlier->second;
+  if (was.type == ap.type && was.circle_d_nm == ap.circle_d_nm && was.shape == ap.shape &&
+      was.has_hole == ap.has_hole && was.block.empty() && ap.block.empty()) {
+    diag_.note(d + " defined again, the same as before: nothing changes");
+    return;
+  }
+  if (apertures_.used.count(number_d)) {
+    apertures_.redefined_after_use.insert(number_d);
+  } else {
+    diag_.note(d +
+               " redefined before anything was drawn with it: this later definition is "
+               "used, as gerbv uses it");
+  }
+  apertures_.used.erase(number_d);
 }
 
 // Only lengths are sizes: a polygon's vertex count and rotation are not (nor a macro's
@@ -1435,6 +1482,7 @@ void GerberReader::operate(int d, const std::string* xs, const std::string* ys,
   gs_.last_d = d;
   const IntPoint from = gs_.at;
   gs_.at = to;
+  if ((d == 1 && !gs_.region) || d == 3) apertures_.used.insert(gs_.aperture);
   if (d == 1) {
     if (gs_.interpolation == 1) {
       if (gs_.region) {

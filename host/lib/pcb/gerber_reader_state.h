@@ -7,6 +7,7 @@
 #include <clipper.hpp>  // ClipperLib::Path, Paths
 
 #include <map>            // std::map
+#include <set>            // std::set
 #include <string>         // std::string
 #include <unordered_map>  // std::unordered_map
 #include <vector>         // std::vector
@@ -83,10 +84,21 @@ struct GerberUnits {
   void need(GerberDiagnostics& diag, const std::string& what);
 };
 
+// A D code's last %AD: its text ("D10C,1.0") and line.
+struct ApertureDefinitionText {
+  std::string text;
+  int line = 0;
+};
+
 struct ApertureTable {
   std::map<int, Aperture> defined;
   std::map<int, std::string> refused;  // D number -> why its definition was refused
   std::unordered_map<std::string, ApertureMacro> macros;
+  // A D code defined again differently after it drew: gerbv draws every use with the last
+  // definition, so the file is read again with that one from the first (read()).
+  std::set<int> used;  // drew (stroke or flash) since its latest definition
+  std::map<int, ApertureDefinitionText> last;
+  std::set<int> redefined_after_use;
 };
 
 struct GraphicsState {

@@ -66,7 +66,7 @@ TEST(HeightMapCli, BadSurfaceOrProbeWithoutABlankIsAUsageError) {
   const std::string dir = out_dir("bad");
   ToolRun r = run_tool(kExe, "run " + kWord + " --surface tilt=0.1 -o " + dir);
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--surface tilt=0.1: give the length with its unit"), std::string::npos)
+  EXPECT_NE(r.err.find("--surface: tilt=0.1: give the length with its unit"), std::string::npos)
       << r.err;
   r = run_tool(kExe, "run " + kWord + " --probe -o " + dir);
   EXPECT_EQ(r.code, 2);

@@ -22,6 +22,29 @@ std::string write_file(const std::string& name, const std::string& text) {
   return p.string();
 }
 
+// Under %IR90 the tester read "y -0.250 .. 10.250 mm" and a height of 10.499 mm: the size
+// came from the unrounded box (a round flash's polygon stops 0.3 um short of its radius),
+// the ends were rounded. Every quarter turn: the ends the turned ones, the size their difference.
+TEST(InfoCommand, ExtentsAndSizeAddUpUnderEveryImageRotation) {
+  const std::string expected[] = {
+      "extents:   x -0.250 .. 10.250 mm, y -0.250 .. 0.250 mm (10.500 x 0.500 mm)\n",
+      "extents:   x -0.250 .. 0.250 mm, y -0.250 .. 10.250 mm (0.500 x 10.500 mm)\n",
+      "extents:   x -10.250 .. 0.250 mm, y -0.250 .. 0.250 mm (10.500 x 0.500 mm)\n",
+      "extents:   x -0.250 .. 0.250 mm, y -10.250 .. 0.250 mm (0.500 x 10.500 mm)\n",
+  };
+  for (int quarter = 0; quarter < 4; ++quarter) {
+    const std::string ir = std::to_string(90 * quarter);
+    const std::string path = write_file(
+        "ir" + ir + ".gbr", "%FSLAX46Y46*%\n%MOMM*%\n%IR" + ir +
+                                "*%\n%ADD10C,0.500000*%\nD10*\nX0Y0D03*\nX10000000Y0D03*\nM02*\n");
+    const std::optional<PcbFileInfo> info = read_pcb_file_info(path);
+    ASSERT_TRUE(info.has_value());
+    const std::string text = pcb_info_text(*info);
+    EXPECT_NE(text.find(expected[quarter]), std::string::npos) << "%IR" << ir << "\n" << text;
+    fs::remove(path);
+  }
+}
+
 TEST(InfoCommand, AGerberFilesLayerExtentsAndPolygons) {
   const std::string path = write_file(
       "pads-F.Cu.gbr",

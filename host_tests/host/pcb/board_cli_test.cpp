@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "host_tests/host/cli/tool_run.h"
 
@@ -695,6 +696,53 @@ TEST(BoardCli, TwoFilesForOneCopperLayerAreAnInputErrorNamingBoth) {
   EXPECT_NE(r.err.find("two files for the top copper"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("t-F.Cu.gbr"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("u-F.Cu.gbr"), std::string::npos) << r.err;
+}
+
+// The guide's first board examples that name the shared samples run as printed (exit 0),
+// and the shipped example_board's refusal at the default tool names the width that plans it
+// and the option to plan anyway (a user meets that refusal first).
+TEST(BoardCli, TheGuidesFirstBoardExamplesRunAsPrinted) {
+  const std::string shared = std::string(ENGRAVER_SOURCE_DIR) + "/../shared";
+  if (!std::filesystem::is_directory(shared + "/samples/pcb/example_board"))
+    GTEST_SKIP() << shared << " (shared samples) absent";
+  std::ifstream guide(std::string(ENGRAVER_SOURCE_DIR) + "/docs/user-guide.md");
+  ASSERT_TRUE(guide);
+  std::string line;
+  while (std::getline(guide, line) && line.rfind("## PCB boards: `engraver board`", 0) != 0) {
+  }
+  std::vector<std::string> examples;  // the first indented block after the heading
+  bool in_block = false;
+  while (std::getline(guide, line)) {
+    if (line.rfind("    engraver ", 0) == 0) {
+      in_block = true;
+      if (line.find("../shared/") != std::string::npos &&
+          (line.rfind("    engraver board ", 0) == 0 || line.rfind("    engraver run ", 0) == 0))
+        examples.push_back(line.substr(std::string("    engraver ").size()));
+    } else if (in_block) {
+      break;
+    }
+  }
+  ASSERT_EQ(examples.size(), 2u) << "the guide's board and run examples on the shared samples";
+  const std::string out = testing::TempDir() + "/" + std::to_string(getpid()) + "-guide";
+  for (std::string args : examples) {
+    const size_t at = args.find("../shared");
+    args.replace(at, std::string("../shared").size(), shared);
+    const size_t o = args.find(" -o out");
+    ASSERT_NE(o, std::string::npos) << args;
+    args.replace(o, std::string(" -o out").size(), " -o " + out);
+    const ToolRun r = run(args);
+    EXPECT_EQ(r.code, 0) << args << "\n" << r.err;
+  }
+  const std::string example = "board " + shared + "/samples/pcb/example_board --no-plot -o " + out;
+  const ToolRun refused = run(example);
+  EXPECT_EQ(refused.code, 1) << refused.err;
+  EXPECT_NE(refused.err.find("Use a narrower tool: --tool-width 0.041 passes every gap (the "
+                             "narrowest, 0.057 mm, less 2 x 0.008 mm clearance), or plan anyway "
+                             "(--allow-narrow-gaps: the copper at those gaps stays joined).\n"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_EQ(run(example + " --tool-width 0.041").code, 0);
+  std::filesystem::remove_all(out);
 }
 
 }  // namespace

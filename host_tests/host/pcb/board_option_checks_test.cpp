@@ -330,7 +330,7 @@ TEST(BoardOptionRanges, TheSecondTestersValuesAreUsageErrorsNamingTheOption) {
       {"probe " + word + dead + " --probe-grid 4 17", "--probe-grid: 17 is outside"},
       // A hex float in the simulated blank.
       {"run " + word + " --surface tilt=0x1p-3mm" + out,
-       "--surface tilt=0x1p-3mm: '0x1p-3' is not a decimal number"},
+       "--surface: tilt=0x1p-3mm: '0x1p-3' is not a decimal number"},
       {"run " + word + " --surface bump=10:0x1p3:5mm:50um" + out, "'0x1p3' is not a decimal"},
       // No range: the message overflowed (-9.22337e+15).
       {"run " + word + " --offset 1e300 0" + out,
@@ -365,6 +365,63 @@ TEST(BoardOptionRanges, TheSecondTestersValuesAreUsageErrorsNamingTheOption) {
   // A whole number written as 2.0 or 1e0 is that number (it was "Could not convert").
   EXPECT_EQ(run(board + " --tabs 2.0").code, 0) << run(board + " --tabs 2.0").err;
   EXPECT_EQ(run(board + " --passes 1e0").code, 0) << run(board + " --passes 1e0").err;
+}
+
+// The narrow-gap refusal said "use a narrower tool" without saying how narrow: the user of the
+// shipped example_board (0.057 mm gaps) had to guess. It names the widest tool that passes
+// every gap, which plans, while a micrometre more is refused; and the option to plan anyway.
+TEST(BoardOptionRanges, TheNarrowGapRefusalNamesTheToolWidthThatPasses) {
+  const std::string dir = testing::TempDir() + "/" + std::to_string(getpid()) + "-opt-narrow";
+  std::filesystem::create_directories(dir);
+  // Two 1 mm pads 0.1 mm apart.
+  std::ofstream(dir + "/gap-F.Cu.gbr")
+      << "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Copper,L1,Top*%\n%ADD10C,1.000000*%\n"
+         "D10*\nX10000000Y10000000D03*\nX11100000Y10000000D03*\nM02*\n";
+  const std::string board = "board " + dir + " --no-plot -o " + dir + "/out";
+  const ToolRun r = run(board);
+  EXPECT_EQ(r.code, 1) << r.err;
+  const std::string says = "Use a narrower tool: --tool-width ";
+  const size_t at = r.err.find(says);
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const std::string width =
+      r.err.substr(at + says.size(), r.err.find(' ', at + says.size()) - at - says.size());
+  EXPECT_EQ(width, "0.084") << r.err;  // the gap 0.100 mm less 2 x 0.008 mm clearance
+  EXPECT_NE(r.err.find(" passes every gap (the narrowest, 0.100 mm, less 2 x 0.008 mm "
+                       "clearance), or plan anyway (--allow-narrow-gaps: the copper at those "
+                       "gaps stays joined).\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(run(board + " --tool-width " + width).code, 0);
+  EXPECT_EQ(run(board + " --tool-width 0.085").code, 1);
+  EXPECT_EQ(run(board + " --allow-narrow-gaps").code, 0);
+}
+
+// --surface was read after the job was planned (a user waited for the plan to hear of a
+// typo) and in words of its own: it is read with the command line, as every option is.
+TEST(BoardOptionRanges, TheSurfaceIsCheckedBeforePlanningInTheOptionsWords) {
+  const std::string dir = write_board("surface");
+  const std::string run_board = "run " + dir + " -o " + dir + "/out --surface ";
+  struct Case {
+    std::string args, says;
+  };
+  const Case cases[] = {
+      {run_board + "tilt=0x1mm", "--surface: tilt=0x1mm: '0x1' is not a decimal number\n"},
+      {run_board + "bow=infmm", "--surface: bow=infmm: 'inf' is not a finite number\n"},
+      {run_board + "tilt=1e999um", "--surface: tilt=1e999um: '1e999' is not a finite number\n"},
+      {run_board + "tilt=2mm",
+       "--surface: tilt=2mm: 2000 um is outside the allowed range -1000 .. 1000 um\n"},
+      {run_board + "tilt=0.1", "--surface: tilt=0.1: give the length with its unit"},
+      {run_board + "tilt=1mm,tilt=2mm", "--surface: 'tilt_x' is given twice"},
+      {"sim --surface noise=1e3mm",
+       "--surface: noise=1e3mm: 1e+06 um is outside the allowed range 0 .. 100 um\n"},
+  };
+  for (const Case& c : cases) {
+    const ToolRun r = run(c.args);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
+    // The refusal is the first thing said: nothing was read or planned before it.
+    EXPECT_EQ(r.err.rfind(c.says, 0), 0u) << c.args << "\n" << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
 }
 
 }  // namespace

@@ -132,6 +132,52 @@ TEST(GerberReader, ClearPolarity) {
   EXPECT_TRUE(covered(l, 1, 1));
 }
 
+// A D code defined twice after it drew: the note said "redefined" and the uses before took the
+// first definition, the uses after the second, while gerbv (and pcb2gcode) draws every use
+// with the last one (gerbv -x png of this file: both D10 flashes 4 mm wide). Read as gerbv
+// reads it, and the note says which definition is used.
+TEST(GerberReader, ARedefinedApertureIsItsLastDefinitionForEveryUseAsInGerbv) {
+  const PcbLayer l = read_gerber_file(data_file("aperture_redefined.gbr"));
+  // D10: the flash before the second definition is 4 mm wide too (1 mm before).
+  EXPECT_NEAR(area_in(l, -1, -1, 5, 5), kPi * 4, kAreaTol);
+  EXPECT_NEAR(area_in(l, 7, -1, 13, 5), kPi * 4, kAreaTol);
+  // D11: the 1 mm square flashed and stroked from x 2 to 6 before its redefinition.
+  EXPECT_NEAR(area_in(l, 0, 6, 8, 10), 5.0, kAreaTol);
+  EXPECT_FALSE(covered(l, 3.2, 8.8));  // inside the earlier 3 x 2 mm rectangle only
+  EXPECT_NEAR(area_in(l, 9, 7, 11, 9), 1.0, kAreaTol);
+  EXPECT_TRUE(has_note(l,
+                       "line 5: aperture D10 defined again at line 13 after it drew: every "
+                       "use takes that last definition, those before it too, as gerbv draws "
+                       "them"));
+  EXPECT_TRUE(has_note(l, "line 6: aperture D11 defined again at line 14 after it drew"));
+  EXPECT_TRUE(has_note(l,
+                       "line 20: aperture D12 defined again, the same as before: nothing "
+                       "changes"));
+}
+
+// A D code redefined by a block aperture: the flashes before the block are read with the
+// last %AD (both 2 mm, as gerbv draws them; gerbv ignores %AB), those after are the block's.
+TEST(GerberReader, AnApertureRedefinedByABlockIsTheBlockFromThere) {
+  const PcbLayer l = read_gerber_file(data_file("aperture_redefined_block.gbr"));
+  EXPECT_NEAR(area_in(l, 0, 0, 4, 4), kPi, kAreaTol);
+  EXPECT_NEAR(area_in(l, 4, 0, 8, 4), kPi, kAreaTol);
+  EXPECT_NEAR(area_in(l, 8, 0, 12, 4), kPi * 0.0625, kAreaTol);  // the block: a 0.5 mm pad
+  EXPECT_TRUE(has_note(l, "line 4: aperture D10 defined again at line 8"));
+  EXPECT_TRUE(has_note(l,
+                       "line 14: aperture D10 redefined by a block aperture: the block from "
+                       "here on"));
+}
+
+// Defined again before anything drew with it: the later definition, and the note says so.
+TEST(GerberReader, AnApertureRedefinedBeforeItDrewIsItsLaterDefinition) {
+  const PcbLayer l = read_gerber_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD10C,1.0*%\nD10*\n%ADD10C,2.0*%\nX0Y0D03*\nM02*\n", "later.gbr");
+  EXPECT_NEAR(area_mm2(l.polygons_nm), kPi, kAreaTol);
+  EXPECT_TRUE(has_note(l,
+                       "line 5: aperture D10 redefined before anything was drawn with it: "
+                       "this later definition is used, as gerbv uses it"));
+}
+
 TEST(GerberReader, StepAndRepeat) {
   const PcbLayer l = read_gerber_file(data_file("step_repeat.gbr"));
   // Each copy: a 1 x 2 pad less a cleared circle of d 0.6, and a 0.8 mm track of d 1.

@@ -84,7 +84,9 @@ INSTANTIATE_TEST_SUITE_P(OwnFiles, GerbvAgreement,
                                            "slots_decimal.drl", "inch_lz_format.drl",
                                            // Deprecated parameters applied as gerbv does.
                                            "image_offset.gbr", "layer_rotation.gbr", "knockout.gbr",
-                                           "image_negative.gbr", "knockout_border.gbr"));
+                                           "image_negative.gbr", "knockout_border.gbr",
+                                           // The last definition of a D code for every use.
+                                           "aperture_redefined.gbr"));
 
 }  // namespace
 }  // namespace host::pcb

@@ -231,7 +231,7 @@ TEST(ServerBoards, NarrowGapsAreRefusedWithTheServersAdviceUnlessAllowed) {
   httplib::MultipartFormDataItems form = blinky_form();
   form.push_back({"tool_width_mm", "4.5", "", ""});
   expect_refused(server.client().Post("/api/jobs", server.auth(), form), 422,
-                 "Use a narrower tool (tool_width_mm) or plan anyway (allow_narrow_gaps=1)");
+                 "or plan anyway (allow_narrow_gaps=1: the copper at those gaps stays joined)");
   EXPECT_TRUE(server.jobs().empty());
   form.push_back({"allow_narrow_gaps", "maybe", "", ""});
   expect_refused(server.client().Post("/api/jobs", server.auth(), form), 400, "allow_narrow_gaps");
