@@ -1,6 +1,8 @@
 // The firmware application (see application.h and docs/firmware.md).
 #include "firmware/app/application.h"
 
+#include <stddef.h>  // offsetof
+
 #include "firmware/protocol/codec.h"  // decode_frame
 
 namespace app {
@@ -225,11 +227,11 @@ void Application::fill_status(proto::StatusReply* r) {
   r->next_expected_seq = 0;  // filled by the dispatcher
   r->last_executed_seq = last_executed_seq_;
   r->last_error = proto::ErrorCode::kOk;
-  int32_t at[config::kAxisCount];
-  position_um(at);
-  r->x_um = at[0];
-  r->y_um = at[1];
-  r->z_um = at[2];
+  // x, y, z are adjacent in the reply: written in place.
+  static_assert(offsetof(proto::StatusReply, y_um) == offsetof(proto::StatusReply, x_um) + 4 &&
+                    offsetof(proto::StatusReply, z_um) == offsetof(proto::StatusReply, x_um) + 8,
+                "StatusReply x_um, y_um, z_um adjacent");
+  position_um(&r->x_um);
   r->rejected_frames = 0;
   r->spline_slots_free = spline_slots_free();
   job_.fill_status(r);
