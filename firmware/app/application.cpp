@@ -2,6 +2,7 @@
 #include "firmware/app/application.h"
 
 #include <stddef.h>  // offsetof
+#include <string.h>  // memcpy
 
 #include "firmware/protocol/codec.h"  // decode_frame
 
@@ -250,9 +251,14 @@ void Application::fill_session(proto::SessionReply* r) {
   r->firmware_major = config::kFirmwareMajor;
   r->firmware_minor = config::kFirmwareMinor;
   // The travel the controller checks targets against, and the fastest feed of each axis.
-  r->travel_x_um = scaling_.travel_um[config::kAxisX];
-  r->travel_y_um = scaling_.travel_um[config::kAxisY];
-  r->travel_z_um = scaling_.travel_um[config::kAxisZ];
+  // x, y, z adjacent in the reply as in travel_um: one copy.
+  static_assert(offsetof(proto::SessionReply, travel_y_um) ==
+                        offsetof(proto::SessionReply, travel_x_um) + 4 &&
+                    offsetof(proto::SessionReply, travel_z_um) ==
+                        offsetof(proto::SessionReply, travel_x_um) + 8 &&
+                    config::kAxisX == 0 && config::kAxisY == 1 && config::kAxisZ == 2,
+                "SessionReply travel_x_um, travel_y_um, travel_z_um adjacent, in axis order");
+  memcpy(&r->travel_x_um, scaling_.travel_um, sizeof scaling_.travel_um);
   const uint32_t xy =
       cfg_.axis[config::kAxisX].max_speed_um_per_s < cfg_.axis[config::kAxisY].max_speed_um_per_s
           ? cfg_.axis[config::kAxisX].max_speed_um_per_s

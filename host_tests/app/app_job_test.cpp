@@ -117,6 +117,24 @@ TEST(AppSession, VersionsTwoAndThreeOpenASessionInThatVersionOthersAreRefused) {
   }
 }
 
+// *I reports the travel the controller checks against, each axis in its field, and the
+// fastest feeds (docs/protocol.md section 4).
+TEST(AppSession, SessionReplyCarriesEachAxisTravelAndTheFastestFeeds) {
+  AppRig rig;
+  rig.host.open_session();
+  ASSERT_TRUE(rig.run_until([&] { return rig.host.session_open; }, 100));
+  const proto::SessionReply& r = rig.host.session;
+  EXPECT_EQ(r.travel_x_um, rig.cfg.axis[config::kAxisX].travel_um);
+  EXPECT_EQ(r.travel_y_um, rig.cfg.axis[config::kAxisY].travel_um);
+  EXPECT_EQ(r.travel_z_um, rig.cfg.axis[config::kAxisZ].travel_um);
+  EXPECT_NE(r.travel_x_um, r.travel_y_um);  // the default machine tells the axes apart
+  EXPECT_NE(r.travel_y_um, r.travel_z_um);
+  EXPECT_EQ(r.max_feed_xy_um_per_s, std::min(rig.cfg.axis[config::kAxisX].max_speed_um_per_s,
+                                             rig.cfg.axis[config::kAxisY].max_speed_um_per_s));
+  EXPECT_EQ(r.max_feed_z_um_per_s, rig.cfg.axis[config::kAxisZ].max_speed_um_per_s);
+  EXPECT_EQ(r.queue_slots, app::CommandQueue::kCapacity);
+}
+
 // docs/protocol.md section 4: version 3 only adds #Q. In a version-2 session a #Q is an
 // unknown command (detail: the version that brings it), nothing is stored; the same frames
 // run in a version-3 session. (Frames of the document's examples, section 6.)
