@@ -1,6 +1,9 @@
 // The firmware application (see application.h and docs/firmware.md).
 #include "firmware/app/application.h"
 
+#include <stddef.h>  // offsetof
+#include <string.h>  // memcpy
+
 #include "firmware/protocol/codec.h"  // decode_frame
 
 namespace app {
@@ -225,11 +228,11 @@ void Application::fill_status(proto::StatusReply* r) {
   r->next_expected_seq = 0;  // filled by the dispatcher
   r->last_executed_seq = last_executed_seq_;
   r->last_error = proto::ErrorCode::kOk;
-  int32_t at[config::kAxisCount];
-  position_um(at);
-  r->x_um = at[0];
-  r->y_um = at[1];
-  r->z_um = at[2];
+  // x, y, z are adjacent in the reply: written in place.
+  static_assert(offsetof(proto::StatusReply, y_um) == offsetof(proto::StatusReply, x_um) + 4 &&
+                    offsetof(proto::StatusReply, z_um) == offsetof(proto::StatusReply, x_um) + 8,
+                "StatusReply x_um, y_um, z_um adjacent");
+  position_um(&r->x_um);
   r->rejected_frames = 0;
   r->spline_slots_free = spline_slots_free();
   job_.fill_status(r);
@@ -248,9 +251,14 @@ void Application::fill_session(proto::SessionReply* r) {
   r->firmware_major = config::kFirmwareMajor;
   r->firmware_minor = config::kFirmwareMinor;
   // The travel the controller checks targets against, and the fastest feed of each axis.
-  r->travel_x_um = scaling_.travel_um[config::kAxisX];
-  r->travel_y_um = scaling_.travel_um[config::kAxisY];
-  r->travel_z_um = scaling_.travel_um[config::kAxisZ];
+  // x, y, z adjacent in the reply as in travel_um: one copy.
+  static_assert(offsetof(proto::SessionReply, travel_y_um) ==
+                        offsetof(proto::SessionReply, travel_x_um) + 4 &&
+                    offsetof(proto::SessionReply, travel_z_um) ==
+                        offsetof(proto::SessionReply, travel_x_um) + 8 &&
+                    config::kAxisX == 0 && config::kAxisY == 1 && config::kAxisZ == 2,
+                "SessionReply travel_x_um, travel_y_um, travel_z_um adjacent, in axis order");
+  memcpy(&r->travel_x_um, scaling_.travel_um, sizeof scaling_.travel_um);
   const uint32_t xy =
       cfg_.axis[config::kAxisX].max_speed_um_per_s < cfg_.axis[config::kAxisY].max_speed_um_per_s
           ? cfg_.axis[config::kAxisX].max_speed_um_per_s

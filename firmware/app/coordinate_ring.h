@@ -6,7 +6,7 @@
 #include <stdint.h>  // int32_t, uint16_t
 
 #include "firmware/config/machine_config.h"  // kAxisCount
-#include "firmware/core/spsc_ring.h"         // CORE_SPSC_BARRIER
+#include "firmware/core/spsc_ring.h"         // SpscRing
 
 namespace app {
 
@@ -36,71 +36,13 @@ struct PlanEntry {
   uint8_t flags;                              // PointFlags
 };
 
-// SPSC ring of PlanEntry with 16-bit free-running indices (same contract as core::SpscRing)
-// plus producer access to the entries not yet consumed, for the planner's backward pass.
+// The SPSC ring of PlanEntry (core::SpscRing's contract); the planner's backward pass
+// updates the entries not yet consumed through newest(k), the controller reads front().
 template <uint16_t kCapacity>
-class PlanRing {
-  static_assert(kCapacity >= 2 && kCapacity <= 1024U, "capacity 2..1024");
-  static_assert((kCapacity & (kCapacity - 1)) == 0, "capacity must be a power of two");
-
+class PlanRing : public core::SpscRing<PlanEntry, kCapacity> {
  public:
-  PlanRing() : head_(0), tail_(0) {}
-
-  // Producer: appends e; false when full.
-  bool push(const PlanEntry& e) {
-    const uint16_t head = head_;
-    if ((uint16_t)(head - tail_) >= kCapacity) return false;
-    slot_[head & kMask] = e;
-    CORE_SPSC_BARRIER();  // the entry is complete before it is published
-    head_ = (uint16_t)(head + 1);
-    return true;
-  }
-
-  // Producer: the k-th newest published entry (0 = newest), 0 when k >= size(). The slot
-  // stays the producer's to update until it pushes again (it cannot be reused before).
-  PlanEntry* newest(uint16_t k) {
-    const uint16_t head = head_;
-    const uint16_t tail = tail_;
-    if (k >= (uint16_t)(head - tail)) return 0;
-    return &slot_[(uint16_t)(head - 1U - k) & kMask];
-  }
-
-  // Consumer: takes the oldest entry; false when empty.
-  bool pop(PlanEntry* out) {
-    const uint16_t tail = tail_;
-    if (head_ == tail) return false;
-    CORE_SPSC_BARRIER();
-    *out = slot_[tail & kMask];
-    CORE_SPSC_BARRIER();
-    tail_ = (uint16_t)(tail + 1);
-    return true;
-  }
-
   // Consumer: the oldest entry without taking it, 0 when empty.
-  const PlanEntry* front() const {
-    const uint16_t tail = tail_;
-    if (head_ == tail) return 0;
-    CORE_SPSC_BARRIER();
-    return &slot_[tail & kMask];
-  }
-
-  // Consumer: drops everything published so far.
-  void clear() {
-    const uint16_t head = head_;
-    CORE_SPSC_BARRIER();
-    tail_ = head;
-  }
-
-  uint16_t size() const { return (uint16_t)(head_ - tail_); }
-  uint16_t free_space() const { return (uint16_t)(kCapacity - size()); }
-  bool empty() const { return head_ == tail_; }
-  static uint16_t capacity() { return kCapacity; }
-
- private:
-  enum { kMask = kCapacity - 1 };
-  volatile uint16_t head_;  // producer-owned
-  volatile uint16_t tail_;  // consumer-owned
-  PlanEntry slot_[kCapacity];
+  const PlanEntry* front() const { return this->peek(0); }
 };
 
 // The ring the application uses: 32 points; at 10 mm/s even 50 um points buffer 160 ms,

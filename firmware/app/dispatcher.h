@@ -84,6 +84,7 @@ class Dispatcher {
   proto::Parser parser_;
   proto::SequenceWindow window_;
   proto::RealtimeSequence realtime_;
+  // last_error_ to held_length_: zeroed as one block by the constructor.
   proto::ErrorCode last_error_;
   uint16_t last_byte_ms_;
   uint16_t last_valid_ms_;

@@ -1,6 +1,8 @@
 // Item execution (see item_executor.h and docs/firmware.md).
 #include "firmware/app/item_executor.h"
 
+#include <string.h>  // memcpy, memcmp, memset
+
 namespace app {
 
 namespace {
@@ -10,17 +12,13 @@ const uint16_t kProbeSettleMs = 20;  // after a touch, before the retract reads 
 
 }  // namespace
 
-ItemExecutor::ItemExecutor()
-    : spindle_(0),
-      spindle_on_(false),
-      item_tag_(0),
-      last_feed_um_s_(1000),
-      spline_started_(false),
-      jog_active_(false),
-      pause_presses_(0),
-      wait_start_ms_(0),
-      paused_(false),
-      probing_(false) {}
+ItemExecutor::ItemExecutor() : spindle_(0), spindle_on_(false) {
+  // item_tag_ up to probing_ (declared in that order) start at zero: one memset of the
+  // block, less code than a store per member.
+  uint8_t* const first = reinterpret_cast<uint8_t*>(&item_tag_);
+  memset(first, 0, (size_t)(reinterpret_cast<uint8_t*>(&probing_ + 1) - first));
+  last_feed_um_s_ = 1000;
+}
 
 bool ItemExecutor::run(QueueItem* item, ExecutionContext* c) {
   if (!dispatch(item, c)) return false;
@@ -156,39 +154,30 @@ inline bool ItemExecutor::run_spindle(QueueItem* item, ExecutionContext* c) {
 // height, 3 plunge at the feed, 4 back up to the start height (end of the item).
 inline bool ItemExecutor::run_drill(QueueItem* item, ExecutionContext* c) {
   const DrillArgs& d = item->drill;
-  const uint8_t rapid = kPointRapid;
   while (item->stage < 5) {
+    const uint8_t stage = item->stage;
     const int32_t* last = planner_.last_um();
-    int32_t target[config::kAxisCount] = {last[0], last[1], last[2]};
+    int32_t target[config::kAxisCount];
+    memcpy(target, last, sizeof target);
     uint16_t feed = c->rapid_feed_um_s;
-    uint8_t flags = rapid;
-    bool skip = false;
-    switch (item->stage) {
-      case 0:
-        skip = last[2] >= d.z_start_um;
-        target[2] = d.z_start_um;
-        break;
-      case 1:
-        skip = last[0] == d.x_um && last[1] == d.y_um;
-        target[0] = d.x_um;
-        target[1] = d.y_um;
-        break;
-      case 2:
-        skip = last[2] == d.z_start_um;
-        target[2] = d.z_start_um;
-        break;
-      case 3:
-        target[2] = d.z_bottom_um;
-        feed = d.feed_um_s;
-        flags = 0;
-        break;
-      default:
-        target[2] = d.z_start_um;
-        flags = (uint8_t)(rapid | kPointEndOfItem);
-        break;
+    uint8_t flags = kPointRapid;
+    if (stage == 1) {
+      target[0] = d.x_um;
+      target[1] = d.y_um;
+    } else {
+      target[2] = stage == 3 ? d.z_bottom_um : d.z_start_um;
     }
+    if (stage == 3) {
+      feed = d.feed_um_s;
+      flags = 0;
+    }
+    if (stage == 4) flags = (uint8_t)(kPointRapid | kPointEndOfItem);
+    // Stage 0 only rises; 1 and 2 are skipped where the tool already is; 3 and 4 always
+    // go (4 ends the item).
+    const bool skip = stage == 0 ? last[2] >= d.z_start_um
+                                 : stage < 3 && memcmp(target, last, sizeof target) == 0;
     if (!skip && !push_point(target, feed, flags, c)) return false;
-    item->stage = (uint8_t)(item->stage + 1U);
+    item->stage = (uint8_t)(stage + 1U);
   }
   last_feed_um_s_ = d.feed_um_s;
   return true;

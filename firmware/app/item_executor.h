@@ -104,7 +104,8 @@ class ItemExecutor {
   PointGenerator generator_;
   core::HeightMap map_;  // (#A/#E) as executed in queue order, followed by the planner
   ProbeRecord probes_;   // the last probe's result (#T), since power-up
-  uint16_t item_tag_;    // of the item under way, on its ring points
+  // item_tag_ to probing_: zeroed as one block by the constructor.
+  uint16_t item_tag_;  // of the item under way, on its ring points
   uint16_t last_feed_um_s_;
   bool spline_started_;
   bool jog_active_;         // a zeroing item asked the tick to jog

@@ -1,22 +1,17 @@
 // Job progress (see job_progress.h and docs/protocol.md, #J).
 #include "firmware/app/job_progress.h"
 
+#include <string.h>  // memset
+
 #include "firmware/protocol/message_table.h"  // PROTO_I32_MAX
 #include "firmware/protocol/wire_codes.h"     // kStatusJob, kStatusJobStarted
 
 namespace app {
 
-JobProgress::JobProgress()
-    : next_index_(0),
-      first_point_(0),
-      next_id_(0),
-      numbering_(false),
-      next_pending_(false),
-      valid_(false),
-      id_(0),
-      index_(0),
-      point_(0),
-      started_(false) {}
+// Every member starts at zero: one memset, less code than a store each (no virtuals).
+JobProgress::JobProgress() {
+  memset(static_cast<void*>(this), 0, sizeof *this);
+}
 
 // Numbers the commands that follow (not #D, not #J): job_index, job_index + 1, ... The
 // progress moves there once everything queued before the mark has finished (a new job, or

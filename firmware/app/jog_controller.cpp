@@ -1,23 +1,17 @@
 // Manual zeroing with the joystick (see jog_controller.h).
 #include "firmware/app/jog_controller.h"
 
+#include <string.h>  // memset
+
 #include "hal/interfaces/motion_axes.h"      // LimitBits
 #include "hal/interfaces/operator_inputs.h"  // InputBits
 
 namespace app {
 
-JogController::JogController()
-    : speed_um_s_(0),
-      axes_mask_(0),
-      prev_inputs_(0),
-      still_ticks_(0),
-      phase_(kJogging),
-      confirm_(false),
-      z_mode_(false) {
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) {
-    last_pos_[i] = 0;
-    zero_usteps_[i] = 0;
-  }
+// Every member starts at zero (phase_ kJogging): one memset, less code than a store each
+// (no virtuals).
+JogController::JogController() {
+  memset(static_cast<void*>(this), 0, sizeof *this);
 }
 
 void JogController::init(const AxisScaling& scaling) {

@@ -72,6 +72,7 @@ class MotionTick {
   // The tick's own: the background loop sees them through the StatusRing snapshots.
   PathController path_;
   JogController jog_;
+  // pos_ to probe_: zeroed as one block by the constructor (keep new members in it).
   int32_t pos_[config::kAxisCount];
   uint8_t mode_;  // TickMode
   uint8_t alarm_;

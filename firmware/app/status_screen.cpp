@@ -1,15 +1,54 @@
 // LCD status lines (see status_screen.h).
 #include "firmware/app/status_screen.h"
 
-#include <string.h>  // memcpy, memcmp, strlen
+#include <string.h>  // memcpy, memset, strcmp
 
 namespace app {
 
 namespace {
 
-// Appends s to out at *n, within kCols.
-void put(char* out, uint8_t* n, const char* s) {
-  while (*s && *n < StatusScreen::kCols) out[(*n)++] = *s++;
+// A line being written: every character goes through put_char, which stops at kCols (one
+// bound for text and numbers alike).
+struct Line {
+  char* out;
+  uint8_t n;
+};
+
+void put_char(Line* l, char c) {
+  if (l->n < StatusScreen::kCols) l->out[l->n++] = c;
+}
+
+void put(Line* l, const char* s) {
+  while (*s) put_char(l, *s++);
+}
+
+void put_uint(Line* l, uint32_t v) {
+  char digits[10];
+  uint8_t k = 0;
+  do {
+    digits[k++] = (char)('0' + v % 10U);
+    v /= 10U;
+  } while (v != 0);
+  while (k != 0) put_char(l, digits[--k]);
+}
+
+// "-12.34": millimetres with two decimals, rounded from micrometres.
+void put_mm(Line* l, int32_t um) {
+  uint32_t mag = (uint32_t)um;
+  if (um < 0) {
+    put_char(l, '-');
+    mag = (uint32_t)0 - (uint32_t)um;
+  }
+  const uint32_t hundredths = (mag + 5U) / 10U;
+  put_uint(l, hundredths / 100U);
+  put_char(l, '.');
+  const uint8_t cents = (uint8_t)(hundredths % 100U);
+  put_char(l, (char)('0' + cents / 10U));
+  put_char(l, (char)('0' + cents % 10U));
+}
+
+void end_line(Line* l) {
+  l->out[l->n] = 0;
 }
 
 // By proto::MachineState (kIdle shows READY once zeroed).
@@ -34,42 +73,10 @@ const char* alarm_name(proto::Alarm a) {
 
 }  // namespace
 
-uint8_t format_uint(uint32_t v, char* out) {
-  char tmp[10];
-  uint8_t n = 0;
-  do {
-    tmp[n++] = (char)('0' + v % 10U);
-    v /= 10U;
-  } while (v != 0 && n < sizeof tmp);
-  for (uint8_t i = 0; i < n; ++i) out[i] = tmp[n - 1 - i];
-  return n;
-}
-
-uint8_t format_mm(int32_t um, char* out) {
-  uint8_t n = 0;
-  uint32_t mag = (uint32_t)um;
-  if (um < 0) {
-    out[n++] = '-';
-    mag = (uint32_t)0 - (uint32_t)um;
-  }
-  const uint32_t hundredths = (mag + 5U) / 10U;
-  n = (uint8_t)(n + format_uint(hundredths / 100U, out + n));
-  out[n++] = '.';
-  out[n++] = (char)('0' + (hundredths / 10U) % 10U);
-  out[n++] = (char)('0' + hundredths % 10U);
-  return n;
-}
-
-StatusScreen::StatusScreen()
-    : display_(0), last_draw_ms_(0), error_ms_(0), error_on_(false), drawn_once_(false) {
-  for (uint8_t r = 0; r < 2; ++r) {
-    text_ms_[r] = 0;
-    text_on_[r] = false;
-    text_[r][0] = 0;
-    shown_[r][0] = 0;
-  }
-  error_[0] = 0;
-  pause_[0] = 0;
+// Every member starts at zero (empty texts): one memset, less code than a store each (no
+// virtuals).
+StatusScreen::StatusScreen() {
+  memset(static_cast<void*>(this), 0, sizeof *this);
 }
 
 void StatusScreen::init(hal::TextDisplay* display) {
@@ -93,12 +100,12 @@ void StatusScreen::show_pause(const char* text, uint8_t length) {
 }
 
 void StatusScreen::show_error(proto::ErrorCode code, uint8_t seq, uint16_t now_ms) {
-  uint8_t n = 0;
-  put(error_, &n, "ERR ");
-  n = (uint8_t)(n + format_uint((uint8_t)code, error_ + n));
-  put(error_, &n, " #");
-  n = (uint8_t)(n + format_uint(seq, error_ + n));
-  error_[n] = 0;
+  Line l = {error_, 0};
+  put(&l, "ERR ");
+  put_uint(&l, (uint8_t)code);
+  put(&l, " #");
+  put_uint(&l, seq);
+  end_line(&l);
   error_on_ = true;
   error_ms_ = now_ms;
 }
@@ -109,56 +116,49 @@ void StatusScreen::compose(const ScreenInfo& info, uint16_t now_ms, char out[2][
       text_on_[r] = false;
   }
   if (error_on_ && (uint16_t)(now_ms - error_ms_) >= (uint16_t)kMessageMs) error_on_ = false;
-  uint8_t n = 0;
+  Line l = {out[0], 0};
   if (info.paused) {
-    put(out[0], &n, pause_[0] != 0 ? pause_ : "PAUSED");
+    put(&l, pause_[0] != 0 ? pause_ : "PAUSED");
   } else if (text_on_[0]) {
-    put(out[0], &n, text_[0]);
+    put(&l, text_[0]);
   } else {
-    put(out[0], &n, state_name(info.state, info.zeroed));
+    put(&l, state_name(info.state, info.zeroed));
     if (info.state == proto::MachineState::kZeroing) {
-      put(out[0], &n, info.z_mode ? " Z" : " XY");
+      put(&l, info.z_mode ? " Z" : " XY");
     } else if (info.items_stored != 0) {
-      put(out[0], &n, " ");
-      n = (uint8_t)(n + format_uint(info.items_done, out[0] + n));
-      put(out[0], &n, "/");
-      n = (uint8_t)(n + format_uint(info.items_stored, out[0] + n));
+      put_char(&l, ' ');
+      put_uint(&l, info.items_done);
+      put_char(&l, '/');
+      put_uint(&l, info.items_stored);
     }
   }
-  out[0][n > (uint8_t)kCols ? (uint8_t)kCols : n] = 0;
-  n = 0;
+  end_line(&l);
+  l.out = out[1];
+  l.n = 0;
   if (info.state == proto::MachineState::kAlarm) {
-    put(out[1], &n, alarm_name(info.alarm));
+    put(&l, alarm_name(info.alarm));
   } else if (error_on_) {
-    put(out[1], &n, error_);
+    put(&l, error_);
   } else if (info.paused) {
-    put(out[1], &n, "CONFIRM TO GO ON");
+    put(&l, "CONFIRM TO GO ON");
   } else if (text_on_[1]) {
-    put(out[1], &n, text_[1]);
+    put(&l, text_[1]);
   } else if (info.probing || info.probe_closed) {
     // "PROBE Z-0.14" while a #Y runs; "PROBE TOUCH Z.." whenever the input reads closed
     // (the operator sees the clip work before probing, or that it is shorted).
-    char num[12];
-    put(out[1], &n, info.probe_closed ? "PROBE TOUCH Z" : "PROBE Z");
-    const uint8_t k = format_mm(info.pos_um[2], num);
-    num[k] = 0;
-    put(out[1], &n, num);
+    put(&l, info.probe_closed ? "PROBE TOUCH Z" : "PROBE Z");
+    put_mm(&l, info.pos_um[2]);
   } else {
     // "X12.34 Y-5.60" (Z while zeroing Z).
-    char num[12];
     const bool z = info.state == proto::MachineState::kZeroing && info.z_mode;
-    put(out[1], &n, z ? "Z" : "X");
-    uint8_t k = format_mm(z ? info.pos_um[2] : info.pos_um[0], num);
-    num[k] = 0;
-    put(out[1], &n, num);
+    put(&l, z ? "Z" : "X");
+    put_mm(&l, z ? info.pos_um[2] : info.pos_um[0]);
     if (!z) {
-      put(out[1], &n, " Y");
-      k = format_mm(info.pos_um[1], num);
-      num[k] = 0;
-      put(out[1], &n, num);
+      put(&l, " Y");
+      put_mm(&l, info.pos_um[1]);
     }
   }
-  out[1][n > (uint8_t)kCols ? (uint8_t)kCols : n] = 0;
+  end_line(&l);
 }
 
 void StatusScreen::update(const ScreenInfo& info, uint16_t now_ms) {

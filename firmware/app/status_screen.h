@@ -55,11 +55,6 @@ class StatusScreen {
   char shown_[2][kCols + 1];
 };
 
-// Writes "-12.34"-style millimetres with two decimals from micrometres; returns the length.
-uint8_t format_mm(int32_t um, char* out);
-// Writes an unsigned decimal; returns the length.
-uint8_t format_uint(uint32_t v, char* out);
-
 }  // namespace app
 
 #endif  // FIRMWARE_APP_STATUS_SCREEN_H

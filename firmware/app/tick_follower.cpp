@@ -1,19 +1,14 @@
 // The background loop's side of the tick link (see tick_follower.h).
 #include "firmware/app/tick_follower.h"
 
+#include <string.h>  // memset
+
 namespace app {
 
-TickFollower::TickFollower()
-    : have_snapshot_(false),
-      seen_items_(0),
-      seen_stops_(0),
-      seen_jogs_(0),
-      requests_pushed_(0),
-      alarm_clearing_(false),
-      alarm_clear_mark_(0) {
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) latest_.pos_usteps[i] = 0;
-  latest_.probe_closed = 0;
-  latest_.probes_done = 0;
+// Every member starts at zero (the snapshot too): one memset, less code than a store each
+// (no virtuals).
+TickFollower::TickFollower() {
+  memset(static_cast<void*>(this), 0, sizeof *this);
 }
 
 bool TickFollower::request(MotionTick* tick, RequestKind kind, uint8_t value) {

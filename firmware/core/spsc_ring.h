@@ -68,6 +68,16 @@ class SpscRing {
     return &slot_[(uint16_t)(tail + offset) & kMask];
   }
 
+  // Producer: the k-th newest element (0 = newest), 0 if k >= size(). The slot stays the
+  // producer's to update in place until it pushes again (it cannot be reused before); the
+  // consumer may read it meanwhile, so only single stores the consumer tolerates.
+  T* newest(uint16_t k) {
+    const uint16_t head = head_;
+    const uint16_t tail = tail_;
+    if (k >= (uint16_t)(head - tail)) return 0;
+    return &slot_[(uint16_t)(head - 1U - k) & kMask];
+  }
+
   // Elements stored (either side; a snapshot).
   uint16_t size() const { return (uint16_t)(head_ - tail_); }
 

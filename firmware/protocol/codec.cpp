@@ -312,12 +312,21 @@ ErrorCode read_fields(const uint8_t* bytes, uint8_t length, uint8_t* msg, const 
 
 // ---- what one field cannot say ----
 
+// Every check takes the bytes of its message's struct: one function per check, so the
+// messages without one share no_check and the tables point straight at them.
+typedef ErrorCode (*ExtraCheck)(const uint8_t* msg);
+
 template <typename Msg>
-ErrorCode no_check(const Msg&) {
+const Msg& as(const uint8_t* msg) {
+  return *reinterpret_cast<const Msg*>(msg);
+}
+
+ErrorCode no_check(const uint8_t*) {
   return ErrorCode::kOk;
 }
 
-ErrorCode check_spline_header(const SplineHeaderCmd& m) {
+ErrorCode check_spline_header(const uint8_t* msg) {
+  const SplineHeaderCmd& m = as<SplineHeaderCmd>(msg);
   if (m.degree > core::kMaxDegree || m.control_count > core::kMaxControlPoints)
     return ErrorCode::kFieldRange;
   if (m.control_count < (uint16_t)(m.degree + 1U)) return ErrorCode::kFieldRange;
@@ -325,7 +334,8 @@ ErrorCode check_spline_header(const SplineHeaderCmd& m) {
   return ErrorCode::kOk;
 }
 
-ErrorCode check_spline_data(const SplineDataCmd& m) {
+ErrorCode check_spline_data(const uint8_t* msg) {
+  const SplineDataCmd& m = as<SplineDataCmd>(msg);
   if (m.control_n == 0 && m.knot_n == 0) return ErrorCode::kFieldRange;
   const uint16_t bytes =
       (uint16_t)(kSplineDataHeaderBytes + m.control_n * kControlPointBytes + m.knot_n * kKnotBytes);
@@ -337,7 +347,8 @@ ErrorCode check_spline_data(const SplineDataCmd& m) {
 }
 
 // The data holds exactly control_n points then knot_n knots (compact_spline.h).
-ErrorCode check_spline_compact(const SplineCompactCmd& m) {
+ErrorCode check_spline_compact(const uint8_t* msg) {
+  const SplineCompactCmd& m = as<SplineCompactCmd>(msg);
   if (m.control_n == 0 && m.knot_n == 0) return ErrorCode::kFieldRange;
   if ((uint16_t)(m.control_index + m.control_n) > core::kMaxControlPoints)
     return ErrorCode::kFieldRange;
@@ -346,19 +357,22 @@ ErrorCode check_spline_compact(const SplineCompactCmd& m) {
 }
 
 // The data holds exactly the points and elements the indices say (contour_spline.h).
-ErrorCode check_spline_contour(const SplineContourCmd& m) {
+ErrorCode check_spline_contour(const uint8_t* msg) {
+  const SplineContourCmd& m = as<SplineContourCmd>(msg);
   if ((uint16_t)(m.control_index + m.control_n) > core::kMaxControlPoints)
     return ErrorCode::kFieldRange;
   return scan_contour(m);
 }
 
-ErrorCode check_drill(const DrillCmd& m) {
+ErrorCode check_drill(const uint8_t* msg) {
+  const DrillCmd& m = as<DrillCmd>(msg);
   return m.z_bottom_um < m.z_start_um ? ErrorCode::kOk : ErrorCode::kFieldRange;
 }
 
 // cols and rows both 0 (no map) or both 2..16; pitches of a map >= 1 mm; its far corner
 // inside the coordinate range.
-ErrorCode check_height_map_header(const HeightMapHeaderCmd& m) {
+ErrorCode check_height_map_header(const uint8_t* msg) {
+  const HeightMapHeaderCmd& m = as<HeightMapHeaderCmd>(msg);
   if (m.cols == 0 && m.rows == 0) return ErrorCode::kOk;
   if (m.cols < 2 || m.rows < 2) return ErrorCode::kFieldRange;
   if (m.pitch_x_um < kMinHeightMapPitchUm || m.pitch_y_um < kMinHeightMapPitchUm)
@@ -368,7 +382,8 @@ ErrorCode check_height_map_header(const HeightMapHeaderCmd& m) {
   return x1 <= PROTO_COORD_MAX && y1 <= PROTO_COORD_MAX ? ErrorCode::kOk : ErrorCode::kFieldRange;
 }
 
-ErrorCode check_height_map_data(const HeightMapDataCmd& m) {
+ErrorCode check_height_map_data(const uint8_t* msg) {
+  const HeightMapDataCmd& m = as<HeightMapDataCmd>(msg);
   for (uint8_t i = 0; i < m.height_n; ++i) {
     if (m.height_um[i] > kMaxHeightMapSpanUm || m.height_um[i] < -kMaxHeightMapSpanUm)
       return ErrorCode::kFieldRange;
@@ -383,21 +398,15 @@ const uint8_t* bytes_of(const Msg& m) {
 
 // A command's row for decode_command: its letter, fields and extra check (on the bytes of
 // the struct).
-typedef ErrorCode (*ExtraCheck)(const uint8_t* msg);
 struct CommandCodec {
   uint8_t letter;
   const FieldSpec* fields;
   ExtraCheck check;
 };
 
-template <typename Msg, ErrorCode (*Check)(const Msg&)>
-ErrorCode check_bytes(const uint8_t* msg) {
-  return Check(*reinterpret_cast<const Msg*>(msg));
-}
-
 // NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and function names.
 #define PROTO_CMD_CODEC(Type, name, letter, role, display, reply, handler, check) \
-  {letter, k##Type##Fields, &check_bytes<Type, check>},
+  {letter, k##Type##Fields, &check},
 #define PROTO_CMD_CODEC_SKIP(...)
 // NOLINTEND(bugprone-macro-parentheses)
 const CommandCodec kCommandCodecs[] = {
@@ -447,17 +456,16 @@ bool is_known_error(uint8_t code) {
 
 // encode / decode / check of every message, each one the walker over its field list.
 // NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and function names.
-#define PROTO_CODEC(Type, check)                                                        \
-  ErrorCode check_message(const Type& m) {                                              \
-    const ErrorCode e = check_fields(bytes_of(m), k##Type##Fields);                     \
-    return e != ErrorCode::kOk ? e : check(m);                                          \
-  }                                                                                     \
-  ErrorCode encode(const Type& m, Payload* out) {                                       \
-    return encode_fields(bytes_of(m), k##Type##Fields, &check_bytes<Type, check>, out); \
-  }                                                                                     \
-  ErrorCode decode(const uint8_t* bytes, uint8_t length, Type* m) {                     \
-    return decode_fields(bytes, length, reinterpret_cast<uint8_t*>(m), k##Type##Fields, \
-                         &check_bytes<Type, check>);                                    \
+#define PROTO_CODEC(Type, check)                                                                 \
+  ErrorCode check_message(const Type& m) {                                                       \
+    const ErrorCode e = check_fields(bytes_of(m), k##Type##Fields);                              \
+    return e != ErrorCode::kOk ? e : check(bytes_of(m));                                         \
+  }                                                                                              \
+  ErrorCode encode(const Type& m, Payload* out) {                                                \
+    return encode_fields(bytes_of(m), k##Type##Fields, &check, out);                             \
+  }                                                                                              \
+  ErrorCode decode(const uint8_t* bytes, uint8_t length, Type* m) {                              \
+    return decode_fields(bytes, length, reinterpret_cast<uint8_t*>(m), k##Type##Fields, &check); \
   }
 
 #define PROTO_CODEC_CMD(Type, name, letter, role, display, reply, handler, check) \

@@ -2,6 +2,7 @@
 // out on the kinematic plant; zeroing, hold, abort, limit switch, flow control, LCD.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "host_tests/app/app_rig.h"
@@ -115,6 +116,41 @@ TEST(AppSession, VersionsTwoAndThreeOpenASessionInThatVersionOthersAreRefused) {
     EXPECT_EQ(rig.host.errors[0].code, ErrorCode::kVersionUnsupported);
     EXPECT_EQ(rig.host.errors[0].detail, proto::kProtocolVersion);
   }
+}
+
+// *? reports the position of each axis in its own field (docs/protocol.md, *?).
+TEST(AppSession, StatusReplyCarriesEachAxisPosition) {
+  AppRig rig;
+  rig.host.open_session();
+  ASSERT_TRUE(rig.run_until([&] { return rig.host.session_open; }, 100));
+  ASSERT_TRUE(rig.zero_here());
+  rig.host.queue(proto::ZMoveCmd{2500, 5000});
+  rig.host.queue(proto::FeedMoveCmd{12000, 7000, 5000});
+  ASSERT_TRUE(rig.run_job(20000));
+  rig.host.have_status = false;
+  rig.host.query_status();
+  ASSERT_TRUE(rig.run_until([&] { return rig.host.have_status; }, 100));
+  EXPECT_NEAR(rig.host.status.x_um, 12000, 1);
+  EXPECT_NEAR(rig.host.status.y_um, 7000, 1);
+  EXPECT_NEAR(rig.host.status.z_um, 2500, 1);
+}
+
+// *I reports the travel the controller checks against, each axis in its field, and the
+// fastest feeds (docs/protocol.md section 4).
+TEST(AppSession, SessionReplyCarriesEachAxisTravelAndTheFastestFeeds) {
+  AppRig rig;
+  rig.host.open_session();
+  ASSERT_TRUE(rig.run_until([&] { return rig.host.session_open; }, 100));
+  const proto::SessionReply& r = rig.host.session;
+  EXPECT_EQ(r.travel_x_um, rig.cfg.axis[config::kAxisX].travel_um);
+  EXPECT_EQ(r.travel_y_um, rig.cfg.axis[config::kAxisY].travel_um);
+  EXPECT_EQ(r.travel_z_um, rig.cfg.axis[config::kAxisZ].travel_um);
+  EXPECT_NE(r.travel_x_um, r.travel_y_um);  // the default machine tells the axes apart
+  EXPECT_NE(r.travel_y_um, r.travel_z_um);
+  EXPECT_EQ(r.max_feed_xy_um_per_s, std::min(rig.cfg.axis[config::kAxisX].max_speed_um_per_s,
+                                             rig.cfg.axis[config::kAxisY].max_speed_um_per_s));
+  EXPECT_EQ(r.max_feed_z_um_per_s, rig.cfg.axis[config::kAxisZ].max_speed_um_per_s);
+  EXPECT_EQ(r.queue_slots, app::CommandQueue::kCapacity);
 }
 
 // docs/protocol.md section 4: version 3 only adds #Q. In a version-2 session a #Q is an

@@ -1,5 +1,6 @@
 // The LCD's state and alarm names, one per wire code (the names come from tables indexed
-// by the code: an entry out of place shows another alarm's name).
+// by the code: an entry out of place shows another alarm's name); the numbers on the lines
+// (position, progress, error, probe), rounded and cut at 16 columns.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -61,6 +62,55 @@ TEST(StatusScreen, EveryAlarmHasItsName) {
   EXPECT_EQ(line(none, 1), "ALARM");
   none.alarm = (proto::Alarm)(proto::kLastAlarm + 1);
   EXPECT_EQ(line(none, 1), "ALARM");
+}
+
+TEST(StatusScreen, PositionInMillimetresRoundedToHundredths) {
+  app::ScreenInfo info = idle_info();
+  info.pos_um[0] = 12345;  // 12.345 rounds up
+  info.pos_um[1] = -5604;  // -5.604 rounds down in magnitude
+  EXPECT_EQ(line(info, 1), "X12.35 Y-5.60");
+  info.pos_um[0] = 4;
+  info.pos_um[1] = -995;
+  EXPECT_EQ(line(info, 1), "X0.00 Y-1.00");
+  info.pos_um[0] = 2147483647;  // cut at 16 columns
+  info.pos_um[1] = 0;
+  EXPECT_EQ(line(info, 1), "X2147483.65 Y0.0");
+  info.pos_um[0] = -2147483647 - 1;
+  EXPECT_EQ(line(info, 1), "X-2147483.65 Y0.");
+  info.state = proto::MachineState::kZeroing;
+  info.z_mode = true;
+  info.pos_um[2] = -70;
+  EXPECT_EQ(line(info, 0), "ZEROING Z");
+  EXPECT_EQ(line(info, 1), "Z-0.07");
+}
+
+TEST(StatusScreen, ProgressAndProbeLines) {
+  app::ScreenInfo info = idle_info();
+  info.state = proto::MachineState::kRunning;
+  info.items_done = 7;
+  info.items_stored = 120;
+  EXPECT_EQ(line(info, 0), "RUN 7/120");
+  info.state = proto::MachineState::kHolding;
+  info.items_done = 65535;
+  info.items_stored = 65535;
+  EXPECT_EQ(line(info, 0), "HOLDING 65535/65");
+  info.probing = true;
+  info.pos_um[2] = -140;
+  EXPECT_EQ(line(info, 1), "PROBE Z-0.14");
+  info.probe_closed = true;
+  EXPECT_EQ(line(info, 1), "PROBE TOUCH Z-0.");
+}
+
+TEST(StatusScreen, ErrorLineShowsCodeAndSeq) {
+  LineDisplay display;
+  app::StatusScreen screen;
+  screen.init(&display);
+  screen.show_error((proto::ErrorCode)42, 255, 0);
+  screen.update(idle_info(), 0);
+  EXPECT_EQ(display.rows[1], "ERR 42 #255");
+  screen.show_error((proto::ErrorCode)0, 0, 200);
+  screen.update(idle_info(), 200);
+  EXPECT_EQ(display.rows[1], "ERR 0 #0");
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // SpscRing: capacity, wrap-around of slots and of the 16-bit indices, full/empty, peek,
-// clear, and a two-thread producer/consumer stress run.
+// newest, clear, and a two-thread producer/consumer stress run.
 #include "firmware/core/spsc_ring.h"
 
 #include <gtest/gtest.h>
@@ -76,6 +76,28 @@ TEST(SpscRing, PeekSeesOldestFirstAndNothingPastTheEnd) {
   EXPECT_EQ(*r.peek(2), 12u);
   EXPECT_EQ(r.peek(3), nullptr);
   EXPECT_EQ(r.size(), 3u);  // peek removes nothing
+}
+
+// The producer's view for in-place updates (the planner's backward pass over the coordinate
+// ring): newest first, only what is not consumed, across the slot wrap.
+TEST(SpscRing, NewestCountsBackFromTheLastPushAndStopsAtTheOldest) {
+  Ring8 r;
+  EXPECT_EQ(r.newest(0), nullptr);
+  uint32_t v = 0;
+  for (uint32_t i = 0; i < 8; ++i) ASSERT_TRUE(r.push(i));
+  for (uint32_t i = 0; i < 5; ++i) ASSERT_TRUE(r.pop(&v));
+  for (uint32_t i = 8; i < 11; ++i) ASSERT_TRUE(r.push(i));  // the slots wrap: 5..10 stored
+  ASSERT_EQ(r.size(), 6u);
+  for (uint16_t k = 0; k < 6; ++k) {
+    ASSERT_NE(r.newest(k), nullptr);
+    EXPECT_EQ(*r.newest(k), 10u - k);
+  }
+  EXPECT_EQ(r.newest(6), nullptr);  // 4 was consumed
+  *r.newest(4) = 100;               // 6 updated in place, seen by the consumer
+  ASSERT_TRUE(r.pop(&v));
+  EXPECT_EQ(v, 5u);
+  ASSERT_TRUE(r.pop(&v));
+  EXPECT_EQ(v, 100u);
 }
 
 TEST(SpscRing, ClearDropsEverythingAndTheRingStaysUsable) {

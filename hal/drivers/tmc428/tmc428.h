@@ -96,6 +96,7 @@ class Tmc428 : public hal::MotionAxes {
   hal::SpiMaster& spi_;
   const config::MachineConfig& machine_;
   tmc428::AxisSettings settings_[config::kAxisCount];
+  // driver_status_ to settings_error_axis_: zeroed as one block by the constructor.
   uint16_t driver_status_[config::kAxisCount];
   uint16_t chain_poll_limit_;
   uint32_t check_low_word_;  // poll_driver_check(): datagram_low_word, awaiting the high word
