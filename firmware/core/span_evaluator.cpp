@@ -226,11 +226,28 @@ __attribute__((noinline)) void coordinate_coefficients(const Homog* b, uint8_t p
 // Horner in t (uq16; t_q16 = 65536 handled as 1.0 by the caller) over coefficients c of
 // degree p <= kMaxDegree: one loop, one copy of the 32x16 product (unrolled per degree it
 // was three chains, 0.2 kB more on the AVR proxy, for ~20 cycles a sum). One copy for every
-// caller: inlined twice into evaluate_q6 it cost 0.6 kB of flash.
+// caller: inlined twice into evaluate_q6 it cost 0.6 kB of flash. A pointer walks down the
+// coefficients: indexing by p recomputed the address every step.
 int32_t horner(const int32_t* c, uint8_t p, uq16_t t) {
-  int32_t acc = c[p];
-  while (p > 0) acc = c[--p] + mul_32x16_uq16_round(acc, t);
+  const int32_t* pc = c + p;
+  int32_t acc = *pc;
+  while (pc != c) acc = *--pc + mul_32x16_uq16_round(acc, t);
   return acc;
+}
+
+// x and y of the polynomial point by Horner together: one call and one loop for both sums
+// (two horner() calls cost ~70 cycles more per point, issue 9's budget of 911).
+void horner_xy(const int32_t* cx, const int32_t* cy, uint8_t p, uq16_t t, PointQ6* r) {
+  const int32_t* px = cx + p;
+  const int32_t* py = cy + p;
+  int32_t x = *px;
+  int32_t y = *py;
+  while (px != cx) {
+    x = *--px + mul_32x16_uq16_round(x, t);
+    y = *--py + mul_32x16_uq16_round(y, t);
+  }
+  r->x_q6 += x;
+  r->y_q6 += y;
 }
 
 // Scales (x, y) so that the larger magnitude lies in [2^13, 2^14): a direction only.
@@ -420,9 +437,8 @@ PointQ6 SpanEvaluator::evaluate_q6(uint32_t t_q16) const {
   if (t_q16 >= kUq16One) return end_;
   if (rational_) return rational_q6((uq16_t)t_q16);
   const uq16_t t = (uq16_t)t_q16;
-  PointQ6 r;
-  r.x_q6 = origin_q6_.x_q6 + horner(cx_, degree_, t);
-  r.y_q6 = origin_q6_.y_q6 + horner(cy_, degree_, t);
+  PointQ6 r = origin_q6_;
+  horner_xy(cx_, cy_, degree_, t, &r);
   return r;
 }
 
