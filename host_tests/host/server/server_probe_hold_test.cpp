@@ -11,6 +11,7 @@
 
 #include "host/lib/heightmap/controller_map.h"  // ProbeMotion
 #include "host/lib/server/data_folder.h"
+#include "host_tests/host/server/blinky_upload.h"  // blinky, post
 #include "host_tests/host/server/server_test_rig.h"
 
 namespace host::server {
@@ -20,23 +21,9 @@ using test::ServerRig;
 using test::SimRig;
 namespace fs = std::filesystem;
 
-std::string board_file(const std::string& name) {
-  return read_file(fs::path(ENGRAVER_SOURCE_DIR) / "host_tests/host/server/data" / name);
-}
-
 // The blinky board probed first on a coarse grid: a few touches in real time.
 int64_t post_probe_first(const ServerRig& server) {
-  httplib::MultipartFormDataItems form = {
-      {"file", board_file("blinky-F.Cu.gbr"), "blinky-F.Cu.gbr", "application/octet-stream"},
-      {"file", board_file("blinky.drl"), "blinky.drl", "application/octet-stream"},
-      {"file", board_file("blinky-Edge.Cuts.gbr"), "blinky-Edge.Cuts.gbr",
-       "application/octet-stream"},
-      {"probe_first", "1", "", ""},
-      {"probe_spacing_mm", "12", "", ""}};
-  auto r = server.client().Post("/api/jobs", server.auth(), form);
-  if (!r || r->status != 201)
-    throw std::runtime_error("upload failed: " + (r ? r->body : std::string("no answer")));
-  return nlohmann::json::parse(r->body)["id"].get<int64_t>();
+  return test::post(server, test::blinky({{"probe_first", "1"}, {"probe_spacing_mm", "12"}}));
 }
 
 // A blank tilted 0.1 mm over 50 mm in x (um above the zero corner's copper).
