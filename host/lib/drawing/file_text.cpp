@@ -41,11 +41,7 @@ std::string lower_ascii(std::string s) {
 }
 
 std::string read_drawing_text(const std::string& path) {
-  std::string text;
-  const FileRead r = read_file_text(path, &text);
-  if (r == FileRead::kCannotOpen) throw ImportError(path + ": cannot open the file");
-  if (r == FileRead::kReadError) throw ImportError(path + ": cannot read the file");
-  return text;
+  return read_text_or_throw<ImportError>(path);
 }
 
 }  // namespace host

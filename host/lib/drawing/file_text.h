@@ -21,8 +21,18 @@ std::string read_file_head(const std::string& path);
 // s with A-Z in lower case (file names, host names).
 std::string lower_ascii(std::string s);
 
-// The drawing importers' read: the file's text, or ImportError "<path>: cannot open the
-// file" / "<path>: cannot read the file".
+// The file's text, or Error "<path>: cannot open the file" / "<path>: cannot read the file"
+// (the drawing importers' ImportError, the PCB readers' PcbReadError).
+template <class Error>
+std::string read_text_or_throw(const std::string& path) {
+  std::string text;
+  const FileRead r = read_file_text(path, &text);
+  if (r == FileRead::kCannotOpen) throw Error(path + ": cannot open the file");
+  if (r == FileRead::kReadError) throw Error(path + ": cannot read the file");
+  return text;
+}
+
+// The drawing importers' read: read_text_or_throw<ImportError>.
 std::string read_drawing_text(const std::string& path);
 
 }  // namespace host

@@ -2,7 +2,7 @@
 
 #include <cctype>  // std::isdigit
 
-#include "host/lib/drawing/file_text.h"  // read_file_text
+#include "host/lib/drawing/file_text.h"  // read_text_or_throw
 
 namespace host::pcb {
 
@@ -45,10 +45,7 @@ size_t end_of_number(const std::string& word, size_t from) {
 }
 
 std::string read_pcb_file_text(const std::string& path) {
-  std::string text;
-  const FileRead r = read_file_text(path, &text);
-  if (r == FileRead::kCannotOpen) throw PcbReadError(path + ": cannot open the file");
-  if (r == FileRead::kReadError) throw PcbReadError(path + ": read error");
+  std::string text = read_text_or_throw<PcbReadError>(path);
   if (text.empty()) throw PcbReadError(path + ": the file is empty");
   return text;
 }
