@@ -232,8 +232,9 @@ heightmap::HeightMap probe_raising_on_interrupt(Sender& sender, Link& link,
     // Ctrl-C stopped the touch where it was (#X), maybe on the copper: the tool up first.
     const std::string lifted = raise_tool_if_abort_signalled(link, options, z_up_mm);
     if (lifted.empty()) throw;
-    std::cerr << "engraver: probing stopped: " << lifted << "\n";
-    throw CommandFailure(interrupted_exit, e.what());
+    // One last line, as the guide prints it: what stopped, then where the touch was.
+    throw CommandFailure(interrupted_exit,
+                         fmt::format("probing stopped: {} ({})", lifted, e.what()));
   }
 }
 

@@ -448,17 +448,21 @@ void run_run(const RunArgs& a) {
       commands::RunResult result = commands::simulate_run(plan, o);
       o.on_progress = nullptr;
       return result;
-    } catch (const CommandFailure&) {
-      if (!lifted.empty()) std::cerr << "engraver: probing stopped: " << lifted << "\n";
-      throw;
+    } catch (const CommandFailure& e) {
+      if (lifted.empty()) throw;
+      throw CommandFailure(e.code, fmt::format("probing stopped: {} ({})", lifted, e.what()));
     }
   }();
   if (!lifted.empty()) {  // stopped by Ctrl-C: what was done, nothing planned on a half job
-    std::cerr << fmt::format(
-        "engraver: run stopped: {}; {}; no plot or report (a run starts afresh: nothing to "
-        "resume)\n",
+    const std::string stopped = fmt::format(
+        "run stopped: {}; {}; no plot or report (a run starts afresh: nothing to resume)",
         r.sim.message, lifted);
-    commands::refuse_failed_run(o, r);
+    try {
+      commands::refuse_failed_run(o, r);
+    } catch (const CommandFailure& e) {
+      throw CommandFailure(e.code, stopped);  // the last line says how the run ended, once
+    }
+    std::cerr << "engraver: " << stopped << "\n";
   }
   commands::write_run_plots(plan, o, r);
   commands::check_run(o, &r);

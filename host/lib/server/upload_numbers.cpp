@@ -3,7 +3,7 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include <cmath>    // std::isfinite, std::floor, std::fabs
+#include <cmath>    // std::isfinite, std::floor, std::fmax, std::fmin
 #include <cstdlib>  // std::strtod
 
 #include "host/lib/plan/plain_decimal.h"  // is_plain_decimal
@@ -29,10 +29,10 @@ std::string read_whole_field(const std::string& key, const std::string& text, in
   double v = 0;
   const std::string why = read_decimal_field(key, text, &v);
   if (!why.empty()) return why;
-  // Beyond 1e15 a double's whole numbers have gaps; no count or job id is that large.
-  if (v != std::floor(v) || std::fabs(v) > 1e15)
-    return fmt::format("{} '{}' is not a whole number", key, text);
-  *out = static_cast<int64_t>(v);
+  if (v != std::floor(v)) return fmt::format("{} '{}' is not a whole number", key, text);
+  // 1e18 is whole too: held at +-1e15 (beyond it a double's whole numbers have gaps), which
+  // no count or job id reaches, so the caller's range check names the field's range.
+  *out = static_cast<int64_t>(std::fmax(-1e15, std::fmin(v, 1e15)));
   return "";
 }
 

@@ -80,6 +80,15 @@ Interrupted interrupt_run(const std::vector<std::string>& run_args, double after
 
 const std::string kWord = std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf";
 
+// The last line the run wrote to stderr: how it ended, said once.
+std::string last_line(const std::string& err) {
+  const size_t end = err.find_last_not_of('\n');
+  if (end == std::string::npos) return "";
+  const size_t start = err.rfind('\n', end);
+  return err.substr(start == std::string::npos ? 0 : start + 1,
+                    end - (start == std::string::npos ? 0 : start + 1) + 1);
+}
+
 // The word takes about a minute of machine time in real time: stopped a second in.
 TEST(RunInterruptCli, CtrlCWhileTheJobRunsAbortsItRaisesTheToolAndExitsThree) {
   const Interrupted r = interrupt_run({kWord}, 1.5, SIGINT);
@@ -87,6 +96,8 @@ TEST(RunInterruptCli, CtrlCWhileTheJobRunsAbortsItRaisesTheToolAndExitsThree) {
   EXPECT_NE(r.err.find("engraver: run stopped: aborted by the operator "), std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("the tool raised to Z 2.000 mm"), std::string::npos) << r.err;
+  EXPECT_EQ(last_line(r.err).rfind("engraver: run stopped: ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find("job aborted"), std::string::npos) << r.err;
 }
 
 // While `run --probe` touches the simulated blank: the touch stops, the tool goes up, and the
@@ -98,6 +109,7 @@ TEST(RunInterruptCli, SigtermWhileProbingStopsTheTouchRaisesTheToolAndExitsAsPro
             std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("aborted by the operator"), std::string::npos) << r.err;
+  EXPECT_EQ(last_line(r.err).rfind("engraver: probing stopped: ", 0), 0u) << r.err;
 }
 
 }  // namespace

@@ -44,6 +44,10 @@ TEST(ServerUploadFields, NumbersAreTheCommandLinesPlainDecimals) {
                    "is not a finite number");
   expect_refused(server, blinky({{"passes", "0x2"}}), "passes", "is not a decimal number");
   expect_refused(server, blinky({{"passes", "1.5"}}), "passes", "is not a whole number");
+  // Whole but huge: the field's range, not "not a whole number".
+  expect_refused(server, blinky({{"passes", "1e18"}}), "passes", "is outside");
+  expect_refused(server, blinky({{"height_map_from", "99999999999999999999"}}), "height_map_from",
+                 "is outside -1000000000 .. 1000000000");
   expect_refused(server, blinky({{"priority", "0x5"}}), "priority", "is not a decimal number");
   expect_refused(server, blinky({{"margin_mm", "0x5"}}), "margin_mm", "is not a decimal number");
   expect_refused(server, blinky({{"align_holes", "auto"}, {"align_measured", "0x1,0,1,2"}}),
