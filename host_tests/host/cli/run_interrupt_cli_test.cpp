@@ -16,18 +16,15 @@
 #include <thread>      // sleep_for
 #include <vector>      // std::vector
 
+#include "host_tests/host/cli/tool_run.h"  // read_text
+
 extern char** environ;
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using host_tests::read_text;
 
 struct Interrupted {
   int code = -1;  // -1: still running 20 s after the signal (then killed)

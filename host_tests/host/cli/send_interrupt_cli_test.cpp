@@ -21,18 +21,15 @@
 #include "host/lib/plan/job_plan.h"  // defaults::kZUpMm
 #include "host/lib/sim/sim_server.h"
 
+#include "host_tests/host/cli/tool_run.h"  // read_text
+
 extern char** environ;
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using host_tests::read_text;
 
 size_t count_of(const std::string& text, const std::string& part) {
   size_t n = 0;

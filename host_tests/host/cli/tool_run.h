@@ -14,6 +14,14 @@
 
 namespace host_tests {
 
+// The whole file at path ("" when it cannot be read): what a stopped process wrote.
+inline std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 struct ToolRun {
   int code;
   std::string out;  // stdout
