@@ -1,6 +1,8 @@
 // Spline slots for #B/#D (see spline_store.h).
 #include "firmware/app/spline_store.h"
 
+#include <string.h>  // memcpy
+
 #include "firmware/protocol/compact_spline.h"  // unpack_compact
 #include "firmware/protocol/contour_spline.h"  // unpack_contour, is_contour_shape
 
@@ -123,12 +125,12 @@ proto::ErrorCode SplineStore::add(const proto::SplineDataCmd& d, const int32_t t
   if (e != proto::ErrorCode::kOk) return e;
   // Written behind the stored values: only commit() makes them part of the spline.
   core::Spline& sp = spline_[open_];
-  for (uint8_t i = 0; i < d.control_n; ++i) {
-    core::ControlPoint p = d.control[i];
-    if (!sp.rational) p.weight_q14 = core::kWeightOneQ14;
-    sp.control[d.control_index + i] = p;
+  core::ControlPoint* const to = &sp.control[d.control_index];
+  memcpy(to, d.control, d.control_n * sizeof d.control[0]);
+  if (!sp.rational) {
+    for (uint8_t i = 0; i < d.control_n; ++i) to[i].weight_q14 = core::kWeightOneQ14;
   }
-  for (uint8_t i = 0; i < d.knot_n; ++i) sp.knot[d.knot_index + i] = d.knot[i];
+  memcpy(&sp.knot[d.knot_index], d.knot, d.knot_n * sizeof d.knot[0]);
   return commit_inside(d.control_index, d.control_n, d.knot_n, travel_um, detail, completed);
 }
 

@@ -91,8 +91,8 @@ ErrorCode read_varint_spline(const VarintSplineFrame& f, core::Spline* s) {
     const bool flagged = !start && (v[0] & 1U) != 0;
     if (!start) v[0] >>= 1;
     // Every difference within kMaxDeltaUm (a #Q height beyond it is refused by
-    // contour_middle all the same: kFieldRange either way).
-    int32_t dv[3];
+    // contour_middle all the same: kFieldRange either way), in place.
+    int32_t* const dv = reinterpret_cast<int32_t*>(v);  // signed view of v (may alias)
     for (uint8_t k = 0; k < 3; ++k) {
       dv[k] = unzigzag(v[k]);
       if (!within(dv[k], kMaxDeltaUm)) return ErrorCode::kFieldRange;
