@@ -39,3 +39,21 @@ function(engraver_add_parts)
     add_subdirectory(${part})
   endforeach()
 endfunction()
+
+# engraver_size_over_speed(TARGETS target... | SOURCES file...): code that runs at start-up,
+# per frame or per queue item (not the per-point stepping, not the planner or the path
+# controller) built without loop-invariant motion on the targets (XC16 and the AVR proxy):
+# the hoisted addresses and values held across a loop cost more code than the loop saves
+# (-0.5 kB on the AVR image, docs/performance.md). Host builds unchanged.
+function(engraver_size_over_speed kind)
+  if(ENGRAVER_PLATFORM STREQUAL "host")
+    return()
+  endif()
+  if(kind STREQUAL "TARGETS")
+    foreach(name ${ARGN})
+      target_compile_options(${name} PRIVATE -fno-move-loop-invariants)
+    endforeach()
+  else()
+    set_source_files_properties(${ARGN} PROPERTIES COMPILE_OPTIONS -fno-move-loop-invariants)
+  endif()
+endfunction()
