@@ -45,15 +45,18 @@ endfunction()
 # controller) built without loop-invariant motion on the targets (XC16 and the AVR proxy):
 # the hoisted addresses and values held across a loop cost more code than the loop saves
 # (-0.5 kB on the AVR image, docs/performance.md). Host builds unchanged.
+set(ENGRAVER_SIZE_OVER_SPEED_FLAGS "-fno-move-loop-invariants" CACHE STRING
+    "compile options of the size-over-speed firmware code (GCC 4.5 options: XC16 takes them too)")
 function(engraver_size_over_speed kind)
   if(ENGRAVER_PLATFORM STREQUAL "host")
     return()
   endif()
+  separate_arguments(flags UNIX_COMMAND "${ENGRAVER_SIZE_OVER_SPEED_FLAGS}")
   if(kind STREQUAL "TARGETS")
     foreach(name ${ARGN})
-      target_compile_options(${name} PRIVATE -fno-move-loop-invariants)
+      target_compile_options(${name} PRIVATE ${flags})
     endforeach()
   else()
-    set_source_files_properties(${ARGN} PROPERTIES COMPILE_OPTIONS -fno-move-loop-invariants)
+    set_source_files_properties(${ARGN} PROPERTIES COMPILE_OPTIONS "${flags}")
   endif()
 endfunction()

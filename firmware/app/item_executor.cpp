@@ -84,6 +84,14 @@ bool ItemExecutor::push_marker(ExecutionContext* c) {
   return push_point(planner_.last_um(), last_feed_um_s_, kPointEndOfItem, c);
 }
 
+// Straight up or down to z_um from where the machine is (machine coordinates: no map offset).
+bool ItemExecutor::push_machine_z(int32_t z_um, uint16_t feed, uint8_t flags, ExecutionContext* c) {
+  int32_t target[config::kAxisCount];
+  memcpy(target, planner_.machine_um(), sizeof target);
+  target[config::kAxisZ] = z_um;
+  return planner_.push_machine(c->tick->ring(), target, feed, flags, item_tag_);
+}
+
 inline bool ItemExecutor::run_move(const QueueItem& item, ExecutionContext* c) {
   const int32_t target[config::kAxisCount] = {item.move.x_um, item.move.y_um,
                                               planner_.last_um()[2]};
@@ -93,8 +101,9 @@ inline bool ItemExecutor::run_move(const QueueItem& item, ExecutionContext* c) {
 }
 
 inline bool ItemExecutor::run_z_move(const ZMoveArgs& z, ExecutionContext* c) {
-  const int32_t* last = planner_.last_um();
-  const int32_t target[config::kAxisCount] = {last[0], last[1], z.z_um};
+  int32_t target[config::kAxisCount];
+  memcpy(target, planner_.last_um(), sizeof target);
+  target[config::kAxisZ] = z.z_um;
   last_feed_um_s_ = z.feed_um_s;
   return push_point(target, z.feed_um_s, kPointEndOfItem, c);
 }
@@ -204,9 +213,7 @@ inline bool ItemExecutor::run_probe(QueueItem* item, ExecutionContext* c) {
     planner_.set_origin(at);
     item->stage = 3;
   }
-  const int32_t* m = planner_.machine_um();
-  const int32_t up[config::kAxisCount] = {m[0], m[1], probes_.z_um() + p.retract_um};
-  if (!planner_.push_machine(c->tick->ring(), up, c->rapid_feed_um_s, kPointEndOfItem, item_tag_))
+  if (!push_machine_z(probes_.z_um() + p.retract_um, c->rapid_feed_um_s, kPointEndOfItem, c))
     return false;
   probing_ = false;
   return true;
@@ -231,11 +238,8 @@ inline bool ItemExecutor::start_probe(ProbeArgs* p, ExecutionContext* c) {
     c->alarm = proto::Alarm::kProbeNoContact;
     return false;
   }
-  const int32_t* m = planner_.machine_um();
-  const int32_t target[config::kAxisCount] = {m[0], m[1], p->z_limit_um};
   p->seen_probes = now.probes_done;
-  if (!planner_.push_machine(c->tick->ring(), target, p->feed_um_s, kPointProbe, item_tag_))
-    return false;
+  if (!push_machine_z(p->z_limit_um, p->feed_um_s, kPointProbe, c)) return false;
   probing_ = true;
   return true;
 }

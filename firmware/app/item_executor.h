@@ -82,6 +82,7 @@ class ItemExecutor {
   bool push_point(const int32_t target[config::kAxisCount], uint16_t feed, uint8_t flags,
                   ExecutionContext* c);
   bool push_marker(ExecutionContext* c);
+  bool push_machine_z(int32_t z_um, uint16_t feed, uint8_t flags, ExecutionContext* c);
   bool run_move(const QueueItem& item, ExecutionContext* c);
   bool run_z_move(const ZMoveArgs& z, ExecutionContext* c);
   bool run_zeroing(const ZeroingArgs& z, ExecutionContext* c);
