@@ -299,11 +299,10 @@ ErrorCode read_fields(const uint8_t* bytes, uint8_t length, uint8_t* msg, const 
     const uint8_t size = scalar_bytes(f->type);
     if (size > left) return ErrorCode::kPayloadLength;
     const uint8_t* at = bytes + pos;
-    int32_t v = at[0];
-    if (size == 2) v = get_u16(at);
-    if (size == 4) v = get_i32(at);
+    uint32_t v = 0;  // little-endian, any size
+    for (uint8_t k = size; k > 0; --k) v = (v << 8) | at[k - 1];
     if (f->type == kWireFlag && v > 1) bad_flag = true;
-    store(msg, *f, v);
+    store(msg, *f, (int32_t)v);
     pos = (uint8_t)(pos + size);
   }
   if (pos != length) return ErrorCode::kPayloadLength;
