@@ -424,6 +424,28 @@ ErrorCode encode_fields(const uint8_t* msg, const FieldSpec* fields, ExtraCheck 
   return e;
 }
 
+// encode() of a reply: replies are scalar fields only (message_table.h), so this writer has
+// no text or array branches (the firmware encodes replies only: it links just this one).
+ErrorCode encode_reply_fields(const uint8_t* msg, const FieldSpec* fields, ExtraCheck check,
+                              Payload* out) {
+  out->length = 0;
+  ErrorCode e = check_fields(msg, fields);
+  if (e == ErrorCode::kOk) e = check(msg);
+  if (e != ErrorCode::kOk) return e;
+  uint8_t n_out = 0;
+  for (const FieldSpec* f = fields; f->type != kWireEnd; ++f) {
+    if (f->type >= kWireText) return ErrorCode::kFieldRange;  // not a reply's field type
+    const int32_t v = load(msg, *f);
+    const uint8_t size = scalar_bytes(f->type);
+    if (size == 1) out->bytes[n_out] = (uint8_t)v;
+    if (size == 2) put_u16(out->bytes + n_out, (uint16_t)v);
+    if (size == 4) put_i32(out->bytes + n_out, v);
+    n_out = (uint8_t)(n_out + size);
+  }
+  out->length = n_out;
+  return ErrorCode::kOk;
+}
+
 // decode() of every message: the fields read, then checked.
 ErrorCode decode_fields(const uint8_t* bytes, uint8_t length, uint8_t* msg, const FieldSpec* fields,
                         ExtraCheck check) {
@@ -455,21 +477,22 @@ bool is_known_error(uint8_t code) {
 
 // encode / decode / check of every message, each one the walker over its field list.
 // NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and function names.
-#define PROTO_CODEC(Type, check)                                                                 \
+#define PROTO_CODEC(Type, check, encoder)                                                        \
   ErrorCode check_message(const Type& m) {                                                       \
     const ErrorCode e = check_fields(bytes_of(m), k##Type##Fields);                              \
     return e != ErrorCode::kOk ? e : check(bytes_of(m));                                         \
   }                                                                                              \
   ErrorCode encode(const Type& m, Payload* out) {                                                \
-    return encode_fields(bytes_of(m), k##Type##Fields, &check, out);                             \
+    return encoder(bytes_of(m), k##Type##Fields, &check, out);                                   \
   }                                                                                              \
   ErrorCode decode(const uint8_t* bytes, uint8_t length, Type* m) {                              \
     return decode_fields(bytes, length, reinterpret_cast<uint8_t*>(m), k##Type##Fields, &check); \
   }
 
 #define PROTO_CODEC_CMD(Type, name, letter, role, display, reply, handler, check) \
-  PROTO_CODEC(Type, check)
-#define PROTO_CODEC_REPLY(Type, name, letter, display, check) PROTO_CODEC(Type, check)
+  PROTO_CODEC(Type, check, encode_fields)
+#define PROTO_CODEC_REPLY(Type, name, letter, display, check) \
+  PROTO_CODEC(Type, check, encode_reply_fields)
 #define PROTO_CODEC_SKIP(...)
 // NOLINTEND(bugprone-macro-parentheses)
 PROTO_MESSAGE_TABLE(PROTO_CODEC_CMD, PROTO_CODEC_REPLY, PROTO_CODEC_SKIP, PROTO_CODEC_SKIP,
