@@ -41,10 +41,11 @@ function(engraver_add_parts)
 endfunction()
 
 # engraver_size_over_speed(TARGETS target... | SOURCES file...): code that runs at start-up,
-# per frame or per queue item (not the per-point stepping, not the planner or the path
-# controller) built without loop-invariant motion on the targets (XC16 and the AVR proxy):
-# the hoisted addresses and values held across a loop cost more code than the loop saves
-# (-0.5 kB on the AVR image, docs/performance.md). Host builds unchanged.
+# per frame or per queue item (not the per-point stepping, the 1 ms tick, the
+# planner or the path controller) built without loop-invariant motion on the targets (XC16
+# and the AVR proxy): the addresses and values hoisted out of a loop and held across it
+# cost more code than the loop saves (-0.2 kB on the AVR image, docs/performance.md).
+# Host builds unchanged.
 set(ENGRAVER_SIZE_OVER_SPEED_FLAGS "-fno-move-loop-invariants" CACHE STRING
     "compile options of the size-over-speed firmware code (GCC 4.5 options: XC16 takes them too)")
 function(engraver_size_over_speed kind)
