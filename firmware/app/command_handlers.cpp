@@ -107,20 +107,19 @@ ErrorCode Application::enqueue_text(ItemKind kind, uint8_t seq, uint8_t row, con
 
 ErrorCode Application::on_dwell(const proto::DwellCmd& c, uint8_t seq, uint8_t*) {
   QueueItem item = new_item(ItemKind::kDwell, seq);
-  item.dwell.dwell_ms = c.dwell_ms;
+  item.dwell = c;
   return enqueue(item);
 }
 
 ErrorCode Application::on_spindle(const proto::SpindleCmd& c, uint8_t seq, uint8_t*) {
   QueueItem item = new_item(ItemKind::kSpindle, seq);
-  item.spindle.on = c.on;
+  item.spindle = c;
   return enqueue(item);
 }
 
 ErrorCode Application::on_resolution(const proto::ResolutionCmd& c, uint8_t seq, uint8_t*) {
   QueueItem item = new_item(ItemKind::kResolution, seq);
-  item.resolution.max_step_um = c.max_step_um;
-  item.resolution.chord_tolerance_um = c.chord_tolerance_um;
+  item.resolution = c;
   return enqueue(item);
 }
 
@@ -151,8 +150,7 @@ ErrorCode Application::enqueue_inside(const QueueItem& item, const int32_t* x_um
 
 ErrorCode Application::on_z_move(const proto::ZMoveCmd& c, uint8_t seq, uint8_t*) {
   QueueItem item = new_item(ItemKind::kZMove, seq);
-  item.z_move.z_um = c.z_um;
-  item.z_move.feed_um_s = c.feed_um_per_s;
+  item.z_move = c;
   return enqueue_inside(item, 0, 0, &c.z_um);
 }
 
@@ -160,11 +158,7 @@ ErrorCode Application::on_drill(const proto::DrillCmd& c, uint8_t seq, uint8_t*)
   const ErrorCode e = motion_check(0, 0, &c.z_bottom_um);  // the same codes in either order
   if (e != ErrorCode::kOk) return e;
   QueueItem item = new_item(ItemKind::kDrill, seq);
-  item.drill.x_um = c.x_um;
-  item.drill.y_um = c.y_um;
-  item.drill.z_start_um = c.z_start_um;
-  item.drill.z_bottom_um = c.z_bottom_um;
-  item.drill.feed_um_s = c.feed_um_per_s;
+  item.drill = c;
   return enqueue_inside(item, &c.x_um, &c.y_um, &c.z_start_um);
 }
 
@@ -182,12 +176,7 @@ ErrorCode Application::on_probe(const proto::ProbeCmd& c, uint8_t seq, uint8_t*)
 ErrorCode Application::on_height_map_header(const proto::HeightMapHeaderCmd& c, uint8_t seq,
                                             uint8_t*) {
   QueueItem item = new_item(ItemKind::kMapHeader, seq);
-  item.map_header.cols = c.cols;
-  item.map_header.rows = c.rows;
-  item.map_header.x0_um = c.x0_um;
-  item.map_header.y0_um = c.y0_um;
-  item.map_header.pitch_x_um = c.pitch_x_um;
-  item.map_header.pitch_y_um = c.pitch_y_um;
+  item.map_header = c;
   const ErrorCode e = enqueue(item);
   if (e == ErrorCode::kOk) map_rx_.announced((uint16_t)((uint16_t)c.cols * c.rows));
   return e;

@@ -5,6 +5,8 @@
 
 #include <stdint.h>  // int32_t, uint8_t
 
+#include "firmware/protocol/messages.h"  // the commands some items carry
+
 namespace app {
 
 enum class ItemKind : uint8_t {
@@ -24,23 +26,22 @@ enum class ItemKind : uint8_t {
   kMapHeights = 13  // map_heights: heights of the map from an index (#E)
 };
 
-// What each kind carries (one of these is in use per item, chosen by its kind).
+// What each kind carries (one of these is in use per item, chosen by its kind). Most carry
+// their command's fields as they arrived (the same struct: one copy, docs/protocol.md).
+typedef proto::ResolutionCmd ResolutionArgs;
+typedef proto::ZMoveCmd ZMoveArgs;
+typedef proto::DwellCmd DwellArgs;
+typedef proto::SpindleCmd SpindleArgs;
+typedef proto::DrillCmd DrillArgs;
+typedef proto::HeightMapHeaderCmd MapHeaderArgs;  // cols 0: no map
 struct TextArgs {
   uint8_t row;
   uint8_t length;
   char chars[16];
 };
-struct ResolutionArgs {
-  uint16_t max_step_um;
-  uint16_t chord_tolerance_um;
-};
 struct MoveArgs {
   int32_t x_um;
   int32_t y_um;
-  uint16_t feed_um_s;
-};
-struct ZMoveArgs {
-  int32_t z_um;
   uint16_t feed_um_s;
 };
 struct ZeroingArgs {
@@ -52,34 +53,12 @@ struct SplineArgs {
   int32_t tool_offset_um;  // > 0 left of travel, < 0 right
   uint16_t first_point;    // resume: curve points before this one are walked, not moved to
 };
-struct DwellArgs {
-  uint16_t dwell_ms;
-};
-struct SpindleArgs {
-  uint8_t on;
-};
-struct DrillArgs {
-  int32_t x_um;
-  int32_t y_um;
-  int32_t z_start_um;
-  int32_t z_bottom_um;
-  uint16_t feed_um_s;  // plunge
-};
 
 struct ProbeArgs {
   int32_t z_limit_um;
   uint16_t feed_um_s;
   uint16_t retract_um;
   uint8_t seen_probes;  // the tick's probe count when the descent was handed over
-};
-
-struct MapHeaderArgs {
-  int32_t x0_um;
-  int32_t y0_um;
-  uint16_t pitch_x_um;
-  uint16_t pitch_y_um;
-  uint8_t cols;  // 0: no map
-  uint8_t rows;
 };
 
 struct MapHeightsArgs {

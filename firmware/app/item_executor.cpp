@@ -104,8 +104,8 @@ inline bool ItemExecutor::run_z_move(const ZMoveArgs& z, ExecutionContext* c) {
   int32_t target[config::kAxisCount];
   memcpy(target, planner_.last_um(), sizeof target);
   target[config::kAxisZ] = z.z_um;
-  last_feed_um_s_ = z.feed_um_s;
-  return push_point(target, z.feed_um_s, kPointEndOfItem, c);
+  last_feed_um_s_ = z.feed_um_per_s;
+  return push_point(target, z.feed_um_per_s, kPointEndOfItem, c);
 }
 
 // Only from a standstill with everything before it finished; completed when the tick
@@ -177,7 +177,7 @@ inline bool ItemExecutor::run_drill(QueueItem* item, ExecutionContext* c) {
       target[2] = stage == 3 ? d.z_bottom_um : d.z_start_um;
     }
     if (stage == 3) {
-      feed = d.feed_um_s;
+      feed = d.feed_um_per_s;
       flags = 0;
     }
     if (stage == 4) flags = (uint8_t)(kPointRapid | kPointEndOfItem);
@@ -188,7 +188,7 @@ inline bool ItemExecutor::run_drill(QueueItem* item, ExecutionContext* c) {
     if (!skip && !push_point(target, feed, flags, c)) return false;
     item->stage = (uint8_t)(stage + 1U);
   }
-  last_feed_um_s_ = d.feed_um_s;
+  last_feed_um_s_ = d.feed_um_per_s;
   return true;
 }
 
