@@ -68,13 +68,25 @@ enum class CommandRole : uint8_t {
 // The role of a command letter (kUnknown: not a command); command_kind() and the host's job
 // tools use it.
 inline CommandRole command_role(uint8_t letter) {
-#define PROTO_ROLE_CMD(Type, name, letter_value, role, display, reply, handler, check) \
-  if (letter == (letter_value)) return CommandRole::role;
+  // The command letters and their roles as two lists in table order (a look-up loop is
+  // shorter code than a comparison per command).
+#define PROTO_ROLE_LETTER(Type, name, letter_value, role, display, reply, handler, check) \
+  (uint8_t)(letter_value),
+#define PROTO_ROLE_OF(Type, name, letter_value, role, display, reply, handler, check) \
+  (uint8_t) CommandRole::role,
 #define PROTO_ROLE_SKIP(...)
-  PROTO_MESSAGE_TABLE(PROTO_ROLE_CMD, PROTO_ROLE_SKIP, PROTO_ROLE_SKIP, PROTO_ROLE_SKIP,
-                      PROTO_ROLE_SKIP, PROTO_ROLE_SKIP)
-#undef PROTO_ROLE_CMD
+  static const uint8_t kLetters[] = {PROTO_MESSAGE_TABLE(PROTO_ROLE_LETTER, PROTO_ROLE_SKIP,
+                                                         PROTO_ROLE_SKIP, PROTO_ROLE_SKIP,
+                                                         PROTO_ROLE_SKIP, PROTO_ROLE_SKIP)};
+  static const uint8_t kRoles[] = {PROTO_MESSAGE_TABLE(PROTO_ROLE_OF, PROTO_ROLE_SKIP,
+                                                       PROTO_ROLE_SKIP, PROTO_ROLE_SKIP,
+                                                       PROTO_ROLE_SKIP, PROTO_ROLE_SKIP)};
+#undef PROTO_ROLE_LETTER
+#undef PROTO_ROLE_OF
 #undef PROTO_ROLE_SKIP
+  for (uint8_t i = 0; i < (uint8_t)sizeof kLetters; ++i) {
+    if (kLetters[i] == letter) return (CommandRole)kRoles[i];
+  }
   return CommandRole::kUnknown;
 }
 
