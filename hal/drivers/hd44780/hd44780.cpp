@@ -10,14 +10,18 @@ void Hd44780::init() {
   bus_->set_control(0);
   bus_->set_data(0);
   bus_->delay_us(kPowerOnWaitUs);
-  write_instruction(kFunctionSet8Bit, kFirstFunctionSetWaitUs);
-  write_instruction(kFunctionSet8Bit, kSecondFunctionSetWaitUs);
-  write_instruction(kFunctionSet8Bit, kInstructionWaitUs);
-  write_instruction(kFunctionSet8Bit2Lines, kInstructionWaitUs);
-  write_instruction(kDisplayOff, kInstructionWaitUs);
-  write_instruction(kClearDisplay, kClearHomeWaitUs);
-  write_instruction(kEntryModeIncrement, kInstructionWaitUs);
-  write_instruction(kDisplayOnCursorOff, kInstructionWaitUs);
+  // Each instruction and its wait, as a table (less code than a call each).
+  struct Step {
+    uint8_t code;
+    uint16_t wait_us;
+  };
+  static const Step kSteps[] = {
+      {kFunctionSet8Bit, kFirstFunctionSetWaitUs}, {kFunctionSet8Bit, kSecondFunctionSetWaitUs},
+      {kFunctionSet8Bit, kInstructionWaitUs},      {kFunctionSet8Bit2Lines, kInstructionWaitUs},
+      {kDisplayOff, kInstructionWaitUs},           {kClearDisplay, kClearHomeWaitUs},
+      {kEntryModeIncrement, kInstructionWaitUs},   {kDisplayOnCursorOff, kInstructionWaitUs}};
+  for (uint8_t i = 0; i < sizeof kSteps / sizeof kSteps[0]; ++i)
+    write_instruction(kSteps[i].code, kSteps[i].wait_us);
 }
 
 // Rewrites a whole row so stale characters never survive.
