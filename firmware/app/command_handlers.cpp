@@ -166,9 +166,7 @@ ErrorCode Application::on_drill(const proto::DrillCmd& c, uint8_t seq, uint8_t*)
 // (spindle, probe input, the Z it starts from).
 ErrorCode Application::on_probe(const proto::ProbeCmd& c, uint8_t seq, uint8_t*) {
   QueueItem item = new_item(ItemKind::kProbe, seq);
-  item.probe.z_limit_um = c.z_limit_um;
-  item.probe.feed_um_s = c.feed_um_per_s;
-  item.probe.retract_um = c.retract_um;
+  item.probe.cmd = c;
   item.probe.seen_probes = 0;
   return enqueue_inside(item, 0, 0, &c.z_limit_um);
 }

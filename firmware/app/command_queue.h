@@ -55,9 +55,7 @@ struct SplineArgs {
 };
 
 struct ProbeArgs {
-  int32_t z_limit_um;
-  uint16_t feed_um_s;
-  uint16_t retract_um;
+  proto::ProbeCmd cmd;  // as it arrived
   uint8_t seen_probes;  // the tick's probe count when the descent was handed over
 };
 

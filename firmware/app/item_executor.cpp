@@ -213,7 +213,7 @@ inline bool ItemExecutor::run_probe(QueueItem* item, ExecutionContext* c) {
     planner_.set_origin(at);
     item->stage = 3;
   }
-  if (!push_machine_z(probes_.z_um() + p.retract_um, c->rapid_feed_um_s, kPointEndOfItem, c))
+  if (!push_machine_z(probes_.z_um() + p.cmd.retract_um, c->rapid_feed_um_s, kPointEndOfItem, c))
     return false;
   probing_ = false;
   return true;
@@ -233,13 +233,13 @@ inline bool ItemExecutor::start_probe(ProbeArgs* p, ExecutionContext* c) {
   if (c->alarm != proto::Alarm::kNone) return false;
   int32_t at[config::kAxisCount];
   c->follower->position_um(*c->scaling, at);
-  if (p->z_limit_um >= at[config::kAxisZ]) {  // nothing below to probe: nothing moves
+  if (p->cmd.z_limit_um >= at[config::kAxisZ]) {  // nothing below to probe: nothing moves
     probes_.note(2, at);
     c->alarm = proto::Alarm::kProbeNoContact;
     return false;
   }
   p->seen_probes = now.probes_done;
-  if (!push_machine_z(p->z_limit_um, p->feed_um_s, kPointProbe, c)) return false;
+  if (!push_machine_z(p->cmd.z_limit_um, p->cmd.feed_um_per_s, kPointProbe, c)) return false;
   probing_ = true;
   return true;
 }
