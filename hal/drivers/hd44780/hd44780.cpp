@@ -20,7 +20,7 @@ void Hd44780::init() {
       {kFunctionSet8Bit, kInstructionWaitUs},      {kFunctionSet8Bit2Lines, kInstructionWaitUs},
       {kDisplayOff, kInstructionWaitUs},           {kClearDisplay, kClearHomeWaitUs},
       {kEntryModeIncrement, kInstructionWaitUs},   {kDisplayOnCursorOff, kInstructionWaitUs}};
-  for (uint8_t i = 0; i < sizeof kSteps / sizeof kSteps[0]; ++i)
+  for (uint8_t i = 0; i < (uint8_t)(sizeof kSteps / sizeof kSteps[0]); ++i)
     write_instruction(kSteps[i].code, kSteps[i].wait_us);
 }
 
