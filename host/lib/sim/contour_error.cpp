@@ -40,6 +40,33 @@ double extent_of(const Point2& a, const Point2& b) {
   return std::max(std::abs(b.x() - a.x()), std::abs(b.y() - a.y()));
 }
 
+// Calls f(ix, iy) for every cell of a grid (origin, cell) that segment s passes through,
+// column by column: a diagonal line n cells long is in ~2n cells, not the n x n of its
+// bounding box (a million random lines' index: ~18 cells a line before, ~8 now). The search
+// stays exact: every point of a segment lies in a cell that lists it. A column's rows are
+// widened by kEdgeCells so that rounding never drops a cell the segment only touches.
+constexpr double kEdgeCells = 1e-9;
+template <typename F>
+void for_cells_crossed(const Point2& a, const Point2& b, const Point2& origin, double cell, F&& f) {
+  const double ax = (a.x() - origin.x()) / cell, ay = (a.y() - origin.y()) / cell;
+  const double bx = (b.x() - origin.x()) / cell, by = (b.y() - origin.y()) / cell;
+  const long x0 = static_cast<long>(std::min(ax, bx)), x1 = static_cast<long>(std::max(ax, bx));
+  const long y0 = static_cast<long>(std::min(ay, by)), y1 = static_cast<long>(std::max(ay, by));
+  const double dx = bx - ax;
+  for (long ix = x0; ix <= x1; ++ix) {
+    long r0 = y0, r1 = y1;
+    if (x0 < x1 && dx != 0) {
+      // The segment's y where it enters and leaves this column.
+      const double xa = std::max(static_cast<double>(ix), std::min(ax, bx));
+      const double xb = std::min(static_cast<double>(ix + 1), std::max(ax, bx));
+      const double ya = ay + (by - ay) * ((xa - ax) / dx), yb = ay + (by - ay) * ((xb - ax) / dx);
+      r0 = std::max(y0, static_cast<long>(std::floor(std::min(ya, yb) - kEdgeCells)));
+      r1 = std::min(y1, static_cast<long>(std::floor(std::max(ya, yb) + kEdgeCells)));
+    }
+    for (long iy = r0; iy <= r1; ++iy) f(ix, iy);
+  }
+}
+
 }  // namespace
 
 NearestSegment::NearestSegment(const std::vector<std::vector<Point2>>& polylines, double cell_mm)
@@ -91,12 +118,8 @@ void NearestSegment::build_coarse(Grid* g, bool long_only) const {
   // Two passes (count, then fill): one array of entries, no list per cell.
   g->start.assign(cells + 1, 0);
   auto for_cells = [&](const Segment& s, auto&& f) {
-    const long x0 = static_cast<long>((std::min(s.a.x(), s.b.x()) - min_.x()) / g->cell);
-    const long x1 = static_cast<long>((std::max(s.a.x(), s.b.x()) - min_.x()) / g->cell);
-    const long y0 = static_cast<long>((std::min(s.a.y(), s.b.y()) - min_.y()) / g->cell);
-    const long y1 = static_cast<long>((std::max(s.a.y(), s.b.y()) - min_.y()) / g->cell);
-    for (long ix = x0; ix <= x1; ++ix)
-      for (long iy = y0; iy <= y1; ++iy) f(static_cast<size_t>(ix * g->ny + iy));
+    for_cells_crossed(s.a, s.b, min_, g->cell,
+                      [&](long ix, long iy) { f(static_cast<size_t>(ix * g->ny + iy)); });
   };
   for (const Segment& s : segments_) {
     if (long_only && is_short(s)) continue;
@@ -134,6 +157,14 @@ void NearestSegment::build_fine() {
     fine_entries_.push_back(keyed[i].second);
     fine_cells_[keyed[i].first].second = static_cast<uint32_t>(fine_entries_.size());
   }
+}
+
+size_t NearestSegment::held_bytes() const {
+  size_t n = segments_.capacity() * sizeof(Segment) + fine_entries_.capacity() * sizeof(uint32_t);
+  for (const Grid* g : {&coarse_, &coarse_long_})
+    n += (g->start.capacity() + g->entries.capacity()) * sizeof(uint32_t);
+  // A node of the fine grid's map: the key, its range and the bucket's link, about.
+  return n + fine_cells_.size() * 32 + fine_cells_.bucket_count() * sizeof(void*);
 }
 
 double NearestSegment::dist2(uint32_t s, double px, double py) const {

@@ -40,6 +40,8 @@ class NearestSegment {
   size_t segments_examined() const { return examined_; }
   // The fine grid's cell (0: none; every query uses the coarse grid).
   double fine_cell_mm() const { return fine_cell_; }
+  // Bytes the index holds (its segments, grids and cell lists), for tests.
+  size_t held_bytes() const;
 
  private:
   struct Segment {

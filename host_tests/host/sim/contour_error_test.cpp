@@ -91,5 +91,45 @@ TEST(NearestSegment, ADenseContoursQueryLooksAtAFewSegments) {
   EXPECT_LT(per_query, 100.0);
 }
 
+TEST(NearestSegment, ExactOnShortLinesAtEveryAngle) {
+  // Lines of 0.5-5 mm (1-10 cells) at random angles, as the big-job test file scatters them:
+  // each is listed only in the cells it crosses, and points near any of them still find it.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> x(0, 40), len(0.5, 5), angle(0, 2 * M_PI), off(-0.3, 0.3);
+  std::vector<std::vector<Point2>> lines;
+  std::vector<Point2> at;
+  for (int i = 0; i < 400; ++i) {
+    const Point2 a(x(rng), x(rng));
+    const double l = len(rng), t = angle(rng);
+    lines.push_back({a, a + l * Point2(std::cos(t), std::sin(t))});
+    at.push_back(a + 0.5 * l * Point2(std::cos(t), std::sin(t)) + Point2(off(rng), off(rng)));
+  }
+  lines.push_back({Point2(0, 0), Point2(40, 40)});  // on the cells' corners all the way
+  lines.push_back({Point2(1, 3), Point2(39, 3)});   // along a row of cell edges
+  for (int i = 0; i < 300; ++i) at.emplace_back(x(rng), x(rng));
+  for (int i = 0; i <= 80; ++i) at.emplace_back(0.5 * i + 1e-7, 0.5 * i - 1e-7);
+  expect_exact(lines, at);
+}
+
+TEST(NearestSegment, AShortLineIsListedInTheCellsItCrossesNotItsBoundingBox) {
+  // 100 000 random lines of 0.5-5 mm over a 280 x 190 mm area (tools/bigjob's `lines`): a
+  // million of them held 70 MB of cell lists when each was listed in every cell of its
+  // bounding box (~18 a line); the cells it crosses are ~8.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> x(5, 290), y(5, 200), len(0.5, 5), angle(0, 2 * M_PI);
+  const int n = 100000;
+  NearestSegment index;
+  index.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    const Point2 a(x(rng), y(rng));
+    const double l = len(rng), t = angle(rng);
+    index.add({a, a + l * Point2(std::cos(t), std::sin(t))});
+  }
+  index.index();
+  EXPECT_EQ(index.fine_cell_mm(), 0.0);  // the coarse grid only
+  RecordProperty("held_bytes_per_line", static_cast<int>(index.held_bytes() / n));
+  EXPECT_LE(index.held_bytes(), 80u * n) << index.held_bytes() / n << " bytes a line";
+}
+
 }  // namespace
 }  // namespace host::sim
