@@ -593,6 +593,9 @@ void add_run_command(CLI::App& app) {
       ->needs("--blank-error");  // alone it would be ignored without a word
   add_surface_option(run, &run_args->surface);
   add_height_map_options(run, &run_args->map, HeightMapCommand::kRun);
+  // The simulated probe touches the simulated blank: without one, refused as the command line
+  // is read (not after planning), in the words of the other options that need another.
+  run->get_option("--probe")->needs("--surface");
   run->footer(
       "Example: engraver run samples/engraver-word.dxf -o out\n"
       "Progress on stderr (a bar on a terminal, a line every 5 s otherwise).\n"

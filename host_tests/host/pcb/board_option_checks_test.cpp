@@ -409,11 +409,11 @@ TEST(BoardOptionRanges, TheSurfaceIsCheckedBeforePlanningInTheOptionsWords) {
       {run_board + "bow=infmm", "--surface: bow=infmm: 'inf' is not a finite number\n"},
       {run_board + "tilt=1e999um", "--surface: tilt=1e999um: '1e999' is not a finite number\n"},
       {run_board + "tilt=2mm",
-       "--surface: tilt=2mm: 2000 um is outside the allowed range -1000 .. 1000 um\n"},
+       "--surface: tilt=2mm: 2mm is outside the allowed range -1 .. 1 mm\n"},
       {run_board + "tilt=0.1", "--surface: tilt=0.1: give the length with its unit"},
-      {run_board + "tilt=1mm,tilt=2mm", "--surface: 'tilt_x' is given twice"},
+      {run_board + "tilt=1mm,tilt=2mm", "--surface: 'tilt' is given twice"},
       {"sim --surface noise=1e3mm",
-       "--surface: noise=1e3mm: 1e+06 um is outside the allowed range 0 .. 100 um\n"},
+       "--surface: noise=1e3mm: 1e3mm is outside the allowed range 0 .. 0.1 mm\n"},
   };
   for (const Case& c : cases) {
     const ToolRun r = run(c.args);
