@@ -742,6 +742,18 @@ TEST(BoardCli, TheGuidesFirstBoardExamplesRunAsPrinted) {
             std::string::npos)
       << refused.err;
   EXPECT_EQ(run(example + " --tool-width 0.041").code, 0);
+  // The guide's gap printed with the digits that tell it from the tool, and the clearance
+  // that passes with a tool that fits the gap.
+  EXPECT_NE(run(example + " --tool-width 0.0574 --clearance 0")
+                .err.find("gap 0.0571 mm < tool 0.0574 mm"),
+            std::string::npos);
+  EXPECT_NE(run(example + " --tool-width 0.05 --clearance 0.004")
+                .err.find("Or keep the tool and lower the clearance: --clearance 0.003 passes "
+                          "every gap (the clearance is the room kept between the tool's edge and "
+                          "the copper for the curve fit and the machine's contour error; with "
+                          "less, the checks may find the tool in the copper).\n"),
+            std::string::npos);
+  EXPECT_EQ(run(example + " --tool-width 0.05 --clearance 0.003").code, 0);
   std::filesystem::remove_all(out);
 }
 
