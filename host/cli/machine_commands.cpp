@@ -21,6 +21,7 @@
 #include "host/lib/commands/send_command.h"
 #include "host/lib/commands/sim_command.h"
 #include "host/lib/drawing/drawing.h"
+#include "host/lib/plan/counted.h"  // counted: "1 hole", "2 holes"
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/progress/progress_meter.h"
 #include "host/lib/stream/sender.h"
@@ -327,9 +328,10 @@ void run_sim(const SimArgs& a) {
   const commands::SimCommandResult r = commands::run_sim(o, g_stop_sim, std::cerr);
   if (!r.trace_ok) std::cerr << fmt::format("engraver: --trace '{}': write failed\n", a.trace);
   std::cerr << fmt::format(
-      "engraver: simulated {:.1f} s of machine time; {} pauses confirmed by the simulated "
-      "operator; spindle {} ({} switchings)\n",
-      r.machine_ms / 1000.0, r.pauses_confirmed, r.spindle_on ? "on" : "off", r.spindle_switches);
+      "engraver: simulated {:.1f} s of machine time; {} confirmed by the simulated "
+      "operator; spindle {} ({})\n",
+      r.machine_ms / 1000.0, counted(r.pauses_confirmed, "pause"), r.spindle_on ? "on" : "off",
+      counted(r.spindle_switches, "switching"));
 }
 
 // ---- engraver run ----

@@ -8,6 +8,7 @@
 #include <stdexcept>  // std::invalid_argument
 
 #include "host/lib/pcb/pcb_geometry.h"
+#include "host/lib/plan/counted.h"       // counted: "1 hole", "2 holes"
 #include "host/lib/plan/job_defaults.h"  // kToolWidthRangeMm
 
 namespace host::pcb::board_stages {
@@ -85,15 +86,18 @@ std::vector<Trace> isolate(const BoardLayers& layers, const PcbLayer* copper, co
   rep.islands = iso_result.islands;
   rep.narrow_gaps = iso_result.narrow_gaps;
   if (iso_result.empty_holes_skipped > 0)
-    rep.notes.push_back(fmt::format(
-        "{}: {} opening(s) in the copper hold no other island (a hatched pour): no contour "
-        "inside them (--isolate-empty-holes cuts them)",
-        copper->path, iso_result.empty_holes_skipped));
+    rep.notes.push_back(
+        fmt::format("{}: {} in the copper {} no other island (a hatched pour): no contour "
+                    "inside {} (--isolate-empty-holes cuts {})",
+                    copper->path, counted(iso_result.empty_holes_skipped, "opening"),
+                    iso_result.empty_holes_skipped == 1 ? "holds" : "hold",
+                    iso_result.empty_holes_skipped == 1 ? "it" : "them",
+                    iso_result.empty_holes_skipped == 1 ? "it" : "them"));
   if (!rep.narrow_gaps.empty() && !o.allow_narrow_gaps) {
     std::string msg = fmt::format(
-        "{}: {} place(s) where the copper is closer than the tool width {} mm plus its "
+        "{}: {} where the copper is closer than the tool width {} mm plus its "
         "clearance, so the tool cannot separate the islands:",
-        copper->path, rep.narrow_gaps.size(), mm_text(io.tool_width_mm));
+        copper->path, counted(rep.narrow_gaps.size(), "place"), mm_text(io.tool_width_mm));
     for (size_t i = 0; i < rep.narrow_gaps.size() && i < 20; ++i)
       msg += "\n  " + describe_gap(rep.narrow_gaps[i], io);
     if (rep.narrow_gaps.size() > 20) msg += "\n  ...";

@@ -481,6 +481,31 @@ TEST(BoardOptionRanges, TheSurfaceIsCheckedBeforePlanningInTheOptionsWords) {
 
 namespace {
 
+// "1 holes", "1 sizes", "1 tool changes": a count of one in the singular, in the board's
+// report and in the line `run` prints before it simulates.
+TEST(BoardReportText, ACountOfOneIsSaidInTheSingular) {
+  const std::string dir = testing::TempDir() + "/" + std::to_string(getpid()) + "-opt-one";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/one-F.Cu.gbr")
+      << "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Copper,L1,Top*%\n%ADD10C,1.600000*%\n"
+         "D10*\nX10000000Y10000000D03*\nM02*\n";
+  std::ofstream(dir + "/one-PTH.drl")
+      << "M48\nMETRIC\nT1C0.800\n%\nG90\nG05\nT1\nX10.0Y10.0\nM30\n";
+  const ToolRun r = run("board " + dir + " --no-plot -o " + dir + "/out");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("  isolation: 1 island, 1 contour, "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  drilling: 1 hole (1 of the board's 1 hole in this side's copper "
+                       "pads), 0 slots, 1 size; "),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("  cut-out: 0.0 mm per pass, 0 tabs; 1 tool change\n"), std::string::npos)
+      << r.out;
+  const ToolRun sim = run("run " + dir + " -o " + dir + "/run");
+  ASSERT_EQ(sim.code, 0) << sim.err;
+  EXPECT_NE(sim.err.find("1 contour, 1 hole, 1 tool change"), std::string::npos) << sim.err;
+  std::filesystem::remove_all(dir);
+}
+
 // A bottom side after a top side with alignment holes said "0 holes (2 on copper)": the
 // holes are drilled with the top side; the count in copper is the layers' alignment check.
 TEST(BoardReportText, DrillingSaysWhichSideDrillsAndWhatSitsInThePads) {
