@@ -199,21 +199,6 @@ std::string machine_detail(const Progress& p) {
   return s;
 }
 
-// The machine stands still for the operator (a hold, a tool-change pause, manual zeroing, an
-// alarm): the progress meter leaves that time out of the time left.
-bool machine_waiting(const Progress& p) {
-  switch (p.status.state) {
-    case proto::MachineState::kHolding:
-    case proto::MachineState::kHeld:
-    case proto::MachineState::kPaused:
-    case proto::MachineState::kZeroing:
-    case proto::MachineState::kAlarm:
-      return true;
-    default:
-      return false;
-  }
-}
-
 // ---- engraver send ----
 
 struct SendArgs {
@@ -271,7 +256,9 @@ void run_send(const SendArgs& a) {
   std::optional<ProgressMeter> bar;
   o.while_streaming = [&bar](Sender& sender) { return std::make_shared<Streaming>(sender, &bar); };
   o.on_progress = [&bar](const Progress& p) {
-    if (bar) bar->update(p.executed, p.total, machine_detail(p), machine_waiting(p));
+    if (bar)
+      bar->update(p.executed, p.total, machine_detail(p),
+                  machine_waits_for_operator(p.status.state));
   };
   const commands::SendResult r = commands::send_job(*link, plan, o, std::cerr);
   if (r.outcome == JobOutcome::kCompleted) return;
@@ -459,7 +446,8 @@ void run_run(const RunArgs& a) {
   commands::RunResult r = [&o, &plan, &lifted] {
     ProgressMeter bar("run", "commands", std::cerr, ProgressMeter::for_stderr());
     o.on_progress = [&bar](const Progress& p) {
-      bar.update(p.executed, p.total, machine_detail(p), machine_waiting(p));
+      bar.update(p.executed, p.total, machine_detail(p),
+                 machine_waits_for_operator(p.status.state));
     };
     try {
       commands::RunResult result = commands::simulate_run(plan, o);
