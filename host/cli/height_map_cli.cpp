@@ -14,6 +14,7 @@
 #include "host/lib/heightmap/controller_map.h"
 #include "host/lib/heightmap/job_area.h"
 #include "host/lib/heightmap/probe_session.h"
+#include "host/lib/plan/counted.h"  // counted: "1 hole", "2 holes"
 #include "host/lib/plot/height_map_plot.h"
 #include "host/lib/progress/progress_meter.h"
 
@@ -211,9 +212,9 @@ heightmap::HeightMap probe_for_job(Sender& sender, const JobPlan& plan, const He
     throw CommandFailure(kExitUsage, e.what());
   }
   std::cerr << fmt::format(
-      "engraver: probed {} x {} points ({} touches), heights {:.1f} .. {:.1f} um{}; map {}, "
+      "engraver: probed {} x {} points ({}), heights {:.1f} .. {:.1f} um{}; map {}, "
       "picture {}\n",
-      map.rows, map.cols, run.touches, map.min_um(), map.max_um(),
+      map.rows, map.cols, counted(run.touches, "touch", "touches"), map.min_um(), map.max_um(),
       map.repeatability_um ? fmt::format(", repeatability {:.1f} um", *map.repeatability_um)
                            : std::string(),
       map_path, map_picture_path(map_path));

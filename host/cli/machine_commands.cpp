@@ -21,6 +21,7 @@
 #include "host/lib/commands/send_command.h"
 #include "host/lib/commands/sim_command.h"
 #include "host/lib/drawing/drawing.h"
+#include "host/lib/plan/counted.h"  // counted: "1 hole", "2 holes"
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/progress/progress_meter.h"
 #include "host/lib/stream/sender.h"
@@ -255,7 +256,9 @@ void run_send(const SendArgs& a) {
   std::optional<ProgressMeter> bar;
   o.while_streaming = [&bar](Sender& sender) { return std::make_shared<Streaming>(sender, &bar); };
   o.on_progress = [&bar](const Progress& p) {
-    if (bar) bar->update(p.executed, p.total, machine_detail(p));
+    if (bar)
+      bar->update(p.executed, p.total, machine_detail(p),
+                  machine_waits_for_operator(p.status.state));
   };
   const commands::SendResult r = commands::send_job(*link, plan, o, std::cerr);
   if (r.outcome == JobOutcome::kCompleted) return;
@@ -327,9 +330,10 @@ void run_sim(const SimArgs& a) {
   const commands::SimCommandResult r = commands::run_sim(o, g_stop_sim, std::cerr);
   if (!r.trace_ok) std::cerr << fmt::format("engraver: --trace '{}': write failed\n", a.trace);
   std::cerr << fmt::format(
-      "engraver: simulated {:.1f} s of machine time; {} pauses confirmed by the simulated "
-      "operator; spindle {} ({} switchings)\n",
-      r.machine_ms / 1000.0, r.pauses_confirmed, r.spindle_on ? "on" : "off", r.spindle_switches);
+      "engraver: simulated {:.1f} s of machine time; {} confirmed by the simulated "
+      "operator; spindle {} ({})\n",
+      r.machine_ms / 1000.0, counted(r.pauses_confirmed, "pause"), r.spindle_on ? "on" : "off",
+      counted(r.spindle_switches, "switching"));
 }
 
 // ---- engraver run ----
@@ -442,7 +446,8 @@ void run_run(const RunArgs& a) {
   commands::RunResult r = [&o, &plan, &lifted] {
     ProgressMeter bar("run", "commands", std::cerr, ProgressMeter::for_stderr());
     o.on_progress = [&bar](const Progress& p) {
-      bar.update(p.executed, p.total, machine_detail(p));
+      bar.update(p.executed, p.total, machine_detail(p),
+                 machine_waits_for_operator(p.status.state));
     };
     try {
       commands::RunResult result = commands::simulate_run(plan, o);
@@ -593,6 +598,9 @@ void add_run_command(CLI::App& app) {
       ->needs("--blank-error");  // alone it would be ignored without a word
   add_surface_option(run, &run_args->surface);
   add_height_map_options(run, &run_args->map, HeightMapCommand::kRun);
+  // The simulated probe touches the simulated blank: without one, refused as the command line
+  // is read (not after planning), in the words of the other options that need another.
+  run->get_option("--probe")->needs("--surface");
   run->footer(
       "Example: engraver run samples/engraver-word.dxf -o out\n"
       "Progress on stderr (a bar on a terminal, a line every 5 s otherwise).\n"

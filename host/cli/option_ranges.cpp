@@ -33,8 +33,8 @@ std::string refuse_non_number(std::string& value) {
 std::string refuse_fraction(std::string& value) {
   const std::string refused = refuse_non_number(value);
   if (!refused.empty()) return refused;
+  if (!host::is_whole_decimal(value)) return "'" + value + "' is not a whole number";
   const double v = std::strtod(value.c_str(), nullptr);
-  if (v != std::floor(v)) return "'" + value + "' is not a whole number";
   if (std::fabs(v) < 1e15) value = fmt::format("{:.0f}", v);  // beyond: the range refuses
   return "";
 }

@@ -13,6 +13,7 @@
 #include "host/lib/commands/exit_codes.h"  // CommandFailure
 #include "host/lib/pcb/board_check.h"
 #include "host/lib/pcb/pcb_geometry.h"
+#include "host/lib/plan/counted.h"          // counted: "1 hole", "2 holes"
 #include "host/lib/plan/firmware_spline.h"  // sample
 #include "host/lib/plot/board_plot.h"
 #include "host/lib/stream/job_encoder.h"
@@ -237,20 +238,21 @@ namespace {
 // side's copper pads (the alignment check of drill file and copper). A bottom side after a
 // top side with alignment holes drills nothing: the top side drilled every hole.
 std::string drilling_text(const pcb::BoardReport& p, size_t alignment_holes) {
-  const std::string in_pads =
-      p.board_holes ? fmt::format("{} of the board's {} holes in this side's copper pads",
-                                  p.holes_on_copper, p.board_holes)
-                    : std::string("no drill file");
+  const std::string in_pads = p.board_holes
+                                  ? fmt::format("{} of the board's {} in this side's copper pads",
+                                                p.holes_on_copper, counted(p.board_holes, "hole"))
+                                  : std::string("no drill file");
   if (p.holes == 0 && (p.board_holes > 0 || alignment_holes > 0))
     return fmt::format(
         "none on this side: the top side's job drills the holes ({}{})",
-        alignment_holes ? fmt::format("{} alignment holes; ", alignment_holes) : std::string(),
+        alignment_holes ? counted(alignment_holes, "alignment hole") + "; " : std::string(),
         in_pads);
   const size_t pins = p.holes > p.board_holes ? p.holes - p.board_holes : 0;
-  return fmt::format("{} holes ({}{}), {} slots, {} sizes; travel {:.1f} mm (file order {:.1f} mm)",
-                     p.holes, in_pads,
-                     pins ? fmt::format("; {} alignment holes", pins) : std::string(), p.slots,
-                     p.drill_tools, p.drill_travel_ordered_mm, p.drill_travel_file_order_mm);
+  return fmt::format("{} ({}{}), {}, {}; travel {:.1f} mm (file order {:.1f} mm)",
+                     counted(p.holes, "hole"), in_pads,
+                     pins ? "; " + counted(pins, "alignment hole") : std::string(),
+                     counted(p.slots, "slot"), counted(p.drill_tools, "size"),
+                     p.drill_travel_ordered_mm, p.drill_travel_file_order_mm);
 }
 
 }  // namespace
@@ -263,10 +265,11 @@ std::string board_report_text(const BoardCommandOptions& a, const BoardResult& r
     tool_bytes += fmt::format("{}{} {} B", t ? ", " : "", r.job.tools[t].label, r.tool_bytes[t]);
   std::string s = fmt::format(
       "{}: {} side, first tool {}\n"
-      "  isolation: {} islands, {} contours, {:.1f} mm ({} lines, {} arcs, {} cubics); "
-      "{} narrow gaps\n",
-      r.name, side, p.first_tool, p.islands, p.isolation_contours, p.isolation_length_mm,
-      p.fit.lines, p.fit.arcs, p.fit.cubics, p.narrow_gaps.size());
+      "  isolation: {}, {}, {:.1f} mm ({}, {}, {}); {}\n",
+      r.name, side, p.first_tool, counted(p.islands, "island"),
+      counted(p.isolation_contours, "contour"), p.isolation_length_mm, counted(p.fit.lines, "line"),
+      counted(p.fit.arcs, "arc"), counted(p.fit.cubics, "cubic"),
+      counted(p.narrow_gaps.size(), "narrow gap"));
   if (r.wire) {
     const WireMeasure& w = *r.wire;
     s += fmt::format(
@@ -280,10 +283,11 @@ std::string board_report_text(const BoardCommandOptions& a, const BoardResult& r
   }
   s += "  drilling: " + drilling_text(p, r.job.alignment_holes_mm.size()) + "\n";
   s += fmt::format(
-      "  cut-out: {:.1f} mm per pass, {} tabs; {} tool changes\n"
+      "  cut-out: {:.1f} mm per pass, {}; {}\n"
       "  bytes per tool: {}\n"
       "  files -> plan: {:.3f} s CPU, peak {:.1f} MB\n",
-      p.cutout_length_mm, p.tabs, p.tool_changes, tool_bytes, r.plan_cpu_s, r.plan_peak_mb);
+      p.cutout_length_mm, counted(p.tabs, "tab"), counted(p.tool_changes, "tool change"),
+      tool_bytes, r.plan_cpu_s, r.plan_peak_mb);
   for (const pcb::NarrowGap& g : p.narrow_gaps)
     s += "  " + pcb::describe_gap(g, r.options.isolation) + "\n";
   for (size_t i = 0; i < r.job.alignment_holes_mm.size(); ++i)

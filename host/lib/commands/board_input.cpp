@@ -12,6 +12,7 @@
 #include "host/lib/pcb/board_probe_area.h"
 #include "host/lib/pcb/isolation_check.h"
 #include "host/lib/pcb/pcb_file_names.h"
+#include "host/lib/plan/counted.h"  // counted: "1 hole", "2 holes"
 #include "host/lib/plan/firmware_points.h"
 
 namespace host::commands {
@@ -300,8 +301,9 @@ JobPlan plan_pcb_input(const std::string& input, const pcb::BoardArgs& args,
   }
   const pcb::BoardReport& r = job->report;
   for (const std::string& n : r.notes) log("note: " + n);
-  log(fmt::format("board {}: mount {} first; {} contours, {} holes, {} tool changes", b.name,
-                  r.first_tool, r.isolation_contours, r.holes, r.tool_changes));
+  log(fmt::format("board {}: mount {} first; {}, {}, {}", b.name, r.first_tool,
+                  counted(r.isolation_contours, "contour"), counted(r.holes, "hole"),
+                  counted(r.tool_changes, "tool change")));
   for (const pcb::NarrowGap& g : r.narrow_gaps)
     log("warning: " + pcb::describe_gap(g, o.isolation));
   if (board) {

@@ -13,6 +13,7 @@
 #include "host/lib/pcb/excellon_reader.h"
 #include "host/lib/pcb/gerber_reader.h"
 #include "host/lib/pcb/pcb_file_names.h"
+#include "host/lib/plan/counted.h"  // counted: "1 hole", "2 holes"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plan/firmware_spline.h"
 #include "host/lib/plan/job_defaults.h"  // kChordToleranceRangeMm
@@ -117,8 +118,8 @@ std::string pcb_info_text(const PcbFileInfo& info) {
   if (l.kind == pcb::LayerKind::kDrill) {
     out << "tools:     " << l.apertures_or_tools << " defined, " << c.tools.size() << " used\n";
     for (const auto& t : c.tools) {
-      out << "  T" << t.first << ": " << t.second.first << " mm, " << t.second.second
-          << " holes and slots\n";
+      out << "  T" << t.first << ": " << t.second.first << " mm, "
+          << counted(t.second.second, "hole or slot", "holes and slots") << "\n";
     }
     out << "holes:     " << l.holes.size() << "\n";
     out << "slots:     " << l.slots.size() << "\n";
@@ -127,11 +128,12 @@ std::string pcb_info_text(const PcbFileInfo& info) {
     if (l.outline_paths_are_open) {
       size_t closed = 0;
       for (const auto& p : l.polygons_nm) closed += p.size() > 2 && p.front() == p.back();
-      out << "paths:     " << l.polygons_nm.size() << " centre lines (" << closed << " closed), "
-          << c.vertices << " vertices\n";
+      out << "paths:     " << counted(l.polygons_nm.size(), "centre line") << " (" << closed
+          << " closed), " << counted(c.vertices, "vertex", "vertices") << "\n";
     } else {
-      out << "polygons:  " << c.outers << " copper areas, " << c.holes << " holes in them, "
-          << c.vertices << " vertices (arcs within " << l.arc_tolerance_nm * 1e-3 << " um)\n";
+      out << "polygons:  " << counted(c.outers, "copper area") << ", " << counted(c.holes, "hole")
+          << " in them, " << counted(c.vertices, "vertex", "vertices") << " (arcs within "
+          << l.arc_tolerance_nm * 1e-3 << " um)\n";
     }
   }
   out << "notes:     " << (l.notes.empty() ? "none" : "") << "\n";
@@ -148,8 +150,12 @@ nlohmann::json pcb_info_json(const PcbFileInfo& info) {
   j["format"] = info.format;
   j["layer"] = pcb::layer_kind_name(l.kind);
   j["units"] = l.units;
+  // As a drawing's: corners, width and height, all in mm (the key says the unit).
   j["extents_mm"] = b.empty ? nlohmann::json(nullptr)
-                            : nlohmann::json{{"min", {b.x0, b.y0}}, {"max", {b.x1, b.y1}}};
+                            : nlohmann::json{{"min", {b.x0, b.y0}},
+                                             {"max", {b.x1, b.y1}},
+                                             {"width", b.x1 - b.x0},
+                                             {"height", b.y1 - b.y0}};
   j["apertures_or_tools"] = l.apertures_or_tools;
   j["polygons"] = c.outers;
   j["polygon_holes"] = c.holes;
@@ -303,8 +309,8 @@ std::string drawing_info_text(const Drawing& d) {
     }
   }
   if (!d.program.empty()) {
-    out << "program:  " << d.program.size()
-        << " operations, planned in this order (nothing reordered):\n";
+    out << "program:  " << counted(d.program.size(), "operation")
+        << ", planned in this order (nothing reordered):\n";
     const size_t limit = 200;
     for (size_t i = 0; i < d.program.size() && i < limit; ++i)
       out << "  " << describe_op(d, d.program[i]) << "\n";

@@ -14,6 +14,7 @@
 #include "host/lib/heightmap/controller_map.h"   // job_map_commands
 #include "host/lib/heightmap/simulated_blank.h"  // the blank the simulated probe touches
 #include "host/lib/pcb/board_check.h"            // refuse_copper_hits
+#include "host/lib/plan/counted.h"               // counted: "1 hole", "2 holes"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plot/board_plot.h"
 #include "host/lib/plot/height_map_plot.h"
@@ -302,8 +303,8 @@ std::string run_report_text(const JobPlan& plan, const RunOptions& o, const RunR
   const sim::SimJobResult& s = r.sim;
   const std::string& base = r.base;
   std::string t = fmt::format(
-      "{}: {} curves, {} pen lifts; job {}\n"
-      "  sent {} commands in {} frames, {} bytes ({} resent after busy or loss); the job as "
+      "{}: {}, {}; job {}\n"
+      "  sent {} in {}, {} bytes ({} resent after busy or loss); the job as "
       "frames: {} bytes, "
       "as G-code G1 at the same tolerance: {} bytes\n"
       "  tool path {:.1f} mm cut + {:.1f} mm rapid; simulated job time {:.1f} s, of which "
@@ -311,15 +312,16 @@ std::string run_report_text(const JobPlan& plan, const RunOptions& o, const RunR
       "  max contour error {:.1f} um at ({:.3f}, {:.3f}) mm; simulated {:.1f} s of machine "
       "time in {:.2f} s "
       "({:.2f} s of processor time: {:.0f}x real time)\n"
-      "  {} pauses confirmed by the simulated operator ({} ms after each); spindle {} at the "
+      "  {} confirmed by the simulated operator ({} ms after each); spindle {} at the "
       "end\n"
       "  plot: {}.svg{}; report: {}.json\n",
-      o.file, plan.curves.size(), plan.pen_lifts, outcome_name(s.outcome), s.commands,
-      s.stats.frames_sent, s.stats.bytes_sent, s.stats.retransmits, s.wire_bytes,
+      o.file, counted(plan.curves.size(), "curve"), counted(plan.pen_lifts, "pen lift"),
+      outcome_name(s.outcome), counted(s.commands, "command"),
+      counted(s.stats.frames_sent, "frame"), s.stats.bytes_sent, s.stats.retransmits, s.wire_bytes,
       r.points.gcode_bytes, s.cut_mm, s.rapid_mm, s.motion_s, s.cut_s,
       plan.cut_length_mm / o.feed_mm_s, s.max_contour_error_um, s.worst_contour_sample.x_mm,
       s.worst_contour_sample.y_mm, s.virtual_ms / 1000.0, s.wall_s, s.cpu_s,
-      speedup(s.virtual_ms, s.cpu_s), s.pauses_confirmed, r.pause_confirm_ms,
+      speedup(s.virtual_ms, s.cpu_s), counted(s.pauses_confirmed, "pause"), r.pause_confirm_ms,
       s.spindle_on ? "on" : "off", base, o.png ? ", " + base + ".png" : "", base);
   if (s.trace_step_mm > plot_step_mm(plan))
     t += fmt::format(
@@ -328,12 +330,13 @@ std::string run_report_text(const JobPlan& plan, const RunOptions& o, const RunR
         s.trace_step_mm, s.trace.size(), s.trace_samples);
   if (const std::optional<SimulatedIsolation>& iso = r.isolation) {
     t += fmt::format(
-        "  simulated isolation cuts ({} paths, {} samples) against the copper: {} copper hits "
-        "beyond {:.3f} mm, {} unseparated pairs; least clearance of the tool's edge {:.1f} um "
+        "  simulated isolation cuts ({}, {}) against the copper: {} "
+        "beyond {:.3f} mm, {}; least clearance of the tool's edge {:.1f} um "
         "at ({:.3f}, {:.3f}) mm (planned paths: {:.1f} um)\n",
-        iso->paths, iso->samples, iso->check.hits.size(), iso->tolerance_mm,
-        iso->check.unseparated.size(), iso->min_clearance_um, iso->min_clearance_at_mm.x(),
-        iso->min_clearance_at_mm.y(), iso->planned_min_clearance_um);
+        counted(iso->paths, "path"), counted(iso->samples, "sample"),
+        counted(iso->check.hits.size(), "copper hit"), iso->tolerance_mm,
+        counted(iso->check.unseparated.size(), "unseparated pair"), iso->min_clearance_um,
+        iso->min_clearance_at_mm.x(), iso->min_clearance_at_mm.y(), iso->planned_min_clearance_um);
   }
   if (r.registration) {
     const FlipSimulation& f = *o.flip;

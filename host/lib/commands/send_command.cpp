@@ -8,6 +8,7 @@
 
 #include "host/lib/commands/exit_codes.h"
 #include "host/lib/heightmap/controller_map.h"  // job_map_commands
+#include "host/lib/plan/counted.h"              // counted: "1 hole", "2 holes"
 #include "host/lib/stream/command_source.h"     // EncodedJob
 #include "host/lib/stream/job_resume.h"
 
@@ -154,9 +155,10 @@ SendResult send_job(Link& link, const JobPlan& plan, const SendOptions& o, std::
   const size_t bytes = wire_bytes(frames) + commands.summary().wire_bytes - skipped_bytes;
   commands.set_setup(std::move(frames));
   log << fmt::format(
-      "engraver: {} -> {}: {} curves, {} commands, {} bytes, job id {}; keys: h hold, "
+      "engraver: {} -> {}: {}, {}, {} bytes, job id {}; keys: h hold, "
       "r resume, x abort, +/- feed override\n",
-      o.file, link.name(), plan.curves.size(), commands.size(), bytes, r.job_id);
+      o.file, link.name(), counted(plan.curves.size(), "curve"),
+      counted(commands.size(), "command"), bytes, r.job_id);
   r.commands = commands.size();
   r.outcome = stream(sender, commands, o, log);
   r.message = sender.message();
@@ -167,9 +169,9 @@ SendResult send_job(Link& link, const JobPlan& plan, const SendOptions& o, std::
 }
 
 std::string send_ending_text(const SendResult& r) {
-  return fmt::format("job {}: {} ({} frames, {} bytes, {} resent after busy or loss)",
-                     outcome_name(r.outcome), r.message, r.stats.frames_sent, r.stats.bytes_sent,
-                     r.stats.retransmits);
+  return fmt::format("job {}: {} ({}, {} bytes, {} resent after busy or loss)",
+                     outcome_name(r.outcome), r.message, counted(r.stats.frames_sent, "frame"),
+                     r.stats.bytes_sent, r.stats.retransmits);
 }
 
 }  // namespace host::commands

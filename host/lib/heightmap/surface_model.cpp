@@ -3,9 +3,12 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include <cmath>   // std::cos
-#include <map>     // std::map
-#include <vector>  // std::vector
+#include <cmath>    // std::cos
+#include <cstdlib>  // std::strtod
+#include <map>      // std::map
+#include <vector>   // std::vector
+
+#include "host/lib/plan/plain_decimal.h"  // is_whole_decimal: the rule of every count
 
 namespace host::heightmap {
 
@@ -65,11 +68,22 @@ std::vector<double> lengths_um(const std::string& key, const std::string& value,
 // A surface more than this far from flat is no blank a V-bit can follow (the map's limit).
 constexpr double kMaxShapeUm = 1000.0;
 
-void check_range(const std::string& key, double um, double lo, double hi) {
-  if (!(um >= lo && um <= hi))
-    throw SurfaceSpecError(fmt::format(
-        "--surface {}: {:g} um is outside the allowed range {:g} .. {:g} um", key, um, lo, hi));
+// "tilt=2mm: 2mm is outside the allowed range -1 .. 1 mm": the value as typed and the range
+// in its unit, as the other options say it (a value converted and rounded could read as
+// inside the range: "1000 um is outside -1000 .. 1000 um" for 1.0000001mm).
+void check_range(const std::string& item, const std::string& label, const std::string& typed,
+                 double um, double lo_um, double hi_um) {
+  if (um >= lo_um && um <= hi_um) return;
+  const bool in_mm = typed.size() > 2 && typed.compare(typed.size() - 2, 2, "mm") == 0;
+  const double per_unit_um = in_mm ? 1000.0 : 1.0;
+  throw SurfaceSpecError(
+      fmt::format("--surface {}: {}{} is outside the allowed range {:g} .. {:g} {}", item, label,
+                  typed, lo_um / per_unit_um, hi_um / per_unit_um, in_mm ? "mm" : "um"));
 }
+
+// The noise's seed: a whole number up to 1e15, where a double's whole numbers still have no
+// gaps (the rule of every count: 1e0 and 2.0 are whole).
+constexpr double kMaxSeed = 1e15;
 
 }  // namespace
 
@@ -84,41 +98,43 @@ SurfaceSpec parse_surface_spec(const std::string& text) {
     const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
     const std::string same = key == "tilt" ? "tilt_x" : key;
     const auto earlier = given.find(same);
-    if (earlier != given.end())
-      throw SurfaceSpecError(
-          fmt::format("--surface: '{}' is given twice ('{}' and '{}'): give each key once", same,
-                      earlier->second, item));
+    if (earlier != given.end()) {
+      // Named as typed: 'tilt' given twice is 'tilt', not its other name 'tilt_x'.
+      const std::string earlier_key = earlier->second.substr(0, earlier->second.find('='));
+      throw SurfaceSpecError(fmt::format(
+          "--surface: '{}' is given twice ('{}' and '{}'{}): give each key once", key,
+          earlier->second, item,
+          earlier_key == key ? "" : fmt::format("; {} and {} are one key", earlier_key, key)));
+    }
     given[same] = item;
     if (key == "tilt" || key == "tilt_x") {
       s.tilt_x_um = length_um(key, value);
-      check_range(item, s.tilt_x_um, -kMaxShapeUm, kMaxShapeUm);
+      check_range(item, "", value, s.tilt_x_um, -kMaxShapeUm, kMaxShapeUm);
     } else if (key == "tilt_y") {
       s.tilt_y_um = length_um(key, value);
-      check_range(item, s.tilt_y_um, -kMaxShapeUm, kMaxShapeUm);
+      check_range(item, "", value, s.tilt_y_um, -kMaxShapeUm, kMaxShapeUm);
     } else if (key == "bow") {
       s.bow_um = length_um(key, value);
-      check_range(item, s.bow_um, -kMaxShapeUm, kMaxShapeUm);
+      check_range(item, "", value, s.bow_um, -kMaxShapeUm, kMaxShapeUm);
     } else if (key == "bump") {
       const std::vector<double> v = lengths_um(key, value, 4);
       if (!(v[2] > 0))
         throw SurfaceSpecError(fmt::format("--surface bump={}: the radius must be above 0", value));
-      check_range(item + " (the height)", v[3], -kMaxShapeUm, kMaxShapeUm);
+      check_range(item, "the height ", split(value, ':')[3], v[3], -kMaxShapeUm, kMaxShapeUm);
       s.bump = Bump{v[0] / 1000.0, v[1] / 1000.0, v[2] / 1000.0, v[3]};
     } else if (key == "noise") {
       s.noise_um = length_um(key, value);
-      check_range(item, s.noise_um, 0.0, 100.0);
+      check_range(item, "", value, s.noise_um, 0.0, 100.0);
     } else if (key == "seed") {
-      size_t used = 0;
-      unsigned long long seed = 0;
-      try {
-        seed = std::stoull(value, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != value.size() || value[0] == '-')
+      if (!is_whole_decimal(value))
         throw SurfaceSpecError(
-            fmt::format("--surface seed={}: expected a whole number 0 or above", value));
-      s.seed = seed;
+            fmt::format("--surface seed={}: '{}' is not a whole number", value, value));
+      const double seed = std::strtod(value.c_str(), nullptr);
+      if (!(seed >= 0 && seed <= kMaxSeed))
+        throw SurfaceSpecError(
+            fmt::format("--surface seed={}: {} is outside the allowed range 0 .. {:.0f}", value,
+                        value, kMaxSeed));
+      s.seed = static_cast<uint64_t>(seed);
     } else if (key == "area") {
       const std::vector<double> v = lengths_um(key, value, 4);
       const AreaMm a{v[0] / 1000.0, v[1] / 1000.0, v[2] / 1000.0, v[3] / 1000.0};

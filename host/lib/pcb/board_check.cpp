@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>  // fmt::format
 
+#include "host/lib/plan/counted.h"          // counted: "1 hole", "2 holes"
 #include "host/lib/plan/firmware_points.h"  // firmware_points_mm
 
 namespace host::pcb {
@@ -52,10 +53,10 @@ IsolationCheck check_controller_isolation(const BoardJob& job, const BoardOption
 
 void refuse_copper_hits(const IsolationCheck& c, const std::string& paths) {
   if (c.hits.empty()) return;
-  throw CopperCutError(fmt::format(
-      "the job would cut copper: {} cut into copper in {} place(s) (a larger clearance, a "
-      "finer chord tolerance or a narrower tool keeps the tool off it): {}",
-      paths, c.hits.size(), describe(c)));
+  throw CopperCutError(
+      fmt::format("the job would cut copper: {} cut into copper in {} (a larger clearance, a "
+                  "finer chord tolerance or a narrower tool keeps the tool off it): {}",
+                  paths, counted(c.hits.size(), "place"), describe(c)));
 }
 
 }  // namespace host::pcb

@@ -8,6 +8,7 @@
 #include <stdexcept>  // std::invalid_argument
 
 #include "host/lib/pcb/pcb_geometry.h"
+#include "host/lib/plan/counted.h"       // counted: "1 hole", "2 holes"
 #include "host/lib/plan/job_defaults.h"  // kToolWidthRangeMm
 
 namespace host::pcb::board_stages {
@@ -35,22 +36,35 @@ double polyline_length(const std::vector<Point2>& p, bool closed) {
 namespace {
 
 // What to do, with the widest tool that passes the narrowest gap with its clearance (to the
-// micrometre below): the user need not guess it (example_board: 0.057 mm -> 0.041 mm).
+// micrometre below): the user need not guess it (example_board: 0.057 mm -> 0.041 mm); and,
+// where the tool itself fits the gap, the clearance that passes with this tool.
 std::string narrow_gap_advice(const std::vector<NarrowGap>& gaps, const IsolationOptions& io) {
   double narrowest_mm = gaps.front().gap_mm;
   for (const NarrowGap& g : gaps) narrowest_mm = std::min(narrowest_mm, g.gap_mm);
-  const double fits_mm =
-      std::floor((narrowest_mm - 2 * std::max(0.0, io.clearance_mm)) * 1000 + 1e-6) / 1000;
+  const double clearance_mm = std::max(0.0, io.clearance_mm);
+  const double fits_mm = std::floor((narrowest_mm - 2 * clearance_mm) * 1000 + 1e-6) / 1000;
+  const double clearance_fits_mm =
+      std::floor((narrowest_mm - io.tool_width_mm) / 2 * 1000 + 1e-6) / 1000;
+  // A sentence of its own after either advice.
+  const std::string smaller_clearance =
+      clearance_fits_mm >= 0 && clearance_fits_mm < clearance_mm
+          ? fmt::format(
+                " Or keep the tool and lower the clearance: --clearance {:.3f} passes every gap "
+                "(the clearance is the room kept between the tool's edge and the copper for the "
+                "curve fit and the machine's contour error; with less, the checks may find the "
+                "tool in the copper).",
+                clearance_fits_mm)
+          : std::string();
   if (fits_mm < defaults::kToolWidthRangeMm.min)
     return "Plan anyway (--allow-narrow-gaps: the copper at those gaps stays joined); no tool of "
            "at least " +
-           fmt::format("{:g} mm passes the narrowest gap ({:.3f} mm).",
-                       defaults::kToolWidthRangeMm.min, narrowest_mm);
+           fmt::format("{:g} mm passes the narrowest gap ({:.3f} mm).{}",
+                       defaults::kToolWidthRangeMm.min, narrowest_mm, smaller_clearance);
   return fmt::format(
       "Use a narrower tool: --tool-width {:.3f} passes every gap (the narrowest, {:.3f} mm, less "
-      "2 x {:.3f} mm clearance), or plan anyway (--allow-narrow-gaps: the copper at "
-      "those gaps stays joined).",
-      fits_mm, narrowest_mm, std::max(0.0, io.clearance_mm));
+      "2 x {} mm clearance), or plan anyway (--allow-narrow-gaps: the copper at "
+      "those gaps stays joined).{}",
+      fits_mm, narrowest_mm, mm_text(clearance_mm), smaller_clearance);
 }
 
 }  // namespace
@@ -72,15 +86,18 @@ std::vector<Trace> isolate(const BoardLayers& layers, const PcbLayer* copper, co
   rep.islands = iso_result.islands;
   rep.narrow_gaps = iso_result.narrow_gaps;
   if (iso_result.empty_holes_skipped > 0)
-    rep.notes.push_back(fmt::format(
-        "{}: {} opening(s) in the copper hold no other island (a hatched pour): no contour "
-        "inside them (--isolate-empty-holes cuts them)",
-        copper->path, iso_result.empty_holes_skipped));
+    rep.notes.push_back(
+        fmt::format("{}: {} in the copper {} no other island (a hatched pour): no contour "
+                    "inside {} (--isolate-empty-holes cuts {})",
+                    copper->path, counted(iso_result.empty_holes_skipped, "opening"),
+                    iso_result.empty_holes_skipped == 1 ? "holds" : "hold",
+                    iso_result.empty_holes_skipped == 1 ? "it" : "them",
+                    iso_result.empty_holes_skipped == 1 ? "it" : "them"));
   if (!rep.narrow_gaps.empty() && !o.allow_narrow_gaps) {
     std::string msg = fmt::format(
-        "{}: {} place(s) where the copper is closer than the tool width {:.3f} mm plus its "
+        "{}: {} where the copper is closer than the tool width {} mm plus its "
         "clearance, so the tool cannot separate the islands:",
-        copper->path, rep.narrow_gaps.size(), io.tool_width_mm);
+        copper->path, counted(rep.narrow_gaps.size(), "place"), mm_text(io.tool_width_mm));
     for (size_t i = 0; i < rep.narrow_gaps.size() && i < 20; ++i)
       msg += "\n  " + describe_gap(rep.narrow_gaps[i], io);
     if (rep.narrow_gaps.size() > 20) msg += "\n  ...";

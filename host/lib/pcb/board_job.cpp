@@ -3,6 +3,9 @@
 
 #include <fmt/format.h>  // fmt::format
 
+#include <algorithm>  // std::max
+#include <cmath>      // std::pow, std::round, std::fabs
+
 #include "host/lib/pcb/board_stages.h"
 
 namespace host::pcb {
@@ -81,14 +84,35 @@ Paths BoardFrame::to_machine_nm(const Paths& file_nm) const {
   return out;
 }
 
+namespace {
+
+// The decimals that show `mm` as it is (3 to 6: micrometres to nanometres).
+int mm_decimals(double mm) {
+  for (int d = 3; d < 6; ++d) {
+    const double scaled = mm * std::pow(10.0, d);
+    if (std::fabs(scaled - std::round(scaled)) < 1e-6) return d;
+  }
+  return 6;
+}
+
+}  // namespace
+
+std::string mm_text(double mm) {
+  return fmt::format("{:.{}f}", mm, mm_decimals(mm));
+}
+
 std::string describe_gap(const NarrowGap& g, const IsolationOptions& o) {
+  const double need_mm = o.tool_width_mm + 2 * std::max(0.0, o.clearance_mm);
+  // Enough digits that the gap and the need differ as printed (the gap is narrower).
+  int d = mm_decimals(need_mm);
+  while (d < 9 && fmt::format("{:.{}f}", g.gap_mm, d) == fmt::format("{:.{}f}", need_mm, d)) ++d;
   const std::string need =
-      o.clearance_mm > 0
-          ? fmt::format("{:.3f} mm (tool {:.3f} mm + 2 x {:.3f} mm clearance)",
-                        o.tool_width_mm + 2 * o.clearance_mm, o.tool_width_mm, o.clearance_mm)
-          : fmt::format("tool {:.3f} mm", o.tool_width_mm);
-  return fmt::format("gap {:.3f} mm < {} between islands {} and {} at ({:.3f}, {:.3f}) mm",
-                     g.gap_mm, need, g.island_a, g.island_b, g.at.x / kNmPerMm, g.at.y / kNmPerMm);
+      o.clearance_mm > 0 ? fmt::format("{:.{}f} mm (tool {} mm + 2 x {} mm clearance)", need_mm, d,
+                                       mm_text(o.tool_width_mm), mm_text(o.clearance_mm))
+                         : fmt::format("tool {:.{}f} mm", o.tool_width_mm, d);
+  return fmt::format("gap {:.{}f} mm < {} between islands {} and {} at ({:.3f}, {:.3f}) mm",
+                     g.gap_mm, d, need, g.island_a, g.island_b, g.at.x / kNmPerMm,
+                     g.at.y / kNmPerMm);
 }
 
 std::string tool_label(const char* what, double diameter_mm) {

@@ -148,8 +148,13 @@ struct BoardJob {
   double flip_axis_file_x_mm = 0;
 };
 
-// Text of a narrow gap for messages: "gap 0.12 mm < tool 0.20 mm at (x, y) mm".
+// Text of a narrow gap for messages: "gap 0.120 mm < tool 0.200 mm at (x, y) mm"; the gap
+// and what the tool needs with as many digits as it takes for them to differ ("gap 0.0571
+// mm < tool 0.0572 mm", never "0.057 < 0.057").
 std::string describe_gap(const NarrowGap& g, const IsolationOptions& o);
+// A length as an option took it, in mm: 3 decimals, more when it has them (to the
+// nanometre): 0.2 -> "0.200", 0.0415 -> "0.0415".
+std::string mm_text(double mm);
 
 // Plans the board. Throws PlanError (narrow gaps unless allowed, nothing to do, the work
 // area, a curve the firmware cannot hold) and CutoutError (an outline that does not close).

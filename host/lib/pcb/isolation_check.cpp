@@ -9,6 +9,7 @@
 
 #include "host/lib/pcb/near_copper.h"
 #include "host/lib/pcb/pcb_geometry.h"
+#include "host/lib/plan/counted.h"  // counted: "1 hole", "2 holes"
 
 namespace host::pcb {
 
@@ -252,8 +253,9 @@ IsolationCheck check_isolation(const Paths& copper_nm,
 }
 
 std::string describe(const IsolationCheck& c) {
-  std::string s = fmt::format("{} islands, {} copper hit(s), {} unseparated pair(s)", c.islands,
-                              c.hits.size(), c.unseparated.size());
+  std::string s =
+      fmt::format("{}, {}, {}", counted(c.islands, "island"), counted(c.hits.size(), "copper hit"),
+                  counted(c.unseparated.size(), "unseparated pair"));
   // The largest hits first, at most kListed of each kind: a job with thousands (a board run
   // without clearance) gave as many lines.
   const size_t kListed = 20;

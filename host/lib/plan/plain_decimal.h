@@ -5,8 +5,10 @@
 #ifndef HOST_LIB_PLAN_PLAIN_DECIMAL_H
 #define HOST_LIB_PLAN_PLAIN_DECIMAL_H
 
-#include <regex>   // std::regex
-#include <string>  // std::string
+#include <cmath>    // std::floor, std::isfinite
+#include <cstdlib>  // std::strtod
+#include <regex>    // std::regex
+#include <string>   // std::string
 
 namespace host {
 
@@ -14,6 +16,15 @@ namespace host {
 inline bool is_plain_decimal(const std::string& text) {
   static const std::regex decimal(R"([+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?)");
   return std::regex_match(text, decimal);
+}
+
+// A count as every count option takes it: a plain decimal with nothing after the point
+// ("2", "2.0", "1e1"; not "1.5", "0x2", "inf"). Huge ones (1e30) are whole too: the caller's
+// range check refuses them, naming its range.
+inline bool is_whole_decimal(const std::string& text) {
+  if (!is_plain_decimal(text)) return false;
+  const double v = std::strtod(text.c_str(), nullptr);
+  return std::isfinite(v) && v == std::floor(v);
 }
 
 }  // namespace host

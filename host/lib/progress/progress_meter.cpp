@@ -70,16 +70,24 @@ void ProgressMeter::draw(size_t done, size_t total, const std::string& detail, d
   drawn_total_ = total;
 }
 
-void ProgressMeter::update(size_t done, size_t total, const std::string& detail) {
+double ProgressMeter::working_s(Clock::time_point t) const {
+  const Clock::duration waiting = waited_ + (waiting_ ? t - waiting_since_ : Clock::duration{});
+  return std::chrono::duration<double>(t - start_ - waiting).count();
+}
+
+void ProgressMeter::update(size_t done, size_t total, const std::string& detail, bool waiting) {
   last_done_ = done;
   last_total_ = total;
   last_detail_ = detail;
   const Clock::time_point t = now();
+  if (waiting && !waiting_) waiting_since_ = t;
+  if (!waiting && waiting_) waited_ += t - waiting_since_;
+  waiting_ = waiting;
   if (t - start_ < style_.first) return;
   const auto every = style_.terminal ? style_.redraw : style_.line_every;
   if (drawn_ && t - last_draw_ < every) return;
   last_draw_ = t;
-  draw(done, total, detail, std::chrono::duration<double>(t - start_).count());
+  draw(done, total, detail, working_s(t));
 }
 
 void ProgressMeter::finish() {
@@ -88,9 +96,7 @@ void ProgressMeter::finish() {
   if (!drawn_) return;
   // Off a terminal the last line may already say it all.
   const bool said = !style_.terminal && drawn_done_ == last_done_ && drawn_total_ == last_total_;
-  if (!said)
-    draw(last_done_, last_total_, last_detail_,
-         std::chrono::duration<double>(now() - start_).count());
+  if (!said) draw(last_done_, last_total_, last_detail_, working_s(now()));
   if (style_.terminal) out_ << "\n" << std::flush;
 }
 

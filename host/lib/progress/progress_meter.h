@@ -31,7 +31,10 @@ class ProgressMeter {
   ~ProgressMeter();
 
   // done of total (total 0: unknown); detail is appended (state, position, machine time).
-  void update(size_t done, size_t total, const std::string& detail = std::string());
+  // waiting: the work stands still for someone (a hold, a tool-change pause, zeroing): that
+  // time is not counted in the rate, so the time left does not grow while it waits.
+  void update(size_t done, size_t total, const std::string& detail = std::string(),
+              bool waiting = false);
   // Ends the bar's line (terminal) or prints a last line if any were printed.
   void finish();
 
@@ -41,6 +44,8 @@ class ProgressMeter {
 
  private:
   Clock::time_point now() const { return clock_ ? clock_() : Clock::now(); }
+  // Seconds of work since the start: the time spent waiting left out.
+  double working_s(Clock::time_point t) const;
   void draw(size_t done, size_t total, const std::string& detail, double elapsed_s);
 
   std::string what_, unit_;
@@ -49,6 +54,9 @@ class ProgressMeter {
   std::function<Clock::time_point()> clock_;
   Clock::time_point start_, last_draw_;
   bool drawn_ = false, finished_ = false;
+  bool waiting_ = false;
+  Clock::time_point waiting_since_;
+  Clock::duration waited_{};  // waits that ended
   size_t last_done_ = 0, last_total_ = 0;
   size_t drawn_done_ = 0, drawn_total_ = 0;  // what the last drawn report said
   std::string last_detail_;

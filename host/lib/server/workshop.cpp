@@ -82,6 +82,10 @@ struct Workshop::Slot {
   bool have_status = false;
   double planned_s = 0;
   Clock::time_point started;
+  // Time the machine stood waiting for the operator (held, paused): not in the time left.
+  Clock::duration waited{};
+  bool waiting = false;
+  Clock::time_point waiting_since;
   proto::StatusReply last_status{};
   bool have_last_status = false;
   int64_t lease_epoch = 0;  // the lease the running job was claimed under
@@ -334,9 +338,13 @@ nlohmann::json Workshop::snapshot() {
     const Progress& p = slot->progress;
     const double elapsed = seconds_since(slot->started);
     const double f = p.total > 0 ? double(p.executed) / double(p.total) : 0.0;
+    // Time spent waiting for the operator is not work: the time left stands still then.
+    const Clock::duration waited =
+        slot->waited + (slot->waiting ? Clock::now() - slot->waiting_since : Clock::duration{});
+    const double working = elapsed - std::chrono::duration<double>(waited).count();
     // The planned time until the machine has done a little; then what it has actually taken.
     const double remaining =
-        f > 0.05 ? elapsed * (1.0 - f) / f : std::max(0.0, slot->planned_s - elapsed);
+        f > 0.05 ? working * (1.0 - f) / f : std::max(0.0, slot->planned_s - working);
     nlohmann::json j;
     j["id"] = slot->job_id;
     j["name"] = slot->job_name;
@@ -598,6 +606,8 @@ void Workshop::claim_slot(Slot& slot, const JobRun& r) {
     slot.have_status = false;
     slot.planned_s = r.job.planned_s;
     slot.started = r.started;
+    slot.waited = Clock::duration{};
+    slot.waiting = false;
   }
   notify(false);
 }
@@ -747,6 +757,11 @@ void Workshop::follow_status(Slot& slot, JobRun& r, Sender& sender, const Progre
     std::lock_guard<std::mutex> lock(slot.mutex);
     slot.executed_mm = executed_mm;
     slot.progress = p;
+    const bool waiting = machine_waits_for_operator(p.status.state);
+    const Clock::time_point now = Clock::now();
+    if (waiting && !slot.waiting) slot.waiting_since = now;
+    if (!waiting && slot.waiting) slot.waited += now - slot.waiting_since;
+    slot.waiting = waiting;
     slot.have_status = true;
     slot.last_status = p.status;
     slot.have_last_status = true;

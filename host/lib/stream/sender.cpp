@@ -126,6 +126,10 @@ const char* machine_state_name(proto::MachineState state) {
   return "unknown";
 }
 
+bool machine_waits_for_operator(proto::MachineState state) {
+  return state != proto::MachineState::kIdle && state != proto::MachineState::kRunning;
+}
+
 const char* outcome_name(JobOutcome outcome) {
   switch (outcome) {
     case JobOutcome::kCompleted:

@@ -56,6 +56,9 @@ const char* outcome_name(JobOutcome outcome);
 // A machine state as one word (idle, running, holding, held, zeroing, alarm, paused): the
 // same token in messages, progress lines and the workshop server's JSON.
 const char* machine_state_name(proto::MachineState state);
+// The machine stands still for the operator (a hold, a tool-change pause, manual zeroing, an
+// alarm): time left estimates (send's progress line, the server's status) leave it out.
+bool machine_waits_for_operator(proto::MachineState state);
 
 struct SenderStats {
   size_t frames_sent = 0;  // every frame written, retransmissions included

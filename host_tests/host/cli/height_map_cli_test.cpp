@@ -5,6 +5,8 @@
 #include <filesystem>         // temp paths
 #include <fstream>            // std::ifstream
 #include <nlohmann/json.hpp>  // nlohmann::json
+#include <utility>            // std::pair
+#include <vector>             // std::vector
 
 #include "host/lib/heightmap/height_map.h"
 #include "host_tests/host/cli/tool_run.h"
@@ -62,15 +64,80 @@ TEST(HeightMapCli, AJobLeavingItsMapIsRefusedBeforeItStarts) {
   std::filesystem::remove_all(dir);
 }
 
-TEST(HeightMapCli, BadSurfaceOrProbeWithoutABlankIsAUsageError) {
+TEST(HeightMapCli, ASurfaceLengthWithoutItsUnitIsAUsageError) {
   const std::string dir = out_dir("bad");
   ToolRun r = run_tool(kExe, "run " + kWord + " --surface tilt=0.1 -o " + dir);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--surface: tilt=0.1: give the length with its unit"), std::string::npos)
       << r.err;
-  r = run_tool(kExe, "run " + kWord + " --probe -o " + dir);
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("run --probe needs a simulated blank"), std::string::npos) << r.err;
+  std::filesystem::remove_all(dir);
+}
+
+// `run --probe` without `--surface` is refused as the command line is read, in the words of
+// the other options that need another: before the input is read (a file that does not
+// exist would otherwise be named first) and before anything is planned.
+TEST(HeightMapCli, RunProbeWithoutASurfaceIsRefusedAsTheCommandLineIsRead) {
+  const std::string dir = out_dir("nosurface");
+  for (const std::string& input : {kWord, dir + "/no-such-drawing.dxf"}) {
+    const ToolRun r = run_tool(kExe, "run " + input + " --probe -o " + dir);
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("--probe requires --surface\n", 0), 0u) << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir));  // nothing planned, nothing written
+}
+
+// --surface's refusals show each value as typed (a converted, rounded figure read as inside
+// its range), name a repeated key as typed, and take counts by the rule of every count.
+TEST(HeightMapCli, SurfaceRefusalsShowTheValueAsTyped) {
+  const std::string dir = out_dir("typed");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"tilt=1.0000001mm",
+       "--surface: tilt=1.0000001mm: 1.0000001mm is outside the allowed "
+       "range -1 .. 1 mm\n"},
+      {"noise=100.00001um",
+       "--surface: noise=100.00001um: 100.00001um is outside the allowed "
+       "range 0 .. 100 um\n"},
+      {"bump=1mm:1mm:2mm:1000.0001um",
+       "--surface: bump=1mm:1mm:2mm:1000.0001um: the height 1000.0001um is outside the allowed "
+       "range -1000 .. 1000 um\n"},
+      {"tilt=1mm,tilt=2mm",
+       "--surface: 'tilt' is given twice ('tilt=1mm' and 'tilt=2mm'): "
+       "give each key once\n"},
+      {"tilt=1mm,tilt_x=2mm",
+       "--surface: 'tilt_x' is given twice ('tilt=1mm' and 'tilt_x=2mm'; "
+       "tilt and tilt_x are one key): give each key once\n"},
+      {"seed=1.5", "--surface: seed=1.5: '1.5' is not a whole number\n"},
+      {"seed=1e30",
+       "--surface: seed=1e30: 1e30 is outside the allowed range 0 .. "
+       "1000000000000000\n"},
+      {"seed=-1", "--surface: seed=-1: -1 is outside the allowed range 0 .. 1000000000000000\n"},
+  };
+  for (const auto& c : cases) {
+    const ToolRun r = run_tool(kExe, "run " + kWord + " --surface " + c.first + " -o " + dir);
+    EXPECT_EQ(r.code, 2) << c.first << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind(c.second, 0), 0u) << c.first << "\n" << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+// A unit inside the number: the same words as any other number option.
+TEST(HeightMapCli, AUnitInASurfaceNumberIsWordedAsForOtherOptions) {
+  const std::string dir = out_dir("inch");
+  const ToolRun depth = run_tool(kExe, "run " + kWord + " --feed 0.1in -o " + dir);
+  const ToolRun tilt = run_tool(kExe, "run " + kWord + " --surface tilt=0.1in -o " + dir);
+  EXPECT_EQ(depth.code, 2);
+  EXPECT_EQ(tilt.code, 2);
+  EXPECT_EQ(depth.err.rfind("--feed: '0.1in' is not a decimal number\n", 0), 0u) << depth.err;
+  EXPECT_EQ(tilt.err.rfind("--surface: tilt=0.1in: '0.1in' is not a decimal number\n", 0), 0u)
+      << tilt.err;
+}
+
+// seed=1e0 is the whole number 1, as --passes 1e0 is 1: the same blank as seed=1.
+TEST(HeightMapCli, ASurfaceSeedIsACountAsEveryOther) {
+  const std::string dir = out_dir("seed");
+  const ToolRun r =
+      run_tool(kExe, "run " + kWord + " --surface tilt=0.1mm,noise=2um,seed=1e0 -o " + dir);
+  EXPECT_EQ(r.code, 0) << r.err;
   std::filesystem::remove_all(dir);
 }
 

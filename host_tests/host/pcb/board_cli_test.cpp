@@ -151,7 +151,9 @@ TEST(BoardCli, AnOpeningThatHoldsNoIslandIsCutOnlyWhenAsked) {
   const ToolRun r = run("board " + dir + " -o " + dir + "/out --json");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["isolation_contours"], 3);
-  EXPECT_NE(r.err.find("t-F.Cu.gbr: 1 opening(s) in the copper hold no other island"),
+  // One opening, said in the singular (it read "1 opening(s) ... hold ... them").
+  EXPECT_NE(r.err.find("t-F.Cu.gbr: 1 opening in the copper holds no other island (a hatched "
+                       "pour): no contour inside it (--isolate-empty-holes cuts it)\n"),
             std::string::npos)
       << r.err;
   const ToolRun all = run("board " + dir + " -o " + dir + "/out --json --isolate-empty-holes");
@@ -742,6 +744,18 @@ TEST(BoardCli, TheGuidesFirstBoardExamplesRunAsPrinted) {
             std::string::npos)
       << refused.err;
   EXPECT_EQ(run(example + " --tool-width 0.041").code, 0);
+  // The guide's gap printed with the digits that tell it from the tool, and the clearance
+  // that passes with a tool that fits the gap.
+  EXPECT_NE(run(example + " --tool-width 0.0574 --clearance 0")
+                .err.find("gap 0.0571 mm < tool 0.0574 mm"),
+            std::string::npos);
+  EXPECT_NE(run(example + " --tool-width 0.05 --clearance 0.004")
+                .err.find("Or keep the tool and lower the clearance: --clearance 0.003 passes "
+                          "every gap (the clearance is the room kept between the tool's edge and "
+                          "the copper for the curve fit and the machine's contour error; with "
+                          "less, the checks may find the tool in the copper).\n"),
+            std::string::npos);
+  EXPECT_EQ(run(example + " --tool-width 0.05 --clearance 0.003").code, 0);
   std::filesystem::remove_all(out);
 }
 

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -396,6 +397,58 @@ TEST(BoardOptionRanges, TheNarrowGapRefusalNamesTheToolWidthThatPasses) {
   EXPECT_EQ(run(board + " --allow-narrow-gaps").code, 0);
 }
 
+// Two 1 mm pads whose edges are `gap_um` apart, alone on a top copper layer.
+std::string write_gap_board(const std::string& name, int gap_um) {
+  const std::string dir = testing::TempDir() + "/" + std::to_string(getpid()) + "-opt-" + name;
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/gap-F.Cu.gbr")
+      << "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Copper,L1,Top*%\n%ADD10C,1.000000*%\n"
+      << "D10*\nX10000000Y10000000D03*\nX" << 11000000 + gap_um * 1000 << "Y10000000D03*\nM02*\n";
+  return dir;
+}
+
+// The narrow-gap refusal read "gap 0.101 mm < tool 0.101 mm": the gap and what the tool
+// needs are printed with as many digits as it takes for them to differ, the gap the smaller.
+TEST(BoardOptionRanges, TheNarrowGapReadsAsAComparisonThatHolds) {
+  const std::string dir = write_gap_board("gapdigits", 100);
+  const std::string board = "board " + dir + " --no-plot -o " + dir + "/out ";
+  for (const std::string& tool :
+       {"--tool-width 0.1008 --clearance 0", "--tool-width 0.0998 --clearance 0.0005"}) {
+    const ToolRun r = run(board + tool);
+    ASSERT_EQ(r.code, 1) << tool << "\n" << r.err;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.err, m, std::regex(R"(gap (\S+) mm < (tool )?(\S+) mm)")))
+        << r.err;
+    EXPECT_NE(m[1].str(), m[3].str()) << r.err;
+    EXPECT_LT(std::stod(m[1].str()), std::stod(m[3].str())) << r.err;
+  }
+  // The tool and clearance as given, not rounded to 0.100 and 0.001.
+  EXPECT_NE(run(board + "--tool-width 0.0998 --clearance 0.0005")
+                .err.find("(tool 0.0998 mm + 2 x 0.0005 mm clearance)"),
+            std::string::npos);
+}
+
+// A tool that fits the gap itself but not with its clearance: the refusal also says which
+// clearance passes, and what lowering it costs; that clearance plans.
+TEST(BoardOptionRanges, TheNarrowGapRefusalNamesTheClearanceThatPasses) {
+  const std::string dir = write_gap_board("gapclearance", 100);
+  const std::string board = "board " + dir + " --no-plot -o " + dir + "/out --tool-width 0.098 ";
+  const ToolRun r = run(board + "--clearance 0.004");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find(" Or keep the tool and lower the clearance: --clearance 0.001 passes "
+                       "every gap (the clearance is the room kept between the tool's edge and "
+                       "the copper for the curve fit and the machine's contour error; with less, "
+                       "the checks may find the tool in the copper).\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(run(board + "--clearance 0.001").code, 0);
+  // A tool wider than the gap: no clearance passes, none is offered.
+  const ToolRun wide = run("board " + dir + " --no-plot -o " + dir + "/out --tool-width 0.2");
+  EXPECT_EQ(wide.code, 1) << wide.err;
+  EXPECT_NE(wide.err.find("Use a narrower tool"), std::string::npos) << wide.err;
+  EXPECT_EQ(wide.err.find("lower the clearance"), std::string::npos) << wide.err;
+}
+
 // --surface was read after the job was planned (a user waited for the plan to hear of a
 // typo) and in words of its own: it is read with the command line, as every option is.
 TEST(BoardOptionRanges, TheSurfaceIsCheckedBeforePlanningInTheOptionsWords) {
@@ -409,11 +462,11 @@ TEST(BoardOptionRanges, TheSurfaceIsCheckedBeforePlanningInTheOptionsWords) {
       {run_board + "bow=infmm", "--surface: bow=infmm: 'inf' is not a finite number\n"},
       {run_board + "tilt=1e999um", "--surface: tilt=1e999um: '1e999' is not a finite number\n"},
       {run_board + "tilt=2mm",
-       "--surface: tilt=2mm: 2000 um is outside the allowed range -1000 .. 1000 um\n"},
+       "--surface: tilt=2mm: 2mm is outside the allowed range -1 .. 1 mm\n"},
       {run_board + "tilt=0.1", "--surface: tilt=0.1: give the length with its unit"},
-      {run_board + "tilt=1mm,tilt=2mm", "--surface: 'tilt_x' is given twice"},
+      {run_board + "tilt=1mm,tilt=2mm", "--surface: 'tilt' is given twice"},
       {"sim --surface noise=1e3mm",
-       "--surface: noise=1e3mm: 1e+06 um is outside the allowed range 0 .. 100 um\n"},
+       "--surface: noise=1e3mm: 1e3mm is outside the allowed range 0 .. 0.1 mm\n"},
   };
   for (const Case& c : cases) {
     const ToolRun r = run(c.args);
@@ -427,6 +480,31 @@ TEST(BoardOptionRanges, TheSurfaceIsCheckedBeforePlanningInTheOptionsWords) {
 }  // namespace
 
 namespace {
+
+// "1 holes", "1 sizes", "1 tool changes": a count of one in the singular, in the board's
+// report and in the line `run` prints before it simulates.
+TEST(BoardReportText, ACountOfOneIsSaidInTheSingular) {
+  const std::string dir = testing::TempDir() + "/" + std::to_string(getpid()) + "-opt-one";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/one-F.Cu.gbr")
+      << "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Copper,L1,Top*%\n%ADD10C,1.600000*%\n"
+         "D10*\nX10000000Y10000000D03*\nM02*\n";
+  std::ofstream(dir + "/one-PTH.drl")
+      << "M48\nMETRIC\nT1C0.800\n%\nG90\nG05\nT1\nX10.0Y10.0\nM30\n";
+  const ToolRun r = run("board " + dir + " --no-plot -o " + dir + "/out");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("  isolation: 1 island, 1 contour, "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  drilling: 1 hole (1 of the board's 1 hole in this side's copper "
+                       "pads), 0 slots, 1 size; "),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("  cut-out: 0.0 mm per pass, 0 tabs; 1 tool change\n"), std::string::npos)
+      << r.out;
+  const ToolRun sim = run("run " + dir + " -o " + dir + "/run");
+  ASSERT_EQ(sim.code, 0) << sim.err;
+  EXPECT_NE(sim.err.find("1 contour, 1 hole, 1 tool change"), std::string::npos) << sim.err;
+  std::filesystem::remove_all(dir);
+}
 
 // A bottom side after a top side with alignment holes said "0 holes (2 on copper)": the
 // holes are drilled with the top side; the count in copper is the layers' alignment check.

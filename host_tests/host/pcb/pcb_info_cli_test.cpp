@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -52,6 +53,39 @@ TEST(PcbInfoCli, ExcellonSummaryAsJson) {
   EXPECT_DOUBLE_EQ(j["extents_mm"]["max"][0].get<double>(), 24.6);
 }
 
+// `info --json` gave a drawing's width and height but not a Gerber's or an Excellon's: the
+// same `extents_mm` fields for every kind, in mm.
+TEST(PcbInfoCli, JsonExtentsHaveWidthAndHeightForEveryKind) {
+  const ToolRun g = run("info --json " + host::pcb::test::data_file("step_repeat.gbr"));
+  ASSERT_EQ(g.code, 0) << g.err;
+  const nlohmann::json ge = nlohmann::json::parse(g.out)["extents_mm"];
+  EXPECT_NEAR(ge["width"].get<double>(), 13.0, 1e-3) << ge;  // x 0.5 .. 13.5, as the text
+  EXPECT_NEAR(ge["height"].get<double>(), 6.0, 1e-3) << ge;
+  const ToolRun d = run("info --json " + host::pcb::test::data_file("slots_decimal.drl"));
+  ASSERT_EQ(d.code, 0) << d.err;
+  const nlohmann::json de = nlohmann::json::parse(d.out)["extents_mm"];
+  EXPECT_DOUBLE_EQ(de["width"].get<double>(),
+                   de["max"][0].get<double>() - de["min"][0].get<double>());
+  EXPECT_DOUBLE_EQ(de["height"].get<double>(),
+                   de["max"][1].get<double>() - de["min"][1].get<double>());
+}
+
+// "1 holes and slots", "1 copper areas": a count of one in the singular.
+TEST(PcbInfoCli, ACountOfOneIsSaidInTheSingular) {
+  const std::string dir = testing::TempDir() + "/" + std::to_string(getpid()) + "-info-one";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/one.drl") << "M48\nMETRIC\nT1C0.800\n%\nG90\nG05\nT1\nX10.0Y10.0\nM30\n";
+  std::ofstream(dir + "/one-F.Cu.gbr")
+      << "%FSLAX46Y46*%\n%MOMM*%\n%ADD10C,1.600000*%\nD10*\nX10000000Y10000000D03*\nM02*\n";
+  const ToolRun d = run("info " + dir + "/one.drl");
+  ASSERT_EQ(d.code, 0) << d.err;
+  EXPECT_TRUE(has(d.out, "  T1: 0.800 mm, 1 hole or slot\n")) << d.out;
+  const ToolRun g = run("info " + dir + "/one-F.Cu.gbr");
+  ASSERT_EQ(g.code, 0) << g.err;
+  EXPECT_TRUE(has(g.out, "polygons:  1 copper area, 0 holes in them, ")) << g.out;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(PcbInfoCli, OutlineSummaryAndNotes) {
   const ToolRun r = run("info " + host::pcb::test::data_file("deprecated_inch.gbr"));
   EXPECT_EQ(r.code, 0) << r.err;
@@ -59,7 +93,7 @@ TEST(PcbInfoCli, OutlineSummaryAndNotes) {
   EXPECT_TRUE(has(r.out, "G54 before an aperture number (deprecated) ignored (3 times)")) << r.out;
   const ToolRun o = run("info " + host::pcb::test::data_file("outline-Edge.Cuts.gbr"));
   EXPECT_TRUE(has(o.out, "layer:     outline")) << o.out;
-  EXPECT_TRUE(has(o.out, "paths:     1 centre lines (1 closed)")) << o.out;
+  EXPECT_TRUE(has(o.out, "paths:     1 centre line (1 closed)")) << o.out;
 }
 
 TEST(PcbInfoCli, BadGerberIsAnInputErrorNamingTheLine) {

@@ -93,5 +93,37 @@ TEST(ProgressMeter, ShortWorkPrintsNothing) {
   EXPECT_EQ(out.str(), "");
 }
 
+// The time left grew while a send stood in a hold or a tool-change pause (the rate fell as
+// the clock ran on): waiting time is left out, so the estimate stays what it was.
+TEST(ProgressMeter, TimeLeftDoesNotGrowWhileTheWorkWaits) {
+  std::ostringstream out;
+  FakeClock c;
+  ProgressStyle st;
+  st.terminal = false;
+  st.first = milliseconds(0);
+  st.line_every = milliseconds(5000);
+  {
+    ProgressMeter m("send", "commands", out, st, c.fn());
+    for (int s = 0; s <= 10; ++s) {  // 10 s of work: 10 commands a second
+      c.t = Clock::time_point(std::chrono::seconds(s));
+      m.update(static_cast<size_t>(s) * 10, 200, "running");
+    }
+    for (int s = 11; s <= 70; ++s) {  // a minute held at 100 of 200
+      c.t = Clock::time_point(std::chrono::seconds(s));
+      m.update(100, 200, "held", true);
+    }
+    c.t = Clock::time_point(std::chrono::seconds(75));  // working again
+    m.update(100, 200, "running");
+  }
+  const std::string text = out.str();
+  // The hold is seen at 11 s: 11 s of work at 100 commands, 9.1/s. Every line while held
+  // (one a 5 s, 15 .. 70 s) and the first after it say the same time left; without leaving
+  // the wait out the rate fell to 1.4/s and the time left grew to 1:10.
+  EXPECT_EQ(count(text, "100/200 commands (50%), 9.1/s, 0:11 left; held\n"), 12u) << text;
+  EXPECT_EQ(count(text, "left; held\n"), 12u) << text;
+  EXPECT_NE(text.find("100/200 commands (50%), 9.1/s, 0:11 left; running\n"), std::string::npos)
+      << text;
+}
+
 }  // namespace
 }  // namespace host

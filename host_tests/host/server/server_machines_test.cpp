@@ -64,8 +64,12 @@ TEST(ServerMachines, HoldResumeOverrideAndAbortOfARunningJob) {
   ASSERT_EQ(r->status, 200) << r->body;
   ASSERT_TRUE(test::wait_until([&] { return server.running(id)["machine_state"] == "held"; }, 10));
   const std::vector<double> held_at = position(server, "m1");
+  const double left_when_held = server.running(id)["remaining_s"].get<double>();
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   EXPECT_EQ(position(server, "m1"), held_at) << "a held machine must not move";
+  // The time left stands still while the machine is held (it grew by the time held).
+  EXPECT_NEAR(server.running(id)["remaining_s"].get<double>(), left_when_held, 0.05)
+      << server.running(id).dump();
 
   r = server.control(id, R"({"action": "override", "percent": 50})");
   ASSERT_TRUE(r);
