@@ -804,10 +804,16 @@ void Workshop::follow_status(Slot& slot, JobRun& r, Sender& sender, const Progre
                            {"executed", p.executed}});
   }
   if (state_changed || p.status.override_percent != r.last_override) {
-    r.note(fmt::format("machine {} override {}% at {}/{} x {:.3f} y {:.3f} z {:.3f}",
+    // A hold by the link watchdog: the link was cut for 2 s; the sender resumes it once a
+    // status comes through again.
+    const bool link_hold = (p.status.flags & proto::kStatusLinkHold) != 0;
+    r.note(fmt::format("machine {} override {}% at {}/{} x {:.3f} y {:.3f} z {:.3f}{}",
                        machine_state_name(p.status.state), int(p.status.override_percent),
                        p.executed, p.total, p.status.x_um / 1000.0, p.status.y_um / 1000.0,
-                       p.status.z_um / 1000.0));
+                       p.status.z_um / 1000.0,
+                       link_hold ? " (link watchdog: the controller heard nothing for 2 s; "
+                                   "resumed now that the link answers)"
+                                 : ""));
     r.last_state = p.status.state;
     r.last_override = p.status.override_percent;
   }
