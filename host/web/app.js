@@ -170,10 +170,12 @@ function showRunning(running) {
     div.appendChild(title); div.appendChild(bar);
     if (j.probe) {  // a probe-first board: the probe clip, then the touches
       const ask = document.createElement('p'); ask.className = 'probe'; ask.id = 'probe-' + j.id;
-      ask.textContent = j.probe.stage === 'probe_clip' ? 'Put the probe clip on the blank, the spindle off.'
+      const aborting = j.machine_state === 'aborting';  // the tool going up, then it ends
+      ask.textContent = aborting ? 'Aborted: the tool goes up, nothing is cut.'
+        : j.probe.stage === 'probe_clip' ? 'Put the probe clip on the blank, the spindle off.'
         : 'Probing the blank: ' + j.probe.touches + ' of ' + j.probe.planned + ' touches';
       div.appendChild(ask);
-      if (j.probe.stage === 'probe_clip') button(ask, 'Clip on: probe', () => control(j.id, 'probe_ready'));
+      if (j.probe.stage === 'probe_clip' && !aborting) button(ask, 'Clip on: probe', () => control(j.id, 'probe_ready'));
     }
     if (j.machine_state !== 'planning') div.appendChild(livePreview(j));
     button(div, 'Hold', () => control(j.id, 'hold'));

@@ -22,8 +22,8 @@ const char* const kArchiveFiles[] = {
     // A board job: its manifest and layers (board_planning.h).
     "board.json", "copper.top.gbr", "copper.bot.gbr", "outline.gbr", "drill.drl", "drill.b.drl",
     "drill.c.drl", "drill.d.drl", "input.zip",
-    // Its height map (board_height_map.h).
-    "heightmap.json", "heightmap.svg", nullptr};
+    // Its height map and the machine it was probed on (board_height_map.h).
+    "heightmap.json", "heightmap.svg", "heightmap.machine", nullptr};
 
 bool is_archive_file(const std::string& name) {
   for (const char* const* f = kArchiveFiles; *f != nullptr; ++f) {

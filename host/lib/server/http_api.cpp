@@ -421,7 +421,7 @@ bool machine_control(const std::string& action, const nlohmann::json& body, http
 // another method gets 405 naming them (Allow), not a 404 that says the path is unknown.
 std::string allowed_methods(const std::string& path) {
   static const std::regex kGet(
-      R"(/|/app\.js|/style\.css|/api/status|/api/events|/api/jobs/\d{1,18}(/path|/files/[a-z.]{1,16}|/runs/[1-9]\d{0,5}/[a-z.]{1,16})?)");
+      R"(/|/app\.js|/style\.css|/api/status|/api/events|/api/jobs/\d{1,18}(/path|/files/[a-z.]{1,24}|/runs/[1-9]\d{0,5}/[a-z.]{1,16})?)");
   static const std::regex kPost(R"(/api/jobs/\d{1,18}/(control|priority))");
   if (path == "/api/jobs") return "GET, HEAD, POST";
   if (std::regex_match(path, kGet)) return "GET, HEAD";
@@ -514,6 +514,25 @@ std::string HttpApi::event_text(uint64_t version) {
     event_version_ = version;
   }
   return event_;
+}
+
+nlohmann::json HttpApi::job_answer(const JobRecord& j) const {
+  nlohmann::json out = job_json(j);
+  out["height_map"] = has_height_map(j);
+  const int64_t map_job = height_map_job_of(data_, j);
+  out["height_map_job"] = map_job != 0 ? nlohmann::json(map_job) : nlohmann::json();
+  out["waiting"] = map_wait_of(store_, data_, j);
+  return out;
+}
+
+void HttpApi::send_control_answer(int64_t id, const std::string& action,
+                                  httplib::Response& res) const {
+  // Every action answers alike: the job as it stands now and what was asked for (a machine
+  // action is carried out after the answer: the job's state may not show it yet).
+  const std::optional<JobRecord> job = store_.get(id);
+  nlohmann::json out = job ? job_answer(*job) : nlohmann::json{{"id", id}};
+  out["requested"] = action;
+  send_json(res, 200, out);
 }
 
 bool HttpApi::has_height_map(const JobRecord& j) const {
@@ -642,20 +661,15 @@ void HttpApi::route_jobs() {
       return send_error(res, 400, "limit must be 1 .. 10000");
     }
     nlohmann::json jobs = nlohmann::json::array();
-    for (const JobRecord& j : store_.list(state, static_cast<size_t>(limit))) {
-      jobs.push_back(job_json(j));
-      jobs.back()["height_map"] = has_height_map(j);
-      jobs.back()["waiting"] = map_wait_of(store_, data_, j);
-    }
+    for (const JobRecord& j : store_.list(state, static_cast<size_t>(limit)))
+      jobs.push_back(job_answer(j));
     send_json(res, 200, {{"jobs", jobs}});
   });
   s.Get(R"(/api/jobs/(\d{1,18}))", [this](const httplib::Request& req, httplib::Response& res) {
     const auto job = store_.get(std::stoll(req.matches[1]));
     if (!job) return send_error(res, 404, "no such job");
-    nlohmann::json j = job_json(*job);
+    nlohmann::json j = job_answer(*job);
     j["runs"] = run_count(data_.job_dir(job->key));  // runs/1 .. runs/N in its archive
-    j["height_map"] = has_height_map(*job);
-    j["waiting"] = map_wait_of(store_, data_, *job);
     send_json(res, 200, j);
   });
   s.Get(R"(/api/jobs/(\d{1,18})/path)",
@@ -675,7 +689,7 @@ void HttpApi::route_jobs() {
 // A job's archive files and its runs' files.
 void HttpApi::route_job_files() {
   httplib::Server& s = *http_;
-  s.Get(R"(/api/jobs/(\d{1,18})/files/([a-z.]{1,16}))",
+  s.Get(R"(/api/jobs/(\d{1,18})/files/([a-z.]{1,24}))",
         [this](const httplib::Request& req, httplib::Response& res) {
           const std::string file = req.matches[2];
           if (!is_archive_file(file)) return send_error(res, 404, "no such archive file");
@@ -757,7 +771,7 @@ void HttpApi::route_upload() {
     if (r.status != 201) return send_error(res, r.status, r.error);
     workshop_.notify(true);
     const auto job = store_.get(r.id);
-    send_json(res, 201, job ? job_json(*job) : nlohmann::json{{"id", r.id}});
+    send_json(res, 201, job ? job_answer(*job) : nlohmann::json{{"id", r.id}});
   });
 }
 
@@ -781,7 +795,7 @@ void HttpApi::route_control() {
                      if (!machine_control(action, body, res, &c, &percent)) return;
                      const ControlResult r = workshop_.control(id, c, percent);
                      if (r.status != 200) return send_error(res, r.status, r.error);
-                     send_json(res, 200, {{"id", id}, {"requested", action}});
+                     send_control_answer(id, action, res);
                    });
 }
 
@@ -801,7 +815,7 @@ void HttpApi::route_priority() {
                        return send_error(res, 409, "only a queued job's priority can change");
                      }
                      workshop_.notify(true);
-                     send_json(res, 200, job_json(*store_.get(id)));
+                     send_json(res, 200, job_answer(*store_.get(id)));
                    });
 }
 
@@ -809,7 +823,7 @@ bool HttpApi::store_control(int64_t id, const std::string& action, httplib::Resp
   auto done = [&](bool ok, const std::string& why) {
     if (!ok) return send_error(res, 409, why);
     workshop_.notify(true);
-    send_json(res, 200, job_json(*store_.get(id)));
+    send_control_answer(id, action, res);
   };
   if (action == "cancel") {
     done(store_.cancel(id), "only a queued job can be cancelled");

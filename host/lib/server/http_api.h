@@ -12,6 +12,8 @@
 #include <string>      // std::string
 #include <vector>      // std::vector
 
+#include <nlohmann/json.hpp>  // nlohmann::json
+
 #include "host/lib/server/allowed_hosts.h"
 #include "host/lib/server/data_folder.h"
 #include "host/lib/server/job_intake.h"
@@ -69,6 +71,11 @@ class HttpApi {
   // Cancel, requeue, continue: answered from the store (true), else false.
   bool store_control(int64_t id, const std::string& action, httplib::Response& res);
   bool has_height_map(const JobRecord& job) const;
+  // A job as every answer gives it: its record's fields and those worked out now
+  // (height_map, height_map_job, waiting).
+  nlohmann::json job_answer(const JobRecord& job) const;
+  // 200 to a control action: the job (job_answer) with `requested`, the action.
+  void send_control_answer(int64_t id, const std::string& action, httplib::Response& res) const;
   void widen_backlog(int port);
   static const int kListenBacklog = 1024;  // connections waiting to be accepted
   // The server-sent event for the workshop's change counter `version`.

@@ -242,6 +242,12 @@ std::string check_fields(const Submission& sub, bool board) {
           sub.board_fields.end()) {
     return "height_map_flip goes with height_map_from (how that job's map follows the flip)";
   }
+  // Read only when the job probes: a spacing without probe_first would be ignored.
+  if (board && !sub.board.probe_first &&
+      std::find(sub.board_fields.begin(), sub.board_fields.end(), "probe_spacing_mm") !=
+          sub.board_fields.end()) {
+    return "probe_spacing_mm goes with probe_first=1 (the pitch of the grid it probes)";
+  }
   if (board && sub.settings.scale != 1.0) {
     return "scale does not apply to a board (Gerber and Excellon give true sizes)";
   }

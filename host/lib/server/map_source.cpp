@@ -41,6 +41,16 @@ std::string map_source_refusal(JobStore& store, const DataFolder& data, int64_t 
         "height_map_from: job {} makes no height map (it was uploaded without probe_first=1)",
         from);
   }
+  // Ended without its map (failed, aborted or cancelled before it probed): it will make none,
+  // and the job would only fail in the queue. A job still to probe is taken: it waits.
+  std::error_code ec;
+  const std::string ended = source_ended_text(*job);
+  if (!ended.empty() && !fs::exists(data.job_dir(job->key) / kHeightMapFile, ec)) {
+    return fmt::format(
+        "height_map_from: {}: it will make none (probe this job: upload it with "
+        "probe_first=1)",
+        ended);
+  }
   return "";
 }
 
@@ -63,6 +73,16 @@ MapSource map_source_of(JobStore& store, const DataFolder& data, const JobRecord
   s.source_ended = !s.has_map && is_final(from->state);
   if (s.source_ended) s.ended_why = source_ended_text(*from);
   return s;
+}
+
+int64_t height_map_job_of(const DataFolder& data, const JobRecord& job) {
+  if (!is_board_job(job)) return 0;
+  try {
+    const BoardSettings board = read_board_settings(data.job_dir(job.key));
+    return board.probe_first ? job.id : board.height_map_from;
+  } catch (const std::exception&) {
+    return 0;  // not in this archive (another server's upload)
+  }
 }
 
 namespace {

@@ -16,9 +16,10 @@
 namespace host::server {
 
 // Why job `from` cannot be an upload's height_map_from ("" when it can): it must be a board
-// job of this queue uploaded with probe_first=1. A job that itself cut with another job's
-// map is refused, naming that job (a map is taken from the job that probed it, once: its
-// flip would otherwise be applied twice). A job whose board.json is not in this archive
+// job of this queue uploaded with probe_first=1 that has not ended without its map (failed,
+// aborted or cancelled before it probed: named with its state). A job that itself cut with
+// another job's map is refused, naming that job (a map is taken from the job that probed it, once:
+// its flip would otherwise be applied twice). A job whose board.json is not in this archive
 // (another server's upload) is taken: its run checks the map.
 std::string map_source_refusal(JobStore& store, const DataFolder& data, int64_t from);
 
@@ -32,6 +33,11 @@ struct MapSource {
   std::string ended_why;
 };
 MapSource map_source_of(JobStore& store, const DataFolder& data, const JobRecord& job);
+
+// The job whose height map `job` cuts with: its own id (uploaded with probe_first=1), its
+// height_map_from, 0 for none (a drawing, a board without a map, or a board whose board.json
+// is not in this archive). Known from the upload on (the job's `height_map_job`).
+int64_t height_map_job_of(const DataFolder& data, const JobRecord& job);
 
 // Why a queued job with a map source waits: "waiting for the height map of job 4" while
 // its source has no map and may still make one; "waiting for machine 'left', which probed

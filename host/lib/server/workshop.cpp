@@ -117,6 +117,14 @@ AbortedBeforeCutting ended_before_cutting(bool server_stopping, const std::strin
                   server_stopping ? "the server stopped (interrupted)" : "aborted", while_doing));
 }
 
+// The 409 to probe_ready when no machine waits for the clip: why, and when to send it.
+std::string no_clip_wait(int64_t job_id, const std::string& why) {
+  return fmt::format(
+      "no machine is waiting for the probe clip for job {}: {} (send probe_ready once the "
+      "job's machine_state in /api/status is probe_clip)",
+      job_id, why);
+}
+
 }  // namespace
 
 Workshop::Workshop(JobStore& store, const DataFolder& data, std::vector<MachineSpec> machines,
@@ -246,7 +254,9 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
     if (slot->job_id != job_id || (slot->sender == nullptr && !slot->planning)) continue;
     if (control == JobControl::kConfirmProbe) {
       if (slot->probe_stage != "probe_clip") {
-        return {409, fmt::format("job {} is not waiting for the probe clip", job_id)};
+        return {409, no_clip_wait(job_id, slot->probe_stage == "probing" ? "it is probing already"
+                                          : slot->planning ? "its machine is still planning it"
+                                                           : "it is cutting")};
       }
       slot->probe_confirmed = true;
       notify(false);
@@ -298,7 +308,15 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
     }
     return {};
   }
-  if (!store_.get(job_id)) return {404, fmt::format("no job {}", job_id)};
+  const std::optional<JobRecord> job = store_.get(job_id);
+  if (!job) return {404, fmt::format("no job {}", job_id)};
+  if (control == JobControl::kConfirmProbe) {
+    return {409, no_clip_wait(job_id, job->state == JobState::kQueued
+                                          ? "it is queued, no machine has claimed it yet"
+                                      : job->state == JobState::kRunning
+                                          ? std::string("it runs on another server's machine")
+                                          : fmt::format("it is {}", state_name(job->state)))};
+  }
   return {409, fmt::format("job {} is not running on a machine of this server", job_id)};
 }
 
@@ -319,9 +337,13 @@ nlohmann::json Workshop::snapshot() {
     // The hold the server has accepted, shown at once in every field: no touch starts until
     // resume (the one under way finishes and retracts first; its position stays live).
     const bool probe_held = probing && slot->hold_pending && !slot->abort_pending;
+    // An abort taken: the touch stops and the tool goes up before the job ends; never shown
+    // as probing again (a held job goes held -> aborting -> aborted).
+    const bool probe_aborting = probing && slot->abort_pending;
     // Waiting for the clip and probing are the workshop's: the machine's own state then is
     // idle, which the operator must not read as "free".
-    const char* probe_state = probe_held                          ? "held"
+    const char* probe_state = probe_aborting                      ? "aborting"
+                              : probe_held                        ? "held"
                               : slot->probe_stage == "probe_clip" ? "probe_clip"
                                                                   : "probing";
     if (slot->have_last_status) {
@@ -354,17 +376,17 @@ nlohmann::json Workshop::snapshot() {
     j["fraction"] = f;
     j["elapsed_s"] = elapsed;
     j["remaining_s"] = remaining;
-    j["machine_state"] = probe_held                   ? "held"
-                         : !slot->probe_stage.empty() ? slot->probe_stage.c_str()
-                         : slot->planning             ? "planning"
-                         : slot->have_status          ? machine_state_name(p.status.state)
-                                                      : "starting";
+    j["machine_state"] = probing             ? probe_state
+                         : slot->planning    ? "planning"
+                         : slot->have_status ? machine_state_name(p.status.state)
+                                             : "starting";
     if (!slot->probe_stage.empty()) {
       j["probe"] = {{"stage", slot->probe_stage},
                     {"touches", slot->probe_done},
                     {"planned", slot->probe_total},
                     {"held", probe_held},
-                    {"ask", slot->probe_stage == "probe_clip"
+                    {"ask", probe_aborting ? "aborted: the tool goes up, nothing is cut"
+                            : slot->probe_stage == "probe_clip"
                                 ? "put the probe clip on the blank, the spindle off, then "
                                   "confirm (action probe_ready)"
                                 : "probing the blank"}};
@@ -797,10 +819,16 @@ void Workshop::follow_status(Slot& slot, JobRun& r, Sender& sender, const Progre
                            {"executed", p.executed}});
   }
   if (state_changed || p.status.override_percent != r.last_override) {
-    r.note(fmt::format("machine {} override {}% at {}/{} x {:.3f} y {:.3f} z {:.3f}",
+    // A hold by the link watchdog: the link was cut for 2 s; the sender resumes it once a
+    // status comes through again.
+    const bool link_hold = (p.status.flags & proto::kStatusLinkHold) != 0;
+    r.note(fmt::format("machine {} override {}% at {}/{} x {:.3f} y {:.3f} z {:.3f}{}",
                        machine_state_name(p.status.state), int(p.status.override_percent),
                        p.executed, p.total, p.status.x_um / 1000.0, p.status.y_um / 1000.0,
-                       p.status.z_um / 1000.0));
+                       p.status.z_um / 1000.0,
+                       link_hold ? " (link watchdog: the controller heard nothing for 2 s; "
+                                   "resumed now that the link answers)"
+                                 : ""));
     r.last_state = p.status.state;
     r.last_override = p.status.override_percent;
   }

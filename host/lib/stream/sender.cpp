@@ -399,6 +399,15 @@ bool Sender::resume_may_act() const {
          last_status_.state == proto::MachineState::kHeld;
 }
 
+// A hold the link watchdog made (2 s without a frame: the link was cut) and nobody else
+// asked for: the operator's hold (here or at the panel, no link flag) waits for the operator.
+bool Sender::link_hold_to_resume() const {
+  if (operator_hold_ || resume_sent_ || !have_status_) return false;
+  if (!(last_status_.flags & proto::kStatusLinkHold)) return false;
+  return last_status_.state == proto::MachineState::kHolding ||
+         last_status_.state == proto::MachineState::kHeld;
+}
+
 bool Sender::status_due(Clock::time_point last_poll) const {
   if (options_.status_interval.count() > 0) {
     return now() - last_poll >= options_.status_interval;
@@ -596,6 +605,14 @@ bool Sender::take_requests(CommandSource& commands, JobOutcome* outcome) {
   }
   if (const int pct = requests_.take_override()) {
     send_realtime(proto::kCmdOverride, {static_cast<uint8_t>(pct)});
+  }
+  if (link_hold_to_resume()) {
+    // The link is back (this status came through it): the job goes on along its path, its
+    // queue kept through the feed hold, as if it had never stopped.
+    send_realtime(proto::kCmdResume, {});
+    resume_sent_ = true;
+    status_before_resume_ = session_.status_outstanding;
+    stats_.link_hold_resumes++;
   }
   if (failed_) {
     *outcome = failure_;

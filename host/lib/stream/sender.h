@@ -67,6 +67,8 @@ struct SenderStats {
   size_t status_queries = 0;
   size_t error_replies = 0;  // *E received
   size_t reply_rejects = 0;  // reply bytes our parser dropped (noise)
+  // #R sent because the link watchdog held the job (its link was cut for 2 s and is back).
+  size_t link_hold_resumes = 0;
 };
 
 struct Progress {
@@ -132,6 +134,7 @@ class Sender {
   void sample_round_trip(size_t index);
   bool status_due(std::chrono::steady_clock::time_point last_poll) const;
   bool resume_may_act() const;
+  bool link_hold_to_resume() const;
   std::chrono::steady_clock::time_point now() const;
   bool stalled();
   std::string where(size_t index) const;

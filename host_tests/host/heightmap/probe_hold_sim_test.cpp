@@ -7,6 +7,7 @@
 #include "host/lib/heightmap/controller_map.h"
 #include "host/lib/sim/sim_link.h"
 #include "host/lib/sim/sim_machine.h"
+#include "host_tests/host/sim/cut_link.h"
 
 namespace host::heightmap {
 namespace {
@@ -83,6 +84,37 @@ TEST(ProbeHoldSim, AHoldAtTheContactKeepsTheToolOnTheCopperUntilResume) {
   EXPECT_NEAR(t.held_z_mm, kCopperUm / 1000.0, 0.015) << "the retract waits for #R";
   EXPECT_FALSE(t.held_z_moved);
   EXPECT_NEAR(rig.machine->position().z_mm, kCopperUm / 1000.0 + ProbeMotion{}.retract_mm, 0.005);
+}
+
+// Issue 25's workshop tester: a link cut for over 2 s (the controller's link watchdog holds
+// the touch where it is) left the sender waiting out its stall limit, and the probing failed.
+// When the link is back the touch goes on (#R) to the contact and retracts, the same height.
+TEST(ProbeHoldSim, ALinkCutGoingDownHoldsTheTouchAndItGoesOnWhenTheLinkIsBack) {
+  sim::SimOptions o;
+  o.surface_um = [](int32_t, int32_t) { return kCopperUm; };
+  sim::SimMachine machine(o);
+  test::CutLink link(machine);
+  SenderOptions so;
+  so.clock = [&machine] { return sim::machine_clock(machine); };
+  Sender sender(link, so);
+  sender.open_session();
+  ProbeMotion slow;  // down at 0.2 mm/s: from Z 0.5 mm the copper is over 2 s away
+  slow.feed_mm_s = 0.2;
+  bool cut = false, held = false;
+  machine.set_sample_sink([&](const sim::ToolSample& s) {
+    if (!cut && s.x_mm > 4.99 && s.z_mm < 0.5) {  // over the point, going down
+      link.cut_for(3000);
+      cut = true;
+    }
+  });
+  const double contact_um = controller_touch(sender, slow, [&](const Progress& p) {
+    if (p.status.flags & proto::kStatusLinkHold) held = true;
+  })(5, 5);
+  EXPECT_TRUE(cut);
+  EXPECT_TRUE(held) << "the cut was not long enough to hold the touch";
+  EXPECT_EQ(sender.stats().link_hold_resumes, 1u);
+  EXPECT_NEAR(contact_um, kCopperUm, 3);
+  EXPECT_NEAR(machine.position().z_mm, kCopperUm / 1000.0 + ProbeMotion{}.retract_mm, 0.005);
 }
 
 }  // namespace

@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
-"""The API examples of docs/user-guide.md exactly as printed: every `TOKEN=...`, `curl ...`
-and `NAME=$(curl ...)` line of the `engraver serve` section runs with bash and the real curl
+"""The API examples of docs/user-guide.md exactly as printed: every `TOKEN=...`, `curl ...`,
+`until curl ...` (a wait: it must end, within 60 s) and `NAME=$(curl ...)` line of the `engraver serve` section runs with bash and the real curl
 (and jq) against `engraver serve` on loopback (one `engraver sim --realtime` machine); a
 NAME=$(...) line's value is kept for the lines after it, as in one shell. Only the data
 folder, the port and the files' contents are this test's: the files are made under the
 names the examples use (board.ngc larger than 8 KB, the blinky board from data/; the
 double-sided example's shared two-layer sample from ../shared/samples/pcb/example_board,
-or the blinky board under its names without ../shared). Before the `probe_ready` example the test itself
+or the blinky board under its names without ../shared). Before the wait for the probe clip
+(or, without one, the `probe_ready` example) the test itself
 cancels the other queued boards but the bottom side (which waits for the probe-first job's
 map) and brings a second machine ('right', a sim at full speed with a warped blank,
 --surface) online, which takes the probe-first job to the probe clip; then it aborts job 1:
@@ -62,7 +63,8 @@ def serve_examples(guide):
                 commands.append(current)
                 current = None
             continue
-        if code is None or not re.match(r"(TOKEN=|curl |[A-Z_]+=\$\(curl )", code.strip()):
+        if code is None or not re.match(r"(TOKEN=|curl |until curl |[A-Z_]+=\$\(curl )",
+                                        code.strip()):
             continue
         if code.endswith("\\"):
             current = code.strip()
@@ -172,9 +174,12 @@ def main():
         for cmd in curls:
             print("$ " + cmd)
             probe_ready = re.search(r"probe_ready.*?/api/jobs/(\d+|\$[A-Z_]+)/control", cmd, re.S)
-            if probe_ready:
+            # The guide's wait for the clip prompt (`until curl ... probe_clip ...; done`).
+            clip_wait = re.search(r"^until curl .*?\.id == (\d+|\$[A-Z_]+)\b.*probe_clip", cmd,
+                                  re.S)
+            if (probe_ready or clip_wait) and not checked_before_probe:
                 # A second machine for the probe-first job, which then asks for the clip.
-                job = job_of(probe_ready.group(1))
+                job = job_of((probe_ready or clip_wait).group(1))
                 jobs = check_held_and_queued()
                 checked_before_probe = True
                 # The queue first: a machine online claims the next job.
@@ -185,6 +190,7 @@ def main():
                     [engraver, "sim", "--listen", f"127.0.0.1:{right_port}",
                      "--surface", "tilt=0.05mm,bow=0.03mm"],
                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+            if probe_ready:
                 wait(lambda: probe_job_waiting(job), 30, f"job {job} asking for the probe clip")
                 # 'left' free too: the bottom side still waits for the map.
                 control(1, "abort")
@@ -207,6 +213,9 @@ def main():
                                  text=True, timeout=60)
             print(run.stdout)
             assert run.returncode == 0, run.stderr
+            if clip_wait:  # it ended when, and only when, the job asked for the clip
+                assert probe_job_waiting(job), get(base, "/api/status")
+                continue
             answer = json.loads(run.stdout)
             if name:  # the job's id, from the upload's answer
                 assert isinstance(answer, int), (cmd, run.stdout)

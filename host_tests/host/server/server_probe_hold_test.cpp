@@ -8,6 +8,7 @@
 #include <cmath>  // std::lround, std::abs
 
 #include <map>  // std::map
+#include <set>  // std::set
 
 #include "host/lib/heightmap/controller_map.h"  // ProbeMotion
 #include "host/lib/server/data_folder.h"
@@ -180,6 +181,47 @@ TEST(ServerProbeHold, AHoldAtAnyInstantOfATouchLeavesTheToolRetractedAndResumePr
     ++resumes;
   EXPECT_EQ(holds, 3u) << log;
   EXPECT_EQ(resumes, 3u) << log;
+}
+
+// An abort of a held probing job (issue 25's tester: one poll showed `probing` between the
+// hold and the end): from the abort's answer on, every status says `aborting` until the job
+// leaves the machine, ended aborted with the tool raised; never `probing` or `held` again.
+TEST(ServerProbeHold, AnAbortOfAHeldProbingJobNeverShowsProbingAgain) {
+  test::TempDir dir;
+  SimRig sim(true, 0, tilted_blank());
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t id = post_probe_first(server);
+  ASSERT_TRUE(
+      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
+  ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+  ASSERT_TRUE(reach(sim, Instant::kDescending)) << server.status().dump();
+  ASSERT_EQ(server.control(id, R"({"action":"hold"})")->status, 200);
+  ASSERT_TRUE(at_rest(sim));
+  ASSERT_EQ(server.status()["machines"][0]["state"], "held");
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  std::set<std::string> machine_states, job_states;
+  int polls = 0;
+  const bool left = test::wait_until(
+      [&] {
+        const nlohmann::json status = server.status();
+        ++polls;
+        if (status["running"].empty()) return true;
+        machine_states.insert(status["machines"][0]["state"].get<std::string>());
+        job_states.insert(status["running"][0]["machine_state"].get<std::string>());
+        EXPECT_EQ(status["running"][0]["probe"]["held"], false) << status.dump();
+        return false;
+      },
+      30);
+  ASSERT_TRUE(left);
+  EXPECT_GT(polls, 1);  // the raise takes a while: some polls saw the job still there
+  EXPECT_EQ(machine_states, std::set<std::string>({"aborting"}));
+  EXPECT_EQ(job_states, std::set<std::string>({"aborting"}));
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30));
+  EXPECT_NE(server.job(id)["message"].get<std::string>().find("the tool raised to Z 2.000 mm"),
+            std::string::npos)
+      << server.job(id).dump();
+  const std::string state = server.status()["machines"][0]["state"];
+  EXPECT_TRUE(state == "idle" || state == "ready") << state;
 }
 
 }  // namespace

@@ -54,7 +54,8 @@ TEST(ServerUploadFields, NumbersAreTheCommandLinesPlainDecimals) {
                  "align_measured", "finite numbers, mm");
   // What the command line takes, the server takes, as the same numbers.
   for (const char* text : {"+10", "10.", ".1e2", "1e1", "10"}) {
-    const int64_t id = post(server, blinky({{"probe_spacing_mm", text}, {"passes", "2.0"}}));
+    const int64_t id =
+        post(server, blinky({{"probe_first", "1"}, {"probe_spacing_mm", text}, {"passes", "2.0"}}));
     const nlohmann::json board = board_json(server, id);
     EXPECT_EQ(board["probe_spacing_mm"], 10.0) << text;
     EXPECT_EQ(board["passes"], 2) << text;
@@ -109,6 +110,41 @@ TEST(ServerUploadFields, HeightMapFromNamesABoardJobThatProbed) {
                              "job {}: give height_map_from={}",
                              bottom, top, top),
                  "the job that probed it");
+}
+
+// A field the job would not use is refused, as any unknown field (issue 25's tester: a
+// spacing without probe_first was silently ignored).
+TEST(ServerUploadFields, AProbeSpacingWithoutProbeFirstIsRefused) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {});
+  for (const auto& form : {blinky({{"probe_spacing_mm", "4"}}),
+                           blinky({{"probe_first", "0"}, {"probe_spacing_mm", "4"}})}) {
+    expect_refused(server, form, "probe_spacing_mm goes with probe_first=1",
+                   "the pitch of the grid it probes");
+  }
+  const int64_t id = post(server, blinky({{"probe_first", "1"}, {"probe_spacing_mm", "4"}}));
+  EXPECT_EQ(board_json(server, id)["probe_spacing_mm"], 4.0);
+}
+
+// A source that ended without its map will make none: refused at upload, naming the job and
+// its state, rather than queued to fail in the queue. One still to probe is taken.
+TEST(ServerUploadFields, HeightMapFromAJobThatEndedWithoutAMapIsRefused) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {});  // no machine: every job stays queued
+  const int64_t cancelled = post(server, blinky({{"probe_first", "1"}, {"align_holes", "auto"}}));
+  const int64_t waiting = post(server, blinky({{"probe_first", "1"}, {"align_holes", "auto"}}));
+  ASSERT_EQ(server.control(cancelled, R"({"action":"cancel"})")->status, 200);
+  auto bottom_of = [](int64_t from) {
+    return blinky(
+        {{"side", "bottom"}, {"align_holes", "auto"}, {"height_map_from", std::to_string(from)}},
+        "blinky-B.Cu.gbr");
+  };
+  expect_refused(
+      server, bottom_of(cancelled),
+      fmt::format("height_map_from: job {} ended cancelled without a height map", cancelled),
+      "upload it with probe_first=1");
+  const int64_t bottom = post(server, bottom_of(waiting));
+  EXPECT_EQ(server.job(bottom)["state"], "queued");
 }
 
 }  // namespace

@@ -3,12 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <atomic>  // std::atomic
+#include <cstdio>  // std::printf
 #include <thread>  // std::thread
 
 #include "host/lib/sim/sim_job.h"
+#include "host/lib/sim/sim_link.h"
 #include "host/lib/sim/sim_server.h"
 #include "host/lib/stream/job_encoder.h"
 #include "host/lib/stream/sender.h"
+#include "host_tests/host/sim/cut_link.h"
+#include "host_tests/host/sim/cut_path.h"
 #include "host_tests/host/sim/sim_test_jobs.h"
 
 namespace host {
@@ -69,6 +73,72 @@ TEST(LinkWatchdog, MachineStopsWhenTheHostDisappearsAndANewSessionFindsItStopped
     }
   }
   EXPECT_LT(cut, 0.9 * plan.cut_length_mm);
+}
+
+SenderOptions lockstep(sim::SimMachine& m) {
+  SenderOptions o;
+  o.clock = [&m] { return sim::machine_clock(m); };
+  o.status_interval = std::chrono::milliseconds(50);
+  return o;
+}
+
+// The job's tool path on the simulated machine, its link cut for `cut_ms` (0: never) once
+// half its commands have run, and how it ended.
+struct CutRun {
+  JobOutcome outcome = JobOutcome::kCompleted;
+  std::string message;
+  std::vector<sim::ToolSample> trace;
+  SenderStats stats;
+  bool link_held = false;  // a status showed the link watchdog's hold
+};
+
+CutRun run_with_cut(const JobPlan& plan, uint32_t cut_ms) {
+  sim::SimMachine m{sim::SimOptions{}};
+  test::CutLink link(m);
+  Sender s(link, lockstep(m));
+  const proto::SessionReply caps = s.open_session();
+  EncodeOptions enc;
+  enc.max_payload = caps.max_payload;
+  enc.controller = &caps;
+  CutRun r;
+  bool cut_done = false;
+  r.outcome = s.run(encode_job(plan, enc), [&](const Progress& p) {
+    if (cut_ms > 0 && !cut_done && p.total > 0 && p.executed * 2 >= p.total) {
+      cut_done = true;
+      link.cut_for(cut_ms);
+    }
+    if (p.status.flags & proto::kStatusLinkHold) r.link_held = true;
+  });
+  r.message = s.message();
+  r.trace = m.trace();
+  r.stats = s.stats();
+  return r;
+}
+
+// Issue 25's workshop tester: a link cut for over 2 s mid-job (the controller holds the job
+// by its link watchdog) left the sender waiting out its 30 s stall limit. When the link is
+// back the job goes on (#R) and cuts the path an uncut run cuts, nothing twice.
+TEST(LinkWatchdog, AJobHeldByALinkCutGoesOnWhenTheLinkIsBackAndCutsTheSamePath) {
+  const JobPlan plan = test::plan_of(test::drawing_of(
+      {test::circle_curve(20, 20, 10), test::circle_curve(50, 20, 10), test::s_curve(70, 20)}));
+  const CutRun reference = run_with_cut(plan, 0);
+  ASSERT_EQ(reference.outcome, JobOutcome::kCompleted) << reference.message;
+  const CutRun cut = run_with_cut(plan, 3000);
+  EXPECT_TRUE(cut.link_held) << "the cut was not long enough to hold the job";
+  ASSERT_EQ(cut.outcome, JobOutcome::kCompleted) << cut.message;
+  EXPECT_EQ(cut.stats.link_hold_resumes, 1u);
+  const test::CutPath ref = test::cut_path(reference.trace, plan);
+  const test::CutPath got = test::cut_path(cut.trace, plan);
+  ASSERT_GT(ref.length_mm, 100.0);
+  const double off_mm = test::max_distance_mm(got, ref),
+               missed_mm = test::max_distance_mm(ref, got);
+  std::printf("cut %.4f mm (uncut link %.4f mm); farthest from it %.4f mm, uncut %.4f mm\n",
+              got.length_mm, ref.length_mm, off_mm, missed_mm);
+  EXPECT_LT(off_mm, 0.005);
+  EXPECT_LT(missed_mm, 0.005);
+  EXPECT_NEAR(got.length_mm, ref.length_mm, 0.01);
+  // It stood still while held: the cut run took the hold's time longer.
+  EXPECT_GT(cut.trace.back().t_ms, reference.trace.back().t_ms + 1000);
 }
 
 }  // namespace

@@ -1,0 +1,145 @@
+// A workshop machine's link that freezes for 3 s mid-job (issue 25's workshop tester): the
+// controller holds the job by its 2 s link watchdog; when the link is back the server's
+// sender resumes it, and the job completes, cutting the path an uncut run cuts. Before, it
+// waited out the 30 s stall limit and ended interrupted.
+#include <gtest/gtest.h>
+
+#include <netinet/in.h>  // sockaddr_in
+#include <poll.h>        // poll
+#include <sys/socket.h>  // socket, accept, connect
+#include <unistd.h>      // read, write, close
+
+#include <atomic>    // std::atomic
+#include <cstdio>    // std::printf
+#include <optional>  // std::optional
+#include <thread>    // std::thread
+
+#include "host/lib/server/job_planning.h"  // plan_file, encode_options
+#include "host/lib/sim/sim_job.h"
+#include "host_tests/host/server/server_test_rig.h"
+#include "host_tests/host/sim/cut_path.h"
+
+namespace host::server {
+namespace {
+
+using test::ServerRig;
+using test::SimRig;
+
+// A TCP proxy on loopback to `port` that, frozen, passes no byte either way (the connection
+// stays open): a network that stops for a while.
+class FreezingProxy {
+ public:
+  explicit FreezingProxy(uint16_t port) : to_(port) {
+    listen_ = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t n = sizeof a;
+    ::bind(listen_, reinterpret_cast<sockaddr*>(&a), n);
+    ::listen(listen_, 4);
+    ::getsockname(listen_, reinterpret_cast<sockaddr*>(&a), &n);
+    port_ = ntohs(a.sin_port);
+    thread_ = std::thread([this] { serve(); });
+  }
+  ~FreezingProxy() {
+    stop_ = true;
+    thread_.join();
+    ::close(listen_);
+  }
+  std::string address() const { return fmt::format("tcp://127.0.0.1:{}", port_); }
+  void freeze(bool on) { frozen_ = on; }
+
+ private:
+  void serve() {
+    while (!stop_) {
+      pollfd p{listen_, POLLIN, 0};
+      if (::poll(&p, 1, 50) <= 0) continue;
+      const int client = ::accept(listen_, nullptr, nullptr);
+      const int machine = ::socket(AF_INET, SOCK_STREAM, 0);
+      sockaddr_in a{};
+      a.sin_family = AF_INET;
+      a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+      a.sin_port = htons(to_);
+      if (::connect(machine, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0) pass(client, machine);
+      ::close(machine);
+      ::close(client);
+    }
+  }
+  // Both ways until either side closes (or the proxy stops).
+  void pass(int client, int machine) {
+    char buf[4096];
+    while (!stop_) {
+      if (frozen_) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        continue;
+      }
+      pollfd p[2] = {{client, POLLIN, 0}, {machine, POLLIN, 0}};
+      if (::poll(p, 2, 20) <= 0) continue;
+      for (int i = 0; i < 2; ++i) {
+        if (!(p[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
+        const ssize_t n = ::read(p[i].fd, buf, sizeof buf);
+        if (n <= 0 || ::write(p[1 - i].fd, buf, n) != n) return;
+      }
+    }
+  }
+  uint16_t to_, port_ = 0;
+  int listen_ = -1;
+  std::atomic<bool> frozen_{false}, stop_{false};
+  std::thread thread_;
+};
+
+TEST(ServerLinkCut, AJobWhoseLinkFreezesFor3sCompletesCuttingTheSamePath) {
+  test::TempDir dir;
+  SimRig sim(true);  // real time: the machine cuts on while the link is frozen
+  FreezingProxy proxy(sim.port());
+  // The sender gives the link up after 10 s without a reply, as by default.
+  ServerRig server(dir.path(), {test::machine("m1", proxy.address())}, 256 * 1024, {},
+                   std::chrono::milliseconds(10000));
+  const int64_t id = server.upload_ok("multi.ngc", test::squares_gcode(3, 8), "&feed_mm_s=10");
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const nlohmann::json p = server.running(id);
+        return p.is_object() && p["executed"].get<int>() * 2 >= p["total"].get<int>() &&
+               p["executed"].get<int>() > 0;
+      },
+      30));
+  proxy.freeze(true);
+  std::this_thread::sleep_for(std::chrono::milliseconds(3000));
+  proxy.freeze(false);
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const std::string s = server.job(id)["state"];
+        return s != "running" && s != "queued";
+      },
+      60));
+  const nlohmann::json j = server.job(id);
+  ASSERT_EQ(j["state"], "completed") << j.dump();
+  auto log = server.client().Get(fmt::format("/api/jobs/{}/files/machine.log", id).c_str());
+  ASSERT_TRUE(log && log->status == 200);
+  EXPECT_NE(log->body.find("link watchdog: the controller heard nothing for 2 s"),
+            std::string::npos)
+      << log->body;
+
+  // The cut path is the uncut run's.
+  const std::optional<JobRecord> rec = server.store().get(id);
+  ASSERT_TRUE(rec);
+  const MachineSpec spec = test::machine("m", "");
+  const JobPlan plan =
+      plan_file((server.data().job_dir(rec->key) / rec->input_file).string(), rec->name,
+                rec->settings, spec.fit.work_width_mm, spec.fit.work_height_mm);
+  sim::SimJobOptions so;
+  so.encode = encode_options(*rec);
+  const sim::SimJobResult ref = sim::run_sim_job(plan, so);
+  ASSERT_EQ(ref.outcome, JobOutcome::kCompleted) << ref.message;
+  const host::test::CutPath reference = host::test::cut_path(ref.trace, plan);
+  const host::test::CutPath got = host::test::cut_path(sim.machine().trace(), plan);
+  const double off_mm = host::test::max_distance_mm(got, reference);
+  std::printf("link frozen 3 s: cut %.4f mm (uncut %.4f mm), farthest off %.4f mm\n", got.length_mm,
+              reference.length_mm, off_mm);
+  EXPECT_LT(off_mm, 0.010);
+  EXPECT_LT(host::test::max_distance_mm(reference, got), 0.010);
+  EXPECT_NEAR(got.length_mm, reference.length_mm, 0.02);
+}
+
+}  // namespace
+}  // namespace host::server
