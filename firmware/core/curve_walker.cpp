@@ -240,7 +240,6 @@ StepSettings default_step_settings() {
 CurveWalker::CurveWalker() {
   memset(static_cast<void*>(this), 0, sizeof *this);
   settings_ = default_step_settings();
-  tol_um_ = kDefaultChordToleranceUm;
   last_dir_.dx = 1;
 }
 
@@ -262,10 +261,10 @@ GeometryError CurveWalker::begin(const Spline* spline, const StepSettings& setti
   if (settings.tool_offset_um > kMaxToolOffsetUm || settings.tool_offset_um < -kMaxToolOffsetUm) {
     return error_ = GeometryError::kOffsetTooLarge;
   }
-  tol_um_ = settings.chord_tolerance_um;
   // Adaptive thresholds 0.9 and 0.7 tol in q6 (< 2^20), once here, not per step.
-  accept_q6_ = (uint32_t)tol_um_ * 64 * 9 / 10;
-  target_q6_ = (uint32_t)tol_um_ * 64 * 7 / 10;
+  const uint32_t tol_q6 = (uint32_t)settings.chord_tolerance_um * 64;
+  accept_q6_ = tol_q6 * 9 / 10;
+  target_q6_ = tol_q6 * 7 / 10;
   phase_ = kStart;
   return error_;
 }
@@ -438,7 +437,7 @@ bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direc
   const int32_t cross_q30 = n1.x_q15 * n2.y_q15 - n1.y_q15 * n2.x_q15;
   const int32_t dot_q30 = n1.x_q15 * n2.x_q15 + n1.y_q15 * n2.y_q15;
   const int32_t r_abs = (int32_t)abs_u32(r);  // <= kMaxToolOffsetUm
-  if (dot_q30 > 0 && smooth_turn(r_abs, cross_q30, tol_um_)) {
+  if (dot_q30 > 0 && smooth_turn(r_abs, cross_q30, settings_.chord_tolerance_um)) {
     return emit_checked(at, offset_point(at, n2), out);
   }
   // Turning left (cross > 0) puts a left offset (R > 0) on the inside: concave. An exact
@@ -454,7 +453,7 @@ bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direc
     return emit_checked(at, m, out);
   }
   // Convex: an arc of radius |R| about the corner from n1 to n2.
-  arc_.begin(at, n1, n2, dot_q30<0, r> 0, (uint32_t)r_abs, tol_um_);
+  arc_.begin(at, n1, n2, dot_q30<0, r> 0, (uint32_t)r_abs, settings_.chord_tolerance_um);
   return emit_checked(at, offset_point(at, n1), out);
 }
 

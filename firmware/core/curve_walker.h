@@ -95,7 +95,6 @@ class CurveWalker {
   uint16_t span_;
   uint32_t t_q16_;      // current parameter in the span, 0..65536
   uint32_t h_q16_;      // adaptive: step that worked last
-  uint16_t tol_um_;     // chord tolerance (adaptive steps and corner arcs)
   uint32_t accept_q6_;  // adaptive: a trial step is accepted at chord error <= 0.9 tol
   uint32_t target_q6_;  // adaptive: the next step aims at 0.7 tol
   PointQ6 step_point_;  // adaptive: path point at the accepted step (no second evaluation)
