@@ -25,11 +25,17 @@ int16_t quarter_toward_zero(int32_t v) {
   return v < 0 ? (int16_t) - (int16_t)(abs_u32(v) >> 2) : (int16_t)(v >> 2);
 }
 
-// No 64-bit arithmetic: DIV.UD on the dsPIC.
+// No 64-bit arithmetic: DIV.UD on the dsPIC. The left normal (-dy, dx) made unit, its two
+// components through one loop (written out per component: 0.1 kB more on the AVR proxy).
 UnitQ15 left_unit_normal(const Direction& d) {
+  const int32_t comp[2] = {-(int32_t)d.dy, d.dx};
+  uint16_t mag[2];
+  uint32_t s = 0;  // < 2^31
+  for (uint8_t i = 0; i < 2; ++i) {
+    mag[i] = (uint16_t)abs_u32(comp[i]);
+    s += mul_u16_u16(mag[i], mag[i]);
+  }
   UnitQ15 u;
-  const uint32_t s = mul_u16_u16((uint16_t)abs_u32(d.dx), (uint16_t)abs_u32(d.dx)) +
-                     mul_u16_u16((uint16_t)abs_u32(d.dy), (uint16_t)abs_u32(d.dy));  // < 2^31
   if (s == 0) {
     u.x_q15 = 0;
     u.y_q15 = 32767;
@@ -45,12 +51,15 @@ UnitQ15 left_unit_normal(const Direction& d) {
   }
   const uint16_t len = isqrt32(s4);  // in [2^15, 2^16)
   // component * 2^(15 + pre) / len: the Q15 value, a 32/16 division with a quotient
-  // <= 2^15 (component <= |d|) and a dividend <= len * 2^15 < 2^31.
+  // <= 2^15 (component <= |d|) and a dividend <= len * 2^15 < 2^31; truncated toward zero.
   const uint8_t up = (uint8_t)(15 + pre);
-  const uint16_t ux = div_u32_u16(abs_u32(d.dy) << up, len, 0);
-  const uint16_t uy = div_u32_u16(abs_u32(d.dx) << up, len, 0);
-  u.x_q15 = d.dy > 0 ? -(int32_t)ux : (int32_t)ux;  // -dy / |d|, truncated toward zero
-  u.y_q15 = d.dx < 0 ? -(int32_t)uy : (int32_t)uy;
+  int32_t q[2];
+  for (uint8_t i = 0; i < 2; ++i) {
+    const int32_t v = div_u32_u16((uint32_t)mag[i] << up, len, 0);
+    q[i] = comp[i] < 0 ? -v : v;
+  }
+  u.x_q15 = q[0];
+  u.y_q15 = q[1];
   return u;
 }
 

@@ -1,4 +1,4 @@
-// Point generator engine: uniform or chord-adaptive parameter steps along a validated
+// Point generator engine: chord-adaptive parameter steps along a validated
 // spline, tool-radius offset along the normal, corner arcs and miters, stop on overcut.
 #include "firmware/core/curve_walker.h"
 
@@ -229,7 +229,6 @@ bool dot_negative(int32_t ax, int32_t ay, int32_t bx, int32_t by) {
 StepSettings default_step_settings() {
   StepSettings s;
   s.mode = StepMode::kAdaptive;
-  s.steps_per_span = 16;
   s.chord_tolerance_um = kDefaultChordToleranceUm;
   s.tool_offset_um = 0;
   return s;
@@ -241,7 +240,6 @@ StepSettings default_step_settings() {
 CurveWalker::CurveWalker() {
   memset(static_cast<void*>(this), 0, sizeof *this);
   settings_ = default_step_settings();
-  tol_um_ = kDefaultChordToleranceUm;
   last_dir_.dx = 1;
 }
 
@@ -256,24 +254,17 @@ GeometryError CurveWalker::begin(const Spline* spline, const StepSettings& setti
   if (spline == 0) return error_ = GeometryError::kKnotRangeEmpty;
   error_ = validate_spline(*spline);
   if (error_ != GeometryError::kOk) return error_;
-  if (settings.mode == StepMode::kUniform && settings.steps_per_span == 0) {
-    return error_ = GeometryError::kToleranceInvalid;
-  }
-  if (settings.mode != StepMode::kUniform && settings.mode != StepMode::kAdaptive) {
-    return error_ = GeometryError::kToleranceInvalid;
-  }
-  if (settings.mode == StepMode::kAdaptive &&
-      (settings.chord_tolerance_um == 0 || settings.chord_tolerance_um > 10000)) {
+  if (settings.mode != StepMode::kAdaptive || settings.chord_tolerance_um == 0 ||
+      settings.chord_tolerance_um > 10000) {
     return error_ = GeometryError::kToleranceInvalid;
   }
   if (settings.tool_offset_um > kMaxToolOffsetUm || settings.tool_offset_um < -kMaxToolOffsetUm) {
     return error_ = GeometryError::kOffsetTooLarge;
   }
-  tol_um_ = settings.chord_tolerance_um;
-  if (tol_um_ == 0 || tol_um_ > 10000) tol_um_ = kDefaultChordToleranceUm;
   // Adaptive thresholds 0.9 and 0.7 tol in q6 (< 2^20), once here, not per step.
-  accept_q6_ = (uint32_t)tol_um_ * 64 * 9 / 10;
-  target_q6_ = (uint32_t)tol_um_ * 64 * 7 / 10;
+  const uint32_t tol_q6 = (uint32_t)settings.chord_tolerance_um * 64;
+  accept_q6_ = tol_q6 * 9 / 10;
+  target_q6_ = tol_q6 * 7 / 10;
   phase_ = kStart;
   return error_;
 }
@@ -303,7 +294,6 @@ bool CurveWalker::enter_span(uint16_t span) {
   if (e != GeometryError::kOk) return fail(e);
   span_ = span;
   t_q16_ = 0;
-  step_index_ = 0;
   h_q16_ = kUq16One;  // a new span may be much flatter than the last: try it whole first
   return true;
 }
@@ -317,31 +307,13 @@ bool CurveWalker::fail(GeometryError e) {
   return false;
 }
 
-// Next parameter of the uniform mode: k * 65536 / steps_per_span.
-// A 32/16 division (the quotient < 2^16 before the span end).
-uint32_t CurveWalker::uniform_next() const {
-  const uint16_t k = (uint16_t)(step_index_ + 1);
-  if (k >= settings_.steps_per_span) return kUq16One;
-  return div_u32_u16((uint32_t)k << 16, settings_.steps_per_span, 0);
-}
-
 // Emits the next point inside the span, or handles the span's end.
 // Always inline: next() is its one caller (-64 B on the AVR proxy).
 inline __attribute__((always_inline)) bool CurveWalker::step_in_span(PointUm* out) {
-  if (settings_.mode != StepMode::kUniform) {
-    const uint32_t t_next = adaptive_next();
-    if (t_next >= kUq16One) return joint(out);
-    t_q16_ = t_next;
-    ++step_index_;
-    return emit_checked(step_base_, step_point_, out);  // the accepted trial's end
-  }
-  const uint32_t t_next = uniform_next();
+  const uint32_t t_next = adaptive_next();
   if (t_next >= kUq16One) return joint(out);
   t_q16_ = t_next;
-  ++step_index_;
-  Direction d;
-  const PointQ6 p = path_point(t_next, &d);
-  return emit_checked(path_base_, p, out);
+  return emit_checked(step_base_, step_point_, out);  // the accepted trial's end
 }
 
 // Chord-adaptive step: the longest step (within the span) whose path points at 1/4, 1/2
@@ -465,7 +437,7 @@ bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direc
   const int32_t cross_q30 = n1.x_q15 * n2.y_q15 - n1.y_q15 * n2.x_q15;
   const int32_t dot_q30 = n1.x_q15 * n2.x_q15 + n1.y_q15 * n2.y_q15;
   const int32_t r_abs = (int32_t)abs_u32(r);  // <= kMaxToolOffsetUm
-  if (dot_q30 > 0 && smooth_turn(r_abs, cross_q30, tol_um_)) {
+  if (dot_q30 > 0 && smooth_turn(r_abs, cross_q30, settings_.chord_tolerance_um)) {
     return emit_checked(at, offset_point(at, n2), out);
   }
   // Turning left (cross > 0) puts a left offset (R > 0) on the inside: concave. An exact
@@ -481,7 +453,7 @@ bool CurveWalker::corner(const PointQ6& at, const Direction& in_dir, const Direc
     return emit_checked(at, m, out);
   }
   // Convex: an arc of radius |R| about the corner from n1 to n2.
-  arc_.begin(at, n1, n2, dot_q30<0, r> 0, (uint32_t)r_abs, tol_um_);
+  arc_.begin(at, n1, n2, dot_q30<0, r> 0, (uint32_t)r_abs, settings_.chord_tolerance_um);
   return emit_checked(at, offset_point(at, n1), out);
 }
 

@@ -1,5 +1,5 @@
 // Point generator engine: walks a spline span by span and emits points (optionally offset
-// by the tool radius) with uniform or chord-tolerance-adaptive parameter steps.
+// by the tool radius) with chord-tolerance-adaptive parameter steps.
 #ifndef FIRMWARE_CORE_CURVE_WALKER_H
 #define FIRMWARE_CORE_CURVE_WALKER_H
 
@@ -12,7 +12,9 @@
 
 namespace core {
 
-enum class StepMode : uint8_t { kUniform = 0, kAdaptive = 1 };
+// The one step mode (a uniform mode, N points per span, had no user: no wire message
+// selects it; gone with the flash budget). Any other value is refused by begin().
+enum class StepMode : uint8_t { kAdaptive = 1 };
 
 // Default chord tolerance of the adaptive mode, micrometres.
 static const uint16_t kDefaultChordToleranceUm = 5;
@@ -21,13 +23,12 @@ static const int32_t kMaxToolOffsetUm = 100000L;
 
 struct StepSettings {
   StepMode mode;
-  uint16_t steps_per_span;      // kUniform: points per knot span (the original #U), >= 1
-  uint16_t chord_tolerance_um;  // kAdaptive: max chord error (default 5), 1..10000;
-                                // both modes: chord error of corner arcs
+  uint16_t chord_tolerance_um;  // max chord error (default 5), 1..10000, of the steps and
+                                // of corner arcs
   int32_t tool_offset_um;       // > 0 left of travel, < 0 right, 0 none
 };
 
-// Settings with the defaults: adaptive, 5 um, no offset (steps_per_span 16 for uniform).
+// Settings with the defaults: adaptive, 5 um, no offset.
 StepSettings default_step_settings();
 
 // Usage: begin(); then next() until it returns false; then error() says whether the curve
@@ -41,8 +42,8 @@ StepSettings default_step_settings();
 // R > 0). Corners (a tangent discontinuity at a knot, e.g. multiplicity = degree):
 //   - turning away from the offset side (convex for the tool): the tool goes round the
 //     corner on an arc of radius |R| about the corner point, points spaced so that the
-//     arc's chord error stays within chord_tolerance_um (also in uniform mode; 5 um if
-//     it is 0 or over 10 mm there); an exact reversal goes round the end on a half circle;
+//     arc's chord error stays within chord_tolerance_um; an exact reversal goes round the end on a
+//     half circle;
 //   - turning toward the offset side (concave): one point at the intersection of the two
 //     offset tangent lines (the miter point) replaces the two offset ends; if the turn is
 //     sharper than about 150 degrees the miter would run away and the curve walker stops with
@@ -76,7 +77,6 @@ class CurveWalker {
   bool joint(PointUm* out);
   bool corner(const PointQ6& at, const Direction& in_dir, const Direction& out_dir, PointUm* out);
   bool arc_point(PointUm* out);
-  uint32_t uniform_next() const;
   uint32_t adaptive_next();
   uint32_t trial_error(uint32_t step, uint8_t parts_log2);
   uint32_t sampled_error(const Chord& chord, uint32_t step, uint8_t parts_log2);
@@ -93,18 +93,16 @@ class CurveWalker {
   Phase phase_;
   GeometryError error_;
   uint16_t span_;
-  uint16_t step_index_;  // uniform: points emitted in this span
-  uint32_t t_q16_;       // current parameter in the span, 0..65536
-  uint32_t h_q16_;       // adaptive: step that worked last
-  uint16_t tol_um_;      // chord tolerance (adaptive steps and corner arcs)
-  uint32_t accept_q6_;   // adaptive: a trial step is accepted at chord error <= 0.9 tol
-  uint32_t target_q6_;   // adaptive: the next step aims at 0.7 tol
-  PointQ6 step_point_;   // adaptive: path point at the accepted step (no second evaluation)
-  PointQ6 step_base_;    // adaptive: the curve point it was offset from
-  PointQ6 path_base_;    // curve point of the last path_point() call
-  Direction last_dir_;   // last non-zero direction (fallback at cusps)
-  PointQ6 last_out_;     // last emitted point, before rounding
-  PointQ6 last_base_;    // curve point it was offset from
+  uint32_t t_q16_;      // current parameter in the span, 0..65536
+  uint32_t h_q16_;      // adaptive: step that worked last
+  uint32_t accept_q6_;  // adaptive: a trial step is accepted at chord error <= 0.9 tol
+  uint32_t target_q6_;  // adaptive: the next step aims at 0.7 tol
+  PointQ6 step_point_;  // adaptive: path point at the accepted step (no second evaluation)
+  PointQ6 step_base_;   // adaptive: the curve point it was offset from
+  PointQ6 path_base_;   // curve point of the last path_point() call
+  Direction last_dir_;  // last non-zero direction (fallback at cusps)
+  PointQ6 last_out_;    // last emitted point, before rounding
+  PointQ6 last_base_;   // curve point it was offset from
   // Pending second point of a discontinuous joint.
   bool pending_;
   PointQ6 pending_point_;

@@ -23,21 +23,6 @@ uint16_t div_u32_u16(uint32_t n, uint16_t d, uint16_t* rem) {
 #endif
 }
 
-uint16_t div_u32_u16_small(uint32_t n, uint16_t d, uint8_t bits) {
-#if defined(__XC16__) || defined(__C30__)
-  (void)bits;
-  return __builtin_divud(n, d);
-#elif !defined(__AVR__)
-  (void)bits;
-  return (uint16_t)(n / d);  // hosts divide in hardware
-#else
-  // Pre-aligned: n << (16 - bits) still fits 32 bits (n < d 2^bits <= 2^(16 + bits)), its
-  // top half stays below d, and its low 16 - bits bits are zero, so after `bits` steps the
-  // low half holds the quotient alone.
-  return (uint16_t)shift_subtract_divide(n << (16 - bits), d, bits);
-#endif
-}
-
 uint32_t div_u32_by_u16(uint32_t n, uint16_t d, uint16_t* rem) {
   if (d == 0) {
     if (rem) *rem = 0;

@@ -15,10 +15,6 @@ namespace core {
 // the dsPIC, a 16-step shift-and-subtract on 16-bit halves elsewhere. rem may be null.
 uint16_t div_u32_u16(uint32_t n, uint16_t d, uint16_t* rem);
 
-// floor(n / d) for n < d * 2^bits, bits in 1..16: the quotient has at most `bits` bits, so
-// the shift-and-subtract loop runs `bits` times only (DIV.UD on the dsPIC all the same).
-uint16_t div_u32_u16_small(uint32_t n, uint16_t d, uint8_t bits);
-
 // The restoring division that stands in for DIV.UD where there is no divider (the AVR
 // proxy): `steps` shift-and-subtract steps on acc = (remainder << 16) | dividend bits,
 // the remainder's high half below d on entry; returns (remainder << 16) | quotient bits.

@@ -58,8 +58,8 @@ inline uint16_t low_half(int32_t a) {
 // (a * b) >> 16 for a signed 32-bit value and an unsigned Q0.16 fraction, rounded toward
 // minus infinity. Exact (same result as a 64-bit product) but built from two 16x16
 // products: a = hi * 2^16 + lo, so a * b >> 16 = hi * b + (lo * b >> 16).
-// Never overflows: |result| <= |a|.
-inline int32_t mul_32x16_uq16(int32_t a, uq16_t b) {
+// Never overflows: |result| <= |a|. One out-of-line copy (noinline), like asr32 below.
+inline __attribute__((noinline)) int32_t mul_32x16_uq16(int32_t a, uq16_t b) {
   return mul_s16_u16(high_half(a), b) + (int32_t)(mul_u16_u16(low_half(a), b) >> 16);
 }
 

@@ -466,19 +466,20 @@ Direction SpanEvaluator::direction(uq16_t t) const {
     Direction z = {0, 0};
     return z;
   }
-  const int32_t px = derivative_at(cx_, t);  // q(6 - dir_shift_) um
-  const int32_t py = derivative_at(cy_, t);
-  if (!rational_) return scale_direction32(px, py);
+  const int32_t* const c[2] = {cx_, cy_};
+  int32_t p[2];  // q(6 - dir_shift_) um
+  for (uint8_t i = 0; i < 2; ++i) p[i] = derivative_at(c[i], t);
+  if (!rational_) return scale_direction32(p[0], p[1]);
   // P = N / W, P' ~ N' W - N W' (W > 0 leaves the direction unchanged).
   const int32_t w1 = derivative_at(cw_, t);
   const int32_t w = horner(cw_, degree_, t);
-  const int32_t nx = horner(cx_, degree_, t);
-  const int32_t ny = horner(cy_, degree_, t);
-  // px, py q(6-s); w q27; nx, ny q6; w1 q(27-s): both products in q(33-s) um, exact
-  // (held wide: no 64-bit multiply).
-  const Wide qx = wide_sub(mul_wide(px, w), mul_wide(nx, w1));
-  const Wide qy = wide_sub(mul_wide(py, w), mul_wide(ny, w1));
-  return scale_direction_wide(qx, qy);
+  // p q(6-s); w q27; n q6; w1 q(27-s): both products in q(33-s) um, exact (held wide: no
+  // 64-bit multiply). x and y through one loop: one copy of the wide products.
+  Wide q[2];
+  for (uint8_t i = 0; i < 2; ++i) {
+    q[i] = wide_sub(mul_wide(p[i], w), mul_wide(horner(c[i], degree_, t), w1));
+  }
+  return scale_direction_wide(q[0], q[1]);
 }
 
 // a2 = h^2 (c2 + 3 c3 t0), a3 = h^3 c3: 32x16 products. dir_shift_ 0 means

@@ -38,11 +38,22 @@ inline Run run(const core::Spline& s, const core::StepSettings& st, size_t max_p
   return r;
 }
 
-inline core::StepSettings uniform(int n) {
-  core::StepSettings st = core::default_step_settings();
-  st.mode = core::StepMode::kUniform;
-  st.steps_per_span = (uint16_t)n;
-  return st;
+// The reference curve at n points per non-empty span (t = k / n), rounded to whole
+// micrometres: uniform stepping, for comparison with the walker's adaptive steps.
+inline Run uniform_reference(const core::Spline& s, int n) {
+  Run r;
+  r.begin_error = r.end_error = core::GeometryError::kOk;
+  bool first = true;
+  for (int span = s.degree; span < s.control_count; ++span) {
+    if (s.knot[span + 1] <= s.knot[span]) continue;
+    for (int k = first ? 0 : 1; k <= n; ++k) {
+      const double t = (double)k / n;
+      const Eigen::Vector2d q = reference::span_point(s, span, t);
+      r.points.push_back({{(int32_t)std::lround(q.x()), (int32_t)std::lround(q.y())}, span, t});
+    }
+    first = false;
+  }
+  return r;
 }
 
 inline core::StepSettings adaptive(int tol_um, int offset_um = 0) {

@@ -49,18 +49,6 @@ TEST(Divide, ShiftSubtractLoopGivesQuotientAndRemainder) {
   }
 }
 
-TEST(Divide, ShortQuotientDivisionEqualsTheExactQuotient) {
-  std::mt19937 rng(15);
-  for (int i = 0; i < 300000; ++i) {
-    const uint8_t bits = (uint8_t)(1 + rng() % 16);
-    uint16_t d = (uint16_t)rng();
-    if (d == 0) d = 1;
-    const uint64_t top = ((uint64_t)d << bits) - 1;  // n < d * 2^bits
-    const uint32_t n = (i % 3 == 0) ? (uint32_t)top : (uint32_t)(rng() % (top + 1));
-    ASSERT_EQ(core::div_u32_u16_small(n, d, bits), n / d) << n << " / " << d << ", " << +bits;
-  }
-}
-
 TEST(Divide, LongDivisionBy16BitsIsExactForEveryNumerator) {
   std::mt19937 rng(12);
   for (int i = 0; i < 300000; ++i) {

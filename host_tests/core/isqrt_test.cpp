@@ -42,34 +42,4 @@ TEST(Isqrt, MatchesTheDefinitionOnAMillionRandomInputs) {
   }
 }
 
-TEST(Isqrt, FromAGuessEqualsIsqrt32ForAnyGuess) {
-  // Near guesses take the Newton step, far ones fall back: the result is the same.
-  std::mt19937 rng(777);
-  for (int i = 0; i < 1000000; ++i) {
-    const uint32_t n = rng() >> (rng() % 32);
-    const uint16_t root = core::isqrt32(n);
-    uint16_t guess;
-    switch (i % 4) {
-      case 0:
-        guess = (uint16_t)rng();
-        break;  // anything
-      case 1:
-        guess = (uint16_t)(root + (int)(rng() % 9) - 4);
-        break;  // within 4
-      case 2:
-        guess = (uint16_t)(root + (int)(rng() % (root / 64 + 1)) - root / 128);
-        break;
-      default:
-        guess = (uint16_t)(root - root / 100);
-        break;  // 1 % low
-    }
-    ASSERT_EQ(core::isqrt32_from(n, guess), root) << "n=" << n << " guess=" << guess;
-  }
-  EXPECT_EQ(core::isqrt32_from(0xFFFFFFFFu, 65535), 65535u);
-  EXPECT_EQ(core::isqrt32_from(0xFFFFFFFFu, 65000), 65535u);
-  EXPECT_EQ(core::isqrt32_from(0, 0), 0u);
-  EXPECT_EQ(core::isqrt32_from(1, 1), 1u);
-  EXPECT_EQ(core::isqrt32_from(3, 2), 1u);
-}
-
 }  // namespace

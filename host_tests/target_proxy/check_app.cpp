@@ -12,7 +12,7 @@
 #include "firmware/app/vector3.h"          // normalise3, length3 (tick parts)
 #include "firmware/config/machine_config.h"
 #include "firmware/core/height_map.h"          // HeightMap
-#include "firmware/core/isqrt.h"               // isqrt32, isqrt32_from (tick parts)
+#include "firmware/core/isqrt.h"               // isqrt32 (tick parts)
 #include "firmware/protocol/codec.h"           // write_frame, decode_frame
 #include "firmware/protocol/compact_spline.h"  // put_compact_point, put_compact_knot
 #include "firmware/protocol/parser.h"          // Parser
@@ -348,7 +348,6 @@ void measure_tick_parts() {
   Series conv = {0xFFFFFFFFUL, 0, 0, 0};
   Series reach = {0xFFFFFFFFUL, 0, 0, 0};
   Series root = {0xFFFFFFFFUL, 0, 0, 0};
-  Series root_from = {0xFFFFFFFFUL, 0, 0, 0};
   uint32_t state = 0x2545F491UL;
   for (uint8_t k = 0; k < 32; ++k) {
     const uint32_t r = next_random(&state);
@@ -375,12 +374,7 @@ void measure_tick_parts() {
     const uint16_t l1 = core::isqrt32(sum_sq);
     b = cycles_now();
     series_add(&root, a, b);
-    const uint16_t guess = (uint16_t)(l1 - l1 / 1024U);  // 0.1 % low: a tick's typical seed
-    a = cycles_now();
-    const uint16_t l2 = core::isqrt32_from(sum_sq, guess);
-    b = cycles_now();
-    series_add(&root_from, a, b);
-    PROXY_CHECK_EQ(l1, l2);
+    PROXY_CHECK_EQ(l1, l);
     a = cycles_now();
     const int32_t us = app::um_to_usteps(g_scaling, 0, um);
     b = cycles_now();
@@ -394,7 +388,6 @@ void measure_tick_parts() {
   series_print(PROXY_STR("tick part normalise3"), norm);
   series_print(PROXY_STR("tick part length3 (isqrt32)"), len);
   series_print(PROXY_STR("tick part isqrt32 alone"), root);
-  series_print(PROXY_STR("tick part isqrt32_from (guess 0.1 % low: one Newton step)"), root_from);
   series_print(PROXY_STR("tick part um_to_usteps (per axis, on taking a target)"), conv);
   series_print(PROXY_STR("tick part reach_speed_capped_um_s"), reach);
 }

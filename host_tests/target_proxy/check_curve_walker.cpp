@@ -20,7 +20,6 @@ namespace {
 void check_run(const StepRef& ref) {
   core::StepSettings settings = core::default_step_settings();
   settings.mode = (core::StepMode)ref.mode;
-  settings.steps_per_span = ref.steps_per_span;
   settings.chord_tolerance_um = ref.chord_tolerance_um;
   settings.tool_offset_um = ref.tool_offset_um;
   static core::CurveWalker walker;  // static: keeps the stack small

@@ -225,27 +225,24 @@ int main(int argc, char** argv) {
   struct Run {
     size_t curve;
     core::StepMode mode;
-    uint16_t steps;
     uint16_t tolerance;
     int32_t offset;
   };
   std::vector<Run> runs;
   for (size_t c = 0; c < splines.size(); ++c) {
-    runs.push_back({c, core::StepMode::kUniform, 8, 5, 0});
     // Curve 1 spans metres: adaptive 5 um stepping gives ~150 000 points, too many for a
-    // quick simulator run; it is stepped uniformly only.
-    if (c != 1) runs.push_back({c, core::StepMode::kAdaptive, 16, 5, 0});
+    // quick simulator run; it is stepped at a 1 mm tolerance.
+    runs.push_back({c, core::StepMode::kAdaptive, (uint16_t)(c == 1 ? 1000 : 5), 0});
   }
-  runs.push_back({0, core::StepMode::kAdaptive, 16, 5, 500});
-  runs.push_back({5, core::StepMode::kAdaptive, 16, 5, -500});
-  runs.push_back({5, core::StepMode::kAdaptive, 16, 5, 500});
+  runs.push_back({0, core::StepMode::kAdaptive, 5, 500});
+  runs.push_back({5, core::StepMode::kAdaptive, 5, -500});
+  runs.push_back({5, core::StepMode::kAdaptive, 5, 500});
   out << "static const uint8_t kRefStepCount = " << runs.size() << ";\n";
   out << "static const StepRef kRefSteps[" << runs.size() << "] PROXY_ROM = {\n";
   for (const Run& run : runs) {
     const core::Spline& s = splines[run.curve];
     core::StepSettings settings = core::default_step_settings();
     settings.mode = run.mode;
-    settings.steps_per_span = run.steps;
     settings.chord_tolerance_um = run.tolerance;
     settings.tool_offset_um = run.offset;
     core::CurveWalker walker;
@@ -264,8 +261,8 @@ int main(int argc, char** argv) {
       last = to_um(eigen_point(s, s.knot[s.control_count]));
     }
     out << "  {" << run.curve << ", " << int(run.mode) << ", " << int(walker.error()) << ", "
-        << run.steps << ", " << run.tolerance << ", " << run.offset << "L, " << count << ", "
-        << hash << "UL, " << point_text(first) << ", " << point_text(last) << "},\n";
+        << run.tolerance << ", " << run.offset << "L, " << count << ", " << hash << "UL, "
+        << point_text(first) << ", " << point_text(last) << "},\n";
   }
   out << "};\n\n}  // namespace proxy\n\n#endif  // PROXY_REFERENCE_DATA_H\n";
   return out ? 0 : 1;

@@ -345,7 +345,6 @@ void run_measurements() {
   measure_stepping(core::StepMode::kAdaptive, 0, PROXY_STR("walker next(), adaptive 5 um"));
   measure_stepping(core::StepMode::kAdaptive, 500,
                    PROXY_STR("walker next(), adaptive 5 um, tool offset 0.5 mm"));
-  measure_stepping(core::StepMode::kUniform, 0, PROXY_STR("walker next(), uniform 16/span"));
   PROXY_PRINTF("memory sizeof Spline %u, SpanEvaluator %u, CurveWalker %u bytes\n",
                (unsigned)sizeof(core::Spline), (unsigned)sizeof(core::SpanEvaluator),
                (unsigned)sizeof(core::CurveWalker));

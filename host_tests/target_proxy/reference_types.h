@@ -25,7 +25,6 @@ struct StepRef {
   uint8_t curve;
   uint8_t mode;   // core::StepMode
   uint8_t error;  // core::GeometryError after the last point
-  uint16_t steps_per_span;
   uint16_t chord_tolerance_um;
   int32_t tool_offset_um;
   uint16_t count;

@@ -85,13 +85,12 @@ void BM_EigenDoublePoint(benchmark::State& state) {
 }
 BENCHMARK(BM_EigenDoublePoint)->Arg(0)->Arg(1)->ArgName("rational");
 
-// Whole walker, points per second (uniform 64 per span, or adaptive 5 um; offset 0 or
-// 500 um): includes span setups, trial evaluations and offset normals.
+// Whole walker, points per second (adaptive 5 or 50 um; offset 0 or 500 um): includes span
+// setups, trial evaluations and offset normals.
 void BM_CurveWalker(benchmark::State& state) {
   const core::Spline s = bench_spline(false);
   core::StepSettings st = core::default_step_settings();
-  st.mode = state.range(0) ? core::StepMode::kAdaptive : core::StepMode::kUniform;
-  st.steps_per_span = 64;
+  st.chord_tolerance_um = (uint16_t)state.range(0);
   st.tool_offset_um = (int32_t)state.range(1);
   int64_t points = 0;
   for (auto _ : state) {
@@ -106,11 +105,11 @@ void BM_CurveWalker(benchmark::State& state) {
   state.SetItemsProcessed(points);
 }
 BENCHMARK(BM_CurveWalker)
-    ->Args({0, 0})
-    ->Args({1, 0})
-    ->Args({0, 500})
-    ->Args({1, 500})
-    ->ArgNames({"adaptive", "offset_um"});
+    ->Args({5, 0})
+    ->Args({50, 0})
+    ->Args({5, 500})
+    ->Args({50, 500})
+    ->ArgNames({"tolerance_um", "offset_um"});
 
 }  // namespace
 
