@@ -160,8 +160,9 @@ class GerberReader {
                   double* sweep);
   bool zero_radius_arc(double r0, double r1);
   void region_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill);
-  void stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill);
-  void stroke_arc_with_shape(IntPoint from, const Path& pts, const Path* theirs_if_ill);
+  void stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill, const VecNm* centre);
+  void stroke_arc_with_shape(IntPoint from, const Path& pts, const Path* theirs_if_ill,
+                             const VecNm* centre);
   void flash(IntPoint at);
   const Aperture& current_aperture() const;
   void note_redefinition(int number_d, const Aperture& ap, const std::string& text);
@@ -1636,7 +1637,7 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
   if (region)
     region_arc(from, pts, ill_defined ? &at_start_radius : nullptr);
   else
-    stroke_arc(from, pts, ill_defined ? &at_start_radius : nullptr);
+    stroke_arc(from, pts, ill_defined ? &at_start_radius : nullptr, degenerate ? nullptr : &c);
 }
 
 // The arc's centre and sweep from its I, J: signed offsets (G75), or unsigned ones whose signs
@@ -1716,11 +1717,12 @@ void GerberReader::region_arc(IntPoint from, const Path& pts, const Path* theirs
 }
 
 // An arc stroked with the current (circular) aperture; for an ill-defined arc, copper where
-// either reading puts it.
-void GerberReader::stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill) {
+// either reading puts it. centre: the arc's (nullptr: a zero-radius arc, a straight line).
+void GerberReader::stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill,
+                              const VecNm* centre) {
   const Aperture& ap = current_aperture();
   if (ap.type == 'R' || ap.type == 'O') {
-    stroke_arc_with_shape(from, pts, theirs_if_ill);
+    stroke_arc_with_shape(from, pts, theirs_if_ill, centre);
     return;
   }
   if (ap.type != 'C') {
@@ -1747,8 +1749,8 @@ void GerberReader::stroke_arc(IntPoint from, const Path& pts, const Path* theirs
 // test-aperture-rectangle-1.gbx, -obround-1.gbx): drawn as gerbv draws it, a stroke as wide
 // as the aperture's X size with square (rectangle) or round (obround) ends; an ill-defined
 // arc, where either reading puts it.
-void GerberReader::stroke_arc_with_shape(IntPoint from, const Path& pts,
-                                         const Path* theirs_if_ill) {
+void GerberReader::stroke_arc_with_shape(IntPoint from, const Path& pts, const Path* theirs_if_ill,
+                                         const VecNm* centre) {
   const Aperture& ap = current_aperture();
   diag_.note(std::string("warning: an arc drawn with ") +
              (ap.type == 'R' ? "a rectangular" : "an obround") + " aperture D" +
@@ -1761,11 +1763,41 @@ void GerberReader::stroke_arc_with_shape(IntPoint from, const Path& pts,
   const double width_nm = ap.shape.empty() ? 0 : static_cast<double>(box.max_x - box.min_x);
   add_centre_line(from, pts, width_nm);
   if (width_nm <= 0) return;
-  const ClipperLib::EndType ends =
-      ap.type == 'R' ? ClipperLib::etOpenSquare : ClipperLib::etOpenRound;
+  // Square ends at right angles to the arc's own tangent, as cairo's square cap: the line runs
+  // on half the width along the tangent past each end, then ends butt. (Clipper's square end
+  // is square to the last chord, turned from the tangent by half the chord's angle: its
+  // corners stood out and in by up to width/2 x that angle, 5-10 um.)
+  const bool square = ap.type == 'R';
+  const auto past_end = [&](IntPoint end, IntPoint inner) {
+    double tx = static_cast<double>(end.X - inner.X), ty = static_cast<double>(end.Y - inner.Y);
+    if (centre) {  // the tangent, pointing the way the chord does
+      const double rx = end.X - centre->x, ry = end.Y - centre->y;
+      const double sign = (-ry * tx + rx * ty) < 0 ? -1 : 1;
+      tx = -ry * sign, ty = rx * sign;
+    }
+    const double len = std::hypot(tx, ty);
+    return IntPoint(end.X + static_cast<cInt>(std::llround(tx / len * width_nm / 2)),
+                    end.Y + static_cast<cInt>(std::llround(ty / len * width_nm / 2)));
+  };
   const auto stroke = [&](const Path& arc) {
     Path line{from};
     line.insert(line.end(), arc.begin(), arc.end());
+    bool squared = false;  // the ends run on along the tangent
+    if (square && line.size() >= 2) {
+      size_t k = 1;  // the first point apart from `from`, the last apart from the end
+      while (k + 1 < line.size() && line[k] == from) ++k;
+      size_t m = line.size() - 2;
+      while (m > 0 && line[m] == line.back()) --m;
+      if (line[k] != from && line[m] != line.back()) {
+        const IntPoint before = past_end(from, line[k]);
+        line.push_back(past_end(line.back(), line[m]));
+        line.insert(line.begin(), before);
+        squared = true;
+      }
+    }
+    const ClipperLib::EndType ends = squared  ? ClipperLib::etOpenButt
+                                     : square ? ClipperLib::etOpenSquare
+                                              : ClipperLib::etOpenRound;
     ClipperLib::ClipperOffset off;
     off.ArcTolerance = opt_.arc_tolerance_nm;
     off.AddPath(line, ClipperLib::jtRound, ends);

@@ -2,7 +2,9 @@
 // computed by hand from the files (comments give the arithmetic).
 #include <gtest/gtest.h>
 
-#include <cmath>  // M_PI, std::hypot
+#include <algorithm>  // std::max, std::min
+#include <cmath>      // M_PI, std::hypot
+#include <tuple>      // std::make_tuple
 
 #include "host/lib/pcb/gerber_macro.h"
 #include "host/lib/pcb/gerber_reader.h"
@@ -501,6 +503,53 @@ TEST(GerberReader, AnArcWithARectangleOrObroundIsDrawnAsGerbvDrawsIt) {
   EXPECT_FALSE(covered(obround, 10.9, -0.9));
   EXPECT_NEAR(area_mm2(obround.polygons_nm), kPi * (11 * 11 - 9 * 9) / 2 + kPi, 0.01);
   EXPECT_TRUE(has_note(obround, "an arc drawn with an obround aperture D10"));
+}
+
+// How far a half-annulus arc stroke of radius r_mm and width w_mm with square ends (the half
+// circle of arc_with: from (r, 0) counter-clockwise to (-r, 0)) lies from point (x, y): 0
+// inside. The square ends are w/2 long below the x axis, as cairo's square caps put them.
+double outside_square_ended_arc_mm(double r_mm, double w_mm, double x, double y) {
+  const double h = w_mm / 2;
+  const auto box = [](double x, double y, double x0, double y0, double x1, double y1) {
+    const double dx = std::max({x0 - x, 0.0, x - x1}), dy = std::max({y0 - y, 0.0, y - y1});
+    return std::hypot(dx, dy);
+  };
+  const double d_ends =
+      std::min(box(x, y, r_mm - h, -h, r_mm + h, 0), box(x, y, -r_mm - h, -h, -r_mm + h, 0));
+  if (y < 0) return d_ends;
+  const double r = std::hypot(x, y);
+  return std::min(d_ends, std::max({0.0, r - (r_mm + h), (r_mm - h) - r}));
+}
+
+// An arc with a rectangle ends in a square as wide as the stroke, at right angles to the
+// arc's own end tangent, as cairo's square cap in gerbv; it was square to the last chord,
+// turned by half the chord's angle: its outer corner stuck out up to w/2 x that angle
+// (10 um at r 10 mm, w 2 mm; 5 um on a small arc), copper gerbv does not draw.
+TEST(GerberReader, AnArcWithARectangleEndsSquareToItsTangent) {
+  for (const auto& [r_mm, ap, w_mm] :
+       {std::make_tuple(10.0, "R,2X1", 2.0), std::make_tuple(0.5, "R,0.25X0.25", 0.25),
+        std::make_tuple(2.0, "R,0.6X0.2", 0.6)}) {
+    const std::string r = std::to_string(static_cast<long>(r_mm * 1e6));
+    // The same half circle counter-clockwise from (r, 0) and clockwise from (-r, 0).
+    for (const std::string& arc : {"X" + r + "Y0D02*\nG03X-" + r + "Y0I-" + r + "J0D01*\n",
+                                   "X-" + r + "Y0D02*\nG02X" + r + "Y0I" + r + "J0D01*\n"}) {
+      const PcbLayer l = read_gerber_text(
+          "%FSLAX46Y46*%\n%MOMM*%\n%ADD10" + std::string(ap) + "*%\nD10*\nG75*\n" + arc + "M02*\n",
+          "arc-F.Cu.gbr");
+      double worst_mm = 0;
+      for (const auto& p : l.polygons_nm)
+        for (const auto& v : p)
+          worst_mm =
+              std::max(worst_mm, outside_square_ended_arc_mm(r_mm, w_mm, v.X * 1e-6, v.Y * 1e-6));
+      EXPECT_LT(worst_mm, 0.0005) << arc << ap;  // the 0.5 um chord tolerance
+      // Nothing less than the exact stroke: its corners and edges, 1 um inside.
+      const double h = w_mm / 2 - 0.001;
+      for (const auto& [x, y] : {std::make_pair(r_mm + h, -h), std::make_pair(r_mm - h, -h),
+                                 std::make_pair(-r_mm + h, -h), std::make_pair(-r_mm - h, -h),
+                                 std::make_pair(0.0, r_mm + h), std::make_pair(0.0, r_mm - h)})
+        EXPECT_TRUE(covered(l, x, y)) << arc << ap << " at (" << x << ", " << y << ")";
+    }
+  }
 }
 
 // A line drawn with an obround: gerbv strokes it as a circle of the obround's X size; copper

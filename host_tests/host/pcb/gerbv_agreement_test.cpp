@@ -76,6 +76,28 @@ TEST(GerbvIllDefinedArcs, GerbvsCopperIsInsideOurs) {
   EXPECT_EQ(gerbv_copper_we_miss(ours, ref), 0u);
 }
 
+// Half circles of radius 0.5 mm drawn with a 0.25 mm square (not allowed by the spec; gerbv
+// strokes them with square caps), compared at 10 000 dpi (2.54 um pixels): the ends were square to
+// the last chord, not to the arc, and their corners stood 5 um out and in (256 px beyond an edge;
+// now 0).
+TEST(GerbvRectangleArcs, SquareEndsMatchGerbvsAt10000Dpi) {
+  if (!test::gerbv_available()) GTEST_SKIP() << "gerbv not installed";
+  const std::string path = testing::TempDir() + "/rectangle_arcs.gbr";
+  std::ofstream(path) << "%FSLAX46Y46*%\n%MOMM*%\n%ADD10R,0.25X0.25*%\nD10*\nG75*\n"
+                         "X500000Y0D02*\nG03X-500000Y0I-500000J0D01*\n"
+                         "X1600000Y0D02*\nG02X3600000Y0I1000000J0D01*\nM02*\n";
+  const PcbLayer l = read_gerber_file(path);
+  const test::Window win = test::window_around(l, 0.05, 10000);
+  const test::Raster ours = test::rasterise(l.polygons_nm, win);
+  const test::Raster ref = test::gerbv_render(path, win);
+  ASSERT_GT(ref.count(), 100000u);
+  const test::Agreement a = test::compare(ours, ref);
+  std::printf("rectangle arcs: %zu of %zu copper px differ, %zu beyond an edge\n", a.mismatched,
+              a.dark_either, a.beyond_edge);
+  EXPECT_LE(a.beyond_edge, 8u);
+  std::remove(path.c_str());
+}
+
 INSTANTIATE_TEST_SUITE_P(OwnFiles, GerbvAgreement,
                          ::testing::Values("arcs_multi_quadrant.gbr", "arcs_single_quadrant.gbr",
                                            "macros.gbr", "polarity_clear.gbr", "step_repeat.gbr",
