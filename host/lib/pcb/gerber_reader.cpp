@@ -141,6 +141,8 @@ class GerberReader {
   void image_polarity(const std::string& arg);
   void mirror_image(const std::string& arg);
   void image_offset(const std::string& code, const std::string& arg);
+  void image_justify(const std::string& arg);
+  void justify_image(Paths* image, const BoxNm& drawn);
   void image_transform(const std::string& which, const char* what, bool identity);
   void transform_image(Paths& paths) const;
   void check_image_transforms(bool drawn);
@@ -211,11 +213,15 @@ PcbLayer GerberReader::read() {
     layer.polygons_nm = evaluate(drawn_.batches);
   }
   check_image_transforms(!layer.polygons_nm.empty());
+  BoxNm drawn;  // gerbv justifies by the image's extent as drawn, before its transforms
+  if (image_.justify)
+    for (const Path& p : layer.polygons_nm) drawn.add(p);
   if (image_.offset_x != 0 || image_.offset_y != 0)
     translate_paths(layer.polygons_nm, image_.offset_x, image_.offset_y);
   transform_image(layer.polygons_nm);
   if (image_.negative && layer.kind != LayerKind::kOutline && !layer.polygons_nm.empty())
     negative_image(&layer.polygons_nm);
+  justify_image(&layer.polygons_nm, drawn);
   if (drawn_.ill_defined_arcs > 0) {
     char msg[240];
     std::snprintf(msg, sizeof msg,
@@ -483,10 +489,7 @@ bool GerberReader::deprecated_parameter(const std::string& code, const std::stri
     if (arg.empty()) close_knockout();
     if (!arg.empty()) knockout(arg);
   } else if (code == "IJ") {
-    // Justify moves the image by its own extent against a film (platen) size the file does
-    // not give: ignored, the coordinates are taken as written (the other layers' frame).
-    diag_.note("warning: %IJ" + arg.substr(0, 20) +
-               " (deprecated image justify) ignored: coordinates as written");
+    image_justify(arg);
   } else if (code == "RO") {
     const double deg = diag_.number(arg, "layer rotation");
     if (!(std::fabs(deg) <= 360))
@@ -533,6 +536,52 @@ void GerberReader::mirror_image(const std::string& arg) {
   image_transform("%MI" + a, "mirror image", !image_.mirror_a && !image_.mirror_b);
   if (!image_.mirror_a && !image_.mirror_b)
     diag_.note("%MI without mirroring (deprecated) ignored");
+}
+
+// %IJ (image justify), as gerbv reads it: each axis L (lower left, the default), C (centre)
+// or an offset in the current units (the axis then lower left); "AC" is gerbv's centre.
+void GerberReader::image_justify(const std::string& arg) {
+  image_.justify_a = image_.justify_b = 'L';
+  image_.justify_offset_a_nm = image_.justify_offset_b_nm = 0;
+  size_t k = 0;
+  while (k < arg.size()) {
+    const char axis = arg[k++];
+    if ((axis != 'A' && axis != 'B') || k >= arg.size())
+      diag_.fail("image justify %IJ" + arg + ": expected A or B, then L, C or an offset");
+    char& type = axis == 'A' ? image_.justify_a : image_.justify_b;
+    if (arg[k] == 'L' || arg[k] == 'C') {
+      type = arg[k++];
+      continue;
+    }
+    const size_t end = end_of_number(arg, k);
+    const double v = diag_.number(arg.substr(k, end - k), "image justify offset");
+    if (v != 0) unit_.need(diag_, "%IJ");
+    (axis == 'A' ? image_.justify_offset_a_nm : image_.justify_offset_b_nm) = v * unit_.nm;
+    k = end;
+  }
+  image_.justify = true;
+  image_.justify_line = diag_.line;
+  image_.justify_text = "%IJ" + arg.substr(0, 20);
+}
+
+// %IJ applied to the finished image: gerbv moves it by -min (L) or by half its extent (C,
+// gerbv's reading: not onto the origin) of the drawn image's box, each axis, plus the offset.
+void GerberReader::justify_image(Paths* image, const BoxNm& drawn) {
+  if (!image_.justify || image->empty()) return;
+  const auto shift = [](char type, double min, double max, double offset) {
+    return (type == 'C' ? (max - min) / 2 : -min) + offset;
+  };
+  const double dx = shift(image_.justify_a, static_cast<double>(drawn.min_x),
+                          static_cast<double>(drawn.max_x), image_.justify_offset_a_nm);
+  const double dy = shift(image_.justify_b, static_cast<double>(drawn.min_y),
+                          static_cast<double>(drawn.max_y), image_.justify_offset_b_nm);
+  translate_paths(*image, static_cast<cInt>(std::llround(dx)), static_cast<cInt>(std::llround(dy)));
+  char msg[200];
+  std::snprintf(msg, sizeof msg,
+                " (deprecated image justify) applied as gerbv does: the image moved by %.3f, "
+                "%.3f mm",
+                dx * 1e-6, dy * 1e-6);
+  diag_.note_at("warning: " + image_.justify_text + msg, image_.justify_line);
 }
 
 // %OFA<a>B<b> (offset) and %IOA<a>B<b> (image offset): the image moved by a, b in the units

@@ -266,9 +266,8 @@ TEST(GerberLegacyParameters, MirrorRotationAndScaleAreApplied) {
 
 // The rest of the deprecated parameters (issue 24): %IO (image offset, current units) and %RO
 // (layer rotation, any angle) move the image and are applied, %KOC with a box clears it where
-// it stands (each as gerbv draws it: gerbv_agreement_test), %IJ (justify against a film size
-// the file does not give) is ignored with a warning: the coordinates as written.
-TEST(GerberLegacyParameters, ImageOffsetLayerRotationAndKnockoutAreAppliedJustifyIgnored) {
+// it stands (each as gerbv draws it: gerbv_agreement_test).
+TEST(GerberLegacyParameters, ImageOffsetLayerRotationAndKnockoutAreApplied) {
   const PcbLayer offset = legacy("%IOA-10B1*%\n");
   EXPECT_TRUE(covered(offset, 0, 6));
   EXPECT_FALSE(covered(offset, 10, 5));
@@ -286,9 +285,25 @@ TEST(GerberLegacyParameters, ImageOffsetLayerRotationAndKnockoutAreAppliedJustif
   EXPECT_NEAR(area_mm2(knocked.polygons_nm), 2.0 - 0.16, 1e-6);
   EXPECT_FALSE(covered(knocked, 9.7, 4.7));
   EXPECT_TRUE(has_note(knocked, "warning: %KOC box (deprecated knockout) applied"));
-  const PcbLayer justified = legacy("%IJALBC*%\n");
-  EXPECT_TRUE(covered(justified, 10, 5));
-  EXPECT_TRUE(has_note(justified, "warning: %IJALBC (deprecated image justify) ignored"));
+}
+
+// %IJ (image justify) as gerbv reads it (it was ignored, gerbv's test-image-justify-1 and -2
+// not matching its picture): the 1 mm pad at (10, 5), box x 9.5..10.5, y 4.5..5.5, moved by
+// -min on an L axis, by half the box (gerbv's centre) on a C axis, plus an axis's offset.
+TEST(GerberLegacyParameters, ImageJustifyMovesTheImageAsGerbvDoes) {
+  const PcbLayer lower_centre = legacy("%IJALBC*%\n");  // by (-9.5, 0.5): x 0..1, y 5..6
+  EXPECT_TRUE(covered(lower_centre, 0.1, 5.9));
+  EXPECT_FALSE(covered(lower_centre, 0.1, 4.9));
+  EXPECT_FALSE(covered(lower_centre, 10, 5));
+  EXPECT_TRUE(has_note(lower_centre,
+                       "line 3: warning: %IJALBC (deprecated image justify) applied as gerbv "
+                       "does: the image moved by -9.500, 0.500 mm"))
+      << ::testing::PrintToString(lower_centre.notes);
+  const PcbLayer offset = legacy("%IJB.5*%\n");  // A lower left, B 0.5 mm: by (-9.5, -4)
+  EXPECT_TRUE(covered(offset, 0.1, 0.6));
+  EXPECT_FALSE(covered(offset, 0.1, 0.4));
+  EXPECT_FALSE(covered(offset, 10, 5));
+  EXPECT_THROW(legacy("%IJX1*%\n"), PcbReadError);
 }
 
 // %IPNEG: what is drawn is clear, copper the rest of the image's extent (its bounding box, as
