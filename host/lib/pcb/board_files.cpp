@@ -2,6 +2,7 @@
 #include "host/lib/pcb/board_files.h"
 
 #include "host/lib/pcb/excellon_reader.h"
+#include "host/lib/pcb/gerber_include.h"
 #include "host/lib/pcb/gerber_reader.h"
 
 namespace host::pcb {
@@ -38,7 +39,10 @@ PcbLayer read_board_text(const std::string& text, const std::string& name, Layer
 }
 
 PcbLayer read_board_file(const std::string& path, LayerKind kind) {
-  return read_board_text(read_pcb_file_text(path), path, kind);
+  const std::string text = read_pcb_file_text(path);
+  if (board_file_format(path, text) != PcbFileFormat::kGerber)
+    return read_board_text(text, path, kind);
+  return read_board_text(expand_gerber_includes(text, path), path, kind);
 }
 
 bool BoardFileSet::add(PcbLayer layer) {

@@ -10,6 +10,7 @@
 #include <utility>        // std::pair
 #include <vector>         // std::vector
 
+#include "host/lib/pcb/gerber_include.h"
 #include "host/lib/pcb/gerber_macro.h"
 #include "host/lib/pcb/gerber_outline.h"
 #include "host/lib/pcb/gerber_reader_state.h"
@@ -418,7 +419,11 @@ void GerberReader::extended_command(const std::string& cmd) {
   if (cmd.size() < 2) diag_.fail("unknown extended command '%" + cmd + "'");
   const std::string code = cmd.substr(0, 2);
   const std::string arg = cmd.substr(2);
-  if (code == "FS") {
+  if (code == "IF") {  // read_gerber_file put a file's includes in place (gerber_include.h)
+    diag_.fail(
+        "include file %IF" + arg.substr(0, 40) +
+        ": an include is read only from a file on disk, from its folder (not from an upload)");
+  } else if (code == "FS") {
     format_spec(arg);
   } else if (code == "MO") {
     if (arg != "MM" && arg != "IN") diag_.fail("unit '" + arg + "' is neither MM nor IN");
@@ -1903,7 +1908,7 @@ PcbLayer read_gerber_text(const std::string& text, const std::string& path,
 }
 
 PcbLayer read_gerber_file(const std::string& path, const GerberOptions& options) {
-  return read_gerber_text(read_pcb_file_text(path), path, options);
+  return read_gerber_text(expand_gerber_includes(read_pcb_file_text(path), path), path, options);
 }
 
 }  // namespace host::pcb

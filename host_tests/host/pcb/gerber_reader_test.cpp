@@ -2,9 +2,13 @@
 // computed by hand from the files (comments give the arithmetic).
 #include <gtest/gtest.h>
 
-#include <algorithm>  // std::max, std::min
-#include <cmath>      // M_PI, std::hypot
-#include <tuple>      // std::make_tuple
+#include <unistd.h>  // getpid
+
+#include <algorithm>   // std::max, std::min
+#include <cmath>       // M_PI, std::hypot
+#include <filesystem>  // std::filesystem
+#include <fstream>     // std::ofstream
+#include <tuple>       // std::make_tuple
 
 #include "host/lib/pcb/gerber_macro.h"
 #include "host/lib/pcb/gerber_reader.h"
@@ -304,6 +308,40 @@ TEST(GerberLegacyParameters, ImageJustifyMovesTheImageAsGerbvDoes) {
   EXPECT_FALSE(covered(offset, 0.1, 0.4));
   EXPECT_FALSE(covered(offset, 10, 5));
   EXPECT_THROW(legacy("%IJX1*%\n"), PcbReadError);
+}
+
+// %IF (include file) as gerbv reads it (refused before: "unknown extended command"; gerbv's
+// test-include-file-1.gbx): the named file's blocks in place, from the including file's
+// folder; its line ends left out, so the including file's line numbers stay true.
+TEST(GerberLegacyParameters, AnIncludeFileIsReadInPlaceFromTheFilesFolder) {
+  const std::string dir = testing::TempDir() + "/include-" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir + "/parts");
+  std::ofstream(dir + "/parts/cross.gbx") << "X-1000000Y0D02*\nD10*\nX1000000Y0D01*\n";
+  std::ofstream(dir + "/main-F.Cu.gbr")
+      << "%FSLAX46Y46*%\n%MOMM*%\n%ADD10C,0.2*%\n%IFparts/cross.gbx*%\nX0Y-1000000D02*\n"
+         "X0Y1000000D01*\nM02*\n";
+  const PcbLayer l = read_gerber_file(dir + "/main-F.Cu.gbr");
+  EXPECT_TRUE(covered(l, -0.9, 0));  // the included stroke
+  EXPECT_TRUE(covered(l, 0, 0.9));   // the file's own, after it
+  // Two 2 x 0.2 mm strokes with round ends crossing in a 0.2 mm square.
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 2 * (2 * 0.2 + kPi * 0.01) - 0.04, 0.001);
+  // A missing include names the %IF line; text in memory (an upload) cannot include.
+  std::ofstream(dir + "/missing.gbr") << "%FSLAX46Y46*%\n%MOMM*%\n\n%IFnone.gbx*%\nM02*\n";
+  try {
+    read_gerber_file(dir + "/missing.gbr");
+    ADD_FAILURE() << "a missing include read";
+  } catch (const PcbReadError& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.gbr:4: include file %IFnone.gbx: "),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(read_gerber_file(dir + "/up.gbr"), PcbReadError);
+  std::ofstream(dir + "/up.gbr") << "%FSLAX46Y46*%\n%MOMM*%\n%IF../x.gbx*%\nM02*\n";
+  EXPECT_THROW(read_gerber_file(dir + "/up.gbr"), PcbReadError);
+  EXPECT_THROW(
+      read_gerber_text("%FSLAX46Y46*%\n%MOMM*%\n%IFparts/cross.gbx*%\nM02*\n", dir + "/upload.gbr"),
+      PcbReadError);
+  std::filesystem::remove_all(dir);
 }
 
 // %IPNEG: what is drawn is clear, copper the rest of the image's extent (its bounding box, as
