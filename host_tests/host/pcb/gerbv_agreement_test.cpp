@@ -116,6 +116,32 @@ TEST(GerbvRender, AWindowOfAnyWholeNumberOfPixels) {
   std::remove(path.c_str());
 }
 
+// gerbv draws a zero-width stroke (no copper) one pixel wide: the corpus compares with such
+// strokes drawn so in our picture too (pcb-tools' zero-width board outlines and circles
+// differed by every pixel of them).
+TEST(GerbvRender, StrokesThinnerThanAPixelAreOnePixelWideAsGerbvDrawsThem) {
+  if (!test::gerbv_available()) GTEST_SKIP() << "gerbv not installed";
+  const std::string path = testing::TempDir() + "/hairlines.gbr";
+  std::ofstream(path) << "%FSLAX46Y46*%\n%MOMM*%\n%ADD10C,1*%\n%ADD11C,0*%\nD10*\n"
+                         "X0Y0D03*\nD11*\nX2000000Y0D02*\nX2000000Y3000000D01*\n"
+                         "X5000000Y3000000D01*\nM02*\n";
+  const PcbLayer copper = read_gerber_file(path);
+  GerberOptions as_strokes;
+  as_strokes.forced_kind = LayerKind::kOutline;
+  const PcbLayer strokes = read_gerber_file(path, as_strokes);
+  const test::Window win = test::window_around(strokes, 0.5, 2000);
+  const test::Raster ref = test::gerbv_render(path, win);
+  const test::Agreement bare = test::compare(test::rasterise(copper.polygons_nm, win), ref);
+  EXPECT_GT(bare.beyond_edge, bare.dark_either / 2000);  // the lines are all gerbv's
+  ClipperLib::Paths both = copper.polygons_nm;
+  const ClipperLib::Paths hair = test::hairlines(strokes, win.pixel_mm);
+  EXPECT_EQ(hair.size(), 1u);  // the zero-width line, not the 1 mm flash
+  both.insert(both.end(), hair.begin(), hair.end());
+  const test::Agreement drawn = test::compare(test::rasterise(both, win), ref);
+  EXPECT_LE(drawn.beyond_edge, drawn.dark_either / 2000);
+  std::remove(path.c_str());
+}
+
 INSTANTIATE_TEST_SUITE_P(OwnFiles, GerbvAgreement,
                          ::testing::Values("arcs_multi_quadrant.gbr", "arcs_single_quadrant.gbr",
                                            "macros.gbr", "polarity_clear.gbr", "step_repeat.gbr",

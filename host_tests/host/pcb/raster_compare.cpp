@@ -122,6 +122,17 @@ ClipperLib::Paths drill_shapes(const PcbLayer& layer) {
   return out;
 }
 
+ClipperLib::Paths hairlines(const PcbLayer& strokes, double pixel_mm) {
+  const double pixel_nm = pixel_mm * 1e6;
+  ClipperLib::ClipperOffset off;
+  for (size_t k = 0; k < strokes.polygons_nm.size(); ++k)
+    if (k < strokes.outline_widths_nm.size() && strokes.outline_widths_nm[k] < pixel_nm)
+      off.AddPath(strokes.polygons_nm[k], ClipperLib::jtRound, ClipperLib::etOpenRound);
+  ClipperLib::Paths out;
+  off.Execute(out, pixel_nm / 2);
+  return out;
+}
+
 bool gerbv_available() {
   return std::system("gerbv --version > /dev/null 2>&1") == 0;
 }
