@@ -113,9 +113,11 @@ struct Board {
 };
 
 // gerbv's picture and ours over one window, at the finest of these resolutions that keeps
-// the window under 16 million pixels.
-bool matches_gerbv(const std::string& path, const PcbLayer& layer, bool drill, std::string& why) {
-  const ClipperLib::Paths shapes = drill ? test::drill_shapes(layer) : layer.polygons_nm;
+// the window under 16 million pixels. strokes: the file read as an outline, when strokes
+// narrower than a pixel are to be drawn as gerbv draws them (nullptr: not).
+bool matches_gerbv(const std::string& path, const PcbLayer& layer, bool drill, std::string& why,
+                   const PcbLayer* strokes = nullptr) {
+  ClipperLib::Paths shapes = drill ? test::drill_shapes(layer) : layer.polygons_nm;
   // A negative image's copper is its box less what is drawn; gerbv fills its whole picture:
   // compared inside the box (2 pixels in from it: the window starts and ends on whole pixels,
   // which gerbv fills and our box only partly covers).
@@ -127,6 +129,12 @@ bool matches_gerbv(const std::string& path, const PcbLayer& layer, bool drill, s
   for (double dpi : {2000.0, 1000.0, 500.0, 250.0, 100.0}) {
     win = test::window_around(layer, negative ? -2 * 25.4 / dpi : 0.5, dpi);
     if (static_cast<double>(win.w) * win.h <= 16e6) break;
+  }
+  size_t thin = 0;
+  if (strokes) {
+    const ClipperLib::Paths hair = test::hairlines(*strokes, win.pixel_mm);
+    thin = hair.size();
+    shapes.insert(shapes.end(), hair.begin(), hair.end());
   }
   const test::Raster ours = test::rasterise(shapes, win);
   const test::Raster ref = test::gerbv_render(path, win);
@@ -140,6 +148,8 @@ bool matches_gerbv(const std::string& path, const PcbLayer& layer, bool drill, s
   std::ostringstream o;
   o << 100 * a.of_all() << " % of " << a.pixels << " px at " << win.dpi() << " dpi agree, "
     << a.beyond_edge << " of " << a.dark_either << " copper px differ beyond an edge";
+  if (strokes)
+    o << " (with " << thin << " outlines of strokes thinner than a pixel drawn 1 px wide)";
   why = o.str();
   // Pixels that differ only at an edge are gerbv snapping strokes to its pixel grid (more of
   // them at the coarser resolutions of large boards); a real difference leaves pixels with
@@ -233,7 +243,17 @@ int main(int argc, char** argv) {
           if (!picture.polygons_nm.empty() || !picture.holes.empty() || !picture.slots.empty()) {
             ++t.compared;
             std::string why;
-            const bool ok = matches_gerbv(path, picture, drill, why);
+            bool ok = matches_gerbv(path, picture, drill, why);
+            if (!ok && !drill) {
+              // gerbv widens strokes thinner than a pixel (zero-width outlines, no copper)
+              // to one pixel: drawn so in our picture too, where they are what differs.
+              GerberOptions as_strokes;
+              as_strokes.forced_kind = LayerKind::kOutline;
+              const PcbLayer strokes = read_gerber_file(path, as_strokes);
+              std::string why_thin;
+              ok = matches_gerbv(path, picture, drill, why_thin, &strokes);
+              why = ok ? why_thin : why + "; " + why_thin;
+            }
             t.match += ok;
             if (verbose)
               std::printf("  %s %s: %s\n", ok ? "gerbv=" : "gerbv!", path.c_str(), why.c_str());

@@ -49,6 +49,11 @@ void add_layer(BoardFiles* b, PcbLayer l, bool from_directory) {
     b->notes.push_back(path + ": not a copper, drill or outline layer: left out");
     return;
   }
+  if (std::find(b->warnings.begin(), b->warnings.end(), path + ": " + pcb::kGerberNotADrillFile) !=
+      b->warnings.end())
+    throw CommandFailure(kExitUsage, path + ": " + pcb::kGerberNotADrillFile +
+                                         " (a drill drawing?); name its layer with --top, "
+                                         "--bottom or --outline, or give the Excellon file");
   throw CommandFailure(
       kExitUsage, path +
                       ": cannot tell which layer this is (no X2 TF.FileFunction, no "
@@ -167,6 +172,10 @@ BoardFiles read_board_input(const std::string& input, const std::string& side_as
       if (named == LayerKind::kUnknown) {
         named = pcb::layer_kind_from_file_name(f);
         how = "its name";
+      }
+      if (named == LayerKind::kDrill) {  // a drill drawing (OrCAD's .drd): no holes in it
+        b.notes.push_back(f + ": " + pcb::kGerberNotADrillFile + " (left out)");
+        continue;
       }
       if (named == LayerKind::kUnknown) {
         b.notes.push_back(f +

@@ -2,9 +2,12 @@
 #include "host/lib/pcb/board_files.h"
 
 #include "host/lib/pcb/excellon_reader.h"
+#include "host/lib/pcb/gerber_include.h"
 #include "host/lib/pcb/gerber_reader.h"
 
 namespace host::pcb {
+
+const char* const kGerberNotADrillFile = "holds Gerber, not Excellon: no drill file";
 
 PcbFileFormat board_file_format(const std::string& name, const std::string& text) {
   return pcb_file_format(name, text.substr(0, 4096));
@@ -17,18 +20,29 @@ PcbLayer read_board_text(const std::string& text, const std::string& name, Layer
     l.kind = LayerKind::kDrill;
     return l;
   }
+  if (f == PcbFileFormat::kGerber && kind == LayerKind::kDrill)
+    throw PcbReadError(name + ": " + kGerberNotADrillFile);
   if (f == PcbFileFormat::kGerber || kind != LayerKind::kUnknown) {
     GerberOptions o;
     o.forced_kind = kind;
     PcbLayer l = read_gerber_text(text, name, o);
-    if (kind != LayerKind::kUnknown) l.kind = kind;
+    if (kind != LayerKind::kUnknown) {
+      l.kind = kind;
+    } else if (l.kind == LayerKind::kDrill) {
+      // A drill drawing or map (OrCAD's Gerber .drd): a picture of the holes, not holes.
+      l.kind = LayerKind::kUnknown;
+      l.notes.push_back(std::string("warning: ") + kGerberNotADrillFile);
+    }
     return l;
   }
   throw PcbReadError(name + ": not a Gerber or Excellon file");
 }
 
 PcbLayer read_board_file(const std::string& path, LayerKind kind) {
-  return read_board_text(read_pcb_file_text(path), path, kind);
+  const std::string text = read_pcb_file_text(path);
+  if (board_file_format(path, text) != PcbFileFormat::kGerber)
+    return read_board_text(text, path, kind);
+  return read_board_text(expand_gerber_includes(text, path), path, kind);
 }
 
 bool BoardFileSet::add(PcbLayer layer) {

@@ -16,9 +16,14 @@ namespace host::pcb {
 // Gerber or Excellon from the file's name and first bytes; kNone for anything else.
 PcbFileFormat board_file_format(const std::string& name, const std::string& text);
 
+// What a file named or attributed as drill, whose content is Gerber, is told (OrCAD's .drd
+// drill drawing): read_board_text reads no holes from it.
+extern const char* const kGerberNotADrillFile;
+
 // Reads one file. `kind` forces the layer kind (kUnknown: X2 TF.FileFunction, else the
 // name). Throws PcbReadError with the reader's message (file and line), or "NAME: not a
-// Gerber or Excellon file".
+// Gerber or Excellon file". Gerber content is never a drill layer: kind kDrill refuses it
+// (kGerberNotADrillFile), a drill name or file function leaves it kUnknown with a warning.
 PcbLayer read_board_text(const std::string& text, const std::string& name, LayerKind kind);
 // The same from a file on disk (PcbReadError also when it cannot be read).
 PcbLayer read_board_file(const std::string& path, LayerKind kind);

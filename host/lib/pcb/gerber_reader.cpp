@@ -10,6 +10,7 @@
 #include <utility>        // std::pair
 #include <vector>         // std::vector
 
+#include "host/lib/pcb/gerber_include.h"
 #include "host/lib/pcb/gerber_macro.h"
 #include "host/lib/pcb/gerber_outline.h"
 #include "host/lib/pcb/gerber_reader_state.h"
@@ -141,6 +142,8 @@ class GerberReader {
   void image_polarity(const std::string& arg);
   void mirror_image(const std::string& arg);
   void image_offset(const std::string& code, const std::string& arg);
+  void image_justify(const std::string& arg);
+  void justify_image(Paths* image, const BoxNm& drawn);
   void image_transform(const std::string& which, const char* what, bool identity);
   void transform_image(Paths& paths) const;
   void check_image_transforms(bool drawn);
@@ -160,8 +163,9 @@ class GerberReader {
                   double* sweep);
   bool zero_radius_arc(double r0, double r1);
   void region_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill);
-  void stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill);
-  void stroke_arc_with_shape(IntPoint from, const Path& pts, const Path* theirs_if_ill);
+  void stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill, const VecNm* centre);
+  void stroke_arc_with_shape(IntPoint from, const Path& pts, const Path* theirs_if_ill,
+                             const VecNm* centre);
   void flash(IntPoint at);
   const Aperture& current_aperture() const;
   void note_redefinition(int number_d, const Aperture& ap, const std::string& text);
@@ -210,11 +214,15 @@ PcbLayer GerberReader::read() {
     layer.polygons_nm = evaluate(drawn_.batches);
   }
   check_image_transforms(!layer.polygons_nm.empty());
+  BoxNm drawn;  // gerbv justifies by the image's extent as drawn, before its transforms
+  if (image_.justify)
+    for (const Path& p : layer.polygons_nm) drawn.add(p);
   if (image_.offset_x != 0 || image_.offset_y != 0)
     translate_paths(layer.polygons_nm, image_.offset_x, image_.offset_y);
   transform_image(layer.polygons_nm);
   if (image_.negative && layer.kind != LayerKind::kOutline && !layer.polygons_nm.empty())
     negative_image(&layer.polygons_nm);
+  justify_image(&layer.polygons_nm, drawn);
   if (drawn_.ill_defined_arcs > 0) {
     char msg[240];
     std::snprintf(msg, sizeof msg,
@@ -411,7 +419,11 @@ void GerberReader::extended_command(const std::string& cmd) {
   if (cmd.size() < 2) diag_.fail("unknown extended command '%" + cmd + "'");
   const std::string code = cmd.substr(0, 2);
   const std::string arg = cmd.substr(2);
-  if (code == "FS") {
+  if (code == "IF") {  // read_gerber_file put a file's includes in place (gerber_include.h)
+    diag_.fail(
+        "include file %IF" + arg.substr(0, 40) +
+        ": an include is read only from a file on disk, from its folder (not from an upload)");
+  } else if (code == "FS") {
     format_spec(arg);
   } else if (code == "MO") {
     if (arg != "MM" && arg != "IN") diag_.fail("unit '" + arg + "' is neither MM nor IN");
@@ -482,10 +494,7 @@ bool GerberReader::deprecated_parameter(const std::string& code, const std::stri
     if (arg.empty()) close_knockout();
     if (!arg.empty()) knockout(arg);
   } else if (code == "IJ") {
-    // Justify moves the image by its own extent against a film (platen) size the file does
-    // not give: ignored, the coordinates are taken as written (the other layers' frame).
-    diag_.note("warning: %IJ" + arg.substr(0, 20) +
-               " (deprecated image justify) ignored: coordinates as written");
+    image_justify(arg);
   } else if (code == "RO") {
     const double deg = diag_.number(arg, "layer rotation");
     if (!(std::fabs(deg) <= 360))
@@ -532,6 +541,52 @@ void GerberReader::mirror_image(const std::string& arg) {
   image_transform("%MI" + a, "mirror image", !image_.mirror_a && !image_.mirror_b);
   if (!image_.mirror_a && !image_.mirror_b)
     diag_.note("%MI without mirroring (deprecated) ignored");
+}
+
+// %IJ (image justify), as gerbv reads it: each axis L (lower left, the default), C (centre)
+// or an offset in the current units (the axis then lower left); "AC" is gerbv's centre.
+void GerberReader::image_justify(const std::string& arg) {
+  image_.justify_a = image_.justify_b = 'L';
+  image_.justify_offset_a_nm = image_.justify_offset_b_nm = 0;
+  size_t k = 0;
+  while (k < arg.size()) {
+    const char axis = arg[k++];
+    if ((axis != 'A' && axis != 'B') || k >= arg.size())
+      diag_.fail("image justify %IJ" + arg + ": expected A or B, then L, C or an offset");
+    char& type = axis == 'A' ? image_.justify_a : image_.justify_b;
+    if (arg[k] == 'L' || arg[k] == 'C') {
+      type = arg[k++];
+      continue;
+    }
+    const size_t end = end_of_number(arg, k);
+    const double v = diag_.number(arg.substr(k, end - k), "image justify offset");
+    if (v != 0) unit_.need(diag_, "%IJ");
+    (axis == 'A' ? image_.justify_offset_a_nm : image_.justify_offset_b_nm) = v * unit_.nm;
+    k = end;
+  }
+  image_.justify = true;
+  image_.justify_line = diag_.line;
+  image_.justify_text = "%IJ" + arg.substr(0, 20);
+}
+
+// %IJ applied to the finished image: gerbv moves it by -min (L) or by half its extent (C,
+// gerbv's reading: not onto the origin) of the drawn image's box, each axis, plus the offset.
+void GerberReader::justify_image(Paths* image, const BoxNm& drawn) {
+  if (!image_.justify || image->empty()) return;
+  const auto shift = [](char type, double min, double max, double offset) {
+    return (type == 'C' ? (max - min) / 2 : -min) + offset;
+  };
+  const double dx = shift(image_.justify_a, static_cast<double>(drawn.min_x),
+                          static_cast<double>(drawn.max_x), image_.justify_offset_a_nm);
+  const double dy = shift(image_.justify_b, static_cast<double>(drawn.min_y),
+                          static_cast<double>(drawn.max_y), image_.justify_offset_b_nm);
+  translate_paths(*image, static_cast<cInt>(std::llround(dx)), static_cast<cInt>(std::llround(dy)));
+  char msg[200];
+  std::snprintf(msg, sizeof msg,
+                " (deprecated image justify) applied as gerbv does: the image moved by %.3f, "
+                "%.3f mm",
+                dx * 1e-6, dy * 1e-6);
+  diag_.note_at("warning: " + image_.justify_text + msg, image_.justify_line);
 }
 
 // %OFA<a>B<b> (offset) and %IOA<a>B<b> (image offset): the image moved by a, b in the units
@@ -1636,7 +1691,7 @@ void GerberReader::draw_arc(IntPoint from, IntPoint to, cInt i, cInt j, bool reg
   if (region)
     region_arc(from, pts, ill_defined ? &at_start_radius : nullptr);
   else
-    stroke_arc(from, pts, ill_defined ? &at_start_radius : nullptr);
+    stroke_arc(from, pts, ill_defined ? &at_start_radius : nullptr, degenerate ? nullptr : &c);
 }
 
 // The arc's centre and sweep from its I, J: signed offsets (G75), or unsigned ones whose signs
@@ -1716,11 +1771,12 @@ void GerberReader::region_arc(IntPoint from, const Path& pts, const Path* theirs
 }
 
 // An arc stroked with the current (circular) aperture; for an ill-defined arc, copper where
-// either reading puts it.
-void GerberReader::stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill) {
+// either reading puts it. centre: the arc's (nullptr: a zero-radius arc, a straight line).
+void GerberReader::stroke_arc(IntPoint from, const Path& pts, const Path* theirs_if_ill,
+                              const VecNm* centre) {
   const Aperture& ap = current_aperture();
   if (ap.type == 'R' || ap.type == 'O') {
-    stroke_arc_with_shape(from, pts, theirs_if_ill);
+    stroke_arc_with_shape(from, pts, theirs_if_ill, centre);
     return;
   }
   if (ap.type != 'C') {
@@ -1747,8 +1803,8 @@ void GerberReader::stroke_arc(IntPoint from, const Path& pts, const Path* theirs
 // test-aperture-rectangle-1.gbx, -obround-1.gbx): drawn as gerbv draws it, a stroke as wide
 // as the aperture's X size with square (rectangle) or round (obround) ends; an ill-defined
 // arc, where either reading puts it.
-void GerberReader::stroke_arc_with_shape(IntPoint from, const Path& pts,
-                                         const Path* theirs_if_ill) {
+void GerberReader::stroke_arc_with_shape(IntPoint from, const Path& pts, const Path* theirs_if_ill,
+                                         const VecNm* centre) {
   const Aperture& ap = current_aperture();
   diag_.note(std::string("warning: an arc drawn with ") +
              (ap.type == 'R' ? "a rectangular" : "an obround") + " aperture D" +
@@ -1761,11 +1817,41 @@ void GerberReader::stroke_arc_with_shape(IntPoint from, const Path& pts,
   const double width_nm = ap.shape.empty() ? 0 : static_cast<double>(box.max_x - box.min_x);
   add_centre_line(from, pts, width_nm);
   if (width_nm <= 0) return;
-  const ClipperLib::EndType ends =
-      ap.type == 'R' ? ClipperLib::etOpenSquare : ClipperLib::etOpenRound;
+  // Square ends at right angles to the arc's own tangent, as cairo's square cap: the line runs
+  // on half the width along the tangent past each end, then ends butt. (Clipper's square end
+  // is square to the last chord, turned from the tangent by half the chord's angle: its
+  // corners stood out and in by up to width/2 x that angle, 5-10 um.)
+  const bool square = ap.type == 'R';
+  const auto past_end = [&](IntPoint end, IntPoint inner) {
+    double tx = static_cast<double>(end.X - inner.X), ty = static_cast<double>(end.Y - inner.Y);
+    if (centre) {  // the tangent, pointing the way the chord does
+      const double rx = end.X - centre->x, ry = end.Y - centre->y;
+      const double sign = (-ry * tx + rx * ty) < 0 ? -1 : 1;
+      tx = -ry * sign, ty = rx * sign;
+    }
+    const double len = std::hypot(tx, ty);
+    return IntPoint(end.X + static_cast<cInt>(std::llround(tx / len * width_nm / 2)),
+                    end.Y + static_cast<cInt>(std::llround(ty / len * width_nm / 2)));
+  };
   const auto stroke = [&](const Path& arc) {
     Path line{from};
     line.insert(line.end(), arc.begin(), arc.end());
+    bool squared = false;  // the ends run on along the tangent
+    if (square && line.size() >= 2) {
+      size_t k = 1;  // the first point apart from `from`, the last apart from the end
+      while (k + 1 < line.size() && line[k] == from) ++k;
+      size_t m = line.size() - 2;
+      while (m > 0 && line[m] == line.back()) --m;
+      if (line[k] != from && line[m] != line.back()) {
+        const IntPoint before = past_end(from, line[k]);
+        line.push_back(past_end(line.back(), line[m]));
+        line.insert(line.begin(), before);
+        squared = true;
+      }
+    }
+    const ClipperLib::EndType ends = squared  ? ClipperLib::etOpenButt
+                                     : square ? ClipperLib::etOpenSquare
+                                              : ClipperLib::etOpenRound;
     ClipperLib::ClipperOffset off;
     off.ArcTolerance = opt_.arc_tolerance_nm;
     off.AddPath(line, ClipperLib::jtRound, ends);
@@ -1822,7 +1908,7 @@ PcbLayer read_gerber_text(const std::string& text, const std::string& path,
 }
 
 PcbLayer read_gerber_file(const std::string& path, const GerberOptions& options) {
-  return read_gerber_text(read_pcb_file_text(path), path, options);
+  return read_gerber_text(expand_gerber_includes(read_pcb_file_text(path), path), path, options);
 }
 
 }  // namespace host::pcb

@@ -156,6 +156,12 @@ struct ImageParameters {
   double scale_a = 1, scale_b = 1;          // %SF
   bool negative = false;                    // %IPNEG: copper where nothing is drawn
   int negative_line = 0;
+  // %IJ: per axis 'L' (lower left) or 'C' (centre), and an offset, as gerbv reads them.
+  bool justify = false;
+  char justify_a = 'L', justify_b = 'L';
+  double justify_offset_a_nm = 0, justify_offset_b_nm = 0;
+  int justify_line = 0;
+  std::string justify_text;
   // The non-identity ones in force, each the last of its parameter (a later one replaces an
   // earlier, as gerbv reads them): reported as applied at the end.
   struct Transform {

@@ -6,8 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>   // std::ifstream
-#include <iterator>  // std::istreambuf_iterator
+#include <algorithm>  // std::find
+#include <fstream>    // std::ifstream
+#include <iterator>   // std::istreambuf_iterator
 
 #include "host_tests/host/pcb/test_data.h"
 
@@ -82,6 +83,30 @@ TEST(BoardFiles, ADrdWhoseContentIsGerberIsReadAsGerber) {
             PcbFileFormat::kExcellon);  // old EAGLE
   EXPECT_EQ(pcb_file_format("board.drd", "M48\n;FORMAT %FS-like comment\nINCH\n"),
             PcbFileFormat::kExcellon);
+}
+
+// Gerber content is a picture of the holes, never the holes: a .drd (or an X2 drill file
+// function) holding Gerber is no drill layer (it was one with no holes: "0 holes (no drill
+// file)" with the file taken as the drill file), and naming it the drill file is refused.
+TEST(BoardFiles, AGerberDrdIsNoDrillLayer) {
+  const std::string orcad =
+      "*\n%ICAS*%\n%MOIN*%\nG74*%FSLAN2X34Y34*%\n%ADD10C,.01*%\nD10*\nX0Y0D03*\nM02*\n";
+  const PcbLayer l = read_board_text(orcad, "RS232.DRD", LayerKind::kUnknown);
+  EXPECT_EQ(l.kind, LayerKind::kUnknown);
+  EXPECT_NE(std::find(l.notes.begin(), l.notes.end(),
+                      "warning: holds Gerber, not Excellon: no drill file"),
+            l.notes.end());
+  BoardFileSet set;
+  EXPECT_FALSE(set.add(l));
+  EXPECT_TRUE(set.drill.empty());
+  const std::string x2 = "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Plated,1,2,PTH*%\nM02*\n";
+  EXPECT_EQ(read_board_text(x2, "holes.gbr", LayerKind::kUnknown).kind, LayerKind::kUnknown);
+  try {
+    read_board_text(orcad, "RS232.DRD", LayerKind::kDrill);
+    ADD_FAILURE() << "a Gerber file read as the drill file";
+  } catch (const PcbReadError& e) {
+    EXPECT_STREQ(e.what(), "RS232.DRD: holds Gerber, not Excellon: no drill file");
+  }
 }
 
 TEST(BoardFiles, KindFromTheX2FileFunctionInAFilesHead) {

@@ -2,7 +2,13 @@
 // computed by hand from the files (comments give the arithmetic).
 #include <gtest/gtest.h>
 
-#include <cmath>  // M_PI, std::hypot
+#include <unistd.h>  // getpid
+
+#include <algorithm>   // std::max, std::min
+#include <cmath>       // M_PI, std::hypot
+#include <filesystem>  // std::filesystem
+#include <fstream>     // std::ofstream
+#include <tuple>       // std::make_tuple
 
 #include "host/lib/pcb/gerber_macro.h"
 #include "host/lib/pcb/gerber_reader.h"
@@ -264,9 +270,8 @@ TEST(GerberLegacyParameters, MirrorRotationAndScaleAreApplied) {
 
 // The rest of the deprecated parameters (issue 24): %IO (image offset, current units) and %RO
 // (layer rotation, any angle) move the image and are applied, %KOC with a box clears it where
-// it stands (each as gerbv draws it: gerbv_agreement_test), %IJ (justify against a film size
-// the file does not give) is ignored with a warning: the coordinates as written.
-TEST(GerberLegacyParameters, ImageOffsetLayerRotationAndKnockoutAreAppliedJustifyIgnored) {
+// it stands (each as gerbv draws it: gerbv_agreement_test).
+TEST(GerberLegacyParameters, ImageOffsetLayerRotationAndKnockoutAreApplied) {
   const PcbLayer offset = legacy("%IOA-10B1*%\n");
   EXPECT_TRUE(covered(offset, 0, 6));
   EXPECT_FALSE(covered(offset, 10, 5));
@@ -284,9 +289,59 @@ TEST(GerberLegacyParameters, ImageOffsetLayerRotationAndKnockoutAreAppliedJustif
   EXPECT_NEAR(area_mm2(knocked.polygons_nm), 2.0 - 0.16, 1e-6);
   EXPECT_FALSE(covered(knocked, 9.7, 4.7));
   EXPECT_TRUE(has_note(knocked, "warning: %KOC box (deprecated knockout) applied"));
-  const PcbLayer justified = legacy("%IJALBC*%\n");
-  EXPECT_TRUE(covered(justified, 10, 5));
-  EXPECT_TRUE(has_note(justified, "warning: %IJALBC (deprecated image justify) ignored"));
+}
+
+// %IJ (image justify) as gerbv reads it (it was ignored, gerbv's test-image-justify-1 and -2
+// not matching its picture): the 1 mm pad at (10, 5), box x 9.5..10.5, y 4.5..5.5, moved by
+// -min on an L axis, by half the box (gerbv's centre) on a C axis, plus an axis's offset.
+TEST(GerberLegacyParameters, ImageJustifyMovesTheImageAsGerbvDoes) {
+  const PcbLayer lower_centre = legacy("%IJALBC*%\n");  // by (-9.5, 0.5): x 0..1, y 5..6
+  EXPECT_TRUE(covered(lower_centre, 0.1, 5.9));
+  EXPECT_FALSE(covered(lower_centre, 0.1, 4.9));
+  EXPECT_FALSE(covered(lower_centre, 10, 5));
+  EXPECT_TRUE(has_note(lower_centre,
+                       "line 3: warning: %IJALBC (deprecated image justify) applied as gerbv "
+                       "does: the image moved by -9.500, 0.500 mm"))
+      << ::testing::PrintToString(lower_centre.notes);
+  const PcbLayer offset = legacy("%IJB.5*%\n");  // A lower left, B 0.5 mm: by (-9.5, -4)
+  EXPECT_TRUE(covered(offset, 0.1, 0.6));
+  EXPECT_FALSE(covered(offset, 0.1, 0.4));
+  EXPECT_FALSE(covered(offset, 10, 5));
+  EXPECT_THROW(legacy("%IJX1*%\n"), PcbReadError);
+}
+
+// %IF (include file) as gerbv reads it (refused before: "unknown extended command"; gerbv's
+// test-include-file-1.gbx): the named file's blocks in place, from the including file's
+// folder; its line ends left out, so the including file's line numbers stay true.
+TEST(GerberLegacyParameters, AnIncludeFileIsReadInPlaceFromTheFilesFolder) {
+  const std::string dir = testing::TempDir() + "/include-" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir + "/parts");
+  std::ofstream(dir + "/parts/cross.gbx") << "X-1000000Y0D02*\nD10*\nX1000000Y0D01*\n";
+  std::ofstream(dir + "/main-F.Cu.gbr")
+      << "%FSLAX46Y46*%\n%MOMM*%\n%ADD10C,0.2*%\n%IFparts/cross.gbx*%\nX0Y-1000000D02*\n"
+         "X0Y1000000D01*\nM02*\n";
+  const PcbLayer l = read_gerber_file(dir + "/main-F.Cu.gbr");
+  EXPECT_TRUE(covered(l, -0.9, 0));  // the included stroke
+  EXPECT_TRUE(covered(l, 0, 0.9));   // the file's own, after it
+  // Two 2 x 0.2 mm strokes with round ends crossing in a 0.2 mm square.
+  EXPECT_NEAR(area_mm2(l.polygons_nm), 2 * (2 * 0.2 + kPi * 0.01) - 0.04, 0.001);
+  // A missing include names the %IF line; text in memory (an upload) cannot include.
+  std::ofstream(dir + "/missing.gbr") << "%FSLAX46Y46*%\n%MOMM*%\n\n%IFnone.gbx*%\nM02*\n";
+  try {
+    read_gerber_file(dir + "/missing.gbr");
+    ADD_FAILURE() << "a missing include read";
+  } catch (const PcbReadError& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.gbr:4: include file %IFnone.gbx: "),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(read_gerber_file(dir + "/up.gbr"), PcbReadError);
+  std::ofstream(dir + "/up.gbr") << "%FSLAX46Y46*%\n%MOMM*%\n%IF../x.gbx*%\nM02*\n";
+  EXPECT_THROW(read_gerber_file(dir + "/up.gbr"), PcbReadError);
+  EXPECT_THROW(
+      read_gerber_text("%FSLAX46Y46*%\n%MOMM*%\n%IFparts/cross.gbx*%\nM02*\n", dir + "/upload.gbr"),
+      PcbReadError);
+  std::filesystem::remove_all(dir);
 }
 
 // %IPNEG: what is drawn is clear, copper the rest of the image's extent (its bounding box, as
@@ -501,6 +556,53 @@ TEST(GerberReader, AnArcWithARectangleOrObroundIsDrawnAsGerbvDrawsIt) {
   EXPECT_FALSE(covered(obround, 10.9, -0.9));
   EXPECT_NEAR(area_mm2(obround.polygons_nm), kPi * (11 * 11 - 9 * 9) / 2 + kPi, 0.01);
   EXPECT_TRUE(has_note(obround, "an arc drawn with an obround aperture D10"));
+}
+
+// How far a half-annulus arc stroke of radius r_mm and width w_mm with square ends (the half
+// circle of arc_with: from (r, 0) counter-clockwise to (-r, 0)) lies from point (x, y): 0
+// inside. The square ends are w/2 long below the x axis, as cairo's square caps put them.
+double outside_square_ended_arc_mm(double r_mm, double w_mm, double x, double y) {
+  const double h = w_mm / 2;
+  const auto box = [](double x, double y, double x0, double y0, double x1, double y1) {
+    const double dx = std::max({x0 - x, 0.0, x - x1}), dy = std::max({y0 - y, 0.0, y - y1});
+    return std::hypot(dx, dy);
+  };
+  const double d_ends =
+      std::min(box(x, y, r_mm - h, -h, r_mm + h, 0), box(x, y, -r_mm - h, -h, -r_mm + h, 0));
+  if (y < 0) return d_ends;
+  const double r = std::hypot(x, y);
+  return std::min(d_ends, std::max({0.0, r - (r_mm + h), (r_mm - h) - r}));
+}
+
+// An arc with a rectangle ends in a square as wide as the stroke, at right angles to the
+// arc's own end tangent, as cairo's square cap in gerbv; it was square to the last chord,
+// turned by half the chord's angle: its outer corner stuck out up to w/2 x that angle
+// (10 um at r 10 mm, w 2 mm; 5 um on a small arc), copper gerbv does not draw.
+TEST(GerberReader, AnArcWithARectangleEndsSquareToItsTangent) {
+  for (const auto& [r_mm, ap, w_mm] :
+       {std::make_tuple(10.0, "R,2X1", 2.0), std::make_tuple(0.5, "R,0.25X0.25", 0.25),
+        std::make_tuple(2.0, "R,0.6X0.2", 0.6)}) {
+    const std::string r = std::to_string(static_cast<long>(r_mm * 1e6));
+    // The same half circle counter-clockwise from (r, 0) and clockwise from (-r, 0).
+    for (const std::string& arc : {"X" + r + "Y0D02*\nG03X-" + r + "Y0I-" + r + "J0D01*\n",
+                                   "X-" + r + "Y0D02*\nG02X" + r + "Y0I" + r + "J0D01*\n"}) {
+      const PcbLayer l = read_gerber_text(
+          "%FSLAX46Y46*%\n%MOMM*%\n%ADD10" + std::string(ap) + "*%\nD10*\nG75*\n" + arc + "M02*\n",
+          "arc-F.Cu.gbr");
+      double worst_mm = 0;
+      for (const auto& p : l.polygons_nm)
+        for (const auto& v : p)
+          worst_mm =
+              std::max(worst_mm, outside_square_ended_arc_mm(r_mm, w_mm, v.X * 1e-6, v.Y * 1e-6));
+      EXPECT_LT(worst_mm, 0.0005) << arc << ap;  // the 0.5 um chord tolerance
+      // Nothing less than the exact stroke: its corners and edges, 1 um inside.
+      const double h = w_mm / 2 - 0.001;
+      for (const auto& [x, y] : {std::make_pair(r_mm + h, -h), std::make_pair(r_mm - h, -h),
+                                 std::make_pair(-r_mm + h, -h), std::make_pair(-r_mm - h, -h),
+                                 std::make_pair(0.0, r_mm + h), std::make_pair(0.0, r_mm - h)})
+        EXPECT_TRUE(covered(l, x, y)) << arc << ap << " at (" << x << ", " << y << ")";
+    }
+  }
 }
 
 // A line drawn with an obround: gerbv strokes it as a circle of the obround's X size; copper

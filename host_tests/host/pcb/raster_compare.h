@@ -37,6 +37,11 @@ Raster rasterise(const ClipperLib::Paths& paths, const Window& win);
 // The layer's holes and slots as filled discs and stadiums.
 ClipperLib::Paths drill_shapes(const PcbLayer& layer);
 
+// The strokes of `strokes` (a Gerber read as an outline: centre lines and their widths)
+// narrower than a pixel, as gerbv draws them in a picture: one pixel wide, round ends. A
+// zero-width line is no copper, but gerbv shows it (its limitLineWidth).
+ClipperLib::Paths hairlines(const PcbLayer& strokes, double pixel_mm);
+
 // True if `gerbv --version` runs.
 bool gerbv_available();
 
