@@ -1,14 +1,15 @@
-// Board plot rendering with cairo (see board_plot.h).
+// Board plot: the PNG rendered with cairo, the SVG written as text (see board_plot.h).
 #include "host/lib/plot/board_plot.h"
 
-#include <cairo-svg.h>  // cairo_svg_surface_create
-#include <cairo.h>      // cairo_*
+#include <cairo.h>  // cairo_*
 
 #include <algorithm>  // std::max
 #include <cmath>      // std::pow, std::floor
 #include <stdexcept>  // std::runtime_error
 
 #include "host/lib/pcb/pcb_geometry.h"
+#include "host/lib/plot/board_plot_style.h"
+#include "host/lib/plot/board_plot_svg.h"
 #include "host/lib/plot/cairo_plot.h"  // nice_length, draw_scale_bar, check_cairo_surface
 #include "host/lib/plot/png_rows.h"
 
@@ -16,24 +17,9 @@ namespace host {
 
 namespace {
 
-const double kTitleBandPx = 40.0;
-const double kBottomBandPx = 60.0;
-const double kSideMarginPx = 20.0;
-const int kBandRows = 128;  // PNG rows drawn at a time: 0.7 MB at 1 400 px wide
+using namespace board_plot_style;  // NOLINT: the layout and colours
 
-struct Rgba {
-  double r, g, b, a;
-};
-const Rgba kBoard = {0.86, 0.90, 0.80, 1.0};       // substrate inside the outline
-const Rgba kCopper = {0.85, 0.55, 0.20, 1.0};      // copper
-const Rgba kIsolation = {0.15, 0.35, 0.90, 0.45};  // swept V-bit
-const Rgba kIsolationCentre = {0.05, 0.15, 0.55, 1.0};
-const Rgba kCutout = {0.10, 0.60, 0.20, 0.40};  // swept cutter
-const Rgba kCutoutCentre = {0.05, 0.35, 0.10, 1.0};
-const Rgba kTab = {0.55, 0.25, 0.65, 0.9};  // cutter lifted over a holding tab
-const Rgba kHole = {0.12, 0.12, 0.12, 1.0};
-const Rgba kGap = {0.90, 0.00, 0.00, 1.0};
-const Rgba kSimulated = {0.75, 0.05, 0.05, 0.9};
+const int kBandRows = 128;  // PNG rows drawn at a time: 0.7 MB at 1 400 px wide
 
 void set(cairo_t* cr, const Rgba& c) {
   cairo_set_source_rgba(cr, c.r, c.g, c.b, c.a);
@@ -263,14 +249,7 @@ void write_board_plot(const BoardPlotInput& in, const std::string& svg_path,
   const PlotFrame f = board_plot_frame(*in.job, in.width_px, &height_px);
   if (height_px > 20000) throw std::runtime_error("the board plot would be over 20000 pixels high");
   if (!svg_path.empty()) {
-    cairo_surface_t* s = cairo_svg_surface_create(svg_path.c_str(), in.width_px, height_px);
-    check_cairo_surface(s, svg_path);
-    cairo_t* cr = cairo_create(s);
-    render(cr, in, f, height_px, Band());
-    cairo_destroy(cr);
-    cairo_surface_finish(s);
-    check_cairo_surface(s, svg_path);
-    cairo_surface_destroy(s);
+    write_board_plot_svg(in, f, height_px, svg_path);
   }
   if (!png_path.empty()) {
     // Drawn band by band into one band-sized surface, each band handed to the PNG writer.

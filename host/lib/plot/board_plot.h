@@ -23,7 +23,7 @@ struct BoardPlotInput {
 PlotFrame board_plot_frame(const pcb::BoardJob& job, int width_px, int* height_px);
 
 // Writes the plot; an empty path skips that file. Throws std::runtime_error naming the file
-// when cairo cannot write it.
+// when it cannot be written.
 void write_board_plot(const BoardPlotInput& in, const std::string& svg_path,
                       const std::string& png_path);
 

@@ -7,7 +7,11 @@
 #include <sys/wait.h>      // waitpid
 #include <unistd.h>        // fork
 
+#include <cmath>       // std::round
+#include <cstdio>      // std::snprintf
 #include <filesystem>  // temp_directory_path
+#include <fstream>     // std::ifstream
+#include <sstream>     // std::stringstream
 
 #include "host_tests/host/pcb/synthetic_board.h"
 
@@ -64,6 +68,51 @@ TEST(BoardPlot, CopperIsolationAndHolesAppearWhereTheyAre) {
   EXPECT_EQ(outside.r + outside.g + outside.b, 3 * 255);
   cairo_surface_destroy(s);
   std::filesystem::remove(png);
+}
+
+// The SVG is written as text (no cairo, no fontconfig at start-up): the same picture's
+// parts at the same places, its legend as text a reader can search.
+TEST(BoardPlot, SvgIsPlainTextWithTheLegendAndTheHoleWhereItIs) {
+  pcb::PcbLayer top =
+      pcb::test::copper_layer({pcb::test::rect(0, 0, 4, 4)}, pcb::LayerKind::kCopperTop);
+  pcb::PcbLayer drill;
+  drill.path = "t.drl";
+  drill.holes = {pcb::test::hole(2, 2, 1.0, 1)};
+  pcb::BoardLayers l;
+  l.copper_top = &top;
+  l.drill = &drill;
+  pcb::BoardOptions o;
+  o.isolation.tool_width_mm = 0.4;
+  const pcb::BoardJob job = pcb::plan_board(l, o);
+  BoardPlotInput in;
+  in.title = "a <test> & more";
+  in.job = &job;
+  in.width_px = 800;
+  const std::string svg_path =
+      (std::filesystem::temp_directory_path() / "pcb_board_plot_test.svg").string();
+  write_board_plot(in, svg_path, "");
+  std::ifstream file(svg_path);
+  std::stringstream text;
+  text << file.rdbuf();
+  const std::string svg = text.str();
+  std::filesystem::remove(svg_path);
+  int h = 0;
+  const PlotFrame f = board_plot_frame(job, 800, &h);
+  EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
+  EXPECT_NE(svg.find("width=\"800pt\" height=\"" + std::to_string(h) + "pt\""), std::string::npos);
+  EXPECT_NE(svg.find(">a &lt;test&gt; &amp; more</text>"), std::string::npos);
+  EXPECT_NE(svg.find(">isolation (tool width)</text>"), std::string::npos);
+  EXPECT_NE(svg.find("<path fill=\"rgb(217,140,51)\" fill-rule=\"evenodd\" d=\"M"),
+            std::string::npos);  // the copper
+  EXPECT_NE(svg.find("<g opacity=\"0.45\" fill=\"none\" stroke=\"rgb(38,89,230)\""),
+            std::string::npos);  // the tool's swept width
+  const Point2 hole = f.to_px(job.frame.to_machine(Point2(2, 2)));
+  char circle[96];
+  std::snprintf(circle, sizeof circle, "<circle cx=\"%g\" cy=\"%g\" r=\"%g\"/>",
+                std::round(hole.x() * 100) / 100, std::round(hole.y() * 100) / 100,
+                std::round(0.5 * f.scale_px_per_mm * 100) / 100);
+  EXPECT_NE(svg.find(circle), std::string::npos) << circle;
+  EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
 }
 
 // The PNG is drawn a band of rows at a time: a plot of 6 000 x 6 000 pixels (140 MB as one

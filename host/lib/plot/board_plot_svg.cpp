@@ -1,0 +1,231 @@
+// The board plot as plain SVG text (see board_plot_svg.h). Each part is drawn as
+// board_plot.cpp's cairo renderer draws it, in the same order and colours.
+#include "host/lib/plot/board_plot_svg.h"
+
+#include <algorithm>  // std::max
+#include <cerrno>     // errno
+#include <cstdio>     // std::snprintf, std::fopen
+#include <cstring>    // std::strerror
+#include <sstream>    // std::ostringstream
+#include <stdexcept>  // std::runtime_error
+
+#include "host/lib/pcb/pcb_geometry.h"
+#include "host/lib/plot/board_plot_style.h"
+#include "host/lib/plot/cairo_plot.h"  // nice_length
+
+namespace host {
+
+namespace {
+
+using namespace board_plot_style;  // NOLINT: the layout and colours
+
+// Appends numbers and text to the document.
+class Svg {
+ public:
+  std::string out;
+  Svg& operator<<(const char* s) {
+    out += s;
+    return *this;
+  }
+  Svg& operator<<(const std::string& s) {
+    out += s;
+    return *this;
+  }
+  // Pixels to 1/100 px, trailing zeros dropped.
+  Svg& operator<<(double v) {
+    char buf[32];
+    int n = std::snprintf(buf, sizeof buf, "%.2f", v);
+    while (n > 0 && buf[n - 1] == '0') --n;
+    if (n > 0 && buf[n - 1] == '.') --n;
+    if (n == 2 && buf[0] == '-' && buf[1] == '0') buf[0] = '0', n = 1;
+    out.append(buf, n);
+    return *this;
+  }
+  Svg& point(const Point2& q) { return *this << q.x() << " " << q.y(); }
+  Svg& colour(const Rgba& c) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "rgb(%d,%d,%d)", static_cast<int>(c.r * 255 + 0.5),
+                  static_cast<int>(c.g * 255 + 0.5), static_cast<int>(c.b * 255 + 0.5));
+    out += buf;
+    return *this;
+  }
+  Svg& text(const std::string& s) {
+    for (const char ch : s) {
+      if (ch == '<')
+        out += "&lt;";
+      else if (ch == '>')
+        out += "&gt;";
+      else if (ch == '&')
+        out += "&amp;";
+      else if (ch == '"')
+        out += "&quot;";
+      else
+        out += ch;
+    }
+    return *this;
+  }
+};
+
+// One ring or polyline as path data: "M x y L x y x y ..."
+template <typename Points, typename ToPx>
+void path_data(Svg& svg, const Points& pts, ToPx to_px) {
+  for (size_t i = 0; i < pts.size(); ++i) {
+    svg << (i == 0 ? "M" : i == 1 ? " L" : " ");
+    svg.point(to_px(pts[i]));
+  }
+}
+
+void polygons(Svg& svg, const PlotFrame& f, const ClipperLib::Paths& paths, const Rgba& c) {
+  if (paths.empty()) return;
+  svg << "<path fill=\"";
+  svg.colour(c) << "\" fill-rule=\"evenodd\" d=\"";
+  for (const auto& p : paths) {
+    if (p.empty()) continue;
+    path_data(svg, p, [&f](const ClipperLib::IntPoint& q) { return f.to_px(pcb::to_mm(q)); });
+    svg << "Z";
+  }
+  svg << "\"/>\n";
+}
+
+void polyline(Svg& svg, const PlotFrame& f, const std::vector<Point2>& pts) {
+  path_data(svg, pts, [&f](const Point2& q) { return f.to_px(q); });
+  if (pts.size() == 1) svg << " l0.01 0";  // a dot: cairo strokes it as a round cap too
+}
+
+// Strokes of one colour in one group painted with the colour's alpha: where they overlap
+// the colour stays even (cairo's push_group / paint_with_alpha).
+void stroke_group(Svg& svg, const PlotFrame& f, const std::vector<std::vector<Point2>>& paths,
+                  double width_px, const Rgba& c) {
+  if (paths.empty()) return;
+  svg << "<g opacity=\"" << c.a << "\" fill=\"none\" stroke=\"";
+  svg.colour(c) << "\" stroke-width=\"" << std::max(width_px, 0.5)
+                << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
+  for (const auto& p : paths) {
+    if (p.empty()) continue;
+    svg << "<path d=\"";
+    polyline(svg, f, p);
+    svg << "\"/>\n";
+  }
+  svg << "</g>\n";
+}
+
+void circle(Svg& svg, const Point2& c, double r) {
+  svg << "<circle cx=\"" << c.x() << "\" cy=\"" << c.y() << "\" r=\"" << r << "\"/>\n";
+}
+
+// The holes as dots, the slots as strokes of their width.
+void holes(Svg& svg, const pcb::BoardJob& job, const PlotFrame& f) {
+  const double s = f.scale_px_per_mm;
+  if (!job.holes_machine.empty()) {
+    svg << "<g fill=\"";
+    svg.colour(kHole) << "\">\n";
+    for (const pcb::Hole& h : job.holes_machine)
+      circle(svg, f.to_px(pcb::to_mm(ClipperLib::IntPoint(h.at.x, h.at.y))),
+             std::max(0.5, h.diameter_nm / 2e6 * s));
+    svg << "</g>\n";
+  }
+  for (const pcb::Slot& sl : job.slots_machine) {
+    svg << "<path fill=\"none\" stroke=\"";
+    svg.colour(kHole) << "\" stroke-width=\"" << std::max(1.0, sl.diameter_nm / 1e6 * s)
+                      << "\" stroke-linecap=\"round\" d=\"";
+    polyline(svg, f,
+             {pcb::to_mm(ClipperLib::IntPoint(sl.from.x, sl.from.y)),
+              pcb::to_mm(ClipperLib::IntPoint(sl.to.x, sl.to.y))});
+    svg << "\"/>\n";
+  }
+}
+
+// A ring around each narrow gap.
+void gaps(Svg& svg, const pcb::BoardJob& job, const PlotFrame& f) {
+  if (job.report.narrow_gaps.empty()) return;
+  const double s = f.scale_px_per_mm;
+  svg << "<g fill=\"none\" stroke-width=\"2\" stroke=\"";
+  svg.colour(kGap) << "\">\n";
+  for (const pcb::NarrowGap& g : job.report.narrow_gaps)
+    circle(svg,
+           f.to_px(job.frame.to_machine(Point2(g.at.x / pcb::kNmPerMm, g.at.y / pcb::kNmPerMm))),
+           std::max(8.0, 0.5 * s));
+  svg << "</g>\n";
+}
+
+void text_at(Svg& svg, double x, double y, const std::string& s) {
+  svg << "<text x=\"" << x << "\" y=\"" << y << "\">";
+  svg.text(s) << "</text>\n";
+}
+
+void legend_box(Svg& svg, double x, double y, const Rgba& c, const std::string& label) {
+  svg << "<rect x=\"" << x << "\" y=\"" << y - 8 << "\" width=\"24\" height=\"12\" fill=\"";
+  svg.colour(c) << "\" fill-opacity=\"" << c.a << "\"/>\n";
+  text_at(svg, x + 30, y + 3, label);
+}
+
+// Title, legend, scale bar (as draw_scale_bar draws it).
+void labels(Svg& svg, const BoardPlotInput& in, const PlotFrame& f, int height_px) {
+  svg << "<g font-family=\"sans-serif\" font-weight=\"bold\" font-size=\"16\">\n";
+  text_at(svg, kSideMarginPx, 26, in.title);
+  svg << "</g>\n<g font-family=\"sans-serif\" font-size=\"12\">\n";
+  const double y = height_px - kBottomBandPx / 2;
+  double x = kSideMarginPx;
+  legend_box(svg, x, y, kCopper, "copper");
+  legend_box(svg, x += 100, y, kIsolation, "isolation (tool width)");
+  legend_box(svg, x += 180, y, kCutout, "cut-out (cutter width)");
+  legend_box(svg, x += 180, y, kTab, "tabs");
+  legend_box(svg, x += 80, y, kHole, "holes");
+  legend_box(svg, x += 90, y, kGap, "narrow gap");
+  if (!in.simulated.empty()) legend_box(svg, x += 120, y, kSimulated, "simulated tool");
+  const double s = f.scale_px_per_mm;
+  const double bar_mm = nice_length(in.width_px / 6.0 / s);
+  const double x1 = in.width_px - kSideMarginPx, x0 = x1 - bar_mm * s;
+  svg << "<path fill=\"none\" stroke=\"rgb(0,0,0)\" stroke-width=\"2\" d=\"M" << x0 << " " << y - 5
+      << " L" << x0 << " " << y << " " << x1 << " " << y << " " << x1 << " " << y - 5 << "\"/>\n";
+  std::ostringstream label;
+  label << bar_mm << " mm";
+  text_at(svg, x0, y + 16, label.str());
+  svg << "</g>\n";
+}
+
+}  // namespace
+
+std::string board_plot_svg(const BoardPlotInput& in, const PlotFrame& f, int height_px) {
+  const pcb::BoardJob& job = *in.job;
+  Svg svg;
+  svg << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << in.width_px << "pt\" height=\""
+      << height_px << "pt\" viewBox=\"0 0 " << in.width_px << " " << height_px << "\">\n";
+  svg << "<rect width=\"100%\" height=\"100%\" fill=\"rgb(255,255,255)\"/>\n";
+  polygons(svg, f, job.board_machine_nm, kBoard);
+  polygons(svg, f, job.copper_machine_nm, kCopper);
+  const double s = f.scale_px_per_mm;
+  stroke_group(svg, f, job.clearing_paths_mm, 2 * job.clearing_tool_radius_mm * s, kIsolation);
+  stroke_group(svg, f, job.clearing_paths_mm, 0.6, kIsolationCentre);
+  stroke_group(svg, f, job.isolation_paths_mm, 2 * job.tool_radius_mm * s, kIsolation);
+  stroke_group(svg, f, job.isolation_paths_mm, 0.6, kIsolationCentre);
+  stroke_group(svg, f, job.cutout_paths_mm, 2 * job.cutter_radius_mm * s, kCutout);
+  stroke_group(svg, f, job.cutout_paths_mm, 0.6, kCutoutCentre);
+  stroke_group(svg, f, job.tab_paths_mm, 2 * job.cutter_radius_mm * s, kTab);
+  holes(svg, job, f);
+  if (!in.simulated.empty()) {
+    std::vector<std::vector<Point2>> down;
+    for (const ToolPathSegment& seg : in.simulated)
+      if (seg.pen_down) down.push_back(seg.points_mm);
+    stroke_group(svg, f, down, 0.5, kSimulated);
+  }
+  gaps(svg, job, f);
+  labels(svg, in, f, height_px);
+  svg << "</svg>\n";
+  return svg.out;
+}
+
+void write_board_plot_svg(const BoardPlotInput& in, const PlotFrame& f, int height_px,
+                          const std::string& path) {
+  const std::string doc = board_plot_svg(in, f, height_px);
+  std::FILE* file = std::fopen(path.c_str(), "wb");
+  if (!file) throw std::runtime_error(path + ": cannot write the plot: " + std::strerror(errno));
+  const bool written = std::fwrite(doc.data(), 1, doc.size(), file) == doc.size();
+  const int err = errno;
+  if (std::fclose(file) != 0 || !written)
+    throw std::runtime_error(path +
+                             ": cannot write the plot: " + std::strerror(written ? errno : err));
+}
+
+}  // namespace host
