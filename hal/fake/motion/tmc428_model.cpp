@@ -87,12 +87,49 @@ void Tmc428Model::advance_to_ns(uint64_t t_ns) {
 
 void Tmc428Model::advance_to_tick(uint64_t t) {
   if (t <= now_) return;
-  for (int m = 0; m < kMotors; ++m) advance_motor(m, now_, t);
   // A capture armed while nothing was due (no motion, no continuous update) may become due
   // once a motor moves.
-  if ((cdgw_ || cover_waiting_) && !chain_scheduled_) schedule_chain(now_);
+  if ((cdgw_ || cover_waiting_) && !chain_scheduled_) {
+    for (int m = 0; m < kMotors; ++m) sync_motor_to(m, t);
+    schedule_chain(now_);
+  }
   if (chain_scheduled_ && chain_done_tick_ <= t) complete_chain_datagram();
   now_ = t;
+}
+
+void Tmc428Model::sync_motor_to(int m, uint64_t t) const {
+  if (t <= motor_tick_[m]) return;
+  advance_motor(m, motor_tick_[m], t);
+  motor_tick_[m] = t;
+}
+
+void Tmc428Model::sync_motors() const {
+  for (int m = 0; m < kMotors; ++m) sync_motor(m);
+}
+
+// Microsteps motor m can have made since it was integrated: at most one per pulse clock,
+// and one for the accumulator.
+uint64_t Tmc428Model::max_steps_since_sync(int m) const {
+  const unsigned pulse_shift = 5 + ((motor_[m].divisors >> 12) & 0xF);
+  return (now_ >> pulse_shift) - (motor_tick_[m] >> pulse_shift) + 1;
+}
+
+// True if motor m, not integrated since motor_tick_, cannot have turned a switch on or off
+// (so no flag either) by now: its switch bits are those it had.
+bool Tmc428Model::switches_quiet_until_now(int m) const {
+  return now_ <= motor_tick_[m] || switches_out_of_reach(m, max_steps_since_sync(m));
+}
+
+// As switches_quiet_until_now(), and it cannot have reached x_target either: the status
+// byte's bits for it are those it had.
+bool Tmc428Model::quiet_until_now(int m) const {
+  if (now_ <= motor_tick_[m]) return true;
+  const Motor& mo = motor_[m];
+  const uint64_t max_steps = max_steps_since_sync(m);
+  if (!switches_out_of_reach(m, max_steps)) return false;
+  const uint32_t d = (mo.x_target - (uint32_t)mo.x) & 0xFFFFFF;  // 24-bit wrap both ways
+  const uint32_t dist = d < 0x800000 ? d : 0x1000000 - d;
+  return dist > max_steps;
 }
 
 // ---- motors -------------------------------------------------------------------------------
@@ -150,7 +187,7 @@ int32_t Tmc428Model::effective_target_q8(int m) const {
 }
 
 // Switch edge flags and the position latch after any change of position or switch input.
-void Tmc428Model::note_switches(int m) {
+void Tmc428Model::note_switches(int m) const {
   Motor& mo = motor_[m];
   const bool l = left_active(m);
   const bool r = right_active(m);
@@ -215,7 +252,7 @@ void Tmc428Model::ramp_clock(Motor& mo, int32_t tgt) {
 // target is constant and no stop or flag can happen: closed-form segments between ramp
 // clocks.
 void Tmc428Model::advance_out_of_reach(int m, uint64_t t, uint64_t t1, unsigned pulse_shift,
-                                       unsigned ramp_shift) {
+                                       unsigned ramp_shift) const {
   Motor& mo = motor_[m];
   const uint32_t mode = mo.ref_ramp & kModeMask;
   // effective_target_q8() with no switch active (none is, out of reach), without its checks:
@@ -247,7 +284,7 @@ void Tmc428Model::advance_out_of_reach(int m, uint64_t t, uint64_t t1, unsigned 
 
 // Moving into an active stop switch: the stop flag, and a hard stop at once (*vi = 0); a
 // soft stop ramps via the target.
-void Tmc428Model::stop_at_switch(int m, int32_t* vi) {
+void Tmc428Model::stop_at_switch(int m, int32_t* vi) const {
   Motor& mo = motor_[m];
   const uint32_t mode = mo.ref_ramp & kModeMask;
   const bool soft = (mo.ref_ramp & kSoftStop) != 0;
@@ -283,7 +320,7 @@ int64_t Tmc428Model::steps_to_stop_switch(int m, int dir) const {
 
 // Integrates one motor over (t0, t1]: ramp clock by ramp clock while the velocity changes,
 // one closed-form segment when it does not; a switch hit splits a segment at its pulse.
-void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
+void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) const {
   Motor& mo = motor_[m];
   const uint32_t pd = (mo.divisors >> 12) & 0xF;
   const uint32_t rd = (mo.divisors >> 8) & 0xF;
@@ -297,6 +334,7 @@ void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) {
     mo.last_ramp = 0;
     return;
   }
+  ++motor_integrations_;
   if (switches_out_of_reach(m, ((t1 - t0) >> pulse_shift) + 2)) {
     advance_out_of_reach(m, t, t1, pulse_shift, ramp_shift);
     return;
@@ -371,6 +409,7 @@ uint64_t Tmc428Model::chain_datagram_ticks() const {
 // When the next chain datagram after `after` completes: at once while a motor steps,
 // else at the next continuous-update request (every 32768 2^ramp_div ticks per motor).
 void Tmc428Model::schedule_chain(uint64_t after) {
+  sync_motors();  // whether one moves
   chain_scheduled_ = false;
   if (chain_length_bits() < 0) return;
   bool moving = false;
@@ -437,6 +476,8 @@ uint32_t Tmc428Model::read_register(uint8_t addr) const {
 }
 
 uint32_t Tmc428Model::reg(int m, int idx) const {
+  // Position, velocity, a_actual, the latch and the flags follow the motion.
+  if (idx == 1 || idx == 5 || idx == 7 || idx == 10 || idx == 11 || idx == 14) sync_motor(m);
   const Motor& mo = motor_[m];
   switch (idx) {
     case 0:
@@ -512,6 +553,7 @@ void Tmc428Model::write_global_register(int idx, uint32_t data) {
       if (!chain_scheduled_) schedule_chain(now_);
       break;
     case 15:
+      sync_motors();
       smgp_ = data & 0x31FFFF;
       for (int m = 0; m < kMotors; ++m) note_switches(m);
       break;
@@ -522,6 +564,7 @@ void Tmc428Model::write_global_register(int idx, uint32_t data) {
 
 // A write to motor m's registers (SMDA 0..2).
 void Tmc428Model::write_motor_register(int m, int idx, uint32_t data) {
+  sync_motor(m);
   Motor& mo = motor_[m];
   switch (idx) {
     case 0:
@@ -595,6 +638,7 @@ void Tmc428Model::write_register(uint8_t addr, uint32_t data) {
 uint8_t Tmc428Model::switch_bits() const {
   uint8_t bits = 0;
   for (int m = 0; m < kMotors; ++m) {
+    if (!switches_quiet_until_now(m)) sync_motor(m);
     if (right_active(m)) bits |= (uint8_t)(1u << (2 * m));
     if (left_active(m)) bits |= (uint8_t)(2u << (2 * m));
   }
@@ -605,6 +649,7 @@ uint8_t Tmc428Model::status_byte() const {
   uint8_t s = 0;
   bool irq = false;
   for (int m = 0; m < kMotors; ++m) {
+    if (!quiet_until_now(m)) sync_motor(m);
     const Motor& mo = motor_[m];
     if (((uint32_t)mo.x & 0xFFFFFF) == mo.x_target) s |= (uint8_t)(0x01 << (2 * m));
     if (left_active(m)) s |= (uint8_t)(0x02 << (2 * m));
@@ -639,6 +684,7 @@ uint32_t Tmc428Model::transfer32(uint32_t mosi) {
 // ---- setup and inspection -------------------------------------------------------------------
 
 void Tmc428Model::set_switch_positions(int motor, int32_t left_usteps, int32_t right_usteps) {
+  sync_motor(motor);
   Motor& mo = motor_[motor];
   mo.left_pos = left_usteps;
   mo.right_pos = right_usteps;
@@ -648,6 +694,7 @@ void Tmc428Model::set_switch_positions(int motor, int32_t left_usteps, int32_t r
 }
 
 void Tmc428Model::force_switch(int motor, bool right, int level) {
+  sync_motor(motor);
   if (right) {
     motor_[motor].force_right = level;
   } else {
@@ -661,14 +708,17 @@ void Tmc428Model::set_driver_status(int motor, uint16_t status12) {
 }
 
 int32_t Tmc428Model::x_actual(int motor) const {
+  sync_motor(motor);
   return motor_[motor].x;
 }
 
 int16_t Tmc428Model::v_actual(int motor) const {
+  sync_motor(motor);
   return (int16_t)(motor_[motor].v_q8 / 256);
 }
 
 int32_t Tmc428Model::v_actual_q8(int motor) const {
+  sync_motor(motor);
   return motor_[motor].v_q8;
 }
 

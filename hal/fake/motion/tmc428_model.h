@@ -77,6 +77,8 @@ class Tmc428Model : public SpiDevice {
   uint8_t status_byte() const;             // what the next answer's bits 31..24 are
   uint8_t switch_bits() const;             // the 0x7C register: r1 l1 r2 l2 r3 l3
   uint32_t chain_datagrams() const { return chain_datagrams_; }  // captured answers
+  // Times a moving motor was integrated up to a later time (what lazy stepping saves).
+  uint64_t motor_integrations() const { return motor_integrations_; }
   const std::vector<Datagram>& log() const { return log_; }
   void clear_log() { log_.clear(); }
   // Off: datagrams are not logged (long simulations; RecordingSpi can record instead).
@@ -111,10 +113,19 @@ class Tmc428Model : public SpiDevice {
   void write_global_register(int idx, uint32_t data);
   void write_motor_register(int m, int idx, uint32_t data);
   void advance_to_tick(uint64_t t);
-  void advance_motor(int m, uint64_t t0, uint64_t t1);
+  // Motors are integrated lazily (exactly: the integration of (t0, t2] equals that of
+  // (t0, t1] then (t1, t2]): up to now when something reads or changes one, not after
+  // every datagram. The const inspection functions bring a motor up to date too.
+  void sync_motor(int m) const { sync_motor_to(m, now_); }
+  void sync_motor_to(int m, uint64_t t) const;
+  void sync_motors() const;
+  uint64_t max_steps_since_sync(int m) const;
+  bool switches_quiet_until_now(int m) const;
+  bool quiet_until_now(int m) const;
+  void advance_motor(int m, uint64_t t0, uint64_t t1) const;
   void advance_out_of_reach(int m, uint64_t t, uint64_t t1, unsigned pulse_shift,
-                            unsigned ramp_shift);
-  void stop_at_switch(int m, int32_t* vi);
+                            unsigned ramp_shift) const;
+  void stop_at_switch(int m, int32_t* vi) const;
   int64_t steps_to_stop_switch(int m, int dir) const;
   static void ramp_clock(Motor& mo, int32_t tgt);
   static uint64_t segment_end(Motor& mo, bool ramping, uint64_t t, uint64_t t1, unsigned ramp_shift,
@@ -126,7 +137,7 @@ class Tmc428Model : public SpiDevice {
   bool left_exists(int m) const;
   bool right_exists(int m) const;
   bool stop_allowed(int m, int32_t switch_pos) const;
-  void note_switches(int m);
+  void note_switches(int m) const;
   void arm_chain_capture();
   void schedule_chain(uint64_t after);
   void complete_chain_datagram();
@@ -139,7 +150,9 @@ class Tmc428Model : public SpiDevice {
   uint64_t tick_reciprocal_ = 0;  // ceil(2^64 / ns_per_tick_), 0 for a 1 ns period
   uint64_t now_ = 0;              // ticks
   uint64_t now_ns_ = 0;           // exact ns clock the ticks derive from
-  Motor motor_[kMotors];
+  mutable Motor motor_[kMotors];  // integrated up to motor_tick_ (lazily, see sync)
+  mutable uint64_t motor_tick_[kMotors] = {};
+  mutable uint64_t motor_integrations_ = 0;
   uint8_t ram_[128];
   uint32_t smgp_ = 0x000F00;  // clk2_div = 15 at power-on ([428DS] §6.1)
   uint64_t chain_words_ = 0;  // 48-bit shift register from SDI_S

@@ -157,6 +157,59 @@ TEST(Tmc428Model, ClockTicksAreTheElapsedNanosecondsOverThePeriod) {
   }
 }
 
+// The simulator sends ~7 datagrams a millisecond; a cruising motor far from its switches
+// and x_target is integrated when its own position or velocity is read or changed, not
+// after each datagram that only reads another motor or the (predictable) status byte.
+TEST(Tmc428Model, AMovingMotorIsIntegratedOnlyWhenItIsReadOrChanged) {
+  Tmc428Model c;
+  velocity_setup(c);
+  write(c, motor_reg(0, kVTarget), 1000);
+  c.advance_us(100000);
+  const int32_t x0 = c.x_actual(0);
+  const uint64_t n0 = c.motor_integrations();
+  for (int i = 0; i < 7; ++i) {
+    read(c, motor_reg(1, kXActual));
+    read(c, kRefSwitches);
+    write(c, motor_reg(2, kVTarget), 0);
+    c.advance_us(26);
+  }
+  EXPECT_EQ(c.motor_integrations(), n0);
+  EXPECT_GT(c.x_actual(0), x0);
+  EXPECT_EQ(c.motor_integrations(), n0 + 1);
+}
+
+// Lazy integration changes no answer: a model whose motor is read after every step answers
+// every datagram as one left alone, through a ramp, a pass over x_target and a switch stop.
+TEST(Tmc428Model, LazyIntegrationAnswersAsIntegratingAfterEveryStep) {
+  Tmc428Model eager, lazy;
+  for (Tmc428Model* c : {&eager, &lazy}) {
+    write(*c, kSmgp, kSmgpRefMux | kSmgpContinuousUpdate);
+    velocity_setup(*c);
+    write(*c, motor_reg(0, kXTarget), 3000);
+    c->set_switch_positions(0, -100000, 9000);
+    write(*c, motor_reg(0, kVTarget), 700);
+  }
+  uint32_t seed = 7;
+  for (int i = 0; i < 20000; ++i) {
+    seed = seed * 1103515245u + 12345u;
+    const uint32_t step_ns = 20000 + (seed >> 8) % 300000;
+    const uint8_t addr = i % 3 == 0   ? kRefSwitches
+                         : i % 3 == 1 ? motor_reg(1, kXActual)
+                                      : motor_reg(0, kInterrupt);
+    ASSERT_EQ(read(lazy, addr), read(eager, addr)) << "datagram " << i;
+    if (i == 9000) {
+      write(eager, motor_reg(0, kVTarget), 0xFFF & (uint32_t)-900);
+      write(lazy, motor_reg(0, kVTarget), 0xFFF & (uint32_t)-900);
+    }
+    eager.advance_ns(step_ns);
+    lazy.advance_ns(step_ns);
+    eager.x_actual(0);
+  }
+  EXPECT_EQ(lazy.x_actual(0), eager.x_actual(0));
+  EXPECT_EQ(lazy.v_actual_q8(0), eager.v_actual_q8(0));
+  EXPECT_LT(lazy.motor_integrations(), eager.motor_integrations());
+}
+
 TEST(Tmc428Model, NegativeVelocityMovesBackwards) {
   Tmc428Model c;
   velocity_setup(c);
