@@ -192,14 +192,8 @@ void draw_labels(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int 
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, 12);
   const double y = height_px - kBottomBandPx / 2;
-  double x = kSideMarginPx;
-  legend_box(cr, x, y, kCopper, "copper");
-  legend_box(cr, x += 100, y, kIsolation, "isolation (tool width)");
-  legend_box(cr, x += 180, y, kCutout, "cut-out (cutter width)");
-  legend_box(cr, x += 180, y, kTab, "tabs");
-  legend_box(cr, x += 80, y, kHole, "holes");
-  legend_box(cr, x += 90, y, kGap, "narrow gap");
-  if (!in.simulated.empty()) legend_box(cr, x += 120, y, kSimulated, "simulated tool");
+  for (int i = 0; i < legend_entries(!in.simulated.empty()); ++i)
+    legend_box(cr, kSideMarginPx + kLegend[i].x_px, y, kLegend[i].colour, kLegend[i].label);
   draw_scale_bar(cr, nice_length(in.width_px / 6.0 / s), s, in.width_px - kSideMarginPx, y);
 }
 

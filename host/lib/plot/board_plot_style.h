@@ -24,6 +24,25 @@ const Rgba kHole = {0.12, 0.12, 0.12, 1.0};
 const Rgba kGap = {0.90, 0.00, 0.00, 1.0};
 const Rgba kSimulated = {0.75, 0.05, 0.05, 0.9};
 
+// The legend, left to right in the bottom band, each entry `x_px` right of the side margin.
+// The last entry is drawn only when the plot shows a simulated tool.
+struct LegendEntry {
+  double x_px;
+  Rgba colour;
+  const char* label;
+};
+const LegendEntry kLegend[] = {{0, kCopper, "copper"},
+                               {100, kIsolation, "isolation (tool width)"},
+                               {280, kCutout, "cut-out (cutter width)"},
+                               {460, kTab, "tabs"},
+                               {540, kHole, "holes"},
+                               {630, kGap, "narrow gap"},
+                               {750, kSimulated, "simulated tool"}};
+inline int legend_entries(bool simulated) {
+  const int all = sizeof kLegend / sizeof kLegend[0];
+  return simulated ? all : all - 1;
+}
+
 }  // namespace board_plot_style
 }  // namespace host
 

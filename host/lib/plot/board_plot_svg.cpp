@@ -165,14 +165,8 @@ void labels(Svg& svg, const BoardPlotInput& in, const PlotFrame& f, int height_p
   text_at(svg, kSideMarginPx, 26, in.title);
   svg << "</g>\n<g font-family=\"sans-serif\" font-size=\"12\">\n";
   const double y = height_px - kBottomBandPx / 2;
-  double x = kSideMarginPx;
-  legend_box(svg, x, y, kCopper, "copper");
-  legend_box(svg, x += 100, y, kIsolation, "isolation (tool width)");
-  legend_box(svg, x += 180, y, kCutout, "cut-out (cutter width)");
-  legend_box(svg, x += 180, y, kTab, "tabs");
-  legend_box(svg, x += 80, y, kHole, "holes");
-  legend_box(svg, x += 90, y, kGap, "narrow gap");
-  if (!in.simulated.empty()) legend_box(svg, x += 120, y, kSimulated, "simulated tool");
+  for (int i = 0; i < legend_entries(!in.simulated.empty()); ++i)
+    legend_box(svg, kSideMarginPx + kLegend[i].x_px, y, kLegend[i].colour, kLegend[i].label);
   const double s = f.scale_px_per_mm;
   const double bar_mm = nice_length(in.width_px / 6.0 / s);
   const double x1 = in.width_px - kSideMarginPx, x0 = x1 - bar_mm * s;
