@@ -36,6 +36,7 @@ std::string expand(const std::string& text, const std::string& path, int depth) 
     try {
       inc = expand(read_pcb_file_text(inc_path), inc_path, depth + 1);
     } catch (const PcbReadError& e) {
+      if (depth > 0) throw;  // named once: the first file's %IF line, then the failing one's
       throw PcbReadError(where + e.what());
     }
     out.append(text, pos, at - pos);

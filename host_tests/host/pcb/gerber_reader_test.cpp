@@ -335,6 +335,20 @@ TEST(GerberLegacyParameters, AnIncludeFileIsReadInPlaceFromTheFilesFolder) {
               std::string::npos)
         << e.what();
   }
+  // A file including itself: refused at the depth limit, its %IF line said twice, not nine times.
+  std::ofstream(dir + "/self.gbr") << "%FSLAX46Y46*%\n%MOMM*%\n\n%IFself.gbr*%\nM02*\n";
+  try {
+    read_gerber_file(dir + "/self.gbr");
+    ADD_FAILURE() << "a file including itself read";
+  } catch (const PcbReadError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("includes nested more than 8 deep"), std::string::npos) << what;
+    size_t times = 0;
+    for (size_t at = what.find("%IFself.gbr"); at != std::string::npos;
+         at = what.find("%IFself.gbr", at + 1))
+      ++times;
+    EXPECT_EQ(times, 2u) << what;
+  }
   EXPECT_THROW(read_gerber_file(dir + "/up.gbr"), PcbReadError);
   std::ofstream(dir + "/up.gbr") << "%FSLAX46Y46*%\n%MOMM*%\n%IF../x.gbx*%\nM02*\n";
   EXPECT_THROW(read_gerber_file(dir + "/up.gbr"), PcbReadError);
