@@ -31,7 +31,8 @@ Pixel pixel_at(cairo_surface_t* s, const Point2& px) {
                static_cast<int>(v & 255)};
 }
 
-TEST(BoardPlot, CopperIsolationAndHolesAppearWhereTheyAre) {
+// A 4 mm copper square with a 1 mm hole at its centre, isolated with a 0.4 mm tool.
+pcb::BoardJob square_with_a_hole() {
   pcb::PcbLayer top =
       pcb::test::copper_layer({pcb::test::rect(0, 0, 4, 4)}, pcb::LayerKind::kCopperTop);
   pcb::PcbLayer drill;
@@ -42,13 +43,22 @@ TEST(BoardPlot, CopperIsolationAndHolesAppearWhereTheyAre) {
   l.drill = &drill;
   pcb::BoardOptions o;
   o.isolation.tool_width_mm = 0.4;
-  const pcb::BoardJob job = pcb::plan_board(l, o);
+  return pcb::plan_board(l, o);
+}
+
+// A file of this test process in the temporary folder (worktrees run these tests at once).
+std::string temp_file(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "-" + name))
+      .string();
+}
+
+TEST(BoardPlot, CopperIsolationAndHolesAppearWhereTheyAre) {
+  const pcb::BoardJob job = square_with_a_hole();
   BoardPlotInput in;
   in.title = "test";
   in.job = &job;
   in.width_px = 800;
-  const std::string png =
-      (std::filesystem::temp_directory_path() / "pcb_board_plot_test.png").string();
+  const std::string png = temp_file("pcb_board_plot_test.png");
   write_board_plot(in, "", png);
   cairo_surface_t* s = cairo_image_surface_create_from_png(png.c_str());
   ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
@@ -73,23 +83,12 @@ TEST(BoardPlot, CopperIsolationAndHolesAppearWhereTheyAre) {
 // The SVG is written as text (no cairo, no fontconfig at start-up): the same picture's
 // parts at the same places, its legend as text a reader can search.
 TEST(BoardPlot, SvgIsPlainTextWithTheLegendAndTheHoleWhereItIs) {
-  pcb::PcbLayer top =
-      pcb::test::copper_layer({pcb::test::rect(0, 0, 4, 4)}, pcb::LayerKind::kCopperTop);
-  pcb::PcbLayer drill;
-  drill.path = "t.drl";
-  drill.holes = {pcb::test::hole(2, 2, 1.0, 1)};
-  pcb::BoardLayers l;
-  l.copper_top = &top;
-  l.drill = &drill;
-  pcb::BoardOptions o;
-  o.isolation.tool_width_mm = 0.4;
-  const pcb::BoardJob job = pcb::plan_board(l, o);
+  const pcb::BoardJob job = square_with_a_hole();
   BoardPlotInput in;
   in.title = "a <test> & more";
   in.job = &job;
   in.width_px = 800;
-  const std::string svg_path =
-      (std::filesystem::temp_directory_path() / "pcb_board_plot_test.svg").string();
+  const std::string svg_path = temp_file("pcb_board_plot_test.svg");
   write_board_plot(in, svg_path, "");
   std::ifstream file(svg_path);
   std::stringstream text;
@@ -129,8 +128,7 @@ TEST(BoardPlot, ALargePngIsWrittenInBandsOfRows) {
   in.title = "large";
   in.job = &job;
   in.width_px = 6000;
-  const std::string png =
-      (std::filesystem::temp_directory_path() / "pcb_board_plot_large_test.png").string();
+  const std::string png = temp_file("pcb_board_plot_large_test.png");
   // In a child process, so that its peak resident memory counts this plot alone.
   const pid_t pid = fork();
   ASSERT_GE(pid, 0);
