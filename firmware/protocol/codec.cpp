@@ -21,22 +21,30 @@ enum WireType {
   kWireState,   // u8 MachineState
   kWireAlarm,   // u8 Alarm
   kWireError,   // u8 ErrorCode (only the defined values)
-  kWireText,    // the rest of the payload, characters min..max
-  kWirePoints,  // count x (x i32, y i32, weight u16): coordinates min..max, weight >= 1
+  kWireText,    // the rest of the payload, characters 0x20..0x7E
+  kWirePoints,  // count x (x i32, y i32, weight u16): coordinates in range, weight >= 1
   kWireKnots,   // count x i32
   kWireBytes,   // u8 of any value to the end of the payload, count in a kWireNone field
   kWireNone,    // a u8 count in the struct, not on the wire
   kWireEnd
 };
 
+// Text and arrays have fixed element ranges (kWireText, kWirePoints), so their min and max
+// hold the count's offset and the largest count instead: 6 bytes an entry, not 8.
 struct FieldSpec {
-  uint8_t type;          // WireType
-  uint8_t offset;        // of the field in the message struct
-  uint8_t count_offset;  // text, arrays: of the uint8_t count in the struct
-  uint8_t max_count;     // text, arrays
-  int16_t min;           // range ends as PROTO_LIMIT codes (range_end() decodes them)
-  int16_t max;
+  uint8_t type;    // WireType
+  uint8_t offset;  // of the field in the message struct
+  int16_t min;     // range ends as PROTO_LIMIT codes (range_end() decodes them);
+  int16_t max;     // text, arrays: count_offset() and max_count()
 };
+
+// Of the uint8_t count in the struct (text, arrays).
+uint8_t count_offset(const FieldSpec* f) {
+  return (uint8_t)f->min;
+}
+uint8_t max_count(const FieldSpec* f) {
+  return (uint8_t)f->max;
+}
 
 // Range ends that do not fit 16 bits, stored in FieldSpec as codes kWideLimitCode + i: a
 // field table entry is 8 bytes instead of 12 (the tables are flash). Every range end must
@@ -71,31 +79,20 @@ int32_t range_end(int16_t code) {
 #define PROTO_ARRAY_WIRE_point kWirePoints
 #define PROTO_ARRAY_WIRE_i32 kWireKnots
 #define PROTO_ARRAY_WIRE_rest kWireBytes
-#define PROTO_ARRAY_MIN_point PROTO_COORD_MIN
-#define PROTO_ARRAY_MAX_point PROTO_COORD_MAX
-#define PROTO_ARRAY_MIN_i32 PROTO_I32_MIN
-#define PROTO_ARRAY_MAX_i32 PROTO_I32_MAX
-#define PROTO_ARRAY_MIN_rest 0
-#define PROTO_ARRAY_MAX_rest 255
 
 // NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and member names.
 #define PROTO_SPEC_CMD(Type, name, letter, role, display, reply, handler, check) \
   const FieldSpec k##Type##Fields[] = {
 #define PROTO_SPEC_REPLY(Type, name, letter, display, check) const FieldSpec k##Type##Fields[] = {
 #define PROTO_SPEC_FIELD(Type, wire, field, min, max) \
-  {PROTO_WIRE_##wire, (uint8_t)offsetof(Type, field), 0, 0, PROTO_LIMIT(min), PROTO_LIMIT(max)},
+  {PROTO_WIRE_##wire, (uint8_t)offsetof(Type, field), PROTO_LIMIT(min), PROTO_LIMIT(max)},
 #define PROTO_SPEC_TEXT(Type, count, field, max) \
-  {kWireText, (uint8_t)offsetof(Type, field), (uint8_t)offsetof(Type, count), max, 0x20, 0x7E},
+  {kWireText, (uint8_t)offsetof(Type, field), (int16_t)offsetof(Type, count), max},
 #define PROTO_SPEC_ARRAY(Type, count, field, element, max) \
-  {PROTO_ARRAY_WIRE_##element,                             \
-   (uint8_t)offsetof(Type, field),                         \
-   (uint8_t)offsetof(Type, count),                         \
-   max,                                                    \
-   PROTO_LIMIT(PROTO_ARRAY_MIN_##element),                 \
-   PROTO_LIMIT(PROTO_ARRAY_MAX_##element)},
-#define PROTO_SPEC_END(Type)  \
-  { kWireEnd, 0, 0, 0, 0, 0 } \
-  }                           \
+  {PROTO_ARRAY_WIRE_##element, (uint8_t)offsetof(Type, field), (int16_t)offsetof(Type, count), max},
+#define PROTO_SPEC_END(Type) \
+  { kWireEnd, 0, 0, 0 }      \
+  }                          \
   ;
 // NOLINTEND(bugprone-macro-parentheses)
 PROTO_MESSAGE_TABLE(PROTO_SPEC_CMD, PROTO_SPEC_REPLY, PROTO_SPEC_FIELD, PROTO_SPEC_TEXT,
@@ -111,15 +108,9 @@ PROTO_MESSAGE_TABLE(PROTO_SPEC_CMD, PROTO_SPEC_REPLY, PROTO_SPEC_FIELD, PROTO_SP
 #define PROTO_SKIP(...)
 #define PROTO_CHECK_FIELD(Type, wire, field, min, max) \
   static_assert(PROTO_LIMIT_OK(min) && PROTO_LIMIT_OK(max), "add the range end to kWideLimits");
-#define PROTO_CHECK_ARRAY(Type, count, field, element, max)                                   \
-  static_assert(                                                                              \
-      PROTO_LIMIT_OK(PROTO_ARRAY_MIN_##element) && PROTO_LIMIT_OK(PROTO_ARRAY_MAX_##element), \
-      "add the range end to kWideLimits");
-PROTO_MESSAGE_TABLE(PROTO_SKIP, PROTO_SKIP, PROTO_CHECK_FIELD, PROTO_SKIP, PROTO_CHECK_ARRAY,
-                    PROTO_SKIP)
+PROTO_MESSAGE_TABLE(PROTO_SKIP, PROTO_SKIP, PROTO_CHECK_FIELD, PROTO_SKIP, PROTO_SKIP, PROTO_SKIP)
 #undef PROTO_SKIP
 #undef PROTO_CHECK_FIELD
-#undef PROTO_CHECK_ARRAY
 #undef PROTO_LIMIT_OK
 #undef PROTO_LIMIT
 
@@ -192,26 +183,26 @@ void store(uint8_t* msg, const FieldSpec& f, int32_t v) {
 // Every field inside its range (and the enums inside their lists).
 ErrorCode check_fields(const uint8_t* msg, const FieldSpec* f) {
   for (; f->type != kWireEnd; ++f) {
-    const int32_t lo = range_end(f->min);  // once per field, not per element
-    const int32_t hi = range_end(f->max);
     if (f->type == kWireText || f->type == kWirePoints || f->type == kWireKnots ||
         f->type == kWireBytes) {
-      const uint8_t n = msg[f->count_offset];
-      if (n > f->max_count) return ErrorCode::kFieldRange;
+      const uint8_t n = msg[count_offset(f)];
+      if (n > max_count(f)) return ErrorCode::kFieldRange;
       for (uint8_t i = 0; i < n; ++i) {
         if (f->type == kWireText) {
-          if (!in_range((uint8_t)msg[f->offset + i], lo, hi)) return ErrorCode::kFieldRange;
+          const uint8_t c = msg[f->offset + i];
+          if (c < 0x20 || c > 0x7E) return ErrorCode::kFieldRange;
         } else if (f->type == kWirePoints) {
           core::ControlPoint p;
           memcpy(&p, msg + f->offset + i * sizeof p, sizeof p);
-          if (!in_range(p.x_um, lo, hi) || !in_range(p.y_um, lo, hi) || p.weight_q14 == 0)
+          if (!in_range(p.x_um, PROTO_COORD_MIN, PROTO_COORD_MAX) ||
+              !in_range(p.y_um, PROTO_COORD_MIN, PROTO_COORD_MAX) || p.weight_q14 == 0)
             return ErrorCode::kFieldRange;
         }
       }
       continue;
     }
     const int32_t v = load(msg, *f);
-    if (!in_range(v, lo, hi)) return ErrorCode::kFieldRange;
+    if (!in_range(v, range_end(f->min), range_end(f->max))) return ErrorCode::kFieldRange;
     if (f->type == kWireState && v > (int32_t)MachineState::kPaused) return ErrorCode::kFieldRange;
     if (f->type == kWireAlarm && v > (int32_t)kLastAlarm) return ErrorCode::kFieldRange;
     if (f->type == kWireError && !is_known_error((uint8_t)v)) return ErrorCode::kFieldRange;
@@ -226,7 +217,7 @@ void write_fields(const uint8_t* msg, const FieldSpec* f, Payload* out) {
   for (; f->type != kWireEnd; ++f) {
     if (f->type == kWireText || f->type == kWirePoints || f->type == kWireKnots ||
         f->type == kWireBytes) {
-      const uint8_t n = msg[f->count_offset];
+      const uint8_t n = msg[count_offset(f)];
       for (uint8_t i = 0; i < n; ++i) {
         if (f->type == kWireText || f->type == kWireBytes) {
           p[n_out++] = msg[f->offset + i];
@@ -267,16 +258,16 @@ ErrorCode read_fields(const uint8_t* bytes, uint8_t length, uint8_t* msg, const 
   for (; f->type != kWireEnd; ++f) {
     const uint8_t left = (uint8_t)(length - pos);
     if (f->type == kWireText || f->type == kWireBytes) {  // the rest of the payload
-      if (left > f->max_count) return ErrorCode::kPayloadLength;
-      msg[f->count_offset] = left;
+      if (left > max_count(f)) return ErrorCode::kPayloadLength;
+      msg[count_offset(f)] = left;
       if (left > 0) memcpy(msg + f->offset, bytes + pos, left);  // bytes may be 0 when empty
       pos = length;
       continue;
     }
     if (f->type == kWireNone) continue;  // set by its kWireBytes array
     if (f->type == kWirePoints || f->type == kWireKnots) {
-      const uint8_t n = msg[f->count_offset];
-      if (n > f->max_count) return ErrorCode::kFieldRange;
+      const uint8_t n = msg[count_offset(f)];
+      if (n > max_count(f)) return ErrorCode::kFieldRange;
       const uint8_t each =
           f->type == kWirePoints ? (uint8_t)kControlPointBytes : (uint8_t)kKnotBytes;
       if ((uint16_t)n * each > left) return ErrorCode::kPayloadLength;
