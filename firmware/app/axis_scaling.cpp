@@ -8,29 +8,27 @@ namespace app {
 
 namespace {
 
-// floor(a m 2^shift / (b1 b2)) for b1 b2 > 0 (a m 2^shift < 2^64): every 64-bit step of
-// this file goes through here, out of line and with 32-bit arguments (64-bit code is long
-// inline code on 8- and 16-bit cores).
-__attribute__((noinline)) uint64_t mul_div(uint32_t a, uint32_t m, uint8_t shift, uint32_t b1,
+// floor(a m 2^shift / (b1 b2)) for b1 b2 > 0 (a m 2^shift < 2^64), saturated at 2^32 - 1:
+// every 64-bit step of this file goes through here, out of line and with 32-bit arguments
+// and result (64-bit code is long inline code on 8- and 16-bit cores).
+__attribute__((noinline)) uint32_t mul_div(uint32_t a, uint32_t m, uint8_t shift, uint32_t b1,
                                            uint32_t b2) {
-  return (((uint64_t)a * m) << shift) / ((uint64_t)b1 * b2);
+  const uint64_t q = (((uint64_t)a * m) << shift) / ((uint64_t)b1 * b2);
+  return q > 0xFFFFFFFFULL ? 0xFFFFFFFFUL : (uint32_t)q;
 }
 
-// Largest shift <= 32 that brings v (a Q32 value) below 2^16 as Q(shift).
-__attribute__((noinline)) uint8_t fit_shift(uint64_t v_q32) {
+// Largest shift <= 32 that brings floor(a 2^(base + shift) / (b1 b2)) below 2^16: the Q32
+// value floor(a 2^(base + 32) / (b1 b2)) shifted right by 32 - shift, as a quotient of its
+// own (the floor of a floor is the floor of the whole), so no 64-bit value leaves mul_div.
+uint8_t fit_shift(uint32_t a, uint8_t base, uint32_t b1, uint32_t b2) {
   uint8_t shift = 32;
-  while (shift > 0 && (v_q32 >> (32 - shift)) >= 65536ULL) --shift;
+  while (shift > 0 && mul_div(a, 1, (uint8_t)(base + shift), b1, b2) > 65535UL) --shift;
   return shift;
 }
 
 // Saturates into 16 bits unsigned.
 uint16_t sat_u16(uint32_t v) {
   return v > 65535UL ? (uint16_t)65535U : (uint16_t)v;
-}
-
-// Saturates at limit (the values below compare with 32-bit limits only).
-uint32_t sat_u32(uint64_t v, uint32_t limit) {
-  return v > limit ? limit : (uint32_t)v;
 }
 
 }  // namespace
@@ -61,8 +59,8 @@ bool build_axis_scaling(const config::MachineConfig& cfg, const hal::MotionAxes&
     }
     ustep_s_per_unit_q16[a] = u;
     // um per ustep = 1000 / upm; units per (um/s) = upm / 1000 / (usteps/s per unit).
-    const uint8_t um_fit = fit_shift(mul_div(1000, 1, 32, (uint32_t)upm, 1));
-    const uint8_t units_fit = fit_shift(mul_div((uint32_t)upm, 1, 48, u, 1000));
+    const uint8_t um_fit = fit_shift(1000, 0, (uint32_t)upm, 1);
+    const uint8_t units_fit = fit_shift((uint32_t)upm, 16, u, 1000);
     if (um_fit < s->um_shift) s->um_shift = um_fit;
     if (units_fit < s->units_shift) s->units_shift = units_fit;
     int16_t vmax = motion.max_velocity_units(a);
@@ -72,8 +70,7 @@ bool build_axis_scaling(const config::MachineConfig& cfg, const hal::MotionAxes&
     }
     s->max_units[a] = vmax;
     // um/s of v_max: vmax * usteps/s per unit / upm * 1000 (the q16 and upm as one divisor).
-    const uint32_t chip_max_um_s =
-        sat_u32(mul_div((uint32_t)vmax * 1000U, u, 0, (uint32_t)upm, 65536UL), 0xFFFFFFFFUL);
+    const uint32_t chip_max_um_s = mul_div((uint32_t)vmax * 1000U, u, 0, (uint32_t)upm, 65536UL);
     uint32_t max_um_s = cfg.axis[a].max_speed_um_per_s;
     if (chip_max_um_s < max_um_s) max_um_s = chip_max_um_s;
     if (max_um_s > 32767UL) max_um_s = 32767UL;
@@ -81,9 +78,9 @@ bool build_axis_scaling(const config::MachineConfig& cfg, const hal::MotionAxes&
     s->max_speed_um_s[a] = (uint16_t)max_um_s;
     // Held below 2^24: saturates the chip's and (with the configured limit < 2^23) the
     // planner's figure just as the exact value would, and keeps acc * 192 in 32 bits.
-    uint32_t acc = sat_u32(
-        mul_div((uint32_t)motion.accel_units_per_ms(a) * 1000U, u, 0, (uint32_t)upm, 65536UL),
-        0xFFFFFFUL);
+    uint32_t acc =
+        mul_div((uint32_t)motion.accel_units_per_ms(a) * 1000U, u, 0, (uint32_t)upm, 65536UL);
+    if (acc > 0xFFFFFFUL) acc = 0xFFFFFFUL;
     if (acc < 4) {
       acc = 4;
       ok = false;
