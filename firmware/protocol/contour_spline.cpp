@@ -12,7 +12,7 @@ namespace {
 
 // n / d rounded to nearest (halves away from zero), d > 0 and |n| <= d * d (the quotient
 // fits 16 bits): one 32/16 division.
-int32_t divide_rounded(int32_t n, uint16_t d) {
+__attribute__((noinline)) int32_t divide_rounded(int32_t n, uint16_t d) {
   const uint32_t magnitude = (uint32_t)(n >= 0 ? n : -n) + d / 2U;
   const int32_t q = (int32_t)core::div_u32_u16(magnitude, d, 0);
   return n >= 0 ? q : -q;
