@@ -271,18 +271,28 @@ void Dispatcher::error(uint8_t seq, proto::ErrorCode code, uint8_t detail) {
   reply(r, seq);
 }
 
-// Encodes a reply into the transmit buffer; if even that is full the reply is dropped (the
-// host recovers with #? and its retransmit timer). One copy per message type: the payload.
+namespace {
+
 template <typename Msg>
-void Dispatcher::reply(const Msg& msg, uint8_t seq) {
-  proto::Payload payload;
-  if (proto::encode(msg, &payload) != proto::ErrorCode::kOk) return;
-  send_frame((uint8_t)Msg::kStart, (uint8_t)Msg::kLetter, seq, payload);
+proto::ErrorCode encode_reply(const void* msg, proto::Payload* out) {
+  return proto::encode(*static_cast<const Msg*>(msg), out);
 }
 
-// The frame around an encoded payload, shared by every reply.
-void Dispatcher::send_frame(uint8_t start, uint8_t letter, uint8_t seq,
-                            const proto::Payload& payload) {
+}  // namespace
+
+// Encodes a reply into the transmit buffer; if even that is full the reply is dropped (the
+// host recovers with #? and its retransmit timer). Per message type only the call: the
+// payload and the frame are send_frame's, one copy for every reply.
+template <typename Msg>
+void Dispatcher::reply(const Msg& msg, uint8_t seq) {
+  send_frame(&encode_reply<Msg>, &msg, (uint8_t)Msg::kStart, (uint8_t)Msg::kLetter, seq);
+}
+
+// The frame around the encoded payload, shared by every reply.
+void Dispatcher::send_frame(ReplyEncoder encode, const void* msg, uint8_t start, uint8_t letter,
+                            uint8_t seq) {
+  proto::Payload payload;
+  if (encode(msg, &payload) != proto::ErrorCode::kOk) return;
   if (kTxBytes - tx_len_ < proto::kMaxFrameBytes) flush_tx();
   const uint8_t size = proto::encode_frame(start, letter, seq, payload.bytes, payload.length,
                                            tx_ + tx_len_, (uint16_t)(kTxBytes - tx_len_));

@@ -76,7 +76,9 @@ class Dispatcher {
   void error(uint8_t seq, proto::ErrorCode code, uint8_t detail);
   template <typename Msg>
   void reply(const Msg& msg, uint8_t seq);
-  void send_frame(uint8_t start, uint8_t letter, uint8_t seq, const proto::Payload& payload);
+  // A reply message's encoder (proto::encode of its type) on the message's bytes.
+  typedef proto::ErrorCode (*ReplyEncoder)(const void* msg, proto::Payload* out);
+  void send_frame(ReplyEncoder encode, const void* msg, uint8_t start, uint8_t letter, uint8_t seq);
   void flush_tx();
 
   hal::SerialPort* port_;
