@@ -114,8 +114,9 @@ class Application : private CommandSink {
                                 uint8_t length);
   proto::ErrorCode enqueue_move(ItemKind kind, uint8_t seq, const int32_t* x_um,
                                 const int32_t* y_um, uint16_t feed_um_s);
-  proto::ErrorCode enqueue_inside(const QueueItem& item, const int32_t* x_um, const int32_t* y_um,
-                                  const int32_t* z_um);
+  proto::ErrorCode enqueue_args(ItemKind kind, uint8_t seq, const void* args, uint8_t size);
+  proto::ErrorCode enqueue_inside(ItemKind kind, uint8_t seq, const void* args, uint8_t size,
+                                  const int32_t* x_um, const int32_t* y_um, const int32_t* z_um);
   proto::ErrorCode motion_check(const int32_t* x_um, const int32_t* y_um,
                                 const int32_t* z_um) const;
   // One per command of the message table with a handler (command_handlers.h).

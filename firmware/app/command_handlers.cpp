@@ -3,6 +3,8 @@
 // machine: zeroed, inside the travel); real-time ones act at once. Background loop only.
 #include "firmware/app/application.h"
 
+#include <string.h>  // memcpy, memset
+
 #include "firmware/protocol/codec.h"  // decode_command
 
 namespace app {
@@ -42,14 +44,22 @@ ErrorCode Application::realtime(const proto::Frame& f) {
   return handle(f, &detail);
 }
 
+// Zero but for kind, seq and job_index (the arguments too: a probe's seen_probes).
 QueueItem Application::new_item(ItemKind kind, uint8_t seq) {
   QueueItem item;
+  memset(&item, 0, sizeof item);
   item.kind = kind;
   item.seq = seq;
-  item.stage = 0;
   item.job_index = kNotInJob;
-  item.job_id = 0;
   return item;
+}
+
+// A command kept as it arrived: its bytes become the item's arguments (the union member of
+// its kind is the command struct itself, or starts with it), one copy for every such kind.
+ErrorCode Application::enqueue_args(ItemKind kind, uint8_t seq, const void* args, uint8_t size) {
+  QueueItem item = new_item(kind, seq);
+  memcpy(&item.text, args, size);  // &item.text: the start of the arguments' union
+  return enqueue(item);
 }
 
 // Stores the item; after a #J it gets the next job index (and a spline the mark's first point).
@@ -106,21 +116,15 @@ ErrorCode Application::enqueue_text(ItemKind kind, uint8_t seq, uint8_t row, con
 }
 
 ErrorCode Application::on_dwell(const proto::DwellCmd& c, uint8_t seq, uint8_t*) {
-  QueueItem item = new_item(ItemKind::kDwell, seq);
-  item.dwell = c;
-  return enqueue(item);
+  return enqueue_args(ItemKind::kDwell, seq, &c, sizeof(DwellArgs));
 }
 
 ErrorCode Application::on_spindle(const proto::SpindleCmd& c, uint8_t seq, uint8_t*) {
-  QueueItem item = new_item(ItemKind::kSpindle, seq);
-  item.spindle = c;
-  return enqueue(item);
+  return enqueue_args(ItemKind::kSpindle, seq, &c, sizeof(SpindleArgs));
 }
 
 ErrorCode Application::on_resolution(const proto::ResolutionCmd& c, uint8_t seq, uint8_t*) {
-  QueueItem item = new_item(ItemKind::kResolution, seq);
-  item.resolution = c;
-  return enqueue(item);
+  return enqueue_args(ItemKind::kResolution, seq, &c, sizeof(ResolutionArgs));
 }
 
 ErrorCode Application::on_feed_move(const proto::FeedMoveCmd& c, uint8_t seq, uint8_t*) {
@@ -134,48 +138,41 @@ ErrorCode Application::on_rapid_move(const proto::RapidMoveCmd& c, uint8_t seq, 
 // #G and #F: an X/Y move inside the travel.
 ErrorCode Application::enqueue_move(ItemKind kind, uint8_t seq, const int32_t* x_um,
                                     const int32_t* y_um, uint16_t feed_um_s) {
-  QueueItem item = new_item(kind, seq);
-  item.move.x_um = *x_um;
-  item.move.y_um = *y_um;
-  item.move.feed_um_s = feed_um_s;
-  return enqueue_inside(item, x_um, y_um, 0);
+  MoveArgs move;
+  move.x_um = *x_um;
+  move.y_um = *y_um;
+  move.feed_um_s = feed_um_s;
+  return enqueue_inside(kind, seq, &move, sizeof move, x_um, y_um, 0);
 }
 
-// Stores a motion item whose targets (the axes named) pass motion_check.
-ErrorCode Application::enqueue_inside(const QueueItem& item, const int32_t* x_um,
-                                      const int32_t* y_um, const int32_t* z_um) {
+// enqueue_args of a motion command whose targets (the axes named) pass motion_check.
+ErrorCode Application::enqueue_inside(ItemKind kind, uint8_t seq, const void* args, uint8_t size,
+                                      const int32_t* x_um, const int32_t* y_um,
+                                      const int32_t* z_um) {
   const ErrorCode e = motion_check(x_um, y_um, z_um);
-  return e != ErrorCode::kOk ? e : enqueue(item);
+  return e != ErrorCode::kOk ? e : enqueue_args(kind, seq, args, size);
 }
 
 ErrorCode Application::on_z_move(const proto::ZMoveCmd& c, uint8_t seq, uint8_t*) {
-  QueueItem item = new_item(ItemKind::kZMove, seq);
-  item.z_move = c;
-  return enqueue_inside(item, 0, 0, &c.z_um);
+  return enqueue_inside(ItemKind::kZMove, seq, &c, sizeof(ZMoveArgs), 0, 0, &c.z_um);
 }
 
 ErrorCode Application::on_drill(const proto::DrillCmd& c, uint8_t seq, uint8_t*) {
   const ErrorCode e = motion_check(0, 0, &c.z_bottom_um);  // the same codes in either order
   if (e != ErrorCode::kOk) return e;
-  QueueItem item = new_item(ItemKind::kDrill, seq);
-  item.drill = c;
-  return enqueue_inside(item, &c.x_um, &c.y_um, &c.z_start_um);
+  return enqueue_inside(ItemKind::kDrill, seq, &c, sizeof(DrillArgs), &c.x_um, &c.y_um,
+                        &c.z_start_um);
 }
 
 // #Y: machine Z, so the limit must lie inside the Z travel; the rest is checked when it runs
 // (spindle, probe input, the Z it starts from).
 ErrorCode Application::on_probe(const proto::ProbeCmd& c, uint8_t seq, uint8_t*) {
-  QueueItem item = new_item(ItemKind::kProbe, seq);
-  item.probe.cmd = c;
-  item.probe.seen_probes = 0;
-  return enqueue_inside(item, 0, 0, &c.z_limit_um);
+  return enqueue_inside(ItemKind::kProbe, seq, &c, sizeof c, 0, 0, &c.z_limit_um);
 }
 
 ErrorCode Application::on_height_map_header(const proto::HeightMapHeaderCmd& c, uint8_t seq,
                                             uint8_t*) {
-  QueueItem item = new_item(ItemKind::kMapHeader, seq);
-  item.map_header = c;
-  const ErrorCode e = enqueue(item);
+  const ErrorCode e = enqueue_args(ItemKind::kMapHeader, seq, &c, sizeof(MapHeaderArgs));
   if (e == ErrorCode::kOk) map_rx_.announced((uint16_t)((uint16_t)c.cols * c.rows));
   return e;
 }
@@ -193,9 +190,7 @@ ErrorCode Application::on_height_map_data(const proto::HeightMapDataCmd& c, uint
 
 ErrorCode Application::on_zeroing(const proto::ZeroingCmd& c, uint8_t seq, uint8_t*) {
   if (!queue_.empty() || stops_.stopping()) return ErrorCode::kBadState;
-  QueueItem item = new_item(ItemKind::kZeroing, seq);
-  item.zeroing.axes = c.axes;
-  return enqueue(item);
+  return enqueue_args(ItemKind::kZeroing, seq, &c.axes, sizeof c.axes);
 }
 
 ErrorCode Application::on_spline_header(const proto::SplineHeaderCmd& c, uint8_t seq, uint8_t*) {
