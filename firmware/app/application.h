@@ -108,8 +108,6 @@ class Application : private CommandSink {
 
   // Command handlers (command_handlers.cpp), one per row of the message table.
   proto::ErrorCode handle(const proto::Frame& frame, uint8_t* detail);
-  QueueItem new_item(ItemKind kind, uint8_t seq);
-  proto::ErrorCode enqueue(const QueueItem& item);
   proto::ErrorCode enqueue_text(ItemKind kind, uint8_t seq, uint8_t row, const char* text,
                                 uint8_t length);
   proto::ErrorCode enqueue_move(ItemKind kind, uint8_t seq, const int32_t* x_um,

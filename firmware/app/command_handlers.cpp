@@ -44,29 +44,19 @@ ErrorCode Application::realtime(const proto::Frame& f) {
   return handle(f, &detail);
 }
 
-// Zero but for kind, seq and job_index (the arguments too: a probe's seen_probes).
-QueueItem Application::new_item(ItemKind kind, uint8_t seq) {
+// A queued command's item: its arguments (the union member of its kind, or for a command
+// kept as it arrived the command struct itself: the union member is that struct, or starts
+// with it) copied in, the rest zero but job_index. One copy for every kind.
+ErrorCode Application::enqueue_args(ItemKind kind, uint8_t seq, const void* args, uint8_t size) {
   QueueItem item;
   memset(&item, 0, sizeof item);
   item.kind = kind;
   item.seq = seq;
   item.job_index = kNotInJob;
-  return item;
-}
-
-// A command kept as it arrived: its bytes become the item's arguments (the union member of
-// its kind is the command struct itself, or starts with it), one copy for every such kind.
-ErrorCode Application::enqueue_args(ItemKind kind, uint8_t seq, const void* args, uint8_t size) {
-  QueueItem item = new_item(kind, seq);
   memcpy(&item.text, args, size);  // &item.text: the start of the arguments' union
-  return enqueue(item);
-}
-
-// Stores the item; after a #J it gets the next job index (and a spline the mark's first point).
-ErrorCode Application::enqueue(const QueueItem& item) {
-  QueueItem numbered = item;
-  job_.number(&numbered);
-  if (!queue_.push(numbered)) return ErrorCode::kBusy;
+  // After a #J it gets the next job index (and a spline the mark's first point).
+  job_.number(&item);
+  if (!queue_.push(item)) return ErrorCode::kBusy;
   ++items_stored_;
   job_.stored();
   return ErrorCode::kOk;
@@ -108,11 +98,11 @@ ErrorCode Application::on_pause(const proto::PauseCmd& c, uint8_t seq, uint8_t*)
 // #S and #P: a line of text for the LCD.
 ErrorCode Application::enqueue_text(ItemKind kind, uint8_t seq, uint8_t row, const char* text,
                                     uint8_t length) {
-  QueueItem item = new_item(kind, seq);
-  item.text.row = row;
-  item.text.length = length;
-  for (uint8_t i = 0; i < length; ++i) item.text.chars[i] = text[i];
-  return enqueue(item);
+  TextArgs args;
+  args.row = row;
+  args.length = length;
+  memcpy(args.chars, text, length);
+  return enqueue_args(kind, seq, &args, sizeof args);
 }
 
 ErrorCode Application::on_dwell(const proto::DwellCmd& c, uint8_t seq, uint8_t*) {
@@ -180,11 +170,11 @@ ErrorCode Application::on_height_map_header(const proto::HeightMapHeaderCmd& c, 
 // #E: the next heights of the map announced by #A, in order (map_reception.h).
 ErrorCode Application::on_height_map_data(const proto::HeightMapDataCmd& c, uint8_t seq,
                                           uint8_t* detail) {
-  QueueItem item = new_item(ItemKind::kMapHeights, seq);
+  MapHeightsArgs args;
   MapSpan span;
-  ErrorCode e = map_rx_.check(c, &item.map_heights, &span, detail);
-  if (e == ErrorCode::kOk) e = enqueue(item);
-  if (e == ErrorCode::kOk) map_rx_.accepted(item.map_heights, span);
+  ErrorCode e = map_rx_.check(c, &args, &span, detail);
+  if (e == ErrorCode::kOk) e = enqueue_args(ItemKind::kMapHeights, seq, &args, sizeof args);
+  if (e == ErrorCode::kOk) map_rx_.accepted(args, span);
   return e;
 }
 
@@ -199,12 +189,12 @@ ErrorCode Application::on_spline_header(const proto::SplineHeaderCmd& c, uint8_t
   uint8_t slot = 0;
   const ErrorCode e = store_.begin(c, &slot);
   if (e != ErrorCode::kOk) return e;
-  QueueItem item = new_item(ItemKind::kSpline, seq);
-  item.spline.slot = slot;
-  item.spline.feed_um_s = c.feed_um_per_s;
-  item.spline.tool_offset_um = c.tool_offset_um;
-  item.spline.first_point = 0;
-  return enqueue(item);
+  SplineArgs args;
+  args.slot = slot;
+  args.feed_um_s = c.feed_um_per_s;
+  args.tool_offset_um = c.tool_offset_um;
+  args.first_point = 0;
+  return enqueue_args(ItemKind::kSpline, seq, &args, sizeof args);
 }
 
 // Stored in the spline's slot, no queue item of its own.
