@@ -223,17 +223,14 @@ void Application::fill_status(proto::StatusReply* r) {
   r->flags = (uint8_t)((zeroed_ ? proto::kStatusZeroed : 0) |
                        (stops_.link_hold() ? proto::kStatusLinkHold : 0) |
                        (items_done_ != 0 ? proto::kStatusExecuted : 0) | job_.status_flags());
+  // queue_free, next_expected_seq, last_error, rejected_frames: the dispatcher's.
   r->override_percent = override_percent_;
-  r->queue_free = queue_free();
-  r->next_expected_seq = 0;  // filled by the dispatcher
   r->last_executed_seq = last_executed_seq_;
-  r->last_error = proto::ErrorCode::kOk;
   // x, y, z are adjacent in the reply: written in place.
   static_assert(offsetof(proto::StatusReply, y_um) == offsetof(proto::StatusReply, x_um) + 4 &&
                     offsetof(proto::StatusReply, z_um) == offsetof(proto::StatusReply, x_um) + 8,
                 "StatusReply x_um, y_um, z_um adjacent");
   position_um(&r->x_um);
-  r->rejected_frames = 0;
   r->spline_slots_free = spline_slots_free();
   job_.fill_status(r);
 }
