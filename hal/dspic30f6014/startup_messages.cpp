@@ -27,28 +27,14 @@ const char* startup_line(uint8_t trap_cause, uint16_t reset_cause) {
   return "ENGRAVER 0.1";
 }
 
-// Codes as drivers::Tmc428InitResult numbers them.
+// Indexed by the code, as drivers::Tmc428InitResult numbers them (one table, no switch).
+const char* const kTmc428Lines[] = {"TMC428 OK",       "TMC428 E1 CONFIG", "TMC428 E2 NO ANS",
+                                    "TMC428 E3 REG",   "TMC428 E4 RAM",    "TMC428 E5 CHAIN",
+                                    "TMC428 E6 DRIVER"};
+
 const char* tmc428_line(uint8_t init_result) {
-  switch (init_result) {
-    case 0:
-      return "TMC428 OK";
-    case 1:
-      return "TMC428 E1 CONFIG";
-    case 2:
-      return "TMC428 E2 NO ANS";
-    case 3:
-      return "TMC428 E3 REG";
-    case 4:
-      return "TMC428 E4 RAM";
-    case 5:
-      return "TMC428 E5 CHAIN";
-    case 6:
-      return "TMC428 E6 DRIVER";
-    case kSpiClockFailed:
-      return "SPI CLOCK ERROR";
-    default:
-      return "TMC428 E? UNKNWN";
-  }
+  if (init_result < sizeof kTmc428Lines / sizeof kTmc428Lines[0]) return kTmc428Lines[init_result];
+  return init_result == kSpiClockFailed ? "SPI CLOCK ERROR" : "TMC428 E? UNKNWN";
 }
 
 }  // namespace dspic
