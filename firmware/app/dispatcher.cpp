@@ -172,47 +172,49 @@ void Dispatcher::on_realtime(const proto::Frame& f) {
   ack(f.seq, true);
 }
 
+// Every outcome is one code: kOk acknowledges (*O), any other is the *E (one call of each).
 void Dispatcher::on_queued(const proto::Frame& f) {
+  proto::ErrorCode e = proto::ErrorCode::kOk;
+  uint8_t detail = 0;
   if (!session_) {
-    error(f.seq, proto::ErrorCode::kNoSession, 0);
-    return;
-  }
-  if (aborted_) {
-    error(f.seq, proto::ErrorCode::kAborted, 0);
-    return;
-  }
-  switch (window_.classify(f.seq)) {
-    case proto::SeqClass::kNew: {
-      // A command of a later version than the session's does not exist in it (detail: the
-      // version that brings it).
-      const uint8_t since = proto::version_of_command(f.letter);
-      if (since > session_version_) {
-        error(f.seq, proto::ErrorCode::kUnknownCommand, since);
+    e = proto::ErrorCode::kNoSession;
+  } else if (aborted_) {
+    e = proto::ErrorCode::kAborted;
+  } else {
+    switch (window_.classify(f.seq)) {
+      case proto::SeqClass::kNew: {
+        // A command of a later version than the session's does not exist in it (detail:
+        // the version that brings it).
+        const uint8_t since = proto::version_of_command(f.letter);
+        if (since > session_version_) {
+          e = proto::ErrorCode::kUnknownCommand;
+          detail = since;
+          break;
+        }
+        e = sink_->store(f, &detail);
+        if (e == proto::ErrorCode::kBusy) {
+          hold(f);  // ack delayed until there is room
+          return;
+        }
+        if (e == proto::ErrorCode::kOk) window_.accept(f.seq);
         break;
       }
-      uint8_t detail = 0;
-      const proto::ErrorCode e = sink_->store(f, &detail);
-      if (e == proto::ErrorCode::kOk) {
-        window_.accept(f.seq);
-        ack(f.seq, false);
-      } else if (e == proto::ErrorCode::kBusy) {
-        hold(f);  // ack delayed until there is room
-      } else {
-        error(f.seq, e, detail);
-      }
-      break;
+      case proto::SeqClass::kDuplicate:
+        break;  // stored before: acknowledged again, not stored twice
+      case proto::SeqClass::kPending:
+        return;  // the held copy's ack will come
+      case proto::SeqClass::kAhead:
+        e = window_.pending() ? proto::ErrorCode::kBusy : proto::ErrorCode::kSeqGap;
+        break;
+      default:
+        e = proto::ErrorCode::kSeqOutOfWindow;
+        break;
     }
-    case proto::SeqClass::kDuplicate:
-      ack(f.seq, false);  // stored before: acknowledged again, not stored twice
-      break;
-    case proto::SeqClass::kPending:
-      break;  // the held copy's ack will come
-    case proto::SeqClass::kAhead:
-      error(f.seq, window_.pending() ? proto::ErrorCode::kBusy : proto::ErrorCode::kSeqGap, 0);
-      break;
-    default:
-      error(f.seq, proto::ErrorCode::kSeqOutOfWindow, 0);
-      break;
+  }
+  if (e == proto::ErrorCode::kOk) {
+    ack(f.seq, false);
+  } else {
+    error(f.seq, e, detail);
   }
 }
 
