@@ -39,9 +39,13 @@ uint16_t Spi1::prescale_bits(uint32_t fcy_hz, uint32_t max_sck_hz) {
   return best;
 }
 
+// Fcy / SCK of a prescale setting: primary (1, 4, 16, 64) times secondary (8 - SPRE).
+static uint16_t divider_of(uint16_t bits) {
+  return (uint16_t)(kPrimary[bits & 3u] * (uint16_t)(8 - ((bits >> 2) & 7u)));
+}
+
 uint32_t Spi1::sck_hz(uint32_t fcy_hz, uint16_t bits) {
-  const uint16_t divider = (uint16_t)(kPrimary[bits & 3u] * (uint16_t)(8 - ((bits >> 2) & 7u)));
-  return fcy_hz / divider;
+  return fcy_hz / divider_of(bits);
 }
 
 // MODE16 may only change with SPIEN = 0, so the module is off while configured.
@@ -53,8 +57,7 @@ bool Spi1::init(uint32_t max_sck_hz) {
                             bit(SPI1CONbits::MSTEN) | prescale));
   // One word lasts 16 * divider cycles; a poll takes at least one, so this many polls
   // outlast a word, and a dead bus costs about a word time, never a hang.
-  const uint16_t divider = (uint16_t)(kFcyHz / sck_hz(kFcyHz, prescale));
-  spin_limit_ = (uint16_t)(16u * divider);
+  spin_limit_ = (uint16_t)(16u * divider_of(prescale));
   timeouts_ = 0;
   SPI1STAT::write(bit(SPI1STATbits::SPIEN));
   return true;
