@@ -68,27 +68,13 @@ inline __attribute__((always_inline)) uint32_t ratio_q29(uint32_t num, uint32_t 
   return rem >= den - (den >> 1) ? q + 1U : q;
 }
 
-// round(num / d) for d > 0 (rounds half away from zero; d a weight in Q29, < 2^31). A
-// power-of-two d (every weight of a polynomial span is 2^29) is a shift with the same value:
-// polynomial spans share this code with rational ones and skip the 64-bit division.
+// round(num / d) for d > 0 (rounds half away from zero; d a weight in Q29, < 2^31). d = 2^29
+// (every weight of a polynomial span) is a shift with the same value: polynomial spans
+// share this code with rational ones and skip the 64-bit division.
 __attribute__((noinline)) int64_t div_round(int64_t num, uint32_t d) {
   const uint64_t mag = num >= 0 ? (uint64_t)num : (uint64_t)-num;
-  uint64_t q;
-  if ((d & (d - 1)) == 0) {
-    uint8_t n = 0;
-    uint32_t m = d;
-    while (m >= 256) {  // whole bytes first (a variable shift is a bit loop)
-      m >>= 8;
-      n = (uint8_t)(n + 8);
-    }
-    while (m > 1) {
-      m >>= 1;
-      ++n;
-    }
-    q = n == 0 ? mag : (mag + (d >> 1)) >> n;
-  } else {
-    q = (mag + (d >> 1)) / d;
-  }
+  const uint64_t half_up = mag + (d >> 1);
+  const uint64_t q = d == (1UL << kAlphaShift) ? half_up >> kAlphaShift : half_up / d;
   return num >= 0 ? (int64_t)q : -(int64_t)q;
 }
 
