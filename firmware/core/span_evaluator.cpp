@@ -89,13 +89,11 @@ __attribute__((noinline)) int64_t mul_weight_q29(int32_t v, uint32_t w_q29) {
 // (every control point of a polynomial span) is rel * 2^9 without the 64-bit product.
 // Written through out (no 8-byte return value to copy at the call).
 __attribute__((noinline)) void weighted_q9(int32_t rel, uint16_t w_q14, int64_t* out) {
-  *out = w_q14 == kWeightOneQ14 ? shl64(rel, kSetupShift)
-                                : (int64_t)rel * w_q14 / (1 << (14 - kSetupShift));
+  *out = (int64_t)rel * w_q14 / (1 << (14 - kSetupShift));
 }
 
 // v * (w_q29 >> 8), the products of the end tangent; w = 2^29 is a shift.
 __attribute__((noinline)) int64_t mul_weight_q21(int64_t v, uint32_t w_q29) {
-  if (w_q29 == (1UL << kAlphaShift)) return shl64(v, kAlphaShift - 8);
   return v * (int64_t)(w_q29 >> 8);
 }
 
