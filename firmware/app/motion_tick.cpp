@@ -174,7 +174,11 @@ void MotionTick::take_requests() {
 }
 
 void MotionTick::publish(const int32_t pos[config::kAxisCount], uint8_t limits) {
-  TickStatus s;
+  // Straight into the ring's next slot (no copy through this frame); full: the background
+  // loop is behind, and the next status carries the counts.
+  TickStatus* const slot = status_.reserve();
+  if (slot == 0) return;
+  TickStatus& s = *slot;
   for (uint8_t i = 0; i < config::kAxisCount; ++i) s.pos_usteps[i] = pos[i];
   s.ms = ms_;
   s.items_done = path_.items_done();
@@ -197,7 +201,7 @@ void MotionTick::publish(const int32_t pos[config::kAxisCount], uint8_t limits) 
   s.finished = path_.finished() && ring_.empty() ? 1 : 0;
   s.probes_done = probe_.done;
   s.probe_closed = probe_.hits >= kProbeDebounceTicks ? 1 : 0;
-  status_.push(s);  // full: the background loop is behind; the next one carries the counts
+  status_.commit();
 }
 
 }  // namespace app

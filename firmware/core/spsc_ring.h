@@ -46,6 +46,21 @@ class SpscRing {
     return true;
   }
 
+  // Producer: the slot the next commit() publishes, written in place (no copy of a whole
+  // element through the producer's stack); 0 when full. The consumer sees nothing of it
+  // before commit(); a reserve() without a commit() publishes nothing.
+  T* reserve() {
+    const uint16_t head = head_;
+    if ((uint16_t)(head - tail_) >= kCapacity) return 0;
+    return &slot_[head & kMask];
+  }
+
+  // Producer: publishes the slot reserve() gave (which must not have returned 0).
+  void commit() {
+    CORE_SPSC_BARRIER();  // the element is written before it is published
+    head_ = (uint16_t)(head_ + 1);
+  }
+
   // Consumer: removes the oldest element into *out; false when empty.
   bool pop(T* out) {
     const uint16_t tail = tail_;

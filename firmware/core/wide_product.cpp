@@ -26,16 +26,15 @@ inline __attribute__((always_inline)) Wide magnitude_product(uint32_t ua, uint32
   const uint16_t al = (uint16_t)ua;
   const uint16_t bh = (uint16_t)(ub >> 16);
   const uint16_t bl = (uint16_t)ub;
+  // Schoolbook in 16-bit digits: the sum at bit 16 (the low product's high half and the
+  // middle products' low halves, < 3 * 2^16) carries into the high word without compares.
+  const uint32_t low = mul_u16_u16(al, bl);
+  const uint32_t mid_a = mul_u16_u16(ah, bl);
+  const uint32_t mid_b = mul_u16_u16(al, bh);
+  const uint32_t mid = (low >> 16) + (uint16_t)mid_a + (uint16_t)mid_b;
   Wide r;
-  r.lo = mul_u16_u16(al, bl);
-  r.hi = mul_u16_u16(ah, bh);
-  // The two middle products, each < 2^32, added at bit 16 with their carries.
-  const uint32_t mids[2] = {mul_u16_u16(ah, bl), mul_u16_u16(al, bh)};
-  for (uint8_t i = 0; i < 2; ++i) {
-    const uint32_t add_lo = mids[i] << 16;
-    r.lo += add_lo;
-    r.hi += (mids[i] >> 16) + (r.lo < add_lo ? 1U : 0U);
-  }
+  r.lo = (mid << 16) | (uint16_t)low;
+  r.hi = mul_u16_u16(ah, bh) + (mid_a >> 16) + (mid_b >> 16) + (mid >> 16);
   return r;
 }
 

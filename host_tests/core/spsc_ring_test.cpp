@@ -1,5 +1,5 @@
 // SpscRing: capacity, wrap-around of slots and of the 16-bit indices, full/empty, peek,
-// newest, clear, and a two-thread producer/consumer stress run.
+// newest, reserve/commit, clear, and a two-thread producer/consumer stress run.
 #include "firmware/core/spsc_ring.h"
 
 #include <gtest/gtest.h>
@@ -33,6 +33,35 @@ TEST(SpscRing, HoldsExactlyCapacityElementsThenRefuses) {
   for (uint32_t i = 0; i < 8; ++i) {
     ASSERT_TRUE(r.pop(&v));
     EXPECT_EQ(v, i);  // the refused 100 never appears
+  }
+  EXPECT_TRUE(r.empty());
+}
+
+TEST(SpscRing, ReservedSlotIsSeenOnlyAfterCommitAndNoneWhenFull) {
+  Ring8 r;
+  uint32_t v = 0;
+  for (uint32_t round = 0; round < 20; ++round) {  // the slots wrap: reserve follows head
+    uint32_t* slot = r.reserve();
+    ASSERT_NE(slot, nullptr);
+    *slot = 1000 + round;
+    EXPECT_TRUE(r.empty());  // written, not published
+    EXPECT_FALSE(r.pop(&v));
+    EXPECT_EQ(r.reserve(), slot);  // reserving again gives the same slot
+    r.commit();
+    ASSERT_TRUE(r.pop(&v));
+    EXPECT_EQ(v, 1000 + round);
+  }
+  for (uint32_t i = 0; i < 8; ++i) {
+    uint32_t* slot = r.reserve();
+    ASSERT_NE(slot, nullptr);
+    *slot = i;
+    r.commit();
+  }
+  EXPECT_TRUE(r.full());
+  EXPECT_EQ(r.reserve(), nullptr);  // full: nothing to write into
+  for (uint32_t i = 0; i < 8; ++i) {
+    ASSERT_TRUE(r.pop(&v));
+    EXPECT_EQ(v, i);  // FIFO, as push() gives
   }
   EXPECT_TRUE(r.empty());
 }
