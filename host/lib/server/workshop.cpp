@@ -775,8 +775,13 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
         r.outcome = "server stopped";
         r.message = fmt::format(
             "the server stopped while the job was running, after {} of {} "
-            "commands",
-            r.executed, r.commands->size());
+            "commands{}",
+            r.executed, r.commands->size(),
+            // Each run counts its own stream: where the whole job stands as well.
+            r.progress.resume_index >= 0
+                ? fmt::format(" of this run (the job at job command {} of {})",
+                              r.progress.resume_index, r.commands->job_commands())
+                : "");
       }
       break;
     case JobOutcome::kAlarm:

@@ -278,6 +278,11 @@ TEST(ServerProbingControl, ARunStoppedBeforeItCutsKeepsTheContinuedJobsPosition)
   }
   ASSERT_EQ(saved.state, JobState::kInterrupted) << saved.message;
   ASSERT_GT(saved.resume_index, 0) << saved.message;
+  // The run's count and where the whole job stands (the next run counts another stream).
+  EXPECT_NE(saved.message.find(fmt::format(" commands of this run (the job at job command {} of ",
+                                           saved.resume_index)),
+            std::string::npos)
+      << saved.message;
   // Continued on the other machine: its clip wait, then its probing, stopped by the server.
   for (const bool probing : {false, true}) {
     SCOPED_TRACE(probing ? "while probing" : "while waiting for the clip");
