@@ -71,6 +71,13 @@ int JobStream::first_uncut_curve(size_t executed) {
   return first_from(executed, [](const QueuedCommand& c) { return c.curve; });
 }
 
+size_t JobStream::first_step_index() {
+  for (size_t i = 0; i < track_->size(); ++i) {
+    if (track_->at(i).step >= 0) return i;
+  }
+  return track_->size();
+}
+
 size_t JobStream::held_max() const {
   if (send_job_ == nullptr) return list_.size();
   return std::max(send_job_->held_max(), track_job_->held_max());

@@ -36,6 +36,9 @@ class JobStream {
   int step_from(size_t index);
   // The curve of the first command at or after `executed` that has one (-1: none left).
   int first_uncut_curve(size_t executed);
+  // The index of the first command with a plan step (size(): none): the set-up before it
+  // (a height map's frames, #J) moves nothing along the path. Asked before step_from.
+  size_t first_step_index();
   // The most commands either cursor held at once (bounded: tests check it).
   size_t held_max() const;
 

@@ -17,6 +17,26 @@ namespace {
 // Queued jobs a machine looks at each time it looks for work (a workshop's queue is short).
 constexpr size_t kQueuedLooked = 500;
 
+// `job` cuts the other side of `from`'s blank: both sides known and different.
+bool is_flipped_from(const DataFolder& data, const JobRecord& job, const JobRecord& from) {
+  try {
+    const std::string side = read_board_settings(data.job_dir(job.key)).side;
+    const std::string from_side = read_board_settings(data.job_dir(from.key)).side;
+    return !side.empty() && !from_side.empty() && side != from_side;
+  } catch (const std::exception&) {
+    return false;  // not in this archive (another server's upload): its run says
+  }
+}
+
+// A flipped job's source that ended without its side completed (its map may be there).
+std::string flipped_source_ended_text(const JobRecord& from) {
+  return fmt::format(
+      "job {} ended {} before its side was completed{}: the blank is not to be turned over "
+      "(continue or requeue job {}, then upload this side again)",
+      from.id, state_name(from.state), from.message.empty() ? "" : " (" + from.message + ")",
+      from.id);
+}
+
 }  // namespace
 
 std::string map_source_refusal(JobStore& store, const DataFolder& data, int64_t from) {
@@ -70,8 +90,14 @@ MapSource map_source_of(JobStore& store, const DataFolder& data, const JobRecord
   s.has_map = fs::exists(dir / kHeightMapFile, ec);
   if (s.has_map && fs::exists(dir / kHeightMapMachineFile, ec))
     s.machine = read_file(dir / kHeightMapMachineFile);
+  s.source_completed = from->state == JobState::kCompleted;
+  s.flipped = is_flipped_from(data, job, *from);
   s.source_ended = !s.has_map && is_final(from->state);
-  if (s.source_ended) s.ended_why = source_ended_text(*from);
+  if (s.source_ended) {
+    s.ended_why = source_ended_text(*from);
+  } else if (s.flipped && is_final(from->state) && !s.source_completed) {
+    s.ended_why = flipped_source_ended_text(*from);
+  }
   return s;
 }
 
@@ -93,11 +119,22 @@ bool waits_for_map(const JobRecord& job, const MapSource& source) {
          !source.source_ended;
 }
 
+// Queued, flipped, the map there but the source's side not cut yet (still to come: queued,
+// running or interrupted).
+bool waits_for_source(const JobRecord& job, const MapSource& source) {
+  return job.state == JobState::kQueued && source.flipped && source.has_map &&
+         !source.source_completed && source.ended_why.empty();
+}
+
 }  // namespace
 
 std::string map_wait_text(const JobRecord& job, const MapSource& source) {
   if (waits_for_map(job, source))
     return fmt::format("waiting for the height map of job {}", source.from);
+  if (waits_for_source(job, source))
+    return fmt::format(
+        "waiting for job {} to be completed (the blank is turned over after its side is cut)",
+        source.from);
   // Only that machine takes it (jobs_not_for_machine), however many others are idle.
   if (job.state == JobState::kQueued && source.has_map && !source.machine.empty())
     return fmt::format("waiting for machine '{}', which probed the height map of job {}",
@@ -129,7 +166,7 @@ std::vector<int64_t> jobs_not_for_machine(JobStore& store, const DataFolder& dat
   for (const JobRecord& job : store.list(state_name(JobState::kQueued), kQueuedLooked)) {
     const MapSource s = map_source_of(store, data, job);
     if (s.from == 0) continue;
-    const bool waiting = waits_for_map(job, s);
+    const bool waiting = waits_for_map(job, s) || waits_for_source(job, s);
     const bool elsewhere = s.has_map && s.machine != machine &&
                            std::find(machines.begin(), machines.end(), s.machine) != machines.end();
     if (waiting || elsewhere || !s.ended_why.empty()) out.push_back(job.id);

@@ -31,6 +31,11 @@ struct MapSource {
   bool source_ended = false;  // no map, and the source job will not make one (it ended)
   // It ended failed, aborted or cancelled: source_ended_text (the job fails in the queue).
   std::string ended_why;
+  // The job cuts the other side of the source's blank (its `side` differs): the blank is
+  // turned over only once the source's side is cut, so it waits for the source to be
+  // completed, not only for its map; a source that ends otherwise fails it (ended_why).
+  bool flipped = false;
+  bool source_completed = false;
 };
 MapSource map_source_of(JobStore& store, const DataFolder& data, const JobRecord& job);
 
@@ -40,7 +45,9 @@ MapSource map_source_of(JobStore& store, const DataFolder& data, const JobRecord
 int64_t height_map_job_of(const DataFolder& data, const JobRecord& job);
 
 // Why a queued job with a map source waits: "waiting for the height map of job 4" while
-// its source has no map and may still make one; "waiting for machine 'left', which probed
+// its source has no map and may still make one; a flipped job (MapSource::flipped) with
+// the map there: "waiting for job 4 to be completed (the blank is turned over after its
+// side is cut)" while job 4 is not; "waiting for machine 'left', which probed
 // the height map of job 4" once it has (only that machine takes it); "" otherwise (not
 // queued, no source, or it fails with the reason).
 std::string map_wait_text(const JobRecord& job, const MapSource& source);
@@ -48,13 +55,14 @@ std::string map_wait_text(const JobRecord& job, const MapSource& source);
 // map_wait_text of a job, looking at its source only when it is queued.
 std::string map_wait_of(JobStore& store, const DataFolder& data, const JobRecord& job);
 
-// Queued jobs whose map source ended without a map (failed, aborted or cancelled) fail in
-// the queue, no machine claiming them (jobs_not_for_machine leaves them): their message
-// "height map: job 4 ended failed without a height map (...); nothing was cut". Returns how
-// many.
+// Queued jobs whose map source ended without a map (failed, aborted or cancelled; a flipped
+// job's: ended so at all, MapSource::flipped) fail in the queue, no machine claiming them
+// (jobs_not_for_machine leaves them): their message "height map: job 4 ended failed without a
+// height map (...); nothing was cut". Returns how many.
 int fail_jobs_without_map_source(JobStore& store, const DataFolder& data);
 
-// The queued jobs a machine leaves in the queue: those waiting for their map, those whose
+// The queued jobs a machine leaves in the queue: those waiting for their map (a flipped
+// one: for its source to be completed), those whose
 // map was probed on another of `machines` (that one takes them), and those whose source
 // ended without one (fail_jobs_without_map_source fails them).
 std::vector<int64_t> jobs_not_for_machine(JobStore& store, const DataFolder& data,

@@ -117,6 +117,27 @@ AbortedBeforeCutting ended_before_cutting(bool server_stopping, const std::strin
                   server_stopping ? "the server stopped (interrupted)" : "aborted", while_doing));
 }
 
+// A continued job's run that ended before it cut: its earlier runs did cut, so the message
+// says what is left over the whole job, not "nothing was cut" (issue 25's outside tester).
+bool continued_run(const JobRecord& job) {
+  return job.resume_index >= 0 || job.start_curve >= 0;
+}
+
+std::string whole_job_words(const JobRecord& job, size_t job_commands, std::string message) {
+  if (!continued_run(job)) return message;
+  const std::string nothing = "nothing was cut";
+  const size_t at = message.find(nothing);
+  if (at == std::string::npos) return message;
+  const std::string where =
+      job.resume_index >= 0 ? fmt::format("job command {} of {}", job.resume_index, job_commands)
+                            : fmt::format("curve {}", job.start_curve);
+  message.replace(at, nothing.size(),
+                  fmt::format("nothing more was cut in this run (the job's earlier runs cut up "
+                              "to {}; it continues there)",
+                              where));
+  return message;
+}
+
 // The 409 to probe_ready when no machine waits for the clip: why, and when to send it.
 std::string no_clip_wait(int64_t job_id, const std::string& why) {
   return fmt::format(
@@ -568,6 +589,8 @@ struct Workshop::JobRun {
   nlohmann::json overrides = nlohmann::json::array();
   uint16_t job_id = 0;          // the controller's id of the whole job (#J)
   size_t setup_frames = 0;      // sent before the job's own #J (its height map)
+  size_t first_step_index = 0;  // the first command along the path: executed_mm 0 before it
+  bool before_cutting = false;  // ended waiting for the clip or probing: nothing of it ran
   bool machine_marked = false;  // the machine's last job file names this job
   // Where it stands; a continued job keeps its saved position until the machine reports.
   JobProgress progress;
@@ -598,7 +621,8 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   } catch (const AbortedBeforeCutting& e) {
     r.state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
     r.outcome = stopping_ ? "server stopped before cutting" : "aborted before cutting";
-    r.message = e.what();
+    r.message = whole_job_words(job, r.commands ? r.commands->job_commands() : 0, e.what());
+    r.before_cutting = true;
   } catch (const std::exception& e) {
     r.state = JobState::kFailed;
     r.outcome = "not sent";
@@ -692,6 +716,7 @@ void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
 // The commands exist: the slot takes the sender and what the operator asked for meanwhile.
 void Workshop::hand_to_sender(Slot& slot, JobRun& r, Sender& sender) {
   auto path_json = std::make_shared<const std::string>(r.path->to_json().dump());
+  r.first_step_index = r.commands->first_step_index();
   // Its size and first curve are known now: not "0 of 0" in the store while the first
   // status is awaited, and continuable from that curve whatever stops it next.
   r.progress = progress_of(r.progress, r.commands->size(), 0, r.commands->first_uncut_curve(0),
@@ -750,8 +775,13 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
         r.outcome = "server stopped";
         r.message = fmt::format(
             "the server stopped while the job was running, after {} of {} "
-            "commands",
-            r.executed, r.commands->size());
+            "commands{}",
+            r.executed, r.commands->size(),
+            // Each run counts its own stream: where the whole job stands as well.
+            r.progress.resume_index >= 0
+                ? fmt::format(" of this run (the job at job command {} of {})",
+                              r.progress.resume_index, r.commands->job_commands())
+                : "");
       }
       break;
     case JobOutcome::kAlarm:
@@ -773,8 +803,12 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
 void Workshop::follow_status(Slot& slot, JobRun& r, Sender& sender, const Progress& p) {
   // The plan step running (or next): that of the first command not done yet.
   const int step = r.commands->step_from(p.executed);
+  // Nothing along the path has run (a hold from probing stands at the last touch, the map's
+  // frames taken): the nearest path point to where the tool stands is not how far it got.
   const double executed_mm =
-      r.path->advance(step, Point2(p.status.x_um / 1000.0, p.status.y_um / 1000.0));
+      p.executed <= r.first_step_index
+          ? 0.0
+          : r.path->advance(step, Point2(p.status.x_um / 1000.0, p.status.y_um / 1000.0));
   {
     std::lock_guard<std::mutex> lock(slot.mutex);
     slot.executed_mm = executed_mm;
@@ -876,6 +910,11 @@ void Workshop::finish_run(Slot& slot, JobRun& r, Sender& sender) {
   progress.resume_curve = r.state == JobState::kInterrupted && r.commands
                               ? r.commands->first_uncut_curve(r.executed)
                               : -1;
+  if (r.before_cutting && continued_run(job) && r.state == JobState::kInterrupted) {
+    // Nothing of this run's stream ran: the job continues where its earlier runs stopped
+    // (the saved position is never lowered by such a run).
+    progress.resume_curve = job.resume_curve >= 0 ? job.resume_curve : job.start_curve;
+  }
   r.note(fmt::format("ended: {} ({}): {}", state_name(r.state), r.outcome, r.message));
   const SenderStats& st = sender.stats();
   nlohmann::json report;

@@ -107,10 +107,11 @@ TEST(ServerMapFlow, TheBottomSideWaitsForItsMapAndRunsWhereItWasProbed) {
   EXPECT_EQ(keys, guide_report_map_fields());
 }
 
-// Once the map is made the bottom side waits for the machine that probed it, and says so,
-// though another machine is idle. The simulated operators never confirm a tool pause: the
-// top side, probed, stays on its machine at its first tool.
-TEST(ServerMapFlow, TheBottomSideNamesTheMachineItWaitsFor) {
+// Once the map is made a job on the same side of the blank (no flip) waits for the machine
+// that probed it, and says so, though another machine is idle; the bottom side (the blank
+// turned over) waits for the top side to be completed. The simulated operators never confirm
+// a tool pause: the top side, probed, stays on its machine at its first tool.
+TEST(ServerMapFlow, ASameSideJobWaitsForTheMachineTheBottomSideForTheTopToComplete) {
   test::TempDir dir;
   sim::SimOptions never_confirms = blank(tilted_um);
   never_confirms.pause_confirm_ms = -1;
@@ -122,24 +123,91 @@ TEST(ServerMapFlow, TheBottomSideNamesTheMachineItWaitsFor) {
                                               {"align_holes", "auto"},
                                               {"height_map_from", std::to_string(top)}},
                                              "blinky-B.Cu.gbr"));
+  const int64_t same_side = post(
+      server,
+      blinky({{"side", "top"}, {"align_holes", "auto"}, {"height_map_from", std::to_string(top)}}));
   ASSERT_TRUE(test::wait_until([&] { return waiting_for_clip(server, top); }, 30));
   server.control(top, R"({"action":"probe_ready"})");
   ASSERT_TRUE(test::wait_until([&] { return server.job(top)["height_map"] == true; }, 60));
   std::this_thread::sleep_for(std::chrono::milliseconds(500));  // the other machine is free
-  const nlohmann::json j = server.job(bottom);
   EXPECT_EQ(server.job(top)["state"], "running");
-  EXPECT_EQ(j["state"], "queued") << j.dump();
   const std::string machine = server.job(top)["machine"];
+  nlohmann::json j = server.job(same_side);
+  EXPECT_EQ(j["state"], "queued") << j.dump();
   EXPECT_EQ(j["waiting"], fmt::format("waiting for machine '{}', which probed the height map "
                                       "of job {}",
                                       machine, top));
+  const nlohmann::json b = server.job(bottom);
+  EXPECT_EQ(b["state"], "queued") << b.dump();
+  EXPECT_EQ(b["waiting"], fmt::format("waiting for job {} to be completed (the blank is turned "
+                                      "over after its side is cut)",
+                                      top));
   bool listed = false;  // the list says the same
   for (const auto& each : server.jobs()) {
-    if (each["id"] != bottom) continue;
+    if (each["id"] != same_side) continue;
     EXPECT_EQ(each["waiting"], j["waiting"]);
     listed = true;
   }
   EXPECT_TRUE(listed);
+}
+
+// The top side, its map made, interrupted by a server stop mid-job: after the restart the
+// bottom side stays queued (the outside tester's restarted server gave it to the machine at
+// once: the top's pin holes never drilled, the blank never turned over), while a job on the
+// same side takes the map. The top side then continued and aborted: the bottom side fails in the
+// queue naming it, nothing cut.
+TEST(ServerMapFlow, TheBottomSideWaitsForAnInterruptedTopAndFailsWhenItIsAborted) {
+  test::TempDir dir;
+  sim::SimOptions never_confirms = blank(tilted_um);
+  never_confirms.pause_confirm_ms = -1;
+  SimRig left(false, 0, never_confirms);
+  const std::vector<MachineSpec> machines = {test::machine("left", left.address())};
+  int64_t top = 0, bottom = 0, same_side = 0;
+  {
+    ServerRig server(dir.path(), machines);
+    top = post(server, blinky({{"probe_first", "1"}, {"align_holes", "auto"}}));
+    bottom = post(server, blinky({{"side", "bottom"},
+                                  {"align_holes", "auto"},
+                                  {"height_map_from", std::to_string(top)}},
+                                 "blinky-B.Cu.gbr"));
+    ASSERT_TRUE(test::wait_until([&] { return waiting_for_clip(server, top); }, 30));
+    server.control(top, R"({"action":"probe_ready"})");
+    ASSERT_TRUE(test::wait_until([&] { return server.job(top)["height_map"] == true; }, 60));
+    server.shutdown();
+  }
+  ServerRig server(dir.path(), machines);
+  ASSERT_EQ(server.job(top)["state"], "interrupted") << server.job(top).dump();
+  same_side = post(
+      server,
+      blinky({{"side", "top"}, {"align_holes", "auto"}, {"height_map_from", std::to_string(top)}}));
+  // The same-side job is claimed (held at its first tool, never confirmed): the machine
+  // looked at the queue and left the bottom side.
+  ASSERT_TRUE(test::wait_until([&] { return server.job(same_side)["state"] == "running"; }, 30))
+      << server.job(same_side).dump();
+  nlohmann::json j = server.job(bottom);
+  EXPECT_EQ(j["state"], "queued") << j.dump();
+  EXPECT_EQ(j["waiting"], fmt::format("waiting for job {} to be completed (the blank is turned "
+                                      "over after its side is cut)",
+                                      top));
+  server.control(same_side, R"({"action":"abort"})");
+  ASSERT_TRUE(test::wait_until([&] { return server.job(same_side)["state"] == "aborted"; }, 30));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // the machine is free
+  EXPECT_EQ(server.job(bottom)["state"], "queued") << server.job(bottom).dump();
+  // Continued, the top side runs again (not the bottom), and is aborted this time.
+  auto r = server.control(top, R"({"action":"continue"})");
+  ASSERT_TRUE(r && r->status == 200) << (r ? r->body : std::string("no answer"));
+  ASSERT_TRUE(test::wait_until([&] { return server.job(top)["state"] == "running"; }, 30));
+  EXPECT_EQ(server.job(bottom)["state"], "queued") << server.job(bottom).dump();
+  server.control(top, R"({"action":"abort"})");
+  ASSERT_TRUE(test::wait_until([&] { return server.job(bottom)["state"] == "failed"; }, 30));
+  j = server.job(bottom);
+  const std::string message = j["message"];
+  EXPECT_NE(message.find(fmt::format("job {} ended aborted before its side was completed", top)),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("nothing was cut"), std::string::npos) << message;
+  EXPECT_EQ(j["runs"], 0) << j.dump();
+  EXPECT_EQ(j["machine"], "") << j.dump();
 }
 
 // The top side fails (the probe never touches): the bottom side fails too, saying why, and

@@ -224,5 +224,65 @@ TEST(ServerProbeHold, AnAbortOfAHeldProbingJobNeverShowsProbingAgain) {
   EXPECT_TRUE(state == "idle" || state == "ready") << state;
 }
 
+// A hold during the last touch (issue 25's outside tester: `executed` went 0 -> 5 -> 7 and
+// `executed_mm` showed 22.48 mm, the tool never moving): the grid done, the job stays held
+// before its first job command, the controller taking only the height map's frames (they
+// move nothing); `executed_mm` stays 0 until the tool moves along the path; resume cuts.
+TEST(ServerProbeHold, AHoldDuringTheLastTouchHoldsTheJobBeforeItsFirstCommand) {
+  test::TempDir dir;
+  SimRig sim(true, 0, tilted_blank());
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t id = post_probe_first(server);
+  ASSERT_TRUE(
+      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
+  ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const nlohmann::json j = server.running(id);
+        return j.is_object() && j.contains("probe") && j["probe"]["planned"].get<size_t>() > 0 &&
+               j["probe"]["touches"] == j["probe"]["planned"].get<size_t>() - 1;
+      },
+      120))
+      << server.status().dump();
+  ASSERT_TRUE(reach(sim, Instant::kDescending)) << server.status().dump();
+  ASSERT_EQ(server.control(id, R"({"action":"hold"})")->status, 200);
+  const fs::path job_dir = server.data().job_dir(server.store().get(id)->key);
+  ASSERT_TRUE(test::wait_until([&] { return fs::exists(job_dir / "heightmap.json"); }, 60));
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const nlohmann::json j = server.running(id);
+        return j.is_object() && !j.contains("probe") && j["total"].get<size_t>() > 0 &&
+               j["machine_state"] == "held" && j["position_mm"].is_array();
+      },
+      30))
+      << server.status().dump();
+  ASSERT_TRUE(at_rest(sim));
+  const sim::ToolSample tool = sim.machine().position();
+  const nlohmann::json map = nlohmann::json::parse(read_file(job_dir / "heightmap.json"));
+  const size_t points = map["grid"]["rows"].get<size_t>() * map["grid"]["cols"].get<size_t>();
+  const size_t map_frames = 1 + (points + 7) / 8;  // header, 8 heights a frame
+  for (int i = 0; i < 10; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const nlohmann::json j = server.running(id);
+    EXPECT_EQ(j["machine_state"], "held") << j.dump();
+    EXPECT_LE(j["executed"].get<size_t>(), map_frames) << j.dump();
+    EXPECT_EQ(j["executed_mm"].get<double>(), 0.0) << j.dump();
+    const sim::ToolSample now = sim.machine().position();
+    EXPECT_EQ(now.x_mm, tool.x_mm);
+    EXPECT_EQ(now.y_mm, tool.y_mm);
+    EXPECT_EQ(now.z_mm, tool.z_mm);
+  }
+  ASSERT_EQ(server.control(id, R"({"action":"resume"})")->status, 200);
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const nlohmann::json j = server.running(id);
+        return j.is_object() && j["executed_mm"].get<double>() > 0.0;
+      },
+      60))
+      << server.status().dump();
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30));
+}
+
 }  // namespace
 }  // namespace host::server

@@ -255,5 +255,83 @@ TEST(ServerProbingControl, AfterAnAbortTheMachineStateFollowsAtOnce) {
   EXPECT_TRUE(m["job"].is_null()) << m.dump();
 }
 
+// A continued probe-first job (issue 25's outside tester: interrupted mid-cut on one machine,
+// continued on another, which asks for the clip again; stopped there, the job said "nothing
+// was cut"): a run that ends waiting for the clip or probing keeps the saved position and
+// says what the earlier runs cut; the last run continues where the first stopped.
+TEST(ServerProbingControl, ARunStoppedBeforeItCutsKeepsTheContinuedJobsPosition) {
+  test::TempDir dir;
+  SimRig left(true, 0, tilted_blank()), right(true, 0, tilted_blank());
+  const MachineSpec on_left = test::machine("left", left.address());
+  const MachineSpec on_right = test::machine("right", right.address());
+  int64_t id = 0;
+  JobRecord saved;  // the record after the mid-cut stop
+  {
+    ServerRig server(dir.path(), {on_left});
+    id = test::post(server, test::blinky({{"probe_first", "1"}, {"probe_spacing_mm", "12"}}));
+    probe_until(server, id, 0);
+    // Cutting: the saved position some job commands into the job.
+    ASSERT_TRUE(test::wait_until([&] { return server.store().get(id)->resume_index >= 5; }, 120))
+        << server.status().dump();
+    server.shutdown();
+    saved = *server.store().get(id);
+  }
+  ASSERT_EQ(saved.state, JobState::kInterrupted) << saved.message;
+  ASSERT_GT(saved.resume_index, 0) << saved.message;
+  // The run's count and where the whole job stands (the next run counts another stream).
+  EXPECT_NE(saved.message.find(fmt::format(" commands of this run (the job at job command {} of ",
+                                           saved.resume_index)),
+            std::string::npos)
+      << saved.message;
+  // Continued on the other machine: its clip wait, then its probing, stopped by the server.
+  for (const bool probing : {false, true}) {
+    SCOPED_TRACE(probing ? "while probing" : "while waiting for the clip");
+    ServerRig server(dir.path(), {on_right});
+    ASSERT_EQ(server.control(id, R"({"action":"continue"})")->status, 200);
+    if (probing) {
+      probe_until(server, id, 1);
+    } else {
+      ASSERT_TRUE(test::wait_until(
+          [&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
+    }
+    server.shutdown();
+    const JobRecord after = *server.store().get(id);
+    EXPECT_EQ(after.state, JobState::kInterrupted);
+    EXPECT_EQ(after.resume_index, saved.resume_index);
+    EXPECT_EQ(after.resume_point, saved.resume_point);
+    EXPECT_EQ(after.resume_job_id, saved.resume_job_id);
+    EXPECT_EQ(after.resume_curve, saved.resume_curve);
+    EXPECT_EQ(after.executed, 0);  // of this run's stream (the map's frames not yet sent)
+    EXPECT_EQ(after.message.find("nothing was cut"), std::string::npos) << after.message;
+    EXPECT_NE(after.message.find(fmt::format("nothing more was cut in this run (the job's earlier "
+                                             "runs cut up to job command {} of ",
+                                             saved.resume_index)),
+              std::string::npos)
+        << after.message;
+  }
+  // Back on the machine that probed: the job continues where the first run stopped.
+  ServerRig server(dir.path(), {on_left});
+  ASSERT_EQ(server.control(id, R"({"action":"continue"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["runs"] == 4; }, 30));
+  const fs::path job_dir = server.data().job_dir(server.store().get(id)->key);
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        std::error_code ec;
+        return fs::exists(job_dir / "runs" / "4" / "machine.log", ec) &&
+               read_file(job_dir / "runs" / "4" / "machine.log").find("planned:") !=
+                   std::string::npos;
+      },
+      30));
+  // Where the first run stopped: the saved position, or where the machine stopped (at or
+  // past it, never before).
+  const std::string log = read_file(job_dir / "runs" / "4" / "machine.log");
+  const std::string continuing = "continuing at job command ";
+  const size_t at = log.find(continuing);
+  ASSERT_NE(at, std::string::npos) << log;
+  EXPECT_GE(std::stoll(log.substr(at + continuing.size())), saved.resume_index) << log;
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30));
+}
+
 }  // namespace
 }  // namespace host::server
