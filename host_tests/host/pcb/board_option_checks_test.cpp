@@ -295,6 +295,9 @@ TEST(BoardOptionRanges, TheTestersValuesAreUsageErrorsNamingTheOption) {
       {"--tab-width -5", "--tab-width: -5 is outside the allowed range 0 .. 100 mm"},
       {"--depth 0x1p-3", "--depth: '0x1p-3' is not a decimal number"},
       {"--passes 0x3", "--passes: '0x3' is not a decimal number"},
+      // A count out of range as typed, not as rewritten for CLI11 (1000).
+      {"--passes 1e3", "--passes: 1e3 is outside the allowed range 1 .. 50\n"},
+      {"--tabs 1.0e3", "--tabs: 1.0e3 is outside the allowed range 0 .. 100\n"},
       {"--clearing-tool 0.1 --passes 3",
        "--clearing-tool (0.1 mm) must be wider than --tool-width (0.2 mm)"},
       {"--clearing-tool 0.8 --passes 3 --mill-all",
