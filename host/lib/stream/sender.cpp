@@ -150,7 +150,11 @@ const char* outcome_name(JobOutcome outcome) {
 }
 
 Sender::Sender(Link& link, SenderOptions options)
-    : link_(link), options_(options), parser_(proto::kReplyStart), last_reply_(now()) {}
+    : link_(link),
+      options_(options),
+      parser_(proto::kReplyStart),
+      last_reply_(now()),
+      last_byte_(last_reply_) {}
 
 Clock::time_point Sender::now() const {
   return options_.clock ? options_.clock() : Clock::now();
@@ -171,6 +175,7 @@ void Sender::send_frame(uint8_t letter, uint8_t seq, const std::vector<uint8_t>&
 bool Sender::pump(milliseconds wait) {
   uint8_t buf[512];
   const size_t n = link_.read(buf, sizeof buf, wait);
+  if (n > 0) last_byte_ = now();
   bool any = false;
   for (size_t i = 0; i < n; ++i) {
     for (proto::ParseEvent ev = parser_.feed(buf[i]); ev != proto::ParseEvent::kNone;
@@ -184,7 +189,7 @@ bool Sender::pump(milliseconds wait) {
     }
   }
   if (n == 0 && parser_.in_frame() &&
-      now() - last_reply_ > milliseconds(proto::kInterByteTimeoutMs)) {
+      now() - last_byte_ > milliseconds(proto::kInterByteTimeoutMs)) {
     for (proto::ParseEvent ev = parser_.expire(); ev != proto::ParseEvent::kNone;
          ev = parser_.poll()) {
       if (ev == proto::ParseEvent::kFrame) handle_reply(parser_.frame());
