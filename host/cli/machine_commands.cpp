@@ -469,16 +469,13 @@ void run_run(const RunArgs& a) {
     }
     std::cerr << "engraver: " << stopped << "\n";
   }
-  commands::write_run_plots(plan, o, r);
+  commands::write_run_plots(plan, o, &r);
   commands::check_run(o, &r);
   nlohmann::json report = commands::run_report_json(plan, o, r);
   if (r.depth) report["depth_of_cut"] = depth_report_json(*r.depth, r.map.has_value());
   commands::write_run_report(report, r);
   std::cout << commands::run_report_text(plan, o, r);
-  if (r.depth) {
-    std::cout << depth_report_text(*r.depth, r.map.has_value());
-    std::cout << fmt::format("  depth error plot: {}.depth.svg\n", r.base);
-  }
+  if (r.depth) std::cout << depth_report_text(*r.depth, r.map.has_value());
   commands::refuse_failed_run(o, r);
 }
 

@@ -54,16 +54,23 @@ std::string bound_text(double v) {
 
 void add_checks(CLI::App* app) {
   for (CLI::Option* o : app->get_options()) {
-    if (is_integer_option(o))
+    const bool whole = is_integer_option(o);
+    if (whole)
       o->transform(CLI::Validator(refuse_fraction, "", "whole"));  // may rewrite 2.0 as 2
     else if (is_number_option(o))
       o->check(CLI::Validator(refuse_non_number, "", "decimal"));
     for (const OptionRange& r : option_ranges()) {
       if (o->check_name(r.option)) {
         const std::string unit = *r.unit ? std::string(" ") + r.unit : std::string();
-        o->check(CLI::Validator(
-            [r](std::string& v) { return range_refusal(r, v); },
-            "in [" + bound_text(r.min) + " .. " + bound_text(r.max) + "]" + unit, "range"));
+        CLI::Validator range([r](std::string& v) { return range_refusal(r, v); },
+                             "in [" + bound_text(r.min) + " .. " + bound_text(r.max) + "]" + unit,
+                             "range");
+        // A count's range as a transform: CLI11 runs transforms first, the last added first,
+        // so the range sees the value as typed (1e3), not as rewritten (1000).
+        if (whole)
+          o->transform(range);
+        else
+          o->check(range);
       }
     }
   }

@@ -282,12 +282,15 @@ std::string board_report_text(const BoardCommandOptions& a, const BoardResult& r
         w.g1_vertex_bytes);
   }
   s += "  drilling: " + drilling_text(p, r.job.alignment_holes_mm.size()) + "\n";
+  const std::string cutout = p.no_cutout.empty()
+                                 ? fmt::format("cut-out: {:.1f} mm per pass, {}",
+                                               p.cutout_length_mm, counted(p.tabs, "tab"))
+                                 : "no cut-out: " + p.no_cutout;
   s += fmt::format(
-      "  cut-out: {:.1f} mm per pass, {}; {}\n"
+      "  {}; {}\n"
       "  bytes per tool: {}\n"
       "  files -> plan: {:.3f} s CPU, peak {:.1f} MB\n",
-      p.cutout_length_mm, counted(p.tabs, "tab"), counted(p.tool_changes, "tool change"),
-      tool_bytes, r.plan_cpu_s, r.plan_peak_mb);
+      cutout, counted(p.tool_changes, "tool change"), tool_bytes, r.plan_cpu_s, r.plan_peak_mb);
   for (const pcb::NarrowGap& g : p.narrow_gaps)
     s += "  " + pcb::describe_gap(g, r.options.isolation) + "\n";
   for (size_t i = 0; i < r.job.alignment_holes_mm.size(); ++i)

@@ -52,6 +52,22 @@ std::string extents_text(double x0, double y0, double x1, double y1) {
                      mm(bx - ax), mm(by - ay));
 }
 
+// A length in mm at the text's resolution (um), for JSON: 0.8, not 0.7999999999999999.
+double um_resolution_mm(double mm) {
+  return static_cast<double>(std::llround(mm * 1000)) / 1000;
+}
+
+// Corners, width and height for JSON at the text's resolution (um), the size from the
+// rounded ends as there.
+nlohmann::json extents_json(double x0, double y0, double x1, double y1) {
+  const double ax = um_resolution_mm(x0), ay = um_resolution_mm(y0);
+  const double bx = um_resolution_mm(x1), by = um_resolution_mm(y1);
+  return {{"min", {ax, ay}},
+          {"max", {bx, by}},
+          {"width", um_resolution_mm(bx - ax)},
+          {"height", um_resolution_mm(by - ay)}};
+}
+
 Box extents(const PcbLayer& l) {
   Box b;
   for (const auto& path : l.polygons_nm) {
@@ -67,6 +83,14 @@ Box extents(const PcbLayer& l) {
     b.add(static_cast<double>(s.to.x), static_cast<double>(s.to.y), r);
   }
   return b;
+}
+
+// An outline's centre lines that do not close (0 for a layer of polygons).
+size_t open_paths(const PcbLayer& l) {
+  if (!l.outline_paths_are_open) return 0;
+  size_t open = 0;
+  for (const auto& p : l.polygons_nm) open += !(p.size() > 2 && p.front() == p.back());
+  return open;
 }
 
 struct Counts {
@@ -126,8 +150,7 @@ std::string pcb_info_text(const PcbFileInfo& info) {
   } else {
     out << "apertures: " << l.apertures_or_tools << "\n";
     if (l.outline_paths_are_open) {
-      size_t closed = 0;
-      for (const auto& p : l.polygons_nm) closed += p.size() > 2 && p.front() == p.back();
+      const size_t closed = l.polygons_nm.size() - open_paths(l);
       out << "paths:     " << counted(l.polygons_nm.size(), "centre line") << " (" << closed
           << " closed), " << counted(c.vertices, "vertex", "vertices") << "\n";
     } else {
@@ -151,22 +174,18 @@ nlohmann::json pcb_info_json(const PcbFileInfo& info) {
   j["layer"] = pcb::layer_kind_name(l.kind);
   j["units"] = l.units;
   // As a drawing's: corners, width and height, all in mm (the key says the unit).
-  j["extents_mm"] = b.empty ? nlohmann::json(nullptr)
-                            : nlohmann::json{{"min", {b.x0, b.y0}},
-                                             {"max", {b.x1, b.y1}},
-                                             {"width", b.x1 - b.x0},
-                                             {"height", b.y1 - b.y0}};
+  j["extents_mm"] = b.empty ? nlohmann::json(nullptr) : extents_json(b.x0, b.y0, b.x1, b.y1);
   j["apertures_or_tools"] = l.apertures_or_tools;
   j["polygons"] = c.outers;
   j["polygon_holes"] = c.holes;
   j["vertices"] = c.vertices;
-  j["open_paths"] = l.outline_paths_are_open;
+  j["open_paths"] = open_paths(l);
   j["holes"] = l.holes.size();
   j["slots"] = l.slots.size();
   j["arc_tolerance_nm"] = l.arc_tolerance_nm;
   nlohmann::json tools = nlohmann::json::object();
   for (const auto& t : c.tools) {
-    tools["T" + std::to_string(t.first)] = {{"diameter_mm", t.second.first},
+    tools["T" + std::to_string(t.first)] = {{"diameter_mm", um_resolution_mm(t.second.first)},
                                             {"count", t.second.second}};
   }
   j["tools"] = tools;
@@ -224,14 +243,8 @@ nlohmann::json drawing_info_json(const Drawing& d) {
   j["unit_to_mm"] = d.unit_to_mm;
   j["entities"] = d.entity_counts;
   const Extents e = d.extents();
-  if (!e.empty()) {
-    j["extents_mm"] = {{"min", point_json(e.min)},
-                       {"max", point_json(e.max)},
-                       {"width", e.width()},
-                       {"height", e.height()}};
-  } else {
-    j["extents_mm"] = nullptr;
-  }
+  j["extents_mm"] = e.empty() ? nlohmann::json(nullptr)
+                              : extents_json(e.min.x(), e.min.y(), e.max.x(), e.max.y());
   j["curves"] = nlohmann::json::array();
   for (const Curve& c : d.curves) {
     nlohmann::json cj;

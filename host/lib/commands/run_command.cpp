@@ -151,12 +151,15 @@ RunResult simulate_run(const JobPlan& plan, const RunOptions& o) {
   return r;
 }
 
-void write_run_plots(const JobPlan& plan, const RunOptions& o, const RunResult& r) {
+void write_run_plots(const JobPlan& plan, const RunOptions& o, RunResult* r) {
+  const std::string& base = r->base;
+  std::vector<std::string>& written = r->plot_files;
+  written.clear();
   // The drawing's curves against the simulated tool path.
   PlotInput plot = plot_input_from_plan(plan, o.name, 0.01, false);
-  const std::vector<bool> pen_down = sim::pen_down_samples(r.sim.trace, plan);
-  for (size_t i = 0; i < r.sim.trace.size(); ++i) {
-    const sim::ToolSample& s = r.sim.trace[i];
+  const std::vector<bool> pen_down = sim::pen_down_samples(r->sim.trace, plan);
+  for (size_t i = 0; i < r->sim.trace.size(); ++i) {
+    const sim::ToolSample& s = r->sim.trace[i];
     const bool down = pen_down[i];
     if (plot.tool_path.empty() || plot.tool_path.back().pen_down != down) {
       ToolPathSegment seg;
@@ -166,16 +169,26 @@ void write_run_plots(const JobPlan& plan, const RunOptions& o, const RunResult& 
     }
     plot.tool_path.back().points_mm.push_back(Point2(s.x_mm, s.y_mm));
   }
-  write_plot(plot, r.base + ".svg", o.png ? r.base + ".png" : "");
+  write_plot(plot, base + ".svg", o.png ? base + ".png" : "");
+  written.push_back(base + ".svg");
+  if (o.png) written.push_back(base + ".png");
   if (o.board && o.board->job) {  // copper, isolation width, holes
     BoardPlotInput in;
     in.title = o.board->title + " (simulated)";
     in.job = o.board->job.get();
     in.simulated = plot.tool_path;
-    write_board_plot(in, r.base + ".board.svg", o.png ? r.base + ".board.png" : "");
+    write_board_plot(in, base + ".board.svg", o.png ? base + ".board.png" : "");
+    written.push_back(base + ".board.svg");
+    if (o.png) written.push_back(base + ".board.png");
   }
-  if (r.depth) write_depth_error_svg(r.depth->kept, 50.0, o.name, r.base + ".depth.svg");
-  if (r.map && !o.probe) write_height_map_svg(*r.map, o.name, r.base + ".map.svg");
+  if (r->depth) {
+    write_depth_error_svg(r->depth->kept, 50.0, o.name, base + ".depth.svg");
+    written.push_back(base + ".depth.svg");
+  }
+  if (r->map && !o.probe) {
+    write_height_map_svg(*r->map, o.name, base + ".map.svg");
+    written.push_back(base + ".map.svg");
+  }
 }
 
 void check_run(const RunOptions& o, RunResult* r) {
@@ -227,6 +240,20 @@ nlohmann::json flip_json(const FlipSimulation& flip) {
             {"shift_mm", {flip.alignment.shift_mm.x(), flip.alignment.shift_mm.y()}}}}};
 }
 
+std::string joined(const std::vector<std::string>& files) {
+  std::string s;
+  for (const std::string& f : files) s += (s.empty() ? "" : ", ") + f;
+  return s;
+}
+
+// The commands sent before the job's own (the height map, or its clearing): the progress
+// line's total counts them too.
+std::string setup_text(const sim::SimJobResult& s) {
+  if (s.setup_commands == 0) return "";
+  return fmt::format(" (and {} before the job: the height map or its clearing)",
+                     counted(s.setup_commands, "set-up command"));
+}
+
 double speedup(uint64_t machine_ms, double s) {
   return s > 0 ? machine_ms / 1000.0 / s : 0.0;
 }
@@ -242,6 +269,7 @@ nlohmann::json run_report_json(const JobPlan& plan, const RunOptions& o, const R
   j["curves"] = plan.curves.size();
   j["pen_lifts"] = plan.pen_lifts;
   j["commands"] = s.commands;
+  j["setup_commands"] = s.setup_commands;  // before the job; progress total = both
   j["frames_sent"] = s.stats.frames_sent;
   j["bytes_sent"] = s.stats.bytes_sent;
   j["job_wire_bytes"] = s.wire_bytes;
@@ -304,7 +332,7 @@ std::string run_report_text(const JobPlan& plan, const RunOptions& o, const RunR
   const std::string& base = r.base;
   std::string t = fmt::format(
       "{}: {}, {}; job {}\n"
-      "  sent {} in {}, {} bytes ({} resent after busy or loss); the job as "
+      "  sent {}{} in {}, {} bytes ({} resent after busy or loss); the job as "
       "frames: {} bytes, "
       "as G-code G1 at the same tolerance: {} bytes\n"
       "  tool path {:.1f} mm cut + {:.1f} mm rapid; simulated job time {:.1f} s, of which "
@@ -314,15 +342,15 @@ std::string run_report_text(const JobPlan& plan, const RunOptions& o, const RunR
       "({:.2f} s of processor time: {:.0f}x real time)\n"
       "  {} confirmed by the simulated operator ({} ms after each); spindle {} at the "
       "end\n"
-      "  plot: {}.svg{}; report: {}.json\n",
+      "  plot: {}; report: {}.json\n",
       o.file, counted(plan.curves.size(), "curve"), counted(plan.pen_lifts, "pen lift"),
-      outcome_name(s.outcome), counted(s.commands, "command"),
+      outcome_name(s.outcome), counted(s.commands, "command"), setup_text(s),
       counted(s.stats.frames_sent, "frame"), s.stats.bytes_sent, s.stats.retransmits, s.wire_bytes,
       r.points.gcode_bytes, s.cut_mm, s.rapid_mm, s.motion_s, s.cut_s,
       plan.cut_length_mm / o.feed_mm_s, s.max_contour_error_um, s.worst_contour_sample.x_mm,
       s.worst_contour_sample.y_mm, s.virtual_ms / 1000.0, s.wall_s, s.cpu_s,
       speedup(s.virtual_ms, s.cpu_s), counted(s.pauses_confirmed, "pause"), r.pause_confirm_ms,
-      s.spindle_on ? "on" : "off", base, o.png ? ", " + base + ".png" : "", base);
+      s.spindle_on ? "on" : "off", joined(r.plot_files), base);
   if (s.trace_step_mm > plot_step_mm(plan))
     t += fmt::format(
         "  the plot's tool path is thinned to {:.3f} mm steps ({} of {} samples kept, a long "
@@ -366,7 +394,7 @@ void refuse_failed_run(const RunOptions& o, const RunResult& r) {
 
 RunResult run_job(const JobPlan& plan, const RunOptions& o) {
   RunResult r = simulate_run(plan, o);
-  write_run_plots(plan, o, r);
+  write_run_plots(plan, o, &r);
   check_run(o, &r);
   return r;
 }

@@ -89,14 +89,15 @@ struct RunResult {
   std::optional<SimulatedIsolation> isolation;  // check_run()
   std::optional<Registration> registration;     // check_run(), a flip
   std::string base;                             // OUTDIR/NAME
+  std::vector<std::string> plot_files;          // write_run_plots(): every picture written
 };
 
 // Stage 1: the job through a fresh simulated machine, measured as it runs (the blank, the
 // probe, the map, the isolation cuts, the depth of cut). Exit 2 for --probe without a surface.
 RunResult simulate_run(const JobPlan& plan, const RunOptions& o);
 // Stage 2: BASE.svg (the drawing against the tool path), for a board BASE.board.svg, each
-// with a .png when o.png; the depth error and the map's pictures.
-void write_run_plots(const JobPlan& plan, const RunOptions& o, const RunResult& r);
+// with a .png when o.png; the depth error and the map's pictures: each named in r->plot_files.
+void write_run_plots(const JobPlan& plan, const RunOptions& o, RunResult* r);
 // Stage 3: a board's simulated isolation cuts against its copper; a flip's registration.
 void check_run(const RunOptions& o, RunResult* r);
 // Stage 4: the report (BASE.json, without the depth of cut: the CLI adds it) and its lines.

@@ -133,7 +133,10 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
   if (layers.drill) drills = drill(layers, copper, o, sx, job.report);
   CutoutPlan cp;
   std::vector<Trace> cut;
-  if (layers.outline) cut = cut_out(layers, o, sx, cp, job);
+  if (layers.outline)
+    cut = cut_out(layers, o, sx, cp, job);
+  else
+    job.report.no_cutout = given.outline ? "the outline layer draws nothing" : "no outline layer";
   Extents region;  // double-sided: one frame for both setups
   if (o.alignment.enabled) region = align_sides(layers, copper, cp, o, sx, drills, cut, job);
   const Point2 offset = place(iso, cut, drills, region, o, job);

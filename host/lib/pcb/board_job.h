@@ -111,8 +111,9 @@ struct BoardReport {
   double drill_travel_ordered_mm = 0;
   int tabs = 0;
   double cutout_length_mm = 0;
-  size_t tool_changes = 0;         // kPause steps
-  std::string first_tool;          // mounted before the job starts
+  std::string no_cutout;    // why the job cuts no board out ("no outline layer"); "": it does
+  size_t tool_changes = 0;  // kPause steps
+  std::string first_tool;   // mounted before the job starts
   std::vector<std::string> notes;  // what the planner left out and why (an empty outline)
 };
 

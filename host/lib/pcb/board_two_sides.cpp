@@ -84,6 +84,7 @@ void split_work_between_sides(const BoardOptions& o, const std::vector<Point2>& 
     rep.drill_tools = drills.size();
     if (!cut.empty())
       rep.notes.push_back("alignment: the cut-out is left for the bottom side's job");
+    if (!cut.empty()) rep.no_cutout = "the bottom side's job cuts the board out";
     cut.clear();
     rep.tabs = 0;
     rep.cutout_length_mm = 0;

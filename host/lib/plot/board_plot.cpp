@@ -192,8 +192,10 @@ void draw_labels(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int 
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, 12);
   const double y = height_px - kBottomBandPx / 2;
-  for (int i = 0; i < legend_entries(!in.simulated.empty()); ++i)
-    legend_box(cr, kSideMarginPx + kLegend[i].x_px, y, kLegend[i].colour, kLegend[i].label);
+  LegendEntry shown[kLegendSize];
+  const int n = legend_shown(!in.simulated.empty(), !in.job->cutout_paths_mm.empty(), shown);
+  for (int i = 0; i < n; ++i)
+    legend_box(cr, kSideMarginPx + shown[i].x_px, y, shown[i].colour, shown[i].label);
   draw_scale_bar(cr, nice_length(in.width_px / 6.0 / s), s, in.width_px - kSideMarginPx, y);
 }
 

@@ -25,22 +25,37 @@ const Rgba kGap = {0.90, 0.00, 0.00, 1.0};
 const Rgba kSimulated = {0.75, 0.05, 0.05, 0.9};
 
 // The legend, left to right in the bottom band, each entry `x_px` right of the side margin.
-// The last entry is drawn only when the plot shows a simulated tool.
+// Some entries are drawn only when the plot shows what they name.
+enum class Shown { kAlways, kWithCutout, kWithSimulated };
 struct LegendEntry {
   double x_px;
   Rgba colour;
   const char* label;
+  Shown shown;
 };
-const LegendEntry kLegend[] = {{0, kCopper, "copper"},
-                               {100, kIsolation, "isolation (tool width)"},
-                               {280, kCutout, "cut-out (cutter width)"},
-                               {460, kTab, "tabs"},
-                               {540, kHole, "holes"},
-                               {630, kGap, "narrow gap"},
-                               {750, kSimulated, "simulated tool"}};
-inline int legend_entries(bool simulated) {
-  const int all = sizeof kLegend / sizeof kLegend[0];
-  return simulated ? all : all - 1;
+const LegendEntry kLegend[] = {{0, kCopper, "copper", Shown::kAlways},
+                               {100, kIsolation, "isolation (tool width)", Shown::kAlways},
+                               {280, kCutout, "cut-out (cutter width)", Shown::kWithCutout},
+                               {460, kTab, "tabs", Shown::kWithCutout},
+                               {540, kHole, "holes", Shown::kAlways},
+                               {630, kGap, "narrow gap", Shown::kAlways},
+                               {750, kSimulated, "simulated tool", Shown::kWithSimulated}};
+const int kLegendSize = sizeof kLegend / sizeof kLegend[0];
+// The entries a plot shows, into shown[kLegendSize], each moved left over those left out (a
+// board without a cut-out shows no cut-out or tabs). Returns how many.
+inline int legend_shown(bool simulated, bool cutout, LegendEntry* shown) {
+  int n = 0;
+  double left_out_px = 0;
+  for (int i = 0; i < kLegendSize; ++i) {
+    const Shown when = kLegend[i].shown;
+    if ((when == Shown::kWithCutout && !cutout) || (when == Shown::kWithSimulated && !simulated)) {
+      if (i + 1 < kLegendSize) left_out_px += kLegend[i + 1].x_px - kLegend[i].x_px;
+      continue;
+    }
+    shown[n] = kLegend[i];
+    shown[n++].x_px -= left_out_px;
+  }
+  return n;
 }
 
 }  // namespace board_plot_style

@@ -165,8 +165,10 @@ void labels(Svg& svg, const BoardPlotInput& in, const PlotFrame& f, int height_p
   text_at(svg, kSideMarginPx, 26, in.title);
   svg << "</g>\n<g font-family=\"sans-serif\" font-size=\"12\">\n";
   const double y = height_px - kBottomBandPx / 2;
-  for (int i = 0; i < legend_entries(!in.simulated.empty()); ++i)
-    legend_box(svg, kSideMarginPx + kLegend[i].x_px, y, kLegend[i].colour, kLegend[i].label);
+  LegendEntry shown[kLegendSize];
+  const int n = legend_shown(!in.simulated.empty(), !in.job->cutout_paths_mm.empty(), shown);
+  for (int i = 0; i < n; ++i)
+    legend_box(svg, kSideMarginPx + shown[i].x_px, y, shown[i].colour, shown[i].label);
   const double s = f.scale_px_per_mm;
   const double bar_mm = nice_length(in.width_px / 6.0 / s);
   const double x1 = in.width_px - kSideMarginPx, x0 = x1 - bar_mm * s;

@@ -13,6 +13,7 @@
 // the 2 s link watchdog) count the wall clock of the link (SimMachine::LinkTime::kWall, set
 // by the constructor): a frame may arrive in pieces up to 200 ms apart, noise does not age
 // the watchdog, and 2 s without a valid frame trip it, as on the real controller.
+// Machine time behind the wall clock (a busy computer) catches up, still reading the host.
 #ifndef HOST_LIB_SIM_SIM_SERVER_H
 #define HOST_LIB_SIM_SIM_SERVER_H
 

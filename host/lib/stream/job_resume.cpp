@@ -4,6 +4,7 @@
 #include <fmt/format.h>  // fmt::format
 
 #include "firmware/protocol/codec.h"         // proto::encode, proto::decode
+#include "host/lib/plan/counted.h"           // counted: "1 point", "2 points"
 #include "host/lib/plan/firmware_points.h"   // firmware_points_um
 #include "host/lib/stream/encode_command.h"  // encode_command, decoded
 #include "host/lib/stream/spline_frames.h"   // add_spline_data
@@ -96,8 +97,8 @@ std::string curve_point_problem(int32_t job_index, size_t point_count, uint16_t 
         job_index, point_count, job_index);
   }
   if (curve_point >= point_count) {
-    return fmt::format("resume at job command {}: its curve has {} points, not {}", job_index,
-                       point_count, curve_point + 1);
+    return fmt::format("resume at job command {}: its curve has {}, not {}", job_index,
+                       counted(point_count, "point"), curve_point + 1);
   }
   return "";
 }

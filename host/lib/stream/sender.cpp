@@ -8,6 +8,7 @@
 #include <thread>     // std::this_thread
 
 #include "firmware/protocol/codec.h"  // proto::decode_frame, proto::encode
+#include "host/lib/plan/counted.h"    // counted: "1 command", "2 commands"
 
 namespace host {
 
@@ -149,7 +150,11 @@ const char* outcome_name(JobOutcome outcome) {
 }
 
 Sender::Sender(Link& link, SenderOptions options)
-    : link_(link), options_(options), parser_(proto::kReplyStart), last_reply_(now()) {}
+    : link_(link),
+      options_(options),
+      parser_(proto::kReplyStart),
+      last_reply_(now()),
+      last_byte_(last_reply_) {}
 
 Clock::time_point Sender::now() const {
   return options_.clock ? options_.clock() : Clock::now();
@@ -170,6 +175,7 @@ void Sender::send_frame(uint8_t letter, uint8_t seq, const std::vector<uint8_t>&
 bool Sender::pump(milliseconds wait) {
   uint8_t buf[512];
   const size_t n = link_.read(buf, sizeof buf, wait);
+  if (n > 0) last_byte_ = now();
   bool any = false;
   for (size_t i = 0; i < n; ++i) {
     for (proto::ParseEvent ev = parser_.feed(buf[i]); ev != proto::ParseEvent::kNone;
@@ -183,7 +189,7 @@ bool Sender::pump(milliseconds wait) {
     }
   }
   if (n == 0 && parser_.in_frame() &&
-      now() - last_reply_ > milliseconds(proto::kInterByteTimeoutMs)) {
+      now() - last_byte_ > milliseconds(proto::kInterByteTimeoutMs)) {
     for (proto::ParseEvent ev = parser_.expire(); ev != proto::ParseEvent::kNone;
          ev = parser_.poll()) {
       if (ev == proto::ParseEvent::kFrame) handle_reply(parser_.frame());
@@ -586,8 +592,8 @@ void Sender::start_window(CommandSource& commands) {
 bool Sender::take_requests(CommandSource& commands, JobOutcome* outcome) {
   if (requests_.abort_asked()) {
     send_realtime(proto::kCmdAbort, {});
-    message_ = fmt::format("aborted by the operator after {} of {} commands", win_.executed,
-                           commands.size());
+    message_ = fmt::format("aborted by the operator after {} of {}", win_.executed,
+                           counted(commands.size(), "command"));
     *outcome = JobOutcome::kAborted;
     return true;
   }
@@ -657,7 +663,9 @@ void Sender::fill_window(CommandSource& commands) {
 bool Sender::job_ended(CommandSource& commands, JobOutcome* outcome) {
   if (win_.base == commands.size() && win_.executed == commands.size() && have_status_ &&
       last_status_.state == proto::MachineState::kIdle) {
-    message_ = fmt::format("all {} commands executed", commands.size());
+    message_ = commands.size() == 1
+                   ? std::string("the 1 command executed")
+                   : fmt::format("all {} executed", counted(commands.size(), "command"));
     win_.first_seq = static_cast<uint8_t>(win_.first_seq + commands.size());
     *outcome = JobOutcome::kCompleted;
     return true;
@@ -669,17 +677,18 @@ bool Sender::job_ended(CommandSource& commands, JobOutcome* outcome) {
     else if (last_status_.flags & proto::kStatusFramePending)
       why = "; the controller holds a frame it has no room for";
     message_ = fmt::format(
-        "no progress for {} s: {} of {} commands executed, {} stored; machine {} at "
+        "no progress for {} s: {} of {} executed, {} stored; machine {} at "
         "({:.3f}, {:.3f}, {:.3f}) mm{}",
-        options_.stall_limit.count() / 1000.0, win_.executed, commands.size(), win_.base,
-        machine_state_name(last_status_.state), last_status_.x_um / 1000.0,
+        options_.stall_limit.count() / 1000.0, win_.executed, counted(commands.size(), "command"),
+        win_.base, machine_state_name(last_status_.state), last_status_.x_um / 1000.0,
         last_status_.y_um / 1000.0, last_status_.z_um / 1000.0, why);
     *outcome = JobOutcome::kStalled;
     return true;
   }
   if (now() - last_reply_ > options_.silence_limit) {
-    message_ = fmt::format("{}: no reply for {} ms after {} of {} commands executed", link_.name(),
-                           options_.silence_limit.count(), win_.executed, commands.size());
+    message_ = fmt::format("{}: no reply for {} ms after {} of {} executed", link_.name(),
+                           options_.silence_limit.count(), win_.executed,
+                           counted(commands.size(), "command"));
     *outcome = JobOutcome::kLinkLost;
     return true;
   }

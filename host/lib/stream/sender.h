@@ -153,6 +153,9 @@ class Sender {
   bool failed_ = false;
   JobOutcome failure_ = JobOutcome::kRejected;
   std::chrono::steady_clock::time_point last_reply_;
+  // The last reply byte: a partial reply frame expires 200 ms after it (inter-byte time-out),
+  // not 200 ms after the last whole frame (statuses 250 ms apart lost every split reply).
+  std::chrono::steady_clock::time_point last_byte_;
   RoundTripTimer rtt_;
   StallWatchdog watchdog_;
   bool operator_hold_ = false;  // the operator asked for a hold (not a stall)

@@ -5,7 +5,8 @@
 #include <unistd.h>  // getpid
 
 #include <filesystem>  // temp_directory_path, exists
-#include <fstream>     // std::ofstream
+#include <fstream>     // std::ofstream, std::ifstream
+#include <iterator>    // std::istreambuf_iterator
 
 #include "host/lib/commands/board_command.h"
 #include "host/lib/commands/exit_codes.h"
@@ -86,6 +87,49 @@ TEST(BoardCommand, PlansChecksReportsAndWritesAWholeBoard) {
   EXPECT_NE(text.find("ok: top side, first tool V-bit 0.20mm"), std::string::npos) << text;
   EXPECT_EQ(text.find("as splines"), std::string::npos) << text;
   EXPECT_NE(text.find("report: " + r.base + ".board.json"), std::string::npos) << text;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A board without an outline has no cut-out: the report says so once (not "0.0 mm per pass,
+// 0 tabs") and the plot's legend names no cut-out or tabs; with an outline it names both.
+TEST(BoardCommand, ABoardWithoutAnOutlineSaysNoCutOutAndItsLegendShowsNone) {
+  const std::string dir = write_board("no-outline");
+  fs::remove(fs::path(dir) / "t-Edge.Cuts.gbr");
+  BoardCommandOptions o;
+  o.files = {dir};
+  o.outdir = dir + "/out";
+  o.check = false;
+  Log log;
+  BoardResult r = run_board(o, log.log());
+  EXPECT_EQ(r.job.report.no_cutout, "no outline layer");
+  const std::string text = board_report_text(o, r);
+  EXPECT_NE(text.find("\n  no cut-out: no outline layer; 2 tool changes\n"), std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("\n  cut-out:"), std::string::npos) << text;
+  EXPECT_EQ(text.find("tabs"), std::string::npos) << text;
+  write_board_outputs(o, board_report_json(o, r), &r);
+  const std::string svg = read_file(r.base + ".board.svg");
+  EXPECT_NE(svg.find(">holes</text>"), std::string::npos);
+  EXPECT_EQ(svg.find("cut-out"), std::string::npos);
+  EXPECT_EQ(svg.find(">tabs</text>"), std::string::npos);
+
+  const std::string with_outline = write_board("with-outline");
+  o.files = {with_outline};
+  o.outdir = with_outline + "/out";
+  BoardResult cut = run_board(o, log.log());
+  EXPECT_EQ(cut.job.report.no_cutout, "");
+  EXPECT_NE(
+      board_report_text(o, cut).find("\n  cut-out: 123.1 mm per pass, 4 tabs; 3 tool changes\n"),
+      std::string::npos)
+      << board_report_text(o, cut);
+  write_board_outputs(o, board_report_json(o, cut), &cut);
+  const std::string cut_svg = read_file(cut.base + ".board.svg");
+  EXPECT_NE(cut_svg.find(">cut-out (cutter width)</text>"), std::string::npos);
+  EXPECT_NE(cut_svg.find(">tabs</text>"), std::string::npos);
 }
 
 TEST(BoardCommand, WireBytesCompareTheIsolationsEncodingsWhenAsked) {

@@ -64,6 +64,44 @@ TEST(InfoCommand, AGerberFilesLayerExtentsAndPolygons) {
   EXPECT_NE(text.find("polygons:  2 copper areas"), std::string::npos) << text;
 }
 
+// An inch drill file's sizes in the JSON at the text's resolution (um): 0.8, not 0.8001 or
+// 0.7999999999999999.
+TEST(InfoCommand, JsonSizesAreRoundedToTheMicrometreAsTheText) {
+  const std::string path = write_file(
+      "inch.drl",
+      "M48\nINCH\nT1C0.0315\n%\nG90\nG05\nT1\nX0.393701Y0.393701\nX0.787402Y0.393701\nM30\n");
+  const std::optional<PcbFileInfo> info = read_pcb_file_info(path);
+  ASSERT_TRUE(info.has_value());
+  const nlohmann::json j = pcb_info_json(*info);
+  EXPECT_EQ(j["tools"]["T1"]["diameter_mm"].get<double>(), 0.8) << j.dump();
+  EXPECT_EQ(j["extents_mm"]["min"][0].get<double>(), 9.6) << j.dump();
+  EXPECT_EQ(j["extents_mm"]["max"][0].get<double>(), 20.4) << j.dump();
+  EXPECT_EQ(j["extents_mm"]["width"].get<double>(), 10.8) << j.dump();
+  EXPECT_EQ(j["extents_mm"]["height"].get<double>(), 0.8) << j.dump();
+  const std::string text = pcb_info_text(*info);
+  EXPECT_NE(text.find("x 9.600 .. 20.400 mm, y 9.600 .. 10.400 mm (10.800 x 0.800 mm)"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("T1: 0.800 mm"), std::string::npos) << text;
+  fs::remove(path);
+}
+
+// open_paths is a count (the guide's word): an outline's centre lines that do not close.
+TEST(InfoCommand, OpenPathsCountsTheOutlinesOpenCentreLines) {
+  const std::string path =
+      write_file("edge-Edge.Cuts.gbr",
+                 "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Profile,NP*%\n%ADD10C,0.100000*%\nD10*\n"
+                 "X0Y0D02*\nX35000000Y0D01*\nX35000000Y25000000D01*\nX0Y25000000D01*\nX0Y0D01*\n"
+                 "X5000000Y5000000D02*\nX10000000Y5000000D01*\nM02*\n");
+  const std::optional<PcbFileInfo> info = read_pcb_file_info(path);
+  ASSERT_TRUE(info.has_value());
+  const nlohmann::json j = pcb_info_json(*info);
+  EXPECT_EQ(j["open_paths"], 1) << j.dump();
+  EXPECT_NE(pcb_info_text(*info).find("paths:     2 centre lines (1 closed)"), std::string::npos)
+      << pcb_info_text(*info);
+  fs::remove(path);
+}
+
 TEST(InfoCommand, AnotherFileIsNotPcbAndABrokenOneIsAUsageError) {
   EXPECT_FALSE(read_pcb_file_info(write_file("drawing.dxf", "0\nEOF\n")).has_value());
   const std::string broken = write_file("broken.drl", "M48\nMETRIC\nT1C\n%\nT1\nX1Y1\nM30\n");

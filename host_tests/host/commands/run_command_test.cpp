@@ -2,6 +2,8 @@
 // the simulation's figures, and the refusals.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>  // fmt::format
+
 #include <filesystem>  // temp_directory_path, exists
 
 #include "host/lib/commands/exit_codes.h"
@@ -87,6 +89,55 @@ TEST(RunCommand, WritesThePngPlotWhenAskedFor) {
   const std::string text = run_report_text(plan, o, r);
   EXPECT_NE(text.find("plot: " + r.base + ".svg, " + r.base + ".png; report:"), std::string::npos)
       << text;
+}
+
+// The progress line's total counts the commands sent before the job (here the height map's
+// clearing); the report names them apart, so both add up to that total.
+TEST(RunCommand, ReportCountsTheSetUpCommandsTheProgressTotalCounts) {
+  const std::string dir = (fs::temp_directory_path() / "run_command_setup_test").string();
+  fs::remove_all(dir);
+  const JobPlan plan = two_lines();
+  RunOptions o = small_run(dir);
+  size_t progress_total = 0;
+  o.on_progress = [&progress_total](const Progress& p) { progress_total = p.total; };
+  const RunResult r = run_job(plan, o);
+  ASSERT_EQ(r.sim.outcome, JobOutcome::kCompleted) << r.sim.message;
+  EXPECT_EQ(r.sim.setup_commands, 1u);  // no map: one clearing
+  const nlohmann::json j = run_report_json(plan, o, r);
+  EXPECT_EQ(j["commands"].get<size_t>() + j["setup_commands"].get<size_t>(), progress_total);
+  const std::string text = run_report_text(plan, o, r);
+  EXPECT_NE(text.find(fmt::format("sent {} commands (and 1 set-up command before the job: the "
+                                  "height map or its clearing) in ",
+                                  r.sim.commands)),
+            std::string::npos)
+      << text;
+  fs::remove_all(dir);
+}
+
+// The "plot:" line names every picture the run wrote: with a height map, its picture too.
+TEST(RunCommand, PlotLineNamesEveryFileWritten) {
+  const std::string dir = (fs::temp_directory_path() / "run_command_plot_files_test").string();
+  fs::remove_all(dir);
+  const JobPlan plan = two_lines();
+  RunOptions o = small_run(dir);
+  o.png = true;
+  heightmap::HeightMap map;
+  map.rows = map.cols = 2;
+  map.pitch_x_mm = 40;
+  map.pitch_y_mm = 30;
+  map.heights_um = {0, 10, 5, 15};
+  o.map = map;
+  const RunResult r = run_job(plan, o);
+  ASSERT_EQ(r.sim.outcome, JobOutcome::kCompleted) << r.sim.message;
+  const std::vector<std::string> expected = {r.base + ".svg", r.base + ".png", r.base + ".map.svg"};
+  EXPECT_EQ(r.plot_files, expected);
+  for (const std::string& f : expected) EXPECT_TRUE(fs::exists(f)) << f;
+  const std::string text = run_report_text(plan, o, r);
+  EXPECT_NE(text.find("plot: " + r.base + ".svg, " + r.base + ".png, " + r.base +
+                      ".map.svg; report: " + r.base + ".json"),
+            std::string::npos)
+      << text;
+  fs::remove_all(dir);
 }
 
 TEST(RunCommand, ProbingWithoutASimulatedBlankIsAUsageErrorBeforeAnythingRuns) {

@@ -340,6 +340,7 @@ TEST(SendResume, ASaturatedCurvePointOnALongerCurveIsNotResumedMidCurve) {
   EXPECT_EQ(curve_point_problem(7, 0x10000, 0xFFFF), "");
   EXPECT_NE(curve_point_problem(7, 0x10001, 0xFFFF), "");
   EXPECT_NE(curve_point_problem(7, 100, 100).find("has 100 points, not 101"), std::string::npos);
+  EXPECT_NE(curve_point_problem(7, 1, 1).find("has 1 point, not 2"), std::string::npos);
   EXPECT_EQ(curve_point_problem(7, 100, 99), "");
 }
 

@@ -2,7 +2,8 @@
 // ran between two statuses, and the watchdog that ends a job that stopped making progress.
 #include <gtest/gtest.h>
 
-#include <cmath>  // std::cos
+#include <algorithm>  // std::min, std::copy
+#include <cmath>      // std::cos
 
 #include "host/lib/sim/sim_job.h"
 #include "host_tests/host/sim/sim_test_jobs.h"
@@ -69,6 +70,48 @@ class StatusOnlyLink : public Link {
   std::unique_ptr<Link> inner_;
   size_t after_, written_ = 0;
 };
+
+// Hands the replies over a few bytes at a time with an empty read between the pieces, as a
+// busy simulator's (or a slow link's) replies arrive: every reply frame comes in pieces.
+class DribbleLink : public Link {
+ public:
+  explicit DribbleLink(std::unique_ptr<Link> inner) : inner_(std::move(inner)) {}
+  void write(const uint8_t* data, size_t size) override { inner_->write(data, size); }
+  size_t read(uint8_t* b, size_t c, std::chrono::milliseconds t) override {
+    give_ = !give_;
+    if (!give_ || pending_.empty()) {  // nothing handed over: time passes as on the link
+      uint8_t in[512];
+      const size_t n = inner_->read(in, sizeof in, t);
+      pending_.insert(pending_.end(), in, in + n);
+      return 0;
+    }
+    const size_t n = std::min<size_t>({c, pending_.size(), 4});
+    std::copy(pending_.begin(), pending_.begin() + static_cast<long>(n), b);
+    pending_.erase(pending_.begin(), pending_.begin() + static_cast<long>(n));
+    return n;
+  }
+  std::string name() const override { return inner_->name(); }
+
+ private:
+  std::unique_ptr<Link> inner_;
+  std::vector<uint8_t> pending_;
+  bool give_ = false;
+};
+
+// Statuses 250 ms apart while the machine cuts what it stores: a reply that came in pieces
+// was dropped as a stalled partial frame when the last whole reply was over 200 ms old, and
+// so was every one after it: "no reply for 10000 ms" (send to a busy `sim --realtime`).
+TEST(SenderProgress, RepliesInPiecesAfterAQuietSpellAreAllRead) {
+  const JobPlan plan = ring_of_lines(20);
+  sim::SimJobOptions o;
+  o.sender.status_interval = std::chrono::milliseconds(250);
+  o.wrap_link = [](std::unique_ptr<Link> l) -> std::unique_ptr<Link> {
+    return std::make_unique<DribbleLink>(std::move(l));
+  };
+  const sim::SimJobResult r = sim::run_sim_job(plan, o);
+  EXPECT_EQ(r.outcome, JobOutcome::kCompleted) << r.message;
+  EXPECT_EQ(r.stats.reply_rejects, 0u);
+}
 
 TEST(SenderProgress, WatchdogEndsAJobThatMakesNoProgress) {
   const JobPlan plan = ring_of_lines(100);

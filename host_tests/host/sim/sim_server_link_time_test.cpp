@@ -233,6 +233,49 @@ TEST(SimServerLinkTime, NoiseDoesNotTripTheWatchdogWhileValidFramesComeInTime) {
   EXPECT_GT(s.rejected_frames, 20) << "the noise did not reach the parser";
 }
 
+TEST(SimServerLinkTime, AMachineSlowerThanRealTimeStillAnswersEveryFrame) {
+  // A busy computer: each tool position costs the simulation 3 ms of wall clock, so machine
+  // time falls ever further behind the wall clock while the tool moves. The machine catches
+  // up as it can, and meanwhile still reads the host's frames: every status query is
+  // answered, the link watchdog (wall clock) hears them and does not hold the job.
+  sim::SimMachine machine{sim::SimOptions{}};
+  machine.set_sample_sink(
+      [](const sim::ToolSample&) { std::this_thread::sleep_for(milliseconds(3)); });
+  sim::ServerOptions so;
+  so.port = 0;
+  so.realtime = true;
+  sim::SimServer server(machine, so);
+  test::Serving serving(server);
+  RawClient client(server.port());
+  client.write(frame_of(session_v3(), 0));
+  proto::SessionReply session{};
+  ASSERT_TRUE(client.reply(0, &session));
+  proto::ZeroingCmd zero{};
+  zero.axes = 7;
+  client.write(frame_of(zero, 1));
+  proto::FeedMoveCmd move{};
+  move.x_um = 50000;
+  move.feed_um_per_s = 5000;  // a new position every machine millisecond
+  client.write(frame_of(move, 2));
+  proto::AckReply ack{};
+  ASSERT_TRUE(client.reply(1, &ack));
+  ASSERT_TRUE(client.reply(2, &ack));
+  int answered = 0, running = 0;
+  proto::StatusReply s{};
+  for (uint8_t seq = 100; seq < 130; ++seq) {  // 3 s of wall clock
+    client.write(frame_of(status_query(), seq));
+    if (client.reply(seq, &s, milliseconds(100))) {
+      ++answered;
+      running += s.state == proto::MachineState::kRunning && !(s.flags & proto::kStatusLinkHold);
+    }
+    std::this_thread::sleep_for(milliseconds(100));
+  }
+  serving.stop();
+  EXPECT_EQ(answered, 30) << "status queries answered within 100 ms, of 30";
+  EXPECT_GE(running, 25) << "running, not held, of 30";
+  EXPECT_LT(s.x_um, 10000) << "machine time did not fall behind the wall clock";
+}
+
 TEST(SimServerLinkTime, SilenceLongerThanTheWatchdogStillTripsIt) {
   // The safety stays: 2.5 s of wall-clock silence while a move runs hold the machine.
   sim::SimMachine machine{sim::SimOptions{}};

@@ -10,6 +10,7 @@
 #include <thread>  // sleep_for
 
 #include "host/lib/sim/sim_server.h"
+#include "host/lib/stream/encode_command.h"  // encode_command
 #include "host/lib/stream/job_encoder.h"
 #include "host/lib/stream/sender.h"
 #include "host_tests/host/sim/sim_test_jobs.h"
@@ -64,6 +65,26 @@ TEST(SimServer, ServesAJobOnAPseudoTerminal) {
   serving.stop();
   ::close(master);
   EXPECT_EQ(outcome, JobOutcome::kCompleted) << sender.message();
+}
+
+// The sender's verdict counts in the project's words: one command, not "1 commands".
+TEST(SimServer, ASenderNamesOneCommandInTheSingular) {
+  sim::SimMachine machine{sim::SimOptions{}};
+  sim::ServerOptions so;
+  so.port = 0;
+  sim::SimServer server(machine, so);
+  test::Serving serving(server);
+  auto link = open_link(parse_link_spec("tcp://127.0.0.1:" + std::to_string(server.port())),
+                        milliseconds(2000));
+  SenderOptions o;
+  o.status_interval = milliseconds(5);
+  Sender sender(*link, o);
+  const std::vector<QueuedCommand> one{encode_command(proto::RapidMoveCmd{1000, 0})};
+  ASSERT_EQ(sender.run(one, nullptr), JobOutcome::kCompleted) << sender.message();
+  EXPECT_EQ(sender.message(), "the 1 command executed");
+  const std::vector<QueuedCommand> two(2, encode_command(proto::RapidMoveCmd{2000, 0}));
+  ASSERT_EQ(sender.run(two, nullptr), JobOutcome::kCompleted) << sender.message();
+  EXPECT_EQ(sender.message(), "all 2 commands executed");
 }
 
 TEST(SimServer, MachineTimeFollowsTheWallClockWhileTheHostIsSilent) {
