@@ -103,7 +103,7 @@ WireMeasure measure_wire(const pcb::BoardJob& job, double tol_mm) {
     if (c.step >= 0) m.spline_bytes_full += frame_bytes(c);
   }
   for (size_t i = 0; i < job.isolation_curves; ++i) {
-    const std::vector<Point2> pts = sample(job.plan.curves[i].spline, tol_mm);
+    const std::vector<Point2> pts = sample(job.plan.curves[i].spline(), tol_mm);
     for (size_t k = 1; k < pts.size(); ++k) {
       ++m.g1_lines;
       m.g1_bytes += g1(pts[k]).size();

@@ -28,7 +28,7 @@ PointCount count_points(const JobPlan& plan, double tol_mm) {
   // Curve by curve, so nothing of the job's size is kept.
   for (const PlannedCurve& c : plan.curves) {
     for (const Point2& p :
-         firmware_points_mm(c.spline, static_cast<int>(std::lround(tol_mm * 1000)))) {
+         firmware_points_mm(c.spline(), static_cast<int>(std::lround(tol_mm * 1000)))) {
       ++n.points;
       n.gcode_bytes += fmt::formatted_size("G1 X{:.3f} Y{:.3f}\n", p.x(), p.y());
     }

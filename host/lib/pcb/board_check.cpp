@@ -41,12 +41,12 @@ IsolationCheck check_controller_isolation(const BoardJob& job, const BoardOption
   std::vector<std::vector<Point2>> paths;
   paths.reserve(job.isolation_curves);
   for (size_t i = 0; i < job.isolation_curves; ++i)
-    paths.push_back(firmware_points_mm(job.plan.curves[i].spline, chord_tolerance_um));
+    paths.push_back(firmware_points_mm(job.plan.curves[i].spline(), chord_tolerance_um));
   IsolationCheck c = check_isolation(job.copper_machine_nm, paths, job.tool_radius_mm,
                                      isolation_check_tolerance_mm(o));
   std::vector<std::vector<Point2>> clearing;
   for (size_t i = job.isolation_curves; i < job.isolation_curves + job.clearing_curves; ++i)
-    clearing.push_back(firmware_points_mm(job.plan.curves[i].spline, chord_tolerance_um));
+    clearing.push_back(firmware_points_mm(job.plan.curves[i].spline(), chord_tolerance_um));
   add_clearing_hits(job, clearing, o, &c);
   return c;
 }

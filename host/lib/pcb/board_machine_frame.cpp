@@ -55,7 +55,7 @@ void machine_frame_geometry(const BoardLayers& layers, const PcbLayer* copper, c
   const size_t first_cutout = job.isolation_curves + job.clearing_curves;
   for (size_t i = first_cutout; i < plan.curves.size(); ++i) {
     if (plan.curves[i].source == "hole" || plan.curves[i].source == "slot") continue;
-    const std::vector<Point2> pts = sample(plan.curves[i].spline, 0.002);
+    const std::vector<Point2> pts = sample(plan.curves[i].spline(), 0.002);
     if (plan.curves[i].chained && !job.cutout_paths_mm.empty() && i > first_cutout) {
       std::vector<Point2>& last = job.cutout_paths_mm.back();
       last.insert(last.end(), pts.begin() + 1, pts.end());

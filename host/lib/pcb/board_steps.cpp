@@ -7,6 +7,7 @@
 #include <cmath>       // std::ceil
 #include <functional>  // std::function
 
+#include "host/lib/drawing/conics.h"  // line_spline
 #include "host/lib/pcb/pcb_geometry.h"
 #include "host/lib/plan/firmware_spline.h"
 #include "host/lib/plan/plan_steps.h"  // plan_detail::to_um, append_spline_steps
@@ -101,9 +102,7 @@ class StepWriter {
   // holes and slots are where the tool is down too.
   int reference(const Point2& a, const Point2& b, const std::string& source) {
     PlannedCurve pc;
-    pc.spline.degree = 1;
-    pc.spline.control = {place_.apply(a), place_.apply(b)};
-    pc.spline.knots = {0.0, 0.0, 1.0, 1.0};
+    pc.set_spline(line_spline(place_.apply(a), place_.apply(b)));
     pc.drawing_index = static_cast<int>(plan_->curves.size());
     pc.source = source;
     plan_->curves.push_back(pc);
@@ -138,24 +137,25 @@ class StepWriter {
     Eigen::Matrix2d turn;
     turn << std::cos(place_.rotation_rad), -std::sin(place_.rotation_rad),
         std::sin(place_.rotation_rad), std::cos(place_.rotation_rad);
-    pc.spline = transformed(file_curve, turn, place_.apply(offset_));
+    const BSpline spline = transformed(file_curve, turn, place_.apply(offset_));
+    pc.set_spline(spline);
     pc.drawing_index = static_cast<int>(plan_->curves.size());
     pc.chained = chained;
     pc.source = source;
     const int index = static_cast<int>(plan_->curves.size());
     plan_->curves.push_back(pc);
     try {
-      plan_detail::append_spline_steps(pc.spline, index, to_um(feed), 0, plan_);
+      plan_detail::append_spline_steps(spline, index, to_um(feed), 0, plan_);
     } catch (const ConversionError& e) {
       throw PlanError(source + ": " + e.what());
     }
     // Length and extents from one sampling (within 1 um).
-    const std::vector<Point2> pts = sample(pc.spline, 0.001);
+    const std::vector<Point2> pts = sample(spline, 0.001);
     for (size_t i = 0; i < pts.size(); ++i) {
       plan_->extents_mm.add(pts[i]);
       if (i > 0) plan_->cut_length_mm += (pts[i] - pts[i - 1]).norm();
     }
-    at_ = place_.inverse().apply(end_point(pc.spline));
+    at_ = place_.inverse().apply(end_point(spline));
     return index;
   }
   Point2 at() const { return at_; }

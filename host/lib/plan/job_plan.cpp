@@ -109,7 +109,7 @@ void order_curves(std::vector<BSpline> scaled, std::vector<std::string> sources,
   for (const OrderedCurve& k : order) {
     PlannedCurve pc;
     // Each scaled curve is used once: move it (a copy held the drawing twice more).
-    pc.spline = k.reversed ? reversed(scaled[k.index]) : std::move(scaled[k.index]);
+    pc.set_spline(k.reversed ? reversed(scaled[k.index]) : std::move(scaled[k.index]));
     scaled[k.index] = BSpline();
     pc.drawing_index = static_cast<int>(k.index);
     pc.reversed = k.reversed;
@@ -137,7 +137,7 @@ JobPlan plan_scaled(std::vector<BSpline> scaled, std::vector<std::string> source
   std::string culprit;
   for (size_t i = 0; i < plan.curves.size(); ++i) {
     if (culprit.empty()) culprit = first_exit(plan.curves[i], radius, o);
-    plan.extents_mm.add(curve_extents(plan.curves[i].spline));
+    plan.extents_mm.add(curve_extents(plan.curves[i].spline()));
   }
   check_job_fits(plan.extents_mm, radius, o, culprit);
 
@@ -158,13 +158,14 @@ JobPlan plan_scaled(std::vector<BSpline> scaled, std::vector<std::string> source
     Point2 end(0, 0);
     for (const PlannedCurve& c : plan.curves) {
       const int32_t offset = offset_of(c);
-      const size_t n = c.spline.control.size();
-      const bool feeds = o.lines_as_feeds && offset == 0 && is_polyline(c.spline);
+      const BSpline s = c.spline();
+      const size_t n = s.control.size();
+      const bool feeds = o.lines_as_feeds && offset == 0 && is_polyline(s);
       bound += feeds ? n - 1 : n / 32 + 1;
-      const core::PointUm start = to_um(offset_point(c.spline, true, offset));
+      const core::PointUm start = to_um(offset_point(s, true, offset));
       const core::PointUm last = to_um(end);
       bound += !c.chained ? 3 : (start.x_um != last.x_um || start.y_um != last.y_um) ? 1 : 0;
-      end = offset_point(c.spline, false, offset);
+      end = offset_point(s, false, offset);
     }
     plan.steps.reserve(bound);
   }
@@ -178,7 +179,8 @@ JobPlan plan_scaled(std::vector<BSpline> scaled, std::vector<std::string> source
     const PlannedCurve& c = plan.curves[i];
     // Offset sign: left of the curve as drawn; reversed curves swap sides.
     const int32_t offset = offset_of(c);
-    const Point2 start = offset_point(c.spline, true, offset);
+    const BSpline s = c.spline();
+    const Point2 start = offset_point(s, true, offset);
     if (!c.chained) {
       if (pen_down) {
         up.curve = static_cast<int>(i);
@@ -207,9 +209,9 @@ JobPlan plan_scaled(std::vector<BSpline> scaled, std::vector<std::string> source
       f.curve = static_cast<int>(i);
       plan.steps.push_back(f);
     }
-    append_curve_steps(c, static_cast<int>(i), offset, o, &plan);
-    plan.cut_length_mm += curve_length(c.spline);
-    at = offset_point(c.spline, false, offset);
+    append_curve_steps(c, s, static_cast<int>(i), offset, o, &plan);
+    plan.cut_length_mm += curve_length(s);
+    at = offset_point(s, false, offset);
   }
   up.curve = -1;
   plan.steps.push_back(up);

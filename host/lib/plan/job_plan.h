@@ -7,6 +7,7 @@
 #include <stdint.h>  // int32_t
 
 #include <functional>  // std::function
+#include <memory>      // std::shared_ptr
 #include <stdexcept>   // std::runtime_error
 #include <string>      // std::string
 #include <utility>     // std::swap
@@ -131,12 +132,34 @@ struct PlanStep {
 };
 
 // A planned curve: the drawing curve in the machine frame (mm), in the direction drawn.
+// A straight line as the DXF import and the reversal make it (degree 1, two points, knots
+// 0 0 1 1 or their reversal) keeps its two ends inline: a million-line drawing held a
+// BSpline with two heap vectors a line (~140 bytes more). Any other curve is kept whole,
+// shared by copies of the plan (never changed once set).
 struct PlannedCurve {
-  BSpline spline;         // machine frame, mm
+  // The curve, made from the two ends for a straight line: take it once per use, not per
+  // point.
+  BSpline spline() const;
+  void set_spline(BSpline spline);
+  // Kept as its two ends (no curve on the heap).
+  bool inline_line() const { return line_knots_ != kNotALine; }
+
   int drawing_index = 0;  // index in Drawing::curves
   bool reversed = false;  // traced end to start
   bool chained = false;   // starts where the previous one ended: no pen lift before it
-  std::string source;     // entity it came from (for messages)
+
+ private:
+  // Here, in the padding after the flags (88 bytes a curve, not 96).
+  enum LineKnots : uint8_t { kNotALine, kForward, kBackward };  // 0 0 1 1; -1 -1 -0 -0
+  uint8_t line_knots_ = kNotALine;
+
+ public:
+  std::string source;  // entity it came from (for messages)
+
+ private:
+  // x0 y0 x1 y1: doubles, not two Point2s, whose 16-byte alignment pads the struct to 96.
+  double ends_[4] = {0, 0, 0, 0};
+  std::shared_ptr<const BSpline> curve_;  // kNotALine: the curve
 };
 
 struct JobPlan {

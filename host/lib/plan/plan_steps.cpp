@@ -52,7 +52,7 @@ std::string describe(const PlannedCurve& c) {
 }
 
 std::string first_exit(const PlannedCurve& c, double radius, const PlanOptions& o) {
-  for (const Point2& p : sample(c.spline, 0.001)) {
+  for (const Point2& p : sample(c.spline(), 0.001)) {
     if (p.x() - radius < -1e-6 || p.x() + radius > o.work_width_mm + 1e-6 ||
         p.y() - radius < -1e-6 || p.y() + radius > o.work_height_mm + 1e-6) {
       std::ostringstream e;
@@ -173,14 +173,14 @@ void check_options(const PlanOptions& o) {
   }
 }
 
-void append_curve_steps(const PlannedCurve& c, int index, int32_t offset, const PlanOptions& o,
-                        JobPlan* plan) {
+void append_curve_steps(const PlannedCurve& c, const BSpline& spline, int index, int32_t offset,
+                        const PlanOptions& o, JobPlan* plan) {
   const int32_t feed = to_um(o.feed_mm_per_s);
-  if (o.lines_as_feeds && offset == 0 && is_polyline(c.spline)) {
-    for (size_t k = 1; k < c.spline.control.size(); ++k) {
+  if (o.lines_as_feeds && offset == 0 && is_polyline(spline)) {
+    for (size_t k = 1; k < spline.control.size(); ++k) {
       PlanStep f;
       f.kind = PlanStep::kFeed;
-      f.to = to_um(c.spline.control[k]);
+      f.to = to_um(spline.control[k]);
       f.feed_um_per_s = feed;
       f.curve = index;
       plan->steps.push_back(f);
@@ -188,7 +188,7 @@ void append_curve_steps(const PlannedCurve& c, int index, int32_t offset, const 
     return;
   }
   try {
-    append_spline_steps(c.spline, index, feed, offset, plan);
+    append_spline_steps(spline, index, feed, offset, plan);
   } catch (const ConversionError& e) {
     throw PlanError(describe(c) + ": " + e.what());
   }

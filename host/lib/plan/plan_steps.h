@@ -43,10 +43,11 @@ void check_options(const PlanOptions& o);
 // drawn line.
 Point2 offset_point(const BSpline& s, bool at_start, int32_t offset_um);
 
-// Appends the steps that trace c (already at its start with the pen down): straight feeds
-// for a polyline without offset, firmware splines otherwise.
-void append_curve_steps(const PlannedCurve& c, int index, int32_t offset_um, const PlanOptions& o,
-                        JobPlan* plan);
+// Appends the steps that trace c (already at its start with the pen down; spline is
+// c.spline(), made once by the caller): straight feeds for a polyline without offset,
+// firmware splines otherwise.
+void append_curve_steps(const PlannedCurve& c, const BSpline& spline, int index, int32_t offset_um,
+                        const PlanOptions& o, JobPlan* plan);
 
 // Appends a curve's spline steps (curve `index`): its firmware pieces, each ending where it
 // ends, the last exactly at the curve's end. Throws ConversionError (nothing appended) when

@@ -113,12 +113,12 @@ class ProgramPlanner {
       }
       if (op.kind != ProgramOp::kCut) continue;
       PlannedCurve pc;
-      pc.spline = transformed(scaled[op.curve], Eigen::Matrix2d::Identity(), plan_.offset_mm);
+      pc.set_spline(transformed(scaled[op.curve], Eigen::Matrix2d::Identity(), plan_.offset_mm));
       pc.drawing_index = op.curve;
       pc.source = d_.curves[op.curve].source;
       planned_index_[op.curve] = static_cast<int>(plan_.curves.size());
       plan_.curves.push_back(pc);
-      plan_.extents_mm.add(curve_extents(pc.spline));
+      plan_.extents_mm.add(curve_extents(pc.spline()));
       if (culprit.empty()) culprit = first_exit(pc, radius, o_);
       if (!std::isnan(op.depth_mm)) check_z(op.depth_mm, op);
     }
@@ -176,7 +176,8 @@ class ProgramPlanner {
     if (o_.tool_side != ToolSide::kCentre) {
       offset = to_um(o_.tool_radius_mm) * (o_.tool_side == ToolSide::kLeft ? 1 : -1);
     }
-    const Point2 start = offset_point(c.spline, true, offset);
+    const BSpline spline = c.spline();
+    const Point2 start = offset_point(spline, true, offset);
     const int32_t depth =
         to_um(o_.file_depths && !std::isnan(op.depth_mm) ? op.depth_mm : o_.z_down_mm);
     const int32_t plunge = to_um(o_.plunge_mm_per_s);
@@ -200,20 +201,17 @@ class ProgramPlanner {
       z_move(depth, plunge, index);
     }
     cutting_ = true;
-    if (o_.fit_tolerance_mm > 0 && offset == 0 && is_polyline(c.spline)) {
+    if (o_.fit_tolerance_mm > 0 && offset == 0 && is_polyline(spline)) {
       // G1 runs as cubic B-splines; the plan's curve stays the program's own path.
       FitOptions fo;
       fo.tolerance_mm = o_.fit_tolerance_mm;
-      PlannedCurve piece = c;
-      for (const BSpline& s : fit_polyline(c.spline.control, fo)) {
-        piece.spline = s;
-        append_curve_steps(piece, index, offset, o_, &plan_);
-      }
+      for (const BSpline& s : fit_polyline(spline.control, fo))
+        append_curve_steps(c, s, index, offset, o_, &plan_);
     } else {
-      append_curve_steps(c, index, offset, o_, &plan_);
+      append_curve_steps(c, spline, index, offset, o_, &plan_);
     }
-    plan_.cut_length_mm += curve_length(c.spline);
-    at_ = offset_point(c.spline, false, offset);
+    plan_.cut_length_mm += curve_length(spline);
+    at_ = offset_point(spline, false, offset);
   }
 
   // The tool goes up (to the program's tool-change height when that is higher, at most

@@ -38,7 +38,7 @@ void walk_tool_path(const JobPlan& plan, double tol_mm,
           m.kind = StepMove::kContinues;
         } else if (s.curve >= 0) {
           m.kind = StepMove::kNew;
-          m.points_mm = sample(plan.curves[s.curve].spline, tol_mm);
+          m.points_mm = sample(plan.curves[s.curve].spline(), tol_mm);
         } else {
           m.kind = StepMove::kNew;
           m.points_mm.push_back(mm(s.to));

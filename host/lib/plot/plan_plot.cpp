@@ -11,8 +11,9 @@ PlotInput plot_input_from_plan(const JobPlan& plan, const std::string& title, do
   in.title = title;
   in.drawing_curves_mm.reserve(plan.curves.size());
   for (const PlannedCurve& c : plan.curves) {
-    const bool straight = c.spline.degree == 1 && c.spline.weights.empty();
-    in.drawing_curves_mm.push_back(straight ? c.spline.control : sample(c.spline, tol_mm));
+    BSpline s = c.spline();
+    const bool straight = s.degree == 1 && s.weights.empty();
+    in.drawing_curves_mm.push_back(straight ? std::move(s.control) : sample(s, tol_mm));
   }
   if (!with_planned_path) return in;
   Point2 at(0, 0);

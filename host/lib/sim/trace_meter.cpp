@@ -16,15 +16,16 @@ std::unique_ptr<NearestSegment> reference_of(const JobPlan& plan) {
   auto index = std::make_unique<NearestSegment>();
   size_t segments = 0;  // the lines' exactly; a sampled curve's grow the list
   for (const PlannedCurve& c : plan.curves) {
-    if (c.spline.degree == 1 && c.spline.weights.empty() && !c.spline.control.empty())
-      segments += c.spline.control.size() - 1;
+    const BSpline s = c.spline();
+    if (s.degree == 1 && s.weights.empty() && !s.control.empty()) segments += s.control.size() - 1;
   }
   index->reserve(segments);
   for (const PlannedCurve& c : plan.curves) {
-    if (c.spline.degree == 1 && c.spline.weights.empty())
-      index->add(c.spline.control);
+    const BSpline s = c.spline();
+    if (s.degree == 1 && s.weights.empty())
+      index->add(s.control);
     else
-      index->add(sample(c.spline, 0.0002));
+      index->add(sample(s, 0.0002));
   }
   index->index();
   return index;

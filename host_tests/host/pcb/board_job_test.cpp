@@ -73,7 +73,7 @@ TEST(BoardJob, ContoursGoOutAsArcsAndLinesFarSmallerThanTheirVertices) {
   const BoardJob job = plan_board(b.layers(), BoardOptions());
   size_t controls = 0;
   for (size_t i = 0; i < job.isolation_curves; ++i)
-    controls += job.plan.curves[i].spline.control.size();
+    controls += job.plan.curves[i].spline().control.size();
   EXPECT_GT(job.report.fit.arcs, 0);
   EXPECT_LT(controls * 4, job.report.isolation_vertices);
   for (const PlanStep& s : job.plan.steps) {
@@ -416,8 +416,8 @@ TEST(BoardJob, AMeasuredPlacementTurnsAndShiftsEveryCoordinate) {
   const BoardJob placed = plan_board(b.layers(true), o);
   ASSERT_EQ(nominal.plan.curves.size(), placed.plan.curves.size());
   for (size_t i = 0; i < nominal.plan.curves.size(); ++i) {
-    const BSpline& n = nominal.plan.curves[i].spline;
-    const BSpline& p = placed.plan.curves[i].spline;
+    const BSpline n = nominal.plan.curves[i].spline();
+    const BSpline p = placed.plan.curves[i].spline();
     ASSERT_EQ(n.control.size(), p.control.size());
     for (size_t k = 0; k < n.control.size(); ++k)
       EXPECT_LT((o.alignment.placement.apply(n.control[k]) - p.control[k]).norm(), 1e-9);

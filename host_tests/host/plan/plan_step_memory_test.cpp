@@ -3,6 +3,8 @@
 // core::Spline (about 1.1 kB) in every step made a million-segment job take gigabytes.
 #include <gtest/gtest.h>
 
+#include <cmath>  // std::signbit
+
 #include "host/lib/drawing/conics.h"
 #include "host/lib/plan/firmware_spline.h"
 #include "host/lib/plan/job_plan.h"
@@ -127,6 +129,61 @@ TEST(PlanStepMemory, SplineStepsHoldOnlyTheControlPointsAndKnotsTheyUse) {
     EXPECT_EQ(core::validate_spline(s.spline().firmware()), core::GeometryError::kOk);
   }
   EXPECT_EQ(splines, 3);
+}
+
+// A straight line is kept as its two ends and made again bit for bit, its reversal too
+// (knots -1 -1 -0 -0); any other curve is kept whole.
+TEST(PlannedCurveMemory, AStraightLineComesBackBitForBitEitherWayRound) {
+  const BSpline forward = line_spline({1.25, 2.5}, {3.75, -4.125});
+  for (const BSpline& want : {forward, reversed(forward)}) {
+    PlannedCurve c;
+    c.set_spline(want);
+    EXPECT_TRUE(c.inline_line());
+    const BSpline got = c.spline();
+    EXPECT_EQ(got.degree, 1);
+    EXPECT_EQ(got.control, want.control);
+    EXPECT_TRUE(got.weights.empty());
+    ASSERT_EQ(got.knots.size(), 4u);
+    for (size_t i = 0; i < 4; ++i) {
+      EXPECT_EQ(got.knots[i], want.knots[i]);
+      EXPECT_EQ(std::signbit(got.knots[i]), std::signbit(want.knots[i])) << i;
+    }
+  }
+}
+
+TEST(PlannedCurveMemory, OtherCurvesAreKeptWhole) {
+  BSpline odd_knots = line_spline({0, 0}, {1, 1});
+  odd_knots.knots = {0, 0, 2, 2};
+  BSpline three_points = line_spline({0, 0}, {1, 1});
+  three_points.control.push_back(Point2(2, 0));
+  three_points.knots = {0, 0, 1, 2, 2};
+  BSpline weighted = line_spline({0, 0}, {1, 1});
+  weighted.weights = {1.0, 1.0};
+  for (const BSpline& want :
+       {odd_knots, three_points, weighted, arc_spline({20, 20}, 10, 0.3, 5.0)}) {
+    PlannedCurve c;
+    c.set_spline(want);
+    EXPECT_FALSE(c.inline_line());
+    const BSpline got = c.spline();
+    EXPECT_EQ(got.degree, want.degree);
+    EXPECT_EQ(got.control, want.control);
+    EXPECT_EQ(got.weights, want.weights);
+    EXPECT_EQ(got.knots, want.knots);
+  }
+  // A copy shares the curve; setting a line afterwards lets it go.
+  PlannedCurve c;
+  c.set_spline(three_points);
+  PlannedCurve copy = c;
+  copy.set_spline(line_spline({5, 5}, {6, 6}));
+  EXPECT_EQ(c.spline().control.size(), 3u);
+  EXPECT_EQ(copy.spline().control.size(), 2u);
+  EXPECT_TRUE(PlannedCurve().spline().control.empty());
+}
+
+TEST(PlannedCurveMemory, APlannedCurveIsEightyEightBytes) {
+  // A million unconnected lines hold a million of them: 120 bytes (a whole BSpline, three
+  // vectors) and ~100 more on the heap before.
+  EXPECT_LE(sizeof(PlannedCurve), 88u);
 }
 
 TEST(StepSpline, RoundTripsTheFirmwareForm) {

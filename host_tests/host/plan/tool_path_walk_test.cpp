@@ -4,6 +4,7 @@
 
 #include <vector>  // std::vector
 
+#include "host/lib/drawing/conics.h"  // line_spline
 #include "host/lib/plan/tool_path_walk.h"
 
 namespace host {
@@ -21,9 +22,7 @@ PlanStep step(PlanStep::Kind kind, int32_t x_um = 0, int32_t y_um = 0, int curve
 // A 10 mm line from (5, 5) mm as a degree-1 curve.
 PlannedCurve line_from_5_5() {
   PlannedCurve c;
-  c.spline.degree = 1;
-  c.spline.control = {Point2(5, 5), Point2(15, 5)};
-  c.spline.knots = {0, 0, 1, 1};
+  c.set_spline(line_spline(Point2(5, 5), Point2(15, 5)));
   return c;
 }
 

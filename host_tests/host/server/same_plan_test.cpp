@@ -165,7 +165,7 @@ void expect_same_board_points(const EncodedJob& server, const std::string& input
   for (const PlannedCurve& c : server.plan.curves) {
     if (c.source.rfind("isolation contour", 0) != 0) continue;
     ++isolation;
-    for (const Point2& p : firmware_points_mm(c.spline, tol_um)) planned.add(p);
+    for (const Point2& p : firmware_points_mm(c.spline(), tol_um)) planned.add(p);
   }
   EXPECT_EQ(curves, isolation);
   EXPECT_NEAR(printed.max.x() - printed.min.x(), planned.max.x() - planned.min.x(), 0.002);

@@ -150,9 +150,11 @@ TEST(TraceMeter, DrillTravelAtTheStartHeightIsNotCutting) {
 TEST(TraceMeter, SamplesWithinTheLargestErrorSoFarSkipTheSearch) {
   JobPlan plan = pen_heights_plan();
   PlannedCurve line;  // 10 mm along X in 1 000 segments
-  line.spline.degree = 1;
-  for (int i = 0; i <= 1000; ++i) line.spline.control.push_back(Point2(i * 0.01, 0));
-  line.spline.knots.assign(line.spline.control.size() + 2, 0.0);
+  BSpline s;
+  s.degree = 1;
+  for (int i = 0; i <= 1000; ++i) s.control.push_back(Point2(i * 0.01, 0));
+  s.knots.assign(s.control.size() + 2, 0.0);
+  line.set_spline(s);
   plan.curves.push_back(line);
   TraceMeter m(plan, 0);
   m.add(at(0, 0, 0, 2.0));
@@ -173,9 +175,11 @@ TEST(TraceMeter, SamplesWithinTheLargestErrorSoFarSkipTheSearch) {
 TEST(TraceMeter, OnAFineContourTheFollowingSegmentsBoundTheError) {
   JobPlan plan = pen_heights_plan();
   PlannedCurve line;
-  line.spline.degree = 1;
-  for (int i = 0; i <= 2500; ++i) line.spline.control.push_back(Point2(i * 0.004, 0));
-  line.spline.knots.assign(line.spline.control.size() + 2, 0.0);
+  BSpline s;
+  s.degree = 1;
+  for (int i = 0; i <= 2500; ++i) s.control.push_back(Point2(i * 0.004, 0));
+  s.knots.assign(s.control.size() + 2, 0.0);
+  line.set_spline(s);
   plan.curves.push_back(line);
   TraceMeter m(plan, 0);
   m.add(at(0, 0, 0, 2.0));
