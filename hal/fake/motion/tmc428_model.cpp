@@ -101,35 +101,70 @@ void Tmc428Model::sync_motor_to(int m, uint64_t t) const {
   if (t <= motor_tick_[m]) return;
   advance_motor(m, motor_tick_[m], t);
   motor_tick_[m] = t;
+  // An idle motor's horizon (never) does not depend on when it was integrated.
+  if (horizon_[m].status_before != UINT64_MAX) forget_quiet_horizon(m);
 }
 
 void Tmc428Model::sync_motors() const {
   for (int m = 0; m < kMotors; ++m) sync_motor(m);
 }
 
-// Microsteps motor m can have made since it was integrated: at most one per pulse clock,
-// and one for the accumulator.
-uint64_t Tmc428Model::max_steps_since_sync(int m) const {
-  const unsigned pulse_shift = 5 + ((motor_[m].divisors >> 12) & 0xF);
-  return (now_ >> pulse_shift) - (motor_tick_[m] >> pulse_shift) + 1;
-}
-
-// True if motor m, not integrated since motor_tick_, cannot have turned a switch on or off
-// (so no flag either) by now: its switch bits are those it had.
-bool Tmc428Model::switches_quiet_until_now(int m) const {
-  return now_ <= motor_tick_[m] || switches_out_of_reach(m, max_steps_since_sync(m));
-}
-
-// As switches_quiet_until_now(), and it cannot have reached x_target either: the status
-// byte's bits for it are those it had.
-bool Tmc428Model::quiet_until_now(int m) const {
-  if (now_ <= motor_tick_[m]) return true;
+// A motor not integrated since motor_tick_ makes at most one microstep per pulse clock (and
+// one for the accumulator): by now at most S = (now >> ps) - (motor_tick >> ps) + 1. While
+// S < D, D the microsteps to the nearest of x_target and the switches, its status bits are
+// those it had: now < ((motor_tick >> ps) + D - 1) << ps, or now <= motor_tick. A motor at
+// rest with no velocity to ramp to changes nothing until a write (advance_motor's idle
+// case): never.
+const Tmc428Model::QuietHorizon& Tmc428Model::quiet_horizon(int m) const {
+  QuietHorizon& h = horizon_[m];
+  if (horizon_known_[m]) return h;
+  horizon_known_[m] = true;
+  ++reach_checks_;
   const Motor& mo = motor_[m];
-  const uint64_t max_steps = max_steps_since_sync(m);
-  if (!switches_out_of_reach(m, max_steps)) return false;
-  const uint32_t d = (mo.x_target - (uint32_t)mo.x) & 0xFFFFFF;  // 24-bit wrap both ways
-  const uint32_t dist = d < 0x800000 ? d : 0x1000000 - d;
-  return dist > max_steps;
+  const uint32_t mode = mo.ref_ramp & kModeMask;
+  if (mo.v_q8 == 0 && (mode != kVelocity || sext(mo.v_target, 12) == 0)) {
+    h.switch_before = UINT64_MAX;
+    h.status_before = UINT64_MAX;
+    return h;
+  }
+  // switches_out_of_reach(m, S) is S < D_switch: a forced-on or reached switch gives 0, one
+  // more than 2^30 microsteps away (the reach's clamp) never limits.
+  const int64_t kNever = INT64_MAX;
+  int64_t d_switch = kNever;
+  if (left_exists(m)) {
+    if (mo.force_left > 0) d_switch = 0;
+    if (mo.force_left < 0 && mo.has_left_pos) {
+      const int64_t d = (int64_t)mo.x - mo.left_pos;
+      if (d <= (int64_t{1} << 30) && d < d_switch) d_switch = d < 0 ? 0 : d;
+    }
+  }
+  if (right_exists(m)) {
+    if (mo.force_right > 0) d_switch = 0;
+    if (mo.force_right < 0 && mo.has_right_pos) {
+      const int64_t d = (int64_t)mo.right_pos - mo.x;
+      if (d <= (int64_t{1} << 30) && d < d_switch) d_switch = d < 0 ? 0 : d;
+    }
+  }
+  const uint32_t d24 = (mo.x_target - (uint32_t)mo.x) & 0xFFFFFF;  // 24-bit wrap both ways
+  const int64_t d_target = d24 < 0x800000 ? d24 : 0x1000000 - d24;
+  const int64_t d_status = d_target < d_switch ? d_target : d_switch;
+  const unsigned pulse_shift = 5 + ((mo.divisors >> 12) & 0xF);
+  const uint64_t tick = motor_tick_[m];
+  const uint64_t synced = tick + 1;  // now <= motor_tick_: nothing to integrate
+  const uint64_t pulse = tick >> pulse_shift;
+  h.status_before = synced;
+  if (d_status >= 1) {
+    const uint64_t b = (pulse + (uint64_t)d_status - 1) << pulse_shift;
+    if (b > synced) h.status_before = b;
+  }
+  h.switch_before = synced;
+  if (d_switch == kNever) {
+    h.switch_before = UINT64_MAX;
+  } else if (d_switch >= 1) {
+    const uint64_t b = (pulse + (uint64_t)d_switch - 1) << pulse_shift;
+    if (b > synced) h.switch_before = b;
+  }
+  return h;
 }
 
 // ---- motors -------------------------------------------------------------------------------
@@ -555,7 +590,10 @@ void Tmc428Model::write_global_register(int idx, uint32_t data) {
     case 15:
       sync_motors();
       smgp_ = data & 0x31FFFF;
-      for (int m = 0; m < kMotors; ++m) note_switches(m);
+      for (int m = 0; m < kMotors; ++m) {
+        note_switches(m);
+        forget_quiet_horizon(m);
+      }
       break;
     default:
       break;  // power_down (JDX 8), RO and unused addresses: no effect here
@@ -565,6 +603,7 @@ void Tmc428Model::write_global_register(int idx, uint32_t data) {
 // A write to motor m's registers (SMDA 0..2).
 void Tmc428Model::write_motor_register(int m, int idx, uint32_t data) {
   sync_motor(m);
+  forget_quiet_horizon(m);
   Motor& mo = motor_[m];
   switch (idx) {
     case 0:
@@ -638,7 +677,7 @@ void Tmc428Model::write_register(uint8_t addr, uint32_t data) {
 uint8_t Tmc428Model::switch_bits() const {
   uint8_t bits = 0;
   for (int m = 0; m < kMotors; ++m) {
-    if (!switches_quiet_until_now(m)) sync_motor(m);
+    if (now_ >= quiet_horizon(m).switch_before) sync_motor(m);
     if (right_active(m)) bits |= (uint8_t)(1u << (2 * m));
     if (left_active(m)) bits |= (uint8_t)(2u << (2 * m));
   }
@@ -649,7 +688,7 @@ uint8_t Tmc428Model::status_byte() const {
   uint8_t s = 0;
   bool irq = false;
   for (int m = 0; m < kMotors; ++m) {
-    if (!quiet_until_now(m)) sync_motor(m);
+    if (now_ >= quiet_horizon(m).status_before) sync_motor(m);
     const Motor& mo = motor_[m];
     if (((uint32_t)mo.x & 0xFFFFFF) == mo.x_target) s |= (uint8_t)(0x01 << (2 * m));
     if (left_active(m)) s |= (uint8_t)(0x02 << (2 * m));
@@ -691,6 +730,7 @@ void Tmc428Model::set_switch_positions(int motor, int32_t left_usteps, int32_t r
   mo.has_left_pos = true;
   mo.has_right_pos = true;
   note_switches(motor);
+  forget_quiet_horizon(motor);
 }
 
 void Tmc428Model::force_switch(int motor, bool right, int level) {
@@ -701,6 +741,7 @@ void Tmc428Model::force_switch(int motor, bool right, int level) {
     motor_[motor].force_left = level;
   }
   note_switches(motor);
+  forget_quiet_horizon(motor);
 }
 
 void Tmc428Model::set_driver_status(int motor, uint16_t status12) {
