@@ -685,17 +685,29 @@ uint8_t Tmc428Model::switch_bits() const {
 }
 
 uint8_t Tmc428Model::status_byte() const {
+  uint8_t s = now_ < motor_status_before_ ? motor_status_bits_ : motor_status_bits();
+  if (cdgw_ || cover_waiting_) s |= 0x40;
+  return s;
+}
+
+// xEQt, the left switch and the interrupt of each motor, integrating only a motor that may
+// have changed them; kept until the first motor's horizon.
+uint8_t Tmc428Model::motor_status_bits() const {
   uint8_t s = 0;
   bool irq = false;
+  uint64_t before = UINT64_MAX;
   for (int m = 0; m < kMotors; ++m) {
     if (now_ >= quiet_horizon(m).status_before) sync_motor(m);
     const Motor& mo = motor_[m];
     if (((uint32_t)mo.x & 0xFFFFFF) == mo.x_target) s |= (uint8_t)(0x01 << (2 * m));
     if (left_active(m)) s |= (uint8_t)(0x02 << (2 * m));
     irq = irq || (mo.int_flags & mo.int_mask) != 0;
+    const uint64_t b = quiet_horizon(m).status_before;
+    if (b < before) before = b;
   }
-  if (cdgw_ || cover_waiting_) s |= 0x40;
   if (irq) s |= 0x80;
+  motor_status_bits_ = s;
+  motor_status_before_ = before;
   return s;
 }
 

@@ -131,7 +131,11 @@ class Tmc428Model : public SpiDevice {
     uint64_t status_before;
   };
   const QuietHorizon& quiet_horizon(int m) const;
-  void forget_quiet_horizon(int m) const { horizon_known_[m] = false; }
+  void forget_quiet_horizon(int m) const {
+    horizon_known_[m] = false;
+    motor_status_before_ = 0;
+  }
+  uint8_t motor_status_bits() const;
   void advance_motor(int m, uint64_t t0, uint64_t t1) const;
   void advance_out_of_reach(int m, uint64_t t, uint64_t t1, unsigned pulse_shift,
                             unsigned ramp_shift) const;
@@ -165,6 +169,10 @@ class Tmc428Model : public SpiDevice {
   mutable uint64_t motor_integrations_ = 0;
   mutable QuietHorizon horizon_[kMotors] = {};
   mutable bool horizon_known_[kMotors] = {};
+  // The status byte's motor bits (all but cdgw), the same for every answer before
+  // motor_status_before_ (the motors' nearest horizon; 0 after any change).
+  mutable uint8_t motor_status_bits_ = 0;
+  mutable uint64_t motor_status_before_ = 0;
   mutable uint64_t reach_checks_ = 0;
   uint8_t ram_[128];
   uint32_t smgp_ = 0x000F00;  // clk2_div = 15 at power-on ([428DS] §6.1)
