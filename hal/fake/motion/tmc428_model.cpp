@@ -127,10 +127,34 @@ const Tmc428Model::QuietHorizon& Tmc428Model::quiet_horizon(int m) const {
     h.status_before = UINT64_MAX;
     return h;
   }
-  // switches_out_of_reach(m, S) is S < D_switch: a forced-on or reached switch gives 0, one
-  // more than 2^30 microsteps away (the reach's clamp) never limits.
-  const int64_t kNever = INT64_MAX;
-  int64_t d_switch = kNever;
+  const int64_t d_switch = switch_reach(m);
+  const uint32_t d24 = (mo.x_target - (uint32_t)mo.x) & 0xFFFFFF;  // 24-bit wrap both ways
+  const int64_t d_target = d24 < 0x800000 ? d24 : 0x1000000 - d24;
+  const int64_t d_status = d_target < d_switch ? d_target : d_switch;
+  const unsigned pulse_shift = 5 + ((mo.divisors >> 12) & 0xF);
+  const uint64_t tick = motor_tick_[m];
+  const uint64_t synced = tick + 1;  // now <= motor_tick_: nothing to integrate
+  const uint64_t pulse = tick >> pulse_shift;
+  h.status_before = synced;
+  if (d_status >= 1) {
+    const uint64_t b = (pulse + (uint64_t)d_status - 1) << pulse_shift;
+    if (b > synced) h.status_before = b;
+  }
+  h.switch_before = synced;
+  if (d_switch == INT64_MAX) {
+    h.switch_before = UINT64_MAX;
+  } else if (d_switch >= 1) {
+    const uint64_t b = (pulse + (uint64_t)d_switch - 1) << pulse_shift;
+    if (b > synced) h.switch_before = b;
+  }
+  return h;
+}
+
+// Microsteps until a switch of motor m may turn on: 0 for a forced-on or reached switch,
+// INT64_MAX (never) for none, or none nearer than 2^30 microsteps.
+int64_t Tmc428Model::switch_reach(int m) const {
+  const Motor& mo = motor_[m];
+  int64_t d_switch = INT64_MAX;
   if (left_exists(m)) {
     if (mo.force_left > 0) d_switch = 0;
     if (mo.force_left < 0 && mo.has_left_pos) {
@@ -145,26 +169,22 @@ const Tmc428Model::QuietHorizon& Tmc428Model::quiet_horizon(int m) const {
       if (d <= (int64_t{1} << 30) && d < d_switch) d_switch = d < 0 ? 0 : d;
     }
   }
-  const uint32_t d24 = (mo.x_target - (uint32_t)mo.x) & 0xFFFFFF;  // 24-bit wrap both ways
-  const int64_t d_target = d24 < 0x800000 ? d24 : 0x1000000 - d24;
-  const int64_t d_status = d_target < d_switch ? d_target : d_switch;
-  const unsigned pulse_shift = 5 + ((mo.divisors >> 12) & 0xF);
-  const uint64_t tick = motor_tick_[m];
-  const uint64_t synced = tick + 1;  // now <= motor_tick_: nothing to integrate
-  const uint64_t pulse = tick >> pulse_shift;
-  h.status_before = synced;
-  if (d_status >= 1) {
-    const uint64_t b = (pulse + (uint64_t)d_status - 1) << pulse_shift;
-    if (b > synced) h.status_before = b;
+  return d_switch;
+}
+
+uint64_t Tmc428Model::switch_free_before(int m) const {
+  if (switch_free_before_[m] != 0) return switch_free_before_[m];
+  const int64_t d = switch_reach(m);
+  const unsigned pulse_shift = 5 + ((motor_[m].divisors >> 12) & 0xF);
+  uint64_t before = 1;  // nothing free: t1 > 0 always fails
+  if (d == INT64_MAX) {
+    before = UINT64_MAX;
+  } else if (d >= 2) {
+    before = ((motor_tick_[m] >> pulse_shift) + (uint64_t)d - 1) << pulse_shift;
+    if (before == 0) before = 1;
   }
-  h.switch_before = synced;
-  if (d_switch == kNever) {
-    h.switch_before = UINT64_MAX;
-  } else if (d_switch >= 1) {
-    const uint64_t b = (pulse + (uint64_t)d_switch - 1) << pulse_shift;
-    if (b > synced) h.switch_before = b;
-  }
-  return h;
+  switch_free_before_[m] = before;
+  return before;
 }
 
 // ---- motors -------------------------------------------------------------------------------
@@ -242,25 +262,6 @@ void Tmc428Model::note_switches(int m) const {
   }
   mo.left_prev = l;
   mo.right_prev = r;
-}
-
-// True if neither switch of a motor is on now or can turn on within max_steps microsteps.
-bool Tmc428Model::switches_out_of_reach(int m, uint64_t max_steps) const {
-  const Motor& mo = motor_[m];
-  const int64_t reach = (int64_t)(max_steps > (1u << 30) ? (1u << 30) : max_steps);
-  if (left_exists(m)) {
-    if (mo.force_left > 0) return false;
-    if (mo.force_left < 0 && mo.has_left_pos && (int64_t)mo.x - mo.left_pos <= reach) {
-      return false;
-    }
-  }
-  if (right_exists(m)) {
-    if (mo.force_right > 0) return false;
-    if (mo.force_right < 0 && mo.has_right_pos && (int64_t)mo.right_pos - mo.x <= reach) {
-      return false;
-    }
-  }
-  return true;
 }
 
 // Where a segment from t ends: at the next ramp clock (*ramp_edge) while ramping, else at t1
@@ -370,7 +371,8 @@ void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) const {
     return;
   }
   ++motor_integrations_;
-  if (switches_out_of_reach(m, ((t1 - t0) >> pulse_shift) + 2)) {
+  if (t1 >= switch_free_before(m)) forget_switch_free(m);  // worked out again from t0
+  if (t1 < switch_free_before(m)) {
     advance_out_of_reach(m, t, t1, pulse_shift, ramp_shift);
     return;
   }
@@ -593,6 +595,7 @@ void Tmc428Model::write_global_register(int idx, uint32_t data) {
       for (int m = 0; m < kMotors; ++m) {
         note_switches(m);
         forget_quiet_horizon(m);
+        forget_switch_free(m);
       }
       break;
     default:
@@ -604,6 +607,7 @@ void Tmc428Model::write_global_register(int idx, uint32_t data) {
 void Tmc428Model::write_motor_register(int m, int idx, uint32_t data) {
   sync_motor(m);
   forget_quiet_horizon(m);
+  if (idx != 0 && idx != 4) forget_switch_free(m);  // x_target, v_target: no switch nearer
   Motor& mo = motor_[m];
   switch (idx) {
     case 0:
@@ -743,6 +747,7 @@ void Tmc428Model::set_switch_positions(int motor, int32_t left_usteps, int32_t r
   mo.has_right_pos = true;
   note_switches(motor);
   forget_quiet_horizon(motor);
+  forget_switch_free(motor);
 }
 
 void Tmc428Model::force_switch(int motor, bool right, int level) {
@@ -754,6 +759,7 @@ void Tmc428Model::force_switch(int motor, bool right, int level) {
   }
   note_switches(motor);
   forget_quiet_horizon(motor);
+  forget_switch_free(motor);
 }
 
 void Tmc428Model::set_driver_status(int motor, uint16_t status12) {

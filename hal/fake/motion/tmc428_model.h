@@ -136,6 +136,12 @@ class Tmc428Model : public SpiDevice {
     motor_status_before_ = 0;
   }
   uint8_t motor_status_bits() const;
+  // No switch of motor m can turn on or off before this tick (the reach at at most one
+  // microstep per pulse clock, from when it was worked out): integration needs no switch
+  // checks. Unlike the horizons it holds across integration and velocity writes; 0 unknown.
+  uint64_t switch_free_before(int m) const;
+  void forget_switch_free(int m) const { switch_free_before_[m] = 0; }
+  int64_t switch_reach(int m) const;
   void advance_motor(int m, uint64_t t0, uint64_t t1) const;
   void advance_out_of_reach(int m, uint64_t t, uint64_t t1, unsigned pulse_shift,
                             unsigned ramp_shift) const;
@@ -144,7 +150,6 @@ class Tmc428Model : public SpiDevice {
   static void ramp_clock(Motor& mo, int32_t tgt);
   static uint64_t segment_end(Motor& mo, bool ramping, uint64_t t, uint64_t t1, unsigned ramp_shift,
                               uint64_t* ramp_edge);
-  bool switches_out_of_reach(int m, uint64_t max_steps) const;
   int32_t effective_target_q8(int m) const;
   bool left_active(int m) const;
   bool right_active(int m) const;
@@ -173,6 +178,7 @@ class Tmc428Model : public SpiDevice {
   // motor_status_before_ (the motors' nearest horizon; 0 after any change).
   mutable uint8_t motor_status_bits_ = 0;
   mutable uint64_t motor_status_before_ = 0;
+  mutable uint64_t switch_free_before_[kMotors] = {};
   mutable uint64_t reach_checks_ = 0;
   uint8_t ram_[128];
   uint32_t smgp_ = 0x000F00;  // clk2_div = 15 at power-on ([428DS] §6.1)

@@ -292,6 +292,27 @@ TEST(Tmc428Model, RampModeWithVMaxZeroDoesNotMove) {
 
 // ---- switches -------------------------------------------------------------------------
 
+// Integrated in many short steps (the simulator reads x_actual and writes v_target every
+// millisecond), a motor still stops exactly on the switch: the span known to be free of
+// switches is worked out again when it ends, and when x_actual is written.
+TEST(Tmc428Model, HardStopsExactlyOnTheSwitchWhenReadEveryMillisecond) {
+  for (const bool jump : {false, true}) {
+    Tmc428Model c;
+    write(c, kSmgp, kSmgpRefMux | kSmgpContinuousUpdate);
+    velocity_setup(c);
+    c.set_switch_positions(0, -100000, 5000);
+    write(c, motor_reg(0, kVTarget), 1000);
+    for (int ms = 0; ms < 500; ++ms) {
+      c.advance_us(1000);
+      c.x_actual(0);
+      write(c, motor_reg(0, kVTarget), 1000);
+      if (jump && ms == 20) write(c, motor_reg(0, kXActual), 4900);  // the switch near
+    }
+    EXPECT_EQ(c.x_actual(0), 5000) << "jump " << jump;
+    EXPECT_EQ(c.v_actual(0), 0) << "jump " << jump;
+  }
+}
+
 TEST(Tmc428Model, HardStopsExactlyOnTheRightSwitch) {
   Tmc428Model c;
   write(c, kSmgp, kSmgpRefMux | kSmgpContinuousUpdate);
