@@ -605,6 +605,9 @@ void Tmc428Model::write_global_register(int idx, uint32_t data) {
 
 // A write to motor m's registers (SMDA 0..2).
 void Tmc428Model::write_motor_register(int m, int idx, uint32_t data) {
+  // The driver writes every v_target every tick, mostly the value it holds (cruising, or 0
+  // for a motor at rest): that changes nothing, so the motor need not be integrated now.
+  if (idx == 4 && (data & 0xFFF) == motor_[m].v_target) return;
   sync_motor(m);
   forget_quiet_horizon(m);
   if (idx != 0 && idx != 4) forget_switch_free(m);  // x_target, v_target: no switch nearer

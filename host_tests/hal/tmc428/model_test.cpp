@@ -178,6 +178,26 @@ TEST(Tmc428Model, AMovingMotorIsIntegratedOnlyWhenItIsReadOrChanged) {
   EXPECT_EQ(c.motor_integrations(), n0 + 1);
 }
 
+// The driver writes each motor's v_target every tick, mostly unchanged: such a write
+// integrates nothing, a new value does.
+TEST(Tmc428Model, AVTargetWriteOfTheValueItHoldsIntegratesNothing) {
+  Tmc428Model c;
+  velocity_setup(c);
+  write(c, motor_reg(0, kVTarget), 1000);
+  c.advance_us(100000);
+  c.x_actual(0);
+  const uint64_t n0 = c.motor_integrations();
+  for (int i = 0; i < 10; ++i) {
+    c.advance_us(1000);
+    write(c, motor_reg(0, kVTarget), 1000);
+  }
+  EXPECT_EQ(c.motor_integrations(), n0);
+  write(c, motor_reg(0, kVTarget), 999);
+  EXPECT_EQ(c.motor_integrations(), n0 + 1);
+  c.advance_us(50000);
+  EXPECT_EQ(c.v_actual(0), 999);
+}
+
 // Lazy integration changes no answer: a model whose motor is read after every step answers
 // every datagram as one left alone, through a ramp, a pass over x_target and a switch stop.
 TEST(Tmc428Model, LazyIntegrationAnswersAsIntegratingAfterEveryStep) {
