@@ -101,35 +101,90 @@ void Tmc428Model::sync_motor_to(int m, uint64_t t) const {
   if (t <= motor_tick_[m]) return;
   advance_motor(m, motor_tick_[m], t);
   motor_tick_[m] = t;
+  // An idle motor's horizon (never) does not depend on when it was integrated.
+  if (horizon_[m].status_before != UINT64_MAX) forget_quiet_horizon(m);
 }
 
 void Tmc428Model::sync_motors() const {
   for (int m = 0; m < kMotors; ++m) sync_motor(m);
 }
 
-// Microsteps motor m can have made since it was integrated: at most one per pulse clock,
-// and one for the accumulator.
-uint64_t Tmc428Model::max_steps_since_sync(int m) const {
-  const unsigned pulse_shift = 5 + ((motor_[m].divisors >> 12) & 0xF);
-  return (now_ >> pulse_shift) - (motor_tick_[m] >> pulse_shift) + 1;
-}
-
-// True if motor m, not integrated since motor_tick_, cannot have turned a switch on or off
-// (so no flag either) by now: its switch bits are those it had.
-bool Tmc428Model::switches_quiet_until_now(int m) const {
-  return now_ <= motor_tick_[m] || switches_out_of_reach(m, max_steps_since_sync(m));
-}
-
-// As switches_quiet_until_now(), and it cannot have reached x_target either: the status
-// byte's bits for it are those it had.
-bool Tmc428Model::quiet_until_now(int m) const {
-  if (now_ <= motor_tick_[m]) return true;
+// A motor not integrated since motor_tick_ makes at most one microstep per pulse clock (and
+// one for the accumulator): by now at most S = (now >> ps) - (motor_tick >> ps) + 1. While
+// S < D, D the microsteps to the nearest of x_target and the switches, its status bits are
+// those it had: now < ((motor_tick >> ps) + D - 1) << ps, or now <= motor_tick. A motor at
+// rest with no velocity to ramp to changes nothing until a write (advance_motor's idle
+// case): never.
+const Tmc428Model::QuietHorizon& Tmc428Model::quiet_horizon(int m) const {
+  QuietHorizon& h = horizon_[m];
+  if (horizon_known_[m]) return h;
+  horizon_known_[m] = true;
+  ++reach_checks_;
   const Motor& mo = motor_[m];
-  const uint64_t max_steps = max_steps_since_sync(m);
-  if (!switches_out_of_reach(m, max_steps)) return false;
-  const uint32_t d = (mo.x_target - (uint32_t)mo.x) & 0xFFFFFF;  // 24-bit wrap both ways
-  const uint32_t dist = d < 0x800000 ? d : 0x1000000 - d;
-  return dist > max_steps;
+  const uint32_t mode = mo.ref_ramp & kModeMask;
+  if (mo.v_q8 == 0 && (mode != kVelocity || sext(mo.v_target, 12) == 0)) {
+    h.switch_before = UINT64_MAX;
+    h.status_before = UINT64_MAX;
+    return h;
+  }
+  const int64_t d_switch = switch_reach(m);
+  const uint32_t d24 = (mo.x_target - (uint32_t)mo.x) & 0xFFFFFF;  // 24-bit wrap both ways
+  const int64_t d_target = d24 < 0x800000 ? d24 : 0x1000000 - d24;
+  const int64_t d_status = d_target < d_switch ? d_target : d_switch;
+  const unsigned pulse_shift = 5 + ((mo.divisors >> 12) & 0xF);
+  const uint64_t tick = motor_tick_[m];
+  const uint64_t synced = tick + 1;  // now <= motor_tick_: nothing to integrate
+  const uint64_t pulse = tick >> pulse_shift;
+  h.status_before = synced;
+  if (d_status >= 1) {
+    const uint64_t b = (pulse + (uint64_t)d_status - 1) << pulse_shift;
+    if (b > synced) h.status_before = b;
+  }
+  h.switch_before = synced;
+  if (d_switch == INT64_MAX) {
+    h.switch_before = UINT64_MAX;
+  } else if (d_switch >= 1) {
+    const uint64_t b = (pulse + (uint64_t)d_switch - 1) << pulse_shift;
+    if (b > synced) h.switch_before = b;
+  }
+  return h;
+}
+
+// Microsteps until a switch of motor m may turn on: 0 for a forced-on or reached switch,
+// INT64_MAX (never) for none, or none nearer than 2^30 microsteps.
+int64_t Tmc428Model::switch_reach(int m) const {
+  const Motor& mo = motor_[m];
+  int64_t d_switch = INT64_MAX;
+  if (left_exists(m)) {
+    if (mo.force_left > 0) d_switch = 0;
+    if (mo.force_left < 0 && mo.has_left_pos) {
+      const int64_t d = (int64_t)mo.x - mo.left_pos;
+      if (d <= (int64_t{1} << 30) && d < d_switch) d_switch = d < 0 ? 0 : d;
+    }
+  }
+  if (right_exists(m)) {
+    if (mo.force_right > 0) d_switch = 0;
+    if (mo.force_right < 0 && mo.has_right_pos) {
+      const int64_t d = (int64_t)mo.right_pos - mo.x;
+      if (d <= (int64_t{1} << 30) && d < d_switch) d_switch = d < 0 ? 0 : d;
+    }
+  }
+  return d_switch;
+}
+
+uint64_t Tmc428Model::switch_free_before(int m) const {
+  if (switch_free_before_[m] != 0) return switch_free_before_[m];
+  const int64_t d = switch_reach(m);
+  const unsigned pulse_shift = 5 + ((motor_[m].divisors >> 12) & 0xF);
+  uint64_t before = 1;  // nothing free: t1 > 0 always fails
+  if (d == INT64_MAX) {
+    before = UINT64_MAX;
+  } else if (d >= 2) {
+    before = ((motor_tick_[m] >> pulse_shift) + (uint64_t)d - 1) << pulse_shift;
+    if (before == 0) before = 1;
+  }
+  switch_free_before_[m] = before;
+  return before;
 }
 
 // ---- motors -------------------------------------------------------------------------------
@@ -207,25 +262,6 @@ void Tmc428Model::note_switches(int m) const {
   }
   mo.left_prev = l;
   mo.right_prev = r;
-}
-
-// True if neither switch of a motor is on now or can turn on within max_steps microsteps.
-bool Tmc428Model::switches_out_of_reach(int m, uint64_t max_steps) const {
-  const Motor& mo = motor_[m];
-  const int64_t reach = (int64_t)(max_steps > (1u << 30) ? (1u << 30) : max_steps);
-  if (left_exists(m)) {
-    if (mo.force_left > 0) return false;
-    if (mo.force_left < 0 && mo.has_left_pos && (int64_t)mo.x - mo.left_pos <= reach) {
-      return false;
-    }
-  }
-  if (right_exists(m)) {
-    if (mo.force_right > 0) return false;
-    if (mo.force_right < 0 && mo.has_right_pos && (int64_t)mo.right_pos - mo.x <= reach) {
-      return false;
-    }
-  }
-  return true;
 }
 
 // Where a segment from t ends: at the next ramp clock (*ramp_edge) while ramping, else at t1
@@ -335,7 +371,8 @@ void Tmc428Model::advance_motor(int m, uint64_t t0, uint64_t t1) const {
     return;
   }
   ++motor_integrations_;
-  if (switches_out_of_reach(m, ((t1 - t0) >> pulse_shift) + 2)) {
+  if (t1 >= switch_free_before(m)) forget_switch_free(m);  // worked out again from t0
+  if (t1 < switch_free_before(m)) {
     advance_out_of_reach(m, t, t1, pulse_shift, ramp_shift);
     return;
   }
@@ -555,7 +592,11 @@ void Tmc428Model::write_global_register(int idx, uint32_t data) {
     case 15:
       sync_motors();
       smgp_ = data & 0x31FFFF;
-      for (int m = 0; m < kMotors; ++m) note_switches(m);
+      for (int m = 0; m < kMotors; ++m) {
+        note_switches(m);
+        forget_quiet_horizon(m);
+        forget_switch_free(m);
+      }
       break;
     default:
       break;  // power_down (JDX 8), RO and unused addresses: no effect here
@@ -564,7 +605,12 @@ void Tmc428Model::write_global_register(int idx, uint32_t data) {
 
 // A write to motor m's registers (SMDA 0..2).
 void Tmc428Model::write_motor_register(int m, int idx, uint32_t data) {
+  // The driver writes every v_target every tick, mostly the value it holds (cruising, or 0
+  // for a motor at rest): that changes nothing, so the motor need not be integrated now.
+  if (idx == 4 && (data & 0xFFF) == motor_[m].v_target) return;
   sync_motor(m);
+  forget_quiet_horizon(m);
+  if (idx != 0 && idx != 4) forget_switch_free(m);  // x_target, v_target: no switch nearer
   Motor& mo = motor_[m];
   switch (idx) {
     case 0:
@@ -638,7 +684,7 @@ void Tmc428Model::write_register(uint8_t addr, uint32_t data) {
 uint8_t Tmc428Model::switch_bits() const {
   uint8_t bits = 0;
   for (int m = 0; m < kMotors; ++m) {
-    if (!switches_quiet_until_now(m)) sync_motor(m);
+    if (now_ >= quiet_horizon(m).switch_before) sync_motor(m);
     if (right_active(m)) bits |= (uint8_t)(1u << (2 * m));
     if (left_active(m)) bits |= (uint8_t)(2u << (2 * m));
   }
@@ -646,17 +692,29 @@ uint8_t Tmc428Model::switch_bits() const {
 }
 
 uint8_t Tmc428Model::status_byte() const {
+  uint8_t s = now_ < motor_status_before_ ? motor_status_bits_ : motor_status_bits();
+  if (cdgw_ || cover_waiting_) s |= 0x40;
+  return s;
+}
+
+// xEQt, the left switch and the interrupt of each motor, integrating only a motor that may
+// have changed them; kept until the first motor's horizon.
+uint8_t Tmc428Model::motor_status_bits() const {
   uint8_t s = 0;
   bool irq = false;
+  uint64_t before = UINT64_MAX;
   for (int m = 0; m < kMotors; ++m) {
-    if (!quiet_until_now(m)) sync_motor(m);
+    if (now_ >= quiet_horizon(m).status_before) sync_motor(m);
     const Motor& mo = motor_[m];
     if (((uint32_t)mo.x & 0xFFFFFF) == mo.x_target) s |= (uint8_t)(0x01 << (2 * m));
     if (left_active(m)) s |= (uint8_t)(0x02 << (2 * m));
     irq = irq || (mo.int_flags & mo.int_mask) != 0;
+    const uint64_t b = quiet_horizon(m).status_before;
+    if (b < before) before = b;
   }
-  if (cdgw_ || cover_waiting_) s |= 0x40;
   if (irq) s |= 0x80;
+  motor_status_bits_ = s;
+  motor_status_before_ = before;
   return s;
 }
 
@@ -691,6 +749,8 @@ void Tmc428Model::set_switch_positions(int motor, int32_t left_usteps, int32_t r
   mo.has_left_pos = true;
   mo.has_right_pos = true;
   note_switches(motor);
+  forget_quiet_horizon(motor);
+  forget_switch_free(motor);
 }
 
 void Tmc428Model::force_switch(int motor, bool right, int level) {
@@ -701,6 +761,8 @@ void Tmc428Model::force_switch(int motor, bool right, int level) {
     motor_[motor].force_left = level;
   }
   note_switches(motor);
+  forget_quiet_horizon(motor);
+  forget_switch_free(motor);
 }
 
 void Tmc428Model::set_driver_status(int motor, uint16_t status12) {

@@ -79,6 +79,9 @@ class Tmc428Model : public SpiDevice {
   uint32_t chain_datagrams() const { return chain_datagrams_; }  // captured answers
   // Times a moving motor was integrated up to a later time (what lazy stepping saves).
   uint64_t motor_integrations() const { return motor_integrations_; }
+  // Times the model worked out how far a motor is from x_target and its switches (for the
+  // status byte and the switch register): once after each change, not per datagram.
+  uint64_t reach_checks() const { return reach_checks_; }
   const std::vector<Datagram>& log() const { return log_; }
   void clear_log() { log_.clear(); }
   // Off: datagrams are not logged (long simulations; RecordingSpi can record instead).
@@ -119,9 +122,26 @@ class Tmc428Model : public SpiDevice {
   void sync_motor(int m) const { sync_motor_to(m, now_); }
   void sync_motor_to(int m, uint64_t t) const;
   void sync_motors() const;
-  uint64_t max_steps_since_sync(int m) const;
-  bool switches_quiet_until_now(int m) const;
-  bool quiet_until_now(int m) const;
+  // The first ticks at which motor m, as integrated up to motor_tick_, may have turned a
+  // switch on or off (switch_before) or reached x_target or a switch (status_before): until
+  // then its switch or status bits are those it had, without integrating it. Worked out
+  // after each change to the motor, so a datagram's status byte is a compare per motor.
+  struct QuietHorizon {
+    uint64_t switch_before;
+    uint64_t status_before;
+  };
+  const QuietHorizon& quiet_horizon(int m) const;
+  void forget_quiet_horizon(int m) const {
+    horizon_known_[m] = false;
+    motor_status_before_ = 0;
+  }
+  uint8_t motor_status_bits() const;
+  // No switch of motor m can turn on or off before this tick (the reach at at most one
+  // microstep per pulse clock, from when it was worked out): integration needs no switch
+  // checks. Unlike the horizons it holds across integration and velocity writes; 0 unknown.
+  uint64_t switch_free_before(int m) const;
+  void forget_switch_free(int m) const { switch_free_before_[m] = 0; }
+  int64_t switch_reach(int m) const;
   void advance_motor(int m, uint64_t t0, uint64_t t1) const;
   void advance_out_of_reach(int m, uint64_t t, uint64_t t1, unsigned pulse_shift,
                             unsigned ramp_shift) const;
@@ -130,7 +150,6 @@ class Tmc428Model : public SpiDevice {
   static void ramp_clock(Motor& mo, int32_t tgt);
   static uint64_t segment_end(Motor& mo, bool ramping, uint64_t t, uint64_t t1, unsigned ramp_shift,
                               uint64_t* ramp_edge);
-  bool switches_out_of_reach(int m, uint64_t max_steps) const;
   int32_t effective_target_q8(int m) const;
   bool left_active(int m) const;
   bool right_active(int m) const;
@@ -153,6 +172,14 @@ class Tmc428Model : public SpiDevice {
   mutable Motor motor_[kMotors];  // integrated up to motor_tick_ (lazily, see sync)
   mutable uint64_t motor_tick_[kMotors] = {};
   mutable uint64_t motor_integrations_ = 0;
+  mutable QuietHorizon horizon_[kMotors] = {};
+  mutable bool horizon_known_[kMotors] = {};
+  // The status byte's motor bits (all but cdgw), the same for every answer before
+  // motor_status_before_ (the motors' nearest horizon; 0 after any change).
+  mutable uint8_t motor_status_bits_ = 0;
+  mutable uint64_t motor_status_before_ = 0;
+  mutable uint64_t switch_free_before_[kMotors] = {};
+  mutable uint64_t reach_checks_ = 0;
   uint8_t ram_[128];
   uint32_t smgp_ = 0x000F00;  // clk2_div = 15 at power-on ([428DS] §6.1)
   uint64_t chain_words_ = 0;  // 48-bit shift register from SDI_S

@@ -178,6 +178,26 @@ TEST(Tmc428Model, AMovingMotorIsIntegratedOnlyWhenItIsReadOrChanged) {
   EXPECT_EQ(c.motor_integrations(), n0 + 1);
 }
 
+// The driver writes each motor's v_target every tick, mostly unchanged: such a write
+// integrates nothing, a new value does.
+TEST(Tmc428Model, AVTargetWriteOfTheValueItHoldsIntegratesNothing) {
+  Tmc428Model c;
+  velocity_setup(c);
+  write(c, motor_reg(0, kVTarget), 1000);
+  c.advance_us(100000);
+  c.x_actual(0);
+  const uint64_t n0 = c.motor_integrations();
+  for (int i = 0; i < 10; ++i) {
+    c.advance_us(1000);
+    write(c, motor_reg(0, kVTarget), 1000);
+  }
+  EXPECT_EQ(c.motor_integrations(), n0);
+  write(c, motor_reg(0, kVTarget), 999);
+  EXPECT_EQ(c.motor_integrations(), n0 + 1);
+  c.advance_us(50000);
+  EXPECT_EQ(c.v_actual(0), 999);
+}
+
 // Lazy integration changes no answer: a model whose motor is read after every step answers
 // every datagram as one left alone, through a ramp, a pass over x_target and a switch stop.
 TEST(Tmc428Model, LazyIntegrationAnswersAsIntegratingAfterEveryStep) {
@@ -210,6 +230,60 @@ TEST(Tmc428Model, LazyIntegrationAnswersAsIntegratingAfterEveryStep) {
   EXPECT_LT(lazy.motor_integrations(), eager.motor_integrations());
 }
 
+// The status byte of every answer covers all three motors: for one cruising far from
+// x_target and its switches it is worked out once, not again for each datagram.
+TEST(Tmc428Model, AStatusByteWorksOutACruisingMotorsReachOncePerChange) {
+  Tmc428Model c;
+  velocity_setup(c);
+  write(c, motor_reg(0, kXTarget), 0xFFFFFF & (uint32_t)-1000);
+  c.set_switch_positions(0, -200000, 200000);
+  write(c, motor_reg(0, kVTarget), 300);
+  c.advance_us(100000);  // at v 300: ~1.8 microsteps per 26 us datagram, far from both
+  c.x_actual(0);
+  read(c, motor_reg(1, kXActual));
+  const uint64_t checks0 = c.reach_checks();
+  for (int i = 0; i < 100; ++i) {
+    read(c, motor_reg(1, kXActual));
+    read(c, kRefSwitches);
+    c.advance_us(26);
+  }
+  EXPECT_EQ(c.reach_checks(), checks0);
+  write(c, motor_reg(0, kXTarget), 0);  // a change: worked out again at the next answer
+  read(c, motor_reg(1, kXActual));
+  EXPECT_EQ(c.reach_checks(), checks0 + 1);
+}
+
+// The status bits worked out ahead agree with integrating before every answer, for a
+// motor creeping to and fro over x_target and onto a switch (Z hovering at its target).
+TEST(Tmc428Model, StatusBitsAheadAgreeNearXTargetAndASwitch) {
+  Tmc428Model eager, lazy;
+  for (Tmc428Model* c : {&eager, &lazy}) {
+    write(*c, kSmgp, kSmgpRefMux | kSmgpContinuousUpdate);
+    velocity_setup(*c);
+    write(*c, motor_reg(0, kXTarget), 40);
+    c->set_switch_positions(0, -150, 100000);
+  }
+  uint32_t seed = 11;
+  for (int i = 0; i < 20000; ++i) {
+    seed = seed * 1103515245u + 12345u;
+    if (i % 50 == 0) {  // a new small velocity either way, now and then x_target moved
+      const int32_t v = (int32_t)((seed >> 8) % 801) - 400;
+      for (Tmc428Model* c : {&eager, &lazy}) {
+        write(*c, motor_reg(0, kVTarget), 0xFFF & (uint32_t)v);
+        if (i % 450 == 0) write(*c, motor_reg(0, kXTarget), 0xFFFFFF & ((seed >> 4) % 200 - 100));
+        if (i % 700 == 0) write(*c, motor_reg(0, kInterrupt), 0xFFFF);
+      }
+    }
+    const uint32_t step_ns = 1000 + (seed >> 12) % 40000;
+    const uint8_t addr = i % 2 == 0 ? kRefSwitches : motor_reg(2, kVMax);
+    ASSERT_EQ(read(lazy, addr), read(eager, addr)) << "datagram " << i;
+    eager.advance_ns(step_ns);
+    lazy.advance_ns(step_ns);
+    eager.x_actual(0);
+  }
+  EXPECT_EQ(lazy.x_actual(0), eager.x_actual(0));
+}
+
 TEST(Tmc428Model, NegativeVelocityMovesBackwards) {
   Tmc428Model c;
   velocity_setup(c);
@@ -237,6 +311,27 @@ TEST(Tmc428Model, RampModeWithVMaxZeroDoesNotMove) {
 }
 
 // ---- switches -------------------------------------------------------------------------
+
+// Integrated in many short steps (the simulator reads x_actual and writes v_target every
+// millisecond), a motor still stops exactly on the switch: the span known to be free of
+// switches is worked out again when it ends, and when x_actual is written.
+TEST(Tmc428Model, HardStopsExactlyOnTheSwitchWhenReadEveryMillisecond) {
+  for (const bool jump : {false, true}) {
+    Tmc428Model c;
+    write(c, kSmgp, kSmgpRefMux | kSmgpContinuousUpdate);
+    velocity_setup(c);
+    c.set_switch_positions(0, -100000, 5000);
+    write(c, motor_reg(0, kVTarget), 1000);
+    for (int ms = 0; ms < 500; ++ms) {
+      c.advance_us(1000);
+      c.x_actual(0);
+      write(c, motor_reg(0, kVTarget), 1000);
+      if (jump && ms == 20) write(c, motor_reg(0, kXActual), 4900);  // the switch near
+    }
+    EXPECT_EQ(c.x_actual(0), 5000) << "jump " << jump;
+    EXPECT_EQ(c.v_actual(0), 0) << "jump " << jump;
+  }
+}
 
 TEST(Tmc428Model, HardStopsExactlyOnTheRightSwitch) {
   Tmc428Model c;
