@@ -428,7 +428,10 @@ nlohmann::json Workshop::snapshot() {
     if (slot->sender != nullptr) {
       const double working =
           std::chrono::duration<double>(Clock::now() - slot->cut_started - waited).count();
-      const bool measured = f > 0.05 || (f > 0 && working >= slot->planned_s);
+      // Both a share of the commands and of the planned time: the set-up frames (zeroing,
+      // a height map) run at once and would make a share of commands alone mean nothing.
+      const bool measured =
+          f > 0 && ((f > 0.05 && working > 0.05 * slot->planned_s) || working >= slot->planned_s);
       remaining = measured ? working * (1.0 - f) / f : std::max(0.0, slot->planned_s - working);
     }
     nlohmann::json j;
