@@ -72,7 +72,8 @@ ProbeTouch controller_touch(Sender& sender, const ProbeMotion& m,
     });
     if (outcome != JobOutcome::kCompleted)
       throw ProbeFailed(fmt::format("probing at ({:.3f}, {:.3f}) mm: {}: {}", x_mm, y_mm,
-                                    outcome_name(outcome), sender.message()));
+                                    outcome_name(outcome), sender.message()),
+                        outcome == JobOutcome::kLinkLost);
     // The touch is done when the controller counts it (its queue may still be moving). Its
     // last status is where the tool stands, retracted: the one a watcher keeps showing.
     Progress rest;

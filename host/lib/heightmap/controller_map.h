@@ -38,7 +38,13 @@ struct ProbeMotion {
 // last one with the tool at rest after its retract.
 class ProbeFailed : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit ProbeFailed(const std::string& what, bool link_lost = false)
+      : std::runtime_error(what), link_lost_(link_lost) {}
+  // The link went silent or closed: nothing is known about the blank.
+  bool link_lost() const { return link_lost_; }
+
+ private:
+  bool link_lost_;
 };
 ProbeTouch controller_touch(Sender& sender, const ProbeMotion& motion,
                             std::function<void(const Progress&)> on_progress = nullptr);

@@ -386,6 +386,13 @@ void post_job_request(httplib::Server& s, const char* what, std::vector<const ch
          });
 }
 
+// A 409's words: the job's state, then why the request does not apply in it.
+std::string refused_in_state(JobStore& store, int64_t id, const std::string& why) {
+  const std::optional<JobRecord> job = store.get(id);
+  if (!job) return fmt::format("no job {}", id);
+  return fmt::format("job {} is {}: {}", id, state_name(job->state), why);
+}
+
 // The machine action a control request names (hold, resume, abort, probe_ready, override with
 // its percent); false, with the error answered, for anything else.
 bool machine_control(const std::string& action, const nlohmann::json& body, httplib::Response& res,
@@ -812,7 +819,9 @@ void HttpApi::route_priority() {
                      }
                      if (!store_.get(id)) return send_error(res, 404, "no such job");
                      if (!store_.set_priority(id, body["priority"].get<int>())) {
-                       return send_error(res, 409, "only a queued job's priority can change");
+                       return send_error(
+                           res, 409,
+                           refused_in_state(store_, id, "only a queued job's priority can change"));
                      }
                      workshop_.notify(true);
                      send_json(res, 200, job_answer(*store_.get(id)));
@@ -821,7 +830,7 @@ void HttpApi::route_priority() {
 
 bool HttpApi::store_control(int64_t id, const std::string& action, httplib::Response& res) {
   auto done = [&](bool ok, const std::string& why) {
-    if (!ok) return send_error(res, 409, why);
+    if (!ok) return send_error(res, 409, refused_in_state(store_, id, why));
     workshop_.notify(true);
     send_control_answer(id, action, res);
   };

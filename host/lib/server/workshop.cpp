@@ -82,10 +82,19 @@ struct Workshop::Slot {
   bool have_status = false;
   double planned_s = 0;
   Clock::time_point started;
+  // When its commands went to the sender: the cut's time left counts from here.
+  Clock::time_point cut_started;
   // Time the machine stood waiting for the operator (held, paused): not in the time left.
   Clock::duration waited{};
   bool waiting = false;
   Clock::time_point waiting_since;
+  // Starts or ends a wait for the operator (the caller holds `mutex`).
+  void set_waiting(bool now_waiting) {
+    const Clock::time_point now = Clock::now();
+    if (now_waiting && !waiting) waiting_since = now;
+    if (!now_waiting && waiting) waited += now - waiting_since;
+    waiting = now_waiting;
+  }
   proto::StatusReply last_status{};
   bool have_last_status = false;
   int64_t lease_epoch = 0;  // the lease the running job was claimed under
@@ -136,6 +145,23 @@ std::string whole_job_words(const JobRecord& job, size_t job_commands, std::stri
                               "to {}; it continues there)",
                               where));
   return message;
+}
+
+// The action as the API names it.
+const char* control_name(JobControl control) {
+  switch (control) {
+    case JobControl::kHold:
+      return "hold";
+    case JobControl::kResume:
+      return "resume";
+    case JobControl::kAbort:
+      return "abort";
+    case JobControl::kOverride:
+      return "override";
+    case JobControl::kConfirmProbe:
+      break;
+  }
+  return "probe_ready";
 }
 
 // The 409 to probe_ready when no machine waits for the clip: why, and when to send it.
@@ -270,6 +296,20 @@ uint64_t Workshop::wait_change(uint64_t seen, std::chrono::milliseconds timeout)
 }
 
 ControlResult Workshop::control(int64_t job_id, JobControl control, int percent) {
+  if (control == JobControl::kConfirmProbe) {
+    // A job that probes nothing never asks for the clip: say so, not "wait for probe_clip".
+    const std::optional<JobRecord> job = store_.get(job_id);
+    if (!job) return {404, fmt::format("no job {}", job_id)};
+    const int64_t map_job = height_map_job_of(data_, *job);
+    if ((map_job != 0 && map_job != job_id) || !is_board_job(*job)) {
+      const std::string what =
+          map_job != 0 ? fmt::format("it cuts with job {}'s height map and probes nothing", map_job)
+                       : std::string("a drawing probes nothing");
+      return {409, fmt::format("job {} is {}: {}: no machine asks for the probe clip, send no "
+                               "probe_ready",
+                               job_id, state_name(job->state), what)};
+    }
+  }
   for (auto& slot : slots_) {
     std::lock_guard<std::mutex> lock(slot->mutex);
     if (slot->job_id != job_id || (slot->sender == nullptr && !slot->planning)) continue;
@@ -314,7 +354,10 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
         break;
       case JobControl::kResume:
         // Resuming under a lapsed lease could cut what another machine now cuts.
-        if (!lease_.valid(slot->lease_epoch)) return {409, lease_.why_not(slot->lease_epoch)};
+        if (!lease_.valid(slot->lease_epoch)) {
+          return {409,
+                  fmt::format("job {} is running: {}", job_id, lease_.why_not(slot->lease_epoch))};
+        }
         slot->sender->request_resume();
         break;
       case JobControl::kAbort:
@@ -338,7 +381,21 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
                                           ? std::string("it runs on another server's machine")
                                           : fmt::format("it is {}", state_name(job->state)))};
   }
-  return {409, fmt::format("job {} is not running on a machine of this server", job_id)};
+  // One rule: the machine's actions go to a job running on a machine of this server; in any
+  // other state they are refused, the state named.
+  const char* action = control_name(control);
+  if (job->state != JobState::kRunning) {
+    return {409, fmt::format("job {} is {}: {} applies to a running job only", job_id,
+                             state_name(job->state), action)};
+  }
+  if (job->owner != options_.owner) {
+    return {409, fmt::format("job {} is running on server '{}' (machine '{}'): send {} to that "
+                             "server",
+                             job_id, job->owner, job->machine, action)};
+  }
+  return {409, fmt::format("job {} is running: its machine '{}' is starting or ending it, "
+                           "try {} again",
+                           job_id, job->machine, action)};
 }
 
 nlohmann::json Workshop::snapshot() {
@@ -384,10 +441,20 @@ nlohmann::json Workshop::snapshot() {
     // Time spent waiting for the operator is not work: the time left stands still then.
     const Clock::duration waited =
         slot->waited + (slot->waiting ? Clock::now() - slot->waiting_since : Clock::duration{});
-    const double working = elapsed - std::chrono::duration<double>(waited).count();
-    // The planned time until the machine has done a little; then what it has actually taken.
-    const double remaining =
-        f > 0.05 ? working * (1.0 - f) / f : std::max(0.0, slot->planned_s - working);
+    // The cut's time left. Before its commands run (planning, the probe clip, probing: the
+    // probe object counts the touches) the planned time, standing still; then the planned
+    // time until the machine has done a little (or overrun the plan), then what it has
+    // actually taken.
+    double remaining = slot->planned_s;
+    if (slot->sender != nullptr) {
+      const double working =
+          std::chrono::duration<double>(Clock::now() - slot->cut_started - waited).count();
+      // Both a share of the commands and of the planned time: the set-up frames (zeroing,
+      // a height map) run at once and would make a share of commands alone mean nothing.
+      const bool measured =
+          f > 0 && ((f > 0.05 && working > 0.05 * slot->planned_s) || working >= slot->planned_s);
+      remaining = measured ? working * (1.0 - f) / f : std::max(0.0, slot->planned_s - working);
+    }
     nlohmann::json j;
     j["id"] = slot->job_id;
     j["name"] = slot->job_name;
@@ -726,6 +793,9 @@ void Workshop::hand_to_sender(Slot& slot, JobRun& r, Sender& sender) {
     std::lock_guard<std::mutex> lock(slot.mutex);
     slot.sender = &sender;
     slot.planning = false;
+    slot.cut_started = Clock::now();
+    slot.waited = Clock::duration{};
+    slot.waiting = false;
     slot.progress = Progress{};
     slot.progress.total = r.commands->size();
     slot.path_json = std::move(path_json);
@@ -813,11 +883,7 @@ void Workshop::follow_status(Slot& slot, JobRun& r, Sender& sender, const Progre
     std::lock_guard<std::mutex> lock(slot.mutex);
     slot.executed_mm = executed_mm;
     slot.progress = p;
-    const bool waiting = machine_waits_for_operator(p.status.state);
-    const Clock::time_point now = Clock::now();
-    if (waiting && !slot.waiting) slot.waiting_since = now;
-    if (!waiting && slot.waiting) slot.waited += now - slot.waiting_since;
-    slot.waiting = waiting;
+    slot.set_waiting(machine_waits_for_operator(p.status.state));
     slot.have_status = true;
     slot.last_status = p.status;
     slot.have_last_status = true;
@@ -985,7 +1051,13 @@ heightmap::ProbeTouch Workshop::probing_touch(Slot& slot, Sender& sender,
       });
   return [this, &slot, touch, note](double x_mm, double y_mm) {
     wait_between_touches(slot, note);
-    return touch(x_mm, y_mm);
+    try {
+      return touch(x_mm, y_mm);
+    } catch (const heightmap::ProbeFailed& e) {
+      // A silent or closed link ends the job interrupted, as when cutting: not the map's fault.
+      if (e.link_lost()) throw LinkError(e.what());
+      throw;
+    }
   };
 }
 

@@ -99,6 +99,21 @@ TEST(ServerJobAnswers, TheMapAJobCutsWithIsKnownFromItsUpload) {
     const int64_t id = j["id"];
     EXPECT_EQ(j["height_map_job"], server.job(id)["height_map_job"]) << id;
   }
+  // No machine will ask for the clip for a job that probes nothing (issue 25's tester: the
+  // 409 said to wait for probe_clip, which never comes).
+  for (const int64_t id : {bottom_id, drawing}) {
+    auto r = server.control(id, R"({"action":"probe_ready"})");
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 409);
+    EXPECT_EQ(nlohmann::json::parse(r->body)["error"],
+              fmt::format("job {} is queued: {}: no machine asks for the probe clip, send no "
+                          "probe_ready",
+                          id,
+                          id == drawing ? std::string("a drawing probes nothing")
+                                        : fmt::format("it cuts with job {}'s height map and "
+                                                      "probes nothing",
+                                                      top_id)));
+  }
 }
 
 // probe_ready says why no machine takes it, and when to send it; once a machine asks for
@@ -147,6 +162,82 @@ TEST(ServerJobAnswers, ProbeReadyBeforeTheClipIsAskedForSaysWhyAndTheMapsMachine
                 "no machine is waiting for the probe clip for job {}: it is completed", id)),
             std::string::npos)
       << again->body;
+}
+
+// The error of a request that must answer 409.
+std::string refused(const httplib::Result& r) {
+  if (!r) return "no answer";
+  if (r->status != 409) return fmt::format("{} (not 409): {}", r->status, r->body);
+  return nlohmann::json::parse(r->body)["error"].get<std::string>();
+}
+
+std::string refused(const ServerRig& server, int64_t id, const std::string& action) {
+  const std::string body = action == "override"
+                               ? std::string(R"({"action":"override","percent":50})")
+                               : fmt::format(R"({{"action":"{}"}})", action);
+  return refused(server.control(id, body));
+}
+
+// An action that cannot apply in the job's state answers 409 naming that state (issue 25's
+// tester: resume of a queued job answered 200, a no-op that looked done; a failed job's 409
+// did not say it had failed), for each action the job's state rules out.
+TEST(ServerJobAnswers, AnActionThatCannotApplyAnswers409NamingTheJobsState) {
+  test::TempDir queue_dir;
+  {
+    ServerRig server(queue_dir.path(), {});  // no machine: the job stays queued
+    const int64_t id = server.upload_ok("line.ngc", "G0 X0 Y0\nG1 X10 Y0 F100\n");
+    for (const char* action : {"hold", "resume", "abort", "override"}) {
+      EXPECT_EQ(refused(server, id, action),
+                fmt::format("job {} is queued: {} applies to a running job only", id, action));
+    }
+    EXPECT_EQ(refused(server, id, "requeue"),
+              fmt::format("job {} is queued: only an interrupted, aborted or failed job can be "
+                          "re-queued",
+                          id));
+    EXPECT_EQ(refused(server, id, "continue"),
+              fmt::format("job {} is queued: only an interrupted job with a known curve can be "
+                          "continued",
+                          id));
+    EXPECT_EQ(server.job(id)["state"], "queued");
+    EXPECT_EQ(control_ok(server, id, "cancel")["state"], "cancelled");
+    EXPECT_EQ(refused(server, id, "cancel"),
+              fmt::format("job {} is cancelled: only a queued job can be cancelled", id));
+    EXPECT_EQ(refused(server, id, "resume"),
+              fmt::format("job {} is cancelled: resume applies to a running job only", id));
+    EXPECT_EQ(refused(server.client().Post(fmt::format("/api/jobs/{}/priority", id).c_str(),
+                                           server.auth(), R"({"priority":3})", "application/json")),
+              fmt::format("job {} is cancelled: only a queued job's priority can change", id));
+  }
+  // A failed job: probe first on a simulated machine with no blank (`engraver sim` without
+  // --surface), whose probe never closes.
+  test::TempDir dir;
+  SimRig sim(false);
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t id = post(server, blinky({{"probe_first", "1"}, {"probe_spacing_mm", "12"}}));
+  ASSERT_TRUE(
+      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
+  EXPECT_EQ(control_ok(server, id, "probe_ready")["requested"], "probe_ready");
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "failed"; }, 60))
+      << server.job(id).dump();
+  const std::string message = server.job(id)["message"];
+  EXPECT_EQ(message.rfind("height map: probing at (", 0), 0u) << message;
+  EXPECT_NE(message.find(" mm: alarm: machine alarm: probe: no contact within the depth limit; "
+                         "nothing was cut"),
+            std::string::npos)
+      << message;
+  for (const char* action : {"hold", "resume", "abort", "override"}) {
+    EXPECT_EQ(refused(server, id, action),
+              fmt::format("job {} is failed: {} applies to a running job only", id, action));
+  }
+  EXPECT_EQ(refused(server, id, "cancel"),
+            fmt::format("job {} is failed: only a queued job can be cancelled", id));
+  EXPECT_EQ(refused(server, id, "continue"),
+            fmt::format("job {} is failed: only an interrupted job with a known curve can be "
+                        "continued",
+                        id));
+  EXPECT_NE(refused(server, id, "probe_ready").find(fmt::format("for job {}: it is failed", id)),
+            std::string::npos);
+  EXPECT_EQ(control_ok(server, id, "requeue")["state"], "queued");
 }
 
 }  // namespace

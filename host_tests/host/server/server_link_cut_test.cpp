@@ -16,6 +16,7 @@
 
 #include "host/lib/server/job_planning.h"  // plan_file, encode_options
 #include "host/lib/sim/sim_job.h"
+#include "host_tests/host/server/blinky_upload.h"  // blinky, post
 #include "host_tests/host/server/server_test_rig.h"
 #include "host_tests/host/sim/cut_path.h"
 
@@ -139,6 +140,61 @@ TEST(ServerLinkCut, AJobWhoseLinkFreezesFor3sCompletesCuttingTheSamePath) {
   EXPECT_LT(off_mm, 0.010);
   EXPECT_LT(host::test::max_distance_mm(reference, got), 0.010);
   EXPECT_NEAR(got.length_mm, reference.length_mm, 0.02);
+}
+
+// A link that stays silent (the guide: how long `serve` waits): the sender gives it up after
+// `serve`'s silence limit, 10 s without a reply, and the job ends interrupted, whether it
+// was cutting or probing its blank (a lost link is not a height map that failed: continue
+// probes again).
+TEST(ServerLinkCut, ALinkSilentFor10sEndsTheJobInterruptedCuttingOrProbing) {
+  const std::chrono::milliseconds serve_limit = SenderOptions{}.silence_limit;  // serve's
+  ASSERT_EQ(serve_limit.count(), 10000);
+  for (const bool probing : {false, true}) {
+    SCOPED_TRACE(probing ? "probing" : "cutting");
+    test::TempDir dir;
+    sim::SimOptions blank;
+    blank.surface_um = [](int32_t x_um, int32_t) { return x_um / 500; };
+    SimRig sim(true, 0, blank);
+    FreezingProxy proxy(sim.port());
+    ServerRig server(dir.path(), {test::machine("m1", proxy.address())}, 256 * 1024, {},
+                     serve_limit);
+    const int64_t id =
+        probing
+            ? test::post(server, test::blinky({{"probe_first", "1"}, {"probe_spacing_mm", "12"}}))
+            : server.upload_ok("multi.ngc", test::squares_gcode(3, 8), "&feed_mm_s=10");
+    if (probing) {
+      ASSERT_TRUE(test::wait_until(
+          [&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
+      ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+    }
+    ASSERT_TRUE(test::wait_until(
+        [&] {
+          const nlohmann::json p = server.running(id);
+          if (!p.is_object()) return false;
+          if (probing) return p.contains("probe") && p["probe"]["touches"].get<int>() >= 1;
+          return p["executed"].get<int>() > 0 &&
+                 p["executed"].get<int>() * 2 >= p["total"].get<int>();
+        },
+        60))
+        << server.status().dump();
+    proxy.freeze(true);
+    const auto frozen_at = std::chrono::steady_clock::now();
+    ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] != "running"; }, 40));
+    const double waited_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - frozen_at).count();
+    const nlohmann::json j = server.job(id);
+    EXPECT_EQ(j["state"], "interrupted") << j.dump();
+    EXPECT_NE(j["message"].get<std::string>().find(
+                  fmt::format("{}: no reply for 10000 ms", proxy.address())),
+              std::string::npos)
+        << j.dump();
+    EXPECT_GE(waited_s, 9.9);
+    EXPECT_LT(waited_s, 14.0);
+    std::printf("%s: link silent, the job ended %s %.1f s later: %s\n",
+                probing ? "probing" : "cutting", j["state"].get<std::string>().c_str(), waited_s,
+                j["message"].get<std::string>().c_str());
+    proxy.freeze(false);
+  }
 }
 
 }  // namespace

@@ -512,7 +512,15 @@ TEST(ServerMachines, HoldWhilePlanningIsKeptAndStopsTheJobBeforeItMoves) {
   test::TempDir dir;
   SimRig sim(true);
   ServerRig server(dir.path(), {test::machine("m1", sim.address())}, 8 * 1024 * 1024);
-  const int64_t id = server.upload_ok("spiral.ngc", spiral_gcode(8000));
+  // The upload plans the spiral before it answers: on a loaded machine that took longer
+  // than the rig's 10 s client limit once. The planning watched below is the claim's.
+  httplib::Client uploader = server.client();
+  uploader.set_read_timeout(120, 0);
+  auto up = uploader.Post("/api/jobs?name=spiral.ngc", server.auth(), spiral_gcode(8000),
+                          "application/octet-stream");
+  ASSERT_TRUE(up) << httplib::to_string(up.error());
+  ASSERT_EQ(up->status, 201) << up->body;
+  const int64_t id = nlohmann::json::parse(up->body)["id"].get<int64_t>();
   nlohmann::json listed;
   ASSERT_TRUE(test::wait_until(
       [&] {

@@ -284,5 +284,67 @@ TEST(ServerProbeHold, AHoldDuringTheLastTouchHoldsTheJobBeforeItsFirstCommand) {
   ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30));
 }
 
+// The time left of a probe-first job (issue 25's testers: it counted down while the job
+// waited for the clip, was held or probed, reached 0 before the cut and stayed 0 once it
+// began): the cut's planned time, standing still, until the cut starts (the probe object
+// counts the touches); then counting down, not 0, while the cut goes on.
+TEST(ServerProbeHold, TheTimeLeftIsTheCutsAndStandsStillUntilTheCutStarts) {
+  test::TempDir dir;
+  SimRig sim(true, 0, tilted_blank());
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t id = post_probe_first(server);
+  const double planned_s = server.job(id)["planned_s"];
+  ASSERT_GT(planned_s, 10.0);
+  auto left_s = [&] { return server.running(id)["remaining_s"].get<double>(); };
+  // Sampled 5 times over a second: each the cut's planned time.
+  auto stands_still = [&](const char* stage) {
+    for (int i = 0; i < 5; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      EXPECT_NEAR(left_s(), planned_s, 1e-6) << stage << " " << server.status().dump();
+    }
+  };
+  ASSERT_TRUE(
+      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
+  stands_still("waiting for the clip");
+  ASSERT_EQ(server.control(id, R"({"action":"hold"})")->status, 200);
+  stands_still("held waiting for the clip");
+  ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+  ASSERT_EQ(server.control(id, R"({"action":"resume"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return touches(server, id) >= 1; }, 60));
+  stands_still("probing");
+  ASSERT_TRUE(reach(sim, Instant::kDescending)) << server.status().dump();
+  ASSERT_EQ(server.control(id, R"({"action":"hold"})")->status, 200);
+  ASSERT_EQ(server.running(id)["machine_state"], "held");
+  stands_still("probing held");
+  stands_still("probing held, 2 s");
+  ASSERT_EQ(server.control(id, R"({"action":"resume"})")->status, 200);
+  // The cut under way: counting down from the planned time, never 0 while it cuts.
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const nlohmann::json j = server.running(id);
+        return j.is_object() && j["machine_state"] == "running" && !j.contains("probe") &&
+               j["executed"].get<int>() > 0;
+      },
+      120))
+      << server.status().dump();
+  const double cutting_s = left_s();
+  EXPECT_GT(cutting_s, 0.5 * planned_s);
+  EXPECT_LE(cutting_s, planned_s);
+  // It counts down as the machine cuts (it stands still while the machine pauses for the
+  // operator), and stays far from 0 this early in the cut.
+  nlohmann::json later;
+  EXPECT_TRUE(test::wait_until(
+      [&] {
+        later = server.running(id);
+        return later["remaining_s"].get<double>() < cutting_s - 0.5;
+      },
+      20))
+      << later.dump();
+  EXPECT_GT(later["remaining_s"].get<double>(), 0.5 * planned_s) << later.dump();
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30))
+      << server.job(id).dump();
+}
+
 }  // namespace
 }  // namespace host::server
