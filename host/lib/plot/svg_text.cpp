@@ -1,0 +1,55 @@
+// SVG documents as plain text (see svg_text.h).
+#include "host/lib/plot/svg_text.h"
+
+#include <cerrno>     // errno
+#include <cstdio>     // std::snprintf, std::fopen
+#include <cstring>    // std::strerror
+#include <stdexcept>  // std::runtime_error
+
+namespace host {
+
+SvgText& SvgText::operator<<(double v) {
+  char buf[32];
+  int n = std::snprintf(buf, sizeof buf, "%.2f", v);
+  while (n > 0 && buf[n - 1] == '0') --n;
+  if (n > 0 && buf[n - 1] == '.') --n;
+  if (n == 2 && buf[0] == '-' && buf[1] == '0') buf[0] = '0', n = 1;
+  out.append(buf, n);
+  return *this;
+}
+
+SvgText& SvgText::colour(double r, double g, double b) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "rgb(%d,%d,%d)", static_cast<int>(r * 255 + 0.5),
+                static_cast<int>(g * 255 + 0.5), static_cast<int>(b * 255 + 0.5));
+  out += buf;
+  return *this;
+}
+
+SvgText& SvgText::text(const std::string& s) {
+  for (const char ch : s) {
+    if (ch == '<')
+      out += "&lt;";
+    else if (ch == '>')
+      out += "&gt;";
+    else if (ch == '&')
+      out += "&amp;";
+    else if (ch == '"')
+      out += "&quot;";
+    else
+      out += ch;
+  }
+  return *this;
+}
+
+void write_svg_file(const std::string& doc, const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "wb");
+  if (!file) throw std::runtime_error(path + ": cannot write the plot: " + std::strerror(errno));
+  const bool written = std::fwrite(doc.data(), 1, doc.size(), file) == doc.size();
+  const int err = errno;
+  if (std::fclose(file) != 0 || !written)
+    throw std::runtime_error(path +
+                             ": cannot write the plot: " + std::strerror(written ? errno : err));
+}
+
+}  // namespace host
