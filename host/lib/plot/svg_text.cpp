@@ -2,6 +2,7 @@
 #include "host/lib/plot/svg_text.h"
 
 #include <cerrno>     // errno
+#include <charconv>   // std::to_chars
 #include <cstdio>     // std::snprintf, std::fopen
 #include <cstring>    // std::strerror
 #include <stdexcept>  // std::runtime_error
@@ -9,8 +10,14 @@
 namespace host {
 
 SvgText& SvgText::operator<<(double v) {
-  char buf[32];
-  int n = std::snprintf(buf, sizeof buf, "%.2f", v);
+  // to_chars rounds as printf's "%.2f" does, without its format parsing and locale (snprintf
+  // was nearly all of writing a board's SVG, docs/performance.md).
+  char buf[64];
+  const std::to_chars_result r =
+      std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 2);
+  int n = r.ec == std::errc() ? static_cast<int>(r.ptr - buf)
+                              : std::snprintf(buf, sizeof buf, "%.2f", v);
+  if (n < 0 || n >= static_cast<int>(sizeof buf)) n = 0;  // beyond any plot: drawn as 0
   while (n > 0 && buf[n - 1] == '0') --n;
   if (n > 0 && buf[n - 1] == '.') --n;
   if (n == 2 && buf[0] == '-' && buf[1] == '0') buf[0] = '0', n = 1;
