@@ -3,15 +3,12 @@
 #include "host/lib/plot/board_plot_svg.h"
 
 #include <algorithm>  // std::max
-#include <cerrno>     // errno
-#include <cstdio>     // std::snprintf, std::fopen
-#include <cstring>    // std::strerror
 #include <sstream>    // std::ostringstream
-#include <stdexcept>  // std::runtime_error
 
 #include "host/lib/pcb/pcb_geometry.h"
 #include "host/lib/plot/board_plot_style.h"
 #include "host/lib/plot/cairo_plot.h"  // nice_length
+#include "host/lib/plot/svg_text.h"
 
 namespace host {
 
@@ -19,49 +16,11 @@ namespace {
 
 using namespace board_plot_style;  // NOLINT: the layout and colours
 
-// Appends numbers and text to the document.
-class Svg {
+// The document, with board_plot_style's colours.
+class Svg : public SvgText {
  public:
-  std::string out;
-  Svg& operator<<(const char* s) {
-    out += s;
-    return *this;
-  }
-  Svg& operator<<(const std::string& s) {
-    out += s;
-    return *this;
-  }
-  // Pixels to 1/100 px, trailing zeros dropped.
-  Svg& operator<<(double v) {
-    char buf[32];
-    int n = std::snprintf(buf, sizeof buf, "%.2f", v);
-    while (n > 0 && buf[n - 1] == '0') --n;
-    if (n > 0 && buf[n - 1] == '.') --n;
-    if (n == 2 && buf[0] == '-' && buf[1] == '0') buf[0] = '0', n = 1;
-    out.append(buf, n);
-    return *this;
-  }
-  Svg& point(const Point2& q) { return *this << q.x() << " " << q.y(); }
   Svg& colour(const Rgba& c) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, "rgb(%d,%d,%d)", static_cast<int>(c.r * 255 + 0.5),
-                  static_cast<int>(c.g * 255 + 0.5), static_cast<int>(c.b * 255 + 0.5));
-    out += buf;
-    return *this;
-  }
-  Svg& text(const std::string& s) {
-    for (const char ch : s) {
-      if (ch == '<')
-        out += "&lt;";
-      else if (ch == '>')
-        out += "&gt;";
-      else if (ch == '&')
-        out += "&amp;";
-      else if (ch == '"')
-        out += "&quot;";
-      else
-        out += ch;
-    }
+    SvgText::colour(c.r, c.g, c.b);
     return *this;
   }
 };
@@ -214,14 +173,7 @@ std::string board_plot_svg(const BoardPlotInput& in, const PlotFrame& f, int hei
 
 void write_board_plot_svg(const BoardPlotInput& in, const PlotFrame& f, int height_px,
                           const std::string& path) {
-  const std::string doc = board_plot_svg(in, f, height_px);
-  std::FILE* file = std::fopen(path.c_str(), "wb");
-  if (!file) throw std::runtime_error(path + ": cannot write the plot: " + std::strerror(errno));
-  const bool written = std::fwrite(doc.data(), 1, doc.size(), file) == doc.size();
-  const int err = errno;
-  if (std::fclose(file) != 0 || !written)
-    throw std::runtime_error(path +
-                             ": cannot write the plot: " + std::strerror(written ? errno : err));
+  write_svg_file(board_plot_svg(in, f, height_px), path);
 }
 
 }  // namespace host

@@ -1,87 +1,44 @@
-// Plot rendering with cairo; the same drawing code serves the SVG and the PNG surface.
+// Plot rendering with cairo: the PNG, and the SVG of a plot with a layer too large for
+// vectors (an image inside it); other SVGs are plain text (plot_svg.cpp).
 #include "host/lib/plot/plot.h"
 
 #include <cairo-svg.h>  // cairo_svg_surface_create
 #include <cairo.h>      // cairo_*
 
-#include <algorithm>   // std::min
-#include <cmath>       // std::pow, std::floor
-#include <fstream>     // std::ifstream, std::ofstream
-#include <functional>  // std::function
-#include <sstream>     // std::ostringstream
+#include <algorithm>  // std::min
+#include <cmath>      // std::pow, std::floor
+#include <fstream>    // std::ifstream, std::ofstream
+#include <sstream>    // std::ostringstream
 
 #include "host/lib/plot/cairo_plot.h"  // nice_length, draw_scale_bar, check_cairo_surface
+#include "host/lib/plot/plot_layers.h"
+#include "host/lib/plot/plot_svg.h"
+#include "host/lib/plot/svg_text.h"
 
 namespace host {
 
 namespace {
 
-const double kTitleBandPx = 40.0;
-const double kBottomBandPx = 60.0;
-const double kSideMarginPx = 20.0;
-
-struct Rgb {
-  double r, g, b;
-};
-const Rgb kDrawingColour = {0.55, 0.75, 0.95};  // light blue, wide: the drawing
-const Rgb kCutColour = {0.75, 0.05, 0.05};      // dark red, thin: the pen-down path
-const Rgb kRapidColour = {0.45, 0.45, 0.45};    // grey dashed: pen-up moves
-
-const double kMinStepPx = 0.5;          // thinner detail than this is not visible
-const size_t kMaxSvgVertices = 150000;  // a layer with more is an image in the SVG (~2.5 MB)
+using namespace plot_layers;  // NOLINT: the layout, colours and layers
 
 void set_colour(cairo_t* cr, const Rgb& c) {
   cairo_set_source_rgb(cr, c.r, c.g, c.b);
 }
 
-// Adds a polyline to the current path, thinned to the plot's resolution: a vertex closer
-// than half a pixel to the previous one adds nothing a person could see. Returns the
-// vertices added.
+// Adds a polyline to the current path, thinned (thin_polyline). Returns the vertices added.
 size_t add_polyline(cairo_t* cr, const PlotFrame& f, const std::vector<Point2>& pts) {
-  if (pts.empty()) return 0;
-  Point2 last = f.to_px(pts[0]);
-  cairo_move_to(cr, last.x(), last.y());
-  size_t n = 1;
-  for (size_t i = 1; i < pts.size(); ++i) {
-    const Point2 p = f.to_px(pts[i]);
-    const bool end = i + 1 == pts.size();
-    if (!end && std::abs(p.x() - last.x()) < kMinStepPx && std::abs(p.y() - last.y()) < kMinStepPx)
-      continue;
-    cairo_line_to(cr, p.x(), p.y());
-    last = p;
-    ++n;
-  }
-  if (n == 1) cairo_line_to(cr, last.x() + 0.01, last.y());
-  return n;
-}
-
-// One layer (a style and its polylines) as one path, stroked once.
-struct Layer {
-  Rgb colour;
-  double width;
-  bool dashed;
-  std::function<void(const std::function<void(const std::vector<Point2>&)>&)> each;
-};
-
-// Vertices the layer takes after thinning (what its SVG path would hold).
-size_t layer_vertices(const Layer& layer, const PlotFrame& f) {
-  cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_A8, 1, 1);
-  cairo_t* cr = cairo_create(s);
-  size_t n = 0;
-  layer.each([&](const std::vector<Point2>& pts) {
-    n += add_polyline(cr, f, pts);
-    cairo_new_path(cr);
+  return thin_polyline(f, pts, [cr](const Point2& p, bool first) {
+    if (first)
+      cairo_move_to(cr, p.x(), p.y());
+    else
+      cairo_line_to(cr, p.x(), p.y());
   });
-  cairo_destroy(cr);
-  cairo_surface_destroy(s);
-  return n;
 }
 
 void stroke_layer(cairo_t* cr, const Layer& layer, const PlotFrame& f) {
   set_colour(cr, layer.colour);
   cairo_set_line_width(cr, layer.width);
-  const double dash[] = {6.0, 4.0};
-  cairo_set_dash(cr, dash, layer.dashed ? 2 : 0, 0);
+  cairo_set_dash(cr, kDashPx, layer.dashed ? 2 : 0, 0);
   size_t in_path = 0;
   layer.each([&](const std::vector<Point2>& pts) {
     in_path += add_polyline(cr, f, pts);
@@ -91,7 +48,7 @@ void stroke_layer(cairo_t* cr, const Layer& layer, const PlotFrame& f) {
     }
   });
   cairo_stroke(cr);
-  cairo_set_dash(cr, dash, 0, 0);
+  cairo_set_dash(cr, kDashPx, 0, 0);
 }
 
 // A layer too big for vectors, as pixels: round pen stamps every half pixel along each
@@ -156,12 +113,11 @@ void legend_entry(cairo_t* cr, double x, double y, const Rgb& c, double width, b
                   const std::string& label) {
   set_colour(cr, c);
   cairo_set_line_width(cr, width);
-  const double dash[] = {6.0, 4.0};
-  cairo_set_dash(cr, dash, dashed ? 2 : 0, 0);
+  cairo_set_dash(cr, kDashPx, dashed ? 2 : 0, 0);
   cairo_move_to(cr, x, y);
   cairo_line_to(cr, x + 30, y);
   cairo_stroke(cr);
-  cairo_set_dash(cr, dash, 0, 0);
+  cairo_set_dash(cr, kDashPx, 0, 0);
   cairo_set_source_rgb(cr, 0, 0, 0);
   text(cr, x + 36, y + 4, label);
 }
@@ -172,20 +128,7 @@ void render(cairo_t* cr, const PlotInput& in) {
   cairo_paint(cr);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  // Drawing underneath, wide; the tool path on top: pen down solid, pen up dashed.
-  const Layer drawing{kDrawingColour, 5.0, false, [&](const auto& fn) {
-                        for (const auto& c : in.drawing_curves_mm) fn(c);
-                      }};
-  auto tool = [&](bool down) {
-    return [&in, down](const std::function<void(const std::vector<Point2>&)>& fn) {
-      for (const ToolPathSegment& s : in.tool_path) {
-        if (s.pen_down == down) fn(s.points_mm);
-      }
-    };
-  };
-  draw_layer(cr, drawing, f, in);
-  draw_layer(cr, Layer{kRapidColour, 0.8, true, tool(false)}, f, in);
-  draw_layer(cr, Layer{kCutColour, 1.2, false, tool(true)}, f, in);
+  for (const Layer& layer : layers(in)) draw_layer(cr, layer, f, in);
   // Title.
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
   cairo_set_font_size(cr, 16);
@@ -195,9 +138,9 @@ void render(cairo_t* cr, const PlotInput& in) {
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, 12);
   const double y = in.height_px - kBottomBandPx / 2;
-  legend_entry(cr, kSideMarginPx, y, kDrawingColour, 5.0, false, "drawing");
-  legend_entry(cr, kSideMarginPx + 120, y, kCutColour, 1.2, false, "tool path (pen down)");
-  legend_entry(cr, kSideMarginPx + 320, y, kRapidColour, 0.8, true, "rapid (pen up)");
+  legend_entry(cr, kSideMarginPx, y, kDrawingColour, kDrawingWidthPx, false, "drawing");
+  legend_entry(cr, kSideMarginPx + 120, y, kCutColour, kCutWidthPx, false, "tool path (pen down)");
+  legend_entry(cr, kSideMarginPx + 320, y, kRapidColour, kRapidWidthPx, true, "rapid (pen up)");
   draw_scale_bar(cr, nice_length(in.width_px / 5.0 / f.scale_px_per_mm), f.scale_px_per_mm,
                  in.width_px - kSideMarginPx, y);
 }
@@ -277,7 +220,9 @@ void write_plot(const PlotInput& in, const std::string& svg_path, const std::str
   if (in.width_px < 200 || in.height_px < 200 || in.width_px > 20000 || in.height_px > 20000) {
     throw std::runtime_error("plot size must be 200..20000 pixels each way");
   }
-  if (!svg_path.empty()) {
+  if (!svg_path.empty() && plot_fits_plain_svg(in)) {
+    write_svg_file(plot_svg(in), svg_path);
+  } else if (!svg_path.empty()) {
     cairo_surface_t* s = cairo_svg_surface_create(svg_path.c_str(), in.width_px, in.height_px);
     check_cairo_surface(s, svg_path);
     cairo_t* cr = cairo_create(s);

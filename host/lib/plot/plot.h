@@ -1,5 +1,6 @@
-// SVG and PNG plots (cairo) of a drawing's curves against a tool path: pen-down segments
-// solid, pen-up moves dashed, with a legend, a scale bar and a title.
+// SVG and PNG plots of a drawing's curves against a tool path: pen-down segments solid,
+// pen-up moves dashed, with a legend, a scale bar and a title. The SVG is plain text (cairo
+// only draws a layer too large for vectors into it as an image); the PNG is cairo's.
 #ifndef HOST_LIB_PLOT_PLOT_H
 #define HOST_LIB_PLOT_PLOT_H
 
@@ -40,7 +41,7 @@ struct PlotFrame {
 PlotFrame plot_frame(const PlotInput& in);
 
 // Writes the plot; an empty path skips that file. Throws std::runtime_error naming the
-// file when cairo cannot write it.
+// file when it cannot be written.
 void write_plot(const PlotInput& in, const std::string& svg_path, const std::string& png_path);
 
 }  // namespace host

@@ -152,6 +152,33 @@ TEST_F(Plot, SvgDrawsPenUpMovesDashed) {
   EXPECT_NE(read_all(svg_).find("stroke-dasharray"), std::string::npos);
 }
 
+TEST_F(Plot, SvgDrawsEachLayerInItsColourThroughThePlotFrame) {
+  const PlotInput in = rectangle_input();
+  write_plot(in, svg_, "");
+  const std::string svg = read_all(svg_);
+  // The drawing (light blue, 5 px), the pen-up move (grey, dashed), the cut (red), in order.
+  const size_t drawing = svg.find("stroke=\"rgb(140,191,242)\" stroke-width=\"5\"");
+  const size_t rapid = svg.find("stroke=\"rgb(115,115,115)\" stroke-width=\"0.8\"");
+  const size_t cut = svg.find("stroke=\"rgb(191,13,13)\" stroke-width=\"1.2\"");
+  ASSERT_NE(drawing, std::string::npos) << svg;
+  ASSERT_NE(rapid, std::string::npos) << svg;
+  ASSERT_NE(cut, std::string::npos) << svg;
+  EXPECT_LT(drawing, rapid);
+  EXPECT_LT(rapid, cut);
+  // The drawing's rectangle at its pixels: (0, 0) mm first, (100, 50) mm third.
+  const PlotFrame f = plot_frame(in);
+  const Point2 a = f.to_px({0, 0}), c = f.to_px({100, 50});
+  std::ostringstream corners;
+  corners << "d=\"M" << a.x() << " " << a.y() << " L";
+  EXPECT_NE(svg.find(corners.str(), drawing), std::string::npos) << corners.str() << "\n" << svg;
+  std::ostringstream far;
+  far << " " << c.x() << " " << c.y() << " ";
+  EXPECT_NE(svg.find(far.str(), drawing), std::string::npos) << far.str();
+  // Text as text: the title, and the scale bar's length.
+  EXPECT_NE(svg.find(">rectangle test</text>"), std::string::npos);
+  EXPECT_NE(svg.find(" mm</text>"), std::string::npos);
+}
+
 TEST_F(Plot, UnwritablePathIsReportedWithTheFileName) {
   try {
     write_plot(rectangle_input(), "", "/nonexistent/dir/p.png");
