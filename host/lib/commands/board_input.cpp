@@ -407,7 +407,8 @@ std::vector<BoardToolPath> board_tool_paths(const pcb::BoardJob& job, int chord_
       case PlanStep::kSpline:
         if (!down || s.curve < 0 || s.curve == last_curve) break;
         last_curve = s.curve;
-        for (const Point2& p : firmware_points_mm(plan.curves[s.curve].spline(), chord_tolerance_um))
+        for (const Point2& p :
+             firmware_points_mm(plan.curves[s.curve].spline(), chord_tolerance_um))
           add(p);
         at = Point2(s.to.x_um * 1e-3, s.to.y_um * 1e-3);
         break;

@@ -226,7 +226,8 @@ TEST(ServerApi, BadRequestsAreRefusedWithAReasonAndStoreNothing) {
   refused(server.control(id, R"({"action": "override", "percent": 500})"), 400, "percent");
   refused(server.control(id, R"({"action": "override", "percent": "fast"})"), 400, "percent");
   refused(server.control(999, R"({"action": "hold"})"), 404, "no such job");
-  refused(server.control(id, R"({"action": "hold"})"), 409, "not running");
+  refused(server.control(id, R"({"action": "hold"})"), 409,
+          "job 1 is queued: hold applies to a running job only");
   refused(server.control(id, R"({"action": "requeue"})"), 409, "re-queued");
   refused(client.Post(fmt::format("/api/jobs/{}/priority", id).c_str(), server.auth(),
                       R"({"priority": "high"})", "application/json"),
