@@ -103,15 +103,17 @@ inline std::string fail_queued(char mark) {
          " AND state = 'queued'";
 }
 
-// ?1 id.
+// ?1 id. A queued job's message is cleared: the last run's verdict no longer applies
+// (an outside tester saw a requeued job still saying why it had failed).
 inline std::string requeue(char mark, bool continue_job) {
   return continue_job
-             ? "UPDATE jobs SET state = 'queued', machine = '', owner = '',"
+             ? "UPDATE jobs SET state = 'queued', machine = '', owner = '', message = '',"
                " start_curve = resume_curve WHERE id = " +
                    param(mark, 1) +
                    " AND state = 'interrupted'"
                    " AND (resume_curve >= 0 OR resume_index >= 0 OR executed = 0)"
-             : "UPDATE jobs SET state = 'queued', machine = '', owner = '', start_curve = -1,"
+             : "UPDATE jobs SET state = 'queued', machine = '', owner = '', message = '',"
+               " start_curve = -1,"
                " resume_curve = -1, resume_index = -1, resume_point = 0, resume_job_id = -1"
                " WHERE id = " +
                    param(mark, 1) + " AND state IN ('interrupted', 'aborted', 'failed')";

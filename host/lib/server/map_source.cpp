@@ -32,7 +32,7 @@ bool is_flipped_from(const DataFolder& data, const JobRecord& job, const JobReco
 std::string flipped_source_ended_text(const JobRecord& from) {
   return fmt::format(
       "job {} ended {} before its side was completed{}: the blank is not to be turned over "
-      "(continue or requeue job {}, then upload this side again)",
+      "(continue or requeue job {}, then requeue this job)",
       from.id, state_name(from.state), from.message.empty() ? "" : " (" + from.message + ")",
       from.id);
 }

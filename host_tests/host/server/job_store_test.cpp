@@ -236,12 +236,14 @@ TEST(SqliteJobStore, ProgressSavedWhileRunningMakesAnInterruptedJobContinuable) 
   EXPECT_EQ(r.resume_job_id, 0x5A17);
   EXPECT_TRUE(store.requeue(id, true));
   EXPECT_EQ(store.get(id)->resume_index, 12);
+  EXPECT_EQ(store.get(id)->message, "");
   // Re-run from the start instead: the position is forgotten.
   ASSERT_TRUE(store.claim(MachineFit{}, "m", lease));
   ASSERT_TRUE(store.finish(id, lease, JobState::kFailed, "alarm", p));
   EXPECT_TRUE(store.requeue(id, false));
   EXPECT_EQ(store.get(id)->resume_index, -1);
   EXPECT_EQ(store.get(id)->resume_curve, -1);
+  EXPECT_EQ(store.get(id)->message, "");  // not the failed run's "alarm"
 }
 
 // A server that dies between the claim and its first save leaves the job interrupted with
