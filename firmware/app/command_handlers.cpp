@@ -11,24 +11,20 @@ namespace app {
 
 using proto::ErrorCode;
 
-// Decodes the frame as its table row's message (one walker, proto::decode_command) and calls
-// that row's handler (#I, #? and #T never come here: the dispatcher answers them).
+// Decodes the frame as its table row's message (one walker, proto::decode_command_row) and
+// calls that row's handler (#I, #? and #T never come here: the dispatcher answers them). The
+// letter is looked up once, by proto::command_row, for both.
 ErrorCode Application::handle(const proto::Frame& f, uint8_t* detail) {
-  struct CommandRoute {
-    uint8_t letter;
-    ErrorCode (*call)(Application* app, const proto::AnyCommand& m, uint8_t seq, uint8_t* detail);
-  };
-  static const CommandRoute kRoutes[] = {APP_COMMAND_ROUTES()};
+  typedef ErrorCode (*CommandCall)(Application * app, const proto::AnyCommand& m, uint8_t seq,
+                                   uint8_t* detail);
+  static const CommandCall kRoutes[] = {APP_COMMAND_ROUTES()};
   *detail = 0;
-  const uint8_t n = (uint8_t)(sizeof kRoutes / sizeof kRoutes[0]);
-  for (uint8_t i = 0; i < n; ++i) {
-    if (kRoutes[i].letter != f.letter) continue;
-    proto::AnyCommand m;
-    const ErrorCode e = proto::decode_command(f.letter, f.payload, f.length, &m);
-    if (e != ErrorCode::kOk) return e;
-    return kRoutes[i].call(this, m, f.seq, detail);
-  }
-  return ErrorCode::kUnknownCommand;
+  const uint8_t row = proto::command_row(f.letter);
+  if (row == proto::kNoCommandRow || kRoutes[row] == 0) return ErrorCode::kUnknownCommand;
+  proto::AnyCommand m;
+  const ErrorCode e = proto::decode_command_row(row, f.payload, f.length, &m);
+  if (e != ErrorCode::kOk) return e;
+  return kRoutes[row](this, m, f.seq, detail);
 }
 
 ErrorCode Application::store(const proto::Frame& f, uint8_t* detail) {

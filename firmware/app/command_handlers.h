@@ -35,10 +35,16 @@
   PROTO_MESSAGE_TABLE(APP_DECLARE_HANDLER_ROW, APP_HANDLER_SKIP, APP_HANDLER_SKIP, \
                       APP_HANDLER_SKIP, APP_HANDLER_SKIP, APP_HANDLER_SKIP)
 
-// The routing table's rows (a CommandRoute initialiser): the letter and its call_<handler>.
-#define APP_ROUTE(Type, name, handler) {proto::name, &Application::call_##handler},
+// The routing table's rows (a CommandCall initialiser), one per command row of the table in
+// its order (proto::command_row()): its call_<handler>, 0 for the rows without a handler.
+#define APP_ROUTE(Type, name, handler) &Application::call_##handler,
 #define APP_ROUTE_ROW(Type, name, letter, role, display, reply, handler, check) \
-  APP_IF_HANDLED(role, APP_ROUTE, Type, name, handler)
+  APP_ROUTE_##role(Type, name, handler)
+#define APP_ROUTE_kImmediate(Type, name, handler) 0,
+#define APP_ROUTE_kRealtime APP_ROUTE
+#define APP_ROUTE_kJobCommand APP_ROUTE
+#define APP_ROUTE_kSplineData APP_ROUTE
+#define APP_ROUTE_kJobMark APP_ROUTE
 #define APP_COMMAND_ROUTES()                                                               \
   PROTO_MESSAGE_TABLE(APP_ROUTE_ROW, APP_HANDLER_SKIP, APP_HANDLER_SKIP, APP_HANDLER_SKIP, \
                       APP_HANDLER_SKIP, APP_HANDLER_SKIP)

@@ -386,17 +386,16 @@ const uint8_t* bytes_of(const Msg& m) {
   return reinterpret_cast<const uint8_t*>(&m);
 }
 
-// A command's row for decode_command: its letter, fields and extra check (on the bytes of
-// the struct).
+// A command's row for decode_command_row (in command_row() order): its fields and extra
+// check (on the bytes of the struct).
 struct CommandCodec {
-  uint8_t letter;
   const FieldSpec* fields;
   ExtraCheck check;
 };
 
 // NOLINTBEGIN(bugprone-macro-parentheses): the arguments are type and function names.
 #define PROTO_CMD_CODEC(Type, name, letter, role, display, reply, handler, check) \
-  {letter, k##Type##Fields, &check},
+  {k##Type##Fields, &check},
 #define PROTO_CMD_CODEC_SKIP(...)
 // NOLINTEND(bugprone-macro-parentheses)
 const CommandCodec kCommandCodecs[] = {
@@ -448,15 +447,15 @@ ErrorCode decode_fields(const uint8_t* bytes, uint8_t length, uint8_t* msg, cons
 
 }  // namespace
 
+ErrorCode decode_command_row(uint8_t row, const uint8_t* bytes, uint8_t length, AnyCommand* msg) {
+  const CommandCodec& c = kCommandCodecs[row];
+  return decode_fields(bytes, length, reinterpret_cast<uint8_t*>(msg), c.fields, c.check);
+}
+
 ErrorCode decode_command(uint8_t letter, const uint8_t* bytes, uint8_t length, AnyCommand* msg) {
-  uint8_t* m = reinterpret_cast<uint8_t*>(msg);
-  const uint8_t n = (uint8_t)(sizeof kCommandCodecs / sizeof kCommandCodecs[0]);
-  for (uint8_t i = 0; i < n; ++i) {
-    const CommandCodec& c = kCommandCodecs[i];
-    if (c.letter != letter) continue;
-    return decode_fields(bytes, length, m, c.fields, c.check);
-  }
-  return ErrorCode::kUnknownCommand;
+  const uint8_t row = command_row(letter);
+  if (row == kNoCommandRow) return ErrorCode::kUnknownCommand;
+  return decode_command_row(row, bytes, length, msg);
 }
 
 bool is_known_error(uint8_t code) {

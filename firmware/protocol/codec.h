@@ -54,6 +54,9 @@ union AnyCommand {
 // member of its type: what decode() of that type returns, or kUnknownCommand when no
 // command has the letter. One walker for every command: no decoder per message type.
 ErrorCode decode_command(uint8_t letter, const uint8_t* bytes, uint8_t length, AnyCommand* msg);
+// The same for the command of that row (command_row(letter), not kNoCommandRow): for a caller
+// that has looked the letter up already.
+ErrorCode decode_command_row(uint8_t row, const uint8_t* bytes, uint8_t length, AnyCommand* msg);
 
 // Decodes a received frame's payload into msg after checking the letter matches.
 template <typename Msg>

@@ -11,6 +11,21 @@ bool is_frame_letter(uint8_t letter) {
   return (letter >= 'A' && letter <= 'Z') || letter == '?';
 }
 
+uint8_t command_row(uint8_t letter) {
+#define PROTO_ROW_LETTER(Type, name, letter_value, role, display, reply, handler, check) \
+  (uint8_t)(letter_value),
+#define PROTO_ROW_SKIP(...)
+  static const uint8_t kLetters[] = {PROTO_MESSAGE_TABLE(PROTO_ROW_LETTER, PROTO_ROW_SKIP,
+                                                         PROTO_ROW_SKIP, PROTO_ROW_SKIP,
+                                                         PROTO_ROW_SKIP, PROTO_ROW_SKIP)};
+#undef PROTO_ROW_LETTER
+#undef PROTO_ROW_SKIP
+  for (uint8_t i = 0; i < (uint8_t)sizeof kLetters; ++i) {
+    if (kLetters[i] == letter) return i;
+  }
+  return kNoCommandRow;
+}
+
 // The kind follows from the command's role (the queued roles differ only in what they do).
 FrameKind command_kind(uint8_t letter) {
   switch (command_role(letter)) {

@@ -65,29 +65,27 @@ enum class CommandRole : uint8_t {
   kJobMark = 5      // queued: #J, numbers what follows, no slot, no number
 };
 
+// No command has the letter (command_row()).
+static const uint8_t kNoCommandRow = 0xFF;
+
+// The letter's row among the message table's commands (CMD rows, in table order), or
+// kNoCommandRow: the one letter look-up that command_role(), the codec's decode_command_row()
+// and the application's handler routes share (frame.cpp).
+uint8_t command_row(uint8_t letter);
+
 // The role of a command letter (kUnknown: not a command); command_kind() and the host's job
 // tools use it.
 inline CommandRole command_role(uint8_t letter) {
-  // The command letters and their roles as two lists in table order (a look-up loop is
-  // shorter code than a comparison per command).
-#define PROTO_ROLE_LETTER(Type, name, letter_value, role, display, reply, handler, check) \
-  (uint8_t)(letter_value),
 #define PROTO_ROLE_OF(Type, name, letter_value, role, display, reply, handler, check) \
   (uint8_t) CommandRole::role,
 #define PROTO_ROLE_SKIP(...)
-  static const uint8_t kLetters[] = {PROTO_MESSAGE_TABLE(PROTO_ROLE_LETTER, PROTO_ROLE_SKIP,
-                                                         PROTO_ROLE_SKIP, PROTO_ROLE_SKIP,
-                                                         PROTO_ROLE_SKIP, PROTO_ROLE_SKIP)};
   static const uint8_t kRoles[] = {PROTO_MESSAGE_TABLE(PROTO_ROLE_OF, PROTO_ROLE_SKIP,
                                                        PROTO_ROLE_SKIP, PROTO_ROLE_SKIP,
                                                        PROTO_ROLE_SKIP, PROTO_ROLE_SKIP)};
-#undef PROTO_ROLE_LETTER
 #undef PROTO_ROLE_OF
 #undef PROTO_ROLE_SKIP
-  for (uint8_t i = 0; i < (uint8_t)sizeof kLetters; ++i) {
-    if (kLetters[i] == letter) return (CommandRole)kRoles[i];
-  }
-  return CommandRole::kUnknown;
+  const uint8_t row = command_row(letter);
+  return row == kNoCommandRow ? CommandRole::kUnknown : (CommandRole)kRoles[row];
 }
 
 // Every coded error of the protocol, one list. Frame-level codes come from the parser;

@@ -338,4 +338,22 @@ TEST(DocTable, CommandRoleAndKindFollowTheRoleColumn) {
   EXPECT_EQ(proto::command_role('O'), proto::CommandRole::kUnknown);  // a reply letter only
 }
 
+// command_row() numbers the commands in table order (the codec's decode_command_row and the
+// application's routes are indexed by it) and knows no other byte.
+TEST(DocTable, CommandRowIsTheCommandsTableOrder) {
+  std::set<uint8_t> letters;
+  uint8_t row = 0;
+  for (const auto& m : declared()) {
+    if (m.reply) continue;
+    EXPECT_EQ(proto::command_row(static_cast<uint8_t>(m.letter)), row) << m.letter;
+    letters.insert(static_cast<uint8_t>(m.letter));
+    ++row;
+  }
+  EXPECT_GT(row, 20);
+  for (int b = 0; b < 256; ++b) {
+    if (letters.count(static_cast<uint8_t>(b)) != 0) continue;
+    EXPECT_EQ(proto::command_row(static_cast<uint8_t>(b)), proto::kNoCommandRow) << b;
+  }
+}
+
 }  // namespace
