@@ -40,8 +40,9 @@ uint32_t isqrt_rounded(uint32_t n) {
   return n - r * r > r ? r + 1U : r;  // (r + 1/2)^2 = r^2 + r + 1/4
 }
 
-// |v| <= limit, for any v (negating INT32_MIN would overflow).
-bool within(int32_t v, int32_t limit) {
+// |v| <= limit, for any v (negating INT32_MIN would overflow). Out of line: contour_middle
+// checks three values (-34 B on the AVR proxy).
+__attribute__((noinline)) bool within(int32_t v, int32_t limit) {
   return v >= -limit && v <= limit;
 }
 
