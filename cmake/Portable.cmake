@@ -47,7 +47,7 @@ endfunction()
 # cost more code than the loop saves (-0.2 kB on the AVR image, docs/performance.md).
 # Host builds unchanged.
 set(ENGRAVER_SIZE_OVER_SPEED_FLAGS
-    "-fno-move-loop-invariants -fno-optimize-sibling-calls -fno-tree-dominator-opts -fno-jump-tables -fno-tree-copy-prop -fno-tree-loop-ivcanon -fno-forward-propagate -fno-tree-vrp -fno-ipa-sra"
+    "-fno-move-loop-invariants -fno-optimize-sibling-calls -fno-tree-dominator-opts -fno-jump-tables -fno-tree-copy-prop -fno-tree-loop-ivcanon -fno-forward-propagate -fno-tree-vrp -fno-ipa-sra -fno-tree-loop-im"
     CACHE STRING
     "compile options of the size-over-speed firmware code (GCC 4.5 options: XC16 takes them too)")
 function(engraver_size_over_speed kind)
