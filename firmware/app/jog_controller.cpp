@@ -1,7 +1,7 @@
 // Manual zeroing with the joystick (see jog_controller.h).
 #include "firmware/app/jog_controller.h"
 
-#include <string.h>  // memset
+#include <string.h>  // memcpy, memset
 
 #include "hal/interfaces/motion_axes.h"      // LimitBits
 #include "hal/interfaces/operator_inputs.h"  // InputBits
@@ -43,7 +43,7 @@ void JogController::set_velocity(uint8_t axis, int8_t sign, uint8_t limits,
 JogResult JogController::tick(uint8_t inputs, uint8_t limits,
                               const int32_t pos_usteps[config::kAxisCount],
                               int16_t v_units[config::kAxisCount]) {
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) v_units[i] = 0;
+  memset(v_units, 0, config::kAxisCount * sizeof v_units[0]);
   const uint8_t pressed = (uint8_t)(inputs & ~prev_inputs_);
   prev_inputs_ = inputs;
   if (phase_ == kSettling) {
@@ -65,7 +65,7 @@ JogResult JogController::tick(uint8_t inputs, uint8_t limits,
     confirm_ = (pressed & hal::kButtonClear) == 0;
     phase_ = kSettling;
     still_ticks_ = 0;
-    for (uint8_t i = 0; i < config::kAxisCount; ++i) last_pos_[i] = pos_usteps[i];
+    memcpy(last_pos_, pos_usteps, sizeof last_pos_);
     return JogResult::kRunning;
   }
   if (pressed & hal::kButtonZ) z_mode_ = !z_mode_;

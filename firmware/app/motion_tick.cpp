@@ -1,7 +1,7 @@
 // The 1 ms tick (see motion_tick.h and docs/firmware.md).
 #include "firmware/app/motion_tick.h"
 
-#include <string.h>  // memset
+#include <string.h>  // memcpy, memset
 
 namespace app {
 
@@ -28,7 +28,7 @@ void MotionTick::tick_1ms() {
   uint8_t limits = 0;
   int16_t v[config::kAxisCount] = {0, 0, 0};
   if (!motion_->read_actual_usteps(pos) || !motion_->read_limits(&limits)) {
-    for (uint8_t i = 0; i < config::kAxisCount; ++i) pos[i] = pos_[i];
+    memcpy(pos, pos_, sizeof pos);
     latch_alarm(kTickAlarmChip);
   }
   check_drivers();
@@ -58,7 +58,7 @@ void MotionTick::tick_1ms() {
     if (r != JogResult::kRunning) {
       if (r == JogResult::kConfirmed) {
         motion_->set_actual_usteps(jog_.zero_usteps());
-        for (uint8_t i = 0; i < config::kAxisCount; ++i) pos[i] = jog_.zero_usteps()[i];
+        memcpy(pos, jog_.zero_usteps(), sizeof pos);
       }
       jog_confirmed_ = r == JogResult::kConfirmed ? 1 : 0;
       ++jogs_done_;
@@ -67,10 +67,10 @@ void MotionTick::tick_1ms() {
     }
   }
   if (mode_ == (uint8_t)TickMode::kAlarm) {
-    for (uint8_t i = 0; i < config::kAxisCount; ++i) v[i] = 0;
+    memset(v, 0, sizeof v);
   }
   motion_->write_velocity_units(v);
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) pos_[i] = pos[i];
+  memcpy(pos_, pos, sizeof pos_);
   publish(pos, limits);
 }
 
@@ -179,7 +179,7 @@ void MotionTick::publish(const int32_t pos[config::kAxisCount], uint8_t limits) 
   TickStatus* const slot = status_.reserve();
   if (slot == 0) return;
   TickStatus& s = *slot;
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) s.pos_usteps[i] = pos[i];
+  memcpy(s.pos_usteps, pos, sizeof s.pos_usteps);
   s.ms = ms_;
   s.items_done = path_.items_done();
   s.item_points = path_.item_points();

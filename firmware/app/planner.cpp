@@ -1,7 +1,7 @@
 // Look-ahead planner: segment geometry, corner speeds, capture radii, backward pass.
 #include "firmware/app/planner.h"
 
-#include <string.h>  // memset
+#include <string.h>  // memcpy, memmove, memset
 
 #include "firmware/app/vector3.h"       // normalise3, length3
 #include "firmware/core/divide.h"       // div_u32_by_u16
@@ -118,7 +118,7 @@ void Planner::init(const AxisScaling& scaling, const PlannerSettings& settings) 
 }
 
 void Planner::set_origin(const int32_t at_um[config::kAxisCount]) {
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) last_um_[i] = at_um[i];
+  memcpy(last_um_, at_um, sizeof last_um_);
   set_planned_from_machine();
   have_dir_ = false;
   last_cruise_um_s_ = 0;
@@ -229,7 +229,7 @@ inline uint16_t Planner::capture_for(const int16_t in_q14[3], const int16_t out_
 // highest height by more than nothing is travel (its offset is that height), else the
 // surface's offset where the tool stands comes off.
 void Planner::set_planned_from_machine() {
-  for (uint8_t i = 0; i < config::kAxisCount; ++i) planned_um_[i] = last_um_[i];
+  memcpy(planned_um_, last_um_, sizeof planned_um_);
   split_.left = 0;
   if (map_ == 0 || !map_->active()) return;
   const int32_t travel_z = last_um_[2] - map_->highest_um();
@@ -282,7 +282,7 @@ bool Planner::push(CoordinateRing* ring, const int32_t target_um[config::kAxisCo
     --split_.left;
   }
   split_.left = 0;
-  for (uint8_t i = 0; i < 3; ++i) planned_um_[i] = target_um[i];
+  memcpy(planned_um_, target_um, sizeof planned_um_);
   return true;
 }
 
@@ -388,11 +388,9 @@ bool Planner::push_segment(CoordinateRing* ring, const int32_t target_um[config:
   }
   e.junction_max_um_s = cap;
   e.entry_max_um_s = 0;
-  ring->push(e);  // cannot fail: checked above, only this side adds
-  for (uint8_t i = 0; i < 3; ++i) {
-    last_um_[i] = target_um[i];
-    last_dir_q14_[i] = e.dir_q14[i];
-  }
+  ring->push(e);                                  // cannot fail: checked above, only this side adds
+  memmove(last_um_, target_um, sizeof last_um_);  // push_standing: target_um is last_um_
+  memcpy(last_dir_q14_, e.dir_q14, sizeof last_dir_q14_);
   last_cruise_um_s_ = e.cruise_max_um_s;
   if (e.length_um != 0) last_length_um_ = e.length_um;
   have_dir_ = true;

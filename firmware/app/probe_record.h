@@ -4,6 +4,7 @@
 #define FIRMWARE_APP_PROBE_RECORD_H
 
 #include <stdint.h>  // int32_t, uint8_t, uint16_t
+#include <string.h>  // memcpy, memset
 
 #include "firmware/config/machine_config.h"  // kAxisCount
 #include "firmware/protocol/messages.h"      // ProbeResultReply
@@ -12,13 +13,11 @@ namespace app {
 
 class ProbeRecord {
  public:
-  ProbeRecord() : result_(0), count_(0) {
-    for (uint8_t i = 0; i < config::kAxisCount; ++i) at_um_[i] = 0;
-  }
+  ProbeRecord() : result_(0), count_(0) { memset(at_um_, 0, sizeof at_um_); }
   void note(uint8_t result, const int32_t at_um[config::kAxisCount]) {
     result_ = result;
     count_ = (uint16_t)(count_ + 1U);
-    for (uint8_t i = 0; i < config::kAxisCount; ++i) at_um_[i] = at_um[i];
+    memcpy(at_um_, at_um, sizeof at_um_);
   }
   int32_t z_um() const { return at_um_[config::kAxisZ]; }
   void fill(proto::ProbeResultReply* r) const {
