@@ -46,10 +46,10 @@ endfunction()
 # and the AVR proxy): the addresses and values hoisted out of a loop and held across it
 # cost more code than the loop saves (-0.2 kB on the AVR image, docs/performance.md).
 # Host builds unchanged.
+# A plain variable, not a cache entry: a build tree configured before keeps a cache entry's
+# old value, so a changed list here would not reach it (the ratchet would fail there).
 set(ENGRAVER_SIZE_OVER_SPEED_FLAGS
-    "-fno-move-loop-invariants -fno-optimize-sibling-calls -fno-tree-dominator-opts -fno-jump-tables -fno-tree-copy-prop -fno-tree-loop-ivcanon -fno-forward-propagate -fno-tree-vrp -fno-ipa-sra -fno-tree-loop-im"
-    CACHE STRING
-    "compile options of the size-over-speed firmware code (GCC 4.5 options: XC16 takes them too)")
+    "-fno-move-loop-invariants -fno-optimize-sibling-calls -fno-tree-dominator-opts -fno-jump-tables -fno-tree-copy-prop -fno-tree-loop-ivcanon -fno-forward-propagate -fno-tree-vrp -fno-ipa-sra -fno-tree-loop-im")
 function(engraver_size_over_speed kind)
   if(ENGRAVER_PLATFORM STREQUAL "host")
     return()
