@@ -4,7 +4,6 @@
 // probing where it is, and the machine's state after an abort at once.
 #include <gtest/gtest.h>
 
-
 #include <set>  // std::set
 
 #include "host/lib/heightmap/controller_map.h"  // ProbeMotion
