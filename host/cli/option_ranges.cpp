@@ -17,12 +17,12 @@ namespace {
 
 using defaults::Range;
 
-OptionRange real(const char* option, const Range& r, const char* unit) {
-  return OptionRange{option, r.min, r.max, unit, false};
+OptionRange real(const char* option, const Range& r) {
+  return OptionRange{option, r.min, r.max, r.unit, false};
 }
 
 OptionRange count(const char* option, const Range& r) {
-  return OptionRange{option, r.min, r.max, "", true};
+  return OptionRange{option, r.min, r.max, r.unit, true};
 }
 
 std::string refuse_non_number(std::string& value) {
@@ -109,45 +109,45 @@ std::string number_refusal(const std::string& value) {
 const std::vector<OptionRange>& option_ranges() {
   using namespace defaults;
   static const std::vector<OptionRange> table = {
-      real("--feed", kFeedRangeMmPerS, "mm/s"),
-      real("--z-up", kHeightAboveBoardRangeMm, "mm"),
-      real("--margin", kMarginRangeMm, "mm"),
-      real("--work", kWorkAreaRangeMm, "mm"),
-      real("--tool-width", kToolWidthRangeMm, "mm"),
+      real("--feed", kFeedRangeMmPerS),
+      real("--z-up", kHeightAboveBoardRangeMm),
+      real("--margin", kMarginRangeMm),
+      real("--work", kWorkAreaRangeMm),
+      real("--tool-width", kToolWidthRangeMm),
       count("--passes", kPassesRange),
-      real("--overlap", kOverlapRange, ""),
-      real("--clearance", kClearanceRangeMm, "mm"),
-      real("--clearing-tool", kClearingToolRangeMm, "mm"),
+      real("--overlap", kOverlapRange),
+      real("--clearance", kClearanceRangeMm),
+      real("--clearing-tool", kClearingToolRangeMm),
       count("--narrow-passes", kPassesRange),
-      real("--depth", kIsolationDepthRangeMm, "mm"),
-      real("--drill-depth", kDrillDepthRangeMm, "mm"),
-      real("--drill-start", kHeightAboveBoardRangeMm, "mm"),
-      real("--drill-feed", kFeedRangeMmPerS, "mm/s"),
-      real("--cutter", kCutterRangeMm, "mm"),
-      real("--cut-depth", kCutDepthRangeMm, "mm"),
-      real("--cut-step", kCutDepthRangeMm, "mm"),
-      real("--cut-feed", kFeedRangeMmPerS, "mm/s"),
-      real("--tab-width", kTabWidthRangeMm, "mm"),
+      real("--depth", kIsolationDepthRangeMm),
+      real("--drill-depth", kDrillDepthRangeMm),
+      real("--drill-start", kHeightAboveBoardRangeMm),
+      real("--drill-feed", kFeedRangeMmPerS),
+      real("--cutter", kCutterRangeMm),
+      real("--cut-depth", kCutDepthRangeMm),
+      real("--cut-step", kCutDepthRangeMm),
+      real("--cut-feed", kFeedRangeMmPerS),
+      real("--tab-width", kTabWidthRangeMm),
       count("--tabs", kTabsRange),
-      real("--tab-spacing", kTabSpacingRangeMm, "mm"),
-      real("--tab-height", kTabHeightRangeMm, "mm"),
-      real("--align-diameter", kAlignDiameterRangeMm, "mm"),
-      real("--align-depth", kAlignDepthRangeMm, "mm"),
-      real("--align-measured", kMachinePositionRangeMm, "mm"),
+      real("--tab-spacing", kTabSpacingRangeMm),
+      real("--tab-height", kTabHeightRangeMm),
+      real("--align-diameter", kAlignDiameterRangeMm),
+      real("--align-depth", kAlignDepthRangeMm),
+      real("--align-measured", kMachinePositionRangeMm),
       // Not board options: drawings', the link's and the height map's.
-      real("--tol", kChordToleranceRangeMm, "mm"),
-      real("--scale", kScaleRange, ""),
-      real("--chain-tol", kChainToleranceRangeMm, "mm"),
-      real("--offset", offset_range_mm(), "mm"),
-      real("--tool-radius", kToolRadiusRangeMm, "mm"),
-      real("--fit-tol", kFitToleranceRangeMm, "mm"),
-      OptionRange{"--poll-ms", kPollIntervalRangeMs.min, kPollIntervalRangeMs.max, "ms", true},
-      real("--probe-spacing", kProbeSpacingRangeMm, "mm"),
+      real("--tol", kChordToleranceRangeMm),
+      real("--scale", kScaleRange),
+      real("--chain-tol", kChainToleranceRangeMm),
+      real("--offset", offset_range_mm()),
+      real("--tool-radius", kToolRadiusRangeMm),
+      real("--fit-tol", kFitToleranceRangeMm),
+      count("--poll-ms", kPollIntervalRangeMs),
+      real("--probe-spacing", kProbeSpacingRangeMm),
       count("--probe-grid", kProbeGridRange),
-      real("--probe-margin", kProbeMarginRangeMm, "mm"),
-      real("--outlier-limit", kOutlierLimitRangeUm, "um"),
-      real("--vbit-angle", kVbitAngleRangeDeg, "degrees"),
-      real("--copper-um", kCopperRangeUm, "um"),
+      real("--probe-margin", kProbeMarginRangeMm),
+      real("--outlier-limit", kOutlierLimitRangeUm),
+      real("--vbit-angle", kVbitAngleRangeDeg),
+      real("--copper-um", kCopperRangeUm),
   };
   return table;
 }

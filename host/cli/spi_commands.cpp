@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>  // CLI::App
 
 #include <iostream>  // std::cout, std::cerr
+#include <string>    // std::string
 
 #include "host/cli/command_registry.h"  // CommandRegistrar
 #include "host/cli/exit_codes.h"        // CommandFailure
@@ -63,31 +64,46 @@ host::spi::FramerOptions finish(const CaptureOptions& o) {
   return f;
 }
 
+// decode and diff: a CAPTURE read with the capture options into Options::framer, then `run`
+// (run_decode, run_diff); exit 1 ends the command saying `exit1_message`, exit 2 that the
+// capture is unusable. The options outlive parsing: statics, one set per Options (each
+// command is registered once).
+template <typename Options>
+struct CaptureCommand {
+  CLI::App* cmd;
+  Options* options;
+};
+template <typename Options>
+CaptureCommand<Options> add_capture_command(
+    CLI::App* spi, const std::string& name, const std::string& help,
+    int (*run)(const Options&, std::ostream&, std::ostream&), const char* exit1_message) {
+  static Options options;
+  static CaptureOptions capture;
+  CLI::App* cmd = spi->add_subcommand(name, help);
+  cmd->add_option("CAPTURE", options.capture, "capture file")->required();
+  add_capture_options(cmd, &capture);
+  const std::string unusable = "spi " + name + ": capture unusable (exit 2)";
+  cmd->callback([run, exit1_message, unusable]() {
+    options.framer = finish(capture);
+    const int rc = run(options, std::cout, std::cerr);
+    finish_with(rc, rc == 1 ? exit1_message : unusable.c_str());
+  });
+  return {cmd, &options};
+}
+
 void add_spi_commands(CLI::App& app) {
   CLI::App* spi = app.add_subcommand("spi",
                                      "SPI bench testing: decode captures, expected "
                                      "datagrams, diff");
   spi->require_subcommand(1);
 
-  // Option storage must outlive parsing: function statics (registered once).
-  static CaptureOptions decode_store;
-  static host::spi::DecodeOptions decode_run;
-  CaptureOptions* decode_opts = &decode_store;
-  host::spi::DecodeOptions* decode = &decode_run;
-  CLI::App* dec = spi->add_subcommand(
-      "decode",
+  const auto [dec, decode] = add_capture_command<host::spi::DecodeOptions>(
+      spi, "decode",
       "Decode a capture (VCD, sigrok .sr, Saleae digital CSV, Saleae SPI-analyser CSV) into "
-      "datagrams. Exit 0 clean, 1 frames flagged, 2 unusable.");
-  dec->add_option("CAPTURE", decode->capture, "capture file")->required();
-  add_capture_options(dec, decode_opts);
+      "datagrams. Exit 0 clean, 1 frames flagged, 2 unusable.",
+      host::spi::run_decode, "spi decode: datagrams with frame errors (exit 1)");
   dec->add_flag("--json", decode->json, "JSON output with stable keys");
   dec->add_flag("--raw", decode->raw, "hex words only (non-TMC428 captures)");
-  dec->callback([decode, decode_opts]() {
-    decode->framer = finish(*decode_opts);
-    int rc = host::spi::run_decode(*decode, std::cout, std::cerr);
-    finish_with(rc, rc == 1 ? "spi decode: datagrams with frame errors (exit 1)"
-                            : "spi decode: capture unusable (exit 2)");
-  });
 
   static host::spi::ExpectOptions expect_run;
   host::spi::ExpectOptions* expect = &expect_run;
@@ -112,18 +128,13 @@ void add_spi_commands(CLI::App& app) {
     finish_with(host::spi::run_expect(*expect, std::cout, std::cerr), "spi expect: failed");
   });
 
-  static CaptureOptions diff_store;
-  static host::spi::DiffOptions diff_run;
-  CaptureOptions* diff_opts = &diff_store;
-  host::spi::DiffOptions* diff = &diff_run;
-  CLI::App* dif = spi->add_subcommand(
-      "diff",
+  const auto [dif, diff] = add_capture_command<host::spi::DiffOptions>(
+      spi, "diff",
       "Align a capture's datagrams with an expected (golden) file. Marks: = same, ~ changed "
       "(same address byte), - expected but missing, + extra. Exit 0 match, 1 differ, "
-      "2 capture unusable.");
-  dif->add_option("CAPTURE", diff->capture, "capture file")->required();
+      "2 capture unusable.",
+      host::spi::run_diff, "spi diff: the capture differs (exit 1)");
   dif->add_option("EXPECTED", diff->expected, "golden file (from `spi expect`)")->required();
-  add_capture_options(dif, diff_opts);
   dif->add_option("--max-frame-errors", diff->max_error_fraction,
                   "fraction of datagrams with frame errors above which the capture is unusable")
       ->capture_default_str();
@@ -132,12 +143,6 @@ void add_spi_commands(CLI::App& app) {
   dif->add_flag("--within", diff->within,
                 "the expected datagrams may lie anywhere in the capture: datagrams before "
                 "and after them are not compared (e.g. init inside a long capture)");
-  dif->callback([diff, diff_opts]() {
-    diff->framer = finish(*diff_opts);
-    int rc = host::spi::run_diff(*diff, std::cout, std::cerr);
-    finish_with(rc, rc == 1 ? "spi diff: the capture differs (exit 1)"
-                            : "spi diff: capture unusable (exit 2)");
-  });
 }
 
 const host::cli::CommandRegistrar kRegisterSpi("spi", add_spi_commands);

@@ -90,49 +90,50 @@ inline constexpr uint32_t kSpindleSpinupMs = 2000;
 
 struct Range {
   double min, max;
+  const char* unit = "";  // as the refusals and --help give it: "mm", "mm/s"; "" for none
   // Written so that NaN is outside.
   bool holds(double v) const { return v >= min && v <= max; }
 };
-inline constexpr Range kToolWidthRangeMm{0.01, 5.0};
-inline constexpr Range kPassesRange{1, 50};              // isolation passes, and narrow passes
-inline constexpr Range kClearingToolRangeMm{0.0, 10.0};  // 0: no clearing tool
-inline constexpr Range kAlignDiameterRangeMm{0.1, 10.0};
-inline constexpr Range kAlignDepthRangeMm{0.1, 20.0};
+inline constexpr Range kToolWidthRangeMm{0.01, 5.0, "mm"};
+inline constexpr Range kPassesRange{1, 50};  // isolation passes, and narrow passes
+inline constexpr Range kClearingToolRangeMm{0.0, 10.0, "mm"};  // 0: no clearing tool
+inline constexpr Range kAlignDiameterRangeMm{0.1, 10.0, "mm"};
+inline constexpr Range kAlignDepthRangeMm{0.1, 20.0, "mm"};
 // The rest of the board options (host/cli/option_ranges.cpp holds the table by name).
 inline constexpr Range kOverlapRange{0.0, 0.9};  // a fraction of the tool width
-inline constexpr Range kClearanceRangeMm{0.0, 0.1};
-inline constexpr Range kIsolationDepthRangeMm{0.001, 5.0};
-inline constexpr Range kDrillDepthRangeMm{0.01, 20.0};
-inline constexpr Range kHeightAboveBoardRangeMm{0.1, 50.0};  // travel and drill start
-inline constexpr Range kFeedRangeMmPerS{0.1, 60.0};          // every feed and plunge feed
-inline constexpr Range kCutterRangeMm{0.1, 10.0};
-inline constexpr Range kCutDepthRangeMm{0.01, 20.0};  // the cut-out's depth and its step
-inline constexpr Range kTabWidthRangeMm{0.0, 100.0};  // 0: no tabs
-inline constexpr Range kTabsRange{0, 100};            // 0: no tabs
-inline constexpr Range kTabSpacingRangeMm{0.0, 10000.0};
-inline constexpr Range kTabHeightRangeMm{0.0, 20.0};
-inline constexpr Range kMarginRangeMm{0.0, 100.0};
-inline constexpr Range kWorkAreaRangeMm{1.0, 10000.0};      // each side
-inline constexpr Range kMachinePositionRangeMm{-1e4, 1e4};  // a measured position
+inline constexpr Range kClearanceRangeMm{0.0, 0.1, "mm"};
+inline constexpr Range kIsolationDepthRangeMm{0.001, 5.0, "mm"};
+inline constexpr Range kDrillDepthRangeMm{0.01, 20.0, "mm"};
+inline constexpr Range kHeightAboveBoardRangeMm{0.1, 50.0, "mm"};  // travel and drill start
+inline constexpr Range kFeedRangeMmPerS{0.1, 60.0, "mm/s"};        // every feed and plunge feed
+inline constexpr Range kCutterRangeMm{0.1, 10.0, "mm"};
+inline constexpr Range kCutDepthRangeMm{0.01, 20.0, "mm"};  // the cut-out's depth and its step
+inline constexpr Range kTabWidthRangeMm{0.0, 100.0, "mm"};  // 0: no tabs
+inline constexpr Range kTabsRange{0, 100};                  // 0: no tabs
+inline constexpr Range kTabSpacingRangeMm{0.0, 10000.0, "mm"};
+inline constexpr Range kTabHeightRangeMm{0.0, 20.0, "mm"};
+inline constexpr Range kMarginRangeMm{0.0, 100.0, "mm"};
+inline constexpr Range kWorkAreaRangeMm{1.0, 10000.0, "mm"};      // each side
+inline constexpr Range kMachinePositionRangeMm{-1e4, 1e4, "mm"};  // a measured position
 // The other number options of the command line (host/cli/option_ranges.cpp).
-inline constexpr Range kChordToleranceRangeMm{0.001, 1.0};  // --tol: every command's
+inline constexpr Range kChordToleranceRangeMm{0.001, 1.0, "mm"};  // --tol: every command's
 inline constexpr Range kScaleRange{0.001, 1000.0};
-inline constexpr Range kChainToleranceRangeMm{0.0, 1.0};
-inline constexpr Range kToolRadiusRangeMm{0.0, 10.0};  // --tool-side's offset
-inline constexpr Range kFitToleranceRangeMm{0.0, 0.1};
-inline constexpr Range kPollIntervalRangeMs{0, 1000};  // send's status poll; 0: always one
-inline constexpr Range kProbeSpacingRangeMm{1.0, 65.0};
+inline constexpr Range kChainToleranceRangeMm{0.0, 1.0, "mm"};
+inline constexpr Range kToolRadiusRangeMm{0.0, 10.0, "mm"};  // --tool-side's offset
+inline constexpr Range kFitToleranceRangeMm{0.0, 0.1, "mm"};
+inline constexpr Range kPollIntervalRangeMs{0, 1000, "ms"};  // send's status poll; 0: always one
+inline constexpr Range kProbeSpacingRangeMm{1.0, 65.0, "mm"};
 inline constexpr Range kProbeGridRange{2, 16};  // rows and columns each
-inline constexpr Range kProbeMarginRangeMm{0.0, 50.0};
-inline constexpr Range kOutlierLimitRangeUm{1.0, 1000.0};
-inline constexpr Range kVbitAngleRangeDeg{5.0, 150.0};
-inline constexpr Range kCopperRangeUm{1.0, 500.0};
+inline constexpr Range kProbeMarginRangeMm{0.0, 50.0, "mm"};
+inline constexpr Range kOutlierLimitRangeUm{1.0, 1000.0, "um"};
+inline constexpr Range kVbitAngleRangeDeg{5.0, 150.0, "degrees"};
+inline constexpr Range kCopperRangeUm{1.0, 500.0, "um"};
 // --offset X Y (machine = drawing + offset): within the machine's longest travel either way.
 inline Range offset_range_mm() {
   const double t = travel_mm(config::kAxisX) > travel_mm(config::kAxisY)
                        ? travel_mm(config::kAxisX)
                        : travel_mm(config::kAxisY);
-  return Range{-t, t};
+  return Range{-t, t, "mm"};
 }
 inline constexpr double kAlignDiameterMm = 3.0;  // alignment hole (pin) diameter
 inline constexpr double kAlignDepthMm = 3.0;     // through the blank into the spoil board

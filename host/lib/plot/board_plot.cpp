@@ -187,7 +187,7 @@ void draw_labels(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int 
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
   cairo_set_font_size(cr, 16);
   cairo_set_source_rgb(cr, 0, 0, 0);
-  cairo_move_to(cr, kSideMarginPx, 26);
+  cairo_move_to(cr, kSideMarginPx, kTitleBaselinePx);
   cairo_show_text(cr, in.title.c_str());
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, 12);

@@ -3,12 +3,12 @@
 #ifndef HOST_LIB_PLOT_BOARD_PLOT_STYLE_H
 #define HOST_LIB_PLOT_BOARD_PLOT_STYLE_H
 
+#include "host/lib/plot/plot_layout.h"
+
 namespace host {
 namespace board_plot_style {
 
-const double kTitleBandPx = 40.0;
-const double kBottomBandPx = 60.0;
-const double kSideMarginPx = 20.0;
+using namespace plot_layout;  // NOLINT: the bands, the same as the plan plot's
 
 struct Rgba {
   double r, g, b, a;

@@ -121,7 +121,7 @@ void legend_box(Svg& svg, double x, double y, const Rgba& c, const std::string& 
 // Title, legend, scale bar (as draw_scale_bar draws it).
 void labels(Svg& svg, const BoardPlotInput& in, const PlotFrame& f, int height_px) {
   svg << "<g font-family=\"sans-serif\" font-weight=\"bold\" font-size=\"16\">\n";
-  text_at(svg, kSideMarginPx, 26, in.title);
+  text_at(svg, kSideMarginPx, kTitleBaselinePx, in.title);
   svg << "</g>\n<g font-family=\"sans-serif\" font-size=\"12\">\n";
   const double y = height_px - kBottomBandPx / 2;
   LegendEntry shown[kLegendSize];

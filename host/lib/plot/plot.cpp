@@ -133,7 +133,7 @@ void render(cairo_t* cr, const PlotInput& in) {
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
   cairo_set_font_size(cr, 16);
   cairo_set_source_rgb(cr, 0, 0, 0);
-  text(cr, kSideMarginPx, 26, in.title);
+  text(cr, kSideMarginPx, kTitleBaselinePx, in.title);
   // Legend and scale bar in the bottom band.
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, 12);

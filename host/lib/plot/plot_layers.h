@@ -8,13 +8,12 @@
 #include <vector>      // std::vector
 
 #include "host/lib/plot/plot.h"
+#include "host/lib/plot/plot_layout.h"
 
 namespace host {
 namespace plot_layers {
 
-const double kTitleBandPx = 40.0;
-const double kBottomBandPx = 60.0;
-const double kSideMarginPx = 20.0;
+using namespace plot_layout;  // NOLINT: the bands, the same as the board plot's
 
 struct Rgb {
   double r, g, b;

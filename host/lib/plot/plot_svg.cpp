@@ -53,7 +53,7 @@ void legend_entry(SvgText& svg, double x, double y, const Rgb& c, double width, 
 // Title, legend and scale bar (as draw_scale_bar draws it, with round ends).
 void labels(SvgText& svg, const PlotInput& in, double bar_mm, double px_per_mm) {
   svg << "<g font-family=\"sans-serif\" font-weight=\"bold\" font-size=\"16\">\n";
-  text_at(svg, kSideMarginPx, 26, in.title);
+  text_at(svg, kSideMarginPx, kTitleBaselinePx, in.title);
   svg << "</g>\n<g font-family=\"sans-serif\" font-size=\"12\">\n";
   const double y = in.height_px - kBottomBandPx / 2;
   legend_entry(svg, kSideMarginPx, y, kDrawingColour, kDrawingWidthPx, false, "drawing");

@@ -29,6 +29,17 @@ std::string write_temp(const std::string& name, const std::string& text) {
   return path;
 }
 
+// The tool's stderr is read back and its file removed (one per test process was left in /tmp).
+TEST(Cli, ARunKeepsItsStderrApartAndLeavesNoFileBehind) {
+  const ToolRun r = run("");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find("A subcommand is required"), std::string::npos) << r.err;
+  const std::string err_file =
+      testing::TempDir() + "/engraver_stderr_" + std::to_string(getpid()) + ".txt";
+  EXPECT_NE(access(err_file.c_str(), F_OK), 0) << err_file << " was left behind";
+}
+
 TEST(Cli, HelpShowsAnExampleAndExitsZero) {
   const ToolRun r = run("--help");
   EXPECT_EQ(r.code, 0);

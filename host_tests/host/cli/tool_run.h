@@ -7,7 +7,7 @@
 #include <sys/wait.h>     // WIFEXITED, WEXITSTATUS
 #include <unistd.h>       // getpid
 
-#include <cstdio>   // popen, fread, pclose
+#include <cstdio>   // popen, fread, pclose, std::remove
 #include <fstream>  // std::ifstream
 #include <sstream>  // std::stringstream
 #include <string>   // std::string
@@ -29,7 +29,7 @@ struct ToolRun {
 };
 
 // Runs `exe args` (args are shell words). stderr goes through a per-process temp file, so
-// test processes that ctest runs in parallel never share one.
+// test processes that ctest runs in parallel never share one; it is removed once read.
 inline ToolRun run_tool(const std::string& exe, const std::string& args) {
   const std::string err_path =
       testing::TempDir() + "/engraver_stderr_" + std::to_string(getpid()) + ".txt";
@@ -41,10 +41,8 @@ inline ToolRun run_tool(const std::string& exe, const std::string& args) {
   while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
   const int status = pclose(p);
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_path);
-  std::stringstream s;
-  s << e.rdbuf();
-  r.err = s.str();
+  r.err = read_text(err_path);
+  std::remove(err_path.c_str());  // one per test process: left, they piled up in /tmp
   return r;
 }
 

@@ -1,7 +1,6 @@
 // Plots of big jobs stay small: detail below half a pixel is dropped, and a layer with more
 // vertices than an SVG should hold becomes an image inside the SVG. The PNG keeps the ink.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>       // std::cos
 #include <filesystem>  // file_size
@@ -10,6 +9,7 @@
 #include <sstream>     // std::stringstream
 
 #include "host/lib/plot/plot.h"
+#include "host_tests/host/temp_dir.h"
 
 namespace host {
 namespace {
@@ -23,12 +23,9 @@ std::string read_all(const std::string& path) {
 
 class PlotSize : public ::testing::Test {
  protected:
-  void TearDown() override {
-    std::filesystem::remove(svg_);
-    std::filesystem::remove(png_);
-  }
-  const std::string svg_ = "/tmp/engraver_plot_size_" + std::to_string(getpid()) + ".svg";
-  const std::string png_ = "/tmp/engraver_plot_size_" + std::to_string(getpid()) + ".png";
+  test::TempDir dir_{"engraver_plot_size_"};  // removed after each test
+  const std::string svg_ = dir_.file("plot.svg");
+  const std::string png_ = dir_.file("plot.png");
 };
 
 TEST_F(PlotSize, DenseLongPathIsThinnedToThePixelGrid) {

@@ -5,8 +5,8 @@
 #include <cairo.h>
 #include <expat.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -14,6 +14,7 @@
 #include "host/lib/drawing/conics.h"
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/plot/plan_plot.h"
+#include "host_tests/host/temp_dir.h"
 
 namespace host {
 namespace {
@@ -57,17 +58,40 @@ bool is_white(const Pixel& p) {
   return p.r > 250 && p.g > 250 && p.b > 250;
 }
 
+// The plots go into a folder of their own, removed after each test.
 class Plot : public testing::Test {
  protected:
-  void SetUp() override {
-    const std::string base = testing::TempDir() + "/plot_test_" + std::to_string(getpid());
-    svg_ = base + ".svg";
-    png_ = base + ".png";
-    std::remove(svg_.c_str());
-    std::remove(png_.c_str());
-  }
-  std::string svg_, png_;
+  test::TempDir dir_{"plot_test_"};
+  const std::string svg_ = dir_.file("plot.svg");
+  const std::string png_ = dir_.file("plot.png");
 };
+
+// The fixture as a test sees it, set up and torn down by hand.
+class PlotFixtureByHand : public Plot {
+ public:
+  void TestBody() override {}
+  void set_up() { SetUp(); }
+  void tear_down() { TearDown(); }
+  using Plot::png_;
+  using Plot::svg_;
+};
+
+// What a Plot test writes is gone after it (files named by pid alone were left in /tmp).
+TEST(PlotFixture, RemovesWhatItsTestWrote) {
+  std::string svg, png;
+  {
+    PlotFixtureByHand t;
+    t.set_up();
+    svg = t.svg_;
+    png = t.png_;
+    write_plot(rectangle_input(), svg, png);
+    ASSERT_TRUE(std::filesystem::exists(svg));
+    ASSERT_TRUE(std::filesystem::exists(png));
+    t.tear_down();
+  }
+  EXPECT_FALSE(std::filesystem::exists(svg)) << svg;
+  EXPECT_FALSE(std::filesystem::exists(png)) << png;
+}
 
 TEST_F(Plot, PngHasTheAskedSize) {
   write_plot(rectangle_input(), "", png_);

@@ -12,7 +12,7 @@
 
 #include "host/lib/heightmap/controller_map.h"  // ProbeMotion
 #include "host/lib/server/data_folder.h"
-#include "host_tests/host/server/blinky_upload.h"  // blinky, post
+#include "host_tests/host/server/probe_first_job.h"
 #include "host_tests/host/server/server_test_rig.h"
 
 namespace host::server {
@@ -20,31 +20,14 @@ namespace {
 
 using test::ServerRig;
 using test::SimRig;
+using test::tilted_blank;
+using test::tilted_copper_mm;
+using test::touches;
 namespace fs = std::filesystem;
 
 // The blinky board probed first on a coarse grid: a few touches in real time.
 int64_t post_probe_first(const ServerRig& server) {
-  return test::post(server, test::blinky({{"probe_first", "1"}, {"probe_spacing_mm", "12"}}));
-}
-
-// A blank tilted 0.1 mm over 50 mm in x (um above the zero corner's copper).
-int32_t tilted_um(int32_t x_um, int32_t) {
-  return static_cast<int32_t>(std::lround(2.0 * x_um / 1000.0));
-}
-
-double copper_mm(double x_mm) {
-  return tilted_um(std::lround(x_mm * 1000), 0) / 1000.0;
-}
-
-sim::SimOptions tilted_blank() {
-  sim::SimOptions o;
-  o.surface_um = tilted_um;
-  return o;
-}
-
-size_t touches(const ServerRig& server, int64_t id) {
-  const nlohmann::json j = server.running(id);
-  return j.is_object() && j.contains("probe") ? j["probe"]["touches"].get<size_t>() : 0;
+  return test::post_probe_first(server, "12");
 }
 
 // The instants of a touch at which the operator holds.
@@ -58,7 +41,7 @@ bool reach(const SimRig& sim, Instant when) {
       [&] {
         for (int i = 0; i < 1000; ++i) {
           const sim::ToolSample t = sim.machine().position();
-          const double above_mm = t.z_mm - copper_mm(t.x_mm);
+          const double above_mm = t.z_mm - tilted_copper_mm(t.x_mm);
           const bool closed = sim.machine().probe_closed();
           switch (when) {
             case Instant::kDescending:
@@ -123,7 +106,7 @@ TEST(ServerProbeHold, AHoldAtAnyInstantOfATouchLeavesTheToolRetractedAndResumePr
     const size_t held_at = touches(server, id);
     const sim::ToolSample tool = sim.machine().position();
     // The touch finished and retracted: the bit stands above its contact, not on the copper.
-    EXPECT_GE(tool.z_mm, copper_mm(tool.x_mm) + retract_mm - 0.01)
+    EXPECT_GE(tool.z_mm, tilted_copper_mm(tool.x_mm) + retract_mm - 0.01)
         << "held at " << tool.x_mm << " " << tool.y_mm << " " << tool.z_mm;
     // /api/status shows where the machine stands, not a position from the touch.
     const nlohmann::json held = server.status();
@@ -162,7 +145,7 @@ TEST(ServerProbeHold, AHoldAtAnyInstantOfATouchLeavesTheToolRetractedAndResumePr
   std::map<std::pair<long, long>, int> contacts;
   bool above = true;
   for (const sim::ToolSample& s : sim.machine().trace()) {
-    const bool on = s.z_mm <= copper_mm(s.x_mm) + 0.001;
+    const bool on = s.z_mm <= tilted_copper_mm(s.x_mm) + 0.001;
     if (on && above && on_grid(s.x_mm, 0) && on_grid(s.y_mm, 1))
       ++contacts[{std::lround(s.x_mm * 100), std::lround(s.y_mm * 100)}];
     above = !on;

@@ -4,13 +4,11 @@
 // probing where it is, and the machine's state after an abort at once.
 #include <gtest/gtest.h>
 
-#include <cmath>  // std::lround
-
 #include <set>  // std::set
 
 #include "host/lib/heightmap/controller_map.h"  // ProbeMotion
 #include "host/lib/server/data_folder.h"
-#include "host_tests/host/server/blinky_upload.h"  // blinky, post
+#include "host_tests/host/server/probe_first_job.h"
 #include "host_tests/host/server/server_test_rig.h"
 
 namespace host::server {
@@ -18,32 +16,18 @@ namespace {
 
 using test::ServerRig;
 using test::SimRig;
+using test::tilted_blank;
+using test::touches;
 namespace fs = std::filesystem;
 
 // The blinky board probed first on a 2 mm grid (many touches: time to act while it probes).
 int64_t post_probe_first(const ServerRig& server) {
-  return test::post(server, test::blinky({{"probe_first", "1"}, {"probe_spacing_mm", "2"}}));
-}
-
-// A blank tilted 0.1 mm over 50 mm in x (um above the zero corner's copper).
-int32_t tilted_um(int32_t x_um, int32_t) {
-  return static_cast<int32_t>(std::lround(2.0 * x_um / 1000.0));
-}
-
-sim::SimOptions tilted_blank() {
-  sim::SimOptions o;
-  o.surface_um = tilted_um;
-  return o;
+  return test::post_probe_first(server, "2");
 }
 
 nlohmann::json machine_of(const ServerRig& server) {
   const nlohmann::json s = server.status();
   return s.is_object() && !s["machines"].empty() ? s["machines"][0] : nlohmann::json();
-}
-
-size_t touches(const ServerRig& server, int64_t id) {
-  const nlohmann::json j = server.running(id);
-  return j.is_object() && j.contains("probe") ? j["probe"]["touches"].get<size_t>() : 0;
 }
 
 // Claimed, confirmed, and `n` touches into its grid.
@@ -89,8 +73,7 @@ TEST(ServerProbingControl, HoldPausesTheProbingBetweenTouchesWithTheToolUpAndRes
   EXPECT_EQ(touches(server, id), held_at) << "no touch while held";
   EXPECT_EQ(sim.machine().position().z_mm, tool.z_mm) << "a held machine must not move";
   // Retracted above the last contact (0.5 mm), not resting on the copper.
-  const double copper_mm = tilted_um(std::lround(tool.x_mm * 1000), 0) / 1000.0;
-  EXPECT_GT(tool.z_mm, copper_mm + 0.4) << tool.x_mm << " " << tool.y_mm;
+  EXPECT_GT(tool.z_mm, test::tilted_copper_mm(tool.x_mm) + 0.4) << tool.x_mm << " " << tool.y_mm;
   EXPECT_TRUE(held_between_touches(server, id));
   r = server.control(id, R"({"action":"resume"})");
   ASSERT_TRUE(r);
@@ -268,7 +251,7 @@ TEST(ServerProbingControl, ARunStoppedBeforeItCutsKeepsTheContinuedJobsPosition)
   JobRecord saved;  // the record after the mid-cut stop
   {
     ServerRig server(dir.path(), {on_left});
-    id = test::post(server, test::blinky({{"probe_first", "1"}, {"probe_spacing_mm", "12"}}));
+    id = test::post_probe_first(server, "12");
     probe_until(server, id, 0);
     // Cutting: the saved position some job commands into the job.
     ASSERT_TRUE(test::wait_until([&] { return server.store().get(id)->resume_index >= 5; }, 120))

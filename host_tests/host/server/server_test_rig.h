@@ -4,7 +4,6 @@
 #define HOST_TESTS_HOST_SERVER_SERVER_TEST_RIG_H
 
 #include <fmt/format.h>  // fmt::format
-#include <stdlib.h>      // mkdtemp
 
 #include <nlohmann/json.hpp>  // nlohmann::json
 
@@ -24,6 +23,7 @@
 #include "host/lib/server/workshop.h"
 #include "host/lib/sim/sim_machine.h"
 #include "host/lib/sim/sim_server.h"
+#include "host_tests/host/temp_dir.h"  // TempDir
 
 // Last: its system headers define macros (`res`) that break Eigen's templates.
 #include <httplib.h>  // httplib::Client
@@ -32,23 +32,7 @@ namespace host::server::test {
 
 namespace fs = std::filesystem;
 
-// A fresh folder under the temp directory, removed with the object.
-class TempDir {
- public:
-  TempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "engraver-server-XXXXXX").string();
-    if (mkdtemp(&tmpl[0]) == nullptr) throw std::runtime_error("mkdtemp failed");
-    path_ = tmpl;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using ::host::test::TempDir;
 
 // One simulated machine serving a loopback port from a thread until kill().
 class SimRig {

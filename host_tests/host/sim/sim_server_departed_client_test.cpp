@@ -14,6 +14,7 @@
 #include "host/lib/sim/sim_server.h"
 #include "host/lib/stream/sender.h"
 #include "host_tests/host/sim/raw_client.h"  // append_frame, connect_to, write_all
+#include "host_tests/host/sim/served_sim.h"
 #include "host_tests/host/sim/sim_test_jobs.h"
 
 namespace host {
@@ -31,12 +32,8 @@ Sender open_sender(Link& link) {
 }
 
 TEST(SimServer, ADepartedClientsUnreadFramesAreDroppedAndTheNextClientStartsClean) {
-  sim::SimMachine machine{sim::SimOptions{}};
-  sim::ServerOptions so;
-  so.port = 0;
-  sim::SimServer server(machine, so);
-  test::Serving serving(server);
-  const std::string address = "tcp://127.0.0.1:" + std::to_string(server.port());
+  test::ServedSim served;
+  const std::string address = served.address();
   {
     // A first client zeroes the machine (the simulated operator confirms) and leaves.
     auto link = open_link(parse_link_spec(address), milliseconds(2000));
@@ -48,7 +45,7 @@ TEST(SimServer, ADepartedClientsUnreadFramesAreDroppedAndTheNextClientStartsClea
   }
   // A client sends a session and a rapid move to X 20 mm, and hangs up at once: the bytes
   // and the end of the stream reach the server together (corked until the close).
-  const int fd = connect_to(server.port());
+  const int fd = connect_to(served.port());
   ASSERT_GE(fd, 0);
   const int on = 1;
   ASSERT_EQ(::setsockopt(fd, IPPROTO_TCP, TCP_CORK, &on, sizeof on), 0);
@@ -60,7 +57,7 @@ TEST(SimServer, ADepartedClientsUnreadFramesAreDroppedAndTheNextClientStartsClea
   std::this_thread::sleep_for(milliseconds(500));  // time enough to run it, were it read
   // The next client: its first reply answers its own status query, no *I or *O of the
   // departed client's.
-  const int next = connect_to(server.port());
+  const int next = connect_to(served.port());
   ASSERT_GE(next, 0);
   std::vector<uint8_t> query;
   append_frame(proto::StatusCmd{}, 7, &query);
@@ -82,7 +79,7 @@ TEST(SimServer, ADepartedClientsUnreadFramesAreDroppedAndTheNextClientStartsClea
   const proto::StatusReply s = sender.read_status();
   EXPECT_EQ(s.x_um, 0);
   EXPECT_EQ(s.state, proto::MachineState::kIdle);
-  serving.stop();
+  served.stop();
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "host/lib/sim/sim_server.h"
 #include "host/lib/stream/sender.h"
 #include "host_tests/host/sim/raw_client.h"  // append_frame, connect_to, write_all
+#include "host_tests/host/sim/served_sim.h"
 #include "host_tests/host/sim/sim_test_jobs.h"
 
 namespace host {
@@ -42,26 +43,21 @@ void hang_up_with_replies_in_flight(uint16_t port) {
 }
 
 TEST(SimServer, AClientHangingUpWithRepliesInFlightDoesNotEndTheServer) {
-  sim::SimMachine machine{sim::SimOptions{}};
-  sim::ServerOptions so;
-  so.port = 0;
-  sim::SimServer server(machine, so);
-  test::Serving serving(server);
+  test::ServedSim served;
   // Whether the server writes before it reads the end of the stream is a race: try often.
   // Each time the bytes the client left on the wire (the simulated UART, 115200 baud) are
   // answered into the void within the pause.
   for (int i = 0; i < 5; ++i) {
-    hang_up_with_replies_in_flight(server.port());
+    hang_up_with_replies_in_flight(served.port());
     std::this_thread::sleep_for(milliseconds(500));
   }
   // Still here (SIGPIPE would have ended the process), and the next client is served.
-  auto link = open_link(parse_link_spec("tcp://127.0.0.1:" + std::to_string(server.port())),
-                        milliseconds(2000));
+  auto link = open_link(parse_link_spec(served.address()), milliseconds(2000));
   Sender sender(*link, SenderOptions{});
   const proto::SessionReply caps = sender.open_session();
   EXPECT_GT(caps.max_payload, 0);
   EXPECT_EQ(sender.read_status().state, proto::MachineState::kIdle);
-  serving.stop();
+  served.stop();
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "firmware/protocol/parser.h"  // proto::Parser
 #include "host/lib/sim/sim_server.h"
 #include "host/lib/stream/link.h"
+#include "host_tests/host/sim/served_sim.h"
 #include "host_tests/host/sim/sim_test_jobs.h"
 
 namespace host {
@@ -206,12 +207,8 @@ TEST(SimServerLinkTime, NoiseDoesNotTripTheWatchdogWhileValidFramesComeInTime) {
   // 1.3 s (plus a false candidate's 200 ms) pass without a valid frame: the real
   // controller's 2 s watchdog would not trip, so neither may the simulator's; a valid frame
   // is answered after the noise.
-  sim::SimMachine machine{sim::SimOptions{}};
-  sim::ServerOptions so;
-  so.port = 0;
-  sim::SimServer server(machine, so);
-  test::Serving serving(server);
-  RawClient client(server.port());
+  test::ServedSim served;
+  RawClient client(served.port());
   ASSERT_TRUE(start_long_move(client));
 
   std::mt19937 rng(22);
@@ -226,7 +223,7 @@ TEST(SimServerLinkTime, NoiseDoesNotTripTheWatchdogWhileValidFramesComeInTime) {
 
   client.write(frame_of(status_query(), 250));
   ASSERT_TRUE(client.reply(250, &s)) << "a valid frame after the noise is not answered";
-  serving.stop();
+  served.stop();
   EXPECT_EQ(s.state, proto::MachineState::kRunning) << noise_ms << " ms of noise";
   EXPECT_EQ(s.flags & proto::kStatusLinkHold, 0)
       << "the link watchdog tripped in " << noise_ms << " ms of noise";
@@ -278,18 +275,14 @@ TEST(SimServerLinkTime, AMachineSlowerThanRealTimeStillAnswersEveryFrame) {
 
 TEST(SimServerLinkTime, SilenceLongerThanTheWatchdogStillTripsIt) {
   // The safety stays: 2.5 s of wall-clock silence while a move runs hold the machine.
-  sim::SimMachine machine{sim::SimOptions{}};
-  sim::ServerOptions so;
-  so.port = 0;
-  sim::SimServer server(machine, so);
-  test::Serving serving(server);
-  RawClient client(server.port());
+  test::ServedSim served;
+  RawClient client(served.port());
   ASSERT_TRUE(start_long_move(client));
   std::this_thread::sleep_for(milliseconds(2500));
   client.write(frame_of(status_query(), 251));
   proto::StatusReply s{};
   ASSERT_TRUE(client.reply(251, &s));
-  serving.stop();
+  served.stop();
   EXPECT_NE(s.flags & proto::kStatusLinkHold, 0) << "2.5 s of silence did not trip the watchdog";
   EXPECT_TRUE(s.state == proto::MachineState::kHolding || s.state == proto::MachineState::kHeld)
       << "state " << static_cast<int>(s.state);

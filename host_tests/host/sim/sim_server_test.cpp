@@ -13,6 +13,7 @@
 #include "host/lib/stream/encode_command.h"  // encode_command
 #include "host/lib/stream/job_encoder.h"
 #include "host/lib/stream/sender.h"
+#include "host_tests/host/sim/served_sim.h"
 #include "host_tests/host/sim/sim_test_jobs.h"
 
 namespace host {
@@ -69,13 +70,8 @@ TEST(SimServer, ServesAJobOnAPseudoTerminal) {
 
 // The sender's verdict counts in the project's words: one command, not "1 commands".
 TEST(SimServer, ASenderNamesOneCommandInTheSingular) {
-  sim::SimMachine machine{sim::SimOptions{}};
-  sim::ServerOptions so;
-  so.port = 0;
-  sim::SimServer server(machine, so);
-  test::Serving serving(server);
-  auto link = open_link(parse_link_spec("tcp://127.0.0.1:" + std::to_string(server.port())),
-                        milliseconds(2000));
+  test::ServedSim served;
+  auto link = open_link(parse_link_spec(served.address()), milliseconds(2000));
   SenderOptions o;
   o.status_interval = milliseconds(5);
   Sender sender(*link, o);
@@ -91,22 +87,17 @@ TEST(SimServer, MachineTimeFollowsTheWallClockWhileTheHostIsSilent) {
   // Connected, then silent for 1 s of wall time: the machine may run ahead only by the fast
   // window, so 1.0-1.5 s of machine time pass (the old rule gave 0.68 s), and the link
   // watchdog (2 s) has not tripped.
-  sim::SimMachine machine{sim::SimOptions{}};
-  sim::ServerOptions so;
-  so.port = 0;
-  sim::SimServer server(machine, so);
-  test::Serving serving(server);
-  auto link = open_link(parse_link_spec("tcp://127.0.0.1:" + std::to_string(server.port())),
-                        milliseconds(2000));
+  test::ServedSim served;
+  auto link = open_link(parse_link_spec(served.address()), milliseconds(2000));
   Sender sender(*link, SenderOptions{});
   sender.open_session();
-  const uint64_t t0 = machine.now_ms();
+  const uint64_t t0 = served.machine.now_ms();
   const auto w0 = std::chrono::steady_clock::now();
   std::this_thread::sleep_for(milliseconds(1000));
-  const uint64_t t1 = machine.now_ms();
+  const uint64_t t1 = served.machine.now_ms();
   const double wall_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - w0).count();
-  serving.stop();
+  served.stop();
   const double machine_ms = static_cast<double>(t1 - t0);
   EXPECT_GT(machine_ms, wall_ms - 250) << "machine time fell behind the wall clock";
   EXPECT_LT(machine_ms, wall_ms + 500 + 250) << "machine time ran ahead of the wall clock";
