@@ -77,10 +77,25 @@ std::string map_source_refusal(JobStore& store, const DataFolder& data, int64_t 
 MapSource map_source_of(JobStore& store, const DataFolder& data, const JobRecord& job) {
   MapSource s;
   if (!is_board_job(job)) return s;
+  BoardSettings board;
   try {
-    s.from = read_board_settings(data.job_dir(job.key)).height_map_from;
+    board = read_board_settings(data.job_dir(job.key));
   } catch (const std::exception&) {
     return s;  // not in this archive (another server's upload): its run says what is wrong
+  }
+  s.from = board.height_map_from;
+  if (s.from == 0 && board.probe_first) {
+    // A probe-first job probed in an earlier run (interrupted, continued): its blank is
+    // clamped on the machine that probed it, which takes it again.
+    const fs::path own = data.job_dir(job.key);
+    std::error_code ec;
+    if (fs::exists(own / kHeightMapFile, ec) && fs::exists(own / kHeightMapMachineFile, ec)) {
+      s.from = job.id;
+      s.own = true;
+      s.has_map = true;
+      s.machine = read_file(own / kHeightMapMachineFile);
+    }
+    return s;
   }
   if (s.from == 0) return s;
   const std::optional<JobRecord> from = store.get(s.from);
@@ -136,6 +151,11 @@ std::string map_wait_text(const JobRecord& job, const MapSource& source) {
         "waiting for job {} to be completed (the blank is turned over after its side is cut)",
         source.from);
   // Only that machine takes it (jobs_not_for_machine), however many others are idle.
+  if (job.state == JobState::kQueued && source.own && !source.machine.empty())
+    return fmt::format(
+        "waiting for machine '{}', which probed this job's blank in an earlier run (the "
+        "blank is clamped there)",
+        source.machine);
   if (job.state == JobState::kQueued && source.has_map && !source.machine.empty())
     return fmt::format("waiting for machine '{}', which probed the height map of job {}",
                        source.machine, source.from);

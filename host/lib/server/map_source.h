@@ -23,9 +23,12 @@ namespace host::server {
 // (another server's upload) is taken: its run checks the map.
 std::string map_source_refusal(JobStore& store, const DataFolder& data, int64_t from);
 
-// Where a job's map source stands.
+// Where a job's map source stands (a probe-first job probed in an earlier run: its own map).
 struct MapSource {
-  int64_t from = 0;           // the job whose map it takes; 0: none (or not a board job)
+  int64_t from = 0;  // the job whose map it takes; 0: none (or not a board job)
+  // A probe-first job with the map of its own earlier run (from is its own id): only the
+  // machine it was probed on takes it again.
+  bool own = false;
   bool has_map = false;       // that job's map is in the archive
   std::string machine;        // the machine it was probed on ("" when no map)
   bool source_ended = false;  // no map, and the source job will not make one (it ended)

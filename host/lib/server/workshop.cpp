@@ -113,38 +113,49 @@ struct Workshop::Slot {
 namespace {
 
 // The operator aborted a job before it cut (waiting for the probe clip, or probing), or the
-// server stopped then.
+// server stopped then. what() is the stage ("probing", "waiting for the probe clip").
 class AbortedBeforeCutting : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit AbortedBeforeCutting(const std::string& while_doing, std::string detail = "")
+      : std::runtime_error(while_doing), detail(std::move(detail)) {}
+  std::string detail;  // e.g. whether the tool was raised; "" = nothing to add
 };
 
-// Why a job ended before it cut: `while` is "probing" or "waiting for the probe clip".
-AbortedBeforeCutting ended_before_cutting(bool server_stopping, const std::string& while_doing) {
-  return AbortedBeforeCutting(
-      fmt::format("{} while {}; nothing was cut",
-                  server_stopping ? "the server stopped (interrupted)" : "aborted", while_doing));
-}
-
-// A continued job's run that ended before it cut: its earlier runs did cut, so the message
-// says what is left over the whole job, not "nothing was cut" (issue 25's outside tester).
+// A continued job: its earlier runs cut, and it resumes where they stopped.
 bool continued_run(const JobRecord& job) {
   return job.resume_index >= 0 || job.start_curve >= 0;
 }
 
-std::string whole_job_words(const JobRecord& job, size_t job_commands, std::string message) {
-  if (!continued_run(job)) return message;
-  const std::string nothing = "nothing was cut";
-  const size_t at = message.find(nothing);
-  if (at == std::string::npos) return message;
-  const std::string where =
-      job.resume_index >= 0 ? fmt::format("job command {} of {}", job.resume_index, job_commands)
-                            : fmt::format("curve {}", job.start_curve);
-  message.replace(at, nothing.size(),
-                  fmt::format("nothing more was cut in this run (the job's earlier runs cut up "
-                              "to {}; it continues there)",
-                              where));
+// Where a continued job's earlier runs stopped, over the whole job.
+std::string whole_job_point(const JobRecord& job, size_t job_commands) {
+  return job.resume_index >= 0 ? fmt::format("job command {} of {}", job.resume_index, job_commands)
+                               : fmt::format("curve {}", job.start_curve);
+}
+
+// Why a run ended before it cut. A continued job's earlier runs did cut, so its message
+// says where the whole job stands, not "nothing was cut" (issue 25's outside tester).
+std::string before_cutting_message(const JobRecord& job, size_t job_commands, bool server_stopping,
+                                   const AbortedBeforeCutting& e) {
+  const std::string cut =
+      continued_run(job)
+          ? fmt::format(
+                "nothing more was cut in this run (the job's earlier runs cut up to {}; "
+                "it continues there)",
+                whole_job_point(job, job_commands))
+          : std::string("nothing was cut");
+  std::string message =
+      fmt::format("{} while {}; {}",
+                  server_stopping ? "the server stopped (interrupted)" : "aborted", e.what(), cut);
+  if (!e.detail.empty()) message += " (" + e.detail + ")";
   return message;
+}
+
+// Each run counts its own stream: where the whole job stands as well ("" before its first
+// job command).
+std::string whole_job_after_run_counts(int64_t resume_index, size_t job_commands) {
+  return resume_index >= 0 ? fmt::format(" of this run (the job at job command {} of {})",
+                                         resume_index, job_commands)
+                           : "";
 }
 
 // The action as the API names it.
@@ -688,7 +699,8 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   } catch (const AbortedBeforeCutting& e) {
     r.state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
     r.outcome = stopping_ ? "server stopped before cutting" : "aborted before cutting";
-    r.message = whole_job_words(job, r.commands ? r.commands->job_commands() : 0, e.what());
+    r.message =
+        before_cutting_message(job, r.commands ? r.commands->job_commands() : 0, stopping_, e);
     r.before_cutting = true;
   } catch (const std::exception& e) {
     r.state = JobState::kFailed;
@@ -847,11 +859,7 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
             "the server stopped while the job was running, after {} of {} "
             "commands{}",
             r.executed, r.commands->size(),
-            // Each run counts its own stream: where the whole job stands as well.
-            r.progress.resume_index >= 0
-                ? fmt::format(" of this run (the job at job command {} of {})",
-                              r.progress.resume_index, r.commands->job_commands())
-                : "");
+            whole_job_after_run_counts(r.progress.resume_index, r.commands->job_commands()));
       }
       break;
     case JobOutcome::kAlarm:
@@ -861,6 +869,13 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
     case JobOutcome::kLinkLost:
     case JobOutcome::kStalled:  // the sender's watchdog: answered, but no progress
       r.state = JobState::kInterrupted;
+      // The sender counts this run's stream; continue resumes where the whole job stands.
+      if (r.progress.resume_index >= 0) {
+        r.message += fmt::format(
+            " (counts of this run; the job is at job command {} of {}, where continue "
+            "resumes)",
+            r.progress.resume_index, r.commands->job_commands());
+      }
       break;
   }
   if (!fenced.empty() && result != JobOutcome::kCompleted) {
@@ -1069,7 +1084,7 @@ void Workshop::wait_between_touches(Slot& slot,
     std::string held;
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      if (slot.abort_pending || stopping_) throw ended_before_cutting(stopping_, "probing");
+      if (slot.abort_pending || stopping_) throw AbortedBeforeCutting("probing");
       if (!slot.hold_pending) break;
       if (!waited) {
         where = slot.probe_done == 0
@@ -1173,8 +1188,7 @@ heightmap::HeightMap Workshop::probe_board_blank(
                                                             heightmap::ProbeMotion{}.travel_z_mm)
                         : std::string("the tool was not raised: no link");
     note("probing stopped: " + lifted);
-    const AbortedBeforeCutting ended = ended_before_cutting(stopping_, "probing");
-    throw AbortedBeforeCutting(fmt::format("{} ({})", ended.what(), lifted));
+    throw AbortedBeforeCutting("probing", lifted);
   }
   {
     std::lock_guard<std::mutex> lock(slot.mutex);
@@ -1201,7 +1215,7 @@ void Workshop::wait_for_probe_clip(Slot& slot, Sender& sender,
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
       if (slot.abort_pending || stopping_) {
-        throw ended_before_cutting(stopping_, "waiting for the probe clip");
+        throw AbortedBeforeCutting("waiting for the probe clip");
       }
       if (slot.probe_confirmed) {
         slot.probe_stage = "probing";

@@ -188,6 +188,15 @@ TEST(ServerLinkCut, ALinkSilentFor10sEndsTheJobInterruptedCuttingOrProbing) {
                   fmt::format("{}: no reply for 10000 ms", proxy.address())),
               std::string::npos)
         << j.dump();
+    if (!probing) {
+      // The sender counts this run's stream; the message names the whole job's position too.
+      const int64_t at = server.store().get(id)->resume_index;
+      ASSERT_GE(at, 0) << j.dump();
+      EXPECT_NE(
+          j["message"].get<std::string>().find(fmt::format("the job is at job command {} of ", at)),
+          std::string::npos)
+          << j.dump();
+    }
     EXPECT_GE(waited_s, 9.9);
     EXPECT_LT(waited_s, 14.0);
     std::printf("%s: link silent, the job ended %s %.1f s later: %s\n",

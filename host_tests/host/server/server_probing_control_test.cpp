@@ -4,7 +4,9 @@
 // probing where it is, and the machine's state after an abort at once.
 #include <gtest/gtest.h>
 
-#include <set>  // std::set
+#include <memory>  // std::unique_ptr
+#include <set>     // std::set
+#include <thread>  // std::this_thread
 
 #include "host/lib/heightmap/controller_map.h"  // ProbeMotion
 #include "host/lib/server/data_folder.h"
@@ -312,6 +314,53 @@ TEST(ServerProbingControl, ARunStoppedBeforeItCutsKeepsTheContinuedJobsPosition)
   const size_t at = log.find(continuing);
   ASSERT_NE(at, std::string::npos) << log;
   EXPECT_GE(std::stoll(log.substr(at + continuing.size())), saved.resume_index) << log;
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30));
+}
+
+// A continued probe-first job goes back to the machine that probed its blank (issue 25's
+// outside tester: another free machine claimed it and asked for the clip again). With that
+// machine down, the job waits and says for which; once it answers, it takes the job and
+// cuts with the map it probed, never asking for the clip.
+TEST(ServerProbingControl, AContinuedProbeFirstJobGoesBackToTheMachineThatProbedIt) {
+  test::TempDir dir;
+  auto left = std::make_unique<SimRig>(true, 0, tilted_blank());
+  SimRig right(true, 0, tilted_blank());
+  const uint16_t left_port = left->port();
+  const MachineSpec on_left = test::machine("left", left->address());
+  const MachineSpec on_right = test::machine("right", right.address());
+  int64_t id = 0;
+  {
+    ServerRig server(dir.path(), {on_left});
+    id = test::post_probe_first(server, "12");
+    probe_until(server, id, 0);
+    ASSERT_TRUE(test::wait_until([&] { return server.store().get(id)->resume_index >= 5; }, 120))
+        << server.status().dump();
+    server.shutdown();
+  }
+  left->kill();
+  ServerRig server(dir.path(), {on_right, on_left});
+  ASSERT_EQ(server.control(id, R"({"action":"continue"})")->status, 200);
+  // The right machine is free and answers; the job stays queued for the left one.
+  for (int i = 0; i < 15; ++i) {
+    const nlohmann::json j = server.job(id);
+    ASSERT_EQ(j["state"], "queued") << j.dump();
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  EXPECT_EQ(server.job(id)["waiting"],
+            "waiting for machine 'left', which probed this job's blank in an earlier run (the "
+            "blank is clamped there)")
+      << server.job(id).dump();
+  left = std::make_unique<SimRig>(true, left_port, tilted_blank());  // the left one is back
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "running"; }, 30))
+      << server.job(id).dump();
+  EXPECT_EQ(server.store().get(id)->machine, "left");
+  ASSERT_TRUE(test::wait_until([&] { return server.running(id)["executed"].get<int>() > 0; }, 60))
+      << server.status().dump();
+  const std::string log =
+      read_file(server.data().job_dir(server.store().get(id)->key) / "runs" / "2" / "machine.log");
+  EXPECT_NE(log.find("height map probed in an earlier run of this job"), std::string::npos) << log;
+  EXPECT_EQ(log.find("waiting for the probe clip"), std::string::npos) << log;
   ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
   ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30));
 }
