@@ -346,5 +346,30 @@ TEST(ServerProbeHold, TheTimeLeftIsTheCutsAndStandsStillUntilTheCutStarts) {
       << server.job(id).dump();
 }
 
+// probe_ready while the job is held waiting for the clip (the guide's Actions by job state):
+// accepted, the job stays held with no touch until resume, then it probes.
+TEST(ServerProbeHold, ProbeReadyWhileHeldInProbeClipWaitsForResumeBeforeTheFirstTouch) {
+  test::TempDir dir;
+  SimRig sim(true, 0, tilted_blank());
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t id = post_probe_first(server);
+  ASSERT_TRUE(
+      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
+  ASSERT_EQ(server.control(id, R"({"action":"hold"})")->status, 200);
+  ASSERT_EQ(server.running(id)["machine_state"], "held");
+  ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+  const double z_mm = sim.machine().position().z_mm;
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  EXPECT_EQ(server.running(id)["machine_state"], "held") << server.status().dump();
+  EXPECT_EQ(server.status()["machines"][0]["state"], "held");
+  EXPECT_EQ(touches(server, id), 0u);
+  EXPECT_EQ(sim.machine().position().z_mm, z_mm);  // no touch started
+  ASSERT_EQ(server.control(id, R"({"action":"resume"})")->status, 200);
+  EXPECT_TRUE(test::wait_until([&] { return touches(server, id) > 0; }, 60))
+      << server.status().dump();
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  EXPECT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30));
+}
+
 }  // namespace
 }  // namespace host::server
