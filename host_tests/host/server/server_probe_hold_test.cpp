@@ -261,12 +261,15 @@ TEST(ServerProbeHold, AHoldDuringTheLastTouchHoldsTheJobBeforeItsFirstCommand) {
   const nlohmann::json map = nlohmann::json::parse(read_file(job_dir / "heightmap.json"));
   const size_t points = map["grid"]["rows"].get<size_t>() * map["grid"]["cols"].get<size_t>();
   const size_t map_frames = 1 + (points + 7) / 8;  // header, 8 heights a frame
+  const double held_left_s = server.running(id)["remaining_s"].get<double>();
+  EXPECT_GT(held_left_s, 0.0);
   for (int i = 0; i < 10; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     const nlohmann::json j = server.running(id);
     EXPECT_EQ(j["machine_state"], "held") << j.dump();
     EXPECT_LE(j["executed"].get<size_t>(), map_frames) << j.dump();
     EXPECT_EQ(j["executed_mm"].get<double>(), 0.0) << j.dump();
+    EXPECT_EQ(j["remaining_s"].get<double>(), held_left_s) << j.dump();  // stands still
     const sim::ToolSample now = sim.machine().position();
     EXPECT_EQ(now.x_mm, tool.x_mm);
     EXPECT_EQ(now.y_mm, tool.y_mm);
