@@ -450,8 +450,10 @@ nlohmann::json Workshop::snapshot() {
     const double elapsed = seconds_since(slot->started);
     const double f = p.total > 0 ? double(p.executed) / double(p.total) : 0.0;
     // Time spent waiting for the operator is not work: the time left stands still then.
+    // One clock reading: two would let a held job's time left jitter by their gap.
+    const Clock::time_point now = Clock::now();
     const Clock::duration waited =
-        slot->waited + (slot->waiting ? Clock::now() - slot->waiting_since : Clock::duration{});
+        slot->waited + (slot->waiting ? now - slot->waiting_since : Clock::duration{});
     // The cut's time left. Before its commands run (planning, the probe clip, probing: the
     // probe object counts the touches) the planned time, standing still; then the planned
     // time until the machine has done a little (or overrun the plan), then what it has
@@ -459,7 +461,7 @@ nlohmann::json Workshop::snapshot() {
     double remaining = slot->planned_s;
     if (slot->sender != nullptr) {
       const double working =
-          std::chrono::duration<double>(Clock::now() - slot->cut_started - waited).count();
+          std::chrono::duration<double>(now - slot->cut_started - waited).count();
       // Both a share of the commands and of the planned time: the set-up frames (zeroing,
       // a height map) run at once and would make a share of commands alone mean nothing.
       const bool measured =

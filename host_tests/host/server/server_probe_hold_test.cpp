@@ -244,12 +244,15 @@ TEST(ServerProbeHold, AHoldDuringTheLastTouchHoldsTheJobBeforeItsFirstCommand) {
   const nlohmann::json map = nlohmann::json::parse(read_file(job_dir / "heightmap.json"));
   const size_t points = map["grid"]["rows"].get<size_t>() * map["grid"]["cols"].get<size_t>();
   const size_t map_frames = 1 + (points + 7) / 8;  // header, 8 heights a frame
+  const double held_left_s = server.running(id)["remaining_s"].get<double>();
+  EXPECT_GT(held_left_s, 0.0);
   for (int i = 0; i < 10; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     const nlohmann::json j = server.running(id);
     EXPECT_EQ(j["machine_state"], "held") << j.dump();
     EXPECT_LE(j["executed"].get<size_t>(), map_frames) << j.dump();
     EXPECT_EQ(j["executed_mm"].get<double>(), 0.0) << j.dump();
+    EXPECT_EQ(j["remaining_s"].get<double>(), held_left_s) << j.dump();  // stands still
     const sim::ToolSample now = sim.machine().position();
     EXPECT_EQ(now.x_mm, tool.x_mm);
     EXPECT_EQ(now.y_mm, tool.y_mm);
@@ -327,6 +330,31 @@ TEST(ServerProbeHold, TheTimeLeftIsTheCutsAndStandsStillUntilTheCutStarts) {
   ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
   ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30))
       << server.job(id).dump();
+}
+
+// probe_ready while the job is held waiting for the clip (the guide's Actions by job state):
+// accepted, the job stays held with no touch until resume, then it probes.
+TEST(ServerProbeHold, ProbeReadyWhileHeldInProbeClipWaitsForResumeBeforeTheFirstTouch) {
+  test::TempDir dir;
+  SimRig sim(true, 0, tilted_blank());
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t id = post_probe_first(server);
+  ASSERT_TRUE(
+      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
+  ASSERT_EQ(server.control(id, R"({"action":"hold"})")->status, 200);
+  ASSERT_EQ(server.running(id)["machine_state"], "held");
+  ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+  const double z_mm = sim.machine().position().z_mm;
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  EXPECT_EQ(server.running(id)["machine_state"], "held") << server.status().dump();
+  EXPECT_EQ(server.status()["machines"][0]["state"], "held");
+  EXPECT_EQ(touches(server, id), 0u);
+  EXPECT_EQ(sim.machine().position().z_mm, z_mm);  // no touch started
+  ASSERT_EQ(server.control(id, R"({"action":"resume"})")->status, 200);
+  EXPECT_TRUE(test::wait_until([&] { return touches(server, id) > 0; }, 60))
+      << server.status().dump();
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  EXPECT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30));
 }
 
 }  // namespace
