@@ -52,28 +52,40 @@ std::vector<QueuedCommand> job_map_commands(const HeightMap* map) {
 }
 
 ProbeTouch controller_touch(Sender& sender, const ProbeMotion& m,
-                            std::function<void(const Progress&)> on_progress) {
+                            std::function<void(const Progress&)> on_progress,
+                            std::function<void()> before_descent) {
   auto first = std::make_shared<bool>(true);
-  return [&sender, m, first, on_progress](double x_mm, double y_mm) {
-    std::vector<QueuedCommand> c;
+  return [&sender, m, first, on_progress, before_descent](double x_mm, double y_mm) {
+    const auto follow = [&on_progress](const Progress& p) {
+      if (on_progress) on_progress(p);
+    };
+    const auto check = [&](JobOutcome outcome) {
+      if (outcome != JobOutcome::kCompleted)
+        throw ProbeFailed(fmt::format("probing at ({:.3f}, {:.3f}) mm: {}: {}", x_mm, y_mm,
+                                      outcome_name(outcome), sender.message()),
+                          outcome == JobOutcome::kLinkLost);
+    };
+    std::vector<QueuedCommand> travel;
     const uint16_t rapid_z = 65535;  // Z moves at the machine's rapid rate (capped there)
-    if (*first) c.push_back(encode_command(proto::ZMoveCmd{um(m.travel_z_mm), rapid_z}));
+    if (*first) travel.push_back(encode_command(proto::ZMoveCmd{um(m.travel_z_mm), rapid_z}));
     *first = false;
-    c.push_back(encode_command(proto::ZMoveCmd{um(m.start_z_mm), rapid_z}));
-    c.push_back(encode_command(proto::RapidMoveCmd{um(x_mm), um(y_mm)}));
+    travel.push_back(encode_command(proto::ZMoveCmd{um(m.start_z_mm), rapid_z}));
+    travel.push_back(encode_command(proto::RapidMoveCmd{um(x_mm), um(y_mm)}));
     proto::ProbeCmd probe{};
     probe.z_limit_um = um(m.limit_z_mm);
     probe.feed_um_per_s = static_cast<uint16_t>(um(m.feed_mm_s));
     probe.retract_um = static_cast<uint16_t>(um(m.retract_mm));
-    c.push_back(encode_command(probe));
     const uint16_t before = sender.read_probe_result().probe_count;
-    const JobOutcome outcome = sender.run(c, [&on_progress](const Progress& p) {
-      if (on_progress) on_progress(p);
-    });
-    if (outcome != JobOutcome::kCompleted)
-      throw ProbeFailed(fmt::format("probing at ({:.3f}, {:.3f}) mm: {}: {}", x_mm, y_mm,
-                                    outcome_name(outcome), sender.message()),
-                        outcome == JobOutcome::kLinkLost);
+    if (before_descent) {
+      // The travel alone first: a caller's wait (an operator's hold) comes with the tool
+      // above the point, before the descent is sent.
+      check(sender.run(travel, follow));
+      before_descent();
+      check(sender.run({encode_command(probe)}, follow));
+    } else {
+      travel.push_back(encode_command(probe));
+      check(sender.run(travel, follow));
+    }
     // The touch is done when the controller counts it (its queue may still be moving). Its
     // last status is where the tool stands, retracted: the one a watcher keeps showing.
     Progress rest;

@@ -46,8 +46,11 @@ class ProbeFailed : public std::runtime_error {
  private:
   bool link_lost_;
 };
+// before_descent, if given, runs between the travel to (x, y) and the descent: the travel
+// is then sent and finished on its own, and the descent only after before_descent returns.
 ProbeTouch controller_touch(Sender& sender, const ProbeMotion& motion,
-                            std::function<void(const Progress&)> on_progress = nullptr);
+                            std::function<void(const Progress&)> on_progress = nullptr,
+                            std::function<void()> before_descent = nullptr);
 // After an abort stopped a touch where it was (#X: mid-descent, or on the copper): a new
 // session on the link ends the abort and the tool goes up to `z_mm` (nothing else moves; no
 // zeroing). Returns what happened, for the operator; never throws.

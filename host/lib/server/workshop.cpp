@@ -429,6 +429,17 @@ nlohmann::json Workshop::snapshot() {
     // An abort taken: the touch stops and the tool goes up before the job ends; never shown
     // as probing again (a held job goes held -> aborting -> aborted).
     const bool probe_aborting = probing && slot->abort_pending;
+    // A hold taken for a job not probing, shown at once: while planning, after the last
+    // touch and in the cut's first statuses the controller has not been told yet (it is,
+    // before the first command), so its idle or running must not show.
+    const bool hold_taken =
+        slot->job_id != 0 && !probing && slot->hold_pending && !slot->abort_pending;
+    const auto state_shown = [hold_taken](const proto::StatusReply& st) -> const char* {
+      const proto::MachineState s = st.state;
+      const bool moving_or_free =
+          s == proto::MachineState::kIdle || s == proto::MachineState::kRunning;
+      return hold_taken && moving_or_free ? "held" : machine_state_name(s);
+    };
     // Waiting for the clip and probing are the workshop's: the machine's own state then is
     // idle, which the operator must not read as "free".
     const char* probe_state = probe_aborting                      ? "aborting"
@@ -437,10 +448,10 @@ nlohmann::json Workshop::snapshot() {
                                                                   : "probing";
     if (slot->have_last_status) {
       const proto::StatusReply& st = slot->last_status;
-      m["state"] = probing ? probe_state : machine_state_name(st.state);
+      m["state"] = probing ? probe_state : state_shown(st);
       m["position_mm"] = {st.x_um / 1000.0, st.y_um / 1000.0, st.z_um / 1000.0};
-    } else if (probing) {
-      m["state"] = probe_state;
+    } else if (probing || hold_taken) {
+      m["state"] = probing ? probe_state : "held";
     } else {
       m["state"] = slot->link_state == "online" ? "idle" : "unknown";
     }
@@ -477,10 +488,11 @@ nlohmann::json Workshop::snapshot() {
     j["fraction"] = f;
     j["elapsed_s"] = elapsed;
     j["remaining_s"] = remaining;
-    j["machine_state"] = probing             ? probe_state
-                         : slot->planning    ? "planning"
-                         : slot->have_status ? machine_state_name(p.status.state)
-                                             : "starting";
+    j["machine_state"] = probing                            ? probe_state
+                         : hold_taken && !slot->have_status ? "held"
+                         : slot->planning                   ? "planning"
+                         : slot->have_status                ? state_shown(p.status)
+                                                            : "starting";
     if (!slot->probe_stage.empty()) {
       j["probe"] = {{"stage", slot->probe_stage},
                     {"touches", slot->probe_done},
@@ -497,7 +509,7 @@ nlohmann::json Workshop::snapshot() {
     j["position_mm"] = nlohmann::json();
     if (slot->have_status) {
       j["position_mm"] = {p.status.x_um / 1000.0, p.status.y_um / 1000.0, p.status.z_um / 1000.0};
-    } else if (probing && slot->have_last_status) {
+    } else if ((probing || hold_taken) && slot->have_last_status) {
       const proto::StatusReply& st = slot->last_status;
       j["position_mm"] = {st.x_um / 1000.0, st.y_um / 1000.0, st.z_um / 1000.0};
     }
@@ -1054,18 +1066,34 @@ void Workshop::finish_run(Slot& slot, JobRun& r, Sender& sender) {
 heightmap::ProbeTouch Workshop::probing_touch(Slot& slot, Sender& sender,
                                               const std::function<void(const std::string&)>& note) {
   auto last_notify = std::make_shared<Clock::time_point>();
-  heightmap::ProbeTouch touch = heightmap::controller_touch(
-      sender, heightmap::ProbeMotion{}, [this, &slot, last_notify](const Progress& p) {
-        {
-          std::lock_guard<std::mutex> lock(slot.mutex);
-          slot.last_status = p.status;
-          slot.have_last_status = true;
-        }
-        if (Clock::now() - *last_notify > std::chrono::milliseconds(100)) {
-          *last_notify = Clock::now();
-          notify(false);
-        }
-      });
+  const auto show = [this, &slot, last_notify](const Progress& p) {
+    {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      slot.last_status = p.status;
+      slot.have_last_status = true;
+    }
+    if (Clock::now() - *last_notify > std::chrono::milliseconds(100)) {
+      *last_notify = Clock::now();
+      notify(false);
+    }
+  };
+  // A hold that came during the travel to the point: the tool stops above it, at rest,
+  // and goes down only after resume (the guide: no touch while held).
+  const auto before_descent = [this, &slot, &sender, note, show] {
+    bool held = false;
+    {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      held = slot.hold_pending && !slot.abort_pending && !stopping_;
+    }
+    if (held) {
+      Progress rest;
+      rest.status = sender.read_status_at_rest(std::chrono::seconds(60));
+      show(rest);
+    }
+    wait_between_touches(slot, note);
+  };
+  heightmap::ProbeTouch touch =
+      heightmap::controller_touch(sender, heightmap::ProbeMotion{}, show, before_descent);
   return [this, &slot, touch, note](double x_mm, double y_mm) {
     wait_between_touches(slot, note);
     try {
@@ -1192,10 +1220,29 @@ heightmap::HeightMap Workshop::probe_board_blank(
     note("probing stopped: " + lifted);
     throw AbortedBeforeCutting("probing", lifted);
   }
+  bool held = false;
+  size_t done = 0, planned = 0;
   {
     std::lock_guard<std::mutex> lock(slot.mutex);
     slot.probing_sender = nullptr;
     slot.probe_stage.clear();
+    held = slot.hold_pending && !slot.abort_pending;
+    done = slot.probe_done;
+    planned = slot.probe_total;
+  }
+  if (held) {
+    // Held during the last touch: it finished; the cut waits held before its first command.
+    const proto::StatusReply st = sender.read_status_at_rest(std::chrono::seconds(60));
+    {
+      std::lock_guard<std::mutex> lock(slot.mutex);
+      slot.last_status = st;
+      slot.have_last_status = true;
+    }
+    note(
+        fmt::format("probing held by the operator after touch {} of {} (the last): the tool at "
+                    "rest at x {:.3f} y {:.3f} z {:.3f}; the cut waits held before its first "
+                    "command",
+                    done, planned, st.x_um / 1000.0, st.y_um / 1000.0, st.z_um / 1000.0));
   }
   for (const std::string& r : probed.reprobed) note("probed again: " + r);
   const heightmap::HeightMap& map = probed.map;

@@ -536,7 +536,16 @@ TEST(ServerMachines, HoldWhilePlanningIsKeptAndStopsTheJobBeforeItMoves) {
   ASSERT_EQ(r->status, 200) << r->body;
   EXPECT_EQ(listed["state"], "running");
   EXPECT_EQ(listed["stage"], "planning") << listed.dump();
-  ASSERT_TRUE(test::wait_until([&] { return server.running(id)["machine_state"] == "held"; }, 30))
+  // Held at once in the status, though still planning (the controller is told before the
+  // job's first command).
+  EXPECT_EQ(server.running(id)["machine_state"], "held") << server.status().dump();
+  EXPECT_EQ(server.status()["machines"][0]["state"], "held") << server.status().dump();
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        return server.running(id)["machine_state"] == "held" &&
+               server.jobs()[0]["stage"] == "cutting" && server.running(id)["total"] > 0;
+      },
+      30))
       << server.status().dump();
   const nlohmann::json held = server.running(id);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));

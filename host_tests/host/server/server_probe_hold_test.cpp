@@ -31,12 +31,13 @@ int64_t post_probe_first(const ServerRig& server) {
 }
 
 // The instants of a touch at which the operator holds.
-enum class Instant { kDescending, kAtContact, kRetracting };
+enum class Instant { kDescending, kAtContact, kRetracting, kTravelling };
 
 // Waits (polling the simulated tool) until the next touch is at `when`.
 bool reach(const SimRig& sim, Instant when) {
   double band_entered_mm = -1;  // descending: where the tool entered 0.2 .. 0.6 mm above
   bool touched = false;
+  sim::ToolSample last{};  // travelling: the sample before
   return test::wait_until(
       [&] {
         for (int i = 0; i < 1000; ++i) {
@@ -60,6 +61,14 @@ bool reach(const SimRig& sim, Instant when) {
               if (closed) touched = true;
               if (touched && above_mm > 0.1 && above_mm < 0.35) return true;
               break;
+            case Instant::kTravelling: {  // after a touch, moving in X/Y to the next point
+              if (closed) touched = true;
+              if (touched && above_mm > 0.8 && (t.x_mm != last.x_mm || t.y_mm != last.y_mm) &&
+                  last.z_mm == t.z_mm)
+                return true;
+              last = t;
+              break;
+            }
           }
           std::this_thread::sleep_for(std::chrono::microseconds(500));
         }
@@ -230,15 +239,26 @@ TEST(ServerProbeHold, AHoldDuringTheLastTouchHoldsTheJobBeforeItsFirstCommand) {
   ASSERT_TRUE(reach(sim, Instant::kDescending)) << server.status().dump();
   ASSERT_EQ(server.control(id, R"({"action":"hold"})")->status, 200);
   const fs::path job_dir = server.data().job_dir(server.store().get(id)->key);
-  ASSERT_TRUE(test::wait_until([&] { return fs::exists(job_dir / "heightmap.json"); }, 60));
+  // From the hold's answer on, every sample says held, with a position (the outside tester
+  // saw the machine `idle`, the job `planning` and no position between probing and cut).
+  std::set<std::string> machine_states, job_states;
+  bool without_position = false;
   ASSERT_TRUE(test::wait_until(
       [&] {
+        const nlohmann::json status = server.status();
         const nlohmann::json j = server.running(id);
+        machine_states.insert(status["machines"][0]["state"].get<std::string>());
+        job_states.insert(j["machine_state"].get<std::string>());
+        if (!j["position_mm"].is_array()) without_position = true;
         return j.is_object() && !j.contains("probe") && j["total"].get<size_t>() > 0 &&
-               j["machine_state"] == "held" && j["position_mm"].is_array();
+               j["machine_state"] == "held" && j["position_mm"].is_array() &&
+               fs::exists(job_dir / "heightmap.json");
       },
-      30))
+      60))
       << server.status().dump();
+  EXPECT_EQ(machine_states, std::set<std::string>({"held"}));
+  EXPECT_EQ(job_states, std::set<std::string>({"held"}));
+  EXPECT_FALSE(without_position);
   ASSERT_TRUE(at_rest(sim));
   const sim::ToolSample tool = sim.machine().position();
   const nlohmann::json map = nlohmann::json::parse(read_file(job_dir / "heightmap.json"));
@@ -268,6 +288,60 @@ TEST(ServerProbeHold, AHoldDuringTheLastTouchHoldsTheJobBeforeItsFirstCommand) {
       << server.status().dump();
   ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
   ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30));
+  // The hold is in machine.log too, as every probing hold is.
+  const std::string log = read_file(job_dir / "runs" / "1" / "machine.log");
+  EXPECT_NE(log.find(fmt::format("probing held by the operator after touch {} of {} (the last)",
+                                 points, points)),
+            std::string::npos)
+      << log;
+}
+
+// A hold while the tool travels to the next point (issue 25's outside tester: status said
+// held, yet the tool went down and touched): the travel ends above the point, the tool rests
+// there, no descent until resume, and the log has the hold; resume touches that point.
+TEST(ServerProbeHold, AHoldDuringTheTravelToAPointStopsAboveItWithNoDescentUntilResume) {
+  test::TempDir dir;
+  SimRig sim(true, 0, tilted_blank());
+  ServerRig server(dir.path(), {test::machine("mill", sim.address())});
+  const int64_t id = post_probe_first(server);
+  ASSERT_TRUE(
+      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
+  ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+  // After a touch (the tool rests on the copper before the first: that is no touch).
+  ASSERT_TRUE(test::wait_until([&] { return touches(server, id) >= 1; }, 60));
+  ASSERT_TRUE(reach(sim, Instant::kTravelling)) << server.status().dump();
+  const size_t before = touches(server, id);
+  ASSERT_EQ(server.control(id, R"({"action":"hold"})")->status, 200);
+  ASSERT_TRUE(at_rest(sim));
+  const sim::ToolSample tool = sim.machine().position();
+  const double start_z_mm = heightmap::ProbeMotion{}.start_z_mm;
+  EXPECT_NEAR(tool.z_mm, start_z_mm, 0.01) << "held at the travel height, not going down";
+  const size_t trace_at = sim.machine().trace().size();
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  EXPECT_EQ(touches(server, id), before) << "no touch while held";
+  EXPECT_EQ(sim.machine().position().z_mm, tool.z_mm) << "no descent while held";
+  EXPECT_EQ(server.running(id)["machine_state"], "held");
+  ASSERT_EQ(server.control(id, R"({"action":"resume"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return touches(server, id) > before; }, 60))
+      << server.status().dump();
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30));
+  // The touch after resume is at the point the tool stood above.
+  bool touched_there = false;
+  const std::vector<sim::ToolSample>& trace = sim.machine().trace();
+  for (size_t i = trace_at; i < trace.size() && !touched_there; ++i) {
+    const sim::ToolSample& s = trace[i];
+    touched_there = s.z_mm <= tilted_copper_mm(s.x_mm) + 0.001 &&
+                    std::abs(s.x_mm - tool.x_mm) < 0.001 && std::abs(s.y_mm - tool.y_mm) < 0.001;
+  }
+  EXPECT_TRUE(touched_there);
+  const fs::path job_dir = server.data().job_dir(server.store().get(id)->key);
+  const std::string log = read_file(job_dir / "runs" / "1" / "machine.log");
+  EXPECT_NE(log.find(fmt::format("probing held by the operator after touch {} of", before)),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find(fmt::format("probing resumed after touch {} of", before)), std::string::npos)
+      << log;
 }
 
 // The time left of a probe-first job (issue 25's testers: it counted down while the job
