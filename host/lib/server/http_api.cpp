@@ -528,7 +528,9 @@ nlohmann::json HttpApi::job_answer(const JobRecord& j) const {
   out["height_map"] = has_height_map(j);
   const int64_t map_job = height_map_job_of(data_, j);
   out["height_map_job"] = map_job != 0 ? nlohmann::json(map_job) : nlohmann::json();
-  out["waiting"] = map_wait_of(store_, data_, j);
+  out["waiting"] = map_wait_of(store_, data_, j, [this](const std::string& machine) {
+    return workshop_.availability(machine);
+  });
   return out;
 }
 
@@ -828,12 +830,39 @@ void HttpApi::route_priority() {
                    });
 }
 
+std::string HttpApi::requeue_without_map_source(int64_t id, bool continue_job) {
+  const std::optional<JobRecord> job = store_.get(id);
+  if (!job) return "";
+  const bool takes = continue_job
+                         ? job->state == JobState::kInterrupted
+                         : job->state == JobState::kInterrupted ||
+                               job->state == JobState::kAborted || job->state == JobState::kFailed;
+  if (!takes) return "";
+  const MapSource source = map_source_of(store_, data_, *job);
+  if (source.ended_why.empty()) return "";
+  if (!source.source_ended) return "queued again, it would fail at once: " + source.ended_why;
+  return fmt::format(
+      "it cuts with job {}'s height map, and {}: queued again, it would fail at once "
+      "(requeue or continue job {} first, which probes the blank again, then requeue this "
+      "job)",
+      source.from, source.ended_why, source.from);
+}
+
 bool HttpApi::store_control(int64_t id, const std::string& action, httplib::Response& res) {
   auto done = [&](bool ok, const std::string& why) {
     if (!ok) return send_error(res, 409, refused_in_state(store_, id, why));
     workshop_.notify(true);
     send_control_answer(id, action, res);
   };
+  if (action == "requeue" || action == "continue") {
+    // Its map source ended without a map: queued again, it would fail again at once (asked
+    // only where the store would take the action: its own refusal says why otherwise).
+    const std::string no_map = requeue_without_map_source(id, action == "continue");
+    if (!no_map.empty()) {
+      send_error(res, 409, refused_in_state(store_, id, no_map));
+      return true;
+    }
+  }
   if (action == "cancel") {
     done(store_.cancel(id), "only a queued job can be cancelled");
   } else if (action == "requeue") {

@@ -69,6 +69,9 @@ class HttpApi {
   void route_control();
   void route_priority();
   // Cancel, requeue, continue: answered from the store (true), else false.
+  // Why a failed or aborted job cannot be requeued or continued: its height map source
+  // ended without a map ("" when it can).
+  std::string requeue_without_map_source(int64_t id, bool continue_job);
   bool store_control(int64_t id, const std::string& action, httplib::Response& res);
   bool has_height_map(const JobRecord& job) const;
   // A job as every answer gives it: its record's fields and those worked out now

@@ -143,28 +143,42 @@ bool waits_for_source(const JobRecord& job, const MapSource& source) {
 
 }  // namespace
 
-std::string map_wait_text(const JobRecord& job, const MapSource& source) {
+std::string map_wait_text(const JobRecord& job, const MapSource& source,
+                          const MachineAvailabilityOf& availability) {
   if (waits_for_map(job, source))
     return fmt::format("waiting for the height map of job {}", source.from);
   if (waits_for_source(job, source))
     return fmt::format(
         "waiting for job {} to be completed (the blank is turned over after its side is cut)",
         source.from);
+  if (job.state != JobState::kQueued || !source.has_map || source.machine.empty()) return "";
   // Only that machine takes it (jobs_not_for_machine), however many others are idle.
-  if (job.state == JobState::kQueued && source.own && !source.machine.empty())
-    return fmt::format(
-        "waiting for machine '{}', which probed this job's blank in an earlier run (the "
-        "blank is clamped there)",
-        source.machine);
-  if (job.state == JobState::kQueued && source.has_map && !source.machine.empty())
-    return fmt::format("waiting for machine '{}', which probed the height map of job {}",
-                       source.machine, source.from);
-  return "";
+  const std::string probed =
+      source.own ? std::string(
+                       "which probed this job's blank in an earlier run (the blank is "
+                       "clamped there)")
+                 : fmt::format("which probed the height map of job {}", source.from);
+  switch (availability(source.machine)) {
+    case MachineAvailability::kFree:
+      return fmt::format("about to go to machine '{}' (free), {}", source.machine, probed);
+    case MachineAvailability::kBusy:
+      return fmt::format("waiting for machine '{}' (busy), {}", source.machine, probed);
+    case MachineAvailability::kOffline:
+      return fmt::format("waiting for machine '{}' (offline), {}", source.machine, probed);
+    case MachineAvailability::kNotHere:
+      break;
+  }
+  if (!source.own) return "";
+  return fmt::format(
+      "machine '{}', which probed this job's blank in an earlier run, is not one of this "
+      "server's machines: the next free one here takes the job and probes the blank again",
+      source.machine);
 }
 
-std::string map_wait_of(JobStore& store, const DataFolder& data, const JobRecord& job) {
+std::string map_wait_of(JobStore& store, const DataFolder& data, const JobRecord& job,
+                        const MachineAvailabilityOf& availability) {
   if (job.state != JobState::kQueued) return "";
-  return map_wait_text(job, map_source_of(store, data, job));
+  return map_wait_text(job, map_source_of(store, data, job), availability);
 }
 
 int fail_jobs_without_map_source(JobStore& store, const DataFolder& data) {

@@ -5,9 +5,10 @@
 #ifndef HOST_LIB_SERVER_MAP_SOURCE_H
 #define HOST_LIB_SERVER_MAP_SOURCE_H
 
-#include <cstdint>  // int64_t
-#include <string>   // std::string
-#include <vector>   // std::vector
+#include <cstdint>     // int64_t
+#include <functional>  // std::function
+#include <string>      // std::string
+#include <vector>      // std::vector
 
 #include "host/lib/server/data_folder.h"
 #include "host/lib/server/job_record.h"
@@ -53,10 +54,18 @@ int64_t height_map_job_of(const DataFolder& data, const JobRecord& job);
 // side is cut)" while job 4 is not; "waiting for machine 'left', which probed
 // the height map of job 4" once it has (only that machine takes it); "" otherwise (not
 // queued, no source, or it fails with the reason).
-std::string map_wait_text(const JobRecord& job, const MapSource& source);
+// The machine a map belongs to, as this server sees it: the `waiting` text says whether the
+// job waits for it (busy, offline), is about to go to it (free), or is taken by another
+// machine here, which probes the blank again (a probe-first job's own map, its machine not
+// one of this server's: "" for a height_map_from job then, whose run says why it fails).
+enum class MachineAvailability { kNotHere, kFree, kBusy, kOffline };
+using MachineAvailabilityOf = std::function<MachineAvailability(const std::string& machine)>;
+std::string map_wait_text(const JobRecord& job, const MapSource& source,
+                          const MachineAvailabilityOf& availability);
 
 // map_wait_text of a job, looking at its source only when it is queued.
-std::string map_wait_of(JobStore& store, const DataFolder& data, const JobRecord& job);
+std::string map_wait_of(JobStore& store, const DataFolder& data, const JobRecord& job,
+                        const MachineAvailabilityOf& availability);
 
 // Queued jobs whose map source ended without a map (failed, aborted or cancelled; a flipped
 // job's: ended so at all, MapSource::flipped) fail in the queue, no machine claiming them

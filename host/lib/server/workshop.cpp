@@ -175,12 +175,28 @@ const char* control_name(JobControl control) {
   return "probe_ready";
 }
 
-// The 409 to probe_ready when no machine waits for the clip: why, and when to send it.
-std::string no_clip_wait(int64_t job_id, const std::string& why) {
+// A board job whose board.json this archive holds (not another server's upload): what it
+// probes is known here.
+bool board_in_archive(const DataFolder& data, const JobRecord& job) {
+  try {
+    read_board_settings(data.job_dir(job.key));
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+// The 409 to probe_ready when no machine waits for the clip: the job and its state first
+// (the actions' one rule), why, and when to send it (never, for a job that has ended).
+std::string no_clip_wait(int64_t job_id, JobState state, const std::string& why) {
+  if (is_final(state)) {
+    return fmt::format("job {} is {}: no machine is waiting for its probe clip: the job has ended",
+                       job_id, state_name(state));
+  }
   return fmt::format(
-      "no machine is waiting for the probe clip for job {}: {} (send probe_ready once the "
+      "job {} is {}: no machine is waiting for its probe clip: {} (send probe_ready once the "
       "job's machine_state in /api/status is probe_clip)",
-      job_id, why);
+      job_id, state_name(state), why);
 }
 
 }  // namespace
@@ -207,6 +223,16 @@ std::vector<MachineFit> Workshop::fits() const {
   std::vector<MachineFit> out;
   for (const auto& s : slots_) out.push_back(s->spec.fit);
   return out;
+}
+
+MachineAvailability Workshop::availability(const std::string& machine) const {
+  for (const auto& s : slots_) {
+    if (s->spec.name != machine) continue;
+    std::lock_guard<std::mutex> lock(s->mutex);
+    if (s->link_state != "online") return MachineAvailability::kOffline;
+    return s->job_id != 0 ? MachineAvailability::kBusy : MachineAvailability::kFree;
+  }
+  return MachineAvailability::kNotHere;
 }
 
 void Workshop::start() {
@@ -312,10 +338,13 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
     const std::optional<JobRecord> job = store_.get(job_id);
     if (!job) return {404, fmt::format("no job {}", job_id)};
     const int64_t map_job = height_map_job_of(data_, *job);
-    if ((map_job != 0 && map_job != job_id) || !is_board_job(*job)) {
+    if (map_job != job_id &&
+        (map_job != 0 || !is_board_job(*job) || board_in_archive(data_, *job))) {
       const std::string what =
           map_job != 0 ? fmt::format("it cuts with job {}'s height map and probes nothing", map_job)
-                       : std::string("a drawing probes nothing");
+          : is_board_job(*job)
+              ? std::string("a board uploaded without probe_first=1 probes nothing")
+              : std::string("a drawing probes nothing");
       return {409, fmt::format("job {} is {}: {}: no machine asks for the probe clip, send no "
                                "probe_ready",
                                job_id, state_name(job->state), what)};
@@ -326,9 +355,10 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
     if (slot->job_id != job_id || (slot->sender == nullptr && !slot->planning)) continue;
     if (control == JobControl::kConfirmProbe) {
       if (slot->probe_stage != "probe_clip") {
-        return {409, no_clip_wait(job_id, slot->probe_stage == "probing" ? "it is probing already"
-                                          : slot->planning ? "its machine is still planning it"
-                                                           : "it is cutting")};
+        return {409, no_clip_wait(job_id, JobState::kRunning,
+                                  slot->probe_stage == "probing" ? "it is probing already"
+                                  : slot->planning ? "its machine is still planning it"
+                                                   : "it is cutting")};
       }
       slot->probe_confirmed = true;
       notify(false);
@@ -386,11 +416,11 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
   const std::optional<JobRecord> job = store_.get(job_id);
   if (!job) return {404, fmt::format("no job {}", job_id)};
   if (control == JobControl::kConfirmProbe) {
-    return {409, no_clip_wait(job_id, job->state == JobState::kQueued
-                                          ? "it is queued, no machine has claimed it yet"
-                                      : job->state == JobState::kRunning
-                                          ? std::string("it runs on another server's machine")
-                                          : fmt::format("it is {}", state_name(job->state)))};
+    return {409, no_clip_wait(job_id, job->state,
+                              job->state == JobState::kQueued ? "no machine has claimed it yet"
+                              : job->state == JobState::kRunning
+                                  ? "it runs on another server's machine"
+                                  : "it is not running (continue or requeue it first)")};
   }
   // One rule: the machine's actions go to a job running on a machine of this server; in any
   // other state they are refused, the state named.

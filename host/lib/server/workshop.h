@@ -25,6 +25,7 @@
 #include "host/lib/server/data_folder.h"
 #include "host/lib/server/job_store.h"
 #include "host/lib/server/machine_spec.h"
+#include "host/lib/server/map_source.h"  // MachineAvailability
 #include "host/lib/server/progress_saver.h"
 #include "host/lib/server/server_lease.h"
 #include "host/lib/stream/job_encoder.h"
@@ -104,6 +105,8 @@ class Workshop {
   // Waits until the change counter differs from `seen` (or the timeout); returns it.
   uint64_t wait_change(uint64_t seen, std::chrono::milliseconds timeout);
   std::vector<MachineFit> fits() const;
+  // Whether `machine` is one of this server's, and free, busy or offline (a job's `waiting`).
+  MachineAvailability availability(const std::string& machine) const;
 
  private:
   struct Slot;

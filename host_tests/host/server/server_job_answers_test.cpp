@@ -101,7 +101,7 @@ TEST(ServerJobAnswers, TheMapAJobCutsWithIsKnownFromItsUpload) {
   }
   // No machine will ask for the clip for a job that probes nothing (issue 25's tester: the
   // 409 said to wait for probe_clip, which never comes).
-  for (const int64_t id : {bottom_id, drawing}) {
+  for (const int64_t id : {bottom_id, drawing, plain}) {
     auto r = server.control(id, R"({"action":"probe_ready"})");
     ASSERT_TRUE(r);
     EXPECT_EQ(r->status, 409);
@@ -110,9 +110,11 @@ TEST(ServerJobAnswers, TheMapAJobCutsWithIsKnownFromItsUpload) {
                           "probe_ready",
                           id,
                           id == drawing ? std::string("a drawing probes nothing")
-                                        : fmt::format("it cuts with job {}'s height map and "
-                                                      "probes nothing",
-                                                      top_id)));
+                          : id == plain
+                              ? std::string("a board uploaded without probe_first=1 probes nothing")
+                              : fmt::format("it cuts with job {}'s height map and "
+                                            "probes nothing",
+                                            top_id)));
   }
 }
 
@@ -132,8 +134,8 @@ TEST(ServerJobAnswers, ProbeReadyBeforeTheClipIsAskedForSaysWhyAndTheMapsMachine
     if (r) {
       EXPECT_EQ(r->status, 409) << r->body;
       EXPECT_EQ(nlohmann::json::parse(r->body)["error"],
-                fmt::format("no machine is waiting for the probe clip for job {}: it is queued, "
-                            "no machine has claimed it yet (send probe_ready once the job's "
+                fmt::format("job {} is queued: no machine is waiting for its probe clip: no "
+                            "machine has claimed it yet (send probe_ready once the job's "
                             "machine_state in /api/status is probe_clip)",
                             top));
     }
@@ -158,9 +160,10 @@ TEST(ServerJobAnswers, ProbeReadyBeforeTheClipIsAskedForSaysWhyAndTheMapsMachine
   auto again = server.control(id, R"({"action":"probe_ready"})");
   ASSERT_TRUE(again);
   EXPECT_EQ(again->status, 409);
-  EXPECT_NE(again->body.find(fmt::format(
-                "no machine is waiting for the probe clip for job {}: it is completed", id)),
-            std::string::npos)
+  EXPECT_NE(
+      again->body.find(fmt::format(
+          "job {} is completed: no machine is waiting for its probe clip: the job has ended", id)),
+      std::string::npos)
       << again->body;
 }
 
@@ -235,8 +238,10 @@ TEST(ServerJobAnswers, AnActionThatCannotApplyAnswers409NamingTheJobsState) {
             fmt::format("job {} is failed: only an interrupted job with a known curve can be "
                         "continued",
                         id));
-  EXPECT_NE(refused(server, id, "probe_ready").find(fmt::format("for job {}: it is failed", id)),
-            std::string::npos);
+  EXPECT_EQ(refused(server, id, "probe_ready"),
+            fmt::format("job {} is failed: no machine is waiting for its probe clip: the job has "
+                        "ended",
+                        id));
   EXPECT_EQ(control_ok(server, id, "requeue")["state"], "queued");
 }
 

@@ -134,8 +134,8 @@ TEST(ServerMapFlow, ASameSideJobWaitsForTheMachineTheBottomSideForTheTopToComple
   const std::string machine = server.job(top)["machine"];
   nlohmann::json j = server.job(same_side);
   EXPECT_EQ(j["state"], "queued") << j.dump();
-  EXPECT_EQ(j["waiting"], fmt::format("waiting for machine '{}', which probed the height map "
-                                      "of job {}",
+  EXPECT_EQ(j["waiting"], fmt::format("waiting for machine '{}' (busy), which probed the height "
+                                      "map of job {}",
                                       machine, top));
   const nlohmann::json b = server.job(bottom);
   EXPECT_EQ(b["state"], "queued") << b.dump();
@@ -242,6 +242,20 @@ TEST(ServerMapFlow, TheBottomSideFailsWithNothingCutWhenItsSourceFails) {
   EXPECT_EQ(j["started_ms"], 0) << j.dump();
   for (const SimRig* sim : {&left, &right})
     for (const auto& s : sim->machine().trace()) EXPECT_GT(s.z_mm, -1.01);
+  // Requeued, it would fail again at once (an outside tester got 200 and a job still
+  // `failed`): refused, saying what to do first; the job stays as it was.
+  auto r = server.control(bottom, R"({"action":"requeue"})");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 409) << r->body;
+  EXPECT_NE(r->body.find(fmt::format("job {} is failed: it cuts with job {}'s height map, and job "
+                                     "{} ended failed without a height map",
+                                     bottom, top, top)),
+            std::string::npos)
+      << r->body;
+  EXPECT_NE(r->body.find(fmt::format("requeue or continue job {} first", top)), std::string::npos)
+      << r->body;
+  EXPECT_EQ(server.job(bottom)["state"], "failed");
+  EXPECT_EQ(server.job(bottom)["message"], message);
 }
 
 TEST(ServerMapFlow, HeightMapFieldsAreCheckedAtUpload) {

@@ -348,8 +348,8 @@ TEST(ServerProbingControl, AContinuedProbeFirstJobGoesBackToTheMachineThatProbed
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
   EXPECT_EQ(server.job(id)["waiting"],
-            "waiting for machine 'left', which probed this job's blank in an earlier run (the "
-            "blank is clamped there)")
+            "waiting for machine 'left' (offline), which probed this job's blank in an earlier "
+            "run (the blank is clamped there)")
       << server.job(id).dump();
   left = std::make_unique<SimRig>(true, left_port, tilted_blank());  // the left one is back
   ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "running"; }, 30))
