@@ -46,7 +46,7 @@ void continue_stream(const JobRecord& job, const JobPlan& plan, const EncodeOpti
                      const std::function<void(const std::string&)>& note, JobStream* stream) {
   // The whole job encoded again for each look (nothing of it is held).
   const JobPass pass = pass_over(plan, enc, stream->job_id());
-  const size_t total = stream->job_commands();
+  const size_t total = stream->whole_job_size();
   // The new session stopped what was left: where the machine came to rest.
   const proto::StatusReply rest = sender.read_status_at_rest(std::chrono::seconds(30));
   const std::optional<ResumePoint> at = resume_point_of(rest);

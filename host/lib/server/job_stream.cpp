@@ -9,7 +9,8 @@ JobStream::JobStream(const JobPlan& plan, const EncodeOptions& enc) : plan_(plan
   auto send = std::make_unique<EncodedJob>(plan, enc);
   auto track = std::make_unique<EncodedJob>(plan, enc);
   job_id_ = send->summary().job_id;
-  job_commands_ = send->summary().commands;
+  job_commands_ = send->summary().job_commands;
+  whole_job_size_ = send->summary().commands;
   wire_bytes_ = send->summary().wire_bytes;
   send_job_ = send.get();
   track_job_ = track.get();

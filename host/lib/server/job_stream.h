@@ -18,9 +18,12 @@ class JobStream {
  public:
   // The whole plan (which must outlive the stream), as encode_job() gives it.
   JobStream(const JobPlan& plan, const EncodeOptions& enc);
-  // The whole job's id (#J) and its commands' count, also when it is continued.
+  // The whole job's id (#J) and its job commands' count (what a resume point's index counts),
+  // also when it is continued.
   uint16_t job_id() const { return job_id_; }
   size_t job_commands() const { return job_commands_; }
+  // Every command of the whole job (its stream indices run to this), also when continued.
+  size_t whole_job_size() const { return whole_job_size_; }
   // The job's commands from stream index `from` on, after `prefix` (a resume's).
   void start_at(size_t from, std::vector<QueuedCommand> prefix);
   // A resume hook's whole list instead of the plan's commands.
@@ -51,6 +54,7 @@ class JobStream {
   EncodeOptions enc_;
   uint16_t job_id_ = 0;
   size_t job_commands_ = 0;
+  size_t whole_job_size_ = 0;
   size_t wire_bytes_ = 0;
   std::vector<QueuedCommand> list_;  // a hook's
   std::unique_ptr<CommandSource> send_, track_;

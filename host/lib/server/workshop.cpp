@@ -158,6 +158,16 @@ std::string whole_job_after_run_counts(int64_t resume_index, size_t job_commands
                            : "";
 }
 
+// A link-lost or stalled run's message: the sender counted this run's stream; where the
+// whole job stands, where continue resumes ("" before its first job command).
+std::string whole_job_position(int64_t resume_index, size_t job_commands) {
+  return resume_index >= 0 ? fmt::format(
+                                 " (counts of this run; the job is at job command {} of "
+                                 "{}, where continue resumes)",
+                                 resume_index, job_commands)
+                           : "";
+}
+
 // The action as the API names it.
 const char* control_name(JobControl control) {
   switch (control) {
@@ -713,6 +723,7 @@ struct Workshop::JobRun {
   size_t setup_frames = 0;      // sent before the job's own #J (its height map)
   size_t first_step_index = 0;  // the first command along the path: executed_mm 0 before it
   bool before_cutting = false;  // ended waiting for the clip or probing: nothing of it ran
+  bool streaming = false;       // its commands went to the sender (executed counts them)
   bool machine_marked = false;  // the machine's last job file names this job
   // Where it stands; a continued job keeps its saved position until the machine reports.
   JobProgress progress;
@@ -740,6 +751,12 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
     r.state = JobState::kInterrupted;
     r.outcome = "link lost";
     r.message = e.what();
+    // Lost while streaming (a machine killed, its socket closed): the same counts as a
+    // silent link's message.
+    if (r.streaming) {
+      r.message += fmt::format(" after {} of {} commands executed", r.executed, r.commands->size());
+      r.message += whole_job_position(r.progress.resume_index, r.commands->job_commands());
+    }
   } catch (const AbortedBeforeCutting& e) {
     r.state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
     r.outcome = stopping_ ? "server stopped before cutting" : "aborted before cutting";
@@ -880,6 +897,7 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
   // the machine's last job left.
   if (!sender.set_override(100)) throw LinkError("the machine did not take feed override 100%");
   r.note("feed override set to 100% for this run");
+  r.streaming = true;
   const JobOutcome result = sender.run(
       r.commands->source(), [&](const Progress& p) { follow_status(slot, r, sender, p); });
   r.outcome = outcome_name(result);
@@ -914,12 +932,7 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
     case JobOutcome::kStalled:  // the sender's watchdog: answered, but no progress
       r.state = JobState::kInterrupted;
       // The sender counts this run's stream; continue resumes where the whole job stands.
-      if (r.progress.resume_index >= 0) {
-        r.message += fmt::format(
-            " (counts of this run; the job is at job command {} of {}, where continue "
-            "resumes)",
-            r.progress.resume_index, r.commands->job_commands());
-      }
+      r.message += whole_job_position(r.progress.resume_index, r.commands->job_commands());
       break;
   }
   if (!fenced.empty() && result != JobOutcome::kCompleted) {

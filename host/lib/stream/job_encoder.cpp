@@ -223,6 +223,7 @@ EncodedJobSummary summarize_job(const JobPlan& plan, const EncodeOptions& option
   while (encoder.next(&batch)) {
     for (const QueuedCommand& c : batch) {
       sum.commands++;
+      if (proto::command_role(c.letter) == proto::CommandRole::kJobCommand) sum.job_commands++;
       sum.wire_bytes += frame_bytes(c);
       crc = job_crc_update(crc, c);
     }

@@ -76,6 +76,9 @@ class JobEncoder {
 // What encode_job() would return, counted without keeping the commands.
 struct EncodedJobSummary {
   size_t commands = 0;
+  // Of them, the job commands (command_role kJobCommand): what a resume point's job command
+  // index counts ("job command J of N").
+  size_t job_commands = 0;
   size_t wire_bytes = 0;  // wire_bytes() of the commands
   uint16_t job_id = 0;    // job_id_of() the commands
 };

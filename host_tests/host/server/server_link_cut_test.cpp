@@ -206,5 +206,30 @@ TEST(ServerLinkCut, ALinkSilentFor10sEndsTheJobInterruptedCuttingOrProbing) {
   }
 }
 
+// A machine killed while cutting (its socket closed; issue 25's outside tester got only
+// "closed by the peer"): the message gives this run's counts and the whole job's position,
+// as a silent link's does, and continue resumes there.
+TEST(ServerLinkCut, AMachineKilledWhileCuttingSaysWhereTheJobStands) {
+  test::TempDir dir;
+  auto sim = std::make_unique<SimRig>(true);
+  ServerRig server(dir.path(), {test::machine("m1", sim->address())});
+  const int64_t id = server.upload_ok("multi.ngc", test::squares_gcode(3, 8), "&feed_mm_s=10");
+  ASSERT_TRUE(test::wait_until([&] { return server.store().get(id)->resume_index >= 3; }, 60))
+      << server.status().dump();
+  sim->kill();
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] != "running"; }, 30));
+  const JobRecord rec = *server.store().get(id);
+  EXPECT_EQ(rec.state, JobState::kInterrupted) << rec.message;
+  EXPECT_NE(rec.message.find(fmt::format("{}: closed by the peer after ", sim->address())),
+            std::string::npos)
+      << rec.message;
+  EXPECT_NE(rec.message.find(" commands executed (counts of this run; the job is at job command "),
+            std::string::npos)
+      << rec.message;
+  EXPECT_NE(rec.message.find(fmt::format("job command {} of ", rec.resume_index)),
+            std::string::npos)
+      << rec.message;
+}
+
 }  // namespace
 }  // namespace host::server

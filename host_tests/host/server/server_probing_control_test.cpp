@@ -314,6 +314,16 @@ TEST(ServerProbingControl, ARunStoppedBeforeItCutsKeepsTheContinuedJobsPosition)
   const size_t at = log.find(continuing);
   ASSERT_NE(at, std::string::npos) << log;
   EXPECT_GE(std::stoll(log.substr(at + continuing.size())), saved.resume_index) << log;
+  // One count of job commands: the log's "J of N" and the message's (an outside tester saw
+  // "job command 18 of 196" in the message, "of 139" in the log).
+  const size_t of = log.find(" of ", at);
+  ASSERT_NE(of, std::string::npos) << log;
+  const long long log_total = std::stoll(log.substr(of + 4));
+  EXPECT_NE(saved.message.find(
+                fmt::format("the job at job command {} of {})", saved.resume_index, log_total)),
+            std::string::npos)
+      << saved.message << "\n"
+      << log;
   ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
   ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30));
 }
