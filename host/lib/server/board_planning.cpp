@@ -410,45 +410,4 @@ pcb::BoardJob plan_board_folder(const fs::path& dir, const JobPlanSettings& sett
   }
 }
 
-double planned_seconds_by_steps(const JobPlan& plan) {
-  const config::MachineConfig m = config::default_machine_config();
-  const double rapid_mm_s = m.rapid_feed_um_per_s / 1000.0;
-  const double z_mm_s = m.axis[config::kAxisZ].max_speed_um_per_s / 1000.0;
-  double x = 0, y = 0, z = 0, seconds = 0;
-  for (const PlanStep& s : plan.steps) {
-    const double tx = s.to.x_um / 1000.0, ty = s.to.y_um / 1000.0;
-    const double d = std::hypot(tx - x, ty - y);
-    const double feed = s.feed_um_per_s > 0 ? s.feed_um_per_s / 1000.0 : rapid_mm_s;
-    switch (s.kind) {
-      case PlanStep::kRapid:
-        seconds += d / rapid_mm_s;
-        x = tx, y = ty;
-        break;
-      case PlanStep::kFeed:
-      case PlanStep::kSpline:  // the chord: a little short on arcs
-        seconds += d / feed;
-        x = tx, y = ty;
-        break;
-      case PlanStep::kDrill: {
-        const double start = s.z_start_um / 1000.0, bottom = s.z_um / 1000.0;
-        seconds += d / rapid_mm_s + std::abs(z - start) / z_mm_s + 2 * (start - bottom) / feed;
-        x = tx, y = ty, z = start;
-        break;
-      }
-      case PlanStep::kPenUp:
-      case PlanStep::kPenDown:
-        seconds += std::abs(s.z_um / 1000.0 - z) / std::min(z_mm_s, feed);
-        z = s.z_um / 1000.0;
-        break;
-      case PlanStep::kDwell:
-        seconds += s.dwell_ms / 1000.0;
-        break;
-      case PlanStep::kPause:
-      case PlanStep::kSpindle:
-        break;
-    }
-  }
-  return seconds;
-}
-
 }  // namespace host::server

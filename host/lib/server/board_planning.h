@@ -82,10 +82,6 @@ BoardSettings read_board_settings(const std::filesystem::path& dir);
 pcb::BoardJob plan_board_folder(const std::filesystem::path& dir, const JobPlanSettings& settings,
                                 double work_w_mm, double work_h_mm);
 
-// Estimated run time of any plan from its steps and their own feeds (rapids, plunges,
-// dwells, pen moves).
-double planned_seconds_by_steps(const JobPlan& plan);
-
 }  // namespace host::server
 
 #endif  // HOST_LIB_SERVER_BOARD_PLANNING_H

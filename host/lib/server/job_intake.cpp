@@ -20,6 +20,7 @@
 #include "host/lib/server/job_planning.h"
 #include "host/lib/server/job_record_fields.h"
 #include "host/lib/server/map_source.h"  // map_source_refusal
+#include "host/lib/server/time_left.h"   // planned_seconds_by_steps
 #include "host/lib/server/zip_upload.h"
 
 namespace host::server {

@@ -23,6 +23,7 @@
 #include "host/lib/server/job_stream.h"
 #include "host/lib/server/map_source.h"
 #include "host/lib/server/run_archive.h"
+#include "host/lib/server/time_left.h"
 #include "host/lib/stream/job_resume.h"  // resume_from_curve
 #include "host/lib/stream/link.h"
 
@@ -80,7 +81,7 @@ struct Workshop::Slot {
   double path_mm = 0;
   Progress progress;
   bool have_status = false;
-  double planned_s = 0;
+  TimeLeft time_left;  // of the cut (remaining_s)
   Clock::time_point started;
   // When its commands went to the sender: the cut's time left counts from here.
   Clock::time_point cut_started;
@@ -88,6 +89,12 @@ struct Workshop::Slot {
   Clock::duration waited{};
   bool waiting = false;
   Clock::time_point waiting_since;
+  // Seconds the cut has worked at `now`: since its commands went to the sender, less the
+  // operator's waits (the caller holds `mutex`).
+  double working_s(Clock::time_point now) const {
+    const Clock::duration waits = waited + (waiting ? now - waiting_since : Clock::duration{});
+    return std::chrono::duration<double>(now - cut_started - waits).count();
+  }
   // Starts or ends a wait for the operator (the caller holds `mutex`).
   void set_waiting(bool now_waiting) {
     const Clock::time_point now = Clock::now();
@@ -486,12 +493,18 @@ nlohmann::json Workshop::snapshot() {
                               : probe_held                        ? "held"
                               : slot->probe_stage == "probe_clip" ? "probe_clip"
                                                                   : "probing";
+    // A machine that has claimed a job is never shown idle (free): until the cut's first
+    // status it is the job's (planning, starting, or held as asked).
+    const char* claimed = slot->job_id == 0 || probing || slot->have_status ? nullptr
+                          : hold_taken                                      ? "held"
+                          : slot->planning                                  ? "planning"
+                                                                            : "starting";
     if (slot->have_last_status) {
       const proto::StatusReply& st = slot->last_status;
-      m["state"] = probing ? probe_state : state_shown(st);
+      m["state"] = probing ? probe_state : claimed != nullptr ? claimed : state_shown(st);
       m["position_mm"] = {st.x_um / 1000.0, st.y_um / 1000.0, st.z_um / 1000.0};
-    } else if (probing || hold_taken) {
-      m["state"] = probing ? probe_state : "held";
+    } else if (probing || claimed != nullptr) {
+      m["state"] = probing ? probe_state : claimed;
     } else {
       m["state"] = slot->link_state == "online" ? "idle" : "unknown";
     }
@@ -500,25 +513,12 @@ nlohmann::json Workshop::snapshot() {
     const Progress& p = slot->progress;
     const double elapsed = seconds_since(slot->started);
     const double f = p.total > 0 ? double(p.executed) / double(p.total) : 0.0;
-    // Time spent waiting for the operator is not work: the time left stands still then.
-    // One clock reading: two would let a held job's time left jitter by their gap.
-    const Clock::time_point now = Clock::now();
-    const Clock::duration waited =
-        slot->waited + (slot->waiting ? now - slot->waiting_since : Clock::duration{});
-    // The cut's time left. Before its commands run (planning, the probe clip, probing: the
-    // probe object counts the touches) the planned time, standing still; then the planned
-    // time until the machine has done a little (or overrun the plan), then what it has
-    // actually taken.
-    double remaining = slot->planned_s;
-    if (slot->sender != nullptr) {
-      const double working =
-          std::chrono::duration<double>(now - slot->cut_started - waited).count();
-      // Both a share of the commands and of the planned time: the set-up frames (zeroing,
-      // a height map) run at once and would make a share of commands alone mean nothing.
-      const bool measured =
-          f > 0 && ((f > 0.05 && working > 0.05 * slot->planned_s) || working >= slot->planned_s);
-      remaining = measured ? working * (1.0 - f) / f : std::max(0.0, slot->planned_s - working);
-    }
+    // The cut's time left (TimeLeft): before its commands run (planning, the probe clip,
+    // probing: the probe object counts the touches) the planned time, standing still; then
+    // the plan's time from the step the machine is at, at the pace it has kept. Time spent
+    // waiting for the operator is not work: it stands still then.
+    const double remaining =
+        slot->time_left.remaining(slot->sender != nullptr ? slot->working_s(Clock::now()) : 0.0);
     nlohmann::json j;
     j["id"] = slot->job_id;
     j["name"] = slot->job_name;
@@ -790,7 +790,7 @@ void Workshop::claim_slot(Slot& slot, const JobRun& r) {
     slot.executed_mm = slot.path_mm = 0;
     slot.progress = Progress{};
     slot.have_status = false;
-    slot.planned_s = r.job.planned_s;
+    slot.time_left.plan(nullptr, r.job.planned_s);
     slot.started = r.started;
     slot.waited = Clock::duration{};
     slot.waiting = false;
@@ -857,6 +857,8 @@ void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
 void Workshop::hand_to_sender(Slot& slot, JobRun& r, Sender& sender) {
   auto path_json = std::make_shared<const std::string>(r.path->to_json().dump());
   r.first_step_index = r.commands->first_step_index();
+  const int first_step = r.commands->step_from(0);  // a continued run's: where it resumes
+  auto step_ends = std::make_shared<const std::vector<float>>(step_end_seconds(*r.planned));
   // Its size and first curve are known now: not "0 of 0" in the store while the first
   // status is awaited, and continuable from that curve whatever stops it next.
   r.progress = progress_of(r.progress, r.commands->size(), 0, r.commands->first_uncut_curve(0),
@@ -869,6 +871,8 @@ void Workshop::hand_to_sender(Slot& slot, JobRun& r, Sender& sender) {
     slot.cut_started = Clock::now();
     slot.waited = Clock::duration{};
     slot.waiting = false;
+    slot.time_left.plan(std::move(step_ends), r.job.planned_s);
+    slot.time_left.start_at(first_step);
     slot.progress = Progress{};
     slot.progress.total = r.commands->size();
     slot.path_json = std::move(path_json);
@@ -956,6 +960,7 @@ void Workshop::follow_status(Slot& slot, JobRun& r, Sender& sender, const Progre
     slot.executed_mm = executed_mm;
     slot.progress = p;
     slot.set_waiting(machine_waits_for_operator(p.status.state));
+    slot.time_left.at_step(step, slot.working_s(Clock::now()));
     slot.have_status = true;
     slot.last_status = p.status;
     slot.have_last_status = true;

@@ -231,5 +231,85 @@ TEST(ServerLinkCut, AMachineKilledWhileCuttingSaysWhereTheJobStands) {
       << rec.message;
 }
 
+// The time left while long commands run and the link goes silent for a while (issue 25's
+// outside tester: remaining_s climbed ~10 s a second inside one command, and through a
+// silent link): sampled every 100 ms, it never rises while the same command runs.
+TEST(ServerLinkCut, TheTimeLeftNeverRisesWithinACommandNorWhileTheLinkIsSilent) {
+  test::TempDir dir;
+  SimRig sim(true);
+  FreezingProxy proxy(sim.port());
+  ServerRig server(dir.path(), {test::machine("m1", proxy.address())}, 256 * 1024, {},
+                   std::chrono::milliseconds(10000));
+  // Sides of 75 and 55 mm at 10 mm/s: commands of 5.5 to 7.5 s.
+  const std::string gcode =
+      "G21\nG90\nG0 Z2\nG0 X5 Y5\nG1 Z-0.1 F100\nG1 X80 Y5 F600\nG1 X80 Y60\nG1 X5 Y60\n"
+      "G1 X5 Y5\nG0 Z2\n";
+  const int64_t id = server.upload_ok("long.ngc", gcode, "&feed_mm_s=10");
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const nlohmann::json p = server.running(id);
+        return p.is_object() && p["machine_state"] == "running" && p["executed"].get<int>() > 0;
+      },
+      30))
+      << server.status().dump();
+  std::vector<std::pair<int, double>> samples;  // executed, remaining_s
+  for (int i = 0; i < 80; ++i) {
+    if (i == 20) proxy.freeze(true);  // 2.5 s silent: the controller holds by its watchdog
+    if (i == 45) proxy.freeze(false);
+    const nlohmann::json p = server.running(id);
+    if (!p.is_object()) break;
+    samples.emplace_back(p["executed"].get<int>(), p["remaining_s"].get<double>());
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ASSERT_GE(samples.size(), 60u);
+  size_t within = 0;
+  for (size_t i = 1; i < samples.size(); ++i) {
+    if (samples[i].first != samples[i - 1].first) continue;
+    ++within;
+    EXPECT_LE(samples[i].second, samples[i - 1].second + 1e-6)
+        << "sample " << i << " at executed " << samples[i].first;
+  }
+  EXPECT_GE(within, 50u);  // most samples inside one long command
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30));
+}
+
+// A continued run's time left starts from where it resumes (issue 25's outside tester: a
+// job continued 39 % of the way showed nearly the whole job's planned time).
+TEST(ServerLinkCut, AContinuedRunsTimeLeftIsThatOfWhatIsLeft) {
+  test::TempDir dir;
+  SimRig sim(true);
+  int64_t id = 0;
+  double planned_s = 0;
+  {
+    ServerRig server(dir.path(), {test::machine("m1", sim.address())});
+    id = server.upload_ok("multi.ngc", test::squares_gcode(6, 8), "&feed_mm_s=10");
+    planned_s = server.job(id)["planned_s"];
+    ASSERT_TRUE(test::wait_until(
+        [&] {
+          const nlohmann::json p = server.running(id);
+          return p.is_object() && p["executed"].get<int>() > 0 &&
+                 p["executed"].get<int>() * 2 >= p["total"].get<int>();
+        },
+        60));
+    server.shutdown();
+    ASSERT_EQ(server.store().get(id)->state, JobState::kInterrupted);
+  }
+  ServerRig server(dir.path(), {test::machine("m1", sim.address())});
+  ASSERT_EQ(server.control(id, R"({"action":"continue"})")->status, 200);
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const nlohmann::json p = server.running(id);
+        return p.is_object() && p["machine_state"] == "running" && p["executed"].get<int>() > 0;
+      },
+      30))
+      << server.status().dump();
+  const double left_s = server.running(id)["remaining_s"];
+  EXPECT_GT(left_s, 0.1 * planned_s);
+  EXPECT_LT(left_s, 0.75 * planned_s) << "planned " << planned_s;
+  ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30));
+}
+
 }  // namespace
 }  // namespace host::server

@@ -522,11 +522,13 @@ TEST(ServerMachines, HoldWhilePlanningIsKeptAndStopsTheJobBeforeItMoves) {
   ASSERT_EQ(up->status, 201) << up->body;
   const int64_t id = nlohmann::json::parse(up->body)["id"].get<int64_t>();
   nlohmann::json listed;
+  std::string machine_while_planning;
   ASSERT_TRUE(test::wait_until(
       [&] {
         const nlohmann::json p = server.running(id);
         if (p.is_null() || p["machine_state"] != "planning") return false;
         listed = server.jobs()[0];
+        machine_while_planning = server.status()["machines"][0]["state"];
         return true;
       },
       30))
@@ -536,6 +538,8 @@ TEST(ServerMachines, HoldWhilePlanningIsKeptAndStopsTheJobBeforeItMoves) {
   ASSERT_EQ(r->status, 200) << r->body;
   EXPECT_EQ(listed["state"], "running");
   EXPECT_EQ(listed["stage"], "planning") << listed.dump();
+  // A machine with a job is not shown free (issue 25's tester saw `idle` while it claimed).
+  EXPECT_EQ(machine_while_planning, "planning");
   // Held at once in the status, though still planning (the controller is told before the
   // job's first command).
   EXPECT_EQ(server.running(id)["machine_state"], "held") << server.status().dump();

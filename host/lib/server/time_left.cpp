@@ -1,0 +1,116 @@
+// A running job's time left (time_left.h).
+#include "host/lib/server/time_left.h"
+
+#include <algorithm>  // std::min, std::max, std::clamp
+#include <cmath>      // std::hypot, std::abs
+
+#include "firmware/config/machine_config.h"
+
+namespace host::server {
+
+namespace {
+
+// The planned time of `plan`, step by step: at_end(seconds so far) after each step.
+template <typename AtEnd>
+double plan_seconds(const JobPlan& plan, AtEnd at_end) {
+  const config::MachineConfig m = config::default_machine_config();
+  const double rapid_mm_s = m.rapid_feed_um_per_s / 1000.0;
+  const double z_mm_s = m.axis[config::kAxisZ].max_speed_um_per_s / 1000.0;
+  double x = 0, y = 0, z = 0, seconds = 0;
+  for (const PlanStep& s : plan.steps) {
+    const double tx = s.to.x_um / 1000.0, ty = s.to.y_um / 1000.0;
+    const double d = std::hypot(tx - x, ty - y);
+    const double feed = s.feed_um_per_s > 0 ? s.feed_um_per_s / 1000.0 : rapid_mm_s;
+    switch (s.kind) {
+      case PlanStep::kRapid:
+        seconds += d / rapid_mm_s;
+        x = tx, y = ty;
+        break;
+      case PlanStep::kFeed:
+      case PlanStep::kSpline:  // the chord: a little short on arcs
+        seconds += d / feed;
+        x = tx, y = ty;
+        break;
+      case PlanStep::kDrill: {
+        const double start = s.z_start_um / 1000.0, bottom = s.z_um / 1000.0;
+        seconds += d / rapid_mm_s + std::abs(z - start) / z_mm_s + 2 * (start - bottom) / feed;
+        x = tx, y = ty, z = start;
+        break;
+      }
+      case PlanStep::kPenUp:
+      case PlanStep::kPenDown:
+        seconds += std::abs(s.z_um / 1000.0 - z) / std::min(z_mm_s, feed);
+        z = s.z_um / 1000.0;
+        break;
+      case PlanStep::kDwell:
+        seconds += s.dwell_ms / 1000.0;
+        break;
+      case PlanStep::kPause:
+      case PlanStep::kSpindle:
+        break;
+    }
+    at_end(seconds);
+  }
+  return seconds;
+}
+
+}  // namespace
+
+double planned_seconds_by_steps(const JobPlan& plan) {
+  return plan_seconds(plan, [](double) {});
+}
+
+std::vector<float> step_end_seconds(const JobPlan& plan) {
+  std::vector<float> ends;
+  ends.reserve(plan.steps.size());
+  plan_seconds(plan, [&ends](double seconds) { ends.push_back(static_cast<float>(seconds)); });
+  return ends;
+}
+
+void TimeLeft::plan(std::shared_ptr<const std::vector<float>> step_end_s, double planned_s) {
+  ends_ = std::move(step_end_s);
+  planned_s_ = planned_s;
+  const double total = ends_ && !ends_->empty() ? ends_->back() : 0.0;
+  if (total <= 0) ends_.reset();
+  scale_ = total > 0 ? planned_s / total : 1.0;
+  first_ = step_ = 0;
+  running_ = false;
+  step_started_s_ = 0;
+  pace_ = 1;
+}
+
+void TimeLeft::start_at(int first) {
+  first_ = step_ = first;
+  running_ = false;
+}
+
+double TimeLeft::planned_before(int step) const {
+  if (!ends_) return step < 0 ? planned_s_ : 0.0;
+  if (step < 0 || static_cast<size_t>(step) > ends_->size()) return planned_s_;
+  return step == 0 ? 0.0 : (*ends_)[static_cast<size_t>(step) - 1] * scale_;
+}
+
+void TimeLeft::at_step(int step, double working_s) {
+  if (running_ && step == step_) return;
+  running_ = true;
+  step_ = step;
+  step_started_s_ = working_s;
+  // The pace so far, trusted as more of this run's plan is done (the first steps, with the
+  // zeroing and the map's frames, say little); kept within 4x either way.
+  const double run_s = planned_s_ - planned_before(first_);
+  const double done_s = planned_before(step) - planned_before(first_);
+  if (done_s <= 0 || run_s <= 0) return;
+  const double measured = std::clamp(working_s / done_s, 0.25, 4.0);
+  const double trust = std::min(1.0, done_s / (0.1 * run_s));
+  pace_ = 1.0 + trust * (measured - 1.0);
+}
+
+double TimeLeft::remaining(double working_s) const {
+  if (!running_) return planned_s_ - planned_before(first_);
+  if (step_ < 0) return 0.0;
+  const double step_s = planned_before(step_ + 1) - planned_before(step_);
+  const double into_step_s = std::clamp((working_s - step_started_s_) / pace_, 0.0, step_s);
+  return std::max(0.0, (planned_s_ - planned_before(step_) - into_step_s) * pace_);
+}
+
+}  // namespace host::server

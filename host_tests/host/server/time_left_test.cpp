@@ -1,0 +1,111 @@
+// A running job's time left (issue 25's outside tester: it climbed ~10 s a second inside
+// one long command and while the link was silent, and a continued run started again from
+// the whole job's planned time).
+#include <gtest/gtest.h>
+
+#include <memory>  // std::make_shared
+
+#include "host/lib/server/time_left.h"
+
+namespace host::server {
+namespace {
+
+// Ten steps of 10 planned seconds each (the record's planned figure 100 s).
+TimeLeft ten_steps() {
+  TimeLeft t;
+  auto ends = std::make_shared<std::vector<float>>();
+  for (int i = 1; i <= 10; ++i) ends->push_back(static_cast<float>(10 * i));
+  t.plan(std::move(ends), 100.0);
+  return t;
+}
+
+TEST(TimeLeft, BeforeTheCutItIsThePlannedTimeFromTheFirstStepStandingStill) {
+  TimeLeft t = ten_steps();
+  EXPECT_DOUBLE_EQ(t.remaining(0), 100.0);
+  EXPECT_DOUBLE_EQ(t.remaining(50), 100.0);
+  t.start_at(4);  // a continued run: 4 steps cut in earlier runs
+  EXPECT_DOUBLE_EQ(t.remaining(0), 60.0);
+}
+
+TEST(TimeLeft, NeverRisesWithinAStepHoweverLongItTakes) {
+  TimeLeft t = ten_steps();
+  t.start_at(0);
+  t.at_step(0, 0.0);
+  double last = t.remaining(0);
+  EXPECT_DOUBLE_EQ(last, 100.0);
+  // The step takes 60 s, not 10 (a slow machine, or a silent link): it counts down by the
+  // step's planned 10 s, then stands still.
+  for (double s = 0.5; s <= 60; s += 0.5) {
+    const double now = t.remaining(s);
+    EXPECT_LE(now, last) << s;
+    last = now;
+  }
+  EXPECT_DOUBLE_EQ(last, 90.0);
+}
+
+TEST(TimeLeft, FollowsTheMachinesPaceOnceEnoughOfThePlanIsDone) {
+  TimeLeft t = ten_steps();
+  t.start_at(0);
+  t.at_step(0, 0.0);
+  // The machine takes twice the plan: each step 20 s.
+  for (int step = 1; step < 10; ++step) t.at_step(step, 20.0 * step);
+  // At the last step, 90 % done at pace 2: 20 s left, counting down in it.
+  EXPECT_NEAR(t.remaining(180), 20.0, 1e-9);
+  EXPECT_NEAR(t.remaining(190), 10.0, 1e-9);
+  t.at_step(-1, 200);
+  EXPECT_DOUBLE_EQ(t.remaining(200), 0.0);
+}
+
+TEST(TimeLeft, AFirstStepsSlowPaceIsTrustedOnlyAsMoreIsDone) {
+  TimeLeft t = ten_steps();
+  t.start_at(0);
+  t.at_step(0, 0.0);
+  // The first 10 % took 4x its plan (zeroing, the map's frames): the pace is capped at 4x
+  // and trusted in proportion to the share done, so the next estimate is not 4x the rest.
+  t.at_step(1, 40.0);
+  EXPECT_LE(t.remaining(40), 4.0 * 90.0);
+  EXPECT_GE(t.remaining(40), 90.0);
+  TimeLeft early = ten_steps();
+  early.start_at(0);
+  early.at_step(0, 0.0);
+  EXPECT_NEAR(early.remaining(5), 95.0, 1e-9);  // at the plan's pace while nothing is measured
+}
+
+TEST(TimeLeft, AContinuedRunMeasuresItsPaceFromWhereItResumed) {
+  TimeLeft t = ten_steps();
+  t.start_at(5);
+  t.at_step(5, 0.0);
+  EXPECT_DOUBLE_EQ(t.remaining(0), 50.0);
+  t.at_step(6, 10.0);  // at the plan's pace since the resume
+  EXPECT_NEAR(t.remaining(10), 40.0, 1e-9);
+}
+
+TEST(TimeLeft, WithoutStepsItIsTheWholePlannedTime) {
+  TimeLeft t;
+  t.plan(nullptr, 42.0);
+  EXPECT_DOUBLE_EQ(t.remaining(0), 42.0);
+}
+
+TEST(TimeLeft, StepEndSecondsSumToThePlansTime) {
+  JobPlan plan;
+  PlanStep rapid;
+  rapid.kind = PlanStep::kRapid;
+  rapid.to = {10000, 0};
+  PlanStep feed;
+  feed.kind = PlanStep::kFeed;
+  feed.to = {10000, 20000};
+  feed.feed_um_per_s = 5000;
+  PlanStep dwell;
+  dwell.kind = PlanStep::kDwell;
+  dwell.dwell_ms = 1500;
+  plan.steps = {rapid, feed, dwell};
+  const std::vector<float> ends = step_end_seconds(plan);
+  ASSERT_EQ(ends.size(), 3u);
+  EXPECT_GT(ends[0], 0.0f);
+  EXPECT_NEAR(ends[1] - ends[0], 4.0, 1e-6);  // 20 mm at 5 mm/s
+  EXPECT_NEAR(ends[2] - ends[1], 1.5, 1e-6);
+  EXPECT_NEAR(ends.back(), planned_seconds_by_steps(plan), 1e-5);
+}
+
+}  // namespace
+}  // namespace host::server
