@@ -7,6 +7,7 @@
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
+#include "host/cli/option_ranges.h"  // output_folder
 #include "host/cli/terminal_text.h"
 #include "host/lib/commands/board_command.h"
 
@@ -68,6 +69,7 @@ void add_board_command(CLI::App& app) {
   cmd->add_option("--tol", a->run.tol_mm, "chord tolerance for the G1 comparison, mm")
       ->capture_default_str();
   cmd->add_option("-o,--outdir", a->run.outdir, "where NAME.board.svg/.json (and .png) go")
+      ->check(output_folder())
       ->capture_default_str();
   cmd->add_flag("--json", a->json, "print the report as JSON");
   cmd->add_flag("--no-check", a->no_check, "skip the geometric isolation check");

@@ -99,6 +99,7 @@ int run_guarded_to(CLI::App& app, int argc, const char* const* argv, std::ostrea
   } catch (const CLI::Success& e) {
     return app.exit(e);  // --help, --version
   } catch (const CLI::ParseError& e) {
+    err << "engraver: ";          // as every other message begins
     app.exit(e, std::cout, err);  // the message and the usage hint
     return kExitUsage;
   } catch (const CommandFailure& e) {

@@ -7,6 +7,7 @@
 #include <atomic>    // std::atomic
 #include <chrono>    // milliseconds
 #include <cmath>     // std::round
+#include <cstdlib>   // std::strtol
 #include <iostream>  // std::cerr
 #include <memory>    // std::make_shared
 #include <optional>  // std::optional
@@ -16,6 +17,7 @@
 #include "host/cli/exit_codes.h"
 #include "host/cli/height_map_cli.h"     // --surface, --height-map, the depth report
 #include "host/cli/operator_controls.h"  // signals and keys
+#include "host/cli/option_ranges.h"      // output_folder
 #include "host/cli/terminal_text.h"
 #include "host/lib/commands/run_command.h"
 #include "host/lib/commands/send_command.h"
@@ -24,6 +26,7 @@
 #include "host/lib/plan/counted.h"  // counted: "1 hole", "2 holes"
 #include "host/lib/plan/job_plan.h"
 #include "host/lib/progress/progress_meter.h"
+#include "host/lib/stream/link.h"  // parse_link_spec
 #include "host/lib/stream/sender.h"
 
 namespace host::cli {
@@ -481,9 +484,22 @@ void run_run(const RunArgs& a) {
 
 // The machine a command talks to: --to (required) and --no-zero.
 void add_link_options(CLI::App* cmd, std::string* to, bool* no_zero) {
+  // A malformed address is a bad command line (exit 2) before anything is planned, not a
+  // lost link (6) after it.
+  const CLI::Validator link_address(
+      [](const std::string& spec) -> std::string {
+        try {
+          parse_link_spec(spec);
+          return "";
+        } catch (const LinkError& e) {
+          return e.what();
+        }
+      },
+      "", "link");
   cmd->add_option("--to", *to,
                   "tcp://HOST:PORT (XPort, default port 10001) or serial:DEVICE[,BAUD]")
-      ->required();
+      ->required()
+      ->check(link_address);
   cmd->add_flag("--no-zero", *no_zero, "do not start manual zeroing if not zeroed");
 }
 
@@ -557,7 +573,15 @@ void add_sim_command(CLI::App& app) {
   add_surface_option(sim, &sim_args->surface);
   sim->add_option("--pause-confirm-ms", sim_args->pause_confirm_ms,
                   "the simulated operator confirms a pause (#P) after this long; -1 never")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](const std::string& v) -> std::string {
+            const long ms = std::strtol(v.c_str(), nullptr, 10);
+            return ms == -1 || (ms >= 0 && ms <= 3600000)
+                       ? ""
+                       : v + " is outside the allowed range 0 .. 3600000 ms (or -1: never)";
+          },
+          "-1 or 0 .. 3600000 ms", "pause"));
   sim->footer(
       "Examples:\n"
       "  engraver sim --trace path.csv & engraver send samples/engraver-word.dxf --to "
@@ -581,6 +605,7 @@ void add_run_command(CLI::App& app) {
       "process)");
   add_plan_options(run, &run_args->plan);
   run->add_option("-o,--outdir", run_args->outdir, "where NAME.svg/.json (and .png) go")
+      ->check(output_folder())
       ->capture_default_str();
   run->add_flag("--png", run_args->png, "also write the plots as PNG (NAME.png, NAME.board.png)");
   run->add_flag("--realtime", run_args->realtime, "simulate in real time");

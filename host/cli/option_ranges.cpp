@@ -3,10 +3,11 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include <cmath>    // std::isfinite, std::floor, std::fabs
-#include <cstdlib>  // std::strtod
-#include <map>      // std::map
-#include <regex>    // std::regex
+#include <cmath>       // std::isfinite, std::floor, std::fabs
+#include <cstdlib>     // std::strtod
+#include <filesystem>  // std::filesystem::status
+#include <map>         // std::map
+#include <regex>       // std::regex
 
 #include "host/lib/plan/job_defaults.h"
 #include "host/lib/plan/plain_decimal.h"  // host::is_plain_decimal
@@ -140,6 +141,7 @@ const std::vector<OptionRange>& option_ranges() {
       real("--chain-tol", kChainToleranceRangeMm),
       real("--offset", offset_range_mm()),
       real("--tool-radius", kToolRadiusRangeMm),
+      real("--z-down", kZDownRangeMm),
       real("--fit-tol", kFitToleranceRangeMm),
       count("--poll-ms", kPollIntervalRangeMs),
       real("--probe-spacing", kProbeSpacingRangeMm),
@@ -164,6 +166,18 @@ std::string range_refusal(const OptionRange& r, const std::string& value) {
 
 void add_option_checks(CLI::App* app) {
   add_checks(app);
+}
+
+CLI::Validator output_folder() {
+  return CLI::Validator(
+      [](const std::string& dir) -> std::string {
+        std::error_code ec;
+        const auto status = std::filesystem::status(dir, ec);
+        if (std::filesystem::exists(status) && !std::filesystem::is_directory(status))
+          return "'" + dir + "' is a file, not a folder";
+        return "";
+      },
+      "FOLDER", "folder");
 }
 
 }  // namespace host::cli

@@ -36,6 +36,10 @@ std::string range_refusal(const OptionRange& r, const std::string& value);
 // separators) and finite.
 void add_option_checks(CLI::App* app);
 
+// -o/--outdir: a folder, made if missing; an existing file there is a usage error (exit 2)
+// before anything is planned, not a raw filesystem error after.
+CLI::Validator output_folder();
+
 }  // namespace host::cli
 
 #endif  // HOST_CLI_OPTION_RANGES_H

@@ -29,11 +29,16 @@ sim::ServerOptions listen_options(const std::string& listen) {
                          fmt::format("--listen '{}': expected ADDR:PORT or serial:DEVICE", listen));
   }
   so.address = listen.substr(0, colon);
-  try {
-    so.port = static_cast<uint16_t>(std::stoul(listen.substr(colon + 1)));
-  } catch (const std::exception&) {
-    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': bad port", listen));
+  // Digits only, 0 .. 65535 (0: any free port); 99999 wrapped round to 34463 before.
+  const std::string port = listen.substr(colon + 1);
+  const bool digits = !port.empty() && port.size() <= 5 &&
+                      port.find_first_not_of("0123456789") == std::string::npos;
+  if (!digits || std::stoul(port) > 65535) {
+    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': the port must be 0 .. 65535 (0: "
+                                                 "any free port)",
+                                                 listen));
   }
+  so.port = static_cast<uint16_t>(std::stoul(port));
   return so;
 }
 

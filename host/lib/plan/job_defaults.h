@@ -119,7 +119,9 @@ inline constexpr Range kMachinePositionRangeMm{-1e4, 1e4, "mm"};  // a measured 
 inline constexpr Range kChordToleranceRangeMm{0.001, 1.0, "mm"};  // --tol: every command's
 inline constexpr Range kScaleRange{0.001, 1000.0};
 inline constexpr Range kChainToleranceRangeMm{0.0, 1.0, "mm"};
-inline constexpr Range kToolRadiusRangeMm{0.0, 10.0, "mm"};  // --tool-side's offset
+inline constexpr Range kToolRadiusRangeMm{0.0, 10.0, "mm"};
+inline constexpr Range kZDownRangeMm{
+    -20.0, 0.0, "mm"};  // a drawing's cutting depth: at or below zero  // --tool-side's offset
 inline constexpr Range kFitToleranceRangeMm{0.0, 0.1, "mm"};
 inline constexpr Range kPollIntervalRangeMs{0, 1000, "ms"};  // send's status poll; 0: always one
 inline constexpr Range kProbeSpacingRangeMm{1.0, 65.0, "mm"};

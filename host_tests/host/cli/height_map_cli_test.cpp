@@ -81,7 +81,7 @@ TEST(HeightMapCli, RunProbeWithoutASurfaceIsRefusedAsTheCommandLineIsRead) {
   for (const std::string& input : {kWord, dir + "/no-such-drawing.dxf"}) {
     const ToolRun r = run_tool(kExe, "run " + input + " --probe -o " + dir);
     EXPECT_EQ(r.code, 2) << r.err;
-    EXPECT_EQ(r.err.rfind("--probe requires --surface\n", 0), 0u) << r.err;
+    EXPECT_EQ(r.err.rfind("engraver: --probe requires --surface\n", 0), 0u) << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(dir));  // nothing planned, nothing written
 }
@@ -115,7 +115,7 @@ TEST(HeightMapCli, SurfaceRefusalsShowTheValueAsTyped) {
   for (const auto& c : cases) {
     const ToolRun r = run_tool(kExe, "run " + kWord + " --surface " + c.first + " -o " + dir);
     EXPECT_EQ(r.code, 2) << c.first << "\n" << r.err;
-    EXPECT_EQ(r.err.rfind(c.second, 0), 0u) << c.first << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("engraver: " + c.second, 0), 0u) << c.first << "\n" << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(dir));
 }
@@ -127,8 +127,10 @@ TEST(HeightMapCli, AUnitInASurfaceNumberIsWordedAsForOtherOptions) {
   const ToolRun tilt = run_tool(kExe, "run " + kWord + " --surface tilt=0.1in -o " + dir);
   EXPECT_EQ(depth.code, 2);
   EXPECT_EQ(tilt.code, 2);
-  EXPECT_EQ(depth.err.rfind("--feed: '0.1in' is not a decimal number\n", 0), 0u) << depth.err;
-  EXPECT_EQ(tilt.err.rfind("--surface: tilt=0.1in: '0.1in' is not a decimal number\n", 0), 0u)
+  EXPECT_EQ(depth.err.rfind("engraver: --feed: '0.1in' is not a decimal number\n", 0), 0u)
+      << depth.err;
+  EXPECT_EQ(tilt.err.rfind("engraver: --surface: tilt=0.1in: '0.1in' is not a decimal number\n", 0),
+            0u)
       << tilt.err;
 }
 

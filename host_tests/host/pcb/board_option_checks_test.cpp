@@ -229,8 +229,9 @@ std::string commands_taking(const std::string& option) {
   if (option == "--tol") return "board points run send probe";
   if (option == "--feed" || option == "--z-up" || option == "--margin" || option == "--work")
     return "board run send probe";
-  for (const char* o : {"--scale", "--chain-tol", "--offset", "--tool-radius", "--fit-tol",
-                        "--probe-spacing", "--probe-grid", "--probe-margin", "--outlier-limit"})
+  for (const char* o :
+       {"--scale", "--chain-tol", "--offset", "--tool-radius", "--fit-tol", "--z-down",
+        "--probe-spacing", "--probe-grid", "--probe-margin", "--outlier-limit"})
     if (option == o) return "run send probe";
   if (option == "--poll-ms") return "send";
   if (option == "--vbit-angle" || option == "--copper-um") return "run";
@@ -475,7 +476,7 @@ TEST(BoardOptionRanges, TheSurfaceIsCheckedBeforePlanningInTheOptionsWords) {
     const ToolRun r = run(c.args);
     EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
     // The refusal is the first thing said: nothing was read or planned before it.
-    EXPECT_EQ(r.err.rfind(c.says, 0), 0u) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("engraver: " + c.says, 0), 0u) << c.args << "\n" << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
 }

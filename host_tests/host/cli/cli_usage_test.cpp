@@ -1,0 +1,74 @@
+// A bad command line is a usage error (exit 2) found as the line is read, before anything
+// is planned or a link opened, in a message that begins "engraver:" and names the option
+// (issue 24's docs-only tester: a malformed --to exited 6 after planning, sim --listen took
+// port 99999 as 34463, --z-down 5 cut above the surface, --pause-confirm-ms -5 meant never,
+// -o FILE gave a raw filesystem error).
+#include <gtest/gtest.h>
+#include <unistd.h>  // getpid
+
+#include <cstdio>   // std::remove
+#include <fstream>  // std::ofstream
+#include <string>   // std::string
+
+#include "host_tests/host/cli/tool_run.h"
+
+namespace {
+
+using host_tests::ToolRun;
+
+const std::string kWord = std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf";
+
+ToolRun engraver(const std::string& args) {
+  return host_tests::run_tool(ENGRAVER_EXE, args);
+}
+
+// Exit 2, the message first: "engraver: " and then `says`; nothing on stdout (no planning).
+void expect_usage_error(const std::string& args, const std::string& says) {
+  const ToolRun r = engraver(args);
+  EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+  EXPECT_EQ(r.err.rfind("engraver: " + says, 0), 0u) << args << "\n" << r.err;
+  EXPECT_EQ(r.out, "") << args;
+}
+
+TEST(CliUsage, AMalformedLinkAddressIsABadCommandLineBeforePlanning) {
+  expect_usage_error("send " + kWord + " --to tcp:127.0.0.1:47199",
+                     "--to: link 'tcp:127.0.0.1:47199': unknown kind");
+  expect_usage_error("send " + kWord + " --to 127.0.0.1:47199",
+                     "--to: link '127.0.0.1:47199': unknown kind");
+  expect_usage_error("send " + kWord + " --to tcp://127.0.0.1:99999",
+                     "--to: link 'tcp://127.0.0.1:99999': port 99999 outside 1..65535");
+  expect_usage_error("probe " + kWord + " --to serial:", "--to: link 'serial:': no device");
+}
+
+TEST(CliUsage, TheSimulatorsPortAndPauseConfirmAreChecked) {
+  expect_usage_error("sim --listen 127.0.0.1:99999",
+                     "--listen '127.0.0.1:99999': the port must be 0 .. 65535");
+  expect_usage_error("sim --listen 127.0.0.1:10001x",
+                     "--listen '127.0.0.1:10001x': the port must be 0 .. 65535");
+  expect_usage_error("sim --pause-confirm-ms -5",
+                     "--pause-confirm-ms: -5 is outside the allowed range 0 .. 3600000 ms (or -1: "
+                     "never)");
+}
+
+TEST(CliUsage, TheCuttingDepthOfADrawingIsAtOrBelowZero) {
+  expect_usage_error("run " + kWord + " --z-down 5",
+                     "--z-down: 5 is outside the allowed range -20 .. 0 mm");
+  expect_usage_error("run " + kWord + " --z-down 1e300",
+                     "--z-down: 1e300 is outside the allowed range -20 .. 0 mm");
+}
+
+TEST(CliUsage, OptionValueErrorsBeginLikeEveryOtherMessage) {
+  expect_usage_error("run " + kWord + " --passes 1.5", "--passes: '1.5' is not a whole number");
+}
+
+TEST(CliUsage, AnOutputFolderThatIsAFileIsABadCommandLine) {
+  const std::string file = testing::TempDir() + "/cli_usage_" + std::to_string(getpid());
+  std::ofstream(file) << "x";
+  expect_usage_error("run " + kWord + " -o " + file,
+                     "--outdir: '" + file + "' is a file, not a folder");
+  expect_usage_error("board top.gbr -o " + file,  // found before any file is read
+                     "--outdir: '" + file + "' is a file, not a folder");
+  std::remove(file.c_str());
+}
+
+}  // namespace
