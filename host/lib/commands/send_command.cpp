@@ -153,12 +153,16 @@ SendResult send_job(Link& link, const JobPlan& plan, const SendOptions& o, std::
   std::vector<QueuedCommand> frames = heightmap::job_map_commands(map ? &*map : nullptr);
   frames.insert(frames.end(), setup.begin(), setup.end());
   const size_t bytes = wire_bytes(frames) + commands.summary().wire_bytes - skipped_bytes;
+  const size_t setup_n = frames.size();
   commands.set_setup(std::move(frames));
+  // Counted as run's report counts them: the job's commands, and the set-up before them
+  // (the progress line counts both).
   log << fmt::format(
-      "engraver: {} -> {}: {}, {}, {} bytes, job id {}; keys: h hold, "
-      "r resume, x abort, +/- feed override\n",
+      "engraver: {} -> {}: {}, {} (and {} before the job: the height map or its "
+      "clearing{}), {} bytes, job id {}; keys: h hold, r resume, x abort, +/- feed override\n",
       o.file, link.name(), counted(plan.curves.size(), "curve"),
-      counted(commands.size(), "command"), bytes, r.job_id);
+      counted(commands.size() - setup_n, "command"), counted(setup_n, "set-up command"),
+      setup.empty() ? "" : ", and what the resume restores", bytes, r.job_id);
   r.commands = commands.size();
   r.outcome = stream(sender, commands, o, log);
   r.message = sender.message();

@@ -36,8 +36,9 @@ ProgressMeter::~ProgressMeter() {
 }
 
 std::string ProgressMeter::summary(size_t done, size_t total, double elapsed_s) const {
-  std::string s = total > 0 ? fmt::format("{}/{} {} ({:.0f}%)", done, total, unit_,
-                                          100.0 * static_cast<double>(done) / total)
+  // The share rounded down: 100 % only when all is done (111/112 read 99 %, 253/254 100 %).
+  std::string s = total > 0 ? fmt::format("{}/{} {} ({}%)", done, total, unit_,
+                                          done >= total ? 100 : done * 100 / total)
                             : fmt::format("{} {}", done, unit_);
   if (elapsed_s <= 0) return s;
   const double rate = done / elapsed_s;

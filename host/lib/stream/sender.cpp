@@ -717,20 +717,28 @@ JobOutcome Sender::run(CommandSource& commands,
   start_window(commands);
   auto last_poll = now() - options_.status_interval;
   JobOutcome outcome = JobOutcome::kCompleted;
+  const auto report = [&] {
+    Progress progress;
+    progress.acked = win_.base;
+    progress.executed = win_.executed;
+    progress.total = commands.size();
+    progress.status = last_status_;
+    if (on_progress && have_status_) on_progress(progress);
+  };
   while (!take_requests(commands, &outcome)) {
     fill_window(commands);
     if (status_due(last_poll)) {
       query_status();
       last_poll = now();
-      Progress progress;
-      progress.acked = win_.base;
-      progress.executed = win_.executed;
-      progress.total = commands.size();
-      progress.status = last_status_;
-      if (on_progress && have_status_) on_progress(progress);
+      report();
     }
     pump(milliseconds(1));
-    if (job_ended(commands, &outcome)) break;
+    if (job_ended(commands, &outcome)) {
+      // The last report of a completed job says all of it done (a progress line ended at
+      // 111/112 before "all 112 commands executed").
+      if (outcome == JobOutcome::kCompleted) report();
+      break;
+    }
   }
   return outcome;
 }

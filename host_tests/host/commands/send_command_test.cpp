@@ -79,10 +79,23 @@ TEST(SendCommand, StreamsTheJobAndAttachesTheControlsOnlyWhileItRuns) {
     return std::shared_ptr<void>();
   };
   size_t progress_calls = 0;
-  o.on_progress = [&progress_calls](const Progress&) { ++progress_calls; };
+  Progress last;
+  o.on_progress = [&progress_calls, &last](const Progress& p) {
+    ++progress_calls;
+    last = p;
+  };
   std::ostringstream log;
   const SendResult r = send_job(link, plan, o, log);
   ASSERT_EQ(r.outcome, JobOutcome::kCompleted) << r.message << "\n" << log.str();
+  // The last progress says the whole stream done (a progress line ended at 111/112).
+  EXPECT_EQ(last.executed, r.commands);
+  EXPECT_EQ(last.total, r.commands);
+  // The first line counts as run's report does: the job's commands and the set-up apart.
+  EXPECT_NE(log.str().find(fmt::format("{} commands (and 1 set-up command before the job: the "
+                                       "height map or its clearing)",
+                                       r.commands - 1)),
+            std::string::npos)
+      << log.str();
   EXPECT_EQ(attached, (std::vector<bool>{true, false}));
   EXPECT_EQ(streaming, 1);
   EXPECT_GT(progress_calls, 0u);

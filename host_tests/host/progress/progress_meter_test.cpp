@@ -57,6 +57,18 @@ TEST(ProgressMeter, OffATerminalPrintsAPlainLineEveryFewSeconds) {
   EXPECT_NE(text.find("200/200 commands (100%), 10/s; running\n"), std::string::npos) << text;
 }
 
+// The share is rounded down: 100 % only when all is done (the outside tester saw 111/112 as
+// 99 % and 253/254 as 100 %).
+TEST(ProgressMeter, TheShareIsRoundedDownSoOnlyAllDoneIs100Percent) {
+  std::ostringstream out;
+  ProgressMeter m("run", "commands", out, ProgressStyle{});
+  EXPECT_EQ(m.summary(111, 112, 0), "111/112 commands (99%)");
+  EXPECT_EQ(m.summary(253, 254, 0), "253/254 commands (99%)");
+  EXPECT_EQ(m.summary(254, 254, 0), "254/254 commands (100%)");
+  EXPECT_EQ(m.summary(1, 3, 0), "1/3 commands (33%)");
+  EXPECT_EQ(m.summary(0, 5, 0), "0/5 commands (0%)");
+}
+
 TEST(ProgressMeter, OnATerminalRedrawsOneLineWithABar) {
   std::ostringstream out;
   FakeClock c;
