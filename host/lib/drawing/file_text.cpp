@@ -3,6 +3,8 @@
 
 #include <algorithm>     // std::transform
 #include <cctype>        // std::tolower
+#include <cerrno>        // errno
+#include <cstring>       // std::strerror
 #include <filesystem>    // std::filesystem::file_size, is_directory
 #include <fstream>       // std::ifstream
 #include <system_error>  // std::error_code
@@ -10,6 +12,18 @@
 #include "host/lib/drawing/drawing.h"  // ImportError
 
 namespace host {
+
+std::string cannot_open_text(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (st.type() == std::filesystem::file_type::directory) return "is a directory, not a file";
+  if (st.type() == std::filesystem::file_type::not_found) return "cannot open the file";
+  errno = 0;
+  std::ifstream probe(path, std::ios::binary);
+  const int why = errno;
+  if (!probe && why != 0) return std::string("cannot open the file: ") + std::strerror(why);
+  return "cannot open the file";
+}
 
 FileRead read_file_text(const std::string& path, std::string* text) {
   text->clear();

@@ -21,13 +21,17 @@ std::string read_file_head(const std::string& path);
 // s with A-Z in lower case (file names, host names).
 std::string lower_ascii(std::string s);
 
+// Why the file at path cannot be opened: "is a directory, not a file", "cannot open the
+// file" (missing), "cannot open the file: Permission denied".
+std::string cannot_open_text(const std::string& path);
+
 // The file's text, or Error "<path>: cannot open the file" / "<path>: cannot read the file"
 // (the drawing importers' ImportError, the PCB readers' PcbReadError).
 template <class Error>
 std::string read_text_or_throw(const std::string& path) {
   std::string text;
   const FileRead r = read_file_text(path, &text);
-  if (r == FileRead::kCannotOpen) throw Error(path + ": cannot open the file");
+  if (r == FileRead::kCannotOpen) throw Error(path + ": " + cannot_open_text(path));
   if (r == FileRead::kReadError) throw Error(path + ": cannot read the file");
   return text;
 }

@@ -241,6 +241,13 @@ PcbLayer GerberReader::read() {
 // Every block of the file up to M02, then what must hold at its end.
 void GerberReader::read_blocks() {
   const size_t n = text_.size();
+  // Gerber is printable text: a NUL is binary data (an executable, an image, a zip), and would
+  // cut the message that quotes it short.
+  const size_t nul = text_.find('\0');
+  if (nul != std::string::npos) {
+    diag_.line = 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + nul, '\n'));
+    diag_.fail("not a Gerber file: binary data (a NUL byte at byte " + std::to_string(nul) + ")");
+  }
   size_t pos = 0;
   while (pos < n && !gs_.done) {
     const char c = text_[pos];

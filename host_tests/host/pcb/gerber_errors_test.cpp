@@ -140,6 +140,29 @@ TEST(GerberErrors, FilesThatCannotBeOpened) {
     EXPECT_STREQ(e.what(), "/nonexistent/board.gbr: cannot open the file");
   }
   EXPECT_THROW(read_excellon_file("/nonexistent/board.drl"), PcbReadError);
+  // A folder given as a layer file (issue 24's tester: "cannot open the file" only).
+  const std::string dir = testing::TempDir();
+  try {
+    read_gerber_file(dir);
+    ADD_FAILURE() << "a folder read as Gerber";
+  } catch (const PcbReadError& e) {
+    EXPECT_EQ(std::string(e.what()), dir + ": is a directory, not a file");
+  }
+}
+
+// Binary data read as Gerber (issue 24's tester: an ELF head gave "data block '\x7FELF..."
+// cut at the first NUL, with no closing quote and no problem stated).
+TEST(GerberErrors, BinaryDataIsNotAGerberFile) {
+  const std::string elf(
+      "\x7F"
+      "ELF\x02\x01\x01\0\0\0\nmore",
+      15);
+  EXPECT_EQ(gerber_refusal(elf),
+            "bad.gbr:1: not a Gerber file: binary data (a NUL byte at byte 7)");
+  const std::string later =
+      std::string(kHead) + "D10*\nX0Y0D03*\n" + std::string(1, '\0') + "M02*\n";
+  EXPECT_EQ(gerber_refusal(later).rfind("bad.gbr:6: not a Gerber file: binary data", 0), 0u)
+      << gerber_refusal(later);
 }
 
 TEST(ExcellonErrors, NameFileLineAndProblem) {
