@@ -60,6 +60,7 @@ nlohmann::json plan_report_json(const pcb::BoardJob& job, const pcb::BoardOption
   j["drill_travel_ordered_mm"] = r.drill_travel_ordered_mm;
   j["tabs"] = r.tabs;
   j["cutout_length_mm"] = r.cutout_length_mm;
+  j["no_cutout"] = r.no_cutout;  // why there is none ("" when the job cuts the board out)
   j["tool_changes"] = r.tool_changes;
   j["notes"] = r.notes;
   j["steps"] = job.plan.steps.size();

@@ -300,6 +300,11 @@ nlohmann::json run_report_json(const JobPlan& plan, const RunOptions& o, const R
                        {"wire_bytes", s.setup_wire_bytes}};
   }
   if (r.isolation) j["simulated_isolation_check"] = isolation_json(*r.isolation);
+  if (o.board && o.board->job) {
+    // As `board` reports them: why there is no cut-out, what the planner left out.
+    j["no_cutout"] = o.board->job->report.no_cutout;
+    j["notes"] = o.board->job->report.notes;
+  }
   if (o.flip) {
     j["flip"] = flip_json(*o.flip);
     if (r.registration)
@@ -351,6 +356,11 @@ std::string run_report_text(const JobPlan& plan, const RunOptions& o, const RunR
       s.worst_contour_sample.y_mm, s.virtual_ms / 1000.0, s.wall_s, s.cpu_s,
       speedup(s.virtual_ms, s.cpu_s), counted(s.pauses_confirmed, "pause"), r.pause_confirm_ms,
       s.spindle_on ? "on" : "off", joined(r.plot_files), base);
+  if (o.board && o.board->job) {
+    if (!o.board->job->report.no_cutout.empty())
+      t += "  no cut-out: " + o.board->job->report.no_cutout + "\n";
+    for (const std::string& n : o.board->job->report.notes) t += "  note: " + n + "\n";
+  }
   if (s.trace_step_mm > plot_step_mm(plan))
     t += fmt::format(
         "  the plot's tool path is thinned to {:.3f} mm steps ({} of {} samples kept, a long "

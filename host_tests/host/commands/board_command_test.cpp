@@ -106,6 +106,7 @@ TEST(BoardCommand, ABoardWithoutAnOutlineSaysNoCutOutAndItsLegendShowsNone) {
   Log log;
   BoardResult r = run_board(o, log.log());
   EXPECT_EQ(r.job.report.no_cutout, "no outline layer");
+  EXPECT_EQ(board_report_json(o, r)["no_cutout"], "no outline layer");  // the JSON says why too
   const std::string text = board_report_text(o, r);
   EXPECT_NE(text.find("\n  no cut-out: no outline layer; 2 tool changes\n"), std::string::npos)
       << text;
@@ -122,6 +123,7 @@ TEST(BoardCommand, ABoardWithoutAnOutlineSaysNoCutOutAndItsLegendShowsNone) {
   o.outdir = with_outline + "/out";
   BoardResult cut = run_board(o, log.log());
   EXPECT_EQ(cut.job.report.no_cutout, "");
+  EXPECT_EQ(board_report_json(o, cut)["no_cutout"], "");
   EXPECT_NE(
       board_report_text(o, cut).find("\n  cut-out: 123.1 mm per pass, 4 tabs; 3 tool changes\n"),
       std::string::npos)

@@ -5,9 +5,11 @@
 #include <fmt/format.h>  // fmt::format
 
 #include <filesystem>  // temp_directory_path, exists
+#include <memory>      // std::make_shared
 
 #include "host/lib/commands/exit_codes.h"
 #include "host/lib/commands/run_command.h"
+#include "host/lib/pcb/board_job.h"  // BoardJob
 #include "host_tests/host/sim/sim_test_jobs.h"
 
 namespace host::commands {
@@ -111,6 +113,34 @@ TEST(RunCommand, ReportCountsTheSetUpCommandsTheProgressTotalCounts) {
                                   r.sim.commands)),
             std::string::npos)
       << text;
+  fs::remove_all(dir);
+}
+
+// A board's run reports what `board` does about it (issue 24's tester: a board without an
+// outline said nothing of its missing cut-out in run's text or JSON, which had no `notes`).
+TEST(RunCommand, ABoardsReportSaysWhyThereIsNoCutOutAndCarriesItsNotes) {
+  const std::string dir = (fs::temp_directory_path() / "run_command_board_notes_test").string();
+  fs::remove_all(dir);
+  const JobPlan plan = two_lines();
+  RunOptions o = small_run(dir);
+  const RunResult r = run_job(plan, o);
+  ASSERT_EQ(r.sim.outcome, JobOutcome::kCompleted) << r.sim.message;
+  auto job = std::make_shared<pcb::BoardJob>();
+  job->report.no_cutout = "no outline layer";
+  job->report.notes = {"t-F.Cu.gbr: 3 openings in the copper hold no other island"};
+  o.board = PlannedBoard{};
+  o.board->job = job;
+  const nlohmann::json j = run_report_json(plan, o, r);
+  EXPECT_EQ(j["no_cutout"], "no outline layer");
+  EXPECT_EQ(j["notes"], nlohmann::json::array({job->report.notes[0]}));
+  const std::string text = run_report_text(plan, o, r);
+  EXPECT_NE(text.find("\n  no cut-out: no outline layer\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("\n  note: t-F.Cu.gbr: 3 openings"), std::string::npos) << text;
+  job->report.no_cutout.clear();  // cut out: no such line, the key ""
+  EXPECT_EQ(run_report_json(plan, o, r)["no_cutout"], "");
+  EXPECT_EQ(run_report_text(plan, o, r).find("no cut-out"), std::string::npos);
+  o.board.reset();  // a drawing: neither key
+  EXPECT_FALSE(run_report_json(plan, o, r).contains("no_cutout"));
   fs::remove_all(dir);
 }
 
