@@ -152,10 +152,11 @@ std::optional<ResumePoint> resume_point_of(const proto::StatusReply& status) {
   return p;
 }
 
+// Ids in decimal, as send's first line and run's report print them.
 std::string resume_mismatch(uint16_t job_id, const ResumePoint& at) {
   if (job_id == at.job_id) return "";
   return fmt::format(
-      "the controller's job (id {:04X}) is not this one (id {:04X}): resume with the same file "
+      "the controller's job (id {}) is not this one (id {}): resume with the same file "
       "and the same plan options as the interrupted send",
       at.job_id, job_id);
 }

@@ -3,6 +3,8 @@
 // was never interrupted, and cuts no part of it twice. In lockstep (SimLink): deterministic.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>  // fmt::format
+
 #include <algorithm>  // std::min, std::max
 #include <cmath>      // std::hypot, std::floor
 #include <cstdio>     // std::printf
@@ -130,7 +132,12 @@ Interrupted interrupted(const JobPlan& plan, int nth_spline, Cut how, int min_po
       test::plan_of(test::drawing_of({test::circle_curve(20, 20, 10), test::s_curve(40, 20),
                                       test::circle_curve(75, 20, 8)}),
                     8.0);
-  EXPECT_NE(resume_mismatch(encode_for(slower, caps), *at), "");
+  const std::vector<QueuedCommand> other = encode_for(slower, caps);
+  // Both ids in decimal, as send's first line prints them (the tester saw hex here).
+  EXPECT_EQ(resume_mismatch(other, *at),
+            fmt::format("the controller's job (id {}) is not this one (id {}): resume with the "
+                        "same file and the same plan options as the interrupted send",
+                        at->job_id, job_id_of(other)));
   std::printf("resume at %s; tool at (%.3f, %.3f, %.3f) mm\n",
               describe_resume_point(cmds, *at).c_str(), at->x_um / 1000.0, at->y_um / 1000.0,
               at->z_um / 1000.0);
