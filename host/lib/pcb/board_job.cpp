@@ -110,9 +110,11 @@ std::string describe_gap(const NarrowGap& g, const IsolationOptions& o) {
       o.clearance_mm > 0 ? fmt::format("{:.{}f} mm (tool {} mm + 2 x {} mm clearance)", need_mm, d,
                                        mm_text(o.tool_width_mm), mm_text(o.clearance_mm))
                          : fmt::format("tool {:.{}f} mm", o.tool_width_mm, d);
-  return fmt::format("gap {:.{}f} mm < {} between islands {} and {} at ({:.3f}, {:.3f}) mm",
-                     g.gap_mm, d, need, g.island_a, g.island_b, g.at.x / kNmPerMm,
-                     g.at.y / kNmPerMm);
+  // In the files' frame, as the EDA tool shows the board (the isolation check's places are
+  // the machine's: each says which).
+  return fmt::format(
+      "gap {:.{}f} mm < {} between islands {} and {} at ({:.3f}, {:.3f}) mm in the files", g.gap_mm,
+      d, need, g.island_a, g.island_b, g.at.x / kNmPerMm, g.at.y / kNmPerMm);
 }
 
 std::string tool_label(const char* what, double diameter_mm) {

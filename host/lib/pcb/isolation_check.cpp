@@ -263,14 +263,14 @@ std::string describe(const IsolationCheck& c) {
   std::sort(hits.begin(), hits.end(),
             [](const CopperHit& a, const CopperHit& b) { return a.area_mm2 > b.area_mm2; });
   for (size_t i = 0; i < hits.size() && i < kListed; ++i)
-    s += fmt::format("\n  tool cuts {:.6f} mm2 of copper at ({:.3f}, {:.3f}) mm", hits[i].area_mm2,
-                     hits[i].at_mm.x(), hits[i].at_mm.y());
+    s += fmt::format("\n  tool cuts {:.6f} mm2 of copper at ({:.3f}, {:.3f}) mm on the machine",
+                     hits[i].area_mm2, hits[i].at_mm.x(), hits[i].at_mm.y());
   if (hits.size() > kListed) s += fmt::format("\n  ... and {} smaller", hits.size() - kListed);
   for (size_t i = 0; i < c.unseparated.size() && i < kListed; ++i) {
     const UnseparatedPair& u = c.unseparated[i];
     s += fmt::format(
-        "\n  islands {} at ({:.3f}, {:.3f}) and {} at ({:.3f}, {:.3f}) mm are not "
-        "separated by a cut",
+        "\n  islands {} at ({:.3f}, {:.3f}) and {} at ({:.3f}, {:.3f}) mm on the machine are "
+        "not separated by a cut",
         u.island_a, u.a_mm.x(), u.a_mm.y(), u.island_b, u.b_mm.x(), u.b_mm.y());
   }
   if (c.unseparated.size() > kListed)

@@ -245,7 +245,9 @@ TEST(Isolation, DescribeListsTheLargestHitsAndCountsTheRest) {
     c.hits.push_back(h);
   }
   const std::string d = describe(c);
-  EXPECT_NE(d.find("0.025000 mm2 of copper at (24.000"), std::string::npos) << d;
+  EXPECT_NE(d.find("0.025000 mm2 of copper at (24.000, 0.000) mm on the machine"),
+            std::string::npos)
+      << d;
   EXPECT_EQ(d.find("0.001000 mm2"), std::string::npos) << d;  // the smallest is not listed
   EXPECT_NE(d.find("... and 5 smaller"), std::string::npos) << d;
 }
