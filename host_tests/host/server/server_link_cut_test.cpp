@@ -89,6 +89,12 @@ class FreezingProxy {
   std::thread thread_;
 };
 
+// The job runs on its machine and some of its commands have been executed.
+bool cutting(const ServerRig& server, int64_t id) {
+  const nlohmann::json p = server.running(id);
+  return p.is_object() && p["machine_state"] == "running" && p["executed"].get<int>() > 0;
+}
+
 TEST(ServerLinkCut, AJobWhoseLinkFreezesFor3sCompletesCuttingTheSamePath) {
   test::TempDir dir;
   SimRig sim(true);  // real time: the machine cuts on while the link is frozen
@@ -245,13 +251,7 @@ TEST(ServerLinkCut, TheTimeLeftNeverRisesWithinACommandNorWhileTheLinkIsSilent) 
       "G21\nG90\nG0 Z2\nG0 X5 Y5\nG1 Z-0.1 F100\nG1 X80 Y5 F600\nG1 X80 Y60\nG1 X5 Y60\n"
       "G1 X5 Y5\nG0 Z2\n";
   const int64_t id = server.upload_ok("long.ngc", gcode, "&feed_mm_s=10");
-  ASSERT_TRUE(test::wait_until(
-      [&] {
-        const nlohmann::json p = server.running(id);
-        return p.is_object() && p["machine_state"] == "running" && p["executed"].get<int>() > 0;
-      },
-      30))
-      << server.status().dump();
+  ASSERT_TRUE(test::wait_until([&] { return cutting(server, id); }, 30)) << server.status().dump();
   std::vector<std::pair<int, double>> samples;  // executed, remaining_s
   for (int i = 0; i < 80; ++i) {
     if (i == 20) proxy.freeze(true);  // 2.5 s silent: the controller holds by its watchdog
@@ -297,13 +297,7 @@ TEST(ServerLinkCut, AContinuedRunsTimeLeftIsThatOfWhatIsLeft) {
   }
   ServerRig server(dir.path(), {test::machine("m1", sim.address())});
   ASSERT_EQ(server.control(id, R"({"action":"continue"})")->status, 200);
-  ASSERT_TRUE(test::wait_until(
-      [&] {
-        const nlohmann::json p = server.running(id);
-        return p.is_object() && p["machine_state"] == "running" && p["executed"].get<int>() > 0;
-      },
-      30))
-      << server.status().dump();
+  ASSERT_TRUE(test::wait_until([&] { return cutting(server, id); }, 30)) << server.status().dump();
   const double left_s = server.running(id)["remaining_s"];
   EXPECT_GT(left_s, 0.1 * planned_s);
   EXPECT_LT(left_s, 0.75 * planned_s) << "planned " << planned_s;

@@ -30,6 +30,14 @@ int64_t post_probe_first(const ServerRig& server) {
   return test::post_probe_first(server, "12");
 }
 
+// The job asks for the probe clip and the operator confirms it: probing starts.
+bool clip_confirmed(ServerRig& server, int64_t id) {
+  if (!test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30))
+    return false;
+  const auto r = server.control(id, R"({"action":"probe_ready"})");
+  return r && r->status == 200;
+}
+
 // The instants of a touch at which the operator holds.
 enum class Instant { kDescending, kAtContact, kRetracting, kTravelling };
 
@@ -94,9 +102,7 @@ TEST(ServerProbeHold, AHoldAtAnyInstantOfATouchLeavesTheToolRetractedAndResumePr
   SimRig sim(true, 0, tilted_blank());  // real time: a descent takes about a second
   ServerRig server(dir.path(), {test::machine("mill", sim.address())});
   const int64_t id = post_probe_first(server);
-  ASSERT_TRUE(
-      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
-  ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+  ASSERT_TRUE(clip_confirmed(server, id)) << server.status().dump();
   const double retract_mm = heightmap::ProbeMotion{}.retract_mm;
   for (const Instant when : {Instant::kDescending, Instant::kAtContact, Instant::kRetracting}) {
     SCOPED_TRACE(static_cast<int>(when));
@@ -183,9 +189,7 @@ TEST(ServerProbeHold, AnAbortOfAHeldProbingJobNeverShowsProbingAgain) {
   SimRig sim(true, 0, tilted_blank());
   ServerRig server(dir.path(), {test::machine("mill", sim.address())});
   const int64_t id = post_probe_first(server);
-  ASSERT_TRUE(
-      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
-  ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+  ASSERT_TRUE(clip_confirmed(server, id)) << server.status().dump();
   ASSERT_TRUE(reach(sim, Instant::kDescending)) << server.status().dump();
   ASSERT_EQ(server.control(id, R"({"action":"hold"})")->status, 200);
   ASSERT_TRUE(at_rest(sim));
@@ -225,9 +229,7 @@ TEST(ServerProbeHold, AHoldDuringTheLastTouchHoldsTheJobBeforeItsFirstCommand) {
   SimRig sim(true, 0, tilted_blank());
   ServerRig server(dir.path(), {test::machine("mill", sim.address())});
   const int64_t id = post_probe_first(server);
-  ASSERT_TRUE(
-      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
-  ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+  ASSERT_TRUE(clip_confirmed(server, id)) << server.status().dump();
   ASSERT_TRUE(test::wait_until(
       [&] {
         const nlohmann::json j = server.running(id);
@@ -304,9 +306,7 @@ TEST(ServerProbeHold, AHoldDuringTheTravelToAPointStopsAboveItWithNoDescentUntil
   SimRig sim(true, 0, tilted_blank());
   ServerRig server(dir.path(), {test::machine("mill", sim.address())});
   const int64_t id = post_probe_first(server);
-  ASSERT_TRUE(
-      test::wait_until([&] { return server.running(id)["machine_state"] == "probe_clip"; }, 30));
-  ASSERT_EQ(server.control(id, R"({"action":"probe_ready"})")->status, 200);
+  ASSERT_TRUE(clip_confirmed(server, id)) << server.status().dump();
   // After a touch (the tool rests on the copper before the first: that is no touch).
   ASSERT_TRUE(test::wait_until([&] { return touches(server, id) >= 1; }, 60));
   ASSERT_TRUE(reach(sim, Instant::kTravelling)) << server.status().dump();
