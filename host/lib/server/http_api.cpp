@@ -841,11 +841,23 @@ std::string HttpApi::requeue_without_map_source(int64_t id, bool continue_job) {
   const MapSource source = map_source_of(store_, data_, *job);
   if (source.ended_why.empty()) return "";
   if (!source.source_ended) return "queued again, it would fail at once: " + source.ended_why;
+  // What brings the map back: a cancelled source cannot be requeued (nor an ended one
+  // continued: that is for an interrupted job).
+  const std::optional<JobRecord> from = store_.get(source.from);
+  const std::string first =
+      from && from->state == JobState::kCancelled
+          ? fmt::format(
+                "job {} was cancelled: upload its side again with probe_first=1, then "
+                "this side with height_map_from naming it",
+                source.from)
+          : fmt::format(
+                "requeue job {} first, which probes the blank again, then requeue this "
+                "job",
+                source.from);
   return fmt::format(
-      "it cuts with job {}'s height map, and {}: queued again, it would fail at once "
-      "(requeue or continue job {} first, which probes the blank again, then requeue this "
-      "job)",
-      source.from, source.ended_why, source.from);
+      "it cuts with job {}'s height map, and {}: queued again, it would fail at "
+      "once ({})",
+      source.from, source.ended_why, first);
 }
 
 bool HttpApi::store_control(int64_t id, const std::string& action, httplib::Response& res) {

@@ -22,7 +22,9 @@ void JobStream::start_at(size_t from, std::vector<QueuedCommand> prefix) {
   if (send_job_ == nullptr) throw std::logic_error("JobStream: start_at on a hook's list");
   // The bytes of the job's commands left out.
   size_t index = 0;
+  resumed_step_ = -1;
   pass_over(plan_, enc_, job_id_)([&](const QueuedCommand& c) {
+    if (index >= from && resumed_step_ < 0) resumed_step_ = c.step;
     if (index++ < from) wire_bytes_ -= frame_bytes(c);
   });
   add_bytes(prefix);

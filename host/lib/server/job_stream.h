@@ -42,6 +42,9 @@ class JobStream {
   // The index of the first command with a plan step (size(): none): the set-up before it
   // (a height map's frames, #J) moves nothing along the path. Asked before step_from.
   size_t first_step_index();
+  // A continued run's first plan step of the job's own commands (start_at's `from` on; the
+  // prefix's way back may carry earlier steps); -1 when not started part-way.
+  int resumed_step() const { return resumed_step_; }
   // The most commands either cursor held at once (bounded: tests check it).
   size_t held_max() const;
 
@@ -55,6 +58,7 @@ class JobStream {
   uint16_t job_id_ = 0;
   size_t job_commands_ = 0;
   size_t whole_job_size_ = 0;
+  int resumed_step_ = -1;
   size_t wire_bytes_ = 0;
   std::vector<QueuedCommand> list_;  // a hook's
   std::unique_ptr<CommandSource> send_, track_;

@@ -13,7 +13,7 @@
 namespace host::server {
 
 // Estimated run time of any plan from its steps and their own feeds (rapids, plunges,
-// dwells, pen moves; a spline by its chord).
+// dwells, pen moves; a spline by its control polygon).
 double planned_seconds_by_steps(const JobPlan& plan);
 // The same summed to the end of each step (seconds from the plan's start).
 std::vector<float> step_end_seconds(const JobPlan& plan);
@@ -25,8 +25,9 @@ class TimeLeft {
   void plan(std::shared_ptr<const std::vector<float>> step_end_s, double planned_s);
   // This run starts at plan step `first` (a continued job: where it resumes; -1: none left).
   void start_at(int first);
-  // The machine is at plan step `step` (-1: past the last) after `working_s` seconds of work
-  // in this run. At a new step the machine's pace against the plan is measured again.
+  // The machine is at plan step `step` (-1: past the last; one before this run's first counts
+  // as the first) after `working_s` seconds of work in this run. At a new step the
+  // machine's pace against the plan is measured again.
   void at_step(int step, double working_s);
   // Seconds left after `working_s` seconds of work in this run (before the cut runs: the
   // planned time from this run's first step, standing still).

@@ -203,6 +203,9 @@ bool board_in_archive(const DataFolder& data, const JobRecord& job) {
   }
 }
 
+constexpr const char* kProbingAlready = "it is probing already";
+constexpr const char* kCutting = "it is cutting";
+
 // The 409 to probe_ready when no machine waits for the clip: the job and its state first
 // (the actions' one rule), why, and when to send it (never, for a job that has ended).
 std::string no_clip_wait(int64_t job_id, JobState state, const std::string& why) {
@@ -210,10 +213,13 @@ std::string no_clip_wait(int64_t job_id, JobState state, const std::string& why)
     return fmt::format("job {} is {}: no machine is waiting for its probe clip: the job has ended",
                        job_id, state_name(state));
   }
-  return fmt::format(
-      "job {} is {}: no machine is waiting for its probe clip: {} (send probe_ready once the "
-      "job's machine_state in /api/status is probe_clip)",
-      job_id, state_name(state), why);
+  // Probing already or cutting: the clip was confirmed, nothing to wait for.
+  const bool later = why != kProbingAlready && why != kCutting;
+  return fmt::format("job {} is {}: no machine is waiting for its probe clip: {}{}", job_id,
+                     state_name(state), why,
+                     later ? " (send probe_ready once the job's machine_state in /api/status is "
+                             "probe_clip)"
+                           : "");
 }
 
 }  // namespace
@@ -373,9 +379,9 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
     if (control == JobControl::kConfirmProbe) {
       if (slot->probe_stage != "probe_clip") {
         return {409, no_clip_wait(job_id, JobState::kRunning,
-                                  slot->probe_stage == "probing" ? "it is probing already"
+                                  slot->probe_stage == "probing" ? kProbingAlready
                                   : slot->planning ? "its machine is still planning it"
-                                                   : "it is cutting")};
+                                                   : kCutting)};
       }
       slot->probe_confirmed = true;
       notify(false);
@@ -495,10 +501,14 @@ nlohmann::json Workshop::snapshot() {
                                                                   : "probing";
     // A machine that has claimed a job is never shown idle (free): until the cut's first
     // status it is the job's (planning, starting, or held as asked).
-    const char* claimed = slot->job_id == 0 || probing || slot->have_status ? nullptr
-                          : hold_taken                                      ? "held"
-                          : slot->planning                                  ? "planning"
-                                                                            : "starting";
+    // An idle controller before the run's first command has executed is still starting.
+    const bool cut_reported =
+        slot->have_status &&
+        (slot->progress.executed > 0 || slot->progress.status.state != proto::MachineState::kIdle);
+    const char* claimed = slot->job_id == 0 || probing || cut_reported ? nullptr
+                          : hold_taken                                 ? "held"
+                          : slot->planning                             ? "planning"
+                                                                       : "starting";
     if (slot->have_last_status) {
       const proto::StatusReply& st = slot->last_status;
       m["state"] = probing ? probe_state : claimed != nullptr ? claimed : state_shown(st);
@@ -528,11 +538,7 @@ nlohmann::json Workshop::snapshot() {
     j["fraction"] = f;
     j["elapsed_s"] = elapsed;
     j["remaining_s"] = remaining;
-    j["machine_state"] = probing                            ? probe_state
-                         : hold_taken && !slot->have_status ? "held"
-                         : slot->planning                   ? "planning"
-                         : slot->have_status                ? state_shown(p.status)
-                                                            : "starting";
+    j["machine_state"] = probing ? probe_state : claimed ? claimed : state_shown(p.status);
     if (!slot->probe_stage.empty()) {
       j["probe"] = {{"stage", slot->probe_stage},
                     {"touches", slot->probe_done},
@@ -857,7 +863,10 @@ void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
 void Workshop::hand_to_sender(Slot& slot, JobRun& r, Sender& sender) {
   auto path_json = std::make_shared<const std::string>(r.path->to_json().dump());
   r.first_step_index = r.commands->first_step_index();
-  const int first_step = r.commands->step_from(0);  // a continued run's: where it resumes
+  // A continued run's time left counts from where it resumes (its prefix's way back may
+  // carry earlier steps).
+  const int first_step =
+      r.commands->resumed_step() >= 0 ? r.commands->resumed_step() : r.commands->step_from(0);
   auto step_ends = std::make_shared<const std::vector<float>>(step_end_seconds(*r.planned));
   // Its size and first curve are known now: not "0 of 0" in the store while the first
   // status is awaited, and continuable from that curve whatever stops it next.
@@ -958,6 +967,14 @@ void Workshop::follow_status(Slot& slot, JobRun& r, Sender& sender, const Progre
   {
     std::lock_guard<std::mutex> lock(slot.mutex);
     slot.executed_mm = executed_mm;
+    // The sender's reports while it checks the zeroing come before its stream: no total. The
+    // stream's counts stay (an outside tester saw "0 of 0" and `idle` for a moment), and an
+    // idle controller then is not yet the cut's first status.
+    if (p.total == 0 && p.status.state == proto::MachineState::kIdle) {
+      slot.last_status = p.status;
+      slot.have_last_status = true;
+      return;
+    }
     slot.progress = p;
     slot.set_waiting(machine_waits_for_operator(p.status.state));
     slot.time_left.at_step(step, slot.working_s(Clock::now()));

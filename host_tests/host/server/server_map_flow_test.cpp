@@ -252,7 +252,10 @@ TEST(ServerMapFlow, TheBottomSideFailsWithNothingCutWhenItsSourceFails) {
                                      bottom, top, top)),
             std::string::npos)
       << r->body;
-  EXPECT_NE(r->body.find(fmt::format("requeue or continue job {} first", top)), std::string::npos)
+  EXPECT_NE(r->body.find(fmt::format("(requeue job {} first, which probes the blank again, then "
+                                     "requeue this job)",
+                                     top)),
+            std::string::npos)
       << r->body;
   EXPECT_EQ(server.job(bottom)["state"], "failed");
   EXPECT_EQ(server.job(bottom)["message"], message);

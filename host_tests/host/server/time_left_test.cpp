@@ -3,7 +3,8 @@
 // the whole job's planned time).
 #include <gtest/gtest.h>
 
-#include <memory>  // std::make_shared
+#include <memory>   // std::make_shared
+#include <utility>  // std::pair
 
 #include "host/lib/server/time_left.h"
 
@@ -78,6 +79,14 @@ TEST(TimeLeft, AContinuedRunMeasuresItsPaceFromWhereItResumed) {
   EXPECT_DOUBLE_EQ(t.remaining(0), 50.0);
   t.at_step(6, 10.0);  // at the plan's pace since the resume
   EXPECT_NEAR(t.remaining(10), 40.0, 1e-9);
+  // The resume's way back carries earlier steps (the outside tester saw the whole job's time
+  // for the first seconds, then a pace from step 0 that made the rest look 4x shorter).
+  TimeLeft back = ten_steps();
+  back.start_at(5);
+  back.at_step(0, 0.0);
+  EXPECT_DOUBLE_EQ(back.remaining(0), 50.0);
+  back.at_step(6, 10.0);
+  EXPECT_NEAR(back.remaining(10), 40.0, 1e-9);
 }
 
 TEST(TimeLeft, WithoutStepsItIsTheWholePlannedTime) {
@@ -105,6 +114,26 @@ TEST(TimeLeft, StepEndSecondsSumToThePlansTime) {
   EXPECT_NEAR(ends[1] - ends[0], 4.0, 1e-6);  // 20 mm at 5 mm/s
   EXPECT_NEAR(ends[2] - ends[1], 1.5, 1e-6);
   EXPECT_NEAR(ends.back(), planned_seconds_by_steps(plan), 1e-5);
+}
+
+// A closed contour as one spline step (an isolation loop): its time is its length's, not its
+// chord's (0: the outside tester's time left stood still while such a loop was cut).
+TEST(TimeLeft, AClosedSplineStepTakesTheTimeOfItsLength) {
+  JobPlan plan;
+  PlanStep loop;
+  loop.kind = PlanStep::kSpline;
+  loop.feed_um_per_s = 5000;
+  StepSpline square;
+  square.degree = 1;
+  for (const auto& p : {std::pair<int, int>{0, 0}, {20000, 0}, {20000, 20000}, {0, 20000}, {0, 0}})
+    square.control.push_back(core::ControlPoint{p.first, p.second, core::kWeightOneQ14});
+  square.knot = {0, 0, 1, 2, 3, 4, 4};
+  loop.set_spline(square);
+  loop.to = {0, 0};
+  plan.steps = {loop};
+  const std::vector<float> ends = step_end_seconds(plan);
+  ASSERT_EQ(ends.size(), 1u);
+  EXPECT_NEAR(ends[0], 80.0 / 5.0, 1e-5);  // 80 mm round at 5 mm/s
 }
 
 }  // namespace
