@@ -925,7 +925,7 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
       r.state = JobState::kCompleted;
       r.executed = r.commands->size();
       break;
-    case JobOutcome::kAborted:
+    case JobOutcome::kAborted: {
       r.state = stopping_ ? JobState::kInterrupted : JobState::kAborted;
       if (stopping_) {
         // The sender's abort came from stop(), not from an operator.
@@ -936,7 +936,19 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
             r.executed, r.commands->size(),
             whole_job_after_run_counts(r.progress.resume_index, r.commands->job_commands()));
       }
+      // #X stopped the tool where it was, maybe in the copper: up to the travel height before
+      // the machine is free (the next job may ask for the probe clip), as `send` does.
+      Link* link = nullptr;
+      {
+        std::lock_guard<std::mutex> lock(slot.mutex);
+        link = slot.link;
+      }
+      if (link != nullptr) {
+        r.message += "; " + heightmap::raise_tool_after_abort(*link, options_.sender,
+                                                              heightmap::ProbeMotion{}.travel_z_mm);
+      }
       break;
+    }
     case JobOutcome::kAlarm:
     case JobOutcome::kRejected:
       r.state = JobState::kFailed;

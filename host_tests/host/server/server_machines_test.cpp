@@ -89,6 +89,12 @@ TEST(ServerMachines, HoldResumeOverrideAndAbortOfARunningJob) {
   ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 20));
   const nlohmann::json j = server.job(id);
   EXPECT_LT(j["executed"].get<int>(), j["total"].get<int>());
+  // The tool stopped in the copper goes up before the machine is free (issue 25's outside
+  // tester: it stayed at cutting depth, and the next probe-first job asked for the clip so).
+  EXPECT_NE(j["message"].get<std::string>().find("; the tool raised to Z 2.000 mm"),
+            std::string::npos)
+      << j.dump();
+  EXPECT_NEAR(sim.machine().position().z_mm, 2.0, 0.001);
   auto log = server.client().Get(fmt::format("/api/jobs/{}/files/machine.log", id).c_str());
   ASSERT_TRUE(log && log->status == 200);
   EXPECT_NE(log->body.find("machine held"), std::string::npos) << log->body;
