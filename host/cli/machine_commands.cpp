@@ -497,7 +497,8 @@ void add_link_options(CLI::App* cmd, std::string* to, bool* no_zero) {
       },
       "", "link");
   cmd->add_option("--to", *to,
-                  "tcp://HOST:PORT (XPort, default port 10001) or serial:DEVICE[,BAUD]")
+                  "tcp://HOST:PORT, the port always given (an XPort listens on 10001 unless set up "
+                  "otherwise) or serial:DEVICE[,BAUD]")
       ->required()
       ->check(link_address);
   cmd->add_flag("--no-zero", *no_zero, "do not start manual zeroing if not zeroed");

@@ -29,6 +29,12 @@ sim::ServerOptions listen_options(const std::string& listen) {
                          fmt::format("--listen '{}': expected ADDR:PORT or serial:DEVICE", listen));
   }
   so.address = listen.substr(0, colon);
+  if (so.address.empty()) {
+    throw CommandFailure(kExitUsage,
+                         fmt::format("--listen '{}': no address before the port (e.g. "
+                                     "127.0.0.1{}, or 0.0.0.0{} for every interface)",
+                                     listen, listen.substr(colon), listen.substr(colon)));
+  }
   // Digits only, 0 .. 65535 (0: any free port); 99999 wrapped round to 34463 before.
   const std::string port = listen.substr(colon + 1);
   const bool digits = !port.empty() && port.size() <= 5 &&
