@@ -106,7 +106,12 @@ SimCommandResult run_sim(const SimCommandOptions& o, const std::atomic<bool>& st
   try {
     server = std::make_unique<sim::SimServer>(machine, so);
   } catch (const std::runtime_error& e) {
-    throw CommandFailure(kExitUsage, e.what());
+    // The option named, as every bad command line's message does.
+    throw CommandFailure(kExitUsage,
+                         fmt::format("--listen '{}': {}{}", o.listen, e.what(),
+                                     so.device.empty() ? " (a numeric address: 127.0.0.1, "
+                                                         "0.0.0.0 or ::1)"
+                                                       : ""));
   }
   const std::string where = so.device.empty() ? fmt::format("{}:{}", so.address, server->port())
                                               : fmt::format("device {}", so.device);

@@ -135,8 +135,14 @@ LinkSpec parse_link_spec(const std::string& spec) {
     }
     out.kind = LinkSpec::kTcp;
     out.host = rest.substr(0, colon);
-    if (out.host.size() > 2 && out.host.front() == '[' && out.host.back() == ']') {
-      out.host = out.host.substr(1, out.host.size() - 2);  // [::1]
+    const bool bracketed = out.host.size() > 2 && out.host.front() == '[' && out.host.back() == ']';
+    if (bracketed) out.host = out.host.substr(1, out.host.size() - 2);  // [::1]
+    // A second colon (host:port:5, host::port) or a blank is no host name: refused here, as
+    // the command line is read, not as a host not found after planning.
+    if ((!bracketed && out.host.find(':') != std::string::npos) ||
+        out.host.find_first_of(" \t") != std::string::npos) {
+      throw LinkError(fmt::format("link '{}': '{}' is not a host name or address ({})", spec,
+                                  out.host, kSpecForms));
     }
     out.port = static_cast<uint16_t>(parse_number(rest.substr(colon + 1), 1, 65535, "port", spec));
     return out;

@@ -33,6 +33,10 @@ TEST(LinkSpec, SerialWithBaud) {
 TEST(LinkSpec, RejectsWhatItCannotUse) {
   EXPECT_THROW(parse_link_spec("udp://host:1"), LinkError);
   EXPECT_THROW(parse_link_spec("tcp://host"), LinkError);
+  // Extra colons or a blank (issue 24's tester: planned, then "cannot resolve host", exit 6).
+  EXPECT_THROW(parse_link_spec("tcp://127.0.0.1:47801:5"), LinkError);
+  EXPECT_THROW(parse_link_spec("tcp://127.0.0.1::47801"), LinkError);
+  EXPECT_THROW(parse_link_spec("tcp://a b:47801"), LinkError);
   EXPECT_THROW(parse_link_spec("tcp://host:0"), LinkError);
   EXPECT_THROW(parse_link_spec("tcp://host:70000"), LinkError);
   EXPECT_THROW(parse_link_spec("tcp://host:12ab"), LinkError);
