@@ -2,7 +2,6 @@
 // reversal, chaining of touching curves, work-area check, conversion to firmware splines.
 #include "host/lib/plan/job_plan.h"
 
-#include <atomic>       // std::atomic
 #include <cmath>        // std::llround, std::isfinite
 #include <sstream>      // std::ostringstream
 #include <type_traits>  // std::is_const_v
@@ -14,44 +13,6 @@
 namespace host {
 
 using namespace plan_detail;
-
-struct PlanStep::Extra {
-  StepSpline spline;
-  std::string text;
-  mutable std::atomic<int> refs{1};
-};
-
-PlanStep::ExtraRef::ExtraRef(const ExtraRef& other) : p_(other.p_) {
-  if (p_) p_->refs.fetch_add(1, std::memory_order_relaxed);
-}
-
-PlanStep::ExtraRef::~ExtraRef() {
-  if (p_ && p_->refs.fetch_sub(1, std::memory_order_acq_rel) == 1) delete p_;
-}
-
-const StepSpline& PlanStep::spline() const {
-  static const StepSpline kNone;
-  return extra_.get() ? extra_.get()->spline : kNone;
-}
-
-void PlanStep::set_spline(StepSpline spline) {
-  Extra* e = new Extra;
-  e->spline = std::move(spline);
-  if (extra_.get()) e->text = extra_.get()->text;
-  extra_ = ExtraRef(e);
-}
-
-const std::string& PlanStep::text() const {
-  static const std::string kNone;
-  return extra_.get() ? extra_.get()->text : kNone;
-}
-
-void PlanStep::set_text(std::string text) {
-  Extra* e = new Extra;
-  e->text = std::move(text);
-  if (extra_.get()) e->spline = extra_.get()->spline;
-  extra_ = ExtraRef(e);
-}
 
 // Defined in program_plan.cpp: the planner for programs (G-code), which keeps their order.
 JobPlan plan_program(const Drawing& drawing, const PlanOptions& options);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>  // std::optional
+
 #include "host/lib/drawing/conics.h"
 #include "host/lib/plan/firmware_spline.h"
 
@@ -95,16 +97,16 @@ TEST(JobPlan, StepsStartAndEndPenUpAtTheZero) {
 
 TEST(JobPlan, SplineStepsCarryValidFirmwareSplinesStartingAtTheRapidTarget) {
   const JobPlan p = plan_job(drawing_of({arc_spline({0, 0}, 10, 0, 3.0)}), PlanOptions());
-  const PlanStep* rapid = 0;
+  std::optional<PlanStep> rapid;
   int splines = 0;
   for (const PlanStep& s : p.steps) {
-    if (s.kind == PlanStep::kRapid && !rapid) rapid = &s;
+    if (s.kind == PlanStep::kRapid && !rapid) rapid = s;
     if (s.kind == PlanStep::kSpline) {
       ++splines;
       EXPECT_EQ(core::validate_spline(s.spline().firmware()), core::GeometryError::kOk);
       EXPECT_EQ(s.feed_um_per_s, 10000);
       const Point2 start = start_point(from_firmware_spline(s.spline().firmware()));
-      ASSERT_NE(rapid, nullptr);
+      ASSERT_TRUE(rapid.has_value());
       EXPECT_NEAR(start.x() * 1000, rapid->to.x_um, 1.0);
       EXPECT_NEAR(start.y() * 1000, rapid->to.y_um, 1.0);
     }

@@ -41,7 +41,7 @@ TEST(ProgramPlan, MillingStepsFollowTheProgramStepByStep) {
   const JobPlan p = plan_text(kMill);
   // The zero is the lower-left corner of everything cut: (5, 5) -> (0, 0).
   EXPECT_NEAR(p.offset_mm.x(), -5.0, 1e-9);
-  const std::vector<PlanStep>& s = p.steps;
+  const StepList& s = p.steps;
   // U up, O spindle off, W dwell 1 s, U tool-change height, P pause, O on, W 0.5 s,
   // R to the first cut, U down to travel height (rapid), D plunge, F F, U R D F, U O R.
   ASSERT_EQ(kinds(p), "UOWUPOWRUDFFURDFUOR") << kinds(p);
@@ -123,19 +123,19 @@ const char* kDrill =
 TEST(ProgramPlan, G81HolesBecomeDrillStepsInFileOrder) {
   const JobPlan p = plan_text(kDrill);
   EXPECT_EQ(p.holes, 3);
-  std::vector<const PlanStep*> drills;
+  std::vector<PlanStep> drills;
   for (const PlanStep& s : p.steps) {
-    if (s.kind == PlanStep::kDrill) drills.push_back(&s);
+    if (s.kind == PlanStep::kDrill) drills.push_back(s);
   }
   ASSERT_EQ(drills.size(), 3u);
   // Lower-left of the holes -> zero: (0.9, -0.8) in.
   const int32_t x[] = {0, 19050, 19050}, y[] = {8890, 6350, 0};
   for (int i = 0; i < 3; ++i) {
-    EXPECT_EQ(drills[i]->to.x_um, x[i]);
-    EXPECT_EQ(drills[i]->to.y_um, y[i]);
-    EXPECT_EQ(drills[i]->z_start_um, 2032);
-    EXPECT_EQ(drills[i]->z_um, -1524);
-    EXPECT_EQ(drills[i]->feed_um_per_s, 5000);  // 12.7 mm/s from the file, capped at 5
+    EXPECT_EQ(drills[i].to.x_um, x[i]);
+    EXPECT_EQ(drills[i].to.y_um, y[i]);
+    EXPECT_EQ(drills[i].z_start_um, 2032);
+    EXPECT_EQ(drills[i].z_um, -1524);
+    EXPECT_EQ(drills[i].feed_um_per_s, 5000);  // 12.7 mm/s from the file, capped at 5
   }
   // Up to the tool-change height, stop, spindle on; each drill step goes to its hole itself
   // at the height the tool is at (here still the tool-change height, then R); off, home.

@@ -118,9 +118,9 @@ TEST(SimMachineCommands, ManySplinesAreSentWithoutBusyOrResends) {
 TEST(SimMachineCommands, CircleWithAToolOffsetIsCutBesideTheCircle) {
   JobPlan plan = test::plan_of(test::drawing_of({test::circle_curve(30, 30, 10)}));
   int offset_steps = 0;
-  for (PlanStep& s : plan.steps) {
-    if (s.kind == PlanStep::kSpline) {
-      s.tool_offset_um = 300;
+  for (size_t i = 0; i < plan.steps.size(); ++i) {
+    if (plan.steps[i].kind == PlanStep::kSpline) {
+      plan.steps.edit(i, [](PlanStep& s) { s.tool_offset_um = 300; });
       ++offset_steps;
     }
   }

@@ -193,13 +193,13 @@ TEST(JobEncoder, SplineFramesCarryTheirCurveIndex) {
 
 TEST(JobEncoder, FeedBeyondTheWireRangeIsRefused) {
   JobPlan plan = plan_with_spline(wavy_spline(4, false));
-  plan.steps[4].feed_um_per_s = 70000;
+  plan.steps.edit(4, [](PlanStep& s) { s.feed_um_per_s = 70000; });
   EXPECT_THROW(encode_job(plan, EncodeOptions{}), PlanError);
 }
 
 TEST(JobEncoder, ToolOffsetTravelsInTheSplineHeader) {
   JobPlan plan = plan_with_spline(wavy_spline(4, false));
-  plan.steps[3].tool_offset_um = -250;
+  plan.steps.edit(3, [](PlanStep& s) { s.tool_offset_um = -250; });
   const auto cmds = encode_job(plan, EncodeOptions{});
   int headers = 0;
   for (const auto& c : cmds) {
@@ -211,13 +211,16 @@ TEST(JobEncoder, ToolOffsetTravelsInTheSplineHeader) {
     ++headers;
   }
   EXPECT_EQ(headers, 1);
-  plan.steps[3].tool_offset_um = 100001;  // beyond what the controller offsets
+  plan.steps.edit(
+      3, [](PlanStep& s) { s.tool_offset_um = 100001; });  // beyond what the controller offsets
   EXPECT_THROW(encode_job(plan, EncodeOptions{}), PlanError);
 }
 
 TEST(JobEncoder, StraightFeedWithAnOffsetBecomesADegreeOneSplineFromTheToolPosition) {
   JobPlan plan = plan_with_spline(wavy_spline(4, false));
-  plan.steps[4].tool_offset_um = 300;  // the line back to (0, 0) from the spline's end
+  plan.steps.edit(4, [](PlanStep& s) {
+    s.tool_offset_um = 300;
+  });  // the line back to (0, 0) from the spline's end
   const auto cmds = encode_job(plan, EncodeOptions{});
   std::vector<QueuedCommand> line;
   for (const auto& c : cmds) {
@@ -324,7 +327,7 @@ TEST(JobEncoder, JobLeavingTheControllersTravelIsRefusedNamingTheStep) {
   o.controller = &small;
   JobPlan plan = plan_with_spline(wavy_spline(4, false));  // x up to 3 mm: fits
   EXPECT_NO_THROW(encode_job(plan, o));
-  plan.steps[1].to.x_um = 30001;  // the rapid
+  plan.steps.edit(1, [](PlanStep& s) { s.to.x_um = 30001; });  // the rapid
   try {
     encode_job(plan, o);
     FAIL() << "no PlanError";
@@ -334,7 +337,7 @@ TEST(JobEncoder, JobLeavingTheControllersTravelIsRefusedNamingTheStep) {
   plan = plan_with_spline(wavy_spline(40, false));  // control points up to X 39 mm
   EXPECT_THROW(encode_job(plan, o), PlanError);
   plan = plan_with_spline(wavy_spline(4, false));
-  plan.steps[2].z_um = -5001;  // pen down too deep
+  plan.steps.edit(2, [](PlanStep& s) { s.z_um = -5001; });  // pen down too deep
   EXPECT_THROW(encode_job(plan, o), PlanError);
   o.controller = nullptr;
   EXPECT_NO_THROW(encode_job(plan, o));
