@@ -331,7 +331,7 @@ void run_sim(const SimArgs& a) {
   o.pause_confirm_ms = a.pause_confirm_ms;
   signals_stop(&g_stop_sim);
   const commands::SimCommandResult r = commands::run_sim(o, g_stop_sim, std::cerr);
-  if (!r.trace_ok) std::cerr << fmt::format("engraver: --trace '{}': write failed\n", a.trace);
+  if (!r.trace_ok) std::cerr << fmt::format("engraver: --trace: '{}': write failed\n", a.trace);
   std::cerr << fmt::format(
       "engraver: simulated {:.1f} s of machine time; {} confirmed by the simulated "
       "operator; spindle {} ({})\n",

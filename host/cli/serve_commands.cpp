@@ -76,7 +76,7 @@ int listen_port(const std::string& listen, size_t* colon) {
     }
   }
   if (port < 0 || port > 65535) {
-    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': expected ADDR:PORT", listen));
+    throw CommandFailure(kExitUsage, fmt::format("--listen: '{}': expected ADDR:PORT", listen));
   }
   return port;
 }

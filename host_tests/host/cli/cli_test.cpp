@@ -399,7 +399,7 @@ TEST(Cli, FitToleranceAndDrillModeChangeWhatIsSent) {
 TEST(Cli, SendResumeAtRejectsABadPositionAsAUsageError) {
   const auto r = run("send " + kSample + " --to tcp://127.0.0.1:9 --resume-at 12:x");
   EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_NE(r.err.find("--resume-at '12:x'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--resume-at: '12:x'"), std::string::npos) << r.err;
 }
 
 // send --resume on a controller that never ran a job (as after a restart): refused with what to
