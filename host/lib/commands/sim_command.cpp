@@ -35,16 +35,18 @@ sim::ServerOptions listen_options(const std::string& listen) {
                                      "127.0.0.1{}, or 0.0.0.0{} for every interface)",
                                      listen, listen.substr(colon), listen.substr(colon)));
   }
-  // Digits only, 0 .. 65535 (0: any free port); 99999 wrapped round to 34463 before.
+  // Digits only, 0 .. 65535 (0: any free port); 99999 wrapped round to 34463 before. Leading
+  // zeros are decimal ones (080 is 80), as for --to.
   const std::string port = listen.substr(colon + 1);
-  const bool digits = !port.empty() && port.size() <= 5 &&
-                      port.find_first_not_of("0123456789") == std::string::npos;
-  if (!digits || std::stoul(port) > 65535) {
+  const bool digits = !port.empty() && port.find_first_not_of("0123456789") == std::string::npos;
+  const size_t first = port.find_first_not_of('0');
+  const std::string value = first == std::string::npos ? "0" : port.substr(first);
+  if (!digits || value.size() > 5 || std::stoul(value) > 65535) {
     throw CommandFailure(kExitUsage, fmt::format("--listen: '{}': the port must be 0 .. 65535 (0: "
                                                  "any free port)",
                                                  listen));
   }
-  so.port = static_cast<uint16_t>(std::stoul(port));
+  so.port = static_cast<uint16_t>(std::stoul(value));
   return so;
 }
 

@@ -50,6 +50,8 @@ TEST(CliUsage, TheSimulatorsPortAndPauseConfirmAreChecked) {
                      "--listen: 'localhost:47857': listen address 'localhost': ");
   expect_usage_error("sim --listen :47850",
                      "--listen: ':47850': no address before the port (e.g. 127.0.0.1:47850");
+  expect_usage_error("sim --listen 127.0.0.1:000000099999",
+                     "--listen: '127.0.0.1:000000099999': the port must be 0 .. 65535");
   expect_usage_error("sim --listen 127.0.0.1:10001x",
                      "--listen: '127.0.0.1:10001x': the port must be 0 .. 65535");
   expect_usage_error("sim --pause-confirm-ms -5",
