@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -352,6 +353,13 @@ TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {
   EXPECT_GE(c["min_clearance_um"].get<double>(), c["planned_min_clearance_um"].get<double>() - 3.0)
       << c.dump();
   EXPECT_NE(r.out.find("simulated isolation cuts"), std::string::npos) << r.out;
+  // Places name their frame, as the other report lines do ("in the files", "on the machine").
+  const std::string at = R"(at \(-?[0-9.]+, -?[0-9.]+\) mm on the machine)";
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("max contour error [0-9.]+ um " + at + ";")))
+      << r.out;
+  EXPECT_TRUE(std::regex_search(
+      r.out, std::regex("least clearance of the tool's edge -?[0-9.]+ um " + at + " \\(planned")))
+      << r.out;
 }
 
 // Without an outline nothing cuts below the drill start height, so the pen-down threshold
