@@ -3,13 +3,12 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include <algorithm>  // std::min, std::max
-#include <cmath>      // std::isnan, std::llround
-#include <iomanip>    // std::setprecision
-#include <map>        // std::map
-#include <sstream>    // std::ostringstream
-
+#include <algorithm>   // std::min, std::max
+#include <cmath>       // std::isnan, std::llround
 #include <filesystem>  // std::filesystem::is_directory
+#include <iomanip>     // std::setprecision
+#include <map>         // std::map
+#include <sstream>     // std::ostringstream
 
 #include "host/lib/commands/board_input.h"  // read_board_folder
 #include "host/lib/commands/exit_codes.h"   // CommandFailure
