@@ -33,7 +33,8 @@ struct PointsArgs {
 };
 
 void run_info(const InfoArgs& a) {
-  if (print_pcb_info_if_pcb(a.file, a.json)) return;  // Gerber, Excellon
+  if (print_board_folder_info_if_folder(a.file, a.json)) return;  // a board folder
+  if (print_pcb_info_if_pcb(a.file, a.json)) return;              // Gerber, Excellon
   const Drawing d = import_drawing(a.file);
   if (a.json) {
     std::cout << commands::drawing_info_json(d).dump(2, ' ', false,
@@ -88,7 +89,8 @@ void add_drawing_commands(CLI::App& app) {
       "info",
       "Show what a drawing holds: entities by type, curves (degree, rational, knots, "
       "control points), extents, units and the problems found; of a Gerber or Excellon file, "
-      "its layer, apertures or tools, polygons and holes");
+      "its layer, apertures or tools, polygons and holes; of a board folder, which file is "
+      "taken for which layer (as `board` reads it) and each one's summary");
   info->add_option("FILE", info_args->file,
                    "drawing (DXF, G-code) or PCB file (Gerber, Excellon, a board folder)")
       ->required();
@@ -98,6 +100,7 @@ void add_drawing_commands(CLI::App& app) {
       "  engraver info samples/engraver-word.dxf\n"
       "  engraver info --json board_back.ngc > board_back.json\n"
       "  engraver info board-F.Cu.gbr\n"
+      "  engraver info board/\n"
       "Exit codes: 0 shown; 2 bad option, or the file cannot be read or imported (the message "
       "names the file and the place in it).");
   info->callback([info_args]() { run_info(*info_args); });

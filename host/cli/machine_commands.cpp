@@ -331,7 +331,7 @@ void run_sim(const SimArgs& a) {
   o.pause_confirm_ms = a.pause_confirm_ms;
   signals_stop(&g_stop_sim);
   const commands::SimCommandResult r = commands::run_sim(o, g_stop_sim, std::cerr);
-  if (!r.trace_ok) std::cerr << fmt::format("engraver: --trace '{}': write failed\n", a.trace);
+  if (!r.trace_ok) std::cerr << fmt::format("engraver: --trace: '{}': write failed\n", a.trace);
   std::cerr << fmt::format(
       "engraver: simulated {:.1f} s of machine time; {} confirmed by the simulated "
       "operator; spindle {} ({})\n",
@@ -496,9 +496,10 @@ void add_link_options(CLI::App* cmd, std::string* to, bool* no_zero) {
         }
       },
       "", "link");
-  cmd->add_option("--to", *to,
-                  "tcp://HOST:PORT, the port always given (an XPort listens on 10001 unless set up "
-                  "otherwise) or serial:DEVICE[,BAUD]")
+  cmd->add_option(
+         "--to", *to,
+         "tcp://HOST:PORT, the port always given, in decimal (0080 is 80; an XPort listens "
+         "on 10001 unless set up otherwise) or serial:DEVICE[,BAUD]")
       ->required()
       ->check(link_address);
   cmd->add_flag("--no-zero", *no_zero, "do not start manual zeroing if not zeroed");
@@ -566,7 +567,8 @@ void add_sim_command(CLI::App& app) {
   auto sim_args = std::make_shared<SimArgs>();
   CLI::App* sim = app.add_subcommand("sim", "run the simulated machine on a TCP port");
   sim->add_option("--listen", sim_args->listen,
-                  "ADDR:PORT (loopback by default), or serial:DEVICE (a tty or a pty)")
+                  "ADDR:PORT (loopback by default; PORT in decimal, 080 is 80, 0 any free port), "
+                  "or serial:DEVICE (a tty or a pty)")
       ->capture_default_str();
   sim->add_flag("--realtime", sim_args->realtime, "machine time always follows the wall clock");
   sim->add_option("--trace", sim_args->trace,

@@ -69,14 +69,16 @@ int listen_port(const std::string& listen, size_t* colon) {
   *colon = listen.rfind(':');
   int port = -1;
   if (*colon != std::string::npos) {
-    try {
-      port = std::stoi(listen.substr(*colon + 1));
-    } catch (const std::exception&) {
-      port = -1;
-    }
+    // Digits only (80x is no port); leading zeros are decimal ones (080 is 80), as for --to.
+    const std::string text = listen.substr(*colon + 1);
+    const size_t first = text.find_first_not_of('0');
+    const std::string digits = first == std::string::npos ? "0" : text.substr(first);
+    if (!text.empty() && text.find_first_not_of("0123456789") == std::string::npos &&
+        digits.size() <= 5)
+      port = std::stoi(digits);
   }
   if (port < 0 || port > 65535) {
-    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': expected ADDR:PORT", listen));
+    throw CommandFailure(kExitUsage, fmt::format("--listen: '{}': expected ADDR:PORT", listen));
   }
   return port;
 }

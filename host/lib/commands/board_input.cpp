@@ -143,8 +143,10 @@ std::string input_name(const std::string& input) {
   return board_name(s.substr(0, s.find(',')));
 }
 
-// side_asked: --side, or "" (a "top:"/"bottom:" prefix, else the board's default side).
-BoardFiles read_board_input(const std::string& input, const std::string& side_asked,
+namespace {
+
+// read_board_input without its refusal of a folder that holds no copper.
+BoardFiles read_board_files(const std::string& input, const std::string& side_asked,
                             bool both_copper) {
   BoardFiles b;
   bool directory = false;
@@ -154,7 +156,10 @@ BoardFiles read_board_input(const std::string& input, const std::string& side_as
       expand_input(input, &b.side, &directory, &stripped, &left_out);
   for (const std::string& f : left_out)
     b.notes.push_back(f + ": neither Gerber nor Excellon (by its name or content): left out");
-  if (files.empty()) throw CommandFailure(kExitUsage, input + ": no PCB files there");
+  if (files.empty())
+    throw CommandFailure(kExitUsage, input +
+                                         ": no Gerber or Excellon files there (by their names "
+                                         "or first lines)");
   const LayerKind wanted_copper = copper_for_side(side_asked.empty() ? b.side : side_asked, files);
   for (const std::string& f : files) {
     // In a directory, only files whose names or X2 file functions say copper, drill or
@@ -202,7 +207,20 @@ BoardFiles read_board_input(const std::string& input, const std::string& side_as
   }
   b.from_directory = directory;
   b.name = board_name(directory ? stripped : files.front());
-  if (directory && b.layers.copper_top.empty() && b.layers.copper_bottom.empty()) {
+  return b;
+}
+
+}  // namespace
+
+BoardFiles read_board_folder(const std::string& folder) {
+  return read_board_files(folder, "", true);
+}
+
+// side_asked: --side, or "" (a "top:"/"bottom:" prefix, else the board's default side).
+BoardFiles read_board_input(const std::string& input, const std::string& side_asked,
+                            bool both_copper) {
+  BoardFiles b = read_board_files(input, side_asked, both_copper);
+  if (b.from_directory && b.layers.copper_top.empty() && b.layers.copper_bottom.empty()) {
     // A board folder without copper is a folder whose copper was not recognised: planning
     // its holes alone would look like success.
     std::string msg = input +

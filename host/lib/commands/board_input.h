@@ -49,6 +49,10 @@ std::string board_name(const std::string& input_or_file);
 // the bottom side's cuts, pcb/board_probe_area.h).
 BoardFiles read_board_input(const std::string& input, const std::string& side_asked = "",
                             bool both_copper = false);
+// Every copper, drill and outline file of a board folder as read_board_input reads them (both
+// copper sides), with its notes on which file was taken for which layer and which were left
+// out; a folder without copper is not refused (`engraver info FOLDER`).
+BoardFiles read_board_folder(const std::string& folder);
 // One layer of a known kind (`board --top FILE` ...), its reader's warnings into `b`.
 void add_named_layer(BoardFiles* b, const std::string& path, pcb::LayerKind kind);
 // Every note and warning about the files into the log.

@@ -3,13 +3,15 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include <algorithm>  // std::min, std::max
-#include <cmath>      // std::isnan, std::llround
-#include <iomanip>    // std::setprecision
-#include <map>        // std::map
-#include <sstream>    // std::ostringstream
+#include <algorithm>   // std::min, std::max
+#include <cmath>       // std::isnan, std::llround
+#include <filesystem>  // std::filesystem::is_directory
+#include <iomanip>     // std::setprecision
+#include <map>         // std::map
+#include <sstream>     // std::ostringstream
 
-#include "host/lib/commands/exit_codes.h"  // CommandFailure
+#include "host/lib/commands/board_input.h"  // read_board_folder
+#include "host/lib/commands/exit_codes.h"   // CommandFailure
 #include "host/lib/pcb/excellon_reader.h"
 #include "host/lib/pcb/gerber_reader.h"
 #include "host/lib/pcb/pcb_file_names.h"
@@ -346,6 +348,45 @@ std::optional<PcbFileInfo> read_pcb_file_info(const std::string& path) {
   }
   info.format = gerber ? "Gerber RS-274X" : "Excellon";
   return info;
+}
+
+std::optional<BoardFolderInfo> read_board_folder_info(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(path, ec)) return std::nullopt;
+  const BoardFiles b = read_board_folder(path);
+  BoardFolderInfo info;
+  info.folder = path;
+  info.board = b.name;
+  info.files = b.notes;
+  const pcb::BoardFileSet& l = b.layers;
+  for (const auto* kind : {&l.copper_top, &l.copper_bottom, &l.drill, &l.outline}) {
+    for (const PcbLayer& layer : *kind) {
+      // Gerber content is never read as a drill layer (board_files.h).
+      const bool drill = layer.kind == pcb::LayerKind::kDrill;
+      info.layers.push_back(PcbFileInfo{layer, drill ? "Excellon" : "Gerber RS-274X"});
+    }
+  }
+  return info;
+}
+
+std::string board_folder_info_text(const BoardFolderInfo& info) {
+  std::ostringstream out;
+  out << "folder:    " << info.folder << " (board '" << info.board << "', "
+      << counted(info.layers.size(), "layer") << " read)\n";
+  out << "files:\n";
+  for (const std::string& f : info.files) out << "  - " << f << "\n";
+  for (const PcbFileInfo& layer : info.layers) out << "\n" << pcb_info_text(layer);
+  return out.str();
+}
+
+nlohmann::json board_folder_info_json(const BoardFolderInfo& info) {
+  nlohmann::json j;
+  j["folder"] = info.folder;
+  j["board"] = info.board;
+  j["files"] = info.files;
+  j["layers"] = nlohmann::json::array();
+  for (const PcbFileInfo& layer : info.layers) j["layers"].push_back(pcb_info_json(layer));
+  return j;
 }
 
 int points_tolerance_um(double tol_mm) {

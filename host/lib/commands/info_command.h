@@ -27,6 +27,21 @@ std::optional<PcbFileInfo> read_pcb_file_info(const std::string& path);
 nlohmann::json pcb_info_json(const PcbFileInfo& info);
 std::string pcb_info_text(const PcbFileInfo& info);
 
+// A board folder as `board` reads it: which file is taken for which layer and why, which are
+// left out, and each layer read (copper of both sides, drill, outline).
+struct BoardFolderInfo {
+  std::string folder;
+  std::string board;               // the board's name (the folder's)
+  std::vector<std::string> files;  // "FILE: taken as top copper (from its name)", "...: left out"
+  std::vector<PcbFileInfo> layers;
+};
+// Reads `path` when it is a folder; nullopt for anything else. A folder without Gerber or
+// Excellon files, or a file there that cannot be read, ends the command (exit 2).
+std::optional<BoardFolderInfo> read_board_folder_info(const std::string& path);
+// The folder's files, then each layer's summary as for a single file.
+nlohmann::json board_folder_info_json(const BoardFolderInfo& info);
+std::string board_folder_info_text(const BoardFolderInfo& info);
+
 // A drawing's entities, units, extents, curves (every knot and control point in JSON, the
 // first few in text), program operations and problems.
 nlohmann::json drawing_info_json(const Drawing& d);

@@ -342,9 +342,8 @@ std::string run_report_text(const JobPlan& plan, const RunOptions& o, const RunR
       "as G-code G1 at the same tolerance: {} bytes\n"
       "  tool path {:.1f} mm cut + {:.1f} mm rapid; simulated job time {:.1f} s, of which "
       "cutting {:.1f} s (cut length / feed {:.1f} s)\n"
-      "  max contour error {:.1f} um at ({:.3f}, {:.3f}) mm; simulated {:.1f} s of machine "
-      "time in {:.2f} s "
-      "({:.2f} s of processor time: {:.0f}x real time)\n"
+      "  max contour error {:.1f} um at ({:.3f}, {:.3f}) mm on the machine; simulated {:.1f} s of "
+      "machine time in {:.2f} s ({:.2f} s of processor time: {:.0f}x real time)\n"
       "  {} confirmed by the simulated operator ({} ms after each); spindle {} at the "
       "end\n"
       "  plot: {}; report: {}.json\n",
@@ -370,7 +369,7 @@ std::string run_report_text(const JobPlan& plan, const RunOptions& o, const RunR
     t += fmt::format(
         "  simulated isolation cuts ({}, {}) against the copper: {} "
         "beyond {:.3f} mm, {}; least clearance of the tool's edge {:.1f} um "
-        "at ({:.3f}, {:.3f}) mm (planned paths: {:.1f} um)\n",
+        "at ({:.3f}, {:.3f}) mm on the machine (planned paths: {:.1f} um)\n",
         counted(iso->paths, "path"), counted(iso->samples, "sample"),
         counted(iso->check.hits.size(), "copper hit"), iso->tolerance_mm,
         counted(iso->check.unseparated.size(), "unseparated pair"), iso->min_clearance_um,

@@ -47,8 +47,9 @@ ResumeAt parse_resume_at(const std::string& text) {
     return ResumeAt{static_cast<int32_t>(index), static_cast<uint16_t>(point)};
   } catch (const std::exception&) {
     throw CommandFailure(kExitUsage,
-                         fmt::format("--resume-at '{}': expected INDEX or INDEX:POINT (job "
-                                     "command and curve point, as the progress line shows them)",
+                         fmt::format("--resume-at: '{}': expected INDEX or INDEX:POINT (job "
+                                     "command and curve point as the progress line shows them: "
+                                     "whole numbers, POINT at most 65535)",
                                      text));
   }
 }

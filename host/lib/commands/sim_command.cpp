@@ -20,36 +20,38 @@ sim::ServerOptions listen_options(const std::string& listen) {
     so.device = listen[0] == '/' ? listen : listen.substr(serial.size());
     so.device = so.device.substr(0, so.device.find(','));  // a baud rate means nothing here
     if (so.device.empty())
-      throw CommandFailure(kExitUsage, fmt::format("--listen '{}': no device", listen));
+      throw CommandFailure(kExitUsage, fmt::format("--listen: '{}': no device", listen));
     return so;
   }
   const size_t colon = listen.rfind(':');
   if (colon == std::string::npos) {
-    throw CommandFailure(kExitUsage,
-                         fmt::format("--listen '{}': expected ADDR:PORT or serial:DEVICE", listen));
+    throw CommandFailure(
+        kExitUsage, fmt::format("--listen: '{}': expected ADDR:PORT or serial:DEVICE", listen));
   }
   so.address = listen.substr(0, colon);
   if (so.address.empty()) {
     throw CommandFailure(kExitUsage,
-                         fmt::format("--listen '{}': no address before the port (e.g. "
+                         fmt::format("--listen: '{}': no address before the port (e.g. "
                                      "127.0.0.1{}, or 0.0.0.0{} for every interface)",
                                      listen, listen.substr(colon), listen.substr(colon)));
   }
-  // Digits only, 0 .. 65535 (0: any free port); 99999 wrapped round to 34463 before.
+  // Digits only, 0 .. 65535 (0: any free port); 99999 wrapped round to 34463 before. Leading
+  // zeros are decimal ones (080 is 80), as for --to.
   const std::string port = listen.substr(colon + 1);
-  const bool digits = !port.empty() && port.size() <= 5 &&
-                      port.find_first_not_of("0123456789") == std::string::npos;
-  if (!digits || std::stoul(port) > 65535) {
-    throw CommandFailure(kExitUsage, fmt::format("--listen '{}': the port must be 0 .. 65535 (0: "
+  const bool digits = !port.empty() && port.find_first_not_of("0123456789") == std::string::npos;
+  const size_t first = port.find_first_not_of('0');
+  const std::string value = first == std::string::npos ? "0" : port.substr(first);
+  if (!digits || value.size() > 5 || std::stoul(value) > 65535) {
+    throw CommandFailure(kExitUsage, fmt::format("--listen: '{}': the port must be 0 .. 65535 (0: "
                                                  "any free port)",
                                                  listen));
   }
-  so.port = static_cast<uint16_t>(std::stoul(port));
+  so.port = static_cast<uint16_t>(std::stoul(value));
   return so;
 }
 
 TraceWriter::TraceWriter(const std::string& path) : out_(path, std::ios::trunc) {
-  if (!out_) throw CommandFailure(kExitUsage, fmt::format("--trace '{}': cannot write", path));
+  if (!out_) throw CommandFailure(kExitUsage, fmt::format("--trace: '{}': cannot write", path));
   out_ << "t_ms,x_mm,y_mm,z_mm,pen,wall_ms\n";
 }
 
@@ -108,7 +110,7 @@ SimCommandResult run_sim(const SimCommandOptions& o, const std::atomic<bool>& st
   } catch (const std::runtime_error& e) {
     // The option named, as every bad command line's message does.
     throw CommandFailure(kExitUsage,
-                         fmt::format("--listen '{}': {}{}", o.listen, e.what(),
+                         fmt::format("--listen: '{}': {}{}", o.listen, e.what(),
                                      so.device.empty() ? " (a numeric address: 127.0.0.1, "
                                                          "0.0.0.0 or ::1)"
                                                        : ""));

@@ -1,10 +1,11 @@
 // Tokenizer and syntax check of ASCII DXF (see dxf_scan.h).
 #include "host/lib/drawing/dxf_scan.h"
 
-#include <algorithm>  // std::min
+#include <algorithm>  // std::min, std::find_if
 #include <cerrno>     // errno
 #include <climits>    // INT_MAX
 #include <cmath>      // std::isfinite
+#include <cstdio>     // std::snprintf
 #include <cstdlib>    // std::strtod, std::strtoll
 #include <fstream>    // std::ifstream
 #include <sstream>    // std::ostringstream
@@ -173,12 +174,30 @@ void check_value(long code, const std::string& v, const Where& w, size_t file_by
   }
 }
 
-// A group code line's number (0..1071), or ImportError naming what stands there.
-long group_code(const std::string& code_text, const Where& w) {
+// A group code line's number (0..1071), or ImportError naming what stands there: binary data
+// (a NUL or another control byte: an executable, an image, a zip named .dxf) said as such.
+// `line` is the code line as read, beginning at byte `start` of the file.
+long group_code(const std::string& code_text, const std::string& line, size_t start,
+                const Where& w) {
   long code = -1;
   if (is_decimal_int(code_text) && code_text.size() <= 6)
     code = std::strtol(code_text.c_str(), nullptr, 10);
   if (code < 0 || code > 1071) {
+    const size_t nul = line.find('\0');
+    const auto control = std::find_if(line.begin(), line.end(), [](char c) {
+      const auto u = static_cast<unsigned char>(c);
+      return (u < 0x20 && c != '\t' && c != '\r') || u == 0x7F;
+    });
+    if (nul != std::string::npos || control != line.end()) {
+      const size_t at = nul != std::string::npos ? nul : control - line.begin();
+      char byte[8];
+      std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(line[at]));
+      std::ostringstream o;
+      o << w.path << ": line " << w.line << ": not a DXF file: binary data ("
+        << (nul != std::string::npos ? std::string("a NUL byte") : "byte " + std::string(byte))
+        << " at byte " << start + at << ")";
+      throw ImportError(o.str());
+    }
     std::string shown = code_text.substr(0, 40);
     for (char& c : shown) {
       if (c == '\0') c = '?';
@@ -297,7 +316,9 @@ bool DxfScanner::next(DxfGroup* group) {
     w.line = lines.number();
     const std::string code_text = strip(s_->code_line);
     if (code_text.empty() && lines.pos() >= text.size()) break;  // trailing blank line
-    const long code = group_code(code_text, w);
+    // Lines::next leaves pos() one past the line's end, its '\n' or the end of the text.
+    const long code =
+        group_code(code_text, s_->code_line, lines.pos() - 1 - s_->code_line.size(), w);
     if (!lines.next(s_->value_line)) {
       throw ImportError(w.describe() + ": the file ends after group code " + code_text +
                         " without its value (truncated file?)");

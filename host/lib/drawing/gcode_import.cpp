@@ -572,8 +572,20 @@ Drawing import_gcode_text(const std::string& text, const std::string& name) {
   std::istringstream in(text);
   std::string line;
   long n = 0;
+  size_t start = 0;  // of the line, in the text
   while (std::getline(in, line)) {
-    if (!interp.line(line, ++n)) break;
+    ++n;
+    // G-code is text: a NUL is binary data (an executable, an image named .ngc), said as such
+    // as for DXF, Gerber and Excellon (it was "unexpected '\x7F'"). After the program's end
+    // (M2, M30) nothing is read.
+    const size_t nul = line.find('\0');
+    if (nul != std::string::npos) {
+      throw ImportError(name + ": line " + std::to_string(n) +
+                        ": not a G-code file: binary data (a NUL byte at byte " +
+                        std::to_string(start + nul) + ")");
+    }
+    if (!interp.line(line, n)) break;
+    start += line.size() + 1;
   }
   return interp.finish();
 }

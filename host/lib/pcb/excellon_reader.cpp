@@ -123,8 +123,15 @@ PcbLayer ExcellonReader::read() {
   size_t at = 0;
   std::string raw;
   bool seen_header = false;
-  while (!done_ && next_line(text_, at, raw)) {
+  for (size_t start = at; !done_ && next_line(text_, at, raw); start = at) {
     ++line_;
+    // Excellon is printable text: a NUL is binary data (an executable, an image, a zip), and
+    // would cut the message that quotes it short, as for Gerber. (NUL padding after M30 is
+    // never read.)
+    const size_t nul = raw.find('\0');
+    if (nul != std::string::npos)
+      fail("not an Excellon file: binary data (a NUL byte at byte " + std::to_string(start + nul) +
+           ")");
     const std::string s = trim(raw);
     if (s.empty()) continue;
     if (s[0] == ';') {

@@ -13,17 +13,19 @@ namespace {
 
 const char kSpecForms[] = "expected tcp://HOST:PORT or serial:DEVICE[,BAUD]";
 
-// Parses a decimal number in [lo, hi] or throws LinkError naming what it was for.
+// Parses a decimal number in [lo, hi] or throws LinkError naming what it was for. Leading
+// zeros are decimal ones, as in a URL: port 0080 is 80 (however many zeros).
 unsigned parse_number(const std::string& text, unsigned lo, unsigned hi, const char* what,
                       const std::string& spec) {
-  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos ||
-      text.size() > 9) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
     throw LinkError(
         fmt::format("link '{}': {} '{}' is not a number ({})", spec, what, text, kSpecForms));
   }
-  const unsigned long v = std::stoul(text);
+  const size_t first = text.find_first_not_of('0');
+  const std::string digits = first == std::string::npos ? "0" : text.substr(first);
+  const unsigned long v = digits.size() > 9 ? hi + 1UL : std::stoul(digits);
   if (v < lo || v > hi) {
-    throw LinkError(fmt::format("link '{}': {} {} outside {}..{}", spec, what, v, lo, hi));
+    throw LinkError(fmt::format("link '{}': {} {} outside {}..{}", spec, what, text, lo, hi));
   }
   return static_cast<unsigned>(v);
 }

@@ -46,6 +46,27 @@ TEST(CliHostile, SplineDegreeOverflowIsAnInputError) {
                        "out of range (a 32-bit integer: -2147483648..2147483647)\n");
 }
 
+// A copy of an executable named as a drawing or a drill file (an outside tester's /bin/ls):
+// "not a DXF/Excellon file: binary data", exit 2, as for Gerber; it was an escaped line
+// "is not a DXF group code", and for Excellon a quote cut open at the first NUL.
+TEST(CliHostile, BinaryDataIsNotADxfOrExcellonFile) {
+  const std::string elf(
+      "\x7F"
+      "ELF\x02\x01\x01\0\0\0\0\0\0\0\0\0\x03\0>\0\nmore",
+      24);
+  const std::string dxf = write_temp("ls.dxf", elf);
+  const ToolRun info = run_info(dxf);
+  EXPECT_EQ(info.code, 2);
+  EXPECT_EQ(info.err,
+            "engraver: " + dxf + ": line 1: not a DXF file: binary data (a NUL byte at byte 7)\n");
+  const std::string drl = write_temp("ls.drl", elf);
+  const ToolRun board = host_tests::run_tool(
+      ENGRAVER_EXE, "board --drill '" + drl + "' -o '" + testing::TempDir() + "'");
+  EXPECT_EQ(board.code, 2);
+  EXPECT_EQ(board.err,
+            "engraver: " + drl + ":1: not an Excellon file: binary data (a NUL byte at byte 7)\n");
+}
+
 // The reproducers in ../shared/samples/hostile (skipped when ../shared is absent).
 TEST(CliHostile, SharedReproducersExitTwoWithTheFileNamed) {
   const std::string dir = std::string(ENGRAVER_SOURCE_DIR) + "/../shared/samples/hostile/";

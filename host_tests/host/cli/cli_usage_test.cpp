@@ -45,16 +45,27 @@ TEST(CliUsage, AMalformedLinkAddressIsABadCommandLineBeforePlanning) {
 
 TEST(CliUsage, TheSimulatorsPortAndPauseConfirmAreChecked) {
   expect_usage_error("sim --listen 127.0.0.1:99999",
-                     "--listen '127.0.0.1:99999': the port must be 0 .. 65535");
+                     "--listen: '127.0.0.1:99999': the port must be 0 .. 65535");
   expect_usage_error("sim --listen localhost:47857",
-                     "--listen 'localhost:47857': listen address 'localhost': ");
+                     "--listen: 'localhost:47857': listen address 'localhost': ");
   expect_usage_error("sim --listen :47850",
-                     "--listen ':47850': no address before the port (e.g. 127.0.0.1:47850");
+                     "--listen: ':47850': no address before the port (e.g. 127.0.0.1:47850");
+  expect_usage_error("sim --listen 127.0.0.1:000000099999",
+                     "--listen: '127.0.0.1:000000099999': the port must be 0 .. 65535");
   expect_usage_error("sim --listen 127.0.0.1:10001x",
-                     "--listen '127.0.0.1:10001x': the port must be 0 .. 65535");
+                     "--listen: '127.0.0.1:10001x': the port must be 0 .. 65535");
   expect_usage_error("sim --pause-confirm-ms -5",
                      "--pause-confirm-ms: -5 is outside the allowed range 0 .. 3600000 ms (or -1: "
                      "never)");
+}
+
+// --resume-at's errors read as every other option's: "--resume-at: VALUE: ..." (the colon
+// after the option's name was missing).
+TEST(CliUsage, ABadResumePositionNamesTheOptionLikeEveryOther) {
+  for (const std::string bad : {"abc", "-1", "3:70000", "3:", "1.5"}) {
+    expect_usage_error("send " + kWord + " --to tcp://127.0.0.1:9 --resume-at " + bad,
+                       "--resume-at: '" + bad + "': expected INDEX or INDEX:POINT (job command");
+  }
 }
 
 TEST(CliUsage, TheCuttingDepthOfADrawingIsAtOrBelowZero) {

@@ -31,6 +31,16 @@ TEST(SimCommandListen, TakesAddressPortSerialAndDevicePaths) {
   EXPECT_EQ(listen_options("/dev/ttyUSB0").device, "/dev/ttyUSB0");
 }
 
+// A port is decimal, leading zeros too (080 is 80, as for --to): a long run of zeros was
+// refused with the range message although the number was in range.
+TEST(SimCommandListen, APortWithLeadingZerosIsDecimal) {
+  EXPECT_EQ(listen_options("127.0.0.1:080").port, 80);
+  EXPECT_EQ(listen_options("127.0.0.1:0000000080").port, 80);
+  EXPECT_EQ(listen_options("127.0.0.1:000000").port, 0);  // any free port
+  EXPECT_EQ(exit_code_of_listen("127.0.0.1:00000065536"), kExitUsage);
+  EXPECT_EQ(exit_code_of_listen("127.0.0.1:0080x"), kExitUsage);
+}
+
 TEST(SimCommandListen, RefusesWhatIsNeitherAsAUsageError) {
   EXPECT_EQ(exit_code_of_listen("localhost"), kExitUsage);      // no port
   EXPECT_EQ(exit_code_of_listen("127.0.0.1:abc"), kExitUsage);  // bad port

@@ -51,6 +51,31 @@ TEST(DxfMalformed, BadGroupCodeNamesTheLine) {
   EXPECT_HAS(m, "'ten' is not a DXF group code");
 }
 
+// Binary data named .dxf (a copy of /bin/ls): the first line, escaped, "is not a DXF group
+// code" said nothing of what the file is.
+TEST(DxfMalformed, BinaryDataIsNotADxfFile) {
+  const std::string elf(
+      "\x7F"
+      "ELF\x02\x01\x01\0\0\0\nmore",
+      15);
+  const std::string path = write_temp("elf.dxf", elf);
+  try {
+    import_drawing(path);
+    FAIL() << "imported";
+  } catch (const ImportError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              path + ": line 1: not a DXF file: binary data (a NUL byte at byte 7)");
+  }
+  const std::string later = "0\nSECTION\n" + std::string(1, '\0') + "\n";
+  EXPECT_HAS(import_error("nul.dxf", later),
+             "nul.dxf: line 3: not a DXF file: binary data (a NUL byte at byte 10)");
+  // No NUL, another control byte.
+  EXPECT_HAS(import_error("ctl.dxf",
+                          "0\nSECTION\nab\x03"
+                          "cd\nmore\n"),
+             "ctl.dxf: line 3: not a DXF file: binary data (byte 0x03 at byte 12)");
+}
+
 TEST(DxfMalformed, KnotCountNotMatchingTheAnnouncedCount) {
   Groups g;
   g.g(0, "SPLINE").g(5, "2B").g(8, "0").g(70, 8).g(71, 3).g(72, 8).g(73, 4);

@@ -121,6 +121,36 @@ TEST(GcodeImport, ArcEndOffTheCircleIsRefusedWithTheLine) {
   }
 }
 
+// Binary data named .ngc (a copy of /bin/ls): "line 1: unexpected '\x7F'" said nothing of
+// what the file is.
+TEST(GcodeImport, BinaryDataIsNotAGcodeFile) {
+  const std::string elf(
+      "\x7F"
+      "ELF\x02\x01\x01\0\0\0\nmore",
+      15);
+  try {
+    import_via_file("elf.ngc", elf);
+    FAIL();
+  } catch (const ImportError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "elf.ngc: line 1: not a G-code file: binary data (a NUL byte at byte 7)"),
+              std::string::npos)
+        << e.what();
+  }
+  try {
+    import_via_file("nul.ngc", "G21\nG0 X1" + std::string(1, '\0') + "\nM30\n");
+    FAIL();
+  } catch (const ImportError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "nul.ngc: line 2: not a G-code file: binary data (a NUL byte at byte 9)"),
+              std::string::npos)
+        << e.what();
+  }
+  // NUL padding after the program's end is not read.
+  EXPECT_NO_THROW(
+      import_via_file("padded.ngc", "G21\nG1 X1 Y1 F100\nM30\n" + std::string(16, '\0') + "\n"));
+}
+
 TEST(GcodeImport, OtherPlaneIsRefused) {
   try {
     import_via_file("g18.ngc", "G18\nG1 X1\n");

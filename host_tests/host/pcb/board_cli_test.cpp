@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -49,6 +50,40 @@ std::string write_board(const std::string& name, const std::string& extra = "") 
   std::ofstream(dir + "/t-PTH.drl") << kDrillInch;
   std::ofstream(dir + "/t-Edge.Cuts.gbr") << kOutline;
   return dir;
+}
+
+// `info` on a board folder (its help said FILE may be one; it was refused as "is a directory,
+// not a drawing file"): which file was taken for which layer and why, which were left out,
+// then each layer's summary as for the file alone; both copper sides; exit 0.
+TEST(BoardCli, InfoOnABoardFolderSaysWhichFileIsWhichLayer) {
+  const std::string dir = write_board("info");
+  std::string silk = kTopCopper;
+  silk.replace(silk.find("Copper,L1,Top"), 13, "Legend,Top");
+  silk.replace(silk.find("%EXTRA%"), 7, "");
+  std::ofstream(dir + "/t-F.SilkS.gbr") << silk;
+  std::ofstream(dir + "/notes.txt") << "hello\n";
+  const ToolRun r = run("info " + dir + "/");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const std::string& line : std::vector<std::string>{
+           "folder:    " + dir + "/ (board '" + std::to_string(getpid()) + "-info', 3 layers read)",
+           "  - " + dir + "/t-F.Cu.gbr: taken as copper top (from its X2 file function)",
+           "  - " + dir + "/t-PTH.drl: taken as drill (from its name)",
+           "  - " + dir + "/t-Edge.Cuts.gbr: taken as outline (from its X2 file function)",
+           "  - " + dir + "/t-F.SilkS.gbr: neither its name nor an X2 file function says copper",
+           "  - " + dir + "/notes.txt: neither Gerber nor Excellon",
+           "file:      " + dir + "/t-PTH.drl", "format:    Excellon", "holes:     3",
+           "layer:     outline"}) {
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+  }
+  const ToolRun j = run("info --json " + dir);
+  ASSERT_EQ(j.code, 0) << j.err;
+  const nlohmann::json info = nlohmann::json::parse(j.out);
+  EXPECT_EQ(info["folder"], dir);
+  ASSERT_EQ(info["layers"].size(), 3u) << info.dump(2);
+  std::set<std::string> kinds;
+  for (const nlohmann::json& l : info["layers"]) kinds.insert(l["layer"].get<std::string>());
+  EXPECT_EQ(kinds, (std::set<std::string>{"copper top", "drill", "outline"}));
+  EXPECT_EQ(info["files"].size(), 5u) << info.dump(2);
 }
 
 TEST(BoardCli, WholeBoardIsPlannedCheckedPlottedAndReported) {
@@ -352,6 +387,13 @@ TEST(BoardCli, RunSimulatesTheWholeBoardWithDrillingAndToolChanges) {
   EXPECT_GE(c["min_clearance_um"].get<double>(), c["planned_min_clearance_um"].get<double>() - 3.0)
       << c.dump();
   EXPECT_NE(r.out.find("simulated isolation cuts"), std::string::npos) << r.out;
+  // Places name their frame, as the other report lines do ("in the files", "on the machine").
+  const std::string at = R"(at \(-?[0-9.]+, -?[0-9.]+\) mm on the machine)";
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("max contour error [0-9.]+ um " + at + ";")))
+      << r.out;
+  EXPECT_TRUE(std::regex_search(
+      r.out, std::regex("least clearance of the tool's edge -?[0-9.]+ um " + at + " \\(planned")))
+      << r.out;
 }
 
 // Without an outline nothing cuts below the drill start height, so the pen-down threshold

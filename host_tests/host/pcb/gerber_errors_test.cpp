@@ -165,6 +165,20 @@ TEST(GerberErrors, BinaryDataIsNotAGerberFile) {
       << gerber_refusal(later);
 }
 
+// Binary data read as Excellon (a copy of /bin/ls as --drill x.drl): "unknown or unsupported
+// command '\x7FELF..." cut at the first NUL, with no closing quote.
+TEST(ExcellonErrors, BinaryDataIsNotAnExcellonFile) {
+  const std::string elf(
+      "\x7F"
+      "ELF\x02\x01\x01\0\0\0\nmore",
+      15);
+  EXPECT_EQ(excellon_refusal(elf),
+            "bad.drl:1: not an Excellon file: binary data (a NUL byte at byte 7)");
+  const std::string later = "M48\nMETRIC\nT1C0.8\n%\n" + std::string(1, '\0') + "M30\n";
+  EXPECT_EQ(excellon_refusal(later),
+            "bad.drl:5: not an Excellon file: binary data (a NUL byte at byte 20)");
+}
+
 TEST(ExcellonErrors, NameFileLineAndProblem) {
   const Case cases[] = {
       {"M48\nMETRIC\nT1C0.8\nT2C1.0\n%\nX1.0Y1.0\nM30\n",

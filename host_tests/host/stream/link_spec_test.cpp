@@ -30,6 +30,22 @@ TEST(LinkSpec, SerialWithBaud) {
   EXPECT_EQ(parse_link_spec("serial:/dev/ttyS1,57600").baud, 57600u);
 }
 
+// A port is decimal, leading zeros too (as in a URL): ten digits were "not a number".
+TEST(LinkSpec, APortWithLeadingZerosIsDecimal) {
+  EXPECT_EQ(parse_link_spec("tcp://127.0.0.1:0080").port, 80);
+  EXPECT_EQ(parse_link_spec("tcp://127.0.0.1:0000000000080").port, 80);
+  EXPECT_EQ(parse_link_spec("serial:/dev/ttyS1,00057600").baud, 57600u);
+  try {
+    parse_link_spec("tcp://127.0.0.1:00000000000070000");
+    FAIL() << "no error";
+  } catch (const LinkError& e) {
+    EXPECT_NE(std::string(e.what()).find("port 00000000000070000 outside 1..65535"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(parse_link_spec("tcp://127.0.0.1:0000"), LinkError);  // port 0
+}
+
 TEST(LinkSpec, RejectsWhatItCannotUse) {
   EXPECT_THROW(parse_link_spec("udp://host:1"), LinkError);
   EXPECT_THROW(parse_link_spec("tcp://host"), LinkError);
