@@ -157,16 +157,9 @@ std::string before_cutting_message(const JobRecord& job, size_t job_commands, bo
   return message;
 }
 
-// Each run counts its own stream: where the whole job stands as well ("" before its first
+// An interrupted run's message (link lost, stalled, the server stopped): the sender counted
+// this run's stream; where the whole job stands, where continue resumes ("" before its first
 // job command).
-std::string whole_job_after_run_counts(int64_t resume_index, size_t job_commands) {
-  return resume_index >= 0 ? fmt::format(" of this run (the job at job command {} of {})",
-                                         resume_index, job_commands)
-                           : "";
-}
-
-// A link-lost or stalled run's message: the sender counted this run's stream; where the
-// whole job stands, where continue resumes ("" before its first job command).
 std::string whole_job_position(int64_t resume_index, size_t job_commands) {
   return resume_index >= 0 ? fmt::format(
                                  " (counts of this run; the job is at job command {} of "
@@ -203,20 +196,45 @@ bool board_in_archive(const DataFolder& data, const JobRecord& job) {
   }
 }
 
-constexpr const char* kProbingAlready = "it is probing already";
-constexpr const char* kCutting = "it is cutting";
+// Why no machine waits for a job's probe clip.
+enum class NoClipWait {
+  kProbing,    // the clip was confirmed: it is probing
+  kCutting,    // the clip was confirmed: it is cutting
+  kPlanning,   // its machine is still planning it
+  kUnclaimed,  // queued: no machine has claimed it yet
+  kElsewhere,  // running on another server's machine
+  kNotRunning  // stopped: continue or requeue it first
+};
+
+const char* no_clip_why(NoClipWait why) {
+  switch (why) {
+    case NoClipWait::kProbing:
+      return "it is probing already";
+    case NoClipWait::kCutting:
+      return "it is cutting";
+    case NoClipWait::kPlanning:
+      return "its machine is still planning it";
+    case NoClipWait::kUnclaimed:
+      return "no machine has claimed it yet";
+    case NoClipWait::kElsewhere:
+      return "it runs on another server's machine";
+    case NoClipWait::kNotRunning:
+      break;
+  }
+  return "it is not running (continue or requeue it first)";
+}
 
 // The 409 to probe_ready when no machine waits for the clip: the job and its state first
 // (the actions' one rule), why, and when to send it (never, for a job that has ended).
-std::string no_clip_wait(int64_t job_id, JobState state, const std::string& why) {
+std::string no_clip_wait(int64_t job_id, JobState state, NoClipWait why) {
   if (is_final(state)) {
     return fmt::format("job {} is {}: no machine is waiting for its probe clip: the job has ended",
                        job_id, state_name(state));
   }
   // Probing already or cutting: the clip was confirmed, nothing to wait for.
-  const bool later = why != kProbingAlready && why != kCutting;
+  const bool later = why != NoClipWait::kProbing && why != NoClipWait::kCutting;
   return fmt::format("job {} is {}: no machine is waiting for its probe clip: {}{}", job_id,
-                     state_name(state), why,
+                     state_name(state), no_clip_why(why),
                      later ? " (send probe_ready once the job's machine_state in /api/status is "
                              "probe_clip)"
                            : "");
@@ -379,9 +397,9 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
     if (control == JobControl::kConfirmProbe) {
       if (slot->probe_stage != "probe_clip") {
         return {409, no_clip_wait(job_id, JobState::kRunning,
-                                  slot->probe_stage == "probing" ? kProbingAlready
-                                  : slot->planning ? "its machine is still planning it"
-                                                   : kCutting)};
+                                  slot->probe_stage == "probing" ? NoClipWait::kProbing
+                                  : slot->planning               ? NoClipWait::kPlanning
+                                                                 : NoClipWait::kCutting)};
       }
       slot->probe_confirmed = true;
       notify(false);
@@ -440,10 +458,9 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
   if (!job) return {404, fmt::format("no job {}", job_id)};
   if (control == JobControl::kConfirmProbe) {
     return {409, no_clip_wait(job_id, job->state,
-                              job->state == JobState::kQueued ? "no machine has claimed it yet"
-                              : job->state == JobState::kRunning
-                                  ? "it runs on another server's machine"
-                                  : "it is not running (continue or requeue it first)")};
+                              job->state == JobState::kQueued    ? NoClipWait::kUnclaimed
+                              : job->state == JobState::kRunning ? NoClipWait::kElsewhere
+                                                                 : NoClipWait::kNotRunning)};
   }
   // One rule: the machine's actions go to a job running on a machine of this server; in any
   // other state they are refused, the state named.
@@ -930,11 +947,10 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
       if (stopping_) {
         // The sender's abort came from stop(), not from an operator.
         r.outcome = "server stopped";
-        r.message = fmt::format(
-            "the server stopped while the job was running, after {} of {} "
-            "commands{}",
-            r.executed, r.commands->size(),
-            whole_job_after_run_counts(r.progress.resume_index, r.commands->job_commands()));
+        r.message =
+            fmt::format("the server stopped while the job was running, after {} of {} commands{}",
+                        r.executed, r.commands->size(),
+                        whole_job_position(r.progress.resume_index, r.commands->job_commands()));
       }
       // #X stopped the tool where it was, maybe in the copper: up to the travel height before
       // the machine is free (the next job may ask for the probe clip), as `send` does.

@@ -264,7 +264,8 @@ TEST(ServerProbingControl, ARunStoppedBeforeItCutsKeepsTheContinuedJobsPosition)
   ASSERT_EQ(saved.state, JobState::kInterrupted) << saved.message;
   ASSERT_GT(saved.resume_index, 0) << saved.message;
   // The run's count and where the whole job stands (the next run counts another stream).
-  EXPECT_NE(saved.message.find(fmt::format(" commands of this run (the job at job command {} of ",
+  EXPECT_NE(saved.message.find(fmt::format(" commands (counts of this run; the job is at job "
+                                           "command {} of ",
                                            saved.resume_index)),
             std::string::npos)
       << saved.message;
@@ -319,9 +320,10 @@ TEST(ServerProbingControl, ARunStoppedBeforeItCutsKeepsTheContinuedJobsPosition)
   const size_t of = log.find(" of ", at);
   ASSERT_NE(of, std::string::npos) << log;
   const long long log_total = std::stoll(log.substr(of + 4));
-  EXPECT_NE(saved.message.find(
-                fmt::format("the job at job command {} of {})", saved.resume_index, log_total)),
-            std::string::npos)
+  EXPECT_NE(
+      saved.message.find(fmt::format("the job is at job command {} of {}, where continue resumes)",
+                                     saved.resume_index, log_total)),
+      std::string::npos)
       << saved.message << "\n"
       << log;
   ASSERT_EQ(server.control(id, R"({"action":"abort"})")->status, 200);
