@@ -160,7 +160,8 @@ SendResult send_job(Link& link, const JobPlan& plan, const SendOptions& o, std::
   // (the progress line counts both).
   log << fmt::format(
       "engraver: {} -> {}: {}, {} (and {} before the job: the height map or its "
-      "clearing{}), {} bytes, job id {}; keys: h hold, r resume, x abort, +/- feed override\n",
+      "clearing{}), {} bytes of frames for both (status queries and resends come on top), job id "
+      "{}; keys: h hold, r resume, x abort, +/- feed override\n",
       o.file, link.name(), counted(plan.curves.size(), "curve"),
       counted(commands.size() - setup_n, "command"), counted(setup_n, "set-up command"),
       setup.empty() ? "" : ", and what the resume restores", bytes, r.job_id);

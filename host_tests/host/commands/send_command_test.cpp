@@ -105,6 +105,10 @@ TEST(SendCommand, StreamsTheJobAndAttachesTheControlsOnlyWhileItRuns) {
   // The job id is the whole job's as the library encodes it for this controller.
   EXPECT_NE(r.job_id, 0);
   EXPECT_NE(log.str().find("two-lines.dxf -> simulated machine"), std::string::npos) << log.str();
+  // The bytes are said to be the job's and the set-up's (an outside tester could not tell).
+  EXPECT_NE(log.str().find(" bytes of frames for both (status queries and resends come on top)"),
+            std::string::npos)
+      << log.str();
   EXPECT_NE(log.str().find("job completed"), std::string::npos) << log.str();
 }
 
