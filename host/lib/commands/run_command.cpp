@@ -14,6 +14,7 @@
 #include "host/lib/heightmap/controller_map.h"   // job_map_commands
 #include "host/lib/heightmap/simulated_blank.h"  // the blank the simulated probe touches
 #include "host/lib/pcb/board_check.h"            // refuse_copper_hits
+#include "host/lib/pcb/isolation_check.h"        // describe
 #include "host/lib/plan/counted.h"               // counted: "1 hole", "2 holes"
 #include "host/lib/plan/firmware_points.h"
 #include "host/lib/plot/board_plot.h"
@@ -374,6 +375,13 @@ std::string run_report_text(const JobPlan& plan, const RunOptions& o, const RunR
         counted(iso->check.hits.size(), "copper hit"), iso->tolerance_mm,
         counted(iso->check.unseparated.size(), "unseparated pair"), iso->min_clearance_um,
         iso->min_clearance_at_mm.x(), iso->min_clearance_at_mm.y(), iso->planned_min_clearance_um);
+    // Which pairs (and hits), as `board` lists them: a count alone left the user to guess.
+    const std::string listed = pcb::describe(iso->check);  // a count line, then one a finding
+    for (size_t at = listed.find('\n'); at != std::string::npos;) {
+      const size_t next = listed.find('\n', at + 1);
+      t += "  " + listed.substr(at + 1, next == std::string::npos ? next : next - at - 1) + "\n";
+      at = next;
+    }
   }
   if (r.registration) {
     const FlipSimulation& f = *o.flip;

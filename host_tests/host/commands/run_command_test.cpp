@@ -144,6 +144,32 @@ TEST(RunCommand, ABoardsReportSaysWhyThereIsNoCutOutAndCarriesItsNotes) {
   fs::remove_all(dir);
 }
 
+// The simulated isolation check's unseparated pairs are listed with where they are, as
+// `board` lists them (an outside tester saw only "5 unseparated pairs").
+TEST(RunCommand, TheSummaryListsTheIslandsNoCutSeparates) {
+  const std::string dir = (fs::temp_directory_path() / "run_command_pairs_test").string();
+  fs::remove_all(dir);
+  const JobPlan plan = two_lines();
+  const RunOptions o = small_run(dir);
+  RunResult r = run_job(plan, o);
+  ASSERT_EQ(r.sim.outcome, JobOutcome::kCompleted) << r.sim.message;
+  r.isolation = SimulatedIsolation{};
+  EXPECT_EQ(run_report_text(plan, o, r).find("not separated by a cut"), std::string::npos);
+  pcb::UnseparatedPair pair;
+  pair.island_a = 9;
+  pair.island_b = 11;
+  pair.a_mm = Point2(23.5, 7.25);
+  pair.b_mm = Point2(24.125, 7.5);
+  r.isolation->check.unseparated = {pair};
+  const std::string text = run_report_text(plan, o, r);
+  EXPECT_NE(text.find("1 unseparated pair;"), std::string::npos) << text;
+  EXPECT_NE(text.find("\n    islands 9 at (23.500, 7.250) and 11 at (24.125, 7.500) mm on the "
+                      "machine are not separated by a cut\n"),
+            std::string::npos)
+      << text;
+  fs::remove_all(dir);
+}
+
 // The "plot:" line names every picture the run wrote: with a height map, its picture too.
 TEST(RunCommand, PlotLineNamesEveryFileWritten) {
   const std::string dir = (fs::temp_directory_path() / "run_command_plot_files_test").string();
