@@ -239,8 +239,8 @@ void add_serve_commands(CLI::App& app) {
   serve->add_option("--web", args->web,
                     "folder of the page's files (default: " ENGRAVER_WEB_FROM_BIN
                     " beside this engraver, where cmake --install puts them)");
+  // Its range comes from the one option table (0: one status query always out, as send's).
   serve->add_option("--poll-ms", args->poll_ms, "status poll interval while a job runs")
-      ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   serve->add_option("--name", args->name, "this server's name in the queue (default host name)");
   serve->add_flag("--no-zero", args->no_zero, "do not start manual zeroing if not zeroed");

@@ -1,6 +1,8 @@
 // `engraver send` as a function (see send_command.h).
 #include "host/lib/commands/send_command.h"
 
+#include <stdint.h>  // INT32_MAX
+
 #include <fmt/format.h>  // fmt::format
 
 #include <stdexcept>  // std::invalid_argument
@@ -34,22 +36,26 @@ int exit_code_of(JobOutcome outcome) {
 
 ResumeAt parse_resume_at(const std::string& text) {
   const size_t colon = text.find(':');
+  // Digits only ("+3", " 3" and 3 with a blank after alike refused), within the wire's
+  // fields: a job command index is 31 bits (99999999999 wrapped to 1215752191).
+  auto whole = [](const std::string& digits, long long max) {
+    if (digits.empty() || digits.size() > 12 ||
+        digits.find_first_not_of("0123456789") != std::string::npos)
+      throw std::invalid_argument(digits);
+    const long long v = std::stoll(digits);
+    if (v > max) throw std::out_of_range(digits);
+    return v;
+  };
   try {
-    size_t used = 0;
-    const long index = std::stol(text.substr(0, colon), &used);
-    if (used != text.substr(0, colon).size() || index < 0) throw std::invalid_argument(text);
-    long point = 0;
-    if (colon != std::string::npos) {
-      point = std::stol(text.substr(colon + 1), &used);
-      if (used != text.size() - colon - 1 || point < 0 || point > 65535)
-        throw std::invalid_argument(text);
-    }
+    const long long index = whole(text.substr(0, colon), INT32_MAX);
+    const long long point = colon == std::string::npos ? 0 : whole(text.substr(colon + 1), 65535);
     return ResumeAt{static_cast<int32_t>(index), static_cast<uint16_t>(point)};
   } catch (const std::exception&) {
     throw CommandFailure(kExitUsage,
                          fmt::format("--resume-at: '{}': expected INDEX or INDEX:POINT (job "
                                      "command and curve point as the progress line shows them: "
-                                     "whole numbers, POINT at most 65535)",
+                                     "whole numbers, INDEX at most 2147483647, POINT at most "
+                                     "65535)",
                                      text));
   }
 }

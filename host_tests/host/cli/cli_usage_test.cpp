@@ -62,10 +62,20 @@ TEST(CliUsage, TheSimulatorsPortAndPauseConfirmAreChecked) {
 // --resume-at's errors read as every other option's: "--resume-at: VALUE: ..." (the colon
 // after the option's name was missing).
 TEST(CliUsage, ABadResumePositionNamesTheOptionLikeEveryOther) {
-  for (const std::string bad : {"abc", "-1", "3:70000", "3:", "1.5"}) {
+  for (const std::string bad : {"abc", "-1", "3:70000", "3:", "1.5", "99999999999", "+3"}) {
     expect_usage_error("send " + kWord + " --to tcp://127.0.0.1:9 --resume-at " + bad,
                        "--resume-at: '" + bad + "': expected INDEX or INDEX:POINT (job command");
   }
+}
+
+// serve's --poll-ms had a check of its own beside the option table's: its help gave two
+// ranges ("INT:in [0 .. 1000] ms:INT in [1 - 1000]") and 0, which send takes, was refused.
+TEST(CliUsage, ServesPollIntervalHasTheOneRangeOfTheOptionTable) {
+  const ToolRun help = engraver("serve --help");
+  EXPECT_EQ(help.code, 0) << help.err;
+  EXPECT_NE(help.out.find("--poll-ms INT:in [0 .. 1000] ms"), std::string::npos) << help.out;
+  EXPECT_EQ(help.out.find("[1 - 1000]"), std::string::npos) << help.out;
+  expect_usage_error("serve --poll-ms 1001", "--poll-ms: 1001 is outside the allowed range");
 }
 
 TEST(CliUsage, TheCuttingDepthOfADrawingIsAtOrBelowZero) {

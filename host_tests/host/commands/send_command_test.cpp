@@ -36,10 +36,14 @@ TEST(SendCommandResumeAt, ReadsIndexAndOptionalPoint) {
   EXPECT_EQ(b.index, 12);
   EXPECT_EQ(b.point, 40);
   EXPECT_EQ(parse_resume_at("0:65535").point, 65535);
+  EXPECT_EQ(parse_resume_at("2147483647").index, 2147483647);
 }
 
 TEST(SendCommandResumeAt, RefusesAnythingElseAsAUsageError) {
-  for (const char* bad : {"", "x", "-1", "12:", "12:-1", "12:65536", "12x", "12:40:1"})
+  // An outside tester's: 99999999999 wrapped to job command 1215752191; signs and blanks
+  // went through on one side of the number.
+  for (const char* bad : {"", "x", "-1", "12:", "12:-1", "12:65536", "12x", "12:40:1",
+                          "99999999999", "2147483648", "+3", " 3", "3 ", "3:+4", "3: 4"})
     EXPECT_EQ(exit_code_of_resume_at(bad), kExitUsage) << "'" << bad << "'";
 }
 
