@@ -241,16 +241,17 @@ PcbLayer GerberReader::read() {
 // Every block of the file up to M02, then what must hold at its end.
 void GerberReader::read_blocks() {
   const size_t n = text_.size();
-  // Gerber is printable text: a NUL is binary data (an executable, an image, a zip), and would
-  // cut the message that quotes it short.
+  // Gerber is printable text: a NUL before M02 is binary data (an executable, an image, a
+  // zip), and would cut the message that quotes it short. NUL padding after M02 is not read.
   const size_t nul = text_.find('\0');
-  if (nul != std::string::npos) {
+  auto refuse_binary = [&] {
     diag_.line = 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + nul, '\n'));
     diag_.fail("not a Gerber file: binary data (a NUL byte at byte " + std::to_string(nul) + ")");
-  }
+  };
   size_t pos = 0;
   while (pos < n && !gs_.done) {
     const char c = text_[pos];
+    if (pos == nul) refuse_binary();
     if (c == '\n') {
       ++diag_.line;
       ++pos;
@@ -260,6 +261,8 @@ void GerberReader::read_blocks() {
       // A %..% extended block, or a data block up to its '*'.
       const bool extended = c == '%';
       const size_t end = extended ? text_.find('%', pos + 1) : text_.find('*', pos);
+      if (nul != std::string::npos && nul > pos && (end == std::string::npos || nul < end))
+        refuse_binary();
       if (end == std::string::npos && extended) diag_.fail("'%' block never closed with '%'");
       if (end == std::string::npos)
         diag_.fail("data block '" + trim(text_.substr(pos, 40)) + "' never ends with '*'");
@@ -281,7 +284,7 @@ void GerberReader::read_blocks() {
   }
   close_knockout();
   for (size_t k = pos; k < n; ++k) {
-    if (!is_space(text_[k])) {
+    if (!is_space(text_[k]) && text_[k] != '\0' && text_[k] != '\x1a') {  // padding, Ctrl-Z
       diag_.note("text after M02 ignored");
       break;
     }

@@ -163,6 +163,16 @@ TEST(GerberErrors, BinaryDataIsNotAGerberFile) {
       std::string(kHead) + "D10*\nX0Y0D03*\n" + std::string(1, '\0') + "M02*\n";
   EXPECT_EQ(gerber_refusal(later).rfind("bad.gbr:6: not a Gerber file: binary data", 0), 0u)
       << gerber_refusal(later);
+  const std::string in_a_block =
+      std::string(kHead) + "D10*\nX0Y0" + std::string(1, '\0') + "D03*\nM02*\n";
+  EXPECT_EQ(gerber_refusal(in_a_block).rfind("bad.gbr:5: not a Gerber file: binary data", 0), 0u)
+      << gerber_refusal(in_a_block);
+  // NUL padding (and Ctrl-Z) after M02 is not read, as DXF, G-code and Excellon leave it (an
+  // outside tester: only Gerber refused a padded file).
+  const std::string padded =
+      std::string(kHead) + "D10*\nX0Y0D03*\nM02*\n" + std::string(100, '\0') + "\x1a";
+  EXPECT_EQ(gerber_refusal(padded), "(read without error)");
+  EXPECT_EQ(read_gerber_text(padded, "ok.gbr").notes.size(), 0u);
 }
 
 // Binary data read as Excellon (a copy of /bin/ls as --drill x.drl): "unknown or unsupported
