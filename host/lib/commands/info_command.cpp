@@ -252,14 +252,15 @@ nlohmann::json drawing_info_json(const Drawing& d) {
     nlohmann::json cj;
     cj["source"] = c.source;
     cj["kind"] = c.kind;
-    cj["degree"] = c.spline.degree;
-    cj["rational"] = c.spline.rational();
-    cj["knots"] = c.spline.knots;
+    const BSpline s = c.spline();
+    cj["degree"] = s.degree;
+    cj["rational"] = s.rational();
+    cj["knots"] = s.knots;
     cj["control_points_mm"] = nlohmann::json::array();
-    for (const Point2& p : c.spline.control) cj["control_points_mm"].push_back(point_json(p));
-    if (c.spline.rational()) cj["weights"] = c.spline.weights;
-    cj["start_mm"] = point_json(start_point(c.spline));
-    cj["end_mm"] = point_json(end_point(c.spline));
+    for (const Point2& p : s.control) cj["control_points_mm"].push_back(point_json(p));
+    if (s.rational()) cj["weights"] = s.weights;
+    cj["start_mm"] = point_json(start_point(s));
+    cj["end_mm"] = point_json(end_point(s));
     j["curves"].push_back(cj);
   }
   j["program"] = nlohmann::json::array();
@@ -305,13 +306,13 @@ std::string drawing_info_text(const Drawing& d) {
   out << "curves:   " << d.curves.size() << "\n";
   for (size_t i = 0; i < d.curves.size(); ++i) {
     const Curve& c = d.curves[i];
-    const BSpline& s = c.spline;
+    const BSpline s = c.spline();
     const Point2 a = start_point(s), b = end_point(s);
     out << "  " << i << ": " << c.source << ": degree " << s.degree
         << (s.rational() ? ", rational" : "") << ", " << s.control.size() << " control points, "
         << s.knots.size() << " knots, from (" << a.x() << ", " << a.y() << ") to (" << b.x() << ", "
         << b.y() << ") mm\n";
-    if (c.kind == "SPLINE") {
+    if (std::string(c.kind) == "SPLINE") {
       out << "       knots: " << list(s.knots, 24) << "\n";
       std::ostringstream cp;
       cp << std::fixed << std::setprecision(4);
@@ -403,7 +404,7 @@ int points_tolerance_um(double tol_mm) {
 
 std::vector<Point2> curve_points(const Drawing& d, size_t curve, int tol_um) {
   try {
-    return firmware_points_mm(d.curves[curve].spline, tol_um);
+    return firmware_points_mm(d.curves[curve].spline(), tol_um);
   } catch (const ConversionError& e) {
     throw CommandFailure(kExitJobFailed, d.path + ": curve " + std::to_string(curve) + " (" +
                                              d.curves[curve].source + "): " + e.what());

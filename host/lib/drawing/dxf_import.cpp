@@ -81,6 +81,7 @@ struct LineChain {
   Space* space = nullptr;  // none: the next LINE starts a new curve
   Point2 end{0, 0};
   int lines = 0;
+  BSpline polyline;  // the LINEs so far; set into the space's last curve when the chain ends
   std::string last;  // "#N (line L)" of the newest LINE in it
 };
 
@@ -90,7 +91,7 @@ struct OpenPolyline {
   bool closed = false;
   bool mirror = false;
   std::string label;
-  std::string kind;
+  const char* kind = "";  // "POLYLINE" or "LWPOLYLINE"
   std::vector<BulgeVertex> vertices;
   bool nonzero_z = false;
 };
@@ -149,7 +150,7 @@ class DxfReader : public DL_CreationAdapter {
     }
     if (chain_.space == &space() && a == chain_.end) {
       // Continues the previous LINE: one more corner of its polyline.
-      BSpline& s = space().curves.back().spline;
+      BSpline& s = chain_.polyline;
       s.control.push_back(b);
       s.knots.back() = static_cast<double>(s.control.size() - 1);
       s.knots.push_back(s.knots.back());
@@ -161,6 +162,7 @@ class DxfReader : public DL_CreationAdapter {
       add_curve("LINE", line_spline(a, b));
       chain_.space = &space();
       chain_.lines = 1;
+      chain_.polyline = line_spline(a, b);
     }
     chain_.end = b;
   }
@@ -209,7 +211,7 @@ class DxfReader : public DL_CreationAdapter {
 
   void addPolyline(const DL_PolylineData& d) override {
     flush_polyline();
-    const std::string kind = finished_.type == "POLYLINE" ? "POLYLINE" : "LWPOLYLINE";
+    const char* kind = finished_.type == "POLYLINE" ? "POLYLINE" : "LWPOLYLINE";
     if (!take(kind)) return;
     if (d.flags & (16 | 64)) fail("polygon or polyface meshes are not drawings in the plane");
     if (d.flags & 4) {
@@ -238,7 +240,7 @@ class DxfReader : public DL_CreationAdapter {
     poly_.vertices.push_back(v);
   }
   void endEntity() override {
-    if (poly_.active && poly_.kind == "LWPOLYLINE") flush_polyline();
+    if (poly_.active && std::string(poly_.kind) == "LWPOLYLINE") flush_polyline();
   }
   void endSequence() override { flush_polyline(); }
 
@@ -372,11 +374,11 @@ class DxfReader : public DL_CreationAdapter {
     return o.str();
   }
 
-  void add_curve(const std::string& kind, const BSpline& s) {
+  void add_curve(const char* kind, const BSpline& s) {
     const std::string problem = check_bspline(s);
     if (!problem.empty()) fail(problem);
     Curve c;
-    c.spline = s;
+    c.set_spline(s);
     c.kind = kind;
     c.source = label();
     space().curves.push_back(std::move(c));
@@ -386,6 +388,7 @@ class DxfReader : public DL_CreationAdapter {
   void end_chain() {
     if (chain_.space != nullptr && chain_.lines > 1) {
       const int more = chain_.lines - 1;
+      chain_.space->curves.back().set_spline(std::move(chain_.polyline));
       chain_.space->curves.back().source +=
           (more == 1 ? std::string(" and the LINE that continues it, ")
                      : " and the " + std::to_string(more) + " LINEs that continue it, to ") +
@@ -413,7 +416,7 @@ class DxfReader : public DL_CreationAdapter {
       s = transformed(s, m, Point2(0, 0));
     }
     Curve c;
-    c.spline = s;
+    c.set_spline(s);
     c.kind = poly_.kind;
     c.source = poly_.label;
     space().curves.push_back(c);
@@ -627,7 +630,7 @@ void DxfReader::expand(const Space& s, const Eigen::Matrix2d& a, const Point2& b
                        std::vector<Curve>& out) const {
   budget.copies += 1;
   for (const Curve& c : s.curves) {
-    budget.control_points += static_cast<long>(c.spline.control.size());
+    budget.control_points += static_cast<long>(c.held.control_count());
   }
   if (budget.copies > kMaxBlockCopies || budget.control_points > kMaxExpandedControlPoints) {
     throw ImportError(path_ + ": block references expand to more than " +
@@ -638,7 +641,7 @@ void DxfReader::expand(const Space& s, const Eigen::Matrix2d& a, const Point2& b
   }
   for (const Curve& c : s.curves) {
     Curve t = c;
-    t.spline = transformed(c.spline, a, b);
+    t.set_spline(transformed(c.spline(), a, b));
     t.source = c.source + via;
     out.push_back(std::move(t));
   }
@@ -729,20 +732,20 @@ std::vector<Curve> DxfReader::expanded_curves(double unit_to_mm) {
   // filled); blocks may be inserted many times, so expand() copies those. It counts the
   // model space's copy and checks the budget with these control points in it.
   for (Curve& c : model_.curves) {
-    budget.control_points += static_cast<long>(c.spline.control.size());
-    c.spline = transformed(c.spline, to_mm, Point2(0, 0));
+    budget.control_points += static_cast<long>(c.held.control_count());
+    if (unit_to_mm != 1.0) c.set_spline(transformed(c.spline(), to_mm, Point2(0, 0)));
   }
   std::vector<Curve> curves = std::move(model_.curves);
   model_.curves = std::vector<Curve>();
   expand(model_, to_mm, Point2(0, 0), 0, "", budget, curves);
   for (const Curve& c : curves) {
-    for (const Point2& p : c.spline.control) {
+    c.held.each_control([&](const Point2& p) {
       if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || std::fabs(p.x()) > 1e7 ||
           std::fabs(p.y()) > 1e7) {
         throw ImportError(path_ + ": " + c.source +
                           ": a coordinate is beyond 10 km after block and unit scaling");
       }
-    }
+    });
   }
   return curves;
 }

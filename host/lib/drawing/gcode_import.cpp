@@ -486,7 +486,7 @@ class Interpreter {
       BSpline s = polyline_spline(run_, false);
       if (!s.control.empty()) {
         Curve c;
-        c.spline = s;
+        c.set_spline(s);
         c.kind = "G-code path";
         c.source = "path #" + std::to_string(dr_.curves.size() + 1) + " (" + run_label_ + ")";
         dr_.curves.push_back(c);

@@ -81,7 +81,7 @@ void check_readable(const std::string& path) {
 
 Extents Drawing::extents() const {
   Extents e;
-  for (const Curve& c : curves) e.add(curve_extents(c.spline));
+  for (const Curve& c : curves) e.add(curve_extents(c.spline()));
   for (const ProgramOp& op : program)
     if (op.kind == ProgramOp::kDrill) e.add(op.at);
   return e;

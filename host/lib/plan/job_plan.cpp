@@ -30,11 +30,12 @@ struct OrderedCurve {
 // Greedy nearest neighbour from the zero, each curve either way round. Only the curves' ends
 // and the search's index are held here, and they die on return, before the planned curves
 // are made: a million-line drawing held them (~120 MB) beside the planned curves.
-std::vector<OrderedCurve> greedy_order(const std::vector<BSpline>& scaled, const PlanOptions& o) {
+std::vector<OrderedCurve> greedy_order(const std::vector<Curve>& scaled, const PlanOptions& o) {
   std::vector<Point2> starts, ends;
   starts.reserve(scaled.size());
   ends.reserve(scaled.size());
-  for (const BSpline& s : scaled) {
+  for (const Curve& c : scaled) {
+    const BSpline s = c.spline();
     starts.push_back(start_point(s));
     ends.push_back(end_point(s));
   }
@@ -61,38 +62,37 @@ std::vector<OrderedCurve> greedy_order(const std::vector<BSpline>& scaled, const
   return order;
 }
 
-// The scaled curves into plan->curves in the greedy order. The curves and their names die
-// on return.
-void order_curves(std::vector<BSpline> scaled, std::vector<std::string> sources,
-                  const PlanOptions& o, JobPlan* plan) {
+// The scaled curves into plan->curves in the greedy order, each curve and name moved (a copy
+// held the drawing twice more). The curves die on return.
+void order_curves(std::vector<Curve> scaled, const PlanOptions& o, JobPlan* plan) {
   const std::vector<OrderedCurve> order = greedy_order(scaled, o);
   plan->curves.reserve(scaled.size());  // one each; growing by doubling held 1.5x of them
   for (const OrderedCurve& k : order) {
+    Curve& c = scaled[k.index];
     PlannedCurve pc;
-    // Each scaled curve is used once: move it (a copy held the drawing twice more).
-    pc.set_spline(k.reversed ? reversed(scaled[k.index]) : std::move(scaled[k.index]));
-    scaled[k.index] = BSpline();
+    BSpline s = c.spline();
+    pc.set_spline(k.reversed ? reversed(s) : std::move(s));
+    c.held = HeldSpline();
     pc.drawing_index = static_cast<int>(k.index);
     pc.reversed = k.reversed;
     pc.chained = k.chained;
-    pc.source = std::move(sources[k.index]);
+    pc.source = std::move(c.source);
     plan->curves.push_back(std::move(pc));
   }
 }
 
-// Plans the curves of a drawing without a program, already scaled (drawing frame, mm);
-// sources[i] names curve i in messages.
-JobPlan plan_scaled(std::vector<BSpline> scaled, std::vector<std::string> sources,
-                    const PlanOptions& o) {
+// Plans the curves of a drawing without a program, already scaled (drawing frame, mm).
+JobPlan plan_scaled(std::vector<Curve> scaled, const PlanOptions& o) {
   JobPlan plan;
   // Put the lower-left corner of the extents at (margin, margin).
   Extents ext;
-  for (const BSpline& s : scaled) ext.add(curve_extents(s));
+  for (const Curve& c : scaled) ext.add(curve_extents(c.spline()));
   plan.offset_mm =
       o.fixed_offset ? o.offset_mm : Point2(Point2(o.margin_mm, o.margin_mm) - ext.min);
-  for (BSpline& s : scaled) s = transformed(s, Eigen::Matrix2d::Identity(), plan.offset_mm);
+  for (Curve& c : scaled)
+    c.set_spline(transformed(c.spline(), Eigen::Matrix2d::Identity(), plan.offset_mm));
   const double radius = o.tool_side == ToolSide::kCentre ? 0.0 : o.tool_radius_mm;
-  order_curves(std::move(scaled), std::move(sources), o, &plan);
+  order_curves(std::move(scaled), o, &plan);
 
   // Work area, before anything else is produced.
   std::string culprit;
@@ -188,30 +188,27 @@ void check_not_empty(const Drawing& drawing) {
     throw PlanError(drawing.path + ": the drawing has nothing to engrave");
 }
 
-// Checks and plans a drawing: a const one is kept; one its caller gives up (Drawing&) has
-// each curve released once scaled, so each is held once, not twice, while planning.
+// Checks and plans a drawing: a const one is kept (its curves copied: a line's ends, any
+// other curve shared); one its caller gives up (Drawing&) has its curves planned in place,
+// so a large drawing is held once, not twice, while planning.
 template <class D>
 JobPlan plan_drawing(D& drawing, const PlanOptions& o) {
   constexpr bool give_up = !std::is_const_v<D>;
   check_not_empty(drawing);
   check_options(o);
   if (!drawing.program.empty()) return plan_program(drawing, o);
-  const Eigen::Matrix2d scale = Eigen::Matrix2d::Identity() * o.scale;
-  std::vector<BSpline> scaled;
-  std::vector<std::string> sources;
-  scaled.reserve(drawing.curves.size());
-  sources.reserve(drawing.curves.size());
-  for (auto& c : drawing.curves) {
-    scaled.push_back(transformed(c.spline, scale, Point2(0, 0)));
-    if constexpr (give_up) {
-      c.spline = BSpline();
-      sources.push_back(std::move(c.source));
-    } else {
-      sources.push_back(c.source);
-    }
+  std::vector<Curve> scaled;
+  if constexpr (give_up) {
+    scaled = std::move(drawing.curves);
+    std::vector<Curve>().swap(drawing.curves);
+  } else {
+    scaled = drawing.curves;
   }
-  if constexpr (give_up) std::vector<Curve>().swap(drawing.curves);
-  return plan_scaled(std::move(scaled), std::move(sources), o);
+  if (o.scale != 1.0) {
+    const Eigen::Matrix2d scale = Eigen::Matrix2d::Identity() * o.scale;
+    for (Curve& c : scaled) c.set_spline(transformed(c.spline(), scale, Point2(0, 0)));
+  }
+  return plan_scaled(std::move(scaled), o);
 }
 
 }  // namespace

@@ -16,7 +16,8 @@
 #include "firmware/config/machine_config.h"
 #include "firmware/core/spline.h"
 #include "host/lib/drawing/drawing.h"
-#include "host/lib/plan/job_defaults.h"  // every default below
+#include "host/lib/drawing/held_spline.h"  // LineKnots
+#include "host/lib/plan/job_defaults.h"    // every default below
 #include "host/lib/plan/plan_step.h"
 #include "host/lib/plan/step_list.h"
 
@@ -81,16 +82,15 @@ struct PlannedCurve {
   BSpline spline() const;
   void set_spline(BSpline spline);
   // Kept as its two ends (no curve on the heap).
-  bool inline_line() const { return line_knots_ != kNotALine; }
+  bool inline_line() const { return line_knots_ != LineKnots::kNotALine; }
 
   int drawing_index = 0;  // index in Drawing::curves
   bool reversed = false;  // traced end to start
   bool chained = false;   // starts where the previous one ended: no pen lift before it
 
  private:
-  // Here, in the padding after the flags (88 bytes a curve, not 96).
-  enum LineKnots : uint8_t { kNotALine, kForward, kBackward };  // 0 0 1 1; -1 -1 -0 -0
-  uint8_t line_knots_ = kNotALine;
+  // Here, in the padding after the flags (88 bytes a curve, not 96 with a HeldSpline).
+  LineKnots line_knots_ = LineKnots::kNotALine;
 
  public:
   std::string source;  // entity it came from (for messages)

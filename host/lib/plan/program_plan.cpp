@@ -85,7 +85,7 @@ class ProgramPlanner {
     Extents ext;
     std::vector<BSpline> scaled;
     for (const Curve& c : d_.curves) {
-      scaled.push_back(transformed(c.spline, scale, Point2(0, 0)));
+      scaled.push_back(transformed(c.spline(), scale, Point2(0, 0)));
       ext.add(curve_extents(scaled.back()));
     }
     for (const ProgramOp& op : d_.program)

@@ -20,16 +20,16 @@ TEST(GcodeImport, FeedRunsBetweenRapidsBecomeOneCurveEach) {
                                     "G21 G90\nG0 X0 Y0\nG1 X10 Y0 F100\nG1 X10 Y5\n"
                                     "G0 X20 Y0\nG1 X30 Y0\nM2\n");
   ASSERT_EQ(d.curves.size(), 2u);
-  EXPECT_EQ(d.curves[0].spline.degree, 1);
-  EXPECT_LT((end_point(d.curves[0].spline) - Point2(10, 5)).norm(), 1e-12);
-  EXPECT_LT((start_point(d.curves[1].spline) - Point2(20, 0)).norm(), 1e-12);
+  EXPECT_EQ(d.curves[0].spline().degree, 1);
+  EXPECT_LT((end_point(d.curves[0].spline()) - Point2(10, 5)).norm(), 1e-12);
+  EXPECT_LT((start_point(d.curves[1].spline()) - Point2(20, 0)).norm(), 1e-12);
 }
 
 TEST(GcodeImport, ClockwiseArcWithIjIsExact) {
   // G2 from (10,0) around (0,0) to (0,-10): a clockwise quarter.
   const Drawing d = import_via_file("arc.ngc", "G21\nG0 X10 Y0\nG2 X0 Y-10 I-10 J0\n");
   ASSERT_EQ(d.curves.size(), 1u);
-  const BSpline& s = d.curves[0].spline;
+  const BSpline s = d.curves[0].spline();
   for (int i = 0; i <= 100; ++i) {
     const Point2 p = evaluate(s, s.t_min() + (s.t_max() - s.t_min()) * i / 100.0);
     EXPECT_NEAR(p.norm(), 10.0, 1e-9);
@@ -49,20 +49,20 @@ TEST(GcodeImport, FullCircleArc) {
 TEST(GcodeImport, InchesAreConverted) {
   const Drawing d = import_via_file("inch.ngc", "G20\nG0 X0 Y0\nG1 X1 Y0\n");
   ASSERT_EQ(d.curves.size(), 1u);
-  EXPECT_NEAR(end_point(d.curves[0].spline).x(), 25.4, 1e-12);
+  EXPECT_NEAR(end_point(d.curves[0].spline()).x(), 25.4, 1e-12);
 }
 
 TEST(GcodeImport, ToolAboveTheWorkDoesNotCut) {
   const Drawing d = import_via_file("z.ngc", "G21\nG0 Z1\nG1 X10\nG1 Z-0.1\nG1 X20\n");
   ASSERT_EQ(d.curves.size(), 1u);
-  EXPECT_LT((start_point(d.curves[0].spline) - Point2(10, 0)).norm(), 1e-12);
+  EXPECT_LT((start_point(d.curves[0].spline()) - Point2(10, 0)).norm(), 1e-12);
 }
 
 TEST(GcodeImport, LaserOffDoesNotCutWhenTheProgramSwitchesIt) {
   const Drawing d = import_via_file("laser.ngc", "G21\nM5\nG1 X10\nM3 S100\nG1 X20\nM5\nG1 X30\n");
   ASSERT_EQ(d.curves.size(), 1u);
-  EXPECT_LT((start_point(d.curves[0].spline) - Point2(10, 0)).norm(), 1e-12);
-  EXPECT_LT((end_point(d.curves[0].spline) - Point2(20, 0)).norm(), 1e-12);
+  EXPECT_LT((start_point(d.curves[0].spline()) - Point2(10, 0)).norm(), 1e-12);
+  EXPECT_LT((end_point(d.curves[0].spline()) - Point2(20, 0)).norm(), 1e-12);
 }
 
 // The spindle scan: M3/M4 with leading zeros switch it; a comment or another word's digits
@@ -83,8 +83,8 @@ TEST(GcodeImport, InMemoryAndFileReadsAgree) {
   const Drawing a = import_gcode_text(program, "mem.ngc");
   const Drawing b = import_via_file("mem.ngc", program);
   ASSERT_EQ(a.curves.size(), b.curves.size());
-  EXPECT_EQ(a.curves[0].spline.control.size(), b.curves[0].spline.control.size());
-  EXPECT_EQ(a.curves[0].spline.knots, b.curves[0].spline.knots);
+  EXPECT_EQ(a.curves[0].spline().control.size(), b.curves[0].spline().control.size());
+  EXPECT_EQ(a.curves[0].spline().knots, b.curves[0].spline().knots);
 }
 
 // M48 (enable feed and speed overrides) in a program: G-code, not an Excellon drill file.

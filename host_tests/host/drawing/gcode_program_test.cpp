@@ -87,8 +87,8 @@ TEST(GcodeProgram, PcbStyleMillingKeepsItsOperationsInFileOrder) {
   EXPECT_EQ(p[7].kind, ProgramOp::kSpindle);
   EXPECT_FALSE(p[7].spindle_on);
   EXPECT_NEAR(p[7].z_mm, 12.7, 1e-9);  // lifted before the spindle stops
-  EXPECT_LT((start_point(d.curves[0].spline) - Point2(2.54, 2.54)).norm(), 1e-9);
-  EXPECT_LT((end_point(d.curves[0].spline) - Point2(12.7, 7.62)).norm(), 1e-9);
+  EXPECT_LT((start_point(d.curves[0].spline()) - Point2(2.54, 2.54)).norm(), 1e-9);
+  EXPECT_LT((end_point(d.curves[0].spline()) - Point2(12.7, 7.62)).norm(), 1e-9);
   EXPECT_EQ(d.entity_counts.at("pause (M0/M1/M6)"), 1);
   EXPECT_EQ(d.entity_counts.at("dwell (G4)"), 2);
 }
@@ -99,7 +99,7 @@ TEST(GcodeProgram, UnitsShownAreTheFilesOwn) {
   const Drawing both = import_text("both.ngc", "G20\nG1 X1\nG21\nG1 X30\n");
   EXPECT_NE(both.units.find("inch and mm"), std::string::npos) << both.units;
   EXPECT_DOUBLE_EQ(both.unit_to_mm, 25.4);
-  EXPECT_LT((end_point(both.curves[0].spline) - Point2(30, 0)).norm(), 1e-9);
+  EXPECT_LT((end_point(both.curves[0].spline()) - Point2(30, 0)).norm(), 1e-9);
 }
 
 TEST(GcodeProgram, M0WithoutAMessageSaysWhatStoppedAndM1Too) {
@@ -210,7 +210,7 @@ TEST(GcodeProgram, ADepthChangeInsideACutStartsANewCurve) {
   ASSERT_EQ(d.curves.size(), 2u);
   EXPECT_DOUBLE_EQ(d.program[0].depth_mm, -0.1);
   EXPECT_DOUBLE_EQ(d.program[1].depth_mm, -0.2);
-  EXPECT_LT((start_point(d.curves[1].spline) - Point2(10, 0)).norm(), 1e-12);
+  EXPECT_LT((start_point(d.curves[1].spline()) - Point2(10, 0)).norm(), 1e-12);
 }
 
 TEST(GcodeProgram, NoZAtAllLeavesTheDepthToThePlanner) {

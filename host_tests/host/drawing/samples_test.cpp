@@ -73,7 +73,7 @@ TEST(SharedSamples, DxfParserRationalCircles) {
   ASSERT_EQ(d.curves.size(), 3u);
   // The first two are full circles: closed, every point at one distance from the centre.
   for (int c = 0; c < 2; ++c) {
-    const BSpline& s = d.curves[c].spline;
+    const BSpline s = d.curves[c].spline();
     EXPECT_TRUE(s.rational());
     EXPECT_LT((start_point(s) - end_point(s)).norm(), 1e-9);
     const Point2 centre = 0.5 * (evaluate(s, s.t_min() + 0.25 * (s.t_max() - s.t_min())) +

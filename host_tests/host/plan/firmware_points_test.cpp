@@ -98,7 +98,7 @@ TEST(FirmwarePoints, BundledSampleEveryCurveWithin1umAndTolerance) {
   const Drawing d = import_drawing(std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf");
   Stats worst;
   for (size_t i = 0; i < d.curves.size(); ++i) {
-    const Stats st = measure(d.curves[i].spline, 5);
+    const Stats st = measure(d.curves[i].spline(), 5);
     EXPECT_LE(st.max_point_error_um, 1.0) << "curve " << i;
     EXPECT_LE(st.max_chord_error_um, 6.0) << "curve " << i;
     worst.max_point_error_um = std::max(worst.max_point_error_um, st.max_point_error_um);

@@ -17,7 +17,7 @@ Drawing drawing_of(const std::vector<BSpline>& curves) {
   d.path = "test.dxf";
   for (size_t i = 0; i < curves.size(); ++i) {
     Curve c;
-    c.spline = curves[i];
+    c.set_spline(curves[i]);
     c.kind = "TEST";
     c.source = "TEST #" + std::to_string(i + 1);
     d.curves.push_back(c);

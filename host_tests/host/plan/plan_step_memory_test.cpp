@@ -18,7 +18,7 @@ Drawing separate_lines(int n) {
   for (int i = 0; i < n; ++i) {
     Curve c;
     const double x = (i % 50) * 4.0, y = (i / 50) * 4.0;
-    c.spline = line_spline({x, y}, {x + 1.5, y + 0.5});
+    c.set_spline(line_spline({x, y}, {x + 1.5, y + 0.5}));
     c.kind = "LINE";
     c.source = "LINE #" + std::to_string(i + 1);
     d.curves.push_back(c);
@@ -104,7 +104,7 @@ TEST(PlanStepMemory, AChainedPolylineIsReservedForExactlyItsSteps) {
   d.path = "chain.dxf";
   for (int i = 0; i < 3000; ++i) {
     Curve c;
-    c.spline = line_spline({i * 0.05, 0.0}, {(i + 1) * 0.05, 0.0});
+    c.set_spline(line_spline({i * 0.05, 0.0}, {(i + 1) * 0.05, 0.0}));
     c.kind = "LINE";
     c.source = "LINE #" + std::to_string(i + 1);
     d.curves.push_back(c);

@@ -225,7 +225,7 @@ Drawing rectangle(double w, double h) {
   Drawing d;
   d.path = "big.dxf";
   Curve c;
-  c.spline = line_spline({0, 0}, {w, h});
+  c.set_spline(line_spline({0, 0}, {w, h}));
   c.source = "LINE #1";
   d.curves.push_back(c);
   return d;

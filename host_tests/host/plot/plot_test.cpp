@@ -215,9 +215,9 @@ TEST_F(Plot, UnwritablePathIsReportedWithTheFileName) {
 TEST_F(Plot, PlanPlotHasOneDashedMovePerPenLiftPlusTheWayHome) {
   Drawing d;
   Curve c;
-  c.spline = line_spline({0, 0}, {10, 0});
+  c.set_spline(line_spline({0, 0}, {10, 0}));
   d.curves.push_back(c);
-  c.spline = line_spline({0, 5}, {10, 5});
+  c.set_spline(line_spline({0, 5}, {10, 5}));
   d.curves.push_back(c);
   const JobPlan p = plan_job(d, PlanOptions());
   const PlotInput in = plot_input_from_plan(p, "plan");

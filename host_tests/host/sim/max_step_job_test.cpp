@@ -21,12 +21,13 @@ using test::s_curve;
 // single straight line would be a #G, which the point generator does not split).
 Curve zigzag_polyline() {
   Curve c;
+  BSpline s;
   c.kind = "LWPOLYLINE";
   c.source = "test zigzag";
-  c.spline.degree = 1;
-  c.spline.control = {Point2(0, 0), Point2(40, 9.3), Point2(80, 1.7), Point2(110, 33.1),
-                      Point2(60, 41.9)};
-  c.spline.knots = {0, 0, 1, 2, 3, 4, 4};
+  s.degree = 1;
+  s.control = {Point2(0, 0), Point2(40, 9.3), Point2(80, 1.7), Point2(110, 33.1), Point2(60, 41.9)};
+  s.knots = {0, 0, 1, 2, 3, 4, 4};
+  c.set_spline(s);
   return c;
 }
 

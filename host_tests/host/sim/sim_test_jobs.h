@@ -18,39 +18,45 @@ namespace host::test {
 inline Curve circle_curve(double cx, double cy, double r_mm) {
   const double w = std::sqrt(0.5);
   Curve c;
+  BSpline s;
   c.kind = "CIRCLE";
   c.source = "test circle";
-  c.spline.degree = 2;
+  s.degree = 2;
   const double px[] = {1, 1, 0, -1, -1, -1, 0, 1, 1};
   const double py[] = {0, 1, 1, 1, 0, -1, -1, -1, 0};
   for (int i = 0; i < 9; ++i) {
-    c.spline.control.push_back(Point2(cx + r_mm * px[i], cy + r_mm * py[i]));
-    c.spline.weights.push_back(i % 2 ? w : 1.0);
+    s.control.push_back(Point2(cx + r_mm * px[i], cy + r_mm * py[i]));
+    s.weights.push_back(i % 2 ? w : 1.0);
   }
-  c.spline.knots = {0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
+  s.knots = {0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
+  c.set_spline(s);
   return c;
 }
 
 // A straight line as a degree-1 B-spline.
 inline Curve line_curve(double x0, double y0, double x1, double y1) {
   Curve c;
+  BSpline s;
   c.kind = "LINE";
   c.source = "test line";
-  c.spline.degree = 1;
-  c.spline.control = {Point2(x0, y0), Point2(x1, y1)};
-  c.spline.knots = {0, 0, 1, 1};
+  s.degree = 1;
+  s.control = {Point2(x0, y0), Point2(x1, y1)};
+  s.knots = {0, 0, 1, 1};
+  c.set_spline(s);
   return c;
 }
 
 // A cubic S-curve with an interior knot.
 inline Curve s_curve(double x0, double y0) {
   Curve c;
+  BSpline s;
   c.kind = "SPLINE";
   c.source = "test S-curve";
-  c.spline.degree = 3;
-  c.spline.control = {Point2(x0, y0), Point2(x0 + 5, y0 + 10), Point2(x0 + 10, y0 - 10),
-                      Point2(x0 + 15, y0 + 10), Point2(x0 + 20, y0)};
-  c.spline.knots = {0, 0, 0, 0, 0.5, 1, 1, 1, 1};
+  s.degree = 3;
+  s.control = {Point2(x0, y0), Point2(x0 + 5, y0 + 10), Point2(x0 + 10, y0 - 10),
+               Point2(x0 + 15, y0 + 10), Point2(x0 + 20, y0)};
+  s.knots = {0, 0, 0, 0, 0.5, 1, 1, 1, 1};
+  c.set_spline(s);
   return c;
 }
 
