@@ -28,9 +28,8 @@ void check_drawing_import(Import import, const uint8_t* data, size_t size,
   try {
     const host::Drawing d = import(text, name);
     for (const host::Curve& c : d.curves) {
-      for (const host::Point2& p : c.spline.control) {
-        check(std::isfinite(p.x()) && std::isfinite(p.y()));
-      }
+      c.held.each_control(
+          [](const host::Point2& p) { check(std::isfinite(p.x()) && std::isfinite(p.y())); });
     }
     d.extents();
   } catch (const host::ImportError& e) {
