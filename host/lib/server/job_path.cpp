@@ -2,7 +2,8 @@
 #include "host/lib/server/job_path.h"
 
 #include <algorithm>  // std::max, std::min
-#include <cmath>      // std::round
+#include <cmath>      // std::round, std::abs
+#include <stdexcept>  // std::length_error
 
 #include "host/lib/plan/tool_path_walk.h"
 
@@ -27,28 +28,27 @@ void nearest_on_segment(const Point2& a, const Point2& b, const Point2& p, doubl
 }  // namespace
 
 JobPath::JobPath(const JobPlan& plan, double tol_mm) {
-  Point2 at(0, 0);  // a plan starts at the zero
+  if (plan.steps.size() >= UINT32_MAX) throw std::length_error("job path: too many steps");
+  points_.push_back(Point2(0, 0));  // a plan starts at the zero
   piece_of_step_.resize(plan.steps.size());
-  // A new piece from where the tool stands through the move's points.
-  auto add = [&](const ToolMove& m) {
-    Piece p;
-    p.pen_down = m.pen_down;
-    p.start_mm = length_mm_;
-    p.points_mm.push_back(at);
-    p.at_mm.push_back(length_mm_);
-    for (const Point2& q : m.points_mm) {
-      length_mm_ += (q - p.points_mm.back()).norm();
-      p.points_mm.push_back(q);
-      p.at_mm.push_back(length_mm_);
-    }
-    at = p.points_mm.back();
-    pieces_.push_back(std::move(p));
-  };
   walk_tool_path(plan, tol_mm, [&](const ToolMove& m) {
     // A curve sent as several splines is one piece: its first step's.
-    piece_of_step_[m.step] = m.kind == StepMove::kContinues ? pieces_.size() - 1 : pieces_.size();
-    if (m.kind == StepMove::kNew) add(m);
+    const size_t n = pieces_.size();
+    piece_of_step_[m.step] = static_cast<uint32_t>(m.kind == StepMove::kContinues ? n - 1 : n);
+    if (m.kind != StepMove::kNew) return;
+    Piece p;  // from where the tool stands through the move's points
+    p.pen_down = m.pen_down;
+    p.start_mm = length_mm_;
+    for (const Point2& q : m.points_mm) {
+      length_mm_ += (q - points_.back()).norm();
+      points_.push_back(q);
+    }
+    if (points_.size() >= UINT32_MAX) throw std::length_error("job path: too many points");
+    p.end = static_cast<uint32_t>(points_.size() - 1);
+    pieces_.push_back(p);
   });
+  points_.shrink_to_fit();
+  pieces_.shrink_to_fit();
 }
 
 double JobPath::advance(int step, const Point2& position_mm) {
@@ -59,46 +59,107 @@ double JobPath::advance(int step, const Point2& position_mm) {
   if (pieces_.empty() || static_cast<size_t>(step) >= piece_of_step_.size()) return done_mm_;
   // The step's piece and the one before: the tool may not have left that yet when its
   // command is reported done. (Not the next one: a rapid home crosses what it passes.)
-  const size_t piece = std::min(piece_of_step_[step], pieces_.size() - 1);
+  const size_t piece = std::min<size_t>(piece_of_step_[step], pieces_.size() - 1);
   const size_t first = std::max(cursor_piece_, piece == 0 ? 0 : piece - 1);
-  const size_t last = piece;
-  double best_distance = 0, best_mm = done_mm_;
-  size_t best_piece = cursor_piece_, best_segment = cursor_segment_;
+  double best_distance = 0, best_mm = done_mm_, best_start_mm = cursor_mm_;
+  size_t best_piece = cursor_piece_, best_point = cursor_point_;
   bool found = false;
-  for (size_t k = first; k <= last; ++k) {
-    const Piece& p = pieces_[k];
-    for (size_t i = k == cursor_piece_ ? cursor_segment_ : 0; i + 1 < p.points_mm.size(); ++i) {
+  for (size_t k = first; k <= piece; ++k) {
+    const bool at_cursor = k == cursor_piece_;
+    // Lengths summed as the constructor summed them: the same numbers to the last bit.
+    double along = at_cursor ? cursor_mm_ : pieces_[k].start_mm;
+    for (size_t i = at_cursor ? cursor_point_ : begin_of(k); i < pieces_[k].end; ++i) {
+      const double next = along + (points_[i + 1] - points_[i]).norm();
       double t = 0, distance = 0;
-      nearest_on_segment(p.points_mm[i], p.points_mm[i + 1], position_mm, &t, &distance);
+      nearest_on_segment(points_[i], points_[i + 1], position_mm, &t, &distance);
       // Nearer by more than a micrometre: a tie goes to the earlier point.
       if (!found || distance < best_distance - 0.001) {
         found = true;
         best_distance = distance;
-        best_mm = p.at_mm[i] + t * (p.at_mm[i + 1] - p.at_mm[i]);
+        best_mm = along + t * (next - along);
         best_piece = k;
-        best_segment = i;
+        best_point = i;
+        best_start_mm = along;
       }
+      along = next;
     }
   }
   if (found && best_mm >= done_mm_) {
     done_mm_ = best_mm;
     cursor_piece_ = best_piece;
-    cursor_segment_ = best_segment;
+    cursor_point_ = best_point;
+    cursor_mm_ = best_start_mm;
   }
   return done_mm_;
 }
 
-nlohmann::json JobPath::to_json() const {
-  nlohmann::json pieces = nlohmann::json::array();
-  for (const Piece& p : pieces_) {
-    nlohmann::json points = nlohmann::json::array();
-    for (const Point2& q : p.points_mm) points.push_back({um_rounded(q.x()), um_rounded(q.y())});
-    pieces.push_back({{"pen_down", p.pen_down},
-                      {"start_mm", um_rounded(p.start_mm)},
-                      {"length_mm", um_rounded(p.at_mm.back() - p.start_mm)},
-                      {"points_mm", std::move(points)}});
+bool JobPath::thinned(double step_mm, size_t max_points, nlohmann::json* out) const {
+  *out = nlohmann::json::array();
+  size_t count = 0;
+  nlohmann::json points;
+  Point2 last(0, 0);
+  size_t open = 0, through = 0;  // the output piece: from piece `open` through `through`
+  bool is_open = false;
+  auto emit = [&](const Point2& p) {
+    points.push_back({um_rounded(p.x()), um_rounded(p.y())});
+    last = p;
+    ++count;
+  };
+  auto close = [&] {
+    const Point2& end = points_[pieces_[through].end];
+    if (points.empty() || end != last) emit(end);  // a thinned piece still ends where it ends
+    out->push_back({{"pen_down", pieces_[open].pen_down},
+                    {"start_mm", um_rounded(pieces_[open].start_mm)},
+                    {"length_mm", um_rounded(end_mm_of(through) - pieces_[open].start_mm)},
+                    {"points_mm", std::move(points)}});
+    points = nlohmann::json::array();
+  };
+  for (size_t k = 0; k < pieces_.size(); ++k) {
+    // Thinned, a piece joins the one before unless it is a visible piece of another state.
+    const bool visible = end_mm_of(k) - pieces_[k].start_mm >= step_mm;
+    if (!is_open || step_mm <= 0 || (visible && pieces_[k].pen_down != pieces_[open].pen_down)) {
+      if (is_open) close();
+      is_open = true;
+      open = k;
+      emit(points_[begin_of(k)]);
+    }
+    through = k;
+    for (size_t i = begin_of(k) + 1; i <= pieces_[k].end; ++i) {
+      const Point2& p = points_[i];
+      if (step_mm <= 0 || std::abs(p.x() - last.x()) >= step_mm ||
+          std::abs(p.y() - last.y()) >= step_mm)
+        emit(p);
+    }
+    if (count > max_points) return false;
   }
-  return {{"length_mm", um_rounded(length_mm_)}, {"pieces", std::move(pieces)}};
+  if (is_open) close();
+  return count <= max_points;
+}
+
+nlohmann::json JobPath::to_json(size_t max_points) const {
+  nlohmann::json pieces;
+  double step_mm = 0;
+  // Each piece repeats the point it starts at.
+  if (points_.size() + pieces_.size() > max_points) {
+    Point2 lo = points_[0], hi = points_[0];
+    for (const Point2& p : points_) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    // Half a pixel of a 1 000-pixel view, then coarser until it fits.
+    step_mm = std::max(0.001, (hi - lo).maxCoeff() / 2000);
+    while (!thinned(step_mm, max_points, &pieces)) step_mm *= 2;
+  } else {
+    thinned(0, max_points, &pieces);
+  }
+  return {{"length_mm", um_rounded(length_mm_)},
+          {"thinned_to_mm", step_mm},
+          {"pieces", std::move(pieces)}};
+}
+
+size_t JobPath::heap_bytes() const {
+  return points_.capacity() * sizeof(Point2) + pieces_.capacity() * sizeof(Piece) +
+         piece_of_step_.capacity() * sizeof(uint32_t);
 }
 
 }  // namespace host::server

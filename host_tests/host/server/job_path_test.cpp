@@ -2,6 +2,7 @@
 // them a machine position lies (a closed curve at its start is not done; never backwards).
 #include <gtest/gtest.h>
 
+#include "host/lib/drawing/conics.h"  // line_spline
 #include "host/lib/server/job_path.h"
 #include "host/lib/server/job_planning.h"
 #include "host_tests/host/server/server_test_rig.h"
@@ -61,6 +62,63 @@ TEST(JobPath, AClosedCurveAtItsStartIsNotDoneAndProgressNeverGoesBack) {
   EXPECT_NEAR(path.advance(step, Point2(20, 10)), rapid_mm + 2 * M_PI * 10, 0.05);
   // Every command run: the whole path.
   EXPECT_DOUBLE_EQ(path.advance(-1, Point2(0, 0)), path.length_mm());
+}
+
+// n separate 2.2 mm lines on a grid: two moves each in X/Y (the travel to it, the cut).
+JobPlan separate_lines(int n) {
+  Drawing d;
+  for (int i = 0; i < n; ++i) {
+    Curve c;
+    const Point2 a((i % 60) * 3.0, (i / 60) * 3.0);
+    c.set_spline(line_spline(a, a + Point2(2, 1)));
+    d.curves.push_back(c);
+  }
+  return plan_job(std::move(d), PlanOptions());
+}
+
+// Pieces in order, each starting where the one before ended (lengths in whole micrometres).
+void expect_contiguous(const nlohmann::json& path) {
+  double at_mm = 0;
+  for (const nlohmann::json& p : path["pieces"]) {
+    EXPECT_NEAR(p["start_mm"].get<double>(), at_mm, 0.0015);
+    EXPECT_GE(p["points_mm"].size(), 1u);
+    at_mm = p["start_mm"].get<double>() + p["length_mm"].get<double>();
+  }
+  EXPECT_NEAR(at_mm, path["length_mm"].get<double>(), 0.0015);
+}
+
+size_t points_in(const nlohmann::json& path) {
+  size_t n = 0;
+  for (const nlohmann::json& p : path["pieces"]) n += p["points_mm"].size();
+  return n;
+}
+
+// A page cannot draw three million pieces, nor the server hold them as JSON (2.2 GB for a
+// million lines): past its budget the preview is thinned, its lengths still exact.
+TEST(JobPath, ALargeJobsPreviewIsThinnedToItsBudgetWithExactLengths) {
+  const JobPlan plan = separate_lines(3000);
+  const JobPath path(plan);
+  const nlohmann::json exact = path.to_json();
+  EXPECT_EQ(exact["thinned_to_mm"].get<double>(), 0.0);
+  EXPECT_GE(exact["pieces"].size(), 2u * 3000);  // the travel to it and the cut
+  expect_contiguous(exact);
+  const nlohmann::json thin = path.to_json(2000);
+  EXPECT_GT(thin["thinned_to_mm"].get<double>(), 0.0);
+  EXPECT_LE(points_in(thin), 2000u);
+  EXPECT_GT(points_in(thin), 100u);  // thinned only as far as it had to be
+  EXPECT_EQ(thin["length_mm"], exact["length_mm"]);
+  expect_contiguous(thin);
+}
+
+// Two points and two pieces a line (16 bytes each) and its four steps' piece (4 each): ~80
+// bytes, where a piece with two vectors of its own took ~300 a line.
+TEST(JobPath, ALineTakesAboutEightyBytes) {
+  const int n = 3000;
+  const JobPlan plan = separate_lines(n);
+  const JobPath path(plan);
+  const double per_line = static_cast<double>(path.heap_bytes()) / n;
+  RecordProperty("job_path_bytes_a_line", std::to_string(per_line));
+  EXPECT_LT(per_line, 90);
 }
 
 }  // namespace
