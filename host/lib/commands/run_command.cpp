@@ -156,20 +156,9 @@ void write_run_plots(const JobPlan& plan, const RunOptions& o, RunResult* r) {
   const std::string& base = r->base;
   std::vector<std::string>& written = r->plot_files;
   written.clear();
-  // The drawing's curves against the simulated tool path.
+  // The drawing's curves against the simulated tool path (lent to the plots, then kept).
   PlotInput plot = plot_input_from_plan(plan, o.name, 0.01, false);
-  const std::vector<bool> pen_down = sim::pen_down_samples(r->sim.trace, plan);
-  for (size_t i = 0; i < r->sim.trace.size(); ++i) {
-    const sim::ToolSample& s = r->sim.trace[i];
-    const bool down = pen_down[i];
-    if (plot.tool_path.empty() || plot.tool_path.back().pen_down != down) {
-      ToolPathSegment seg;
-      seg.pen_down = down;
-      if (!plot.tool_path.empty()) seg.points_mm.push_back(plot.tool_path.back().points_mm.back());
-      plot.tool_path.push_back(seg);
-    }
-    plot.tool_path.back().points_mm.push_back(Point2(s.x_mm, s.y_mm));
-  }
+  plot.tool_path = std::move(r->sim.plot_path);
   write_plot(plot, base + ".svg", o.png ? base + ".png" : "");
   written.push_back(base + ".svg");
   if (o.png) written.push_back(base + ".png");
@@ -177,8 +166,9 @@ void write_run_plots(const JobPlan& plan, const RunOptions& o, RunResult* r) {
     BoardPlotInput in;
     in.title = o.board->title + " (simulated)";
     in.job = o.board->job.get();
-    in.simulated = plot.tool_path;
+    in.simulated = std::move(plot.tool_path);
     write_board_plot(in, base + ".board.svg", o.png ? base + ".board.png" : "");
+    plot.tool_path = std::move(in.simulated);
     written.push_back(base + ".board.svg");
     if (o.png) written.push_back(base + ".board.png");
   }
@@ -190,6 +180,7 @@ void write_run_plots(const JobPlan& plan, const RunOptions& o, RunResult* r) {
     write_height_map_svg(*r->map, o.name, base + ".map.svg");
     written.push_back(base + ".map.svg");
   }
+  r->sim.plot_path = std::move(plot.tool_path);
 }
 
 void check_run(const RunOptions& o, RunResult* r) {
@@ -313,7 +304,7 @@ nlohmann::json run_report_json(const JobPlan& plan, const RunOptions& o, const R
                                  {"mean_um", r.registration->mean_um},
                                  {"samples", r.registration->samples}};
   }
-  j["plot_tool_path"] = {{"samples_kept", s.trace.size()},
+  j["plot_tool_path"] = {{"samples_kept", s.plot_path.size()},
                          {"samples_simulated", s.trace_samples},
                          {"step_mm", s.trace_step_mm}};
   j["simulated_machine_ms"] = s.virtual_ms;
@@ -365,7 +356,7 @@ std::string run_report_text(const JobPlan& plan, const RunOptions& o, const RunR
     t += fmt::format(
         "  the plot's tool path is thinned to {:.3f} mm steps ({} of {} samples kept, a long "
         "job)\n",
-        s.trace_step_mm, s.trace.size(), s.trace_samples);
+        s.trace_step_mm, s.plot_path.size(), s.trace_samples);
   if (const std::optional<SimulatedIsolation>& iso = r.isolation) {
     t += fmt::format(
         "  simulated isolation cuts ({}, {}) against the copper: {} "

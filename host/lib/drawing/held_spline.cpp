@@ -38,18 +38,23 @@ BSpline HeldSpline::get() const {
   return curve_ ? *curve_ : BSpline();
 }
 
-void HeldSpline::set(BSpline s) {
-  knots_ = line_knots_of(s);
-  if (knots_ == LineKnots::kNotALine) {
-    ends_[0] = ends_[1] = ends_[2] = ends_[3] = 0;
-    curve_ = std::make_shared<const BSpline>(std::move(s));
+LineKnots hold_spline(BSpline s, double (&ends)[4], std::shared_ptr<const BSpline>* curve) {
+  const LineKnots knots = line_knots_of(s);
+  if (knots == LineKnots::kNotALine) {
+    ends[0] = ends[1] = ends[2] = ends[3] = 0;
+    *curve = std::make_shared<const BSpline>(std::move(s));
   } else {
-    ends_[0] = s.control[0].x();
-    ends_[1] = s.control[0].y();
-    ends_[2] = s.control[1].x();
-    ends_[3] = s.control[1].y();
-    curve_.reset();
+    ends[0] = s.control[0].x();
+    ends[1] = s.control[0].y();
+    ends[2] = s.control[1].x();
+    ends[3] = s.control[1].y();
+    curve->reset();
   }
+  return knots;
+}
+
+void HeldSpline::set(BSpline s) {
+  knots_ = hold_spline(std::move(s), ends_, &curve_);
 }
 
 }  // namespace host

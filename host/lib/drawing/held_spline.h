@@ -21,6 +21,9 @@ enum class LineKnots : uint8_t { kNotALine, kForward, kBackward };  // 0 0 1 1; 
 LineKnots line_knots_of(const BSpline& s);
 // The line from its ends (x0 y0 x1 y1) and knots (not kNotALine).
 BSpline line_from_ends(const double (&ends)[4], LineKnots knots);
+// Keeps s as a line's ends (and no curve) or, not a line, as the curve (ends zero): the one
+// rule of HeldSpline and PlannedCurve. Returns its knots.
+LineKnots hold_spline(BSpline s, double (&ends)[4], std::shared_ptr<const BSpline>* curve);
 
 class HeldSpline {
  public:

@@ -45,6 +45,7 @@ void PlanStep::set_text(std::string text) {
 }
 
 bool PlanStep::same_shape(const PlanStep& o) const {
+  // dwell_ms shares its bytes with z_start_um: comparing it compares either.
   return kind == o.kind && spindle_on == o.spindle_on && z_um == o.z_um &&
          feed_um_per_s == o.feed_um_per_s && tool_offset_um == o.tool_offset_um &&
          dwell_ms == o.dwell_ms && extra_.get() == o.extra_.get();

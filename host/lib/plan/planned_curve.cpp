@@ -12,17 +12,7 @@ BSpline PlannedCurve::spline() const {
 }
 
 void PlannedCurve::set_spline(BSpline spline) {
-  line_knots_ = line_knots_of(spline);
-  if (line_knots_ == LineKnots::kNotALine) {
-    ends_[0] = ends_[1] = ends_[2] = ends_[3] = 0;
-    curve_ = std::make_shared<const BSpline>(std::move(spline));
-  } else {
-    ends_[0] = spline.control[0].x();
-    ends_[1] = spline.control[0].y();
-    ends_[2] = spline.control[1].x();
-    ends_[3] = spline.control[1].y();
-    curve_.reset();
-  }
+  line_knots_ = hold_spline(std::move(spline), ends_, &curve_);
 }
 
 }  // namespace host

@@ -225,9 +225,7 @@ void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int heigh
   stroke_group(cr, f, job.tab_paths_mm, 2 * job.cutter_radius_mm * s, kTab, band);
   draw_holes(cr, job, f);
   if (!in.simulated.empty()) {
-    std::vector<std::vector<Point2>> down;
-    for (const ToolPathSegment& seg : in.simulated)
-      if (seg.pen_down) down.push_back(seg.points_mm);
+    const std::vector<std::vector<Point2>> down = pen_down_pieces(in.simulated);
     stroke_group(cr, f, down, 0.5, kSimulated, band);
   }
   draw_gaps(cr, job, f);

@@ -8,15 +8,16 @@
 #include <vector>  // std::vector
 
 #include "host/lib/pcb/board_job.h"
-#include "host/lib/plot/plot.h"  // ToolPathSegment
+#include "host/lib/plan/pen_path.h"
+#include "host/lib/plot/plot.h"  // PlotFrame
 
 namespace host {
 
 struct BoardPlotInput {
   std::string title;
   const pcb::BoardJob* job = nullptr;
-  std::vector<ToolPathSegment> simulated;  // machine frame; empty: not drawn
-  int width_px = 1400;                     // the height follows the board's aspect
+  PenPath simulated;    // machine frame; empty: not drawn
+  int width_px = 1400;  // the height follows the board's aspect
 };
 
 // How machine mm map to pixels in the plot, and its height for the given width.

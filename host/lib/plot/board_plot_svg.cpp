@@ -160,9 +160,7 @@ std::string board_plot_svg(const BoardPlotInput& in, const PlotFrame& f, int hei
   stroke_group(svg, f, job.tab_paths_mm, 2 * job.cutter_radius_mm * s, kTab);
   holes(svg, job, f);
   if (!in.simulated.empty()) {
-    std::vector<std::vector<Point2>> down;
-    for (const ToolPathSegment& seg : in.simulated)
-      if (seg.pen_down) down.push_back(seg.points_mm);
+    const std::vector<std::vector<Point2>> down = pen_down_pieces(in.simulated);
     stroke_group(svg, f, down, 0.5, kSimulated);
   }
   gaps(svg, job, f);

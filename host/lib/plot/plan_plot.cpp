@@ -13,21 +13,16 @@ PlotInput plot_input_from_plan(const JobPlan& plan, const std::string& title, do
   for (const PlannedCurve& c : plan.curves) {
     BSpline s = c.spline();
     const bool straight = s.degree == 1 && s.weights.empty();
-    in.drawing_curves_mm.push_back(straight ? std::move(s.control) : sample(s, tol_mm));
+    in.drawing_curves_mm.push_back(straight ? s.control : sample(s, tol_mm));
   }
   if (!with_planned_path) return in;
   Point2 at(0, 0);
-  // Appends the move's points to the current segment, starting a new one when the pen state
-  // changes.
+  // A move starts where the last one ended: with a new pen state, from there.
   walk_tool_path(plan, tol_mm, [&](const ToolMove& m) {
     for (const Point2& p : m.points_mm) {
-      if (in.tool_path.empty() || in.tool_path.back().pen_down != m.pen_down) {
-        ToolPathSegment s;
-        s.pen_down = m.pen_down;
-        s.points_mm.push_back(at);
-        in.tool_path.push_back(s);
-      }
-      in.tool_path.back().points_mm.push_back(p);
+      const size_t n = in.tool_path.size();
+      if (n == 0 || in.tool_path.pen_down(n - 1) != m.pen_down) in.tool_path.add(at, m.pen_down);
+      in.tool_path.add(p, m.pen_down);
       at = p;
     }
   });

@@ -196,12 +196,10 @@ void add_svg_text(const std::string& path, const PlotInput& in) {
 
 PlotFrame plot_frame(const PlotInput& in) {
   Extents e;
-  for (const auto& c : in.drawing_curves_mm) {
+  in.drawing_curves_mm.each([&e](const std::vector<Point2>& c) {
     for (const Point2& p : c) e.add(p);
-  }
-  for (const ToolPathSegment& s : in.tool_path) {
-    for (const Point2& p : s.points_mm) e.add(p);
-  }
+  });
+  for (size_t i = 0; i < in.tool_path.size(); ++i) e.add(in.tool_path.point(i));
   if (e.empty()) e.add(Point2(0, 0));
   const double w = std::max(e.width(), 1e-3), h = std::max(e.height(), 1e-3);
   const double area_w = in.width_px - 2 * kSideMarginPx;

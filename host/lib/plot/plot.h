@@ -9,20 +9,16 @@
 #include <vector>     // std::vector
 
 #include "host/lib/drawing/bspline.h"
+#include "host/lib/plan/pen_path.h"
+#include "host/lib/plot/polylines.h"
 
 namespace host {
 
-// A piece of tool path: consecutive positions (mm) with the pen up or down throughout.
-struct ToolPathSegment {
-  std::vector<Point2> points_mm;
-  bool pen_down = false;
-};
-
 struct PlotInput {
   std::string title;
-  std::vector<std::vector<Point2>> drawing_curves_mm;  // each curve sampled as a polyline
-  std::vector<ToolPathSegment> tool_path;
-  int width_px = 1000;  // PNG size in pixels (SVG: the same numbers in points)
+  Polylines drawing_curves_mm;  // each curve sampled as a polyline
+  PenPath tool_path;            // pen down solid, pen up dashed
+  int width_px = 1000;          // PNG size in pixels (SVG: the same numbers in points)
   int height_px = 750;
 };
 

@@ -41,14 +41,14 @@ struct Layer {
 inline std::vector<Layer> layers(const PlotInput& in) {
   auto tool = [&in](bool down) {
     return [&in, down](const std::function<void(const std::vector<Point2>&)>& fn) {
-      for (const ToolPathSegment& s : in.tool_path) {
-        if (s.pen_down == down) fn(s.points_mm);
-      }
+      in.tool_path.each_piece([&fn, down](const std::vector<Point2>& piece, bool d) {
+        if (d == down) fn(piece);
+      });
     };
   };
   return {Layer{kDrawingColour, kDrawingWidthPx, false,
                 [&in](const std::function<void(const std::vector<Point2>&)>& fn) {
-                  for (const auto& c : in.drawing_curves_mm) fn(c);
+                  in.drawing_curves_mm.each(fn);
                 }},
           Layer{kRapidColour, kRapidWidthPx, true, tool(false)},
           Layer{kCutColour, kCutWidthPx, false, tool(true)}};

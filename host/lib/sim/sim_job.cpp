@@ -173,6 +173,7 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options) {
   meter.finish();
   machine.set_sample_sink(nullptr);
   r.trace = std::move(meter.kept());
+  r.plot_path = std::move(meter.path());
   r.trace_samples = meter.samples();
   r.trace_step_mm = meter.keep_step_mm();
   r.cut_mm = meter.cut_mm();

@@ -10,6 +10,7 @@
 #include <vector>      // std::vector
 
 #include "host/lib/plan/job_plan.h"
+#include "host/lib/plan/pen_path.h"
 #include "host/lib/sim/sim_machine.h"
 #include "host/lib/stream/job_encoder.h"
 #include "host/lib/stream/sender.h"
@@ -25,11 +26,12 @@ struct SimJobOptions {
   // as the CPU allows and the run is the same every time. true: the machine serves a
   // loopback TCP port from a thread (SimServer), as `engraver sim` does.
   bool over_tcp = false;
-  // The trace kept in the result: every sample (0) or thinned to this step in mm (plots).
-  // The measurements always use every sample.
+  // What the result keeps of the tool path: every sample (0: SimJobResult::trace) or a
+  // plot's path thinned to this step in mm (SimJobResult::plot_path). The measurements
+  // always use every sample.
   double trace_step_mm = 0.0;
-  // With a step: at most about this many samples are kept (32 bytes each); a longer job's
-  // trace gets a coarser step (SimJobResult::trace_step_mm) instead of more memory.
+  // With a step: the plot path keeps at most about this many positions (8 bytes each); a
+  // longer job's gets a coarser step (SimJobResult::trace_step_mm) instead of more memory.
   size_t trace_max_samples = size_t{1} << 20;
   // Wraps the sender's link (tests put a noisy or dropping link here).
   std::function<std::unique_ptr<Link>(std::unique_ptr<Link>)> wrap_link;
@@ -64,9 +66,10 @@ struct SimJobResult {
   uint64_t virtual_ms = 0;            // machine time simulated
   double wall_s = 0;                  // real time it took
   double cpu_s = 0;                   // processor time this thread used for it (load-independent)
-  std::vector<ToolSample> trace;      // tool positions (machine frame, mm), see trace_step_mm
+  std::vector<ToolSample> trace;      // every tool position (machine frame, mm); step 0 only
+  PenPath plot_path;                  // the path thinned for a plot (machine frame); a step only
   size_t trace_samples = 0;           // samples measured (before thinning)
-  double trace_step_mm = 0;           // step the trace was thinned to at the end
+  double trace_step_mm = 0;           // step the plot path was thinned to at the end
   double motion_s = 0;                // from the first to the last tool movement
   double cut_s = 0;                   // pen down and moving in X/Y
   double cut_mm = 0, rapid_mm = 0;    // tool path lengths from the trace (pen down / up)

@@ -40,45 +40,19 @@ TraceMeter::TraceMeter(const JobPlan& plan, double keep_step_mm, size_t max_kept
 
 TraceMeter::~TraceMeter() = default;
 
-void TraceMeter::keep(const ToolSample& s, bool down) {
-  kept_.push_back(s);
-  kept_down_ = down;
-  if (max_kept_ > 0 && step_mm_ > 0 && kept_.size() >= max_kept_) coarsen();
+void TraceMeter::take(const ToolSample& s, bool down) {
+  path_.add(Point2(s.x_mm, s.y_mm), down);
+  if (max_kept_ > 0 && path_.size() >= max_kept_) coarsen();
 }
 
 void TraceMeter::coarsen() {
-  // Pen state of each kept sample, found as add() found it (pen changes are all kept).
-  std::vector<bool> down(kept_.size());
-  bool lifted = false;
-  for (size_t i = 0; i < kept_.size(); ++i) {
-    if (kept_[i].z_mm >= pen_mm_) lifted = true;
-    down[i] = lifted && kept_[i].z_mm < pen_mm_;
-  }
-  // Beyond a metre every sample but the ends and the pen changes is gone: stop there.
-  while (kept_.size() > max_kept_ / 2 && step_mm_ < 1000.0) {
+  // Beyond a metre every position but the ends and the pen changes is gone: stop there.
+  while (path_.size() > max_kept_ / 2 && step_mm_ < 1000.0) {
     step_mm_ *= 2;
-    size_t out = 0;
-    const size_t n = kept_.size();
-    for (size_t i = 0; i < n; ++i) {
-      // Keep the ends (the last is prev_ when prev_kept_), both sides of every pen change,
-      // and a sample a step away from the last kept one.
-      bool keep_it = i == 0 || i + 1 == n || down[i] != down[i - 1] || down[i] != down[i + 1];
-      if (!keep_it) {
-        const ToolSample& k = kept_[out - 1];
-        keep_it = std::abs(kept_[i].x_mm - k.x_mm) >= step_mm_ ||
-                  std::abs(kept_[i].y_mm - k.y_mm) >= step_mm_;
-      }
-      if (keep_it) {
-        kept_[out] = kept_[i];
-        down[out] = down[i];
-        ++out;
-      }
-    }
-    kept_.resize(out);
-    down.resize(out);
+    path_.thin(step_mm_);
   }
   // Pen changes alone may fill the budget: let it grow with them, not re-thin every sample.
-  max_kept_ = std::max(max_kept_, 2 * kept_.size());
+  max_kept_ = std::max(max_kept_, 2 * path_.size());
 }
 
 void TraceMeter::add(const ToolSample& b) {
@@ -104,27 +78,28 @@ void TraceMeter::add(const ToolSample& b) {
       }
     }
   }
-  // Thinning: keep the first sample, both sides of every pen change, and every sample a step
-  // away from the previous kept one.
-  bool keep_it = kept_.empty() || step_mm_ <= 0;
-  if (!keep_it && down != kept_down_) {
-    if (!prev_kept_ && have_prev_) keep(prev_, prev_down_);
-    keep_it = true;
+  if (step_mm_ <= 0) {
+    kept_.push_back(b);
+  } else {
+    // The plot path takes the first sample, the first of each pen state, and every sample a
+    // step away from the last one taken (a piece ends where the next begins: pen_path.h).
+    const size_t n = path_.size();
+    bool take_it = n == 0 || down != path_.pen_down(n - 1);
+    if (!take_it) {
+      const Point2 k = path_.point(n - 1);
+      take_it = std::abs(b.x_mm - k.x()) >= step_mm_ || std::abs(b.y_mm - k.y()) >= step_mm_;
+    }
+    if (take_it) take(b, down);
+    prev_taken_ = take_it;
   }
-  if (!keep_it) {
-    const ToolSample& k = kept_.back();
-    keep_it = std::abs(b.x_mm - k.x_mm) >= step_mm_ || std::abs(b.y_mm - k.y_mm) >= step_mm_;
-  }
-  if (keep_it) keep(b, down);
-  prev_kept_ = keep_it;
   prev_ = b;
   prev_down_ = down;
   have_prev_ = true;
 }
 
 void TraceMeter::finish() {
-  if (have_prev_ && !prev_kept_) keep(prev_, prev_down_);
-  prev_kept_ = true;
+  if (step_mm_ > 0 && have_prev_ && !prev_taken_) take(prev_, prev_down_);
+  prev_taken_ = true;
 }
 
 }  // namespace host::sim

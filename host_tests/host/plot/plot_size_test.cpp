@@ -33,13 +33,10 @@ TEST_F(PlotSize, DenseLongPathIsThinnedToThePixelGrid) {
   // can show is about the circle's 560-pixel circumference, not a million vertices.
   PlotInput in;
   in.title = "dense";
-  ToolPathSegment s;
-  s.pen_down = true;
   for (int i = 0; i <= 1000000; ++i) {
     const double a = 2 * M_PI * i / 1000000;
-    s.points_mm.emplace_back(30 + 30 * std::cos(a), 30 + 30 * std::sin(a));
+    in.tool_path.add(Point2(30 + 30 * std::cos(a), 30 + 30 * std::sin(a)), true);
   }
-  in.tool_path.push_back(s);
   in.drawing_curves_mm.push_back({{0, 0}, {60, 60}});
   write_plot(in, svg_, png_);
   const std::string svg = read_all(svg_);

@@ -19,20 +19,17 @@
 namespace host {
 namespace {
 
-// A 100 x 50 mm rectangle drawn, a pen-down path along its bottom edge and a pen-up move
-// up its left edge.
+// A 100 x 50 mm rectangle drawn, a pen-up move down its left edge and a pen-down path along
+// its bottom edge.
 PlotInput rectangle_input() {
   PlotInput in;
   in.title = "rectangle test";
   in.width_px = 800;
   in.height_px = 600;
   in.drawing_curves_mm.push_back({{0, 0}, {100, 0}, {100, 50}, {0, 50}, {0, 0}});
-  ToolPathSegment down;
-  down.pen_down = true;
-  down.points_mm = {{0, 0}, {100, 0}};
-  ToolPathSegment up;
-  up.points_mm = {{0, 0}, {0, 50}};
-  in.tool_path = {down, up};
+  in.tool_path.add({0, 50}, false);
+  in.tool_path.add({0, 0}, true);  // the pen-up piece ends where the cut begins
+  in.tool_path.add({100, 0}, true);
   return in;
 }
 
@@ -222,7 +219,7 @@ TEST_F(Plot, PlanPlotHasOneDashedMovePerPenLiftPlusTheWayHome) {
   const JobPlan p = plan_job(d, PlanOptions());
   const PlotInput in = plot_input_from_plan(p, "plan");
   int up = 0, down = 0;
-  for (const ToolPathSegment& s : in.tool_path) (s.pen_down ? down : up) += 1;
+  in.tool_path.each_piece([&](const std::vector<Point2>&, bool d) { (d ? down : up) += 1; });
   EXPECT_EQ(down, 2);
   EXPECT_EQ(up, 3);  // to the first curve, between the curves, home
   EXPECT_EQ(in.drawing_curves_mm.size(), 2u);

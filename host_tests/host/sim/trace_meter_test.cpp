@@ -1,5 +1,5 @@
-// The trace meter's kept path: thinned to its step, bounded by its sample budget (the step
-// doubles instead), with every pen change kept and the measurements taken on every sample.
+// The trace meter's plot path: thinned to its step, bounded by its budget (the step doubles
+// instead), with every pen change kept and the measurements taken on every sample.
 #include "host/lib/sim/trace_meter.h"
 
 #include "host/lib/sim/sim_job.h"  // pen_threshold_mm
@@ -40,13 +40,20 @@ int pen_changes(const std::vector<ToolSample>& path) {
   return n;
 }
 
+int pen_changes(const PenPath& path) {
+  int n = 0;
+  for (size_t i = 1; i < path.size(); ++i) n += path.pen_down(i) != path.pen_down(i - 1);
+  return n;
+}
+
 TEST(TraceMeter, ALongCutKeepsAtMostItsBudgetWithACoarserStep) {
   TraceMeter m(pen_heights_plan(), 0.01, 1000);
   m.add(at(0, 0, 0, 2.0));
   const int n = 200000;  // 200 mm of cut at 1 um per sample
   for (int i = 0; i <= n; ++i) m.add(at(1 + i, i * 0.001, 0, -0.1));
   m.finish();
-  const std::vector<ToolSample>& kept = m.kept();
+  const PenPath& kept = m.path();
+  EXPECT_TRUE(m.kept().empty());  // every sample only without a step
   EXPECT_LE(kept.size(), 1000u);
   EXPECT_GE(kept.size(), 250u);  // coarsened only as far as needed
   // The step doubled from 0.01 mm, and the kept samples are that far apart but for the
@@ -57,11 +64,12 @@ TEST(TraceMeter, ALongCutKeepsAtMostItsBudgetWithACoarserStep) {
   EXPECT_DOUBLE_EQ(std::exp2(doublings), step / 0.01);
   int short_gaps = 0;
   for (size_t i = 2; i + 1 < kept.size(); ++i)
-    short_gaps += kept[i].x_mm - kept[i - 1].x_mm < step - 1e-9;
+    short_gaps += kept.point(i).x() - kept.point(i - 1).x() < step - 1e-5;  // float mm
   EXPECT_LE(short_gaps, doublings);
   // Ends kept; the length is measured on every sample, not on the kept ones.
-  EXPECT_EQ(kept.front().x_mm, 0.0);
-  EXPECT_DOUBLE_EQ(kept.back().x_mm, n * 0.001);
+  EXPECT_EQ(kept.point(0).x(), 0.0);
+  EXPECT_FLOAT_EQ(kept.point(kept.size() - 1).x(), n * 0.001);
+  EXPECT_TRUE(kept.pen_down(kept.size() - 1));
   EXPECT_NEAR(m.cut_mm(), n * 0.001, 1e-6);
   EXPECT_EQ(m.samples(), static_cast<size_t>(n + 2));
 }
@@ -73,8 +81,8 @@ TEST(TraceMeter, WithoutABudgetEverySampleAStepApartIsKept) {
   m.finish();
   EXPECT_DOUBLE_EQ(m.keep_step_mm(), 0.01);
   // 20 mm at 0.01 mm (0.011 where rounding makes the tenth sample fall just short).
-  EXPECT_GE(m.kept().size(), 1800u);
-  EXPECT_LE(m.kept().size(), 2002u);
+  EXPECT_GE(m.path().size(), 1800u);
+  EXPECT_LE(m.path().size(), 2002u);
 }
 
 TEST(TraceMeter, CoarseningNeverDropsAPenChange) {
@@ -96,15 +104,24 @@ TEST(TraceMeter, CoarseningNeverDropsAPenChange) {
     add(at(t++, 1.0, y, 2.0));
   }
   m.finish();
-  const std::vector<ToolSample>& kept = m.kept();
+  const PenPath& kept = m.path();
   EXPECT_EQ(pen_changes(kept), pen_changes(all));
   EXPECT_EQ(pen_changes(all), 800);
   EXPECT_LT(kept.size(), all.size() / 10);
-  // Every stroke still starts and ends where it did.
-  for (size_t i = 1; i < kept.size(); ++i) {
-    if (is_down(kept[i]) && !is_down(kept[i - 1])) EXPECT_EQ(kept[i].x_mm, 0.0);
-    if (!is_down(kept[i]) && is_down(kept[i - 1])) EXPECT_EQ(kept[i - 1].x_mm, 1.0);
-  }
+  // Every stroke still starts and ends where it did: a cut piece runs from its plunge to the
+  // lift (the first pen-up position), and the travel to the next plunge.
+  int strokes = 0;
+  kept.each_piece([&](const std::vector<Point2>& piece, bool down) {
+    if (!down) return;
+    EXPECT_EQ(piece.front().x(), 0.0);
+    EXPECT_FLOAT_EQ(piece.back().x(), 1.0);
+    EXPECT_FLOAT_EQ(piece.back().y(), piece.front().y());
+    ++strokes;
+  });
+  EXPECT_EQ(strokes, 400);
+  // Two positions a stroke are all a pen change needs (the last pen-down sample before a
+  // lift is where the lift is): fewer than four.
+  EXPECT_LT(kept.size(), 4u * 400);
 }
 
 // A board's drilling travels from hole to hole at the drill start height (+0.5 mm), far
