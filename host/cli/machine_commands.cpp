@@ -499,7 +499,8 @@ void add_link_options(CLI::App* cmd, std::string* to, bool* no_zero) {
   cmd->add_option(
          "--to", *to,
          "tcp://HOST:PORT, the port always given, in decimal (0080 is 80; an XPort listens "
-         "on 10001 unless set up otherwise) or serial:DEVICE[,BAUD]")
+         "on 10001 unless set up otherwise; IPv6 in brackets: tcp://[::1]:10001) or "
+         "serial:DEVICE[,BAUD]")
       ->required()
       ->check(link_address);
   cmd->add_flag("--no-zero", *no_zero, "do not start manual zeroing if not zeroed");
@@ -567,8 +568,9 @@ void add_sim_command(CLI::App& app) {
   auto sim_args = std::make_shared<SimArgs>();
   CLI::App* sim = app.add_subcommand("sim", "run the simulated machine on a TCP port");
   sim->add_option("--listen", sim_args->listen,
-                  "ADDR:PORT (loopback by default; PORT in decimal, 080 is 80, 0 any free port), "
-                  "or serial:DEVICE (a tty or a pty)")
+                  "ADDR:PORT (loopback by default; a numeric address, IPv6 in brackets: "
+                  "[::1]:10001; PORT in decimal, 080 is 80, 0 any free port), or serial:DEVICE "
+                  "(a tty or a pty)")
       ->capture_default_str();
   sim->add_flag("--realtime", sim_args->realtime, "machine time always follows the wall clock");
   sim->add_option("--trace", sim_args->trace,

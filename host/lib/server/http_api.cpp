@@ -7,6 +7,7 @@
 #include "host/lib/server/map_source.h"
 #include "host/lib/server/run_archive.h"
 #include "host/lib/server/upload_numbers.h"
+#include "host/lib/stream/host_port.h"  // host_port_text: [::1]:8080
 
 #include <fmt/format.h>  // fmt::format
 #include <httplib.h>     // httplib::Server
@@ -473,8 +474,8 @@ int HttpApi::bind() {
   }
   if (port <= 0) {
     throw std::runtime_error(
-        fmt::format("cannot listen on {}:{} (in use or not an address of this PC)",
-                    options_.address, options_.port));
+        fmt::format("cannot listen on {} (in use or not an address of this PC)",
+                    host_port_text(options_.address, options_.port)));
   }
   widen_backlog(port);
   hosts_.set_port(port);

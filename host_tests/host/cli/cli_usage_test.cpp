@@ -36,7 +36,7 @@ TEST(CliUsage, AMalformedLinkAddressIsABadCommandLineBeforePlanning) {
   expect_usage_error("send " + kWord + " --to 127.0.0.1:47199",
                      "--to: link '127.0.0.1:47199': unknown kind");
   expect_usage_error("send " + kWord + " --to tcp://127.0.0.1:99999",
-                     "--to: link 'tcp://127.0.0.1:99999': port 99999 outside 1..65535");
+                     "--to: link 'tcp://127.0.0.1:99999': the port must be 1 .. 65535");
   expect_usage_error("send " + kWord + " --to tcp://127.0.0.1:47801:5",
                      "--to: link 'tcp://127.0.0.1:47801:5': '127.0.0.1:47801' is not a host name "
                      "or address");
@@ -47,7 +47,8 @@ TEST(CliUsage, TheSimulatorsPortAndPauseConfirmAreChecked) {
   expect_usage_error("sim --listen 127.0.0.1:99999",
                      "--listen: '127.0.0.1:99999': the port must be 0 .. 65535");
   expect_usage_error("sim --listen localhost:47857",
-                     "--listen: 'localhost:47857': listen address 'localhost': ");
+                     "--listen: 'localhost:47857': listen address 'localhost' is not a numeric "
+                     "address");
   expect_usage_error("sim --listen :47850",
                      "--listen: ':47850': no address before the port (e.g. 127.0.0.1:47850");
   expect_usage_error("sim --listen 127.0.0.1:000000099999",
