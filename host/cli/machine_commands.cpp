@@ -240,12 +240,13 @@ void run_send(const SendArgs& a) {
   const std::string probe_map_path =
       a.map.height_map.empty() ? default_map_path(".", input_name(a.plan.file)) : a.map.height_map;
   if (a.map.probe) check_map_writable(probe_map_path);  // before anything moves
-  const LinkSpec spec = parse_link_spec(a.to);          // LinkError -> usage error below
+  o.encode = encode_options(a.plan);
+  if (o.resume_at) commands::check_resume_at(plan, o.encode, *o.resume_at);  // before the link
+  const LinkSpec spec = parse_link_spec(a.to);  // LinkError -> usage error below
   std::unique_ptr<Link> link = open_link(spec, std::chrono::milliseconds(5000));
   o.file = a.plan.file;
   o.sender.zero_first = !a.no_zero;
   o.sender.status_interval = std::chrono::milliseconds(a.poll_ms);
-  o.encode = encode_options(a.plan);
   if (a.map.probe) {
     o.probe = [&, path = probe_map_path](Sender& sender) {
       heightmap::HeightMap map =
@@ -533,7 +534,8 @@ void add_send_command(CLI::App& app) {
                  "alarm); give the same file and plan options as the first send");
   send->add_option("--resume-at", send_args->resume_at,
                    "INDEX[:POINT]: continue from job command INDEX (curve point POINT), e.g. "
-                   "after a controller restart, from the last progress line's 'job' figures")
+                   "after a controller restart, from the last progress line's 'job' figures "
+                   "(digits only; checked against the planned job before the link is opened)")
       ->excludes("--resume");
   send->footer(
       "Example: engraver send board.dxf --to tcp://192.168.1.50:10001 --feed 8\n"

@@ -69,6 +69,19 @@ TEST(CliUsage, ABadResumePositionNamesTheOptionLikeEveryOther) {
   }
 }
 
+// An index beyond the job was refused only after connecting (exit 1, "the job has no such
+// command"): now on the plan, before the link (nothing listens on port 9), with the count.
+TEST(CliUsage, AResumeIndexBeyondTheJobIsRefusedBeforeTheLinkWithTheJobsCount) {
+  const ToolRun r = engraver("send " + kWord + " --to tcp://127.0.0.1:9 --resume-at 100000");
+  EXPECT_EQ(r.code, 2) << r.err;
+  // The last line (a slow plan prints its progress first).
+  const std::string says =
+      "engraver: --resume-at: '100000': this job has 72 job commands (INDEX 0 .. 71) of its 111 "
+      "commands; a progress line's 'job 72' means the job had finished\n";
+  ASSERT_GE(r.err.size(), says.size()) << r.err;
+  EXPECT_EQ(r.err.substr(r.err.size() - says.size()), says) << r.err;
+}
+
 // serve's --poll-ms had a check of its own beside the option table's: its help gave two
 // ranges ("INT:in [0 .. 1000] ms:INT in [1 - 1000]") and 0, which send takes, was refused.
 TEST(CliUsage, ServesPollIntervalHasTheOneRangeOfTheOptionTable) {
