@@ -295,8 +295,9 @@ void run_probe(const ProbeArgs& a) {
   SenderOptions so;
   so.zero_first = !a.no_zero;
   Sender sender(*link, so);
-  signals_to(&sender);
   sender.open_session();
+  if (a.no_zero) commands::refuse_unzeroed_machine(sender, "probe");
+  signals_to(&sender);
   std::cerr << fmt::format(
       "engraver: probing the blank under {} through {}: the probe clip on the blank, the "
       "spindle off\n",
@@ -504,7 +505,9 @@ void add_link_options(CLI::App* cmd, std::string* to, bool* no_zero) {
          "serial:DEVICE[,BAUD]")
       ->required()
       ->check(link_address);
-  cmd->add_flag("--no-zero", *no_zero, "do not start manual zeroing if not zeroed");
+  cmd->add_flag("--no-zero", *no_zero,
+                "do not start manual zeroing: a machine that is not zeroed is refused (exit 1) "
+                "before anything is sent");
 }
 
 // Runs the command with its arguments; a link that fails ends it with kExitLinkLost.
@@ -560,7 +563,8 @@ void add_probe_command(CLI::App& app) {
       "Example: engraver probe board/ --to tcp://192.168.1.50:10001 --height-map board.map.json\n"
       "then: engraver send board/ --to ... --height-map board.map.json\n"
       "Exit: 0 map written, 1 probing refused (a point disagreeing with its neighbours, two "
-      "touches apart, heights spanning more than 1 mm), 2 bad input or options, 5 the "
+      "touches apart, heights spanning more than 1 mm; --no-zero and the machine not zeroed), 2 "
+      "bad input or options, 5 the "
       "controller refused the probe (no contact, spindle on, probe closed) or Ctrl-C/SIGTERM "
       "stopped a touch (the tool is raised), 6 link lost.");
   callback_ending_on_link_errors(probe, probe_args, run_probe);

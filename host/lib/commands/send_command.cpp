@@ -81,6 +81,16 @@ void check_resume_at(const JobPlan& plan, const EncodeOptions& encode, const Res
   }
 }
 
+void refuse_unzeroed_machine(Sender& sender, const std::string& command) {
+  if (sender.read_status().flags & proto::kStatusZeroed) return;
+  throw CommandFailure(
+      kExitJobFailed,
+      fmt::format("the machine is not zeroed and --no-zero does not start manual zeroing: "
+                  "nothing was sent (without --no-zero, {} starts it: jog to the corner with "
+                  "the joystick and press confirm)",
+                  command));
+}
+
 namespace {
 
 // Where the controller's stopped job goes on: the resume point from its status or the
@@ -156,6 +166,7 @@ SendResult send_job(Link& link, const JobPlan& plan, const SendOptions& o, std::
   Sender sender(link, o.sender);
   const ControlsAttached controls(o, &sender);
   const proto::SessionReply caps = sender.open_session();
+  if (!o.sender.zero_first) refuse_unzeroed_machine(sender, "send");  // before probe or resume
   EncodeOptions enc = o.encode;
   use_session(caps, &enc);
   enc.controller = &caps;

@@ -35,6 +35,11 @@ ResumeAt parse_resume_at(const std::string& text);
 // at.point: checked on the plan before a link is opened, not after connecting.
 void check_resume_at(const JobPlan& plan, const EncodeOptions& encode, const ResumeAt& at);
 
+// --no-zero: a machine that is not zeroed (its status says so, flags bit1) is refused with
+// exit 1 (CommandFailure) before anything is sent: its first move would be refused anyway,
+// after the set-up had gone out. `command` names the command in the message ("send").
+void refuse_unzeroed_machine(Sender& sender, const std::string& command);
+
 struct SendOptions {
   std::string file;                   // named in the log
   SenderOptions sender;               // zeroing, status interval

@@ -173,6 +173,40 @@ TEST(SendCommand, ResumeOnAControllerThatRanNoJobIsRefusedWithoutStreaming) {
   EXPECT_EQ(attached, (std::vector<bool>{true, false}));  // detached on the way out too
 }
 
+// An outside tester's send --no-zero to a fresh simulator streamed the set-up and ended with
+// exit 5 at the first move ("machine not zeroed"): the status says so before anything goes.
+TEST(SendCommand, NoZeroRefusesAMachineThatIsNotZeroedBeforeSendingAnything) {
+  sim::SimMachine machine{sim::SimOptions{}};
+  sim::SimLink link(machine);
+  SendOptions o = lockstep_send(machine);
+  o.sender.zero_first = false;  // --no-zero
+  std::ostringstream log;
+  try {
+    send_job(link, two_lines(), o, log);
+    FAIL() << "sent to a machine that is not zeroed\n" << log.str();
+  } catch (const CommandFailure& e) {
+    EXPECT_EQ(e.code, kExitJobFailed);
+    EXPECT_STREQ(e.what(),
+                 "the machine is not zeroed and --no-zero does not start manual zeroing: nothing "
+                 "was sent (without --no-zero, send starts it: jog to the corner with the "
+                 "joystick and press confirm)");
+  }
+  // Nothing of the job reached the controller: no job mark (#J) was stored.
+  Sender check(link, o.sender);
+  check.open_session();
+  EXPECT_EQ(check.read_status().flags & proto::kStatusJob, 0);
+}
+
+TEST(SendCommand, NoZeroSendsToAZeroedMachine) {
+  sim::SimMachine machine{sim::SimOptions{}};
+  sim::SimLink link(machine);
+  SendOptions o = lockstep_send(machine);
+  std::ostringstream log;
+  ASSERT_EQ(send_job(link, two_lines(), o, log).outcome, JobOutcome::kCompleted) << log.str();
+  o.sender.zero_first = false;  // zeroed by the first job's manual zeroing
+  EXPECT_EQ(send_job(link, two_lines(), o, log).outcome, JobOutcome::kCompleted) << log.str();
+}
+
 TEST(SendCommand, HoldsOnlyTheSendersWindowWhateverTheJobsLength) {
   // 600 lines: ~2 400 commands; send keeps what is in flight and the 128 before it.
   sim::SimMachine machine{sim::SimOptions{}};
