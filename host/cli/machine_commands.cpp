@@ -463,24 +463,27 @@ void run_run(const RunArgs& a) {
       throw CommandFailure(e.code, fmt::format("probing stopped: {} ({})", lifted, e.what()));
     }
   }();
-  if (!lifted.empty()) {  // stopped by Ctrl-C: what was done, nothing planned on a half job
-    const std::string stopped = fmt::format(
-        "run stopped: {}; {}; no plot or report (a run starts afresh: nothing to resume)",
-        r.sim.message, lifted);
-    try {
-      commands::refuse_failed_run(o, r);
-    } catch (const CommandFailure& e) {
-      throw CommandFailure(e.code, stopped);  // the last line says how the run ended, once
-    }
-    std::cerr << "engraver: " << stopped << "\n";
+  // Stopped by a signal (Ctrl-C, SIGTERM) before the job ended: the figures so far are
+  // written, marked stopped; half a job is not checked for copper it left uncut.
+  const bool stopped = !lifted.empty() && r.sim.outcome != JobOutcome::kCompleted;
+  if (!lifted.empty() && !stopped) {
+    std::cerr << "engraver: run stopped: " << r.sim.message << "; " << lifted << "\n";
   }
   commands::write_run_plots(plan, o, &r);
-  commands::check_run(o, &r);
+  if (!stopped) commands::check_run(o, &r);
   nlohmann::json report = commands::run_report_json(plan, o, r);
+  if (stopped) report["stopped"] = true;
   if (r.depth) report["depth_of_cut"] = depth_report_json(*r.depth, r.map.has_value());
   commands::write_run_report(report, r);
   std::cout << commands::run_report_text(plan, o, r);
   if (r.depth) std::cout << depth_report_text(*r.depth, r.map.has_value());
+  if (stopped) {  // the last line says how the run ended, once
+    throw CommandFailure(
+        commands::exit_code_of(r.sim.outcome),
+        fmt::format("run stopped: {}; {}; the plot and the report ({}.json, \"stopped\": true) "
+                    "show the job so far (a run starts afresh: nothing to resume)",
+                    r.sim.message, lifted, r.base));
+  }
   commands::refuse_failed_run(o, r);
 }
 
@@ -638,7 +641,8 @@ void add_run_command(CLI::App& app) {
       "Example: engraver run samples/engraver-word.dxf -o out\n"
       "Progress on stderr (a bar on a terminal, a line every 5 s otherwise).\n"
       "Ctrl-C or SIGTERM stops the simulated machine (#X) and raises the tool (exit 3; while "
-      "--probe touches, exit 5 as probe).\n"
+      "--probe touches, exit 5 as probe); a stopped job's plot and report show it so far, "
+      "the report marked \"stopped\": true.\n"
       "Exit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, 5 command refused by "
       "the controller or a touch stopped, 6 link lost, 7 stalled (no progress for 30 s of "
       "machine time), 8 a board job whose controller points or simulated path cut copper.");
