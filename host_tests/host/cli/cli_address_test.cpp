@@ -127,6 +127,22 @@ TEST(CliAddress, AnAddressThisPcCannotListenOnIsAUsageErrorForServeAsForSim) {
   std::system(("rm -rf " + data).c_str());
 }
 
+// A port another server listens on is refused (httplib's SO_REUSEPORT let a second server
+// bind it, and the two took turns at its requests).
+TEST(CliAddress, AServerRefusesAPortAnotherServerListensOn) {
+  const std::string dir = testing::TempDir() + "/cli_address_twice_" + std::to_string(getpid());
+  const std::string listen = "127.0.0.1:" + test_port(1);
+  const ToolRun r = shell(kExe + " serve --data " + dir + "/1 --listen " + listen +
+                          " 2>/dev/null & S=$!; sleep 1; timeout 10 " + kExe + " serve --data " +
+                          dir + "/2 --listen " + listen + "; r=$?; kill $S; wait $S; exit $r");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("engraver: --listen: '" + listen + "': cannot listen on " + listen +
+                       " (in use or not an address of this PC)\n"),
+            std::string::npos)
+      << r.err;
+  std::system(("rm -rf " + dir).c_str());
+}
+
 TEST(CliAddress, ServesHelpSaysWhatThePortIsAsSimsDoes) {
   for (const char* command : {"serve", "sim"}) {
     const ToolRun r = host_tests::run_tool(kExe, std::string(command) + " --help");
