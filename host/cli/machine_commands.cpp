@@ -240,12 +240,13 @@ void run_send(const SendArgs& a) {
   const std::string probe_map_path =
       a.map.height_map.empty() ? default_map_path(".", input_name(a.plan.file)) : a.map.height_map;
   if (a.map.probe) check_map_writable(probe_map_path);  // before anything moves
-  const LinkSpec spec = parse_link_spec(a.to);          // LinkError -> usage error below
+  o.encode = encode_options(a.plan);
+  if (o.resume_at) commands::check_resume_at(plan, o.encode, *o.resume_at);  // before the link
+  const LinkSpec spec = parse_link_spec(a.to);  // LinkError -> usage error below
   std::unique_ptr<Link> link = open_link(spec, std::chrono::milliseconds(5000));
   o.file = a.plan.file;
   o.sender.zero_first = !a.no_zero;
   o.sender.status_interval = std::chrono::milliseconds(a.poll_ms);
-  o.encode = encode_options(a.plan);
   if (a.map.probe) {
     o.probe = [&, path = probe_map_path](Sender& sender) {
       heightmap::HeightMap map =
@@ -294,8 +295,9 @@ void run_probe(const ProbeArgs& a) {
   SenderOptions so;
   so.zero_first = !a.no_zero;
   Sender sender(*link, so);
-  signals_to(&sender);
   sender.open_session();
+  if (a.no_zero) commands::refuse_unzeroed_machine(sender, "probe");
+  signals_to(&sender);
   std::cerr << fmt::format(
       "engraver: probing the blank under {} through {}: the probe clip on the blank, the "
       "spindle off\n",
@@ -461,24 +463,27 @@ void run_run(const RunArgs& a) {
       throw CommandFailure(e.code, fmt::format("probing stopped: {} ({})", lifted, e.what()));
     }
   }();
-  if (!lifted.empty()) {  // stopped by Ctrl-C: what was done, nothing planned on a half job
-    const std::string stopped = fmt::format(
-        "run stopped: {}; {}; no plot or report (a run starts afresh: nothing to resume)",
-        r.sim.message, lifted);
-    try {
-      commands::refuse_failed_run(o, r);
-    } catch (const CommandFailure& e) {
-      throw CommandFailure(e.code, stopped);  // the last line says how the run ended, once
-    }
-    std::cerr << "engraver: " << stopped << "\n";
+  // Stopped by a signal (Ctrl-C, SIGTERM) before the job ended: the figures so far are
+  // written, marked stopped; half a job is not checked for copper it left uncut.
+  const bool stopped = !lifted.empty() && r.sim.outcome != JobOutcome::kCompleted;
+  if (!lifted.empty() && !stopped) {
+    std::cerr << "engraver: run stopped: " << r.sim.message << "; " << lifted << "\n";
   }
   commands::write_run_plots(plan, o, &r);
-  commands::check_run(o, &r);
+  if (!stopped) commands::check_run(o, &r);
   nlohmann::json report = commands::run_report_json(plan, o, r);
+  if (stopped) report["stopped"] = true;
   if (r.depth) report["depth_of_cut"] = depth_report_json(*r.depth, r.map.has_value());
   commands::write_run_report(report, r);
   std::cout << commands::run_report_text(plan, o, r);
   if (r.depth) std::cout << depth_report_text(*r.depth, r.map.has_value());
+  if (stopped) {  // the last line says how the run ended, once
+    throw CommandFailure(
+        commands::exit_code_of(r.sim.outcome),
+        fmt::format("run stopped: {}; {}; the plot and the report ({}.json, \"stopped\": true) "
+                    "show the job so far (a run starts afresh: nothing to resume)",
+                    r.sim.message, lifted, r.base));
+  }
   commands::refuse_failed_run(o, r);
 }
 
@@ -499,10 +504,13 @@ void add_link_options(CLI::App* cmd, std::string* to, bool* no_zero) {
   cmd->add_option(
          "--to", *to,
          "tcp://HOST:PORT, the port always given, in decimal (0080 is 80; an XPort listens "
-         "on 10001 unless set up otherwise) or serial:DEVICE[,BAUD]")
+         "on 10001 unless set up otherwise; IPv6 in brackets: tcp://[::1]:10001) or "
+         "serial:DEVICE[,BAUD]")
       ->required()
       ->check(link_address);
-  cmd->add_flag("--no-zero", *no_zero, "do not start manual zeroing if not zeroed");
+  cmd->add_flag("--no-zero", *no_zero,
+                "do not start manual zeroing: a machine that is not zeroed is refused (exit 1) "
+                "before anything is sent");
 }
 
 // Runs the command with its arguments; a link that fails ends it with kExitLinkLost.
@@ -532,7 +540,8 @@ void add_send_command(CLI::App& app) {
                  "alarm); give the same file and plan options as the first send");
   send->add_option("--resume-at", send_args->resume_at,
                    "INDEX[:POINT]: continue from job command INDEX (curve point POINT), e.g. "
-                   "after a controller restart, from the last progress line's 'job' figures")
+                   "after a controller restart, from the last progress line's 'job' figures "
+                   "(digits only; checked against the planned job before the link is opened)")
       ->excludes("--resume");
   send->footer(
       "Example: engraver send board.dxf --to tcp://192.168.1.50:10001 --feed 8\n"
@@ -557,7 +566,8 @@ void add_probe_command(CLI::App& app) {
       "Example: engraver probe board/ --to tcp://192.168.1.50:10001 --height-map board.map.json\n"
       "then: engraver send board/ --to ... --height-map board.map.json\n"
       "Exit: 0 map written, 1 probing refused (a point disagreeing with its neighbours, two "
-      "touches apart, heights spanning more than 1 mm), 2 bad input or options, 5 the "
+      "touches apart, heights spanning more than 1 mm; --no-zero and the machine not zeroed), 2 "
+      "bad input or options, 5 the "
       "controller refused the probe (no contact, spindle on, probe closed) or Ctrl-C/SIGTERM "
       "stopped a touch (the tool is raised), 6 link lost.");
   callback_ending_on_link_errors(probe, probe_args, run_probe);
@@ -567,8 +577,9 @@ void add_sim_command(CLI::App& app) {
   auto sim_args = std::make_shared<SimArgs>();
   CLI::App* sim = app.add_subcommand("sim", "run the simulated machine on a TCP port");
   sim->add_option("--listen", sim_args->listen,
-                  "ADDR:PORT (loopback by default; PORT in decimal, 080 is 80, 0 any free port), "
-                  "or serial:DEVICE (a tty or a pty)")
+                  "ADDR:PORT (loopback by default; a numeric address, IPv6 in brackets: "
+                  "[::1]:10001; PORT in decimal, 080 is 80, 0 any free port), or serial:DEVICE "
+                  "(a tty or a pty)")
       ->capture_default_str();
   sim->add_flag("--realtime", sim_args->realtime, "machine time always follows the wall clock");
   sim->add_option("--trace", sim_args->trace,
@@ -630,7 +641,8 @@ void add_run_command(CLI::App& app) {
       "Example: engraver run samples/engraver-word.dxf -o out\n"
       "Progress on stderr (a bar on a terminal, a line every 5 s otherwise).\n"
       "Ctrl-C or SIGTERM stops the simulated machine (#X) and raises the tool (exit 3; while "
-      "--probe touches, exit 5 as probe).\n"
+      "--probe touches, exit 5 as probe); a stopped job's plot and report show it so far, "
+      "the report marked \"stopped\": true.\n"
       "Exit: 0 done, 1 job refused, 2 bad input, 3 aborted, 4 alarm, 5 command refused by "
       "the controller or a touch stopped, 6 link lost, 7 stalled (no progress for 30 s of "
       "machine time), 8 a board job whose controller points or simulated path cut copper.");

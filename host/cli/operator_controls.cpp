@@ -16,14 +16,23 @@ Sender* g_sender = nullptr;           // for the signal handlers (request_* set 
 std::atomic<bool>* g_stop = nullptr;  // for `sim`
 volatile sig_atomic_t g_abort_signalled = 0;
 
-extern "C" void on_signal(int sig) {
+// Who stopped the job, as its message says it: Ctrl-C at the terminal is the operator (the
+// terminal sends that SIGINT itself: SI_KERNEL); a signal from a process (kill, timeout, a
+// service manager) is not, and is named.
+const char* abort_cause(int sig, const siginfo_t* info) {
+  if (sig == SIGINT && info != nullptr && info->si_code == SI_KERNEL)
+    return "aborted by the operator (Ctrl-C)";
+  return sig == SIGINT ? "stopped by SIGINT" : "stopped by SIGTERM";
+}
+
+extern "C" void on_signal(int sig, siginfo_t* info, void*) {
   if (g_sender == nullptr) return;
   if (sig == SIGUSR1)
     g_sender->request_hold();
   else if (sig == SIGUSR2)
     g_sender->request_resume();
   else {
-    g_sender->request_abort();
+    g_sender->request_abort(abort_cause(sig, info));
     g_abort_signalled = 1;
   }
 }
@@ -41,7 +50,11 @@ void signals_to(Sender* sender) {
   for (int sig : {SIGINT, SIGTERM, SIGUSR1, SIGUSR2}) {
     // Without a sender: INT and TERM end the process, a hold or resume has nothing to act on.
     const bool stops = sig == SIGINT || sig == SIGTERM;
-    sa.sa_handler = sender != nullptr ? on_signal : stops ? SIG_DFL : SIG_IGN;
+    sa.sa_flags = sender != nullptr ? SA_SIGINFO : 0;  // on_signal tells Ctrl-C from kill
+    if (sender != nullptr)
+      sa.sa_sigaction = on_signal;
+    else
+      sa.sa_handler = stops ? SIG_DFL : SIG_IGN;
     sigaction(sig, &sa, nullptr);
   }
 }

@@ -23,6 +23,7 @@
 #include "host/lib/server/sqlite_job_store.h"
 #include "host/lib/server/web_files.h"
 #include "host/lib/server/workshop.h"
+#include "host/lib/stream/host_port.h"  // --listen as sim reads it; [::1]:8080 as printed
 
 namespace host::cli {
 
@@ -64,23 +65,22 @@ std::string host_name() {
   return buf;
 }
 
-// ADDR:PORT's port (colon: where ADDR ends); exit 2 for anything else.
-int listen_port(const std::string& listen, size_t* colon) {
-  *colon = listen.rfind(':');
-  int port = -1;
-  if (*colon != std::string::npos) {
-    // Digits only (80x is no port); leading zeros are decimal ones (080 is 80), as for --to.
-    const std::string text = listen.substr(*colon + 1);
-    const size_t first = text.find_first_not_of('0');
-    const std::string digits = first == std::string::npos ? "0" : text.substr(first);
-    if (!text.empty() && text.find_first_not_of("0123456789") == std::string::npos &&
-        digits.size() <= 5)
-      port = std::stoi(digits);
+// --listen's address and port, read as sim's --listen reads them; exit 2 for anything else.
+HostPort listen_address(const std::string& listen) {
+  try {
+    return parse_host_port(listen, PortUse::kListen);
+  } catch (const std::invalid_argument& e) {
+    throw CommandFailure(kExitUsage, fmt::format("--listen: '{}': {}", listen, e.what()));
   }
-  if (port < 0 || port > 65535) {
-    throw CommandFailure(kExitUsage, fmt::format("--listen: '{}': expected ADDR:PORT", listen));
+}
+
+// Binds the page's port; exit 2 when it cannot (in use, not this PC's), as sim's --listen.
+int bind_listen_address(server::HttpApi& http, const std::string& listen) {
+  try {
+    return http.bind();
+  } catch (const std::runtime_error& e) {
+    throw CommandFailure(kExitUsage, fmt::format("--listen: '{}': {}", listen, e.what()));
   }
-  return port;
 }
 
 // The --machine specs, named m1, m2 ... where they give no name; exit 2 for a bad one.
@@ -137,8 +137,8 @@ server::WorkshopOptions workshop_options(const ServeArgs& a) {
 void print_serving(const ServeArgs& a, const server::HttpApi& http, const std::string& address,
                    int bound, const std::string& owner, bool created, const std::string& token,
                    const std::vector<server::MachineSpec>& machines) {
-  std::cerr << fmt::format("engraver: serving http://{}:{}/ as '{}', data in {}, {} machine(s)\n",
-                           address, bound, owner, a.data, machines.size());
+  std::cerr << fmt::format("engraver: serving http://{}/ as '{}', data in {}, {} machine(s)\n",
+                           host_port_text(address, bound), owner, a.data, machines.size());
   std::cerr << fmt::format("engraver: answering requests for host {}\n",
                            http.allowed_hosts().describe());
   if (created) {
@@ -155,8 +155,7 @@ void print_serving(const ServeArgs& a, const server::HttpApi& http, const std::s
 }
 
 void run_serve(const ServeArgs& a) {
-  size_t colon = 0;
-  const int port = listen_port(a.listen, &colon);
+  const HostPort listen = listen_address(a.listen);
   const std::vector<server::MachineSpec> machines = parse_machines(a);
   const std::filesystem::path web_dir = served_web_dir(a);
   // Before anything in the folder is touched: one server per data folder.
@@ -177,13 +176,13 @@ void run_serve(const ServeArgs& a) {
   server::JobIntake intake(store, data, workshop.fits(),
                            static_cast<size_t>(a.max_upload_mb * 1024 * 1024));
   server::HttpOptions ho;
-  ho.address = a.listen.substr(0, colon);
-  ho.port = port;
+  ho.address = listen.host;
+  ho.port = listen.port;
   ho.web_dir = web_dir;
   ho.token = token;
   ho.allowed_hosts = a.allowed_hosts;
   server::HttpApi http(store, intake, workshop, data, ho);
-  const int bound = http.bind();
+  const int bound = bind_listen_address(http, a.listen);
 
   struct sigaction sa {};
   sa.sa_handler = on_stop_serve;
@@ -219,7 +218,10 @@ void add_serve_commands(CLI::App& app) {
   CLI::App* serve = app.add_subcommand("serve", kServeSummary);
   serve->add_option("--data", args->data, "data folder: job database, token, archive")
       ->capture_default_str();
-  serve->add_option("--listen", args->listen, "ADDR:PORT of the page and API (loopback default)")
+  serve
+      ->add_option("--listen", args->listen,
+                   "ADDR:PORT of the page and API (loopback by default; a numeric address, IPv6 "
+                   "in brackets: [::1]:8080; PORT in decimal, 080 is 80, 0 any free port)")
       ->capture_default_str();
   serve->add_option("--machine", args->machines,
                     "a machine: 'ADDRESS [name=NAME] [work=WxH] [tags=a,b]' (repeat the option)");

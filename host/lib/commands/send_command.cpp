@@ -13,6 +13,7 @@
 #include "host/lib/plan/counted.h"              // counted: "1 hole", "2 holes"
 #include "host/lib/stream/command_source.h"     // EncodedJob
 #include "host/lib/stream/job_resume.h"
+#include "host/lib/stream/resume_scan.h"  // ResumeScan: the job's job commands counted
 
 namespace host::commands {
 
@@ -49,7 +50,7 @@ ResumeAt parse_resume_at(const std::string& text) {
   try {
     const long long index = whole(text.substr(0, colon), INT32_MAX);
     const long long point = colon == std::string::npos ? 0 : whole(text.substr(colon + 1), 65535);
-    return ResumeAt{static_cast<int32_t>(index), static_cast<uint16_t>(point)};
+    return ResumeAt{static_cast<int32_t>(index), static_cast<uint16_t>(point), text};
   } catch (const std::exception&) {
     throw CommandFailure(kExitUsage,
                          fmt::format("--resume-at: '{}': expected INDEX or INDEX:POINT (job "
@@ -58,6 +59,36 @@ ResumeAt parse_resume_at(const std::string& text) {
                                      "65535)",
                                      text));
   }
+}
+
+void check_resume_at(const JobPlan& plan, const EncodeOptions& encode, const ResumeAt& at) {
+  // One pass. The session may change how curves are framed, never what the job commands
+  // are; the #J's job_id is not needed to count them.
+  const ResumeScan scan(pass_over(plan, encode, 0), at.index);
+  if (!scan.found()) {
+    // The count a finished job's progress line ends with ("job 72:0") is one past the last.
+    throw CommandFailure(
+        kExitUsage,
+        fmt::format("--resume-at: '{}': this job has {} (INDEX 0 .. {}) of its {}; "
+                    "a progress line's 'job {}' means the job had finished",
+                    at.text, counted(scan.job_commands(), "job command"), scan.job_commands() - 1,
+                    counted(scan.commands(), "command"), scan.job_commands()));
+  }
+  try {
+    resume_point_at(scan, at.point, 0);
+  } catch (const PlanError& e) {
+    throw CommandFailure(kExitUsage, fmt::format("--resume-at: '{}': {}", at.text, e.what()));
+  }
+}
+
+void refuse_unzeroed_machine(Sender& sender, const std::string& command) {
+  if (sender.read_status().flags & proto::kStatusZeroed) return;
+  throw CommandFailure(
+      kExitJobFailed,
+      fmt::format("the machine is not zeroed and --no-zero does not start manual zeroing: "
+                  "nothing was sent (without --no-zero, {} starts it: jog to the corner with "
+                  "the joystick and press confirm)",
+                  command));
 }
 
 namespace {
@@ -135,6 +166,7 @@ SendResult send_job(Link& link, const JobPlan& plan, const SendOptions& o, std::
   Sender sender(link, o.sender);
   const ControlsAttached controls(o, &sender);
   const proto::SessionReply caps = sender.open_session();
+  if (!o.sender.zero_first) refuse_unzeroed_machine(sender, "send");  // before probe or resume
   EncodeOptions enc = o.encode;
   use_session(caps, &enc);
   enc.controller = &caps;

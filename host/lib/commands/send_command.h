@@ -26,9 +26,19 @@ int exit_code_of(JobOutcome outcome);
 struct ResumeAt {
   int32_t index = 0;
   uint16_t point = 0;
+  std::string text;  // as given, for messages
 };
 // "12" or "12:40"; anything else ends the command with exit 2 (CommandFailure).
 ResumeAt parse_resume_at(const std::string& text);
+// Ends the command with exit 2 (CommandFailure: "--resume-at: '...': ...", with the job's
+// count of job commands) when the job has no job command at.index, or its curve no point
+// at.point: checked on the plan before a link is opened, not after connecting.
+void check_resume_at(const JobPlan& plan, const EncodeOptions& encode, const ResumeAt& at);
+
+// --no-zero: a machine that is not zeroed (its status says so, flags bit1) is refused with
+// exit 1 (CommandFailure) before anything is sent: its first move would be refused anyway,
+// after the set-up had gone out. `command` names the command in the message ("send").
+void refuse_unzeroed_machine(Sender& sender, const std::string& command);
 
 struct SendOptions {
   std::string file;                   // named in the log

@@ -10,6 +10,7 @@
 #include "firmware/config/machine_config.h"      // travel of the simulated blank
 #include "host/lib/commands/exit_codes.h"        // CommandFailure
 #include "host/lib/heightmap/simulated_blank.h"  // the blank the simulated probe touches
+#include "host/lib/stream/host_port.h"           // ADDR:PORT as serve and send read it
 
 namespace host::commands {
 
@@ -23,30 +24,17 @@ sim::ServerOptions listen_options(const std::string& listen) {
       throw CommandFailure(kExitUsage, fmt::format("--listen: '{}': no device", listen));
     return so;
   }
-  const size_t colon = listen.rfind(':');
-  if (colon == std::string::npos) {
+  if (listen.find(':') == std::string::npos) {
     throw CommandFailure(
         kExitUsage, fmt::format("--listen: '{}': expected ADDR:PORT or serial:DEVICE", listen));
   }
-  so.address = listen.substr(0, colon);
-  if (so.address.empty()) {
-    throw CommandFailure(kExitUsage,
-                         fmt::format("--listen: '{}': no address before the port (e.g. "
-                                     "127.0.0.1{}, or 0.0.0.0{} for every interface)",
-                                     listen, listen.substr(colon), listen.substr(colon)));
+  try {
+    const HostPort hp = parse_host_port(listen, PortUse::kListen);  // as serve's --listen
+    so.address = hp.host;
+    so.port = hp.port;
+  } catch (const std::invalid_argument& e) {
+    throw CommandFailure(kExitUsage, fmt::format("--listen: '{}': {}", listen, e.what()));
   }
-  // Digits only, 0 .. 65535 (0: any free port); 99999 wrapped round to 34463 before. Leading
-  // zeros are decimal ones (080 is 80), as for --to.
-  const std::string port = listen.substr(colon + 1);
-  const bool digits = !port.empty() && port.find_first_not_of("0123456789") == std::string::npos;
-  const size_t first = port.find_first_not_of('0');
-  const std::string value = first == std::string::npos ? "0" : port.substr(first);
-  if (!digits || value.size() > 5 || std::stoul(value) > 65535) {
-    throw CommandFailure(kExitUsage, fmt::format("--listen: '{}': the port must be 0 .. 65535 (0: "
-                                                 "any free port)",
-                                                 listen));
-  }
-  so.port = static_cast<uint16_t>(std::stoul(value));
   return so;
 }
 
@@ -109,13 +97,9 @@ SimCommandResult run_sim(const SimCommandOptions& o, const std::atomic<bool>& st
     server = std::make_unique<sim::SimServer>(machine, so);
   } catch (const std::runtime_error& e) {
     // The option named, as every bad command line's message does.
-    throw CommandFailure(kExitUsage,
-                         fmt::format("--listen: '{}': {}{}", o.listen, e.what(),
-                                     so.device.empty() ? " (a numeric address: 127.0.0.1, "
-                                                         "0.0.0.0 or ::1)"
-                                                       : ""));
+    throw CommandFailure(kExitUsage, fmt::format("--listen: '{}': {}", o.listen, e.what()));
   }
-  const std::string where = so.device.empty() ? fmt::format("{}:{}", so.address, server->port())
+  const std::string where = so.device.empty() ? host_port_text(so.address, server->port())
                                               : fmt::format("device {}", so.device);
   log << fmt::format(
       "engraver: simulated machine on {} ({}); Ctrl-C stops\n", where,

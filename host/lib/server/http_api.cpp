@@ -7,6 +7,7 @@
 #include "host/lib/server/map_source.h"
 #include "host/lib/server/run_archive.h"
 #include "host/lib/server/upload_numbers.h"
+#include "host/lib/stream/host_port.h"  // host_port_text: [::1]:8080
 
 #include <fmt/format.h>  // fmt::format
 #include <httplib.h>     // httplib::Server
@@ -14,7 +15,7 @@
 #include <nlohmann/json.hpp>  // nlohmann::json
 
 #include <netinet/in.h>  // sockaddr_in, ntohs
-#include <sys/socket.h>  // listen, getsockname, getsockopt
+#include <sys/socket.h>  // listen, getsockname, getsockopt, setsockopt
 
 #include <charconv>    // std::from_chars
 #include <cmath>       // std::isfinite
@@ -450,9 +451,12 @@ HttpApi::HttpApi(JobStore& store, JobIntake& intake, Workshop& workshop, const D
   // A thread per connection: an open page's event stream holds its thread for as long as
   // the page is open, and must not take one that a control request needs.
   http_->new_task_queue = [] { return new ConnectionThreads(); };
-  // The listening socket, to widen its backlog once bound (see widen_backlog).
+  // The listening socket, to widen its backlog once bound (see widen_backlog). Reusable
+  // after a restart (SO_REUSEADDR), but not shared: httplib's default, SO_REUSEPORT, let a
+  // second server bind a port one already listened on, and the two split its requests.
   http_->set_socket_options([this](int fd) {
-    httplib::default_socket_options(fd);
+    const int yes = 1;
+    ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
     listen_fd_ = fd;
   });
   // Multipart framing on top of the file; httplib answers 413 beyond this.
@@ -473,8 +477,8 @@ int HttpApi::bind() {
   }
   if (port <= 0) {
     throw std::runtime_error(
-        fmt::format("cannot listen on {}:{} (in use or not an address of this PC)",
-                    options_.address, options_.port));
+        fmt::format("cannot listen on {} (in use or not an address of this PC)",
+                    host_port_text(options_.address, options_.port)));
   }
   widen_backlog(port);
   hosts_.set_port(port);

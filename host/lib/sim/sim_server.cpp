@@ -19,6 +19,8 @@
 #include <stdexcept>  // std::runtime_error
 #include <thread>     // sleep_for
 
+#include "host/lib/stream/host_port.h"  // host_port_text: [::1]:10001
+
 namespace host::sim {
 
 using Clock = std::chrono::steady_clock;
@@ -148,8 +150,8 @@ SimServer::SimServer(SimMachine& machine, const ServerOptions& options)
   if (!ec) impl_->acceptor.listen(1, ec);
   if (!ec) impl_->acceptor.non_blocking(true, ec);
   if (ec) {
-    throw std::runtime_error(
-        fmt::format("cannot listen on {}:{}: {}", options.address, options.port, ec.message()));
+    throw std::runtime_error(fmt::format(
+        "cannot listen on {}: {}", host_port_text(options.address, options.port), ec.message()));
   }
 }
 

@@ -105,7 +105,11 @@ std::string curve_point_problem(int32_t job_index, size_t point_count, uint16_t 
 
 ResumePoint resume_point_at(const JobPass& job, int32_t job_index, uint16_t curve_point,
                             int32_t tool_z_um) {
-  const ResumeScan scan(job, job_index);
+  return resume_point_at(ResumeScan(job, job_index), curve_point, tool_z_um);
+}
+
+ResumePoint resume_point_at(const ResumeScan& scan, uint16_t curve_point, int32_t tool_z_um) {
+  const int32_t job_index = scan.job_index();
   if (!scan.found())
     throw PlanError(
         fmt::format("resume at job command {}: the job has no such command", job_index));

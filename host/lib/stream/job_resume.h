@@ -74,6 +74,8 @@ ResumePoint resume_point_at(const std::vector<QueuedCommand>& job, int32_t job_i
                             uint16_t curve_point, int32_t tool_z_um);
 ResumePoint resume_point_at(const JobPass& job, int32_t job_index, uint16_t curve_point,
                             int32_t tool_z_um);
+// The same from a pass already made over the job (its job commands counted, for messages).
+ResumePoint resume_point_at(const ResumeScan& scan, uint16_t curve_point, int32_t tool_z_um);
 
 // Continues `job` from the first command of plan curve first_curve (the pen-up and travel
 // that lead to it), the tool taken to where the previous move ended: what the workshop

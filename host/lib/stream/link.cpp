@@ -5,7 +5,10 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include <utility>  // std::move
+#include <stdexcept>  // std::invalid_argument
+#include <utility>    // std::move
+
+#include "host/lib/stream/host_port.h"  // the TCP address: parse_host_port, host_port_text
 
 namespace host {
 
@@ -78,7 +81,7 @@ class AsioLink : public Link {
 // Connects a TCP socket within the timeout or throws.
 std::unique_ptr<Link> open_tcp(const LinkSpec& spec, std::chrono::milliseconds timeout) {
   auto io = std::make_unique<asio::io_context>();
-  const std::string name = fmt::format("tcp://{}:{}", spec.host, spec.port);
+  const std::string name = "tcp://" + host_port_text(spec.host, spec.port);
   asio::ip::tcp::resolver resolver(*io);
   asio::error_code ec;
   auto endpoints = resolver.resolve(spec.host, std::to_string(spec.port), ec);
@@ -130,23 +133,15 @@ LinkSpec parse_link_spec(const std::string& spec) {
   const std::string tcp = "tcp://";
   const std::string serial = "serial:";
   if (spec.compare(0, tcp.size(), tcp) == 0) {
-    const std::string rest = spec.substr(tcp.size());
-    const size_t colon = rest.rfind(':');
-    if (colon == std::string::npos || colon == 0) {
-      throw LinkError(fmt::format("link '{}': no host or port ({})", spec, kSpecForms));
-    }
     out.kind = LinkSpec::kTcp;
-    out.host = rest.substr(0, colon);
-    const bool bracketed = out.host.size() > 2 && out.host.front() == '[' && out.host.back() == ']';
-    if (bracketed) out.host = out.host.substr(1, out.host.size() - 2);  // [::1]
-    // A second colon (host:port:5, host::port) or a blank is no host name: refused here, as
-    // the command line is read, not as a host not found after planning.
-    if ((!bracketed && out.host.find(':') != std::string::npos) ||
-        out.host.find_first_of(" \t") != std::string::npos) {
-      throw LinkError(fmt::format("link '{}': '{}' is not a host name or address ({})", spec,
-                                  out.host, kSpecForms));
+    try {
+      const HostPort hp = parse_host_port(spec.substr(tcp.size()), PortUse::kConnect);
+      out.host = hp.host;
+      out.port = hp.port;
+    } catch (const std::invalid_argument& e) {
+      // Refused here, as the command line is read, not as a host not found after planning.
+      throw LinkError(fmt::format("link '{}': {} ({})", spec, e.what(), kSpecForms));
     }
-    out.port = static_cast<uint16_t>(parse_number(rest.substr(colon + 1), 1, 65535, "port", spec));
     return out;
   }
   if (spec.compare(0, serial.size(), serial) == 0) {

@@ -25,6 +25,7 @@ class ResumeScan {
  public:
   ResumeScan(const JobPass& job, int32_t job_index);
 
+  int32_t job_index() const { return job_index_; }     // the job command looked for
   size_t commands() const { return count_; }           // in the whole job
   int32_t job_commands() const { return job_count_; }  // job commands in the whole job
   uint16_t job_id() const { return crc_; }             // job_id_of() the job

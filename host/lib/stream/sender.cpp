@@ -592,7 +592,7 @@ void Sender::start_window(CommandSource& commands) {
 bool Sender::take_requests(CommandSource& commands, JobOutcome* outcome) {
   if (requests_.abort_asked()) {
     send_realtime(proto::kCmdAbort, {});
-    message_ = fmt::format("aborted by the operator after {} of {}", win_.executed,
+    message_ = fmt::format("{} after {} of {}", requests_.abort_cause(), win_.executed,
                            counted(commands.size(), "command"));
     *outcome = JobOutcome::kAborted;
     return true;
@@ -709,7 +709,7 @@ JobOutcome Sender::run(CommandSource& commands,
   if (!ensure_zeroed(on_progress)) {
     if (requests_.abort_asked()) {
       send_realtime(proto::kCmdAbort, {});
-      message_ = "aborted by the operator while zeroing";
+      message_ = std::string(requests_.abort_cause()) + " while zeroing";
       return JobOutcome::kAborted;
     }
     return failure_;

@@ -104,7 +104,8 @@ class Sender {
   // Requests from other threads or signal handlers; sent as real-time frames by run().
   void request_hold() { requests_.hold(); }
   void request_resume() { requests_.resume(); }
-  void request_abort() { requests_.abort(); }
+  // `why` begins the job's message (a string literal: a signal handler may give one).
+  void request_abort(const char* why = "aborted by the operator") { requests_.abort(why); }
   void request_override(int percent) { requests_.override_percent(percent); }
 
   const SenderStats& stats() const { return stats_; }

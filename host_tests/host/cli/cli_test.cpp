@@ -427,4 +427,29 @@ TEST(Cli, SendResumeOnAControllerWithoutJobProgressSaysWhatToDo) {
   EXPECT_NE(r.err.find("--resume-at"), std::string::npos) << r.err;
 }
 
+// send (and probe) --no-zero to a fresh simulator (not zeroed): refused before anything is
+// sent, exit 1 (send streamed the set-up and ended with exit 5 at the first move).
+TEST(Cli, SendAndProbeNoZeroRefuseAMachineThatIsNotZeroed) {
+  const int port = 20000 + static_cast<int>((getpid() + 7) % 20000);
+  const std::string exe = ENGRAVER_EXE;
+  const std::string map = testing::TempDir() + "/no_zero_" + std::to_string(getpid()) + ".json";
+  for (const std::string command : {"send", "probe"}) {
+    const std::string script = "'" + exe + " sim --listen 127.0.0.1:" + std::to_string(port) +
+                               " >/dev/null 2>&1 & S=$!; sleep 0.5; " + exe + " " + command + " " +
+                               kSample + " --to tcp://127.0.0.1:" + std::to_string(port) +
+                               " --no-zero" + (command == "probe" ? " --height-map " + map : "") +
+                               "; r=$?; kill $S; wait $S; exit $r'";
+    const auto r = host_tests::run_tool("sh -c", script);
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_NE(r.err.find("engraver: the machine is not zeroed and --no-zero does not start manual "
+                         "zeroing: nothing was sent (without --no-zero, " +
+                         command +
+                         " starts it: jog to the corner with the joystick and press confirm)\n"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find(" -> tcp://"), std::string::npos) << r.err;  // no streaming began
+  }
+  std::remove(map.c_str());
+}
+
 }  // namespace

@@ -36,7 +36,7 @@ TEST(CliUsage, AMalformedLinkAddressIsABadCommandLineBeforePlanning) {
   expect_usage_error("send " + kWord + " --to 127.0.0.1:47199",
                      "--to: link '127.0.0.1:47199': unknown kind");
   expect_usage_error("send " + kWord + " --to tcp://127.0.0.1:99999",
-                     "--to: link 'tcp://127.0.0.1:99999': port 99999 outside 1..65535");
+                     "--to: link 'tcp://127.0.0.1:99999': the port must be 1 .. 65535");
   expect_usage_error("send " + kWord + " --to tcp://127.0.0.1:47801:5",
                      "--to: link 'tcp://127.0.0.1:47801:5': '127.0.0.1:47801' is not a host name "
                      "or address");
@@ -47,7 +47,8 @@ TEST(CliUsage, TheSimulatorsPortAndPauseConfirmAreChecked) {
   expect_usage_error("sim --listen 127.0.0.1:99999",
                      "--listen: '127.0.0.1:99999': the port must be 0 .. 65535");
   expect_usage_error("sim --listen localhost:47857",
-                     "--listen: 'localhost:47857': listen address 'localhost': ");
+                     "--listen: 'localhost:47857': listen address 'localhost' is not a numeric "
+                     "address");
   expect_usage_error("sim --listen :47850",
                      "--listen: ':47850': no address before the port (e.g. 127.0.0.1:47850");
   expect_usage_error("sim --listen 127.0.0.1:000000099999",
@@ -66,6 +67,19 @@ TEST(CliUsage, ABadResumePositionNamesTheOptionLikeEveryOther) {
     expect_usage_error("send " + kWord + " --to tcp://127.0.0.1:9 --resume-at " + bad,
                        "--resume-at: '" + bad + "': expected INDEX or INDEX:POINT (job command");
   }
+}
+
+// An index beyond the job was refused only after connecting (exit 1, "the job has no such
+// command"): now on the plan, before the link (nothing listens on port 9), with the count.
+TEST(CliUsage, AResumeIndexBeyondTheJobIsRefusedBeforeTheLinkWithTheJobsCount) {
+  const ToolRun r = engraver("send " + kWord + " --to tcp://127.0.0.1:9 --resume-at 100000");
+  EXPECT_EQ(r.code, 2) << r.err;
+  // The last line (a slow plan prints its progress first).
+  const std::string says =
+      "engraver: --resume-at: '100000': this job has 72 job commands (INDEX 0 .. 71) of its 111 "
+      "commands; a progress line's 'job 72' means the job had finished\n";
+  ASSERT_GE(r.err.size(), says.size()) << r.err;
+  EXPECT_EQ(r.err.substr(r.err.size() - says.size()), says) << r.err;
 }
 
 // serve's --poll-ms had a check of its own beside the option table's: its help gave two

@@ -70,6 +70,45 @@ JobPlan two_lines() {
       test::drawing_of({test::line_curve(0, 0, 10, 0), test::line_curve(20, 5, 20, 15)}));
 }
 
+// The exit code and message check_resume_at ends with ("" and 0 when it takes the point).
+CommandFailure resume_at_refusal(const JobPlan& plan, const std::string& text) {
+  try {
+    check_resume_at(plan, EncodeOptions{}, parse_resume_at(text));
+  } catch (const CommandFailure& e) {
+    return e;
+  }
+  return CommandFailure(kExitOk, "");
+}
+
+// An outside tester's --resume-at 100000 on a job of 111 commands was refused only after
+// connecting (exit 1, "the job has no such command"): now on the plan, exit 2, with the count.
+TEST(SendCommandResumeAt, AnIndexBeyondTheJobIsABadCommandLineNamingTheCount) {
+  const JobPlan plan = two_lines();
+  const EncodedJobSummary job = summarize_job(plan, EncodeOptions{});
+  const size_t last = job.job_commands - 1;
+  EXPECT_EQ(resume_at_refusal(plan, std::to_string(last)).code, kExitOk);
+  for (const std::string beyond : {std::to_string(last + 1), std::string("100000")}) {
+    const CommandFailure e = resume_at_refusal(plan, beyond);
+    EXPECT_EQ(e.code, kExitUsage) << beyond;
+    EXPECT_EQ(std::string(e.what()),
+              fmt::format("--resume-at: '{}': this job has {} job commands (INDEX 0 .. {}) of its "
+                          "{} commands; a progress line's 'job {}' means the job had finished",
+                          beyond, job.job_commands, last, job.commands, job.job_commands));
+  }
+}
+
+TEST(SendCommandResumeAt, APointBeyondTheCurveIsABadCommandLine) {
+  // One circle: job command 4 is its spline (the set-up and the moves to its start first), of
+  // 121 curve points at the default tolerance.
+  const JobPlan plan = test::plan_of(test::drawing_of({test::circle_curve(50, 50, 10)}));
+  EXPECT_EQ(resume_at_refusal(plan, "4:120").code, kExitOk);
+  const CommandFailure e = resume_at_refusal(plan, "4:60000");
+  EXPECT_EQ(e.code, kExitUsage);
+  EXPECT_STREQ(e.what(),
+               "--resume-at: '4:60000': resume at job command 4: its curve has 121 points, not "
+               "60001");
+}
+
 TEST(SendCommand, StreamsTheJobAndAttachesTheControlsOnlyWhileItRuns) {
   sim::SimMachine machine{sim::SimOptions{}};
   sim::SimLink link(machine);
@@ -132,6 +171,40 @@ TEST(SendCommand, ResumeOnAControllerThatRanNoJobIsRefusedWithoutStreaming) {
     EXPECT_NE(std::string(e.what()).find("--resume-at"), std::string::npos) << e.what();
   }
   EXPECT_EQ(attached, (std::vector<bool>{true, false}));  // detached on the way out too
+}
+
+// An outside tester's send --no-zero to a fresh simulator streamed the set-up and ended with
+// exit 5 at the first move ("machine not zeroed"): the status says so before anything goes.
+TEST(SendCommand, NoZeroRefusesAMachineThatIsNotZeroedBeforeSendingAnything) {
+  sim::SimMachine machine{sim::SimOptions{}};
+  sim::SimLink link(machine);
+  SendOptions o = lockstep_send(machine);
+  o.sender.zero_first = false;  // --no-zero
+  std::ostringstream log;
+  try {
+    send_job(link, two_lines(), o, log);
+    FAIL() << "sent to a machine that is not zeroed\n" << log.str();
+  } catch (const CommandFailure& e) {
+    EXPECT_EQ(e.code, kExitJobFailed);
+    EXPECT_STREQ(e.what(),
+                 "the machine is not zeroed and --no-zero does not start manual zeroing: nothing "
+                 "was sent (without --no-zero, send starts it: jog to the corner with the "
+                 "joystick and press confirm)");
+  }
+  // Nothing of the job reached the controller: no job mark (#J) was stored.
+  Sender check(link, o.sender);
+  check.open_session();
+  EXPECT_EQ(check.read_status().flags & proto::kStatusJob, 0);
+}
+
+TEST(SendCommand, NoZeroSendsToAZeroedMachine) {
+  sim::SimMachine machine{sim::SimOptions{}};
+  sim::SimLink link(machine);
+  SendOptions o = lockstep_send(machine);
+  std::ostringstream log;
+  ASSERT_EQ(send_job(link, two_lines(), o, log).outcome, JobOutcome::kCompleted) << log.str();
+  o.sender.zero_first = false;  // zeroed by the first job's manual zeroing
+  EXPECT_EQ(send_job(link, two_lines(), o, log).outcome, JobOutcome::kCompleted) << log.str();
 }
 
 TEST(SendCommand, HoldsOnlyTheSendersWindowWhateverTheJobsLength) {
