@@ -11,6 +11,7 @@
 #include <sstream>    // std::ostringstream
 
 #include "host/lib/drawing/drawing.h"
+#include "host/lib/drawing/file_text.h"  // not_a_file_text
 
 namespace host {
 
@@ -276,6 +277,7 @@ void count_vertex_group(long code, const Where& w, PolylineShape& poly) {
 }  // namespace
 
 bool looks_like_dxf(const std::string& path) {
+  if (!not_a_file_text(path).empty()) return false;  // a FIFO's open would wait
   std::ifstream in(path, std::ios::binary);
   std::string a, b;
   if (!std::getline(in, a)) return false;

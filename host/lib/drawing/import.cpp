@@ -67,15 +67,14 @@ void check_readable(const std::string& path) {
   if (st.type() == std::filesystem::file_type::directory) {
     throw ImportError(path + ": is a directory, not a drawing file");
   }
+  // Asked before opening: opening a FIFO waits for a writer (`info f.dxf` hung).
+  if (!not_a_file_text(path).empty()) throw ImportError(path + ": " + not_a_file_text(path));
   errno = 0;
   std::ifstream probe(path, std::ios::binary);
   if (!probe) {
     const int why = errno;
     throw ImportError(path + ": cannot open the file: " +
                       (why != 0 ? std::strerror(why) : std::string("unknown reason")));
-  }
-  if (st.type() != std::filesystem::file_type::regular) {
-    throw ImportError(path + ": not a regular file (a device, pipe or socket)");
   }
 }
 

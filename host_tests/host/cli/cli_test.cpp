@@ -228,6 +228,22 @@ TEST(Cli, DirectoryGivenAsAFileSaysSo) {
   std::filesystem::remove_all(dir);
 }
 
+// Board folders are not searched recursively: a folder whose PCB files are in subfolders says
+// so.
+TEST(Cli, AFolderWhoseFilesAreInSubfoldersSaysTheyAreNotSearched) {
+  const std::string dir = testing::TempDir() + "/cli-sub-board-" + std::to_string(getpid());
+  std::filesystem::create_directories(dir + "/gerbers");
+  std::ofstream(dir + "/gerbers/t-F.Cu.gbr") << "%FSLAX46Y46*%\n%MOMM*%\nM02*\n";
+  const ToolRun r = run("info " + dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "engraver: " + dir +
+                       ": no Gerber or Excellon files there (by their names or first lines) "
+                       "(subfolders are not searched)\n");
+  std::filesystem::remove_all(dir);
+  EXPECT_NE(run("info --help").out.find("not its subfolders"), std::string::npos);
+  EXPECT_NE(run("board --help").out.find("its subfolders are not searched"), std::string::npos);
+}
+
 TEST(Cli, MissingFileSaysThereIsNoSuchFile) {
   const ToolRun r = run("info /nonexistent/x.dxf");
   EXPECT_EQ(r.code, 2);
