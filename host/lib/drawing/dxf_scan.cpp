@@ -210,9 +210,22 @@ long group_code(const std::string& code_text, const std::string& line, size_t st
 }
 
 // A group's value line (line number `line`) stripped; a text value cut to what dxflib reads,
-// a number that long or a NUL byte refused.
+// a number that long, a NUL byte or another control byte (not tab or CR) refused: DXF writes
+// control characters in text as ^J, so a raw one is a damaged or binary file.
 std::string group_value(const std::string& value_line, long code, const Where& w, long line) {
   std::string value = strip(value_line);
+  const auto control = std::find_if(value.begin(), value.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return (u < 0x20 && c != '\t' && c != '\r' && c != '\0') || u == 0x7F;
+  });
+  if (control != value.end() && value.find('\0') == std::string::npos) {
+    char byte[8];
+    std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(*control));
+    std::ostringstream o;
+    o << w.path << ": line " << line << ", in " << w.entity << ": a control byte (" << byte
+      << ") in the value of group " << code << " (binary data in a text file?)";
+    throw ImportError(o.str());
+  }
   if (value.size() > kMaxDxfValueChars) {
     // dxflib reads lines of at most 1023 characters (a longer one stops its reader).
     if (is_real_code(code) || int_code_limit(code) != 0) {
