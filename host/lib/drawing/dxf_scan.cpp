@@ -361,11 +361,17 @@ bool DxfScanner::next(DxfGroup* group) {
   throw ImportError(o.str());
 }
 
-void check_dxf(const std::string& text, const std::string& path) {
+size_t DxfScanner::pos() const {
+  return s_->lines.pos();
+}
+
+void check_dxf(const std::string& text, const std::string& path, const WorkProgress& progress) {
   DxfScanner scanner(text, path);
   DxfGroup g;
-  while (scanner.next(&g)) {
+  for (size_t n = 0; scanner.next(&g); ++n) {
+    if (progress && n % 65536 == 0) progress("bytes checked", scanner.pos(), text.size());
   }
+  if (progress) progress("bytes checked", text.size(), text.size());
 }
 
 }  // namespace host

@@ -88,12 +88,12 @@ Extents Drawing::extents() const {
 
 namespace {
 
-Drawing import_by_format(const std::string& path) {
+Drawing import_by_format(const std::string& path, const WorkProgress& progress) {
   check_readable(path);
   const std::string ext = extension(path);
   const std::string text = read_file_head(path);
   if (text.empty()) throw ImportError(path + ": the file is empty");
-  if (ext == ".dxf" || looks_like_dxf(path)) return import_dxf(path);
+  if (ext == ".dxf" || looks_like_dxf(path)) return import_dxf(path, progress);
   if (is_gerber(ext, text)) {
     throw ImportError(path +
                       ": this is a Gerber (RS-274X) PCB layer, not a drawing of tool paths: "
@@ -120,8 +120,12 @@ Drawing import_by_format(const std::string& path) {
 // Only ImportError leaves: anything else an importer lets out is reported as what it is,
 // with the file's name (callers map ImportError to "input error").
 Drawing import_drawing(const std::string& path) {
+  return import_drawing(path, nullptr);
+}
+
+Drawing import_drawing(const std::string& path, const WorkProgress& progress) {
   try {
-    return import_by_format(path);
+    return import_by_format(path, progress);
   } catch (const ImportError&) {
     throw;
   } catch (const std::bad_alloc& e) {
