@@ -785,11 +785,11 @@ class GroupFeed : public std::streambuf {
 }  // namespace
 
 Drawing import_dxf_text(const std::string& text, const std::string& path) {
-  return import_dxf_text(text, path, nullptr);
+  return import_dxf_text_reporting(text, path, nullptr);
 }
 
-Drawing import_dxf_text(const std::string& text, const std::string& path,
-                        const WorkProgress& progress) {
+Drawing import_dxf_text_reporting(const std::string& text, const std::string& path,
+                                  const WorkProgress& progress) {
   try {
     check_dxf(text, path, progress);  // the whole file, before dxflib reads any of it
     DxfScanner groups(text, path);
@@ -819,7 +819,7 @@ Drawing import_dxf_text(const std::string& text, const std::string& path,
 }
 
 Drawing import_dxf(const std::string& path, const WorkProgress& progress) {
-  return import_dxf_text(read_drawing_text(path), path, progress);
+  return import_dxf_text_reporting(read_drawing_text(path), path, progress);
 }
 
 }  // namespace host

@@ -14,8 +14,9 @@ Drawing import_dxf(const std::string& path, const WorkProgress& progress = nullp
 
 // The same for the file's bytes already in memory; `path` names it in messages.
 Drawing import_dxf_text(const std::string& text, const std::string& path);
-Drawing import_dxf_text(const std::string& text, const std::string& path,
-                        const WorkProgress& progress);
+// The same, reporting progress (not an overload: the fuzz target takes import_dxf_text by name).
+Drawing import_dxf_text_reporting(const std::string& text, const std::string& path,
+                                  const WorkProgress& progress);
 
 }  // namespace host
 
