@@ -50,8 +50,9 @@ void add_board_command(CLI::App& app) {
       "Plan a whole PCB (copper, drill and outline files, each optional): isolation, drilling "
       "with tool changes, cut-out with tabs; check it, plot it, report it");
   cmd->add_option("FILES", a->run.files,
-                  "Gerber/Excellon files or a directory of them; kinds from X2 attributes or "
-                  "names");
+                  "Gerber/Excellon files or a directory of them (its subfolders are not "
+                  "searched; one of its copper, drill or outline files unreadable refuses it); "
+                  "kinds from X2 attributes or names");
   cmd->add_option("--top", a->run.top, "top copper Gerber");
   cmd->add_option("--bottom", a->run.bottom, "bottom copper Gerber");
   cmd->add_option("--drill", a->run.drills, "Excellon drill file (may be given twice: PTH, NPTH)");

@@ -90,7 +90,8 @@ void add_drawing_commands(CLI::App& app) {
       "Show what a drawing holds: entities by type, curves (degree, rational, knots, "
       "control points), extents, units and the problems found; of a Gerber or Excellon file, "
       "its layer, apertures or tools, polygons and holes; of a board folder, which file is "
-      "taken for which layer (as `board` reads it) and each one's summary");
+      "taken for which layer (as `board` reads it; not its subfolders) and which are left "
+      "out and why, and each one's summary");
   info->add_option("FILE", info_args->file,
                    "drawing (DXF, G-code) or PCB file (Gerber, Excellon, a board folder)")
       ->required();

@@ -85,6 +85,9 @@ Error load_capture_bytes(const std::string& bytes, const std::string& name, Capt
 Error load_capture(const std::string& path, Capture* out) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return {"E_OPEN", path + ": is a directory"};
+  // Asked before opening: a FIFO's open waits for a writer.
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    return {"E_OPEN", path + ": not a regular file (a pipe, device or socket)"};
   std::ifstream in(path, std::ios::binary);
   if (!in) return {"E_OPEN", path + ": cannot open"};
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

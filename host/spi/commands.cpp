@@ -119,6 +119,12 @@ void print_diff(const DiffOptions& o, const std::vector<Frame>& frames,
 
 int run_diff(const DiffOptions& o, std::ostream& out, std::ostream& err) {
   std::error_code ec;
+  // Asked before opening: a FIFO's open waits for a writer.
+  if (std::filesystem::exists(o.expected, ec) && !std::filesystem::is_directory(o.expected, ec) &&
+      !std::filesystem::is_regular_file(o.expected, ec)) {
+    print_error(err, {"E_OPEN", o.expected + ": not a regular file (a pipe, device or socket)"});
+    return kExitUnusable;
+  }
   std::ifstream in(o.expected, std::ios::binary);
   if (!in || std::filesystem::is_directory(o.expected, ec)) {
     print_error(err, {"E_OPEN", o.expected + ": cannot open"});

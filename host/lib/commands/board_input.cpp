@@ -8,6 +8,7 @@
 #include <filesystem>  // directories
 
 #include "host/lib/commands/exit_codes.h"  // CommandFailure
+#include "host/lib/drawing/file_text.h"    // not_a_file_text
 #include "host/lib/pcb/board_check.h"
 #include "host/lib/pcb/board_probe_area.h"
 #include "host/lib/pcb/isolation_check.h"
@@ -65,11 +66,15 @@ bool has_prefix(const std::string& s, const std::string& p) {
   return s.compare(0, p.size(), p) == 0;
 }
 
-// "bottom:a,b" -> side "bottom", files {a, b}; a directory -> its PCB files.
-// left_out: a directory's files that are neither Gerber nor Excellon (by name or content).
+// "bottom:a,b" -> side "bottom", files {a, b}; a directory -> its PCB files (not those in
+// its subfolders).
+// left_out: notes on a directory's files that are not read: neither Gerber nor Excellon (by
+// name or content), or not regular files (a FIFO is never opened: that would wait).
+// subfolders: set when the directory has some.
 std::vector<std::string> expand_input(const std::string& input, std::string* side, bool* directory,
                                       std::string* stripped = nullptr,
-                                      std::vector<std::string>* left_out = nullptr) {
+                                      std::vector<std::string>* left_out = nullptr,
+                                      bool* subfolders = nullptr) {
   std::string rest = input;
   for (const char* s : {"top:", "bottom:"}) {
     if (has_prefix(rest, s)) {
@@ -82,10 +87,19 @@ std::vector<std::string> expand_input(const std::string& input, std::string* sid
   *directory = std::filesystem::is_directory(rest);
   if (*directory) {
     for (const auto& e : std::filesystem::directory_iterator(rest)) {
-      if (!e.is_regular_file()) continue;
       const std::string p = e.path().string();
+      if (e.is_directory()) {
+        if (subfolders) *subfolders = true;
+        continue;
+      }
+      if (!e.is_regular_file()) {
+        if (left_out) left_out->push_back(p + ": " + not_a_file_text(p) + ": left out");
+        continue;
+      }
       if (pcb::pcb_file_format(p) == pcb::PcbFileFormat::kNone) {
-        if (left_out) left_out->push_back(p);
+        if (left_out)
+          left_out->push_back(p +
+                              ": neither Gerber nor Excellon (by its name or content): left out");
         continue;
       }
       files.push_back(p);
@@ -103,6 +117,14 @@ std::vector<std::string> expand_input(const std::string& input, std::string* sid
     start = comma + 1;
   }
   return files;
+}
+
+// "not a Gerber file: binary data (a NUL byte at byte N)", the reader's words, when the head
+// of a file holds a NUL before any M02 (padding after the end is not binary data); else "".
+std::string binary_data_text(const std::string& head) {
+  const size_t nul = head.find('\0');
+  if (nul == std::string::npos || head.rfind("M02", nul) != std::string::npos) return "";
+  return "not a Gerber file: binary data (a NUL byte at byte " + std::to_string(nul) + ")";
 }
 
 // The copper kind a board folder's file names show for the job's side: the side asked for,
@@ -152,14 +174,15 @@ BoardFiles read_board_files(const std::string& input, const std::string& side_as
   bool directory = false;
   std::string stripped;
   std::vector<std::string> left_out;
+  bool subfolders = false;
   const std::vector<std::string> files =
-      expand_input(input, &b.side, &directory, &stripped, &left_out);
-  for (const std::string& f : left_out)
-    b.notes.push_back(f + ": neither Gerber nor Excellon (by its name or content): left out");
+      expand_input(input, &b.side, &directory, &stripped, &left_out, &subfolders);
+  for (const std::string& n : left_out) b.notes.push_back(n);
   if (files.empty())
     throw CommandFailure(kExitUsage, input +
                                          ": no Gerber or Excellon files there (by their names "
-                                         "or first lines)");
+                                         "or first lines)" +
+                                         (subfolders ? " (subfolders are not searched)" : ""));
   const LayerKind wanted_copper = copper_for_side(side_asked.empty() ? b.side : side_asked, files);
   for (const std::string& f : files) {
     // In a directory, only files whose names or X2 file functions say copper, drill or
@@ -180,6 +203,11 @@ BoardFiles read_board_files(const std::string& input, const std::string& side_as
       }
       if (named == LayerKind::kDrill) {  // a drill drawing (OrCAD's .drd): no holes in it
         b.notes.push_back(f + ": " + pcb::kGerberNotADrillFile + " (left out)");
+        continue;
+      }
+      if (named == LayerKind::kUnknown && !binary_data_text(head).empty()) {
+        // An executable or image with a Gerber extension: say what it is, no --top advice.
+        b.notes.push_back(f + ": " + binary_data_text(head) + ": left out");
         continue;
       }
       if (named == LayerKind::kUnknown) {
@@ -223,10 +251,13 @@ BoardFiles read_board_input(const std::string& input, const std::string& side_as
   if (b.from_directory && b.layers.copper_top.empty() && b.layers.copper_bottom.empty()) {
     // A board folder without copper is a folder whose copper was not recognised: planning
     // its holes alone would look like success.
-    std::string msg = input +
-                      ": no copper layer for the job among the folder's files (name it with "
-                      "--top or --bottom; to cut only holes or an outline, give that file "
-                      "itself)";
+    // Naming copper helps only when a Gerber file was left out for saying no layer.
+    bool nameable = false;
+    for (const std::string& n : b.notes)
+      nameable = nameable || n.find("(name it with --top") != std::string::npos;
+    std::string msg = input + ": no copper layer for the job among the folder's files (" +
+                      (nameable ? "name it with --top or --bottom; " : "") +
+                      "to cut only holes or an outline, give that file itself)";
     for (const std::string& n : b.notes) msg += "\n  " + n;
     throw CommandFailure(kExitUsage, msg);
   }

@@ -3,11 +3,13 @@
 #ifndef HOST_LIB_DRAWING_DRAWING_H
 #define HOST_LIB_DRAWING_DRAWING_H
 
-#include <map>        // std::map
-#include <stdexcept>  // std::runtime_error
-#include <string>     // std::string
-#include <utility>    // std::move
-#include <vector>     // std::vector
+#include <cstddef>     // size_t
+#include <functional>  // std::function
+#include <map>         // std::map
+#include <stdexcept>   // std::runtime_error
+#include <string>      // std::string
+#include <utility>     // std::move
+#include <vector>      // std::vector
 
 #include "host/lib/drawing/bspline.h"
 #include "host/lib/drawing/held_spline.h"
@@ -88,6 +90,13 @@ bool starts_like_excellon(const std::string& text);
 // Reads a drawing; the format is chosen from the content and the extension (DXF; G-code
 // .ngc/.nc/.gcode). Throws ImportError for anything it cannot import faithfully.
 Drawing import_drawing(const std::string& path);
+
+// Called now and then during long work (importing, planning), for a progress bar: what is
+// counted ("bytes checked", "curves ordered"), done of total. A new unit starts a new stage.
+using WorkProgress = std::function<void(const char* unit, size_t done, size_t total)>;
+
+// import_drawing, reporting its progress (a DXF: the bytes checked, then read).
+Drawing import_drawing(const std::string& path, const WorkProgress& progress);
 
 }  // namespace host
 

@@ -758,12 +758,14 @@ std::vector<Curve> DxfReader::expanded_curves(double unit_to_mm) {
 // so they are never all held at once.
 class GroupFeed : public std::streambuf {
  public:
-  GroupFeed(DxfScanner& groups, DxfReader& reader) : groups_(groups), reader_(reader) {}
+  GroupFeed(DxfScanner& groups, DxfReader& reader, const WorkProgress& progress, size_t bytes)
+      : groups_(groups), reader_(reader), progress_(progress), bytes_(bytes) {}
 
  protected:
   int_type underflow() override {
     if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
     if (!groups_.next(&group_)) return traits_type::eof();
+    if (progress_ && ++groups_read_ % 65536 == 0) progress_("bytes read", groups_.pos(), bytes_);
     reader_.raw_group(group_);
     text_ = std::to_string(group_.code) + "\n" + group_.value + "\n";
     setg(&text_[0], &text_[0], &text_[0] + text_.size());
@@ -775,16 +777,24 @@ class GroupFeed : public std::streambuf {
   DxfReader& reader_;
   DxfGroup group_;
   std::string text_;
+  const WorkProgress& progress_;
+  size_t bytes_;  // of the whole text
+  size_t groups_read_ = 0;
 };
 
 }  // namespace
 
 Drawing import_dxf_text(const std::string& text, const std::string& path) {
+  return import_dxf_text_reporting(text, path, nullptr);
+}
+
+Drawing import_dxf_text_reporting(const std::string& text, const std::string& path,
+                                  const WorkProgress& progress) {
   try {
-    check_dxf(text, path);  // the whole file, before dxflib reads any of it
+    check_dxf(text, path, progress);  // the whole file, before dxflib reads any of it
     DxfScanner groups(text, path);
     DxfReader reader(path);
-    GroupFeed feed(groups, reader);
+    GroupFeed feed(groups, reader, progress, text.size());
     std::istream stream(&feed);
     // dxflib loops until end-of-file: an exception in underflow() must not leave the stream
     // merely bad (no eof, an endless loop) but reach the handlers below. No line it reads is
@@ -792,6 +802,7 @@ Drawing import_dxf_text(const std::string& text, const std::string& path) {
     stream.exceptions(std::ios::badbit);
     DL_Dxf dxf;
     dxf.in(stream, &reader);
+    if (progress) progress("bytes read", text.size(), text.size());
     return reader.finish();
   } catch (const ImportError&) {
     throw;
@@ -807,8 +818,8 @@ Drawing import_dxf_text(const std::string& text, const std::string& path) {
   }
 }
 
-Drawing import_dxf(const std::string& path) {
-  return import_dxf_text(read_drawing_text(path), path);
+Drawing import_dxf(const std::string& path, const WorkProgress& progress) {
+  return import_dxf_text_reporting(read_drawing_text(path), path, progress);
 }
 
 }  // namespace host

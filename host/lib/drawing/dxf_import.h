@@ -9,10 +9,14 @@
 namespace host {
 
 // Reads an ASCII DXF file. Throws ImportError naming the file, the entity and the problem.
-Drawing import_dxf(const std::string& path);
+// progress (when given): the bytes checked, then the bytes read.
+Drawing import_dxf(const std::string& path, const WorkProgress& progress = nullptr);
 
 // The same for the file's bytes already in memory; `path` names it in messages.
 Drawing import_dxf_text(const std::string& text, const std::string& path);
+// The same, reporting progress (not an overload: the fuzz target takes import_dxf_text by name).
+Drawing import_dxf_text_reporting(const std::string& text, const std::string& path,
+                                  const WorkProgress& progress);
 
 }  // namespace host
 

@@ -11,6 +11,7 @@
 #include <sstream>    // std::ostringstream
 
 #include "host/lib/drawing/drawing.h"
+#include "host/lib/drawing/file_text.h"  // not_a_file_text
 
 namespace host {
 
@@ -209,9 +210,22 @@ long group_code(const std::string& code_text, const std::string& line, size_t st
 }
 
 // A group's value line (line number `line`) stripped; a text value cut to what dxflib reads,
-// a number that long or a NUL byte refused.
+// a number that long, a NUL byte or another control byte (not tab or CR) refused: DXF writes
+// control characters in text as ^J, so a raw one is a damaged or binary file.
 std::string group_value(const std::string& value_line, long code, const Where& w, long line) {
   std::string value = strip(value_line);
+  const auto control = std::find_if(value.begin(), value.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return (u < 0x20 && c != '\t' && c != '\r' && c != '\0') || u == 0x7F;
+  });
+  if (control != value.end() && value.find('\0') == std::string::npos) {
+    char byte[8];
+    std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(*control));
+    std::ostringstream o;
+    o << w.path << ": line " << line << ", in " << w.entity << ": a control byte (" << byte
+      << ") in the value of group " << code << " (binary data in a text file?)";
+    throw ImportError(o.str());
+  }
   if (value.size() > kMaxDxfValueChars) {
     // dxflib reads lines of at most 1023 characters (a longer one stops its reader).
     if (is_real_code(code) || int_code_limit(code) != 0) {
@@ -276,6 +290,7 @@ void count_vertex_group(long code, const Where& w, PolylineShape& poly) {
 }  // namespace
 
 bool looks_like_dxf(const std::string& path) {
+  if (!not_a_file_text(path).empty()) return false;  // a FIFO's open would wait
   std::ifstream in(path, std::ios::binary);
   std::string a, b;
   if (!std::getline(in, a)) return false;
@@ -346,11 +361,17 @@ bool DxfScanner::next(DxfGroup* group) {
   throw ImportError(o.str());
 }
 
-void check_dxf(const std::string& text, const std::string& path) {
+size_t DxfScanner::pos() const {
+  return s_->lines.pos();
+}
+
+void check_dxf(const std::string& text, const std::string& path, const WorkProgress& progress) {
   DxfScanner scanner(text, path);
   DxfGroup g;
-  while (scanner.next(&g)) {
+  for (size_t n = 0; scanner.next(&g); ++n) {
+    if (progress && n % 65536 == 0) progress("bytes checked", scanner.pos(), text.size());
   }
+  if (progress) progress("bytes checked", text.size(), text.size());
 }
 
 }  // namespace host

@@ -9,6 +9,8 @@
 #include <memory>   // std::unique_ptr
 #include <string>   // std::string
 
+#include "host/lib/drawing/drawing.h"  // WorkProgress
+
 namespace host {
 
 // One group code/value pair, value stripped of surrounding blanks.
@@ -31,6 +33,8 @@ class DxfScanner {
   DxfScanner(const DxfScanner&) = delete;
   DxfScanner& operator=(const DxfScanner&) = delete;
   bool next(DxfGroup* group);
+  // Bytes of the text scanned so far (for progress).
+  size_t pos() const;
 
  private:
   struct State;
@@ -38,7 +42,9 @@ class DxfScanner {
 };
 
 // Scans the whole text, so that nothing of a broken file is read: throws what next() would.
-void check_dxf(const std::string& text, const std::string& path);
+// progress (when given): "bytes checked" every 64k groups.
+void check_dxf(const std::string& text, const std::string& path,
+               const WorkProgress& progress = nullptr);
 
 // Largest count a group may announce (control points, knots, vertices) whatever the file's
 // size: far beyond any sane drawing, small enough that dxflib's allocation of it is modest.

@@ -13,11 +13,21 @@
 
 namespace host {
 
-std::string cannot_open_text(const std::string& path) {
+std::string not_a_file_text(const std::string& path) {
   std::error_code ec;
-  const std::filesystem::file_status st = std::filesystem::status(path, ec);
-  if (st.type() == std::filesystem::file_type::directory) return "is a directory, not a file";
-  if (st.type() == std::filesystem::file_type::not_found) return "cannot open the file";
+  const std::filesystem::file_type t = std::filesystem::status(path, ec).type();
+  if (t == std::filesystem::file_type::directory) return "is a directory, not a file";
+  if (t == std::filesystem::file_type::regular || t == std::filesystem::file_type::not_found ||
+      t == std::filesystem::file_type::none || t == std::filesystem::file_type::unknown)
+    return "";
+  return "not a regular file (a pipe, device or socket)";
+}
+
+std::string cannot_open_text(const std::string& path) {
+  const std::string not_a_file = not_a_file_text(path);
+  if (!not_a_file.empty()) return not_a_file;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return "cannot open the file";
   errno = 0;
   std::ifstream probe(path, std::ios::binary);
   const int why = errno;
@@ -28,8 +38,8 @@ std::string cannot_open_text(const std::string& path) {
 FileRead read_file_text(const std::string& path, std::string* text) {
   text->clear();
   std::error_code ec;
-  // A directory opens as a stream on Linux, and its "size" can be 2^63.
-  if (std::filesystem::is_directory(path, ec)) return FileRead::kCannotOpen;
+  // A directory opens as a stream on Linux, and its "size" can be 2^63; a FIFO's open waits.
+  if (!not_a_file_text(path).empty()) return FileRead::kCannotOpen;
   std::ifstream in(path, std::ios::binary);
   if (!in) return FileRead::kCannotOpen;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
@@ -41,6 +51,7 @@ FileRead read_file_text(const std::string& path, std::string* text) {
 }
 
 std::string read_file_head(const std::string& path) {
+  if (!not_a_file_text(path).empty()) return std::string();
   std::ifstream in(path, std::ios::binary);
   std::string head(4096, '\0');
   in.read(&head[0], static_cast<std::streamsize>(head.size()));

@@ -11,18 +11,24 @@ enum class FileRead { kOk, kCannotOpen, kReadError };
 
 // Reads the file at path into *text, sized once from the file's length (a stringstream and
 // its str() held a large file twice). Each caller words its own error.
-// A directory or a file that cannot be opened is kCannotOpen.
+// A directory, a pipe, device or socket (never opened) or a file that cannot be opened is
+// kCannotOpen.
 FileRead read_file_text(const std::string& path, std::string* text);
 
-// The first 4 kB of the file at path (less when shorter, empty when it cannot be opened):
-// where formats are recognised by their content.
+// The first 4 kB of the file at path (less when shorter, empty when it cannot be opened or
+// is not a regular file): where formats are recognised by their content.
 std::string read_file_head(const std::string& path);
 
 // s with A-Z in lower case (file names, host names).
 std::string lower_ascii(std::string s);
 
-// Why the file at path cannot be opened: "is a directory, not a file", "cannot open the
-// file" (missing), "cannot open the file: Permission denied".
+// Why the file at path is not read, asked before it is opened (opening a FIFO waits for a
+// writer): "is a directory, not a file", "not a regular file (a pipe, device or socket)";
+// "" for a regular file (or a link to one) and for a path that does not exist.
+std::string not_a_file_text(const std::string& path);
+
+// Why the file at path cannot be opened: not_a_file_text, else "cannot open the file"
+// (missing), "cannot open the file: Permission denied".
 std::string cannot_open_text(const std::string& path);
 
 // The file's text, or Error "<path>: cannot open the file" / "<path>: cannot read the file"

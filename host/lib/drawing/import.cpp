@@ -67,15 +67,14 @@ void check_readable(const std::string& path) {
   if (st.type() == std::filesystem::file_type::directory) {
     throw ImportError(path + ": is a directory, not a drawing file");
   }
+  // Asked before opening: opening a FIFO waits for a writer (`info f.dxf` hung).
+  if (!not_a_file_text(path).empty()) throw ImportError(path + ": " + not_a_file_text(path));
   errno = 0;
   std::ifstream probe(path, std::ios::binary);
   if (!probe) {
     const int why = errno;
     throw ImportError(path + ": cannot open the file: " +
                       (why != 0 ? std::strerror(why) : std::string("unknown reason")));
-  }
-  if (st.type() != std::filesystem::file_type::regular) {
-    throw ImportError(path + ": not a regular file (a device, pipe or socket)");
   }
 }
 
@@ -89,12 +88,12 @@ Extents Drawing::extents() const {
 
 namespace {
 
-Drawing import_by_format(const std::string& path) {
+Drawing import_by_format(const std::string& path, const WorkProgress& progress) {
   check_readable(path);
   const std::string ext = extension(path);
   const std::string text = read_file_head(path);
   if (text.empty()) throw ImportError(path + ": the file is empty");
-  if (ext == ".dxf" || looks_like_dxf(path)) return import_dxf(path);
+  if (ext == ".dxf" || looks_like_dxf(path)) return import_dxf(path, progress);
   if (is_gerber(ext, text)) {
     throw ImportError(path +
                       ": this is a Gerber (RS-274X) PCB layer, not a drawing of tool paths: "
@@ -121,8 +120,12 @@ Drawing import_by_format(const std::string& path) {
 // Only ImportError leaves: anything else an importer lets out is reported as what it is,
 // with the file's name (callers map ImportError to "input error").
 Drawing import_drawing(const std::string& path) {
+  return import_drawing(path, nullptr);
+}
+
+Drawing import_drawing(const std::string& path, const WorkProgress& progress) {
   try {
-    return import_by_format(path);
+    return import_by_format(path, progress);
   } catch (const ImportError&) {
     throw;
   } catch (const std::bad_alloc& e) {

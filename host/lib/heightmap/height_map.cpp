@@ -11,6 +11,8 @@
 #include <set>                // std::set
 #include <sstream>            // std::stringstream
 
+#include "host/lib/drawing/file_text.h"  // not_a_file_text
+
 namespace host::heightmap {
 
 namespace {
@@ -222,6 +224,8 @@ HeightMap read_height_map_text(const std::string& text_in, const std::string& wh
 }
 
 HeightMap read_height_map_file(const std::string& path) {
+  const std::string not_a_file = not_a_file_text(path);  // a FIFO's open would wait
+  if (!not_a_file.empty()) fail(path, not_a_file);
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, "cannot open the height map");
   std::stringstream s;

@@ -27,6 +27,11 @@ struct OrderedCurve {
   bool chained;
 };
 
+// Progress (PlanOptions::progress) every 4096 curves of a stage.
+void report(const PlanOptions& o, const char* unit, size_t done, size_t total) {
+  if (o.progress && done % 4096 == 0) o.progress(unit, done, total);
+}
+
 // Greedy nearest neighbour from the zero, each curve either way round. Only the curves' ends
 // and the search's index are held here, and they die on return, before the planned curves
 // are made: a million-line drawing held them (~120 MB) beside the planned curves.
@@ -35,6 +40,7 @@ std::vector<OrderedCurve> greedy_order(const std::vector<Curve>& scaled, const P
   starts.reserve(scaled.size());
   ends.reserve(scaled.size());
   for (const Curve& c : scaled) {
+    report(o, "curve ends indexed", starts.size(), scaled.size());
     const BSpline s = c.spline();
     starts.push_back(start_point(s));
     ends.push_back(end_point(s));
@@ -44,7 +50,7 @@ std::vector<OrderedCurve> greedy_order(const std::vector<Curve>& scaled, const P
   order.reserve(scaled.size());
   Point2 at(0, 0);
   for (size_t n = 0; n < scaled.size(); ++n) {
-    if (o.progress && n % 4096 == 0) o.progress(n, scaled.size());
+    report(o, "curves ordered", n, scaled.size());
     size_t best = n;
     bool best_rev = false;
     double best_d = (starts[n] - at).norm();
@@ -86,17 +92,24 @@ JobPlan plan_scaled(std::vector<Curve> scaled, const PlanOptions& o) {
   JobPlan plan;
   // Put the lower-left corner of the extents at (margin, margin).
   Extents ext;
-  for (const Curve& c : scaled) ext.add(curve_extents(c.spline()));
+  for (size_t i = 0; i < scaled.size(); ++i) {
+    report(o, "curves measured", i, scaled.size());
+    ext.add(curve_extents(scaled[i].spline()));
+  }
   plan.offset_mm =
       o.fixed_offset ? o.offset_mm : Point2(Point2(o.margin_mm, o.margin_mm) - ext.min);
-  for (Curve& c : scaled)
-    c.set_spline(transformed(c.spline(), Eigen::Matrix2d::Identity(), plan.offset_mm));
+  for (size_t i = 0; i < scaled.size(); ++i) {
+    report(o, "curves moved to the margin", i, scaled.size());
+    scaled[i].set_spline(
+        transformed(scaled[i].spline(), Eigen::Matrix2d::Identity(), plan.offset_mm));
+  }
   const double radius = o.tool_side == ToolSide::kCentre ? 0.0 : o.tool_radius_mm;
   order_curves(std::move(scaled), o, &plan);
 
   // Work area, before anything else is produced.
   std::string culprit;
   for (size_t i = 0; i < plan.curves.size(); ++i) {
+    report(o, "curves checked against the work area", i, plan.curves.size());
     if (culprit.empty()) culprit = first_exit(plan.curves[i], radius, o);
     plan.extents_mm.add(curve_extents(plan.curves[i].spline()));
   }
@@ -137,6 +150,7 @@ JobPlan plan_scaled(std::vector<Curve> scaled, const PlanOptions& o) {
   bool pen_down = false;
   Point2 at(0, 0);
   for (size_t i = 0; i < plan.curves.size(); ++i) {
+    report(o, "curves made into steps", i, plan.curves.size());
     const PlannedCurve& c = plan.curves[i];
     // Offset sign: left of the curve as drawn; reversed curves swap sides.
     const int32_t offset = offset_of(c);

@@ -67,8 +67,10 @@ struct PlanOptions {
   // Runs of short G1 moves are sent as cubic B-splines within this distance of the
   // program's path (0: every move as a straight feed).
   double fit_tolerance_mm = defaults::kFitToleranceMm;
-  // Called now and then while the curves are ordered (done, total), for a progress bar.
-  std::function<void(size_t, size_t)> progress;
+  // Called now and then in each stage of planning a drawing ("curves measured", "curves
+  // moved to the margin", "curve ends indexed", "curves ordered", "curves checked against
+  // the work area", "curves made into steps"), for a progress bar.
+  WorkProgress progress;
 };
 
 // A planned curve: the drawing curve in the machine frame (mm), in the direction drawn.

@@ -101,4 +101,22 @@ void ProgressMeter::finish() {
   if (style_.terminal) out_ << "\n" << std::flush;
 }
 
+StagedProgress::StagedProgress(std::string what, std::ostream& out, ProgressStyle style,
+                               std::function<ProgressMeter::Clock::time_point()> clock)
+    : what_(std::move(what)), out_(out), style_(style), clock_(std::move(clock)) {}
+
+void StagedProgress::update(const std::string& unit, size_t done, size_t total) {
+  if (!meter_ || unit != unit_) {
+    finish();
+    unit_ = unit;
+    meter_ = std::make_unique<ProgressMeter>(what_, unit, out_, style_, clock_);
+  }
+  meter_->update(done, total);
+}
+
+void StagedProgress::finish() {
+  if (meter_) meter_->finish();
+  meter_.reset();
+}
+
 }  // namespace host

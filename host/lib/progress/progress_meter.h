@@ -7,6 +7,7 @@
 #include <chrono>      // steady_clock
 #include <cstddef>     // size_t
 #include <functional>  // std::function
+#include <memory>      // std::unique_ptr
 #include <ostream>     // std::ostream
 #include <string>      // std::string
 
@@ -61,6 +62,25 @@ class ProgressMeter {
   size_t drawn_done_ = 0, drawn_total_ = 0;  // what the last drawn report said
   std::string last_detail_;
   size_t width_ = 0;  // characters of the last terminal line (to blank leftovers)
+};
+
+// Work in stages, each counted in its own unit ("bytes checked", then "bytes read"; "curves
+// ordered", then "curves checked against the work area" ...): one meter per stage, the last
+// ended when the unit changes, so each stage shows its own counts, rate and time left.
+class StagedProgress {
+ public:
+  StagedProgress(std::string what, std::ostream& out, ProgressStyle style,
+                 std::function<ProgressMeter::Clock::time_point()> clock = nullptr);
+  void update(const std::string& unit, size_t done, size_t total);
+  void finish();
+
+ private:
+  std::string what_;
+  std::ostream& out_;
+  ProgressStyle style_;
+  std::function<ProgressMeter::Clock::time_point()> clock_;
+  std::string unit_;
+  std::unique_ptr<ProgressMeter> meter_;
 };
 
 // "1:05", "12:00:07": seconds as minutes:seconds (hours when needed).

@@ -2,13 +2,16 @@
 // and exit code 2 (input error), never a crash or a bare exception type (issue 13).
 #include <dirent.h>  // opendir
 #include <gtest/gtest.h>
+#include <sys/stat.h>  // mkfifo
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "host_tests/host/cli/tool_run.h"
@@ -65,6 +68,44 @@ TEST(CliHostile, BinaryDataIsNotADxfOrExcellonFile) {
   EXPECT_EQ(board.code, 2);
   EXPECT_EQ(board.err,
             "engraver: " + drl + ":1: not an Excellon file: binary data (a NUL byte at byte 7)\n");
+}
+
+// A FIFO or a device where a file is expected is refused before it is opened (opening a FIFO
+// waits for a writer: `info f.dxf` hung), by every reader: exit 2, "not a regular file".
+TEST(CliHostile, AFifoOrDeviceIsRefusedWithoutWaitingForAWriter) {
+  const std::string dir = testing::TempDir() + "/" + std::to_string(getpid()) + "-fifo";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string word = std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf";
+  const std::string timed = std::string("timeout 10 ") + ENGRAVER_EXE;
+  for (const char* name : {"f.dxf", "f.gbr", "f.drl", "f.nc", "f.map.json", "f.vcd"}) {
+    const std::string f = dir + "/" + name;
+    ASSERT_EQ(mkfifo(f.c_str(), 0644), 0) << f;
+  }
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"info " + dir + "/f.dxf", dir + "/f.dxf"},
+      {"info " + dir + "/f.gbr", dir + "/f.gbr"},
+      {"info " + dir + "/f.drl", dir + "/f.drl"},
+      {"info " + dir + "/f.nc", dir + "/f.nc"},
+      {"info /dev/null", "/dev/null"},
+      {"run " + dir + "/f.dxf -o " + dir + "/out", dir + "/f.dxf"},
+      {"points " + dir + "/f.dxf", dir + "/f.dxf"},
+      {"board --top " + dir + "/f.gbr -o " + dir + "/out", dir + "/f.gbr"},
+      {"board --drill " + dir + "/f.drl -o " + dir + "/out", dir + "/f.drl"},
+      {"run " + word + " --height-map " + dir + "/f.map.json -o " + dir + "/out",
+       dir + "/f.map.json"},
+      {"spi diff " + dir + "/f.vcd " + dir + "/f.dxf", dir + "/f.dxf"},
+      {"spi decode " + dir + "/f.vcd", dir + "/f.vcd"},
+  };
+  for (const auto& [args, file] : cases) {
+    const ToolRun r = host_tests::run_tool(timed, args);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(file + ": not a regular file (a pipe, device or socket)"),
+              std::string::npos)
+        << args << "\n"
+        << r.err;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 // The reproducers in ../shared/samples/hostile (skipped when ../shared is absent).

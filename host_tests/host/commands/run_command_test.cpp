@@ -5,7 +5,11 @@
 #include <fmt/format.h>  // fmt::format
 
 #include <filesystem>  // temp_directory_path, exists
+#include <fstream>     // std::ifstream
 #include <memory>      // std::make_shared
+#include <sstream>     // std::stringstream
+#include <string>      // std::string
+#include <vector>      // std::vector
 
 #include "host/lib/commands/exit_codes.h"
 #include "host/lib/commands/run_command.h"
@@ -167,6 +171,33 @@ TEST(RunCommand, TheSummaryListsTheIslandsNoCutSeparates) {
                       "machine are not separated by a cut\n"),
             std::string::npos)
       << text;
+  fs::remove_all(dir);
+}
+
+// Every key of the run report (a board's with its simulated isolation check) is in the
+// guide's list: `max_contour_error_at_mm` and seven others were written but not listed.
+TEST(RunCommand, TheGuideNamesEveryKeyOfTheReport) {
+  const std::string dir = (fs::temp_directory_path() / "run_command_guide_keys_test").string();
+  fs::remove_all(dir);
+  const JobPlan plan = two_lines();
+  RunOptions o = small_run(dir);
+  RunResult r = run_job(plan, o);
+  ASSERT_EQ(r.sim.outcome, JobOutcome::kCompleted) << r.sim.message;
+  r.isolation = SimulatedIsolation{};
+  r.isolation->clearing_min_clearance_um = 12.0;
+  o.board = PlannedBoard{};
+  o.board->job = std::make_shared<pcb::BoardJob>();
+  const nlohmann::json j = run_report_json(plan, o, r);
+  std::ifstream in(std::string(ENGRAVER_SOURCE_DIR) + "/docs/user-guide.md");
+  std::stringstream guide;
+  guide << in.rdbuf();
+  ASSERT_FALSE(guide.str().empty());
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : j.items()) keys.push_back(key);
+  for (const auto& [key, value] : j["simulated_isolation_check"].items()) keys.push_back(key);
+  for (const std::string& key : keys)
+    EXPECT_NE(guide.str().find("`" + key + "`"), std::string::npos) << key;
+  EXPECT_NE(guide.str().find("**The machine frame.**"), std::string::npos);
   fs::remove_all(dir);
 }
 

@@ -114,6 +114,25 @@ TEST(DxfHostile, NulByteInAValueIsRefused) {
             "file?)");
 }
 
+// A control byte other than tab and CR in any group line is refused as the NUL byte is, with
+// its line: a section name ENT\x07ITIES (an outside tester's edit of line 20 of the word
+// sample) was taken silently, and the section's entities left out.
+TEST(DxfHostile, ControlByteInAValueIsRefused) {
+  const std::string text =
+      "0\nSECTION\n2\nENT\x07ITIES\n0\nLINE\n10\n0\n20\n0\n11\n1\n21\n1\n0\nENDSEC\n0\nEOF\n";
+  EXPECT_EQ(refusal("bell.dxf", text),
+            "bell.dxf: line 4, in SECTION: a control byte (0x07) in the value of group 2 (binary "
+            "data in a text file?)");
+  const std::string layer = "0\nLINE\n8\nla\x1byer\n";
+  EXPECT_EQ(refusal("esc.dxf", entities_only(layer)),
+            "esc.dxf: line 8, in LINE: a control byte (0x1B) in the value of group 8 (binary data "
+            "in a text file?)");
+  const std::string del = "0\nLINE\n8\nlayer\x7f\n";
+  EXPECT_EQ(refusal("del.dxf", entities_only(del)),
+            "del.dxf: line 8, in LINE: a control byte (0x7F) in the value of group 8 (binary data "
+            "in a text file?)");
+}
+
 TEST(DxfHostile, OverlongNumberIsRefused) {
   // dxflib reads lines of at most 1023 characters; a longer one would stop its reader.
   const std::string line = "0\nLINE\n10\n" + std::string(1500, '1') + "\n";

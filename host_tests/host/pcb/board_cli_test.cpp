@@ -2,6 +2,7 @@
 // two pads joined by a track and a square pad (Gerber, mm), a drill file in inches with two
 // sizes, and an outline drawn as strokes.
 #include <gtest/gtest.h>
+#include <sys/stat.h>  // mkfifo
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -561,6 +562,39 @@ TEST(BoardCli, AFolderWithoutCopperIsRefused) {
   EXPECT_NE(r.err.find("t-layer1.gbr: neither its name nor an X2 file function says"),
             std::string::npos)
       << r.err;
+}
+
+// A binary file with a plain Gerber name (an outside tester's /bin/ls as x.gbr) is left out as
+// binary data, in the readers' words; it was "neither its name nor an X2 file function says
+// copper" with advice to name it with --top. A FIFO in the folder is listed as left out, never
+// opened (it was silently not listed).
+TEST(BoardCli, ABinaryFileOrAFifoInABoardFolderIsLeftOutSayingWhy) {
+  const std::string dir = testing::TempDir() + "/" + std::to_string(getpid()) + "-bingbr";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/x.gbr", std::ios::binary) << std::string(
+      "\x7F"
+      "ELF\x02\x01\x01\0\0\0\0\0\0\0\0\0\x03\0>\0\nmore",
+      24);
+  ASSERT_EQ(mkfifo((dir + "/zz.gbr").c_str(), 0644), 0);
+  const std::string timed = std::string("timeout 10 ") + ENGRAVER_EXE;
+  const ToolRun info = host_tests::run_tool(timed, "info " + dir);
+  EXPECT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(
+      info.out.find("  - " + dir +
+                    "/x.gbr: not a Gerber file: binary data (a NUL byte at byte 7): left out"),
+      std::string::npos)
+      << info.out;
+  EXPECT_NE(info.out.find("  - " + dir +
+                          "/zz.gbr: not a regular file (a pipe, device or socket): left out"),
+            std::string::npos)
+      << info.out;
+  const ToolRun board = host_tests::run_tool(timed, "board " + dir + " -o " + dir + "/out");
+  EXPECT_EQ(board.code, 2) << board.err;
+  EXPECT_NE(board.err.find("x.gbr: not a Gerber file: binary data"), std::string::npos)
+      << board.err;
+  EXPECT_EQ(board.err.find("--top"), std::string::npos) << board.err;
+  std::filesystem::remove_all(dir);
 }
 
 // An option names the layer whatever the file's name says: a copper file named "outline"

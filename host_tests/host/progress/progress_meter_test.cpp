@@ -57,6 +57,40 @@ TEST(ProgressMeter, OffATerminalPrintsAPlainLineEveryFewSeconds) {
   EXPECT_NE(text.find("200/200 commands (100%), 10/s; running\n"), std::string::npos) << text;
 }
 
+// Work in stages: each stage its own lines in its own unit, the earlier stage ended with its
+// last line when the next begins. `run` on 200 000 lines said "plan: 0/200000 curves ordered"
+// for ~40 s: the stages after ordering reported nothing.
+TEST(StagedProgress, EachStageReportsInItsOwnUnit) {
+  std::ostringstream out;
+  FakeClock c;
+  ProgressStyle st;
+  st.terminal = false;
+  st.first = milliseconds(500);
+  st.line_every = milliseconds(5000);
+  {
+    StagedProgress p("plan", out, st, c.fn());
+    for (int s = 0; s <= 6; ++s) {  // 6 s ordering, then 6 s checking, an update every second
+      c.t = Clock::time_point(std::chrono::seconds(s));
+      p.update("curves ordered", static_cast<size_t>(s) * 100, 600);
+    }
+    for (int s = 0; s <= 6; ++s) {
+      c.t = Clock::time_point(std::chrono::seconds(7 + s));
+      p.update("curves checked against the work area", static_cast<size_t>(s) * 100, 600);
+    }
+  }
+  const std::string text = out.str();
+  EXPECT_NE(text.find("engraver: plan: 100/600 curves ordered (16%)"), std::string::npos) << text;
+  EXPECT_NE(text.find("engraver: plan: 600/600 curves ordered (100%)"), std::string::npos) << text;
+  EXPECT_NE(text.find("engraver: plan: 100/600 curves checked against the work area (16%)"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("engraver: plan: 600/600 curves checked against the work area (100%)"),
+            std::string::npos)
+      << text;
+  // Never more than 5 s without a line: at 1 and 6 s, then 8 and 13 s.
+  EXPECT_EQ(count(text, "\n"), 4u) << text;
+}
+
 // The share is rounded down: 100 % only when all is done (the outside tester saw 111/112 as
 // 99 % and 253/254 as 100 %).
 TEST(ProgressMeter, TheShareIsRoundedDownSoOnlyAllDoneIs100Percent) {
