@@ -74,6 +74,12 @@ void check_resume_at(const JobPlan& plan, const EncodeOptions& encode, const Res
                     at.text, counted(scan.job_commands(), "job command"), scan.job_commands() - 1,
                     counted(scan.commands(), "command"), scan.job_commands()));
   }
+  if (at.point > 0 && scan.at().front().letter != proto::kCmdSplineHeader) {
+    throw CommandFailure(kExitUsage,
+                         fmt::format("--resume-at: '{}': job command {} is not a curve (a move, a "
+                                     "pause or a setting): it has no point {}, only 0",
+                                     at.text, at.index, at.point));
+  }
   try {
     resume_point_at(scan, at.point, 0);
   } catch (const PlanError& e) {

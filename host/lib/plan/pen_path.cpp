@@ -43,7 +43,10 @@ void PenPath::thin(double step_mm) {
 }
 
 size_t PenPath::heap_bytes() const {
-  return points_.capacity() * sizeof(points_[0]) + down_.capacity() / 8;
+  // A deque's blocks (512 bytes in libstdc++) and its map of them, about.
+  const size_t per_block = 512 / sizeof(points_[0]);
+  const size_t blocks = points_.size() / per_block + 1;
+  return blocks * (512 + sizeof(void*)) + down_.capacity() / 8;
 }
 
 std::vector<std::vector<Point2>> pen_down_pieces(const PenPath& path) {

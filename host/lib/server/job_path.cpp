@@ -108,9 +108,11 @@ bool JobPath::thinned(double step_mm, size_t max_points, nlohmann::json* out) co
   auto close = [&] {
     const Point2& end = points_[pieces_[through].end];
     if (points.empty() || end != last) emit(end);  // a thinned piece still ends where it ends
+    // The length between the rounded ends: each piece starts where the one before ends.
+    const double start_mm = um_rounded(pieces_[open].start_mm);
     out->push_back({{"pen_down", pieces_[open].pen_down},
-                    {"start_mm", um_rounded(pieces_[open].start_mm)},
-                    {"length_mm", um_rounded(end_mm_of(through) - pieces_[open].start_mm)},
+                    {"start_mm", start_mm},
+                    {"length_mm", um_rounded(um_rounded(end_mm_of(through)) - start_mm)},
                     {"points_mm", std::move(points)}});
     points = nlohmann::json::array();
   };
@@ -153,7 +155,7 @@ nlohmann::json JobPath::to_json(size_t max_points) const {
     thinned(0, max_points, &pieces);
   }
   return {{"length_mm", um_rounded(length_mm_)},
-          {"thinned_to_mm", step_mm},
+          {"thinned_to_mm", um_rounded(step_mm)},
           {"pieces", std::move(pieces)}};
 }
 

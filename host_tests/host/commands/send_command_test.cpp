@@ -107,6 +107,13 @@ TEST(SendCommandResumeAt, APointBeyondTheCurveIsABadCommandLine) {
   EXPECT_STREQ(e.what(),
                "--resume-at: '4:60000': resume at job command 4: its curve has 121 points, not "
                "60001");
+  // Job command 0 is not a curve: it has no points to resume from.
+  const CommandFailure not_a_curve = resume_at_refusal(plan, "0:60000");
+  EXPECT_EQ(not_a_curve.code, kExitUsage);
+  EXPECT_STREQ(not_a_curve.what(),
+               "--resume-at: '0:60000': job command 0 is not a curve (a move, a pause or a "
+               "setting): it has no point 60000, only 0");
+  EXPECT_EQ(resume_at_refusal(plan, "0:0").code, kExitOk);
 }
 
 TEST(SendCommand, StreamsTheJobAndAttachesTheControlsOnlyWhileItRuns) {

@@ -65,7 +65,7 @@ TEST(PenPath, ThinningKeepsTheEndsAndEveryPenChange) {
 TEST(PenPath, APositionTakesEightBytesAndABit) {
   PenPath path;
   for (int i = 0; i < 100000; ++i) path.add(Point2(i, -i), i % 2 == 0);
-  EXPECT_LE(path.heap_bytes(), 100000u * 9 * 2);  // a vector's doubling at most
+  EXPECT_LE(path.heap_bytes(), 100000u * 9);  // in blocks: no doubled array
   EXPECT_EQ(path.point(99999), Point2(99999, -99999));
   EXPECT_FALSE(path.pen_down(99999));
 }

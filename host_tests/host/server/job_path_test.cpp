@@ -76,15 +76,16 @@ JobPlan separate_lines(int n) {
   return plan_job(std::move(d), PlanOptions());
 }
 
-// Pieces in order, each starting where the one before ended (lengths in whole micrometres).
+// Pieces in order, each starting where the one before ended (to the last bit but for the
+// sum's own rounding: a piece's length is taken between its rounded ends).
 void expect_contiguous(const nlohmann::json& path) {
   double at_mm = 0;
   for (const nlohmann::json& p : path["pieces"]) {
-    EXPECT_NEAR(p["start_mm"].get<double>(), at_mm, 0.0015);
+    EXPECT_NEAR(p["start_mm"].get<double>(), at_mm, 1e-9);
     EXPECT_GE(p["points_mm"].size(), 1u);
     at_mm = p["start_mm"].get<double>() + p["length_mm"].get<double>();
   }
-  EXPECT_NEAR(at_mm, path["length_mm"].get<double>(), 0.0015);
+  EXPECT_NEAR(at_mm, path["length_mm"].get<double>(), 1e-9);
 }
 
 size_t points_in(const nlohmann::json& path) {
