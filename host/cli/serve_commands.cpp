@@ -18,6 +18,7 @@
 #include "host/lib/server/http_api.h"
 #include "host/lib/server/inbox_watcher.h"
 #include "host/lib/server/job_intake.h"
+#include "host/lib/server/listen_check.h"
 #include "host/lib/server/machine_spec.h"
 #include "host/lib/server/postgres_job_store.h"
 #include "host/lib/server/sqlite_job_store.h"
@@ -139,7 +140,9 @@ void print_serving(const ServeArgs& a, const server::HttpApi& http, const std::s
                    const std::vector<server::MachineSpec>& machines) {
   std::cerr << fmt::format("engraver: serving http://{}/ as '{}', data in {}, {} machine(s)\n",
                            host_port_text(address, bound), owner, a.data, machines.size());
-  std::cerr << fmt::format("engraver: answering requests for host {}\n",
+  // The Host header's allow-list, not more listeners: loopback names are on it whichever
+  // loopback the server listens on (a tunnel or proxy may name either).
+  std::cerr << fmt::format("engraver: answering requests whose Host header names {}\n",
                            http.allowed_hosts().describe());
   if (created) {
     std::cerr << fmt::format(
@@ -158,6 +161,13 @@ void run_serve(const ServeArgs& a) {
   const HostPort listen = listen_address(a.listen);
   const std::vector<server::MachineSpec> machines = parse_machines(a);
   const std::filesystem::path web_dir = served_web_dir(a);
+  // A port in use or an address not this PC's: exit 2 before the data folder is made (a
+  // token no one was shown, a database no server serves).
+  try {
+    server::check_can_listen(listen.host, listen.port);
+  } catch (const std::runtime_error& e) {
+    throw CommandFailure(kExitUsage, fmt::format("--listen: '{}': {}", a.listen, e.what()));
+  }
   // Before anything in the folder is touched: one server per data folder.
   std::unique_ptr<server::DataFolderLock> folder_lock;
   try {

@@ -246,6 +246,18 @@ std::string setup_text(const sim::SimJobResult& s) {
                      counted(s.setup_commands, "set-up command"));
 }
 
+// "sent 111 commands", or for a job that ended early how far it got: "7 of 112 commands
+// executed (the set-up included) of a job of 111 commands".
+std::string commands_text(const sim::SimJobResult& s) {
+  const size_t all = s.commands + s.setup_commands;
+  if (s.outcome == JobOutcome::kCompleted || s.executed >= all) {
+    return "sent " + counted(s.commands, "command");
+  }
+  return fmt::format("{} of {} executed{}, of a job of {}", s.executed, counted(all, "command"),
+                     s.setup_commands > 0 ? " (the set-up included)" : "",
+                     counted(s.commands, "command"));
+}
+
 double speedup(uint64_t machine_ms, double s) {
   return s > 0 ? machine_ms / 1000.0 / s : 0.0;
 }
@@ -262,6 +274,7 @@ nlohmann::json run_report_json(const JobPlan& plan, const RunOptions& o, const R
   j["pen_lifts"] = plan.pen_lifts;
   j["commands"] = s.commands;
   j["setup_commands"] = s.setup_commands;  // before the job; progress total = both
+  j["commands_executed"] = s.executed;     // of both: all of them when completed
   j["frames_sent"] = s.stats.frames_sent;
   j["bytes_sent"] = s.stats.bytes_sent;
   j["job_wire_bytes"] = s.wire_bytes;
@@ -329,7 +342,7 @@ std::string run_report_text(const JobPlan& plan, const RunOptions& o, const RunR
   const std::string& base = r.base;
   std::string t = fmt::format(
       "{}: {}, {}; job {}\n"
-      "  sent {}{} in {}, {} bytes ({} resent after busy or loss); the job as "
+      "  {}{} in {}, {} bytes ({} resent after busy or loss); the job as "
       "frames: {} bytes, "
       "as G-code G1 at the same tolerance: {} bytes\n"
       "  tool path {:.1f} mm cut + {:.1f} mm rapid; simulated job time {:.1f} s, of which "
@@ -340,7 +353,7 @@ std::string run_report_text(const JobPlan& plan, const RunOptions& o, const RunR
       "end\n"
       "  plot: {}; report: {}.json\n",
       o.file, counted(plan.curves.size(), "curve"), counted(plan.pen_lifts, "pen lift"),
-      outcome_name(s.outcome), counted(s.commands, "command"), setup_text(s),
+      outcome_name(s.outcome), commands_text(s), setup_text(s),
       counted(s.stats.frames_sent, "frame"), s.stats.bytes_sent, s.stats.retransmits, s.wire_bytes,
       r.points.gcode_bytes, s.cut_mm, s.rapid_mm, s.motion_s, s.cut_s,
       plan.cut_length_mm / o.feed_mm_s, s.max_contour_error_um, s.worst_contour_sample.x_mm,

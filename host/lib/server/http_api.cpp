@@ -4,6 +4,7 @@
 #include "host/lib/server/board_height_map.h"
 #include "host/lib/server/connection_threads.h"
 #include "host/lib/server/job_record_fields.h"
+#include "host/lib/server/listen_check.h"
 #include "host/lib/server/map_source.h"
 #include "host/lib/server/run_archive.h"
 #include "host/lib/server/upload_numbers.h"
@@ -476,9 +477,7 @@ int HttpApi::bind() {
     port = -1;
   }
   if (port <= 0) {
-    throw std::runtime_error(
-        fmt::format("cannot listen on {} (in use or not an address of this PC)",
-                    host_port_text(options_.address, options_.port)));
+    throw std::runtime_error(cannot_listen_text(options_.address, options_.port));
   }
   widen_backlog(port);
   hosts_.set_port(port);

@@ -148,11 +148,13 @@ inline std::string lease_stands(char mark) {
 }
 
 // The claim's UPDATE after the chosen job: ?1 id (SQLite) or the job's sub-select; then
-// machine, owner, now, epoch at the numbers given.
+// machine, owner, now, epoch at the numbers given. Executed and total start at 0: a continued
+// job is "planning" until this run's commands are made, not its last run's "cutting" (the
+// resume position stays).
 inline std::string claim_set(char mark, int machine) {
   return "UPDATE jobs SET state = 'running', machine = " + param(mark, machine) +
          ", owner = " + param(mark, machine + 1) + ", started_ms = " + param(mark, machine + 2) +
-         ", message = '', executed = 0, lease_epoch = " + param(mark, machine + 3);
+         ", message = '', executed = 0, total = 0, lease_epoch = " + param(mark, machine + 3);
 }
 
 // SELECT every column of one job (?1 id), or of the newest (?1 state or '', ?2 limit).

@@ -88,6 +88,7 @@ void stream_job(Link& link, const JobPlan& plan, const SimJobOptions& options,
       commands.set_setup(std::move(setup));
     }
     r->outcome = sender.run(commands, [&](const Progress& p) {
+      r->executed = p.executed;
       if (options.on_progress) options.on_progress(sender, p);
     });
   } catch (...) {

@@ -58,6 +58,7 @@ struct SimJobResult {
   std::string message;
   SenderStats stats;
   size_t commands = 0;
+  size_t executed = 0;           // commands whose execution finished, set-up ones included
   size_t commands_held_max = 0;  // the most encoded commands held at once (streamed: a window)
   size_t wire_bytes = 0;         // the job's frames once each (no retransmits, no polls)
   uint16_t job_id = 0;           // job_id_of() the commands: the job's identity (#J)

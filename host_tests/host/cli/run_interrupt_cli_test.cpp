@@ -147,10 +147,25 @@ std::string last_line(const std::string& err) {
                     end - (start == std::string::npos ? 0 : start + 1) + 1);
 }
 
-// The report written, marked stopped: the figures so far are not lost.
+// The whole number after `"key": ` in a report (-1: not there).
+long report_number(const std::string& report, const std::string& key) {
+  const size_t at = report.find("\"" + key + "\": ");
+  return at == std::string::npos ? -1 : std::stol(report.substr(at + key.size() + 4));
+}
+
+// The report written, marked stopped: the figures so far are not lost, and it says how far
+// the job got (the commands executed, as the message counts them), not the whole job.
 void expect_stopped_report(const Interrupted& r, const std::string& message_begins) {
   const std::string report = read_text(r.outdir + "/engraver-word.json");
   EXPECT_NE(report.find("\"stopped\": true"), std::string::npos) << report;
+  const long executed = report_number(report, "commands_executed");
+  const long all = report_number(report, "commands") + report_number(report, "setup_commands");
+  EXPECT_GE(executed, 0) << report;
+  EXPECT_LT(executed, all) << report;
+  EXPECT_NE(report.find(" after " + std::to_string(executed) + " of " + std::to_string(all) +
+                        " commands"),
+            std::string::npos)
+      << report;
   EXPECT_NE(report.find("\"outcome\": \"aborted\""), std::string::npos) << report;
   EXPECT_NE(report.find("\"message\": \"" + message_begins), std::string::npos) << report;
   EXPECT_TRUE(std::filesystem::exists(r.outdir + "/engraver-word.svg"));
@@ -167,6 +182,11 @@ TEST(RunInterruptCli, CtrlCWhileTheJobRunsAbortsItRaisesTheToolAndExitsThree) {
   EXPECT_NE(r.err.find("the tool raised to Z 2.000 mm"), std::string::npos) << r.err;
   EXPECT_EQ(last_line(r.err).rfind("engraver: run stopped: ", 0), 0u) << r.err;
   EXPECT_EQ(r.err.find("job aborted:"), std::string::npos) << r.err;
+  // The summary (on the same terminal) counts what ran, not "sent 111 commands".
+  EXPECT_NE(r.err.find(" commands executed (the set-up included), of a job of 111 commands"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("  sent "), std::string::npos) << r.err;
   expect_stopped_report(r, "aborted by the operator (Ctrl-C) ");
 }
 

@@ -5,6 +5,7 @@
 #include <set>     // std::set
 #include <thread>  // std::thread
 
+#include "host/lib/server/job_record_fields.h"
 #include "host/lib/server/machine_spec.h"
 #include "host/lib/server/sqlite_job_store.h"
 #include "host_tests/host/server/server_test_rig.h"
@@ -237,6 +238,16 @@ TEST(SqliteJobStore, ProgressSavedWhileRunningMakesAnInterruptedJobContinuable) 
   EXPECT_TRUE(store.requeue(id, true));
   EXPECT_EQ(store.get(id)->resume_index, 12);
   EXPECT_EQ(store.get(id)->message, "");
+  // Claimed again to continue: planning (no commands yet), not the last run's "cutting",
+  // and still where it stopped.
+  ASSERT_TRUE(store.claim(MachineFit{}, "m", lease));
+  const JobRecord continued = *store.get(id);
+  EXPECT_EQ(continued.total, 0);
+  EXPECT_EQ(continued.executed, 0);
+  EXPECT_EQ(job_record_json(continued)["stage"], "planning");
+  EXPECT_EQ(continued.resume_index, 12);
+  ASSERT_TRUE(store.finish(id, lease, JobState::kInterrupted, "stopped again", p));
+  EXPECT_TRUE(store.requeue(id, true));
   // Re-run from the start instead: the position is forgotten.
   ASSERT_TRUE(store.claim(MachineFit{}, "m", lease));
   ASSERT_TRUE(store.finish(id, lease, JobState::kFailed, "alarm", p));

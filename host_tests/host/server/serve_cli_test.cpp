@@ -2,9 +2,12 @@
 // token once, serves the page, stops on SIGTERM; refuses bad options with exit code 2.
 #include <gtest/gtest.h>
 
-#include <signal.h>    // kill
-#include <sys/wait.h>  // waitpid
-#include <unistd.h>    // fork, execv
+#include <arpa/inet.h>   // htonl, ntohs
+#include <netinet/in.h>  // sockaddr_in
+#include <signal.h>      // kill
+#include <sys/socket.h>  // socket, bind, listen
+#include <sys/wait.h>    // waitpid
+#include <unistd.h>      // fork, execv
 
 #include <cstdlib>  // std::system
 #include <fstream>  // std::ifstream
@@ -275,6 +278,30 @@ TEST(ServeCommand, BadOptionsAreUsageErrors) {
     ServeProcess p(args, dir.path() / "bad.log");
     EXPECT_EQ(p.wait_exit(), 2) << args.back() << ": " << text_of(dir.path() / "bad.log");
   }
+}
+
+// A port already listened on: exit 2 naming it, and nothing made in the data folder (a token
+// made then would never be shown: the next start finds it and prints none).
+TEST(ServeCommand, APortInUseIsAUsageErrorBeforeTheDataFolderIsMade) {
+  test::TempDir dir;
+  const int held = ::socket(AF_INET, SOCK_STREAM, 0);
+  ASSERT_GE(held, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t n = sizeof a;
+  ASSERT_EQ(::bind(held, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+  ASSERT_EQ(::listen(held, 1), 0);
+  ASSERT_EQ(::getsockname(held, reinterpret_cast<sockaddr*>(&a), &n), 0);
+  const std::string listen = "127.0.0.1:" + std::to_string(ntohs(a.sin_port));
+  const fs::path data = dir.path() / "data";
+  ServeProcess p({"serve", "--data", data.string(), "--listen", listen}, dir.path() / "in_use.log");
+  EXPECT_EQ(p.wait_exit(), 2);
+  ::close(held);
+  const std::string said = text_of(dir.path() / "in_use.log");
+  EXPECT_NE(said.find("--listen: '" + listen + "': cannot listen on " + listen), std::string::npos)
+      << said;
+  EXPECT_FALSE(fs::exists(data)) << said;
 }
 
 // `engraver serve` runs engraver-serve from beside engraver (the server's libraries stay out
