@@ -1,7 +1,7 @@
 // Shared planner pieces; see plan_steps.h.
 #include "host/lib/plan/plan_steps.h"
 
-#include <algorithm>  // std::min
+#include <algorithm>  // std::min, std::none_of
 #include <cmath>      // std::llround, std::floor
 #include <sstream>    // std::ostringstream
 
@@ -52,9 +52,17 @@ std::string describe(const PlannedCurve& c) {
 }
 
 std::string first_exit(const PlannedCurve& c, double radius, const PlanOptions& o) {
-  for (const Point2& p : sample(c.spline(), 0.001)) {
-    if (p.x() - radius < -1e-6 || p.x() + radius > o.work_width_mm + 1e-6 ||
-        p.y() - radius < -1e-6 || p.y() + radius > o.work_height_mm + 1e-6) {
+  auto outside = [&](const Point2& p) {
+    return p.x() - radius < -1e-6 || p.x() + radius > o.work_width_mm + 1e-6 ||
+           p.y() - radius < -1e-6 || p.y() + radius > o.work_height_mm + 1e-6;
+  };
+  // A B-spline lies in its control points' convex hull: with every control point inside, so
+  // is the curve, and sampling it at 1 um (most of planning's time for a job of many short
+  // lines) finds nothing.
+  const BSpline s = c.spline();
+  if (std::none_of(s.control.begin(), s.control.end(), outside)) return "";
+  for (const Point2& p : sample(s, 0.001)) {
+    if (outside(p)) {
       std::ostringstream e;
       e << describe(c) << " reaches (" << p.x() << ", " << p.y() << ") mm in the machine frame";
       return e.str();

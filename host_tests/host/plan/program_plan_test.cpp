@@ -283,6 +283,22 @@ TEST(WorkArea, WorkBeyondTheControllersTravelIsRefused) {
   EXPECT_NO_THROW(plan_job(rectangle(10, 10), o));
 }
 
+// The refusal names the first curve that leaves the area and where; curves inside it (every
+// control point inside: the whole curve is) are passed over without sampling.
+TEST(WorkArea, TheRefusalNamesTheFirstCurveOutsideAndWhereItLeaves) {
+  Drawing d = rectangle(100, 100);
+  Curve wide;
+  wide.set_spline(line_spline({0, 0}, {400, 50}));
+  wide.source = "LINE #2";
+  d.curves.push_back(wide);
+  const std::string m = refusal(d, PlanOptions());
+  // Its first sample beyond x 297 (the line is sampled at its quarters): (300, 37.5).
+  EXPECT_NE(m.find("First outside: curve 1 (LINE #2) reaches (300, 37.5) mm in the machine frame"),
+            std::string::npos)
+      << m;
+  EXPECT_EQ(m.find("LINE #1"), std::string::npos) << m;
+}
+
 // ---- the pcb2gcode files in ../shared/samples plan, in file order ----
 
 const std::string kShared = std::string(ENGRAVER_SOURCE_DIR) + "/../shared/samples/";
