@@ -8,6 +8,7 @@
 
 #include "host/cli/board_cli.h"  // PCB input: isolation tool centres
 #include "host/cli/command_registry.h"
+#include "host/cli/drawing_read.h"
 #include "host/cli/exit_codes.h"
 #include "host/cli/pcb_info.h"
 #include "host/cli/terminal_text.h"
@@ -35,7 +36,7 @@ struct PointsArgs {
 void run_info(const InfoArgs& a) {
   if (print_board_folder_info_if_folder(a.file, a.json)) return;  // a board folder
   if (print_pcb_info_if_pcb(a.file, a.json)) return;              // Gerber, Excellon
-  const Drawing d = import_drawing(a.file);
+  const Drawing d = read_drawing_reporting(a.file);
   if (a.json) {
     std::cout << commands::drawing_info_json(d).dump(2, ' ', false,
                                                      nlohmann::json::error_handler_t::replace)
@@ -60,7 +61,7 @@ void refuse_board_options_for_drawings(const CLI::App& cmd, const std::string& f
 void run_points(const PointsArgs& a) {
   const int tol = commands::points_tolerance_um(a.tol_mm);
   if (print_board_points_if_pcb(a.file, a.board, a.tol_mm, a.csv)) return;  // tool centres
-  const Drawing d = import_drawing(a.file);
+  const Drawing d = read_drawing_reporting(a.file);
   for (const std::string& w : d.warnings) std::cerr << "warning: " << printable(w) << "\n";
   std::cout << std::fixed << std::setprecision(3);
   if (a.csv) std::cout << "curve,x_mm,y_mm\n";

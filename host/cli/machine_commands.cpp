@@ -14,6 +14,7 @@
 
 #include "host/cli/board_cli.h"  // PCB input (Gerber, Excellon, a board's directory)
 #include "host/cli/command_registry.h"
+#include "host/cli/drawing_read.h"
 #include "host/cli/exit_codes.h"
 #include "host/cli/height_map_cli.h"     // --surface, --height-map, the depth report
 #include "host/cli/operator_controls.h"  // signals and keys
@@ -147,13 +148,7 @@ JobPlan load_plan(const PlanArgs& a, Drawing* drawing, commands::PlannedBoard* b
     m.chord_tol_mm = a.tol_mm;
     return plan_pcb_input(a.file, a.board, m, board);
   }
-  {
-    // A large drawing takes seconds to read: its stages are reported as planning's are.
-    StagedProgress read("read", std::cerr, ProgressMeter::for_stderr());
-    *drawing = import_drawing(a.file, [&read](const char* unit, size_t done, size_t total) {
-      read.update(unit, done, total);
-    });
-  }
+  *drawing = read_drawing_reporting(a.file);
   for (const std::string& w : drawing->warnings)
     std::cerr << "engraver: warning: " << printable(w) << "\n";
   PlanOptions o;
