@@ -50,17 +50,6 @@ double pen_threshold_mm(const JobPlan& plan) {
   return (cut + travel) / 2000.0;
 }
 
-std::vector<bool> pen_down_samples(const std::vector<ToolSample>& trace, const JobPlan& plan) {
-  const double pen = pen_threshold_mm(plan);
-  std::vector<bool> down(trace.size(), false);
-  bool lifted = false;
-  for (size_t i = 0; i < trace.size(); ++i) {
-    if (trace[i].z_mm >= pen) lifted = true;
-    down[i] = lifted && trace[i].z_mm < pen;
-  }
-  return down;
-}
-
 namespace {
 
 // Opens a session, encodes the plan for the controller's payload size and runs it.

@@ -88,9 +88,6 @@ SimJobResult run_sim_job(const JobPlan& plan, const SimJobOptions& options);
 // Pen-down samples: Z below halfway between the plan's highest cutting height (pen down into
 // the work, drill bottoms) and its lowest travel height above that (pen up, drill start).
 double pen_threshold_mm(const JobPlan& plan);
-// Which trace samples cut: below the threshold after the tool was first lifted (at power-on
-// the tool stands at Z 0, which is below the threshold but not cutting).
-std::vector<bool> pen_down_samples(const std::vector<ToolSample>& trace, const JobPlan& plan);
 
 }  // namespace host::sim
 

@@ -9,9 +9,23 @@
 #include <utility>    // std::pair
 #include <vector>     // std::vector
 
-#include "host/lib/sim/sim_job.h"  // pen_down_samples, ToolSample
+#include "host/lib/sim/sim_job.h"  // pen_threshold_mm, ToolSample
 
 namespace host::test {
+
+// Which trace samples cut: below the plan's pen threshold after the tool was first lifted (at
+// power-on the tool stands at Z 0, which is below the threshold but not cutting).
+inline std::vector<bool> pen_down_samples(const std::vector<sim::ToolSample>& trace,
+                                          const JobPlan& plan) {
+  const double pen = sim::pen_threshold_mm(plan);
+  std::vector<bool> down(trace.size(), false);
+  bool lifted = false;
+  for (size_t i = 0; i < trace.size(); ++i) {
+    if (trace[i].z_mm >= pen) lifted = true;
+    down[i] = lifted && trace[i].z_mm < pen;
+  }
+  return down;
+}
 
 // The cut path: pen-down trace segments (X/Y in mm) and their total length.
 struct CutPath {
@@ -23,7 +37,7 @@ struct CutPath {
 };
 
 inline CutPath cut_path(const std::vector<sim::ToolSample>& trace, const JobPlan& plan) {
-  const std::vector<bool> down = sim::pen_down_samples(trace, plan);
+  const std::vector<bool> down = pen_down_samples(trace, plan);
   CutPath p;
   for (size_t i = 1; i < trace.size(); ++i) {
     if (!down[i] || !down[i - 1]) continue;

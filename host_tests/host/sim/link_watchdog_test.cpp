@@ -66,7 +66,7 @@ TEST(LinkWatchdog, MachineStopsWhenTheHostDisappearsAndANewSessionFindsItStopped
   EXPECT_EQ(machine.trace().size(), samples);
   const auto& trace = machine.trace();
   double cut = 0;
-  const std::vector<bool> down = sim::pen_down_samples(trace, plan);
+  const std::vector<bool> down = test::pen_down_samples(trace, plan);
   for (size_t i = 1; i < trace.size(); ++i) {
     if (down[i]) {
       cut += std::hypot(trace[i].x_mm - trace[i - 1].x_mm, trace[i].y_mm - trace[i - 1].y_mm);

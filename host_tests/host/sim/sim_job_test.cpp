@@ -5,6 +5,7 @@
 #include <cmath>  // M_PI
 
 #include "host/lib/sim/sim_job.h"
+#include "host_tests/host/sim/cut_path.h"
 #include "host_tests/host/sim/faulty_link.h"
 #include "host_tests/host/sim/sim_test_jobs.h"
 
@@ -25,7 +26,7 @@ sim::SimJobOptions fast_options() {
 
 // First and last pen-down sample times (ms) of a trace.
 std::pair<uint64_t, uint64_t> cut_window(const sim::SimJobResult& r, const JobPlan& plan) {
-  const std::vector<bool> down = sim::pen_down_samples(r.trace, plan);
+  const std::vector<bool> down = test::pen_down_samples(r.trace, plan);
   uint64_t first = 0, last = 0;
   for (size_t i = 0; i < r.trace.size(); ++i) {
     if (!down[i]) continue;

@@ -7,6 +7,7 @@
 #include <cstdio>     // std::printf
 
 #include "host/lib/sim/sim_job.h"
+#include "host_tests/host/sim/cut_path.h"
 #include "host_tests/host/sim/sim_test_jobs.h"
 
 namespace host {
@@ -129,7 +130,7 @@ TEST(SimMachineCommands, CircleWithAToolOffsetIsCutBesideTheCircle) {
   o.sender.status_interval = std::chrono::milliseconds(2);
   const sim::SimJobResult r = sim::run_sim_job(plan, o);
   ASSERT_EQ(r.outcome, JobOutcome::kCompleted) << r.message;
-  const std::vector<bool> down = sim::pen_down_samples(r.trace, plan);
+  const std::vector<bool> down = test::pen_down_samples(r.trace, plan);
   const double cx = (plan.extents_mm.min.x() + plan.extents_mm.max.x()) / 2;  // machine frame
   const double cy = (plan.extents_mm.min.y() + plan.extents_mm.max.y()) / 2;
   std::vector<double> radii;
