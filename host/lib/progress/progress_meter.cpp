@@ -101,13 +101,19 @@ void ProgressMeter::finish() {
   if (style_.terminal) out_ << "\n" << std::flush;
 }
 
+void ProgressMeter::finish_done() {
+  if (last_total_ > 0) last_done_ = last_total_;
+  finish();
+}
+
 StagedProgress::StagedProgress(std::string what, std::ostream& out, ProgressStyle style,
                                std::function<ProgressMeter::Clock::time_point()> clock)
     : what_(std::move(what)), out_(out), style_(style), clock_(std::move(clock)) {}
 
 void StagedProgress::update(const std::string& unit, size_t done, size_t total) {
   if (!meter_ || unit != unit_) {
-    finish();
+    if (meter_) meter_->finish_done();  // the next stage began: this one is done
+    meter_.reset();
     unit_ = unit;
     meter_ = std::make_unique<ProgressMeter>(what_, unit, out_, style_, clock_);
   }

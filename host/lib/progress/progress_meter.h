@@ -38,6 +38,9 @@ class ProgressMeter {
               bool waiting = false);
   // Ends the bar's line (terminal) or prints a last line if any were printed.
   void finish();
+  // The same for work known to be done: the last line says all of it (a stage reports each
+  // item before it works on it, so its last report was one short).
+  void finish_done();
 
   // The text of one report (no bar), for tests and logs: "1200/5000 commands (24%),
   // 400/s, 0:09 left".

@@ -91,6 +91,29 @@ TEST(StagedProgress, EachStageReportsInItsOwnUnit) {
   EXPECT_EQ(count(text, "\n"), 4u) << text;
 }
 
+// A stage reports each item before working on it, so its last report is one short: when the
+// next stage begins the earlier one is done, and its last line says all of it (the outside
+// tester saw "598/600 curves measured (99%)" as a stage's last line).
+TEST(StagedProgress, AStageThatEndsSaysAllOfIt) {
+  std::ostringstream out;
+  FakeClock c;
+  ProgressStyle st;
+  st.terminal = false;
+  st.first = milliseconds(500);
+  {
+    StagedProgress p("plan", out, st, c.fn());
+    for (int i = 0; i < 600; ++i) {  // 1.2 s of measuring, the last report 599 of 600
+      c.t = Clock::time_point(milliseconds(2 * i));
+      p.update("curves measured", static_cast<size_t>(i), 600);
+    }
+    p.update("curves moved to the margin", 0, 600);
+  }
+  const std::string text = out.str();
+  EXPECT_NE(text.find("engraver: plan: 600/600 curves measured (100%)"), std::string::npos) << text;
+  EXPECT_EQ(text.find("599/600"), std::string::npos) << text;
+  EXPECT_EQ(count(text, "\n"), 2u) << text;  // its first line at 0.5 s and its last
+}
+
 // The share is rounded down: 100 % only when all is done (the outside tester saw 111/112 as
 // 99 % and 253/254 as 100 %).
 TEST(ProgressMeter, TheShareIsRoundedDownSoOnlyAllDoneIs100Percent) {
