@@ -98,7 +98,7 @@ commands::CommandLog stderr_log() {
 namespace {
 
 // The isolation tool, its passes and depth.
-void add_isolation_options(CLI::App* cmd, BoardArgs* a) {
+void add_isolation_options(CLI::App* cmd, pcb::BoardIsolationArgs* a) {
   const std::string g = kBoardOptionsGroup;
   cmd->add_option("--tool-width", a->tool_width_mm, "isolation: V-bit width at the depth, mm")
       ->group(g)
@@ -132,36 +132,38 @@ void add_isolation_options(CLI::App* cmd, BoardArgs* a) {
 // Drilling, the cut-out and its tabs.
 void add_drill_and_cutout_options(CLI::App* cmd, BoardArgs* a) {
   const std::string g = kBoardOptionsGroup;
-  cmd->add_option("--drill-depth", a->drill_depth_mm, "drill plunge depth, mm")
+  cmd->add_option("--drill-depth", a->drill.depth_mm, "drill plunge depth, mm")
       ->group(g)
       ->capture_default_str();
-  cmd->add_option("--drill-start", a->drill_start_mm, "height where each plunge starts, mm")
+  cmd->add_option("--drill-start", a->drill.start_mm, "height where each plunge starts, mm")
       ->group(g)
       ->capture_default_str();
-  cmd->add_option("--drill-feed", a->drill_feed_mm_s, "drill plunge feed, mm/s")
+  cmd->add_option("--drill-feed", a->drill.feed_mm_s, "drill plunge feed, mm/s")
       ->group(g)
       ->capture_default_str();
-  cmd->add_option("--cutter", a->cutter_mm, "cut-out cutter diameter, mm")
+  cmd->add_option("--cutter", a->cutout.cutter_mm, "cut-out cutter diameter, mm")
       ->group(g)
       ->capture_default_str();
-  cmd->add_option("--cut-depth", a->cut_depth_mm, "cut-out depth, mm")
+  cmd->add_option("--cut-depth", a->cutout.depth_mm, "cut-out depth, mm")
       ->group(g)
       ->capture_default_str();
-  cmd->add_option("--cut-step", a->cut_step_mm, "cut-out depth per pass, mm")
+  cmd->add_option("--cut-step", a->cutout.step_mm, "cut-out depth per pass, mm")
       ->group(g)
       ->capture_default_str();
-  cmd->add_option("--cut-feed", a->cut_feed_mm_s, "cut-out feed, mm/s")
+  cmd->add_option("--cut-feed", a->cutout.feed_mm_s, "cut-out feed, mm/s")
       ->group(g)
       ->capture_default_str();
-  cmd->add_option("--tab-width", a->tab_width_mm, "holding tab width, mm (0: none)")
+  cmd->add_option("--tab-width", a->cutout.tab_width_mm, "holding tab width, mm (0: none)")
       ->group(g)
       ->capture_default_str();
-  cmd->add_option("--tabs", a->tabs, "holding tabs per board")->group(g)->capture_default_str();
-  cmd->add_option("--tab-spacing", a->tab_spacing_mm,
+  cmd->add_option("--tabs", a->cutout.tabs, "holding tabs per board")
+      ->group(g)
+      ->capture_default_str();
+  cmd->add_option("--tab-spacing", a->cutout.tab_spacing_mm,
                   "one tab per this much outline length, mm (instead of --tabs)")
       ->group(g)
       ->excludes("--tabs");  // a clash: neither wins
-  cmd->add_option("--tab-height", a->tab_height_mm, "board thickness the tabs keep, mm")
+  cmd->add_option("--tab-height", a->cutout.tab_height_mm, "board thickness the tabs keep, mm")
       ->group(g)
       ->capture_default_str();
 }
@@ -171,7 +173,7 @@ void add_side_and_alignment_options(CLI::App* cmd, BoardArgs* a) {
   const std::string g = kBoardOptionsGroup;
   cmd->add_option("--side", a->side, "top or bottom (mirrored); default: the copper given")
       ->group(g);
-  cmd->add_option("--align-holes", a->align_holes,
+  cmd->add_option("--align-holes", a->alignment.holes,
                   "double-sided: alignment holes for pins, 'auto' (on the flip axis below and "
                   "above the board) or X,Y[;X,Y...] mm in the files' frame, each with its mirror; "
                   "drilled with the top side, which leaves the cut-out to the bottom")
@@ -181,14 +183,14 @@ void add_side_and_alignment_options(CLI::App* cmd, BoardArgs* a) {
             return v.empty() ? std::string("empty: say auto, or X,Y[;X,Y...] mm") : "";
           },
           "", "not empty"));
-  cmd->add_option("--align-diameter", a->align_diameter_mm, "alignment hole (pin) diameter, mm")
+  cmd->add_option("--align-diameter", a->alignment.diameter_mm, "alignment hole (pin) diameter, mm")
       ->group(g)
       ->capture_default_str();
-  cmd->add_option("--align-depth", a->align_depth_mm,
+  cmd->add_option("--align-depth", a->alignment.depth_mm,
                   "alignment hole depth, through the blank into the spoil board, mm")
       ->group(g)
       ->capture_default_str();
-  cmd->add_option("--align-measured", a->align_measured_mm,
+  cmd->add_option("--align-measured", a->alignment.measured_mm,
                   "double-sided, second setup: X1 Y1 X2 Y2, machine mm where alignment holes 1 "
                   "and 2 were found after the flip; the job is turned and shifted onto them")
       ->group(g)
@@ -199,7 +201,7 @@ void add_side_and_alignment_options(CLI::App* cmd, BoardArgs* a) {
 
 void add_board_options(CLI::App* cmd, BoardArgs* a) {
   const std::string g = kBoardOptionsGroup;
-  add_isolation_options(cmd, a);
+  add_isolation_options(cmd, &a->isolation);
   add_drill_and_cutout_options(cmd, a);
   add_side_and_alignment_options(cmd, a);
   cmd->add_flag("--no-spindle", a->no_spindle, "no spindle on/off commands")->group(g);

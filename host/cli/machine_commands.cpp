@@ -371,7 +371,7 @@ JobPlan plan_flip(const RunArgs& a, commands::FlipSimulation* f, commands::Plann
     throw CommandFailure(kExitUsage,
                          "--blank-error simulates a double-sided board's second setup: give the "
                          "board job its --align-holes");
-  if (!a.plan.board.align_measured_mm.empty())
+  if (!a.plan.board.alignment.measured_mm.empty())
     throw CommandFailure(kExitUsage,
                          "--blank-error measures the holes itself: leave out --align-measured");
   f->dx_mm = a.blank_error[0];
@@ -385,9 +385,9 @@ JobPlan plan_flip(const RunArgs& a, commands::FlipSimulation* f, commands::Plann
   for (size_t i = 0; i < 2; ++i) {
     const Point2 m = f->error.apply(holes[i]);
     for (double v : {m.x(), m.y()})
-      aligned.board.align_measured_mm.push_back(std::round(v * 1000) / 1000);
+      aligned.board.alignment.measured_mm.push_back(std::round(v * 1000) / 1000);
   }
-  f->measured_mm = aligned.board.align_measured_mm;
+  f->measured_mm = aligned.board.alignment.measured_mm;
   plan = load_plan(aligned, &drawing, board);
   f->alignment = board->job->frame.placement;
   return plan;
@@ -411,7 +411,7 @@ commands::RunOptions run_options(const RunArgs& a, const JobPlan& plan,
   if (board.job) o.board = board;
   o.depth.vbit_angle_deg = a.map.vbit_angle_deg;
   o.depth.copper_um = a.map.copper_um;
-  o.depth.planned_width_um = a.plan.board.tool_width_mm * 1000.0;
+  o.depth.planned_width_um = a.plan.board.isolation.tool_width_mm * 1000.0;
   // The controller follows a map from a file (checked against the job first) or probed.
   o.map = load_height_map(a.map);
   if (o.map) refuse_job_leaving_map(plan, *o.map, a.map.height_map);

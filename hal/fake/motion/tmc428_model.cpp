@@ -89,11 +89,11 @@ void Tmc428Model::advance_to_tick(uint64_t t) {
   if (t <= now_) return;
   // A capture armed while nothing was due (no motion, no continuous update) may become due
   // once a motor moves.
-  if ((cdgw_ || cover_waiting_) && !chain_scheduled_) {
+  if ((chain_.cdgw || chain_.cover_waiting) && !chain_.scheduled) {
     for (int m = 0; m < kMotors; ++m) sync_motor_to(m, t);
     schedule_chain(now_);
   }
-  if (chain_scheduled_ && chain_done_tick_ <= t) complete_chain_datagram();
+  if (chain_.scheduled && chain_.done_tick <= t) complete_chain_datagram();
   now_ = t;
 }
 
@@ -156,16 +156,16 @@ int64_t Tmc428Model::switch_reach(int m) const {
   const Motor& mo = motor_[m];
   int64_t d_switch = INT64_MAX;
   if (left_exists(m)) {
-    if (mo.force_left > 0) d_switch = 0;
-    if (mo.force_left < 0 && mo.has_left_pos) {
-      const int64_t d = (int64_t)mo.x - mo.left_pos;
+    if (mo.left.forced_level > 0) d_switch = 0;
+    if (mo.left.forced_level < 0 && mo.left.placed) {
+      const int64_t d = (int64_t)mo.x - mo.left.position_usteps;
       if (d <= (int64_t{1} << 30) && d < d_switch) d_switch = d < 0 ? 0 : d;
     }
   }
   if (right_exists(m)) {
-    if (mo.force_right > 0) d_switch = 0;
-    if (mo.force_right < 0 && mo.has_right_pos) {
-      const int64_t d = (int64_t)mo.right_pos - mo.x;
+    if (mo.right.forced_level > 0) d_switch = 0;
+    if (mo.right.forced_level < 0 && mo.right.placed) {
+      const int64_t d = (int64_t)mo.right.position_usteps - mo.x;
       if (d <= (int64_t{1} << 30) && d < d_switch) d_switch = d < 0 ? 0 : d;
     }
   }
@@ -203,15 +203,15 @@ bool Tmc428Model::right_exists(int m) const {
 bool Tmc428Model::left_active(int m) const {
   const Motor& mo = motor_[m];
   if (!left_exists(m)) return false;
-  if (mo.force_left >= 0) return mo.force_left != 0;
-  return mo.has_left_pos && mo.x <= mo.left_pos;
+  if (mo.left.forced_level >= 0) return mo.left.forced_level != 0;
+  return mo.left.placed && mo.x <= mo.left.position_usteps;
 }
 
 bool Tmc428Model::right_active(int m) const {
   const Motor& mo = motor_[m];
   if (!right_exists(m)) return false;
-  if (mo.force_right >= 0) return mo.force_right != 0;
-  return mo.has_right_pos && mo.x >= mo.right_pos;
+  if (mo.right.forced_level >= 0) return mo.right.forced_level != 0;
+  return mo.right.placed && mo.x >= mo.right.position_usteps;
 }
 
 // dx_ref_tolerance excludes a window around 0 from the stop checks ([428DS] §8.15).
@@ -231,11 +231,11 @@ int32_t Tmc428Model::effective_target_q8(int m) const {
   if (tgt > top) tgt = top;
   if (tgt < -top) tgt = -top;
   if (tgt < 0 && !(mo.ref_ramp & kDisableStopL) && left_active(m) &&
-      (mo.force_left >= 0 || stop_allowed(m, mo.left_pos))) {
+      (mo.left.forced_level >= 0 || stop_allowed(m, mo.left.position_usteps))) {
     return 0;
   }
   if (tgt > 0 && !(mo.ref_ramp & kDisableStopR) && right_active(m) &&
-      (mo.force_right >= 0 || stop_allowed(m, mo.right_pos))) {
+      (mo.right.forced_level >= 0 || stop_allowed(m, mo.right.position_usteps))) {
     return 0;
   }
   return tgt * 256;
@@ -247,21 +247,21 @@ void Tmc428Model::note_switches(int m) const {
   const bool l = left_active(m);
   const bool r = right_active(m);
   uint8_t f = 0;
-  if (l && !mo.left_prev) f |= kIntLeftHigh;
-  if (!l && mo.left_prev) f |= kIntLeftLow;
-  if (r && !mo.right_prev) f |= kIntRightHigh;
-  if (!r && mo.right_prev) f |= kIntRightLow;
+  if (l && !mo.left.was_active) f |= kIntLeftHigh;
+  if (!l && mo.left.was_active) f |= kIntLeftLow;
+  if (r && !mo.right.was_active) f |= kIntRightHigh;
+  if (!r && mo.right.was_active) f |= kIntRightLow;
   mo.int_flags = (uint8_t)((mo.int_flags | f) & mo.int_mask);
   if (mo.latch_pending) {
     const bool ref_right = (mo.ref_ramp & kRefRnL) != 0;
-    const bool rising = ref_right ? (r && !mo.right_prev) : (l && !mo.left_prev);
+    const bool rising = ref_right ? (r && !mo.right.was_active) : (l && !mo.left.was_active);
     if (rising) {
       mo.x_latched = (uint32_t)mo.x & 0xFFFFFF;
       mo.latch_pending = false;
     }
   }
-  mo.left_prev = l;
-  mo.right_prev = r;
+  mo.left.was_active = l;
+  mo.right.was_active = r;
 }
 
 // Where a segment from t ends: at the next ramp clock (*ramp_edge) while ramping, else at t1
@@ -326,9 +326,10 @@ void Tmc428Model::stop_at_switch(int m, int32_t* vi) const {
   const bool soft = (mo.ref_ramp & kSoftStop) != 0;
   if (mode != kHold && *vi != 0) {
     const bool into_left = *vi < 0 && !(mo.ref_ramp & kDisableStopL) && left_active(m) &&
-                           (mo.force_left >= 0 || stop_allowed(m, mo.left_pos));
-    const bool into_right = *vi > 0 && !(mo.ref_ramp & kDisableStopR) && right_active(m) &&
-                            (mo.force_right >= 0 || stop_allowed(m, mo.right_pos));
+                           (mo.left.forced_level >= 0 || stop_allowed(m, mo.left.position_usteps));
+    const bool into_right =
+        *vi > 0 && !(mo.ref_ramp & kDisableStopR) && right_active(m) &&
+        (mo.right.forced_level >= 0 || stop_allowed(m, mo.right.position_usteps));
     if (into_left || into_right) {
       mo.int_flags = (uint8_t)((mo.int_flags | kIntStop) & mo.int_mask);
       if (!soft) {
@@ -343,13 +344,15 @@ void Tmc428Model::stop_at_switch(int m, int32_t* vi) const {
 int64_t Tmc428Model::steps_to_stop_switch(int m, int dir) const {
   const Motor& mo = motor_[m];
   int64_t dist = -1;
-  if (dir < 0 && !(mo.ref_ramp & kDisableStopL) && left_exists(m) && mo.has_left_pos &&
-      mo.force_left < 0 && stop_allowed(m, mo.left_pos) && mo.x > mo.left_pos) {
-    dist = (int64_t)mo.x - mo.left_pos;
+  if (dir < 0 && !(mo.ref_ramp & kDisableStopL) && left_exists(m) && mo.left.placed &&
+      mo.left.forced_level < 0 && stop_allowed(m, mo.left.position_usteps) &&
+      mo.x > mo.left.position_usteps) {
+    dist = (int64_t)mo.x - mo.left.position_usteps;
   }
-  if (dir > 0 && !(mo.ref_ramp & kDisableStopR) && right_exists(m) && mo.has_right_pos &&
-      mo.force_right < 0 && stop_allowed(m, mo.right_pos) && mo.x < mo.right_pos) {
-    dist = (int64_t)mo.right_pos - mo.x;
+  if (dir > 0 && !(mo.ref_ramp & kDisableStopR) && right_exists(m) && mo.right.placed &&
+      mo.right.forced_level < 0 && stop_allowed(m, mo.right.position_usteps) &&
+      mo.x < mo.right.position_usteps) {
+    dist = (int64_t)mo.right.position_usteps - mo.x;
   }
   return dist;
 }
@@ -447,7 +450,7 @@ uint64_t Tmc428Model::chain_datagram_ticks() const {
 // else at the next continuous-update request (every 32768 2^ramp_div ticks per motor).
 void Tmc428Model::schedule_chain(uint64_t after) {
   sync_motors();  // whether one moves
-  chain_scheduled_ = false;
+  chain_.scheduled = false;
   if (chain_length_bits() < 0) return;
   bool moving = false;
   for (const Motor& mo : motor_) moving = moving || mo.v_q8 / 256 != 0;
@@ -469,33 +472,33 @@ void Tmc428Model::schedule_chain(uint64_t after) {
   } else {
     return;
   }
-  chain_done_tick_ = start + chain_datagram_ticks();
-  chain_scheduled_ = true;
+  chain_.done_tick = start + chain_datagram_ticks();
+  chain_.scheduled = true;
 }
 
 // The chain (three 12-bit TMC246 shift registers) returns its statuses first - motor 1's
 // driver is the last in the chain, so its bits arrive first - then the bits just sent.
 void Tmc428Model::complete_chain_datagram() {
   const int n = chain_length_bits();
-  chain_scheduled_ = false;
+  chain_.scheduled = false;
   if (n < 0) return;
   unsigned __int128 received;
-  if (chain_sdi_stuck_ >= 0) {
-    received = chain_sdi_stuck_ ? ((unsigned __int128)1 << n) - 1 : 0;
+  if (chain_.sdi_stuck >= 0) {
+    received = chain_.sdi_stuck ? ((unsigned __int128)1 << n) - 1 : 0;
   } else {
     const uint64_t s36 = ((uint64_t)(motor_[0].tmc246_status & 0xFFF) << 24) |
                          ((uint64_t)(motor_[1].tmc246_status & 0xFFF) << 12) |
                          (motor_[2].tmc246_status & 0xFFF);
     received = n <= 36 ? (s36 >> (36 - n)) : ((unsigned __int128)s36 << (n - 36));
   }
-  chain_words_ = (uint64_t)((((unsigned __int128)chain_words_ << n) | received) & kMask48);
-  cdgw_ = false;
-  cover_waiting_ = false;
-  ++chain_datagrams_;
+  chain_.words = (uint64_t)((((unsigned __int128)chain_.words << n) | received) & kMask48);
+  chain_.cdgw = false;
+  chain_.cover_waiting = false;
+  ++chain_.datagrams;
 }
 
 void Tmc428Model::arm_chain_capture() {
-  cdgw_ = true;
+  chain_.cdgw = true;
   schedule_chain(now_);
 }
 
@@ -555,15 +558,15 @@ uint32_t Tmc428Model::reg(int m, int idx) const {
 uint32_t Tmc428Model::common_reg(int jdx) const {
   switch (jdx) {
     case 0:
-      return (uint32_t)(chain_words_ & 0xFFFFFF);
+      return (uint32_t)(chain_.words & 0xFFFFFF);
     case 1:
-      return (uint32_t)(chain_words_ >> 24);
+      return (uint32_t)(chain_.words >> 24);
     case 2: {  // cover_position reads back + 1, bit 23 = cover waiting ([428DS] §9.2)
-      const uint32_t pos = ((cover_pos_len_ >> 8) + 1) & 0x3F;
-      return (cover_waiting_ ? 0x800000u : 0u) | (pos << 8) | (cover_pos_len_ & 0x1F);
+      const uint32_t pos = ((chain_.cover_pos_len >> 8) + 1) & 0x3F;
+      return (chain_.cover_waiting ? 0x800000u : 0u) | (pos << 8) | (chain_.cover_pos_len & 0x1F);
     }
     case 3:
-      return cover_datagram_;
+      return chain_.cover_datagram;
     case 14:
       return switch_bits();
     case 15:
@@ -582,12 +585,12 @@ void Tmc428Model::write_global_register(int idx, uint32_t data) {
       arm_chain_capture();
       break;
     case 2:
-      cover_pos_len_ = data & 0x3F1F;
+      chain_.cover_pos_len = data & 0x3F1F;
       break;
     case 3:
-      cover_datagram_ = data;
-      cover_waiting_ = true;
-      if (!chain_scheduled_) schedule_chain(now_);
+      chain_.cover_datagram = data;
+      chain_.cover_waiting = true;
+      if (!chain_.scheduled) schedule_chain(now_);
       break;
     case 15:
       sync_motors();
@@ -693,7 +696,7 @@ uint8_t Tmc428Model::switch_bits() const {
 
 uint8_t Tmc428Model::status_byte() const {
   uint8_t s = now_ < motor_status_before_ ? motor_status_bits_ : motor_status_bits();
-  if (cdgw_ || cover_waiting_) s |= 0x40;
+  if (chain_.cdgw || chain_.cover_waiting) s |= 0x40;
   return s;
 }
 
@@ -729,13 +732,7 @@ uint32_t Tmc428Model::transfer32(uint32_t mosi) {
   } else {
     write_register(addr, mosi & 0xFFFFFF);
   }
-  if (logging_) {
-    if (log_.size() < log_limit_) {
-      log_.push_back(Datagram{now_ns_, mosi, miso});
-    } else {
-      ++log_dropped_;
-    }
-  }
+  log_.record(Datagram{now_ns_, mosi, miso});
   return miso;
 }
 
@@ -744,10 +741,10 @@ uint32_t Tmc428Model::transfer32(uint32_t mosi) {
 void Tmc428Model::set_switch_positions(int motor, int32_t left_usteps, int32_t right_usteps) {
   sync_motor(motor);
   Motor& mo = motor_[motor];
-  mo.left_pos = left_usteps;
-  mo.right_pos = right_usteps;
-  mo.has_left_pos = true;
-  mo.has_right_pos = true;
+  mo.left.position_usteps = left_usteps;
+  mo.right.position_usteps = right_usteps;
+  mo.left.placed = true;
+  mo.right.placed = true;
   note_switches(motor);
   forget_quiet_horizon(motor);
   forget_switch_free(motor);
@@ -756,9 +753,9 @@ void Tmc428Model::set_switch_positions(int motor, int32_t left_usteps, int32_t r
 void Tmc428Model::force_switch(int motor, bool right, int level) {
   sync_motor(motor);
   if (right) {
-    motor_[motor].force_right = level;
+    motor_[motor].right.forced_level = level;
   } else {
-    motor_[motor].force_left = level;
+    motor_[motor].left.forced_level = level;
   }
   note_switches(motor);
   forget_quiet_horizon(motor);

@@ -65,7 +65,7 @@ class Tmc428Model : public SpiDevice {
   // 12-bit status word the TMC246 of a motor shifts back (bit 8 must be 1 on a real one).
   void set_driver_status(int motor, uint16_t status12);
   // SDI_S (chain return line): -1 normal, 0/1 stuck (chain broken, pulled down/up).
-  void set_chain_sdi_stuck(int level) { chain_sdi_stuck_ = level; }
+  void set_chain_sdi_stuck(int level) { chain_.sdi_stuck = level; }
 
   // Inspection.
   int32_t x_actual(int motor) const;       // 24-bit sign-extended
@@ -76,23 +76,31 @@ class Tmc428Model : public SpiDevice {
   uint8_t ram_entry(int index) const;      // 0..127 (0..63 chain, 64..127 sine)
   uint8_t status_byte() const;             // what the next answer's bits 31..24 are
   uint8_t switch_bits() const;             // the 0x7C register: r1 l1 r2 l2 r3 l3
-  uint32_t chain_datagrams() const { return chain_datagrams_; }  // captured answers
+  uint32_t chain_datagrams() const { return chain_.datagrams; }  // captured answers
   // Times a moving motor was integrated up to a later time (what lazy stepping saves).
   uint64_t motor_integrations() const { return motor_integrations_; }
   // Times the model worked out how far a motor is from x_target and its switches (for the
   // status byte and the switch register): once after each change, not per datagram.
   uint64_t reach_checks() const { return reach_checks_; }
-  const std::vector<Datagram>& log() const { return log_; }
-  void clear_log() { log_.clear(); }
+  const std::vector<Datagram>& log() const { return log_.entries; }
+  void clear_log() { log_.entries.clear(); }
   // Off: datagrams are not logged (long simulations; RecordingSpi can record instead).
-  void set_logging(bool on) { logging_ = on; }
+  void set_logging(bool on) { log_.on = on; }
   // The log stops growing at this many entries (default 200000, ~5 MB); later datagrams
   // are only counted, so a simulation left logging cannot eat the memory.
-  void set_log_limit(size_t entries) { log_limit_ = entries; }
-  uint64_t log_dropped() const { return log_dropped_; }
+  void set_log_limit(size_t entries) { log_.limit = entries; }
+  uint64_t log_dropped() const { return log_.dropped; }
   uint32_t f_clk_hz() const { return f_clk_hz_; }
 
  private:
+  // A motor's reference switch input: where it is (active at or beyond that position), a
+  // forced level, and the level last noted (for the edge flags and the position latch).
+  struct ReferenceSwitch {
+    bool placed = false;          // a position was set: else never active by position
+    int32_t position_usteps = 0;  // left: active while x <= it; right: while x >= it
+    int forced_level = -1;        // -1 follow the position, 0 off, 1 on
+    bool was_active = false;
+  };
   struct Motor {
     uint32_t x_target = 0;
     int32_t x = 0;  // x_actual (wraps at 24 bits on read)
@@ -104,11 +112,36 @@ class Tmc428Model : public SpiDevice {
     int32_t v_q8 = 0;        // internal velocity, 8 fraction bits
     int32_t last_ramp = 0;   // last ramp step (a_actual)
     uint32_t pulse_acc = 0;  // 0..2047
-    int32_t left_pos = INT32_MIN, right_pos = INT32_MAX;
-    bool has_left_pos = false, has_right_pos = false;
-    int force_left = -1, force_right = -1;
-    bool left_prev = false, right_prev = false;
+    ReferenceSwitch left = {false, INT32_MIN};
+    ReferenceSwitch right = {false, INT32_MAX};
     uint16_t tmc246_status = kTmc246StatusDefault;
+  };
+  // The driver chain and the cover datagram ([428DS] §9): what SDI_S shifted in, a pending
+  // capture or cover datagram, and when the next chain datagram completes.
+  struct DriverChain {
+    uint64_t words = 0;  // 48-bit shift register from SDI_S
+    bool cdgw = false;   // datagram_low/high_word not refreshed yet
+    bool cover_waiting = false;
+    uint32_t cover_pos_len = 0, cover_datagram = 0;
+    bool scheduled = false;
+    uint64_t done_tick = 0;
+    uint32_t datagrams = 0;  // completed (captured answers)
+    int sdi_stuck = -1;      // SDI_S: -1 normal, 0/1 stuck
+  };
+  // The datagrams the model answered, up to a limit; later ones are only counted.
+  struct DatagramLog {
+    std::vector<Datagram> entries;
+    bool on = true;
+    size_t limit = 200000;
+    uint64_t dropped = 0;
+    void record(const Datagram& d) {
+      if (!on) return;
+      if (entries.size() < limit) {
+        entries.push_back(d);
+      } else {
+        ++dropped;
+      }
+    }
   };
 
   uint32_t read_register(uint8_t addr) const;
@@ -182,18 +215,8 @@ class Tmc428Model : public SpiDevice {
   mutable uint64_t reach_checks_ = 0;
   uint8_t ram_[128];
   uint32_t smgp_ = 0x000F00;  // clk2_div = 15 at power-on ([428DS] §6.1)
-  uint64_t chain_words_ = 0;  // 48-bit shift register from SDI_S
-  bool cdgw_ = false;         // datagram_low/high_word not refreshed yet
-  bool cover_waiting_ = false;
-  uint32_t cover_pos_len_ = 0, cover_datagram_ = 0;
-  bool chain_scheduled_ = false;
-  uint64_t chain_done_tick_ = 0;
-  uint32_t chain_datagrams_ = 0;
-  int chain_sdi_stuck_ = -1;
-  std::vector<Datagram> log_;
-  bool logging_ = true;
-  size_t log_limit_ = 200000;
-  uint64_t log_dropped_ = 0;
+  DriverChain chain_;
+  DatagramLog log_;
 };
 
 }  // namespace fake

@@ -1,7 +1,6 @@
 // Simulated HD44780: instruction decoding per the HD44780U data sheet's Table 6.
 #include "hal/fake/panel/fake_hd44780.h"
 
-#include <cstring>
 #include <sstream>
 
 namespace fake {
@@ -15,30 +14,7 @@ std::string hex(unsigned v) {
 }  // namespace
 
 Hd44780Model::Hd44780Model()
-    : now_ns_(0),
-      control_(0),
-      data_(0),
-      control_changed_ns_(0),
-      data_changed_ns_(0),
-      enable_rose_ns_(0),
-      enable_seen_(false),
-      busy_until_ns_(0),
-      init_step_(kPowerOn),
-      last_init_latch_ns_(0),
-      address_counter_(0),
-      address_in_cgram_(false),
-      display_shift_(0),
-      // Power-on reset state (data sheet "Initialization by internal reset circuit").
-      display_on_(false),
-      cursor_on_(false),
-      blink_on_(false),
-      increment_(true),
-      shift_on_write_(false),
-      eight_bit_(true),
-      two_lines_(false) {
-  std::memset(ddram_, ' ', sizeof ddram_);
-  std::memset(cgram_, 0, sizeof cgram_);
-}
+    : now_ns_(0), busy_until_ns_(0), init_step_(kPowerOn), last_init_latch_ns_(0) {}
 
 void Hd44780Model::violation(const std::string& what) {
   violations_.push_back("t=" + std::to_string(now_ns_) + "ns: " + what);
@@ -47,37 +23,37 @@ void Hd44780Model::violation(const std::string& what) {
 // Watches E: the rising edge checks RS/RW setup and the cycle time, the falling edge checks
 // the pulse width and data setup, then latches (write cycles only).
 void Hd44780Model::set_control(uint8_t control_bits) {
-  const bool e_was = (control_ & kE) != 0;
+  const bool e_was = (pins_.control & kE) != 0;
   const bool e_now = (control_bits & kE) != 0;
   const uint8_t address_lines = kRs | kRw;
-  if ((control_bits & address_lines) != (control_ & address_lines)) {
+  if ((control_bits & address_lines) != (pins_.control & address_lines)) {
     if (e_was) violation("RS or R/W changed while E was high");
-    control_changed_ns_ = now_ns_;
+    pins_.control_changed_ns = now_ns_;
   }
   if (!e_was && e_now) {
     // At power-on (t = 0) the lines count as just changed.
-    if (now_ns_ - control_changed_ns_ < kAddressSetupNs)
+    if (now_ns_ - pins_.control_changed_ns < kAddressSetupNs)
       violation("E rose less than t_AS after RS/RW changed");
-    if (enable_seen_ && now_ns_ - enable_rose_ns_ < kEnableCycleNs)
+    if (pins_.enable_seen && now_ns_ - pins_.enable_rose_ns < kEnableCycleNs)
       violation("E cycle shorter than t_cycE");
-    enable_rose_ns_ = now_ns_;
-    enable_seen_ = true;
+    pins_.enable_rose_ns = now_ns_;
+    pins_.enable_seen = true;
   }
-  control_ = control_bits;
+  pins_.control = control_bits;
   if (e_was && !e_now) {
-    if (now_ns_ - enable_rose_ns_ < kEnableHighNs) violation("E high shorter than PW_EH");
-    if (now_ns_ - data_changed_ns_ < kDataSetupNs) violation("data set up less than t_DSW");
+    if (now_ns_ - pins_.enable_rose_ns < kEnableHighNs) violation("E high shorter than PW_EH");
+    if (now_ns_ - pins_.data_changed_ns < kDataSetupNs) violation("data set up less than t_DSW");
     if (control_bits & kRw) {
       violation("read cycle (the model only takes writes)");
     } else {
-      latch((control_bits & kRs) != 0, data_);
+      latch((control_bits & kRs) != 0, pins_.data);
     }
   }
 }
 
 void Hd44780Model::set_data(uint8_t byte) {
-  if (byte != data_) data_changed_ns_ = now_ns_;
-  data_ = byte;
+  if (byte != pins_.data) pins_.data_changed_ns = now_ns_;
+  pins_.data = byte;
 }
 
 void Hd44780Model::delay_us(uint16_t us) {
@@ -126,7 +102,7 @@ void Hd44780Model::latch(bool rs, uint8_t byte) {
   const bool slow = !rs && (byte == 0x01 || (byte & 0xFE) == 0x02);
   busy_until_ns_ = now_ns_ + (slow ? kClearHomeExecNs : kExecNs);
   if (rs) {
-    write_data(byte);
+    display_.write_data(byte);
   } else {
     instruction(byte);
   }
@@ -136,98 +112,24 @@ void Hd44780Model::latch(bool rs, uint8_t byte) {
 void Hd44780Model::instruction(uint8_t code) {
   if (code & 0x80) {
     const uint8_t address = code & 0x7F;
-    if (ddram_index(address) < 0) violation("DDRAM address outside the lines: " + hex(address));
-    address_counter_ = address;
-    address_in_cgram_ = false;
+    if (!display_.set_ddram_address(address))
+      violation("DDRAM address outside the lines: " + hex(address));
   } else if (code & 0x40) {
-    address_counter_ = code & 0x3F;
-    address_in_cgram_ = true;
+    display_.set_cgram_address(code & 0x3F);
   } else if (code & 0x20) {
-    eight_bit_ = (code & 0x10) != 0;
-    two_lines_ = (code & 0x08) != 0;
-    if (!eight_bit_) violation("function set selected the 4-bit interface");
+    display_.set_function((code & 0x10) != 0, (code & 0x08) != 0);
+    if (!display_.eight_bit()) violation("function set selected the 4-bit interface");
   } else if (code & 0x10) {
-    const bool display = (code & 0x08) != 0;
-    const bool right = (code & 0x04) != 0;
-    if (display) {
-      display_shift_ += right ? -1 : 1;
-    } else {
-      address_counter_ = step_address(address_counter_, right);
-    }
+    display_.shift((code & 0x08) != 0, (code & 0x04) != 0);
   } else if (code & 0x08) {
-    display_on_ = (code & 0x04) != 0;
-    cursor_on_ = (code & 0x02) != 0;
-    blink_on_ = (code & 0x01) != 0;
+    display_.set_display_control((code & 0x04) != 0, (code & 0x02) != 0, (code & 0x01) != 0);
   } else if (code & 0x04) {
-    increment_ = (code & 0x02) != 0;
-    shift_on_write_ = (code & 0x01) != 0;
+    display_.set_entry_mode((code & 0x02) != 0, (code & 0x01) != 0);
   } else if (code & 0x02) {
-    address_counter_ = 0;
-    address_in_cgram_ = false;
-    display_shift_ = 0;
+    display_.return_home();
   } else if (code & 0x01) {
-    std::memset(ddram_, ' ', sizeof ddram_);
-    address_counter_ = 0;
-    address_in_cgram_ = false;
-    display_shift_ = 0;
-    increment_ = true;
+    display_.clear();
   }
-}
-
-// Data goes where the address counter points, which then moves by the entry mode.
-void Hd44780Model::write_data(uint8_t byte) {
-  if (address_in_cgram_) {
-    cgram_[address_counter_ & 0x3F] = byte;
-    address_counter_ = (uint8_t)((address_counter_ + (increment_ ? 1 : 0x3F)) & 0x3F);
-    return;
-  }
-  const int index = ddram_index(address_counter_);
-  if (index >= 0) ddram_[index] = byte;
-  address_counter_ = step_address(address_counter_, increment_);
-  if (shift_on_write_) display_shift_ += increment_ ? 1 : -1;
-}
-
-// Next DDRAM address; in 2-line mode the gap 0x28..0x3F is skipped (0x27 -> 0x40 ->...
-// 0x67 -> 0x00).
-uint8_t Hd44780Model::step_address(uint8_t address, bool up) const {
-  if (!two_lines_) return (uint8_t)(up ? (address + 1) % 80 : (address + 79) % 80);
-  if (up) {
-    if (address == 0x27) return 0x40;
-    if (address == 0x67) return 0x00;
-    return (uint8_t)(address + 1);
-  }
-  if (address == 0x40) return 0x27;
-  if (address == 0x00) return 0x67;
-  return (uint8_t)(address - 1);
-}
-
-// Index into ddram_ (row * 40 + column), -1 for addresses that hold no character.
-int Hd44780Model::ddram_index(uint8_t address) const {
-  if (!two_lines_) return address < 80 ? address : -1;
-  if (address <= 0x27) return address;
-  if (address >= 0x40 && address <= 0x67) return 40 + (address - 0x40);
-  return -1;
-}
-
-std::string Hd44780Model::visible_line(int row) const {
-  std::string line(16, ' ');
-  if (!display_on_ || row < 0 || row > 1 || (!two_lines_ && row == 1)) return line;
-  for (int column = 0; column < 16; ++column) {
-    const int shifted = ((column + display_shift_) % 40 + 40) % 40;
-    line[column] = (char)ddram_[row * 40 + shifted];
-  }
-  return line;
-}
-
-std::string Hd44780Model::ddram(uint8_t first, uint8_t count) const {
-  std::string out;
-  uint8_t address = first;
-  for (uint8_t i = 0; i < count; ++i) {
-    const int index = ddram_index(address);
-    out.push_back(index >= 0 ? (char)ddram_[index] : '?');
-    address = step_address(address, true);
-  }
-  return out;
 }
 
 }  // namespace fake

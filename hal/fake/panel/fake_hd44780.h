@@ -1,8 +1,8 @@
 // Host-only simulated HD44780 behind a hal::LcdBus: decodes the pin activity the driver
-// produces into instructions and data, keeps DDRAM, the address counter and the modes, and
-// checks the data sheet's timing (power-on wait, init gaps, busy times, write-cycle setup).
-// Time only advances in delay_us(); pin changes take no time, so every gap the data sheet
-// asks for must come from an explicit delay.
+// produces into instructions and data, hands them to its Hd44780Display (DDRAM, the address
+// counter and the modes: hd44780_display.h), and checks the data sheet's timing (power-on
+// wait, init gaps, busy times, write-cycle setup). Time only advances in delay_us(); pin
+// changes take no time, so every gap the data sheet asks for must come from an explicit delay.
 #ifndef HAL_FAKE_PANEL_FAKE_HD44780_H
 #define HAL_FAKE_PANEL_FAKE_HD44780_H
 
@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "hal/fake/panel/hd44780_display.h"
 #include "hal/interfaces/lcd_bus.h"
 
 namespace fake {
@@ -44,17 +45,18 @@ class Hd44780Model : public hal::LcdBus {
   void delay_us(uint16_t us) override;
 
   // What an operator would read on a row: 16 characters, all spaces while display is off.
-  std::string visible_line(int row) const;
+  std::string visible_line(int row) const { return display_.visible_line(row); }
   // Characters at DDRAM addresses [first, first + count) (2-line addressing).
-  std::string ddram(uint8_t first, uint8_t count) const;
-  uint8_t address_counter() const { return address_counter_; }
-  bool display_on() const { return display_on_; }
-  bool cursor_on() const { return cursor_on_; }
-  bool blink_on() const { return blink_on_; }
-  bool increment() const { return increment_; }
-  bool shift_on_write() const { return shift_on_write_; }
-  bool eight_bit() const { return eight_bit_; }
-  bool two_lines() const { return two_lines_; }
+  std::string ddram(uint8_t first, uint8_t count) const { return display_.ddram(first, count); }
+  const Hd44780Display& display() const { return display_; }
+  uint8_t address_counter() const { return display_.address_counter(); }
+  bool display_on() const { return display_.display_on(); }
+  bool cursor_on() const { return display_.cursor_on(); }
+  bool blink_on() const { return display_.blink_on(); }
+  bool increment() const { return display_.increment(); }
+  bool shift_on_write() const { return display_.shift_on_write(); }
+  bool eight_bit() const { return display_.eight_bit(); }
+  bool two_lines() const { return display_.two_lines(); }
   // True once the three 0x3x function sets arrived with the data sheet's waits.
   bool initialised_by_instruction() const { return init_step_ == kInitDone; }
 
@@ -65,30 +67,25 @@ class Hd44780Model : public hal::LcdBus {
 
  private:
   enum InitStep { kPowerOn, kAfterFirst, kAfterSecond, kInitDone };
+  // The bus as the controller last saw it: the pin levels and when they changed.
+  struct BusPins {
+    uint8_t control = 0;  // hal::LcdBus control bits (RS, R/W, E)
+    uint8_t data = 0;
+    uint64_t control_changed_ns = 0;  // RS or R/W
+    uint64_t data_changed_ns = 0;
+    uint64_t enable_rose_ns = 0;
+    bool enable_seen = false;  // E has risen at least once
+  };
   void latch(bool rs, uint8_t byte);
   void instruction(uint8_t code);
-  void write_data(uint8_t byte);
-  uint8_t step_address(uint8_t address, bool up) const;
-  int ddram_index(uint8_t address) const;
   void violation(const std::string& what);
 
   uint64_t now_ns_;
-  uint8_t control_;
-  uint8_t data_;
-  uint64_t control_changed_ns_;
-  uint64_t data_changed_ns_;
-  uint64_t enable_rose_ns_;
-  bool enable_seen_;
+  BusPins pins_;
   uint64_t busy_until_ns_;
   InitStep init_step_;
   uint64_t last_init_latch_ns_;
-
-  uint8_t ddram_[80];
-  uint8_t cgram_[64];
-  uint8_t address_counter_;
-  bool address_in_cgram_;
-  int display_shift_;
-  bool display_on_, cursor_on_, blink_on_, increment_, shift_on_write_, eight_bit_, two_lines_;
+  Hd44780Display display_;
 
   std::vector<Latch> latches_;
   std::vector<std::string> violations_;

@@ -169,7 +169,7 @@ BoardResult plan_board_command(const BoardCommandOptions& a, const CommandLog& l
   BoardResult r;
   r.name = b.name;
   r.options = board_options_for(a.board, a.machine, b);
-  r.job = plan_board_files(b, r.options, a.board.align_measured_mm);
+  r.job = plan_board_files(b, r.options, a.board.alignment.measured_mm);
   for (const std::string& n : r.job.report.notes) log("note: " + n);
   r.plan_cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   r.plan_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

@@ -344,11 +344,12 @@ bool input_exists(const std::string& input) {
 JobPlan plan_pcb_input(const std::string& input, const pcb::BoardArgs& args,
                        const pcb::BoardMachine& m, const CommandLog& log, PlannedBoard* board) {
   const bool probe_area = board != nullptr && board->with_probe_area;
-  const BoardFiles b = read_board_input(input, args.side, probe_area && !args.align_holes.empty());
+  const BoardFiles b =
+      read_board_input(input, args.side, probe_area && !args.alignment.holes.empty());
   log_board_notes(b, log);
   const pcb::BoardOptions o = board_options_for(args, m, b);
   const auto job =
-      std::make_shared<const pcb::BoardJob>(plan_board_files(b, o, args.align_measured_mm));
+      std::make_shared<const pcb::BoardJob>(plan_board_files(b, o, args.alignment.measured_mm));
   try {
     // Refused before a byte is sent (send) or the machine is simulated (run).
     const int tol_um = static_cast<int>(std::lround(m.chord_tol_mm * 1000));
@@ -382,14 +383,14 @@ BoardPoints board_points(const std::string& input, const pcb::BoardArgs& args, d
   pcb::BoardMachine m;
   // Points in the file frame: no work area applies, unless the job is turned and shifted
   // onto measured holes (machine positions): then `board`'s default work area, as it checks.
-  const bool placed = !args.align_measured_mm.empty();
+  const bool placed = !args.alignment.measured_mm.empty();
   if (!placed) m.work_w_mm = m.work_h_mm = 1e6;
   const BoardFiles b = read_board_input(input, args.side);
   log_board_notes(b, log);
   pcb::BoardOptions o = board_options_for(args, m, b);
   if (!placed) o.travel_width_mm = o.travel_height_mm = m.work_w_mm;
   BoardPoints out;
-  out.job = plan_board_files(b, o, args.align_measured_mm);
+  out.job = plan_board_files(b, o, args.alignment.measured_mm);
   for (const std::string& n : out.job.report.notes) log("note: " + n);
   for (const pcb::NarrowGap& g : out.job.report.narrow_gaps)
     log("warning: " + pcb::describe_gap(g, o.isolation));

@@ -38,6 +38,61 @@ std::string g_name(int g10) {
   return o.str();
 }
 
+// The units the program selects (G20/G21), and which it used (for the drawing's units).
+struct ProgramUnits {
+  double to_mm = 1.0;  // of the selected unit
+  bool inch_seen = false, mm_seen = false, first_inch = false;
+
+  void select_inch() {
+    to_mm = 25.4;
+    if (!inch_seen && !mm_seen) first_inch = true;
+    inch_seen = true;
+  }
+  void select_mm() {
+    to_mm = 1.0;
+    mm_seen = true;
+  }
+  // The drawing's units and unit_to_mm, with a warning when the program named none.
+  void describe(Drawing* dr) const {
+    if (inch_seen && mm_seen) {
+      dr->units = std::string("inch and mm (G20 and G21 both used; the first is ") +
+                  (first_inch ? "inch)" : "mm)");
+      dr->unit_to_mm = first_inch ? 25.4 : 1.0;
+    } else if (inch_seen) {
+      dr->units = "inch";
+      dr->unit_to_mm = 25.4;
+    } else if (mm_seen) {
+      dr->units = "mm";
+    } else {
+      dr->units = "mm (assumed)";
+      dr->warnings.push_back(dr->path + ": no G20/G21: coordinates taken as millimetres");
+    }
+  }
+};
+
+// What the program's words set that holds until a word changes it (besides the units).
+struct ModalState {
+  bool absolute = true;       // G90 (G91: relative)
+  bool arc_absolute = false;  // G90.1
+  bool retract_to_r = false;  // G99 (G98 is the default)
+  int motion = 0;             // 0 1 2 3, 81 82 83, -1 after G80
+  double feed_per_min = 0.0;  // F in file units per minute (converted when used)
+  int tool = 0;               // T
+};
+
+// A drilling cycle's words, kept from line to line (G81/G82/G83), in file units (P: s).
+struct CycleWords {
+  double r = 0, z = 0, p = 0, q = 0;
+  bool have_r = false, have_z = false;
+};
+
+// The cutting moves since the last pen-up: one curve when flushed.
+struct CuttingRun {
+  std::vector<BulgeVertex> vertices;
+  std::string label;  // "from line N"
+  double depth_mm = 0.0;
+};
+
 class Interpreter {
  public:
   Interpreter(const std::string& path, bool uses_spindle) : uses_spindle_(uses_spindle) {
@@ -74,19 +129,7 @@ class Interpreter {
                              ") is not followed by a stop (M0/M1/M6): not shown");
     }
     if (spindle_on_) spindle(false);
-    if (inch_seen_ && mm_seen_) {
-      dr_.units = std::string("inch and mm (G20 and G21 both used; the first is ") +
-                  (first_unit_inch_ ? "inch)" : "mm)");
-      dr_.unit_to_mm = first_unit_inch_ ? 25.4 : 1.0;
-    } else if (inch_seen_) {
-      dr_.units = "inch";
-      dr_.unit_to_mm = 25.4;
-    } else if (mm_seen_) {
-      dr_.units = "mm";
-    } else {
-      dr_.units = "mm (assumed)";
-      dr_.warnings.push_back(dr_.path + ": no G20/G21: coordinates taken as millimetres");
-    }
+    units_.describe(&dr_);
     dr_.entity_counts["G-code path"] = static_cast<int>(dr_.curves.size());
     for (const ProgramOp& op : dr_.program) {
       if (op.kind == ProgramOp::kDrill) ++dr_.entity_counts["hole (G81/G82/G83)"];
@@ -188,31 +231,28 @@ class Interpreter {
           c.dwell = true;
           break;
         case 200:
-          to_mm_ = 25.4;
-          if (!inch_seen_ && !mm_seen_) first_unit_inch_ = true;
-          inch_seen_ = true;
+          units_.select_inch();
           break;
         case 210:
-          to_mm_ = 1.0;
-          mm_seen_ = true;
+          units_.select_mm();
           break;
         case 900:
-          absolute_ = true;
+          modal_.absolute = true;
           break;
         case 910:
-          absolute_ = false;
+          modal_.absolute = false;
           break;
         case 901:
-          arc_absolute_ = true;
+          modal_.arc_absolute = true;
           break;
         case 911:
-          arc_absolute_ = false;
+          modal_.arc_absolute = false;
           break;
         case 980:
-          retract_to_r_ = false;
+          modal_.retract_to_r = false;
           break;
         case 990:
-          retract_to_r_ = true;
+          modal_.retract_to_r = true;
           break;
         case 180:
         case 190:
@@ -255,11 +295,13 @@ class Interpreter {
   }
 
   bool execute(const LineWords& w) {
-    if (w.have('F')) feed_ = w.get('F');  // converted when used (units may change later)
-    if (w.have('T')) tool_ = static_cast<int>(w.get('T'));
+    // F is converted when used (the units may change later).
+    if (w.have('F')) modal_.feed_per_min = w.get('F');
+    if (w.have('T')) modal_.tool = static_cast<int>(w.get('T'));
     const MCodes mc = m_codes(w);
     if (mc.tool_change) {
-      pause(message_.empty() ? "Change tool T" + std::to_string(tool_) : message_, tool_);
+      pause(message_.empty() ? "Change tool T" + std::to_string(modal_.tool) : message_,
+            modal_.tool);
     }
     for (int m : w.m) {
       if (m == 3 || m == 4) spindle(true);
@@ -267,15 +309,15 @@ class Interpreter {
     }
     const GCodes gc = g_codes(w);
     if (gc.dwell) dwell(w);
-    if (gc.motion != -2) motion_ = gc.motion;
+    if (gc.motion != -2) modal_.motion = gc.motion;
     const bool axes = w.have('X') || w.have('Y') || w.have('Z');
     if (axes && gc.dwell) throw ImportError(where_ + ": G4 with X/Y/Z words on the same line");
     if (axes) {
-      if (motion_ == -1) {
+      if (modal_.motion == -1) {
         throw ImportError(where_ +
                           ": X/Y/Z with no motion mode (after G80): add G0 or G1 to the line");
       }
-      if (motion_ >= 81) {
+      if (modal_.motion >= 81) {
         drill(w);
       } else {
         move(w);
@@ -295,8 +337,9 @@ class Interpreter {
 
   // G0/G1/G2/G3 with the axis words of the line.
   void move(const LineWords& w) {
+    const double to_mm = units_.to_mm;
     if (w.have('Z')) {
-      const double z = absolute_ ? w.get('Z') * to_mm_ : z_ + w.get('Z') * to_mm_;
+      const double z = modal_.absolute ? w.get('Z') * to_mm : z_ + w.get('Z') * to_mm;
       if (z > 0 || z != z_) flush();  // lifted off the work, or a new depth: a new run
       z_ = z;
       z_given_ = true;
@@ -305,27 +348,29 @@ class Interpreter {
     if (!w.have('X') && !w.have('Y')) return;
     moved_since_pause_ = true;
     Point2 target = pos_;
-    if (w.have('X')) target.x() = absolute_ ? w.get('X') * to_mm_ : pos_.x() + w.get('X') * to_mm_;
-    if (w.have('Y')) target.y() = absolute_ ? w.get('Y') * to_mm_ : pos_.y() + w.get('Y') * to_mm_;
-    const bool cutting = motion_ != 0 && (!uses_spindle_ || spindle_on_) && z_ <= 0;
+    if (w.have('X'))
+      target.x() = modal_.absolute ? w.get('X') * to_mm : pos_.x() + w.get('X') * to_mm;
+    if (w.have('Y'))
+      target.y() = modal_.absolute ? w.get('Y') * to_mm : pos_.y() + w.get('Y') * to_mm;
+    const bool cutting = modal_.motion != 0 && (!uses_spindle_ || spindle_on_) && z_ <= 0;
     if (!cutting) {
       flush();
       pos_ = target;
       return;
     }
-    if (run_.empty()) {
+    if (run_.vertices.empty()) {
       BulgeVertex v;
       v.p = pos_;
-      run_.push_back(v);
-      run_label_ = "from line " + std::to_string(n_);
-      run_depth_ = z_given_ ? z_ : std::nan("");
+      run_.vertices.push_back(v);
+      run_.label = "from line " + std::to_string(n_);
+      run_.depth_mm = z_given_ ? z_ : std::nan("");
     }
-    if (motion_ == 2 || motion_ == 3) {
+    if (modal_.motion == 2 || modal_.motion == 3) {
       arc(w, target);
     } else {
       BulgeVertex v;
       v.p = target;
-      run_.push_back(v);
+      run_.vertices.push_back(v);
     }
     pos_ = target;
   }
@@ -337,19 +382,19 @@ class Interpreter {
       const double rv = w.get('R');
       const Point2 chord = target - pos_;
       const double c = chord.norm();
-      const double r = std::fabs(rv) * to_mm_;
+      const double r = std::fabs(rv) * units_.to_mm;
       if (c < 1e-9) throw ImportError(where_ + ": R-form arc with coinciding ends");
       if (c > 2 * r + 1e-6)
         throw ImportError(where_ + ": arc radius R is shorter than half the chord");
       const double h = std::sqrt(std::max(0.0, r * r - c * c / 4));
       const Point2 left(-chord.y() / c, chord.x() / c);
       // G2 with R > 0: centre right of the chord; G3 with R > 0: left.
-      const double side = (motion_ == 3 ? 1.0 : -1.0) * (rv < 0 ? -1.0 : 1.0);
+      const double side = (modal_.motion == 3 ? 1.0 : -1.0) * (rv < 0 ? -1.0 : 1.0);
       centre = 0.5 * (pos_ + target) + left * (h * side);
     } else {
       if (!w.have('I') && !w.have('J')) throw ImportError(where_ + ": arc without I/J or R");
-      const Point2 ij(w.get('I') * to_mm_, w.get('J') * to_mm_);
-      centre = arc_absolute_ ? ij : Point2(pos_ + ij);
+      const Point2 ij(w.get('I') * units_.to_mm, w.get('J') * units_.to_mm);
+      centre = modal_.arc_absolute ? ij : Point2(pos_ + ij);
     }
     const double r0 = (pos_ - centre).norm();
     const double r1 = (target - centre).norm();
@@ -362,7 +407,7 @@ class Interpreter {
     const double a0 = std::atan2(pos_.y() - centre.y(), pos_.x() - centre.x());
     const double a1 = std::atan2(target.y() - centre.y(), target.x() - centre.x());
     double sweep = a1 - a0;
-    if (motion_ == 3) {
+    if (modal_.motion == 3) {
       while (sweep <= 1e-12) sweep += 2 * kPi;
     } else {
       while (sweep >= -1e-12) sweep -= 2 * kPi;
@@ -370,11 +415,11 @@ class Interpreter {
     // At most half a turn per polyline segment (a bulge cannot describe more).
     const int parts = std::fabs(sweep) > kPi - 1e-9 ? 2 : 1;
     for (int k = 1; k <= parts; ++k) {
-      run_.back().bulge = std::tan(sweep / parts / 4);
+      run_.vertices.back().bulge = std::tan(sweep / parts / 4);
       BulgeVertex v;
       const double a = a0 + sweep * k / parts;
       v.p = k == parts ? target : Point2(centre + r0 * Point2(std::cos(a), std::sin(a)));
-      run_.push_back(v);
+      run_.vertices.push_back(v);
     }
   }
 
@@ -382,34 +427,35 @@ class Interpreter {
   void drill(const LineWords& w) {
     flush();
     moved_since_pause_ = true;
-    const int cycle = motion_;
-    if (w.have('R')) cycle_r_ = w.get('R'), have_r_ = true;
-    if (w.have('Z')) cycle_z_ = w.get('Z'), have_z_ = true;
-    if (w.have('P')) cycle_p_ = w.get('P');
-    if (w.have('Q')) cycle_q_ = w.get('Q');
-    if (!have_r_ || !have_z_) {
+    const int cycle = modal_.motion;
+    const double to_mm = units_.to_mm;
+    if (w.have('R')) cycle_.r = w.get('R'), cycle_.have_r = true;
+    if (w.have('Z')) cycle_.z = w.get('Z'), cycle_.have_z = true;
+    if (w.have('P')) cycle_.p = w.get('P');
+    if (w.have('Q')) cycle_.q = w.get('Q');
+    if (!cycle_.have_r || !cycle_.have_z) {
       throw ImportError(where_ + ": G" + std::to_string(cycle) + " needs R and Z (given on this " +
                         "line or earlier in the cycle)");
     }
-    if (cycle == 82 && cycle_p_ < 0) throw ImportError(where_ + ": G82 P (dwell) is negative");
-    if (cycle == 83 && !(cycle_q_ > 0)) throw ImportError(where_ + ": G83 needs Q > 0 (peck)");
+    if (cycle == 82 && cycle_.p < 0) throw ImportError(where_ + ": G82 P (dwell) is negative");
+    if (cycle == 83 && !(cycle_.q > 0)) throw ImportError(where_ + ": G83 needs Q > 0 (peck)");
     const int repeats = w.have('L') ? static_cast<int>(w.get('L')) : 1;
     if (repeats < 1 || repeats > 10000) throw ImportError(where_ + ": L must be 1..10000");
     for (int k = 0; k < repeats; ++k) {
       const double start_z = z_;
       Point2 at = pos_;
       double r_mm, bottom_mm;
-      if (absolute_) {
-        if (w.have('X')) at.x() = w.get('X') * to_mm_;
-        if (w.have('Y')) at.y() = w.get('Y') * to_mm_;
-        r_mm = cycle_r_ * to_mm_;
-        bottom_mm = cycle_z_ * to_mm_;
+      if (modal_.absolute) {
+        if (w.have('X')) at.x() = w.get('X') * to_mm;
+        if (w.have('Y')) at.y() = w.get('Y') * to_mm;
+        r_mm = cycle_.r * to_mm;
+        bottom_mm = cycle_.z * to_mm;
       } else {
         // G91: X/Y from the current point, R from the start height, Z from R.
-        at += Point2((w.have('X') ? w.get('X') : 0) * to_mm_,
-                     (w.have('Y') ? w.get('Y') : 0) * to_mm_);
-        r_mm = start_z + cycle_r_ * to_mm_;
-        bottom_mm = r_mm + cycle_z_ * to_mm_;
+        at +=
+            Point2((w.have('X') ? w.get('X') : 0) * to_mm, (w.have('Y') ? w.get('Y') : 0) * to_mm);
+        r_mm = start_z + cycle_.r * to_mm;
+        bottom_mm = r_mm + cycle_.z * to_mm;
       }
       if (bottom_mm > r_mm) {
         std::ostringstream o;
@@ -423,10 +469,10 @@ class Interpreter {
       op.z_start_mm = r_mm;
       op.z_bottom_mm = bottom_mm;
       // G98 goes back to the height before the cycle unless that is below R.
-      op.retract_mm = retract_to_r_ ? r_mm : std::max(r_mm, start_z);
-      op.dwell_s = cycle == 82 ? cycle_p_ : 0.0;
-      op.peck_mm = cycle == 83 ? cycle_q_ * to_mm_ : 0.0;
-      op.feed_mm_per_s = feed_ * to_mm_ / 60.0;
+      op.retract_mm = modal_.retract_to_r ? r_mm : std::max(r_mm, start_z);
+      op.dwell_s = cycle == 82 ? cycle_.p : 0.0;
+      op.peck_mm = cycle == 83 ? cycle_.q * to_mm : 0.0;
+      op.feed_mm_per_s = modal_.feed_per_min * to_mm / 60.0;
       add(op);
       pos_ = at;
       z_ = op.retract_mm;
@@ -482,24 +528,24 @@ class Interpreter {
 
   // Ends the current run of cutting moves: it becomes a curve and a kCut operation.
   void flush() {
-    if (run_.size() >= 2) {
-      BSpline s = polyline_spline(run_, false);
+    if (run_.vertices.size() >= 2) {
+      BSpline s = polyline_spline(run_.vertices, false);
       if (!s.control.empty()) {
         Curve c;
         c.set_spline(s);
         c.kind = "G-code path";
-        c.source = "path #" + std::to_string(dr_.curves.size() + 1) + " (" + run_label_ + ")";
+        c.source = "path #" + std::to_string(dr_.curves.size() + 1) + " (" + run_.label + ")";
         dr_.curves.push_back(c);
         ProgramOp op;
         op.kind = ProgramOp::kCut;
         op.curve = static_cast<int>(dr_.curves.size()) - 1;
-        op.depth_mm = run_depth_;
-        op.source = run_label_.substr(5);  // "line N"
+        op.depth_mm = run_.depth_mm;
+        op.source = run_.label.substr(5);  // "line N"
         dr_.program.push_back(op);
         moved_since_pause_ = true;
       }
     }
-    run_.clear();
+    run_.vertices.clear();
   }
 
   Drawing dr_;
@@ -507,25 +553,16 @@ class Interpreter {
   long n_ = 0;
   std::string where_;
   std::string message_;  // "(MSG, ...)" waiting for the next pause
-  double to_mm_ = 1.0;
-  bool inch_seen_ = false, mm_seen_ = false, first_unit_inch_ = false;
-  bool absolute_ = true;
-  bool arc_absolute_ = false;  // G90.1
-  bool retract_to_r_ = false;  // G99 (G98 is the default)
-  int motion_ = 0;             // 0 1 2 3, 81 82 83, -1 after G80
+  ProgramUnits units_;
+  ModalState modal_;
   bool spindle_on_ = false, spindle_known_ = false;
-  int tool_ = 0;
-  double feed_ = 0.0;  // F in file units per minute
   Point2 pos_{0, 0};
   double z_ = 0.0;
   bool z_given_ = false;  // no Z word yet: cuts take the planner's depth
-  double cycle_r_ = 0, cycle_z_ = 0, cycle_p_ = 0, cycle_q_ = 0;  // sticky cycle words
-  bool have_r_ = false, have_z_ = false;
+  CycleWords cycle_;
   bool moved_since_pause_ = true;
   bool last_pause_told_ = false;  // the last pause shows the program's message
-  std::vector<BulgeVertex> run_;  // the cutting moves since the last pen-up
-  std::string run_label_;
-  double run_depth_ = 0.0;
+  CuttingRun run_;
   std::set<std::string> warned_;
 };
 

@@ -26,49 +26,51 @@ void refuse_other_side_copper(BoardSide side, const BoardFileSet& layers) {
 
 // Options each within its range (option_ranges in the CLI) that cannot go together.
 void refuse_option_combinations(const BoardArgs& a) {
-  if (a.clearing_tool_mm > 0 && a.narrow_passes >= a.passes)
+  const BoardIsolationArgs& i = a.isolation;
+  if (i.clearing_tool_mm > 0 && i.narrow_passes >= i.passes)
     throw BoardArgsError(
         fmt::format("--clearing-tool cuts the passes beyond --narrow-passes ({}), "
                     "but --passes is {}: give more --passes, or no clearing tool",
-                    a.narrow_passes, a.passes));
-  if (!(a.clearing_tool_mm > 0) && a.narrow_passes != 1)
+                    i.narrow_passes, i.passes));
+  if (!(i.clearing_tool_mm > 0) && i.narrow_passes != 1)
     throw BoardArgsError(
         "--narrow-passes counts the isolation tool's passes next to "
         "the copper with a --clearing-tool: give the clearing tool");
-  if (a.clearing_tool_mm > 0 && !(a.clearing_tool_mm > a.tool_width_mm))
+  if (i.clearing_tool_mm > 0 && !(i.clearing_tool_mm > i.tool_width_mm))
     throw BoardArgsError(
         fmt::format("--clearing-tool ({} mm) must be wider than "
                     "--tool-width ({} mm): it cuts the outer passes",
-                    a.clearing_tool_mm, a.tool_width_mm));
-  if (a.clearing_tool_mm > 0 && a.mill_all)
+                    i.clearing_tool_mm, i.tool_width_mm));
+  if (i.clearing_tool_mm > 0 && i.mill_all)
     throw BoardArgsError(
         "--clearing-tool cannot be combined with --mill-all (which clears all "
         "copper-free area with the isolation tool): give one of them");
   // Only where tabs are cut: --tabs 0 or --tab-width 0 leaves no tab to keep a height.
-  const bool tabs_cut = a.tab_width_mm > 0 && (a.tabs > 0 || a.tab_spacing_mm > 0);
-  if (tabs_cut && !(a.tab_height_mm < a.cut_depth_mm))
+  const BoardCutoutArgs& c = a.cutout;
+  const bool tabs_cut = c.tab_width_mm > 0 && (c.tabs > 0 || c.tab_spacing_mm > 0);
+  if (tabs_cut && !(c.tab_height_mm < c.depth_mm))
     throw BoardArgsError(
         fmt::format("--tab-height ({} mm) must be below --cut-depth "
                     "({} mm): a tab keeps part of the board",
-                    a.tab_height_mm, a.cut_depth_mm));
+                    c.tab_height_mm, c.depth_mm));
 }
 
-AlignmentOptions alignment_options(const BoardArgs& a) {
+AlignmentOptions alignment_options(const BoardAlignmentArgs& a) {
   AlignmentOptions o;
-  if (a.align_holes.empty()) {
-    if (!a.align_measured_mm.empty())
+  if (a.holes.empty()) {
+    if (!a.measured_mm.empty())
       throw BoardArgsError("--align-measured needs the job's --align-holes");
     return o;
   }
   o.enabled = true;
-  o.hole_diameter_mm = a.align_diameter_mm;
-  o.hole_depth_mm = a.align_depth_mm;
-  const std::string why = parse_align_holes(a.align_holes, &o.holes_file_mm);
+  o.hole_diameter_mm = a.diameter_mm;
+  o.hole_depth_mm = a.depth_mm;
+  const std::string why = parse_align_holes(a.holes, &o.holes_file_mm);
   if (!why.empty()) throw BoardArgsError(why);
   return o;
 }
 
-IsolationOptions isolation_options(const BoardArgs& a) {
+IsolationOptions isolation_options(const BoardIsolationArgs& a) {
   IsolationOptions o;
   o.tool_width_mm = a.tool_width_mm;
   o.passes = a.passes;
@@ -118,20 +120,20 @@ BoardOptions resolve_board_options(const BoardArgs& a, const BoardMachine& m,
   o.side = resolve_board_side(a.side, prefix_side, layers);
   refuse_other_side_copper(o.side, layers);
   refuse_option_combinations(a);
-  o.isolation = isolation_options(a);
-  o.alignment = alignment_options(a);
-  o.isolation_depth_mm = a.depth_mm;
-  o.drill_depth_mm = a.drill_depth_mm;
-  o.drill_start_mm = a.drill_start_mm;
-  o.drill_feed_mm_per_s = a.drill_feed_mm_s;
-  o.cutout.cutter_diameter_mm = a.cutter_mm;
-  o.cutout.tab_width_mm = a.tab_width_mm;
-  o.cutout.tab_count = a.tabs;
-  o.cutout.tab_spacing_mm = a.tab_spacing_mm;
-  o.cutout_depth_mm = a.cut_depth_mm;
-  o.cutout_step_mm = a.cut_step_mm;
-  o.cutout_feed_mm_per_s = a.cut_feed_mm_s;
-  o.tab_height_mm = a.tab_height_mm;
+  o.isolation = isolation_options(a.isolation);
+  o.alignment = alignment_options(a.alignment);
+  o.isolation_depth_mm = a.isolation.depth_mm;
+  o.drill_depth_mm = a.drill.depth_mm;
+  o.drill_start_mm = a.drill.start_mm;
+  o.drill_feed_mm_per_s = a.drill.feed_mm_s;
+  o.cutout.cutter_diameter_mm = a.cutout.cutter_mm;
+  o.cutout.tab_width_mm = a.cutout.tab_width_mm;
+  o.cutout.tab_count = a.cutout.tabs;
+  o.cutout.tab_spacing_mm = a.cutout.tab_spacing_mm;
+  o.cutout_depth_mm = a.cutout.depth_mm;
+  o.cutout_step_mm = a.cutout.step_mm;
+  o.cutout_feed_mm_per_s = a.cutout.feed_mm_s;
+  o.tab_height_mm = a.cutout.tab_height_mm;
   o.spindle = !a.no_spindle;
   o.allow_narrow_gaps = a.allow_narrow_gaps;
   o.feed_mm_per_s = m.feed_mm_s;

@@ -15,36 +15,57 @@
 
 namespace host::pcb {
 
-// Board options (tools, passes, depths, tabs, side), as the command line names them.
-struct BoardArgs {
+// The isolation tool, its passes and depth (--tool-width ... --depth).
+struct BoardIsolationArgs {
   double tool_width_mm = defaults::kToolWidthMm;
   int passes = defaults::kPasses;
   double overlap = defaults::kOverlap;
   double clearance_mm = defaults::kClearanceMm;
   bool mill_all = false;
   bool isolate_empty_holes = false;  // hatched pours' openings (IsolationOptions)
+  double clearing_tool_mm = 0;       // > 0: a wider tool for the outer passes
+  int narrow_passes = 1;             // with a clearing tool: passes of the isolation tool
   double depth_mm = defaults::kIsolationDepthMm;
-  double drill_depth_mm = defaults::kDrillDepthMm;
-  double drill_start_mm = defaults::kDrillStartMm;
-  double drill_feed_mm_s = defaults::kDrillFeedMmPerS;
+};
+
+// Drilling (--drill-depth, --drill-start, --drill-feed).
+struct BoardDrillArgs {
+  double depth_mm = defaults::kDrillDepthMm;
+  double start_mm = defaults::kDrillStartMm;
+  double feed_mm_s = defaults::kDrillFeedMmPerS;
+};
+
+// The cut-out and its holding tabs (--cutter ... --tab-height).
+struct BoardCutoutArgs {
   double cutter_mm = defaults::kCutterMm;
-  double cut_depth_mm = defaults::kCutDepthMm;
-  double cut_step_mm = defaults::kCutStepMm;
-  double cut_feed_mm_s = defaults::kCutFeedMmPerS;
+  double depth_mm = defaults::kCutDepthMm;
+  double step_mm = defaults::kCutStepMm;
+  double feed_mm_s = defaults::kCutFeedMmPerS;
   double tab_width_mm = defaults::kTabWidthMm;
   int tabs = defaults::kTabs;
   double tab_spacing_mm = 0;  // > 0: one tab per this much outline instead of --tabs
   double tab_height_mm = defaults::kTabHeightMm;
+};
+
+// A double-sided board's alignment holes (--align-holes ... --align-measured).
+struct BoardAlignmentArgs {
+  // "auto" or "X,Y[;X,Y...]" (file frame, mm); empty: no alignment holes.
+  std::string holes;
+  double diameter_mm = defaults::kAlignDiameterMm;
+  double depth_mm = defaults::kAlignDepthMm;
+  std::vector<double> measured_mm;  // X1 Y1 X2 Y2: holes 1 and 2 measured after the flip
+};
+
+// Board options (tools, passes, depths, tabs, side), as the command line names them, in the
+// command line's groups.
+struct BoardArgs {
+  BoardIsolationArgs isolation;
+  BoardDrillArgs drill;
+  BoardCutoutArgs cutout;
+  BoardAlignmentArgs alignment;
+  std::string side;  // "top", "bottom" or empty (the side whose copper is given)
   bool no_spindle = false;
   bool allow_narrow_gaps = false;
-  std::string side;             // "top", "bottom" or empty (the side whose copper is given)
-  double clearing_tool_mm = 0;  // > 0: a wider tool for the outer passes
-  int narrow_passes = 1;        // with a clearing tool: passes of the isolation tool
-  // Double-sided: "auto" or "X,Y[;X,Y...]" (file frame, mm); empty: no alignment holes.
-  std::string align_holes;
-  double align_diameter_mm = defaults::kAlignDiameterMm;
-  double align_depth_mm = defaults::kAlignDepthMm;
-  std::vector<double> align_measured_mm;  // X1 Y1 X2 Y2: holes 1 and 2 measured after the flip
 };
 
 // The machine a board is planned for: what `engraver board` plans with, and what `run` and

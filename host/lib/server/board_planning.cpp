@@ -50,15 +50,15 @@ pcb::BoardOptions board_options(const std::string& side, const BoardSettings& b,
                                 double work_w_mm, double work_h_mm) {
   pcb::BoardArgs a;
   a.side = side;
-  a.tool_width_mm = b.tool_width_mm;
-  a.passes = b.passes;
-  a.clearing_tool_mm = b.clearing_tool_mm;
-  a.narrow_passes = b.narrow_passes;
+  a.isolation.tool_width_mm = b.tool_width_mm;
+  a.isolation.passes = b.passes;
+  a.isolation.clearing_tool_mm = b.clearing_tool_mm;
+  a.isolation.narrow_passes = b.narrow_passes;
   a.allow_narrow_gaps = b.allow_narrow_gaps;
-  a.align_holes = b.align_holes;
-  a.align_diameter_mm = b.align_diameter_mm;
-  a.align_depth_mm = b.align_depth_mm;
-  a.align_measured_mm = b.align_measured_mm;
+  a.alignment.holes = b.align_holes;
+  a.alignment.diameter_mm = b.align_diameter_mm;
+  a.alignment.depth_mm = b.align_depth_mm;
+  a.alignment.measured_mm = b.align_measured_mm;
   pcb::BoardMachine m;
   m.margin_mm = s.margin_mm;
   m.work_w_mm = work_w_mm;

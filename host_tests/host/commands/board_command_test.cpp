@@ -197,7 +197,7 @@ TEST(BoardArgs, OneResolverSaysTheSideAndRefusesWhatCannotPlan) {
   pcb::BoardArgs a;
   pcb::BoardMachine m;
   m.margin_mm = 7;
-  a.tool_width_mm = 0.3;
+  a.isolation.tool_width_mm = 0.3;
   pcb::BoardOptions o = pcb::resolve_board_options(a, m, bottom_only, "");
   EXPECT_EQ(o.side, pcb::BoardSide::kBottom);
   EXPECT_DOUBLE_EQ(o.isolation.tool_width_mm, 0.3);
@@ -206,19 +206,19 @@ TEST(BoardArgs, OneResolverSaysTheSideAndRefusesWhatCannotPlan) {
   a.side = "left";
   EXPECT_THROW(pcb::resolve_board_options(a, m, bottom_only, ""), pcb::BoardArgsError);
   a.side.clear();
-  a.clearing_tool_mm = 0.6;
-  a.passes = 2;
-  a.narrow_passes = 2;
+  a.isolation.clearing_tool_mm = 0.6;
+  a.isolation.passes = 2;
+  a.isolation.narrow_passes = 2;
   EXPECT_THROW(pcb::resolve_board_options(a, m, bottom_only, ""), pcb::BoardArgsError);
-  a.passes = 3;
-  a.align_holes = "1,2;3";
+  a.isolation.passes = 3;
+  a.alignment.holes = "1,2;3";
   EXPECT_THROW(pcb::resolve_board_options(a, m, bottom_only, ""), pcb::BoardArgsError);
-  a.align_holes = "1,2;3,4";
+  a.alignment.holes = "1,2;3,4";
   o = pcb::resolve_board_options(a, m, bottom_only, "");
   ASSERT_EQ(o.alignment.holes_file_mm.size(), 2u);
   EXPECT_DOUBLE_EQ(o.alignment.holes_file_mm[1].y(), 4);
-  a.align_holes.clear();
-  a.align_measured_mm = {1, 2, 3, 4};
+  a.alignment.holes.clear();
+  a.alignment.measured_mm = {1, 2, 3, 4};
   EXPECT_THROW(pcb::resolve_board_options(a, m, bottom_only, ""), pcb::BoardArgsError);
 }
 
