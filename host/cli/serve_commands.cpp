@@ -142,8 +142,10 @@ void print_serving(const ServeArgs& a, const server::HttpApi& http, const std::s
                            host_port_text(address, bound), owner, a.data, machines.size());
   // The Host header's allow-list, not more listeners: loopback names are on it whichever
   // loopback the server listens on (a tunnel or proxy may name either).
-  std::cerr << fmt::format("engraver: answering requests whose Host header names {}\n",
-                           http.allowed_hosts().describe());
+  std::cerr << fmt::format(
+      "engraver: answering requests whose Host header names {} (names "
+      "it answers to; it listens only on --listen)\n",
+      http.allowed_hosts().describe());
   if (created) {
     std::cerr << fmt::format(
         "engraver: access token (shown once; kept in {}/token): {}\n"
