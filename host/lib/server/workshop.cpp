@@ -793,6 +793,10 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   }
   release_slot(slot, r, sender);
   finish_run(slot, r, sender);
+  r.path.reset();
+  r.commands.reset();
+  r.planned.reset();
+  release_freed_memory();  // the plan: an idle machine holds none of it
 }
 
 // Claimed: on the page (planning) and steerable before its commands exist.
@@ -874,6 +878,7 @@ void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
                      plan.curves.size(), r.commands->size(), r.commands->wire_bytes(),
                      job.planned_s));
   r.path.emplace(plan);
+  release_freed_memory();  // the drawing and the planner's temporaries
 }
 
 // The commands exist: the slot takes the sender and what the operator asked for meanwhile.
