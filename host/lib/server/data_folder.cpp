@@ -97,4 +97,13 @@ std::string read_file(const fs::path& path) {
   return text;
 }
 
+std::string read_file_head(const fs::path& path, size_t bytes) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(bytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(bytes));
+  if (in.bad() || (!in && !in.eof())) throw std::runtime_error(path.string() + ": cannot read");
+  head.resize(static_cast<size_t>(in.gcount()));
+  return head;
+}
+
 }  // namespace host::server

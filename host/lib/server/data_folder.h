@@ -42,6 +42,8 @@ std::string random_hex(size_t bytes);
 // Writes the whole file or throws std::runtime_error naming it.
 void write_file(const std::filesystem::path& path, const std::string& content);
 std::string read_file(const std::filesystem::path& path);
+// The file's first `bytes` bytes (all of a shorter file); throws as read_file.
+std::string read_file_head(const std::filesystem::path& path, size_t bytes);
 
 }  // namespace host::server
 

@@ -3,6 +3,7 @@
 
 #include "host/lib/server/board_height_map.h"
 #include "host/lib/server/connection_threads.h"
+#include "host/lib/server/job_planning.h"  // release_freed_memory
 #include "host/lib/server/job_record_fields.h"
 #include "host/lib/server/listen_check.h"
 #include "host/lib/server/map_source.h"
@@ -21,6 +22,7 @@
 #include <charconv>    // std::from_chars
 #include <cmath>       // std::isfinite
 #include <cstdlib>     // std::strtod
+#include <fstream>     // std::ofstream
 #include <functional>  // std::function
 #include <iterator>    // std::distance
 #include <regex>       // std::regex
@@ -100,11 +102,43 @@ std::string unknown_upload_field(const std::string& key) {
   return fmt::format("unknown field '{}' (an upload takes {})", key, known);
 }
 
-// An upload's body as read: the parts of a multipart form, or the raw bytes.
+// An upload's body as read: the form's fields in memory; its files, or a raw body, each in a
+// file of a staging folder as it arrives (a 72 MB drawing was held four times at once), gone
+// with the body.
 struct UploadBody {
+  explicit UploadBody(fs::path staging) : folder(std::move(staging)) {}
+  ~UploadBody() {
+    std::error_code ec;
+    fs::remove_all(folder, ec);
+  }
+  UploadBody(const UploadBody&) = delete;
+  UploadBody& operator=(const UploadBody&) = delete;
+
+  // A new file for the next part (or the raw body): its path.
+  fs::path new_file() {
+    out.close();
+    const fs::path path = folder / fmt::format("part{}", file_count++);
+    out.open(path, std::ios::binary);
+    return path;
+  }
+  bool write(const char* data, size_t n) {
+    out.write(data, static_cast<std::streamsize>(n));
+    return static_cast<bool>(out);
+  }
+  // Every byte on disk: true, or the disk refused them.
+  bool close() {
+    if (!out.is_open()) return true;
+    out.close();
+    return static_cast<bool>(out);
+  }
+
   bool multipart = false;
-  httplib::MultipartFormDataItems parts;
-  std::string raw;
+  httplib::MultipartFormDataItems parts;  // a file part's content is in its file, not here
+  std::vector<fs::path> files;            // per part: its file ("" for a field)
+  fs::path raw;                           // a raw body's file
+  const fs::path folder;
+  std::ofstream out;
+  size_t file_count = 0;
 };
 
 // The upload's fields: multipart form (file + fields) or a raw body with query parameters.
@@ -168,21 +202,21 @@ std::string read_files(const httplib::Request& req, const UploadBody& body,
   if (!body.multipart) {
     if (!req.has_param("name")) return "raw upload without ?name=FILE_NAME";
     sub->name = req.get_param_value("name");
-    sub->content = body.raw;
+    sub->content_file = body.raw;
     return "";
   }
-  std::vector<const httplib::MultipartFormData*> files;
-  for (const auto& p : body.parts) {
-    if (p.name == "file") files.push_back(&p);
+  std::vector<size_t> files;
+  for (size_t i = 0; i < body.parts.size(); ++i) {
+    if (body.parts[i].name == "file") files.push_back(i);
   }
   if (files.empty()) return "multipart upload without a 'file' part";
-  // Several "file" parts: the files of one board (copper, drill, outline).
+  // Several "file" parts: the files of one board (copper, drill, outline), read (small).
   if (files.size() == 1) {
-    sub->name = files[0]->filename;
-    sub->content = files[0]->content;
+    sub->name = body.parts[files[0]].filename;
+    sub->content_file = body.files[files[0]];
   } else {
-    for (const httplib::MultipartFormData* f : files) {
-      sub->files.push_back(UploadFile{f->filename, f->content});
+    for (const size_t i : files) {
+      sub->files.push_back(UploadFile{body.parts[i].filename, read_file(body.files[i])});
     }
     sub->name = values.get("name");  // the board's name; "" takes it from the files
   }
@@ -754,25 +788,29 @@ void HttpApi::route_upload() {
   // without a Content-Type) at 8 KB and parse it as form fields.
   s.Post("/api/jobs", [this](const httplib::Request& req, httplib::Response& res,
                              const httplib::ContentReader& read) {
-    UploadBody body;
+    UploadBody body(data_.new_staging_dir());
     body.multipart = req.is_multipart_form_data();
     bool ok = false;
+    bool written = true;
     if (body.multipart) {
       ok = read(
           [&](const httplib::MultipartFormData& part) {
+            written = written && body.close();
             body.parts.push_back(part);
-            return true;
+            body.files.push_back(part.name == "file" ? body.new_file() : fs::path());
+            return written;
           },
           [&](const char* data, size_t n) {
+            if (!body.files.back().empty()) return written = body.write(data, n);
             body.parts.back().content.append(data, n);
             return true;
           });
     } else {
-      ok = read([&](const char* data, size_t n) {
-        body.raw.append(data, n);
-        return true;
-      });
+      body.raw = body.new_file();
+      ok = read([&](const char* data, size_t n) { return written = body.write(data, n); });
     }
+    written = body.close() && written;
+    if (!written) return send_error(res, 500, "the upload could not be written to the data folder");
     if (!ok) {
       if (res.status == 413) return send_error(res, 413, "upload larger than the limit");
       return send_error(res, 400, "the upload's body could not be read");
@@ -780,6 +818,7 @@ void HttpApi::route_upload() {
     const UploadFields u = upload_fields(req, body);
     if (!u.error.empty()) return send_error(res, 400, u.error);
     const IntakeResult r = intake_.submit(u.sub);
+    release_freed_memory();  // the upload's plan, in this connection's arena
     if (r.status != 201) return send_error(res, r.status, r.error);
     workshop_.notify(true);
     const auto job = store_.get(r.id);

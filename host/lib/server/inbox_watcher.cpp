@@ -155,7 +155,7 @@ void InboxWatcher::take_file(const fs::path& path) {
     r.error = fmt::format("{}: larger than the limit of {} bytes", name, intake_.max_bytes());
   } else {
     try {
-      sub.content = read_file(path);
+      sub.content_file = path;  // a drawing is copied, not read into memory
       r = intake_.submit(sub);
     } catch (const std::exception& e) {
       r.status = 500;

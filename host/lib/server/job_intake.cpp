@@ -99,21 +99,44 @@ void JobIntake::work_area(double* w_mm, double* h_mm) const {
   }
 }
 
-void JobIntake::stage_drawing(const Submission& sub, const fs::path& staging, JobRecord* job,
-                              std::string* stored) const {
+// The upload's files: one file, a board's files, or a board's zip file unpacked.
+struct JobIntake::UploadedFiles {
+  // A drawing on disk (Submission::content_file) is files[0] with its first bytes only (what
+  // tells a board from a drawing); its bytes are in `file`, content null. Otherwise content is
+  // the one file's bytes (null for several files).
+  std::vector<UploadFile> files;
+  const std::string* content = nullptr;
+  fs::path file;
+  size_t bytes = 0;         // of every file
+  bool several = false;     // a board's files (given as several, or unpacked from a zip)
+  bool board = false;       // Gerber/Excellon: planned as a board
+  bool skip_other = false;  // leave out files that are neither (a folder's or a zip's read-me)
+  const std::string* zip = nullptr;  // the upload as it came, when it was one zip file
+  std::string job_name;
+};
+
+void JobIntake::stage_drawing(const Submission& sub, const UploadedFiles& up,
+                              const fs::path& staging, JobRecord* job, std::string* stored) const {
   double work_w = 0, work_h = 0;
   work_area(&work_w, &work_h);
   job->input_file = archive_input_name(sub.name);
-  write_file(staging / job->input_file, sub.content);
-  const JobPlan plan =
-      plan_file((staging / job->input_file).string(), sub.name, sub.settings, work_w, work_h);
-  job->width_mm = std::max(0.0, plan.extents_mm.max.x());
-  job->height_mm = std::max(0.0, plan.extents_mm.max.y());
-  job->planned_s = planned_seconds(plan, sub.settings);
-  write_plan_json(staging / "plan.json", plan);
-  write_plot(plot_input_from_plan(plan, sub.name), (staging / "plot.svg").string(),
-             (staging / "plot.png").string());
-  *stored = sub.content;
+  const fs::path input = staging / job->input_file;
+  if (up.content != nullptr) {
+    write_file(input, *up.content);
+  } else {
+    fs::copy_file(up.file, input);  // on disk only
+  }
+  {
+    const JobPlan plan = plan_file(input.string(), sub.name, sub.settings, work_w, work_h);
+    job->width_mm = std::max(0.0, plan.extents_mm.max.x());
+    job->height_mm = std::max(0.0, plan.extents_mm.max.y());
+    job->planned_s = planned_seconds(plan, sub.settings);
+    write_plan_json(staging / "plan.json", plan);
+    write_plot(plot_input_from_plan(plan, sub.name), (staging / "plot.svg").string(),
+               (staging / "plot.png").string());
+  }
+  // Read once the plan is gone, and only for a store that keeps it.
+  if (store_.keeps_input()) *stored = up.content != nullptr ? *up.content : read_file(input);
 }
 
 void JobIntake::stage_board(const Submission& sub, const std::vector<UploadFile>& files,
@@ -148,16 +171,6 @@ void JobIntake::stage_board(const Submission& sub, const std::vector<UploadFile>
   *stored = pack_board_bundle(b.files);
 }
 
-// The upload's files: one file, a board's files, or a board's zip file unpacked.
-struct JobIntake::UploadedFiles {
-  std::vector<UploadFile> files;
-  bool several = false;     // a board's files (given as several, or unpacked from a zip)
-  bool board = false;       // Gerber/Excellon: planned as a board
-  bool skip_other = false;  // leave out files that are neither (a folder's or a zip's read-me)
-  const std::string* zip = nullptr;  // the upload as it came, when it was one zip file
-  std::string job_name;
-};
-
 namespace {
 
 IntakeResult refused(int status, const std::string& why) {
@@ -178,21 +191,24 @@ std::string check_files(const Submission& sub, size_t max_bytes, size_t max_file
                          f.name);
     }
   }
-  if (!up->several && looks_like_zip(sub.content)) {
+  if (!up->several && up->content != nullptr && looks_like_zip(*up->content)) {
     const std::string why = check_upload_name(sub.name);
     if (!why.empty()) return why;
-    if (sub.content.size() > max_bytes) {
+    if (up->content->size() > max_bytes) {
       *status = 413;
       return fmt::format("{}: {} bytes, more than the limit of {} bytes", sub.name,
-                         sub.content.size(), max_bytes);
+                         up->content->size(), max_bytes);
     }
     try {
-      up->files = unzip_upload(sub.content, sub.name, max_bytes, 4 * max_files);
+      up->files = unzip_upload(*up->content, sub.name, max_bytes, 4 * max_files);
     } catch (const ZipError& e) {
       *status = e.too_large() ? 413 : 422;
       return e.what();
     }
-    up->zip = &sub.content;
+    up->zip = up->content;
+    up->content = nullptr;
+    up->bytes = 0;
+    for (const UploadFile& f : up->files) up->bytes += f.content.size();
     up->several = up->board = up->skip_other = true;
   }
   if (up->files.size() > max_files) {
@@ -258,11 +274,46 @@ std::string check_fields(const Submission& sub, bool board) {
 }  // namespace
 
 IntakeResult JobIntake::submit(const Submission& sub) {
-  // One file in name/content, or a board's files, or a board as one zip file.
+  // One file in name/content (or content_file), or a board's files, or a board as one zip.
   UploadedFiles up;
   up.files = sub.files;
   up.several = !up.files.empty();
-  if (!up.several) up.files.push_back(UploadFile{sub.name, sub.content});
+  std::string read;  // a board's or zip's bytes from content_file
+  if (!up.several) {
+    up.content = &sub.content;
+    if (!sub.content_file.empty()) {
+      std::error_code ec;
+      const uintmax_t size = fs::file_size(sub.content_file, ec);
+      if (ec) return refused(500, fmt::format("{}: {}", sub.name, ec.message()));
+      if (size > max_bytes_) {
+        return refused(413, fmt::format("{}: {} bytes, more than the limit of {} bytes", sub.name,
+                                        size, max_bytes_));
+      }
+      try {
+        std::string head = read_file_head(sub.content_file, 4096);
+        if (looks_like_zip(head) || is_pcb_upload(UploadFile{sub.name, head})) {
+          read = read_file(sub.content_file);
+        } else {
+          up.files.push_back(UploadFile{sub.name, std::move(head)});
+          up.content = nullptr;
+          up.file = sub.content_file;
+          up.bytes = size;
+        }
+      } catch (const std::exception& e) {
+        return refused(500, e.what());
+      }
+      if (up.content != nullptr) up.content = &read;
+    }
+    if (up.content != nullptr) {
+      // A drawing's bytes are not copied: its first ones tell it from a board's file.
+      UploadFile f{sub.name, up.content->substr(0, 4096)};
+      if (is_pcb_upload(f)) f.content = *up.content;
+      up.files.push_back(std::move(f));
+      up.bytes = up.content->size();
+    }
+  } else {
+    for (const UploadFile& f : up.files) up.bytes += f.content.size();
+  }
   up.board = up.several;
   for (const UploadFile& f : up.files) up.board = up.board || is_pcb_upload(f);
   up.skip_other = sub.skip_other_files;
@@ -275,11 +326,9 @@ IntakeResult JobIntake::submit(const Submission& sub) {
   if (why.empty() && up.board && sub.board.height_map_from != 0)
     why = map_source_refusal(store_, data_, sub.board.height_map_from);
   if (!why.empty()) return refused(400, why);
-  size_t total = 0;
-  for (const UploadFile& f : up.files) total += f.content.size();
-  if (total > max_bytes_) {
+  if (up.bytes > max_bytes_) {
     return refused(413, fmt::format("{}: {} bytes, more than the limit of {} bytes", up.job_name,
-                                    total, max_bytes_));
+                                    up.bytes, max_bytes_));
   }
   return plan_and_queue(sub, up);
 }
@@ -312,7 +361,7 @@ IntakeResult JobIntake::plan_and_queue(const Submission& sub, const UploadedFile
     if (up.board) {
       stage_board(sub, up.files, up.skip_other, up.zip, staging, &job, &stored);
     } else {
-      stage_drawing(sub, staging, &job, &stored);
+      stage_drawing(sub, up, staging, &job, &stored);
     }
     bool fits = machines_.empty();
     for (const MachineFit& m : machines_) fits = fits || job_fits(job, m);

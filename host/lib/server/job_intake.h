@@ -22,7 +22,11 @@ namespace host::server {
 // the files' names, and content is unused).
 struct Submission {
   std::string name;     // the file name the sender gave (display only)
-  std::string content;  // the file's bytes
+  std::string content;  // the file's bytes, unless content_file is given
+  // Or the file holding them (an HTTP upload received to disk, an inbox file): a drawing is
+  // copied from it into the archive and planned from there, never read whole into memory
+  // here (a 72 MB drawing was held four times at once); a board or zip is read (small).
+  std::filesystem::path content_file;
   std::vector<UploadFile> files;
   bool skip_other_files = false;  // board from a folder: leave out its read-me and such
   int priority = 0;
@@ -59,7 +63,8 @@ class JobIntake {
                        const std::filesystem::path& staging) const;
   // Plans the upload into the staging folder; fills the job's plan-derived fields and the
   // bytes the store keeps. Throws ImportError / PlanError with the message for the sender.
-  void stage_drawing(const Submission& sub, const std::filesystem::path& staging, JobRecord* job,
+  void stage_drawing(const Submission& sub, const UploadedFiles& up,
+                     const std::filesystem::path& staging, JobRecord* job,
                      std::string* stored) const;
   // zip: the upload as it came when it was one zip file (kept as input.zip), else null. Planned
   // with job->settings (the board's margin resolved), sub.board.

@@ -1,6 +1,8 @@
 // Job planning for the server: import, plan, estimate, describe.
 #include "host/lib/server/job_planning.h"
 
+#include <malloc.h>  // malloc_trim
+
 #include <algorithm>  // std::min
 #include <cmath>      // std::lround
 #include <fstream>    // std::ofstream
@@ -124,6 +126,12 @@ void write_plan_json(const std::filesystem::path& path, const JobPlan& plan) {
   if (!out) throw std::runtime_error(path.string() + ": cannot write");
 }
 
+void release_freed_memory() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+}
+
 void restore_job_input(const std::filesystem::path& dir, const JobRecord& job,
                        const std::string& stored) {
   std::filesystem::create_directories(dir);
@@ -147,7 +155,8 @@ JobPlan plan_archived_job(const std::filesystem::path& dir, const JobRecord& job
     }
     return board.plan;
   }
-  const JobPlan plan =
+  // Not const: returned by move (a copy held a 1 M-line job's plan twice).
+  JobPlan plan =
       plan_file((dir / job.input_file).string(), job.name, job.settings, work_w_mm, work_h_mm);
   if (write_archive) {
     write_plan_json(dir / "plan.json", plan);

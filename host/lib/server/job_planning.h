@@ -29,6 +29,11 @@ nlohmann::json plan_json(const JobPlan& plan);
 // The same written to `path` step by step (the archive's plan.json of a large job).
 void write_plan_json(const std::filesystem::path& path, const JobPlan& plan);
 
+// Gives the pages of freed memory back to the system: glibc keeps them in each thread's
+// arena, so a planned job's drawing (hundreds of MB for a million lines) stayed resident
+// while the job was cut. Call after a large plan's temporaries are gone.
+void release_freed_memory();
+
 // Writes a job's input into its archive folder from the bytes the store keeps (a server
 // sharing the queue runs a job uploaded to another): the file, or a board's files.
 void restore_job_input(const std::filesystem::path& dir, const JobRecord& job,

@@ -58,6 +58,9 @@ class JobStore {
   // uploaded file: a store shared by several servers keeps it so that any of them can run
   // the job; a local store may ignore it (the archive folder has it).
   virtual int64_t add(const JobRecord& job, const std::string& input) = 0;
+  // Whether add() keeps `input`: when not, the intake passes "" (a drawing's bytes are not
+  // read into memory for nothing).
+  virtual bool keeps_input() const { return true; }
   // The uploaded file, when this store keeps it (see add).
   virtual std::optional<std::string> input(int64_t id) = 0;
   virtual std::optional<JobRecord> get(int64_t id) = 0;

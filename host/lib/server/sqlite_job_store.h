@@ -22,6 +22,7 @@ class SqliteJobStore : public SqlJobStore {
 
   int64_t add(const JobRecord& job, const std::string& input) override;
   std::optional<std::string> input(int64_t) override { return std::nullopt; }
+  bool keeps_input() const override { return false; }  // the archive folder has it
   std::optional<JobRecord> claim(const MachineFit& fit, const std::string& machine,
                                  const Lease& lease) override;
   Lease acquire_lease(const std::string& owner, const std::string& holder,

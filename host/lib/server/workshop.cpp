@@ -61,60 +61,85 @@ ResumeEncoder continue_from_curve() {
   return ContinueFromCurve();
 }
 
-// One machine: its spec, what it is doing now, and the sender of the running job.
+// One machine: its spec, what it is doing now, and the sender of the running job. Its parts
+// each do one job; `mutex` guards all of them.
 struct Workshop::Slot {
+  // The link to the machine, as the page shows it.
+  struct Connection {
+    std::string state = "unknown";  // unknown, online, offline
+    std::string message;
+    Link* link = nullptr;  // the sender's link, from connect to the end of its job
+  };
+  // What the machine last reported, and what its controller still holds.
+  struct MachineSeen {
+    proto::StatusReply last_status{};
+    bool have_last_status = false;
+    // The controller may still hold the map of this machine's last job (#A: it stays
+    // through #I): the next job without one clears it first.
+    bool controller_has_map = false;
+  };
+  // What the operator asked for while the job was planning: done when its commands start.
+  struct PendingAsks {
+    bool hold = false;
+    bool abort = false;
+    int override_percent = 0;  // 0 = none
+  };
+  // The running job's progress along its path.
+  struct CutProgress {
+    std::shared_ptr<const std::string> path_json;  // JobPath of the running job
+    double executed_mm = 0;                        // along that path
+    double path_mm = 0;
+    Progress progress;
+    bool have_status = false;
+  };
+  // The running job's clock: its time left, and the operator's waits that do not count.
+  struct CutClock {
+    TimeLeft time_left;  // of the cut (remaining_s)
+    Clock::time_point started;
+    // When its commands went to the sender: the cut's time left counts from here.
+    Clock::time_point cut_started;
+    // Time the machine stood waiting for the operator (held, paused): not in the time left.
+    Clock::duration waited{};
+    bool waiting = false;
+    Clock::time_point waiting_since;
+    // Seconds the cut has worked at `now`: since its commands went to the sender, less the
+    // operator's waits (the caller holds the slot's mutex).
+    double working_s(Clock::time_point now) const {
+      const Clock::duration waits = waited + (waiting ? now - waiting_since : Clock::duration{});
+      return std::chrono::duration<double>(now - cut_started - waits).count();
+    }
+    // Starts or ends a wait for the operator (the caller holds the slot's mutex).
+    void set_waiting(bool now_waiting) {
+      const Clock::time_point now = Clock::now();
+      if (now_waiting && !waiting) waiting_since = now;
+      if (!now_waiting && waiting) waited += now - waiting_since;
+      waiting = now_waiting;
+    }
+  };
+  // A probe-first board job before it cuts.
+  struct Probing {
+    // "probe_clip" (waiting for the operator to put the probe clip on the blank and
+    // confirm), then "probing"; "" otherwise.
+    std::string stage;
+    bool confirmed = false;
+    Sender* sender = nullptr;  // while probing: an abort stops the touch
+    size_t done = 0, total = 0;
+  };
+
   MachineSpec spec;
-  std::mutex mutex;                    // guards everything below
-  std::string link_state = "unknown";  // unknown, online, offline
-  std::string link_message;
+  std::mutex mutex;  // guards everything below
+  Connection connection;
+  MachineSeen seen;
   Sender* sender = nullptr;  // while a job runs
-  Link* link = nullptr;      // the sender's link, from connect to the end of its job
   int64_t job_id = 0;        // from its claim until it ends
   std::string job_name;
-  bool planning = false;  // claimed, its commands not made yet (no sender)
-  // What the operator asked for while it was planning: done when its commands start.
-  bool hold_pending = false;
-  bool abort_pending = false;
-  int override_pending = 0;                      // percent, 0 = none
-  std::shared_ptr<const std::string> path_json;  // JobPath of the running job
-  double executed_mm = 0;                        // along that path
-  double path_mm = 0;
-  Progress progress;
-  bool have_status = false;
-  TimeLeft time_left;  // of the cut (remaining_s)
-  Clock::time_point started;
-  // When its commands went to the sender: the cut's time left counts from here.
-  Clock::time_point cut_started;
-  // Time the machine stood waiting for the operator (held, paused): not in the time left.
-  Clock::duration waited{};
-  bool waiting = false;
-  Clock::time_point waiting_since;
-  // Seconds the cut has worked at `now`: since its commands went to the sender, less the
-  // operator's waits (the caller holds `mutex`).
-  double working_s(Clock::time_point now) const {
-    const Clock::duration waits = waited + (waiting ? now - waiting_since : Clock::duration{});
-    return std::chrono::duration<double>(now - cut_started - waits).count();
-  }
-  // Starts or ends a wait for the operator (the caller holds `mutex`).
-  void set_waiting(bool now_waiting) {
-    const Clock::time_point now = Clock::now();
-    if (now_waiting && !waiting) waiting_since = now;
-    if (!now_waiting && waiting) waited += now - waiting_since;
-    waiting = now_waiting;
-  }
-  proto::StatusReply last_status{};
-  bool have_last_status = false;
+  bool planning = false;    // claimed, its commands not made yet (no sender)
   int64_t lease_epoch = 0;  // the lease the running job was claimed under
   std::string fenced;       // why the running job was stopped for its lease ("" = it was not)
-  // A probe-first board job before it cuts: "probe_clip" (waiting for the operator to put
-  // the probe clip on the blank and confirm), then "probing"; "" otherwise.
-  std::string probe_stage;
-  bool probe_confirmed = false;
-  Sender* probing_sender = nullptr;  // while probing: an abort stops the touch
-  size_t probe_done = 0, probe_total = 0;
-  // The controller may still hold the map of this machine's last job (#A: it stays through
-  // #I): the next job without one clears it first.
-  bool controller_has_map = false;
+  PendingAsks asked;
+  CutProgress cut;
+  CutClock clock;
+  Probing probe;
 };
 
 namespace {
@@ -270,7 +295,7 @@ MachineAvailability Workshop::availability(const std::string& machine) const {
   for (const auto& s : slots_) {
     if (s->spec.name != machine) continue;
     std::lock_guard<std::mutex> lock(s->mutex);
-    if (s->link_state != "online") return MachineAvailability::kOffline;
+    if (s->connection.state != "online") return MachineAvailability::kOffline;
     return s->job_id != 0 ? MachineAvailability::kBusy : MachineAvailability::kFree;
   }
   return MachineAvailability::kNotHere;
@@ -294,7 +319,7 @@ void Workshop::stop() {
     std::lock_guard<std::mutex> lock(slot->mutex);
     if (slot->sender != nullptr) slot->sender->request_abort();
     // Probing stops at once too (the touch under way: #X), not after the grid.
-    if (slot->probing_sender != nullptr) slot->probing_sender->request_abort();
+    if (slot->probe.sender != nullptr) slot->probe.sender->request_abort();
   }
   change_cv_.notify_all();
   for (std::thread& t : threads_) t.join();
@@ -332,7 +357,7 @@ void Workshop::lease_lost(const std::string& why) {
     if (slot->sender == nullptr) continue;
     slot->fenced = why;
     slot->sender->request_abort();
-    slot->link_message = why;
+    slot->connection.message = why;
   }
   notify(true);
 }
@@ -347,7 +372,7 @@ void Workshop::save_refused(int64_t job_id) {
         "this server's lease; stopped",
         job_id);
     slot->sender->request_abort();
-    slot->link_message = slot->fenced;
+    slot->connection.message = slot->fenced;
   }
 }
 
@@ -395,19 +420,19 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
     std::lock_guard<std::mutex> lock(slot->mutex);
     if (slot->job_id != job_id || (slot->sender == nullptr && !slot->planning)) continue;
     if (control == JobControl::kConfirmProbe) {
-      if (slot->probe_stage != "probe_clip") {
+      if (slot->probe.stage != "probe_clip") {
         return {409, no_clip_wait(job_id, JobState::kRunning,
-                                  slot->probe_stage == "probing" ? NoClipWait::kProbing
+                                  slot->probe.stage == "probing" ? NoClipWait::kProbing
                                   : slot->planning               ? NoClipWait::kPlanning
                                                                  : NoClipWait::kCutting)};
       }
-      slot->probe_confirmed = true;
+      slot->probe.confirmed = true;
       notify(false);
       return {};
     }
     if (slot->sender == nullptr) {  // still planning: kept for when its commands start
-      if (control == JobControl::kAbort && slot->probing_sender != nullptr) {
-        slot->probing_sender->request_abort();
+      if (control == JobControl::kAbort && slot->probe.sender != nullptr) {
+        slot->probe.sender->request_abort();
       }
       // A hold while probing stops it between touches (probing_touch); wake its wait.
       if (control != JobControl::kOverride) notify(false);
@@ -415,17 +440,17 @@ ControlResult Workshop::control(int64_t job_id, JobControl control, int percent)
         case JobControl::kConfirmProbe:
           break;
         case JobControl::kHold:
-          slot->hold_pending = true;
+          slot->asked.hold = true;
           break;
         case JobControl::kResume:
-          slot->hold_pending = false;
+          slot->asked.hold = false;
           break;
         case JobControl::kAbort:
-          slot->abort_pending = true;
+          slot->asked.abort = true;
           break;
         case JobControl::kOverride:
           if (percent < 10 || percent > 200) return {400, "override must be 10 .. 200 percent"};
-          slot->override_pending = percent;
+          slot->asked.override_percent = percent;
           break;
       }
       return {};
@@ -489,21 +514,20 @@ nlohmann::json Workshop::snapshot() {
     m["address"] = slot->spec.address;
     m["work_mm"] = {slot->spec.fit.work_width_mm, slot->spec.fit.work_height_mm};
     m["tags"] = slot->spec.fit.tags;
-    m["link"] = slot->link_state;
-    m["message"] = slot->link_message;
+    m["link"] = slot->connection.state;
+    m["message"] = slot->connection.message;
     m["job"] = slot->job_id != 0 ? nlohmann::json(slot->job_id) : nlohmann::json();
-    const bool probing = !slot->probe_stage.empty();
+    const bool probing = !slot->probe.stage.empty();
     // The hold the server has accepted, shown at once in every field: no touch starts until
     // resume (the one under way finishes and retracts first; its position stays live).
-    const bool probe_held = probing && slot->hold_pending && !slot->abort_pending;
+    const bool probe_held = probing && slot->asked.hold && !slot->asked.abort;
     // An abort taken: the touch stops and the tool goes up before the job ends; never shown
     // as probing again (a held job goes held -> aborting -> aborted).
-    const bool probe_aborting = probing && slot->abort_pending;
+    const bool probe_aborting = probing && slot->asked.abort;
     // A hold taken for a job not probing, shown at once: while planning, after the last
     // touch and in the cut's first statuses the controller has not been told yet (it is,
     // before the first command), so its idle or running must not show.
-    const bool hold_taken =
-        slot->job_id != 0 && !probing && slot->hold_pending && !slot->abort_pending;
+    const bool hold_taken = slot->job_id != 0 && !probing && slot->asked.hold && !slot->asked.abort;
     const auto state_shown = [hold_taken](const proto::StatusReply& st) -> const char* {
       const proto::MachineState s = st.state;
       const bool moving_or_free =
@@ -514,38 +538,38 @@ nlohmann::json Workshop::snapshot() {
     // idle, which the operator must not read as "free".
     const char* probe_state = probe_aborting                      ? "aborting"
                               : probe_held                        ? "held"
-                              : slot->probe_stage == "probe_clip" ? "probe_clip"
+                              : slot->probe.stage == "probe_clip" ? "probe_clip"
                                                                   : "probing";
     // A machine that has claimed a job is never shown idle (free): until the cut's first
     // status it is the job's (planning, starting, or held as asked).
     // An idle controller before the run's first command has executed is still starting.
     const bool cut_reported =
-        slot->have_status &&
-        (slot->progress.executed > 0 || slot->progress.status.state != proto::MachineState::kIdle);
+        slot->cut.have_status && (slot->cut.progress.executed > 0 ||
+                                  slot->cut.progress.status.state != proto::MachineState::kIdle);
     const char* claimed = slot->job_id == 0 || probing || cut_reported ? nullptr
                           : hold_taken                                 ? "held"
                           : slot->planning                             ? "planning"
                                                                        : "starting";
-    if (slot->have_last_status) {
-      const proto::StatusReply& st = slot->last_status;
+    if (slot->seen.have_last_status) {
+      const proto::StatusReply& st = slot->seen.last_status;
       m["state"] = probing ? probe_state : claimed != nullptr ? claimed : state_shown(st);
       m["position_mm"] = {st.x_um / 1000.0, st.y_um / 1000.0, st.z_um / 1000.0};
     } else if (probing || claimed != nullptr) {
       m["state"] = probing ? probe_state : claimed;
     } else {
-      m["state"] = slot->link_state == "online" ? "idle" : "unknown";
+      m["state"] = slot->connection.state == "online" ? "idle" : "unknown";
     }
     machines.push_back(m);
     if (slot->job_id == 0) continue;
-    const Progress& p = slot->progress;
-    const double elapsed = seconds_since(slot->started);
+    const Progress& p = slot->cut.progress;
+    const double elapsed = seconds_since(slot->clock.started);
     const double f = p.total > 0 ? double(p.executed) / double(p.total) : 0.0;
     // The cut's time left (TimeLeft): before its commands run (planning, the probe clip,
     // probing: the probe object counts the touches) the planned time, standing still; then
     // the plan's time from the step the machine is at, at the pace it has kept. Time spent
     // waiting for the operator is not work: it stands still then.
-    const double remaining =
-        slot->time_left.remaining(slot->sender != nullptr ? slot->working_s(Clock::now()) : 0.0);
+    const double remaining = slot->clock.time_left.remaining(
+        slot->sender != nullptr ? slot->clock.working_s(Clock::now()) : 0.0);
     nlohmann::json j;
     j["id"] = slot->job_id;
     j["name"] = slot->job_name;
@@ -556,28 +580,28 @@ nlohmann::json Workshop::snapshot() {
     j["elapsed_s"] = elapsed;
     j["remaining_s"] = remaining;
     j["machine_state"] = probing ? probe_state : claimed ? claimed : state_shown(p.status);
-    if (!slot->probe_stage.empty()) {
-      j["probe"] = {{"stage", slot->probe_stage},
-                    {"touches", slot->probe_done},
-                    {"planned", slot->probe_total},
+    if (!slot->probe.stage.empty()) {
+      j["probe"] = {{"stage", slot->probe.stage},
+                    {"touches", slot->probe.done},
+                    {"planned", slot->probe.total},
                     {"held", probe_held},
                     {"ask", probe_aborting ? "aborted: the tool goes up, nothing is cut"
-                            : slot->probe_stage == "probe_clip"
+                            : slot->probe.stage == "probe_clip"
                                 ? "put the probe clip on the blank, the spindle off, then "
                                   "confirm (action probe_ready)"
                                 : "probing the blank"}};
     }
-    j["override_percent"] = slot->have_status ? p.status.override_percent : 100;
+    j["override_percent"] = slot->cut.have_status ? p.status.override_percent : 100;
     // The machine's reported position and how far along the job's path it has got.
     j["position_mm"] = nlohmann::json();
-    if (slot->have_status) {
+    if (slot->cut.have_status) {
       j["position_mm"] = {p.status.x_um / 1000.0, p.status.y_um / 1000.0, p.status.z_um / 1000.0};
-    } else if ((probing || hold_taken) && slot->have_last_status) {
-      const proto::StatusReply& st = slot->last_status;
+    } else if ((probing || hold_taken) && slot->seen.have_last_status) {
+      const proto::StatusReply& st = slot->seen.last_status;
       j["position_mm"] = {st.x_um / 1000.0, st.y_um / 1000.0, st.z_um / 1000.0};
     }
-    j["executed_mm"] = slot->executed_mm;
-    j["path_mm"] = slot->path_mm;
+    j["executed_mm"] = slot->cut.executed_mm;
+    j["path_mm"] = slot->cut.path_mm;
     running.push_back(j);
   }
   uint64_t version = 0, jobs_version = 0;
@@ -596,7 +620,7 @@ nlohmann::json Workshop::snapshot() {
 std::shared_ptr<const std::string> Workshop::live_path(int64_t job_id) {
   for (auto& slot : slots_) {
     std::lock_guard<std::mutex> lock(slot->mutex);
-    if (slot->job_id == job_id && slot->path_json) return slot->path_json;
+    if (slot->job_id == job_id && slot->cut.path_json) return slot->cut.path_json;
   }
   return nullptr;
 }
@@ -619,7 +643,7 @@ void Workshop::machine_loop(Slot& slot) {
       work = store_.has_claimable(fit_now(slot));
     } catch (const StoreError& e) {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      slot.link_message = e.what();
+      slot.connection.message = e.what();
     }
     if (!work && Clock::now() < next_probe) {
       sleep_for(options_.poll);
@@ -650,10 +674,10 @@ void Workshop::machine_loop(Slot& slot) {
       bool changed = false;
       {
         std::lock_guard<std::mutex> lock(slot.mutex);
-        changed = slot.link_state != "offline";
-        slot.link_state = "offline";
-        slot.link_message = e.what();
-        slot.have_last_status = false;
+        changed = slot.connection.state != "offline";
+        slot.connection.state = "offline";
+        slot.connection.message = e.what();
+        slot.seen.have_last_status = false;
       }
       if (changed) notify(false);
       sleep_for(std::min(options_.probe, std::chrono::milliseconds(1000)));
@@ -662,12 +686,12 @@ void Workshop::machine_loop(Slot& slot) {
     bool changed = false;
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      changed = slot.link_state != "online" || !slot.have_last_status ||
-                slot.last_status.state != idle_status.state;
-      slot.link_state = "online";
-      slot.link_message.clear();
-      slot.last_status = idle_status;
-      slot.have_last_status = true;
+      changed = slot.connection.state != "online" || !slot.seen.have_last_status ||
+                slot.seen.last_status.state != idle_status.state;
+      slot.connection.state = "online";
+      slot.connection.message.clear();
+      slot.seen.last_status = idle_status;
+      slot.seen.have_last_status = true;
     }
     if (changed) notify(false);
     const Lease lease = lease_.current();
@@ -681,19 +705,19 @@ void Workshop::machine_loop(Slot& slot) {
       job = store_.claim(fit_now(slot), slot.spec.name, lease);
     } catch (const StoreError& e) {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      slot.link_message = e.what();
+      slot.connection.message = e.what();
       continue;
     }
     if (!job) continue;
     notify(true);
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      slot.link = link.get();
+      slot.connection.link = link.get();
     }
     run_job(slot, *job, *sender, caps);
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      slot.link = nullptr;
+      slot.connection.link = nullptr;
     }
     notify(true);
   }
@@ -793,6 +817,10 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   }
   release_slot(slot, r, sender);
   finish_run(slot, r, sender);
+  r.path.reset();
+  r.commands.reset();
+  r.planned.reset();
+  release_freed_memory();  // the plan: an idle machine holds none of it
 }
 
 // Claimed: on the page (planning) and steerable before its commands exist.
@@ -802,21 +830,21 @@ void Workshop::claim_slot(Slot& slot, const JobRun& r) {
     slot.job_id = r.job.id;
     slot.job_name = r.job.name;
     slot.planning = true;
-    slot.probe_stage.clear();
-    slot.probe_confirmed = false;
+    slot.probe.stage.clear();
+    slot.probe.confirmed = false;
     slot.lease_epoch = r.job.lease_epoch;  // probing sends before the job's commands do
     slot.fenced.clear();
-    slot.probe_done = slot.probe_total = 0;
-    slot.hold_pending = slot.abort_pending = false;
-    slot.override_pending = 0;
-    slot.path_json.reset();
-    slot.executed_mm = slot.path_mm = 0;
-    slot.progress = Progress{};
-    slot.have_status = false;
-    slot.time_left.plan(nullptr, r.job.planned_s);
-    slot.started = r.started;
-    slot.waited = Clock::duration{};
-    slot.waiting = false;
+    slot.probe.done = slot.probe.total = 0;
+    slot.asked.hold = slot.asked.abort = false;
+    slot.asked.override_percent = 0;
+    slot.cut.path_json.reset();
+    slot.cut.executed_mm = slot.cut.path_mm = 0;
+    slot.cut.progress = Progress{};
+    slot.cut.have_status = false;
+    slot.clock.time_left.plan(nullptr, r.job.planned_s);
+    slot.clock.started = r.started;
+    slot.clock.waited = Clock::duration{};
+    slot.clock.waiting = false;
   }
   notify(false);
 }
@@ -852,8 +880,8 @@ void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
   bool clear_map = false;
   {
     std::lock_guard<std::mutex> lock(slot.mutex);
-    clear_map = !map && slot.controller_has_map;
-    slot.controller_has_map = static_cast<bool>(map);
+    clear_map = !map && slot.seen.controller_has_map;
+    slot.seen.controller_has_map = static_cast<bool>(map);
   }
   if (map) {
     const std::vector<QueuedCommand> frames = heightmap::height_map_commands(*map);
@@ -874,6 +902,7 @@ void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
                      plan.curves.size(), r.commands->size(), r.commands->wire_bytes(),
                      job.planned_s));
   r.path.emplace(plan);
+  release_freed_memory();  // the drawing and the planner's temporaries
 }
 
 // The commands exist: the slot takes the sender and what the operator asked for meanwhile.
@@ -894,28 +923,29 @@ void Workshop::hand_to_sender(Slot& slot, JobRun& r, Sender& sender) {
     std::lock_guard<std::mutex> lock(slot.mutex);
     slot.sender = &sender;
     slot.planning = false;
-    slot.cut_started = Clock::now();
-    slot.waited = Clock::duration{};
-    slot.waiting = false;
-    slot.time_left.plan(std::move(step_ends), r.job.planned_s);
-    slot.time_left.start_at(first_step);
-    slot.progress = Progress{};
-    slot.progress.total = r.commands->size();
-    slot.path_json = std::move(path_json);
-    slot.path_mm = r.path->length_mm();
+    slot.clock.cut_started = Clock::now();
+    slot.clock.waited = Clock::duration{};
+    slot.clock.waiting = false;
+    slot.clock.time_left.plan(std::move(step_ends), r.job.planned_s);
+    slot.clock.time_left.start_at(first_step);
+    slot.cut.progress = Progress{};
+    slot.cut.progress.total = r.commands->size();
+    slot.cut.path_json = std::move(path_json);
+    slot.cut.path_mm = r.path->length_mm();
     slot.lease_epoch = r.job.lease_epoch;
     slot.fenced.clear();
     if (stopping_) sender.request_abort();  // claimed just as stop() looked at the slots
     // Asked for while it was planning; run() sends them before its first command (the
     // override after this run's reset to 100 %).
-    if (slot.abort_pending) sender.request_abort();
-    if (slot.hold_pending) sender.request_hold();
-    if (slot.override_pending != 0) sender.request_override(slot.override_pending);
-    if (slot.hold_pending || slot.abort_pending || slot.override_pending != 0) {
-      r.note(fmt::format(
-          "asked for while planning:{}{}{}", slot.hold_pending ? " hold" : "",
-          slot.abort_pending ? " abort" : "",
-          slot.override_pending != 0 ? fmt::format(" override {}%", slot.override_pending) : ""));
+    if (slot.asked.abort) sender.request_abort();
+    if (slot.asked.hold) sender.request_hold();
+    if (slot.asked.override_percent != 0) sender.request_override(slot.asked.override_percent);
+    if (slot.asked.hold || slot.asked.abort || slot.asked.override_percent != 0) {
+      r.note(fmt::format("asked for while planning:{}{}{}", slot.asked.hold ? " hold" : "",
+                         slot.asked.abort ? " abort" : "",
+                         slot.asked.override_percent != 0
+                             ? fmt::format(" override {}%", slot.asked.override_percent)
+                             : ""));
     }
   }
   notify(false);
@@ -957,7 +987,7 @@ void Workshop::stream_commands(Slot& slot, JobRun& r, Sender& sender) {
       Link* link = nullptr;
       {
         std::lock_guard<std::mutex> lock(slot.mutex);
-        link = slot.link;
+        link = slot.connection.link;
       }
       if (link != nullptr) {
         r.message += "; " + heightmap::raise_tool_after_abort(*link, options_.sender,
@@ -994,21 +1024,21 @@ void Workshop::follow_status(Slot& slot, JobRun& r, Sender& sender, const Progre
           : r.path->advance(step, Point2(p.status.x_um / 1000.0, p.status.y_um / 1000.0));
   {
     std::lock_guard<std::mutex> lock(slot.mutex);
-    slot.executed_mm = executed_mm;
+    slot.cut.executed_mm = executed_mm;
     // The sender's reports while it checks the zeroing come before its stream: no total. The
     // stream's counts stay (an outside tester saw "0 of 0" and `idle` for a moment), and an
     // idle controller then is not yet the cut's first status.
     if (p.total == 0 && p.status.state == proto::MachineState::kIdle) {
-      slot.last_status = p.status;
-      slot.have_last_status = true;
+      slot.seen.last_status = p.status;
+      slot.seen.have_last_status = true;
       return;
     }
-    slot.progress = p;
-    slot.set_waiting(machine_waits_for_operator(p.status.state));
-    slot.time_left.at_step(step, slot.working_s(Clock::now()));
-    slot.have_status = true;
-    slot.last_status = p.status;
-    slot.have_last_status = true;
+    slot.cut.progress = p;
+    slot.clock.set_waiting(machine_waits_for_operator(p.status.state));
+    slot.clock.time_left.at_step(step, slot.clock.working_s(Clock::now()));
+    slot.cut.have_status = true;
+    slot.seen.last_status = p.status;
+    slot.seen.have_last_status = true;
   }
   r.executed = p.executed;
   if (!r.machine_marked && p.executed > r.setup_frames) {
@@ -1078,11 +1108,11 @@ void Workshop::release_slot(Slot& slot, const JobRun& r, Sender& sender) {
     slot.sender = nullptr;
     slot.job_id = 0;
     slot.planning = false;
-    slot.probe_stage.clear();
-    slot.probing_sender = nullptr;
-    slot.path_json.reset();
-    slot.have_last_status = at_rest.has_value();
-    if (at_rest) slot.last_status = *at_rest;
+    slot.probe.stage.clear();
+    slot.probe.sender = nullptr;
+    slot.cut.path_json.reset();
+    slot.seen.have_last_status = at_rest.has_value();
+    if (at_rest) slot.seen.last_status = *at_rest;
   }
   notify(false);
   saver_.forget(r.job.id);
@@ -1162,8 +1192,8 @@ heightmap::ProbeTouch Workshop::probing_touch(Slot& slot, Sender& sender,
   const auto show = [this, &slot, last_notify](const Progress& p) {
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      slot.last_status = p.status;
-      slot.have_last_status = true;
+      slot.seen.last_status = p.status;
+      slot.seen.have_last_status = true;
     }
     if (Clock::now() - *last_notify > std::chrono::milliseconds(100)) {
       *last_notify = Clock::now();
@@ -1176,7 +1206,7 @@ heightmap::ProbeTouch Workshop::probing_touch(Slot& slot, Sender& sender,
     bool held = false;
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      held = slot.hold_pending && !slot.abort_pending && !stopping_;
+      held = slot.asked.hold && !slot.asked.abort && !stopping_;
     }
     if (held) {
       Progress rest;
@@ -1207,15 +1237,15 @@ void Workshop::wait_between_touches(Slot& slot,
     std::string held;
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      if (slot.abort_pending || stopping_) throw AbortedBeforeCutting("probing");
-      if (!slot.hold_pending) break;
+      if (slot.asked.abort || stopping_) throw AbortedBeforeCutting("probing");
+      if (!slot.asked.hold) break;
       if (!waited) {
-        where = slot.probe_done == 0
+        where = slot.probe.done == 0
                     ? std::string("before the first touch")
-                    : fmt::format("after touch {} of {}", slot.probe_done, slot.probe_total);
-        const proto::StatusReply& st = slot.last_status;
+                    : fmt::format("after touch {} of {}", slot.probe.done, slot.probe.total);
+        const proto::StatusReply& st = slot.seen.last_status;
         held = fmt::format("probing held by the operator {}", where);
-        if (slot.have_last_status) {
+        if (slot.seen.have_last_status) {
           held += fmt::format(": the tool at rest at x {:.3f} y {:.3f} z {:.3f}", st.x_um / 1000.0,
                               st.y_um / 1000.0, st.z_um / 1000.0);
         }
@@ -1286,8 +1316,8 @@ heightmap::HeightMap Workshop::probe_board_blank(
                                     [&](size_t done, size_t planned) {
                                       {
                                         std::lock_guard<std::mutex> lock(slot.mutex);
-                                        slot.probe_done = done;
-                                        slot.probe_total = planned;
+                                        slot.probe.done = done;
+                                        slot.probe.total = planned;
                                       }
                                       notify(false);
                                     });
@@ -1295,8 +1325,8 @@ heightmap::HeightMap Workshop::probe_board_blank(
     bool aborted = false;
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      slot.probing_sender = nullptr;
-      aborted = slot.abort_pending || stopping_;
+      slot.probe.sender = nullptr;
+      aborted = slot.asked.abort || stopping_;
     }
     if (!aborted) throw;
     // The touch under way stopped where it was (#X), maybe on the copper: the tool up to
@@ -1304,7 +1334,7 @@ heightmap::HeightMap Workshop::probe_board_blank(
     Link* link = nullptr;
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      link = slot.link;
+      link = slot.connection.link;
     }
     const std::string lifted =
         link != nullptr ? heightmap::raise_tool_after_abort(*link, options_.sender,
@@ -1317,19 +1347,19 @@ heightmap::HeightMap Workshop::probe_board_blank(
   size_t done = 0, planned = 0;
   {
     std::lock_guard<std::mutex> lock(slot.mutex);
-    slot.probing_sender = nullptr;
-    slot.probe_stage.clear();
-    held = slot.hold_pending && !slot.abort_pending;
-    done = slot.probe_done;
-    planned = slot.probe_total;
+    slot.probe.sender = nullptr;
+    slot.probe.stage.clear();
+    held = slot.asked.hold && !slot.asked.abort;
+    done = slot.probe.done;
+    planned = slot.probe.total;
   }
   if (held) {
     // Held during the last touch: it finished; the cut waits held before its first command.
     const proto::StatusReply st = sender.read_status_at_rest(std::chrono::seconds(60));
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      slot.last_status = st;
-      slot.have_last_status = true;
+      slot.seen.last_status = st;
+      slot.seen.have_last_status = true;
     }
     note(
         fmt::format("probing held by the operator after touch {} of {} (the last): the tool at "
@@ -1348,7 +1378,7 @@ void Workshop::wait_for_probe_clip(Slot& slot, Sender& sender,
                                    const std::function<void(const std::string&)>& note) {
   {
     std::lock_guard<std::mutex> lock(slot.mutex);
-    slot.probe_stage = "probe_clip";
+    slot.probe.stage = "probe_clip";
   }
   notify(false);
   note("waiting for the probe clip on the blank (action probe_ready)");
@@ -1356,12 +1386,12 @@ void Workshop::wait_for_probe_clip(Slot& slot, Sender& sender,
   while (true) {
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
-      if (slot.abort_pending || stopping_) {
+      if (slot.asked.abort || stopping_) {
         throw AbortedBeforeCutting("waiting for the probe clip");
       }
-      if (slot.probe_confirmed) {
-        slot.probe_stage = "probing";
-        slot.probing_sender = &sender;
+      if (slot.probe.confirmed) {
+        slot.probe.stage = "probing";
+        slot.probe.sender = &sender;
         break;
       }
     }

@@ -47,5 +47,58 @@ TEST(InboxWatcher, QueuesFinishedDrawingsAndRefusesOthersWithAReason) {
   EXPECT_EQ(store.list("", 10).size(), 2u);
 }
 
+// What the intake hands the store for each job.
+class InputRecordingStore : public SqliteJobStore {
+ public:
+  InputRecordingStore(const std::string& path, bool keeps) : SqliteJobStore(path), keeps_(keeps) {}
+  int64_t add(const JobRecord& job, const std::string& input) override {
+    inputs.push_back(input);
+    return SqliteJobStore::add(job, input);
+  }
+  bool keeps_input() const override { return keeps_; }
+  std::vector<std::string> inputs;
+
+ private:
+  bool keeps_;
+};
+
+// A drawing received to disk (an HTTP upload's part, an inbox file) is copied into its archive
+// folder and planned from there. A store that keeps no input (SQLite: the archive has it) is
+// handed no bytes, so the drawing is never read whole into memory (a 1 M-line upload was
+// held four times at once); one that keeps inputs (PostgreSQL) gets the file's bytes.
+TEST(JobIntake, ADrawingOnDiskIsNotReadIntoMemoryForAStoreThatKeepsNoInput) {
+  test::TempDir dir;
+  DataFolder data(dir.path() / "data");
+  const std::string gcode = test::square_gcode(10, 10, 10);
+  const fs::path received = dir.path() / "received";
+  write_file(received, gcode);
+  for (const bool keeps : {false, true}) {
+    InputRecordingStore store((dir.path() / (keeps ? "k.sqlite" : "n.sqlite")).string(), keeps);
+    JobIntake intake(store, data, {MachineFit{}}, 64 * 1024);
+    for (const bool on_disk : {true, false}) {
+      Submission sub;
+      sub.name = "square.ngc";
+      if (on_disk) {
+        sub.content_file = received;
+      } else {
+        sub.content = gcode;
+      }
+      const IntakeResult r = intake.submit(sub);
+      ASSERT_EQ(r.status, 201) << r.error;
+      EXPECT_EQ(store.inputs.back(), keeps ? gcode : "") << keeps << on_disk;
+      EXPECT_EQ(read_file(data.job_dir(store.get(r.id)->key) / "input.ngc"), gcode);
+    }
+    EXPECT_TRUE(fs::exists(received));  // the caller's: it removes it
+  }
+  // Over the limit: refused before it is copied.
+  SqliteJobStore store((dir.path() / "small.sqlite").string());
+  JobIntake small(store, data, {MachineFit{}}, gcode.size() - 1);
+  Submission sub;
+  sub.name = "square.ngc";
+  sub.content_file = received;
+  EXPECT_EQ(small.submit(sub).status, 413);
+  EXPECT_TRUE(store.list("", 10).empty());
+}
+
 }  // namespace
 }  // namespace host::server

@@ -419,6 +419,7 @@ class InputKeepingStore : public SqliteJobStore {
     inputs_[id] = input;
     return id;
   }
+  bool keeps_input() const override { return true; }
   std::optional<std::string> input(int64_t id) override {
     const auto it = inputs_.find(id);
     return it == inputs_.end() ? std::nullopt : std::optional<std::string>(it->second);

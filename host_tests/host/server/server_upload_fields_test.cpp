@@ -147,5 +147,33 @@ TEST(ServerUploadFields, HeightMapFromAJobThatEndedWithoutAMapIsRefused) {
   EXPECT_EQ(server.job(bottom)["state"], "queued");
 }
 
+// An upload's files are written to the data folder's tmp/ as they arrive, not held in
+// memory, and are gone once it is answered: queued (the drawing copied into its archive
+// folder, the same bytes), or refused. Form and raw body alike.
+TEST(ServerUploadFields, AnUploadsFilesAreOnDiskOnlyUntilItIsAnswered) {
+  namespace fs = std::filesystem;
+  test::TempDir dir;
+  ServerRig server(dir.path(), {});  // no machine: every job stays queued
+  const fs::path tmp = dir.path() / "tmp";
+  const std::string gcode = test::square_gcode(10, 10, 10);
+  const httplib::MultipartFormDataItems form = {{"file", gcode, "a.ngc", "text/plain"},
+                                                {"priority", "3", "", ""}};
+  auto r = server.client().Post("/api/jobs", server.auth(), form);
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 201) << r->body;
+  const int64_t id = nlohmann::json::parse(r->body)["id"].get<int64_t>();
+  EXPECT_EQ(server.job(id)["priority"], 3);
+  EXPECT_EQ(read_file(server.data().job_dir(server.store().get(id)->key) / "input.ngc"), gcode);
+  EXPECT_TRUE(fs::is_empty(tmp));
+  const int64_t raw = server.upload_ok("b.ngc", gcode);
+  EXPECT_EQ(read_file(server.data().job_dir(server.store().get(raw)->key) / "input.ngc"), gcode);
+  EXPECT_TRUE(fs::is_empty(tmp));
+  r = server.client().Post("/api/jobs", server.auth(),
+                           {{"file", "not a drawing", "c.ngc", "text/plain"}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 422) << r->body;
+  EXPECT_TRUE(fs::is_empty(tmp));
+}
+
 }  // namespace
 }  // namespace host::server
