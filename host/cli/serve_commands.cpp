@@ -219,6 +219,7 @@ void run_serve(const ServeArgs& a) {
   print_serving(a, http, ho.address, bound, wo.owner, created, token, machines);
   while (!g_stop_serve) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   std::cerr << "engraver: stopping (running jobs are aborted and marked interrupted)\n";
+  intake.stop();  // an upload being planned ends now (503), not when its planning would
   if (inbox) inbox->stop();
   http.stop();
   serving.join();

@@ -94,6 +94,12 @@ Drawing import_drawing(const std::string& path);
 // Called now and then during long work (importing, planning), for a progress bar: what is
 // counted ("bytes checked", "curves ordered"), done of total. A new unit starts a new stage.
 using WorkProgress = std::function<void(const char* unit, size_t done, size_t total)>;
+// What a WorkProgress throws to end the work early (a server that stops, a job aborted while
+// it is planned); the importers and the planner let it through as it is.
+class WorkStopped : public std::runtime_error {
+ public:
+  WorkStopped() : std::runtime_error("work stopped") {}
+};
 
 // import_drawing, reporting its progress (a DXF: the bytes checked, then read).
 Drawing import_drawing(const std::string& path, const WorkProgress& progress);

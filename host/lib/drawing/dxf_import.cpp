@@ -806,6 +806,8 @@ Drawing import_dxf_text_reporting(const std::string& text, const std::string& pa
     return reader.finish();
   } catch (const ImportError&) {
     throw;
+  } catch (const WorkStopped&) {
+    throw;
   } catch (const std::bad_alloc& e) {
     if (dynamic_cast<const std::bad_array_new_length*>(&e) == nullptr) {
       throw ImportError(path + ": not enough memory to import the drawing");

@@ -128,6 +128,8 @@ Drawing import_drawing(const std::string& path, const WorkProgress& progress) {
     return import_by_format(path, progress);
   } catch (const ImportError&) {
     throw;
+  } catch (const WorkStopped&) {
+    throw;
   } catch (const std::bad_alloc& e) {
     if (dynamic_cast<const std::bad_array_new_length*>(&e) == nullptr) {
       throw ImportError(path + ": not enough memory to import the drawing");

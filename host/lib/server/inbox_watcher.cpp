@@ -174,6 +174,7 @@ void InboxWatcher::settle(const fs::path& path, const IntakeResult& r) {
     if (on_queued_) on_queued_();
     return;
   }
+  if (r.status == 503) return;                     // the server stops: taken at its next start
   fs::remove_all(folder_ / "refused" / name, ec);  // a folder refused before under its name
   fs::rename(path, folder_ / "refused" / name, ec);
   try {

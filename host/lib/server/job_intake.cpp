@@ -127,7 +127,8 @@ void JobIntake::stage_drawing(const Submission& sub, const UploadedFiles& up,
     fs::copy_file(up.file, input);  // on disk only
   }
   {
-    const JobPlan plan = plan_file(input.string(), sub.name, sub.settings, work_w, work_h);
+    const JobPlan plan = plan_file(input.string(), sub.name, sub.settings, work_w, work_h,
+                                   [this] { return stopping_.load(); });
     job->width_mm = std::max(0.0, plan.extents_mm.max.x());
     job->height_mm = std::max(0.0, plan.extents_mm.max.y());
     job->planned_s = planned_seconds(plan, sub.settings);
@@ -354,6 +355,11 @@ JobRecord JobIntake::new_record(const Submission& sub, const UploadedFiles& up,
 IntakeResult JobIntake::plan_and_queue(const Submission& sub, const UploadedFiles& up) {
   IntakeResult r;
   const std::string& job_name = up.job_name;
+  if (stopping_) {
+    return refused(503, fmt::format("{}: the server is stopping: not queued (send it again once "
+                                    "the server is back)",
+                                    job_name));
+  }
   const fs::path staging = data_.new_staging_dir();
   try {
     JobRecord job = new_record(sub, up, staging);
@@ -389,6 +395,10 @@ IntakeResult JobIntake::plan_and_queue(const Submission& sub, const UploadedFile
     r = refused(422, e.what());
   } catch (const StoreError& e) {
     r = refused(500, e.what());
+  } catch (const WorkStopped&) {
+    r = refused(503, fmt::format("{}: the server is stopping: not queued (send it again once "
+                                 "the server is back)",
+                                 job_name));
   } catch (const std::exception& e) {
     r = refused(500, fmt::format("{}: {}", job_name, e.what()));
   } catch (...) {

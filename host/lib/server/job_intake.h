@@ -4,6 +4,7 @@
 #ifndef HOST_LIB_SERVER_JOB_INTAKE_H
 #define HOST_LIB_SERVER_JOB_INTAKE_H
 
+#include <atomic>      // std::atomic
 #include <cstdint>     // int64_t
 #include <filesystem>  // std::filesystem::path
 #include <string>      // std::string
@@ -52,6 +53,9 @@ class JobIntake {
             size_t max_bytes);
   IntakeResult submit(const Submission& submission);
   size_t max_bytes() const { return max_bytes_; }
+  // The server stops: an upload being planned ends at once, answered 503 and not queued (the
+  // inbox leaves its file where it is, for the next start); later ones get the same.
+  void stop() { stopping_ = true; }
   static constexpr size_t kMaxFiles = 32;  // files of one board (a CAM folder with masks, silk)
   struct UploadedFiles;                    // the upload's files as checked (job_intake.cpp)
 
@@ -77,6 +81,7 @@ class JobIntake {
   const DataFolder& data_;
   std::vector<MachineFit> machines_;
   size_t max_bytes_;
+  std::atomic<bool> stopping_{false};
 };
 
 // Why a file name from outside is refused ("" when it is acceptable): no folders, no "..",

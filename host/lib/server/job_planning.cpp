@@ -42,10 +42,15 @@ const char* step_name(PlanStep::Kind kind) {
 }  // namespace
 
 JobPlan plan_file(const std::string& path, const std::string& display_name,
-                  const JobPlanSettings& settings, double work_w_mm, double work_h_mm) {
+                  const JobPlanSettings& settings, double work_w_mm, double work_h_mm,
+                  const StopAsked& stop) {
+  const WorkProgress check = [&stop](const char*, size_t, size_t) {
+    if (stop()) throw WorkStopped();
+  };
   try {
-    Drawing drawing = import_drawing(path);
+    Drawing drawing = stop ? import_drawing(path, check) : import_drawing(path);
     PlanOptions o;
+    if (stop) o.progress = check;
     o.scale = settings.scale;
     o.margin_mm = settings.margin_mm;
     o.work_width_mm = work_w_mm;
@@ -143,7 +148,7 @@ void restore_job_input(const std::filesystem::path& dir, const JobRecord& job,
 }
 
 JobPlan plan_archived_job(const std::filesystem::path& dir, const JobRecord& job, double work_w_mm,
-                          double work_h_mm, bool write_archive) {
+                          double work_h_mm, bool write_archive, const StopAsked& stop) {
   if (is_board_job(job)) {
     const pcb::BoardJob board = plan_board_folder(dir, job.settings, work_w_mm, work_h_mm);
     if (write_archive) {
@@ -156,8 +161,8 @@ JobPlan plan_archived_job(const std::filesystem::path& dir, const JobRecord& job
     return board.plan;
   }
   // Not const: returned by move (a copy held a 1 M-line job's plan twice).
-  JobPlan plan =
-      plan_file((dir / job.input_file).string(), job.name, job.settings, work_w_mm, work_h_mm);
+  JobPlan plan = plan_file((dir / job.input_file).string(), job.name, job.settings, work_w_mm,
+                           work_h_mm, stop);
   if (write_archive) {
     write_plan_json(dir / "plan.json", plan);
     write_plot(plot_input_from_plan(plan, job.name), (dir / "plot.svg").string(),

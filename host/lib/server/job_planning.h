@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>  // nlohmann::json
 
 #include <filesystem>  // std::filesystem::path
+#include <functional>  // std::function
 #include <string>      // std::string
 
 #include "host/lib/plan/job_plan.h"
@@ -14,10 +15,16 @@
 
 namespace host::server {
 
+// Asked as planning reports its stages (every few thousand curves, every read block): true
+// ends it with WorkStopped (drawing.h), so a server that stops, or a job aborted while it is
+// planned, does not wait a large job's minute of planning out.
+using StopAsked = std::function<bool()>;
+
 // Imports `path` and plans it for a work_w x work_h mm area. ImportError and PlanError name
 // `display_name` instead of `path` (the archive path means nothing to the person).
 JobPlan plan_file(const std::string& path, const std::string& display_name,
-                  const JobPlanSettings& settings, double work_w_mm, double work_h_mm);
+                  const JobPlanSettings& settings, double work_w_mm, double work_h_mm,
+                  const StopAsked& stop = nullptr);
 // The encoder's options for the job: its name (without extension) as the title, and its
 // chord tolerance, for a board at most pcb::kBoardChordToleranceMm (the controller's chords
 // come out of the isolation clearance).
@@ -39,9 +46,9 @@ void release_freed_memory();
 void restore_job_input(const std::filesystem::path& dir, const JobRecord& job,
                        const std::string& stored);
 // Plans a job (drawing or board) from its archive folder for a machine's work area; with
-// write_archive also writes plan.json and the plot there.
+// write_archive also writes plan.json and the plot there. `stop`: as plan_file's (a drawing).
 JobPlan plan_archived_job(const std::filesystem::path& dir, const JobRecord& job, double work_w_mm,
-                          double work_h_mm, bool write_archive);
+                          double work_h_mm, bool write_archive, const StopAsked& stop = nullptr);
 
 }  // namespace host::server
 

@@ -860,8 +860,17 @@ void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
     if (!bytes) throw std::runtime_error((r.dir / job.input_file).string() + ": missing");
     restore_job_input(r.dir, job, *bytes);
   }
-  r.planned = std::make_unique<const JobPlan>(plan_archived_job(
-      r.dir, job, slot.spec.fit.work_width_mm, slot.spec.fit.work_height_mm, fetched));
+  // A server that stops, or an abort, ends the planning of a large job at once.
+  const StopAsked stop = [this, &slot] {
+    std::lock_guard<std::mutex> lock(slot.mutex);
+    return stopping_ || slot.asked.abort;
+  };
+  try {
+    r.planned = std::make_unique<const JobPlan>(plan_archived_job(
+        r.dir, job, slot.spec.fit.work_width_mm, slot.spec.fit.work_height_mm, fetched, stop));
+  } catch (const WorkStopped&) {
+    throw AbortedBeforeCutting("planning");
+  }
   const JobPlan& plan = *r.planned;
   EncodeOptions enc = encode_options(job);
   use_session(caps, &enc);

@@ -100,5 +100,38 @@ TEST(JobIntake, ADrawingOnDiskIsNotReadIntoMemoryForAStoreThatKeepsNoInput) {
   EXPECT_TRUE(store.list("", 10).empty());
 }
 
+// A server that stops ends an upload's planning at once (a 1 M-line upload planned on for
+// a minute and more after Ctrl-C): 503, nothing queued or left in the data folder; later
+// uploads and inbox files get the same, and the inbox keeps its file for the next start.
+TEST(JobIntake, AStopEndsAnUploadsPlanningAndQueuesNothing) {
+  test::TempDir dir;
+  DataFolder data(dir.path() / "data");
+  SqliteJobStore store(data.database().string());
+  JobIntake intake(store, data, {MachineFit{}}, 64 * 1024 * 1024);
+  Submission sub;
+  sub.name = "lines.dxf";
+  sub.content = test::separate_lines_dxf(100000);
+  std::thread stopper([&intake] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    intake.stop();
+  });
+  const IntakeResult r = intake.submit(sub);
+  stopper.join();
+  EXPECT_EQ(r.status, 503) << r.error;
+  EXPECT_NE(r.error.find("lines.dxf: the server is stopping: not queued"), std::string::npos)
+      << r.error;
+  EXPECT_TRUE(store.list("", 10).empty());
+  EXPECT_TRUE(fs::is_empty(data.root() / "jobs"));
+  EXPECT_EQ(intake.submit(sub).status, 503);
+
+  const fs::path inbox = dir.path() / "inbox";
+  InboxWatcher watcher(inbox, intake, JobPlanSettings{}, std::chrono::milliseconds(50), [] {});
+  write_file(inbox / "square.ngc", test::square_gcode(10, 10, 10));
+  watcher.scan();
+  watcher.scan();
+  EXPECT_TRUE(fs::exists(inbox / "square.ngc"));
+  EXPECT_FALSE(fs::exists(inbox / "refused" / "square.ngc"));
+}
+
 }  // namespace
 }  // namespace host::server

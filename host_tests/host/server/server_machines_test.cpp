@@ -580,5 +580,38 @@ TEST(ServerMachines, HoldWhilePlanningIsKeptAndStopsTheJobBeforeItMoves) {
   EXPECT_NE(log->body.find("asked for while planning: hold"), std::string::npos) << log->body;
 }
 
+// An abort while the job is planned ends its planning at once and the job with it: aborted,
+// nothing cut, "while planning" (the planning went on to its end first, a minute for a
+// million lines).
+TEST(ServerMachines, AnAbortWhilePlanningEndsThePlanning) {
+  test::TempDir dir;
+  SimRig sim(true);
+  ServerRig server(dir.path(), {test::machine("m1", sim.address())}, 16 * 1024 * 1024);
+  httplib::Client uploader = server.client();
+  uploader.set_read_timeout(120, 0);
+  auto up = uploader.Post("/api/jobs?name=lines.dxf", server.auth(),
+                          test::separate_lines_dxf(30000), "application/octet-stream");
+  ASSERT_TRUE(up) << httplib::to_string(up.error());
+  ASSERT_EQ(up->status, 201) << up->body;
+  const int64_t id = nlohmann::json::parse(up->body)["id"].get<int64_t>();
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const nlohmann::json p = server.running(id);
+        return !p.is_null() && p["machine_state"] == "planning";
+      },
+      30))
+      << server.status().dump();
+  auto r = server.control(id, R"({"action": "abort"})");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 30))
+      << server.job(id).dump();
+  const nlohmann::json job = server.job(id);
+  EXPECT_NE(job["message"].get<std::string>().find("aborted while planning; nothing was cut"),
+            std::string::npos)
+      << job.dump();
+  EXPECT_EQ(job["executed"], 0) << job.dump();
+}
+
 }  // namespace
 }  // namespace host::server

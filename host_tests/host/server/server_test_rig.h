@@ -195,6 +195,17 @@ inline bool wait_until(const std::function<bool()>& done, double timeout_s) {
 }
 
 // A square of side `size_mm` at (x, y) with a half-circle on top, as G-code.
+// `count` separate 0.5 mm lines on a grid as DXF: a job whose reading and planning take a
+// while (some seconds for 100 000 in a debug build).
+inline std::string separate_lines_dxf(int count) {
+  std::string dxf = "0\nSECTION\n2\nENTITIES\n";
+  for (int i = 0; i < count; ++i) {
+    const std::string x = std::to_string(10 + i % 200), y = std::to_string(10 + i / 200 % 150);
+    dxf += "0\nLINE\n8\n0\n10\n" + x + "\n20\n" + y + "\n11\n" + x + ".5\n21\n" + y + ".5\n";
+  }
+  return dxf + "0\nENDSEC\n0\nEOF\n";
+}
+
 inline std::string square_gcode(double x, double y, double size_mm) {
   return fmt::format(
       "G21\nG90\nG0 Z2\nG0 X{0} Y{1}\nG1 Z-0.1 F100\nG1 X{2} Y{1} F600\nG1 X{2} Y{3}\n"
