@@ -2,7 +2,6 @@
 #include "host/lib/sim/sim_link.h"
 
 #include <algorithm>  // std::min
-#include <cstring>    // std::memcpy
 #include <thread>     // sleep_until
 
 namespace host::sim {
@@ -20,20 +19,16 @@ void SimLink::write(const uint8_t* data, size_t size) {
 size_t SimLink::read(uint8_t* buffer, size_t capacity, std::chrono::milliseconds timeout) {
   const uint64_t until_ms = machine_.now_ms() + static_cast<uint64_t>(std::max<long>(
                                                     0, static_cast<long>(timeout.count())));
-  while (pending_at_ == pending_.size()) {
-    pending_ = machine_.take_to_host();
-    pending_at_ = 0;
-    if (!pending_.empty() || machine_.now_ms() >= until_ms) break;
+  // Bytes not taken by an earlier read come first, without running machine time; they
+  // wait in the machine (no copy a millisecond through a string).
+  while (!machine_.to_host_waiting() && machine_.now_ms() < until_ms) {
     machine_.step_ms();
     if (realtime_) {
       std::this_thread::sleep_until(
           wall_start_ + std::chrono::milliseconds(machine_.now_ms() - machine_start_ms_));
     }
   }
-  const size_t n = std::min(capacity, pending_.size() - pending_at_);
-  if (n > 0) std::memcpy(buffer, pending_.data() + pending_at_, n);
-  pending_at_ += n;
-  return n;
+  return machine_.take_to_host(buffer, capacity);
 }
 
 std::chrono::steady_clock::time_point machine_clock(const SimMachine& machine) {

@@ -29,8 +29,6 @@ class SimLink : public Link {
   bool realtime_;
   std::chrono::steady_clock::time_point wall_start_;
   uint64_t machine_start_ms_;
-  std::string pending_;  // bytes from the machine not read yet
-  size_t pending_at_ = 0;
 };
 
 // Machine time as a clock (for SenderOptions::clock): the epoch is machine time 0.

@@ -3,6 +3,7 @@
 
 #include <chrono>  // steady_clock
 #include <cmath>   // std::lround
+#include <cstring>  // std::memcpy
 
 #include "firmware/app/application.h"        // app::Application, app::Board
 #include "hal/drivers/tmc428/tmc428.h"       // drivers::Tmc428
@@ -152,9 +153,17 @@ void SimMachine::from_host(const uint8_t* data, size_t size) {
 }
 
 std::string SimMachine::take_to_host() {
-  std::string out;
-  out.swap(from_uart_);
+  std::string out(reinterpret_cast<const char*>(from_uart_.data()), from_uart_.size());
+  from_uart_.clear();
   return out;
+}
+
+size_t SimMachine::take_to_host(uint8_t* buffer, size_t capacity) {
+  const size_t n = std::min(capacity, from_uart_.size());
+  if (n == 0) return 0;
+  std::memcpy(buffer, from_uart_.data(), n);
+  from_uart_.pop_front(n);
+  return n;
 }
 
 void SimMachine::drop_link_bytes() {
@@ -247,26 +256,35 @@ void SimMachine::step_ms() {
   Parts& p = *parts_;
   const double bytes_per_ms = options_.baud / 10.0 / 1000.0;
   rx_credit_ = std::min(rx_credit_ + bytes_per_ms, 4.0 + bytes_per_ms);  // 4-byte UART FIFO
-  while (rx_credit_ >= 1.0 && !to_uart_.empty()) {
-    p.serial.rx.push_back(to_uart_.front());
-    to_uart_.pop_front();
-    rx_credit_ -= 1.0;
+  // A byte per whole credit while bytes wait, moved as one run (the credit, below 16, loses
+  // nothing to subtracting a whole number at once: the same as a byte at a time).
+  if (rx_credit_ >= 1.0 && !to_uart_.empty()) {
+    const size_t n = std::min(static_cast<size_t>(rx_credit_), to_uart_.size());
+    p.serial.rx.append(to_uart_.data(), n);
+    to_uart_.pop_front(n);
+    rx_credit_ -= static_cast<double>(n);
     last_host_byte_ms_ = now_ms_ + 1;
   }
   ++now_ms_;
   p.chip.advance_to_ns(now_ms_ * 1000000ull);
   operate_panel();
-  int32_t tip_um[config::kAxisCount];
-  for (int a = 0; a < config::kAxisCount; ++a)
-    tip_um[a] = static_cast<int32_t>(int64_t(p.chip.x_actual(a)) * 1000 / p.usteps_per_mm[a]);
-  p.probe.set_tool_tip_um(tip_um[0], tip_um[1], tip_um[2]);
+  // The tool tip for the probe input, which reads it only against a surface (without one it
+  // stays open, or forced): no board, no reading the model, whose motors then integrate
+  // when the firmware next reads or changes them (lazily, to the same result).
+  if (p.probe.has_surface()) {
+    int32_t tip_um[config::kAxisCount];
+    for (int a = 0; a < config::kAxisCount; ++a)
+      tip_um[a] = static_cast<int32_t>(int64_t(p.chip.x_actual(a)) * 1000 / p.usteps_per_mm[a]);
+    p.probe.set_tool_tip_um(tip_um[0], tip_um[1], tip_um[2]);
+  }
   p.app.tick_1ms();
   p.app.poll();
   tx_credit_ = std::min(tx_credit_ + bytes_per_ms, 4.0 + bytes_per_ms);
-  while (tx_credit_ >= 1.0 && !p.serial.tx.empty()) {
-    from_uart_ += static_cast<char>(p.serial.tx.front());
-    p.serial.tx.pop_front();
-    tx_credit_ -= 1.0;
+  if (tx_credit_ >= 1.0 && !p.serial.tx.empty()) {
+    const size_t n = std::min(static_cast<size_t>(tx_credit_), p.serial.tx.size());
+    from_uart_.append(p.serial.tx.data(), n);
+    p.serial.tx.pop_front(n);
+    tx_credit_ -= static_cast<double>(n);
   }
   record_position();
 }

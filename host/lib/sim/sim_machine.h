@@ -54,6 +54,10 @@ class SimMachine {
   void from_host(const uint8_t* data, size_t size);
   // Bytes the firmware sent that have left its UART by now.
   std::string take_to_host();
+  // The same into buffer, at most capacity of them (the rest stay for the next take): no
+  // string a call (SimLink takes them every simulated millisecond).
+  size_t take_to_host(uint8_t* buffer, size_t capacity);
+  bool to_host_waiting() const { return !from_uart_.empty(); }
   // The host's connection is gone (or a new one starts): what it sent that the firmware has
   // not read yet, and the replies nobody has taken, are dropped. Frames the firmware had
   // already taken stay taken, as on a lost link.
@@ -114,7 +118,7 @@ class SimMachine {
   double rx_credit_ = 0, tx_credit_ = 0;  // bytes the UART may move this ms
   ByteFifo to_uart_;                      // PC -> firmware, not on the wire yet
   uint64_t last_host_byte_ms_ = 0;
-  std::string from_uart_;  // firmware -> PC, delivered
+  ByteFifo from_uart_;  // firmware -> PC, delivered
   std::vector<ToolSample> trace_;
   std::function<void(const ToolSample&)> sink_;
   ToolSample last_sample_{};

@@ -4,7 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include <deque>  // std::deque: the reference
+#include <algorithm>  // std::min
+#include <deque>      // std::deque: the reference
 
 namespace host::sim {
 namespace {
@@ -39,6 +40,31 @@ TEST(ByteFifo, KeepsTheOrderOfAStdDequeAcrossCompactions) {
   EXPECT_TRUE(fifo.empty());
   fifo.push_back(5);
   EXPECT_EQ(fifo.front(), 5);
+}
+
+// The UART model moves the bytes one credit allows as a run (data(), pop_front(n)): the same
+// order as a byte at a time, across compactions too.
+TEST(ByteFifo, RunsTakenFromTheFrontKeepTheOrder) {
+  ByteFifo fifo;
+  std::deque<uint8_t> reference;
+  uint32_t seed = 11;
+  for (int round = 0; round < 20000; ++round) {
+    seed = seed * 1103515245u + 12345u;
+    const int pushes = (seed >> 16) % 24;
+    for (int i = 0; i < pushes; ++i) {
+      const uint8_t b = static_cast<uint8_t>(round * 37 + i);
+      fifo.push_back(b);
+      reference.push_back(b);
+    }
+    const size_t run = std::min<size_t>((seed >> 8) % 23, reference.size());
+    ASSERT_EQ(fifo.size(), reference.size());
+    for (size_t i = 0; i < run; ++i) ASSERT_EQ(fifo.data()[i], reference[i]) << "round " << round;
+    fifo.pop_front(run);
+    reference.erase(reference.begin(), reference.begin() + static_cast<std::ptrdiff_t>(run));
+  }
+  EXPECT_GT(reference.size(), 4096u);  // compactions happened with bytes still queued
+  fifo.pop_front(fifo.size());
+  EXPECT_TRUE(fifo.empty());
 }
 
 }  // namespace

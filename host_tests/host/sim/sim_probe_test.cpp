@@ -2,11 +2,13 @@
 // the fake probe input closes on it, and #T reports the surface height under each point.
 #include <gtest/gtest.h>
 
+#include <chrono>      // milliseconds
 #include <functional>  // std::function
 #include <string>      // std::string
 
 #include "firmware/protocol/codec.h"
 #include "firmware/protocol/parser.h"
+#include "host/lib/sim/sim_link.h"
 #include "host/lib/sim/sim_machine.h"
 
 namespace host {
@@ -103,6 +105,49 @@ TEST(SimProbe, WithoutASurfaceTheProbeFindsNothing) {
   proto::AlarmReply a;
   ASSERT_EQ(proto::decode_frame(f, &a), proto::ErrorCode::kOk);
   EXPECT_EQ(a.alarm, proto::Alarm::kProbeNoContact);
+}
+
+// SimLink hands the machine's reply bytes over without a string a millisecond: a read with
+// less room than has arrived leaves the rest in the machine, and the next read returns them
+// at once, without running machine time; together they are the whole reply.
+TEST(SimLinkRead, BytesLeftByASmallReadComeNextWithoutMachineTime) {
+  sim::SimMachine machine{sim::SimOptions{}};
+  sim::SimLink link(machine);
+  uint8_t frame[proto::kMaxFrameBytes];
+  uint8_t n = 0;
+  ASSERT_EQ(proto::write_frame(proto::StatusCmd{}, 0, frame, sizeof frame, &n),
+            proto::ErrorCode::kOk);
+  link.write(frame, n);
+  uint8_t buf[512];
+  const size_t first = link.read(buf, 3, std::chrono::milliseconds(1000));
+  ASSERT_EQ(first, 3u);
+  EXPECT_TRUE(machine.to_host_waiting());
+  const uint64_t at = machine.now_ms();
+  const size_t rest = link.read(buf + first, sizeof buf - first, std::chrono::milliseconds(1000));
+  EXPECT_EQ(machine.now_ms(), at);  // what had arrived, no machine time run for it
+  EXPECT_FALSE(machine.to_host_waiting());
+  // The rest of the reply as the UART lets it out, a millisecond's bytes at a time.
+  size_t got = first + rest;
+  proto::Parser parser(proto::kReplyStart);
+  bool status = false;
+  for (size_t i = 0; i < got && !status; ++i) {
+    if (parser.feed(buf[i]) == proto::ParseEvent::kFrame)
+      status = parser.frame().letter == proto::kReplyStatus;
+  }
+  while (!status && got < sizeof buf) {
+    const size_t k = link.read(buf + got, sizeof buf - got, std::chrono::milliseconds(1000));
+    ASSERT_GT(k, 0u);
+    for (size_t i = got; i < got + k && !status; ++i) {
+      if (parser.feed(buf[i]) == proto::ParseEvent::kFrame)
+        status = parser.frame().letter == proto::kReplyStatus;
+    }
+    got += k;
+  }
+  EXPECT_TRUE(status);
+  const uint64_t after = machine.now_ms();
+  // Nothing waiting: a read runs machine time up to its time-out and returns nothing.
+  EXPECT_EQ(link.read(buf, sizeof buf, std::chrono::milliseconds(5)), 0u);
+  EXPECT_EQ(machine.now_ms(), after + 5);
 }
 
 }  // namespace
