@@ -241,20 +241,20 @@ std::string joined(const std::vector<std::string>& files) {
 // The commands sent before the job's own (the height map, or its clearing): the progress
 // line's total counts them too.
 std::string setup_text(const sim::SimJobResult& s) {
-  if (s.setup_commands == 0) return "";
+  if (s.setup.commands == 0) return "";
   return fmt::format(" (and {} before the job: the height map or its clearing)",
-                     counted(s.setup_commands, "set-up command"));
+                     counted(s.setup.commands, "set-up command"));
 }
 
 // "sent 111 commands", or for a job that ended early how far it got: "7 of 112 commands
 // executed (the set-up included) of a job of 111 commands".
 std::string commands_text(const sim::SimJobResult& s) {
-  const size_t all = s.commands + s.setup_commands;
+  const size_t all = s.commands + s.setup.commands;
   if (s.outcome == JobOutcome::kCompleted || s.executed >= all) {
     return "sent " + counted(s.commands, "command");
   }
   return fmt::format("{} of {} executed{}, of a job of {}", s.executed, counted(all, "command"),
-                     s.setup_commands > 0 ? " (the set-up included)" : "",
+                     s.setup.commands > 0 ? " (the set-up included)" : "",
                      counted(s.commands, "command"));
 }
 
@@ -273,7 +273,7 @@ nlohmann::json run_report_json(const JobPlan& plan, const RunOptions& o, const R
   j["curves"] = plan.curves.size();
   j["pen_lifts"] = plan.pen_lifts;
   j["commands"] = s.commands;
-  j["setup_commands"] = s.setup_commands;  // before the job; progress total = both
+  j["setup_commands"] = s.setup.commands;  // before the job; progress total = both
   j["commands_executed"] = s.executed;     // of both: all of them when completed
   j["frames_sent"] = s.stats.frames_sent;
   j["bytes_sent"] = s.stats.bytes_sent;
@@ -301,8 +301,8 @@ nlohmann::json run_report_json(const JobPlan& plan, const RunOptions& o, const R
                        {"cols", r.map->cols},
                        {"min_um", r.map->min_um()},
                        {"max_um", r.map->max_um()},
-                       {"frames", s.setup_commands},
-                       {"wire_bytes", s.setup_wire_bytes}};
+                       {"frames", s.setup.commands},
+                       {"wire_bytes", s.setup.wire_bytes}};
   }
   if (r.isolation) j["simulated_isolation_check"] = isolation_json(*r.isolation);
   if (o.board && o.board->job) {

@@ -72,8 +72,8 @@ void stream_job(Link& link, const JobPlan& plan, const SimJobOptions& options,
       *in_setup = true;
       std::vector<QueuedCommand> setup = options.before_job(sender);
       *in_setup = false;
-      r->setup_commands = setup.size();
-      r->setup_wire_bytes = wire_bytes(setup);
+      r->setup.commands = setup.size();
+      r->setup.wire_bytes = wire_bytes(setup);
       commands.set_setup(std::move(setup));
     }
     r->outcome = sender.run(commands, [&](const Progress& p) {

@@ -53,17 +53,22 @@ struct SimJobOptions {
   std::function<double(double x_mm, double y_mm)> z_offset_mm;
 };
 
+// Commands sent just before the job (a height map, or its clearing): not the job's own.
+struct SetupSent {
+  size_t commands = 0;
+  size_t wire_bytes = 0;
+};
+
 struct SimJobResult {
   JobOutcome outcome = JobOutcome::kLinkLost;
   std::string message;
   SenderStats stats;
   size_t commands = 0;
-  size_t executed = 0;           // commands whose execution finished, set-up ones included
-  size_t commands_held_max = 0;  // the most encoded commands held at once (streamed: a window)
-  size_t wire_bytes = 0;         // the job's frames once each (no retransmits, no polls)
-  uint16_t job_id = 0;           // job_id_of() the commands: the job's identity (#J)
-  size_t setup_commands = 0;     // sent before the job (SimJobOptions::before_job)
-  size_t setup_wire_bytes = 0;
+  size_t executed = 0;                // commands whose execution finished, set-up ones included
+  size_t commands_held_max = 0;       // the most encoded commands held at once (streamed: a window)
+  size_t wire_bytes = 0;              // the job's frames once each (no retransmits, no polls)
+  uint16_t job_id = 0;                // job_id_of() the commands: the job's identity (#J)
+  SetupSent setup;                    // sent before the job (SimJobOptions::before_job)
   uint64_t virtual_ms = 0;            // machine time simulated
   double wall_s = 0;                  // real time it took
   double cpu_s = 0;                   // processor time this thread used for it (load-independent)

@@ -108,7 +108,7 @@ TEST(RunCommand, ReportCountsTheSetUpCommandsTheProgressTotalCounts) {
   o.on_progress = [&progress_total](const Progress& p) { progress_total = p.total; };
   const RunResult r = run_job(plan, o);
   ASSERT_EQ(r.sim.outcome, JobOutcome::kCompleted) << r.sim.message;
-  EXPECT_EQ(r.sim.setup_commands, 1u);  // no map: one clearing
+  EXPECT_EQ(r.sim.setup.commands, 1u);  // no map: one clearing
   const nlohmann::json j = run_report_json(plan, o, r);
   EXPECT_EQ(j["commands"].get<size_t>() + j["setup_commands"].get<size_t>(), progress_total);
   const std::string text = run_report_text(plan, o, r);

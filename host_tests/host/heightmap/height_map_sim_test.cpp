@@ -155,7 +155,7 @@ TEST(HeightMapSim, ProbedMapKeepsTheDepthWithin10umOnAWarpedBlank) {
   ASSERT_FALSE(with.frames.empty());
   EXPECT_EQ(with.frames, without.frames);
   EXPECT_EQ(with.frames, flat.frames);
-  EXPECT_GT(with.run.setup_commands, 1u);  // the #A header and its #E heights
+  EXPECT_GT(with.run.setup.commands, 1u);  // the #A header and its #E heights
 }
 
 }  // namespace

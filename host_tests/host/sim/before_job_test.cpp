@@ -28,8 +28,8 @@ TEST(SimJobBeforeJob, ItsCommandsRunFirstAndAreNotCountedAsTheJobs) {
   const sim::SimJobResult with = sim::run_sim_job(plan, o);
   ASSERT_EQ(with.outcome, JobOutcome::kCompleted) << with.message;
   EXPECT_TRUE(sender_answered);
-  EXPECT_EQ(with.setup_commands, 1u);
-  EXPECT_GT(with.setup_wire_bytes, 0u);
+  EXPECT_EQ(with.setup.commands, 1u);
+  EXPECT_GT(with.setup.wire_bytes, 0u);
   EXPECT_EQ(with.commands, plain.commands);
   EXPECT_EQ(with.wire_bytes, plain.wire_bytes);
   // The dwell ran before the job: the machine time grew by it.
