@@ -144,6 +144,11 @@ struct Workshop::Slot {
 
 namespace {
 
+// Why a machine gets no job under serve --no-zero (on the page as the machine's message).
+constexpr const char* kUnzeroedMachine =
+    "not zeroed: with serve --no-zero it gets no job until it is zeroed at the machine (jog to "
+    "the corner with the joystick, press confirm)";
+
 // The operator aborted a job before it cut (waiting for the probe clip, or probing), or the
 // server stopped then. what() is the stage ("probing", "waiting for the probe clip").
 class AbortedBeforeCutting : public std::runtime_error {
@@ -683,19 +688,29 @@ void Workshop::machine_loop(Slot& slot) {
       sleep_for(std::min(options_.probe, std::chrono::milliseconds(1000)));
       continue;
     }
+    // --no-zero: a machine that is not zeroed gets no job (it would cut where it stands, not
+    // where the job is drawn); it waits, saying so on the page, until zeroed at the machine.
+    const bool unzeroed =
+        !options_.sender.zero_first && !(idle_status.flags & proto::kStatusZeroed);
+    const std::string message = unzeroed ? std::string(kUnzeroedMachine) : std::string();
     bool changed = false;
     {
       std::lock_guard<std::mutex> lock(slot.mutex);
       changed = slot.connection.state != "online" || !slot.seen.have_last_status ||
-                slot.seen.last_status.state != idle_status.state;
+                slot.seen.last_status.state != idle_status.state ||
+                slot.connection.message != message;
       slot.connection.state = "online";
-      slot.connection.message.clear();
+      slot.connection.message = message;
       slot.seen.last_status = idle_status;
       slot.seen.have_last_status = true;
     }
     if (changed) notify(false);
     const Lease lease = lease_.current();
     if (!work || stopping_) continue;
+    if (unzeroed) {
+      sleep_for(std::min(options_.probe, std::chrono::milliseconds(1000)));
+      continue;
+    }
     if (!lease_.valid(lease.epoch)) {  // the heartbeat renews it or takes a new one
       sleep_for(options_.poll);
       continue;

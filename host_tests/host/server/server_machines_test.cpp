@@ -580,6 +580,26 @@ TEST(ServerMachines, HoldWhilePlanningIsKeptAndStopsTheJobBeforeItMoves) {
   EXPECT_NE(log->body.find("asked for while planning: hold"), std::string::npos) << log->body;
 }
 
+// serve --no-zero: a machine that is not zeroed gets no job (the job was streamed to it and
+// cut where the tool stood); it waits, saying why on the page, and the job stays queued.
+TEST(ServerMachines, WithNoZeroAMachineThatIsNotZeroedGetsNoJob) {
+  test::TempDir dir;
+  SimRig sim(false);  // just powered on: not zeroed
+  ServerRig server(dir.path(), {test::machine("m1", sim.address())}, 256 * 1024, {},
+                   std::chrono::milliseconds(1500), /*zero_first=*/false);
+  const int64_t id = server.upload_ok("square.ngc", test::square_gcode(10, 10, 10));
+  ASSERT_TRUE(test::wait_until(
+      [&] {
+        const std::string m = server.status()["machines"][0]["message"];
+        return m.find("not zeroed: with serve --no-zero it gets no job") != std::string::npos;
+      },
+      20))
+      << server.status().dump();
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  EXPECT_EQ(server.job(id)["state"], "queued") << server.job(id).dump();
+  EXPECT_EQ(server.status()["machines"][0]["link"], "online") << server.status().dump();
+}
+
 // An abort while the job is planned ends its planning at once and the job with it: aborted,
 // nothing cut, "while planning" (the planning went on to its end first, a minute for a
 // million lines).

@@ -86,7 +86,8 @@ class ServerRig {
  public:
   ServerRig(const fs::path& data_dir, std::vector<MachineSpec> machines,
             size_t max_bytes = 256 * 1024, ResumeEncoder resume = {},
-            std::chrono::milliseconds silence_limit = std::chrono::milliseconds(1500)) {
+            std::chrono::milliseconds silence_limit = std::chrono::milliseconds(1500),
+            bool zero_first = true) {
     data_ = std::make_unique<DataFolder>(data_dir);
     bool created = false;
     token_ = data_->token(&created);
@@ -99,6 +100,7 @@ class ServerRig {
     wo.sender.status_interval = std::chrono::milliseconds(5);
     wo.sender.reply_timeout = std::chrono::milliseconds(500);
     wo.sender.silence_limit = silence_limit;
+    wo.sender.zero_first = zero_first;                  // false: serve --no-zero
     if (resume) wo.resume_encoder = std::move(resume);  // else the default: continue_from_curve()
     workshop_ = std::make_unique<Workshop>(*store_, *data_, machines, wo);
     intake_ = std::make_unique<JobIntake>(*store_, *data_, workshop_->fits(), max_bytes);
