@@ -146,8 +146,8 @@ namespace {
 
 // Why a machine gets no job under serve --no-zero (on the page as the machine's message).
 constexpr const char* kUnzeroedMachine =
-    "not zeroed: with serve --no-zero it gets no job until it is zeroed at the machine (jog to "
-    "the corner with the joystick, press confirm)";
+    "not zeroed: with serve --no-zero it gets no job until it is zeroed (a server without "
+    "--no-zero, or engraver send, starts manual zeroing on it)";
 
 // The operator aborted a job before it cut (waiting for the probe clip, or probing), or the
 // server stopped then. what() is the stage ("probing", "waiting for the probe clip").
