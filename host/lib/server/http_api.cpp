@@ -147,6 +147,23 @@ struct UploadFields {
   std::string error;
 };
 
+// The query's keys as sent, once per time given: httplib's params keep a repeated field once
+// when its values are equal, and read "=1" as a field named "1".
+std::vector<std::string> query_keys(const std::string& target) {
+  std::vector<std::string> keys;
+  const size_t mark = target.find('?');
+  if (mark == std::string::npos) return keys;
+  const std::string query = target.substr(mark + 1, target.find('#', mark) - mark - 1);
+  for (size_t from = 0; from <= query.size();) {
+    const size_t amp = std::min(query.find('&', from), query.size());
+    const std::string pair = query.substr(from, amp - from);
+    if (!pair.empty())
+      keys.push_back(httplib::detail::decode_url(pair.substr(0, pair.find('=')), true));
+    from = amp + 1;
+  }
+  return keys;
+}
+
 // Every field known and given once (only a form's `file` parts repeat: a board's files; a
 // second value would silently win or lose), each in one place only: "" or why not.
 std::string check_field_names(const httplib::Request& req, const UploadBody& body) {
@@ -159,17 +176,30 @@ std::string check_field_names(const httplib::Request& req, const UploadBody& bod
       error = fmt::format("field '{}' given more than once", key);
     }
   };
-  for (const auto& p : req.params) {
-    check(p.first, false);
+  for (const std::string& key : query_keys(req.target)) {
+    if (error.empty() && key.empty()) error = "a query field without a name (nothing before '=')";
+    check(key, false);
     // Read from one place only: what is given in the other would be ignored.
     if (error.empty() && body.multipart) {
-      error = fmt::format("field '{}' in the query of a form upload (give it as a part)", p.first);
+      error = fmt::format("field '{}' in the query of a form upload (give it as a part)", key);
     }
-    if (error.empty() && p.first == "file") {
+    if (error.empty() && key == "file") {
       error = "field 'file' in the query (a raw upload's body is the file; ?name=FILE_NAME)";
     }
   }
-  for (const auto& p : body.parts) check(p.name, p.name == "file");
+  size_t file_parts = 0;
+  bool named = false;  // an empty field counts as not given
+  for (const auto& p : body.parts) {
+    check(p.name, p.name == "file");
+    if (p.name == "file") ++file_parts;
+    if (p.name == "name" && !p.content.empty()) named = true;
+  }
+  // A form's one file names the job by its file name: a `name` part would be ignored.
+  if (error.empty() && file_parts == 1 && named) {
+    error =
+        "field 'name' in a form upload of one file (the job is named by the file part's file "
+        "name; 'name' names a board given as several file parts)";
+  }
   return error;
 }
 

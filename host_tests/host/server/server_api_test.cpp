@@ -320,6 +320,15 @@ TEST(ServerApi, DuplicateAndUnknownFieldsAndKeysAreRefusedByName) {
   refused(server.upload("a.ngc", good, "&priority=1&priority=5"),
           "field 'priority' given more than once");
   refused(server.upload("a.ngc", good, "&name=b.ngc"), "field 'name' given more than once");
+  // The same value twice is a repeat too (httplib's parameters keep it once), and "=1" has no
+  // name (httplib named it "1"); a form's one file names its job: a `name` part is refused.
+  refused(server.upload("a.ngc", good, "&priority=1&priority=1"),
+          "field 'priority' given more than once");
+  refused(server.upload("a.ngc", good, "&=1"), "a query field without a name");
+  httplib::MultipartFormDataItems named = {{"file", good, "a.ngc", "application/octet-stream"},
+                                           {"name", "zzz.ngc", "", ""}};
+  refused(client.Post("/api/jobs", server.auth(), named),
+          "field 'name' in a form upload of one file");
   refused(server.upload("a.ngc", good, "&file=x"), "field 'file' in the query");
   httplib::MultipartFormDataItems twice = {{"file", good, "a.ngc", "application/octet-stream"},
                                            {"priority", "1", "", ""},
