@@ -104,6 +104,11 @@ class WorkStopped : public std::runtime_error {
 // import_drawing, reporting its progress (a DXF: the bytes checked, then read).
 Drawing import_drawing(const std::string& path, const WorkProgress& progress);
 
+// In an importer's catch (const std::exception&): ImportError and WorkStopped go on as they
+// are; anything else becomes an ImportError naming the file ("not enough memory", or an
+// internal error while importing `drawing`, e.g. "the DXF drawing", to report).
+[[noreturn]] void rethrow_as_import_error(const std::string& path, const std::string& drawing);
+
 }  // namespace host
 
 #endif  // HOST_LIB_DRAWING_DRAWING_H

@@ -804,19 +804,8 @@ Drawing import_dxf_text_reporting(const std::string& text, const std::string& pa
     dxf.in(stream, &reader);
     if (progress) progress("bytes read", text.size(), text.size());
     return reader.finish();
-  } catch (const ImportError&) {
-    throw;
-  } catch (const WorkStopped&) {
-    throw;
-  } catch (const std::bad_alloc& e) {
-    if (dynamic_cast<const std::bad_array_new_length*>(&e) == nullptr) {
-      throw ImportError(path + ": not enough memory to import the drawing");
-    }
-    throw ImportError(
-        path + ": internal error while importing the DXF drawing (please report): " + e.what());
-  } catch (const std::exception& e) {
-    throw ImportError(
-        path + ": internal error while importing the DXF drawing (please report): " + e.what());
+  } catch (const std::exception&) {
+    rethrow_as_import_error(path, "the DXF drawing");
   }
 }
 

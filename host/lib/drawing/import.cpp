@@ -126,19 +126,26 @@ Drawing import_drawing(const std::string& path) {
 Drawing import_drawing(const std::string& path, const WorkProgress& progress) {
   try {
     return import_by_format(path, progress);
+  } catch (const std::exception&) {
+    rethrow_as_import_error(path, "the drawing");
+  }
+}
+
+void rethrow_as_import_error(const std::string& path, const std::string& drawing) {
+  try {
+    throw;
   } catch (const ImportError&) {
     throw;
   } catch (const WorkStopped&) {
     throw;
-  } catch (const std::bad_alloc& e) {
-    if (dynamic_cast<const std::bad_array_new_length*>(&e) == nullptr) {
+  } catch (const std::exception& e) {
+    // Out of memory is the file's size; a bad array length (a size gone wrong) is a bug.
+    if (dynamic_cast<const std::bad_alloc*>(&e) != nullptr &&
+        dynamic_cast<const std::bad_array_new_length*>(&e) == nullptr) {
       throw ImportError(path + ": not enough memory to import the drawing");
     }
-    throw ImportError(path +
-                      ": internal error while importing the drawing (please report): " + e.what());
-  } catch (const std::exception& e) {
-    throw ImportError(path +
-                      ": internal error while importing the drawing (please report): " + e.what());
+    throw ImportError(path + ": internal error while importing " + drawing +
+                      " (please report): " + e.what());
   }
 }
 
