@@ -92,6 +92,9 @@ std::vector<std::string> upload_field_names() {
 
 namespace {
 
+// A form's part headers and boundaries on top of its files (the limit is the files').
+constexpr size_t kFormFramingBytes = 64 * 1024;
+
 std::string unknown_upload_field(const std::string& key) {
   static const std::vector<std::string> kNames = upload_field_names();
   for (const std::string& f : kNames) {
@@ -525,7 +528,7 @@ HttpApi::HttpApi(JobStore& store, JobIntake& intake, Workshop& workshop, const D
     listen_fd_ = fd;
   });
   // Multipart framing on top of the file; httplib answers 413 beyond this.
-  http_->set_payload_max_length(intake_.max_bytes() + 64 * 1024);
+  http_->set_payload_max_length(intake_.max_bytes() + kFormFramingBytes);
   routes();
 }
 
@@ -822,6 +825,15 @@ void HttpApi::route_upload() {
     body.multipart = req.is_multipart_form_data();
     bool ok = false;
     bool written = true;
+    // Counted as it arrives: a chunked body has no length for httplib to refuse (300 MB went
+    // to disk under a 12 MB limit), and a body still trickling in must not hold a server that
+    // stops (it waited for the last byte).
+    const size_t limit = intake_.max_bytes() + kFormFramingBytes;
+    size_t received = 0;
+    auto take = [&](size_t n) {
+      received += n;
+      return received <= limit && !stopping_;
+    };
     if (body.multipart) {
       ok = read(
           [&](const httplib::MultipartFormData& part) {
@@ -831,18 +843,29 @@ void HttpApi::route_upload() {
             return written;
           },
           [&](const char* data, size_t n) {
+            if (!take(n)) return false;
             if (!body.files.back().empty()) return written = body.write(data, n);
             body.parts.back().content.append(data, n);
             return true;
           });
     } else {
       body.raw = body.new_file();
-      ok = read([&](const char* data, size_t n) { return written = body.write(data, n); });
+      ok = read(
+          [&](const char* data, size_t n) { return take(n) && (written = body.write(data, n)); });
     }
     written = body.close() && written;
     if (!written) return send_error(res, 500, "the upload could not be written to the data folder");
+    if (stopping_) {
+      return send_error(res, 503,
+                        "the server is stopping: not queued (send it again once the server is "
+                        "back)");
+    }
     if (!ok) {
-      if (res.status == 413) return send_error(res, 413, "upload larger than the limit");
+      if (res.status == 413 || received > limit) {
+        return send_error(res, 413,
+                          fmt::format("upload larger than the limit of {} bytes (--max-upload-mb)",
+                                      intake_.max_bytes()));
+      }
       return send_error(res, 400, "the upload's body could not be read");
     }
     const UploadFields u = upload_fields(req, body);

@@ -164,9 +164,11 @@ bool continued_run(const JobRecord& job) {
 }
 
 // Where a continued job's earlier runs stopped, over the whole job.
+// (job_commands 0: not known, the run ended before its commands were made.)
 std::string whole_job_point(const JobRecord& job, size_t job_commands) {
-  return job.resume_index >= 0 ? fmt::format("job command {} of {}", job.resume_index, job_commands)
-                               : fmt::format("curve {}", job.start_curve);
+  if (job.resume_index < 0) return fmt::format("curve {}", job.start_curve);
+  return job_commands > 0 ? fmt::format("job command {} of {}", job.resume_index, job_commands)
+                          : fmt::format("job command {}", job.resume_index);
 }
 
 // Why a run ended before it cut. A continued job's earlier runs did cut, so its message

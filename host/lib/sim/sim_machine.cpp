@@ -1,8 +1,8 @@
 // The simulated machine: firmware application + TMC428 driver + TMC428 model + UART timing.
 #include "host/lib/sim/sim_machine.h"
 
-#include <chrono>  // steady_clock
-#include <cmath>   // std::lround
+#include <chrono>   // steady_clock
+#include <cmath>    // std::lround
 #include <cstring>  // std::memcpy
 
 #include "firmware/app/application.h"        // app::Application, app::Board

@@ -175,5 +175,54 @@ TEST(ServerUploadFields, AnUploadsFilesAreOnDiskOnlyUntilItIsAnswered) {
   EXPECT_TRUE(fs::is_empty(tmp));
 }
 
+// A chunked body has no length to refuse it by: it is counted as it arrives and cut off past
+// the limit (300 MB went to disk under a 12 MB limit before the 413).
+TEST(ServerUploadFields, AChunkedBodyIsCutOffAtTheLimit) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {}, 256 * 1024);
+  size_t sent = 0;
+  const std::string chunk(64 * 1024, '0');
+  auto r = server.client().Post(
+      "/api/jobs?name=endless.dxf", server.auth(),
+      [&](size_t, httplib::DataSink& sink) {
+        if (sent >= 64u * 1024 * 1024) {
+          sink.done();
+          return true;
+        }
+        sent += chunk.size();
+        return sink.write(chunk.data(), chunk.size());
+      },
+      "application/octet-stream");
+  EXPECT_LT(sent, 16u * 1024 * 1024) << "the server read on past its limit";
+  if (r) EXPECT_EQ(r->status, 413) << r->body;
+  EXPECT_TRUE(server.jobs().empty());
+}
+
+// A server that stops does not wait for an upload still trickling in: it answers 503 at the
+// next bytes (it waited for the last byte: 50 s for a 10 MB upload at 200 kB/s).
+TEST(ServerUploadFields, AStopDoesNotWaitForAnUploadStillArriving) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {}, 64 * 1024 * 1024);
+  std::atomic<bool> stopped{false};
+  std::thread uploader([&] {
+    const std::string chunk(1024, '0');
+    httplib::Client c = server.client();
+    c.Post(
+        "/api/jobs?name=slow.dxf", server.auth(),
+        [&](size_t, httplib::DataSink& sink) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(20));
+          return !stopped && sink.write(chunk.data(), chunk.size());
+        },
+        "application/octet-stream");
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const auto t0 = std::chrono::steady_clock::now();
+  server.shutdown();
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  stopped = true;
+  uploader.join();
+  EXPECT_LT(took, 3.0) << "the stop waited for the upload";
+}
+
 }  // namespace
 }  // namespace host::server
