@@ -23,19 +23,21 @@ double spline_length_mm(const PlanStep& s, double from_x_mm, double from_y_mm) {
   return len;
 }
 
-template <typename AtEnd>
-double plan_seconds(const JobPlan& plan, AtEnd at_end) {
-  const config::MachineConfig m = config::default_machine_config();
-  const double rapid_mm_s = m.rapid_feed_um_per_s / 1000.0;
-  const double z_mm_s = m.axis[config::kAxisZ].max_speed_um_per_s / 1000.0;
-  double x = 0, y = 0, z = 0, seconds = 0;
-  for (const PlanStep& s : plan.steps) {
+// The tool's place and the seconds so far, one step after another.
+class StepClock {
+ public:
+  StepClock() {
+    const config::MachineConfig m = config::default_machine_config();
+    rapid_mm_s_ = m.rapid_feed_um_per_s / 1000.0;
+    z_mm_s_ = m.axis[config::kAxisZ].max_speed_um_per_s / 1000.0;
+  }
+  void add(const PlanStep& s) {
     const double tx = s.to.x_um / 1000.0, ty = s.to.y_um / 1000.0;
     const double d = std::hypot(tx - x, ty - y);
-    const double feed = s.feed_um_per_s > 0 ? s.feed_um_per_s / 1000.0 : rapid_mm_s;
+    const double feed = s.feed_um_per_s > 0 ? s.feed_um_per_s / 1000.0 : rapid_mm_s_;
     switch (s.kind) {
       case PlanStep::kRapid:
-        seconds += d / rapid_mm_s;
+        seconds += d / rapid_mm_s_;
         x = tx, y = ty;
         break;
       case PlanStep::kFeed:
@@ -48,13 +50,13 @@ double plan_seconds(const JobPlan& plan, AtEnd at_end) {
         break;
       case PlanStep::kDrill: {
         const double start = s.z_start_um / 1000.0, bottom = s.z_um / 1000.0;
-        seconds += d / rapid_mm_s + std::abs(z - start) / z_mm_s + 2 * (start - bottom) / feed;
+        seconds += d / rapid_mm_s_ + std::abs(z - start) / z_mm_s_ + 2 * (start - bottom) / feed;
         x = tx, y = ty, z = start;
         break;
       }
       case PlanStep::kPenUp:
       case PlanStep::kPenDown:
-        seconds += std::abs(s.z_um / 1000.0 - z) / std::min(z_mm_s, feed);
+        seconds += std::abs(s.z_um / 1000.0 - z) / std::min(z_mm_s_, feed);
         z = s.z_um / 1000.0;
         break;
       case PlanStep::kDwell:
@@ -64,28 +66,46 @@ double plan_seconds(const JobPlan& plan, AtEnd at_end) {
       case PlanStep::kSpindle:
         break;
     }
-    at_end(seconds);
   }
-  return seconds;
-}
+  double x = 0, y = 0, z = 0, seconds = 0;
+
+ private:
+  double rapid_mm_s_ = 0, z_mm_s_ = 0;
+};
+
+constexpr size_t kStepsAMark = 64;
 
 }  // namespace
 
 double planned_seconds_by_steps(const JobPlan& plan) {
-  return plan_seconds(plan, [](double) {});
+  StepClock clock;
+  for (const PlanStep& s : plan.steps) clock.add(s);
+  return clock.seconds;
 }
 
-std::vector<float> step_end_seconds(const JobPlan& plan) {
-  std::vector<float> ends;
-  ends.reserve(plan.steps.size());
-  plan_seconds(plan, [&ends](double seconds) { ends.push_back(static_cast<float>(seconds)); });
-  return ends;
+PlannedTimes::PlannedTimes(std::shared_ptr<const JobPlan> plan) : plan_(std::move(plan)) {
+  StepClock clock;
+  size_t i = 0;
+  marks_.reserve(plan_->steps.size() / kStepsAMark + 1);
+  for (const PlanStep& s : plan_->steps) {
+    if (i++ % kStepsAMark == 0) marks_.push_back({clock.seconds, clock.x, clock.y, clock.z});
+    clock.add(s);
+  }
+  total_s_ = clock.seconds;
 }
 
-void TimeLeft::plan(std::shared_ptr<const std::vector<float>> step_end_s, double planned_s) {
-  ends_ = std::move(step_end_s);
+double PlannedTimes::end_s(size_t step) const {
+  const Mark& m = marks_[step / kStepsAMark];
+  StepClock clock;
+  clock.seconds = m.seconds, clock.x = m.x_mm, clock.y = m.y_mm, clock.z = m.z_mm;
+  for (size_t i = step / kStepsAMark * kStepsAMark; i <= step; ++i) clock.add(plan_->steps[i]);
+  return clock.seconds;
+}
+
+void TimeLeft::plan(std::shared_ptr<const PlannedTimes> steps, double planned_s) {
+  ends_ = std::move(steps);
   planned_s_ = planned_s;
-  const double total = ends_ && !ends_->empty() ? ends_->back() : 0.0;
+  const double total = ends_ && ends_->size() > 0 ? ends_->total_s() : 0.0;
   if (total <= 0) ends_.reset();
   scale_ = total > 0 ? planned_s / total : 1.0;
   first_ = step_ = 0;
@@ -102,7 +122,7 @@ void TimeLeft::start_at(int first) {
 double TimeLeft::planned_before(int step) const {
   if (!ends_) return step < 0 ? planned_s_ : 0.0;
   if (step < 0 || static_cast<size_t>(step) > ends_->size()) return planned_s_;
-  return step == 0 ? 0.0 : (*ends_)[static_cast<size_t>(step) - 1] * scale_;
+  return step == 0 ? 0.0 : ends_->end_s(static_cast<size_t>(step) - 1) * scale_;
 }
 
 void TimeLeft::at_step(int step, double working_s) {

@@ -5,8 +5,9 @@
 #ifndef HOST_LIB_SERVER_TIME_LEFT_H
 #define HOST_LIB_SERVER_TIME_LEFT_H
 
-#include <memory>  // std::shared_ptr
-#include <vector>  // std::vector
+#include <cstddef>  // size_t
+#include <memory>   // std::shared_ptr
+#include <vector>   // std::vector
 
 #include "host/lib/plan/job_plan.h"
 
@@ -15,14 +16,31 @@ namespace host::server {
 // Estimated run time of any plan from its steps and their own feeds (rapids, plunges,
 // dwells, pen moves; a spline by its control polygon).
 double planned_seconds_by_steps(const JobPlan& plan);
-// The same summed to the end of each step (seconds from the plan's start).
-std::vector<float> step_end_seconds(const JobPlan& plan);
+
+// The same summed to the end of each step, worked out again from the plan when asked, from a
+// mark every 64 steps: a float a step was 16 MB of a million-line job, held while it runs.
+class PlannedTimes {
+ public:
+  explicit PlannedTimes(std::shared_ptr<const JobPlan> plan);
+  size_t size() const { return plan_->steps.size(); }
+  // Seconds from the plan's start to the end of step `step` (< size()).
+  double end_s(size_t step) const;
+  double total_s() const { return total_s_; }
+
+ private:
+  struct Mark {  // where the tool stands and the seconds so far, before step 64 k
+    double seconds = 0, x_mm = 0, y_mm = 0, z_mm = 0;
+  };
+  std::shared_ptr<const JobPlan> plan_;
+  std::vector<Mark> marks_;
+  double total_s_ = 0;
+};
 
 class TimeLeft {
  public:
   // A job planned to take `planned_s` (its record's figure), shared out over its steps in
-  // the proportions `step_end_s` gives (null or empty: the whole figure, no steps known).
-  void plan(std::shared_ptr<const std::vector<float>> step_end_s, double planned_s);
+  // the proportions `steps` gives (null or no steps: the whole figure, no steps known).
+  void plan(std::shared_ptr<const PlannedTimes> steps, double planned_s);
   // This run starts at plan step `first` (a continued job: where it resumes; -1: none left).
   void start_at(int first);
   // The machine is at plan step `step` (-1: past the last; one before this run's first counts
@@ -35,7 +53,7 @@ class TimeLeft {
 
  private:
   double planned_before(int step) const;  // planned seconds of the steps before `step`
-  std::shared_ptr<const std::vector<float>> ends_;
+  std::shared_ptr<const PlannedTimes> ends_;
   double scale_ = 1;  // to the record's planned time
   double planned_s_ = 0;
   int first_ = 0;

@@ -778,7 +778,7 @@ struct Workshop::JobRun {
   const char* outcome = "not started";
   std::string message;
   // The plan and its stream live past the try: an interrupted job's first uncut curve.
-  std::unique_ptr<const JobPlan> planned;
+  std::shared_ptr<const JobPlan> planned;  // shared with the time left while it runs
   std::optional<JobStream> commands;
   size_t executed = 0;
   // The feed override as the machine reported it: when it changed and to what.
@@ -883,7 +883,7 @@ void Workshop::make_commands(Slot& slot, JobRun& r, Sender& sender,
     return stopping_ || slot.asked.abort;
   };
   try {
-    r.planned = std::make_unique<const JobPlan>(plan_archived_job(
+    r.planned = std::make_shared<const JobPlan>(plan_archived_job(
         r.dir, job, slot.spec.fit.work_width_mm, slot.spec.fit.work_height_mm, fetched, stop));
   } catch (const WorkStopped&) {
     throw AbortedBeforeCutting("planning");
@@ -939,7 +939,7 @@ void Workshop::hand_to_sender(Slot& slot, JobRun& r, Sender& sender) {
   // carry earlier steps).
   const int first_step =
       r.commands->resumed_step() >= 0 ? r.commands->resumed_step() : r.commands->step_from(0);
-  auto step_ends = std::make_shared<const std::vector<float>>(step_end_seconds(*r.planned));
+  auto step_ends = std::make_shared<const PlannedTimes>(r.planned);
   // Its size and first curve are known now: not "0 of 0" in the store while the first
   // status is awaited, and continuable from that curve whatever stops it next.
   r.progress = progress_of(r.progress, r.commands->size(), 0, r.commands->first_uncut_curve(0),

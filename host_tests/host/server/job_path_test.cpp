@@ -2,7 +2,8 @@
 // them a machine position lies (a closed curve at its start is not done; never backwards).
 #include <gtest/gtest.h>
 
-#include "host/lib/drawing/conics.h"  // line_spline
+#include "host/lib/drawing/conics.h"  // line_spline, polyline_spline
+#include "host/lib/plan/tool_path_walk.h"
 #include "host/lib/server/job_path.h"
 #include "host/lib/server/job_planning.h"
 #include "host_tests/host/server/server_test_rig.h"
@@ -111,15 +112,45 @@ TEST(JobPath, ALargeJobsPreviewIsThinnedToItsBudgetWithExactLengths) {
   expect_contiguous(thin);
 }
 
-// Two points and two pieces a line (16 bytes each) and its four steps' piece (4 each): ~80
-// bytes, where a piece with two vectors of its own took ~300 a line.
-TEST(JobPath, ALineTakesAboutEightyBytes) {
+// Two points (8 bytes each) and two pieces (12 each) a line, its four steps' piece a bit
+// each: ~41 bytes, where double points, 16-byte pieces and a piece per step took ~80, and a
+// piece with two vectors of its own ~300.
+TEST(JobPath, ALineTakesAboutFortyBytes) {
   const int n = 3000;
   const JobPlan plan = separate_lines(n);
   const JobPath path(plan);
   const double per_line = static_cast<double>(path.heap_bytes()) / n;
   RecordProperty("job_path_bytes_a_line", std::to_string(per_line));
-  EXPECT_LT(per_line, 90);
+  EXPECT_LT(per_line, 45);
+}
+
+// Each step's piece, as the walk over the plan gives it, far into a job whose curves are
+// sent as several splines (the index is kept 64 steps a word).
+TEST(JobPath, EveryStepFindsItsPieceAcrossTheIndexsWords) {
+  Drawing d;
+  for (int i = 0; i < 48; ++i) {  // wavy lines of 48 arcs: several spline steps each
+    std::vector<BulgeVertex> wave;
+    for (int k = 0; k <= 48; ++k) wave.push_back({Point2(k * 2.0, 5 + i * 2.5), 0.3});
+    Curve c;
+    c.set_spline(polyline_spline(wave, false));
+    d.curves.push_back(c);
+  }
+  const JobPlan plan = plan_job(std::move(d), PlanOptions());
+  ASSERT_GT(plan.steps.size(), 3u * 64) << plan.steps.size();  // four words
+  std::vector<size_t> expected;  // the first piece at or after each step
+  size_t pieces = 0;
+  bool continued = false;
+  walk_tool_path(plan, 0.02, [&](const ToolMove& m) {
+    continued = continued || m.kind == StepMove::kContinues;
+    expected.push_back(m.kind == StepMove::kContinues ? pieces - 1 : pieces);
+    if (m.kind == StepMove::kNew) ++pieces;
+  });
+  ASSERT_TRUE(continued);
+  const JobPath path(plan);
+  ASSERT_EQ(path.to_json()["pieces"].size(), pieces);
+  for (size_t s = 0; s < plan.steps.size(); ++s) {
+    EXPECT_EQ(path.piece_of_step(s), expected[s]) << "step " << s;
+  }
 }
 
 }  // namespace

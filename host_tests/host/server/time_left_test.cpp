@@ -11,12 +11,19 @@
 namespace host::server {
 namespace {
 
+PlanStep dwell_of(uint32_t ms) {
+  PlanStep dwell;
+  dwell.kind = PlanStep::kDwell;
+  dwell.dwell_ms = ms;
+  return dwell;
+}
+
 // Ten steps of 10 planned seconds each (the record's planned figure 100 s).
 TimeLeft ten_steps() {
+  auto plan = std::make_shared<JobPlan>();
+  for (int i = 1; i <= 10; ++i) plan->steps.push_back(dwell_of(10000));
   TimeLeft t;
-  auto ends = std::make_shared<std::vector<float>>();
-  for (int i = 1; i <= 10; ++i) ends->push_back(static_cast<float>(10 * i));
-  t.plan(std::move(ends), 100.0);
+  t.plan(std::make_shared<const PlannedTimes>(std::move(plan)), 100.0);
   return t;
 }
 
@@ -104,16 +111,35 @@ TEST(TimeLeft, StepEndSecondsSumToThePlansTime) {
   feed.kind = PlanStep::kFeed;
   feed.to = {10000, 20000};
   feed.feed_um_per_s = 5000;
-  PlanStep dwell;
-  dwell.kind = PlanStep::kDwell;
-  dwell.dwell_ms = 1500;
-  plan.steps = {rapid, feed, dwell};
-  const std::vector<float> ends = step_end_seconds(plan);
+  plan.steps = {rapid, feed, dwell_of(1500)};
+  const PlannedTimes ends(std::make_shared<const JobPlan>(plan));
   ASSERT_EQ(ends.size(), 3u);
-  EXPECT_GT(ends[0], 0.0f);
-  EXPECT_NEAR(ends[1] - ends[0], 4.0, 1e-6);  // 20 mm at 5 mm/s
-  EXPECT_NEAR(ends[2] - ends[1], 1.5, 1e-6);
-  EXPECT_NEAR(ends.back(), planned_seconds_by_steps(plan), 1e-5);
+  EXPECT_GT(ends.end_s(0), 0.0);
+  EXPECT_NEAR(ends.end_s(1) - ends.end_s(0), 4.0, 1e-9);  // 20 mm at 5 mm/s
+  EXPECT_NEAR(ends.end_s(2) - ends.end_s(1), 1.5, 1e-9);
+  EXPECT_DOUBLE_EQ(ends.total_s(), planned_seconds_by_steps(plan));
+}
+
+// Each step's end is worked out from the mark before it (one every 64 steps): the same
+// sums, step by step, as the whole plan's, far into a long job.
+TEST(TimeLeft, StepEndsFromTheMarksAreTheRunningSums) {
+  JobPlan plan;
+  double sum_s = 0;
+  std::vector<double> expected;
+  for (int i = 0; i < 300; ++i) {
+    PlanStep feed;  // 1 mm further along x each step, at 1 to 7 mm/s
+    feed.kind = PlanStep::kFeed;
+    feed.to = {1000 * (i + 1), 0};
+    feed.feed_um_per_s = 1000 * (1 + i % 7);
+    plan.steps.push_back(feed);
+    sum_s += 1.0 / (1 + i % 7);
+    expected.push_back(sum_s);
+  }
+  const PlannedTimes ends(std::make_shared<const JobPlan>(plan));
+  for (size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_NEAR(ends.end_s(i), expected[i], 1e-9) << "step " << i;
+  }
+  EXPECT_NEAR(ends.total_s(), sum_s, 1e-9);
 }
 
 // A closed contour as one spline step (an isolation loop): its time is its length's, not its
@@ -131,9 +157,9 @@ TEST(TimeLeft, AClosedSplineStepTakesTheTimeOfItsLength) {
   loop.set_spline(square);
   loop.to = {0, 0};
   plan.steps = {loop};
-  const std::vector<float> ends = step_end_seconds(plan);
+  const PlannedTimes ends(std::make_shared<const JobPlan>(plan));
   ASSERT_EQ(ends.size(), 1u);
-  EXPECT_NEAR(ends[0], 80.0 / 5.0, 1e-5);  // 80 mm round at 5 mm/s
+  EXPECT_NEAR(ends.end_s(0), 80.0 / 5.0, 1e-9);  // 80 mm round at 5 mm/s
 }
 
 }  // namespace
