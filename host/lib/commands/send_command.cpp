@@ -170,6 +170,7 @@ struct ControlsAttached {
 
 SendResult send_job(Link& link, const JobPlan& plan, const SendOptions& o, std::ostream& log) {
   Sender sender(link, o.sender);
+  sender.set_note([&log](const std::string& line) { log << "engraver: " << line << "\n"; });
   const ControlsAttached controls(o, &sender);
   const proto::SessionReply caps = sender.open_session();
   if (!o.sender.zero_first) refuse_unzeroed_machine(sender, "send");  // before probe or resume

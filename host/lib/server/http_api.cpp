@@ -527,8 +527,8 @@ HttpApi::HttpApi(JobStore& store, JobIntake& intake, Workshop& workshop, const D
     ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
     listen_fd_ = fd;
   });
-  // Multipart framing on top of the file; httplib answers 413 beyond this.
-  http_->set_payload_max_length(intake_.max_bytes() + kFormFramingBytes);
+  // httplib answers 413 beyond this (having read the body: see route_checks).
+  http_->set_payload_max_length(upload_limit_bytes());
   routes();
 }
 
@@ -598,9 +598,11 @@ nlohmann::json HttpApi::job_answer(const JobRecord& j) const {
   out["height_map"] = has_height_map(j);
   const int64_t map_job = height_map_job_of(data_, j);
   out["height_map_job"] = map_job != 0 ? nlohmann::json(map_job) : nlohmann::json();
-  out["waiting"] = map_wait_of(store_, data_, j, [this](const std::string& machine) {
+  std::string waiting = map_wait_of(store_, data_, j, [this](const std::string& machine) {
     return workshop_.availability(machine);
   });
+  if (waiting.empty()) waiting = workshop_.unzeroed_wait(j);
+  out["waiting"] = waiting;
   return out;
 }
 
@@ -631,6 +633,39 @@ void HttpApi::routes() {
   route_priority();
 }
 
+bool HttpApi::refused_from_headers(const httplib::Request& req, httplib::Response& res) const {
+  const std::string host = req.get_header_value("Host");
+  if (!hosts_.allows(host)) {
+    send_error(res, 403,
+               fmt::format("Host '{}' is not a name of this server (it answers to {}; "
+                           "serve --allowed-host NAME adds one)",
+                           host, hosts_.describe()));
+    return true;
+  }
+  // A known path with a method it does not take: 405 before the token is asked for.
+  const std::string allow = allowed_methods(req.path);
+  if (!allow.empty() && (", " + allow + ",").find(", " + req.method + ",") == std::string::npos) {
+    res.set_header("Allow", allow);
+    send_error(res, 405, fmt::format("{} takes {}, not {}", req.path, allow, req.method));
+    return true;
+  }
+  if (req.method == "GET" || req.method == "HEAD") return false;
+  if (!same_secret(token_of(req), options_.token)) {
+    send_error(res, 401, "missing or wrong token (Authorization: Bearer TOKEN)");
+    return true;
+  }
+  return false;
+}
+
+size_t HttpApi::upload_limit_bytes() const {
+  return intake_.max_bytes() + kFormFramingBytes;  // multipart framing on top of the files
+}
+
+std::string HttpApi::upload_limit_text() const {
+  return fmt::format("upload larger than the limit of {} bytes (--max-upload-mb)",
+                     intake_.max_bytes());
+}
+
 // Before every route: the Host check, 405 for a wrong method, the token; the error body.
 void HttpApi::route_checks() {
   httplib::Server& s = *http_;
@@ -638,28 +673,26 @@ void HttpApi::route_checks() {
   // another site gets nowhere through a name that resolves here), and the token guards
   // every method but GET/HEAD.
   s.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-    const std::string host = req.get_header_value("Host");
-    if (!hosts_.allows(host)) {
-      send_error(res, 403,
-                 fmt::format("Host '{}' is not a name of this server (it answers to {}; "
-                             "serve --allowed-host NAME adds one)",
-                             host, hosts_.describe()));
-      return httplib::Server::HandlerResponse::Handled;
+    return refused_from_headers(req, res) ? httplib::Server::HandlerResponse::Handled
+                                          : httplib::Server::HandlerResponse::Unhandled;
+  });
+  // A client that asks before it sends the body (Expect: 100-continue, as curl does for a
+  // large one) hears the same refusals from the headers, and a 413 for a declared length
+  // past the limit, before any byte of the body: httplib would say 100 Continue, then read
+  // the whole body to throw it away. Connection: close, since the body is not read.
+  s.set_expect_100_continue_handler([this](const httplib::Request& req, httplib::Response& res) {
+    if (!refused_from_headers(req, res)) {
+      uint64_t declared = 0;
+      const std::string length = req.get_header_value("Content-Length");
+      const char* end = length.data() + length.size();
+      const auto parsed = std::from_chars(length.data(), end, declared);
+      const bool over = !length.empty() && parsed.ec == std::errc() && parsed.ptr == end &&
+                        declared > upload_limit_bytes();
+      if (!over) return 100;
+      send_error(res, 413, upload_limit_text());
     }
-    // A known path with a method it does not take: 405 before the token is asked for.
-    const std::string allow = allowed_methods(req.path);
-    if (!allow.empty() && (", " + allow + ",").find(", " + req.method + ",") == std::string::npos) {
-      res.set_header("Allow", allow);
-      send_error(res, 405, fmt::format("{} takes {}, not {}", req.path, allow, req.method));
-      return httplib::Server::HandlerResponse::Handled;
-    }
-    if (req.method == "GET" || req.method == "HEAD")
-      return httplib::Server::HandlerResponse::Unhandled;
-    if (!same_secret(token_of(req), options_.token)) {
-      send_error(res, 401, "missing or wrong token (Authorization: Bearer TOKEN)");
-      return httplib::Server::HandlerResponse::Handled;
-    }
-    return httplib::Server::HandlerResponse::Unhandled;
+    res.set_header("Connection", "close");
+    return res.status;
   });
   s.set_error_handler([](const httplib::Request&, httplib::Response& res) {
     if (!res.body.empty()) return;
@@ -765,6 +798,26 @@ void HttpApi::route_jobs() {
         });
 }
 
+// Why a job's archive file is not there: servers on one queue keep the jobs they ran in
+// their own archive unless they share one (--archive); a job running on this server has
+// its run's report.json once the run ends (an outside tester was sent to "server 'a'" by
+// server 'a' itself).
+std::string HttpApi::missing_file_text(const JobRecord& job, const std::string& file) const {
+  if (job.owner.empty()) return "the job has no " + file + " (yet)";
+  if (job.owner == workshop_.owner()) {
+    if (job.state != JobState::kRunning) return "the job has no " + file;
+    return fmt::format("the job has no {} yet: it is running on this server (machine '{}'){}", file,
+                       job.machine,
+                       file == "report.json" ? "; a run's report.json is written when it ends, "
+                                               "its machine.log as it runs"
+                                             : "");
+  }
+  return fmt::format(
+      "the job has no {} here (yet); it {} on server '{}', whose archive holds "
+      "the files of its runs unless the servers share one (serve --archive)",
+      file, job.state == JobState::kRunning ? "is running" : "ran", job.owner);
+}
+
 // A job's archive files and its runs' files.
 void HttpApi::route_job_files() {
   httplib::Server& s = *http_;
@@ -785,15 +838,7 @@ void HttpApi::route_job_files() {
           try {
             res.set_content(read_file(path), type);
           } catch (const std::exception&) {
-            // Servers on one queue keep the jobs they ran in their own archive unless they
-            // share one (--archive): say where the file is.
-            send_error(res, 404,
-                       job->owner.empty()
-                           ? "the job has no " + file + " (yet)"
-                           : fmt::format("the job has no {} here (yet); it ran on server '{}', "
-                                         "whose archive holds the files of its runs unless "
-                                         "the servers share one (serve --archive)",
-                                         file, job->owner));
+            send_error(res, 404, missing_file_text(*job, file));
           }
         });
   s.Get(R"(/api/jobs/(\d{1,18})/runs/([1-9]\d{0,5})/([a-z.]{1,16}))",
@@ -808,7 +853,13 @@ void HttpApi::route_job_files() {
             res.set_content(read_file(run_file(data_.job_dir(job->key), run, file)),
                             file == "report.json" ? "application/json" : "text/plain");
           } catch (const std::exception&) {
-            send_error(res, 404, fmt::format("the job has no run {} with a {}", run, file));
+            // The newest run of a job running here: its report comes when it ends.
+            const bool running_here = job->state == JobState::kRunning &&
+                                      job->owner == workshop_.owner() &&
+                                      run == run_count(data_.job_dir(job->key));
+            send_error(res, 404,
+                       running_here ? missing_file_text(*job, file)
+                                    : fmt::format("the job has no run {} with a {}", run, file));
           }
         });
 }
@@ -828,7 +879,7 @@ void HttpApi::route_upload() {
     // Counted as it arrives: a chunked body has no length for httplib to refuse (300 MB went
     // to disk under a 12 MB limit), and a body still trickling in must not hold a server that
     // stops (it waited for the last byte).
-    const size_t limit = intake_.max_bytes() + kFormFramingBytes;
+    const size_t limit = upload_limit_bytes();
     size_t received = 0;
     auto take = [&](size_t n) {
       received += n;
@@ -862,9 +913,7 @@ void HttpApi::route_upload() {
     }
     if (!ok) {
       if (res.status == 413 || received > limit) {
-        return send_error(res, 413,
-                          fmt::format("upload larger than the limit of {} bytes (--max-upload-mb)",
-                                      intake_.max_bytes()));
+        return send_error(res, 413, upload_limit_text());
       }
       return send_error(res, 400, "the upload's body could not be read");
     }

@@ -22,6 +22,7 @@
 
 namespace httplib {
 class Server;
+struct Request;
 struct Response;
 }  // namespace httplib
 
@@ -68,6 +69,14 @@ class HttpApi {
   void route_upload();
   void route_control();
   void route_priority();
+  // The refusals the headers decide (wrong Host 403, wrong method 405, no token 401): true
+  // with the answer in res.
+  bool refused_from_headers(const httplib::Request& req, httplib::Response& res) const;
+  // An upload's body may be this long (--max-upload-mb and a form's framing); the 413's text.
+  size_t upload_limit_bytes() const;
+  std::string upload_limit_text() const;
+  // The 404's text for an archive file a job does not have (yet): where it is, or when.
+  std::string missing_file_text(const JobRecord& job, const std::string& file) const;
   // Cancel, requeue, continue: answered from the store (true), else false.
   // Why a failed or aborted job cannot be requeued or continued: its height map source
   // ended without a map ("" when it can).

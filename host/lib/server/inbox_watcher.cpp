@@ -66,6 +66,7 @@ std::string folder_signature(const fs::path& dir) {
 Submission InboxWatcher::board_folder(const fs::path& dir, IntakeResult* refused) const {
   Submission sub;
   sub.name = dir.filename().string();
+  sub.name_source = "the folder name";
   sub.settings = settings_;
   sub.skip_other_files = true;
   std::error_code ec;

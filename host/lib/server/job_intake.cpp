@@ -37,16 +37,16 @@ class FieldError : public std::runtime_error {
 
 }  // namespace
 
-std::string check_upload_name(const std::string& name) {
-  if (name.empty()) return "the file has no name";
-  if (name.size() > 200) return "the file name is longer than 200 characters";
+std::string check_upload_name(const std::string& name, const std::string& what) {
+  if (name.empty()) return what == kFileName ? "the file has no name" : what + " is empty";
+  if (name.size() > 200) return what + " is longer than 200 characters";
   for (unsigned char c : name) {
-    if (c < 0x20 || c == 0x7F) return "the file name contains a control character";
-    if (c == '/' || c == '\\') return "the file name contains a folder separator";
-    if (c == ':') return "the file name contains ':'";
+    if (c < 0x20 || c == 0x7F) return what + " contains a control character";
+    if (c == '/' || c == '\\') return what + " contains a folder separator";
+    if (c == ':') return what + " contains ':'";
   }
-  if (name[0] == '.') return "the file name starts with '.'";
-  if (name.find("..") != std::string::npos) return "the file name contains '..'";
+  if (name[0] == '.') return what + " starts with '.'";
+  if (name.find("..") != std::string::npos) return what + " contains '..'";
   return "";
 }
 
@@ -233,6 +233,15 @@ std::string job_name_of(const Submission& sub, const JobIntake::UploadedFiles& u
   return pcb::board_name_from_files(names);
 }
 
+// What a board's name is, for its refusal: what the sender gave (the form's field 'name', an
+// inbox folder's name), or what it was made from (an outside tester's field 'name' was
+// refused as "the file name").
+std::string board_name_what(const Submission& sub, const JobIntake::UploadedFiles& up) {
+  if (up.zip != nullptr) return "the zip file's name";
+  if (!sub.name.empty()) return sub.name_source;
+  return "the files' common name";
+}
+
 // The fields against the kind of job (a board's fields and a drawing's): why not ("" fine).
 std::string check_fields(const Submission& sub, bool board) {
   std::string why = check_tag(sub.tag);
@@ -322,7 +331,7 @@ IntakeResult JobIntake::submit(const Submission& sub) {
   std::string why = check_files(sub, max_bytes_, kMaxFiles, &up, &status);
   if (!why.empty()) return refused(status, why);
   up.job_name = job_name_of(sub, up);
-  if (up.several) why = check_upload_name(up.job_name);
+  if (up.several) why = check_upload_name(up.job_name, board_name_what(sub, up));
   if (why.empty()) why = check_fields(sub, up.board);
   if (why.empty() && up.board && sub.board.height_map_from != 0)
     why = map_source_refusal(store_, data_, sub.board.height_map_from);

@@ -28,6 +28,9 @@ struct Submission {
   // copied from it into the archive and planned from there, never read whole into memory
   // here (a 72 MB drawing was held four times at once); a board or zip is read (small).
   std::filesystem::path content_file;
+  // What `name` is when it names a board of several files (refusals say so): the HTTP
+  // form's field, an inbox folder's name.
+  std::string name_source = "field 'name'";
   std::vector<UploadFile> files;
   bool skip_other_files = false;  // board from a folder: leave out its read-me and such
   int priority = 0;
@@ -85,8 +88,10 @@ class JobIntake {
 };
 
 // Why a file name from outside is refused ("" when it is acceptable): no folders, no "..",
-// no control characters, no leading dot, 1..200 bytes.
-std::string check_upload_name(const std::string& name);
+// no control characters, no leading dot, 1..200 bytes. `what` begins the reason: what the
+// name is to the sender ("field 'name' contains '..'").
+constexpr const char* kFileName = "the file name";
+std::string check_upload_name(const std::string& name, const std::string& what = kFileName);
 // Why a tag is refused ("" when fine): [A-Za-z0-9_-], at most 32.
 std::string check_tag(const std::string& tag);
 // Why settings are refused ("" when fine): the same ranges as `engraver send`.

@@ -68,7 +68,8 @@ struct Workshop::Slot {
   struct Connection {
     std::string state = "unknown";  // unknown, online, offline
     std::string message;
-    Link* link = nullptr;  // the sender's link, from connect to the end of its job
+    bool unzeroed = false;  // serve --no-zero, and the machine is not zeroed: it gets no job
+    Link* link = nullptr;   // the sender's link, from connect to the end of its job
   };
   // What the machine last reported, and what its controller still holds.
   struct MachineSeen {
@@ -306,6 +307,24 @@ MachineAvailability Workshop::availability(const std::string& machine) const {
     return s->job_id != 0 ? MachineAvailability::kBusy : MachineAvailability::kFree;
   }
   return MachineAvailability::kNotHere;
+}
+
+std::string Workshop::unzeroed_wait(const JobRecord& job) const {
+  if (job.state != JobState::kQueued) return "";
+  std::vector<std::string> unzeroed;
+  for (const auto& s : slots_) {
+    if (!job_fits(job, s->spec.fit)) continue;
+    std::lock_guard<std::mutex> lock(s->mutex);
+    if (s->connection.state != "online") continue;
+    if (!s->connection.unzeroed) return "";  // a machine that takes it (once free)
+    unzeroed.push_back(fmt::format("'{}'", s->spec.name));
+  }
+  if (unzeroed.empty()) return "";
+  std::string names;
+  for (const std::string& n : unzeroed) names += (names.empty() ? "" : ", ") + n;
+  // The machine's own message after its name, as /api/status gives it.
+  return fmt::format("waiting for machine{} {}, {}", unzeroed.size() > 1 ? "s" : "", names,
+                     kUnzeroedMachine);
 }
 
 void Workshop::start() {
@@ -684,6 +703,7 @@ void Workshop::machine_loop(Slot& slot) {
         changed = slot.connection.state != "offline";
         slot.connection.state = "offline";
         slot.connection.message = e.what();
+        slot.connection.unzeroed = false;
         slot.seen.have_last_status = false;
       }
       if (changed) notify(false);
@@ -703,6 +723,7 @@ void Workshop::machine_loop(Slot& slot) {
                 slot.connection.message != message;
       slot.connection.state = "online";
       slot.connection.message = message;
+      slot.connection.unzeroed = unzeroed;
       slot.seen.last_status = idle_status;
       slot.seen.have_last_status = true;
     }
@@ -807,6 +828,13 @@ void Workshop::run_job(Slot& slot, const JobRecord& job, Sender& sender,
   r.note(fmt::format("session: protocol v{}, max payload {}, window {}", int(caps.protocol_version),
                      int(caps.max_payload), int(caps.window_frames)));
   claim_slot(slot, r);
+  // The zeroing the sender starts itself (#M) goes to this run's log; the sender outlives
+  // the run.
+  sender.set_note(r.noter());
+  struct NoteOff {
+    Sender& sender;
+    ~NoteOff() { sender.set_note(nullptr); }
+  } note_off{sender};
   try {
     make_commands(slot, r, sender, caps);
     hand_to_sender(slot, r, sender);

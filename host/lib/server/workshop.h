@@ -93,6 +93,7 @@ class Workshop {
   // Hold, resume, abort or feed override (percent 10..200) of a running job.
   ControlResult control(int64_t job_id, JobControl control, int percent);
   bool can_continue() const { return static_cast<bool>(options_.resume_encoder); }
+  const std::string& owner() const { return options_.owner; }  // this server's name
 
   // Machines (state, position, job) and the progress of running jobs: a job claimed and
   // still being planned is "planning"; a cutting one has its position along its path.
@@ -107,6 +108,9 @@ class Workshop {
   std::vector<MachineFit> fits() const;
   // Whether `machine` is one of this server's, and free, busy or offline (a job's `waiting`).
   MachineAvailability availability(const std::string& machine) const;
+  // Why a queued job waits under serve --no-zero: every online machine here that fits it
+  // is not zeroed ("waiting for machine 'm1', not zeroed: ..."); "" otherwise.
+  std::string unzeroed_wait(const JobRecord& job) const;
 
  private:
   struct Slot;

@@ -549,6 +549,11 @@ bool Sender::ensure_zeroed(const std::function<void(const Progress&)>& on_progre
   win_.commands = saved;
   if (failed_ || aborted) return false;
   win_.first_seq = static_cast<uint8_t>(win_.first_seq + 1);
+  if (note_) {
+    note_(
+        "zeroed the machine (#M): its zero is the tool's position when the zeroing was "
+        "confirmed");
+  }
   return true;
 }
 

@@ -114,6 +114,9 @@ class Sender {
   // Why the job ended, for people: names the command, step and curve where relevant.
   const std::string& message() const { return message_; }
   const proto::StatusReply& last_status() const { return last_status_; }
+  // Gets a plain line for the log when the sender zeroes the machine itself (#M, the
+  // operator confirmed): a log that is not a terminal had no line for it.
+  void set_note(std::function<void(const std::string&)> note) { note_ = std::move(note); }
 
  private:
   struct Inflight;
@@ -142,6 +145,7 @@ class Sender {
 
   Link& link_;
   SenderOptions options_;
+  std::function<void(const std::string&)> note_;
   proto::Parser parser_;
   SenderStats stats_;
   std::string message_;

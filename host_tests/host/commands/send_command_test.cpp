@@ -214,6 +214,24 @@ TEST(SendCommand, NoZeroSendsToAZeroedMachine) {
   EXPECT_EQ(send_job(link, two_lines(), o, log).outcome, JobOutcome::kCompleted) << log.str();
 }
 
+// Zeroing a machine that is not zeroed leaves a plain line in send's log (an outside
+// tester: with stderr not a terminal nothing said the machine was zeroed, the simulated
+// operator confirming before any status showed "zeroing"); a zeroed machine gets none.
+TEST(SendCommand, ZeroingTheMachineLeavesALineInTheLog) {
+  sim::SimMachine machine{sim::SimOptions{}};
+  sim::SimLink link(machine);
+  const SendOptions o = lockstep_send(machine);
+  const std::string line =
+      "engraver: zeroed the machine (#M): its zero is the tool's position when the zeroing was "
+      "confirmed\n";
+  std::ostringstream first;
+  ASSERT_EQ(send_job(link, two_lines(), o, first).outcome, JobOutcome::kCompleted) << first.str();
+  EXPECT_NE(first.str().find(line), std::string::npos) << first.str();
+  std::ostringstream second;
+  ASSERT_EQ(send_job(link, two_lines(), o, second).outcome, JobOutcome::kCompleted);
+  EXPECT_EQ(second.str().find("zeroed the machine"), std::string::npos) << second.str();
+}
+
 TEST(SendCommand, HoldsOnlyTheSendersWindowWhateverTheJobsLength) {
   // 600 lines: ~2 400 commands; send keeps what is in flight and the 128 before it.
   sim::SimMachine machine{sim::SimOptions{}};

@@ -598,6 +598,60 @@ TEST(ServerMachines, WithNoZeroAMachineThatIsNotZeroedGetsNoJob) {
   std::this_thread::sleep_for(std::chrono::seconds(1));
   EXPECT_EQ(server.job(id)["state"], "queued") << server.job(id).dump();
   EXPECT_EQ(server.status()["machines"][0]["link"], "online") << server.status().dump();
+  // The job says why it waits too, as the machine does (it said "").
+  EXPECT_EQ(server.job(id)["waiting"],
+            "waiting for machine 'm1', not zeroed: with serve --no-zero it gets no job until it "
+            "is zeroed (a server without --no-zero, or engraver send, starts manual zeroing on "
+            "it)")
+      << server.job(id).dump();
+}
+
+// A machine that is not zeroed is zeroed before its job (#M, the simulated operator
+// confirms), and the run's machine.log says so (it said nothing).
+TEST(ServerMachines, ZeroingTheMachineIsInTheRunsLog) {
+  test::TempDir dir;
+  SimRig sim(false);  // just powered on: not zeroed
+  ServerRig server(dir.path(), {test::machine("m1", sim.address())});
+  const int64_t id = server.upload_ok("square.ngc", test::square_gcode(10, 10, 10));
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "completed"; }, 30))
+      << server.job(id).dump();
+  auto log = server.client().Get(fmt::format("/api/jobs/{}/files/machine.log", id).c_str());
+  ASSERT_TRUE(log && log->status == 200);
+  EXPECT_NE(log->body.find(" zeroed the machine (#M): its zero is the tool's position when the "
+                           "zeroing was confirmed\n"),
+            std::string::npos)
+      << log->body;
+  // Zeroed now: the next job has no such line.
+  const int64_t next = server.upload_ok("again.ngc", test::square_gcode(10, 10, 10));
+  ASSERT_TRUE(test::wait_until([&] { return server.job(next)["state"] == "completed"; }, 30));
+  log = server.client().Get(fmt::format("/api/jobs/{}/files/machine.log", next).c_str());
+  ASSERT_TRUE(log && log->status == 200);
+  EXPECT_EQ(log->body.find("zeroed the machine"), std::string::npos) << log->body;
+}
+
+// While a job runs here its report.json is not written yet: the 404 says it runs on this
+// server, not that "server 'test-server'" (this one) holds it in its archive.
+TEST(ServerMachines, ARunningJobsReportIsNotYetWritten) {
+  test::TempDir dir;
+  SimRig sim(true);
+  ServerRig server(dir.path(), {test::machine("m1", sim.address())});
+  const int64_t id = server.upload_ok("slow.ngc", test::square_gcode(10, 10, 40), "&feed_mm_s=4");
+  ASSERT_FALSE(wait_cutting(server, id).is_null()) << server.job(id).dump();
+  for (const char* path : {"files/report.json", "runs/1/report.json"}) {
+    auto r = server.client().Get(fmt::format("/api/jobs/{}/{}", id, path).c_str());
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 404) << path;
+    EXPECT_EQ(nlohmann::json::parse(r->body).value("error", ""),
+              "the job has no report.json yet: it is running on this server (machine 'm1'); a "
+              "run's report.json is written when it ends, its machine.log as it runs")
+        << path;
+  }
+  auto log = server.client().Get(fmt::format("/api/jobs/{}/files/machine.log", id).c_str());
+  ASSERT_TRUE(log);
+  EXPECT_EQ(log->status, 200);
+  ASSERT_EQ(server.control(id, R"({"action": "abort"})")->status, 200);
+  ASSERT_TRUE(test::wait_until([&] { return server.job(id)["state"] == "aborted"; }, 20));
+  EXPECT_FALSE(report_of(server, id).is_null());
 }
 
 // An abort while the job is planned ends its planning at once and the job with it: aborted,

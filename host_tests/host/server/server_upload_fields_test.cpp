@@ -2,7 +2,12 @@
 // fields plain decimals (no hex, no blanks, no nan or inf), counts whole, yes/no fields one
 // of eight words, each refusal a 400 naming the field with nothing queued; height_map_from
 // the id of a board job that probed, never 0, a missing job or one that took another's map.
+#include <arpa/inet.h>  // inet_pton
 #include <gtest/gtest.h>
+#include <netinet/in.h>  // sockaddr_in
+#include <sys/socket.h>  // socket, connect, send, recv
+#include <sys/time.h>    // timeval
+#include <unistd.h>      // close
 
 #include "host_tests/host/server/blinky_upload.h"
 #include "host_tests/host/server/server_test_rig.h"
@@ -13,6 +18,75 @@ namespace {
 using test::blinky;
 using test::post;
 using test::ServerRig;
+
+// A raw connection to the server (to send headers alone, as curl does before a large body).
+class RawConnection {
+ public:
+  explicit RawConnection(int port) {
+    fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(static_cast<uint16_t>(port));
+    inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
+    timeval tv{3, 0};  // an answer that takes longer counts as none
+    setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+    if (::connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) close_now();
+  }
+  ~RawConnection() { close_now(); }
+  RawConnection(const RawConnection&) = delete;
+  RawConnection& operator=(const RawConnection&) = delete;
+  bool send_text(const std::string& text) {
+    return fd_ >= 0 &&
+           ::send(fd_, text.data(), text.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(text.size());
+  }
+  // The next answer: its head (an interim 100 Continue is one), with its body if it has a
+  // Content-Length; what came before the time-out if it is not complete.
+  std::string next_answer() {
+    std::string answer;
+    while (true) {
+      const size_t end = pending_.find("\r\n\r\n");
+      if (end != std::string::npos) {
+        const size_t at = pending_.find("Content-Length: ");
+        const size_t body = at != std::string::npos && at < end
+                                ? std::strtoul(pending_.c_str() + at + 16, nullptr, 10)
+                                : 0;
+        if (pending_.size() >= end + 4 + body) {
+          answer = pending_.substr(0, end + 4 + body);
+          pending_.erase(0, answer.size());
+          return answer;
+        }
+      }
+      char buf[4096];
+      const ssize_t n = fd_ >= 0 ? ::recv(fd_, buf, sizeof buf, 0) : -1;
+      if (n <= 0) break;
+      pending_.append(buf, static_cast<size_t>(n));
+    }
+    answer.swap(pending_);
+    return answer;
+  }
+
+ private:
+  void close_now() {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+  }
+  int fd_ = -1;
+  std::string pending_;
+};
+
+// A raw upload's headers: `length` bytes declared, 100-continue expected.
+std::string upload_head(const ServerRig& server, size_t length, bool with_token = true) {
+  return fmt::format(
+      "POST /api/jobs?name=board.ngc HTTP/1.1\r\nHost: 127.0.0.1\r\n{}"
+      "Content-Type: application/octet-stream\r\nContent-Length: {}\r\n"
+      "Expect: 100-continue\r\n\r\n",
+      with_token ? "Authorization: Bearer " + server.token() + "\r\n" : "", length);
+}
+
+std::string answer_body(const std::string& answer) {
+  const size_t end = answer.find("\r\n\r\n");
+  return end == std::string::npos ? "" : answer.substr(end + 4);
+}
 
 // A 400 naming `field` and saying `words`, and nothing queued.
 void expect_refused(ServerRig& server, const httplib::MultipartFormDataItems& form,
@@ -62,6 +136,19 @@ TEST(ServerUploadFields, NumbersAreTheCommandLinesPlainDecimals) {
   }
   const int64_t id = post(server, blinky({{"priority", "+1e0"}}));
   EXPECT_EQ(server.job(id)["priority"], 1);
+}
+
+// A board's `name` field refused names that field, not "the file name" (an outside tester);
+// a file part's file name is still the file name.
+TEST(ServerUploadFields, ABadBoardNameIsRefusedAsTheNameField) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {});
+  expect_refused(server, blinky({{"name", "a..b"}}), "field 'name'", "field 'name' contains '..'");
+  expect_refused(server, blinky({{"name", "a:b"}}), "field 'name'", "field 'name' contains ':'");
+  expect_refused(server, blinky({{"name", ".blinky"}}), "field 'name'",
+                 "field 'name' starts with '.'");
+  expect_refused(server, blinky({}, "blinky:F.Cu.gbr"), "file 'blinky:F.Cu.gbr'",
+                 "file 'blinky:F.Cu.gbr': the file name contains ':'");
 }
 
 TEST(ServerUploadFields, YesNoFieldsTakeEightWords) {
@@ -196,6 +283,58 @@ TEST(ServerUploadFields, AChunkedBodyIsCutOffAtTheLimit) {
   EXPECT_LT(sent, 16u * 1024 * 1024) << "the server read on past its limit";
   if (r) EXPECT_EQ(r->status, 413) << r->body;
   EXPECT_TRUE(server.jobs().empty());
+}
+
+// A body declared larger than --max-upload-mb is refused from the headers (an outside
+// tester): 413 at once, no 100 Continue, the body never asked for (curl was told to go on,
+// sent 64 MB and only then heard the 413). The token's 401 comes first the same way.
+TEST(ServerUploadFields, ADeclaredLengthPastTheLimitIsRefusedBeforeTheBody) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {}, 256 * 1024);
+  const auto t0 = std::chrono::steady_clock::now();
+  RawConnection big(server.port());
+  ASSERT_TRUE(big.send_text(upload_head(server, 64u * 1024 * 1024)));
+  const std::string answer = big.next_answer();
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_EQ(answer.rfind("HTTP/1.1 413 ", 0), 0u) << answer;  // not 100 Continue first
+  EXPECT_NE(answer.find("Connection: close"), std::string::npos) << answer;
+  EXPECT_LT(took, 2.0);
+  const nlohmann::json error = nlohmann::json::parse(answer_body(answer), nullptr, false);
+  EXPECT_EQ(error.is_object() ? error.value("error", "") : "(not JSON)",
+            "upload larger than the limit of 262144 bytes (--max-upload-mb)")
+      << answer;
+  RawConnection no_token(server.port());
+  ASSERT_TRUE(no_token.send_text(upload_head(server, 64u * 1024 * 1024, false)));
+  EXPECT_EQ(no_token.next_answer().rfind("HTTP/1.1 401 ", 0), 0u);
+  EXPECT_TRUE(server.jobs().empty());
+}
+
+// Within the limit, 100-continue is answered as before and the upload queued; so is a
+// chunked body (no length to judge: counted as it arrives).
+TEST(ServerUploadFields, AnUploadWithinTheLimitStillGets100Continue) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {}, 256 * 1024);
+  const std::string gcode = test::square_gcode(10, 10, 10);
+  RawConnection small(server.port());
+  ASSERT_TRUE(small.send_text(upload_head(server, gcode.size())));
+  const std::string go_on = small.next_answer();
+  EXPECT_EQ(go_on.rfind("HTTP/1.1 100 ", 0), 0u) << go_on;
+  ASSERT_TRUE(small.send_text(gcode));
+  const std::string answer = small.next_answer();
+  EXPECT_EQ(answer.rfind("HTTP/1.1 201 ", 0), 0u) << answer;
+  bool sent = false;
+  auto chunked = server.client().Post(
+      "/api/jobs?name=chunked.ngc", server.auth(),
+      [&](size_t, httplib::DataSink& sink) {
+        if (!sent) sink.write(gcode.data(), gcode.size());
+        if (sent) sink.done();
+        sent = true;
+        return true;
+      },
+      "application/octet-stream");
+  ASSERT_TRUE(chunked);
+  EXPECT_EQ(chunked->status, 201) << chunked->body;
+  EXPECT_EQ(server.jobs().size(), 2u);
 }
 
 // A server that stops does not wait for an upload still trickling in: it answers 503 at the
