@@ -2,6 +2,7 @@
 #include "host/lib/server/http_api.h"
 
 #include "host/lib/server/board_height_map.h"
+#include "host/lib/server/bounded_http_server.h"
 #include "host/lib/server/connection_threads.h"
 #include "host/lib/server/job_planning.h"  // release_freed_memory
 #include "host/lib/server/job_record_fields.h"
@@ -515,7 +516,7 @@ HttpApi::HttpApi(JobStore& store, JobIntake& intake, Workshop& workshop, const D
       data_(data),
       options_(std::move(options)),
       hosts_(options_.address, options_.allowed_hosts),
-      http_(std::make_unique<httplib::Server>()) {
+      http_(std::make_unique<BoundedHttpServer>()) {
   // A thread per connection: an open page's event stream holds its thread for as long as
   // the page is open, and must not take one that a control request needs.
   http_->new_task_queue = [] { return new ConnectionThreads(); };
@@ -649,12 +650,35 @@ bool HttpApi::refused_from_headers(const httplib::Request& req, httplib::Respons
     send_error(res, 405, fmt::format("{} takes {}, not {}", req.path, allow, req.method));
     return true;
   }
+  // A body's length said one way only, in plain digits (httplib read "0x10" as 0 and took
+  // the rest for the next request; an unreadable one was read without end).
+  const size_t lengths = req.get_header_value_count("Content-Length");
+  if (lengths > 1 || (lengths == 1 && req.has_header("Transfer-Encoding"))) {
+    send_error(res, 400, "the body's length is given twice (Content-Length, Transfer-Encoding)");
+    return true;
+  }
+  if (lengths == 1 && declared_length(req) < 0) {
+    send_error(res, 400,
+               fmt::format("Content-Length '{}' is not a length in bytes",
+                           req.get_header_value("Content-Length")));
+    return true;
+  }
   if (req.method == "GET" || req.method == "HEAD") return false;
   if (!same_secret(token_of(req), options_.token)) {
     send_error(res, 401, "missing or wrong token (Authorization: Bearer TOKEN)");
     return true;
   }
   return false;
+}
+
+int64_t HttpApi::declared_length(const httplib::Request& req) {
+  const std::string length = req.get_header_value("Content-Length");
+  uint64_t declared = 0;
+  const char* end = length.data() + length.size();
+  const auto parsed = std::from_chars(length.data(), end, declared);
+  if (length.empty() || parsed.ec != std::errc() || parsed.ptr != end || declared > INT64_MAX)
+    return -1;
+  return static_cast<int64_t>(declared);
 }
 
 size_t HttpApi::upload_limit_bytes() const {
@@ -682,13 +706,11 @@ void HttpApi::route_checks() {
   // the whole body to throw it away. Connection: close, since the body is not read.
   s.set_expect_100_continue_handler([this](const httplib::Request& req, httplib::Response& res) {
     if (!refused_from_headers(req, res)) {
-      uint64_t declared = 0;
-      const std::string length = req.get_header_value("Content-Length");
-      const char* end = length.data() + length.size();
-      const auto parsed = std::from_chars(length.data(), end, declared);
-      const bool over = !length.empty() && parsed.ec == std::errc() && parsed.ptr == end &&
-                        declared > upload_limit_bytes();
-      if (!over) return 100;
+      // A form's parts take some framing beyond the files; a raw body is the file.
+      const bool form = req.get_header_value("Content-Type").rfind("multipart/form-data", 0) == 0;
+      const int64_t declared = req.has_header("Content-Length") ? declared_length(req) : 0;
+      if (declared <= static_cast<int64_t>(form ? upload_limit_bytes() : intake_.max_bytes()))
+        return 100;
       send_error(res, 413, upload_limit_text());
     }
     res.set_header("Connection", "close");

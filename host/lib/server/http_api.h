@@ -74,6 +74,8 @@ class HttpApi {
   bool refused_from_headers(const httplib::Request& req, httplib::Response& res) const;
   // An upload's body may be this long (--max-upload-mb and a form's framing); the 413's text.
   size_t upload_limit_bytes() const;
+  // The request's Content-Length in plain decimal digits; -1 for anything else.
+  static int64_t declared_length(const httplib::Request& req);
   std::string upload_limit_text() const;
   // The 404's text for an archive file a job does not have (yet): where it is, or when.
   std::string missing_file_text(const JobRecord& job, const std::string& file) const;

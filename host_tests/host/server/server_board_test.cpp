@@ -260,10 +260,10 @@ TEST(ServerBoards, HostileFileNameInAMultiFileUploadIsRefusedAndNothingIsStored)
     form[1].filename = name;  // the drill file's name
     expect_refused(server.client().Post("/api/jobs", server.auth(), form), 400, "file name");
   }
-  // The board's own name (a form field) is checked the same way.
+  // The board's own name (a form field) is checked the same way, and named as the field.
   httplib::MultipartFormDataItems form = blinky_form();
   form.push_back({"name", "../../jobs/x", "", ""});
-  expect_refused(server.client().Post("/api/jobs", server.auth(), form), 400, "file name");
+  expect_refused(server.client().Post("/api/jobs", server.auth(), form), 400, "field 'name'");
   // All files together count against the size limit.
   form = blinky_form();
   std::string padding = "G04 padding*\n";

@@ -28,13 +28,20 @@ class RawConnection {
     a.sin_family = AF_INET;
     a.sin_port = htons(static_cast<uint16_t>(port));
     inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
-    timeval tv{3, 0};  // an answer that takes longer counts as none
+    timeval tv{3, 0};  // an answer that takes longer counts as none, a stuck send as failed
     setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+    setsockopt(fd_, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv);
     if (::connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) close_now();
   }
   ~RawConnection() { close_now(); }
   RawConnection(const RawConnection&) = delete;
   RawConnection& operator=(const RawConnection&) = delete;
+  // Sends `text` again and again until `limit` bytes or a send fails; the bytes sent.
+  size_t send_until_refused(const std::string& text, size_t limit) {
+    size_t sent = 0;
+    while (sent < limit && send_text(text)) sent += text.size();
+    return sent;
+  }
   bool send_text(const std::string& text) {
     return fd_ >= 0 &&
            ::send(fd_, text.data(), text.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(text.size());
@@ -361,6 +368,77 @@ TEST(ServerUploadFields, AStopDoesNotWaitForAnUploadStillArriving) {
   stopped = true;
   uploader.join();
   EXPECT_LT(took, 3.0) << "the stop waited for the upload";
+}
+
+// A request's line and headers are bounded (an outside tester sent a 337 MB header line, no
+// token needed, and the server held 405 MB): past 64 kB the connection is closed. The
+// server answers the next client as before.
+TEST(ServerUploadFields, AHeadPastItsBoundClosesTheConnection) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {}, 256 * 1024);
+  const std::string block(64 * 1024, 'a');
+  RawConnection long_line(server.port());
+  ASSERT_TRUE(long_line.send_text("GET /api/status?"));
+  EXPECT_LT(long_line.send_until_refused(block, 256u * 1024 * 1024), 32u * 1024 * 1024);
+  RawConnection long_header(server.port());
+  ASSERT_TRUE(long_header.send_text("GET /api/status HTTP/1.1\r\nHost: 127.0.0.1\r\nX-A: "));
+  EXPECT_LT(long_header.send_until_refused(block, 256u * 1024 * 1024), 32u * 1024 * 1024);
+  RawConnection many_headers(server.port());
+  ASSERT_TRUE(many_headers.send_text("GET /api/status HTTP/1.1\r\nHost: 127.0.0.1\r\n"));
+  std::string headers;
+  while (headers.size() < block.size()) headers += "X-A: b\r\n";
+  EXPECT_LT(many_headers.send_until_refused(headers, 256u * 1024 * 1024), 32u * 1024 * 1024);
+  auto status = server.client().Get("/api/status");
+  ASSERT_TRUE(status);
+  EXPECT_EQ(status->status, 200);
+}
+
+// A refusal from the headers ends the connection: the body a client sends anyway is not read
+// as further requests (the tester's next request on it was answered 200).
+TEST(ServerUploadFields, ARefusalFromTheHeadersClosesTheConnection) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {}, 256 * 1024);
+  RawConnection big(server.port());
+  ASSERT_TRUE(big.send_text(upload_head(server, 64u * 1024 * 1024)));
+  const std::string refused = big.next_answer();
+  ASSERT_EQ(refused.rfind("HTTP/1.1 413 ", 0), 0u) << refused;
+  big.send_text("GET /api/status HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+  EXPECT_EQ(big.next_answer(), "");
+}
+
+// A body's length in plain digits, said once: anything else is a 400 from the headers, with
+// or without 100-continue (httplib read "0x10" as 0, an unreadable length without end).
+TEST(ServerUploadFields, ABodysLengthIsPlainDigitsSaidOnce) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {}, 256 * 1024);
+  const std::string head =
+      "POST /api/jobs?name=a.ngc HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+      "Authorization: Bearer " +
+      server.token() + "\r\n";
+  for (const std::string lengths :
+       {"Content-Length: 0x10\r\n", "Content-Length: 16abc\r\n", "Content-Length: -1\r\n",
+        "Content-Length: 99999999999999999999999999\r\n",
+        "Content-Length: 16\r\nContent-Length: 16\r\n",
+        "Content-Length: 16\r\nTransfer-Encoding: chunked\r\n"}) {
+    for (const char* expect : {"Expect: 100-continue\r\n", ""}) {
+      RawConnection c(server.port());
+      ASSERT_TRUE(c.send_text(head + lengths + expect + "\r\n"));
+      const std::string answer = c.next_answer();
+      EXPECT_EQ(answer.rfind("HTTP/1.1 400 ", 0), 0u) << lengths << expect << answer;
+    }
+  }
+  EXPECT_TRUE(server.jobs().empty());
+}
+
+// A raw body is the file: one declared a byte past --max-upload-mb is refused from the
+// headers (a form's parts still get their framing's allowance).
+TEST(ServerUploadFields, ARawBodyOneBytePastTheLimitIsRefusedFromTheHeaders) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {}, 256 * 1024);
+  RawConnection c(server.port());
+  ASSERT_TRUE(c.send_text(upload_head(server, 256 * 1024 + 1)));
+  const std::string answer = c.next_answer();
+  EXPECT_EQ(answer.rfind("HTTP/1.1 413 ", 0), 0u) << answer;
 }
 
 }  // namespace
