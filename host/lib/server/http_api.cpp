@@ -635,6 +635,10 @@ void HttpApi::routes() {
 }
 
 bool HttpApi::refused_from_headers(const httplib::Request& req, httplib::Response& res) const {
+  if (req.get_header_value_count("Host") > 1) {  // which one would a proxy have checked?
+    send_error(res, 400, "the Host header is given twice");
+    return true;
+  }
   const std::string host = req.get_header_value("Host");
   if (!hosts_.allows(host)) {
     send_error(res, 403,
@@ -653,8 +657,12 @@ bool HttpApi::refused_from_headers(const httplib::Request& req, httplib::Respons
   // A body's length said one way only, in plain digits (httplib read "0x10" as 0 and took
   // the rest for the next request; an unreadable one was read without end).
   const size_t lengths = req.get_header_value_count("Content-Length");
-  if (lengths > 1 || (lengths == 1 && req.has_header("Transfer-Encoding"))) {
-    send_error(res, 400, "the body's length is given twice (Content-Length, Transfer-Encoding)");
+  if (lengths > 1) {
+    send_error(res, 400, "Content-Length is given twice");
+    return true;
+  }
+  if (lengths == 1 && req.has_header("Transfer-Encoding")) {
+    send_error(res, 400, "the body's length is given twice (Content-Length and Transfer-Encoding)");
     return true;
   }
   if (lengths == 1 && declared_length(req) < 0) {
@@ -668,6 +676,13 @@ bool HttpApi::refused_from_headers(const httplib::Request& req, httplib::Respons
     send_error(res, 401, "missing or wrong token (Authorization: Bearer TOKEN)");
     return true;
   }
+  // A length no body can have: httplib would wait for it (a length just past the limit is
+  // read and thrown away, so that a client that does not wait for 100 Continue hears the
+  // 413 rather than a reset connection).
+  if (lengths == 1 && declared_length(req) == INT64_MAX) {
+    send_error(res, 413, upload_limit_text());
+    return true;
+  }
   return false;
 }
 
@@ -676,9 +691,10 @@ int64_t HttpApi::declared_length(const httplib::Request& req) {
   uint64_t declared = 0;
   const char* end = length.data() + length.size();
   const auto parsed = std::from_chars(length.data(), end, declared);
-  if (length.empty() || parsed.ec != std::errc() || parsed.ptr != end || declared > INT64_MAX)
-    return -1;
-  return static_cast<int64_t>(declared);
+  if (length.empty() || parsed.ptr != end || length[0] < '0' || length[0] > '9') return -1;
+  // Digits past 2^63 - 1 are a length too: too large for any limit.
+  if (parsed.ec == std::errc::result_out_of_range || declared > INT64_MAX) return INT64_MAX;
+  return parsed.ec == std::errc() ? static_cast<int64_t>(declared) : -1;
 }
 
 size_t HttpApi::upload_limit_bytes() const {
@@ -713,8 +729,7 @@ void HttpApi::route_checks() {
         return 100;
       send_error(res, 413, upload_limit_text());
     }
-    res.set_header("Connection", "close");
-    return res.status;
+    return res.status;  // answered with Connection: close, as every answer is
   });
   s.set_error_handler([](const httplib::Request&, httplib::Response& res) {
     if (!res.body.empty()) return;

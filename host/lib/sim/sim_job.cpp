@@ -86,6 +86,7 @@ void stream_job(Link& link, const JobPlan& plan, const SimJobOptions& options,
   }
   if (options.after_stream) options.after_stream(link, sender_options);
   r->commands_held_max = commands.held_max();
+  r->executed = sender.executed();  // the report's count is the message's (it was 5 to 6)
   r->message = sender.message();
   r->stats = sender.stats();
 }

@@ -113,6 +113,9 @@ class Sender {
   std::chrono::milliseconds smoothed_rtt() const { return rtt_.smoothed(); }
   // Why the job ended, for people: names the command, step and curve where relevant.
   const std::string& message() const { return message_; }
+  // Commands executed when the job ended, as message() counts them (the last progress
+  // report may be a few behind: it comes with a status reply).
+  size_t executed() const { return win_.executed; }
   const proto::StatusReply& last_status() const { return last_status_; }
   // Gets a plain line for the log when the sender zeroes the machine itself (#M, the
   // operator confirmed): a log that is not a terminal had no line for it.
