@@ -83,11 +83,12 @@ double planned_seconds_by_steps(const JobPlan& plan) {
   return clock.seconds;
 }
 
-PlannedTimes::PlannedTimes(std::shared_ptr<const JobPlan> plan) : plan_(std::move(plan)) {
+PlannedTimes::PlannedTimes(const std::shared_ptr<const JobPlan>& plan)
+    : plan_(plan), size_(plan->steps.size()) {
   StepClock clock;
   size_t i = 0;
-  marks_.reserve(plan_->steps.size() / kStepsAMark + 1);
-  for (const PlanStep& s : plan_->steps) {
+  marks_.reserve(size_ / kStepsAMark + 1);
+  for (const PlanStep& s : plan->steps) {
     if (i++ % kStepsAMark == 0) marks_.push_back({clock.seconds, clock.x, clock.y, clock.z});
     clock.add(s);
   }
@@ -95,10 +96,12 @@ PlannedTimes::PlannedTimes(std::shared_ptr<const JobPlan> plan) : plan_(std::mov
 }
 
 double PlannedTimes::end_s(size_t step) const {
+  const std::shared_ptr<const JobPlan> plan = plan_.lock();
+  if (!plan) return total_s_;
   const Mark& m = marks_[step / kStepsAMark];
   StepClock clock;
   clock.seconds = m.seconds, clock.x = m.x_mm, clock.y = m.y_mm, clock.z = m.z_mm;
-  for (size_t i = step / kStepsAMark * kStepsAMark; i <= step; ++i) clock.add(plan_->steps[i]);
+  for (size_t i = step / kStepsAMark * kStepsAMark; i <= step; ++i) clock.add(plan->steps[i]);
   return clock.seconds;
 }
 
@@ -120,7 +123,7 @@ void TimeLeft::start_at(int first) {
 }
 
 double TimeLeft::planned_before(int step) const {
-  if (!ends_) return step < 0 ? planned_s_ : 0.0;
+  if (!ends_ || !ends_->readable()) return step < 0 ? planned_s_ : 0.0;
   if (step < 0 || static_cast<size_t>(step) > ends_->size()) return planned_s_;
   return step == 0 ? 0.0 : ends_->end_s(static_cast<size_t>(step) - 1) * scale_;
 }

@@ -19,11 +19,16 @@ double planned_seconds_by_steps(const JobPlan& plan);
 
 // The same summed to the end of each step, worked out again from the plan when asked, from a
 // mark every 64 steps: a float a step was 16 MB of a million-line job, held while it runs.
+// It reads the plan while its owner (the run) keeps it, and does not keep it alive itself:
+// an idle machine holds no plan.
 class PlannedTimes {
  public:
-  explicit PlannedTimes(std::shared_ptr<const JobPlan> plan);
-  size_t size() const { return plan_->steps.size(); }
-  // Seconds from the plan's start to the end of step `step` (< size()).
+  explicit PlannedTimes(const std::shared_ptr<const JobPlan>& plan);
+  size_t size() const { return size_; }
+  // False once the plan is gone (the run has ended).
+  bool readable() const { return !plan_.expired(); }
+  // Seconds from the plan's start to the end of step `step` (< size()); total_s() once the
+  // plan is gone.
   double end_s(size_t step) const;
   double total_s() const { return total_s_; }
 
@@ -31,7 +36,8 @@ class PlannedTimes {
   struct Mark {  // where the tool stands and the seconds so far, before step 64 k
     double seconds = 0, x_mm = 0, y_mm = 0, z_mm = 0;
   };
-  std::shared_ptr<const JobPlan> plan_;
+  std::weak_ptr<const JobPlan> plan_;
+  size_t size_ = 0;
   std::vector<Mark> marks_;
   double total_s_ = 0;
 };

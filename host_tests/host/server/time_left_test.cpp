@@ -18,12 +18,16 @@ PlanStep dwell_of(uint32_t ms) {
   return dwell;
 }
 
-// Ten steps of 10 planned seconds each (the record's planned figure 100 s).
+// Ten steps of 10 planned seconds each (the record's planned figure 100 s). The plan is kept
+// for the whole test program, as a run keeps its plan while it runs.
 TimeLeft ten_steps() {
-  auto plan = std::make_shared<JobPlan>();
-  for (int i = 1; i <= 10; ++i) plan->steps.push_back(dwell_of(10000));
+  static const std::shared_ptr<const JobPlan> plan = [] {
+    auto p = std::make_shared<JobPlan>();
+    for (int i = 1; i <= 10; ++i) p->steps.push_back(dwell_of(10000));
+    return p;
+  }();
   TimeLeft t;
-  t.plan(std::make_shared<const PlannedTimes>(std::move(plan)), 100.0);
+  t.plan(std::make_shared<const PlannedTimes>(plan), 100.0);
   return t;
 }
 
@@ -112,7 +116,8 @@ TEST(TimeLeft, StepEndSecondsSumToThePlansTime) {
   feed.to = {10000, 20000};
   feed.feed_um_per_s = 5000;
   plan.steps = {rapid, feed, dwell_of(1500)};
-  const PlannedTimes ends(std::make_shared<const JobPlan>(plan));
+  const auto kept = std::make_shared<const JobPlan>(plan);
+  const PlannedTimes ends(kept);
   ASSERT_EQ(ends.size(), 3u);
   EXPECT_GT(ends.end_s(0), 0.0);
   EXPECT_NEAR(ends.end_s(1) - ends.end_s(0), 4.0, 1e-9);  // 20 mm at 5 mm/s
@@ -135,11 +140,28 @@ TEST(TimeLeft, StepEndsFromTheMarksAreTheRunningSums) {
     sum_s += 1.0 / (1 + i % 7);
     expected.push_back(sum_s);
   }
-  const PlannedTimes ends(std::make_shared<const JobPlan>(plan));
+  const auto kept = std::make_shared<const JobPlan>(plan);
+  const PlannedTimes ends(kept);
   for (size_t i = 0; i < expected.size(); ++i) {
     EXPECT_NEAR(ends.end_s(i), expected[i], 1e-9) << "step " << i;
   }
   EXPECT_NEAR(ends.total_s(), sum_s, 1e-9);
+}
+
+// The step times read the plan the run keeps; they do not keep it once the run lets it go
+// (an idle machine held a million-line job's plan in its time left), and then the time left
+// is the record's planned figure, as with no steps.
+TEST(TimeLeft, ThePlanIsNotKeptAliveByItsStepTimes) {
+  auto plan = std::make_shared<JobPlan>();
+  for (int i = 0; i < 4; ++i) plan->steps.push_back(dwell_of(5000));
+  const std::weak_ptr<const JobPlan> seen = plan;
+  TimeLeft t;
+  t.plan(std::make_shared<const PlannedTimes>(plan), 20.0);
+  t.start_at(2);
+  EXPECT_DOUBLE_EQ(t.remaining(0), 10.0);  // two of four steps left
+  plan.reset();
+  EXPECT_TRUE(seen.expired());
+  EXPECT_DOUBLE_EQ(t.remaining(0), 20.0);
 }
 
 // A closed contour as one spline step (an isolation loop): its time is its length's, not its
@@ -157,7 +179,8 @@ TEST(TimeLeft, AClosedSplineStepTakesTheTimeOfItsLength) {
   loop.set_spline(square);
   loop.to = {0, 0};
   plan.steps = {loop};
-  const PlannedTimes ends(std::make_shared<const JobPlan>(plan));
+  const auto kept = std::make_shared<const JobPlan>(plan);
+  const PlannedTimes ends(kept);
   ASSERT_EQ(ends.size(), 1u);
   EXPECT_NEAR(ends.end_s(0), 80.0 / 5.0, 1e-9);  // 80 mm round at 5 mm/s
 }
