@@ -665,7 +665,8 @@ bool HttpApi::refused_from_headers(const httplib::Request& req, httplib::Respons
     send_error(res, 400, "the body's length is given twice (Content-Length and Transfer-Encoding)");
     return true;
   }
-  if (lengths == 1 && declared_length(req) < 0) {
+  const int64_t declared = lengths == 1 ? declared_length(req) : 0;
+  if (declared < 0) {
     send_error(res, 400,
                fmt::format("Content-Length '{}' is not a length in bytes",
                            req.get_header_value("Content-Length")));
@@ -679,7 +680,7 @@ bool HttpApi::refused_from_headers(const httplib::Request& req, httplib::Respons
   // A length no body can have: httplib would wait for it (a length just past the limit is
   // read and thrown away, so that a client that does not wait for 100 Continue hears the
   // 413 rather than a reset connection).
-  if (lengths == 1 && declared_length(req) == INT64_MAX) {
+  if (declared == INT64_MAX) {
     send_error(res, 413, upload_limit_text());
     return true;
   }

@@ -1,6 +1,5 @@
 // Floods of the server's HTTP side: a thousand open pages (event streams) while the
 // operator still steers jobs.
-#include <arpa/inet.h>  // inet_pton
 #include <gtest/gtest.h>
 #include <netinet/in.h>  // sockaddr_in
 #include <sys/socket.h>  // socket, connect
@@ -22,13 +21,10 @@ class EventStream {
  public:
   explicit EventStream(int port) {
     fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_port = htons(static_cast<uint16_t>(port));
-    inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
+    const sockaddr_in a = test::loopback_address(port);
     timeval tv{5, 0};  // a stream that is not served within 5 s is not served
     setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-    if (::connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) return;
+    if (::connect(fd_, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0) return;
     const std::string get = "GET /api/events HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n";
     if (::send(fd_, get.data(), get.size(), 0) != static_cast<ssize_t>(get.size())) return;
     char buf[4096];
@@ -112,12 +108,9 @@ TEST(ServerFlood, AThousandOpenEventStreamsLeaveControlRequestsAnswered) {
 // One new connection to `port` (kept open in *fd_out): how long connect() took.
 double connect_ms(int port, int* fd_out) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(static_cast<uint16_t>(port));
-  inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
+  const sockaddr_in a = test::loopback_address(port);
   const Clock::time_point t = Clock::now();
-  const int r = ::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  const int r = ::connect(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a);
   const double ms = ms_since(t);
   *fd_out = fd;
   return r == 0 ? ms : 1e9;

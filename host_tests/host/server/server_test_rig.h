@@ -3,7 +3,9 @@
 #ifndef HOST_TESTS_HOST_SERVER_SERVER_TEST_RIG_H
 #define HOST_TESTS_HOST_SERVER_SERVER_TEST_RIG_H
 
+#include <arpa/inet.h>   // inet_pton, htons
 #include <fmt/format.h>  // fmt::format
+#include <netinet/in.h>  // sockaddr_in
 
 #include <nlohmann/json.hpp>  // nlohmann::json
 
@@ -64,6 +66,15 @@ class SimRig {
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
+
+// 127.0.0.1:port, for the tests that speak raw TCP to the server.
+inline sockaddr_in loopback_address(int port) {
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<uint16_t>(port));
+  inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
+  return a;
+}
 
 // A loopback port nobody listens on (bound once, then released).
 inline uint16_t free_port() {

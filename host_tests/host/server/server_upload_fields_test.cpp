@@ -2,7 +2,6 @@
 // fields plain decimals (no hex, no blanks, no nan or inf), counts whole, yes/no fields one
 // of eight words, each refusal a 400 naming the field with nothing queued; height_map_from
 // the id of a board job that probed, never 0, a missing job or one that took another's map.
-#include <arpa/inet.h>  // inet_pton
 #include <gtest/gtest.h>
 #include <netinet/in.h>  // sockaddr_in
 #include <sys/socket.h>  // socket, connect, send, recv
@@ -24,14 +23,11 @@ class RawConnection {
  public:
   explicit RawConnection(int port) {
     fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_port = htons(static_cast<uint16_t>(port));
-    inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
+    const sockaddr_in a = test::loopback_address(port);
     timeval tv{3, 0};  // an answer that takes longer counts as none, a stuck send as failed
     setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
     setsockopt(fd_, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv);
-    if (::connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) close_now();
+    if (::connect(fd_, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0) close_now();
   }
   ~RawConnection() { close_now(); }
   RawConnection(const RawConnection&) = delete;
