@@ -362,17 +362,29 @@ bool Planner::push_segment(CoordinateRing* ring, const int32_t target_um[config:
   e.capture_um = settings_.cut_tolerance_um;
   const uint32_t feed_cap = (uint32_t)feed_um_s * settings_.max_override_percent / 100U;
   uint16_t cap = min16(e.cruise_max_um_s, feed_cap > kMaxSpeed ? kMaxSpeed : (uint16_t)feed_cap);
+  int16_t turn_q14 = 0;  // this corner's sin(theta/2), signed as the turn in XY
   if (have_dir_) {
     cap = min16(cap, last_cruise_um_s_);
-    const int32_t omc_q14 = (int32_t)kOneQ14 - dot_q14(last_dir_q14_, e.dir_q14);
+    int32_t omc_q14 = (int32_t)kOneQ14 - dot_q14(last_dir_q14_, e.dir_q14);
     if (omc_q14 > 0) {
       // sin(theta/2) = sqrt((1 - cos theta) / 2), Q14: one root for both limits.
-      const uint32_t sin_half_q14 = core::isqrt32((uint32_t)omc_q14 << 13);
+      uint32_t sin_half_q14 = core::isqrt32((uint32_t)omc_q14 << 13);
       const uint8_t axes = involved_axes(last_dir_q14_, e.dir_q14);
-      cap = min16(cap, corner_speed(axes, omc_q14, sin_half_q14));
+      const int32_t cross =
+          (int32_t)last_dir_q14_[0] * e.dir_q14[1] - (int32_t)last_dir_q14_[1] * e.dir_q14[0];
+      turn_q14 = (int16_t)(cross < 0 ? -(int32_t)sin_half_q14 : (int32_t)sin_half_q14);
       if (e.length_um != 0 && last_length_um_ != 0) {
         cap = min16(cap, curve_speed(axes, sin_half_q14, last_length_um_, e.length_um));
+        // A jog: a turn back against the last one within two capture radii. The ramp's lag
+        // from the first has not died out, so their velocity steps add up: the corner is
+        // priced with 2 sin(theta/2) the sum of both (at most a reversal).
+        if ((turn_q14 ^ last_turn_q14_) < 0 && last_length_um_ < 2U * settings_.capture_radius_um) {
+          sin_half_q14 += (uint32_t)(last_turn_q14_ < 0 ? -last_turn_q14_ : last_turn_q14_);
+          if (sin_half_q14 > kOneQ14) sin_half_q14 = kOneQ14;
+          omc_q14 = (int32_t)((sin_half_q14 * sin_half_q14) >> 13);  // 2 sin^2(theta/2)
+        }
       }
+      cap = min16(cap, corner_speed(axes, omc_q14, sin_half_q14));
     }
     // The corner is at the last point with length; zero-length markers after it sit on the
     // same point and get the same radius.
@@ -392,7 +404,10 @@ bool Planner::push_segment(CoordinateRing* ring, const int32_t target_um[config:
   memmove(last_um_, target_um, sizeof last_um_);  // push_standing: target_um is last_um_
   memcpy(last_dir_q14_, e.dir_q14, sizeof last_dir_q14_);
   last_cruise_um_s_ = e.cruise_max_um_s;
-  if (e.length_um != 0) last_length_um_ = e.length_um;
+  if (e.length_um != 0) {
+    last_length_um_ = e.length_um;
+    last_turn_q14_ = turn_q14;
+  }
   have_dir_ = true;
   replan(ring);
   return true;

@@ -116,6 +116,7 @@ class Planner {
   int16_t last_dir_q14_[config::kAxisCount];
   uint16_t last_cruise_um_s_;
   uint32_t last_length_um_;  // of the last segment with a length (curve speed)
+  int16_t last_turn_q14_;    // sin(theta/2) at its start, signed as the turn (jogs)
   uint16_t normal_accel_um_s_per_ms_[config::kAxisCount];  // sqrt(chip^2 - plan^2), init()
   bool have_dir_;
 };

@@ -98,6 +98,45 @@ TEST(Planner, PointsOnATightCircleAreLimitedToTheCentripetalSpeed) {
   }
 }
 
+// A jog: a turn left, a few micrometres, the same turn back right (two drawn lines chained
+// across a small gap make one). Priced alone each corner keeps its ramp error within the
+// corner tolerance, but the chip's lag from the first has not died out at the second, so the
+// second is priced as one corner whose velocity step is both: 2 sin(theta/2) summed. Between
+// turns farther apart than two capture radii (20 um), each corner alone.
+TEST(Planner, AJogsSecondTurnIsPricedWithBothTurnsVelocitySteps) {
+  const double chip = MotionRig().scaling.chip_accel_um_s_per_ms[0] * 1000.0;
+  const double plan = MotionRig().scaling.plan_accel_um_s_per_ms[0] * 1000.0;
+  for (const int32_t middle_um : {8, 19, 40}) {
+    MotionRig rig;
+    const double t = 40 * M_PI / 180;
+    const int32_t p0[3] = {10000, 10000, 0};
+    const int32_t a[3] = {12000, 10000, 0};
+    const int32_t b[3] = {a[0] + int32_t(std::lround(middle_um * std::cos(t))),
+                          a[1] + int32_t(std::lround(middle_um * std::sin(t))), 0};
+    const int32_t c[3] = {b[0] + 2000, b[1], 0};
+    for (const int32_t* p : {p0, a, b, c}) ASSERT_TRUE(rig.planner.push(&rig.ring, p, 30000, 0, 0));
+    // The turn of the rounded middle segment, the same both ways (the outer ones run along x).
+    const double turn = std::atan2(double(b[1] - a[1]), double(b[0] - a[0]));
+    const double v_alone =
+        std::sqrt((chip - plan * std::sin(turn / 2)) * 4.0 / (1 - std::cos(turn)));
+    const double s = 2 * std::sin(turn / 2);  // both velocity steps, over 2 v
+    const double v_jog = std::sqrt((chip - plan * s) * 4.0 / (2 * s * s));
+    // Both corners are also on a curve of radius L / (2 sin(theta/2)) (the curve speed).
+    const double a_n = std::sqrt(chip * chip - plan * plan);
+    const double middle = std::hypot(double(b[0] - a[0]), double(b[1] - a[1]));
+    const double v_each = std::min(v_alone, std::sqrt(a_n * middle / (2 * std::sin(turn / 2))));
+    const double v = rig.ring.newest(0)->junction_max_um_s;        // at b, where c's segment starts
+    const double v_first = rig.ring.newest(1)->junction_max_um_s;  // at a: the first turn alone
+    EXPECT_NEAR(v_first, v_each, 0.02 * v_each) << middle_um << " um";
+    if (middle_um < 20) {
+      ASSERT_LT(v_jog, 0.8 * v_each);  // what the test tells apart
+      EXPECT_NEAR(v, v_jog, 0.02 * v_jog) << middle_um << " um";
+    } else {
+      EXPECT_NEAR(v, v_each, 0.02 * v_each) << middle_um << " um";
+    }
+  }
+}
+
 TEST(Planner, StraightChainsAndZeroLengthPointsGetNoCurveLimit) {
   MotionRig rig;
   // Collinear points 10 um apart with a repeated point among them: no turn, no limit below
