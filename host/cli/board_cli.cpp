@@ -87,7 +87,7 @@ void add_board_command(CLI::App& app) {
   cmd->callback([a] { run_board(*a); });
 }
 
-const CommandRegistrar registrar("board", add_board_command);
+const CommandRegistrar registrar("board", {"board"}, add_board_command);
 
 }  // namespace
 

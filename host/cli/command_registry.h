@@ -4,21 +4,32 @@
 
 #include <CLI/CLI.hpp>  // CLI::App
 
-#include <string>  // std::string
+#include <initializer_list>  // std::initializer_list
+#include <string>            // std::string
+#include <vector>            // std::vector
 
 namespace host::cli {
 
 // Adds a group's subcommands to the top-level app. Called once at start-up.
 using AddCommands = void (*)(CLI::App& app);
 
-// A static instance in a *_commands.cpp file registers that file's group.
+// A static instance in a *_commands.cpp file registers that file's group and the names of
+// the commands it adds (`commands`, in the order it adds them), so that a command line naming
+// one of them builds that group alone.
 struct CommandRegistrar {
-  CommandRegistrar(const char* group, AddCommands add);
+  CommandRegistrar(const char* group, std::initializer_list<const char*> commands, AddCommands add);
 };
 
-// Calls every registered group, in group-name order (stable --help); then every number option
-// of every command refuses "nan", "inf" and what is not a plain decimal, and the board options
-// take their one range from option_ranges() (usage errors naming the option).
+// The command names of every registered group, in group-name order (as --help lists them).
+std::vector<std::string> registered_command_names();
+
+// Adds the commands the command line can reach: when argv[1] is a registered command's name,
+// its group alone; for `engraver --version` alone, none; otherwise every group, in group-name
+// order (stable --help; an unknown command's message lists them all). Then every number
+// option of the added commands refuses "nan", "inf" and what is not a plain decimal, and the
+// board options take their one range from option_ranges() (usage errors naming the option).
+void add_registered_commands(CLI::App& app, int argc, const char* const* argv);
+// Every group, as for `engraver --help`.
 void add_registered_commands(CLI::App& app);
 
 // When the first argument is neither an option nor one of app's commands: a message that

@@ -135,7 +135,7 @@ void add_drawing_commands(CLI::App& app) {
   });
 }
 
-const CommandRegistrar registrar("drawing", add_drawing_commands);
+const CommandRegistrar registrar("drawing", {"info", "points"}, add_drawing_commands);
 
 }  // namespace
 

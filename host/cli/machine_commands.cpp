@@ -661,7 +661,7 @@ void add_machine_commands(CLI::App& app) {
   add_run_command(app);
 }
 
-const CommandRegistrar registrar("machine", add_machine_commands);
+const CommandRegistrar registrar("machine", {"send", "probe", "sim", "run"}, add_machine_commands);
 
 }  // namespace
 

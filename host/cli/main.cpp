@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
       " (docs/user-guide.md, \"Exit codes\"). Each command's --help lists its own.");
   app.set_version_flag("--version", std::string("engraver ") + ENGRAVER_VERSION);
   app.require_subcommand(1);
-  host::cli::add_registered_commands(app);
+  host::cli::add_registered_commands(app, argc, argv);
   const std::string unknown = host::cli::unknown_command_message(app, argc, argv);
   if (!unknown.empty()) {
     std::cerr << "engraver: " << unknown << "\n";

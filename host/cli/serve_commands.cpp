@@ -281,7 +281,7 @@ void add_serve_commands(CLI::App& app) {
   serve->callback([args] { run_serve(*args); });
 }
 
-const CommandRegistrar registrar("serve", add_serve_commands);
+const CommandRegistrar registrar("serve", {"serve"}, add_serve_commands);
 
 }  // namespace
 

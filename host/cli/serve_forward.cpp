@@ -46,7 +46,7 @@ void add_serve_forward(CLI::App& app) {
   serve->callback([serve] { exec_serve(serve->remaining()); });
 }
 
-const CommandRegistrar registrar("serve", add_serve_forward);
+const CommandRegistrar registrar("serve", {"serve"}, add_serve_forward);
 
 }  // namespace
 

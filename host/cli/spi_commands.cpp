@@ -145,6 +145,6 @@ void add_spi_commands(CLI::App& app) {
                 "and after them are not compared (e.g. init inside a long capture)");
 }
 
-const host::cli::CommandRegistrar kRegisterSpi("spi", add_spi_commands);
+const host::cli::CommandRegistrar kRegisterSpi("spi", {"spi"}, add_spi_commands);
 
 }  // namespace
