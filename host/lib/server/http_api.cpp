@@ -20,14 +20,16 @@
 #include <netinet/in.h>  // sockaddr_in, ntohs
 #include <sys/socket.h>  // listen, getsockname, getsockopt, setsockopt
 
-#include <charconv>    // std::from_chars
-#include <cmath>       // std::isfinite
-#include <cstdlib>     // std::strtod
-#include <fstream>     // std::ofstream
-#include <functional>  // std::function
-#include <iterator>    // std::distance
-#include <regex>       // std::regex
-#include <set>         // std::set
+#include <cctype>       // std::isalnum
+#include <charconv>     // std::from_chars
+#include <cmath>        // std::isfinite
+#include <cstdlib>      // std::strtod
+#include <fstream>      // std::ofstream
+#include <functional>   // std::function
+#include <iterator>     // std::distance
+#include <regex>        // std::regex
+#include <set>          // std::set
+#include <string_view>  // std::string_view
 
 namespace host::server {
 
@@ -40,6 +42,17 @@ void send_json(httplib::Response& res, int status, const nlohmann::json& body) {
   // Messages may quote bytes of a broken upload: invalid UTF-8 is replaced, never thrown.
   res.set_content(body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
                   "application/json");
+}
+
+// An HTTP token (RFC 9110 5.6.2): what a header's name may be.
+bool is_token(const std::string& name) {
+  if (name.empty()) return false;
+  for (const char c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) &&
+        std::string_view("!#$%&'*+-.^_`|~").find(c) == std::string_view::npos)
+      return false;
+  }
+  return true;
 }
 
 void send_error(httplib::Response& res, int status, const std::string& why) {
@@ -635,6 +648,17 @@ void HttpApi::routes() {
 }
 
 bool HttpApi::refused_from_headers(const httplib::Request& req, httplib::Response& res) const {
+  // httplib keeps "Content-Length : 5" as a header named "Content-Length ", which a proxy
+  // in front may have read as the length (the message's framing then differs).
+  for (const auto& header : req.headers) {
+    if (!is_token(header.first)) {
+      send_error(res, 400,
+                 fmt::format("header name '{}' is not a token (a space before its colon, or a "
+                             "continued line?)",
+                             header.first));
+      return true;
+    }
+  }
   if (req.get_header_value_count("Host") > 1) {  // which one would a proxy have checked?
     send_error(res, 400, "the Host header is given twice");
     return true;

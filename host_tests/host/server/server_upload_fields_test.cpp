@@ -433,6 +433,38 @@ TEST(ServerUploadFields, ABodysLengthIsPlainDigitsSaidOnce) {
   EXPECT_TRUE(server.jobs().empty());
 }
 
+// A header's name is a token: "Content-Length : 16" (httplib named it "Content-Length ",
+// so it read no body where a proxy in front may have read 16 bytes), a continued line, a
+// space inside a name are each a 400 from the headers, for a GET too.
+TEST(ServerUploadFields, AHeaderNameThatIsNotATokenIsRefused) {
+  test::TempDir dir;
+  ServerRig server(dir.path(), {}, 256 * 1024);
+  const std::string head =
+      "POST /api/jobs?name=a.ngc HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+      "Authorization: Bearer " +
+      server.token() + "\r\n";
+  const std::string body = "G0 X1\nG1 X2 F100\n";
+  const std::string length = fmt::format("Content-Length: {}\r\n", body.size());
+  for (const std::string bad :
+       {fmt::format("Content-Length : {}\r\n", body.size()),
+        fmt::format("Content-Length\t: {}\r\n", body.size()),
+        "X-Note: a\r\n Content-Length: 5\r\n" + length, "X Note: a\r\n" + length}) {
+    RawConnection c(server.port());
+    ASSERT_TRUE(c.send_text(head + bad + "\r\n" + body));
+    const std::string answer = c.next_answer();
+    EXPECT_EQ(answer.rfind("HTTP/1.1 400 ", 0), 0u) << bad << answer;
+    EXPECT_NE(answer_body(answer).find("is not a token"), std::string::npos) << answer;
+  }
+  RawConnection get(server.port());
+  ASSERT_TRUE(get.send_text("GET /api/status HTTP/1.1\r\nHost : 127.0.0.1\r\n\r\n"));
+  EXPECT_EQ(get.next_answer().rfind("HTTP/1.1 400 ", 0), 0u);
+  EXPECT_TRUE(server.jobs().empty());
+  // The same upload with its length said plainly is taken.
+  RawConnection good(server.port());
+  ASSERT_TRUE(good.send_text(head + length + "\r\n" + body));
+  EXPECT_EQ(good.next_answer().rfind("HTTP/1.1 201 ", 0), 0u);
+}
+
 // A raw body is the file: one declared a byte past --max-upload-mb is refused from the
 // headers (a form's parts still get their framing's allowance).
 TEST(ServerUploadFields, ARawBodyOneBytePastTheLimitIsRefusedFromTheHeaders) {
