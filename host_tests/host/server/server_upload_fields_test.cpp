@@ -86,6 +86,12 @@ std::string upload_head(const ServerRig& server, size_t length, bool with_token 
       with_token ? "Authorization: Bearer " + server.token() + "\r\n" : "", length);
 }
 
+// A raw upload's request line, Host and token: the test adds the rest of its head.
+std::string post_head_with_token(const ServerRig& server) {
+  return "POST /api/jobs?name=a.ngc HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer " +
+         server.token() + "\r\n";
+}
+
 std::string answer_body(const std::string& answer) {
   const size_t end = answer.find("\r\n\r\n");
   return end == std::string::npos ? "" : answer.substr(end + 4);
@@ -408,10 +414,7 @@ TEST(ServerUploadFields, ARefusalFromTheHeadersClosesTheConnection) {
 TEST(ServerUploadFields, ABodysLengthIsPlainDigitsSaidOnce) {
   test::TempDir dir;
   ServerRig server(dir.path(), {}, 256 * 1024);
-  const std::string head =
-      "POST /api/jobs?name=a.ngc HTTP/1.1\r\nHost: 127.0.0.1\r\n"
-      "Authorization: Bearer " +
-      server.token() + "\r\n";
+  const std::string head = post_head_with_token(server);
   for (const std::string lengths :
        {"Content-Length: 0x10\r\n", "Content-Length: 16abc\r\n", "Content-Length: -1\r\n",
         "Content-Length: 16\r\nContent-Length: 16\r\n",
@@ -439,10 +442,7 @@ TEST(ServerUploadFields, ABodysLengthIsPlainDigitsSaidOnce) {
 TEST(ServerUploadFields, AHeaderNameThatIsNotATokenIsRefused) {
   test::TempDir dir;
   ServerRig server(dir.path(), {}, 256 * 1024);
-  const std::string head =
-      "POST /api/jobs?name=a.ngc HTTP/1.1\r\nHost: 127.0.0.1\r\n"
-      "Authorization: Bearer " +
-      server.token() + "\r\n";
+  const std::string head = post_head_with_token(server);
   const std::string body = "G0 X1\nG1 X2 F100\n";
   const std::string length = fmt::format("Content-Length: {}\r\n", body.size());
   for (const std::string bad :
