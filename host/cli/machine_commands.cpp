@@ -4,13 +4,14 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include <atomic>    // std::atomic
-#include <chrono>    // milliseconds
-#include <cmath>     // std::round
-#include <cstdlib>   // std::strtol
-#include <iostream>  // std::cerr
-#include <memory>    // std::make_shared
-#include <optional>  // std::optional
+#include <atomic>      // std::atomic
+#include <chrono>      // milliseconds
+#include <cmath>       // std::round
+#include <cstdlib>     // std::strtol
+#include <functional>  // std::function
+#include <iostream>    // std::cerr
+#include <memory>      // std::make_shared
+#include <optional>    // std::optional
 
 #include "host/cli/board_cli.h"  // PCB input (Gerber, Excellon, a board's directory)
 #include "host/cli/command_registry.h"
@@ -51,6 +52,9 @@ struct PlanArgs {
   double fit_tol_mm = defaults::kFitToleranceMm;
   bool drill_as_z_moves = false;
   BoardArgs board;
+  // Once the command line is read: the input's kind known, its defaults taken and the
+  // other kind's options refused (add_plan_options; the command's callback calls it).
+  std::function<void()> resolve_input;
 };
 
 // Options for drawings only (DXF, G-code): PCB files are cut at their own size and depths.
@@ -124,7 +128,9 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   add_board_options(cmd, &a->board);
   // PCB files take `engraver board`'s defaults where no option is given: the board that
   // `board` showed is the board that runs. A missing file is left to the reader to name.
-  cmd->parse_complete_callback([cmd, a, feed, tol, margin] {
+  // Not a parse_complete_callback: CLI11 checks the command's required FILE before one, so
+  // `engraver -h run` was "FILE is required" instead of run's help.
+  a->resolve_input = [cmd, a, feed, tol, margin] {
     if (!input_exists(a->file)) return;
     const bool pcb = is_pcb_input(a->file);
     refuse_options_of_the_other_input(*cmd, pcb);
@@ -133,7 +139,7 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
     if (feed->count() == 0) a->feed_mm_s = board.feed_mm_s;
     if (tol->count() == 0) a->tol_mm = board.chord_tol_mm;
     if (margin->count() == 0) a->margin_mm = board.margin_mm;
-  });
+  };
 }
 
 // A board's job goes to `board` too (when given).
@@ -518,11 +524,13 @@ void add_link_options(CLI::App* cmd, std::string* to, bool* no_zero) {
                 "before anything is sent");
 }
 
-// Runs the command with its arguments; a link that fails ends it with kExitLinkLost.
+// Runs the command with its arguments (its input's options resolved first); a link that
+// fails ends it with kExitLinkLost.
 template <class Args>
 void callback_ending_on_link_errors(CLI::App* cmd, std::shared_ptr<Args> args,
                                     void (*run)(const Args&)) {
   cmd->callback([args, run] {
+    args->plan.resolve_input();
     try {
       run(*args);
     } catch (const LinkError& e) {

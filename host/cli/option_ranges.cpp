@@ -31,14 +31,33 @@ std::string refuse_non_number(std::string& value) {
 }
 
 // A count given as 1.5 is refused (CLI11's own words were "Could not convert"); one given as
-// 2.0 or 1e1 is a whole number, handed on as "2" or "10" (CLI11 converts digits only).
+// 2.0 or 1e1 is a whole number, handed on as "2" or "10" (CLI11 converts digits only). Past
+// 10^15 no count means anything (CLI11 wrapped 99999999999999999999 to 2^64 - 1).
 std::string refuse_fraction(std::string& value) {
   const std::string refused = refuse_non_number(value);
   if (!refused.empty()) return refused;
   if (!host::is_whole_decimal(value)) return "'" + value + "' is not a whole number";
   const double v = std::strtod(value.c_str(), nullptr);
-  if (std::fabs(v) < 1e15) value = fmt::format("{:.0f}", v);  // beyond: the range refuses
+  if (std::fabs(v) >= 1e15) return "'" + value + "' is too large";
+  value = fmt::format("{:.0f}", v);
   return "";
+}
+
+// An unsigned count: CLI11 took "-1" as 2^64 - 1.
+std::string refuse_negative(std::string& value) {
+  const double v = std::strtod(value.c_str(), nullptr);
+  return v < 0 ? "'" + value + "' is negative: a count is 0 or more" : "";
+}
+
+// "" is not leaving an option out: CLI11 handed it on, and --side '' took the default side,
+// serve --data '' the current folder.
+CLI::Validator refuse_empty(bool named_option) {
+  const std::string hint = named_option ? " (leave the option out for its default)" : "";
+  return CLI::Validator(
+      [hint](const std::string& value) {
+        return value.empty() ? "an empty value" + hint : std::string();
+      },
+      "", "not empty");
 }
 
 bool is_integer_option(const CLI::Option* o) {
@@ -67,7 +86,11 @@ const std::map<std::string, const OptionRange*>& ranges_by_long_name() {
 
 void add_checks(CLI::App* app) {
   for (CLI::Option* o : app->get_options()) {
+    // After the option's own checks, which may say more (--align-holes '': say auto).
+    if (o->get_type_size_max() > 0) o->check(refuse_empty(!o->get_lnames().empty()));
     const bool whole = is_integer_option(o);
+    if (whole && o->get_type_name().rfind("UINT", 0) == 0)
+      o->transform(CLI::Validator(refuse_negative, "", "not negative"));  // after the fraction
     if (whole)
       o->transform(CLI::Validator(refuse_fraction, "", "whole"));  // may rewrite 2.0 as 2
     else if (is_number_option(o))
@@ -175,6 +198,17 @@ CLI::Validator output_folder() {
         const auto status = std::filesystem::status(dir, ec);
         if (std::filesystem::exists(status) && !std::filesystem::is_directory(status))
           return "'" + dir + "' is a file, not a folder";
+        // A folder to be made under a file (out.json/x) fails only after the planning.
+        for (std::filesystem::path up = std::filesystem::path(dir).parent_path(); !up.empty();
+             up = up.parent_path()) {
+          const auto s = std::filesystem::status(up, ec);
+          if (std::filesystem::exists(s)) {
+            if (!std::filesystem::is_directory(s))
+              return "'" + dir + "' cannot be made: '" + up.string() + "' is a file";
+            break;
+          }
+          if (up == up.parent_path()) break;
+        }
         return "";
       },
       "FOLDER", "folder");

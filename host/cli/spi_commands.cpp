@@ -7,6 +7,7 @@
 
 #include "host/cli/command_registry.h"  // CommandRegistrar
 #include "host/cli/exit_codes.h"        // CommandFailure
+#include "host/cli/option_ranges.h"     // range_refusal
 #include "host/spi/commands.h"          // run_decode, run_expect, run_diff
 #include "host/spi/scenario.h"          // available_scenarios
 
@@ -137,7 +138,13 @@ void add_spi_commands(CLI::App& app) {
   dif->add_option("EXPECTED", diff->expected, "golden file (from `spi expect`)")->required();
   dif->add_option("--max-frame-errors", diff->max_error_fraction,
                   "fraction of datagrams with frame errors above which the capture is unusable")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            return host::cli::range_refusal(
+                host::cli::OptionRange{"--max-frame-errors", 0.0, 1.0, "", false}, v);
+          },
+          "in [0 .. 1]", "range"));
   dif->add_flag("--json", diff->json, "JSON output with stable keys");
   dif->add_flag("--raw", diff->raw, "no TMC428 register names");
   dif->add_flag("--within", diff->within,

@@ -100,7 +100,6 @@ TEST(CliAddress, ServesBadListenAddressesAreUsageErrorsWithSimsMessages) {
              {"127.0.0.1:-80", "the port must be 0 .. 65535 (0: any free port)"},
              {"127.0.0.1:99999999999999999999", "the port must be 0 .. 65535 (0: any free port)"},
              {"-80", "expected ADDR:PORT"},
-             {"", "expected ADDR:PORT"},
              {"nowhere.example:8080", "listen address 'nowhere.example' is not a numeric address"}};
   for (const auto& b : bad) {
     for (const std::string command : {"serve --data " + data, std::string("sim")}) {
@@ -111,6 +110,11 @@ TEST(CliAddress, ServesBadListenAddressesAreUsageErrorsWithSimsMessages) {
           << command << "\n"
           << r.err;
     }
+  }
+  for (const std::string command : {"serve --data " + data, std::string("sim")}) {
+    const ToolRun r = host_tests::run_tool(kExe, command + " --listen ''");
+    EXPECT_EQ(r.code, 2) << command << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("engraver: --listen: an empty value", 0), 0u) << command << "\n" << r.err;
   }
 }
 

@@ -110,7 +110,43 @@ TEST(CliUsage, AnOutputFolderThatIsAFileIsABadCommandLine) {
                      "--outdir: '" + file + "' is a file, not a folder");
   expect_usage_error("board top.gbr -o " + file,  // found before any file is read
                      "--outdir: '" + file + "' is a file, not a folder");
+  // A folder to be made under a file fails only after planning unless found here.
+  expect_usage_error("run " + kWord + " -o " + file + "/out",
+                     "--outdir: '" + file + "/out' cannot be made: '" + file + "' is a file");
   std::remove(file.c_str());
+}
+
+// An empty value is not the option left out (outside tester 15: --side '' took the copper's
+// side, --resume-at '' opened the link, serve --data '' wrote into the current folder).
+TEST(CliUsage, AnEmptyValueIsABadCommandLine) {
+  expect_usage_error("board top.gbr --side ''",
+                     "--side: an empty value (leave the option out for its default)");
+  expect_usage_error("run " + kWord + " -o ''", "--outdir: an empty value");
+  expect_usage_error("send " + kWord + " --to tcp://127.0.0.1:9 --resume-at ''",
+                     "--resume-at: an empty value");
+  expect_usage_error("serve --data '' --listen 127.0.0.1:0", "--data: an empty value");
+  expect_usage_error("info ''", "FILE: an empty value\n");  // no option to leave out
+}
+
+// An unsigned count: CLI11 took -1 and 20 digits as 2^64 - 1 (spi expect then wrote a
+// header promising 18446744073709551615 datagrams); a fraction's range is its own.
+TEST(CliUsage, ACountIsNotNegativeNorPastAnyMeaning) {
+  expect_usage_error("spi expect --scenario job " + kWord + " --max-datagrams -1",
+                     "--max-datagrams: '-1' is negative: a count is 0 or more");
+  expect_usage_error("spi expect --scenario job " + kWord + " --max-datagrams 99999999999999999999",
+                     "--max-datagrams: '99999999999999999999' is too large");
+  expect_usage_error("spi diff a.vcd b.golden --max-frame-errors -1",
+                     "--max-frame-errors: -1 is outside the allowed range 0 .. 1");
+}
+
+// -h before the command is that command's help, as for every other command (run, send and
+// probe checked their FILE before it: "FILE is required").
+TEST(CliUsage, HelpBeforeTheCommandIsItsHelp) {
+  for (const std::string command : {"run", "send", "probe", "info", "board"}) {
+    const ToolRun r = engraver("-h " + command);
+    EXPECT_EQ(r.code, 0) << command << "\n" << r.err;
+    EXPECT_NE(r.out.find("Usage: engraver " + command + " "), std::string::npos) << r.out;
+  }
 }
 
 }  // namespace
