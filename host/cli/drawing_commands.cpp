@@ -127,7 +127,8 @@ void add_drawing_commands(CLI::App& app) {
       "  engraver points samples/engraver-word.dxf --tol 0.005 --csv > points.csv\n"
       "  engraver points board_outline.ngc --tol 0.01\n"
       "  engraver points board/ --side bottom --tool-width 0.1 --passes 3 --csv > paths.csv\n"
-      "Exit codes: 0 printed; 1 a curve the firmware cannot hold; 2 bad option, or the file "
+      "Exit codes: 0 printed; 1 a curve the firmware cannot hold, or a board's copper refused "
+      "(narrow gaps, the work area); 2 bad option, or the file "
       "cannot be read or imported.");
   points->callback([points, points_args]() {
     refuse_board_options_for_drawings(*points, points_args->file);

@@ -37,7 +37,7 @@ inline constexpr ExitCodeText kExitCodes[] = {
     {kExitAlarm, "send/run: machine alarm"},
     {kExitRefused,
      "send/run/probe: command refused by the controller, or a probe touch stopped by Ctrl-C"},
-    {kExitLinkLost, "send/run: link lost"},
+    {kExitLinkLost, "send/run/probe: link lost"},
     {kExitStalled, "send/run: stalled (no progress for 30 s)"},
     {kExitCutsCopper, "board/run/send: the tool would cut copper"},
     {kExitInternal, "internal error"}};

@@ -233,7 +233,7 @@ TEST(Cli, EachCommandsHelpHasItsExamplesAndExitCodes) {
     EXPECT_NE(r.out.find("Exit codes: 0"), std::string::npos) << r.out;
   }
   const ToolRun top = run("--help");
-  EXPECT_NE(top.out.find("6 send/run: link lost"), std::string::npos) << top.out;
+  EXPECT_NE(top.out.find("6 send/run/probe: link lost"), std::string::npos) << top.out;
 }
 
 // `info` takes a board folder (host_tests/host/pcb/board_cli_test.cpp); a folder without PCB
