@@ -172,7 +172,14 @@ void add_drill_and_cutout_options(CLI::App* cmd, BoardArgs* a) {
 void add_side_and_alignment_options(CLI::App* cmd, BoardArgs* a) {
   const std::string g = kBoardOptionsGroup;
   cmd->add_option("--side", a->side, "top or bottom (mirrored); default: the copper given")
-      ->group(g);
+      ->group(g)
+      ->check(CLI::Validator(  // as the line is read, not after the files' notes
+          [](const std::string& side) {
+            return side.empty() || side == "top" || side == "bottom"
+                       ? std::string()
+                       : "'" + side + "' is not top or bottom";
+          },
+          "", "side"));
   cmd->add_option("--align-holes", a->alignment.holes,
                   "double-sided: alignment holes for pins, 'auto' (on the flip axis below and "
                   "above the board) or X,Y[;X,Y...] mm in the files' frame, each with its mirror; "

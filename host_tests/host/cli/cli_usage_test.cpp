@@ -128,6 +128,13 @@ TEST(CliUsage, AnEmptyValueIsABadCommandLine) {
   expect_usage_error("info ''", "FILE: an empty value\n");  // no option to leave out
 }
 
+// A side that is not one, before the files are read and their notes printed.
+TEST(CliUsage, ASideThatIsNotOneIsRefusedAsTheLineIsRead) {
+  for (const std::string command : {"board", "run", "points"})
+    expect_usage_error(command + " no-such-board/ --side sideways",
+                       "--side: 'sideways' is not top or bottom");
+}
+
 // An unsigned count: CLI11 took -1 and 20 digits as 2^64 - 1 (spi expect then wrote a
 // header promising 18446744073709551615 datagrams); a fraction's range is its own.
 TEST(CliUsage, ACountIsNotNegativeNorPastAnyMeaning) {
