@@ -2,6 +2,7 @@
 // the guard that maps every failure to a message and a documented exit code.
 #include <CLI/CLI.hpp>  // CLI::App
 
+#include <cstring>   // std::strcmp
 #include <iostream>  // std::cerr
 
 #include "host/cli/command_guard.h"
@@ -35,5 +36,11 @@ int main(int argc, char** argv) {
     return host::cli::kExitUsage;
   }
   host::cli::install_terminate_guard(app);
+  // `engraver -h serve` as `engraver serve --help`: serve's options are engraver-serve's, so
+  // the forwarder's own help has none.
+  const char* serve_help[] = {argv[0], "serve", "--help"};
+  if (argc == 3 && (std::strcmp(argv[1], "-h") == 0 || std::strcmp(argv[1], "--help") == 0) &&
+      std::strcmp(argv[2], "serve") == 0)
+    return host::cli::run_guarded(app, 3, serve_help, std::cerr);
   return host::cli::run_guarded(app, argc, argv, std::cerr);
 }

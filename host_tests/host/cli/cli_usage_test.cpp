@@ -147,12 +147,13 @@ TEST(CliUsage, ACountIsNotNegativeNorPastAnyMeaning) {
 }
 
 // -h before the command is that command's help, as for every other command (run, send and
-// probe checked their FILE before it: "FILE is required").
+// probe checked their FILE before it: "FILE is required"; serve's was the forwarder's stub).
 TEST(CliUsage, HelpBeforeTheCommandIsItsHelp) {
-  for (const std::string command : {"run", "send", "probe", "info", "board"}) {
+  for (const std::string command : {"run", "send", "probe", "info", "board", "serve"}) {
     const ToolRun r = engraver("-h " + command);
     EXPECT_EQ(r.code, 0) << command << "\n" << r.err;
-    EXPECT_NE(r.out.find("Usage: engraver " + command + " "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("Usage: engraver " + command + " [OPTIONS]"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out, engraver(command + " --help").out) << command;
   }
 }
 
