@@ -7,7 +7,6 @@
 #include <cstdlib>     // std::strtod
 #include <filesystem>  // std::filesystem::status
 #include <map>         // std::map
-#include <regex>       // std::regex
 
 #include "host/lib/plan/job_defaults.h"
 #include "host/lib/plan/plain_decimal.h"  // host::is_plain_decimal
