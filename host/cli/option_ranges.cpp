@@ -97,17 +97,12 @@ void add_checks(CLI::App* app) {
     for (const std::string& name : o->get_lnames()) {
       const auto found = ranges_by_long_name().find(name);
       if (found == ranges_by_long_name().end()) continue;
-      const OptionRange& r = *found->second;
-      const std::string unit = *r.unit ? std::string(" ") + r.unit : std::string();
-      CLI::Validator range([r](std::string& v) { return range_refusal(r, v); },
-                           "in [" + bound_text(r.min) + " .. " + bound_text(r.max) + "]" + unit,
-                           "range");
       // A count's range as a transform: CLI11 runs transforms first, the last added first,
       // so the range sees the value as typed (1e3), not as rewritten (1000).
       if (whole)
-        o->transform(range);
+        o->transform(range_check(*found->second));
       else
-        o->check(range);
+        o->check(range_check(*found->second));
     }
   }
   for (CLI::App* sub : app->get_subcommands({})) add_checks(sub);
@@ -184,6 +179,13 @@ std::string range_refusal(const OptionRange& r, const std::string& value) {
   const std::string unit = *r.unit ? std::string(" ") + r.unit : std::string();
   return fmt::format("{} is outside the allowed range {} .. {}{}", value, bound_text(r.min),
                      bound_text(r.max), unit);
+}
+
+CLI::Validator range_check(const OptionRange& r) {
+  const std::string unit = *r.unit ? std::string(" ") + r.unit : std::string();
+  return CLI::Validator([r](std::string& v) { return range_refusal(r, v); },
+                        "in [" + bound_text(r.min) + " .. " + bound_text(r.max) + "]" + unit,
+                        "range");
 }
 
 void add_option_checks(CLI::App* app) {

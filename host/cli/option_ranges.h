@@ -31,6 +31,10 @@ const std::vector<OptionRange>& option_ranges();
 // puts the option's name in front).
 std::string range_refusal(const OptionRange& r, const std::string& value);
 
+// The check of `r` for an option outside the table (spi diff, serve): the refusal above, and
+// "in [0.001 .. 1024] MB" in --help.
+CLI::Validator range_check(const OptionRange& r);
+
 // Adds the table's check to every option of a table name in `app` and its commands, and to
 // every number option a check that the value is a plain decimal (no hex float, no digit
 // separators) and finite.

@@ -12,6 +12,7 @@
 
 #include "host/cli/command_registry.h"
 #include "host/cli/exit_codes.h"
+#include "host/cli/option_ranges.h"  // range_check
 #include "host/cli/serve_summary.h"
 #include "host/lib/server/data_folder.h"
 #include "host/lib/server/data_folder_lock.h"
@@ -244,7 +245,7 @@ void add_serve_commands(CLI::App& app) {
   serve
       ->add_option("--max-upload-mb", args->max_upload_mb,
                    "largest upload accepted, MB (a board: all its files, unpacked)")
-      ->check(CLI::Range(0.001, 1024.0))
+      ->check(range_check({"--max-upload-mb", 0.001, 1024.0, "MB", false}))
       ->capture_default_str();
   serve->add_option("--allowed-host", args->allowed_hosts,
                     "a name or address the page is opened with, besides the listen address, "
@@ -272,7 +273,7 @@ void add_serve_commands(CLI::App& app) {
                    "a server sharing the store and silent this long is taken for dead: its "
                    "lease is revoked and its running jobs become interrupted (a server stops "
                    "sending a quarter of this before, when it cannot renew its lease)")
-      ->check(CLI::Range(2.0, 3600.0))
+      ->check(range_check({"--stale-s", 2.0, 3600.0, "s", false}))
       ->capture_default_str();
   serve->footer(
       "Example: engraver serve --data /srv/engraver --machine 'tcp://192.168.1.50:10001 "

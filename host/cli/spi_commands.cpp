@@ -139,12 +139,7 @@ void add_spi_commands(CLI::App& app) {
   dif->add_option("--max-frame-errors", diff->max_error_fraction,
                   "fraction of datagrams with frame errors above which the capture is unusable")
       ->capture_default_str()
-      ->check(CLI::Validator(
-          [](std::string& v) {
-            return host::cli::range_refusal(
-                host::cli::OptionRange{"--max-frame-errors", 0.0, 1.0, "", false}, v);
-          },
-          "in [0 .. 1]", "range"));
+      ->check(host::cli::range_check({"--max-frame-errors", 0.0, 1.0, "", false}));
   dif->add_flag("--json", diff->json, "JSON output with stable keys");
   dif->add_flag("--raw", diff->raw, "no TMC428 register names");
   dif->add_flag("--within", diff->within,

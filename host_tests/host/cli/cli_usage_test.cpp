@@ -144,6 +144,12 @@ TEST(CliUsage, ACountIsNotNegativeNorPastAnyMeaning) {
                      "--max-datagrams: '99999999999999999999' is too large");
   expect_usage_error("spi diff a.vcd b.golden --max-frame-errors -1",
                      "--max-frame-errors: -1 is outside the allowed range 0 .. 1");
+  // serve's ranges in the words of every other (CLI11's "Value 2000 not in range" before);
+  // a port no server takes, so that a missed check cannot leave one running.
+  expect_usage_error("serve --max-upload-mb 2000 --listen 127.0.0.1:99999",
+                     "--max-upload-mb: 2000 is outside the allowed range 0.001 .. 1024 MB");
+  expect_usage_error("serve --stale-s 1 --listen 127.0.0.1:99999",
+                     "--stale-s: 1 is outside the allowed range 2 .. 3600 s");
 }
 
 // -h before the command is that command's help, as for every other command (run, send and
