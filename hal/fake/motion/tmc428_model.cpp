@@ -101,8 +101,9 @@ void Tmc428Model::sync_motor_to(int m, uint64_t t) const {
   if (t <= motor_tick_[m]) return;
   advance_motor(m, motor_tick_[m], t);
   motor_tick_[m] = t;
-  // An idle motor's horizon (never) does not depend on when it was integrated.
-  if (horizon_[m].status_before != UINT64_MAX) forget_quiet_horizon(m);
+  // A horizon bounds the motion from when it was worked out, so it holds for the same motion
+  // integrated part of the way (an idle motor's, never, too); past it, work it out again.
+  if (horizon_known_[m] && t >= horizon_[m].status_before) forget_quiet_horizon(m);
 }
 
 void Tmc428Model::sync_motors() const {
@@ -612,7 +613,9 @@ void Tmc428Model::write_motor_register(int m, int idx, uint32_t data) {
   // for a motor at rest): that changes nothing, so the motor need not be integrated now.
   if (idx == 4 && (data & 0xFFF) == motor_[m].v_target) return;
   sync_motor(m);
-  forget_quiet_horizon(m);
+  // A horizon assumes no more than a microstep a pulse clock, whatever the velocity: a new
+  // v_target keeps it unless it was an idle motor's (never).
+  if (idx != 4 || horizon_[m].status_before == UINT64_MAX) forget_quiet_horizon(m);
   if (idx != 0 && idx != 4) forget_switch_free(m);  // x_target, v_target: no switch nearer
   Motor& mo = motor_[m];
   switch (idx) {

@@ -284,6 +284,69 @@ TEST(Tmc428Model, StatusBitsAheadAgreeNearXTargetAndASwitch) {
   EXPECT_EQ(lazy.x_actual(0), eager.x_actual(0));
 }
 
+// The firmware's tick reads every position and writes new velocities each millisecond: a
+// motor far from x_target and its switches keeps the reach worked out once across those
+// integrations and velocity changes (no more than a microstep a pulse clock either way).
+TEST(Tmc428Model, AMovingMotorsReachOutlastsItsReadsAndNewVelocities) {
+  Tmc428Model c;
+  velocity_setup(c);
+  write(c, motor_reg(0, kXTarget), 0xFFFFFF & (uint32_t)-100000);
+  c.set_switch_positions(0, -200000, 200000);
+  write(c, motor_reg(0, kVTarget), 300);
+  c.advance_us(100000);
+  read(c, motor_reg(0, kXActual));
+  const uint64_t checks0 = c.reach_checks();
+  const int32_t x0 = c.x_actual(0);
+  for (int ms = 0; ms < 50; ++ms) {
+    for (int m = 0; m < 3; ++m) read(c, motor_reg(m, kXActual));
+    write(c, motor_reg(0, kVTarget), 300 + ms % 7);
+    read(c, kRefSwitches);
+    c.advance_us(1000);
+  }
+  EXPECT_EQ(c.reach_checks(), checks0);
+  EXPECT_GT(c.x_actual(0), x0 + 400);   // it moved (~11 microsteps a millisecond)
+  write(c, motor_reg(0, kXTarget), 0);  // a change: worked out again at the next answer
+  read(c, motor_reg(1, kXActual));
+  EXPECT_EQ(c.reach_checks(), checks0 + 1);
+}
+
+// Through the same tick, with velocities either way over x_target and onto the left switch,
+// every answer's motor-1 status bits are what its position and flags say at that moment.
+TEST(Tmc428Model, StatusBitsThroughTheTickAgreeWithThePosition) {
+  Tmc428Model c;
+  write(c, kSmgp, kSmgpRefMux | kSmgpContinuousUpdate);
+  velocity_setup(c);
+  write(c, motor_reg(0, kXTarget), 60);
+  c.set_switch_positions(0, -900, 100000);
+  uint32_t seed = 5;
+  int crossings = 0, on_switch = 0;
+  int32_t last_x = 0;
+  for (int ms = 0; ms < 6000; ++ms) {
+    seed = seed * 1103515245u + 12345u;
+    // A few microsteps a millisecond, 0.7 s one way then the other: over x_target, onto
+    // the switch and off it; at rest for the last 0.1 s of each way.
+    const int32_t speed = ms % 700 >= 600 ? 0 : 20 + (int32_t)((seed >> 8) % 81);
+    const int32_t v = (ms / 700) % 2 == 0 ? -speed : speed;
+    for (int m = 0; m < 3; ++m) {
+      const int32_t x = c.x_actual(0);
+      const bool irq = (c.reg(0, 11) >> 8 & c.reg(0, 11) & 0xFF) != 0;
+      const uint32_t expected =
+          ((x & 0xFFFFFF) == 60 ? 0x01u : 0u) | (x <= -900 ? 0x02u : 0u) | (irq ? 0x80u : 0u);
+      const uint32_t status = read(c, motor_reg(m, kXActual)) >> 24;
+      ASSERT_EQ(status & 0x83u, expected) << "millisecond " << ms << ", x " << x;
+      crossings += (last_x < 60) != (x < 60);
+      on_switch += (status & 0x02u) != 0;
+      last_x = x;
+      c.advance_us(26);
+    }
+    write(c, motor_reg(0, kVTarget), 0xFFF & (uint32_t)v);
+    if (ms % 1000 == 999) write(c, motor_reg(0, kInterrupt), 0xFFFF);  // flags cleared
+    c.advance_us(900);
+  }
+  EXPECT_GE(crossings, 6);
+  EXPECT_GT(on_switch, 0);
+}
+
 TEST(Tmc428Model, NegativeVelocityMovesBackwards) {
   Tmc428Model c;
   velocity_setup(c);
