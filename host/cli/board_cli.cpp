@@ -175,9 +175,8 @@ void add_side_and_alignment_options(CLI::App* cmd, BoardArgs* a) {
       ->group(g)
       ->check(CLI::Validator(  // as the line is read, not after the files' notes
           [](const std::string& side) {
-            return side.empty() || side == "top" || side == "bottom"
-                       ? std::string()
-                       : "'" + side + "' is not top or bottom";
+            return side.empty() || pcb::is_board_side(side) ? std::string()
+                                                            : "'" + side + "' is not top or bottom";
           },
           "", "side"));
   cmd->add_option("--align-holes", a->alignment.holes,

@@ -85,12 +85,19 @@ IsolationOptions isolation_options(const BoardIsolationArgs& a) {
 
 }  // namespace
 
+bool is_board_side(const std::string& side) {
+  return side == "top" || side == "bottom";
+}
+
+std::string side_of_copper(const BoardFileSet& layers) {
+  return layers.copper_top.empty() && !layers.copper_bottom.empty() ? "bottom" : "top";
+}
+
 BoardSide resolve_board_side(const std::string& asked, const std::string& prefix,
                              const BoardFileSet& layers) {
   std::string side = asked.empty() ? prefix : asked;
-  if (side.empty())
-    side = layers.copper_top.empty() && !layers.copper_bottom.empty() ? "bottom" : "top";
-  if (side != "top" && side != "bottom")
+  if (side.empty()) side = side_of_copper(layers);
+  if (!is_board_side(side))
     throw BoardArgsError("--side must be top or bottom, not '" + side + "'");
   return side == "bottom" ? BoardSide::kBottom : BoardSide::kTop;
 }

@@ -85,6 +85,11 @@ class BoardArgsError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// "top" or "bottom": the words for a side, everywhere a side is asked for.
+bool is_board_side(const std::string& side);
+// The side whose copper is given: "bottom" when only bottom copper is, else "top".
+std::string side_of_copper(const BoardFileSet& layers);
+
 // The side the job is planned for: `asked` (--side), else `prefix` (a "top:"/"bottom:"
 // input), else the copper given (bottom when only bottom copper is there). Throws
 // BoardArgsError for another word.

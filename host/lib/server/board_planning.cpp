@@ -8,7 +8,7 @@
 
 #include "firmware/config/machine_config.h"
 #include "host/lib/drawing/drawing.h"
-#include "host/lib/pcb/board_args.h"   // resolve_board_options
+#include "host/lib/pcb/board_args.h"   // resolve_board_options, is_board_side
 #include "host/lib/pcb/board_check.h"  // refuse_copper_hits
 #include "host/lib/pcb/board_files.h"
 #include "host/lib/pcb/board_probe_area.h"
@@ -136,7 +136,7 @@ bool is_board_job(const JobRecord& job) {
 
 std::string check_board_settings(const BoardSettings& s) {
   using namespace defaults;
-  if (!s.side.empty() && s.side != "top" && s.side != "bottom") return "side must be top or bottom";
+  if (!s.side.empty() && !pcb::is_board_side(s.side)) return "side must be top or bottom";
   const struct {
     const char* name;
     double value;
@@ -271,7 +271,7 @@ UploadLayers read_upload_layers(const std::vector<UploadFile>& files, bool skip_
 std::string board_side(const BoardSettings& board, const pcb::BoardFileSet& set,
                        const std::string& board_name) {
   std::string side = board.side;
-  if (side.empty()) side = set.copper_top.empty() && !set.copper_bottom.empty() ? "bottom" : "top";
+  if (side.empty()) side = pcb::side_of_copper(set);
   const bool top = side == "top";
   if ((top ? set.copper_top : set.copper_bottom).empty() &&
       !(top ? set.copper_bottom : set.copper_top).empty()) {

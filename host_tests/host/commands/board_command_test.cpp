@@ -222,5 +222,26 @@ TEST(BoardArgs, OneResolverSaysTheSideAndRefusesWhatCannotPlan) {
   EXPECT_THROW(pcb::resolve_board_options(a, m, bottom_only, ""), pcb::BoardArgsError);
 }
 
+// The words for a side and the side of the copper given: what the CLI's --side check, the
+// resolver and the server's settings all ask.
+TEST(BoardArgs, TheSideWordsAndTheSideOfTheCopperGiven) {
+  EXPECT_TRUE(pcb::is_board_side("top"));
+  EXPECT_TRUE(pcb::is_board_side("bottom"));
+  for (const char* word : {"", "Top", "left", "top ", "bot"})
+    EXPECT_FALSE(pcb::is_board_side(word));
+  pcb::BoardFileSet none, bottom_only, both;
+  pcb::PcbLayer copper;
+  copper.kind = pcb::LayerKind::kCopperBottom;
+  copper.path = "b.gbr";
+  bottom_only.add(copper);
+  both.add(copper);
+  copper.kind = pcb::LayerKind::kCopperTop;
+  copper.path = "t.gbr";
+  both.add(copper);
+  EXPECT_EQ(pcb::side_of_copper(none), "top");
+  EXPECT_EQ(pcb::side_of_copper(bottom_only), "bottom");
+  EXPECT_EQ(pcb::side_of_copper(both), "top");
+}
+
 }  // namespace
 }  // namespace host::commands
