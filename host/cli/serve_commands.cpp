@@ -56,6 +56,16 @@ std::unique_ptr<server::JobStore> open_store(const std::string& db,
   return std::make_unique<server::PostgresJobStore>(db);
 }
 
+// --db names SQLite or a libpq connection (a URI, or key=value pairs): anything else is a
+// usage error as the line is read, not a failed start naming libpq's parse.
+std::string db_check(const std::string& db) {
+  const bool uri = db.rfind("postgresql://", 0) == 0 || db.rfind("postgres://", 0) == 0;
+  if (db == "sqlite" || uri || db.find('=') != std::string::npos) return "";
+  return "'" + db +
+         "' is neither 'sqlite' nor a PostgreSQL connection ('postgresql://host/db' or "
+         "'host=... dbname=...')";
+}
+
 std::atomic<bool> g_stop_serve{false};
 extern "C" void on_stop_serve(int) {
   g_stop_serve = true;
@@ -260,10 +270,12 @@ void add_serve_commands(CLI::App& app) {
       ->capture_default_str();
   serve->add_option("--name", args->name, "this server's name in the queue (default host name)");
   serve->add_flag("--no-zero", args->no_zero, "do not start manual zeroing if not zeroed");
-  serve->add_option("--db", args->db,
-                    "job store: 'sqlite' (DATA/jobs.sqlite, default) or a PostgreSQL "
-                    "connection ('postgresql://host/db' or 'host=... dbname=...') shared by "
-                    "several servers; give each server its own --name");
+  serve
+      ->add_option("--db", args->db,
+                   "job store: 'sqlite' (DATA/jobs.sqlite, default) or a PostgreSQL "
+                   "connection ('postgresql://host/db' or 'host=... dbname=...') shared by "
+                   "several servers; give each server its own --name")
+      ->check(CLI::Validator(db_check, "", "db"));
   serve->add_option("--archive", args->archive,
                     "folder of the jobs' archives instead of DATA/jobs: give every server "
                     "of one --db queue the same (a network mount), so each serves every "

@@ -152,6 +152,15 @@ TEST(CliUsage, ACountIsNotNegativeNorPastAnyMeaning) {
                      "--stale-s: 1 is outside the allowed range 2 .. 3600 s");
 }
 
+// --db is 'sqlite' or a PostgreSQL connection, checked as the line is read (exit 1 with
+// libpq's "missing \"=\" after \"bogus\"" before).
+TEST(CliUsage, AJobStoreIsSqliteOrAPostgresConnection) {
+  for (const std::string db : {"bogus", "sqlite3", "mysql://host/db", "SQLITE"}) {
+    expect_usage_error("serve --db '" + db + "' --listen 127.0.0.1:99999",
+                       "--db: '" + db + "' is neither 'sqlite' nor a PostgreSQL connection");
+  }
+}
+
 // -h before the command is that command's help, as for every other command (run, send and
 // probe checked their FILE before it: "FILE is required"; serve's was the forwarder's stub).
 TEST(CliUsage, HelpBeforeTheCommandIsItsHelp) {
