@@ -7,6 +7,7 @@
 #include <vector>   // std::vector
 
 #include "host/cli/option_ranges.h"
+#include "host/cli/terminal_text.h"  // printable
 
 namespace host::cli {
 
@@ -66,16 +67,37 @@ void add_registered_commands(CLI::App& app) {
 }
 
 std::string unknown_command_message(const CLI::App& app, int argc, const char* const* argv) {
-  if (argc < 2) return "";
-  const std::string word = argv[1];
-  if (word.empty() || word[0] == '-') return "";
-  std::string names;
-  for (const CLI::App* sub : app.get_subcommands({})) {
-    if (sub->check_name(word)) return "";
-    names += (names.empty() ? "" : ", ") + sub->get_name();
+  int i = 1;
+  // `engraver -h COMMAND` is COMMAND's help: the word after it is a command too.
+  if (argc > 2 && (std::strcmp(argv[1], "-h") == 0 || std::strcmp(argv[1], "--help") == 0)) i = 2;
+  if (i < argc && argv[i][0] == '-' && i == 1) {
+    const std::string option = argv[i];
+    if (option == "-h" || option == "--help" || option == "--version") return "";
+    return "'" + printable(option) +
+           "' is not an option of engraver itself: a command comes first " +
+           "(engraver COMMAND --help lists its options)";
   }
-  return "'" + word + "' is not an engraver command; the commands are " + names +
-         " (engraver --help; engraver COMMAND --help for each)";
+  // Down the command words (`spi diff`), each among its parent's commands.
+  const CLI::App* at = &app;
+  std::string path = "engraver";
+  while (i < argc && !at->get_subcommands({}).empty()) {
+    const std::string word = argv[i];
+    if (word.empty() || word[0] == '-') return "";
+    std::string names;
+    const CLI::App* found = nullptr;
+    for (const CLI::App* sub : at->get_subcommands({})) {
+      if (sub->check_name(word)) found = sub;
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (found == nullptr) {
+      return "'" + printable(word) + "' is not an " + path + " command; the commands are " + names +
+             " (" + path + " --help; " + path + " COMMAND --help for each)";
+    }
+    at = found;
+    path += " " + found->get_name();
+    ++i;
+  }
+  return "";
 }
 
 }  // namespace host::cli

@@ -115,6 +115,41 @@ TEST(CliRegistry, AnUnknownCommandAndNoCommandStillSeeEveryCommand) {
   EXPECT_EQ(version.err, "");
 }
 
+// Every command word is checked where it stands: after -h, and a command's own command
+// (`spi frob` was "A subcommand is required", `-h frobnicate` the top-level help and exit 0);
+// an option before any command is named; bytes that are not UTF-8 come back as \xNN.
+TEST(CliRegistry, EveryUnknownCommandWordAndLeadingOptionIsNamed) {
+  const host_tests::ToolRun help = engraver("-h frobnicate");
+  EXPECT_EQ(help.code, 2);
+  EXPECT_EQ(help.out, "");
+  EXPECT_EQ(help.err.rfind("engraver: 'frobnicate' is not an engraver command; the commands are " +
+                               every_command(),
+                           0),
+            0u)
+      << help.err;
+  const host_tests::ToolRun spi = engraver("spi frob x.vcd");
+  EXPECT_EQ(spi.code, 2);
+  EXPECT_EQ(spi.err.rfind("engraver: 'frob' is not an engraver spi command; the commands are ", 0),
+            0u)
+      << spi.err;
+  EXPECT_NE(spi.err.find("diff"), std::string::npos) << spi.err;
+  EXPECT_NE(spi.err.find("(engraver spi --help; engraver spi COMMAND --help for each)"),
+            std::string::npos)
+      << spi.err;
+  const host_tests::ToolRun option = engraver("--frob board x.gbr");
+  EXPECT_EQ(option.code, 2);
+  EXPECT_EQ(option.err.rfind("engraver: '--frob' is not an option of engraver itself", 0), 0u)
+      << option.err;
+  const host_tests::ToolRun bytes = engraver("\"$(printf '\\377\\376board')\"");
+  EXPECT_EQ(bytes.code, 2);
+  EXPECT_EQ(bytes.err.rfind("engraver: '\\xFF\\xFEboard' is not an engraver command", 0), 0u)
+      << bytes.err;
+  // What each known word does stays as it was.
+  EXPECT_EQ(engraver("-h board").code, 0);
+  EXPECT_EQ(engraver("spi --help").code, 0);
+  EXPECT_EQ(engraver("spi diff --help").code, 0);
+}
+
 TEST(CliRegistry, TheNamedCommandsOptionsAreStillChecked) {
   struct Case {
     std::string args, says;
