@@ -426,13 +426,23 @@ TEST(ServerUploadFields, ABodysLengthIsPlainDigitsSaidOnce) {
       EXPECT_EQ(answer.rfind("HTTP/1.1 400 ", 0), 0u) << lengths << expect << answer;
     }
   }
-  // Digits beyond any 64-bit length are a length too large (413), and two Host headers a 400.
+  // Digits beyond any 64-bit length are a length too large (413), two Host headers a 400,
+  // and none a 400 too, for a GET as well (it was a 403 naming Host '').
   RawConnection huge(server.port());
   ASSERT_TRUE(huge.send_text(head + "Content-Length: 99999999999999999999999999\r\n\r\n"));
   EXPECT_EQ(huge.next_answer().rfind("HTTP/1.1 413 ", 0), 0u);
   RawConnection two_hosts(server.port());
   ASSERT_TRUE(two_hosts.send_text(head + "Host: evil.example\r\nContent-Length: 1\r\n\r\nG"));
   EXPECT_EQ(two_hosts.next_answer().rfind("HTTP/1.1 400 ", 0), 0u);
+  for (const std::string request :
+       {"GET /api/status HTTP/1.1\r\n\r\n", "GET /api/status HTTP/1.0\r\n\r\n",
+        "POST /api/jobs HTTP/1.1\r\nContent-Length: 1\r\n\r\nG"}) {
+    RawConnection no_host(server.port());
+    ASSERT_TRUE(no_host.send_text(request));
+    const std::string answer = no_host.next_answer();
+    EXPECT_EQ(answer.rfind("HTTP/1.1 400 ", 0), 0u) << request << answer;
+    EXPECT_NE(answer_body(answer).find("no Host header"), std::string::npos) << answer;
+  }
   EXPECT_TRUE(server.jobs().empty());
 }
 
