@@ -26,6 +26,7 @@ struct BoardCommand {
 };
 
 void run_board(const BoardCommand& a) {
+  refuse_board_option_combinations(a.run.board);
   commands::BoardCommandOptions o = a.run;
   o.machine.work_w_mm = a.work_mm[0];
   o.machine.work_h_mm = a.work_mm[1];
@@ -215,6 +216,14 @@ void add_board_options(CLI::App* cmd, BoardArgs* a) {
                 "plan even where copper is closer than the tool width (reported; exit 0 though "
                 "the copper there stays joined)")
       ->group(g);
+}
+
+void refuse_board_option_combinations(const BoardArgs& args) {
+  try {
+    pcb::refuse_option_combinations(args);
+  } catch (const pcb::BoardArgsError& e) {
+    throw CLI::ValidationError(e.what());
+  }
 }
 
 JobPlan plan_pcb_input(const std::string& input, const BoardArgs& args, const MachineDefaults& d,

@@ -26,6 +26,10 @@ using MachineDefaults = pcb::BoardMachine;
 inline constexpr const char* kBoardOptionsGroup = "PCB boards";
 void add_board_options(CLI::App* cmd, BoardArgs* args);
 
+// Board options that cannot go together, refused as the line is read (a usage error, exit 2)
+// rather than after the files' notes.
+void refuse_board_option_combinations(const BoardArgs& args);
+
 using commands::input_exists;
 using commands::input_name;
 using commands::is_pcb_input;

@@ -132,6 +132,7 @@ void add_drawing_commands(CLI::App& app) {
       "cannot be read or imported.");
   points->callback([points, points_args]() {
     refuse_board_options_for_drawings(*points, points_args->file);
+    if (is_pcb_input(points_args->file)) refuse_board_option_combinations(points_args->board);
     run_points(*points_args);
   });
 }

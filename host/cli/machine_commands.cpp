@@ -135,6 +135,7 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
     const bool pcb = is_pcb_input(a->file);
     refuse_options_of_the_other_input(*cmd, pcb);
     if (!pcb) return;
+    refuse_board_option_combinations(a->board);
     const MachineDefaults board;
     if (feed->count() == 0) a->feed_mm_s = board.feed_mm_s;
     if (tol->count() == 0) a->tol_mm = board.chord_tol_mm;

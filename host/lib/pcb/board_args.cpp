@@ -24,7 +24,8 @@ void refuse_other_side_copper(BoardSide side, const BoardFileSet& layers) {
                        " copper");
 }
 
-// Options each within its range (option_ranges in the CLI) that cannot go together.
+}  // namespace
+
 void refuse_option_combinations(const BoardArgs& a) {
   const BoardIsolationArgs& i = a.isolation;
   if (i.clearing_tool_mm > 0 && i.narrow_passes >= i.passes)
@@ -54,6 +55,8 @@ void refuse_option_combinations(const BoardArgs& a) {
                     "({} mm): a tab keeps part of the board",
                     c.tab_height_mm, c.depth_mm));
 }
+
+namespace {
 
 AlignmentOptions alignment_options(const BoardAlignmentArgs& a) {
   AlignmentOptions o;

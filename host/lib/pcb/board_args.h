@@ -85,6 +85,11 @@ class BoardArgsError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Options each within its range (option_ranges in the CLI) that cannot go together: throws
+// BoardArgsError naming them. resolve_board_options asks it too; the CLI asks it first, as
+// the line is read, before any file is.
+void refuse_option_combinations(const BoardArgs& a);
+
 // "top" or "bottom": the words for a side, everywhere a side is asked for.
 bool is_board_side(const std::string& side);
 // The side whose copper is given: "bottom" when only bottom copper is, else "top".

@@ -314,6 +314,27 @@ TEST(BoardOptionRanges, TheTestersValuesAreUsageErrorsNamingTheOption) {
   EXPECT_EQ(run(board + "--depth 5e-2").code, 0);
 }
 
+// Options that cannot go together are refused as the line is read, by board, run and points
+// alike: the message comes first, before any note on the files (they came after them).
+TEST(BoardOptionRanges, OptionsThatCannotGoTogetherAreRefusedBeforeAnyFileIsRead) {
+  const std::string dir = write_board("together");
+  const std::string clash = " --clearing-tool 0.8 --passes 3 --mill-all";
+  for (const std::string command :
+       {"board " + dir + clash + " -o " + dir + "/out",
+        "run " + dir + clash + " -o " + dir + "/out", "points " + dir + clash}) {
+    const ToolRun r = run(command);
+    EXPECT_EQ(r.code, 2) << command << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("engraver: --clearing-tool cannot be combined with --mill-all", 0), 0u)
+        << command << "\n"
+        << r.err;
+    EXPECT_EQ(r.out, "") << command;
+  }
+  // The same folder without the clash is read, and says what it took each file for.
+  const ToolRun fine = run("board " + dir + " --no-plot -o " + dir + "/out");
+  EXPECT_EQ(fine.code, 0) << fine.err;
+  EXPECT_NE(fine.err.find("engraver: note: "), std::string::npos) << fine.err;
+}
+
 // The second tester's findings (issue 24, #25's CLI): values accepted and ignored, checked
 // only after connecting, or refused in CLI11's words instead of the project's.
 TEST(BoardOptionRanges, TheSecondTestersValuesAreUsageErrorsNamingTheOption) {
