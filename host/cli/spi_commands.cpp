@@ -43,6 +43,13 @@ void finish_with(int rc, const char* what) {
   if (rc != host::spi::kExitOk) throw host::cli::CommandFailure(rc, what);
 }
 
+// A capture option that cannot be read: said as every other spi error is
+// (docs/bench-testing.md), then exit 2.
+[[noreturn]] void option_error(const char* message) {
+  std::cerr << "engraver spi: error E_OPTION: " << message << "\n";
+  throw host::cli::CommandFailure(host::spi::kExitUnusable, "spi: a capture option is unusable");
+}
+
 // Turns the text options into numbers; exit 2 on nonsense.
 host::spi::FramerOptions finish(const CaptureOptions& o) {
   host::spi::FramerOptions f = o.framer;
@@ -52,15 +59,14 @@ host::spi::FramerOptions finish(const CaptureOptions& o) {
     char* end = nullptr;
     long b = std::strtol(o.bits.c_str(), &end, 10);
     if (*end != '\0' || b < 1 || b > 64) {
-      finish_with(host::spi::kExitUnusable, "spi: error E_OPTION: --bits must be 1..64 or 'any'");
+      option_error("--bits must be 1..64 or 'any'");
     }
     f.bits = static_cast<int>(b);
   }
   if (o.min_pulse == "auto") {
     f.min_pulse_ps = -1;
   } else if (!host::spi::parse_duration_ps(o.min_pulse, &f.min_pulse_ps)) {
-    finish_with(host::spi::kExitUnusable,
-                "spi: error E_OPTION: --min-pulse wants a duration like 100ns or 0");
+    option_error("--min-pulse wants a duration like 100ns or 0");
   }
   return f;
 }

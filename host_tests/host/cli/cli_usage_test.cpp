@@ -152,6 +152,17 @@ TEST(CliUsage, ACountIsNotNegativeNorPastAnyMeaning) {
                      "--stale-s: 1 is outside the allowed range 2 .. 3600 s");
 }
 
+// A capture option spi cannot read is said as bench-testing.md says every spi error is,
+// "engraver spi: error CODE: message" (it was "engraver: spi: error E_OPTION: ..."), exit 2.
+TEST(CliUsage, ACaptureOptionSpiCannotReadIsItsOptionError) {
+  for (const std::string option : {"--bits 65", "--bits x", "--min-pulse 5parsecs"}) {
+    const ToolRun r = engraver("spi decode a.vcd " + option);
+    EXPECT_EQ(r.code, 2) << option << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("engraver spi: error E_OPTION: --", 0), 0u) << option << "\n" << r.err;
+    EXPECT_EQ(r.out, "") << option;
+  }
+}
+
 // --db is 'sqlite' or a PostgreSQL connection, checked as the line is read (exit 1 with
 // libpq's "missing \"=\" after \"bogus\"" before).
 TEST(CliUsage, AJobStoreIsSqliteOrAPostgresConnection) {
