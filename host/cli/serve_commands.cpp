@@ -290,7 +290,10 @@ void add_serve_commands(CLI::App& app) {
   serve->footer(
       "Example: engraver serve --data /srv/engraver --machine 'tcp://192.168.1.50:10001 "
       "name=left' --machine 'serial:/dev/ttyUSB0 name=right work=200x150 tags=brass'\n"
-      "The token is printed once, on the first start; it is kept in DATA/token.");
+      "The token is printed once, on the first start; it is kept in DATA/token.\n"
+      "Exit: 0 stopped by Ctrl-C or SIGTERM, 1 cannot start (the data folder used by another "
+      "server, the database unreachable, another live server with this --name), 2 bad "
+      "command line or page files missing (docs/user-guide.md, \"engraver serve\").");
   serve->callback([args] { run_serve(*args); });
 }
 

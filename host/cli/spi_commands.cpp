@@ -103,12 +103,23 @@ void add_spi_commands(CLI::App& app) {
                                      "SPI bench testing: decode captures, expected "
                                      "datagrams, diff");
   spi->require_subcommand(1);
+  spi->footer(
+      "Examples:\n"
+      "  engraver spi expect --scenario init > init.golden\n"
+      "  engraver spi decode capture.vcd\n"
+      "  engraver spi diff capture.vcd init.golden --within\n"
+      "Errors: 'engraver spi: error CODE: message' (docs/bench-testing.md). Each command's "
+      "--help lists its exit codes.");
 
   const auto [dec, decode] = add_capture_command<host::spi::DecodeOptions>(
       spi, "decode",
       "Decode a capture (VCD, sigrok .sr, Saleae digital CSV, Saleae SPI-analyser CSV) into "
       "datagrams. Exit 0 clean, 1 frames flagged, 2 unusable.",
       host::spi::run_decode, "spi decode: datagrams with frame errors (exit 1)");
+  dec->footer(
+      "Example: engraver spi decode capture.vcd --json > frames.json\n"
+      "Exit: 0 every datagram clean, 1 some flagged as frame errors, 2 unusable (cannot read, "
+      "unknown format, channels not found, no datagrams, an option it cannot read).");
   dec->add_flag("--json", decode->json, "JSON output with stable keys");
   dec->add_flag("--raw", decode->raw, "hex words only (non-TMC428 captures)");
 
@@ -131,6 +142,11 @@ void add_spi_commands(CLI::App& app) {
   exp->add_option("--vcd", expect->vcd_path,
                   "also write the datagrams as the fake SPI recorder's VCD (a capture of a "
                   "correct board, for trying decode/diff)");
+  exp->footer(
+      "Example: engraver spi expect --scenario job samples/engraver-word.dxf --max-datagrams "
+      "500 > job.golden\n"
+      "Exit: 0 written, 2 the scenario cannot be recorded (unknown, its FILE unreadable, or a "
+      "job the simulated machine refuses or does not finish).");
   exp->callback([expect]() {
     finish_with(host::spi::run_expect(*expect, std::cout, std::cerr), "spi expect: failed");
   });
@@ -146,6 +162,10 @@ void add_spi_commands(CLI::App& app) {
                   "fraction of datagrams with frame errors above which the capture is unusable")
       ->capture_default_str()
       ->check(host::cli::range_check({"--max-frame-errors", 0.0, 1.0, "", false}));
+  dif->footer(
+      "Example: engraver spi diff capture.vcd init.golden --within\n"
+      "Exit: 0 match, 1 differ, 2 capture unusable (unreadable, no datagrams, more than "
+      "--max-frame-errors of them with frame errors) or golden file unreadable.");
   dif->add_flag("--json", diff->json, "JSON output with stable keys");
   dif->add_flag("--raw", diff->raw, "no TMC428 register names");
   dif->add_flag("--within", diff->within,

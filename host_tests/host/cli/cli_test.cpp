@@ -234,6 +234,15 @@ TEST(Cli, EachCommandsHelpHasItsExamplesAndExitCodes) {
   }
   const ToolRun top = run("--help");
   EXPECT_NE(top.out.find("6 send/run/probe: link lost"), std::string::npos) << top.out;
+  // The commands with exit codes of their own say them, not the tool's list (the spi
+  // commands showed the top-level footer, serve none).
+  for (const std::string cmd : {"spi decode", "spi expect", "spi diff", "serve"}) {
+    const ToolRun r = run(cmd + " --help");
+    EXPECT_EQ(r.code, 0) << cmd;
+    EXPECT_NE(r.out.find("Example: engraver " + cmd + " "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("Exit: 0 "), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("4 send/run: machine alarm"), std::string::npos) << r.out;
+  }
 }
 
 // `info` takes a board folder (host_tests/host/pcb/board_cli_test.cpp); a folder without PCB
