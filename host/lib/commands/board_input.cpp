@@ -324,7 +324,9 @@ bool is_pcb_input(const std::string& input) {
   bool directory = false;
   std::string rest = input;
   if (has_prefix(rest, "top:") || has_prefix(rest, "bottom:")) return true;
-  if (std::filesystem::is_directory(rest)) return !expand_input(rest, &side, &directory).empty();
+  // A folder can only be a board's: one without PCB files is refused as one, in the words
+  // info and board use ("no Gerber or Excellon files there"), not as a drawing.
+  if (std::filesystem::is_directory(rest)) return true;
   for (const std::string& f : expand_input(rest, &side, &directory))
     if (pcb::pcb_file_format(f) != pcb::PcbFileFormat::kNone) return true;
   return false;

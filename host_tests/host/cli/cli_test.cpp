@@ -255,8 +255,12 @@ TEST(Cli, DirectoryGivenAsAFileSaysSo) {
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "engraver: " + dir +
                        ": no Gerber or Excellon files there (by their names or first lines)\n");
-  const ToolRun drawing = run("run " + dir);
-  EXPECT_EQ(drawing.code, 2);
+  // run and points in the same words (they said "is a directory, not a drawing file").
+  for (const std::string command : {"run ", "points "}) {
+    const ToolRun other = run(command + dir);
+    EXPECT_EQ(other.code, 2) << command;
+    EXPECT_EQ(other.err, r.err) << command;
+  }
   std::filesystem::remove_all(dir);
 }
 
