@@ -113,7 +113,7 @@ void add_plan_options(CLI::App* cmd, PlanArgs* a) {
   cmd->add_option("--tool-side", a->tool_side,
                   "cut left or right of the drawn path (tool-radius offset on the controller)")
       ->group(g)
-      ->check(CLI::IsMember({"centre", "left", "right"}))
+      ->check(one_of({"centre", "left", "right"}))
       ->capture_default_str();
   cmd->add_option("--tool-radius", a->tool_radius_mm, "tool radius in mm for --tool-side")
       ->group(g)

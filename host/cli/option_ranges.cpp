@@ -59,6 +59,25 @@ CLI::Validator refuse_empty(bool named_option) {
       "", "not empty");
 }
 
+}  // namespace
+
+CLI::Validator one_of(const std::vector<std::string>& words) {
+  std::string list, braces;  // "a, b or c" for the message, "{a,b,c}" for --help as before
+  for (size_t i = 0; i < words.size(); ++i) {
+    list += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + words[i];
+    braces += (i == 0 ? "" : ",") + words[i];
+  }
+  return CLI::Validator(
+      [words, list](const std::string& value) {
+        for (const std::string& w : words)
+          if (value == w) return std::string();
+        return value.empty() ? std::string() : "'" + value + "' is not " + list;
+      },
+      "{" + braces + "}", "one of");
+}
+
+namespace {
+
 bool is_integer_option(const CLI::Option* o) {
   const std::string t = o->get_type_name();
   return t.rfind("INT", 0) == 0 || t.rfind("UINT", 0) == 0;

@@ -40,6 +40,10 @@ CLI::Validator range_check(const OptionRange& r);
 // separators) and finite.
 void add_option_checks(CLI::App* app);
 
+// A word among `words`: "'middle' is not centre, left or right" (CLI11's IsMember said
+// "middle not in {centre,left,right}"); "" is left to the empty-value check.
+CLI::Validator one_of(const std::vector<std::string>& words);
+
 // -o/--outdir: a folder, made if missing; an existing file there is a usage error (exit 2)
 // before anything is planned, not a raw filesystem error after.
 CLI::Validator output_folder();

@@ -163,6 +163,17 @@ TEST(CliUsage, ACaptureOptionSpiCannotReadIsItsOptionError) {
   }
 }
 
+// A word among a few, refused in the project's words (CLI11's were "--tool-side:  not in
+// {centre,left,right}" for ''), an empty one as every empty value is.
+TEST(CliUsage, AWordOptionNamesTheWordsItTakes) {
+  expect_usage_error("run " + kWord + " --tool-side middle",
+                     "--tool-side: 'middle' is not centre, left or right\n");
+  expect_usage_error("run " + kWord + " --tool-side ''",
+                     "--tool-side: an empty value (leave the option out for its default)\n");
+  EXPECT_NE(engraver("run --help").out.find("--tool-side TEXT:{centre,left,right}=centre"),
+            std::string::npos);
+}
+
 // --db is 'sqlite' or a PostgreSQL connection, checked as the line is read (exit 1 with
 // libpq's "missing \"=\" after \"bogus\"" before).
 TEST(CliUsage, AJobStoreIsSqliteOrAPostgresConnection) {
