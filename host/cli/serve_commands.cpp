@@ -56,14 +56,19 @@ std::unique_ptr<server::JobStore> open_store(const std::string& db,
   return std::make_unique<server::PostgresJobStore>(db);
 }
 
-// --db names SQLite or a libpq connection (a URI, or key=value pairs): anything else is a
-// usage error as the line is read, not a failed start naming libpq's parse.
+// --db names SQLite or a libpq connection (a URI, or key=value pairs, as libpq reads them
+// without connecting): anything else is a usage error as the line is read, not a failed
+// start after the data folder is made.
 std::string db_check(const std::string& db) {
   const bool uri = db.rfind("postgresql://", 0) == 0 || db.rfind("postgres://", 0) == 0;
-  if (db == "sqlite" || uri || db.find('=') != std::string::npos) return "";
-  return "'" + db +
-         "' is neither 'sqlite' nor a PostgreSQL connection ('postgresql://host/db' or "
-         "'host=... dbname=...')";
+  if (db == "sqlite") return "";
+  if (!uri && db.find('=') == std::string::npos) {
+    return "'" + db +
+           "' is neither 'sqlite' nor a PostgreSQL connection ('postgresql://host/db' or "
+           "'host=... dbname=...')";
+  }
+  const std::string problem = server::postgres_conninfo_problem(db);
+  return problem.empty() ? "" : "not a PostgreSQL connection: " + problem;
 }
 
 std::atomic<bool> g_stop_serve{false};
@@ -189,10 +194,19 @@ void run_serve(const ServeArgs& a) {
     throw CommandFailure(kExitJobFailed, e.what());
   }
   server::DataFolder data(a.data, a.archive);
-  bool created = false;
-  const std::string token = data.token(&created);
   const std::unique_ptr<server::JobStore> store_owner = open_store(a.db, data);
   server::JobStore& store = *store_owner;
+  // The token is shown once, when it is made: a start that fails before showing it takes
+  // it back, so the next start makes and shows one (it was kept unseen).
+  bool created = false;
+  const std::string token = data.token(&created);
+  struct UnshownToken {
+    std::filesystem::path path;
+    ~UnshownToken() {
+      std::error_code ec;
+      if (!path.empty()) std::filesystem::remove(path, ec);
+    }
+  } unshown{created ? std::filesystem::path(a.data) / "token" : std::filesystem::path()};
 
   const server::WorkshopOptions wo = workshop_options(a);
   server::Workshop workshop(store, data, machines, wo);
@@ -228,6 +242,7 @@ void run_serve(const ServeArgs& a) {
   }
   std::thread serving([&http] { http.run(); });
   print_serving(a, http, ho.address, bound, wo.owner, created, token, machines);
+  unshown.path.clear();
   while (!g_stop_serve) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   std::cerr << "engraver: stopping (running jobs are aborted and marked interrupted)\n";
   intake.stop();  // an upload being planned ends now (503), not when its planning would

@@ -3,11 +3,26 @@
 
 #include <fmt/format.h>  // fmt::format
 
-#include <pqxx/pqxx>  // pqxx::connection, pqxx::work
+#include <libpq-fe.h>  // PQconninfoParse
+#include <pqxx/pqxx>   // pqxx::connection, pqxx::work
 
 #include "host/lib/server/job_store_sql.h"
 
 namespace host::server {
+
+std::string postgres_conninfo_problem(const std::string& conninfo) {
+  char* error = nullptr;
+  PQconninfoOption* options = PQconninfoParse(conninfo.c_str(), &error);
+  std::string problem;
+  if (options == nullptr) {
+    problem = error != nullptr ? error : "not a PostgreSQL connection (libpq is out of memory)";
+    while (!problem.empty() && (problem.back() == '\n' || problem.back() == ' '))
+      problem.pop_back();
+  }
+  PQconninfoFree(options);
+  PQfreemem(error);
+  return problem;
+}
 
 struct PostgresJobStore::Connection {
   explicit Connection(const std::string& conninfo) : db(conninfo) {}

@@ -12,6 +12,10 @@
 
 namespace host::server {
 
+// What libpq finds wrong with a connection string without connecting (an option it does not
+// know, "=x", a malformed URI), "" when it reads.
+std::string postgres_conninfo_problem(const std::string& conninfo);
+
 class PostgresJobStore : public SqlJobStore {
  public:
   // conninfo: libpq's "host=... dbname=..." or a postgresql:// URI. Creates the table if

@@ -181,6 +181,12 @@ TEST(CliUsage, AJobStoreIsSqliteOrAPostgresConnection) {
     expect_usage_error("serve --db '" + db + "' --listen 127.0.0.1:99999",
                        "--db: '" + db + "' is neither 'sqlite' nor a PostgreSQL connection");
   }
+  // key=value pairs and URIs as libpq reads them, without connecting (outside tester 17:
+  // these passed the check and failed the start, after the data folder was made).
+  for (const std::string db : {"=x", "x=", "host=127.0.0.1 port=1 bogus=1", "postgresql://[::1"}) {
+    expect_usage_error("serve --db '" + db + "' --listen 127.0.0.1:99999",
+                       "--db: not a PostgreSQL connection: ");
+  }
 }
 
 // -h before the command is that command's help, as for every other command (run, send and

@@ -304,6 +304,28 @@ TEST(ServeCommand, APortInUseIsAUsageErrorBeforeTheDataFolderIsMade) {
   EXPECT_FALSE(fs::exists(data)) << said;
 }
 
+// A start that fails after the data folder is made (a database it cannot reach) takes back
+// the token it made and never showed: the next start makes one and shows it (outside tester
+// 17: the token was kept unseen, and no start ever printed it).
+TEST(ServeCommand, AStartThatFailsKeepsNoTokenNobodyWasShown) {
+  test::TempDir dir;
+  const fs::path data = dir.path() / "data";
+  const std::string port = std::to_string(test::free_port());
+  ServeProcess failed({"serve", "--data", data.string(), "--listen", "127.0.0.1:" + port, "--db",
+                       "host=127.0.0.1 port=1 connect_timeout=5"},
+                      dir.path() / "failed.log");
+  EXPECT_EQ(failed.wait_exit(), 1) << text_of(dir.path() / "failed.log");
+  EXPECT_FALSE(fs::exists(data / "token")) << text_of(dir.path() / "failed.log");
+  const fs::path log = dir.path() / "serve.log";
+  ServeProcess serve({"serve", "--data", data.string(), "--listen", "127.0.0.1:" + port}, log);
+  httplib::Client client("127.0.0.1", std::stoi(port));
+  ASSERT_TRUE(answers(client, "/")) << text_of(log);
+  EXPECT_EQ(serve.stop(), 0) << text_of(log);
+  const std::string token = text_of(data / "token");
+  ASSERT_GE(token.size(), 32u);
+  EXPECT_NE(text_of(log).find(token.substr(0, 32)), std::string::npos) << text_of(log);
+}
+
 // `engraver serve` runs engraver-serve from beside engraver (the server's libraries stay out
 // of the other commands' start-up); engraver copied without it says what is missing.
 TEST(ServeCommand, EngraverWithoutEngraverServeSaysWhatIsMissing) {
