@@ -9,9 +9,18 @@
 #include "host/cli/exit_codes.h"        // CommandFailure
 #include "host/cli/option_ranges.h"     // range_refusal
 #include "host/spi/commands.h"          // run_decode, run_expect, run_diff
+#include "host/spi/framer.h"            // parse_duration_ps
 #include "host/spi/scenario.h"          // available_scenarios
 
 namespace {
+
+// --bits as a number 1 .. 64 in plain digits, else 0.
+int bits_value(const std::string& bits) {
+  if (bits.empty() || bits.size() > 2 || bits.find_first_not_of("0123456789") != std::string::npos)
+    return 0;
+  const int b = std::stoi(bits);
+  return b >= 1 && b <= 64 ? b : 0;
+}
 
 // Options shared by decode and diff, bound to a FramerOptions.
 struct CaptureOptions {
@@ -27,14 +36,30 @@ void add_capture_options(CLI::App* cmd, CaptureOptions* o) {
   cmd->add_option("--mosi", o->framer.names.mosi, "MOSI channel (default: MOSI, SDI_C, SDO1...)");
   cmd->add_option("--miso", o->framer.names.miso, "MISO channel (default: MISO, SDO_C, SDI1...)");
   cmd->add_option("--mode", o->framer.mode, "SPI mode 0..3 (TMC428: 3)")
-      ->check(CLI::Range(0, 3))
+      ->check(host::cli::range_check({"--mode", 0, 3, "", false}))
       ->capture_default_str();
+  // Both checked as the line is read, naming the value, as every other option is.
   cmd->add_option("--bits", o->bits,
                   "bits per datagram, or 'any' for whatever each CS period holds")
+      ->check(CLI::Validator(
+          [](const std::string& bits) {
+            return bits.empty() || bits == "any" || bits_value(bits) > 0
+                       ? std::string()
+                       : "'" + bits + "' is neither a whole number 1 .. 64 nor 'any'";
+          },
+          "", "bits"))
       ->capture_default_str();
   cmd->add_option("--min-pulse", o->min_pulse,
                   "shorter clock/CS pulses are glitches, e.g. 100ns; 'auto' = 40% of the "
                   "median clock pulse; 0 = off")
+      ->check(CLI::Validator(
+          [](const std::string& pulse) {
+            int64_t ps = 0;
+            return pulse.empty() || pulse == "auto" || host::spi::parse_duration_ps(pulse, &ps)
+                       ? std::string()
+                       : "'" + pulse + "' is not a duration like 100ns, 'auto' or 0";
+          },
+          "", "duration"))
       ->capture_default_str();
 }
 
@@ -43,30 +68,14 @@ void finish_with(int rc, const char* what) {
   if (rc != host::spi::kExitOk) throw host::cli::CommandFailure(rc, what);
 }
 
-// A capture option that cannot be read: said as every other spi error is
-// (docs/bench-testing.md), then exit 2.
-[[noreturn]] void option_error(const char* message) {
-  std::cerr << "engraver spi: error E_OPTION: " << message << "\n";
-  throw host::cli::CommandFailure(host::spi::kExitUnusable, "spi: a capture option is unusable");
-}
-
-// Turns the text options into numbers; exit 2 on nonsense.
+// Turns the text options, checked as the line was read, into numbers.
 host::spi::FramerOptions finish(const CaptureOptions& o) {
   host::spi::FramerOptions f = o.framer;
-  if (o.bits == "any") {
-    f.bits = 0;
-  } else {
-    char* end = nullptr;
-    long b = std::strtol(o.bits.c_str(), &end, 10);
-    if (*end != '\0' || b < 1 || b > 64) {
-      option_error("--bits must be 1..64 or 'any'");
-    }
-    f.bits = static_cast<int>(b);
-  }
+  f.bits = o.bits == "any" ? 0 : bits_value(o.bits);
   if (o.min_pulse == "auto") {
     f.min_pulse_ps = -1;
-  } else if (!host::spi::parse_duration_ps(o.min_pulse, &f.min_pulse_ps)) {
-    option_error("--min-pulse wants a duration like 100ns or 0");
+  } else {
+    host::spi::parse_duration_ps(o.min_pulse, &f.min_pulse_ps);
   }
   return f;
 }

@@ -5,7 +5,8 @@
 #include <cctype>     // std::isdigit
 #include <cmath>      // std::llround
 
-#include "host/spi/text_values.h"  // split_number_unit, unit_scale
+#include "host/lib/plan/plain_decimal.h"  // is_plain_decimal
+#include "host/spi/text_values.h"         // split_number_unit, unit_scale
 
 namespace host::spi {
 namespace {
@@ -92,10 +93,17 @@ bool parse_duration_ps(const std::string& text, int64_t* ps) {
   double v = 0;
   std::string unit;
   if (!split_number_unit(text, &v, &unit) || !(v >= 0) || v > 1e6) return false;
+  // As the documentation writes numbers: no hex ("0x10ns"), no leading blank.
+  std::string number = text.substr(0, text.size() - unit.size());
+  number.erase(number.find_last_not_of(' ') + 1);
+  if (!is_plain_decimal(number)) return false;
   const double mul = unit.empty() && v == 0 ? 1 : unit_scale(unit, kPsPer);
   if (mul == 0) return false;
   *ps = std::llround(v * mul);
-  return true;
+  // A duration written non-zero that comes to 0 ps ("1e-400s", "0.1ps") would turn glitch
+  // detection off: only a written 0 does.
+  const size_t mantissa_end = number.find_first_of("eE");
+  return *ps != 0 || number.find_first_of("123456789") >= mantissa_end;
 }
 
 Error resolve_channels(const Trace& t, const ChannelMap& names, FramerResult* out) {

@@ -182,6 +182,18 @@ TEST(Framer, DurationsParseWithUnits) {
   EXPECT_EQ(ps, 0);
   EXPECT_FALSE(parse_duration_ps("fast", &ps));
   EXPECT_FALSE(parse_duration_ps("5", &ps));
+  // Plain decimals only, and nothing written non-zero that comes to 0 ps (glitch detection
+  // off); a written zero with a unit or an exponent is still 0 (outside tester 17).
+  for (const char* bad : {"0x10ns", "0x1p4ns", " 100ns", "1e-400s", "0.1ps", "nanns", "infs"})
+    EXPECT_FALSE(parse_duration_ps(bad, &ps)) << bad;
+  EXPECT_TRUE(parse_duration_ps("100 ns", &ps));
+  EXPECT_EQ(ps, 100000);
+  EXPECT_TRUE(parse_duration_ps("0ns", &ps));
+  EXPECT_EQ(ps, 0);
+  EXPECT_TRUE(parse_duration_ps("0.0e3us", &ps));
+  EXPECT_EQ(ps, 0);
+  EXPECT_TRUE(parse_duration_ps("1e2ns", &ps));
+  EXPECT_EQ(ps, 100000);
 }
 
 }  // namespace
