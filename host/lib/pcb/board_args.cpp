@@ -28,6 +28,12 @@ void refuse_other_side_copper(BoardSide side, const BoardFileSet& layers) {
 
 void refuse_option_combinations(const BoardArgs& a) {
   const BoardIsolationArgs& i = a.isolation;
+  // First: no --passes makes these two go together (it was "give more --passes", and then
+  // this, to a line with the default --passes).
+  if (i.clearing_tool_mm > 0 && i.mill_all)
+    throw BoardArgsError(
+        "--clearing-tool cannot be combined with --mill-all (which clears all "
+        "copper-free area with the isolation tool): give one of them");
   if (i.clearing_tool_mm > 0 && i.narrow_passes >= i.passes)
     throw BoardArgsError(
         fmt::format("--clearing-tool cuts the passes beyond --narrow-passes ({}), "
@@ -42,10 +48,6 @@ void refuse_option_combinations(const BoardArgs& a) {
         fmt::format("--clearing-tool ({} mm) must be wider than "
                     "--tool-width ({} mm): it cuts the outer passes",
                     i.clearing_tool_mm, i.tool_width_mm));
-  if (i.clearing_tool_mm > 0 && i.mill_all)
-    throw BoardArgsError(
-        "--clearing-tool cannot be combined with --mill-all (which clears all "
-        "copper-free area with the isolation tool): give one of them");
   // Only where tabs are cut: --tabs 0 or --tab-width 0 leaves no tab to keep a height.
   const BoardCutoutArgs& c = a.cutout;
   const bool tabs_cut = c.tab_width_mm > 0 && (c.tabs > 0 || c.tab_spacing_mm > 0);

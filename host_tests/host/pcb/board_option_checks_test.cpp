@@ -318,7 +318,7 @@ TEST(BoardOptionRanges, TheTestersValuesAreUsageErrorsNamingTheOption) {
 // alike: the message comes first, before any note on the files (they came after them).
 TEST(BoardOptionRanges, OptionsThatCannotGoTogetherAreRefusedBeforeAnyFileIsRead) {
   const std::string dir = write_board("together");
-  const std::string clash = " --clearing-tool 0.8 --passes 3 --mill-all";
+  const std::string clash = " --clearing-tool 0.8 --mill-all";  // the default --passes too
   for (const std::string command :
        {"board " + dir + clash + " -o " + dir + "/out",
         "run " + dir + clash + " -o " + dir + "/out", "points " + dir + clash}) {
