@@ -252,12 +252,18 @@ BoardFiles read_board_input(const std::string& input, const std::string& side_as
     // A board folder without copper is a folder whose copper was not recognised: planning
     // its holes alone would look like success.
     // Naming copper helps only when a Gerber file was left out for saying no layer.
-    bool nameable = false;
-    for (const std::string& n : b.notes)
+    // The other side's copper alone: the side asked for is the thing to change.
+    bool nameable = false, other_side = false;
+    for (const std::string& n : b.notes) {
       nameable = nameable || n.find("(name it with --top") != std::string::npos;
-    std::string msg = input + ": no copper layer for the job among the folder's files (" +
-                      (nameable ? "name it with --top or --bottom; " : "") +
-                      "to cut only holes or an outline, give that file itself)";
+      other_side = other_side || n.find(": copper of the other side:") != std::string::npos;
+    }
+    const std::string other = side_asked == "bottom" ? "top" : "bottom";
+    std::string msg =
+        input + ": no copper layer for the job among the folder's files (" +
+        (other_side ? "its copper is " + other + " copper: give --side " + other + "; " : "") +
+        (nameable ? "name it with --top or --bottom; " : "") +
+        "to cut only holes or an outline, give that file itself)";
     for (const std::string& n : b.notes) msg += "\n  " + n;
     throw CommandFailure(kExitUsage, msg);
   }

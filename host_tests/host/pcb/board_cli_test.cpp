@@ -564,6 +564,26 @@ TEST(BoardCli, AFolderWithoutCopperIsRefused) {
       << r.err;
 }
 
+// A folder of the other side's copper only, with --side for this one: the message says which
+// side its copper is (it offered only to name the copper or give a file alone; outside
+// tester 17).
+TEST(BoardCli, AFolderOfTheOtherSidesCopperSaysWhichSideToAskFor) {
+  const std::string dir = write_board("other-side");
+  const ToolRun r = run("board " + dir + " --side top -o " + dir + "/out");  // top copper too
+  EXPECT_EQ(r.code, 0) << r.err;
+  std::filesystem::remove(dir + "/t-F.Cu.gbr");
+  std::string bottom = kTopCopper;
+  bottom.replace(bottom.find("%EXTRA%"), 7, "");
+  bottom.replace(bottom.find("Copper,L1,Top"), 13, "Copper,L2,Bot");
+  std::ofstream(dir + "/t-B.Cu.gbr") << bottom;
+  const ToolRun top = run("board " + dir + " --side top -o " + dir + "/out");
+  EXPECT_EQ(top.code, 2) << top.err;
+  EXPECT_NE(top.err.find("no copper layer for the job among the folder's files (its copper is "
+                         "bottom copper: give --side bottom; "),
+            std::string::npos)
+      << top.err;
+}
+
 // A binary file with a plain Gerber name (an outside tester's /bin/ls as x.gbr) is left out as
 // binary data, in the readers' words; it was "neither its name nor an X2 file function says
 // copper" with advice to name it with --top. A FIFO in the folder is listed as left out, never
