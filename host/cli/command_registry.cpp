@@ -80,18 +80,28 @@ std::string unknown_command_message(const CLI::App& app, int argc, const char* c
   // Down the command words (`spi diff`), each among its parent's commands.
   const CLI::App* at = &app;
   std::string path = "engraver";
-  while (i < argc && !at->get_subcommands({}).empty()) {
+  const auto names_of = [](const CLI::App* parent) {
+    std::string names;
+    for (const CLI::App* sub : parent->get_subcommands({}))
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    return names;
+  };
+  while (!at->get_subcommands({}).empty()) {
+    const std::string hint = " (" + path + " --help; " + path + " COMMAND --help for each)";
+    // No word at all (`engraver`, `engraver spi`): CLI11 said "A subcommand is required".
+    if (i == argc) {
+      const std::string who =
+          at == &app ? "a command is needed: " : at->get_name() + " needs a command: ";
+      return who + names_of(at) + hint;
+    }
     const std::string word = argv[i];
     if (word.empty() || word[0] == '-') return "";
-    std::string names;
     const CLI::App* found = nullptr;
-    for (const CLI::App* sub : at->get_subcommands({})) {
+    for (const CLI::App* sub : at->get_subcommands({}))
       if (sub->check_name(word)) found = sub;
-      names += (names.empty() ? "" : ", ") + sub->get_name();
-    }
     if (found == nullptr) {
-      return "'" + printable(word) + "' is not an " + path + " command; the commands are " + names +
-             " (" + path + " --help; " + path + " COMMAND --help for each)";
+      return "'" + printable(word) + "' is not an " + path + " command; the commands are " +
+             names_of(at) + hint;
     }
     at = found;
     path += " " + found->get_name();

@@ -35,7 +35,7 @@ TEST(Cli, ARunKeepsItsStderrApartAndLeavesNoFileBehind) {
   const ToolRun r = run("");
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.out, "");
-  EXPECT_NE(r.err.find("A subcommand is required"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("a command is needed"), std::string::npos) << r.err;
   const std::string err_file =
       testing::TempDir() + "/engraver_stderr_" + std::to_string(getpid()) + ".txt";
   EXPECT_NE(access(err_file.c_str(), F_OK), 0) << err_file << " was left behind";
