@@ -80,7 +80,7 @@ void add_board_command(CLI::App& app) {
       ->excludes(no_plot);
   cmd->footer(
       "Example: engraver board board-F.Cu.gbr board-PTH.drl board-Edge.Cuts.gbr -o out\n"
-      "         engraver board --side bottom samples/pcb/multivibrator/\n"
+      "         engraver board --side bottom board/   (a folder of Gerber and drill files)\n"
       "Then: engraver run board/ (simulate) or engraver send board/ --to tcp://HOST:PORT.\n"
       "Exit: 0 planned and checked, 1 refused (narrow gaps, work area, islands left joined), "
       "2 bad input (a file, an option out of its range or options that cannot go together), 8 "
