@@ -178,11 +178,17 @@ BoardFiles read_board_files(const std::string& input, const std::string& side_as
   const std::vector<std::string> files =
       expand_input(input, &b.side, &directory, &stripped, &left_out, &subfolders);
   for (const std::string& n : left_out) b.notes.push_back(n);
-  if (files.empty())
-    throw CommandFailure(kExitUsage, input +
-                                         ": no Gerber or Excellon files there (by their names "
-                                         "or first lines)" +
-                                         (subfolders ? " (subfolders are not searched)" : ""));
+  if (files.empty()) {
+    // With what was left out and why, as a folder without copper is refused (the first 20).
+    std::string msg = input +
+                      ": no Gerber or Excellon files there (by their names or first lines)" +
+                      (subfolders ? " (subfolders are not searched)" : "");
+    const size_t shown = std::min<size_t>(left_out.size(), 20);
+    for (size_t k = 0; k < shown; ++k) msg += "\n  " + left_out[k];
+    if (left_out.size() > shown)
+      msg += "\n  ... and " + std::to_string(left_out.size() - shown) + " more left out";
+    throw CommandFailure(kExitUsage, msg);
+  }
   const LayerKind wanted_copper = copper_for_side(side_asked.empty() ? b.side : side_asked, files);
   for (const std::string& f : files) {
     // In a directory, only files whose names or X2 file functions say copper, drill or

@@ -254,7 +254,10 @@ TEST(Cli, DirectoryGivenAsAFileSaysSo) {
   const ToolRun r = run("info " + dir);
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "engraver: " + dir +
-                       ": no Gerber or Excellon files there (by their names or first lines)\n");
+                       ": no Gerber or Excellon files there (by their names or first lines)\n  " +
+                       dir +
+                       "/notes.txt: neither Gerber nor Excellon (by its name or content): "
+                       "left out\n");
   // run and points in the same words (they said "is a directory, not a drawing file").
   for (const std::string command : {"run ", "points "}) {
     const ToolRun other = run(command + dir);
