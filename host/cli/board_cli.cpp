@@ -160,8 +160,9 @@ void add_drill_and_cutout_options(CLI::App* cmd, BoardArgs* a) {
   cmd->add_option("--tabs", a->cutout.tabs, "holding tabs per board")
       ->group(g)
       ->capture_default_str();
-  cmd->add_option("--tab-spacing", a->cutout.tab_spacing_mm,
-                  "one tab per this much outline length, mm (instead of --tabs)")
+  cmd->add_option(
+         "--tab-spacing", a->cutout.tab_spacing_mm,
+         "one tab per this much outline length, mm (instead of --tabs; 0: as if not given)")
       ->group(g)
       ->excludes("--tabs");  // a clash: neither wins
   cmd->add_option("--tab-height", a->cutout.tab_height_mm, "board thickness the tabs keep, mm")

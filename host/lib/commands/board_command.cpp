@@ -292,6 +292,18 @@ std::string board_report_text(const BoardCommandOptions& a, const BoardResult& r
       "  bytes per tool: {}\n"
       "  files -> plan: {:.3f} s CPU, peak {:.1f} MB\n",
       cutout, counted(p.tool_changes, "tool change"), tool_bytes, r.plan_cpu_s, r.plan_peak_mb);
+  // The check's outcome, passed too: a summary without it read the same as one with none.
+  if (r.check && r.check->ok()) {
+    s += fmt::format("  check: no copper cut, {} each cut free (to {:.3f} mm)\n",
+                     counted(r.check->islands, "island"),
+                     pcb::isolation_check_tolerance_mm(r.options));
+  } else if (r.check) {
+    s += fmt::format("  check: {}, {} of islands not separated\n",
+                     counted(r.check->hits.size(), "copper hit"),
+                     counted(r.check->unseparated.size(), "pair"));
+  } else if (!a.check) {
+    s += "  check: skipped (--no-check)\n";
+  }
   for (const pcb::NarrowGap& g : p.narrow_gaps)
     s += "  " + pcb::describe_gap(g, r.options.isolation) + "\n";
   for (size_t i = 0; i < r.job.alignment_holes_mm.size(); ++i)

@@ -87,6 +87,16 @@ TEST(BoardCommand, PlansChecksReportsAndWritesAWholeBoard) {
   EXPECT_NE(text.find("ok: top side, first tool V-bit 0.20mm"), std::string::npos) << text;
   EXPECT_EQ(text.find("as splines"), std::string::npos) << text;
   EXPECT_NE(text.find("report: " + r.base + ".board.json"), std::string::npos) << text;
+  // The check's outcome is in the summary when it passes, and says when it was skipped.
+  EXPECT_NE(text.find("\n  check: no copper cut, 2 islands each cut free (to 0.003 mm)\n"),
+            std::string::npos)
+      << text;
+  o.check = false;
+  const BoardResult unchecked = run_board(o, log.log());
+  EXPECT_FALSE(unchecked.check.has_value());
+  EXPECT_NE(board_report_text(o, unchecked).find("\n  check: skipped (--no-check)\n"),
+            std::string::npos)
+      << board_report_text(o, unchecked);
 }
 
 std::string read_file(const std::string& path) {
