@@ -7,6 +7,7 @@
 #include <unistd.h>      // close
 
 #include <algorithm>  // std::min
+#include <cctype>     // std::tolower
 #include <cerrno>     // errno, EINTR
 #include <chrono>     // std::chrono::steady_clock
 #include <string>     // std::string
@@ -14,6 +15,9 @@
 namespace host::server {
 
 namespace {
+
+// Host header lines in the head this thread is reading (see host_header_lines()).
+thread_local int t_host_lines = 0;
 
 void address_of(int fd, bool peer, std::string& ip, int& port) {
   sockaddr_storage a{};
@@ -38,7 +42,9 @@ class HeadBoundedStream : public httplib::Stream {
         read_ms_(read_timeout_ms),
         write_ms_(write_timeout_ms),
         head_deadline_(std::chrono::steady_clock::now() +
-                       std::chrono::seconds(BoundedHttpServer::kHeadSeconds)) {}
+                       std::chrono::seconds(BoundedHttpServer::kHeadSeconds)) {
+    t_host_lines = 0;
+  }
 
   bool is_readable() const override { return wait(POLLIN, read_ms_); }
   bool is_writable() const override { return wait(POLLOUT, write_ms_); }
@@ -84,14 +90,22 @@ class HeadBoundedStream : public httplib::Stream {
     return n > 0 && (p.revents & (events | POLLHUP | POLLERR)) != 0;
   }
   // The head ends at its first empty line (CR LF or a bare LF, as httplib reads lines).
+  // Lines that begin "Host:" (any case) are counted: httplib drops one with an empty value.
   void see_head(const char* p, size_t n) {
+    static const char kHost[] = "host:";
     head_bytes_ += n;
     for (size_t i = 0; i < n && !in_body_; ++i) {
       if (p[i] == '\n') {
         in_body_ = line_bytes_ == 0 && lines_ > 0;  // not before the request line
         ++lines_;
         line_bytes_ = 0;
+        host_prefix_ = true;
       } else if (p[i] != '\r') {
+        if (line_bytes_ < 5) {
+          host_prefix_ =
+              host_prefix_ && std::tolower(static_cast<unsigned char>(p[i])) == kHost[line_bytes_];
+          if (line_bytes_ == 4 && host_prefix_ && lines_ > 0) ++t_host_lines;
+        }
         ++line_bytes_;
       }
     }
@@ -100,13 +114,18 @@ class HeadBoundedStream : public httplib::Stream {
   socket_t sock_;
   int read_ms_, write_ms_;
   std::chrono::steady_clock::time_point head_deadline_;
-  size_t head_bytes_ = 0;  // read before the head ended
-  size_t line_bytes_ = 0;  // of the line being read, CR aside
-  size_t lines_ = 0;       // ended so far
+  size_t head_bytes_ = 0;    // read before the head ended
+  size_t line_bytes_ = 0;    // of the line being read, CR aside
+  size_t lines_ = 0;         // ended so far
+  bool host_prefix_ = true;  // the line so far is a prefix of "host:"
   bool in_body_ = false;
 };
 
 }  // namespace
+
+int host_header_lines() {
+  return t_host_lines;
+}
 
 bool BoundedHttpServer::process_and_close_socket(socket_t sock) {
   bool answered = false;

@@ -12,6 +12,11 @@
 
 namespace host::server {
 
+// Lines beginning "Host:" in the head of the request this thread is answering, empty ones
+// included (httplib drops a header with no value: "Host:" beside "Host: 127.0.0.1" was one
+// Host); 0 outside a BoundedHttpServer's request.
+int host_header_lines();
+
 class BoundedHttpServer : public httplib::Server {
  public:
   // The request line and every header together; beyond it the connection is closed.

@@ -659,12 +659,13 @@ bool HttpApi::refused_from_headers(const httplib::Request& req, httplib::Respons
       return true;
     }
   }
-  if (req.get_header_value_count("Host") > 1) {  // which one would a proxy have checked?
+  // Which one would a proxy have checked? An empty one counts (httplib dropped it).
+  if (req.get_header_value_count("Host") > 1 || host_header_lines() > 1) {
     send_error(res, 400, "the Host header is given twice");
     return true;
   }
   if (!req.has_header("Host")) {  // HTTP/1.1 asks a server to refuse it so (RFC 9112 §3.2)
-    send_error(res, 400, "the request has no Host header: it names the server it is for");
+    send_error(res, 400, "the request has no Host header (or an empty one): it names the server it is for");
     return true;
   }
   const std::string host = req.get_header_value("Host");
