@@ -67,45 +67,43 @@ void add_registered_commands(CLI::App& app) {
 }
 
 std::string unknown_command_message(const CLI::App& app, int argc, const char* const* argv) {
-  int i = 1;
-  // `engraver -h COMMAND` is COMMAND's help: the word after it is a command too.
-  if (argc > 2 && (std::strcmp(argv[1], "-h") == 0 || std::strcmp(argv[1], "--help") == 0)) i = 2;
-  if (i < argc && argv[i][0] == '-' && i == 1) {
-    const std::string option = argv[i];
-    if (option == "-h" || option == "--help" || option == "--version") return "";
-    return "'" + printable(option) +
-           "' is not an option of engraver itself: a command comes first " +
-           "(engraver COMMAND --help lists its options)";
-  }
-  // Down the command words (`spi diff`), each among its parent's commands.
-  const CLI::App* at = &app;
-  std::string path = "engraver";
   const auto names_of = [](const CLI::App* parent) {
     std::string names;
     for (const CLI::App* sub : parent->get_subcommands({}))
       names += (names.empty() ? "" : ", ") + sub->get_name();
     return names;
   };
-  while (!at->get_subcommands({}).empty()) {
+  // Down the command words (`spi diff`), each among its parent's commands; -h and --help
+  // may come before a word (`engraver -h board`, `engraver spi -h decode`).
+  const CLI::App* at = &app;
+  std::string path = "engraver";
+  bool help = false;
+  for (int i = 1; !at->get_subcommands({}).empty(); ++i) {
     const std::string hint = " (" + path + " --help; " + path + " COMMAND --help for each)";
-    // No word at all (`engraver`, `engraver spi`): CLI11 said "A subcommand is required".
-    if (i == argc) {
-      const std::string who =
-          at == &app ? "a command is needed: " : at->get_name() + " needs a command: ";
-      return who + names_of(at) + hint;
+    if (i == argc) {        // no word at all (`engraver`, `engraver spi`): CLI11 said "A subcommand
+      if (help) return "";  // is required"
+      return (at == &app ? "a command is needed: " : at->get_name() + " needs a command: ") +
+             names_of(at) + hint;
     }
     const std::string word = argv[i];
-    if (word.empty() || word[0] == '-') return "";
+    if (word == "-h" || word == "--help") {
+      help = true;
+      continue;
+    }
+    if (at == &app && word == "--version") return "";
+    if (!word.empty() && word[0] == '-') {  // these levels have no options of their own
+      return "'" + printable(word) + "' is not an option of " + path +
+             " itself: a command comes first (" + path + " COMMAND --help lists its options)";
+    }
     const CLI::App* found = nullptr;
     for (const CLI::App* sub : at->get_subcommands({}))
-      if (sub->check_name(word)) found = sub;
+      if (!word.empty() && sub->check_name(word)) found = sub;
     if (found == nullptr) {
       return "'" + printable(word) + "' is not an " + path + " command; the commands are " +
              names_of(at) + hint;
     }
     at = found;
     path += " " + found->get_name();
-    ++i;
   }
   return "";
 }

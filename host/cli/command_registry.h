@@ -32,11 +32,11 @@ void add_registered_commands(CLI::App& app, int argc, const char* const* argv);
 // Every group, as for `engraver --help`.
 void add_registered_commands(CLI::App& app);
 
-// When a command word (the first argument, the one after -h, or a command's own command
-// such as `spi diff`) is not one of its parent's commands, or the first argument is an
-// option engraver itself does not have: a message that names it (non-UTF-8 bytes as \xNN)
-// and lists the commands; "" otherwise (CLI11 alone says "A subcommand is required", which
-// reads as if the word had been ignored).
+// When a command word (the first argument, one after -h, or a command's own command such as
+// `spi diff`) is not one of its parent's commands, is empty, or is missing (`engraver`,
+// `engraver spi`), or an option stands where only commands do: a message that names it
+// (non-UTF-8 bytes as \xNN) and lists the commands; "" otherwise (CLI11 alone says "A
+// subcommand is required", which reads as if the word had been ignored).
 std::string unknown_command_message(const CLI::App& app, int argc, const char* const* argv);
 
 }  // namespace host::cli

@@ -153,6 +153,25 @@ TEST(CliRegistry, EveryUnknownCommandWordAndLeadingOptionIsNamed) {
   EXPECT_EQ(bytes.code, 2);
   EXPECT_EQ(bytes.err.rfind("engraver: '\\xFF\\xFEboard' is not an engraver command", 0), 0u)
       << bytes.err;
+  // -h may stand before a word at any level; an empty word and an option at a level that
+  // has only commands are named too (outside tester 18: `spi -h bogus` was spi's help,
+  // `-h spi` "spi needs a command", `spi ''` and `spi -x` "A subcommand is required").
+  for (const std::string args : {"spi -h bogus", "spi --help bogus"}) {
+    const host_tests::ToolRun r = engraver(args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_EQ(r.err.rfind("engraver: 'bogus' is not an engraver spi command", 0), 0u) << r.err;
+  }
+  const host_tests::ToolRun empty = engraver("spi ''");
+  EXPECT_EQ(empty.code, 2);
+  EXPECT_EQ(empty.err.rfind("engraver: '' is not an engraver spi command", 0), 0u) << empty.err;
+  const host_tests::ToolRun spi_option = engraver("spi -x");
+  EXPECT_EQ(spi_option.code, 2);
+  EXPECT_EQ(spi_option.err.rfind("engraver: '-x' is not an option of engraver spi itself", 0), 0u)
+      << spi_option.err;
+  const host_tests::ToolRun spi_help = engraver("-h spi");
+  EXPECT_EQ(spi_help.code, 0) << spi_help.err;
+  EXPECT_EQ(spi_help.out, engraver("spi --help").out);
+  EXPECT_EQ(engraver("spi -h decode").out, engraver("spi decode --help").out);
   // What each known word does stays as it was.
   EXPECT_EQ(engraver("-h board").code, 0);
   EXPECT_EQ(engraver("spi --help").code, 0);
