@@ -135,6 +135,7 @@ bool is_plain_decimal(const std::string& v) {
 
 // "nan" and "inf" parse as numbers and pass every comparison-based check.
 std::string number_refusal(const std::string& value) {
+  if (value.empty()) return "an empty value (leave the option out for its default)";
   char* end = nullptr;
   const double v = std::strtod(value.c_str(), &end);
   if (end != value.c_str() && *end == '\0' && !std::isfinite(v))
@@ -191,9 +192,10 @@ const std::vector<OptionRange>& option_ranges() {
 }
 
 std::string range_refusal(const OptionRange& r, const std::string& value) {
-  char* end = nullptr;
-  const double v = std::strtod(value.c_str(), &end);
-  if (end == value.c_str()) return "";  // not a number: CLI11 says so
+  // Not a number, nan, hex: said as every number option says it ("nan is outside").
+  const std::string not_a_number = number_refusal(value);
+  if (!not_a_number.empty()) return not_a_number;
+  const double v = std::strtod(value.c_str(), nullptr);
   if (v >= r.min && v <= r.max) return "";
   const std::string unit = *r.unit ? std::string(" ") + r.unit : std::string();
   return fmt::format("{} is outside the allowed range {} .. {}{}", value, bound_text(r.min),

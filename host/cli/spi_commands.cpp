@@ -2,6 +2,8 @@
 // should send, and diff the two (see docs/bench-testing.md).
 #include <CLI/CLI.hpp>  // CLI::App
 
+#include <cmath>     // std::floor
+#include <cstdlib>   // std::strtod
 #include <iostream>  // std::cout, std::cerr
 #include <string>    // std::string
 
@@ -14,12 +16,12 @@
 
 namespace {
 
-// --bits as a number 1 .. 64 in plain digits, else 0.
+// --bits as a whole number 1 .. 64, read as every count is (a plain decimal: 32, 32.0,
+// +32), else 0.
 int bits_value(const std::string& bits) {
-  if (bits.empty() || bits.size() > 2 || bits.find_first_not_of("0123456789") != std::string::npos)
-    return 0;
-  const int b = std::stoi(bits);
-  return b >= 1 && b <= 64 ? b : 0;
+  if (!host::cli::is_plain_decimal(bits)) return 0;
+  const double b = std::strtod(bits.c_str(), nullptr);
+  return b >= 1 && b <= 64 && b == std::floor(b) ? static_cast<int>(b) : 0;
 }
 
 // Options shared by decode and diff, bound to a FramerOptions.

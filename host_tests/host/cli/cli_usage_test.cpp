@@ -167,8 +167,21 @@ TEST(CliUsage, ACaptureOptionSpiCannotReadIsNamedAsTheLineIsRead) {
       {"--min-pulse 1e-400s", "--min-pulse: '1e-400s' is not a duration like 100ns"},
       {"--mode 4", "--mode: 4 is outside the allowed range 0 .. 3\n"},
       {"--bits ''", "--bits: an empty value"},
+      // Numbers read as every number option reads them (tester 18): an empty one said as
+      // every empty value, nan not "outside the range", 32.0 a whole number.
+      {"--mode ''", "--mode: an empty value (leave the option out for its default)\n"},
+      {"--bits 32.5", "--bits: '32.5' is neither a whole number 1 .. 64 nor 'any'\n"},
   };
   for (const auto& c : cases) expect_usage_error("spi decode a.vcd " + c.option, c.says);
+  expect_usage_error("spi diff a.vcd b.golden --max-frame-errors nan",
+                     "--max-frame-errors: 'nan' is not a finite number\n");
+  expect_usage_error("board x.gbr --passes ''",
+                     "--passes: an empty value (leave the option out for its default)\n");
+  // 32.0 and +32 are 32: the capture is then what fails (a.vcd does not exist), not --bits.
+  for (const std::string bits : {"32.0", "+32", "3.2e1"}) {
+    const ToolRun r = engraver("spi decode /nonexistent/a.vcd --bits " + bits);
+    EXPECT_EQ(r.err.rfind("engraver spi: error E_OPEN", 0), 0u) << bits << "\n" << r.err;
+  }
 }
 
 // A word among a few, refused in the project's words (CLI11's were "--tool-side:  not in
