@@ -64,7 +64,9 @@ std::string param_text(const FieldValue& v) {
 
 // A database error as the store's error.
 StoreError store_error(const pqxx::failure& e) {
-  return StoreError(fmt::format("PostgreSQL job store: {}", e.what()));
+  std::string what = e.what();  // libpq's end with a newline: the message is one line's
+  while (!what.empty() && (what.back() == '\n' || what.back() == ' ')) what.pop_back();
+  return StoreError(fmt::format("PostgreSQL job store: {}", what));
 }
 
 // Runs body(work) under the store's lock in one transaction (which the body commits);
