@@ -225,7 +225,8 @@ nlohmann::json board_report_json(const BoardCommandOptions& a, const BoardResult
                                    {"bytes", r.tool_bytes[t]}});
   }
   if (r.check) {
-    j["check"] = {{"tolerance_mm", pcb::isolation_check_tolerance_mm(r.options)},
+    j["check"] = {{"passed", r.check_ok},
+                  {"tolerance_mm", pcb::isolation_check_tolerance_mm(r.options)},
                   {"islands", r.check->islands},
                   {"copper_hits", r.check->hits.size()},
                   {"unseparated_pairs", r.check->unseparated.size()}};
@@ -294,11 +295,16 @@ std::string board_report_text(const BoardCommandOptions& a, const BoardResult& r
       cutout, counted(p.tool_changes, "tool change"), tool_bytes, r.plan_cpu_s, r.plan_peak_mb);
   // The check's outcome, passed too: a summary without it read the same as one with none.
   if (r.check && r.check->ok()) {
-    s += fmt::format("  check: no copper cut, {} each cut free (to {:.3f} mm)\n",
+    s += fmt::format("  check: passed: no copper cut, {} each cut free (to {:.3f} mm)\n",
                      counted(r.check->islands, "island"),
                      pcb::isolation_check_tolerance_mm(r.options));
+  } else if (r.check && r.check_ok) {  // joined only across the narrow gaps allowed
+    s += fmt::format(
+        "  check: passed: no copper cut; {} of islands not separated, across the {} allowed "
+        "(--allow-narrow-gaps)\n",
+        counted(r.check->unseparated.size(), "pair"), counted(p.narrow_gaps.size(), "narrow gap"));
   } else if (r.check) {
-    s += fmt::format("  check: {}, {} of islands not separated\n",
+    s += fmt::format("  check: failed: {}, {} of islands not separated\n",
                      counted(r.check->hits.size(), "copper hit"),
                      counted(r.check->unseparated.size(), "pair"));
   } else if (!a.check) {

@@ -77,6 +77,7 @@ TEST(BoardCommand, PlansChecksReportsAndWritesAWholeBoard) {
   EXPECT_EQ(j["board"], "ok");
   EXPECT_EQ(j["side"], "top");
   EXPECT_EQ(j["check"]["copper_hits"], 0);
+  EXPECT_EQ(j["check"]["passed"], true);
   EXPECT_EQ(j["bytes_per_tool"][3]["name"], "Cutter 1.00mm");
   write_board_outputs(o, j, &r);
   EXPECT_EQ(r.base, (fs::path(o.outdir) / "ok").string());
@@ -88,7 +89,7 @@ TEST(BoardCommand, PlansChecksReportsAndWritesAWholeBoard) {
   EXPECT_EQ(text.find("as splines"), std::string::npos) << text;
   EXPECT_NE(text.find("report: " + r.base + ".board.json"), std::string::npos) << text;
   // The check's outcome is in the summary when it passes, and says when it was skipped.
-  EXPECT_NE(text.find("\n  check: no copper cut, 2 islands each cut free (to 0.003 mm)\n"),
+  EXPECT_NE(text.find("\n  check: passed: no copper cut, 2 islands each cut free (to 0.003 mm)\n"),
             std::string::npos)
       << text;
   o.check = false;

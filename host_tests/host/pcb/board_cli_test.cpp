@@ -453,6 +453,24 @@ TEST(BoardCli, RunFailsAJobWhoseSimulatedPathCutsCopper) {
   EXPECT_GT(j["simulated_isolation_check"]["copper_hits"].get<int>(), 0);
 }
 
+// Islands left joined only across the narrow gaps allowed pass the check, and the summary and
+// the report say so (outside tester 18: "check: 0 copper hits, 7 pairs ..." with exit 0 did
+// not say whether it passed).
+TEST(BoardCli, AllowedNarrowGapsPassTheCheckAndTheSummarySaysSo) {
+  const std::string board =
+      std::string(ENGRAVER_SOURCE_DIR) + "/../shared/samples/pcb/multivibrator";
+  if (!std::filesystem::is_directory(board)) GTEST_SKIP() << board << " (shared samples) absent";
+  const std::string out = testing::TempDir() + "/" + std::to_string(getpid()) + "-allowed";
+  const ToolRun r =
+      run("board " + board + " --tool-width 1.5 --allow-narrow-gaps --no-plot -o " + out);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("\n  check: passed: no copper cut; "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" pairs of islands not separated, across the "), std::string::npos) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out + "/multivibrator.board.json"));
+  EXPECT_EQ(j["check"]["passed"], true);
+  EXPECT_GT(j["check"]["unseparated_pairs"].get<int>(), 0);
+}
+
 // The guide's double-sided workflow on the shared multivibrator, as printed there: the hole
 // positions the report lists, the measured holes the simulated operator finds for a blank
 // 0.3 mm, -0.2 mm and 0.5 degrees off, the alignment found from them, and the cut within
