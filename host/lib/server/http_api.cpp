@@ -665,7 +665,8 @@ bool HttpApi::refused_from_headers(const httplib::Request& req, httplib::Respons
     return true;
   }
   if (!req.has_header("Host")) {  // HTTP/1.1 asks a server to refuse it so (RFC 9112 §3.2)
-    send_error(res, 400, "the request has no Host header (or an empty one): it names the server it is for");
+    send_error(res, 400,
+               "the request has no Host header (or an empty one): it names the server it is for");
     return true;
   }
   const std::string host = req.get_header_value("Host");

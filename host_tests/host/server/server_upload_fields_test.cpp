@@ -445,9 +445,8 @@ TEST(ServerUploadFields, ABodysLengthIsPlainDigitsSaidOnce) {
   }
   // An empty Host beside one that names the server is two (httplib dropped the empty one,
   // and the job was taken; outside tester 18), in either order and any case.
-  for (const std::string hosts :
-       {"Host:\r\nHost: 127.0.0.1\r\n", "Host: 127.0.0.1\r\nhost: \r\n",
-        "HOST:\t\r\nHost: 127.0.0.1\r\n"}) {
+  for (const std::string hosts : {"Host:\r\nHost: 127.0.0.1\r\n", "Host: 127.0.0.1\r\nhost: \r\n",
+                                  "HOST:\t\r\nHost: 127.0.0.1\r\n"}) {
     RawConnection c(server.port());
     ASSERT_TRUE(c.send_text("GET /api/status HTTP/1.1\r\n" + hosts + "\r\n"));
     const std::string answer = c.next_answer();
