@@ -50,33 +50,15 @@ std::string refuse_negative(std::string& value) {
 
 // "" is not leaving an option out: CLI11 handed it on, and --side '' took the default side,
 // serve --data '' the current folder.
+const char* const kEmptyValue = "an empty value";
+const char* const kLeaveItOut = " (leave the option out for its default)";
+
 CLI::Validator refuse_empty(bool named_option) {
-  const std::string hint = named_option ? " (leave the option out for its default)" : "";
+  const std::string said = std::string(kEmptyValue) + (named_option ? kLeaveItOut : "");
   return CLI::Validator(
-      [hint](const std::string& value) {
-        return value.empty() ? "an empty value" + hint : std::string();
-      },
-      "", "not empty");
+      [said](const std::string& value) { return value.empty() ? said : std::string(); }, "",
+      "not empty");
 }
-
-}  // namespace
-
-CLI::Validator one_of(const std::vector<std::string>& words) {
-  std::string list, braces;  // "a, b or c" for the message, "{a,b,c}" for --help as before
-  for (size_t i = 0; i < words.size(); ++i) {
-    list += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + words[i];
-    braces += (i == 0 ? "" : ",") + words[i];
-  }
-  return CLI::Validator(
-      [words, list](const std::string& value) {
-        for (const std::string& w : words)
-          if (value == w) return std::string();
-        return value.empty() ? std::string() : "'" + value + "' is not " + list;
-      },
-      "{" + braces + "}", "one of");
-}
-
-namespace {
 
 bool is_integer_option(const CLI::Option* o) {
   const std::string t = o->get_type_name();
@@ -135,7 +117,7 @@ bool is_plain_decimal(const std::string& v) {
 
 // "nan" and "inf" parse as numbers and pass every comparison-based check.
 std::string number_refusal(const std::string& value) {
-  if (value.empty()) return "an empty value (leave the option out for its default)";
+  if (value.empty()) return std::string(kEmptyValue) + kLeaveItOut;
   char* end = nullptr;
   const double v = std::strtod(value.c_str(), &end);
   if (end != value.c_str() && *end == '\0' && !std::isfinite(v))
@@ -207,6 +189,21 @@ CLI::Validator range_check(const OptionRange& r) {
   return CLI::Validator([r](std::string& v) { return range_refusal(r, v); },
                         "in [" + bound_text(r.min) + " .. " + bound_text(r.max) + "]" + unit,
                         "range");
+}
+
+CLI::Validator one_of(const std::vector<std::string>& words) {
+  std::string list, braces;  // "a, b or c" for the message, "{a,b,c}" for --help as before
+  for (size_t i = 0; i < words.size(); ++i) {
+    list += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + words[i];
+    braces += (i == 0 ? "" : ",") + words[i];
+  }
+  return CLI::Validator(
+      [words, list](const std::string& value) {
+        for (const std::string& w : words)
+          if (value == w) return std::string();
+        return value.empty() ? std::string() : "'" + value + "' is not " + list;
+      },
+      "{" + braces + "}", "one of");
 }
 
 void add_option_checks(CLI::App* app) {

@@ -206,7 +206,7 @@ void run_serve(const ServeArgs& a) {
       std::error_code ec;
       if (!path.empty()) std::filesystem::remove(path, ec);
     }
-  } unshown{created ? std::filesystem::path(a.data) / "token" : std::filesystem::path()};
+  } unshown{created ? data.token_path() : std::filesystem::path()};
 
   const server::WorkshopOptions wo = workshop_options(a);
   server::Workshop workshop(store, data, machines, wo);

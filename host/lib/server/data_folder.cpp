@@ -65,7 +65,7 @@ fs::path DataFolder::new_staging_dir() const {
 }
 
 std::string DataFolder::token(bool* created) const {
-  const fs::path path = root_ / "token";
+  const fs::path path = token_path();
   *created = false;
   std::ifstream in(path);
   std::string token;

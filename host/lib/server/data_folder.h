@@ -29,6 +29,7 @@ class DataFolder {
   // The access token; created (random, file mode 0600) on first use. *created tells whether
   // it was made now (the CLI shows it once).
   std::string token(bool* created) const;
+  std::filesystem::path token_path() const { return root_ / "token"; }  // where token() keeps it
 
  private:
   std::filesystem::path root_;

@@ -10,15 +10,21 @@
 
 namespace host::server {
 
+namespace {
+
+// libpq's messages end with a newline; ours are one line.
+std::string one_line(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return text;
+}
+
+}  // namespace
+
 std::string postgres_conninfo_problem(const std::string& conninfo) {
   char* error = nullptr;
   PQconninfoOption* options = PQconninfoParse(conninfo.c_str(), &error);
   std::string problem;
-  if (options == nullptr) {
-    problem = error != nullptr ? error : "not a PostgreSQL connection (libpq is out of memory)";
-    while (!problem.empty() && (problem.back() == '\n' || problem.back() == ' '))
-      problem.pop_back();
-  }
+  if (options == nullptr) problem = one_line(error != nullptr ? error : "libpq is out of memory");
   PQconninfoFree(options);
   PQfreemem(error);
   return problem;
@@ -64,9 +70,7 @@ std::string param_text(const FieldValue& v) {
 
 // A database error as the store's error.
 StoreError store_error(const pqxx::failure& e) {
-  std::string what = e.what();  // libpq's end with a newline: the message is one line's
-  while (!what.empty() && (what.back() == '\n' || what.back() == ' ')) what.pop_back();
-  return StoreError(fmt::format("PostgreSQL job store: {}", what));
+  return StoreError(fmt::format("PostgreSQL job store: {}", one_line(e.what())));
 }
 
 // Runs body(work) under the store's lock in one transaction (which the body commits);
