@@ -74,7 +74,7 @@ ClipperLib::Paths union_of(const ClipperLib::Paths& paths);
 
 // The union of many pieces (an aperture flash, a stroke, an island with its holes: each a
 // region of its own), made strip by strip: the pieces sorted by the middle of their boxes
-// in x, cut into groups of about 20 000 vertices, each group united by `united` (which
+// in x, cut into groups of about 1 000 vertices, each group united by `united` (which
 // returns the union of what it is given), and the strips joined by one last union.
 ClipperLib::Paths united_by_strips(
     const std::vector<ClipperLib::Paths>& pieces,
@@ -99,6 +99,11 @@ ClipperLib::Paths grown_islands(const std::vector<Island>& islands, double delta
 // The union of open paths swept by a disc of radius radius_nm (round ends and joins).
 ClipperLib::Paths sweep_open(const ClipperLib::Paths& paths, double radius_nm,
                              double arc_tolerance_nm);
+
+// The same sweep as paths whose non-zero union it is (the strips not joined): for a
+// boolean operation that unites its operand anyway, which saves a union of the whole job.
+ClipperLib::Paths sweep_open_unjoined(const ClipperLib::Paths& paths, double radius_nm,
+                                      double arc_tolerance_nm);
 
 // a AND b, a MINUS b (non-zero fill).
 ClipperLib::Paths intersection_of(const ClipperLib::Paths& a, const ClipperLib::Paths& b);

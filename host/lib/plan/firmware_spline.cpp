@@ -5,6 +5,7 @@
 #include <cmath>      // std::llround, std::fabs
 #include <cstdint>    // int64_t
 #include <cstring>    // memset
+#include <map>        // std::map
 #include <sstream>    // std::ostringstream
 
 #include "host/lib/plan/contour_form.h"  // snap_to_contour_form
@@ -66,14 +67,16 @@ std::vector<BSpline> split_to_fit(const BSpline& c, size_t max_control) {
   return out;
 }
 
-// Worst relative rounding error of the weights w scaled so the largest is m.
-double weight_error(const std::vector<double>& w, double w_max, long m) {
+// Worst relative rounding error of the weights w scaled so the largest is m; once it reaches
+// `enough` the rest are not looked at (a search that only takes an error below it).
+double weight_error(const std::vector<double>& w, double w_max, long m, double enough = 1e300) {
   const double f = static_cast<double>(m) / w_max;
   double err = 0;
   for (double x : w) {
     const double q = std::floor(x * f + 0.5);
     if (q < 1) return 1e300;
     err = std::max(err, std::fabs(q - x * f) / q);
+    if (err >= enough) return err;
   }
   return err;
 }
@@ -96,13 +99,24 @@ std::vector<uint16_t> quantise_weights(const std::vector<double>& w, double max_
   long best_m = 0, best_fallback = 65535;
   if (m_sure < 32768 && weight_error(w, w_max, static_cast<long>(m_sure)) <= tolerance)
     best_m = static_cast<long>(m_sure);
+  // The fallback's m depends on the weights alone, and a board's arcs repeat a few angles:
+  // each search tries up to 32 768 scales, so its answers are kept (a bounded number).
+  thread_local std::map<std::vector<double>, long> searched;
+  if (best_m == 0) {
+    const auto known = searched.find(w);
+    if (known != searched.end()) best_m = known->second;
+  }
   double best_err = 1e300;
   for (long m = 65535; best_m == 0 && m >= 32768; --m) {
-    const double err = weight_error(w, w_max, m);
+    const double err = weight_error(w, w_max, m, best_err);
     if (err < best_err) best_err = err, best_fallback = m;
     if (err < 1e-9) break;
   }
-  if (best_m == 0) best_m = best_fallback;
+  if (best_m == 0) {
+    best_m = best_fallback;
+    if (searched.size() >= 4096) searched.clear();  // a job of many angles
+    searched.emplace(w, best_m);
+  }
   std::vector<uint16_t> q;
   const double f = static_cast<double>(best_m) / w_max;
   for (double x : w) {

@@ -275,6 +275,20 @@ TEST(Isolation, CheckerFindsIslandsWithNoCutBetweenThem) {
   EXPECT_EQ(c.islands, 3u);
 }
 
+// An island is placed by a point of what the tool leaves of it: a cut across the middle of a
+// pad (where the pad's own middle lies) leaves two halves, and the pad is found in the field
+// it shares with an island nobody isolated. Fails if the runs that cut an island are left
+// out when its standing part is worked out (its middle, under the cut, is in no piece).
+TEST(Isolation, CheckerPlacesAnIslandByThePartTheToolLeavesStanding) {
+  const ClipperLib::Paths copper = {rect(0, 0, 4, 1), rect(6, 0, 7, 1)};
+  const std::vector<std::vector<Point2>> cut = {{Point2(2, -1), Point2(2, 2)}};
+  const IsolationCheck c = check_isolation(copper, cut, 0.1, 0.002);
+  EXPECT_EQ(c.hits.size(), 1u) << describe(c);
+  ASSERT_EQ(c.unseparated.size(), 1u) << describe(c);
+  EXPECT_LT(c.unseparated[0].a_mm.x(), 4.0);  // a point of the cut pad, off the cut
+  EXPECT_GT(std::fabs(c.unseparated[0].a_mm.x() - 2.0), 0.1);
+}
+
 // A loop around the first pad whose ends stop short of each other; the second pad is left in
 // the uncut field. The tool closes the loop when its ends are less than a tool width apart.
 // The separation is judged with the whole tool (radius 0.1 mm), not the one shrunk by the

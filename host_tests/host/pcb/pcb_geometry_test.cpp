@@ -92,7 +92,7 @@ TEST(SweepOpen, PathsSweptInGroupsCoverWhatEachPathSweptAloneCovers) {
   std::uniform_real_distribution<double> coord(0, 80e6), step(-0.5e6, 0.5e6);
   Paths paths;
   size_t vertices = 0;
-  while (vertices < 25000) {  // more than one group (20 000 vertices)
+  while (vertices < 25000) {  // many groups (1 000 vertices each)
     Path p{IntPoint(static_cast<ClipperLib::cInt>(coord(rng)),
                     static_cast<ClipperLib::cInt>(coord(rng)))};
     for (int k = 0; k < 11; ++k) {
@@ -117,6 +117,14 @@ TEST(SweepOpen, PathsSweptInGroupsCoverWhatEachPathSweptAloneCovers) {
   EXPECT_NEAR(signed_area(grouped), area, 1e-6 * area);
   EXPECT_LT(std::fabs(signed_area(difference_of(grouped, expected))), 1e-6 * area);
   EXPECT_LT(std::fabs(signed_area(difference_of(expected, grouped))), 1e-6 * area);
+  // Unjoined, the strips overlap at their edges (their areas add up to more than the union),
+  // and their non-zero union is the same region.
+  const Paths unjoined = sweep_open_unjoined(paths, radius_nm, arc_tol_nm);
+  EXPECT_GT(signed_area(unjoined), area * (1 + 1e-6));
+  const Paths joined = union_of(unjoined);
+  EXPECT_NEAR(signed_area(joined), area, 1e-6 * area);
+  EXPECT_LT(std::fabs(signed_area(difference_of(joined, expected))), 1e-6 * area);
+  EXPECT_LT(std::fabs(signed_area(difference_of(expected, joined))), 1e-6 * area);
 }
 
 // Rings (an outer and its hole) over a field, grown island by island in strips: the same
@@ -126,7 +134,7 @@ TEST(OffsetClosed, GrowingManyIslandsInStripsGivesClippersOwnOffset) {
   std::uniform_real_distribution<double> centre(0, 100e6);
   Paths rings;
   size_t vertices = 0;
-  while (vertices < 50000) {  // more than one strip (20 000 vertices)
+  while (vertices < 50000) {  // many strips (1 000 vertices each)
     const double cx = centre(rng), cy = centre(rng);
     Path outer, hole;
     for (int k = 0; k < 64; ++k) {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>  // std::max_element
 #include <cmath>
 
 #include "host/lib/drawing/conics.h"
@@ -96,6 +97,27 @@ TEST(FirmwareSpline, SmallArcWeightsUseACoarseGridWithinATenthOfAMicrometre) {
   EXPECT_LT(max_deviation_mm(arc, f), 0.0008);  // control points are whole um
 }
 
+// The Q14 weights of the widest search: the scale m in [32768, 65535] of the largest weight
+// with the least worst relative rounding error (the first found from the top), as the
+// converter falls back to for long legs.
+std::vector<uint16_t> best_q14_weights(const std::vector<double>& w) {
+  const double w_max = *std::max_element(w.begin(), w.end());
+  long best_m = 65535;
+  double best_err = 1e300;
+  for (long m = 65535; m >= 32768; --m) {
+    double err = 0;
+    for (double x : w) {
+      const double q = std::floor(x * m / w_max + 0.5);
+      err = std::max(err, std::fabs(q - x * m / w_max) / q);
+    }
+    if (err < best_err) best_err = err, best_m = m;
+    if (err < 1e-9) break;
+  }
+  std::vector<uint16_t> q;
+  for (double x : w) q.push_back(static_cast<uint16_t>(std::floor(x * best_m / w_max + 0.5)));
+  return q;
+}
+
 TEST(FirmwareSpline, CircleWeightsAreScaledToQ14WithinRoundingOfTheirRatio) {
   const BSpline circle = arc_spline({50, 50}, 40.0, 0, 2 * kPi);
   const std::vector<core::Spline> f = to_firmware_splines(circle);
@@ -106,6 +128,22 @@ TEST(FirmwareSpline, CircleWeightsAreScaledToQ14WithinRoundingOfTheirRatio) {
   EXPECT_NEAR(ratio, std::cos(kPi / 4), 6.25e-6 * 2);
   // A 40 mm circle stays within a micrometre of the exact one.
   EXPECT_LT(max_deviation_mm(circle, f), 0.001);
+  // The scale searched for these weights is kept, and a third of a circle converted between
+  // (two 60 deg pieces: other weights) gets its own: each the scale the search finds.
+  const BSpline third = arc_spline({50, 50}, 40.0, 0, 2 * kPi / 3);
+  const std::vector<core::Spline> t = to_firmware_splines(third);
+  const std::vector<core::Spline> again = to_firmware_splines(circle);
+  ASSERT_EQ(again.size(), 1u);
+  ASSERT_FALSE(t.empty());
+  const std::vector<uint16_t> want_circle = best_q14_weights(circle.weights);
+  const std::vector<uint16_t> want_third = best_q14_weights(
+      std::vector<double>(third.weights.begin(), third.weights.begin() + t[0].control_count));
+  for (int i = 0; i < f[0].control_count; ++i) {
+    EXPECT_EQ(f[0].control[i].weight_q14, want_circle[i]) << i;
+    EXPECT_EQ(again[0].control[i].weight_q14, want_circle[i]) << i;
+  }
+  for (int i = 0; i < t[0].control_count; ++i)
+    EXPECT_EQ(t[0].control[i].weight_q14, want_third[i]) << i;
 }
 
 TEST(FirmwareSpline, CurveWithMoreThan64ControlPointsIsSplitWithoutChangingShape) {
