@@ -6,6 +6,8 @@
 #include <functional>  // std::function
 #include <utility>     // std::move
 
+#include "host/lib/pcb/disc_outline.h"
+
 namespace host::pcb {
 
 using ClipperLib::Clipper;
@@ -273,7 +275,16 @@ Paths sweep_open_unjoined(const Paths& paths, double radius_nm, double arc_toler
   return strips_side_by_side(
       one_piece_each(paths),
       [&](const Paths& group) {
-        return offset_together(group, radius_nm, arc_tolerance_nm, ClipperLib::etOpenRound);
+        // The outlines all wind the same way (negative on the swept region), so the
+        // non-zero rule unites them.
+        Clipper c;
+        for (const Path& p : group) {
+          c.AddPath(disc_sweep_outline(p, radius_nm, arc_tolerance_nm), ClipperLib::ptSubject,
+                    true);
+        }
+        Paths out;
+        c.Execute(ClipperLib::ctUnion, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+        return out;
       },
       &strips);
 }
