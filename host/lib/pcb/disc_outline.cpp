@@ -2,8 +2,8 @@
 #include "host/lib/pcb/disc_outline.h"
 
 #include <algorithm>  // std::min, std::reverse
-#include <cmath>      // std::acos, std::atan2, std::ceil, std::cos, std::hypot, std::llround
-#include <vector>     // std::vector
+#include <cmath>  // std::acos, std::atan2, std::ceil, std::cos, std::fabs, std::hypot, std::llround
+#include <vector>  // std::vector
 
 namespace host::pcb {
 
@@ -83,13 +83,11 @@ class OutlineWriter {
       }
       return;
     }
-    // A right turn, straight on or back: the outside, round about v.
+    // A right turn, straight on or back: the outside, round about v by the turn (0 .. pi;
+    // from the sine and cosine, so a straight run's rounding never reads as a full circle,
+    // and straight back rounds the tip).
     point(v.x + na.x * r_, v.y + na.y * r_);
-    const double a0 = std::atan2(na.y, na.x);
-    double a1 = std::atan2(nb.y, nb.x);
-    while (a1 > a0) a1 -= 2 * kPi;
-    if (cross == 0 && cos_turn < 0) a1 = a0 - kPi;  // straight back: round the tip
-    clockwise_arc(v, a0, a0 - a1);
+    clockwise_arc(v, std::atan2(na.y, na.x), std::atan2(std::fabs(cross), cos_turn));
     point(v.x + nb.x * r_, v.y + nb.y * r_);
   }
 

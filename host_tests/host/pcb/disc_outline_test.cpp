@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>  // std::min
-#include <cmath>      // std::cos, std::fabs, std::hypot, std::sin
+#include <cmath>      // std::acos, std::cos, std::fabs, std::hypot, std::sin
 #include <random>     // std::mt19937
 
 #include "host/lib/pcb/pcb_geometry.h"
@@ -109,6 +109,18 @@ TEST(DiscOutline, SharpTurnsReversalsRepeatsAndShortEdgesGiveTheSameRegion) {
     }
     expect_same_region(p, "a random walk");
   }
+}
+
+// Points on one straight line, their directions equal but for rounding: the outline is the
+// two sides and the two round ends, no circle at a vertex (a turn of -1e-17 rad read as a
+// whole turn gave 688 points here, 88 now).
+TEST(DiscOutline, AStraightRunOfManyPointsHasOnlyItsTwoRoundEnds) {
+  Path p;
+  for (int k = 0; k < 20; ++k) p.emplace_back(2420 * k * (k + 1) / 2, 8720 * k * (k + 1) / 2);
+  const size_t ends =
+      2 * (static_cast<size_t>(3.1416 / (2 * std::acos(1 - kArcTolNm / kRadiusNm))) + 2);
+  EXPECT_LE(disc_sweep_outline(p, kRadiusNm, kArcTolNm).size(), 4 * p.size() + ends);
+  expect_same_region(p, "a straight run");
 }
 
 // The outline runs clockwise (left side forward, right side back): negative on the swept
