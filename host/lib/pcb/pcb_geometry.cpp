@@ -4,6 +4,7 @@
 #include <algorithm>   // std::min, std::max
 #include <cmath>       // std::llround
 #include <functional>  // std::function
+#include <iterator>    // std::make_move_iterator
 #include <utility>     // std::move
 
 #include "host/lib/pcb/disc_outline.h"
@@ -198,9 +199,9 @@ Paths offset_together(const Paths& paths, double delta_nm, double arc_tolerance_
 // 0.2 mm tool: 12 s in one union, 2.4 s by strips).
 namespace {
 
-// united_by_strips without the last union: the strips' paths side by side.
-Paths strips_side_by_side(const std::vector<Paths>& pieces,
-                          const std::function<Paths(const Paths&)>& united, size_t* strip_count) {
+// united_by_strips without the last union: each strip's union.
+std::vector<Paths> united_strips(const std::vector<Paths>& pieces,
+                                 const std::function<Paths(const Paths&)>& united) {
   std::vector<std::pair<double, size_t>> by_x;  // box centre x, index
   by_x.reserve(pieces.size());
   for (size_t i = 0; i < pieces.size(); ++i) {
@@ -208,7 +209,7 @@ Paths strips_side_by_side(const std::vector<Paths>& pieces,
     by_x.emplace_back(b.empty() ? 0.0 : (static_cast<double>(b.min_x) + b.max_x) / 2, i);
   }
   std::sort(by_x.begin(), by_x.end());
-  Paths all;
+  std::vector<Paths> strips;
   Paths group;
   size_t in_group = 0;
   for (size_t k = 0; k < by_x.size(); ++k) {
@@ -216,12 +217,19 @@ Paths strips_side_by_side(const std::vector<Paths>& pieces,
     group.insert(group.end(), piece.begin(), piece.end());
     in_group += vertex_count(piece);
     if (in_group >= kStripVertices || k + 1 == by_x.size()) {
-      const Paths strip = united(group);
-      all.insert(all.end(), strip.begin(), strip.end());
-      ++*strip_count;
+      strips.push_back(united(group));
       group.clear();
       in_group = 0;
     }
+  }
+  return strips;
+}
+
+Paths side_by_side(std::vector<Paths> strips) {
+  Paths all;
+  for (Paths& strip : strips) {
+    all.insert(all.end(), std::make_move_iterator(strip.begin()),
+               std::make_move_iterator(strip.end()));
   }
   return all;
 }
@@ -230,11 +238,11 @@ Paths strips_side_by_side(const std::vector<Paths>& pieces,
 
 Paths united_by_strips(const std::vector<Paths>& pieces,
                        const std::function<Paths(const Paths&)>& united) {
-  size_t strips = 0;
-  Paths all = strips_side_by_side(pieces, united, &strips);
+  std::vector<Paths> strips = united_strips(pieces, united);
+  if (strips.size() == 1) return std::move(strips[0]);
   // The strips overlap only at their edges: one union joins them, far fewer edges than the
   // pieces had (merging neighbours pairwise first was slower: every level sweeps them all).
-  return strips <= 1 ? all : union_of(all);
+  return union_of(side_by_side(std::move(strips)));
 }
 
 Paths grown_islands(const std::vector<Island>& islands, double delta_nm, double arc_tolerance_nm) {
@@ -271,22 +279,17 @@ Paths sweep_open(const Paths& paths, double radius_nm, double arc_tolerance_nm) 
 }
 
 Paths sweep_open_unjoined(const Paths& paths, double radius_nm, double arc_tolerance_nm) {
-  size_t strips = 0;
-  return strips_side_by_side(
-      one_piece_each(paths),
-      [&](const Paths& group) {
-        // The outlines all wind the same way (negative on the swept region), so the
-        // non-zero rule unites them.
-        Clipper c;
-        for (const Path& p : group) {
-          c.AddPath(disc_sweep_outline(p, radius_nm, arc_tolerance_nm), ClipperLib::ptSubject,
-                    true);
-        }
-        Paths out;
-        c.Execute(ClipperLib::ctUnion, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-        return out;
-      },
-      &strips);
+  return side_by_side(united_strips(one_piece_each(paths), [&](const Paths& group) {
+    // The outlines all wind the same way (negative on the swept region), so the non-zero
+    // rule unites them.
+    Clipper c;
+    for (const Path& p : group) {
+      c.AddPath(disc_sweep_outline(p, radius_nm, arc_tolerance_nm), ClipperLib::ptSubject, true);
+    }
+    Paths out;
+    c.Execute(ClipperLib::ctUnion, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    return out;
+  }));
 }
 
 namespace {
