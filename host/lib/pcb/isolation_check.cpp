@@ -9,6 +9,7 @@
 
 #include "host/lib/pcb/near_copper.h"
 #include "host/lib/pcb/pcb_geometry.h"
+#include "host/lib/pcb/standing_pieces.h"
 #include "host/lib/plan/counted.h"  // counted: "1 hole", "2 holes"
 
 namespace host::pcb {
@@ -50,30 +51,6 @@ bool interior_point(const Paths& region, IntPoint* out) {
     if (best > 2) return true;
   }
   return false;
-}
-
-// A connected piece of material: outer boundary and holes.
-struct Piece {
-  Path outer;
-  Paths holes;
-  BoxNm box;
-  std::vector<BoxNm> hole_boxes;
-};
-
-void collect_pieces(const ClipperLib::PolyNode& node, std::vector<Piece>* out) {
-  for (const ClipperLib::PolyNode* o : node.Childs) {
-    Piece p;
-    p.outer = o->Contour;
-    p.box.add(o->Contour);
-    for (const ClipperLib::PolyNode* h : o->Childs) {
-      p.holes.push_back(h->Contour);
-      BoxNm hb;
-      hb.add(h->Contour);
-      p.hole_boxes.push_back(hb);
-      collect_pieces(*h, out);
-    }
-    out->push_back(p);
-  }
 }
 
 // The path with the vertices left out that lie within near_nm of the line between the kept
@@ -152,9 +129,7 @@ void find_copper_hits(const std::vector<Island>& islands, const Paths& copper,
   c.AddPaths(cut_copper, ClipperLib::ptSubject, true);
   ClipperLib::PolyTree tree;
   c.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  std::vector<Piece> overlaps;
-  collect_pieces(tree, &overlaps);
-  for (const Piece& p : overlaps) {
+  for (const StandingPiece& p : pieces_of(tree)) {
     Paths region{p.outer};
     region.insert(region.end(), p.holes.begin(), p.holes.end());
     const double a = std::fabs(signed_area(region));
@@ -169,8 +144,8 @@ void find_copper_hits(const std::vector<Island>& islands, const Paths& copper,
 // Which standing piece holds each island (by a point of the island the tool leaves standing,
 // inner[i]).
 void locate_islands(const std::vector<Island>& islands, const Paths& swept,
-                    const std::vector<Piece>& pieces,
-                    std::map<size_t, std::vector<size_t>>* by_piece, std::vector<IntPoint>* inner) {
+                    const std::vector<StandingPiece>& pieces,
+                    std::map<size_t, std::vector<size_t>>* by_whole, std::vector<IntPoint>* inner) {
   std::vector<BoxNm> swept_boxes(swept.size());
   for (size_t k = 0; k < swept.size(); ++k) swept_boxes[k].add(swept[k]);
   for (size_t i = 0; i < islands.size(); ++i) {
@@ -187,17 +162,9 @@ void locate_islands(const std::vector<Island>& islands, const Paths& swept,
                            ? islands[i].paths
                            : difference_of(islands[i].paths, clip_to_box(near, islands[i].box));
     if (!interior_point(left, &(*inner)[i])) continue;
-    for (size_t k = 0; k < pieces.size(); ++k) {
-      const Piece& p = pieces[k];
-      if (!p.box.contains((*inner)[i]) || ClipperLib::PointInPolygon((*inner)[i], p.outer) == 0)
-        continue;
-      bool in_hole = false;
-      for (size_t h = 0; h < p.holes.size() && !in_hole; ++h) {
-        in_hole = p.hole_boxes[h].contains((*inner)[i]) &&
-                  ClipperLib::PointInPolygon((*inner)[i], p.holes[h]) != 0;
-      }
-      if (in_hole) continue;
-      (*by_piece)[k].push_back(i);
+    for (const StandingPiece& p : pieces) {
+      if (!p.holds((*inner)[i])) continue;
+      (*by_whole)[p.whole].push_back(i);
       break;
     }
   }
@@ -211,26 +178,21 @@ void find_unseparated(const std::vector<Island>& islands, const Paths& copper, c
   BoxNm b = box_of(copper);
   if (b.empty()) return;
   const cInt m = static_cast<cInt>(4 * radius_nm + 1e6);
-  const Path frame{IntPoint(b.min_x - m, b.min_y - m), IntPoint(b.max_x + m, b.min_y - m),
-                   IntPoint(b.max_x + m, b.max_y + m), IntPoint(b.min_x - m, b.max_y + m)};
-  // The difference unites the sweep's strips itself.
-  const Paths swept =
-      centres.empty() ? Paths{} : sweep_open_unjoined(centres, radius_nm, kArcToleranceNm);
-  ClipperLib::Clipper c;
-  c.AddPath(frame, ClipperLib::ptSubject, true);
-  c.AddPaths(swept, ClipperLib::ptClip, true);
-  ClipperLib::PolyTree tree;
-  c.Execute(ClipperLib::ctDifference, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  std::vector<Piece> pieces;
-  collect_pieces(tree, &pieces);
-  std::map<size_t, std::vector<size_t>> by_piece;
+  BoxNm frame = b;
+  frame.min_x -= m;
+  frame.min_y -= m;
+  frame.max_x += m;
+  frame.max_y += m;
+  const std::vector<StandingPiece> pieces = standing_pieces(
+      frame, centres.empty() ? Paths{} : sweep_open_unjoined(centres, radius_nm, kArcToleranceNm));
+  std::map<size_t, std::vector<size_t>> by_whole;
   std::vector<IntPoint> inner(islands.size());
   // What the tool leaves of an island is cut only by the centres' runs within its reach of
   // copper (the rest touch no copper): their sweep, far smaller than the whole job's.
   const Paths swept_near =
       near_runs.empty() ? Paths{} : sweep_open(near_runs, radius_nm, kArcToleranceNm);
-  locate_islands(islands, swept_near, pieces, &by_piece, &inner);
-  for (const auto& entry : by_piece) {
+  locate_islands(islands, swept_near, pieces, &by_whole, &inner);
+  for (const auto& entry : by_whole) {
     const std::vector<size_t>& v = entry.second;
     for (size_t k = 1; k < v.size(); ++k) {
       UnseparatedPair u;

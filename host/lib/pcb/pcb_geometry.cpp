@@ -279,17 +279,12 @@ Paths sweep_open(const Paths& paths, double radius_nm, double arc_tolerance_nm) 
 }
 
 Paths sweep_open_unjoined(const Paths& paths, double radius_nm, double arc_tolerance_nm) {
-  return side_by_side(united_strips(one_piece_each(paths), [&](const Paths& group) {
-    // The outlines all wind the same way (negative on the swept region), so the non-zero
-    // rule unites them.
-    Clipper c;
-    for (const Path& p : group) {
-      c.AddPath(disc_sweep_outline(p, radius_nm, arc_tolerance_nm), ClipperLib::ptSubject, true);
-    }
-    Paths out;
-    c.Execute(ClipperLib::ctUnion, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-    return out;
-  }));
+  // The outlines all wind the same way (negative on the swept region), so the non-zero rule
+  // unites them.
+  Paths out;
+  out.reserve(paths.size());
+  for (const Path& p : paths) out.push_back(disc_sweep_outline(p, radius_nm, arc_tolerance_nm));
+  return out;
 }
 
 namespace {

@@ -100,10 +100,10 @@ ClipperLib::Paths grown_islands(const std::vector<Island>& islands, double delta
 ClipperLib::Paths sweep_open(const ClipperLib::Paths& paths, double radius_nm,
                              double arc_tolerance_nm);
 
-// The same sweep as paths whose non-zero union it is (the strips not joined): for a
-// boolean operation that unites its operand anyway, which saves a union of the whole job.
-// Each path's outline is built directly (disc_outline.h), not by Clipper's offset: the same
-// region to the arcs' chords, in a fraction of the time on densely sampled paths.
+// The same sweep as paths whose non-zero union it is, for a boolean operation that unites
+// its operand anyway: each path's outline, built directly (disc_outline.h), not by
+// Clipper's offset (the same region to the arcs' chords, in a fraction of the time on
+// densely sampled paths), and not united.
 ClipperLib::Paths sweep_open_unjoined(const ClipperLib::Paths& paths, double radius_nm,
                                       double arc_tolerance_nm);
 

@@ -117,13 +117,17 @@ TEST(SweepOpen, PathsSweptInGroupsCoverWhatEachPathSweptAloneCovers) {
   EXPECT_NEAR(signed_area(grouped), area, 1e-6 * area);
   EXPECT_LT(std::fabs(signed_area(difference_of(grouped, expected))), 1e-6 * area);
   EXPECT_LT(std::fabs(signed_area(difference_of(expected, grouped))), 1e-6 * area);
-  // Unjoined (and from outlines built directly, not Clipper's offset), the strips overlap at
-  // their edges (their areas add up to more than the union), and their non-zero union is
-  // the same region to the arcs' chords: either side's excess within a band of the arc
-  // tolerance along the boundary (a lost group of paths would be a tenth of the area).
+  // Unjoined (outlines built directly, not Clipper's offset), each path is an outline of
+  // its own, clockwise, overlapping the others (their areas add up to more than the union),
+  // and their non-zero union is the same region to the arcs' chords: either side's excess
+  // within a band of the arc tolerance along the boundary (a lost path would be far more).
   const Paths unjoined = sweep_open_unjoined(paths, radius_nm, arc_tol_nm);
-  EXPECT_GT(signed_area(unjoined), area * 1.001);
-  const Paths joined = union_of(unjoined);
+  ASSERT_EQ(unjoined.size(), paths.size());
+  for (const Path& p : unjoined) EXPECT_LT(ClipperLib::Area(p), 0);
+  EXPECT_GT(-signed_area(unjoined), area * 1.001);
+  std::vector<Paths> outlines;
+  for (const Path& p : unjoined) outlines.push_back(Paths{p});
+  const Paths joined = united_by_strips(outlines, union_of);
   double boundary_nm = 0;
   for (const Path& p : expected)
     for (size_t i = 0; i < p.size(); ++i)
