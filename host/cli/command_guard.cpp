@@ -10,6 +10,7 @@
 #include <new>        // std::bad_alloc
 #include <sstream>    // std::ostringstream
 #include <typeinfo>   // std::type_info
+#include <vector>     // std::vector
 
 #include "host/cli/exit_codes.h"
 #include "host/cli/terminal_text.h"
@@ -92,6 +93,35 @@ void install_terminate_guard(CLI::App& app) {
 
 namespace {
 
+// The words nothing took, in the order given, of the app and the commands parsed (those that
+// hand theirs on, as serve does, left out).
+void unexpected_words(const CLI::App& app, std::vector<std::string>& out) {
+  if (!app.get_allow_extras()) {
+    const std::vector<std::string> own = app.remaining(false);
+    out.insert(out.end(), own.begin(), own.end());
+  }
+  for (const CLI::App* sub : app.get_subcommands()) unexpected_words(*sub, out);
+}
+
+// An option the command does not have is the mistake to name: CLI11 checks the values it
+// did take first (`board DIR --tool-side ''` gave the '' to FILES: "FILES: an empty value"),
+// lists the words backwards and shows an empty one as nothing.
+void say_parse_error(CLI::App& app, const CLI::ParseError& e, std::ostream& err) {
+  std::vector<std::string> words;
+  unexpected_words(app, words);
+  if (words.empty()) {
+    app.exit(e, std::cout, err);  // the message and the usage hint
+    return;
+  }
+  std::string list;
+  for (const std::string& w : words) list += " " + (w.empty() ? std::string("''") : w);
+  const CLI::ExtrasError extras((words.size() > 1 ? "The following arguments were not expected:"
+                                                  : "The following argument was not expected:") +
+                                    list,
+                                static_cast<int>(CLI::ExitCodes::ExtrasError));
+  app.exit(extras, std::cout, err);
+}
+
 int run_guarded_to(CLI::App& app, int argc, const char* const* argv, std::ostream& err) {
   try {
     app.parse(argc, argv);
@@ -99,8 +129,8 @@ int run_guarded_to(CLI::App& app, int argc, const char* const* argv, std::ostrea
   } catch (const CLI::Success& e) {
     return app.exit(e);  // --help, --version
   } catch (const CLI::ParseError& e) {
-    err << "engraver: ";          // as every other message begins
-    app.exit(e, std::cout, err);  // the message and the usage hint
+    err << "engraver: ";  // as every other message begins
+    say_parse_error(app, e, err);
     return kExitUsage;
   } catch (const CommandFailure& e) {
     err << "engraver: " << e.what() << "\n";

@@ -308,7 +308,8 @@ void add_serve_commands(CLI::App& app) {
       "The token is printed once, on the first start; it is kept in DATA/token.\n"
       "Exit: 0 stopped by Ctrl-C or SIGTERM, 1 cannot start (the data folder used by another "
       "server, the database unreachable, another live server with this --name), 2 bad "
-      "command line or page files missing (docs/user-guide.md, \"engraver serve\").");
+      "command line (a --listen port in use included) or page files missing "
+      "(docs/user-guide.md, \"engraver serve\").");
   serve->callback([args] { run_serve(*args); });
 }
 

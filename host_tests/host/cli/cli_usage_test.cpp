@@ -128,6 +128,23 @@ TEST(CliUsage, AnEmptyValueIsABadCommandLine) {
   expect_usage_error("info ''", "FILE: an empty value\n");  // no option to leave out
 }
 
+// An option a command does not have is named before any value it was given is judged
+// (outside tester 19: `board DIR --tool-side ''` said "FILES: an empty value", the '' taken
+// as a file), the words in the order given, an empty one shown as ''.
+TEST(CliUsage, AnOptionTheCommandHasNotIsNamedFirst) {
+  expect_usage_error("board top.gbr --tool-side ''",
+                     "The following argument was not expected: --tool-side\n");
+  expect_usage_error("points top.gbr --tool-side ''",
+                     "The following arguments were not expected: --tool-side ''\n");
+  expect_usage_error("points top.gbr --tool-side left",
+                     "The following arguments were not expected: --tool-side left\n");
+  expect_usage_error("board --bogus top.gbr --side ''",
+                     "The following argument was not expected: --bogus\n");
+  // Without one, the value's own message as before.
+  expect_usage_error("board top.gbr --side ''",
+                     "--side: an empty value (leave the option out for its default)\n");
+}
+
 // A side that is not one, before the files are read and their notes printed.
 TEST(CliUsage, ASideThatIsNotOneIsRefusedAsTheLineIsRead) {
   for (const std::string command : {"board", "run", "points"})
