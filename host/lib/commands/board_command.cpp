@@ -180,7 +180,7 @@ BoardResult plan_board_command(const BoardCommandOptions& a, const CommandLog& l
 void check_board(const BoardCommandOptions& a, BoardResult* r, const CommandLog& log) {
   if (a.wire_bytes) r->wire = measure_wire(r->job, a.tol_mm);
   r->tool_bytes = bytes_per_tool(r->job);
-  if (!a.check || r->job.copper_machine_nm.empty()) return;
+  if (!a.check || r->job.copper_machine.empty()) return;
   const pcb::IsolationCheck c = pcb::check_planned_isolation(r->job, r->options);
   r->check_ok = c.hits.empty() && c.unseparated.size() <= r->job.report.narrow_gaps.size();
   if (!c.ok() && c.hits.empty()) log("isolation check: " + pcb::describe(c));

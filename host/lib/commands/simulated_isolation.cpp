@@ -29,20 +29,22 @@ SimulatedIsolation check_simulated_isolation(const pcb::BoardJob& job, double to
     }
   }
   s.check =
-      pcb::check_isolation(job.copper_machine_nm, narrow_cuts, job.tool_radius_mm, s.tolerance_mm);
+      pcb::check_isolation(job.copper_machine, narrow_cuts, job.tool_radius_mm, s.tolerance_mm);
   if (!wide_cuts.empty()) {
-    const pcb::IsolationCheck w = pcb::check_isolation(job.copper_machine_nm, wide_cuts,
+    const pcb::IsolationCheck w = pcb::check_isolation(job.copper_machine, wide_cuts,
                                                        job.clearing_tool_radius_mm, s.tolerance_mm);
     s.check.hits.insert(s.check.hits.end(), w.hits.begin(), w.hits.end());
   }
   // Clearance: each sample's distance to the copper's edges less the tool radius (a sample
   // inside copper is a hit of the check above).
   std::vector<std::vector<Point2>> edges;
-  for (const ClipperLib::Path& p : job.copper_machine_nm) {
-    std::vector<Point2> line;
-    for (const ClipperLib::IntPoint& q : p) line.push_back(Point2(q.X * 1e-6, q.Y * 1e-6));
-    if (!line.empty()) line.push_back(line.front());
-    edges.push_back(std::move(line));
+  for (const pcb::Island& island : job.copper_machine) {
+    for (const ClipperLib::Path& p : island.paths) {
+      std::vector<Point2> line;
+      for (const ClipperLib::IntPoint& q : p) line.push_back(Point2(q.X * 1e-6, q.Y * 1e-6));
+      if (!line.empty()) line.push_back(line.front());
+      edges.push_back(std::move(line));
+    }
   }
   const sim::NearestSegment copper(edges, 0.25);
   auto clearance_um = [&](const Point2& p, double radius_mm) {

@@ -29,7 +29,7 @@ struct PlannedBoard {
   std::optional<heightmap::AreaMm> probe_area;
   // The isolation cuts' Z when the board has copper and isolation cuts to check.
   std::optional<double> checked_isolation_z_mm() const {
-    if (job == nullptr || job->copper_machine_nm.empty() || job->isolation_curves == 0)
+    if (job == nullptr || job->copper_machine.empty() || job->isolation_curves == 0)
       return std::nullopt;
     return isolation_z_mm;
   }

@@ -16,8 +16,8 @@ namespace {
 void add_clearing_hits(const BoardJob& job, const std::vector<std::vector<Point2>>& paths,
                        const BoardOptions& o, IsolationCheck* c) {
   if (paths.empty()) return;
-  const IsolationCheck w = check_isolation(
-      job.copper_machine_nm, paths, job.clearing_tool_radius_mm, isolation_check_tolerance_mm(o));
+  const IsolationCheck w = check_isolation(job.copper_machine, paths, job.clearing_tool_radius_mm,
+                                           isolation_check_tolerance_mm(o));
   c->hits.insert(c->hits.end(), w.hits.begin(), w.hits.end());
 }
 
@@ -28,21 +28,21 @@ double isolation_check_tolerance_mm(const BoardOptions& o) {
 }
 
 IsolationCheck check_planned_isolation(const BoardJob& job, const BoardOptions& o) {
-  if (job.copper_machine_nm.empty()) return IsolationCheck{};
-  IsolationCheck c = check_isolation(job.copper_machine_nm, job.isolation_paths_mm,
-                                     job.tool_radius_mm, isolation_check_tolerance_mm(o));
+  if (job.copper_machine.empty()) return IsolationCheck{};
+  IsolationCheck c = check_isolation(job.copper_machine, job.isolation_paths_mm, job.tool_radius_mm,
+                                     isolation_check_tolerance_mm(o));
   add_clearing_hits(job, job.clearing_paths_mm, o, &c);
   return c;
 }
 
 IsolationCheck check_controller_isolation(const BoardJob& job, const BoardOptions& o,
                                           int chord_tolerance_um) {
-  if (job.copper_machine_nm.empty()) return IsolationCheck{};
+  if (job.copper_machine.empty()) return IsolationCheck{};
   std::vector<std::vector<Point2>> paths;
   paths.reserve(job.isolation_curves);
   for (size_t i = 0; i < job.isolation_curves; ++i)
     paths.push_back(firmware_points_mm(job.plan.curves[i].spline(), chord_tolerance_um));
-  IsolationCheck c = check_isolation(job.copper_machine_nm, paths, job.tool_radius_mm,
+  IsolationCheck c = check_isolation(job.copper_machine, paths, job.tool_radius_mm,
                                      isolation_check_tolerance_mm(o));
   std::vector<std::vector<Point2>> clearing;
   for (size_t i = job.isolation_curves; i < job.isolation_curves + job.clearing_curves; ++i)

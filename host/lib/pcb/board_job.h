@@ -128,10 +128,12 @@ struct BoardJob {
   std::vector<BoardTool> tools;
   BoardReport report;
   BoardFrame frame;
-  size_t isolation_curves = 0;          // plan.curves[0 .. isolation_curves) isolate copper
-  double tool_radius_mm = 0;            // isolation tool
-  ClipperLib::Paths copper_machine_nm;  // the isolated copper in the machine frame
-  ClipperLib::Paths board_machine_nm;   // the board inside its outline, machine frame
+  size_t isolation_curves = 0;  // plan.curves[0 .. isolation_curves) isolate copper
+  double tool_radius_mm = 0;    // isolation tool
+  // The isolated copper in the machine frame, in islands (worked out once: the plot and
+  // every check of `board` and `run` take them).
+  std::vector<Island> copper_machine;
+  ClipperLib::Paths board_machine_nm;  // the board inside its outline, machine frame
   std::vector<std::vector<Point2>> isolation_paths_mm;  // planned tool centres, machine frame
   std::vector<Hole> holes_machine;                      // nm, machine frame
   std::vector<Slot> slots_machine;

@@ -15,7 +15,7 @@ void machine_frame_geometry(const BoardLayers& layers, const PcbLayer* copper, c
                             BoardJob& job) {
   const JobPlan& plan = job.plan;
   if (copper) {
-    job.copper_machine_nm = union_of(job.frame.to_machine_nm(copper->polygons_nm));
+    job.copper_machine = copper_islands(job.frame.to_machine_nm(copper->polygons_nm));
     for (size_t i = 0; i < job.isolation_curves + job.clearing_curves; ++i) {
       std::vector<std::vector<Point2>>& paths =
           i < job.isolation_curves ? job.isolation_paths_mm : job.clearing_paths_mm;

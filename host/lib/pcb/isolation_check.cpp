@@ -210,15 +210,18 @@ void find_unseparated(const std::vector<Island>& islands, const Paths& copper, c
 IsolationCheck check_isolation(const Paths& copper_nm,
                                const std::vector<std::vector<Point2>>& tool_paths_mm,
                                double tool_radius_mm, double tolerance_mm) {
+  return check_isolation(copper_islands(copper_nm), tool_paths_mm, tool_radius_mm, tolerance_mm);
+}
+
+IsolationCheck check_isolation(const std::vector<Island>& islands,
+                               const std::vector<std::vector<Point2>>& tool_paths_mm,
+                               double tool_radius_mm, double tolerance_mm) {
   IsolationCheck r;
-  const std::vector<Island> islands = copper_islands(copper_nm);
   r.islands = islands.size();
   const Paths centres = centre_paths(tool_paths_mm, tolerance_mm);
   // The islands are the union's pieces: their paths together are the union (a second union
   // would sweep the whole board again).
-  Paths copper;
-  for (const Island& island : islands)
-    copper.insert(copper.end(), island.paths.begin(), island.paths.end());
+  const Paths copper = copper_paths(islands);
 
   // Only the runs within the tool's reach of copper can cut it (the rest are never swept
   // for hits) or take part of an island away.

@@ -10,7 +10,8 @@
 #include <string>  // std::string
 #include <vector>  // std::vector
 
-#include "host/lib/drawing/bspline.h"  // Point2
+#include "host/lib/drawing/bspline.h"   // Point2
+#include "host/lib/pcb/pcb_geometry.h"  // Island
 
 namespace host::pcb {
 
@@ -37,6 +38,11 @@ struct IsolationCheck {
 // tool-centre polylines (mm) traced with the tool down; each is swept by a disc. Samples
 // within a tenth of the tolerance of a straight run are left out before the sweep.
 IsolationCheck check_isolation(const ClipperLib::Paths& copper_nm,
+                               const std::vector<std::vector<Point2>>& tool_paths_mm,
+                               double tool_radius_mm, double tolerance_mm);
+// The same for copper already split into islands (copper_islands): islands are numbered as
+// given.
+IsolationCheck check_isolation(const std::vector<Island>& islands,
                                const std::vector<std::vector<Point2>>& tool_paths_mm,
                                double tool_radius_mm, double tolerance_mm);
 

@@ -139,6 +139,13 @@ std::vector<Island> copper_islands(const Paths& copper) {
   return out;
 }
 
+Paths copper_paths(const std::vector<Island>& islands) {
+  Paths out;
+  for (const Island& island : islands)
+    out.insert(out.end(), island.paths.begin(), island.paths.end());
+  return out;
+}
+
 double signed_area(const Paths& paths) {
   double a = 0;
   for (const Path& p : paths) a += ClipperLib::Area(p);

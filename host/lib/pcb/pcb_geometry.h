@@ -69,6 +69,9 @@ struct Island {
 // An island inside another's hole is an island of its own.
 std::vector<Island> copper_islands(const ClipperLib::Paths& copper);
 
+// The islands' paths, island by island (outer, then holes): the copper they split.
+ClipperLib::Paths copper_paths(const std::vector<Island>& islands);
+
 // Union of the input under the non-zero rule, orientation normalised (outers positive).
 ClipperLib::Paths union_of(const ClipperLib::Paths& paths);
 

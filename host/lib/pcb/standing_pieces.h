@@ -36,7 +36,7 @@ std::vector<StandingPiece> pieces_of(const ClipperLib::PolyTree& tree);
 // frame minus the non-zero union of `outlines` (closed paths, nm), in columns of about
 // column_vertices outline vertices each (at least one column; the frame must not be empty).
 std::vector<StandingPiece> standing_pieces(const BoxNm& frame, const ClipperLib::Paths& outlines,
-                                           size_t column_vertices = 5000);
+                                           size_t column_vertices = 2000);
 
 }  // namespace host::pcb
 

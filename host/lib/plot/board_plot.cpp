@@ -31,8 +31,8 @@ PlotFrame board_plot_frame(const pcb::BoardJob& job, int width_px, int* height_p
   Extents e = job.plan.extents_mm;
   for (const pcb::Hole& h : job.holes_machine)
     e.add(pcb::to_mm(ClipperLib::IntPoint(h.at.x, h.at.y)));
-  for (const auto& p : job.copper_machine_nm)
-    for (const auto& q : p) e.add(pcb::to_mm(q));
+  for (const pcb::Island& island : job.copper_machine)
+    for (const auto& q : island.paths[0]) e.add(pcb::to_mm(q));  // the holes are inside
   if (e.empty()) e.add(Point2(0, 0));
   const double pad_mm = std::max(job.tool_radius_mm, job.cutter_radius_mm) + 0.5;
   e.add(Point2(e.min.x() - pad_mm, e.min.y() - pad_mm));
@@ -213,7 +213,7 @@ void render(cairo_t* cr, const BoardPlotInput& in, const PlotFrame& f, int heigh
     cairo_fill(cr);
   }
   set(cr, kCopper);
-  polygon_paths(cr, f, job.copper_machine_nm, band);
+  polygon_paths(cr, f, pcb::copper_paths(job.copper_machine), band);
   cairo_fill(cr);
   const double s = f.scale_px_per_mm;
   stroke_group(cr, f, job.clearing_paths_mm, 2 * job.clearing_tool_radius_mm * s, kIsolation, band);

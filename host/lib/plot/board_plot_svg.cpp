@@ -149,7 +149,7 @@ std::string board_plot_svg(const BoardPlotInput& in, const PlotFrame& f, int hei
       << height_px << "pt\" viewBox=\"0 0 " << in.width_px << " " << height_px << "\">\n";
   svg << "<rect width=\"100%\" height=\"100%\" fill=\"rgb(255,255,255)\"/>\n";
   polygons(svg, f, job.board_machine_nm, kBoard);
-  polygons(svg, f, job.copper_machine_nm, kCopper);
+  polygons(svg, f, pcb::copper_paths(job.copper_machine), kCopper);
   const double s = f.scale_px_per_mm;
   stroke_group(svg, f, job.clearing_paths_mm, 2 * job.clearing_tool_radius_mm * s, kIsolation);
   stroke_group(svg, f, job.clearing_paths_mm, 0.6, kIsolationCentre);

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -99,7 +100,9 @@ TEST(Cli, InfoListsEntitiesUnitsAndExtents) {
 }
 
 // A drawing that takes seconds to read says so as run does (`info big.dxf` was silent until
-// its answer): 60 000 lines, about 4 MB, over a second to read.
+// its answer): 60 000 lines, about 4 MB, over a second to read in a debug build. A build
+// that reads it within the meter's quiet first half second says nothing (a release build
+// did, and the test expected the line regardless).
 TEST(Cli, InfoAndPointsReportReadingALargeDrawing) {
   std::string dxf = "0\nSECTION\n2\nENTITIES\n";
   for (int i = 0; i < 60000; ++i) {
@@ -109,10 +112,17 @@ TEST(Cli, InfoAndPointsReportReadingALargeDrawing) {
   dxf += "0\nENDSEC\n0\nEOF\n";
   const std::string path = write_temp("read-progress.dxf", dxf);
   for (const char* command : {"info ", "points "}) {
+    const auto start = std::chrono::steady_clock::now();
     const ToolRun r = run(command + path + " >/dev/null");
+    const double took_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(r.code, 0) << command << r.err;
-    EXPECT_NE(r.err.find("engraver: read: "), std::string::npos) << command << r.err;
-    EXPECT_NE(r.err.find(" bytes read (100%)"), std::string::npos) << command << r.err;
+    if (took_s > 0.8) {  // the read alone is most of it
+      EXPECT_NE(r.err.find("engraver: read: "), std::string::npos) << command << r.err;
+      EXPECT_NE(r.err.find(" bytes read (100%)"), std::string::npos) << command << r.err;
+    } else if (took_s < 0.5) {
+      EXPECT_EQ(r.err.find("engraver: read: "), std::string::npos) << command << r.err;
+    }
   }
   std::remove(path.c_str());
 }

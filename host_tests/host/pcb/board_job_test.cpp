@@ -63,7 +63,7 @@ TEST(BoardJob, IsolationPassesTheGeometricChecks) {
   EXPECT_TRUE(job.report.narrow_gaps.empty());
   EXPECT_EQ(job.report.isolation_contours, 3u);
   const IsolationCheck c =
-      check_isolation(job.copper_machine_nm, job.isolation_paths_mm, job.tool_radius_mm, 0.003);
+      check_isolation(job.copper_machine, job.isolation_paths_mm, job.tool_radius_mm, 0.003);
   EXPECT_EQ(c.islands, 3u);
   EXPECT_TRUE(c.ok()) << describe(c);
 }
@@ -159,9 +159,9 @@ TEST(BoardJob, LayersLineUpAndTheBottomSideIsMirrored) {
   }
   EXPECT_TRUE(found);
   // Mirroring keeps the copper's area (orientation restored: outers positive).
-  EXPECT_NEAR(signed_area(bottom.copper_machine_nm), signed_area(b.top.polygons_nm),
+  EXPECT_NEAR(signed_area(copper_paths(bottom.copper_machine)), signed_area(b.top.polygons_nm),
               1e-9 * std::fabs(signed_area(b.top.polygons_nm)));
-  const IsolationCheck c = check_isolation(bottom.copper_machine_nm, bottom.isolation_paths_mm,
+  const IsolationCheck c = check_isolation(bottom.copper_machine, bottom.isolation_paths_mm,
                                            bottom.tool_radius_mm, 0.003);
   EXPECT_TRUE(c.ok()) << describe(c);
   // Everything inside the work area, the job's corner at the margin.
@@ -230,7 +230,7 @@ TEST(BoardJob, NarrowGapIsAnErrorNamingThePlace) {
   const BoardJob job = plan_board(b.layers(), o);
   ASSERT_EQ(job.report.narrow_gaps.size(), 1u);
   const IsolationCheck check =
-      check_isolation(job.copper_machine_nm, job.isolation_paths_mm, job.tool_radius_mm, 0.003);
+      check_isolation(job.copper_machine, job.isolation_paths_mm, job.tool_radius_mm, 0.003);
   EXPECT_TRUE(check.hits.empty()) << describe(check);
   EXPECT_EQ(check.unseparated.size(), 1u);
 }
@@ -322,7 +322,7 @@ TEST(BoardJob, ClearingToolCutsTheOuterPassesBehindTheNarrowPass) {
   EXPECT_NEAR(edge_mm, 0.008 + 0.1 - 0.25 * 0.1, 1e-9);
   const double tol_mm = isolation_check_tolerance_mm(wide);
   const auto grown = [&](double mm) {
-    return offset_closed(two.copper_machine_nm, mm * kNmPerMm, 1000);
+    return offset_closed(copper_paths(two.copper_machine), mm * kNmPerMm, 1000);
   };
   const IsolationCheck behind =
       check_isolation(grown(edge_mm), two.clearing_paths_mm, two.clearing_tool_radius_mm, tol_mm);
@@ -336,7 +336,7 @@ TEST(BoardJob, ClearingToolCutsTheOuterPassesBehindTheNarrowPass) {
   // between its passes' sharp corners in the 45 degree notch): no ring left between them.
   const auto left_uncut_mm2 = [&](const BoardJob& job) {
     const auto grown_by = [&](double mm) {
-      return offset_closed(job.copper_machine_nm, mm * kNmPerMm, 1000);
+      return offset_closed(copper_paths(job.copper_machine), mm * kNmPerMm, 1000);
     };
     ClipperLib::Paths swept =
         sweep_open(open_centres_nm(job.isolation_paths_mm), job.tool_radius_mm * kNmPerMm, 1000);
