@@ -13,7 +13,8 @@ using ClipperLib::Path;
 using ClipperLib::Paths;
 
 std::vector<DrillTool> drill(const BoardLayers& layers, const PcbLayer* copper,
-                             const BoardOptions& o, double sx, BoardReport& rep) {
+                             const std::vector<Island>& islands, const BoardOptions& o, double sx,
+                             BoardReport& rep) {
   std::vector<DrillTool> drills;
   const PcbLayer& d = *layers.drill;
   std::vector<Point2> at;
@@ -29,7 +30,6 @@ std::vector<DrillTool> drill(const BoardLayers& layers, const PcbLayer* copper,
   rep.board_holes = at.size();
   if (copper) {
     // Alignment check: plated holes sit in pads.
-    const std::vector<Island> islands = copper_islands(copper->polygons_nm);
     for (const Hole& h : d.holes) {
       const IntPoint c(h.at.x, h.at.y);
       for (const Island& is : islands) {

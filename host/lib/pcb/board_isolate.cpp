@@ -69,8 +69,9 @@ std::string narrow_gap_advice(const std::vector<NarrowGap>& gaps, const Isolatio
 
 }  // namespace
 
-std::vector<Trace> isolate(const BoardLayers& layers, const PcbLayer* copper, const BoardOptions& o,
-                           double sx, BoardJob& job) {
+std::vector<Trace> isolate(const BoardLayers& layers, const PcbLayer* copper,
+                           const std::vector<Island>& islands, const BoardOptions& o, double sx,
+                           BoardJob& job) {
   BoardReport& rep = job.report;
   std::vector<Trace> iso;
   IsolationResult iso_result;
@@ -79,7 +80,7 @@ std::vector<Trace> isolate(const BoardLayers& layers, const PcbLayer* copper, co
     io.area_nm = plan_cutout(*layers.outline, o.cutout).board_nm;
   }
   try {
-    iso_result = plan_isolation(copper->polygons_nm, io);
+    iso_result = plan_isolation(islands, io);
   } catch (const std::invalid_argument& e) {
     throw PlanError(e.what());
   }

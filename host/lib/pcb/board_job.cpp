@@ -5,6 +5,7 @@
 
 #include <algorithm>  // std::max
 #include <cmath>      // std::pow, std::round, std::fabs
+#include <utility>    // std::move
 
 #include "host/lib/pcb/board_stages.h"
 
@@ -129,10 +130,15 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
   BoardLayers layers;
   const PcbLayer* copper = read_layers(given, o, &layers, job);
   const double sx = job.frame.sx;
+  // The copper's islands once: isolation, holes on copper, and the checks in the machine frame.
+  std::vector<Island> islands;
   std::vector<Trace> iso;
-  if (copper) iso = isolate(layers, copper, o, sx, job);
+  if (copper) {
+    islands = copper_islands(copper->polygons_nm);
+    iso = isolate(layers, copper, islands, o, sx, job);
+  }
   std::vector<DrillTool> drills;
-  if (layers.drill) drills = drill(layers, copper, o, sx, job.report);
+  if (layers.drill) drills = drill(layers, copper, islands, o, sx, job.report);
   CutoutPlan cp;
   std::vector<Trace> cut;
   if (layers.outline)
@@ -143,7 +149,7 @@ BoardJob plan_board(const BoardLayers& given, const BoardOptions& o) {
   if (o.alignment.enabled) region = align_sides(layers, copper, cp, o, sx, drills, cut, job);
   const Point2 offset = place(iso, cut, drills, region, o, job);
   write_steps(iso, cut, drills, offset, o, job);
-  machine_frame_geometry(layers, copper, cp, job);
+  machine_frame_geometry(layers, copper, std::move(islands), cp, job);
   return job;
 }
 

@@ -2,6 +2,8 @@
 // board_stages.h).
 #include "host/lib/pcb/board_stages.h"
 
+#include <utility>  // std::move
+
 #include "host/lib/pcb/pcb_geometry.h"
 #include "host/lib/plan/firmware_spline.h"
 
@@ -11,11 +13,22 @@ using ClipperLib::IntPoint;
 using ClipperLib::Path;
 using ClipperLib::Paths;
 
-void machine_frame_geometry(const BoardLayers& layers, const PcbLayer* copper, const CutoutPlan& cp,
-                            BoardJob& job) {
+void machine_frame_geometry(const BoardLayers& layers, const PcbLayer* copper,
+                            std::vector<Island> islands, const CutoutPlan& cp, BoardJob& job) {
   const JobPlan& plan = job.plan;
   if (copper) {
-    job.copper_machine = copper_islands(job.frame.to_machine_nm(copper->polygons_nm));
+    if (job.frame.placement.identity()) {
+      // Mirrored and shifted by whole nanometres: the same islands, exactly.
+      for (Island& island : islands) {
+        island.paths = job.frame.to_machine_nm(island.paths);
+        island.box = BoxNm();
+        island.box.add(island.paths[0]);
+      }
+      job.copper_machine = std::move(islands);
+    } else {
+      // Turned and rounded to the nanometre (a measured alignment): united afresh.
+      job.copper_machine = copper_islands(job.frame.to_machine_nm(copper->polygons_nm));
+    }
     for (size_t i = 0; i < job.isolation_curves + job.clearing_curves; ++i) {
       std::vector<std::vector<Point2>>& paths =
           i < job.isolation_curves ? job.isolation_paths_mm : job.clearing_paths_mm;

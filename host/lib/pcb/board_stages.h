@@ -39,11 +39,14 @@ const PcbLayer* read_layers(const BoardLayers& given, const BoardOptions& o, Boa
                             BoardJob& job);
 // Isolate: the copper's isolation contours fitted to curves (mirrored file frame); the report's
 // islands, narrow gaps (a PlanError unless allowed) and the tools' radii.
-std::vector<Trace> isolate(const BoardLayers& layers, const PcbLayer* copper, const BoardOptions& o,
-                           double sx, BoardJob& job);
+// islands: the copper's (copper_islands), file frame.
+std::vector<Trace> isolate(const BoardLayers& layers, const PcbLayer* copper,
+                           const std::vector<Island>& islands, const BoardOptions& o, double sx,
+                           BoardJob& job);
 // Drill: holes grouped by tool and ordered, slots with their tool; holes on copper counted.
 std::vector<DrillTool> drill(const BoardLayers& layers, const PcbLayer* copper,
-                             const BoardOptions& o, double sx, BoardReport& rep);
+                             const std::vector<Island>& islands, const BoardOptions& o, double sx,
+                             BoardReport& rep);
 // Cut out: the outline's loops as fitted curves, pieces over tabs marked lifted.
 std::vector<Trace> cut_out(const BoardLayers& layers, const BoardOptions& o, double sx,
                            CutoutPlan& cp, BoardJob& job);
@@ -62,9 +65,10 @@ void write_steps(const std::vector<Trace>& iso, const std::vector<Trace>& cut,
                  const std::vector<DrillTool>& drills, const Point2& offset, const BoardOptions& o,
                  BoardJob& job);
 // Check: what the checks and the plot need, in the machine frame (copper, the cut paths,
-// holes, slots, board outline).
-void machine_frame_geometry(const BoardLayers& layers, const PcbLayer* copper, const CutoutPlan& cp,
-                            BoardJob& job);
+// holes, slots, board outline). islands: the copper's, file frame, taken over (numbered as
+// the isolation's islands were).
+void machine_frame_geometry(const BoardLayers& layers, const PcbLayer* copper,
+                            std::vector<Island> islands, const CutoutPlan& cp, BoardJob& job);
 
 }  // namespace host::pcb::board_stages
 

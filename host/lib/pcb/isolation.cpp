@@ -342,9 +342,12 @@ void plan_mill_all(const std::vector<Island>& islands, const IsolationOptions& o
 
 IsolationResult plan_isolation(const Paths& copper_in, const IsolationOptions& o) {
   check_isolation_options(o);
+  return plan_isolation(copper_islands(copper_in), o);
+}
+
+IsolationResult plan_isolation(const std::vector<Island>& islands, const IsolationOptions& o) {
+  check_isolation_options(o);
   IsolationResult r;
-  // Islands once: the narrow gaps, the contours and the clearing rings all start from them.
-  const std::vector<Island> islands = copper_islands(copper_in);
   // The tool centre's distance from the copper (r.tool_radius_mm stays the tool's own).
   const double radius_nm = (o.tool_width_mm / 2 + o.clearance_mm) * kNmPerMm;
   const double step_nm = o.tool_width_mm * kNmPerMm * (1.0 - o.overlap);

@@ -70,6 +70,9 @@ double clearing_edge_distance_mm(const IsolationOptions& o);
 // non-positive tool width, passes < 1 or overlap outside [0, 0.9], a clearing tool not wider
 // than the tool, or one with mill_all.
 IsolationResult plan_isolation(const ClipperLib::Paths& copper_nm, const IsolationOptions& o);
+// The same for copper already split into islands (copper_islands): the narrow gaps, the
+// contours and the clearing rings all start from them.
+IsolationResult plan_isolation(const std::vector<Island>& islands, const IsolationOptions& o);
 
 // Islands (copper_islands()) whose tool clearances (copper grown by radius_nm) overlap: the
 // narrow gaps.

@@ -2,7 +2,7 @@
 #include "host/lib/pcb/standing_pieces.h"
 
 #include <algorithm>  // std::sort, std::lower_bound, std::upper_bound, std::min, std::max
-#include <numeric>  // std::iota
+#include <numeric>    // std::iota
 
 namespace host::pcb {
 
