@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
-#include <map>  // std::map
+#include <algorithm>  // std::min, std::max
+#include <map>        // std::map
+#include <set>        // std::set
+#include <utility>    // std::pair
 
 #include "host/lib/pcb/board_check.h"  // check_planned_isolation
 #include "host/lib/pcb/isolation_check.h"
@@ -225,14 +228,47 @@ TEST(BoardJob, NarrowGapIsAnErrorNamingThePlace) {
     // two frames, unlabelled).
     EXPECT_NE(m.find(") mm in the files"), std::string::npos) << m;
   }
-  BoardOptions o;
-  o.allow_narrow_gaps = true;
-  const BoardJob job = plan_board(b.layers(), o);
-  ASSERT_EQ(job.report.narrow_gaps.size(), 1u);
-  const IsolationCheck check =
-      check_isolation(job.copper_machine, job.isolation_paths_mm, job.tool_radius_mm, 0.003);
-  EXPECT_TRUE(check.hits.empty()) << describe(check);
-  EXPECT_EQ(check.unseparated.size(), 1u);
+  for (const bool bottom : {false, true}) {
+    BoardOptions o;
+    o.allow_narrow_gaps = true;
+    o.side = bottom ? BoardSide::kBottom : BoardSide::kTop;
+    const BoardJob job = plan_board(b.layers(bottom), o);
+    ASSERT_EQ(job.report.narrow_gaps.size(), 1u);
+    const IsolationCheck check =
+        check_isolation(job.copper_machine, job.isolation_paths_mm, job.tool_radius_mm, 0.003);
+    EXPECT_TRUE(check.hits.empty()) << describe(check);
+    EXPECT_EQ(check.unseparated.size(), 1u);
+  }
+}
+
+// One numbering of the islands in a report: the islands of each narrow gap are those of an
+// unseparated pair of the check, on either side (the check numbered the islands of the
+// copper it was given its own way).
+TEST(BoardJob, TheCheckNumbersIslandsAsTheNarrowGapsDo) {
+  ClipperLib::Paths c;
+  for (int k = 0; k < 6; ++k) {  // pairs of pads 0.15 mm apart, in a slanting row
+    const double x = 3 + 4.0 * k, y = 3 + 1.7 * ((k * 5) % 6);
+    c.push_back(rect(x, y, x + 1, y + 2));
+    c.push_back(rect(x + 1.15, y + 0.3, x + 2, y + 1.7));
+  }
+  c.push_back(rect(2, 16, 28, 16.5));  // a long track over them all
+  Board b;
+  b.top = test::copper_layer(c, LayerKind::kCopperTop);
+  for (const bool bottom : {false, true}) {
+    BoardOptions o;
+    o.allow_narrow_gaps = true;
+    o.side = bottom ? BoardSide::kBottom : BoardSide::kTop;
+    const BoardJob job = plan_board(b.layers(bottom), o);
+    ASSERT_EQ(job.report.narrow_gaps.size(), 6u) << bottom;
+    const IsolationCheck check = check_planned_isolation(job, o);
+    std::set<std::pair<size_t, size_t>> pairs;
+    for (const UnseparatedPair& u : check.unseparated)
+      pairs.emplace(std::min(u.island_a, u.island_b), std::max(u.island_a, u.island_b));
+    ASSERT_EQ(pairs.size(), 6u) << bottom << describe(check);
+    for (const NarrowGap& g : job.report.narrow_gaps)
+      EXPECT_EQ(pairs.count({g.island_a, g.island_b}), 1u)
+          << bottom << ": gap between " << g.island_a << " and " << g.island_b;
+  }
 }
 
 TEST(BoardJob, ABoardLargerThanTheWorkAreaIsRefused) {
