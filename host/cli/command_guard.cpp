@@ -94,13 +94,32 @@ void install_terminate_guard(CLI::App& app) {
 namespace {
 
 // The words nothing took, in the order given, of the app and the commands parsed (those that
-// hand theirs on, as serve does, left out).
+// hand theirs on, as serve does, left out). CLI11 keeps a `--` among them: it names nothing.
 void unexpected_words(const CLI::App& app, std::vector<std::string>& out) {
   if (!app.get_allow_extras()) {
-    const std::vector<std::string> own = app.remaining(false);
-    out.insert(out.end(), own.begin(), own.end());
+    for (const std::string& w : app.remaining(false))
+      if (w != "--") out.push_back(w);
   }
   for (const CLI::App* sub : app.get_subcommands()) unexpected_words(*sub, out);
+}
+
+// A word as a shell would take it back: '' for an empty one, in quotes when it holds a space
+// or a quote, a newline or a tab as \n or \t (one message stays one line).
+std::string shown_word(const std::string& word) {
+  if (word.empty()) return "''";
+  std::string s;
+  bool quote = false;
+  for (const char c : word) {
+    if (c == '\n' || c == '\t') {
+      s += c == '\n' ? "\\n" : "\\t";
+      quote = true;
+    } else {
+      quote = quote || c == ' ' || c == '\'' || c == '"';
+      s += c;
+    }
+  }
+  s = printable(s);
+  return quote ? "'" + s + "'" : s;
 }
 
 // An option the command does not have is the mistake to name: CLI11 checks the values it
@@ -114,7 +133,7 @@ void say_parse_error(CLI::App& app, const CLI::ParseError& e, std::ostream& err)
     return;
   }
   std::string list;
-  for (const std::string& w : words) list += " " + (w.empty() ? std::string("''") : w);
+  for (const std::string& w : words) list += " " + shown_word(w);
   const CLI::ExtrasError extras((words.size() > 1 ? "The following arguments were not expected:"
                                                   : "The following argument was not expected:") +
                                     list,
@@ -122,8 +141,22 @@ void say_parse_error(CLI::App& app, const CLI::ParseError& e, std::ostream& err)
   app.exit(extras, std::cout, err);
 }
 
+// `--side=` is an empty value, not the option left out: CLI11 took the next word for it
+// (`--side= board.gbr` said the file was not a side). Words after `--` are not options.
+void refuse_empty_equals(int argc, const char* const* argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string w = argv[i];
+    if (w == "--") return;
+    if (w.size() > 3 && w.compare(0, 2, "--") == 0 && w.back() == '=' &&
+        w.find('=') == w.size() - 1)
+      throw CLI::ValidationError(w.substr(0, w.size() - 1),
+                                 "an empty value (leave the option out for its default)");
+  }
+}
+
 int run_guarded_to(CLI::App& app, int argc, const char* const* argv, std::ostream& err) {
   try {
+    refuse_empty_equals(argc, argv);
     app.parse(argc, argv);
     return kExitOk;
   } catch (const CLI::Success& e) {

@@ -143,6 +143,26 @@ TEST(CliUsage, AnOptionTheCommandHasNotIsNamedFirst) {
   // Without one, the value's own message as before.
   expect_usage_error("board top.gbr --side ''",
                      "--side: an empty value (leave the option out for its default)\n");
+  // `--` names nothing (tester 20: `info -- ''` said "not expected: --").
+  expect_usage_error("info -- ''", "FILE: an empty value\n");
+  expect_usage_error("info -- " + kWord + " extra",
+                     "The following argument was not expected: extra\n");
+  // One message is one line: a newline or a tab in a word is written \n or \t, a word with
+  // a space is quoted.
+  expect_usage_error("info " + kWord + " \"$(printf '%s\\n%s' --bo gus)\" 'two words'",
+                     "The following arguments were not expected: '--bo\\ngus' 'two words'\n");
+}
+
+// `--side=` is an empty value like `--side ''` (tester 20: CLI11 took the next word for it,
+// `--side= board.gbr` said the file was not a side, `--tol= 0.01` was accepted).
+TEST(CliUsage, AnOptionWithAnEmptyValueAfterItsEqualsSignIsRefused) {
+  expect_usage_error("board --side= top.gbr",
+                     "--side: an empty value (leave the option out for its default)\n");
+  expect_usage_error("points " + kWord + " --tol= 0.01",
+                     "--tol: an empty value (leave the option out for its default)\n");
+  // After `--` it is a word like any other.
+  expect_usage_error("info " + kWord + " -- --tol=",
+                     "The following argument was not expected: --tol=\n");
 }
 
 // A side that is not one, before the files are read and their notes printed.
