@@ -1,8 +1,8 @@
 // Isolation contours and narrow-gap detection (see isolation.h).
 #include "host/lib/pcb/isolation.h"
 
-#include <algorithm>  // std::sort
-#include <cmath>      // std::fabs, std::sqrt
+#include <algorithm>  // std::max, std::min, std::remove_if, std::sort
+#include <cmath>      // std::fabs, std::hypot, std::llround, std::sqrt
 #include <stdexcept>  // std::invalid_argument
 
 #include "host/lib/pcb/pcb_geometry.h"
@@ -14,7 +14,12 @@ namespace {
 // Intersections smaller than this (nm^2, a 0.1 um square) are numerical touching.
 const double kMinOverlapAreaNm2 = 1e4;
 
-double seg_dist(const IntPoint& x, const IntPoint& a, const IntPoint& b) {
+// The point of segment a-b nearest to x, and its distance from x (nm).
+struct Nearest {
+  double distance = 1e300;
+  double x = 0, y = 0;
+};
+Nearest nearest_on_segment(const IntPoint& x, const IntPoint& a, const IntPoint& b) {
   const double ax = static_cast<double>(a.X), ay = static_cast<double>(a.Y);
   const double dx = static_cast<double>(b.X) - ax, dy = static_cast<double>(b.Y) - ay;
   const double px = static_cast<double>(x.X) - ax, py = static_cast<double>(x.Y) - ay;
@@ -22,13 +27,21 @@ double seg_dist(const IntPoint& x, const IntPoint& a, const IntPoint& b) {
   double t = l2 > 0 ? (px * dx + py * dy) / l2 : 0;
   t = std::max(0.0, std::min(1.0, t));
   const double ex = px - t * dx, ey = py - t * dy;
-  return std::sqrt(ex * ex + ey * ey);
+  return Nearest{std::sqrt(ex * ex + ey * ey), ax + t * dx, ay + t * dy};
 }
 
-// Smallest vertex-to-edge distance between two islands near a box (nm). The closest points
-// of two islands whose clearances overlap lie within the box, so only vertices inside it and
-// edges that reach into it are compared (a board-wide net has thousands of edges).
-double island_distance_nm(const Paths& a, const Paths& b, const BoxNm& near) {
+// The narrowest place between two islands near a box: their smallest vertex-to-edge
+// distance (nm) and where it is. The closest points of two islands whose clearances overlap
+// lie within the box, so only vertices inside it and edges that reach into it are compared
+// (a board-wide net has thousands of edges). Where the gap is as narrow along a stretch
+// (parallel tracks: to within kTieNm), the place is the middle of that stretch when the
+// middle is itself that narrow, else the shortest line's middle nearest to it.
+struct Narrowest {
+  double distance_nm = 1e300;
+  PointNm at;
+};
+Narrowest narrowest_place(const Paths& a, const Paths& b, const BoxNm& near) {
+  const double kTieNm = 1000;
   struct Edge {
     IntPoint p, q;
   };
@@ -46,17 +59,66 @@ double island_distance_nm(const Paths& a, const Paths& b, const BoxNm& near) {
     }
     return out;
   };
+  auto distance_to = [](const IntPoint& x, const std::vector<Edge>& edges) {
+    double d = 1e300;
+    for (const Edge& e : edges) d = std::min(d, nearest_on_segment(x, e.p, e.q).distance);
+    return d;
+  };
   const std::vector<Edge> edges_a = edges_near(a), edges_b = edges_near(b);
-  double best = 1e300;
+  struct Candidate {
+    double distance, x, y;  // a shortest line's length and middle
+  };
+  std::vector<Candidate> ties;
+  size_t kept_until = 1024;
+  Narrowest best;
   for (int pass = 0; pass < 2; ++pass) {
     const Paths& u = pass ? b : a;
     const std::vector<Edge>& v = pass ? edges_a : edges_b;
     for (const Path& pu : u) {
       for (const IntPoint& x : pu) {
         if (!near.contains(x)) continue;
-        for (const Edge& e : v) best = std::min(best, seg_dist(x, e.p, e.q));
+        for (const Edge& e : v) {
+          const Nearest n = nearest_on_segment(x, e.p, e.q);
+          if (n.distance > best.distance_nm + kTieNm) continue;
+          best.distance_nm = std::min(best.distance_nm, n.distance);
+          ties.push_back(Candidate{n.distance, (static_cast<double>(x.X) + n.x) / 2,
+                                   (static_cast<double>(x.Y) + n.y) / 2});
+          if (ties.size() >= kept_until) {  // drop those a narrower place has passed
+            ties.erase(std::remove_if(ties.begin(), ties.end(),
+                                      [&](const Candidate& c) {
+                                        return c.distance > best.distance_nm + kTieNm;
+                                      }),
+                       ties.end());
+            kept_until = std::max<size_t>(1024, 2 * ties.size());
+          }
+        }
       }
     }
+  }
+  if (ties.empty()) return best;
+  double sx = 0, sy = 0;
+  size_t count = 0;
+  for (const Candidate& c : ties) {
+    if (c.distance > best.distance_nm + kTieNm) continue;
+    sx += c.x, sy += c.y, ++count;
+  }
+  const IntPoint middle(std::llround(sx / static_cast<double>(count)),
+                        std::llround(sy / static_cast<double>(count)));
+  if (distance_to(middle, edges_a) + distance_to(middle, edges_b) <=
+      best.distance_nm + 2 * kTieNm) {
+    best.at.x = middle.X;
+    best.at.y = middle.Y;
+    return best;
+  }
+  double nearest = 1e300;
+  for (const Candidate& c : ties) {
+    if (c.distance > best.distance_nm + kTieNm) continue;
+    const double d =
+        std::hypot(c.x - static_cast<double>(middle.X), c.y - static_cast<double>(middle.Y));
+    if (d >= nearest) continue;
+    nearest = d;
+    best.at.x = std::llround(c.x);
+    best.at.y = std::llround(c.y);
   }
   return best;
 }
@@ -155,14 +217,15 @@ std::vector<NarrowGap> find_narrow_gaps(const std::vector<Island>& islands, doub
       const Paths both = intersection_of(grown_full_in(grown[i].index, common),
                                          grown_full_in(grown[j].index, common));
       if (std::fabs(signed_area(both)) < kMinOverlapAreaNm2) continue;
-      NarrowGap g;
-      const IntPoint c = centroid(both);
-      g.at.x = c.X;
-      g.at.y = c.Y;
       BoxNm near = box_of(both);
       const cInt grow = static_cast<cInt>(2 * radius_nm);
       near.min_x -= grow, near.min_y -= grow, near.max_x += grow, near.max_y += grow;
-      g.gap_mm = island_distance_nm(a.paths, b.paths, near) / kNmPerMm;
+      // At the narrowest place (the middle of the region both clearances cover is outside
+      // it for a gap round a corner, and at a pad's centre for a pad in a pour's opening).
+      const Narrowest place = narrowest_place(a.paths, b.paths, near);
+      NarrowGap g;
+      g.at = place.at;
+      g.gap_mm = place.distance_nm / kNmPerMm;
       g.island_a = std::min(grown[i].index, grown[j].index);
       g.island_b = std::max(grown[i].index, grown[j].index);
       gaps.push_back(g);

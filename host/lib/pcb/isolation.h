@@ -39,7 +39,7 @@ struct IsolationOptions {
 // Two islands closer than the tool width plus twice the clearance: the tool cannot pass
 // between them with its clearance to both.
 struct NarrowGap {
-  PointNm at;           // middle of the region both islands' tool clearances cover
+  PointNm at;           // the narrowest place: the middle of the shortest line between them
   double gap_mm = 0;    // smallest distance between the two islands (from their vertices)
   size_t island_a = 0;  // indices into IsolationResult::islands order
   size_t island_b = 0;

@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>  // std::max, std::min
+#include <cmath>      // std::hypot
+#include <vector>     // std::vector
+
 #include "host/lib/pcb/isolation_check.h"
 #include "host/lib/pcb/pcb_geometry.h"
 #include "host_tests/host/pcb/synthetic_board.h"
@@ -110,6 +114,56 @@ TEST(Isolation, GapNarrowerThanTheToolIsReportedWithItsPlace) {
   const IsolationCheck c = check_isolation(copper, centre_lines(r), 0.1, 0.002);
   EXPECT_TRUE(c.hits.empty()) << describe(c);
   ASSERT_EQ(c.unseparated.size(), 1u);
+}
+
+// Distance (mm) from a point to the nearest edge of some paths.
+double mm_to_edges(const PointNm& at, const ClipperLib::Paths& paths) {
+  double best = 1e300;
+  for (const ClipperLib::Path& p : paths) {
+    for (size_t i = 0; i < p.size(); ++i) {
+      const double ax = static_cast<double>(p[i].X), ay = static_cast<double>(p[i].Y);
+      const double dx = static_cast<double>(p[(i + 1) % p.size()].X) - ax;
+      const double dy = static_cast<double>(p[(i + 1) % p.size()].Y) - ay;
+      const double px = static_cast<double>(at.x) - ax, py = static_cast<double>(at.y) - ay;
+      const double l2 = dx * dx + dy * dy;
+      const double t = l2 > 0 ? std::max(0.0, std::min(1.0, (px * dx + py * dy) / l2)) : 0;
+      best = std::min(best, std::hypot(px - t * dx, py - t * dy));
+    }
+  }
+  return best / kNmPerMm;
+}
+
+// A gap's place is where it is narrowest, halfway between the islands (outside tester 20:
+// the middle of the region both clearances cover was 5 mm off a gap round a corner, and at
+// the pad's centre for a pad in a pour's opening).
+TEST(Isolation, AGapIsPlacedAtItsNarrowestHalfwayBetweenTheIslands) {
+  struct Case {
+    const char* what;
+    ClipperLib::Paths a, b;
+  };
+  ClipperLib::Paths pour = {rect(0, 0, 10, 10)};
+  ClipperLib::Path opening = rect(4.4, 4.4, 5.6, 5.6);
+  ClipperLib::ReversePath(opening);
+  pour.push_back(opening);
+  const std::vector<Case> cases = {
+      // Two tracks 0.1 mm apart turning a corner: an L with 20 mm arms.
+      {"L",
+       {rect(0, 0, 20, 0.25), rect(19.75, 0, 20, 20)},
+       {rect(0, 0.35, 19.65, 0.6), rect(19.4, 0.35, 19.65, 20)}},
+      {"pad in a pour's opening", pour, {rect(4.5, 4.5, 5.5, 5.5)}},
+  };
+  for (const Case& c : cases) {
+    ClipperLib::Paths copper = c.a;
+    copper.insert(copper.end(), c.b.begin(), c.b.end());
+    IsolationOptions o;
+    o.tool_width_mm = 0.2;
+    const IsolationResult r = plan_isolation(copper, o);
+    ASSERT_EQ(r.narrow_gaps.size(), 1u) << c.what;
+    const NarrowGap& g = r.narrow_gaps[0];
+    EXPECT_NEAR(g.gap_mm, 0.1, 1e-6) << c.what;
+    EXPECT_NEAR(mm_to_edges(g.at, union_of(c.a)), 0.05, 0.002) << c.what;
+    EXPECT_NEAR(mm_to_edges(g.at, union_of(c.b)), 0.05, 0.002) << c.what;
+  }
 }
 
 TEST(Isolation, GapJustWiderThanTheToolAndItsClearancePasses) {
