@@ -216,6 +216,11 @@ BoardFiles read_board_files(const std::string& input, const std::string& side_as
         b.notes.push_back(f + ": " + binary_data_text(head) + ": left out");
         continue;
       }
+      const std::string other = named == LayerKind::kUnknown ? pcb::other_layer_name(f, head) : "";
+      if (!other.empty()) {
+        b.notes.push_back(fmt::format("{}: a {} layer: left out", f, other));
+        continue;
+      }
       if (named == LayerKind::kUnknown) {
         b.notes.push_back(f +
                           ": neither its name nor an X2 file function says copper, drill or "

@@ -153,6 +153,33 @@ LayerKind layer_kind_from_x2(const std::string& head_text) {
   return LayerKind::kUnknown;
 }
 
+std::string other_layer_name(const std::string& path, const std::string& head_text) {
+  std::string function;
+  for (const char* key : {"TF.FileFunction,", "TF,.FileFunction,"}) {
+    const size_t at = head_text.find(key);
+    if (at == std::string::npos) continue;
+    const size_t from = at + std::string(key).size();
+    function = head_text.substr(from, head_text.find_first_of(",*", from) - from);
+    break;
+  }
+  if (!function.empty()) {
+    if (function == "Legend") return "silkscreen";
+    if (function == "Soldermask") return "solder mask";
+    if (function == "Paste") return "paste";
+    if (function == "AssemblyDrawing" || function == "FabricationDrawing" ||
+        function == "Component" || function == "Keep-out")
+      return "documentation";
+    return "";
+  }
+  const std::string name = base_name(path);
+  for (const char* w : {"silk", "legend", "overlay"})
+    if (contains(name, w)) return "silkscreen";
+  if (contains(name, "mask")) return "solder mask";
+  for (const char* w : {"paste", "stencil"})
+    if (contains(name, w)) return "paste";
+  return names_other_layer(name) ? "documentation" : "";
+}
+
 PcbFileFormat pcb_file_format(const std::string& path) {
   return pcb_file_format(path, read_file_head(path));
 }

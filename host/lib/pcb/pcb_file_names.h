@@ -26,6 +26,10 @@ LayerKind layer_kind_from_file_function(const std::string& value);
 // this machine cuts.
 LayerKind layer_kind_from_x2(const std::string& head_text);
 
+// What a Gerber file is when it is a layer no job cuts, from its X2 file function, else from
+// its name: "silkscreen", "solder mask", "paste", "documentation"; "" when neither says.
+std::string other_layer_name(const std::string& path, const std::string& head_text);
+
 // The first few kB of `path` (empty if it cannot be opened): where formats and X2 file
 // functions are found.
 using host::read_file_head;

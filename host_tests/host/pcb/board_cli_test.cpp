@@ -62,6 +62,10 @@ TEST(BoardCli, InfoOnABoardFolderSaysWhichFileIsWhichLayer) {
   silk.replace(silk.find("Copper,L1,Top"), 13, "Legend,Top");
   silk.replace(silk.find("%EXTRA%"), 7, "");
   std::ofstream(dir + "/t-F.SilkS.gbr") << silk;
+  std::string mask = kTopCopper;  // no X2 file function: the name says what it is
+  mask.replace(mask.find("%EXTRA%"), 7, "");
+  mask.replace(mask.find("%TF.FileFunction,Copper,L1,Top*%\n"), 33, "");
+  std::ofstream(dir + "/t-F.Mask.gbr") << mask;
   std::ofstream(dir + "/notes.txt") << "hello\n";
   const ToolRun r = run("info " + dir + "/");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -70,7 +74,10 @@ TEST(BoardCli, InfoOnABoardFolderSaysWhichFileIsWhichLayer) {
            "  - " + dir + "/t-F.Cu.gbr: taken as copper top (from its X2 file function)",
            "  - " + dir + "/t-PTH.drl: taken as drill (from its name)",
            "  - " + dir + "/t-Edge.Cuts.gbr: taken as outline (from its X2 file function)",
-           "  - " + dir + "/t-F.SilkS.gbr: neither its name nor an X2 file function says copper",
+           // What a layer no job cuts is, from its X2 file function or its name (outside
+           // tester 20: the guide promised the reason, the note said to name it as copper).
+           "  - " + dir + "/t-F.SilkS.gbr: a silkscreen layer: left out",
+           "  - " + dir + "/t-F.Mask.gbr: a solder mask layer: left out",
            "  - " + dir + "/notes.txt: neither Gerber nor Excellon",
            "file:      " + dir + "/t-PTH.drl", "format:    Excellon", "holes:     3",
            "layer:     outline"}) {
@@ -84,7 +91,7 @@ TEST(BoardCli, InfoOnABoardFolderSaysWhichFileIsWhichLayer) {
   std::set<std::string> kinds;
   for (const nlohmann::json& l : info["layers"]) kinds.insert(l["layer"].get<std::string>());
   EXPECT_EQ(kinds, (std::set<std::string>{"copper top", "drill", "outline"}));
-  EXPECT_EQ(info["files"].size(), 5u) << info.dump(2);
+  EXPECT_EQ(info["files"].size(), 6u) << info.dump(2);
 }
 
 TEST(BoardCli, WholeBoardIsPlannedCheckedPlottedAndReported) {
