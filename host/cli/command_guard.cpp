@@ -4,6 +4,7 @@
 #include <cxxabi.h>  // abi::__cxa_demangle, abi::__cxa_current_exception_type
 #include <unistd.h>  // _exit
 
+#include <cstddef>    // std::ptrdiff_t
 #include <cstdlib>    // std::free
 #include <exception>  // std::set_terminate, std::current_exception
 #include <iostream>   // std::cerr
@@ -128,7 +129,11 @@ std::string shown_word(const std::string& word) {
 void say_parse_error(CLI::App& app, const CLI::ParseError& e, std::ostream& err) {
   std::vector<std::string> words;
   unexpected_words(app, words);
-  if (words.empty()) {
+  // A word left over that is no option (`--tol= 0.01`: the 0.01) does not hide what was
+  // wrong with the option before it.
+  bool an_option = false;
+  for (const std::string& w : words) an_option = an_option || (w.size() > 1 && w[0] == '-');
+  if (words.empty() || (!an_option && dynamic_cast<const CLI::ExtrasError*>(&e) == nullptr)) {
     app.exit(e, std::cout, err);  // the message and the usage hint
     return;
   }
@@ -142,22 +147,29 @@ void say_parse_error(CLI::App& app, const CLI::ParseError& e, std::ostream& err)
 }
 
 // `--side=` is an empty value, not the option left out: CLI11 took the next word for it
-// (`--side= board.gbr` said the file was not a side). Words after `--` are not options.
-void refuse_empty_equals(int argc, const char* const* argv) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string w = argv[i];
-    if (w == "--") return;
-    if (w.size() > 3 && w.compare(0, 2, "--") == 0 && w.back() == '=' &&
-        w.find('=') == w.size() - 1)
-      throw CLI::ValidationError(w.substr(0, w.size() - 1),
-                                 "an empty value (leave the option out for its default)");
+// (`--side= board.gbr` said the file was not a side). Given as `--side ''`, the option's own
+// check says so, and an option the command does not have is named as any other. Words after
+// `--` are not options.
+std::vector<std::string> with_empty_values_apart(int argc, const char* const* argv) {
+  std::vector<std::string> words(argv, argv + argc);
+  for (size_t i = 1; i < words.size(); ++i) {
+    if (words[i] == "--") break;
+    const std::string& w = words[i];
+    if (w.size() > 3 && w.compare(0, 2, "--") == 0 && w.find('=') == w.size() - 1) {
+      words[i].pop_back();
+      words.insert(words.begin() + static_cast<std::ptrdiff_t>(i) + 1, std::string());
+      ++i;
+    }
   }
+  return words;
 }
 
 int run_guarded_to(CLI::App& app, int argc, const char* const* argv, std::ostream& err) {
   try {
-    refuse_empty_equals(argc, argv);
-    app.parse(argc, argv);
+    const std::vector<std::string> words = with_empty_values_apart(argc, argv);
+    std::vector<const char*> args;
+    for (const std::string& w : words) args.push_back(w.c_str());
+    app.parse(static_cast<int>(args.size()), args.data());
     return kExitOk;
   } catch (const CLI::Success& e) {
     return app.exit(e);  // --help, --version

@@ -160,6 +160,9 @@ TEST(CliUsage, AnOptionWithAnEmptyValueAfterItsEqualsSignIsRefused) {
                      "--side: an empty value (leave the option out for its default)\n");
   expect_usage_error("points " + kWord + " --tol= 0.01",
                      "--tol: an empty value (leave the option out for its default)\n");
+  // One the command does not have is named as such (it was "an empty value" too).
+  expect_usage_error("board --bogus= top.gbr",
+                     "The following argument was not expected: --bogus\n");
   // After `--` it is a word like any other.
   expect_usage_error("info " + kWord + " -- --tol=",
                      "The following argument was not expected: --tol=\n");
