@@ -200,12 +200,15 @@ BoardFiles read_board_files(const std::string& input, const std::string& side_as
       how = pcb::pcb_file_format(f, "") == pcb::PcbFileFormat::kExcellon ? "its name"
                                                                          : "its content (M48)";
     if (directory && pcb::pcb_file_format(f, head) == pcb::PcbFileFormat::kGerber) {
-      // The file's own X2 file function first, then the table of usual names.
+      // The file's own X2 file function first, then the table of usual names. A layer no job
+      // cuts is left out saying what it is (an X2 Legend named .GTL is not copper).
       LayerKind named = pcb::layer_kind_from_x2(head);
       how = "its X2 file function";
-      if (named == LayerKind::kUnknown) {
+      std::string other = pcb::other_layer_from_x2(head);
+      if (named == LayerKind::kUnknown && other.empty()) {
         named = pcb::layer_kind_from_file_name(f);
         how = "its name";
+        if (named == LayerKind::kUnknown) other = pcb::other_layer_from_name(f);
       }
       if (named == LayerKind::kDrill) {  // a drill drawing (OrCAD's .drd): no holes in it
         b.notes.push_back(f + ": " + pcb::kGerberNotADrillFile + " (left out)");
@@ -216,9 +219,9 @@ BoardFiles read_board_files(const std::string& input, const std::string& side_as
         b.notes.push_back(f + ": " + binary_data_text(head) + ": left out");
         continue;
       }
-      const std::string other = named == LayerKind::kUnknown ? pcb::other_layer_name(f, head) : "";
       if (!other.empty()) {
-        b.notes.push_back(fmt::format("{}: a {} layer: left out", f, other));
+        b.notes.push_back(fmt::format("{}: {} {} layer (from {}): left out", f,
+                                      other == "inner copper" ? "an" : "a", other, how));
         continue;
       }
       if (named == LayerKind::kUnknown) {

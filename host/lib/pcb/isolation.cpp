@@ -35,7 +35,8 @@ Nearest nearest_on_segment(const IntPoint& x, const IntPoint& a, const IntPoint&
 // lie within the box, so only vertices inside it and edges that reach into it are compared
 // (a board-wide net has thousands of edges). Where the gap is as narrow along a stretch
 // (parallel tracks: to within kTieNm), the place is the middle of that stretch when the
-// middle is itself that narrow, else the shortest line's middle nearest to it.
+// middle is itself that narrow and halfway across, else the shortest line's middle nearest
+// to it.
 struct Narrowest {
   double distance_nm = 1e300;
   PointNm at;
@@ -104,8 +105,8 @@ Narrowest narrowest_place(const Paths& a, const Paths& b, const BoxNm& near) {
   }
   const IntPoint middle(std::llround(sx / static_cast<double>(count)),
                         std::llround(sy / static_cast<double>(count)));
-  if (distance_to(middle, edges_a) + distance_to(middle, edges_b) <=
-      best.distance_nm + 2 * kTieNm) {
+  const double to_a = distance_to(middle, edges_a), to_b = distance_to(middle, edges_b);
+  if (to_a + to_b <= best.distance_nm + 2 * kTieNm && std::fabs(to_a - to_b) <= 2 * kTieNm) {
     best.at.x = middle.X;
     best.at.y = middle.Y;
     return best;

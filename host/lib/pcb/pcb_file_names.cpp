@@ -1,6 +1,8 @@
 #include "host/lib/pcb/pcb_file_names.h"
 
-#include <vector>  // std::vector
+#include <cctype>   // std::isalnum
+#include <utility>  // std::pair
+#include <vector>   // std::vector
 
 #include "host/lib/drawing/drawing.h"    // starts_like_excellon
 #include "host/lib/drawing/file_text.h"  // lower_ascii
@@ -29,13 +31,56 @@ bool ends_with(const std::string& s, const char* tail) {
   return s.size() >= t.size() && s.compare(s.size() - t.size(), t.size(), t) == 0;
 }
 
-// Words of layers that are not copper (silkscreen, mask, paste, assembly, documentation).
-bool names_other_layer(const std::string& name) {
-  for (const char* w : {"silk", "mask", "paste", "assy", "assembl", "legend", "overlay", "fab",
-                        "doc", "keepout", "courtyard", "stencil"}) {
-    if (contains(name, w)) return true;
+// What a word of a file name (a run of letters and digits) says of a layer no job cuts:
+// KiCad's F.SilkS, F.Mask, F.Paste, F.Fab, F.CrtYd, Dwgs.User; EAGLE's tPlace, tStop,
+// tCream; the usual English words. Whole words only: a project named "fabric" or "MaskRom"
+// is not a fabrication or mask layer.
+const char* other_layer_word(const std::string& word) {
+  static const std::pair<const char*, const char*> kWords[] = {
+      {"silk", "silkscreen"},        {"silks", "silkscreen"},      {"silkscreen", "silkscreen"},
+      {"legend", "silkscreen"},      {"overlay", "silkscreen"},    {"tplace", "silkscreen"},
+      {"bplace", "silkscreen"},      {"paste", "paste"},           {"pastemask", "paste"},
+      {"stencil", "paste"},          {"cream", "paste"},           {"tcream", "paste"},
+      {"bcream", "paste"},           {"mask", "solder mask"},      {"soldermask", "solder mask"},
+      {"tstop", "solder mask"},      {"bstop", "solder mask"},     {"assy", "documentation"},
+      {"assembly", "documentation"}, {"fab", "documentation"},     {"doc", "documentation"},
+      {"docs", "documentation"},     {"keepout", "documentation"}, {"courtyard", "documentation"},
+      {"crtyd", "documentation"},    {"dwgs", "documentation"},    {"cmts", "documentation"}};
+  for (const auto& w : kWords)
+    if (word == w.first) return w.second;
+  return "";
+}
+
+// The layer no job cuts that a (lower-case) file name says, by its words or its extension
+// (Protel's .gto/.gbo overlay, .gts/.gbs mask, .gtp/.gbp paste); "" when it says none.
+std::string other_layer_in_name(const std::string& name) {
+  const std::string ext = extension(name);
+  if (ext == ".gto" || ext == ".gbo") return "silkscreen";
+  if (ext == ".gts" || ext == ".gbs") return "solder mask";
+  if (ext == ".gtp" || ext == ".gbp") return "paste";
+  const std::string stem = name.substr(0, name.size() - ext.size());
+  std::string word;
+  for (size_t i = 0; i <= stem.size(); ++i) {
+    if (i < stem.size() && std::isalnum(static_cast<unsigned char>(stem[i])) != 0) {
+      word += stem[i];
+      continue;
+    }
+    // A side glued on counts as a word of its own ("TopSilk", "bottompaste", "silktop").
+    for (const char* side : {"", "top", "bottom", "bot"}) {
+      const std::string t(side);
+      const bool front = word.compare(0, t.size(), t) == 0;
+      const bool back = ends_with(word, side);
+      const char* says = other_layer_word(front ? word.substr(t.size()) : word);
+      if (*says == '\0' && back) says = other_layer_word(word.substr(0, word.size() - t.size()));
+      if (*says != '\0') return says;
+    }
+    word.clear();
   }
-  return false;
+  return "";
+}
+
+bool names_other_layer(const std::string& name) {
+  return !other_layer_in_name(name).empty();
 }
 
 }  // namespace
@@ -79,11 +124,12 @@ LayerKind layer_kind_from_file_name(const std::string& path) {
     return ext == ".txt" ? LayerKind::kUnknown : LayerKind::kDrill;
   }
   if (contains(name, "-f.cu.") || contains(name, "-f_cu.") || contains(name, "_f.cu.") ||
-      contains(name, "copper_top") || contains(name, "toplayer")) {
+      contains(name, "_f_cu.") || contains(name, "copper_top") || contains(name, "toplayer")) {
     return LayerKind::kCopperTop;
   }
   if (contains(name, "-b.cu.") || contains(name, "-b_cu.") || contains(name, "_b.cu.") ||
-      contains(name, "copper_bottom") || contains(name, "bottomlayer")) {
+      contains(name, "_b_cu.") || contains(name, "copper_bottom") ||
+      contains(name, "bottomlayer")) {
     return LayerKind::kCopperBottom;
   }
   if (contains(name, "edge.cuts") || contains(name, "edge_cuts") || contains(name, "outline") ||
@@ -153,31 +199,28 @@ LayerKind layer_kind_from_x2(const std::string& head_text) {
   return LayerKind::kUnknown;
 }
 
-std::string other_layer_name(const std::string& path, const std::string& head_text) {
-  std::string function;
+std::string other_layer_from_x2(const std::string& head_text) {
+  std::string function, rest;
   for (const char* key : {"TF.FileFunction,", "TF,.FileFunction,"}) {
     const size_t at = head_text.find(key);
     if (at == std::string::npos) continue;
     const size_t from = at + std::string(key).size();
-    function = head_text.substr(from, head_text.find_first_of(",*", from) - from);
+    const size_t end = head_text.find('*', from);
+    if (end == std::string::npos) return "";
+    function = head_text.substr(from, end - from);
     break;
   }
-  if (!function.empty()) {
-    if (function == "Legend") return "silkscreen";
-    if (function == "Soldermask") return "solder mask";
-    if (function == "Paste") return "paste";
-    if (function == "AssemblyDrawing" || function == "FabricationDrawing" ||
-        function == "Component" || function == "Keep-out")
-      return "documentation";
-    return "";
-  }
-  const std::string name = base_name(path);
-  for (const char* w : {"silk", "legend", "overlay"})
-    if (contains(name, w)) return "silkscreen";
-  if (contains(name, "mask")) return "solder mask";
-  for (const char* w : {"paste", "stencil"})
-    if (contains(name, w)) return "paste";
-  return names_other_layer(name) ? "documentation" : "";
+  const std::string first = function.substr(0, function.find(','));
+  if (first.empty() || layer_kind_from_file_function(function) != LayerKind::kUnknown) return "";
+  if (first == "Legend") return "silkscreen";
+  if (first == "Soldermask") return "solder mask";
+  if (first == "Paste") return "paste";
+  if (first == "Copper") return "inner copper";
+  return "documentation";  // AssemblyDrawing, FabricationDrawing, Component, Other, ...
+}
+
+std::string other_layer_from_name(const std::string& path) {
+  return other_layer_in_name(base_name(path));
 }
 
 PcbFileFormat pcb_file_format(const std::string& path) {

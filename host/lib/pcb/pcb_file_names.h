@@ -26,9 +26,12 @@ LayerKind layer_kind_from_file_function(const std::string& value);
 // this machine cuts.
 LayerKind layer_kind_from_x2(const std::string& head_text);
 
-// What a Gerber file is when it is a layer no job cuts, from its X2 file function, else from
-// its name: "silkscreen", "solder mask", "paste", "documentation"; "" when neither says.
-std::string other_layer_name(const std::string& path, const std::string& head_text);
+// What a Gerber file is when it is a layer no job cuts: from the X2 file function in its
+// head ("silkscreen", "solder mask", "paste", "inner copper", "documentation"; "" when there
+// is none or it names a layer that is cut), or from the words of its name or its extension
+// (the same words but inner copper; whole words: "fabric.top.gbr" is copper).
+std::string other_layer_from_x2(const std::string& head_text);
+std::string other_layer_from_name(const std::string& path);
 
 // The first few kB of `path` (empty if it cannot be opened): where formats and X2 file
 // functions are found.

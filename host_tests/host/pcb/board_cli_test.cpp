@@ -76,8 +76,9 @@ TEST(BoardCli, InfoOnABoardFolderSaysWhichFileIsWhichLayer) {
            "  - " + dir + "/t-Edge.Cuts.gbr: taken as outline (from its X2 file function)",
            // What a layer no job cuts is, from its X2 file function or its name (outside
            // tester 20: the guide promised the reason, the note said to name it as copper).
-           "  - " + dir + "/t-F.SilkS.gbr: a silkscreen layer: left out",
-           "  - " + dir + "/t-F.Mask.gbr: a solder mask layer: left out",
+           "  - " + dir +
+               "/t-F.SilkS.gbr: a silkscreen layer (from its X2 file function): left out",
+           "  - " + dir + "/t-F.Mask.gbr: a solder mask layer (from its name): left out",
            "  - " + dir + "/notes.txt: neither Gerber nor Excellon",
            "file:      " + dir + "/t-PTH.drl", "format:    Excellon", "holes:     3",
            "layer:     outline"}) {

@@ -71,6 +71,39 @@ TEST(BoardFiles, CopperNamesOfManyEdaPrograms) {
   }
 }
 
+// A layer no job cuts says what it is, by whole words of its name or its extension: a
+// project named "fabric" or "MaskRom" is copper (outside tester 21: fabric.top.gbr was left
+// out as documentation, so the folder had "no copper layer").
+TEST(BoardFiles, OtherLayersAreToldByWholeWordsOfTheirNames) {
+  const std::pair<const char*, const char*> others[] = {{"board-F_SilkS.gbr", "silkscreen"},
+                                                        {"board-B_Mask.gbr", "solder mask"},
+                                                        {"board-F_Paste.gbr", "paste"},
+                                                        {"board-F_Fab.gbr", "documentation"},
+                                                        {"board.gto", "silkscreen"},
+                                                        {"board.gbs", "solder mask"},
+                                                        {"board.gtp", "paste"},
+                                                        {"board_TopSilk.gbr", "silkscreen"},
+                                                        {"board.bottompaste.gbr", "paste"},
+                                                        {"tStop.gbr", "solder mask"},
+                                                        {"fabric.top.gbr", ""},
+                                                        {"MaskRom_F_Cu.gbr", ""},
+                                                        {"document_Bottom.gbr", ""},
+                                                        {"FABRIC_TOP.art", ""}};
+  for (const auto& [name, says] : others) EXPECT_EQ(other_layer_from_name(name), says) << name;
+  EXPECT_EQ(layer_kind_from_file_name("fabric.top.gbr"), LayerKind::kCopperTop);
+  EXPECT_EQ(layer_kind_from_file_name("fabric_Top.gbr"), LayerKind::kCopperTop);
+  EXPECT_EQ(layer_kind_from_file_name("MaskRom_F_Cu.gbr"), LayerKind::kCopperTop);
+  EXPECT_EQ(layer_kind_from_file_name("document_Bottom.gbr"), LayerKind::kCopperBottom);
+  EXPECT_EQ(layer_kind_from_file_name("FABRIC_TOP.art"), LayerKind::kCopperTop);
+  // The X2 file function says it first, whatever the name.
+  EXPECT_EQ(other_layer_from_x2("%TF.FileFunction,Legend,Top*%"), "silkscreen");
+  EXPECT_EQ(other_layer_from_x2("%TF.FileFunction,Soldermask,Bot*%"), "solder mask");
+  EXPECT_EQ(other_layer_from_x2("%TF.FileFunction,Paste,Top*%"), "paste");
+  EXPECT_EQ(other_layer_from_x2("%TF.FileFunction,Copper,L2,Inr*%"), "inner copper");
+  EXPECT_EQ(other_layer_from_x2("%TF.FileFunction,Copper,L1,Top*%"), "");
+  EXPECT_EQ(other_layer_from_x2("%FSLAX46Y46*%\n"), "");
+}
+
 // A .drd is Excellon (EAGLE) unless its content is Gerber: OrCAD writes its drill drawing
 // as a Gerber .drd (gerbv's orcad/rs232_cm.drd, refused as Excellon: "unknown command '*'").
 TEST(BoardFiles, ADrdWhoseContentIsGerberIsReadAsGerber) {

@@ -7,6 +7,7 @@
 #include <cmath>      // std::hypot
 #include <vector>     // std::vector
 
+#include "host/lib/pcb/board_files.h"  // read_board_text
 #include "host/lib/pcb/isolation_check.h"
 #include "host/lib/pcb/pcb_geometry.h"
 #include "host_tests/host/pcb/synthetic_board.h"
@@ -140,12 +141,23 @@ TEST(Isolation, AGapIsPlacedAtItsNarrowestHalfwayBetweenTheIslands) {
   struct Case {
     const char* what;
     ClipperLib::Paths a, b;
+    double gap_mm = 0.1;
   };
   ClipperLib::Paths pour = {rect(0, 0, 10, 10)};
   ClipperLib::Path opening = rect(4.4, 4.4, 5.6, 5.6);
   ClipperLib::ReversePath(opening);
   pour.push_back(opening);
+  // Two arcs drawn 0.25 mm wide, their centres 0.05 mm apart: the gap narrows to 0.05 mm at
+  // x = 5.15 (outside tester 21: the place was on one arc's edge, 5.125).
+  const PcbLayer arcs = read_board_text(
+      "%FSLAX46Y46*%\n%MOMM*%\n%ADD10C,0.25*%\nD10*\nG75*\n"
+      "X-4330127Y-2500000D02*\nG03*\nX-4330127Y2500000I4330127J2500000D01*\nG01*\n"
+      "X-4683236Y-2675000D02*\nG03*\nX-4683236Y2675000I4633236J2675000D01*\nG01*\nM02*\n",
+      "arcs.gbr", LayerKind::kCopperTop);
+  const std::vector<Island> arc_islands = copper_islands(arcs.polygons_nm);
+  ASSERT_EQ(arc_islands.size(), 2u);
   const std::vector<Case> cases = {
+      {"arcs narrowing", arc_islands[0].paths, arc_islands[1].paths, 0.05},
       // Two tracks 0.1 mm apart turning a corner: an L with 20 mm arms.
       {"L",
        {rect(0, 0, 20, 0.25), rect(19.75, 0, 20, 20)},
@@ -160,9 +172,9 @@ TEST(Isolation, AGapIsPlacedAtItsNarrowestHalfwayBetweenTheIslands) {
     const IsolationResult r = plan_isolation(copper, o);
     ASSERT_EQ(r.narrow_gaps.size(), 1u) << c.what;
     const NarrowGap& g = r.narrow_gaps[0];
-    EXPECT_NEAR(g.gap_mm, 0.1, 1e-6) << c.what;
-    EXPECT_NEAR(mm_to_edges(g.at, union_of(c.a)), 0.05, 0.002) << c.what;
-    EXPECT_NEAR(mm_to_edges(g.at, union_of(c.b)), 0.05, 0.002) << c.what;
+    EXPECT_NEAR(g.gap_mm, c.gap_mm, 0.001) << c.what;
+    EXPECT_NEAR(mm_to_edges(g.at, union_of(c.a)), g.gap_mm / 2, 0.002) << c.what;
+    EXPECT_NEAR(mm_to_edges(g.at, union_of(c.b)), g.gap_mm / 2, 0.002) << c.what;
   }
 }
 
