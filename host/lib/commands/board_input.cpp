@@ -145,8 +145,13 @@ LayerKind copper_for_side(const std::string& side, const std::vector<std::string
 
 std::string board_name(const std::string& input_or_file) {
   std::filesystem::path p(input_or_file);
+  if (!std::filesystem::is_directory(p)) return p.stem().string();
+  // A folder by its own name, also when given as `.` or `dir/..` (outside tester 21: `board .`
+  // wrote `..board.svg`).
+  p = std::filesystem::absolute(p).lexically_normal();
   if (p.filename().empty()) p = p.parent_path();
-  return std::filesystem::is_directory(p) ? p.filename().string() : p.stem().string();
+  const std::string name = p.filename().string();
+  return name.empty() ? std::string("board") : name;  // the root folder
 }
 
 std::string input_name(const std::string& input) {

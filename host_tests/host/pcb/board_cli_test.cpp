@@ -95,6 +95,17 @@ TEST(BoardCli, InfoOnABoardFolderSaysWhichFileIsWhichLayer) {
   EXPECT_EQ(info["files"].size(), 6u) << info.dump(2);
 }
 
+// A folder given as `DIR/.` is named after DIR (outside tester 21: `board .` wrote
+// `..board.svg` and `..board.json`).
+TEST(BoardCli, AFolderGivenAsDotIsNamedAfterItself) {
+  const std::string dir = write_board("dot");
+  const ToolRun r = run("board " + dir + "/. -o " + dir + "/out");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string name = std::to_string(getpid()) + "-dot";
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/" + name + ".board.json")) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/" + name + ".board.svg")) << r.out;
+}
+
 TEST(BoardCli, WholeBoardIsPlannedCheckedPlottedAndReported) {
   const std::string dir = write_board("ok");
   const ToolRun r = run("board " + dir + " -o " + dir + "/out --json --wire-bytes");

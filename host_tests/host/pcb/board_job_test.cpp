@@ -271,6 +271,31 @@ TEST(BoardJob, TheCheckNumbersIslandsAsTheNarrowGapsDo) {
   }
 }
 
+// More than 20 narrow gaps: the 20 narrowest are listed, narrowest first, and the rest
+// counted (outside tester 21: the 20 listed of 105 were in island order, none of them the
+// gap the advice quotes).
+TEST(BoardJob, ARefusalListsTheNarrowestGapsFirst) {
+  ClipperLib::Paths c;
+  for (int k = 0; k < 25; ++k) {  // pairs of pads, the gap 0.15 mm less 2 um each pair on
+    const double x = 1 + 1.5 * (k % 5), y = 1 + 2.5 * (k / 5), gap = 0.15 - 0.002 * k;
+    c.push_back(rect(x, y, x + 0.5, y + 1));
+    c.push_back(rect(x + 0.5 + gap, y, x + 1, y + 1));
+  }
+  Board b;
+  b.top = test::copper_layer(c, LayerKind::kCopperTop);
+  try {
+    plan_board(b.layers(), BoardOptions());
+    FAIL() << "narrow gaps were accepted";
+  } catch (const PlanError& e) {
+    const std::string m = e.what();
+    const size_t first = m.find("\n  gap ");
+    ASSERT_NE(first, std::string::npos) << m;
+    EXPECT_EQ(m.compare(first, 16, "\n  gap 0.102 mm "), 0) << m;  // pair 24's
+    EXPECT_EQ(m.find("gap 0.150 mm"), std::string::npos) << m;     // pair 0's: not listed
+    EXPECT_NE(m.find("\n  ... and 5 wider"), std::string::npos) << m;
+  }
+}
+
 TEST(BoardJob, ABoardLargerThanTheWorkAreaIsRefused) {
   Board b;
   BoardOptions o;
