@@ -146,17 +146,35 @@ void say_parse_error(CLI::App& app, const CLI::ParseError& e, std::ostream& err)
   app.exit(extras, std::cout, err);
 }
 
+// Whether every option of this name, in the app and its commands, is a switch (no value).
+bool only_switches_named(const CLI::App& app, const std::string& name, bool* found) {
+  bool all = true;
+  const CLI::Option* o = app.get_option_no_throw(name);
+  if (o != nullptr) {
+    *found = true;
+    all = o->get_items_expected_max() == 0;
+  }
+  for (const CLI::App* sub : app.get_subcommands({}))
+    all = only_switches_named(*sub, name, found) && all;
+  return all;
+}
+
 // `--side=` is an empty value, not the option left out: CLI11 took the next word for it
 // (`--side= board.gbr` said the file was not a side). Given as `--side ''`, the option's own
-// check says so, and an option the command does not have is named as any other. Words after
-// `--` are not options.
-std::vector<std::string> with_empty_values_apart(int argc, const char* const* argv) {
+// check says so, and an option the command does not have is named as any other; a switch
+// (`--json=`) takes no value at all. Words after `--` are not options.
+std::vector<std::string> with_empty_values_apart(const CLI::App& app, int argc,
+                                                 const char* const* argv) {
   std::vector<std::string> words(argv, argv + argc);
   for (size_t i = 1; i < words.size(); ++i) {
     if (words[i] == "--") break;
     const std::string& w = words[i];
     if (w.size() > 3 && w.compare(0, 2, "--") == 0 && w.find('=') == w.size() - 1) {
-      words[i].pop_back();
+      const std::string name = w.substr(0, w.size() - 1);
+      bool found = false;
+      if (only_switches_named(app, name, &found) && found)
+        throw CLI::ValidationError(name, "a switch takes no value (give it alone)");
+      words[i] = name;
       words.insert(words.begin() + static_cast<std::ptrdiff_t>(i) + 1, std::string());
       ++i;
     }
@@ -166,7 +184,7 @@ std::vector<std::string> with_empty_values_apart(int argc, const char* const* ar
 
 int run_guarded_to(CLI::App& app, int argc, const char* const* argv, std::ostream& err) {
   try {
-    const std::vector<std::string> words = with_empty_values_apart(argc, argv);
+    const std::vector<std::string> words = with_empty_values_apart(app, argc, argv);
     std::vector<const char*> args;
     for (const std::string& w : words) args.push_back(w.c_str());
     app.parse(static_cast<int>(args.size()), args.data());

@@ -58,13 +58,21 @@ std::string other_layer_in_name(const std::string& name) {
   if (ext == ".gto" || ext == ".gbo") return "silkscreen";
   if (ext == ".gts" || ext == ".gbs") return "solder mask";
   if (ext == ".gtp" || ext == ".gbp") return "paste";
+  // Inner layers: Protel's .g1 .. .g99 and .gp1 .. (planes), KiCad's In1.Cu.
+  auto numbered = [](const std::string& w, const std::string& prefix) {
+    return w.size() > prefix.size() && w.compare(0, prefix.size(), prefix) == 0 &&
+           w.find_first_not_of("0123456789", prefix.size()) == std::string::npos;
+  };
+  if (numbered(ext, ".g") || numbered(ext, ".gp")) return "inner copper";
   const std::string stem = name.substr(0, name.size() - ext.size());
-  std::string word;
+  std::string word, previous;
   for (size_t i = 0; i <= stem.size(); ++i) {
     if (i < stem.size() && std::isalnum(static_cast<unsigned char>(stem[i])) != 0) {
       word += stem[i];
       continue;
     }
+    if (word == "cu" && numbered(previous, "in")) return "inner copper";
+    if (!word.empty()) previous = word;
     // A side glued on counts as a word of its own ("TopSilk", "bottompaste", "silktop").
     for (const char* side : {"", "top", "bottom", "bot"}) {
       const std::string t(side);

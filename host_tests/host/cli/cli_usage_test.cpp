@@ -163,6 +163,8 @@ TEST(CliUsage, AnOptionWithAnEmptyValueAfterItsEqualsSignIsRefused) {
   // One the command does not have is named as such (it was "an empty value" too).
   expect_usage_error("board --bogus= top.gbr",
                      "The following argument was not expected: --bogus\n");
+  // A switch takes no value at all (tester 22: `--json=` said "FILES: an empty value").
+  expect_usage_error("board top.gbr --json=", "--json: a switch takes no value (give it alone)\n");
   // After `--` it is a word like any other.
   expect_usage_error("info " + kWord + " -- --tol=",
                      "The following argument was not expected: --tol=\n");
