@@ -82,22 +82,25 @@ Path clip_stage(const Path& in, bool x_axis, ClipperLib::cInt limit, Inside insi
 
 }  // namespace
 
+void clip_path_to_box(const Path& p, const BoxNm& p_box, const BoxNm& box, Paths* out) {
+  if (box.empty() || !p_box.overlaps(box)) return;
+  if (box.contains(p_box)) {
+    out->push_back(p);  // wholly inside
+    return;
+  }
+  Path q = clip_stage(p, true, box.min_x, [&](const IntPoint& v) { return v.X >= box.min_x; });
+  q = clip_stage(q, true, box.max_x, [&](const IntPoint& v) { return v.X <= box.max_x; });
+  q = clip_stage(q, false, box.min_y, [&](const IntPoint& v) { return v.Y >= box.min_y; });
+  q = clip_stage(q, false, box.max_y, [&](const IntPoint& v) { return v.Y <= box.max_y; });
+  if (q.size() >= 3) out->push_back(std::move(q));
+}
+
 Paths clip_to_box(const Paths& paths, const BoxNm& box) {
   Paths out;
-  if (box.empty()) return out;
   for (const Path& p : paths) {
     BoxNm pb;
     pb.add(p);
-    if (!pb.overlaps(box)) continue;
-    if (box.contains(pb)) {
-      out.push_back(p);  // wholly inside
-      continue;
-    }
-    Path q = clip_stage(p, true, box.min_x, [&](const IntPoint& v) { return v.X >= box.min_x; });
-    q = clip_stage(q, true, box.max_x, [&](const IntPoint& v) { return v.X <= box.max_x; });
-    q = clip_stage(q, false, box.min_y, [&](const IntPoint& v) { return v.Y >= box.min_y; });
-    q = clip_stage(q, false, box.max_y, [&](const IntPoint& v) { return v.Y <= box.max_y; });
-    if (q.size() >= 3) out.push_back(std::move(q));
+    clip_path_to_box(p, pb, box, &out);
   }
   return out;
 }

@@ -55,6 +55,9 @@ BoxNm common_box(const BoxNm& a, const BoxNm& b);
 // may come back as one path with edges along the box's sides that double back; they enclose
 // no area, so a later non-zero Clipper operation gives the same result as with the whole path.
 ClipperLib::Paths clip_to_box(const ClipperLib::Paths& paths, const BoxNm& box);
+// The same for one path whose box is known, appended to out.
+void clip_path_to_box(const ClipperLib::Path& path, const BoxNm& path_box, const BoxNm& box,
+                      ClipperLib::Paths* out);
 
 // One connected piece of copper: an outer boundary (positive) and its holes (negative).
 struct Island {

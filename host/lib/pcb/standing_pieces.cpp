@@ -131,10 +131,9 @@ std::vector<StandingPiece> standing_pieces(const BoxNm& frame, const Paths& outl
     c.AddPath(Path{IntPoint(column.min_x, column.min_y), IntPoint(column.max_x, column.min_y),
                    IntPoint(column.max_x, column.max_y), IntPoint(column.min_x, column.max_y)},
               ClipperLib::ptSubject, true);
-    for (size_t i : in_column[j]) {
-      for (const Path& part : clip_to_box(Paths{outlines[i]}, reach))
-        c.AddPath(part, ClipperLib::ptClip, true);
-    }
+    Paths parts;  // each outline cut to the column, its box known: no copy of it
+    for (size_t i : in_column[j]) clip_path_to_box(outlines[i], boxes[i], reach, &parts);
+    c.AddPaths(parts, ClipperLib::ptClip, true);
     ClipperLib::PolyTree tree;
     c.Execute(ClipperLib::ctDifference, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
     collect_pieces(tree, &pieces);

@@ -2,7 +2,7 @@
 // isolation check's second question (does each copper island stand in a piece of its own).
 // One Clipper difference of the whole rectangle visits, at every scan beam, every swept edge
 // across the board's width; here the rectangle is cut into columns, each column's difference
-// takes only the outlines' parts inside it (clip_to_box, linear), and the pieces of
+// takes only the outlines' parts inside it (clip_path_to_box, linear), and the pieces of
 // neighbouring columns that share a stretch of their common side are joined.
 #ifndef HOST_LIB_PCB_STANDING_PIECES_H
 #define HOST_LIB_PCB_STANDING_PIECES_H
