@@ -72,8 +72,13 @@ Point2 evaluate(const BSpline& s, double t) {
   t = std::min(std::max(t, s.t_min()), s.t_max());
   const int p = s.degree;
   const size_t k = find_span(s, t);
-  // Homogeneous De Boor: (w x, w y, w).
-  std::vector<Eigen::Vector3d> d(p + 1);
+  // Homogeneous De Boor: (w x, w y, w), on the stack for the usual degrees (sampling
+  // evaluates millions of points; a heap block each cost as much as the arithmetic).
+  const int kOnStack = 8;
+  Eigen::Vector3d stack[kOnStack];
+  std::vector<Eigen::Vector3d> heap;
+  if (p + 1 > kOnStack) heap.resize(static_cast<size_t>(p) + 1);
+  Eigen::Vector3d* d = p + 1 > kOnStack ? heap.data() : stack;
   for (int j = 0; j <= p; ++j) {
     const size_t i = k - p + j;
     const double w = s.weight(i);

@@ -38,13 +38,31 @@ bool circle_through(const Point2& a, const Point2& b, const Point2& c, Point2* c
   return true;
 }
 
-// Whether vertices i..j lie on one circle within tol, turning one way in short chords.
+// atan(x) for 0 <= x <= 1 within kAtanError rad (1.51e-3 at worst): enough to tell most
+// arcs from more than a full turn without an atan2 per chord.
+const double kAtanError = 0.002;
+double atan_roughly(double x) {
+  return x * (kPi / 4 + (1 - x) * (0.2447 + 0.0663 * x));
+}
+
+// The arc's signed sweep from its vertices, chord by chord (counter-clockwise positive).
+double arc_sweep(const std::vector<Point2>& p, size_t i, size_t j, const Point2& c) {
+  double sweep = 0;
+  for (size_t k = i; k < j; ++k)
+    sweep += std::atan2(cross(p[k] - c, p[k + 1] - c), (p[k] - c).dot(p[k + 1] - c));
+  return sweep;
+}
+
+// Whether vertices i..j lie on one circle within tol, turning one way in chords of at most
+// 45 degrees and at most one full turn in all; out->sweep is left for arc_sweep (the
+// greedy search tries every longer arc, and an atan2 per chord per try was a tenth of a
+// board's time).
 bool fits_arc(const std::vector<Point2>& p, size_t i, size_t j, double tol, Primitive* out) {
   Point2 c;
   double r;
   if (!circle_through(p[i], p[(i + j) / 2], p[j], &c, &r)) return false;
   if (r > 1000.0 || r < tol) return false;
-  double sweep = 0;
+  double turn_roughly = 0;
   int sign = 0;
   for (size_t k = i; k < j; ++k) {
     if (std::fabs((p[k] - c).norm() - r) > tol) return false;
@@ -55,20 +73,24 @@ bool fits_arc(const std::vector<Point2>& p, size_t i, size_t j, double tol, Prim
     // its round joins meet, the chord's sagitta is twice its arc tolerance, 2.004 um for 1.
     const double chord2 = (p[k + 1] - p[k]).squaredNorm();
     if (chord2 / (8 * r) > 1.01 * tol) return false;
-    const double a = std::atan2(cross(p[k] - c, p[k + 1] - c), (p[k] - c).dot(p[k + 1] - c));
-    if (std::fabs(a) > kPi / 4) return false;
-    const int s = a > 0 ? 1 : -1;
+    // Within 45 degrees: the dot product positive and at least the cross product.
+    const double cr = cross(p[k] - c, p[k + 1] - c), dot = (p[k] - c).dot(p[k + 1] - c);
+    if (!(dot > 0) || std::fabs(cr) > dot) return false;
+    const int s = cr > 0 ? 1 : -1;
     if (sign != 0 && s != sign) return false;
     sign = s;
-    sweep += a;
+    turn_roughly += atan_roughly(std::fabs(cr) / dot);
   }
-  if (std::fabs(sweep) > 2 * kPi + 1e-9) return false;
+  const double full_turn = 2 * kPi + 1e-9;
+  const double slack = static_cast<double>(j - i) * kAtanError;
+  if (turn_roughly > full_turn + slack) return false;
+  if (turn_roughly >= full_turn - slack && std::fabs(arc_sweep(p, i, j, c)) > full_turn)
+    return false;
   out->kind = Primitive::kArc;
   out->from = i;
   out->to = j;
   out->centre = c;
   out->radius = r;
-  out->sweep = sweep;
   return true;
 }
 
@@ -281,6 +303,7 @@ std::vector<BSpline> fit_polyline(const std::vector<Point2>& in, bool closed, co
     if (j < n && fits_arc(p, i, j, o.tolerance_mm, &arc)) {
       Primitive longer;
       while (j + 1 < n && fits_arc(p, i, j + 1, o.tolerance_mm, &longer)) arc = longer, ++j;
+      arc.sweep = arc_sweep(p, arc.from, arc.to, arc.centre);
       prims.push_back(arc);
       i = j;
       continue;

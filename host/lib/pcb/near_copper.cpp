@@ -3,7 +3,7 @@
 
 #include <algorithm>  // std::min, std::max
 #include <cmath>      // std::floor, std::sqrt
-#include <cstdint>    // int64_t
+#include <cstdint>    // uint32_t, UINT32_MAX
 #include <vector>     // std::vector
 
 #include "host/lib/pcb/pcb_geometry.h"
@@ -60,7 +60,7 @@ class EdgeGrid {
     nx_ = static_cast<int>((static_cast<double>(b.max_x) - x0_) / cell_) + 1;
     ny_ = static_cast<int>((static_cast<double>(b.max_y) - y0_) / cell_) + 1;
     for (uint32_t k = 0; k < copper.size(); ++k)
-      for (uint32_t i = 0; i < copper[k].size(); ++i) edges_.push_back({k, i});
+      for (uint32_t i = 0; i < copper[k].size(); ++i) edges_.push_back(edge(k, i));
     first_.assign(static_cast<size_t>(nx_) * ny_ + 1, 0);
     for (int pass = 0; pass < 2; ++pass) {
       if (pass == 1) {
@@ -69,7 +69,7 @@ class EdgeGrid {
         fill_ = std::vector<size_t>(first_.begin(), first_.end() - 1);
       }
       for (size_t e = 0; e < edges_.size(); ++e) {
-        const Seg s = edge(edges_[e]);
+        const Seg& s = edges_[e];
         int cx0, cy0, cx1, cy1;
         cells(std::min(s.ax, s.bx), std::min(s.ay, s.by), std::max(s.ax, s.bx),
               std::max(s.ay, s.by), &cx0, &cy0, &cx1, &cy1);
@@ -85,31 +85,41 @@ class EdgeGrid {
     }
   }
 
-  // Whether some edge comes closer than reach to the segment.
-  bool near(const Seg& s, double reach) const {
+  // Whether some edge comes closer than reach to the segment. *last is the edge found
+  // near the previous segment, tried first (a tool path runs along one copper edge for
+  // many segments).
+  bool near(const Seg& s, double reach, uint32_t* last) const {
     if (nx_ == 0) return false;
-    int cx0, cy0, cx1, cy1;
-    cells(std::min(s.ax, s.bx) - reach, std::min(s.ay, s.by) - reach, std::max(s.ax, s.bx) + reach,
-          std::max(s.ay, s.by) + reach, &cx0, &cy0, &cx1, &cy1);
     const double r2 = reach * reach;
+    if (*last < edges_.size() && dist2_seg_seg(s, edges_[*last]) < r2) return true;
+    const double x0 = std::min(s.ax, s.bx) - reach, y0 = std::min(s.ay, s.by) - reach;
+    const double x1 = std::max(s.ax, s.bx) + reach, y1 = std::max(s.ay, s.by) + reach;
+    int cx0, cy0, cx1, cy1;
+    cells(x0, y0, x1, y1, &cx0, &cy0, &cx1, &cy1);
     for (int y = cy0; y <= cy1; ++y)
       for (int x = cx0; x <= cx1; ++x) {
         const size_t k = static_cast<size_t>(y) * nx_ + x;
-        for (size_t i = first_[k]; i < first_[k + 1]; ++i)
-          if (dist2_seg_seg(s, edge(edges_[edge_of_[i]])) < r2) return true;
+        for (size_t i = first_[k]; i < first_[k + 1]; ++i) {
+          // Most edges of a clean job are beyond reach: their boxes tell it cheaply.
+          const Seg& e = edges_[edge_of_[i]];
+          if (std::max(e.ax, e.bx) < x0 || std::min(e.ax, e.bx) > x1 || std::max(e.ay, e.by) < y0 ||
+              std::min(e.ay, e.by) > y1)
+            continue;
+          if (dist2_seg_seg(s, e) < r2) {
+            *last = edge_of_[i];
+            return true;
+          }
+        }
       }
     return false;
   }
 
  private:
-  struct EdgeRef {
-    uint32_t path, vertex;  // the edge from this vertex to the next
-  };
-
-  Seg edge(const EdgeRef& e) const {
-    const Path& p = copper_[e.path];
-    const IntPoint& u = p[e.vertex];
-    const IntPoint& v = p[(e.vertex + 1) % p.size()];
+  // The edge from vertex i of path k to the next.
+  Seg edge(uint32_t k, uint32_t i) const {
+    const Path& p = copper_[k];
+    const IntPoint& u = p[i];
+    const IntPoint& v = p[(i + 1) % p.size()];
     return {static_cast<double>(u.X), static_cast<double>(u.Y), static_cast<double>(v.X),
             static_cast<double>(v.Y)};
   }
@@ -131,7 +141,7 @@ class EdgeGrid {
   double cell_;
   double x0_ = 0, y0_ = 0;
   int nx_ = 0, ny_ = 0;
-  std::vector<EdgeRef> edges_;
+  std::vector<Seg> edges_;
   std::vector<size_t> first_, fill_;
   std::vector<uint32_t> edge_of_;
 };
@@ -161,6 +171,7 @@ Paths runs_near_copper(const Paths& centres, const Paths& copper, double reach_n
     // (crossing an edge comes within reach of it): one vertex tells which.
     std::vector<char> keep(n, 0);
     size_t far_from = n;  // first segment of the current far run
+    uint32_t last_near = UINT32_MAX;
     for (size_t i = 0; i <= n; ++i) {
       bool is_near = true;
       if (i < n) {
@@ -168,7 +179,7 @@ Paths runs_near_copper(const Paths& centres, const Paths& copper, double reach_n
         const IntPoint& b = p[p.size() == 1 ? 0 : i + 1];
         const Seg s{static_cast<double>(a.X), static_cast<double>(a.Y), static_cast<double>(b.X),
                     static_cast<double>(b.Y)};
-        is_near = grid.near(s, reach);
+        is_near = grid.near(s, reach, &last_near);
         keep[i] = is_near;
         if (!is_near && far_from == n) far_from = i;
       }

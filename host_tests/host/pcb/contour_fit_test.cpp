@@ -98,6 +98,29 @@ TEST(ContourFit, ASquaresCornersAreNotMistakenForACircle) {
   EXPECT_EQ(st.arcs, 0);
 }
 
+// An arc turns at most once around (its sweep is checked without an atan2 per chord, then
+// summed exactly): a run once round its circle is one arc, a run one and a half times
+// round is two.
+TEST(ContourFit, AnArcTurnsAtMostOnceAround) {
+  const double r = 20, step = 2 * 3.14159265358979323846 / 240;  // sagitta 1.7 um
+  auto around = [&](int segments) {
+    std::vector<Point2> run;
+    for (int k = 0; k <= segments; ++k)
+      run.push_back(Point2(r * std::cos(k * step), r * std::sin(k * step)));
+    return run;
+  };
+  for (const int segments : {240, 360}) {
+    SCOPED_TRACE(segments);
+    const std::vector<Point2> run = around(segments);
+    FitStats st;
+    const std::vector<BSpline> c = fit_polyline(run, false, FitOptions(), &st);
+    EXPECT_EQ(st.lines, 0);
+    EXPECT_EQ(st.cubics, 0);
+    EXPECT_EQ(st.arcs, segments == 240 ? 1 : 2);
+    EXPECT_LE(max_deviation_mm(run, false, c), kTol);
+  }
+}
+
 // The other direction of the tolerance: the fitted curve stays within it of the polyline, also
 // between the vertices. Chords whose sagitta against their circle is 4 um (tolerance 2 um)
 // must not become that circle: it would bow 4 um off every chord (on easy-sdr such arcs took
