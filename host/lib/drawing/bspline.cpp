@@ -230,36 +230,33 @@ BSpline transformed(const BSpline& s, const Eigen::Matrix2d& a, const Point2& b)
 
 namespace {
 
-// Appends points of (t0, t1] until each chord is within tol of the curve (checked at the
-// parameter midpoint and quarter points; depth-limited).
-void subdivide(const BSpline& s, double t0, const Point2& p0, double t1, const Point2& p1,
-               double tol, int depth, std::vector<Point2>& out) {
-  bool ok = depth >= 24;
-  if (!ok) {
-    ok = true;
-    const double fr[3] = {0.25, 0.5, 0.75};
-    for (double f : fr) {
-      const Point2 q = evaluate(s, t0 + (t1 - t0) * f);
-      const Point2 d = p1 - p0;
-      const double len = d.norm();
-      const double dist =
-          len > 0 ? std::fabs(d.x() * (q - p0).y() - d.y() * (q - p0).x()) / len : (q - p0).norm();
-      // Also bound the distance along the chord (a curve that doubles back).
-      const double along = len > 0 ? (q - p0).dot(d) / len : 0.0;
-      if (dist > tol || along < -tol || along > len + tol) {
-        ok = false;
-        break;
-      }
-    }
-  }
-  if (ok) {
+// Points after p0 up to p1 (the curve at t0 and t1; pm at the middle tm) until the curve's
+// points at a quarter, the middle and three quarters lie within tol of the chord. The
+// quarters are the halves' middles: each point is evaluated once however often the piece
+// is split (evaluating was most of sampling).
+void subdivide(const BSpline& s, double t0, const Point2& p0, double tm, const Point2& pm,
+               double t1, const Point2& p1, double tol, int depth, std::vector<Point2>& out) {
+  if (depth >= 24) {
     out.push_back(p1);
     return;
   }
-  const double tm = 0.5 * (t0 + t1);
-  const Point2 pm = evaluate(s, tm);
-  subdivide(s, t0, p0, tm, pm, tol, depth + 1, out);
-  subdivide(s, tm, pm, t1, p1, tol, depth + 1, out);
+  const double ta = 0.5 * (t0 + tm), tb = 0.5 * (tm + t1);
+  const Point2 pa = evaluate(s, ta), pb = evaluate(s, tb);
+  const Point2 d = p1 - p0;
+  const double len = d.norm();
+  auto near_chord = [&](const Point2& q) {
+    const double dist =
+        len > 0 ? std::fabs(d.x() * (q - p0).y() - d.y() * (q - p0).x()) / len : (q - p0).norm();
+    // Also bound the distance along the chord (a curve that doubles back).
+    const double along = len > 0 ? (q - p0).dot(d) / len : 0.0;
+    return !(dist > tol || along < -tol || along > len + tol);
+  };
+  if (near_chord(pa) && near_chord(pm) && near_chord(pb)) {
+    out.push_back(p1);
+    return;
+  }
+  subdivide(s, t0, p0, ta, pa, tm, pm, tol, depth + 1, out);
+  subdivide(s, tm, pm, tb, pb, t1, p1, tol, depth + 1, out);
 }
 
 }  // namespace
@@ -277,7 +274,8 @@ std::vector<Point2> sample(const BSpline& s, double tol_mm) {
     for (int i = 0; i < pieces; ++i) {
       const double a = t0 + (t1 - t0) * i / pieces;
       const double b = t0 + (t1 - t0) * (i + 1) / pieces;
-      subdivide(s, a, evaluate(s, a), b, evaluate(s, b), tol_mm, 0, out);
+      const double m = 0.5 * (a + b);
+      subdivide(s, a, evaluate(s, a), m, evaluate(s, m), b, evaluate(s, b), tol_mm, 0, out);
     }
   }
   return out;

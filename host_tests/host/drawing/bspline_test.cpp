@@ -119,6 +119,48 @@ TEST(BSpline, SampleChordsStayWithinTolerance) {
   }
 }
 
+// A wave whose every piece's middle lies on its chord, its quarter points 1 mm off it
+// (y vanishes at each eighth of the span, sample's pieces are quarters): the quarter
+// points are checked too, so it is sampled within the tolerance.
+TEST(BSpline, SampleChecksAPiecesQuarterPointsNotOnlyItsMiddle) {
+  const int n = 9;  // y(t) = c * prod_{k=0..8} (t - k/8), x(t) = t: one Bezier span
+  std::vector<double> power(n + 1, 0.0);
+  power[0] = 1;
+  for (int k = 0; k <= 8; ++k) {  // multiply by (t - k/8)
+    for (int j = n; j >= 0; --j) power[j] = (j > 0 ? power[j - 1] : 0) - k / 8.0 * power[j];
+  }
+  auto binom = [](int a, int b) {
+    double r = 1;
+    for (int i = 1; i <= b; ++i) r = r * (a - b + i) / i;
+    return r;
+  };
+  BSpline s;
+  s.degree = n;
+  for (int i = 0; i <= n; ++i) {
+    double y = 0;  // Bernstein coefficient from the power basis
+    for (int j = 0; j <= i; ++j) y += binom(i, j) / binom(n, j) * power[j];
+    s.control.push_back(Point2(static_cast<double>(i) / n, y));
+  }
+  s.knots.assign(n + 1, 0.0);
+  s.knots.insert(s.knots.end(), n + 1, 1.0);
+  const double peak = std::fabs(evaluate(s, 1.0 / 16).y());
+  for (Point2& c : s.control) c.y() /= peak;  // 1 mm at the first quarter point
+  ASSERT_NEAR(evaluate(s, 1.0 / 8).y(), 0.0, 1e-12);
+  ASSERT_NEAR(std::fabs(evaluate(s, 1.0 / 16).y()), 1.0, 1e-9);
+  const double tol = 0.01;
+  const std::vector<Point2> pts = sample(s, tol);
+  for (int i = 0; i <= 2000; ++i) {
+    const Point2 q = evaluate(s, i / 2000.0);
+    double best = 1e300;
+    for (size_t k = 1; k < pts.size(); ++k) {
+      const Point2 d = pts[k] - pts[k - 1];
+      const double u = std::clamp((q - pts[k - 1]).dot(d) / d.squaredNorm(), 0.0, 1.0);
+      best = std::min(best, (pts[k - 1] + u * d - q).norm());
+    }
+    EXPECT_LE(best, tol * 1.01) << "at t = " << i / 2000.0;
+  }
+}
+
 // Extents of 200 001 Eigen-evaluated points: below the true ones by far less than 1 nm on
 // these curves (points about 1 um apart, so an extreme is missed by ~(1 um)^2 x curvature).
 Extents dense_reference_extents(const BSpline& s) {
