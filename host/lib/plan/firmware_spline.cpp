@@ -1,7 +1,7 @@
 // Host B-spline -> firmware core::Spline conversion (see firmware_spline.h).
 #include "host/lib/plan/firmware_spline.h"
 
-#include <algorithm>  // std::max
+#include <algorithm>  // std::max, std::sort, std::unique
 #include <cmath>      // std::llround, std::fabs
 #include <cstdint>    // int64_t
 #include <cstring>    // memset
@@ -93,29 +93,33 @@ std::vector<uint16_t> quantise_weights(const std::vector<double>& w, double max_
   const double tolerance = std::min(1e-4, 0.25 / std::max(max_leg_um, 1.0));
   // Rounding moves a weight x scaled by m / w_max by half a unit at most: a relative error
   // within tolerance for every weight once the smallest is 0.5 / tolerance + 0.5 units.
-  double w_min = w_max;
-  for (double x : w) w_min = std::min(w_min, x);
+  // The errors depend on the distinct weights alone: a spline of arcs has a few among many
+  // control points (1 and each arc's cos(sweep / 2)), smallest first, which err most.
+  std::vector<double> distinct = w;
+  std::sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  const double w_min = distinct.front();
   const double m_sure = std::ceil((0.5 / tolerance + 0.5) * w_max / w_min);
   long best_m = 0, best_fallback = 65535;
-  if (m_sure < 32768 && weight_error(w, w_max, static_cast<long>(m_sure)) <= tolerance)
+  if (m_sure < 32768 && weight_error(distinct, w_max, static_cast<long>(m_sure)) <= tolerance)
     best_m = static_cast<long>(m_sure);
   // The fallback's m depends on the weights alone, and a board's arcs repeat a few angles:
   // each search tries up to 32 768 scales, so its answers are kept (a bounded number).
   thread_local std::map<std::vector<double>, long> searched;
   if (best_m == 0) {
-    const auto known = searched.find(w);
+    const auto known = searched.find(distinct);
     if (known != searched.end()) best_m = known->second;
   }
   double best_err = 1e300;
   for (long m = 65535; best_m == 0 && m >= 32768; --m) {
-    const double err = weight_error(w, w_max, m, best_err);
+    const double err = weight_error(distinct, w_max, m, best_err);
     if (err < best_err) best_err = err, best_fallback = m;
     if (err < 1e-9) break;
   }
   if (best_m == 0) {
     best_m = best_fallback;
     if (searched.size() >= 4096) searched.clear();  // a job of many angles
-    searched.emplace(w, best_m);
+    searched.emplace(distinct, best_m);
   }
   std::vector<uint16_t> q;
   const double f = static_cast<double>(best_m) / w_max;
@@ -145,12 +149,14 @@ std::vector<int32_t> chain_knots(const BSpline& s) {
   const size_t nk = s.knots.size();
   const double whole = static_cast<double>(kKnotRangeTarget) / (s.knots.back() - s.knots.front());
   std::vector<int32_t> out(nk, 0);
-  // Multiplicity of the value at each knot index.
-  auto multiplicity = [&](size_t i) {
-    size_t m = 0;
-    for (double k : s.knots) m += (k == s.knots[i]) ? 1 : 0;
-    return m;
-  };
+  // Multiplicity of the value at each knot index (the knots never decrease: runs).
+  std::vector<size_t> multiplicity(nk, 0);
+  for (size_t i = 0; i < nk;) {
+    size_t e = i;
+    while (e < nk && s.knots[e] == s.knots[i]) ++e;
+    for (size_t k = i; k < e; ++k) multiplicity[k] = e - i;
+    i = e;
+  }
   auto leg_um = [&](size_t span) {  // span i uses control points i-p .. i
     double leg = 0;
     for (size_t c = span >= p ? span - p + 1 : 1; c <= span && c < s.control.size(); ++c)
@@ -163,7 +169,7 @@ std::vector<int32_t> chain_knots(const BSpline& s) {
     // The chain: knots first..last, cut at an interior knot of multiplicity >= degree.
     size_t last = first + 1;
     while (last + 1 < nk && !(s.knots[last] > s.knots[first] && s.knots[last + 1] > s.knots[last] &&
-                              multiplicity(last) >= p))
+                              multiplicity[last] >= p))
       ++last;
     int spans = 0;
     double scale = 16.0 / (s.knots[last] - s.knots[first]);
