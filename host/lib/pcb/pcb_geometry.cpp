@@ -1,8 +1,8 @@
 // Geometry helpers for the PCB planners (see pcb_geometry.h).
 #include "host/lib/pcb/pcb_geometry.h"
 
-#include <algorithm>   // std::min, std::max
-#include <cmath>       // std::llround
+#include <algorithm>   // std::min, std::max, std::sort
+#include <cmath>       // std::llround, std::fabs
 #include <functional>  // std::function
 #include <iterator>    // std::make_move_iterator
 #include <utility>     // std::move
@@ -235,11 +235,86 @@ std::vector<Paths> united_strips(const std::vector<Paths>& pieces,
   return strips;
 }
 
-Paths side_by_side(std::vector<Paths> strips) {
+// One polygon of a union's result: an outer path and its holes, and its box.
+struct Polygon {
+  Paths paths;  // the outer first
+  BoxNm box;
+  size_t strip;
+};
+
+// A union's result (outers positive, holes negative, in no order) as polygons: each hole
+// goes with the smallest outer around it (an island in a hole is smaller than the outer
+// whose hole it sits in).
+void add_polygons(Paths&& result, size_t strip, std::vector<Polygon>* out) {
+  const size_t first = out->size();
+  std::vector<double> area;
+  Paths holes;
+  for (Path& p : result) {
+    if (ClipperLib::Orientation(p)) {
+      Polygon g;
+      g.box.add(p);
+      g.strip = strip;
+      g.paths.push_back(std::move(p));
+      out->push_back(std::move(g));
+      area.push_back(std::fabs(ClipperLib::Area(out->back().paths[0])));
+    } else {
+      holes.push_back(std::move(p));
+    }
+  }
+  for (Path& h : holes) {
+    size_t best = out->size();
+    for (size_t k = first; k < out->size(); ++k) {
+      const Polygon& g = (*out)[k];
+      if (!g.box.contains(h[0]) || (best < out->size() && area[k - first] >= area[best - first]))
+        continue;
+      if (ClipperLib::PointInPolygon(h[0], g.paths[0]) != 0) best = k;
+    }
+    if (best == out->size()) {  // not expected of a union: kept with the first polygon
+      best = first;
+      if (best == out->size()) continue;
+    }
+    (*out)[best].paths.push_back(std::move(h));
+  }
+}
+
+size_t root_of(std::vector<size_t>& parent, size_t i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+// The strips' results as one union. Only the polygons that meet a polygon of another strip
+// (by their boxes, touching included) go through a union again, each group of them on its
+// own: one union of everything swept the whole board's width at every scan beam, and the
+// strips' overlaps made it most of reading a Gerber file (eaglecad1: 20 of 32 ms).
+Paths joined_strips(std::vector<Paths> strips) {
+  std::vector<Polygon> polygons;
+  for (size_t s = 0; s < strips.size(); ++s) add_polygons(std::move(strips[s]), s, &polygons);
+  std::vector<size_t> by_x(polygons.size()), parent(polygons.size());
+  for (size_t i = 0; i < polygons.size(); ++i) by_x[i] = parent[i] = i;
+  std::sort(by_x.begin(), by_x.end(),
+            [&](size_t a, size_t b) { return polygons[a].box.min_x < polygons[b].box.min_x; });
+  for (size_t i = 0; i < by_x.size(); ++i) {
+    const Polygon& a = polygons[by_x[i]];
+    for (size_t j = i + 1; j < by_x.size() && polygons[by_x[j]].box.min_x <= a.box.max_x; ++j) {
+      const Polygon& b = polygons[by_x[j]];
+      if (b.strip != a.strip && b.box.overlaps(a.box))
+        parent[root_of(parent, by_x[j])] = root_of(parent, by_x[i]);
+    }
+  }
+  std::vector<Paths> groups(polygons.size());
+  std::vector<size_t> members(polygons.size(), 0);
+  for (size_t i = 0; i < polygons.size(); ++i) {
+    const size_t r = root_of(parent, i);
+    ++members[r];
+    groups[r].insert(groups[r].end(), std::make_move_iterator(polygons[i].paths.begin()),
+                     std::make_move_iterator(polygons[i].paths.end()));
+  }
   Paths all;
-  for (Paths& strip : strips) {
-    all.insert(all.end(), std::make_move_iterator(strip.begin()),
-               std::make_move_iterator(strip.end()));
+  for (size_t r = 0; r < groups.size(); ++r) {
+    if (members[r] == 0) continue;
+    Paths joined = members[r] == 1 ? std::move(groups[r]) : union_of(groups[r]);
+    all.insert(all.end(), std::make_move_iterator(joined.begin()),
+               std::make_move_iterator(joined.end()));
   }
   return all;
 }
@@ -250,9 +325,7 @@ Paths united_by_strips(const std::vector<Paths>& pieces,
                        const std::function<Paths(const Paths&)>& united) {
   std::vector<Paths> strips = united_strips(pieces, united);
   if (strips.size() == 1) return std::move(strips[0]);
-  // The strips overlap only at their edges: one union joins them, far fewer edges than the
-  // pieces had (merging neighbours pairwise first was slower: every level sweeps them all).
-  return union_of(side_by_side(std::move(strips)));
+  return joined_strips(std::move(strips));
 }
 
 Paths grown_islands(const std::vector<Island>& islands, double delta_nm, double arc_tolerance_nm) {

@@ -139,6 +139,50 @@ TEST(SweepOpen, PathsSweptInGroupsCoverWhatEachPathSweptAloneCovers) {
   EXPECT_LT(std::fabs(signed_area(difference_of(expected, joined))), band);
 }
 
+// Rings with a smaller ring in their hole (islands in holes, holes in those), scattered so
+// that many overlap, united in strips: the strips' results are joined group by group, each
+// hole with its own outer. The same region as one union of everything, no polygon on
+// another (the signed areas agree), as many outers and holes.
+TEST(UnitedByStrips, JoiningTheStripsKeepsEachHoleWithItsOwnOuter) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> centre(0, 60e6);
+  auto circle = [](double cx, double cy, double r, bool hole) {
+    Path p;
+    for (int k = 0; k < 48; ++k) {
+      const double a = (hole ? -2 : 2) * M_PI * k / 48;
+      p.emplace_back(static_cast<ClipperLib::cInt>(cx + r * std::cos(a)),
+                     static_cast<ClipperLib::cInt>(cy + r * std::sin(a)));
+    }
+    return p;
+  };
+  std::vector<Paths> pieces;
+  Paths all;
+  size_t vertices = 0;
+  while (vertices < 40000) {  // many strips (1 000 vertices each)
+    const double cx = centre(rng), cy = centre(rng);
+    pieces.push_back({circle(cx, cy, 1.5e6, false), circle(cx, cy, 1.0e6, true)});
+    pieces.push_back({circle(cx, cy, 0.7e6, false), circle(cx, cy, 0.3e6, true)});
+    for (const Paths& p : {pieces[pieces.size() - 2], pieces.back()})
+      all.insert(all.end(), p.begin(), p.end());
+    vertices += 4 * 48;
+  }
+  const Paths expected = union_of(all);
+  const Paths joined = united_by_strips(pieces, union_of);
+  auto count = [](const Paths& paths, bool outer) {
+    size_t n = 0;
+    for (const Path& p : paths) n += ClipperLib::Orientation(p) == outer ? 1 : 0;
+    return n;
+  };
+  const double area = signed_area(expected);
+  ASSERT_GT(area, 1e14);
+  ASSERT_GT(count(expected, false), 100u);  // many holes, some of them islands' holes
+  EXPECT_NEAR(signed_area(joined), area, 1e-9 * area);
+  EXPECT_LT(std::fabs(signed_area(difference_of(joined, expected))), 1e-9 * area);
+  EXPECT_LT(std::fabs(signed_area(difference_of(expected, joined))), 1e-9 * area);
+  EXPECT_EQ(count(joined, true), count(expected, true));
+  EXPECT_EQ(count(joined, false), count(expected, false));
+}
+
 // Rings (an outer and its hole) over a field, grown island by island in strips: the same
 // region as Clipper's own offset of all of them at once, every hole kept.
 TEST(OffsetClosed, GrowingManyIslandsInStripsGivesClippersOwnOffset) {
