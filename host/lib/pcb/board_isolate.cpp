@@ -4,7 +4,7 @@
 #include <fmt/format.h>  // fmt::format
 
 #include <algorithm>  // std::min, std::max, std::stable_sort
-#include <cmath>      // std::floor
+#include <cmath>      // std::ceil
 #include <stdexcept>  // std::invalid_argument
 
 #include "host/lib/pcb/pcb_geometry.h"
@@ -35,16 +35,23 @@ double polyline_length(const std::vector<Point2>& p, bool closed) {
 
 namespace {
 
+// The largest whole micrometre below mm (mm itself excluded).
+double micrometre_below(double mm) {
+  return (std::ceil(mm * 1000 - 1e-6) - 1) / 1000;
+}
+
 // What to do, with the widest tool that passes the narrowest gap with its clearance (to the
-// micrometre below): the user need not guess it (example_board: 0.057 mm -> 0.041 mm); and,
+// micrometre below, and with kNarrowGapRoomNm to spare: a tool exactly as wide was refused
+// in its turn): the user need not guess it (example_board: 0.057 mm -> 0.041 mm); and,
 // where the tool itself fits the gap, the clearance that passes with this tool.
 std::string narrow_gap_advice(const std::vector<NarrowGap>& gaps, const IsolationOptions& io) {
   double narrowest_mm = gaps.front().gap_mm;
   for (const NarrowGap& g : gaps) narrowest_mm = std::min(narrowest_mm, g.gap_mm);
   const double clearance_mm = std::max(0.0, io.clearance_mm);
-  const double fits_mm = std::floor((narrowest_mm - 2 * clearance_mm) * 1000 + 1e-6) / 1000;
+  const double room_mm = kNarrowGapRoomNm / kNmPerMm;
+  const double fits_mm = micrometre_below(narrowest_mm - 2 * clearance_mm - room_mm);
   const double clearance_fits_mm =
-      std::floor((narrowest_mm - io.tool_width_mm) / 2 * 1000 + 1e-6) / 1000;
+      micrometre_below((narrowest_mm - io.tool_width_mm - room_mm) / 2);
   // A sentence of its own after either advice.
   const std::string smaller_clearance =
       clearance_fits_mm >= 0 && clearance_fits_mm < clearance_mm
@@ -96,7 +103,7 @@ std::vector<Trace> isolate(const BoardLayers& layers, const PcbLayer* copper,
                     iso_result.empty_holes_skipped == 1 ? "it" : "them"));
   if (!rep.narrow_gaps.empty() && !o.allow_narrow_gaps) {
     std::string msg = fmt::format(
-        "{}: {} where the copper is closer than the tool width {} mm plus its "
+        "{}: {} where the copper is no farther apart than the tool width {} mm plus its "
         "clearance, so the tool cannot separate the islands:",
         copper->path, counted(rep.narrow_gaps.size(), "place"), mm_text(io.tool_width_mm));
     // The narrowest first (outside tester 21: the 20 listed of 105 were in island order, and

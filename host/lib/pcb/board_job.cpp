@@ -104,9 +104,13 @@ std::string mm_text(double mm) {
 
 std::string describe_gap(const NarrowGap& g, const IsolationOptions& o) {
   const double need_mm = o.tool_width_mm + 2 * std::max(0.0, o.clearance_mm);
-  // Enough digits that the gap and the need differ as printed (the gap is narrower).
+  // Enough digits that the gap and the need differ as printed (the gap is narrower); a gap
+  // as wide as the need (to kNarrowGapRoomNm) is said to be so.
+  const bool narrower = g.gap_mm < need_mm - 1e-7;
   int d = mm_decimals(need_mm);
-  while (d < 9 && fmt::format("{:.{}f}", g.gap_mm, d) == fmt::format("{:.{}f}", need_mm, d)) ++d;
+  while (narrower && d < 9 &&
+         fmt::format("{:.{}f}", g.gap_mm, d) == fmt::format("{:.{}f}", need_mm, d))
+    ++d;
   const std::string need =
       o.clearance_mm > 0 ? fmt::format("{:.{}f} mm (tool {} mm + 2 x {} mm clearance)", need_mm, d,
                                        mm_text(o.tool_width_mm), mm_text(o.clearance_mm))
@@ -114,8 +118,10 @@ std::string describe_gap(const NarrowGap& g, const IsolationOptions& o) {
   // In the files' frame, as the EDA tool shows the board (the isolation check's places are
   // the machine's: each says which).
   return fmt::format(
-      "gap {:.{}f} mm < {} between islands {} and {} at ({:.3f}, {:.3f}) mm in the files", g.gap_mm,
-      d, need, g.island_a, g.island_b, g.at.x / kNmPerMm, g.at.y / kNmPerMm);
+      "gap {:.{}f} mm {} {}{} between islands {} and {} at ({:.3f}, {:.3f}) mm in "
+      "the files",
+      g.gap_mm, d, narrower ? "<" : "=", need, narrower ? "" : ", no room to spare,", g.island_a,
+      g.island_b, g.at.x / kNmPerMm, g.at.y / kNmPerMm);
 }
 
 std::string tool_label(const char* what, double diameter_mm) {

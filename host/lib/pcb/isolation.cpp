@@ -418,7 +418,7 @@ IsolationResult plan_isolation(const std::vector<Island>& islands, const Isolati
   const double arc_tol_nm = o.arc_tolerance_mm * kNmPerMm;
   r.tool_radius_mm = o.tool_width_mm / 2;
   r.islands = islands.size();
-  r.narrow_gaps = find_narrow_gaps(islands, radius_nm, arc_tol_nm);
+  r.narrow_gaps = find_narrow_gaps(islands, radius_nm + kNarrowGapRoomNm / 2, arc_tol_nm);
   if (islands.empty()) return r;
 
   if (o.clearing_tool_width_mm > 0) {

@@ -74,6 +74,11 @@ IsolationResult plan_isolation(const ClipperLib::Paths& copper_nm, const Isolati
 // contours and the clearing rings all start from them.
 IsolationResult plan_isolation(const std::vector<Island>& islands, const IsolationOptions& o);
 
+// How much wider than the tool plus twice its clearance a gap must be (nm): where the two
+// islands' clearances only touch, they are united into one contour round both, and the
+// tool cannot separate them (two pads' flat sides exactly that far apart).
+const double kNarrowGapRoomNm = 20;
+
 // Islands (copper_islands()) whose tool clearances (copper grown by radius_nm) overlap: the
 // narrow gaps.
 std::vector<NarrowGap> find_narrow_gaps(const std::vector<Island>& islands, double radius_nm,

@@ -474,6 +474,40 @@ TEST(BoardOptionRanges, TheNarrowGapRefusalNamesTheClearanceThatPasses) {
   EXPECT_EQ(wide.err.find("lower the clearance"), std::string::npos) << wide.err;
 }
 
+// Two pads whose flat sides are exactly the tool plus twice its clearance apart: their
+// clearances touch and become one contour round both, so the tool cannot separate them. That
+// was no narrow gap ("0 narrow gaps", then the check failed with a pair not separated, and
+// the refusal's advice for a wider gap named that very tool); it is refused as one, with no
+// room to spare, and the tool it advises passes.
+TEST(BoardOptionRanges, AGapExactlyAsWideAsTheToolAndItsClearanceIsNarrow) {
+  const std::string dir = testing::TempDir() + "/" + std::to_string(getpid()) + "-opt-flat";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/flat-F.Cu.gbr")  // 2 mm squares, their sides 0.200 mm apart
+      << "%FSLAX46Y46*%\n%MOMM*%\n%TF.FileFunction,Copper,L1,Top*%\n%ADD10R,2.000000X2.000000*%\n"
+         "D10*\nX10000000Y10000000D03*\nX12200000Y10000000D03*\nM02*\n";
+  const std::string board = "board " + dir + " --no-plot -o " + dir + "/out --tool-width ";
+  const ToolRun r = run(board + "0.184");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("1 place where the copper is no farther apart than the tool width "
+                       "0.184 mm plus its clearance"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("gap 0.200 mm = 0.200 mm (tool 0.184 mm + 2 x 0.008 mm clearance), no "
+                       "room to spare, between islands 0 and 1 at (11.100, 10.000) mm"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("--tool-width 0.183 passes every gap"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--clearance 0.007 passes every gap"), std::string::npos) << r.err;
+  const ToolRun advised = run(board + "0.183");
+  EXPECT_EQ(advised.code, 0) << advised.err;
+  EXPECT_NE(advised.out.find("check: passed"), std::string::npos) << advised.out;
+  EXPECT_EQ(run(board + "0.184 --clearance 0.007").code, 0);
+  // Planned anyway, the pair the tool cannot separate is the gap allowed.
+  const ToolRun allowed = run(board + "0.184 --allow-narrow-gaps");
+  EXPECT_EQ(allowed.code, 0) << allowed.err;
+  EXPECT_NE(allowed.out.find("1 narrow gap"), std::string::npos) << allowed.out;
+}
+
 // --surface was read after the job was planned (a user waited for the plan to hear of a
 // typo) and in words of its own: it is read with the command line, as every option is.
 TEST(BoardOptionRanges, TheSurfaceIsCheckedBeforePlanningInTheOptionsWords) {
