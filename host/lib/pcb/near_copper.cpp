@@ -105,6 +105,13 @@ class EdgeGrid {
           if (std::max(e.ax, e.bx) < x0 || std::min(e.ax, e.bx) > x1 || std::max(e.ay, e.by) < y0 ||
               std::min(e.ay, e.by) > y1)
             continue;
+          // Both ends beyond reach of the edge's line, on one side of it: so is the whole
+          // segment (a long edge lies in many cells, and a tool path runs along it).
+          const double ex = e.bx - e.ax, ey = e.by - e.ay;
+          const double ca = ex * (s.ay - e.ay) - ey * (s.ax - e.ax);
+          const double cb = ex * (s.by - e.ay) - ey * (s.bx - e.ax);
+          const double beyond = r2 * (ex * ex + ey * ey);
+          if ((ca > 0) == (cb > 0) && ca * ca > beyond && cb * cb > beyond) continue;
           if (dist2_seg_seg(s, e) < r2) {
             *last = edge_of_[i];
             return true;
