@@ -65,8 +65,9 @@ std::string narrow_gap_advice(const std::vector<NarrowGap>& gaps, const Isolatio
   if (fits_mm < defaults::kToolWidthRangeMm.min)
     return "Plan anyway (--allow-narrow-gaps: the copper at those gaps stays joined); no tool of "
            "at least " +
-           fmt::format("{:g} mm passes the narrowest gap ({:.3f} mm).{}",
-                       defaults::kToolWidthRangeMm.min, narrowest_mm, smaller_clearance);
+           fmt::format("{:g} mm passes the narrowest gap ({:.3f} mm) with 2 x {} mm clearance.{}",
+                       defaults::kToolWidthRangeMm.min, narrowest_mm, mm_text(clearance_mm),
+                       smaller_clearance);
   return fmt::format(
       "Use a narrower tool: --tool-width {:.3f} passes every gap (the narrowest, {:.3f} mm, less "
       "2 x {} mm clearance), or plan anyway (--allow-narrow-gaps: the copper at "
@@ -103,8 +104,8 @@ std::vector<Trace> isolate(const BoardLayers& layers, const PcbLayer* copper,
                     iso_result.empty_holes_skipped == 1 ? "it" : "them"));
   if (!rep.narrow_gaps.empty() && !o.allow_narrow_gaps) {
     std::string msg = fmt::format(
-        "{}: {} where the copper is no farther apart than the tool width {} mm plus its "
-        "clearance, so the tool cannot separate the islands:",
+        "{}: {} where the copper is no farther apart than the tool width {} mm plus twice its "
+        "clearance, so the tool cannot pass between the islands with that room:",
         copper->path, counted(rep.narrow_gaps.size(), "place"), mm_text(io.tool_width_mm));
     // The narrowest first (outside tester 21: the 20 listed of 105 were in island order, and
     // none was the gap the advice below quotes); the report keeps island order.

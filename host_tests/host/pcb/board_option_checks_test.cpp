@@ -489,7 +489,8 @@ TEST(BoardOptionRanges, AGapExactlyAsWideAsTheToolAndItsClearanceIsNarrow) {
   const ToolRun r = run(board + "0.184");
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("1 place where the copper is no farther apart than the tool width "
-                       "0.184 mm plus its clearance"),
+                       "0.184 mm plus twice its clearance, so the tool cannot pass between the "
+                       "islands with that room:"),
             std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("gap 0.200 mm = 0.200 mm (tool 0.184 mm + 2 x 0.008 mm clearance), no "
