@@ -35,6 +35,14 @@ void BoxNm::add(const Path& path) {
   for (const IntPoint& p : path) add(p);
 }
 
+size_t root_of(std::vector<size_t>* parent, size_t k) {
+  while ((*parent)[k] != k) {
+    (*parent)[k] = (*parent)[(*parent)[k]];
+    k = (*parent)[k];
+  }
+  return k;
+}
+
 BoxNm box_of(const Paths& paths) {
   BoxNm b;
   for (const Path& p : paths) b.add(p);
@@ -277,11 +285,6 @@ void add_polygons(Paths&& result, size_t strip, std::vector<Polygon>* out) {
   }
 }
 
-size_t root_of(std::vector<size_t>& parent, size_t i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
-
 // The strips' results as one union. Only the polygons that meet a polygon of another strip
 // (by their boxes, touching included) go through a union again, each group of them on its
 // own: one union of everything swept the whole board's width at every scan beam, and the
@@ -298,13 +301,13 @@ Paths joined_strips(std::vector<Paths> strips) {
     for (size_t j = i + 1; j < by_x.size() && polygons[by_x[j]].box.min_x <= a.box.max_x; ++j) {
       const Polygon& b = polygons[by_x[j]];
       if (b.strip != a.strip && b.box.overlaps(a.box))
-        parent[root_of(parent, by_x[j])] = root_of(parent, by_x[i]);
+        parent[root_of(&parent, by_x[j])] = root_of(&parent, by_x[i]);
     }
   }
   std::vector<Paths> groups(polygons.size());
   std::vector<size_t> members(polygons.size(), 0);
   for (size_t i = 0; i < polygons.size(); ++i) {
-    const size_t r = root_of(parent, i);
+    const size_t r = root_of(&parent, i);
     ++members[r];
     groups[r].insert(groups[r].end(), std::make_move_iterator(polygons[i].paths.begin()),
                      std::make_move_iterator(polygons[i].paths.end()));

@@ -47,6 +47,9 @@ struct BoxNm {
   }
 };
 BoxNm box_of(const ClipperLib::Paths& paths);
+
+// Union-find: the root of k's set (parent[k] == k at a root), halving the path on the way.
+size_t root_of(std::vector<size_t>* parent, size_t k);
 // The box both boxes share (empty if they do not overlap).
 BoxNm common_box(const BoxNm& a, const BoxNm& b);
 

@@ -72,14 +72,6 @@ std::vector<SideStretch> stretches_on(const std::vector<StandingPiece>& pieces, 
   return out;
 }
 
-size_t root_of(std::vector<size_t>* parent, size_t k) {
-  while ((*parent)[k] != k) {
-    (*parent)[k] = (*parent)[(*parent)[k]];
-    k = (*parent)[k];
-  }
-  return k;
-}
-
 }  // namespace
 
 std::vector<StandingPiece> pieces_of(const ClipperLib::PolyTree& tree) {
