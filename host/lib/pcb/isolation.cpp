@@ -30,6 +30,23 @@ Nearest nearest_on_segment(const IntPoint& x, const IntPoint& a, const IntPoint&
   return Nearest{std::sqrt(ex * ex + ey * ey), ax + t * dx, ay + t * dy};
 }
 
+// An edge of a path (from a vertex to the next).
+struct Edge {
+  IntPoint p, q;
+};
+
+// The edges of a closed path that reach into a box, appended to out.
+void add_edges_near(const Path& path, const BoxNm& box, std::vector<Edge>* out) {
+  for (size_t k = 0; k < path.size(); ++k) {
+    const IntPoint& p = path[k];
+    const IntPoint& q = path[(k + 1) % path.size()];
+    if (std::max(p.X, q.X) < box.min_x || std::min(p.X, q.X) > box.max_x ||
+        std::max(p.Y, q.Y) < box.min_y || std::min(p.Y, q.Y) > box.max_y)
+      continue;
+    out->push_back(Edge{p, q});
+  }
+}
+
 // The narrowest place between two islands near a box: their smallest vertex-to-edge
 // distance (nm) and where it is. The closest points of two islands whose clearances overlap
 // lie within the box, so only vertices inside it and edges that reach into it are compared
@@ -43,21 +60,9 @@ struct Narrowest {
 };
 Narrowest narrowest_place(const Paths& a, const Paths& b, const BoxNm& near) {
   const double kTieNm = 1000;
-  struct Edge {
-    IntPoint p, q;
-  };
   auto edges_near = [&](const Paths& paths) {
     std::vector<Edge> out;
-    for (const Path& path : paths) {
-      for (size_t k = 0; k < path.size(); ++k) {
-        const IntPoint& p = path[k];
-        const IntPoint& q = path[(k + 1) % path.size()];
-        if (std::max(p.X, q.X) < near.min_x || std::min(p.X, q.X) > near.max_x ||
-            std::max(p.Y, q.Y) < near.min_y || std::min(p.Y, q.Y) > near.max_y)
-          continue;
-        out.push_back(Edge{p, q});
-      }
-    }
+    for (const Path& path : paths) add_edges_near(path, near, &out);
     return out;
   };
   auto distance_to = [](const IntPoint& x, const std::vector<Edge>& edges) {
@@ -185,31 +190,21 @@ bool outers_apart(const Island& a, const Island& b, const BoxNm& near, double ap
     return false;
   if (b.box.contains(a.box) && ClipperLib::PointInPolygon(a.paths[0][0], b.paths[0]) != 0)
     return false;
-  auto edges_near = [&](const Path& path, std::vector<size_t>* out) {
-    for (size_t k = 0; k < path.size(); ++k) {
-      const IntPoint& p = path[k];
-      const IntPoint& q = path[(k + 1) % path.size()];
-      if (std::max(p.X, q.X) < near.min_x || std::min(p.X, q.X) > near.max_x ||
-          std::max(p.Y, q.Y) < near.min_y || std::min(p.Y, q.Y) > near.max_y)
-        continue;
-      out->push_back(k);
-    }
-  };
-  std::vector<size_t> ea, eb;
-  edges_near(a.paths[0], &ea);
-  edges_near(b.paths[0], &eb);
+  std::vector<Edge> ea, eb;
+  add_edges_near(a.paths[0], near, &ea);
+  add_edges_near(b.paths[0], near, &eb);
   if (ea.size() * eb.size() > 20000) return false;
-  auto apart = [&](const Path& u, const std::vector<size_t>& eu, const Path& v,
-                   const std::vector<size_t>& ev) {
-    for (const size_t i : eu) {
-      for (const IntPoint& x : {u[i], u[(i + 1) % u.size()]}) {
-        for (const size_t k : ev)
-          if (nearest_on_segment(x, v[k], v[(k + 1) % v.size()]).distance < apart_nm) return false;
+  // Each edge's ends against the other's edges.
+  auto apart = [&](const std::vector<Edge>& eu, const std::vector<Edge>& ev) {
+    for (const Edge& u : eu) {
+      for (const IntPoint& x : {u.p, u.q}) {
+        for (const Edge& v : ev)
+          if (nearest_on_segment(x, v.p, v.q).distance < apart_nm) return false;
       }
     }
     return true;
   };
-  return apart(a.paths[0], ea, b.paths[0], eb) && apart(b.paths[0], eb, a.paths[0], ea);
+  return apart(ea, eb) && apart(eb, ea);
 }
 
 }  // namespace
