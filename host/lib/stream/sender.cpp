@@ -443,26 +443,41 @@ proto::SessionReply Sender::open_session() {
   return session_.reply;
 }
 
-proto::StatusReply Sender::read_status() {
-  for (int attempt = 0; attempt < 5; ++attempt) {
-    have_status_ = false;
-    query_status();
-    const auto deadline = now() + options_.reply_timeout;
-    while (!have_status_ && now() < deadline) pump(milliseconds(5));
-    if (have_status_) return last_status_;
+// A request sent again each reply timeout until `answered`. It fails (the reason returned,
+// empty on success) once nothing at all was heard for the silence limit, counted from the
+// request at the earliest: the link is dead, as a stream judges it; or when the controller,
+// still talking, left 5 tries unanswered.
+std::string Sender::request(const std::function<void()>& send, const bool& answered,
+                            const char* what) {
+  const auto asked = now();
+  for (int unanswered = 0;;) {
+    const auto sent = now();
+    send();
+    while (!answered && now() - sent < options_.reply_timeout) pump(milliseconds(5));
+    if (answered) return {};
+    if (now() - std::max(last_reply_, asked) >= options_.silence_limit) {
+      return fmt::format("{}: no reply for {} ms", link_.name(), options_.silence_limit.count());
+    }
+    if (last_reply_ >= sent && ++unanswered == 5) {
+      return fmt::format("{}: no {} from the controller", link_.name(), what);
+    }
   }
-  throw LinkError(fmt::format("{}: no status reply from the controller", link_.name()));
+}
+
+proto::StatusReply Sender::read_status() {
+  have_status_ = false;
+  const std::string failed = request([this] { query_status(); }, have_status_, "status reply");
+  if (!failed.empty()) throw LinkError(failed);
+  return last_status_;
 }
 
 proto::ProbeResultReply Sender::read_probe_result() {
-  for (int attempt = 0; attempt < 5; ++attempt) {
-    have_probe_ = false;
-    send_frame(proto::kCmdProbeResult, session_.status_seq++, {});
-    const auto deadline = now() + options_.reply_timeout;
-    while (!have_probe_ && now() < deadline) pump(milliseconds(5));
-    if (have_probe_) return last_probe_;
-  }
-  throw LinkError(fmt::format("{}: no probe result from the controller", link_.name()));
+  have_probe_ = false;
+  const std::string failed =
+      request([this] { send_frame(proto::kCmdProbeResult, session_.status_seq++, {}); },
+              have_probe_, "probe result");
+  if (!failed.empty()) throw LinkError(failed);
+  return last_probe_;
 }
 
 proto::StatusReply Sender::read_status_at_rest(milliseconds limit) {
@@ -497,13 +512,12 @@ bool Sender::set_override(int percent) {
 
 // Starts manual zeroing if the machine is not zeroed and waits for the operator's confirm.
 bool Sender::ensure_zeroed(const std::function<void(const Progress&)>& on_progress) {
-  query_status();
-  const auto deadline = now() + options_.reply_timeout;
-  while (!have_status_ && now() < deadline) pump(milliseconds(5));
-  if (!have_status_) {
+  have_status_ = false;
+  std::string failed = request([this] { query_status(); }, have_status_, "status reply");
+  if (!failed.empty()) {
     failed_ = true;
     failure_ = JobOutcome::kLinkLost;
-    message_ = "no status reply from the controller";
+    message_ = std::move(failed);
     return false;
   }
   if ((last_status_.flags & proto::kStatusZeroed) || !options_.zero_first) return true;
