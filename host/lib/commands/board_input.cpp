@@ -20,6 +20,18 @@ namespace host::commands {
 
 namespace {
 
+// Where a Gerber's X2 file function is looked for: its head, or when the head is all
+// comments and other attributes without one, the whole file (a long licence or a tool's
+// settings may come first).
+std::string x2_header_text(const std::string& path, const std::string& head) {
+  std::string text;
+  if (head.find("FileFunction") != std::string::npos || head.size() < 4096 ||
+      read_file_text(path, &text) != FileRead::kOk) {
+    return head;
+  }
+  return text;
+}
+
 using pcb::LayerKind;
 using pcb::PcbLayer;
 
@@ -207,9 +219,10 @@ BoardFiles read_board_files(const std::string& input, const std::string& side_as
     if (directory && pcb::pcb_file_format(f, head) == pcb::PcbFileFormat::kGerber) {
       // The file's own X2 file function first, then the table of usual names. A layer no job
       // cuts is left out saying what it is (an X2 Legend named .GTL is not copper).
-      LayerKind named = pcb::layer_kind_from_x2(head);
+      const std::string x2 = x2_header_text(f, head);
+      LayerKind named = pcb::layer_kind_from_x2(x2);
       how = "its X2 file function";
-      std::string other = pcb::other_layer_from_x2(head);
+      std::string other = pcb::other_layer_from_x2(x2);
       if (named == LayerKind::kUnknown && other.empty()) {
         named = pcb::layer_kind_from_file_name(f);
         how = "its name";

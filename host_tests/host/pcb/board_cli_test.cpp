@@ -702,6 +702,26 @@ TEST(BoardCli, AFoldersFilesSayWhatTheyWereTakenFor) {
   EXPECT_NE(r.err.find("t-PTH.drl: taken as drill (from its name)"), std::string::npos) << r.err;
 }
 
+// The file function is read wherever the header puts it: after 6 KiB of comments (a long
+// licence or a tool's settings) it still says top copper (outside tester: only the first
+// 4 KiB were looked at, and the file was left out for a name that says nothing).
+TEST(BoardCli, AnX2FileFunctionAfterALongHeaderIsRead) {
+  const std::string dir = write_board("late-x2");
+  std::string top = kTopCopper;
+  std::string comments;
+  while (comments.size() < 6 * 1024) comments += "G04 a long header comment line, settings*\n";
+  top.replace(top.find("%EXTRA%"), 7, "");
+  top.replace(top.find("%TF.FileFunction"), 0, comments);
+  std::filesystem::remove(dir + "/t-F.Cu.gbr");
+  std::ofstream(dir + "/copper-layer-1.gbr") << top;
+  const ToolRun r = run("board " + dir + " -o " + dir + "/out --json --no-plot");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["side"], "top");
+  EXPECT_NE(r.err.find("copper-layer-1.gbr: taken as copper top (from its X2 file function)"),
+            std::string::npos)
+      << r.err;
+}
+
 // A bottom-side job's outputs are named after the bottom copper, not the first file given.
 TEST(BoardCli, ABottomJobIsNamedAfterItsBottomCopper) {
   const std::string dir = write_board("bottom-name");
