@@ -20,6 +20,17 @@
 
 namespace host::commands {
 
+nlohmann::json narrow_gaps_json(const std::vector<pcb::NarrowGap>& gaps) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const pcb::NarrowGap& g : gaps) {
+    j.push_back({{"x_mm", g.at.x / pcb::kNmPerMm},
+                 {"y_mm", g.at.y / pcb::kNmPerMm},
+                 {"gap_mm", g.gap_mm},
+                 {"islands", {g.island_a, g.island_b}}});
+  }
+  return j;
+}
+
 namespace {
 
 using pcb::LayerKind;
@@ -40,13 +51,7 @@ nlohmann::json plan_report_json(const pcb::BoardJob& job, const pcb::BoardOption
   j["side"] = o.side == pcb::BoardSide::kBottom ? "bottom" : "top";
   j["first_tool"] = r.first_tool;
   j["islands"] = r.islands;
-  j["narrow_gaps"] = nlohmann::json::array();
-  for (const pcb::NarrowGap& g : r.narrow_gaps) {
-    j["narrow_gaps"].push_back({{"x_mm", g.at.x / pcb::kNmPerMm},
-                                {"y_mm", g.at.y / pcb::kNmPerMm},
-                                {"gap_mm", g.gap_mm},
-                                {"islands", {g.island_a, g.island_b}}});
-  }
+  j["narrow_gaps"] = narrow_gaps_json(r.narrow_gaps);
   j["isolation_contours"] = r.isolation_contours;
   j["isolation_length_mm"] = r.isolation_length_mm;
   j["isolation_vertices"] = r.isolation_vertices;

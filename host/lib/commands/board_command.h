@@ -66,6 +66,9 @@ BoardFiles read_board_command_files(const BoardCommandOptions& o, const CommandL
 BoardResult plan_board_command(const BoardCommandOptions& o, const CommandLog& log);
 // Stage 2: the planned isolation checked against the copper (o.check), the bytes measured.
 void check_board(const BoardCommandOptions& o, BoardResult* r, const CommandLog& log);
+// A plan's narrow gaps for a report (`board`'s and `run`'s): each place (in the files'
+// frame), width and pair of islands.
+nlohmann::json narrow_gaps_json(const std::vector<pcb::NarrowGap>& gaps);
 // Stage 3: the report as JSON and as the lines `board` prints.
 nlohmann::json board_report_json(const BoardCommandOptions& o, const BoardResult& r);
 std::string board_report_text(const BoardCommandOptions& o, const BoardResult& r);

@@ -9,6 +9,7 @@
 #include <fstream>     // std::ofstream
 #include <memory>      // std::shared_ptr
 
+#include "host/lib/commands/board_command.h"  // narrow_gaps_json
 #include "host/lib/commands/exit_codes.h"
 #include "host/lib/commands/send_command.h"      // exit_code_of
 #include "host/lib/heightmap/controller_map.h"   // job_map_commands
@@ -309,6 +310,7 @@ nlohmann::json run_report_json(const JobPlan& plan, const RunOptions& o, const R
     // As `board` reports them: why there is no cut-out, what the planner left out.
     j["no_cutout"] = o.board->job->report.no_cutout;
     j["notes"] = o.board->job->report.notes;
+    j["narrow_gaps"] = narrow_gaps_json(o.board->job->report.narrow_gaps);
   }
   if (o.flip) {
     j["flip"] = flip_json(*o.flip);

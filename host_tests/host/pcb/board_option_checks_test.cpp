@@ -507,6 +507,19 @@ TEST(BoardOptionRanges, AGapExactlyAsWideAsTheToolAndItsClearanceIsNarrow) {
   const ToolRun allowed = run(board + "0.184 --allow-narrow-gaps");
   EXPECT_EQ(allowed.code, 0) << allowed.err;
   EXPECT_NE(allowed.out.find("1 narrow gap"), std::string::npos) << allowed.out;
+  // `run`'s report lists the gaps it was allowed as `board`'s does (it printed them only).
+  const ToolRun ran =
+      run("run " + dir + " -o " + dir + "/run --tool-width 0.184 --allow-narrow-gaps");
+  ASSERT_EQ(ran.code, 0) << ran.err;
+  const std::string name = std::filesystem::path(dir).filename().string();
+  const auto report = [](const std::string& path) {
+    return nlohmann::json::parse(std::ifstream(path));
+  };
+  const nlohmann::json gaps = report(dir + "/run/" + name + ".json")["narrow_gaps"];
+  ASSERT_EQ(gaps.size(), 1u) << gaps.dump();
+  EXPECT_EQ(gaps, report(dir + "/out/" + name + ".board.json")["narrow_gaps"]);
+  EXPECT_EQ(gaps[0]["islands"], nlohmann::json::array({0, 1}));
+  EXPECT_NEAR(gaps[0]["x_mm"].get<double>(), 11.1, 1e-6);
 }
 
 // --surface was read after the job was planned (a user waited for the plan to hear of a
