@@ -211,19 +211,31 @@ bool outers_apart(const Island& a, const Island& b, const BoxNm& near, double ap
 
 std::vector<NarrowGap> find_narrow_gaps(const std::vector<Island>& islands, double radius_nm,
                                         double arc_tolerance_nm) {
+  // Each outer boundary grown by the radius, made only for the pairs whose outers come near
+  // (most never do); its box is the outer's grown by the radius and Clipper's rounding.
   struct Grown {
     Paths paths;
+    bool made = false;
     BoxNm box;
     size_t index;
   };
   std::vector<Grown> grown;
+  const cInt box_margin = static_cast<cInt>(std::ceil(radius_nm)) + 1;
   for (size_t i = 0; i < islands.size(); ++i) {
     Grown g;
-    g.paths = offset_closed(Paths{islands[i].paths[0]}, radius_nm, arc_tolerance_nm);
-    g.box = box_of(g.paths);
+    g.box.add(islands[i].paths[0]);
+    g.box.min_x -= box_margin, g.box.min_y -= box_margin;
+    g.box.max_x += box_margin, g.box.max_y += box_margin;
     g.index = i;
     grown.push_back(g);
   }
+  auto grown_outer = [&](Grown& g) -> const Paths& {
+    if (!g.made) {
+      g.paths = offset_closed(Paths{islands[g.index].paths[0]}, radius_nm, arc_tolerance_nm);
+      g.made = true;
+    }
+    return g.paths;
+  };
   std::sort(grown.begin(), grown.end(),
             [](const Grown& a, const Grown& b) { return a.box.min_x < b.box.min_x; });
   // An island with its holes grown, seen through a box: only copper within 2r of the box can
@@ -253,8 +265,8 @@ std::vector<NarrowGap> find_narrow_gaps(const std::vector<Island>& islands, doub
       reach.min_x -= r, reach.min_y -= r, reach.max_x += r, reach.max_y += r;
       // 2 nm more: Clipper rounds the grown vertices to the nanometre.
       if (outers_apart(a, b, reach, 2 * radius_nm + 2)) continue;
-      if (std::fabs(signed_area(intersection_of(clip_to_box(grown[i].paths, common),
-                                                clip_to_box(grown[j].paths, common)))) <
+      if (std::fabs(signed_area(intersection_of(clip_to_box(grown_outer(grown[i]), common),
+                                                clip_to_box(grown_outer(grown[j]), common)))) <
           kMinOverlapAreaNm2)
         continue;
       const Paths both = intersection_of(grown_full_in(grown[i].index, common),
