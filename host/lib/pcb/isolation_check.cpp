@@ -67,12 +67,13 @@ Path without_collinear(const Path& p, double near_nm) {
     const IntPoint& a = out.back();
     const IntPoint& b = p[i + 1];
     const double dx = static_cast<double>(b.X - a.X), dy = static_cast<double>(b.Y - a.Y);
-    const double len = std::sqrt(dx * dx + dy * dy);
+    const double len2 = dx * dx + dy * dy, len = std::sqrt(len2);
+    const double near_cross = near_nm * len;  // |cross| / len <= near_nm, without a division
     bool ok = len > 0 && i + 1 - first_skipped <= kRun;
     for (size_t k = first_skipped; ok && k <= i; ++k) {
       const double ex = static_cast<double>(p[k].X - a.X), ey = static_cast<double>(p[k].Y - a.Y);
-      const double t = (ex * dx + ey * dy) / (len * len);
-      ok = t >= 0 && t <= 1 && std::fabs(ex * dy - ey * dx) / len <= near_nm;
+      const double along = ex * dx + ey * dy;
+      ok = along >= 0 && along <= len2 && std::fabs(ex * dy - ey * dx) <= near_cross;
     }
     if (!ok) {
       out.push_back(p[i]);
