@@ -196,7 +196,8 @@ heightmap::HeightMap probe_for_job(Sender& sender, const JobPlan& plan, const He
   } catch (const heightmap::GridError& e) {
     throw CommandFailure(kExitUsage, std::string("probe grid: ") + e.what());
   } catch (const heightmap::ProbeFailed& e) {
-    throw CommandFailure(kExitProbeRefusedByController, e.what());
+    // A touch that ended because the link went silent is a lost link, as for a job.
+    throw CommandFailure(e.link_lost() ? kExitLinkLost : kExitProbeRefusedByController, e.what());
   } catch (const heightmap::ProbeRefused& e) {
     throw CommandFailure(kExitJobFailed, std::string("probing refused: ") + e.what());
   } catch (const heightmap::HeightMapError& e) {

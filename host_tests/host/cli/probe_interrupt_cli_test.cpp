@@ -8,12 +8,14 @@
 
 #include <chrono>      // steady_clock
 #include <filesystem>  // temp paths
+#include <functional>  // std::function
 #include <string>      // std::string
 #include <thread>      // sleep_for
 #include <vector>      // std::vector
 
 #include "host/lib/plan/job_plan.h"  // defaults::kZUpMm
 #include "host/lib/sim/sim_server.h"
+#include "host_tests/host/freezing_proxy.h"
 
 extern char** environ;
 
@@ -42,8 +44,12 @@ struct Interrupted {
   double tool_z_mm = -9;
 };
 
-// `args` after the command name: the input, then its options; "TO" becomes the machine.
-Interrupted interrupt_first_descent(std::vector<std::string> args, int sig) {
+// `args` after the command name: the input, then its options; "TO" becomes the machine,
+// reached through a proxy. `interrupt` acts in the middle of the first descent (a signal, a
+// frozen link).
+Interrupted interrupt_first_descent(
+    std::vector<std::string> args,
+    const std::function<void(pid_t, host::test::FreezingProxy&)>& interrupt, double limit_s = 10) {
   host::sim::SimOptions o;
   o.surface_um = [](int32_t, int32_t) { return 0; };  // a flat blank at Z 0
   host::sim::SimMachine machine(o);
@@ -53,8 +59,9 @@ Interrupted interrupt_first_descent(std::vector<std::string> args, int sig) {
   host::sim::SimServer server(machine, so);
   std::atomic<bool> stop{false};
   std::thread serving([&] { server.run(stop); });
+  host::test::FreezingProxy proxy(server.port());
   for (std::string& a : args)
-    if (a == "TO") a = "tcp://127.0.0.1:" + std::to_string(server.port());
+    if (a == "TO") a = proxy.address();
   args.insert(args.begin(), ENGRAVER_EXE);
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
@@ -71,15 +78,20 @@ Interrupted interrupt_first_descent(std::vector<std::string> args, int sig) {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   EXPECT_TRUE(descending);
-  kill(pid, sig);
+  interrupt(pid, proxy);
   const auto interrupted = Clock::now();
-  r.code = wait_exit(pid, 10);
+  r.code = wait_exit(pid, limit_s);
   r.took_s = std::chrono::duration<double>(Clock::now() - interrupted).count();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   r.tool_z_mm = machine.position().z_mm;
+  proxy.freeze(false);
   stop = true;
   serving.join();
   return r;
+}
+
+std::function<void(pid_t, host::test::FreezingProxy&)> signal(int sig) {
+  return [sig](pid_t pid, host::test::FreezingProxy&) { kill(pid, sig); };
 }
 
 std::string temp_map(const std::string& name) {
@@ -94,7 +106,7 @@ const std::string kWord = std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-
 TEST(ProbeCli, CtrlCStopsTheTouchAtOnceAndRaisesTheTool) {
   const std::string map = temp_map("probe_interrupt");
   const Interrupted r =
-      interrupt_first_descent({"probe", kWord, "--to", "TO", "--height-map", map}, SIGINT);
+      interrupt_first_descent({"probe", kWord, "--to", "TO", "--height-map", map}, signal(SIGINT));
   EXPECT_EQ(r.code, 5) << "-1: still probing 10 s after Ctrl-C";
   EXPECT_LT(r.took_s, 8.0);  // the stop, a new session and the lift, on a loaded PC
   EXPECT_FALSE(std::filesystem::exists(map)) << "no map from an interrupted grid";
@@ -106,11 +118,28 @@ TEST(ProbeCli, CtrlCStopsTheTouchAtOnceAndRaisesTheTool) {
 TEST(ProbeCli, SendProbeInterruptedRaisesTheToolAndExitsLikeProbe) {
   const std::string map = temp_map("send_probe_interrupt");
   const Interrupted r = interrupt_first_descent(
-      {"send", kWord, "--to", "TO", "--probe", "--height-map", map}, SIGTERM);
+      {"send", kWord, "--to", "TO", "--probe", "--height-map", map}, signal(SIGTERM));
   EXPECT_EQ(r.code, 5) << "-1: still probing 10 s after SIGTERM";
   EXPECT_LT(r.took_s, 8.0);
   EXPECT_FALSE(std::filesystem::exists(map)) << "no map from an interrupted grid";
   EXPECT_NEAR(r.tool_z_mm, host::defaults::kZUpMm, 0.01) << "the tool up";
+}
+
+// The link going silent in the middle of a touch (outside tester 24): after the silence
+// limit, 10 s, the link is lost, exit 6 as the guide gives it for `probe` and `send --probe`
+// (it was 5, "refused by the controller"), and no map is written.
+TEST(ProbeCli, ALinkSilentWhileProbingIsALostLinkExit6) {
+  for (const char* command : {"probe", "send"}) {
+    SCOPED_TRACE(command);
+    const std::string map = temp_map(std::string("probe_silent_") + command);
+    std::vector<std::string> args = {command, kWord, "--to", "TO", "--height-map", map};
+    if (std::string(command) == "send") args.push_back("--probe");
+    const Interrupted r = interrupt_first_descent(
+        args, [](pid_t, host::test::FreezingProxy& proxy) { proxy.freeze(true); }, 25);
+    EXPECT_EQ(r.code, 6) << "-1: still waiting 25 s after the link froze";
+    EXPECT_GE(r.took_s, 9.5);
+    EXPECT_FALSE(std::filesystem::exists(map));
+  }
 }
 
 }  // namespace
