@@ -20,15 +20,14 @@ namespace host::commands {
 
 namespace {
 
-// Where a Gerber's X2 file function is looked for: its head, or when the head is all
-// comments and other attributes without one, the whole file (a long licence or a tool's
-// settings may come first).
+// Where a Gerber's X2 file function is looked for: its head when the attribute is whole in
+// it (or the file is no longer), else the whole file (a long licence or a tool's settings
+// may come first, or the attribute straddle the head's end).
 std::string x2_header_text(const std::string& path, const std::string& head) {
+  const size_t at = head.find("FileFunction");
+  const bool whole = at != std::string::npos && head.find('*', at) != std::string::npos;
   std::string text;
-  if (head.find("FileFunction") != std::string::npos || head.size() < 4096 ||
-      read_file_text(path, &text) != FileRead::kOk) {
-    return head;
-  }
+  if (whole || head.size() < 4096 || read_file_text(path, &text) != FileRead::kOk) return head;
   return text;
 }
 
@@ -213,6 +212,7 @@ BoardFiles read_board_files(const std::string& input, const std::string& side_as
     // side's: reading the other was a fifth of a large board's planning time.
     const std::string head = directory ? pcb::read_file_head(f) : std::string();
     std::string how;  // what said which layer the file is
+    LayerKind forced = LayerKind::kUnknown;
     if (directory && pcb::pcb_file_format(f, head) == pcb::PcbFileFormat::kExcellon)
       how = pcb::pcb_file_format(f, "") == pcb::PcbFileFormat::kExcellon ? "its name"
                                                                          : "its content (M48)";
@@ -253,8 +253,11 @@ BoardFiles read_board_files(const std::string& input, const std::string& side_as
         b.notes.push_back(f + ": copper of the other side: not read for this job");
         continue;
       }
+      forced = named;
     }
-    PcbLayer l = read_layer(f, LayerKind::kUnknown);
+    // A folder's Gerber is read as what the note below says it was taken for (its reader
+    // would find the same, but for a file function after M02).
+    PcbLayer l = read_layer(f, directory ? forced : LayerKind::kUnknown);
     if (l.kind == LayerKind::kUnknown && !directory && files.size() == 1 && !b.side.empty() &&
         pcb::pcb_file_format(f) == pcb::PcbFileFormat::kGerber) {
       // "top:FILE" names the copper side of a file nothing else names (Eagle's .gbx).

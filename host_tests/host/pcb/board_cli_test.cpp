@@ -706,20 +706,30 @@ TEST(BoardCli, AFoldersFilesSayWhatTheyWereTakenFor) {
 // licence or a tool's settings) it still says top copper (outside tester: only the first
 // 4 KiB were looked at, and the file was left out for a name that says nothing).
 TEST(BoardCli, AnX2FileFunctionAfterALongHeaderIsRead) {
-  const std::string dir = write_board("late-x2");
   std::string top = kTopCopper;
-  std::string comments;
-  while (comments.size() < 6 * 1024) comments += "G04 a long header comment line, settings*\n";
   top.replace(top.find("%EXTRA%"), 7, "");
-  top.replace(top.find("%TF.FileFunction"), 0, comments);
-  std::filesystem::remove(dir + "/t-F.Cu.gbr");
-  std::ofstream(dir + "/copper-layer-1.gbr") << top;
-  const ToolRun r = run("board " + dir + " -o " + dir + "/out --json --no-plot");
-  ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(nlohmann::json::parse(r.out)["side"], "top");
-  EXPECT_NE(r.err.find("copper-layer-1.gbr: taken as copper top (from its X2 file function)"),
-            std::string::npos)
-      << r.err;
+  // Then 6 KiB, and so that the attribute straddles the first 4 KiB (outside tester 24: cut
+  // there, it was read as no file function, and a name that says bottom won).
+  const size_t at = top.find("%TF.FileFunction");
+  for (const size_t before : {size_t{6 * 1024}, size_t{4096 - 20}, size_t{4096 - 4}}) {
+    SCOPED_TRACE(before);
+    const std::string dir = write_board("late-x2-" + std::to_string(before));
+    std::string comments;
+    while (at + comments.size() < before) comments += "G04 a long header comment line*\n";
+    comments.resize(before - at - 2);
+    comments += "*\n";
+    std::string late = top;
+    late.replace(at, 0, comments);
+    ASSERT_EQ(late.find("%TF.FileFunction"), before);
+    std::filesystem::remove(dir + "/t-F.Cu.gbr");
+    std::ofstream(dir + "/copper-B.Cu.gbr") << late;  // the name says bottom
+    const ToolRun r = run("board " + dir + " -o " + dir + "/out --json --no-plot");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["side"], "top");
+    EXPECT_NE(r.err.find("copper-B.Cu.gbr: taken as copper top (from its X2 file function)"),
+              std::string::npos)
+        << r.err;
+  }
 }
 
 // A bottom-side job's outputs are named after the bottom copper, not the first file given.
