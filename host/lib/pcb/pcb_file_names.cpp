@@ -155,12 +155,12 @@ PcbFileFormat pcb_file_format(const std::string& path, const std::string& head_t
       ext == ".sol" || ext == ".tl" || ext == ".bl") {
     return PcbFileFormat::kGerber;
   }
-  // OrCAD's .drd is a drill drawing in Gerber (gerbv's orcad/rs232_cm.drd), EAGLE's Excellon.
-  if (ext == ".drd" && contains(head_text, "%FS") && !starts_like_excellon(head_text)) {
-    return PcbFileFormat::kGerber;
-  }
+  // A drill name usually holds Excellon; a Gerber in it is a drill drawing (OrCAD's .drd,
+  // gerbv's orcad/rs232_cm.drd; EAGLE's .drd is Excellon), read as what it is.
   if (ext == ".drl" || ext == ".xln" || ext == ".exc" || ext == ".drd") {
-    return PcbFileFormat::kExcellon;
+    return contains(head_text, "%FS") && !starts_like_excellon(head_text)
+               ? PcbFileFormat::kGerber
+               : PcbFileFormat::kExcellon;
   }
   if (contains(head_text, "%FS") || contains(head_text, "%MOMM") || contains(head_text, "%MOIN")) {
     return PcbFileFormat::kGerber;

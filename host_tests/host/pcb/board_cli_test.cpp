@@ -563,24 +563,31 @@ TEST(BoardCli, AFoldersTxtDrillFileIsRecognisedByItsContent) {
 
 // OrCAD's .drd is a drill drawing in Gerber: in a folder it is no drill file, and the
 // command says so (it was taken as the drill file: "0 holes (no drill file)", not a word why).
+// The same for a Gerber under any drill name (outside tester 24: a .drl holding Gerber refused
+// the whole folder, "unknown or unsupported command").
 TEST(BoardCli, AFoldersGerberDrdIsNotTakenAsTheDrillFile) {
-  const std::string dir = write_board("gerber-drd");
-  std::filesystem::remove(dir + "/t-PTH.drl");
-  std::ofstream(dir + "/t.drd")
-      << "*\n%MOIN*%\n%FSLAX34Y34*%\n%ADD10C,.01*%\nD10*\nX0Y0D03*\nM02*\n";
-  const ToolRun r = run("board " + dir + " -o " + dir + "/out --json --no-plot");
-  ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(nlohmann::json::parse(r.out)["holes"], 0);
-  EXPECT_NE(r.err.find("t.drd: holds Gerber, not Excellon: no drill file (left out)"),
-            std::string::npos)
-      << r.err;
-  EXPECT_EQ(r.err.find("t.drd: taken as drill"), std::string::npos) << r.err;
-  // Named as the drill file, it is refused, not read as a file without holes.
-  const ToolRun named = run("board --top " + dir + "/t-F.Cu.gbr --drill " + dir + "/t.drd -o " +
-                            dir + "/out --no-plot");
-  EXPECT_EQ(named.code, 2) << named.err;
-  EXPECT_NE(named.err.find("t.drd: holds Gerber, not Excellon: no drill file"), std::string::npos)
-      << named.err;
+  for (const char* name : {"t.drd", "holes.drl", "holes.xln", "holes.exc"}) {
+    SCOPED_TRACE(name);
+    const std::string dir = write_board(std::string("gerber-drill-") + name);
+    std::filesystem::remove(dir + "/t-PTH.drl");
+    std::ofstream(dir + "/" + name)
+        << "*\n%MOIN*%\n%FSLAX34Y34*%\n%ADD10C,.01*%\nD10*\nX0Y0D03*\nM02*\n";
+    const ToolRun r = run("board " + dir + " -o " + dir + "/out --json --no-plot");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["holes"], 0);
+    EXPECT_NE(
+        r.err.find(std::string(name) + ": holds Gerber, not Excellon: no drill file (left out)"),
+        std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find(std::string(name) + ": taken as drill"), std::string::npos) << r.err;
+    // Named as the drill file, it is refused, not read as a file without holes.
+    const ToolRun named = run("board --top " + dir + "/t-F.Cu.gbr --drill " + dir + "/" + name +
+                              " -o " + dir + "/out --no-plot");
+    EXPECT_EQ(named.code, 2) << named.err;
+    EXPECT_NE(named.err.find(std::string(name) + ": holds Gerber, not Excellon: no drill file"),
+              std::string::npos)
+        << named.err;
+  }
 }
 
 // A folder job whose copper is not recognised is not a success: planning its holes alone
