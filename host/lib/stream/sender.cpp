@@ -423,20 +423,21 @@ bool Sender::status_due(Clock::time_point last_poll) const {
 
 proto::SessionReply Sender::open_session() {
   session_.open = false;
-  for (int attempt = 0; attempt < 5 && !session_.open; ++attempt) {
-    session_.seq = static_cast<uint8_t>(session_.seq + 1);
-    proto::SessionCmd cmd{session_.version};
-    proto::Payload p;
-    proto::encode(cmd, &p);
-    send_frame(proto::kCmdSession, session_.seq, std::vector<uint8_t>(p.bytes, p.bytes + p.length));
+  // Again in an older version each time the controller names one (a few at most).
+  while (!session_.open) {
     session_.version_lowered = false;
-    const auto deadline = now() + options_.reply_timeout;
-    while (!session_.open && !failed_ && !session_.version_lowered && now() < deadline)
-      pump(milliseconds(10));
+    const std::string failed = request(
+        [this] {
+          session_.seq = static_cast<uint8_t>(session_.seq + 1);
+          proto::SessionCmd cmd{session_.version};
+          proto::Payload p;
+          proto::encode(cmd, &p);
+          send_frame(proto::kCmdSession, session_.seq,
+                     std::vector<uint8_t>(p.bytes, p.bytes + p.length));
+        },
+        [this] { return session_.open || failed_ || session_.version_lowered; }, "session reply");
     if (failed_) throw LinkError(message_);
-  }
-  if (!session_.open) {
-    throw LinkError(fmt::format("{}: no session reply from the controller", link_.name()));
+    if (!failed.empty()) throw LinkError(failed);
   }
   win_.first_seq = static_cast<uint8_t>(session_.seq + 1);
   session_.realtime_seq = 0;
@@ -447,14 +448,14 @@ proto::SessionReply Sender::open_session() {
 // empty on success) once nothing at all was heard for the silence limit, counted from the
 // request at the earliest: the link is dead, as a stream judges it; or when the controller,
 // still talking, left 5 tries unanswered.
-std::string Sender::request(const std::function<void()>& send, const bool& answered,
-                            const char* what) {
+std::string Sender::request(const std::function<void()>& send,
+                            const std::function<bool()>& answered, const char* what) {
   const auto asked = now();
   for (int unanswered = 0;;) {
     const auto sent = now();
     send();
-    while (!answered && now() - sent < options_.reply_timeout) pump(milliseconds(5));
-    if (answered) return {};
+    while (!answered() && now() - sent < options_.reply_timeout) pump(milliseconds(5));
+    if (answered()) return {};
     if (now() - std::max(last_reply_, asked) >= options_.silence_limit) {
       return fmt::format("{}: no reply for {} ms", link_.name(), options_.silence_limit.count());
     }
@@ -466,7 +467,8 @@ std::string Sender::request(const std::function<void()>& send, const bool& answe
 
 proto::StatusReply Sender::read_status() {
   have_status_ = false;
-  const std::string failed = request([this] { query_status(); }, have_status_, "status reply");
+  const std::string failed =
+      request([this] { query_status(); }, [this] { return have_status_; }, "status reply");
   if (!failed.empty()) throw LinkError(failed);
   return last_status_;
 }
@@ -475,7 +477,7 @@ proto::ProbeResultReply Sender::read_probe_result() {
   have_probe_ = false;
   const std::string failed =
       request([this] { send_frame(proto::kCmdProbeResult, session_.status_seq++, {}); },
-              have_probe_, "probe result");
+              [this] { return have_probe_; }, "probe result");
   if (!failed.empty()) throw LinkError(failed);
   return last_probe_;
 }
@@ -513,7 +515,8 @@ bool Sender::set_override(int percent) {
 // Starts manual zeroing if the machine is not zeroed and waits for the operator's confirm.
 bool Sender::ensure_zeroed(const std::function<void(const Progress&)>& on_progress) {
   have_status_ = false;
-  std::string failed = request([this] { query_status(); }, have_status_, "status reply");
+  std::string failed =
+      request([this] { query_status(); }, [this] { return have_status_; }, "status reply");
   if (!failed.empty()) {
     failed_ = true;
     failure_ = JobOutcome::kLinkLost;

@@ -135,7 +135,8 @@ class Sender {
   void fill_window(CommandSource& commands);
   bool job_ended(CommandSource& commands, JobOutcome* outcome);
   void send_realtime(uint8_t letter, const std::vector<uint8_t>& payload);
-  std::string request(const std::function<void()>& send, const bool& answered, const char* what);
+  std::string request(const std::function<void()>& send, const std::function<bool()>& answered,
+                      const char* what);
   bool ensure_zeroed(const std::function<void(const Progress&)>& on_progress);
   void query_status();
   void release_stored(CommandSource& commands);

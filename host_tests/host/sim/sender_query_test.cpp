@@ -35,20 +35,24 @@ double seconds_since(sim::SimMachine& m, std::chrono::steady_clock::time_point t
 // The CI run that failed: the link froze while the height map asked for a probe result, and
 // the job ended after 5 tries of 500 ms ("no probe result") instead of the guide's 10 s.
 TEST(SenderQuery, ASilentLinkIsLostAfterTheSilenceLimitNotAfterItsRetries) {
-  for (const bool probe : {false, true}) {
-    SCOPED_TRACE(probe ? "probe result" : "status");
+  // The session's #I too (outside tester 24: "no session reply from the controller").
+  for (const char* query : {"session", "status", "probe result"}) {
+    SCOPED_TRACE(query);
     sim::SimMachine m{sim::SimOptions{}};
     test::CutLink link(m);
     Sender s(link, lockstep(m));
-    s.open_session();
+    const std::string q = query;
+    if (q != "session") s.open_session();
     link.cut_for(60000);
     const auto cut_at = sim::machine_clock(m);
     std::string message;
     try {
-      if (probe) {
-        s.read_probe_result();
-      } else {
+      if (q == "session") {
+        s.open_session();
+      } else if (q == "status") {
         s.read_status();
+      } else {
+        s.read_probe_result();
       }
     } catch (const LinkError& e) {
       message = e.what();
@@ -71,6 +75,8 @@ TEST(SenderQuery, ALinkBackWithinTheSilenceLimitIsAnswered) {
   EXPECT_GE(seconds_since(m, cut_at), 6.0);
   link.cut_for(6000);
   EXPECT_NO_THROW(s.read_status());
+  link.cut_for(6000);
+  EXPECT_NO_THROW(s.open_session());
 }
 
 // A controller that answers #T with an error (firmware before protocol 4 does not know it):
