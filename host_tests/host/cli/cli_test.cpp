@@ -1,5 +1,7 @@
 // The `engraver` tool as a user runs it: help, info, points, exit codes.
 #include <gtest/gtest.h>
+#include <netinet/in.h>  // sockaddr_in
+#include <sys/socket.h>  // socket, bind
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -16,6 +18,27 @@
 #include "host_tests/host/cli/tool_run.h"
 
 namespace {
+
+// A loopback port nobody listens on (bound to any free port, then let go), and the shell
+// lines that start `engraver sim` there and wait until it listens (up to 10 s): a port from
+// the process id, slept on for 0.5 s, could be in use or still closing (a flaky exit 6).
+uint16_t free_port() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t n = sizeof a;
+  ::bind(fd, reinterpret_cast<sockaddr*>(&a), n);
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &n);
+  ::close(fd);
+  return ntohs(a.sin_port);
+}
+std::string start_sim(int port) {
+  const std::string p = std::to_string(port);
+  return std::string(ENGRAVER_EXE) + " sim --listen 127.0.0.1:" + p +
+         " >/dev/null 2>&1 & S=$!; for i in $(seq 200); do (exec 3<>/dev/tcp/127.0.0.1/" + p +
+         ") 2>/dev/null && break; sleep 0.05; done; ";
+}
 
 const std::string kSample = std::string(ENGRAVER_SOURCE_DIR) + "/samples/engraver-word.dxf";
 
@@ -480,13 +503,12 @@ TEST(Cli, SendResumeAtRejectsABadPositionAsAUsageError) {
 // send --resume on a controller that never ran a job (as after a restart): refused with what to
 // do instead, nothing sent.
 TEST(Cli, SendResumeOnAControllerWithoutJobProgressSaysWhatToDo) {
-  const int port = 20000 + static_cast<int>(getpid() % 20000);
+  const int port = free_port();
   const std::string exe = ENGRAVER_EXE;
-  const std::string script = "'" + exe + " sim --listen 127.0.0.1:" + std::to_string(port) +
-                             " >/dev/null 2>&1 & S=$!; sleep 0.5; " + exe + " send " + kSample +
+  const std::string script = "'" + start_sim(port) + exe + " send " + kSample +
                              " --to tcp://127.0.0.1:" + std::to_string(port) +
                              " --resume; r=$?; kill $S; exit $r'";
-  const auto r = host_tests::run_tool("sh -c", script);
+  const auto r = host_tests::run_tool("bash -c", script);
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("no job progress"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--resume-at"), std::string::npos) << r.err;
@@ -495,16 +517,15 @@ TEST(Cli, SendResumeOnAControllerWithoutJobProgressSaysWhatToDo) {
 // send (and probe) --no-zero to a fresh simulator (not zeroed): refused before anything is
 // sent, exit 1 (send streamed the set-up and ended with exit 5 at the first move).
 TEST(Cli, SendAndProbeNoZeroRefuseAMachineThatIsNotZeroed) {
-  const int port = 20000 + static_cast<int>((getpid() + 7) % 20000);
   const std::string exe = ENGRAVER_EXE;
   const std::string map = testing::TempDir() + "/no_zero_" + std::to_string(getpid()) + ".json";
   for (const std::string command : {"send", "probe"}) {
-    const std::string script = "'" + exe + " sim --listen 127.0.0.1:" + std::to_string(port) +
-                               " >/dev/null 2>&1 & S=$!; sleep 0.5; " + exe + " " + command + " " +
-                               kSample + " --to tcp://127.0.0.1:" + std::to_string(port) +
-                               " --no-zero" + (command == "probe" ? " --height-map " + map : "") +
+    const int port = free_port();  // each its own: the last one may still be closing
+    const std::string script = "'" + start_sim(port) + exe + " " + command + " " + kSample +
+                               " --to tcp://127.0.0.1:" + std::to_string(port) + " --no-zero" +
+                               (command == "probe" ? " --height-map " + map : "") +
                                "; r=$?; kill $S; wait $S; exit $r'";
-    const auto r = host_tests::run_tool("sh -c", script);
+    const auto r = host_tests::run_tool("bash -c", script);
     EXPECT_EQ(r.code, 1) << r.err;
     EXPECT_NE(r.err.find("engraver: the machine is not zeroed and --no-zero does not start manual "
                          "zeroing: nothing was sent (without --no-zero, " +
