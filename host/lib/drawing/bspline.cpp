@@ -265,9 +265,6 @@ std::vector<Point2> sample(const BSpline& s, double tol_mm) {
   std::vector<Point2> out;
   out.push_back(start_point(s));
   const size_t n = s.control.size();
-  // A line's span is straight and evenly parametrised: its quarter points are on the chord
-  // (to rounding, far below any tolerance), and would take 5 evaluations each to confirm.
-  const bool straight = s.degree == 1 && !s.rational() && tol_mm > 1e-9;
   for (size_t k = s.degree; k < n; ++k) {
     const double t0 = s.knots[k];
     const double t1 = s.knots[k + 1];
@@ -277,10 +274,6 @@ std::vector<Point2> sample(const BSpline& s, double tol_mm) {
     for (int i = 0; i < pieces; ++i) {
       const double a = t0 + (t1 - t0) * i / pieces;
       const double b = t0 + (t1 - t0) * (i + 1) / pieces;
-      if (straight) {
-        out.push_back(evaluate(s, b));  // the chord itself: what subdividing would find
-        continue;
-      }
       const double m = 0.5 * (a + b);
       subdivide(s, a, evaluate(s, a), m, evaluate(s, m), b, evaluate(s, b), tol_mm, 0, out);
     }
