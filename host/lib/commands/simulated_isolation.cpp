@@ -2,49 +2,10 @@
 #include "host/lib/commands/simulated_isolation.h"
 
 #include <algorithm>  // std::min, std::max
-#include <limits>     // std::numeric_limits
 
 #include "host/lib/sim/contour_error.h"  // NearestSegment
 
 namespace host::commands {
-
-namespace {
-
-// The least clearance of the tool's edge (um) over points, and where: each point's distance
-// to the copper's edges less the radius. That distance changes no faster than the point
-// moves, so a point nearer to the last one measured than that one's distance less the least
-// so far cannot go below it and is not measured (half of eaglecad1's simulated samples; an
-// isolation path keeps within a few um of its least clearance, so few of its planned ones).
-class LeastClearance {
- public:
-  LeastClearance(const sim::NearestSegment& copper, double radius_mm)
-      : copper_(copper), radius_mm_(radius_mm) {}
-  void add(const Point2& p) {
-    // 1e-6 um: rounding never lets a point skipped here be the least.
-    if (measured_ && (known_mm_ - (p - known_at_).norm() - radius_mm_) * 1000.0 > least_um + 1e-6) {
-      return;
-    }
-    known_mm_ = copper_.distance(p);
-    known_at_ = p;
-    measured_ = true;
-    const double c = (known_mm_ - radius_mm_) * 1000.0;
-    if (c < least_um) {
-      least_um = c;
-      at_mm = p;
-    }
-  }
-  double least_um = std::numeric_limits<double>::infinity();
-  Point2 at_mm{0, 0};
-
- private:
-  const sim::NearestSegment& copper_;
-  double radius_mm_;
-  bool measured_ = false;
-  double known_mm_ = 0;
-  Point2 known_at_{0, 0};
-};
-
-}  // namespace
 
 SimulatedIsolation check_simulated_isolation(const pcb::BoardJob& job, double tolerance_mm,
                                              const std::vector<std::vector<Point2>>& cut_paths_mm,
@@ -86,26 +47,37 @@ SimulatedIsolation check_simulated_isolation(const pcb::BoardJob& job, double to
     }
   }
   const sim::NearestSegment copper(edges, 0.25);
-  LeastClearance narrow(copper, job.tool_radius_mm);
-  for (const std::vector<Point2>& path : narrow_cuts)
-    for (const Point2& p : path) narrow.add(p);
-  s.min_clearance_um = narrow.least_um;
-  s.min_clearance_at_mm = narrow.at_mm;
-  if (!job.clearing_paths_mm.empty()) {
-    LeastClearance wide(copper, job.clearing_tool_radius_mm);
-    for (const std::vector<Point2>& path : wide_cuts)
-      for (const Point2& p : path) wide.add(p);
-    s.clearing_min_clearance_um = wide.least_um;
+  auto clearance_um = [&](const Point2& p, double radius_mm) {
+    return (copper.distance(p) - radius_mm) * 1000.0;
+  };
+  s.min_clearance_um = std::numeric_limits<double>::infinity();
+  for (const std::vector<Point2>& path : narrow_cuts) {
+    for (const Point2& p : path) {
+      const double c = clearance_um(p, job.tool_radius_mm);
+      if (c < s.min_clearance_um) {
+        s.min_clearance_um = c;
+        s.min_clearance_at_mm = p;
+      }
+    }
   }
-  LeastClearance planned(copper, job.tool_radius_mm);
+  if (!job.clearing_paths_mm.empty()) {
+    s.clearing_min_clearance_um = std::numeric_limits<double>::infinity();
+    for (const std::vector<Point2>& path : wide_cuts)
+      for (const Point2& p : path)
+        s.clearing_min_clearance_um =
+            std::min(s.clearing_min_clearance_um, clearance_um(p, job.clearing_tool_radius_mm));
+  }
+  s.planned_min_clearance_um = std::numeric_limits<double>::infinity();
   for (const std::vector<Point2>& path : job.isolation_paths_mm) {
     for (size_t i = 0; i < path.size(); ++i) {
       const Point2 a = path[i], b = i + 1 < path.size() ? path[i + 1] : a;
       const int n = 1 + static_cast<int>((b - a).norm() / 0.005);
-      for (int k = 0; k < n; ++k) planned.add(a + (b - a) * (double(k) / n));
+      for (int k = 0; k < n; ++k)
+        s.planned_min_clearance_um =
+            std::min(s.planned_min_clearance_um,
+                     clearance_um(a + (b - a) * (double(k) / n), job.tool_radius_mm));
     }
   }
-  s.planned_min_clearance_um = planned.least_um;
   return s;
 }
 
