@@ -24,8 +24,7 @@ namespace {
 // it (or the file is no longer), else the whole file (a long licence or a tool's settings
 // may come first, or the attribute straddle the head's end).
 std::string x2_header_text(const std::string& path, const std::string& head) {
-  const size_t at = head.find("FileFunction");
-  const bool whole = at != std::string::npos && head.find('*', at) != std::string::npos;
+  const bool whole = !pcb::x2_file_function(head).empty();
   std::string text;
   if (whole || head.size() < 4096 || read_file_text(path, &text) != FileRead::kOk) return head;
   return text;

@@ -156,11 +156,15 @@ PcbFileFormat pcb_file_format(const std::string& path, const std::string& head_t
     return PcbFileFormat::kGerber;
   }
   // A drill name usually holds Excellon; a Gerber in it is a drill drawing (OrCAD's .drd,
-  // gerbv's orcad/rs232_cm.drd; EAGLE's .drd is Excellon), read as what it is.
+  // gerbv's orcad/rs232_cm.drd; EAGLE's .drd is Excellon), read as what it is. A Gerber may
+  // hold kilobytes of G04 comments before its format statement.
   if (ext == ".drl" || ext == ".xln" || ext == ".exc" || ext == ".drd") {
-    return contains(head_text, "%FS") && !starts_like_excellon(head_text)
-               ? PcbFileFormat::kGerber
-               : PcbFileFormat::kExcellon;
+    const size_t first = head_text.find_first_not_of(" \t\r\n");
+    const bool gerber = contains(head_text, "%FS") || contains(head_text, "%MOMM") ||
+                        contains(head_text, "%MOIN") ||
+                        (first != std::string::npos && head_text.compare(first, 3, "G04") == 0);
+    return gerber && !starts_like_excellon(head_text) ? PcbFileFormat::kGerber
+                                                      : PcbFileFormat::kExcellon;
   }
   if (contains(head_text, "%FS") || contains(head_text, "%MOMM") || contains(head_text, "%MOIN")) {
     return PcbFileFormat::kGerber;
@@ -195,29 +199,52 @@ LayerKind layer_kind_from_file_function(const std::string& value) {
   return LayerKind::kUnknown;
 }
 
-LayerKind layer_kind_from_x2(const std::string& head_text) {
-  for (const char* key : {"TF.FileFunction,", "TF,.FileFunction,"}) {
-    const size_t at = head_text.find(key);
-    if (at == std::string::npos) continue;
-    const size_t from = at + std::string(key).size();
-    const size_t end = head_text.find('*', from);
-    if (end == std::string::npos) return LayerKind::kUnknown;  // cut off by the head's end
-    return layer_kind_from_file_function(head_text.substr(from, end - from));
+namespace {
+
+// Just after the last non-space character before p (0 at the text's start).
+size_t back_over_space(const std::string& text, size_t p) {
+  while (p > 0 && std::isspace(static_cast<unsigned char>(text[p - 1]))) --p;
+  return p;
+}
+
+// A block may start at p: the text's start or the end of another block ('*' or "*%") before
+// it, spaces and line ends between.
+bool block_starts(const std::string& text, size_t p) {
+  p = back_over_space(text, p);
+  return p == 0 || text[p - 1] == '*' || text[p - 1] == '%';
+}
+
+// The attribute's body starts at `at`: after a block's '%', or after "G04 #@!" (or "G4").
+bool attribute_at(const std::string& text, size_t at) {
+  const size_t b = back_over_space(text, at);
+  if (b > 0 && text[b - 1] == '%') return block_starts(text, b - 1);
+  if (b < 3 || text.compare(b - 3, 3, "#@!") != 0) return false;
+  const size_t c = back_over_space(text, b - 3);
+  if (c >= 3 && text.compare(c - 3, 3, "G04") == 0) return block_starts(text, c - 3);
+  return c >= 2 && text.compare(c - 2, 2, "G4") == 0 && block_starts(text, c - 2);
+}
+
+}  // namespace
+
+std::string x2_file_function(const std::string& text) {
+  for (const std::string key : {"TF.FileFunction,", "TF,.FileFunction,"}) {
+    for (size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1)) {
+      if (!attribute_at(text, at)) continue;
+      const size_t from = at + key.size();
+      const size_t end = text.find('*', from);
+      return end == std::string::npos ? std::string() : text.substr(from, end - from);
+    }
   }
-  return LayerKind::kUnknown;
+  return std::string();
+}
+
+LayerKind layer_kind_from_x2(const std::string& head_text) {
+  const std::string function = x2_file_function(head_text);
+  return function.empty() ? LayerKind::kUnknown : layer_kind_from_file_function(function);
 }
 
 std::string other_layer_from_x2(const std::string& head_text) {
-  std::string function, rest;
-  for (const char* key : {"TF.FileFunction,", "TF,.FileFunction,"}) {
-    const size_t at = head_text.find(key);
-    if (at == std::string::npos) continue;
-    const size_t from = at + std::string(key).size();
-    const size_t end = head_text.find('*', from);
-    if (end == std::string::npos) return "";
-    function = head_text.substr(from, end - from);
-    break;
-  }
+  const std::string function = x2_file_function(head_text);
   const std::string first = function.substr(0, function.find(','));
   if (first.empty() || layer_kind_from_file_function(function) != LayerKind::kUnknown) return "";
   if (first == "Legend") return "silkscreen";

@@ -21,9 +21,14 @@ LayerKind layer_kind_from_file_name(const std::string& path);
 // (inner copper, silkscreen, mask, paste).
 LayerKind layer_kind_from_file_function(const std::string& value);
 
-// Layer kind from the X2 TF.FileFunction in the head of a Gerber file (as %TF...*% or as
-// KiCad 5's "G04 #@! TF...*" comment); kUnknown when there is none or it names no layer
-// this machine cuts.
+// The value of a Gerber text's X2 file function ("Copper,L1,Top"), as the reader takes it:
+// the body of a "%TF.FileFunction,...*%" block or of KiCad 5's "G04 #@! TF.FileFunction,...*"
+// comment, each where a block starts (a mention inside another comment is none); "" when
+// there is none or the text ends before its '*'.
+std::string x2_file_function(const std::string& text);
+
+// Layer kind from the X2 file function in the head of a Gerber file; kUnknown when there is
+// none or it names no layer this machine cuts.
 LayerKind layer_kind_from_x2(const std::string& head_text);
 
 // What a Gerber file is when it is a layer no job cuts: from the X2 file function in its

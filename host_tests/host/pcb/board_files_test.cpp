@@ -120,6 +120,11 @@ TEST(BoardFiles, ADrdWhoseContentIsGerberIsReadAsGerber) {
             PcbFileFormat::kExcellon);  // old EAGLE
   EXPECT_EQ(pcb_file_format("board.drd", "M48\n;FORMAT %FS-like comment\nINCH\n"),
             PcbFileFormat::kExcellon);
+  // A Gerber's comments may fill the head before its format statement (outside tester 25).
+  EXPECT_EQ(pcb_file_format("holes.drl", "G04 a long header*\nG04 more of it*\n"),
+            PcbFileFormat::kGerber);
+  EXPECT_EQ(pcb_file_format("holes.drl", "; made by hand\nM48\nMETRIC\n"),
+            PcbFileFormat::kExcellon);
 }
 
 // Gerber content is a picture of the holes, never the holes: a .drd (or an X2 drill file
@@ -157,6 +162,17 @@ TEST(BoardFiles, KindFromTheX2FileFunctionInAFilesHead) {
   EXPECT_EQ(layer_kind_from_x2("%TF.FileFunction,Legend,Top*%"), LayerKind::kUnknown);
   EXPECT_EQ(layer_kind_from_x2("%TF.FileFunction,Copper,L1,To"), LayerKind::kUnknown);  // cut off
   EXPECT_EQ(layer_kind_from_x2("%FSLAX46Y46*%\n%MOMM*%\n"), LayerKind::kUnknown);
+  // Only where a block starts, as the reader takes it: a mention inside a comment is none
+  // (outside tester 25: "G04 see %TF.FileFunction,Legend,Top*" left a copper file out).
+  EXPECT_EQ(x2_file_function("G04 see %TF.FileFunction,Legend,Top*\n"), "");
+  EXPECT_EQ(x2_file_function("G04 a TF.FileFunction,Legend,Top note*\n"), "");
+  EXPECT_EQ(x2_file_function("G04 see %TF.FileFunction,Legend*\n%TF.FileFunction,Profile,NP*%"),
+            "Profile,NP");
+  EXPECT_EQ(x2_file_function("D10*%TF.FileFunction,Copper,L1,Top*%"), "Copper,L1,Top");
+  EXPECT_EQ(x2_file_function("%MOMM*%\r\n  %TF.FileFunction,Copper,L1,Top*%"), "Copper,L1,Top");
+  EXPECT_EQ(x2_file_function("G04 #@!TF.FileFunction,Copper,L2,Bot*"), "Copper,L2,Bot");
+  EXPECT_EQ(x2_file_function("G4 #@! TF.FileFunction,Copper,L2,Bot*"), "Copper,L2,Bot");
+  EXPECT_EQ(x2_file_function("G04 x #@! TF.FileFunction,Copper,L2,Bot*"), "");
   // What the reader takes from the whole file, the head alone gives.
   const std::string x2 = text_of("x2_attributes.gbr");
   EXPECT_EQ(layer_kind_from_x2(x2.substr(0, 4096)),
