@@ -46,6 +46,8 @@ size_t end_of_number(const std::string& word, size_t from) {
 
 std::string read_pcb_file_text(const std::string& path) {
   std::string text = read_text_or_throw<PcbReadError>(path);
+  // A UTF-8 byte-order mark (a Windows editor's) is no part of Gerber or Excellon.
+  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
   if (text.empty()) throw PcbReadError(path + ": the file is empty");
   return text;
 }

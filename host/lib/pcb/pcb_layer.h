@@ -66,8 +66,8 @@ class PcbReadError : public std::runtime_error {
   explicit PcbReadError(const std::string& msg) : std::runtime_error(msg) {}
 };
 
-// The text of a PCB file; PcbReadError naming it when it cannot be opened or read, or is
-// empty.
+// The text of a PCB file, without a UTF-8 byte-order mark; PcbReadError naming it when it
+// cannot be opened or read, or is empty.
 std::string read_pcb_file_text(const std::string& path);
 
 // Where the number that starts at `from` in a Gerber or Excellon word ends: after its digits,

@@ -6,9 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>  // getpid
+
 #include <algorithm>  // std::find
+#include <cstdio>     // std::remove
 #include <fstream>    // std::ifstream
 #include <iterator>   // std::istreambuf_iterator
+#include <string>     // std::to_string
 
 #include "host_tests/host/pcb/test_data.h"
 
@@ -177,6 +181,22 @@ TEST(BoardFiles, KindFromTheX2FileFunctionInAFilesHead) {
   const std::string x2 = text_of("x2_attributes.gbr");
   EXPECT_EQ(layer_kind_from_x2(x2.substr(0, 4096)),
             read_board_text(x2, "x.gbr", LayerKind::kUnknown).kind);
+}
+
+// A UTF-8 byte-order mark before either format (outside tester 25: "unexpected '\xEF'").
+TEST(BoardFiles, AByteOrderMarkIsNoPartOfTheFile) {
+  const std::string bom = "\xEF\xBB\xBF";
+  const std::string gerber = "%FSLAX46Y46*%\n%MOMM*%\n%ADD10C,1*%\nD10*\nX0Y0D03*\nM02*\n";
+  const std::string drill = "M48\nMETRIC\nT1C0.8\n%\nT1\nX1.0Y1.0\nX2.0Y1.0\nM30\n";
+  EXPECT_EQ(read_board_text(bom + gerber, "a.gbr", LayerKind::kUnknown).polygons_nm.size(), 1u);
+  EXPECT_EQ(read_board_text(bom + drill, "a.drl", LayerKind::kUnknown).holes.size(), 2u);
+  EXPECT_EQ(pcb_file_format("holes.txt", bom + drill), PcbFileFormat::kExcellon);  // by content
+  EXPECT_EQ(read_board_text(bom + drill, "holes.txt", LayerKind::kUnknown).holes.size(), 2u);
+  // From a file too (what `info`, `board` and a folder read).
+  const std::string path = testing::TempDir() + "/bom_" + std::to_string(getpid()) + ".gbr";
+  std::ofstream(path, std::ios::binary) << bom << gerber;
+  EXPECT_EQ(read_board_file(path, LayerKind::kUnknown).polygons_nm.size(), 1u);
+  std::remove(path.c_str());
 }
 
 TEST(BoardFiles, ErrorsNameTheUploadAndTheLine) {
