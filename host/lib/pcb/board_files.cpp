@@ -14,8 +14,9 @@ PcbFileFormat board_file_format(const std::string& name, const std::string& text
 }
 
 PcbLayer read_board_text(const std::string& text, const std::string& name, LayerKind kind) {
-  // A UTF-8 byte-order mark (a Windows editor's) is no part of either format.
-  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) return read_board_text(text.substr(3), name, kind);
+  // An upload's bytes (a file's text comes without the mark: read_pcb_file_text).
+  if (const size_t bom = utf8_bom_length(text))
+    return read_board_text(text.substr(bom), name, kind);
   const PcbFileFormat f = board_file_format(name, text);
   if (f == PcbFileFormat::kExcellon || (f == PcbFileFormat::kNone && kind == LayerKind::kDrill)) {
     PcbLayer l = read_excellon_text(text, name);

@@ -148,8 +148,8 @@ LayerKind layer_kind_from_file_name(const std::string& path) {
 }
 
 PcbFileFormat pcb_file_format(const std::string& path, const std::string& head_text) {
-  if (head_text.compare(0, 3, "\xEF\xBB\xBF") == 0)
-    return pcb_file_format(path, head_text.substr(3));
+  if (const size_t bom = utf8_bom_length(head_text))
+    return pcb_file_format(path, head_text.substr(bom));
   const std::string ext = extension(base_name(path));
   if (ext == ".gbr" || ext == ".ger" || ext == ".gtl" || ext == ".gbl" || ext == ".gto" ||
       ext == ".gbo" || ext == ".gts" || ext == ".gbs" || ext == ".gko" || ext == ".gm1" ||

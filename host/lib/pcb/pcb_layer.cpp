@@ -44,10 +44,13 @@ size_t end_of_number(const std::string& word, size_t from) {
   return end;
 }
 
+size_t utf8_bom_length(const std::string& text) {
+  return text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+}
+
 std::string read_pcb_file_text(const std::string& path) {
   std::string text = read_text_or_throw<PcbReadError>(path);
-  // A UTF-8 byte-order mark (a Windows editor's) is no part of Gerber or Excellon.
-  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
+  text.erase(0, utf8_bom_length(text));
   if (text.empty()) throw PcbReadError(path + ": the file is empty");
   return text;
 }

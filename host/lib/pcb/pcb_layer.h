@@ -66,6 +66,10 @@ class PcbReadError : public std::runtime_error {
   explicit PcbReadError(const std::string& msg) : std::runtime_error(msg) {}
 };
 
+// 3 when text starts with a UTF-8 byte-order mark (a Windows editor's), else 0: no part of
+// Gerber or Excellon.
+size_t utf8_bom_length(const std::string& text);
+
 // The text of a PCB file, without a UTF-8 byte-order mark; PcbReadError naming it when it
 // cannot be opened or read, or is empty.
 std::string read_pcb_file_text(const std::string& path);
